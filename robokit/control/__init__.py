@@ -1,0 +1,3 @@
+"""robokit.control — see the module docstrings inside."""
+
+__all__: list[str] = []

@@ -1,0 +1,236 @@
+r"""Rigid motions: SE(3), se(3), twists, the exponential and logarithm, adjoints (Lecture 2, seed 004 §2).
+
+A pose ``T = [[R, p], [0, 1]]`` (4×4) maps coordinates in a moving frame to the reference
+frame. A twist ``V = (ω, v)`` (6-vector, angular first) has the 4×4 matrix form
+``[V] = [[[ω], v], [0, 0]]``. A screw axis ``S`` is a twist with ‖ω‖ = 1, or ω = 0 and ‖v‖ = 1.
+
+Formulas (Modern Robotics, ch. 3):
+    exp([S]θ) = [[exp([ω]θ), G(θ) v], [0, 1]],  G(θ) = Iθ + (1 − cos θ)[ω] + (θ − sin θ)[ω]²
+    log T: [ω]θ = log R, v = G⁻¹(θ) p,  G⁻¹(θ)/θ = I/θ − [ω]/2 + (1/θ − cot(θ/2)/2)[ω]²
+    Ad_T = [[R, 0], [[p]R, R]],  ad_V = [[[ω], 0], [[v], [ω]]]
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_matrix, as_vector
+from robokit.spatial.so3 import (
+    SO3_TOLERANCE,
+    _distance_so3,
+    _exp3_coeffs,
+    _hat,
+    _log3_vec,
+    project_to_SO3,
+)
+
+__all__ = [
+    "trans_inv",
+    "vec_to_se3",
+    "se3_to_vec",
+    "axis_ang_6",
+    "matrix_exp_6",
+    "matrix_log_6",
+    "Rp_to_trans",
+    "trans_to_Rp",
+    "adjoint",
+    "ad",
+    "project_to_SE3",
+    "distance_to_SE3",
+    "test_if_SE3",
+    "check_transform",
+]
+
+
+def check_transform(T, name: str = "T", tol: float = SO3_TOLERANCE) -> np.ndarray:
+    """Return ``T`` as a 4×4 float array, or raise ``ValueError`` if it is not in SE(3).
+
+    The rotation block must be within ``tol`` of SO(3) and the last row ``[0, 0, 0, 1]``.
+    """
+    T = as_matrix(T, name, 4, 4)
+    d = _distance_se3(T)
+    if d > tol:
+        raise ValueError(f"{name}: not a homogeneous transform (distance to SE(3) {d:.3g} > {tol:g})")
+    return T
+
+
+def Rp_to_trans(R, p) -> np.ndarray:
+    """The 4×4 pose ``[[R, p], [0, 1]]`` from a rotation R (3×3) and a position p (3,).
+
+    Example: ``Rp_to_trans(np.eye(3), [1, 2, 3])`` is a pure translation.
+    """
+    from robokit.spatial.so3 import check_rotation
+
+    R = check_rotation(R, "R")
+    p = as_vector(p, "p", 3)
+    T = np.eye(4)
+    T[:3, :3] = R
+    T[:3, 3] = p
+    return T
+
+
+def trans_to_Rp(T):
+    """Split a 4×4 pose into ``(R, p)`` (copies, 3×3 and (3,))."""
+    T = check_transform(T, "T")
+    return T[:3, :3].copy(), T[:3, 3].copy()
+
+
+def trans_inv(T) -> np.ndarray:
+    """Inverse of a pose: ``[[Rᵀ, −Rᵀp], [0, 1]]``."""
+    T = check_transform(T, "T")
+    return _inv(T)
+
+
+def _inv(T: np.ndarray) -> np.ndarray:
+    Ti = np.eye(4)
+    Rt = T[:3, :3].T
+    Ti[:3, :3] = Rt
+    Ti[:3, 3] = -Rt @ T[:3, 3]
+    return Ti
+
+
+def vec_to_se3(V) -> np.ndarray:
+    """The 4×4 matrix ``[V] = [[[ω], v], [0, 0]]`` of a twist ``V = (ω, v)``."""
+    V = as_vector(V, "V", 6)
+    m = np.zeros((4, 4))
+    m[:3, :3] = _hat(V[:3])
+    m[:3, 3] = V[3:]
+    return m
+
+
+def se3_to_vec(se3mat) -> np.ndarray:
+    """The twist ``(ω, v)`` of a 4×4 se(3) matrix (inverse of ``vec_to_se3``)."""
+    m = as_matrix(se3mat, "se3mat", 4, 4)
+    return np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]])
+
+
+def axis_ang_6(expc6):
+    """Split exponential coordinates ``Sθ`` (6-vector) into the screw axis S and θ.
+
+    θ = ‖ω‖, or ‖v‖ when ω = 0 (pure translation). Raises ``ValueError`` for the zero
+    vector. Example: ``axis_ang_6([0, 0, 0, 0, 0, 2])`` → ``([0, 0, 0, 0, 0, 1], 2.0)``.
+    """
+    V = as_vector(expc6, "expc6", 6)
+    theta = float(np.linalg.norm(V[:3]))
+    if theta == 0.0:
+        theta = float(np.linalg.norm(V[3:]))
+    if theta == 0.0:
+        raise ValueError("expc6: the zero vector has no screw axis")
+    return V / theta, theta
+
+
+def _exp6(V: np.ndarray) -> np.ndarray:
+    """exp of the twist ``V`` (exponential coordinates, angle folded in)."""
+    w, v = V[:3], V[3:]
+    theta = float(np.linalg.norm(w))
+    W = _hat(w)
+    W2 = W @ W
+    A, B = _exp3_coeffs(theta)
+    if theta < 1e-4:
+        t2 = theta * theta
+        C = 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0
+    else:
+        C = (theta - np.sin(theta)) / theta**3
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + A * W + B * W2
+    T[:3, 3] = v + B * (W @ v) + C * (W2 @ v)
+    return T
+
+
+def matrix_exp_6(se3mat) -> np.ndarray:
+    """The pose ``exp([S]θ)`` of a 4×4 se(3) matrix (closed form, exact for pure translation).
+
+    Example: ``matrix_exp_6(vec_to_se3([0, 0, 0, 1, 2, 3]))`` is the translation (1, 2, 3).
+    """
+    m = as_matrix(se3mat, "se3mat", 4, 4)
+    return _exp6(np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]]))
+
+
+def _log6_vec(T: np.ndarray) -> np.ndarray:
+    w = _log3_vec(T[:3, :3])
+    theta = float(np.linalg.norm(w))
+    W = _hat(w)
+    if theta < 1e-4:
+        t2 = theta * theta
+        D = 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0
+    else:
+        half = 0.5 * theta
+        D = (1.0 - half * np.cos(half) / np.sin(half)) / (theta * theta)
+    p = T[:3, 3]
+    v = p - 0.5 * (W @ p) + D * (W @ (W @ p))
+    return np.concatenate([w, v])
+
+
+def matrix_log_6(T) -> np.ndarray:
+    """The 4×4 se(3) matrix ``[S]θ`` with ``exp([S]θ) = T`` and rotation angle θ ∈ [0, π].
+
+    A pure translation gives ``[[0, p], [0, 0]]``; θ = π follows ``matrix_log_3``'s axis
+    choice. Raises ``ValueError`` if T is not in SE(3).
+    """
+    T = check_transform(T, "T")
+    V = _log6_vec(T)
+    m = np.zeros((4, 4))
+    m[:3, :3] = _hat(V[:3])
+    m[:3, 3] = V[3:]
+    return m
+
+
+def adjoint(T) -> np.ndarray:
+    """The 6×6 adjoint ``Ad_T = [[R, 0], [[p]R, R]]`` mapping twists: ``V_a = Ad_{T_ab} V_b``."""
+    T = check_transform(T, "T")
+    return _adjoint(T)
+
+
+def _adjoint(T: np.ndarray) -> np.ndarray:
+    R, p = T[:3, :3], T[:3, 3]
+    A = np.zeros((6, 6))
+    A[:3, :3] = R
+    A[3:, 3:] = R
+    A[3:, :3] = _hat(p) @ R
+    return A
+
+
+def ad(V) -> np.ndarray:
+    """The 6×6 ``ad_V = [[[ω], 0], [[v], [ω]]]`` of a twist ``V = (ω, v)`` (Lie bracket ``ad_V W = [V, W]``)."""
+    V = as_vector(V, "V", 6)
+    A = np.zeros((6, 6))
+    Wm = _hat(V[:3])
+    A[:3, :3] = Wm
+    A[3:, 3:] = Wm
+    A[3:, :3] = _hat(V[3:])
+    return A
+
+
+def project_to_SE3(mat) -> np.ndarray:
+    """The SE(3) matrix nearest to ``mat``: the rotation block projected to SO(3) (SVD), p kept."""
+    M = as_matrix(mat, "mat", 4, 4)
+    T = np.eye(4)
+    T[:3, :3] = project_to_SO3(M[:3, :3])
+    T[:3, 3] = M[:3, 3]
+    return T
+
+
+def _distance_se3(M: np.ndarray) -> float:
+    R = M[:3, :3]
+    if np.linalg.det(R) <= 0.0:
+        return 1e9
+    D = np.zeros((4, 4))
+    D[:3, :3] = R.T @ R
+    D[3, :] = M[3, :]
+    return float(np.linalg.norm(D - np.eye(4)))
+
+
+def distance_to_SE3(mat) -> float:
+    """Distance of a 4×4 matrix from SE(3), as Modern Robotics defines it.
+
+    With R the top-left block: if det R > 0, ``‖[[RᵀR, 0], [last row]] − I‖_F`` (the position
+    column does not count); else the large value 1e9.
+    """
+    return _distance_se3(as_matrix(mat, "mat", 4, 4))
+
+
+def test_if_SE3(mat) -> bool:
+    """True if ``distance_to_SE3(mat) < 1e-3``."""
+    return bool(distance_to_SE3(mat) < 1e-3)
+
+
+test_if_SE3.__test__ = False

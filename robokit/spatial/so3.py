@@ -1,0 +1,233 @@
+r"""Rotations: SO(3), its Lie algebra so(3), the exponential and logarithm (Lecture 2, seed 004 §2).
+
+A rotation matrix ``R`` (3×3, det +1) maps coordinates in a rotated frame to the
+reference frame. ``[ω]`` is the 3×3 skew matrix of ω with ``[ω] x = ω × x``. Exponential
+coordinates ``ω̂θ`` (a 3-vector) describe a rotation by θ about the unit axis ω̂.
+
+Formulas (Rodrigues):
+    exp([ω̂]θ) = I + sin θ [ω̂] + (1 − cos θ) [ω̂]²
+    log R: θ = atan2(‖vee((R − Rᵀ)/2)‖, (tr R − 1)/2), [ω̂]θ = θ/(2 sin θ) (R − Rᵀ),
+with a Taylor series near θ = 0 and the symmetric part ``(R + Rᵀ)/2 − cos θ I = (1 − cos θ) ω̂ω̂ᵀ``
+for θ > π/2, which stays accurate up to and at θ = π.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_matrix, as_vector
+
+__all__ = [
+    "rot_inv",
+    "vec_to_so3",
+    "so3_to_vec",
+    "axis_ang_3",
+    "matrix_exp_3",
+    "matrix_log_3",
+    "project_to_SO3",
+    "distance_to_SO3",
+    "test_if_SO3",
+    "euler_to_matrix",
+    "matrix_to_euler",
+    "check_rotation",
+]
+
+#: A matrix farther than this (Frobenius ‖RᵀR − I‖, or det ≤ 0) from SO(3) is refused
+#: where a rotation is required.
+SO3_TOLERANCE = 1e-6
+
+
+def check_rotation(R, name: str = "R", tol: float = SO3_TOLERANCE) -> np.ndarray:
+    """Return ``R`` as a 3×3 float array, or raise ``ValueError`` if it is not a rotation.
+
+    The test is ``distance_to_SO3(R) <= tol`` (orthonormal columns and det +1).
+    """
+    R = as_matrix(R, name, 3, 3)
+    d = _distance_so3(R)
+    if d > tol:
+        raise ValueError(f"{name}: not a rotation matrix (distance to SO(3) {d:.3g} > {tol:g})")
+    return R
+
+
+def rot_inv(R) -> np.ndarray:
+    """Inverse of a rotation matrix, ``Rᵀ`` (3×3).
+
+    Example: ``rot_inv(Rz(θ))`` is ``Rz(−θ)``.
+    """
+    return check_rotation(R, "R").T.copy()
+
+
+def vec_to_so3(omg) -> np.ndarray:
+    """The 3×3 skew-symmetric matrix ``[ω]`` of a 3-vector ω, so that ``[ω] x = ω × x``.
+
+    Example: ``vec_to_so3([1, 2, 3])`` → ``[[0, -3, 2], [3, 0, -1], [-2, 1, 0]]``.
+    """
+    w = as_vector(omg, "omg", 3)
+    return _hat(w)
+
+
+def _hat(w: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+def so3_to_vec(so3mat) -> np.ndarray:
+    """The 3-vector ω of a 3×3 skew-symmetric matrix ``[ω]`` (the inverse of ``vec_to_so3``).
+
+    Only the lower-left entries are read: ``(m[2,1], m[0,2], m[1,0])``, as in the seed library.
+    """
+    m = as_matrix(so3mat, "so3mat", 3, 3)
+    return np.array([m[2, 1], m[0, 2], m[1, 0]])
+
+
+def axis_ang_3(expc3):
+    """Split exponential coordinates ``ω̂θ`` (3-vector) into the unit axis ω̂ and the angle θ ≥ 0.
+
+    Raises ``ValueError`` for the zero vector (no rotation has no axis).
+    Example: ``axis_ang_3([1, 2, 3])`` → ``([0.267, 0.535, 0.802], 3.742)``.
+    """
+    v = as_vector(expc3, "expc3", 3)
+    theta = float(np.linalg.norm(v))
+    if theta == 0.0:
+        raise ValueError("expc3: the zero vector has no rotation axis")
+    return v / theta, theta
+
+
+def _exp3_coeffs(theta: float):
+    """A = sin θ/θ, B = (1 − cos θ)/θ², with Taylor series for small θ."""
+    if theta < 1e-4:
+        t2 = theta * theta
+        return 1.0 - t2 / 6.0 + t2 * t2 / 120.0, 0.5 - t2 / 24.0 + t2 * t2 / 720.0
+    return np.sin(theta) / theta, (1.0 - np.cos(theta)) / (theta * theta)
+
+
+def _exp3(w: np.ndarray) -> np.ndarray:
+    W = _hat(w)
+    A, B = _exp3_coeffs(float(np.linalg.norm(w)))
+    return np.eye(3) + A * W + B * (W @ W)
+
+
+def matrix_exp_3(so3mat) -> np.ndarray:
+    """Rotation matrix ``exp([ω̂]θ)`` of a 3×3 skew matrix (Rodrigues' formula).
+
+    Example: ``matrix_exp_3(vec_to_so3([0, 0, pi/2]))`` is the 90° rotation about z.
+    """
+    m = as_matrix(so3mat, "so3mat", 3, 3)
+    return _exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
+
+
+def _log3_vec(R: np.ndarray) -> np.ndarray:
+    """Exponential coordinates ω̂θ (θ ∈ [0, π]) of a rotation matrix.
+
+    At exactly θ = π the axis sign is free; the choice made is the one whose largest
+    component (by |·|) is positive.
+    """
+    s_vec = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])  # sin θ · ω̂
+    s = float(np.linalg.norm(s_vec))
+    c = min(1.0, max(-1.0, 0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0)))
+    theta = float(np.arctan2(s, c))
+    if c >= 0.0:  # θ ≤ π/2: the skew part is well conditioned
+        if theta < 1e-4:
+            t2 = theta * theta
+            factor = 1.0 + t2 / 6.0 + 7.0 * t2 * t2 / 360.0  # θ / sin θ
+        else:
+            factor = theta / s
+        return factor * s_vec
+    # θ > π/2: the symmetric part gives the axis; the skew part only its sign.
+    B = 0.5 * (R + R.T) - c * np.eye(3)  # (1 − cos θ) ω̂ ω̂ᵀ
+    k = int(np.argmax(np.diag(B)))
+    axis = B[:, k] / np.sqrt(B[k, k] * (1.0 - c))
+    axis /= np.linalg.norm(axis)
+    d = float(axis @ s_vec)
+    if d < 0.0 or (d == 0.0 and axis[np.argmax(np.abs(axis))] < 0.0):
+        axis = -axis
+    return theta * axis
+
+
+def matrix_log_3(R) -> np.ndarray:
+    """The 3×3 skew matrix ``[ω̂]θ`` with ``exp([ω̂]θ) = R`` and θ ∈ [0, π].
+
+    ``R = I`` gives the zero matrix. θ near π is computed from the symmetric part of R,
+    so it stays accurate; at θ = π exactly (two valid axes ±ω̂) the axis whose largest
+    component is positive is returned. Raises ``ValueError`` if R is not a rotation.
+    """
+    R = check_rotation(R, "R")
+    return _hat(_log3_vec(R))
+
+
+def project_to_SO3(mat) -> np.ndarray:
+    """The rotation matrix nearest to ``mat`` in the Frobenius norm (via SVD).
+
+    With ``mat = U Σ Vᵀ`` the answer is ``U diag(1, 1, det(UVᵀ)) Vᵀ``: for an input with
+    det < 0 (a reflection), the smallest singular direction is flipped, which is still
+    the nearest rotation. Example: ``project_to_SO3(R + 0.01 * noise)`` ≈ R.
+    """
+    M = as_matrix(mat, "mat", 3, 3)
+    U, _, Vt = np.linalg.svd(M)
+    d = np.sign(np.linalg.det(U @ Vt)) or 1.0
+    return U @ np.diag([1.0, 1.0, d]) @ Vt
+
+
+def _distance_so3(M: np.ndarray) -> float:
+    if np.linalg.det(M) <= 0.0:
+        return 1e9
+    return float(np.linalg.norm(M.T @ M - np.eye(3)))
+
+
+def distance_to_SO3(mat) -> float:
+    """Distance of a 3×3 matrix from SO(3), as Modern Robotics defines it.
+
+    ``‖matᵀ mat − I‖_F`` if det(mat) > 0, else the large value 1e9.
+    """
+    return _distance_so3(as_matrix(mat, "mat", 3, 3))
+
+
+def test_if_SO3(mat) -> bool:
+    """True if ``distance_to_SO3(mat) < 1e-3``."""
+    return bool(distance_to_SO3(mat) < 1e-3)
+
+
+test_if_SO3.__test__ = False  # not a pytest test despite its name
+
+
+def euler_to_matrix(euler) -> np.ndarray:
+    """``Rz(α) Ry(β) Rx(γ)`` for ZYX Euler angles ``euler = [α, β, γ]`` (rad).
+
+    Moving-axis reading: rotate by α about z, then β about the new y, then γ about the
+    new x (seed 004 §2). Example: ``euler_to_matrix([pi/2, 0, 0])`` is Rz(90°).
+    """
+    a, b, g = as_vector(euler, "euler", 3)
+    ca, sa, cb, sb, cg, sg = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(g), np.sin(g)
+    return np.array(
+        [
+            [ca * cb, ca * sb * sg - sa * cg, ca * sb * cg + sa * sg],
+            [sa * cb, sa * sb * sg + ca * cg, sa * sb * cg - ca * sg],
+            [-sb, cb * sg, cb * cg],
+        ]
+    )
+
+
+def matrix_to_euler(R) -> np.ndarray:
+    """ZYX Euler angles ``[α, β, γ]`` with ``euler_to_matrix([α, β, γ]) = R``.
+
+    Ranges: β ∈ [−π/2, π/2], α, γ ∈ (−π, π]. At gimbal lock (β = ±π/2, where only
+    α ∓ γ is determined) the documented choice is γ = 0 and α carries the whole angle.
+    Raises ``ValueError`` if R is not a rotation.
+    """
+    R = check_rotation(R, "R")
+    sb = -R[2, 0]
+    cb = float(np.hypot(R[0, 0], R[1, 0]))
+    beta = float(np.arctan2(sb, cb))
+    if cb > 1e-10:
+        alpha = float(np.arctan2(R[1, 0], R[0, 0]))
+        gamma = float(np.arctan2(R[2, 1], R[2, 2]))
+    else:
+        # R = Rz(α) Ry(±π/2) Rx(γ): R[0,1] = ∓sin(α ∓ γ)…; with γ = 0: R[1,1] = cos α, R[0,1] = −sin α.
+        gamma = 0.0
+        alpha = float(np.arctan2(-R[0, 1], R[1, 1]))
+        beta = np.pi / 2 if sb > 0 else -np.pi / 2
+    return np.array([_wrap(alpha), beta, _wrap(gamma)])
+
+
+def _wrap(a: float) -> float:
+    """Angle in (−π, π]."""
+    a = float(np.arctan2(np.sin(a), np.cos(a)))
+    return np.pi if a == -np.pi else a

@@ -1,0 +1,3 @@
+"""robokit.trajectory — see the module docstrings inside."""
+
+__all__: list[str] = []
