@@ -1,15 +1,17 @@
 """The main job: the course implementations against Pinocchio, as a table of largest errors.
 
-Each area of robokit contributes rows through a module ``robokit/<area>/checks.py``
-that defines ``checks(rng) -> iterable of CheckRow``. ``run_all`` imports the ones that
-exist, in dependency order, and collects their rows; a check that raises becomes a
-failed row carrying the exception text, so one broken area never hides the others.
+Each area of robokit contributes rows through modules ``robokit/<area>/checks.py`` or
+``robokit/<area>/checks_<topic>.py`` that define ``checks(rng) -> iterable of CheckRow``.
+``run_all`` imports the ones that exist, areas in dependency order, modules by name, and
+collects their rows; a check that raises becomes a failed row carrying the exception
+text, so one broken area never hides the others.
 """
 from __future__ import annotations
 
 import importlib
 import json
 import math
+import pkgutil
 import time
 import traceback
 from dataclasses import asdict, dataclass, field
@@ -62,24 +64,34 @@ def max_error(pairs) -> float:
     return worst
 
 
+def _check_modules(area: str) -> list[str]:
+    try:
+        pkg = importlib.import_module(f"robokit.{area}")
+    except ModuleNotFoundError as exc:
+        if exc.name == f"robokit.{area}":
+            return []
+        raise
+    names = [m.name for m in pkgutil.iter_modules(pkg.__path__) if m.name == "checks" or m.name.startswith("checks_")]
+    return [f"robokit.{area}.{n}" for n in sorted(names)]
+
+
 def run_all(seed: int = 0, areas=AREAS) -> list[CheckRow]:
     """Run every available area's checks with a seeded generator; return all rows."""
     rows: list[CheckRow] = []
     for area in areas:
-        modname = f"robokit.{area}.checks"
         try:
-            mod = importlib.import_module(modname)
-        except ModuleNotFoundError as exc:
-            if exc.name in (modname, f"robokit.{area}"):
-                continue
+            modnames = _check_modules(area)
+        except Exception as exc:
             rows.append(CheckRow(f"{area}: import", "-", 0, math.inf, 0.0, error=repr(exc)))
             continue
-        rng = np.random.default_rng(seed)
-        try:
-            rows.extend(mod.checks(rng))
-        except Exception as exc:  # a broken check is a failed row, not a crash
-            tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
-            rows.append(CheckRow(f"{area}: checks raised", "-", 0, math.inf, 0.0, error=tb))
+        for modname in modnames:
+            try:
+                mod = importlib.import_module(modname)
+                rng = np.random.default_rng(seed)
+                rows.extend(mod.checks(rng))
+            except Exception as exc:  # a broken check is a failed row, not a crash
+                tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
+                rows.append(CheckRow(f"{modname}: raised", "-", 0, math.inf, 0.0, error=tb))
     return rows
 
 
