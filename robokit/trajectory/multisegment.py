@@ -1,0 +1,263 @@
+r"""``ms_trajectory``: multi-segment, multi-axis linear motion with polynomial blends.
+
+The seed library's function (seed 004 §5 "多段抛物线混合轨迹"), with the argument set and
+meaning of Corke's ``mstraj`` (Robotics Toolbox for Python), and the same number of
+samples for the same inputs.
+
+The axes move together along straight lines between consecutive points; all axes arrive
+at each via point at the same time. Around each via point the two lines are joined by a
+blend of duration ``tacc`` centred on the via-point time, so the via point itself is
+*approached, not passed* (Lecture 3). As in ``mstraj`` the blend is the quintic with the
+velocities of the two lines at its ends and zero end accelerations, so position,
+velocity and acceleration are continuous.
+
+Timing (all times are rounded up to whole steps ``dt``, as ``mstraj`` does):
+
+* ``tacc`` → ``ceil(tacc/dt)·dt``; the half blend ``tacc2 = ceil(tacc/2/dt)·dt``;
+  the first segment starts with a half blend, later ones with a full blend.
+* segment duration: ``tsegment[i]``, or, from ``qdmax``, the slowest axis
+  ``max_j(blend + ceil(|Δq_j|/qdmax_j/dt)·dt)``, at least ``2·tacc``.
+
+The output's first sample is one step ``dt`` after the start point (the start is where
+the robot already is and is not repeated), the last sample is the final point, and
+``t = dt·[0, 1, …, K−1]``, as in ``mstraj``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_array, as_scalar
+from robokit.trajectory.core import Trajectory, as_axes
+
+__all__ = ["ms_trajectory"]
+
+
+def _quintic_blend(p0, p1, v0, v1, T, tau):
+    """Quintic from (p0, v0) to (p1, v1) over [0, T] with zero end accelerations, at times tau.
+
+    Returns q, qd, qdd, each (len(tau), n).
+    """
+    d = p1 - p0
+    a3 = (20.0 * d - (8.0 * v1 + 12.0 * v0) * T) / (2.0 * T**3)
+    a4 = (-30.0 * d + (14.0 * v1 + 16.0 * v0) * T) / (2.0 * T**4)
+    a5 = (12.0 * d - 6.0 * (v1 + v0) * T) / (2.0 * T**5)
+    x = tau[:, None]
+    q = p0 + x * (v0 + x * x * (a3 + x * (a4 + x * a5)))
+    qd = v0 + x * x * (3.0 * a3 + x * (4.0 * a4 + x * 5.0 * a5))
+    qdd = x * (6.0 * a3 + x * (12.0 * a4 + x * 20.0 * a5))
+    return q, qd, qdd
+
+
+def _per_axis(x, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
+    arr = as_array(x, name)
+    if arr.ndim == 0 and allow_scalar:
+        return np.full(n, float(arr))
+    if arr.ndim != 1 or arr.shape[0] != n:
+        raise ValueError(f"{name}: expected a number or {n} values (one per axis), got shape {arr.shape}")
+    return arr.copy()
+
+
+def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=None, qdf=None, verbose=False) -> Trajectory:
+    """Multi-segment multi-axis trajectory with blends (seed 004 §5; Corke's ``mstraj``).
+
+    Parameters
+    ----------
+    viapoint : array (M, n)
+        Points, one row per point, one column per axis (rad or m). The last row is the goal.
+        Without ``q0`` the first row is the start and the motion has M−1 segments;
+        with ``q0`` every row is a target and there are M segments.
+    dt : float
+        Sample time step, s (> 0).
+    tacc : float or array (segments,)
+        Blend (acceleration) time, s (≥ 0); an array gives one per segment (``tacc[i]``
+        is the blend at the start of segment i). 0 gives straight lines with corners.
+    qdmax : float or array (n,), optional
+        Maximum speed per axis (> 0); each segment's duration is set by its slowest axis.
+    tsegment : array (segments,), optional
+        Duration of each segment, s (> 0). Exactly one of ``qdmax`` / ``tsegment``.
+    q0 : array (n,), optional
+        Start position; default the first row of ``viapoint``.
+    qd0, qdf : array (n,), optional
+        Start and final velocities (default 0).
+    verbose : bool
+        Print the timing of each segment.
+
+    Returns
+    -------
+    Trajectory
+        ``t`` (K,) = ``dt·arange(K)``, ``q``, ``qd``, ``qdd`` (K, n) (velocity and
+        acceleration are the analytic derivatives of the lines and blends). ``info``:
+        ``"segment_times"`` (segments,), ``"slowest"`` (axis that set each duration, or −1),
+        ``"arrive"`` (planned arrival times as ``mstraj`` reports them), ``"via"`` (the
+        target rows), ``"via_points"`` (start and targets) and ``"via_times"`` (when the
+        straight lines pass through them, on the ``t`` axis), ``"tacc"``, ``"tacc2"``.
+
+    Raises
+    ------
+    ValueError
+        Both or neither of ``qdmax``/``tsegment``; wrong lengths; ``dt ≤ 0``; ``tacc < 0``;
+        a non-positive segment time or speed; or a ``tsegment`` so short that a segment has
+        no linear part before a blend longer than one step (``mstraj`` would then start
+        the blend from a stale point and jump).
+
+    Example
+    -------
+    >>> tr = ms_trajectory([[0.0], [1.0], [3.0]], dt=0.1, tacc=0.2, tsegment=[1.0, 1.0])
+    >>> len(tr), round(float(tr.q[-1, 0]), 12)
+    (20, 3.0)
+    """
+    if (qdmax is None) == (tsegment is None):
+        raise ValueError(
+            "qdmax/tsegment: give exactly one of them (qdmax = speed limit per axis, or tsegment = "
+            f"duration of each segment); got {'both' if qdmax is not None else 'neither'}"
+        )
+    W = as_array(viapoint, "viapoint")
+    if W.ndim != 2 or W.shape[1] < 1:
+        raise ValueError(
+            f"viapoint: expected a 2-D array, one row per point and one column per axis, got shape {W.shape}"
+            + (" (for a single axis use np.reshape(viapoint, (-1, 1)))" if W.ndim == 1 else "")
+        )
+    n = W.shape[1]
+    if q0 is None:
+        if W.shape[0] < 2:
+            raise ValueError(f"viapoint: without q0 the first row is the start, so at least 2 rows are needed, got {W.shape[0]}")
+        start = W[0].copy()
+        targets = W[1:].copy()
+    else:
+        start = as_axes(q0, "q0")
+        if start.shape[0] != n:
+            raise ValueError(f"q0: expected {n} values (the number of columns of viapoint), got {start.shape[0]}")
+        if W.shape[0] < 1:
+            raise ValueError("viapoint: needs at least one row (the goal)")
+        targets = W.copy()
+    ns = targets.shape[0]
+    dt = as_scalar(dt, "dt")
+    if not dt > 0:
+        raise ValueError(f"dt: the time step must be positive, got {dt!r}")
+    tacc_arr = as_array(tacc, "tacc")
+    if tacc_arr.ndim == 0:
+        tacc_arr = np.full(ns, float(tacc_arr))
+    elif tacc_arr.shape != (ns,):
+        raise ValueError(f"tacc: expected a number or {ns} values (one per segment), got shape {tacc_arr.shape}")
+    if np.any(tacc_arr < 0):
+        raise ValueError(f"tacc: blend times must be non-negative, got {tacc_arr.tolist()}")
+    if qdmax is not None:
+        speed = _per_axis(qdmax, "qdmax", n)
+        if np.any(speed <= 0):
+            raise ValueError(f"qdmax: speeds must be positive, got {speed.tolist()}")
+        seg_given = None
+    else:
+        seg_given = as_array(tsegment, "tsegment")
+        if seg_given.ndim != 1 or seg_given.shape[0] != ns:
+            raise ValueError(f"tsegment: expected {ns} segment times (one per segment), got shape {seg_given.shape}")
+        if np.any(seg_given <= 0):
+            k = int(np.argmin(seg_given))
+            raise ValueError(f"tsegment: segment times must be positive, got tsegment[{k}] = {seg_given[k]!r}")
+    v_start = np.zeros(n) if qd0 is None else _per_axis(qd0, "qd0", n, allow_scalar=False)
+    v_end = np.zeros(n) if qdf is None else _per_axis(qdf, "qdf", n, allow_scalar=False)
+
+    chunks_q, chunks_qd, chunks_qdd = [], [], []
+    count = 0  # samples emitted so far; sample i is at construction time (i+1)·dt
+    seg_times, slowest_axes, arrive, via_idx = [], [], [], []
+    q_prev = start
+    qd_prev = v_start
+    blend_from = start  # where the next blend starts: the last linear sample (mstraj's rule)
+    fresh = True  # blend_from is the newest sample (no blend emitted after it)
+    clock = 0.0
+    tacc2 = 0.0
+    for seg in range(ns):
+        q_next = targets[seg]
+        ta = math.ceil(tacc_arr[seg] / dt) * dt
+        tacc2 = math.ceil(ta / 2 / dt) * dt
+        taccx = tacc2 if seg == 0 else ta
+        dq = q_next - q_prev
+        if seg_given is None:
+            tl = np.ceil(np.abs(dq) / speed / dt) * dt
+            tt = taccx + tl
+            slowest = int(np.argmax(tt))
+            tseg = float(tt[slowest])
+            if tseg <= 2 * ta:
+                tseg = 2 * ta
+        else:
+            tseg = float(seg_given[seg])
+            slowest = -1
+        if tseg <= 0:  # only with qdmax, tacc = 0 and a repeated point: nothing to do
+            tseg = 0.0
+        seg_times.append(tseg)
+        slowest_axes.append(slowest)
+        arrive.append(clock + tseg + (tacc2 if seg > 0 else 0.0))
+        qd = dq / tseg if tseg > 0 else np.zeros(n)
+        if verbose:
+            print(f"ms_trajectory segment {seg}: {q_prev} -> {q_next}, tseg {tseg:g} s, tacc {ta:g} s, slowest axis {slowest}")
+
+        nb = round(taccx / dt) if taccx > 0 else 0
+        if nb > 0:
+            if nb > 1 and not fresh:
+                raise ValueError(
+                    f"tsegment: segment {seg - 1} (tsegment[{seg - 1}] = {seg_times[-2]:g} s) is too short for its blends "
+                    f"(tacc = {tacc_arr[seg - 1]:g} s at dt = {dt:g} s): it has no linear part before the next blend"
+                )
+            T_b = nb * dt
+            tau = np.arange(1, nb + 1) * dt
+            qb, qdb, qddb = _quintic_blend(blend_from, q_prev + tacc2 * qd, qd_prev, qd, T_b, tau)
+            chunks_q.append(qb)
+            chunks_qd.append(qdb)
+            chunks_qdd.append(qddb)
+            count += nb
+            fresh = False
+        clock += taccx
+        # segment-local time 0 (the line through q_prev) is round(tacc2/dt) samples before
+        # the end of this blend
+        via_idx.append(count - round(tacc2 / dt))
+
+        i0 = round((tacc2 + dt) / dt)
+        i1 = round((tseg - tacc2) / dt)
+        if i1 >= i0:
+            tl_s = np.arange(i0, i1 + 1) * dt
+            s = tl_s / tseg
+            ql = (1.0 - s)[:, None] * q_prev + s[:, None] * q_next
+            chunks_q.append(ql)
+            chunks_qd.append(np.tile(qd, (ql.shape[0], 1)))
+            chunks_qdd.append(np.zeros_like(ql))
+            count += ql.shape[0]
+            clock += ql.shape[0] * dt
+            blend_from = ql[-1]
+            fresh = True
+        q_prev = q_next
+        qd_prev = qd
+
+    nb = round(tacc2 / dt) if tacc2 > 0 else 0
+    if nb > 0:
+        if nb > 1 and not fresh:
+            raise ValueError(
+                f"tsegment: the last segment (tsegment[{ns - 1}] = {seg_times[-1]:g} s) is too short for its blends "
+                f"(tacc = {tacc_arr[-1]:g} s at dt = {dt:g} s): it has no linear part before the final blend"
+            )
+        tau = np.arange(1, nb + 1) * dt
+        qb, qdb, qddb = _quintic_blend(blend_from, q_prev, qd_prev, v_end, nb * dt, tau)
+        chunks_q.append(qb)
+        chunks_qd.append(qdb)
+        chunks_qdd.append(qddb)
+        count += nb
+    if count == 0:
+        raise ValueError("viapoint: the motion has no samples (every segment has zero length and tacc = 0)")
+    q = np.vstack(chunks_q)
+    qdv = np.vstack(chunks_qd)
+    qddv = np.vstack(chunks_qdd)
+    t = dt * np.arange(q.shape[0])
+    # via-point times on the t axis: sample i is at construction time (i+1)·dt, i.e. t = i·dt
+    origin = [(k - 1) * dt for k in via_idx]  # t of the line's q_prev (segment-local time 0)
+    via_times = np.array([origin[0]] + [origin[k] + seg_times[k] for k in range(ns)])
+    info = {
+        "segment_times": np.array(seg_times),
+        "slowest": np.array(slowest_axes),
+        "arrive": np.array(arrive),
+        "via": targets,
+        "via_points": np.vstack([start, targets]),
+        "via_times": via_times,
+        "tacc": np.array([math.ceil(x / dt) * dt for x in tacc_arr]),
+        "dt": dt,
+    }
+    return Trajectory(t, q, qdv, qddv, name="ms_trajectory", info=info)

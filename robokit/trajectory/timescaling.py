@@ -1,0 +1,250 @@
+r"""Time scalings and the seed library's point-to-point trajectories (seed 004 §5; Modern Robotics ch. 9).
+
+A path θ(s), s ∈ [0, 1], is turned into a trajectory by a time scaling s(t) on [0, T_f]
+with s(0) = 0, s(T_f) = 1 and, here, zero velocity at both ends:
+
+* cubic    s = 3(t/T)² − 2(t/T)³                 (zero end velocities)
+* quintic  s = 10(t/T)³ − 15(t/T)⁴ + 6(t/T)⁵     (zero end velocities and accelerations)
+* lspb     trapezoidal velocity, peak ṡ = 1.5/T (blend time T/3), Lecture 3
+
+Point-to-point trajectories of the seed library (N samples, equally spaced in time,
+both ends included):
+
+* joint space:     θ(s) = θ_start + s (θ_end − θ_start)
+* screw motion:    X(s) = X_start exp(log(X_start⁻¹ X_end) s)      (a constant screw)
+* Cartesian:       p(s) = p_start + s (p_end − p_start),
+                   R(s) = R_start exp(log(R_startᵀ R_end) s)       (straight line + fixed-axis rotation)
+"""
+from __future__ import annotations
+
+from numbers import Integral
+
+import numpy as np
+
+from robokit._arrays import as_array, as_vector
+from robokit.spatial.se3 import _exp6, _inv, _log6_vec, check_transform
+from robokit.spatial.so3 import _exp3, _log3_vec
+from robokit.trajectory.core import positive_duration
+
+__all__ = [
+    "cubic_time_scaling",
+    "quintic_time_scaling",
+    "time_scaling",
+    "joint_trajectory",
+    "screw_trajectory",
+    "cartesian_trajectory",
+]
+
+
+def _times(t):
+    arr = as_array(t, "t")
+    return arr, arr.ndim == 0
+
+
+def cubic_time_scaling(Tf, t):
+    """Cubic time scaling s(t) = 3(t/Tf)² − 2(t/Tf)³ (zero velocity at t = 0 and Tf).
+
+    Parameters
+    ----------
+    Tf : float
+        Total time, s (> 0).
+    t : float or array
+        Current time(s), s (usually in [0, Tf]; the polynomial is evaluated as is outside).
+
+    Returns
+    -------
+    float or ndarray (same shape as ``t``): the path parameter s ∈ [0, 1] for t ∈ [0, Tf].
+
+    Example
+    -------
+    >>> round(cubic_time_scaling(2, 0.6), 12)
+    0.216
+    """
+    T = positive_duration(Tf, "Tf")
+    x, scalar = _times(t)
+    r = x / T
+    s = 3.0 * r**2 - 2.0 * r**3
+    return float(s) if scalar else s
+
+
+def quintic_time_scaling(Tf, t):
+    """Quintic time scaling s(t) = 10(t/Tf)³ − 15(t/Tf)⁴ + 6(t/Tf)⁵ (zero end velocity and acceleration).
+
+    Arguments and return as :func:`cubic_time_scaling`.
+
+    Example
+    -------
+    >>> round(quintic_time_scaling(2, 0.6), 12)
+    0.16308
+    """
+    T = positive_duration(Tf, "Tf")
+    x, scalar = _times(t)
+    r = x / T
+    s = r**3 * (10.0 - 15.0 * r + 6.0 * r**2)
+    return float(s) if scalar else s
+
+
+def _method_name(method) -> str:
+    if isinstance(method, bool):
+        raise ValueError(f"method: expected 3 (cubic) or 5 (quintic), got {method!r}")
+    if isinstance(method, Integral) or (isinstance(method, float) and float(method).is_integer()):
+        if int(method) == 3:
+            return "cubic"
+        if int(method) == 5:
+            return "quintic"
+    if method in ("cubic", "quintic", "lspb"):
+        return method
+    raise ValueError(f"method: expected 3 (cubic) or 5 (quintic) (or 'cubic', 'quintic', 'lspb'), got {method!r}")
+
+
+def time_scaling(method, Tf, t):
+    """A time scaling with its derivatives: ``(s, ṡ, s̈)`` at times ``t``.
+
+    Parameters
+    ----------
+    method : 3, 5, ``"cubic"``, ``"quintic"`` or ``"lspb"``
+        The scaling (see the module docstring); ``"lspb"`` has peak ṡ = 1.5/Tf.
+    Tf : float
+        Total time, s (> 0).
+    t : float or array (K,)
+        Times, s, in [0, Tf] (clipped to it).
+
+    Returns
+    -------
+    (s, sd, sdd) : three arrays shaped like ``t`` (1/s and 1/s² for the derivatives).
+
+    Example
+    -------
+    >>> s, sd, sdd = time_scaling("lspb", 3.0, [0.0, 1.5, 3.0])
+    >>> s.tolist(), sd.tolist()
+    ([0.0, 0.5, 1.0], [0.0, 0.5, 0.0])
+    """
+    kind = _method_name(method)
+    T = positive_duration(Tf, "Tf")
+    x = np.clip(as_array(t, "t"), 0.0, T)
+    r = x / T
+    if kind == "cubic":
+        return 3 * r**2 - 2 * r**3, (6 * r - 6 * r**2) / T, (6 - 12 * r) / T**2
+    if kind == "quintic":
+        return (
+            r**3 * (10 - 15 * r + 6 * r**2),
+            r**2 * (30 - 60 * r + 30 * r**2) / T,
+            r * (60 - 180 * r + 120 * r**2) / T**2,
+        )
+    # lspb from 0 to 1: V = 1.5/T, t_b = T/3, a = V/t_b = 4.5/T²
+    tb = T / 3.0
+    V = 1.5 / T
+    a = V / tb
+    s = np.where(x <= tb, 0.5 * a * x**2, np.where(x <= T - tb, 0.5 * a * tb**2 + V * (x - tb), 1.0 - 0.5 * a * (T - x) ** 2))
+    sd = np.where(x <= tb, a * x, np.where(x <= T - tb, V, a * (T - x)))
+    sdd = np.where(x < tb, a, np.where(x <= T - tb, 0.0, -a))
+    return s, sd, sdd
+
+
+def _grid(Tf, N, method):
+    kind = _method_name(method)
+    if kind == "lspb":
+        raise ValueError("method: expected 3 (cubic) or 5 (quintic), got 'lspb'")
+    T = positive_duration(Tf, "Tf")
+    if isinstance(N, bool) or not isinstance(N, Integral) or N < 2:
+        raise ValueError(f"N: the number of points must be an integer >= 2, got {N!r}")
+    t = T / (int(N) - 1) * np.arange(int(N))
+    t[-1] = T
+    s = cubic_time_scaling(T, t) if kind == "cubic" else quintic_time_scaling(T, t)
+    return s
+
+
+def joint_trajectory(thetastart, thetaend, Tf, N, method):
+    """Straight-line joint-space trajectory with cubic or quintic time scaling (seed 004 §5).
+
+    Parameters
+    ----------
+    thetastart, thetaend : array (n,)
+        Start and end joint positions (rad or m).
+    Tf : float
+        Total time, s (> 0).
+    N : int
+        Number of points (≥ 2), equally spaced in time, both ends included.
+    method : 3 or 5
+        Cubic or quintic time scaling; anything else raises ``ValueError``.
+
+    Returns
+    -------
+    ndarray (N, n): row i is θ at time i·Tf/(N−1).
+
+    Example
+    -------
+    >>> joint_trajectory([0, 0], [1, 2], 2, 3, 3).tolist()
+    [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]]
+    """
+    a = as_vector(thetastart, "thetastart")
+    b = as_vector(thetaend, "thetaend", a.shape[0])
+    s = _grid(Tf, N, method)
+    return a + s[:, None] * (b - a)
+
+
+def screw_trajectory(Xstart, Xend, Tf, N, method):
+    """Trajectory along the constant screw motion from ``Xstart`` to ``Xend`` (seed 004 §5).
+
+    X(s) = X_start exp(log(X_start⁻¹ X_end) s), s from the cubic (3) or quintic (5) time scaling.
+
+    Parameters
+    ----------
+    Xstart, Xend : array (4, 4)
+        Start and end poses in SE(3) (``T_world_tool``).
+    Tf : float
+        Total time, s (> 0).
+    N : int
+        Number of points (≥ 2).
+    method : 3 or 5
+
+    Returns
+    -------
+    list of N arrays (4, 4); the first is ``Xstart``, the last ``Xend``.
+
+    Example
+    -------
+    >>> import numpy as np
+    >>> X1 = np.eye(4); X1[:3, 3] = [1, 0, 0]
+    >>> [float(X[0, 3]) for X in screw_trajectory(np.eye(4), X1, 1, 3, 3)]
+    [0.0, 0.5, 1.0]
+    """
+    X0 = check_transform(Xstart, "Xstart")
+    X1 = check_transform(Xend, "Xend")
+    s = _grid(Tf, N, method)
+    V = _log6_vec(_inv(X0) @ X1)
+    out = [X0 @ _exp6(V * si) for si in s]
+    out[0] = X0.copy()
+    return out
+
+
+def cartesian_trajectory(Xstart, Xend, Tf, N, method):
+    """Straight-line position with fixed-axis rotation between two poses (seed 004 §5).
+
+    p(s) = p_start + s (p_end − p_start),  R(s) = R_start exp(log(R_startᵀ R_end) s): the
+    tool origin moves on a straight line while the orientation turns about one fixed axis
+    (the same path as quaternion slerp).
+
+    Arguments and return as :func:`screw_trajectory`.
+
+    Example
+    -------
+    >>> import numpy as np
+    >>> X1 = np.eye(4); X1[:3, 3] = [0, 2, 0]
+    >>> [float(X[1, 3]) for X in cartesian_trajectory(np.eye(4), X1, 1, 3, 5)]
+    [0.0, 1.0, 2.0]
+    """
+    X0 = check_transform(Xstart, "Xstart")
+    X1 = check_transform(Xend, "Xend")
+    s = _grid(Tf, N, method)
+    R0, p0 = X0[:3, :3], X0[:3, 3]
+    R1, p1 = X1[:3, :3], X1[:3, 3]
+    w = _log3_vec(R0.T @ R1)
+    out = []
+    for si in s:
+        X = np.eye(4)
+        X[:3, :3] = R0 @ _exp3(w * si)
+        X[:3, 3] = p0 + si * (p1 - p0)
+        out.append(X)
+    out[0] = X0.copy()
+    return out
