@@ -1,0 +1,399 @@
+r"""Symbolic derivations from a DH table, as the lectures write them (sympy).
+
+From a DH table whose entries are numbers, sympy symbols or any mix, this module derives
+
+* the link transforms ``ⁱ⁻¹Tᵢ`` and the forward kinematics ``⁰Tₙ`` (Lecture 4), simplified,
+  with the lectures' shorthand ``cᵢ = cos θᵢ``, ``s₁₂ = sin(θ₁ + θ₂)`` for display;
+* the geometric Jacobian (Lecture 6), angular rows first, in the base frame or the tool frame;
+* for arms with point masses or symbolic inertias, the Lagrangian dynamics (Lecture 7)
+  ``τ = M(q) q̈ + C(q, q̇) q̇ + G(q)``, with ``V(q, q̇) = C(q, q̇) q̇``, C from the Christoffel
+  symbols (so that Ṁ − 2C is skew-symmetric), and the configuration-space form
+  ``τ = M q̈ + B(q)[q̇q̇] + C_cf(q)[q̇²] + G`` of Lecture 7;
+
+and turns any of them into LaTeX or into a numeric function (``sympy.lambdify``).
+
+Conventions: standard DH ``ⁱ⁻¹Tᵢ = Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ)``; modified (Craig)
+``ⁱ⁻¹Tᵢ = Rx(αᵢ₋₁) Tx(aᵢ₋₁) Rz(θᵢ) Tz(dᵢ)`` with row i holding ``aᵢ₋₁, αᵢ₋₁, dᵢ, θᵢ``.
+A revolute joint adds ``qᵢ`` to θᵢ, a prismatic one adds it to dᵢ. Link i's mass, centre of
+mass and inertia (about the centre of mass) are given in DH frame {i}, as in the YAML format.
+
+Time limits (measured on the project's 2-core machine): the planar 2-link and RRR arms,
+FK, Jacobians and dynamics fully simplified, take about a second each; a spatial 3-joint
+arm with numeric inertias takes about 15 s fully simplified and under 1 s with
+``simplify=False``; a 6-joint arm (PUMA 560 with symbolic lengths) gives FK in about 10 s
+and the base-frame Jacobian in about 5 s (trigsimp only, by default). The symbolic
+dynamics of more than 3 joints are refused with a clear message unless
+``allow_slow=True``.
+
+Example::
+
+    >>> from robokit.symbolic import SymbolicArm
+    >>> import sympy as sp
+    >>> l1, l2 = sp.symbols("l1 l2", positive=True)
+    >>> arm = SymbolicArm([(l1, 0, 0, 0), (l2, 0, 0, 0)])
+    >>> arm.fk()[0, 3]
+    l1*cos(q1) + l2*cos(q1 + q2)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+import sympy as sp
+
+__all__ = ["SymbolicArm", "SymbolicDynamics", "shorthand", "to_latex", "MAX_SYMBOLIC_DYNAMICS_JOINTS"]
+
+#: Joint count above which ``SymbolicArm.dynamics`` refuses unless ``allow_slow=True``.
+MAX_SYMBOLIC_DYNAMICS_JOINTS = 3
+
+
+def _rot_x(a):
+    c, s = sp.cos(a), sp.sin(a)
+    return sp.Matrix([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
+
+
+def _rot_z(a):
+    c, s = sp.cos(a), sp.sin(a)
+    return sp.Matrix([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def _trans(x, y, z):
+    return sp.Matrix([[1, 0, 0, x], [0, 1, 0, y], [0, 0, 1, z], [0, 0, 0, 1]])
+
+
+def _sym(x):
+    """Numbers become exact where they are (ints, simple floats kept as Float); symbols pass."""
+    if isinstance(x, sp.Basic):
+        return x
+    if isinstance(x, (int, np.integer)):
+        return sp.Integer(int(x))
+    return sp.Float(float(x), 17) if float(x) != 0.0 else sp.Integer(0)
+
+
+def _simplify_matrix(m: sp.Matrix, level: str = "full") -> sp.Matrix:
+    """``full``: simplify + trigsimp per entry; ``trig``: trigsimp only (cheaper); ``none``."""
+    if level == "none":
+        return m
+    if level == "trig":
+        return m.applyfunc(lambda e: sp.trigsimp(e) if e.free_symbols else e)
+    return m.applyfunc(lambda e: sp.trigsimp(sp.expand_trig(sp.simplify(e))) if e.free_symbols else e)
+
+
+@dataclass
+class SymbolicDynamics:
+    """The Lagrangian dynamics ``τ = M q̈ + V + G`` of a :class:`SymbolicArm`.
+
+    M : n×n mass matrix; C : n×n Coriolis matrix (Christoffel symbols, Ṁ − 2C skew);
+    V : (n×1) ``C q̇``; G : (n×1) gravity torques; B : n × n(n−1)/2 Coriolis coefficients and
+    Ccf : n×n centrifugal coefficients of the configuration-space form
+    ``τ = M q̈ + B [q̇ᵢq̇ⱼ]_{i<j} + Ccf [q̇ᵢ²] + G`` (Lecture 7).
+    """
+
+    q: sp.Matrix
+    dq: sp.Matrix
+    M: sp.Matrix
+    C: sp.Matrix
+    V: sp.Matrix
+    G: sp.Matrix
+    B: sp.Matrix
+    Ccf: sp.Matrix
+
+    def tau(self, ddq: sp.Matrix | None = None) -> sp.Matrix:
+        """The joint torques ``M q̈ + V + G`` with symbols ``ddq1..ddqn`` unless given."""
+        if ddq is None:
+            ddq = sp.Matrix(sp.symbols(f"ddq1:{len(self.q) + 1}", real=True))
+        return self.M * ddq + self.V + self.G
+
+
+class SymbolicArm:
+    """A serial arm given by a DH table with numeric and/or symbolic entries.
+
+    Parameters
+    ----------
+    rows : sequence of (a, alpha, d, theta)
+        One row per joint, in the table's convention; entries are numbers or sympy
+        expressions (angles in radians). θ (revolute) or d (prismatic) is the offset to
+        which the joint variable ``qᵢ`` is added.
+    joint_types : str or sequence, default all "R"
+        "R" (revolute) or "P" (prismatic) per joint.
+    convention : "standard" or "modified"
+    base, tool : 4×4 (numbers or sympy), optional
+        Frame {0} in the base, and the tool in frame {N}.
+    """
+
+    def __init__(self, rows: Sequence[Sequence], joint_types: Sequence[str] | str | None = None,
+                 convention: str = "standard", base=None, tool=None):
+        rows = [tuple(r) for r in rows]
+        if not rows:
+            raise ValueError("rows: expected at least one DH row")
+        for i, r in enumerate(rows):
+            if len(r) != 4:
+                raise ValueError(f"rows[{i}]: expected (a, alpha, d, theta), got {len(r)} entries")
+        n = len(rows)
+        jt = ["R"] * n if joint_types is None else list(joint_types)
+        if len(jt) != n or any(t not in ("R", "P") for t in jt):
+            raise ValueError(f"joint_types: expected {n} entries of 'R' or 'P', got {joint_types!r}")
+        if convention not in ("standard", "modified"):
+            raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+        self.n = n
+        self.convention = convention
+        self.joint_types = tuple(jt)
+        self.rows = [tuple(_sym(x) for x in r) for r in rows]
+        self.q = sp.Matrix(sp.symbols(f"q1:{n + 1}", real=True))
+        self.dq = sp.Matrix(sp.symbols(f"dq1:{n + 1}", real=True))
+        self.base = sp.eye(4) if base is None else sp.Matrix(base).applyfunc(_sym)
+        self.tool = sp.eye(4) if tool is None else sp.Matrix(tool).applyfunc(_sym)
+        self._frames_cache = None
+
+    @classmethod
+    def from_dh_table(cls, table, symbolic_lengths: bool = False) -> "SymbolicArm":
+        """Build from a :class:`robokit.DHTable` (numbers; angles are taken as exact
+        multiples of π/2 where they are, so the forms stay readable)."""
+        def nice_angle(x):
+            k = float(x) / (np.pi / 2)
+            if abs(k - round(k)) < 1e-12:
+                return sp.Integer(int(round(k))) * sp.pi / 2
+            return _sym(x)
+
+        rows = [(_sym(l.a), nice_angle(l.alpha), _sym(l.d), nice_angle(l.theta)) for l in table.links]
+        return cls(rows, [l.joint for l in table.links], table.convention,
+                   base=np.asarray(table.base), tool=np.asarray(table.tool))
+
+    def _level(self, simplify, heavy: bool = False) -> str:
+        """Resolve ``simplify`` (True / False / "auto") to a simplification level.
+
+        "auto": full simplification up to ``MAX_SYMBOLIC_DYNAMICS_JOINTS`` joints; beyond,
+        trigsimp only — and none for ``heavy`` results (the tool-frame Jacobian), whose
+        simplification takes minutes for a 6-joint arm.
+        """
+        if simplify is True:
+            return "full"
+        if simplify is False:
+            return "none"
+        if simplify != "auto":
+            raise ValueError(f"simplify: expected True, False or 'auto', got {simplify!r}")
+        if self.n <= MAX_SYMBOLIC_DYNAMICS_JOINTS:
+            return "full"
+        return "none" if heavy else "trig"
+
+    # ---------------------------------------------------------------- kinematics
+    def link_transform(self, i: int) -> sp.Matrix:
+        """``ⁱ⁻¹Tᵢ`` for joint i (1-based), with the joint variable ``qᵢ`` substituted."""
+        if not 1 <= i <= self.n:
+            raise ValueError(f"i: expected 1..{self.n}, got {i}")
+        a, alpha, d, theta = self.rows[i - 1]
+        qi = self.q[i - 1]
+        if self.joint_types[i - 1] == "R":
+            theta = theta + qi
+        else:
+            d = d + qi
+        if self.convention == "standard":
+            return _rot_z(theta) * _trans(0, 0, d) * _trans(a, 0, 0) * _rot_x(alpha)
+        return _rot_x(alpha) * _trans(a, 0, 0) * _rot_z(theta) * _trans(0, 0, d)
+
+    def link_transforms(self, simplify=True) -> list[sp.Matrix]:
+        """All ``ⁱ⁻¹Tᵢ``, i = 1..n."""
+        level = "full" if simplify else "none"
+        return [_simplify_matrix(self.link_transform(i), level) for i in range(1, self.n + 1)]
+
+    def _frames(self) -> list[sp.Matrix]:
+        """Poses of DH frames {0..n} in the base (unsimplified products)."""
+        if self._frames_cache is None:
+            frames = [self.base]
+            for i in range(1, self.n + 1):
+                frames.append(frames[-1] * self.link_transform(i))
+            self._frames_cache = frames
+        return self._frames_cache
+
+    def fk(self, simplify="auto", tool: bool = True) -> sp.Matrix:
+        """``⁰Tₙ`` (with base, and the tool unless ``tool=False``), trigonometrically simplified.
+
+        ``simplify``: True, False or "auto" (full up to 3 joints, trigsimp beyond: ~10 s for a
+        6-joint arm with symbolic lengths).
+        """
+        T = self._frames()[-1] * (self.tool if tool else sp.eye(4))
+        return _simplify_matrix(T, self._level(simplify))
+
+    def _joint_axes(self):
+        """(z, p) of every joint axis in the base frame: z the unit axis, p a point on it."""
+        frames = self._frames()
+        axes = []
+        for i in range(1, self.n + 1):
+            # standard: joint i moves about z of frame {i-1}; modified: about z of frame {i}.
+            F = frames[i - 1] if self.convention == "standard" else frames[i]
+            axes.append((F[:3, 2], F[:3, 3]))
+        return axes
+
+    def jacobian(self, frame: str = "base", simplify="auto") -> sp.Matrix:
+        """The 6×n geometric Jacobian of the tool, angular rows first.
+
+        ``frame="base"``: twist (ω, v) of the tool origin in base coordinates, columns
+        ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic) (Lecture 6).
+        ``frame="tool"``: the same twist expressed in tool-frame axes
+        (``blockdiag(Rᵀ, Rᵀ) J_base``), i.e. the body Jacobian.
+        ``simplify``: True, False or "auto" (full up to 3 joints; beyond, trigsimp for the
+        base frame and no simplification for the tool frame, which would take minutes).
+        """
+        if frame not in ("base", "tool"):
+            raise ValueError(f"frame: expected 'base' or 'tool', got {frame!r}")
+        cols = []
+        if frame == "base":
+            p_e = (self._frames()[-1] * self.tool)[:3, 3]
+            for (z, p), jt in zip(self._joint_axes(), self.joint_types):
+                if jt == "R":
+                    cols.append(sp.Matrix.vstack(z, z.cross(p_e - p)))
+                else:
+                    cols.append(sp.Matrix.vstack(sp.zeros(3, 1), z))
+        else:
+            # Body Jacobian from the transforms *after* each joint axis (shorter expressions):
+            # with T_ae the tool pose in the axis frame, z_tool = R_aeᵀ ẑ and v = z_tool × (R_aeᵀ p_ae).
+            n = self.n
+            T_after = self.tool
+            afters = [None] * n
+            for i in range(n, 0, -1):
+                if self.convention == "modified":
+                    afters[i - 1] = T_after  # axis i is z of frame {i}
+                T_after = self.link_transform(i) * T_after
+                if self.convention == "standard":
+                    afters[i - 1] = T_after  # axis i is z of frame {i-1}
+            for T_ae, jt in zip(afters, self.joint_types):
+                Rt = T_ae[:3, :3].T
+                z = Rt[:, 2]
+                if jt == "R":
+                    cols.append(sp.Matrix.vstack(z, z.cross(Rt * T_ae[:3, 3])))
+                else:
+                    cols.append(sp.Matrix.vstack(sp.zeros(3, 1), z))
+        J = sp.Matrix.hstack(*cols)
+        return _simplify_matrix(J, self._level(simplify, heavy=(frame == "tool")))
+
+    # ------------------------------------------------------------------ dynamics
+    def dynamics(self, masses, coms, inertias=None, gravity=(0, 0, -9.81), allow_slow: bool = False,
+                 simplify="auto") -> SymbolicDynamics:
+        """Lagrangian dynamics for link masses, centres of mass and inertias.
+
+        masses : n numbers/symbols; coms : n 3-vectors in DH frame {i}; inertias : n 3×3
+        (about the centre of mass, frame-{i} axes) or None for point masses; gravity : the
+        gravity acceleration vector in the base frame (numbers or symbols).
+
+        ``M = Σ mᵢ Jᵥᵢᵀ Jᵥᵢ + J_ωᵢᵀ Rᵢ Iᵢ Rᵢᵀ J_ωᵢ``; ``Cₖⱼ = Σᵢ Γᵢⱼₖ q̇ᵢ`` with the Christoffel
+        symbols ``Γᵢⱼₖ = ½(∂Mₖⱼ/∂qᵢ + ∂Mₖᵢ/∂qⱼ − ∂Mᵢⱼ/∂qₖ)``; ``G = ∂P/∂q`` with
+        ``P = −Σ mᵢ gᵀ p_cᵢ``.
+        """
+        n = self.n
+        if n > MAX_SYMBOLIC_DYNAMICS_JOINTS and not allow_slow:
+            raise ValueError(
+                f"dynamics: {n} joints is more than the {MAX_SYMBOLIC_DYNAMICS_JOINTS} that simplify in seconds; "
+                "use the numeric dynamics (robokit.dynamics) or pass allow_slow=True"
+            )
+        if len(masses) != n or len(coms) != n:
+            raise ValueError(f"masses, coms: expected {n} entries each, got {len(masses)} and {len(coms)}")
+        if inertias is not None and len(inertias) != n:
+            raise ValueError(f"inertias: expected {n} 3×3 entries or None, got {len(inertias)}")
+        level = self._level(simplify)
+        g = sp.Matrix([_sym(x) for x in gravity])
+        frames = self._frames()
+        axes = self._joint_axes()
+        M = sp.zeros(n, n)
+        P = sp.Integer(0)
+        for i in range(1, n + 1):
+            F = frames[i]
+            R = F[:3, :3]
+            pc = F[:3, 3] + R * sp.Matrix([_sym(x) for x in coms[i - 1]])
+            m = _sym(masses[i - 1])
+            Jv = pc.jacobian(self.q)
+            M += m * (Jv.T * Jv)
+            P += -m * (g.T * pc)[0, 0]
+            if inertias is not None:
+                I = sp.Matrix(inertias[i - 1]).applyfunc(_sym)
+                if I.shape != (3, 3):
+                    raise ValueError(f"inertias[{i - 1}]: expected a 3×3 matrix, got shape {I.shape}")
+                Jw = sp.zeros(3, n)
+                for j in range(i):
+                    # the moving body of link i turns about the axes of joints 1..i
+                    if self.joint_types[j] == "R":
+                        Jw[:, j] = axes[j][0]
+                M += Jw.T * R * I * R.T * Jw
+        M = _simplify_matrix(M, level)
+        G = sp.Matrix([sp.diff(P, qk) for qk in self.q])
+        G = _simplify_matrix(G, level)
+        dM = [M.diff(qi) for qi in self.q]
+        # Christoffel symbols Γ[i][j][k] = ½(∂Mkj/∂qi + ∂Mki/∂qj − ∂Mij/∂qk), symmetric in i, j.
+        gam = [[[sp.Rational(1, 2) * (dM[i][k, j] + dM[j][k, i] - dM[k][i, j]) for k in range(n)]
+                for j in range(n)] for i in range(n)]
+        C = sp.zeros(n, n)
+        for k in range(n):
+            for j in range(n):
+                C[k, j] = sum(gam[i][j][k] * self.dq[i] for i in range(n))
+        C = _simplify_matrix(C, level)
+        # configuration-space form (Lecture 7): V_k = Σ_i Γ_iik q̇_i² + Σ_{i<j} 2Γ_ijk q̇_i q̇_j.
+        pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+        B = sp.Matrix(n, len(pairs), lambda k, c: 2 * gam[pairs[c][0]][pairs[c][1]][k])
+        Ccf = sp.Matrix(n, n, lambda k, i: gam[i][i][k])
+        B = _simplify_matrix(B, level)
+        Ccf = _simplify_matrix(Ccf, level)
+        dq2 = sp.Matrix([self.dq[i] ** 2 for i in range(n)])
+        dqdq = sp.Matrix([self.dq[i] * self.dq[j] for i, j in pairs]) if pairs else sp.zeros(0, 1)
+        V = Ccf * dq2 + (B * dqdq if pairs else sp.zeros(n, 1))
+        return SymbolicDynamics(self.q, self.dq, M, C, V, G, B, Ccf)
+
+    # -------------------------------------------------------------- conversions
+    def lambdify(self, expr, extra_symbols: Sequence[sp.Symbol] = ()):
+        """A numpy function of ``(q, *extra)`` (and ``dq`` if the expression uses it).
+
+        The returned function takes ``q`` (n,), then ``dq`` (n,) if ``expr`` contains joint
+        rates, then the values of ``extra_symbols`` in order, and returns a float array of
+        the expression's shape.
+        """
+        expr = sp.Matrix(expr) if not isinstance(expr, sp.MatrixBase) else expr
+        uses_dq = bool(expr.free_symbols & set(self.dq))
+        args = [list(self.q)] + ([list(self.dq)] if uses_dq else []) + list(extra_symbols)
+        free = expr.free_symbols - set(self.q) - set(self.dq) - set(extra_symbols)
+        if free:
+            raise ValueError(f"expr: symbols {sorted(map(str, free))} have no value; pass them as extra_symbols")
+        f = sp.lambdify(args, expr, modules="numpy")
+
+        def numeric(*values):
+            return np.array(f(*values), dtype=float).reshape(expr.shape)
+
+        numeric.__doc__ = f"Numeric form of a symbolic expression; arguments: {', '.join(map(str, ['q'] + (['dq'] if uses_dq else []) + list(extra_symbols)))}"
+        return numeric
+
+
+def shorthand(expr, q: Sequence[sp.Symbol] | None = None):
+    """Replace ``cos(q1 + q2)`` by the symbol ``c₁₂`` (``c_{12}``), ``sin(q1)`` by ``s₁``, as the lectures write them.
+
+    ``q`` are the joint symbols (default: every symbol named ``q<digits>``). Works on
+    expressions and matrices; returns a new object (for display, not for computing).
+    """
+    def joint_index(sym):
+        name = str(sym)
+        if q is not None:
+            return list(q).index(sym) + 1 if sym in q else None
+        return int(name[1:]) if name.startswith("q") and name[1:].isdigit() else None
+
+    def rewrite(fn, letter):
+        def repl(arg):
+            terms = sp.Add.make_args(sp.expand(arg))
+            idx = []
+            for t in terms:
+                if not t.is_Symbol:
+                    return None
+                k = joint_index(t)
+                if k is None:
+                    return None
+                idx.append(k)
+            return sp.Symbol(f"{letter}_{{{''.join(str(k) for k in sorted(idx))}}}")
+
+        return fn, repl
+
+    out = expr
+    for fn, letter in ((sp.cos, "c"), (sp.sin, "s")):
+        f, repl = rewrite(fn, letter)
+        out = out.replace(lambda e: isinstance(e, f) and repl(e.args[0]) is not None, lambda e: repl(e.args[0]))
+    return out
+
+
+def to_latex(expr, use_shorthand: bool = True) -> str:
+    """LaTeX of an expression or matrix, with the lectures' cᵢ/sᵢⱼ shorthand by default."""
+    return sp.latex(shorthand(expr) if use_shorthand else expr)
