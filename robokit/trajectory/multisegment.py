@@ -47,6 +47,8 @@ def _quintic_blend(p0, p1, v0, v1, T, tau):
     q = p0 + x * (v0 + x * x * (a3 + x * (a4 + x * a5)))
     qd = v0 + x * x * (3.0 * a3 + x * (4.0 * a4 + x * 5.0 * a5))
     qdd = x * (6.0 * a3 + x * (12.0 * a4 + x * 20.0 * a5))
+    end = np.isclose(tau, T, rtol=0.0, atol=1e-12 * T)
+    q[end], qd[end], qdd[end] = p1, v1, 0.0  # the blend ends exactly where the line begins
     return q, qd, qdd
 
 

@@ -216,6 +216,8 @@ def via_point_velocities(viapoints, times, method: str = "heuristic", qd0=None, 
     >>> via_point_velocities([[0.0], [1.0], [3.0], [2.0]], [0, 1, 2, 3])[:, 0].tolist()
     [0.0, 1.5, 0.0, 0.0]
     """
+    if method not in ("heuristic", "continuous"):
+        raise ValueError(f"method: expected 'heuristic' or 'continuous', got {method!r}")
     P = viapoint_matrix(viapoints, "viapoints")
     m, n = P.shape
     T = increasing_times(times, "times", m)
@@ -231,23 +233,22 @@ def via_point_velocities(viapoints, times, method: str = "heuristic", qd0=None, 
         same = np.sign(left) * np.sign(right) > 0
         v[1:-1] = np.where(same, 0.5 * (left + right), 0.0)
         return v
-    if method == "continuous":
-        k = m - 2  # unknowns: interior velocities
-        A = np.zeros((k, k))
-        rhs = np.zeros((k, n))
-        for j in range(k):  # via point j+1, between intervals j and j+1
-            hl, hr = h[j], h[j + 1]
-            A[j, j] = 4.0 * (1.0 / hl + 1.0 / hr)
-            if j > 0:
-                A[j, j - 1] = 2.0 / hl
-            if j < k - 1:
-                A[j, j + 1] = 2.0 / hr
-            rhs[j] = 6.0 * slope[j] / hl + 6.0 * slope[j + 1] / hr
-        rhs[0] -= (2.0 / h[0]) * v[0]
-        rhs[-1] -= (2.0 / h[-1]) * v[-1]
-        v[1:-1] = np.linalg.solve(A, rhs)
-        return v
-    raise ValueError(f"method: expected 'heuristic' or 'continuous', got {method!r}")
+    # "continuous": the tridiagonal system of the module docstring
+    k = m - 2  # unknowns: interior velocities
+    A = np.zeros((k, k))
+    rhs = np.zeros((k, n))
+    for j in range(k):  # via point j+1, between intervals j and j+1
+        hl, hr = h[j], h[j + 1]
+        A[j, j] = 4.0 * (1.0 / hl + 1.0 / hr)
+        if j > 0:
+            A[j, j - 1] = 2.0 / hl
+        if j < k - 1:
+            A[j, j + 1] = 2.0 / hr
+        rhs[j] = 6.0 * slope[j] / hl + 6.0 * slope[j + 1] / hr
+    rhs[0] -= (2.0 / h[0]) * v[0]
+    rhs[-1] -= (2.0 / h[-1]) * v[-1]
+    v[1:-1] = np.linalg.solve(A, rhs)
+    return v
 
 
 def cubic_via_trajectory(viapoints, times, t=None, velocities="continuous", qd0=None, qdf=None) -> Trajectory:
