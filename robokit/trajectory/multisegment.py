@@ -94,7 +94,11 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
         ``"segment_times"`` (segments,), ``"slowest"`` (axis that set each duration, or −1),
         ``"arrive"`` (planned arrival times as ``mstraj`` reports them), ``"via"`` (the
         target rows), ``"via_points"`` (start and targets) and ``"via_times"`` (when the
-        straight lines pass through them, on the ``t`` axis), ``"tacc"``, ``"tacc2"``.
+        straight lines pass through them, on the ``t`` axis), ``"tacc"`` (blend times after
+        rounding), ``"in_blend"`` (K,) bool: the sample lies in a blend, not on a line.
+
+        As in ``mstraj``, ``qdmax`` limits the straight parts; a blend can be faster (the
+        first half blend starts at ``qd0`` and must still meet the line on time).
 
     Raises
     ------
@@ -160,7 +164,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
     v_start = np.zeros(n) if qd0 is None else _per_axis(qd0, "qd0", n, allow_scalar=False)
     v_end = np.zeros(n) if qdf is None else _per_axis(qdf, "qdf", n, allow_scalar=False)
 
-    chunks_q, chunks_qd, chunks_qdd = [], [], []
+    chunks_q, chunks_qd, chunks_qdd, blend_flags = [], [], [], []
     count = 0  # samples emitted so far; sample i is at construction time (i+1)·dt
     seg_times, slowest_axes, arrive, via_idx = [], [], [], []
     q_prev = start
@@ -207,6 +211,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
             chunks_q.append(qb)
             chunks_qd.append(qdb)
             chunks_qdd.append(qddb)
+            blend_flags.append(np.ones(nb, dtype=bool))
             count += nb
             fresh = False
         clock += taccx
@@ -223,6 +228,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
             chunks_q.append(ql)
             chunks_qd.append(np.tile(qd, (ql.shape[0], 1)))
             chunks_qdd.append(np.zeros_like(ql))
+            blend_flags.append(np.zeros(ql.shape[0], dtype=bool))
             count += ql.shape[0]
             clock += ql.shape[0] * dt
             blend_from = ql[-1]
@@ -242,6 +248,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
         chunks_q.append(qb)
         chunks_qd.append(qdb)
         chunks_qdd.append(qddb)
+        blend_flags.append(np.ones(nb, dtype=bool))
         count += nb
     if count == 0:
         raise ValueError("viapoint: the motion has no samples (every segment has zero length and tacc = 0)")
@@ -261,5 +268,6 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
         "via_times": via_times,
         "tacc": np.array([math.ceil(x / dt) * dt for x in tacc_arr]),
         "dt": dt,
+        "in_blend": np.concatenate(blend_flags),
     }
     return Trajectory(t, q, qdv, qddv, name="ms_trajectory", info=info)
