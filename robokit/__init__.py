@@ -18,6 +18,8 @@ from robokit.kinematics import *  # noqa: F401,F403
 from robokit.kinematics import __all__ as _kinematics_all
 from robokit.dynamics import *  # noqa: F401,F403
 from robokit.dynamics import __all__ as _dynamics_all
+from robokit.ik import *  # noqa: F401,F403
+from robokit.ik import __all__ as _ik_all
 from robokit.trajectory import *  # noqa: F401,F403
 from robokit.trajectory import __all__ as _trajectory_all
 from robokit.control import *  # noqa: F401,F403
@@ -33,6 +35,7 @@ __all__ = (
     + list(_description_all)
     + list(_kinematics_all)
     + list(_dynamics_all)
+    + list(_ik_all)
     + list(_trajectory_all)
     + list(_control_all)
     + list(_mobile_all)

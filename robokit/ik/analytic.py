@@ -1,0 +1,319 @@
+r"""Closed-form inverse kinematics with every solution (Lecture 5, seed 003 eqs. 15–17).
+
+Each solver returns a list of :class:`IKSolution` — every configuration that reaches the
+target, each flagged ``within_limits`` against the joint limits — and an empty list when
+the target is out of reach (never an exception for an unreachable target). Angles are in
+radians and wrapped to (−π, π].
+
+Solvers
+-------
+``ik_planar_2link``   planar 2-link arm (elbow up/down), Lecture 5 algebraic solution:
+                      c₂ = (x² + y² − l₁² − l₂²)/(2l₁l₂), s₂ = ±√(1 − c₂²),
+                      θ₁ = atan2(y, x) − atan2(k₂, k₁), k₁ = l₁ + l₂c₂, k₂ = l₂s₂.
+``ik_planar_rrr``     planar RRR with orientation φ: the wrist point (x − l₃cφ, y − l₃sφ)
+                      by the 2-link solution, θ₃ = φ − θ₁ − θ₂ (Lecture 5).
+``ik_spherical_wrist`` ZYZ wrist ³R₆ = Rz(θ₄) Ry(θ₅) Rz(θ₆), both branches (seed 003, eq. 16–17).
+``ik_rrr_position``   the Lecture 5 homework arm (spatial RRR, Craig's convention,
+                      α₁ = 90°), target position only: up to 4 solutions.
+``ik_puma560``        PUMA 560-type arm (standard DH, Corke's/Paul's frame assignment) by
+                      Pieper's method: wrist centre → θ₁, θ₂, θ₃ (left/right, elbow up/down),
+                      then the spherical wrist → θ₄, θ₅, θ₆ (flip/no flip): all 8.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.se3 import _inv, check_transform
+from robokit.spatial.so3 import check_rotation
+
+__all__ = [
+    "IKSolution",
+    "ik_planar_2link",
+    "ik_planar_rrr",
+    "ik_spherical_wrist",
+    "ik_rrr_position",
+    "ik_puma560",
+    "select_solution",
+]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def _wrap(a):
+    """Angles wrapped to (−π, π]."""
+    a = np.asarray(a, dtype=float)
+    w = np.mod(a + np.pi, _TWO_PI) - np.pi
+    w = np.where(w <= -np.pi, w + _TWO_PI, w)
+    return w
+
+
+@dataclass(frozen=True)
+class IKSolution:
+    """One inverse-kinematics solution.
+
+    q : (n,) joint values (rad for revolute joints, m for prismatic).
+    within_limits : True if every joint is inside its limits (True when no limits given).
+    label : the branch, e.g. ``"elbow up"`` or ``"left, elbow up, no flip"``.
+    degenerate : True if the target is at a singularity where the solver made a documented
+        choice for a free angle (e.g. θ₅ = 0 of a spherical wrist).
+    """
+
+    q: np.ndarray
+    within_limits: bool = True
+    label: str = ""
+    degenerate: bool = False
+    extra: dict = field(default_factory=dict, compare=False, repr=False)
+
+
+def _within(q, qlim) -> bool:
+    if qlim is None:
+        return True
+    qlim = np.asarray(qlim, dtype=float)
+    tol = 1e-12
+    return bool(np.all(q >= qlim[:, 0] - tol) and np.all(q <= qlim[:, 1] + tol))
+
+
+def _qlim_or_none(qlim, n, name="qlim"):
+    if qlim is None:
+        return None
+    arr = np.asarray(qlim, dtype=float)
+    if arr.shape != (n, 2):
+        raise ValueError(f"{name}: expected shape ({n}, 2), got {arr.shape}")
+    return arr
+
+
+def _two_link_core(x, y, l1, l2):
+    """Both (θ₁, θ₂) of a planar 2-link arm reaching (x, y); [] if out of reach."""
+    r2 = x * x + y * y
+    c2 = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)
+    tol = 1e-12
+    if c2 > 1.0 + tol or c2 < -1.0 - tol:
+        return []
+    c2 = min(1.0, max(-1.0, c2))
+    s2_abs = np.sqrt(max(0.0, 1.0 - c2 * c2))
+    out = []
+    for sign, label in ((1.0, "elbow down"), (-1.0, "elbow up")):
+        s2 = sign * s2_abs
+        k1, k2 = l1 + l2 * c2, l2 * s2
+        t1 = np.arctan2(y, x) - np.arctan2(k2, k1)
+        t2 = np.arctan2(s2, c2)
+        out.append((float(_wrap(t1)), float(_wrap(t2)), label))
+        if s2_abs == 0.0:  # stretched or folded: both branches coincide
+            break
+    return out
+
+
+def ik_planar_2link(x, y, l1, l2, qlim=None) -> list[IKSolution]:
+    """All joint angles (θ₁, θ₂) of a planar 2-link arm whose tip reaches (x, y).
+
+    x, y : target in the base frame (m); l1, l2 : link lengths (m, > 0);
+    qlim : optional (2, 2) limits [[lo, hi], …] (rad).
+    Returns up to two solutions ("elbow down": θ₂ > 0, "elbow up": θ₂ < 0 — with the
+    base x axis horizontal and y up); one at the workspace boundary; [] if unreachable.
+
+    Example: ``ik_planar_2link(1.0, 1.0, 1.0, 1.0)`` → θ = (0, π/2) and (π/2, −π/2).
+    """
+    x, y = as_scalar(x, "x"), as_scalar(y, "y")
+    l1, l2 = as_scalar(l1, "l1", positive=True), as_scalar(l2, "l2", positive=True)
+    qlim = _qlim_or_none(qlim, 2)
+    sols = []
+    for t1, t2, label in _two_link_core(x, y, l1, l2):
+        q = np.array([t1, t2])
+        sols.append(IKSolution(q, _within(q, qlim), label))
+    return sols
+
+
+def ik_planar_rrr(x, y, phi, l1, l2, l3, qlim=None) -> list[IKSolution]:
+    """All (θ₁, θ₂, θ₃) of a planar RRR arm with tool pose (x, y, φ), φ = θ₁ + θ₂ + θ₃.
+
+    Geometric form of Lecture 5: the wrist point (x − l₃ cos φ, y − l₃ sin φ) is reached
+    by the 2-link sub-arm, and θ₃ = φ − θ₁ − θ₂. Lengths in m, angles in rad.
+    """
+    x, y, phi = as_scalar(x, "x"), as_scalar(y, "y"), as_scalar(phi, "phi")
+    l1, l2 = as_scalar(l1, "l1", positive=True), as_scalar(l2, "l2", positive=True)
+    l3 = as_scalar(l3, "l3", nonnegative=True)
+    qlim = _qlim_or_none(qlim, 3)
+    wx, wy = x - l3 * np.cos(phi), y - l3 * np.sin(phi)
+    sols = []
+    for t1, t2, label in _two_link_core(wx, wy, l1, l2):
+        q = np.array([t1, t2, float(_wrap(phi - t1 - t2))])
+        sols.append(IKSolution(q, _within(q, qlim), label))
+    return sols
+
+
+def ik_spherical_wrist(R36, theta4_ref: float = 0.0) -> list[IKSolution]:
+    """Both ZYZ solutions (θ₄, θ₅, θ₆) of a spherical wrist, ³R₆ = Rz(θ₄) Ry(θ₅) Rz(θ₆).
+
+    Seed 003, eqs. 15–17, with ³R₆ = [n s a]:
+    θ₅ ∈ (0, π): θ₄ = atan2(a_y, a_x), θ₅ = atan2(√(a_x² + a_y²), a_z), θ₆ = atan2(s_z, −n_z);
+    θ₅ ∈ (−π, 0): θ₄ = atan2(−a_y, −a_x), θ₅ = atan2(−√(a_x² + a_y²), a_z), θ₆ = atan2(−s_z, n_z).
+
+    Degenerate case (θ₅ = 0 or π, the axes of joints 4 and 6 aligned): only θ₄ ± θ₆ is
+    determined. The documented choice: θ₄ = ``theta4_ref`` (default 0, or pass the current
+    θ₄ to avoid a jump) and θ₆ takes the rest; one solution is returned, flagged
+    ``degenerate``.
+    """
+    R = check_rotation(R36, "R36")
+    t4_ref = as_scalar(theta4_ref, "theta4_ref")
+    ax, ay, az = R[0, 2], R[1, 2], R[2, 2]
+    sx, sy, sz = R[0, 1], R[1, 1], R[2, 1]
+    nx, ny, nz = R[0, 0], R[1, 0], R[2, 0]
+    s5 = float(np.hypot(ax, ay))
+    if s5 < 1e-10:
+        if az > 0:  # θ5 = 0: R = Rz(θ4 + θ6)
+            total = np.arctan2(ny, nx)
+            q = np.array([t4_ref, 0.0, total - t4_ref])
+        else:  # θ5 = π: R = Rz(θ4) Ry(π) Rz(θ6) = Rz(θ4 − θ6) Ry(π)
+            diff = np.arctan2(-sx, sy)  # θ4 − θ6
+            q = np.array([t4_ref, np.pi, t4_ref - diff])
+        return [IKSolution(_wrap(q), True, "wrist singular", degenerate=True)]
+    q_a = np.array([np.arctan2(ay, ax), np.arctan2(s5, az), np.arctan2(sz, -nz)])
+    q_b = np.array([np.arctan2(-ay, -ax), np.arctan2(-s5, az), np.arctan2(-sz, nz)])
+    return [IKSolution(_wrap(q_a), True, "no flip"), IKSolution(_wrap(q_b), True, "flip")]
+
+
+def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
+    """All (θ₁, θ₂, θ₃) of the Lecture 5 homework RRR arm reaching the tool position p.
+
+    The arm (Craig's convention, Lecture 4/5 homework): ⁰T₁ = Rz(θ₁);
+    ¹T₂ = Rx(90°) Tx(L₁) Rz(θ₂); ²T₃ = Tx(L₂) Rz(θ₃); the tool at L₃ along x₃. Its tool
+    position is P = (C₁(L₁ + L₂C₂ + L₃C₂₃), S₁(L₁ + L₂C₂ + L₃C₂₃), L₂S₂ + L₃S₂₃).
+    With ρ = ±√(P_x² + P_y²) (the sign choosing θ₁ or θ₁ + π), the 2-link problem
+    (ρ − L₁, P_z) with links L₂, L₃ gives θ₂, θ₃: up to 4 solutions.
+    """
+    p = as_vector(p, "p", 3)
+    L1 = as_scalar(L1, "L1", nonnegative=True)
+    L2, L3 = as_scalar(L2, "L2", positive=True), as_scalar(L3, "L3", positive=True)
+    qlim = _qlim_or_none(qlim, 3)
+    r = float(np.hypot(p[0], p[1]))
+    base_angle = float(np.arctan2(p[1], p[0])) if r > 1e-12 else 0.0
+    sols = []
+    for sign, side in ((1.0, "front"), (-1.0, "back")):
+        t1 = base_angle if sign > 0 else base_angle + np.pi
+        for t2, t3, label in _two_link_core(sign * r - L1, p[2], L2, L3):
+            q = _wrap(np.array([t1, t2, t3]))
+            sols.append(IKSolution(q, _within(q, qlim), f"{side}, {label}"))
+        if r <= 1e-12:
+            break  # on the axis of joint 1: θ₁ is free; the choice θ₁ = 0 covers both sides
+    return sols
+
+
+_PUMA_ALPHA = np.array([np.pi / 2, 0.0, -np.pi / 2, np.pi / 2, -np.pi / 2, 0.0])
+
+
+def _puma_params(table):
+    """Check the PUMA 560 structure and return its constants (d1, a2, a3, d23, d4, d6, offsets)."""
+    links = list(table.links)
+    if len(links) != 6 or any(l.joint != "R" for l in links):
+        raise ValueError("table: ik_puma560 needs six revolute joints")
+    if table.convention != "standard":
+        raise ValueError("table: ik_puma560 needs the standard DH convention (Corke's/Paul's PUMA 560 frames)")
+    alpha = np.array([l.alpha for l in links])
+    a = np.array([l.a for l in links])
+    d = np.array([l.d for l in links])
+    if np.abs(_wrap(alpha - _PUMA_ALPHA)).max() > 1e-9 or np.abs(a[[0, 3, 4, 5]]).max() > 1e-12 or abs(d[4]) > 1e-12:
+        raise ValueError(
+            "table: not a PUMA 560-type arm (needs alpha = [90, 0, -90, 90, -90, 0] deg, a1 = a4 = a5 = a6 = 0, d5 = 0)"
+        )
+    offsets = np.array([l.theta for l in links])
+    return d[0], a[1], a[2], d[1] + d[2], d[3], d[5], offsets
+
+
+def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
+    """All 8 configurations of a PUMA 560-type arm reaching the tool pose T (Pieper's method).
+
+    table : a standard-convention :class:`robokit.DHTable` with the PUMA structure
+        (α = 90°, 0, −90°, 90°, −90°, 0; a₁ = a₄ = a₅ = a₆ = 0; d₅ = 0; any d₁, a₂, a₃,
+        d₂ + d₃, d₄, d₆, θ offsets, base and tool transforms).
+    T : 4×4 target pose of the tool frame in base_link (as ``table.fk`` returns it).
+
+    Method. With ⁰T₆ = base⁻¹ T tool⁻¹, the wrist centre p = ⁰p₆ − d₆ ⁰z₆ satisfies
+    p_x = c₁X + s₁D, p_y = s₁X − c₁D, p_z = d₁ + Y with D = d₂ + d₃,
+    X = a₂c₂ + a₃c₂₃ − d₄s₂₃, Y = a₂s₂ + a₃s₂₃ + d₄c₂₃. So θ₁ = atan2(p_y, p_x) + {asin(D/r),
+    π − asin(D/r)} (right/left arm, r = √(p_x² + p_y²)); a₃c₃ − d₄s₃ =
+    (X² + Y² − a₂² − a₃² − d₄²)/(2a₂) gives two θ₃ (elbow up/down); θ₂ = atan2(Y, X) −
+    atan2(a₃s₃ + d₄c₃, a₂ + a₃c₃ − d₄s₃). Then ³R₆ = Rz(θ₄) Ry(−θ₅) Rz(θ₆) (the frames'
+    α₄ = 90°, α₅ = −90°) gives the wrist flip/no-flip pair by :func:`ik_spherical_wrist`.
+    Joint values returned are the joint variables q (θ = q + offset), wrapped to (−π, π].
+
+    Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
+    of :func:`ik_spherical_wrist` applies), [] if unreachable.
+    """
+    d1, a2, a3, D, d4, d6, offsets = _puma_params(table)
+    T = check_transform(T, "T")
+    qlim = None
+    if all(l.qlim is not None for l in table.links):
+        qlim = np.array([l.qlim for l in table.links], dtype=float)
+    T06 = _inv(np.asarray(table.base, dtype=float)) @ T @ _inv(np.asarray(table.tool, dtype=float))
+    R06 = T06[:3, :3]
+    p = T06[:3, 3] - d6 * R06[:, 2]
+    px, py, pz = p
+    r = float(np.hypot(px, py))
+    tol = 1e-12
+    if r < abs(D) - tol or a2 == 0.0:
+        return []
+    phi = np.arctan2(py, px)
+    ratio = min(1.0, max(-1.0, D / r)) if r > 0 else 0.0
+    beta = np.arcsin(ratio)
+    rho = np.hypot(a3, d4)
+    psi = np.arctan2(d4, a3)
+    sols = []
+    for t1, arm in ((phi + beta, "right"), (phi + np.pi - beta, "left")):
+        c1, s1 = np.cos(t1), np.sin(t1)
+        X = c1 * px + s1 * py
+        Y = pz - d1
+        K = (X * X + Y * Y - a2 * a2 - a3 * a3 - d4 * d4) / (2.0 * a2)
+        if rho == 0.0 or abs(K) > rho * (1 + 1e-12):
+            continue
+        g = np.arccos(min(1.0, max(-1.0, K / rho)))
+        for t3, elbow in ((-psi + g, "elbow down"), (-psi - g, "elbow up")):
+            c3, s3 = np.cos(t3), np.sin(t3)
+            u, w = a2 + a3 * c3 - d4 * s3, a3 * s3 + d4 * c3
+            t2 = np.arctan2(Y, X) - np.arctan2(w, u)
+            # R03 from the first three joints (θ = joint angle incl. offsets)
+            R03 = _rz(t1) @ _rx(np.pi / 2) @ _rz(t2) @ _rz(t3) @ _rx(-np.pi / 2)
+            R36 = R03.T @ R06
+            ref4 = theta4_ref + offsets[3]
+            for wsol in ik_spherical_wrist(R36, theta4_ref=ref4):
+                t4, b, t6 = wsol.q
+                theta = np.array([t1, t2, t3, t4, -b, t6])
+                q = _wrap(theta - offsets)
+                flip = "wrist singular" if wsol.degenerate else wsol.label
+                sols.append(IKSolution(q, _within(q, qlim), f"{arm}, {elbow}, {flip}", wsol.degenerate))
+            if g == 0.0:
+                break
+    return sols
+
+
+def _rz(t):
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _rx(t):
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def select_solution(solutions, q_ref, weights=None, within_limits: bool = True, proximal_first: bool = False):
+    """The solution closest to ``q_ref`` (Lecture 5's choice among multiple solutions).
+
+    Distance: ``Σ wᵢ |wrap(qᵢ − q_refᵢ)|`` (angles compared modulo 2π). ``weights`` (n,)
+    default to ones; ``proximal_first=True`` uses wᵢ = n − i + 1, preferring to move the
+    big proximal joints little (Lecture 5). With ``within_limits`` (default), solutions
+    outside the joint limits are not considered. Returns the :class:`IKSolution` or None.
+    """
+    sols = [s for s in solutions if s.within_limits or not within_limits]
+    if not sols:
+        return None
+    n = len(sols[0].q)
+    q_ref = as_vector(q_ref, "q_ref", n)
+    if weights is None:
+        w = np.arange(n, 0, -1, dtype=float) if proximal_first else np.ones(n)
+    else:
+        w = as_vector(weights, "weights", n)
+    costs = [float(np.sum(w * np.abs(_wrap(s.q - q_ref)))) for s in sols]
+    return sols[int(np.argmin(costs))]
