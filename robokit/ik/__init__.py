@@ -1,5 +1,12 @@
-"""robokit.ik — inverse kinematics: closed-form solvers with every solution (``analytic``)."""
+"""robokit.ik — inverse kinematics.
+
+``analytic``: closed-form solvers returning every solution (2-link, RRR, spherical wrist,
+PUMA 560). ``numeric``: the seed library's Newton–Raphson ``ikin_body``/``ikin_space`` and
+a robust Levenberg–Marquardt ``solve_ik`` with joint limits and restarts for any Robot.
+"""
 from robokit.ik.analytic import *  # noqa: F401,F403
 from robokit.ik.analytic import __all__ as _analytic_all
+from robokit.ik.numeric import *  # noqa: F401,F403
+from robokit.ik.numeric import __all__ as _numeric_all
 
-__all__ = list(_analytic_all)
+__all__ = list(_analytic_all) + list(_numeric_all)

@@ -1,0 +1,238 @@
+r"""Numerical inverse kinematics (Lecture 5; seed 004 ``ikin_body``/``ikin_space``).
+
+Two solvers:
+
+* :func:`ikin_body` / :func:`ikin_space` — the seed library's Newton–Raphson on the twist
+  error, with Modern Robotics semantics: ``(thetalist, success)``, no exception for an
+  unreachable target. Body form: ``V_b = log(T_sb(θ)⁻¹ T_sd)``, ``θ ← θ + J_b⁺(θ) V_b``
+  until ``‖ω_b‖ ≤ eomg`` and ``‖v_b‖ ≤ ev``. Space form: ``V_s = Ad_{T_sb} V_b`` with
+  ``J_s``. Up to ``max_iterations`` (default 100; Modern Robotics stops at 20).
+
+* :func:`solve_ik` — a robust solver for any :class:`robokit.Robot` and any frame:
+  Levenberg–Marquardt (damped least squares with the damping ``λ = λ₀ ‖e‖² + λ_min``
+  growing with the error, after Sugihara 2011), joint limits enforced by projection
+  after every step, full-pose or position-only mode, a weighted error, and random
+  restarts inside the limits until an iteration, restart or time budget runs out.
+  It uses Pinocchio (through the Robot's methods) for FK and Jacobians.
+
+Errors are measured in the target frame: the pose error is the body twist
+``log(T(θ)⁻¹ T_target)`` (angular first, rad and m); the position error is
+``p_target − p(θ)`` in the base frame (m).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
+from robokit.spatial.se3 import _adjoint, _exp6, _inv, _log6_vec, check_transform
+
+__all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
+
+
+def _check_screws(S, name):
+    S = as_matrix(S, name, 6, None)
+    return S
+
+
+def _fk_body(M, Blist, theta):
+    T = M.copy()
+    for i in range(len(theta)):
+        T = T @ _exp6(Blist[:, i] * theta[i])
+    return T
+
+
+def _jac_body(Blist, theta):
+    n = len(theta)
+    J = Blist.copy()
+    T = np.eye(4)
+    for i in range(n - 2, -1, -1):
+        T = T @ _exp6(-Blist[:, i + 1] * theta[i + 1])
+        J[:, i] = _adjoint(T) @ Blist[:, i]
+    return J
+
+
+def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
+    """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
+
+    Blist : 6×n body screw axes (columns, angular first) in the end-effector frame at zero;
+    M : 4×4 end-effector pose at θ = 0; T : 4×4 target pose; thetalist0 : (n,) initial guess;
+    eomg, ev : tolerances on the angular (rad) and linear (m) parts of the body twist error.
+
+    Returns ``(thetalist, success)``; ``success`` is False (no exception) when the iteration
+    does not converge, e.g. for an unreachable target.
+
+    Example: for a planar 2R arm, ``ikin_body(Blist, M, fkin_body(M, Blist, [0.3, 0.4]),
+    [0.2, 0.5], 1e-9, 1e-9)`` → ``(array([0.3, 0.4]), True)``.
+    """
+    Blist = _check_screws(Blist, "Blist")
+    n = Blist.shape[1]
+    M = check_transform(M, "M")
+    T = check_transform(T, "T")
+    theta = as_vector(thetalist0, "thetalist0", n).copy()
+    eomg = as_scalar(eomg, "eomg", nonnegative=True)
+    ev = as_scalar(ev, "ev", nonnegative=True)
+    for _ in range(max_iterations + 1):
+        Vb = _log6_vec(_inv(_fk_body(M, Blist, theta)) @ T)
+        if np.linalg.norm(Vb[:3]) <= eomg and np.linalg.norm(Vb[3:]) <= ev:
+            return theta, True
+        theta = theta + np.linalg.pinv(_jac_body(Blist, theta)) @ Vb
+    return theta, False
+
+
+def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
+    """Newton–Raphson inverse kinematics in the space frame (seed 004 §3, Modern Robotics 6.2).
+
+    Slist : 6×n space screw axes; M, T, thetalist0, eomg, ev as in :func:`ikin_body`.
+    The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``J_s⁺ V_s``.
+    Returns ``(thetalist, success)``.
+    """
+    Slist = _check_screws(Slist, "Slist")
+    n = Slist.shape[1]
+    M = check_transform(M, "M")
+    T = check_transform(T, "T")
+    theta = as_vector(thetalist0, "thetalist0", n).copy()
+    eomg = as_scalar(eomg, "eomg", nonnegative=True)
+    ev = as_scalar(ev, "ev", nonnegative=True)
+    for _ in range(max_iterations + 1):
+        # forward kinematics and space Jacobian in one pass
+        Js = Slist.copy()
+        P = np.eye(4)
+        for i in range(n):
+            if i > 0:
+                Js[:, i] = _adjoint(P) @ Slist[:, i]
+            P = P @ _exp6(Slist[:, i] * theta[i])
+        Tsb = P @ M
+        Vs = _adjoint(Tsb) @ _log6_vec(_inv(Tsb) @ T)
+        if np.linalg.norm(Vs[:3]) <= eomg and np.linalg.norm(Vs[3:]) <= ev:
+            return theta, True
+        theta = theta + np.linalg.pinv(Js) @ Vs
+    return theta, False
+
+
+@dataclass
+class IKResult:
+    """Result of :func:`solve_ik`.
+
+    q : (n,) the best configuration found (joint angles, inside the limits);
+    success : True if the error is below the tolerance;
+    residual : norm of the (unweighted) error at ``q`` (rad/m mixed for poses);
+    position_error, orientation_error : m and rad at ``q`` (orientation NaN-free 0 in position mode);
+    iterations : total iterations over all attempts; restarts : random restarts used;
+    seconds : wall time.
+    """
+
+    q: np.ndarray
+    success: bool
+    residual: float
+    position_error: float
+    orientation_error: float
+    iterations: int
+    restarts: int
+    seconds: float
+
+
+def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only: bool = False,
+             weights=None, tol: float = 1e-10, max_iterations: int = 60, max_restarts: int = 30,
+             time_budget: float | None = None, damping: float = 1e-2, min_damping: float = 1e-9,
+             rng=None) -> IKResult:
+    """Levenberg–Marquardt IK with joint limits and random restarts, for any Robot and frame.
+
+    robot : a :class:`robokit.Robot`; target : 4×4 pose (or a (3,) position with
+    ``position_only``) of ``frame`` (default the robot's tip) in the base frame;
+    q0 : (n,) initial guess (default: the robot's zero configuration clipped to the limits);
+    weights : (6,) weights of the body-twist error (ω, v), or (3,) in position mode;
+    tol : success when the error norm is below it; max_iterations : per attempt;
+    max_restarts : random restarts (uniform inside the limits) after the first attempt;
+    time_budget : seconds, optional; damping : λ₀ in ``λ = λ₀‖e‖² + min_damping``;
+    rng : numpy Generator or seed for the restarts.
+
+    Each step solves ``(JᵀWJ + λI) Δq = JᵀWe`` and projects ``q + Δq`` onto the joint
+    limits; an attempt stops when ``‖e‖ < tol``, or when it stalls. The returned
+    configuration is always inside the limits.
+
+    Example::
+
+        robot = robokit.load("ur5")
+        res = solve_ik(robot, robot.frame_pose(q_true))
+        res.success, res.q
+    """
+    t_start = time.perf_counter()
+    n = robot.n
+    rng = np.random.default_rng(rng)
+    lo = np.asarray(robot.qlim, dtype=float)[:, 0]
+    hi = np.asarray(robot.qlim, dtype=float)[:, 1]
+    sample_lo = np.where(np.isfinite(lo), lo, -np.pi)
+    sample_hi = np.where(np.isfinite(hi), hi, np.pi)
+    if position_only:
+        p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)
+        T_target = None
+        w = np.ones(3) if weights is None else as_vector(weights, "weights", 3)
+    else:
+        T_target = check_transform(target, "target")
+        w = np.ones(6) if weights is None else as_vector(weights, "weights", 6)
+    if np.any(w < 0):
+        raise ValueError(f"weights: expected non-negative entries, got {w}")
+    q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), lo, hi)
+    tol = as_scalar(tol, "tol", positive=True)
+
+    def error(qc):
+        T = robot.frame_pose(qc, frame)
+        if position_only:
+            return p_target - T[:3, 3], T
+        return _log6_vec(_inv(T) @ T_target), T
+
+    def jac(qc, T):
+        if position_only:
+            return robot.jacobian(qc, frame, reference="local_world_aligned")[3:, :]
+        return robot.jacobian(qc, frame, reference="local")
+
+    best_q, best_err = q.copy(), np.inf
+    iterations = 0
+    restarts = 0
+    eye = np.eye(n)
+    while True:
+        e, T = error(q)
+        err = float(np.linalg.norm(e))
+        stall = 0
+        for _ in range(max_iterations):
+            if err < tol:
+                break
+            J = jac(q, T)
+            JW = J.T * w
+            lam = damping * err * err + min_damping
+            dq = np.linalg.solve(JW @ J + lam * eye, JW @ e)
+            q_new = np.clip(q + dq, lo, hi)
+            e_new, T_new = error(q_new)
+            err_new = float(np.linalg.norm(e_new))
+            iterations += 1
+            if err_new < err:
+                q, e, T, err = q_new, e_new, T_new, err_new
+                stall = 0
+            else:
+                damping_boost = 10.0
+                dq = np.linalg.solve(JW @ J + damping_boost * (lam + 1e-6) * eye, JW @ e)
+                q_try = np.clip(q + dq, lo, hi)
+                e_try, T_try = error(q_try)
+                err_try = float(np.linalg.norm(e_try))
+                if err_try < err:
+                    q, e, T, err = q_try, e_try, T_try, err_try
+                stall += 1
+                if stall >= 3:
+                    break
+        if err < best_err:
+            best_q, best_err = q.copy(), err
+        out_of_time = time_budget is not None and time.perf_counter() - t_start > time_budget
+        if best_err < tol or restarts >= max_restarts or out_of_time:
+            break
+        restarts += 1
+        q = rng.uniform(sample_lo, sample_hi)
+    e, T = error(best_q)
+    if position_only:
+        pos_err, rot_err = float(np.linalg.norm(e)), 0.0
+    else:
+        rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
+    return IKResult(best_q, bool(best_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
+                    iterations, restarts, time.perf_counter() - t_start)
