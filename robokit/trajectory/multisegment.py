@@ -170,7 +170,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
     q_prev = start
     qd_prev = v_start
     blend_from = start  # where the next blend starts: the last linear sample (mstraj's rule)
-    fresh = True  # blend_from is the newest sample (no blend emitted after it)
+    last = start  # the newest sample (the start before any is emitted)
     clock = 0.0
     tacc2 = 0.0
     for seg in range(ns):
@@ -200,7 +200,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
 
         nb = round(taccx / dt) if taccx > 0 else 0
         if nb > 0:
-            if nb > 1 and not fresh:
+            if nb > 1 and not np.array_equal(blend_from, last):
                 raise ValueError(
                     f"tsegment: segment {seg - 1} (tsegment[{seg - 1}] = {seg_times[-2]:g} s) is too short for its blends "
                     f"(tacc = {tacc_arr[seg - 1]:g} s at dt = {dt:g} s): it has no linear part before the next blend"
@@ -213,7 +213,7 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
             chunks_qdd.append(qddb)
             blend_flags.append(np.ones(nb, dtype=bool))
             count += nb
-            fresh = False
+            last = qb[-1]
         clock += taccx
         # segment-local time 0 (the line through q_prev) is round(tacc2/dt) samples before
         # the end of this blend
@@ -232,13 +232,13 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
             count += ql.shape[0]
             clock += ql.shape[0] * dt
             blend_from = ql[-1]
-            fresh = True
+            last = ql[-1]
         q_prev = q_next
         qd_prev = qd
 
     nb = round(tacc2 / dt) if tacc2 > 0 else 0
     if nb > 0:
-        if nb > 1 and not fresh:
+        if nb > 1 and not np.array_equal(blend_from, last):
             raise ValueError(
                 f"tsegment: the last segment (tsegment[{ns - 1}] = {seg_times[-1]:g} s) is too short for its blends "
                 f"(tacc = {tacc_arr[-1]:g} s at dt = {dt:g} s): it has no linear part before the final blend"
