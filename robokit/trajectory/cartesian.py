@@ -20,25 +20,25 @@ Time: s = s(t) is any time scaling of :mod:`robokit.trajectory.timescaling`
 (cubic, quintic or LSPB), so velocity and acceleration are ``ṗ = ṡ(p1 − p0)``,
 ``ω = ṡ θ R0 k̂`` (world frame) and likewise for the second derivatives.
 
-Converting to joint space (design note, not implemented here): a future
-``cartesian_to_joint(robot, traj, ik=...)`` will solve IK at every pose of
-``traj.poses`` warm-started from the previous solution, and report the two problems
-Lecture 3 lists — a pose outside the workspace (IK fails: the index and the pose are
-reported) and joint-rate blow-up near a singularity (|Δθ|/Δt above the joint limits or a
-growing condition number of the Jacobian). It belongs with the IK issue; until then
-use ``traj.poses`` with an IK solver directly.
+Converting to joint space (:func:`cartesian_to_joint`): inverse kinematics at every pose,
+warm-started from the previous solution, with the two problems Lecture 3 lists detected
+and reported — a pose outside the workspace (IK fails: ``ValueError`` naming the samples)
+and joint-rate blow-up near a singularity (joint rates above ``qd_limit``: a
+``RuntimeWarning`` and per-sample flags, with the Jacobian's condition number).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from robokit._arrays import as_array
+import warnings
+
+from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
 from robokit.spatial.so3 import _exp3, _log3_vec, check_rotation
 from robokit.trajectory.core import Trajectory, positive_duration, sample_times
 from robokit.trajectory.timescaling import time_scaling
 
-__all__ = ["slerp_rotation", "cartesian_line_trajectory"]
+__all__ = ["slerp_rotation", "cartesian_line_trajectory", "cartesian_to_joint"]
 
 
 def _relative_rotation_vector(R0: np.ndarray, R1: np.ndarray, shortest: bool) -> np.ndarray:
@@ -149,3 +149,152 @@ def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shor
     info = {"axis_world": axis, "angle": theta, "s": s, "sd": sd, "sdd": sdd}
     labels = ("φx", "φy", "φz", "x", "y", "z")
     return Trajectory(ts, q, qd, qdd, poses=poses, name="cartesian_line", labels=labels, info=info)
+
+
+def _ik_answer(ans, q_prev):
+    """(q, success) from an IK callable's answer: an object with ``.q``/``.success``, a
+    ``(q, success)`` pair, or a list of candidate solutions (arrays or objects with ``.q``;
+    those flagged ``within_limits=False`` are skipped; the nearest to ``q_prev`` is taken)."""
+    if hasattr(ans, "q") and hasattr(ans, "success"):
+        return np.asarray(ans.q, dtype=float), bool(ans.success)
+    if isinstance(ans, tuple) and len(ans) == 2 and np.ndim(ans[1]) == 0:
+        return np.asarray(ans[0], dtype=float), bool(ans[1])
+    if isinstance(ans, (list, tuple)):
+        cands = [np.asarray(getattr(c, "q", c), dtype=float) for c in ans if getattr(c, "within_limits", True)]
+        if not cands:
+            return None, False
+        if q_prev is None:
+            return cands[0], True
+        return min(cands, key=lambda c: float(np.linalg.norm(c - q_prev))), True
+    raise TypeError(
+        "ik: expected the IK callable to return an object with .q and .success, a (q, success) pair, "
+        f"or a list of solutions; got {type(ans).__name__}"
+    )
+
+
+def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_only: bool = False, qd_limit=None, tol: float = 1e-6) -> Trajectory:
+    """Joint-space trajectory following a Cartesian one, by IK at every pose (Lecture 3).
+
+    Each pose of ``traj.poses`` is solved with ``ik``, starting from the previous solution
+    (so the arm stays on one branch). The two problems of Cartesian paths of Lecture 3 are
+    detected: a pose the IK cannot reach (outside the workspace) raises ``ValueError``
+    listing the samples; joint rates above ``qd_limit`` (near a singularity a small
+    Cartesian speed needs a huge joint speed) give a ``RuntimeWarning`` and are flagged in
+    ``info``.
+
+    Parameters
+    ----------
+    robot : object
+        A :class:`robokit.Robot` or anything with ``n`` and, for the default IK and the
+        checks, ``qlim``, ``frame_pose(q, frame)`` and ``jacobian(q, frame, reference=...)``.
+    traj : Trajectory
+        A Cartesian trajectory with ``poses`` (K, 4, 4), e.g. from :func:`cartesian_line_trajectory`.
+    ik : callable, optional
+        ``ik(T_target, q_guess) -> answer`` where ``q_guess`` is the previous solution (``q0``
+        or None for the first pose) and ``answer`` is an object with ``.q`` and ``.success``
+        (e.g. :func:`robokit.ik.solve_ik`'s result), a ``(q, success)`` pair, or a list of
+        solutions (the closed-form solvers' lists: the one nearest the previous solution is
+        taken). Default: :func:`robokit.ik.solve_ik` (restarts only if a warm start fails).
+    q0 : array (n,), optional
+        Initial guess for the first pose (default: the IK's own).
+    frame : str, optional
+        The robot frame that follows the path (default the tip).
+    position_only : bool
+        Follow the positions only (for arms with fewer than 6 joints).
+    qd_limit : float or array (n,), optional
+        Joint speed limits (rad/s or m/s) used to flag joint-rate blow-up.
+    tol : float
+        Largest accepted pose error of a solution (m and rad), checked with ``frame_pose``.
+
+    Returns
+    -------
+    Trajectory
+        ``t`` as ``traj.t``; ``q`` (K, n) joint positions; ``qd``, ``qdd`` by finite
+        differences (second order, ``numpy.gradient``); ``poses`` = ``traj.poses``.
+        ``info``: ``"pose_error"`` (K,), ``"max_joint_rate"`` (n,), ``"rate_exceeded"`` (K,)
+        bool (with ``qd_limit``), ``"jacobian_condition"`` (K,) (if the robot has ``jacobian``).
+
+    Example
+    -------
+    ``qtraj = cartesian_to_joint(robot, cartesian_line_trajectory(T_a, T_b, 2.0), qd_limit=3.0)``
+    """
+    if not isinstance(traj, Trajectory) or traj.poses is None:
+        raise ValueError("traj: expected a Cartesian Trajectory with poses (e.g. from cartesian_line_trajectory)")
+    n = int(robot.n)
+    poses = np.asarray(traj.poses, dtype=float)
+    K = poses.shape[0]
+    tol = float(tol)
+    guess = None if q0 is None else as_vector(q0, "q0", n)
+    if ik is None:
+        from robokit.ik.numeric import solve_ik
+
+        def ik(T, q_guess):
+            res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only, max_restarts=0 if q_guess is not None else 30)
+            if not res.success and q_guess is not None:
+                res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only)
+            return res
+
+    has_fk = hasattr(robot, "frame_pose")
+    q = np.zeros((K, n))
+    ok = np.zeros(K, dtype=bool)
+    pose_err = np.full(K, np.inf)
+    prev = guess
+    for k in range(K):
+        qk, success = _ik_answer(ik(poses[k], prev), prev)
+        if qk is not None:
+            qk = as_vector(qk, "ik result", n)
+            if has_fk:
+                T = np.asarray(robot.frame_pose(qk, frame), dtype=float)
+                e = float(np.linalg.norm(T[:3, 3] - poses[k, :3, 3]))
+                if not position_only:
+                    e = max(e, float(np.linalg.norm(_log3_vec(T[:3, :3].T @ poses[k, :3, :3]))))
+                pose_err[k] = e
+                success = success and e <= tol
+            else:
+                pose_err[k] = 0.0 if success else np.inf
+        if success:
+            q[k] = qk
+            ok[k] = True
+            prev = qk
+    if not ok.all():
+        bad = np.flatnonzero(~ok)
+        shown = ", ".join(f"{i} (t = {traj.t[i]:.3g} s, p = {np.round(poses[i, :3, 3], 4).tolist()})" for i in bad[:3])
+        raise ValueError(
+            f"traj: {bad.size} of {K} poses cannot be reached (IK failed): samples {shown}"
+            + (" …" if bad.size > 3 else "")
+            + " — the path leaves the workspace (Lecture 3: intermediate points unreachable)"
+        )
+    t = np.asarray(traj.t, dtype=float)
+    if K >= 3:
+        qd = np.gradient(q, t, axis=0, edge_order=2)
+        qdd = np.gradient(qd, t, axis=0, edge_order=2)
+    elif K == 2:
+        qd = np.gradient(q, t, axis=0)
+        qdd = np.zeros_like(q)
+    else:
+        qd = np.zeros_like(q)
+        qdd = np.zeros_like(q)
+    info = {"pose_error": pose_err, "max_joint_rate": np.abs(qd).max(axis=0)}
+    if hasattr(robot, "jacobian"):
+        cond = np.empty(K)
+        for k in range(K):
+            J = np.asarray(robot.jacobian(q[k], frame, reference="local_world_aligned"), dtype=float)
+            cond[k] = np.linalg.cond(J[3:] if position_only else J)
+        info["jacobian_condition"] = cond
+    if qd_limit is not None:
+        lim = np.abs(as_array(qd_limit, "qd_limit"))
+        lim = np.full(n, float(lim)) if lim.ndim == 0 else as_vector(lim, "qd_limit", n)
+        exceeded = np.any(np.abs(qd) > lim, axis=1)
+        info["rate_exceeded"] = exceeded
+        if exceeded.any():
+            k = int(np.argmax(np.max(np.abs(qd) / lim, axis=1)))
+            cond_txt = f", Jacobian condition number {info['jacobian_condition'][k]:.3g}" if "jacobian_condition" in info else ""
+            warnings.warn(
+                f"cartesian_to_joint: joint rates exceed qd_limit at {int(exceeded.sum())} of {K} samples, worst "
+                f"{np.abs(qd[k]).max():.3g} at t = {t[k]:.3g} s{cond_txt} — the path passes near a singularity "
+                "(Lecture 3: high joint rates); slow down or move the path",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+    labels = tuple(robot.joint_names) if hasattr(robot, "joint_names") and len(getattr(robot, "joint_names")) == n else None
+    return Trajectory(t, q, qd, qdd, poses=poses, name="cartesian_to_joint", labels=labels, info=info)
