@@ -9,7 +9,8 @@ exactly quaternion slerp between the unit quaternions of R0 and R1 taken in the 
 hemisphere: ``q(s) = q0 (q0⁻¹ q1)^s``. It keeps R(s) on SO(3) (unlike the lecture's
 counter-examples, interpolating matrices ``(1 − s)R0 + sR1`` or Euler angles/angle–axis
 vectors component-wise), and the axis, seen in the world frame, is the constant
-``R0 k̂``.
+``R0 k̂``. At θ = π exactly both ±k̂ are shortest; the axis is ``matrix_log_3``'s
+documented choice.
 
 The angle–axis form is not unique: the same ΔR is also the rotation by ``θ − 2π`` about
 k̂ (i.e. 2π − θ about −k̂; for quaternions, q and −q). Interpolating that form also ends
@@ -28,9 +29,9 @@ and joint-rate blow-up near a singularity (joint rates above ``qd_limit``: a
 """
 from __future__ import annotations
 
-import numpy as np
-
 import warnings
+
+import numpy as np
 
 from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
