@@ -8,5 +8,7 @@ from robokit.ik.analytic import *  # noqa: F401,F403
 from robokit.ik.analytic import __all__ as _analytic_all
 from robokit.ik.numeric import *  # noqa: F401,F403
 from robokit.ik.numeric import __all__ as _numeric_all
+from robokit.ik.workspace import *  # noqa: F401,F403
+from robokit.ik.workspace import __all__ as _workspace_all
 
-__all__ = list(_analytic_all) + list(_numeric_all)
+__all__ = list(_analytic_all) + list(_numeric_all) + list(_workspace_all)
