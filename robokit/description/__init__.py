@@ -1,3 +1,18 @@
-"""robokit.description — see the module docstrings inside."""
+"""robokit.description — robot descriptions: DH tables and files, DH → URDF, URDF → PoE, the Robot type.
 
-__all__: list[str] = []
+Modules: ``dh`` (DHTable, YAML format, DH forward kinematics), ``urdf_gen`` (DH → URDF),
+``poe`` (URDF chain → Modern Robotics PoE parameters), ``robot`` (Robot, load), ``models``
+(the shipped models), ``convert`` (the ``robokit convert`` command).
+"""
+from robokit.description.dh import *  # noqa: F401,F403
+from robokit.description.dh import __all__ as _dh_all
+from robokit.description.models import *  # noqa: F401,F403
+from robokit.description.models import __all__ as _models_all
+from robokit.description.poe import *  # noqa: F401,F403
+from robokit.description.poe import __all__ as _poe_all
+from robokit.description.robot import *  # noqa: F401,F403
+from robokit.description.robot import __all__ as _robot_all
+from robokit.description.urdf_gen import *  # noqa: F401,F403
+from robokit.description.urdf_gen import __all__ as _urdf_gen_all
+
+__all__ = list(_dh_all) + list(_urdf_gen_all) + list(_poe_all) + list(_robot_all) + list(_models_all)

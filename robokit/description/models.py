@@ -1,0 +1,47 @@
+"""The robot models shipped in the repository's top-level ``models/`` folder.
+
+Each ``models/<name>.yaml`` (a DH table, API.md §2) has its generated ``models/<name>.urdf``
+beside it. Regenerate the URDFs after editing a YAML file with
+``python -m robokit.description.models``; a test checks that they are up to date.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["models_dir", "shipped_models", "model_path"]
+
+
+def models_dir() -> Path:
+    """Path of the top-level ``models/`` folder (next to the ``robokit`` package)."""
+    return Path(__file__).resolve().parents[2] / "models"
+
+
+def shipped_models() -> list[str]:
+    """Names of the shipped DH models (``models/<name>.yaml``), sorted."""
+    return sorted(p.stem for p in models_dir().glob("*.yaml"))
+
+
+def model_path(name: str, suffix: str = ".yaml") -> Path:
+    """Path of a shipped model file; ``ValueError`` listing the available names if unknown."""
+    p = models_dir() / f"{name}{suffix}"
+    if not p.is_file():
+        raise ValueError(f"model: no shipped model {name!r}; available: {', '.join(shipped_models())}")
+    return p
+
+
+def regenerate() -> list[Path]:
+    """Write ``models/<name>.urdf`` for every shipped YAML file; returns the paths written."""
+    from robokit._io import atomic_write
+    from robokit.description.dh import DHTable
+    from robokit.description.urdf_gen import dh_to_urdf
+
+    out = []
+    for name in shipped_models():
+        table = DHTable.from_yaml(model_path(name))
+        out.append(atomic_write(models_dir() / f"{name}.urdf", dh_to_urdf(table)))
+    return out
+
+
+if __name__ == "__main__":
+    for p in regenerate():
+        print(f"wrote {p}")

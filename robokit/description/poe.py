@@ -1,0 +1,116 @@
+r"""URDF → product-of-exponentials parameters (Modern Robotics form).
+
+For a serial chain root → tip with n one-degree-of-freedom joints (revolute, prismatic,
+continuous), at the zero configuration:
+
+* ``M`` — the tip frame's pose in the root frame;
+* ``Slist`` (6×n) — the joints' screw axes in the root frame, columns ``(ω, v)``, with
+  ``v = −ω × p`` for a revolute joint through the point p and ``(0, v̂)`` for a prismatic one;
+  so that ``T(θ) = e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M`` (Lecture 4, Modern Robotics ch. 4);
+* ``Blist = Ad_{M⁻¹} Slist`` — the same axes in the tip frame;
+* ``Mlist`` (n+1) — ``Mlist[i]`` is the pose of the centre-of-mass frame {i+1} of link i+1
+  in frame {i} (frame {0} = the root, frame {n+1} = the tip); ``Glist`` (n) — each link's
+  6×6 spatial inertia ``[[I_c, 0], [0, m 1]]`` in its centre-of-mass frame.
+
+The centre-of-mass frame of a link is parallel to its joint frame (so ``I_c`` need not be
+diagonal). A link's inertia is everything rigidly attached to its joint — Pinocchio merges
+fixed-joint children and (through ``buildReducedModel``) locked joints' bodies — so the
+Newton–Euler torques from ``Mlist``/``Glist`` equal ``pinocchio.rnea`` on the chain.
+Twists, wrenches and spatial inertias are angular first.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit.spatial.se3 import _adjoint, _inv
+
+__all__ = ["PoEParams", "poe_from_model"]
+
+
+@dataclass(frozen=True)
+class PoEParams:
+    """Product-of-exponentials parameters of a serial chain (see the module docstring).
+
+    M (4×4), Slist (6×n), Blist (6×n), Mlist (n+1, 4, 4), Glist (n, 6, 6), joint_names (n),
+    tip (frame name), qlim (n, 2) (±inf for continuous joints), gravity (3,) m/s².
+    """
+
+    M: np.ndarray
+    Slist: np.ndarray
+    Blist: np.ndarray
+    Mlist: np.ndarray
+    Glist: np.ndarray
+    joint_names: tuple
+    tip: str
+    qlim: np.ndarray
+    gravity: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return self.Slist.shape[1]
+
+    def to_json_dict(self) -> dict:
+        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (API.md §4)."""
+        return {
+            "M": self.M.tolist(),
+            "Slist": self.Slist.tolist(),
+            "Blist": self.Blist.tolist(),
+            "Mlist": [m.tolist() for m in self.Mlist],
+            "Glist": [g.tolist() for g in self.Glist],
+            "joint_names": list(self.joint_names),
+            "tip": self.tip,
+        }
+
+
+def poe_from_model(model, tip: str, gravity=None) -> PoEParams:
+    """PoE parameters of a Pinocchio ``model`` that is a serial chain of 1-dof joints.
+
+    model : ``pinocchio.Model`` whose joints 1..n form one chain (as made by
+    :func:`robokit.description.robot.serial_chain`); tip : the tip frame's name;
+    gravity : (3,) (default: the model's gravity).
+    """
+    import pinocchio as pin
+
+    if not model.existFrame(tip):
+        raise ValueError(f"tip: no frame {tip!r} in the model")
+    n = model.njoints - 1
+    if model.nv != n:
+        raise ValueError(f"model: expected {n} one-dof joints, got nv = {model.nv}")
+    for j in range(1, model.njoints):
+        if model.parents[j] != j - 1:
+            raise ValueError("model: joints do not form one chain in order")
+    data = model.createData()
+    q0 = pin.neutral(model)
+    pin.forwardKinematics(model, data, q0)
+    pin.computeJointJacobians(model, data, q0)
+    pin.updateFramePlacements(model, data)
+    fid = model.getFrameId(tip)
+    M = data.oMf[fid].homogeneous.copy()
+    Jw = data.J.copy()  # world-frame joint Jacobian at zero: columns are space screws (v, ω)
+    Slist = np.vstack([Jw[3:], Jw[:3]])
+    Blist = _adjoint(_inv(M)) @ Slist
+    Mlist = np.empty((n + 1, 4, 4))
+    Glist = np.zeros((n, 6, 6))
+    prev = np.eye(4)
+    for i in range(n):
+        j = i + 1
+        Y = model.inertias[j]
+        T_com = data.oMi[j].homogeneous.copy()
+        T_com[:3, 3] = T_com[:3, :3] @ Y.lever + T_com[:3, 3]
+        Mlist[i] = _inv(prev) @ T_com
+        prev = T_com
+        Glist[i, :3, :3] = Y.inertia  # about the centre of mass, joint-frame axes
+        Glist[i, 3:, 3:] = Y.mass * np.eye(3)
+    Mlist[n] = _inv(prev) @ M
+    names = tuple(model.names[j] for j in range(1, model.njoints))
+    qlim = np.empty((n, 2))
+    for i in range(n):
+        jm = model.joints[i + 1]
+        if jm.nq == 1:
+            qlim[i] = model.lowerPositionLimit[jm.idx_q], model.upperPositionLimit[jm.idx_q]
+        else:  # continuous joint: an angle with no limit
+            qlim[i] = -np.inf, np.inf
+    g = np.array(model.gravity.linear) if gravity is None else np.asarray(gravity, dtype=float)
+    return PoEParams(M, Slist, Blist, Mlist, Glist, names, tip, qlim, g)

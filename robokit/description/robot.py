@@ -1,0 +1,391 @@
+r"""The Robot type and ``load``: one robot, its Pinocchio model, its course parameters.
+
+A :class:`Robot` holds a serial chain root → tip as a Pinocchio ``Model`` (joints off the
+chain — a gripper's fingers — locked at their neutral value and their bodies merged), one
+``Data`` workspace reused by every call, the chain's product-of-exponentials parameters
+(:class:`~robokit.description.poe.PoEParams`) and, for robots described by a DH file, the
+:class:`~robokit.description.dh.DHTable`.
+
+All methods take **joint angles** θ (n,) — one number per joint, continuous joints
+included — and convert to Pinocchio's configuration q internally (a continuous joint's
+q is (cos θ, sin θ)). Jacobians are returned **angular first**, ``(ω; v)``.
+
+``load(name_or_path)`` accepts a shipped model name (``models/<name>.yaml``), a DH
+``.yaml`` file, a ``.urdf`` file, or an example-robot-data name (``ur5``, ``panda``, ``z1``,
+``xarm7``, ``kinova``, …).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from robokit.description.dh import DHTable
+from robokit.description.poe import PoEParams, poe_from_model
+
+__all__ = ["Robot", "load", "serial_chain", "EXAMPLE_ROBOT_TIPS"]
+
+#: Default tip frames of the example-robot-data arms (the last link of the arm's chain,
+#: a gripper's fingers excluded).
+EXAMPLE_ROBOT_TIPS = {
+    "ur3": "tool0",
+    "ur5": "tool0",
+    "ur10": "tool0",
+    "panda": "panda_hand_tcp",
+    "z1": "link06",
+    "xarm7": "link_eef",
+    "kinova": "j2s6s200_end_effector",
+}
+
+_ONE_DOF = {
+    "JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned",
+    "JointModelRUBX", "JointModelRUBY", "JointModelRUBZ", "JointModelRevoluteUnboundedUnaligned",
+    "JointModelPX", "JointModelPY", "JointModelPZ", "JointModelPrismaticUnaligned",
+}
+
+
+def _frame_depth(model, fid):
+    depth = 0
+    while model.frames[fid].parentFrame != fid and fid != 0:
+        fid = model.frames[fid].parentFrame
+        depth += 1
+    return depth
+
+
+def default_tip(model) -> str:
+    """The last link of the chain: follow the joints from the root while each has exactly one
+    child joint; the tip is the deepest body frame fixed to the last of them."""
+    children = {j: [] for j in range(model.njoints)}
+    for j in range(1, model.njoints):
+        children[model.parents[j]].append(j)
+    j = 0
+    while len(children[j]) == 1:
+        j = children[j][0]
+    best, best_depth = None, -1
+    for fid, fr in enumerate(model.frames):
+        if fr.parentJoint == j and fr.type == _body_type():
+            d = _frame_depth(model, fid)
+            if d >= best_depth:
+                best, best_depth = fr.name, d
+    if best is None:
+        raise ValueError("model: no body frame found for the chain's tip")
+    return best
+
+
+def _body_type():
+    import pinocchio as pin
+
+    return pin.FrameType.BODY
+
+
+def serial_chain(model, tip: str, geometry_models=()):
+    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
+
+    Returns ``(chain_model, locked_joint_names, geometry_models)``. Raises ``ValueError`` for
+    a tip that does not exist (listing some that do) or a joint on the chain that is not a
+    one-degree-of-freedom revolute/prismatic/continuous joint (e.g. a floating base).
+    """
+    import pinocchio as pin
+
+    if not model.existFrame(tip):
+        bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY]
+        shown = ", ".join(bodies[-12:])
+        raise ValueError(f"tip: no frame {tip!r}; frames include: {shown}")
+    fid = model.getFrameId(tip)
+    chain = []
+    j = model.frames[fid].parentJoint
+    while j != 0:
+        chain.append(j)
+        j = model.parents[j]
+    chain.reverse()
+    for j in chain:
+        sn = model.joints[j].shortname()
+        if sn not in _ONE_DOF:
+            kind = "floating base" if sn == "JointModelFreeFlyer" else sn
+            raise ValueError(
+                f"model: joint {model.names[j]!r} on the chain to {tip!r} is a {kind}; robokit handles fixed-base "
+                "serial chains of revolute, prismatic and continuous joints"
+            )
+    lock = [j for j in range(1, model.njoints) if j not in chain]
+    if not lock:
+        return model, [], list(geometry_models)
+    q0 = pin.neutral(model)
+    if geometry_models:
+        reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
+        return reduced, [model.names[j] for j in lock], list(geoms)
+    reduced = pin.buildReducedModel(model, lock, q0)
+    return reduced, [model.names[j] for j in lock], []
+
+
+class Robot:
+    """One serial robot: Pinocchio model and data, PoE parameters, DH table when it has one.
+
+    Attributes
+    ----------
+    name : str; model, data : the chain's ``pinocchio.Model`` and its reused ``Data``;
+    visual_model, collision_model : ``pinocchio.GeometryModel`` or None;
+    tip : tip frame name; tip_id : its frame id; dh : :class:`DHTable` or None;
+    poe : :class:`PoEParams`; n : number of joint angles; joint_names : (n,);
+    qlim : (n, 2) joint limits (±inf for continuous joints); gravity : (3,);
+    configurations : dict of named configurations (joint angles), "zero" always;
+    locked_joints : names of the joints locked off the chain; source : where it came from.
+    """
+
+    def __init__(self, name, model, tip, *, visual_model=None, collision_model=None, dh=None,
+                 configurations=None, locked_joints=(), source=""):
+        import pinocchio as pin
+
+        self._pin = pin
+        self.name = name
+        self.model = model
+        self.data = model.createData()
+        self.visual_model = visual_model
+        self.collision_model = collision_model
+        self.tip = tip
+        self.tip_id = model.getFrameId(tip)
+        self.dh = dh
+        self.poe: PoEParams = poe_from_model(model, tip)
+        self.n = model.nv
+        self.joint_names = self.poe.joint_names
+        self.qlim = self.poe.qlim
+        self.gravity = np.array(model.gravity.linear)
+        self.locked_joints = tuple(locked_joints)
+        self.source = source
+        self._same_coords = model.nq == model.nv
+        self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
+        self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]
+        self.configurations = {"zero": np.zeros(self.n)}
+        for k, v in (configurations or {}).items():
+            self.configurations[k] = np.asarray(v, dtype=float)
+        self._frame_ids = {}
+
+    # --------------------------------------------------------------- coordinates
+    def q_pin(self, theta) -> np.ndarray:
+        """Pinocchio configuration (nq,) of joint angles θ (n,)."""
+        if self._same_coords:
+            return np.asarray(theta, dtype=float)
+        theta = np.asarray(theta, dtype=float)
+        q = np.empty(self.model.nq)
+        for iq, iv in self._lin:
+            q[iq] = theta[iv]
+        for iq, iv in self._cont:
+            q[iq], q[iq + 1] = np.cos(theta[iv]), np.sin(theta[iv])
+        return q
+
+    def theta_from_q(self, q) -> np.ndarray:
+        """Joint angles θ (n,) of a Pinocchio configuration q (nq,)."""
+        q = np.asarray(q, dtype=float)
+        if self._same_coords:
+            return q.copy()
+        theta = np.empty(self.n)
+        for iq, iv in self._lin:
+            theta[iv] = q[iq]
+        for iq, iv in self._cont:
+            theta[iv] = np.arctan2(q[iq + 1], q[iq])
+        return theta
+
+    def frame_id(self, frame: str | None) -> int:
+        """Frame id of ``frame`` (None: the tip); ValueError listing frames if unknown."""
+        if frame is None:
+            return self.tip_id
+        fid = self._frame_ids.get(frame)
+        if fid is None:
+            if not self.model.existFrame(frame):
+                names = [f.name for f in self.model.frames]
+                raise ValueError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
+            fid = self._frame_ids[frame] = self.model.getFrameId(frame)
+        return fid
+
+    def _check_theta(self, theta, name="theta"):
+        theta = np.asarray(theta, dtype=float)
+        if theta.shape != (self.n,):
+            raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {theta.shape}")
+        return theta
+
+    # ------------------------------------------------------------ fast answers
+    def frame_pose(self, theta, frame: str | None = None) -> np.ndarray:
+        """4×4 pose of ``frame`` (default the tip) in the root frame at joint angles θ."""
+        pin = self._pin
+        q = self.q_pin(self._check_theta(theta))
+        pin.forwardKinematics(self.model, self.data, q)
+        return pin.updateFramePlacement(self.model, self.data, self.frame_id(frame)).homogeneous
+
+    def frame_poses(self, theta) -> dict:
+        """Poses (4×4) of every frame, by name, at θ."""
+        pin = self._pin
+        pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_theta(theta)))
+        return {f.name: self.data.oMf[i].homogeneous for i, f in enumerate(self.model.frames)}
+
+    _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
+
+    def jacobian(self, theta, frame: str | None = None, reference: str = "world") -> np.ndarray:
+        """6×n Jacobian of ``frame`` at θ, **angular rows first** (ω; v).
+
+        reference : "world" — the space Jacobian (twist of the frame expressed at the root
+        origin, root axes); "local" — the body Jacobian (frame's own axes, at its origin);
+        "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
+        the frame origin, root axes).
+        """
+        pin = self._pin
+        try:
+            rf = getattr(pin.ReferenceFrame, self._REFS[reference])
+        except KeyError:
+            raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
+        q = self.q_pin(self._check_theta(theta))
+        J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
+        return np.vstack((J[3:], J[:3]))
+
+    def rnea(self, theta, dtheta, ddtheta) -> np.ndarray:
+        """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""
+        q = self.q_pin(self._check_theta(theta))
+        return self._pin.rnea(self.model, self.data, q, np.asarray(dtheta, float), np.asarray(ddtheta, float)).copy()
+
+    def crba(self, theta) -> np.ndarray:
+        """Mass matrix M(θ) (n×n, symmetric), Pinocchio's CRBA."""
+        q = self.q_pin(self._check_theta(theta))
+        M = self._pin.crba(self.model, self.data, q)
+        return np.triu(M) + np.triu(M, 1).T
+
+    def aba(self, theta, dtheta, tau) -> np.ndarray:
+        """Forward dynamics θ̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA."""
+        q = self.q_pin(self._check_theta(theta))
+        return self._pin.aba(self.model, self.data, q, np.asarray(dtheta, float), np.asarray(tau, float)).copy()
+
+    def gravity_torques(self, theta) -> np.ndarray:
+        """Gravity torques g(θ) (n,)."""
+        q = self.q_pin(self._check_theta(theta))
+        return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
+
+    def nonlinear_effects(self, theta, dtheta) -> np.ndarray:
+        """c(θ, θ̇) + g(θ) (n,)."""
+        q = self.q_pin(self._check_theta(theta))
+        return self._pin.nonLinearEffects(self.model, self.data, q, np.asarray(dtheta, float)).copy()
+
+    def random_configuration(self, rng=None) -> np.ndarray:
+        """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""
+        rng = np.random.default_rng(rng)
+        lo = np.where(np.isfinite(self.qlim[:, 0]), self.qlim[:, 0], -np.pi)
+        hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
+        return rng.uniform(lo, hi)
+
+    def __repr__(self) -> str:
+        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF"
+        return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
+
+
+def _from_dh(table: DHTable, source: str) -> Robot:
+    import pinocchio as pin
+
+    from robokit.description.urdf_gen import dh_to_urdf
+
+    xml = dh_to_urdf(table)
+    model = pin.buildModelFromXML(xml)
+    model.gravity.linear = np.asarray(table.gravity, dtype=float)
+    try:
+        visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
+        collision = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION)
+    except Exception:  # pragma: no cover - geometry is optional
+        visual = collision = None
+    return Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table, source=source)
+
+
+def _from_urdf_file(path: Path, tip: str | None) -> Robot:
+    import pinocchio as pin
+
+    try:
+        model = pin.buildModelFromUrdf(str(path))
+    except Exception as exc:
+        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise ValueError(f"{path}: not a valid URDF ({msg})") from None
+    geoms = []
+    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
+        try:
+            geoms.append(pin.buildGeomFromUrdf(model, str(path), gtype, package_dirs=[str(path.parent)]))
+        except Exception:
+            geoms.append(None)
+    tip = tip or default_tip(model)
+    return _finish(path.stem, model, tip, geoms, {}, str(path))
+
+
+def _finish(name, model, tip, geoms, configurations, source) -> Robot:
+    valid = [g for g in geoms if g is not None]
+    chain, locked, new_geoms = serial_chain(model, tip, valid)
+    it = iter(new_geoms)
+    geoms = [next(it) if g is not None else None for g in geoms]
+    return Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
+                 configurations=configurations, locked_joints=locked, source=source)
+
+
+def _from_example_robot_data(name: str, tip: str | None) -> Robot:
+    import example_robot_data as erd
+    import pinocchio as pin
+
+    wrapper = erd.load(name)
+    model = wrapper.model
+    for j in range(1, model.njoints):
+        if model.joints[j].shortname() == "JointModelFreeFlyer":
+            raise ValueError(f"model: {name!r} has a floating base; robokit handles fixed-base serial arms")
+    tip = tip or EXAMPLE_ROBOT_TIPS.get(name) or default_tip(model)
+    configurations = {}
+    q0 = getattr(wrapper, "q0", None)
+    chain_names = []
+    if model.existFrame(tip):
+        j = model.frames[model.getFrameId(tip)].parentJoint
+        while j != 0:
+            chain_names.append(model.names[j])
+            j = model.parents[j]
+        chain_names.reverse()
+    if q0 is not None and chain_names:
+        angles = []
+        for jn in chain_names:
+            jm = model.joints[model.getJointId(jn)]
+            qs = q0[jm.idx_q: jm.idx_q + jm.nq]
+            angles.append(float(np.arctan2(qs[1], qs[0])) if jm.nq == 2 else float(qs[0]))
+        if np.any(angles):
+            configurations["ready"] = np.array(angles)
+    return _finish(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
+                   f"example-robot-data:{name}")
+
+
+def _example_robot_names() -> list[str]:
+    try:
+        import example_robot_data as erd
+
+        return sorted(getattr(erd, "ROBOTS", {}).keys())
+    except Exception:  # pragma: no cover
+        return []
+
+
+def load(name_or_path, tip: str | None = None) -> Robot:
+    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, or an example-robot-data name.
+
+    tip : the chain's tip frame (default: "tool" for DH models, the arm's end-effector
+    frame for example-robot-data arms, else the last link of the chain).
+
+    Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
+    """
+    from robokit.description.models import models_dir, shipped_models
+
+    if isinstance(name_or_path, Robot):
+        return name_or_path
+    if isinstance(name_or_path, DHTable):
+        return _from_dh(name_or_path, "<DHTable>")
+    s = str(name_or_path)
+    path = Path(s)
+    if path.suffix.lower() in (".yaml", ".yml"):
+        if tip not in (None, "tool"):
+            raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
+        return _from_dh(DHTable.from_yaml(path), str(path))
+    if path.suffix.lower() == ".urdf":
+        if not path.is_file():
+            raise ValueError(f"{path}: file not found")
+        return _from_urdf_file(path, tip)
+    if s in shipped_models():
+        return _from_dh(DHTable.from_yaml(models_dir() / f"{s}.yaml"), f"models/{s}.yaml")
+    erd_names = _example_robot_names()
+    if s in erd_names:
+        return _from_example_robot_data(s, tip)
+    raise ValueError(
+        f"model: unknown robot {s!r}; give a .yaml or .urdf file, a shipped model ({', '.join(shipped_models())}) "
+        f"or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
+    )
