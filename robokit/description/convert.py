@@ -1,0 +1,84 @@
+"""``robokit convert``: DH YAML → URDF, URDF (or example-robot-data name) → PoE JSON or DH YAML.
+
+Every output is written atomically: a failure leaves no file behind. Bad input raises
+``ValueError`` with a one-line message (the CLI prints it and exits with status 2).
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from robokit._io import atomic_write
+
+__all__ = ["convert", "convert_cli"]
+
+
+def _check_output(output) -> Path:
+    out = Path(output)
+    parent = out.parent if str(out.parent) else Path(".")
+    if not parent.is_dir():
+        raise ValueError(f"output: folder {str(parent)!r} does not exist")
+    if out.is_dir():
+        raise ValueError(f"output: {str(out)!r} is a folder")
+    return out
+
+
+def convert(input, output=None, tip=None, convention="standard") -> tuple[str, list[str]]:
+    """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
+
+    * ``IN.yaml -o OUT.urdf`` — DH table to URDF (API.md §3);
+    * ``IN.urdf|NAME -o OUT.json`` — PoE parameters ``M, Slist, Blist, Mlist, Glist,
+      joint_names, tip`` of the chain root → ``tip`` (API.md §4);
+    * ``IN.urdf|NAME -o OUT.yaml`` — a DH table of the chain (``convention``), when the
+      URDF → DH converter is available.
+    ``notes`` are human-readable remarks (e.g. joints locked off the chain) for stderr.
+    """
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import load
+    from robokit.description.urdf_gen import dh_to_urdf
+
+    src = str(input)
+    in_suffix = Path(src).suffix.lower()
+    out = _check_output(output) if output is not None else None
+    out_suffix = out.suffix.lower() if out is not None else None
+    notes = []
+    if in_suffix in (".yaml", ".yml"):
+        if out_suffix not in (".urdf", None):
+            raise ValueError(f"output: a DH file converts to .urdf, got {out.name!r}")
+        if tip is not None:
+            raise ValueError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
+        text = dh_to_urdf(DHTable.from_yaml(src))
+    else:
+        robot = load(src, tip=tip)
+        if robot.locked_joints:
+            notes.append(f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
+                         f"their bodies merged: {', '.join(robot.locked_joints)}")
+        if out_suffix == ".json":
+            text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"
+        elif out_suffix in (".yaml", ".yml", None):
+            try:
+                from robokit.description.urdf_to_dh import urdf_to_dh_cli_text
+            except ImportError:
+                raise ValueError("output: URDF → DH tables (.yaml) are not available yet; use -o OUT.json "
+                                 "for product-of-exponentials parameters") from None
+            text = urdf_to_dh_cli_text(robot, convention=convention, as_yaml=out_suffix is not None)
+        else:
+            raise ValueError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
+    if out is not None:
+        atomic_write(out, text)
+    return text, notes
+
+
+def convert_cli(input, output, tip=None, convention="standard") -> int:
+    """The ``robokit convert`` command; returns the exit status (errors propagate as ValueError)."""
+    if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
+        raise ValueError("-o/--output: required (e.g. -o robot.urdf)")
+    text, notes = convert(input, output, tip=tip, convention=convention)
+    for note in notes:
+        print(f"robokit: note: {note}", file=sys.stderr)
+    if output is None:
+        sys.stdout.write(text)
+    else:
+        print(f"wrote {output}", file=sys.stderr)
+    return 0
