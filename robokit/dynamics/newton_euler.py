@@ -1,0 +1,274 @@
+r"""Newton–Euler dynamics in product-of-exponentials form (Lecture 7, seed 004 §4, Modern Robotics ch. 8).
+
+Model (Modern Robotics): ``Mlist[i]`` is the pose of link frame {i+1} (at the centre of
+mass) in frame {i}, ``Mlist[n]`` the end-effector frame in {n}; ``Glist[i]`` the 6×6
+spatial inertia of link i+1 in its frame, angular first ``[[I, 0], [0, m 1]]``; ``Slist``
+the space screw axes (6×n). Wrenches ``(m, f)`` are angular first; ``Ftip`` is the wrench
+the end-effector applies *to the environment*, expressed in the end-effector frame.
+
+With ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ`` (joint i's screw in frame {i}, ``M₀ᵢ = Mlist[0]⋯Mlist[i−1]``) and
+``T_{i,i−1} = e^{−[Aᵢ]θᵢ} Mlist[i−1]⁻¹``:
+
+forward iterations (i = 1..n), with ``V₀ = 0``, ``V̇₀ = (0, −g)`` (gravity as a base acceleration):
+    ``Vᵢ = Ad_{T_{i,i−1}} V_{i−1} + Aᵢ θ̇ᵢ``
+    ``V̇ᵢ = Ad_{T_{i,i−1}} V̇_{i−1} + ad_{Vᵢ} Aᵢ θ̇ᵢ + Aᵢ θ̈ᵢ``
+backward iterations (i = n..1), with ``F_{n+1} = Ftip``, ``T_{n+1,n} = Mlist[n]⁻¹``:
+    ``Fᵢ = Ad_{T_{i+1,i}}ᵀ F_{i+1} + Gᵢ V̇ᵢ − ad_{Vᵢ}ᵀ Gᵢ Vᵢ``,  ``τᵢ = Fᵢᵀ Aᵢ``.
+
+The mass matrix uses the composite-rigid-body algorithm in the same frames
+(``Kᵢ = Gᵢ + Ad_{T_{i+1,i}}ᵀ K_{i+1} Ad_{T_{i+1,i}}``, ``M_{ji} = A_jᵀ (Ad …)ᵀ Kᵢ Aᵢ``), which
+equals n calls of inverse dynamics with unit accelerations, at a fraction of the cost.
+The model constants (Aᵢ, Mlist⁻¹, the screw exponential data) are computed once per model
+and cached, so repeated calls on the same model only do the recursions.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_array, as_scalar, as_vector
+from robokit.kinematics.poe import _adjoint_many, _exps
+
+__all__ = [
+    "inverse_dynamics",
+    "mass_matrix",
+    "vel_quadratic_forces",
+    "gravity_forces",
+    "end_effector_forces",
+    "forward_dynamics",
+    "euler_step",
+    "inverse_dynamics_trajectory",
+    "forward_dynamics_trajectory",
+]
+
+_MODELS: dict = {}
+
+
+def _hat(w):
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+def _ad(V):
+    A = np.zeros((6, 6))
+    W = _hat(V[:3])
+    A[:3, :3] = W
+    A[3:, 3:] = W
+    A[3:, :3] = _hat(V[3:])
+    return A
+
+
+def _inv(T):
+    Ti = np.eye(4)
+    Rt = T[:3, :3].T
+    Ti[:3, :3] = Rt
+    Ti[:3, 3] = -Rt @ T[:3, 3]
+    return Ti
+
+
+class _Model:
+    """Constants of one (Mlist, Glist, Slist) model."""
+
+    def __init__(self, Mlist, Glist, Slist):
+        n = Slist.shape[1]
+        self.n = n
+        self.Minv = np.array([_inv(M) for M in Mlist])  # (n+1, 4, 4)
+        self.G = np.array(Glist)  # (n, 6, 6)
+        M0i = np.eye(4)
+        A = np.empty((6, n))
+        for i in range(n):
+            M0i = M0i @ Mlist[i]
+            A[:, i] = _adjoint_many(_inv(M0i)[None])[0] @ Slist[:, i]
+        self.A = A
+        self.AT = np.ascontiguousarray(A.T)  # rows Aᵢ
+        self.Ad_tip = _adjoint_many(self.Minv[n][None])[0]  # Ad_{T_{n+1,n}}
+
+    def transforms(self, theta):
+        """Ad_{T_{i,i−1}} for i = 1..n: (n, 6, 6)."""
+        T = _exps(self.A, -theta) @ self.Minv[: self.n]
+        return _adjoint_many(T)
+
+
+def _model(Mlist, Glist, Slist) -> _Model:
+    Slist = as_array(Slist, "Slist", (6, None))
+    n = Slist.shape[1]
+    Mlist = as_array(Mlist, "Mlist", (n + 1, 4, 4))
+    Glist = as_array(Glist, "Glist", (n, 6, 6))
+    key = (Mlist.tobytes(), Glist.tobytes(), Slist.tobytes())
+    m = _MODELS.get(key)
+    if m is None:
+        if np.abs(Mlist[:, 3, :] - np.array([0.0, 0.0, 0.0, 1.0])).max() > 1e-9:
+            raise ValueError("Mlist: expected homogeneous transforms (last row [0, 0, 0, 1])")
+        if np.abs(Glist - np.swapaxes(Glist, 1, 2)).max() > 1e-9 * max(1.0, np.abs(Glist).max()):
+            raise ValueError("Glist: expected symmetric 6×6 spatial inertias")
+        if len(_MODELS) > 32:
+            _MODELS.clear()
+        m = _MODELS[key] = _Model(Mlist, Glist, Slist)
+    return m
+
+
+def _rnea(m: _Model, theta, dtheta, ddtheta, g, Ftip):
+    n = m.n
+    Ad = m.transforms(theta)
+    A, G = m.AT, m.G
+    V = np.zeros(6)
+    Vd = np.zeros(6)
+    Vd[3:] = -g
+    Vs = np.empty((n, 6))
+    Vds = np.empty((n, 6))
+    for i in range(n):
+        Ai = A[i]
+        V = Ad[i] @ V + Ai * dtheta[i]
+        Vd = Ad[i] @ Vd + (_ad(V) @ Ai) * dtheta[i] + Ai * ddtheta[i]
+        Vs[i] = V
+        Vds[i] = Vd
+    F = Ftip
+    Ad_next = m.Ad_tip
+    tau = np.empty(n)
+    for i in range(n - 1, -1, -1):
+        GV = G[i] @ Vs[i]
+        F = Ad_next.T @ F + G[i] @ Vds[i] - _ad(Vs[i]).T @ GV
+        tau[i] = F @ A[i]
+        Ad_next = Ad[i]
+    return tau
+
+
+def _crba(m: _Model, theta):
+    n = m.n
+    Ad = m.transforms(theta)
+    A, G = m.AT, m.G
+    K = G.copy()
+    for i in range(n - 1, 0, -1):
+        K[i - 1] = K[i - 1] + Ad[i].T @ K[i] @ Ad[i]
+    M = np.empty((n, n))
+    for i in range(n):
+        F = K[i] @ A[i]
+        M[i, i] = F @ A[i]
+        for j in range(i, 0, -1):
+            F = Ad[j].T @ F  # the composite force, expressed in frame {j}
+            M[j - 1, i] = M[i, j - 1] = F @ A[j - 1]
+    return M
+
+
+def _vec(x, name, n):
+    return as_vector(x, name, n)
+
+
+def _args(thetalist, Mlist, Glist, Slist):
+    m = _model(Mlist, Glist, Slist)
+    return m, _vec(thetalist, "thetalist", m.n)
+
+
+def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+    """Joint torques ``τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) + Jᵀ(θ) F_tip`` by Newton–Euler (n,).
+
+    thetalist, dthetalist, ddthetalist : (n,) rad, rad/s, rad/s²; g : (3,) gravity (m/s²),
+    e.g. [0, 0, −9.81]; Ftip : (6,) wrench (m, f) applied by the end-effector, in its frame;
+    Mlist : n+1 4×4; Glist : n 6×6; Slist : 6×n (Modern Robotics form).
+    """
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), _vec(ddthetalist, "ddthetalist", m.n),
+                 _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
+
+
+def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
+    """The n×n mass matrix M(θ) (composite-rigid-body algorithm), symmetric positive definite."""
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    return _crba(m, th)
+
+
+def vel_quadratic_forces(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
+    """Coriolis and centripetal torques ``c(θ, θ̇)`` (n,): inverse dynamics with θ̈ = 0, g = 0, F_tip = 0."""
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    z = np.zeros(m.n)
+    return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), z, np.zeros(3), np.zeros(6))
+
+
+def gravity_forces(thetalist, g, Mlist, Glist, Slist) -> np.ndarray:
+    """Gravity torques ``g(θ)`` (n,): inverse dynamics with θ̇ = θ̈ = 0, F_tip = 0."""
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    z = np.zeros(m.n)
+    return _rnea(m, th, z, z, _vec(g, "g", 3), np.zeros(6))
+
+
+def end_effector_forces(thetalist, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+    """Torques ``Jᵀ(θ) F_tip`` (n,) that balance the tip wrench: inverse dynamics with no motion, no gravity."""
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    z = np.zeros(m.n)
+    return _rnea(m, th, z, z, np.zeros(3), _vec(Ftip, "Ftip", 6))
+
+
+def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+    """Joint accelerations ``θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ) − Jᵀ F_tip)`` (n,).
+
+    One Newton–Euler pass gives the bias ``c + g + JᵀF`` and the CRBA gives M; the linear
+    system is solved by Cholesky (M is symmetric positive definite).
+    """
+    m, th = _args(thetalist, Mlist, Glist, Slist)
+    dth = _vec(dthetalist, "dthetalist", m.n)
+    bias = _rnea(m, th, dth, np.zeros(m.n), _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
+    M = _crba(m, th)
+    rhs = _vec(taulist, "taulist", m.n) - bias
+    try:
+        L = np.linalg.cholesky(M)
+        return np.linalg.solve(L.T, np.linalg.solve(L, rhs))
+    except np.linalg.LinAlgError:
+        raise ValueError("Glist: the mass matrix is not positive definite at this configuration "
+                         "(a joint drives no inertia)") from None
+
+
+def euler_step(thetalist, dthetalist, ddthetalist, dt):
+    """One explicit Euler step: ``(θ + dt θ̇, θ̇ + dt θ̈)``; dt in s."""
+    th = as_vector(thetalist, "thetalist")
+    n = len(th)
+    dth = as_vector(dthetalist, "dthetalist", n)
+    ddth = as_vector(ddthetalist, "ddthetalist", n)
+    dt = as_scalar(dt, "dt")
+    return th + dt * dth, dth + dt * ddth
+
+
+def inverse_dynamics_trajectory(thetamat, dthetamat, ddthetamat, g, Ftipmat, Mlist, Glist, Slist) -> np.ndarray:
+    """Torques along a trajectory: row k of the (N, n) result is ``inverse_dynamics`` of row k.
+
+    thetamat, dthetamat, ddthetamat : (N, n); Ftipmat : (N, 6); g : (3,).
+    """
+    m = _model(Mlist, Glist, Slist)
+    Q = as_array(thetamat, "thetamat", (None, m.n))
+    N = Q.shape[0]
+    dQ = as_array(dthetamat, "dthetamat", (N, m.n))
+    ddQ = as_array(ddthetamat, "ddthetamat", (N, m.n))
+    F = as_array(Ftipmat, "Ftipmat", (N, 6))
+    g = _vec(g, "g", 3)
+    return np.array([_rnea(m, Q[k], dQ[k], ddQ[k], g, F[k]) for k in range(N)]).reshape(N, m.n)
+
+
+def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist, Glist, Slist, dt, intRes):
+    """Simulate the arm under a torque history with Euler integration (Modern Robotics semantics).
+
+    thetalist, dthetalist : (n,) initial state; taumat : (N, n) torques, row k held over
+    [k dt, (k+1) dt); Ftipmat : (N, 6); dt : s; intRes : Euler steps per dt.
+    Returns ``(thetamat, dthetamat)``, both (N, n): row 0 is the initial state, row k+1 the
+    state after applying row k (the last torque row is not applied, as in Modern Robotics).
+    """
+    m = _model(Mlist, Glist, Slist)
+    th = _vec(thetalist, "thetalist", m.n).copy()
+    dth = _vec(dthetalist, "dthetalist", m.n).copy()
+    tau = as_array(taumat, "taumat", (None, m.n))
+    N = tau.shape[0]
+    F = as_array(Ftipmat, "Ftipmat", (N, 6))
+    g = _vec(g, "g", 3)
+    dt = as_scalar(dt, "dt", positive=True)
+    intRes = int(intRes)
+    if intRes < 1:
+        raise ValueError(f"intRes: expected a positive integer, got {intRes}")
+    h = dt / intRes
+    thetamat = np.empty((N, m.n))
+    dthetamat = np.empty((N, m.n))
+    thetamat[0], dthetamat[0] = th, dth
+    z = np.zeros(m.n)
+    for k in range(N - 1):
+        for _ in range(intRes):
+            M = _crba(m, th)
+            bias = _rnea(m, th, dth, z, g, F[k])
+            ddth = np.linalg.solve(M, tau[k] - bias)
+            th, dth = th + h * dth, dth + h * ddth
+        thetamat[k + 1], dthetamat[k + 1] = th, dth
+    return thetamat, dthetamat
