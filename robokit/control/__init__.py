@@ -1,3 +1,12 @@
-"""robokit.control — see the module docstrings inside."""
+"""robokit.control — joint controllers of Lecture 8, a Pinocchio-based simulator, the seed
+library's ``computed_torque``/``simulate_control``, and tracking plots."""
+from robokit.control.controllers import *  # noqa: F401,F403
+from robokit.control.controllers import __all__ as _ctrl_all
+from robokit.control.plot import *  # noqa: F401,F403
+from robokit.control.plot import __all__ as _plot_all
+from robokit.control.seed import *  # noqa: F401,F403
+from robokit.control.seed import __all__ as _seed_all
+from robokit.control.simulate import *  # noqa: F401,F403
+from robokit.control.simulate import __all__ as _sim_all
 
-__all__: list[str] = []
+__all__ = list(_ctrl_all) + list(_sim_all) + list(_seed_all) + list(_plot_all)

@@ -1,0 +1,138 @@
+r"""Joint-space controllers of Lecture 8, all with one call shape.
+
+Every controller is a small object called as ``tau = ctrl(t, q, dq, qd, dqd, ddqd)``:
+time t (s), measured joint angles q and rates dq (n,), desired q_d, q̇_d, q̈_d (n,); it
+returns the joint torques τ (n,) (N·m, or N for prismatic joints). Controllers with
+memory (an integral term) have ``reset()``; the simulator calls it at the start and
+advances their state once per control period through ``update(dt, q, dq, qd, dqd)``.
+
+With e = q_d − q and ė = q̇_d − q̇:
+
+* :class:`IndependentJoint` — per-joint cascade of Lecture 8: a position loop P whose
+  output, plus the velocity feedforward q̇_d, is the velocity reference of an inner P or PI
+  velocity loop acting on a fixed nominal inertia J_nom per joint:
+  ``τ = J_nom ⊙ (K_v (q̇_ref − q̇) + K_i ∫(q̇_ref − q̇) dt) [+ g(q)]``, ``q̇_ref = q̇_d + K_p e``.
+  The nominal inertia does not change with the arm's pose — which is exactly why its
+  performance varies over the workspace (Lecture 8).
+* :class:`GravityPD` — what industrial controllers do: ``τ = K_p e + K_v ė + g(q)``.
+* :class:`ModelFeedforward` — ``τ = τ_ff(q_d, q̇_d, q̈_d) + K_p e + K_v ė`` with τ_ff from
+  inverse dynamics of the (estimated) model along the desired trajectory.
+* :class:`ComputedTorque` — ``τ = M(q)(q̈_d + K_v ė + K_p e + K_i ∫e) + c(q, q̇) + g(q)``;
+  with a perfect model the error obeys ``ë + K_v ė + K_p e (+ K_i ∫e) = 0``;
+  ``K_v = 2√K_p`` is critical damping (the default when ``Kv`` is omitted).
+
+The model-based controllers take a :class:`robokit.Robot` ``model`` — pass a Robot with
+wrong inertial parameters to study model error (the plant in the simulator is separate).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_vector
+
+__all__ = ["IndependentJoint", "GravityPD", "ModelFeedforward", "ComputedTorque", "gains"]
+
+
+def gains(value, n: int, name: str) -> np.ndarray:
+    """A gain as an (n,) array: a scalar is broadcast; a vector must have length n; ≥ 0."""
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:
+        arr = np.full(n, float(arr))
+    arr = as_vector(arr, name, n)
+    if np.any(arr < 0):
+        raise ValueError(f"{name}: gains must be non-negative, got {arr}")
+    return arr
+
+
+class _Controller:
+    n: int
+
+    def reset(self):
+        """Clear any internal state (integral terms)."""
+
+    def update(self, dt, q, dq, qd, dqd):
+        """Advance internal state by one control period ``dt`` (s)."""
+
+
+class IndependentJoint(_Controller):
+    """Independent joint control (Lecture 8): position P around a velocity P/PI loop.
+
+    n : joint count; Kp : position-loop gain (1/s); Kv : velocity-loop gain (1/s);
+    Ki : velocity-loop integral gain (1/s²), 0 for a P velocity loop;
+    J_nom : (n,) fixed nominal inertia per joint (kg·m²);
+    velocity_ff : add q̇_d to the velocity reference; gravity : a Robot whose gravity
+    torques g(q) are fed forward (None: no gravity feedforward).
+    """
+
+    def __init__(self, n, Kp, Kv, J_nom, Ki=0.0, velocity_ff: bool = True, gravity=None):
+        self.n = int(n)
+        self.Kp, self.Kv, self.Ki = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv"), gains(Ki, self.n, "Ki")
+        self.J_nom = gains(J_nom, self.n, "J_nom")
+        self.velocity_ff = bool(velocity_ff)
+        self.gravity = gravity
+        self.reset()
+
+    def reset(self):
+        self.integral = np.zeros(self.n)
+
+    def _vel_error(self, q, dq, qd, dqd):
+        dq_ref = self.Kp * (qd - q) + (dqd if self.velocity_ff else 0.0)
+        return dq_ref - dq
+
+    def update(self, dt, q, dq, qd, dqd):
+        self.integral = self.integral + dt * self._vel_error(q, dq, qd, dqd)
+
+    def __call__(self, t, q, dq, qd, dqd, ddqd):
+        ev = self._vel_error(q, dq, qd, dqd)
+        tau = self.J_nom * (self.Kv * ev + self.Ki * self.integral)
+        if self.gravity is not None:
+            tau = tau + self.gravity.gravity_torques(q)
+        return tau
+
+
+class GravityPD(_Controller):
+    """PD with gravity compensation: ``τ = K_p e + K_v ė + g(q)`` (N·m/rad, N·m·s/rad)."""
+
+    def __init__(self, model, Kp, Kv):
+        self.model, self.n = model, model.n
+        self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
+
+    def __call__(self, t, q, dq, qd, dqd, ddqd):
+        return self.Kp * (qd - q) + self.Kv * (dqd - dq) + self.model.gravity_torques(q)
+
+
+class ModelFeedforward(_Controller):
+    """Model-based feedforward plus PD: ``τ = ID(q_d, q̇_d, q̈_d) + K_p e + K_v ė``."""
+
+    def __init__(self, model, Kp, Kv):
+        self.model, self.n = model, model.n
+        self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
+
+    def __call__(self, t, q, dq, qd, dqd, ddqd):
+        return self.model.rnea(qd, dqd, ddqd) + self.Kp * (qd - q) + self.Kv * (dqd - dq)
+
+
+class ComputedTorque(_Controller):
+    """Computed torque (inverse dynamics control), optionally with an integral term.
+
+    ``τ = M(q)(q̈_d + K_v ė + K_p e + K_i ∫e dt) + c(q, q̇) + g(q)`` with M, c, g of ``model``
+    (computed as one ``rnea(q, q̇, a)`` call). Kp in 1/s², Kv in 1/s (default 2√Kp,
+    critical damping), Ki in 1/s³.
+    """
+
+    def __init__(self, model, Kp, Kv=None, Ki=0.0):
+        self.model, self.n = model, model.n
+        self.Kp = gains(Kp, self.n, "Kp")
+        self.Kv = 2.0 * np.sqrt(self.Kp) if Kv is None else gains(Kv, self.n, "Kv")
+        self.Ki = gains(Ki, self.n, "Ki")
+        self.reset()
+
+    def reset(self):
+        self.integral = np.zeros(self.n)
+
+    def update(self, dt, q, dq, qd, dqd):
+        self.integral = self.integral + dt * (qd - q)
+
+    def __call__(self, t, q, dq, qd, dqd, ddqd):
+        a = ddqd + self.Kv * (dqd - dq) + self.Kp * (qd - q) + self.Ki * self.integral
+        return self.model.rnea(q, dq, a)

@@ -1,0 +1,36 @@
+"""One-call plots of a closed-loop run: desired vs actual joints, tracking error, torques."""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["plot_tracking"]
+
+
+def plot_tracking(result, joints=None, title: str | None = None):
+    """Three stacked panels for a :class:`~robokit.control.simulate.SimResult` (or any object with
+    ``t``, ``q``, ``q_des``, ``tau``): desired (dashed) and actual joint angles, tracking
+    error ``q_des − q``, and commanded torques. ``joints`` selects columns (default all).
+    Returns the matplotlib Figure.
+    """
+    import matplotlib.pyplot as plt
+
+    t = np.asarray(result.t)
+    q, qd, tau = np.asarray(result.q), np.asarray(result.q_des), np.asarray(result.tau)
+    cols = range(q.shape[1]) if joints is None else list(joints)
+    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    for j in cols:
+        (line,) = axes[0].plot(t, q[:, j], label=f"q{j + 1}")
+        axes[0].plot(t, qd[:, j], "--", color=line.get_color(), lw=1)
+        axes[1].plot(t, qd[:, j] - q[:, j], color=line.get_color(), label=f"e{j + 1}")
+        axes[2].plot(t, tau[:, j], color=line.get_color(), label=f"τ{j + 1}")
+    axes[0].set_ylabel("joint [rad]  (dashed: desired)")
+    axes[1].set_ylabel("error [rad]")
+    axes[2].set_ylabel("torque [N·m]")
+    axes[2].set_xlabel("t [s]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="upper right", fontsize="small", ncol=min(len(list(cols)), 6))
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig

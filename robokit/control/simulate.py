@@ -1,0 +1,176 @@
+r"""Closed-loop simulation of a Robot under a joint controller (Lecture 8).
+
+The plant is the Robot's rigid-body model integrated with Pinocchio's articulated-body
+algorithm (ABA): ``q̈ = FD(q, q̇, τ − τ_f(q̇) − Jᵀ F_tip)`` with optional joint friction
+``τ_f = G²B q̇ + |G| T_c(sign q̇)`` (viscous and Coulomb, from the DH file's motor-side ``B``
+and ``Tc`` referred through the gear ratio ``G``) and optional motor inertia reflected
+through the gears, ``G² J_m``, added to the diagonal of M (Pinocchio's ``armature``). The controller is sampled once per control period (the
+spacing of the desired trajectory's time grid); the torque is held over the period while
+the plant is integrated with ``substeps`` fixed steps of RK4 (default) or explicit Euler.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit._arrays import as_array, as_vector
+
+__all__ = ["SimResult", "simulate", "friction_torque"]
+
+
+@dataclass
+class SimResult:
+    """Result of :func:`simulate`: arrays over the K control instants.
+
+    t : (K,) s; q, dq : (K, n) measured joint angles and rates; tau : (K, n) commanded
+    torques (held over [t_k, t_k+1)); q_des, dq_des : (K, n) the desired trajectory;
+    error : (K, n) ``q_des − q``.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    dq: np.ndarray
+    tau: np.ndarray
+    q_des: np.ndarray
+    dq_des: np.ndarray
+
+    @property
+    def error(self) -> np.ndarray:
+        return self.q_des - self.q
+
+    def rms_error(self) -> np.ndarray:
+        """(n,) RMS tracking error per joint."""
+        return np.sqrt(np.mean(self.error**2, axis=0))
+
+
+def friction_torque(dq, B, Tc) -> np.ndarray:
+    """Joint friction ``B q̇ + T_c``, with ``T_c = Tc[:, 0]`` for q̇ > 0, ``Tc[:, 1]`` for q̇ < 0, 0 at rest.
+
+    dq : (n,) rad/s; B : (n,) N·m·s/rad; Tc : (n, 2) N·m (Coulomb level for positive and for
+    negative motion; the negative one is usually negative, as in Corke's convention).
+    """
+    dq = np.asarray(dq, dtype=float)
+    coul = np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
+    return B * dq + coul
+
+
+def _drive_parameters(robot):
+    """(B, Tc, armature) from the Robot's DH links, zeros when it has no DH table."""
+    n = robot.n
+    B, Tc, arm = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
+    dh = getattr(robot, "dh", None)
+    if dh is not None:
+        for i, link in enumerate(dh.links):
+            G = float(link.G)
+            B[i] = G * G * float(link.B)  # motor-side values referred to the joint (Corke's convention)
+            Tc[i] = abs(G) * np.asarray(link.Tc, dtype=float)
+            arm[i] = link.joint_inertia
+    return B, Tc, arm
+
+
+def _desired(trajectory):
+    """(t, qd, dqd, ddqd) from a Trajectory-like object or a tuple."""
+    if isinstance(trajectory, tuple):
+        t, qd, dqd, ddqd = trajectory
+    else:
+        t, qd = trajectory.t, trajectory.q
+        dqd = getattr(trajectory, "qd", None)
+        ddqd = getattr(trajectory, "qdd", None)
+    t = as_vector(t, "trajectory.t")
+    qd = as_array(qd, "trajectory.q", (len(t), None))
+    dqd = np.zeros_like(qd) if dqd is None else as_array(dqd, "trajectory.qd", qd.shape)
+    ddqd = np.zeros_like(qd) if ddqd is None else as_array(ddqd, "trajectory.qdd", qd.shape)
+    if len(t) < 2:
+        raise ValueError("trajectory: needs at least two samples")
+    steps = np.diff(t)
+    if np.any(steps <= 0):
+        raise ValueError("trajectory.t: times must increase strictly")
+    if np.ptp(steps) > 1e-9 * max(1.0, steps.mean()):
+        raise ValueError("trajectory.t: the control grid must be uniform (one control period)")
+    return t, qd, dqd, ddqd
+
+
+def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int = 1, method: str = "rk4",
+             friction: bool = False, motor_inertia: bool = False, Ftip=None) -> SimResult:
+    """Simulate ``robot`` under ``controller`` tracking ``trajectory``.
+
+    robot : the plant (:class:`robokit.Robot`); controller : called as
+    ``controller(t, q, dq, qd, dqd, ddqd) -> tau`` (see :mod:`robokit.control.controllers`);
+    trajectory : an object with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n) on a uniform grid,
+    or a tuple ``(t, q, qd, qdd)``; the grid spacing is the control period;
+    q0, dq0 : initial state (default: the desired state at t₀);
+    substeps : plant integration steps per control period; method : "rk4" or "euler";
+    friction, motor_inertia : include the DH file's friction and reflected motor inertia;
+    Ftip : optional (K, 6) wrench history (m, f) applied *by* the tip on the environment,
+    expressed in the tip frame (Modern Robotics' Ftip), resisted through ``J_bᵀ F``.
+    """
+    import pinocchio as pin
+
+    t, qd, dqd, ddqd = _desired(trajectory)
+    n = robot.n
+    if qd.shape[1] != n:
+        raise ValueError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {qd.shape[1]}")
+    if method not in ("rk4", "euler"):
+        raise ValueError(f"method: expected 'rk4' or 'euler', got {method!r}")
+    substeps = int(substeps)
+    if substeps < 1:
+        raise ValueError(f"substeps: expected a positive integer, got {substeps}")
+    q = qd[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
+    dq = dqd[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()
+    K = len(t)
+    F = None if Ftip is None else as_array(Ftip, "Ftip", (K, 6))
+    B, Tc, arm = _drive_parameters(robot)
+    use_fric = friction and (np.any(B) or np.any(Tc))
+    model, data = robot.model, robot.model.createData()
+    if motor_inertia and np.any(arm):
+        model = model.copy()
+        arm_v = np.zeros(model.nv)
+        arm_v[: n] = arm  # the chain's velocity coordinates are the joint rates, in order
+        model.armature = arm_v
+        data = model.createData()
+    same_coords = model.nq == model.nv == n
+    tip_id = robot.tip_id
+
+    def accel(qa, dqa, tau):
+        if use_fric:
+            tau = tau - friction_torque(dqa, B, Tc)
+        qp = qa if same_coords else robot.q_pin(qa)
+        return pin.aba(model, data, qp, dqa, tau)
+
+    h = (t[1] - t[0]) / substeps
+    Q, DQ, TAU = np.empty((K, n)), np.empty((K, n)), np.empty((K, n))
+    if hasattr(controller, "reset"):
+        controller.reset()
+    for k in range(K):
+        Q[k], DQ[k] = q, dq
+        tau = np.asarray(controller(t[k], q, dq, qd[k], dqd[k], ddqd[k]), dtype=float)
+        if tau.shape != (n,) or not np.all(np.isfinite(tau)):
+            raise ValueError(f"controller: returned {tau!r} at t = {t[k]:g} s; expected {n} finite torques")
+        TAU[k] = tau
+        if k == K - 1:
+            break
+        tau_plant = tau
+        if F is not None and np.any(F[k]):
+            Jb = robot.jacobian(q, None, reference="local")
+            tau_plant = tau - Jb.T @ F[k]
+        if hasattr(controller, "update"):
+            controller.update(t[k + 1] - t[k], q, dq, qd[k], dqd[k])
+        for _ in range(substeps):
+            if method == "euler":
+                ddq = accel(q, dq, tau_plant)
+                q, dq = q + h * dq, dq + h * ddq
+            else:
+                k1v, k1a = dq, accel(q, dq, tau_plant)
+                k2v = dq + 0.5 * h * k1a
+                k2a = accel(q + 0.5 * h * k1v, k2v, tau_plant)
+                k3v = dq + 0.5 * h * k2a
+                k3a = accel(q + 0.5 * h * k2v, k3v, tau_plant)
+                k4v = dq + h * k3a
+                k4a = accel(q + h * k3v, k4v, tau_plant)
+                q = q + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v)
+                dq = dq + h / 6.0 * (k1a + 2 * k2a + 2 * k3a + k4a)
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(dq))) or np.abs(dq).max() > 1e6:
+            raise ValueError(f"simulate: the integration diverged at t = {t[k + 1]:g} s (a stiff plant or "
+                             f"controller for a step of {h:g} s); use more substeps or smaller gains")
+    return SimResult(t.copy(), Q, DQ, TAU, qd.copy(), dqd.copy())
