@@ -8,6 +8,7 @@ text, so one broken area never hides the others.
 """
 from __future__ import annotations
 
+import functools
 import importlib
 import json
 import math
@@ -51,6 +52,14 @@ class CheckRow:
         d = asdict(self)
         d["passed"] = self.passed
         return d
+
+
+@functools.lru_cache(maxsize=None)
+def robot(name: str):
+    """``robokit.load(name)``, loaded once per validation run and shared by the check modules."""
+    from robokit.description.robot import load
+
+    return load(name)
 
 
 def max_error(pairs) -> float:

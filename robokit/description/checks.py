@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validate import CheckRow
+from robokit.validate import CheckRow, robot as load
 
 #: example-robot-data arms compared in `robokit validate`
 ARMS = ("ur5", "panda", "z1", "xarm7", "kinova")
@@ -23,7 +23,6 @@ def checks(rng) -> list[CheckRow]:
     import pinocchio as pin
 
     from robokit.description.models import shipped_models
-    from robokit.description.robot import load
 
     rows = []
     for name in shipped_models():

@@ -1,0 +1,39 @@
+"""Validation rows for dynamics: the course's PoE Newton–Euler, CRBA and forward dynamics vs Pinocchio."""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit.validate import CheckRow, robot as load
+
+MODELS = ("twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova")
+SAMPLES = 50
+
+
+def _rel(a, b):
+    return float(np.abs(np.asarray(a) - np.asarray(b)).max() / max(1.0, np.abs(b).max()))
+
+
+def checks(rng) -> list[CheckRow]:
+    from robokit.dynamics.newton_euler import forward_dynamics, gravity_forces, inverse_dynamics, mass_matrix
+
+    rows = []
+    z6 = np.zeros(6)
+    for name in MODELS:
+        r = load(name)
+        p = r.poe
+        args = (p.Mlist, p.Glist, p.Slist)
+        e_id = e_m = e_g = e_fd = 0.0
+        for _ in range(SAMPLES):
+            q, dq, ddq = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n)
+            tau = rng.normal(size=r.n) * 5
+            e_id = max(e_id, _rel(inverse_dynamics(q, dq, ddq, r.gravity, z6, *args), r.rnea(q, dq, ddq)))
+            e_m = max(e_m, _rel(mass_matrix(q, *args), r.crba(q)))
+            e_g = max(e_g, _rel(gravity_forces(q, r.gravity, *args), r.gravity_torques(q)))
+            e_fd = max(e_fd, _rel(forward_dynamics(q, dq, tau, r.gravity, z6, *args), r.aba(q, dq, tau)))
+        rows += [
+            CheckRow("inverse_dynamics (PoE Newton–Euler) vs pinocchio.rnea", name, SAMPLES, e_id, 1e-9, "rel, max entry"),
+            CheckRow("mass_matrix (PoE CRBA) vs pinocchio.crba", name, SAMPLES, e_m, 1e-9, "rel, max entry"),
+            CheckRow("gravity_forces vs computeGeneralizedGravity", name, SAMPLES, e_g, 1e-9, "rel, max entry"),
+            CheckRow("forward_dynamics vs pinocchio.aba", name, SAMPLES, e_fd, 1e-9, "rel, max entry"),
+        ]
+    return rows
