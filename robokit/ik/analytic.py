@@ -21,6 +21,7 @@ Solvers
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -158,21 +159,23 @@ def ik_spherical_wrist(R36, theta4_ref: float = 0.0) -> list[IKSolution]:
     """
     R = check_rotation(R36, "R36")
     t4_ref = as_scalar(theta4_ref, "theta4_ref")
+    return [IKSolution(_wrap(np.array(q)), True, label, degenerate) for q, label, degenerate in _wrist(R, t4_ref)]
+
+
+def _wrist(R, t4_ref):
+    """(q, label, degenerate) triples of the ZYZ wrist (no input checks; plain floats)."""
     ax, ay, az = R[0, 2], R[1, 2], R[2, 2]
     sx, sy, sz = R[0, 1], R[1, 1], R[2, 1]
     nx, ny, nz = R[0, 0], R[1, 0], R[2, 0]
-    s5 = float(np.hypot(ax, ay))
+    s5 = math.hypot(ax, ay)
     if s5 < 1e-10:
         if az > 0:  # θ5 = 0: R = Rz(θ4 + θ6)
-            total = np.arctan2(ny, nx)
-            q = np.array([t4_ref, 0.0, total - t4_ref])
-        else:  # θ5 = π: R = Rz(θ4) Ry(π) Rz(θ6) = Rz(θ4 − θ6) Ry(π)
-            diff = np.arctan2(-sx, sy)  # θ4 − θ6
-            q = np.array([t4_ref, np.pi, t4_ref - diff])
-        return [IKSolution(_wrap(q), True, "wrist singular", degenerate=True)]
-    q_a = np.array([np.arctan2(ay, ax), np.arctan2(s5, az), np.arctan2(sz, -nz)])
-    q_b = np.array([np.arctan2(-ay, -ax), np.arctan2(-s5, az), np.arctan2(-sz, nz)])
-    return [IKSolution(_wrap(q_a), True, "no flip"), IKSolution(_wrap(q_b), True, "flip")]
+            total = math.atan2(ny, nx)
+            return [((t4_ref, 0.0, total - t4_ref), "wrist singular", True)]
+        diff = math.atan2(-sx, sy)  # θ5 = π: R = Rz(θ4 − θ6) Ry(π)
+        return [((t4_ref, math.pi, t4_ref - diff), "wrist singular", True)]
+    return [((math.atan2(ay, ax), math.atan2(s5, az), math.atan2(sz, -nz)), "no flip", False),
+            ((math.atan2(-ay, -ax), math.atan2(-s5, az), math.atan2(-sz, nz)), "flip", False)]
 
 
 def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
@@ -242,50 +245,69 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
     Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
     of :func:`ik_spherical_wrist` applies), [] if unreachable.
     """
-    d1, a2, a3, D, d4, d6, offsets = _puma_params(table)
+    d1, a2, a3, D, d4, d6, offsets, qlim, base_inv, tool_inv = _puma_cached(table)
     T = check_transform(T, "T")
-    qlim = None
-    if all(l.qlim is not None for l in table.links):
-        qlim = np.array([l.qlim for l in table.links], dtype=float)
-    T06 = _inv(np.asarray(table.base, dtype=float)) @ T @ _inv(np.asarray(table.tool, dtype=float))
+    T06 = base_inv @ T @ tool_inv
     R06 = T06[:3, :3]
-    p = T06[:3, 3] - d6 * R06[:, 2]
-    px, py, pz = p
-    r = float(np.hypot(px, py))
+    px, py, pz = T06[:3, 3] - d6 * R06[:, 2]
+    r = math.hypot(px, py)
     tol = 1e-12
     if r < abs(D) - tol or a2 == 0.0:
         return []
-    phi = np.arctan2(py, px)
-    ratio = min(1.0, max(-1.0, D / r)) if r > 0 else 0.0
-    beta = np.arcsin(ratio)
-    rho = np.hypot(a3, d4)
-    psi = np.arctan2(d4, a3)
-    sols = []
-    for t1, arm in ((phi + beta, "right"), (phi + np.pi - beta, "left")):
-        c1, s1 = np.cos(t1), np.sin(t1)
+    phi = math.atan2(py, px)
+    beta = math.asin(min(1.0, max(-1.0, D / r))) if r > 0 else 0.0
+    rho = math.hypot(a3, d4)
+    psi = math.atan2(d4, a3)
+    ref4 = theta4_ref + offsets[3]
+    Y = pz - d1
+    rows, labels, degen = [], [], []
+    for t1, arm in ((phi + beta, "right"), (phi + math.pi - beta, "left")):
+        c1, s1 = math.cos(t1), math.sin(t1)
         X = c1 * px + s1 * py
-        Y = pz - d1
         K = (X * X + Y * Y - a2 * a2 - a3 * a3 - d4 * d4) / (2.0 * a2)
         if rho == 0.0 or abs(K) > rho * (1 + 1e-12):
             continue
-        g = np.arccos(min(1.0, max(-1.0, K / rho)))
+        g = math.acos(min(1.0, max(-1.0, K / rho)))
         for t3, elbow in ((-psi + g, "elbow down"), (-psi - g, "elbow up")):
-            c3, s3 = np.cos(t3), np.sin(t3)
-            u, w = a2 + a3 * c3 - d4 * s3, a3 * s3 + d4 * c3
-            t2 = np.arctan2(Y, X) - np.arctan2(w, u)
-            # R03 from the first three joints (θ = joint angle incl. offsets)
-            R03 = _rz(t1) @ _rx(np.pi / 2) @ _rz(t2) @ _rz(t3) @ _rx(-np.pi / 2)
+            c3, s3 = math.cos(t3), math.sin(t3)
+            t2 = math.atan2(Y, X) - math.atan2(a3 * s3 + d4 * c3, a2 + a3 * c3 - d4 * s3)
+            c2, s2 = math.cos(t2 + t3), math.sin(t2 + t3)
+            # R03 = Rz(θ1) Rx(90°) Rz(θ2 + θ3) Rx(−90°), written out
+            R03 = np.array([[c1 * c2, -s1, -c1 * s2], [s1 * c2, c1, -s1 * s2], [s2, 0.0, c2]])
             R36 = R03.T @ R06
-            ref4 = theta4_ref + offsets[3]
-            for wsol in ik_spherical_wrist(R36, theta4_ref=ref4):
-                t4, b, t6 = wsol.q
-                theta = np.array([t1, t2, t3, t4, -b, t6])
-                q = _wrap(theta - offsets)
-                flip = "wrist singular" if wsol.degenerate else wsol.label
-                sols.append(IKSolution(q, _within(q, qlim), f"{arm}, {elbow}, {flip}", wsol.degenerate))
+            for (t4, b, t6), flip, degenerate in _wrist(R36, ref4):
+                rows.append((t1, t2, t3, t4, -b, t6))
+                labels.append(f"{arm}, {elbow}, {'wrist singular' if degenerate else flip}")
+                degen.append(degenerate)
             if g == 0.0:
                 break
-    return sols
+    if not rows:
+        return []
+    Q = _wrap(np.array(rows) - offsets)
+    if qlim is None:
+        inside = [True] * len(rows)
+    else:
+        inside = (np.all(Q >= qlim[:, 0] - 1e-12, axis=1) & np.all(Q <= qlim[:, 1] + 1e-12, axis=1)).tolist()
+    return [IKSolution(Q[k], inside[k], labels[k], degen[k]) for k in range(len(rows))]
+
+
+_PUMA_CACHE: dict = {}
+
+
+def _puma_cached(table):
+    """The PUMA constants of ``table`` (checked once per table object)."""
+    hit = _PUMA_CACHE.get(id(table))
+    if hit is not None and hit[0] is table:
+        return hit[1]
+    d1, a2, a3, D, d4, d6, offsets = _puma_params(table)
+    qlim = None
+    if all(l.qlim is not None for l in table.links):
+        qlim = np.array([l.qlim for l in table.links], dtype=float)
+    consts = (d1, a2, a3, D, d4, d6, offsets, qlim, _inv(np.asarray(table.base, float)), _inv(np.asarray(table.tool, float)))
+    if len(_PUMA_CACHE) > 16:
+        _PUMA_CACHE.clear()
+    _PUMA_CACHE[id(table)] = (table, consts)
+    return consts
 
 
 def _rz(t):

@@ -166,9 +166,9 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     hi = np.asarray(robot.qlim, dtype=float)[:, 1]
     sample_lo = np.where(np.isfinite(lo), lo, -np.pi)
     sample_hi = np.where(np.isfinite(hi), hi, np.pi)
+    p_target = T_target = None
     if position_only:
         p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)
-        T_target = None
         w = np.ones(3) if weights is None else as_vector(weights, "weights", 3)
     else:
         T_target = check_transform(target, "target")
@@ -178,50 +178,44 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), lo, hi)
     tol = as_scalar(tol, "tol", positive=True)
 
-    def error(qc):
-        T = robot.frame_pose(qc, frame)
-        if position_only:
-            return p_target - T[:3, 3], T
-        return _log6_vec(_inv(T) @ T_target), T
-
-    def jac(qc, T):
-        if position_only:
-            return robot.jacobian(qc, frame, reference="local_world_aligned")[3:, :]
-        return robot.jacobian(qc, frame, reference="local")
+    if hasattr(robot, "model"):
+        error, jac, w_int = _pinocchio_closures(robot, frame, position_only, p_target, T_target, w)
+    else:  # any object with frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
+        error, jac, w_int = _generic_closures(robot, frame, position_only, p_target, T_target, w)
+    w_pin = w_int
 
     best_q, best_err = q.copy(), np.inf
     iterations = 0
     restarts = 0
     eye = np.eye(n)
     while True:
-        e, T = error(q)
-        err = float(np.linalg.norm(e))
+        e, err = error(q)
         stall = 0
-        for _ in range(max_iterations):
+        for it in range(max_iterations):
             if err < tol:
                 break
-            J = jac(q, T)
-            JW = J.T * w
+            J = jac(q)
+            JW = J.T * w_pin
+            A = JW @ J
+            g = JW @ e
             lam = damping * err * err + min_damping
-            dq = np.linalg.solve(JW @ J + lam * eye, JW @ e)
-            q_new = np.clip(q + dq, lo, hi)
-            e_new, T_new = error(q_new)
-            err_new = float(np.linalg.norm(e_new))
+            q_new = np.clip(q + np.linalg.solve(A + lam * eye, g), lo, hi)
+            e_new, err_new = error(q_new)
             iterations += 1
             if err_new < err:
-                q, e, T, err = q_new, e_new, T_new, err_new
+                q, e, err = q_new, e_new, err_new
                 stall = 0
             else:
-                damping_boost = 10.0
-                dq = np.linalg.solve(JW @ J + damping_boost * (lam + 1e-6) * eye, JW @ e)
-                q_try = np.clip(q + dq, lo, hi)
-                e_try, T_try = error(q_try)
-                err_try = float(np.linalg.norm(e_try))
+                # a worse step: retry once with heavier damping (shorter, more gradient-like step)
+                q_try = np.clip(q + np.linalg.solve(A + 10.0 * (lam + 1e-6) * eye, g), lo, hi)
+                e_try, err_try = error(q_try)
                 if err_try < err:
-                    q, e, T, err = q_try, e_try, T_try, err_try
+                    q, e, err = q_try, e_try, err_try
                 stall += 1
                 if stall >= 3:
                     break
+            if it == 15 and err > 1e-2:
+                break  # far from converging from this seed: a fresh restart is cheaper
         if err < best_err:
             best_q, best_err = q.copy(), err
         out_of_time = time_budget is not None and time.perf_counter() - t_start > time_budget
@@ -229,10 +223,61 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
             break
         restarts += 1
         q = rng.uniform(sample_lo, sample_hi)
-    e, T = error(best_q)
+    T = robot.frame_pose(best_q, frame)
+    if position_only:
+        e = p_target - T[:3, 3]
+    else:
+        e = _log6_vec(_inv(T) @ T_target)
     if position_only:
         pos_err, rot_err = float(np.linalg.norm(e)), 0.0
     else:
         rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
     return IKResult(best_q, bool(best_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
+
+
+def _pinocchio_closures(robot, frame, position_only, p_target, T_target, w):
+    """Error and Jacobian evaluated with Pinocchio directly (one Data, no conversions).
+
+    The error is in Pinocchio's twist order (v, ω) — the weights are reordered to match."""
+    import pinocchio as pin
+
+    model, data = robot.model, robot.model.createData()
+    fid = robot.frame_id(frame)
+    to_q = (lambda qc: qc) if model.nq == model.nv else robot.q_pin
+    if position_only:
+        rf = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+        w_int = w
+    else:
+        rf = pin.ReferenceFrame.LOCAL
+        M_target = pin.SE3(T_target[:3, :3].copy(), T_target[:3, 3].copy())
+        w_int = np.r_[w[3:], w[:3]]
+
+    def error(qc):
+        pin.forwardKinematics(model, data, to_q(qc))
+        oMf = pin.updateFramePlacement(model, data, fid)
+        e = p_target - oMf.translation if position_only else pin.log6(oMf.actInv(M_target)).vector
+        return e, float(np.sqrt(e @ e))
+
+    def jac(qc):
+        pin.computeJointJacobians(model, data, to_q(qc))
+        J = pin.getFrameJacobian(model, data, fid, rf)
+        return J[:3] if position_only else J
+
+    return error, jac, w_int
+
+
+def _generic_closures(robot, frame, position_only, p_target, T_target, w):
+    """Error and Jacobian through ``robot.frame_pose`` / ``robot.jacobian`` (angular first)."""
+
+    def error(qc):
+        T = robot.frame_pose(qc, frame)
+        e = p_target - T[:3, 3] if position_only else _log6_vec(_inv(T) @ T_target)
+        return e, float(np.sqrt(e @ e))
+
+    def jac(qc):
+        if position_only:
+            return robot.jacobian(qc, frame, reference="local_world_aligned")[3:, :]
+        return robot.jacobian(qc, frame, reference="local")
+
+    return error, jac, w

@@ -210,13 +210,11 @@ def project_to_SE3(mat) -> np.ndarray:
 
 
 def _distance_se3(M: np.ndarray) -> float:
-    R = M[:3, :3]
-    if np.linalg.det(R) <= 0.0:
-        return 1e9
-    D = np.zeros((4, 4))
-    D[:3, :3] = R.T @ R
-    D[3, :] = M[3, :]
-    return float(np.linalg.norm(D - np.eye(4)))
+    d = _distance_so3(M[:3, :3])
+    if d >= 1e9:
+        return d
+    last = M[3] - (0.0, 0.0, 0.0, 1.0)
+    return float(np.sqrt(d * d + last @ last))
 
 
 def distance_to_SE3(mat) -> float:

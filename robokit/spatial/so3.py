@@ -166,10 +166,19 @@ def project_to_SO3(mat) -> np.ndarray:
     return U @ np.diag([1.0, 1.0, d]) @ Vt
 
 
+_I3 = np.eye(3)
+
+
+def _det3(M) -> float:
+    (a, b, c), (d, e, f), (g, h, i) = M.tolist()
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+
+
 def _distance_so3(M: np.ndarray) -> float:
-    if np.linalg.det(M) <= 0.0:
+    if _det3(M) <= 0.0:
         return 1e9
-    return float(np.linalg.norm(M.T @ M - np.eye(3)))
+    E = (M.T @ M - _I3).ravel()
+    return float(np.sqrt(E @ E))
 
 
 def distance_to_SO3(mat) -> float:
