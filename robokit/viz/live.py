@@ -1,0 +1,47 @@
+"""A live meshcat viewer on loopback: start (or connect to) a server, get its URL, stop it."""
+from __future__ import annotations
+
+__all__ = ["LiveViewer"]
+
+
+class LiveViewer:
+    """A meshcat server for interactive use.
+
+    ``LiveViewer()`` starts a server on 127.0.0.1 (meshcat picks a free port from 7000);
+    ``LiveViewer(zmq_url="tcp://127.0.0.1:6000")`` connects to a running one instead.
+    ``url`` is the page to open in a browser; ``vis`` the ``meshcat.Visualizer`` to draw into
+    (e.g. ``Scene(robot, vis=viewer.vis)``); ``close()`` stops a server this object started.
+    """
+
+    def __init__(self, zmq_url: str | None = None):
+        from robokit.viz.scene import _new_visualizer
+
+        self.vis = _new_visualizer(zmq_url)
+        self._own = zmq_url is None
+
+    @property
+    def url(self) -> str:
+        """The viewer page's address (http://127.0.0.1:PORT/static/)."""
+        return self.vis.url()
+
+    @property
+    def process(self):
+        """The server process this viewer started (None when connected to another one)."""
+        return getattr(self.vis.window, "server_proc", None) if self._own else None
+
+    def close(self):
+        """Stop the server (if this viewer started it) and wait for it to exit."""
+        proc = self.process
+        if proc is not None and proc.poll() is None:
+            proc.terminate()
+            try:
+                proc.wait(timeout=5)
+            except Exception:  # pragma: no cover
+                proc.kill()
+                proc.wait(timeout=5)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

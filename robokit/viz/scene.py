@@ -1,0 +1,282 @@
+r"""meshcat scenes of robots, on top of Pinocchio's meshcat visualizer.
+
+A :class:`Scene` draws one :class:`robokit.Robot` with Pinocchio's ``MeshcatVisualizer``
+(URDF meshes and primitives are loaded by Pinocchio, not re-implemented here) and adds the
+course's pictures: the DH frames ``dh_0..dh_N`` and the tool as labelled triads, points,
+frames, polylines, the tool's velocity ellipsoid, and animations of joint trajectories.
+The camera is aimed at the robot's bounding box so that it fills the view.
+
+Headless use: ``Scene(robot).show(q).html()`` returns one self-contained page (meshcat's
+static HTML with the meshes embedded), which opens from a file with no server; in a
+notebook, ``scene.notebook()`` shows the same page inline. A meshcat server is started on
+loopback for the scene (meshcat records the scene there) and stopped by ``close()``.
+"""
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+__all__ = ["Scene"]
+
+
+def _label_png(text: str, color: str = "#222222") -> bytes:
+    """A small transparent PNG with ``text`` (for labels drawn on a plane in the scene)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(1.6, 0.5), dpi=100)
+    fig.patch.set_alpha(0.0)
+    fig.text(0.5, 0.5, text, ha="center", va="center", fontsize=20, color=color, weight="bold")
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", transparent=True)
+    return buf.getvalue()
+
+
+def _new_visualizer(zmq_url=None):
+    """A meshcat Visualizer (its own server on loopback unless ``zmq_url``), without the banner
+    meshcat prints on stdout."""
+    import contextlib
+
+    import meshcat
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        return meshcat.Visualizer(zmq_url=zmq_url) if zmq_url else meshcat.Visualizer()
+
+
+class Scene:
+    """A meshcat scene of one robot.
+
+    robot : a :class:`robokit.Robot` (or anything ``robokit.load`` accepts);
+    vis : an existing ``meshcat.Visualizer`` (default: a new one with its own server on loopback).
+    """
+
+    def __init__(self, robot, vis=None):
+        import meshcat
+        from pinocchio.visualize import MeshcatVisualizer
+
+        from robokit.description.robot import Robot, load
+
+        self.robot = robot if isinstance(robot, Robot) else load(robot)
+        self._own = vis is None
+        self.vis = _new_visualizer() if vis is None else vis
+        r = self.robot
+        visual = r.visual_model
+        collision = r.collision_model
+        if visual is None:
+            import pinocchio as pin
+
+            visual = pin.GeometryModel()
+        self.viz = MeshcatVisualizer(r.model, collision if collision is not None else visual.copy(), visual)
+        self.viz.initViewer(viewer=self.vis)
+        self.viz.loadViewerModel(rootNodeName="robot")
+        self.q = np.zeros(r.n)
+        self._extra_points = []
+
+    # ------------------------------------------------------------------ drawing
+    def show(self, q=None):
+        """Draw the robot at joint angles ``q`` (default zero). Returns self."""
+        q = np.zeros(self.robot.n) if q is None else np.asarray(q, dtype=float)
+        if q.shape != (self.robot.n,):
+            raise ValueError(f"q: expected {self.robot.n} joint values for {self.robot.name}, got shape {q.shape}")
+        if not np.all(np.isfinite(q)):
+            raise ValueError("q: contains NaN or infinite values")
+        self.q = q
+        self.viz.display(self.robot.q_pin(q))
+        return self
+
+    def frames(self, names=None, scale: float | None = None, labels: bool = True):
+        """Draw triads (x red, y green, z blue) for frames of the robot at the current configuration.
+
+        names : frame names (default: ``dh_0..dh_N`` and ``tool`` for DH robots, else the
+        joint frames and the tip). scale : triad length (m; default from the robot's size).
+        """
+        import meshcat.geometry as g
+
+        r = self.robot
+        if names is None:
+            if r.dh is not None:
+                names = [f"dh_{i}" for i in range(r.dh.n + 1)] + ["tool"]
+            else:
+                names = [r.model.frames[r.model.getFrameId(n)].name for n in r.joint_names
+                         if r.model.existFrame(n)] + [r.tip]
+        poses = r.frame_poses(self.q)
+        scale = scale or 0.12 * self._size()
+        for name in names:
+            if name not in poses:
+                raise ValueError(f"frames: no frame {name!r} in {r.name}")
+            node = self.vis["frames"][name]
+            node["triad"].set_object(g.triad(scale))
+            node.set_transform(poses[name])
+            if labels:
+                png = g.PngImage(_label_png(name))
+                mat = g.MeshBasicMaterial(map=g.ImageTexture(image=png), transparent=True)
+                T = np.eye(4)
+                T[:3, 3] = [0.3 * scale, 0.3 * scale, 0.6 * scale]
+                node["label"].set_object(g.Box([0.8 * scale, 0.25 * scale, 1e-4 * scale]), mat)
+                node["label"].set_transform(T)
+        return self
+
+    def point(self, name: str, p, radius: float = 0.015, color: int = 0xE04020):
+        """A sphere at position ``p`` (3,) in the base frame."""
+        import meshcat.geometry as g
+
+        p = np.asarray(p, dtype=float).reshape(3)
+        self.vis["points"][name].set_object(g.Sphere(radius), g.MeshLambertMaterial(color=color))
+        T = np.eye(4)
+        T[:3, 3] = p
+        self.vis["points"][name].set_transform(T)
+        self._extra_points.append(p)
+        return self
+
+    def frame(self, name: str, T, scale: float = 0.1):
+        """A triad at the pose ``T`` (4×4) in the base frame."""
+        import meshcat.geometry as g
+
+        self.vis["poses"][name].set_object(g.triad(scale))
+        self.vis["poses"][name].set_transform(np.asarray(T, dtype=float))
+        return self
+
+    def path(self, name: str, points, color: int = 0x2060E0, linewidth: float = 3.0):
+        """A polyline through ``points`` (K, 3) in the base frame."""
+        import meshcat.geometry as g
+
+        P = np.asarray(points, dtype=float)
+        if P.ndim != 2 or P.shape[1] != 3 or len(P) < 2:
+            raise ValueError(f"points: expected shape (K, 3) with K >= 2, got {P.shape}")
+        self.vis["paths"][name].set_object(
+            g.Line(g.PointsGeometry(P.T.astype(np.float32)), g.LineBasicMaterial(color=color, linewidth=linewidth)))
+        self._extra_points.extend(P)
+        return self
+
+    def velocity_ellipsoid(self, frame: str | None = None, scale: float = 0.2, color: int = 0x30B060):
+        """The translational velocity ellipsoid ``{v = J_v q̇ : ‖q̇‖ ≤ 1}`` at the frame (default tip).
+
+        Axes: eigenvectors of ``J_v J_vᵀ`` (base frame), radii: square roots of its eigenvalues,
+        times ``scale`` (m per m/s) so it fits the picture.
+        """
+        import meshcat.geometry as g
+
+        J = self.robot.jacobian(self.q, frame, reference="local_world_aligned")[3:]
+        evals, evecs = np.linalg.eigh(J @ J.T)
+        radii = np.sqrt(np.clip(evals, 0.0, None)) * scale
+        radii = np.maximum(radii, 1e-4)
+        if np.linalg.det(evecs) < 0:
+            evecs[:, 0] = -evecs[:, 0]
+        T = np.eye(4)
+        T[:3, :3] = evecs
+        T[:3, 3] = self.robot.frame_pose(self.q, frame)[:3, 3]
+        self.vis["ellipsoid"].set_object(g.Ellipsoid(radii), g.MeshLambertMaterial(color=color, opacity=0.5,
+                                                                                   transparent=True))
+        self.vis["ellipsoid"].set_transform(T)
+        return self
+
+    def animate(self, Q, t=None, fps: float = 30.0):
+        """Animate joint configurations ``Q`` (K, n) (at times ``t`` (K,), or ``fps``), playable in the page."""
+        from meshcat.animation import Animation
+
+        Q = np.asarray(Q, dtype=float)
+        if Q.ndim != 2 or Q.shape[1] != self.robot.n or len(Q) < 1:
+            raise ValueError(f"Q: expected shape (K, {self.robot.n}), got {Q.shape}")
+        if not np.all(np.isfinite(Q)):
+            raise ValueError("Q: contains NaN or infinite values")
+        if not fps > 0:
+            raise ValueError(f"fps: expected a positive frame rate, got {fps!r}")
+        if t is not None:
+            t = np.asarray(t, dtype=float)
+            if t.shape != (len(Q),) or np.any(np.diff(t) <= 0):
+                raise ValueError("t: expected increasing times, one per configuration")
+            frames = np.round((t - t[0]) * fps).astype(int)
+        else:
+            frames = np.arange(len(Q))
+        anim = Animation(default_framerate=fps)
+        viewer = self.viz.viewer
+        try:
+            for k, q in zip(frames, Q):
+                with anim.at_frame(self.vis, int(k)) as frame:
+                    self.viz.viewer = frame
+                    self.viz.display(self.robot.q_pin(q))
+        finally:
+            self.viz.viewer = viewer
+        self.vis.set_animation(anim, play=True, repetitions=0)
+        self._extra_points.extend(self.robot.frame_pose(q)[:3, 3] for q in Q[:: max(1, len(Q) // 20)])
+        return self
+
+    # ------------------------------------------------------------------ camera
+    def _points(self):
+        poses = self.robot.frame_poses(self.q)
+        P = np.array([T[:3, 3] for T in poses.values()])
+        if self._extra_points:
+            P = np.vstack([P, np.asarray(self._extra_points)])
+        return P
+
+    def _size(self) -> float:
+        P = self._points()
+        return float(max(np.ptp(P, axis=0).max(), 0.2))
+
+    _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "/Grid", "/Axes")
+
+    def frame_camera(self, fill: float = 0.6):
+        """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
+
+        meshcat 0.3's orbit controls always look at the world origin, so the scene content
+        (robot, drawings, grid) is shifted by −c, c the centre of the robot's bounding box,
+        and the camera is placed at a 3/4 view (azimuth 45°, elevation 25°) at the distance
+        where the box's bounding sphere spans ``fill`` of the vertical field of view.
+        """
+        P = self._points()
+        lo, hi = P.min(axis=0), P.max(axis=0)
+        centre = 0.5 * (lo + hi)
+        radius = max(0.5 * float(np.linalg.norm(hi - lo)), 0.1)
+        fov = np.deg2rad(75.0)  # meshcat's default camera
+        dist = radius / np.tan(0.5 * fov * fill)
+        az, el = np.deg2rad(45.0), np.deg2rad(25.0)
+        offset = dist * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        T = np.eye(4)
+        T[:3, 3] = -centre
+        for name in self._SHIFTED:
+            self.vis[name].set_transform(T)
+        # the camera object lives in a frame rotated so that three.js's "up" (y) is the world's z:
+        # a world offset (x, y, z) is (x, z, −y) there
+        self.vis["/Cameras/default/rotated/<object>"].set_property("position", [offset[0], offset[2], -offset[1]])
+        return self
+
+    # ------------------------------------------------------------------ output
+    def html(self) -> str:
+        """The scene as one self-contained HTML page (no server needed to view it)."""
+        return self.vis.static_html()
+
+    def notebook(self, height: int = 480):
+        """Display the scene inline in a Jupyter notebook (an iframe of the static page)."""
+        import html as _html
+
+        from IPython.display import HTML
+
+        page = _html.escape(self.html(), quote=True)
+        return HTML(f'<iframe srcdoc="{page}" style="width:100%;height:{int(height)}px;border:0"></iframe>')
+
+    def close(self):
+        """Stop the meshcat server this scene started (if it started one)."""
+        if self._own and self.vis is not None:
+            proc = getattr(self.vis.window, "server_proc", None)
+            if proc is not None and proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(timeout=5)
+                except Exception:  # pragma: no cover
+                    proc.kill()
+            self.vis = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):  # pragma: no cover - best effort
+        try:
+            self.close()
+        except Exception:
+            pass

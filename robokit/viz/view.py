@@ -1,0 +1,84 @@
+"""``robokit view``: a self-contained meshcat HTML page of a model, optionally animated.
+
+Nothing is written unless everything succeeded (the page is written atomically).
+Trajectory files: ``.npy`` (a (K, n) array) or ``.csv`` (K rows of n joint values, comma
+separated; lines starting with ``#`` are comments; a first row that is not numeric is taken
+as a header and skipped).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from robokit._io import atomic_write
+
+__all__ = ["view_html", "view_cli", "load_trajectory"]
+
+
+def load_trajectory(path, n: int) -> np.ndarray:
+    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise."""
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"--trajectory: file {str(p)!r} not found")
+    try:
+        if p.suffix.lower() == ".npy":
+            Q = np.load(p, allow_pickle=False)
+        elif p.suffix.lower() == ".csv":
+            lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.startswith("#")]
+            rows = []
+            for k, ln in enumerate(lines):
+                try:
+                    rows.append([float(x) for x in ln.split(",")])
+                except ValueError:
+                    if k == 0:
+                        continue  # header
+                    raise ValueError(f"line {k + 1} is not numbers") from None
+            Q = np.array(rows, dtype=float)
+        else:
+            raise ValueError("expected a .npy or .csv file")
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
+        raise ValueError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
+    Q = np.asarray(Q, dtype=float)
+    if Q.ndim != 2 or Q.shape[1] != n or len(Q) == 0:
+        raise ValueError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
+    if not np.all(np.isfinite(Q)):
+        raise ValueError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
+    return Q
+
+
+def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float = 30.0) -> str:
+    """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
+    and/or a (K, n) trajectory animation; the camera framed on the robot."""
+    from robokit.description.robot import load
+    from robokit.viz.scene import Scene
+
+    robot = load(model)
+    if q is not None:
+        q = np.asarray(q, dtype=float)
+        if q.shape != (robot.n,):
+            raise ValueError(f"-q: {robot.name} has {robot.n} joints, got {q.size} values")
+    with Scene(robot) as scene:
+        scene.show(q)
+        if frames:
+            scene.frames()
+        if trajectory is not None:
+            scene.animate(trajectory, fps=fps)
+        scene.frame_camera()
+        return scene.html()
+
+
+def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0) -> int:
+    """The ``robokit view`` command: write the page to ``output``; return the exit status."""
+    from robokit.description.robot import load
+
+    out = Path(output)
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
+    if not (out.parent if str(out.parent) else Path(".")).is_dir():
+        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    robot = load(model)
+    Q = load_trajectory(trajectory, robot.n) if trajectory else None
+    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps)
+    atomic_write(out, page)
+    return 0

@@ -1,0 +1,117 @@
+"""robokit view and the scene layer: pages are written (or not), bad input exits 2, the
+live viewer starts and stops, and the robot is visible in a real (headless) browser."""
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from robokit.cli import main as cli_main
+from robokit.viz import LiveViewer, Scene, view_html
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+def _cli(args, capsys):
+    rc = cli_main(args)
+    return (rc,) + capsys.readouterr()
+
+
+def test_view_writes_self_contained_page(tmp_path, capsys):
+    out = tmp_path / "puma.html"
+    Q = np.linspace(np.zeros(6), [0.5, -0.3, 0.4, 0.2, 0.3, 0.1], 20)
+    np.save(tmp_path / "traj.npy", Q)
+    rc, stdout, err = _cli(["view", "puma560", "-q", "0.1", "-0.2", "0.3", "0", "0.4", "0", "--frames",
+                            "--trajectory", str(tmp_path / "traj.npy"), "-o", str(out)], capsys)
+    assert rc == 0 and out.exists()
+    page = out.read_text()
+    assert page.lstrip().lower().startswith("<!doctype html") or "<html" in page[:200].lower()
+    assert "http://127.0.0.1" not in page.split("<script")[0]  # no server address needed to view it
+    assert "animation" in page.lower() or "set_animation" in page.lower()
+
+
+BAD = [
+    (["view", "no_such_robot"], "unknown robot"),
+    (["view", "puma560", "-q", "0.1", "0.2"], "6 joints"),
+    (["view", "twolink", "--trajectory", "MISSING.csv"], "not found"),
+]
+
+
+@pytest.mark.parametrize("args,needle", BAD)
+def test_bad_input_exit_2_and_no_file(args, needle, tmp_path, capsys):
+    out = tmp_path / "x.html"
+    args = [a.replace("MISSING.csv", str(tmp_path / "missing.csv")) for a in args]
+    rc, stdout, err = _cli(args + ["-o", str(out)], capsys)
+    assert rc == 2 and needle in err and err.count("\n") == 1
+    assert not out.exists() and not list(tmp_path.glob(".x.html*"))
+
+
+def test_unreadable_trajectory_file(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("q1,q2\n0.1,0.2\n0.3,abc\n")
+    rc, _, err = _cli(["view", "twolink", "--trajectory", str(bad), "-o", str(tmp_path / "x.html")], capsys)
+    assert rc == 2 and "cannot read" in err and not (tmp_path / "x.html").exists()
+    wrong = tmp_path / "wrong.csv"
+    wrong.write_text("0.1,0.2,0.3\n")
+    rc, _, err = _cli(["view", "twolink", "--trajectory", str(wrong), "-o", str(tmp_path / "x.html")], capsys)
+    assert rc == 2 and "expected (K, 2)" in err
+
+
+def test_live_viewer_starts_and_stops():
+    viewer = LiveViewer()
+    try:
+        assert viewer.url.startswith("http://127.0.0.1:")
+        proc = viewer.process
+        assert proc is not None and proc.poll() is None
+    finally:
+        viewer.close()
+    assert proc.poll() is not None  # the server process has exited
+
+
+def test_scene_drawings_and_bad_input():
+    with Scene("twolink") as s:
+        s.show([0.3, 0.5]).frames().point("p", [0.5, 0.5, 0]).frame("f", np.eye(4))
+        s.path("line", [[0, 0, 0], [1, 1, 0], [1.5, 0.2, 0]]).velocity_ellipsoid()
+        with pytest.raises(ValueError, match="q"):
+            s.show([0.1])
+        with pytest.raises(ValueError, match="points"):
+            s.path("bad", [[0, 0, 0]])
+        with pytest.raises(ValueError, match="frames"):
+            s.frames(["nope"])
+        assert len(s.html()) > 1000
+
+
+def _screenshot(page: Path, png: Path):
+    with tempfile.TemporaryDirectory() as profile:
+        subprocess.run(
+            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}", "--window-size=800,600",
+             "--virtual-time-budget=15000", f"--screenshot={png}", f"file://{page}"],
+            capture_output=True, timeout=120, check=False)
+    from PIL import Image
+
+    return np.asarray(Image.open(png).convert("RGB"), dtype=float)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Debian's chromium is not installed (.ci/run installs it)")
+@pytest.mark.parametrize("model", ["puma560", "ur5"])
+def test_robot_visible_in_headless_chromium(model, tmp_path):
+    page = tmp_path / f"{model}.html"
+    page.write_text(view_html(model))
+    # the empty scene, rendered the same way with the same camera
+    with Scene(model) as s:
+        s.show()
+        s.frame_camera()
+        s.vis["robot"].delete()
+        empty = tmp_path / "empty.html"
+        empty.write_text(s.html())
+    img = _screenshot(page, tmp_path / "robot.png")
+    ref = _screenshot(empty, tmp_path / "empty.png")
+    assert img.shape == ref.shape == (600, 800, 3)
+    changed = np.abs(img - ref).max(axis=2) > 30
+    fraction = changed.mean()
+    print(f"{model}: {fraction:.1%} of the pixels differ from the empty scene")
+    assert fraction > 0.02, f"only {fraction:.2%} of the pixels show the robot"
