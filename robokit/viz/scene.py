@@ -218,7 +218,7 @@ class Scene:
 
     _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "/Grid", "/Axes")
 
-    def frame_camera(self, fill: float = 0.6):
+    def frame_camera(self, fill: float = 0.75):
         """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
 
         meshcat 0.3's orbit controls always look at the world origin, so the scene content
