@@ -1,0 +1,51 @@
+r"""Angle–axis (Rodrigues) and the two-vector representation (Lecture 2).
+
+``matrix_from_axis_angle(ω̂, θ) = I + sin θ [ω̂] + (1 − cos θ)[ω̂]²`` and its inverse with
+θ ∈ [0, π] (θ = 0: the axis is free and (1, 0, 0) is returned; θ = π: the axis sign is free
+and :func:`robokit.matrix_log_3`'s choice is used). The two-vector representation builds R
+from the approach vector a (the tool's z) and the orientation vector o (its y): n = o × a,
+R = [n o a].
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.so3 import _exp3, _log3_vec, check_rotation
+
+__all__ = ["matrix_from_axis_angle", "axis_angle_from_matrix", "matrix_from_two_vectors"]
+
+
+def matrix_from_axis_angle(axis, angle) -> np.ndarray:
+    """Rotation by ``angle`` (rad) about ``axis`` (3,, normalised here), Rodrigues' formula."""
+    axis = as_vector(axis, "axis", 3)
+    n = float(np.linalg.norm(axis))
+    if n == 0.0:
+        raise ValueError("axis: the zero vector has no direction")
+    return _exp3(axis / n * as_scalar(angle, "angle"))
+
+
+def axis_angle_from_matrix(R):
+    """``(axis, angle)`` of a rotation, angle ∈ [0, π]; axis (1, 0, 0) when angle = 0."""
+    w = _log3_vec(check_rotation(R, "R"))
+    th = float(np.linalg.norm(w))
+    if th == 0.0:
+        return np.array([1.0, 0.0, 0.0]), 0.0
+    return w / th, th
+
+
+def matrix_from_two_vectors(o, a, tol: float = 1e-6) -> np.ndarray:
+    """``R = [n o a]`` with ``n = o × a`` from the orientation vector o and approach vector a.
+
+    Both are normalised; they must be orthogonal within ``tol`` (|o·a| after normalising),
+    otherwise ``ValueError`` (the two-vector representation needs o ⊥ a).
+    """
+    o = as_vector(o, "o", 3)
+    a = as_vector(a, "a", 3)
+    no, na = float(np.linalg.norm(o)), float(np.linalg.norm(a))
+    if no == 0.0 or na == 0.0:
+        raise ValueError("o, a: expected non-zero vectors")
+    o, a = o / no, a / na
+    if abs(float(o @ a)) > tol:
+        raise ValueError(f"o, a: expected orthogonal vectors, got o·a = {float(o @ a):.3g}")
+    return np.column_stack([np.cross(o, a), o, a])

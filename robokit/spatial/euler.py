@@ -1,0 +1,123 @@
+r"""Euler angles in all 12 sequences, intrinsic (moving axes) and extrinsic (fixed axes) (Lecture 2).
+
+A sequence is a string of three axis letters, e.g. ``"ZYX"`` (Tait–Bryan: three different
+axes) or ``"ZYZ"`` (proper Euler: first and last equal). With angles ``(a, b, c)``:
+
+* intrinsic (moving axes, the course's "绕新的轴"): rotate by a about the first axis, then by b
+  about the *new* second axis, then by c about the *newest* third axis:
+  ``R = R₁(a) R₂(b) R₃(c)``;
+* extrinsic (fixed axes, e.g. roll–pitch–yaw about x, y, z of the fixed frame): rotate by a
+  about the fixed first axis, then b about the fixed second, then c about the fixed third:
+  ``R = R₃(c) R₂(b) R₁(a)``.
+
+So extrinsic ``"XYZ"`` with (roll, pitch, yaw) equals intrinsic ``"ZYX"`` with (yaw, pitch, roll).
+
+Ranges returned by :func:`euler_from_matrix`: a, c ∈ (−π, π]; the middle angle b ∈ [−π/2, π/2]
+for Tait–Bryan sequences and b ∈ [0, π] for proper Euler sequences.
+
+Gimbal lock (b = ±π/2 for Tait–Bryan, b ∈ {0, π} for proper Euler): the first and third
+axes line up and only their sum (or difference) is determined. The documented choice: the
+*third* rotation angle of the composition order is set to 0 — c = 0 for intrinsic, a = 0 for
+extrinsic — and the other carries the whole angle. ``return_gimbal=True`` also returns a flag
+telling the caller that this happened.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_vector
+from robokit.spatial.so3 import check_rotation
+
+__all__ = ["matrix_from_euler", "euler_from_matrix", "EULER_SEQUENCES"]
+
+_AX = {"X": 0, "Y": 1, "Z": 2}
+EULER_SEQUENCES = tuple(
+    a + b + c for a in "XYZ" for b in "XYZ" for c in "XYZ" if a != b and b != c
+)  # 12 sequences: 6 Tait–Bryan (all different), 6 proper Euler (first = last)
+
+
+def _check_seq(seq: str) -> str:
+    if not isinstance(seq, str) or seq.upper() not in EULER_SEQUENCES:
+        raise ValueError(f"seq: expected one of {', '.join(EULER_SEQUENCES)}, got {seq!r}")
+    return seq.upper()
+
+
+def _rot(axis: int, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    if axis == 0:
+        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    if axis == 1:
+        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def matrix_from_euler(angles, seq: str = "ZYX", extrinsic: bool = False) -> np.ndarray:
+    """Rotation matrix of Euler angles ``angles = (a, b, c)`` (rad) about the axes of ``seq``.
+
+    Intrinsic: ``R₁(a) R₂(b) R₃(c)``; extrinsic: ``R₃(c) R₂(b) R₁(a)`` (see the module docstring).
+    Example: ``matrix_from_euler([α, β, γ], "ZYX")`` equals the seed's ``euler_to_matrix([α, β, γ])``.
+    """
+    a, b, c = as_vector(angles, "angles", 3)
+    s = _check_seq(seq)
+    i, j, k = (_AX[ch] for ch in s)
+    if extrinsic:
+        return _rot(k, c) @ _rot(j, b) @ _rot(i, a)
+    return _rot(i, a) @ _rot(j, b) @ _rot(k, c)
+
+
+def _wrap(x: float) -> float:
+    y = math.atan2(math.sin(x), math.cos(x))
+    return math.pi if y == -math.pi else y
+
+
+def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int):
+    """(a, b, c, gimbal) with R = R_i(a) R_j(b) R_k(c), intrinsic; at gimbal lock c = 0."""
+    if i != k:  # Tait–Bryan
+        eps = 1.0 if (j - i) % 3 == 1 else -1.0  # sign of the permutation (i, j, k)
+        sb = eps * R[i, k]
+        sb = max(-1.0, min(1.0, sb))
+        cb = math.hypot(R[i, j], R[i, i])
+        b = math.atan2(sb, cb)
+        if cb > 1e-10:
+            a = math.atan2(-eps * R[j, k], R[k, k])
+            c = math.atan2(-eps * R[i, j], R[i, i])
+            return a, b, c, False
+        # b = ±π/2: R depends on a ± c only; take c = 0, then R = R_i(a) R_j(b) and
+        # column j of R is R_i(a) e_j: its (k, j) entry is eps·sin a and (j, j) entry cos a
+        a = math.atan2(eps * R[k, j], R[j, j])
+        return a, (math.pi / 2 if sb > 0 else -math.pi / 2), 0.0, True
+    # proper Euler: i == k; m is the remaining axis
+    m = 3 - i - j
+    eps = 1.0 if (j - i) % 3 == 1 else -1.0  # sign of the permutation (i, j, m)
+    cb = max(-1.0, min(1.0, R[i, i]))
+    sb = math.hypot(R[i, j], R[i, m])
+    b = math.atan2(sb, cb)
+    if sb > 1e-10:
+        a = math.atan2(R[j, i], -eps * R[m, i])
+        c = math.atan2(R[i, j], eps * R[i, m])
+        return a, b, c, False
+    # b = 0 or π: take c = 0, R = R_i(a) R_j(b); column j: (j, j) entry cos a, (m, j) entry eps·sin a
+    a = math.atan2(eps * R[m, j], R[j, j])
+    return a, (0.0 if cb > 0 else math.pi), 0.0, True
+
+
+def euler_from_matrix(R, seq: str = "ZYX", extrinsic: bool = False, return_gimbal: bool = False):
+    """Euler angles ``(a, b, c)`` of a rotation matrix for the axis sequence ``seq``.
+
+    The inverse of :func:`matrix_from_euler` with the ranges and the gimbal-lock choice of the
+    module docstring. With ``return_gimbal=True`` returns ``(angles, gimbal)`` where ``gimbal``
+    is True if the rotation is at the singular configuration of this sequence.
+    Raises ``ValueError`` if R is not a rotation or ``seq`` is not one of the 12 sequences.
+    """
+    R = check_rotation(R, "R")
+    s = _check_seq(seq)
+    i, j, k = (_AX[ch] for ch in s)
+    if extrinsic:
+        # R = R_k(c) R_j(b) R_i(a) is the intrinsic sequence (k, j, i) with angles (c, b, a)
+        c, b, a, gimbal = _intrinsic_angles(R, k, j, i)
+    else:
+        a, b, c, gimbal = _intrinsic_angles(R, i, j, k)
+    out = np.array([_wrap(a), b, _wrap(c)])
+    return (out, gimbal) if return_gimbal else out
