@@ -1,3 +1,10 @@
-"""robokit.mobile — see the module docstrings inside."""
+"""robokit.mobile — mobile robots of Lecture 9: the kinematic bicycle model and its controllers,
+odometry, landmarks and a range–bearing sensor, EKF localisation and EKF SLAM, error ellipses."""
+from robokit.mobile.estimation import *  # noqa: F401,F403
+from robokit.mobile.estimation import __all__ as _est_all
+from robokit.mobile.plot import *  # noqa: F401,F403
+from robokit.mobile.plot import __all__ as _plot_all
+from robokit.mobile.vehicle import *  # noqa: F401,F403
+from robokit.mobile.vehicle import __all__ as _veh_all
 
-__all__: list[str] = []
+__all__ = list(_veh_all) + list(_est_all) + list(_plot_all)

@@ -1,0 +1,246 @@
+r"""Odometry, landmarks and a range–bearing sensor, EKF localisation and EKF SLAM (Lecture 9).
+
+Odometry increments ``δ = (δ_d, δ_θ)`` (distance, heading change) drive the motion model
+
+    f(x, δ, v) = (x + (δ_d + v_d) cos(θ + δ_θ + v_θ), y + (δ_d + v_d) sin(θ + δ_θ + v_θ), θ + δ_θ + v_θ),
+
+with odometry noise ``v ~ N(0, V)``. A range–bearing sensor sees landmark i at
+``z = (√((x_i − x)² + (y_i − y)²), atan2(y_i − y, x_i − x) − θ) + w``, ``w ~ N(0, W)``.
+
+EKF (as Lecture 9 writes it): prediction ``x̂ ← f(x̂, δ, 0)``, ``P ← F_x P F_xᵀ + F_v V F_vᵀ``;
+update with the innovation ``ν = z − h(x̂)`` (bearing wrapped to (−π, π]),
+``S = H_x P H_xᵀ + H_w W H_wᵀ``, ``K = P H_xᵀ S⁻¹``, ``x̂ ← x̂ + K ν`` and the Joseph form
+``P ← (I − K H_x) P (I − K H_x)ᵀ + K W Kᵀ``. EKF SLAM augments the state with the landmark
+positions; a new landmark is initialised from its first observation,
+``x_i = (x + r cos(θ + β), y + r sin(θ + β))``, with the insertion Jacobians G_x, G_z.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_array, as_matrix, as_vector
+from robokit.mobile.vehicle import angdiff
+
+__all__ = [
+    "odometry_model",
+    "odometry_jacobians",
+    "Odometry",
+    "LandmarkMap",
+    "RangeBearingSensor",
+    "EKFLocalization",
+    "EKFSLAM",
+    "error_ellipse",
+]
+
+
+def odometry_model(x, delta, v=(0.0, 0.0)) -> np.ndarray:
+    """``f(x, δ, v)`` of the module docstring: the pose after the odometry increment δ and noise v."""
+    d = delta[0] + v[0]
+    th = x[2] + delta[1] + v[1]
+    return np.array([x[0] + d * math.cos(th), x[1] + d * math.sin(th), angdiff(th)])
+
+
+def odometry_jacobians(x, delta):
+    """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v at v = 0 (3×3 and 3×2)."""
+    th = x[2] + delta[1]
+    c, s, d = math.cos(th), math.sin(th), delta[0]
+    Fx = np.array([[1.0, 0.0, -d * s], [0.0, 1.0, d * c], [0.0, 0.0, 1.0]])
+    Fv = np.array([[c, -d * s], [s, d * c], [0.0, 1.0]])
+    return Fx, Fv
+
+
+class Odometry:
+    """A vehicle's odometer: the true increment plus zero-mean Gaussian noise of covariance V (2×2)."""
+
+    def __init__(self, V, rng=None):
+        self.V = as_matrix(V, "V", 2, 2)
+        if np.linalg.eigvalsh(self.V).min() < 0:
+            raise ValueError("V: expected a positive semi-definite covariance")
+        self.rng = np.random.default_rng(rng)
+
+    def measure(self, delta) -> np.ndarray:
+        """The measured increment: ``δ + v``, ``v ~ N(0, V)``."""
+        return np.asarray(delta, float) + self.rng.multivariate_normal(np.zeros(2), self.V)
+
+
+class LandmarkMap:
+    """Point landmarks in the plane: ``points`` (N, 2) (m)."""
+
+    def __init__(self, points):
+        self.points = as_array(points, "points", (None, 2))
+
+    @classmethod
+    def random(cls, n: int, size: float = 10.0, rng=None) -> "LandmarkMap":
+        """``n`` landmarks uniform in the square [−size, size]²."""
+        return cls(np.random.default_rng(rng).uniform(-size, size, (int(n), 2)))
+
+    def __len__(self):
+        return len(self.points)
+
+
+class RangeBearingSensor:
+    """Range–bearing sensor: ``z = (r, β)`` with noise covariance W (2×2); optional max range (m)
+    and field of view (rad, centred on the vehicle's x axis)."""
+
+    def __init__(self, landmarks: LandmarkMap, W, max_range: float | None = None, fov: float | None = None,
+                 rng=None):
+        self.map = landmarks
+        self.W = as_matrix(W, "W", 2, 2)
+        self.max_range, self.fov = max_range, fov
+        self.rng = np.random.default_rng(rng)
+
+    @staticmethod
+    def h(x, p) -> np.ndarray:
+        """Noise-free measurement of the landmark at p (2,) from pose x (3,)."""
+        dx, dy = p[0] - x[0], p[1] - x[1]
+        return np.array([math.hypot(dx, dy), angdiff(math.atan2(dy, dx), x[2])])
+
+    @staticmethod
+    def jacobians(x, p):
+        """``(H_x, H_p)``: ∂h/∂x (2×3) and ∂h/∂p (2×2); ``H_w`` is the identity."""
+        dx, dy = p[0] - x[0], p[1] - x[1]
+        r2 = dx * dx + dy * dy
+        r = math.sqrt(r2)
+        Hx = np.array([[-dx / r, -dy / r, 0.0], [dy / r2, -dx / r2, -1.0]])
+        Hp = np.array([[dx / r, dy / r], [-dy / r2, dx / r2]])
+        return Hx, Hp
+
+    def visible(self, x) -> list[int]:
+        """Indices of the landmarks within range and field of view of pose x."""
+        out = []
+        for i, p in enumerate(self.map.points):
+            r, b = self.h(x, p)
+            if self.max_range is not None and r > self.max_range:
+                continue
+            if self.fov is not None and abs(b) > self.fov / 2:
+                continue
+            out.append(i)
+        return out
+
+    def measure(self, x, i: int) -> np.ndarray:
+        """A noisy measurement of landmark i from the true pose x."""
+        z = self.h(x, self.map.points[i]) + self.rng.multivariate_normal(np.zeros(2), self.W)
+        z[1] = angdiff(z[1])
+        return z
+
+
+def _joseph(P, K, H, W):
+    I = np.eye(P.shape[0])
+    A = I - K @ H
+    P = A @ P @ A.T + K @ W @ K.T
+    return 0.5 * (P + P.T)
+
+
+class EKFLocalization:
+    """EKF localisation with a known landmark map.
+
+    x0 (3,), P0 (3×3): initial estimate and covariance; V: odometry noise covariance used by the
+    filter; W: sensor noise covariance used by the filter; landmarks: the known map.
+    """
+
+    def __init__(self, x0, P0, V, W, landmarks: LandmarkMap):
+        self.x = as_vector(x0, "x0", 3).copy()
+        self.P = as_matrix(P0, "P0", 3, 3).copy()
+        self.V, self.W, self.map = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2), landmarks
+
+    def predict(self, delta):
+        """Prediction with the odometry increment δ = (δ_d, δ_θ)."""
+        Fx, Fv = odometry_jacobians(self.x, delta)
+        self.x = odometry_model(self.x, delta)
+        self.P = Fx @ self.P @ Fx.T + Fv @ self.V @ Fv.T
+
+    def update(self, z, i: int):
+        """Update with the measurement z = (r, β) of landmark i; returns the innovation ν."""
+        p = self.map.points[i]
+        nu = np.asarray(z, float) - RangeBearingSensor.h(self.x, p)
+        nu[1] = angdiff(nu[1])
+        Hx, _ = RangeBearingSensor.jacobians(self.x, p)
+        S = Hx @ self.P @ Hx.T + self.W
+        K = self.P @ Hx.T @ np.linalg.inv(S)
+        self.x = self.x + K @ nu
+        self.x[2] = angdiff(self.x[2])
+        self.P = _joseph(self.P, K, Hx, self.W)
+        return nu
+
+
+class EKFSLAM:
+    """EKF SLAM: the vehicle pose and the landmark positions estimated together.
+
+    The state is ``(x, y, θ, x₁, y₁, x₂, y₂, …)``; landmarks are added at their first
+    observation. ``landmark_index[i]`` is the position of landmark i in the state (or absent).
+    """
+
+    def __init__(self, x0, P0, V, W):
+        self.x = as_vector(x0, "x0", 3).copy()
+        self.P = as_matrix(P0, "P0", 3, 3).copy()
+        self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
+        self.landmark_index: dict[int, int] = {}
+
+    def predict(self, delta):
+        Fx, Fv = odometry_jacobians(self.x[:3], delta)
+        self.x[:3] = odometry_model(self.x[:3], delta)
+        n = len(self.x)
+        F = np.eye(n)
+        F[:3, :3] = Fx
+        self.P = F @ self.P @ F.T
+        self.P[:3, :3] += Fv @ self.V @ Fv.T
+
+    def landmark(self, i: int) -> np.ndarray:
+        """Estimated position (2,) of landmark i."""
+        k = self.landmark_index[i]
+        return self.x[k:k + 2].copy()
+
+    def update(self, z, i: int):
+        """Update with the measurement z = (r, β) of landmark i (inserting it if new)."""
+        z = np.asarray(z, float)
+        if i not in self.landmark_index:
+            th = self.x[2] + z[1]
+            c, s = math.cos(th), math.sin(th)
+            p = self.x[:2] + z[0] * np.array([c, s])
+            Gx = np.array([[1.0, 0.0, -z[0] * s], [0.0, 1.0, z[0] * c]])
+            Gz = np.array([[c, -z[0] * s], [s, z[0] * c]])
+            n = len(self.x)
+            P = np.zeros((n + 2, n + 2))
+            P[:n, :n] = self.P
+            P[n:, :3] = Gx @ self.P[:3, :3]
+            P[n:, 3:n] = Gx @ self.P[:3, 3:n]
+            P[:n, n:] = P[n:, :n].T
+            P[n:, n:] = Gx @ self.P[:3, :3] @ Gx.T + Gz @ self.W @ Gz.T
+            self.x = np.r_[self.x, p]
+            self.P = P
+            self.landmark_index[i] = n
+            return np.zeros(2)
+        k = self.landmark_index[i]
+        p = self.x[k:k + 2]
+        nu = z - RangeBearingSensor.h(self.x[:3], p)
+        nu[1] = angdiff(nu[1])
+        Hx, Hp = RangeBearingSensor.jacobians(self.x[:3], p)
+        H = np.zeros((2, len(self.x)))
+        H[:, :3] = Hx
+        H[:, k:k + 2] = Hp
+        S = H @ self.P @ H.T + self.W
+        K = self.P @ H.T @ np.linalg.inv(S)
+        self.x = self.x + K @ nu
+        self.x[2] = angdiff(self.x[2])
+        self.P = _joseph(self.P, K, H, self.W)
+        return nu
+
+
+def error_ellipse(P, mean=(0.0, 0.0), n_sigma: float = 1.0, points: int = 100):
+    """Points (points, 2) on the ellipse ``(x − μ)ᵀ P⁻¹ (x − μ) = n_sigma²`` of a 2×2 covariance.
+
+    Axes along the eigenvectors of P with half-lengths ``n_sigma √λᵢ`` (Lecture 9). Also
+    returns ``(radii, axes)``: the half-lengths (ascending) and the unit axis vectors (columns).
+    """
+    P = as_matrix(P, "P", 2, 2)
+    if np.abs(P - P.T).max() > 1e-12 * max(1.0, np.abs(P).max()):
+        raise ValueError("P: expected a symmetric covariance")
+    lam, vec = np.linalg.eigh(P)
+    if lam.min() < 0:
+        raise ValueError("P: expected a positive semi-definite covariance")
+    radii = n_sigma * np.sqrt(lam)
+    a = np.linspace(0, 2 * np.pi, int(points))
+    pts = (vec @ (radii[:, None] * np.vstack([np.cos(a), np.sin(a)]))).T + np.asarray(mean, float)[:2]
+    return pts, radii, vec

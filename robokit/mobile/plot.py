@@ -1,0 +1,38 @@
+"""Plots for mobile robots: paths, landmarks, and covariance ellipses (matplotlib; returns the Figure)."""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit.mobile.estimation import error_ellipse
+
+__all__ = ["plot_estimation"]
+
+
+def plot_estimation(true_path, est_path=None, covariances=None, landmarks=None, landmark_estimates=None,
+                    every: int = 10, n_sigma: float = 1.0, ax=None):
+    """True (K, ≥2) and estimated paths, landmarks (N, 2), estimated landmarks, and the
+    ``n_sigma`` error ellipses of the position covariances (K, ≥2, ≥2) every ``every`` steps."""
+    import matplotlib.pyplot as plt
+
+    fig = ax.figure if ax is not None else plt.figure(figsize=(6, 6))
+    ax = ax or fig.add_subplot(111)
+    T = np.asarray(true_path)
+    ax.plot(T[:, 0], T[:, 1], "k-", lw=1.5, label="true")
+    if est_path is not None:
+        E = np.asarray(est_path)
+        ax.plot(E[:, 0], E[:, 1], "b--", lw=1.2, label="estimate")
+        if covariances is not None:
+            for k in range(0, len(E), max(1, int(every))):
+                pts, _, _ = error_ellipse(np.asarray(covariances[k])[:2, :2], E[k, :2], n_sigma)
+                ax.plot(pts[:, 0], pts[:, 1], "b-", lw=0.6, alpha=0.6)
+    if landmarks is not None:
+        L = np.asarray(landmarks)
+        ax.plot(L[:, 0], L[:, 1], "k*", ms=10, label="landmarks")
+    if landmark_estimates is not None:
+        L = np.asarray(landmark_estimates)
+        ax.plot(L[:, 0], L[:, 1], "r+", ms=10, label="estimated landmarks")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.legend(loc="best", fontsize="small")
+    return fig

@@ -1,0 +1,167 @@
+r"""The kinematic bicycle model and its controllers (Lecture 9).
+
+State ``x = (x, y, θ)`` (m, m, rad) of the rear-axle centre in the world frame {O}; inputs
+``u = (v, γ)``: speed along the vehicle's x axis (m/s) and steering angle (rad); wheelbase L:
+
+    ẋ = v cos θ,   ẏ = v sin θ,   θ̇ = (v / L) tan γ,
+
+with the non-holonomic constraint ``ẏ cos θ − ẋ sin θ = 0`` (no sideways velocity). The model is
+undefined at γ = ±π/2, which is rejected. For constant (v, γ) over a step the motion is an arc of
+radius L / tan γ about the instantaneous centre of rotation; :meth:`BicycleModel.step` integrates
+that arc exactly.
+
+Controllers (each called as ``ctrl(t, x, dt) -> (v, γ)``; ``dt`` advances integral terms):
+
+* :class:`MoveToPoint`: ``v* = K_v ‖p* − p‖``, ``θ* = atan2(y* − y, x* − x)``, ``γ = K_h (θ* ⊖ θ)``;
+* :class:`FollowLine` (ax + by + c = 0): ``d = (a, b, c)·(x, y, 1)/√(a² + b²)``,
+  ``θ* = atan2(−a, b)``, ``γ = −K_d d + K_h (θ* ⊖ θ)`` at a constant speed;
+* :class:`PurePursuit` (a moving target on a path, kept at distance d*):
+  ``e = ‖p*(t) − p‖ − d*``, ``v* = K_v e + K_i ∫e dt``, ``γ = K_h (θ* ⊖ θ)``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+
+__all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
+
+
+def angdiff(a, b=0.0):
+    """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array)."""
+    d = np.mod(np.asarray(a, dtype=float) - b + np.pi, 2 * np.pi) - np.pi
+    d = np.where(d <= -np.pi, d + 2 * np.pi, d)
+    return float(d) if np.ndim(d) == 0 else d
+
+
+class BicycleModel:
+    """Kinematic bicycle with wheelbase ``L`` (m), steering limit (rad) and speed limit (m/s)."""
+
+    def __init__(self, L: float = 1.0, steer_max: float = np.deg2rad(60.0), speed_max: float = 5.0):
+        self.L = as_scalar(L, "L", positive=True)
+        self.steer_max = as_scalar(steer_max, "steer_max", positive=True)
+        if self.steer_max >= np.pi / 2:
+            raise ValueError(f"steer_max: must be below π/2 (the model is undefined at ±π/2), got {steer_max!r}")
+        self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
+
+    def limit(self, u):
+        """Inputs clipped to the speed and steering limits; γ = ±π/2 is rejected."""
+        v, gamma = as_vector(u, "u", 2)
+        if abs(abs(gamma) - np.pi / 2) < 1e-12:
+            raise ValueError("u: steering angle γ = ±π/2 is undefined for the bicycle model")
+        return np.array([np.clip(v, -self.speed_max, self.speed_max),
+                         np.clip(gamma, -self.steer_max, self.steer_max)])
+
+    def deriv(self, x, u) -> np.ndarray:
+        """``(ẋ, ẏ, θ̇)`` at state x (3,) and inputs u = (v, γ) (limits applied)."""
+        x = as_vector(x, "x", 3)
+        v, g = self.limit(u)
+        return np.array([v * math.cos(x[2]), v * math.sin(x[2]), v / self.L * math.tan(g)])
+
+    def step(self, x, u, dt: float) -> np.ndarray:
+        """The state after ``dt`` s at constant inputs: the exact arc (or a straight line when γ = 0)."""
+        x = as_vector(x, "x", 3)
+        v, g = self.limit(u)
+        dt = as_scalar(dt, "dt", positive=True)
+        w = v / self.L * math.tan(g)
+        th = x[2]
+        if abs(w) < 1e-12:
+            return np.array([x[0] + v * dt * math.cos(th), x[1] + v * dt * math.sin(th), th])
+        th1 = th + w * dt
+        Rr = v / w  # signed radius L / tan γ
+        return np.array([x[0] + Rr * (math.sin(th1) - math.sin(th)), x[1] - Rr * (math.cos(th1) - math.cos(th)),
+                         angdiff(th1)])
+
+    @staticmethod
+    def sideways_velocity(x, xdot) -> float:
+        """``ẏ cos θ − ẋ sin θ``: zero for every motion the model allows (the non-holonomic constraint)."""
+        return float(xdot[1] * math.cos(x[2]) - xdot[0] * math.sin(x[2]))
+
+
+@dataclass
+class MoveToPoint:
+    """Drive to ``goal`` (x*, y*) (m): speed proportional to the distance, heading P control."""
+
+    goal: tuple
+    Kv: float = 0.5
+    Kh: float = 2.0
+
+    def __call__(self, t, x, dt=0.0):
+        dx, dy = self.goal[0] - x[0], self.goal[1] - x[1]
+        return self.Kv * math.hypot(dx, dy), self.Kh * angdiff(math.atan2(dy, dx), x[2])
+
+
+@dataclass
+class FollowLine:
+    """Follow the line a x + b y + c = 0 at speed ``v`` (m/s): distance and heading terms combined."""
+
+    line: tuple
+    v: float = 1.0
+    Kd: float = 0.5
+    Kh: float = 1.0
+
+    def distance(self, x) -> float:
+        """Signed normal distance of the vehicle from the line (m)."""
+        a, b, c = self.line
+        return (a * x[0] + b * x[1] + c) / math.hypot(a, b)
+
+    def __call__(self, t, x, dt=0.0):
+        a, b, _ = self.line
+        theta_star = math.atan2(-a, b)
+        return self.v, -self.Kd * self.distance(x) + self.Kh * angdiff(theta_star, x[2])
+
+
+class PurePursuit:
+    """Chase a target moving along ``path(t) -> (x*, y*)`` at distance ``d_star`` (m).
+
+    Speed: PI on ``e = ‖p* − p‖ − d*``; steering: P on the heading to the target.
+    """
+
+    def __init__(self, path, d_star: float = 1.0, Kv: float = 1.0, Ki: float = 0.3, Kh: float = 2.0):
+        self.path, self.d_star, self.Kv, self.Ki, self.Kh = path, float(d_star), Kv, Ki, Kh
+        self.integral = 0.0
+
+    def error(self, t, x) -> float:
+        px, py = self.path(t)
+        return math.hypot(px - x[0], py - x[1]) - self.d_star
+
+    def __call__(self, t, x, dt=0.0):
+        px, py = self.path(t)
+        e = math.hypot(px - x[0], py - x[1]) - self.d_star
+        self.integral += e * dt
+        return self.Kv * e + self.Ki * self.integral, self.Kh * angdiff(math.atan2(py - x[1], px - x[0]), x[2])
+
+
+@dataclass
+class VehicleRun:
+    """A simulated run: t (K,), x (K, 3) states, u (K, 2) inputs applied from t[k] to t[k+1]."""
+
+    t: np.ndarray
+    x: np.ndarray
+    u: np.ndarray
+
+
+def run_vehicle(model: BicycleModel, controller, x0, T: float, dt: float = 0.05, stop=None) -> VehicleRun:
+    """Run ``controller`` on ``model`` from ``x0`` for ``T`` s with control period ``dt``.
+
+    ``stop(t, x) -> bool`` may end the run early (e.g. goal reached).
+    """
+    x = as_vector(x0, "x0", 3).copy()
+    T = as_scalar(T, "T", positive=True)
+    dt = as_scalar(dt, "dt", positive=True)
+    n = int(math.ceil(T / dt))
+    ts, xs, us = [0.0], [x.copy()], []
+    for k in range(n):
+        t = k * dt
+        u = model.limit(controller(t, x, dt))
+        us.append(u)
+        x = model.step(x, u, dt)
+        ts.append(t + dt)
+        xs.append(x.copy())
+        if stop is not None and stop(t + dt, x):
+            break
+    us.append(us[-1] if us else np.zeros(2))
+    return VehicleRun(np.array(ts), np.array(xs), np.array(us))
