@@ -32,4 +32,24 @@ def checks(rng) -> list[CheckRow]:
             CheckRow("jacobian_space vs computeFrameJacobian (WORLD)", name, SAMPLES, e_js, 1e-9, "abs, max entry"),
             CheckRow("jacobian_body vs computeFrameJacobian (LOCAL)", name, SAMPLES, e_jb, 1e-9, "abs, max entry"),
         ]
+    from robokit.kinematics.dh import dh_jacobian, dh_static_torques
+
+    for name in ("twolink", "rrr", "puma560"):
+        r = load(name)
+        e_b = e_t = e_f = 0.0
+        for _ in range(SAMPLES):
+            q = r.random_configuration(rng)
+            e_b = max(e_b, np.abs(dh_jacobian(r.dh, q, "base") - r.jacobian(q, reference="local_world_aligned")).max())
+            Jt = r.jacobian(q, reference="local")
+            e_t = max(e_t, np.abs(dh_jacobian(r.dh, q, "tool") - Jt).max())
+            F = rng.normal(size=6)
+            e_f = max(e_f, np.abs(dh_static_torques(r.dh, q, F) - Jt.T @ F).max())
+        rows += [
+            CheckRow("DH propagation Jacobian (base) vs computeFrameJacobian (LOCAL_WORLD_ALIGNED)", name, SAMPLES,
+                     e_b, 1e-9, "abs, max entry"),
+            CheckRow("DH propagation Jacobian (tool) vs computeFrameJacobian (LOCAL)", name, SAMPLES, e_t, 1e-9,
+                     "abs, max entry"),
+            CheckRow("inward force propagation τ vs Jᵀ F (Pinocchio LOCAL Jacobian)", name, SAMPLES, e_f, 1e-9,
+                     "abs, max entry"),
+        ]
     return rows

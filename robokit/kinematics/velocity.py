@@ -1,0 +1,308 @@
+r"""Velocity kinematics of Lecture 6: numerical and analytical Jacobians, velocity and wrench
+transforms, manipulability and singularities, resolved-rate motion control.
+
+Jacobians here are geometric, rows ``(ω; v)`` with v the velocity of the frame's origin, in the
+base frame unless said otherwise (Pinocchio's LOCAL_WORLD_ALIGNED), as the course writes them.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
+from robokit.spatial.se3 import _adjoint, _inv, check_transform
+
+__all__ = [
+    "numerical_jacobian",
+    "euler_rate_matrix",
+    "analytical_jacobian",
+    "twist_transform",
+    "wrench_transform",
+    "jacobian_to_frame",
+    "manipulability",
+    "velocity_ellipsoid",
+    "singularity",
+    "resolved_rate",
+    "joint_limit_gradient",
+    "LineFollowResult",
+    "follow_line",
+]
+
+
+def numerical_jacobian(fk, q, h: float = 1e-6) -> np.ndarray:
+    """Jacobian (6×n, (ω; v) in the base frame) of any forward kinematics by central differences.
+
+    fk : function q (n,) → 4×4 pose; q : (n,); h : perturbation. Column j is
+    ``ω_j = vee(Ṙ Rᵀ)``, ``v_j = ṗ`` with the derivatives ``(f(q + h e_j) − f(q − h e_j)) / 2h``
+    (Lecture 6: the Jacobian by perturbation). Accurate to about h².
+    """
+    q = as_vector(q, "q")
+    h = as_scalar(h, "h", positive=True)
+    T0 = np.asarray(fk(q), dtype=float)
+    R0 = T0[:3, :3]
+    J = np.empty((6, len(q)))
+    for j in range(len(q)):
+        e = np.zeros(len(q))
+        e[j] = h
+        Tp, Tm = np.asarray(fk(q + e), float), np.asarray(fk(q - e), float)
+        dR = (Tp[:3, :3] - Tm[:3, :3]) / (2 * h)
+        W = dR @ R0.T
+        J[:3, j] = 0.5 * np.array([W[2, 1] - W[1, 2], W[0, 2] - W[2, 0], W[1, 0] - W[0, 1]])
+        J[3:, j] = (Tp[:3, 3] - Tm[:3, 3]) / (2 * h)
+    return J
+
+
+def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9) -> np.ndarray:
+    """E(φ) with ``ω = E(φ) φ̇`` for intrinsic ZYX ``(α, β, γ)`` or ZYZ ``(φ, θ, ψ)`` Euler angles.
+
+    ZYX: ``E = [ẑ, Rz(α)ŷ, Rz(α)Ry(β)x̂] = [[0, −sα, cα cβ], [0, cα, sα cβ], [1, 0, −sβ]]``,
+    singular at cos β = 0; ZYZ: ``E = [[0, −sφ, cφ sθ], [0, cφ, sφ sθ], [1, 0, cθ]]``, singular at
+    sin θ = 0. Returns E (3×3); :func:`analytical_jacobian` raises at the singularity.
+    """
+    a, b, _ = as_vector(angles, "angles", 3)
+    ca, sa, cb, sb = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
+    if seq == "ZYX":
+        return np.array([[0.0, -sa, ca * cb], [0.0, ca, sa * cb], [1.0, 0.0, -sb]])
+    if seq == "ZYZ":
+        return np.array([[0.0, -sa, ca * sb], [0.0, ca, sa * sb], [1.0, 0.0, cb]])
+    raise ValueError(f"seq: expected 'ZYX' or 'ZYZ', got {seq!r}")
+
+
+def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9) -> np.ndarray:
+    """``J_a = blockdiag(E(φ)⁻¹, I) J``: rows (φ̇; ṗ) — Euler-angle rates and linear velocity.
+
+    J : 6×n geometric Jacobian (ω; v) in the base frame; angles : the current Euler angles.
+    Raises ``ValueError`` ("representation singularity") where E(φ) is singular
+    (|det E| < tol: β = ±π/2 for ZYX, θ = 0 or π for ZYZ) — the analytical Jacobian does not
+    exist there even though the arm itself may be far from any singularity.
+    """
+    J = as_matrix(J, "J", 6, None)
+    E = euler_rate_matrix(angles, seq)
+    d = float(np.linalg.det(E))
+    if abs(d) < tol:
+        raise ValueError(f"angles: representation singularity of {seq} Euler angles (det E = {d:.2e}); "
+                         "E(φ) has no inverse here")
+    return np.vstack([np.linalg.solve(E, J[:3]), J[3:]])
+
+
+def twist_transform(T_a_b) -> np.ndarray:
+    """The 6×6 map of twists ``(ω, v)`` expressed in frame b to frame a: ``V_a = Ad_{T_ab} V_b``.
+
+    For two frames on the same body, or a frame on another body rigidly fixed to it (Lecture 6).
+    """
+    return _adjoint(check_transform(T_a_b, "T_a_b"))
+
+
+def wrench_transform(T_a_b) -> np.ndarray:
+    """The 6×6 map of wrenches ``(m, f)`` expressed in frame b to frame a: ``F_a = Ad_{T_ba}ᵀ F_b``
+    (the same physical force, its moment taken about a's origin)."""
+    return _adjoint(_inv(check_transform(T_a_b, "T_a_b"))).T
+
+
+def jacobian_to_frame(J, R) -> np.ndarray:
+    """Re-express a geometric Jacobian (ω; v) in rotated axes: ``blockdiag(R, R) J``.
+
+    With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one and
+    vice versa with R_base_tool (the origin of v is unchanged: only the axes rotate).
+    """
+    J = as_matrix(J, "J", 6, None)
+    R = as_matrix(R, "R", 3, 3)
+    return np.vstack([R @ J[:3], R @ J[3:]])
+
+
+def _rows(J, part):
+    J = as_array(J, "J", (None, None))
+    if part == "full":
+        return J
+    if J.shape[0] != 6:
+        raise ValueError(f"part: {part!r} needs a 6-row Jacobian (ω; v), got shape {J.shape}")
+    if part == "translation":
+        return J[3:]
+    if part == "rotation":
+        return J[:3]
+    raise ValueError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
+
+
+def manipulability(J, kind: str = "yoshikawa", part: str = "full") -> float:
+    """A manipulability measure of the Jacobian (or of its translation/rotation rows).
+
+    kind : "yoshikawa" — ``w = √det(J Jᵀ)`` (the product of the singular values; 0 at a
+    singularity); "condition" — ``σ_max / σ_min`` (∞ at a singularity); "inverse_condition" —
+    ``σ_min / σ_max`` (the ratio of the shortest to the longest ellipsoid axis); "min_singular"
+    — ``σ_min``. part : "full", "translation" (rows v) or "rotation" (rows ω).
+    For the planar 2-link arm's 2×2 translational Jacobian, ``w = |l₁ l₂ sin θ₂|``.
+    """
+    A = _rows(J, part)
+    s = np.linalg.svd(A, compute_uv=False)
+    m = A.shape[0]
+    if kind == "yoshikawa":
+        if A.shape[1] < m:
+            return 0.0
+        return float(np.prod(s[:m]))
+    if kind == "condition":
+        return float(s[0] / s[-1]) if s[-1] > 0 and A.shape[1] >= m else float("inf")
+    if kind == "inverse_condition":
+        return float(s[-1] / s[0]) if s[0] > 0 and A.shape[1] >= m else 0.0
+    if kind == "min_singular":
+        return float(s[-1]) if A.shape[1] >= m else 0.0
+    raise ValueError(f"kind: expected 'yoshikawa', 'condition', 'inverse_condition' or 'min_singular', got {kind!r}")
+
+
+def velocity_ellipsoid(J, part: str = "translation"):
+    """Axes and radii of the velocity ellipsoid ``{J q̇ : ‖q̇‖ ≤ 1}`` for the chosen rows.
+
+    Returns ``(radii, axes)``: radii (m,) = the singular values (descending), axes (m×m) = the
+    left singular vectors as columns (directions in the base frame).
+    """
+    A = _rows(J, part)
+    U, s, _ = np.linalg.svd(A)
+    radii = np.zeros(A.shape[0])
+    radii[: len(s)] = s
+    return radii, U
+
+
+_NAMES = ("rotation about x", "rotation about y", "rotation about z",
+          "translation along x", "translation along y", "translation along z")
+
+
+@dataclass
+class SingularityReport:
+    """rank, σ_min, whether singular (σ_min < tol), and the lost Cartesian direction (ω; v)."""
+
+    rank: int
+    sigma_min: float
+    singular: bool
+    lost_direction: np.ndarray
+    description: str
+
+
+def singularity(J, tol: float = 1e-9) -> SingularityReport:
+    """Rank test of a 6×n (or m×n) Jacobian and the Cartesian direction that cannot be produced.
+
+    The lost direction is the left singular vector of the smallest singular value — the twist
+    (ω; v) the arm cannot move along — described by its dominant component, e.g.
+    "translation along x (0.98)".
+    """
+    A = as_array(J, "J", (None, None))
+    U, s, _ = np.linalg.svd(A)
+    m = A.shape[0]
+    sig = np.zeros(m)
+    sig[: len(s)] = s
+    rank = int(np.sum(sig > tol))
+    d = U[:, -1]
+    k = int(np.argmax(np.abs(d)))
+    if d[k] < 0:
+        d = -d
+    name = _NAMES[k] if m == 6 else f"direction {k}"
+    return SingularityReport(rank, float(sig[-1]), bool(sig[-1] < tol), d, f"{name} ({d[k]:.2f})")
+
+
+def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: bool = False,
+                  epsilon: float = 0.05, z=None, rcond: float = 1e-12) -> np.ndarray:
+    """Joint velocities for a desired Cartesian twist (Lecture 6): ``q̇ = J⁺V + (I − J⁺J) z``.
+
+    J : m×n Jacobian (m ≤ 6; use the rows that matter, e.g. the 2 planar rows of the 2-link arm);
+    V : (m,) desired twist; method : "pinv" (Moore–Penrose) or "dls" (damped least squares
+    ``q̇ = Jᵀ(JJᵀ + λ²I)⁻¹V``); damping : λ (or λ_max when adaptive); adaptive : λ² =
+    λ_max² (1 − (σ_min/ε)²) when σ_min < ε, else 0 (undamped away from singularities);
+    z : (n,) joint velocity projected into the null space (redundant arms: secondary tasks such
+    as joint-limit avoidance), which leaves the task twist unchanged.
+    """
+    J = as_array(J, "J", (None, None))
+    m, n = J.shape
+    V = as_vector(V, "V", m)
+    if method == "pinv":
+        Jp = np.linalg.pinv(J, rcond=rcond)
+    elif method == "dls":
+        lam2 = as_scalar(damping, "damping", nonnegative=True) ** 2
+        if adaptive:
+            smin = np.linalg.svd(J, compute_uv=False)[-1] if m <= n else 0.0
+            lam2 = lam2 * (1 - (smin / epsilon) ** 2) if smin < epsilon else 0.0
+        Jp = J.T @ np.linalg.inv(J @ J.T + lam2 * np.eye(m))
+    else:
+        raise ValueError(f"method: expected 'pinv' or 'dls', got {method!r}")
+    dq = Jp @ V
+    if z is not None:
+        z = as_vector(z, "z", n)
+        dq = dq + (np.eye(n) - Jp @ J) @ z
+    return dq
+
+
+def joint_limit_gradient(q, qlim) -> np.ndarray:
+    """``−∇H`` for ``H = ½ Σ ((qᵢ − q̄ᵢ)/(q_maxᵢ − q_minᵢ))²``: a null-space velocity pushing the joints
+    toward the middle of their ranges (unlimited joints are left alone)."""
+    q = as_vector(q, "q")
+    qlim = as_array(qlim, "qlim", (len(q), 2), finite=False)
+    span = qlim[:, 1] - qlim[:, 0]
+    ok = np.isfinite(span) & (span > 0)
+    g = np.zeros(len(q))
+    mid = 0.5 * (qlim[:, 0] + qlim[:, 1])
+    g[ok] = -(q[ok] - mid[ok]) / span[ok] ** 2
+    return g
+
+
+@dataclass
+class LineFollowResult:
+    """t (K,), q (K, n), p (K, 3) actual positions, p_des (K, 3), error (K,) position error (m)."""
+
+    t: np.ndarray
+    q: np.ndarray
+    p: np.ndarray
+    p_des: np.ndarray
+    error: np.ndarray
+
+
+def follow_line(robot, q0, p_goal, duration: float, dt: float = 0.005, method: str = "dls", gain: float = 5.0,
+                damping: float = 0.02, null_gain: float = 0.0, frame: str | None = None) -> LineFollowResult:
+    """Resolved-rate control along a straight line from the current tool position to ``p_goal``.
+
+    The desired position moves on the line with a quintic time scaling over ``duration`` s, the
+    orientation is held; each step commands ``V = (K e_ω, ṗ_des + K e_p)`` and integrates
+    ``q̇ = resolved_rate(J, V)`` (Euler, dt), with optional null-space joint-limit avoidance
+    (``null_gain``). Returns the tracking error along the path.
+    """
+    q = as_vector(q0, "q0", robot.n).copy()
+    p_goal = as_vector(p_goal, "p_goal", 3)
+    T0 = robot.frame_pose(q, frame)
+    p0, R_des = T0[:3, 3].copy(), T0[:3, :3].copy()
+    K = int(np.ceil(duration / dt))
+    ts, qs, ps, pds, errs = [], [], [], [], []
+    for k in range(K + 1):
+        t = min(k * dt, duration)
+        s = t / duration
+        sc = 10 * s**3 - 15 * s**4 + 6 * s**5
+        dsc = (30 * s**2 - 60 * s**3 + 30 * s**4) / duration
+        p_des = p0 + sc * (p_goal - p0)
+        v_des = dsc * (p_goal - p0)
+        T = robot.frame_pose(q, frame)
+        e_p = p_des - T[:3, 3]
+        Re = R_des @ T[:3, :3].T
+        e_w = 0.5 * np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
+        ts.append(t), qs.append(q.copy()), ps.append(T[:3, 3].copy()), pds.append(p_des), errs.append(np.linalg.norm(e_p))
+        if k == K:
+            break
+        J = robot.jacobian(q, frame, reference="local_world_aligned")
+        V = np.r_[gain * e_w, v_des + gain * e_p]
+        z = null_gain * joint_limit_gradient(q, robot.qlim) if null_gain else None
+        q = q + dt * resolved_rate(J, V, method=method, damping=damping, adaptive=True, z=z)
+    return LineFollowResult(np.array(ts), np.array(qs), np.array(ps), np.array(pds), np.array(errs))
+
+
+def manipulability_at(robot, q, kind: str = "yoshikawa", part: str = "full", frame: str | None = None) -> float:
+    """:func:`manipulability` of ``robot``'s base-frame geometric Jacobian at q (one call)."""
+    return manipulability(robot.jacobian(q, frame, reference="local_world_aligned"), kind, part)
+
+
+def velocity_ellipsoid_at(robot, q, part: str = "translation", frame: str | None = None):
+    """:func:`velocity_ellipsoid` of ``robot`` at q (base-frame axes)."""
+    return velocity_ellipsoid(robot.jacobian(q, frame, reference="local_world_aligned"), part)
+
+
+def resolved_rate_at(robot, q, V, frame: str | None = None, **kwargs) -> np.ndarray:
+    """Joint velocities of ``robot`` at q for the desired twist V (6,) = (ω; v of the frame origin,
+    base axes); keyword arguments as :func:`resolved_rate`."""
+    return resolved_rate(robot.jacobian(q, frame, reference="local_world_aligned"), V, **kwargs)
+
+
+__all__ += ["manipulability_at", "velocity_ellipsoid_at", "resolved_rate_at", "SingularityReport"]
