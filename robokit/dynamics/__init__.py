@@ -2,8 +2,15 @@
 
 ``newton_euler``: the seed functions in product-of-exponentials form (Newton–Euler inverse
 dynamics, composite-rigid-body mass matrix, forward dynamics, trajectories).
+``dh_newton_euler``: Craig's recursive Newton–Euler on a DH table (both conventions).
+``terms``: Coriolis matrix (Ṁ − 2C skew), friction, payload, base wrench, Cartesian dynamics,
+energy and Euler/RK4 integration.
 """
+from robokit.dynamics.dh_newton_euler import *  # noqa: F401,F403
+from robokit.dynamics.dh_newton_euler import __all__ as _dh_all
 from robokit.dynamics.newton_euler import *  # noqa: F401,F403
 from robokit.dynamics.newton_euler import __all__ as _ne_all
+from robokit.dynamics.terms import *  # noqa: F401,F403
+from robokit.dynamics.terms import __all__ as _terms_all
 
-__all__ = list(_ne_all)
+__all__ = list(_ne_all) + list(_dh_all) + list(_terms_all)

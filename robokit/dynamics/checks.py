@@ -36,4 +36,25 @@ def checks(rng) -> list[CheckRow]:
             CheckRow("gravity_forces vs computeGeneralizedGravity", name, SAMPLES, e_g, 1e-9, "rel, max entry"),
             CheckRow("forward_dynamics vs pinocchio.aba", name, SAMPLES, e_fd, 1e-9, "rel, max entry"),
         ]
+    import pinocchio as pin
+
+    from robokit.dynamics.dh_newton_euler import dh_inverse_dynamics
+    from robokit.dynamics.terms import coriolis_matrix
+
+    for name in MODELS:
+        r = load(name)
+        p = r.poe
+        e_c = e_dh = 0.0
+        data = r.model.createData()
+        for _ in range(SAMPLES):
+            q, dq, ddq = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n)
+            Cp = pin.computeCoriolisMatrix(r.model, data, r.q_pin(q), dq)
+            e_c = max(e_c, _rel(coriolis_matrix(q, dq, p.Mlist, p.Glist, p.Slist), Cp))
+            if r.dh is not None:
+                e_dh = max(e_dh, _rel(dh_inverse_dynamics(r.dh, q, dq, ddq), r.rnea(q, dq, ddq)))
+        rows.append(CheckRow("coriolis_matrix (PoE, Ṁ − 2C skew) vs computeCoriolisMatrix", name, SAMPLES, e_c, 1e-9,
+                             "rel, max entry"))
+        if r.dh is not None:
+            rows.append(CheckRow("DH Newton–Euler (Craig) vs pinocchio.rnea", name, SAMPLES, e_dh, 1e-9,
+                                 "rel, max entry"))
     return rows
