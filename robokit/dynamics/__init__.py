@@ -12,5 +12,7 @@ from robokit.dynamics.newton_euler import *  # noqa: F401,F403
 from robokit.dynamics.newton_euler import __all__ as _ne_all
 from robokit.dynamics.terms import *  # noqa: F401,F403
 from robokit.dynamics.terms import __all__ as _terms_all
+from robokit.dynamics.twolink import *  # noqa: F401,F403
+from robokit.dynamics.twolink import __all__ as _twolink_all
 
-__all__ = list(_ne_all) + list(_dh_all) + list(_terms_all)
+__all__ = list(_ne_all) + list(_dh_all) + list(_terms_all) + list(_twolink_all)

@@ -159,3 +159,20 @@ def test_energy_conserved_in_free_swing(robots):
     _, Qe, De = integrate(q0, dq0, lambda t, q, dq: np.zeros(2), r.gravity, p.Mlist, p.Glist, p.Slist, 1e-3, 1000, "euler")
     Ee = total_energy(r, Qe[-1], De[-1])
     assert abs(Ee - E[0]) > 100 * np.abs(E - E[0]).max()  # explicit Euler gains energy: much worse
+
+
+def test_twolink_closed_form_against_recursive(robots):
+    from robokit.dynamics import twolink_dynamics
+
+    r = robots["twolink"]
+    p = r.poe
+    l1, l2, m1, m2 = r.dh.links[0].a, r.dh.links[1].a, r.dh.links[0].mass, r.dh.links[1].mass
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        q, dq, ddq = rng.uniform(-np.pi, np.pi, 2), rng.normal(size=2), rng.normal(size=2)
+        cf = twolink_dynamics(q, dq, l1, l2, m1, m2)
+        assert np.allclose(cf["M"], r.crba(q)) and np.allclose(cf["G"], r.gravity_torques(q))
+        assert np.allclose(cf["V"], rk.vel_quadratic_forces(q, dq, p.Mlist, p.Glist, p.Slist))
+        assert np.allclose(cf["B"][:, 0] * dq[0] * dq[1] + cf["C"] @ dq**2, cf["V"])
+        tau = cf["M"] @ ddq + cf["V"] + cf["G"]
+        assert np.allclose(tau, dh_inverse_dynamics(r.dh, q, dq, ddq)) and np.allclose(tau, r.rnea(q, dq, ddq))

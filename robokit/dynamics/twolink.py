@@ -1,0 +1,34 @@
+r"""Closed-form dynamics of the planar two-link arm with point masses at the link ends (Lecture 7).
+
+With c₂ = cos θ₂, s₂ = sin θ₂, c₁ = cos θ₁, c₁₂ = cos(θ₁ + θ₂) and gravity g along −y:
+
+    M = [[l₂²m₂ + 2l₁l₂m₂c₂ + l₁²(m₁ + m₂), l₂²m₂ + l₁l₂m₂c₂], [l₂²m₂ + l₁l₂m₂c₂, l₂²m₂]]
+    V = [−m₂l₁l₂s₂θ̇₂² − 2m₂l₁l₂s₂θ̇₁θ̇₂, m₂l₁l₂s₂θ̇₁²]
+    G = [m₂l₂g c₁₂ + (m₁ + m₂)l₁g c₁, m₂l₂g c₁₂]
+
+and the configuration-space form ``τ = M θ̈ + B [θ̇₁θ̇₂] + C [θ̇₁², θ̇₂²] + G`` with
+``B = [−2m₂l₁l₂s₂, 0]ᵀ``, ``C = [[0, −m₂l₁l₂s₂], [m₂l₁l₂s₂, 0]]``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_vector
+
+__all__ = ["twolink_dynamics"]
+
+
+def twolink_dynamics(q, dq, l1: float, l2: float, m1: float, m2: float, g: float = 9.81) -> dict:
+    """The Lecture 7 closed forms at (q, q̇): a dict with M (2×2), V (2,), G (2,), B (2×1), C (2×2)."""
+    q1, q2 = as_vector(q, "q", 2)
+    d1, d2 = as_vector(dq, "dq", 2)
+    c1, c2, s2, c12 = math.cos(q1), math.cos(q2), math.sin(q2), math.cos(q1 + q2)
+    M = np.array([[l2**2 * m2 + 2 * l1 * l2 * m2 * c2 + l1**2 * (m1 + m2), l2**2 * m2 + l1 * l2 * m2 * c2],
+                  [l2**2 * m2 + l1 * l2 * m2 * c2, l2**2 * m2]])
+    V = np.array([-m2 * l1 * l2 * s2 * d2**2 - 2 * m2 * l1 * l2 * s2 * d1 * d2, m2 * l1 * l2 * s2 * d1**2])
+    G = np.array([m2 * l2 * g * c12 + (m1 + m2) * l1 * g * c1, m2 * l2 * g * c12])
+    B = np.array([[-2 * m2 * l1 * l2 * s2], [0.0]])
+    C = np.array([[0.0, -m2 * l1 * l2 * s2], [m2 * l1 * l2 * s2, 0.0]])
+    return {"M": M, "V": V, "G": G, "B": B, "C": C}
