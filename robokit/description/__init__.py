@@ -14,5 +14,8 @@ from robokit.description.robot import *  # noqa: F401,F403
 from robokit.description.robot import __all__ as _robot_all
 from robokit.description.urdf_gen import *  # noqa: F401,F403
 from robokit.description.urdf_gen import __all__ as _urdf_gen_all
+from robokit.description.urdf_to_dh import *  # noqa: F401,F403
+from robokit.description.urdf_to_dh import __all__ as _urdf_to_dh_all
 
-__all__ = list(_dh_all) + list(_urdf_gen_all) + list(_poe_all) + list(_robot_all) + list(_models_all)
+__all__ = (list(_dh_all) + list(_urdf_gen_all) + list(_poe_all) + list(_robot_all) + list(_models_all)
+           + list(_urdf_to_dh_all))
