@@ -158,6 +158,8 @@ class Robot:
         for k, v in (configurations or {}).items():
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids = {}
+        self._lower = np.tril_indices(self.n, -1)
+        self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
     def q_pin(self, theta) -> np.ndarray:
@@ -232,8 +234,7 @@ class Robot:
         except KeyError:
             raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
         q = self.q_pin(self._check_theta(theta))
-        J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
-        return np.vstack((J[3:], J[:3]))
+        return pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)[self._swap]
 
     def rnea(self, theta, dtheta, ddtheta) -> np.ndarray:
         """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""
@@ -243,8 +244,9 @@ class Robot:
     def crba(self, theta) -> np.ndarray:
         """Mass matrix M(θ) (n×n, symmetric), Pinocchio's CRBA."""
         q = self.q_pin(self._check_theta(theta))
-        M = self._pin.crba(self.model, self.data, q)
-        return np.triu(M) + np.triu(M, 1).T
+        M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
+        M[self._lower] = M.T[self._lower]
+        return M
 
     def aba(self, theta, dtheta, tau) -> np.ndarray:
         """Forward dynamics θ̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA."""

@@ -131,6 +131,80 @@ def _rnea(m: _Model, theta, dtheta, ddtheta, g, Ftip):
     return tau
 
 
+def _cross_b(a, b):
+    """Row-wise cross products of (N, 3) arrays (faster than np.cross for small N·3)."""
+    out = np.empty_like(b if b.ndim == 2 else a)
+    a0, a1, a2 = (a[..., 0], a[..., 1], a[..., 2])
+    b0, b1, b2 = (b[..., 0], b[..., 1], b[..., 2])
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
+
+
+def _ad_apply(V, X):
+    """ad_V X for batches of twists V, X (N, 6): (ω × x_ω, v × x_ω + ω × x_v)."""
+    w, v = V[:, :3], V[:, 3:]
+    xw, xv = X[..., :3], X[..., 3:]
+    out = np.empty((V.shape[0], 6))
+    out[:, :3] = _cross_b(w, np.broadcast_to(xw, w.shape))
+    out[:, 3:] = _cross_b(v, np.broadcast_to(xw, w.shape)) + _cross_b(w, np.broadcast_to(xv, w.shape))
+    return out
+
+
+def _adT_apply(V, F):
+    """ad_Vᵀ F for batches (N, 6): (−(ω × m + v × f), −ω × f) with F = (m, f)."""
+    w, v = V[:, :3], V[:, 3:]
+    mm, ff = F[:, :3], F[:, 3:]
+    out = np.empty_like(F)
+    out[:, :3] = -(_cross_b(w, mm) + _cross_b(v, ff))
+    out[:, 3:] = -_cross_b(w, ff)
+    return out
+
+
+def _rnea_batch(m: _Model, theta, dtheta, ddtheta, g, Ftip):
+    """Newton–Euler for N configurations at once: theta, dtheta, ddtheta (N, n); Ftip (N, 6) or (6,)."""
+    N, n = theta.shape
+    Ad = _adjoint_many(_exps(m.A, -theta) @ m.Minv[:n])  # (N, n, 6, 6)
+    A, G = m.AT, m.G
+    V = np.zeros((N, 6))
+    Vd = np.zeros((N, 6))
+    Vd[:, 3:] = -g
+    Vs = np.empty((n, N, 6))
+    Vds = np.empty((n, N, 6))
+    for i in range(n):
+        Ai = A[i]
+        V = np.einsum("nij,nj->ni", Ad[:, i], V) + Ai * dtheta[:, i:i + 1]
+        Vd = np.einsum("nij,nj->ni", Ad[:, i], Vd) + _ad_apply(V, Ai) * dtheta[:, i:i + 1] + Ai * ddtheta[:, i:i + 1]
+        Vs[i], Vds[i] = V, Vd
+    F = np.broadcast_to(Ftip, (N, 6)).copy()
+    tau = np.empty((N, n))
+    for i in range(n - 1, -1, -1):
+        F = F @ m.Ad_tip if i == n - 1 else np.einsum("nji,nj->ni", Ad[:, i + 1], F)
+        F = F + Vds[i] @ G[i].T - _adT_apply(Vs[i], Vs[i] @ G[i].T)
+        tau[:, i] = F @ A[i]
+    return tau
+
+
+def _crba_batch(m: _Model, theta):
+    """Mass matrices (N, n, n) by the composite-rigid-body algorithm, vectorised over N."""
+    N, n = theta.shape
+    Ad = _adjoint_many(_exps(m.A, -theta) @ m.Minv[:n])
+    A = m.AT
+    K = np.broadcast_to(m.G, (N, n, 6, 6)).copy()
+    for i in range(n - 1, 0, -1):
+        AdT = np.swapaxes(Ad[:, i], 1, 2)
+        K[:, i - 1] += AdT @ K[:, i] @ Ad[:, i]
+    M = np.empty((N, n, n))
+    for i in range(n):
+        F = K[:, i] @ A[i]
+        M[:, i, i] = F @ A[i]
+        for j in range(i, 0, -1):
+            F = np.einsum("nji,nj->ni", Ad[:, j], F)
+            M[:, j - 1, i] = M[:, i, j - 1] = F @ A[j - 1]
+    return M
+
+
 def _crba(m: _Model, theta):
     n = m.n
     Ad = m.transforms(theta)
@@ -160,19 +234,33 @@ def _args(thetalist, Mlist, Glist, Slist):
 def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
     """Joint torques ``τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) + Jᵀ(θ) F_tip`` by Newton–Euler (n,).
 
-    thetalist, dthetalist, ddthetalist : (n,) rad, rad/s, rad/s²; g : (3,) gravity (m/s²),
-    e.g. [0, 0, −9.81]; Ftip : (6,) wrench (m, f) applied by the end-effector, in its frame;
-    Mlist : n+1 4×4; Glist : n 6×6; Slist : 6×n (Modern Robotics form).
+    thetalist, dthetalist, ddthetalist : (n,) rad, rad/s, rad/s² — or (N, n) for N states at
+    once (then τ is (N, n), computed vectorised over N); g : (3,) gravity (m/s²), e.g.
+    [0, 0, −9.81]; Ftip : (6,) (or (N, 6)) wrench (m, f) applied by the end-effector, in its
+    frame; Mlist : n+1 4×4; Glist : n 6×6; Slist : 6×n (Modern Robotics form).
     """
-    m, th = _args(thetalist, Mlist, Glist, Slist)
+    m = _model(Mlist, Glist, Slist)
+    if np.ndim(thetalist) == 2:
+        th = as_array(thetalist, "thetalist", (None, m.n))
+        N = th.shape[0]
+        dth = as_array(dthetalist, "dthetalist", (N, m.n))
+        ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
+        F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
+        return _rnea_batch(m, th, dth, ddth, _vec(g, "g", 3), F)
+    th = _vec(thetalist, "thetalist", m.n)
     return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), _vec(ddthetalist, "ddthetalist", m.n),
                  _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
 
 
 def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
-    """The n×n mass matrix M(θ) (composite-rigid-body algorithm), symmetric positive definite."""
-    m, th = _args(thetalist, Mlist, Glist, Slist)
-    return _crba(m, th)
+    """The n×n mass matrix M(θ) (composite-rigid-body algorithm), symmetric positive definite.
+
+    thetalist : (n,), or (N, n) for N configurations at once (then (N, n, n), vectorised).
+    """
+    m = _model(Mlist, Glist, Slist)
+    if np.ndim(thetalist) == 2:
+        return _crba_batch(m, as_array(thetalist, "thetalist", (None, m.n)))
+    return _crba(m, _vec(thetalist, "thetalist", m.n))
 
 
 def vel_quadratic_forces(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
