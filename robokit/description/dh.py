@@ -25,6 +25,7 @@ import numpy as np
 
 from robokit._io import atomic_write
 from robokit.errors import InputError
+from robokit.spatial.so3 import euler_to_matrix, matrix_to_euler
 
 __all__ = ["DHLink", "DHTable", "dh_transform", "load_dh", "rpy_to_matrix", "matrix_to_rpy"]
 
@@ -64,26 +65,16 @@ def dh_transform(a, alpha, d, theta, convention: str = "standard") -> np.ndarray
 
 
 def rpy_to_matrix(rpy) -> np.ndarray:
-    """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``."""
+    """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``
+    — the seed's ZYX Euler angles in reverse order."""
     r, p, y = (float(v) for v in rpy)
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+    return euler_to_matrix([y, p, r])
 
 
 def matrix_to_rpy(R) -> np.ndarray:
     """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2] (roll = 0 at gimbal lock)."""
-    R = np.asarray(R, dtype=float)
-    cp = math.hypot(R[0, 0], R[1, 0])
-    pitch = math.atan2(-R[2, 0], cp)
-    if cp > 1e-12:
-        return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
-    return np.array([0.0, pitch, math.atan2(-R[0, 1], R[1, 1])])
+    y, p, r = matrix_to_euler(R)
+    return np.array([r, p, y])
 
 
 @dataclass(frozen=True)

@@ -27,6 +27,8 @@ import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.kinematics.poe import _adjoint_many, _exps
+from robokit.spatial.se3 import _inv
+from robokit.spatial.so3 import _hat
 
 __all__ = [
     "inverse_dynamics",
@@ -43,10 +45,6 @@ __all__ = [
 _MODELS: dict = {}
 
 
-def _hat(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-
-
 def _ad(V):
     A = np.zeros((6, 6))
     W = _hat(V[:3])
@@ -54,14 +52,6 @@ def _ad(V):
     A[3:, 3:] = W
     A[3:, :3] = _hat(V[3:])
     return A
-
-
-def _inv(T):
-    Ti = np.eye(4)
-    Rt = T[:3, :3].T
-    Ti[:3, :3] = Rt
-    Ti[:3, 3] = -Rt @ T[:3, 3]
-    return Ti
 
 
 class _Model:

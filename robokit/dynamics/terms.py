@@ -20,8 +20,9 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
-from robokit.dynamics.newton_euler import _crba, _model, _rnea, forward_dynamics
-from robokit.kinematics.poe import _adjoint_many, _exps
+from robokit.dynamics.newton_euler import _ad, _model, forward_dynamics
+from robokit.kinematics.poe import _adjoint_many
+from robokit.spatial.so3 import _hat
 
 __all__ = [
     "coriolis_matrix",
@@ -35,16 +36,6 @@ __all__ = [
 ]
 
 
-def _hat(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-
-
-def _ad(V):
-    A = np.zeros((6, 6))
-    A[:3, :3] = _hat(V[:3])
-    A[3:, 3:] = _hat(V[:3])
-    A[3:, :3] = _hat(V[3:])
-    return A
 
 
 def _X(h):

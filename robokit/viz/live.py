@@ -31,14 +31,9 @@ class LiveViewer:
 
     def close(self):
         """Stop the server (if this viewer started it) and wait for it to exit."""
-        proc = self.process
-        if proc is not None and proc.poll() is None:
-            proc.terminate()
-            try:
-                proc.wait(timeout=5)
-            except Exception:  # pragma: no cover
-                proc.kill()
-                proc.wait(timeout=5)
+        from robokit.viz.scene import _stop_server
+
+        _stop_server(self.process)
 
     def __enter__(self):
         return self

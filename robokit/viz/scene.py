@@ -46,6 +46,17 @@ def _new_visualizer(zmq_url=None):
         return meshcat.Visualizer(zmq_url=zmq_url) if zmq_url else meshcat.Visualizer()
 
 
+def _stop_server(proc):
+    """Terminate a meshcat server process and wait for it to exit (kill if it does not)."""
+    if proc is not None and proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(timeout=5)
+        except Exception:  # pragma: no cover
+            proc.kill()
+            proc.wait(timeout=5)
+
+
 class Scene:
     """A meshcat scene of one robot.
 
@@ -260,13 +271,7 @@ class Scene:
     def close(self):
         """Stop the meshcat server this scene started (if it started one)."""
         if self._own and self.vis is not None:
-            proc = getattr(self.vis.window, "server_proc", None)
-            if proc is not None and proc.poll() is None:
-                proc.terminate()
-                try:
-                    proc.wait(timeout=5)
-                except Exception:  # pragma: no cover
-                    proc.kill()
+            _stop_server(getattr(self.vis.window, "server_proc", None))
             self.vis = None
 
     def __enter__(self):
