@@ -31,6 +31,9 @@ from robokit.spatial.se3 import _adjoint, _exp6, _inv, _log6_vec, check_transfor
 
 __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 
+# an attempt that is still this far off after this many iterations is abandoned for a fresh seed
+_EARLY_IT, _EARLY_ERR = 15, 1e-2
+
 
 def _check_screws(S, name):
     S = as_matrix(S, name, 6, None)
@@ -214,7 +217,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
                 stall += 1
                 if stall >= 3:
                     break
-            if it == 15 and err > 1e-2:
+            if it == _EARLY_IT and err > _EARLY_ERR:
                 break  # far from converging from this seed: a fresh restart is cheaper
         if err < best_err:
             best_q, best_err = q.copy(), err
