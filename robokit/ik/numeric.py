@@ -138,7 +138,7 @@ class IKResult:
 
 
 def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only: bool = False,
-             weights=None, tol: float = 1e-10, max_iterations: int = 60, max_restarts: int = 30,
+             weights=None, tol: float = 1e-10, max_iterations: int = 60, max_restarts: int = 100,
              time_budget: float | None = None, damping: float = 1e-2, min_damping: float = 1e-9,
              rng=None) -> IKResult:
     """Levenberg–Marquardt IK with joint limits and random restarts, for any Robot and frame.
