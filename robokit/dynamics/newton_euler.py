@@ -95,6 +95,26 @@ def _model(Mlist, Glist, Slist) -> _Model:
     return m
 
 
+def _ad_times(V, X):
+    """``ad_V X = (ω × x_ω, v × x_ω + ω × x_v)`` for single twists, in plain floats (fast for 6-vectors)."""
+    w0, w1, w2, v0, v1, v2 = V.tolist()
+    a0, a1, a2, b0, b1, b2 = X.tolist()
+    return np.array([w1 * a2 - w2 * a1, w2 * a0 - w0 * a2, w0 * a1 - w1 * a0,
+                     v1 * a2 - v2 * a1 + w1 * b2 - w2 * b1,
+                     v2 * a0 - v0 * a2 + w2 * b0 - w0 * b2,
+                     v0 * a1 - v1 * a0 + w0 * b1 - w1 * b0])
+
+
+def _adT_times(V, F):
+    """``ad_Vᵀ F = −(ω × m + v × f, ω × f)`` for a twist V and a wrench F = (m, f)."""
+    w0, w1, w2, v0, v1, v2 = V.tolist()
+    m0, m1, m2, f0, f1, f2 = F.tolist()
+    return np.array([-(w1 * m2 - w2 * m1 + v1 * f2 - v2 * f1),
+                     -(w2 * m0 - w0 * m2 + v2 * f0 - v0 * f2),
+                     -(w0 * m1 - w1 * m0 + v0 * f1 - v1 * f0),
+                     -(w1 * f2 - w2 * f1), -(w2 * f0 - w0 * f2), -(w0 * f1 - w1 * f0)])
+
+
 def _rnea(m: _Model, theta, dtheta, ddtheta, g, Ftip):
     n = m.n
     Ad = m.transforms(theta)
@@ -107,15 +127,14 @@ def _rnea(m: _Model, theta, dtheta, ddtheta, g, Ftip):
     for i in range(n):
         Ai = A[i]
         V = Ad[i] @ V + Ai * dtheta[i]
-        Vd = Ad[i] @ Vd + (_ad(V) @ Ai) * dtheta[i] + Ai * ddtheta[i]
+        Vd = Ad[i] @ Vd + _ad_times(V, Ai) * dtheta[i] + Ai * ddtheta[i]
         Vs[i] = V
         Vds[i] = Vd
     F = Ftip
     Ad_next = m.Ad_tip
     tau = np.empty(n)
     for i in range(n - 1, -1, -1):
-        GV = G[i] @ Vs[i]
-        F = Ad_next.T @ F + G[i] @ Vds[i] - _ad(Vs[i]).T @ GV
+        F = Ad_next.T @ F + G[i] @ Vds[i] - _adT_times(Vs[i], G[i] @ Vs[i])
         tau[i] = F @ A[i]
         Ad_next = Ad[i]
     return tau
