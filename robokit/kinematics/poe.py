@@ -21,15 +21,44 @@ from robokit.spatial.se3 import check_transform
 __all__ = ["fkin_body", "fkin_space", "jacobian_body", "jacobian_space"]
 
 
+_VALID: set = set()  # bytes of model constants (screw lists, home poses) already validated
+
+
 def _screws(S, name):
-    S = as_matrix(S, name, 6, None)
-    return S
+    """A 6×n float array of screw axes; constants are validated once and remembered."""
+    if type(S) is np.ndarray and S.dtype == np.float64 and S.ndim == 2 and S.shape[0] == 6:
+        key = (name, S.shape, S.tobytes())
+        if key in _VALID:
+            return S
+        S = as_matrix(S, name, 6, None)
+        if len(_VALID) > 256:
+            _VALID.clear()
+        _VALID.add(key)
+        return S
+    return as_matrix(S, name, 6, None)
+
+
+def _home(M):
+    """A validated 4×4 home pose (remembered once validated)."""
+    if type(M) is np.ndarray and M.dtype == np.float64 and M.shape == (4, 4):
+        key = ("M", M.tobytes())
+        if key in _VALID:
+            return M
+        M = check_transform(M, "M")
+        _VALID.add(key)
+        return M
+    return check_transform(M, "M")
 
 
 def _theta(thetalist, n, name="thetalist"):
-    th = as_array(thetalist, name)
-    if th.ndim not in (1, 2) or th.shape[-1] != n:
-        raise ValueError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
+    if type(thetalist) is np.ndarray and thetalist.dtype == np.float64 and thetalist.shape == (n,):
+        th = thetalist
+    else:
+        th = as_array(thetalist, name, finite=False)
+        if th.ndim not in (1, 2) or th.shape[-1] != n:
+            raise ValueError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
+    if not np.isfinite(th).all():
+        raise ValueError(f"{name}: contains NaN or infinite values")
     return th
 
 
@@ -107,7 +136,7 @@ def fkin_space(M, Slist, thetalist) -> np.ndarray:
     Example: ``fkin_space(M, Slist, np.zeros(n))`` is ``M``.
     """
     Slist = _screws(Slist, "Slist")
-    M = check_transform(M, "M")
+    M = _home(M)
     th = _theta(thetalist, Slist.shape[1])
     E = _exps(Slist, th)
     T = E[..., 0, :, :]
@@ -123,7 +152,7 @@ def fkin_body(M, Blist, thetalist) -> np.ndarray:
     thetalist : (n,) or (N, n). Returns 4×4 (or (N, 4, 4)).
     """
     Blist = _screws(Blist, "Blist")
-    M = check_transform(M, "M")
+    M = _home(M)
     th = _theta(thetalist, Blist.shape[1])
     E = _exps(Blist, th)
     T = M @ E[..., 0, :, :]
