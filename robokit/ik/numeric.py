@@ -41,20 +41,29 @@ def _check_screws(S, name):
 
 
 def _fk_body(M, Blist, theta):
-    T = M.copy()
-    for i in range(len(theta)):
-        T = T @ _exp6(Blist[:, i] * theta[i])
+    from robokit.kinematics.poe import _exps
+
+    T = M
+    for E in _exps(Blist, theta):
+        T = T @ E
     return T
 
 
 def _jac_body(Blist, theta):
-    n = len(theta)
-    J = Blist.copy()
-    T = np.eye(4)
-    for i in range(n - 2, -1, -1):
-        T = T @ _exp6(-Blist[:, i + 1] * theta[i + 1])
-        J[:, i] = _adjoint(T) @ Blist[:, i]
-    return J
+    from robokit.kinematics.poe import jacobian_body
+
+    return jacobian_body(Blist, theta)
+
+
+def _pinv_solve(J, V):
+    """``J⁺ V``: for a square non-singular J this is ``J⁻¹ V`` (solved directly, much cheaper than
+    an SVD); otherwise the Moore–Penrose pseudo-inverse."""
+    if J.shape[0] == J.shape[1]:
+        try:
+            return np.linalg.solve(J, V)
+        except np.linalg.LinAlgError:
+            pass
+    return np.linalg.pinv(J) @ V
 
 
 def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
@@ -81,7 +90,7 @@ def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
         Vb = _log6_vec(_inv(_fk_body(M, Blist, theta)) @ T)
         if np.linalg.norm(Vb[:3]) <= eomg and np.linalg.norm(Vb[3:]) <= ev:
             return theta, True
-        theta = theta + np.linalg.pinv(_jac_body(Blist, theta)) @ Vb
+        theta = theta + _pinv_solve(_jac_body(Blist, theta), Vb)
     return theta, False
 
 
@@ -99,19 +108,20 @@ def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     theta = as_vector(thetalist0, "thetalist0", n).copy()
     eomg = as_scalar(eomg, "eomg", nonnegative=True)
     ev = as_scalar(ev, "ev", nonnegative=True)
+    from robokit.kinematics.poe import _adjoint_many, _chain, _exps
+
+    Slist = np.ascontiguousarray(Slist)
     for _ in range(max_iterations + 1):
-        # forward kinematics and space Jacobian in one pass
+        # forward kinematics and space Jacobian from one set of exponentials
+        P = _chain(_exps(Slist, theta))  # prefix products e^{[S1]θ1}⋯e^{[Si]θi}
+        Tsb = P[-1] @ M
         Js = Slist.copy()
-        P = np.eye(4)
-        for i in range(n):
-            if i > 0:
-                Js[:, i] = _adjoint(P) @ Slist[:, i]
-            P = P @ _exp6(Slist[:, i] * theta[i])
-        Tsb = P @ M
+        if n > 1:
+            Js[:, 1:] = np.einsum("kij,jk->ik", _adjoint_many(P[:-1]), Slist[:, 1:])
         Vs = _adjoint(Tsb) @ _log6_vec(_inv(Tsb) @ T)
         if np.linalg.norm(Vs[:3]) <= eomg and np.linalg.norm(Vs[3:]) <= ev:
             return theta, True
-        theta = theta + np.linalg.pinv(Js) @ Vs
+        theta = theta + _pinv_solve(Js, Vs)
     return theta, False
 
 
