@@ -259,7 +259,11 @@ def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, 
         dth = as_array(dthetalist, "dthetalist", (N, m.n))
         ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
         F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
-        return _rnea_batch(m, th, dth, ddth, _vec(g, "g", 3), F)
+        g = _vec(g, "g", 3)
+        if N <= 4:  # too few to pay for the vectorised set-up
+            Fk = np.broadcast_to(F, (N, 6))
+            return np.array([_rnea(m, th[k], dth[k], ddth[k], g, Fk[k]) for k in range(N)]).reshape(N, m.n)
+        return _rnea_batch(m, th, dth, ddth, g, F)
     th = _vec(thetalist, "thetalist", m.n)
     return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), _vec(ddthetalist, "ddthetalist", m.n),
                  _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
@@ -272,7 +276,10 @@ def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
     """
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
-        return _crba_batch(m, as_array(thetalist, "thetalist", (None, m.n)))
+        th = as_array(thetalist, "thetalist", (None, m.n))
+        if th.shape[0] <= 4:
+            return np.array([_crba(m, t) for t in th]).reshape(th.shape[0], m.n, m.n)
+        return _crba_batch(m, th)
     return _crba(m, _vec(thetalist, "thetalist", m.n))
 
 
