@@ -141,3 +141,14 @@ def test_bad_input(twolink):
         simulate(twolink, GravityPD(twolink, 1, 1), (np.array([0, 0.1, 0.15]), np.zeros((3, 2)), None, None))
     with pytest.raises(ValueError, match="method"):
         simulate(twolink, GravityPD(twolink, 1, 1), hold(np.zeros(2), 0.1, 0.01), method="rk45")
+
+
+def test_plot_tracking(twolink):
+    from robokit.control import plot_tracking
+
+    traj = hold(np.array([0.2, 0.1]), 0.2, 0.01)
+    res = simulate(twolink, GravityPD(twolink, 50.0, 10.0), traj, q0=np.zeros(2))
+    fig = plot_tracking(res, title="PD")
+    assert len(fig.axes) == 3
+    assert len(fig.axes[0].lines) == 4 and len(fig.axes[2].lines) == 2  # desired + actual per joint; torques
+    assert np.allclose(fig.axes[1].lines[0].get_ydata(), res.error[:, 0])

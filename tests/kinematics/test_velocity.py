@@ -169,3 +169,17 @@ def test_follow_line_tracks(robots):
     assert res.error.max() < 0.3 * slow.error.max()
     assert res.error.max() < 1e-4 and res.error[-1] < 1e-5
     assert np.linalg.norm(res.p[-1] - (p0 + np.array([0.1, -0.15, 0.1]))) < 1e-4
+
+
+def test_one_call_helpers_for_any_robot(robots):
+    from robokit.kinematics import resolved_rate_at, velocity_ellipsoid_at
+
+    r = robots["panda"]
+    q = r.random_configuration(np.random.default_rng(6))
+    J = r.jacobian(q, reference="local_world_aligned")
+    radii, axes = velocity_ellipsoid_at(r, q)
+    assert np.allclose(radii, np.linalg.svd(J[3:], compute_uv=False))
+    V = np.array([0.0, 0.0, 0.1, 0.05, 0.0, 0.0])
+    dq = resolved_rate_at(r, q, V)
+    assert np.allclose(J @ dq, V)
+    assert manipulability_at(r, q, part="translation") > 0

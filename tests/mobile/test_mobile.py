@@ -171,3 +171,15 @@ def test_bad_input():
         BicycleModel(steer_max=np.pi / 2)
     with pytest.raises(ValueError, match="x0"):
         run_vehicle(BicycleModel(), MoveToPoint((1, 1)), [0, 0], 1.0)
+
+
+def test_plot_estimation():
+    from robokit.mobile import plot_estimation
+
+    path = np.c_[np.linspace(0, 5, 30), np.zeros(30), np.zeros(30)]
+    est = path + 0.01
+    covs = [np.diag([0.01, 0.02, 0.001])] * 30
+    fig = plot_estimation(path, est, covs, landmarks=[[1, 1], [3, -1]], every=10)
+    ax = fig.axes[0]
+    assert len(ax.lines) == 2 + 3 + 1  # true, estimate, 3 ellipses, landmarks
+    assert np.allclose(ax.lines[0].get_xdata(), path[:, 0])
