@@ -55,6 +55,16 @@ def _jac_body(Blist, theta):
     return jacobian_body(Blist, theta)
 
 
+def _spd_solve(A, b):
+    """Solve A x = b for a symmetric positive definite A (LAPACK dposv: Cholesky, small overhead)."""
+    from scipy.linalg.lapack import dposv
+
+    _, x, info = dposv(A, b)
+    if info != 0:  # not positive definite after all: fall back to a general solve
+        return np.linalg.solve(A, b)
+    return x
+
+
 def _pinv_solve(J, V):
     """``J⁺ V``: for a square non-singular J this is ``J⁻¹ V`` (solved directly, much cheaper than
     an SVD); otherwise the Moore–Penrose pseudo-inverse."""
@@ -212,7 +222,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
             A = JW @ J
             g = JW @ e
             lam = damping * err * err + min_damping
-            q_new = np.clip(q + np.linalg.solve(A + lam * eye, g), lo, hi)
+            q_new = np.clip(q + _spd_solve(A + lam * eye, g), lo, hi)
             e_new, err_new = error(q_new)
             iterations += 1
             if err_new < err:
@@ -220,7 +230,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
                 stall = 0
             else:
                 # a worse step: retry once with heavier damping (shorter, more gradient-like step)
-                q_try = np.clip(q + np.linalg.solve(A + 10.0 * (lam + 1e-6) * eye, g), lo, hi)
+                q_try = np.clip(q + _spd_solve(A + 10.0 * (lam + 1e-6) * eye, g), lo, hi)
                 e_try, err_try = error(q_try)
                 if err_try < err:
                     q, e, err = q_try, e_try, err_try
