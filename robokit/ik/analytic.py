@@ -247,7 +247,9 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
     """
     d1, a2, a3, D, d4, d6, offsets, qlim, base_inv, tool_inv = _puma_cached(table)
     T = check_transform(T, "T")
-    T06 = base_inv @ T @ tool_inv
+    T06 = T if base_inv is None else base_inv @ T
+    if tool_inv is not None:
+        T06 = T06 @ tool_inv
     R06 = T06[:3, :3]
     px, py, pz = T06[:3, 3] - d6 * R06[:, 2]
     r = math.hypot(px, py)
@@ -303,7 +305,11 @@ def _puma_cached(table):
     qlim = None
     if all(l.qlim is not None for l in table.links):
         qlim = np.array([l.qlim for l in table.links], dtype=float)
-    consts = (d1, a2, a3, D, d4, d6, offsets, qlim, _inv(np.asarray(table.base, float)), _inv(np.asarray(table.tool, float)))
+    base = np.asarray(table.base, float)
+    tool = np.asarray(table.tool, float)
+    consts = (d1, a2, a3, D, d4, d6, offsets, qlim,
+              None if np.array_equal(base, np.eye(4)) else _inv(base),
+              None if np.array_equal(tool, np.eye(4)) else _inv(tool))
     if len(_PUMA_CACHE) > 16:
         _PUMA_CACHE.clear()
     _PUMA_CACHE[id(table)] = (table, consts)
