@@ -28,7 +28,6 @@ import numpy as np
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.kinematics.poe import _adjoint_many, _exps
 from robokit.spatial.se3 import _inv
-from robokit.spatial.so3 import _hat
 
 __all__ = [
     "inverse_dynamics",
@@ -45,13 +44,6 @@ __all__ = [
 _MODELS: dict = {}
 
 
-def _ad(V):
-    A = np.zeros((6, 6))
-    W = _hat(V[:3])
-    A[:3, :3] = W
-    A[3:, 3:] = W
-    A[3:, :3] = _hat(V[3:])
-    return A
 
 
 class _Model:

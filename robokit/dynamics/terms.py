@@ -20,7 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
-from robokit.dynamics.newton_euler import _ad, _model, forward_dynamics
+from robokit.dynamics.newton_euler import _model, forward_dynamics
+from robokit.spatial.se3 import _ad
 from robokit.kinematics.poe import _adjoint_many
 from robokit.spatial.so3 import _hat
 

@@ -55,6 +55,14 @@ def _jac_body(Blist, theta):
     return jacobian_body(Blist, theta)
 
 
+def _newton_args(screws, name, M, T, thetalist0, eomg, ev):
+    """The checked arguments of ikin_body/ikin_space: (screws, M, T, θ₀ copy, eomg, ev)."""
+    screws = _check_screws(screws, name)
+    theta = as_vector(thetalist0, "thetalist0", screws.shape[1]).copy()
+    return (screws, check_transform(M, "M"), check_transform(T, "T"), theta,
+            as_scalar(eomg, "eomg", nonnegative=True), as_scalar(ev, "ev", nonnegative=True))
+
+
 def _spd_solve(A, b):
     """Solve A x = b for a symmetric positive definite A (LAPACK dposv: Cholesky, small overhead)."""
     from scipy.linalg.lapack import dposv
@@ -89,13 +97,7 @@ def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     Example: for a planar 2R arm, ``ikin_body(Blist, M, fkin_body(M, Blist, [0.3, 0.4]),
     [0.2, 0.5], 1e-9, 1e-9)`` → ``(array([0.3, 0.4]), True)``.
     """
-    Blist = _check_screws(Blist, "Blist")
-    n = Blist.shape[1]
-    M = check_transform(M, "M")
-    T = check_transform(T, "T")
-    theta = as_vector(thetalist0, "thetalist0", n).copy()
-    eomg = as_scalar(eomg, "eomg", nonnegative=True)
-    ev = as_scalar(ev, "ev", nonnegative=True)
+    Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
     for _ in range(max_iterations + 1):
         Vb = _log6_vec(_inv(_fk_body(M, Blist, theta)) @ T)
         if np.linalg.norm(Vb[:3]) <= eomg and np.linalg.norm(Vb[3:]) <= ev:
@@ -111,13 +113,8 @@ def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``J_s⁺ V_s``.
     Returns ``(thetalist, success)``.
     """
-    Slist = _check_screws(Slist, "Slist")
+    Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
     n = Slist.shape[1]
-    M = check_transform(M, "M")
-    T = check_transform(T, "T")
-    theta = as_vector(thetalist0, "thetalist0", n).copy()
-    eomg = as_scalar(eomg, "eomg", nonnegative=True)
-    ev = as_scalar(ev, "ev", nonnegative=True)
     from robokit.kinematics.poe import _adjoint_many, _chain, _exps
 
     Slist = np.ascontiguousarray(Slist)

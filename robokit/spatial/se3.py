@@ -191,7 +191,10 @@ def _adjoint(T: np.ndarray) -> np.ndarray:
 
 def ad(V) -> np.ndarray:
     """The 6×6 ``ad_V = [[[ω], 0], [[v], [ω]]]`` of a twist ``V = (ω, v)`` (Lie bracket ``ad_V W = [V, W]``)."""
-    V = as_vector(V, "V", 6)
+    return _ad(as_vector(V, "V", 6))
+
+
+def _ad(V: np.ndarray) -> np.ndarray:
     A = np.zeros((6, 6))
     Wm = _hat(V[:3])
     A[:3, :3] = Wm
