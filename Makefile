@@ -1,28 +1,44 @@
 # The two quick-start commands: `make demo` (set up, run `robokit validate`) and
-# `make test` (set up, run the whole test suite). Both create or reuse .venv.
+# `make test` (set up, run the whole test suite). Both create or reuse .venv and show
+# pip's progress while installing (a cold install downloads about 1.5 GB of robot meshes).
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+PIP    := $(BIN)/python -m pip install --progress-bar on --disable-pip-version-check
 
-.PHONY: demo test bench setup clean
+.PHONY: demo test bench docs notebooks setup clean
 
-setup: $(STAMP)
-
-$(STAMP): pyproject.toml
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,bench]'
-	touch $(STAMP)
 
-demo: $(STAMP)
+# One stamp per set of extras, so `make demo` installs only what robokit needs to run.
+$(VENV)/.installed-%: pyproject.toml | $(BIN)/python
+	@echo "installing robokit[$*] into $(VENV) ..."
+	$(PIP) -e '.[$*]'
+	touch $@
+
+$(VENV)/.installed: pyproject.toml | $(BIN)/python
+	@echo "installing robokit into $(VENV) ..."
+	$(PIP) -e .
+	touch $@
+
+setup: $(VENV)/.installed
+
+demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-test: $(STAMP)
+test: $(VENV)/.installed-test,docs,mujoco
 	$(BIN)/python -m pytest -n 2 -q
 
-bench: $(STAMP)
+bench: $(VENV)/.installed-bench
 	$(BIN)/python -m benchmarks
 
+docs: $(VENV)/.installed-docs
+	$(BIN)/mkdocs build --strict
+
+notebooks: $(VENV)/.installed-notebooks
+	$(BIN)/jupyter lab notebooks/
+
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) build site *.egg-info

@@ -1,19 +1,22 @@
 """The robot models shipped in the repository's top-level ``models/`` folder.
 
-Each ``models/<name>.yaml`` (a DH table, API.md §2) has its generated ``models/<name>.urdf``
-beside it. Regenerate the URDFs after editing a YAML file with
+Each ``models/<name>.yaml`` (a DH table, see the DH file format page of the docs) has its
+generated ``models/<name>.urdf`` beside it. The folder is installed as the package
+``robokit.models``, so the files are found with :mod:`importlib.resources` from a wheel, an
+sdist or an editable install alike. Regenerate the URDFs after editing a YAML file with
 ``python -m robokit.description.models``; a test checks that they are up to date.
 """
 from __future__ import annotations
 
+from importlib import resources
 from pathlib import Path
 
 __all__ = ["models_dir", "shipped_models", "model_path"]
 
 
 def models_dir() -> Path:
-    """Path of the top-level ``models/`` folder (next to the ``robokit`` package)."""
-    return Path(__file__).resolve().parents[2] / "models"
+    """Path of the shipped models folder (the package ``robokit.models``, i.e. ``models/``)."""
+    return Path(str(resources.files("robokit.models")))
 
 
 def shipped_models() -> list[str]:
