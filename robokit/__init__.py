@@ -27,7 +27,12 @@ from robokit.control import __all__ as _control_all
 from robokit.mobile import *  # noqa: F401,F403
 from robokit.mobile import __all__ as _mobile_all
 
-__version__ = "0.1.0"
+try:
+    from importlib.metadata import PackageNotFoundError as _NotFound, version as _version
+
+    __version__ = _version("robokit")
+except _NotFound:  # pragma: no cover - running from a source tree that was never installed
+    __version__ = "0+unknown"
 
 __all__ = (
     ["RobokitError", "InputError"]

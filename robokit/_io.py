@@ -1,31 +1,105 @@
-"""Atomic file writes: a failure never leaves a half-written file behind."""
+"""Atomic file writes: a failure or a kill never leaves a half-written file behind.
+
+The data are written to an unnamed file in the target's folder (Linux ``O_TMPFILE``: if the
+process is killed, even by SIGKILL, the kernel discards it), then linked under a hidden
+temporary name and renamed over the target in one step. Where ``O_TMPFILE`` is not
+available a named temporary file is used and removed on any exception (SIGINT/SIGTERM
+included: the command line turns both into exceptions). The file gets the permissions of
+any file opened for writing: ``0666`` less the user's umask.
+"""
 from __future__ import annotations
 
 import os
-import tempfile
+import secrets
 from pathlib import Path
+
+__all__ = ["atomic_write"]
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        n = os.write(fd, view)
+        view = view[n:]
 
 
 def atomic_write(path, data: str | bytes) -> Path:
-    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename.
+    """Write ``data`` to ``path`` atomically; ``path`` is untouched unless the write completes.
 
-    If anything fails before the rename, the temporary file is removed and ``path`` is
-    untouched (absent, or with its previous content).
+    Raises ``ValueError`` naming the folder if it does not exist.
     """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise ValueError(f"output: folder {str(folder)!r} does not exist")
-    mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    if path.is_dir():
+        raise ValueError(f"output: {str(path)!r} is a folder")
+    raw = data if isinstance(data, bytes) else data.encode("utf-8")
+    mode = 0o666 & ~_umask()
+    tmp = folder / f".{path.name}.{secrets.token_hex(4)}.tmp"
+    o_tmpfile = getattr(os, "O_TMPFILE", None)
+    fd = None
+    if o_tmpfile is not None:
+        try:
+            fd = os.open(folder, o_tmpfile | os.O_WRONLY, mode)
+        except OSError:  # file system without O_TMPFILE support
+            fd = None
+    if fd is not None:
+        try:
+            _write_all(fd, raw)
+            os.fsync(fd)
+            linked = _link_fd(fd, tmp)
+        finally:
+            os.close(fd)
+        if not linked:  # no linkat: write the named way below
+            fd = None
+    if fd is None:
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, mode)
+        try:
+            try:
+                _write_all(fd, raw)
+                os.fsync(fd)
+            finally:
+                os.close(fd)
+        except BaseException:
+            _unlink(tmp)
+            raise
     try:
-        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8"})) as fh:
-            fh.write(data)
         os.replace(tmp, path)
     except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
+        _unlink(tmp)
         raise
     return path
+
+
+def _link_fd(fd: int, target) -> bool:
+    """Give the unnamed file ``fd`` the name ``target`` (linkat with AT_SYMLINK_FOLLOW on
+    /proc/self/fd, as open(2) describes for O_TMPFILE); False if that is not possible."""
+    import ctypes
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        linkat = libc.linkat
+    except (OSError, AttributeError):
+        return False
+    at_fdcwd, at_symlink_follow = -100, 0x400
+    rc = linkat(at_fdcwd, f"/proc/self/fd/{fd}".encode(), at_fdcwd, os.fsencode(str(target)), at_symlink_follow)
+    if rc != 0:
+        err = ctypes.get_errno()
+        if err in (2, 18, 22, 38, 95):  # ENOENT (no /proc), EXDEV, EINVAL, ENOSYS, EOPNOTSUPP
+            return False
+        raise OSError(err, os.strerror(err), str(target))
+    return True
+
+
+def _unlink(p) -> None:
+    try:
+        os.unlink(p)
+    except FileNotFoundError:
+        pass

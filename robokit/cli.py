@@ -1,12 +1,29 @@
-"""The ``robokit`` command: argument parsing only; the work is done by the modules.
+"""The ``robokit`` command: argument parsing and the exit-status contract; the work is done
+by the modules.
 
-Exit status: 0 success, 1 a check failed, 2 bad input (one line on stderr, no traceback,
-nothing half-written).
+Exit status:
+
+* 0 — success;
+* 1 — a check failed (``robokit validate``);
+* 2 — bad input: one line on stderr starting ``robokit:``, naming the file / link / joint /
+  key, no traceback, nothing written;
+* 3 — an internal error (a bug in robokit or a dependency): a short "please report" line;
+  ``--debug`` shows the traceback;
+* 130 — interrupted (Ctrl-C), 143 — terminated (SIGTERM); no file is left half-written and
+  no viewer server outlives the command.
 """
 from __future__ import annotations
 
 import argparse
+import os
+import signal
 import sys
+
+#: Longest message printed for an error (a value echoed back never makes a huge line).
+MAX_MESSAGE = 400
+
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+EXIT_SIGINT, EXIT_SIGTERM = 130, 143
 
 
 class _Parser(argparse.ArgumentParser):
@@ -18,9 +35,25 @@ class _UsageError(Exception):
     pass
 
 
+class _Terminated(BaseException):
+    """SIGTERM, turned into an exception so that clean-up code runs."""
+
+
+def _version() -> str:
+    from robokit import __version__
+
+    return __version__
+
+
 def _build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="robokit", description="Course robotics derivations, checked against Pinocchio.")
-    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    p = _Parser(
+        prog="robokit",
+        description="A robotics course's derivations for serial manipulators, checked against Pinocchio.",
+        epilog="Exit status: 0 success, 1 a check failed, 2 bad input, 3 internal error.",
+    )
+    p.add_argument("--version", action="version", version=f"robokit {_version()}")
+    p.add_argument("--debug", action="store_true", help="show the traceback of an internal error")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
     v = sub.add_parser("validate", help="course implementations against Pinocchio; exit 0 only if all agree")
     v.add_argument("--json", action="store_true", help="print the table as JSON")
@@ -29,7 +62,7 @@ def _build_parser() -> argparse.ArgumentParser:
     c = sub.add_parser("convert", help="DH YAML -> URDF, or URDF/example-robot-data name -> PoE JSON or DH YAML")
     c.add_argument("input", help="a .yaml DH file, a .urdf file, or an example-robot-data name (ur5, panda, ...)")
     c.add_argument("-o", "--output", help="output file: .urdf, .json (PoE parameters) or .yaml (DH table)")
-    c.add_argument("--tip", help="tip frame of the chain (default: the last link of the chain)")
+    c.add_argument("--tip", help="tip frame of the chain (default: the arm's end effector, see the docs)")
     c.add_argument("--convention", choices=("standard", "modified"), default="standard",
                    help="DH convention when writing a DH table (default standard)")
 
@@ -37,6 +70,7 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
     w.add_argument("-o", "--output", required=True, help="output .html file")
     w.add_argument("-q", "--q", nargs="+", type=float, default=None, help="joint configuration (rad / m)")
+    w.add_argument("--tip", help="tip frame of the chain (URDF input)")
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
@@ -56,22 +90,88 @@ def _dispatch(args) -> int:
         from robokit.viz.view import view_cli
 
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
-                        trajectory=args.trajectory, fps=args.fps)
+                        trajectory=args.trajectory, fps=args.fps, tip=args.tip)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    msg = text.splitlines()[0].strip() if text else type(exc).__name__
+    if len(msg) > MAX_MESSAGE:
+        msg = msg[: MAX_MESSAGE - 3] + "..."
+    return msg
+
+
+def _raised_by_robokit(exc: BaseException) -> bool:
+    """True if the exception was raised by robokit's own code (a deliberate input check),
+    False if it came from inside a dependency (numpy, Pinocchio, ...) or Python itself."""
+    import robokit
+
+    root = os.path.dirname(os.path.abspath(robokit.__file__))
+    tb = exc.__traceback__
+    last = None
+    while tb is not None:
+        last = tb
+        tb = tb.tb_next
+    if last is None:
+        return False
+    return os.path.abspath(last.tb_frame.f_code.co_filename).startswith(root + os.sep)
+
+
+def _is_input_error(exc: BaseException) -> bool:
+    from robokit.errors import InputError
+
+    if isinstance(exc, (InputError, OSError)):
+        return True  # InputError: a checked input; OSError: a file that cannot be read/written
+    return isinstance(exc, ValueError) and _raised_by_robokit(exc)
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
 def main(argv=None) -> int:
-    """Entry point of the console script; returns the exit status."""
+    """Entry point of the console script; returns the exit status (see the module docstring)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]  # accepted anywhere on the line
+    previous = None
     try:
-        args = _build_parser().parse_args(argv)
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread (e.g. called from a test runner's worker thread)
+        previous = None
+    try:
+        parser = _build_parser()
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help(sys.stderr)
+            return EXIT_INPUT
         return _dispatch(args)
     except _UsageError as exc:
-        print(str(exc), file=sys.stderr)
-        return 2
-    except (ValueError, TypeError, FileNotFoundError, KeyError, OSError) as exc:
-        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        print(f"robokit: error: {msg}", file=sys.stderr)
-        return 2
+        print(_one_line(exc), file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("robokit: interrupted", file=sys.stderr)
+        return EXIT_SIGINT
+    except _Terminated:
+        print("robokit: terminated", file=sys.stderr)
+        return EXIT_SIGTERM
+    except SystemExit:
+        raise
+    except Exception as exc:  # noqa: BLE001 - the boundary: every exception gets one line
+        if _is_input_error(exc):
+            print(f"robokit: error: {_one_line(exc)}", file=sys.stderr)
+            return EXIT_INPUT
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        print(f"robokit: internal error ({type(exc).__name__}: {_one_line(exc)}) — please report it with the "
+              "command you ran; rerun with --debug for the traceback", file=sys.stderr)
+        return EXIT_INTERNAL
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":

@@ -198,27 +198,18 @@ class DHTable:
     @classmethod
     def from_yaml(cls, path) -> "DHTable":
         """Load a DH YAML file (API.md §2); errors name the file, the link and the key."""
-        import yaml
+        from robokit._yaml import load_yaml_file
 
         path = Path(path)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            raise InputError(f"{path}: file not found") from None
-        except OSError as exc:
-            raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-        try:
-            data = yaml.safe_load(text)
-        except yaml.YAMLError as exc:
-            mark = getattr(exc, "problem_mark", None)
-            where = f" at line {mark.line + 1}" if mark is not None else ""
-            raise InputError(f"{path}: not valid YAML{where}") from None
+        data = load_yaml_file(path)
         return cls.from_dict(data, source=str(path))
 
     @classmethod
     def from_dict(cls, data, source: str = "<dict>") -> "DHTable":
         """Build from the parsed YAML mapping; see :meth:`from_yaml`."""
         def fail(msg):
+            if len(msg) > 300:  # a value echoed back is never allowed to make a huge line
+                msg = msg[:297] + "..."
             raise InputError(f"{source}: {msg}")
 
         if not isinstance(data, dict):
@@ -230,8 +221,10 @@ class DHTable:
             if key not in data:
                 fail(f"missing key '{key}'")
         name = data["name"]
-        if not isinstance(name, str) or not name.strip() or any(c.isspace() for c in name):
-            fail(f"key 'name': expected a name without spaces, got {name!r}")
+        if (not isinstance(name, str) or not name.strip() or any(c.isspace() for c in name)
+                or not name.isprintable() or len(name) > 200):
+            shown = repr(name) if len(repr(name)) <= 60 else repr(name)[:57] + "..."
+            fail(f"key 'name': expected a printable name without spaces (at most 200 characters), got {shown}")
         convention = data.get("convention", "standard")
         if convention not in ("standard", "modified"):
             fail(f"key 'convention': expected 'standard' or 'modified', got {convention!r}")
@@ -242,8 +235,12 @@ class DHTable:
 
         def number(value, where):
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                fail(f"{where}: expected a number, got {value!r}")
-            v = float(value)
+                shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+                fail(f"{where}: expected a number, got {shown}")
+            try:
+                v = float(value)
+            except OverflowError:
+                fail(f"{where}: number too large")
             if not math.isfinite(v):
                 fail(f"{where}: expected a finite number, got {value!r}")
             return v
@@ -315,8 +312,9 @@ class DHTable:
             if B < 0:
                 fail(f"{where}, key 'B': expected a non-negative viscous friction, got {B:g}")
             lname = ld.get("name")
-            if lname is not None and not isinstance(lname, str):
-                fail(f"{where}, key 'name': expected a string, got {lname!r}")
+            if lname is not None and (not isinstance(lname, str) or not lname.isprintable() or len(lname) > 200):
+                shown = repr(lname) if len(repr(lname)) <= 60 else repr(lname)[:57] + "..."
+                fail(f"{where}, key 'name': expected a printable string (at most 200 characters), got {shown}")
             links.append(DHLink(joint, a, alpha, d, theta, qlim, mass, com, inertia, Jm, G, B, Tc, lname))
         return cls(name, convention, tuple(links), gravity, base, tool)
 

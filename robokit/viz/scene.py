@@ -14,6 +14,7 @@ loopback for the scene (meshcat records the scene there) and stopped by ``close(
 from __future__ import annotations
 
 import io
+import os
 
 import numpy as np
 
@@ -35,15 +36,52 @@ def _label_png(text: str, color: str = "#222222") -> bytes:
     return buf.getvalue()
 
 
+def start_server():
+    """Start a meshcat server on 127.0.0.1 that dies with this process.
+
+    Returns ``(process, zmq_url, web_url)``. See :mod:`robokit.viz._server`.
+    """
+    import atexit
+    import re
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen(
+        [sys.executable, "-u", "-m", "robokit.viz._server", str(os.getpid())],
+        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL,
+        start_new_session=True,  # a notebook's interrupt must not stop the viewer
+    )
+    atexit.register(_stop_server, proc)
+    urls = {}
+    while len(urls) < 2:
+        line = proc.stdout.readline().decode("utf-8", "replace").strip()
+        if not line and proc.poll() is not None:
+            raise RuntimeError(f"the meshcat server exited at start (status {proc.returncode})")
+        m = re.match(r"(zmq_url|web_url)=(\S+)", line)
+        if m:
+            urls[m.group(1)] = m.group(2)
+    proc.stdout.close()
+    return proc, urls["zmq_url"], urls["web_url"]
+
+
 def _new_visualizer(zmq_url=None):
-    """A meshcat Visualizer (its own server on loopback unless ``zmq_url``), without the banner
-    meshcat prints on stdout."""
+    """A meshcat Visualizer: connected to ``zmq_url``, or to a new loopback server of its own
+    (:func:`start_server`; then ``vis.window.server_proc`` is that process)."""
     import contextlib
 
     import meshcat
 
-    with contextlib.redirect_stdout(io.StringIO()):
-        return meshcat.Visualizer(zmq_url=zmq_url) if zmq_url else meshcat.Visualizer()
+    proc = None
+    if zmq_url is None:
+        proc, zmq_url, _ = start_server()
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints a banner
+            vis = meshcat.Visualizer(zmq_url=zmq_url)
+    except BaseException:
+        _stop_server(proc)
+        raise
+    vis.window.server_proc = proc
+    return vis
 
 
 def _stop_server(proc):
@@ -55,6 +93,8 @@ def _stop_server(proc):
         except Exception:  # pragma: no cover
             proc.kill()
             proc.wait(timeout=5)
+    elif proc is not None:
+        proc.wait()
 
 
 class Scene:

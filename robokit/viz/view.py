@@ -7,6 +7,7 @@ as a header and skipped).
 """
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -47,13 +48,13 @@ def load_trajectory(path, n: int) -> np.ndarray:
     return Q
 
 
-def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float = 30.0) -> str:
+def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float = 30.0, tip=None) -> str:
     """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
     and/or a (K, n) trajectory animation; the camera framed on the robot."""
     from robokit.description.robot import load
     from robokit.viz.scene import Scene
 
-    robot = load(model)
+    robot = load(model, tip=tip)
     if q is not None:
         q = np.asarray(q, dtype=float)
         if q.shape != (robot.n,):
@@ -68,7 +69,7 @@ def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float =
         return scene.html()
 
 
-def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0) -> int:
+def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0, tip=None) -> int:
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
     from robokit.description.robot import load
 
@@ -77,8 +78,13 @@ def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0) -> 
         raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
     if not (out.parent if str(out.parent) else Path(".")).is_dir():
         raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    robot = load(model)
+    if not (fps > 0 and np.isfinite(fps)):
+        raise ValueError(f"--fps: expected a positive frame rate, got {fps:g}")
+    if q is not None and not np.all(np.isfinite(q)):
+        raise ValueError("-q: contains NaN or infinite values")
+    robot = load(model, tip=tip)
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
     page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps)
     atomic_write(out, page)
+    print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
     return 0
