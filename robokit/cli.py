@@ -126,6 +126,17 @@ def _is_input_error(exc: BaseException) -> bool:
     return isinstance(exc, ValueError) and _raised_by_robokit(exc)
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """Warnings as one line each: ``robokit: note: ...`` (robokit's own) or ``robokit: warning: ...``."""
+    from robokit.errors import RobokitWarning
+
+    kind = "note" if issubclass(category, RobokitWarning) else "warning"
+    text = " ".join(str(message).split())
+    if len(text) > MAX_MESSAGE:
+        text = text[: MAX_MESSAGE - 3] + "..."
+    print(f"robokit: {kind}: {text}", file=sys.stderr)
+
+
 def _on_sigterm(signum, frame):
     raise _Terminated()
 
@@ -140,6 +151,10 @@ def main(argv=None) -> int:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
     except ValueError:  # not the main thread (e.g. called from a test runner's worker thread)
         previous = None
+    import warnings
+
+    saved_showwarning = warnings.showwarning
+    warnings.showwarning = _show_warning
     try:
         parser = _build_parser()
         args = parser.parse_args(argv)
@@ -170,6 +185,7 @@ def main(argv=None) -> int:
               "command you ran; rerun with --debug for the traceback", file=sys.stderr)
         return EXIT_INTERNAL
     finally:
+        warnings.showwarning = saved_showwarning
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
 

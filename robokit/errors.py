@@ -13,3 +13,18 @@ class RobokitError(Exception):
 
 class InputError(RobokitError, ValueError):
     """Bad input: the message names the argument (or file, link and key) and what was wrong."""
+
+
+class RobokitWarning(UserWarning):
+    """Something robokit did on the user's behalf that they should know (a mesh not found and
+    drawn without, a floating base fixed, a tree's tip chosen); the CLI prints it as one line."""
+
+
+class DivergenceError(RobokitError, ArithmeticError):
+    """A simulation or iteration blew up (non-finite or runaway values): the model, the gains or
+    the step make it unstable — not bad input. ``partial`` holds the result up to the last
+    finite step (the same type the function returns on success)."""
+
+    def __init__(self, message: str, partial=None):
+        super().__init__(message)
+        self.partial = partial

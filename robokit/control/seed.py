@@ -21,9 +21,20 @@ __all__ = ["computed_torque", "simulate_control"]
 
 def _gain(K, n, name):
     K = np.asarray(K, dtype=float)
-    if K.ndim == 0:
-        return np.full(n, float(K))
-    return as_vector(K, name, n)
+    K = np.full(n, float(K)) if K.ndim == 0 else as_vector(K, name, n)
+    if not np.isfinite(K).all() or (K < 0).any():
+        raise ValueError(f"{name}: gains must be finite and non-negative, got {K.tolist()}")
+    return K
+
+
+def _diverged(i, dt, taumat, thetamat):
+    from robokit.errors import DivergenceError
+
+    raise DivergenceError(
+        f"simulate_control: the closed loop diverged in period {i} (t = {i * dt:g} s); the gains, dt or intRes "
+        "make it unstable (the result so far is in .partial as (taumat, thetamat))",
+        (taumat[:i].copy(), thetamat[:i].copy()),
+    )
 
 
 def computed_torque(thetalist, dthetalist, eint, g, Mlist, Glist, Slist, thetalistd, dthetalistd, ddthetalistd,
@@ -89,9 +100,13 @@ def simulate_control(thetalist, dthetalist, g, Ftipmat, Mlist, Glist, Slist, the
         e = thetamatd[i] - theta
         a = ddthetamatd[i] + Kp * e + Ki * (eint + e) + Kd * (dthetamatd[i] - dtheta)
         tau = inverse_dynamics(theta, dtheta, a, gtilde, zero6, Mtildelist, Gtildelist, Slist)
+        if not np.isfinite(tau).all() or np.abs(tau).max() > 1e12:
+            _diverged(i, dt, taumat, thetamat)
         for _ in range(intRes):
             ddtheta = forward_dynamics(theta, dtheta, tau, g, Ftipmat[i], Mlist, Glist, Slist)
             theta, dtheta = theta + h * dtheta, dtheta + h * ddtheta
+            if not (np.isfinite(theta).all() and np.isfinite(dtheta).all()) or np.abs(dtheta).max() > 1e6:
+                _diverged(i, dt, taumat, thetamat)
         taumat[i] = tau
         thetamat[i] = theta
         eint = eint + dt * (thetamatd[i] - theta)  # MR: the error after the period

@@ -171,6 +171,12 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
                 q = q + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v)
                 dq = dq + h / 6.0 * (k1a + 2 * k2a + 2 * k3a + k4a)
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(dq))) or np.abs(dq).max() > 1e6:
-            raise ValueError(f"simulate: the integration diverged at t = {t[k + 1]:g} s (a stiff plant or "
-                             f"controller for a step of {h:g} s); use more substeps or smaller gains")
+            from robokit.errors import DivergenceError
+
+            partial = SimResult(t[: k + 1].copy(), Q[: k + 1], DQ[: k + 1], TAU[: k + 1], qd[: k + 1].copy(),
+                                dqd[: k + 1].copy())
+            raise DivergenceError(
+                f"simulate: the integration diverged at t = {t[k + 1]:g} s (a stiff plant or controller for a "
+                f"step of {h:g} s); use more substeps or smaller gains (the result so far is in .partial)",
+                partial)
     return SimResult(t.copy(), Q, DQ, TAU, qd.copy(), dqd.copy())

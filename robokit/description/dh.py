@@ -375,6 +375,38 @@ class DHTable:
         joints = "".join(l.joint for l in self.links)
         return f"DHTable({self.name!r}, {self.convention}, {self.n} joints {joints})"
 
+    def __str__(self) -> str:
+        return self.to_text()
+
+    def to_text(self, digits: int = 5) -> str:
+        """The table as the lecture writes it: one row per joint (lengths in m, angles in degrees,
+        ``+ q`` on the joint variable), then the base and tool transforms when they are not the
+        identity (``xyz`` in m, URDF ``rpy`` in degrees) — without them the table alone does not
+        reproduce the robot's tool pose."""
+        if self.convention == "standard":
+            head = ("i", "joint", "a_i [m]", "alpha_i [deg]", "d_i [m]", "theta_i [deg]")
+        else:
+            head = ("i", "joint", "a_{i-1} [m]", "alpha_{i-1} [deg]", "d_i [m]", "theta_i [deg]")
+
+        def fmt(x, k):
+            return f"{round(float(x), k) + 0.0:.{k}f}"  # + 0.0: no "-0.000"
+
+        rows = []
+        for i, l in enumerate(self.links, 1):
+            th = fmt(np.degrees(l.theta), digits - 2) + (" + q" if l.joint == "R" else "")
+            d = fmt(l.d, digits) + (" + q" if l.joint == "P" else "")
+            rows.append((str(i), l.joint, fmt(l.a, digits), fmt(np.degrees(l.alpha), digits - 2), d, th))
+        w = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
+        line = lambda cells: "  ".join(c.rjust(wk) for c, wk in zip(cells, w))  # noqa: E731
+        out = [f"# {self.name}: {self.convention} DH", line(head), line(tuple("-" * k for k in w))]
+        out += [line(r) for r in rows]
+        for label, T in (("base (frame {0} in base_link)", self.base), ("tool (tool frame in frame {N})", self.tool)):
+            if not np.allclose(T, np.eye(4), atol=10.0 ** -(digits + 1)):
+                xyz = ", ".join(fmt(v, digits) for v in T[:3, 3])
+                rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(matrix_to_rpy(T[:3, :3])))
+                out.append(f"# {label}: xyz [{xyz}] m, rpy [{rpy}] deg")
+        return "\n".join(out) + "\n"
+
 
 def load_dh(path) -> DHTable:
     """Load a DH YAML file: ``DHTable.from_yaml(path)``."""

@@ -52,7 +52,7 @@ class PoEParams:
         return self.Slist.shape[1]
 
     def to_json_dict(self) -> dict:
-        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (API.md §4)."""
+        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (see the PoE JSON format page of the docs)."""
         return {
             "M": self.M.tolist(),
             "Slist": self.Slist.tolist(),
@@ -88,7 +88,7 @@ def poe_from_model(model, tip: str, gravity=None) -> PoEParams:
     pin.updateFramePlacements(model, data)
     fid = model.getFrameId(tip)
     M = data.oMf[fid].homogeneous.copy()
-    Jw = data.J.copy()  # world-frame joint Jacobian at zero: columns are space screws (v, ω)
+    Jw = np.asarray(data.J).reshape(6, -1).copy()  # world-frame joint Jacobian at zero: columns are space screws (v, ω)
     Slist = np.vstack([Jw[3:], Jw[:3]])
     Blist = _adjoint(_inv(M)) @ Slist
     Mlist = np.empty((n + 1, 4, 4))

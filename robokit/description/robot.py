@@ -22,8 +22,9 @@ import numpy as np
 
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
+from robokit.errors import InputError, RobokitWarning
 
-__all__ = ["Robot", "load", "serial_chain", "EXAMPLE_ROBOT_TIPS"]
+__all__ = ["Robot", "load", "serial_chain", "choose_tip", "EXAMPLE_ROBOT_TIPS"]
 
 #: Default tip frames of the example-robot-data arms (the last link of the arm's chain,
 #: a gripper's fingers excluded).
@@ -52,24 +53,73 @@ def _frame_depth(model, fid):
     return depth
 
 
-def default_tip(model) -> str:
-    """The last link of the chain: follow the joints from the root while each has exactly one
-    child joint; the tip is the deepest body frame fixed to the last of them."""
-    children = {j: [] for j in range(model.njoints)}
-    for j in range(1, model.njoints):
-        children[model.parents[j]].append(j)
-    j = 0
-    while len(children[j]) == 1:
-        j = children[j][0]
+def _deepest_body_frame(model, joint: int):
     best, best_depth = None, -1
     for fid, fr in enumerate(model.frames):
-        if fr.parentJoint == j and fr.type == _body_type():
+        if fr.parentJoint == joint and fr.type == _body_type():
             d = _frame_depth(model, fid)
             if d >= best_depth:
                 best, best_depth = fr.name, d
-    if best is None:
-        raise ValueError("model: no body frame found for the chain's tip")
     return best
+
+
+def _tip_candidates(model, children) -> list[tuple[str, int]]:
+    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
+    out = []
+    for j in range(1, model.njoints):
+        if not children[j]:
+            depth, k = 0, j
+            while k != 0:
+                depth, k = depth + 1, model.parents[k]
+            name = _deepest_body_frame(model, j)
+            if name is not None:
+                out.append((name, depth))
+    return sorted(out, key=lambda c: (-c[1], c[0]))
+
+
+def choose_tip(model) -> tuple[str, str]:
+    """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
+
+    From the root, follow the joints while each has exactly one child joint. At a branch:
+    if every branch is a single joint (a gripper's fingers), the tip is the deepest body frame
+    fixed to the current joint; if exactly one branch is longer than all others, follow it
+    (the longest chain — an arm rather than a head, a caster or a sensor); if two or more
+    branches tie for longest (two arms, four legs), there is no sensible default and
+    ``ValueError`` lists the candidate tips with their chain lengths.
+    """
+    children = {j: [] for j in range(model.njoints)}
+    for j in range(1, model.njoints):
+        children[model.parents[j]].append(j)
+
+    def depth(j):
+        return 1 + max((depth(c) for c in children[j]), default=0)
+
+    j, chose = 0, False
+    while children[j]:
+        if len(children[j]) == 1:
+            j = children[j][0]
+            continue
+        depths = sorted(((depth(c), c) for c in children[j]), reverse=True)
+        if depths[0][0] <= 1 and j != 0:
+            break  # fingers
+        if depths[0][0] == depths[1][0]:
+            cands = _tip_candidates(model, children)
+            shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
+            raise ValueError(
+                f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "
+                f"with tip= (--tip): {shown}"
+            )
+        j, chose = depths[0][1], True
+    tip = _deepest_body_frame(model, j)
+    if tip is None:
+        raise ValueError("model: no body frame found for the chain's tip")
+    note = f"the robot is a tree; chose its longest chain, to {tip!r} (give --tip for another)" if chose else ""
+    return tip, note
+
+
+def default_tip(model) -> str:
+    """The default tip frame of a model (see :func:`choose_tip`)."""
+    return choose_tip(model)[0]
 
 
 def _body_type():
@@ -151,6 +201,7 @@ class Robot:
         self.gravity = np.array(model.gravity.linear)
         self.locked_joints = tuple(locked_joints)
         self.source = source
+        self.notes: list[str] = []  # what was done on the user's behalf (printed by the CLI)
         self._same_coords = model.nq == model.nv
         self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
         self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]
@@ -202,6 +253,8 @@ class Robot:
         theta = np.asarray(theta, dtype=float)
         if theta.shape != (self.n,):
             raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {theta.shape}")
+        if not np.isfinite(theta).all():
+            raise ValueError(f"{name}: contains NaN or infinite values ({theta.tolist()})")
         return theta
 
     # ------------------------------------------------------------ fast answers
@@ -239,7 +292,8 @@ class Robot:
     def rnea(self, theta, dtheta, ddtheta) -> np.ndarray:
         """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""
         q = self.q_pin(self._check_theta(theta))
-        return self._pin.rnea(self.model, self.data, q, np.asarray(dtheta, float), np.asarray(ddtheta, float)).copy()
+        dq, ddq = self._check_theta(dtheta, "dtheta"), self._check_theta(ddtheta, "ddtheta")
+        return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
 
     def crba(self, theta) -> np.ndarray:
         """Mass matrix M(θ) (n×n, symmetric), Pinocchio's CRBA."""
@@ -251,7 +305,8 @@ class Robot:
     def aba(self, theta, dtheta, tau) -> np.ndarray:
         """Forward dynamics θ̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA."""
         q = self.q_pin(self._check_theta(theta))
-        return self._pin.aba(self.model, self.data, q, np.asarray(dtheta, float), np.asarray(tau, float)).copy()
+        dq, tau = self._check_theta(dtheta, "dtheta"), self._check_theta(tau, "tau")
+        return self._pin.aba(self.model, self.data, q, dq, tau).copy()
 
     def gravity_torques(self, theta) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
@@ -261,7 +316,7 @@ class Robot:
     def nonlinear_effects(self, theta, dtheta) -> np.ndarray:
         """c(θ, θ̇) + g(θ) (n,)."""
         q = self.q_pin(self._check_theta(theta))
-        return self._pin.nonLinearEffects(self.model, self.data, q, np.asarray(dtheta, float)).copy()
+        return self._pin.nonLinearEffects(self.model, self.data, q, self._check_theta(dtheta, "dtheta")).copy()
 
     def random_configuration(self, rng=None) -> np.ndarray:
         """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""
@@ -291,43 +346,97 @@ def _from_dh(table: DHTable, source: str) -> Robot:
     return Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table, source=source)
 
 
-def _from_urdf_file(path: Path, tip: str | None) -> Robot:
+def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outside_meshes=False) -> Robot:
     import pinocchio as pin
 
-    try:
-        model = pin.buildModelFromUrdf(str(path))
-    except Exception as exc:
-        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise ValueError(f"{path}: not a valid URDF ({msg})") from None
-    geoms = []
-    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
+    from robokit.description.urdf_check import capture_native_output, read_urdf
+
+    doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
+    with capture_native_output() as cap:
         try:
-            geoms.append(pin.buildGeomFromUrdf(model, str(path), gtype, package_dirs=[str(path.parent)]))
-        except Exception:
-            geoms.append(None)
-    tip = tip or default_tip(model)
-    return _finish(path.stem, model, tip, geoms, {}, str(path))
+            model = pin.buildModelFromXML(doc.xml)
+        except Exception as exc:
+            failed = exc
+        else:
+            failed = None
+    if failed is not None:
+        why = cap.first_error() or _one_line(failed)
+        raise InputError(f"{path}: Pinocchio cannot read this URDF ({why})") from None
+    geoms, notes = [], []
+    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
+        with capture_native_output() as cap:
+            try:
+                geoms.append(pin.buildGeomFromUrdfString(model, doc.xml, gtype, package_dirs=doc.package_dirs))
+                err = None
+            except Exception as exc:
+                geoms.append(None)
+                err = cap.first_error() or _one_line(exc)
+        if err:
+            notes.append(f"{path}: {gtype.name.lower()} geometry not loaded ({err}); drawn without it")
+    return _finish(doc.name, model, tip, geoms, {}, str(path), notes, mimic=doc.mimic)
 
 
-def _finish(name, model, tip, geoms, configurations, source) -> Robot:
+def _one_line(exc) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0][:200] if text else type(exc).__name__
+
+
+def _finish(name, model, tip, geoms, configurations, source, notes=(), mimic=None) -> Robot:
+    import warnings
+
+    notes = list(notes)
+    if tip is None:
+        tip, note = choose_tip(model)
+        if note:
+            notes.append(f"{name}: {note}")
     valid = [g for g in geoms if g is not None]
     chain, locked, new_geoms = serial_chain(model, tip, valid)
+    if chain.nv == 0:
+        raise InputError(f"{source}: the chain to {tip!r} has no moving joint; robokit needs at least one")
+    for jn, target in (mimic or {}).items():
+        if jn not in locked:
+            raise InputError(
+                f"{source}: joint {jn!r} mimics {target!r} and is on the chain to {tip!r}; robokit's joints are "
+                "independent — remove the <mimic> or choose another tip"
+            )
+    if mimic and any(j in locked for j in mimic):
+        notes.append(f"{name}: mimic joints off the chain locked: {', '.join(j for j in mimic if j in locked)}")
     it = iter(new_geoms)
     geoms = [next(it) if g is not None else None for g in geoms]
-    return Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
-                 configurations=configurations, locked_joints=locked, source=source)
+    robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
+                  configurations=configurations, locked_joints=locked, source=source)
+    robot.notes.extend(notes)
+    for note in notes:
+        warnings.warn(note, RobokitWarning, stacklevel=3)
+    return robot
 
 
 def _from_example_robot_data(name: str, tip: str | None) -> Robot:
     import example_robot_data as erd
-    import pinocchio as pin
 
-    wrapper = erd.load(name)
+    loader = erd.ROBOTS[name]
+    notes = []
+    try:
+        with _quiet():
+            if getattr(loader, "free_flyer", False):
+                # Loaded with its base fixed to the world: a fixed-base arm (so100) is then what its
+                # URDF describes; a mobile or legged robot's limbs are then chains like any other.
+                wrapper = type(loader.__name__, (loader,), {"free_flyer": False})().robot
+                notes.append(f"{name}: example-robot-data gives it a floating base; loaded with the base fixed "
+                             "to the world")
+            else:
+                wrapper = erd.load(name)
+    except Exception as exc:  # a dependency's failure is still one robokit line
+        raise InputError(f"model {name!r}: example-robot-data could not load it ({_one_line(exc)})") from None
     model = wrapper.model
-    for j in range(1, model.njoints):
-        if model.joints[j].shortname() == "JointModelFreeFlyer":
-            raise ValueError(f"model: {name!r} has a floating base; robokit handles fixed-base serial arms")
-    tip = tip or EXAMPLE_ROBOT_TIPS.get(name) or default_tip(model)
+    tip = tip or EXAMPLE_ROBOT_TIPS.get(name)
+    if tip is None:
+        try:
+            tip, note = choose_tip(model)
+        except ValueError as exc:
+            raise InputError(f"model {name!r}: {exc}") from None
+        if note:
+            notes.append(f"{name}: {note}")
     configurations = {}
     q0 = getattr(wrapper, "q0", None)
     chain_names = []
@@ -337,7 +446,7 @@ def _from_example_robot_data(name: str, tip: str | None) -> Robot:
             chain_names.append(model.names[j])
             j = model.parents[j]
         chain_names.reverse()
-    if q0 is not None and chain_names:
+    if q0 is not None and chain_names and len(q0) == model.nq:
         angles = []
         for jn in chain_names:
             jm = model.joints[model.getJointId(jn)]
@@ -346,7 +455,28 @@ def _from_example_robot_data(name: str, tip: str | None) -> Robot:
         if np.any(angles):
             configurations["ready"] = np.array(angles)
     return _finish(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
-                   f"example-robot-data:{name}")
+                   f"example-robot-data:{name}", notes)
+
+
+class _quiet:
+    """Silence C/C++ output on fd 2 and Python prints while a dependency loads a model."""
+
+    def __enter__(self):
+        import contextlib
+        import io
+
+        from robokit.description.urdf_check import capture_native_output
+
+        self._cap = capture_native_output()
+        self._cap.__enter__()
+        self._out = contextlib.redirect_stdout(io.StringIO())
+        self._out.__enter__()
+        return self
+
+    def __exit__(self, *exc):
+        self._out.__exit__(*exc)
+        self._cap.__exit__(*exc)
+        return False
 
 
 def _example_robot_names() -> list[str]:
@@ -358,11 +488,16 @@ def _example_robot_names() -> list[str]:
         return []
 
 
-def load(name_or_path, tip: str | None = None) -> Robot:
+def load(name_or_path, tip: str | None = None, *, package_dirs=None, allow_outside_meshes: bool = False) -> Robot:
     """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, or an example-robot-data name.
 
     tip : the chain's tip frame (default: "tool" for DH models, the arm's end-effector
-    frame for example-robot-data arms, else the last link of the chain).
+    frame for example-robot-data arms, else the end of the chain — of the longest chain for a
+    tree, see :func:`choose_tip`).
+    package_dirs : extra folders searched for ``package://`` meshes of a URDF (its own folder
+    and the folders above it are always searched).
+    allow_outside_meshes : read meshes that a URDF names outside its folder and the package
+    roots (absolute paths, ``../``); refused by default.
 
     Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
     """
@@ -380,8 +515,8 @@ def load(name_or_path, tip: str | None = None) -> Robot:
         return _from_dh(DHTable.from_yaml(path), str(path))
     if path.suffix.lower() == ".urdf":
         if not path.is_file():
-            raise ValueError(f"{path}: file not found")
-        return _from_urdf_file(path, tip)
+            raise InputError(f"{path}: file not found")
+        return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
     if s in shipped_models():
         return _from_dh(DHTable.from_yaml(models_dir() / f"{s}.yaml"), f"models/{s}.yaml")
     erd_names = _example_robot_names()

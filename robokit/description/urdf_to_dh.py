@@ -89,7 +89,10 @@ def _normal(p1, z1, p2, z2, ref, x_prev):
     ref: the point on line 1 used when the lines are parallel; x_prev: kept when they coincide.
     """
     cross = np.cross(z1, z2)
-    if np.linalg.norm(cross) > 1e-9:
+    # Nearly parallel axes (1 − (z1·z2)² below 1e-14, i.e. under 1e-7 rad apart) are treated as
+    # parallel: their common normal is numerically meaningless, and the FK residual then says
+    # how far the table is from the URDF.
+    if np.linalg.norm(cross) > 1e-9 and 1.0 - float(z1 @ z2) ** 2 > 1e-14:
         f1, f2 = _closest(p1, z1, p2, z2)
         if np.linalg.norm(f2 - f1) > _EPS:
             return f1, f2, _unit(f2 - f1)
@@ -245,29 +248,17 @@ def _check(robot, table, samples, rng):
     worst = 0.0
     for _ in range(int(samples)):
         q = robot.random_configuration(rng)
-        worst = max(worst, float(np.abs(table.fk(q) - robot.frame_pose(q)).max()))
+        err = float(np.abs(table.fk(q) - robot.frame_pose(q)).max())
+        if not np.isfinite(err):  # Python's max() would drop a NaN
+            return float("inf")
+        worst = max(worst, err)
     return worst
 
 
 def format_dh_table(table: DHTable, digits: int = 5) -> str:
-    """The table as the lecture writes it: one row per joint, angles in degrees."""
-    if table.convention == "standard":
-        head = ("i", "joint", "a_i [m]", "alpha_i [deg]", "d_i [m]", "theta_i [deg]")
-    else:
-        head = ("i", "joint", "a_{i-1} [m]", "alpha_{i-1} [deg]", "d_i [m]", "theta_i [deg]")
-    rows = []
-    for i, l in enumerate(table.links, 1):
-        def fmt(x, k):
-            return f"{round(float(x), k) + 0.0:.{k}f}"  # + 0.0: no "-0.000"
-
-        th = fmt(np.degrees(l.theta), digits - 2) + (" + q" if l.joint == "R" else "")
-        d = fmt(l.d, digits) + (" + q" if l.joint == "P" else "")
-        rows.append((str(i), l.joint, fmt(l.a, digits), fmt(np.degrees(l.alpha), digits - 2), d, th))
-    w = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
-    line = lambda cells: "  ".join(c.rjust(wk) for c, wk in zip(cells, w))
-    out = [f"# {table.name}: {table.convention} DH", line(head), line(tuple("-" * k for k in w))]
-    out += [line(r) for r in rows]
-    return "\n".join(out) + "\n"
+    """The table as the lecture writes it (one row per joint, angles in degrees), with the base
+    and tool transforms that make it exact: ``table.to_text(digits)``."""
+    return table.to_text(digits)
 
 
 def urdf_to_dh_cli_text(robot, convention: str = "standard", as_yaml: bool = True) -> str:

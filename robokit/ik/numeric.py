@@ -84,6 +84,29 @@ def _pinv_solve(J, V):
     return np.linalg.pinv(J) @ V
 
 
+class _Best:
+    """The iterate with the smallest error twist seen, returned when Newton–Raphson fails (a
+    diverging iteration must not hand back θ ≈ 1e28); revolute angles wrapped to (−π, π]."""
+
+    def __init__(self, screws):
+        self.revolute = np.linalg.norm(screws[:3], axis=0) > 1e-12
+        self.err = np.inf
+        self.theta = None
+
+    def keep(self, theta, V) -> bool:
+        e = float(np.linalg.norm(V))
+        if not (np.isfinite(e) and np.isfinite(theta).all()):
+            return False
+        if e < self.err:
+            self.err, self.theta = e, theta.copy()
+        return bool(np.abs(theta).max() < 1e6)  # diverged: stop
+
+    def result(self):
+        t = self.theta.copy()
+        t[self.revolute] = np.mod(t[self.revolute] + np.pi, 2 * np.pi) - np.pi
+        return t
+
+
 def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
 
@@ -92,18 +115,22 @@ def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     eomg, ev : tolerances on the angular (rad) and linear (m) parts of the body twist error.
 
     Returns ``(thetalist, success)``; ``success`` is False (no exception) when the iteration
-    does not converge, e.g. for an unreachable target.
+    does not converge, e.g. for an unreachable target — ``thetalist`` is then the iterate with
+    the smallest error seen (revolute angles wrapped to (−π, π]), never a diverged value.
 
     Example: for a planar 2R arm, ``ikin_body(Blist, M, fkin_body(M, Blist, [0.3, 0.4]),
     [0.2, 0.5], 1e-9, 1e-9)`` → ``(array([0.3, 0.4]), True)``.
     """
     Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
+    best = _Best(Blist)
     for _ in range(max_iterations + 1):
         Vb = _log6_vec(_inv(_fk_body(M, Blist, theta)) @ T)
         if np.linalg.norm(Vb[:3]) <= eomg and np.linalg.norm(Vb[3:]) <= ev:
             return theta, True
+        if not best.keep(theta, Vb):
+            break
         theta = theta + _pinv_solve(_jac_body(Blist, theta), Vb)
-    return theta, False
+    return best.result(), False
 
 
 def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
@@ -118,6 +145,7 @@ def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     from robokit.kinematics.poe import _adjoint_many, _chain, _exps
 
     Slist = np.ascontiguousarray(Slist)
+    best = _Best(Slist)
     for _ in range(max_iterations + 1):
         # forward kinematics and space Jacobian from one set of exponentials
         P = _chain(_exps(Slist, theta))  # prefix products e^{[S1]θ1}⋯e^{[Si]θi}
@@ -128,8 +156,10 @@ def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
         Vs = _adjoint(Tsb) @ _log6_vec(_inv(Tsb) @ T)
         if np.linalg.norm(Vs[:3]) <= eomg and np.linalg.norm(Vs[3:]) <= ev:
             return theta, True
+        if not best.keep(theta, Vs):
+            break
         theta = theta + _pinv_solve(Js, Vs)
-    return theta, False
+    return best.result(), False
 
 
 @dataclass

@@ -219,7 +219,8 @@ def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: b
         if adaptive:
             smin = np.linalg.svd(J, compute_uv=False)[-1] if m <= n else 0.0
             lam2 = lam2 * (1 - (smin / epsilon) ** 2) if smin < epsilon else 0.0
-        Jp = J.T @ np.linalg.inv(J @ J.T + lam2 * np.eye(m))
+        # λ = 0 is the undamped limit, the pseudo-inverse (also at a singular J, where JJᵀ has no inverse)
+        Jp = J.T @ np.linalg.inv(J @ J.T + lam2 * np.eye(m)) if lam2 > 0 else np.linalg.pinv(J, rcond=rcond)
     else:
         raise ValueError(f"method: expected 'pinv' or 'dls', got {method!r}")
     dq = Jp @ V

@@ -48,10 +48,9 @@ class BicycleModel:
         self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
 
     def limit(self, u):
-        """Inputs clipped to the speed and steering limits; γ = ±π/2 is rejected."""
+        """Inputs clipped to the speed and steering limits (``steer_max`` < π/2, so a demanded
+        γ = ±π/2, where the model is undefined, is clipped like any other angle beyond the limit)."""
         v, gamma = as_vector(u, "u", 2)
-        if abs(abs(gamma) - np.pi / 2) < 1e-12:
-            raise ValueError("u: steering angle γ = ±π/2 is undefined for the bicycle model")
         return np.array([np.clip(v, -self.speed_max, self.speed_max),
                          np.clip(gamma, -self.steer_max, self.steer_max)])
 

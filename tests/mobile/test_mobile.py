@@ -32,8 +32,9 @@ def test_circle_radius_L_over_tan_gamma():
     assert abs(np.linalg.norm(xe[:2] - centre) - R) < 0.05
     d = m.deriv([0, 0, 0.4], [1.0, 0.2])
     assert abs(m.sideways_velocity([0, 0, 0.4], d)) < 1e-15
-    with pytest.raises(ValueError, match="π/2"):
-        m.step(x, [1.0, np.pi / 2], 0.1)
+    # a demanded γ = ±π/2 (undefined for the model) is clipped to the steering limit like any other
+    assert np.allclose(m.step(x, [1.0, np.pi / 2], 0.1), m.step(x, [1.0, m.steer_max], 0.1), atol=0, rtol=0)
+    assert np.allclose(m.limit([1.0, -np.pi / 2]), [1.0, -m.steer_max], atol=0, rtol=0)
 
 
 def test_jacobians_against_finite_differences():

@@ -1,0 +1,321 @@
+"""Reading a URDF file robokit did not write: checks with clear messages before Pinocchio sees it.
+
+Pinocchio's URDF parser (urdfdom) accepts files that are not physical — a negative or NaN
+mass, an inertia tensor that is not positive semi-definite, a zero joint axis, limits with
+lower > upper — and prints its own complaints on the process's stderr. :func:`read_urdf`
+checks each of these and raises :class:`robokit.InputError` naming the file and the link or
+joint, and returns the document with every mesh reference resolved:
+
+* ``package://pkg/path`` is looked up in the package roots (the URDF's folder and its
+  ancestors, plus any ``package_dirs`` given): ``<root>/pkg/path`` or, when a root is the
+  package itself (``<root>/package.xml`` with that name, or a folder of that name), ``<root>/path``;
+* a relative path is taken from the URDF's folder;
+* a mesh that resolves outside the URDF's folder and the package roots (an absolute path,
+  ``../``, ``file://``) is refused unless ``allow_outside_meshes=True``;
+* a mesh file that does not exist is dropped from the geometry with a warning naming it.
+
+Mimic joints are reported (``mimic`` in the result) so that the loader can refuse one on
+the chain (robokit's joints are independent) and lock one off it.
+"""
+from __future__ import annotations
+
+import math
+import os
+import warnings
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from robokit.errors import InputError, RobokitWarning
+
+__all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
+
+#: Largest URDF robokit reads (the largest example-robot-data URDF is about 300 kB).
+MAX_URDF_BYTES = 20 << 20
+
+_JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
+
+
+@dataclass
+class UrdfDocument:
+    """A checked URDF: ``xml`` (text, meshes resolved to absolute paths), ``name``,
+    ``mimic`` ({joint: mimicked joint}), ``package_dirs`` and ``warnings`` (one line each)."""
+
+    path: Path
+    xml: str
+    name: str
+    mimic: dict = field(default_factory=dict)
+    package_dirs: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+
+
+def _fail(path, msg):
+    if len(msg) > 300:
+        msg = msg[:297] + "..."
+    raise InputError(f"{path}: {msg}")
+
+
+def _floats(text, count, path, where):
+    parts = (text or "").split()
+    if len(parts) != count:
+        _fail(path, f"{where}: expected {count} numbers, got {text!r}")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        _fail(path, f"{where}: expected {count} numbers, got {text!r}")
+    if not all(math.isfinite(v) for v in values):
+        _fail(path, f"{where}: expected finite numbers, got {text!r}")
+    return values
+
+
+def _float_attr(el, name, path, where, default=None):
+    text = el.get(name)
+    if text is None:
+        if default is None:
+            _fail(path, f"{where}: missing attribute '{name}'")
+        return default
+    try:
+        v = float(text)
+    except ValueError:
+        _fail(path, f"{where}: attribute '{name}' is not a number ({text!r})")
+    if math.isnan(v):
+        _fail(path, f"{where}: attribute '{name}' is NaN")
+    return v
+
+
+def _check_name(name, path, what):
+    if not name or not name.isprintable() or len(name) > 200:
+        shown = repr(name) if name is None or len(repr(name)) <= 60 else repr(name)[:57] + "..."
+        _fail(path, f"{what}: expected a printable name (at most 200 characters), got {shown}")
+
+
+def _package_roots(path: Path, package_dirs) -> list[Path]:
+    roots = [Path(p).resolve() for p in (package_dirs or [])]
+    folder = path.parent.resolve()
+    roots.append(folder)
+    roots.extend(folder.parents)
+    return roots
+
+
+def _resolve_mesh(uri: str, path: Path, roots: list[Path]):
+    """(resolved absolute path or None, reason) for a mesh filename attribute."""
+    folder = path.parent.resolve()
+    if uri.startswith("package://"):
+        rest = uri[len("package://"):]
+        pkg, _, rel = rest.partition("/")
+        for root in roots:
+            for cand in (root / pkg / rel, root / rel if (root.name == pkg or _is_package(root, pkg)) else None):
+                if cand is not None and cand.is_file():
+                    return cand.resolve(), ""
+        return None, "not found in the package roots"
+    if uri.startswith("file://"):
+        return Path(uri[len("file://"):]), "outside"
+    p = Path(uri)
+    if p.is_absolute():
+        return p, "outside"
+    cand = (folder / p).resolve()
+    if folder not in cand.parents:
+        return cand, "outside"
+    return cand, ""
+
+
+def _is_package(root: Path, pkg: str) -> bool:
+    manifest = root / "package.xml"
+    if not manifest.is_file():
+        return False
+    try:
+        name = ET.parse(manifest).getroot().findtext("name")
+    except (ET.ParseError, OSError):
+        return False
+    return (name or "").strip() == pkg
+
+
+def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False) -> UrdfDocument:
+    """Read and check a URDF file; see the module docstring. Raises :class:`InputError`."""
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+    except FileNotFoundError:
+        raise InputError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, not a URDF file")
+    if size > MAX_URDF_BYTES:
+        raise InputError(f"{path}: file too large ({size} bytes; at most {MAX_URDF_BYTES})")
+    raw = path.read_bytes()
+    try:
+        raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None
+    try:
+        root = ET.fromstring(raw)
+    except ET.ParseError as exc:
+        line, col = exc.position
+        raise InputError(f"{path}: not well-formed XML at line {line}, column {col + 1}") from None
+    if root.tag != "robot":
+        _fail(path, f"expected a <robot> root element, got <{root.tag}>")
+    name = root.get("name") or path.stem
+    _check_name(name, path, "robot name")
+
+    links = {}
+    for el in root.findall("link"):
+        lname = el.get("name")
+        _check_name(lname, path, "a <link>'s name")
+        if lname in links:
+            _fail(path, f"link {lname!r} is defined twice")
+        links[lname] = el
+        inertial = el.find("inertial")
+        if inertial is None:
+            continue
+        where = f"link {lname!r}, <inertial>"
+        mass_el = inertial.find("mass")
+        mass = _float_attr(mass_el, "value", path, f"{where} <mass>") if mass_el is not None else 0.0
+        if not math.isfinite(mass) or mass < 0:
+            _fail(path, f"{where}: mass must be a finite non-negative number, got {mass:g}")
+        ine = inertial.find("inertia")
+        if ine is not None:
+            keys = ("ixx", "iyy", "izz", "ixy", "iyz", "ixz")
+            ixx, iyy, izz, ixy, iyz, ixz = (_float_attr(ine, k, path, f"{where} <inertia>", 0.0) for k in keys)
+            if not all(math.isfinite(v) for v in (ixx, iyy, izz, ixy, iyz, ixz)):
+                _fail(path, f"{where}: inertia values must be finite")
+            I = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+            ev = np.linalg.eigvalsh(I)
+            if ev.min() < -1e-9 * max(1.0, float(abs(ev).max())):
+                _fail(path, f"{where}: inertia tensor is not positive semi-definite "
+                            f"(eigenvalues {', '.join(f'{v:.3g}' for v in ev)})")
+        origin = inertial.find("origin")
+        if origin is not None:
+            for key in ("xyz", "rpy"):
+                if origin.get(key) is not None:
+                    _floats(origin.get(key), 3, path, f"{where} <origin {key}>")
+
+    joints = {}
+    mimic = {}
+    children = set()
+    for el in root.findall("joint"):
+        jname = el.get("name")
+        _check_name(jname, path, "a <joint>'s name")
+        if jname in joints:
+            _fail(path, f"joint {jname!r} is defined twice")
+        joints[jname] = el
+        where = f"joint {jname!r}"
+        jtype = el.get("type")
+        if jtype not in _JOINT_TYPES:
+            _fail(path, f"{where}: unknown type {jtype!r} (expected one of {', '.join(sorted(_JOINT_TYPES))})")
+        for tag in ("parent", "child"):
+            sub = el.find(tag)
+            link = sub.get("link") if sub is not None else None
+            if link is None:
+                _fail(path, f"{where}: missing <{tag} link=...>")
+            if link not in links:
+                _fail(path, f"{where}: {tag} link {link!r} is not defined")
+        child = el.find("child").get("link")
+        if child in children:
+            _fail(path, f"{where}: link {child!r} is the child of two joints")
+        children.add(child)
+        origin = el.find("origin")
+        if origin is not None:
+            for key in ("xyz", "rpy"):
+                if origin.get(key) is not None:
+                    _floats(origin.get(key), 3, path, f"{where} <origin {key}>")
+        if jtype in ("revolute", "continuous", "prismatic"):
+            axis_el = el.find("axis")
+            axis = _floats(axis_el.get("xyz"), 3, path, f"{where} <axis xyz>") if axis_el is not None else [1, 0, 0]
+            if np.linalg.norm(axis) < 1e-9:
+                _fail(path, f"{where}: the joint axis is zero")
+        if jtype in ("revolute", "prismatic"):
+            lim = el.find("limit")
+            if lim is None:
+                _fail(path, f"{where}: a {jtype} joint needs a <limit> (lower, upper, effort, velocity)")
+            lo = _float_attr(lim, "lower", path, f"{where} <limit>", 0.0)
+            hi = _float_attr(lim, "upper", path, f"{where} <limit>", 0.0)
+            if lo > hi:
+                _fail(path, f"{where}: lower limit {lo:g} is above the upper limit {hi:g}")
+            for key in ("effort", "velocity"):
+                v = _float_attr(lim, key, path, f"{where} <limit>", 0.0)
+                if v < 0:
+                    _fail(path, f"{where}: {key} limit must be non-negative, got {v:g}")
+        m = el.find("mimic")
+        if m is not None:
+            target = m.get("joint")
+            if not target:
+                _fail(path, f"{where}: <mimic> without a joint")
+            mimic[jname] = target
+    for jname, target in mimic.items():
+        if target not in joints:
+            _fail(path, f"joint {jname!r}: mimics {target!r}, which is not defined")
+    roots = [ln for ln in links if ln not in children]
+    if len(roots) != 1:
+        _fail(path, f"expected one root link, found {len(roots)}: {', '.join(roots[:8])}")
+
+    # Meshes: resolve every reference; refuse escapes, drop (and name) missing files.
+    pkg_roots = _package_roots(path, package_dirs)
+    notes = []
+    for lname, el in links.items():
+        for kind in ("visual", "collision"):
+            for geo_el in list(el.findall(kind)):
+                mesh = geo_el.find("geometry/mesh")
+                if mesh is None:
+                    continue
+                uri = mesh.get("filename") or ""
+                resolved, reason = _resolve_mesh(uri, path, pkg_roots)
+                if reason == "outside" and not allow_outside_meshes:
+                    _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder and the package roots "
+                                "(pass allow_outside_meshes=True to read it)")
+                if resolved is None or not resolved.is_file():
+                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not found; drawn without it")
+                    el.remove(geo_el)
+                    continue
+                mesh.set("filename", str(resolved))
+    for note in notes:
+        warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=2)
+    xml = ET.tostring(root, encoding="unicode")
+    return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes)
+
+
+def capture_native_output():
+    """Context manager that captures what C/C++ code writes to the process's stderr (fd 2)
+    while it is active; the text is in ``.text`` afterwards. Used around Pinocchio's parsers
+    so that urdfdom's own lines become part of robokit's one-line message."""
+    return _NativeCapture()
+
+
+class _NativeCapture:
+    def __init__(self):
+        self.text = ""
+
+    def __enter__(self):
+        import sys
+        import tempfile
+
+        try:
+            sys.stderr.flush()
+        except Exception:  # pragma: no cover
+            pass
+        self._tmp = tempfile.TemporaryFile()
+        try:
+            self._saved = os.dup(2)
+            os.dup2(self._tmp.fileno(), 2)
+        except OSError:  # pragma: no cover - no fd 2
+            self._saved = None
+        return self
+
+    def __exit__(self, *exc):
+        if self._saved is not None:
+            os.dup2(self._saved, 2)
+            os.close(self._saved)
+        self._tmp.seek(0)
+        self.text = self._tmp.read(20000).decode("utf-8", "replace")
+        self._tmp.close()
+        return False
+
+    def first_error(self) -> str:
+        """The first meaningful line captured (urdfdom prints 'Error: ...')."""
+        lines = [ln.strip() for ln in self.text.splitlines() if ln.strip()]
+        for ln in lines:
+            if "error" in ln.lower():
+                return ln
+        return lines[0] if lines else ""
