@@ -27,9 +27,9 @@ def _check_output(output) -> Path:
 def convert(input, output=None, tip=None, convention="standard") -> tuple[str, list[str]]:
     """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
 
-    * ``IN.yaml -o OUT.urdf`` — DH table to URDF (API.md §3);
+    * ``IN.yaml -o OUT.urdf`` — DH table to URDF (see the URDF format page of the documentation);
     * ``IN.urdf|NAME -o OUT.json`` — PoE parameters ``M, Slist, Blist, Mlist, Glist,
-      joint_names, tip`` of the chain root → ``tip`` (API.md §4);
+      joint_names, tip`` of the chain root → ``tip`` (see the PoE JSON format page of the documentation);
     * ``IN.urdf|NAME -o OUT.yaml`` — a DH table of the chain (``convention``), when the
       URDF → DH converter is available.
     ``notes`` are human-readable remarks (e.g. joints locked off the chain) for stderr.

@@ -1,4 +1,4 @@
-r"""Denavit–Hartenberg tables: the type, the YAML format (API.md §2) and DH forward kinematics.
+r"""Denavit–Hartenberg tables: the type, the YAML format (see the DH file format page of the documentation) and DH forward kinematics.
 
 Lecture 4 and seed 003 §2.1. Two conventions:
 
@@ -197,7 +197,7 @@ class DHTable:
     # ------------------------------------------------------------------ YAML I/O
     @classmethod
     def from_yaml(cls, path) -> "DHTable":
-        """Load a DH YAML file (API.md §2); errors name the file, the link and the key."""
+        """Load a DH YAML file (see the DH file format page of the documentation); errors name the file, the link and the key."""
         from robokit._yaml import load_yaml_file
 
         path = Path(path)
@@ -319,7 +319,7 @@ class DHTable:
         return cls(name, convention, tuple(links), gravity, base, tool)
 
     def to_dict(self, angle_unit: str = "deg") -> dict:
-        """The YAML mapping of API.md §2 (angles in ``angle_unit``; numbers round-trip exactly)."""
+        """The YAML mapping of the DH file format page of the documentation (angles in ``angle_unit``; numbers round-trip exactly)."""
         if angle_unit not in ("deg", "rad"):
             raise ValueError(f"angle_unit: expected 'deg' or 'rad', got {angle_unit!r}")
         k = 180.0 / math.pi if angle_unit == "deg" else 1.0
@@ -362,7 +362,7 @@ class DHTable:
         return out
 
     def to_yaml_str(self, angle_unit: str = "deg") -> str:
-        """The table as YAML text (API.md §2)."""
+        """The table as YAML text (see the DH file format page of the documentation)."""
         import yaml
 
         return yaml.safe_dump(self.to_dict(angle_unit), sort_keys=False, default_flow_style=None, width=100)

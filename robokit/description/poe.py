@@ -52,7 +52,7 @@ class PoEParams:
         return self.Slist.shape[1]
 
     def to_json_dict(self) -> dict:
-        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (see the PoE JSON format page of the docs)."""
+        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (see the PoE JSON format page of the documentation)."""
         return {
             "M": self.M.tolist(),
             "Slist": self.Slist.tolist(),

@@ -1,4 +1,4 @@
-r"""DH table → URDF (API.md §3).
+r"""DH table → URDF (frame conventions: the "Generated and loaded URDFs" page of the documentation).
 
 Layout of the generated URDF, for joint i = 1..N:
 
@@ -69,7 +69,7 @@ def _cylinder_between(p0, p1, radius, material) -> str | None:
 
 
 def dh_to_urdf(table: DHTable) -> str:
-    """The URDF text of a :class:`DHTable` (API.md §3); loads in Pinocchio and yourdfpy.
+    """The URDF text of a :class:`DHTable` (see the URDF format page of the documentation); loads in Pinocchio and yourdfpy.
 
     Example::
 

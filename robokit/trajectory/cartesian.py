@@ -73,8 +73,8 @@ def slerp_rotation(R0, R1, s, shortest: bool = True) -> np.ndarray:
     -------
     ndarray (3, 3) for a scalar ``s``, else (K, 3, 3).
 
-    Example
-    -------
+    Examples
+    --------
     >>> import numpy as np
     >>> Rz = lambda a: np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
     >>> np.allclose(slerp_rotation(np.eye(3), Rz(1.0), 0.25), Rz(0.25))
@@ -116,8 +116,8 @@ def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shor
         velocity); ``qdd`` = ``(ω̇, p̈)``; angular first, as robokit's twists.
         ``info``: ``"axis_world"`` (3,), ``"angle"`` θ (rad), ``"s"``, ``"sd"``, ``"sdd"``.
 
-    Example
-    -------
+    Examples
+    --------
     >>> import numpy as np
     >>> T1 = np.eye(4); T1[:3, 3] = [1.0, 0.0, 0.0]
     >>> tr = cartesian_line_trajectory(np.eye(4), T1, 2.0, t=3)
@@ -215,8 +215,8 @@ def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_on
         ``info``: ``"pose_error"`` (K,), ``"max_joint_rate"`` (n,), ``"rate_exceeded"`` (K,)
         bool (with ``qd_limit``), ``"jacobian_condition"`` (K,) (if the robot has ``jacobian``).
 
-    Example
-    -------
+    Examples
+    --------
     ``qtraj = cartesian_to_joint(robot, cartesian_line_trajectory(T_a, T_b, 2.0), qd_limit=3.0)``
     """
     if not isinstance(traj, Trajectory) or traj.poses is None:

@@ -52,8 +52,8 @@ class Trajectory:
         Generator-specific extras (coefficients, blend times, via-point times, …),
         documented by each generator.
 
-    Example
-    -------
+    Examples
+    --------
     >>> from robokit import cubic_trajectory
     >>> tr = cubic_trajectory([0.0], [1.0], tf=2.0, t=5)
     >>> tr.t.shape, tr.q.shape, len(tr)

@@ -96,8 +96,8 @@ def lspb_trajectory(q0, qf, tf, t=None, *, blend_time=None, acceleration=None, m
         ``info``: ``"blend_time"`` (n,), ``"velocity"`` (n,) signed peak velocity,
         ``"acceleration"`` (n,) signed acceleration of the first blend.
 
-    Example
-    -------
+    Examples
+    --------
     >>> tr = lspb_trajectory(0.0, 1.0, 2.0, t=5, max_velocity=0.75)   # t_b = 2 − 1/0.75
     >>> round(float(tr.info["blend_time"][0]), 12), float(tr.qd[:, 0].max())
     (0.666666666667, 0.75)
@@ -202,8 +202,10 @@ def lspb_via_trajectory(viapoints, durations, acceleration, t=None) -> Trajector
     Raises ``ValueError`` when the acceleration is too small for a segment (the square
     root of the first/last-segment formula would be imaginary, or the blends overlap).
 
-    Example (the lecture's worked example, degrees)
-    -------
+    Examples
+    --------
+    The lecture's worked example, in degrees:
+
     >>> tr = lspb_via_trajectory([[5.0], [15.0], [40.0]], [1.0, 1.0], 80.0)
     >>> tr.info["blend_times"][:, 0].round(3).tolist()
     [0.134, 0.254, 0.388]

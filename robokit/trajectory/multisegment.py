@@ -108,8 +108,8 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
         no linear part before a blend longer than one step (``mstraj`` would then start
         the blend from a stale point and jump).
 
-    Example
-    -------
+    Examples
+    --------
     >>> tr = ms_trajectory([[0.0], [1.0], [3.0]], dt=0.1, tacc=0.2, tsegment=[1.0, 1.0])
     >>> len(tr), round(float(tr.q[-1, 0]), 12)
     (20, 3.0)

@@ -40,8 +40,8 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels=None, 
     -------
     matplotlib.figure.Figure
 
-    Example
-    -------
+    Examples
+    --------
     >>> from robokit import cubic_trajectory, plot_trajectory
     >>> fig = plot_trajectory(cubic_trajectory([0, 1], [1, 0], 2.0))
     >>> len(fig.axes)
@@ -95,8 +95,8 @@ def plot_path_3d(traj, *, frames: int = 5, axis_length: float | None = None, tit
     -------
     matplotlib.figure.Figure
 
-    Example
-    -------
+    Examples
+    --------
     >>> import numpy as np
     >>> from robokit import cartesian_line_trajectory, plot_path_3d
     >>> T1 = np.eye(4); T1[:3, 3] = [0.3, 0.2, 0.1]

@@ -80,8 +80,8 @@ def cubic_coefficients(q0, qf, tf, qd0=None, qdf=None) -> np.ndarray:
     ndarray, shape (4, n)
         ``[a0, a1, a2, a3]`` per axis: ``θ(t) = a0 + a1 t + a2 t² + a3 t³``.
 
-    Example
-    -------
+    Examples
+    --------
     >>> cubic_coefficients(0.0, 1.0, 1.0)[:, 0]   # 3t² − 2t³
     array([ 0.,  0.,  3., -2.])
     """
@@ -112,8 +112,8 @@ def quintic_coefficients(q0, qf, tf, qd0=None, qdf=None, qdd0=None, qddf=None) -
         ``[a0 … a5]`` per axis, ``θ(t) = Σ a_k t^k`` (the lecture writes the same
         polynomial as ``A t⁵ + B t⁴ + … + F``, i.e. ``A = a5 … F = a0``).
 
-    Example
-    -------
+    Examples
+    --------
     >>> quintic_coefficients(0.0, 1.0, 1.0)[:, 0]   # 10t³ − 15t⁴ + 6t⁵
     array([  0.,   0.,   0.,  10., -15.,   6.])
     """
@@ -164,8 +164,8 @@ def cubic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None) -> Trajectory:
         ``t`` (K,), ``q``/``qd``/``qdd`` (K, n); ``info["coefficients"]`` is (4, n).
         ``qdd`` jumps at the ends (a cubic cannot also fix accelerations).
 
-    Example
-    -------
+    Examples
+    --------
     >>> tr = cubic_trajectory(0.0, 1.0, 2.0, t=3)
     >>> tr.q[:, 0].tolist(), tr.qd[:, 0].tolist()
     ([0.0, 0.5, 1.0], [0.0, 0.75, 0.0])
@@ -180,8 +180,8 @@ def quintic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None, qdd0=None, qddf=N
     Arguments as :func:`cubic_trajectory`, plus ``qdd0``, ``qddf`` (default 0).
     ``info["coefficients"]`` is (6, n), ascending.
 
-    Example
-    -------
+    Examples
+    --------
     >>> tr = quintic_trajectory([0.0, 1.0], [1.0, 0.0], 1.0, t=3)
     >>> tr.q[1].tolist()
     [0.5, 0.5]
@@ -211,8 +211,8 @@ def via_point_velocities(viapoints, times, method: str = "heuristic", qd0=None, 
     ndarray (m, n)
         Row k is the velocity at point k (rows 0 and m−1 are ``qd0`` and ``qdf``).
 
-    Example
-    -------
+    Examples
+    --------
     >>> via_point_velocities([[0.0], [1.0], [3.0], [2.0]], [0, 1, 2, 3])[:, 0].tolist()
     [0.0, 1.5, 0.0, 0.0]
     """
@@ -279,8 +279,8 @@ def cubic_via_trajectory(viapoints, times, t=None, velocities="continuous", qd0=
         (m−1, 4, n) ascending in local time ``t − times[k]``, ``"via_times"``,
         ``"via_points"`` (for plotting).
 
-    Example
-    -------
+    Examples
+    --------
     >>> tr = cubic_via_trajectory([[0.0], [1.0], [3.0]], [0.0, 1.0, 2.0], t=5)
     >>> tr.info["velocities"][:, 0].tolist()      # 8 v1 = 6·1 + 6·2
     [0.0, 2.25, 0.0]

@@ -55,8 +55,8 @@ def cubic_time_scaling(Tf, t):
     -------
     float or ndarray (same shape as ``t``): the path parameter s ∈ [0, 1] for t ∈ [0, Tf].
 
-    Example
-    -------
+    Examples
+    --------
     >>> round(cubic_time_scaling(2, 0.6), 12)
     0.216
     """
@@ -72,8 +72,8 @@ def quintic_time_scaling(Tf, t):
 
     Arguments and return as :func:`cubic_time_scaling`.
 
-    Example
-    -------
+    Examples
+    --------
     >>> round(quintic_time_scaling(2, 0.6), 12)
     0.16308
     """
@@ -113,8 +113,8 @@ def time_scaling(method, Tf, t):
     -------
     (s, sd, sdd) : three arrays shaped like ``t`` (1/s and 1/s² for the derivatives).
 
-    Example
-    -------
+    Examples
+    --------
     >>> s, sd, sdd = time_scaling("lspb", 3.0, [0.0, 1.5, 3.0])
     >>> s.tolist(), sd.tolist()
     ([0.0, 0.5, 1.0], [0.0, 0.5, 0.0])
@@ -172,8 +172,8 @@ def joint_trajectory(thetastart, thetaend, Tf, N, method):
     -------
     ndarray (N, n): row i is θ at time i·Tf/(N−1).
 
-    Example
-    -------
+    Examples
+    --------
     >>> joint_trajectory([0, 0], [1, 2], 2, 3, 3).tolist()
     [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]]
     """
@@ -202,8 +202,8 @@ def screw_trajectory(Xstart, Xend, Tf, N, method):
     -------
     list of N arrays (4, 4); the first is ``Xstart``, the last ``Xend``.
 
-    Example
-    -------
+    Examples
+    --------
     >>> import numpy as np
     >>> X1 = np.eye(4); X1[:3, 3] = [1, 0, 0]
     >>> [float(X[0, 3]) for X in screw_trajectory(np.eye(4), X1, 1, 3, 3)]
@@ -227,8 +227,8 @@ def cartesian_trajectory(Xstart, Xend, Tf, N, method):
 
     Arguments and return as :func:`screw_trajectory`.
 
-    Example
-    -------
+    Examples
+    --------
     >>> import numpy as np
     >>> X1 = np.eye(4); X1[:3, 3] = [0, 2, 0]
     >>> [float(X[1, 3]) for X in cartesian_trajectory(np.eye(4), X1, 1, 3, 5)]

@@ -1,5 +1,5 @@
 """The spatial layer against Pinocchio, scipy's Rotation and closed forms; hypothesis round trips;
-every edge case listed in API.md §1."""
+every edge case the seed function library promises (the "Poses and rotations" page of the documentation)."""
 import numpy as np
 import pinocchio as pin
 import pytest
