@@ -171,6 +171,13 @@ def main(argv=None) -> int:
     except _Terminated:
         print("robokit: terminated", file=sys.stderr)
         return EXIT_SIGTERM
+    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except (OSError, ValueError):  # pragma: no cover
+            pass
+        return 141
     except SystemExit:
         raise
     except Exception as exc:  # noqa: BLE001 - the boundary: every exception gets one line

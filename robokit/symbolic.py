@@ -71,13 +71,36 @@ def _sym(x):
     return sp.Float(float(x), 17) if float(x) != 0.0 else sp.Integer(0)
 
 
+#: Simplifying more entries than this shows a progress bar on stderr (six-joint forms take 10–100 s).
+_PROGRESS_ENTRIES = 12
+
+
 def _simplify_matrix(m: sp.Matrix, level: str = "full") -> sp.Matrix:
-    """``full``: simplify + trigsimp per entry; ``trig``: trigsimp only (cheaper); ``none``."""
+    """``full``: simplify + trigsimp per entry; ``trig``: trigsimp only (cheaper); ``none``.
+
+    Long simplifications (many entries with large expressions) show a transient progress bar
+    on stderr, so a notebook or a terminal is not silent for tens of seconds.
+    """
     if level == "none":
         return m
     if level == "trig":
-        return m.applyfunc(lambda e: sp.trigsimp(e) if e.free_symbols else e)
-    return m.applyfunc(lambda e: sp.trigsimp(sp.expand_trig(sp.simplify(e))) if e.free_symbols else e)
+        f = lambda e: sp.trigsimp(e) if e.free_symbols else e  # noqa: E731
+    else:
+        f = lambda e: sp.trigsimp(sp.expand_trig(sp.simplify(e))) if e.free_symbols else e  # noqa: E731
+    work = [k for k, e in enumerate(m) if e.free_symbols]
+    heavy = len(work) > _PROGRESS_ENTRIES and sum(sp.count_ops(m[k]) for k in work) > 400
+    if not heavy:
+        return m.applyfunc(f)
+    from rich.console import Console
+    from rich.progress import Progress
+
+    out = m.copy()
+    with Progress(console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task(f"simplifying a {m.rows}×{m.cols} symbolic matrix", total=len(work))
+        for k in work:
+            out[k] = f(m[k])
+            bar.advance(task)
+    return out
 
 
 @dataclass
@@ -145,6 +168,10 @@ class SymbolicArm:
         self.base = sp.eye(4) if base is None else sp.Matrix(base).applyfunc(_sym)
         self.tool = sp.eye(4) if tool is None else sp.Matrix(tool).applyfunc(_sym)
         self._frames_cache = None
+
+    def __repr__(self) -> str:
+        joints = "".join(self.joint_types)
+        return f"SymbolicArm({self.n} joints {joints}, {self.convention} DH, rows={self.rows})"
 
     @classmethod
     def from_dh_table(cls, table, symbolic_lengths: bool = False) -> "SymbolicArm":

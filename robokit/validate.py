@@ -84,24 +84,28 @@ def _check_modules(area: str) -> list[str]:
     return [f"robokit.{area}.{n}" for n in sorted(names)]
 
 
-def run_all(seed: int = 0, areas=AREAS) -> list[CheckRow]:
-    """Run every available area's checks with a seeded generator; return all rows."""
-    rows: list[CheckRow] = []
+def iter_rows(seed: int = 0, areas=AREAS):
+    """Yield ``(module name, rows)`` as each check module finishes (areas in dependency order)."""
     for area in areas:
         try:
             modnames = _check_modules(area)
         except Exception as exc:
-            rows.append(CheckRow(f"{area}: import", "-", 0, math.inf, 0.0, error=repr(exc)))
+            yield f"robokit.{area}", [CheckRow(f"{area}: import", "-", 0, math.inf, 0.0, error=repr(exc))]
             continue
         for modname in modnames:
             try:
                 mod = importlib.import_module(modname)
                 rng = np.random.default_rng(seed)
-                rows.extend(mod.checks(rng))
+                rows = list(mod.checks(rng))
             except Exception as exc:  # a broken check is a failed row, not a crash
                 tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
-                rows.append(CheckRow(f"{modname}: raised", "-", 0, math.inf, 0.0, error=tb))
-    return rows
+                rows = [CheckRow(f"{modname}: raised", "-", 0, math.inf, 0.0, error=tb)]
+            yield modname, rows
+
+
+def run_all(seed: int = 0, areas=AREAS) -> list[CheckRow]:
+    """Run every available area's checks with a seeded generator; return all rows."""
+    return [row for _, rows in iter_rows(seed, areas) for row in rows]
 
 
 def format_table(rows: list[CheckRow]) -> str:
@@ -129,16 +133,66 @@ def format_table(rows: list[CheckRow]) -> str:
     return "\n".join(out)
 
 
+#: Column widths of the streamed table (rows are printed as they are computed).
+_WIDTHS = (58, 10, 5, 9, 5, 18, 4)
+
+
+def _row_cells(r: CheckRow):
+    return (
+        r.quantity,
+        r.model,
+        str(r.cases),
+        f"{r.max_error:.2e}" if math.isfinite(r.max_error) else "inf",
+        f"{r.tolerance:.0e}",
+        r.metric,
+        "ok" if r.passed else "FAIL",
+    )
+
+
+def _line(cells) -> str:
+    return "  ".join(c.ljust(w) for c, w in zip(cells, _WIDTHS)).rstrip()
+
+
 def main(as_json: bool = False, seed: int = 0) -> int:
-    """Run, print the table (or JSON), return the exit status: 0 if every row passes, else 1."""
+    """Run and print the table (rows streamed as each area finishes) or, with ``as_json``, one
+    JSON document at the end. Returns the exit status: 0 if every row passes, else 1.
+
+    On a terminal a progress line on stderr says which area is running; piped, the output is
+    plain lines only.
+    """
+    import sys
+
     t0 = time.perf_counter()
-    rows = run_all(seed=seed)
+    rows: list[CheckRow] = []
+    progress = None
+    if not as_json and sys.stderr.isatty():
+        from rich.console import Console
+
+        progress = Console(stderr=True).status("validating ...")
+        progress.start()
+    try:
+        if not as_json:
+            head = ("quantity", "model", "cases", "max error", "tol", "metric", "pass")
+            print(_line(head))
+            print(_line(tuple("-" * w for w in _WIDTHS)), flush=True)
+        for modname, new in iter_rows(seed=seed):
+            rows.extend(new)
+            if progress is not None:
+                progress.update(f"validating ... {modname.split('.')[1]} done ({len(rows)} rows)")
+            if not as_json:
+                for r in new:
+                    print(_line(_row_cells(r)))
+                    if r.error:
+                        print(f"  error in {r.quantity} [{r.model}]: {r.error}")
+                sys.stdout.flush()
+    finally:
+        if progress is not None:
+            progress.stop()
     elapsed = time.perf_counter() - t0
     ok = bool(rows) and all(r.passed for r in rows)
     if as_json:
         print(json.dumps({"passed": ok, "seconds": round(elapsed, 3), "rows": [r.as_dict() for r in rows]}, indent=1))
     else:
-        print(format_table(rows))
         n_fail = sum(not r.passed for r in rows)
         print(f"\n{len(rows) - n_fail} passed, {n_fail} failed  ({elapsed:.1f} s)")
     return 0 if ok else 1

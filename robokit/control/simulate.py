@@ -43,6 +43,13 @@ class SimResult:
         """(n,) RMS tracking error per joint."""
         return np.sqrt(np.mean(self.error**2, axis=0))
 
+    def __repr__(self) -> str:
+        K, n = self.q.shape
+        if K == 0:
+            return "SimResult(empty)"
+        worst = float(np.abs(self.error).max())
+        return f"SimResult({K} samples × {n} joints, t = {self.t[0]:g} … {self.t[-1]:g} s, max |error| {worst:.3g} rad)"
+
 
 def friction_torque(dq, B, Tc) -> np.ndarray:
     """Joint friction ``B q̇ + T_c``, with ``T_c = Tc[:, 0]`` for q̇ > 0, ``Tc[:, 1]`` for q̇ < 0, 0 at rest.
