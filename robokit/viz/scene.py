@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import io
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -98,6 +99,7 @@ def _stop_server(proc):
 
 
 class Scene:
+    _views = 0  # pages written by notebook(), for unique file names
     """A meshcat scene of one robot.
 
     robot : a :class:`robokit.Robot` (or anything ``robokit.load`` accepts);
@@ -299,14 +301,25 @@ class Scene:
         """The scene as one self-contained HTML page (no server needed to view it)."""
         return self.vis.static_html()
 
-    def notebook(self, height: int = 480):
-        """Display the scene inline in a Jupyter notebook (an iframe of the static page)."""
-        import html as _html
+    def notebook(self, height: int = 480, path=None):
+        """Show the scene in a Jupyter notebook: the self-contained page is written to a file
+        (default ``robokit_views/<robot>-<k>.html`` beside the notebook) and displayed in an
+        ``IFrame``, so the executed notebook stays small (a meshed robot's page is 5–25 MB).
 
-        from IPython.display import HTML
+        Returns the ``IPython.display.IFrame``.
+        """
+        from IPython.display import IFrame
 
-        page = _html.escape(self.html(), quote=True)
-        return HTML(f'<iframe srcdoc="{page}" style="width:100%;height:{int(height)}px;border:0"></iframe>')
+        from robokit._io import atomic_write
+
+        if path is None:
+            folder = Path("robokit_views")
+            folder.mkdir(exist_ok=True)
+            Scene._views += 1
+            path = folder / f"{self.robot.name}-{Scene._views}.html"
+        path = Path(path)
+        atomic_write(path, self.html())
+        return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
     def close(self):
         """Stop the meshcat server this scene started (if it started one)."""
