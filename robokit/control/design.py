@@ -51,6 +51,8 @@ def pid_gains_bandwidth(inertia, bandwidth):
     inertia : kg·m² (scalar or (n,)); bandwidth : ω_b (rad/s). ``K_p = 3Jω_b²``, ``K_i = Jω_b³``,
     ``K_d = 3Jω_b`` (module docstring). The integral term removes the steady-state error of a
     constant disturbance (a type-1 loop, Lecture 8) at the price of some overshoot of steps.
+
+    Example: ``pid_gains_bandwidth(1.0, 10.0)`` is ``(300.0, 1000.0, 30.0)``.
     """
     J = np.asarray(inertia, dtype=float)
     w = np.asarray(bandwidth, dtype=float)
@@ -134,6 +136,8 @@ def plot_step_response(t, y, target=None, info: StepInfo | None = None, ax=None,
 
     t, y : (K,) times (s) and response; target : commanded value (default the final value);
     info : precomputed :func:`step_info` (computed when None); ax : Axes to draw on (new figure otherwise).
+
+    Example: ``plot_step_response(t, 1 - np.exp(-t), target=1.0)``.
     """
     import matplotlib.pyplot as plt
 

@@ -91,6 +91,9 @@ def inertia_with_drives(robot, q) -> np.ndarray:
     """Joint-space inertia (n×n) seen by the joints with the motors: ``M(q) + diag(G² Jm)``.
 
     q : (n,) joint angles (rad). Symmetric positive definite; equals Corke's ``inertia(q)``.
+
+    Example: ``inertia_with_drives(robokit.load("puma560"), np.zeros(6))[0, 0]`` includes joint 1's
+    reflected rotor ``62.61² × 2e-4 ≈ 0.78`` kg·m².
     """
     q = as_vector(q, "q", robot.n)
     Jm, G, _, _ = drive_parameters(robot)
@@ -102,6 +105,8 @@ def forward_dynamics_with_drives(robot, q, dq, tau, *, friction: bool = True, co
     forward dynamics, with the drives' inertia and friction τ_f).
 
     q, dq, tau : (n,) rad, rad/s, N·m. The inverse of :func:`rne_with_drives`.
+
+    Example: ``forward_dynamics_with_drives(robot, q, dq, rne_with_drives(robot, q, dq, ddq))`` returns ddq.
     """
     n = robot.n
     q = as_vector(q, "q", n)
@@ -138,6 +143,9 @@ def dynamic_manipulability(robot, q, method: str = "asada", *, drives: bool = Tr
       accelerations reachable with unit joint torque ``QᵀQ = 1`` (``ν̇ = J M⁻¹ Q`` at q̇ = 0, no gravity).
 
     drives : include ``diag(G² Jm)`` in M (a robot without a DH table needs ``drives=False``).
+
+    Example: ``dynamic_manipulability(robokit.load("puma560"), qn, "asada")`` equals Corke's
+    ``manipulability(qn, method="asada")``.
     """
     q = as_vector(q, "q", robot.n)
     M = inertia_with_drives(robot, q) if drives else robot.crba(q)

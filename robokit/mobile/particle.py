@@ -88,7 +88,9 @@ class ParticleFilter:
     order : odometry order ("turn-move" default, "move-turn"); resample_threshold : resample when
     ``N_eff < threshold · N`` (1 resamples after every update).
 
-    Attributes: ``particles`` (N, 3), ``weights`` (N,).
+    Attributes: ``particles`` (N, 3), ``weights`` (N,); the estimate :attr:`x` and covariance :attr:`P`.
+
+    Example: ``pf = ParticleFilter(500, x0, P0, V, W, landmarks, rng=0); pf.predict(delta); pf.update(z, i); pf.x``.
     """
 
     def __init__(self, n_particles: int, x0, P0, V, W, landmarks: LandmarkMap, rng=None, order: str = "turn-move",

@@ -100,6 +100,8 @@ def ms_through_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, through
 
     Returns the :class:`Trajectory`; ``info["through_times"]`` holds the time (on ``t``'s axis) at
     which the path is at each through point, ``info["through"]`` their indices.
+
+    Example: ``ms_through_trajectory([[0, 0], [1, 0], [1, 1]], 0.01, 0.2, qdmax=0.5)`` passes (1, 0).
     """
     W = as_array(viapoint, "viapoint")
     pts, frac = through_viapoints(W, through, distance)
@@ -123,7 +125,7 @@ def ms_through_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, through
     tr = ms_trajectory(pts, dt, tacc, qdmax=qdmax, tsegment=tsegment, **kwargs)
     vt = np.asarray(tr.info["via_times"])
     # via_times lists start and targets; pseudo points of through point j sit at consecutive rows
-    rows, times = [], []
+    times = []
     r = 0
     for i in range(M):
         if i in idx:
@@ -178,6 +180,7 @@ def ms_cartesian_trajectory(poses, dt, tacc, speed=None, angular_speed=None, tse
         # a segment without rotation is never limited by its progress variable
         sdot = np.where(thetas > 0, w / np.where(thetas > 0, thetas, 1.0), 1e9)
         tr = ms_trajectory(via, dt, tacc, qdmax=np.r_[np.full(3, v), sdot], verbose=verbose)
+    assert tr.qd is not None and tr.qdd is not None  # ms_trajectory always gives its derivatives
     S = tr.q[:, 3:]
     Sd = tr.qd[:, 3:]
     K = len(tr.t)
