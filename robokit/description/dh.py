@@ -8,7 +8,9 @@ Lecture 4 and seed 003 §2.1. Two conventions:
   ``ⁱ⁻¹Tᵢ = Rx(α_{i−1}) Tx(a_{i−1}) Rz(θᵢ) Tz(dᵢ)``; joint i moves about (along) ``z_i``.
 
 A revolute joint adds its variable ``qᵢ`` to θᵢ (the row's θ is an offset), a prismatic
-joint adds it to dᵢ. In both conventions the body of link i is rigidly attached to DH frame
+joint adds it to dᵢ. A *flipped* joint (``flip: true``, as Corke's toolbox models the Kinova
+Jaco and Mico, whose joint 1 turns the other way) subtracts it instead: ``θᵢ = θ_offset − qᵢ``
+(``dᵢ = d_offset − qᵢ``): its positive direction is about −z. In both conventions the body of link i is rigidly attached to DH frame
 {i}; its mass, centre of mass and inertia (about the centre of mass, frame-{i} axes) are
 given in that frame. Poses of the frames in ``base_link``: ``T_base_0 = base`` and
 ``T_base_i = base · ⁰T₁ ⋯ ⁱ⁻¹Tᵢ``; the tool is ``T_base_N · tool``.
@@ -29,7 +31,8 @@ from robokit.spatial.so3 import euler_to_matrix, matrix_to_euler
 
 __all__ = ["DHLink", "DHTable", "dh_transform", "load_dh", "rpy_to_matrix", "matrix_to_rpy"]
 
-_LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name"}
+_LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name",
+              "flip"}
 _TOP_KEYS = {"name", "convention", "angle_unit", "gravity", "base", "tool", "links", "description"}
 
 
@@ -90,7 +93,9 @@ class DHLink:
     side); Tc : (2,) Coulomb friction for positive and negative motion (N·m, motor side;
     the negative-motion value is usually negative). These drive parameters follow Corke's
     toolbox: referred to the joint they give inertia ``G² Jm``, viscous friction ``G² B``
-    and Coulomb friction ``|G| Tc`` (see :meth:`joint_friction`).
+    and Coulomb friction ``|G| Tc`` (see :meth:`joint_friction`). flip : the joint variable
+    enters with a minus sign, ``θ = θ_offset − q`` (``d = d_offset − q``): the joint turns
+    (slides) about −z (YAML key ``flip: true``; default False).
     """
 
     joint: str = "R"
@@ -107,6 +112,7 @@ class DHLink:
     B: float = 0.0
     Tc: np.ndarray = field(default_factory=lambda: np.zeros(2))
     name: str | None = None
+    flip: bool = False
 
     def joint_friction(self, dq: float) -> float:
         """Friction torque at the joint opposing motion, ``G² B q̇ + |G| Tc(sign q̇)`` (N·m).
@@ -166,8 +172,11 @@ class DHTable:
 
     # ----------------------------------------------------------------- kinematics
     def link_transform(self, i: int, q_i: float) -> np.ndarray:
-        """Pose of frame {i+1} in frame {i} (0-based ``i``) at joint value ``q_i`` (rad or m)."""
+        """Pose of frame {i+1} in frame {i} (0-based ``i``) at joint value ``q_i`` (rad or m)
+        (``−q_i`` enters for a flipped joint)."""
         l = self.links[i]
+        if l.flip:
+            q_i = -q_i
         theta, d = (l.theta + q_i, l.d) if l.joint == "R" else (l.theta, l.d + q_i)
         return dh_transform(l.a, l.alpha, d, theta, self.convention)
 
@@ -315,7 +324,10 @@ class DHTable:
             if lname is not None and (not isinstance(lname, str) or not lname.isprintable() or len(lname) > 200):
                 shown = repr(lname) if len(repr(lname)) <= 60 else repr(lname)[:57] + "..."
                 fail(f"{where}, key 'name': expected a printable string (at most 200 characters), got {shown}")
-            links.append(DHLink(joint, a, alpha, d, theta, qlim, mass, com, inertia, Jm, G, B, Tc, lname))
+            flip = ld.get("flip", False)
+            if not isinstance(flip, bool):
+                fail(f"{where}, key 'flip': expected true or false, got {flip!r}")
+            links.append(DHLink(joint, a, alpha, d, theta, qlim, mass, com, inertia, Jm, G, B, Tc, lname, flip))
         return cls(name, convention, tuple(links), gravity, base, tool)
 
     def to_dict(self, angle_unit: str = "deg") -> dict:
@@ -357,6 +369,8 @@ class DHTable:
                 d["B"] = num(l.B)
             if np.any(np.asarray(l.Tc) != 0):
                 d["Tc"] = [num(v) for v in l.Tc]
+            if l.flip:
+                d["flip"] = True
             links.append(d)
         out["links"] = links
         return out

@@ -2,7 +2,7 @@ r"""DH table → URDF (frame conventions: the "Generated and loaded URDFs" page 
 
 Layout of the generated URDF, for joint i = 1..N:
 
-``dh_{i−1}`` —joint_i (revolute/prismatic about z, origin Oᵢ)→ ``link_i`` —fixed (origin Fᵢ)→ ``dh_i``
+``dh_{i−1}`` —joint_i (revolute/prismatic about z — about −z for a flipped joint —, origin Oᵢ)→ ``link_i`` —fixed (origin Fᵢ)→ ``dh_i``
 
 * standard convention: joint i moves about z_{i−1}, so Oᵢ = I and
   Fᵢ = Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ) (θᵢ, dᵢ the offsets);
@@ -129,7 +129,7 @@ def dh_to_urdf(table: DHTable) -> str:
         jtype = "revolute" if l.joint == "R" else "prismatic"
         lines.append(
             f'  <joint name="joint_{i}" type="{jtype}"><parent link="dh_{i - 1}"/><child link="link_{i}"/>'
-            f'{_origin(O[i - 1])}<axis xyz="0 0 1"/>'
+            f'{_origin(O[i - 1])}<axis xyz="0 0 {-1 if l.flip else 1}"/>'
             f'<limit lower="{_f(qlim[i - 1, 0])}" upper="{_f(qlim[i - 1, 1])}" effort="1000" velocity="10"/></joint>'
         )
         lines.append(f'  <link name="dh_{i}"/>')

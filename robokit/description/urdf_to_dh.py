@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit.description.dh import DHLink, DHTable, dh_transform
+from robokit.spatial.lines import common_normal
 
 __all__ = ["urdf_to_dh", "URDFToDH", "format_dh_table", "joint_axes"]
 
@@ -72,40 +73,23 @@ def joint_axes(robot):
     return axes
 
 
-def _closest(p1, z1, p2, z2):
-    """Feet of the common normal of two non-parallel lines: (foot on line 1, foot on line 2)."""
-    w0 = p1 - p2
-    b = z1 @ z2
-    d, e = z1 @ w0, z2 @ w0
-    den = 1.0 - b * b
-    s = (b * e - d) / den
-    t = (e - b * d) / den
-    return p1 + s * z1, p2 + t * z2
-
-
 def _normal(p1, z1, p2, z2, ref, x_prev):
-    """(foot on line 1, foot on line 2, x direction) of the DH normal from line 1 to line 2.
+    """(foot on line 1, foot on line 2, x direction) of the DH normal from line 1 to line 2
+    (:func:`robokit.common_normal`, with the DH choices of the module docstring).
 
-    ref: the point on line 1 used when the lines are parallel; x_prev: kept when they coincide.
+    ref: the point on line 1 used when the lines are parallel; x_prev: the sign of x for intersecting
+    lines, and x itself (projected) when the lines coincide.
     """
-    cross = np.cross(z1, z2)
-    # Nearly parallel axes (1 − (z1·z2)² below 1e-14, i.e. under 1e-7 rad apart) are treated as
-    # parallel: their common normal is numerically meaningless, and the FK residual then says
-    # how far the table is from the URDF.
-    if np.linalg.norm(cross) > 1e-9 and 1.0 - float(z1 @ z2) ** 2 > 1e-14:
-        f1, f2 = _closest(p1, z1, p2, z2)
-        if np.linalg.norm(f2 - f1) > _EPS:
-            return f1, f2, _unit(f2 - f1)
-        x = _unit(cross)  # intersecting: x = ±(z1 × z2), the sign closest to the previous x
-        return f1, f1, (-x if x @ x_prev < 0 else x)
-    f1 = p1 + ((ref - p1) @ z1) * z1  # parallel: through the reference point
-    f2 = p2 + ((f1 - p2) @ z2) * z2
-    if np.linalg.norm(f2 - f1) > _EPS:
-        return f1, f2, _unit(f2 - f1)
-    x = x_prev - (x_prev @ z1) * z1  # coincident
+    cn = common_normal(p1, z1, p2, z2, ref=ref, tol=_EPS)
+    if cn.kind in ("skew", "parallel"):
+        return cn.foot1, cn.foot2, cn.direction
+    if cn.kind == "intersecting":  # x = ±(z1 × z2), the sign closest to the previous x
+        x = cn.direction
+        return cn.foot1, cn.foot1, (-x if x @ x_prev < 0 else x)
+    x = x_prev - (x_prev @ z1) * z1  # coincident: keep the previous x
     if np.linalg.norm(x) < 1e-9:
-        x = np.cross(z1, [1.0, 0.0, 0.0]) if abs(z1[0]) < 0.9 else np.cross(z1, [0.0, 1.0, 0.0])
-    return f1, f1, _unit(x)
+        x = cn.direction
+    return cn.foot1, cn.foot1, _unit(x)
 
 
 def _frame(o, x, z):

@@ -12,7 +12,7 @@ r"""The terms of the dynamic equation and what changes them (Lectures 7–8).
 * :func:`base_wrench` — the wrench the base must supply to the arm.
 * :func:`cartesian_dynamics` — Λ, μ, p of the operational-space equation (Lecture 7) and the
   dynamic manipulability measures.
-* :func:`total_energy`, :func:`integrate` — energy and Euler/RK4 integration of the course
+* :func:`total_energy`, :func:`integrate` — energy and Euler/Taylor (the lecture's)/RK4 integration of the course
   forward dynamics (e.g. the PUMA 560 collapsing under gravity).
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
-from robokit.dynamics.newton_euler import _model, forward_dynamics
+from robokit.dynamics.newton_euler import _model, forward_dynamics, inverse_dynamics
 from robokit.spatial.se3 import _ad
 from robokit.kinematics.poe import _adjoint_many
 from robokit.spatial.so3 import _hat
@@ -60,16 +60,34 @@ def _link_jacobians(m, theta):
     return J
 
 
-def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
-    """The n×n Coriolis matrix C(θ, θ̇): ``C θ̇ = c(θ, θ̇)`` and ``Ṁ − 2C`` skew-symmetric.
+def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist, method: str = "christoffel") -> np.ndarray:
+    """The n×n Coriolis matrix C(θ, θ̇) with ``C θ̇ = c(θ, θ̇)``, in one of two factorisations.
 
-    Arguments in Modern Robotics form (see :func:`robokit.inverse_dynamics`). The result equals
-    the Christoffel-symbol matrix ``Cₖⱼ = Σᵢ Γᵢⱼₖ θ̇ᵢ`` of the mass matrix.
+    Arguments in Modern Robotics form (see :func:`robokit.inverse_dynamics`); θ, θ̇ (n,) rad, rad/s.
+    The velocity-product torque ``c(θ, θ̇) = Σⱼₖ cᵢⱼₖ θ̇ⱼ θ̇ₖ`` is a quadratic form in θ̇; C is not
+    unique, only ``C θ̇`` is.
+
+    method : "christoffel" (default) — the Christoffel-symbol matrix ``Cₖⱼ = Σᵢ Γᵢⱼₖ θ̇ᵢ`` of the mass
+    matrix, the one with ``Ṁ − 2C`` skew-symmetric (computed from the link body Jacobians, see the
+    module docstring); "lecture" — the factorisation the lecture prints (Corke's toolbox, from
+    Newton–Euler runs with ``θ̈ = 0`` and no gravity): column k collects the centripetal term of
+    θ̇ₖ and every Coriolis product θ̇ⱼθ̇ₖ with j < k,
+    ``C[:, k] = c(eₖ) θ̇ₖ + Σ_{j<k} (c(eⱼ + eₖ) − c(eⱼ) − c(eₖ)) θ̇ⱼ``,
+    where ``c(u)`` is the velocity-product torque at joint rates u.
+
+    For the PUMA 560 at the lecture's nominal pose ``qn = (0, π/4, π, 0, π/4, 0)`` with all
+    rates 0.5 rad/s, ``C₁₂`` is −0.9115 (lecture) and −0.6453 (Christoffel); ``C θ̇`` agrees.
+
+    Example: ``coriolis_matrix(q, dq, robot.poe.Mlist, robot.poe.Glist, robot.poe.Slist, "lecture")``.
     """
+    if method not in ("christoffel", "lecture"):
+        raise ValueError(f"method: expected 'christoffel' or 'lecture', got {method!r}")
     m = _model(Mlist, Glist, Slist)
     th = as_vector(thetalist, "thetalist", m.n)
     dth = as_vector(dthetalist, "dthetalist", m.n)
     n = m.n
+    if method == "lecture":
+        return _coriolis_lecture(th, dth, Mlist, Glist, Slist, n)
     J = _link_jacobians(m, th)
     C = np.zeros((n, n))
     for i in range(n):
@@ -83,6 +101,22 @@ def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
         adV = _ad(V)
         B = 0.5 * (-adV.T @ G + G @ adV + _X(G @ V))
         C += Ji.T @ (G @ Jd + B @ Ji)
+    return C
+
+
+def _coriolis_lecture(th, dth, Mlist, Glist, Slist, n):
+    """The lecture's (Corke's) factorisation, from velocity-product torques c(u) (θ̈ = 0, g = 0)."""
+    z3, z6, zn = np.zeros(3), np.zeros(6), np.zeros(n)
+
+    def c(u):
+        return inverse_dynamics(th, u, zn, z3, z6, Mlist, Glist, Slist)
+
+    eye = np.eye(n)
+    Csq = np.column_stack([c(eye[j]) for j in range(n)])  # c(eⱼ): the θ̇ⱼ² coefficients
+    C = Csq * dth  # centripetal: column j times θ̇ⱼ
+    for j in range(n):
+        for k in range(j + 1, n):
+            C[:, k] += (c(eye[j] + eye[k]) - Csq[:, j] - Csq[:, k]) * dth[j]
     return C
 
 
@@ -211,8 +245,11 @@ def total_energy(robot, q, dq) -> float:
 
 
 def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, steps: int, method: str = "rk4"):
-    """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` with Euler or RK4.
+    """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` with Euler, the lecture's step or RK4.
 
+    method : "rk4" (default, fourth-order Runge–Kutta); "euler" (``θ ← θ + θ̇Δt``, ``θ̇ ← θ̇ + θ̈Δt``);
+    "taylor" — the lecture's step (Lecture 7, forward dynamics)
+    ``θ̇(t+Δt) = θ̇ + θ̈Δt``, ``θ(t+Δt) = θ + θ̇Δt + ½θ̈Δt²``.
     taufun : function (t, θ, θ̇) → τ (n,) (e.g. ``lambda t, q, dq: np.zeros(n)`` for a free
     fall); dt : step (s); steps : number of steps. Returns ``(t, thetamat, dthetamat)`` with
     ``steps + 1`` rows.
@@ -220,8 +257,8 @@ def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, 
     th = as_vector(thetalist, "thetalist").copy()
     dth = as_vector(dthetalist, "dthetalist", len(th)).copy()
     dt = as_scalar(dt, "dt", positive=True)
-    if method not in ("rk4", "euler"):
-        raise ValueError(f"method: expected 'rk4' or 'euler', got {method!r}")
+    if method not in ("rk4", "euler", "taylor"):
+        raise ValueError(f"method: expected 'rk4', 'euler' or 'taylor', got {method!r}")
     z6 = np.zeros(6)
 
     def acc(t, a, b):
@@ -236,6 +273,9 @@ def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, 
         if method == "euler":
             a = acc(t, th, dth)
             th, dth = th + dt * dth, dth + dt * a
+        elif method == "taylor":
+            a = acc(t, th, dth)
+            th, dth = th + dt * dth + 0.5 * dt * dt * a, dth + dt * a
         else:
             k1q, k1v = dth, acc(t, th, dth)
             k2q, k2v = dth + 0.5 * dt * k1v, acc(t + 0.5 * dt, th + 0.5 * dt * k1q, dth + 0.5 * dt * k1v)

@@ -17,6 +17,7 @@ __all__ = [
     "numerical_jacobian",
     "euler_rate_matrix",
     "analytical_jacobian",
+    "geometric_jacobian",
     "twist_transform",
     "wrench_transform",
     "jacobian_to_frame",
@@ -53,37 +54,82 @@ def numerical_jacobian(fk, q, h: float = 1e-6) -> np.ndarray:
     return J
 
 
-def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9) -> np.ndarray:
-    """E(φ) with ``ω = E(φ) φ̇`` for intrinsic ZYX ``(α, β, γ)`` or ZYZ ``(φ, θ, ψ)`` Euler angles.
+def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
+    """E(φ) (3×3) with ``ω = E(φ) φ̇``: Euler-angle rates to the angular velocity (base axes).
 
-    ZYX: ``E = [ẑ, Rz(α)ŷ, Rz(α)Ry(β)x̂] = [[0, −sα, cα cβ], [0, cα, sα cβ], [1, 0, −sβ]]``,
-    singular at cos β = 0; ZYZ: ``E = [[0, −sφ, cφ sθ], [0, cφ, sφ sθ], [1, 0, cθ]]``, singular at
-    sin θ = 0. Returns E (3×3); :func:`analytical_jacobian` raises at the singularity.
+    angles : (3,) ``φ = (a, b, c)`` (rad) of the sequence ``seq`` — any of the 12 sequences
+    (``robokit.EULER_SEQUENCES``: "XYZ", "ZYX", "ZYZ", …); extrinsic : fixed axes instead of moving
+    axes (see :func:`robokit.matrix_from_euler`). With the axes ``e₁, e₂, e₃`` of the sequence:
+
+    * intrinsic, ``R = R₁(a) R₂(b) R₃(c)``: ``E = [e₁, R₁(a) e₂, R₁(a) R₂(b) e₃]``;
+    * extrinsic, ``R = R₃(c) R₂(b) R₁(a)``: ``E = [R₃(c) R₂(b) e₁, R₃(c) e₂, e₃]``
+
+    (differentiate R and read ``ω`` off ``Ṙ Rᵀ = S(ω)``, Lecture 6). Examples: ZYX
+    ``[[0, −sα, cα cβ], [0, cα, sα cβ], [1, 0, −sβ]]`` (singular at cos β = 0); ZYZ
+    ``[[0, −sφ, cφ sθ], [0, cφ, sφ sθ], [1, 0, cθ]]`` (the Lecture 6 homework's B(Γ), singular at
+    sin θ = 0); the lecture's roll–pitch–yaw ``R = Rx(θr) Ry(θp) Rz(θy)`` is intrinsic "XYZ" with
+    ``φ = (θr, θp, θy)`` and ``B(Γ) = [[1, 0, sθp], [0, cθr, −cθp sθr], [0, sθr, cθp cθr]]``.
+    The matrix is singular when the first and third axes line up (Tait–Bryan b = ±π/2, proper
+    Euler b ∈ {0, π}); :func:`analytical_jacobian` raises there (``tol`` is its threshold on det E).
     """
-    a, b, _ = as_vector(angles, "angles", 3)
-    ca, sa, cb, sb = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
-    if seq == "ZYX":
-        return np.array([[0.0, -sa, ca * cb], [0.0, ca, sa * cb], [1.0, 0.0, -sb]])
-    if seq == "ZYZ":
-        return np.array([[0.0, -sa, ca * sb], [0.0, ca, sa * sb], [1.0, 0.0, cb]])
-    raise ValueError(f"seq: expected 'ZYX' or 'ZYZ', got {seq!r}")
+    from robokit.spatial.euler import _check_seq, _rot
+
+    a, b, c = as_vector(angles, "angles", 3)
+    seq = _check_seq(seq)
+    i, j, k = ("XYZ".index(ch) for ch in seq)
+    e = np.eye(3)
+    if extrinsic:
+        Rk = _rot(k, c)
+        return np.column_stack([Rk @ _rot(j, b) @ e[i], Rk @ e[j], e[k]])
+    Ri = _rot(i, a)
+    return np.column_stack([e[i], Ri @ e[j], Ri @ _rot(j, b) @ e[k]])
 
 
-def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9) -> np.ndarray:
+def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
     """``J_a = blockdiag(E(φ)⁻¹, I) J``: rows (φ̇; ṗ) — Euler-angle rates and linear velocity.
 
-    J : 6×n geometric Jacobian (ω; v) in the base frame; angles : the current Euler angles.
+    J : 6×n geometric Jacobian (ω; v) in the base frame; angles : the current Euler angles of
+    the tool orientation in the sequence ``seq`` (any of the 12; ``extrinsic`` for fixed axes), see
+    :func:`euler_rate_matrix`. (The lecture writes the same with the rows in the order (v; ω):
+    ``J_a = blockdiag(I, B(Γ)⁻¹) J``; robokit keeps angular rows first.)
     Raises ``ValueError`` ("representation singularity") where E(φ) is singular
     (|det E| < tol: β = ±π/2 for ZYX, θ = 0 or π for ZYZ) — the analytical Jacobian does not
     exist there even though the arm itself may be far from any singularity.
+
+    Example: ``analytical_jacobian(J, matrix_to_euler(R), "ZYX")``.
     """
     J = as_matrix(J, "J", 6, None)
-    E = euler_rate_matrix(angles, seq)
+    E = euler_rate_matrix(angles, seq, extrinsic=extrinsic)
     d = float(np.linalg.det(E))
     if abs(d) < tol:
         raise ValueError(f"angles: representation singularity of {seq} Euler angles (det E = {d:.2e}); "
                          "E(φ) has no inverse here")
     return np.vstack([np.linalg.solve(E, J[:3]), J[3:]])
+
+
+def geometric_jacobian(robot, q) -> np.ndarray:
+    """The geometric Jacobian (6×n) of the robot's tool point, world (base) axes, rows ``(ω; v)``.
+
+    ``ω = J_ω q̇`` is the tool's angular velocity and ``v = J_v q̇`` the velocity of the tool
+    frame's origin, both in base-frame axes (Lecture 6; the lecture stacks them as (v; ω) —
+    robokit keeps angular rows first, like every twist in the package). Built from the
+    product-of-exponentials space Jacobian ``J_s`` (whose linear rows are the velocity of the point
+    at the base origin): column i is ``(ω_i, v_i + ω_i × p)`` with p the tool position, i.e. for a
+    revolute joint ``(zᵢ, zᵢ × (p − oᵢ))`` and for a prismatic one ``(0, zᵢ)``.
+
+    robot : a :class:`robokit.Robot` (its ``poe`` parameters, tip = the tool); q : (n,) rad/m.
+    Example: for the planar 2-link arm the v rows x, y are the lecture's
+    ``J_v = [[−a₁s₁ − a₂s₁₂, −a₂s₁₂], [a₁c₁ + a₂c₁₂, a₂c₁₂]]``.
+    """
+    from robokit.kinematics.poe import fkin_space, jacobian_space
+
+    P = robot.poe
+    q = as_vector(q, "q", P.Slist.shape[1])
+    Js = jacobian_space(P.Slist, q)
+    p = fkin_space(P.M, P.Slist, q)[:3, 3]
+    Jg = Js.copy()
+    Jg[3:] = Js[3:] + np.cross(Js[:3].T, p).T
+    return Jg
 
 
 def twist_transform(T_a_b) -> np.ndarray:
@@ -203,8 +249,11 @@ def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: b
     """Joint velocities for a desired Cartesian twist (Lecture 6): ``q̇ = J⁺V + (I − J⁺J) z``.
 
     J : m×n Jacobian (m ≤ 6; use the rows that matter, e.g. the 2 planar rows of the 2-link arm);
-    V : (m,) desired twist; method : "pinv" (Moore–Penrose) or "dls" (damped least squares
-    ``q̇ = Jᵀ(JJᵀ + λ²I)⁻¹V``); damping : λ (or λ_max when adaptive); adaptive : λ² =
+    V : (m,) desired twist; method : "pinv" (Moore–Penrose), "dls" (damped least squares
+    ``q̇ = Jᵀ(JJᵀ + λ²I)⁻¹V``) or "damped_inverse" — the lecture's damped inverse
+    ``q̇ = (J + pI)⁻¹ V`` for a square J, p a small constant added to the diagonal (it leaves an
+    error ``J q̇ − V = −p q̇`` that accumulates in the end-effector position, as the lecture warns);
+    damping : λ (or λ_max when adaptive) for "dls", p for "damped_inverse"; adaptive : λ² =
     λ_max² (1 − (σ_min/ε)²) when σ_min < ε, else 0 (undamped away from singularities);
     z : (n,) joint velocity projected into the null space (redundant arms: secondary tasks such
     as joint-limit avoidance), which leaves the task twist unchanged.
@@ -221,8 +270,13 @@ def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: b
             lam2 = lam2 * (1 - (smin / epsilon) ** 2) if smin < epsilon else 0.0
         # λ = 0 is the undamped limit, the pseudo-inverse (also at a singular J, where JJᵀ has no inverse)
         Jp = J.T @ np.linalg.inv(J @ J.T + lam2 * np.eye(m)) if lam2 > 0 else np.linalg.pinv(J, rcond=rcond)
+    elif method == "damped_inverse":
+        if m != n:
+            raise ValueError(f"J: the damped inverse (J + pI)⁻¹ needs a square Jacobian, got shape {J.shape}")
+        p = as_scalar(damping, "damping", nonnegative=True)
+        Jp = np.linalg.inv(J + p * np.eye(n))
     else:
-        raise ValueError(f"method: expected 'pinv' or 'dls', got {method!r}")
+        raise ValueError(f"method: expected 'pinv', 'dls' or 'damped_inverse', got {method!r}")
     dq = Jp @ V
     if z is not None:
         z = as_vector(z, "z", n)

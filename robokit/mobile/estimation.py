@@ -4,7 +4,14 @@ Odometry increments ``δ = (δ_d, δ_θ)`` (distance, heading change) drive the 
 
     f(x, δ, v) = (x + (δ_d + v_d) cos(θ + δ_θ + v_θ), y + (δ_d + v_d) sin(θ + δ_θ + v_θ), θ + δ_θ + v_θ),
 
-with odometry noise ``v ~ N(0, V)``. A range–bearing sensor sees landmark i at
+with odometry noise ``v ~ N(0, V)``. This is the *turn-then-move* order (``order="turn-move"``, the
+default, as the lecture's three-vector form writes it). Corke's book applies the two in the other
+order, *move-then-turn* (``order="move-turn"``):
+
+    f(x, δ, v) = (x + (δ_d + v_d) cos θ, y + (δ_d + v_d) sin θ, θ + δ_θ + v_θ)
+
+(the lecture's matrix product ``ξ T_x(δ_d) R(δ_θ)`` is this order; for small steps the two agree
+to first order). Every function and filter taking odometry accepts ``order``. A range–bearing sensor sees landmark i at
 ``z = (√((x_i − x)² + (y_i − y)²), atan2(y_i − y, x_i − x) − θ) + w``, ``w ~ N(0, W)``.
 
 EKF (as Lecture 9 writes it): prediction ``x̂ ← f(x̂, δ, 0)``, ``P ← F_x P F_xᵀ + F_v V F_vᵀ``;
@@ -35,19 +42,40 @@ __all__ = [
 ]
 
 
-def odometry_model(x, delta, v=(0.0, 0.0)) -> np.ndarray:
-    """``f(x, δ, v)`` of the module docstring: the pose after the odometry increment δ and noise v."""
+_ORDERS = ("turn-move", "move-turn")
+
+
+def _check_order(order):
+    if order not in _ORDERS:
+        raise ValueError(f"order: expected 'turn-move' or 'move-turn', got {order!r}")
+    return order
+
+
+def odometry_model(x, delta, v=(0.0, 0.0), order: str = "turn-move") -> np.ndarray:
+    """``f(x, δ, v)`` of the module docstring: the pose (3,) after the odometry increment
+    δ = (δ_d, δ_θ) (m, rad) with noise v (2,); order : "turn-move" (default) or "move-turn" (Corke)."""
+    _check_order(order)
     d = delta[0] + v[0]
     th = x[2] + delta[1] + v[1]
-    return np.array([x[0] + d * math.cos(th), x[1] + d * math.sin(th), angdiff(th)])
+    heading = th if order == "turn-move" else x[2]
+    return np.array([x[0] + d * math.cos(heading), x[1] + d * math.sin(heading), angdiff(th)])
 
 
-def odometry_jacobians(x, delta):
-    """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v at v = 0 (3×3 and 3×2)."""
-    th = x[2] + delta[1]
+def odometry_jacobians(x, delta, order: str = "turn-move"):
+    """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v at v = 0 (3×3 and 3×2), for either order.
+
+    turn-move: ``F_x = [[1, 0, −δ_d s], [0, 1, δ_d c], [0, 0, 1]]``, ``F_v = [[c, −δ_d s], [s, δ_d c], [0, 1]]``
+    with c, s of θ + δ_θ (the lecture's); move-turn: the same F_x with c, s of θ, and
+    ``F_v = [[c, 0], [s, 0], [0, 1]]``.
+    """
+    _check_order(order)
+    th = x[2] + delta[1] if order == "turn-move" else x[2]
     c, s, d = math.cos(th), math.sin(th), delta[0]
     Fx = np.array([[1.0, 0.0, -d * s], [0.0, 1.0, d * c], [0.0, 0.0, 1.0]])
-    Fv = np.array([[c, -d * s], [s, d * c], [0.0, 1.0]])
+    if order == "turn-move":
+        Fv = np.array([[c, -d * s], [s, d * c], [0.0, 1.0]])
+    else:
+        Fv = np.array([[c, 0.0], [s, 0.0], [0.0, 1.0]])
     return Fx, Fv
 
 
@@ -137,18 +165,20 @@ class EKFLocalization:
     """EKF localisation with a known landmark map.
 
     x0 (3,), P0 (3×3): initial estimate and covariance; V: odometry noise covariance used by the
-    filter; W: sensor noise covariance used by the filter; landmarks: the known map.
+    filter; W: sensor noise covariance used by the filter; landmarks: the known map;
+    order: the odometry model's order, "turn-move" (default) or "move-turn".
     """
 
-    def __init__(self, x0, P0, V, W, landmarks: LandmarkMap):
+    def __init__(self, x0, P0, V, W, landmarks: LandmarkMap, order: str = "turn-move"):
         self.x = as_vector(x0, "x0", 3).copy()
         self.P = as_matrix(P0, "P0", 3, 3).copy()
         self.V, self.W, self.map = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2), landmarks
+        self.order = _check_order(order)
 
     def predict(self, delta):
         """Prediction with the odometry increment δ = (δ_d, δ_θ)."""
-        Fx, Fv = odometry_jacobians(self.x, delta)
-        self.x = odometry_model(self.x, delta)
+        Fx, Fv = odometry_jacobians(self.x, delta, self.order)
+        self.x = odometry_model(self.x, delta, order=self.order)
         self.P = Fx @ self.P @ Fx.T + Fv @ self.V @ Fv.T
 
     def update(self, z, i: int):
@@ -169,18 +199,20 @@ class EKFSLAM:
     """EKF SLAM: the vehicle pose and the landmark positions estimated together.
 
     The state is ``(x, y, θ, x₁, y₁, x₂, y₂, …)``; landmarks are added at their first
-    observation. ``landmark_index[i]`` is the position of landmark i in the state (or absent).
+    observation. ``landmark_index[i]`` is the position of landmark i in the state (or absent);
+    ``order`` as for :class:`EKFLocalization`.
     """
 
-    def __init__(self, x0, P0, V, W):
+    def __init__(self, x0, P0, V, W, order: str = "turn-move"):
         self.x = as_vector(x0, "x0", 3).copy()
         self.P = as_matrix(P0, "P0", 3, 3).copy()
         self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
+        self.order = _check_order(order)
         self.landmark_index: dict[int, int] = {}
 
     def predict(self, delta):
-        Fx, Fv = odometry_jacobians(self.x[:3], delta)
-        self.x[:3] = odometry_model(self.x[:3], delta)
+        Fx, Fv = odometry_jacobians(self.x[:3], delta, self.order)
+        self.x[:3] = odometry_model(self.x[:3], delta, order=self.order)
         n = len(self.x)
         F = np.eye(n)
         F[:3, :3] = Fx

@@ -3,7 +3,7 @@
 Modules: ``basics`` (near_zero, normalize), ``so3`` (SO(3)/so(3), ZYX Euler of the seed
 library), ``se3`` (SE(3)/se(3), adjoints), ``euler`` (all 12 sequences, intrinsic and
 extrinsic), ``quaternion`` (scalar first), ``axis_angle`` (Rodrigues, two-vector), ``se2``
-(planar poses). Twists are ``(ω, v)``, angular first; quaternions ``(w, x, y, z)``.
+(planar poses), ``lines`` (the common normal of two lines). Twists are ``(ω, v)``, angular first; quaternions ``(w, x, y, z)``.
 """
 from robokit.spatial.basics import *  # noqa: F401,F403
 from robokit.spatial.basics import __all__ as _basics_all
@@ -20,6 +20,8 @@ from robokit.spatial.axis_angle import *  # noqa: F401,F403
 from robokit.spatial.axis_angle import __all__ as _aa_all
 from robokit.spatial.se2 import *  # noqa: F401,F403
 from robokit.spatial.se2 import __all__ as _se2_all
+from robokit.spatial.lines import *  # noqa: F401,F403
+from robokit.spatial.lines import __all__ as _lines_all
 
 __all__ = (list(_basics_all) + list(_so3_all) + list(_se3_all) + list(_euler_all) + list(_quat_all)
-           + list(_aa_all) + list(_se2_all))
+           + list(_aa_all) + list(_se2_all) + list(_lines_all))

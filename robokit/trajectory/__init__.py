@@ -4,7 +4,8 @@ Modules: ``core`` (the ``Trajectory`` result type), ``polynomial`` (cubic, quint
 cubics through via points), ``lspb`` (trapezoidal velocity, multi-segment LSPB of the
 lecture), ``multisegment`` (``ms_trajectory``, Corke's ``mstraj``), ``timescaling``
 (seed/Modern Robotics time scalings and point-to-point trajectories), ``cartesian``
-(straight line with slerp orientation), ``plot`` (one-call figures).
+(straight line with slerp orientation), ``through`` (through points via pseudo via points,
+multi-segment Cartesian paths with blends), ``plot`` (one-call figures).
 Every generator returns a :class:`Trajectory` with ``t`` (K,), ``q``/``qd``/``qdd`` (K, n),
 except the seed functions ``joint_trajectory`` (N×n array) and ``screw_trajectory`` /
 ``cartesian_trajectory`` (list of 4×4), whose forms are fixed by the seed library.
@@ -21,9 +22,11 @@ from robokit.trajectory.timescaling import *  # noqa: F401,F403
 from robokit.trajectory.timescaling import __all__ as _ts_all
 from robokit.trajectory.cartesian import *  # noqa: F401,F403
 from robokit.trajectory.cartesian import __all__ as _cart_all
+from robokit.trajectory.through import *  # noqa: F401,F403
+from robokit.trajectory.through import __all__ as _through_all
 from robokit.trajectory.plot import *  # noqa: F401,F403
 from robokit.trajectory.plot import __all__ as _plot_all
 
 __all__: list[str] = (
-    list(_core_all) + list(_poly_all) + list(_lspb_all) + list(_ms_all) + list(_ts_all) + list(_cart_all) + list(_plot_all)
+    list(_core_all) + list(_poly_all) + list(_lspb_all) + list(_ms_all) + list(_ts_all) + list(_cart_all) + list(_plot_all) + list(_through_all)
 )

@@ -61,7 +61,13 @@ def _per_axis(x, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
     return arr.copy()
 
 
-def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=None, qdf=None, verbose=False) -> Trajectory:
+def _empty(x) -> bool:
+    """The seed's idiom ``qdmax=[]``: an empty list/array means "not given"."""
+    return x is not None and not isinstance(x, str) and np.size(x) == 0
+
+
+def ms_trajectory(viapoint=None, dt=None, tacc=None, qdmax=None, tsegment=None, q0=None, qd0=None, qdf=None,
+                  verbose=False, *, viapoints=None) -> Trajectory:
     """Multi-segment multi-axis trajectory with blends (seed 004 §5; Corke's ``mstraj``).
 
     Parameters
@@ -77,14 +83,17 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
         is the blend at the start of segment i). 0 gives straight lines with corners.
     qdmax : float or array (n,), optional
         Maximum speed per axis (> 0); each segment's duration is set by its slowest axis.
+        An empty list ``[]`` means "not given" (the seed's idiom, ``mstraj(p, [], tseg, …)``).
     tsegment : array (segments,), optional
-        Duration of each segment, s (> 0). Exactly one of ``qdmax`` / ``tsegment``.
+        Duration of each segment, s (> 0). Exactly one of ``qdmax`` / ``tsegment`` (``[]`` = not given).
     q0 : array (n,), optional
         Start position; default the first row of ``viapoint``.
     qd0, qdf : array (n,), optional
         Start and final velocities (default 0).
     verbose : bool
         Print the timing of each segment.
+    viapoints : array (M, n), keyword only
+        Alias of ``viapoint`` (the seed's spelling); give one of the two.
 
     Returns
     -------
@@ -114,6 +123,15 @@ def ms_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, q0=None, qd0=No
     >>> len(tr), round(float(tr.q[-1, 0]), 12)
     (20, 3.0)
     """
+    if viapoints is not None:
+        if viapoint is not None:
+            raise TypeError("viapoint, viapoints: give one of them (viapoints is an alias of viapoint)")
+        viapoint = viapoints
+    for name, value in (("viapoint", viapoint), ("dt", dt), ("tacc", tacc)):
+        if value is None:
+            raise TypeError(f"ms_trajectory: missing the argument {name!r}")
+    qdmax = None if _empty(qdmax) else qdmax
+    tsegment = None if _empty(tsegment) else tsegment
     if (qdmax is None) == (tsegment is None):
         raise ValueError(
             "qdmax/tsegment: give exactly one of them (qdmax = speed limit per axis, or tsegment = "

@@ -1,0 +1,148 @@
+r"""The joint actuator of Lecture 8: a DC motor behind a current amplifier and a gearbox.
+
+The amplifier makes a current proportional to the control voltage, the motor a torque
+proportional to the current (Lecture 8):
+
+    i = K_a u,      τ_m = K_m i = K_m K_a u,
+
+and the motor shaft, with total inertia J and viscous friction B (motor side), obeys
+
+    J ω̇ + B ω + τ_c(ω) = K_m K_a u − τ_d,
+
+with Coulomb friction τ_c and a disturbance torque τ_d. Without Coulomb friction its Laplace
+transform gives the transfer function ``Ω(s)/U(s) = K_m K_a / (J s + B)``: a first-order lag of
+DC gain ``K_m K_a / B`` and time constant ``J / B``, whose response to a voltage step u is
+``ω(t) = (K_m K_a u / B)(1 − e^{−B t / J})``.
+
+A gearbox of ratio G (motor turns per joint turn) between motor and link gives, seen from the
+link side (Lecture 8): ``ˡJ = G² ᵐJ``, ``ˡB = G² ᵐB``, ``ˡτ_C = G ᵐτ_C``, ``ˡτ = G ᵐτ``,
+``ˡθ̇ = ᵐθ̇ / G``, ``ˡθ̈ = ᵐθ̈ / G`` (:func:`reflect_to_joint`); the motor of joint j sees the
+effective inertia ``J = J_m + M_jj / G²`` (:func:`effective_inertia`).
+
+Units: V, A, N·m, kg·m², N·m·s/rad, rad/s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+
+__all__ = ["DCMotor", "reflect_to_joint", "effective_inertia"]
+
+
+@dataclass(frozen=True)
+class DCMotor:
+    """A DC motor with its current amplifier (Lecture 8).
+
+    Ka : amplifier transconductance (A/V); Km : torque constant (N·m/A); J : total inertia on the
+    motor shaft (kg·m², e.g. :func:`effective_inertia`); B : viscous friction (N·m·s/rad, motor
+    side); Tc : (2,) Coulomb friction for positive and negative speed (N·m, motor side, the second
+    usually negative; default none).
+
+    Example: ``DCMotor(Ka=1.0, Km=0.228, J=3.3e-4, B=8.2e-4).step_response([0, 0.1], 1.0)``.
+    """
+
+    Ka: float
+    Km: float
+    J: float
+    B: float
+    Tc: tuple = field(default=(0.0, 0.0))
+
+    def __post_init__(self):
+        as_scalar(self.Ka, "Ka", positive=True)
+        as_scalar(self.Km, "Km", positive=True)
+        as_scalar(self.J, "J", positive=True)
+        as_scalar(self.B, "B", nonnegative=True)
+        as_vector(self.Tc, "Tc", 2)
+
+    def current(self, u):
+        """Motor current ``i = K_a u`` (A) for control voltage u (V)."""
+        return self.Ka * np.asarray(u, dtype=float)
+
+    def torque(self, u):
+        """Motor torque ``τ = K_m K_a u`` (N·m) for control voltage u (V)."""
+        return self.Km * self.Ka * np.asarray(u, dtype=float)
+
+    def transfer_function(self):
+        """``(num, den)`` of ``Ω(s)/U(s) = K_m K_a / (J s + B)``: polynomial coefficients, highest power first."""
+        return np.array([self.Km * self.Ka]), np.array([self.J, self.B])
+
+    @property
+    def time_constant(self) -> float:
+        """``J / B`` (s); infinite without viscous friction."""
+        return self.J / self.B if self.B > 0 else float("inf")
+
+    @property
+    def dc_gain(self) -> float:
+        """Steady speed per volt ``K_m K_a / B`` (rad/s/V); infinite without viscous friction."""
+        return self.Km * self.Ka / self.B if self.B > 0 else float("inf")
+
+    def step_response(self, t, u: float = 1.0, omega0: float = 0.0) -> np.ndarray:
+        """Closed-form speed (rad/s) after a voltage step u at t = 0, no Coulomb friction:
+        ``ω(t) = ω_∞ + (ω₀ − ω_∞) e^{−B t / J}``, ``ω_∞ = K_m K_a u / B`` (``ω₀ + K_m K_a u t / J`` when B = 0).
+
+        t : (K,) times (s, ≥ 0).
+        """
+        t = np.asarray(t, dtype=float)
+        u = as_scalar(u, "u")
+        K = self.Km * self.Ka * u
+        if self.B == 0:
+            return omega0 + K * t / self.J
+        w_inf = K / self.B
+        return w_inf + (omega0 - w_inf) * np.exp(-self.B * t / self.J)
+
+    def acceleration(self, omega, u, tau_d=0.0) -> float:
+        """``ω̇ = (K_m K_a u − B ω − τ_c(ω) − τ_d) / J`` (rad/s²)."""
+        tc = self.Tc[0] if omega > 0 else (self.Tc[1] if omega < 0 else 0.0)
+        return (self.Km * self.Ka * u - self.B * omega - tc - tau_d) / self.J
+
+    def simulate(self, t, u, omega0: float = 0.0, tau_d=None, substeps: int = 10) -> np.ndarray:
+        """Speed ω (K,) by numerical integration (RK4) of the motor equation, Coulomb friction included.
+
+        t : (K,) increasing times (s); u : (K,) voltages (held over each interval) or a scalar;
+        tau_d : (K,) disturbance torques (N·m, motor side) or None; substeps : RK4 steps per interval.
+        """
+        t = as_vector(t, "t")
+        if np.any(np.diff(t) <= 0):
+            raise ValueError("t: times must increase strictly")
+        uu = np.broadcast_to(np.asarray(u, dtype=float), t.shape)
+        dd = np.zeros_like(t) if tau_d is None else np.broadcast_to(np.asarray(tau_d, dtype=float), t.shape)
+        w = np.empty_like(t)
+        w[0] = omega0
+        for k in range(len(t) - 1):
+            h = (t[k + 1] - t[k]) / substeps
+            x = w[k]
+            for _ in range(int(substeps)):
+                k1 = self.acceleration(x, uu[k], dd[k])
+                k2 = self.acceleration(x + 0.5 * h * k1, uu[k], dd[k])
+                k3 = self.acceleration(x + 0.5 * h * k2, uu[k], dd[k])
+                k4 = self.acceleration(x + h * k3, uu[k], dd[k])
+                x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            w[k + 1] = x
+        return w
+
+
+def reflect_to_joint(G, Jm=0.0, Bm=0.0, tau_c=0.0):
+    """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G:
+    ``(ˡJ, ˡB, ˡτ) = (G² Jm, G² Bm, G τ)`` (Lecture 8). Scalars or arrays (broadcast).
+
+    Example: ``reflect_to_joint(100, 2e-4, 1e-3, 0.1)`` is ``(2.0, 10.0, 10.0)``.
+    """
+    G = np.asarray(G, dtype=float)
+    if np.any(G == 0):
+        raise ValueError(f"G: a gear ratio cannot be 0, got {G}")
+    return G * G * np.asarray(Jm, float), G * G * np.asarray(Bm, float), G * np.asarray(tau_c, float)
+
+
+def effective_inertia(Jm, M_jj, G):
+    """The inertia the motor of joint j sees: ``J = J_m + M_jj / G²`` (kg·m², motor side; Lecture 8).
+
+    Jm : rotor inertia; M_jj : the arm's inertia about joint j (diagonal of M(q), kg·m²); G : gear
+    ratio. Scalars or arrays. ``M_jj`` changes with the pose — "M₂₂ varies a lot" (Lecture 8).
+    """
+    G = np.asarray(G, dtype=float)
+    if np.any(G == 0):
+        raise ValueError(f"G: a gear ratio cannot be 0, got {G}")
+    return np.asarray(Jm, float) + np.asarray(M_jj, float) / (G * G)

@@ -1,0 +1,145 @@
+r"""Inertia tensors of simple bodies, the parallel-axis theorem and rotation of a tensor (Lecture 7).
+
+The inertia tensor of a body about a point A, in the axes of a frame {A}, is (Lecture 7)
+
+.. math::
+
+    {}^A I = \begin{pmatrix} I_{xx} & -I_{xy} & -I_{xz} \\ -I_{xy} & I_{yy} & -I_{yz} \\
+             -I_{xz} & -I_{yz} & I_{zz} \end{pmatrix},\quad
+    I_{xx} = \iiint_V (y^2 + z^2)\,\rho\,dv,\ \ldots,\quad I_{xy} = \iiint_V x y\,\rho\,dv,\ \ldots
+
+(the moments on the diagonal, the *negated* products of inertia off it). All tensors here are
+3×3 float arrays in kg·m², lengths in m, masses in kg.
+
+* Solid bodies of uniform density about their centre of mass, in their principal axes:
+  :func:`inertia_box`, :func:`inertia_cylinder`, :func:`inertia_sphere`, :func:`inertia_rod`.
+* :func:`parallel_axis` — the tensor about another point: ``ᴬI = ᶜI + m (p_cᵀ p_c I₃ − p_c p_cᵀ)``
+  with p_c the centre of mass in {A} (Lecture 7; e.g. ``ᴬI_zz = ᶜI_zz + m (x_c² + y_c²)``,
+  ``ᴬI_xy = ᶜI_xy − m x_c y_c``).
+* :func:`rotate_inertia` — the same tensor in rotated axes: ``ᴬI = ᴬR_B ᴮI ᴬR_Bᵀ``.
+
+Example: the lecture's box of sides w (x), l (y), h (z) with a corner at the origin of {A} and its
+edges along the axes is ``parallel_axis(inertia_box(m, w, l, h), m, [w/2, l/2, h/2])``, whose
+diagonal is ``m/3 (l² + h²), m/3 (w² + h²), m/3 (l² + w²)`` and off-diagonal ``−m w l / 4`` etc.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit.spatial.so3 import check_rotation
+
+__all__ = [
+    "inertia_box",
+    "inertia_cylinder",
+    "inertia_sphere",
+    "inertia_rod",
+    "parallel_axis",
+    "rotate_inertia",
+]
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def _axis(axis) -> int:
+    if not isinstance(axis, str) or axis.lower() not in _AXES:
+        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+    return _AXES[axis.lower()]
+
+
+def inertia_box(mass, lx, ly, lz) -> np.ndarray:
+    """Inertia (3×3, kg·m²) of a uniform solid box about its centre, axes along its edges.
+
+    ``diag(m (l_y² + l_z²)/12, m (l_x² + l_z²)/12, m (l_x² + l_y²)/12)`` — the lecture's
+    integrals ``I_xx = ∭ (y² + z²) ρ dv`` over ``[−l_x/2, l_x/2] × …``; products of inertia vanish
+    by symmetry. mass : kg; lx, ly, lz : edge lengths along x, y, z (m).
+
+    Example: ``inertia_box(12.0, 1.0, 1.0, 1.0)`` is ``2 I₃``.
+    """
+    m = as_scalar(mass, "mass", nonnegative=True)
+    a = as_scalar(lx, "lx", nonnegative=True)
+    b = as_scalar(ly, "ly", nonnegative=True)
+    c = as_scalar(lz, "lz", nonnegative=True)
+    return m / 12.0 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
+
+
+def inertia_cylinder(mass, radius, length, axis: str = "z") -> np.ndarray:
+    """Inertia (3×3) of a uniform solid cylinder about its centre; its axis along ``axis``.
+
+    About the cylinder's axis ``m r²/2``; about any diameter through the centre
+    ``m (3 r² + L²)/12``. mass : kg; radius, length : m; axis : "x", "y" or "z".
+
+    Example: ``inertia_cylinder(2.0, 0.1, 0.0)`` (a disc) is ``diag(0.005, 0.005, 0.01)``.
+    """
+    m = as_scalar(mass, "mass", nonnegative=True)
+    r = as_scalar(radius, "radius", nonnegative=True)
+    L = as_scalar(length, "length", nonnegative=True)
+    k = _axis(axis)
+    d = np.full(3, m * (3.0 * r * r + L * L) / 12.0)
+    d[k] = 0.5 * m * r * r
+    return np.diag(d)
+
+
+def inertia_sphere(mass, radius, hollow: bool = False) -> np.ndarray:
+    """Inertia (3×3) of a uniform sphere about its centre: ``2/5 m r² I₃`` (solid) or
+    ``2/3 m r² I₃`` (a thin spherical shell, ``hollow=True``).
+
+    Example: ``inertia_sphere(5.0, 1.0)`` is ``2 I₃``.
+    """
+    m = as_scalar(mass, "mass", nonnegative=True)
+    r = as_scalar(radius, "radius", nonnegative=True)
+    return (2.0 / 3.0 if hollow else 0.4) * m * r * r * np.eye(3)
+
+
+def inertia_rod(mass, length, axis: str = "z") -> np.ndarray:
+    """Inertia (3×3) of a thin uniform rod about its centre, lying along ``axis``.
+
+    ``m L²/12`` about the two axes across the rod, 0 about the rod itself (the limit of
+    :func:`inertia_cylinder` as r → 0). Use :func:`parallel_axis` with ``p = (L/2)·axis`` for the
+    rod about one end (``m L²/3``).
+
+    Example: ``inertia_rod(3.0, 2.0, "x")`` is ``diag(0, 1, 1)``.
+    """
+    m = as_scalar(mass, "mass", nonnegative=True)
+    L = as_scalar(length, "length", nonnegative=True)
+    d = np.full(3, m * L * L / 12.0)
+    d[_axis(axis)] = 0.0
+    return np.diag(d)
+
+
+def _tensor(I, name):
+    I = as_matrix(I, name, 3, 3)
+    if np.abs(I - I.T).max() > 1e-9 * max(1.0, np.abs(I).max()):
+        raise ValueError(f"{name}: expected a symmetric 3×3 inertia tensor, got {I.tolist()}")
+    return I
+
+
+def parallel_axis(I_c, mass, p_c) -> np.ndarray:
+    """The inertia about the origin of {A} from the inertia about the centre of mass (same axes).
+
+    ``ᴬI = ᶜI + m (p_cᵀ p_c I₃ − p_c p_cᵀ)`` (Lecture 7, the parallel-axis theorem), with
+
+    I_c : (3, 3) inertia about the centre of mass, in {A}'s axes (kg·m²);
+    mass : kg; p_c : (3,) position of the centre of mass in {A} (m).
+
+    Example: a point mass 2 kg at (1, 0, 0): ``parallel_axis(np.zeros((3, 3)), 2, [1, 0, 0])`` is
+    ``diag(0, 2, 2)``.
+    """
+    I = _tensor(I_c, "I_c")
+    m = as_scalar(mass, "mass", nonnegative=True)
+    p = as_vector(p_c, "p_c", 3)
+    return I + m * (float(p @ p) * np.eye(3) - np.outer(p, p))
+
+
+def rotate_inertia(I_b, R_a_b) -> np.ndarray:
+    """The same inertia tensor expressed in the axes of {A}: ``ᴬI = ᴬR_B ᴮI ᴬR_Bᵀ``.
+
+    I_b : (3, 3) inertia in {B}'s axes (about some point); R_a_b : (3, 3) orientation of {B}
+    in {A}. The reference point does not change (combine with :func:`parallel_axis` to move it).
+
+    Example: a rod along z turned 90° about y lies along x:
+    ``rotate_inertia(inertia_rod(3, 2, "z"), Ry(π/2))`` equals ``inertia_rod(3, 2, "x")``.
+    """
+    I = _tensor(I_b, "I_b")
+    R = check_rotation(R_a_b, "R_a_b")
+    return R @ I @ R.T

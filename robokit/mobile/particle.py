@@ -1,0 +1,160 @@
+r"""Monte Carlo localisation (a particle filter) and the scalar uncertainty of an estimate (Lecture 9).
+
+The particle filter represents the belief about the pose ``x = (x, y, θ)`` by N particles ``xᵢ``
+with weights ``wᵢ`` (Σ wᵢ = 1), using the same models as the EKF of
+:mod:`robokit.mobile.estimation`:
+
+* prediction: each particle moves by the odometry increment with its own noise sample,
+  ``xᵢ ← f(xᵢ, δ, vᵢ)``, ``vᵢ ~ N(0, V)`` (either odometry order);
+* update with a range–bearing measurement z of landmark j: ``wᵢ ← wᵢ · exp(−½ νᵢᵀ W⁻¹ νᵢ)`` with
+  ``νᵢ = z − h(xᵢ, p_j)`` (bearing wrapped to (−π, π]), then normalised;
+* systematic resampling (:func:`systematic_resample`) when the effective sample size
+  ``N_eff = 1 / Σ wᵢ²`` drops below ``resample_threshold · N``: one uniform draw
+  ``u ~ U[0, 1/N)`` and the N evenly spaced pointers ``u + k/N`` pick particles from the cumulative
+  weights, so particle i is copied ⌊N wᵢ⌋ or ⌈N wᵢ⌉ times; weights reset to 1/N.
+
+The estimate is the weighted mean (the circular mean for θ) and the weighted covariance
+(θ deviations wrapped). All randomness comes from the filter's own seeded generator.
+
+:func:`uncertainty` gives the lecture's scalar measures of a covariance: ``det P = Π λᵢ`` and the
+area of the 1-σ error ellipse ``π r₁ r₂``, ``rᵢ = √λᵢ`` of the (x, y) block.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit.mobile.estimation import LandmarkMap, RangeBearingSensor, _check_order
+from robokit.mobile.vehicle import angdiff
+
+__all__ = ["ParticleFilter", "systematic_resample", "uncertainty"]
+
+
+def systematic_resample(weights, rng=None) -> np.ndarray:
+    """Indices (N,) of the particles kept by systematic resampling of ``weights`` (N,).
+
+    One uniform draw ``u ~ U[0, 1/N)``; pointer k = ``u + k/N`` selects the first particle whose
+    cumulative weight exceeds it. Each particle i appears ⌊N wᵢ⌋ or ⌈N wᵢ⌉ times. rng : a seed or
+    ``numpy.random.Generator``.
+
+    Example: ``systematic_resample([0.5, 0.5, 0, 0], rng=1)`` is ``[0, 0, 1, 1]``.
+    """
+    w = as_vector(weights, "weights")
+    if np.any(w < 0) or w.sum() <= 0:
+        raise ValueError("weights: expected non-negative weights with a positive sum")
+    w = w / w.sum()
+    n = len(w)
+    rng = np.random.default_rng(rng)
+    pointers = (rng.random() + np.arange(n)) / n
+    cum = np.cumsum(w)
+    cum[-1] = 1.0
+    return np.searchsorted(cum, pointers, side="right")
+
+
+def uncertainty(P, kind: str = "det") -> float:
+    """A scalar uncertainty of a covariance P (Lecture 9).
+
+    kind : "det" — ``det P = Π λᵢ`` (any square P, e.g. the 3×3 pose covariance); "area" — the area
+    ``π r₁ r₂`` of the 1-σ error ellipse of the (x, y) block ``P[:2, :2]``, ``rᵢ = √λᵢ``.
+
+    Example: ``uncertainty(np.diag([4.0, 1.0]), "area")`` is ``2π``.
+    """
+    P = as_matrix(P, "P")
+    if P.shape[0] != P.shape[1]:
+        raise ValueError(f"P: expected a square covariance, got shape {P.shape}")
+    if np.abs(P - P.T).max() > 1e-9 * max(1.0, np.abs(P).max()):
+        raise ValueError("P: expected a symmetric covariance")
+    if kind == "det":
+        return float(np.linalg.det(P))
+    if kind == "area":
+        if P.shape[0] < 2:
+            raise ValueError("P: the ellipse area needs at least a 2×2 (x, y) block")
+        lam = np.linalg.eigvalsh(P[:2, :2])
+        if lam.min() < -1e-12:
+            raise ValueError("P: expected a positive semi-definite covariance")
+        return float(math.pi * math.sqrt(max(lam[0], 0.0) * max(lam[1], 0.0)))
+    raise ValueError(f"kind: expected 'det' or 'area', got {kind!r}")
+
+
+class ParticleFilter:
+    """Monte Carlo localisation with a known landmark map (module docstring).
+
+    n_particles : N; x0 (3,), P0 (3×3): the initial belief, particles drawn from N(x0, P0)
+    (or pass ``particles`` (N, 3) directly, e.g. uniform over the map for global localisation);
+    V : odometry noise covariance (2×2) used to move the particles; W : sensor noise covariance
+    (2×2) of the likelihood; landmarks : the known :class:`LandmarkMap`; rng : seed or Generator;
+    order : odometry order ("turn-move" default, "move-turn"); resample_threshold : resample when
+    ``N_eff < threshold · N`` (1 resamples after every update).
+
+    Attributes: ``particles`` (N, 3), ``weights`` (N,); the estimate :attr:`x` and covariance :attr:`P`.
+
+    Example: ``pf = ParticleFilter(500, x0, P0, V, W, landmarks, rng=0); pf.predict(delta); pf.update(z, i); pf.x``.
+    """
+
+    def __init__(self, n_particles: int, x0, P0, V, W, landmarks: LandmarkMap, rng=None, order: str = "turn-move",
+                 resample_threshold: float = 0.5, particles=None):
+        self.rng = np.random.default_rng(rng)
+        self.N = int(n_particles)
+        if self.N < 1:
+            raise ValueError(f"n_particles: expected a positive count, got {n_particles!r}")
+        self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
+        self.Winv = np.linalg.inv(self.W)
+        self.map = landmarks
+        self.order = _check_order(order)
+        self.threshold = as_scalar(resample_threshold, "resample_threshold", nonnegative=True)
+        if particles is not None:
+            self.particles = as_matrix(particles, "particles", self.N, 3).copy()
+        else:
+            x0 = as_vector(x0, "x0", 3)
+            P0 = as_matrix(P0, "P0", 3, 3)
+            self.particles = self.rng.multivariate_normal(x0, P0, self.N)
+        self.particles[:, 2] = angdiff(self.particles[:, 2])
+        self.weights = np.full(self.N, 1.0 / self.N)
+
+    def predict(self, delta):
+        """Move every particle by the odometry increment δ = (δ_d, δ_θ) with its own noise sample."""
+        d0, t0 = as_vector(delta, "delta", 2)
+        v = self.rng.multivariate_normal(np.zeros(2), self.V, self.N)
+        x = self.particles
+        d = d0 + v[:, 0]
+        th = x[:, 2] + t0 + v[:, 1]
+        heading = th if self.order == "turn-move" else x[:, 2]
+        self.particles = np.column_stack([x[:, 0] + d * np.cos(heading), x[:, 1] + d * np.sin(heading), angdiff(th)])
+
+    def update(self, z, i: int):
+        """Weight the particles by the likelihood of the measurement z = (r, β) of landmark i; resample
+        when the effective sample size is low. Returns N_eff before resampling."""
+        z = as_vector(z, "z", 2)
+        p = self.map.points[i]
+        dx, dy = p[0] - self.particles[:, 0], p[1] - self.particles[:, 1]
+        nu = np.column_stack([z[0] - np.hypot(dx, dy), angdiff(z[1] - (np.arctan2(dy, dx) - self.particles[:, 2]))])
+        logl = -0.5 * np.einsum("ij,jk,ik->i", nu, self.Winv, nu)
+        logw = np.log(np.maximum(self.weights, 1e-300)) + logl
+        w = np.exp(logw - logw.max())
+        self.weights = w / w.sum()
+        n_eff = 1.0 / float(np.sum(self.weights**2))
+        if n_eff < self.threshold * self.N:
+            self.resample()
+        return n_eff
+
+    def resample(self):
+        """Systematic resampling; the weights become uniform."""
+        idx = systematic_resample(self.weights, self.rng)
+        self.particles = self.particles[idx]
+        self.weights = np.full(self.N, 1.0 / self.N)
+
+    @property
+    def x(self) -> np.ndarray:
+        """The estimate (3,): weighted mean of x, y and the circular mean of θ."""
+        w = self.weights
+        th = math.atan2(float(w @ np.sin(self.particles[:, 2])), float(w @ np.cos(self.particles[:, 2])))
+        return np.array([w @ self.particles[:, 0], w @ self.particles[:, 1], th])
+
+    @property
+    def P(self) -> np.ndarray:
+        """The weighted covariance (3×3) of the particles about :attr:`x` (θ deviations wrapped)."""
+        d = self.particles - self.x
+        d[:, 2] = angdiff(d[:, 2])
+        return (self.weights[:, None] * d).T @ d

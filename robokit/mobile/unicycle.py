@@ -1,0 +1,101 @@
+r"""The unicycle and the differential-drive vehicle (Lecture 9, beside the bicycle model).
+
+State ``x = (x, y, θ)`` (m, m, rad) of the vehicle's reference point (the middle of the wheel
+axle) in the world frame; inputs ``u = (v, ω)``: forward speed (m/s) and turn rate (rad/s):
+
+    ẋ = v cos θ,   ẏ = v sin θ,   θ̇ = ω
+
+with the same non-holonomic constraint as the bicycle, ``ẏ cos θ − ẋ sin θ = 0``. Unlike the
+bicycle it can turn on the spot (v = 0, ω ≠ 0). For constant (v, ω) over a step the motion is an arc
+of radius v/ω, integrated exactly by :meth:`UnicycleModel.step`. A bicycle with wheelbase L and
+steering γ is the unicycle with ``ω = (v / L) tan γ``.
+
+A differential drive (two wheels of radius r on an axle of track W, wheel speeds ``ω_L, ω_R`` in
+rad/s) is a unicycle with
+
+    v = r (ω_R + ω_L) / 2,     ω = r (ω_R − ω_L) / W,
+
+and conversely ``ω_R = (v + ω W/2) / r``, ``ω_L = (v − ω W/2) / r``.
+
+:class:`UnicycleModel` has the same ``limit``/``deriv``/``step`` interface as
+:class:`robokit.BicycleModel`, so :func:`robokit.run_vehicle` runs it with any controller that
+returns (v, ω).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+from robokit.mobile.vehicle import angdiff
+
+__all__ = ["UnicycleModel", "DifferentialDrive"]
+
+
+class UnicycleModel:
+    """Unicycle with speed limit ``speed_max`` (m/s) and turn-rate limit ``omega_max`` (rad/s).
+
+    Example: ``UnicycleModel().step([0, 0, 0], [1.0, 0.5], 0.1)``.
+    """
+
+    def __init__(self, speed_max: float = 5.0, omega_max: float = 4.0):
+        self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
+        self.omega_max = as_scalar(omega_max, "omega_max", positive=True)
+
+    def limit(self, u) -> np.ndarray:
+        """Inputs (v, ω) clipped to the limits."""
+        v, w = as_vector(u, "u", 2)
+        return np.array([np.clip(v, -self.speed_max, self.speed_max), np.clip(w, -self.omega_max, self.omega_max)])
+
+    def deriv(self, x, u) -> np.ndarray:
+        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x (3,) and inputs u = (v, ω) (limits applied)."""
+        x = as_vector(x, "x", 3)
+        v, w = self.limit(u)
+        return np.array([v * math.cos(x[2]), v * math.sin(x[2]), w])
+
+    def step(self, x, u, dt: float) -> np.ndarray:
+        """The state after ``dt`` s at constant (v, ω): the exact arc of radius v/ω (a line when ω = 0)."""
+        x = as_vector(x, "x", 3)
+        v, w = self.limit(u)
+        dt = as_scalar(dt, "dt", positive=True)
+        th = x[2]
+        if abs(w) < 1e-12:
+            return np.array([x[0] + v * dt * math.cos(th), x[1] + v * dt * math.sin(th), th])
+        th1 = th + w * dt
+        R = v / w
+        return np.array([x[0] + R * (math.sin(th1) - math.sin(th)), x[1] - R * (math.cos(th1) - math.cos(th)),
+                         angdiff(th1)])
+
+
+class DifferentialDrive(UnicycleModel):
+    """A differential-drive vehicle: wheel radius ``r`` (m), track ``W`` (m, distance between the wheels),
+    wheel-speed limit ``wheel_max`` (rad/s). Inputs to ``step``/``deriv`` are (v, ω) as for the unicycle
+    (the wheel-speed limit is applied through them); :meth:`wheel_speeds` and :meth:`body_velocity`
+    convert (module docstring).
+
+    Example: ``DifferentialDrive(0.1, 0.5).body_velocity([10, 10])`` is ``(1.0, 0.0)`` (straight ahead).
+    """
+
+    def __init__(self, r: float, W: float, wheel_max: float = 50.0):
+        self.r = as_scalar(r, "r", positive=True)
+        self.W = as_scalar(W, "W", positive=True)
+        self.wheel_max = as_scalar(wheel_max, "wheel_max", positive=True)
+        super().__init__(speed_max=self.r * self.wheel_max, omega_max=2 * self.r * self.wheel_max / self.W)
+
+    def body_velocity(self, wheels) -> np.ndarray:
+        """(v, ω) from the wheel speeds ``(ω_L, ω_R)`` (rad/s): ``v = r(ω_R + ω_L)/2``, ``ω = r(ω_R − ω_L)/W``."""
+        wl, wr = as_vector(wheels, "wheels", 2)
+        return np.array([self.r * (wr + wl) / 2.0, self.r * (wr - wl) / self.W])
+
+    def wheel_speeds(self, u) -> np.ndarray:
+        """``(ω_L, ω_R)`` (rad/s) for the body velocity u = (v, ω): ``(v ∓ ωW/2)/r``."""
+        v, w = as_vector(u, "u", 2)
+        return np.array([(v - w * self.W / 2.0) / self.r, (v + w * self.W / 2.0) / self.r])
+
+    def limit(self, u) -> np.ndarray:
+        """(v, ω) scaled down together so that neither wheel exceeds ``wheel_max`` (the path's curvature is kept)."""
+        v, w = as_vector(u, "u", 2)
+        wheels = self.wheel_speeds([v, w])
+        k = max(1.0, float(np.abs(wheels).max()) / self.wheel_max)
+        return np.array([v / k, w / k])

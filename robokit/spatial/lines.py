@@ -1,0 +1,94 @@
+r"""The common normal of two lines (Lecture 4: where DH frames sit between two joint axes).
+
+A line is a point p and a direction z. The common normal of lines 1 and 2 is the segment that is
+perpendicular to both; its feet are
+
+    f₁ = p₁ + s z₁,   f₂ = p₂ + t z₂,
+
+where, with unit directions, ``b = z₁·z₂``, ``w = p₁ − p₂``, ``d = z₁·w``, ``e = z₂·w``:
+
+    s = (b e − d) / (1 − b²),   t = (e − b d) / (1 − b²)
+
+(the minimum of ‖f₁ − f₂‖², whose gradient vanishes when ``f₂ − f₁`` is perpendicular to z₁ and z₂).
+Its length is the DH link length a, its direction the DH x axis. Special cases:
+
+* skew lines: the unique normal, length > 0, direction ``(f₂ − f₁)/‖f₂ − f₁‖``;
+* intersecting lines: length 0, both feet at the intersection, direction ``z₁ × z₂ / ‖z₁ × z₂‖``
+  (the sign is a free choice of the DH convention; this one is returned);
+* parallel lines (``‖z₁ × z₂‖ ≤ tol``): every point of line 1 has a normal; the one through the
+  projection of ``ref`` on line 1 is returned (default ``ref = p₁``), direction from line 1 to line 2;
+* coincident lines: length 0, ``f₁ = f₂`` = the projection of ref, direction undefined: any unit
+  vector perpendicular to z₁ is a valid x; the one returned is ``z₁ × x̂`` (or ``z₁ × ŷ`` if z₁ ∥ x̂),
+  normalised.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+
+__all__ = ["CommonNormal", "common_normal"]
+
+
+@dataclass(frozen=True)
+class CommonNormal:
+    """The common normal of two lines.
+
+    foot1, foot2 : (3,) its feet on line 1 and line 2; direction : (3,) unit vector from foot1 to
+    foot2 (see the module docstring for intersecting and coincident lines); length : ‖foot2 − foot1‖;
+    kind : "skew", "intersecting", "parallel" or "coincident".
+    """
+
+    foot1: np.ndarray
+    foot2: np.ndarray
+    direction: np.ndarray
+    length: float
+    kind: str
+
+
+def _unit(v, name):
+    v = as_vector(v, name, 3)
+    n = float(np.linalg.norm(v))
+    if n < 1e-12:
+        raise ValueError(f"{name}: a line direction cannot be the zero vector")
+    return v / n
+
+
+def common_normal(p1, z1, p2, z2, ref=None, tol: float = 1e-9) -> CommonNormal:
+    """The common normal of line 1 (point p1, direction z1) and line 2 (p2, z2); any length unit.
+
+    p1, p2 : (3,) points on the lines; z1, z2 : (3,) directions (need not be unit; not zero);
+    ref : (3,) for parallel or coincident lines, the normal is taken through the projection of ref
+    on line 1 (default p1); tol : parallel when ``‖ẑ₁ × ẑ₂‖ ≤ tol``, meeting when the length ≤ tol.
+
+    Example: the x and the shifted y axis, ``common_normal([0, 0, 0], [1, 0, 0], [0, 0, 2], [0, 1, 0])``,
+    has feet (0, 0, 0) and (0, 0, 2), direction (0, 0, 1) and length 2.
+    """
+    p1 = as_vector(p1, "p1", 3)
+    p2 = as_vector(p2, "p2", 3)
+    z1 = _unit(z1, "z1")
+    z2 = _unit(z2, "z2")
+    tol = as_scalar(tol, "tol", positive=True)
+    cross = np.cross(z1, z2)
+    if np.linalg.norm(cross) > tol:
+        w = p1 - p2
+        b = float(z1 @ z2)
+        d, e = float(z1 @ w), float(z2 @ w)
+        den = float(cross @ cross)  # = 1 − (ẑ₁·ẑ₂)², without the cancellation of 1 − b² for nearly parallel lines
+        f1 = p1 + (b * e - d) / den * z1
+        f2 = p2 + (e - b * d) / den * z2
+        L = float(np.linalg.norm(f2 - f1))
+        if L > tol:
+            return CommonNormal(f1, f2, (f2 - f1) / L, L, "skew")
+        m = 0.5 * (f1 + f2)
+        return CommonNormal(m, m.copy(), cross / np.linalg.norm(cross), 0.0, "intersecting")
+    r = p1 if ref is None else as_vector(ref, "ref", 3)
+    f1 = p1 + float((r - p1) @ z1) * z1
+    f2 = p2 + float((f1 - p2) @ z2) * z2
+    L = float(np.linalg.norm(f2 - f1))
+    if L > tol:
+        return CommonNormal(f1, f2, (f2 - f1) / L, L, "parallel")
+    x = np.cross(z1, [1.0, 0.0, 0.0]) if abs(z1[0]) < 0.9 else np.cross(z1, [0.0, 1.0, 0.0])
+    return CommonNormal(f1, f1.copy(), x / np.linalg.norm(x), 0.0, "coincident")
