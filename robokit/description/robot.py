@@ -358,11 +358,15 @@ def _example_robot_names() -> list[str]:
         return []
 
 
-def load(name_or_path, tip: str | None = None) -> Robot:
-    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, or an example-robot-data name.
+def load(name_or_path, tip: str | None = None, *, xacro_args=None, package_path=None) -> Robot:
+    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
+    an MJCF ``.xml``, or an example-robot-data name.
 
     tip : the chain's tip frame (default: "tool" for DH models, the arm's end-effector
     frame for example-robot-data arms, else the last link of the chain).
+    xacro_args : dict of xacro argument values (``{"name": "value"}``), xacro files only.
+    package_path : folders searched for ``<pkg>/package.xml`` when a xacro file uses
+    ``$(find pkg)`` or ``package://pkg/...`` (the file's own folders upward are searched too).
 
     Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
     """
@@ -378,6 +382,14 @@ def load(name_or_path, tip: str | None = None) -> Robot:
         if tip not in (None, "tool"):
             raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
         return _from_dh(DHTable.from_yaml(path), str(path))
+    if path.name.lower().endswith(".xacro") or xacro_args or package_path:  # formats: xacro (and URDF + packages)
+        from robokit.description.xacro_files import load_xacro
+
+        return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_path)
+    if path.suffix.lower() == ".xml":  # formats: MJCF
+        from robokit.description.mjcf import load_mjcf
+
+        return load_mjcf(path, tip)
     if path.suffix.lower() == ".urdf":
         if not path.is_file():
             raise ValueError(f"{path}: file not found")
