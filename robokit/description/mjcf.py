@@ -52,7 +52,7 @@ import numpy as np
 from robokit.description._notes import note
 from robokit.errors import InputError
 
-__all__ = ["load_mjcf", "robot_to_mjcf", "first_body_placement", "CUSTOM_INERTIAL_PREFIX"]
+__all__ = ["load_mjcf", "robot_to_mjcf", "first_body_placement", "joint_armature_damping", "CUSTOM_INERTIAL_PREFIX"]
 
 #: prefix of the ``<custom><numeric>`` names that carry exact inertials
 CUSTOM_INERTIAL_PREFIX = "robokit_inertial:"
@@ -458,6 +458,26 @@ def _geom_xml(go, mesh_assets: dict, color_default="0.7 0.7 0.75 1") -> str | No
     return None
 
 
+def joint_armature_damping(robot) -> tuple[np.ndarray, np.ndarray]:
+    """Armature (reflected rotor inertia) and viscous damping of each joint, ``(n,)`` each.
+
+    For a robot from a DH file: ``G² Jm`` (kg·m²) and ``G² B`` (N·m·s/rad), the motor-side
+    values referred to the joint; otherwise the model's ``armature`` and ``damping`` (from an
+    MJCF file, or a URDF's ``<dynamics damping>``).
+
+    Examples
+    --------
+    >>> arm, damp = joint_armature_damping(robokit.load("puma560"))   # doctest: +SKIP
+    """
+    if robot.dh is not None:
+        arm = np.array([l.joint_inertia for l in robot.dh.links])
+        damp = np.array([l.G * l.G * l.B for l in robot.dh.links])
+        return arm, damp
+    model = robot.model
+    idx = [model.joints[j].idx_v for j in range(1, model.njoints)]
+    return np.array(model.armature)[idx], np.array(model.damping)[idx]
+
+
 def robot_to_mjcf(robot) -> tuple[str, list[str]]:
     """MJCF text of a robot's chain, and notes for stderr (see the module docstring).
 
@@ -494,15 +514,10 @@ def robot_to_mjcf(robot) -> tuple[str, list[str]]:
     model = robot.model
     n = model.njoints - 1
     notes: list[str] = []
-    if robot.dh is not None:
-        armature = np.array([l.joint_inertia for l in robot.dh.links])
-        damping = np.array([l.G * l.G * l.B for l in robot.dh.links])
-        if any(np.any(np.asarray(l.Tc) != 0) for l in robot.dh.links):
-            notes.append(f"{robot.name}: Coulomb friction Tc not written (MuJoCo's frictionloss is symmetric and "
-                         "acts through the constraint solver)")
-    else:
-        armature = np.array([model.armature[model.joints[j].idx_v] for j in range(1, n + 1)])
-        damping = np.array([model.damping[model.joints[j].idx_v] for j in range(1, n + 1)])
+    armature, damping = joint_armature_damping(robot)
+    if robot.dh is not None and any(np.any(np.asarray(l.Tc) != 0) for l in robot.dh.links):
+        notes.append(f"{robot.name}: Coulomb friction Tc not written (MuJoCo's frictionloss is symmetric and "
+                     "acts through the constraint solver)")
 
     used: set = set()
 
