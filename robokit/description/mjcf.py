@@ -10,6 +10,8 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
       has no joint — Pinocchio drops it, so every body came out where MuJoCo would put it
       only if that body sat at the origin;
     * gravity, from ``<option gravity>`` (MuJoCo's default ``0 0 -9.81``);
+    * the range of slide joints, which Pinocchio converts from degrees as if they were
+      angles (MuJoCo takes them in metres whatever ``<compiler angle>`` says);
     * exact inertials written by :func:`robot_to_mjcf` for bodies MuJoCo's compiler cannot
       take as they are (see below).
 
@@ -245,6 +247,70 @@ def _apply_first_body_fix(model, geoms, name, X) -> bool:
     return True
 
 
+def _joint_defaults(root: ET.Element) -> dict:
+    """``{class name: {attribute: value}}`` of the ``<joint>`` defaults, nested classes
+    inheriting from their parents (the top ``<default>`` is class "main")."""
+    out = {}
+
+    def walk(elem, inherited):
+        name = elem.get("class", "main")
+        attrs = dict(inherited)
+        j = elem.find("joint")
+        if j is not None:
+            attrs.update(j.attrib)
+        out[name] = attrs
+        for child in elem.findall("default"):
+            walk(child, attrs)
+
+    for top in root.findall("default"):
+        walk(top, {})
+    return out
+
+
+def _slide_ranges(root: ET.Element, path) -> dict:
+    """``{joint name: (lower, upper)}`` of the slide joints with a range, in m (MuJoCo never
+    converts a slide joint's range, whatever the compiler's angle unit)."""
+    defaults = _joint_defaults(root)
+    out = {}
+
+    def walk(elem, childclass):
+        for child in elem:
+            if child.tag == "joint":
+                attrs = dict(defaults.get(child.get("class", childclass), {}))
+                attrs.update(child.attrib)
+                if attrs.get("type", "hinge") == "slide" and "range" in attrs and attrs.get("limited") != "false":
+                    rng = _floats(_Attr(attrs, child), "range", 2, path)
+                    out[child.get("name", "")] = (float(rng[0]), float(rng[1]))
+            elif child.tag == "body":
+                walk(child, child.get("childclass", childclass))
+
+    world = root.find("worldbody")
+    if world is not None:
+        walk(world, "main")
+    return out
+
+
+class _Attr:
+    """An element-like view of merged attributes (for :func:`_floats` messages)."""
+
+    def __init__(self, attrs, elem):
+        self.attrs, self.tag = attrs, elem.tag
+
+    def get(self, key, default=None):
+        return self.attrs.get(key, default)
+
+
+def _fix_slide_ranges(model, root, path) -> None:
+    """Pinocchio 4.1 converts slide ranges from degrees like hinge ranges; MuJoCo does not."""
+    for name, (lo, hi) in _slide_ranges(root, path).items():
+        if not name or not model.existJointName(name):
+            continue
+        jm = model.joints[model.getJointId(name)]
+        if jm.nq == 1 and jm.shortname().startswith(("JointModelP", "JointModelPrismatic")):
+            model.lowerPositionLimit[jm.idx_q] = lo
+            model.upperPositionLimit[jm.idx_q] = hi
+
+
 def _gravity(root: ET.Element, path) -> np.ndarray:
     g = np.array([0.0, 0.0, -9.81])
     for opt in root.iter("option"):
@@ -356,6 +422,7 @@ def load_mjcf(path, tip: str | None = None):
     if X is not None:
         _apply_first_body_fix(model, geoms, first_name, X)
     model.gravity.linear = gravity
+    _fix_slide_ranges(model, root, path)
     if exact:
         _apply_custom_inertials(model, exact, path)
     tip = tip or _default_tip(model)

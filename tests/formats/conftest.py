@@ -115,6 +115,41 @@ def plain_urdf(l1=0.4, m2=1.5):
 </robot>"""
 
 
+@pytest.fixture(scope="session")
+def mujoco_worst():
+    """Append ``(error, what)`` for each MuJoCo comparison; the largest is printed at the end."""
+    return MUJOCO_WORST
+
+
+def make_dh_table(rng, n, convention, prismatic=(), drives=False):
+    """A random DH table with inertias (prismatic joints at the indices in ``prismatic``), and
+    motor inertia, gear ratio and viscous friction on every joint if ``drives``."""
+    from robokit.description.dh import DHLink, DHTable
+
+    links = []
+    for i in range(n):
+        A = rng.normal(size=(3, 3))
+        I = A @ A.T * 0.01 + np.eye(3) * 0.005
+        joint = "P" if i in prismatic else "R"
+        links.append(DHLink(joint, float(rng.uniform(-0.4, 0.4)), float(rng.uniform(-np.pi, np.pi)),
+                            float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-np.pi, np.pi)),
+                            np.array([-0.5, 0.5]) if joint == "P" else None, float(rng.uniform(0.5, 3.0)),
+                            rng.normal(size=3) * 0.1, np.array([I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[1, 2], I[0, 2]]),
+                            Jm=1e-4 * (i + 1) if drives else 0.0, G=30.0 + i if drives else 1.0,
+                            B=1e-3 if drives else 0.0))
+    base = np.eye(4)
+    base[:3, 3] = rng.normal(size=3) * 0.2
+    tool = np.eye(4)
+    tool[:3, 3] = rng.normal(size=3) * 0.1
+    return DHTable("random_arm", convention, tuple(links), np.array([0.0, 0.0, -9.81]), base, tool)
+
+
+@pytest.fixture(name="dh_table")
+def dh_table_fixture():
+    """:func:`make_dh_table` as a fixture."""
+    return make_dh_table
+
+
 @pytest.fixture(name="plain_urdf")
 def plain_urdf_fixture():
     """:func:`plain_urdf`, the hand-written reference URDF text, as a fixture."""
