@@ -18,7 +18,7 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     Elements with no meaning for a serial-chain model (actuators, tendons, equality
     constraints, sensors, contact pairs, keyframes, bodies after the first one in the
     worldbody, joint friction loss and springs) are ignored, and each is named in a note on
-    stderr (the ``robokit.formats`` logger). Joint ``damping`` is kept in
+    stderr (a ``RobokitWarning``). Joint ``damping`` is kept in
     ``robot.model.damping`` (robokit's rigid-body dynamics does not add it).
 
 Writing (:func:`robot_to_mjcf`, used by ``robokit convert ROBOT -o OUT.xml``)

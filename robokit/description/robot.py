@@ -366,7 +366,8 @@ def load(name_or_path, tip: str | None = None, *, xacro_args=None, package_path=
     frame for example-robot-data arms, else the last link of the chain).
     xacro_args : dict of xacro argument values (``{"name": "value"}``), xacro files only.
     package_path : folders searched for ``<pkg>/package.xml`` when a xacro file uses
-    ``$(find pkg)`` or ``package://pkg/...`` (the file's own folders upward are searched too).
+    ``$(find pkg)`` or ``package://pkg/...`` (the file's own folders upward are searched too);
+    xacro files only.
 
     Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
     """
@@ -382,10 +383,12 @@ def load(name_or_path, tip: str | None = None, *, xacro_args=None, package_path=
         if tip not in (None, "tool"):
             raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
         return _from_dh(DHTable.from_yaml(path), str(path))
-    if path.name.lower().endswith(".xacro") or xacro_args or package_path:  # formats: xacro (and URDF + packages)
+    if path.name.lower().endswith(".xacro"):  # formats: xacro
         from robokit.description.xacro_files import load_xacro
 
         return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_path)
+    if xacro_args or package_path:
+        raise ValueError(f"xacro_args/package_path: apply to .xacro files, got {s!r}")
     if path.suffix.lower() == ".xml":  # formats: MJCF
         from robokit.description.mjcf import load_mjcf
 

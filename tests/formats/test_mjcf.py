@@ -128,13 +128,14 @@ def test_armature_gravity_and_limits_are_read(tmp_path):
     assert np.allclose(robot.qlim[2], [-0.05, 0.15], rtol=0, atol=1e-15)
 
 
-def test_ignored_elements_are_noted(tmp_path, caplog):
+def test_ignored_elements_are_noted(tmp_path):
     path = tmp_path / "arm.xml"
     path.write_text(ARM_XML.format(orientation="").replace("</worldbody>", '<body name="extra" pos="1 0 0">'
                     '<joint name="x" type="hinge"/><inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/></body>'
                     "</worldbody>"))
-    robokit.load(path)
-    msgs = " | ".join(r.getMessage() for r in caplog.records)
+    with pytest.warns(UserWarning) as record:
+        robokit.load(path)
+    msgs = " | ".join(str(w.message) for w in record)
     assert "<actuator> ignored (motor)" in msgs and "<body name='extra'> ignored" in msgs
 
 

@@ -85,9 +85,14 @@ def test_unknown_argument_is_rejected(xacro_ws):
         robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro", xacro_args={"l9": "1"})
 
 
-def test_gazebo_elements_are_noted(xacro_ws, caplog):
-    robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro")
-    assert any("<gazebo>" in r.getMessage() and "ignored" in r.getMessage() for r in caplog.records)
+def test_gazebo_elements_are_noted(xacro_ws):
+    with pytest.warns(UserWarning, match=r"1 <gazebo> element\(s\) ignored"):
+        robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro")
+
+
+def test_xacro_options_only_for_xacro_files():
+    with pytest.raises(ValueError, match="apply to .xacro files"):
+        robokit.load("rrr", xacro_args={"a": "1"})
 
 
 def test_cli_convert_with_arguments_and_package_path(xacro_ws, tmp_path, capsys):
