@@ -165,3 +165,12 @@ def test_bad_xacro_arg_syntax_exit_2(xacro_ws, tmp_path, capsys):
                    "--xacro-arg", "l1=0.7"])
     err = capsys.readouterr().err
     assert rc == 2 and len(err.strip().splitlines()) == 1 and "NAME:=VALUE" in err
+
+
+def test_cli_view_with_xacro_arguments(xacro_ws, tmp_path, capsys):
+    src = tmp_path / "outside.urdf.xacro"
+    shutil.copy(xacro_ws / "urdf" / "demo.urdf.xacro", src)
+    page = tmp_path / "v.html"
+    rc = cli_main(["view", str(src), "-o", str(page), "--xacro-arg", "l1:=0.6", "--package-path", str(xacro_ws.parent)])
+    assert rc == 0, capsys.readouterr().err
+    assert page.stat().st_size > 1000
