@@ -45,6 +45,27 @@ def _version() -> str:
     return __version__
 
 
+def _add_format_options(parser) -> None:
+    """xacro options shared by the commands that load a robot (formats: xacro)."""
+    g = parser.add_argument_group("xacro files")
+    g.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
+                   help="value of a xacro argument (repeatable)")
+    g.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                   help="folder searched for <pkg>/package.xml for $(find pkg) and package:// (repeatable)")
+
+
+def _format_options(args) -> dict:
+    """``load`` keyword arguments from --xacro-arg/--package-path (empty when neither is given)."""
+    xargs = {}
+    for item in getattr(args, "xacro_arg", None) or []:
+        name, sep, value = item.partition(":=")
+        if not sep or not name.strip():
+            raise _UsageError(f"robokit: --xacro-arg: expected NAME:=VALUE, got {item!r}")
+        xargs[name.strip()] = value
+    paths = getattr(args, "package_path", None) or []
+    return {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
+
+
 def _build_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="robokit",
@@ -65,6 +86,7 @@ def _build_parser() -> argparse.ArgumentParser:
     c.add_argument("--tip", help="tip frame of the chain (default: the arm's end effector, see the docs)")
     c.add_argument("--convention", choices=("standard", "modified"), default="standard",
                    help="DH convention when writing a DH table (default standard)")
+    _add_format_options(c)
 
     w = sub.add_parser("view", help="write a self-contained meshcat HTML page of a model")
     w.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
@@ -74,6 +96,7 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+    _add_format_options(w)
     return p
 
 
@@ -85,10 +108,15 @@ def _dispatch(args) -> int:
     if args.command == "convert":
         from robokit.description.convert import convert_cli
 
-        return convert_cli(args.input, args.output, tip=args.tip, convention=args.convention)
+        return convert_cli(args.input, args.output, tip=args.tip, convention=args.convention, **_format_options(args))
     if args.command == "view":
         from robokit.viz.view import view_cli
 
+        opts = _format_options(args)
+        if opts:  # formats: a xacro robot with arguments/packages is loaded here
+            from robokit.description.robot import load
+
+            args.model = load(args.model, tip=args.tip, **opts)
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
     raise _UsageError(f"robokit: unknown command {args.command!r}")

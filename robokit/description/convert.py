@@ -24,14 +24,18 @@ def _check_output(output) -> Path:
     return out
 
 
-def convert(input, output=None, tip=None, convention="standard") -> tuple[str, list[str]]:
+def convert(input, output=None, tip=None, convention="standard", *, xacro_args=None,
+            package_dirs=None) -> tuple[str, list[str]]:
     """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
 
     * ``IN.yaml -o OUT.urdf`` — DH table to URDF (see the URDF format page of the documentation);
     * ``IN.urdf|NAME -o OUT.json`` — PoE parameters ``M, Slist, Blist, Mlist, Glist,
       joint_names, tip`` of the chain root → ``tip`` (see the PoE JSON format page of the documentation);
     * ``IN.urdf|NAME -o OUT.yaml`` — a DH table of the chain (``convention``), when the
-      URDF → DH converter is available.
+      URDF → DH converter is available;
+    * ``ROBOT -o OUT.xml`` — MJCF for any robot ``robokit.load`` reads (DH file, URDF, xacro,
+      MJCF, example-robot-data name), see :mod:`robokit.description.mjcf`.
+    ``xacro_args``/``package_dirs`` are passed to ``robokit.load``.
     ``notes`` are human-readable remarks (e.g. joints locked off the chain) for stderr.
     """
     from robokit.description.dh import DHTable
@@ -43,14 +47,22 @@ def convert(input, output=None, tip=None, convention="standard") -> tuple[str, l
     out = _check_output(output) if output is not None else None
     out_suffix = out.suffix.lower() if out is not None else None
     notes = []
-    if in_suffix in (".yaml", ".yml"):
+    if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
+        from robokit.description.mjcf import robot_to_mjcf
+
+        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
+        text, notes = robot_to_mjcf(robot)
+        if robot.locked_joints:
+            notes.insert(0, f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
+                            f"their bodies merged: {', '.join(robot.locked_joints)}")
+    elif in_suffix in (".yaml", ".yml"):
         if out_suffix not in (".urdf", None):
             raise ValueError(f"output: a DH file converts to .urdf, got {out.name!r}")
         if tip is not None:
             raise ValueError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
         text = dh_to_urdf(DHTable.from_yaml(src))
     else:
-        robot = load(src, tip=tip)
+        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
         if robot.locked_joints:
             notes.append(f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
                          f"their bodies merged: {', '.join(robot.locked_joints)}")
@@ -70,11 +82,11 @@ def convert(input, output=None, tip=None, convention="standard") -> tuple[str, l
     return text, notes
 
 
-def convert_cli(input, output, tip=None, convention="standard") -> int:
+def convert_cli(input, output, tip=None, convention="standard", **load_options) -> int:
     """The ``robokit convert`` command; returns the exit status (errors propagate as ValueError)."""
     if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
         raise ValueError("-o/--output: required (e.g. -o robot.urdf)")
-    text, notes = convert(input, output, tip=tip, convention=convention)
+    text, notes = convert(input, output, tip=tip, convention=convention, **load_options)
     for note in notes:
         print(f"robokit: note: {note}", file=sys.stderr)
     if output is None:

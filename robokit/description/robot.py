@@ -346,12 +346,14 @@ def _from_dh(table: DHTable, source: str) -> Robot:
     return Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table, source=source)
 
 
-def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outside_meshes=False) -> Robot:
+def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outside_meshes=False,
+                    text: str | None = None) -> Robot:
+    """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``)."""
     import pinocchio as pin
 
     from robokit.description.urdf_check import capture_native_output, read_urdf
 
-    doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
+    doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, text=text)
     with capture_native_output() as cap:
         try:
             model = pin.buildModelFromXML(doc.xml)
@@ -488,16 +490,20 @@ def _example_robot_names() -> list[str]:
         return []
 
 
-def load(name_or_path, tip: str | None = None, *, package_dirs=None, allow_outside_meshes: bool = False) -> Robot:
-    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, or an example-robot-data name.
+def load(name_or_path, tip: str | None = None, *, package_dirs=None, xacro_args=None,
+         allow_outside_meshes: bool = False) -> Robot:
+    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
+    an MJCF ``.xml``, or an example-robot-data name.
 
     tip : the chain's tip frame (default: "tool" for DH models, the arm's end-effector
     frame for example-robot-data arms, else the end of the chain — of the longest chain for a
     tree, see :func:`choose_tip`).
-    package_dirs : extra folders searched for ``package://`` meshes of a URDF (its own folder
-    and the folders above it are always searched).
-    allow_outside_meshes : read meshes that a URDF names outside its folder and the package
-    roots (absolute paths, ``../``); refused by default.
+    package_dirs : folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF or
+    xacro file, and ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``;
+    the file's own folder and the folders above it are always searched).
+    xacro_args : dict of xacro argument values (``{"name": "value"}``), xacro files only.
+    allow_outside_meshes : read meshes that a URDF names outside its folder, its package and
+    ``package_dirs`` (absolute paths, ``../`` out of the package); refused by default.
 
     Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
     """
@@ -513,6 +519,16 @@ def load(name_or_path, tip: str | None = None, *, package_dirs=None, allow_outsi
         if tip not in (None, "tool"):
             raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
         return _from_dh(DHTable.from_yaml(path), str(path))
+    if path.name.lower().endswith(".xacro"):  # formats: xacro
+        from robokit.description.xacro_files import load_xacro
+
+        return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_dirs)
+    if xacro_args:
+        raise ValueError(f"xacro_args: apply to .xacro files, got {s!r}")
+    if path.suffix.lower() == ".xml":  # formats: MJCF
+        from robokit.description.mjcf import load_mjcf
+
+        return load_mjcf(path, tip)
     if path.suffix.lower() == ".urdf":
         if not path.is_file():
             raise InputError(f"{path}: file not found")

@@ -99,7 +99,24 @@ def _package_roots(path: Path, package_dirs) -> list[Path]:
     return roots
 
 
-def _resolve_mesh(uri: str, path: Path, roots: list[Path]):
+def _allowed_roots(path: Path, package_dirs) -> list[Path]:
+    """Folders a mesh may be read from without ``allow_outside_meshes``: the URDF's folder, the
+    ROS package that holds it (nearest folder above with a ``package.xml``), ``package_dirs``."""
+    folder = path.parent.resolve()
+    roots = [folder] + [Path(p).resolve() for p in (package_dirs or [])]
+    for parent in (folder, *folder.parents):
+        if (parent / "package.xml").is_file():
+            roots.append(parent)
+            break
+    return roots
+
+
+def _inside(p: Path, roots) -> bool:
+    p = p.resolve()
+    return any(p == r or r in p.parents for r in roots)
+
+
+def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]):
     """(resolved absolute path or None, reason) for a mesh filename attribute."""
     folder = path.parent.resolve()
     if uri.startswith("package://"):
@@ -110,15 +127,10 @@ def _resolve_mesh(uri: str, path: Path, roots: list[Path]):
                 if cand is not None and cand.is_file():
                     return cand.resolve(), ""
         return None, "not found in the package roots"
-    if uri.startswith("file://"):
-        return Path(uri[len("file://"):]), "outside"
-    p = Path(uri)
-    if p.is_absolute():
-        return p, "outside"
-    cand = (folder / p).resolve()
-    if folder not in cand.parents:
-        return cand, "outside"
-    return cand, ""
+    p = Path(uri[len("file://"):]) if uri.startswith("file://") else Path(uri)
+    cand = p if p.is_absolute() else folder / p
+    cand = cand.resolve()
+    return cand, ("" if _inside(cand, allowed) else "outside")
 
 
 def _is_package(root: Path, pkg: str) -> bool:
@@ -132,9 +144,23 @@ def _is_package(root: Path, pkg: str) -> bool:
     return (name or "").strip() == pkg
 
 
-def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False) -> UrdfDocument:
-    """Read and check a URDF file; see the module docstring. Raises :class:`InputError`."""
+def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False, text: str | None = None) -> UrdfDocument:
+    """Read and check a URDF file; see the module docstring. Raises :class:`InputError`.
+
+    text : the URDF's text when it does not come from ``path`` itself (a xacro expansion);
+    ``path`` then only names it and anchors relative mesh paths.
+    """
     path = Path(path)
+    if text is not None:
+        raw = text.encode("utf-8")
+        if len(raw) > MAX_URDF_BYTES:
+            raise InputError(f"{path}: expanded URDF too large ({len(raw)} bytes; at most {MAX_URDF_BYTES})")
+    else:
+        raw = _read_bytes(path)
+    return _check(path, raw, package_dirs, allow_outside_meshes)
+
+
+def _read_bytes(path: Path) -> bytes:
     try:
         size = path.stat().st_size
     except FileNotFoundError:
@@ -145,7 +171,10 @@ def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False) -> Ur
         raise InputError(f"{path}: is a folder, not a URDF file")
     if size > MAX_URDF_BYTES:
         raise InputError(f"{path}: file too large ({size} bytes; at most {MAX_URDF_BYTES})")
-    raw = path.read_bytes()
+    return path.read_bytes()
+
+
+def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDocument:
     try:
         raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -253,6 +282,7 @@ def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False) -> Ur
 
     # Meshes: resolve every reference; refuse escapes, drop (and name) missing files.
     pkg_roots = _package_roots(path, package_dirs)
+    allowed = _allowed_roots(path, package_dirs)
     notes = []
     for lname, el in links.items():
         for kind in ("visual", "collision"):
@@ -261,10 +291,10 @@ def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False) -> Ur
                 if mesh is None:
                     continue
                 uri = mesh.get("filename") or ""
-                resolved, reason = _resolve_mesh(uri, path, pkg_roots)
+                resolved, reason = _resolve_mesh(uri, path, pkg_roots, allowed)
                 if reason == "outside" and not allow_outside_meshes:
-                    _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder and the package roots "
-                                "(pass allow_outside_meshes=True to read it)")
+                    _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
+                                "package folders given (allow_outside_meshes=True reads it)")
                 if resolved is None or not resolved.is_file():
                     notes.append(f"link {lname!r}: {kind} mesh {uri!r} not found; drawn without it")
                     el.remove(geo_el)

@@ -23,7 +23,6 @@ next one (and to the tool), sized from the arm's dimensions, so meshcat shows th
 """
 from __future__ import annotations
 
-import math
 from xml.sax.saxutils import quoteattr
 
 import numpy as np

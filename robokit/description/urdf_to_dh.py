@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robokit.description.dh import DHLink, DHTable, dh_transform
+from robokit.description.dh import DHLink, DHTable
 from robokit.spatial.lines import common_normal
 
 __all__ = ["urdf_to_dh", "URDFToDH", "format_dh_table", "joint_axes"]

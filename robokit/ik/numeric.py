@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
-from robokit.spatial.se3 import _adjoint, _exp6, _inv, _log6_vec, check_transform
+from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit.spatial.se3 import _adjoint, _inv, _log6_vec, check_transform
 
 __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 

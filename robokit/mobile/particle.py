@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
-from robokit.mobile.estimation import LandmarkMap, RangeBearingSensor, _check_order
+from robokit.mobile.estimation import LandmarkMap, _check_order
 from robokit.mobile.vehicle import angdiff
 
 __all__ = ["ParticleFilter", "systematic_resample", "uncertainty"]

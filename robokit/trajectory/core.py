@@ -74,12 +74,6 @@ class Trajectory:
         """Number of axes (columns of ``q``)."""
         return int(self.q.shape[1])
 
-    def __repr__(self) -> str:
-        K = len(self.t)
-        span = f"t = {self.t[0]:g} … {self.t[-1]:g} s" if K else "empty"
-        extra = ", with poses" if self.poses is not None else ""
-        return f"Trajectory({self.name!r}, {K} samples × {self.n} axes, {span}{extra})"
-
     @property
     def duration(self) -> float:
         """``t[-1] − t[0]`` in seconds."""

@@ -107,7 +107,6 @@ class Scene:
     """
 
     def __init__(self, robot, vis=None):
-        import meshcat
         from pinocchio.visualize import MeshcatVisualizer
 
         from robokit.description.robot import Robot, load

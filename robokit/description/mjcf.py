@@ -1,0 +1,715 @@
+r"""MJCF (MuJoCo's XML format) in and out.
+
+Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
+    The kinematic tree, joint axes and ranges, inertials and armature are read by
+    Pinocchio's MJCF parser (``pinocchio.buildModelFromMJCF``) and the visual and collision
+    geometry by ``pinocchio.buildGeomFromMJCF``. robokit corrects what Pinocchio 4.1 gets
+    wrong or leaves out, so that the model is the one MuJoCo builds from the same file:
+
+    * the placement (``pos`` and orientation) of the worldbody's first body when that body
+      has no joint — Pinocchio drops it, so every body came out where MuJoCo would put it
+      only if that body sat at the origin;
+    * gravity, from ``<option gravity>`` (MuJoCo's default ``0 0 -9.81``);
+    * the range of slide joints, which Pinocchio converts from degrees as if they were
+      angles (MuJoCo takes them in metres whatever ``<compiler angle>`` says);
+    * exact inertials written by :func:`robot_to_mjcf` for bodies MuJoCo's compiler cannot
+      take as they are (see below).
+
+    Elements with no meaning for a serial-chain model (actuators, tendons, equality
+    constraints, sensors, contact pairs, keyframes, bodies after the first one in the
+    worldbody, joint friction loss and springs) are ignored, and each is named in a note on
+    stderr (a ``RobokitWarning``). Joint ``damping`` is kept in
+    ``robot.model.damping`` (robokit's rigid-body dynamics does not add it).
+
+Writing (:func:`robot_to_mjcf`, used by ``robokit convert ROBOT -o OUT.xml``)
+    One MJCF body per joint of the robot's chain, placed in its parent body as Pinocchio's
+    joint placement; the joint at the body's origin (``hinge``/``slide`` with the axis in the
+    body frame, ``range`` from the limits, ``armature`` and ``damping``); the inertial
+    (``mass``, ``pos`` of the centre of mass, ``fullinertia`` about it in body axes); the
+    visual geometry as MuJoCo geoms (primitives, or STL/OBJ meshes referenced by absolute
+    path), or a capsule from the joint to the next joint where there is none; the tip frame
+    as a ``<site>``; ``<option gravity>``. Lengths in m, angles in rad
+    (``<compiler angle="radian">``), masses in kg.
+
+    MuJoCo's compiler rejects inertials that the course models use on purpose: a moving body
+    with no mass (PUMA 560's link 1), point masses with no rotational inertia (the two-link
+    arm) and inertia tensors that break the triangle inequality ``A + B ≥ C`` (PUMA 560's
+    link 3, as published). For such a body the ``<inertial>`` holds the nearest values MuJoCo
+    accepts (masses and principal moments raised to a floor, the two smaller moments raised
+    until ``A + B = C``) and the exact values go in ``<custom><numeric
+    name="robokit_inertial:BODY" data="m cx cy cz Ixx Iyy Izz Ixy Ixz Iyz"/>``; robokit reads
+    the exact values back (so DH → MJCF → robokit is exact), and the exporter says on stderr
+    which bodies MuJoCo alone will see differently.
+"""
+from __future__ import annotations
+
+import math
+import os
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from robokit.description._notes import note
+from robokit.errors import InputError
+
+__all__ = ["load_mjcf", "robot_to_mjcf", "first_body_placement", "joint_armature_damping", "CUSTOM_INERTIAL_PREFIX"]
+
+#: prefix of the ``<custom><numeric>`` names that carry exact inertials
+CUSTOM_INERTIAL_PREFIX = "robokit_inertial:"
+#: mesh files MuJoCo reads
+_MUJOCO_MESH_EXT = {".stl", ".obj", ".msh"}
+#: top-level MJCF sections that carry nothing for a serial-chain model
+_IGNORED_SECTIONS = ("actuator", "tendon", "equality", "sensor", "contact", "keyframe")
+#: MuJoCo's mjMINVAL is 1e-15; the floor used for inertials MuJoCo would reject
+_MASS_FLOOR = 1e-6
+_INERTIA_FLOOR = 1e-9
+
+
+# --------------------------------------------------------------------------- XML helpers
+def _parse_xml(path: Path) -> ET.Element:
+    try:
+        return ET.parse(path).getroot()
+    except ET.ParseError as exc:
+        line, col = exc.position
+        msg = str(exc).split(":")[0]
+        raise InputError(f"{path}:{line}:{col + 1}: not well-formed XML ({msg})") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+
+
+def _floats(elem: ET.Element, attr: str, n: int | None, path) -> np.ndarray | None:
+    text = elem.get(attr)
+    if text is None:
+        return None
+    try:
+        vals = np.array([float(t) for t in text.split()])
+    except ValueError:
+        raise InputError(f"{path}: <{elem.tag} name={elem.get('name', '')!r}> attribute {attr}={text!r}: "
+                         "expected numbers") from None
+    if n is not None and vals.size != n:
+        raise InputError(f"{path}: <{elem.tag} name={elem.get('name', '')!r}> attribute {attr}={text!r}: "
+                         f"expected {n} numbers, got {vals.size}")
+    if not np.all(np.isfinite(vals)):
+        raise InputError(f"{path}: <{elem.tag} name={elem.get('name', '')!r}> attribute {attr}: not finite")
+    return vals
+
+
+def _axis_rotation(axis, angle) -> np.ndarray:
+    axis = np.asarray(axis, dtype=float)
+    axis = axis / np.linalg.norm(axis)
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+
+def _quat_to_matrix(q) -> np.ndarray:
+    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def _compiler_settings(root: ET.Element) -> dict:
+    out = {"angle": "degree", "eulerseq": "xyz"}
+    for comp in root.iter("compiler"):
+        for key in out:
+            if comp.get(key) is not None:
+                out[key] = comp.get(key)
+    return out
+
+
+def _body_rotation(body: ET.Element, compiler: dict, path) -> np.ndarray:
+    """Orientation of an MJCF ``<body>`` in its parent, by MuJoCo's rules (one of quat,
+    axisangle, euler, xyaxes, zaxis; the compiler's angle unit and Euler sequence)."""
+    k = math.pi / 180.0 if compiler["angle"] == "degree" else 1.0
+    q = _floats(body, "quat", 4, path)
+    if q is not None:
+        if np.linalg.norm(q) == 0:
+            raise InputError(f"{path}: <body name={body.get('name', '')!r}> quat is zero")
+        return _quat_to_matrix(q)
+    aa = _floats(body, "axisangle", 4, path)
+    if aa is not None:
+        return _axis_rotation(aa[:3], aa[3] * k)
+    eu = _floats(body, "euler", 3, path)
+    if eu is not None:
+        seq = compiler["eulerseq"]
+        R = np.eye(3)
+        for c, a in zip(seq, eu):
+            Ri = _axis_rotation(np.eye(3)["xyz".index(c.lower())], a * k)
+            R = R @ Ri if c.islower() else Ri @ R  # lower case: rotating axes; upper case: fixed axes
+        return R
+    xy = _floats(body, "xyaxes", 6, path)
+    if xy is not None:
+        x = xy[:3] / np.linalg.norm(xy[:3])
+        y = xy[3:] - (xy[3:] @ x) * x
+        y /= np.linalg.norm(y)
+        return np.column_stack([x, y, np.cross(x, y)])
+    za = _floats(body, "zaxis", 3, path)
+    if za is not None:
+        z = za / np.linalg.norm(za)
+        c = float(z[2])
+        axis = np.cross([0.0, 0.0, 1.0], z)
+        s = float(np.linalg.norm(axis))
+        if s < 1e-12:
+            return np.eye(3) if c > 0 else _axis_rotation([1.0, 0.0, 0.0], math.pi)
+        return _axis_rotation(axis / s, math.atan2(s, c))
+    return np.eye(3)
+
+
+def first_body_placement(path) -> tuple[str | None, np.ndarray | None]:
+    """The worldbody's first ``<body>`` if it has no joint: ``(name, 4×4 pose in the world)``.
+
+    Returns ``(None, None)`` when the first body has a joint (Pinocchio places it correctly)
+    or there is no body. This is the placement Pinocchio 4.1's MJCF parser drops.
+    """
+    path = Path(path)
+    root = _parse_xml(path)
+    world = root.find("worldbody")
+    body = world.find("body") if world is not None else None
+    if body is None:
+        return None, None
+    if body.find("joint") is not None or body.find("freejoint") is not None:
+        return None, None
+    T = np.eye(4)
+    pos = _floats(body, "pos", 3, path)
+    if pos is not None:
+        T[:3, 3] = pos
+    T[:3, :3] = _body_rotation(body, _compiler_settings(root), path)
+    return body.get("name"), T
+
+
+# --------------------------------------------------------------------------- reading
+def _ignored_notes(root: ET.Element, path: Path) -> list[str]:
+    notes = []
+    for section in _IGNORED_SECTIONS:
+        for elem in root.findall(section):
+            kids = sorted({c.tag for c in elem})
+            if kids:
+                notes.append(f"{path}: <{section}> ignored ({', '.join(kids)}): robokit models the rigid-body chain only")
+    world = root.find("worldbody")
+    if world is not None:
+        bodies = world.findall("body")
+        for b in bodies[1:]:
+            notes.append(f"{path}: <body name={b.get('name', '')!r}> ignored: only the worldbody's first body tree "
+                         "is read (Pinocchio's MJCF parser)")
+        for j in world.iter("joint"):
+            for attr in ("frictionloss", "stiffness"):
+                v = j.get(attr)
+                if v is not None and float(v.split()[0]) != 0.0:
+                    notes.append(f"{path}: <joint name={j.get('name', '')!r}> {attr}={v} ignored")
+    if root.find("include") is not None or root.find(".//include") is not None:
+        notes.append(f"{path}: <include> found: the first body's placement is read from this file only")
+    return notes
+
+
+def _apply_first_body_fix(model, geoms, name, X) -> bool:
+    """Left-multiply the placements of everything hung on the universe joint from the first
+    body down by X (the first body's world pose) if Pinocchio left it out; True if applied."""
+    import pinocchio as pin
+
+    fid = None
+    for i, f in enumerate(model.frames):
+        if i > 0 and f.parentJoint == 0 and f.type == pin.FrameType.BODY and (name is None or f.name == name):
+            fid = i
+            break
+    if fid is None:
+        return False
+    Xs = pin.SE3(X[:3, :3].copy(), X[:3, 3].copy())
+    if np.allclose(model.frames[fid].placement.homogeneous, X, atol=1e-12):
+        return False  # this Pinocchio places the first body correctly
+    if not np.allclose(model.frames[fid].placement.homogeneous, np.eye(4), atol=1e-12):
+        raise InputError(f"first body {name!r}: Pinocchio placed it neither at the identity nor at its MJCF pose; "
+                         "cannot correct this parser's output")
+    # frames in the first body's subtree: those whose parent-frame chain reaches fid
+    in_tree = {fid}
+    for i, f in enumerate(model.frames):
+        if f.parentJoint == 0 and i not in in_tree:
+            k, seen = f.parentFrame, set()
+            while k not in in_tree and k != 0 and k not in seen:
+                seen.add(k)
+                k = model.frames[k].parentFrame
+            if k in in_tree:
+                in_tree.add(i)
+    for i in sorted(in_tree):
+        model.frames[i].placement = Xs * model.frames[i].placement
+    for j in range(1, model.njoints):
+        if model.parents[j] == 0:
+            model.jointPlacements[j] = Xs * model.jointPlacements[j]
+    for gm in geoms:
+        if gm is None:
+            continue
+        for go in gm.geometryObjects:
+            if go.parentJoint == 0 and go.parentFrame in in_tree:
+                go.placement = Xs * go.placement
+    return True
+
+
+def _joint_defaults(root: ET.Element) -> dict:
+    """``{class name: {attribute: value}}`` of the ``<joint>`` defaults, nested classes
+    inheriting from their parents (the top ``<default>`` is class "main")."""
+    out = {}
+
+    def walk(elem, inherited):
+        name = elem.get("class", "main")
+        attrs = dict(inherited)
+        j = elem.find("joint")
+        if j is not None:
+            attrs.update(j.attrib)
+        out[name] = attrs
+        for child in elem.findall("default"):
+            walk(child, attrs)
+
+    for top in root.findall("default"):
+        walk(top, {})
+    return out
+
+
+def _slide_ranges(root: ET.Element, path) -> dict:
+    """``{joint name: (lower, upper)}`` of the slide joints with a range, in m (MuJoCo never
+    converts a slide joint's range, whatever the compiler's angle unit)."""
+    defaults = _joint_defaults(root)
+    out = {}
+
+    def walk(elem, childclass):
+        for child in elem:
+            if child.tag == "joint":
+                attrs = dict(defaults.get(child.get("class", childclass), {}))
+                attrs.update(child.attrib)
+                if attrs.get("type", "hinge") == "slide" and "range" in attrs and attrs.get("limited") != "false":
+                    rng = _floats(_Attr(attrs, child), "range", 2, path)
+                    out[child.get("name", "")] = (float(rng[0]), float(rng[1]))
+            elif child.tag == "body":
+                walk(child, child.get("childclass", childclass))
+
+    world = root.find("worldbody")
+    if world is not None:
+        walk(world, "main")
+    return out
+
+
+class _Attr:
+    """An element-like view of merged attributes (for :func:`_floats` messages)."""
+
+    def __init__(self, attrs, elem):
+        self.attrs, self.tag = attrs, elem.tag
+
+    def get(self, key, default=None):
+        return self.attrs.get(key, default)
+
+
+def _fix_slide_ranges(model, root, path) -> None:
+    """Pinocchio 4.1 converts slide ranges from degrees like hinge ranges; MuJoCo does not."""
+    for name, (lo, hi) in _slide_ranges(root, path).items():
+        if not name or not model.existJointName(name):
+            continue
+        jm = model.joints[model.getJointId(name)]
+        if jm.nq == 1 and jm.shortname().startswith(("JointModelP", "JointModelPrismatic")):
+            model.lowerPositionLimit[jm.idx_q] = lo
+            model.upperPositionLimit[jm.idx_q] = hi
+
+
+def _gravity(root: ET.Element, path) -> np.ndarray:
+    g = np.array([0.0, 0.0, -9.81])
+    for opt in root.iter("option"):
+        v = _floats(opt, "gravity", 3, path)
+        if v is not None:
+            g = v
+    return g
+
+
+def _custom_inertials(root: ET.Element, path) -> dict:
+    out = {}
+    for num in root.iter("numeric"):
+        name = num.get("name", "")
+        if name.startswith(CUSTOM_INERTIAL_PREFIX):
+            data = _floats(num, "data", 10, path)
+            out[name[len(CUSTOM_INERTIAL_PREFIX):]] = data
+    return out
+
+
+def _apply_custom_inertials(model, exact: dict, path) -> list[str]:
+    import pinocchio as pin
+
+    applied = []
+    for body, d in exact.items():
+        if not model.existFrame(body, pin.FrameType.BODY):
+            note(f"{path}: <numeric name='{CUSTOM_INERTIAL_PREFIX}{body}'> ignored: no body {body!r}")
+            continue
+        f = model.frames[model.getFrameId(body, pin.FrameType.BODY)]
+        j = f.parentJoint
+        others = [g for g in model.frames if g.type == pin.FrameType.BODY and g.parentJoint == j and g.name != body]
+        if j == 0 or others or not np.allclose(f.placement.homogeneous, np.eye(4)):
+            note(f"{path}: exact inertial of {body!r} ignored: the body is not alone at its joint's origin")
+            continue
+        m, c, (xx, yy, zz, xy, xz, yz) = d[0], d[1:4], d[4:]
+        I = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+        model.inertias[j] = pin.Inertia(float(m), np.array(c, dtype=float), I)
+        applied.append(body)
+    return applied
+
+
+def _default_tip(model) -> str:
+    """The last site (operational frame) on the chain's last joint, else the last body."""
+    import pinocchio as pin
+
+    from robokit.description.robot import default_tip
+
+    body = default_tip(model)
+    j = model.frames[model.getFrameId(body)].parentJoint
+    sites = [f.name for f in model.frames if f.type == pin.FrameType.OP_FRAME and f.parentJoint == j]
+    return sites[-1] if sites else body
+
+
+def load_mjcf(path, tip: str | None = None):
+    """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        An MJCF ``.xml`` file (root element ``<mujoco>``).
+    tip : str, optional
+        The chain's tip frame (a body or site name). Default: the last site of the chain's
+        last body, else that body.
+
+    Returns
+    -------
+    Robot
+        With gravity from ``<option gravity>``, armature in ``robot.model.armature``.
+
+    Raises
+    ------
+    InputError
+        Missing file, malformed XML (file:line:column), a root element other than
+        ``<mujoco>``, a model Pinocchio cannot parse, or no serial chain to the tip.
+
+    Examples
+    --------
+    >>> robot = load_mjcf("arm.xml")            # doctest: +SKIP
+    >>> robot.frame_pose(np.zeros(robot.n))     # doctest: +SKIP
+    """
+    import pinocchio as pin
+
+    from robokit.description.robot import _finish
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: file not found")
+    root = _parse_xml(path)
+    if root.tag != "mujoco":
+        raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
+    if root.find("worldbody") is None or root.find("worldbody").find("body") is None:
+        raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
+    for n in _ignored_notes(root, path):
+        note(n)
+    gravity = _gravity(root, path)
+    exact = _custom_inertials(root, path)
+    first_name, X = first_body_placement(path)
+    try:
+        model = pin.buildModelFromMJCF(str(path))
+    except Exception as exc:  # Pinocchio raises ValueError/RuntimeError with multi-line text
+        msg = " ".join(str(exc).split()) or type(exc).__name__
+        raise InputError(f"{path}: Pinocchio's MJCF parser rejected the file ({msg[:300]})") from None
+    geoms = []
+    for gtype, label in ((pin.GeometryType.VISUAL, "visual"), (pin.GeometryType.COLLISION, "collision")):
+        try:
+            geoms.append(pin.buildGeomFromMJCF(model, str(path), gtype))
+        except Exception as exc:
+            note(f"{path}: {label} geometry not loaded ({' '.join(str(exc).split())[:200]})")
+            geoms.append(None)
+    if X is not None:
+        _apply_first_body_fix(model, geoms, first_name, X)
+    model.gravity.linear = gravity
+    _fix_slide_ranges(model, root, path)
+    if exact:
+        _apply_custom_inertials(model, exact, path)
+    tip = tip or _default_tip(model)
+    name = root.get("model") or path.stem
+    return _finish(name, model, tip, geoms, {}, str(path))
+
+
+# --------------------------------------------------------------------------- writing
+def _f(x) -> str:
+    x = float(x)
+    return "0" if x == 0.0 else repr(x)
+
+
+def _v(v) -> str:
+    return " ".join(_f(x) for x in np.ravel(v))
+
+
+def _quat(R) -> np.ndarray:
+    """Unit quaternion (w, x, y, z) of a rotation, w ≥ 0."""
+    import pinocchio as pin
+
+    q = pin.Quaternion(np.asarray(R, dtype=float)).coeffs()  # (x, y, z, w)
+    wxyz = np.array([q[3], q[0], q[1], q[2]])
+    return -wxyz if wxyz[0] < 0 else wxyz
+
+
+def _pose_attrs(T) -> str:
+    T = np.asarray(T, dtype=float)
+    out = []
+    if np.any(T[:3, 3] != 0):
+        out.append(f'pos="{_v(T[:3, 3])}"')
+    if not np.array_equal(T[:3, :3], np.eye(3)):
+        out.append(f'quat="{_v(_quat(T[:3, :3]))}"')
+    return " ".join(out)
+
+
+def _mujoco_accepts(mass: float, I: np.ndarray) -> bool:
+    """Would MuJoCo's compiler take this moving body's inertial as written?"""
+    ev = np.linalg.eigvalsh(I)
+    if mass <= _MASS_FLOOR * 1e-3 or ev.min() <= _INERTIA_FLOOR * 1e-3:
+        return False
+    a, b, c = np.sort(ev)
+    return a + b >= c * (1 + 1e-9)
+
+
+def _regularized(mass: float, I: np.ndarray):
+    """Nearest inertial MuJoCo accepts: (mass, principal moments (3,), rotation to principal axes)."""
+    ev, V = np.linalg.eigh(I)
+    if np.linalg.det(V) < 0:
+        V[:, 0] = -V[:, 0]
+    ev = np.maximum(ev, _INERTIA_FLOOR)
+    order = np.argsort(ev)
+    a, b, c = ev[order]
+    if a + b < c:
+        gap = 0.5 * (c - a - b) * (1 + 1e-9)
+        ev[order[0]] += gap
+        ev[order[1]] += gap
+    return max(mass, _MASS_FLOOR), ev, V
+
+
+def _joint_axis(model, j):
+    """(kind, axis in the joint frame) of a one-dof joint: kind "hinge" or "slide"."""
+    import pinocchio as pin
+
+    jm = model.joints[j]
+    jd = jm.createData()
+    jm.calc(jd, pin.neutral(model))
+    S = np.asarray(jd.S).reshape(6, -1)[:, 0]  # (v; ω)
+    if np.linalg.norm(S[3:]) > 1e-12:
+        return "hinge", S[3:] / np.linalg.norm(S[3:])
+    return "slide", S[:3] / np.linalg.norm(S[:3])
+
+
+def _geom_xml(go, mesh_assets: dict, color_default="0.7 0.7 0.75 1") -> str | None:
+    """A ``<geom>`` of one Pinocchio geometry object (placement relative to its joint), or
+    None when MuJoCo cannot draw it."""
+    import pinocchio as pin  # noqa: F401
+
+    g = go.geometry
+    kind = type(g).__name__
+    color = np.asarray(go.meshColor, dtype=float)
+    rgba = " ".join(f"{x:.4g}" for x in color) if np.any(color != 0) else color_default
+    pose = _pose_attrs(go.placement.homogeneous)
+    common = f'{pose} rgba="{rgba}" contype="0" conaffinity="0" group="1"'
+    if kind == "Cylinder":
+        return f'<geom type="cylinder" size="{_f(g.radius)} {_f(g.halfLength)}" {common}/>'
+    if kind == "Capsule":
+        return f'<geom type="capsule" size="{_f(g.radius)} {_f(g.halfLength)}" {common}/>'
+    if kind == "Sphere":
+        return f'<geom type="sphere" size="{_f(g.radius)}" {common}/>'
+    if kind == "Box":
+        return f'<geom type="box" size="{_v(np.asarray(g.halfSide))}" {common}/>'
+    path = getattr(go, "meshPath", "") or ""
+    if path and Path(path).suffix.lower() in _MUJOCO_MESH_EXT and Path(path).is_file():
+        scale = tuple(float(s) for s in np.asarray(go.meshScale))
+        key = (os.path.abspath(path), scale)
+        if key not in mesh_assets:
+            mesh_assets[key] = f"mesh_{len(mesh_assets)}"
+        return f'<geom type="mesh" mesh="{mesh_assets[key]}" {common}/>'
+    return None
+
+
+def joint_armature_damping(robot) -> tuple[np.ndarray, np.ndarray]:
+    """Armature (reflected rotor inertia) and viscous damping of each joint, ``(n,)`` each.
+
+    For a robot from a DH file: ``G² Jm`` (kg·m²) and ``G² B`` (N·m·s/rad), the motor-side
+    values referred to the joint; otherwise the model's ``armature`` and ``damping`` (from an
+    MJCF file, or a URDF's ``<dynamics damping>``).
+
+    Examples
+    --------
+    >>> arm, damp = joint_armature_damping(robokit.load("puma560"))   # doctest: +SKIP
+    """
+    if robot.dh is not None:
+        arm = np.array([l.joint_inertia for l in robot.dh.links])
+        damp = np.array([l.G * l.G * l.B for l in robot.dh.links])
+        return arm, damp
+    model = robot.model
+    idx = [model.joints[j].idx_v for j in range(1, model.njoints)]
+    return np.array(model.armature)[idx], np.array(model.damping)[idx]
+
+
+def robot_to_mjcf(robot) -> tuple[str, list[str]]:
+    """MJCF text of a robot's chain, and notes for stderr (see the module docstring).
+
+    Parameters
+    ----------
+    robot : Robot or str
+        A :class:`robokit.Robot`, or anything :func:`robokit.load` accepts (a shipped
+        model name, a DH ``.yaml``, a ``.urdf``/``.xacro``/``.xml`` file, an
+        example-robot-data name).
+
+    Returns
+    -------
+    text : str
+        The MJCF document; MuJoCo (``mujoco.MjModel.from_xml_string``) and robokit load it.
+    notes : list of str
+        What was approximated or left out (inertials MuJoCo cannot take exactly, meshes
+        MuJoCo cannot read, Coulomb friction).
+
+    Notes
+    -----
+    Armature is the DH file's ``G² Jm`` (or the model's ``armature``); damping the DH
+    file's ``G² B`` (or the URDF's ``<dynamics damping>``).
+
+    Examples
+    --------
+    >>> text, notes = robot_to_mjcf("puma560")   # doctest: +SKIP
+    """
+    import pinocchio as pin
+
+    from robokit.description.robot import Robot, load
+
+    if not isinstance(robot, Robot):
+        robot = load(robot)
+    model = robot.model
+    n = model.njoints - 1
+    notes: list[str] = []
+    armature, damping = joint_armature_damping(robot)
+    if robot.dh is not None and any(np.any(np.asarray(l.Tc) != 0) for l in robot.dh.links):
+        notes.append(f"{robot.name}: Coulomb friction Tc not written (MuJoCo's frictionloss is symmetric and "
+                     "acts through the constraint solver)")
+
+    used: set = set()
+
+    def unique(name: str) -> str:
+        base, k = name, 1
+        while name in used:
+            k += 1
+            name = f"{base}_{k}"
+        used.add(name)
+        return name
+
+    body_names = {}
+    for j in range(1, n + 1):
+        cands = [f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint == j]
+        body_names[j] = unique(cands[0] if cands else f"{model.names[j]}_body")
+    joint_names = {j: model.names[j] for j in range(1, n + 1)}
+
+    # geometry per joint: visuals MuJoCo can read, else collisions, else a capsule to the next joint
+    mesh_assets: dict = {}
+    geoms_by_joint = {j: [] for j in range(0, n + 1)}
+    skipped = set()
+    for j in range(0, n + 1):
+        for gm in (robot.visual_model, robot.collision_model):
+            if gm is None:
+                continue
+            objs = [go for go in gm.geometryObjects if go.parentJoint == j]
+            xml = [_geom_xml(go, mesh_assets) for go in objs]
+            if objs and all(x is not None for x in xml):
+                geoms_by_joint[j] = xml
+                break
+            skipped.update(Path(go.meshPath).suffix for go, x in zip(objs, xml) if x is None and go.meshPath)
+    if skipped:
+        notes.append(f"{robot.name}: meshes of type {', '.join(sorted(skipped))} not written (MuJoCo reads STL, OBJ, "
+                     "MSH); those bodies get their collision meshes or a capsule between joint origins")
+    scale = max(0.05, float(max(np.linalg.norm(model.jointPlacements[j].translation) for j in range(1, n + 1))))
+    for j in range(1, n + 1):
+        if geoms_by_joint[j]:
+            continue
+        p_next = model.jointPlacements[j + 1].translation if j < n else \
+            model.frames[robot.tip_id].placement.translation
+        r = 0.04 * scale
+        if np.linalg.norm(p_next) > 1e-9:
+            geoms_by_joint[j].append(f'<geom type="capsule" fromto="0 0 0 {_v(p_next)}" size="{_f(r)}" '
+                                     'rgba="0.55 0.6 0.7 1" contype="0" conaffinity="0" group="1"/>')
+        else:
+            geoms_by_joint[j].append(f'<geom type="sphere" size="{_f(1.5 * r)}" rgba="0.95 0.55 0.1 1" '
+                                     'contype="0" conaffinity="0" group="1"/>')
+
+    customs = []
+    lines_by_joint = {}
+    for j in range(1, n + 1):
+        Y = model.inertias[j]
+        mass, c, I = float(Y.mass), np.array(Y.lever), np.array(Y.inertia)
+        body = body_names[j]
+        if _mujoco_accepts(mass, I):
+            xx, yy, zz, xy, xz, yz = I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]
+            inertial = (f'<inertial pos="{_v(c)}" mass="{_f(mass)}" '
+                        f'fullinertia="{_v([xx, yy, zz, xy, xz, yz])}"/>')
+        else:
+            m2, ev, V = _regularized(mass, I)
+            inertial = (f'<inertial pos="{_v(c)}" quat="{_v(_quat(V))}" mass="{_f(m2)}" '
+                        f'diaginertia="{_v(ev)}"/>')
+            data = [mass, *c, I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]]
+            customs.append(f'    <numeric name={quoteattr(CUSTOM_INERTIAL_PREFIX + body)} data="{_v(data)}"/>')
+            notes.append(f"{robot.name}: body {body!r}: MuJoCo rejects its inertial (mass {mass:g} kg, principal "
+                         f"moments {np.round(np.linalg.eigvalsh(I), 6).tolist()}); written as the nearest accepted one "
+                         f"(mass {m2:g}, moments {np.round(ev, 6).tolist()}), exact values in <custom> for robokit")
+        kind, axis = _joint_axis(model, j)
+        jm = model.joints[j]
+        attrs = [f'name={quoteattr(joint_names[j])}', f'type="{kind}"', f'axis="{_v(axis)}"']
+        if jm.nq == 1:
+            lo, hi = model.lowerPositionLimit[jm.idx_q], model.upperPositionLimit[jm.idx_q]
+            if np.isfinite(lo) and np.isfinite(hi) and lo < hi:
+                attrs.append(f'limited="true" range="{_f(lo)} {_f(hi)}"')
+            else:
+                attrs.append('limited="false"')
+        else:
+            attrs.append('limited="false"')
+        if armature[j - 1] != 0:
+            attrs.append(f'armature="{_f(armature[j - 1])}"')
+        if damping[j - 1] != 0:
+            attrs.append(f'damping="{_f(damping[j - 1])}"')
+        lines_by_joint[j] = (inertial, f"<joint {' '.join(attrs)}/>")
+
+    tip_frame = model.frames[robot.tip_id]
+    site_name = robot.tip if robot.tip not in body_names.values() else f"{robot.tip}_site"
+    site = (tip_frame.parentJoint,
+            " ".join(f"<site name={quoteattr(site_name)} {_pose_attrs(tip_frame.placement.homogeneous)} "
+                     f'size="{_f(0.02 * scale)}" rgba="0.1 0.8 0.2 1"/>'.split()))
+
+    g = robot.gravity
+    out = ['<?xml version="1.0"?>',
+           f"<!-- written by robokit from {robot.source or robot.name}: SI units (m, kg, s), angles in rad -->",
+           f"<mujoco model={quoteattr(robot.name)}>",
+           '  <compiler angle="radian" autolimits="true" inertiafromgeom="false"/>',
+           f'  <option gravity="{_v(g)}"/>']
+    if mesh_assets:
+        out.append("  <asset>")
+        for (p, sc), name in mesh_assets.items():
+            out.append(f"    <mesh name={quoteattr(name)} file={quoteattr(p)} scale=\"{_v(sc)}\"/>")
+        out.append("  </asset>")
+    if customs:
+        out.append("  <custom>")
+        out.extend(customs)
+        out.append("  </custom>")
+    out.append("  <worldbody>")
+    for gx in geoms_by_joint[0]:
+        out.append(f"    {gx}")
+    if site[0] == 0:
+        out.append(f"    {site[1]}")
+    indent = "    "
+    for j in range(1, n + 1):
+        inertial, joint = lines_by_joint[j]
+        out.append(f"{indent}<body name={quoteattr(body_names[j])} {_pose_attrs(model.jointPlacements[j].homogeneous)}>"
+                   .replace(" >", ">"))
+        indent += "  "
+        out.append(f"{indent}{joint}")
+        out.append(f"{indent}{inertial}")
+        for gx in geoms_by_joint[j]:
+            out.append(f"{indent}{gx}")
+        if site[0] == j:
+            out.append(f"{indent}{site[1]}")
+    for j in range(n, 0, -1):
+        indent = indent[:-2]
+        out.append(f"{indent}</body>")
+    out.append("  </worldbody>")
+    out.append("</mujoco>")
+    return "\n".join(out) + "\n", notes

@@ -1,0 +1,344 @@
+r"""xacro files (``.urdf.xacro``, ``.xacro``) without ROS.
+
+A xacro file is expanded to URDF with the ``xacro`` Python package, then loaded like any
+URDF. ROS finds packages through its index (``$(find pkg)`` needs ``ament_index_python``);
+robokit finds them itself, in this order:
+
+1. each folder ``D`` of ``package_path``: ``D/<pkg>/package.xml``, ``D`` itself when its
+   ``package.xml`` is named ``<pkg>``, or a sub-folder of ``D`` whose ``package.xml`` is;
+2. the xacro file's own folder and every folder above it, by the same three rules — so a
+   package found beside the file (a ROS workspace's ``src/``) needs no option.
+
+The package of a ``package.xml`` is its ``<name>`` element (the folder name if it has none).
+``$(find pkg)`` (also inside ``$(eval ...)``) becomes the package folder, and mesh URIs
+``package://pkg/path`` and ``file://path`` become absolute file paths; relative mesh paths are
+taken from the top-level file's folder. ``$(arg name)`` values come from ``xacro_args``
+(every key must be an argument the file declares with ``<xacro:arg>`` or uses), else from
+the ``default`` of its ``<xacro:arg>``.
+
+Errors (a missing file or include, an undefined argument or property, a package not found,
+malformed XML, a mesh that does not exist) raise :class:`robokit.errors.InputError` with one
+line naming the file, and where it can be found the line and element. URDF elements with no
+meaning for the rigid-body model (``<gazebo>``, ``<transmission>``, ``<ros2_control>``) are
+ignored and named in a note on stderr.
+"""
+from __future__ import annotations
+
+import re
+import threading
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from robokit.description._notes import note
+from robokit.errors import InputError
+
+__all__ = ["expand_xacro", "find_package", "load_xacro"]
+
+_LOCK = threading.Lock()  # the xacro package keeps its state in module globals
+_IGNORED = ("gazebo", "transmission", "ros2_control")
+
+
+def _package_name(package_xml: Path) -> str:
+    try:
+        name = ET.parse(package_xml).getroot().findtext("name")
+    except (ET.ParseError, OSError):
+        name = None
+    return (name or package_xml.parent.name).strip()
+
+
+def _package_in(folder: Path, pkg: str) -> Path | None:
+    if not folder.is_dir():
+        return None
+    cand = folder / pkg / "package.xml"
+    if cand.is_file() and _package_name(cand) == pkg:
+        return cand.parent
+    own = folder / "package.xml"
+    if own.is_file() and _package_name(own) == pkg:
+        return folder
+    try:
+        subs = sorted(folder.iterdir())
+    except OSError:
+        return None
+    for sub in subs:
+        px = sub / "package.xml"
+        if px.is_file() and _package_name(px) == pkg:
+            return sub
+    return None
+
+
+def find_package(pkg: str, package_path=(), start=None) -> Path:
+    """Folder of the package named ``pkg``.
+
+    Parameters
+    ----------
+    pkg : str
+        Package name (the ``<name>`` of its ``package.xml``).
+    package_path : sequence of str or Path
+        Folders searched first (see the module docstring for the rules).
+    start : str or Path, optional
+        A file or folder; its folder and every folder above it are searched next.
+
+    Returns
+    -------
+    Path
+        The package's folder (the one holding its ``package.xml``).
+
+    Raises
+    ------
+    InputError
+        If no folder holds the package; the message lists where it looked.
+
+    Examples
+    --------
+    >>> find_package("my_arm_description", ["~/ws/src"])   # doctest: +SKIP
+    """
+    folders = [Path(p).expanduser() for p in (package_path or ())]
+    for d in folders:
+        found = _package_in(d, pkg)
+        if found is not None:
+            return found.resolve()
+    if start is not None:
+        s = Path(start).resolve()
+        for d in ([s] if s.is_dir() else []) + list(s.parents):
+            found = _package_in(d, pkg)
+            if found is not None:
+                return found.resolve()
+    where = [str(d) for d in folders] + ([f"{Path(start).resolve().parent} and the folders above it"]
+                                         if start is not None else [])
+    raise InputError(f"package {pkg!r} not found (no package.xml named {pkg!r} in {'; '.join(where) or 'no folder'}); "
+                     "add its parent folder with --package-path / package_path")
+
+
+class _ArgRecorder(dict):
+    """The xacro argument mapping; records the names the file declares or uses."""
+
+    def __init__(self, values):
+        super().__init__(values)
+        self.seen: set = set()
+
+    def __contains__(self, key):
+        self.seen.add(key)
+        return dict.__contains__(self, key)
+
+    def __getitem__(self, key):
+        self.seen.add(key)
+        return dict.__getitem__(self, key)
+
+
+def _locate(file: Path, token) -> str:
+    """``line N, <tag>`` of the first place in ``file`` holding ``token`` (a string or a compiled
+    regular expression), or ""."""
+    try:
+        text = file.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
+    if isinstance(token, re.Pattern):
+        m = token.search(text)
+        pos = m.start() if m else -1
+    else:
+        pos = text.find(token) if token else -1
+    if pos < 0:
+        return ""
+    line = text.count("\n", 0, pos) + 1
+    start = text.rfind("<", 0, pos + 1)
+    m = re.match(r"<\s*([\w:.-]+)", text[start:]) if start >= 0 else None
+    return f"line {line}, <{m.group(1)}>" if m else f"line {line}"
+
+
+def _xacro_error(exc, files, path: Path, missing_pkg, macros=()) -> InputError:
+    """One-line InputError for an exception raised while expanding ``path``."""
+    import xml.parsers.expat
+
+    current = Path(files[-1]) if files and files[-1] else path
+    if missing_pkg:
+        pkg, err = missing_pkg[0]
+        where = _locate(current, f"$(find {pkg})")
+        return InputError(f"{current}: {where + ': ' if where else ''}$(find {pkg}): {err}")
+    if isinstance(exc, xml.parsers.expat.ExpatError):
+        msg = xml.parsers.expat.ErrorString(exc.code)
+        return InputError(f"{current}:{exc.lineno}:{exc.offset + 1}: not well-formed XML ({msg})")
+    text = " ".join(str(exc).split())
+    sub = getattr(exc, "exc", None)
+    token = ""
+    if sub is not None and type(sub).__name__ == "ArgException":
+        token = f"$(arg {sub.args[0]})"
+        text = f"$(arg {sub.args[0]}): undefined argument (declare it with <xacro:arg name=\"{sub.args[0]}\" "\
+               "default=\"...\"/> or pass xacro_args / --xacro-arg)"
+    elif isinstance(sub, OSError) and getattr(sub, "filename", None):
+        missing = Path(sub.filename)
+        token = missing.name
+        text = f"<xacro:include> file not found: {missing}"
+    else:
+        m = re.search(r'[Ii]nvalid parameter "([\w.:-]+)"', text)
+        if macros and re.search(r"[Uu]ndefined parameters|[Ii]nvalid parameter", text):
+            token = re.compile(rf"<(xacro:)?{re.escape(macros[-1])}[\s/>]")  # the macro call
+        elif m:
+            token = f'{m.group(1)}="'
+        else:
+            m = (re.search(r"name '([^']+)' is not defined", text) or re.search(r"macro name: ([\w.:-]+)", text)
+                 or re.search(r"[Uu]ndefined parameters? \[?'?([\w.:-]+)", text)
+                 or re.search(r"['\"]([^'\"]{2,})['\"]", text))
+            token = m.group(1) if m else ""
+    where = _locate(current, token) if token else ""
+    if not where and token:  # the offending text may sit in the file that included this one
+        for f in reversed(files[:-1]):
+            if f and _locate(Path(f), token):
+                current, where = Path(f), _locate(Path(f), token)
+                break
+    return InputError(f"{current}: {where + ': ' if where else ''}{text}")
+
+
+def _resolve_mesh_uri(uri: str, top: Path, package_path) -> Path:
+    if uri.startswith("package://"):
+        rest = uri[len("package://"):]
+        pkg, _, rel = rest.partition("/")
+        return find_package(pkg, package_path, top) / rel
+    if uri.startswith("file://"):
+        return Path(uri[len("file://"):])
+    p = Path(uri)
+    return p if p.is_absolute() else (top.parent / p)
+
+
+def expand_xacro(path, xacro_args=None, package_path=None) -> str:
+    """The URDF text of a xacro file, with packages and mesh paths resolved.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.xacro`` / ``.urdf.xacro`` file (a plain ``.urdf`` also works: its ``package://``
+        mesh URIs are resolved).
+    xacro_args : dict, optional
+        Argument values, ``{"name": "value"}`` (values are converted with ``str``).
+    package_path : sequence of str or Path, optional
+        Folders searched for packages (see the module docstring).
+
+    Returns
+    -------
+    str
+        URDF text; mesh ``filename`` attributes are absolute paths of existing files.
+
+    Raises
+    ------
+    InputError
+        One line naming the file (and line/element where known): file or include not
+        found, undefined argument, unknown ``xacro_args`` key, package not found,
+        malformed XML, mesh file missing.
+
+    Examples
+    --------
+    >>> urdf = expand_xacro("arm.urdf.xacro", {"prefix": "left_"}, ["~/ws/src"])  # doctest: +SKIP
+    """
+    try:
+        import xacro
+        import xacro.substitution_args as sargs
+    except ImportError:  # pragma: no cover - xacro is a dependency
+        raise InputError(f"{path}: reading xacro files needs the 'xacro' package (pip install xacro)") from None
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: file not found")
+    args = {}
+    for k, v in (xacro_args or {}).items():
+        if not isinstance(k, str) or not k.isidentifier():
+            raise InputError(f"xacro_args: argument names must be identifiers, got {k!r}")
+        args[k] = str(v)
+    package_path = [Path(p) for p in (package_path or [])]
+    for d in package_path:
+        if not d.expanduser().is_dir():
+            raise InputError(f"package_path: {str(d)!r} is not a folder")
+    top = path.resolve()
+    missing_pkg: list = []
+
+    def find(pkg):
+        try:
+            return str(find_package(pkg, package_path, top))
+        except InputError as exc:
+            missing_pkg.append((pkg, str(exc)))
+            raise
+
+    recorder = _ArgRecorder(args)
+    with _LOCK:
+        saved = sargs._eval_find, sargs._eval_dict.get("find")
+        sargs._eval_find = find
+        sargs._eval_dict["find"] = find
+        try:
+            doc = xacro.process_file(str(top), mappings=recorder)
+            text = doc.toxml()
+        except Exception as exc:  # xacro raises XacroException, ExpatError, NameError, ...
+            files = [str(f) if f else None for f in (getattr(xacro, "filestack", None) or [])]
+            macros = [m.body.getAttribute("name") for m in (getattr(xacro, "macrostack", None) or [])
+                      if getattr(m, "body", None) is not None]
+            raise _xacro_error(exc, files, top, missing_pkg, macros) from None
+        finally:
+            sargs._eval_find = saved[0]
+            if saved[1] is not None:
+                sargs._eval_dict["find"] = saved[1]
+    unknown = sorted(set(args) - recorder.seen)
+    if unknown:
+        declared = sorted(recorder.seen)
+        raise InputError(f"{path}: unknown xacro argument(s) {', '.join(unknown)}; the file declares "
+                         f"{', '.join(declared) if declared else 'no arguments'}")
+    return _resolve_meshes(text, top, package_path)
+
+
+def _resolve_meshes(text: str, top: Path, package_path) -> str:
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as exc:  # pragma: no cover - xacro output is well formed
+        raise InputError(f"{top}: expanded URDF is not well-formed XML ({exc})") from None
+    if root.tag != "robot":
+        raise InputError(f"{top}: root element <{root.tag}> is not <robot>; a xacro robot description "
+                         "expands to a URDF <robot>")
+    for tag in _IGNORED:
+        found = root.findall(tag)
+        if found:
+            note(f"{top}: {len(found)} <{tag}> element(s) ignored (no meaning for the rigid-body model)")
+    for mesh in root.iter("mesh"):
+        uri = mesh.get("filename", "")
+        try:
+            p = _resolve_mesh_uri(uri, top, package_path)
+        except InputError as exc:
+            raise InputError(f"{top}: <mesh filename={uri!r}>: {exc}") from None
+        if not p.is_file():
+            raise InputError(f"{top}: <mesh filename={uri!r}>: file {str(p)!r} not found")
+        mesh.set("filename", str(p.resolve()))
+    return ET.tostring(root, encoding="unicode")
+
+
+def load_xacro(path, tip: str | None = None, *, xacro_args=None, package_path=None):
+    """Load a xacro (or URDF) file as a :class:`robokit.Robot`.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.xacro`` / ``.urdf.xacro`` (or ``.urdf`` whose ``package://`` meshes need
+        ``package_path``).
+    tip : str, optional
+        Tip frame of the chain (default: the last link of the chain).
+    xacro_args, package_path
+        See :func:`expand_xacro`.
+
+    Returns
+    -------
+    Robot
+
+    Raises
+    ------
+    InputError
+        See :func:`expand_xacro`; also a URDF Pinocchio cannot build.
+
+    Examples
+    --------
+    >>> robot = load_xacro("arm.urdf.xacro", xacro_args={"l1": "0.4"})   # doctest: +SKIP
+    """
+    from robokit.description.robot import _from_urdf_file
+
+    path = Path(path)
+    name = path.name.lower()
+    if not (name.endswith(".xacro") or name.endswith(".urdf")):
+        raise InputError(f"xacro_args/package_path: apply to .xacro and .urdf files, got {str(path)!r}")
+    text = expand_xacro(path, xacro_args, package_path)
+    # The expansion resolved $(find) and package:// through the package search above, so the
+    # meshes it names are the packages' own: read like any URDF's, with those paths trusted.
+    return _from_urdf_file(path, tip, package_dirs=package_path, allow_outside_meshes=True, text=text)
+

@@ -1,0 +1,176 @@
+"""xacro files: expanded without ROS, packages found by robokit, checked against the same
+robot written out by hand as plain URDF (loaded by Pinocchio directly)."""
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import robokit
+from robokit.cli import main as cli_main
+from robokit.description.xacro_files import expand_xacro, find_package
+
+PLAIN = {}
+
+
+@pytest.fixture(autouse=True)
+def _plain(plain_urdf):
+    PLAIN["urdf"] = plain_urdf
+
+
+def _reference(l1=0.4, m2=1.5):
+    model = pin.buildModelFromXML(PLAIN["urdf"](l1, m2))
+    return model, model.createData()
+
+
+def _agree(robot, l1=0.4, m2=1.5, samples=20):
+    """Largest difference of tip FK, crba and rnea between robot and the hand-written URDF."""
+    model, data = _reference(l1, m2)
+    fid = model.getFrameId("tool")
+    rng = np.random.default_rng(3)
+    worst = 0.0
+    for _ in range(samples):
+        q = robot.random_configuration(rng)
+        v, a = rng.normal(size=3), rng.normal(size=3)
+        pin.framesForwardKinematics(model, data, q)
+        worst = max(worst, np.abs(robot.frame_pose(q, "tool") - data.oMf[fid].homogeneous).max())
+        M = pin.crba(model, data, q)
+        M = np.triu(M) + np.triu(M, 1).T
+        worst = max(worst, np.abs(robot.crba(q) - M).max())
+        worst = max(worst, np.abs(robot.rnea(q, v, a) - pin.rnea(model, data, q, v, a)).max())
+    return worst
+
+
+def test_defaults_match_hand_written_urdf(xacro_ws):
+    robot = robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro", tip="tool")
+    assert robot.n == 3 and robot.joint_names == ("j1", "j2", "j3")
+    assert _agree(robot) < 1e-12
+
+
+def test_argument_override_changes_the_robot(xacro_ws):
+    path = xacro_ws / "urdf" / "demo.urdf.xacro"
+    robot = robokit.load(path, tip="tool", xacro_args={"l1": "0.7", "m2": 2.5})
+    assert _agree(robot, l1=0.7, m2=2.5) < 1e-12
+    # and it really is a different robot from the defaults
+    assert np.abs(robot.frame_pose(np.zeros(3)) - robokit.load(path, tip="tool").frame_pose(np.zeros(3))).max() > 0.29
+
+
+def test_package_mesh_is_resolved_to_the_stl(xacro_ws):
+    robot = robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro")
+    paths = {Path(g.meshPath) for g in robot.visual_model.geometryObjects}
+    assert paths == {(xacro_ws / "meshes" / "link.stl").resolve()}
+    text = expand_xacro(xacro_ws / "urdf" / "demo.urdf.xacro")
+    assert "package://" not in text and "$(" not in text
+
+
+def test_package_path_for_a_file_outside_the_workspace(xacro_ws, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    shutil.copy(xacro_ws / "urdf" / "demo.urdf.xacro", elsewhere / "demo.urdf.xacro")
+    with pytest.raises(ValueError, match="demo_description.*not found"):
+        robokit.load(elsewhere / "demo.urdf.xacro")
+    robot = robokit.load(elsewhere / "demo.urdf.xacro", tip="tool", package_dirs=[xacro_ws.parent])
+    assert _agree(robot) < 1e-12
+    assert find_package("demo_description", [xacro_ws.parent]) == xacro_ws.resolve()
+    # the package folder itself, and a folder named differently from the package
+    renamed = tmp_path / "other_name"
+    shutil.copytree(xacro_ws, renamed)
+    assert find_package("demo_description", [renamed]) == renamed.resolve()
+
+
+def test_unknown_argument_is_rejected(xacro_ws):
+    with pytest.raises(ValueError, match=r"unknown xacro argument\(s\) l9; the file declares l1, m2"):
+        robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro", xacro_args={"l9": "1"})
+
+
+def test_gazebo_elements_are_noted(xacro_ws):
+    with pytest.warns(UserWarning, match=r"1 <gazebo> element\(s\) ignored"):
+        robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro")
+
+
+def test_xacro_options_only_for_xacro_files():
+    with pytest.raises(ValueError, match="apply to .xacro files"):
+        robokit.load("rrr", xacro_args={"a": "1"})
+
+
+def test_cli_convert_with_arguments_and_package_path(xacro_ws, tmp_path, capsys):
+    src = tmp_path / "copy.urdf.xacro"
+    shutil.copy(xacro_ws / "urdf" / "demo.urdf.xacro", src)
+    out = tmp_path / "demo.json"
+    rc = cli_main(["convert", str(src), "-o", str(out), "--tip", "tool", "--xacro-arg", "l1:=0.7",
+                   "--package-path", str(xacro_ws.parent)])
+    assert rc == 0, capsys.readouterr().err
+    M = np.array(json.loads(out.read_text())["M"])
+    model, data = _reference(l1=0.7)
+    pin.framesForwardKinematics(model, data, np.zeros(3))
+    assert np.abs(M - data.oMf[model.getFrameId("tool")].homogeneous).max() < 1e-12
+
+
+def test_cli_view_and_mjcf_export(xacro_ws, tmp_path, capsys):
+    src = xacro_ws / "urdf" / "demo.urdf.xacro"
+    page = tmp_path / "demo.html"
+    assert cli_main(["view", str(src), "-o", str(page)]) == 0, capsys.readouterr().err
+    assert page.stat().st_size > 1000 and "<html" in page.read_text()[:2000].lower()
+    mjcf = tmp_path / "demo.xml"
+    assert cli_main(["convert", str(src), "-o", str(mjcf), "--tip", "tool", "--xacro-arg", "m2:=2.5"]) == 0
+    assert 'type="slide"' in mjcf.read_text() and "link.stl" in mjcf.read_text()
+    back = robokit.load(mjcf, tip="tool")
+    assert _agree(back, m2=2.5) < 1e-12
+
+
+BAD_XACRO = {
+    "missing_include.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/>\n'
+                              '  <xacro:include filename="not_there.xacro"/></robot>',
+                              ["missing_include.xacro", "line 2", "<xacro:include>", "not_there.xacro"]),
+    "undefined_arg.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<link name="b"/>\n'
+                            '<link name="$(arg nope)"/></robot>',
+                            ["undefined_arg.xacro", "line 3", "<link>", "$(arg nope)"]),
+    "bad_xml.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<link name="b">\n</robot>',
+                      ["bad_xml.xacro:3:", "not well-formed"]),
+    "no_package.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                         '<xacro:include filename="$(find no_such_pkg)/x.xacro"/></robot>',
+                         ["no_package.xacro", "line 2", "no_such_pkg", "not found"]),
+    "undefined_property.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<link name="b">\n'
+                                 '<inertial><mass value="${nothing * 2}"/></inertial></link></robot>',
+                                 ["undefined_property.xacro", "line 3", "<mass>", "nothing"]),
+    "missing_param.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                            '<xacro:macro name="seg" params="x"><link name="${x}"/></xacro:macro>\n<xacro:seg/></robot>',
+                            ["missing_param.xacro", "line 3", "<xacro:seg>", "x"]),
+    "missing_mesh.urdf.xacro": ('<robot name="a"><link name="b"><visual><geometry>\n'
+                                '<mesh filename="meshes/none.stl"/></geometry></visual></link></robot>',
+                                ["missing_mesh.urdf.xacro", "<mesh filename='meshes/none.stl'>", "not found"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_XACRO))
+def test_malformed_xacro_one_line_exit_2(name, tmp_path, capsys):
+    text, expected = BAD_XACRO[name]
+    src = tmp_path / name
+    src.write_text(text)
+    out = tmp_path / "out.xml"
+    rc = cli_main(["convert", str(src), "-o", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("robokit: error:"), err
+    for piece in expected:
+        assert piece in lines[0], (piece, lines[0])
+    assert not out.exists() and list(tmp_path.iterdir()) == [src]
+
+
+def test_bad_xacro_arg_syntax_exit_2(xacro_ws, tmp_path, capsys):
+    rc = cli_main(["convert", str(xacro_ws / "urdf" / "demo.urdf.xacro"), "-o", str(tmp_path / "o.json"),
+                   "--xacro-arg", "l1=0.7"])
+    err = capsys.readouterr().err
+    assert rc == 2 and len(err.strip().splitlines()) == 1 and "NAME:=VALUE" in err
+
+
+def test_cli_view_with_xacro_arguments(xacro_ws, tmp_path, capsys):
+    src = tmp_path / "outside.urdf.xacro"
+    shutil.copy(xacro_ws / "urdf" / "demo.urdf.xacro", src)
+    page = tmp_path / "v.html"
+    rc = cli_main(["view", str(src), "-o", str(page), "--xacro-arg", "l1:=0.6", "--package-path", str(xacro_ws.parent)])
+    assert rc == 0, capsys.readouterr().err
+    assert page.stat().st_size > 1000
