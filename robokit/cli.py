@@ -40,6 +40,10 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+
+    t = sub.add_parser("teach", help="a self-contained teach-pendant page: joint sliders, 3-D view, live readouts")
+    t.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    t.add_argument("-o", "--output", help="output .html file (default: a temporary file, opened in the browser)")
     return p
 
 
@@ -57,6 +61,10 @@ def _dispatch(args) -> int:
 
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps)
+    if args.command == "teach":
+        from robokit.viz.teach import teach_cli
+
+        return teach_cli(args.model, args.output)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 
