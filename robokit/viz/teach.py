@@ -145,7 +145,7 @@ class _RecordingWindow:
         self.commands.append(command.lower())
 
 
-def _scene(robot, frame_names, triad_scale, floor_half):
+def _scene(robot, frame_names, triad_scale, floor_half, mesh_cell):
     """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
 
     The robot is loaded by Pinocchio's MeshcatVisualizer (meshes or primitives, with the
@@ -157,9 +157,11 @@ def _scene(robot, frame_names, triad_scale, floor_half):
 
     import meshcat
     import meshcat.geometry as g
+    import meshcat.path
     import pinocchio as pin
     from pinocchio.visualize import MeshcatVisualizer
 
+    from robokit.viz._meshes import mesh_parts
     from robokit.viz.scene import _label_png
 
     window = _RecordingWindow()
@@ -182,6 +184,22 @@ def _scene(robot, frame_names, triad_scale, floor_half):
                                            g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.6)))
     paths = {go.name: vis[viz.getViewerNodeName(go, pin.GeometryType.VISUAL)].path.lower()
              for go in visual.geometryObjects}
+    # mesh files: replaced by decimated triangle lists (far smaller than the files' text, and
+    # placed exactly as Pinocchio reads them), one coloured part per material
+    meshed = {}
+    for go in visual.geometryObjects:
+        ext = Path(go.meshPath).suffix.lower() if go.meshPath else ""
+        if ext in (".dae", ".stl", ".obj") and Path(go.meshPath).is_file():
+            override = np.asarray(go.meshColor, float) if (go.overrideMaterial or ext == ".stl") else None
+            meshed[paths[go.name]] = mesh_parts(go.meshPath, mesh_cell, override)
+    window.commands = [c for c in window.commands
+                       if not (c.get("type") == "set_object" and c.get("path") in meshed)]
+    for path, parts in meshed.items():
+        node = meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/"))))
+        for i, (V, F, rgba) in enumerate(parts):
+            color = int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
+            node[f"part{i}"].set_object(g.TriangularMeshGeometry(V, F),
+                                        g.MeshPhongMaterial(color=color, opacity=float(rgba[3]), shininess=30))
     frame_paths = {}
     for name in frame_names:
         node = vis["frames"][name]
@@ -203,18 +221,18 @@ def _pack(command) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
-def _camera(points, fill: float = 0.8):
+def _camera(points, fill: float = 0.9):
     """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre = 0.5 * (lo + hi)
-    radius = max(0.5 * float(np.linalg.norm(hi - lo)), 0.15)
+    radius = max(0.45 * float(np.linalg.norm(hi - lo)), 0.15)
     dist = radius / math.tan(0.5 * math.radians(75.0) * fill)  # meshcat's camera: 75° vertical field of view
     az, el = math.radians(40.0), math.radians(22.0)
     offset = dist * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     return centre, centre + offset
 
 
-def teach_data(robot, q=None) -> dict:
+def teach_data(robot, q=None, mesh_cell: float = 0.002) -> dict:
     """Everything the teach page needs about ``robot``, as plain JSON-able values.
 
     Returns a dict with ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type``
@@ -223,7 +241,8 @@ def teach_data(robot, q=None) -> dict:
     :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
     ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
     home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (``target``,
-    ``position`` in the base frame); ``scale`` (triad length, m).
+    ``position`` in the base frame); ``scale`` (triad length, m). Mesh files are decimated
+    with cubes of side ``mesh_cell`` (m, see :mod:`robokit.viz._meshes`).
     """
     import pinocchio as pin
 
@@ -236,12 +255,16 @@ def teach_data(robot, q=None) -> dict:
     poses = _named_poses(robot)
     frame_names = _frame_names(robot)
 
-    # points that frame the camera: the frames' origins at q0 and at the named poses
-    pts = [robot.frame_poses(np.clip(p, rng[:, 0], rng[:, 1])) for p in [q0, *poses.values()]]
+    # points that frame the camera: the frames' origins at q0, at the named poses and at
+    # random configurations, so that the robot stays in view wherever the sliders take it
+    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(32, robot.n))
+    pts = [robot.frame_poses(np.clip(p, rng[:, 0], rng[:, 1])) for p in [q0, *poses.values(), *rand]]
     P = np.array([T[:3, 3] for d in pts for T in d.values()])
+    P = P[P[:, 2] >= P[: len(pts[0]), 2].min() - 1e-9]  # what goes below the base's level is left out
     size = float(max(np.ptp(P, axis=0).max(), 0.2))
     scale = 0.1 * size
-    commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()))
+    commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()),
+                                          mesh_cell)
 
     data = robot.model.createData()
     pin.forwardKinematics(robot.model, data, pin.neutral(robot.model))
