@@ -268,6 +268,14 @@ class Scene:
         page = _html.escape(self.html(), quote=True)
         return HTML(f'<iframe srcdoc="{page}" style="width:100%;height:{int(height)}px;border:0"></iframe>')
 
+    def teach(self, q=None, height: int = 420):
+        """A teach pendant in the notebook: joint sliders driving this scene's live view, with the
+        tool pose, Jacobian, manipulability, singularity and joint-limit readouts (see
+        :func:`robokit.viz.teach.teach_widget`). Returns the ipywidgets box."""
+        from robokit.viz.teach import teach_widget
+
+        return teach_widget(self, q=q, height=height)
+
     def close(self):
         """Stop the meshcat server this scene started (if it started one)."""
         if self._own and self.vis is not None:
