@@ -345,7 +345,7 @@
     var smax = sv[0].s, smin = sv[m - 1].s;
     var w = 0;
     if (n >= m) { w = 1; for (var k = 0; k < m; k++) { w *= sv[k].s; } }
-    var cond = (smin > 0 && n >= m) ? smax / smin : Infinity;
+    var cond = (smin >= R.singular_tol && n >= m) ? smax / smin : Infinity;  // singular: infinite
     el("rk-manip").textContent = w.toPrecision(5);
     setData("rk-manip", { value: String(w) });
     el("rk-cond").textContent = isFinite(cond) ? cond.toPrecision(4) : "\u221e";

@@ -221,7 +221,7 @@ def _pack(command) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
-def _camera(points, fill: float = 0.9):
+def _camera(points, fill: float = 1.0):
     """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre = 0.5 * (lo + hi)
@@ -313,7 +313,7 @@ def teach_readouts(robot, q) -> dict:
     Returns a dict: ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
     ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
     Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
-    ``cond`` (σ_max/σ_min, ∞ when singular), ``sigma_min``, ``level`` ("ok", "near" or
+    ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``, ``level`` ("ok", "near" or
     "singular"), ``direction`` (the lost direction, task-row components, dominant one
     positive), ``direction_name``, ``margins`` (n,: distance to the nearer limit, ∞ for
     unlimited joints), ``margin`` (their minimum) and ``margin_joint`` (its joint's name).
@@ -351,7 +351,7 @@ def teach_readouts(robot, q) -> dict:
     return {
         "T": T, "xyz": T[:3, 3].copy(), "rpy": np.asarray(pin.rpy.matrixToRpy(T[:3, :3])), "quat": wxyz,
         "J": J, "rows": rows, "w": manipulability(Jt, "yoshikawa"),
-        "cond": smax / smin if smin > 0 and Jt.shape[1] >= m else math.inf,
+        "cond": smax / smin if smin >= SINGULAR_TOL and Jt.shape[1] >= m else math.inf,
         "sigma_min": smin, "level": level, "direction": d,
         "direction_name": f"{ROW_NAMES[rows[k]]} ({d[k]:.2f})",
         "margins": margins, "margin": float(margins[j]), "margin_joint": robot.joint_names[j],
