@@ -253,3 +253,21 @@ def test_cli_writes_the_page_and_rejects_bad_input(tmp_path, capsys):
     assert cli_main(["teach", "twolink", "-o", str(tmp_path / "x.txt")]) == 2
     assert cli_main(["teach", "twolink", "-o", str(tmp_path / "nofolder" / "x.html")]) == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["twolink.html"]
+
+
+def test_cli_without_output_writes_a_temporary_page(monkeypatch, capsys):
+    """Without -o the page goes to a new temporary file, which is handed to the web browser."""
+    import webbrowser
+
+    from robokit.viz.teach import teach_cli
+
+    opened = []
+    monkeypatch.setattr(webbrowser, "open", lambda url, *a, **k: opened.append(url))
+    assert teach_cli("twolink") == 0
+    path = Path(capsys.readouterr().out.strip().split(" written to ")[1])
+    try:
+        assert path.is_file() and path.suffix == ".html"
+        assert opened == [path.resolve().as_uri()]
+        assert 'id="rk-robot"' in path.read_text(encoding="utf-8")
+    finally:
+        path.unlink(missing_ok=True)
