@@ -97,6 +97,12 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
     _add_format_options(w)
+
+    t = sub.add_parser("teach", help="a self-contained teach-pendant page: joint sliders, 3-D view, live readouts")
+    t.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    t.add_argument("-o", "--output", help="output .html file (default: a temporary file, opened in the browser)")
+    t.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    _add_format_options(t)
     return p
 
 
@@ -119,6 +125,16 @@ def _dispatch(args) -> int:
             args.model = load(args.model, tip=args.tip, **opts)
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
+    if args.command == "teach":
+        from robokit.viz.teach import teach_cli
+
+        model = args.model
+        opts = _format_options(args)
+        if opts or args.tip:
+            from robokit.description.robot import load
+
+            model = load(args.model, tip=args.tip, **opts)
+        return teach_cli(model, args.output)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

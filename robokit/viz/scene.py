@@ -320,6 +320,14 @@ class Scene:
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
+    def teach(self, q=None, height: int = 420):
+        """A teach pendant in the notebook: joint sliders driving this scene's live view, with the
+        tool pose, Jacobian, manipulability, singularity and joint-limit readouts (see
+        :func:`robokit.viz.teach.teach_widget`). Returns the ipywidgets box."""
+        from robokit.viz.teach import teach_widget
+
+        return teach_widget(self, q=q, height=height)
+
     def close(self):
         """Stop the meshcat server this scene started (if it started one)."""
         if self._own and self.vis is not None:

@@ -1,0 +1,100 @@
+r"""Compact meshes for self-contained pages: a robot's mesh files as coloured triangle lists,
+decimated by vertex clustering.
+
+A mesh file (``.dae``, ``.stl``, ``.obj``) is read with trimesh, which applies the file's node
+transforms exactly as Pinocchio's loader (assimp, through coal) does — the vertices are in
+the geometry object's own frame. Its parts are grouped by colour, and each group is
+simplified by **vertex clustering**: space is cut into cubes of side ``cell``; the vertices in
+one cube are replaced by their mean, triangles whose corners fall into fewer than three
+cubes vanish, and repeated triangles are dropped. Every kept vertex is then within
+``cell·√3`` of an original vertex and every original vertex within ``cell·√3`` of a kept one,
+so at ``cell`` = 1–3 mm the picture is unchanged while the page shrinks several times.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["mesh_parts", "cluster_decimate"]
+
+
+def cluster_decimate(vertices, faces, cell: float):
+    """Vertex-clustering simplification of one triangle mesh.
+
+    vertices : (V, 3) float; faces : (F, 3) int; cell : cube side (same unit as vertices, > 0).
+    Returns ``(vertices (V', 3) float64, faces (F', 3) int64)``: one vertex per occupied cube
+    (the mean of its vertices), the triangles that still span three cubes, without repeats.
+    """
+    V = np.asarray(vertices, dtype=float)
+    F = np.asarray(faces, dtype=np.int64)
+    if not cell > 0:
+        raise ValueError(f"cell: expected a positive cube side, got {cell!r}")
+    if len(V) == 0 or len(F) == 0:
+        return np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64)
+    keys = np.floor(V / cell).astype(np.int64)
+    _, cluster, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    cluster = cluster.ravel()
+    sums = np.zeros((len(counts), 3))
+    np.add.at(sums, cluster, V)
+    newV = sums / counts[:, None]
+    newF = cluster[F]
+    keep = (newF[:, 0] != newF[:, 1]) & (newF[:, 1] != newF[:, 2]) & (newF[:, 0] != newF[:, 2])
+    newF = newF[keep]
+    if len(newF):
+        # a triangle and its rotations are the same face: compare them in a canonical order
+        # (rotated so that the smallest index comes first, keeping the orientation)
+        r = np.argmin(newF, axis=1)
+        idx = (np.arange(3)[None, :] + r[:, None]) % 3
+        canon = np.take_along_axis(newF, idx, axis=1)
+        _, first = np.unique(canon, axis=0, return_index=True)
+        newF = newF[np.sort(first)]
+    used = np.unique(newF)
+    remap = np.full(len(newV), -1, dtype=np.int64)
+    remap[used] = np.arange(len(used))
+    return newV[used], remap[newF]
+
+
+def _color_of(geom) -> tuple:
+    """(r, g, b, a) in [0, 1] of a trimesh geometry (its material's main colour, else grey)."""
+    visual = getattr(geom, "visual", None)
+    try:
+        c = np.asarray(visual.material.main_color, dtype=float)
+    except Exception:
+        try:
+            c = np.asarray(visual.main_color, dtype=float)
+        except Exception:
+            c = np.array([170, 170, 170, 255], dtype=float)
+    c = c.ravel()
+    if c.size == 3:
+        c = np.r_[c, 255.0]
+    return tuple(np.round(c[:4] / 255.0, 3))
+
+
+def mesh_parts(path, cell: float, override_rgba=None) -> list:
+    """The mesh file ``path`` as decimated parts ``[(vertices (V, 3), faces (F, 3), rgba), …]``.
+
+    Parts of one colour are merged; ``override_rgba`` (4,) paints everything one colour (the
+    URDF's material when it overrides the file's). Vertices are in the file's frame (node
+    transforms applied, mesh scale not), in the file's unit as trimesh reads it.
+    """
+    import trimesh
+
+    scene = trimesh.load(str(path), force="scene")
+    groups = {}
+    for node in scene.graph.nodes_geometry:
+        T, name = scene.graph[node]
+        geom = scene.geometry.get(name)
+        if geom is None or not hasattr(geom, "faces") or len(geom.faces) == 0:
+            continue
+        V = np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
+        F = np.asarray(geom.faces, dtype=np.int64)
+        rgba = tuple(np.round(np.asarray(override_rgba, float), 3)) if override_rgba is not None else _color_of(geom)
+        groups.setdefault(rgba, []).append((V, F))
+    parts = []
+    for rgba, items in groups.items():
+        offs = np.cumsum([0] + [len(v) for v, _ in items[:-1]])
+        V = np.vstack([v for v, _ in items])
+        F = np.vstack([f + o for (_, f), o in zip(items, offs)])
+        V, F = cluster_decimate(V, F, cell)
+        if len(F):
+            parts.append((V, F, rgba))
+    return parts

@@ -1,0 +1,541 @@
+r"""A teach pendant: move a robot's joints with sliders and watch the course's quantities live.
+
+Two front ends share one set of definitions:
+
+* :func:`teach_html` — one self-contained HTML page (no server, works offline from a file):
+  a slider per joint, buttons for the robot's named poses, the robot in meshcat's 3-D view
+  (its meshes, or the simple links of a DH model) with its DH/joint frames and the tool
+  triad, and readouts computed **in the page** (JavaScript, ``teach.js``) from the robot's
+  product-of-exponentials parameters ``M``, ``Slist``. ``robokit teach MODEL`` writes it
+  (:func:`teach_cli`).
+* :func:`teach_widget` — the same in a Jupyter notebook: ipywidgets sliders driving a live
+  meshcat scene, the readouts computed in Python by :func:`teach_readouts`
+  (``Scene(robot).teach()``).
+
+The quantities, at joint values q (rad for revolute joints, m for prismatic ones):
+
+* the tool pose ``T(q) = e^{[S_1]q_1} ⋯ e^{[S_n]q_n} M`` (Lecture 4): position, roll–pitch–yaw
+  ``(r, p, y)`` with ``R = Rz(y) Ry(p) Rx(r)`` (the URDF convention) and the unit quaternion
+  ``(w, x, y, z)`` (scalar first, ``w ≥ 0``);
+* the geometric Jacobian ``J`` (6×n, rows ``(ω; v)``, ``v`` the velocity of the tool origin,
+  base axes — Pinocchio's LOCAL_WORLD_ALIGNED): column i is ``Ad_{T_{i-1}} S_i`` (the space
+  Jacobian, with ``T_{i-1} = e^{[S_1]q_1} ⋯ e^{[S_{i-1}]q_{i-1}}``) with ``v ← v + ω × p_tool``;
+* on the task rows ``J_t`` of ``J`` (all six rows when n ≥ 6; for fewer joints, the rows the
+  arm can move along, or its translational ones — see :func:`task_rows`): Yoshikawa's
+  manipulability ``w = √det(J_t J_tᵀ)``, the condition number ``σ_max / σ_min``, and, when
+  ``σ_min / σ_max < SINGULAR_RATIO``, a singularity warning naming the lost direction — the
+  left singular vector of the smallest singular value;
+* the joint-limit margin ``min_i min(q_i − lo_i, hi_i − q_i)`` over the limited joints.
+
+Each visual of the robot is placed like the frame of its parent joint k:
+``T_g(q) = e^{[S_1]q_1} ⋯ e^{[S_k]q_k} T_g(0)``, ``T_g(0)`` its pose at q = 0 (from Pinocchio).
+"""
+from __future__ import annotations
+
+import base64
+import html as _html
+import json
+import math
+from importlib import resources
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from robokit._io import atomic_write
+
+__all__ = [
+    "NAMED_POSES",
+    "SINGULAR_RATIO",
+    "task_rows",
+    "teach_data",
+    "teach_readouts",
+    "teach_html",
+    "teach_cli",
+    "teach_widget",
+]
+
+#: Named poses of the lecture (those of P. Corke's Robotics Toolbox), per robot name, in rad.
+#: ``qn`` bends joint 3 to 180°, beyond the PUMA's ±135° limit: the page clamps it.
+NAMED_POSES = {
+    "puma560": {
+        "qz": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        "qr": [0.0, math.pi / 2, -math.pi / 2, 0.0, 0.0, 0.0],
+        "qs": [0.0, 0.0, -math.pi / 2, 0.0, 0.0, 0.0],
+        "qn": [0.0, math.pi / 4, math.pi, 0.0, math.pi / 4, 0.0],
+    },
+}
+
+#: The page warns of a singularity when σ_min / σ_max of the task Jacobian falls below this.
+SINGULAR_RATIO = 0.02
+
+#: Below this σ_min the configuration is called singular (not only near one).
+SINGULAR_TOL = 1e-9
+
+ROW_NAMES = ("rotation about x", "rotation about y", "rotation about z",
+             "translation along x", "translation along y", "translation along z")
+ROW_SYMBOLS = ("ωx", "ωy", "ωz", "vx", "vy", "vz")
+
+#: Slider range of joints without limits: ±180° (revolute), ±1 m (prismatic).
+_UNLIMITED = {"R": math.pi, "P": 1.0}
+
+
+# --------------------------------------------------------------------------- robot data
+def _joint_types(robot) -> list[str]:
+    """'R' or 'P' per joint, from the screw axes (a prismatic joint has ω = 0)."""
+    S = robot.poe.Slist
+    return ["P" if np.linalg.norm(S[:3, i]) < 1e-12 else "R" for i in range(robot.n)]
+
+
+def _slider_ranges(robot, types) -> np.ndarray:
+    """(n, 2) slider ranges: the joint limits, or ±180° / ±1 m where a joint has none."""
+    rng = np.array(robot.qlim, dtype=float).copy()
+    for i, t in enumerate(types):
+        if not np.isfinite(rng[i, 0]):
+            rng[i, 0] = -_UNLIMITED[t]
+        if not np.isfinite(rng[i, 1]):
+            rng[i, 1] = _UNLIMITED[t]
+    return rng
+
+
+def task_rows(robot, samples: int = 24, seed: int = 0) -> list[int]:
+    """The rows of the 6×n geometric Jacobian the manipulability measures use.
+
+    n ≥ 6: all six rows. Fewer joints: the rows that are not zero at every one of ``samples``
+    random configurations (a planar arm in the xy plane moves along ωz, vx, vy) if there are
+    at most n of them; otherwise the translational ones among them (vx, vy, vz for a spatial
+    three-joint arm; vx, vy for the planar two-link arm). Returns row indices into (ω; v).
+    """
+    n = robot.n
+    if n >= 6:
+        return list(range(6))
+    rng = np.random.default_rng(seed)
+    lo, hi = _slider_ranges(robot, _joint_types(robot)).T
+    J_abs = np.zeros((6, n))
+    for _ in range(samples):
+        J_abs = np.maximum(J_abs, np.abs(robot.jacobian(rng.uniform(lo, hi), reference="local_world_aligned")))
+    active = [r for r in range(6) if J_abs[r].max() > 1e-9]
+    if len(active) <= n:
+        return active
+    return [r for r in active if r >= 3]
+
+
+def _named_poses(robot) -> dict:
+    poses = {k: np.asarray(v, dtype=float) for k, v in NAMED_POSES.get(robot.name, {}).items()}
+    for k, v in robot.configurations.items():
+        if k == "zero" and any(np.all(p == 0) for p in poses.values()):
+            continue
+        poses.setdefault(k, np.asarray(v, dtype=float))
+    return {k: v for k, v in poses.items() if v.shape == (robot.n,)}
+
+
+def _frame_names(robot) -> list[str]:
+    if robot.dh is not None:
+        return [f"dh_{i}" for i in range(robot.dh.n + 1)] + ["tool"]
+    names = [jn for jn in robot.joint_names if robot.model.existFrame(jn)]
+    return names + [robot.tip]
+
+
+class _RecordingWindow:
+    """Stands in for meshcat's ViewerWindow: keeps the commands instead of sending them."""
+
+    def __init__(self):
+        self.commands = []
+
+    def send(self, command):
+        self.commands.append(command.lower())
+
+
+def _scene(robot, frame_names, triad_scale, floor_half, mesh_cell):
+    """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
+
+    The robot is loaded by Pinocchio's MeshcatVisualizer (meshes or primitives, with the
+    URDF's colours) into a recording window; the frames are triads (labelled for DH models).
+    """
+    import contextlib
+    import io
+    import warnings
+
+    import meshcat
+    import meshcat.geometry as g
+    import meshcat.path
+    import pinocchio as pin
+    from pinocchio.visualize import MeshcatVisualizer
+
+    from robokit.viz._meshes import mesh_parts
+    from robokit.viz.scene import _label_png
+
+    window = _RecordingWindow()
+    vis = meshcat.Visualizer(window=window)
+    visual = robot.visual_model if robot.visual_model is not None else pin.GeometryModel()
+    viz = MeshcatVisualizer(robot.model, pin.GeometryModel(), visual)
+    with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
+        warnings.simplefilter("ignore")
+        viz.initViewer(viewer=vis)
+        viz.loadViewerModel(rootNodeName="robot")
+    # a floor grid of our own (meshcat's default 20 m grid is hidden): 0.1 m spacing
+    # under the robot, drawn in the base frame's z = 0 plane
+    half = max(0.5, math.ceil(floor_half * 10) / 10)
+    ticks = np.arange(-half, half + 1e-9, 0.1)
+    seg = []
+    for t in ticks:
+        seg += [[t, -half, 0.0], [t, half, 0.0], [-half, t, 0.0], [half, t, 0.0]]
+    vis["/Grid"].set_property("visible", False)
+    vis["floor"].set_object(g.LineSegments(g.PointsGeometry(np.array(seg, dtype=np.float32).T),
+                                           g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.6)))
+    paths = {go.name: vis[viz.getViewerNodeName(go, pin.GeometryType.VISUAL)].path.lower()
+             for go in visual.geometryObjects}
+    # mesh files: replaced by decimated triangle lists (far smaller than the files' text, and
+    # placed exactly as Pinocchio reads them), one coloured part per material
+    meshed = {}
+    for go in visual.geometryObjects:
+        ext = Path(go.meshPath).suffix.lower() if go.meshPath else ""
+        if ext in (".dae", ".stl", ".obj") and Path(go.meshPath).is_file():
+            override = np.asarray(go.meshColor, float) if (go.overrideMaterial or ext == ".stl") else None
+            meshed[paths[go.name]] = mesh_parts(go.meshPath, mesh_cell, override)
+    window.commands = [c for c in window.commands
+                       if not (c.get("type") == "set_object" and c.get("path") in meshed)]
+    for path, parts in meshed.items():
+        node = meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/"))))
+        for i, (V, F, rgba) in enumerate(parts):
+            color = int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
+            node[f"part{i}"].set_object(g.TriangularMeshGeometry(V, F),
+                                        g.MeshPhongMaterial(color=color, opacity=float(rgba[3]), shininess=30))
+    frame_paths = {}
+    for name in frame_names:
+        node = vis["frames"][name]
+        big = name in ("tool", robot.tip)
+        node["triad"].set_object(g.triad(triad_scale * (1.4 if big else 1.0)))
+        if robot.dh is not None:
+            mat = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(_label_png(name))), transparent=True)
+            T = np.eye(4)
+            T[:3, 3] = [0.3 * triad_scale, 0.3 * triad_scale, 0.6 * triad_scale]
+            node["label"].set_object(g.Box([0.8 * triad_scale, 0.25 * triad_scale, 1e-4 * triad_scale]), mat)
+            node["label"].set_transform(T)
+        frame_paths[name] = node.path.lower()
+    return window.commands, paths, frame_paths
+
+
+def _pack(command) -> str:
+    import umsgpack
+
+    return base64.b64encode(umsgpack.packb(command)).decode("ascii")
+
+
+def _camera(points, fill: float = 1.0):
+    """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    radius = max(0.45 * float(np.linalg.norm(hi - lo)), 0.15)
+    dist = radius / math.tan(0.5 * math.radians(75.0) * fill)  # meshcat's camera: 75° vertical field of view
+    az, el = math.radians(40.0), math.radians(22.0)
+    offset = dist * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+    return centre, centre + offset
+
+
+def teach_data(robot, q=None, mesh_cell: float = 0.002) -> dict:
+    """Everything the teach page needs about ``robot``, as plain JSON-able values.
+
+    Returns a dict with ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type``
+    'R'/'P', ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists
+    of 6: the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
+    :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
+    ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
+    home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (``target``,
+    ``position`` in the base frame); ``scale`` (triad length, m). Mesh files are decimated
+    with cubes of side ``mesh_cell`` (m, see :mod:`robokit.viz._meshes`).
+    """
+    import pinocchio as pin
+
+    types = _joint_types(robot)
+    rng = _slider_ranges(robot, types)
+    zero = np.zeros(robot.n)
+    q0 = zero if q is None else np.asarray(q, dtype=float)
+    if q0.shape != (robot.n,):
+        raise ValueError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
+    poses = _named_poses(robot)
+    frame_names = _frame_names(robot)
+
+    # points that frame the camera: the frames' origins at q0, at the named poses and at
+    # random configurations, so that the robot stays in view wherever the sliders take it
+    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(32, robot.n))
+    pts = [robot.frame_poses(np.clip(p, rng[:, 0], rng[:, 1])) for p in [q0, *poses.values(), *rand]]
+    P = np.array([T[:3, 3] for d in pts for T in d.values()])
+    P = P[P[:, 2] >= P[: len(pts[0]), 2].min() - 1e-9]  # what goes below the base's level is left out
+    size = float(max(np.ptp(P, axis=0).max(), 0.2))
+    scale = 0.1 * size
+    commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()),
+                                          mesh_cell)
+
+    data = robot.model.createData()
+    pin.forwardKinematics(robot.model, data, pin.neutral(robot.model))
+    visuals = []
+    if robot.visual_model is not None:
+        gdata = robot.visual_model.createData()
+        pin.updateGeometryPlacements(robot.model, data, robot.visual_model, gdata)
+        for gid, go in enumerate(robot.visual_model.geometryObjects):
+            T = gdata.oMg[gid].homogeneous @ np.diag(np.r_[np.asarray(go.meshScale, float).ravel(), 1.0])
+            visuals.append({"path": paths[go.name], "k": int(go.parentJoint), "T": T.tolist()})
+    poses0 = robot.frame_poses(zero)
+    frames = []
+    for name in frame_names:
+        fid = robot.frame_id(name)
+        frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
+                       "T": poses0[name].tolist()})
+    target, position = _camera(P)
+    rows = task_rows(robot)
+    return {
+        "name": robot.name,
+        "n": robot.n,
+        "tip": robot.tip,
+        "joints": [{"name": robot.joint_names[i], "type": types[i], "lo": float(rng[i, 0]), "hi": float(rng[i, 1]),
+                    "limited": bool(np.isfinite(robot.qlim[i]).all())} for i in range(robot.n)],
+        "M": robot.poe.M.tolist(),
+        "S": robot.poe.Slist.T.tolist(),
+        "rows": rows,
+        "row_names": [ROW_NAMES[r] for r in rows],
+        "row_symbols": list(ROW_SYMBOLS),
+        "singular_ratio": SINGULAR_RATIO,
+        "singular_tol": SINGULAR_TOL,
+        "poses": {k: v.tolist() for k, v in poses.items()},
+        "q0": q0.tolist(),
+        "visuals": visuals,
+        "frames": frames,
+        "camera": {"target": target.tolist(), "position": position.tolist()},
+        "scale": scale,
+        "_commands": commands,
+    }
+
+
+# --------------------------------------------------------------------------- readouts (Python)
+def teach_readouts(robot, q) -> dict:
+    """The teach pendant's quantities at joint values ``q`` (n,) (rad/m), computed with Pinocchio.
+
+    Returns a dict: ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
+    ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
+    Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
+    ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``, ``level`` ("ok", "near" or
+    "singular"), ``direction`` (the lost direction, task-row components, dominant one
+    positive), ``direction_name``, ``margins`` (n,: distance to the nearer limit, ∞ for
+    unlimited joints), ``margin`` (their minimum) and ``margin_joint`` (its joint's name).
+    """
+    import pinocchio as pin
+
+    from robokit.kinematics.velocity import manipulability
+
+    q = np.asarray(q, dtype=float)
+    if q.shape != (robot.n,):
+        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+    T = robot.frame_pose(q)
+    J = robot.jacobian(q, reference="local_world_aligned")
+    rows = task_rows(robot)
+    Jt = J[rows]
+    U, s, _ = np.linalg.svd(Jt)
+    m = Jt.shape[0]
+    sig = np.zeros(m)
+    sig[: len(s)] = s
+    smax, smin = float(sig[0]), float(sig[-1])
+    ratio = smin / smax if smax > 0 else 0.0
+    level = "singular" if smin < SINGULAR_TOL else ("near" if ratio < SINGULAR_RATIO else "ok")
+    d = U[:, -1].copy()
+    k = int(np.argmax(np.abs(d)))
+    if d[k] < 0:
+        d = -d
+    quat = pin.Quaternion(T[:3, :3]).normalized()
+    wxyz = np.array([quat.w, quat.x, quat.y, quat.z])
+    if wxyz[0] < 0:
+        wxyz = -wxyz
+    lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
+    margins = np.minimum(q - lo, hi - q)
+    margins[~np.isfinite(margins)] = np.inf
+    j = int(np.argmin(margins))
+    return {
+        "T": T, "xyz": T[:3, 3].copy(), "rpy": np.asarray(pin.rpy.matrixToRpy(T[:3, :3])), "quat": wxyz,
+        "J": J, "rows": rows, "w": manipulability(Jt, "yoshikawa"),
+        "cond": smax / smin if smin >= SINGULAR_TOL and Jt.shape[1] >= m else math.inf,
+        "sigma_min": smin, "level": level, "direction": d,
+        "direction_name": f"{ROW_NAMES[rows[k]]} ({d[k]:.2f})",
+        "margins": margins, "margin": float(margins[j]), "margin_joint": robot.joint_names[j],
+    }
+
+
+# --------------------------------------------------------------------------- the page
+def _asset(name: str) -> str:
+    return resources.files("robokit.viz").joinpath(name).read_text(encoding="utf-8")
+
+
+def _meshcat_bundle() -> str:
+    import meshcat
+
+    return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text(encoding="utf-8")
+
+
+def _script_json(obj) -> str:
+    """JSON safe to put inside a <script> element."""
+    return json.dumps(obj, separators=(",", ":")).replace("</", "<\\/")
+
+
+def teach_html(model, q=None) -> str:
+    """The teach page of ``model`` (a :class:`robokit.Robot` or anything ``robokit.load`` accepts).
+
+    One self-contained HTML page (meshcat's three.js bundle, the robot's meshes and the
+    page's script embedded; nothing fetched): sliders, named-pose buttons, the 3-D view and
+    the live readouts described in the module docstring. ``q`` (n,) sets the initial joint
+    values (rad/m; default zero); a URL fragment ``#q=q1,q2,…`` (rad/m) overrides it when the
+    page opens, values outside the slider range being clamped (wrapped for unlimited
+    revolute joints).
+
+    Example: ``Path("puma.html").write_text(teach_html("puma560"))``.
+    """
+    from robokit.description.robot import load
+
+    robot = load(model)
+    d = teach_data(robot, q)
+    commands = d.pop("_commands")
+    scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
+    title = _html.escape(f"robokit teach — {robot.name}")
+    return (
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        f"<title>{title}</title>\n<style>\n{_asset('teach.css')}\n</style>\n</head>\n<body>\n"
+        f"{_asset('teach_body.html')}\n"
+        f"<script>\n{_meshcat_bundle()}\n</script>\n"
+        f"<script id=\"rk-robot\" type=\"application/json\">{_script_json(d)}</script>\n"
+        f"<script>var RK_SCENE = {scene};</script>\n"
+        f"<script>\n{_asset('teach.js')}\n</script>\n"
+        "</body>\n</html>\n"
+    )
+
+
+def teach_cli(model, output=None, q=None, open_browser: bool = True) -> int:
+    """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
+
+    Without ``output`` the page goes to a new temporary file, which is opened in the web
+    browser (``webbrowser``); its path is returned in the message on stdout.
+    """
+    import tempfile
+    import webbrowser
+
+    from robokit.description.robot import load
+
+    if output is not None:
+        out = Path(output)
+        if out.suffix.lower() not in (".html", ".htm"):
+            raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
+        if not (out.parent if str(out.parent) else Path(".")).is_dir():
+            raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    robot = load(model)
+    page = teach_html(robot, q=q)
+    if output is not None:
+        atomic_write(output, page)
+        print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
+        return 0
+    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{robot.name}-", suffix=".html")
+    import os
+
+    os.close(fd)
+    atomic_write(tmp, page)
+    print(f"wrote {tmp} ({len(page.encode('utf-8')) / 1e6:.1f} MB); opening it in the browser", file=sys.stderr)
+    if open_browser:
+        webbrowser.open(Path(tmp).resolve().as_uri())
+    return 0
+
+
+# --------------------------------------------------------------------------- notebook
+def _readouts_html(robot, r) -> str:
+    """The readouts of :func:`teach_readouts` as a small HTML block (for the notebook widget)."""
+    deg = np.degrees
+    rows = r["rows"]
+    head = "".join(f"<th>q{i + 1}</th>" for i in range(robot.n))
+    body = "".join(
+        f"<tr><th>{ROW_SYMBOLS[i]}</th>" + "".join(f"<td>{v:+.4f}</td>" for v in r["J"][i]) + "</tr>" for i in range(6))
+    if r["level"] == "ok":
+        sing = "<span style='color:#2a7'>no singularity nearby</span>"
+    else:
+        word = "Singular" if r["level"] == "singular" else "Near a singularity"
+        sing = (f"<b style='color:#c30'>{word}:</b> lost direction {r['direction_name']}, "
+                f"u = [{', '.join(f'{v:+.3f}' for v in r['direction'])}] on rows "
+                f"({', '.join(ROW_SYMBOLS[i] for i in rows)})")
+    j = robot.joint_names.index(r["margin_joint"])
+    types = _joint_types(robot)
+    marg = r["margin"]
+    marg_txt = "∞ (no limits)" if not np.isfinite(marg) else (
+        f"{deg(marg):.2f}°" if types[j] == "R" else f"{marg * 1000:.1f} mm")
+    cond = "∞" if not np.isfinite(r["cond"]) else f"{r['cond']:.4g}"
+    return (
+        "<div style='font:12px monospace'>"
+        f"<b>tool</b> p = [{', '.join(f'{v:+.4f}' for v in r['xyz'])}] m, "
+        f"rpy = [{', '.join(f'{v:+.2f}' for v in deg(r['rpy']))}]°, "
+        f"quat (w,x,y,z) = [{', '.join(f'{v:+.4f}' for v in r['quat'])}]<br>"
+        f"<table style='border-collapse:collapse'><tr><th></th>{head}</tr>{body}</table>"
+        f"w = √det(J<sub>t</sub>J<sub>t</sub>ᵀ) = {r['w']:.5g}, cond = {cond}, σ<sub>min</sub> = {r['sigma_min']:.3g}<br>"
+        f"{sing}<br>joint-limit margin: {marg_txt} ({r['margin_joint']})</div>"
+    )
+
+
+def teach_widget(scene, q=None, height: int = 420):
+    """A notebook teach pendant on a :class:`robokit.viz.Scene`: ipywidgets sliders (degrees for
+    revolute joints, metres for prismatic ones), named-pose buttons, the scene's live meshcat
+    view (an iframe of its server) and the readouts of :func:`teach_readouts`.
+
+    Moving a slider redraws the robot and its frames in the scene and recomputes the readouts.
+    Returns the ``ipywidgets.VBox``; its ``.set_q(q)`` sets all joints at once (rad/m) and
+    ``.readouts`` holds the latest :func:`teach_readouts` dict.
+    """
+    import ipywidgets as W
+
+    robot = scene.robot
+    types = _joint_types(robot)
+    rng = _slider_ranges(robot, types)
+    unit = np.array([180.0 / math.pi if t == "R" else 1.0 for t in types])
+    q = np.zeros(robot.n) if q is None else np.asarray(q, dtype=float)
+    if q.shape != (robot.n,):
+        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+    q = np.clip(q, rng[:, 0], rng[:, 1])
+    names = _frame_names(robot)
+    scene.show(q).frames(names, labels=robot.dh is not None)
+    sliders = [
+        W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
+                      step=0.1 if types[i] == "R" else 0.001, description=f"{robot.joint_names[i][:12]}",
+                      readout_format=".1f" if types[i] == "R" else ".3f", continuous_update=True,
+                      layout=W.Layout(width="420px"))
+        for i in range(robot.n)
+    ]
+    out = W.HTML()
+    view = W.HTML(f'<iframe src="{_html.escape(scene.vis.url())}" '
+                  f'style="width:100%;height:{int(height)}px;border:0"></iframe>')
+    box = W.VBox()
+    state = {"busy": False}
+
+    def redraw(qv):
+        scene.show(qv)
+        poses = robot.frame_poses(qv)
+        for name in names:
+            scene.vis["frames"][name].set_transform(poses[name])
+        box.readouts = teach_readouts(robot, qv)
+        out.value = _readouts_html(robot, box.readouts)
+
+    def on_change(_change):
+        if not state["busy"]:
+            redraw(np.array([s.value for s in sliders]) / unit)
+
+    def set_q(qv):
+        qv = np.clip(np.asarray(qv, dtype=float), rng[:, 0], rng[:, 1])
+        state["busy"] = True
+        try:
+            for s, v, u in zip(sliders, qv, unit):
+                s.value = float(v * u)
+        finally:
+            state["busy"] = False
+        redraw(qv)
+
+    for s in sliders:
+        s.observe(on_change, names="value")
+    buttons = []
+    for name, pose in _named_poses(robot).items():
+        b = W.Button(description=name, layout=W.Layout(width="auto"))
+        b.on_click(lambda _b, p=pose: set_q(p))
+        buttons.append(b)
+    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out]
+    box.set_q = set_q
+    redraw(q)
+    return box

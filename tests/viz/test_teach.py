@@ -1,0 +1,273 @@
+"""The teach page: its numbers (computed by the page's JavaScript in headless Chromium) against
+Pinocchio; its scene data, its mesh decimation and its command line."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import tempfile
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit.cli import main as cli_main
+from robokit.viz._meshes import cluster_decimate, mesh_parts
+from robokit.viz.teach import NAMED_POSES, teach_data, teach_html, teach_readouts
+
+ROBOTS = ["puma560", "ur5", "panda", "twolink"]
+CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if os.path.exists("/usr/bin/chromium") else None)
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
+
+_robots = {}
+_pages = {}
+
+
+def robot(name):
+    if name not in _robots:
+        _robots[name] = robokit.load(name)
+    return _robots[name]
+
+
+def page(name, tmp_dir):
+    if name not in _pages:
+        p = Path(tmp_dir) / f"teach_{name}.html"
+        p.write_text(teach_html(robot(name)), encoding="utf-8")
+        _pages[name] = p
+    return _pages[name]
+
+
+@pytest.fixture(scope="module")
+def pages_dir():
+    d = tempfile.mkdtemp(prefix="robokit-teach-test-")
+    yield d
+    shutil.rmtree(d, ignore_errors=True)
+    _pages.clear()
+
+
+class _Data(HTMLParser):
+    """Collects the data- attributes of the elements with an id."""
+
+    def __init__(self):
+        super().__init__()
+        self.by_id = {}
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if "id" in a:
+            self.by_id[a["id"]] = a
+
+
+def run_page(path: Path, q=None) -> dict:
+    """Open the page in headless Chromium (with ``#q=...``) and return its elements' attributes."""
+    frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
+    with tempfile.TemporaryDirectory() as profile:
+        out = subprocess.run(
+            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
+             "--virtual-time-budget=15000", "--dump-dom", path.resolve().as_uri() + frag],
+            capture_output=True, text=True, timeout=180)
+    assert out.returncode == 0, out.stderr[-2000:]
+    parser = _Data()
+    parser.feed(out.stdout)
+    assert "rk-pose" in parser.by_id and "data-t" in parser.by_id["rk-pose"], "the page's script did not run"
+    return parser.by_id
+
+
+def nums(s):
+    return np.array([float(x) for x in s.split(",")]) if s else np.zeros(0)
+
+
+def test_twolink_rows_and_named_poses():
+    """The planar arm's measures use (vx, vy); the PUMA page offers the lecture's named poses."""
+    d = teach_data(robot("twolink"))
+    assert d["rows"] == [3, 4]
+    p = teach_data(robot("puma560"))
+    assert set(NAMED_POSES["puma560"]) <= set(p["poses"])
+    assert np.allclose(p["poses"]["qr"], [0, np.pi / 2, -np.pi / 2, 0, 0, 0])
+    assert np.allclose(p["poses"]["qn"], [0, np.pi / 4, np.pi, 0, np.pi / 4, 0])
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_scene_placement_formula_matches_pinocchio(name):
+    """The exported home poses, carried by e^{[S1]q1}…e^{[Sk]qk}, land where Pinocchio puts each
+    visual and frame (this is what the page's script does; the browser test checks the script)."""
+    import pinocchio as pin
+
+    from robokit import fkin_space
+
+    r = robot(name)
+    d = teach_data(r)
+    q = r.random_configuration(1)
+    S = np.array(d["S"]).T
+    data = r.model.createData()
+    pin.forwardKinematics(r.model, data, r.q_pin(q))
+    gdata = r.visual_model.createData()
+    pin.updateGeometryPlacements(r.model, data, r.visual_model, gdata)
+    for v, go in zip(d["visuals"], r.visual_model.geometryObjects):
+        k = v["k"]
+        T = fkin_space(np.array(v["T"]), S[:, :k], q[:k]) if k else np.array(v["T"])
+        expected = gdata.oMg[r.visual_model.getGeometryId(go.name)].homogeneous @ np.diag(np.r_[go.meshScale, 1])
+        assert np.abs(T - expected).max() < 1e-9, go.name
+    poses = r.frame_poses(q)
+    for f in d["frames"]:
+        k = f["k"]
+        T = fkin_space(np.array(f["T"]), S[:, :k], q[:k]) if k else np.array(f["T"])
+        assert np.abs(T - poses[f["name"]]).max() < 1e-9, f["name"]
+
+
+@needs_chromium
+@pytest.mark.parametrize("name", ROBOTS)
+def test_page_numbers_agree_with_pinocchio(name, pages_dir):
+    """Pose, RPY, quaternion, Jacobian, manipulability, condition number and the placed scene,
+    as the page computes and shows them, against Pinocchio to 1e-9."""
+    import pinocchio as pin
+
+    r = robot(name)
+    q = r.random_configuration(7)
+    el = run_page(page(name, pages_dir), q)
+    assert np.abs(nums(el["rk-q"]["data-q"]) - q).max() == 0.0  # inside the limits: taken as given
+
+    T = r.frame_pose(q)
+    assert np.abs(nums(el["rk-pose"]["data-t"]).reshape(4, 4) - T).max() < 1e-9
+    assert np.abs(nums(el["rk-pose"]["data-xyz"]) - T[:3, 3]).max() < 1e-9
+    R_page = pin.rpy.rpyToMatrix(*nums(el["rk-pose"]["data-rpy"]))
+    assert np.abs(R_page - T[:3, :3]).max() < 1e-9
+    quat = nums(el["rk-pose"]["data-quat"])
+    ref = pin.Quaternion(T[:3, :3])
+    ref = np.array([ref.w, ref.x, ref.y, ref.z]) * (1 if ref.w >= 0 else -1)
+    assert np.abs(quat - ref).max() < 1e-9
+
+    J = r.jacobian(q, reference="local_world_aligned")  # (ω; v), v of the tool origin, base axes
+    assert np.abs(nums(el["rk-jacobian"]["data-j"]).reshape(6, r.n) - J).max() < 1e-9
+
+    rows = teach_data(r)["rows"]
+    Jt = J[rows]
+    w_ref = math.sqrt(max(np.linalg.det(Jt @ Jt.T), 0.0))
+    assert abs(float(el["rk-manip"]["data-value"]) - w_ref) < 1e-9
+    s = np.linalg.svd(Jt, compute_uv=False)
+    assert abs(float(el["rk-cond"]["data-value"]) - s[0] / s[-1]) < 1e-9 * s[0] / s[-1]
+
+    lo, hi = r.qlim.T
+    margins = np.where(np.isfinite(lo) & np.isfinite(hi), np.minimum(q - lo, hi - q), np.inf)
+    assert np.allclose(nums(el["rk-margin"]["data-margins"]), margins, atol=1e-12, rtol=0)
+
+    # the 3-D scene: every visual where Pinocchio places it (mesh scale included)
+    placed = json.loads(el["rk-scene-poses"]["data-poses"])
+    data = r.model.createData()
+    pin.forwardKinematics(r.model, data, r.q_pin(q))
+    gdata = r.visual_model.createData()
+    pin.updateGeometryPlacements(r.model, data, r.visual_model, gdata)
+    for v, go in zip(teach_data(r)["visuals"], r.visual_model.geometryObjects):
+        expected = gdata.oMg[r.visual_model.getGeometryId(go.name)].homogeneous @ np.diag(np.r_[go.meshScale, 1])
+        assert np.abs(np.array(placed[v["path"]]).reshape(4, 4) - expected).max() < 1e-9, go.name
+
+
+@needs_chromium
+def test_limits_clamp_and_singular_warning(pages_dir):
+    """A q beyond a limit is clamped to it (margin 0); PUMA with θ5 = 0 and UR5 at zero are singular,
+    and the lost direction is the left singular vector of σ_min (up to sign)."""
+    r = robot("puma560")
+    q = np.array([0.2, 3.0, -0.4, 0.3, 0.0, 0.1])  # q2 = 3 rad > 110°; θ5 = 0: the wrist is singular
+    el = run_page(page("puma560", pages_dir), q)
+    shown = nums(el["rk-q"]["data-q"])
+    assert shown[1] == r.qlim[1, 1]
+    assert np.array_equal(np.delete(shown, 1), np.delete(q, 1))
+    assert float(el["rk-margin"]["data-value"]) == 0.0
+    assert el["rk-margin"]["data-joint"] == r.joint_names[1]
+    assert el["rk-sing"]["data-singular"] == "true"
+    J = r.jacobian(shown, reference="local_world_aligned")
+    U, s, _ = np.linalg.svd(J)
+    assert s[-1] < 1e-9
+    u = nums(el["rk-sing"]["data-direction"])
+    assert abs(abs(u @ U[:, -1]) - 1) < 1e-9
+    assert np.linalg.norm(J.T @ u) < 1e-9  # no joint velocity produces it
+
+    el = run_page(page("ur5", pages_dir), np.zeros(6))
+    assert el["rk-sing"]["data-singular"] == "true"
+    assert float(el["rk-manip"]["data-value"]) < 1e-9
+
+    el = run_page(page("puma560", pages_dir), [0.1, 0.5, -0.6, 0.2, 0.8, 0.3])
+    assert el["rk-sing"]["data-singular"] == "false"
+
+
+def test_python_readouts_agree_with_pinocchio():
+    """teach_readouts (the notebook's numbers) against independent numpy/Pinocchio formulas."""
+    import pinocchio as pin
+
+    r = robot("ur5")
+    q = r.random_configuration(3)
+    out = teach_readouts(r, q)
+    J = r.jacobian(q, reference="local_world_aligned")
+    assert abs(out["w"] - math.sqrt(np.linalg.det(J @ J.T))) < 1e-9
+    R = pin.rpy.rpyToMatrix(*out["rpy"])
+    assert np.abs(R - r.frame_pose(q)[:3, :3]).max() < 1e-9
+    sing = teach_readouts(r, np.zeros(6))
+    assert sing["level"] == "singular"
+    Jz = r.jacobian(np.zeros(6), reference="local_world_aligned")
+    assert np.linalg.norm(Jz.T @ sing["direction"]) < 1e-9
+
+
+def test_decimated_meshes_stay_on_the_original_surface():
+    """Every decimated vertex lies within cell·√3 of a vertex Pinocchio loaded (coal/assimp), and
+    every original vertex within cell·√3 of a decimated one: the same shape, in the same frame."""
+    from scipy.spatial import cKDTree
+
+    r = robot("ur5")
+    cell = 0.002
+    for go in r.visual_model.geometryObjects[:3]:
+        geo = go.geometry
+        orig = np.asarray(geo.vertices())
+        parts = mesh_parts(go.meshPath, cell)
+        dec = np.vstack([V for V, _, _ in parts])
+        tol = cell * math.sqrt(3) + 1e-9
+        assert cKDTree(orig).query(dec)[0].max() <= tol, go.name
+        assert cKDTree(dec).query(orig)[0].max() <= tol, go.name
+        assert sum(len(F) for _, F, _ in parts) < geo.num_tris
+
+
+def test_cluster_decimate_keeps_a_coarse_mesh_and_drops_collapsed_triangles():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.0001, 0, 0]], float)
+    F = np.array([[0, 1, 2], [0, 3, 2], [1, 2, 0]])
+    newV, newF = cluster_decimate(V, F, 0.01)
+    assert len(newV) == 3 and len(newF) == 1  # [0, 3, 2] collapsed; [1, 2, 0] repeats [0, 1, 2]
+    assert np.allclose(np.sort(newV, axis=0), np.sort(np.array([[5e-5, 0, 0], [1, 0, 0], [0, 1, 0]]), axis=0))
+    with pytest.raises(ValueError):
+        cluster_decimate(V, F, 0.0)
+
+
+def test_cli_writes_the_page_and_rejects_bad_input(tmp_path, capsys):
+    out = tmp_path / "twolink.html"
+    assert cli_main(["teach", "twolink", "-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    assert "MeshCat.Viewer" in text and 'id="rk-robot"' in text
+    assert "http://" not in text.split('id="rk-robot"')[1] and "https://" not in text.split('id="rk-robot"')[1]
+    capsys.readouterr()
+    assert cli_main(["teach", "no_such_robot", "-o", str(tmp_path / "x.html")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("robokit: ")
+    assert not (tmp_path / "x.html").exists()
+    assert cli_main(["teach", "twolink", "-o", str(tmp_path / "x.txt")]) == 2
+    assert cli_main(["teach", "twolink", "-o", str(tmp_path / "nofolder" / "x.html")]) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["twolink.html"]
+
+
+def test_cli_without_output_writes_a_temporary_page(monkeypatch, capsys):
+    """Without -o the page goes to a new temporary file, which is handed to the web browser."""
+    import webbrowser
+
+    from robokit.viz.teach import teach_cli
+
+    opened = []
+    monkeypatch.setattr(webbrowser, "open", lambda url, *a, **k: opened.append(url))
+    assert teach_cli("twolink") == 0
+    path = Path(capsys.readouterr().err.strip().split("wrote ")[1].split(" (")[0])
+    try:
+        assert path.is_file() and path.suffix == ".html"
+        assert opened == [path.resolve().as_uri()]
+        assert 'id="rk-robot"' in path.read_text(encoding="utf-8")
+    finally:
+        path.unlink(missing_ok=True)
