@@ -1,0 +1,360 @@
+r"""Every closed-form IK solution of a robot whose geometry has one (Lecture 5).
+
+``ik_analytic_kind(robot)`` looks at the joint axes (at q = 0, in the base frame) and says
+which method applies, or why none does:
+
+* **spherical wrist** — 6 joints, the last three revolute with axes meeting in one point
+  (and no two consecutive wrist axes parallel): Pieper's method (:mod:`robokit.ik.pieper`),
+  any twists and lengths, revolute or prismatic joints 1–3;
+* **three parallel axes** — 6 revolute joints, axes 2, 3, 4 parallel, axes 5 and 6 meeting,
+  axis 1 and axis 5 not parallel to the others (UR3/UR5/UR10/UR16):
+  :mod:`robokit.ik.parallel_axes`.
+
+Other arms — 7 joints (panda), wrists whose axes do not meet, … — have no closed form here
+and ``ik_analytic`` raises ``ValueError`` with the reason in the arm's terms.
+
+The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.urdf_to_dh`
+extracts, whose FK equals the URDF's) is turned once into the canonical chain and the
+solver's constants; these are cached on the robot (attribute ``_closed_form``).
+
+Solutions: joint values q (rad, m), revolute ones wrapped to (−π, π] — or shifted by 2π
+where that lands inside limits wider than ±π —, flagged ``within_limits``, labelled with
+their branch: "right"/"left" (the wrist centre on the + or − side of the common normal
+from axis 1 to axis 2, i.e. of frame 1's x axis), "elbow up"/"elbow down" (the sign of
+``((O₃ − O₂) × (W − O₃))·z₃``, O₂, O₃ the feet of the normal between axes 2 and 3, z₃
+axis 3: positive is "elbow down", as for the PUMA 560 of Corke's toolbox), "no flip"/"flip"
+(the sign of ``sin θ₅ · sin α₄ · sin α₅``; positive is "no flip"), and "wrist singular" when
+axes 4 and 6 (spherical wrist) or axis 6 and the parallel axes (UR) line up — then the free
+angle is the documented choice ``q₄ = wrist_ref`` (spherical) or ``q₆ = wrist_ref`` (UR).
+For a prismatic joint 3 the elbow part reads "d3 +"/"d3 −" (the sign of the joint's
+total offset). Labels that would repeat (a general arm's quartic may give two roots on
+one side) get " #2".
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from robokit.ik._dh_chain import DHChain
+from robokit.ik.analytic import IKSolution
+from robokit.ik.parallel_axes import ParallelAxesSolver
+from robokit.ik.pieper import PieperSolver
+from robokit.spatial.se3 import check_transform
+
+__all__ = ["ClosedFormKind", "ik_analytic", "ik_analytic_kind"]
+
+_TWO_PI = 2.0 * math.pi
+_ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
+_DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
+
+
+@dataclass(frozen=True)
+class ClosedFormKind:
+    """Which closed form applies to a robot.
+
+    method : ``"spherical wrist"``, ``"three parallel axes"`` or None (no closed form);
+    reason : one sentence in the arm's terms — why the method applies, or why none does.
+    ``bool(kind)`` is True when a method applies.
+    """
+
+    method: str | None
+    reason: str
+
+    def __bool__(self) -> bool:
+        return self.method is not None
+
+
+class ClosedFormModel:
+    """One robot's closed-form IK: canonical chain, method, solver constants (built once)."""
+
+    def __init__(self, table, qlim=None):
+        self.chain = DHChain(table, qlim)
+        self.kind = _detect(self.chain)
+        self.solver = None
+        if self.kind.method == "spherical wrist":
+            self.solver = PieperSolver(self.chain)
+        elif self.kind.method == "three parallel axes":
+            self.solver = ParallelAxesSolver(self.chain)
+        ch = self.chain
+        self.rev = np.array([k == "R" for k in ch.kinds])
+        self.qlim = ch.qlim
+
+    # ------------------------------------------------------------------ solving
+    def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
+        if self.solver is None:
+            raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+        T06 = self.chain.target_06(T)
+        if isinstance(self.solver, ParallelAxesSolver):
+            rows = self.solver.solve(T06, wrist_ref)
+        else:
+            rows = self._pieper(T06, wrist_ref)
+        return self._finish(rows)
+
+    def _pieper(self, T06, wrist_ref):
+        sv = self.solver
+        ch = self.chain
+        R06 = T06[:3, :3]
+        W = R06 @ sv.w6 + T06[:3, 3]
+        rows = []
+        for q123, singular1, degen_pos in sv.position((float(W[0]), float(W[1]), float(W[2]))):
+            th, _ = sv._angles(q123)
+            shoulder = self._shoulder(q123, th, W, singular1)
+            elbow = self._elbow(q123, th)
+            for t4, t5, t6, flip, degen in sv.wrist(th, R06, wrist_ref):
+                q = [q123[0], q123[1], q123[2], t4 - ch.th0[3], t5 - ch.th0[4], t6 - ch.th0[5]]
+                parts = [p for p in (shoulder, elbow, flip) if p]
+                rows.append((q, ", ".join(parts), degen or degen_pos or singular1))
+        return rows
+
+    def _shoulder(self, q, th, W, singular):
+        if self.chain.kinds[0] != "R":
+            return ""
+        if singular:
+            return "shoulder singular"
+        x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
+        return "right" if x1 >= 0.0 else "left"
+
+    def _elbow(self, q, th):
+        sv = self.solver
+        if self.chain.kinds[2] == "P":
+            d = self.chain.d0[2] + q[2]
+            return "d3 +" if d >= 0.0 else "d3 −"
+        c3, s3 = math.cos(th[2]), math.sin(th[2])
+        e = (s3 * sv.v[0] + c3 * sv.v[1]) * (sv.a2 if sv.a2 != 0.0 else 1.0)
+        return "elbow down" if e > 0.0 else "elbow up"
+
+    def _finish(self, rows):
+        if not rows:
+            return []
+        Q = np.array([r[0] for r in rows], dtype=float)
+        rev = self.rev
+        W = np.mod(Q[:, rev] + math.pi, _TWO_PI) - math.pi
+        W[W <= -math.pi] += _TWO_PI
+        Q[:, rev] = W
+        if self.qlim is not None:
+            lo, hi = self.qlim[:, 0], self.qlim[:, 1]
+            tol = 1e-12
+            for shift in (_TWO_PI, -_TWO_PI):  # limits wider than ±π: a shift may land inside
+                out = (Q < lo - tol) | (Q > hi + tol)
+                moved = Q + shift
+                fix = out & rev & (moved >= lo - tol) & (moved <= hi + tol)
+                Q[fix] = moved[fix]
+            inside = np.all((Q >= lo - tol) & (Q <= hi + tol), axis=1)
+        else:
+            inside = np.ones(len(Q), dtype=bool)
+        m = len(Q)
+        keep = list(range(m))
+        if m > 1:  # distinct solutions only (angles compared modulo 2π)
+            D = Q[:, None, :] - Q[None, :, :]
+            D[:, :, rev] = np.mod(D[:, :, rev] + math.pi, _TWO_PI) - math.pi
+            same = np.abs(D).max(axis=2) < 1e-9
+            if same.sum() > m:
+                keep = [k for k in range(m) if not same[k, :k].any()]
+        sols, labels = [], {}
+        for k in keep:
+            _, label, degen = rows[k]
+            n = labels.get(label, 0) + 1
+            labels[label] = n
+            sols.append(IKSolution(Q[k], bool(inside[k]), label if n == 1 else f"{label} #{n}", bool(degen)))
+        return sols
+
+
+# ---------------------------------------------------------------------- detection
+def _line_distance(p1, d1, p2, d2):
+    """Distance between two lines (points p, unit directions d)."""
+    c = np.cross(d1, d2)
+    nc = float(np.linalg.norm(c))
+    w = p2 - p1
+    if nc < 1e-12:
+        return float(np.linalg.norm(w - (w @ d1) * d1))
+    return abs(float(w @ c)) / nc
+
+
+def _angle(d1, d2):
+    """Angle between two axis lines, in [0, π/2] (direction signs ignored)."""
+    return math.atan2(float(np.linalg.norm(np.cross(d1, d2))), abs(float(d1 @ d2)))
+
+
+def _meeting_point(lines):
+    """Least-squares point of several lines and its largest distance to them."""
+    A = np.zeros((3, 3))
+    b = np.zeros(3)
+    for p, d in lines:
+        P = np.eye(3) - np.outer(d, d)
+        A += P
+        b += P @ p
+    x = np.linalg.lstsq(A, b, rcond=None)[0]
+    dist = max(float(np.linalg.norm((np.eye(3) - np.outer(d, d)) @ (x - p))) for p, d in lines)
+    return x, dist
+
+
+def _fmt_len(x):
+    return f"{x:.3g} m"
+
+
+def _detect(chain) -> ClosedFormKind:
+    n = chain.n
+    if n != 6:
+        return ClosedFormKind(None, f"the arm has {n} joints; the closed forms here need exactly 6 "
+                                    f"(use solve_ik)")
+    axes = chain.axes()
+    tol = _DIST_TOL * max(1.0, chain.scale)
+    kinds = chain.kinds
+    # 1. spherical wrist: axes 4, 5, 6 revolute and meeting in one point
+    wrist_reason = None
+    if any(k != "R" for k in kinds[3:]):
+        j = 4 + [k for k in kinds[3:]].index("P")
+        wrist_reason = f"joint {j} is prismatic, so there is no spherical wrist"
+    else:
+        a45, a56 = _angle(axes[3][1], axes[4][1]), _angle(axes[4][1], axes[5][1])
+        _, dist = _meeting_point(axes[3:6])
+        if dist > tol:
+            wrist_reason = f"axes 4–6 do not intersect: closest distance {_fmt_len(dist)}"
+        elif a45 < _ANGLE_TOL or a56 < _ANGLE_TOL:
+            pair = "4 and 5" if a45 < _ANGLE_TOL else "5 and 6"
+            wrist_reason = f"axes {pair} coincide, so the wrist has fewer than three independent axes"
+    if wrist_reason is None:
+        a12 = _angle(axes[0][1], axes[1][1])
+        d12 = _line_distance(axes[0][0], axes[0][1], axes[1][0], axes[1][1])
+        if kinds[0] == "R" and kinds[1] == "R" and a12 < _ANGLE_TOL and d12 <= tol:
+            return ClosedFormKind(None, "axes 1 and 2 coincide: the wrist centre's position is not determined")
+        if kinds[0] == "P" and kinds[1] == "P" and a12 < _ANGLE_TOL:
+            return ClosedFormKind(None, "joints 1 and 2 are parallel prismatic joints: the wrist centre's "
+                                        "position is not determined")
+        types = "".join(kinds[:3])
+        return ClosedFormKind("spherical wrist", f"axes 4–6 meet in one point (spherical wrist); "
+                                                 f"Pieper's method with {types} positioning joints")
+    # 2. three consecutive parallel axes 2–4, axes 5 and 6 meeting
+    if any(k != "R" for k in kinds):
+        return ClosedFormKind(None, wrist_reason + "; and not all joints are revolute (needed for the "
+                                                   "parallel-axes method)")
+    a23, a34 = _angle(axes[1][1], axes[2][1]), _angle(axes[2][1], axes[3][1])
+    if a23 > _ANGLE_TOL or a34 > _ANGLE_TOL:
+        worst = max(a23, a34)
+        return ClosedFormKind(None, wrist_reason + f"; and axes 2–4 are not parallel (they differ by "
+                                                   f"{math.degrees(worst):.3g}°)")
+    d56 = _line_distance(axes[4][0], axes[4][1], axes[5][0], axes[5][1])
+    if d56 > tol:
+        return ClosedFormKind(None, wrist_reason + f"; axes 2–4 are parallel but axes 5 and 6 do not intersect "
+                                                   f"(distance {_fmt_len(d56)})")
+    if _angle(axes[4][1], axes[5][1]) < _ANGLE_TOL:
+        return ClosedFormKind(None, wrist_reason + "; axes 2–4 are parallel but axes 5 and 6 coincide")
+    if _angle(axes[0][1], axes[1][1]) < _ANGLE_TOL:
+        return ClosedFormKind(None, wrist_reason + "; axis 1 is parallel to axes 2–4")
+    if _angle(axes[4][1], axes[1][1]) < _ANGLE_TOL:
+        return ClosedFormKind(None, wrist_reason + "; axis 5 is parallel to axes 2–4")
+    for i in (1, 2):
+        if _line_distance(axes[i][0], axes[i][1], axes[i + 1][0], axes[i + 1][1]) <= tol:
+            return ClosedFormKind(None, wrist_reason + f"; axes {i + 1} and {i + 2} coincide")
+    return ClosedFormKind("three parallel axes", "axes 2–4 are parallel and axes 5 and 6 meet "
+                                                  "(UR-type arm): θ₁, θ₅, θ₆ then a planar 3R arm")
+
+
+# ---------------------------------------------------------------------- public API
+def _model(robot) -> ClosedFormModel:
+    """The cached ClosedFormModel of a Robot or a DH table (built on first use)."""
+    cached = getattr(robot, "_closed_form", None)
+    if isinstance(cached, ClosedFormModel):
+        return cached
+    if hasattr(robot, "links") and hasattr(robot, "convention"):  # a DH table
+        model = ClosedFormModel(robot)
+    elif hasattr(robot, "model") and hasattr(robot, "qlim"):
+        table = getattr(robot, "dh", None)
+        if table is None:
+            from robokit.description.urdf_to_dh import urdf_to_dh
+
+            res = urdf_to_dh(robot, "standard")
+            if not res.exact:
+                raise ValueError(f"robot: the DH table extracted from {robot.name} reproduces its FK only to "
+                                 f"{res.residual:.2e}; no closed form")
+            table = res.table
+        qlim = np.asarray(robot.qlim, dtype=float)
+        model = ClosedFormModel(table, qlim)
+    else:
+        raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
+    try:
+        object.__setattr__(robot, "_closed_form", model)
+    except (AttributeError, TypeError):  # pragma: no cover - objects without a __dict__
+        pass
+    return model
+
+
+def ik_analytic_kind(robot) -> ClosedFormKind:
+    """Which closed-form IK applies to ``robot``, decided from its joint axes.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` (from a DH file or a URDF) or a :class:`robokit.DHTable`.
+
+    Returns
+    -------
+    ClosedFormKind
+        ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family)
+        or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not
+        intersect: closest distance 0.0946 m; …"``).
+
+    Notes
+    -----
+    The axes are the joint axes at q = 0 (lines in the base frame, from the DH table).
+    Distances below 1e-9 m (times the arm's size in m when larger than 1) count as zero,
+    angles below 1e-9 rad as parallel.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> ik_analytic_kind(robokit.load("puma560")).method
+    'spherical wrist'
+    """
+    return _model(robot).kind
+
+
+def ik_analytic(robot, T, wrist_ref: float = 0.0) -> list[IKSolution]:
+    r"""Every closed-form IK solution of ``robot`` for the tip pose ``T``.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+        A 6-joint arm with a spherical wrist (Pieper) or three consecutive parallel axes
+        whose last two axes meet (UR family); see :func:`ik_analytic_kind`.
+    T : (4, 4) array
+        Target pose of the tip (``robot.frame_pose``'s frame; for a DH table the tool) in
+        the base frame (m).
+    wrist_ref : float
+        At a wrist singularity, the value given to the free joint (q₄ for a spherical wrist,
+        q₆ for the parallel-axes arms; rad). Default 0.
+
+    Returns
+    -------
+    list of :class:`IKSolution`
+        Distinct solutions (8 for a PUMA 560 or a UR in general position, up to 8 — 4
+        positions × 2 wrists — for any spherical-wrist arm); each ``.q`` (6,) in rad/m,
+        revolute joints wrapped to (−π, π] (or shifted by 2π into wider limits),
+        ``.within_limits``, ``.label`` (branch, see the module docstring), ``.degenerate``
+        (a singular choice was made). ``[]`` when T is out of reach.
+
+    Raises
+    ------
+    ValueError
+        If the robot has no closed form (the reason is in the message) or T is not a rigid
+        transform.
+
+    Notes
+    -----
+    Lecture 5: Pieper's wrist-centre decoupling (θ₁–θ₃ from a polynomial in tan(θ₃/2) of
+    degree 2 or 4, the wrist from Euler-type angles), or for the UR family θ₁, θ₅, θ₆ from
+    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm.
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("puma560")
+    >>> T = robot.frame_pose(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))
+    >>> len(ik_analytic(robot, T))
+    8
+    """
+    model = _model(robot)
+    T = check_transform(T, "T")
+    wrist_ref = float(wrist_ref)
+    return model.solve(T, wrist_ref)
