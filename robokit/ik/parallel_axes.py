@@ -79,7 +79,12 @@ class ParallelAxesSolver:
             shoulder = "right" if x1 * sa1 >= 0.0 else "left"
             u = np.array([sa1 * s1, -sa1 * c1, ca1])
             ut = self.sig * (R.T @ u)
-            t5s = _trig_roots(-sa4 * sa5, 0.0, float(ut[2]) - ca4 * ca5, 1e-10)
+            rho = math.hypot(float(ut[0]), float(ut[1]))  # |sin| of the angle between axis 6 and u
+            if ca4 == 0.0 and ca5 == 0.0:  # right-angled wrist (UR): |s₅| = ρ, c₅ = −ũ_z/(sα₄sα₅)
+                c5r = -float(ut[2]) / (sa4 * sa5)
+                t5s = [math.atan2(rho, c5r), math.atan2(-rho, c5r)] if rho > 1e-10 else [math.atan2(0.0, c5r)]
+            else:
+                t5s = _trig_roots(-sa4 * sa5, 0.0, float(ut[2]) - ca4 * ca5, 1e-10)
             if not t5s:
                 continue
             # (Z₁X₁)⁻¹ as a 4×4
@@ -88,7 +93,7 @@ class ParallelAxesSolver:
             for t5 in t5s:
                 c5, s5 = math.cos(t5), math.sin(t5)
                 vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
-                if math.hypot(vx, vy) <= 1e-10:
+                if rho <= 1e-10:
                     t6, degenerate = th0[5] + q6_ref, True
                 else:
                     t6, degenerate = math.atan2(vy, vx) - math.atan2(float(ut[1]), float(ut[0])), False

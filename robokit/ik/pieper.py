@@ -426,21 +426,25 @@ class PieperSolver:
                z6[0] * n4[0] + z6[1] * n4[1] + z6[2] * n4[2])  # e₃ᵀM
         ca4, sa4, ca5, sa5 = self.ca4, self.sa4, self.ca5, self.sa5
         k = sa4 * sa5
-        c5 = (ca4 * ca5 - m[2]) / k
-        if abs(c5) > 1.0 + 1e-10:
-            return []  # this orientation is out of reach of an oblique wrist
-        c5 = max(-1.0, min(1.0, c5))
-        s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
+        rho = math.hypot(m[0], m[1])  # |sin| of the angle between axes 4 and 6
+        if ca4 == 0.0 and ca5 == 0.0:  # right-angled wrist (ZYZ type): |s₅| = ρ, c₅ = −M₂₂/(sα₄sα₅)
+            c5, s5 = -m[2] / k, rho
+        else:
+            c5 = (ca4 * ca5 - m[2]) / k
+            if abs(c5) > 1.0 + 1e-10:
+                return []  # this orientation is out of reach of an oblique wrist
+            c5 = max(-1.0, min(1.0, c5))
+            s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
         out = []
         th4_ref = q4_ref + self.chain.th0[3]
         for sign in (1.0, -1.0):
             s = sign * s5
             xp, yp = sa5 * s, -ca4 * sa5 * c5 - sa4 * ca5
-            if math.hypot(xp, yp) <= 1e-10:  # axes 4 and 6 aligned: θ₄ + ±θ₆ only
+            if rho <= 1e-10:  # axes 4 and 6 aligned: only θ₄ + θ₆ or θ₄ − θ₆ is fixed
                 gamma = math.atan2(ca4 * s, c5)
                 me1 = back(x6)
                 t5 = math.atan2(s, c5)
-                sk = 1.0 if m[2] > 0.0 else -1.0  # M e₃ = ±e₃: θ₄ + θ₆ or θ₄ − θ₆ is fixed
+                sk = 1.0 if m[2] > 0.0 else -1.0
                 t6 = sk * (math.atan2(me1[1], me1[0]) - th4_ref - gamma)
                 out.append((th4_ref, t5, t6, "wrist singular", True))
                 break
