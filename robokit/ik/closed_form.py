@@ -75,11 +75,16 @@ class ClosedFormModel:
         self.solver = None
         if self.kind.method == "spherical wrist":
             self.solver = PieperSolver(self.chain)
+            if not _positions_in_3d(self.solver):
+                self.kind = ClosedFormKind(None, "axes 4–6 meet in one point, but joints 1–3 cannot move the wrist "
+                                                 "centre in three independent directions (their axes confine it "
+                                                 "to a surface)")
+                self.solver = None
         elif self.kind.method == "three parallel axes":
             self.solver = ParallelAxesSolver(self.chain)
         ch = self.chain
-        self.rev = np.array([k == "R" for k in ch.kinds])
-        self.qlim = ch.qlim
+        self.rev_list = [k == "R" for k in ch.kinds]
+        self.lim_list = None if ch.qlim is None else [(float(lo), float(hi)) for lo, hi in ch.qlim]
 
     # ------------------------------------------------------------------ solving
     def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -126,42 +131,83 @@ class ClosedFormModel:
         return "elbow down" if e > 0.0 else "elbow up"
 
     def _finish(self, rows):
+        """Wrap, shift into limits, flag, drop duplicates, label: rows → IKSolutions.
+
+        Plain Python on at most a few dozen numbers (numpy's per-call overhead would dominate).
+        """
         if not rows:
             return []
-        Q = np.array([r[0] for r in rows], dtype=float)
-        rev = self.rev
-        W = np.mod(Q[:, rev] + math.pi, _TWO_PI) - math.pi
-        W[W <= -math.pi] += _TWO_PI
-        Q[:, rev] = W
-        if self.qlim is not None:
-            lo, hi = self.qlim[:, 0], self.qlim[:, 1]
-            tol = 1e-12
-            for shift in (_TWO_PI, -_TWO_PI):  # limits wider than ±π: a shift may land inside
-                out = (Q < lo - tol) | (Q > hi + tol)
-                moved = Q + shift
-                fix = out & rev & (moved >= lo - tol) & (moved <= hi + tol)
-                Q[fix] = moved[fix]
-            inside = np.all((Q >= lo - tol) & (Q <= hi + tol), axis=1)
-        else:
-            inside = np.ones(len(Q), dtype=bool)
-        m = len(Q)
-        keep = list(range(m))
-        if m > 1:  # distinct solutions only (angles compared modulo 2π)
-            D = Q[:, None, :] - Q[None, :, :]
-            D[:, :, rev] = np.mod(D[:, :, rev] + math.pi, _TWO_PI) - math.pi
-            same = np.abs(D).max(axis=2) < 1e-9
-            if same.sum() > m:
-                keep = [k for k in range(m) if not same[k, :k].any()]
-        sols, labels = [], {}
-        for k in keep:
-            _, label, degen = rows[k]
+        rev = self.rev_list
+        lims = self.lim_list
+        tol = 1e-12
+        kept, sols, labels = [], [], {}
+        for q, label, degen in rows:
+            qq = []
+            inside = True
+            for j, v in enumerate(q):
+                v = float(v)
+                if rev[j]:
+                    v = math.remainder(v, _TWO_PI)
+                    if v <= -math.pi:
+                        v += _TWO_PI
+                if lims is not None:
+                    lo, hi = lims[j]
+                    if not lo - tol <= v <= hi + tol:
+                        if rev[j] and lo - tol <= v + _TWO_PI <= hi + tol:
+                            v += _TWO_PI  # limits wider than ±π: the shifted angle is inside
+                        elif rev[j] and lo - tol <= v - _TWO_PI <= hi + tol:
+                            v -= _TWO_PI
+                        else:
+                            inside = False
+                qq.append(v)
+            dup = False
+            for other in kept:  # distinct solutions only (angles compared modulo 2π)
+                for j in range(len(qq)):
+                    d = qq[j] - other[j]
+                    if rev[j]:
+                        d = math.remainder(d, _TWO_PI)
+                    if abs(d) >= 1e-9:
+                        break
+                else:
+                    dup = True
+                    break
+            if dup:
+                continue
+            kept.append(qq)
             n = labels.get(label, 0) + 1
             labels[label] = n
-            sols.append(IKSolution(Q[k], bool(inside[k]), label if n == 1 else f"{label} #{n}", bool(degen)))
+            sols.append(IKSolution(np.array(qq), inside, label if n == 1 else f"{label} #{n}", bool(degen)))
         return sols
 
 
 # ---------------------------------------------------------------------- detection
+def _positions_in_3d(sv) -> bool:
+    """True if joints 1–3 move the wrist centre in 3 independent directions somewhere.
+
+    The 3×3 Jacobian of the wrist centre (central differences) is checked at a few fixed
+    pseudo-random configurations; a positioning structure that is rank-deficient at all
+    of them (e.g. a prismatic joint perpendicular to a revolute one in a plane) has a
+    continuum of solutions, not a finite set.
+    """
+    rng = np.random.default_rng(12345)
+    scale = sv.chain.scale
+    for _ in range(4):
+        q = list(rng.uniform(-2.0, 2.0, 3))
+        J = np.empty((3, 3))
+        h = 1e-6
+        for j in range(3):
+            qp, qm = list(q), list(q)
+            qp[j] += h
+            qm[j] -= h
+            pp = sv._wrist_point(*sv._angles(qp))
+            pm = sv._wrist_point(*sv._angles(qm))
+            J[:, j] = [(pp[k] - pm[k]) / (2.0 * h) for k in range(3)]
+        J[:, [sv.chain.kinds[j] == "R" for j in range(3)]] /= scale  # revolute columns in m/rad → unitless
+        if np.linalg.svd(J, compute_uv=False)[-1] > 1e-6:
+            return True
+    return False
+
+
 def _line_distance(p1, d1, p2, d2):
     """Distance between two lines (points p, unit directions d)."""
     c = np.cross(d1, d2)
