@@ -84,7 +84,11 @@ class ClosedFormModel:
             self.solver = ParallelAxesSolver(self.chain)
         ch = self.chain
         self.rev_list = [k == "R" for k in ch.kinds]
-        self.lim_list = None if ch.qlim is None else [(float(lo), float(hi)) for lo, hi in ch.qlim]
+        self.th0_list = [float(t) for t in ch.th0]
+        if self.solver is not None and hasattr(self.solver, "w6"):
+            self.solver.w6_list = [float(v) for v in self.solver.w6]
+        # limits with the 1e-12 tolerance of the within_limits flag folded in
+        self.lim_list = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
 
     # ------------------------------------------------------------------ solving
     def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -99,36 +103,37 @@ class ClosedFormModel:
 
     def _pieper(self, T06, wrist_ref):
         sv = self.solver
-        ch = self.chain
-        R06 = T06[:3, :3]
-        W = R06 @ sv.w6 + T06[:3, 3]
+        th0 = self.th0_list
+        (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T06[:3].tolist()
+        w6x, w6y, w6z = sv.w6_list
+        W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
+             r20 * w6x + r21 * w6y + r22 * w6z + p2)
+        R06 = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
         rows = []
-        for q123, singular1, degen_pos in sv.position((float(W[0]), float(W[1]), float(W[2]))):
+        for q123, singular1, degen_pos in sv.position(W):
             th, _ = sv._angles(q123)
-            shoulder = self._shoulder(q123, th, W, singular1)
-            elbow = self._elbow(q123, th)
+            head = self._shoulder(q123, th, W, singular1) + self._elbow(q123, th)
             for t4, t5, t6, flip, degen in sv.wrist(th, R06, wrist_ref):
-                q = [q123[0], q123[1], q123[2], t4 - ch.th0[3], t5 - ch.th0[4], t6 - ch.th0[5]]
-                parts = [p for p in (shoulder, elbow, flip) if p]
-                rows.append((q, ", ".join(parts), degen or degen_pos or singular1))
+                q = (q123[0], q123[1], q123[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
+                rows.append((q, head + flip, degen or degen_pos or singular1))
         return rows
 
     def _shoulder(self, q, th, W, singular):
         if self.chain.kinds[0] != "R":
             return ""
         if singular:
-            return "shoulder singular"
+            return "shoulder singular, "
         x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
-        return "right" if x1 >= 0.0 else "left"
+        return "right, " if x1 >= 0.0 else "left, "
 
     def _elbow(self, q, th):
         sv = self.solver
         if self.chain.kinds[2] == "P":
             d = self.chain.d0[2] + q[2]
-            return "d3 +" if d >= 0.0 else "d3 −"
+            return "d3 +, " if d >= 0.0 else "d3 −, "
         c3, s3 = math.cos(th[2]), math.sin(th[2])
         e = (s3 * sv.v[0] + c3 * sv.v[1]) * (sv.a2 if sv.a2 != 0.0 else 1.0)
-        return "elbow down" if e > 0.0 else "elbow up"
+        return "elbow down, " if e > 0.0 else "elbow up, "
 
     def _finish(self, rows):
         """Wrap, shift into limits, flag, drop duplicates, label: rows → IKSolutions.
@@ -139,34 +144,32 @@ class ClosedFormModel:
             return []
         rev = self.rev_list
         lims = self.lim_list
-        tol = 1e-12
-        kept, sols, labels = [], [], {}
+        rem = math.remainder
+        two_pi, pi = _TWO_PI, math.pi
+        kept, meta, labels = [], [], {}
         for q, label, degen in rows:
-            qq = []
+            qq = [(rem(v, two_pi) if rev[j] else float(v)) for j, v in enumerate(q)]
             inside = True
-            for j, v in enumerate(q):
-                v = float(v)
-                if rev[j]:
-                    v = math.remainder(v, _TWO_PI)
-                    if v <= -math.pi:
-                        v += _TWO_PI
-                if lims is not None:
+            if lims is not None:
+                for j, v in enumerate(qq):
                     lo, hi = lims[j]
-                    if not lo - tol <= v <= hi + tol:
-                        if rev[j] and lo - tol <= v + _TWO_PI <= hi + tol:
-                            v += _TWO_PI  # limits wider than ±π: the shifted angle is inside
-                        elif rev[j] and lo - tol <= v - _TWO_PI <= hi + tol:
-                            v -= _TWO_PI
+                    if v < lo or v > hi:
+                        if rev[j] and lo <= v + two_pi <= hi:
+                            qq[j] = v + two_pi  # limits wider than ±π: the shifted angle is inside
+                        elif rev[j] and lo <= v - two_pi <= hi:
+                            qq[j] = v - two_pi
                         else:
                             inside = False
-                qq.append(v)
+            for j, v in enumerate(qq):
+                if v == -pi and rev[j]:
+                    qq[j] = pi  # (−π, π]
             dup = False
             for other in kept:  # distinct solutions only (angles compared modulo 2π)
                 for j in range(len(qq)):
                     d = qq[j] - other[j]
                     if rev[j]:
-                        d = math.remainder(d, _TWO_PI)
-                    if abs(d) >= 1e-9:
+                        d = rem(d, two_pi)
+                    if d >= 1e-9 or d <= -1e-9:
                         break
                 else:
                     dup = True
@@ -176,8 +179,9 @@ class ClosedFormModel:
             kept.append(qq)
             n = labels.get(label, 0) + 1
             labels[label] = n
-            sols.append(IKSolution(np.array(qq), inside, label if n == 1 else f"{label} #{n}", bool(degen)))
-        return sols
+            meta.append((inside, label if n == 1 else f"{label} #{n}", bool(degen)))
+        Q = np.array(kept)
+        return [IKSolution(Q[k], *meta[k]) for k in range(len(kept))]
 
 
 # ---------------------------------------------------------------------- detection
@@ -401,6 +405,18 @@ def ik_analytic(robot, T, wrist_ref: float = 0.0) -> list[IKSolution]:
     8
     """
     model = _model(robot)
-    T = check_transform(T, "T")
-    wrist_ref = float(wrist_ref)
-    return model.solve(T, wrist_ref)
+    return model.solve(_check_pose(T), float(wrist_ref))
+
+
+def _check_pose(T):
+    """T as a float 4×4 rigid transform: a quick test for a clean float array (RᵀR = I to 1e-9,
+    det R > 0, last row exact), else the full :func:`check_transform` (which raises)."""
+    if type(T) is np.ndarray and T.dtype == np.float64 and T.shape == (4, 4):
+        (a, b, c, _), (d, e, f, _), (g, h, i, _), last = T.tolist()
+        dev = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0), abs(c * c + f * f + i * i - 1.0),
+                  abs(a * b + d * e + g * h), abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
+        det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+        finite = math.isfinite(a + b + c + d + e + f + g + h + i + T[0, 3] + T[1, 3] + T[2, 3])
+        if finite and dev < 1e-9 and det > 0.0 and last == [0.0, 0.0, 0.0, 1.0]:
+            return T
+    return check_transform(T, "T")

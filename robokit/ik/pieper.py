@@ -184,6 +184,7 @@ class PieperSolver:
             row = np.asarray(row, dtype=float)[: self.deg + 1]
             R[i, : len(row)] = row
         self.C = R  # polynomial coefficients (low → high) = Σ m_k C[k]
+        self.C_list = R.tolist()
         # wrist
         self.ca4, self.sa4, self.ca5, self.sa5 = self.ca[3], self.sa[3], self.ca[4], self.sa[4]
         self.rot_kinds = k[:3]
@@ -191,7 +192,7 @@ class PieperSolver:
     # ------------------------------------------------------------------ position
     def _roots(self, coeffs):
         """Real roots of Σ cₖ tᵏ as joint-3 values (θ₃ total angle or d₃ variable)."""
-        scale = float(np.abs(coeffs).max())
+        scale = max(abs(x) for x in coeffs)
         if scale == 0.0:
             return None  # identically satisfied: θ₃ free
         c = coeffs
@@ -215,7 +216,7 @@ class PieperSolver:
                 q = -0.5 * (B + (sq if B >= 0.0 else -sq))
                 ts = [q / A, C0 / q] if q != 0.0 else [0.0]
         else:
-            rts = np.roots(c[deg::-1])
+            rts = np.roots(np.array(c[deg::-1]))
             ts = [float(z.real) for z in rts if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real))]
             ts = [self._newton_poly(c[: deg + 1], t) for t in ts]
         if self.j3 == "R":
@@ -314,8 +315,10 @@ class PieperSolver:
             X = xp - a1
             case = self.case
             m = {"PR-quartic": (X * X, yp * yp, yp, 1.0), "PR-c1": (yp, 1.0), "PP": (X, 1.0)}[case]
-        coeffs = np.asarray(m) @ self.C
+        C = self.C_list
+        coeffs = [sum(mk * row[j] for mk, row in zip(m, C)) for j in range(self.deg + 1)]
         roots3 = self._roots(coeffs)
+        check = self.deg == 4  # roots from the companion matrix: verify (and polish) each triple
         degenerate = False
         if roots3 is None:  # the equation holds for every joint-3 value: documented choice q₃ = 0
             roots3 = [th0[2] if kind == "R" else 0.0]
@@ -378,6 +381,9 @@ class PieperSolver:
                 else:
                     q1, singular1 = zp - d0[0] - g3, False
                 q = [q1, q2, q3]
+                if not check:  # closed-form roots (degree ≤ 2): the back-substitution is exact
+                    out.append((q, singular1, degenerate))
+                    continue
                 th, dd = self._angles(q)
                 p = self._wrist_point(th, dd)
                 err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
@@ -404,56 +410,58 @@ class PieperSolver:
     # ------------------------------------------------------------------ orientation
     def wrist(self, th, R06, q4_ref):
         """Every (θ₄, θ₅, θ₆ rotation angles, flip, degenerate) with
-        Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆) = R₃ᵀR₀₆, R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃)."""
+        Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆) = R₃ᵀR₀₆, R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃).
+
+        ``R06`` is a nested list (3×3, rows); plain float arithmetic, no numpy.
+        """
         ca, sa = self.ca, self.sa
         cs = [(math.cos(t), math.sin(t)) for t in th]
-        x6, z6 = (R06[0, 0], R06[1, 0], R06[2, 0]), (R06[0, 2], R06[1, 2], R06[2, 2])
-        y6 = (R06[0, 1], R06[1, 1], R06[2, 1])
-
-        def back(v):  # R₃ᵀ v
-            for i in range(3):
-                v = _rz_v(cs[i][0], -cs[i][1], v)
-                v = _rx_v(ca[i], -sa[i], v)
-            return v
-
-        # R₃ᵀ = Rx(−α₃)Rz(−θ₃)Rx(−α₂)Rz(−θ₂)Rx(−α₁)Rz(−θ₁): apply Rz(−θ₁) first
-        m = back(z6)  # M e₃
-        n4 = (0.0, 0.0, 1.0)  # R₃ e₃ (axis 4 in frame 0′)
+        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R06
+        # m = R₃ᵀ z₆ (M e₃) and, for the singular case, R₃ᵀ x₆ (M e₁): apply Rz(−θ₁), Rx(−α₁), …
+        mx, my, mz = r02, r12, r22
+        ex, ey, ez = r00, r10, r20
+        for i in range(3):
+            c, s_ = cs[i]
+            mx, my = c * mx + s_ * my, c * my - s_ * mx
+            ex, ey = c * ex + s_ * ey, c * ey - s_ * ex
+            c, s_ = ca[i], sa[i]
+            my, mz = c * my + s_ * mz, c * mz - s_ * my
+            ey, ez = c * ey + s_ * ez, c * ez - s_ * ey
+        # n₄ = R₃ e₃ (axis 4 in frame 0′): apply Rx(α₃), Rz(θ₃), …, Rz(θ₁) to e₃
+        nx, ny, nz = 0.0, 0.0, 1.0
         for i in (2, 1, 0):
-            n4 = _rx_v(ca[i], sa[i], n4)
-            n4 = _rz_v(cs[i][0], cs[i][1], n4)
-        row = (x6[0] * n4[0] + x6[1] * n4[1] + x6[2] * n4[2], y6[0] * n4[0] + y6[1] * n4[1] + y6[2] * n4[2],
-               z6[0] * n4[0] + z6[1] * n4[1] + z6[2] * n4[2])  # e₃ᵀM
+            c, s_ = ca[i], sa[i]
+            ny, nz = c * ny - s_ * nz, s_ * ny + c * nz
+            c, s_ = cs[i]
+            nx, ny = c * nx - s_ * ny, s_ * nx + c * ny
+        row0 = r00 * nx + r10 * ny + r20 * nz  # e₃ᵀM = (R₀₆ᵀ n₄)ᵀ
+        row1 = r01 * nx + r11 * ny + r21 * nz
         ca4, sa4, ca5, sa5 = self.ca4, self.sa4, self.ca5, self.sa5
         k = sa4 * sa5
-        rho = math.hypot(m[0], m[1])  # |sin| of the angle between axes 4 and 6
+        rho = math.hypot(mx, my)  # |sin| of the angle between axes 4 and 6
         if ca4 == 0.0 and ca5 == 0.0:  # right-angled wrist (ZYZ type): |s₅| = ρ, c₅ = −M₂₂/(sα₄sα₅)
-            c5, s5 = -m[2] / k, rho
+            c5, s5 = -mz / k, rho
         else:
-            c5 = (ca4 * ca5 - m[2]) / k
+            c5 = (ca4 * ca5 - mz) / k
             if abs(c5) > 1.0 + 1e-10:
                 return []  # this orientation is out of reach of an oblique wrist
             c5 = max(-1.0, min(1.0, c5))
             s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
+        if rho <= 1e-10:  # axes 4 and 6 aligned: only θ₄ + θ₆ or θ₄ − θ₆ is fixed
+            th4_ref = q4_ref + self.chain.th0[3]
+            gamma = math.atan2(ca4 * s5, c5)
+            sk = 1.0 if mz > 0.0 else -1.0
+            t6 = sk * (math.atan2(ey, ex) - th4_ref - gamma)
+            return [(th4_ref, math.atan2(s5, c5), t6, "wrist singular", True)]
+        am = math.atan2(my, mx)
+        ar = math.atan2(row1, row0)
+        yp = -ca4 * sa5 * c5 - sa4 * ca5
+        b_ = sa4 * c5 * ca5 + ca4 * sa5
         out = []
-        th4_ref = q4_ref + self.chain.th0[3]
-        for sign in (1.0, -1.0):
-            s = sign * s5
-            xp, yp = sa5 * s, -ca4 * sa5 * c5 - sa4 * ca5
-            if rho <= 1e-10:  # axes 4 and 6 aligned: only θ₄ + θ₆ or θ₄ − θ₆ is fixed
-                gamma = math.atan2(ca4 * s, c5)
-                me1 = back(x6)
-                t5 = math.atan2(s, c5)
-                sk = 1.0 if m[2] > 0.0 else -1.0
-                t6 = sk * (math.atan2(me1[1], me1[0]) - th4_ref - gamma)
-                out.append((th4_ref, t5, t6, "wrist singular", True))
-                break
-            t4 = math.atan2(m[1], m[0]) - math.atan2(yp, xp)
-            a_, b_ = sa4 * s, sa4 * c5 * ca5 + ca4 * sa5
-            t6 = math.atan2(b_, a_) - math.atan2(row[1], row[0])
-            t5 = math.atan2(s, c5)
-            flip = "no flip" if s * k > 0.0 else "flip"
-            out.append((t4, t5, t6, flip, False))
+        for s in (s5, -s5):
+            t4 = am - math.atan2(yp, sa5 * s)
+            t6 = math.atan2(b_, sa4 * s) - ar
+            out.append((t4, math.atan2(s, c5), t6, "no flip" if s * k > 0.0 else "flip", False))
             if s5 == 0.0:
                 break
         return out
