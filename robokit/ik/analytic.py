@@ -248,12 +248,13 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
     Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
     of :func:`ik_spherical_wrist` applies), [] if unreachable.
     """
-    from robokit.ik.closed_form import _model
+    from robokit.ik.closed_form import _check_pose, _model
 
     if getattr(table, "_closed_form", None) is None:
         _puma_params(table)  # the PUMA structure, checked once per table
     model = _model(table)
-    return model.solve(check_transform(T, "T"), as_scalar(theta4_ref, "theta4_ref"))
+    ref = theta4_ref if type(theta4_ref) is float else as_scalar(theta4_ref, "theta4_ref")
+    return model.solve(_check_pose(T), ref)
 
 
 def _rz(t):

@@ -85,6 +85,8 @@ class PieperSolver:
 
     def __init__(self, chain):
         self.chain = chain
+        self.th0_list = [float(t) for t in chain.th0]
+        self.d0_list = [float(t) for t in chain.d0]
         k = chain.kinds
         self.j1, self.j2, self.j3 = k[0], k[1], k[2]
         th0, d0, al, a = chain.th0, chain.d0, chain.alpha, chain.a
@@ -104,6 +106,7 @@ class PieperSolver:
         self.d2 = d2
         # wrist centre in the frame after Z₃ and in the frame after Z₆
         w3 = np.array([a3, -sa3 * d0[3], ca3 * d0[3]])
+        self.w3_list = [float(v) for v in w3]
         G = chain.x(3) @ chain.z(4, 0.0) @ chain.x(4) @ chain.z(5, 0.0)  # frame 4 → frame 6 at q₅ = q₆ = 0
         Ginv = np.linalg.inv(G)
         self.w6 = Ginv[:3, 3].copy()
@@ -216,7 +219,11 @@ class PieperSolver:
                 q = -0.5 * (B + (sq if B >= 0.0 else -sq))
                 ts = [q / A, C0 / q] if q != 0.0 else [0.0]
         else:
-            rts = np.roots(np.array(c[deg::-1]))
+            # the companion matrix of the monic polynomial; its eigenvalues are the roots
+            comp = np.zeros((deg, deg))
+            comp[0, :] = [-c[deg - 1 - j] / c[deg] for j in range(deg)]
+            comp[np.arange(1, deg), np.arange(deg - 1)] = 1.0
+            rts = np.linalg.eigvals(comp).tolist()
             ts = [float(z.real) for z in rts if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real))]
             ts = [self._newton_poly(c[: deg + 1], t) for t in ts]
         if self.j3 == "R":
@@ -240,28 +247,27 @@ class PieperSolver:
 
     def _wrist_point(self, th, dd):
         """⁰W of joint values given as rotation angles th (3,) and offsets dd (3,) — a check."""
-        ch = self.chain
         c3, s3 = math.cos(th[2]), math.sin(th[2])
-        w3 = (ch.a[2], -self.sa[2] * ch.d0[3], self.ca[2] * ch.d0[3])
+        w3 = self.w3_list
         p = _rz_v(c3, s3, (w3[0], w3[1], w3[2] + dd[2]))
-        p = _rx_v(self.ca[1], self.sa[1], (p[0] + ch.a[1], p[1], p[2]))
+        p = _rx_v(self.ca[1], self.sa[1], (p[0] + self.a2, p[1], p[2]))
         c2, s2 = math.cos(th[1]), math.sin(th[1])
         p = _rz_v(c2, s2, (p[0], p[1], p[2] + dd[1]))
-        p = _rx_v(self.ca[0], self.sa[0], (p[0] + ch.a[0], p[1], p[2]))
+        p = _rx_v(self.ca[0], self.sa[0], (p[0] + self.a1, p[1], p[2]))
         c1, s1 = math.cos(th[0]), math.sin(th[0])
         return _rz_v(c1, s1, (p[0], p[1], p[2] + dd[0]))
 
     def _angles(self, q):
         """(rotation angles, offsets) of joints 1–3 at joint values q."""
-        ch = self.chain
+        kinds, th0, d0 = self.chain.kinds, self.th0_list, self.d0_list
         th, dd = [], []
         for i in range(3):
-            if ch.kinds[i] == "R":
-                th.append(ch.th0[i] + q[i])
-                dd.append(ch.d0[i])
+            if kinds[i] == "R":
+                th.append(th0[i] + q[i])
+                dd.append(d0[i])
             else:
-                th.append(ch.th0[i])
-                dd.append(ch.d0[i] + q[i])
+                th.append(th0[i])
+                dd.append(d0[i] + q[i])
         return th, dd
 
     def _polish(self, q, W):
@@ -296,7 +302,7 @@ class PieperSolver:
     def position(self, W):
         """Every (q₁, q₂, q₃, label parts, degenerate) placing the wrist centre at W (frame 0′)."""
         ch = self.chain
-        th0, d0 = ch.th0, ch.d0
+        th0, d0 = self.th0_list, self.d0_list
         ca1, sa1 = self.ca[0], self.sa[0]
         a1 = self.a1
         f1c, f2c, f3c = self.f
@@ -448,7 +454,7 @@ class PieperSolver:
             c5 = max(-1.0, min(1.0, c5))
             s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
         if rho <= 1e-10:  # axes 4 and 6 aligned: only θ₄ + θ₆ or θ₄ − θ₆ is fixed
-            th4_ref = q4_ref + self.chain.th0[3]
+            th4_ref = q4_ref + self.th0_list[3]
             gamma = math.atan2(ca4 * s5, c5)
             sk = 1.0 if mz > 0.0 else -1.0
             t6 = sk * (math.atan2(ey, ex) - th4_ref - gamma)
