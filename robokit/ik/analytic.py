@@ -27,7 +27,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
-from robokit.spatial.se3 import check_transform
 from robokit.spatial.so3 import check_rotation
 
 __all__ = [

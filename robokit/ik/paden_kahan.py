@@ -28,7 +28,7 @@ import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
 
-__all__ = ["solve_trig", "pk_subproblem1", "pk_subproblem2", "pk_subproblem3"]
+__all__ = ["pk_subproblem1", "pk_subproblem2", "pk_subproblem3", "solve_trig"]
 
 _PI = math.pi
 _TWO_PI = 2.0 * math.pi

@@ -47,7 +47,6 @@ from robokit.ik.paden_kahan import _trig_roots
 _PI = math.pi
 _U_R = np.array([1.0, 0.0, 1.0])  # 1 + u² (revolute: u = tan(θ/2))
 _U_P = np.array([1.0, 0.0, 0.0])  # 1 (prismatic: the variable itself)
-_CONV = {(i, j): i + j for i in range(3) for j in range(3)}
 
 
 def _mul(p, q):
@@ -133,7 +132,10 @@ class PieperSolver:
         self.f = (f1, f2, f3)
         kind, U = self.j3, self.U
         UU = _mul(U, U)
-        N = lambda c: _num(c, kind)  # noqa: E731
+
+        def N(c):
+            return _num(c, kind)
+
         self.case = None
         if self.j2 == "R":
             F3 = f3 + np.array([d2, 0.0, 0.0])
@@ -301,7 +303,6 @@ class PieperSolver:
 
     def position(self, W):
         """Every (q₁, q₂, q₃, label parts, degenerate) placing the wrist centre at W (frame 0′)."""
-        ch = self.chain
         th0, d0 = self.th0_list, self.d0_list
         ca1, sa1 = self.ca[0], self.sa[0]
         a1 = self.a1

@@ -167,6 +167,17 @@ def test_urdf_of_a_dh_model_goes_through_urdf_to_dh(tmp_path):
     assert len(sols) == 8
 
 
+@pytest.mark.parametrize("name, method", [("kinova", "spherical wrist"), ("z1", "three parallel axes")])
+def test_other_example_robot_data_arms(name, method):
+    robot = robokit.load(name)  # URDFs; the kinova arm has continuous (unlimited) joints
+    assert ik_analytic_kind(robot).method == method
+    rng = np.random.default_rng(2)
+    for _ in range(10):
+        q = robot.random_configuration(rng)
+        T = robot.frame_pose(q)
+        check_solutions(robot, q, T, ik_analytic(robot, T))
+
+
 def test_bad_input():
     with pytest.raises(TypeError, match="robot"):
         ik_analytic("puma560", np.eye(4))
@@ -181,8 +192,8 @@ def random_arm(seed, convention, kinds="RRR", oblique=True):
     rows = []
     for i in range(6):
         al = rng.uniform(-np.pi, np.pi) if oblique else rng.choice([-np.pi / 2, np.pi / 2])
-        rows.append(dict(joint=kinds[i] if i < 3 else "R", a=rng.uniform(-0.5, 0.5), alpha=al,
-                         d=rng.uniform(-0.5, 0.5), theta=rng.uniform(-np.pi, np.pi)))
+        rows.append({"joint": kinds[i] if i < 3 else "R", "a": rng.uniform(-0.5, 0.5), "alpha": al,
+                     "d": rng.uniform(-0.5, 0.5), "theta": rng.uniform(-np.pi, np.pi)})
     # axes 4, 5, 6 meet: zero the distances between them (standard rows 4, 5; modified rows 5, 6)
     w = (3, 4) if convention == "standard" else (4, 5)
     rows[w[0]]["a"] = rows[w[1]]["a"] = 0.0
