@@ -46,7 +46,10 @@ def main(argv=None):
     rng = np.random.default_rng(0)
     robots = [("PUMA 560", robokit.load("puma560")), ("UR5", robokit.load("ur5")), ("UR10", robokit.load("ur10")),
               ("random spherical wrist (quartic)", robokit.load(_spherical_arm()))]
-    print(f"## Closed-form IK, all solutions of one pose ({machine()})\n")
+    import os
+
+    load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
+    print(f"## Closed-form IK, all solutions of one pose ({machine()}; load average {load})\n")
     rows, medians = [], {}
     for name, robot in robots:
         kind = robokit.ik_analytic_kind(robot)

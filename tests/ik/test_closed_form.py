@@ -291,3 +291,36 @@ def test_limits_wider_than_pi_shift_into_range():
     best = min(sols, key=lambda s: angle_dist(s.q, q, np.ones(6, bool)))
     assert abs(best.q[0] - 4.5) < 1e-7  # shifted by 2π into the limits, not wrapped to −1.78
     check_solutions(robot, q, T, sols)
+
+
+def random_parallel_arm(seed, convention):
+    """A 6R DH table with axes 2–4 parallel (α₂, α₃ ∈ {0, π}: the z axes may point either way)
+    and axes 5, 6 meeting (a₅ = 0); other twists and lengths random, with base and tool."""
+    rng = np.random.default_rng(seed)
+    a = rng.uniform(0.1, 0.6, 6) * rng.choice([-1, 1], 6)
+    d = rng.uniform(-0.3, 0.3, 6)
+    th = rng.uniform(-np.pi, np.pi, 6)
+    al = rng.uniform(0.4, 2.7, 6) * rng.choice([-1, 1], 6)  # away from parallel
+    al[1], al[2] = rng.choice([0.0, np.pi]), rng.choice([0.0, np.pi])
+    a[4] = 0.0
+    if convention == "modified":  # row i holds a_{i−1}, α_{i−1}
+        a, al = np.r_[rng.uniform(-0.2, 0.2), a[:5]], np.r_[rng.uniform(-1, 1), al[:5]]
+    links = tuple(DHLink("R", a[i], al[i], d[i], th[i]) for i in range(6))
+    base, tool = np.eye(4), np.eye(4)
+    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    return DHTable(f"par{seed}", convention, links, base=base, tool=tool)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]))
+def test_random_three_parallel_axes_arms(seed, convention):
+    robot = robokit.load(random_parallel_arm(seed, convention))
+    assert ik_analytic_kind(robot).method == "three parallel axes"
+    rng = np.random.default_rng(seed + 1)
+    for _ in range(4):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        T = robot.frame_pose(q)
+        sols = ik_analytic(robot, T)
+        check_solutions(robot, q, T, sols)
+        assert len(sols) <= 8
