@@ -115,3 +115,22 @@ class DHChain:
             if i < self.n - 1:
                 G = G @ self.z(i, 0.0) @ self.x(i)
         return out
+
+    def reversed(self) -> "DHChain":
+        """The chain read from the tool back to the base: its FK is the inverse pose.
+
+        ``T⁻¹ = tool′⁻¹ · Z₆⁻¹X₅⁻¹ ⋯ X₁⁻¹Z₁⁻¹ · base′⁻¹`` with ``Zᵢ⁻¹ = Rz(−θᵢ)Tz(−dᵢ)`` and
+        ``Xᵢ⁻¹ = Rx(−αᵢ)Tx(−aᵢ)``: again the canonical form, with joint k of the reversed
+        chain = joint n+1−k of this one and q′ = −q.
+        """
+        rc = DHChain.__new__(DHChain)
+        rc.n = self.n
+        rc.kinds = self.kinds[::-1]
+        rc.th0, rc.d0 = -self.th0[::-1], -self.d0[::-1]
+        rc.alpha, rc.a = -self.alpha[::-1], -self.a[::-1]
+        rc.base, rc.tool = _inv(self.tool), _inv(self.base)
+        rc.base_inv = None if self.tool_inv is None else self.tool.copy()
+        rc.tool_inv = None if self.base_inv is None else self.base.copy()
+        rc.qlim = None if self.qlim is None else -self.qlim[::-1, ::-1]
+        rc.scale = self.scale
+        return rc

@@ -10,6 +10,12 @@ which method applies, or why none does:
   axis 1 and axis 5 not parallel to the others (UR3/UR5/UR10/UR16):
   :mod:`robokit.ik.parallel_axes`.
 
+Both structures are also recognised counted from the tool (axes 1–3 meeting in one point;
+axes 3–5 parallel with axes 1 and 2 meeting): the chain is then read backwards (its FK is
+the inverse pose, joint k ↔ joint 7 − k, q′ = −q), solved for T⁻¹, and the labels say
+"(chain reversed)"; at a singularity the free joint is then joint 3 (or 1) with the value
+``wrist_ref``.
+
 Other arms — 7 joints (panda), wrists whose axes do not meet, … — have no closed form here
 and ``ik_analytic`` raises ``ValueError`` with the reason in the arm's terms.
 
@@ -71,39 +77,67 @@ class ClosedFormModel:
 
     def __init__(self, table, qlim=None):
         self.chain = DHChain(table, qlim)
-        self.kind = _detect(self.chain)
-        self.solver = None
-        if self.kind.method == "spherical wrist":
-            self.solver = PieperSolver(self.chain)
-            if not _positions_in_3d(self.solver):
-                self.kind = ClosedFormKind(None, "axes 4–6 meet in one point, but joints 1–3 cannot move the wrist "
-                                                 "centre in three independent directions (their axes confine it "
-                                                 "to a surface)")
-                self.solver = None
-        elif self.kind.method == "three parallel axes":
-            self.solver = ParallelAxesSolver(self.chain)
+        self.reversed = False
+        self.kind, self.solver, self.solver_chain = self._method(self.chain)
+        if self.kind.method is None and self.chain.n == 6:
+            # the same structures counted from the tool: axes 1–3 meeting (a spherical wrist at the
+            # base), or axes 3–5 parallel with axes 1 and 2 meeting — solve the inverse pose
+            rc = self.chain.reversed()
+            kind, solver, _ = self._method(rc)
+            if kind.method is not None:
+                where = {"spherical wrist": "axes 1–3 meet in one point (a spherical joint group at the base)",
+                         "three parallel axes": "axes 3–5 are parallel and axes 1 and 2 meet"}[kind.method]
+                self.kind = ClosedFormKind(kind.method, f"{where}: the {kind.method} method on the chain read "
+                                                        f"from the tool back to the base")
+                self.solver, self.solver_chain, self.reversed = solver, rc, True
         ch = self.chain
         self.rev_list = [k == "R" for k in ch.kinds]
-        self.th0_list = [float(t) for t in ch.th0]
-        if self.solver is not None and hasattr(self.solver, "w6"):
-            self.solver.w6_list = [float(v) for v in self.solver.w6]
         # limits with the 1e-12 tolerance of the within_limits flag folded in
         self.lim_list = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
+
+    @staticmethod
+    def _method(chain):
+        """(kind, solver, chain) for one reading of the chain."""
+        kind = _detect(chain)
+        solver = None
+        if kind.method == "spherical wrist":
+            solver = PieperSolver(chain)
+            if not _positions_in_3d(solver):
+                kind = ClosedFormKind(None, "axes 4–6 meet in one point, but joints 1–3 cannot move the wrist "
+                                            "centre in three independent directions (their axes confine it "
+                                            "to a surface)")
+                solver = None
+        elif kind.method == "three parallel axes":
+            solver = ParallelAxesSolver(chain)
+        if solver is not None:
+            solver.w6_list = [float(v) for v in solver.w6]
+            solver.th0_all = [float(t) for t in chain.th0]
+        return kind, solver, chain
 
     # ------------------------------------------------------------------ solving
     def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
         if self.solver is None:
             raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
-        T06 = self.chain.target_06(T)
-        if isinstance(self.solver, ParallelAxesSolver):
-            rows = self.solver.solve(T06, wrist_ref)
+        if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
+            R, p = T[:3, :3], T[:3, 3]
+            Tinv = np.eye(4)
+            Tinv[:3, :3] = R.T
+            Tinv[:3, 3] = -R.T @ p
+            T06 = self.solver_chain.target_06(Tinv)
+            rows = self._rows(T06, -wrist_ref)
+            rows = [(tuple(-v for v in q[::-1]), label + " (chain reversed)", degen) for q, label, degen in rows]
         else:
-            rows = self._pieper(T06, wrist_ref)
+            rows = self._rows(self.chain.target_06(T), wrist_ref)
         return self._finish(rows)
+
+    def _rows(self, T06, wrist_ref):
+        if isinstance(self.solver, ParallelAxesSolver):
+            return self.solver.solve(T06, wrist_ref)
+        return self._pieper(T06, wrist_ref)
 
     def _pieper(self, T06, wrist_ref):
         sv = self.solver
-        th0 = self.th0_list
+        th0 = sv.th0_all
         (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T06[:3].tolist()
         w6x, w6y, w6z = sv.w6_list
         W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
@@ -119,7 +153,7 @@ class ClosedFormModel:
         return rows
 
     def _shoulder(self, q, th, W, singular):
-        if self.chain.kinds[0] != "R":
+        if self.solver_chain.kinds[0] != "R":
             return ""
         if singular:
             return "shoulder singular, "
@@ -128,8 +162,8 @@ class ClosedFormModel:
 
     def _elbow(self, q, th):
         sv = self.solver
-        if self.chain.kinds[2] == "P":
-            d = self.chain.d0[2] + q[2]
+        if self.solver_chain.kinds[2] == "P":
+            d = self.solver_chain.d0[2] + q[2]
             return "d3 +, " if d >= 0.0 else "d3 −, "
         c3, s3 = math.cos(th[2]), math.sin(th[2])
         e = (s3 * sv.v[0] + c3 * sv.v[1]) * (sv.a2 if sv.a2 != 0.0 else 1.0)

@@ -324,3 +324,32 @@ def test_random_three_parallel_axes_arms(seed, convention):
         sols = ik_analytic(robot, T)
         check_solutions(robot, q, T, sols)
         assert len(sols) <= 8
+
+
+def reversed_table(table):
+    """The DH table (modified convention) of ``table``'s chain read from the tool to the base:
+    its tool pose at q′ is the inverse of the original's at q = −reverse(q′)."""
+    from robokit.ik._dh_chain import DHChain
+
+    rc = DHChain(table).reversed()
+    rows = [DHLink(rc.kinds[0], 0.0, 0.0, rc.d0[0], rc.th0[0])]
+    rows += [DHLink(rc.kinds[i], rc.a[i - 1], rc.alpha[i - 1], rc.d0[i], rc.th0[i]) for i in range(1, 6)]
+    return DHTable(f"{table.name}_rev", "modified", tuple(rows), base=rc.base, tool=rc.tool)
+
+
+@pytest.mark.parametrize("make, method", [(lambda: random_arm(3, "standard", "RRR"), "spherical wrist"),
+                                          (lambda: random_parallel_arm(4, "standard"), "three parallel axes")])
+def test_structures_counted_from_the_tool(make, method):
+    table = make()
+    rev = reversed_table(table)
+    q = np.array([0.3, -0.8, 1.1, 0.4, -0.6, 2.0])
+    assert np.abs(np.linalg.inv(rev.fk(-q[::-1])) - table.fk(q)).max() < 1e-12  # the construction itself
+    robot = robokit.load(rev)
+    kind = ik_analytic_kind(robot)
+    assert kind.method == method and "from the tool back to the base" in kind.reason
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        T = robot.frame_pose(q)
+        sols = ik_analytic(robot, T)
+        check_solutions(robot, q, T, sols)
