@@ -92,6 +92,7 @@ class ClosedFormModel:
                 self.solver, self.solver_chain, self.reversed = solver, rc, True
         ch = self.chain
         self.rev_list = [k == "R" for k in ch.kinds]
+        self.all_rev = all(self.rev_list)
         # limits with the 1e-12 tolerance of the within_limits flag folded in
         self.lim_list = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
 
@@ -177,16 +178,22 @@ class ClosedFormModel:
         if not rows:
             return []
         rev = self.rev_list
+        all_rev = self.all_rev
         lims = self.lim_list
         rem = math.remainder
         two_pi, pi = _TWO_PI, math.pi
         kept, meta, labels = [], [], {}
         for q, label, degen in rows:
-            qq = [(rem(v, two_pi) if rev[j] else float(v)) for j, v in enumerate(q)]
+            if all_rev:
+                qq = [rem(v, two_pi) for v in q]
+            else:
+                qq = [(rem(v, two_pi) if r else float(v)) for v, r in zip(q, rev)]
+            if -pi in qq:  # (−π, π]
+                qq = [(pi if (v == -pi and r) else v) for v, r in zip(qq, rev)]
             inside = True
             if lims is not None:
-                for j, v in enumerate(qq):
-                    lo, hi = lims[j]
+                for j, (lo, hi) in enumerate(lims):
+                    v = qq[j]
                     if v < lo or v > hi:
                         if rev[j] and lo <= v + two_pi <= hi:
                             qq[j] = v + two_pi  # limits wider than ±π: the shifted angle is inside
@@ -194,15 +201,10 @@ class ClosedFormModel:
                             qq[j] = v - two_pi
                         else:
                             inside = False
-            for j, v in enumerate(qq):
-                if v == -pi and rev[j]:
-                    qq[j] = pi  # (−π, π]
             dup = False
             for other in kept:  # distinct solutions only (angles compared modulo 2π)
-                for j in range(len(qq)):
-                    d = qq[j] - other[j]
-                    if rev[j]:
-                        d = rem(d, two_pi)
+                for v, o, r in zip(qq, other, rev):
+                    d = rem(v - o, two_pi) if r else v - o
                     if d >= 1e-9 or d <= -1e-9:
                         break
                 else:
