@@ -27,7 +27,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
-from robokit.spatial.se3 import _inv, check_transform
 from robokit.spatial.so3 import check_rotation
 
 __all__ = [
@@ -241,79 +240,20 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
     atan2(a₃s₃ + d₄c₃, a₂ + a₃c₃ − d₄s₃). Then ³R₆ = Rz(θ₄) Ry(−θ₅) Rz(θ₆) (the frames'
     α₄ = 90°, α₅ = −90°) gives the wrist flip/no-flip pair by :func:`ik_spherical_wrist`.
     Joint values returned are the joint variables q (θ = q + offset), wrapped to (−π, π].
+    This is the PUMA case of :func:`robokit.ik.closed_form.ik_analytic` (Pieper's general
+    method, whose θ₃ equation is a quadratic here because a₁ = 0), with the PUMA structure
+    checked first.
 
     Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
     of :func:`ik_spherical_wrist` applies), [] if unreachable.
     """
-    d1, a2, a3, D, d4, d6, offsets, qlim, base_inv, tool_inv = _puma_cached(table)
-    T = check_transform(T, "T")
-    T06 = T if base_inv is None else base_inv @ T
-    if tool_inv is not None:
-        T06 = T06 @ tool_inv
-    R06 = T06[:3, :3]
-    px, py, pz = T06[:3, 3] - d6 * R06[:, 2]
-    r = math.hypot(px, py)
-    tol = 1e-12
-    if r < abs(D) - tol or a2 == 0.0:
-        return []
-    phi = math.atan2(py, px)
-    beta = math.asin(min(1.0, max(-1.0, D / r))) if r > 0 else 0.0
-    rho = math.hypot(a3, d4)
-    psi = math.atan2(d4, a3)
-    ref4 = theta4_ref + offsets[3]
-    Y = pz - d1
-    rows, labels, degen = [], [], []
-    for t1, arm in ((phi + beta, "right"), (phi + math.pi - beta, "left")):
-        c1, s1 = math.cos(t1), math.sin(t1)
-        X = c1 * px + s1 * py
-        K = (X * X + Y * Y - a2 * a2 - a3 * a3 - d4 * d4) / (2.0 * a2)
-        if rho == 0.0 or abs(K) > rho * (1 + 1e-12):
-            continue
-        g = math.acos(min(1.0, max(-1.0, K / rho)))
-        for t3, elbow in ((-psi + g, "elbow down"), (-psi - g, "elbow up")):
-            c3, s3 = math.cos(t3), math.sin(t3)
-            t2 = math.atan2(Y, X) - math.atan2(a3 * s3 + d4 * c3, a2 + a3 * c3 - d4 * s3)
-            c2, s2 = math.cos(t2 + t3), math.sin(t2 + t3)
-            # R03 = Rz(θ1) Rx(90°) Rz(θ2 + θ3) Rx(−90°), written out
-            R03 = np.array([[c1 * c2, -s1, -c1 * s2], [s1 * c2, c1, -s1 * s2], [s2, 0.0, c2]])
-            R36 = R03.T @ R06
-            for (t4, b, t6), flip, degenerate in _wrist(R36, ref4):
-                rows.append((t1, t2, t3, t4, -b, t6))
-                labels.append(f"{arm}, {elbow}, {'wrist singular' if degenerate else flip}")
-                degen.append(degenerate)
-            if g == 0.0:
-                break
-    if not rows:
-        return []
-    Q = _wrap(np.array(rows) - offsets)
-    if qlim is None:
-        inside = [True] * len(rows)
-    else:
-        inside = (np.all(Q >= qlim[:, 0] - 1e-12, axis=1) & np.all(Q <= qlim[:, 1] + 1e-12, axis=1)).tolist()
-    return [IKSolution(Q[k], inside[k], labels[k], degen[k]) for k in range(len(rows))]
+    from robokit.ik.closed_form import _check_pose, _model
 
-
-_PUMA_CACHE: dict = {}
-
-
-def _puma_cached(table):
-    """The PUMA constants of ``table`` (checked once per table object)."""
-    hit = _PUMA_CACHE.get(id(table))
-    if hit is not None and hit[0] is table:
-        return hit[1]
-    d1, a2, a3, D, d4, d6, offsets = _puma_params(table)
-    qlim = None
-    if all(l.qlim is not None for l in table.links):
-        qlim = np.array([l.qlim for l in table.links], dtype=float)
-    base = np.asarray(table.base, float)
-    tool = np.asarray(table.tool, float)
-    consts = (d1, a2, a3, D, d4, d6, offsets, qlim,
-              None if np.array_equal(base, np.eye(4)) else _inv(base),
-              None if np.array_equal(tool, np.eye(4)) else _inv(tool))
-    if len(_PUMA_CACHE) > 16:
-        _PUMA_CACHE.clear()
-    _PUMA_CACHE[id(table)] = (table, consts)
-    return consts
+    if getattr(table, "_closed_form", None) is None:
+        _puma_params(table)  # the PUMA structure, checked once per table
+    model = _model(table)
+    ref = theta4_ref if type(theta4_ref) is float else as_scalar(theta4_ref, "theta4_ref")
+    return model.solve(_check_pose(T), ref)
 
 
 def _rz(t):
