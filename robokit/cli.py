@@ -74,6 +74,14 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+
+    # capability maps (robokit.workspace)
+    cm = sub.add_parser("workspace", help="capability map: per voxel, the fraction of tool orientations reachable")
+    cm.add_argument("robot", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    cm.add_argument("--resolution", type=float, required=True, help="voxel size (m)")
+    cm.add_argument("--orientations", type=int, default=100, help="number of tool orientations K (default 100)")
+    cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
+    cm.add_argument("-o", "--output", required=True, help="output .npz file")
     return p
 
 
@@ -91,6 +99,10 @@ def _dispatch(args) -> int:
 
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
+    if args.command == "workspace":
+        from robokit.workspace.capability import workspace_cli
+
+        return workspace_cli(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 
