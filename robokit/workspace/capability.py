@@ -315,7 +315,7 @@ def capability_map(robot, resolution: float, orientations=100, client=None, *, s
     seed : int
         Seeds the pre-pass and the numerical IK (per chunk).
     restarts : int, optional
-        Random restarts of the numerical IK per target (default 4).
+        Random restarts of the numerical IK per target (default 20).
     progress : bool, optional
         Show a progress bar of chunks on stderr (default: only when stderr is a terminal).
 

@@ -20,7 +20,7 @@ import numpy as np
 
 __all__ = ["reachable_voxels"]
 
-_BATCH = 16_384
+_BATCH = 8192
 _MAX_BOX_VOXELS = 200_000_000
 
 
@@ -52,10 +52,33 @@ def tool_positions(poe, Q) -> np.ndarray:
     return T[:, :3, 3]
 
 
-def _sampler(qlim, seed):
+def _ranges(qlim):
     qlim = np.asarray(qlim, dtype=float)
     lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
     hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+    return lo, hi
+
+
+def reach_ball(poe, qlim):
+    """A ball (centre (3,), radius) containing every tool position: rotations keep lengths, so
+    ``|p − r₁| ≤ Σ|r_{i+1} − r_i|`` over points r_i on the revolute axes (the tool point last),
+    plus the travel of each prismatic joint."""
+    S = np.asarray(poe.Slist, dtype=float)
+    lo, hi = _ranges(qlim)
+    points, travel = [], 0.0
+    for i in range(S.shape[1]):
+        w = S[:3, i]
+        if np.linalg.norm(w) > 1e-12:
+            points.append(np.cross(w, S[3:, i]) / float(w @ w))
+        else:
+            travel += max(abs(lo[i]), abs(hi[i])) * float(np.linalg.norm(S[3:, i]))
+    points.append(np.asarray(poe.M, dtype=float)[:3, 3])
+    P = np.array(points)
+    return P[0], float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum() + travel)
+
+
+def _sampler(qlim, seed):
+    lo, hi = _ranges(qlim)
     rng = np.random.default_rng(seed)
     return lambda m: rng.uniform(lo, hi, size=(m, len(lo)))
 
@@ -92,32 +115,48 @@ def reachable_voxels(robot, resolution: float, *, samples: int | None = None, se
     """
     poe = robot.poe
     draw = _sampler(robot.qlim, seed)
+    centre, radius = reach_ball(poe, robot.qlim)
+    if chain is not None:
+        centre = chain.to_plane(centre[None])[0][0]
+    # lattice keys inside the ball's box, encoded as one int64 each (cheap to sort and grow)
+    lo = np.floor((centre - radius) / resolution).astype(np.int64) - 2
+    size = np.full(len(lo), int(np.ceil(2 * radius / resolution)) + 5, dtype=np.int64)
+    dims = len(lo)
+    if float(np.prod(size.astype(float))) > 2.0**62:
+        raise ValueError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
+    stride = np.cumprod(np.r_[1, size[::-1][:-1]])[::-1].astype(np.int64)
 
-    def keys_of(Q):
+    def codes_of(Q):
         P = tool_positions(poe, Q)
         if chain is not None:
             P = chain.to_plane(P)[0]
-        return np.rint(P / resolution).astype(np.int64)
+        return np.unique((np.rint(P / resolution).astype(np.int64) - lo) @ stride)
 
-    pilot = keys_of(draw(4096))
-    dims = pilot.shape[1]
-    span = pilot.max(axis=0) - pilot.min(axis=0) + 3
-    box = float(np.prod(span.astype(float)))
+    pilot = draw(4096)
+    pk = np.rint(tool_positions(poe, pilot) / resolution) if chain is None else \
+        np.rint(chain.to_plane(tool_positions(poe, pilot))[0] / resolution)
+    box = float(np.prod(pk.max(axis=0) - pk.min(axis=0) + 3))
     if box > _MAX_BOX_VOXELS:
         raise ValueError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
                          f"use a coarser resolution (at most {_MAX_BOX_VOXELS:.0e} voxels)")
     if samples is None:
         samples = int(min(max(10 * box, 20_000), 4_000_000))
-    found = [np.unique(pilot, axis=0)]
+    found = [codes_of(pilot)]
     left = int(samples) - len(pilot)
     while left > 0:
         m = min(left, _BATCH)
-        found.append(np.unique(keys_of(draw(m)), axis=0))
+        found.append(codes_of(draw(m)))
         left -= m
         if len(found) > 8:
-            found = [np.unique(np.concatenate(found), axis=0)]
-    keys = np.unique(np.concatenate(found), axis=0)
-    offsets = np.stack(np.meshgrid(*[np.arange(-1, 2)] * dims, indexing="ij"), axis=-1).reshape(-1, dims)
-    grown = [np.unique((keys + off), axis=0) for off in offsets]
-    keys = np.unique(np.concatenate(grown), axis=0)
+            found = [np.unique(np.concatenate(found))]
+    codes = np.unique(np.concatenate(found))
+    del found
+    # grow by one voxel in every direction
+    offsets = np.stack(np.meshgrid(*[np.arange(-1, 2)] * dims, indexing="ij"), axis=-1).reshape(-1, dims) @ stride
+    codes = np.unique((codes[:, None] + offsets[None, :]).ravel())
+    keys = np.empty((len(codes), dims), dtype=np.int64)
+    rest = codes
+    for k in range(dims):
+        keys[:, k], rest = np.divmod(rest, stride[k])
+    keys += lo
     return keys, int(samples)

@@ -30,7 +30,7 @@ import numpy as np
 __all__ = ["ik_success", "ik_backend"]
 
 #: Restarts of the numerical IK per target (after the first attempt).
-DEFAULT_RESTARTS = 4
+DEFAULT_RESTARTS = 20
 _PLANAR_TOL = 1e-9
 
 
