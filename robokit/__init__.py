@@ -26,6 +26,8 @@ from robokit.control import *  # noqa: F401,F403
 from robokit.control import __all__ as _control_all
 from robokit.mobile import *  # noqa: F401,F403
 from robokit.mobile import __all__ as _mobile_all
+from robokit.workspace import *  # noqa: F401,F403
+from robokit.workspace import __all__ as _workspace_all
 
 try:
     from importlib.metadata import PackageNotFoundError as _NotFound, version as _version
@@ -44,4 +46,5 @@ __all__ = (
     + list(_trajectory_all)
     + list(_control_all)
     + list(_mobile_all)
+    + list(_workspace_all)
 )

@@ -103,6 +103,14 @@ def _build_parser() -> argparse.ArgumentParser:
     t.add_argument("-o", "--output", help="output .html file (default: a temporary file, opened in the browser)")
     t.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(t)
+
+    # capability maps (robokit.workspace)
+    cm = sub.add_parser("workspace", help="capability map: per voxel, the fraction of tool orientations reachable")
+    cm.add_argument("robot", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    cm.add_argument("--resolution", type=float, required=True, help="voxel size (m)")
+    cm.add_argument("--orientations", type=int, default=100, help="number of tool orientations K (default 100)")
+    cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
+    cm.add_argument("-o", "--output", required=True, help="output .npz file")
     return p
 
 
@@ -135,6 +143,10 @@ def _dispatch(args) -> int:
 
             model = load(args.model, tip=args.tip, **opts)
         return teach_cli(model, args.output)
+    if args.command == "workspace":
+        from robokit.workspace.capability import workspace_cli
+
+        return workspace_cli(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

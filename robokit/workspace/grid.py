@@ -1,0 +1,162 @@
+r"""The voxel grid of a capability map and its reachability pre-pass.
+
+Voxel centres sit on the lattice ``resolution · (i, j, k)`` (integers i, j, k) in the base
+frame, so the same resolution always gives the same centres. For a planar arm the lattice
+is two-dimensional, ``height · n + resolution · (i u + j v)`` in the tool's plane (see
+:class:`robokit.workspace.reach.PlanarChain`).
+
+Pre-pass (cheap, before any IK): tool positions are computed by forward kinematics (product
+of exponentials, batched) at configurations drawn uniformly inside the joint limits (±π for
+unlimited joints) from a fixed seed; every voxel that contains a sampled position is marked,
+and the marked set is grown by one voxel in every direction (the 3×3×3, or 3×3, block), so
+that a voxel whose centre is reachable but which no sample happened to hit is still
+evaluated. Only the marked voxels get the orientation sweep; the others are not in the map
+(their index is 0). The number of samples defaults to 10 per voxel of the sampled bounding
+box (at least 20 000, at most 4 000 000).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["reachable_voxels"]
+
+_BATCH = 8192
+_MAX_BOX_VOXELS = 200_000_000
+
+
+def _exp_batch(S, theta):
+    """(B, 4, 4) exponentials exp([S] θ) of one screw S (6,) (angular first) at angles θ (B,)."""
+    w, v = S[:3], S[3:]
+    B = len(theta)
+    E = np.zeros((B, 4, 4))
+    E[:, 3, 3] = 1.0
+    if np.linalg.norm(w) < 1e-12:  # prismatic: pure translation along v
+        E[:, :3, :3] = np.eye(3)
+        E[:, :3, 3] = theta[:, None] * v
+        return E
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    W2 = W @ W
+    s, c = np.sin(theta)[:, None, None], np.cos(theta)[:, None, None]
+    E[:, :3, :3] = np.eye(3) + s * W + (1 - c) * W2
+    G = theta[:, None, None] * np.eye(3) + (1 - c) * W + (theta[:, None, None] - s) * W2
+    E[:, :3, 3] = G @ v
+    return E
+
+
+def tool_positions(poe, Q) -> np.ndarray:
+    """(B, 3) tool positions in the base frame at joint angles Q (B, n): ``e^{[S₁]θ₁}⋯e^{[Sₙ]θₙ} M``."""
+    S = np.asarray(poe.Slist, dtype=float)
+    T = np.broadcast_to(np.asarray(poe.M, dtype=float), (len(Q), 4, 4))
+    for i in range(S.shape[1] - 1, -1, -1):
+        T = _exp_batch(S[:, i], Q[:, i]) @ T
+    return T[:, :3, 3]
+
+
+def _ranges(qlim):
+    qlim = np.asarray(qlim, dtype=float)
+    lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
+    hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+    return lo, hi
+
+
+def reach_ball(poe, qlim):
+    """A ball (centre (3,), radius) containing every tool position: rotations keep lengths, so
+    ``|p − r₁| ≤ Σ|r_{i+1} − r_i|`` over points r_i on the revolute axes (the tool point last),
+    plus the travel of each prismatic joint."""
+    S = np.asarray(poe.Slist, dtype=float)
+    lo, hi = _ranges(qlim)
+    points, travel = [], 0.0
+    for i in range(S.shape[1]):
+        w = S[:3, i]
+        if np.linalg.norm(w) > 1e-12:
+            points.append(np.cross(w, S[3:, i]) / float(w @ w))
+        else:
+            travel += max(abs(lo[i]), abs(hi[i])) * float(np.linalg.norm(S[3:, i]))
+    points.append(np.asarray(poe.M, dtype=float)[:3, 3])
+    P = np.array(points)
+    return P[0], float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum() + travel)
+
+
+def _sampler(qlim, seed):
+    lo, hi = _ranges(qlim)
+    rng = np.random.default_rng(seed)
+    return lambda m: rng.uniform(lo, hi, size=(m, len(lo)))
+
+
+def reachable_voxels(robot, resolution: float, *, samples: int | None = None, seed: int = 0, chain=None):
+    """Integer lattice keys of the voxels the pre-pass marks (see the module docstring).
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot`
+    resolution : float
+        Voxel edge (m).
+    samples : int, optional
+        Forward-kinematics samples (default: 10 per voxel of the bounding box, clipped to
+        [20 000, 4 000 000]).
+    seed : int
+        Seed of the configuration samples.
+    chain : :class:`robokit.workspace.reach.PlanarChain`, optional
+        For a planar arm: keys are 2-D plane coordinates.
+
+    Returns
+    -------
+    keys : (M, d) int64 ndarray
+        Sorted (lexicographically) lattice indices, d = 3 (or 2 for a planar arm).
+    samples : int
+        The number of samples used.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> keys, used = reachable_voxels(robokit.load("ur5"), 0.2)
+    >>> keys.shape[1]
+    3
+    """
+    poe = robot.poe
+    draw = _sampler(robot.qlim, seed)
+    centre, radius = reach_ball(poe, robot.qlim)
+    if chain is not None:
+        centre = chain.to_plane(centre[None])[0][0]
+    # lattice keys inside the ball's box, encoded as one int64 each (cheap to sort and grow)
+    lo = np.floor((centre - radius) / resolution).astype(np.int64) - 2
+    size = np.full(len(lo), int(np.ceil(2 * radius / resolution)) + 5, dtype=np.int64)
+    dims = len(lo)
+    if float(np.prod(size.astype(float))) > 2.0**62:
+        raise ValueError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
+    stride = np.cumprod(np.r_[1, size[::-1][:-1]])[::-1].astype(np.int64)
+
+    def codes_of(Q):
+        P = tool_positions(poe, Q)
+        if chain is not None:
+            P = chain.to_plane(P)[0]
+        return np.unique((np.rint(P / resolution).astype(np.int64) - lo) @ stride)
+
+    pilot = draw(4096)
+    pk = np.rint(tool_positions(poe, pilot) / resolution) if chain is None else \
+        np.rint(chain.to_plane(tool_positions(poe, pilot))[0] / resolution)
+    box = float(np.prod(pk.max(axis=0) - pk.min(axis=0) + 3))
+    if box > _MAX_BOX_VOXELS:
+        raise ValueError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
+                         f"use a coarser resolution (at most {_MAX_BOX_VOXELS:.0e} voxels)")
+    if samples is None:
+        samples = int(min(max(10 * box, 20_000), 4_000_000))
+    found = [codes_of(pilot)]
+    left = int(samples) - len(pilot)
+    while left > 0:
+        m = min(left, _BATCH)
+        found.append(codes_of(draw(m)))
+        left -= m
+        if len(found) > 8:
+            found = [np.unique(np.concatenate(found))]
+    codes = np.unique(np.concatenate(found))
+    del found
+    # grow by one voxel in every direction
+    offsets = np.stack(np.meshgrid(*[np.arange(-1, 2)] * dims, indexing="ij"), axis=-1).reshape(-1, dims) @ stride
+    codes = np.unique((codes[:, None] + offsets[None, :]).ravel())
+    keys = np.empty((len(codes), dims), dtype=np.int64)
+    rest = codes
+    for k in range(dims):
+        keys[:, k], rest = np.divmod(rest, stride[k])
+    keys += lo
+    return keys, int(samples)

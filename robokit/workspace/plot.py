@@ -1,0 +1,169 @@
+"""Pictures of capability maps: matplotlib slices for notebooks and a meshcat page of the voxels.
+
+Colours follow the index from 0 (dark) to 1 (bright, the dexterous workspace) with
+matplotlib's ``viridis`` colour map in both.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["plot_capability_slice", "capability_html"]
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def _as_map(cmap):
+    from robokit.workspace.capability import CapabilityMap
+
+    if isinstance(cmap, CapabilityMap):
+        return cmap
+    if isinstance(cmap, (str, bytes)) or hasattr(cmap, "__fspath__"):
+        return CapabilityMap.load(cmap)
+    raise TypeError(f"map: expected a CapabilityMap or an .npz path, got {type(cmap).__name__}")
+
+
+def plot_capability_slice(cmap, axis: str = "z", value: float | None = None, ax=None, cmap_name: str = "viridis"):
+    """Draw the voxels of one slice of a capability map, coloured by their index.
+
+    Parameters
+    ----------
+    cmap : :class:`CapabilityMap` or path of an ``.npz`` map
+    axis : {"x", "y", "z"}
+        The base-frame axis the slice is perpendicular to.
+    value : float, optional
+        Coordinate of the slice along ``axis`` (m); the voxels whose centre is within half a
+        voxel of it are drawn. Default: the coordinate with the most voxels. A planar arm's
+        map is one slice: use the axis along its normal (``z`` for the shipped models).
+    ax : matplotlib Axes, optional
+    cmap_name : str
+        matplotlib colour map.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import robokit
+    >>> m = robokit.capability_map("rrr", 0.1, orientations=8, client="serial")
+    >>> fig = plot_capability_slice(m, "z")
+    """
+    import matplotlib.pyplot as plt
+
+    m = _as_map(cmap)
+    if axis not in _AXES:
+        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+    k = _AXES[axis]
+    others = [i for i in range(3) if i != k]
+    coord = m.centres[:, k]
+    if len(coord) == 0:
+        raise ValueError("map: has no voxels")
+    if value is None:
+        levels, counts = np.unique(np.round(coord / m.resolution), return_counts=True)
+        value = float(levels[np.argmax(counts)] * m.resolution)
+    value = float(value)
+    if not np.isfinite(value):
+        raise ValueError(f"value: expected a finite coordinate in m, got {value!r}")
+    sel = np.abs(coord - value) <= 0.5 * m.resolution + 1e-12
+    if not sel.any():
+        raise ValueError(f"value: no voxel centre within {0.5 * m.resolution:g} m of {axis} = {value:g} m "
+                         f"(the map spans {coord.min():.3g} … {coord.max():.3g} m)")
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(5.5, 5))
+    else:
+        fig = ax.figure
+    P, D = m.centres[sel], m.index[sel]
+    names = "xyz"
+    sc = ax.scatter(P[:, others[0]], P[:, others[1]], c=D, cmap=cmap_name, vmin=0.0, vmax=1.0, marker="s",
+                    s=max(4.0, 2000.0 / max(1.0, np.sqrt(len(P)))), linewidths=0)
+    fig.colorbar(sc, ax=ax, label="capability index")
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"{names[others[0]]} [m]")
+    ax.set_ylabel(f"{names[others[1]]} [m]")
+    title = f"{m.robot} " if m.robot else ""
+    ax.set_title(f"{title}capability map, {axis} = {value:.3g} m (K = {len(m.orientations)})")
+    return fig
+
+
+def _colours(index, cmap_name="viridis") -> np.ndarray:
+    from matplotlib import colormaps
+
+    return colormaps[cmap_name](np.clip(index, 0.0, 1.0))[:, :3]
+
+
+def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
+    """A self-contained meshcat page of a capability map: one coloured point per voxel.
+
+    Parameters
+    ----------
+    cmap : :class:`CapabilityMap` or path of an ``.npz`` map
+    robot : robot or name, optional
+        Drawn at its zero configuration when given (default: the map's ``robot`` name when
+        the file stores one, else none).
+    point_size : float, optional
+        Point size (m); default 0.6 × the resolution.
+
+    Returns
+    -------
+    str
+        The HTML page (no server needed to view it).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> page = capability_html(robokit.capability_map("rrr", 0.1, orientations=8, client="serial"))
+    """
+    import meshcat.geometry as g
+
+    from robokit.viz.scene import Scene, _new_visualizer, _stop_server
+
+    m = _as_map(cmap)
+    if robot is None and m.robot:
+        robot = m.robot
+    P = m.centres.T.astype(np.float32)
+    C = _colours(m.index).T.astype(np.float32)
+    size = float(point_size) if point_size is not None else 0.6 * m.resolution
+    cloud = g.PointCloud(position=P, color=C, size=size)
+    if robot is not None:
+        with Scene(robot) as scene:
+            scene.show(None)
+            scene.vis["points/capability"].set_object(cloud)
+            if len(m.centres):
+                scene._extra_points.extend([m.centres.min(axis=0), m.centres.max(axis=0)])
+            scene.frame_camera()
+            return scene.html()
+    vis = _new_visualizer()
+    try:
+        vis["points/capability"].set_object(cloud)
+        lo, hi = (m.centres.min(axis=0), m.centres.max(axis=0)) if len(m.centres) else (np.zeros(3), np.zeros(3))
+        centre = 0.5 * (lo + hi)
+        radius = max(0.5 * float(np.linalg.norm(hi - lo)), 0.1)
+        dist = radius / np.tan(0.5 * np.deg2rad(75.0) * 0.75)
+        az, el = np.deg2rad(45.0), np.deg2rad(25.0)
+        off = dist * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        T = np.eye(4)
+        T[:3, 3] = -centre
+        for name in ("points", "/Grid", "/Axes"):
+            vis[name].set_transform(T)
+        vis["/Cameras/default/rotated/<object>"].set_property("position", [off[0], off[2], -off[1]])
+        return vis.static_html()
+    finally:
+        _stop_server(getattr(vis.window, "server_proc", None))
+
+
+def capability_view_cli(path, output) -> int:
+    """``robokit view MAP.npz -o OUT.html``: the meshcat page of a capability map, written atomically."""
+    import sys
+    from pathlib import Path
+
+    from robokit._io import atomic_write
+
+    out = Path(output)
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
+    if not (out.parent if str(out.parent) else Path(".")).is_dir():
+        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    page = capability_html(path)
+    atomic_write(out, page)
+    print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
+    return 0
