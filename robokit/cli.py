@@ -116,7 +116,7 @@ def _build_parser() -> argparse.ArgumentParser:
 
 def _dispatch(args) -> int:
     if args.command == "validate":
-        from robokit.validate import main as validate_main
+        from robokit.validation import main as validate_main
 
         return validate_main(as_json=args.json, seed=args.seed)
     if args.command == "convert":

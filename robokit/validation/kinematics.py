@@ -3,9 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validate import CheckRow, robot as load
+from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
 
-MODELS = ("twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova")
 SAMPLES = 100
 
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validate import CheckRow
+from robokit.validation.core import CheckRow
 
 N = 3000
 

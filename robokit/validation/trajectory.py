@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validate import CheckRow
+from robokit.validation.core import CheckRow
 
 
 def _random_pose(rng, angle_max=3.0):

@@ -7,9 +7,8 @@ states. See :mod:`robokit.description.mujoco_check`.
 """
 from __future__ import annotations
 
-from robokit.validate import CheckRow, robot as load
+from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
 
-ARMS = ("ur5", "panda", "z1", "xarm7", "kinova")
 SAMPLES = 20
 TOL = 1e-9
 

@@ -3,20 +3,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validate import CheckRow, robot as load
+from robokit.kinematics import fkin_space
 
-#: example-robot-data arms compared in `robokit validate`
-ARMS = ("ur5", "panda", "z1", "xarm7", "kinova")
+from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
+
 SAMPLES = 200
-
-
-def _poe_fk(poe, theta):
-    from robokit.spatial.se3 import _exp6
-
-    T = np.eye(4)
-    for i, th in enumerate(theta):
-        T = T @ _exp6(poe.Slist[:, i] * th)
-    return T @ poe.M
 
 
 def checks(rng) -> list[CheckRow]:
@@ -42,7 +33,7 @@ def checks(rng) -> list[CheckRow]:
         worst = 0.0
         for _ in range(SAMPLES):
             q = robot.random_configuration(rng)
-            worst = max(worst, np.abs(_poe_fk(robot.poe, q) - robot.frame_pose(q)).max())
+            worst = max(worst, np.abs(fkin_space(robot.poe.M, robot.poe.Slist, q) - robot.frame_pose(q)).max())
         rows.append(CheckRow(f"PoE FK (URDF → M, Slist) vs Pinocchio FK of {robot.tip}", name, SAMPLES, worst, 1e-9,
                              "abs, max entry"))
     return rows

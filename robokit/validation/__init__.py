@@ -1,106 +1,52 @@
 """The main job: the course implementations against Pinocchio, as a table of largest errors.
 
-Each area of robokit contributes rows through modules ``robokit/<area>/checks.py`` or
-``robokit/<area>/checks_<topic>.py`` that define ``checks(rng) -> iterable of CheckRow``.
-``run_all`` imports the ones that exist, areas in dependency order, modules by name, and
-collects their rows; a check that raises becomes a failed row carrying the exception
-text, so one broken area never hides the others.
+This package sits on top of robokit: it imports the course areas and Pinocchio and nothing
+below imports it. ``AREAS`` is the one explicit list of what is compared, in dependency
+order: each entry names a module of this package whose ``checks(rng)`` returns
+:class:`~robokit.validation.core.CheckRow` rows over the robots of
+:data:`~robokit.validation.core.MODELS`. A check that raises becomes a failed row carrying
+the exception text, so one broken area never hides the others.
 """
 from __future__ import annotations
 
-import functools
 import importlib
 import json
 import math
-import pkgutil
 import time
 import traceback
-from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-AREAS = ("spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile")
+from robokit.validation.core import ARMS, MODELS, SHIPPED, CheckRow, max_error, robot
 
+__all__ = ["AREAS", "CheckRow", "robot", "max_error", "MODELS", "ARMS", "SHIPPED", "iter_rows", "run_all",
+           "format_table", "main"]
 
-@dataclass
-class CheckRow:
-    """One row of the validation table.
-
-    quantity  : what is compared, e.g. ``"matrix_exp_6 vs pinocchio.exp6"``.
-    model     : robot model name, or ``"-"`` for robot-free checks.
-    cases     : number of samples compared.
-    max_error : the largest error over the samples (norm or relative error as ``metric`` says).
-    tolerance : the row passes when ``max_error <= tolerance``.
-    metric    : how the error is measured (e.g. ``"abs, Frobenius"``, ``"rel, inf-norm"``).
-    note      : free text (e.g. the Pinocchio reference frame used).
-    """
-
-    quantity: str
-    model: str
-    cases: int
-    max_error: float
-    tolerance: float
-    metric: str = "abs"
-    note: str = ""
-    error: str = field(default="")
-
-    @property
-    def passed(self) -> bool:
-        return not self.error and math.isfinite(self.max_error) and self.max_error <= self.tolerance and self.cases > 0
-
-    def as_dict(self) -> dict:
-        d = asdict(self)
-        d["passed"] = self.passed
-        return d
-
-
-@functools.lru_cache(maxsize=None)
-def robot(name: str):
-    """``robokit.load(name)``, loaded once per validation run and shared by the check modules."""
-    from robokit.description.robot import load
-
-    return load(name)
-
-
-def max_error(pairs) -> float:
-    """Largest ``‖a − b‖`` (Frobenius / 2-norm) over an iterable of ``(a, b)`` array pairs."""
-    worst = 0.0
-    for a, b in pairs:
-        e = float(np.linalg.norm(np.asarray(a, dtype=float) - np.asarray(b, dtype=float)))
-        if not math.isfinite(e):
-            return math.inf
-        worst = max(worst, e)
-    return worst
-
-
-def _check_modules(area: str) -> list[str]:
-    try:
-        pkg = importlib.import_module(f"robokit.{area}")
-    except ModuleNotFoundError as exc:
-        if exc.name == f"robokit.{area}":
-            return []
-        raise
-    names = [m.name for m in pkgutil.iter_modules(pkg.__path__) if m.name == "checks" or m.name.startswith("checks_")]
-    return [f"robokit.{area}.{n}" for n in sorted(names)]
+#: (area, module) in dependency order; the module is ``robokit.validation.<module>``.
+AREAS = (
+    ("spatial", "spatial"),
+    ("description", "description"),
+    ("description", "urdf_to_dh"),
+    ("description", "mujoco"),
+    ("kinematics", "kinematics"),
+    ("dynamics", "dynamics"),
+    ("ik", "ik"),
+    ("trajectory", "trajectory"),
+)
 
 
 def iter_rows(seed: int = 0, areas=AREAS):
-    """Yield ``(module name, rows)`` as each check module finishes (areas in dependency order)."""
-    for area in areas:
+    """Yield ``(area, rows)`` as each module of ``areas`` finishes (in the order given)."""
+    for area, module in areas:
+        modname = f"robokit.validation.{module}"
         try:
-            modnames = _check_modules(area)
-        except Exception as exc:
-            yield f"robokit.{area}", [CheckRow(f"{area}: import", "-", 0, math.inf, 0.0, error=repr(exc))]
-            continue
-        for modname in modnames:
-            try:
-                mod = importlib.import_module(modname)
-                rng = np.random.default_rng(seed)
-                rows = list(mod.checks(rng))
-            except Exception as exc:  # a broken check is a failed row, not a crash
-                tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
-                rows = [CheckRow(f"{modname}: raised", "-", 0, math.inf, 0.0, error=tb)]
-            yield modname, rows
+            mod = importlib.import_module(modname)
+            rng = np.random.default_rng(seed)
+            rows = list(mod.checks(rng))
+        except Exception as exc:  # a broken check is a failed row, not a crash
+            tb = traceback.format_exception_only(type(exc), exc)[-1].strip()
+            rows = [CheckRow(f"{modname}: raised", "-", 0, math.inf, 0.0, error=tb)]
+        yield area, rows
 
 
 def run_all(seed: int = 0, areas=AREAS) -> list[CheckRow]:
@@ -178,7 +124,7 @@ def main(as_json: bool = False, seed: int = 0) -> int:
         for modname, new in iter_rows(seed=seed):
             rows.extend(new)
             if progress is not None:
-                progress.update(f"validating ... {modname.split('.')[1]} done ({len(rows)} rows)")
+                progress.update(f"validating ... {modname} done ({len(rows)} rows)")
             if not as_json:
                 for r in new:
                     print(_line(_row_cells(r)))
