@@ -112,6 +112,39 @@ def fkin_body(M, Blist, thetalist):
     return W[0].copy()
 
 
+@njit
+def fkin_space_rows(lo, hi, M, Slist, thetas, out):
+    """out[k] ← space-form FK of row k, for lo ≤ k < hi (one block of a batched call)."""
+    W = np.empty((2, 4, 4))
+    for k in range(lo, hi):
+        fkin_space_into(M, Slist, thetas[k], out[k], W[0], W[1])
+
+
+@njit
+def fkin_body_rows(lo, hi, M, Blist, thetas, out):
+    """out[k] ← body-form FK of row k, for lo ≤ k < hi."""
+    W = np.empty((2, 4, 4))
+    for k in range(lo, hi):
+        fkin_body_into(M, Blist, thetas[k], out[k], W[0], W[1])
+
+
+@njit
+def jacobian_space_rows(lo, hi, Slist, thetas, out):
+    """out[k] ← space Jacobian of row k, for lo ≤ k < hi."""
+    W = np.empty((3, 4, 4))
+    for k in range(lo, hi):
+        jacobian_space_into(Slist, thetas[k], out[k], W[0], W[1], W[2])
+
+
+@njit
+def jacobian_body_rows(lo, hi, Blist, thetas, out):
+    """out[k] ← body Jacobian of row k, for lo ≤ k < hi."""
+    W = np.empty((3, 4, 4))
+    for k in range(lo, hi):
+        jacobian_body_into(Blist, thetas[k], out[k], W[0], W[1], W[2])
+
+
+
 @njit(_SIG_FK_BATCH, parallel=True)
 def fkin_space_batch(M, Slist, thetas):
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), space form."""
@@ -120,9 +153,7 @@ def fkin_space_batch(M, Slist, thetas):
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        W = np.empty((2, 4, 4))
-        for k in range(lo, hi):
-            fkin_space_into(M, Slist, thetas[k], out[k], W[0], W[1])
+        fkin_space_rows(lo, hi, M, Slist, thetas, out)
     return out
 
 
@@ -134,9 +165,7 @@ def fkin_body_batch(M, Blist, thetas):
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        W = np.empty((2, 4, 4))
-        for k in range(lo, hi):
-            fkin_body_into(M, Blist, thetas[k], out[k], W[0], W[1])
+        fkin_body_rows(lo, hi, M, Blist, thetas, out)
     return out
 
 
@@ -193,9 +222,7 @@ def jacobian_space_batch(Slist, thetas):
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        W = np.empty((3, 4, 4))
-        for k in range(lo, hi):
-            jacobian_space_into(Slist, thetas[k], out[k], W[0], W[1], W[2])
+        jacobian_space_rows(lo, hi, Slist, thetas, out)
     return out
 
 
@@ -207,9 +234,7 @@ def jacobian_body_batch(Blist, thetas):
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        W = np.empty((3, 4, 4))
-        for k in range(lo, hi):
-            jacobian_body_into(Blist, thetas[k], out[k], W[0], W[1], W[2])
+        jacobian_body_rows(lo, hi, Blist, thetas, out)
     return out
 
 
