@@ -102,7 +102,27 @@ class _Model:
         return _adjoint_many(T)
 
 
+_SEEN: dict = {}  # id(Slist) -> (Mlist, Glist, Slist, their bytes, the model): the last arrays seen
+
+
 def _model(Mlist, Glist, Slist) -> _Model:
+    """The validated model of (Mlist, Glist, Slist), remembered by the arrays' contents.
+
+    The same three array objects with unchanged bytes (compared, not hashed: the cheap test on
+    every call) give the remembered model; anything else is looked up by its bytes, or checked."""
+    seen = _SEEN.get(id(Slist))
+    if (seen is not None and seen[0] is Mlist and seen[1] is Glist and seen[2] is Slist
+            and Slist.tobytes() == seen[5] and Mlist.tobytes() == seen[3] and Glist.tobytes() == seen[4]):
+        return seen[6]
+    m = _model_lookup(Mlist, Glist, Slist)
+    if type(Mlist) is np.ndarray and type(Glist) is np.ndarray and type(Slist) is np.ndarray:
+        if len(_SEEN) > 32:
+            _SEEN.clear()
+        _SEEN[id(Slist)] = (Mlist, Glist, Slist, Mlist.tobytes(), Glist.tobytes(), Slist.tobytes(), m)
+    return m
+
+
+def _model_lookup(Mlist, Glist, Slist) -> _Model:
     if all(type(a) is np.ndarray and a.dtype == np.float64 for a in (Mlist, Glist, Slist)):
         hit = _MODELS.get((Mlist.tobytes(), Glist.tobytes(), Slist.tobytes()))
         if hit is not None and hit.n == Slist.shape[1] and Mlist.shape == (hit.n + 1, 4, 4):
