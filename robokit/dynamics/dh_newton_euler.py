@@ -30,6 +30,7 @@ from robokit._arrays import as_vector
 
 __all__ = ["dh_inverse_dynamics"]
 
+_NO_WRENCH = np.zeros(6)  # the default tip wrench (never written)
 _kdh = None  # robokit.kernels.dh, imported on first use (the recursion itself lives there)
 
 
@@ -51,10 +52,17 @@ def dh_inverse_dynamics(table, q, dq, ddq, gravity=None, F_tip=None) -> np.ndarr
     n = table.n
     k = _kdh or _kernels()
     packed = k.pack_dh(table)
+    g = table.gravity if gravity is None else gravity
+    F = _NO_WRENCH if F_tip is None else F_tip
+    if all(type(x) is np.ndarray and x.ndim == 1 for x in (q, dq, ddq, g, F)):
+        try:  # the kernel checks lengths and finiteness itself
+            return k.dh_inverse_dynamics(*packed, q, dq, ddq, g, F)
+        except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
+            pass
     c = np.ascontiguousarray
     q = c(as_vector(q, "q", n))
     dq = c(as_vector(dq, "dq", n))
     ddq = c(as_vector(ddq, "ddq", n))
-    g = c(as_vector(table.gravity if gravity is None else gravity, "gravity", 3))
-    F = np.zeros(6) if F_tip is None else c(as_vector(F_tip, "F_tip", 6))
+    g = c(as_vector(g, "gravity", 3))
+    F = c(as_vector(F, "F_tip", 6))
     return k.dh_inverse_dynamics(*packed, q, dq, ddq, g, F)
