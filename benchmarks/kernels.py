@@ -188,7 +188,7 @@ def batched(sizes, reps):
             g, z6 = r.gravity, np.zeros(6)
             data = model.createData()
             QT, DT, AT = (np.asfortranarray(X.T) for X in (Q, D, A))
-            loop_reps = 1 if N >= 100_000 else reps
+            loop_reps = 3 if N >= 100_000 else reps
 
             def loop_rnea():
                 for k in range(N):
@@ -212,10 +212,10 @@ def batched(sizes, reps):
                 if fname == "mass_matrix" and N > 10_000:
                     continue  # N n² output; the other two tables already show the scaling
                 rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                t_ours = time_call(ours, repeats=loop_reps, target=0.0) / N
+                t_ours = time_call(ours, repeats=loop_reps, target=0.05) / N
                 rss1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                t_loop = time_call(loop, repeats=loop_reps, target=0.0) / N if loop else float("nan")
-                t_par = time_call(par, repeats=loop_reps, target=0.0) / N if par else float("nan")
+                t_loop = time_call(loop, repeats=loop_reps, target=0.05) / N if loop else float("nan")
+                t_par = time_call(par, repeats=loop_reps, target=0.05) / N if par else float("nan")
                 rows.append([name, n, fname, f"{N:,}", fmt_time(t_ours), fmt_time(t_loop), _ratio(t_ours, t_loop),
                              fmt_time(t_par), _ratio(t_ours, t_par), f"{max(0, rss1 - rss0) / 1024:.1f} MB"])
     print("\n## 3. Batched, per configuration (parallel kernels, 2 threads)\n")
@@ -252,7 +252,8 @@ def ik(n_targets):
                 t0 = time.perf_counter()
                 sol = ets.ik_LM(T, q0=q0, ilimit=30, slimit=200, tol=5e-21, joint_limits=True)
                 rtb_t.append(time.perf_counter() - t0)
-                rtb_ok += bool(sol[1]) and np.abs(r.frame_pose(np.asarray(sol[0])) - T).max() < 1e-9
+                q_rtb, ok_rtb = (sol.q, sol.success) if hasattr(sol, "success") else (sol[0], sol[1])
+                rtb_ok += bool(ok_rtb) and np.abs(r.frame_pose(np.asarray(q_rtb, dtype=float)) - T).max() < 1e-9
         med_o = float(np.median(ours_t))
         med_r = float(np.median(rtb_t)) if rtb_t else float("nan")
         rows.append([name, n_targets, f"{100 * ours_ok / n_targets:.1f} %", fmt_time(med_o),

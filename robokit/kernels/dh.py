@@ -39,7 +39,7 @@ import numpy as np
 
 from robokit.kernels._jit import njit, prange
 from robokit.kernels.lie import all_finite, copy44, mul_tt, mul_tt_inplace
-from robokit.kernels.poe import block_range, n_blocks
+from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
 __all__ = [
     "pack_dh", "dh_fk", "dh_jacobian", "dh_static_torques", "dh_inverse_dynamics",
@@ -424,6 +424,9 @@ def dh_fk_batch(P, modified, base, tool, Q):
     """Tool poses (N, 4, 4) for the rows of Q (N, n)."""
     N = Q.shape[0]
     out = np.empty((N, 4, 4))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        fk_rows(0, N, P, modified, base, tool, Q, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -436,6 +439,9 @@ def dh_jacobian_batch(P, modified, base, tool, Q, in_tool):
     """Jacobians (N, 6, n) for the rows of Q (N, n)."""
     N = Q.shape[0]
     out = np.empty((N, 6, P.shape[0]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        jacobian_rows(0, N, P, modified, base, tool, Q, in_tool, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -448,6 +454,9 @@ def dh_static_torques_batch(P, modified, base, tool, Q, Fs):
     """Static torques (N, n) for the rows of Q (N, n) and tool wrenches Fs (N, 6) or (1, 6)."""
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        static_torques_rows(0, N, P, modified, base, tool, Q, Fs, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -460,6 +469,9 @@ def dh_inverse_dynamics_batch(P, modified, base, tool, mass, com, inertia, Q, dQ
     """Craig Newton–Euler torques (N, n) for the rows of Q, dQ, ddQ (N, n); Fs (N, 6) or (1, 6)."""
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        rnea_rows(0, N, P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g, Fs, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)

@@ -45,7 +45,7 @@ from robokit.kernels.lie import (
     ad_transpose_wrench, ad_twist, adjoint_matrix, adjoint_screw, adjoint_transpose_wrench, adjoint_twist,
     all_finite, copy44, exp_screw, inv_t, mat6_vec, mul_tt, mul_tt_inplace, set_identity,
 )
-from robokit.kernels.poe import block_range, n_blocks
+from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
 __all__ = [
     "inverse_dynamics", "mass_matrix", "forward_dynamics",
@@ -368,6 +368,9 @@ def inverse_dynamics_batch(thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Sl
     for one wrench shared by all rows."""
     N, n = thetas.shape
     out = np.empty((N, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        inverse_dynamics_rows(0, N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -380,6 +383,9 @@ def mass_matrix_batch(thetas, Mlist, Glist, Slist):
     """Mass matrices (N, n, n) for the rows of thetas (N, n)."""
     N, n = thetas.shape
     out = np.empty((N, n, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        mass_matrix_rows(0, N, thetas, Mlist, Glist, Slist, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -393,6 +399,9 @@ def forward_dynamics_batch(thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist)
     A row whose mass matrix is not positive definite comes back NaN."""
     N, n = thetas.shape
     out = np.empty((N, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        forward_dynamics_rows(0, N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)

@@ -33,12 +33,12 @@ from __future__ import annotations
 import numpy as np
 
 from robokit.kernels._jit import njit, prange
-from robokit.kernels.lie import adjoint_screw, all_finite, copy44, exp_screw, mul_tt, mul_tt_inplace, set_identity
+from robokit.kernels.lie import adjoint_screw, all_finite, copy44, exp_screw, mul_tt_inplace, set_identity
 
 __all__ = [
     "fkin_space", "fkin_body", "jacobian_space", "jacobian_body",
     "fkin_space_batch", "fkin_body_batch", "jacobian_space_batch", "jacobian_body_batch",
-    "block_range", "n_blocks", "MAX_BLOCKS",
+    "block_range", "n_blocks", "MAX_BLOCKS", "SERIAL_BELOW",
 ]
 
 _SIG_FK = "float64[:, ::1](float64[:, ::1], float64[:, ::1], float64[::1])"
@@ -48,6 +48,9 @@ _SIG_J_BATCH = "float64[:, :, ::1](float64[:, ::1], float64[:, ::1])"
 
 
 # ------------------------------------------------------------------ blocks for the batched kernels
+#: Below this many rows a batched kernel runs serially on the calling thread.
+SERIAL_BELOW = 256
+
 #: The batched kernels cut N configurations into at most this many blocks, handed out to
 #: the threads by ``prange``; each block allocates its small scratch space once.
 MAX_BLOCKS = 64
@@ -128,28 +131,14 @@ def fkin_body_rows(lo, hi, M, Blist, thetas, out):
         fkin_body_into(M, Blist, thetas[k], out[k], W[0], W[1])
 
 
-@njit
-def jacobian_space_rows(lo, hi, Slist, thetas, out):
-    """out[k] ← space Jacobian of row k, for lo ≤ k < hi."""
-    W = np.empty((3, 4, 4))
-    for k in range(lo, hi):
-        jacobian_space_into(Slist, thetas[k], out[k], W[0], W[1], W[2])
-
-
-@njit
-def jacobian_body_rows(lo, hi, Blist, thetas, out):
-    """out[k] ← body Jacobian of row k, for lo ≤ k < hi."""
-    W = np.empty((3, 4, 4))
-    for k in range(lo, hi):
-        jacobian_body_into(Blist, thetas[k], out[k], W[0], W[1], W[2])
-
-
-
 @njit(_SIG_FK_BATCH, parallel=True)
 def fkin_space_batch(M, Slist, thetas):
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), space form."""
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        fkin_space_rows(0, N, M, Slist, thetas, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -162,6 +151,9 @@ def fkin_body_batch(M, Blist, thetas):
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), body form."""
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        fkin_body_rows(0, N, M, Blist, thetas, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -214,11 +206,31 @@ def jacobian_body(Blist, thetalist):
     return J
 
 
+@njit
+def jacobian_space_rows(lo, hi, Slist, thetas, out):
+    """out[k] ← space Jacobian of row k, for lo ≤ k < hi."""
+    W = np.empty((3, 4, 4))
+    for k in range(lo, hi):
+        jacobian_space_into(Slist, thetas[k], out[k], W[0], W[1], W[2])
+
+
+@njit
+def jacobian_body_rows(lo, hi, Blist, thetas, out):
+    """out[k] ← body Jacobian of row k, for lo ≤ k < hi."""
+    W = np.empty((3, 4, 4))
+    for k in range(lo, hi):
+        jacobian_body_into(Blist, thetas[k], out[k], W[0], W[1], W[2])
+
+
+
 @njit(_SIG_J_BATCH, parallel=True)
 def jacobian_space_batch(Slist, thetas):
     """Space Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
     out = np.empty((N, 6, Slist.shape[1]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        jacobian_space_rows(0, N, Slist, thetas, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
@@ -231,11 +243,12 @@ def jacobian_body_batch(Blist, thetas):
     """Body Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
     out = np.empty((N, 6, Blist.shape[1]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        jacobian_body_rows(0, N, Blist, thetas, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
         jacobian_body_rows(lo, hi, Blist, thetas, out)
     return out
 
-
-_ = mul_tt  # re-exported for readers: the 4×4 product the recursions use
