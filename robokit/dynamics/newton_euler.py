@@ -18,8 +18,9 @@ backward iterations (i = n..1), with ``F_{n+1} = Ftip``, ``T_{n+1,n} = Mlist[n]�
 The mass matrix uses the composite-rigid-body algorithm in the same frames
 (``Kᵢ = Gᵢ + Ad_{T_{i+1,i}}ᵀ K_{i+1} Ad_{T_{i+1,i}}``, ``M_{ji} = A_jᵀ (Ad …)ᵀ Kᵢ Aᵢ``), which
 equals n calls of inverse dynamics with unit accelerations, at a fraction of the cost.
-The model constants (Aᵢ, Mlist⁻¹, the screw exponential data) are computed once per model
-and cached, so repeated calls on the same model only do the recursions.
+The recursions run as compiled loops (:mod:`robokit.kernels.dynamics`, the parallel batched
+kernels for (N, n) input); this module checks the arguments, validating a model's constants
+once and remembering them (by their bytes).
 """
 from __future__ import annotations
 
@@ -42,6 +43,35 @@ __all__ = [
 ]
 
 _MODELS: dict = {}
+_kd = None  # robokit.kernels.dynamics, imported on first use
+
+
+def _kernels():
+    global _kd
+    from robokit.kernels import dynamics
+
+    _kd = dynamics
+    return dynamics
+
+
+_ZEROS: dict = {}
+
+
+def _zeros(n):
+    """A shared zero vector of length n (the kernels never write their inputs; it stays writeable
+    because the compiled signatures take writeable arrays)."""
+    z = _ZEROS.get(n)
+    if z is None:
+        z = _ZEROS[n] = np.zeros(n)
+    return z
+
+
+def _ready(*xs):
+    """True when every argument is a 1-D ndarray (the kernel then checks dtype, length, finiteness)."""
+    for x in xs:
+        if type(x) is not np.ndarray or x.ndim != 1:
+            return False
+    return True
 
 
 
@@ -52,6 +82,9 @@ class _Model:
     def __init__(self, Mlist, Glist, Slist):
         n = Slist.shape[1]
         self.n = n
+        self.Mlist = np.ascontiguousarray(Mlist)  # the validated constants, as the kernels take them
+        self.Glist = np.ascontiguousarray(Glist)
+        self.Slist = np.ascontiguousarray(Slist)
         self.Minv = np.array([_inv(M) for M in Mlist])  # (n+1, 4, 4)
         self.G = np.array(Glist)  # (n, 6, 6)
         M0i = np.eye(4)
@@ -69,7 +102,27 @@ class _Model:
         return _adjoint_many(T)
 
 
+_SEEN: dict = {}  # id(Slist) -> (Mlist, Glist, Slist, their bytes, the model): the last arrays seen
+
+
 def _model(Mlist, Glist, Slist) -> _Model:
+    """The validated model of (Mlist, Glist, Slist), remembered by the arrays' contents.
+
+    The same three array objects with unchanged bytes (compared, not hashed: the cheap test on
+    every call) give the remembered model; anything else is looked up by its bytes, or checked."""
+    seen = _SEEN.get(id(Slist))
+    if (seen is not None and seen[0] is Mlist and seen[1] is Glist and seen[2] is Slist
+            and Slist.tobytes() == seen[5] and Mlist.tobytes() == seen[3] and Glist.tobytes() == seen[4]):
+        return seen[6]
+    m = _model_lookup(Mlist, Glist, Slist)
+    if type(Mlist) is np.ndarray and type(Glist) is np.ndarray and type(Slist) is np.ndarray:
+        if len(_SEEN) > 32:
+            _SEEN.clear()
+        _SEEN[id(Slist)] = (Mlist, Glist, Slist, Mlist.tobytes(), Glist.tobytes(), Slist.tobytes(), m)
+    return m
+
+
+def _model_lookup(Mlist, Glist, Slist) -> _Model:
     if all(type(a) is np.ndarray and a.dtype == np.float64 for a in (Mlist, Glist, Slist)):
         hit = _MODELS.get((Mlist.tobytes(), Glist.tobytes(), Slist.tobytes()))
         if hit is not None and hit.n == Slist.shape[1] and Mlist.shape == (hit.n + 1, 4, 4):
@@ -91,149 +144,23 @@ def _model(Mlist, Glist, Slist) -> _Model:
     return m
 
 
-def _ad_times(V, X):
-    """``ad_V X = (ω × x_ω, v × x_ω + ω × x_v)`` for single twists, in plain floats (fast for 6-vectors)."""
-    w0, w1, w2, v0, v1, v2 = V.tolist()
-    a0, a1, a2, b0, b1, b2 = X.tolist()
-    return np.array([w1 * a2 - w2 * a1, w2 * a0 - w0 * a2, w0 * a1 - w1 * a0,
-                     v1 * a2 - v2 * a1 + w1 * b2 - w2 * b1,
-                     v2 * a0 - v0 * a2 + w2 * b0 - w0 * b2,
-                     v0 * a1 - v1 * a0 + w0 * b1 - w1 * b0])
-
-
-def _adT_times(V, F):
-    """``ad_Vᵀ F = −(ω × m + v × f, ω × f)`` for a twist V and a wrench F = (m, f)."""
-    w0, w1, w2, v0, v1, v2 = V.tolist()
-    m0, m1, m2, f0, f1, f2 = F.tolist()
-    return np.array([-(w1 * m2 - w2 * m1 + v1 * f2 - v2 * f1),
-                     -(w2 * m0 - w0 * m2 + v2 * f0 - v0 * f2),
-                     -(w0 * m1 - w1 * m0 + v0 * f1 - v1 * f0),
-                     -(w1 * f2 - w2 * f1), -(w2 * f0 - w0 * f2), -(w0 * f1 - w1 * f0)])
-
-
-def _rnea(m: _Model, theta, dtheta, ddtheta, g, Ftip):
-    n = m.n
-    Ad = m.transforms(theta)
-    A, G = m.AT, m.G
-    V = np.zeros(6)
-    Vd = np.zeros(6)
-    Vd[3:] = -g
-    Vs = np.empty((n, 6))
-    Vds = np.empty((n, 6))
-    for i in range(n):
-        Ai = A[i]
-        V = Ad[i] @ V + Ai * dtheta[i]
-        Vd = Ad[i] @ Vd + _ad_times(V, Ai) * dtheta[i] + Ai * ddtheta[i]
-        Vs[i] = V
-        Vds[i] = Vd
-    F = Ftip
-    Ad_next = m.Ad_tip
-    tau = np.empty(n)
-    for i in range(n - 1, -1, -1):
-        F = Ad_next.T @ F + G[i] @ Vds[i] - _adT_times(Vs[i], G[i] @ Vs[i])
-        tau[i] = F @ A[i]
-        Ad_next = Ad[i]
-    return tau
-
-
-def _cross_b(a, b):
-    """Row-wise cross products of (N, 3) arrays (faster than np.cross for small N·3)."""
-    out = np.empty_like(b if b.ndim == 2 else a)
-    a0, a1, a2 = (a[..., 0], a[..., 1], a[..., 2])
-    b0, b1, b2 = (b[..., 0], b[..., 1], b[..., 2])
-    out[..., 0] = a1 * b2 - a2 * b1
-    out[..., 1] = a2 * b0 - a0 * b2
-    out[..., 2] = a0 * b1 - a1 * b0
-    return out
-
-
-def _ad_apply(V, X):
-    """ad_V X for batches of twists V, X (N, 6): (ω × x_ω, v × x_ω + ω × x_v)."""
-    w, v = V[:, :3], V[:, 3:]
-    xw, xv = X[..., :3], X[..., 3:]
-    out = np.empty((V.shape[0], 6))
-    out[:, :3] = _cross_b(w, np.broadcast_to(xw, w.shape))
-    out[:, 3:] = _cross_b(v, np.broadcast_to(xw, w.shape)) + _cross_b(w, np.broadcast_to(xv, w.shape))
-    return out
-
-
-def _adT_apply(V, F):
-    """ad_Vᵀ F for batches (N, 6): (−(ω × m + v × f), −ω × f) with F = (m, f)."""
-    w, v = V[:, :3], V[:, 3:]
-    mm, ff = F[:, :3], F[:, 3:]
-    out = np.empty_like(F)
-    out[:, :3] = -(_cross_b(w, mm) + _cross_b(v, ff))
-    out[:, 3:] = -_cross_b(w, ff)
-    return out
-
-
-def _rnea_batch(m: _Model, theta, dtheta, ddtheta, g, Ftip):
-    """Newton–Euler for N configurations at once: theta, dtheta, ddtheta (N, n); Ftip (N, 6) or (6,)."""
-    N, n = theta.shape
-    Ad = _adjoint_many(_exps(m.A, -theta) @ m.Minv[:n])  # (N, n, 6, 6)
-    A, G = m.AT, m.G
-    V = np.zeros((N, 6))
-    Vd = np.zeros((N, 6))
-    Vd[:, 3:] = -g
-    Vs = np.empty((n, N, 6))
-    Vds = np.empty((n, N, 6))
-    for i in range(n):
-        Ai = A[i]
-        V = np.einsum("nij,nj->ni", Ad[:, i], V) + Ai * dtheta[:, i:i + 1]
-        Vd = np.einsum("nij,nj->ni", Ad[:, i], Vd) + _ad_apply(V, Ai) * dtheta[:, i:i + 1] + Ai * ddtheta[:, i:i + 1]
-        Vs[i], Vds[i] = V, Vd
-    F = np.broadcast_to(Ftip, (N, 6)).copy()
-    tau = np.empty((N, n))
-    for i in range(n - 1, -1, -1):
-        F = F @ m.Ad_tip if i == n - 1 else np.einsum("nji,nj->ni", Ad[:, i + 1], F)
-        F = F + Vds[i] @ G[i].T - _adT_apply(Vs[i], Vs[i] @ G[i].T)
-        tau[:, i] = F @ A[i]
-    return tau
-
-
-def _crba_batch(m: _Model, theta):
-    """Mass matrices (N, n, n) by the composite-rigid-body algorithm, vectorised over N."""
-    N, n = theta.shape
-    Ad = _adjoint_many(_exps(m.A, -theta) @ m.Minv[:n])
-    A = m.AT
-    K = np.broadcast_to(m.G, (N, n, 6, 6)).copy()
-    for i in range(n - 1, 0, -1):
-        AdT = np.swapaxes(Ad[:, i], 1, 2)
-        K[:, i - 1] += AdT @ K[:, i] @ Ad[:, i]
-    M = np.empty((N, n, n))
-    for i in range(n):
-        F = K[:, i] @ A[i]
-        M[:, i, i] = F @ A[i]
-        for j in range(i, 0, -1):
-            F = np.einsum("nji,nj->ni", Ad[:, j], F)
-            M[:, j - 1, i] = M[:, i, j - 1] = F @ A[j - 1]
-    return M
-
-
-def _crba(m: _Model, theta):
-    n = m.n
-    Ad = m.transforms(theta)
-    A, G = m.AT, m.G
-    K = G.copy()
-    for i in range(n - 1, 0, -1):
-        K[i - 1] = K[i - 1] + Ad[i].T @ K[i] @ Ad[i]
-    M = np.empty((n, n))
-    for i in range(n):
-        F = K[i] @ A[i]
-        M[i, i] = F @ A[i]
-        for j in range(i, 0, -1):
-            F = Ad[j].T @ F  # the composite force, expressed in frame {j}
-            M[j - 1, i] = M[i, j - 1] = F @ A[j - 1]
-    return M
-
-
 def _vec(x, name, n):
     return as_vector(x, name, n)
 
 
-def _args(thetalist, Mlist, Glist, Slist):
-    m = _model(Mlist, Glist, Slist)
-    return m, _vec(thetalist, "thetalist", m.n)
+def _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=True):
+    """Newton–Euler for one configuration: the kernel straight away on ready vectors, else after
+    the full checks (which name the offending argument)."""
+    k = _kd or _kernels()
+    if fast and _ready(thetalist, dthetalist, ddthetalist, g, Ftip):
+        try:
+            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, m.Mlist, m.Glist, m.Slist)
+        except (TypeError, ValueError):
+            pass
+    c = np.ascontiguousarray
+    return k.inverse_dynamics(c(_vec(thetalist, "thetalist", m.n)), c(_vec(dthetalist, "dthetalist", m.n)),
+                              c(_vec(ddthetalist, "ddthetalist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
+                              m.Mlist, m.Glist, m.Slist)
 
 
 def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
@@ -245,6 +172,12 @@ def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, 
     frame; Mlist : n+1 4×4; Glist : n 6×6; Slist : 6×n (Modern Robotics form).
     """
     m = _model(Mlist, Glist, Slist)
+    k = _kd or _kernels()
+    if _ready(thetalist, dthetalist, ddthetalist, g, Ftip):
+        try:
+            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, m.Mlist, m.Glist, m.Slist)
+        except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
+            pass
     if np.ndim(thetalist) == 2:
         th = as_array(thetalist, "thetalist", (None, m.n))
         N = th.shape[0]
@@ -252,13 +185,9 @@ def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, 
         ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
         F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
         g = _vec(g, "g", 3)
-        if N <= 4:  # too few to pay for the vectorised set-up
-            Fk = np.broadcast_to(F, (N, 6))
-            return np.array([_rnea(m, th[k], dth[k], ddth[k], g, Fk[k]) for k in range(N)]).reshape(N, m.n)
-        return _rnea_batch(m, th, dth, ddth, g, F)
-    th = _vec(thetalist, "thetalist", m.n)
-    return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), _vec(ddthetalist, "ddthetalist", m.n),
-                 _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
+        c = np.ascontiguousarray
+        return k.inverse_dynamics_batch(c(th), c(dth), c(ddth), c(g), c(F.reshape(-1, 6)), m.Mlist, m.Glist, m.Slist)
+    return _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=False)
 
 
 def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
@@ -267,33 +196,37 @@ def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
     thetalist : (n,), or (N, n) for N configurations at once (then (N, n, n), vectorised).
     """
     m = _model(Mlist, Glist, Slist)
+    k = _kd or _kernels()
+    if _ready(thetalist):
+        try:
+            return k.mass_matrix(thetalist, m.Mlist, m.Glist, m.Slist)
+        except (TypeError, ValueError):
+            pass
     if np.ndim(thetalist) == 2:
-        th = as_array(thetalist, "thetalist", (None, m.n))
-        if th.shape[0] <= 4:
-            return np.array([_crba(m, t) for t in th]).reshape(th.shape[0], m.n, m.n)
-        return _crba_batch(m, th)
-    return _crba(m, _vec(thetalist, "thetalist", m.n))
+        th = np.ascontiguousarray(as_array(thetalist, "thetalist", (None, m.n)))
+        return k.mass_matrix_batch(th, m.Mlist, m.Glist, m.Slist)
+    return k.mass_matrix(np.ascontiguousarray(_vec(thetalist, "thetalist", m.n)), m.Mlist, m.Glist, m.Slist)
 
 
 def vel_quadratic_forces(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
     """Coriolis and centripetal torques ``c(θ, θ̇)`` (n,): inverse dynamics with θ̈ = 0, g = 0, F_tip = 0."""
-    m, th = _args(thetalist, Mlist, Glist, Slist)
-    z = np.zeros(m.n)
-    return _rnea(m, th, _vec(dthetalist, "dthetalist", m.n), z, np.zeros(3), np.zeros(6))
+    m = _model(Mlist, Glist, Slist)
+    z = _zeros(m.n)
+    return _rnea_checked(m, thetalist, dthetalist, z, _zeros(3), _zeros(6))
 
 
 def gravity_forces(thetalist, g, Mlist, Glist, Slist) -> np.ndarray:
     """Gravity torques ``g(θ)`` (n,): inverse dynamics with θ̇ = θ̈ = 0, F_tip = 0."""
-    m, th = _args(thetalist, Mlist, Glist, Slist)
-    z = np.zeros(m.n)
-    return _rnea(m, th, z, z, _vec(g, "g", 3), np.zeros(6))
+    m = _model(Mlist, Glist, Slist)
+    z = _zeros(m.n)
+    return _rnea_checked(m, thetalist, z, z, g, _zeros(6))
 
 
 def end_effector_forces(thetalist, Ftip, Mlist, Glist, Slist) -> np.ndarray:
     """Torques ``Jᵀ(θ) F_tip`` (n,) that balance the tip wrench: inverse dynamics with no motion, no gravity."""
-    m, th = _args(thetalist, Mlist, Glist, Slist)
-    z = np.zeros(m.n)
-    return _rnea(m, th, z, z, np.zeros(3), _vec(Ftip, "Ftip", 6))
+    m = _model(Mlist, Glist, Slist)
+    z = _zeros(m.n)
+    return _rnea_checked(m, thetalist, z, z, _zeros(3), Ftip)
 
 
 def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
@@ -302,17 +235,29 @@ def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slis
     One Newton–Euler pass gives the bias ``c + g + JᵀF`` and the CRBA gives M; the linear
     system is solved by Cholesky (M is symmetric positive definite).
     """
-    m, th = _args(thetalist, Mlist, Glist, Slist)
-    dth = _vec(dthetalist, "dthetalist", m.n)
-    bias = _rnea(m, th, dth, np.zeros(m.n), _vec(g, "g", 3), _vec(Ftip, "Ftip", 6))
-    M = _crba(m, th)
-    rhs = _vec(taulist, "taulist", m.n) - bias
-    try:
-        L = np.linalg.cholesky(M)
-        return np.linalg.solve(L.T, np.linalg.solve(L, rhs))
-    except np.linalg.LinAlgError:
-        raise ValueError("Glist: the mass matrix is not positive definite at this configuration "
-                         "(a joint drives no inertia)") from None
+    m = _model(Mlist, Glist, Slist)
+    k = _kd or _kernels()
+    if _ready(thetalist, dthetalist, taulist, g, Ftip):
+        try:
+            return k.forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, m.Mlist, m.Glist, m.Slist)
+        except (TypeError, ValueError):
+            pass
+    c = np.ascontiguousarray
+    if np.ndim(thetalist) == 2:
+        th = as_array(thetalist, "thetalist", (None, m.n))
+        N = th.shape[0]
+        dth = as_array(dthetalist, "dthetalist", (N, m.n))
+        tau = as_array(taulist, "taulist", (N, m.n))
+        F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
+        out = k.forward_dynamics_batch(c(th), c(dth), c(tau), c(_vec(g, "g", 3)), c(F.reshape(-1, 6)),
+                                       m.Mlist, m.Glist, m.Slist)
+        if np.isnan(out).any():
+            raise ValueError("Glist: the mass matrix is not positive definite at some configuration "
+                             "(a joint drives no inertia)")
+        return out
+    return k.forward_dynamics(c(_vec(thetalist, "thetalist", m.n)), c(_vec(dthetalist, "dthetalist", m.n)),
+                              c(_vec(taulist, "taulist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
+                              m.Mlist, m.Glist, m.Slist)
 
 
 def euler_step(thetalist, dthetalist, ddthetalist, dt):
@@ -337,7 +282,11 @@ def inverse_dynamics_trajectory(thetamat, dthetamat, ddthetamat, g, Ftipmat, Mli
     ddQ = as_array(ddthetamat, "ddthetamat", (N, m.n))
     F = as_array(Ftipmat, "Ftipmat", (N, 6))
     g = _vec(g, "g", 3)
-    return np.array([_rnea(m, Q[k], dQ[k], ddQ[k], g, F[k]) for k in range(N)]).reshape(N, m.n)
+    if N == 0:
+        return np.empty((0, m.n))
+    c = np.ascontiguousarray
+    k = _kd or _kernels()
+    return k.inverse_dynamics_batch(c(Q), c(dQ), c(ddQ), c(g), c(F), m.Mlist, m.Glist, m.Slist)
 
 
 def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist, Glist, Slist, dt, intRes):
@@ -349,8 +298,8 @@ def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist
     state after applying row k (the last torque row is not applied, as in Modern Robotics).
     """
     m = _model(Mlist, Glist, Slist)
-    th = _vec(thetalist, "thetalist", m.n).copy()
-    dth = _vec(dthetalist, "dthetalist", m.n).copy()
+    th = _vec(thetalist, "thetalist", m.n)
+    dth = _vec(dthetalist, "dthetalist", m.n)
     tau = as_array(taumat, "taumat", (None, m.n))
     N = tau.shape[0]
     F = as_array(Ftipmat, "Ftipmat", (N, 6))
@@ -359,16 +308,9 @@ def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist
     intRes = int(intRes)
     if intRes < 1:
         raise ValueError(f"intRes: expected a positive integer, got {intRes}")
-    h = dt / intRes
-    thetamat = np.empty((N, m.n))
-    dthetamat = np.empty((N, m.n))
-    thetamat[0], dthetamat[0] = th, dth
-    z = np.zeros(m.n)
-    for k in range(N - 1):
-        for _ in range(intRes):
-            M = _crba(m, th)
-            bias = _rnea(m, th, dth, z, g, F[k])
-            ddth = np.linalg.solve(M, tau[k] - bias)
-            th, dth = th + h * dth, dth + h * ddth
-        thetamat[k + 1], dthetamat[k + 1] = th, dth
-    return thetamat, dthetamat
+    if N == 0:
+        return np.empty((0, m.n)), np.empty((0, m.n))
+    c = np.ascontiguousarray
+    k = _kd or _kernels()
+    out = k.forward_dynamics_trajectory(c(th), c(dth), c(tau), c(g), c(F), m.Mlist, m.Glist, m.Slist, dt, intRes)
+    return out[0], out[1]

@@ -16,6 +16,11 @@ The tool frame, rigidly attached to {N}, gets ``ω_t = ᵗR_N ω_N``, ``v_t = �
 The result is the geometric Jacobian ``(ω; v)`` of the tool origin, in the tool frame; rotated by
 ``blockdiag(R, R)`` (R = the tool's orientation in base_link) it is the base-frame Jacobian.
 
+Because the propagation is linear in q̇, the compiled kernel (:mod:`robokit.kernels.dh`) does it
+for all columns in one outward O(n) pass: each joint's unit twist is recorded where the pass
+meets its axis (``ẑ_j`` and the base-origin velocity ``o_j × ẑ_j``), and the reference point is
+moved to the tool origin at the end (``v ← v + ω × p``), giving ``J_j = (ẑ_j, ẑ_j × (p − o_j))``.
+
 Static forces propagate inward (Craig ch. 5): with ``(f, n)`` the force and moment the tool
 exerts on the environment, ``f_i = f_{i+1}``, ``n_i = n_{i+1} + (o_{i+1} − o_i) × f_{i+1}`` about
 the origin of each joint's axis frame, ``τ_i = ẑ_iᵀ n_i`` (revolute) or ``ẑ_iᵀ f_i`` (prismatic) —
@@ -30,8 +35,19 @@ from robokit._arrays import as_vector
 __all__ = ["dh_jacobian", "dh_static_torques"]
 
 
-def _skew(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+_kdh = None  # robokit.kernels.dh, imported on first use
+
+
+def _kernels():
+    global _kdh
+    from robokit.kernels import dh
+
+    _kdh = dh
+    return dh
+
+
+def _q(q, n, name="q"):
+    return np.ascontiguousarray(as_vector(q, name, n))
 
 
 def dh_jacobian(table, q, frame: str = "base") -> np.ndarray:
@@ -46,37 +62,15 @@ def dh_jacobian(table, q, frame: str = "base") -> np.ndarray:
     """
     if frame not in ("base", "tool"):
         raise ValueError(f"frame: expected 'base' or 'tool', got {frame!r}")
-    q = as_vector(q, "q", table.n)
-    n = table.n
-    Ts = [table.link_transform(i, q[i]) for i in range(n)]  # ⁱ⁻¹T_i
-    tool = np.asarray(table.tool, dtype=float)
-    zhat = np.array([0.0, 0.0, 1.0])
-    standard = table.convention == "standard"
-    J = np.empty((6, n))
-    for j in range(n):  # unit rate of joint j
-        w = np.zeros(3)
-        v = np.zeros(3)
-        for i in range(n):
-            R = Ts[i][:3, :3]  # ⁱ⁻¹R_i
-            p = Ts[i][:3, 3]  # ⁱ⁻¹p_i
-            rate = 1.0 if i == j else 0.0
-            revolute = table.links[i].joint == "R"
-            if standard:
-                w_prev = w + (rate * zhat if revolute else 0.0)
-                v = R.T @ (v + np.cross(w_prev, p) + (0.0 if revolute else rate * zhat))
-                w = R.T @ w_prev
-            else:
-                v = R.T @ (v + np.cross(w, p)) + (0.0 if revolute else rate * zhat)
-                w = R.T @ w + (rate * zhat if revolute else 0.0)
-        # the tool, rigidly attached to {N}
-        Rt, pt = tool[:3, :3], tool[:3, 3]
-        v = Rt.T @ (v + np.cross(w, pt))
-        w = Rt.T @ w
-        J[:3, j], J[3:, j] = w, v
-    if frame == "tool":
-        return J
-    R_base_tool = table.fk(q)[:3, :3]
-    return np.vstack([R_base_tool @ J[:3], R_base_tool @ J[3:]])
+    k = _kdh or _kernels()
+    P, modified, base, tool = k.pack_dh(table)[:4]
+    in_tool = 1 if frame == "tool" else 0
+    if type(q) is np.ndarray and q.ndim == 1:
+        try:
+            return k.dh_jacobian(P, modified, base, tool, q, in_tool)
+        except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
+            pass
+    return k.dh_jacobian(P, modified, base, tool, _q(q, table.n), in_tool)
 
 
 def dh_static_torques(table, q, F_tip) -> np.ndarray:
@@ -85,20 +79,11 @@ def dh_static_torques(table, q, F_tip) -> np.ndarray:
     F_tip : (6,) ``(n, f)`` — moment and force the tool exerts on the environment, expressed in
     the tool frame (angular first, as Modern Robotics' F_tip). Returns τ with ``τ = J_toolᵀ F_tip``.
     """
-    q = as_vector(q, "q", table.n)
-    F = as_vector(F_tip, "F_tip", 6)
-    frames = table.frames(q)
-    T_tool = frames[-1] @ np.asarray(table.tool, dtype=float)
-    R = T_tool[:3, :3]
-    f = R @ F[3:]  # in base axes
-    n_moment = R @ F[:3]  # moment about the tool origin
-    point = T_tool[:3, 3]
-    standard = table.convention == "standard"
-    tau = np.empty(table.n)
-    for i in range(table.n - 1, -1, -1):
-        axis_frame = frames[i] if standard else frames[i + 1]  # joint i+1 (1-based) axis frame
-        o, z = axis_frame[:3, 3], axis_frame[:3, 2]
-        n_moment = n_moment + np.cross(point - o, f)  # moment carried inward to this joint's origin
-        point = o
-        tau[i] = z @ n_moment if table.links[i].joint == "R" else z @ f
-    return tau
+    k = _kdh or _kernels()
+    P, modified, base, tool = k.pack_dh(table)[:4]
+    if type(q) is np.ndarray and q.ndim == 1 and type(F_tip) is np.ndarray and F_tip.ndim == 1:
+        try:
+            return k.dh_static_torques(P, modified, base, tool, q, F_tip)
+        except (TypeError, ValueError):
+            pass
+    return k.dh_static_torques(P, modified, base, tool, _q(q, table.n), _q(F_tip, 6, "F_tip"))

@@ -9,7 +9,8 @@ Screw axes are the columns of a 6×n array, angular first ``(ω, v)``.
 
 Each exponential of a unit screw uses the closed form (Rodrigues for the rotation, and
 ``G(θ)v`` for the translation), so these are exact to rounding. The batched variants
-accept a leading dimension of configurations (N, n) and are vectorised over it.
+accept a leading dimension of configurations (N, n); every function runs the compiled kernel of
+:mod:`robokit.kernels.poe` (one configuration, or the parallel batched kernel for (N, n)).
 """
 from __future__ import annotations
 
@@ -21,47 +22,68 @@ from robokit.spatial.se3 import check_transform
 __all__ = ["fkin_body", "fkin_space", "jacobian_body", "jacobian_space"]
 
 
-_VALID: set = set()  # bytes of model constants (screw lists, home poses) already validated
+_SCREWS: dict = {}  # bytes of validated screw lists -> the validated, C-contiguous array
+_HOMES: dict = {}  # bytes of validated home poses -> the validated array
+_kp = None  # robokit.kernels.poe, imported on first use (so `import robokit` does not load numba)
+
+
+def _kernels():
+    global _kp
+    from robokit.kernels import poe
+
+    _kp = poe
+    return poe
+
+
+_F64 = np.dtype(np.float64)
 
 
 def _screws(S, name):
-    """A 6×n float array of screw axes; constants are validated once and remembered."""
-    if type(S) is np.ndarray and S.dtype == np.float64 and S.ndim == 2 and S.shape[0] == 6:
-        key = (name, S.shape, S.tobytes())
-        if key in _VALID:
-            return S
-        S = as_matrix(S, name, 6, None)
-        if len(_VALID) > 256:
-            _VALID.clear()
-        _VALID.add(key)
-        return S
-    return as_matrix(S, name, 6, None)
+    """A C-contiguous 6×n float array of screw axes; constants are validated once and remembered
+    (by their bytes, so an array changed in place is validated again)."""
+    if type(S) is np.ndarray and S.dtype is _F64:
+        hit = _SCREWS.get(S.tobytes())
+        if hit is not None and hit.shape == S.shape:
+            return hit
+    S = np.ascontiguousarray(as_matrix(S, name, 6, None))
+    if len(_SCREWS) > 256:
+        _SCREWS.clear()
+    _SCREWS[S.tobytes()] = S
+    return S
 
 
 def _home(M):
-    """A validated 4×4 home pose (remembered once validated)."""
-    if type(M) is np.ndarray and M.dtype == np.float64 and M.shape == (4, 4):
-        key = ("M", M.tobytes())
-        if key in _VALID:
-            return M
-        M = check_transform(M, "M")
-        _VALID.add(key)
-        return M
-    return check_transform(M, "M")
+    """A validated 4×4 home pose (remembered once validated, by its bytes)."""
+    if type(M) is np.ndarray and M.dtype is _F64:
+        hit = _HOMES.get(M.tobytes())
+        if hit is not None and M.shape == (4, 4):
+            return hit
+    M = np.ascontiguousarray(check_transform(M, "M"))
+    if len(_HOMES) > 256:
+        _HOMES.clear()
+    _HOMES[M.tobytes()] = M
+    return M
 
 
 def _theta(thetalist, n, name="thetalist"):
-    if type(thetalist) is np.ndarray and thetalist.dtype == np.float64 and thetalist.shape == (n,):
-        th = thetalist
-    else:
-        th = as_array(thetalist, name, finite=False)
-        if th.ndim not in (1, 2) or th.shape[-1] != n:
-            raise ValueError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
+    """(n,) or (N, n) finite joint values as a C-contiguous float64 array."""
+    th = as_array(thetalist, name, finite=False)
+    if th.ndim not in (1, 2) or th.shape[-1] != n:
+        raise ValueError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
     if not np.isfinite(th).all():
         raise ValueError(f"{name}: contains NaN or infinite values")
-    return th
+    return np.ascontiguousarray(th)
 
 
+def _run(kernel, batch, thetalist, n, *args):
+    """Checked θ (n,) or (N, n) → the one-configuration or the batched kernel (the slow path)."""
+    th = _theta(thetalist, n)
+    return kernel(*args, th) if th.ndim == 1 else batch(*args, th)
+
+
+# Vectorised numpy helpers (the screw exponentials of many joints/configurations at once), used by
+# other modules (the Newton–Euler model's link transforms, the numeric IK). The FK and Jacobian
+# themselves are the compiled kernels in robokit.kernels.poe.
 _CACHE: dict = {}
 
 
@@ -137,12 +159,13 @@ def fkin_space(M, Slist, thetalist) -> np.ndarray:
     """
     Slist = _screws(Slist, "Slist")
     M = _home(M)
-    th = _theta(thetalist, Slist.shape[1])
-    E = _exps(Slist, th)
-    T = E[..., 0, :, :]
-    for i in range(1, Slist.shape[1]):
-        T = T @ E[..., i, :, :]
-    return T @ M
+    k = _kp or _kernels()
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+        try:
+            return k.fkin_space(M, Slist, thetalist)
+        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+            pass
+    return _run(k.fkin_space, k.fkin_space_batch, thetalist, Slist.shape[1], M, Slist)
 
 
 def fkin_body(M, Blist, thetalist) -> np.ndarray:
@@ -153,12 +176,13 @@ def fkin_body(M, Blist, thetalist) -> np.ndarray:
     """
     Blist = _screws(Blist, "Blist")
     M = _home(M)
-    th = _theta(thetalist, Blist.shape[1])
-    E = _exps(Blist, th)
-    T = M @ E[..., 0, :, :]
-    for i in range(1, Blist.shape[1]):
-        T = T @ E[..., i, :, :]
-    return T
+    k = _kp or _kernels()
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+        try:
+            return k.fkin_body(M, Blist, thetalist)
+        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+            pass
+    return _run(k.fkin_body, k.fkin_body_batch, thetalist, Blist.shape[1], M, Blist)
 
 
 def jacobian_space(Slist, thetalist) -> np.ndarray:
@@ -168,15 +192,13 @@ def jacobian_space(Slist, thetalist) -> np.ndarray:
     Returns 6×n (or (N, 6, n)).
     """
     Slist = _screws(Slist, "Slist")
-    n = Slist.shape[1]
-    th = _theta(thetalist, n)
-    J = np.empty(th.shape[:-1] + (6, n))
-    J[..., :, 0] = Slist[:, 0]
-    if n > 1:
-        P = _chain(_exps(Slist[:, :-1], th[..., :-1]))  # prefix products T_1..T_{n-1}
-        A = _adjoint_many(P)  # (..., n-1, 6, 6)
-        J[..., :, 1:] = np.swapaxes(np.einsum("...kij,jk->...ki", A, Slist[:, 1:]), -1, -2)
-    return J
+    k = _kp or _kernels()
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+        try:
+            return k.jacobian_space(Slist, thetalist)
+        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+            pass
+    return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
 
 
 def jacobian_body(Blist, thetalist) -> np.ndarray:
@@ -186,18 +208,13 @@ def jacobian_body(Blist, thetalist) -> np.ndarray:
     Returns 6×n (or (N, 6, n)).
     """
     Blist = _screws(Blist, "Blist")
-    n = Blist.shape[1]
-    th = _theta(thetalist, n)
-    J = np.empty(th.shape[:-1] + (6, n))
-    J[..., :, n - 1] = Blist[:, n - 1]
-    if n > 1:
-        # suffix products e^{-[B_n]θ_n} ⋯ e^{-[B_{i+1}]θ_{i+1}} for i = n-1 .. 1 (reversed order)
-        E = _exps(Blist[:, :0:-1], -th[..., :0:-1])  # joints n, n-1, …, 2
-        P = _chain(E)  # P_k = e^{-B_n θ_n} ⋯ e^{-B_{n-k} θ_{n-k}}
-        A = _adjoint_many(P)
-        cols = np.einsum("...kij,jk->...ki", A, Blist[:, n - 2::-1])  # for columns n-1, …, 1 (0-based n-2 … 0)
-        J[..., :, n - 2::-1] = np.swapaxes(cols, -1, -2)
-    return J
+    k = _kp or _kernels()
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+        try:
+            return k.jacobian_body(Blist, thetalist)
+        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+            pass
+    return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
 
 
 def _adjoint_many(T: np.ndarray) -> np.ndarray:

@@ -1,0 +1,33 @@
+r"""Compiled course kernels: the lecture's recursions as plain loops over the joints, compiled
+with numba (``@njit(cache=True)``).
+
+* :mod:`robokit.kernels.lie` — small pose/twist/wrench helpers written entry by entry;
+* :mod:`robokit.kernels.poe` — product-of-exponentials FK and Jacobians (space and body);
+* :mod:`robokit.kernels.dynamics` — Newton–Euler inverse dynamics, CRBA mass matrix,
+  forward dynamics (Modern Robotics form);
+* :mod:`robokit.kernels.dh` — DH forward kinematics, the Jacobian by outward propagation,
+  inward static forces, Craig's recursive Newton–Euler (both conventions, R and P joints);
+* :mod:`robokit.kernels.ik` — damped least-squares / Levenberg–Marquardt IK for a PoE chain,
+  joint limits and random restarts, compiled end to end.
+
+Each kernel has a ``*_batch`` twin over a leading dimension of configurations, run in
+parallel over the CPU cores. The seed functions (:func:`robokit.fkin_space`,
+:func:`robokit.inverse_dynamics`, …) check their arguments and call these kernels; use them
+directly only with C-contiguous float64 arrays of the documented shapes.
+
+The first use in a fresh environment compiles the kernels (a notice is printed once on
+stderr) and stores the machine code in numba's cache; see :mod:`robokit.kernels._jit` for where
+the cache lives and ``NUMBA_DISABLE_JIT=1`` to run the same source as plain Python.
+The submodules are imported on demand, so ``import robokit`` does not load numba.
+"""
+from __future__ import annotations
+
+__all__ = ["lie", "poe", "dynamics", "dh", "ik"]
+
+
+def __getattr__(name):
+    if name in __all__:
+        import importlib
+
+        return importlib.import_module(f"robokit.kernels.{name}")
+    raise AttributeError(f"module 'robokit.kernels' has no attribute {name!r}")

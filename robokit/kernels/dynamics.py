@@ -1,0 +1,446 @@
+r"""Newton–Euler dynamics of a PoE chain as compiled loops (Lecture 7, Modern Robotics ch. 8).
+
+Model in the Modern Robotics form: ``Mlist`` (n+1, 4, 4), ``Mlist[i]`` the pose of link frame
+{i+1} (at the centre of mass) in frame {i}, ``Mlist[n]`` the end-effector frame in {n};
+``Glist`` (n, 6, 6) the spatial inertia of each link in its frame, ``[[I, 0], [0, m 1]]``;
+``Slist`` (6, n) the space screw axes. Twists ``(ω, v)`` and wrenches ``(m, f)`` angular first.
+``Ftip`` is the wrench the end-effector applies to the environment, in the end-effector frame.
+
+Constants of the model (computed at the start of every call, O(n)):
+    ``M₀ᵢ = Mlist[0] ⋯ Mlist[i−1]``,  ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ`` (joint i's screw in frame {i}).
+Link transforms: ``T_{i,i−1} = e^{−[Aᵢ]θᵢ} Mlist[i−1]⁻¹``, ``T_{n+1,n} = Mlist[n]⁻¹``.
+
+Inverse dynamics (recursive Newton–Euler), with ``V₀ = 0`` and ``V̇₀ = (0, −g)``:
+    forward, i = 1..n:  ``Vᵢ = Ad_{T_{i,i−1}} V_{i−1} + Aᵢ θ̇ᵢ``
+                        ``V̇ᵢ = Ad_{T_{i,i−1}} V̇_{i−1} + ad_{Vᵢ} Aᵢ θ̇ᵢ + Aᵢ θ̈ᵢ``
+    backward, i = n..1, ``F_{n+1} = Ftip``:
+                        ``Fᵢ = Ad_{T_{i+1,i}}ᵀ F_{i+1} + Gᵢ V̇ᵢ − ad_{Vᵢ}ᵀ Gᵢ Vᵢ``,   ``τᵢ = Fᵢᵀ Aᵢ``.
+
+Mass matrix (composite rigid bodies): ``Kₙ = Gₙ``, ``K_{i−1} = G_{i−1} + Ad_{T_{i,i−1}}ᵀ Kᵢ Ad_{T_{i,i−1}}``;
+    ``M_{ii} = Aᵢᵀ Kᵢ Aᵢ``; the composite force ``Kᵢ Aᵢ`` carried inward gives
+    ``M_{ji} = A_jᵀ (Ad_{T_{j+1,j}}ᵀ ⋯ Ad_{T_{i,i−1}}ᵀ) Kᵢ Aᵢ`` for j < i.
+
+Forward dynamics: ``M(θ) θ̈ = τ − h(θ, θ̇)`` with ``h`` the inverse dynamics at θ̈ = 0, solved by
+a Cholesky factorisation ``M = L Lᵀ`` (M is symmetric positive definite).
+
+Per-configuration kernels check the lengths and finiteness of their vectors (``ValueError``);
+the ``*_batch`` kernels run over a leading dimension N in parallel and check nothing (their
+caller, e.g. :func:`robokit.inverse_dynamics`, does). Arguments are C-contiguous float64 arrays.
+
+Example::
+
+    >>> import robokit
+    >>> from robokit.kernels.dynamics import mass_matrix
+    >>> p = robokit.load("twolink").poe
+    >>> M = mass_matrix(np.zeros(2), p.Mlist, p.Glist, p.Slist)   # 2×2, symmetric positive definite
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit.kernels._jit import njit, prange
+from robokit.kernels.lie import (
+    ad_transpose_wrench, ad_twist, adjoint_matrix, adjoint_screw, adjoint_transpose_wrench, adjoint_twist,
+    all_finite, copy44, exp_screw, inv_t, mat6_vec, mul_tt, mul_tt_inplace, set_identity,
+)
+from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
+
+__all__ = [
+    "inverse_dynamics", "mass_matrix", "forward_dynamics",
+    "inverse_dynamics_batch", "mass_matrix_batch", "forward_dynamics_batch",
+    "forward_dynamics_trajectory",
+]
+
+_A1 = "float64[::1]"
+_A2 = "float64[:, ::1]"
+_A3 = "float64[:, :, ::1]"
+_MODEL = f"{_A3}, {_A3}, {_A2}"  # Mlist, Glist, Slist
+
+
+# ------------------------------------------------------------------ model constants and link transforms
+@njit
+def check_model(Mlist, Glist, Slist):
+    """Raise ``ValueError`` unless Mlist is (n+1, 4, 4) and Glist (n, 6, 6) for Slist (6, n)."""
+    n = Slist.shape[1]
+    if Slist.shape[0] != 6:
+        raise ValueError("Slist: expected shape (6, n)")
+    if Mlist.shape[0] != n + 1 or Mlist.shape[1] != 4 or Mlist.shape[2] != 4:
+        raise ValueError("Mlist: expected shape (n+1, 4, 4) for the n columns of Slist")
+    if Glist.shape[0] != n or Glist.shape[1] != 6 or Glist.shape[2] != 6:
+        raise ValueError("Glist: expected shape (n, 6, 6) for the n columns of Slist")
+
+
+@njit
+def check_vector(x, n, which):
+    """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument)."""
+    if x.shape[0] != n or not all_finite(x):
+        if which == 0:
+            raise ValueError("thetalist: expected one finite value per joint")
+        elif which == 1:
+            raise ValueError("dthetalist: expected one finite value per joint")
+        elif which == 2:
+            raise ValueError("ddthetalist: expected one finite value per joint")
+        elif which == 3:
+            raise ValueError("g: expected 3 finite values")
+        elif which == 4:
+            raise ValueError("Ftip: expected 6 finite values")
+        else:
+            raise ValueError("taulist: expected one finite value per joint")
+
+
+@njit
+def link_screws(Mlist, Slist, A, Minv):
+    """A (6, n) ← the joint screws in the link frames, ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ``;
+    Minv (n+1, 4, 4) ← ``Mlist[i]⁻¹``."""
+    n = Slist.shape[1]
+    M0i = np.empty((4, 4))
+    M0i_inv = np.empty((4, 4))
+    tmp = np.empty((4, 4))
+    set_identity(M0i)
+    for i in range(n):
+        mul_tt_inplace(M0i, Mlist[i], tmp)  # M₀ᵢ = M₀,ᵢ₋₁ Mlist[i−1]  (0-based: through Mlist[i])
+        inv_t(M0i, M0i_inv)
+        adjoint_screw(M0i_inv, Slist, i, A, i)
+    for i in range(n + 1):
+        inv_t(Mlist[i], Minv[i])
+
+
+@njit
+def link_transforms(A, Minv, thetalist, Tl, E):
+    """Tl (n+1, 4, 4) ← the link-to-link poses at θ: ``Tl[i] = T_{i+1,i} = e^{−[A_{i+1}]θ_{i+1}} Mlist[i]⁻¹``
+    (0-based i; it maps frame-{i} coordinates into frame {i+1}), and ``Tl[n] = Mlist[n]⁻¹``."""
+    n = A.shape[1]
+    for i in range(n):
+        exp_screw(A, i, -thetalist[i], E)
+        mul_tt(E, Minv[i], Tl[i])
+    copy44(Minv[n], Tl[n])
+
+
+@njit
+def workspace(n):
+    """Scratch arrays for one configuration of an n-joint chain: A (6, n) link-frame screws,
+    Minv (n+1, 4, 4), Tl (n+1, 4, 4) link transforms, E (4, 4), V and Vd (n, 6) link twists and
+    accelerations, v6 (six 6-vector temporaries), K (n, 6, 6) composite inertias, X (two 6×6)."""
+    A = np.empty((6, n))
+    Minv = np.empty((n + 1, 4, 4))
+    Tl = np.empty((n + 1, 4, 4))
+    E = np.empty((4, 4))
+    V = np.empty((n, 6))
+    Vd = np.empty((n, 6))
+    v6 = np.empty((6, 6))  # rows: six 6-vector temporaries
+    K = np.empty((n, 6, 6))
+    X = np.empty((2, 6, 6))
+    return A, Minv, Tl, E, V, Vd, v6, K, X
+
+
+# ------------------------------------------------------------------ recursive Newton–Euler
+@njit
+def rnea_into(A, Tl, Glist, dthetalist, ddthetalist, g, Ftip, V, Vd, v6, tau):
+    """τ ← inverse dynamics with the link transforms Tl already at θ (see the module docstring)."""
+    n = A.shape[1]
+    Ai, Vprev, Vdprev, F, t1, t2 = v6[0], v6[1], v6[2], v6[3], v6[4], v6[5]
+    for r in range(6):
+        Vprev[r] = 0.0
+        Vdprev[r] = 0.0
+    Vdprev[3], Vdprev[4], Vdprev[5] = -g[0], -g[1], -g[2]  # gravity as an upward base acceleration
+    # forward iterations: twists and accelerations of the links, each in its own frame
+    for i in range(n):
+        for r in range(6):
+            Ai[r] = A[r, i]
+        adjoint_twist(Tl[i], Vprev, t1)  # Ad_{T_{i,i−1}} V_{i−1}
+        for r in range(6):
+            V[i, r] = t1[r] + Ai[r] * dthetalist[i]
+        adjoint_twist(Tl[i], Vdprev, t1)  # Ad_{T_{i,i−1}} V̇_{i−1}
+        ad_twist(V[i], Ai, t2)  # ad_{Vᵢ} Aᵢ
+        for r in range(6):
+            Vd[i, r] = t1[r] + t2[r] * dthetalist[i] + Ai[r] * ddthetalist[i]
+        Vprev, Vdprev = V[i], Vd[i]
+    # backward iterations: wrenches transmitted through the joints
+    for r in range(6):
+        F[r] = Ftip[r]
+    for i in range(n - 1, -1, -1):
+        adjoint_transpose_wrench(Tl[i + 1], F, t1)  # Ad_{T_{i+1,i}}ᵀ F_{i+1}
+        mat6_vec(Glist[i], Vd[i], t2)  # Gᵢ V̇ᵢ
+        for r in range(6):
+            F[r] = t1[r] + t2[r]
+        mat6_vec(Glist[i], V[i], t1)  # Gᵢ Vᵢ
+        ad_transpose_wrench(V[i], t1, t2)  # ad_{Vᵢ}ᵀ Gᵢ Vᵢ
+        acc = 0.0
+        for r in range(6):
+            F[r] -= t2[r]
+            acc += F[r] * A[r, i]
+        tau[i] = acc  # τᵢ = Fᵢᵀ Aᵢ
+
+
+# ------------------------------------------------------------------ composite-rigid-body mass matrix
+@njit
+def crba_into(A, Tl, Glist, K, X, v6, Mout):
+    """Mout (n, n) ← M(θ) with the link transforms Tl already at θ (see the module docstring)."""
+    n = A.shape[1]
+    Ad, KAd = X[0], X[1]
+    F, t1 = v6[0], v6[1]
+    for i in range(n):
+        for r in range(6):
+            for c in range(6):
+                K[i, r, c] = Glist[i, r, c]
+    # composite inertias, inward: K_{i−1} += Ad_{T_{i,i−1}}ᵀ Kᵢ Ad_{T_{i,i−1}}
+    for i in range(n - 1, 0, -1):
+        adjoint_matrix(Tl[i], Ad)
+        for r in range(6):
+            for c in range(6):
+                acc = 0.0
+                for k in range(6):
+                    acc += K[i, r, k] * Ad[k, c]
+                KAd[r, c] = acc
+        for r in range(6):
+            for c in range(6):
+                acc = 0.0
+                for k in range(6):
+                    acc += Ad[k, r] * KAd[k, c]
+                K[i - 1, r, c] += acc
+    # columns: Fᵢ = Kᵢ Aᵢ, carried inward joint by joint
+    for i in range(n):
+        for r in range(6):
+            acc = 0.0
+            for c in range(6):
+                acc += K[i, r, c] * A[c, i]
+            F[r] = acc
+        acc = 0.0
+        for r in range(6):
+            acc += F[r] * A[r, i]
+        Mout[i, i] = acc
+        for j in range(i, 0, -1):
+            adjoint_transpose_wrench(Tl[j], F, t1)  # the composite force in frame {j}
+            acc = 0.0
+            for r in range(6):
+                F[r] = t1[r]
+                acc += F[r] * A[r, j - 1]
+            Mout[j - 1, i] = acc
+            Mout[i, j - 1] = acc
+
+
+# ------------------------------------------------------------------ Cholesky solve
+@njit
+def cholesky_solve(Mm, b, L, x):
+    """x ← M⁻¹ b by ``M = L Lᵀ`` (L overwritten; M untouched). Returns False when M is not
+    positive definite (then x is left NaN)."""
+    n = Mm.shape[0]
+    for j in range(n):
+        s = Mm[j, j]
+        for k in range(j):
+            s -= L[j, k] * L[j, k]
+        if not s > 0.0:
+            for r in range(n):
+                x[r] = np.nan
+            return False
+        d = math.sqrt(s)
+        L[j, j] = d
+        for i in range(j + 1, n):
+            s = Mm[i, j]
+            for k in range(j):
+                s -= L[i, k] * L[j, k]
+            L[i, j] = s / d
+    for i in range(n):  # L y = b
+        s = b[i]
+        for k in range(i):
+            s -= L[i, k] * x[k]
+        x[i] = s / L[i, i]
+    for i in range(n - 1, -1, -1):  # Lᵀ x = y
+        s = x[i]
+        for k in range(i + 1, n):
+            s -= L[k, i] * x[k]
+        x[i] = s / L[i, i]
+    return True
+
+
+@njit
+def forward_dynamics_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, zeros, V, Vd, v6, K, X, Mm, L, h, ddq):
+    """θ̈ ← M(θ)⁻¹ (τ − h(θ, θ̇)) with the link transforms Tl at θ; returns False if M is not SPD."""
+    n = A.shape[1]
+    rnea_into(A, Tl, Glist, dthetalist, zeros, g, Ftip, V, Vd, v6, h)  # h = c + g + Jᵀ Ftip
+    crba_into(A, Tl, Glist, K, X, v6, Mm)
+    for i in range(n):
+        h[i] = taulist[i] - h[i]
+    return cholesky_solve(Mm, h, L, ddq)
+
+
+# ------------------------------------------------------------------ one configuration
+@njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
+def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist):
+    """Joint torques τ (n,) = M θ̈ + c + g(θ) + Jᵀ Ftip by recursive Newton–Euler."""
+    check_model(Mlist, Glist, Slist)
+    n = Slist.shape[1]
+    check_vector(thetalist, n, 0)
+    check_vector(dthetalist, n, 1)
+    check_vector(ddthetalist, n, 2)
+    check_vector(g, 3, 3)
+    check_vector(Ftip, 6, 4)
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    link_transforms(A, Minv, thetalist, Tl, E)
+    tau = np.empty(n)
+    rnea_into(A, Tl, Glist, dthetalist, ddthetalist, g, Ftip, V, Vd, v6, tau)
+    return tau
+
+
+@njit(f"{_A2}({_A1}, {_MODEL})")
+def mass_matrix(thetalist, Mlist, Glist, Slist):
+    """Mass matrix M(θ) (n, n), symmetric positive definite, by the composite-rigid-body algorithm."""
+    check_model(Mlist, Glist, Slist)
+    n = Slist.shape[1]
+    check_vector(thetalist, n, 0)
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    link_transforms(A, Minv, thetalist, Tl, E)
+    Mm = np.empty((n, n))
+    crba_into(A, Tl, Glist, K, X, v6, Mm)
+    return Mm
+
+
+@njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
+def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist):
+    """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip)."""
+    check_model(Mlist, Glist, Slist)
+    n = Slist.shape[1]
+    check_vector(thetalist, n, 0)
+    check_vector(dthetalist, n, 1)
+    check_vector(taulist, n, 5)
+    check_vector(g, 3, 3)
+    check_vector(Ftip, 6, 4)
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    link_transforms(A, Minv, thetalist, Tl, E)
+    Mm = np.empty((n, n))
+    L = np.zeros((n, n))
+    h = np.empty(n)
+    ddq = np.empty(n)
+    if not forward_dynamics_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, np.zeros(n), V, Vd, v6, K, X, Mm, L,
+                                 h, ddq):
+        raise ValueError("Glist: the mass matrix is not positive definite at this configuration "
+                         "(a joint drives no inertia)")
+    return ddq
+
+
+# ------------------------------------------------------------------ N configurations, in parallel
+# Each parallel kernel hands out blocks of rows with ``prange``; one block is a plain serial loop
+# (the ``*_rows`` functions) that allocates its scratch space once.
+@njit
+def inverse_dynamics_rows(lo, hi, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out):
+    """out[k] ← τ for rows lo ≤ k < hi."""
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(Slist.shape[1])
+    link_screws(Mlist, Slist, A, Minv)
+    for k in range(lo, hi):
+        link_transforms(A, Minv, thetas[k], Tl, E)
+        rnea_into(A, Tl, Glist, dthetas[k], ddthetas[k], g, Ftips[k if Ftips.shape[0] > 1 else 0], V, Vd, v6, out[k])
+
+
+@njit
+def mass_matrix_rows(lo, hi, thetas, Mlist, Glist, Slist, out):
+    """out[k] ← M(θ_k) for rows lo ≤ k < hi."""
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(Slist.shape[1])
+    link_screws(Mlist, Slist, A, Minv)
+    for k in range(lo, hi):
+        link_transforms(A, Minv, thetas[k], Tl, E)
+        crba_into(A, Tl, Glist, K, X, v6, out[k])
+
+
+@njit
+def forward_dynamics_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out):
+    """out[k] ← θ̈ for rows lo ≤ k < hi (NaN where M is not positive definite)."""
+    n = Slist.shape[1]
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    Mm = np.empty((n, n))
+    L = np.zeros((n, n))
+    h = np.empty(n)
+    zeros = np.zeros(n)
+    for k in range(lo, hi):
+        link_transforms(A, Minv, thetas[k], Tl, E)
+        forward_dynamics_into(A, Tl, Glist, dthetas[k], taus[k], g, Ftips[k if Ftips.shape[0] > 1 else 0], zeros,
+                              V, Vd, v6, K, X, Mm, L, h, out[k])
+
+
+@njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
+def inverse_dynamics_batch(thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist):
+    """Torques (N, n) for the rows of thetas, dthetas, ddthetas (N, n); Ftips (N, 6), or (1, 6)
+    for one wrench shared by all rows."""
+    N, n = thetas.shape
+    out = np.empty((N, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        inverse_dynamics_rows(0, N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        inverse_dynamics_rows(lo, hi, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
+    return out
+
+
+@njit(f"{_A3}({_A2}, {_MODEL})", parallel=True)
+def mass_matrix_batch(thetas, Mlist, Glist, Slist):
+    """Mass matrices (N, n, n) for the rows of thetas (N, n)."""
+    N, n = thetas.shape
+    out = np.empty((N, n, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        mass_matrix_rows(0, N, thetas, Mlist, Glist, Slist, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        mass_matrix_rows(lo, hi, thetas, Mlist, Glist, Slist, out)
+    return out
+
+
+@njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
+def forward_dynamics_batch(thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist):
+    """Accelerations (N, n) for the rows of thetas, dthetas, taus (N, n); Ftips (N, 6) or (1, 6).
+    A row whose mass matrix is not positive definite comes back NaN."""
+    N, n = thetas.shape
+    out = np.empty((N, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        forward_dynamics_rows(0, N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        forward_dynamics_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+    return out
+
+
+@njit(f"{_A3}({_A1}, {_A1}, {_A2}, {_A1}, {_A2}, {_MODEL}, float64, int64)")
+def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist, Glist, Slist, dt, intRes):
+    """Euler integration of the forward dynamics under a torque history (Modern Robotics semantics):
+    row 0 is the initial state, row k+1 the state after holding ``taumat[k]`` and ``Ftipmat[k]``
+    for dt seconds in ``intRes`` steps. Returns one (2, N, n) array: thetamat and dthetamat."""
+    N, n = taumat.shape
+    out = np.empty((2, N, n))
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    Mm = np.empty((n, n))
+    L = np.zeros((n, n))
+    h = np.empty(n)
+    ddq = np.empty(n)
+    zeros = np.zeros(n)
+    th = np.empty(n)
+    dth = np.empty(n)
+    for i in range(n):
+        th[i] = thetalist[i]
+        dth[i] = dthetalist[i]
+        out[0, 0, i] = th[i]
+        out[1, 0, i] = dth[i]
+    step = dt / intRes
+    for k in range(N - 1):
+        for _ in range(intRes):
+            link_transforms(A, Minv, th, Tl, E)
+            if not forward_dynamics_into(A, Tl, Glist, dth, taumat[k], g, Ftipmat[k], zeros, V, Vd, v6, K, X, Mm, L,
+                                         h, ddq):
+                raise ValueError("Glist: the mass matrix is not positive definite along the trajectory")
+            for i in range(n):
+                th[i] += step * dth[i]  # θ ← θ + h θ̇ (with the old θ̇) …
+                dth[i] += step * ddq[i]  # … then θ̇ ← θ̇ + h θ̈
+        for i in range(n):
+            out[0, k + 1, i] = th[i]
+            out[1, k + 1, i] = dth[i]
+    return out
