@@ -81,7 +81,10 @@ def common_normal(p1, z1, p2, z2, ref=None, tol: float = 1e-9) -> CommonNormal:
         f2 = p2 + (e - b * d) / den * z2
         L = float(np.linalg.norm(f2 - f1))
         if L > tol:
-            return CommonNormal(f1, f2, (f2 - f1) / L, L, "skew")
+            # the normal's direction is ±ẑ₁×ẑ₂ exactly; (f2 − f1) only gives its sign (dividing the
+            # difference of the feet by a short length would lose digits)
+            c = cross / np.linalg.norm(cross)
+            return CommonNormal(f1, f2, c if c @ (f2 - f1) >= 0 else -c, L, "skew")
         m = 0.5 * (f1 + f2)
         return CommonNormal(m, m.copy(), cross / np.linalg.norm(cross), 0.0, "intersecting")
     r = p1 if ref is None else as_vector(ref, "ref", 3)
