@@ -187,8 +187,19 @@ class IKResult:
 def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only: bool = False,
              weights=None, tol: float = 1e-10, max_iterations: int = 60, max_restarts: int = 100,
              time_budget: float | None = None, damping: float = 1e-2, min_damping: float = 1e-9,
-             rng=None) -> IKResult:
-    """Levenberg–Marquardt IK with joint limits and random restarts, for any Robot and frame.
+             rng=None, method: str = "auto") -> IKResult:
+    """Inverse kinematics for any Robot and frame: closed form, compiled LM, or Pinocchio LM.
+
+    method : "auto" (default) — for a full pose of the robot's tip with no weights and no
+    time budget: the closed form when the arm has one (:func:`robokit.ik_analytic`; the
+    solution inside the limits nearest ``q0`` is returned), else the compiled
+    Levenberg–Marquardt solver (:func:`robokit.kernels.ik.solve_poe_ik`); anything else
+    (another frame, position only, weights, a time budget) uses the Pinocchio-based loop
+    below. "analytic", "compiled" and "lm" force one of them ("analytic" raises
+    ``ValueError`` for an arm without a closed form).
+
+    The Pinocchio-based loop ("lm") is Levenberg–Marquardt with joint limits and random
+    restarts, for any Robot and frame:
 
     robot : a :class:`robokit.Robot`; target : 4×4 pose (or a (3,) position with
     ``position_only``) of ``frame`` (default the robot's tip) in the base frame;
@@ -211,7 +222,6 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     """
     t_start = time.perf_counter()
     n = robot.n
-    rng = np.random.default_rng(rng)
     lo = np.asarray(robot.qlim, dtype=float)[:, 0]
     hi = np.asarray(robot.qlim, dtype=float)[:, 1]
     sample_lo = np.where(np.isfinite(lo), lo, -np.pi)
@@ -228,6 +238,20 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), lo, hi)
     tol = as_scalar(tol, "tol", positive=True)
 
+    if method not in ("auto", "analytic", "compiled", "lm"):
+        raise ValueError(f"method: expected 'auto', 'analytic', 'compiled' or 'lm', got {method!r}")
+    plain = (not position_only and weights is None and time_budget is None and hasattr(robot, "poe")
+             and (frame is None or frame == getattr(robot, "tip", None)))
+    if method in ("analytic", "compiled") and not plain:
+        raise ValueError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
+    if plain and method in ("auto", "analytic"):
+        res = _solve_closed_form(robot, T_target, q, tol, t_start, required=method == "analytic")
+        if res is not None:
+            return res
+    if plain and method in ("auto", "compiled"):
+        return _solve_compiled(robot, T_target, q, tol, max_iterations, max_restarts, rng, t_start)
+
+    rng = np.random.default_rng(rng)
     if hasattr(robot, "model"):
         error, jac, w_int = _pinocchio_closures(robot, frame, position_only, p_target, T_target, w)
     else:  # any object with frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
@@ -284,6 +308,53 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
         rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
     return IKResult(best_q, bool(best_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
+
+
+def _result(robot, q, T_target, tol, iterations, restarts, t_start) -> IKResult:
+    T = robot.frame_pose(q)
+    e = _log6_vec(_inv(T) @ T_target)
+    rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
+    return IKResult(q, bool(rot_err < tol and pos_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
+                    iterations, restarts, time.perf_counter() - t_start)
+
+
+def _solve_closed_form(robot, T_target, q0, tol, t_start, required: bool):
+    """The closed form's in-limit solution nearest ``q0`` (None: no closed form, or none of its
+    solutions inside the limits — the numerical solver then takes over)."""
+    from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
+
+    kind = ik_analytic_kind(robot)
+    if not kind.method:
+        if required:
+            raise ValueError(f"method: 'analytic' needs a closed form; {kind.reason}")
+        return None
+    sols = [s for s in ik_analytic(robot, T_target) if s.within_limits]
+    if not sols:
+        return None
+    revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
+
+    def distance(q):
+        d = q - q0
+        d[revolute] = np.mod(d[revolute] + np.pi, 2 * np.pi) - np.pi
+        return float(d @ d)
+
+    best = min(sols, key=lambda s: distance(np.asarray(s.q, float)))
+    res = _result(robot, np.asarray(best.q, float).copy(), T_target, tol, 0, 0, t_start)
+    return res if res.success else None  # a closed form off by more than tol: let LM polish from scratch
+
+
+def _solve_compiled(robot, T_target, q0, tol, max_iterations, max_restarts, rng, t_start) -> IKResult:
+    from robokit.kernels.ik import solve_poe_ik
+
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        seed = int(rng)
+    else:
+        seed = int(np.random.default_rng(rng).integers(2**31 - 1))
+    p = robot.poe
+    q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, T_target, q0, np.asarray(robot.qlim, float), tol=tol,
+                                               max_iterations=max(int(max_iterations), 30),
+                                               max_restarts=int(max_restarts), seed=seed)
+    return _result(robot, np.asarray(q, float), T_target, tol, int(iterations), int(restarts), t_start)
 
 
 def _pinocchio_closures(robot, frame, position_only, p_target, T_target, w):

@@ -51,3 +51,39 @@ def test_bad_input():
         solve_ik(r, np.ones((4, 4)))
     with pytest.raises(ValueError, match="weights"):
         solve_ik(r, np.eye(4), weights=[1, 1])
+
+
+@pytest.mark.parametrize("name", ["ur5", "puma560", "panda"])
+def test_solve_ik_methods_all_reach_the_pose_inside_the_limits(name):
+    """auto (closed form where the arm has one, else compiled LM), compiled and the Pinocchio LM
+    reference all reproduce Pinocchio's pose to 1e-9, inside the limits."""
+    robot = rk.load(name)
+    rng = np.random.default_rng(7)
+    for _ in range(15):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        for method in ("auto", "compiled", "lm"):
+            res = rk.solve_ik(robot, T, method=method, rng=3)
+            assert res.success, (name, method)
+            assert np.abs(robot.frame_pose(res.q) - T).max() < 1e-9
+            assert np.all(res.q >= robot.qlim[:, 0] - 1e-12) and np.all(res.q <= robot.qlim[:, 1] + 1e-12)
+
+
+def test_solve_ik_auto_uses_the_closed_form_nearest_the_seed():
+    robot = rk.load("puma560")
+    q_true = np.array([0.3, -0.4, 0.5, 0.2, 0.6, -0.1])
+    T = robot.frame_pose(q_true)
+    res = rk.solve_ik(robot, T, q0=q_true + 0.01)
+    assert res.iterations == 0 and res.restarts == 0  # no iteration: the closed form
+    assert np.abs(res.q - q_true).max() < 1e-9  # of the 8 solutions, the one next to the seed
+    sols = [s.q for s in rk.ik_analytic(robot, T) if s.within_limits]
+    far = max(sols, key=lambda q: np.abs(q - q_true).max())
+    res_far = rk.solve_ik(robot, T, q0=far)
+    assert np.abs(res_far.q - far).max() < 1e-9
+
+
+def test_solve_ik_analytic_refuses_an_arm_without_a_closed_form():
+    panda = rk.load("panda")
+    with pytest.raises(ValueError, match="closed form"):
+        rk.solve_ik(panda, panda.frame_pose(np.zeros(7)), method="analytic")
+    with pytest.raises(ValueError, match="method"):
+        rk.solve_ik(panda, panda.frame_pose(np.zeros(7)), method="newton")
