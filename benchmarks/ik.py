@@ -22,9 +22,9 @@ from benchmarks._harness import fmt_time, machine, table
 
 
 def _pose_error(T, T_target):
-    from robokit.spatial.se3 import _inv, _log6_vec
+    from robokit.spatial.lie import inv, log6
 
-    e = _log6_vec(_inv(T) @ T_target)
+    e = log6(inv(T) @ T_target)
     return float(np.linalg.norm(e[:3])), float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
 
 

@@ -40,9 +40,12 @@ class _Terminated(BaseException):
 
 
 def _version() -> str:
-    from robokit import __version__
+    from importlib.metadata import PackageNotFoundError, version
 
-    return __version__
+    try:
+        return version("robokit")
+    except PackageNotFoundError:  # pragma: no cover - a source tree never installed
+        return "0+unknown"
 
 
 def _add_format_options(parser) -> None:
@@ -131,6 +134,10 @@ def _dispatch(args) -> int:
             from robokit.description.robot import load
 
             args.model = load(args.model, tip=args.tip, **opts)
+        if str(args.model).lower().endswith(".npz"):  # a capability map (robokit workspace)
+            from robokit.workspace.plot import capability_view_cli
+
+            return capability_view_cli(args.model, args.output)
         return view_cli(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
     if args.command == "teach":
@@ -161,9 +168,7 @@ def _one_line(exc: BaseException) -> str:
 def _raised_by_robokit(exc: BaseException) -> bool:
     """True if the exception was raised by robokit's own code (a deliberate input check),
     False if it came from inside a dependency (numpy, Pinocchio, ...) or Python itself."""
-    import robokit
-
-    root = os.path.dirname(os.path.abspath(robokit.__file__))
+    root = os.path.dirname(os.path.abspath(__file__))  # this file is robokit/cli.py
     tb = exc.__traceback__
     last = None
     while tb is not None:

@@ -137,7 +137,7 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
         model.armature = arm_v
         data = model.createData()
     same_coords = model.nq == model.nv == n
-    tip_id = robot.tip_id
+
 
     def accel(qa, dqa, tau):
         if use_fric:

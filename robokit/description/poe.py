@@ -23,8 +23,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from robokit.spatial import lie
 
-from robokit.spatial.se3 import _adjoint, _inv
 
 __all__ = ["PoEParams", "poe_from_model"]
 
@@ -90,7 +90,7 @@ def poe_from_model(model, tip: str, gravity=None) -> PoEParams:
     M = data.oMf[fid].homogeneous.copy()
     Jw = np.asarray(data.J).reshape(6, -1).copy()  # world-frame joint Jacobian at zero: columns are space screws (v, ω)
     Slist = np.vstack([Jw[3:], Jw[:3]])
-    Blist = _adjoint(_inv(M)) @ Slist
+    Blist = lie.adjoint(lie.inv(M)) @ Slist
     Mlist = np.empty((n + 1, 4, 4))
     Glist = np.zeros((n, 6, 6))
     prev = np.eye(4)
@@ -99,11 +99,11 @@ def poe_from_model(model, tip: str, gravity=None) -> PoEParams:
         Y = model.inertias[j]
         T_com = data.oMi[j].homogeneous.copy()
         T_com[:3, 3] = T_com[:3, :3] @ Y.lever + T_com[:3, 3]
-        Mlist[i] = _inv(prev) @ T_com
+        Mlist[i] = lie.inv(prev) @ T_com
         prev = T_com
         Glist[i, :3, :3] = Y.inertia  # about the centre of mass, joint-frame axes
         Glist[i, 3:, 3:] = Y.mass * np.eye(3)
-    Mlist[n] = _inv(prev) @ M
+    Mlist[n] = lie.inv(prev) @ M
     names = tuple(model.names[j] for j in range(1, model.njoints))
     qlim = np.empty((n, 2))
     for i in range(n):

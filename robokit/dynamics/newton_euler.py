@@ -27,8 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
-from robokit.kinematics.poe import _adjoint_many, _exps
-from robokit.spatial.se3 import _inv
+from robokit.kinematics.poe import screw_exponentials
+from robokit.spatial import lie
 
 __all__ = [
     "inverse_dynamics",
@@ -85,21 +85,21 @@ class _Model:
         self.Mlist = np.ascontiguousarray(Mlist)  # the validated constants, as the kernels take them
         self.Glist = np.ascontiguousarray(Glist)
         self.Slist = np.ascontiguousarray(Slist)
-        self.Minv = np.array([_inv(M) for M in Mlist])  # (n+1, 4, 4)
+        self.Minv = np.array([lie.inv(M) for M in Mlist])  # (n+1, 4, 4)
         self.G = np.array(Glist)  # (n, 6, 6)
         M0i = np.eye(4)
         A = np.empty((6, n))
         for i in range(n):
             M0i = M0i @ Mlist[i]
-            A[:, i] = _adjoint_many(_inv(M0i)[None])[0] @ Slist[:, i]
+            A[:, i] = lie.adjoint(lie.inv(M0i)[None])[0] @ Slist[:, i]
         self.A = A
         self.AT = np.ascontiguousarray(A.T)  # rows Aᵢ
-        self.Ad_tip = _adjoint_many(self.Minv[n][None])[0]  # Ad_{T_{n+1,n}}
+        self.Ad_tip = lie.adjoint(self.Minv[n][None])[0]  # Ad_{T_{n+1,n}}
 
     def transforms(self, theta):
         """Ad_{T_{i,i−1}} for i = 1..n: (n, 6, 6)."""
-        T = _exps(self.A, -theta) @ self.Minv[: self.n]
-        return _adjoint_many(T)
+        T = screw_exponentials(self.A, -theta) @ self.Minv[: self.n]
+        return lie.adjoint(T)
 
 
 _SEEN: dict = {}  # id(Slist) -> (Mlist, Glist, Slist, their bytes, the model): the last arrays seen

@@ -21,9 +21,7 @@ import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.dynamics.newton_euler import _model, forward_dynamics, inverse_dynamics
-from robokit.spatial.se3 import _ad
-from robokit.kinematics.poe import _adjoint_many
-from robokit.spatial.so3 import _hat
+from robokit.spatial import lie
 
 __all__ = [
     "coriolis_matrix",
@@ -42,9 +40,9 @@ __all__ = [
 def _X(h):
     """X(h) with X(h) V = −ad_Vᵀ h for every twist V (h a wrench (m, f))."""
     X = np.zeros((6, 6))
-    X[:3, :3] = -_hat(h[:3])
-    X[:3, 3:] = -_hat(h[3:])
-    X[3:, :3] = -_hat(h[3:])
+    X[:3, :3] = -lie.hat(h[:3])
+    X[:3, 3:] = -lie.hat(h[3:])
+    X[3:, :3] = -lie.hat(h[3:])
     return X
 
 
@@ -96,9 +94,9 @@ def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist, method: str = "c
         Jd = np.zeros((6, n))
         for j in range(i + 1):
             rel = Ji[:, j + 1:i + 1] @ dth[j + 1:i + 1]
-            Jd[:, j] = _ad(Ji[:, j]) @ rel
+            Jd[:, j] = lie.ad(Ji[:, j]) @ rel
         G = m.G[i]
-        adV = _ad(V)
+        adV = lie.ad(V)
         B = 0.5 * (-adV.T @ G + G @ adV + _X(G @ V))
         C += Ji.T @ (G @ Jd + B @ Ji)
     return C
@@ -149,7 +147,7 @@ def add_payload(Mlist, Glist, mass, com=(0.0, 0.0, 0.0), inertia=None):
     T_n_ee = Mlist[-1]
     T_n_p = T_n_ee @ T_ee_p
     T_p_n = np.linalg.inv(T_n_p)
-    A = _adjoint_many(T_p_n[None])[0]
+    A = lie.adjoint(T_p_n[None])[0]
     Glist[-1] = Glist[-1] + A.T @ Gp @ A
     return Glist
 
@@ -174,13 +172,13 @@ def base_wrench(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist
     Vs, Vds = [], []
     for i in range(n):
         V = Ad[i] @ V + A[i] * dth[i]
-        Vd = Ad[i] @ Vd + (_ad(V) @ A[i]) * dth[i] + A[i] * ddth[i]
+        Vd = Ad[i] @ Vd + (lie.ad(V) @ A[i]) * dth[i] + A[i] * ddth[i]
         Vs.append(V)
         Vds.append(Vd)
     F = Ftip
     Ad_next = m.Ad_tip
     for i in range(n - 1, -1, -1):
-        F = Ad_next.T @ F + G[i] @ Vds[i] - _ad(Vs[i]).T @ G[i] @ Vs[i]
+        F = Ad_next.T @ F + G[i] @ Vds[i] - lie.ad(Vs[i]).T @ G[i] @ Vs[i]
         Ad_next = Ad[i]
     # F is F₁ (in frame {1}); carried to {0}. The gravity used here is an upward base acceleration,
     # so F already contains the weight.

@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from robokit.spatial import lie
 
-from robokit.spatial.se3 import _inv
 
 
 def _rx4(alpha, a):
@@ -69,8 +69,8 @@ class DHChain:
             if first.alpha != 0.0 or first.a != 0.0:
                 base = base @ _rx4(float(first.alpha), float(first.a))
         self.base, self.tool = base, tool
-        self.base_inv = None if np.array_equal(base, np.eye(4)) else _inv(base)
-        self.tool_inv = None if np.array_equal(tool, np.eye(4)) else _inv(tool)
+        self.base_inv = None if np.array_equal(base, np.eye(4)) else lie.inv(base)
+        self.tool_inv = None if np.array_equal(tool, np.eye(4)) else lie.inv(tool)
         if qlim is None and all(getattr(l, "qlim", None) is not None for l in links):
             qlim = np.array([l.qlim for l in links], dtype=float)
         self.qlim = None if qlim is None else np.asarray(qlim, dtype=float)
@@ -128,7 +128,7 @@ class DHChain:
         rc.kinds = self.kinds[::-1]
         rc.th0, rc.d0 = -self.th0[::-1], -self.d0[::-1]
         rc.alpha, rc.a = -self.alpha[::-1], -self.a[::-1]
-        rc.base, rc.tool = _inv(self.tool), _inv(self.base)
+        rc.base, rc.tool = lie.inv(self.tool), lie.inv(self.base)
         rc.base_inv = None if self.tool_inv is None else self.tool.copy()
         rc.tool_inv = None if self.base_inv is None else self.base.copy()
         rc.qlim = None if self.qlim is None else -self.qlim[::-1, ::-1]

@@ -28,6 +28,7 @@ import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
+from robokit.spatial.basics import wrap_angle
 
 __all__ = [
     "IKSolution",
@@ -42,12 +43,6 @@ __all__ = [
 _TWO_PI = 2.0 * np.pi
 
 
-def _wrap(a):
-    """Angles wrapped to (−π, π]."""
-    a = np.asarray(a, dtype=float)
-    w = np.mod(a + np.pi, _TWO_PI) - np.pi
-    w = np.where(w <= -np.pi, w + _TWO_PI, w)
-    return w
 
 
 @dataclass(frozen=True)
@@ -100,7 +95,7 @@ def _two_link_core(x, y, l1, l2):
         k1, k2 = l1 + l2 * c2, l2 * s2
         t1 = np.arctan2(y, x) - np.arctan2(k2, k1)
         t2 = np.arctan2(s2, c2)
-        out.append((float(_wrap(t1)), float(_wrap(t2)), label))
+        out.append((float(wrap_angle(t1)), float(wrap_angle(t2)), label))
         if s2_abs == 0.0:  # stretched or folded: both branches coincide
             break
     return out
@@ -139,7 +134,7 @@ def ik_planar_rrr(x, y, phi, l1, l2, l3, qlim=None) -> list[IKSolution]:
     wx, wy = x - l3 * np.cos(phi), y - l3 * np.sin(phi)
     sols = []
     for t1, t2, label in _two_link_core(wx, wy, l1, l2):
-        q = np.array([t1, t2, float(_wrap(phi - t1 - t2))])
+        q = np.array([t1, t2, float(wrap_angle(phi - t1 - t2))])
         sols.append(IKSolution(q, _within(q, qlim), label))
     return sols
 
@@ -158,7 +153,7 @@ def ik_spherical_wrist(R36, theta4_ref: float = 0.0) -> list[IKSolution]:
     """
     R = check_rotation(R36, "R36")
     t4_ref = as_scalar(theta4_ref, "theta4_ref")
-    return [IKSolution(_wrap(np.array(q)), True, label, degenerate) for q, label, degenerate in _wrist(R, t4_ref)]
+    return [IKSolution(wrap_angle(np.array(q)), True, label, degenerate) for q, label, degenerate in _wrist(R, t4_ref)]
 
 
 def _wrist(R, t4_ref):
@@ -196,7 +191,7 @@ def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
     for sign, side in ((1.0, "front"), (-1.0, "back")):
         t1 = base_angle if sign > 0 else base_angle + np.pi
         for t2, t3, label in _two_link_core(sign * r - L1, p[2], L2, L3):
-            q = _wrap(np.array([t1, t2, t3]))
+            q = wrap_angle(np.array([t1, t2, t3]))
             sols.append(IKSolution(q, _within(q, qlim), f"{side}, {label}"))
         if r <= 1e-12:
             break  # on the axis of joint 1: θ₁ is free; the choice θ₁ = 0 covers both sides
@@ -216,7 +211,7 @@ def _puma_params(table):
     alpha = np.array([l.alpha for l in links])
     a = np.array([l.a for l in links])
     d = np.array([l.d for l in links])
-    if np.abs(_wrap(alpha - _PUMA_ALPHA)).max() > 1e-9 or np.abs(a[[0, 3, 4, 5]]).max() > 1e-12 or abs(d[4]) > 1e-12:
+    if np.abs(wrap_angle(alpha - _PUMA_ALPHA)).max() > 1e-9 or np.abs(a[[0, 3, 4, 5]]).max() > 1e-12 or abs(d[4]) > 1e-12:
         raise ValueError(
             "table: not a PUMA 560-type arm (needs alpha = [90, 0, -90, 90, -90, 0] deg, a1 = a4 = a5 = a6 = 0, d5 = 0)"
         )
@@ -256,14 +251,8 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
     return model.solve(_check_pose(T), ref)
 
 
-def _rz(t):
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def _rx(t):
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def select_solution(solutions, q_ref, weights=None, within_limits: bool = True, proximal_first: bool = False):
@@ -283,5 +272,5 @@ def select_solution(solutions, q_ref, weights=None, within_limits: bool = True, 
         w = np.arange(n, 0, -1, dtype=float) if proximal_first else np.ones(n)
     else:
         w = as_vector(weights, "weights", n)
-    costs = [float(np.sum(w * np.abs(_wrap(s.q - q_ref)))) for s in sols]
+    costs = [float(np.sum(w * np.abs(wrap_angle(s.q - q_ref)))) for s in sols]
     return sols[int(np.argmin(costs))]

@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
-from robokit.spatial.se3 import _adjoint, _inv, _log6_vec, check_transform
+from robokit.spatial.se3 import check_transform
+from robokit.spatial import lie
 
 __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 
@@ -41,10 +42,10 @@ def _check_screws(S, name):
 
 
 def _fk_body(M, Blist, theta):
-    from robokit.kinematics.poe import _exps
+    from robokit.kinematics.poe import screw_exponentials
 
     T = M
-    for E in _exps(Blist, theta):
+    for E in screw_exponentials(Blist, theta):
         T = T @ E
     return T
 
@@ -124,7 +125,7 @@ def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
     best = _Best(Blist)
     for _ in range(max_iterations + 1):
-        Vb = _log6_vec(_inv(_fk_body(M, Blist, theta)) @ T)
+        Vb = lie.log6(lie.inv(_fk_body(M, Blist, theta)) @ T)
         if np.linalg.norm(Vb[:3]) <= eomg and np.linalg.norm(Vb[3:]) <= ev:
             return theta, True
         if not best.keep(theta, Vb):
@@ -142,18 +143,18 @@ def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     """
     Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
     n = Slist.shape[1]
-    from robokit.kinematics.poe import _adjoint_many, _chain, _exps
+    from robokit.kinematics.poe import prefix_products, screw_exponentials
 
     Slist = np.ascontiguousarray(Slist)
     best = _Best(Slist)
     for _ in range(max_iterations + 1):
         # forward kinematics and space Jacobian from one set of exponentials
-        P = _chain(_exps(Slist, theta))  # prefix products e^{[S1]θ1}⋯e^{[Si]θi}
+        P = prefix_products(screw_exponentials(Slist, theta))  # prefix products e^{[S1]θ1}⋯e^{[Si]θi}
         Tsb = P[-1] @ M
         Js = Slist.copy()
         if n > 1:
-            Js[:, 1:] = np.einsum("kij,jk->ik", _adjoint_many(P[:-1]), Slist[:, 1:])
-        Vs = _adjoint(Tsb) @ _log6_vec(_inv(Tsb) @ T)
+            Js[:, 1:] = np.einsum("kij,jk->ik", lie.adjoint(P[:-1]), Slist[:, 1:])
+        Vs = lie.adjoint(Tsb) @ lie.log6(lie.inv(Tsb) @ T)
         if np.linalg.norm(Vs[:3]) <= eomg and np.linalg.norm(Vs[3:]) <= ev:
             return theta, True
         if not best.keep(theta, Vs):
@@ -301,7 +302,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     if position_only:
         e = p_target - T[:3, 3]
     else:
-        e = _log6_vec(_inv(T) @ T_target)
+        e = lie.log6(lie.inv(T) @ T_target)
     if position_only:
         pos_err, rot_err = float(np.linalg.norm(e)), 0.0
     else:
@@ -312,7 +313,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
 
 def _result(robot, q, T_target, tol, iterations, restarts, t_start) -> IKResult:
     T = robot.frame_pose(q)
-    e = _log6_vec(_inv(T) @ T_target)
+    e = lie.log6(lie.inv(T) @ T_target)
     rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
     return IKResult(q, bool(rot_err < tol and pos_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
@@ -393,7 +394,7 @@ def _generic_closures(robot, frame, position_only, p_target, T_target, w):
 
     def error(qc):
         T = robot.frame_pose(qc, frame)
-        e = p_target - T[:3, 3] if position_only else _log6_vec(_inv(T) @ T_target)
+        e = p_target - T[:3, 3] if position_only else lie.log6(lie.inv(T) @ T_target)
         return e, float(np.sqrt(e @ e))
 
     def jac(qc):

@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.basics import wrap_angle
 
 __all__ = ["pk_subproblem1", "pk_subproblem2", "pk_subproblem3", "solve_trig"]
 
@@ -34,12 +35,6 @@ _PI = math.pi
 _TWO_PI = 2.0 * math.pi
 
 
-def _wrap1(a: float) -> float:
-    """One angle wrapped to (−π, π]."""
-    w = math.fmod(a + _PI, _TWO_PI)
-    if w <= 0.0:
-        w += _TWO_PI
-    return w - _PI
 
 
 def _trig_roots(a: float, b: float, c: float, tol: float = 1e-12):
@@ -61,8 +56,8 @@ def _trig_roots(a: float, b: float, c: float, tol: float = 1e-12):
     q = b + (sq if b >= 0.0 else -sq)
     if q == 0.0:  # b = 0 and disc = 0: a double root u = 0 (θ = 0) or u = ∞ (θ = π)
         return [0.0] if A != 0.0 else [_PI]
-    t1 = _wrap1(2.0 * math.atan2(q, A))  # u₁ = q/A  (A = 0: u₁ = ∞, θ = π)
-    t2 = _wrap1(2.0 * math.atan2(C, q))  # u₂ = C/q  (Vieta: u₁u₂ = C/A)
+    t1 = wrap_angle(2.0 * math.atan2(q, A))  # u₁ = q/A  (A = 0: u₁ = ∞, θ = π)
+    t2 = wrap_angle(2.0 * math.atan2(C, q))  # u₂ = C/q  (Vieta: u₁u₂ = C/A)
     if sq == 0.0:
         return [t1]
     return [t1, t2]
@@ -154,7 +149,7 @@ def _sp1(w, u, v, tol):
         return []
     if nu <= tol:
         return [0.0]
-    return [_wrap1(math.atan2(float(w @ np.cross(up, vp)), float(up @ vp)))]
+    return [wrap_angle(math.atan2(float(w @ np.cross(up, vp)), float(up @ vp)))]
 
 
 def pk_subproblem2(omega1, omega2, r, p, q, tol: float = 1e-9) -> list[tuple[float, float]]:

@@ -22,8 +22,9 @@ import math
 import numpy as np
 
 from robokit._arrays import as_scalar
-from robokit.ik.analytic import IKSolution, _qlim_or_none, _within, _wrap
+from robokit.ik.analytic import IKSolution, _qlim_or_none, _within
 from robokit.spatial.se3 import check_transform
+from robokit.spatial.basics import wrap_angle
 
 __all__ = ["ik_rrr_pose"]
 
@@ -82,7 +83,7 @@ def ik_rrr_pose(T, L1, L2, L3=0.0, qlim=None, tol: float = 1e-9) -> list[IKSolut
     s2 = p[2] / L2
     t2 = math.atan2(s2, c2)
     t3 = math.atan2(R[2, 0], R[2, 1]) - t2
-    q = _wrap(np.array([t1, t2, t3]))
+    q = wrap_angle(np.array([t1, t2, t3]))
     if np.abs(_fk(q, L1, L2, L3) - T).max() > tol * max(1.0, L1 + L2 + L3):
         return []
     return [IKSolution(q, _within(q, qlim), "unique")]

@@ -23,7 +23,7 @@ import numpy as np
 from robokit._arrays import as_scalar, as_vector
 from robokit.ik.numeric import IKResult
 from robokit.spatial.se3 import check_transform
-from robokit.spatial.so3 import _log3_vec
+from robokit.spatial import lie
 
 __all__ = ["ik_jacobian_transpose"]
 
@@ -55,7 +55,7 @@ def ik_jacobian_transpose(robot, T_target, q0=None, *, gain: float = 1.0, damper
     def error(q):
         TE = robot.frame_pose(q, frame)
         RE = TE[:3, :3]
-        return np.r_[_log3_vec(RE.T @ R_t), RE.T @ (p_t - TE[:3, 3])]
+        return np.r_[lie.log3(RE.T @ R_t), RE.T @ (p_t - TE[:3, 3])]
 
     delta = error(q)
     k = 0

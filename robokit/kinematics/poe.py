@@ -119,7 +119,7 @@ def _screw_data(S: np.ndarray):
     return data
 
 
-def _exps(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
+def screw_exponentials(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
     """exp([Sᵢ]θᵢ) for every screw column i: theta (..., n) → (..., n, 4, 4).
 
     Closed form for a screw with ‖ω‖ ≠ 0 (scaled to a unit axis, θ' = ‖ω‖θ):
@@ -139,7 +139,7 @@ def _exps(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
     return out
 
 
-def _chain(E):
+def prefix_products(E):
     """Running products along the joint axis: E (..., n, 4, 4) → P (..., n, 4, 4), Pᵢ = E₀⋯Eᵢ."""
     P = np.empty_like(E)
     P[..., 0, :, :] = E[..., 0, :, :]
@@ -217,14 +217,3 @@ def jacobian_body(Blist, thetalist) -> np.ndarray:
     return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
 
 
-def _adjoint_many(T: np.ndarray) -> np.ndarray:
-    """Adjoints (..., 6, 6) of poses (..., 4, 4)."""
-    R, p = T[..., :3, :3], T[..., :3, 3]
-    P = np.zeros(T.shape[:-2] + (3, 3))
-    P[..., 0, 1], P[..., 0, 2], P[..., 1, 2] = -p[..., 2], p[..., 1], -p[..., 0]
-    P[..., 1, 0], P[..., 2, 0], P[..., 2, 1] = p[..., 2], -p[..., 1], p[..., 0]
-    A = np.zeros(T.shape[:-2] + (6, 6))
-    A[..., :3, :3] = R
-    A[..., 3:, 3:] = R
-    A[..., 3:, :3] = P @ R
-    return A

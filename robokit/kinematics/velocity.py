@@ -11,7 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
-from robokit.spatial.se3 import _adjoint, _inv, check_transform
+from robokit.spatial.se3 import check_transform
+from robokit.spatial import lie
 
 __all__ = [
     "numerical_jacobian",
@@ -72,17 +73,17 @@ def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bo
     The matrix is singular when the first and third axes line up (Tait–Bryan b = ±π/2, proper
     Euler b ∈ {0, π}); :func:`analytical_jacobian` raises there (``tol`` is its threshold on det E).
     """
-    from robokit.spatial.euler import _check_seq, _rot
+    from robokit.spatial.euler import check_sequence, elementary_rotation
 
     a, b, c = as_vector(angles, "angles", 3)
-    seq = _check_seq(seq)
+    seq = check_sequence(seq)
     i, j, k = ("XYZ".index(ch) for ch in seq)
     e = np.eye(3)
     if extrinsic:
-        Rk = _rot(k, c)
-        return np.column_stack([Rk @ _rot(j, b) @ e[i], Rk @ e[j], e[k]])
-    Ri = _rot(i, a)
-    return np.column_stack([e[i], Ri @ e[j], Ri @ _rot(j, b) @ e[k]])
+        Rk = elementary_rotation(k, c)
+        return np.column_stack([Rk @ elementary_rotation(j, b) @ e[i], Rk @ e[j], e[k]])
+    Ri = elementary_rotation(i, a)
+    return np.column_stack([e[i], Ri @ e[j], Ri @ elementary_rotation(j, b) @ e[k]])
 
 
 def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
@@ -137,13 +138,13 @@ def twist_transform(T_a_b) -> np.ndarray:
 
     For two frames on the same body, or a frame on another body rigidly fixed to it (Lecture 6).
     """
-    return _adjoint(check_transform(T_a_b, "T_a_b"))
+    return lie.adjoint(check_transform(T_a_b, "T_a_b"))
 
 
 def wrench_transform(T_a_b) -> np.ndarray:
     """The 6×6 map of wrenches ``(m, f)`` expressed in frame b to frame a: ``F_a = Ad_{T_ba}ᵀ F_b``
     (the same physical force, its moment taken about a's origin)."""
-    return _adjoint(_inv(check_transform(T_a_b, "T_a_b"))).T
+    return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
 def jacobian_to_frame(J, R) -> np.ndarray:

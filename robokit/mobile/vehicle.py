@@ -26,15 +26,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.basics import wrap_angle
 
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
 
 
 def angdiff(a, b=0.0):
-    """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array)."""
-    d = np.mod(np.asarray(a, dtype=float) - b + np.pi, 2 * np.pi) - np.pi
-    d = np.where(d <= -np.pi, d + 2 * np.pi, d)
-    return float(d) if np.ndim(d) == 0 else d
+    """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array), Corke's name for it."""
+    return wrap_angle(np.asarray(a, dtype=float) - b) if np.ndim(a) else wrap_angle(float(a) - float(b))
 
 
 class BicycleModel:

@@ -7,9 +7,9 @@ extrinsic), ``quaternion`` (scalar first), ``axis_angle`` (Rodrigues, two-vector
 """
 from robokit.spatial.basics import *  # noqa: F401,F403
 from robokit.spatial.basics import __all__ as _basics_all
-from robokit.spatial.so3 import *  # noqa: F401,F403
+from robokit.spatial.so3 import *  # noqa: F401, F403
 from robokit.spatial.so3 import __all__ as _so3_all
-from robokit.spatial.se3 import *  # noqa: F401,F403
+from robokit.spatial.se3 import *  # noqa: F401, F403
 from robokit.spatial.se3 import __all__ as _se3_all
 
 from robokit.spatial.euler import *  # noqa: F401,F403

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
-from robokit.spatial.so3 import _exp3, _log3_vec, check_rotation
+from robokit.spatial.so3 import check_rotation
+from robokit.spatial import lie
 
 __all__ = ["matrix_from_axis_angle", "axis_angle_from_matrix", "matrix_from_two_vectors"]
 
@@ -22,12 +23,12 @@ def matrix_from_axis_angle(axis, angle) -> np.ndarray:
     n = float(np.linalg.norm(axis))
     if n == 0.0:
         raise ValueError("axis: the zero vector has no direction")
-    return _exp3(axis / n * as_scalar(angle, "angle"))
+    return lie.exp3(axis / n * as_scalar(angle, "angle"))
 
 
 def axis_angle_from_matrix(R):
     """``(axis, angle)`` of a rotation, angle ∈ [0, π]; axis (1, 0, 0) when angle = 0."""
-    w = _log3_vec(check_rotation(R, "R"))
+    w = lie.log3(check_rotation(R, "R"))
     th = float(np.linalg.norm(w))
     if th == 0.0:
         return np.array([1.0, 0.0, 0.0]), 0.0

@@ -1,11 +1,13 @@
 """Scalar and vector basics of the seed function library (seed 004 §1)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from robokit._arrays import as_array, as_vector
 
-__all__ = ["near_zero", "normalize"]
+__all__ = ["near_zero", "normalize", "wrap_angle"]
 
 
 def near_zero(z) -> bool:
@@ -27,3 +29,20 @@ def normalize(V) -> np.ndarray:
     if n == 0.0:
         raise ValueError("V: cannot normalize the zero vector")
     return V / n
+
+
+def wrap_angle(a):
+    """Angles wrapped to (−π, π]: a float for a scalar, an array for an array (no checks).
+
+    The one angle-wrapping function of robokit (rotations, IK solutions, vehicle headings).
+    Example: ``wrap_angle(3 * np.pi / 2)`` → ``-π/2``; ``wrap_angle(-np.pi)`` → ``π``.
+    """
+    if isinstance(a, (float, int)):
+        w = math.fmod(a + math.pi, 2.0 * math.pi)
+        if w <= 0.0:
+            w += 2.0 * math.pi
+        return w - math.pi
+    a = np.asarray(a, dtype=float)
+    w = np.mod(a + np.pi, 2.0 * np.pi) - np.pi
+    w = np.where(w <= -np.pi, w + 2.0 * np.pi, w)
+    return float(w) if w.ndim == 0 else w

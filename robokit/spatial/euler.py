@@ -29,8 +29,9 @@ import numpy as np
 
 from robokit._arrays import as_vector
 from robokit.spatial.so3 import check_rotation
+from robokit.spatial.basics import wrap_angle
 
-__all__ = ["matrix_from_euler", "euler_from_matrix", "EULER_SEQUENCES"]
+__all__ = ["matrix_from_euler", "euler_from_matrix", "EULER_SEQUENCES", "elementary_rotation", "check_sequence"]
 
 _AX = {"X": 0, "Y": 1, "Z": 2}
 EULER_SEQUENCES = tuple(
@@ -38,13 +39,15 @@ EULER_SEQUENCES = tuple(
 )  # 12 sequences: 6 Tait–Bryan (all different), 6 proper Euler (first = last)
 
 
-def _check_seq(seq: str) -> str:
+def check_sequence(seq: str) -> str:
+    """The Euler sequence ``seq`` upper-cased (one of the 12 of :data:`EULER_SEQUENCES`); ``ValueError`` otherwise."""
     if not isinstance(seq, str) or seq.upper() not in EULER_SEQUENCES:
         raise ValueError(f"seq: expected one of {', '.join(EULER_SEQUENCES)}, got {seq!r}")
     return seq.upper()
 
 
-def _rot(axis: int, angle: float) -> np.ndarray:
+def elementary_rotation(axis: int, angle: float) -> np.ndarray:
+    """The rotation by ``angle`` (rad) about the x (``axis=0``), y (1) or z (2) axis: Rx, Ry, Rz."""
     c, s = math.cos(angle), math.sin(angle)
     if axis == 0:
         return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
@@ -60,16 +63,13 @@ def matrix_from_euler(angles, seq: str = "ZYX", extrinsic: bool = False) -> np.n
     Example: ``matrix_from_euler([α, β, γ], "ZYX")`` equals the seed's ``euler_to_matrix([α, β, γ])``.
     """
     a, b, c = as_vector(angles, "angles", 3)
-    s = _check_seq(seq)
+    s = check_sequence(seq)
     i, j, k = (_AX[ch] for ch in s)
     if extrinsic:
-        return _rot(k, c) @ _rot(j, b) @ _rot(i, a)
-    return _rot(i, a) @ _rot(j, b) @ _rot(k, c)
+        return elementary_rotation(k, c) @ elementary_rotation(j, b) @ elementary_rotation(i, a)
+    return elementary_rotation(i, a) @ elementary_rotation(j, b) @ elementary_rotation(k, c)
 
 
-def _wrap(x: float) -> float:
-    y = math.atan2(math.sin(x), math.cos(x))
-    return math.pi if y == -math.pi else y
 
 
 def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int):
@@ -112,12 +112,12 @@ def euler_from_matrix(R, seq: str = "ZYX", extrinsic: bool = False, return_gimba
     Raises ``ValueError`` if R is not a rotation or ``seq`` is not one of the 12 sequences.
     """
     R = check_rotation(R, "R")
-    s = _check_seq(seq)
+    s = check_sequence(seq)
     i, j, k = (_AX[ch] for ch in s)
     if extrinsic:
         # R = R_k(c) R_j(b) R_i(a) is the intrinsic sequence (k, j, i) with angles (c, b, a)
         c, b, a, gimbal = _intrinsic_angles(R, k, j, i)
     else:
         a, b, c, gimbal = _intrinsic_angles(R, i, j, k)
-    out = np.array([_wrap(a), b, _wrap(c)])
+    out = np.array([wrap_angle(a), b, wrap_angle(c)])
     return (out, gimbal) if return_gimbal else out

@@ -14,14 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_matrix, as_vector
-from robokit.spatial.so3 import (
-    SO3_TOLERANCE,
-    _distance_so3,
-    _exp3_coeffs,
-    _hat,
-    _log3_vec,
-    project_to_SO3,
-)
+from robokit.spatial import lie
+from robokit.spatial.so3 import SO3_TOLERANCE, _distance_so3, project_to_SO3
 
 __all__ = [
     "trans_inv",
@@ -77,22 +71,14 @@ def trans_to_Rp(T):
 def trans_inv(T) -> np.ndarray:
     """Inverse of a pose: ``[[Rᵀ, −Rᵀp], [0, 1]]``."""
     T = check_transform(T, "T")
-    return _inv(T)
-
-
-def _inv(T: np.ndarray) -> np.ndarray:
-    Ti = np.eye(4)
-    Rt = T[:3, :3].T
-    Ti[:3, :3] = Rt
-    Ti[:3, 3] = -Rt @ T[:3, 3]
-    return Ti
+    return lie.inv(T)
 
 
 def vec_to_se3(V) -> np.ndarray:
     """The 4×4 matrix ``[V] = [[[ω], v], [0, 0]]`` of a twist ``V = (ω, v)``."""
     V = as_vector(V, "V", 6)
     m = np.zeros((4, 4))
-    m[:3, :3] = _hat(V[:3])
+    m[:3, :3] = lie.hat(V[:3])
     m[:3, 3] = V[3:]
     return m
 
@@ -118,46 +104,13 @@ def axis_ang_6(expc6):
     return V / theta, theta
 
 
-def _exp6(V: np.ndarray) -> np.ndarray:
-    """exp of the twist ``V`` (exponential coordinates, angle folded in)."""
-    w, v = V[:3], V[3:]
-    theta = float(np.linalg.norm(w))
-    W = _hat(w)
-    W2 = W @ W
-    A, B = _exp3_coeffs(theta)
-    if theta < 1e-4:
-        t2 = theta * theta
-        C = 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0
-    else:
-        C = (theta - np.sin(theta)) / theta**3
-    T = np.eye(4)
-    T[:3, :3] = np.eye(3) + A * W + B * W2
-    T[:3, 3] = v + B * (W @ v) + C * (W2 @ v)
-    return T
-
-
 def matrix_exp_6(se3mat) -> np.ndarray:
     """The pose ``exp([S]θ)`` of a 4×4 se(3) matrix (closed form, exact for pure translation).
 
     Example: ``matrix_exp_6(vec_to_se3([0, 0, 0, 1, 2, 3]))`` is the translation (1, 2, 3).
     """
     m = as_matrix(se3mat, "se3mat", 4, 4)
-    return _exp6(np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]]))
-
-
-def _log6_vec(T: np.ndarray) -> np.ndarray:
-    w = _log3_vec(T[:3, :3])
-    theta = float(np.linalg.norm(w))
-    W = _hat(w)
-    if theta < 1e-4:
-        t2 = theta * theta
-        D = 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0
-    else:
-        half = 0.5 * theta
-        D = (1.0 - half * np.cos(half) / np.sin(half)) / (theta * theta)
-    p = T[:3, 3]
-    v = p - 0.5 * (W @ p) + D * (W @ (W @ p))
-    return np.concatenate([w, v])
+    return lie.exp6(np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]]))
 
 
 def matrix_log_6(T) -> np.ndarray:
@@ -167,9 +120,9 @@ def matrix_log_6(T) -> np.ndarray:
     choice. Raises ``ValueError`` if T is not in SE(3).
     """
     T = check_transform(T, "T")
-    V = _log6_vec(T)
+    V = lie.log6(T)
     m = np.zeros((4, 4))
-    m[:3, :3] = _hat(V[:3])
+    m[:3, :3] = lie.hat(V[:3])
     m[:3, 3] = V[3:]
     return m
 
@@ -177,30 +130,12 @@ def matrix_log_6(T) -> np.ndarray:
 def adjoint(T) -> np.ndarray:
     """The 6×6 adjoint ``Ad_T = [[R, 0], [[p]R, R]]`` mapping twists: ``V_a = Ad_{T_ab} V_b``."""
     T = check_transform(T, "T")
-    return _adjoint(T)
-
-
-def _adjoint(T: np.ndarray) -> np.ndarray:
-    R, p = T[:3, :3], T[:3, 3]
-    A = np.zeros((6, 6))
-    A[:3, :3] = R
-    A[3:, 3:] = R
-    A[3:, :3] = _hat(p) @ R
-    return A
+    return lie.adjoint(T)
 
 
 def ad(V) -> np.ndarray:
     """The 6×6 ``ad_V = [[[ω], 0], [[v], [ω]]]`` of a twist ``V = (ω, v)`` (Lie bracket ``ad_V W = [V, W]``)."""
-    return _ad(as_vector(V, "V", 6))
-
-
-def _ad(V: np.ndarray) -> np.ndarray:
-    A = np.zeros((6, 6))
-    Wm = _hat(V[:3])
-    A[:3, :3] = Wm
-    A[3:, 3:] = Wm
-    A[3:, :3] = _hat(V[3:])
-    return A
+    return lie.ad(as_vector(V, "V", 6))
 
 
 def project_to_SE3(mat) -> np.ndarray:

@@ -15,6 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_matrix, as_vector
+from robokit.spatial.lie import exp3, hat, log3
+from robokit.spatial.basics import wrap_angle
 
 __all__ = [
     "rot_inv",
@@ -62,11 +64,7 @@ def vec_to_so3(omg) -> np.ndarray:
     Example: ``vec_to_so3([1, 2, 3])`` → ``[[0, -3, 2], [3, 0, -1], [-2, 1, 0]]``.
     """
     w = as_vector(omg, "omg", 3)
-    return _hat(w)
-
-
-def _hat(w: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    return hat(w)
 
 
 def so3_to_vec(so3mat) -> np.ndarray:
@@ -91,55 +89,13 @@ def axis_ang_3(expc3):
     return v / theta, theta
 
 
-def _exp3_coeffs(theta: float):
-    """A = sin θ/θ, B = (1 − cos θ)/θ², with Taylor series for small θ."""
-    if theta < 1e-4:
-        t2 = theta * theta
-        return 1.0 - t2 / 6.0 + t2 * t2 / 120.0, 0.5 - t2 / 24.0 + t2 * t2 / 720.0
-    return np.sin(theta) / theta, (1.0 - np.cos(theta)) / (theta * theta)
-
-
-def _exp3(w: np.ndarray) -> np.ndarray:
-    W = _hat(w)
-    A, B = _exp3_coeffs(float(np.linalg.norm(w)))
-    return np.eye(3) + A * W + B * (W @ W)
-
-
 def matrix_exp_3(so3mat) -> np.ndarray:
     """Rotation matrix ``exp([ω̂]θ)`` of a 3×3 skew matrix (Rodrigues' formula).
 
     Example: ``matrix_exp_3(vec_to_so3([0, 0, pi/2]))`` is the 90° rotation about z.
     """
     m = as_matrix(so3mat, "so3mat", 3, 3)
-    return _exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
-
-
-def _log3_vec(R: np.ndarray) -> np.ndarray:
-    """Exponential coordinates ω̂θ (θ ∈ [0, π]) of a rotation matrix.
-
-    At exactly θ = π the axis sign is free; the choice made is the one whose largest
-    component (by |·|) is positive.
-    """
-    s_vec = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])  # sin θ · ω̂
-    s = float(np.linalg.norm(s_vec))
-    c = min(1.0, max(-1.0, 0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0)))
-    theta = float(np.arctan2(s, c))
-    if c >= 0.0:  # θ ≤ π/2: the skew part is well conditioned
-        if theta < 1e-4:
-            t2 = theta * theta
-            factor = 1.0 + t2 / 6.0 + 7.0 * t2 * t2 / 360.0  # θ / sin θ
-        else:
-            factor = theta / s
-        return factor * s_vec
-    # θ > π/2: the symmetric part gives the axis; the skew part only its sign.
-    B = 0.5 * (R + R.T) - c * np.eye(3)  # (1 − cos θ) ω̂ ω̂ᵀ
-    k = int(np.argmax(np.diag(B)))
-    axis = B[:, k] / np.sqrt(B[k, k] * (1.0 - c))
-    axis /= np.linalg.norm(axis)
-    d = float(axis @ s_vec)
-    if d < 0.0 or (d == 0.0 and axis[np.argmax(np.abs(axis))] < 0.0):
-        axis = -axis
-    return theta * axis
+    return exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
 
 
 def matrix_log_3(R) -> np.ndarray:
@@ -150,7 +106,7 @@ def matrix_log_3(R) -> np.ndarray:
     component is positive is returned. Raises ``ValueError`` if R is not a rotation.
     """
     R = check_rotation(R, "R")
-    return _hat(_log3_vec(R))
+    return hat(log3(R))
 
 
 def project_to_SO3(mat) -> np.ndarray:
@@ -233,10 +189,5 @@ def matrix_to_euler(R) -> np.ndarray:
         gamma = 0.0
         alpha = float(np.arctan2(-R[0, 1], R[1, 1]))
         beta = np.pi / 2 if sb > 0 else -np.pi / 2
-    return np.array([_wrap(alpha), beta, _wrap(gamma)])
+    return np.array([wrap_angle(alpha), beta, wrap_angle(gamma)])
 
-
-def _wrap(a: float) -> float:
-    """Angle in (−π, π]."""
-    a = float(np.arctan2(np.sin(a), np.cos(a)))
-    return np.pi if a == -np.pi else a

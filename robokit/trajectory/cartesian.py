@@ -35,16 +35,17 @@ import numpy as np
 
 from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
-from robokit.spatial.so3 import _exp3, _log3_vec, check_rotation
+from robokit.spatial.so3 import check_rotation
 from robokit.trajectory.core import Trajectory, positive_duration, sample_times
 from robokit.trajectory.timescaling import time_scaling
+from robokit.spatial import lie
 
 __all__ = ["slerp_rotation", "cartesian_line_trajectory", "cartesian_to_joint"]
 
 
 def _relative_rotation_vector(R0: np.ndarray, R1: np.ndarray, shortest: bool) -> np.ndarray:
     """k̂θ of R0ᵀR1 in R0's frame; θ ∈ [0, π] (shortest) or θ − 2π (the other form)."""
-    w = _log3_vec(R0.T @ R1)
+    w = lie.log3(R0.T @ R1)
     if shortest:
         return w
     theta = float(np.linalg.norm(w))
@@ -85,10 +86,10 @@ def slerp_rotation(R0, R1, s, shortest: bool = True) -> np.ndarray:
     sv = as_array(s, "s")
     w = _relative_rotation_vector(A, B, shortest)
     if sv.ndim == 0:
-        return A @ _exp3(w * float(sv))
+        return A @ lie.exp3(w * float(sv))
     if sv.ndim != 1:
         raise ValueError(f"s: expected a number or a 1-D array, got shape {sv.shape}")
-    return np.array([A @ _exp3(w * x) for x in sv])
+    return np.array([A @ lie.exp3(w * x) for x in sv])
 
 
 def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shortest: bool = True) -> Trajectory:
@@ -138,7 +139,7 @@ def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shor
     poses = np.empty((K, 4, 4))
     poses[:] = np.eye(4)
     for i in range(K):
-        poses[i, :3, :3] = R0 @ _exp3(w * s[i])
+        poses[i, :3, :3] = R0 @ lie.exp3(w * s[i])
     dp = p1 - p0
     poses[:, :3, 3] = p0 + s[:, None] * dp
     if s[-1] == 1.0:
@@ -248,7 +249,7 @@ def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_on
                 T = np.asarray(robot.frame_pose(qk, frame), dtype=float)
                 e = float(np.linalg.norm(T[:3, 3] - poses[k, :3, 3]))
                 if not position_only:
-                    e = max(e, float(np.linalg.norm(_log3_vec(T[:3, :3].T @ poses[k, :3, :3]))))
+                    e = max(e, float(np.linalg.norm(lie.log3(T[:3, :3].T @ poses[k, :3, :3]))))
                 pose_err[k] = e
                 success = success and e <= tol
             else:

@@ -34,9 +34,9 @@ import numpy as np
 
 from robokit._arrays import as_array, as_scalar
 from robokit.spatial.se3 import check_transform
-from robokit.spatial.so3 import _exp3, _log3_vec
 from robokit.trajectory.core import Trajectory
 from robokit.trajectory.multisegment import _empty, ms_trajectory
+from robokit.spatial import lie
 
 __all__ = ["through_viapoints", "ms_through_trajectory", "ms_cartesian_trajectory"]
 
@@ -161,7 +161,7 @@ def ms_cartesian_trajectory(poses, dt, tacc, speed=None, angular_speed=None, tse
     Ts = [check_transform(T, f"poses[{i}]") for i, T in enumerate(P)]
     M = len(Ts)
     ns = M - 1
-    ws = [_log3_vec(Ts[i][:3, :3].T @ Ts[i + 1][:3, :3]) for i in range(ns)]
+    ws = [lie.log3(Ts[i][:3, :3].T @ Ts[i + 1][:3, :3]) for i in range(ns)]
     thetas = np.array([np.linalg.norm(w) for w in ws])
     axes = [w / t if t > 0 else np.zeros(3) for w, t in zip(ws, thetas)]
     via = np.zeros((M, 3 + ns))
@@ -194,11 +194,11 @@ def ms_cartesian_trajectory(poses, dt, tacc, speed=None, angular_speed=None, tse
         for i in range(ns):
             # ω = Σ R_before_i k̂ᵢ θᵢ ṡᵢ: each factor's rate, seen in the world through the factors before it
             w_world += (R @ axes[i]) * thetas[i] * Sd[k, i]
-            R = R @ _exp3(ws[i] * S[k, i])
+            R = R @ lie.exp3(ws[i] * S[k, i])
         poses_out[k, :3, :3] = R
         omega[k] = w_world
     poses_out[:, :3, 3] = tr.q[:, :3]
-    phi = np.array([_log3_vec(poses_out[k, :3, :3] @ R0.T) for k in range(K)])
+    phi = np.array([lie.log3(poses_out[k, :3, :3] @ R0.T) for k in range(K)])
     q = np.hstack([phi, tr.q[:, :3]])
     qd = np.hstack([omega, tr.qd[:, :3]])
     wdot = np.gradient(omega, tr.t, axis=0) if K > 1 else np.zeros_like(omega)

@@ -22,9 +22,9 @@ from numbers import Integral
 import numpy as np
 
 from robokit._arrays import as_array, as_vector
-from robokit.spatial.se3 import _exp6, _inv, _log6_vec, check_transform
-from robokit.spatial.so3 import _exp3, _log3_vec
+from robokit.spatial.se3 import check_transform
 from robokit.trajectory.core import positive_duration
+from robokit.spatial import lie
 
 __all__ = [
     "cubic_time_scaling",
@@ -212,8 +212,8 @@ def screw_trajectory(Xstart, Xend, Tf, N, method):
     X0 = check_transform(Xstart, "Xstart")
     X1 = check_transform(Xend, "Xend")
     s = _grid(Tf, N, method)
-    V = _log6_vec(_inv(X0) @ X1)
-    out = [X0 @ _exp6(V * si) for si in s]
+    V = lie.log6(lie.inv(X0) @ X1)
+    out = [X0 @ lie.exp6(V * si) for si in s]
     out[0] = X0.copy()
     return out
 
@@ -239,11 +239,11 @@ def cartesian_trajectory(Xstart, Xend, Tf, N, method):
     s = _grid(Tf, N, method)
     R0, p0 = X0[:3, :3], X0[:3, 3]
     R1, p1 = X1[:3, :3], X1[:3, 3]
-    w = _log3_vec(R0.T @ R1)
+    w = lie.log3(R0.T @ R1)
     out = []
     for si in s:
         X = np.eye(4)
-        X[:3, :3] = R0 @ _exp3(w * si)
+        X[:3, :3] = R0 @ lie.exp3(w * si)
         X[:3, 3] = p0 + si * (p1 - p0)
         out.append(X)
     out[0] = X0.copy()

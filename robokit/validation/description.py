@@ -5,7 +5,7 @@ import numpy as np
 
 from robokit.kinematics import fkin_space
 
-from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
+from robokit.validation.core import ARMS, CheckRow, robot as load
 
 SAMPLES = 200
 

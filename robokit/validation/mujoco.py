@@ -3,11 +3,11 @@
 Every shipped model and example-robot-data arm is written as MJCF and compiled by MuJoCo;
 its body/site poses, mass matrix (with armature), bias forces and inverse dynamics (with
 armature and damping) are compared with Pinocchio and with the course code on random
-states. See :mod:`robokit.description.mujoco_check`.
+states. See :mod:`robokit.validation.mujoco_check`.
 """
 from __future__ import annotations
 
-from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
+from robokit.validation.core import ARMS, CheckRow, robot as load
 
 SAMPLES = 20
 TOL = 1e-9
@@ -15,7 +15,7 @@ TOL = 1e-9
 
 def checks(rng) -> list[CheckRow]:
     from robokit.description.models import shipped_models
-    from robokit.description.mujoco_check import compare_with_mujoco, import_mujoco
+    from robokit.validation.mujoco_check import compare_with_mujoco, import_mujoco
 
     if import_mujoco() is None:  # optional dependency: no rows without it
         return []

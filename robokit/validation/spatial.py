@@ -28,7 +28,7 @@ def _axes_angles(rng):
 def checks(rng) -> list[CheckRow]:
     import pinocchio as pin
 
-    import robokit as rk
+    import robokit.spatial as rk
 
     axes, angles = _axes_angles(rng)
     e_exp3 = e_log3 = e_exp6 = e_log6 = e_adj = e_ad = e_inv = 0.0

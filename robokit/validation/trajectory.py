@@ -4,14 +4,14 @@ from __future__ import annotations
 import numpy as np
 
 from robokit.validation.core import CheckRow
+from robokit.spatial import lie
 
 
 def _random_pose(rng, angle_max=3.0):
-    from robokit.spatial.se3 import _exp6
-
+    
     w = rng.normal(size=3)
     w *= rng.uniform(0.05, angle_max) / np.linalg.norm(w)
-    return _exp6(np.concatenate([w, rng.normal(size=3)]))
+    return lie.exp6(np.concatenate([w, rng.normal(size=3)]))
 
 
 def checks(rng) -> list[CheckRow]:

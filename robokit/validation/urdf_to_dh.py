@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validation.core import ARMS, MODELS, CheckRow, robot as load
+from robokit.validation.core import ARMS, CheckRow, robot as load
 
 SAMPLES = 100
 

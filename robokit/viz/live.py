@@ -14,9 +14,9 @@ class LiveViewer:
     """
 
     def __init__(self, zmq_url: str | None = None):
-        from robokit.viz.scene import _new_visualizer
+        from robokit.viz.scene import new_visualizer
 
-        self.vis = _new_visualizer(zmq_url)
+        self.vis = new_visualizer(zmq_url)
         self._own = zmq_url is None
 
     @property
@@ -31,9 +31,9 @@ class LiveViewer:
 
     def close(self):
         """Stop the server (if this viewer started it) and wait for it to exit."""
-        from robokit.viz.scene import _stop_server
+        from robokit.viz.scene import stop_server
 
-        _stop_server(self.process)
+        stop_server(self.process)
 
     def __enter__(self):
         return self

@@ -52,7 +52,7 @@ def start_server():
         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL,
         start_new_session=True,  # a notebook's interrupt must not stop the viewer
     )
-    atexit.register(_stop_server, proc)
+    atexit.register(stop_server, proc)
     urls = {}
     while len(urls) < 2:
         line = proc.stdout.readline().decode("utf-8", "replace").strip()
@@ -65,7 +65,7 @@ def start_server():
     return proc, urls["zmq_url"], urls["web_url"]
 
 
-def _new_visualizer(zmq_url=None):
+def new_visualizer(zmq_url=None):
     """A meshcat Visualizer: connected to ``zmq_url``, or to a new loopback server of its own
     (:func:`start_server`; then ``vis.window.server_proc`` is that process)."""
     import contextlib
@@ -79,13 +79,13 @@ def _new_visualizer(zmq_url=None):
         with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints a banner
             vis = meshcat.Visualizer(zmq_url=zmq_url)
     except BaseException:
-        _stop_server(proc)
+        stop_server(proc)
         raise
     vis.window.server_proc = proc
     return vis
 
 
-def _stop_server(proc):
+def stop_server(proc):
     """Terminate a meshcat server process and wait for it to exit (kill if it does not)."""
     if proc is not None and proc.poll() is None:
         proc.terminate()
@@ -113,7 +113,7 @@ class Scene:
 
         self.robot = robot if isinstance(robot, Robot) else load(robot)
         self._own = vis is None
-        self.vis = _new_visualizer() if vis is None else vis
+        self.vis = new_visualizer() if vis is None else vis
         r = self.robot
         visual = r.visual_model
         collision = r.collision_model
@@ -331,7 +331,7 @@ class Scene:
     def close(self):
         """Stop the meshcat server this scene started (if it started one)."""
         if self._own and self.vis is not None:
-            _stop_server(getattr(self.vis.window, "server_proc", None))
+            stop_server(getattr(self.vis.window, "server_proc", None))
             self.vis = None
 
     def __enter__(self):

@@ -73,10 +73,6 @@ def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0, tip
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
     from robokit.description.robot import load
 
-    if str(model).lower().endswith(".npz"):  # a capability map (robokit workspace)
-        from robokit.workspace.plot import capability_view_cli
-
-        return capability_view_cli(model, output)
     out = Path(output)
     if out.suffix.lower() not in (".html", ".htm"):
         raise ValueError(f"-o: expected an .html file, got {str(out)!r}")

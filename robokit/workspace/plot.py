@@ -115,7 +115,7 @@ def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
     """
     import meshcat.geometry as g
 
-    from robokit.viz.scene import Scene, _new_visualizer, _stop_server
+    from robokit.viz.scene import Scene, new_visualizer, stop_server
 
     m = _as_map(cmap)
     if robot is None and m.robot:
@@ -132,7 +132,7 @@ def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
                 scene._extra_points.extend([m.centres.min(axis=0), m.centres.max(axis=0)])
             scene.frame_camera()
             return scene.html()
-    vis = _new_visualizer()
+    vis = new_visualizer()
     try:
         vis["points/capability"].set_object(cloud)
         lo, hi = (m.centres.min(axis=0), m.centres.max(axis=0)) if len(m.centres) else (np.zeros(3), np.zeros(3))
@@ -148,7 +148,7 @@ def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
         vis["/Cameras/default/rotated/<object>"].set_property("position", [off[0], off[2], -off[1]])
         return vis.static_html()
     finally:
-        _stop_server(getattr(vis.window, "server_proc", None))
+        stop_server(getattr(vis.window, "server_proc", None))
 
 
 def capability_view_cli(path, output) -> int:

@@ -168,10 +168,10 @@ def planar_chain(robot):
 
 # ----------------------------------------------------------------------------- back end choice
 def _analytic():
-    """``robokit.ik_analytic`` if this installation has it, else None."""
-    import robokit
+    """The closed-form solver :func:`robokit.ik.closed_form.ik_analytic`."""
+    from robokit.ik.closed_form import ik_analytic
 
-    return getattr(robokit, "ik_analytic", None)
+    return ik_analytic
 
 
 def _has_closed_form(robot) -> bool:

@@ -10,7 +10,7 @@ from robokit.description.mjcf import first_body_placement, joint_armature_dampin
 
 mujoco = pytest.importorskip("mujoco", reason="MuJoCo is an optional extra (pip install mujoco)")
 
-from robokit.description.mujoco_check import compare_with_mujoco  # noqa: E402
+from robokit.validation.mujoco_check import compare_with_mujoco  # noqa: E402
 
 MUJOCO_WORST = []
 

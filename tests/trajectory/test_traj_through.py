@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from robokit.spatial.euler import matrix_from_euler
-from robokit.spatial.so3 import _log3_vec
+from robokit.spatial.lie import log3
 from robokit.trajectory import ms_cartesian_trajectory, ms_through_trajectory, ms_trajectory, through_viapoints
 
 
@@ -98,9 +98,9 @@ def test_cartesian_linear_parts_are_slerps_about_a_fixed_axis():
     on_first = (~tr.info["in_blend"]) & (s[:, 0] > 0) & (s[:, 0] < 1) & (s[:, 1] == 0)
     assert on_first.sum() > 10
     R0 = POSES[0, :3, :3]
-    w = _log3_vec(R0.T @ POSES[1, :3, :3])
+    w = log3(R0.T @ POSES[1, :3, :3])
     for k in np.nonzero(on_first)[0]:
-        rel = _log3_vec(R0.T @ tr.poses[k, :3, :3])
+        rel = log3(R0.T @ tr.poses[k, :3, :3])
         np.testing.assert_allclose(np.cross(rel, w), 0.0, atol=1e-12)  # same axis
     with pytest.raises(ValueError, match="speed"):
         ms_cartesian_trajectory(POSES, 0.01, 0.2, speed=0.3)

@@ -1,0 +1,224 @@
+r"""The vector Lie kernel of SO(3) and SE(3): fast, batched, **unchecked**.
+
+Every function takes arrays whose last axes are the object (a 3-vector, a 6-vector twist
+``(ω, v)``, a 3×3 rotation, a 4×4 pose) and any number of leading batch axes, and returns the
+same batch shape. Nothing is validated: these are the building blocks the course layers use
+on arrays they have already checked. The seed library's functions (``matrix_exp_6``,
+``adjoint``, …) are the checked, one-at-a-time versions on top of this kernel.
+
+=============  ==================  ===================  ==========================================
+function       input (…, shape)    output (…, shape)    formula
+=============  ==================  ===================  ==========================================
+``hat``        ω (3,)              [ω] (3, 3)           ``[ω] x = ω × x``
+``vee``        [ω] (3, 3)          ω (3,)               inverse of ``hat``
+``exp3``       ωθ (3,)             R (3, 3)             Rodrigues: ``I + sin θ [ω̂] + (1 − cos θ)[ω̂]²``
+``log3``       R (3, 3)            ωθ (3,), θ ∈ [0, π]  inverse of ``exp3`` (stable near 0 and π)
+``exp6``       Sθ (6,)             T (4, 4)             Modern Robotics eq. 3.88
+``log6``       T (4, 4)            Sθ (6,)              Modern Robotics §3.3.3.2
+``inv``        T (4, 4)            T⁻¹ (4, 4)           ``[[Rᵀ, −Rᵀp], [0, 1]]``
+``adjoint``    T (4, 4)            Ad_T (6, 6)          ``[[R, 0], [[p]R, R]]``
+``ad``         V (6,)              ad_V (6, 6)          ``[[[ω], 0], [[v], [ω]]]``
+=============  ==================  ===================  ==========================================
+
+Twists are angular first, ``(ω, v)``. Example::
+
+    >>> import numpy as np
+    >>> from robokit.spatial import lie
+    >>> T = lie.exp6(np.array([[0, 0, np.pi / 2, 1, 0, 0], [0, 0, 0, 0, 0, 2]]))   # two poses
+    >>> T.shape, np.allclose(lie.log6(T)[1], [0, 0, 0, 0, 0, 2])
+    ((2, 4, 4), True)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["hat", "vee", "exp3", "log3", "exp6", "log6", "inv", "adjoint", "ad", "exp3_coefficients"]
+
+
+def hat(w: np.ndarray) -> np.ndarray:
+    """``[ω]``: (…, 3) → (…, 3, 3) skew-symmetric, ``[ω] x = ω × x``."""
+    w = np.asarray(w, dtype=float)
+    if w.ndim == 1:
+        return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    W = np.zeros(w.shape + (3,))
+    W[..., 0, 1], W[..., 0, 2], W[..., 1, 2] = -w[..., 2], w[..., 1], -w[..., 0]
+    W[..., 1, 0], W[..., 2, 0], W[..., 2, 1] = w[..., 2], -w[..., 1], w[..., 0]
+    return W
+
+
+def vee(W: np.ndarray) -> np.ndarray:
+    """ω of ``[ω]``: (…, 3, 3) → (…, 3), from the lower-left entries."""
+    W = np.asarray(W, dtype=float)
+    return np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
+
+
+def exp3_coefficients(theta):
+    """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` (Taylor series below θ = 1e-4); scalar or array."""
+    theta = np.asarray(theta, dtype=float)
+    if theta.ndim == 0:
+        t = float(theta)
+        if t < 1e-4:
+            t2 = t * t
+            return 1.0 - t2 / 6.0 + t2 * t2 / 120.0, 0.5 - t2 / 24.0 + t2 * t2 / 720.0
+        return np.sin(t) / t, (1.0 - np.cos(t)) / (t * t)
+    small = theta < 1e-4
+    safe = np.where(small, 1.0, theta)
+    t2 = theta * theta
+    A = np.where(small, 1.0 - t2 / 6.0 + t2 * t2 / 120.0, np.sin(safe) / safe)
+    B = np.where(small, 0.5 - t2 / 24.0 + t2 * t2 / 720.0, (1.0 - np.cos(safe)) / (safe * safe))
+    return A, B
+
+
+def exp3(w: np.ndarray) -> np.ndarray:
+    """``exp([ωθ])``: exponential coordinates (…, 3) → rotations (…, 3, 3) (Rodrigues)."""
+    w = np.asarray(w, dtype=float)
+    W = hat(w)
+    A, B = exp3_coefficients(np.linalg.norm(w, axis=-1))
+    A, B = np.asarray(A)[..., None, None], np.asarray(B)[..., None, None]
+    return np.eye(3) + A * W + B * (W @ W)
+
+
+def _log3_one(R: np.ndarray) -> np.ndarray:
+    s_vec = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])  # sin θ · ω̂
+    s = float(np.linalg.norm(s_vec))
+    c = min(1.0, max(-1.0, 0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0)))
+    theta = float(np.arctan2(s, c))
+    if c >= 0.0:  # θ ≤ π/2: the skew part is well conditioned
+        if theta < 1e-4:
+            t2 = theta * theta
+            factor = 1.0 + t2 / 6.0 + 7.0 * t2 * t2 / 360.0  # θ / sin θ
+        else:
+            factor = theta / s
+        return factor * s_vec
+    # θ > π/2: the symmetric part gives the axis; the skew part only its sign.
+    B = 0.5 * (R + R.T) - c * np.eye(3)  # (1 − cos θ) ω̂ ω̂ᵀ
+    k = int(np.argmax(np.diag(B)))
+    axis = B[:, k] / np.sqrt(B[k, k] * (1.0 - c))
+    axis /= np.linalg.norm(axis)
+    d = float(axis @ s_vec)
+    if d < 0.0 or (d == 0.0 and axis[np.argmax(np.abs(axis))] < 0.0):
+        axis = -axis
+    return theta * axis
+
+
+def log3(R: np.ndarray) -> np.ndarray:
+    """Exponential coordinates ωθ (…, 3), θ ∈ [0, π], of rotations R (…, 3, 3).
+
+    Near θ = 0 a series; beyond θ = π/2 the axis comes from the symmetric part of R (well
+    conditioned up to θ = π); at exactly θ = π the axis sign is free and the one whose largest
+    component is positive is returned.
+    """
+    R = np.asarray(R, dtype=float)
+    if R.ndim == 2:
+        return _log3_one(R)
+    flat = R.reshape(-1, 3, 3)
+    return np.array([_log3_one(r) for r in flat]).reshape(R.shape[:-2] + (3,))
+
+
+def _exp6_one(V: np.ndarray) -> np.ndarray:
+    w, v = V[:3], V[3:]
+    theta = float(np.linalg.norm(w))
+    W = hat(w)
+    W2 = W @ W
+    A, B = exp3_coefficients(theta)
+    if theta < 1e-4:
+        t2 = theta * theta
+        C = 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0
+    else:
+        C = (theta - np.sin(theta)) / theta**3
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + A * W + B * W2
+    T[:3, 3] = v + B * (W @ v) + C * (W2 @ v)
+    return T
+
+
+def exp6(V: np.ndarray) -> np.ndarray:
+    """``exp([V])``: twists with the angle folded in, (…, 6) → poses (…, 4, 4).
+
+    ``R = I + A[ω] + B[ω]²``, ``p = (I + B[ω] + C[ω]²) v`` with A, B as in :func:`exp3` and
+    ``C = (θ − sin θ)/θ³`` (series near 0); a pure translation (ω = 0) gives ``p = v``.
+    """
+    V = np.asarray(V, dtype=float)
+    if V.ndim == 1:
+        return _exp6_one(V)
+    w, v = V[..., :3], V[..., 3:]
+    theta = np.linalg.norm(w, axis=-1)
+    W = hat(w)
+    W2 = W @ W
+    A, B = exp3_coefficients(theta)
+    small = theta < 1e-4
+    safe = np.where(small, 1.0, theta)
+    t2 = theta * theta
+    C = np.where(small, 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0, (safe - np.sin(safe)) / safe**3)
+    T = np.zeros(V.shape[:-1] + (4, 4))
+    T[..., :3, :3] = np.eye(3) + A[..., None, None] * W + B[..., None, None] * W2
+    T[..., :3, 3] = v + B[..., None] * np.einsum("...ij,...j->...i", W, v) + C[..., None] * np.einsum(
+        "...ij,...j->...i", W2, v)
+    T[..., 3, 3] = 1.0
+    return T
+
+
+def _log6_one(T: np.ndarray) -> np.ndarray:
+    w = _log3_one(T[:3, :3])
+    theta = float(np.linalg.norm(w))
+    W = hat(w)
+    if theta < 1e-4:
+        t2 = theta * theta
+        D = 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0
+    else:
+        half = 0.5 * theta
+        D = (1.0 - half * np.cos(half) / np.sin(half)) / (theta * theta)
+    p = T[:3, 3]
+    v = p - 0.5 * (W @ p) + D * (W @ (W @ p))
+    return np.concatenate([w, v])
+
+
+def log6(T: np.ndarray) -> np.ndarray:
+    """Exponential coordinates Sθ (…, 6) of poses T (…, 4, 4), rotation angle θ ∈ [0, π].
+
+    ``ω = log3(R)``, ``v = (I − ½[ω] + D[ω]²) p`` with ``D = (1 − (θ/2) cot(θ/2)) / θ²``.
+    """
+    T = np.asarray(T, dtype=float)
+    if T.ndim == 2:
+        return _log6_one(T)
+    flat = T.reshape(-1, 4, 4)
+    return np.array([_log6_one(t) for t in flat]).reshape(T.shape[:-2] + (6,))
+
+
+def inv(T: np.ndarray) -> np.ndarray:
+    """``T⁻¹ = [[Rᵀ, −Rᵀp], [0, 1]]`` of poses (…, 4, 4)."""
+    T = np.asarray(T, dtype=float)
+    if T.ndim == 2:
+        Ti = np.eye(4)
+        Rt = T[:3, :3].T
+        Ti[:3, :3] = Rt
+        Ti[:3, 3] = -Rt @ T[:3, 3]
+        return Ti
+    Rt = np.swapaxes(T[..., :3, :3], -1, -2)
+    Ti = np.zeros(T.shape)
+    Ti[..., :3, :3] = Rt
+    Ti[..., :3, 3] = -np.einsum("...ij,...j->...i", Rt, T[..., :3, 3])
+    Ti[..., 3, 3] = 1.0
+    return Ti
+
+
+def adjoint(T: np.ndarray) -> np.ndarray:
+    """``Ad_T = [[R, 0], [[p]R, R]]`` (…, 6, 6) of poses (…, 4, 4): ``V_a = Ad_{T_ab} V_b``."""
+    T = np.asarray(T, dtype=float)
+    R, p = T[..., :3, :3], T[..., :3, 3]
+    A = np.zeros(T.shape[:-2] + (6, 6))
+    A[..., :3, :3] = R
+    A[..., 3:, 3:] = R
+    A[..., 3:, :3] = hat(p) @ R
+    return A
+
+
+def ad(V: np.ndarray) -> np.ndarray:
+    """``ad_V = [[[ω], 0], [[v], [ω]]]`` (…, 6, 6) of twists (…, 6): ``ad_V W = [V, W]``."""
+    V = np.asarray(V, dtype=float)
+    A = np.zeros(V.shape[:-1] + (6, 6))
+    Wm = hat(V[..., :3])
+    A[..., :3, :3] = Wm
+    A[..., 3:, 3:] = Wm
+    A[..., 3:, :3] = hat(V[..., 3:])
+    return A
