@@ -26,6 +26,7 @@ def write(tmp_path):
 
 
 @pytest.fixture
-def main_cli(capsys):
-    """``main_cli(*args) -> Run``: robokit.cli.main in-process, stderr/stdout captured."""
-    return lambda *args: hs.run_main(args, capsys)
+def main_cli(capfd):
+    """``main_cli(*args) -> Run``: robokit.cli.main in-process; stdout/stderr captured at the file
+    descriptors, so that what native code (urdfdom) writes to fd 2 is seen too."""
+    return lambda *args: hs.run_main(args, capfd)

@@ -51,13 +51,13 @@ def run_cli(*args, cwd=None, timeout=HANG_GUARD, env=None) -> Run:
     return Run(p.returncode, p.stdout, p.stderr)
 
 
-def run_main(args, capsys) -> Run:
-    """``robokit.cli.main(args)`` in-process; stderr/stdout captured by pytest's capsys."""
+def run_main(args, capture) -> Run:
+    """``robokit.cli.main(args)`` in-process; stderr/stdout captured by pytest's capfd/capsys."""
     import robokit.cli
 
-    capsys.readouterr()
+    capture.readouterr()
     rc = robokit.cli.main([str(a) for a in args])
-    cap = capsys.readouterr()
+    cap = capture.readouterr()
     return Run(rc, cap.out, cap.err)
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import robokit
-from hardening_support import (assert_one_line_error, dh_fk_reference, joint, link, pendulum_urdf, run_cli,
+from hardening_support import (assert_one_line_error, dh_fk_reference, joint, link, pendulum_urdf,
                                tmp_leftovers, urdf_text)
 
 
@@ -54,18 +54,18 @@ def test_urdf_to_dh_on_nearly_parallel_axes_reports_an_honest_residual(rpy, conv
 
 
 @pytest.mark.parametrize("rpy", ["0 1e-8 0", "1e-8 0 0"])
-def test_convert_urdf_prints_table_and_true_residual_and_refuses_inexact_yaml(rpy, write, tmp_path):
+def test_convert_urdf_prints_table_and_true_residual_and_refuses_inexact_yaml(rpy, write, tmp_path, main_cli):
     src = write("twist.urdf", _two_joint_urdf(rpy))
     robot = robokit.load(src)
     err = _independent_error(robot, robokit.urdf_to_dh(robot).table)
-    r = run_cli("convert", src)
+    r = main_cli("convert", src)
     assert r.rc == 0, r.err
     assert "nan" not in r.out.lower()
     m = re.search(r"FK residual vs the URDF: ([0-9.eE+-]+)", r.out)
     assert m, r.out
     printed = float(m.group(1))
     out = tmp_path / "twist.yaml"
-    ry = run_cli("convert", src, "-o", out)
+    ry = main_cli("convert", src, "-o", out)
     if err > 1e-9:  # inexact: the printed residual says so; the YAML is refused and not written
         assert printed > 1e-9 and "NOT exact" in r.out
         assert_one_line_error(ry, "twist", "1e-9")
@@ -88,14 +88,14 @@ UNPHYSICAL = {
 
 
 @pytest.mark.parametrize("case", sorted(UNPHYSICAL))
-def test_unphysical_urdf_inertial_refused_naming_file_and_link(case, write, tmp_path):
+def test_unphysical_urdf_inertial_refused_naming_file_and_link(case, write, tmp_path, main_cli):
     kw, names = UNPHYSICAL[case]
     src = write(f"{case}.urdf", pendulum_urdf(**kw))
     with pytest.raises(robokit.InputError) as ei:
         robokit.load(src)
     assert str(src) in str(ei.value) and "'arm'" in str(ei.value)
     out = tmp_path / "out.json"
-    assert_one_line_error(run_cli("convert", src, "-o", out), f"{case}.urdf", *names)
+    assert_one_line_error(main_cli("convert", src, "-o", out), f"{case}.urdf", *names)
     assert not out.exists()
 
 
@@ -109,13 +109,13 @@ JOINT_FAULTS = {
 
 
 @pytest.mark.parametrize("case", sorted(JOINT_FAULTS))
-def test_bad_urdf_joint_axis_or_limits_refused_naming_file_and_joint(case, write, tmp_path):
+def test_bad_urdf_joint_axis_or_limits_refused_naming_file_and_joint(case, write, tmp_path, main_cli):
     mutate, what = JOINT_FAULTS[case]
     text = mutate(pendulum_urdf())
     assert text != pendulum_urdf()
     src = write(f"{case}.urdf", text)
     out = tmp_path / "out.json"
-    assert_one_line_error(run_cli("convert", src, "-o", out), f"{case}.urdf", "'shoulder'", what)
+    assert_one_line_error(main_cli("convert", src, "-o", out), f"{case}.urdf", "'shoulder'", what)
     assert not out.exists()
 
 
@@ -130,16 +130,16 @@ def _mimic_urdf(on_chain: bool) -> str:
     return urdf_text(links=links, joints=joints, name="mimicbot")
 
 
-def test_mimic_joint_on_the_chain_refused(write, tmp_path):
+def test_mimic_joint_on_the_chain_refused(write, tmp_path, main_cli):
     src = write("mimic_on.urdf", _mimic_urdf(True))
     with pytest.raises(robokit.InputError, match="mimic"):
         robokit.load(src, tip="c")
     out = tmp_path / "out.json"
-    assert_one_line_error(run_cli("convert", src, "--tip", "c", "-o", out), "mimic_on.urdf", "'j3'", "'j2'")
+    assert_one_line_error(main_cli("convert", src, "--tip", "c", "-o", out), "mimic_on.urdf", "'j3'", "'j2'")
     assert not out.exists()
 
 
-def test_mimic_joint_off_the_chain_locked_with_a_note(write, tmp_path):
+def test_mimic_joint_off_the_chain_locked_with_a_note(write, tmp_path, main_cli):
     src = write("mimic_off.urdf", _mimic_urdf(False))
     with pytest.warns(robokit.errors.RobokitWarning, match="mimic"):
         robot = robokit.load(src, tip="c")
@@ -151,7 +151,7 @@ def test_mimic_joint_off_the_chain_locked_with_a_note(write, tmp_path):
     y = np.sin(q[0]) + np.sin(q[0] + q[1])
     np.testing.assert_allclose(robot.frame_pose(q)[:3, 3], [x, y, 0], atol=1e-12)
     out = tmp_path / "out.json"
-    r = run_cli("convert", src, "--tip", "c", "-o", out)
+    r = main_cli("convert", src, "--tip", "c", "-o", out)
     assert r.rc == 0, r.err
     assert any(ln.startswith("robokit: note:") and "mimic" in ln and "fj" in ln for ln in r.err.splitlines())
     assert out.exists()
