@@ -70,13 +70,25 @@ def test_one_joint_urdf_prints_its_dh_table(write):
 
 
 def test_yaml_exponent_numbers_read_as_floats(write):
-    text = PENDULUM_YAML.replace("a: 0.5,", "a: 2e-4,").replace("d: 0,", "d: 1.5E3,").replace(
-        "mass: 2.0,", "mass: 1e308,")
+    from robokit._yaml import load_yaml_text
+
+    doc = load_yaml_text("a: 2e-4\nb: 1.5E3\nc: 1e308\nd: -1.5e+3\n")
+    assert doc == {"a": 2e-4, "b": 1500.0, "c": 1e308, "d": -1500.0}
+    assert all(type(v) is float for v in doc.values())
+    text = PENDULUM_YAML.replace("a: 0.5,", "a: 2e-4,").replace("d: 0,", "d: 1.5E3,")
     table = robokit.DHTable.from_yaml(write("numbers.yaml", text))
     link = table.links[0]
     assert isinstance(link.a, float) and link.a == 2e-4
     assert link.d == 1500.0
-    assert link.mass == 1e308
+
+
+def test_yaml_1e308_length_or_mass_refused_by_name_not_turned_into_nan(write, main_cli):
+    # 1e308 is a float, but a link that long (or that heavy) makes FK and gravity overflow to inf/NaN
+    for key, old, new in (("a", "a: 0.5,", "a: 1e308,"), ("mass", "mass: 2.0,", "mass: 1e308,")):
+        p = write(f"big_{key}.yaml", PENDULUM_YAML.replace(old, new))
+        with pytest.raises(robokit.InputError, match=rf"link 1, key '{key}'.*out of range"):
+            robokit.load(p)
+        assert_one_line_error(main_cli("convert", p, "-o", p.with_suffix(".urdf")), p.name, f"'{key}'")
 
 
 def test_yaml_number_beyond_double_refused_as_not_finite(write):
