@@ -7,7 +7,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-import hardening_support as hs  # noqa: E402
+import hardening_support as hs
 
 
 @pytest.fixture

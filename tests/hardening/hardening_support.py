@@ -12,7 +12,6 @@ from pathlib import Path
 
 import numpy as np
 
-
 #: The repository root (this file is tests/hardening/conftest.py): subprocesses import robokit from here.
 REPO = Path(__file__).resolve().parents[2]
 
@@ -46,7 +45,7 @@ class Run:
 
 def run_cli(*args, cwd=None, timeout=HANG_GUARD, env=None) -> Run:
     """``python -m robokit.cli ARGS`` in a subprocess with PYTHONPATH = the repository root."""
-    p = subprocess.run([sys.executable, "-m", "robokit.cli", *map(str, args)], cwd=cwd, capture_output=True,
+    p = subprocess.run([sys.executable, "-m", "robokit.cli", *map(str, args)], cwd=cwd, capture_output=True, check=False,
                        text=True, timeout=timeout, env=env or subprocess_env())
     return Run(p.returncode, p.stdout, p.stderr)
 
@@ -69,7 +68,7 @@ def assert_one_line_error(run: Run, *names, rc: int = 2) -> str:
     assert lines, "nothing on stderr"
     *notes, last = lines
     for ln in notes:
-        assert ln.startswith("robokit: note:") or ln.startswith("robokit: warning:"), f"unexpected stderr line {ln!r}"
+        assert ln.startswith(("robokit: note:", "robokit: warning:")), f"unexpected stderr line {ln!r}"
     assert last.startswith("robokit:"), last
     assert not last.startswith("robokit: note:"), f"no error line after the notes: {run.err!r}"
     assert len(last) <= 420, f"message of {len(last)} characters"
@@ -115,7 +114,7 @@ def joint(name, parent, child, jtype="revolute", axis="0 0 1", xyz="0 0 0", rpy=
 
 
 def pendulum_urdf(**link_kw) -> str:
-    kw = dict(mass=str(PEND_M), com=f"{PEND_LC} 0 0")
+    kw = {"mass": str(PEND_M), "com": f"{PEND_LC} 0 0"}
     kw.update(link_kw)
     return urdf_text(
         links=[link("base"), link("arm", **kw), link("tip")],

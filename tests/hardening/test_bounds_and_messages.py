@@ -2,11 +2,19 @@
 import tracemalloc
 
 import pytest
+from hardening_support import (
+    PENDULUM_YAML,
+    assert_one_line_error,
+    joint,
+    link,
+    pendulum_urdf,
+    run_cli,
+    tmp_leftovers,
+    urdf_text,
+)
 
 import robokit
 import robokit.cli
-from hardening_support import (PENDULUM_YAML, assert_one_line_error, joint, link, pendulum_urdf, run_cli,
-                               tmp_leftovers, urdf_text)
 from robokit._yaml import MAX_BYTES, MAX_DEPTH
 
 

@@ -10,10 +10,17 @@ import time
 import numpy as np
 import psutil
 import pytest
+from hardening_support import (
+    HANG_GUARD,
+    PEND_L,
+    PENDULUM_YAML,
+    assert_one_line_error,
+    pendulum_urdf,
+    subprocess_env,
+    tmp_leftovers,
+)
 
 import robokit
-from hardening_support import (HANG_GUARD, PEND_L, PENDULUM_YAML, assert_one_line_error, pendulum_urdf,
-                               subprocess_env, tmp_leftovers)
 from robokit._io import atomic_write
 
 SERVER_MODULE = "robokit.viz._server"
@@ -50,7 +57,7 @@ def test_cli_output_follows_the_umask(write, tmp_path):
     for mask, mode in ((0o077, 0o600), (0o022, 0o644)):
         out = tmp_path / f"out{mask:o}.urdf"
         p = subprocess.run([sys.executable, "-m", "robokit.cli", "convert", str(src), "-o", str(out)],
-                           capture_output=True, text=True, env=subprocess_env(), timeout=HANG_GUARD,
+                           capture_output=True, check=False, text=True, env=subprocess_env(), timeout=HANG_GUARD,
                            preexec_fn=lambda m=mask: os.umask(m))
         assert p.returncode == 0, p.stderr
         assert out.stat().st_mode & 0o777 == mode

@@ -14,14 +14,20 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
-import pytest
 import yaml
+from hardening_support import (
+    PENDULUM_YAML,
+    dh_fk_reference,
+    joint,
+    link,
+    tmp_leftovers,
+    urdf_text,
+)
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 import robokit
 import robokit.cli
-from hardening_support import PENDULUM_YAML, dh_fk_reference, joint, link, tmp_leftovers, urdf_text
 from robokit.description.dh import DHLink, DHTable
 
 FUZZ = settings(max_examples=150, deadline=None, derandomize=True, database=None,
@@ -216,11 +222,11 @@ def _check_cli(src: Path, out: Path):
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert "Traceback" not in err
     if rc == 2:
-        assert lines and all(ln.startswith("robokit: note:") or ln.startswith("robokit: warning:") for ln in lines[:-1])
+        assert lines and all(ln.startswith(("robokit: note:", "robokit: warning:")) for ln in lines[:-1])
         assert lines[-1].startswith("robokit: error:") and len(lines[-1]) <= 420, lines
         assert not out.exists()
     else:
-        assert out.exists() and all(ln.startswith("robokit:") or ln.startswith("wrote ") for ln in lines), lines
+        assert out.exists() and all(ln.startswith(("robokit:", "wrote ")) for ln in lines), lines
     assert tmp_leftovers(out.parent) == []
 
 

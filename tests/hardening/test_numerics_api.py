@@ -4,9 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from hardening_support import PEND_G, PEND_LC, PEND_M, PENDULUM_YAML
 
 import robokit
-from hardening_support import PEND_G, PEND_LC, PEND_M, PENDULUM_YAML
 from robokit.errors import DivergenceError
 
 
@@ -70,7 +70,7 @@ def test_simulate_control_unstable_gains_raise_divergence_with_finite_partial(pe
     N, dt = 200, 0.01
     qd, dqd, ddqd = _desired(N, dt)
     g = np.array([0, 0, -PEND_G])
-    args = lambda k: ([0.5], [0.0], g, np.zeros((k, 6)), Mlist, Glist, Slist, qd[:k], dqd[:k], ddqd[:k],  # noqa: E731
+    args = lambda k: ([0.5], [0.0], g, np.zeros((k, 6)), Mlist, Glist, Slist, qd[:k], dqd[:k], ddqd[:k],
                       g, Mlist, Glist, 1e6, 0.0, 10.0, dt, 1)
     # Kp = 1e6 1/s² with one Euler step of 10 ms per period: hω ≈ 10, far past the stability limit
     with pytest.raises(DivergenceError) as ei:

@@ -5,9 +5,9 @@ import warnings
 
 import numpy as np
 import pytest
+from hardening_support import assert_one_line_error
 
 import robokit
-from hardening_support import assert_one_line_error
 
 
 def _erd_kinematic_model(name):

@@ -4,10 +4,19 @@ import math
 
 import numpy as np
 import pytest
+from hardening_support import (
+    PEND_G,
+    PEND_L,
+    PEND_LC,
+    PEND_M,
+    PENDULUM_YAML,
+    assert_one_line_error,
+    pendulum_urdf,
+    run_cli,
+    tmp_leftovers,
+)
 
 import robokit
-from hardening_support import (PEND_G, PEND_L, PEND_LC, PEND_M, PENDULUM_YAML, assert_one_line_error,
-                               pendulum_urdf, run_cli, tmp_leftovers)
 
 PEND_IYY = 0.01  # the link's inertia about the joint axis direction, at its COM (both files)
 THETAS = np.array([-2.0, -0.7, 0.0, 0.4, 1.3, 2.9])

@@ -4,10 +4,17 @@ import re
 
 import numpy as np
 import pytest
+from hardening_support import (
+    assert_one_line_error,
+    dh_fk_reference,
+    joint,
+    link,
+    pendulum_urdf,
+    tmp_leftovers,
+    urdf_text,
+)
 
 import robokit
-from hardening_support import (assert_one_line_error, dh_fk_reference, joint, link, pendulum_urdf,
-                               tmp_leftovers, urdf_text)
 
 
 def _two_joint_urdf(rpy: str) -> str:
@@ -79,11 +86,11 @@ def test_convert_urdf_prints_table_and_true_residual_and_refuses_inexact_yaml(rp
 
 
 UNPHYSICAL = {
-    "negative_mass": (dict(mass="-1"), ["'arm'", "mass"]),
-    "nan_mass": (dict(mass="nan"), ["'arm'", "NaN"]),
-    "inf_mass": (dict(mass="inf"), ["'arm'", "mass"]),
-    "non_psd_inertia": (dict(inertia="1 1 1 5 0 0"), ["'arm'", "positive semi-definite"]),
-    "nan_inertia": (dict(inertia="nan 1 1 0 0 0"), ["'arm'", "inertia"]),
+    "negative_mass": ({"mass": "-1"}, ["'arm'", "mass"]),
+    "nan_mass": ({"mass": "nan"}, ["'arm'", "NaN"]),
+    "inf_mass": ({"mass": "inf"}, ["'arm'", "mass"]),
+    "non_psd_inertia": ({"inertia": "1 1 1 5 0 0"}, ["'arm'", "positive semi-definite"]),
+    "nan_inertia": ({"inertia": "nan 1 1 0 0 0"}, ["'arm'", "inertia"]),
 }
 
 
