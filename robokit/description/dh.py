@@ -33,6 +33,10 @@ __all__ = ["DHLink", "DHTable", "dh_transform", "load_dh", "rpy_to_matrix", "mat
 
 _LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name",
               "flip"}
+#: Largest magnitude of a number in a DH file (SI units): beyond it products in FK and dynamics
+#: overflow to inf/NaN (a 1e308 m link is a typo, not a robot).
+MAX_MAGNITUDE = 1e12
+
 _TOP_KEYS = {"name", "convention", "angle_unit", "gravity", "base", "tool", "links", "description"}
 
 
@@ -252,6 +256,8 @@ class DHTable:
                 fail(f"{where}: number too large")
             if not math.isfinite(v):
                 fail(f"{where}: expected a finite number, got {value!r}")
+            if abs(v) > MAX_MAGNITUDE:  # finite, but FK and dynamics would overflow to inf/NaN
+                fail(f"{where}: {v:g} is out of range (at most {MAX_MAGNITUDE:g} in magnitude; SI units)")
             return v
 
         def vector(value, length, where):

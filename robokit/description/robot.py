@@ -287,7 +287,8 @@ class Robot:
         except KeyError:
             raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
         q = self.q_pin(self._check_theta(theta))
-        return pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)[self._swap]
+        J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
+        return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
 
     def rnea(self, theta, dtheta, ddtheta) -> np.ndarray:
         """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""

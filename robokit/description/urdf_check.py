@@ -35,6 +35,9 @@ __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
 #: Largest URDF robokit reads (the largest example-robot-data URDF is about 300 kB).
 MAX_URDF_BYTES = 20 << 20
 
+#: Largest magnitude of an origin coordinate, mass or inertia entry accepted (SI units).
+MAX_MAGNITUDE = 1e12
+
 _JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
 
 
@@ -67,7 +70,16 @@ def _floats(text, count, path, where):
         _fail(path, f"{where}: expected {count} numbers, got {text!r}")
     if not all(math.isfinite(v) for v in values):
         _fail(path, f"{where}: expected finite numbers, got {text!r}")
+    _check_magnitude(values, path, where)
     return values
+
+
+def _check_magnitude(values, path, where):
+    """Refuse a finite number so large that FK and dynamics overflow to inf/NaN (joint limits exempt:
+    URDFs write ±1e16 for "unlimited")."""
+    if any(abs(v) > MAX_MAGNITUDE for v in values):
+        _fail(path, f"{where}: a value is out of range (at most {MAX_MAGNITUDE:g} in magnitude; SI units), "
+                    f"got {' '.join(f'{v:g}' for v in values)}")
 
 
 def _float_attr(el, name, path, where, default=None):
@@ -204,12 +216,14 @@ def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDo
         mass = _float_attr(mass_el, "value", path, f"{where} <mass>") if mass_el is not None else 0.0
         if not math.isfinite(mass) or mass < 0:
             _fail(path, f"{where}: mass must be a finite non-negative number, got {mass:g}")
+        _check_magnitude([mass], path, f"{where} <mass>")
         ine = inertial.find("inertia")
         if ine is not None:
             keys = ("ixx", "iyy", "izz", "ixy", "iyz", "ixz")
             ixx, iyy, izz, ixy, iyz, ixz = (_float_attr(ine, k, path, f"{where} <inertia>", 0.0) for k in keys)
             if not all(math.isfinite(v) for v in (ixx, iyy, izz, ixy, iyz, ixz)):
                 _fail(path, f"{where}: inertia values must be finite")
+            _check_magnitude([ixx, iyy, izz, ixy, iyz, ixz], path, f"{where} <inertia>")
             I = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
             ev = np.linalg.eigvalsh(I)
             if ev.min() < -1e-9 * max(1.0, float(abs(ev).max())):

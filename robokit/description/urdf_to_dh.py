@@ -246,13 +246,15 @@ def format_dh_table(table: DHTable, digits: int = 5) -> str:
 
 
 def urdf_to_dh_cli_text(robot, convention: str = "standard", as_yaml: bool = True) -> str:
-    """Text for ``robokit convert``: the YAML file, or the printed table; refuses an inexact table."""
+    """Text for ``robokit convert``: the YAML file (refused for an inexact table), or the printed
+    table with its residual (printed either way, an inexact one marked as such)."""
     res = urdf_to_dh(robot, convention)
-    if not res.exact:
+    if as_yaml and not res.exact:
         raise ValueError(f"{robot.name}: the DH table reproduces the URDF only to {res.residual:.2e} "
                          f"(> 1e-9); not written")
     if as_yaml:
         header = (f"# DH table of {robot.name} (root → {robot.tip}), extracted by robokit; "
                   f"FK matches the URDF to {res.residual:.1e} at {res.samples} random configurations\n")
         return header + res.table.to_yaml_str("deg")
-    return format_dh_table(res.table) + f"# FK residual vs the URDF: {res.residual:.1e}\n"
+    verdict = "" if res.exact else " — NOT exact (> 1e-9): this table only approximates the URDF"
+    return format_dh_table(res.table) + f"# FK residual vs the URDF: {res.residual:.1e}{verdict}\n"

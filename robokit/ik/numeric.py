@@ -104,7 +104,7 @@ class _Best:
 
     def result(self):
         t = self.theta.copy()
-        t[self.revolute] = np.mod(t[self.revolute] + np.pi, 2 * np.pi) - np.pi
+        t[self.revolute] = np.pi - np.mod(np.pi - t[self.revolute], 2 * np.pi)  # (−π, π]: π stays π
         return t
 
 

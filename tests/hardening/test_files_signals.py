@@ -1,0 +1,247 @@
+"""Files, signals and the network: permissions follow the umask, a killed command leaves no
+temporary file and no viewer server, servers listen on loopback only, meshes stay in their folder."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import psutil
+import pytest
+from hardening_support import (
+    HANG_GUARD,
+    PEND_L,
+    PENDULUM_YAML,
+    assert_one_line_error,
+    pendulum_urdf,
+    subprocess_env,
+    tmp_leftovers,
+)
+
+import robokit
+from robokit._io import atomic_write
+
+SERVER_MODULE = "robokit.viz._server"
+
+
+def _with_umask(mask, fn):
+    old = os.umask(mask)
+    try:
+        return fn()
+    finally:
+        os.umask(old)
+
+
+# ----------------------------------------------------------------------------- permissions
+@pytest.mark.parametrize("mask,mode", [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)])
+def test_written_file_follows_the_umask(mask, mode, tmp_path):
+    out = tmp_path / "a.txt"
+    _with_umask(mask, lambda: atomic_write(out, "x"))
+    assert out.stat().st_mode & 0o777 == mode
+    assert tmp_leftovers(tmp_path) == []
+
+
+def test_replacing_a_0644_file_under_umask_022_leaves_0644(tmp_path):
+    out = tmp_path / "a.txt"
+    out.write_text("old")
+    out.chmod(0o644)
+    _with_umask(0o022, lambda: atomic_write(out, "new"))
+    assert out.read_text() == "new"
+    assert out.stat().st_mode & 0o777 == 0o644
+
+
+def test_cli_output_follows_the_umask(write, tmp_path):
+    src = write("pendulum.yaml", PENDULUM_YAML)
+    for mask, mode in ((0o077, 0o600), (0o022, 0o644)):
+        out = tmp_path / f"out{mask:o}.urdf"
+        p = subprocess.run([sys.executable, "-m", "robokit.cli", "convert", str(src), "-o", str(out)],
+                           capture_output=True, check=False, text=True, env=subprocess_env(), timeout=HANG_GUARD,
+                           preexec_fn=lambda m=mask: os.umask(m))
+        assert p.returncode == 0, p.stderr
+        assert out.stat().st_mode & 0o777 == mode
+
+
+def test_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    out = tmp_path / "a.txt"
+    out.write_text("old")
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "replace", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        atomic_write(out, "new")
+    monkeypatch.undo()
+    assert out.read_text() == "old"
+    assert tmp_leftovers(tmp_path) == []
+
+
+# ----------------------------------------------------------------------------- signals
+def _servers_of(proc: psutil.Process) -> list[psutil.Process]:
+    out = []
+    for c in proc.children(recursive=True):
+        try:
+            if SERVER_MODULE in " ".join(c.cmdline()):
+                out.append(c)
+        except psutil.Error:
+            pass
+    return out
+
+
+def _wait_for_server(popen, timeout=HANG_GUARD) -> list[psutil.Process]:
+    parent = psutil.Process(popen.pid)
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        servers = _servers_of(parent)
+        if servers:
+            return servers
+        if popen.poll() is not None:
+            pytest.fail(f"robokit view exited ({popen.returncode}) before starting its server: "
+                        f"{popen.stderr.read()}")
+        time.sleep(0.02)
+    pytest.fail("no meshcat server appeared (hang guard)")
+
+
+def _gone(procs, timeout=10.0) -> bool:
+    """True when every process has exited (a zombie counts as gone) within ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        alive = []
+        for p in procs:
+            try:
+                if p.is_running() and p.status() != psutil.STATUS_ZOMBIE:
+                    alive.append(p)
+            except psutil.NoSuchProcess:
+                pass
+        if not alive:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def _reap(procs):
+    for p in procs:
+        try:
+            p.kill()
+        except psutil.Error:
+            pass
+
+
+@pytest.mark.parametrize("sig,rc,line", [(signal.SIGTERM, 143, "robokit: terminated"),
+                                         (signal.SIGINT, 130, "robokit: interrupted"),
+                                         (signal.SIGKILL, -9, None)])
+def test_signal_during_view_leaves_no_temporary_and_no_server(sig, rc, line, write, tmp_path):
+    src = write("pendulum.yaml", PENDULUM_YAML)
+    outdir = tmp_path / "out"
+    outdir.mkdir()
+    popen = subprocess.Popen([sys.executable, "-m", "robokit.cli", "view", str(src), "-o", str(outdir / "page.html")],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=subprocess_env())
+    servers = []
+    try:
+        servers = _wait_for_server(popen)
+        popen.send_signal(sig)
+        _, err = popen.communicate(timeout=HANG_GUARD)
+        assert popen.returncode == rc, err
+        if line is not None:
+            lines = [ln for ln in err.splitlines() if ln.strip()]
+            assert lines == [line], err
+        assert _gone(servers), f"meshcat server still running after {sig.name}"
+        assert tmp_leftovers(outdir) == []
+        assert not (outdir / "page.html").exists()
+    finally:
+        if popen.poll() is None:
+            popen.kill()
+            popen.wait()
+        _reap(servers)
+
+
+# ----------------------------------------------------------------------------- network
+_CHILD = textwrap.dedent("""
+    import sys, time
+    import robokit
+    from robokit.viz import LiveViewer
+    from robokit.viz.scene import Scene
+    viewer = LiveViewer()
+    scene = Scene(robokit.load(sys.argv[1]))
+    print(viewer.process.pid, scene.vis.window.server_proc.pid, flush=True)
+    time.sleep(120)
+""")
+
+
+def test_meshcat_servers_listen_on_loopback_only_and_die_with_their_parent(write):
+    src = write("pendulum.yaml", PENDULUM_YAML)
+    child = subprocess.Popen([sys.executable, "-c", _CHILD, str(src)], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=subprocess_env())
+    servers = []
+    try:
+        first = child.stdout.readline()
+        assert first.strip(), child.stderr.read()
+        servers = [psutil.Process(int(pid)) for pid in first.split()]
+        for server in servers:
+            assert SERVER_MODULE in " ".join(server.cmdline())
+            deadline = time.monotonic() + HANG_GUARD
+            listening = []
+            while not listening and time.monotonic() < deadline:
+                listening = [c for c in server.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN]
+                time.sleep(0.05)
+            assert listening, "the server listens on nothing"
+            assert {c.laddr.ip for c in listening} == {"127.0.0.1"}, listening
+        child.kill()  # SIGKILL: no clean-up code runs in the parent
+        child.wait(timeout=HANG_GUARD)
+        assert _gone(servers), "a meshcat server outlived its SIGKILLed parent"
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+        _reap(servers)
+
+
+# ----------------------------------------------------------------------------- meshes
+_STL = b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"
+
+
+def _mesh_urdf(filename: str) -> str:
+    return pendulum_urdf(extra=f'<visual><geometry><mesh filename="{filename}"/></geometry></visual>')
+
+
+def _check_fk(robot):
+    np.testing.assert_allclose(robot.frame_pose([0.5])[:3, 3], [PEND_L * np.cos(0.5), 0, PEND_L * np.sin(0.5)],
+                               atol=1e-12)
+
+
+def test_missing_mesh_warned_by_name_and_robot_still_loads(write, tmp_path, main_cli):
+    src = write("pkg/robot.urdf", _mesh_urdf("meshes/arm_missing.stl"))
+    with pytest.warns(robokit.errors.RobokitWarning, match="arm_missing.stl"):
+        robot = robokit.load(src)
+    _check_fk(robot)
+    r = main_cli("convert", src, "-o", tmp_path / "out.json")
+    assert r.rc == 0, r.err
+    assert any(ln.startswith("robokit: note:") and "arm_missing.stl" in ln and "'arm'" in ln for ln in r.err.splitlines())
+
+
+def test_mesh_inside_the_urdf_folder_is_loaded(write):
+    write("pkg/meshes/arm.stl", _STL)
+    robot = robokit.load(write("pkg/robot.urdf", _mesh_urdf("meshes/arm.stl")))
+    files = [g.meshPath for g in robot.visual_model.geometryObjects]
+    assert any(f.endswith("arm.stl") for f in files), files
+
+
+@pytest.mark.parametrize("kind", ["etc_absolute", "dotdot", "absolute_outside", "file_uri"])
+def test_mesh_outside_the_urdf_folder_refused_unless_allowed(kind, write, tmp_path, main_cli):
+    outside = write("elsewhere/x.stl", _STL)
+    ref = {"etc_absolute": "/etc/hostname", "dotdot": "../../../elsewhere/x.stl",
+           "absolute_outside": str(outside), "file_uri": f"file://{outside}"}[kind]
+    src = write("ws/pkg/urdf/robot.urdf", _mesh_urdf(ref))
+    with pytest.raises(robokit.InputError) as ei:
+        robokit.load(src)
+    assert "'arm'" in str(ei.value) and ref in str(ei.value) and "allow_outside_meshes" in str(ei.value)
+    out = tmp_path / "out.json"
+    assert_one_line_error(main_cli("convert", src, "-o", out), "robot.urdf", "outside")
+    assert not out.exists()
+    if kind != "etc_absolute":  # allowed: the mesh outside is read
+        robot = robokit.load(src, allow_outside_meshes=True)
+        _check_fk(robot)
+        files = [g.meshPath for g in robot.visual_model.geometryObjects]
+        assert any(os.path.samefile(f, outside) for f in files if os.path.exists(f)), files
