@@ -252,20 +252,20 @@ class SymbolicArm:
             axes.append((F[:3, 2], F[:3, 3]))
         return axes
 
-    def jacobian(self, frame: str = "base", simplify="auto") -> sp.Matrix:
+    def jacobian(self, reference: str = "base", simplify="auto") -> sp.Matrix:
         """The 6×n geometric Jacobian of the tool, angular rows first.
 
-        ``frame="base"``: twist (ω, v) of the tool origin in base coordinates, columns
+        ``reference="base"``: twist (ω, v) of the tool origin in base coordinates, columns
         ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic) (Lecture 6).
-        ``frame="tool"``: the same twist expressed in tool-frame axes
+        ``reference="tool"``: the same twist expressed in tool-frame axes
         (``blockdiag(Rᵀ, Rᵀ) J_base``), i.e. the body Jacobian.
         ``simplify``: True, False or "auto" (full up to 3 joints; beyond, trigsimp for the
         base frame and no simplification for the tool frame, which would take minutes).
         """
-        if frame not in ("base", "tool"):
-            raise ValueError(f"frame: expected 'base' or 'tool', got {frame!r}")
+        if reference not in ("base", "tool"):
+            raise ValueError(f"reference: expected 'base' or 'tool', got {reference!r}")
         cols = []
-        if frame == "base":
+        if reference == "base":
             p_e = (self._frames()[-1] * self.tool)[:3, 3]
             for (z, p), jt in zip(self._joint_axes(), self.joint_types):
                 if jt == "R":
@@ -292,7 +292,7 @@ class SymbolicArm:
                 else:
                     cols.append(sp.Matrix.vstack(sp.zeros(3, 1), z))
         J = sp.Matrix.hstack(*cols)
-        return _simplify_matrix(J, self._level(simplify, heavy=(frame == "tool")))
+        return _simplify_matrix(J, self._level(simplify, heavy=(reference == "tool")))
 
     # ------------------------------------------------------------------ dynamics
     def dynamics(self, masses, coms, inertias=None, gravity=(0, 0, -9.81), allow_slow: bool = False,

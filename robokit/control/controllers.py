@@ -1,10 +1,10 @@
 r"""Joint-space controllers of Lecture 8, all with one call shape.
 
-Every controller is a small object called as ``tau = ctrl(t, q, dq, qd, dqd, ddqd)``:
+Every controller is a small object called as ``tau = ctrl(t, q, dq, q_des, dq_des, ddq_des)``:
 time t (s), measured joint angles q and rates dq (n,), desired q_d, q̇_d, q̈_d (n,); it
 returns the joint torques τ (n,) (N·m, or N for prismatic joints). Controllers with
 memory (an integral term) have ``reset()``; the simulator calls it at the start and
-advances their state once per control period through ``update(dt, q, dq, qd, dqd)``.
+advances their state once per control period through ``update(dt, q, dq, q_des, dq_des)``.
 
 With e = q_d − q and ė = q̇_d − q̇:
 
@@ -21,7 +21,7 @@ With e = q_d − q and ė = q̇_d − q̇:
   with a perfect model the error obeys ``ë + K_v ė + K_p e (+ K_i ∫e) = 0``;
   ``K_v = 2√K_p`` is critical damping (the default when ``Kv`` is omitted).
 
-The model-based controllers take a :class:`robokit.Robot` ``model`` — pass a Robot with
+The model-based controllers take a :class:`robokit.Robot` ``robot`` (their model) — pass a Robot with
 wrong inertial parameters to study model error (the plant in the simulator is separate).
 """
 from __future__ import annotations
@@ -50,7 +50,7 @@ class _Controller:
     def reset(self):
         """Clear any internal state (integral terms)."""
 
-    def update(self, dt, q, dq, qd, dqd):
+    def update(self, dt, q, dq, q_des, dq_des):
         """Advance internal state by one control period ``dt`` (s)."""
 
 
@@ -75,15 +75,15 @@ class IndependentJoint(_Controller):
     def reset(self):
         self.integral = np.zeros(self.n)
 
-    def _vel_error(self, q, dq, qd, dqd):
-        dq_ref = self.Kp * (qd - q) + (dqd if self.velocity_ff else 0.0)
+    def _vel_error(self, q, dq, q_des, dq_des):
+        dq_ref = self.Kp * (q_des - q) + (dq_des if self.velocity_ff else 0.0)
         return dq_ref - dq
 
-    def update(self, dt, q, dq, qd, dqd):
-        self.integral = self.integral + dt * self._vel_error(q, dq, qd, dqd)
+    def update(self, dt, q, dq, q_des, dq_des):
+        self.integral = self.integral + dt * self._vel_error(q, dq, q_des, dq_des)
 
-    def __call__(self, t, q, dq, qd, dqd, ddqd):
-        ev = self._vel_error(q, dq, qd, dqd)
+    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+        ev = self._vel_error(q, dq, q_des, dq_des)
         tau = self.J_nom * (self.Kv * ev + self.Ki * self.integral)
         if self.gravity is not None:
             tau = tau + self.gravity.gravity_torques(q)
@@ -93,35 +93,35 @@ class IndependentJoint(_Controller):
 class GravityPD(_Controller):
     """PD with gravity compensation: ``τ = K_p e + K_v ė + g(q)`` (N·m/rad, N·m·s/rad)."""
 
-    def __init__(self, model, Kp, Kv):
-        self.model, self.n = model, model.n
+    def __init__(self, robot, Kp, Kv):
+        self.robot, self.n = robot, robot.n
         self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
 
-    def __call__(self, t, q, dq, qd, dqd, ddqd):
-        return self.Kp * (qd - q) + self.Kv * (dqd - dq) + self.model.gravity_torques(q)
+    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+        return self.Kp * (q_des - q) + self.Kv * (dq_des - dq) + self.robot.gravity_torques(q)
 
 
 class ModelFeedforward(_Controller):
     """Model-based feedforward plus PD: ``τ = ID(q_d, q̇_d, q̈_d) + K_p e + K_v ė``."""
 
-    def __init__(self, model, Kp, Kv):
-        self.model, self.n = model, model.n
+    def __init__(self, robot, Kp, Kv):
+        self.robot, self.n = robot, robot.n
         self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
 
-    def __call__(self, t, q, dq, qd, dqd, ddqd):
-        return self.model.rnea(qd, dqd, ddqd) + self.Kp * (qd - q) + self.Kv * (dqd - dq)
+    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+        return self.robot.rnea(q_des, dq_des, ddq_des) + self.Kp * (q_des - q) + self.Kv * (dq_des - dq)
 
 
 class ComputedTorque(_Controller):
     """Computed torque (inverse dynamics control), optionally with an integral term.
 
-    ``τ = M(q)(q̈_d + K_v ė + K_p e + K_i ∫e dt) + c(q, q̇) + g(q)`` with M, c, g of ``model``
+    ``τ = M(q)(q̈_d + K_v ė + K_p e + K_i ∫e dt) + c(q, q̇) + g(q)`` with M, c, g of ``robot``
     (computed as one ``rnea(q, q̇, a)`` call). Kp in 1/s², Kv in 1/s (default 2√Kp,
     critical damping), Ki in 1/s³.
     """
 
-    def __init__(self, model, Kp, Kv=None, Ki=0.0):
-        self.model, self.n = model, model.n
+    def __init__(self, robot, Kp, Kv=None, Ki=0.0):
+        self.robot, self.n = robot, robot.n
         self.Kp = gains(Kp, self.n, "Kp")
         self.Kv = 2.0 * np.sqrt(self.Kp) if Kv is None else gains(Kv, self.n, "Kv")
         self.Ki = gains(Ki, self.n, "Ki")
@@ -130,9 +130,9 @@ class ComputedTorque(_Controller):
     def reset(self):
         self.integral = np.zeros(self.n)
 
-    def update(self, dt, q, dq, qd, dqd):
-        self.integral = self.integral + dt * (qd - q)
+    def update(self, dt, q, dq, q_des, dq_des):
+        self.integral = self.integral + dt * (q_des - q)
 
-    def __call__(self, t, q, dq, qd, dqd, ddqd):
-        a = ddqd + self.Kv * (dqd - dq) + self.Kp * (qd - q) + self.Ki * self.integral
-        return self.model.rnea(q, dq, a)
+    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+        a = ddq_des + self.Kv * (dq_des - dq) + self.Kp * (q_des - q) + self.Ki * self.integral
+        return self.robot.rnea(q, dq, a)

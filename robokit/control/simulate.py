@@ -15,8 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit._arrays import as_array, as_vector
+from robokit.dynamics.drives import friction_torque, joint_drive_parameters
+from robokit.dynamics.integration import second_order_step
 
-__all__ = ["SimResult", "simulate", "friction_torque"]
+__all__ = ["SimResult", "simulate"]
 
 
 @dataclass
@@ -51,43 +53,27 @@ class SimResult:
         return f"SimResult({K} samples × {n} joints, t = {self.t[0]:g} … {self.t[-1]:g} s, max |error| {worst:.3g} rad)"
 
 
-def friction_torque(dq, B, Tc) -> np.ndarray:
-    """Joint friction ``B q̇ + T_c``, with ``T_c = Tc[:, 0]`` for q̇ > 0, ``Tc[:, 1]`` for q̇ < 0, 0 at rest.
-
-    dq : (n,) rad/s; B : (n,) N·m·s/rad; Tc : (n, 2) N·m (Coulomb level for positive and for
-    negative motion; the negative one is usually negative, as in Corke's convention).
-    """
-    dq = np.asarray(dq, dtype=float)
-    coul = np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
-    return B * dq + coul
-
-
 def _drive_parameters(robot):
-    """(B, Tc, armature) from the Robot's DH links, zeros when it has no DH table."""
-    n = robot.n
-    B, Tc, arm = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
+    """(B, Tc, armature) of the Robot's drives referred to the joints, zeros without a DH table."""
     dh = getattr(robot, "dh", None)
-    if dh is not None:
-        for i, link in enumerate(dh.links):
-            G = float(link.G)
-            B[i] = G * G * float(link.B)  # motor-side values referred to the joint (Corke's convention)
-            Tc[i] = abs(G) * np.asarray(link.Tc, dtype=float)
-            arm[i] = link.joint_inertia
-    return B, Tc, arm
+    if dh is None:
+        n = robot.n
+        return np.zeros(n), np.zeros((n, 2)), np.zeros(n)
+    return joint_drive_parameters(dh)
 
 
 def _desired(trajectory):
-    """(t, qd, dqd, ddqd) from a Trajectory-like object or a tuple."""
+    """(t, q_des, dq_des, ddq_des) from a Trajectory-like object or a tuple."""
     if isinstance(trajectory, tuple):
-        t, qd, dqd, ddqd = trajectory
+        t, q_des, dq_des, ddq_des = trajectory
     else:
-        t, qd = trajectory.t, trajectory.q
-        dqd = getattr(trajectory, "qd", None)
-        ddqd = getattr(trajectory, "qdd", None)
+        t, q_des = trajectory.t, trajectory.q
+        dq_des = getattr(trajectory, "qd", None)  # a Trajectory's qd is its velocity
+        ddq_des = getattr(trajectory, "qdd", None)
     t = as_vector(t, "trajectory.t")
-    qd = as_array(qd, "trajectory.q", (len(t), None))
-    dqd = np.zeros_like(qd) if dqd is None else as_array(dqd, "trajectory.qd", qd.shape)
-    ddqd = np.zeros_like(qd) if ddqd is None else as_array(ddqd, "trajectory.qdd", qd.shape)
+    q_des = as_array(q_des, "trajectory.q", (len(t), None))
+    dq_des = np.zeros_like(q_des) if dq_des is None else as_array(dq_des, "trajectory.qd", q_des.shape)
+    ddq_des = np.zeros_like(q_des) if ddq_des is None else as_array(ddq_des, "trajectory.qdd", q_des.shape)
     if len(t) < 2:
         raise ValueError("trajectory: needs at least two samples")
     steps = np.diff(t)
@@ -95,7 +81,7 @@ def _desired(trajectory):
         raise ValueError("trajectory.t: times must increase strictly")
     if np.ptp(steps) > 1e-9 * max(1.0, steps.mean()):
         raise ValueError("trajectory.t: the control grid must be uniform (one control period)")
-    return t, qd, dqd, ddqd
+    return t, q_des, dq_des, ddq_des
 
 
 def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int = 1, method: str = "rk4",
@@ -103,9 +89,10 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
     """Simulate ``robot`` under ``controller`` tracking ``trajectory``.
 
     robot : the plant (:class:`robokit.Robot`); controller : called as
-    ``controller(t, q, dq, qd, dqd, ddqd) -> tau`` (see :mod:`robokit.control.controllers`);
-    trajectory : an object with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n) on a uniform grid,
-    or a tuple ``(t, q, qd, qdd)``; the grid spacing is the control period;
+    ``controller(t, q, dq, q_des, dq_des, ddq_des) -> tau`` (see :mod:`robokit.control.controllers`);
+    trajectory : an object with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n) on a uniform grid (a
+      :class:`~robokit.trajectory.Trajectory`), or a tuple ``(t, q_des, dq_des, ddq_des)``; the grid
+    spacing is the control period;
     q0, dq0 : initial state (default: the desired state at t₀);
     substeps : plant integration steps per control period; method : "rk4" or "euler";
     friction, motor_inertia : include the DH file's friction and reflected motor inertia;
@@ -114,17 +101,17 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
     """
     import pinocchio as pin
 
-    t, qd, dqd, ddqd = _desired(trajectory)
+    t, q_des, dq_des, ddq_des = _desired(trajectory)
     n = robot.n
-    if qd.shape[1] != n:
-        raise ValueError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {qd.shape[1]}")
+    if q_des.shape[1] != n:
+        raise ValueError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {q_des.shape[1]}")
     if method not in ("rk4", "euler"):
         raise ValueError(f"method: expected 'rk4' or 'euler', got {method!r}")
     substeps = int(substeps)
     if substeps < 1:
         raise ValueError(f"substeps: expected a positive integer, got {substeps}")
-    q = qd[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
-    dq = dqd[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()
+    q = q_des[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
+    dq = dq_des[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()
     K = len(t)
     F = None if Ftip is None else as_array(Ftip, "Ftip", (K, 6))
     B, Tc, arm = _drive_parameters(robot)
@@ -138,7 +125,6 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
         data = model.createData()
     same_coords = model.nq == model.nv == n
 
-
     def accel(qa, dqa, tau):
         if use_fric:
             tau = tau - friction_torque(dqa, B, Tc)
@@ -151,7 +137,7 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
         controller.reset()
     for k in range(K):
         Q[k], DQ[k] = q, dq
-        tau = np.asarray(controller(t[k], q, dq, qd[k], dqd[k], ddqd[k]), dtype=float)
+        tau = np.asarray(controller(t[k], q, dq, q_des[k], dq_des[k], ddq_des[k]), dtype=float)
         if tau.shape != (n,) or not np.all(np.isfinite(tau)):
             raise ValueError(f"controller: returned {tau!r} at t = {t[k]:g} s; expected {n} finite torques")
         TAU[k] = tau
@@ -162,28 +148,19 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
             Jb = robot.jacobian(q, None, reference="local")
             tau_plant = tau - Jb.T @ F[k]
         if hasattr(controller, "update"):
-            controller.update(t[k + 1] - t[k], q, dq, qd[k], dqd[k])
+            controller.update(t[k + 1] - t[k], q, dq, q_des[k], dq_des[k])
+        def plant(_t, qa, dqa, tau_plant=tau_plant):
+            return accel(qa, dqa, tau_plant)
+
         for _ in range(substeps):
-            if method == "euler":
-                ddq = accel(q, dq, tau_plant)
-                q, dq = q + h * dq, dq + h * ddq
-            else:
-                k1v, k1a = dq, accel(q, dq, tau_plant)
-                k2v = dq + 0.5 * h * k1a
-                k2a = accel(q + 0.5 * h * k1v, k2v, tau_plant)
-                k3v = dq + 0.5 * h * k2a
-                k3a = accel(q + 0.5 * h * k2v, k3v, tau_plant)
-                k4v = dq + h * k3a
-                k4a = accel(q + h * k3v, k4v, tau_plant)
-                q = q + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v)
-                dq = dq + h / 6.0 * (k1a + 2 * k2a + 2 * k3a + k4a)
+            q, dq = second_order_step(plant, t[k], q, dq, h, method)
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(dq))) or np.abs(dq).max() > 1e6:
             from robokit.errors import DivergenceError
 
-            partial = SimResult(t[: k + 1].copy(), Q[: k + 1], DQ[: k + 1], TAU[: k + 1], qd[: k + 1].copy(),
-                                dqd[: k + 1].copy())
+            partial = SimResult(t[: k + 1].copy(), Q[: k + 1], DQ[: k + 1], TAU[: k + 1], q_des[: k + 1].copy(),
+                                dq_des[: k + 1].copy())
             raise DivergenceError(
                 f"simulate: the integration diverged at t = {t[k + 1]:g} s (a stiff plant or controller for a "
                 f"step of {h:g} s); use more substeps or smaller gains (the result so far is in .partial)",
                 partial)
-    return SimResult(t.copy(), Q, DQ, TAU, qd.copy(), dqd.copy())
+    return SimResult(t.copy(), Q, DQ, TAU, q_des.copy(), dq_des.copy())

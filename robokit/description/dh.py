@@ -97,7 +97,7 @@ class DHLink:
     side); Tc : (2,) Coulomb friction for positive and negative motion (N·m, motor side;
     the negative-motion value is usually negative). These drive parameters follow Corke's
     toolbox: referred to the joint they give inertia ``G² Jm``, viscous friction ``G² B``
-    and Coulomb friction ``|G| Tc`` (see :meth:`joint_friction`). flip : the joint variable
+    and Coulomb friction ``|G| Tc`` (see :func:`robokit.dynamics.friction_torques`). flip : the joint variable
     enters with a minus sign, ``θ = θ_offset − q`` (``d = d_offset − q``): the joint turns
     (slides) about −z (YAML key ``flip: true``; default False).
     """
@@ -117,16 +117,6 @@ class DHLink:
     Tc: np.ndarray = field(default_factory=lambda: np.zeros(2))
     name: str | None = None
     flip: bool = False
-
-    def joint_friction(self, dq: float) -> float:
-        """Friction torque at the joint opposing motion, ``G² B q̇ + |G| Tc(sign q̇)`` (N·m).
-
-        The returned value is the torque friction *consumes*: the motor must supply it on
-        top of the rigid-body torque. Zero at rest (static friction is not modelled).
-        """
-        dq = float(dq)
-        coul = self.Tc[0] if dq > 0 else (self.Tc[1] if dq < 0 else 0.0)
-        return self.G * self.G * self.B * dq + abs(self.G) * coul
 
     @property
     def joint_inertia(self) -> float:

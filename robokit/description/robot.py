@@ -213,29 +213,30 @@ class Robot:
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
-    def q_pin(self, theta) -> np.ndarray:
-        """Pinocchio configuration (nq,) of joint angles θ (n,)."""
+    def q_pin(self, q) -> np.ndarray:
+        """Pinocchio configuration (nq,) of joint values q (n,) (a continuous joint's angle θ
+        becomes (cos θ, sin θ))."""
         if self._same_coords:
-            return np.asarray(theta, dtype=float)
-        theta = np.asarray(theta, dtype=float)
-        q = np.empty(self.model.nq)
-        for iq, iv in self._lin:
-            q[iq] = theta[iv]
-        for iq, iv in self._cont:
-            q[iq], q[iq + 1] = np.cos(theta[iv]), np.sin(theta[iv])
-        return q
-
-    def theta_from_q(self, q) -> np.ndarray:
-        """Joint angles θ (n,) of a Pinocchio configuration q (nq,)."""
+            return np.asarray(q, dtype=float)
         q = np.asarray(q, dtype=float)
-        if self._same_coords:
-            return q.copy()
-        theta = np.empty(self.n)
+        q_pin = np.empty(self.model.nq)
         for iq, iv in self._lin:
-            theta[iv] = q[iq]
+            q_pin[iq] = q[iv]
         for iq, iv in self._cont:
-            theta[iv] = np.arctan2(q[iq + 1], q[iq])
-        return theta
+            q_pin[iq], q_pin[iq + 1] = np.cos(q[iv]), np.sin(q[iv])
+        return q_pin
+
+    def q_from_pin(self, q_pin) -> np.ndarray:
+        """Joint values q (n,) of a Pinocchio configuration (nq,)."""
+        q_pin = np.asarray(q_pin, dtype=float)
+        if self._same_coords:
+            return q_pin.copy()
+        q = np.empty(self.n)
+        for iq, iv in self._lin:
+            q[iv] = q_pin[iq]
+        for iq, iv in self._cont:
+            q[iv] = np.arctan2(q_pin[iq + 1], q_pin[iq])
+        return q
 
     def frame_id(self, frame: str | None) -> int:
         """Frame id of ``frame`` (None: the tip); ValueError listing frames if unknown."""
@@ -249,31 +250,31 @@ class Robot:
             fid = self._frame_ids[frame] = self.model.getFrameId(frame)
         return fid
 
-    def _check_theta(self, theta, name="theta"):
-        theta = np.asarray(theta, dtype=float)
-        if theta.shape != (self.n,):
-            raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {theta.shape}")
-        if not np.isfinite(theta).all():
-            raise ValueError(f"{name}: contains NaN or infinite values ({theta.tolist()})")
-        return theta
+    def _check_q(self, q, name="q"):
+        q = np.asarray(q, dtype=float)
+        if q.shape != (self.n,):
+            raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
+        if not np.isfinite(q).all():
+            raise ValueError(f"{name}: contains NaN or infinite values ({q.tolist()})")
+        return q
 
     # ------------------------------------------------------------ fast answers
-    def frame_pose(self, theta, frame: str | None = None) -> np.ndarray:
+    def frame_pose(self, q, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint angles θ."""
         pin = self._pin
-        q = self.q_pin(self._check_theta(theta))
+        q = self.q_pin(self._check_q(q))
         pin.forwardKinematics(self.model, self.data, q)
         return pin.updateFramePlacement(self.model, self.data, self.frame_id(frame)).homogeneous
 
-    def frame_poses(self, theta) -> dict:
+    def frame_poses(self, q) -> dict:
         """Poses (4×4) of every frame, by name, at θ."""
         pin = self._pin
-        pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_theta(theta)))
+        pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
         return {f.name: self.data.oMf[i].homogeneous for i, f in enumerate(self.model.frames)}
 
     _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
 
-    def jacobian(self, theta, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q, frame: str | None = None, reference: str = "world") -> np.ndarray:
         """6×n Jacobian of ``frame`` at θ, **angular rows first** (ω; v).
 
         reference : "world" — the space Jacobian (twist of the frame expressed at the root
@@ -286,38 +287,38 @@ class Robot:
             rf = getattr(pin.ReferenceFrame, self._REFS[reference])
         except KeyError:
             raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
-        q = self.q_pin(self._check_theta(theta))
+        q = self.q_pin(self._check_q(q))
         J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
         return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
 
-    def rnea(self, theta, dtheta, ddtheta) -> np.ndarray:
+    def rnea(self, q, dq, ddq) -> np.ndarray:
         """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""
-        q = self.q_pin(self._check_theta(theta))
-        dq, ddq = self._check_theta(dtheta, "dtheta"), self._check_theta(ddtheta, "ddtheta")
+        q = self.q_pin(self._check_q(q))
+        dq, ddq = self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
 
-    def crba(self, theta) -> np.ndarray:
+    def crba(self, q) -> np.ndarray:
         """Mass matrix M(θ) (n×n, symmetric), Pinocchio's CRBA."""
-        q = self.q_pin(self._check_theta(theta))
+        q = self.q_pin(self._check_q(q))
         M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
         M[self._lower] = M.T[self._lower]
         return M
 
-    def aba(self, theta, dtheta, tau) -> np.ndarray:
+    def aba(self, q, dq, tau) -> np.ndarray:
         """Forward dynamics θ̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA."""
-        q = self.q_pin(self._check_theta(theta))
-        dq, tau = self._check_theta(dtheta, "dtheta"), self._check_theta(tau, "tau")
+        q = self.q_pin(self._check_q(q))
+        dq, tau = self._check_q(dq, "dq"), self._check_q(tau, "tau")
         return self._pin.aba(self.model, self.data, q, dq, tau).copy()
 
-    def gravity_torques(self, theta) -> np.ndarray:
+    def gravity_torques(self, q) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
-        q = self.q_pin(self._check_theta(theta))
+        q = self.q_pin(self._check_q(q))
         return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
 
-    def nonlinear_effects(self, theta, dtheta) -> np.ndarray:
+    def nonlinear_effects(self, q, dq) -> np.ndarray:
         """c(θ, θ̇) + g(θ) (n,)."""
-        q = self.q_pin(self._check_theta(theta))
-        return self._pin.nonLinearEffects(self.model, self.data, q, self._check_theta(dtheta, "dtheta")).copy()
+        q = self.q_pin(self._check_q(q))
+        return self._pin.nonLinearEffects(self.model, self.data, q, self._check_q(dq, "dq")).copy()
 
     def random_configuration(self, rng=None) -> np.ndarray:
         """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""

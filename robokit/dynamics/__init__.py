@@ -3,23 +3,32 @@
 ``newton_euler``: the seed functions in product-of-exponentials form (Newton–Euler inverse
 dynamics, composite-rigid-body mass matrix, forward dynamics, trajectories).
 ``dh_newton_euler``: Craig's recursive Newton–Euler on a DH table (both conventions).
-``terms``: Coriolis matrix (Ṁ − 2C skew), friction, payload, base wrench, Cartesian dynamics,
-energy and Euler/Taylor/RK4 integration.
+``coriolis``: the Coriolis matrix (Christoffel, Ṁ − 2C skew; or the lecture's factorisation).
+``loads``: payloads and the base wrench. ``cartesian``: operational-space dynamics.
+``integration``: energy and Euler/Taylor/RK4 integration (one stepper for robokit).
 ``inertia``: inertia tensors of a box, cylinder, sphere and rod, parallel axes, rotated axes.
-``drives``: motor inertia and friction in the dynamics of a DH robot, reflected inertia,
-dynamic manipulability.
+``drives``: the drive train — the one friction law, motor inertia and friction in the dynamics
+of a DH robot, reflected inertia, dynamic manipulability.
+``twolink``: Lecture 7's two-link closed form.
 """
+from robokit.dynamics.cartesian import *  # noqa: F401,F403
+from robokit.dynamics.cartesian import __all__ as _cartesian_all
+from robokit.dynamics.coriolis import *  # noqa: F401,F403
+from robokit.dynamics.coriolis import __all__ as _coriolis_all
 from robokit.dynamics.dh_newton_euler import *  # noqa: F401,F403
 from robokit.dynamics.dh_newton_euler import __all__ as _dh_all
-from robokit.dynamics.newton_euler import *  # noqa: F401,F403
-from robokit.dynamics.newton_euler import __all__ as _ne_all
-from robokit.dynamics.terms import *  # noqa: F401,F403
-from robokit.dynamics.terms import __all__ as _terms_all
 from robokit.dynamics.drives import *  # noqa: F401,F403
 from robokit.dynamics.drives import __all__ as _drives_all
 from robokit.dynamics.inertia import *  # noqa: F401,F403
 from robokit.dynamics.inertia import __all__ as _inertia_all
+from robokit.dynamics.integration import *  # noqa: F401,F403
+from robokit.dynamics.integration import __all__ as _integration_all
+from robokit.dynamics.loads import *  # noqa: F401,F403
+from robokit.dynamics.loads import __all__ as _loads_all
+from robokit.dynamics.newton_euler import *  # noqa: F401,F403
+from robokit.dynamics.newton_euler import __all__ as _ne_all
 from robokit.dynamics.twolink import *  # noqa: F401,F403
 from robokit.dynamics.twolink import __all__ as _twolink_all
 
-__all__ = list(_ne_all) + list(_dh_all) + list(_terms_all) + list(_twolink_all) + list(_inertia_all) + list(_drives_all)
+__all__ = (list(_ne_all) + list(_dh_all) + list(_coriolis_all) + list(_loads_all) + list(_cartesian_all)
+           + list(_integration_all) + list(_twolink_all) + list(_inertia_all) + list(_drives_all))

@@ -31,6 +31,9 @@ from robokit._arrays import as_vector
 
 __all__ = [
     "drive_parameters",
+    "joint_drive_parameters",
+    "friction_torque",
+    "friction_torques",
     "rne_with_drives",
     "inertia_with_drives",
     "forward_dynamics_with_drives",
@@ -56,11 +59,41 @@ def drive_parameters(robot):
     return Jm, G, B, Tc
 
 
-def _friction(G, B, Tc, dq, coulomb):
-    tau = G * G * B * dq
+def friction_torque(dq, B, Tc, coulomb: bool = True) -> np.ndarray:
+    """Joint friction ``B q̇ + T_c(sign q̇)`` (n,) — the one friction law of robokit (Lecture 7:
+    ``Q_f = B q̇ + Q_C``): viscous B (n,) and Coulomb levels Tc (n, 2) (Tc⁺ for q̇ > 0, Tc⁻ for
+    q̇ < 0, 0 at rest; the negative level is usually negative, Corke's convention), all on the
+    joint side. The value is the torque friction consumes (the motor supplies it).
+
+    Example: ``friction_torque([1.0, -1.0], [0.1, 0.1], [[0.2, -0.2], [0.2, -0.2]])`` → ``[0.3, -0.3]``.
+    """
+    dq = np.asarray(dq, dtype=float)
+    tau = B * dq
     if coulomb:
-        tau = tau + np.abs(G) * np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
+        tau = tau + np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
     return tau
+
+
+def joint_drive_parameters(table):
+    """The drives of a DH table referred to the joints: ``(G² B, |G| Tc, G² Jm)`` as (n,), (n, 2), (n,)
+    arrays (Lecture 8: ``ˡB = G² ᵐB``, ``ˡτ_C = |G| ᵐτ_C``, ``ˡJ = G² ᵐJ``)."""
+    G = np.array([float(l.G) for l in table.links])
+    B = np.array([float(l.B) for l in table.links])
+    Tc = np.array([np.asarray(l.Tc, dtype=float) for l in table.links]).reshape(-1, 2)
+    Jm = np.array([float(l.Jm) for l in table.links])
+    return G * G * B, np.abs(G)[:, None] * Tc, G * G * Jm
+
+
+def friction_torques(table, dq) -> np.ndarray:
+    """Joint friction torques (n,) of a DH table's drives: ``G² B q̇ + |G| T_c(sign q̇)`` per joint
+    (motor-side viscous B and Coulomb T_c referred through the gear ratio G, Corke's convention)."""
+    dq = as_vector(dq, "dq", table.n)
+    B, Tc, _ = joint_drive_parameters(table)
+    return friction_torque(dq, B, Tc)
+
+
+def _friction(G, B, Tc, dq, coulomb):
+    return friction_torque(dq, G * G * B, np.abs(G)[:, None] * Tc, coulomb)
 
 
 def rne_with_drives(robot, q, dq, ddq, *, motor_inertia: bool = True, friction: bool = True,

@@ -50,21 +50,21 @@ def _q(q, n, name="q"):
     return np.ascontiguousarray(as_vector(q, name, n))
 
 
-def dh_jacobian(table, q, frame: str = "base") -> np.ndarray:
+def dh_jacobian(table, q, reference: str = "base") -> np.ndarray:
     """Geometric Jacobian (6×n, rows (ω; v) of the tool origin) of a :class:`DHTable` by outward
     velocity propagation.
 
     table : DHTable (standard or modified, revolute and prismatic joints); q : (n,) joint values;
-    frame : "base" — expressed in base_link axes (= Pinocchio's LOCAL_WORLD_ALIGNED), or
+    reference : "base" — expressed in base_link axes (= Pinocchio's LOCAL_WORLD_ALIGNED), or
     "tool" — in the tool frame's axes (= Pinocchio's LOCAL).
 
     Example: for the planar 2-link arm the v rows are Lecture 6's ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], …]``.
     """
-    if frame not in ("base", "tool"):
-        raise ValueError(f"frame: expected 'base' or 'tool', got {frame!r}")
+    if reference not in ("base", "tool"):
+        raise ValueError(f"reference: expected 'base' or 'tool', got {reference!r}")
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
-    in_tool = 1 if frame == "tool" else 0
+    in_tool = 1 if reference == "tool" else 0
     if type(q) is np.ndarray and q.ndim == 1:
         try:
             return k.dh_jacobian(P, modified, base, tool, q, in_tool)

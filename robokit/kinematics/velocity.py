@@ -27,8 +27,6 @@ __all__ = [
     "singularity",
     "resolved_rate",
     "joint_limit_gradient",
-    "LineFollowResult",
-    "follow_line",
 ]
 
 
@@ -296,53 +294,6 @@ def joint_limit_gradient(q, qlim) -> np.ndarray:
     mid = 0.5 * (qlim[:, 0] + qlim[:, 1])
     g[ok] = -(q[ok] - mid[ok]) / span[ok] ** 2
     return g
-
-
-@dataclass
-class LineFollowResult:
-    """t (K,), q (K, n), p (K, 3) actual positions, p_des (K, 3), error (K,) position error (m)."""
-
-    t: np.ndarray
-    q: np.ndarray
-    p: np.ndarray
-    p_des: np.ndarray
-    error: np.ndarray
-
-
-def follow_line(robot, q0, p_goal, duration: float, dt: float = 0.005, method: str = "dls", gain: float = 5.0,
-                damping: float = 0.02, null_gain: float = 0.0, frame: str | None = None) -> LineFollowResult:
-    """Resolved-rate control along a straight line from the current tool position to ``p_goal``.
-
-    The desired position moves on the line with a quintic time scaling over ``duration`` s, the
-    orientation is held; each step commands ``V = (K e_ω, ṗ_des + K e_p)`` and integrates
-    ``q̇ = resolved_rate(J, V)`` (Euler, dt), with optional null-space joint-limit avoidance
-    (``null_gain``). Returns the tracking error along the path.
-    """
-    q = as_vector(q0, "q0", robot.n).copy()
-    p_goal = as_vector(p_goal, "p_goal", 3)
-    T0 = robot.frame_pose(q, frame)
-    p0, R_des = T0[:3, 3].copy(), T0[:3, :3].copy()
-    K = int(np.ceil(duration / dt))
-    ts, qs, ps, pds, errs = [], [], [], [], []
-    for k in range(K + 1):
-        t = min(k * dt, duration)
-        s = t / duration
-        sc = 10 * s**3 - 15 * s**4 + 6 * s**5
-        dsc = (30 * s**2 - 60 * s**3 + 30 * s**4) / duration
-        p_des = p0 + sc * (p_goal - p0)
-        v_des = dsc * (p_goal - p0)
-        T = robot.frame_pose(q, frame)
-        e_p = p_des - T[:3, 3]
-        Re = R_des @ T[:3, :3].T
-        e_w = 0.5 * np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
-        ts.append(t), qs.append(q.copy()), ps.append(T[:3, 3].copy()), pds.append(p_des), errs.append(np.linalg.norm(e_p))
-        if k == K:
-            break
-        J = robot.jacobian(q, frame, reference="local_world_aligned")
-        V = np.r_[gain * e_w, v_des + gain * e_p]
-        z = null_gain * joint_limit_gradient(q, robot.qlim) if null_gain else None
-        q = q + dt * resolved_rate(J, V, method=method, damping=damping, adaptive=True, z=z)
-    return LineFollowResult(np.array(ts), np.array(qs), np.array(ps), np.array(pds), np.array(errs))
 
 
 def manipulability_at(robot, q, kind: str = "yoshikawa", part: str = "full", frame: str | None = None) -> float:

@@ -38,7 +38,7 @@ def checks(rng) -> list[CheckRow]:
     import pinocchio as pin
 
     from robokit.dynamics.dh_newton_euler import dh_inverse_dynamics
-    from robokit.dynamics.terms import coriolis_matrix
+    from robokit.dynamics.coriolis import coriolis_matrix
 
     for name in MODELS:
         r = load(name)

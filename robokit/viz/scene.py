@@ -206,15 +206,16 @@ class Scene:
     def velocity_ellipsoid(self, frame: str | None = None, scale: float = 0.2, color: int = 0x30B060):
         """The translational velocity ellipsoid ``{v = J_v q̇ : ‖q̇‖ ≤ 1}`` at the frame (default tip).
 
-        Axes: eigenvectors of ``J_v J_vᵀ`` (base frame), radii: square roots of its eigenvalues,
-        times ``scale`` (m per m/s) so it fits the picture.
+        Axes and radii from :func:`robokit.kinematics.velocity_ellipsoid_at` (the singular values
+        and left singular vectors of J_v), radii times ``scale`` (m per m/s) so it fits the picture.
         """
         import meshcat.geometry as g
 
-        J = self.robot.jacobian(self.q, frame, reference="local_world_aligned")[3:]
-        evals, evecs = np.linalg.eigh(J @ J.T)
-        radii = np.sqrt(np.clip(evals, 0.0, None)) * scale
-        radii = np.maximum(radii, 1e-4)
+        from robokit.kinematics.velocity import velocity_ellipsoid_at
+
+        radii, evecs = velocity_ellipsoid_at(self.robot, self.q, "translation", frame)
+        radii = np.maximum(radii * scale, 1e-4)
+        evecs = evecs.copy()
         if np.linalg.det(evecs) < 0:
             evecs[:, 0] = -evecs[:, 0]
         T = np.eye(4)

@@ -125,7 +125,7 @@ def test_friction_and_motor_inertia_change_the_plant(puma):
     # … and with friction (G²B q̇ + |G|Tc) it decelerates; over 0.2 s the drop is about (friction/inertia)·t
     for j in (3, 4, 5):
         link = puma.dh.links[j]
-        decel = link.joint_friction(0.5) / (link.joint_inertia + puma.crba(goal)[j, j])
+        decel = rk.dynamics.friction_torques(puma.dh, np.full(6, 0.5))[j] / (link.joint_inertia + puma.crba(goal)[j, j])
         if decel * 0.2 > 0.6:  # enough friction to stop it within 0.2 s: at rest (up to Coulomb chatter)
             assert abs(fric.dq[-1, j]) < 0.02
         else:

@@ -65,7 +65,7 @@ def test_robot_methods_match_raw_pinocchio(robots):
     rng = np.random.default_rng(3)
     th = r.random_configuration(rng)
     q = r.q_pin(th)
-    assert np.allclose(r.theta_from_q(q), th)
+    assert np.allclose(r.q_from_pin(q), th)
     data = r.model.createData()
     pin.framesForwardKinematics(r.model, data, q)
     assert np.allclose(r.frame_pose(th), data.oMf[r.tip_id].homogeneous)

@@ -1,11 +1,13 @@
 """DH propagation Jacobians, static forces, numerical/analytical Jacobians, transforms,
 manipulability and resolved-rate control — against Pinocchio, finite differences and closed forms."""
 import numpy as np
+
+from robokit.control import track_line
 import pytest
 
 import robokit as rk
 from robokit.kinematics import (
-    analytical_jacobian, dh_jacobian, dh_static_torques, euler_rate_matrix, follow_line, jacobian_to_frame,
+    analytical_jacobian, dh_jacobian, dh_static_torques, euler_rate_matrix, jacobian_to_frame,
     manipulability, manipulability_at, numerical_jacobian, resolved_rate, singularity, twist_transform,
     velocity_ellipsoid, wrench_transform,
 )
@@ -159,13 +161,13 @@ def test_dls_bounded_near_singularity_and_null_space(robots):
         assert np.linalg.norm(dq1 - dq0) > 1e-3
 
 
-def test_follow_line_tracks(robots):
+def test_track_line_tracks(robots):
     r = robots["ur5"]
     q0 = np.array([0.2, -1.2, 1.5, -1.8, -1.5, 0.3])
     p0 = r.frame_pose(q0)[:3, 3]
     # the feedback gain K makes the lag of the Euler-integrated loop O(dt·|p̈|/K)
-    slow = follow_line(r, q0, p0 + np.array([0.1, -0.15, 0.1]), duration=1.0, dt=0.002, gain=5.0)
-    res = follow_line(r, q0, p0 + np.array([0.1, -0.15, 0.1]), duration=1.0, dt=0.002, gain=50.0)
+    slow = track_line(r, q0, p0 + np.array([0.1, -0.15, 0.1]), duration=1.0, dt=0.002, gain=5.0)
+    res = track_line(r, q0, p0 + np.array([0.1, -0.15, 0.1]), duration=1.0, dt=0.002, gain=50.0)
     assert res.error.max() < 0.3 * slow.error.max()
     assert res.error.max() < 1e-4 and res.error[-1] < 1e-5
     assert np.linalg.norm(res.p[-1] - (p0 + np.array([0.1, -0.15, 0.1]))) < 1e-4

@@ -1,0 +1,56 @@
+r"""Operational-space (Cartesian) dynamics (Lecture 7): ``Λ(q) ẍ + μ(q, q̇) + p(q) = F`` at a frame,
+and the dynamic manipulability measures built on it."""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_vector
+
+__all__ = ["CartesianDynamics", "cartesian_dynamics"]
+
+
+class CartesianDynamics:
+    """Operational-space terms at one state (Lecture 7): ``F = Λ(q) ẍ + μ(q, q̇) + p(q)``.
+
+    Lambda (6×6 or m×m) ``(J M⁻¹ Jᵀ)⁻¹``; mu ``Λ (J M⁻¹ c − J̇ q̇)``; p ``Λ J M⁻¹ g``; plus the
+    dynamic manipulability measures: ``yoshikawa = √det(J (MᵀM)⁻¹ Jᵀ)`` (Yoshikawa's dynamic
+    manipulability) and ``asada`` = ratio of the smallest to the largest eigenvalue of Λ (the
+    isotropy of Asada's generalized inertia ellipsoid), with ``inertia_axes``/``inertia_radii``
+    of that ellipsoid (eigenvectors, √eigenvalues of Λ).
+    """
+
+    def __init__(self, Lambda, mu, p, yoshikawa, asada, inertia_radii, inertia_axes):
+        self.Lambda, self.mu, self.p = Lambda, mu, p
+        self.yoshikawa, self.asada = yoshikawa, asada
+        self.inertia_radii, self.inertia_axes = inertia_radii, inertia_axes
+
+
+def cartesian_dynamics(robot, q, dq, frame: str | None = None, part: str = "full") -> CartesianDynamics:
+    """:class:`CartesianDynamics` of ``robot`` at (q, q̇) for the frame's geometric Jacobian
+    (base axes; ``part`` "full", "translation" or "rotation" selects the rows)."""
+    import pinocchio as pin
+
+    q = as_vector(q, "q", robot.n)
+    dq = as_vector(dq, "dq", robot.n)
+    rows = {"full": slice(0, 6), "rotation": slice(0, 3), "translation": slice(3, 6)}.get(part)
+    if rows is None:
+        raise ValueError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
+    J = robot.jacobian(q, frame, reference="local_world_aligned")[rows]
+    M = robot.crba(q)
+    g = robot.gravity_torques(q)
+    c = robot.nonlinear_effects(q, dq) - g
+    # J̇ q̇: the frame's classical acceleration at zero joint acceleration
+    model, data = robot.model, robot.model.createData()
+    pin.forwardKinematics(model, data, robot.q_pin(q), dq, np.zeros(model.nv))
+    acc = pin.getFrameClassicalAcceleration(model, data, robot.frame_id(frame), pin.LOCAL_WORLD_ALIGNED)
+    Jdqd = np.r_[acc.angular, acc.linear][rows]
+    Minv_JT = np.linalg.solve(M, J.T)
+    Lambda = np.linalg.inv(J @ Minv_JT)
+    Lambda = 0.5 * (Lambda + Lambda.T)
+    mu = Lambda @ (J @ np.linalg.solve(M, c) - Jdqd)
+    p = Lambda @ (J @ np.linalg.solve(M, g))
+    Minv = np.linalg.inv(M)
+    JM = J @ Minv
+    yosh = float(np.sqrt(max(0.0, np.linalg.det(JM @ JM.T))))
+    lam, vec = np.linalg.eigh(Lambda)
+    return CartesianDynamics(Lambda, mu, p, yosh, float(lam[0] / lam[-1]), np.sqrt(np.clip(lam, 0, None)), vec)

@@ -1,0 +1,79 @@
+r"""Energy and time integration of the course forward dynamics (Lecture 7).
+
+* :func:`second_order_step` — one step of ``q̈ = a(t, q, q̇)`` by Euler, the lecture's Taylor step
+  (``q + q̇Δt + ½q̈Δt²``) or fourth-order Runge–Kutta: the one integrator robokit uses (here and in
+  :func:`robokit.control.simulate`);
+* :func:`integrate` — the course forward dynamics over time (e.g. the PUMA 560 collapsing under
+  gravity); :func:`total_energy` — kinetic plus potential energy, to watch the drift.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_scalar, as_vector
+from robokit.dynamics.newton_euler import forward_dynamics
+
+__all__ = ["second_order_step", "integrate", "total_energy"]
+
+METHODS = ("rk4", "euler", "taylor")
+
+
+def second_order_step(accel, t: float, q: np.ndarray, dq: np.ndarray, h: float, method: str = "rk4"):
+    """``(q, q̇)`` after one step ``h`` of ``q̈ = accel(t, q, q̇)``.
+
+    method : "rk4" — classical fourth-order Runge–Kutta on the state (q, q̇); "euler" —
+    ``q ← q + q̇h``, ``q̇ ← q̇ + q̈h``; "taylor" — the lecture's ``q ← q + q̇h + ½q̈h²``, ``q̇ ← q̇ + q̈h``.
+    No argument checks (the callers have made them).
+    """
+    if method == "euler":
+        a = accel(t, q, dq)
+        return q + h * dq, dq + h * a
+    if method == "taylor":
+        a = accel(t, q, dq)
+        return q + h * dq + 0.5 * h * h * a, dq + h * a
+    k1q, k1v = dq, accel(t, q, dq)
+    k2q, k2v = dq + 0.5 * h * k1v, accel(t + 0.5 * h, q + 0.5 * h * k1q, dq + 0.5 * h * k1v)
+    k3q, k3v = dq + 0.5 * h * k2v, accel(t + 0.5 * h, q + 0.5 * h * k2q, dq + 0.5 * h * k2v)
+    k4q, k4v = dq + h * k3v, accel(t + h, q + h * k3q, dq + h * k3v)
+    return (q + h / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q),
+            dq + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v))
+
+
+def total_energy(robot, q, dq) -> float:
+    """Kinetic plus potential energy ``½ q̇ᵀ M q̇ + V(q)`` (J), V from the robot's gravity."""
+    import pinocchio as pin
+
+    q = as_vector(q, "q", robot.n)
+    dq = as_vector(dq, "dq", robot.n)
+    V = pin.computePotentialEnergy(robot.model, robot.data, robot.q_pin(q))
+    return float(0.5 * dq @ robot.crba(q) @ dq + V)
+
+
+def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, steps: int, method: str = "rk4"):
+    """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` with Euler, the lecture's step or RK4.
+
+    method : "rk4" (default, fourth-order Runge–Kutta); "euler" (``θ ← θ + θ̇Δt``, ``θ̇ ← θ̇ + θ̈Δt``);
+    "taylor" — the lecture's step (Lecture 7, forward dynamics)
+    ``θ̇(t+Δt) = θ̇ + θ̈Δt``, ``θ(t+Δt) = θ + θ̇Δt + ½θ̈Δt²``.
+    taufun : function (t, θ, θ̇) → τ (n,) (e.g. ``lambda t, q, dq: np.zeros(n)`` for a free
+    fall); dt : step (s); steps : number of steps. Returns ``(t, thetamat, dthetamat)`` with
+    ``steps + 1`` rows.
+    """
+    th = as_vector(thetalist, "thetalist").copy()
+    dth = as_vector(dthetalist, "dthetalist", len(th)).copy()
+    dt = as_scalar(dt, "dt", positive=True)
+    if method not in METHODS:
+        raise ValueError(f"method: expected 'rk4', 'euler' or 'taylor', got {method!r}")
+    z6 = np.zeros(6)
+
+    def acc(t, a, b):
+        return forward_dynamics(a, b, taufun(t, a, b), g, z6, Mlist, Glist, Slist)
+
+    T = np.arange(int(steps) + 1) * dt
+    Q = np.empty((len(T), len(th)))
+    D = np.empty_like(Q)
+    Q[0], D[0] = th, dth
+    for k in range(int(steps)):
+        th, dth = second_order_step(acc, T[k], th, dth, dt, method)
+        Q[k + 1], D[k + 1] = th, dth
+    return T, Q, D

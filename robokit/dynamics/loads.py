@@ -1,0 +1,75 @@
+r"""What the arm carries and what it pushes on its base (Lecture 7).
+
+* :func:`add_payload` — a payload rigidly held by the tool changes the last link's inertia;
+* :func:`base_wrench` — the wrench the base must supply to the arm (Newton–Euler's outward pass
+  continued to the base).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from robokit._arrays import as_array, as_scalar, as_vector
+from robokit.dynamics.newton_euler import _model
+from robokit.spatial import lie
+
+__all__ = ["add_payload", "base_wrench"]
+
+
+def add_payload(Mlist, Glist, mass, com=(0.0, 0.0, 0.0), inertia=None):
+    """Glist with a payload rigidly held at the end-effector frame added to the last link.
+
+    mass : kg; com : (3,) payload centre of mass in the end-effector frame (m); inertia : 3×3
+    about the payload's centre of mass, end-effector axes (default 0: a point mass).
+    The spatial inertia moves between frames as ``G_a = Ad_{T_ba}ᵀ G_b Ad_{T_ba}`` (T_ba: pose of a
+    in b). Returns a new (n, 6, 6) Glist; Mlist is unchanged (the link frame stays where it is).
+    """
+    Mlist = as_array(Mlist, "Mlist", (None, 4, 4))
+    Glist = as_array(Glist, "Glist", (len(Mlist) - 1, 6, 6)).copy()
+    mass = as_scalar(mass, "mass", nonnegative=True)
+    com = as_vector(com, "com", 3)
+    I = np.zeros((3, 3)) if inertia is None else as_array(inertia, "inertia", (3, 3))
+    Gp = np.zeros((6, 6))
+    Gp[:3, :3] = I
+    Gp[3:, 3:] = mass * np.eye(3)
+    # pose of the last link frame {n} in the payload frame {p}: {p} = {ee} translated by com
+    T_ee_p = np.eye(4)
+    T_ee_p[:3, 3] = com
+    T_n_ee = Mlist[-1]
+    T_n_p = T_n_ee @ T_ee_p
+    T_p_n = np.linalg.inv(T_n_p)
+    A = lie.adjoint(T_p_n[None])[0]
+    Glist[-1] = Glist[-1] + A.T @ Gp @ A
+    return Glist
+
+
+def base_wrench(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+    """The wrench (m, f) (6,) the base must apply to the arm, in the base frame {0} at its origin.
+
+    From the backward Newton–Euler pass: the wrench transmitted through joint 1, ``F₁``, carried
+    to frame {0} with ``Ad_{T_{1,0}}ᵀ``. At rest it balances the arm's weight: f = −(Σ mᵢ) g.
+    """
+    m = _model(Mlist, Glist, Slist)
+    n = m.n
+    th = as_vector(thetalist, "thetalist", n)
+    dth = as_vector(dthetalist, "dthetalist", n)
+    ddth = as_vector(ddthetalist, "ddthetalist", n)
+    g = as_vector(g, "g", 3)
+    Ftip = as_vector(Ftip, "Ftip", 6)
+    Ad = m.transforms(th)
+    A, G = m.AT, m.G
+    V = np.zeros(6)
+    Vd = np.r_[0.0, 0.0, 0.0, -g]
+    Vs, Vds = [], []
+    for i in range(n):
+        V = Ad[i] @ V + A[i] * dth[i]
+        Vd = Ad[i] @ Vd + (lie.ad(V) @ A[i]) * dth[i] + A[i] * ddth[i]
+        Vs.append(V)
+        Vds.append(Vd)
+    F = Ftip
+    Ad_next = m.Ad_tip
+    for i in range(n - 1, -1, -1):
+        F = Ad_next.T @ F + G[i] @ Vds[i] - lie.ad(Vs[i]).T @ G[i] @ Vs[i]
+        Ad_next = Ad[i]
+    # F is F₁ (in frame {1}); carried to {0}. The gravity used here is an upward base acceleration,
+    # so F already contains the weight.
+    return Ad[0].T @ F
