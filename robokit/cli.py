@@ -123,9 +123,9 @@ def _dispatch(args) -> int:
 
         return validate_main(as_json=args.json, seed=args.seed)
     if args.command == "convert":
-        from robokit.description.convert import convert_cli
+        from robokit.commands import convert_command
 
-        return convert_cli(args.input, args.output, tip=args.tip, convention=args.convention, **_format_options(args))
+        return convert_command(args.input, args.output, tip=args.tip, convention=args.convention, **_format_options(args))
     if args.command == "view":
         from robokit.viz.view import view_cli
 

@@ -6,12 +6,11 @@ Every output is written atomically: a failure leaves no file behind. Bad input r
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 
 from robokit._io import atomic_write
 
-__all__ = ["convert", "convert_cli"]
+__all__ = ["convert"]
 
 
 def _check_output(output) -> Path:
@@ -69,28 +68,11 @@ def convert(input, output=None, tip=None, convention="standard", *, xacro_args=N
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"
         elif out_suffix in (".yaml", ".yml", None):
-            try:
-                from robokit.description.urdf_to_dh import urdf_to_dh_cli_text
-            except ImportError:
-                raise ValueError("output: URDF → DH tables (.yaml) are not available yet; use -o OUT.json "
-                                 "for product-of-exponentials parameters") from None
-            text = urdf_to_dh_cli_text(robot, convention=convention, as_yaml=out_suffix is not None)
+            from robokit.description.urdf_to_dh import urdf_to_dh_text
+
+            text = urdf_to_dh_text(robot, convention=convention, as_yaml=out_suffix is not None)
         else:
             raise ValueError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
     if out is not None:
         atomic_write(out, text)
     return text, notes
-
-
-def convert_cli(input, output, tip=None, convention="standard", **load_options) -> int:
-    """The ``robokit convert`` command; returns the exit status (errors propagate as ValueError)."""
-    if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
-        raise ValueError("-o/--output: required (e.g. -o robot.urdf)")
-    text, notes = convert(input, output, tip=tip, convention=convention, **load_options)
-    for note in notes:
-        print(f"robokit: note: {note}", file=sys.stderr)
-    if output is None:
-        sys.stdout.write(text)
-    else:
-        print(f"wrote {output}", file=sys.stderr)
-    return 0

@@ -245,7 +245,7 @@ def format_dh_table(table: DHTable, digits: int = 5) -> str:
     return table.to_text(digits)
 
 
-def urdf_to_dh_cli_text(robot, convention: str = "standard", as_yaml: bool = True) -> str:
+def urdf_to_dh_text(robot, convention: str = "standard", as_yaml: bool = True) -> str:
     """Text for ``robokit convert``: the YAML file (refused for an inexact table), or the printed
     table with its residual (printed either way, an inexact one marked as such)."""
     res = urdf_to_dh(robot, convention)

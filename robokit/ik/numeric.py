@@ -222,6 +222,13 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
         res.success, res.q
     """
     t_start = time.perf_counter()
+    from robokit.description.protocol import RobotLike
+    from robokit.description.robot import Robot
+
+    is_robot = isinstance(robot, Robot)
+    if not is_robot and not isinstance(robot, RobotLike):
+        raise TypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
+                        f"(robokit.description.RobotLike), got {type(robot).__name__}")
     n = robot.n
     lo = np.asarray(robot.qlim, dtype=float)[:, 0]
     hi = np.asarray(robot.qlim, dtype=float)[:, 1]
@@ -241,7 +248,7 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
 
     if method not in ("auto", "analytic", "compiled", "lm"):
         raise ValueError(f"method: expected 'auto', 'analytic', 'compiled' or 'lm', got {method!r}")
-    plain = (not position_only and weights is None and time_budget is None and hasattr(robot, "poe")
+    plain = (is_robot and not position_only and weights is None and time_budget is None
              and (frame is None or frame == getattr(robot, "tip", None)))
     if method in ("analytic", "compiled") and not plain:
         raise ValueError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
@@ -253,9 +260,9 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
         return _solve_compiled(robot, T_target, q, tol, max_iterations, max_restarts, rng, t_start)
 
     rng = np.random.default_rng(rng)
-    if hasattr(robot, "model"):
+    if is_robot:
         error, jac, w_int = _pinocchio_closures(robot, frame, position_only, p_target, T_target, w)
-    else:  # any object with frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
+    else:  # any RobotLike: frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
         error, jac, w_int = _generic_closures(robot, frame, position_only, p_target, T_target, w)
     w_pin = w_int
 

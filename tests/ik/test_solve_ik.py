@@ -87,3 +87,40 @@ def test_solve_ik_analytic_refuses_an_arm_without_a_closed_form():
         rk.solve_ik(panda, panda.frame_pose(np.zeros(7)), method="analytic")
     with pytest.raises(ValueError, match="method"):
         rk.solve_ik(panda, panda.frame_pose(np.zeros(7)), method="newton")
+
+
+class _PlanarTwoLink:
+    """A hand-written RobotLike (no Pinocchio): a planar 2R arm with unit links in the xy plane."""
+
+    n = 2
+    qlim = np.array([[-np.pi, np.pi], [-np.pi, np.pi]])
+
+    def frame_pose(self, q, frame=None):
+        a, b = q[0], q[0] + q[1]
+        T = np.eye(4)
+        T[:2, :2] = [[np.cos(b), -np.sin(b)], [np.sin(b), np.cos(b)]]
+        T[:2, 3] = [np.cos(a) + np.cos(b), np.sin(a) + np.sin(b)]
+        return T
+
+    def jacobian(self, q, frame=None, reference="world"):
+        assert reference == "local_world_aligned"  # position-only IK asks for the geometric Jacobian
+        a, b = q[0], q[0] + q[1]
+        J = np.zeros((6, 2))
+        J[2] = 1.0  # ω_z
+        J[3] = [-np.sin(a) - np.sin(b), -np.sin(b)]
+        J[4] = [np.cos(a) + np.cos(b), np.cos(b)]
+        return J
+
+
+def test_solve_ik_accepts_any_robotlike_and_refuses_other_objects():
+    from robokit.description import RobotLike
+
+    arm = _PlanarTwoLink()
+    assert isinstance(arm, RobotLike)
+    res = solve_ik(arm, np.array([1.2, 0.7, 0.0]), q0=[0.3, 0.5], position_only=True, rng=0)
+    assert res.success and np.allclose(arm.frame_pose(res.q)[:3, 3], [1.2, 0.7, 0.0], atol=1e-9)
+    # the closed form of the lecture's 2-link arm has the same answer among its two elbows
+    sols = rk.ik.ik_planar_2link(1.2, 0.7, 1.0, 1.0)
+    assert min(np.abs(np.asarray(s.q) - res.q).max() for s in sols) < 1e-7
+    with pytest.raises(TypeError, match="robot"):
+        solve_ik(object(), np.eye(4))

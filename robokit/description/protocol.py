@@ -1,0 +1,39 @@
+"""The robot interface every robot-taking function of robokit accepts, written down.
+
+:class:`RobotLike` is a :class:`typing.Protocol`: anything with these attributes and methods
+works — a :class:`robokit.Robot` (Pinocchio underneath, the fast path), or your own object (a
+symbolic arm lambdified, a wrapper around another library, a test double). Functions that need
+more (Pinocchio's model for the dynamics, the DH table for the closed forms) say so and take a
+:class:`robokit.Robot`.
+
+Conventions: q (n,) joint values (rad for revolute, m for prismatic); poses 4×4 in the base
+frame; Jacobians 6×n, **angular rows first** (ω; v); ``frame=None`` means the robot's tip;
+``reference`` is where the Jacobian is expressed: "world" (space Jacobian), "local" (body
+Jacobian, the frame's own axes) or "local_world_aligned" (the course's geometric Jacobian: ω and
+the velocity of the frame origin, base axes).
+"""
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["RobotLike"]
+
+
+@runtime_checkable
+class RobotLike(Protocol):
+    """What robokit needs of a robot: ``n``, ``qlim``, ``frame_pose`` and ``jacobian``."""
+
+    #: number of joints
+    n: int
+    #: (n, 2) lower and upper joint limits (±inf where unlimited)
+    qlim: np.ndarray
+
+    def frame_pose(self, q, frame: str | None = None) -> np.ndarray:
+        """4×4 pose of ``frame`` (default the tip) in the base frame at q."""
+        ...
+
+    def jacobian(self, q, frame: str | None = None, reference: str = "world") -> np.ndarray:
+        """6×n Jacobian of ``frame`` at q, angular rows first, expressed as ``reference`` says."""
+        ...
