@@ -41,7 +41,7 @@ def main(argv=None):
     start = np.zeros(6)
     goal = np.array([0.8, -0.5, 0.9, 0.5, 0.6, -0.4])
     dt = 1e-3
-    traj = rk.quintic_trajectory(start, goal, 2.0, t=np.arange(0.0, 2.0 + dt / 2, dt))
+    traj = rk.trajectory.quintic_trajectory(start, goal, 2.0, t=np.arange(0.0, 2.0 + dt / 2, dt))
     J_nom = np.diag(puma.crba(start))  # nominal (fixed) inertia per joint: the diagonal of M at the start
     print(f"# Control benchmark\n\nmachine: {machine()}\nPUMA 560, quintic move over 2 s, control at 1 kHz, "
           "RK4 plant (2 substeps), rigid-body model only (no motor inertia or friction); PD gains scaled by the "

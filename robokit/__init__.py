@@ -4,30 +4,69 @@ Conventions, said once: SI units; arrays are float64 ``numpy.ndarray``; twists a
 wrenches are ordered angular first, ``(ω, v)`` and ``(m, f)``; quaternions are scalar
 first, ``(w, x, y, z)``.
 
-The seed function library (``near_zero`` … ``simulate_control``) and the main types are
-re-exported here, so ``from robokit import matrix_log_6`` works. Each subpackage lists
-its public names in ``__all__``.
+The top level holds the seed function library (``near_zero`` … ``simulate_control``, the
+names of the course's function documentation), the main types and the entry points
+(``load``, ``solve_ik``, ``ik_analytic``, ``capability_map``). Everything else is reached
+through its subpackage, one per course area: ``robokit.spatial``, ``robokit.description``,
+``robokit.kinematics``, ``robokit.dynamics``, ``robokit.ik``, ``robokit.trajectory``,
+``robokit.control``, ``robokit.mobile``, ``robokit.workspace``, ``robokit.viz``,
+``robokit.validation`` and ``robokit.symbolic`` (e.g. ``robokit.kinematics.dh_jacobian``).
 """
-from robokit.errors import RobokitError, InputError
-
-from robokit.spatial import *  # noqa: F401,F403
-from robokit.spatial import __all__ as _spatial_all
-from robokit.description import *  # noqa: F401,F403
-from robokit.description import __all__ as _description_all
-from robokit.kinematics import *  # noqa: F401,F403
-from robokit.kinematics import __all__ as _kinematics_all
-from robokit.dynamics import *  # noqa: F401,F403
-from robokit.dynamics import __all__ as _dynamics_all
-from robokit.ik import *  # noqa: F401,F403
-from robokit.ik import __all__ as _ik_all
-from robokit.trajectory import *  # noqa: F401,F403
-from robokit.trajectory import __all__ as _trajectory_all
-from robokit.control import *  # noqa: F401,F403
-from robokit.control import __all__ as _control_all
-from robokit.mobile import *  # noqa: F401,F403
-from robokit.mobile import __all__ as _mobile_all
-from robokit.workspace import *  # noqa: F401,F403
-from robokit.workspace import __all__ as _workspace_all
+from robokit import control, description, dynamics, ik, kinematics, mobile, spatial, trajectory, workspace
+from robokit.control import SimResult, computed_torque, simulate, simulate_control
+from robokit.description import DHLink, DHTable, PoEParams, Robot, RobotLike, load, urdf_to_dh
+from robokit.dynamics import (
+    end_effector_forces,
+    euler_step,
+    forward_dynamics,
+    forward_dynamics_trajectory,
+    gravity_forces,
+    inverse_dynamics,
+    inverse_dynamics_trajectory,
+    mass_matrix,
+    vel_quadratic_forces,
+)
+from robokit.errors import DivergenceError, InputError, RobokitError, RobokitWarning
+from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
+from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
+from robokit.spatial import (
+    Rp_to_trans,
+    ad,
+    adjoint,
+    axis_ang_3,
+    axis_ang_6,
+    distance_to_SE3,
+    distance_to_SO3,
+    euler_to_matrix,
+    matrix_exp_3,
+    matrix_exp_6,
+    matrix_log_3,
+    matrix_log_6,
+    matrix_to_euler,
+    near_zero,
+    normalize,
+    project_to_SE3,
+    project_to_SO3,
+    rot_inv,
+    se3_to_vec,
+    so3_to_vec,
+    test_if_SE3,
+    test_if_SO3,
+    trans_inv,
+    trans_to_Rp,
+    vec_to_se3,
+    vec_to_so3,
+)
+from robokit.trajectory import (
+    Trajectory,
+    cartesian_trajectory,
+    cubic_time_scaling,
+    joint_trajectory,
+    ms_trajectory,
+    quintic_time_scaling,
+    screw_trajectory,
+)
+from robokit.workspace import CapabilityMap, capability_map
 
 try:
     from importlib.metadata import PackageNotFoundError as _NotFound, version as _version
@@ -36,15 +75,28 @@ try:
 except _NotFound:  # pragma: no cover - running from a source tree that was never installed
     __version__ = "0+unknown"
 
-__all__ = (
-    ["RobokitError", "InputError"]
-    + list(_spatial_all)
-    + list(_description_all)
-    + list(_kinematics_all)
-    + list(_dynamics_all)
-    + list(_ik_all)
-    + list(_trajectory_all)
-    + list(_control_all)
-    + list(_mobile_all)
-    + list(_workspace_all)
+#: The seed function library (the course's function documentation), in its order.
+SEED_FUNCTIONS = (
+    "near_zero", "normalize", "rot_inv", "trans_inv", "project_to_SO3", "project_to_SE3",
+    "distance_to_SO3", "distance_to_SE3", "test_if_SO3", "test_if_SE3", "euler_to_matrix",
+    "matrix_to_euler", "vec_to_so3", "so3_to_vec", "vec_to_se3", "se3_to_vec", "axis_ang_3",
+    "axis_ang_6", "matrix_exp_3", "matrix_log_3", "matrix_exp_6", "matrix_log_6", "Rp_to_trans",
+    "trans_to_Rp", "adjoint", "ad", "fkin_body", "fkin_space", "jacobian_body", "jacobian_space",
+    "ikin_body", "ikin_space", "inverse_dynamics", "mass_matrix", "vel_quadratic_forces",
+    "gravity_forces", "end_effector_forces", "forward_dynamics", "euler_step",
+    "inverse_dynamics_trajectory", "forward_dynamics_trajectory", "cubic_time_scaling",
+    "quintic_time_scaling", "joint_trajectory", "screw_trajectory", "cartesian_trajectory",
+    "ms_trajectory", "computed_torque", "simulate_control",
 )
+
+__all__ = list(SEED_FUNCTIONS) + [
+    # entry points
+    "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "urdf_to_dh",
+    # main types
+    "Robot", "RobotLike", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
+    "SimResult", "CapabilityMap",
+    # errors and warnings
+    "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
+    # the subpackages
+    "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
+]

@@ -29,7 +29,7 @@ from robokit._io import atomic_write
 from robokit.errors import InputError
 from robokit.spatial.so3 import euler_to_matrix, matrix_to_euler
 
-__all__ = ["DHLink", "DHTable", "dh_transform", "load_dh", "rpy_to_matrix", "matrix_to_rpy"]
+__all__ = ["DHLink", "DHTable", "dh_transform", "rpy_to_matrix", "matrix_to_rpy"]
 
 _LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name",
               "flip"}
@@ -416,8 +416,3 @@ class DHTable:
                 rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(matrix_to_rpy(T[:3, :3])))
                 out.append(f"# {label}: xyz [{xyz}] m, rpy [{rpy}] deg")
         return "\n".join(out) + "\n"
-
-
-def load_dh(path) -> DHTable:
-    """Load a DH YAML file: ``DHTable.from_yaml(path)``."""
-    return DHTable.from_yaml(path)

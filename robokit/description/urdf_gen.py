@@ -72,7 +72,7 @@ def dh_to_urdf(table: DHTable) -> str:
 
     Example::
 
-        table = robokit.load_dh("models/puma560.yaml")
+        table = robokit.DHTable.from_yaml("models/puma560.yaml")
         model = pinocchio.buildModelFromXML(dh_to_urdf(table))
     """
     if not isinstance(table, DHTable):

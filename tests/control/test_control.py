@@ -42,7 +42,7 @@ def test_computed_torque_error_follows_second_order_response(twolink):
 def test_computed_torque_six_joints_converges(puma):
     start = np.array([0.0, -0.5, 0.5, 0.0, 0.3, 0.0])
     goal = np.array([0.6, -0.2, 0.9, 0.4, -0.3, 0.5])
-    tr = rk.quintic_trajectory(start, goal, 1.0, t=np.arange(0, 1.0 + 1e-9, 1e-3))
+    tr = rk.trajectory.quintic_trajectory(start, goal, 1.0, t=np.arange(0, 1.0 + 1e-9, 1e-3))
     t_end = np.arange(tr.t[-1] + 1e-3, 2.5, 1e-3)
     t = np.r_[tr.t, t_end]
     q = np.vstack([tr.q, np.tile(goal, (len(t_end), 1))])

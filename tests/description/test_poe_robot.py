@@ -116,7 +116,7 @@ def _cli(args, capsys):
 
 def test_convert_documented_commands(tmp_path, capsys):
     out = tmp_path / "p.urdf"
-    rc, _, _ = _cli(["convert", str(robokit.models_dir() / "puma560.yaml"), "-o", str(out)], capsys)
+    rc, _, _ = _cli(["convert", str(robokit.description.models_dir() / "puma560.yaml"), "-o", str(out)], capsys)
     assert rc == 0 and pin.buildModelFromUrdf(str(out)).nq == 6
     js = tmp_path / "ur5.json"
     rc, _, _ = _cli(["convert", "ur5", "-o", str(js)], capsys)
@@ -130,7 +130,7 @@ def test_convert_documented_commands(tmp_path, capsys):
 
 def _bad_cases(tmp_path):
     cases = []
-    good = (robokit.models_dir() / "twolink.yaml").read_text()
+    good = (robokit.description.models_dir() / "twolink.yaml").read_text()
     for label, text in [
         ("missing key", good.replace("a: 0.8, ", "")),
         ("unknown key", good.replace("theta: 0, qlim", "thetta: 0, theta: 0, qlim", 1)),

@@ -27,17 +27,17 @@ BAD = [np.nan, np.inf, -np.inf]
 
 @pytest.mark.parametrize("bad", BAD)
 @pytest.mark.parametrize("call,arg", [
-    ("frame_pose", "theta"), ("jacobian", "theta"), ("crba", "theta"),
-    ("rnea", "theta"), ("rnea", "dtheta"), ("rnea", "ddtheta"),
-    ("aba", "theta"), ("aba", "dtheta"), ("aba", "tau"),
+    ("frame_pose", "q"), ("jacobian", "q"), ("crba", "q"),
+    ("rnea", "q"), ("rnea", "dq"), ("rnea", "ddq"),
+    ("aba", "q"), ("aba", "dq"), ("aba", "tau"),
 ])
 def test_robot_methods_refuse_non_finite_input_by_argument_name(call, arg, bad, puma):
     n = puma.n
-    args = {"theta": np.zeros(n), "dtheta": np.zeros(n), "ddtheta": np.zeros(n), "tau": np.zeros(n)}
+    args = {"q": np.zeros(n), "dq": np.zeros(n), "ddq": np.zeros(n), "tau": np.zeros(n)}
     args[arg] = args[arg].copy()
     args[arg][2] = bad
-    order = {"frame_pose": ["theta"], "jacobian": ["theta"], "crba": ["theta"],
-             "rnea": ["theta", "dtheta", "ddtheta"], "aba": ["theta", "dtheta", "tau"]}[call]
+    order = {"frame_pose": ["q"], "jacobian": ["q"], "crba": ["q"],
+             "rnea": ["q", "dq", "ddq"], "aba": ["q", "dq", "tau"]}[call]
     with pytest.raises(ValueError, match=rf"^{arg}: .*(NaN|infinite)"):
         getattr(puma, call)(*[args[k] for k in order])
 
@@ -125,7 +125,7 @@ def test_control_simulate_stable_gains_hold_the_pendulum(pendulum):
     ([[0.0, 0.0], [0.0, 0.0]], [1.0, -1.0], [0.0, 0.0]),
 ])
 def test_resolved_rate_dls_with_zero_damping_at_a_singularity_is_the_pseudo_inverse(J, V, expected):
-    dq = robokit.resolved_rate(np.array(J), np.array(V), method="dls", damping=0.0)
+    dq = robokit.kinematics.resolved_rate(np.array(J), np.array(V), method="dls", damping=0.0)
     np.testing.assert_allclose(dq, expected, atol=1e-12)
 
 

@@ -112,21 +112,21 @@ def test_yaml_number_beyond_double_refused_as_not_finite(write):
 
 def test_pure_pursuit_with_kh_2_starting_45_degrees_off_runs():
     # target runs along the x axis at 1 m/s; the vehicle starts behind it, heading 45° off the path
-    pp = robokit.PurePursuit(lambda t: (2.0 + t, 0.0), d_star=1.0, Kh=2.0)
-    model = robokit.BicycleModel(L=1.0)
-    run = robokit.run_vehicle(model, pp, [0.0, 0.0, math.radians(45)], T=20.0, dt=0.05)
+    pp = robokit.mobile.PurePursuit(lambda t: (2.0 + t, 0.0), d_star=1.0, Kh=2.0)
+    model = robokit.mobile.BicycleModel(L=1.0)
+    run = robokit.mobile.run_vehicle(model, pp, [0.0, 0.0, math.radians(45)], T=20.0, dt=0.05)
     assert np.isfinite(run.x).all() and np.isfinite(run.u).all()
     # every input respects the limits, and the vehicle ends up chasing the target along the path
     assert np.all(np.abs(run.u[:, 1]) <= model.steer_max + 1e-15)
     assert np.all(np.abs(run.u[:, 0]) <= model.speed_max + 1e-15)
     x_end = run.x[-1]
-    assert abs(x_end[1]) < 0.1 and abs(robokit.angdiff(x_end[2])) < 0.1
+    assert abs(x_end[1]) < 0.1 and abs(robokit.mobile.angdiff(x_end[2])) < 0.1
     assert abs(pp.error(run.t[-1], x_end)) < 0.2
 
 
 @pytest.mark.parametrize("gamma", [math.pi / 2, -math.pi / 2])
 def test_bicycle_limit_clips_steering_of_plus_minus_pi_over_2(gamma):
-    model = robokit.BicycleModel(L=1.0, steer_max=math.radians(60))
+    model = robokit.mobile.BicycleModel(L=1.0, steer_max=math.radians(60))
     v, g = model.limit([1.0, gamma])
     assert v == 1.0 and g == math.copysign(model.steer_max, gamma)
     x1 = model.step([0.0, 0.0, 0.0], [1.0, gamma], 0.1)

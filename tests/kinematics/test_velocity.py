@@ -75,15 +75,15 @@ def test_analytical_jacobian_euler_rates(robots):
         for _ in range(20):
             q = r.random_configuration(rng)
             R = r.frame_pose(q)[:3, :3]
-            phi = rk.euler_from_matrix(R, seq)
+            phi = rk.spatial.euler_from_matrix(R, seq)
             Ja = analytical_jacobian(r.jacobian(q, reference="local_world_aligned"), phi, seq)
             # finite differences of the Euler angles along each joint
             h = 1e-6
             for j in range(6):
                 e = np.zeros(6)
                 e[j] = h
-                d = (rk.euler_from_matrix(r.frame_pose(q + e)[:3, :3], seq)
-                     - rk.euler_from_matrix(r.frame_pose(q - e)[:3, :3], seq)) / (2 * h)
+                d = (rk.spatial.euler_from_matrix(r.frame_pose(q + e)[:3, :3], seq)
+                     - rk.spatial.euler_from_matrix(r.frame_pose(q - e)[:3, :3], seq)) / (2 * h)
                 d = (d + np.pi / h) % (2 * np.pi / (2 * h)) - np.pi / h if np.abs(d).max() > 1e5 else d
                 assert np.allclose(Ja[:3, j], d, atol=1e-5)
         w = np.array([0.3, -0.2, 0.5])

@@ -46,7 +46,7 @@ def test_jacobians_against_finite_differences():
         for j in range(3):
             e = np.zeros(3); e[j] = h
             num = (odometry_model(x + e, delta) - odometry_model(x - e, delta)) / (2 * h)
-            num[2] = rk.angdiff(num[2] * 2 * h) / (2 * h)
+            num[2] = rk.mobile.angdiff(num[2] * 2 * h) / (2 * h)
             assert np.allclose(Fx[:, j], num, atol=1e-6)
         for j in range(2):
             e = np.zeros(2); e[j] = h
@@ -56,12 +56,12 @@ def test_jacobians_against_finite_differences():
         for j in range(3):
             e = np.zeros(3); e[j] = h
             d = RangeBearingSensor.h(x + e, p) - RangeBearingSensor.h(x - e, p)
-            d[1] = rk.angdiff(d[1])
+            d[1] = rk.mobile.angdiff(d[1])
             assert np.allclose(Hx[:, j], d / (2 * h), atol=1e-6)
         for j in range(2):
             e = np.zeros(2); e[j] = h
             d = RangeBearingSensor.h(x, p + e) - RangeBearingSensor.h(x, p - e)
-            d[1] = rk.angdiff(d[1])
+            d[1] = rk.mobile.angdiff(d[1])
             assert np.allclose(Hp[:, j], d / (2 * h), atol=1e-6)
 
 
@@ -103,7 +103,7 @@ def _simulate(seed, noise=True, steps=150):
             z = sensor.measure(x_true, i) if noise else RangeBearingSensor.h(x_true, lm.points[i])
             ekf.update(z, i)
         e = ekf.x - x_true
-        e[2] = rk.angdiff(e[2])
+        e[2] = rk.mobile.angdiff(e[2])
         nees.append(e @ np.linalg.solve(ekf.P, e))
         if not noise:
             assert np.abs(e).max() < 1e-9

@@ -105,7 +105,7 @@ def test_adjoint_ad_inverse_against_pinocchio():
         assert np.allclose(rk.Rp_to_trans(R, p), T) and np.allclose(rk.rot_inv(R), R.T)
 
 
-@pytest.mark.parametrize("seq", rk.EULER_SEQUENCES)
+@pytest.mark.parametrize("seq", rk.spatial.EULER_SEQUENCES)
 @pytest.mark.parametrize("extrinsic", [False, True])
 def test_euler_all_24_vs_scipy(seq, extrinsic):
     rng = np.random.default_rng(4)
@@ -113,30 +113,30 @@ def test_euler_all_24_vs_scipy(seq, extrinsic):
     for _ in range(100):
         ang = rng.uniform(-np.pi, np.pi, 3)
         ang[1] = rng.uniform(0.05, np.pi - 0.05) if proper else rng.uniform(-1.5, 1.5)
-        R = rk.matrix_from_euler(ang, seq, extrinsic)
+        R = rk.spatial.matrix_from_euler(ang, seq, extrinsic)
         ref = Rot.from_euler(seq.lower() if extrinsic else seq, ang).as_matrix()
         assert np.abs(R - ref).max() < 1e-12
-        back, gimbal = rk.euler_from_matrix(R, seq, extrinsic, return_gimbal=True)
+        back, gimbal = rk.spatial.euler_from_matrix(R, seq, extrinsic, return_gimbal=True)
         assert not gimbal
         assert np.abs(np.angle(np.exp(1j * (back - ang)))).max() < 1e-9
 
 
-@pytest.mark.parametrize("seq", rk.EULER_SEQUENCES)
+@pytest.mark.parametrize("seq", rk.spatial.EULER_SEQUENCES)
 @pytest.mark.parametrize("extrinsic", [False, True])
 def test_euler_gimbal_lock_documented_choice(seq, extrinsic):
     proper = seq[0] == seq[2]
     for mid in ((0.0, np.pi) if proper else (np.pi / 2, -np.pi / 2)):
         ang = np.array([0.7, mid, -0.4])
-        R = rk.matrix_from_euler(ang, seq, extrinsic)
-        back, gimbal = rk.euler_from_matrix(R, seq, extrinsic, return_gimbal=True)
+        R = rk.spatial.matrix_from_euler(ang, seq, extrinsic)
+        back, gimbal = rk.spatial.euler_from_matrix(R, seq, extrinsic, return_gimbal=True)
         assert gimbal
         assert back[0 if extrinsic else 2] == 0.0  # the last rotation applied carries no angle
-        assert np.abs(rk.matrix_from_euler(back, seq, extrinsic) - R).max() < 1e-12
+        assert np.abs(rk.spatial.matrix_from_euler(back, seq, extrinsic) - R).max() < 1e-12
 
 
 def test_seed_zyx_is_intrinsic_zyx():
     ang = [0.3, -0.7, 1.1]
-    assert np.allclose(rk.euler_to_matrix(ang), rk.matrix_from_euler(ang, "ZYX"))
+    assert np.allclose(rk.euler_to_matrix(ang), rk.spatial.matrix_from_euler(ang, "ZYX"))
     R = rk.euler_to_matrix([0.3, np.pi / 2, 0.2])
     a = rk.matrix_to_euler(R)
     assert a[2] == 0.0 and np.allclose(rk.euler_to_matrix(a), R)
@@ -145,53 +145,53 @@ def test_seed_zyx_is_intrinsic_zyx():
 @SETTINGS
 @given(unit, angle)
 def test_quaternions(v, th):
-    q = rk.quaternion_from_axis_angle(v, th)
-    R = rk.matrix_from_axis_angle(v, th)
-    assert np.allclose(rk.matrix_from_quaternion(q), R, atol=1e-12)
+    q = rk.spatial.quaternion_from_axis_angle(v, th)
+    R = rk.spatial.matrix_from_axis_angle(v, th)
+    assert np.allclose(rk.spatial.matrix_from_quaternion(q), R, atol=1e-12)
     ref = Rot.from_matrix(R).as_quat()  # scipy is scalar last
-    q2 = rk.quaternion_from_matrix(R)
+    q2 = rk.spatial.quaternion_from_matrix(R)
     assert np.allclose(q2, np.r_[ref[3], ref[:3]] * np.sign(ref[3] or 1.0), atol=1e-12) or np.allclose(
         q2, -np.r_[ref[3], ref[:3]], atol=1e-12)
-    ax, an = rk.axis_angle_from_quaternion(q)
+    ax, an = rk.spatial.axis_angle_from_quaternion(q)
     assert abs(an - th) < 1e-9 and (th < 1e-9 or np.allclose(ax, axis(v), atol=1e-9))
     vv = np.array([0.3, -0.2, 0.9])
-    assert np.allclose(rk.quaternion_rotate(q, vv), R @ vv)
-    p = rk.quaternion_from_axis_angle([0, 0, 1], 0.4)
-    assert np.allclose(rk.matrix_from_quaternion(rk.quaternion_multiply(p, q)), rk.matrix_from_quaternion(p) @ R)
-    assert np.allclose(rk.quaternion_multiply(q, rk.quaternion_conjugate(q)), [1, 0, 0, 0])
+    assert np.allclose(rk.spatial.quaternion_rotate(q, vv), R @ vv)
+    p = rk.spatial.quaternion_from_axis_angle([0, 0, 1], 0.4)
+    assert np.allclose(rk.spatial.matrix_from_quaternion(rk.spatial.quaternion_multiply(p, q)), rk.spatial.matrix_from_quaternion(p) @ R)
+    assert np.allclose(rk.spatial.quaternion_multiply(q, rk.spatial.quaternion_conjugate(q)), [1, 0, 0, 0])
 
 
 def test_slerp_fixed_axis_on_so3():
-    q0 = rk.quaternion_from_axis_angle([0, 0, 1], 0.2)
-    q1 = rk.quaternion_from_matrix(rk.matrix_from_axis_angle([1, 1, 0], 2.5) @ rk.matrix_from_quaternion(q0))
+    q0 = rk.spatial.quaternion_from_axis_angle([0, 0, 1], 0.2)
+    q1 = rk.spatial.quaternion_from_matrix(rk.spatial.matrix_from_axis_angle([1, 1, 0], 2.5) @ rk.spatial.matrix_from_quaternion(q0))
     s = np.linspace(0, 1, 21)
-    Q = rk.quaternion_slerp(q0, q1, s)
-    R0 = rk.matrix_from_quaternion(q0)
+    Q = rk.spatial.quaternion_slerp(q0, q1, s)
+    R0 = rk.spatial.matrix_from_quaternion(q0)
     axes = []
     for k, q in enumerate(Q):
-        R = rk.matrix_from_quaternion(q)
+        R = rk.spatial.matrix_from_quaternion(q)
         assert rk.distance_to_SO3(R) < 1e-12
         if k:
-            ax, an = rk.axis_angle_from_matrix(R @ R0.T)
+            ax, an = rk.spatial.axis_angle_from_matrix(R @ R0.T)
             axes.append(ax)
             assert abs(an - s[k] * 2.5) < 1e-9  # constant angular rate
     assert np.allclose(axes, axes[0], atol=1e-9)  # one fixed axis
     ref = pin.Quaternion(q0[0], *q0[1:]).slerp(0.3, pin.Quaternion(q1[0], *q1[1:]))
-    assert np.allclose(rk.matrix_from_quaternion(rk.quaternion_slerp(q0, q1, 0.3)), ref.matrix())
+    assert np.allclose(rk.spatial.matrix_from_quaternion(rk.spatial.quaternion_slerp(q0, q1, 0.3)), ref.matrix())
 
 
 def test_two_vectors_and_se2():
-    R = rk.matrix_from_two_vectors([0, 1, 0], [0, 0, 1])
+    R = rk.spatial.matrix_from_two_vectors([0, 1, 0], [0, 0, 1])
     assert np.allclose(R, np.eye(3))
     with pytest.raises(ValueError, match="orthogonal"):
-        rk.matrix_from_two_vectors([0, 1, 0], [0, 1, 1])
+        rk.spatial.matrix_from_two_vectors([0, 1, 0], [0, 1, 1])
     p1, p2 = np.array([1.0, 2.0, 0.5]), np.array([-0.3, 0.4, 2.9])
-    T = rk.se2_from_pose(p1) @ rk.se2_from_pose(p2)
-    assert np.allclose(rk.se2_compose(p1, p2), rk.pose_from_se2(T))
-    assert np.allclose(rk.se2_compose(p1, rk.se2_inverse(p1)), [0, 0, 0], atol=1e-12)
+    T = rk.spatial.se2_from_pose(p1) @ rk.spatial.se2_from_pose(p2)
+    assert np.allclose(rk.spatial.se2_compose(p1, p2), rk.spatial.pose_from_se2(T))
+    assert np.allclose(rk.spatial.se2_compose(p1, rk.spatial.se2_inverse(p1)), [0, 0, 0], atol=1e-12)
     pts = np.array([[1.0, 0.0], [0.0, 2.0]])
-    expect = (rk.se2_from_pose(p1) @ np.c_[pts, np.ones(2)].T).T[:, :2]
-    assert np.allclose(rk.se2_transform_points(p1, pts), expect)
+    expect = (rk.spatial.se2_from_pose(p1) @ np.c_[pts, np.ones(2)].T).T[:, :2]
+    assert np.allclose(rk.spatial.se2_transform_points(p1, pts), expect)
 
 
 BAD = [
@@ -202,10 +202,10 @@ BAD = [
     (rk.matrix_exp_6, ([[np.nan] * 4] * 4,), "se3mat"),
     (rk.adjoint, (np.diag([1, 1, 2, 1]),), "T"),
     (rk.axis_ang_3, ([0, 0, 0],), "expc3"),
-    (rk.euler_from_matrix, (np.eye(3), "ABC"), "seq"),
-    (rk.quaternion_from_matrix, (2 * np.eye(3),), "R"),
-    (rk.matrix_from_quaternion, ([1, 1, 0, 0],), "q"),
-    (rk.se2_from_pose, ([1, 2],), "pose"),
+    (rk.spatial.euler_from_matrix, (np.eye(3), "ABC"), "seq"),
+    (rk.spatial.quaternion_from_matrix, (2 * np.eye(3),), "R"),
+    (rk.spatial.matrix_from_quaternion, ([1, 1, 0, 0],), "q"),
+    (rk.spatial.se2_from_pose, ([1, 2],), "pose"),
 ]
 
 

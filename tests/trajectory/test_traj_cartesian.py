@@ -4,7 +4,8 @@ import pinocchio as pin
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from robokit import cartesian_line_trajectory, matrix_exp_6, slerp_rotation, vec_to_se3
+from robokit import matrix_exp_6, vec_to_se3
+from robokit.trajectory import cartesian_line_trajectory, slerp_rotation
 
 
 def random_pose(rng, angle_max=3.0):

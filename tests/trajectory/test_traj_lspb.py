@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from robokit import lspb_trajectory, lspb_via_trajectory
+from robokit.trajectory import lspb_trajectory, lspb_via_trajectory
 
 
 def central_fd(tr):

@@ -7,15 +7,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from robokit import (  # noqa: E402
-    cartesian_line_trajectory,
-    cubic_trajectory,
-    joint_trajectory,
-    ms_trajectory,
-    plot_path_3d,
-    plot_trajectory,
-    screw_trajectory,
-)
+from robokit import joint_trajectory, ms_trajectory, screw_trajectory  # noqa: E402
+from robokit.trajectory import (  # noqa: E402
+    cartesian_line_trajectory, cubic_trajectory, plot_path_3d, plot_trajectory)
 
 
 def test_plot_trajectory_three_panels_one_line_per_axis(tmp_path):

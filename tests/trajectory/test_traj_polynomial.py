@@ -3,14 +3,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from robokit import (
-    cubic_coefficients,
-    cubic_trajectory,
-    cubic_via_trajectory,
-    quintic_coefficients,
-    quintic_trajectory,
-    via_point_velocities,
-)
+from robokit.trajectory import cubic_coefficients, cubic_trajectory, cubic_via_trajectory, quintic_coefficients, quintic_trajectory, via_point_velocities
 
 TOL = 1e-12
 

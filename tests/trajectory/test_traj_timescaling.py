@@ -4,16 +4,8 @@ import pinocchio as pin
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from robokit import (
-    cartesian_trajectory,
-    cubic_time_scaling,
-    joint_trajectory,
-    matrix_exp_6,
-    quintic_time_scaling,
-    screw_trajectory,
-    time_scaling,
-    vec_to_se3,
-)
+from robokit import cartesian_trajectory, cubic_time_scaling, joint_trajectory, matrix_exp_6, quintic_time_scaling, screw_trajectory, vec_to_se3
+from robokit.trajectory import time_scaling
 
 
 def random_pose(rng, angle_max=3.0):

@@ -7,7 +7,8 @@ textbook forward kinematics, so the test does not depend on other areas' robot l
 import numpy as np
 import pytest
 
-from robokit import Rp_to_trans, Trajectory, cartesian_line_trajectory, cartesian_to_joint
+from robokit import Rp_to_trans, Trajectory
+from robokit.trajectory import cartesian_line_trajectory, cartesian_to_joint
 from robokit.ik.analytic import ik_planar_2link
 
 L1 = L2 = 1.0
