@@ -5,8 +5,13 @@ below it can assume clean input. Errors name the argument and what was received.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TypeAlias
+
 import numpy as np
-from numpy.typing import ArrayLike
+
+#: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
+FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
 
 
 def _describe(a: object) -> str:

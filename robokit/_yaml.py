@@ -14,14 +14,14 @@ names the file and the line:
 """
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
+from typing import Any
 
 import yaml
 
 from robokit.errors import InputError
-import os
-from typing import Any
 
 __all__ = ["MAX_BYTES", "MAX_DEPTH", "load_yaml_file", "load_yaml_text"]
 

@@ -30,9 +30,10 @@ Twists are angular first, ``(ω, v)``. Example::
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
-from typing import Any
 
 __all__ = ["hat", "vee", "exp3", "log3", "exp6", "log6", "inv", "adjoint", "ad", "exp3_coefficients"]
 

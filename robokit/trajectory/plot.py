@@ -7,9 +7,9 @@ so nothing pops up and nothing is drawn twice in a notebook) and return it; call
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+from typing import Sequence
 
 import numpy as np
-from typing import Sequence
 
 from robokit.trajectory.core import Trajectory
 

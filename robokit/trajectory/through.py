@@ -30,9 +30,10 @@ as ``qdmax``) and ``angular_speed`` (rad/s about the segment's axis: ``ṡᵢ �
 """
 from __future__ import annotations
 
+from typing import Any, Sequence
+
 import numpy as np
 from numpy.typing import ArrayLike
-from typing import Any, Sequence
 
 from robokit._arrays import as_array, as_scalar
 from robokit.spatial.se3 import check_transform
