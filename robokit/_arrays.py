@@ -5,15 +5,21 @@ below it can assume clean input. Errors name the argument and what was received.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TypeAlias
+
 import numpy as np
 
+#: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
+FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
 
-def _describe(a) -> str:
+
+def _describe(a: object) -> str:
     arr = np.asarray(a)
     return f"shape {arr.shape}" if arr.ndim else f"value {arr!r}"
 
 
-def as_array(x, name: str, shape: tuple | None = None, *, finite: bool = True) -> np.ndarray:
+def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, *, finite: bool = True) -> np.ndarray:
     """Return ``x`` as a float64 array, checking its shape (``None`` in ``shape`` = any size).
 
     Raises ``ValueError`` naming ``name`` when the shape differs, the values are not
@@ -33,17 +39,17 @@ def as_array(x, name: str, shape: tuple | None = None, *, finite: bool = True) -
     return arr
 
 
-def as_vector(x, name: str, n: int | None = None) -> np.ndarray:
+def as_vector(x: object, name: str, n: int | None = None) -> np.ndarray:
     """A 1-D float64 array of length ``n`` (any length if ``None``)."""
     return as_array(x, name, (n,))
 
 
-def as_matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
+def as_matrix(x: object, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
     """A 2-D float64 array of the given size (``None`` = any)."""
     return as_array(x, name, (rows, cols))
 
 
-def as_scalar(x, name: str, *, positive: bool = False, nonnegative: bool = False) -> float:
+def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool = False) -> float:
     """A finite float; optionally > 0 or >= 0."""
     arr = as_array(x, name, ())
     v = float(arr)

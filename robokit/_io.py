@@ -29,7 +29,7 @@ def _write_all(fd: int, data: bytes) -> None:
         view = view[n:]
 
 
-def atomic_write(path, data: str | bytes) -> Path:
+def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
     """Write ``data`` to ``path`` atomically; ``path`` is untouched unless the write completes.
 
     Raises ``ValueError`` naming the folder if it does not exist.
@@ -78,7 +78,7 @@ def atomic_write(path, data: str | bytes) -> Path:
     return path
 
 
-def _link_fd(fd: int, target) -> bool:
+def _link_fd(fd: int, target: str | os.PathLike[str]) -> bool:
     """Give the unnamed file ``fd`` the name ``target`` (linkat with AT_SYMLINK_FOLLOW on
     /proc/self/fd, as open(2) describes for O_TMPFILE); False if that is not possible."""
     import ctypes
@@ -98,7 +98,7 @@ def _link_fd(fd: int, target) -> bool:
     return True
 
 
-def _unlink(p) -> None:
+def _unlink(p: str | os.PathLike[str]) -> None:
     try:
         os.unlink(p)
     except FileNotFoundError:

@@ -14,8 +14,10 @@ names the file and the line:
 """
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
+from typing import Any
 
 import yaml
 
@@ -39,7 +41,7 @@ _INT_12 = re.compile(r"^[-+]?[0-9]+$")
 
 
 class _Error(Exception):
-    def __init__(self, message, mark=None):
+    def __init__(self, message: str, mark: Any = None) -> None:
         super().__init__(message)
         self.mark = mark
 
@@ -49,7 +51,7 @@ class _StrictLoader(yaml.SafeLoader):
 
     _depth = 0
 
-    def compose_node(self, parent, index):
+    def compose_node(self, parent: Any, index: Any) -> Any:
         if self.check_event(yaml.AliasEvent):
             event = self.peek_event()
             raise _Error(f"aliases (*{event.anchor}) are not allowed", event.start_mark)
@@ -61,8 +63,8 @@ class _StrictLoader(yaml.SafeLoader):
         finally:
             self._depth -= 1
 
-    def construct_mapping(self, node, deep=False):
-        seen = {}
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+        seen: dict[Any, Any] = {}
         for key_node, _ in node.value:
             key = self.construct_object(key_node, deep=True)
             try:
@@ -87,7 +89,7 @@ _StrictLoader.add_implicit_resolver("tag:yaml.org,2002:int", _INT_12, list("-+01
 _StrictLoader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12, list("-+0123456789."))
 
 
-def _construct_float(loader, node):
+def _construct_float(loader: Any, node: Any) -> float:
     text = loader.construct_scalar(node)
     low = text.lower()
     if low in (".inf", "+.inf"):
@@ -99,7 +101,7 @@ def _construct_float(loader, node):
     return float(text)
 
 
-def _construct_int(loader, node):
+def _construct_int(loader: Any, node: Any) -> int:
     text = loader.construct_scalar(node)
     if len(text.lstrip("+-")) > 30:  # a 400-digit integer is a typo, not a length
         raise _Error(f"integer with {len(text)} digits is too large", node.start_mark)
@@ -110,7 +112,7 @@ _StrictLoader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 _StrictLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 
 
-def load_yaml_text(text: str, source: str = "<string>"):
+def load_yaml_text(text: str, source: str = "<string>") -> Any:
     """Parse YAML ``text`` strictly (see the module docstring); errors name ``source`` and the line.
 
     Raises :class:`robokit.InputError` for anything refused.
@@ -131,7 +133,7 @@ def load_yaml_text(text: str, source: str = "<string>"):
         raise InputError(f"{source}: nested too deeply") from None
 
 
-def load_yaml_file(path):
+def load_yaml_file(path: str | os.PathLike[str]) -> Any:
     """Read and parse a YAML file strictly; errors name the file (missing, unreadable, not UTF-8, too large)."""
     path = Path(path)
     try:

@@ -25,6 +25,6 @@ class DivergenceError(RobokitError, ArithmeticError):
     the step make it unstable — not bad input. ``partial`` holds the result up to the last
     finite step (the same type the function returns on success)."""
 
-    def __init__(self, message: str, partial=None):
+    def __init__(self, message: str, partial: object = None) -> None:
         super().__init__(message)
         self.partial = partial

@@ -22,10 +22,12 @@ The submodules are imported on demand, so ``import robokit`` does not load numba
 """
 from __future__ import annotations
 
+from types import ModuleType
+
 __all__ = ["lie", "poe", "dynamics", "dh", "ik"]
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> ModuleType:
     if name in __all__:
         import importlib
 

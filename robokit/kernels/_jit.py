@@ -30,6 +30,7 @@ line can be stepped through in a debugger); nothing is compiled and no notice is
 from __future__ import annotations
 
 import sys
+from typing import Any, Callable, TypeVar, overload
 
 import numba
 from numba.core import event as _event
@@ -38,15 +39,21 @@ __all__ = ["njit", "prange", "cache_dir", "jit_disabled"]
 
 prange = numba.prange
 
+_F = TypeVar("_F", bound=Callable[..., Any])
+
 _NOTICE = "compiling course kernels (first run only) ..."
 
 
 def jit_disabled() -> bool:
     """True when ``NUMBA_DISABLE_JIT`` is set: the kernels then run as plain Python."""
-    return bool(numba.config.DISABLE_JIT)
+    return bool(getattr(numba.config, "DISABLE_JIT"))
 
 
-def njit(signature=None, *, parallel: bool = False):
+@overload
+def njit(signature: _F, *, parallel: bool = False) -> _F: ...
+@overload
+def njit(signature: str | None = None, *, parallel: bool = False) -> Callable[[_F], _F]: ...
+def njit(signature: Any = None, *, parallel: bool = False) -> Any:
     """``numba.njit`` with this package's settings: on-disk cache, numpy's error model (a division
     by zero gives inf/NaN rather than raising, as numpy does), no fast-math (results must match
     Pinocchio to rounding). With a ``signature`` the kernel is compiled for exactly those
@@ -55,7 +62,7 @@ def njit(signature=None, *, parallel: bool = False):
 
     Used bare (``@njit``) for the small helpers, which compile as part of the kernel that calls them.
     """
-    options = dict(cache=True, error_model="numpy", parallel=parallel)
+    options: dict[str, Any] = dict(cache=True, error_model="numpy", parallel=parallel)
     if callable(signature):  # bare @njit
         return numba.njit(**options)(signature)
     if signature is None:
@@ -68,7 +75,7 @@ class _CompileNotice(_event.Listener):
 
     printed = False
 
-    def on_start(self, ev):
+    def on_start(self, ev: _event.Event) -> None:
         if _CompileNotice.printed:
             return
         dispatcher = (ev.data or {}).get("dispatcher")
@@ -77,7 +84,7 @@ class _CompileNotice(_event.Listener):
             _CompileNotice.printed = True
             print(_NOTICE, file=sys.stderr, flush=True)
 
-    def on_end(self, ev):
+    def on_end(self, ev: _event.Event) -> None:
         pass
 
 
@@ -86,7 +93,7 @@ if not getattr(sys.modules[__name__], "_LISTENING", False):
     _LISTENING = True
 
 
-def cache_dir(kernel) -> str | None:
+def cache_dir(kernel: object) -> str | None:
     """The folder where numba keeps ``kernel``'s compiled code (see the module docstring for the
     order numba tries), or None when the kernel is not cached (``NUMBA_DISABLE_JIT=1``).
 

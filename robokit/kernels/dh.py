@@ -34,6 +34,7 @@ Example::
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -55,7 +56,8 @@ _INERTIA = f"{_A1}, {_A2}, {_A3}"  # mass, com, inertia
 _PACKED: dict = {}
 
 
-def pack_dh(table):
+# ``table`` is typed Any: kernels sit below robokit.description (tests/test_layers.py).
+def pack_dh(table: Any) -> tuple[np.ndarray, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The arrays of a :class:`robokit.DHTable` in the kernels' layout (see the module docstring):
     ``(P, modified, base, tool, mass, com, inertia)``. Remembered per table object (a DHTable is
     frozen)."""
@@ -82,7 +84,7 @@ def pack_dh(table):
 
 # ------------------------------------------------------------------ small 3-vector helpers
 @njit
-def cross3(a, b, out):
+def cross3(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
     """out ← a × b."""
     x = a[1] * b[2] - a[2] * b[1]
     y = a[2] * b[0] - a[0] * b[2]
@@ -91,7 +93,7 @@ def cross3(a, b, out):
 
 
 @njit
-def rot(T, x, out):
+def rot(T: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
     """out ← R x with R the rotation block of T (out may alias x)."""
     a = T[0, 0] * x[0] + T[0, 1] * x[1] + T[0, 2] * x[2]
     b = T[1, 0] * x[0] + T[1, 1] * x[1] + T[1, 2] * x[2]
@@ -100,7 +102,7 @@ def rot(T, x, out):
 
 
 @njit
-def rot_t(T, x, out):
+def rot_t(T: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
     """out ← Rᵀ x with R the rotation block of T (out may alias x)."""
     a = T[0, 0] * x[0] + T[1, 0] * x[1] + T[2, 0] * x[2]
     b = T[0, 1] * x[0] + T[1, 1] * x[1] + T[2, 1] * x[2]
@@ -110,7 +112,7 @@ def rot_t(T, x, out):
 
 # ------------------------------------------------------------------ link transforms and frames
 @njit
-def link_transform(P, i, modified, q_i, T):
+def link_transform(P: np.ndarray, i: int, modified: int, q_i: float, T: np.ndarray) -> None:
     """T ← ⁱ⁻¹Tᵢ of row i at joint value q_i (0-based i)."""
     a, alpha, d, theta = P[i, 0], P[i, 1], P[i, 2], P[i, 3]
     if P[i, 4] > 0.5:
@@ -131,7 +133,7 @@ def link_transform(P, i, modified, q_i, T):
 
 
 @njit
-def check_q(P, q):
+def check_q(P: np.ndarray, q: np.ndarray) -> None:
     if q.shape[0] != P.shape[0]:
         raise ValueError("q: expected one joint value per row of the DH table")
     if not all_finite(q):
@@ -139,7 +141,7 @@ def check_q(P, q):
 
 
 @njit
-def fk_into(P, modified, base, tool, q, T, L, tmp):
+def fk_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray, T: np.ndarray, L: np.ndarray, tmp: np.ndarray) -> None:
     """T ← base · ⁰T₁ ⋯ ᴺ⁻¹T_N · tool (L, tmp: 4×4 scratch)."""
     copy44(base, T)
     for i in range(P.shape[0]):
@@ -149,7 +151,7 @@ def fk_into(P, modified, base, tool, q, T, L, tmp):
 
 
 @njit
-def jacobian_into(P, modified, base, tool, q, in_tool, J, T, L, tmp):
+def jacobian_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray, in_tool: int, J: np.ndarray, T: np.ndarray, L: np.ndarray, tmp: np.ndarray) -> None:
     """J (6, n) ← the geometric Jacobian of the tool origin (one outward pass, module docstring);
     base_link axes, or the tool frame's axes when ``in_tool`` is 1."""
     n = P.shape[0]
@@ -186,7 +188,7 @@ def jacobian_into(P, modified, base, tool, q, in_tool, J, T, L, tmp):
 
 
 @njit
-def static_torques_into(P, modified, base, tool, q, F, frames, T, L, tmp, tau):
+def static_torques_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray, F: np.ndarray, frames: np.ndarray, T: np.ndarray, L: np.ndarray, tmp: np.ndarray, tau: np.ndarray) -> None:
     """τ (n,) ← the joint torques that balance the tool wrench F = (n, f) (tool frame), by inward
     force propagation in base_link axes; ``frames`` (n+1, 4, 4) scratch for the DH frames."""
     n = P.shape[0]
@@ -218,7 +220,7 @@ def static_torques_into(P, modified, base, tool, q, F, frames, T, L, tmp, tau):
 
 
 @njit
-def rnea_into(P, modified, base, tool, mass, com, inertia, q, dq, ddq, g, F, Ts, w3, Fs, Ns, tau):
+def rnea_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, mass: np.ndarray, com: np.ndarray, inertia: np.ndarray, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, g: np.ndarray, F: np.ndarray, Ts: np.ndarray, w3: np.ndarray, Fs: np.ndarray, Ns: np.ndarray, tau: np.ndarray) -> None:
     """τ ← Craig's recursive Newton–Euler (both conventions). Scratch: Ts (n, 4, 4) link
     transforms, w3 (12, 3) 3-vectors, Fs and Ns (n, 3) link forces and moments."""
     n = P.shape[0]
@@ -330,7 +332,7 @@ def rnea_into(P, modified, base, tool, mass, com, inertia, q, dq, ddq, g, F, Ts,
 
 # ------------------------------------------------------------------ one configuration
 @njit(f"{_A2}({_TABLE}, {_A1})")
-def dh_fk(P, modified, base, tool, q):
+def dh_fk(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Tool pose (4, 4) in base_link."""
     check_q(P, q)
     W = np.empty((3, 4, 4))
@@ -339,7 +341,7 @@ def dh_fk(P, modified, base, tool, q):
 
 
 @njit(f"{_A2}({_TABLE}, {_A1}, int64)")
-def dh_jacobian(P, modified, base, tool, q, in_tool):
+def dh_jacobian(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray, in_tool: int) -> np.ndarray:
     """Geometric Jacobian (6, n) of the tool origin, rows (ω; v): base_link axes (in_tool = 0,
     Pinocchio's LOCAL_WORLD_ALIGNED) or tool axes (in_tool = 1, LOCAL)."""
     check_q(P, q)
@@ -350,7 +352,7 @@ def dh_jacobian(P, modified, base, tool, q, in_tool):
 
 
 @njit(f"{_A1}({_TABLE}, {_A1}, {_A1})")
-def dh_static_torques(P, modified, base, tool, q, F):
+def dh_static_torques(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: np.ndarray, F: np.ndarray) -> np.ndarray:
     """Joint torques (n,) balancing the tool wrench F = (n, f) (what the tool exerts, tool frame): τ = Jᵀ F."""
     check_q(P, q)
     if F.shape[0] != 6 or not all_finite(F):
@@ -364,7 +366,7 @@ def dh_static_torques(P, modified, base, tool, q, F):
 
 
 @njit(f"{_A1}({_TABLE}, {_INERTIA}, {_A1}, {_A1}, {_A1}, {_A1}, {_A1})")
-def dh_inverse_dynamics(P, modified, base, tool, mass, com, inertia, q, dq, ddq, g, F):
+def dh_inverse_dynamics(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, mass: np.ndarray, com: np.ndarray, inertia: np.ndarray, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, g: np.ndarray, F: np.ndarray) -> np.ndarray:
     """Joint torques/forces (n,) by Craig's recursive Newton–Euler; g (3,) in base_link; F (6,) the
     wrench (n, f) the tool exerts on the environment, tool frame."""
     check_q(P, q)
@@ -384,21 +386,21 @@ def dh_inverse_dynamics(P, modified, base, tool, mass, com, inertia, q, dq, ddq,
 
 # ------------------------------------------------------------------ N configurations, in parallel
 @njit
-def fk_rows(lo, hi, P, modified, base, tool, Q, out):
+def fk_rows(lo: int, hi: int, P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, out: np.ndarray) -> None:
     W = np.empty((2, 4, 4))
     for k in range(lo, hi):
         fk_into(P, modified, base, tool, Q[k], out[k], W[0], W[1])
 
 
 @njit
-def jacobian_rows(lo, hi, P, modified, base, tool, Q, in_tool, out):
+def jacobian_rows(lo: int, hi: int, P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, in_tool: int, out: np.ndarray) -> None:
     W = np.empty((3, 4, 4))
     for k in range(lo, hi):
         jacobian_into(P, modified, base, tool, Q[k], in_tool, out[k], W[0], W[1], W[2])
 
 
 @njit
-def static_torques_rows(lo, hi, P, modified, base, tool, Q, Fs, out):
+def static_torques_rows(lo: int, hi: int, P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, Fs: np.ndarray, out: np.ndarray) -> None:
     n = P.shape[0]
     frames = np.empty((n + 1, 4, 4))
     W = np.empty((3, 4, 4))
@@ -408,7 +410,7 @@ def static_torques_rows(lo, hi, P, modified, base, tool, Q, Fs, out):
 
 
 @njit
-def rnea_rows(lo, hi, P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g, Fs, out):
+def rnea_rows(lo: int, hi: int, P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, mass: np.ndarray, com: np.ndarray, inertia: np.ndarray, Q: np.ndarray, dQ: np.ndarray, ddQ: np.ndarray, g: np.ndarray, Fs: np.ndarray, out: np.ndarray) -> None:
     n = P.shape[0]
     Ts = np.empty((n, 4, 4))
     w3 = np.empty((12, 3))
@@ -420,7 +422,7 @@ def rnea_rows(lo, hi, P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g
 
 
 @njit(f"{_A3}({_TABLE}, {_A2})", parallel=True)
-def dh_fk_batch(P, modified, base, tool, Q):
+def dh_fk_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray) -> np.ndarray:
     """Tool poses (N, 4, 4) for the rows of Q (N, n)."""
     N = Q.shape[0]
     out = np.empty((N, 4, 4))
@@ -435,7 +437,7 @@ def dh_fk_batch(P, modified, base, tool, Q):
 
 
 @njit(f"{_A3}({_TABLE}, {_A2}, int64)", parallel=True)
-def dh_jacobian_batch(P, modified, base, tool, Q, in_tool):
+def dh_jacobian_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, in_tool: int) -> np.ndarray:
     """Jacobians (N, 6, n) for the rows of Q (N, n)."""
     N = Q.shape[0]
     out = np.empty((N, 6, P.shape[0]))
@@ -450,7 +452,7 @@ def dh_jacobian_batch(P, modified, base, tool, Q, in_tool):
 
 
 @njit(f"{_A2}({_TABLE}, {_A2}, {_A2})", parallel=True)
-def dh_static_torques_batch(P, modified, base, tool, Q, Fs):
+def dh_static_torques_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, Fs: np.ndarray) -> np.ndarray:
     """Static torques (N, n) for the rows of Q (N, n) and tool wrenches Fs (N, 6) or (1, 6)."""
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))
@@ -465,7 +467,7 @@ def dh_static_torques_batch(P, modified, base, tool, Q, Fs):
 
 
 @njit(f"{_A2}({_TABLE}, {_INERTIA}, {_A2}, {_A2}, {_A2}, {_A1}, {_A2})", parallel=True)
-def dh_inverse_dynamics_batch(P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g, Fs):
+def dh_inverse_dynamics_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, mass: np.ndarray, com: np.ndarray, inertia: np.ndarray, Q: np.ndarray, dQ: np.ndarray, ddQ: np.ndarray, g: np.ndarray, Fs: np.ndarray) -> np.ndarray:
     """Craig Newton–Euler torques (N, n) for the rows of Q, dQ, ddQ (N, n); Fs (N, 6) or (1, 6)."""
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))

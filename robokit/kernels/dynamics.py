@@ -61,7 +61,7 @@ _MODEL = f"{_A3}, {_A3}, {_A2}"  # Mlist, Glist, Slist
 
 # ------------------------------------------------------------------ model constants and link transforms
 @njit
-def check_model(Mlist, Glist, Slist):
+def check_model(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None:
     """Raise ``ValueError`` unless Mlist is (n+1, 4, 4) and Glist (n, 6, 6) for Slist (6, n)."""
     n = Slist.shape[1]
     if Slist.shape[0] != 6:
@@ -73,7 +73,7 @@ def check_model(Mlist, Glist, Slist):
 
 
 @njit
-def check_vector(x, n, which):
+def check_vector(x: np.ndarray, n: int, which: int) -> None:
     """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument)."""
     if x.shape[0] != n or not all_finite(x):
         if which == 0:
@@ -91,7 +91,7 @@ def check_vector(x, n, which):
 
 
 @njit
-def link_screws(Mlist, Slist, A, Minv):
+def link_screws(Mlist: np.ndarray, Slist: np.ndarray, A: np.ndarray, Minv: np.ndarray) -> None:
     """A (6, n) ← the joint screws in the link frames, ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ``;
     Minv (n+1, 4, 4) ← ``Mlist[i]⁻¹``."""
     n = Slist.shape[1]
@@ -108,7 +108,7 @@ def link_screws(Mlist, Slist, A, Minv):
 
 
 @njit
-def link_transforms(A, Minv, thetalist, Tl, E):
+def link_transforms(A: np.ndarray, Minv: np.ndarray, thetalist: np.ndarray, Tl: np.ndarray, E: np.ndarray) -> None:
     """Tl (n+1, 4, 4) ← the link-to-link poses at θ: ``Tl[i] = T_{i+1,i} = e^{−[A_{i+1}]θ_{i+1}} Mlist[i]⁻¹``
     (0-based i; it maps frame-{i} coordinates into frame {i+1}), and ``Tl[n] = Mlist[n]⁻¹``."""
     n = A.shape[1]
@@ -119,7 +119,7 @@ def link_transforms(A, Minv, thetalist, Tl, E):
 
 
 @njit
-def workspace(n):
+def workspace(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Scratch arrays for one configuration of an n-joint chain: A (6, n) link-frame screws,
     Minv (n+1, 4, 4), Tl (n+1, 4, 4) link transforms, E (4, 4), V and Vd (n, 6) link twists and
     accelerations, v6 (six 6-vector temporaries), K (n, 6, 6) composite inertias, X (two 6×6)."""
@@ -137,7 +137,7 @@ def workspace(n):
 
 # ------------------------------------------------------------------ recursive Newton–Euler
 @njit
-def rnea_into(A, Tl, Glist, dthetalist, ddthetalist, g, Ftip, V, Vd, v6, tau):
+def rnea_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.ndarray, ddthetalist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, V: np.ndarray, Vd: np.ndarray, v6: np.ndarray, tau: np.ndarray) -> None:
     """τ ← inverse dynamics with the link transforms Tl already at θ (see the module docstring)."""
     n = A.shape[1]
     Ai, Vprev, Vdprev, F, t1, t2 = v6[0], v6[1], v6[2], v6[3], v6[4], v6[5]
@@ -176,7 +176,7 @@ def rnea_into(A, Tl, Glist, dthetalist, ddthetalist, g, Ftip, V, Vd, v6, tau):
 
 # ------------------------------------------------------------------ composite-rigid-body mass matrix
 @njit
-def crba_into(A, Tl, Glist, K, X, v6, Mout):
+def crba_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, K: np.ndarray, X: np.ndarray, v6: np.ndarray, Mout: np.ndarray) -> None:
     """Mout (n, n) ← M(θ) with the link transforms Tl already at θ (see the module docstring)."""
     n = A.shape[1]
     Ad, KAd = X[0], X[1]
@@ -223,7 +223,7 @@ def crba_into(A, Tl, Glist, K, X, v6, Mout):
 
 # ------------------------------------------------------------------ Cholesky solve
 @njit
-def cholesky_solve(Mm, b, L, x):
+def cholesky_solve(Mm: np.ndarray, b: np.ndarray, L: np.ndarray, x: np.ndarray) -> bool:
     """x ← M⁻¹ b by ``M = L Lᵀ`` (L overwritten; M untouched). Returns False when M is not
     positive definite (then x is left NaN)."""
     n = Mm.shape[0]
@@ -256,7 +256,7 @@ def cholesky_solve(Mm, b, L, x):
 
 
 @njit
-def forward_dynamics_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, zeros, V, Vd, v6, K, X, Mm, L, h, ddq):
+def forward_dynamics_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, zeros: np.ndarray, V: np.ndarray, Vd: np.ndarray, v6: np.ndarray, K: np.ndarray, X: np.ndarray, Mm: np.ndarray, L: np.ndarray, h: np.ndarray, ddq: np.ndarray) -> bool:
     """θ̈ ← M(θ)⁻¹ (τ − h(θ, θ̇)) with the link transforms Tl at θ; returns False if M is not SPD."""
     n = A.shape[1]
     rnea_into(A, Tl, Glist, dthetalist, zeros, g, Ftip, V, Vd, v6, h)  # h = c + g + Jᵀ Ftip
@@ -268,7 +268,7 @@ def forward_dynamics_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, zeros, V, 
 
 # ------------------------------------------------------------------ one configuration
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
-def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist):
+def inverse_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, ddthetalist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint torques τ (n,) = M θ̈ + c + g(θ) + Jᵀ Ftip by recursive Newton–Euler."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
@@ -286,7 +286,7 @@ def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, 
 
 
 @njit(f"{_A2}({_A1}, {_MODEL})")
-def mass_matrix(thetalist, Mlist, Glist, Slist):
+def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Mass matrix M(θ) (n, n), symmetric positive definite, by the composite-rigid-body algorithm."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
@@ -300,7 +300,7 @@ def mass_matrix(thetalist, Mlist, Glist, Slist):
 
 
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
-def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist):
+def forward_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip)."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
@@ -327,7 +327,7 @@ def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slis
 # Each parallel kernel hands out blocks of rows with ``prange``; one block is a plain serial loop
 # (the ``*_rows`` functions) that allocates its scratch space once.
 @njit
-def inverse_dynamics_rows(lo, hi, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out):
+def inverse_dynamics_rows(lo: int, hi: int, thetas: np.ndarray, dthetas: np.ndarray, ddthetas: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← τ for rows lo ≤ k < hi."""
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(Slist.shape[1])
     link_screws(Mlist, Slist, A, Minv)
@@ -337,7 +337,7 @@ def inverse_dynamics_rows(lo, hi, thetas, dthetas, ddthetas, g, Ftips, Mlist, Gl
 
 
 @njit
-def mass_matrix_rows(lo, hi, thetas, Mlist, Glist, Slist, out):
+def mass_matrix_rows(lo: int, hi: int, thetas: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← M(θ_k) for rows lo ≤ k < hi."""
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(Slist.shape[1])
     link_screws(Mlist, Slist, A, Minv)
@@ -347,7 +347,7 @@ def mass_matrix_rows(lo, hi, thetas, Mlist, Glist, Slist, out):
 
 
 @njit
-def forward_dynamics_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out):
+def forward_dynamics_rows(lo: int, hi: int, thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← θ̈ for rows lo ≤ k < hi (NaN where M is not positive definite)."""
     n = Slist.shape[1]
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
@@ -363,7 +363,7 @@ def forward_dynamics_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist,
 
 
 @njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
-def inverse_dynamics_batch(thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist):
+def inverse_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, ddthetas: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Torques (N, n) for the rows of thetas, dthetas, ddthetas (N, n); Ftips (N, 6), or (1, 6)
     for one wrench shared by all rows."""
     N, n = thetas.shape
@@ -379,7 +379,7 @@ def inverse_dynamics_batch(thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Sl
 
 
 @njit(f"{_A3}({_A2}, {_MODEL})", parallel=True)
-def mass_matrix_batch(thetas, Mlist, Glist, Slist):
+def mass_matrix_batch(thetas: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Mass matrices (N, n, n) for the rows of thetas (N, n)."""
     N, n = thetas.shape
     out = np.empty((N, n, n))
@@ -394,7 +394,7 @@ def mass_matrix_batch(thetas, Mlist, Glist, Slist):
 
 
 @njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
-def forward_dynamics_batch(thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist):
+def forward_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Accelerations (N, n) for the rows of thetas, dthetas, taus (N, n); Ftips (N, 6) or (1, 6).
     A row whose mass matrix is not positive definite comes back NaN."""
     N, n = thetas.shape
@@ -410,7 +410,7 @@ def forward_dynamics_batch(thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist)
 
 
 @njit(f"{_A3}({_A1}, {_A1}, {_A2}, {_A1}, {_A2}, {_MODEL}, float64, int64)")
-def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist, Glist, Slist, dt, intRes):
+def forward_dynamics_trajectory(thetalist: np.ndarray, dthetalist: np.ndarray, taumat: np.ndarray, g: np.ndarray, Ftipmat: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, dt: float, intRes: int) -> np.ndarray:
     """Euler integration of the forward dynamics under a torque history (Modern Robotics semantics):
     row 0 is the initial state, row k+1 the state after holding ``taumat[k]`` and ``Ftipmat[k]``
     for dt seconds in ``intRes`` steps. Returns one (2, N, n) array: thetamat and dthetamat."""

@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
 from robokit.kernels._jit import njit
@@ -41,7 +42,7 @@ __all__ = ["solve_poe_ik", "solve_poe_ik_kernel"]
 
 
 @njit
-def fk_and_body_jacobian(M, Slist, theta, T, Jb, Js, P, E, tmp, Tinv):
+def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Jb: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray, Tinv: np.ndarray) -> None:
     """T ← T_sb(θ) and Jb ← J_b(θ) in one pass: the prefix products of the space Jacobian
     ``P = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}`` also build the FK; then ``J_b = Ad_{T⁻¹} J_s``."""
     n = Slist.shape[1]
@@ -57,7 +58,7 @@ def fk_and_body_jacobian(M, Slist, theta, T, Jb, Js, P, E, tmp, Tinv):
 
 
 @njit
-def pose_error(T, Td, Tinv, Terr, V, w3):
+def pose_error(T: np.ndarray, Td: np.ndarray, Tinv: np.ndarray, Terr: np.ndarray, V: np.ndarray, w3: np.ndarray) -> tuple[float, float, float]:
     """V ← log(T⁻¹ T_d) (body-frame error twist); returns (E = ½‖V‖², orientation error, position error)."""
     inv_t(T, Tinv)
     mul_tt(Tinv, Td, Terr)
@@ -72,7 +73,7 @@ def pose_error(T, Td, Tinv, Terr, V, w3):
 
 
 @njit
-def clamp(theta, qlim):
+def clamp(theta: np.ndarray, qlim: np.ndarray) -> None:
     for i in range(theta.shape[0]):
         if theta[i] < qlim[i, 0]:
             theta[i] = qlim[i, 0]
@@ -81,7 +82,7 @@ def clamp(theta, qlim):
 
 
 @njit
-def random_configuration(qlim, theta):
+def random_configuration(qlim: np.ndarray, theta: np.ndarray) -> None:
     for i in range(theta.shape[0]):
         lo, hi = qlim[i, 0], qlim[i, 1]
         if not math.isfinite(lo):
@@ -93,7 +94,7 @@ def random_configuration(qlim, theta):
 
 @njit("Tuple((float64[::1], boolean, int64, int64))(float64[:, ::1], float64[:, ::1], float64[:, ::1], "
       "float64[::1], float64[:, ::1], float64, int64, int64, int64)")
-def solve_poe_ik_kernel(M, Slist, Td, q0, qlim, tol, max_iterations, max_restarts, seed):
+def solve_poe_ik_kernel(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q0: np.ndarray, qlim: np.ndarray, tol: float, max_iterations: int, max_restarts: int, seed: int) -> tuple[np.ndarray, bool, int, int]:
     """The compiled solver (arguments already checked): returns (θ, success, iterations, restarts)."""
     np.random.seed(seed)
     n = Slist.shape[1]
@@ -160,7 +161,7 @@ def solve_poe_ik_kernel(M, Slist, Td, q0, qlim, tol, max_iterations, max_restart
     return theta, False, iterations, max_restarts
 
 
-def solve_poe_ik(M, Slist, T, q0, qlim, tol=1e-10, max_iterations=30, max_restarts=200, seed=0):
+def solve_poe_ik(M: ArrayLike, Slist: ArrayLike, T: ArrayLike, q0: ArrayLike, qlim: ArrayLike, tol: float = 1e-10, max_iterations: int = 30, max_restarts: int = 200, seed: int = 0) -> tuple[np.ndarray, bool, int, int]:
     """Numerical IK of a PoE chain (see the module docstring): θ with ``fkin_space(M, Slist, θ) = T``.
 
     M : (4, 4) home pose of the end-effector; Slist : (6, n) space screw axes (ω, v);

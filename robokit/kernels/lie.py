@@ -23,13 +23,14 @@ from __future__ import annotations
 import math
 
 from robokit.kernels._jit import njit
+import numpy as np
 
 #: ‖ω‖ below this makes a screw prismatic (a pure translation), as in the seed library.
 PRISMATIC_TOL = 1e-12
 
 
 @njit
-def set_identity(T):
+def set_identity(T: np.ndarray) -> None:
     """T ← I₄."""
     for r in range(4):
         for c in range(4):
@@ -37,7 +38,7 @@ def set_identity(T):
 
 
 @njit
-def copy44(A, out):
+def copy44(A: np.ndarray, out: np.ndarray) -> None:
     """out ← A (4×4)."""
     for r in range(4):
         for c in range(4):
@@ -45,7 +46,7 @@ def copy44(A, out):
 
 
 @njit
-def exp_screw(S, j, theta, T):
+def exp_screw(S: np.ndarray, j: int, theta: float, T: np.ndarray) -> None:
     """T ← exp([S_j] θ): the pose reached by moving ``theta`` along column ``j`` of the screw
     list ``S`` (6, n). Closed form (Rodrigues and the G(θ) matrix), exact for any ‖ω‖."""
     wx, wy, wz = S[0, j], S[1, j], S[2, j]
@@ -67,7 +68,7 @@ def exp_screw(S, j, theta, T):
     wx, wy, wz = wx / nw, wy / nw, wz / nw
     vx, vy, vz = vx / nw, vy / nw, vz / nw
     th = theta * nw
-    s, c = math.sin(th), math.cos(th)
+    s, c = math.sin(th), math.cos(th)  # type: ignore[assignment]  # c was a loop index above
     omc = 1.0 - c
     # R = I + s [ω] + (1 − c) [ω]²   ([ω]² = ω ωᵀ − I for a unit ω)
     T[0, 0] = c + omc * wx * wx
@@ -89,7 +90,7 @@ def exp_screw(S, j, theta, T):
 
 
 @njit
-def mul_tt(A, B, out):
+def mul_tt(A: np.ndarray, B: np.ndarray, out: np.ndarray) -> None:
     """out ← A B for homogeneous transforms (the last rows are [0, 0, 0, 1]); out may not alias A or B."""
     for r in range(3):
         a0, a1, a2 = A[r, 0], A[r, 1], A[r, 2]
@@ -103,14 +104,14 @@ def mul_tt(A, B, out):
 
 
 @njit
-def mul_tt_inplace(A, B, tmp):
+def mul_tt_inplace(A: np.ndarray, B: np.ndarray, tmp: np.ndarray) -> None:
     """A ← A B using the 4×4 scratch ``tmp``."""
     mul_tt(A, B, tmp)
     copy44(tmp, A)
 
 
 @njit
-def inv_t(T, out):
+def inv_t(T: np.ndarray, out: np.ndarray) -> None:
     """out ← T⁻¹ = [[Rᵀ, −Rᵀ p], [0, 1]]."""
     for r in range(3):
         for c in range(3):
@@ -124,7 +125,7 @@ def inv_t(T, out):
 
 
 @njit
-def adjoint_twist(T, V, out):
+def adjoint_twist(T: np.ndarray, V: np.ndarray, out: np.ndarray) -> None:
     """out ← Ad_T V = (R ω, p × (R ω) + R v) for a twist V = (ω, v) (6,)."""
     w0 = T[0, 0] * V[0] + T[0, 1] * V[1] + T[0, 2] * V[2]
     w1 = T[1, 0] * V[0] + T[1, 1] * V[1] + T[1, 2] * V[2]
@@ -139,7 +140,7 @@ def adjoint_twist(T, V, out):
 
 
 @njit
-def adjoint_screw(T, S, j, J, col):
+def adjoint_screw(T: np.ndarray, S: np.ndarray, j: int, J: np.ndarray, col: int) -> None:
     """J[:, col] ← Ad_T S[:, j]: a screw axis (column j of S) carried by the pose T."""
     w0 = T[0, 0] * S[0, j] + T[0, 1] * S[1, j] + T[0, 2] * S[2, j]
     w1 = T[1, 0] * S[0, j] + T[1, 1] * S[1, j] + T[1, 2] * S[2, j]
@@ -154,7 +155,7 @@ def adjoint_screw(T, S, j, J, col):
 
 
 @njit
-def adjoint_transpose_wrench(T, F, out):
+def adjoint_transpose_wrench(T: np.ndarray, F: np.ndarray, out: np.ndarray) -> None:
     """out ← Ad_Tᵀ F = (Rᵀ(m − p × f), Rᵀ f) for a wrench F = (m, f).
 
     With ``T = T_ab`` (frame {b} in {a}) this carries a wrench expressed in {a} into {b}:
@@ -173,7 +174,7 @@ def adjoint_transpose_wrench(T, F, out):
 
 
 @njit
-def adjoint_matrix(T, out):
+def adjoint_matrix(T: np.ndarray, out: np.ndarray) -> None:
     """out (6×6) ← Ad_T = [[R, 0], [[p] R, R]]."""
     px, py, pz = T[0, 3], T[1, 3], T[2, 3]
     for r in range(3):
@@ -188,7 +189,7 @@ def adjoint_matrix(T, out):
 
 
 @njit
-def ad_twist(V, X, out):
+def ad_twist(V: np.ndarray, X: np.ndarray, out: np.ndarray) -> None:
     """out ← ad_V X = (ω × x_ω, v × x_ω + ω × x_v) (the Lie bracket [V, X])."""
     w0, w1, w2, v0, v1, v2 = V[0], V[1], V[2], V[3], V[4], V[5]
     a0, a1, a2, b0, b1, b2 = X[0], X[1], X[2], X[3], X[4], X[5]
@@ -201,7 +202,7 @@ def ad_twist(V, X, out):
 
 
 @njit
-def ad_transpose_wrench(V, F, out):
+def ad_transpose_wrench(V: np.ndarray, F: np.ndarray, out: np.ndarray) -> None:
     """out ← ad_Vᵀ F = −(ω × m + v × f, ω × f) for a twist V and a wrench F = (m, f)."""
     w0, w1, w2, v0, v1, v2 = V[0], V[1], V[2], V[3], V[4], V[5]
     m0, m1, m2, f0, f1, f2 = F[0], F[1], F[2], F[3], F[4], F[5]
@@ -214,7 +215,7 @@ def ad_transpose_wrench(V, F, out):
 
 
 @njit
-def mat6_vec(G, x, out):
+def mat6_vec(G: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
     """out ← G x for a 6×6 G."""
     for r in range(6):
         acc = 0.0
@@ -224,13 +225,13 @@ def mat6_vec(G, x, out):
 
 
 @njit
-def dot6(a, b):
+def dot6(a: np.ndarray, b: np.ndarray) -> float:
     """aᵀ b for 6-vectors."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 
 
 @njit
-def log_so3(R, out):
+def log_so3(R: np.ndarray, out: np.ndarray) -> None:
     """out (3,) ← ω θ with exp([ω]θ) = R, θ ∈ [0, π] (matrix logarithm of a rotation, Lecture 3).
 
     Three regimes: θ ≈ 0 (first-order series), θ ≈ π (axis from the largest diagonal entry
@@ -287,7 +288,7 @@ def log_so3(R, out):
 
 
 @njit
-def log_se3(T, out):
+def log_se3(T: np.ndarray, out: np.ndarray) -> None:
     """out (6,) ← (ω θ, v θ) with exp([S]θ) = T (matrix logarithm of a pose, Lecture 4):
     ``ωθ = log R``, ``vθ = G(θ)⁻¹ p`` with
     ``G⁻¹ = I/θ − [ω]/2 + (1/θ − cot(θ/2)/2)[ω]²`` (times θ for the scaled v)."""
@@ -309,7 +310,7 @@ def log_se3(T, out):
 
 
 @njit
-def all_finite(x):
+def all_finite(x: np.ndarray) -> bool:
     """True when every entry of the 1-D array x is finite (no NaN, no ±inf)."""
     for i in range(x.shape[0]):
         if not math.isfinite(x[i]):

@@ -57,19 +57,19 @@ MAX_BLOCKS = 64
 
 
 @njit
-def n_blocks(N):
+def n_blocks(N: int) -> int:
     """How many blocks to cut N configurations into: ``min(N, MAX_BLOCKS)``, at least 1."""
     return max(1, min(N, MAX_BLOCKS))
 
 
 @njit
-def block_range(b, nb, N):
+def block_range(b: int, nb: int, N: int) -> tuple[int, int]:
     """Configurations [lo, hi) of block b out of nb (contiguous, sizes differ by at most one)."""
     return (b * N) // nb, ((b + 1) * N) // nb
 
 
 @njit
-def check_theta(Slist, thetalist):
+def check_theta(Slist: np.ndarray, thetalist: np.ndarray) -> None:
     """Raise ``ValueError`` unless θ has one finite value per screw axis."""
     if thetalist.shape[0] != Slist.shape[1]:
         raise ValueError("thetalist: expected one joint value per screw axis (column of the screw list)")
@@ -79,7 +79,7 @@ def check_theta(Slist, thetalist):
 
 # ------------------------------------------------------------------ forward kinematics
 @njit
-def fkin_space_into(M, Slist, thetalist, T, E, tmp):
+def fkin_space_into(M: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray, T: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
     """T ← e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M (E, tmp: 4×4 scratch)."""
     set_identity(T)
     for i in range(Slist.shape[1]):
@@ -89,7 +89,7 @@ def fkin_space_into(M, Slist, thetalist, T, E, tmp):
 
 
 @njit
-def fkin_body_into(M, Blist, thetalist, T, E, tmp):
+def fkin_body_into(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray, T: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
     """T ← M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ} (E, tmp: 4×4 scratch)."""
     copy44(M, T)
     for i in range(Blist.shape[1]):
@@ -98,7 +98,7 @@ def fkin_body_into(M, Blist, thetalist, T, E, tmp):
 
 
 @njit(_SIG_FK)
-def fkin_space(M, Slist, thetalist):
+def fkin_space(M: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """End-effector pose (4×4) ``e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M``; M (4, 4), Slist (6, n), θ (n,) rad or m."""
     check_theta(Slist, thetalist)
     W = np.empty((3, 4, 4))
@@ -107,7 +107,7 @@ def fkin_space(M, Slist, thetalist):
 
 
 @njit(_SIG_FK)
-def fkin_body(M, Blist, thetalist):
+def fkin_body(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """End-effector pose (4×4) ``M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ}``; M (4, 4), Blist (6, n), θ (n,)."""
     check_theta(Blist, thetalist)
     W = np.empty((3, 4, 4))
@@ -116,7 +116,7 @@ def fkin_body(M, Blist, thetalist):
 
 
 @njit
-def fkin_space_rows(lo, hi, M, Slist, thetas, out):
+def fkin_space_rows(lo: int, hi: int, M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← space-form FK of row k, for lo ≤ k < hi (one block of a batched call)."""
     W = np.empty((2, 4, 4))
     for k in range(lo, hi):
@@ -124,7 +124,7 @@ def fkin_space_rows(lo, hi, M, Slist, thetas, out):
 
 
 @njit
-def fkin_body_rows(lo, hi, M, Blist, thetas, out):
+def fkin_body_rows(lo: int, hi: int, M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← body-form FK of row k, for lo ≤ k < hi."""
     W = np.empty((2, 4, 4))
     for k in range(lo, hi):
@@ -132,7 +132,7 @@ def fkin_body_rows(lo, hi, M, Blist, thetas, out):
 
 
 @njit(_SIG_FK_BATCH, parallel=True)
-def fkin_space_batch(M, Slist, thetas):
+def fkin_space_batch(M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), space form."""
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
@@ -147,7 +147,7 @@ def fkin_space_batch(M, Slist, thetas):
 
 
 @njit(_SIG_FK_BATCH, parallel=True)
-def fkin_body_batch(M, Blist, thetas):
+def fkin_body_batch(M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), body form."""
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
@@ -163,7 +163,7 @@ def fkin_body_batch(M, Blist, thetas):
 
 # ------------------------------------------------------------------ Jacobians
 @njit
-def jacobian_space_into(Slist, thetalist, J, T, E, tmp):
+def jacobian_space_into(Slist: np.ndarray, thetalist: np.ndarray, J: np.ndarray, T: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
     """J (6, n) ← space Jacobian: column i is Sᵢ carried by T = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}."""
     set_identity(T)
     n = Slist.shape[1]
@@ -175,7 +175,7 @@ def jacobian_space_into(Slist, thetalist, J, T, E, tmp):
 
 
 @njit
-def jacobian_body_into(Blist, thetalist, J, T, E, tmp):
+def jacobian_body_into(Blist: np.ndarray, thetalist: np.ndarray, J: np.ndarray, T: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
     """J (6, n) ← body Jacobian: column i is Bᵢ carried by T = e^{−[Bₙ]θₙ}⋯e^{−[B_{i+1}]θ_{i+1}}."""
     set_identity(T)
     n = Blist.shape[1]
@@ -187,7 +187,7 @@ def jacobian_body_into(Blist, thetalist, J, T, E, tmp):
 
 
 @njit(_SIG_J)
-def jacobian_space(Slist, thetalist):
+def jacobian_space(Slist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """Space Jacobian (6, n), rows (ω; v): the end-effector twist in the space frame per unit θ̇."""
     check_theta(Slist, thetalist)
     J = np.empty((6, Slist.shape[1]))
@@ -197,7 +197,7 @@ def jacobian_space(Slist, thetalist):
 
 
 @njit(_SIG_J)
-def jacobian_body(Blist, thetalist):
+def jacobian_body(Blist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """Body Jacobian (6, n), rows (ω; v): the end-effector twist in its own frame per unit θ̇."""
     check_theta(Blist, thetalist)
     J = np.empty((6, Blist.shape[1]))
@@ -207,7 +207,7 @@ def jacobian_body(Blist, thetalist):
 
 
 @njit
-def jacobian_space_rows(lo, hi, Slist, thetas, out):
+def jacobian_space_rows(lo: int, hi: int, Slist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← space Jacobian of row k, for lo ≤ k < hi."""
     W = np.empty((3, 4, 4))
     for k in range(lo, hi):
@@ -215,7 +215,7 @@ def jacobian_space_rows(lo, hi, Slist, thetas, out):
 
 
 @njit
-def jacobian_body_rows(lo, hi, Blist, thetas, out):
+def jacobian_body_rows(lo: int, hi: int, Blist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← body Jacobian of row k, for lo ≤ k < hi."""
     W = np.empty((3, 4, 4))
     for k in range(lo, hi):
@@ -224,7 +224,7 @@ def jacobian_body_rows(lo, hi, Blist, thetas, out):
 
 
 @njit(_SIG_J_BATCH, parallel=True)
-def jacobian_space_batch(Slist, thetas):
+def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Space Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
     out = np.empty((N, 6, Slist.shape[1]))
@@ -239,7 +239,7 @@ def jacobian_space_batch(Slist, thetas):
 
 
 @njit(_SIG_J_BATCH, parallel=True)
-def jacobian_body_batch(Blist, thetas):
+def jacobian_body_batch(Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Body Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
     out = np.empty((N, 6, Blist.shape[1]))

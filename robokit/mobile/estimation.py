@@ -26,8 +26,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_matrix, as_vector
+from robokit._arrays import FloatVector, as_array, as_matrix, as_vector
 from robokit.mobile.vehicle import angdiff
 
 __all__ = [
@@ -45,13 +46,13 @@ __all__ = [
 _ORDERS = ("turn-move", "move-turn")
 
 
-def _check_order(order):
+def _check_order(order: str) -> str:
     if order not in _ORDERS:
         raise ValueError(f"order: expected 'turn-move' or 'move-turn', got {order!r}")
     return order
 
 
-def odometry_model(x, delta, v=(0.0, 0.0), order: str = "turn-move") -> np.ndarray:
+def odometry_model(x: FloatVector, delta: FloatVector, v: FloatVector = (0.0, 0.0), order: str = "turn-move") -> np.ndarray:
     """``f(x, δ, v)`` of the module docstring: the pose (3,) after the odometry increment
     δ = (δ_d, δ_θ) (m, rad) with noise v (2,); order : "turn-move" (default) or "move-turn" (Corke)."""
     _check_order(order)
@@ -61,7 +62,7 @@ def odometry_model(x, delta, v=(0.0, 0.0), order: str = "turn-move") -> np.ndarr
     return np.array([x[0] + d * math.cos(heading), x[1] + d * math.sin(heading), angdiff(th)])
 
 
-def odometry_jacobians(x, delta, order: str = "turn-move"):
+def odometry_jacobians(x: FloatVector, delta: FloatVector, order: str = "turn-move") -> tuple[np.ndarray, np.ndarray]:
     """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v at v = 0 (3×3 and 3×2), for either order.
 
     turn-move: ``F_x = [[1, 0, −δ_d s], [0, 1, δ_d c], [0, 0, 1]]``, ``F_v = [[c, −δ_d s], [s, δ_d c], [0, 1]]``
@@ -82,13 +83,13 @@ def odometry_jacobians(x, delta, order: str = "turn-move"):
 class Odometry:
     """A vehicle's odometer: the true increment plus zero-mean Gaussian noise of covariance V (2×2)."""
 
-    def __init__(self, V, rng=None):
+    def __init__(self, V: ArrayLike, rng: int | np.random.Generator | None = None) -> None:
         self.V = as_matrix(V, "V", 2, 2)
         if np.linalg.eigvalsh(self.V).min() < 0:
             raise ValueError("V: expected a positive semi-definite covariance")
         self.rng = np.random.default_rng(rng)
 
-    def measure(self, delta) -> np.ndarray:
+    def measure(self, delta: ArrayLike) -> np.ndarray:
         """The measured increment: ``δ + v``, ``v ~ N(0, V)``."""
         return np.asarray(delta, float) + self.rng.multivariate_normal(np.zeros(2), self.V)
 
@@ -96,15 +97,15 @@ class Odometry:
 class LandmarkMap:
     """Point landmarks in the plane: ``points`` (N, 2) (m)."""
 
-    def __init__(self, points):
+    def __init__(self, points: ArrayLike) -> None:
         self.points = as_array(points, "points", (None, 2))
 
     @classmethod
-    def random(cls, n: int, size: float = 10.0, rng=None) -> "LandmarkMap":
+    def random(cls, n: int, size: float = 10.0, rng: int | np.random.Generator | None = None) -> "LandmarkMap":
         """``n`` landmarks uniform in the square [−size, size]²."""
         return cls(np.random.default_rng(rng).uniform(-size, size, (int(n), 2)))
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.points)
 
 
@@ -112,21 +113,21 @@ class RangeBearingSensor:
     """Range–bearing sensor: ``z = (r, β)`` with noise covariance W (2×2); optional max range (m)
     and field of view (rad, centred on the vehicle's x axis)."""
 
-    def __init__(self, landmarks: LandmarkMap, W, max_range: float | None = None, fov: float | None = None,
-                 rng=None):
+    def __init__(self, landmarks: LandmarkMap, W: ArrayLike, max_range: float | None = None, fov: float | None = None,
+                 rng: int | np.random.Generator | None = None) -> None:
         self.map = landmarks
         self.W = as_matrix(W, "W", 2, 2)
         self.max_range, self.fov = max_range, fov
         self.rng = np.random.default_rng(rng)
 
     @staticmethod
-    def h(x, p) -> np.ndarray:
+    def h(x: FloatVector, p: FloatVector) -> np.ndarray:
         """Noise-free measurement of the landmark at p (2,) from pose x (3,)."""
         dx, dy = p[0] - x[0], p[1] - x[1]
         return np.array([math.hypot(dx, dy), angdiff(math.atan2(dy, dx), x[2])])
 
     @staticmethod
-    def jacobians(x, p):
+    def jacobians(x: FloatVector, p: FloatVector) -> tuple[np.ndarray, np.ndarray]:
         """``(H_x, H_p)``: ∂h/∂x (2×3) and ∂h/∂p (2×2); ``H_w`` is the identity."""
         dx, dy = p[0] - x[0], p[1] - x[1]
         r2 = dx * dx + dy * dy
@@ -135,7 +136,7 @@ class RangeBearingSensor:
         Hp = np.array([[dx / r, dy / r], [-dy / r2, dx / r2]])
         return Hx, Hp
 
-    def visible(self, x) -> list[int]:
+    def visible(self, x: FloatVector) -> list[int]:
         """Indices of the landmarks within range and field of view of pose x."""
         out = []
         for i, p in enumerate(self.map.points):
@@ -147,14 +148,14 @@ class RangeBearingSensor:
             out.append(i)
         return out
 
-    def measure(self, x, i: int) -> np.ndarray:
+    def measure(self, x: FloatVector, i: int) -> np.ndarray:
         """A noisy measurement of landmark i from the true pose x."""
         z = self.h(x, self.map.points[i]) + self.rng.multivariate_normal(np.zeros(2), self.W)
         z[1] = angdiff(z[1])
         return z
 
 
-def _joseph(P, K, H, W):
+def _joseph(P: np.ndarray, K: np.ndarray, H: np.ndarray, W: np.ndarray) -> np.ndarray:
     I = np.eye(P.shape[0])
     A = I - K @ H
     P = A @ P @ A.T + K @ W @ K.T
@@ -169,19 +170,19 @@ class EKFLocalization:
     order: the odometry model's order, "turn-move" (default) or "move-turn".
     """
 
-    def __init__(self, x0, P0, V, W, landmarks: LandmarkMap, order: str = "turn-move"):
+    def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, landmarks: LandmarkMap, order: str = "turn-move") -> None:
         self.x = as_vector(x0, "x0", 3).copy()
         self.P = as_matrix(P0, "P0", 3, 3).copy()
         self.V, self.W, self.map = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2), landmarks
         self.order = _check_order(order)
 
-    def predict(self, delta):
+    def predict(self, delta: FloatVector) -> None:
         """Prediction with the odometry increment δ = (δ_d, δ_θ)."""
         Fx, Fv = odometry_jacobians(self.x, delta, self.order)
         self.x = odometry_model(self.x, delta, order=self.order)
         self.P = Fx @ self.P @ Fx.T + Fv @ self.V @ Fv.T
 
-    def update(self, z, i: int):
+    def update(self, z: ArrayLike, i: int) -> np.ndarray:
         """Update with the measurement z = (r, β) of landmark i; returns the innovation ν."""
         p = self.map.points[i]
         nu = np.asarray(z, float) - RangeBearingSensor.h(self.x, p)
@@ -203,14 +204,14 @@ class EKFSLAM:
     ``order`` as for :class:`EKFLocalization`.
     """
 
-    def __init__(self, x0, P0, V, W, order: str = "turn-move"):
+    def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, order: str = "turn-move") -> None:
         self.x = as_vector(x0, "x0", 3).copy()
         self.P = as_matrix(P0, "P0", 3, 3).copy()
         self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
         self.order = _check_order(order)
         self.landmark_index: dict[int, int] = {}
 
-    def predict(self, delta):
+    def predict(self, delta: FloatVector) -> None:
         Fx, Fv = odometry_jacobians(self.x[:3], delta, self.order)
         self.x[:3] = odometry_model(self.x[:3], delta, order=self.order)
         n = len(self.x)
@@ -224,7 +225,7 @@ class EKFSLAM:
         k = self.landmark_index[i]
         return self.x[k:k + 2].copy()
 
-    def update(self, z, i: int):
+    def update(self, z: ArrayLike, i: int) -> np.ndarray:
         """Update with the measurement z = (r, β) of landmark i (inserting it if new)."""
         z = np.asarray(z, float)
         if i not in self.landmark_index:
@@ -260,7 +261,7 @@ class EKFSLAM:
         return nu
 
 
-def error_ellipse(P, mean=(0.0, 0.0), n_sigma: float = 1.0, points: int = 100):
+def error_ellipse(P: ArrayLike, mean: ArrayLike = (0.0, 0.0), n_sigma: float = 1.0, points: int = 100) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Points (points, 2) on the ellipse ``(x − μ)ᵀ P⁻¹ (x − μ) = n_sigma²`` of a 2×2 covariance.
 
     Axes along the eigenvectors of P with half-lengths ``n_sigma √λᵢ`` (Lecture 9). Also

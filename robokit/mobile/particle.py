@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.mobile.estimation import LandmarkMap, _check_order
@@ -32,7 +33,7 @@ from robokit.mobile.vehicle import angdiff
 __all__ = ["ParticleFilter", "systematic_resample", "uncertainty"]
 
 
-def systematic_resample(weights, rng=None) -> np.ndarray:
+def systematic_resample(weights: ArrayLike, rng: int | np.random.Generator | None = None) -> np.ndarray:
     """Indices (N,) of the particles kept by systematic resampling of ``weights`` (N,).
 
     One uniform draw ``u ~ U[0, 1/N)``; pointer k = ``u + k/N`` selects the first particle whose
@@ -53,7 +54,7 @@ def systematic_resample(weights, rng=None) -> np.ndarray:
     return np.searchsorted(cum, pointers, side="right")
 
 
-def uncertainty(P, kind: str = "det") -> float:
+def uncertainty(P: ArrayLike, kind: str = "det") -> float:
     """A scalar uncertainty of a covariance P (Lecture 9).
 
     kind : "det" — ``det P = Π λᵢ`` (any square P, e.g. the 3×3 pose covariance); "area" — the area
@@ -93,8 +94,8 @@ class ParticleFilter:
     Example: ``pf = ParticleFilter(500, x0, P0, V, W, landmarks, rng=0); pf.predict(delta); pf.update(z, i); pf.x``.
     """
 
-    def __init__(self, n_particles: int, x0, P0, V, W, landmarks: LandmarkMap, rng=None, order: str = "turn-move",
-                 resample_threshold: float = 0.5, particles=None):
+    def __init__(self, n_particles: int, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, landmarks: LandmarkMap, rng: int | np.random.Generator | None = None, order: str = "turn-move",
+                 resample_threshold: float = 0.5, particles: ArrayLike | None = None) -> None:
         self.rng = np.random.default_rng(rng)
         self.N = int(n_particles)
         if self.N < 1:
@@ -113,7 +114,7 @@ class ParticleFilter:
         self.particles[:, 2] = angdiff(self.particles[:, 2])
         self.weights = np.full(self.N, 1.0 / self.N)
 
-    def predict(self, delta):
+    def predict(self, delta: ArrayLike) -> None:
         """Move every particle by the odometry increment δ = (δ_d, δ_θ) with its own noise sample."""
         d0, t0 = as_vector(delta, "delta", 2)
         v = self.rng.multivariate_normal(np.zeros(2), self.V, self.N)
@@ -123,7 +124,7 @@ class ParticleFilter:
         heading = th if self.order == "turn-move" else x[:, 2]
         self.particles = np.column_stack([x[:, 0] + d * np.cos(heading), x[:, 1] + d * np.sin(heading), angdiff(th)])
 
-    def update(self, z, i: int):
+    def update(self, z: ArrayLike, i: int) -> float:
         """Weight the particles by the likelihood of the measurement z = (r, β) of landmark i; resample
         when the effective sample size is low. Returns N_eff before resampling."""
         z = as_vector(z, "z", 2)
@@ -139,7 +140,7 @@ class ParticleFilter:
             self.resample()
         return n_eff
 
-    def resample(self):
+    def resample(self) -> None:
         """Systematic resampling; the weights become uniform."""
         idx = systematic_resample(self.weights, self.rng)
         self.particles = self.particles[idx]

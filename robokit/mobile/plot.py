@@ -1,15 +1,23 @@
 """Plots for mobile robots: paths, landmarks, and covariance ellipses (matplotlib; returns the Figure)."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.mobile.estimation import error_ellipse
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, SubFigure
 
 __all__ = ["plot_estimation"]
 
 
-def plot_estimation(true_path, est_path=None, covariances=None, landmarks=None, landmark_estimates=None,
-                    every: int = 10, n_sigma: float = 1.0, ax=None):
+def plot_estimation(true_path: ArrayLike, est_path: ArrayLike | None = None, covariances: Sequence[ArrayLike] | np.ndarray | None = None, landmarks: ArrayLike | None = None, landmark_estimates: ArrayLike | None = None,
+                    every: int = 10, n_sigma: float = 1.0, ax: Axes | None = None) -> Figure | SubFigure:
     """True (K, ≥2) and estimated paths, landmarks (N, 2), estimated landmarks, and the
     ``n_sigma`` error ellipses of the position covariances (K, ≥2, ≥2) every ``every`` steps."""
     import matplotlib.pyplot as plt

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.mobile.vehicle import angdiff
@@ -39,22 +40,22 @@ class UnicycleModel:
     Example: ``UnicycleModel().step([0, 0, 0], [1.0, 0.5], 0.1)``.
     """
 
-    def __init__(self, speed_max: float = 5.0, omega_max: float = 4.0):
+    def __init__(self, speed_max: float = 5.0, omega_max: float = 4.0) -> None:
         self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
         self.omega_max = as_scalar(omega_max, "omega_max", positive=True)
 
-    def limit(self, u) -> np.ndarray:
+    def limit(self, u: ArrayLike) -> np.ndarray:
         """Inputs (v, ω) clipped to the limits."""
         v, w = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max), np.clip(w, -self.omega_max, self.omega_max)])
 
-    def deriv(self, x, u) -> np.ndarray:
+    def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
         """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x (3,) and inputs u = (v, ω) (limits applied)."""
         x = as_vector(x, "x", 3)
         v, w = self.limit(u)
         return np.array([v * math.cos(x[2]), v * math.sin(x[2]), w])
 
-    def step(self, x, u, dt: float) -> np.ndarray:
+    def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
         """The state after ``dt`` s at constant (v, ω): the exact arc of radius v/ω (a line when ω = 0)."""
         x = as_vector(x, "x", 3)
         v, w = self.limit(u)
@@ -77,23 +78,23 @@ class DifferentialDrive(UnicycleModel):
     Example: ``DifferentialDrive(0.1, 0.5).body_velocity([10, 10])`` is ``(1.0, 0.0)`` (straight ahead).
     """
 
-    def __init__(self, r: float, W: float, wheel_max: float = 50.0):
+    def __init__(self, r: float, W: float, wheel_max: float = 50.0) -> None:
         self.r = as_scalar(r, "r", positive=True)
         self.W = as_scalar(W, "W", positive=True)
         self.wheel_max = as_scalar(wheel_max, "wheel_max", positive=True)
         super().__init__(speed_max=self.r * self.wheel_max, omega_max=2 * self.r * self.wheel_max / self.W)
 
-    def body_velocity(self, wheels) -> np.ndarray:
+    def body_velocity(self, wheels: ArrayLike) -> np.ndarray:
         """(v, ω) from the wheel speeds ``(ω_L, ω_R)`` (rad/s): ``v = r(ω_R + ω_L)/2``, ``ω = r(ω_R − ω_L)/W``."""
         wl, wr = as_vector(wheels, "wheels", 2)
         return np.array([self.r * (wr + wl) / 2.0, self.r * (wr - wl) / self.W])
 
-    def wheel_speeds(self, u) -> np.ndarray:
+    def wheel_speeds(self, u: ArrayLike) -> np.ndarray:
         """``(ω_L, ω_R)`` (rad/s) for the body velocity u = (v, ω): ``(v ∓ ωW/2)/r``."""
         v, w = as_vector(u, "u", 2)
         return np.array([(v - w * self.W / 2.0) / self.r, (v + w * self.W / 2.0) / self.r])
 
-    def limit(self, u) -> np.ndarray:
+    def limit(self, u: ArrayLike) -> np.ndarray:
         """(v, ω) scaled down together so that neither wheel exceeds ``wheel_max`` (the path's curvature is kept)."""
         v, w = as_vector(u, "u", 2)
         wheels = self.wheel_speeds([v, w])

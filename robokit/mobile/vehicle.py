@@ -22,16 +22,22 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable, overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from robokit._arrays import as_scalar, as_vector
+from robokit._arrays import FloatVector, as_scalar, as_vector
 from robokit.spatial.basics import wrap_angle
 
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
 
 
-def angdiff(a, b=0.0):
+@overload
+def angdiff(a: float, b: float = 0.0) -> float: ...
+@overload
+def angdiff(a: float | np.ndarray, b: float | np.ndarray = 0.0) -> float | np.ndarray: ...
+def angdiff(a: float | np.ndarray, b: float | np.ndarray = 0.0) -> float | np.ndarray:
     """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array), Corke's name for it."""
     return wrap_angle(np.asarray(a, dtype=float) - b) if np.ndim(a) else wrap_angle(float(a) - float(b))
 
@@ -39,27 +45,27 @@ def angdiff(a, b=0.0):
 class BicycleModel:
     """Kinematic bicycle with wheelbase ``L`` (m), steering limit (rad) and speed limit (m/s)."""
 
-    def __init__(self, L: float = 1.0, steer_max: float = np.deg2rad(60.0), speed_max: float = 5.0):
+    def __init__(self, L: float = 1.0, steer_max: float = np.deg2rad(60.0), speed_max: float = 5.0) -> None:
         self.L = as_scalar(L, "L", positive=True)
         self.steer_max = as_scalar(steer_max, "steer_max", positive=True)
         if self.steer_max >= np.pi / 2:
             raise ValueError(f"steer_max: must be below π/2 (the model is undefined at ±π/2), got {steer_max!r}")
         self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
 
-    def limit(self, u):
+    def limit(self, u: ArrayLike) -> np.ndarray:
         """Inputs clipped to the speed and steering limits (``steer_max`` < π/2, so a demanded
         γ = ±π/2, where the model is undefined, is clipped like any other angle beyond the limit)."""
         v, gamma = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max),
                          np.clip(gamma, -self.steer_max, self.steer_max)])
 
-    def deriv(self, x, u) -> np.ndarray:
+    def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
         """``(ẋ, ẏ, θ̇)`` at state x (3,) and inputs u = (v, γ) (limits applied)."""
         x = as_vector(x, "x", 3)
         v, g = self.limit(u)
         return np.array([v * math.cos(x[2]), v * math.sin(x[2]), v / self.L * math.tan(g)])
 
-    def step(self, x, u, dt: float) -> np.ndarray:
+    def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
         """The state after ``dt`` s at constant inputs: the exact arc (or a straight line when γ = 0)."""
         x = as_vector(x, "x", 3)
         v, g = self.limit(u)
@@ -74,7 +80,7 @@ class BicycleModel:
                          angdiff(th1)])
 
     @staticmethod
-    def sideways_velocity(x, xdot) -> float:
+    def sideways_velocity(x: FloatVector, xdot: FloatVector) -> float:
         """``ẏ cos θ − ẋ sin θ``: zero for every motion the model allows (the non-holonomic constraint)."""
         return float(xdot[1] * math.cos(x[2]) - xdot[0] * math.sin(x[2]))
 
@@ -87,7 +93,7 @@ class MoveToPoint:
     Kv: float = 0.5
     Kh: float = 2.0
 
-    def __call__(self, t, x, dt=0.0):
+    def __call__(self, t: float, x: FloatVector, dt: float = 0.0) -> tuple[float, float]:
         dx, dy = self.goal[0] - x[0], self.goal[1] - x[1]
         return self.Kv * math.hypot(dx, dy), self.Kh * angdiff(math.atan2(dy, dx), x[2])
 
@@ -101,12 +107,12 @@ class FollowLine:
     Kd: float = 0.5
     Kh: float = 1.0
 
-    def distance(self, x) -> float:
+    def distance(self, x: FloatVector) -> float:
         """Signed normal distance of the vehicle from the line (m)."""
         a, b, c = self.line
         return (a * x[0] + b * x[1] + c) / math.hypot(a, b)
 
-    def __call__(self, t, x, dt=0.0):
+    def __call__(self, t: float, x: FloatVector, dt: float = 0.0) -> tuple[float, float]:
         a, b, _ = self.line
         theta_star = math.atan2(-a, b)
         return self.v, -self.Kd * self.distance(x) + self.Kh * angdiff(theta_star, x[2])
@@ -118,15 +124,15 @@ class PurePursuit:
     Speed: PI on ``e = ‖p* − p‖ − d*``; steering: P on the heading to the target.
     """
 
-    def __init__(self, path, d_star: float = 1.0, Kv: float = 1.0, Ki: float = 0.3, Kh: float = 2.0):
+    def __init__(self, path: Callable[[float], FloatVector], d_star: float = 1.0, Kv: float = 1.0, Ki: float = 0.3, Kh: float = 2.0) -> None:
         self.path, self.d_star, self.Kv, self.Ki, self.Kh = path, float(d_star), Kv, Ki, Kh
         self.integral = 0.0
 
-    def error(self, t, x) -> float:
+    def error(self, t: float, x: FloatVector) -> float:
         px, py = self.path(t)
         return math.hypot(px - x[0], py - x[1]) - self.d_star
 
-    def __call__(self, t, x, dt=0.0):
+    def __call__(self, t: float, x: FloatVector, dt: float = 0.0) -> tuple[float, float]:
         px, py = self.path(t)
         e = math.hypot(px - x[0], py - x[1]) - self.d_star
         self.integral += e * dt
@@ -142,7 +148,7 @@ class VehicleRun:
     u: np.ndarray
 
 
-def run_vehicle(model: BicycleModel, controller, x0, T: float, dt: float = 0.05, stop=None) -> VehicleRun:
+def run_vehicle(model: BicycleModel, controller: Callable[[float, np.ndarray, float], FloatVector], x0: ArrayLike, T: float, dt: float = 0.05, stop: Callable[[float, np.ndarray], bool] | None = None) -> VehicleRun:
     """Run ``controller`` on ``model`` from ``x0`` for ``T`` s with control period ``dt``.
 
     ``stop(t, x) -> bool`` may end the run early (e.g. goal reached).

@@ -13,11 +13,12 @@ import numpy as np
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial import lie
+from numpy.typing import ArrayLike
 
 __all__ = ["matrix_from_axis_angle", "axis_angle_from_matrix", "matrix_from_two_vectors"]
 
 
-def matrix_from_axis_angle(axis, angle) -> np.ndarray:
+def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     """Rotation by ``angle`` (rad) about ``axis`` (3,, normalised here), Rodrigues' formula."""
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
@@ -26,7 +27,7 @@ def matrix_from_axis_angle(axis, angle) -> np.ndarray:
     return lie.exp3(axis / n * as_scalar(angle, "angle"))
 
 
-def axis_angle_from_matrix(R):
+def axis_angle_from_matrix(R: ArrayLike) -> tuple[np.ndarray, float]:
     """``(axis, angle)`` of a rotation, angle ∈ [0, π]; axis (1, 0, 0) when angle = 0."""
     w = lie.log3(check_rotation(R, "R"))
     th = float(np.linalg.norm(w))
@@ -35,7 +36,7 @@ def axis_angle_from_matrix(R):
     return w / th, th
 
 
-def matrix_from_two_vectors(o, a, tol: float = 1e-6) -> np.ndarray:
+def matrix_from_two_vectors(o: ArrayLike, a: ArrayLike, tol: float = 1e-6) -> np.ndarray:
     """``R = [n o a]`` with ``n = o × a`` from the orientation vector o and approach vector a.
 
     Both are normalised; they must be orthogonal within ``tol`` (|o·a| after normalising),

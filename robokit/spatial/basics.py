@@ -6,11 +6,12 @@ import math
 import numpy as np
 
 from robokit._arrays import as_array, as_vector
+from numpy.typing import ArrayLike
 
 __all__ = ["near_zero", "normalize", "wrap_angle"]
 
 
-def near_zero(z) -> bool:
+def near_zero(z: ArrayLike) -> bool:
     """True if ``|z| < 1e-6`` (the seed library's zero test).
 
     Example: ``near_zero(-1e-7)`` → ``True``.
@@ -18,7 +19,7 @@ def near_zero(z) -> bool:
     return bool(abs(float(as_array(z, "z", ()))) < 1e-6)
 
 
-def normalize(V) -> np.ndarray:
+def normalize(V: ArrayLike) -> np.ndarray:
     """``V / ‖V‖`` for a vector ``V`` of any length.
 
     Raises ``ValueError`` for the zero vector (it has no direction).
@@ -31,7 +32,7 @@ def normalize(V) -> np.ndarray:
     return V / n
 
 
-def wrap_angle(a):
+def wrap_angle(a: ArrayLike) -> float | np.ndarray:
     """Angles wrapped to (−π, π]: a float for a scalar, an array for an array (no checks).
 
     The one angle-wrapping function of robokit (rotations, IK solutions, vehicle headings).

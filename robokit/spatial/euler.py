@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
 from robokit.spatial.so3 import check_rotation
@@ -56,7 +57,7 @@ def elementary_rotation(axis: int, angle: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def matrix_from_euler(angles, seq: str = "ZYX", extrinsic: bool = False) -> np.ndarray:
+def matrix_from_euler(angles: ArrayLike, seq: str = "ZYX", extrinsic: bool = False) -> np.ndarray:
     """Rotation matrix of Euler angles ``angles = (a, b, c)`` (rad) about the axes of ``seq``.
 
     Intrinsic: ``R₁(a) R₂(b) R₃(c)``; extrinsic: ``R₃(c) R₂(b) R₁(a)`` (see the module docstring).
@@ -72,7 +73,7 @@ def matrix_from_euler(angles, seq: str = "ZYX", extrinsic: bool = False) -> np.n
 
 
 
-def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int):
+def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int) -> tuple[float, float, float, bool]:
     """(a, b, c, gimbal) with R = R_i(a) R_j(b) R_k(c), intrinsic; at gimbal lock c = 0."""
     if i != k:  # Tait–Bryan
         eps = 1.0 if (j - i) % 3 == 1 else -1.0  # sign of the permutation (i, j, k)
@@ -103,7 +104,7 @@ def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int):
     return a, (0.0 if cb > 0 else math.pi), 0.0, True
 
 
-def euler_from_matrix(R, seq: str = "ZYX", extrinsic: bool = False, return_gimbal: bool = False):
+def euler_from_matrix(R: ArrayLike, seq: str = "ZYX", extrinsic: bool = False, return_gimbal: bool = False) -> np.ndarray | tuple[np.ndarray, bool]:
     """Euler angles ``(a, b, c)`` of a rotation matrix for the axis sequence ``seq``.
 
     The inverse of :func:`matrix_from_euler` with the ranges and the gimbal-lock choice of the

@@ -30,7 +30,10 @@ Twists are angular first, ``(ω, v)``. Example::
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["hat", "vee", "exp3", "log3", "exp6", "log6", "inv", "adjoint", "ad", "exp3_coefficients"]
 
@@ -52,7 +55,7 @@ def vee(W: np.ndarray) -> np.ndarray:
     return np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
 
 
-def exp3_coefficients(theta):
+def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
     """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` (Taylor series below θ = 1e-4); scalar or array."""
     theta = np.asarray(theta, dtype=float)
     if theta.ndim == 0:

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
+from numpy.typing import ArrayLike
 
 __all__ = ["CommonNormal", "common_normal"]
 
@@ -48,7 +49,7 @@ class CommonNormal:
     kind: str
 
 
-def _unit(v, name):
+def _unit(v: ArrayLike, name: str) -> np.ndarray:
     v = as_vector(v, name, 3)
     n = float(np.linalg.norm(v))
     if n < 1e-12:
@@ -56,7 +57,7 @@ def _unit(v, name):
     return v / n
 
 
-def common_normal(p1, z1, p2, z2, ref=None, tol: float = 1e-9) -> CommonNormal:
+def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, ref: ArrayLike | None = None, tol: float = 1e-9) -> CommonNormal:
     """The common normal of line 1 (point p1, direction z1) and line 2 (p2, z2); any length unit.
 
     p1, p2 : (3,) points on the lines; z1, z2 : (3,) directions (need not be unit; not zero);

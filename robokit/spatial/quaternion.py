@@ -12,6 +12,7 @@ import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
+from numpy.typing import ArrayLike
 
 __all__ = [
     "check_quaternion",
@@ -26,7 +27,7 @@ __all__ = [
 ]
 
 
-def check_quaternion(q, name: str = "q", tol: float = 1e-6) -> np.ndarray:
+def check_quaternion(q: ArrayLike, name: str = "q", tol: float = 1e-6) -> np.ndarray:
     """``q`` as a (4,) float array of unit norm (within ``tol``), renormalised; else ValueError."""
     q = as_vector(q, name, 4)
     n = float(np.linalg.norm(q))
@@ -35,7 +36,7 @@ def check_quaternion(q, name: str = "q", tol: float = 1e-6) -> np.ndarray:
     return q / n
 
 
-def quaternion_from_matrix(R) -> np.ndarray:
+def quaternion_from_matrix(R: ArrayLike) -> np.ndarray:
     """Unit quaternion (w, x, y, z), w ≥ 0, of a rotation matrix (Shepperd's method)."""
     R = check_rotation(R, "R")
     tr = R[0, 0] + R[1, 1] + R[2, 2]
@@ -57,7 +58,7 @@ def quaternion_from_matrix(R) -> np.ndarray:
     return -q if q[0] < 0 else q
 
 
-def matrix_from_quaternion(q) -> np.ndarray:
+def matrix_from_quaternion(q: ArrayLike) -> np.ndarray:
     """Rotation matrix of a unit quaternion (w, x, y, z)."""
     w, x, y, z = check_quaternion(q)
     return np.array(
@@ -69,7 +70,7 @@ def matrix_from_quaternion(q) -> np.ndarray:
     )
 
 
-def quaternion_from_axis_angle(axis, angle) -> np.ndarray:
+def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     """``(cos(θ/2), sin(θ/2) ω̂)`` for a rotation by ``angle`` (rad) about ``axis`` (normalised here)."""
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
@@ -79,7 +80,7 @@ def quaternion_from_axis_angle(axis, angle) -> np.ndarray:
     return np.r_[math.cos(0.5 * th), math.sin(0.5 * th) * axis / n]
 
 
-def axis_angle_from_quaternion(q):
+def axis_angle_from_quaternion(q: ArrayLike) -> tuple[np.ndarray, float]:
     """``(axis, angle)`` with angle ∈ [0, π] (q and −q give the same); axis = (1, 0, 0) for the identity."""
     q = check_quaternion(q)
     if q[0] < 0:
@@ -91,7 +92,7 @@ def axis_angle_from_quaternion(q):
     return q[1:] / s, angle
 
 
-def quaternion_multiply(q1, q2) -> np.ndarray:
+def quaternion_multiply(q1: ArrayLike, q2: ArrayLike) -> np.ndarray:
     """Hamilton product ``q1 ⊗ q2`` (the rotation q2 followed, in the fixed frame, by q1: R(q1) R(q2))."""
     w1, x1, y1, z1 = as_vector(q1, "q1", 4)
     w2, x2, y2, z2 = as_vector(q2, "q2", 4)
@@ -105,13 +106,13 @@ def quaternion_multiply(q1, q2) -> np.ndarray:
     )
 
 
-def quaternion_conjugate(q) -> np.ndarray:
+def quaternion_conjugate(q: ArrayLike) -> np.ndarray:
     """``(w, −x, −y, −z)``: the inverse rotation of a unit quaternion."""
     q = as_vector(q, "q", 4)
     return np.r_[q[0], -q[1:]]
 
 
-def quaternion_rotate(q, v) -> np.ndarray:
+def quaternion_rotate(q: ArrayLike, v: ArrayLike) -> np.ndarray:
     """The vector ``v`` (3,) rotated by the unit quaternion q: the vector part of ``q ⊗ (0, v) ⊗ q*``."""
     q = check_quaternion(q)
     v = as_vector(v, "v", 3)
@@ -120,7 +121,7 @@ def quaternion_rotate(q, v) -> np.ndarray:
     return v + w * t + np.cross(u, t)
 
 
-def quaternion_slerp(q0, q1, s) -> np.ndarray:
+def quaternion_slerp(q0: ArrayLike, q1: ArrayLike, s: ArrayLike) -> np.ndarray:
     """Spherical linear interpolation from q0 (s = 0) to q1 (s = 1) along the shorter arc.
 
     ``slerp = sin((1−s)Ω)/sin Ω q0 + sin(sΩ)/sin Ω q1`` with cos Ω = q0·q1 (q1 negated when

@@ -10,18 +10,19 @@ import math
 import numpy as np
 
 from robokit._arrays import as_array, as_matrix, as_vector
+from numpy.typing import ArrayLike
 
 __all__ = ["se2_from_pose", "pose_from_se2", "se2_compose", "se2_inverse", "se2_transform_points"]
 
 
-def se2_from_pose(pose) -> np.ndarray:
+def se2_from_pose(pose: ArrayLike) -> np.ndarray:
     """3×3 homogeneous matrix of a planar pose ``(x, y, θ)`` (m, m, rad)."""
     x, y, th = as_vector(pose, "pose", 3)
     c, s = math.cos(th), math.sin(th)
     return np.array([[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]])
 
 
-def _check_se2(T, name="T"):
+def _check_se2(T: ArrayLike, name: str = "T") -> np.ndarray:
     T = as_matrix(T, name, 3, 3)
     R = T[:2, :2]
     err = float(np.abs(R.T @ R - np.eye(2)).max()) + abs(float(np.linalg.det(R)) - 1.0)
@@ -30,14 +31,14 @@ def _check_se2(T, name="T"):
     return T
 
 
-def pose_from_se2(T) -> np.ndarray:
+def pose_from_se2(T: ArrayLike) -> np.ndarray:
     """``(x, y, θ)`` of a 3×3 SE(2) matrix, θ ∈ (−π, π]."""
     T = _check_se2(T)
     th = math.atan2(T[1, 0], T[0, 0])
     return np.array([T[0, 2], T[1, 2], math.pi if th == -math.pi else th])
 
 
-def se2_compose(*poses) -> np.ndarray:
+def se2_compose(*poses: ArrayLike) -> np.ndarray:
     """The pose ``p₁ ⊕ p₂ ⊕ …`` of planar poses (x, y, θ): the product of their matrices."""
     if not poses:
         raise ValueError("poses: expected at least one pose")
@@ -47,7 +48,7 @@ def se2_compose(*poses) -> np.ndarray:
     return pose_from_se2(T)
 
 
-def se2_inverse(pose) -> np.ndarray:
+def se2_inverse(pose: ArrayLike) -> np.ndarray:
     """The inverse pose ``⊖p``: ``(−Rᵀt, −θ)``."""
     x, y, th = as_vector(pose, "pose", 3)
     c, s = math.cos(th), math.sin(th)
@@ -56,7 +57,7 @@ def se2_inverse(pose) -> np.ndarray:
     return np.array([t[0], t[1], math.pi if w == -math.pi else w])
 
 
-def se2_transform_points(pose, points) -> np.ndarray:
+def se2_transform_points(pose: ArrayLike, points: ArrayLike) -> np.ndarray:
     """Points (2,) or (K, 2) given in the frame ``pose`` expressed in the reference frame: ``R p + t``."""
     x, y, th = as_vector(pose, "pose", 3)
     P = as_array(points, "points")

@@ -16,6 +16,7 @@ import numpy as np
 from robokit._arrays import as_matrix, as_vector
 from robokit.spatial import lie
 from robokit.spatial.so3 import SO3_TOLERANCE, _distance_so3, project_to_SO3
+from numpy.typing import ArrayLike
 
 __all__ = [
     "trans_inv",
@@ -35,7 +36,7 @@ __all__ = [
 ]
 
 
-def check_transform(T, name: str = "T", tol: float = SO3_TOLERANCE) -> np.ndarray:
+def check_transform(T: ArrayLike, name: str = "T", tol: float = SO3_TOLERANCE) -> np.ndarray:
     """Return ``T`` as a 4×4 float array, or raise ``ValueError`` if it is not in SE(3).
 
     The rotation block must be within ``tol`` of SO(3) and the last row ``[0, 0, 0, 1]``.
@@ -47,7 +48,7 @@ def check_transform(T, name: str = "T", tol: float = SO3_TOLERANCE) -> np.ndarra
     return T
 
 
-def Rp_to_trans(R, p) -> np.ndarray:
+def Rp_to_trans(R: ArrayLike, p: ArrayLike) -> np.ndarray:
     """The 4×4 pose ``[[R, p], [0, 1]]`` from a rotation R (3×3) and a position p (3,).
 
     Example: ``Rp_to_trans(np.eye(3), [1, 2, 3])`` is a pure translation.
@@ -62,19 +63,19 @@ def Rp_to_trans(R, p) -> np.ndarray:
     return T
 
 
-def trans_to_Rp(T):
+def trans_to_Rp(T: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Split a 4×4 pose into ``(R, p)`` (copies, 3×3 and (3,))."""
     T = check_transform(T, "T")
     return T[:3, :3].copy(), T[:3, 3].copy()
 
 
-def trans_inv(T) -> np.ndarray:
+def trans_inv(T: ArrayLike) -> np.ndarray:
     """Inverse of a pose: ``[[Rᵀ, −Rᵀp], [0, 1]]``."""
     T = check_transform(T, "T")
     return lie.inv(T)
 
 
-def vec_to_se3(V) -> np.ndarray:
+def vec_to_se3(V: ArrayLike) -> np.ndarray:
     """The 4×4 matrix ``[V] = [[[ω], v], [0, 0]]`` of a twist ``V = (ω, v)``."""
     V = as_vector(V, "V", 6)
     m = np.zeros((4, 4))
@@ -83,13 +84,13 @@ def vec_to_se3(V) -> np.ndarray:
     return m
 
 
-def se3_to_vec(se3mat) -> np.ndarray:
+def se3_to_vec(se3mat: ArrayLike) -> np.ndarray:
     """The twist ``(ω, v)`` of a 4×4 se(3) matrix (inverse of ``vec_to_se3``)."""
     m = as_matrix(se3mat, "se3mat", 4, 4)
     return np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]])
 
 
-def axis_ang_6(expc6):
+def axis_ang_6(expc6: ArrayLike) -> tuple[np.ndarray, float]:
     """Split exponential coordinates ``Sθ`` (6-vector) into the screw axis S and θ.
 
     θ = ‖ω‖, or ‖v‖ when ω = 0 (pure translation). Raises ``ValueError`` for the zero
@@ -104,7 +105,7 @@ def axis_ang_6(expc6):
     return V / theta, theta
 
 
-def matrix_exp_6(se3mat) -> np.ndarray:
+def matrix_exp_6(se3mat: ArrayLike) -> np.ndarray:
     """The pose ``exp([S]θ)`` of a 4×4 se(3) matrix (closed form, exact for pure translation).
 
     Example: ``matrix_exp_6(vec_to_se3([0, 0, 0, 1, 2, 3]))`` is the translation (1, 2, 3).
@@ -113,7 +114,7 @@ def matrix_exp_6(se3mat) -> np.ndarray:
     return lie.exp6(np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]]))
 
 
-def matrix_log_6(T) -> np.ndarray:
+def matrix_log_6(T: ArrayLike) -> np.ndarray:
     """The 4×4 se(3) matrix ``[S]θ`` with ``exp([S]θ) = T`` and rotation angle θ ∈ [0, π].
 
     A pure translation gives ``[[0, p], [0, 0]]``; θ = π follows ``matrix_log_3``'s axis
@@ -127,18 +128,18 @@ def matrix_log_6(T) -> np.ndarray:
     return m
 
 
-def adjoint(T) -> np.ndarray:
+def adjoint(T: ArrayLike) -> np.ndarray:
     """The 6×6 adjoint ``Ad_T = [[R, 0], [[p]R, R]]`` mapping twists: ``V_a = Ad_{T_ab} V_b``."""
     T = check_transform(T, "T")
     return lie.adjoint(T)
 
 
-def ad(V) -> np.ndarray:
+def ad(V: ArrayLike) -> np.ndarray:
     """The 6×6 ``ad_V = [[[ω], 0], [[v], [ω]]]`` of a twist ``V = (ω, v)`` (Lie bracket ``ad_V W = [V, W]``)."""
     return lie.ad(as_vector(V, "V", 6))
 
 
-def project_to_SE3(mat) -> np.ndarray:
+def project_to_SE3(mat: ArrayLike) -> np.ndarray:
     """The SE(3) matrix nearest to ``mat``: the rotation block projected to SO(3) (SVD), p kept."""
     M = as_matrix(mat, "mat", 4, 4)
     T = np.eye(4)
@@ -155,7 +156,7 @@ def _distance_se3(M: np.ndarray) -> float:
     return float(np.sqrt(d * d + last @ last))
 
 
-def distance_to_SE3(mat) -> float:
+def distance_to_SE3(mat: ArrayLike) -> float:
     """Distance of a 4×4 matrix from SE(3), as Modern Robotics defines it.
 
     With R the top-left block: if det R > 0, ``‖[[RᵀR, 0], [last row]] − I‖_F`` (the position
@@ -164,9 +165,9 @@ def distance_to_SE3(mat) -> float:
     return _distance_se3(as_matrix(mat, "mat", 4, 4))
 
 
-def test_if_SE3(mat) -> bool:
+def test_if_SE3(mat: ArrayLike) -> bool:
     """True if ``distance_to_SE3(mat) < 1e-3``."""
     return bool(distance_to_SE3(mat) < 1e-3)
 
 
-test_if_SE3.__test__ = False
+test_if_SE3.__test__ = False  # type: ignore[attr-defined]

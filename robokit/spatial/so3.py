@@ -17,6 +17,7 @@ import numpy as np
 from robokit._arrays import as_matrix, as_vector
 from robokit.spatial.lie import exp3, hat, log3
 from robokit.spatial.basics import wrap_angle
+from numpy.typing import ArrayLike
 
 __all__ = [
     "rot_inv",
@@ -38,7 +39,7 @@ __all__ = [
 SO3_TOLERANCE = 1e-6
 
 
-def check_rotation(R, name: str = "R", tol: float = SO3_TOLERANCE) -> np.ndarray:
+def check_rotation(R: ArrayLike, name: str = "R", tol: float = SO3_TOLERANCE) -> np.ndarray:
     """Return ``R`` as a 3×3 float array, or raise ``ValueError`` if it is not a rotation.
 
     The test is ``distance_to_SO3(R) <= tol`` (orthonormal columns and det +1).
@@ -50,7 +51,7 @@ def check_rotation(R, name: str = "R", tol: float = SO3_TOLERANCE) -> np.ndarray
     return R
 
 
-def rot_inv(R) -> np.ndarray:
+def rot_inv(R: ArrayLike) -> np.ndarray:
     """Inverse of a rotation matrix, ``Rᵀ`` (3×3).
 
     Example: ``rot_inv(Rz(θ))`` is ``Rz(−θ)``.
@@ -58,7 +59,7 @@ def rot_inv(R) -> np.ndarray:
     return check_rotation(R, "R").T.copy()
 
 
-def vec_to_so3(omg) -> np.ndarray:
+def vec_to_so3(omg: ArrayLike) -> np.ndarray:
     """The 3×3 skew-symmetric matrix ``[ω]`` of a 3-vector ω, so that ``[ω] x = ω × x``.
 
     Example: ``vec_to_so3([1, 2, 3])`` → ``[[0, -3, 2], [3, 0, -1], [-2, 1, 0]]``.
@@ -67,7 +68,7 @@ def vec_to_so3(omg) -> np.ndarray:
     return hat(w)
 
 
-def so3_to_vec(so3mat) -> np.ndarray:
+def so3_to_vec(so3mat: ArrayLike) -> np.ndarray:
     """The 3-vector ω of a 3×3 skew-symmetric matrix ``[ω]`` (the inverse of ``vec_to_so3``).
 
     Only the lower-left entries are read: ``(m[2,1], m[0,2], m[1,0])``, as in the seed library.
@@ -76,7 +77,7 @@ def so3_to_vec(so3mat) -> np.ndarray:
     return np.array([m[2, 1], m[0, 2], m[1, 0]])
 
 
-def axis_ang_3(expc3):
+def axis_ang_3(expc3: ArrayLike) -> tuple[np.ndarray, float]:
     """Split exponential coordinates ``ω̂θ`` (3-vector) into the unit axis ω̂ and the angle θ ≥ 0.
 
     Raises ``ValueError`` for the zero vector (no rotation has no axis).
@@ -89,7 +90,7 @@ def axis_ang_3(expc3):
     return v / theta, theta
 
 
-def matrix_exp_3(so3mat) -> np.ndarray:
+def matrix_exp_3(so3mat: ArrayLike) -> np.ndarray:
     """Rotation matrix ``exp([ω̂]θ)`` of a 3×3 skew matrix (Rodrigues' formula).
 
     Example: ``matrix_exp_3(vec_to_so3([0, 0, pi/2]))`` is the 90° rotation about z.
@@ -98,7 +99,7 @@ def matrix_exp_3(so3mat) -> np.ndarray:
     return exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
 
 
-def matrix_log_3(R) -> np.ndarray:
+def matrix_log_3(R: ArrayLike) -> np.ndarray:
     """The 3×3 skew matrix ``[ω̂]θ`` with ``exp([ω̂]θ) = R`` and θ ∈ [0, π].
 
     ``R = I`` gives the zero matrix. θ near π is computed from the symmetric part of R,
@@ -109,7 +110,7 @@ def matrix_log_3(R) -> np.ndarray:
     return hat(log3(R))
 
 
-def project_to_SO3(mat) -> np.ndarray:
+def project_to_SO3(mat: ArrayLike) -> np.ndarray:
     """The rotation matrix nearest to ``mat`` in the Frobenius norm (via SVD).
 
     With ``mat = U Σ Vᵀ`` the answer is ``U diag(1, 1, det(UVᵀ)) Vᵀ``: for an input with
@@ -125,7 +126,7 @@ def project_to_SO3(mat) -> np.ndarray:
 _I3 = np.eye(3)
 
 
-def _det3(M) -> float:
+def _det3(M: np.ndarray) -> float:
     (a, b, c), (d, e, f), (g, h, i) = M.tolist()
     return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
 
@@ -137,7 +138,7 @@ def _distance_so3(M: np.ndarray) -> float:
     return float(np.sqrt(E @ E))
 
 
-def distance_to_SO3(mat) -> float:
+def distance_to_SO3(mat: ArrayLike) -> float:
     """Distance of a 3×3 matrix from SO(3), as Modern Robotics defines it.
 
     ``‖matᵀ mat − I‖_F`` if det(mat) > 0, else the large value 1e9.
@@ -145,15 +146,15 @@ def distance_to_SO3(mat) -> float:
     return _distance_so3(as_matrix(mat, "mat", 3, 3))
 
 
-def test_if_SO3(mat) -> bool:
+def test_if_SO3(mat: ArrayLike) -> bool:
     """True if ``distance_to_SO3(mat) < 1e-3``."""
     return bool(distance_to_SO3(mat) < 1e-3)
 
 
-test_if_SO3.__test__ = False  # not a pytest test despite its name
+test_if_SO3.__test__ = False  # type: ignore[attr-defined]  # not a pytest test despite its name
 
 
-def euler_to_matrix(euler) -> np.ndarray:
+def euler_to_matrix(euler: ArrayLike) -> np.ndarray:
     """``Rz(α) Ry(β) Rx(γ)`` for ZYX Euler angles ``euler = [α, β, γ]`` (rad).
 
     Moving-axis reading: rotate by α about z, then β about the new y, then γ about the
@@ -170,7 +171,7 @@ def euler_to_matrix(euler) -> np.ndarray:
     )
 
 
-def matrix_to_euler(R) -> np.ndarray:
+def matrix_to_euler(R: ArrayLike) -> np.ndarray:
     """ZYX Euler angles ``[α, β, γ]`` with ``euler_to_matrix([α, β, γ]) = R``.
 
     Ranges: β ∈ [−π/2, π/2], α, γ ∈ (−π, π]. At gimbal lock (β = ±π/2, where only

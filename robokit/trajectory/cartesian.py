@@ -30,8 +30,10 @@ and joint-rate blow-up near a singularity (joint rates above ``qd_limit``: a
 from __future__ import annotations
 
 import warnings
+from typing import Any, Callable, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
@@ -54,7 +56,7 @@ def _relative_rotation_vector(R0: np.ndarray, R1: np.ndarray, shortest: bool) ->
     return w * (theta - 2.0 * np.pi) / theta
 
 
-def slerp_rotation(R0, R1, s, shortest: bool = True) -> np.ndarray:
+def slerp_rotation(R0: ArrayLike, R1: ArrayLike, s: ArrayLike, shortest: bool = True) -> np.ndarray:
     """Rotations on the fixed-axis path from ``R0`` (s = 0) to ``R1`` (s = 1): quaternion slerp.
 
     ``R(s) = R0 exp([k̂] s θ)`` with ``k̂θ = log(R0ᵀ R1)``, θ ∈ [0, π] (the quaternion
@@ -92,7 +94,7 @@ def slerp_rotation(R0, R1, s, shortest: bool = True) -> np.ndarray:
     return np.array([A @ lie.exp3(w * x) for x in sv])
 
 
-def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shortest: bool = True) -> Trajectory:
+def cartesian_line_trajectory(T_start: ArrayLike, T_end: ArrayLike, tf: float, t: ArrayLike | None = None, method: int | str = "quintic", shortest: bool = True) -> Trajectory:
     """Straight-line tool motion with slerp orientation, timed by a time scaling (Lecture 3).
 
     Parameters
@@ -153,7 +155,7 @@ def cartesian_line_trajectory(T_start, T_end, tf, t=None, method="quintic", shor
     return Trajectory(ts, q, qd, qdd, poses=poses, name="cartesian_line", labels=labels, info=info)
 
 
-def _ik_answer(ans, q_prev):
+def _ik_answer(ans: Any, q_prev: np.ndarray | None) -> tuple[np.ndarray | None, bool]:
     """(q, success) from an IK callable's answer: an object with ``.q``/``.success``, a
     ``(q, success)`` pair, or a list of candidate solutions (arrays or objects with ``.q``;
     those flagged ``within_limits=False`` are skipped; the nearest to ``q_prev`` is taken)."""
@@ -174,7 +176,7 @@ def _ik_answer(ans, q_prev):
     )
 
 
-def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_only: bool = False, qd_limit=None, tol: float = 1e-6) -> Trajectory:
+def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, np.ndarray | None], Any] | None = None, q0: ArrayLike | None = None, *, frame: str | None = None, position_only: bool = False, qd_limit: ArrayLike | None = None, tol: float = 1e-6) -> Trajectory:
     """Joint-space trajectory following a Cartesian one, by IK at every pose (Lecture 3).
 
     Each pose of ``traj.poses`` is solved with ``ik``, starting from the previous solution
@@ -230,7 +232,7 @@ def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_on
     if ik is None:
         from robokit.ik.numeric import solve_ik
 
-        def ik(T, q_guess):
+        def ik(T: np.ndarray, q_guess: np.ndarray | None) -> Any:
             res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only, max_restarts=0 if q_guess is not None else 30)
             if not res.success and q_guess is not None:
                 res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only)
@@ -268,10 +270,10 @@ def cartesian_to_joint(robot, traj, ik=None, q0=None, *, frame=None, position_on
         )
     t = np.asarray(traj.t, dtype=float)
     if K >= 3:
-        qd = np.gradient(q, t, axis=0, edge_order=2)
+        qd = cast(np.ndarray, np.gradient(q, t, axis=0, edge_order=2))
         qdd = np.gradient(qd, t, axis=0, edge_order=2)
     elif K == 2:
-        qd = np.gradient(q, t, axis=0)
+        qd = cast(np.ndarray, np.gradient(q, t, axis=0))
         qdd = np.zeros_like(q)
     else:
         qd = np.zeros_like(q)

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from numbers import Integral
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
 
@@ -94,7 +95,7 @@ class Trajectory:
 # ----------------------------------------------------------------------------- helpers
 
 
-def as_axes(x, name: str, n: int | None = None) -> np.ndarray:
+def as_axes(x: ArrayLike, name: str, n: int | None = None) -> np.ndarray:
     """A scalar or 1-D array as a float vector of ``n`` axes (a scalar gives one axis, or
     is broadcast to ``n`` axes when ``n`` is given)."""
     arr = as_array(x, name)
@@ -107,12 +108,12 @@ def as_axes(x, name: str, n: int | None = None) -> np.ndarray:
     return arr.copy()
 
 
-def optional_axes(x, name: str, n: int) -> np.ndarray:
+def optional_axes(x: ArrayLike | None, name: str, n: int) -> np.ndarray:
     """``x`` as an ``n``-vector (scalars broadcast), or zeros when ``x`` is None."""
     return np.zeros(n) if x is None else as_axes(x, name, n)
 
 
-def positive_duration(tf, name: str = "tf") -> float:
+def positive_duration(tf: ArrayLike, name: str = "tf") -> float:
     """A finite duration > 0, else ``ValueError`` naming the argument."""
     v = as_scalar(tf, name)
     if not v > 0.0:
@@ -120,7 +121,7 @@ def positive_duration(tf, name: str = "tf") -> float:
     return v
 
 
-def sample_times(t, t_start: float, t_end: float, name: str = "t") -> np.ndarray:
+def sample_times(t: ArrayLike | None, t_start: float, t_end: float, name: str = "t") -> np.ndarray:
     """The sample grid of a generator on ``[t_start, t_end]``.
 
     ``t`` is None (``DEFAULT_SAMPLES`` equally spaced samples, both ends included), an
@@ -147,7 +148,7 @@ def sample_times(t, t_start: float, t_end: float, name: str = "t") -> np.ndarray
     return np.clip(arr, t_start, t_end)
 
 
-def increasing_times(times, name: str, m: int | None = None) -> np.ndarray:
+def increasing_times(times: ArrayLike, name: str, m: int | None = None) -> np.ndarray:
     """A 1-D array of strictly increasing times (length ``m`` if given)."""
     arr = as_array(times, name, (None,))
     if m is not None and arr.shape[0] != m:
@@ -161,7 +162,7 @@ def increasing_times(times, name: str, m: int | None = None) -> np.ndarray:
     return arr
 
 
-def viapoint_matrix(viapoints, name: str, min_rows: int = 2) -> np.ndarray:
+def viapoint_matrix(viapoints: ArrayLike, name: str, min_rows: int = 2) -> np.ndarray:
     """Via points as an (m, n) float matrix, one row per point (m ≥ ``min_rows``)."""
     arr = as_array(viapoints, name)
     if arr.ndim != 2:
@@ -174,7 +175,7 @@ def viapoint_matrix(viapoints, name: str, min_rows: int = 2) -> np.ndarray:
     return arr.copy()
 
 
-def eval_piecewise(breaks: np.ndarray, coeffs: np.ndarray, t: np.ndarray):
+def eval_piecewise(breaks: np.ndarray, coeffs: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate a piecewise polynomial and its first two derivatives.
 
     breaks : (m+1,) increasing segment boundaries.

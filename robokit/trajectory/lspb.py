@@ -27,6 +27,7 @@ but not passed), the first and last blends lie wholly inside their segments::
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
 from robokit.trajectory.core import (
@@ -43,7 +44,7 @@ __all__ = ["lspb_trajectory", "lspb_via_trajectory"]
 _REL = 1e-12  # relative slack for the feasibility equalities (triangular profile allowed)
 
 
-def _axis_pieces(breaks: list[float], coeffs: list[list[float]]):
+def _axis_pieces(breaks: list[float], coeffs: list[list[float]]) -> tuple[np.ndarray, np.ndarray]:
     """Drop zero-length pieces; return arrays for eval_piecewise (one axis)."""
     b = [breaks[0]]
     c = []
@@ -57,7 +58,7 @@ def _axis_pieces(breaks: list[float], coeffs: list[list[float]]):
     return np.array(b), np.array(c)[:, :, None]
 
 
-def _sample_axes(pieces, ts):
+def _sample_axes(pieces: list[tuple[np.ndarray, np.ndarray]], ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     n = len(pieces)
     q = np.empty((ts.size, n))
     qd = np.empty_like(q)
@@ -67,7 +68,7 @@ def _sample_axes(pieces, ts):
     return q, qd, qdd
 
 
-def lspb_trajectory(q0, qf, tf, t=None, *, blend_time=None, acceleration=None, max_velocity=None) -> Trajectory:
+def lspb_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None = None, *, blend_time: ArrayLike | None = None, acceleration: ArrayLike | None = None, max_velocity: ArrayLike | None = None) -> Trajectory:
     """A trapezoidal-velocity (LSPB) move from ``q0`` to ``qf`` in ``tf`` seconds (Lecture 3).
 
     Give at most one of ``blend_time``, ``acceleration`` or ``max_velocity``; with none,
@@ -174,7 +175,7 @@ def _sgn(x: float) -> float:
     return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
 
 
-def lspb_via_trajectory(viapoints, durations, acceleration, t=None) -> Trajectory:
+def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration: ArrayLike, t: ArrayLike | None = None) -> Trajectory:
     """Multi-segment LSPB through via points, the lecture's scheme (Craig §7.3), sampled.
 
     Interior via points are *approached, not passed*: the blend around each one is
@@ -310,11 +311,11 @@ def lspb_via_trajectory(viapoints, durations, acceleration, t=None) -> Trajector
     return Trajectory(ts, q, qd, qdd, name="lspb_via", info=info)
 
 
-def _via_pieces(th, times, tb, acc, vel):
+def _via_pieces(th: np.ndarray, times: np.ndarray, tb: np.ndarray, acc: np.ndarray, vel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Pieces (breaks, coefficients) of one axis of the multi-segment LSPB."""
     m = th.shape[0]
 
-    def line(k, tt):  # position of the linear segment k (k → k+1) at time tt
+    def line(k: int, tt: float) -> float:  # position of the linear segment k (k → k+1) at time tt
         if k == 0 and m > 2:
             return th[1] + vel[0] * (tt - times[1])  # the first line passes θ2 at T2
         if k == 0:

@@ -25,8 +25,10 @@ the robot already is and is not repeated), the last sample is the final point, a
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
 from robokit.trajectory.core import Trajectory, as_axes
@@ -34,7 +36,7 @@ from robokit.trajectory.core import Trajectory, as_axes
 __all__ = ["ms_trajectory"]
 
 
-def _quintic_blend(p0, p1, v0, v1, T, tau):
+def _quintic_blend(p0: np.ndarray, p1: np.ndarray, v0: np.ndarray, v1: np.ndarray, T: float, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Quintic from (p0, v0) to (p1, v1) over [0, T] with zero end accelerations, at times tau.
 
     Returns q, qd, qdd, each (len(tau), n).
@@ -52,7 +54,7 @@ def _quintic_blend(p0, p1, v0, v1, T, tau):
     return q, qd, qdd
 
 
-def _per_axis(x, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
+def _per_axis(x: ArrayLike, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
     arr = as_array(x, name)
     if arr.ndim == 0 and allow_scalar:
         return np.full(n, float(arr))
@@ -61,13 +63,13 @@ def _per_axis(x, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
     return arr.copy()
 
 
-def _empty(x) -> bool:
+def _empty(x: Any) -> bool:
     """The seed's idiom ``qdmax=[]``: an empty list/array means "not given"."""
     return x is not None and not isinstance(x, str) and np.size(x) == 0
 
 
-def ms_trajectory(viapoint=None, dt=None, tacc=None, qdmax=None, tsegment=None, q0=None, qd0=None, qdf=None,
-                  verbose=False, *, viapoints=None) -> Trajectory:
+def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, tacc: ArrayLike | None = None, qdmax: ArrayLike | None = None, tsegment: ArrayLike | None = None, q0: ArrayLike | None = None, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None,
+                  verbose: bool = False, *, viapoints: ArrayLike | None = None) -> Trajectory:
     """Multi-segment multi-axis trajectory with blends (seed 004 §5; Corke's ``mstraj``).
 
     Parameters
@@ -224,7 +226,7 @@ def ms_trajectory(viapoint=None, dt=None, tacc=None, qdmax=None, tsegment=None, 
                     f"(tacc = {tacc_arr[seg - 1]:g} s at dt = {dt:g} s): it has no linear part before the next blend"
                 )
             T_b = nb * dt
-            tau = np.arange(1, nb + 1) * dt
+            tau: np.ndarray = np.arange(1, nb + 1) * dt
             qb, qdb, qddb = _quintic_blend(blend_from, q_prev + tacc2 * qd, qd_prev, qd, T_b, tau)
             chunks_q.append(qb)
             chunks_qd.append(qdb)

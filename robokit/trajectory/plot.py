@@ -6,20 +6,26 @@ so nothing pops up and nothing is drawn twice in a notebook) and return it; call
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+from typing import Sequence
+
 import numpy as np
 
 from robokit.trajectory.core import Trajectory
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 __all__ = ["plot_trajectory", "plot_path_3d"]
 
 
-def _figure(figsize):
+def _figure(figsize: tuple[float, float]) -> Figure:
     from matplotlib.figure import Figure
 
     return Figure(figsize=figsize, layout="constrained")
 
 
-def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels=None, show_via: bool = True, figsize=(8.0, 7.0)):
+def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Sequence[str] | None = None, show_via: bool = True, figsize: tuple[float, float] = (8.0, 7.0)) -> Figure:
     """Position, velocity and acceleration against time, one panel each, all axes overlaid.
 
     Parameters
@@ -76,7 +82,7 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels=None, 
     return fig
 
 
-def plot_path_3d(traj, *, frames: int = 5, axis_length: float | None = None, title: str | None = None, figsize=(6.0, 6.0)):
+def plot_path_3d(traj: Trajectory, *, frames: int = 5, axis_length: float | None = None, title: str | None = None, figsize: tuple[float, float] = (6.0, 6.0)) -> Figure:
     """The 3-D path of a Cartesian trajectory, with a few orientation triads along it.
 
     Parameters
@@ -120,7 +126,7 @@ def plot_path_3d(traj, *, frames: int = 5, axis_length: float | None = None, tit
     ax.plot(p[:, 0], p[:, 1], p[:, 2], "k-", lw=1.5, label="path")
     ax.plot(*p[0], "go", label="start")
     ax.plot(*p[-1], "rs", label="end")
-    idx = np.unique(np.linspace(0, len(P) - 1, max(int(frames), 0)).round().astype(int)) if frames > 0 else []
+    idx: np.ndarray | list[int] = np.unique(np.linspace(0, len(P) - 1, max(int(frames), 0)).round().astype(int)) if frames > 0 else []
     for i in idx:
         for k, c in enumerate("rgb"):
             a = P[i, :3, k] * L

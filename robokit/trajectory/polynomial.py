@@ -35,6 +35,7 @@ All coefficients are returned ascending (``a0, a1, …``), per axis in the last 
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.trajectory.core import (
     Trajectory,
@@ -57,13 +58,13 @@ __all__ = [
 ]
 
 
-def _ends(q0, qf):
+def _ends(q0: ArrayLike, qf: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     a = as_axes(q0, "q0")
     b = as_axes(qf, "qf", a.shape[0])
     return a, b
 
 
-def cubic_coefficients(q0, qf, tf, qd0=None, qdf=None) -> np.ndarray:
+def cubic_coefficients(q0: ArrayLike, qf: ArrayLike, tf: float, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None) -> np.ndarray:
     """Coefficients of the cubic with given end positions and velocities (seed 004 §5).
 
     Parameters
@@ -94,7 +95,7 @@ def cubic_coefficients(q0, qf, tf, qd0=None, qdf=None) -> np.ndarray:
     return np.array([a, v0, (3.0 * d - (2.0 * v0 + v1) * T) / T**2, (-2.0 * d + (v0 + v1) * T) / T**3])
 
 
-def quintic_coefficients(q0, qf, tf, qd0=None, qdf=None, qdd0=None, qddf=None) -> np.ndarray:
+def quintic_coefficients(q0: ArrayLike, qf: ArrayLike, tf: float, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None, qdd0: ArrayLike | None = None, qddf: ArrayLike | None = None) -> np.ndarray:
     """Coefficients of the quintic with given end positions, velocities and accelerations.
 
     Parameters
@@ -137,13 +138,13 @@ def quintic_coefficients(q0, qf, tf, qd0=None, qdf=None, qdd0=None, qddf=None) -
     )
 
 
-def _single(name: str, coeffs: np.ndarray, T: float, t) -> Trajectory:
+def _single(name: str, coeffs: np.ndarray, T: float, t: ArrayLike | None) -> Trajectory:
     ts = sample_times(t, 0.0, T)
     q, qd, qdd = eval_piecewise(np.array([0.0, T]), coeffs[None], ts)
     return Trajectory(ts, q, qd, qdd, name=name, info={"coefficients": coeffs, "tf": T})
 
 
-def cubic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None) -> Trajectory:
+def cubic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None = None, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None) -> Trajectory:
     """A cubic from ``q0`` to ``qf`` in ``tf`` seconds, sampled with velocity and acceleration.
 
     Parameters
@@ -174,7 +175,7 @@ def cubic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None) -> Trajectory:
     return _single("cubic", cubic_coefficients(q0, qf, T, qd0, qdf), T, t)
 
 
-def quintic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None, qdd0=None, qddf=None) -> Trajectory:
+def quintic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None = None, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None, qdd0: ArrayLike | None = None, qddf: ArrayLike | None = None) -> Trajectory:
     """A quintic from ``q0`` to ``qf`` in ``tf`` seconds with given end velocities and accelerations.
 
     Arguments as :func:`cubic_trajectory`, plus ``qdd0``, ``qddf`` (default 0).
@@ -190,7 +191,7 @@ def quintic_trajectory(q0, qf, tf, t=None, qd0=None, qdf=None, qdd0=None, qddf=N
     return _single("quintic", quintic_coefficients(q0, qf, T, qd0, qdf, qdd0, qddf), T, t)
 
 
-def via_point_velocities(viapoints, times, method: str = "heuristic", qd0=None, qdf=None) -> np.ndarray:
+def via_point_velocities(viapoints: ArrayLike, times: ArrayLike, method: str = "heuristic", qd0: ArrayLike | None = None, qdf: ArrayLike | None = None) -> np.ndarray:
     """Velocities at the via points for piecewise cubics (Lecture 3, methods 2 and 3).
 
     Parameters
@@ -251,7 +252,7 @@ def via_point_velocities(viapoints, times, method: str = "heuristic", qd0=None, 
     return v
 
 
-def cubic_via_trajectory(viapoints, times, t=None, velocities="continuous", qd0=None, qdf=None) -> Trajectory:
+def cubic_via_trajectory(viapoints: ArrayLike, times: ArrayLike, t: ArrayLike | None = None, velocities: str | ArrayLike = "continuous", qd0: ArrayLike | None = None, qdf: ArrayLike | None = None) -> Trajectory:
     """Piecewise cubics through via points, sampled with velocity and acceleration (Lecture 3).
 
     Every point is passed exactly at its time; velocities are continuous (C1); with

@@ -30,7 +30,10 @@ as ``qdmax``) and ``angular_speed`` (rad/s about the segment's axis: ``ṡᵢ �
 """
 from __future__ import annotations
 
+from typing import Any, Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
 from robokit.spatial.se3 import check_transform
@@ -41,7 +44,7 @@ from robokit.spatial import lie
 __all__ = ["through_viapoints", "ms_through_trajectory", "ms_cartesian_trajectory"]
 
 
-def through_viapoints(viapoint, through=None, distance=0.25):
+def through_viapoints(viapoint: ArrayLike, through: Sequence[int] | None = None, distance: float = 0.25) -> tuple[np.ndarray, list[tuple[float, ...]]]:
     """Via points with every through point replaced by the two pseudo via points around it.
 
     viapoint : (M, n) points (first row the start, last the goal); through : indices of the interior
@@ -90,7 +93,7 @@ def through_viapoints(viapoint, through=None, distance=0.25):
     return np.array(out), [tuple(f) for f in frac]
 
 
-def ms_through_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, through=None, distance=0.25, **kwargs) -> Trajectory:
+def ms_through_trajectory(viapoint: ArrayLike, dt: float, tacc: ArrayLike, qdmax: ArrayLike | None = None, tsegment: ArrayLike | None = None, through: Sequence[int] | None = None, distance: float = 0.25, **kwargs: Any) -> Trajectory:
     """:func:`ms_trajectory` whose path passes exactly through the chosen via points (Lecture 3).
 
     viapoint (M, n), dt, tacc, qdmax/tsegment as :func:`ms_trajectory` (``tsegment`` has one time per
@@ -139,7 +142,7 @@ def ms_through_trajectory(viapoint, dt, tacc, qdmax=None, tsegment=None, through
     return Trajectory(tr.t, tr.q, tr.qd, tr.qdd, name="ms_through_trajectory", labels=tr.labels, info=info)
 
 
-def ms_cartesian_trajectory(poses, dt, tacc, speed=None, angular_speed=None, tsegment=None, verbose=False) -> Trajectory:
+def ms_cartesian_trajectory(poses: ArrayLike, dt: float, tacc: ArrayLike, speed: ArrayLike | None = None, angular_speed: float | None = None, tsegment: ArrayLike | None = None, verbose: bool = False) -> Trajectory:
     """Multi-segment Cartesian tool path through ``poses`` with blends in position and orientation.
 
     poses : (M, 4, 4) via poses ``T_world_tool`` (first the start, last the goal); dt : sample time

@@ -20,6 +20,7 @@ from __future__ import annotations
 from numbers import Integral
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
@@ -36,12 +37,12 @@ __all__ = [
 ]
 
 
-def _times(t):
+def _times(t: ArrayLike) -> tuple[np.ndarray, bool]:
     arr = as_array(t, "t")
     return arr, arr.ndim == 0
 
 
-def cubic_time_scaling(Tf, t):
+def cubic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
     """Cubic time scaling s(t) = 3(t/Tf)² − 2(t/Tf)³ (zero velocity at t = 0 and Tf).
 
     Parameters
@@ -67,7 +68,7 @@ def cubic_time_scaling(Tf, t):
     return float(s) if scalar else s
 
 
-def quintic_time_scaling(Tf, t):
+def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
     """Quintic time scaling s(t) = 10(t/Tf)³ − 15(t/Tf)⁴ + 6(t/Tf)⁵ (zero end velocity and acceleration).
 
     Arguments and return as :func:`cubic_time_scaling`.
@@ -84,7 +85,7 @@ def quintic_time_scaling(Tf, t):
     return float(s) if scalar else s
 
 
-def _method_name(method) -> str:
+def _method_name(method: int | str) -> str:
     if isinstance(method, bool):
         raise ValueError(f"method: expected 3 (cubic) or 5 (quintic), got {method!r}")
     if isinstance(method, Integral) or (isinstance(method, float) and float(method).is_integer()):
@@ -97,7 +98,7 @@ def _method_name(method) -> str:
     raise ValueError(f"method: expected 3 (cubic) or 5 (quintic) (or 'cubic', 'quintic', 'lspb'), got {method!r}")
 
 
-def time_scaling(method, Tf, t):
+def time_scaling(method: int | str, Tf: float, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A time scaling with its derivatives: ``(s, ṡ, s̈)`` at times ``t``.
 
     Parameters
@@ -141,7 +142,7 @@ def time_scaling(method, Tf, t):
     return s, sd, sdd
 
 
-def _grid(Tf, N, method):
+def _grid(Tf: float, N: int, method: int | str) -> np.ndarray:
     kind = _method_name(method)
     if kind == "lspb":
         raise ValueError("method: expected 3 (cubic) or 5 (quintic), got 'lspb'")
@@ -154,7 +155,7 @@ def _grid(Tf, N, method):
     return s
 
 
-def joint_trajectory(thetastart, thetaend, Tf, N, method):
+def joint_trajectory(thetastart: ArrayLike, thetaend: ArrayLike, Tf: float, N: int, method: int | str) -> np.ndarray:
     """Straight-line joint-space trajectory with cubic or quintic time scaling (seed 004 §5).
 
     Parameters
@@ -183,7 +184,7 @@ def joint_trajectory(thetastart, thetaend, Tf, N, method):
     return a + s[:, None] * (b - a)
 
 
-def screw_trajectory(Xstart, Xend, Tf, N, method):
+def screw_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, method: int | str) -> list[np.ndarray]:
     """Trajectory along the constant screw motion from ``Xstart`` to ``Xend`` (seed 004 §5).
 
     X(s) = X_start exp(log(X_start⁻¹ X_end) s), s from the cubic (3) or quintic (5) time scaling.
@@ -218,7 +219,7 @@ def screw_trajectory(Xstart, Xend, Tf, N, method):
     return out
 
 
-def cartesian_trajectory(Xstart, Xend, Tf, N, method):
+def cartesian_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, method: int | str) -> list[np.ndarray]:
     """Straight-line position with fixed-axis rotation between two poses (seed 004 §5).
 
     p(s) = p_start + s (p_end − p_start),  R(s) = R_start exp(log(R_startᵀ R_end) s): the

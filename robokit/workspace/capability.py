@@ -44,10 +44,16 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, Callable, TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 __all__ = ["CapabilityMap", "capability_map"]
 
@@ -110,12 +116,12 @@ class CapabilityMap:
         np.savez(buf, **arrays)
         return buf.getvalue()
 
-    def save(self, path, include_robot: bool = False) -> Path:
+    def save(self, path: str | os.PathLike[str], include_robot: bool = False) -> Path:
         """Write the map to ``path`` (``.npz``) atomically; see :meth:`to_bytes`."""
         return atomic_write(path, self.to_bytes(include_robot))
 
     @classmethod
-    def load(cls, path) -> "CapabilityMap":
+    def load(cls, path: str | os.PathLike[str]) -> "CapabilityMap":
         """Read a map written by :meth:`save` or ``robokit workspace``; ValueError naming the file if it is not one."""
         p = Path(path)
         if not p.is_file():
@@ -137,7 +143,7 @@ class CapabilityMap:
 
 
 # ----------------------------------------------------------------------------- robot descriptions
-def _describe(robot_arg, robot) -> tuple:
+def _describe(robot_arg: Any, robot: Robot) -> tuple:
     """A picklable description the workers rebuild the robot from (never a Pinocchio object)."""
     from robokit.description.dh import DHTable
 
@@ -154,7 +160,7 @@ def _describe(robot_arg, robot) -> tuple:
                      "pass a shipped model name, a .yaml/.urdf path, an example-robot-data name or a DHTable")
 
 
-def _description_digest(desc) -> str:
+def _description_digest(desc: tuple) -> str:
     h = hashlib.sha256()
     if desc[0] == "dh":
         h.update(desc[1].to_yaml_str(angle_unit="rad").encode())
@@ -169,7 +175,7 @@ def _description_digest(desc) -> str:
 _WORKER_CACHE: dict = {}
 
 
-def _backend_for(desc, restarts):
+def _backend_for(desc: tuple, restarts: int) -> Any:
     """The robot and IK back end of ``desc``, built once per process."""
     key = (_description_digest(desc), restarts)
     hit = _WORKER_CACHE.get(key)
@@ -182,7 +188,7 @@ def _backend_for(desc, restarts):
     return hit
 
 
-def _chunk_counts(desc, centres, orientations, restarts, seed, chunk) -> np.ndarray:
+def _chunk_counts(desc: tuple, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -199,7 +205,7 @@ def _chunk_counts(desc, centres, orientations, restarts, seed, chunk) -> np.ndar
 class _Store:
     """A folder of finished chunks: ``params.json`` and ``chunk_00000.npz`` … (see the module docstring)."""
 
-    def __init__(self, path, fingerprint: str, params: dict):
+    def __init__(self, path: str | os.PathLike[str], fingerprint: str, params: dict) -> None:
         self.path = Path(path)
         self.fp = fingerprint
         meta = self.path / "params.json"
@@ -222,7 +228,7 @@ class _Store:
     def _file(self, chunk: int) -> Path:
         return self.path / f"chunk_{chunk:05d}.npz"
 
-    def read(self, chunk: int, centres) -> np.ndarray | None:
+    def read(self, chunk: int, centres: np.ndarray) -> np.ndarray | None:
         f = self._file(chunk)
         if not f.is_file():
             return None
@@ -234,7 +240,7 @@ class _Store:
         except (OSError, ValueError, KeyError):
             return None  # damaged: recompute
 
-    def write(self, chunk: int, centres, counts) -> None:
+    def write(self, chunk: int, centres: np.ndarray, counts: np.ndarray) -> None:
         buf = io.BytesIO()
         np.savez(buf, counts=counts, centres=centres, fingerprint=np.str_(self.fp))
         atomic_write(self._file(chunk), buf.getvalue())
@@ -244,7 +250,7 @@ class _Store:
 
 
 # ----------------------------------------------------------------------------- the map
-def _check_resolution(resolution) -> float:
+def _check_resolution(resolution: object) -> float:
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating)):
         raise TypeError(f"resolution: expected a number of metres, got {type(resolution).__name__}")
     r = float(resolution)
@@ -253,7 +259,7 @@ def _check_resolution(resolution) -> float:
     return r
 
 
-def _orientation_set(orientations, chain):
+def _orientation_set(orientations: int | ArrayLike, chain: Any) -> np.ndarray:
     from robokit.workspace.orientations import planar_rotations, super_fibonacci_rotations
 
     if isinstance(orientations, (int, np.integer)) and not isinstance(orientations, bool):
@@ -274,7 +280,7 @@ def _orientation_set(orientations, chain):
     return np.ascontiguousarray(R)
 
 
-def _progress(total: int, enabled):
+def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
     """A rich progress bar on stderr counting chunks (a no-op when stderr is not a terminal)."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
@@ -285,7 +291,7 @@ def _progress(total: int, enabled):
                     TimeRemainingColumn(), console=console, disable=not show, transient=False), total
 
 
-def capability_map(robot, resolution: float, orientations=100, client=None, *, store=None,
+def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
                    restarts: int | None = None, progress: bool | None = None) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
@@ -372,7 +378,7 @@ def capability_map(robot, resolution: float, orientations=100, client=None, *, s
                                int(seed), int(restarts), progress, t0)
 
 
-def _capability_map(rob, desc, kind, chain, R, res, client, store, chunk_size, samples, seed, restarts, progress, t0):
+def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -407,7 +413,7 @@ def _capability_map(rob, desc, kind, chain, R, res, client, store, chunk_size, s
 
     computed = [0]
 
-    def finish(c, result):
+    def finish(c: int, result: np.ndarray) -> None:
         sl = slice(c * chunk_size, min(M, (c + 1) * chunk_size))
         counts[sl] = result
         computed[0] += len(result)
@@ -438,8 +444,10 @@ def _capability_map(rob, desc, kind, chain, R, res, client, store, chunk_size, s
 class _Cluster:
     """The Dask client for a call: None (serial), the caller's Client, or one made here (closed on exit)."""
 
-    def __init__(self, client):
-        self.client, self.cluster, self.own = None, None, False
+    def __init__(self, client: Any) -> None:
+        self.client: Any = None
+        self.cluster: Any = None
+        self.own = False
         if isinstance(client, str) and client in _SERIAL:
             return
         import logging
@@ -458,22 +466,22 @@ class _Cluster:
         else:
             self.client = client
 
-    def __enter__(self):
+    def __enter__(self) -> _Cluster:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         if self.own:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
 
 
-def _first_line(exc) -> str:
+def _first_line(exc: BaseException) -> str:
     text = str(exc).strip()
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client, todo, centres_of, desc, R, restarts, seed, finish, advance, fingerprint) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: tuple, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     from distributed import as_completed
 
@@ -483,7 +491,7 @@ def _run_dask(client, todo, centres_of, desc, R, restarts, seed, finish, advance
     ac = as_completed()
     futures = {}
 
-    def submit():
+    def submit() -> None:
         c = pending.pop(0)
         f = client.submit(_chunk_counts, desc, centres_of(c), R, restarts, seed, c,
                           key=f"capability-{fingerprint[:16]}-{c:05d}")
@@ -502,7 +510,7 @@ def _run_dask(client, todo, centres_of, desc, R, restarts, seed, finish, advance
     return workers
 
 
-def workspace_cli(robot, output, resolution, orientations: int = 100, scheduler: str | None = None) -> int:
+def workspace_cli(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100, scheduler: str | None = None) -> int:
     """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written

@@ -16,7 +16,14 @@ box (at least 20 000, at most 4 000 000).
 """
 from __future__ import annotations
 
+from typing import Any, Callable, TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.poe import PoEParams
+    from robokit.description.robot import Robot
 
 __all__ = ["reachable_voxels"]
 
@@ -24,7 +31,7 @@ _BATCH = 8192
 _MAX_BOX_VOXELS = 200_000_000
 
 
-def _exp_batch(S, theta):
+def _exp_batch(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
     """(B, 4, 4) exponentials exp([S] θ) of one screw S (6,) (angular first) at angles θ (B,)."""
     w, v = S[:3], S[3:]
     B = len(theta)
@@ -43,7 +50,7 @@ def _exp_batch(S, theta):
     return E
 
 
-def tool_positions(poe, Q) -> np.ndarray:
+def tool_positions(poe: PoEParams, Q: np.ndarray) -> np.ndarray:
     """(B, 3) tool positions in the base frame at joint angles Q (B, n): ``e^{[S₁]θ₁}⋯e^{[Sₙ]θₙ} M``."""
     S = np.asarray(poe.Slist, dtype=float)
     T = np.broadcast_to(np.asarray(poe.M, dtype=float), (len(Q), 4, 4))
@@ -52,14 +59,14 @@ def tool_positions(poe, Q) -> np.ndarray:
     return T[:, :3, 3]
 
 
-def _ranges(qlim):
+def _ranges(qlim: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     qlim = np.asarray(qlim, dtype=float)
     lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
     hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
     return lo, hi
 
 
-def reach_ball(poe, qlim):
+def reach_ball(poe: PoEParams, qlim: ArrayLike) -> tuple[np.ndarray, float]:
     """A ball (centre (3,), radius) containing every tool position: rotations keep lengths, so
     ``|p − r₁| ≤ Σ|r_{i+1} − r_i|`` over points r_i on the revolute axes (the tool point last),
     plus the travel of each prismatic joint."""
@@ -77,13 +84,13 @@ def reach_ball(poe, qlim):
     return P[0], float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum() + travel)
 
 
-def _sampler(qlim, seed):
+def _sampler(qlim: ArrayLike, seed: int | np.random.Generator | None) -> Callable[[int], np.ndarray]:
     lo, hi = _ranges(qlim)
     rng = np.random.default_rng(seed)
     return lambda m: rng.uniform(lo, hi, size=(m, len(lo)))
 
 
-def reachable_voxels(robot, resolution: float, *, samples: int | None = None, seed: int = 0, chain=None):
+def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = None, seed: int = 0, chain: Any = None) -> tuple[np.ndarray, int]:
     """Integer lattice keys of the voxels the pre-pass marks (see the module docstring).
 
     Parameters
@@ -126,7 +133,7 @@ def reachable_voxels(robot, resolution: float, *, samples: int | None = None, se
         raise ValueError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
     stride = np.cumprod(np.r_[1, size[::-1][:-1]])[::-1].astype(np.int64)
 
-    def codes_of(Q):
+    def codes_of(Q: np.ndarray) -> np.ndarray:
         P = tool_positions(poe, Q)
         if chain is not None:
             P = chain.to_plane(P)[0]

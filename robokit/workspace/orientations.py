@@ -23,6 +23,7 @@ Planar arms (all joint axes parallel to one normal ``n``): the only tool orienta
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["super_fibonacci_rotations", "planar_rotations"]
 
@@ -31,7 +32,7 @@ _PSI = 1.533751168755204288118041
 _PHI = np.sqrt(2.0)
 
 
-def _count(K, name="orientations") -> int:
+def _count(K: object, name: str = "orientations") -> int:
     if isinstance(K, bool) or not isinstance(K, (int, np.integer)):
         raise TypeError(f"{name}: expected a positive integer count, got {type(K).__name__} {K!r}")
     if K < 1:
@@ -85,7 +86,7 @@ def super_fibonacci_rotations(K: int) -> np.ndarray:
     return _matrices_from_quaternions(Q)
 
 
-def planar_rotations(K: int, normal, R0=None) -> np.ndarray:
+def planar_rotations(K: int, normal: ArrayLike, R0: ArrayLike | None = None) -> np.ndarray:
     """K rotations ``Rot(normal, 2πk/K) · R0``, k = 0 … K−1: the orientation set of a planar arm.
 
     Parameters

@@ -5,24 +5,34 @@ matplotlib's ``viridis`` colour map in both.
 """
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING, cast
+
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, SubFigure
+    from robokit.description.robot import Robot
+    from robokit.workspace.capability import CapabilityMap
 
 __all__ = ["plot_capability_slice", "capability_html"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
 
-def _as_map(cmap):
+def _as_map(cmap: CapabilityMap | str | os.PathLike[str]) -> CapabilityMap:
     from robokit.workspace.capability import CapabilityMap
 
     if isinstance(cmap, CapabilityMap):
         return cmap
     if isinstance(cmap, (str, bytes)) or hasattr(cmap, "__fspath__"):
-        return CapabilityMap.load(cmap)
+        return CapabilityMap.load(cast("str | os.PathLike[str]", cmap))
     raise TypeError(f"map: expected a CapabilityMap or an .npz path, got {type(cmap).__name__}")
 
 
-def plot_capability_slice(cmap, axis: str = "z", value: float | None = None, ax=None, cmap_name: str = "viridis"):
+def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: str = "z", value: float | None = None, ax: Axes | None = None, cmap_name: str = "viridis") -> Figure | SubFigure:
     """Draw the voxels of one slice of a capability map, coloured by their index.
 
     Parameters
@@ -68,6 +78,7 @@ def plot_capability_slice(cmap, axis: str = "z", value: float | None = None, ax=
     if not sel.any():
         raise ValueError(f"value: no voxel centre within {0.5 * m.resolution:g} m of {axis} = {value:g} m "
                          f"(the map spans {coord.min():.3g} … {coord.max():.3g} m)")
+    fig: Figure | SubFigure
     if ax is None:
         fig, ax = plt.subplots(figsize=(5.5, 5))
     else:
@@ -85,13 +96,13 @@ def plot_capability_slice(cmap, axis: str = "z", value: float | None = None, ax=
     return fig
 
 
-def _colours(index, cmap_name="viridis") -> np.ndarray:
+def _colours(index: ArrayLike, cmap_name: str = "viridis") -> np.ndarray:
     from matplotlib import colormaps
 
     return colormaps[cmap_name](np.clip(index, 0.0, 1.0))[:, :3]
 
 
-def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
+def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot | str | None = None, point_size: float | None = None) -> str:
     """A self-contained meshcat page of a capability map: one coloured point per voxel.
 
     Parameters
@@ -151,7 +162,7 @@ def capability_html(cmap, robot=None, point_size: float | None = None) -> str:
         stop_server(getattr(vis.window, "server_proc", None))
 
 
-def capability_view_cli(path, output) -> int:
+def capability_view_cli(path: str | os.PathLike[str], output: str | os.PathLike[str]) -> int:
     """``robokit view MAP.npz -o OUT.html``: the meshcat page of a capability map, written atomically."""
     import sys
     from pathlib import Path

@@ -25,7 +25,14 @@ Three back ends, tried in this order (:func:`ik_backend` says which one a robot 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any, Callable, cast
+
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.poe import PoEParams
+    from robokit.description.robot import Robot
 
 __all__ = ["ik_success", "ik_backend"]
 
@@ -46,7 +53,7 @@ class PlanarChain:
     qlim : (N, 2).
     """
 
-    def __init__(self, poe, qlim):
+    def __init__(self, poe: PoEParams, qlim: ArrayLike) -> None:
         S = np.asarray(poe.Slist, dtype=float)
         w = S[:3].T
         n = w[0] / np.linalg.norm(w[0])
@@ -73,15 +80,15 @@ class PlanarChain:
     def n(self) -> int:
         return len(self.signs)
 
-    def to_plane(self, P):
+    def to_plane(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(B, 2) plane coordinates and (B,) heights of (B, 3) base-frame points."""
         return np.stack([P @ self.u, P @ self.v], axis=1), P @ self.normal
 
-    def from_plane(self, xy):
+    def from_plane(self, xy: np.ndarray) -> np.ndarray:
         """(B, 3) base-frame points of (B, 2) plane coordinates at the tool's height."""
         return self.height * self.normal + xy[:, :1] * self.u + xy[:, 1:2] * self.v
 
-    def fk(self, psi):
+    def fk(self, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(B, 2) tool points and (B,) tool angles of (B, N) plane angles ψ."""
         acc = np.cumsum(psi, axis=1)
         c, s = np.cos(acc), np.sin(acc)
@@ -89,7 +96,7 @@ class PlanarChain:
                                   (s * self.d[:, 0] + c * self.d[:, 1]).sum(1)], axis=1)
         return p, acc[:, -1]
 
-    def _in_limits(self, psi):
+    def _in_limits(self, psi: np.ndarray) -> np.ndarray:
         """True where the joint angles θ = sign·ψ, shifted by a multiple of 2π, fit the limits."""
         theta = psi * self.signs
         lo, hi = self.qlim[:, 0], self.qlim[:, 1]
@@ -99,9 +106,9 @@ class PlanarChain:
         m = np.where(np.isfinite(m), m, 0.0)
         shifted = theta + 2 * np.pi * m
         ok = np.where(np.isfinite(lo), shifted <= hi + eps, True)
-        return ok.all(axis=1)
+        return cast(np.ndarray, ok.all(axis=1))
 
-    def success(self, targets) -> np.ndarray:
+    def success(self, targets: np.ndarray) -> np.ndarray:
         """(B,) bool: which of the (B, 4, 4) target poses the planar arm reaches."""
         T = np.asarray(targets, dtype=float)
         B = len(T)
@@ -115,7 +122,7 @@ class PlanarChain:
         p = xy - self.r[0]
         cphi, sphi = np.cos(phi), np.sin(phi)
 
-        def rot(c, s, d):
+        def rot(c: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
             return np.stack([c * d[0] - s * d[1], s * d[0] + c * d[1]], axis=1)
 
         found = np.zeros(B, dtype=bool)
@@ -153,7 +160,7 @@ class PlanarChain:
         return found & ok_frame
 
 
-def planar_chain(robot):
+def planar_chain(robot: Robot) -> PlanarChain | None:
     """The :class:`PlanarChain` of ``robot`` if all its joints are revolute about parallel axes, else None."""
     poe = robot.poe
     S = np.asarray(poe.Slist, dtype=float)
@@ -167,14 +174,14 @@ def planar_chain(robot):
 
 
 # ----------------------------------------------------------------------------- back end choice
-def _analytic():
+def _analytic() -> Callable[..., Any]:
     """The closed-form solver :func:`robokit.ik.closed_form.ik_analytic`."""
     from robokit.ik.closed_form import ik_analytic
 
     return ik_analytic
 
 
-def _has_closed_form(robot) -> bool:
+def _has_closed_form(robot: Robot) -> bool:
     solve = _analytic()
     if solve is None:
         return False
@@ -185,7 +192,7 @@ def _has_closed_form(robot) -> bool:
     return True
 
 
-def ik_backend(robot) -> str:
+def ik_backend(robot: Robot) -> str:
     """Which IK back end :func:`ik_success` uses for ``robot``.
 
     Returns
@@ -210,7 +217,7 @@ def ik_backend(robot) -> str:
 class _Backend:
     """One robot's IK back end, built once and reused for every chunk."""
 
-    def __init__(self, robot, restarts: int = DEFAULT_RESTARTS):
+    def __init__(self, robot: Robot, restarts: int = DEFAULT_RESTARTS) -> None:
         self.robot = robot
         self.kind = ik_backend(robot)
         self.restarts = int(restarts)
@@ -220,8 +227,9 @@ class _Backend:
         self.hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
         self.tol_fk = 1e-6 * max(1.0, float(np.abs(robot.poe.M[:3, 3]).sum()))
 
-    def success(self, targets, rng) -> np.ndarray:
+    def success(self, targets: np.ndarray, rng: np.random.Generator) -> np.ndarray:
         if self.kind == "planar":
+            assert self.chain is not None  # kind is 'planar' only when the arm has a planar chain
             return self.chain.success(targets)
         out = np.zeros(len(targets), dtype=bool)
         if self.kind == "closed form":
@@ -237,16 +245,16 @@ class _Backend:
         return out
 
 
-def _kernel_solver():
+def _kernel_solver() -> Callable[..., Any] | None:
     """The compiled PoE IK (``robokit.kernels.ik.solve_poe_ik``) if installed, else None."""
     try:
-        from robokit.kernels.ik import solve_poe_ik  # type: ignore[import-not-found]
+        from robokit.kernels.ik import solve_poe_ik
     except ImportError:
         return None
     return solve_poe_ik
 
 
-def _numeric_success(robot, T, q0, rng, restarts: int) -> bool:
+def _numeric_success(robot: Robot, T: np.ndarray, q0: np.ndarray, rng: np.random.Generator, restarts: int) -> bool:
     """The one adapter between capability maps and numerical IK: True if IK converges on ``T``.
 
     Uses the compiled kernel when it is importable, else :func:`robokit.solve_ik`; both are
@@ -262,7 +270,7 @@ def _numeric_success(robot, T, q0, rng, restarts: int) -> bool:
     return bool(solve_ik(robot, T, q0=q0, max_restarts=restarts, rng=rng).success)
 
 
-def ik_success(robot, targets, *, rng=None, restarts: int = DEFAULT_RESTARTS) -> np.ndarray:
+def ik_success(robot: Robot, targets: ArrayLike, *, rng: int | np.random.Generator | None = None, restarts: int = DEFAULT_RESTARTS) -> np.ndarray:
     """Which target poses of the tip does ``robot`` reach (inside its joint limits)?
 
     Parameters
