@@ -127,7 +127,7 @@ def _dispatch(args) -> int:
 
         return convert_command(args.input, args.output, tip=args.tip, convention=args.convention, **_format_options(args))
     if args.command == "view":
-        from robokit.viz.view import view_cli
+        from robokit.commands import view_command
 
         opts = _format_options(args)
         if opts:  # formats: a xacro robot with arguments/packages is loaded here
@@ -135,13 +135,13 @@ def _dispatch(args) -> int:
 
             args.model = load(args.model, tip=args.tip, **opts)
         if str(args.model).lower().endswith(".npz"):  # a capability map (robokit workspace)
-            from robokit.workspace.plot import capability_view_cli
+            from robokit.commands import capability_view_command
 
-            return capability_view_cli(args.model, args.output)
-        return view_cli(args.model, args.output, q=args.q, frames=args.frames,
+            return capability_view_command(args.model, args.output)
+        return view_command(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
     if args.command == "teach":
-        from robokit.viz.teach import teach_cli
+        from robokit.commands import teach_command
 
         model = args.model
         opts = _format_options(args)
@@ -149,11 +149,11 @@ def _dispatch(args) -> int:
             from robokit.description.robot import load
 
             model = load(args.model, tip=args.tip, **opts)
-        return teach_cli(model, args.output)
+        return teach_command(model, args.output)
     if args.command == "workspace":
-        from robokit.workspace.capability import workspace_cli
+        from robokit.commands import workspace_command
 
-        return workspace_cli(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
+        return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

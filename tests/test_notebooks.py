@@ -6,7 +6,6 @@ in memory (nothing is written back) with the test suite's Python, in a temporary
 pages that views write beside the notebook land there).
 """
 import json
-import sys
 from pathlib import Path
 
 import pytest

@@ -7,7 +7,7 @@ Two front ends share one set of definitions:
   (its meshes, or the simple links of a DH model) with its DH/joint frames and the tool
   triad, and readouts computed **in the page** (JavaScript, ``teach.js``) from the robot's
   product-of-exponentials parameters ``M``, ``Slist``. ``robokit teach MODEL`` writes it
-  (:func:`teach_cli`).
+  (:func:`robokit.commands.teach_command`).
 * :func:`teach_widget` — the same in a Jupyter notebook: ipywidgets sliders driving a live
   meshcat scene, the readouts computed in Python by :func:`teach_readouts`
   (``Scene(robot).teach()``).
@@ -37,12 +37,10 @@ import html as _html
 import json
 import math
 from importlib import resources
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from robokit._io import atomic_write
 
 __all__ = [
     "NAMED_POSES",
@@ -51,7 +49,6 @@ __all__ = [
     "teach_data",
     "teach_readouts",
     "teach_html",
-    "teach_cli",
     "teach_widget",
 ]
 
@@ -404,40 +401,6 @@ def teach_html(model, q=None) -> str:
         f"<script>\n{_asset('teach.js')}\n</script>\n"
         "</body>\n</html>\n"
     )
-
-
-def teach_cli(model, output=None, q=None, open_browser: bool = True) -> int:
-    """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
-
-    Without ``output`` the page goes to a new temporary file, which is opened in the web
-    browser (``webbrowser``); its path is returned in the message on stdout.
-    """
-    import tempfile
-    import webbrowser
-
-    from robokit.description.robot import load
-
-    if output is not None:
-        out = Path(output)
-        if out.suffix.lower() not in (".html", ".htm"):
-            raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-        if not (out.parent if str(out.parent) else Path(".")).is_dir():
-            raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    robot = load(model)
-    page = teach_html(robot, q=q)
-    if output is not None:
-        atomic_write(output, page)
-        print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
-        return 0
-    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{robot.name}-", suffix=".html")
-    import os
-
-    os.close(fd)
-    atomic_write(tmp, page)
-    print(f"wrote {tmp} ({len(page.encode('utf-8')) / 1e6:.1f} MB); opening it in the browser", file=sys.stderr)
-    if open_browser:
-        webbrowser.open(Path(tmp).resolve().as_uri())
-    return 0
 
 
 # --------------------------------------------------------------------------- notebook

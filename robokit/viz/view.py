@@ -7,14 +7,12 @@ as a header and skipped).
 """
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from robokit._io import atomic_write
 
-__all__ = ["view_html", "view_cli", "load_trajectory"]
+__all__ = ["view_html", "load_trajectory"]
 
 
 def load_trajectory(path, n: int) -> np.ndarray:
@@ -67,24 +65,3 @@ def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float =
             scene.animate(trajectory, fps=fps)
         scene.frame_camera()
         return scene.html()
-
-
-def view_cli(model, output, q=None, frames=False, trajectory=None, fps=30.0, tip=None) -> int:
-    """The ``robokit view`` command: write the page to ``output``; return the exit status."""
-    from robokit.description.robot import load
-
-    out = Path(output)
-    if out.suffix.lower() not in (".html", ".htm"):
-        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    if not (fps > 0 and np.isfinite(fps)):
-        raise ValueError(f"--fps: expected a positive frame rate, got {fps:g}")
-    if q is not None and not np.all(np.isfinite(q)):
-        raise ValueError("-q: contains NaN or infinite values")
-    robot = load(model, tip=tip)
-    Q = load_trajectory(trajectory, robot.n) if trajectory else None
-    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps)
-    atomic_write(out, page)
-    print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
-    return 0

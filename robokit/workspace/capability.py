@@ -40,7 +40,6 @@ import io
 import json
 import os
 import shutil
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -508,35 +507,3 @@ def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarr
         if pending:
             submit()
     return workers
-
-
-def workspace_cli(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100, scheduler: str | None = None) -> int:
-    """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
-
-    The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
-    atomically. Finished chunks go to ``OUTPUT.chunks/`` while the map is computed (an
-    interrupted run started again with the same arguments resumes there); the folder is
-    removed once the map is written. ``scheduler``: a Dask scheduler address
-    (``tcp://host:port``), or None for a local cluster of one worker process per core.
-    """
-    out = Path(output)
-    if out.suffix.lower() != ".npz":
-        raise ValueError(f"-o: expected an .npz file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    if out.is_dir():
-        raise ValueError(f"-o: {str(out)!r} is a folder")
-    if not (np.isfinite(resolution) and resolution > 0):
-        raise ValueError(f"--resolution: expected a positive voxel size in m, got {resolution:g}")
-    if orientations < 1:
-        raise ValueError(f"--orientations: expected a positive count, got {orientations}")
-    if scheduler is not None and not scheduler.strip():
-        raise ValueError("--scheduler: empty address")
-    store = out.with_name(out.name + ".chunks")
-    cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store)
-    cmap.save(out)
-    shutil.rmtree(store, ignore_errors=True)
-    t = cmap.timings
-    print(f"wrote {out}: {len(cmap.centres)} voxels, {len(cmap.dexterous)} dexterous (index 1), "
-          f"{t['problems']} IK problems in {t['total']:.1f} s", file=sys.stderr)
-    return 0

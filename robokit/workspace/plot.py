@@ -160,21 +160,3 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
         return vis.static_html()
     finally:
         stop_server(getattr(vis.window, "server_proc", None))
-
-
-def capability_view_cli(path: str | os.PathLike[str], output: str | os.PathLike[str]) -> int:
-    """``robokit view MAP.npz -o OUT.html``: the meshcat page of a capability map, written atomically."""
-    import sys
-    from pathlib import Path
-
-    from robokit._io import atomic_write
-
-    out = Path(output)
-    if out.suffix.lower() not in (".html", ".htm"):
-        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    page = capability_html(path)
-    atomic_write(out, page)
-    print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
-    return 0

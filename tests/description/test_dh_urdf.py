@@ -12,7 +12,7 @@ import pytest
 
 import robokit
 from robokit.description.dh import DHTable, dh_transform
-from robokit.description.models import model_path, models_dir, shipped_models
+from robokit.description.models import model_path, models_dir
 from robokit.description.urdf_gen import dh_to_urdf
 
 

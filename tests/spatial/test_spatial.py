@@ -3,7 +3,7 @@ every edge case the seed function library promises (the "Poses and rotations" pa
 import numpy as np
 import pinocchio as pin
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation as Rot
 

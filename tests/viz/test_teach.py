@@ -259,11 +259,11 @@ def test_cli_without_output_writes_a_temporary_page(monkeypatch, capsys):
     """Without -o the page goes to a new temporary file, which is handed to the web browser."""
     import webbrowser
 
-    from robokit.viz.teach import teach_cli
+    from robokit.commands import teach_command
 
     opened = []
     monkeypatch.setattr(webbrowser, "open", lambda url, *a, **k: opened.append(url))
-    assert teach_cli("twolink") == 0
+    assert teach_command("twolink") == 0
     path = Path(capsys.readouterr().err.strip().split("wrote ")[1].split(" (")[0])
     try:
         assert path.is_file() and path.suffix == ".html"
