@@ -260,7 +260,12 @@ class Robot:
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q, frame: str | None = None) -> np.ndarray:
-        """4×4 pose of ``frame`` (default the tip) in the root frame at joint angles θ."""
+        """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
+        for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
+        if np.ndim(q) == 2:
+            from robokit.description.batch import batch_frame_pose
+
+            return batch_frame_pose(self, q, frame)
         pin = self._pin
         q = self.q_pin(self._check_q(q))
         pin.forwardKinematics(self.model, self.data, q)
@@ -280,8 +285,12 @@ class Robot:
         reference : "world" — the space Jacobian (twist of the frame expressed at the root
         origin, root axes); "local" — the body Jacobian (frame's own axes, at its origin);
         "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
-        the frame origin, root axes).
+        the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
+        if np.ndim(q) == 2:
+            from robokit.description.batch import batch_jacobian
+
+            return batch_jacobian(self, q, frame, reference)
         pin = self._pin
         try:
             rf = getattr(pin.ReferenceFrame, self._REFS[reference])
@@ -291,21 +300,36 @@ class Robot:
         J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
         return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
 
-    def rnea(self, q, dq, ddq) -> np.ndarray:
-        """Inverse dynamics τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) (n,), Pinocchio's RNEA."""
+    def rnea(self, q, dq, ddq, threads: int = 1) -> np.ndarray:
+        """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
+        inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
+        if np.ndim(q) == 2:
+            from robokit.description.batch import batch_rnea
+
+            return batch_rnea(self, q, dq, ddq, threads)
         q = self.q_pin(self._check_q(q))
         dq, ddq = self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
 
     def crba(self, q) -> np.ndarray:
-        """Mass matrix M(θ) (n×n, symmetric), Pinocchio's CRBA."""
+        """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
+        compiled composite-rigid-body kernel."""
+        if np.ndim(q) == 2:
+            from robokit.description.batch import batch_crba
+
+            return batch_crba(self, q)
         q = self.q_pin(self._check_q(q))
         M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
         M[self._lower] = M.T[self._lower]
         return M
 
-    def aba(self, q, dq, tau) -> np.ndarray:
-        """Forward dynamics θ̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA."""
+    def aba(self, q, dq, tau, threads: int = 1) -> np.ndarray:
+        """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
+        through ``abaInParallel`` on ``threads`` threads."""
+        if np.ndim(q) == 2:
+            from robokit.description.batch import batch_aba
+
+            return batch_aba(self, q, dq, tau, threads)
         q = self.q_pin(self._check_q(q))
         dq, tau = self._check_q(dq, "dq"), self._check_q(tau, "tau")
         return self._pin.aba(self.model, self.data, q, dq, tau).copy()
