@@ -28,7 +28,7 @@ setup: $(VENV)/.installed
 demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-test: $(VENV)/.installed-test,docs,mujoco
+test: $(VENV)/.installed-test,docs,mujoco,bench
 	$(BIN)/python -m pytest -n 2 -q
 
 bench: $(VENV)/.installed-bench
