@@ -241,7 +241,15 @@ def ik(n_targets):
         targets = [r.frame_pose(r.random_configuration(rng)) for _ in range(n_targets)]
         guesses = [r.random_configuration(rng) for _ in range(n_targets)]
         solve_poe_ik(p.M, p.Slist, targets[0], guesses[0], r.qlim)  # load/compile
+        rk.solve_ik(r, targets[0], q0=guesses[0])  # closed-form set-up, if any
         ours_t, ours_ok, rtb_t, rtb_ok = [], 0, [], 0
+        auto_t, auto_ok = [], 0
+        for k, (T, q0) in enumerate(zip(targets, guesses)):
+            t0 = time.perf_counter()
+            res = rk.solve_ik(r, T, q0=q0, rng=k)
+            auto_t.append(time.perf_counter() - t0)
+            auto_ok += bool(res.success) and np.abs(r.frame_pose(res.q) - T).max() < 1e-9 and bool(
+                np.all(res.q >= r.qlim[:, 0] - 1e-12) and np.all(res.q <= r.qlim[:, 1] + 1e-12))
         for k, (T, q0) in enumerate(zip(targets, guesses)):
             t0 = time.perf_counter()
             q, ok, _, _ = solve_poe_ik(p.M, p.Slist, T, q0, r.qlim, 1e-10, 30, 200, k)
@@ -255,12 +263,16 @@ def ik(n_targets):
                 q_rtb, ok_rtb = (sol.q, sol.success) if hasattr(sol, "success") else (sol[0], sol[1])
                 rtb_ok += bool(ok_rtb) and np.abs(r.frame_pose(np.asarray(q_rtb, dtype=float)) - T).max() < 1e-9
         med_o = float(np.median(ours_t))
+        med_a = float(np.median(auto_t))
         med_r = float(np.median(rtb_t)) if rtb_t else float("nan")
+        method = "closed form" if rk.ik_analytic_kind(r).method else "compiled LM"
         rows.append([name, n_targets, f"{100 * ours_ok / n_targets:.1f} %", fmt_time(med_o),
-                     f"{100 * rtb_ok / n_targets:.1f} %" if rtb_t else "n/a", fmt_time(med_r), _ratio(med_o, med_r)])
+                     f"{100 * auto_ok / n_targets:.1f} %", f"{fmt_time(med_a)} ({method})",
+                     f"{100 * rtb_ok / n_targets:.1f} %" if rtb_t else "n/a", fmt_time(med_r), _ratio(med_o, med_r),
+                     _ratio(med_a, med_r)])
     print("\n## 4. IK from random initial guesses, reachable targets (success verified with Pinocchio FK to 1e-9)\n")
-    print(table(["robot", "targets", "robokit success", "robokit median", "rtb ik_LM success", "rtb median",
-                 "robokit / rtb"], rows))
+    print(table(["robot", "targets", "kernel success", "kernel median", "solve_ik success", "solve_ik median",
+                 "rtb ik_LM success", "rtb median", "kernel / rtb", "solve_ik / rtb"], rows))
 
 
 def main(argv=None):
@@ -281,7 +293,7 @@ def main(argv=None):
     if args.only in (None, "batch"):
         batched(sizes, reps)
     if args.only in (None, "ik"):
-        ik(50 if args.quick else 200)
+        ik(50 if args.quick else 1000)
 
 
 if __name__ == "__main__":
