@@ -34,13 +34,14 @@ __all__ = ["IndependentJoint", "GravityPD", "ModelFeedforward", "ComputedTorque"
 
 
 def gains(value, n: int, name: str) -> np.ndarray:
-    """A gain as an (n,) array: a scalar is broadcast; a vector must have length n; ≥ 0."""
+    """A gain as an (n,) array: a scalar is broadcast; a vector must have length n; finite and ≥ 0
+    (the one gain check of robokit's controllers and of the seed's computed torque)."""
     arr = np.asarray(value, dtype=float)
     if arr.ndim == 0:
         arr = np.full(n, float(arr))
     arr = as_vector(arr, name, n)
-    if np.any(arr < 0):
-        raise ValueError(f"{name}: gains must be non-negative, got {arr}")
+    if not np.isfinite(arr).all() or np.any(arr < 0):
+        raise ValueError(f"{name}: gains must be finite and non-negative, got {arr.tolist()}")
     return arr
 
 

@@ -15,16 +15,9 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar, as_vector
+from robokit.control.controllers import gains
 
 __all__ = ["computed_torque", "simulate_control"]
-
-
-def _gain(K, n, name):
-    K = np.asarray(K, dtype=float)
-    K = np.full(n, float(K)) if K.ndim == 0 else as_vector(K, name, n)
-    if not np.isfinite(K).all() or (K < 0).any():
-        raise ValueError(f"{name}: gains must be finite and non-negative, got {K.tolist()}")
-    return K
 
 
 def _diverged(i, dt, taumat, thetamat):
@@ -55,8 +48,8 @@ def computed_torque(thetalist, dthetalist, eint, g, Mlist, Glist, Slist, thetali
     dtheta = as_vector(dthetalist, "dthetalist", n)
     e = as_vector(thetalistd, "thetalistd", n) - theta
     edot = as_vector(dthetalistd, "dthetalistd", n) - dtheta
-    a = (as_vector(ddthetalistd, "ddthetalistd", n) + _gain(Kp, n, "Kp") * e
-         + _gain(Ki, n, "Ki") * (as_vector(eint, "eint", n) + e) + _gain(Kd, n, "Kd") * edot)
+    a = (as_vector(ddthetalistd, "ddthetalistd", n) + gains(Kp, n, "Kp") * e
+         + gains(Ki, n, "Ki") * (as_vector(eint, "eint", n) + e) + gains(Kd, n, "Kd") * edot)
     # M(θ) a + h(θ, θ̇) is inverse dynamics with θ̈ = a and no tip wrench
     return inverse_dynamics(theta, dtheta, a, g, np.zeros(6), Mlist, Glist, Slist)
 
@@ -90,7 +83,7 @@ def simulate_control(thetalist, dthetalist, g, Ftipmat, Mlist, Glist, Slist, the
     intRes = int(intRes)
     if intRes < 1:
         raise ValueError(f"intRes: expected a positive integer, got {intRes}")
-    Kp, Ki, Kd = _gain(Kp, n, "Kp"), _gain(Ki, n, "Ki"), _gain(Kd, n, "Kd")
+    Kp, Ki, Kd = gains(Kp, n, "Kp"), gains(Ki, n, "Ki"), gains(Kd, n, "Kd")
     h = dt / intRes
     eint = np.zeros(n)
     taumat = np.empty((N, n))

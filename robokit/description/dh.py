@@ -27,7 +27,8 @@ import numpy as np
 
 from robokit._io import atomic_write
 from robokit.errors import InputError
-from robokit.spatial.so3 import euler_to_matrix, matrix_to_euler
+from robokit.spatial.euler import matrix_from_euler
+from robokit.spatial.so3 import matrix_to_euler
 
 __all__ = ["DHLink", "DHTable", "dh_transform", "rpy_to_matrix", "matrix_to_rpy"]
 
@@ -72,10 +73,12 @@ def dh_transform(a, alpha, d, theta, convention: str = "standard") -> np.ndarray
 
 
 def rpy_to_matrix(rpy) -> np.ndarray:
-    """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``
-    — the seed's ZYX Euler angles in reverse order."""
-    r, p, y = (float(v) for v in rpy)
-    return euler_to_matrix([y, p, r])
+    """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
+
+    Not a third rotation API: it is :func:`robokit.spatial.matrix_from_euler` with the extrinsic
+    XYZ sequence (= the seed's ZYX ``euler_to_matrix`` with the angles reversed), named for the
+    files that write rpy (URDF, the DH file's base/tool)."""
+    return matrix_from_euler(np.asarray(rpy, dtype=float), "XYZ", extrinsic=True)
 
 
 def matrix_to_rpy(R) -> np.ndarray:
