@@ -124,7 +124,7 @@ class ClosedFormModel:
         return kind, solver, chain
 
     # ------------------------------------------------------------------ solving
-    def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
+    def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         if self.solver is None:
             raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
         if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
