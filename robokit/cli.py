@@ -18,6 +18,8 @@ import argparse
 import os
 import signal
 import sys
+from types import FrameType
+from typing import NoReturn, Sequence, TextIO
 
 #: Longest message printed for an error (a value echoed back never makes a huge line).
 MAX_MESSAGE = 400
@@ -27,7 +29,7 @@ EXIT_SIGINT, EXIT_SIGTERM = 130, 143
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # argparse's own usage errors: one line, exit 2
+    def error(self, message: str) -> NoReturn:  # argparse's own usage errors: one line, exit 2
         raise _UsageError(f"{self.prog}: {message}")
 
 
@@ -48,7 +50,7 @@ def _version() -> str:
         return "0+unknown"
 
 
-def _add_format_options(parser) -> None:
+def _add_format_options(parser: argparse.ArgumentParser) -> None:
     """xacro options shared by the commands that load a robot (formats: xacro)."""
     g = parser.add_argument_group("xacro files")
     g.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
@@ -57,7 +59,7 @@ def _add_format_options(parser) -> None:
                    help="folder searched for <pkg>/package.xml for $(find pkg) and package:// (repeatable)")
 
 
-def _format_options(args) -> dict:
+def _format_options(args: argparse.Namespace) -> dict:
     """``load`` keyword arguments from --xacro-arg/--package-path (empty when neither is given)."""
     xargs = {}
     for item in getattr(args, "xacro_arg", None) or []:
@@ -117,7 +119,7 @@ def _build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _dispatch(args) -> int:
+def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "validate":
         from robokit.validation import main as validate_main
 
@@ -125,7 +127,8 @@ def _dispatch(args) -> int:
     if args.command == "convert":
         from robokit.commands import convert_command
 
-        return convert_command(args.input, args.output, tip=args.tip, convention=args.convention, **_format_options(args))
+        return convert_command(args.input, args.output, tip=args.tip, convention=args.convention,
+                               **_format_options(args))
     if args.command == "view":
         from robokit.commands import view_command
 
@@ -187,7 +190,8 @@ def _is_input_error(exc: BaseException) -> bool:
     return isinstance(exc, ValueError) and _raised_by_robokit(exc)
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None):
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                  file: TextIO | None = None, line: str | None = None) -> None:
     """Warnings as one line each: ``robokit: note: ...`` (robokit's own) or ``robokit: warning: ...``."""
     from robokit.errors import RobokitWarning
 
@@ -198,11 +202,11 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
     print(f"robokit: {kind}: {text}", file=sys.stderr)
 
 
-def _on_sigterm(signum, frame):
+def _on_sigterm(signum: int, frame: FrameType | None) -> NoReturn:
     raise _Terminated()
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status (see the module docstring)."""
     argv = sys.argv[1:] if argv is None else list(argv)
     debug = "--debug" in argv

@@ -9,15 +9,22 @@ import os
 import shutil
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 __all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command"]
 
 
-def convert_command(input, output, tip=None, convention="standard", **load_options) -> int:
+def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str] | None, tip: str | None = None,
+                    convention: str = "standard", **load_options: Any) -> int:
     """``robokit convert``: write ``output`` (or print a DH table); notes on stderr. Returns 0."""
     from robokit.description.convert import convert
 
@@ -33,7 +40,9 @@ def convert_command(input, output, tip=None, convention="standard", **load_optio
     return 0
 
 
-def view_command(model, output, q=None, frames=False, trajectory=None, fps=30.0, tip=None) -> int:
+def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str],
+                 q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
+                 fps: float = 30.0, tip: str | None = None) -> int:
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
     from robokit.description.robot import load
     from robokit.viz.view import load_trajectory, view_html
@@ -55,7 +64,8 @@ def view_command(model, output, q=None, frames=False, trajectory=None, fps=30.0,
     return 0
 
 
-def teach_command(model, output=None, q=None, open_browser: bool = True) -> int:
+def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
+                  q: ArrayLike | None = None, open_browser: bool = True) -> int:
     """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
 
     Without ``output`` the page goes to a new temporary file, which is opened in the web
@@ -90,7 +100,8 @@ def teach_command(model, output=None, q=None, open_browser: bool = True) -> int:
     return 0
 
 
-def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100, scheduler: str | None = None) -> int:
+def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
+                      scheduler: str | None = None) -> int:
     """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written

@@ -37,10 +37,14 @@ Example::
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 import sympy as sp
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
 
 __all__ = ["SymbolicArm", "SymbolicDynamics", "shorthand", "to_latex", "MAX_SYMBOLIC_DYNAMICS_JOINTS"]
 
@@ -48,21 +52,21 @@ __all__ = ["SymbolicArm", "SymbolicDynamics", "shorthand", "to_latex", "MAX_SYMB
 MAX_SYMBOLIC_DYNAMICS_JOINTS = 3
 
 
-def _rot_x(a):
+def _rot_x(a: Any) -> sp.Matrix:
     c, s = sp.cos(a), sp.sin(a)
     return sp.Matrix([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
 
 
-def _rot_z(a):
+def _rot_z(a: Any) -> sp.Matrix:
     c, s = sp.cos(a), sp.sin(a)
     return sp.Matrix([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
 
 
-def _trans(x, y, z):
+def _trans(x: Any, y: Any, z: Any) -> sp.Matrix:
     return sp.Matrix([[1, 0, 0, x], [0, 1, 0, y], [0, 0, 1, z], [0, 0, 0, 1]])
 
 
-def _sym(x):
+def _sym(x: Any) -> Any:
     """Numbers become exact where they are (ints, simple floats kept as Float); symbols pass."""
     if isinstance(x, sp.Basic):
         return x
@@ -146,7 +150,7 @@ class SymbolicArm:
     """
 
     def __init__(self, rows: Sequence[Sequence], joint_types: Sequence[str] | str | None = None,
-                 convention: str = "standard", base=None, tool=None):
+                 convention: str = "standard", base: Any = None, tool: Any = None) -> None:
         rows = [tuple(r) for r in rows]
         if not rows:
             raise ValueError("rows: expected at least one DH row")
@@ -167,17 +171,17 @@ class SymbolicArm:
         self.dq = sp.Matrix(sp.symbols(f"dq1:{n + 1}", real=True))
         self.base = sp.eye(4) if base is None else sp.Matrix(base).applyfunc(_sym)
         self.tool = sp.eye(4) if tool is None else sp.Matrix(tool).applyfunc(_sym)
-        self._frames_cache = None
+        self._frames_cache: list[sp.Matrix] | None = None
 
     def __repr__(self) -> str:
         joints = "".join(self.joint_types)
         return f"SymbolicArm({self.n} joints {joints}, {self.convention} DH, rows={self.rows})"
 
     @classmethod
-    def from_dh_table(cls, table, symbolic_lengths: bool = False) -> "SymbolicArm":
+    def from_dh_table(cls, table: DHTable, symbolic_lengths: bool = False) -> "SymbolicArm":
         """Build from a :class:`robokit.DHTable` (numbers; angles are taken as exact
         multiples of π/2 where they are, so the forms stay readable)."""
-        def nice_angle(x):
+        def nice_angle(x: float) -> Any:
             k = float(x) / (np.pi / 2)
             if abs(k - round(k)) < 1e-12:
                 return sp.Integer(int(round(k))) * sp.pi / 2
@@ -187,7 +191,7 @@ class SymbolicArm:
         return cls(rows, [l.joint for l in table.links], table.convention,
                    base=np.asarray(table.base), tool=np.asarray(table.tool))
 
-    def _level(self, simplify, heavy: bool = False) -> str:
+    def _level(self, simplify: bool | str, heavy: bool = False) -> str:
         """Resolve ``simplify`` (True / False / "auto") to a simplification level.
 
         "auto": full simplification up to ``MAX_SYMBOLIC_DYNAMICS_JOINTS`` joints; beyond,
@@ -219,7 +223,7 @@ class SymbolicArm:
             return _rot_z(theta) * _trans(0, 0, d) * _trans(a, 0, 0) * _rot_x(alpha)
         return _rot_x(alpha) * _trans(a, 0, 0) * _rot_z(theta) * _trans(0, 0, d)
 
-    def link_transforms(self, simplify=True) -> list[sp.Matrix]:
+    def link_transforms(self, simplify: bool = True) -> list[sp.Matrix]:
         """All ``ⁱ⁻¹Tᵢ``, i = 1..n."""
         level = "full" if simplify else "none"
         return [_simplify_matrix(self.link_transform(i), level) for i in range(1, self.n + 1)]
@@ -233,7 +237,7 @@ class SymbolicArm:
             self._frames_cache = frames
         return self._frames_cache
 
-    def fk(self, simplify="auto", tool: bool = True) -> sp.Matrix:
+    def fk(self, simplify: bool | str = "auto", tool: bool = True) -> sp.Matrix:
         """``⁰Tₙ`` (with base, and the tool unless ``tool=False``), trigonometrically simplified.
 
         ``simplify``: True, False or "auto" (full up to 3 joints, trigsimp beyond: ~10 s for a
@@ -242,7 +246,7 @@ class SymbolicArm:
         T = self._frames()[-1] * (self.tool if tool else sp.eye(4))
         return _simplify_matrix(T, self._level(simplify))
 
-    def _joint_axes(self):
+    def _joint_axes(self) -> list[tuple[sp.Matrix, sp.Matrix]]:
         """(z, p) of every joint axis in the base frame: z the unit axis, p a point on it."""
         frames = self._frames()
         axes = []
@@ -252,7 +256,7 @@ class SymbolicArm:
             axes.append((F[:3, 2], F[:3, 3]))
         return axes
 
-    def jacobian(self, reference: str = "base", simplify="auto") -> sp.Matrix:
+    def jacobian(self, reference: str = "base", simplify: bool | str = "auto") -> sp.Matrix:
         """The 6×n geometric Jacobian of the tool, angular rows first.
 
         ``reference="base"``: twist (ω, v) of the tool origin in base coordinates, columns
@@ -277,7 +281,7 @@ class SymbolicArm:
             # with T_ae the tool pose in the axis frame, z_tool = R_aeᵀ ẑ and v = z_tool × (R_aeᵀ p_ae).
             n = self.n
             T_after = self.tool
-            afters = [None] * n
+            afters: list[Any] = [None] * n  # every entry is set below
             for i in range(n, 0, -1):
                 if self.convention == "modified":
                     afters[i - 1] = T_after  # axis i is z of frame {i}
@@ -295,8 +299,9 @@ class SymbolicArm:
         return _simplify_matrix(J, self._level(simplify, heavy=(reference == "tool")))
 
     # ------------------------------------------------------------------ dynamics
-    def dynamics(self, masses, coms, inertias=None, gravity=(0, 0, -9.81), allow_slow: bool = False,
-                 simplify="auto") -> SymbolicDynamics:
+    def dynamics(self, masses: Sequence[Any], coms: Sequence[Any], inertias: Sequence[Any] | None = None,
+                 gravity: Sequence[Any] = (0, 0, -9.81), allow_slow: bool = False,
+                 simplify: bool | str = "auto") -> SymbolicDynamics:
         """Lagrangian dynamics for link masses, centres of mass and inertias.
 
         masses : n numbers/symbols; coms : n 3-vectors in DH frame {i}; inertias : n 3×3
@@ -365,7 +370,7 @@ class SymbolicArm:
         return SymbolicDynamics(self.q, self.dq, M, C, V, G, B, Ccf)
 
     # -------------------------------------------------------------- conversions
-    def lambdify(self, expr, extra_symbols: Sequence[sp.Symbol] = ()):
+    def lambdify(self, expr: Any, extra_symbols: Sequence[sp.Symbol] = ()) -> Callable[..., np.ndarray]:
         """A numpy function of ``(q, *extra)`` (and ``dq`` if the expression uses it).
 
         The returned function takes ``q`` (n,), then ``dq`` (n,) if ``expr`` contains joint
@@ -380,27 +385,27 @@ class SymbolicArm:
             raise ValueError(f"expr: symbols {sorted(map(str, free))} have no value; pass them as extra_symbols")
         f = sp.lambdify(args, expr, modules="numpy")
 
-        def numeric(*values):
+        def numeric(*values: ArrayLike) -> np.ndarray:
             return np.array(f(*values), dtype=float).reshape(expr.shape)
 
         numeric.__doc__ = f"Numeric form of a symbolic expression; arguments: {', '.join(map(str, ['q'] + (['dq'] if uses_dq else []) + list(extra_symbols)))}"
         return numeric
 
 
-def shorthand(expr, q: Sequence[sp.Symbol] | None = None):
+def shorthand(expr: Any, q: Sequence[sp.Symbol] | None = None) -> Any:
     """Replace ``cos(q1 + q2)`` by the symbol ``c₁₂`` (``c_{12}``), ``sin(q1)`` by ``s₁``, as the lectures write them.
 
     ``q`` are the joint symbols (default: every symbol named ``q<digits>``). Works on
     expressions and matrices; returns a new object (for display, not for computing).
     """
-    def joint_index(sym):
+    def joint_index(sym: sp.Basic) -> int | None:
         name = str(sym)
         if q is not None:
             return list(q).index(sym) + 1 if sym in q else None
         return int(name[1:]) if name.startswith("q") and name[1:].isdigit() else None
 
-    def rewrite(fn, letter):
-        def repl(arg):
+    def rewrite(fn: Any, letter: str) -> tuple[Any, Callable[[sp.Basic], sp.Symbol | None]]:
+        def repl(arg: sp.Basic) -> sp.Symbol | None:
             terms = sp.Add.make_args(sp.expand(arg))
             idx = []
             for t in terms:
@@ -421,6 +426,6 @@ def shorthand(expr, q: Sequence[sp.Symbol] | None = None):
     return out
 
 
-def to_latex(expr, use_shorthand: bool = True) -> str:
+def to_latex(expr: Any, use_shorthand: bool = True) -> str:
     """LaTeX of an expression or matrix, with the lectures' cᵢ/sᵢⱼ shorthand by default."""
     return sp.latex(shorthand(expr) if use_shorthand else expr)

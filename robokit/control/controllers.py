@@ -26,14 +26,20 @@ wrong inertial parameters to study model error (the plant in the simulator is se
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["IndependentJoint", "GravityPD", "ModelFeedforward", "ComputedTorque", "gains"]
 
 
-def gains(value, n: int, name: str) -> np.ndarray:
+def gains(value: ArrayLike, n: int, name: str) -> np.ndarray:
     """A gain as an (n,) array: a scalar is broadcast; a vector must have length n; finite and ≥ 0
     (the one gain check of robokit's controllers and of the seed's computed torque)."""
     arr = np.asarray(value, dtype=float)
@@ -48,10 +54,10 @@ def gains(value, n: int, name: str) -> np.ndarray:
 class _Controller:
     n: int
 
-    def reset(self):
+    def reset(self) -> None:
         """Clear any internal state (integral terms)."""
 
-    def update(self, dt, q, dq, q_des, dq_des):
+    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
         """Advance internal state by one control period ``dt`` (s)."""
 
 
@@ -65,7 +71,8 @@ class IndependentJoint(_Controller):
     torques g(q) are fed forward (None: no gravity feedforward).
     """
 
-    def __init__(self, n, Kp, Kv, J_nom, Ki=0.0, velocity_ff: bool = True, gravity=None):
+    def __init__(self, n: int, Kp: ArrayLike, Kv: ArrayLike, J_nom: ArrayLike, Ki: ArrayLike = 0.0,
+                 velocity_ff: bool = True, gravity: Robot | None = None) -> None:
         self.n = int(n)
         self.Kp, self.Kv, self.Ki = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv"), gains(Ki, self.n, "Ki")
         self.J_nom = gains(J_nom, self.n, "J_nom")
@@ -73,17 +80,18 @@ class IndependentJoint(_Controller):
         self.gravity = gravity
         self.reset()
 
-    def reset(self):
+    def reset(self) -> None:
         self.integral = np.zeros(self.n)
 
-    def _vel_error(self, q, dq, q_des, dq_des):
+    def _vel_error(self, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> np.ndarray:
         dq_ref = self.Kp * (q_des - q) + (dq_des if self.velocity_ff else 0.0)
         return dq_ref - dq
 
-    def update(self, dt, q, dq, q_des, dq_des):
+    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
         self.integral = self.integral + dt * self._vel_error(q, dq, q_des, dq_des)
 
-    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+    def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
+                 ddq_des: np.ndarray) -> np.ndarray:
         ev = self._vel_error(q, dq, q_des, dq_des)
         tau = self.J_nom * (self.Kv * ev + self.Ki * self.integral)
         if self.gravity is not None:
@@ -94,22 +102,24 @@ class IndependentJoint(_Controller):
 class GravityPD(_Controller):
     """PD with gravity compensation: ``τ = K_p e + K_v ė + g(q)`` (N·m/rad, N·m·s/rad)."""
 
-    def __init__(self, robot, Kp, Kv):
+    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike) -> None:
         self.robot, self.n = robot, robot.n
         self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
 
-    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+    def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
+                 ddq_des: np.ndarray) -> np.ndarray:
         return self.Kp * (q_des - q) + self.Kv * (dq_des - dq) + self.robot.gravity_torques(q)
 
 
 class ModelFeedforward(_Controller):
     """Model-based feedforward plus PD: ``τ = ID(q_d, q̇_d, q̈_d) + K_p e + K_v ė``."""
 
-    def __init__(self, robot, Kp, Kv):
+    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike) -> None:
         self.robot, self.n = robot, robot.n
         self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
 
-    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+    def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
+                 ddq_des: np.ndarray) -> np.ndarray:
         return self.robot.rnea(q_des, dq_des, ddq_des) + self.Kp * (q_des - q) + self.Kv * (dq_des - dq)
 
 
@@ -121,19 +131,20 @@ class ComputedTorque(_Controller):
     critical damping), Ki in 1/s³.
     """
 
-    def __init__(self, robot, Kp, Kv=None, Ki=0.0):
+    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike | None = None, Ki: ArrayLike = 0.0) -> None:
         self.robot, self.n = robot, robot.n
         self.Kp = gains(Kp, self.n, "Kp")
         self.Kv = 2.0 * np.sqrt(self.Kp) if Kv is None else gains(Kv, self.n, "Kv")
         self.Ki = gains(Ki, self.n, "Ki")
         self.reset()
 
-    def reset(self):
+    def reset(self) -> None:
         self.integral = np.zeros(self.n)
 
-    def update(self, dt, q, dq, q_des, dq_des):
+    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
         self.integral = self.integral + dt * (q_des - q)
 
-    def __call__(self, t, q, dq, q_des, dq_des, ddq_des):
+    def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
+                 ddq_des: np.ndarray) -> np.ndarray:
         a = ddq_des + self.Kv * (dq_des - dq) + self.Kp * (q_des - q) + self.Ki * self.integral
         return self.robot.rnea(q, dq, a)

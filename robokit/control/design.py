@@ -13,15 +13,18 @@ r"""Gain design and step-response measures for joint loops (Lecture 8).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 
 __all__ = ["critical_gains", "pid_gains_bandwidth", "StepInfo", "step_info", "plot_step_response"]
 
 
-def critical_gains(inertia, omega_n=None, Kp=None):
+def critical_gains(inertia: ArrayLike, omega_n: ArrayLike | None = None,
+                   Kp: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``(K_p, K_v)`` of a critically damped PD loop on ``inertia`` (kg·m², scalar or (n,)).
 
     Give the natural frequency ``omega_n`` (rad/s): ``K_p = J ω_n²``, ``K_v = 2 J ω_n``; or give
@@ -45,7 +48,7 @@ def critical_gains(inertia, omega_n=None, Kp=None):
     return Kp, 2.0 * np.sqrt(Kp * J)
 
 
-def pid_gains_bandwidth(inertia, bandwidth):
+def pid_gains_bandwidth(inertia: ArrayLike, bandwidth: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(K_p, K_i, K_d)`` placing the three poles of the PID loop on inertia J at ``−ω_b``.
 
     inertia : kg·m² (scalar or (n,)); bandwidth : ω_b (rad/s). ``K_p = 3Jω_b²``, ``K_i = Jω_b³``,
@@ -82,7 +85,7 @@ class StepInfo:
     final: float
 
 
-def _crossing(t, y, level):
+def _crossing(t: np.ndarray, y: np.ndarray, level: float) -> float:
     """First time y crosses ``level`` going up (linear interpolation); NaN if never."""
     idx = np.nonzero(y >= level)[0]
     if len(idx) == 0:
@@ -93,7 +96,8 @@ def _crossing(t, y, level):
     return float(t[k - 1] + (level - y[k - 1]) * (t[k] - t[k - 1]) / (y[k] - y[k - 1]))
 
 
-def step_info(t, y, target=None, y0=None, settle: float = 0.02, rise=(0.1, 0.9)) -> StepInfo:
+def step_info(t: ArrayLike, y: ArrayLike, target: float | None = None, y0: float | None = None, settle: float = 0.02,
+              rise: tuple[float, float] = (0.1, 0.9)) -> StepInfo:
     """Measures of a step response y(t) (see :class:`StepInfo`).
 
     t : (K,) increasing times (s); y : (K,) response; target : the commanded final value (default
@@ -130,7 +134,8 @@ def step_info(t, y, target=None, y0=None, settle: float = 0.02, rise=(0.1, 0.9))
     return StepInfo(overshoot, float(y[k_peak]), float(t[k_peak]), float(rise_time), settling, target - final, final)
 
 
-def plot_step_response(t, y, target=None, info: StepInfo | None = None, ax=None, label: str | None = None):
+def plot_step_response(t: ArrayLike, y: ArrayLike, target: float | None = None, info: StepInfo | None = None,
+                       ax: Any = None, label: str | None = None) -> Any:
     """Plot a step response with its measures marked: the target, the settling band, the peak,
     the 10–90 % rise and the settling time. Returns the matplotlib Axes.
 

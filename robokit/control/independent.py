@@ -27,13 +27,18 @@ With P loops (K_i = 0) a constant disturbance leaves the steady-state position e
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.control.controllers import gains
 from robokit.control.simulate import _desired
 from robokit.dynamics.drives import drive_parameters, forward_dynamics_with_drives
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["IndependentJointRun", "simulate_independent_joints"]
 
@@ -63,8 +68,9 @@ class IndependentJointRun:
         return self.q_des - self.q
 
 
-def simulate_independent_joints(robot, trajectory, Kp, Kv, Ki=0.0, *, Ka: float = 1.0, Km: float = 0.228,
-                                gravity_ff: bool = False, q0=None, dq0=None, substeps: int = 2,
+def simulate_independent_joints(robot: Robot, trajectory: Any, Kp: ArrayLike, Kv: ArrayLike, Ki: ArrayLike = 0.0, *,
+                                Ka: float = 1.0, Km: float = 0.228, gravity_ff: bool = False,
+                                q0: ArrayLike | None = None, dq0: ArrayLike | None = None, substeps: int = 2,
                                 coulomb: bool = True) -> IndependentJointRun:
     """Simulate independent joint control of ``robot`` (a DH robot with drive data) along ``trajectory``.
 
@@ -98,7 +104,7 @@ def simulate_independent_joints(robot, trajectory, Kp, Kv, Ki=0.0, *, Ka: float 
     Q, DQ, U, D, JE = (np.empty((K, n)) for _ in range(5))
     integral = np.zeros(n)
 
-    def accel(q, dq, u):
+    def accel(q: np.ndarray, dq: np.ndarray, u: np.ndarray) -> np.ndarray:
         return forward_dynamics_with_drives(robot, q, dq, G * Km * Ka * u, coulomb=coulomb)
 
     for k in range(K):

@@ -10,12 +10,17 @@ optional null-space push away from the joint limits (``null_gain``,
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.kinematics.velocity import joint_limit_gradient, resolved_rate
 from robokit.trajectory.polynomial import quintic_trajectory
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["LineTrackingResult", "track_line"]
 
@@ -31,8 +36,9 @@ class LineTrackingResult:
     error: np.ndarray
 
 
-def track_line(robot, q0, p_goal, duration: float, dt: float = 0.005, method: str = "dls", gain: float = 5.0,
-               damping: float = 0.02, null_gain: float = 0.0, frame: str | None = None) -> LineTrackingResult:
+def track_line(robot: Robot, q0: ArrayLike, p_goal: ArrayLike, duration: float, dt: float = 0.005,
+               method: str = "dls", gain: float = 5.0, damping: float = 0.02, null_gain: float = 0.0,
+               frame: str | None = None) -> LineTrackingResult:
     """Resolved-rate control along a straight line from the current tool position to ``p_goal``
     (see the module docstring). Returns the tracking error along the path.
 
@@ -47,6 +53,7 @@ def track_line(robot, q0, p_goal, duration: float, dt: float = 0.005, method: st
     K = int(np.ceil(duration / dt))
     times = np.minimum(np.arange(K + 1) * dt, duration)
     scaling = quintic_trajectory(0.0, 1.0, duration, t=times)  # s(t) and ṡ(t), rest to rest
+    assert scaling.qd is not None  # a quintic has its velocity
     ts, qs, ps, pds, errs = [], [], [], [], []
     for k in range(K + 1):
         p_des = p0 + scaling.q[k, 0] * (p_goal - p0)
@@ -55,7 +62,10 @@ def track_line(robot, q0, p_goal, duration: float, dt: float = 0.005, method: st
         e_p = p_des - T[:3, 3]
         Re = R_des @ T[:3, :3].T
         e_w = 0.5 * np.array([Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]])
-        ts.append(times[k]), qs.append(q.copy()), ps.append(T[:3, 3].copy()), pds.append(p_des)
+        ts.append(times[k])
+        qs.append(q.copy())
+        ps.append(T[:3, 3].copy())
+        pds.append(p_des)
         errs.append(np.linalg.norm(e_p))
         if k == K:
             break

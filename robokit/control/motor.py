@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 
@@ -50,22 +51,22 @@ class DCMotor:
     B: float
     Tc: tuple = field(default=(0.0, 0.0))
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         as_scalar(self.Ka, "Ka", positive=True)
         as_scalar(self.Km, "Km", positive=True)
         as_scalar(self.J, "J", positive=True)
         as_scalar(self.B, "B", nonnegative=True)
         as_vector(self.Tc, "Tc", 2)
 
-    def current(self, u):
+    def current(self, u: ArrayLike) -> np.ndarray:
         """Motor current ``i = K_a u`` (A) for control voltage u (V)."""
         return self.Ka * np.asarray(u, dtype=float)
 
-    def torque(self, u):
+    def torque(self, u: ArrayLike) -> np.ndarray:
         """Motor torque ``τ = K_m K_a u`` (N·m) for control voltage u (V)."""
         return self.Km * self.Ka * np.asarray(u, dtype=float)
 
-    def transfer_function(self):
+    def transfer_function(self) -> tuple[np.ndarray, np.ndarray]:
         """``(num, den)`` of ``Ω(s)/U(s) = K_m K_a / (J s + B)``: polynomial coefficients, highest power first."""
         return np.array([self.Km * self.Ka]), np.array([self.J, self.B])
 
@@ -79,7 +80,7 @@ class DCMotor:
         """Steady speed per volt ``K_m K_a / B`` (rad/s/V); infinite without viscous friction."""
         return self.Km * self.Ka / self.B if self.B > 0 else float("inf")
 
-    def step_response(self, t, u: float = 1.0, omega0: float = 0.0) -> np.ndarray:
+    def step_response(self, t: ArrayLike, u: float = 1.0, omega0: float = 0.0) -> np.ndarray:
         """Closed-form speed (rad/s) after a voltage step u at t = 0, no Coulomb friction:
         ``ω(t) = ω_∞ + (ω₀ − ω_∞) e^{−B t / J}``, ``ω_∞ = K_m K_a u / B`` (``ω₀ + K_m K_a u t / J`` when B = 0).
 
@@ -93,12 +94,13 @@ class DCMotor:
         w_inf = K / self.B
         return w_inf + (omega0 - w_inf) * np.exp(-self.B * t / self.J)
 
-    def acceleration(self, omega, u, tau_d=0.0) -> float:
+    def acceleration(self, omega: float, u: float, tau_d: float = 0.0) -> float:
         """``ω̇ = (K_m K_a u − B ω − τ_c(ω) − τ_d) / J`` (rad/s²)."""
         tc = self.Tc[0] if omega > 0 else (self.Tc[1] if omega < 0 else 0.0)
         return (self.Km * self.Ka * u - self.B * omega - tc - tau_d) / self.J
 
-    def simulate(self, t, u, omega0: float = 0.0, tau_d=None, substeps: int = 10) -> np.ndarray:
+    def simulate(self, t: ArrayLike, u: ArrayLike, omega0: float = 0.0, tau_d: ArrayLike | None = None,
+                 substeps: int = 10) -> np.ndarray:
         """Speed ω (K,) by numerical integration (RK4) of the motor equation, Coulomb friction included.
 
         t : (K,) increasing times (s); u : (K,) voltages (held over each interval) or a scalar;
@@ -124,7 +126,8 @@ class DCMotor:
         return w
 
 
-def reflect_to_joint(G, Jm=0.0, Bm=0.0, tau_c=0.0):
+def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
+                     tau_c: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G:
     ``(ˡJ, ˡB, ˡτ) = (G² Jm, G² Bm, G τ)`` (Lecture 8). Scalars or arrays (broadcast).
 
@@ -136,7 +139,7 @@ def reflect_to_joint(G, Jm=0.0, Bm=0.0, tau_c=0.0):
     return G * G * np.asarray(Jm, float), G * G * np.asarray(Bm, float), G * np.asarray(tau_c, float)
 
 
-def effective_inertia(Jm, M_jj, G):
+def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarray:
     """The inertia the motor of joint j sees: ``J = J_m + M_jj / G²`` (kg·m², motor side; Lecture 8).
 
     Jm : rotor inertia; M_jj : the arm's inertia about joint j (diagonal of M(q), kg·m²); G : gear

@@ -1,12 +1,14 @@
 """One-call plots of a closed-loop run: desired vs actual joints, tracking error, torques."""
 from __future__ import annotations
 
+from typing import Any, Iterable
+
 import numpy as np
 
 __all__ = ["plot_tracking"]
 
 
-def plot_tracking(result, joints=None, title: str | None = None):
+def plot_tracking(result: Any, joints: Iterable[int] | None = None, title: str | None = None) -> Any:
     """Three stacked panels for a :class:`~robokit.control.simulate.SimResult` (or any object with
     ``t``, ``q``, ``q_des``, ``tau``): desired (dashed) and actual joint angles, tracking
     error ``q_des − q``, and commanded torques. ``joints`` selects columns (default all).

@@ -12,7 +12,10 @@ the integral of the error is accumulated as ``eint ← eint + e·dt`` (seed 004,
 """
 from __future__ import annotations
 
+from typing import NoReturn
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.control.controllers import gains
@@ -20,7 +23,7 @@ from robokit.control.controllers import gains
 __all__ = ["computed_torque", "simulate_control"]
 
 
-def _diverged(i, dt, taumat, thetamat):
+def _diverged(i: int, dt: float, taumat: np.ndarray, thetamat: np.ndarray) -> NoReturn:
     from robokit.errors import DivergenceError
 
     raise DivergenceError(
@@ -30,8 +33,9 @@ def _diverged(i, dt, taumat, thetamat):
     )
 
 
-def computed_torque(thetalist, dthetalist, eint, g, Mlist, Glist, Slist, thetalistd, dthetalistd, ddthetalistd,
-                    Kp, Ki, Kd):
+def computed_torque(thetalist: ArrayLike, dthetalist: ArrayLike, eint: ArrayLike, g: ArrayLike, Mlist: ArrayLike,
+                    Glist: ArrayLike, Slist: ArrayLike, thetalistd: ArrayLike, dthetalistd: ArrayLike,
+                    ddthetalistd: ArrayLike, Kp: ArrayLike, Ki: ArrayLike, Kd: ArrayLike) -> np.ndarray:
     """Joint torques of the computed-torque (PID) law, Modern Robotics eq. 11.35.
 
     thetalist, dthetalist : (n,) measured θ (rad) and θ̇ (rad/s); eint : (n,) time integral
@@ -54,8 +58,11 @@ def computed_torque(thetalist, dthetalist, eint, g, Mlist, Glist, Slist, thetali
     return inverse_dynamics(theta, dtheta, a, g, np.zeros(6), Mlist, Glist, Slist)
 
 
-def simulate_control(thetalist, dthetalist, g, Ftipmat, Mlist, Glist, Slist, thetamatd, dthetamatd, ddthetamatd,
-                     gtilde, Mtildelist, Gtildelist, Kp, Ki, Kd, dt, intRes):
+def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, Ftipmat: ArrayLike, Mlist: ArrayLike,
+                     Glist: ArrayLike, Slist: ArrayLike, thetamatd: ArrayLike, dthetamatd: ArrayLike,
+                     ddthetamatd: ArrayLike, gtilde: ArrayLike, Mtildelist: ArrayLike, Gtildelist: ArrayLike,
+                     Kp: ArrayLike, Ki: ArrayLike, Kd: ArrayLike, dt: float,
+                     intRes: int) -> tuple[np.ndarray, np.ndarray]:
     """Closed-loop computed-torque simulation with model error (seed 004 §6, MR ``SimulateControl``).
 
     thetalist, dthetalist : (n,) initial state; g : (3,) true gravity; Ftipmat : (N, 6) tip

@@ -11,12 +11,17 @@ the plant is integrated with ``substeps`` fixed steps of RK4 (default) or explic
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
 from robokit.dynamics.drives import friction_torque, joint_drive_parameters
 from robokit.dynamics.integration import second_order_step
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["SimResult", "simulate"]
 
@@ -53,7 +58,7 @@ class SimResult:
         return f"SimResult({K} samples × {n} joints, t = {self.t[0]:g} … {self.t[-1]:g} s, max |error| {worst:.3g} rad)"
 
 
-def _drive_parameters(robot):
+def _drive_parameters(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(B, Tc, armature) of the Robot's drives referred to the joints, zeros without a DH table."""
     dh = getattr(robot, "dh", None)
     if dh is None:
@@ -62,7 +67,7 @@ def _drive_parameters(robot):
     return joint_drive_parameters(dh)
 
 
-def _desired(trajectory):
+def _desired(trajectory: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(t, q_des, dq_des, ddq_des) from a Trajectory-like object or a tuple."""
     if isinstance(trajectory, tuple):
         t, q_des, dq_des, ddq_des = trajectory
@@ -84,8 +89,9 @@ def _desired(trajectory):
     return t, q_des, dq_des, ddq_des
 
 
-def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int = 1, method: str = "rk4",
-             friction: bool = False, motor_inertia: bool = False, Ftip=None) -> SimResult:
+def simulate(robot: Robot, controller: Callable[..., ArrayLike], trajectory: Any, q0: ArrayLike | None = None,
+             dq0: ArrayLike | None = None, *, substeps: int = 1, method: str = "rk4", friction: bool = False,
+             motor_inertia: bool = False, Ftip: ArrayLike | None = None) -> SimResult:
     """Simulate ``robot`` under ``controller`` tracking ``trajectory``.
 
     robot : the plant (:class:`robokit.Robot`); controller : called as
@@ -125,7 +131,7 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
         data = model.createData()
     same_coords = model.nq == model.nv == n
 
-    def accel(qa, dqa, tau):
+    def accel(qa: np.ndarray, dqa: np.ndarray, tau: np.ndarray) -> np.ndarray:
         if use_fric:
             tau = tau - friction_torque(dqa, B, Tc)
         qp = qa if same_coords else robot.q_pin(qa)
@@ -149,7 +155,7 @@ def simulate(robot, controller, trajectory, q0=None, dq0=None, *, substeps: int 
             tau_plant = tau - Jb.T @ F[k]
         if hasattr(controller, "update"):
             controller.update(t[k + 1] - t[k], q, dq, q_des[k], dq_des[k])
-        def plant(_t, qa, dqa, tau_plant=tau_plant):
+        def plant(_t: float, qa: np.ndarray, dqa: np.ndarray, tau_plant: np.ndarray = tau_plant) -> np.ndarray:
             return accel(qa, dqa, tau_plant)
 
         for _ in range(substeps):

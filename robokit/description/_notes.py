@@ -12,7 +12,7 @@ import warnings
 try:
     from robokit.errors import RobokitWarning
 except ImportError:  # pragma: no cover - older robokit.errors without the warning class
-    RobokitWarning = UserWarning
+    RobokitWarning = UserWarning  # type: ignore[misc, assignment]
 
 
 def note(message: str) -> None:

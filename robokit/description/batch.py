@@ -13,12 +13,18 @@ Every result equals the per-configuration method to 1e-12 (tests/description/tes
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["batch_frame_pose", "batch_jacobian", "batch_crba", "batch_rnea", "batch_aba"]
 
 
-def _rows(robot, Q, name):
+def _rows(robot: Robot, Q: ArrayLike, name: str) -> np.ndarray:
     Q = np.ascontiguousarray(np.asarray(Q, dtype=float))
     if Q.ndim != 2 or Q.shape[1] != robot.n:
         raise ValueError(f"{name}: expected shape (N, {robot.n}) for {robot.name}, got {Q.shape}")
@@ -27,12 +33,12 @@ def _rows(robot, Q, name):
     return Q
 
 
-def _tip_only(robot, frame):
+def _tip_only(robot: Robot, frame: str | None) -> None:
     if frame is not None and frame != robot.tip:
         raise ValueError(f"frame: batched calls answer for the tip {robot.tip!r} only, got {frame!r}")
 
 
-def batch_frame_pose(robot, Q, frame=None) -> np.ndarray:
+def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np.ndarray:
     """(N, 4, 4) tip poses (compiled PoE kernel)."""
     from robokit.kernels.poe import fkin_space_batch
 
@@ -42,7 +48,7 @@ def batch_frame_pose(robot, Q, frame=None) -> np.ndarray:
     return fkin_space_batch(np.ascontiguousarray(p.M), np.ascontiguousarray(p.Slist), Q)
 
 
-def batch_jacobian(robot, Q, frame=None, reference: str = "world") -> np.ndarray:
+def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
     """(N, 6, n) tip Jacobians, angular rows first (compiled PoE kernel): "world" = the space
     Jacobian J_s; "local" = ``Ad_{T⁻¹} J_s``; "local_world_aligned" = ``[[I, 0], [−[p], I]] J_s``."""
     from robokit.kernels.poe import fkin_space_batch, jacobian_space_batch
@@ -65,21 +71,22 @@ def batch_jacobian(robot, Q, frame=None, reference: str = "world") -> np.ndarray
     return out
 
 
-def batch_crba(robot, Q) -> np.ndarray:
+def batch_crba(robot: Robot, Q: ArrayLike) -> np.ndarray:
     """(N, n, n) mass matrices (compiled composite-rigid-body kernel; the motors' armature of the
     Pinocchio model, if any, added on the diagonal)."""
     from robokit.kernels.dynamics import mass_matrix_batch
 
     Q = _rows(robot, Q, "q")
     p = robot.poe
-    M = mass_matrix_batch(Q, np.ascontiguousarray(p.Mlist), np.ascontiguousarray(p.Glist), np.ascontiguousarray(p.Slist))
+    M = mass_matrix_batch(Q, np.ascontiguousarray(p.Mlist), np.ascontiguousarray(p.Glist),
+                          np.ascontiguousarray(p.Slist))
     arm = np.asarray(robot.model.armature, dtype=float)[: robot.n]
     if np.any(arm):
         M = M + np.diag(arm)
     return M
 
 
-def _pool(robot, threads: int):
+def _pool(robot: Robot, threads: int) -> tuple[Any, int]:
     threads = int(threads)
     if threads < 1:
         raise ValueError(f"threads: expected a positive integer, got {threads}")
@@ -89,13 +96,13 @@ def _pool(robot, threads: int):
     return cache[threads], threads
 
 
-def _q_pin_columns(robot, Q):
+def _q_pin_columns(robot: Robot, Q: np.ndarray) -> np.ndarray:
     if robot.model.nq == robot.n:
         return np.asfortranarray(Q.T)
     return np.asfortranarray(np.stack([robot.q_pin(q) for q in Q], axis=1))
 
 
-def batch_rnea(robot, Q, dQ, ddQ, threads: int = 1) -> np.ndarray:
+def batch_rnea(robot: Robot, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, threads: int = 1) -> np.ndarray:
     """(N, n) inverse dynamics, Pinocchio's ``rneaInParallel`` on ``threads`` threads."""
     Q, dQ, ddQ = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, ddQ, "ddq")
     if not (Q.shape == dQ.shape == ddQ.shape):
@@ -106,7 +113,7 @@ def batch_rnea(robot, Q, dQ, ddQ, threads: int = 1) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(tau).T)
 
 
-def batch_aba(robot, Q, dQ, tau, threads: int = 1) -> np.ndarray:
+def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
     """(N, n) forward dynamics, Pinocchio's ``abaInParallel`` on ``threads`` threads."""
     Q, dQ, tau = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, tau, "tau")
     if not (Q.shape == dQ.shape == tau.shape):

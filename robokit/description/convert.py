@@ -6,14 +6,16 @@ Every output is written atomically: a failure leaves no file behind. Bad input r
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
+from typing import Mapping, Sequence
 
 from robokit._io import atomic_write
 
 __all__ = ["convert"]
 
 
-def _check_output(output) -> Path:
+def _check_output(output: str | os.PathLike[str]) -> Path:
     out = Path(output)
     parent = out.parent if str(out.parent) else Path(".")
     if not parent.is_dir():
@@ -23,8 +25,9 @@ def _check_output(output) -> Path:
     return out
 
 
-def convert(input, output=None, tip=None, convention="standard", *, xacro_args=None,
-            package_dirs=None) -> tuple[str, list[str]]:
+def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
+            convention: str = "standard", *, xacro_args: Mapping[str, str] | None = None,
+            package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> tuple[str, list[str]]:
     """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
 
     * ``IN.yaml -o OUT.urdf`` — DH table to URDF (see the URDF format page of the documentation);
@@ -45,7 +48,7 @@ def convert(input, output=None, tip=None, convention="standard", *, xacro_args=N
     in_suffix = Path(src).suffix.lower()
     out = _check_output(output) if output is not None else None
     out_suffix = out.suffix.lower() if out is not None else None
-    notes = []
+    notes: list[str] = []
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
         from robokit.description.mjcf import robot_to_mjcf
 
@@ -56,6 +59,7 @@ def convert(input, output=None, tip=None, convention="standard", *, xacro_args=N
                             f"their bodies merged: {', '.join(robot.locked_joints)}")
     elif in_suffix in (".yaml", ".yml"):
         if out_suffix not in (".urdf", None):
+            assert out is not None  # out_suffix is not None
             raise ValueError(f"output: a DH file converts to .urdf, got {out.name!r}")
         if tip is not None:
             raise ValueError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
@@ -72,6 +76,7 @@ def convert(input, output=None, tip=None, convention="standard", *, xacro_args=N
 
             text = urdf_to_dh_text(robot, convention=convention, as_yaml=out_suffix is not None)
         else:
+            assert out is not None  # out_suffix is not None
             raise ValueError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
     if out is not None:
         atomic_write(out, text)

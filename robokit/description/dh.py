@@ -20,6 +20,8 @@ Lengths in m, angles in rad inside the type (the YAML may use degrees: ``angle_u
 from __future__ import annotations
 
 import math
+import os
+from typing import Any, NoReturn
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -27,6 +29,8 @@ import numpy as np
 
 from robokit._io import atomic_write
 from robokit.errors import InputError
+from numpy.typing import ArrayLike
+
 from robokit.spatial.euler import matrix_from_euler
 from robokit.spatial.so3 import matrix_to_euler
 
@@ -41,7 +45,7 @@ MAX_MAGNITUDE = 1e12
 _TOP_KEYS = {"name", "convention", "angle_unit", "gravity", "base", "tool", "links", "description"}
 
 
-def dh_transform(a, alpha, d, theta, convention: str = "standard") -> np.ndarray:
+def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str = "standard") -> np.ndarray:
     """The 4×4 link transform ``ⁱ⁻¹Tᵢ`` of one DH row (m, rad).
 
     standard: ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (seed 003 eq. 13); modified: ``Rx(α) Tx(a) Rz(θ) Tz(d)``
@@ -72,7 +76,7 @@ def dh_transform(a, alpha, d, theta, convention: str = "standard") -> np.ndarray
     raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")
 
 
-def rpy_to_matrix(rpy) -> np.ndarray:
+def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
     """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
 
     Not a third rotation API: it is :func:`robokit.spatial.matrix_from_euler` with the extrinsic
@@ -81,7 +85,7 @@ def rpy_to_matrix(rpy) -> np.ndarray:
     return matrix_from_euler(np.asarray(rpy, dtype=float), "XYZ", extrinsic=True)
 
 
-def matrix_to_rpy(R) -> np.ndarray:
+def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
     """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2] (roll = 0 at gimbal lock)."""
     y, p, r = matrix_to_euler(R)
     return np.array([r, p, y])
@@ -177,7 +181,7 @@ class DHTable:
         theta, d = (l.theta + q_i, l.d) if l.joint == "R" else (l.theta, l.d + q_i)
         return dh_transform(l.a, l.alpha, d, theta, self.convention)
 
-    def _q(self, q) -> np.ndarray:
+    def _q(self, q: ArrayLike) -> np.ndarray:
         q = np.asarray(q, dtype=float)
         if q.shape != (self.n,):
             raise ValueError(f"q: expected shape ({self.n},) for {self.name}, got {q.shape}")
@@ -185,7 +189,7 @@ class DHTable:
             raise ValueError("q: contains NaN or infinite values")
         return q
 
-    def frames(self, q) -> np.ndarray:
+    def frames(self, q: ArrayLike) -> np.ndarray:
         """(N+1, 4, 4) poses of DH frames {0..N} in base_link at joint values q (n,)."""
         q = self._q(q)
         out = np.empty((self.n + 1, 4, 4))
@@ -196,13 +200,13 @@ class DHTable:
             out[i + 1] = T
         return out
 
-    def fk(self, q) -> np.ndarray:
+    def fk(self, q: ArrayLike) -> np.ndarray:
         """4×4 pose of the tool in base_link: ``base · ⁰T₁(q₁) ⋯ ᴺ⁻¹T_N(q_N) · tool``."""
         return self.frames(q)[-1] @ self.tool
 
     # ------------------------------------------------------------------ YAML I/O
     @classmethod
-    def from_yaml(cls, path) -> "DHTable":
+    def from_yaml(cls, path: str | os.PathLike[str]) -> "DHTable":
         """Load a DH YAML file (see the DH file format page of the documentation); errors name the file, the link and the key."""
         from robokit._yaml import load_yaml_file
 
@@ -211,9 +215,9 @@ class DHTable:
         return cls.from_dict(data, source=str(path))
 
     @classmethod
-    def from_dict(cls, data, source: str = "<dict>") -> "DHTable":
+    def from_dict(cls, data: Any, source: str = "<dict>") -> "DHTable":
         """Build from the parsed YAML mapping; see :meth:`from_yaml`."""
-        def fail(msg):
+        def fail(msg: str) -> NoReturn:
             if len(msg) > 300:  # a value echoed back is never allowed to make a huge line
                 msg = msg[:297] + "..."
             raise InputError(f"{source}: {msg}")
@@ -239,7 +243,7 @@ class DHTable:
             fail(f"key 'angle_unit': expected 'deg' or 'rad', got {unit!r}")
         k = math.pi / 180.0 if unit == "deg" else 1.0
 
-        def number(value, where):
+        def number(value: Any, where: str) -> float:
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
                 fail(f"{where}: expected a number, got {shown}")
@@ -253,7 +257,7 @@ class DHTable:
                 fail(f"{where}: {v:g} is out of range (at most {MAX_MAGNITUDE:g} in magnitude; SI units)")
             return v
 
-        def vector(value, length, where):
+        def vector(value: Any, length: int, where: str) -> np.ndarray:
             if not isinstance(value, (list, tuple)) or len(value) != length:
                 got = f"{len(value)} entries" if isinstance(value, (list, tuple)) else repr(value)
                 fail(f"{where}: expected a list of {length} numbers, got {got}")
@@ -261,7 +265,7 @@ class DHTable:
 
         gravity = vector(data["gravity"], 3, "key 'gravity'") if "gravity" in data else np.array([0.0, 0.0, -9.81])
 
-        def frame(key):
+        def frame(key: str) -> np.ndarray:
             if key not in data:
                 return np.eye(4)
             spec = data[key]
@@ -335,15 +339,15 @@ class DHTable:
             raise ValueError(f"angle_unit: expected 'deg' or 'rad', got {angle_unit!r}")
         k = 180.0 / math.pi if angle_unit == "deg" else 1.0
 
-        def ang(x):
+        def ang(x: float) -> float:
             v = float(x) * k
             r = round(v)
             return float(r) if abs(v - r) < 1e-9 else v
 
-        def num(x):
+        def num(x: float) -> float:
             return float(x)
 
-        out = {"name": self.name, "convention": self.convention, "angle_unit": angle_unit,
+        out: dict[str, Any] = {"name": self.name, "convention": self.convention, "angle_unit": angle_unit,
                "gravity": [num(g) for g in self.gravity]}
         for key, T in (("base", self.base), ("tool", self.tool)):
             T = np.asarray(T, dtype=float)
@@ -380,7 +384,7 @@ class DHTable:
 
         return yaml.safe_dump(self.to_dict(angle_unit), sort_keys=False, default_flow_style=None, width=100)
 
-    def save(self, path, angle_unit: str = "deg") -> Path:
+    def save(self, path: str | os.PathLike[str], angle_unit: str = "deg") -> Path:
         """Write the YAML file atomically."""
         return atomic_write(path, self.to_yaml_str(angle_unit))
 
@@ -401,7 +405,7 @@ class DHTable:
         else:
             head = ("i", "joint", "a_{i-1} [m]", "alpha_{i-1} [deg]", "d_i [m]", "theta_i [deg]")
 
-        def fmt(x, k):
+        def fmt(x: float, k: int) -> str:
             return f"{round(float(x), k) + 0.0:.{k}f}"  # + 0.0: no "-0.000"
 
         rows = []

@@ -47,12 +47,17 @@ import math
 import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.description._notes import note
 from robokit.errors import InputError
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["load_mjcf", "robot_to_mjcf", "first_body_placement", "joint_armature_damping", "CUSTOM_INERTIAL_PREFIX"]
 
@@ -79,7 +84,7 @@ def _parse_xml(path: Path) -> ET.Element:
         raise InputError(f"{path}: cannot read ({exc.strerror})") from None
 
 
-def _floats(elem: ET.Element, attr: str, n: int | None, path) -> np.ndarray | None:
+def _floats(elem: ET.Element | _Attr, attr: str, n: int | None, path: str | os.PathLike[str]) -> np.ndarray | None:
     text = elem.get(attr)
     if text is None:
         return None
@@ -96,14 +101,14 @@ def _floats(elem: ET.Element, attr: str, n: int | None, path) -> np.ndarray | No
     return vals
 
 
-def _axis_rotation(axis, angle) -> np.ndarray:
-    axis = np.asarray(axis, dtype=float)
-    axis = axis / np.linalg.norm(axis)
-    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+def _axis_rotation(axis: ArrayLike, angle: float) -> np.ndarray:
+    a = np.asarray(axis, dtype=float)
+    a = a / np.linalg.norm(a)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
 
 
-def _quat_to_matrix(q) -> np.ndarray:
+def _quat_to_matrix(q: ArrayLike) -> np.ndarray:
     w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
     return np.array([
         [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
@@ -117,11 +122,11 @@ def _compiler_settings(root: ET.Element) -> dict:
     for comp in root.iter("compiler"):
         for key in out:
             if comp.get(key) is not None:
-                out[key] = comp.get(key)
+                out[key] = comp.get(key, "")
     return out
 
 
-def _body_rotation(body: ET.Element, compiler: dict, path) -> np.ndarray:
+def _body_rotation(body: ET.Element, compiler: dict, path: str | os.PathLike[str]) -> np.ndarray:
     """Orientation of an MJCF ``<body>`` in its parent, by MuJoCo's rules (one of quat,
     axisangle, euler, xyaxes, zaxis; the compiler's angle unit and Euler sequence)."""
     k = math.pi / 180.0 if compiler["angle"] == "degree" else 1.0
@@ -159,7 +164,7 @@ def _body_rotation(body: ET.Element, compiler: dict, path) -> np.ndarray:
     return np.eye(3)
 
 
-def first_body_placement(path) -> tuple[str | None, np.ndarray | None]:
+def first_body_placement(path: str | os.PathLike[str]) -> tuple[str | None, np.ndarray | None]:
     """The worldbody's first ``<body>`` if it has no joint: ``(name, 4×4 pose in the world)``.
 
     Returns ``(None, None)`` when the first body has a joint (Pinocchio places it correctly)
@@ -205,7 +210,7 @@ def _ignored_notes(root: ET.Element, path: Path) -> list[str]:
     return notes
 
 
-def _apply_first_body_fix(model, geoms, name, X) -> bool:
+def _apply_first_body_fix(model: Any, geoms: list[Any], name: str | None, X: np.ndarray) -> bool:
     """Left-multiply the placements of everything hung on the universe joint from the first
     body down by X (the first body's world pose) if Pinocchio left it out; True if applied."""
     import pinocchio as pin
@@ -252,7 +257,7 @@ def _joint_defaults(root: ET.Element) -> dict:
     inheriting from their parents (the top ``<default>`` is class "main")."""
     out = {}
 
-    def walk(elem, inherited):
+    def walk(elem: ET.Element, inherited: dict) -> None:
         name = elem.get("class", "main")
         attrs = dict(inherited)
         j = elem.find("joint")
@@ -267,19 +272,20 @@ def _joint_defaults(root: ET.Element) -> dict:
     return out
 
 
-def _slide_ranges(root: ET.Element, path) -> dict:
+def _slide_ranges(root: ET.Element, path: str | os.PathLike[str]) -> dict:
     """``{joint name: (lower, upper)}`` of the slide joints with a range, in m (MuJoCo never
     converts a slide joint's range, whatever the compiler's angle unit)."""
     defaults = _joint_defaults(root)
     out = {}
 
-    def walk(elem, childclass):
+    def walk(elem: ET.Element, childclass: str) -> None:
         for child in elem:
             if child.tag == "joint":
                 attrs = dict(defaults.get(child.get("class", childclass), {}))
                 attrs.update(child.attrib)
                 if attrs.get("type", "hinge") == "slide" and "range" in attrs and attrs.get("limited") != "false":
                     rng = _floats(_Attr(attrs, child), "range", 2, path)
+                    assert rng is not None  # "range" in attrs
                     out[child.get("name", "")] = (float(rng[0]), float(rng[1]))
             elif child.tag == "body":
                 walk(child, child.get("childclass", childclass))
@@ -293,14 +299,14 @@ def _slide_ranges(root: ET.Element, path) -> dict:
 class _Attr:
     """An element-like view of merged attributes (for :func:`_floats` messages)."""
 
-    def __init__(self, attrs, elem):
+    def __init__(self, attrs: dict, elem: ET.Element) -> None:
         self.attrs, self.tag = attrs, elem.tag
 
-    def get(self, key, default=None):
+    def get(self, key: str, default: str | None = None) -> str | None:
         return self.attrs.get(key, default)
 
 
-def _fix_slide_ranges(model, root, path) -> None:
+def _fix_slide_ranges(model: Any, root: ET.Element, path: str | os.PathLike[str]) -> None:
     """Pinocchio 4.1 converts slide ranges from degrees like hinge ranges; MuJoCo does not."""
     for name, (lo, hi) in _slide_ranges(root, path).items():
         if not name or not model.existJointName(name):
@@ -311,7 +317,7 @@ def _fix_slide_ranges(model, root, path) -> None:
             model.upperPositionLimit[jm.idx_q] = hi
 
 
-def _gravity(root: ET.Element, path) -> np.ndarray:
+def _gravity(root: ET.Element, path: str | os.PathLike[str]) -> np.ndarray:
     g = np.array([0.0, 0.0, -9.81])
     for opt in root.iter("option"):
         v = _floats(opt, "gravity", 3, path)
@@ -320,7 +326,7 @@ def _gravity(root: ET.Element, path) -> np.ndarray:
     return g
 
 
-def _custom_inertials(root: ET.Element, path) -> dict:
+def _custom_inertials(root: ET.Element, path: str | os.PathLike[str]) -> dict:
     out = {}
     for num in root.iter("numeric"):
         name = num.get("name", "")
@@ -330,7 +336,7 @@ def _custom_inertials(root: ET.Element, path) -> dict:
     return out
 
 
-def _apply_custom_inertials(model, exact: dict, path) -> list[str]:
+def _apply_custom_inertials(model: Any, exact: dict, path: str | os.PathLike[str]) -> list[str]:
     import pinocchio as pin
 
     applied = []
@@ -351,7 +357,7 @@ def _apply_custom_inertials(model, exact: dict, path) -> list[str]:
     return applied
 
 
-def _default_tip(model) -> str:
+def _default_tip(model: Any) -> str:
     """The last site (operational frame) on the chain's last joint, else the last body."""
     import pinocchio as pin
 
@@ -363,7 +369,7 @@ def _default_tip(model) -> str:
     return sites[-1] if sites else body
 
 
-def load_mjcf(path, tip: str | None = None):
+def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
 
     Parameters
@@ -400,7 +406,8 @@ def load_mjcf(path, tip: str | None = None):
     root = _parse_xml(path)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
-    if root.find("worldbody") is None or root.find("worldbody").find("body") is None:
+    world = root.find("worldbody")
+    if world is None or world.find("body") is None:
         raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
     for n in _ignored_notes(root, path):
         note(n)
@@ -431,16 +438,16 @@ def load_mjcf(path, tip: str | None = None):
 
 
 # --------------------------------------------------------------------------- writing
-def _f(x) -> str:
+def _f(x: float) -> str:
     x = float(x)
     return "0" if x == 0.0 else repr(x)
 
 
-def _v(v) -> str:
+def _v(v: ArrayLike) -> str:
     return " ".join(_f(x) for x in np.ravel(v))
 
 
-def _quat(R) -> np.ndarray:
+def _quat(R: np.ndarray) -> np.ndarray:
     """Unit quaternion (w, x, y, z) of a rotation, w ≥ 0."""
     import pinocchio as pin
 
@@ -449,7 +456,7 @@ def _quat(R) -> np.ndarray:
     return -wxyz if wxyz[0] < 0 else wxyz
 
 
-def _pose_attrs(T) -> str:
+def _pose_attrs(T: np.ndarray) -> str:
     T = np.asarray(T, dtype=float)
     out = []
     if np.any(T[:3, 3] != 0):
@@ -468,7 +475,7 @@ def _mujoco_accepts(mass: float, I: np.ndarray) -> bool:
     return a + b >= c * (1 + 1e-9)
 
 
-def _regularized(mass: float, I: np.ndarray):
+def _regularized(mass: float, I: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     """Nearest inertial MuJoCo accepts: (mass, principal moments (3,), rotation to principal axes)."""
     ev, V = np.linalg.eigh(I)
     if np.linalg.det(V) < 0:
@@ -483,7 +490,7 @@ def _regularized(mass: float, I: np.ndarray):
     return max(mass, _MASS_FLOOR), ev, V
 
 
-def _joint_axis(model, j):
+def _joint_axis(model: Any, j: int) -> tuple[str, np.ndarray]:
     """(kind, axis in the joint frame) of a one-dof joint: kind "hinge" or "slide"."""
     import pinocchio as pin
 
@@ -496,7 +503,7 @@ def _joint_axis(model, j):
     return "slide", S[:3] / np.linalg.norm(S[:3])
 
 
-def _geom_xml(go, mesh_assets: dict, color_default="0.7 0.7 0.75 1") -> str | None:
+def _geom_xml(go: Any, mesh_assets: dict, color_default: str = "0.7 0.7 0.75 1") -> str | None:
     """A ``<geom>`` of one Pinocchio geometry object (placement relative to its joint), or
     None when MuJoCo cannot draw it."""
     import pinocchio as pin  # noqa: F401
@@ -525,7 +532,7 @@ def _geom_xml(go, mesh_assets: dict, color_default="0.7 0.7 0.75 1") -> str | No
     return None
 
 
-def joint_armature_damping(robot) -> tuple[np.ndarray, np.ndarray]:
+def joint_armature_damping(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
     """Armature (reflected rotor inertia) and viscous damping of each joint, ``(n,)`` each.
 
     For a robot from a DH file: ``G² Jm`` (kg·m²) and ``G² B`` (N·m·s/rad), the motor-side
@@ -545,7 +552,7 @@ def joint_armature_damping(robot) -> tuple[np.ndarray, np.ndarray]:
     return np.array(model.armature)[idx], np.array(model.damping)[idx]
 
 
-def robot_to_mjcf(robot) -> tuple[str, list[str]]:
+def robot_to_mjcf(robot: Robot) -> tuple[str, list[str]]:
     """MJCF text of a robot's chain, and notes for stderr (see the module docstring).
 
     Parameters
@@ -604,8 +611,8 @@ def robot_to_mjcf(robot) -> tuple[str, list[str]]:
 
     # geometry per joint: visuals MuJoCo can read, else collisions, else a capsule to the next joint
     mesh_assets: dict = {}
-    geoms_by_joint = {j: [] for j in range(0, n + 1)}
-    skipped = set()
+    geoms_by_joint: dict[int, list[str]] = {j: [] for j in range(0, n + 1)}
+    skipped: set[str] = set()
     for j in range(0, n + 1):
         for gm in (robot.visual_model, robot.collision_model):
             if gm is None:
@@ -613,7 +620,7 @@ def robot_to_mjcf(robot) -> tuple[str, list[str]]:
             objs = [go for go in gm.geometryObjects if go.parentJoint == j]
             xml = [_geom_xml(go, mesh_assets) for go in objs]
             if objs and all(x is not None for x in xml):
-                geoms_by_joint[j] = xml
+                geoms_by_joint[j] = cast("list[str]", xml)  # none is None
                 break
             skipped.update(Path(go.meshPath).suffix for go, x in zip(objs, xml) if x is None and go.meshPath)
     if skipped:

@@ -21,8 +21,10 @@ Twists, wrenches and spatial inertias are angular first.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 from robokit.spatial import lie
 
 
@@ -64,7 +66,7 @@ class PoEParams:
         }
 
 
-def poe_from_model(model, tip: str, gravity=None) -> PoEParams:
+def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> PoEParams:
     """PoE parameters of a Pinocchio ``model`` that is a serial chain of 1-dof joints.
 
     model : ``pinocchio.Model`` whose joints 1..n form one chain (as made by

@@ -17,6 +17,7 @@ from __future__ import annotations
 from typing import Protocol, runtime_checkable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["RobotLike"]
 
@@ -30,10 +31,10 @@ class RobotLike(Protocol):
     #: (n, 2) lower and upper joint limits (±inf where unlimited)
     qlim: np.ndarray
 
-    def frame_pose(self, q, frame: str | None = None) -> np.ndarray:
+    def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the base frame at q."""
         ...
 
-    def jacobian(self, q, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
         """6×n Jacobian of ``frame`` at q, angular rows first, expressed as ``reference`` says."""
         ...

@@ -16,9 +16,12 @@ q is (cos θ, sin θ)). Jacobians are returned **angular first**, ``(ω; v)``.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
+from typing import Any, Iterable, Literal, Mapping, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
@@ -45,7 +48,7 @@ _ONE_DOF = {
 }
 
 
-def _frame_depth(model, fid):
+def _frame_depth(model: Any, fid: int) -> int:
     depth = 0
     while model.frames[fid].parentFrame != fid and fid != 0:
         fid = model.frames[fid].parentFrame
@@ -53,7 +56,7 @@ def _frame_depth(model, fid):
     return depth
 
 
-def _deepest_body_frame(model, joint: int):
+def _deepest_body_frame(model: Any, joint: int) -> str | None:
     best, best_depth = None, -1
     for fid, fr in enumerate(model.frames):
         if fr.parentJoint == joint and fr.type == _body_type():
@@ -63,7 +66,7 @@ def _deepest_body_frame(model, joint: int):
     return best
 
 
-def _tip_candidates(model, children) -> list[tuple[str, int]]:
+def _tip_candidates(model: Any, children: Mapping[int, list[int]]) -> list[tuple[str, int]]:
     """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
     out = []
     for j in range(1, model.njoints):
@@ -77,7 +80,7 @@ def _tip_candidates(model, children) -> list[tuple[str, int]]:
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
-def choose_tip(model) -> tuple[str, str]:
+def choose_tip(model: Any) -> tuple[str, str]:
     """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
 
     From the root, follow the joints while each has exactly one child joint. At a branch:
@@ -87,11 +90,11 @@ def choose_tip(model) -> tuple[str, str]:
     branches tie for longest (two arms, four legs), there is no sensible default and
     ``ValueError`` lists the candidate tips with their chain lengths.
     """
-    children = {j: [] for j in range(model.njoints)}
+    children: dict[int, list[int]] = {j: [] for j in range(model.njoints)}
     for j in range(1, model.njoints):
         children[model.parents[j]].append(j)
 
-    def depth(j):
+    def depth(j: int) -> int:
         return 1 + max((depth(c) for c in children[j]), default=0)
 
     j, chose = 0, False
@@ -117,18 +120,18 @@ def choose_tip(model) -> tuple[str, str]:
     return tip, note
 
 
-def default_tip(model) -> str:
+def default_tip(model: Any) -> str:
     """The default tip frame of a model (see :func:`choose_tip`)."""
     return choose_tip(model)[0]
 
 
-def _body_type():
+def _body_type() -> Any:
     import pinocchio as pin
 
     return pin.FrameType.BODY
 
 
-def serial_chain(model, tip: str, geometry_models=()):
+def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> tuple[Any, list[str], list[Any]]:
     """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
 
     Returns ``(chain_model, locked_joint_names, geometry_models)``. Raises ``ValueError`` for
@@ -181,8 +184,9 @@ class Robot:
     locked_joints : names of the joints locked off the chain; source : where it came from.
     """
 
-    def __init__(self, name, model, tip, *, visual_model=None, collision_model=None, dh=None,
-                 configurations=None, locked_joints=(), source=""):
+    def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
+                 dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
+                 locked_joints: Iterable[str] = (), source: str = "") -> None:
         import pinocchio as pin
 
         self._pin = pin
@@ -208,12 +212,12 @@ class Robot:
         self.configurations = {"zero": np.zeros(self.n)}
         for k, v in (configurations or {}).items():
             self.configurations[k] = np.asarray(v, dtype=float)
-        self._frame_ids = {}
+        self._frame_ids: dict[str, int] = {}
         self._lower = np.tril_indices(self.n, -1)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
-    def q_pin(self, q) -> np.ndarray:
+    def q_pin(self, q: ArrayLike) -> np.ndarray:
         """Pinocchio configuration (nq,) of joint values q (n,) (a continuous joint's angle θ
         becomes (cos θ, sin θ))."""
         if self._same_coords:
@@ -226,7 +230,7 @@ class Robot:
             q_pin[iq], q_pin[iq + 1] = np.cos(q[iv]), np.sin(q[iv])
         return q_pin
 
-    def q_from_pin(self, q_pin) -> np.ndarray:
+    def q_from_pin(self, q_pin: ArrayLike) -> np.ndarray:
         """Joint values q (n,) of a Pinocchio configuration (nq,)."""
         q_pin = np.asarray(q_pin, dtype=float)
         if self._same_coords:
@@ -250,7 +254,7 @@ class Robot:
             fid = self._frame_ids[frame] = self.model.getFrameId(frame)
         return fid
 
-    def _check_q(self, q, name="q"):
+    def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
         q = np.asarray(q, dtype=float)
         if q.shape != (self.n,):
             raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
@@ -259,7 +263,7 @@ class Robot:
         return q
 
     # ------------------------------------------------------------ fast answers
-    def frame_pose(self, q, frame: str | None = None) -> np.ndarray:
+    def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
         if np.ndim(q) == 2:
@@ -271,7 +275,7 @@ class Robot:
         pin.forwardKinematics(self.model, self.data, q)
         return pin.updateFramePlacement(self.model, self.data, self.frame_id(frame)).homogeneous
 
-    def frame_poses(self, q) -> dict:
+    def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
         """Poses (4×4) of every frame, by name, at θ."""
         pin = self._pin
         pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
@@ -279,7 +283,7 @@ class Robot:
 
     _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
 
-    def jacobian(self, q, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
         """6×n Jacobian of ``frame`` at θ, **angular rows first** (ω; v).
 
         reference : "world" — the space Jacobian (twist of the frame expressed at the root
@@ -300,7 +304,7 @@ class Robot:
         J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
         return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
 
-    def rnea(self, q, dq, ddq, threads: int = 1) -> np.ndarray:
+    def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
         if np.ndim(q) == 2:
@@ -311,7 +315,7 @@ class Robot:
         dq, ddq = self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
 
-    def crba(self, q) -> np.ndarray:
+    def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
         if np.ndim(q) == 2:
@@ -323,7 +327,7 @@ class Robot:
         M[self._lower] = M.T[self._lower]
         return M
 
-    def aba(self, q, dq, tau, threads: int = 1) -> np.ndarray:
+    def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
         if np.ndim(q) == 2:
@@ -334,17 +338,17 @@ class Robot:
         dq, tau = self._check_q(dq, "dq"), self._check_q(tau, "tau")
         return self._pin.aba(self.model, self.data, q, dq, tau).copy()
 
-    def gravity_torques(self, q) -> np.ndarray:
+    def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
         q = self.q_pin(self._check_q(q))
         return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
 
-    def nonlinear_effects(self, q, dq) -> np.ndarray:
+    def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
         """c(θ, θ̇) + g(θ) (n,)."""
         q = self.q_pin(self._check_q(q))
         return self._pin.nonLinearEffects(self.model, self.data, q, self._check_q(dq, "dq")).copy()
 
-    def random_configuration(self, rng=None) -> np.ndarray:
+    def random_configuration(self, rng: int | np.random.Generator | None = None) -> np.ndarray:
         """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""
         rng = np.random.default_rng(rng)
         lo = np.where(np.isfinite(self.qlim[:, 0]), self.qlim[:, 0], -np.pi)
@@ -372,8 +376,8 @@ def _from_dh(table: DHTable, source: str) -> Robot:
     return Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table, source=source)
 
 
-def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outside_meshes=False,
-                    text: str | None = None) -> Robot:
+def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+                    allow_outside_meshes: bool = False, text: str | None = None) -> Robot:
     """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``)."""
     import pinocchio as pin
 
@@ -384,7 +388,7 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outsid
         try:
             model = pin.buildModelFromXML(doc.xml)
         except Exception as exc:
-            failed = exc
+            failed: Exception | None = exc
         else:
             failed = None
     if failed is not None:
@@ -404,12 +408,13 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs=None, allow_outsid
     return _finish(doc.name, model, tip, geoms, {}, str(path), notes, mimic=doc.mimic)
 
 
-def _one_line(exc) -> str:
+def _one_line(exc: BaseException) -> str:
     text = str(exc).strip()
     return text.splitlines()[0][:200] if text else type(exc).__name__
 
 
-def _finish(name, model, tip, geoms, configurations, source, notes=(), mimic=None) -> Robot:
+def _finish(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
+            source: str, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None) -> Robot:
     import warnings
 
     notes = list(notes)
@@ -489,7 +494,7 @@ def _from_example_robot_data(name: str, tip: str | None) -> Robot:
 class _quiet:
     """Silence C/C++ output on fd 2 and Python prints while a dependency loads a model."""
 
-    def __enter__(self):
+    def __enter__(self) -> _quiet:
         import contextlib
         import io
 
@@ -501,7 +506,7 @@ class _quiet:
         self._out.__enter__()
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: Any) -> Literal[False]:
         self._out.__exit__(*exc)
         self._cap.__exit__(*exc)
         return False
@@ -516,7 +521,8 @@ def _example_robot_names() -> list[str]:
         return []
 
 
-def load(name_or_path, tip: str | None = None, *, package_dirs=None, xacro_args=None,
+def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None = None, *,
+         package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
          allow_outside_meshes: bool = False) -> Robot:
     """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
     an MJCF ``.xml``, or an example-robot-data name.

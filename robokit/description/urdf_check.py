@@ -25,6 +25,7 @@ import warnings
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Iterable, Literal, NoReturn, Sequence
 
 import numpy as np
 
@@ -54,13 +55,13 @@ class UrdfDocument:
     warnings: list = field(default_factory=list)
 
 
-def _fail(path, msg):
+def _fail(path: str | os.PathLike[str], msg: str) -> NoReturn:
     if len(msg) > 300:
         msg = msg[:297] + "..."
     raise InputError(f"{path}: {msg}")
 
 
-def _floats(text, count, path, where):
+def _floats(text: str | None, count: int, path: str | os.PathLike[str], where: str) -> list[float]:
     parts = (text or "").split()
     if len(parts) != count:
         _fail(path, f"{where}: expected {count} numbers, got {text!r}")
@@ -74,7 +75,7 @@ def _floats(text, count, path, where):
     return values
 
 
-def _check_magnitude(values, path, where):
+def _check_magnitude(values: Sequence[float], path: str | os.PathLike[str], where: str) -> None:
     """Refuse a finite number so large that FK and dynamics overflow to inf/NaN (joint limits exempt:
     URDFs write ±1e16 for "unlimited")."""
     if any(abs(v) > MAX_MAGNITUDE for v in values):
@@ -82,7 +83,8 @@ def _check_magnitude(values, path, where):
                     f"got {' '.join(f'{v:g}' for v in values)}")
 
 
-def _float_attr(el, name, path, where, default=None):
+def _float_attr(el: ET.Element, name: str, path: str | os.PathLike[str], where: str,
+                default: float | None = None) -> float:
     text = el.get(name)
     if text is None:
         if default is None:
@@ -97,13 +99,13 @@ def _float_attr(el, name, path, where, default=None):
     return v
 
 
-def _check_name(name, path, what):
+def _check_name(name: str | None, path: str | os.PathLike[str], what: str) -> None:
     if not name or not name.isprintable() or len(name) > 200:
         shown = repr(name) if name is None or len(repr(name)) <= 60 else repr(name)[:57] + "..."
         _fail(path, f"{what}: expected a printable name (at most 200 characters), got {shown}")
 
 
-def _package_roots(path: Path, package_dirs) -> list[Path]:
+def _package_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | None) -> list[Path]:
     roots = [Path(p).resolve() for p in (package_dirs or [])]
     folder = path.parent.resolve()
     roots.append(folder)
@@ -111,7 +113,7 @@ def _package_roots(path: Path, package_dirs) -> list[Path]:
     return roots
 
 
-def _allowed_roots(path: Path, package_dirs) -> list[Path]:
+def _allowed_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | None) -> list[Path]:
     """Folders a mesh may be read from without ``allow_outside_meshes``: the URDF's folder, the
     ROS package that holds it (nearest folder above with a ``package.xml``), ``package_dirs``."""
     folder = path.parent.resolve()
@@ -123,12 +125,12 @@ def _allowed_roots(path: Path, package_dirs) -> list[Path]:
     return roots
 
 
-def _inside(p: Path, roots) -> bool:
+def _inside(p: Path, roots: Iterable[Path]) -> bool:
     p = p.resolve()
     return any(p == r or r in p.parents for r in roots)
 
 
-def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]):
+def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]) -> tuple[Path | None, str]:
     """(resolved absolute path or None, reason) for a mesh filename attribute."""
     folder = path.parent.resolve()
     if uri.startswith("package://"):
@@ -156,7 +158,8 @@ def _is_package(root: Path, pkg: str) -> bool:
     return (name or "").strip() == pkg
 
 
-def read_urdf(path, package_dirs=None, allow_outside_meshes: bool = False, text: str | None = None) -> UrdfDocument:
+def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+              allow_outside_meshes: bool = False, text: str | None = None) -> UrdfDocument:
     """Read and check a URDF file; see the module docstring. Raises :class:`InputError`.
 
     text : the URDF's text when it does not come from ``path`` itself (a xacro expansion);
@@ -186,7 +189,8 @@ def _read_bytes(path: Path) -> bytes:
     return path.read_bytes()
 
 
-def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDocument:
+def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
+           allow_outside_meshes: bool) -> UrdfDocument:
     try:
         raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -201,10 +205,11 @@ def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDo
     name = root.get("name") or path.stem
     _check_name(name, path, "robot name")
 
-    links = {}
+    links: dict[str, ET.Element] = {}
     for el in root.findall("link"):
         lname = el.get("name")
         _check_name(lname, path, "a <link>'s name")
+        assert lname is not None  # _check_name refused a missing name
         if lname in links:
             _fail(path, f"link {lname!r} is defined twice")
         links[lname] = el
@@ -255,7 +260,9 @@ def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDo
                 _fail(path, f"{where}: missing <{tag} link=...>")
             if link not in links:
                 _fail(path, f"{where}: {tag} link {link!r} is not defined")
-        child = el.find("child").get("link")
+        child_el = el.find("child")
+        assert child_el is not None  # checked in the loop above
+        child = child_el.get("link")
         if child in children:
             _fail(path, f"{where}: link {child!r} is the child of two joints")
         children.add(child)
@@ -320,7 +327,7 @@ def _check(path: Path, raw: bytes, package_dirs, allow_outside_meshes) -> UrdfDo
     return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes)
 
 
-def capture_native_output():
+def capture_native_output() -> _NativeCapture:
     """Context manager that captures what C/C++ code writes to the process's stderr (fd 2)
     while it is active; the text is in ``.text`` afterwards. Used around Pinocchio's parsers
     so that urdfdom's own lines become part of robokit's one-line message."""
@@ -328,10 +335,10 @@ def capture_native_output():
 
 
 class _NativeCapture:
-    def __init__(self):
+    def __init__(self) -> None:
         self.text = ""
 
-    def __enter__(self):
+    def __enter__(self) -> _NativeCapture:
         import sys
         import tempfile
 
@@ -341,13 +348,13 @@ class _NativeCapture:
             pass
         self._tmp = tempfile.TemporaryFile()
         try:
-            self._saved = os.dup(2)
+            self._saved: int | None = os.dup(2)
             os.dup2(self._tmp.fileno(), 2)
         except OSError:  # pragma: no cover - no fd 2
             self._saved = None
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> Literal[False]:
         if self._saved is not None:
             os.dup2(self._saved, 2)
             os.close(self._saved)

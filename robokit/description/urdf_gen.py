@@ -26,13 +26,14 @@ from __future__ import annotations
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHTable, dh_transform, matrix_to_rpy
 
 __all__ = ["dh_to_urdf"]
 
 
-def _f(x) -> str:
+def _f(x: float) -> str:
     """A float with full round-trip precision, without noise like '-0'."""
     x = float(x)
     if x == 0.0:
@@ -40,16 +41,16 @@ def _f(x) -> str:
     return repr(x)
 
 
-def _vec(v) -> str:
+def _vec(v: np.ndarray) -> str:
     return " ".join(_f(x) for x in v)
 
 
-def _origin(T) -> str:
+def _origin(T: np.ndarray) -> str:
     T = np.asarray(T, dtype=float)
     return f'<origin xyz="{_vec(T[:3, 3])}" rpy="{_vec(matrix_to_rpy(T[:3, :3]))}"/>'
 
 
-def _cylinder_between(p0, p1, radius, material) -> str | None:
+def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str) -> str | None:
     p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
     d = p1 - p0
     length = float(np.linalg.norm(d))

@@ -36,21 +36,27 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHLink, DHTable
 from robokit.spatial.lines import common_normal
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["urdf_to_dh", "URDFToDH", "format_dh_table", "joint_axes"]
 
 _EPS = 1e-9
 
 
-def _unit(v):
+def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-def joint_axes(robot):
+def joint_axes(robot: Robot) -> list[tuple[np.ndarray, np.ndarray, str]]:
     """Joint axes of a Robot's chain at q = 0: list of (point (3,), direction (3,), kind 'R'|'P').
 
     Directions are the space screw axes' ω (revolute) or v (prismatic); a revolute axis passes
@@ -73,7 +79,8 @@ def joint_axes(robot):
     return axes
 
 
-def _normal(p1, z1, p2, z2, ref, x_prev):
+def _normal(p1: np.ndarray, z1: np.ndarray, p2: np.ndarray, z2: np.ndarray, ref: np.ndarray,
+            x_prev: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(foot on line 1, foot on line 2, x direction) of the DH normal from line 1 to line 2
     (:func:`robokit.common_normal`, with the DH choices of the module docstring).
 
@@ -92,14 +99,14 @@ def _normal(p1, z1, p2, z2, ref, x_prev):
     return cn.foot1, cn.foot1, _unit(x)
 
 
-def _frame(o, x, z):
+def _frame(o: ArrayLike, x: np.ndarray, z: np.ndarray) -> np.ndarray:
     T = np.eye(4)
     x = _unit(x - (x @ z) * z)
     T[:3, 0], T[:3, 1], T[:3, 2], T[:3, 3] = x, np.cross(z, x), z, o
     return T
 
 
-def _params(T, convention):
+def _params(T: np.ndarray, convention: str) -> tuple[float, float, float, float]:
     """(a, alpha, d, theta) of a link transform in the given convention."""
     if convention == "standard":
         th = np.arctan2(T[1, 0], T[0, 0])
@@ -110,7 +117,7 @@ def _params(T, convention):
     return T[0, 3], al, -T[1, 3] * np.sin(al) + T[2, 3] * np.cos(al), th
 
 
-def _clean(x):
+def _clean(x: float) -> float:
     return 0.0 if abs(x) < 1e-12 else float(x)
 
 
@@ -127,7 +134,8 @@ class URDFToDH:
         return self.residual <= 1e-9
 
 
-def urdf_to_dh(robot, convention: str = "standard", samples: int = 200, rng=0) -> URDFToDH:
+def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
+               rng: int | np.random.Generator | None = 0) -> URDFToDH:
     """DH table (either convention) of a Robot's chain root → tip, with base and tool transforms.
 
     robot : a :class:`robokit.Robot` or anything ``robokit.load`` accepts (a URDF path or an
@@ -201,7 +209,8 @@ def urdf_to_dh(robot, convention: str = "standard", samples: int = 200, rng=0) -
     return URDFToDH(table, residual, samples)
 
 
-def _links(robot, axes, frames, convention):
+def _links(robot: Robot, axes: list[tuple[np.ndarray, np.ndarray, str]], frames: list[np.ndarray],
+           convention: str) -> list[DHLink]:
     import pinocchio as pin
 
     model = robot.model
@@ -227,7 +236,7 @@ def _links(robot, axes, frames, convention):
     return links
 
 
-def _check(robot, table, samples, rng):
+def _check(robot: Robot, table: DHTable, samples: int, rng: int | np.random.Generator | None) -> float:
     rng = np.random.default_rng(rng)
     worst = 0.0
     for _ in range(int(samples)):
@@ -245,7 +254,7 @@ def format_dh_table(table: DHTable, digits: int = 5) -> str:
     return table.to_text(digits)
 
 
-def urdf_to_dh_text(robot, convention: str = "standard", as_yaml: bool = True) -> str:
+def urdf_to_dh_text(robot: Robot, convention: str = "standard", as_yaml: bool = True) -> str:
     """Text for ``robokit convert``: the YAML file (refused for an inexact table), or the printed
     table with its residual (printed either way, an inexact one marked as such)."""
     res = urdf_to_dh(robot, convention)

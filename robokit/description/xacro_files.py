@@ -24,13 +24,18 @@ ignored and named in a note on stderr.
 """
 from __future__ import annotations
 
+import os
 import re
 import threading
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from robokit.description._notes import note
 from robokit.errors import InputError
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["expand_xacro", "find_package", "load_xacro"]
 
@@ -66,7 +71,8 @@ def _package_in(folder: Path, pkg: str) -> Path | None:
     return None
 
 
-def find_package(pkg: str, package_path=(), start=None) -> Path:
+def find_package(pkg: str, package_path: Sequence[str | os.PathLike[str]] | None = (),
+                 start: str | os.PathLike[str] | None = None) -> Path:
     """Folder of the package named ``pkg``.
 
     Parameters
@@ -112,20 +118,20 @@ def find_package(pkg: str, package_path=(), start=None) -> Path:
 class _ArgRecorder(dict):
     """The xacro argument mapping; records the names the file declares or uses."""
 
-    def __init__(self, values):
+    def __init__(self, values: Mapping[str, str]) -> None:
         super().__init__(values)
         self.seen: set = set()
 
-    def __contains__(self, key):
+    def __contains__(self, key: object) -> bool:
         self.seen.add(key)
         return dict.__contains__(self, key)
 
-    def __getitem__(self, key):
+    def __getitem__(self, key: Any) -> Any:
         self.seen.add(key)
         return dict.__getitem__(self, key)
 
 
-def _locate(file: Path, token) -> str:
+def _locate(file: Path, token: str | re.Pattern[str]) -> str:
     """``line N, <tag>`` of the first place in ``file`` holding ``token`` (a string or a compiled
     regular expression), or ""."""
     try:
@@ -145,7 +151,8 @@ def _locate(file: Path, token) -> str:
     return f"line {line}, <{m.group(1)}>" if m else f"line {line}"
 
 
-def _xacro_error(exc, files, path: Path, missing_pkg, macros=()) -> InputError:
+def _xacro_error(exc: BaseException, files: Sequence[str | None], path: Path, missing_pkg: Sequence[tuple[str, str]],
+                 macros: Sequence[str] = ()) -> InputError:
     """One-line InputError for an exception raised while expanding ``path``."""
     import xml.parsers.expat
 
@@ -159,7 +166,7 @@ def _xacro_error(exc, files, path: Path, missing_pkg, macros=()) -> InputError:
         return InputError(f"{current}:{exc.lineno}:{exc.offset + 1}: not well-formed XML ({msg})")
     text = " ".join(str(exc).split())
     sub = getattr(exc, "exc", None)
-    token = ""
+    token: str | re.Pattern[str] = ""
     if sub is not None and type(sub).__name__ == "ArgException":
         token = f"$(arg {sub.args[0]})"
         text = f"$(arg {sub.args[0]}): undefined argument (declare it with <xacro:arg name=\"{sub.args[0]}\" "\
@@ -188,7 +195,7 @@ def _xacro_error(exc, files, path: Path, missing_pkg, macros=()) -> InputError:
     return InputError(f"{current}: {where + ': ' if where else ''}{text}")
 
 
-def _resolve_mesh_uri(uri: str, top: Path, package_path) -> Path:
+def _resolve_mesh_uri(uri: str, top: Path, package_path: Sequence[str | os.PathLike[str]] | None) -> Path:
     if uri.startswith("package://"):
         rest = uri[len("package://"):]
         pkg, _, rel = rest.partition("/")
@@ -199,7 +206,8 @@ def _resolve_mesh_uri(uri: str, top: Path, package_path) -> Path:
     return p if p.is_absolute() else (top.parent / p)
 
 
-def expand_xacro(path, xacro_args=None, package_path=None) -> str:
+def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | None = None,
+                 package_path: Sequence[str | os.PathLike[str]] | None = None) -> str:
     """The URDF text of a xacro file, with packages and mesh paths resolved.
 
     Parameters
@@ -244,12 +252,13 @@ def expand_xacro(path, xacro_args=None, package_path=None) -> str:
         args[k] = str(v)
     package_path = [Path(p) for p in (package_path or [])]
     for d in package_path:
+        assert isinstance(d, Path)
         if not d.expanduser().is_dir():
             raise InputError(f"package_path: {str(d)!r} is not a folder")
     top = path.resolve()
     missing_pkg: list = []
 
-    def find(pkg):
+    def find(pkg: str) -> str:
         try:
             return str(find_package(pkg, package_path, top))
         except InputError as exc:
@@ -281,7 +290,7 @@ def expand_xacro(path, xacro_args=None, package_path=None) -> str:
     return _resolve_meshes(text, top, package_path)
 
 
-def _resolve_meshes(text: str, top: Path, package_path) -> str:
+def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLike[str]] | None) -> str:
     try:
         root = ET.fromstring(text)
     except ET.ParseError as exc:  # pragma: no cover - xacro output is well formed
@@ -305,7 +314,8 @@ def _resolve_meshes(text: str, top: Path, package_path) -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def load_xacro(path, tip: str | None = None, *, xacro_args=None, package_path=None):
+def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_args: Mapping[str, str] | None = None,
+               package_path: Sequence[str | os.PathLike[str]] | None = None) -> Robot:
     """Load a xacro (or URDF) file as a :class:`robokit.Robot`.
 
     Parameters

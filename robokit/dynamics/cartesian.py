@@ -2,9 +2,15 @@ r"""Operational-space (Cartesian) dynamics (Lecture 7): ``Λ(q) ẍ + μ(q, q̇)
 and the dynamic manipulability measures built on it."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["CartesianDynamics", "cartesian_dynamics"]
 
@@ -19,13 +25,15 @@ class CartesianDynamics:
     of that ellipsoid (eigenvectors, √eigenvalues of Λ).
     """
 
-    def __init__(self, Lambda, mu, p, yoshikawa, asada, inertia_radii, inertia_axes):
+    def __init__(self, Lambda: np.ndarray, mu: np.ndarray, p: np.ndarray, yoshikawa: float, asada: float,
+                 inertia_radii: np.ndarray, inertia_axes: np.ndarray) -> None:
         self.Lambda, self.mu, self.p = Lambda, mu, p
         self.yoshikawa, self.asada = yoshikawa, asada
         self.inertia_radii, self.inertia_axes = inertia_radii, inertia_axes
 
 
-def cartesian_dynamics(robot, q, dq, frame: str | None = None, part: str = "full") -> CartesianDynamics:
+def cartesian_dynamics(robot: Robot, q: ArrayLike, dq: ArrayLike, frame: str | None = None,
+                       part: str = "full") -> CartesianDynamics:
     """:class:`CartesianDynamics` of ``robot`` at (q, q̇) for the frame's geometric Jacobian
     (base axes; ``part`` "full", "translation" or "rotation" selects the rows)."""
     import pinocchio as pin

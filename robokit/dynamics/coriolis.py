@@ -9,15 +9,16 @@ inertia Gᵢ and twist Vᵢ = Jᵢ q̇, ``C = Σᵢ Jᵢᵀ (Gᵢ J̇ᵢ + Bᵢ 
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
-from robokit.dynamics.newton_euler import _model, inverse_dynamics
+from robokit.dynamics.newton_euler import _Model, _model, inverse_dynamics
 from robokit.spatial import lie
 
 __all__ = ["coriolis_matrix"]
 
 
-def _X(h):
+def _X(h: np.ndarray) -> np.ndarray:
     """X(h) with X(h) V = −ad_Vᵀ h for every twist V (h a wrench (m, f))."""
     X = np.zeros((6, 6))
     X[:3, :3] = -lie.hat(h[:3])
@@ -26,7 +27,7 @@ def _X(h):
     return X
 
 
-def _link_jacobians(m, theta):
+def _link_jacobians(m: _Model, theta: np.ndarray) -> np.ndarray:
     """Body Jacobians Jᵢ (n, 6, n) of the link frames {1..n} (Modern Robotics frames)."""
     n = m.n
     Ad = m.transforms(theta)  # Ad_{T_{i,i−1}}
@@ -38,7 +39,8 @@ def _link_jacobians(m, theta):
     return J
 
 
-def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist, method: str = "christoffel") -> np.ndarray:
+def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                    Slist: ArrayLike, method: str = "christoffel") -> np.ndarray:
     """The n×n Coriolis matrix C(θ, θ̇) with ``C θ̇ = c(θ, θ̇)``, in one of two factorisations.
 
     Arguments in Modern Robotics form (see :func:`robokit.inverse_dynamics`); θ, θ̇ (n,) rad, rad/s.
@@ -82,11 +84,12 @@ def coriolis_matrix(thetalist, dthetalist, Mlist, Glist, Slist, method: str = "c
     return C
 
 
-def _coriolis_lecture(th, dth, Mlist, Glist, Slist, n):
+def _coriolis_lecture(th: np.ndarray, dth: np.ndarray, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike,
+                      n: int) -> np.ndarray:
     """The lecture's (Corke's) factorisation, from velocity-product torques c(u) (θ̈ = 0, g = 0)."""
     z3, z6, zn = np.zeros(3), np.zeros(6), np.zeros(n)
 
-    def c(u):
+    def c(u: np.ndarray) -> np.ndarray:
         return inverse_dynamics(th, u, zn, z3, z6, Mlist, Glist, Slist)
 
     eye = np.eye(n)

@@ -24,9 +24,16 @@ library), and starts the inward iteration. The recursion runs as a compiled loop
 """
 from __future__ import annotations
 
+from types import ModuleType
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
 
 __all__ = ["dh_inverse_dynamics"]
 
@@ -34,7 +41,7 @@ _NO_WRENCH = np.zeros(6)  # the default tip wrench (never written)
 _kdh = None  # robokit.kernels.dh, imported on first use (the recursion itself lives there)
 
 
-def _kernels():
+def _kernels() -> ModuleType:
     global _kdh
     from robokit.kernels import dh
 
@@ -42,7 +49,8 @@ def _kernels():
     return dh
 
 
-def dh_inverse_dynamics(table, q, dq, ddq, gravity=None, F_tip=None) -> np.ndarray:
+def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, gravity: ArrayLike | None = None,
+                        F_tip: ArrayLike | None = None) -> np.ndarray:
     """Joint torques/forces (n,) by Craig's recursive Newton–Euler on a :class:`DHTable`.
 
     q, dq, ddq : (n,) joint positions, rates, accelerations (rad or m); gravity : (3,) in base_link

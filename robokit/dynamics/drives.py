@@ -25,9 +25,16 @@ drive data and raises ``ValueError``.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 __all__ = [
     "drive_parameters",
@@ -42,7 +49,7 @@ __all__ = [
 ]
 
 
-def drive_parameters(robot):
+def drive_parameters(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """``(Jm, G, B, Tc)`` of ``robot``'s drives: (n,), (n,), (n,) and (n, 2) arrays, motor side.
 
     robot : a :class:`robokit.Robot` loaded from a DH file (``robot.dh`` not None).
@@ -59,7 +66,7 @@ def drive_parameters(robot):
     return Jm, G, B, Tc
 
 
-def friction_torque(dq, B, Tc, coulomb: bool = True) -> np.ndarray:
+def friction_torque(dq: ArrayLike, B: ArrayLike, Tc: np.ndarray, coulomb: bool = True) -> np.ndarray:
     """Joint friction ``B q̇ + T_c(sign q̇)`` (n,) — the one friction law of robokit (Lecture 7:
     ``Q_f = B q̇ + Q_C``): viscous B (n,) and Coulomb levels Tc (n, 2) (Tc⁺ for q̇ > 0, Tc⁻ for
     q̇ < 0, 0 at rest; the negative level is usually negative, Corke's convention), all on the
@@ -68,13 +75,13 @@ def friction_torque(dq, B, Tc, coulomb: bool = True) -> np.ndarray:
     Example: ``friction_torque([1.0, -1.0], [0.1, 0.1], [[0.2, -0.2], [0.2, -0.2]])`` → ``[0.3, -0.3]``.
     """
     dq = np.asarray(dq, dtype=float)
-    tau = B * dq
+    tau = np.multiply(B, dq)
     if coulomb:
         tau = tau + np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
     return tau
 
 
-def joint_drive_parameters(table):
+def joint_drive_parameters(table: DHTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The drives of a DH table referred to the joints: ``(G² B, |G| Tc, G² Jm)`` as (n,), (n, 2), (n,)
     arrays (Lecture 8: ``ˡB = G² ᵐB``, ``ˡτ_C = |G| ᵐτ_C``, ``ˡJ = G² ᵐJ``)."""
     G = np.array([float(l.G) for l in table.links])
@@ -84,7 +91,7 @@ def joint_drive_parameters(table):
     return G * G * B, np.abs(G)[:, None] * Tc, G * G * Jm
 
 
-def friction_torques(table, dq) -> np.ndarray:
+def friction_torques(table: DHTable, dq: ArrayLike) -> np.ndarray:
     """Joint friction torques (n,) of a DH table's drives: ``G² B q̇ + |G| T_c(sign q̇)`` per joint
     (motor-side viscous B and Coulomb T_c referred through the gear ratio G, Corke's convention)."""
     dq = as_vector(dq, "dq", table.n)
@@ -92,11 +99,12 @@ def friction_torques(table, dq) -> np.ndarray:
     return friction_torque(dq, B, Tc)
 
 
-def _friction(G, B, Tc, dq, coulomb):
+def _friction(G: np.ndarray, B: np.ndarray, Tc: np.ndarray, dq: np.ndarray, coulomb: bool) -> np.ndarray:
     return friction_torque(dq, G * G * B, np.abs(G)[:, None] * Tc, coulomb)
 
 
-def rne_with_drives(robot, q, dq, ddq, *, motor_inertia: bool = True, friction: bool = True,
+def rne_with_drives(robot: Robot, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, *, motor_inertia: bool = True,
+                    friction: bool = True,
                     coulomb: bool = True) -> np.ndarray:
     """Joint torques (n,) including the drives:
     ``τ = M q̈ + c + g + G² Jm q̈ + G² B q̇ + |G| T_c(sign q̇)`` (N·m; N for prismatic joints).
@@ -120,7 +128,7 @@ def rne_with_drives(robot, q, dq, ddq, *, motor_inertia: bool = True, friction: 
     return tau
 
 
-def inertia_with_drives(robot, q) -> np.ndarray:
+def inertia_with_drives(robot: Robot, q: ArrayLike) -> np.ndarray:
     """Joint-space inertia (n×n) seen by the joints with the motors: ``M(q) + diag(G² Jm)``.
 
     q : (n,) joint angles (rad). Symmetric positive definite; equals Corke's ``inertia(q)``.
@@ -133,7 +141,8 @@ def inertia_with_drives(robot, q) -> np.ndarray:
     return robot.crba(q) + np.diag(G * G * Jm)
 
 
-def forward_dynamics_with_drives(robot, q, dq, tau, *, friction: bool = True, coulomb: bool = True) -> np.ndarray:
+def forward_dynamics_with_drives(robot: Robot, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, *, friction: bool = True,
+                                 coulomb: bool = True) -> np.ndarray:
     """Joint accelerations (n,) ``q̈ = (M + G²Jm)⁻¹ (τ − c(q, q̇) − g(q) − τ_f(q̇))`` (Lecture 7,
     forward dynamics, with the drives' inertia and friction τ_f).
 
@@ -152,7 +161,7 @@ def forward_dynamics_with_drives(robot, q, dq, tau, *, friction: bool = True, co
     return np.linalg.solve(inertia_with_drives(robot, q), rhs)
 
 
-def reflected_inertia(robot, q) -> np.ndarray:
+def reflected_inertia(robot: Robot, q: ArrayLike) -> np.ndarray:
     """The inertia (n,) each motor sees: ``ᵐJⱼ = Jmⱼ + Mⱼⱼ(q) / Gⱼ²`` (kg·m², motor side; Lecture 7).
 
     q : (n,) joint angles (rad); M is the rigid-body mass matrix of the arm (without motors).
@@ -164,7 +173,8 @@ def reflected_inertia(robot, q) -> np.ndarray:
     return Jm + np.diag(robot.crba(q)) / (G * G)
 
 
-def dynamic_manipulability(robot, q, method: str = "asada", *, drives: bool = True, frame: str | None = None) -> float:
+def dynamic_manipulability(robot: Robot, q: ArrayLike, method: str = "asada", *, drives: bool = True,
+                           frame: str | None = None) -> float:
     """A dynamic manipulability measure of ``robot`` at q (Lecture 7).
 
     With J the 6×n geometric Jacobian of ``frame`` (base axes, rows (ω; v)) and M the joint-space

@@ -25,6 +25,7 @@ diagonal is ``m/3 (l² + h²), m/3 (w² + h²), m/3 (l² + w²)`` and off-diagon
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
@@ -41,13 +42,13 @@ __all__ = [
 _AXES = {"x": 0, "y": 1, "z": 2}
 
 
-def _axis(axis) -> int:
+def _axis(axis: str) -> int:
     if not isinstance(axis, str) or axis.lower() not in _AXES:
         raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
     return _AXES[axis.lower()]
 
 
-def inertia_box(mass, lx, ly, lz) -> np.ndarray:
+def inertia_box(mass: float, lx: float, ly: float, lz: float) -> np.ndarray:
     """Inertia (3×3, kg·m²) of a uniform solid box about its centre, axes along its edges.
 
     ``diag(m (l_y² + l_z²)/12, m (l_x² + l_z²)/12, m (l_x² + l_y²)/12)`` — the lecture's
@@ -63,7 +64,7 @@ def inertia_box(mass, lx, ly, lz) -> np.ndarray:
     return m / 12.0 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
 
 
-def inertia_cylinder(mass, radius, length, axis: str = "z") -> np.ndarray:
+def inertia_cylinder(mass: float, radius: float, length: float, axis: str = "z") -> np.ndarray:
     """Inertia (3×3) of a uniform solid cylinder about its centre; its axis along ``axis``.
 
     About the cylinder's axis ``m r²/2``; about any diameter through the centre
@@ -80,7 +81,7 @@ def inertia_cylinder(mass, radius, length, axis: str = "z") -> np.ndarray:
     return np.diag(d)
 
 
-def inertia_sphere(mass, radius, hollow: bool = False) -> np.ndarray:
+def inertia_sphere(mass: float, radius: float, hollow: bool = False) -> np.ndarray:
     """Inertia (3×3) of a uniform sphere about its centre: ``2/5 m r² I₃`` (solid) or
     ``2/3 m r² I₃`` (a thin spherical shell, ``hollow=True``).
 
@@ -91,7 +92,7 @@ def inertia_sphere(mass, radius, hollow: bool = False) -> np.ndarray:
     return (2.0 / 3.0 if hollow else 0.4) * m * r * r * np.eye(3)
 
 
-def inertia_rod(mass, length, axis: str = "z") -> np.ndarray:
+def inertia_rod(mass: float, length: float, axis: str = "z") -> np.ndarray:
     """Inertia (3×3) of a thin uniform rod about its centre, lying along ``axis``.
 
     ``m L²/12`` about the two axes across the rod, 0 about the rod itself (the limit of
@@ -107,14 +108,14 @@ def inertia_rod(mass, length, axis: str = "z") -> np.ndarray:
     return np.diag(d)
 
 
-def _tensor(I, name):
+def _tensor(I: ArrayLike, name: str) -> np.ndarray:
     I = as_matrix(I, name, 3, 3)
     if np.abs(I - I.T).max() > 1e-9 * max(1.0, np.abs(I).max()):
         raise ValueError(f"{name}: expected a symmetric 3×3 inertia tensor, got {I.tolist()}")
     return I
 
 
-def parallel_axis(I_c, mass, p_c) -> np.ndarray:
+def parallel_axis(I_c: ArrayLike, mass: float, p_c: ArrayLike) -> np.ndarray:
     """The inertia about the origin of {A} from the inertia about the centre of mass (same axes).
 
     ``ᴬI = ᶜI + m (p_cᵀ p_c I₃ − p_c p_cᵀ)`` (Lecture 7, the parallel-axis theorem), with
@@ -131,7 +132,7 @@ def parallel_axis(I_c, mass, p_c) -> np.ndarray:
     return I + m * (float(p @ p) * np.eye(3) - np.outer(p, p))
 
 
-def rotate_inertia(I_b, R_a_b) -> np.ndarray:
+def rotate_inertia(I_b: ArrayLike, R_a_b: ArrayLike) -> np.ndarray:
     """The same inertia tensor expressed in the axes of {A}: ``ᴬI = ᴬR_B ᴮI ᴬR_Bᵀ``.
 
     I_b : (3, 3) inertia in {B}'s axes (about some point); R_a_b : (3, 3) orientation of {B}

@@ -8,17 +8,24 @@ r"""Energy and time integration of the course forward dynamics (Lecture 7).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Callable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.dynamics.newton_euler import forward_dynamics
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["second_order_step", "integrate", "total_energy"]
 
 METHODS = ("rk4", "euler", "taylor")
 
 
-def second_order_step(accel, t: float, q: np.ndarray, dq: np.ndarray, h: float, method: str = "rk4"):
+def second_order_step(accel: Callable[[float, np.ndarray, np.ndarray], np.ndarray], t: float, q: np.ndarray,
+                      dq: np.ndarray, h: float, method: str = "rk4") -> tuple[np.ndarray, np.ndarray]:
     """``(q, q̇)`` after one step ``h`` of ``q̈ = accel(t, q, q̇)``.
 
     method : "rk4" — classical fourth-order Runge–Kutta on the state (q, q̇); "euler" —
@@ -39,7 +46,7 @@ def second_order_step(accel, t: float, q: np.ndarray, dq: np.ndarray, h: float, 
             dq + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v))
 
 
-def total_energy(robot, q, dq) -> float:
+def total_energy(robot: Robot, q: ArrayLike, dq: ArrayLike) -> float:
     """Kinetic plus potential energy ``½ q̇ᵀ M q̇ + V(q)`` (J), V from the robot's gravity."""
     import pinocchio as pin
 
@@ -49,7 +56,9 @@ def total_energy(robot, q, dq) -> float:
     return float(0.5 * dq @ robot.crba(q) @ dq + V)
 
 
-def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, steps: int, method: str = "rk4"):
+def integrate(thetalist: ArrayLike, dthetalist: ArrayLike, taufun: Callable[[float, np.ndarray, np.ndarray], ArrayLike],
+              g: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike, dt: float, steps: int,
+              method: str = "rk4") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` with Euler, the lecture's step or RK4.
 
     method : "rk4" (default, fourth-order Runge–Kutta); "euler" (``θ ← θ + θ̇Δt``, ``θ̇ ← θ̇ + θ̈Δt``);
@@ -66,7 +75,7 @@ def integrate(thetalist, dthetalist, taufun, g, Mlist, Glist, Slist, dt: float, 
         raise ValueError(f"method: expected 'rk4', 'euler' or 'taylor', got {method!r}")
     z6 = np.zeros(6)
 
-    def acc(t, a, b):
+    def acc(t: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         return forward_dynamics(a, b, taufun(t, a, b), g, z6, Mlist, Glist, Slist)
 
     T = np.arange(int(steps) + 1) * dt

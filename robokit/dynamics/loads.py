@@ -7,6 +7,7 @@ r"""What the arm carries and what it pushes on its base (Lecture 7).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.dynamics.newton_euler import _model
@@ -15,7 +16,8 @@ from robokit.spatial import lie
 __all__ = ["add_payload", "base_wrench"]
 
 
-def add_payload(Mlist, Glist, mass, com=(0.0, 0.0, 0.0), inertia=None):
+def add_payload(Mlist: ArrayLike, Glist: ArrayLike, mass: float, com: ArrayLike = (0.0, 0.0, 0.0),
+                inertia: ArrayLike | None = None) -> np.ndarray:
     """Glist with a payload rigidly held at the end-effector frame added to the last link.
 
     mass : kg; com : (3,) payload centre of mass in the end-effector frame (m); inertia : 3×3
@@ -24,7 +26,7 @@ def add_payload(Mlist, Glist, mass, com=(0.0, 0.0, 0.0), inertia=None):
     in b). Returns a new (n, 6, 6) Glist; Mlist is unchanged (the link frame stays where it is).
     """
     Mlist = as_array(Mlist, "Mlist", (None, 4, 4))
-    Glist = as_array(Glist, "Glist", (len(Mlist) - 1, 6, 6)).copy()
+    Glist = np.array(as_array(Glist, "Glist", (len(Mlist) - 1, 6, 6)))
     mass = as_scalar(mass, "mass", nonnegative=True)
     com = as_vector(com, "com", 3)
     I = np.zeros((3, 3)) if inertia is None else as_array(inertia, "inertia", (3, 3))
@@ -42,7 +44,8 @@ def add_payload(Mlist, Glist, mass, com=(0.0, 0.0, 0.0), inertia=None):
     return Glist
 
 
-def base_wrench(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike, Ftip: ArrayLike,
+                Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
     """The wrench (m, f) (6,) the base must apply to the arm, in the base frame {0} at its origin.
 
     From the backward Newton–Euler pass: the wrench transmitted through joint 1, ``F₁``, carried

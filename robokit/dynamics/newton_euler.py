@@ -24,7 +24,11 @@ once and remembering them (by their bytes).
 """
 from __future__ import annotations
 
+from types import ModuleType
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.kinematics.poe import screw_exponentials
@@ -46,7 +50,7 @@ _MODELS: dict = {}
 _kd = None  # robokit.kernels.dynamics, imported on first use
 
 
-def _kernels():
+def _kernels() -> ModuleType:
     global _kd
     from robokit.kernels import dynamics
 
@@ -57,7 +61,7 @@ def _kernels():
 _ZEROS: dict = {}
 
 
-def _zeros(n):
+def _zeros(n: int) -> np.ndarray:
     """A shared zero vector of length n (the kernels never write their inputs; it stays writeable
     because the compiled signatures take writeable arrays)."""
     z = _ZEROS.get(n)
@@ -66,7 +70,7 @@ def _zeros(n):
     return z
 
 
-def _ready(*xs):
+def _ready(*xs: object) -> bool:
     """True when every argument is a 1-D ndarray (the kernel then checks dtype, length, finiteness)."""
     for x in xs:
         if type(x) is not np.ndarray or x.ndim != 1:
@@ -79,7 +83,7 @@ def _ready(*xs):
 class _Model:
     """Constants of one (Mlist, Glist, Slist) model."""
 
-    def __init__(self, Mlist, Glist, Slist):
+    def __init__(self, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None:
         n = Slist.shape[1]
         self.n = n
         self.Mlist = np.ascontiguousarray(Mlist)  # the validated constants, as the kernels take them
@@ -96,7 +100,7 @@ class _Model:
         self.AT = np.ascontiguousarray(A.T)  # rows Aᵢ
         self.Ad_tip = lie.adjoint(self.Minv[n][None])[0]  # Ad_{T_{n+1,n}}
 
-    def transforms(self, theta):
+    def transforms(self, theta: np.ndarray) -> np.ndarray:
         """Ad_{T_{i,i−1}} for i = 1..n: (n, 6, 6)."""
         T = screw_exponentials(self.A, -theta) @ self.Minv[: self.n]
         return lie.adjoint(T)
@@ -105,7 +109,7 @@ class _Model:
 _SEEN: dict = {}  # id(Slist) -> (Mlist, Glist, Slist, their bytes, the model): the last arrays seen
 
 
-def _model(Mlist, Glist, Slist) -> _Model:
+def _model(Mlist: Any, Glist: Any, Slist: Any) -> _Model:
     """The validated model of (Mlist, Glist, Slist), remembered by the arrays' contents.
 
     The same three array objects with unchanged bytes (compared, not hashed: the cheap test on
@@ -122,7 +126,7 @@ def _model(Mlist, Glist, Slist) -> _Model:
     return m
 
 
-def _model_lookup(Mlist, Glist, Slist) -> _Model:
+def _model_lookup(Mlist: Any, Glist: Any, Slist: Any) -> _Model:
     if all(type(a) is np.ndarray and a.dtype == np.float64 for a in (Mlist, Glist, Slist)):
         hit = _MODELS.get((Mlist.tobytes(), Glist.tobytes(), Slist.tobytes()))
         if hit is not None and hit.n == Slist.shape[1] and Mlist.shape == (hit.n + 1, 4, 4):
@@ -144,11 +148,12 @@ def _model_lookup(Mlist, Glist, Slist) -> _Model:
     return m
 
 
-def _vec(x, name, n):
+def _vec(x: ArrayLike, name: str, n: int) -> np.ndarray:
     return as_vector(x, name, n)
 
 
-def _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=True):
+def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
+                  Ftip: ArrayLike, fast: bool = True) -> np.ndarray:
     """Newton–Euler for one configuration: the kernel straight away on ready vectors, else after
     the full checks (which name the offending argument)."""
     k = _kd or _kernels()
@@ -163,7 +168,8 @@ def _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=True):
                               m.Mlist, m.Glist, m.Slist)
 
 
-def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
+                     Ftip: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
     """Joint torques ``τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) + Jᵀ(θ) F_tip`` by Newton–Euler (n,).
 
     thetalist, dthetalist, ddthetalist : (n,) rad, rad/s, rad/s² — or (N, n) for N states at
@@ -190,7 +196,7 @@ def inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, 
     return _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=False)
 
 
-def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
+def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
     """The n×n mass matrix M(θ) (composite-rigid-body algorithm), symmetric positive definite.
 
     thetalist : (n,), or (N, n) for N configurations at once (then (N, n, n), vectorised).
@@ -208,28 +214,32 @@ def mass_matrix(thetalist, Mlist, Glist, Slist) -> np.ndarray:
     return k.mass_matrix(np.ascontiguousarray(_vec(thetalist, "thetalist", m.n)), m.Mlist, m.Glist, m.Slist)
 
 
-def vel_quadratic_forces(thetalist, dthetalist, Mlist, Glist, Slist) -> np.ndarray:
+def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                         Slist: ArrayLike) -> np.ndarray:
     """Coriolis and centripetal torques ``c(θ, θ̇)`` (n,): inverse dynamics with θ̈ = 0, g = 0, F_tip = 0."""
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, dthetalist, z, _zeros(3), _zeros(6))
 
 
-def gravity_forces(thetalist, g, Mlist, Glist, Slist) -> np.ndarray:
+def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                   Slist: ArrayLike) -> np.ndarray:
     """Gravity torques ``g(θ)`` (n,): inverse dynamics with θ̇ = θ̈ = 0, F_tip = 0."""
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, g, _zeros(6))
 
 
-def end_effector_forces(thetalist, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                        Slist: ArrayLike) -> np.ndarray:
     """Torques ``Jᵀ(θ) F_tip`` (n,) that balance the tip wrench: inverse dynamics with no motion, no gravity."""
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, _zeros(3), Ftip)
 
 
-def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist) -> np.ndarray:
+def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: ArrayLike, g: ArrayLike, Ftip: ArrayLike,
+                     Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
     """Joint accelerations ``θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ) − Jᵀ F_tip)`` (n,).
 
     One Newton–Euler pass gives the bias ``c + g + JᵀF`` and the CRBA gives M; the linear
@@ -260,7 +270,8 @@ def forward_dynamics(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slis
                               m.Mlist, m.Glist, m.Slist)
 
 
-def euler_step(thetalist, dthetalist, ddthetalist, dt):
+def euler_step(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike,
+               dt: float) -> tuple[np.ndarray, np.ndarray]:
     """One explicit Euler step: ``(θ + dt θ̇, θ̇ + dt θ̈)``; dt in s."""
     th = as_vector(thetalist, "thetalist")
     n = len(th)
@@ -270,7 +281,9 @@ def euler_step(thetalist, dthetalist, ddthetalist, dt):
     return th + dt * dth, dth + dt * ddth
 
 
-def inverse_dynamics_trajectory(thetamat, dthetamat, ddthetamat, g, Ftipmat, Mlist, Glist, Slist) -> np.ndarray:
+def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthetamat: ArrayLike, g: ArrayLike,
+                                Ftipmat: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                                Slist: ArrayLike) -> np.ndarray:
     """Torques along a trajectory: row k of the (N, n) result is ``inverse_dynamics`` of row k.
 
     thetamat, dthetamat, ddthetamat : (N, n); Ftipmat : (N, 6); g : (3,).
@@ -289,7 +302,9 @@ def inverse_dynamics_trajectory(thetamat, dthetamat, ddthetamat, g, Ftipmat, Mli
     return k.inverse_dynamics_batch(c(Q), c(dQ), c(ddQ), c(g), c(F), m.Mlist, m.Glist, m.Slist)
 
 
-def forward_dynamics_trajectory(thetalist, dthetalist, taumat, g, Ftipmat, Mlist, Glist, Slist, dt, intRes):
+def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, taumat: ArrayLike, g: ArrayLike,
+                                Ftipmat: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike, dt: float,
+                                intRes: int) -> tuple[np.ndarray, np.ndarray]:
     """Simulate the arm under a torque history with Euler integration (Modern Robotics semantics).
 
     thetalist, dthetalist : (n,) initial state; taumat : (N, n) torques, row k held over

@@ -14,13 +14,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
 
 __all__ = ["twolink_dynamics"]
 
 
-def twolink_dynamics(q, dq, l1: float, l2: float, m1: float, m2: float, g: float = 9.81) -> dict:
+def twolink_dynamics(q: ArrayLike, dq: ArrayLike, l1: float, l2: float, m1: float, m2: float,
+                     g: float = 9.81) -> dict[str, np.ndarray]:
     """The Lecture 7 closed forms at (q, q̇): a dict with M (2×2), V (2,), G (2,), B (2×1), C (2×2)."""
     q1, q2 = as_vector(q, "q", 2)
     d1, d2 = as_vector(dq, "dq", 2)

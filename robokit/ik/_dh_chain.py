@@ -17,17 +17,23 @@ from __future__ import annotations
 
 import math
 
+from typing import TYPE_CHECKING, Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 from robokit.spatial import lie
 
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
 
 
-def _rx4(alpha, a):
+
+def _rx4(alpha: float, a: float) -> np.ndarray:
     c, s = math.cos(alpha), math.sin(alpha)
     return np.array([[1.0, 0.0, 0.0, a], [0.0, c, -s, 0.0], [0.0, s, c, 0.0], [0.0, 0.0, 0.0, 1.0]])
 
 
-def _rz4(theta, d):
+def _rz4(theta: float, d: float) -> np.ndarray:
     c, s = math.cos(theta), math.sin(theta)
     return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]])
 
@@ -41,7 +47,7 @@ class DHChain:
     identity; qlim : (n, 2) or None; scale : a length of the arm (m) for tolerances.
     """
 
-    def __init__(self, table, qlim=None):
+    def __init__(self, table: DHTable, qlim: ArrayLike | None = None) -> None:
         links = list(table.links)
         n = len(links)
         conv = getattr(table, "convention", "standard")
@@ -77,28 +83,28 @@ class DHChain:
         self.scale = max(1e-3, float(np.abs(self.a).sum() + np.abs(self.d0).sum()))
 
     # ------------------------------------------------------------------ kinematics
-    def z(self, i, q_i):
+    def z(self, i: int, q_i: float) -> np.ndarray:
         """4×4 ``Zᵢ`` of joint i (0-based) at joint value q_i."""
         if self.kinds[i] == "R":
             return _rz4(self.th0[i] + q_i, self.d0[i])
         return _rz4(self.th0[i], self.d0[i] + q_i)
 
-    def x(self, i):
+    def x(self, i: int) -> np.ndarray:
         """4×4 ``Xᵢ`` between axes i and i+1 (0-based i)."""
         return _rx4(self.alpha[i], self.a[i])
 
-    def fk6(self, q):
+    def fk6(self, q: Sequence[float] | np.ndarray) -> np.ndarray:
         """Pose of the frame after ``Z_n`` in frame {0′} (tool′ and base′ excluded)."""
         T = self.z(0, q[0])
         for i in range(1, self.n):
             T = T @ self.x(i - 1) @ self.z(i, q[i])
         return T
 
-    def fk(self, q):
+    def fk(self, q: Sequence[float] | np.ndarray) -> np.ndarray:
         """4×4 tool pose in base_link: ``base′ · fk6(q) · tool′`` (equals the table's FK)."""
         return self.base @ self.fk6(q) @ self.tool
 
-    def target_06(self, T):
+    def target_06(self, T: np.ndarray) -> np.ndarray:
         """``base′⁻¹ · T · tool′⁻¹``: the pose to reach with ``Z₁X₁ ⋯ Z₆``."""
         if self.base_inv is not None:
             T = self.base_inv @ T
@@ -106,7 +112,7 @@ class DHChain:
             T = T @ self.tool_inv
         return T
 
-    def axes(self):
+    def axes(self) -> list[tuple[np.ndarray, np.ndarray]]:
         """Joint axes at q = 0 in frame {0′}: list of (point (3,), unit direction (3,))."""
         out = []
         G = np.eye(4)

@@ -23,12 +23,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Iterable, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
 
 __all__ = [
     "IKSolution",
@@ -63,7 +68,7 @@ class IKSolution:
     extra: dict = field(default_factory=dict, compare=False, repr=False)
 
 
-def _within(q, qlim) -> bool:
+def _within(q: np.ndarray, qlim: ArrayLike | None) -> bool:
     if qlim is None:
         return True
     qlim = np.asarray(qlim, dtype=float)
@@ -71,7 +76,7 @@ def _within(q, qlim) -> bool:
     return bool(np.all(q >= qlim[:, 0] - tol) and np.all(q <= qlim[:, 1] + tol))
 
 
-def _qlim_or_none(qlim, n, name="qlim"):
+def _qlim_or_none(qlim: ArrayLike | None, n: int, name: str = "qlim") -> np.ndarray | None:
     if qlim is None:
         return None
     arr = np.asarray(qlim, dtype=float)
@@ -80,7 +85,7 @@ def _qlim_or_none(qlim, n, name="qlim"):
     return arr
 
 
-def _two_link_core(x, y, l1, l2):
+def _two_link_core(x: float, y: float, l1: float, l2: float) -> list[tuple[float, float, str]]:
     """Both (θ₁, θ₂) of a planar 2-link arm reaching (x, y); [] if out of reach."""
     r2 = x * x + y * y
     c2 = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)
@@ -101,7 +106,7 @@ def _two_link_core(x, y, l1, l2):
     return out
 
 
-def ik_planar_2link(x, y, l1, l2, qlim=None) -> list[IKSolution]:
+def ik_planar_2link(x: float, y: float, l1: float, l2: float, qlim: ArrayLike | None = None) -> list[IKSolution]:
     """All joint angles (θ₁, θ₂) of a planar 2-link arm whose tip reaches (x, y).
 
     x, y : target in the base frame (m); l1, l2 : link lengths (m, > 0);
@@ -121,7 +126,8 @@ def ik_planar_2link(x, y, l1, l2, qlim=None) -> list[IKSolution]:
     return sols
 
 
-def ik_planar_rrr(x, y, phi, l1, l2, l3, qlim=None) -> list[IKSolution]:
+def ik_planar_rrr(x: float, y: float, phi: float, l1: float, l2: float, l3: float,
+                  qlim: ArrayLike | None = None) -> list[IKSolution]:
     """All (θ₁, θ₂, θ₃) of a planar RRR arm with tool pose (x, y, φ), φ = θ₁ + θ₂ + θ₃.
 
     Geometric form of Lecture 5: the wrist point (x − l₃ cos φ, y − l₃ sin φ) is reached
@@ -139,7 +145,7 @@ def ik_planar_rrr(x, y, phi, l1, l2, l3, qlim=None) -> list[IKSolution]:
     return sols
 
 
-def ik_spherical_wrist(R36, theta4_ref: float = 0.0) -> list[IKSolution]:
+def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSolution]:
     """Both ZYZ solutions (θ₄, θ₅, θ₆) of a spherical wrist, ³R₆ = Rz(θ₄) Ry(θ₅) Rz(θ₆).
 
     Seed 003, eqs. 15–17, with ³R₆ = [n s a]:
@@ -153,10 +159,11 @@ def ik_spherical_wrist(R36, theta4_ref: float = 0.0) -> list[IKSolution]:
     """
     R = check_rotation(R36, "R36")
     t4_ref = as_scalar(theta4_ref, "theta4_ref")
-    return [IKSolution(wrap_angle(np.array(q)), True, label, degenerate) for q, label, degenerate in _wrist(R, t4_ref)]
+    return [IKSolution(cast(np.ndarray, wrap_angle(np.array(q))), True, label, degenerate)
+            for q, label, degenerate in _wrist(R, t4_ref)]
 
 
-def _wrist(R, t4_ref):
+def _wrist(R: np.ndarray, t4_ref: float) -> list[tuple[tuple[float, float, float], str, bool]]:
     """(q, label, degenerate) triples of the ZYZ wrist (no input checks; plain floats)."""
     ax, ay, az = R[0, 2], R[1, 2], R[2, 2]
     sx, sy, sz = R[0, 1], R[1, 1], R[2, 1]
@@ -172,7 +179,7 @@ def _wrist(R, t4_ref):
             ((math.atan2(-ay, -ax), math.atan2(-s5, az), math.atan2(-sz, nz)), "flip", False)]
 
 
-def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
+def ik_rrr_position(p: ArrayLike, L1: float, L2: float, L3: float, qlim: ArrayLike | None = None) -> list[IKSolution]:
     """All (θ₁, θ₂, θ₃) of the Lecture 5 homework RRR arm reaching the tool position p.
 
     The arm (Craig's convention, Lecture 4/5 homework): ⁰T₁ = Rz(θ₁);
@@ -191,7 +198,7 @@ def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
     for sign, side in ((1.0, "front"), (-1.0, "back")):
         t1 = base_angle if sign > 0 else base_angle + np.pi
         for t2, t3, label in _two_link_core(sign * r - L1, p[2], L2, L3):
-            q = wrap_angle(np.array([t1, t2, t3]))
+            q = cast(np.ndarray, wrap_angle(np.array([t1, t2, t3])))
             sols.append(IKSolution(q, _within(q, qlim), f"{side}, {label}"))
         if r <= 1e-12:
             break  # on the axis of joint 1: θ₁ is free; the choice θ₁ = 0 covers both sides
@@ -201,7 +208,7 @@ def ik_rrr_position(p, L1, L2, L3, qlim=None) -> list[IKSolution]:
 _PUMA_ALPHA = np.array([np.pi / 2, 0.0, -np.pi / 2, np.pi / 2, -np.pi / 2, 0.0])
 
 
-def _puma_params(table):
+def _puma_params(table: DHTable) -> tuple[float, float, float, float, float, float, np.ndarray]:
     """Check the PUMA 560 structure and return its constants (d1, a2, a3, d23, d4, d6, offsets)."""
     links = list(table.links)
     if len(links) != 6 or any(l.joint != "R" for l in links):
@@ -219,7 +226,7 @@ def _puma_params(table):
     return d[0], a[1], a[2], d[1] + d[2], d[3], d[5], offsets
 
 
-def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
+def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IKSolution]:
     """All 8 configurations of a PUMA 560-type arm reaching the tool pose T (Pieper's method).
 
     table : a standard-convention :class:`robokit.DHTable` with the PUMA structure
@@ -255,7 +262,8 @@ def ik_puma560(table, T, theta4_ref: float = 0.0) -> list[IKSolution]:
 
 
 
-def select_solution(solutions, q_ref, weights=None, within_limits: bool = True, proximal_first: bool = False):
+def select_solution(solutions: Iterable[IKSolution], q_ref: ArrayLike, weights: ArrayLike | None = None,
+                    within_limits: bool = True, proximal_first: bool = False) -> IKSolution | None:
     """The solution closest to ``q_ref`` (Lecture 5's choice among multiple solutions).
 
     Distance: ``Σ wᵢ |wrap(qᵢ − q_refᵢ)|`` (angles compared modulo 2π). ``weights`` (n,)

@@ -40,14 +40,22 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Sequence, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.analytic import IKSolution
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.spatial.se3 import check_transform
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
+
+_Row = tuple[Sequence[float], str, bool]  # (q, label, degenerate) of one solution
 
 __all__ = ["ClosedFormKind", "ik_analytic", "ik_analytic_kind"]
 
@@ -75,7 +83,7 @@ class ClosedFormKind:
 class ClosedFormModel:
     """One robot's closed-form IK: canonical chain, method, solver constants (built once)."""
 
-    def __init__(self, table, qlim=None):
+    def __init__(self, table: DHTable, qlim: ArrayLike | None = None) -> None:
         self.chain = DHChain(table, qlim)
         self.reversed = False
         self.kind, self.solver, self.solver_chain = self._method(self.chain)
@@ -97,10 +105,10 @@ class ClosedFormModel:
         self.lim_list = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
 
     @staticmethod
-    def _method(chain):
+    def _method(chain: DHChain) -> tuple[ClosedFormKind, PieperSolver | ParallelAxesSolver | None, DHChain]:
         """(kind, solver, chain) for one reading of the chain."""
         kind = _detect(chain)
-        solver = None
+        solver: PieperSolver | ParallelAxesSolver | None = None
         if kind.method == "spherical wrist":
             solver = PieperSolver(chain)
             if not _positions_in_3d(solver):
@@ -116,7 +124,7 @@ class ClosedFormModel:
         return kind, solver, chain
 
     # ------------------------------------------------------------------ solving
-    def solve(self, T, wrist_ref: float = 0.0) -> list[IKSolution]:
+    def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         if self.solver is None:
             raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
         if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
@@ -131,20 +139,21 @@ class ClosedFormModel:
             rows = self._rows(self.chain.target_06(T), wrist_ref)
         return self._finish(rows)
 
-    def _rows(self, T06, wrist_ref):
+    def _rows(self, T06: np.ndarray, wrist_ref: float) -> list[_Row]:
         if isinstance(self.solver, ParallelAxesSolver):
             return self.solver.solve(T06, wrist_ref)
         return self._pieper(T06, wrist_ref)
 
-    def _pieper(self, T06, wrist_ref):
+    def _pieper(self, T06: np.ndarray, wrist_ref: float) -> list[_Row]:
         sv = self.solver
+        assert isinstance(sv, PieperSolver)  # _rows sends the parallel-axes solver elsewhere
         th0 = sv.th0_all
         (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T06[:3].tolist()
         w6x, w6y, w6z = sv.w6_list
         W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
              r20 * w6x + r21 * w6y + r22 * w6z + p2)
         R06 = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
-        rows = []
+        rows: list[_Row] = []
         for q123, singular1, degen_pos in sv.position(W):
             th, _ = sv._angles(q123)
             head = self._shoulder(q123, th, W, singular1) + self._elbow(q123, th)
@@ -153,7 +162,7 @@ class ClosedFormModel:
                 rows.append((q, head + flip, degen or degen_pos or singular1))
         return rows
 
-    def _shoulder(self, q, th, W, singular):
+    def _shoulder(self, q: Sequence[float], th: Sequence[float], W: Sequence[float], singular: bool) -> str:
         if self.solver_chain.kinds[0] != "R":
             return ""
         if singular:
@@ -161,8 +170,9 @@ class ClosedFormModel:
         x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
         return "right, " if x1 >= 0.0 else "left, "
 
-    def _elbow(self, q, th):
+    def _elbow(self, q: Sequence[float], th: Sequence[float]) -> str:
         sv = self.solver
+        assert isinstance(sv, PieperSolver)  # called from _pieper only
         if self.solver_chain.kinds[2] == "P":
             d = self.solver_chain.d0[2] + q[2]
             return "d3 +, " if d >= 0.0 else "d3 −, "
@@ -170,7 +180,7 @@ class ClosedFormModel:
         e = (s3 * sv.v[0] + c3 * sv.v[1]) * (sv.a2 if sv.a2 != 0.0 else 1.0)
         return "elbow down, " if e > 0.0 else "elbow up, "
 
-    def _finish(self, rows):
+    def _finish(self, rows: list[_Row]) -> list[IKSolution]:
         """Wrap, shift into limits, flag, drop duplicates, label: rows → IKSolutions.
 
         Plain Python on at most a few dozen numbers (numpy's per-call overhead would dominate).
@@ -182,7 +192,9 @@ class ClosedFormModel:
         lims = self.lim_list
         rem = math.remainder
         two_pi, pi = _TWO_PI, math.pi
-        kept, meta, labels = [], [], {}
+        kept: list[list[float]] = []
+        meta: list[tuple[bool, str, bool]] = []
+        labels: dict[str, int] = {}
         for q, label, degen in rows:
             if all_rev:
                 qq = [rem(v, two_pi) for v in q]
@@ -223,7 +235,7 @@ class ClosedFormModel:
 _new = object.__new__
 
 
-def _solution(q, within_limits, label, degenerate):
+def _solution(q: np.ndarray, within_limits: bool, label: str, degenerate: bool) -> IKSolution:
     """An IKSolution built without the frozen dataclass's field-by-field ``__init__`` (a
     quarter of the cost of a call for 8 solutions); the same object in every respect."""
     sol = _new(IKSolution)
@@ -232,7 +244,7 @@ def _solution(q, within_limits, label, degenerate):
 
 
 # ---------------------------------------------------------------------- detection
-def _positions_in_3d(sv) -> bool:
+def _positions_in_3d(sv: PieperSolver) -> bool:
     """True if joints 1–3 move the wrist centre in 3 independent directions somewhere.
 
     The 3×3 Jacobian of the wrist centre (central differences) is checked at a few fixed
@@ -259,7 +271,7 @@ def _positions_in_3d(sv) -> bool:
     return False
 
 
-def _line_distance(p1, d1, p2, d2):
+def _line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
     """Distance between two lines (points p, unit directions d)."""
     c = np.cross(d1, d2)
     nc = float(np.linalg.norm(c))
@@ -269,12 +281,12 @@ def _line_distance(p1, d1, p2, d2):
     return abs(float(w @ c)) / nc
 
 
-def _angle(d1, d2):
+def _angle(d1: np.ndarray, d2: np.ndarray) -> float:
     """Angle between two axis lines, in [0, π/2] (direction signs ignored)."""
     return math.atan2(float(np.linalg.norm(np.cross(d1, d2))), abs(float(d1 @ d2)))
 
 
-def _meeting_point(lines):
+def _meeting_point(lines: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, float]:
     """Least-squares point of several lines and its largest distance to them."""
     A = np.zeros((3, 3))
     b = np.zeros(3)
@@ -287,11 +299,11 @@ def _meeting_point(lines):
     return x, dist
 
 
-def _fmt_len(x):
+def _fmt_len(x: float) -> str:
     return f"{x:.3g} m"
 
 
-def _detect(chain) -> ClosedFormKind:
+def _detect(chain: DHChain) -> ClosedFormKind:
     n = chain.n
     if n != 6:
         return ClosedFormKind(None, f"the arm has {n} joints; the closed forms here need exactly 6 "
@@ -350,13 +362,13 @@ def _detect(chain) -> ClosedFormKind:
 
 
 # ---------------------------------------------------------------------- public API
-def _model(robot) -> ClosedFormModel:
+def _model(robot: Robot | DHTable) -> ClosedFormModel:
     """The cached ClosedFormModel of a Robot or a DH table (built on first use)."""
     cached = getattr(robot, "_closed_form", None)
     if isinstance(cached, ClosedFormModel):
         return cached
     if hasattr(robot, "links") and hasattr(robot, "convention"):  # a DH table
-        model = ClosedFormModel(robot)
+        model = ClosedFormModel(cast("DHTable", robot))
     elif hasattr(robot, "model") and hasattr(robot, "qlim"):
         table = getattr(robot, "dh", None)
         if table is None:
@@ -379,7 +391,7 @@ def _model(robot) -> ClosedFormModel:
     return model
 
 
-def ik_analytic_kind(robot) -> ClosedFormKind:
+def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     """Which closed-form IK applies to ``robot``, decided from its joint axes.
 
     Parameters
@@ -408,7 +420,7 @@ def ik_analytic_kind(robot) -> ClosedFormKind:
     return _model(robot).kind
 
 
-def ik_analytic(robot, T, wrist_ref: float = 0.0) -> list[IKSolution]:
+def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
     r"""Every closed-form IK solution of ``robot`` for the tip pose ``T``.
 
     Parameters
@@ -456,7 +468,7 @@ def ik_analytic(robot, T, wrist_ref: float = 0.0) -> list[IKSolution]:
     return model.solve(_check_pose(T), float(wrist_ref))
 
 
-def _check_pose(T):
+def _check_pose(T: ArrayLike) -> np.ndarray:
     """T as a float 4×4 rigid transform: a quick test for a clean float array (RᵀR = I to 1e-9,
     det R > 0, last row exact), else the full :func:`check_transform` (which raises)."""
     if type(T) is np.ndarray and T.dtype == np.float64 and T.shape == (4, 4):

@@ -23,12 +23,20 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Callable, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+
+if TYPE_CHECKING:
+    from robokit.description.protocol import RobotLike
+    from robokit.description.robot import Robot
+
+_Closures = tuple[Callable[[np.ndarray], tuple[np.ndarray, float]], Callable[[np.ndarray], np.ndarray], np.ndarray]
 
 __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 
@@ -36,12 +44,12 @@ __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 _EARLY_IT, _EARLY_ERR = 15, 1e-2
 
 
-def _check_screws(S, name):
+def _check_screws(S: ArrayLike, name: str) -> np.ndarray:
     S = as_matrix(S, name, 6, None)
     return S
 
 
-def _fk_body(M, Blist, theta):
+def _fk_body(M: np.ndarray, Blist: np.ndarray, theta: np.ndarray) -> np.ndarray:
     from robokit.kinematics.poe import screw_exponentials
 
     T = M
@@ -50,13 +58,14 @@ def _fk_body(M, Blist, theta):
     return T
 
 
-def _jac_body(Blist, theta):
+def _jac_body(Blist: np.ndarray, theta: np.ndarray) -> np.ndarray:
     from robokit.kinematics.poe import jacobian_body
 
     return jacobian_body(Blist, theta)
 
 
-def _newton_args(screws, name, M, T, thetalist0, eomg, ev):
+def _newton_args(screws: ArrayLike, name: str, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLike, eomg: float,
+                 ev: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float, float]:
     """The checked arguments of ikin_body/ikin_space: (screws, M, T, θ₀ copy, eomg, ev)."""
     screws = _check_screws(screws, name)
     theta = as_vector(thetalist0, "thetalist0", screws.shape[1]).copy()
@@ -64,7 +73,7 @@ def _newton_args(screws, name, M, T, thetalist0, eomg, ev):
             as_scalar(eomg, "eomg", nonnegative=True), as_scalar(ev, "ev", nonnegative=True))
 
 
-def _spd_solve(A, b):
+def _spd_solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Solve A x = b for a symmetric positive definite A (LAPACK dposv: Cholesky, small overhead)."""
     from scipy.linalg.lapack import dposv
 
@@ -74,7 +83,7 @@ def _spd_solve(A, b):
     return x
 
 
-def _pinv_solve(J, V):
+def _pinv_solve(J: np.ndarray, V: np.ndarray) -> np.ndarray:
     """``J⁺ V``: for a square non-singular J this is ``J⁻¹ V`` (solved directly, much cheaper than
     an SVD); otherwise the Moore–Penrose pseudo-inverse."""
     if J.shape[0] == J.shape[1]:
@@ -89,12 +98,12 @@ class _Best:
     """The iterate with the smallest error twist seen, returned when Newton–Raphson fails (a
     diverging iteration must not hand back θ ≈ 1e28); revolute angles wrapped to (−π, π]."""
 
-    def __init__(self, screws):
+    def __init__(self, screws: np.ndarray) -> None:
         self.revolute = np.linalg.norm(screws[:3], axis=0) > 1e-12
         self.err = np.inf
-        self.theta = None
+        self.theta: np.ndarray | None = None
 
-    def keep(self, theta, V) -> bool:
+    def keep(self, theta: np.ndarray, V: np.ndarray) -> bool:
         e = float(np.linalg.norm(V))
         if not (np.isfinite(e) and np.isfinite(theta).all()):
             return False
@@ -102,13 +111,15 @@ class _Best:
             self.err, self.theta = e, theta.copy()
         return bool(np.abs(theta).max() < 1e6)  # diverged: stop
 
-    def result(self):
+    def result(self) -> np.ndarray:
+        assert self.theta is not None  # keep() is called before the first result()
         t = self.theta.copy()
         t[self.revolute] = np.pi - np.mod(np.pi - t[self.revolute], 2 * np.pi)  # (−π, π]: π stays π
         return t
 
 
-def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
+def ikin_body(Blist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLike, eomg: float, ev: float,
+              max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
 
     Blist : 6×n body screw axes (columns, angular first) in the end-effector frame at zero;
@@ -134,7 +145,8 @@ def ikin_body(Blist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
     return best.result(), False
 
 
-def ikin_space(Slist, M, T, thetalist0, eomg, ev, max_iterations: int = 100):
+def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLike, eomg: float, ev: float,
+               max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the space frame (seed 004 §3, Modern Robotics 6.2).
 
     Slist : 6×n space screw axes; M, T, thetalist0, eomg, ev as in :func:`ikin_body`.
@@ -185,10 +197,11 @@ class IKResult:
     seconds: float
 
 
-def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only: bool = False,
-             weights=None, tol: float = 1e-10, max_iterations: int = 60, max_restarts: int = 100,
-             time_budget: float | None = None, damping: float = 1e-2, min_damping: float = 1e-9,
-             rng=None, method: str = "auto") -> IKResult:
+def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = None, q0: ArrayLike | None = None, *,
+             position_only: bool = False, weights: ArrayLike | None = None, tol: float = 1e-10,
+             max_iterations: int = 60, max_restarts: int = 100, time_budget: float | None = None,
+             damping: float = 1e-2, min_damping: float = 1e-9, rng: int | np.random.Generator | None = None,
+             method: str = "auto") -> IKResult:
     """Inverse kinematics for any Robot and frame: closed form, compiled LM, or Pinocchio LM.
 
     method : "auto" (default) — for a full pose of the robot's tip with no weights and no
@@ -253,15 +266,17 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     if method in ("analytic", "compiled") and not plain:
         raise ValueError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
     if plain and method in ("auto", "analytic"):
-        res = _solve_closed_form(robot, T_target, q, tol, t_start, required=method == "analytic")
+        assert T_target is not None  # plain: not position_only
+        res = _solve_closed_form(cast("Robot", robot), T_target, q, tol, t_start, required=method == "analytic")
         if res is not None:
             return res
     if plain and method in ("auto", "compiled"):
-        return _solve_compiled(robot, T_target, q, tol, max_iterations, max_restarts, rng, t_start)
+        assert T_target is not None  # plain: not position_only
+        return _solve_compiled(cast("Robot", robot), T_target, q, tol, max_iterations, max_restarts, rng, t_start)
 
     rng = np.random.default_rng(rng)
     if is_robot:
-        error, jac, w_int = _pinocchio_closures(robot, frame, position_only, p_target, T_target, w)
+        error, jac, w_int = _pinocchio_closures(cast("Robot", robot), frame, position_only, p_target, T_target, w)
     else:  # any RobotLike: frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
         error, jac, w_int = _generic_closures(robot, frame, position_only, p_target, T_target, w)
     w_pin = w_int
@@ -313,12 +328,14 @@ def solve_ik(robot, target, frame: str | None = None, q0=None, *, position_only:
     if position_only:
         pos_err, rot_err = float(np.linalg.norm(e)), 0.0
     else:
+        assert T_target is not None  # not position_only
         rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
     return IKResult(best_q, bool(best_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
 
 
-def _result(robot, q, T_target, tol, iterations, restarts, t_start) -> IKResult:
+def _result(robot: Robot, q: np.ndarray, T_target: np.ndarray, tol: float, iterations: int, restarts: int,
+            t_start: float) -> IKResult:
     T = robot.frame_pose(q)
     e = lie.log6(lie.inv(T) @ T_target)
     rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
@@ -326,7 +343,8 @@ def _result(robot, q, T_target, tol, iterations, restarts, t_start) -> IKResult:
                     iterations, restarts, time.perf_counter() - t_start)
 
 
-def _solve_closed_form(robot, T_target, q0, tol, t_start, required: bool):
+def _solve_closed_form(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: float, t_start: float,
+                       required: bool) -> IKResult | None:
     """The closed form's in-limit solution nearest ``q0`` (None: no closed form, or none of its
     solutions inside the limits — the numerical solver then takes over)."""
     from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
@@ -341,7 +359,7 @@ def _solve_closed_form(robot, T_target, q0, tol, t_start, required: bool):
         return None
     revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
 
-    def distance(q):
+    def distance(q: np.ndarray) -> float:
         d = q - q0
         d[revolute] = np.mod(d[revolute] + np.pi, 2 * np.pi) - np.pi
         return float(d @ d)
@@ -351,7 +369,8 @@ def _solve_closed_form(robot, T_target, q0, tol, t_start, required: bool):
     return res if res.success else None  # a closed form off by more than tol: let LM polish from scratch
 
 
-def _solve_compiled(robot, T_target, q0, tol, max_iterations, max_restarts, rng, t_start) -> IKResult:
+def _solve_compiled(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: float, max_iterations: int,
+                    max_restarts: int, rng: int | np.random.Generator | None, t_start: float) -> IKResult:
     from robokit.kernels.ik import solve_poe_ik
 
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
@@ -365,7 +384,8 @@ def _solve_compiled(robot, T_target, q0, tol, max_iterations, max_restarts, rng,
     return _result(robot, np.asarray(q, float), T_target, tol, int(iterations), int(restarts), t_start)
 
 
-def _pinocchio_closures(robot, frame, position_only, p_target, T_target, w):
+def _pinocchio_closures(robot: Robot, frame: str | None, position_only: bool, p_target: np.ndarray | None,
+                        T_target: np.ndarray | None, w: np.ndarray) -> _Closures:
     """Error and Jacobian evaluated with Pinocchio directly (one Data, no conversions).
 
     The error is in Pinocchio's twist order (v, ω) — the weights are reordered to match."""
@@ -379,16 +399,17 @@ def _pinocchio_closures(robot, frame, position_only, p_target, T_target, w):
         w_int = w
     else:
         rf = pin.ReferenceFrame.LOCAL
+        assert T_target is not None  # not position_only
         M_target = pin.SE3(T_target[:3, :3].copy(), T_target[:3, 3].copy())
         w_int = np.r_[w[3:], w[:3]]
 
-    def error(qc):
+    def error(qc: np.ndarray) -> tuple[np.ndarray, float]:
         pin.forwardKinematics(model, data, to_q(qc))
         oMf = pin.updateFramePlacement(model, data, fid)
         e = p_target - oMf.translation if position_only else pin.log6(oMf.actInv(M_target)).vector
         return e, float(np.sqrt(e @ e))
 
-    def jac(qc):
+    def jac(qc: np.ndarray) -> np.ndarray:
         pin.computeJointJacobians(model, data, to_q(qc))
         J = pin.getFrameJacobian(model, data, fid, rf)
         return J[:3] if position_only else J
@@ -396,15 +417,16 @@ def _pinocchio_closures(robot, frame, position_only, p_target, T_target, w):
     return error, jac, w_int
 
 
-def _generic_closures(robot, frame, position_only, p_target, T_target, w):
+def _generic_closures(robot: RobotLike, frame: str | None, position_only: bool, p_target: np.ndarray | None,
+                      T_target: np.ndarray | None, w: np.ndarray) -> _Closures:
     """Error and Jacobian through ``robot.frame_pose`` / ``robot.jacobian`` (angular first)."""
 
-    def error(qc):
+    def error(qc: np.ndarray) -> tuple[np.ndarray, float]:
         T = robot.frame_pose(qc, frame)
         e = p_target - T[:3, 3] if position_only else lie.log6(lie.inv(T) @ T_target)
         return e, float(np.sqrt(e @ e))
 
-    def jac(qc):
+    def jac(qc: np.ndarray) -> np.ndarray:
         if position_only:
             return robot.jacobian(qc, frame, reference="local_world_aligned")[3:, :]
         return robot.jacobian(qc, frame, reference="local")

@@ -23,8 +23,10 @@ Angles are wrapped to (−π, π].
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.basics import wrap_angle
@@ -37,7 +39,7 @@ _TWO_PI = 2.0 * math.pi
 
 
 
-def _trig_roots(a: float, b: float, c: float, tol: float = 1e-12):
+def _trig_roots(a: float, b: float, c: float, tol: float = 1e-12) -> list[float] | None:
     """Roots of a cos θ + b sin θ = c as a list of angles in (−π, π] (no checks).
 
     Returns None when every θ solves it (a = b = c = 0). A discriminant a² + b² − c² within
@@ -56,14 +58,14 @@ def _trig_roots(a: float, b: float, c: float, tol: float = 1e-12):
     q = b + (sq if b >= 0.0 else -sq)
     if q == 0.0:  # b = 0 and disc = 0: a double root u = 0 (θ = 0) or u = ∞ (θ = π)
         return [0.0] if A != 0.0 else [_PI]
-    t1 = wrap_angle(2.0 * math.atan2(q, A))  # u₁ = q/A  (A = 0: u₁ = ∞, θ = π)
-    t2 = wrap_angle(2.0 * math.atan2(C, q))  # u₂ = C/q  (Vieta: u₁u₂ = C/A)
+    t1 = cast(float, wrap_angle(2.0 * math.atan2(q, A)))  # u₁ = q/A  (A = 0: u₁ = ∞, θ = π)
+    t2 = cast(float, wrap_angle(2.0 * math.atan2(C, q)))  # u₂ = C/q  (Vieta: u₁u₂ = C/A)
     if sq == 0.0:
         return [t1]
     return [t1, t2]
 
 
-def solve_trig(a, b, c) -> list[float]:
+def solve_trig(a: float, b: float, c: float) -> list[float]:
     r"""All real θ ∈ (−π, π] with ``a cos θ + b sin θ = c`` (Lecture 5, tan(θ/2) substitution).
 
     Parameters
@@ -103,7 +105,7 @@ def solve_trig(a, b, c) -> list[float]:
     return sorted(roots)
 
 
-def _unit_axis(omega, name):
+def _unit_axis(omega: ArrayLike, name: str) -> np.ndarray:
     w = as_vector(omega, name, 3)
     n = float(np.linalg.norm(w))
     if n < 1e-12:
@@ -111,7 +113,7 @@ def _unit_axis(omega, name):
     return w / n
 
 
-def pk_subproblem1(omega, r, p, q, tol: float = 1e-9) -> list[float]:
+def pk_subproblem1(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, tol: float = 1e-9) -> list[float]:
     r"""Paden–Kahan subproblem 1: θ with ``exp([ω]θ)(p − r) = q − r``.
 
     Parameters
@@ -141,7 +143,7 @@ def pk_subproblem1(omega, r, p, q, tol: float = 1e-9) -> list[float]:
     return _sp1(w, p - r, q - r, tol)
 
 
-def _sp1(w, u, v, tol):
+def _sp1(w: np.ndarray, u: np.ndarray, v: np.ndarray, tol: float) -> list[float]:
     hu, hv = float(w @ u), float(w @ v)
     up, vp = u - hu * w, v - hv * w
     nu, nv = float(np.linalg.norm(up)), float(np.linalg.norm(vp))
@@ -149,10 +151,11 @@ def _sp1(w, u, v, tol):
         return []
     if nu <= tol:
         return [0.0]
-    return [wrap_angle(math.atan2(float(w @ np.cross(up, vp)), float(up @ vp)))]
+    return [cast(float, wrap_angle(math.atan2(float(w @ np.cross(up, vp)), float(up @ vp))))]
 
 
-def pk_subproblem2(omega1, omega2, r, p, q, tol: float = 1e-9) -> list[tuple[float, float]]:
+def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike,
+                   tol: float = 1e-9) -> list[tuple[float, float]]:
     r"""Paden–Kahan subproblem 2: (θ₁, θ₂) with ``exp([ω₁]θ₁) exp([ω₂]θ₂)(p − r) = q − r``.
 
     Parameters
@@ -207,7 +210,8 @@ def pk_subproblem2(omega1, omega2, r, p, q, tol: float = 1e-9) -> list[tuple[flo
     return out
 
 
-def pk_subproblem3(omega, r, p, q, delta, tol: float = 1e-9) -> list[float]:
+def pk_subproblem3(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, delta: float,
+                   tol: float = 1e-9) -> list[float]:
     r"""Paden–Kahan subproblem 3: θ with ``‖exp([ω]θ)(p − r) − (q − r)‖ = δ``.
 
     Parameters

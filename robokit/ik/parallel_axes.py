@@ -25,15 +25,22 @@ from __future__ import annotations
 
 import math
 
+from typing import TYPE_CHECKING, Sequence
+
 import numpy as np
 
 from robokit.ik.paden_kahan import _trig_roots
+
+if TYPE_CHECKING:
+    from robokit.ik._dh_chain import DHChain
 
 
 class ParallelAxesSolver:
     """Precomputed constants of the three-parallel-axes method for one chain."""
 
-    def __init__(self, chain):
+    th0_all: list[float]  # set by ClosedFormModel
+
+    def __init__(self, chain: DHChain) -> None:
         self.chain = chain
         al, a, d0, th0 = chain.alpha, chain.a, chain.d0, chain.th0
         self.ca = [math.cos(x) for x in al]
@@ -63,7 +70,7 @@ class ParallelAxesSolver:
         self.w6_list = [float(v) for v in self.w6]
         self.a4, self.a5 = float(a[3]), float(a[4])
 
-    def solve(self, T06, q6_ref):
+    def solve(self, T06: np.ndarray, q6_ref: float) -> list[tuple[Sequence[float], str, bool]]:
         """Rows (q (6,), label, degenerate) of every solution for the pose T06 (frame 0′).
 
         Plain float arithmetic (no per-solution numpy): the poses of step 4 are composed
@@ -80,7 +87,7 @@ class ParallelAxesSolver:
         t1s = _trig_roots(-sa1 * Wy, sa1 * Wx, self.KW - ca1 * (Wz - self.d1), 1e-10)
         if not t1s:
             return []
-        out = []
+        out: list[tuple[Sequence[float], str, bool]] = []
         a1, a2, a3, a4, a5 = self.a1, self.a2, self.a3, self.a4, self.a5
         d5, d6, sig = self.d5, self.d6, self.sig
         right_angles = ca4 == 0.0 and ca5 == 0.0
@@ -95,7 +102,8 @@ class ParallelAxesSolver:
             rho = math.hypot(utx, uty)  # |sin| of the angle between axis 6 and u
             if right_angles:  # (UR) |s₅| = ρ, c₅ = −ũ_z/(sα₄sα₅)
                 c5r = -utz / (sa4 * sa5)
-                t5s = [math.atan2(rho, c5r), math.atan2(-rho, c5r)] if rho > 1e-10 else [math.atan2(0.0, c5r)]
+                t5s: list[float] | None = ([math.atan2(rho, c5r), math.atan2(-rho, c5r)] if rho > 1e-10
+                                           else [math.atan2(0.0, c5r)])
             else:
                 t5s = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10)
             if not t5s:
@@ -144,6 +152,6 @@ class ParallelAxesSolver:
         return out
 
 
-def _z4(theta, d):
+def _z4(theta: float, d: float) -> np.ndarray:
     c, s = math.cos(theta), math.sin(theta)
     return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]])

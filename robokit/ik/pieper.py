@@ -40,21 +40,26 @@ from __future__ import annotations
 
 import math
 
+from typing import TYPE_CHECKING, Any, Sequence
+
 import numpy as np
 
 from robokit.ik.paden_kahan import _trig_roots
+
+if TYPE_CHECKING:
+    from robokit.ik._dh_chain import DHChain
 
 _PI = math.pi
 _U_R = np.array([1.0, 0.0, 1.0])  # 1 + u² (revolute: u = tan(θ/2))
 _U_P = np.array([1.0, 0.0, 0.0])  # 1 (prismatic: the variable itself)
 
 
-def _mul(p, q):
+def _mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Product of two length-3 coefficient arrays (low → high) as a length-5 array."""
     return np.convolve(p, q)
 
 
-def _num(coef, kind):
+def _num(coef: Sequence[float] | np.ndarray, kind: str) -> np.ndarray:
     """Numerator polynomial (length 3) of a quantity k₀ + k_c cos θ + k_s sin θ (over 1 + u²),
     or, for a prismatic variable, of the polynomial k₀ + k₁q + k₂q² (over 1)."""
     k0, k1, k2 = coef
@@ -63,26 +68,30 @@ def _num(coef, kind):
     return np.array([k0, k1, k2])
 
 
-def _val(coef, x, kind, cs=None):
+def _val(coef: Sequence[float] | np.ndarray, x: float, kind: str, cs: tuple[float, float] | None = None) -> float:
     """Value of a coefficient triple at θ (revolute; ``cs`` = (cos θ, sin θ)) or q (prismatic)."""
     if kind == "R":
+        assert cs is not None  # a revolute joint's value needs (cos θ, sin θ)
         c, s = cs
         return coef[0] + coef[1] * c + coef[2] * s
     return coef[0] + (coef[1] + coef[2] * x) * x
 
 
-def _rz_v(c, s, v):
+def _rz_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
     return (c * v[0] - s * v[1], s * v[0] + c * v[1], v[2])
 
 
-def _rx_v(c, s, v):
+def _rx_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
     return (v[0], c * v[1] - s * v[2], s * v[1] + c * v[2])
 
 
 class PieperSolver:
     """Precomputed constants of Pieper's method for one chain (see the module docstring)."""
 
-    def __init__(self, chain):
+    w6_list: list[float]  # set by ClosedFormModel
+    th0_all: list[float]  # set by ClosedFormModel
+
+    def __init__(self, chain: DHChain) -> None:
         self.chain = chain
         self.th0_list = [float(t) for t in chain.th0]
         self.d0_list = [float(t) for t in chain.d0]
@@ -133,10 +142,10 @@ class PieperSolver:
         kind, U = self.j3, self.U
         UU = _mul(U, U)
 
-        def N(c):
+        def N(c: Sequence[float] | np.ndarray) -> np.ndarray:
             return _num(c, kind)
 
-        self.case = None
+        self.case: str | None = None
         if self.j2 == "R":
             F3 = f3 + np.array([d2, 0.0, 0.0])
             self.F3 = F3
@@ -195,7 +204,7 @@ class PieperSolver:
         self.rot_kinds = k[:3]
 
     # ------------------------------------------------------------------ position
-    def _roots(self, coeffs):
+    def _roots(self, coeffs: Sequence[float]) -> list[float] | None:
         """Real roots of Σ cₖ tᵏ as joint-3 values (θ₃ total angle or d₃ variable)."""
         scale = max(abs(x) for x in coeffs)
         if scale == 0.0:
@@ -233,7 +242,7 @@ class PieperSolver:
         return ts
 
     @staticmethod
-    def _newton_poly(c, t):
+    def _newton_poly(c: Sequence[float], t: float) -> float:
         for _ in range(3):
             p, dp = 0.0, 0.0
             for ck in c[::-1]:
@@ -247,7 +256,7 @@ class PieperSolver:
                 break
         return t
 
-    def _wrist_point(self, th, dd):
+    def _wrist_point(self, th: Sequence[float], dd: Sequence[float]) -> tuple[float, float, float]:
         """⁰W of joint values given as rotation angles th (3,) and offsets dd (3,) — a check."""
         c3, s3 = math.cos(th[2]), math.sin(th[2])
         w3 = self.w3_list
@@ -259,7 +268,7 @@ class PieperSolver:
         c1, s1 = math.cos(th[0]), math.sin(th[0])
         return _rz_v(c1, s1, (p[0], p[1], p[2] + dd[0]))
 
-    def _angles(self, q):
+    def _angles(self, q: Sequence[float]) -> tuple[list[float], list[float]]:
         """(rotation angles, offsets) of joints 1–3 at joint values q."""
         kinds, th0, d0 = self.chain.kinds, self.th0_list, self.d0_list
         th, dd = [], []
@@ -272,7 +281,7 @@ class PieperSolver:
                 dd.append(d0[i] + q[i])
         return th, dd
 
-    def _polish(self, q, W):
+    def _polish(self, q: Sequence[float], W: Sequence[float]) -> tuple[list[float], float]:
         """Newton steps on ⁰W(q₁, q₂, q₃) = W (the wrist-centre equation); returns (q, error)."""
         q = list(q)
         err = math.inf
@@ -301,7 +310,7 @@ class PieperSolver:
             q = [q[k] + float(dq[k]) for k in range(3)]
         return q, err
 
-    def position(self, W):
+    def position(self, W: Sequence[float]) -> list[tuple[list[float], bool, bool]]:
         """Every (q₁, q₂, q₃, label parts, degenerate) placing the wrist centre at W (frame 0′)."""
         th0, d0 = self.th0_list, self.d0_list
         ca1, sa1 = self.ca[0], self.sa[0]
@@ -313,6 +322,7 @@ class PieperSolver:
             h = Wz - self.d1
             r = Wx * Wx + Wy * Wy + h * h
             case = self.case
+            assert case is not None  # set in __init__
             m = {"RR-quartic": (r * r, r, h * h, h, 1.0), "RR-a1": (r, 1.0), "RR-s1": (h, 1.0),
                  "RP-quartic": (r, h * h, h, 1.0), "RP-c1": (h, 1.0)}[case]
         else:
@@ -321,6 +331,7 @@ class PieperSolver:
             zp = Wz
             X = xp - a1
             case = self.case
+            assert case is not None  # set in __init__
             m = {"PR-quartic": (X * X, yp * yp, yp, 1.0), "PR-c1": (yp, 1.0), "PP": (X, 1.0)}[case]
         C = self.C_list
         coeffs = [sum(mk * row[j] for mk, row in zip(m, C)) for j in range(self.deg + 1)]
@@ -345,7 +356,7 @@ class PieperSolver:
                 else:
                     sa_, ra = 1.0, X
                     sb_, rb = ca1, yp + sa1 * F3
-                th2s = []
+                th2s: list[float] | None = []
                 if case in ("RR-quartic", "PR-quartic"):
                     n2 = f1 * f1 + f2 * f2
                     if n2 > 1e-24 * self.chain.scale ** 2:
@@ -404,7 +415,7 @@ class PieperSolver:
         return out
 
     @staticmethod
-    def _quad_roots(A, B, C):
+    def _quad_roots(A: float, B: float, C: float) -> list[float]:
         disc = B * B - 4.0 * A * C
         if disc < -1e-12 * max(B * B, abs(4.0 * A * C), 1e-300):
             return []
@@ -415,7 +426,8 @@ class PieperSolver:
         return [qv / A, C / qv] if sq > 0.0 else [qv / A]
 
     # ------------------------------------------------------------------ orientation
-    def wrist(self, th, R06, q4_ref):
+    def wrist(self, th: Sequence[float], R06: Sequence[Sequence[float]],
+              q4_ref: float) -> list[tuple[float, float, float, str, bool]]:
         """Every (θ₄, θ₅, θ₆ rotation angles, flip, degenerate) with
         Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆) = R₃ᵀR₀₆, R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃).
 

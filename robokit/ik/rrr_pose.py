@@ -19,7 +19,10 @@ from __future__ import annotations
 
 import math
 
+from typing import cast
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
 from robokit.ik.analytic import IKSolution, _qlim_or_none, _within
@@ -29,7 +32,7 @@ from robokit.spatial.basics import wrap_angle
 __all__ = ["ik_rrr_pose"]
 
 
-def _fk(q, L1, L2, L3):
+def _fk(q: np.ndarray, L1: float, L2: float, L3: float) -> np.ndarray:
     c1, s1 = math.cos(q[0]), math.sin(q[0])
     c2, s2 = math.cos(q[1]), math.sin(q[1])
     c23, s23 = math.cos(q[1] + q[2]), math.sin(q[1] + q[2])
@@ -42,7 +45,8 @@ def _fk(q, L1, L2, L3):
     return T
 
 
-def ik_rrr_pose(T, L1, L2, L3=0.0, qlim=None, tol: float = 1e-9) -> list[IKSolution]:
+def ik_rrr_pose(T: ArrayLike, L1: float, L2: float, L3: float = 0.0, qlim: ArrayLike | None = None,
+                tol: float = 1e-9) -> list[IKSolution]:
     r"""The joint angles (θ₁, θ₂, θ₃) of the Lecture 5 homework RRR arm for a full tool pose.
 
     Parameters
@@ -83,7 +87,7 @@ def ik_rrr_pose(T, L1, L2, L3=0.0, qlim=None, tol: float = 1e-9) -> list[IKSolut
     s2 = p[2] / L2
     t2 = math.atan2(s2, c2)
     t3 = math.atan2(R[2, 0], R[2, 1]) - t2
-    q = wrap_angle(np.array([t1, t2, t3]))
+    q = cast(np.ndarray, wrap_angle(np.array([t1, t2, t3])))
     if np.abs(_fk(q, L1, L2, L3) - T).max() > tol * max(1.0, L1 + L2 + L3):
         return []
     return [IKSolution(q, _within(q, qlim), "unique")]

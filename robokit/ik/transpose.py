@@ -18,18 +18,25 @@ robust far from the goal but converges only linearly (slowly near singularities)
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.ik.numeric import IKResult
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
 
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
+
 __all__ = ["ik_jacobian_transpose"]
 
 
-def ik_jacobian_transpose(robot, T_target, q0=None, *, gain: float = 1.0, damper: float = 1.0, alpha: float = 0.5,
-                          tol: float = 1e-8, max_iterations: int = 20000, frame: str | None = None) -> IKResult:
+def ik_jacobian_transpose(robot: Robot, T_target: ArrayLike, q0: ArrayLike | None = None, *, gain: float = 1.0,
+                          damper: float = 1.0, alpha: float = 0.5, tol: float = 1e-8, max_iterations: int = 20000,
+                          frame: str | None = None) -> IKResult:
     """Joint angles reaching ``T_target`` by the lecture's Jacobian-transpose iteration (module docstring).
 
     robot : a :class:`robokit.Robot`; T_target : 4×4 goal pose of ``frame`` (default the tip) in
@@ -52,7 +59,7 @@ def ik_jacobian_transpose(robot, T_target, q0=None, *, gain: float = 1.0, damper
     tol = as_scalar(tol, "tol", positive=True)
     R_t, p_t = T[:3, :3], T[:3, 3]
 
-    def error(q):
+    def error(q: np.ndarray) -> np.ndarray:
         TE = robot.frame_pose(q, frame)
         RE = TE[:3, :3]
         return np.r_[lie.log3(RE.T @ R_t), RE.T @ (p_t - TE[:3, 3])]

@@ -10,8 +10,12 @@ convex hull — keeps holes such as the inner disc of a two-link arm's annulus
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["Workspace", "sample_workspace", "plot_workspace"]
 
@@ -37,8 +41,8 @@ class Workspace:
     cell: float
 
 
-def sample_workspace(robot, n_samples: int = 20000, frame: str | None = None, cell: float | None = None,
-                     rng=None) -> Workspace:
+def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = None, cell: float | None = None,
+                     rng: int | np.random.Generator | None = None) -> Workspace:
     """Sample the reachable workspace of ``frame`` (default the tip) of ``robot``.
 
     robot : a :class:`robokit.Robot`; n_samples : configurations drawn uniformly inside the
@@ -71,7 +75,7 @@ def sample_workspace(robot, n_samples: int = 20000, frame: str | None = None, ce
     return Workspace(P, Q, lower, upper, np.linalg.norm(P, axis=1), planar, float(measure), float(cell))
 
 
-def plot_workspace(ws: Workspace, ax=None, s: float = 1.0, color="tab:blue"):
+def plot_workspace(ws: Workspace, ax: Any = None, s: float = 1.0, color: str = "tab:blue") -> Any:
     """Scatter plot of a sampled workspace (2-D for planar arms, 3-D otherwise); returns the Figure."""
     import matplotlib.pyplot as plt
 

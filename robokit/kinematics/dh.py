@@ -28,9 +28,16 @@ the same as ``τ = Jᵀ F``.
 """
 from __future__ import annotations
 
+from types import ModuleType
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
 
 __all__ = ["dh_jacobian", "dh_static_torques"]
 
@@ -38,7 +45,7 @@ __all__ = ["dh_jacobian", "dh_static_torques"]
 _kdh = None  # robokit.kernels.dh, imported on first use
 
 
-def _kernels():
+def _kernels() -> ModuleType:
     global _kdh
     from robokit.kernels import dh
 
@@ -46,11 +53,11 @@ def _kernels():
     return dh
 
 
-def _q(q, n, name="q"):
+def _q(q: ArrayLike, n: int, name: str = "q") -> np.ndarray:
     return np.ascontiguousarray(as_vector(q, name, n))
 
 
-def dh_jacobian(table, q, reference: str = "base") -> np.ndarray:
+def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.ndarray:
     """Geometric Jacobian (6×n, rows (ω; v) of the tool origin) of a :class:`DHTable` by outward
     velocity propagation.
 
@@ -73,7 +80,7 @@ def dh_jacobian(table, q, reference: str = "base") -> np.ndarray:
     return k.dh_jacobian(P, modified, base, tool, _q(q, table.n), in_tool)
 
 
-def dh_static_torques(table, q, F_tip) -> np.ndarray:
+def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike) -> np.ndarray:
     """Joint torques (n,) that balance a static tip wrench, by inward force propagation.
 
     F_tip : (6,) ``(n, f)`` — moment and force the tool exerts on the environment, expressed in

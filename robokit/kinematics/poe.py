@@ -14,7 +14,11 @@ accept a leading dimension of configurations (N, n); every function runs the com
 """
 from __future__ import annotations
 
+from types import ModuleType
+from typing import Any, Callable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_matrix
 from robokit.spatial.se3 import check_transform
@@ -27,7 +31,7 @@ _HOMES: dict = {}  # bytes of validated home poses -> the validated array
 _kp = None  # robokit.kernels.poe, imported on first use (so `import robokit` does not load numba)
 
 
-def _kernels():
+def _kernels() -> ModuleType:
     global _kp
     from robokit.kernels import poe
 
@@ -38,7 +42,7 @@ def _kernels():
 _F64 = np.dtype(np.float64)
 
 
-def _screws(S, name):
+def _screws(S: ArrayLike, name: str) -> np.ndarray:
     """A C-contiguous 6×n float array of screw axes; constants are validated once and remembered
     (by their bytes, so an array changed in place is validated again)."""
     if type(S) is np.ndarray and S.dtype is _F64:
@@ -52,7 +56,7 @@ def _screws(S, name):
     return S
 
 
-def _home(M):
+def _home(M: ArrayLike) -> np.ndarray:
     """A validated 4×4 home pose (remembered once validated, by its bytes)."""
     if type(M) is np.ndarray and M.dtype is _F64:
         hit = _HOMES.get(M.tobytes())
@@ -65,7 +69,7 @@ def _home(M):
     return M
 
 
-def _theta(thetalist, n, name="thetalist"):
+def _theta(thetalist: ArrayLike, n: int, name: str = "thetalist") -> np.ndarray:
     """(n,) or (N, n) finite joint values as a C-contiguous float64 array."""
     th = as_array(thetalist, name, finite=False)
     if th.ndim not in (1, 2) or th.shape[-1] != n:
@@ -75,7 +79,8 @@ def _theta(thetalist, n, name="thetalist"):
     return np.ascontiguousarray(th)
 
 
-def _run(kernel, batch, thetalist, n, *args):
+def _run(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], thetalist: ArrayLike, n: int,
+         *args: Any) -> np.ndarray:
     """Checked θ (n,) or (N, n) → the one-configuration or the batched kernel (the slow path)."""
     th = _theta(thetalist, n)
     return kernel(*args, th) if th.ndim == 1 else batch(*args, th)
@@ -87,7 +92,7 @@ def _run(kernel, batch, thetalist, n, *args):
 _CACHE: dict = {}
 
 
-def _screw_data(S: np.ndarray):
+def _screw_data(S: np.ndarray) -> tuple[np.ndarray, ...]:
     """Per-screw constants, cached by the screws' bytes: for each column, the unit-axis
     skew matrix W and W², the scaled v, Wv, W²v and the scale ‖ω‖ (1 for prismatic)."""
     key = (S.shape, S.tobytes())
@@ -139,7 +144,7 @@ def screw_exponentials(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
     return out
 
 
-def prefix_products(E):
+def prefix_products(E: np.ndarray) -> np.ndarray:
     """Running products along the joint axis: E (..., n, 4, 4) → P (..., n, 4, 4), Pᵢ = E₀⋯Eᵢ."""
     P = np.empty_like(E)
     P[..., 0, :, :] = E[..., 0, :, :]
@@ -148,7 +153,7 @@ def prefix_products(E):
     return P
 
 
-def fkin_space(M, Slist, thetalist) -> np.ndarray:
+def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     """End-effector pose ``e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M`` (space form of the PoE formula).
 
     M : 4×4 home pose of the end-effector; Slist : 6×n space screw axes (columns, (ω, v));
@@ -168,7 +173,7 @@ def fkin_space(M, Slist, thetalist) -> np.ndarray:
     return _run(k.fkin_space, k.fkin_space_batch, thetalist, Slist.shape[1], M, Slist)
 
 
-def fkin_body(M, Blist, thetalist) -> np.ndarray:
+def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     """End-effector pose ``M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ}`` (body form of the PoE formula).
 
     M : 4×4 home pose; Blist : 6×n body screw axes (in the end-effector frame at home);
@@ -185,7 +190,7 @@ def fkin_body(M, Blist, thetalist) -> np.ndarray:
     return _run(k.fkin_body, k.fkin_body_batch, thetalist, Blist.shape[1], M, Blist)
 
 
-def jacobian_space(Slist, thetalist) -> np.ndarray:
+def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     """Space Jacobian ``J_s(θ)`` (6×n, rows (ω; v)): twist of the end-effector in the space frame.
 
     Column i is ``Ad_{e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}} Sᵢ``. Slist : 6×n; thetalist : (n,) or (N, n).
@@ -201,7 +206,7 @@ def jacobian_space(Slist, thetalist) -> np.ndarray:
     return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
 
 
-def jacobian_body(Blist, thetalist) -> np.ndarray:
+def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     """Body Jacobian ``J_b(θ)`` (6×n, rows (ω; v)): twist of the end-effector in its own frame.
 
     Column i is ``Ad_{e^{−[Bₙ]θₙ}⋯e^{−[B_{i+1}]θ_{i+1}}} Bᵢ``. Blist : 6×n; thetalist : (n,) or (N, n).

@@ -7,12 +7,18 @@ base frame unless said otherwise (Pinocchio's LOCAL_WORLD_ALIGNED), as the cours
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+
+if TYPE_CHECKING:
+    from robokit.description.protocol import RobotLike
+    from robokit.description.robot import Robot
 
 __all__ = [
     "numerical_jacobian",
@@ -30,7 +36,7 @@ __all__ = [
 ]
 
 
-def numerical_jacobian(fk, q, h: float = 1e-6) -> np.ndarray:
+def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike], q: ArrayLike, h: float = 1e-6) -> np.ndarray:
     """Jacobian (6×n, (ω; v) in the base frame) of any forward kinematics by central differences.
 
     fk : function q (n,) → 4×4 pose; q : (n,); h : perturbation. Column j is
@@ -53,7 +59,7 @@ def numerical_jacobian(fk, q, h: float = 1e-6) -> np.ndarray:
     return J
 
 
-def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
+def euler_rate_matrix(angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
     """E(φ) (3×3) with ``ω = E(φ) φ̇``: Euler-angle rates to the angular velocity (base axes).
 
     angles : (3,) ``φ = (a, b, c)`` (rad) of the sequence ``seq`` — any of the 12 sequences
@@ -84,7 +90,8 @@ def euler_rate_matrix(angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bo
     return np.column_stack([e[i], Ri @ e[j], Ri @ elementary_rotation(j, b) @ e[k]])
 
 
-def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
+def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9,
+                        extrinsic: bool = False) -> np.ndarray:
     """``J_a = blockdiag(E(φ)⁻¹, I) J``: rows (φ̇; ṗ) — Euler-angle rates and linear velocity.
 
     J : 6×n geometric Jacobian (ω; v) in the base frame; angles : the current Euler angles of
@@ -106,7 +113,7 @@ def analytical_jacobian(J, angles, seq: str = "ZYX", tol: float = 1e-9, extrinsi
     return np.vstack([np.linalg.solve(E, J[:3]), J[3:]])
 
 
-def geometric_jacobian(robot, q) -> np.ndarray:
+def geometric_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     """The geometric Jacobian (6×n) of the robot's tool point, world (base) axes, rows ``(ω; v)``.
 
     ``ω = J_ω q̇`` is the tool's angular velocity and ``v = J_v q̇`` the velocity of the tool
@@ -131,7 +138,7 @@ def geometric_jacobian(robot, q) -> np.ndarray:
     return Jg
 
 
-def twist_transform(T_a_b) -> np.ndarray:
+def twist_transform(T_a_b: ArrayLike) -> np.ndarray:
     """The 6×6 map of twists ``(ω, v)`` expressed in frame b to frame a: ``V_a = Ad_{T_ab} V_b``.
 
     For two frames on the same body, or a frame on another body rigidly fixed to it (Lecture 6).
@@ -139,13 +146,13 @@ def twist_transform(T_a_b) -> np.ndarray:
     return lie.adjoint(check_transform(T_a_b, "T_a_b"))
 
 
-def wrench_transform(T_a_b) -> np.ndarray:
+def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
     """The 6×6 map of wrenches ``(m, f)`` expressed in frame b to frame a: ``F_a = Ad_{T_ba}ᵀ F_b``
     (the same physical force, its moment taken about a's origin)."""
     return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
-def jacobian_to_frame(J, R) -> np.ndarray:
+def jacobian_to_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     """Re-express a geometric Jacobian (ω; v) in rotated axes: ``blockdiag(R, R) J``.
 
     With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one and
@@ -156,7 +163,7 @@ def jacobian_to_frame(J, R) -> np.ndarray:
     return np.vstack([R @ J[:3], R @ J[3:]])
 
 
-def _rows(J, part):
+def _rows(J: ArrayLike, part: str) -> np.ndarray:
     J = as_array(J, "J", (None, None))
     if part == "full":
         return J
@@ -169,7 +176,7 @@ def _rows(J, part):
     raise ValueError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
 
 
-def manipulability(J, kind: str = "yoshikawa", part: str = "full") -> float:
+def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") -> float:
     """A manipulability measure of the Jacobian (or of its translation/rotation rows).
 
     kind : "yoshikawa" — ``w = √det(J Jᵀ)`` (the product of the singular values; 0 at a
@@ -194,7 +201,7 @@ def manipulability(J, kind: str = "yoshikawa", part: str = "full") -> float:
     raise ValueError(f"kind: expected 'yoshikawa', 'condition', 'inverse_condition' or 'min_singular', got {kind!r}")
 
 
-def velocity_ellipsoid(J, part: str = "translation"):
+def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray, np.ndarray]:
     """Axes and radii of the velocity ellipsoid ``{J q̇ : ‖q̇‖ ≤ 1}`` for the chosen rows.
 
     Returns ``(radii, axes)``: radii (m,) = the singular values (descending), axes (m×m) = the
@@ -222,7 +229,7 @@ class SingularityReport:
     description: str
 
 
-def singularity(J, tol: float = 1e-9) -> SingularityReport:
+def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     """Rank test of a 6×n (or m×n) Jacobian and the Cartesian direction that cannot be produced.
 
     The lost direction is the left singular vector of the smallest singular value — the twist
@@ -243,8 +250,8 @@ def singularity(J, tol: float = 1e-9) -> SingularityReport:
     return SingularityReport(rank, float(sig[-1]), bool(sig[-1] < tol), d, f"{name} ({d[k]:.2f})")
 
 
-def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: bool = False,
-                  epsilon: float = 0.05, z=None, rcond: float = 1e-12) -> np.ndarray:
+def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: float = 0.05, adaptive: bool = False,
+                  epsilon: float = 0.05, z: ArrayLike | None = None, rcond: float = 1e-12) -> np.ndarray:
     """Joint velocities for a desired Cartesian twist (Lecture 6): ``q̇ = J⁺V + (I − J⁺J) z``.
 
     J : m×n Jacobian (m ≤ 6; use the rows that matter, e.g. the 2 planar rows of the 2-link arm);
@@ -283,7 +290,7 @@ def resolved_rate(J, V, method: str = "pinv", damping: float = 0.05, adaptive: b
     return dq
 
 
-def joint_limit_gradient(q, qlim) -> np.ndarray:
+def joint_limit_gradient(q: ArrayLike, qlim: ArrayLike) -> np.ndarray:
     """``−∇H`` for ``H = ½ Σ ((qᵢ − q̄ᵢ)/(q_maxᵢ − q_minᵢ))²``: a null-space velocity pushing the joints
     toward the middle of their ranges (unlimited joints are left alone)."""
     q = as_vector(q, "q")
@@ -296,17 +303,20 @@ def joint_limit_gradient(q, qlim) -> np.ndarray:
     return g
 
 
-def manipulability_at(robot, q, kind: str = "yoshikawa", part: str = "full", frame: str | None = None) -> float:
+def manipulability_at(robot: RobotLike, q: ArrayLike, kind: str = "yoshikawa", part: str = "full",
+                      frame: str | None = None) -> float:
     """:func:`manipulability` of ``robot``'s base-frame geometric Jacobian at q (one call)."""
     return manipulability(robot.jacobian(q, frame, reference="local_world_aligned"), kind, part)
 
 
-def velocity_ellipsoid_at(robot, q, part: str = "translation", frame: str | None = None):
+def velocity_ellipsoid_at(robot: RobotLike, q: ArrayLike, part: str = "translation",
+                          frame: str | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`velocity_ellipsoid` of ``robot`` at q (base-frame axes)."""
     return velocity_ellipsoid(robot.jacobian(q, frame, reference="local_world_aligned"), part)
 
 
-def resolved_rate_at(robot, q, V, frame: str | None = None, **kwargs) -> np.ndarray:
+def resolved_rate_at(robot: RobotLike, q: ArrayLike, V: ArrayLike, frame: str | None = None,
+                     **kwargs: Any) -> np.ndarray:
     """Joint velocities of ``robot`` at q for the desired twist V (6,) = (ω; v of the frame origin,
     base axes); keyword arguments as :func:`resolved_rate`."""
     return resolved_rate(robot.jacobian(q, frame, reference="local_world_aligned"), V, **kwargs)

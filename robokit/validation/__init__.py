@@ -14,6 +14,7 @@ import json
 import math
 import time
 import traceback
+from typing import Iterator, Sequence
 
 import numpy as np
 
@@ -35,7 +36,7 @@ AREAS = (
 )
 
 
-def iter_rows(seed: int = 0, areas=AREAS):
+def iter_rows(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> Iterator[tuple[str, list[CheckRow]]]:
     """Yield ``(area, rows)`` as each module of ``areas`` finishes (in the order given)."""
     for area, module in areas:
         modname = f"robokit.validation.{module}"
@@ -49,7 +50,7 @@ def iter_rows(seed: int = 0, areas=AREAS):
         yield area, rows
 
 
-def run_all(seed: int = 0, areas=AREAS) -> list[CheckRow]:
+def run_all(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> list[CheckRow]:
     """Run every available area's checks with a seeded generator; return all rows."""
     return [row for _, rows in iter_rows(seed, areas) for row in rows]
 
@@ -83,7 +84,7 @@ def format_table(rows: list[CheckRow]) -> str:
 _WIDTHS = (58, 10, 5, 9, 5, 18, 4)
 
 
-def _row_cells(r: CheckRow):
+def _row_cells(r: CheckRow) -> tuple[str, ...]:
     return (
         r.quantity,
         r.model,
@@ -95,7 +96,7 @@ def _row_cells(r: CheckRow):
     )
 
 
-def _line(cells) -> str:
+def _line(cells: Sequence[str]) -> str:
     return "  ".join(c.ljust(w) for c, w in zip(cells, _WIDTHS)).rstrip()
 
 

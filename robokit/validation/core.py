@@ -4,8 +4,13 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import asdict, dataclass, field
+from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
 
 __all__ = ["CheckRow", "robot", "max_error", "SHIPPED", "ARMS", "MODELS"]
 
@@ -50,14 +55,14 @@ class CheckRow:
 
 
 @functools.lru_cache(maxsize=None)
-def robot(name: str):
+def robot(name: str) -> Robot:
     """``robokit.load(name)``, loaded once per validation run and shared by the check modules."""
     from robokit.description.robot import load
 
     return load(name)
 
 
-def max_error(pairs) -> float:
+def max_error(pairs: Iterable[tuple[ArrayLike, ArrayLike]]) -> float:
     """Largest ``‖a − b‖`` (Frobenius / 2-norm) over an iterable of ``(a, b)`` array pairs."""
     worst = 0.0
     for a, b in pairs:

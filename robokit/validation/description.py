@@ -10,7 +10,7 @@ from robokit.validation.core import ARMS, CheckRow, robot as load
 SAMPLES = 200
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     import pinocchio as pin
 
     from robokit.description.models import shipped_models
@@ -19,6 +19,7 @@ def checks(rng) -> list[CheckRow]:
     for name in shipped_models():
         robot = load(name)
         table = robot.dh
+        assert table is not None  # a shipped DH model
         ids = [robot.model.getFrameId(f"dh_{i}") for i in range(table.n + 1)] + [robot.tip_id]
         worst = 0.0
         for _ in range(SAMPLES):

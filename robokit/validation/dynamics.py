@@ -2,17 +2,18 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.validation.core import MODELS, CheckRow, robot as load
 
 SAMPLES = 50
 
 
-def _rel(a, b):
+def _rel(a: ArrayLike, b: np.ndarray) -> float:
     return float(np.abs(np.asarray(a) - np.asarray(b)).max() / max(1.0, np.abs(b).max()))
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.dynamics.newton_euler import forward_dynamics, gravity_forces, inverse_dynamics, mass_matrix
 
     rows = []

@@ -3,6 +3,7 @@ kinematics, and the configuration that made a pose is always among the solutions
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit.ik import ik_analytic, ik_analytic_kind
 from robokit.validation.core import MODELS, CheckRow, robot as load
@@ -10,13 +11,13 @@ from robokit.validation.core import MODELS, CheckRow, robot as load
 SAMPLES = 100
 
 
-def _wrapped_distance(a, b, revolute):
+def _wrapped_distance(a: ArrayLike, b: ArrayLike, revolute: np.ndarray) -> float:
     d = np.asarray(a, float) - np.asarray(b, float)
     d[revolute] = np.mod(d[revolute] + np.pi, 2 * np.pi) - np.pi
     return float(np.abs(d).max())
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     rows = []
     for name in MODELS:
         robot = load(name)

@@ -8,7 +8,7 @@ from robokit.validation.core import MODELS, CheckRow, robot as load
 SAMPLES = 100
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.kinematics.poe import fkin_body, fkin_space, jacobian_body, jacobian_space
 
     rows = []
@@ -35,6 +35,7 @@ def checks(rng) -> list[CheckRow]:
 
     for name in ("twolink", "rrr", "puma560"):
         r = load(name)
+        assert r.dh is not None  # a shipped DH model
         e_b = e_t = e_f = 0.0
         for _ in range(SAMPLES):
             q = r.random_configuration(rng)

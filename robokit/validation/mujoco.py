@@ -7,13 +7,15 @@ states. See :mod:`robokit.validation.mujoco_check`.
 """
 from __future__ import annotations
 
+import numpy as np
+
 from robokit.validation.core import ARMS, CheckRow, robot as load
 
 SAMPLES = 20
 TOL = 1e-9
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.description.models import shipped_models
     from robokit.validation.mujoco_check import compare_with_mujoco, import_mujoco
 

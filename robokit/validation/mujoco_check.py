@@ -24,14 +24,22 @@ mujoco``); :func:`import_mujoco` returns None when it is absent.
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 __all__ = ["import_mujoco", "mujoco_model", "compare_with_mujoco", "MujocoComparison"]
 
 
-def import_mujoco():
+def import_mujoco() -> ModuleType | None:
     """The ``mujoco`` module, or None if it is not installed."""
     try:
         import mujoco
@@ -40,21 +48,21 @@ def import_mujoco():
     return mujoco
 
 
-def _require():
+def _require() -> ModuleType:
     mj = import_mujoco()
     if mj is None:
         raise ImportError("MuJoCo comparisons need the 'mujoco' package (pip install mujoco)")
     return mj
 
 
-def _quat_from_matrix(R) -> np.ndarray:
+def _quat_from_matrix(R: ArrayLike) -> np.ndarray:
     import pinocchio as pin
 
     x, y, z, w = pin.Quaternion(np.asarray(R, dtype=float)).coeffs()
     return np.array([w, x, y, z])
 
 
-def mujoco_model(mjcf_text: str):
+def mujoco_model(mjcf_text: str) -> tuple[Any, list[str]]:
     """Compile MJCF text with MuJoCo, restore robokit's exact inertials, disable contacts.
 
     Parameters
@@ -130,7 +138,8 @@ class MujocoComparison:
                    self.inverse_pinocchio, self.inverse_course)
 
 
-def compare_with_mujoco(robot, mjcf: str | None = None, samples: int = 20, rng=None) -> MujocoComparison:
+def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: str | None = None, samples: int = 20,
+                        rng: int | np.random.Generator | None = None) -> MujocoComparison:
     """Compare MuJoCo with Pinocchio and the course code on one robot (see the module docstring).
 
     Parameters
@@ -175,14 +184,14 @@ def compare_with_mujoco(robot, mjcf: str | None = None, samples: int = 20, rng=N
     n = robot.n
     if m.nv != n:
         raise ValueError(f"mjcf: MuJoCo has {m.nv} degrees of freedom, {robot.name} has {n} joints")
-    qadr, dadr = [], []
+    qadr_list, dadr_list = [], []
     for jn in robot.joint_names:
         jid = mj.mj_name2id(m, mj.mjtObj.mjOBJ_JOINT, jn)
         if jid < 0:
             raise ValueError(f"mjcf: no joint {jn!r} in the MuJoCo model")
-        qadr.append(m.jnt_qposadr[jid])
-        dadr.append(m.jnt_dofadr[jid])
-    qadr, dadr = np.array(qadr), np.array(dadr)
+        qadr_list.append(m.jnt_qposadr[jid])
+        dadr_list.append(m.jnt_dofadr[jid])
+    qadr, dadr = np.array(qadr_list), np.array(dadr_list)
     arm, damp = joint_armature_damping(robot)
     idx = [robot.model.joints[j].idx_v for j in range(1, robot.model.njoints)]
     arm_pin = arm - np.array(robot.model.armature)[idx]  # what Pinocchio's crba/rnea do not already hold

@@ -13,7 +13,7 @@ from robokit.validation.core import CheckRow
 N = 3000
 
 
-def _axes_angles(rng):
+def _axes_angles(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     axes = rng.normal(size=(N, 3))
     axes /= np.linalg.norm(axes, axis=1, keepdims=True)
     angles = rng.uniform(0.0, np.pi, N)
@@ -25,7 +25,7 @@ def _axes_angles(rng):
     return axes, angles
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     import pinocchio as pin
 
     import robokit.spatial as rk

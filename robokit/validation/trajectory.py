@@ -7,14 +7,14 @@ from robokit.validation.core import CheckRow
 from robokit.spatial import lie
 
 
-def _random_pose(rng, angle_max=3.0):
+def _random_pose(rng: np.random.Generator, angle_max: float = 3.0) -> np.ndarray:
     
     w = rng.normal(size=3)
     w *= rng.uniform(0.05, angle_max) / np.linalg.norm(w)
     return lie.exp6(np.concatenate([w, rng.normal(size=3)]))
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     import pinocchio as pin
 
     from robokit.trajectory import (
@@ -46,6 +46,7 @@ def checks(rng) -> list[CheckRow]:
     for X0, X1 in pairs:
         q0, q1 = pin.Quaternion(X0[:3, :3]), pin.Quaternion(X1[:3, :3])
         line = cartesian_line_trajectory(X0, X1, 1.0, t=N, method="quintic")
+        assert line.poses is not None  # a Cartesian trajectory has its poses
         for k, (X, s) in enumerate(zip(cartesian_trajectory(X0, X1, 1.0, N, 5), s_grid)):
             R_ref = q0.slerp(s, q1).matrix()
             p_ref = (1 - s) * X0[:3, 3] + s * X1[:3, 3]

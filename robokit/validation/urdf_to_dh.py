@@ -8,7 +8,7 @@ from robokit.validation.core import ARMS, CheckRow, robot as load
 SAMPLES = 100
 
 
-def checks(rng) -> list[CheckRow]:
+def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.description.urdf_to_dh import urdf_to_dh
 
     rows = []

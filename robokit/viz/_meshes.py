@@ -12,12 +12,16 @@ so at ``cell`` = 1–3 mm the picture is unchanged while the page shrinks severa
 """
 from __future__ import annotations
 
+import os
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["mesh_parts", "cluster_decimate"]
 
 
-def cluster_decimate(vertices, faces, cell: float):
+def cluster_decimate(vertices: ArrayLike, faces: ArrayLike, cell: float) -> tuple[np.ndarray, np.ndarray]:
     """Vertex-clustering simplification of one triangle mesh.
 
     vertices : (V, 3) float; faces : (F, 3) int; cell : cube side (same unit as vertices, > 0).
@@ -53,9 +57,9 @@ def cluster_decimate(vertices, faces, cell: float):
     return newV[used], remap[newF]
 
 
-def _color_of(geom) -> tuple:
+def _color_of(geom: Any) -> tuple:
     """(r, g, b, a) in [0, 1] of a trimesh geometry (its material's main colour, else grey)."""
-    visual = getattr(geom, "visual", None)
+    visual: Any = getattr(geom, "visual", None)
     try:
         c = np.asarray(visual.material.main_color, dtype=float)
     except Exception:
@@ -69,7 +73,7 @@ def _color_of(geom) -> tuple:
     return tuple(np.round(c[:4] / 255.0, 3))
 
 
-def mesh_parts(path, cell: float, override_rgba=None) -> list:
+def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLike | None = None) -> list:
     """The mesh file ``path`` as decimated parts ``[(vertices (V, 3), faces (F, 3), rgba), …]``.
 
     Parts of one colour are merged; ``override_rgba`` (4,) paints everything one colour (the
@@ -78,8 +82,8 @@ def mesh_parts(path, cell: float, override_rgba=None) -> list:
     """
     import trimesh
 
-    scene = trimesh.load(str(path), force="scene")
-    groups = {}
+    scene: Any = trimesh.load(str(path), force="scene")
+    groups: dict[tuple, list[tuple[np.ndarray, np.ndarray]]] = {}
     for node in scene.graph.nodes_geometry:
         T, name = scene.graph[node]
         geom = scene.geometry.get(name)

@@ -10,19 +10,20 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import Any, Sequence
 
 HOST = "127.0.0.1"
 
 
-def _bridge_class():
+def _bridge_class() -> type:
     from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
     class LoopbackBridge(ZMQWebSocketBridge):
-        def make_app(self):
+        def make_app(self) -> Any:
             app = super().make_app()
             listen = app.listen
 
-            def listen_loopback(port, **kwargs):
+            def listen_loopback(port: int, **kwargs: Any) -> Any:
                 kwargs.setdefault("address", HOST)
                 return listen(port, **kwargs)
 
@@ -32,7 +33,7 @@ def _bridge_class():
     return LoopbackBridge
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     parent = int(argv[0]) if argv else os.getppid()
     import tornado.ioloop
@@ -41,7 +42,7 @@ def main(argv=None) -> int:
     print(f"zmq_url={bridge.zmq_url}", flush=True)
     print(f"web_url={bridge.web_url}", flush=True)
 
-    def watchdog():
+    def watchdog() -> None:
         if os.getppid() != parent:  # re-parented: the process that started us is gone
             tornado.ioloop.IOLoop.current().stop()
 

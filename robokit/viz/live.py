@@ -1,6 +1,9 @@
 """A live meshcat viewer on loopback: start (or connect to) a server, get its URL, stop it."""
 from __future__ import annotations
 
+import subprocess
+from typing import Any
+
 __all__ = ["LiveViewer"]
 
 
@@ -13,7 +16,7 @@ class LiveViewer:
     (e.g. ``Scene(robot, vis=viewer.vis)``); ``close()`` stops a server this object started.
     """
 
-    def __init__(self, zmq_url: str | None = None):
+    def __init__(self, zmq_url: str | None = None) -> None:
         from robokit.viz.scene import new_visualizer
 
         self.vis = new_visualizer(zmq_url)
@@ -25,18 +28,18 @@ class LiveViewer:
         return self.vis.url()
 
     @property
-    def process(self):
+    def process(self) -> subprocess.Popen | None:
         """The server process this viewer started (None when connected to another one)."""
         return getattr(self.vis.window, "server_proc", None) if self._own else None
 
-    def close(self):
+    def close(self) -> None:
         """Stop the server (if this viewer started it) and wait for it to exit."""
         from robokit.viz.scene import stop_server
 
         stop_server(self.process)
 
-    def __enter__(self):
+    def __enter__(self) -> LiveViewer:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: Any) -> None:
         self.close()

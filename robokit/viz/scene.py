@@ -15,9 +15,16 @@ from __future__ import annotations
 
 import io
 import os
+import subprocess
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 __all__ = ["Scene"]
 
@@ -37,7 +44,7 @@ def _label_png(text: str, color: str = "#222222") -> bytes:
     return buf.getvalue()
 
 
-def start_server():
+def start_server() -> tuple[subprocess.Popen, str, str]:
     """Start a meshcat server on 127.0.0.1 that dies with this process.
 
     Returns ``(process, zmq_url, web_url)``. See :mod:`robokit.viz._server`.
@@ -53,7 +60,8 @@ def start_server():
         start_new_session=True,  # a notebook's interrupt must not stop the viewer
     )
     atexit.register(stop_server, proc)
-    urls = {}
+    assert proc.stdout is not None  # stdout=PIPE
+    urls: dict[str, str] = {}
     while len(urls) < 2:
         line = proc.stdout.readline().decode("utf-8", "replace").strip()
         if not line and proc.poll() is not None:
@@ -65,7 +73,7 @@ def start_server():
     return proc, urls["zmq_url"], urls["web_url"]
 
 
-def new_visualizer(zmq_url=None):
+def new_visualizer(zmq_url: str | None = None) -> Any:
     """A meshcat Visualizer: connected to ``zmq_url``, or to a new loopback server of its own
     (:func:`start_server`; then ``vis.window.server_proc`` is that process)."""
     import contextlib
@@ -85,7 +93,7 @@ def new_visualizer(zmq_url=None):
     return vis
 
 
-def stop_server(proc):
+def stop_server(proc: subprocess.Popen | None) -> None:
     """Terminate a meshcat server process and wait for it to exit (kill if it does not)."""
     if proc is not None and proc.poll() is None:
         proc.terminate()
@@ -106,7 +114,7 @@ class Scene:
     vis : an existing ``meshcat.Visualizer`` (default: a new one with its own server on loopback).
     """
 
-    def __init__(self, robot, vis=None):
+    def __init__(self, robot: Robot | DHTable | str | os.PathLike[str], vis: Any = None) -> None:
         from pinocchio.visualize import MeshcatVisualizer
 
         from robokit.description.robot import Robot, load
@@ -125,10 +133,10 @@ class Scene:
         self.viz.initViewer(viewer=self.vis)
         self.viz.loadViewerModel(rootNodeName="robot")
         self.q = np.zeros(r.n)
-        self._extra_points = []
+        self._extra_points: list[np.ndarray] = []
 
     # ------------------------------------------------------------------ drawing
-    def show(self, q=None):
+    def show(self, q: ArrayLike | None = None) -> Scene:
         """Draw the robot at joint angles ``q`` (default zero). Returns self."""
         q = np.zeros(self.robot.n) if q is None else np.asarray(q, dtype=float)
         if q.shape != (self.robot.n,):
@@ -139,7 +147,7 @@ class Scene:
         self.viz.display(self.robot.q_pin(q))
         return self
 
-    def frames(self, names=None, scale: float | None = None, labels: bool = True):
+    def frames(self, names: Iterable[str] | None = None, scale: float | None = None, labels: bool = True) -> Scene:
         """Draw triads (x red, y green, z blue) for frames of the robot at the current configuration.
 
         names : frame names (default: ``dh_0..dh_N`` and ``tool`` for DH robots, else the
@@ -171,7 +179,7 @@ class Scene:
                 node["label"].set_transform(T)
         return self
 
-    def point(self, name: str, p, radius: float = 0.015, color: int = 0xE04020):
+    def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
         """A sphere at position ``p`` (3,) in the base frame."""
         import meshcat.geometry as g
 
@@ -183,7 +191,7 @@ class Scene:
         self._extra_points.append(p)
         return self
 
-    def frame(self, name: str, T, scale: float = 0.1):
+    def frame(self, name: str, T: ArrayLike, scale: float = 0.1) -> Scene:
         """A triad at the pose ``T`` (4×4) in the base frame."""
         import meshcat.geometry as g
 
@@ -191,7 +199,7 @@ class Scene:
         self.vis["poses"][name].set_transform(np.asarray(T, dtype=float))
         return self
 
-    def path(self, name: str, points, color: int = 0x2060E0, linewidth: float = 3.0):
+    def path(self, name: str, points: ArrayLike, color: int = 0x2060E0, linewidth: float = 3.0) -> Scene:
         """A polyline through ``points`` (K, 3) in the base frame."""
         import meshcat.geometry as g
 
@@ -203,7 +211,7 @@ class Scene:
         self._extra_points.extend(P)
         return self
 
-    def velocity_ellipsoid(self, frame: str | None = None, scale: float = 0.2, color: int = 0x30B060):
+    def velocity_ellipsoid(self, frame: str | None = None, scale: float = 0.2, color: int = 0x30B060) -> Scene:
         """The translational velocity ellipsoid ``{v = J_v q̇ : ‖q̇‖ ≤ 1}`` at the frame (default tip).
 
         Axes and radii from :func:`robokit.kinematics.velocity_ellipsoid_at` (the singular values
@@ -226,7 +234,7 @@ class Scene:
         self.vis["ellipsoid"].set_transform(T)
         return self
 
-    def animate(self, Q, t=None, fps: float = 30.0):
+    def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
         """Animate joint configurations ``Q`` (K, n) (at times ``t`` (K,), or ``fps``), playable in the page."""
         from meshcat.animation import Animation
 
@@ -258,7 +266,7 @@ class Scene:
         return self
 
     # ------------------------------------------------------------------ camera
-    def _points(self):
+    def _points(self) -> np.ndarray:
         poses = self.robot.frame_poses(self.q)
         P = np.array([T[:3, 3] for T in poses.values()])
         if self._extra_points:
@@ -271,7 +279,7 @@ class Scene:
 
     _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "/Grid", "/Axes")
 
-    def frame_camera(self, fill: float = 0.75):
+    def frame_camera(self, fill: float = 0.75) -> Scene:
         """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
 
         meshcat 0.3's orbit controls always look at the world origin, so the scene content
@@ -301,7 +309,7 @@ class Scene:
         """The scene as one self-contained HTML page (no server needed to view it)."""
         return self.vis.static_html()
 
-    def notebook(self, height: int = 480, path=None):
+    def notebook(self, height: int = 480, path: str | os.PathLike[str] | None = None) -> Any:
         """Show the scene in a Jupyter notebook: the self-contained page is written to a file
         (default ``robokit_views/<robot>-<k>.html`` beside the notebook) and displayed in an
         ``IFrame``, so the executed notebook stays small (a meshed robot's page is 5–25 MB).
@@ -321,7 +329,7 @@ class Scene:
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
-    def teach(self, q=None, height: int = 420):
+    def teach(self, q: ArrayLike | None = None, height: int = 420) -> Any:
         """A teach pendant in the notebook: joint sliders driving this scene's live view, with the
         tool pose, Jacobian, manipulability, singularity and joint-limit readouts (see
         :func:`robokit.viz.teach.teach_widget`). Returns the ipywidgets box."""
@@ -329,19 +337,19 @@ class Scene:
 
         return teach_widget(self, q=q, height=height)
 
-    def close(self):
+    def close(self) -> None:
         """Stop the meshcat server this scene started (if it started one)."""
         if self._own and self.vis is not None:
             stop_server(getattr(self.vis.window, "server_proc", None))
             self.vis = None
 
-    def __enter__(self):
+    def __enter__(self) -> Scene:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: Any) -> None:
         self.close()
 
-    def __del__(self):  # pragma: no cover - best effort
+    def __del__(self) -> None:  # pragma: no cover - best effort
         try:
             self.close()
         except Exception:

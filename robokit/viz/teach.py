@@ -37,9 +37,17 @@ import html as _html
 import json
 import math
 from importlib import resources
+import os
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
+    from robokit.viz.scene import Scene
 
 
 __all__ = [
@@ -78,13 +86,13 @@ _UNLIMITED = {"R": math.pi, "P": 1.0}
 
 
 # --------------------------------------------------------------------------- robot data
-def _joint_types(robot) -> list[str]:
+def _joint_types(robot: Robot) -> list[str]:
     """'R' or 'P' per joint, from the screw axes (a prismatic joint has ω = 0)."""
     S = robot.poe.Slist
     return ["P" if np.linalg.norm(S[:3, i]) < 1e-12 else "R" for i in range(robot.n)]
 
 
-def _slider_ranges(robot, types) -> np.ndarray:
+def _slider_ranges(robot: Robot, types: Sequence[str]) -> np.ndarray:
     """(n, 2) slider ranges: the joint limits, or ±180° / ±1 m where a joint has none."""
     rng = np.array(robot.qlim, dtype=float).copy()
     for i, t in enumerate(types):
@@ -95,7 +103,7 @@ def _slider_ranges(robot, types) -> np.ndarray:
     return rng
 
 
-def task_rows(robot, samples: int = 24, seed: int = 0) -> list[int]:
+def task_rows(robot: Robot, samples: int = 24, seed: int = 0) -> list[int]:
     """The rows of the 6×n geometric Jacobian the manipulability measures use.
 
     n ≥ 6: all six rows. Fewer joints: the rows that are not zero at every one of ``samples``
@@ -117,7 +125,7 @@ def task_rows(robot, samples: int = 24, seed: int = 0) -> list[int]:
     return [r for r in active if r >= 3]
 
 
-def _named_poses(robot) -> dict:
+def _named_poses(robot: Robot) -> dict:
     poses = {k: np.asarray(v, dtype=float) for k, v in NAMED_POSES.get(robot.name, {}).items()}
     for k, v in robot.configurations.items():
         if k == "zero" and any(np.all(p == 0) for p in poses.values()):
@@ -126,7 +134,7 @@ def _named_poses(robot) -> dict:
     return {k: v for k, v in poses.items() if v.shape == (robot.n,)}
 
 
-def _frame_names(robot) -> list[str]:
+def _frame_names(robot: Robot) -> list[str]:
     if robot.dh is not None:
         return [f"dh_{i}" for i in range(robot.dh.n + 1)] + ["tool"]
     names = [jn for jn in robot.joint_names if robot.model.existFrame(jn)]
@@ -136,14 +144,15 @@ def _frame_names(robot) -> list[str]:
 class _RecordingWindow:
     """Stands in for meshcat's ViewerWindow: keeps the commands instead of sending them."""
 
-    def __init__(self):
-        self.commands = []
+    def __init__(self) -> None:
+        self.commands: list[Any] = []
 
-    def send(self, command):
+    def send(self, command: Any) -> None:
         self.commands.append(command.lower())
 
 
-def _scene(robot, frame_names, triad_scale, floor_half, mesh_cell):
+def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,
+           mesh_cell: float) -> tuple[list[Any], dict[str, str], dict[str, str]]:
     """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
 
     The robot is loaded by Pinocchio's MeshcatVisualizer (meshes or primitives, with the
@@ -213,13 +222,13 @@ def _scene(robot, frame_names, triad_scale, floor_half, mesh_cell):
     return window.commands, paths, frame_paths
 
 
-def _pack(command) -> str:
+def _pack(command: Any) -> str:
     import umsgpack
 
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
-def _camera(points, fill: float = 1.0):
+def _camera(points: np.ndarray, fill: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre = 0.5 * (lo + hi)
@@ -230,7 +239,7 @@ def _camera(points, fill: float = 1.0):
     return centre, centre + offset
 
 
-def teach_data(robot, q=None, mesh_cell: float = 0.002) -> dict:
+def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002) -> dict:
     """Everything the teach page needs about ``robot``, as plain JSON-able values.
 
     Returns a dict with ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type``
@@ -305,7 +314,7 @@ def teach_data(robot, q=None, mesh_cell: float = 0.002) -> dict:
 
 
 # --------------------------------------------------------------------------- readouts (Python)
-def teach_readouts(robot, q) -> dict:
+def teach_readouts(robot: Robot, q: ArrayLike) -> dict:
     """The teach pendant's quantities at joint values ``q`` (n,) (rad/m), computed with Pinocchio.
 
     Returns a dict: ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
@@ -367,12 +376,12 @@ def _meshcat_bundle() -> str:
     return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text(encoding="utf-8")
 
 
-def _script_json(obj) -> str:
+def _script_json(obj: Any) -> str:
     """JSON safe to put inside a <script> element."""
     return json.dumps(obj, separators=(",", ":")).replace("</", "<\\/")
 
 
-def teach_html(model, q=None) -> str:
+def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None) -> str:
     """The teach page of ``model`` (a :class:`robokit.Robot` or anything ``robokit.load`` accepts).
 
     One self-contained HTML page (meshcat's three.js bundle, the robot's meshes and the
@@ -404,7 +413,7 @@ def teach_html(model, q=None) -> str:
 
 
 # --------------------------------------------------------------------------- notebook
-def _readouts_html(robot, r) -> str:
+def _readouts_html(robot: Robot, r: dict) -> str:
     """The readouts of :func:`teach_readouts` as a small HTML block (for the notebook widget)."""
     deg = np.degrees
     rows = r["rows"]
@@ -435,7 +444,7 @@ def _readouts_html(robot, r) -> str:
     )
 
 
-def teach_widget(scene, q=None, height: int = 420):
+def teach_widget(scene: Scene, q: ArrayLike | None = None, height: int = 420) -> Any:
     """A notebook teach pendant on a :class:`robokit.viz.Scene`: ipywidgets sliders (degrees for
     revolute joints, metres for prismatic ones), named-pose buttons, the scene's live meshcat
     view (an iframe of its server) and the readouts of :func:`teach_readouts`.
@@ -469,7 +478,7 @@ def teach_widget(scene, q=None, height: int = 420):
     box = W.VBox()
     state = {"busy": False}
 
-    def redraw(qv):
+    def redraw(qv: np.ndarray) -> None:
         scene.show(qv)
         poses = robot.frame_poses(qv)
         for name in names:
@@ -477,19 +486,19 @@ def teach_widget(scene, q=None, height: int = 420):
         box.readouts = teach_readouts(robot, qv)
         out.value = _readouts_html(robot, box.readouts)
 
-    def on_change(_change):
+    def on_change(_change: Any) -> None:
         if not state["busy"]:
             redraw(np.array([s.value for s in sliders]) / unit)
 
-    def set_q(qv):
-        qv = np.clip(np.asarray(qv, dtype=float), rng[:, 0], rng[:, 1])
+    def set_q(qv: ArrayLike) -> None:
+        qc = np.clip(np.asarray(qv, dtype=float), rng[:, 0], rng[:, 1])
         state["busy"] = True
         try:
-            for s, v, u in zip(sliders, qv, unit):
+            for s, v, u in zip(sliders, qc, unit):
                 s.value = float(v * u)
         finally:
             state["busy"] = False
-        redraw(qv)
+        redraw(qc)
 
     for s in sliders:
         s.observe(on_change, names="value")

@@ -7,15 +7,22 @@ as a header and skipped).
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from robokit.description.dh import DHTable
+    from robokit.description.robot import Robot
 
 
 __all__ = ["view_html", "load_trajectory"]
 
 
-def load_trajectory(path, n: int) -> np.ndarray:
+def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
     """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise."""
     p = Path(path)
     if not p.is_file():
@@ -46,7 +53,9 @@ def load_trajectory(path, n: int) -> np.ndarray:
     return Q
 
 
-def view_html(model, q=None, frames: bool = False, trajectory=None, fps: float = 30.0, tip=None) -> str:
+def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None, frames: bool = False,
+              trajectory: ArrayLike | None = None, fps: float = 30.0,
+              tip: str | None = None) -> str:
     """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
     and/or a (K, n) trajectory animation; the camera framed on the robot."""
     from robokit.description.robot import load
