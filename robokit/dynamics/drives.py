@@ -66,7 +66,7 @@ def drive_parameters(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
     return Jm, G, B, Tc
 
 
-def friction_torque(dq: ArrayLike, B: ArrayLike, Tc: np.ndarray, coulomb: bool = True) -> np.ndarray:
+def friction_torque(dq: ArrayLike, B: ArrayLike, Tc: ArrayLike, coulomb: bool = True) -> np.ndarray:
     """Joint friction ``B q̇ + T_c(sign q̇)`` (n,) — the one friction law of robokit (Lecture 7:
     ``Q_f = B q̇ + Q_C``): viscous B (n,) and Coulomb levels Tc (n, 2) (Tc⁺ for q̇ > 0, Tc⁻ for
     q̇ < 0, 0 at rest; the negative level is usually negative, Corke's convention), all on the
@@ -75,7 +75,8 @@ def friction_torque(dq: ArrayLike, B: ArrayLike, Tc: np.ndarray, coulomb: bool =
     Example: ``friction_torque([1.0, -1.0], [0.1, 0.1], [[0.2, -0.2], [0.2, -0.2]])`` → ``[0.3, -0.3]``.
     """
     dq = np.asarray(dq, dtype=float)
-    tau = np.multiply(B, dq)
+    Tc = np.asarray(Tc, dtype=float).reshape(-1, 2)
+    tau = np.multiply(np.asarray(B, dtype=float), dq)
     if coulomb:
         tau = tau + np.where(dq > 0, Tc[:, 0], np.where(dq < 0, Tc[:, 1], 0.0))
     return tau
