@@ -10,6 +10,8 @@ from typing import TypeAlias
 
 import numpy as np
 
+from robokit.errors import InputError
+
 #: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
 FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
 
@@ -28,14 +30,14 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     try:
         arr = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected an array of numbers, got {type(x).__name__} {x!r:.80}") from None
+        raise InputError(f"{name}: expected an array of numbers, got {type(x).__name__} {x!r:.80}") from None
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == d for s, d in zip(shape, arr.shape))
         if not ok:
             want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-            raise ValueError(f"{name}: expected shape {want}, got {_describe(arr)}")
+            raise InputError(f"{name}: expected shape {want}, got {_describe(arr)}")
     if finite and not np.isfinite(arr).all():
-        raise ValueError(f"{name}: contains NaN or infinite values")
+        raise InputError(f"{name}: contains NaN or infinite values")
     return arr
 
 
@@ -54,7 +56,7 @@ def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool
     arr = as_array(x, name, ())
     v = float(arr)
     if positive and not v > 0:
-        raise ValueError(f"{name}: expected a positive number, got {v!r}")
+        raise InputError(f"{name}: expected a positive number, got {v!r}")
     if nonnegative and not v >= 0:
-        raise ValueError(f"{name}: expected a non-negative number, got {v!r}")
+        raise InputError(f"{name}: expected a non-negative number, got {v!r}")
     return v
