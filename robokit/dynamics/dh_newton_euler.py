@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+from robokit.kinematics.dh import flip_signs
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -62,7 +63,8 @@ def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayL
     packed = k.pack_dh(table)
     g = table.gravity if gravity is None else gravity
     F = _NO_WRENCH if F_tip is None else F_tip
-    if all(type(x) is np.ndarray and x.ndim == 1 for x in (q, dq, ddq, g, F)):
+    signs = flip_signs(table)
+    if all(type(x) is np.ndarray and x.ndim == 1 for x in (q, dq, ddq, g, F)) and signs is None:
         try:  # the kernel checks lengths and finiteness itself
             return k.dh_inverse_dynamics(*packed, q, dq, ddq, g, F)
         except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
@@ -73,4 +75,6 @@ def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayL
     ddq = c(as_vector(ddq, "ddq", n))
     g = c(as_vector(g, "gravity", 3))
     F = c(as_vector(F, "F_tip", 6))
+    if signs is not None:  # a flipped joint moves by −qᵢ: the recursion sees s∘q, its torque is sᵢτᵢ
+        return k.dh_inverse_dynamics(*packed, q * signs, dq * signs, ddq * signs, g, F) * signs
     return k.dh_inverse_dynamics(*packed, q, dq, ddq, g, F)

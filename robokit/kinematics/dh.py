@@ -57,6 +57,20 @@ def _q(q: ArrayLike, n: int, name: str = "q") -> np.ndarray:
     return np.ascontiguousarray(as_vector(q, name, n))
 
 
+def flip_signs(table: DHTable) -> np.ndarray | None:
+    """(n,) with −1 for every flipped joint (``flip: true``) and +1 otherwise, or None when no joint
+    is flipped (remembered on the table). A flipped joint's variable enters the DH row as −qᵢ, so
+    the compiled recursions — written for unflipped joints — take ``s ∘ q`` and their Jacobian
+    columns and joint torques are multiplied by s (the chain rule)."""
+    cached = table.__dict__.get("_flip_signs", False)
+    if cached is not False:
+        return cached
+    s = np.array([-1.0 if getattr(link, "flip", False) else 1.0 for link in table.links])
+    signs = s if (s < 0).any() else None
+    object.__setattr__(table, "_flip_signs", signs)
+    return signs
+
+
 def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.ndarray:
     """Geometric Jacobian (6×n, rows (ω; v) of the tool origin) of a :class:`DHTable` by outward
     velocity propagation.
@@ -72,6 +86,9 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     in_tool = 1 if reference == "tool" else 0
+    signs = flip_signs(table)
+    if signs is not None:
+        return k.dh_jacobian(P, modified, base, tool, _q(q, table.n) * signs, in_tool) * signs
     if type(q) is np.ndarray and q.ndim == 1:
         try:
             return k.dh_jacobian(P, modified, base, tool, q, in_tool)
@@ -88,6 +105,9 @@ def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike) -> np.ndar
     """
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
+    signs = flip_signs(table)
+    if signs is not None:
+        return k.dh_static_torques(P, modified, base, tool, _q(q, table.n) * signs, _q(F_tip, 6, "F_tip")) * signs
     if type(q) is np.ndarray and q.ndim == 1 and type(F_tip) is np.ndarray and F_tip.ndim == 1:
         try:
             return k.dh_static_torques(P, modified, base, tool, q, F_tip)
