@@ -21,6 +21,7 @@ Errors are measured in the target frame: the pose error is the body twist
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Callable, cast
@@ -181,7 +182,7 @@ class IKResult:
 
     q : (n,) the best configuration found (joint angles, inside the limits);
     success : True if the error is below the tolerance;
-    residual : norm of the (unweighted) error at ``q`` (rad/m mixed for poses);
+    residual : ``hypot(orientation_error, position_error)`` at ``q`` (rad/m mixed for poses);
     position_error, orientation_error : m and rad at ``q`` (orientation NaN-free 0 in position mode);
     iterations : total iterations over all attempts; restarts : random restarts used;
     seconds : wall time.
@@ -199,7 +200,7 @@ class IKResult:
 
 def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = None, q0: ArrayLike | None = None, *,
              position_only: bool = False, weights: ArrayLike | None = None, tol: float = 1e-10,
-             max_iterations: int = 60, max_restarts: int = 100, time_budget: float | None = None,
+             max_iterations: int | None = None, max_restarts: int = 100, time_budget: float | None = None,
              damping: float = 1e-2, min_damping: float = 1e-9, rng: int | np.random.Generator | None = None,
              method: str = "auto") -> IKResult:
     """Inverse kinematics for any Robot and frame: closed form, compiled LM, or Pinocchio LM.
@@ -219,7 +220,9 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     ``position_only``) of ``frame`` (default the robot's tip) in the base frame;
     q0 : (n,) initial guess (default: the robot's zero configuration clipped to the limits);
     weights : (6,) weights of the body-twist error (ω, v), or (3,) in position mode;
-    tol : success when the error norm is below it; max_iterations : per attempt;
+    tol : success when the position error (m) and the orientation error (rad) are below it (the
+    residual is ``hypot(orientation_error, position_error)``); max_iterations : per attempt (default
+    30 for the compiled solver, 60 for the Pinocchio loop);
     max_restarts : random restarts (uniform inside the limits) after the first attempt;
     time_budget : seconds, optional; damping : λ₀ in ``λ = λ₀‖e‖² + min_damping``;
     rng : numpy Generator or seed for the restarts.
@@ -272,7 +275,10 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
             return res
     if plain and method in ("auto", "compiled"):
         assert T_target is not None  # plain: not position_only
-        return _solve_compiled(cast("Robot", robot), T_target, q, tol, max_iterations, max_restarts, rng, t_start)
+        return _solve_compiled(cast("Robot", robot), T_target, q, tol, 30 if max_iterations is None else max_iterations,
+                               max_restarts, rng, t_start)
+    if max_iterations is None:
+        max_iterations = 60
 
     rng = np.random.default_rng(rng)
     if is_robot:
@@ -322,25 +328,32 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         q = rng.uniform(sample_lo, sample_hi)
     T = robot.frame_pose(best_q, frame)
     if position_only:
-        e = p_target - T[:3, 3]
-    else:
-        e = lie.log6(lie.inv(T) @ T_target)
-    if position_only:
-        pos_err, rot_err = float(np.linalg.norm(e)), 0.0
+        assert p_target is not None
+        pos_err, rot_err = float(np.linalg.norm(p_target - T[:3, 3])), 0.0
     else:
         assert T_target is not None  # not position_only
-        rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
-    return IKResult(best_q, bool(best_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
+        rot_err = _rotation_error(T[:3, :3], T_target[:3, :3])
+        pos_err = float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
+    return IKResult(best_q, bool(best_err < tol), math.hypot(rot_err, pos_err), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
 
 
 def _result(robot: Robot, q: np.ndarray, T_target: np.ndarray, tol: float, iterations: int, restarts: int,
             t_start: float) -> IKResult:
     T = robot.frame_pose(q)
-    e = lie.log6(lie.inv(T) @ T_target)
-    rot_err, pos_err = float(np.linalg.norm(e[:3])), float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
-    return IKResult(q, bool(rot_err < tol and pos_err < tol), float(np.linalg.norm(e)), pos_err, rot_err,
+    rot_err = _rotation_error(T[:3, :3], T_target[:3, :3])
+    d = T_target[:3, 3] - T[:3, 3]
+    pos_err = math.sqrt(float(d @ d))
+    return IKResult(q, bool(rot_err < tol and pos_err < tol), math.hypot(rot_err, pos_err), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start)
+
+
+def _rotation_error(R: np.ndarray, R_target: np.ndarray) -> float:
+    """The angle (rad) of ``Rᵀ R_target``: atan2 of its skew part's norm and (trace − 1)/2 (accurate
+    near 0, unlike an arccos of the trace)."""
+    E = R.T @ R_target
+    s = 0.5 * math.sqrt((E[2, 1] - E[1, 2]) ** 2 + (E[0, 2] - E[2, 0]) ** 2 + (E[1, 0] - E[0, 1]) ** 2)
+    return math.atan2(s, 0.5 * (E[0, 0] + E[1, 1] + E[2, 2] - 1.0))
 
 
 def _solve_closed_form(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: float, t_start: float,
@@ -358,14 +371,11 @@ def _solve_closed_form(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: 
     if not sols:
         return None
     revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
-
-    def distance(q: np.ndarray) -> float:
-        d = q - q0
-        d[revolute] = np.mod(d[revolute] + np.pi, 2 * np.pi) - np.pi
-        return float(d @ d)
-
-    best = min(sols, key=lambda s: distance(np.asarray(s.q, float)))
-    res = _result(robot, np.asarray(best.q, float).copy(), T_target, tol, 0, 0, t_start)
+    Q = np.array([s.q for s in sols], dtype=float)
+    D = Q - q0
+    D[:, revolute] = np.mod(D[:, revolute] + np.pi, 2 * np.pi) - np.pi  # angles compared modulo 2π
+    best = Q[int(np.argmin(np.einsum("ij,ij->i", D, D)))].copy()
+    res = _result(robot, best, T_target, tol, 0, 0, t_start)
     return res if res.success else None  # a closed form off by more than tol: let LM polish from scratch
 
 
@@ -379,7 +389,7 @@ def _solve_compiled(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: flo
         seed = int(np.random.default_rng(rng).integers(2**31 - 1))
     p = robot.poe
     q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, T_target, q0, np.asarray(robot.qlim, float), tol=tol,
-                                               max_iterations=max(int(max_iterations), 30),
+                                               max_iterations=int(max_iterations),
                                                max_restarts=int(max_restarts), seed=seed)
     return _result(robot, np.asarray(q, float), T_target, tol, int(iterations), int(restarts), t_start)
 
