@@ -112,7 +112,7 @@ def find_package(pkg: str, package_path: Sequence[str | os.PathLike[str]] | None
     where = [str(d) for d in folders] + ([f"{Path(start).resolve().parent} and the folders above it"]
                                          if start is not None else [])
     raise InputError(f"package {pkg!r} not found (no package.xml named {pkg!r} in {'; '.join(where) or 'no folder'}); "
-                     "add its parent folder with --package-path / package_path")
+                     "add its parent folder with --package-path / package_dirs=")
 
 
 class _ArgRecorder(dict):
