@@ -13,7 +13,9 @@ import os
 import secrets
 from pathlib import Path
 
-__all__ = ["atomic_write"]
+from robokit.errors import InputError
+
+__all__ = ["atomic_write", "read_input_text"]
 
 
 def _umask() -> int:
@@ -103,3 +105,29 @@ def _unlink(p: str | os.PathLike[str]) -> None:
         os.unlink(p)
     except FileNotFoundError:
         pass
+
+
+def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> str:
+    """The UTF-8 text of an input file robokit was pointed at (a DH YAML, a URDF), refusing with
+    :class:`robokit.InputError` naming the file: missing, unreadable, a folder, larger than
+    ``max_bytes`` (checked before reading), or not UTF-8 (with the byte and its offset).
+    ``kind`` names the expected file in the folder message ("a YAML file")."""
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+    except FileNotFoundError:
+        raise InputError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, not {kind}")
+    if size > max_bytes:
+        raise InputError(f"{path}: file too large ({size} bytes; at most {max_bytes})")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None

@@ -16,11 +16,11 @@ from __future__ import annotations
 
 import os
 import re
-from pathlib import Path
 from typing import Any
 
 import yaml
 
+from robokit._io import read_input_text
 from robokit.errors import InputError
 
 __all__ = ["MAX_BYTES", "MAX_DEPTH", "load_yaml_file", "load_yaml_text"]
@@ -135,23 +135,5 @@ def load_yaml_text(text: str, source: str = "<string>") -> Any:
 
 def load_yaml_file(path: str | os.PathLike[str]) -> Any:
     """Read and parse a YAML file strictly; errors name the file (missing, unreadable, not UTF-8, too large)."""
-    path = Path(path)
-    try:
-        size = path.stat().st_size
-    except FileNotFoundError:
-        raise InputError(f"{path}: file not found") from None
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-    if path.is_dir():
-        raise InputError(f"{path}: is a folder, not a YAML file")
-    if size > MAX_BYTES:
-        raise InputError(f"{path}: file too large ({size} bytes; at most {MAX_BYTES})")
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None
+    text = read_input_text(path, MAX_BYTES, "a YAML file")
     return load_yaml_text(text, source=str(path))

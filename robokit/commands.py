@@ -23,6 +23,18 @@ if TYPE_CHECKING:
 __all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command"]
 
 
+def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> Path:
+    """The ``-o`` path, checked before any work: the right extension, an existing folder, not a folder."""
+    out = Path(output)
+    if out.suffix.lower() not in suffixes:
+        raise ValueError(f"-o: expected a {' or '.join(suffixes)} file, got {str(out)!r}")
+    if not (out.parent if str(out.parent) else Path(".")).is_dir():
+        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    if out.is_dir():
+        raise ValueError(f"-o: {str(out)!r} is a folder")
+    return out
+
+
 def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str] | None, tip: str | None = None,
                     convention: str = "standard", **load_options: Any) -> int:
     """``robokit convert``: write ``output`` (or print a DH table); notes on stderr. Returns 0."""
@@ -47,11 +59,7 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
     from robokit.description.robot import load
     from robokit.viz.view import load_trajectory, view_html
 
-    out = Path(output)
-    if out.suffix.lower() not in (".html", ".htm"):
-        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    out = _output_file(output, (".html", ".htm"))
     if not (fps > 0 and np.isfinite(fps)):
         raise ValueError(f"--fps: expected a positive frame rate, got {fps:g}")
     if q is not None and not np.all(np.isfinite(q)):
@@ -78,11 +86,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     from robokit.viz.teach import teach_html
 
     if output is not None:
-        out = Path(output)
-        if out.suffix.lower() not in (".html", ".htm"):
-            raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-        if not (out.parent if str(out.parent) else Path(".")).is_dir():
-            raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+        _output_file(output, (".html", ".htm"))
     robot = load(model)
     page = teach_html(robot, q=q)
     if output is not None:
@@ -112,13 +116,7 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     """
     from robokit.workspace.capability import capability_map
 
-    out = Path(output)
-    if out.suffix.lower() != ".npz":
-        raise ValueError(f"-o: expected an .npz file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
-    if out.is_dir():
-        raise ValueError(f"-o: {str(out)!r} is a folder")
+    out = _output_file(output, (".npz",))
     if not (np.isfinite(resolution) and resolution > 0):
         raise ValueError(f"--resolution: expected a positive voxel size in m, got {resolution:g}")
     if orientations < 1:
@@ -139,11 +137,7 @@ def capability_view_command(path: str | os.PathLike[str], output: str | os.PathL
     """``robokit view MAP.npz -o OUT.html``: the meshcat page of a capability map, written atomically."""
     from robokit.workspace.plot import capability_html
 
-    out = Path(output)
-    if out.suffix.lower() not in (".html", ".htm"):
-        raise ValueError(f"-o: expected an .html file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+    out = _output_file(output, (".html", ".htm"))
     page = capability_html(path)
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)

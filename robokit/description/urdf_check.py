@@ -29,6 +29,7 @@ from typing import Iterable, Literal, NoReturn, Sequence
 
 import numpy as np
 
+from robokit._io import read_input_text
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -171,30 +172,12 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
         if len(raw) > MAX_URDF_BYTES:
             raise InputError(f"{path}: expanded URDF too large ({len(raw)} bytes; at most {MAX_URDF_BYTES})")
     else:
-        raw = _read_bytes(path)
+        raw = read_input_text(path, MAX_URDF_BYTES, "a URDF file").encode("utf-8")
     return _check(path, raw, package_dirs, allow_outside_meshes)
-
-
-def _read_bytes(path: Path) -> bytes:
-    try:
-        size = path.stat().st_size
-    except FileNotFoundError:
-        raise InputError(f"{path}: file not found") from None
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-    if path.is_dir():
-        raise InputError(f"{path}: is a folder, not a URDF file")
-    if size > MAX_URDF_BYTES:
-        raise InputError(f"{path}: file too large ({size} bytes; at most {MAX_URDF_BYTES})")
-    return path.read_bytes()
 
 
 def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
            allow_outside_meshes: bool) -> UrdfDocument:
-    try:
-        raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None
     try:
         root = ET.fromstring(raw)
     except ET.ParseError as exc:

@@ -48,7 +48,7 @@ def cartesian_dynamics(robot: Robot, q: ArrayLike, dq: ArrayLike, frame: str | N
     g = robot.gravity_torques(q)
     c = robot.nonlinear_effects(q, dq) - g
     # J̇ q̇: the frame's classical acceleration at zero joint acceleration
-    model, data = robot.model, robot.model.createData()
+    model, data = robot.model, robot.data  # the Robot's reused workspace
     pin.forwardKinematics(model, data, robot.q_pin(q), dq, np.zeros(model.nv))
     acc = pin.getFrameClassicalAcceleration(model, data, robot.frame_id(frame), pin.LOCAL_WORLD_ALIGNED)
     Jdqd = np.r_[acc.angular, acc.linear][rows]

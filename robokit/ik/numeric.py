@@ -401,7 +401,7 @@ def _pinocchio_closures(robot: Robot, frame: str | None, position_only: bool, p_
     The error is in Pinocchio's twist order (v, ω) — the weights are reordered to match."""
     import pinocchio as pin
 
-    model, data = robot.model, robot.model.createData()
+    model, data = robot.model, robot.data  # the Robot's reused workspace
     fid = robot.frame_id(frame)
     to_q = (lambda qc: qc) if model.nq == model.nv else robot.q_pin
     if position_only:

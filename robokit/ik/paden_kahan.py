@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
-from robokit.spatial.basics import wrap_angle
+from robokit.spatial.basics import unit_vector, wrap_angle
 
 __all__ = ["pk_subproblem1", "pk_subproblem2", "pk_subproblem3", "solve_trig"]
 
@@ -105,12 +105,6 @@ def solve_trig(a: float, b: float, c: float) -> list[float]:
     return sorted(roots)
 
 
-def _unit_axis(omega: ArrayLike, name: str) -> np.ndarray:
-    w = as_vector(omega, name, 3)
-    n = float(np.linalg.norm(w))
-    if n < 1e-12:
-        raise ValueError(f"{name}: expected a nonzero axis direction, got {w.tolist()}")
-    return w / n
 
 
 def pk_subproblem1(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, tol: float = 1e-9) -> list[float]:
@@ -138,7 +132,7 @@ def pk_subproblem1(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, t
     >>> round(pk_subproblem1([0, 0, 1], [0, 0, 0], [1, 0, 0], [0, 1, 0])[0], 12)
     1.570796326795
     """
-    w = _unit_axis(omega, "omega")
+    w = unit_vector(omega, "omega")
     r, p, q = as_vector(r, "r", 3), as_vector(p, "p", 3), as_vector(q, "q", 3)
     return _sp1(w, p - r, q - r, tol)
 
@@ -182,7 +176,7 @@ def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayL
     >>> len(sols)
     2
     """
-    w1, w2 = _unit_axis(omega1, "omega1"), _unit_axis(omega2, "omega2")
+    w1, w2 = unit_vector(omega1, "omega1"), unit_vector(omega2, "omega2")
     r, p, q = as_vector(r, "r", 3), as_vector(p, "p", 3), as_vector(q, "q", 3)
     cr = np.cross(w1, w2)
     ncr2 = float(cr @ cr)
@@ -236,7 +230,7 @@ def pk_subproblem3(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, d
     >>> sorted(round(t, 12) for t in pk_subproblem3([0, 0, 1], [0, 0, 0], [1, 0, 0], [1, 0, 0], 2.0))
     [3.14159265359]
     """
-    w = _unit_axis(omega, "omega")
+    w = unit_vector(omega, "omega")
     r, p, q = as_vector(r, "r", 3), as_vector(p, "p", 3), as_vector(q, "q", 3)
     delta = as_scalar(delta, "delta", nonnegative=True)
     u, v = p - r, q - r

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 

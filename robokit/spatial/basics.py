@@ -4,11 +4,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-from robokit._arrays import as_array, as_vector
 from numpy.typing import ArrayLike
 
-__all__ = ["near_zero", "normalize", "wrap_angle"]
+from robokit._arrays import as_array, as_vector
+from robokit.errors import InputError
+
+__all__ = ["near_zero", "normalize", "unit_vector", "wrap_angle"]
 
 
 def near_zero(z: ArrayLike) -> bool:
@@ -30,6 +31,19 @@ def normalize(V: ArrayLike) -> np.ndarray:
     if n == 0.0:
         raise ValueError("V: cannot normalize the zero vector")
     return V / n
+
+
+def unit_vector(v: ArrayLike, name: str) -> np.ndarray:
+    """The direction ``v / ‖v‖`` of a 3-vector (an axis, a line's direction): ``InputError``
+    naming ``name`` for a (near-)zero vector (‖v‖ < 1e-12).
+
+    Example: ``unit_vector([0, 0, 2], "axis")`` → ``[0, 0, 1]``.
+    """
+    w = as_vector(v, name, 3)
+    n = float(np.linalg.norm(w))
+    if n < 1e-12:
+        raise InputError(f"{name}: expected a nonzero direction, got {w.tolist()}")
+    return w / n
 
 
 def wrap_angle(a: ArrayLike) -> float | np.ndarray:

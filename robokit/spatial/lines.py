@@ -26,9 +26,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
-from numpy.typing import ArrayLike
+from robokit.spatial.basics import unit_vector
 
 __all__ = ["CommonNormal", "common_normal"]
 
@@ -49,12 +50,6 @@ class CommonNormal:
     kind: str
 
 
-def _unit(v: ArrayLike, name: str) -> np.ndarray:
-    v = as_vector(v, name, 3)
-    n = float(np.linalg.norm(v))
-    if n < 1e-12:
-        raise ValueError(f"{name}: a line direction cannot be the zero vector")
-    return v / n
 
 
 def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, ref: ArrayLike | None = None, tol: float = 1e-9) -> CommonNormal:
@@ -69,8 +64,8 @@ def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, re
     """
     p1 = as_vector(p1, "p1", 3)
     p2 = as_vector(p2, "p2", 3)
-    z1 = _unit(z1, "z1")
-    z2 = _unit(z2, "z2")
+    z1 = unit_vector(z1, "z1")
+    z2 = unit_vector(z2, "z2")
     tol = as_scalar(tol, "tol", positive=True)
     cross = np.cross(z1, z2)
     if np.linalg.norm(cross) > tol:

@@ -58,18 +58,7 @@ def run_all(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> list[Che
 def format_table(rows: list[CheckRow]) -> str:
     """The rows as an aligned text table."""
     head = ("quantity", "model", "cases", "max error", "tol", "metric", "pass")
-    body = [
-        (
-            r.quantity,
-            r.model,
-            str(r.cases),
-            f"{r.max_error:.2e}" if math.isfinite(r.max_error) else "inf",
-            f"{r.tolerance:.0e}",
-            r.metric,
-            "ok" if r.passed else "FAIL",
-        )
-        for r in rows
-    ]
+    body = [_row_cells(r) for r in rows]
     widths = [max(len(x) for x in col) for col in zip(head, *body)]
     line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
     out = [line(head), line(tuple("-" * w for w in widths))]

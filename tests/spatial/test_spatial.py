@@ -214,3 +214,13 @@ def test_bad_input_names_the_argument(fn, args, name):
     with pytest.raises(ValueError) as info:
         fn(*args)
     assert str(info.value).startswith(name)
+
+
+def test_unit_vector_is_the_direction_and_refuses_zero():
+    from robokit.spatial import unit_vector
+
+    v = np.array([3.0, -4.0, 12.0])
+    u = unit_vector(v, "axis")
+    assert np.isclose(np.linalg.norm(u), 1.0, atol=1e-15) and np.allclose(u * 13.0, v, atol=1e-14)
+    with pytest.raises(ValueError, match="axis"):
+        unit_vector([0.0, 0.0, 1e-13], "axis")
