@@ -28,10 +28,10 @@ setup: $(VENV)/.installed
 demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-test: $(VENV)/.installed-test,docs,mujoco,bench
+test: $(VENV)/.installed-all,test,docs,bench
 	$(BIN)/python -m pytest -n 2 -q
 
-bench: $(VENV)/.installed-bench
+bench: $(VENV)/.installed-all,bench
 	$(BIN)/python -m benchmarks
 
 docs: $(VENV)/.installed-docs

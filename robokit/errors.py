@@ -15,6 +15,16 @@ class InputError(RobokitError, ValueError):
     """Bad input: the message names the argument (or file, link and key) and what was wrong."""
 
 
+class MissingExtraError(InputError, ImportError):
+    """An optional dependency is not installed: the message names the extra that brings it
+    (``pip install 'robokit[viz]'``). It is an ``ImportError`` for Python callers and, like any
+    ``InputError``, one line and exit status 2 from the CLI."""
+
+    def __init__(self, message: str, extra: str = "") -> None:
+        super().__init__(message)
+        self.extra = extra
+
+
 class RobokitWarning(UserWarning):
     """Something robokit did on the user's behalf that they should know (a mesh not found and
     drawn without, a floating base fixed, a tree's tip chosen); the CLI prints it as one line."""

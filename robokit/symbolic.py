@@ -40,11 +40,16 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
-import sympy as sp
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
+
 if TYPE_CHECKING:
+    import sympy as sp
+
     from robokit.description.dh import DHTable
+else:
+    sp = require("sympy", "robokit.symbolic")
 
 __all__ = ["SymbolicArm", "SymbolicDynamics", "shorthand", "to_latex", "MAX_SYMBOLIC_DYNAMICS_JOINTS"]
 

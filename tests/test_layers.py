@@ -1,7 +1,7 @@
 """robokit's layering, enforced: every module imports only its own layer or the ones below it,
 and no private name (``_x``) is imported from another subpackage.
 
-Layers, bottom to top: the helpers (``_arrays``, ``_io``, ``_yaml``, ``errors``); ``spatial``
+Layers, bottom to top: the helpers (``_arrays``, ``_io``, ``_yaml``, ``_optional``, ``errors``); ``spatial``
 (no robot in it); ``kernels`` (the compiled recursions); ``description`` (DH tables, files,
 the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile`` and
 ``symbolic``; ``viz``; ``workspace``; ``validation``; ``commands`` and ``cli``.
@@ -14,7 +14,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1] / "robokit"
 
 LAYER = {
-    "_arrays": 0, "_io": 0, "_yaml": 0, "errors": 0,
+    "_arrays": 0, "_io": 0, "_yaml": 0, "_optional": 0, "errors": 0,
     "spatial": 1,
     "kernels": 2,
     "description": 3, "models": 3,

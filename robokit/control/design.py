@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
 from robokit._arrays import as_scalar, as_vector
 
 __all__ = ["critical_gains", "pid_gains_bandwidth", "StepInfo", "step_info", "plot_step_response"]
@@ -144,7 +145,7 @@ def plot_step_response(t: ArrayLike, y: ArrayLike, target: float | None = None, 
 
     Example: ``plot_step_response(t, 1 - np.exp(-t), target=1.0)``.
     """
-    import matplotlib.pyplot as plt
+    plt = require("matplotlib.pyplot", "plotting")
 
     t = as_vector(t, "t")
     y = as_vector(y, "y", len(t))

@@ -5,6 +5,8 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from robokit._optional import require
+
 __all__ = ["plot_tracking"]
 
 
@@ -14,7 +16,7 @@ def plot_tracking(result: Any, joints: Iterable[int] | None = None, title: str |
     error ``q_des − q``, and commanded torques. ``joints`` selects columns (default all).
     Returns the matplotlib Figure.
     """
-    import matplotlib.pyplot as plt
+    plt = require("matplotlib.pyplot", "plotting")
 
     t = np.asarray(result.t)
     q, qd, tau = np.asarray(result.q), np.asarray(result.q_des), np.asarray(result.tau)

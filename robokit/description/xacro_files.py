@@ -31,6 +31,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
+from robokit._optional import require
 from robokit.description._notes import note
 from robokit.errors import InputError
 
@@ -237,8 +238,8 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     >>> urdf = expand_xacro("arm.urdf.xacro", {"prefix": "left_"}, ["~/ws/src"])  # doctest: +SKIP
     """
     try:
-        import xacro
-        import xacro.substitution_args as sargs
+        xacro = require("xacro", "reading a .xacro file")
+        sargs = require("xacro.substitution_args", "reading a .xacro file")
     except ImportError:  # pragma: no cover - xacro is a dependency
         raise InputError(f"{path}: reading xacro files needs the 'xacro' package (pip install xacro)") from None
 

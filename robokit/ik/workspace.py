@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from robokit._optional import require
+
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
@@ -77,7 +79,7 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
 
 def plot_workspace(ws: Workspace, ax: Any = None, s: float = 1.0, color: str = "tab:blue") -> Any:
     """Scatter plot of a sampled workspace (2-D for planar arms, 3-D otherwise); returns the Figure."""
-    import matplotlib.pyplot as plt
+    plt = require("matplotlib.pyplot", "plotting")
 
     if ax is None:
         fig = plt.figure(figsize=(6, 5))

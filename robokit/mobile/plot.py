@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
 from robokit.mobile.estimation import error_ellipse
 
 if TYPE_CHECKING:
@@ -20,7 +21,7 @@ def plot_estimation(true_path: ArrayLike, est_path: ArrayLike | None = None, cov
                     every: int = 10, n_sigma: float = 1.0, ax: Axes | None = None) -> Figure | SubFigure:
     """True (K, ≥2) and estimated paths, landmarks (N, 2), estimated landmarks, and the
     ``n_sigma`` error ellipses of the position covariances (K, ≥2, ≥2) every ``every`` steps."""
-    import matplotlib.pyplot as plt
+    plt = require("matplotlib.pyplot", "plotting")
 
     fig = ax.figure if ax is not None else plt.figure(figsize=(6, 6))
     ax = ax or fig.add_subplot(111)

@@ -11,6 +11,7 @@ from typing import Sequence
 
 import numpy as np
 
+from robokit._optional import require
 from robokit.trajectory.core import Trajectory
 
 if TYPE_CHECKING:
@@ -20,9 +21,8 @@ __all__ = ["plot_trajectory", "plot_path_3d"]
 
 
 def _figure(figsize: tuple[float, float]) -> Figure:
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=figsize, layout="constrained")
+    figure = require("matplotlib.figure", "plotting").Figure
+    return figure(figsize=figsize, layout="constrained")
 
 
 def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Sequence[str] | None = None, show_via: bool = True, figsize: tuple[float, float] = (8.0, 7.0)) -> Figure:

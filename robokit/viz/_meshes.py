@@ -18,6 +18,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
+
 __all__ = ["mesh_parts", "cluster_decimate"]
 
 
@@ -80,7 +82,7 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
     URDF's material when it overrides the file's). Vertices are in the file's frame (node
     transforms applied, mesh scale not), in the file's unit as trimesh reads it.
     """
-    import trimesh
+    trimesh = require("trimesh", "drawing meshes")
 
     scene: Any = trimesh.load(str(path), force="scene")
     groups: dict[tuple, list[tuple[np.ndarray, np.ndarray]]] = {}

@@ -12,13 +12,15 @@ import os
 import sys
 from typing import Any, Sequence
 
+from robokit._optional import require
+
 HOST = "127.0.0.1"
 
 
 def _bridge_class() -> type:
-    from meshcat.servers.zmqserver import ZMQWebSocketBridge
+    bridge: Any = require("meshcat.servers.zmqserver", "the live viewer").ZMQWebSocketBridge
 
-    class LoopbackBridge(ZMQWebSocketBridge):
+    class LoopbackBridge(bridge):
         def make_app(self) -> Any:
             app = super().make_app()
             listen = app.listen

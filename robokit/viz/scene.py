@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING, Any, Iterable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
+
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
@@ -31,10 +33,9 @@ __all__ = ["Scene"]
 
 def _label_png(text: str, color: str = "#222222") -> bytes:
     """A small transparent PNG with ``text`` (for labels drawn on a plane in the scene)."""
-    import matplotlib
-
+    matplotlib = require("matplotlib", "frame labels in the viewer")
     matplotlib.use("Agg", force=False)
-    from matplotlib.figure import Figure
+    Figure = require("matplotlib.figure").Figure
 
     fig = Figure(figsize=(1.6, 0.5), dpi=100)
     fig.patch.set_alpha(0.0)
@@ -78,7 +79,7 @@ def new_visualizer(zmq_url: str | None = None) -> Any:
     (:func:`start_server`; then ``vis.window.server_proc`` is that process)."""
     import contextlib
 
-    import meshcat
+    meshcat = require("meshcat", "the viewer")
 
     proc = None
     if zmq_url is None:
@@ -153,7 +154,7 @@ class Scene:
         names : frame names (default: ``dh_0..dh_N`` and ``tool`` for DH robots, else the
         joint frames and the tip). scale : triad length (m; default from the robot's size).
         """
-        import meshcat.geometry as g
+        g = require("meshcat.geometry", "the viewer")
 
         r = self.robot
         if names is None:
@@ -181,7 +182,7 @@ class Scene:
 
     def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
         """A sphere at position ``p`` (3,) in the base frame."""
-        import meshcat.geometry as g
+        g = require("meshcat.geometry", "the viewer")
 
         p = np.asarray(p, dtype=float).reshape(3)
         self.vis["points"][name].set_object(g.Sphere(radius), g.MeshLambertMaterial(color=color))
@@ -193,7 +194,7 @@ class Scene:
 
     def frame(self, name: str, T: ArrayLike, scale: float = 0.1) -> Scene:
         """A triad at the pose ``T`` (4×4) in the base frame."""
-        import meshcat.geometry as g
+        g = require("meshcat.geometry", "the viewer")
 
         self.vis["poses"][name].set_object(g.triad(scale))
         self.vis["poses"][name].set_transform(np.asarray(T, dtype=float))
@@ -201,7 +202,7 @@ class Scene:
 
     def path(self, name: str, points: ArrayLike, color: int = 0x2060E0, linewidth: float = 3.0) -> Scene:
         """A polyline through ``points`` (K, 3) in the base frame."""
-        import meshcat.geometry as g
+        g = require("meshcat.geometry", "the viewer")
 
         P = np.asarray(points, dtype=float)
         if P.ndim != 2 or P.shape[1] != 3 or len(P) < 2:
@@ -217,7 +218,7 @@ class Scene:
         Axes and radii from :func:`robokit.kinematics.velocity_ellipsoid_at` (the singular values
         and left singular vectors of J_v), radii times ``scale`` (m per m/s) so it fits the picture.
         """
-        import meshcat.geometry as g
+        g = require("meshcat.geometry", "the viewer")
 
         from robokit.kinematics.velocity import velocity_ellipsoid_at
 
@@ -236,7 +237,7 @@ class Scene:
 
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
         """Animate joint configurations ``Q`` (K, n) (at times ``t`` (K,), or ``fps``), playable in the page."""
-        from meshcat.animation import Animation
+        Animation = require("meshcat.animation", "the viewer").Animation
 
         Q = np.asarray(Q, dtype=float)
         if Q.ndim != 2 or Q.shape[1] != self.robot.n or len(Q) < 1:
@@ -316,7 +317,7 @@ class Scene:
 
         Returns the ``IPython.display.IFrame``.
         """
-        from IPython.display import IFrame
+        IFrame = require("IPython.display", "showing a scene in a notebook").IFrame
 
         from robokit._io import atomic_write
 

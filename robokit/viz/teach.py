@@ -44,6 +44,8 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
+
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
@@ -162,9 +164,9 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     import io
     import warnings
 
-    import meshcat
-    import meshcat.geometry as g
-    import meshcat.path
+    meshcat = require("meshcat", "the teach pendant")
+    g = require("meshcat.geometry", "the teach pendant")
+    require("meshcat.path", "the teach pendant")
     import pinocchio as pin
     from pinocchio.visualize import MeshcatVisualizer
 
@@ -371,7 +373,7 @@ def _asset(name: str) -> str:
 
 
 def _meshcat_bundle() -> str:
-    import meshcat
+    meshcat = require("meshcat", "the teach pendant")
 
     return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text(encoding="utf-8")
 
@@ -453,7 +455,7 @@ def teach_widget(scene: Scene, q: ArrayLike | None = None, height: int = 420) ->
     Returns the ``ipywidgets.VBox``; its ``.set_q(q)`` sets all joints at once (rad/m) and
     ``.readouts`` holds the latest :func:`teach_readouts` dict.
     """
-    import ipywidgets as W
+    W = require("ipywidgets", "the notebook teach pendant")
 
     robot = scene.robot
     types = _joint_types(robot)

@@ -48,6 +48,7 @@ from typing import Any, Callable, TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
 from robokit._io import atomic_write
 
 if TYPE_CHECKING:
@@ -451,7 +452,8 @@ class _Cluster:
             return
         import logging
 
-        from distributed import Client, LocalCluster
+        distributed = require("distributed", "a capability map on a Dask cluster")
+        Client, LocalCluster = distributed.Client, distributed.LocalCluster
 
         if client is None:
             self.cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
@@ -482,7 +484,7 @@ def _first_line(exc: BaseException) -> str:
 
 def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: tuple, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
-    from distributed import as_completed
+    as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 
     workers = max(1, len(client.scheduler_info().get("workers", {})))
     limit = 2 * workers

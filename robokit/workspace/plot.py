@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._optional import require
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, SubFigure
@@ -58,7 +60,7 @@ def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: st
     >>> m = robokit.capability_map("rrr", 0.1, orientations=8, client="serial")
     >>> fig = plot_capability_slice(m, "z")
     """
-    import matplotlib.pyplot as plt
+    plt = require("matplotlib.pyplot", "plotting a capability map")
 
     m = _as_map(cmap)
     if axis not in _AXES:
@@ -97,7 +99,7 @@ def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: st
 
 
 def _colours(index: ArrayLike, cmap_name: str = "viridis") -> np.ndarray:
-    from matplotlib import colormaps
+    colormaps = require("matplotlib", "colouring a capability map").colormaps
 
     return colormaps[cmap_name](np.clip(index, 0.0, 1.0))[:, :3]
 
@@ -124,7 +126,7 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
     >>> import robokit
     >>> page = capability_html(robokit.capability_map("rrr", 0.1, orientations=8, client="serial"))
     """
-    import meshcat.geometry as g
+    g = require("meshcat.geometry", "viewing a capability map")
 
     from robokit.viz.scene import Scene, new_visualizer, stop_server
 
