@@ -2,7 +2,8 @@
 
 ``newton_euler``: the seed functions in product-of-exponentials form (Newton–Euler inverse
 dynamics, composite-rigid-body mass matrix, forward dynamics, trajectories).
-``dh_newton_euler``: Craig's recursive Newton–Euler on a DH table (both conventions).
+``dh_newton_euler``: Craig's recursive Newton–Euler on a DH table (both conventions);
+``dh_trace``: the same iterations with every intermediate kept (``trace=True``).
 ``coriolis``: the Coriolis matrix (Christoffel, Ṁ − 2C skew; or the lecture's factorisation).
 ``loads``: payloads and the base wrench. ``cartesian``: operational-space dynamics.
 ``integration``: energy and Euler/Taylor/RK4 integration (one stepper for robokit).
@@ -17,6 +18,8 @@ from robokit.dynamics.coriolis import *  # noqa: F401,F403
 from robokit.dynamics.coriolis import __all__ as _coriolis_all
 from robokit.dynamics.dh_newton_euler import *  # noqa: F401,F403
 from robokit.dynamics.dh_newton_euler import __all__ as _dh_all
+from robokit.dynamics.dh_trace import *  # noqa: F401,F403
+from robokit.dynamics.dh_trace import __all__ as _dh_trace_all
 from robokit.dynamics.drives import *  # noqa: F401,F403
 from robokit.dynamics.drives import __all__ as _drives_all
 from robokit.dynamics.inertia import *  # noqa: F401,F403
@@ -30,5 +33,5 @@ from robokit.dynamics.newton_euler import __all__ as _ne_all
 from robokit.dynamics.twolink import *  # noqa: F401,F403
 from robokit.dynamics.twolink import __all__ as _twolink_all
 
-__all__ = (list(_ne_all) + list(_dh_all) + list(_coriolis_all) + list(_loads_all) + list(_cartesian_all)
+__all__ = (list(_ne_all) + list(_dh_all) + list(_dh_trace_all) + list(_coriolis_all) + list(_loads_all) + list(_cartesian_all)
            + list(_integration_all) + list(_twolink_all) + list(_inertia_all) + list(_drives_all))

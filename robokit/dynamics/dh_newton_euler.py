@@ -25,12 +25,13 @@ library), and starts the inward iteration. The recursion runs as a compiled loop
 from __future__ import annotations
 
 from types import ModuleType
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+from robokit.dynamics.dh_trace import DHDynamicsTrace, dh_newton_euler_trace
 from robokit.kinematics.dh import flip_signs
 
 if TYPE_CHECKING:
@@ -50,14 +51,48 @@ def _kernels() -> ModuleType:
     return dh
 
 
+@overload
+def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, gravity: ArrayLike | None = ...,
+                        F_tip: ArrayLike | None = ..., trace: Literal[False] = ...) -> np.ndarray: ...
+
+
+@overload
+def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, gravity: ArrayLike | None = ...,
+                        F_tip: ArrayLike | None = ..., *,
+                        trace: Literal[True]) -> tuple[np.ndarray, DHDynamicsTrace]: ...
+
+
 def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, gravity: ArrayLike | None = None,
-                        F_tip: ArrayLike | None = None) -> np.ndarray:
+                        F_tip: ArrayLike | None = None,
+                        trace: bool = False) -> np.ndarray | tuple[np.ndarray, DHDynamicsTrace]:
     """Joint torques/forces (n,) by Craig's recursive Newton–Euler on a :class:`DHTable`.
 
-    q, dq, ddq : (n,) joint positions, rates, accelerations (rad or m); gravity : (3,) in base_link
-    (default the table's); F_tip : (6,) wrench (n, f) the tool exerts on the environment, tool frame.
-    Uses the table's link masses, centres of mass and inertias (frame-{i} axes, about the COM).
+    Parameters
+    ----------
+    table : DHTable
+        Uses the table's link masses, centres of mass and inertias (frame-{i} axes, about the COM).
+    q, dq, ddq : (n,) array_like
+        Joint positions, rates, accelerations (rad or m).
+    gravity : (3,) array_like, optional
+        In base_link (default the table's), m/s².
+    F_tip : (6,) array_like, optional
+        The wrench (n, f) the tool exerts on the environment, in the tool frame.
+    trace : bool
+        Also return every step of the iterations (Lecture 7's ⁱωᵢ, ⁱω̇ᵢ, ⁱv̇ᵢ, v̇_Cᵢ, Fᵢ, Nᵢ, ⁱfᵢ, ⁱnᵢ,
+        see :class:`robokit.dynamics.DHDynamicsTrace`; ``print(trace)`` is the per-link table).
+
+    Returns
+    -------
+    tau : (n,) ndarray
+        Joint torques (N·m) / forces (N); with ``trace=True`` the pair ``(tau, trace)``.
+
+    Examples
+    --------
+    >>> import robokit as rk  # doctest: +SKIP
+    >>> tau, tr = dh_inverse_dynamics(rk.load("puma560").dh, [0] * 6, [0] * 6, [0] * 6, trace=True)  # doctest: +SKIP
     """
+    if trace:
+        return dh_newton_euler_trace(table, q, dq, ddq, gravity, F_tip)
     n = table.n
     k = _kdh or _kernels()
     packed = k.pack_dh(table)

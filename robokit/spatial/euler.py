@@ -28,7 +28,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_vector
+from robokit._arrays import as_scalar, as_vector
+from robokit.errors import InputError
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
 
@@ -47,8 +48,35 @@ def check_sequence(seq: str) -> str:
     return seq.upper()
 
 
-def elementary_rotation(axis: int, angle: float) -> np.ndarray:
-    """The rotation by ``angle`` (rad) about the x (``axis=0``), y (1) or z (2) axis: Rx, Ry, Rz."""
+_AXIS_INDEX = {0: 0, 1: 1, 2: 2, "x": 0, "y": 1, "z": 2}
+
+
+def elementary_rotation(axis: int | str, angle: float) -> np.ndarray:
+    """The rotation by ``angle`` (rad) about the x, y or z axis: Rx, Ry, Rz (Lecture 2).
+
+    Parameters
+    ----------
+    axis : {"x", "y", "z"} or {0, 1, 2}
+        The axis; anything else raises ``InputError`` (a ``ValueError``).
+    angle : float
+        The angle, rad, right-handed about the axis.
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> elementary_rotation("z", np.pi / 2).round(12) @ [1.0, 0.0, 0.0]
+    array([0., 1., 0.])
+    """
+    k = None if isinstance(axis, bool) else _AXIS_INDEX.get(axis) if isinstance(axis, (int, str, np.integer)) else None
+    if k is None:
+        raise InputError(f"axis: expected 'x', 'y', 'z' or 0, 1, 2, got {axis!r}")
+    return _elementary(k, as_scalar(angle, "angle"))
+
+
+def _elementary(axis: int, angle: float) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     if axis == 0:
         return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
@@ -67,8 +95,8 @@ def matrix_from_euler(angles: ArrayLike, seq: str = "ZYX", extrinsic: bool = Fal
     s = check_sequence(seq)
     i, j, k = (_AX[ch] for ch in s)
     if extrinsic:
-        return elementary_rotation(k, c) @ elementary_rotation(j, b) @ elementary_rotation(i, a)
-    return elementary_rotation(i, a) @ elementary_rotation(j, b) @ elementary_rotation(k, c)
+        return _elementary(k, c) @ _elementary(j, b) @ _elementary(i, a)
+    return _elementary(i, a) @ _elementary(j, b) @ _elementary(k, c)
 
 
 

@@ -23,6 +23,7 @@ Its length is the DH link length a, its direction the DH x axis. Special cases:
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,7 +41,9 @@ class CommonNormal:
 
     foot1, foot2 : (3,) its feet on line 1 and line 2; direction : (3,) unit vector from foot1 to
     foot2 (see the module docstring for intersecting and coincident lines); length : ‖foot2 − foot1‖;
-    kind : "skew", "intersecting", "parallel" or "coincident".
+    kind : "skew", "intersecting", "parallel" or "coincident";
+    alpha : the twist (rad, in (−π, π]) that turns ẑ₁ into ẑ₂ about the normal's direction x̂ — the
+    DH α of the homework, ``α = atan2((ẑ₁ × ẑ₂)·x̂, ẑ₁·ẑ₂)`` (= sgn((ẑ₁ × ẑ₂)·x̂)·cos⁻¹(ẑ₁·ẑ₂)).
     """
 
     foot1: np.ndarray
@@ -48,6 +51,7 @@ class CommonNormal:
     direction: np.ndarray
     length: float
     kind: str
+    alpha: float = 0.0
 
 
 
@@ -60,7 +64,8 @@ def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, re
     on line 1 (default p1); tol : parallel when ``‖ẑ₁ × ẑ₂‖ ≤ tol``, meeting when the length ≤ tol.
 
     Example: the x and the shifted y axis, ``common_normal([0, 0, 0], [1, 0, 0], [0, 0, 2], [0, 1, 0])``,
-    has feet (0, 0, 0) and (0, 0, 2), direction (0, 0, 1) and length 2.
+    has feet (0, 0, 0) and (0, 0, 2), direction (0, 0, 1), length 2 and twist α = +π/2 (x turns
+    into y about +z).
     """
     p1 = as_vector(p1, "p1", 3)
     p2 = as_vector(p2, "p2", 3)
@@ -80,14 +85,23 @@ def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, re
             # the normal's direction is ±ẑ₁×ẑ₂ exactly; (f2 − f1) only gives its sign (dividing the
             # difference of the feet by a short length would lose digits)
             c = cross / np.linalg.norm(cross)
-            return CommonNormal(f1, f2, c if c @ (f2 - f1) >= 0 else -c, L, "skew")
+            return _with_twist(f1, f2, c if c @ (f2 - f1) >= 0 else -c, L, "skew", z1, z2)
         m = 0.5 * (f1 + f2)
-        return CommonNormal(m, m.copy(), cross / np.linalg.norm(cross), 0.0, "intersecting")
+        return _with_twist(m, m.copy(), cross / np.linalg.norm(cross), 0.0, "intersecting", z1, z2)
     r = p1 if ref is None else as_vector(ref, "ref", 3)
     f1 = p1 + float((r - p1) @ z1) * z1
     f2 = p2 + float((f1 - p2) @ z2) * z2
     L = float(np.linalg.norm(f2 - f1))
     if L > tol:
-        return CommonNormal(f1, f2, (f2 - f1) / L, L, "parallel")
+        return _with_twist(f1, f2, (f2 - f1) / L, L, "parallel", z1, z2)
     x = np.cross(z1, [1.0, 0.0, 0.0]) if abs(z1[0]) < 0.9 else np.cross(z1, [0.0, 1.0, 0.0])
-    return CommonNormal(f1, f1.copy(), x / np.linalg.norm(x), 0.0, "coincident")
+    return _with_twist(f1, f1.copy(), x / np.linalg.norm(x), 0.0, "coincident", z1, z2)
+
+
+def _with_twist(f1: np.ndarray, f2: np.ndarray, x: np.ndarray, length: float, kind: str, z1: np.ndarray,
+                z2: np.ndarray) -> CommonNormal:
+    """The normal with its twist α = atan2((ẑ₁ × ẑ₂)·x̂, ẑ₁·ẑ₂), in (−π, π]."""
+    alpha = math.atan2(float(np.cross(z1, z2) @ x), float(z1 @ z2))
+    if alpha <= -math.pi:
+        alpha = math.pi
+    return CommonNormal(f1, f2, x, length, kind, alpha)
