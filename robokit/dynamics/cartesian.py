@@ -23,7 +23,25 @@ class CartesianDynamics:
     manipulability) and ``asada`` = ratio of the smallest to the largest eigenvalue of Λ (the
     isotropy of Asada's generalized inertia ellipsoid), with ``inertia_axes``/``inertia_radii``
     of that ellipsoid (eigenvectors, √eigenvalues of Λ).
+
+    The lecture writes the same equation ``F = M_x(q) ẍ + V_x(q, q̇) + G_x(q)``: ``M_x``, ``V_x`` and
+    ``G_x`` are aliases of ``Lambda``, ``mu`` and ``p``.
     """
+
+    @property
+    def M_x(self) -> np.ndarray:
+        """The lecture's Cartesian mass matrix M_x(q), = ``Lambda``."""
+        return self.Lambda
+
+    @property
+    def V_x(self) -> np.ndarray:
+        """The lecture's Cartesian velocity term V_x(q, q̇), = ``mu``."""
+        return self.mu
+
+    @property
+    def G_x(self) -> np.ndarray:
+        """The lecture's Cartesian gravity term G_x(q), = ``p``."""
+        return self.p
 
     def __init__(self, Lambda: np.ndarray, mu: np.ndarray, p: np.ndarray, yoshikawa: float, asada: float,
                  inertia_radii: np.ndarray, inertia_axes: np.ndarray) -> None:

@@ -272,7 +272,13 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
 
 def euler_step(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike,
                dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """One explicit Euler step: ``(θ + dt θ̇, θ̇ + dt θ̈)``; dt in s."""
+    """One explicit Euler step (Modern Robotics' ``EulerStep``): ``(θ + dt θ̇, θ̇ + dt θ̈)``; dt in s.
+
+    The lecture's step keeps the second-order term, ``θ + θ̇Δt + ½θ̈Δt²``: that is
+    :func:`robokit.dynamics.integrate` with ``method="taylor"`` (and ``"rk4"`` for fourth order).
+
+    Example: ``euler_step([0.0], [1.0], [2.0], 0.1)`` is ``([0.1], [1.2])``.
+    """
     th = as_vector(thetalist, "thetalist")
     n = len(th)
     dth = as_vector(dthetalist, "dthetalist", n)

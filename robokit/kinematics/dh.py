@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit.errors import InputError
 from robokit._arrays import as_vector
 
 if TYPE_CHECKING:
@@ -97,15 +98,37 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
     return k.dh_jacobian(P, modified, base, tool, _q(q, table.n), in_tool)
 
 
-def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike) -> np.ndarray:
+def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference: str = "tool") -> np.ndarray:
     """Joint torques (n,) that balance a static tip wrench, by inward force propagation.
 
-    F_tip : (6,) ``(n, f)`` — moment and force the tool exerts on the environment, expressed in
-    the tool frame (angular first, as Modern Robotics' F_tip). Returns τ with ``τ = J_toolᵀ F_tip``.
+    Parameters
+    ----------
+    table : DHTable
+    q : (n,) joint values (rad, m).
+    F_tip : (6,) ``(n, f)`` — moment (N·m, about the tool origin) and force (N) the tool exerts on
+        the environment, angular first as Modern Robotics' F_tip.
+    reference : "tool" (default) — F_tip in the tool frame's axes; "base" — in base_link's axes
+        (the wrench a force sensor mounted in the world would report, moved to the tool origin).
+
+    Returns
+    -------
+    (n,) ndarray
+        τ with ``τ = J_toolᵀ F_tip`` ("tool") or ``τ = J_baseᵀ F_tip`` ("base", J with rows (ω; v)
+        of the tool origin in base axes, as :func:`dh_jacobian`).
+
+    Example: ``dh_static_torques(table, q, [0, 0, 0, 0, 0, -10], reference="base")`` holds 10 N
+    pushing down on the environment.
     """
+    if reference not in ("tool", "base"):
+        raise InputError(f"reference: expected 'tool' or 'base', got {reference!r}")
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     signs = flip_signs(table)
+    if reference == "base":
+        qv = _q(q, table.n)
+        Fb = _q(F_tip, 6, "F_tip")
+        R = k.dh_fk(P, modified, base, tool, qv * signs if signs is not None else qv)[:3, :3]
+        F_tip = np.ascontiguousarray(np.concatenate([R.T @ Fb[:3], R.T @ Fb[3:]]))
     if signs is not None:
         return k.dh_static_torques(P, modified, base, tool, _q(q, table.n) * signs, _q(F_tip, 6, "F_tip")) * signs
     if type(q) is np.ndarray and q.ndim == 1 and type(F_tip) is np.ndarray and F_tip.ndim == 1:

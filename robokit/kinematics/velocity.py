@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
+from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
 
@@ -36,13 +37,18 @@ __all__ = [
 ]
 
 
-def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike], q: ArrayLike, h: float = 1e-6) -> np.ndarray:
+def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike] | RobotLike, q: ArrayLike, h: float = 1e-6) -> np.ndarray:
     """Jacobian (6×n, (ω; v) in the base frame) of any forward kinematics by central differences.
 
-    fk : function q (n,) → 4×4 pose; q : (n,); h : perturbation. Column j is
+    fk : function q (n,) → 4×4 pose, or a robot (its ``frame_pose``, the tool); q : (n,);
+    h : perturbation. Column j is
     ``ω_j = vee(Ṙ Rᵀ)``, ``v_j = ṗ`` with the derivatives ``(f(q + h e_j) − f(q − h e_j)) / 2h``
     (Lecture 6: the Jacobian by perturbation). Accurate to about h².
     """
+    if not callable(fk):
+        if not hasattr(fk, "frame_pose"):
+            raise InputError(f"fk: expected a function q -> 4x4 pose or a robot, got {type(fk).__name__}")
+        fk = fk.frame_pose
     q = as_vector(q, "q")
     h = as_scalar(h, "h", positive=True)
     T0 = np.asarray(fk(q), dtype=float)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from robokit.errors import InputError
 from robokit._arrays import as_matrix, as_vector
 from robokit.spatial.lie import exp3, hat, log3
 from robokit.spatial.basics import wrap_angle
@@ -54,8 +55,12 @@ def check_rotation(R: ArrayLike, name: str = "R", tol: float = SO3_TOLERANCE) ->
 def rot_inv(R: ArrayLike) -> np.ndarray:
     """Inverse of a rotation matrix, ``Rᵀ`` (3×3).
 
-    Example: ``rot_inv(Rz(θ))`` is ``Rz(−θ)``.
+    Example: ``rot_inv(Rz(θ))`` is ``Rz(−θ)``. A 4×4 homogeneous transform is refused with a
+    pointer to :func:`trans_inv` (its inverse is not its transpose).
     """
+    if np.shape(R) == (4, 4):
+        raise InputError("R: got a 4×4 matrix; rot_inv inverts a 3×3 rotation — for a homogeneous "
+                         "transform use trans_inv(T)")
     return check_rotation(R, "R").T.copy()
 
 

@@ -21,6 +21,7 @@ from numbers import Integral
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit.errors import InputError
 from robokit._arrays import as_array, as_scalar
 
 __all__ = ["Trajectory"]
@@ -163,13 +164,15 @@ def increasing_times(times: ArrayLike, name: str, m: int | None = None) -> np.nd
 
 
 def viapoint_matrix(viapoints: ArrayLike, name: str, min_rows: int = 2) -> np.ndarray:
-    """Via points as an (m, n) float matrix, one row per point (m ≥ ``min_rows``)."""
+    """Via points as an (m, n) float matrix, one row per point (m ≥ ``min_rows``); a 1-D list is
+    one axis, ``[p0, p1, ...]`` → shape (m, 1)."""
     arr = as_array(viapoints, name)
+    if arr.ndim == 1:
+        arr = arr.reshape(-1, 1)
     if arr.ndim != 2:
-        raise ValueError(
-            f"{name}: expected a 2-D array with one row per point and one column per axis, got shape {arr.shape}"
-            + (" (for a single axis use np.reshape(points, (-1, 1)))" if arr.ndim == 1 else "")
-        )
+        raise InputError(
+            f"{name}: expected a 2-D array with one row per point and one column per axis (or a 1-D list "
+            f"for one axis), got shape {arr.shape}")
     if arr.shape[0] < min_rows or arr.shape[1] < 1:
         raise ValueError(f"{name}: expected at least {min_rows} rows (points) and 1 column (axis), got shape {arr.shape}")
     return arr.copy()
