@@ -85,9 +85,11 @@ def _build_parser() -> argparse.ArgumentParser:
     v.add_argument("--json", action="store_true", help="print the table as JSON")
     v.add_argument("--seed", type=int, default=0, help="random seed for the samples (default 0)")
 
-    c = sub.add_parser("convert", help="DH YAML -> URDF, or URDF/example-robot-data name -> PoE JSON or DH YAML")
-    c.add_argument("input", help="a .yaml DH file, a .urdf file, or an example-robot-data name (ur5, panda, ...)")
-    c.add_argument("-o", "--output", help="output file: .urdf, .json (PoE parameters) or .yaml (DH table)")
+    c = sub.add_parser("convert", help="any robot -> URDF (DH models), PoE JSON, DH YAML or MJCF")
+    c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml file, or an "
+                                 "example-robot-data name (ur5, panda, ...)")
+    c.add_argument("-o", "--output", help="output file: .urdf (a DH model's URDF), .json (PoE parameters), .yaml (DH "
+                                          "table) or .xml (MJCF); without it the DH table is printed")
     c.add_argument("--tip", help="tip frame of the chain (default: the arm's end effector, see the docs)")
     c.add_argument("--convention", choices=("standard", "modified"), default="standard",
                    help="DH convention when writing a DH table (default standard)")

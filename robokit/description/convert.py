@@ -10,6 +10,7 @@ import os
 from pathlib import Path
 from typing import Mapping, Sequence
 
+from robokit.errors import InputError
 from robokit._io import atomic_write
 
 __all__ = ["convert"]
@@ -30,11 +31,12 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
             package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> tuple[str, list[str]]:
     """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
 
-    * ``IN.yaml -o OUT.urdf`` — DH table to URDF (see the URDF format page of the documentation);
+    * ``IN.yaml|NAME -o OUT.urdf`` — a DH model (a DH file or a shipped model) to URDF (see the URDF
+      format page of the documentation);
     * ``IN.urdf|NAME -o OUT.json`` — PoE parameters ``M, Slist, Blist, Mlist, Glist,
       joint_names, tip`` of the chain root → ``tip`` (see the PoE JSON format page of the documentation);
     * ``IN.urdf|NAME -o OUT.yaml`` — a DH table of the chain (``convention``), when the
-      URDF → DH converter is available;
+      URDF → DH converter finds an exact one (a DH model writes its own table);
     * ``ROBOT -o OUT.xml`` — MJCF for any robot ``robokit.load`` reads (DH file, URDF, xacro,
       MJCF, example-robot-data name), see :mod:`robokit.description.mjcf`.
     ``xacro_args``/``package_dirs`` are passed to ``robokit.load``.
@@ -57,12 +59,13 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         if robot.locked_joints:
             notes.insert(0, f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
                             f"their bodies merged: {', '.join(robot.locked_joints)}")
-    elif in_suffix in (".yaml", ".yml"):
-        if out_suffix not in (".urdf", None):
-            assert out is not None  # out_suffix is not None
-            raise ValueError(f"output: a DH file converts to .urdf, got {out.name!r}")
+    elif out_suffix not in (".urdf", ".json", ".yaml", ".yml", None):
+        assert out is not None
+        raise InputError(f"output: robokit writes .urdf (a DH model's URDF), .json (PoE parameters), .yaml (a DH "
+                         f"table) or .xml (MJCF), got {out.name!r}")
+    elif in_suffix in (".yaml", ".yml") and out_suffix in (".urdf", None):
         if tip is not None:
-            raise ValueError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
+            raise InputError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
         text = dh_to_urdf(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
@@ -71,13 +74,17 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
                          f"their bodies merged: {', '.join(robot.locked_joints)}")
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"
-        elif out_suffix in (".yaml", ".yml", None):
+        elif out_suffix == ".urdf":
+            if robot.dh is None:
+                raise InputError(f"output: {robot.name} is not a DH model, and robokit writes URDF from DH tables; "
+                                 f"write .json (PoE), .yaml (its DH table, when it has an exact one) or .xml (MJCF)")
+            text = dh_to_urdf(robot.dh)
+        elif robot.dh is not None:  # a DH model: its own table
+            text = robot.dh.to_yaml_str() if out_suffix is not None else robot.dh.to_text() + "\n"
+        else:
             from robokit.description.urdf_to_dh import urdf_to_dh_text
 
             text = urdf_to_dh_text(robot, convention=convention, as_yaml=out_suffix is not None)
-        else:
-            assert out is not None  # out_suffix is not None
-            raise ValueError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
     if out is not None:
         atomic_write(out, text)
     return text, notes

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import FloatVector, as_scalar, as_vector
+from robokit.errors import InputError
 from robokit.spatial.basics import wrap_angle
 
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
@@ -106,6 +107,18 @@ class FollowLine:
     v: float = 1.0
     Kd: float = 0.5
     Kh: float = 1.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.line, (int, float, np.number)):
+            raise InputError(f"line: expected the coefficients (a, b, c) of a x + b y + c = 0 as one tuple, got "
+                             f"{self.line!r} (write FollowLine((a, b, c), v=...))")
+        a, b, c = as_vector(self.line, "line", 3)
+        if math.hypot(a, b) == 0.0:
+            raise InputError(f"line: a and b cannot both be zero, got {tuple(self.line)!r}")
+        self.line = (float(a), float(b), float(c))
+        self.v = as_scalar(self.v, "v")
+        self.Kd = as_scalar(self.Kd, "Kd", nonnegative=True)
+        self.Kh = as_scalar(self.Kh, "Kh", nonnegative=True)
 
     def distance(self, x: FloatVector) -> float:
         """Signed normal distance of the vehicle from the line (m)."""

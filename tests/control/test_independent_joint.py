@@ -79,3 +79,17 @@ def test_bad_arguments(puma):
     with pytest.raises(ValueError, match="DH table"):
         ur5 = robokit.load("ur5")
         simulate_independent_joints(ur5, _hold(np.zeros(6), T=0.01), Kp=1.0, Kv=0.1)
+
+
+def test_too_high_gains_for_the_period_raise_divergence_with_the_partial_run(puma):
+    from robokit.errors import DivergenceError
+
+    t = np.arange(0, 0.3 + 1e-9, 0.005)  # a 5 ms control period: Kv = 0.2 is far beyond its stability bound
+    hold = (t, np.tile(Q_HOLD, (len(t), 1)), np.zeros((len(t), 6)), np.zeros((len(t), 6)))
+    with pytest.raises(DivergenceError, match="diverged") as info:
+        simulate_independent_joints(puma, hold, Kp=10, Kv=0.2)
+    part = info.value.partial
+    assert 0 < len(part.t) < len(t) and np.all(np.isfinite(part.q))
+    # the docstring's example gains at the same period stay bounded
+    run = simulate_independent_joints(puma, hold, Kp=10, Kv=0.05)
+    assert np.all(np.isfinite(run.q)) and np.abs(run.q - Q_HOLD).max() < 0.2

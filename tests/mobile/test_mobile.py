@@ -184,3 +184,13 @@ def test_plot_estimation():
     ax = fig.axes[0]
     assert len(ax.lines) == 2 + 3 + 1  # true, estimate, 3 ellipses, landmarks
     assert np.allclose(ax.lines[0].get_xdata(), path[:, 0])
+
+
+@pytest.mark.parametrize("args,match", [((1.0, -2.0, 4.0), "one tuple"), (((0, 0, 1),), "both be zero"),
+                                        (((1, 2),), "shape"), (((1, 2, 3), 1.0, -1.0), "Kd"),
+                                        (((1, 2, float("nan")),), "line")])
+def test_follow_line_refuses_bad_lines_at_construction(args, match):
+    from robokit.mobile import FollowLine
+
+    with pytest.raises(ValueError, match=match):
+        FollowLine(*args)
