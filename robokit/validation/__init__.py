@@ -86,7 +86,18 @@ def _row_cells(r: CheckRow) -> tuple[str, ...]:
 
 
 def _line(cells: Sequence[str]) -> str:
-    return "  ".join(c.ljust(w) for c, w in zip(cells, _WIDTHS)).rstrip()
+    """One row of the streamed table; a quantity longer than its column wraps at a space onto a
+    first line of its own, so the other columns stay aligned."""
+    first, rest = cells[0], list(cells[1:])
+    lead: list[str] = []
+    width = _WIDTHS[0]
+    while len(first) > width:
+        cut = first.rfind(" ", 0, width + 1)
+        cut = width if cut <= 0 else cut
+        lead.append(first[:cut].rstrip())
+        first = "  " + first[cut:].lstrip()
+    row = "  ".join(c.ljust(w) for c, w in zip([first, *rest], _WIDTHS)).rstrip()
+    return "\n".join([*lead, row])
 
 
 def main(as_json: bool = False, seed: int = 0) -> int:
