@@ -125,7 +125,7 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
         raise ValueError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store)
-    cmap.save(out, include_robot=True)  # the robot's name, DH table or chain geometry: never a path
+    cmap.save(out)
     shutil.rmtree(store, ignore_errors=True)
     t = cmap.timings
     print(f"wrote {out}: {len(cmap.centres)} voxels, {len(cmap.dexterous)} dexterous (index 1), "
