@@ -25,8 +25,7 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     ``<custom><numeric name="robokit_inertial:BODY">`` replace the approximate ones MuJoCo
     needed (see :mod:`robokit.description.mjcf_write`).
 
-Writing is :mod:`robokit.description.mjcf_write` (``robot_to_mjcf``, ``joint_armature_damping``;
-still importable from here).
+Writing is :mod:`robokit.description.mjcf_write` (``robot_to_mjcf``, ``joint_armature_damping``).
 """
 from __future__ import annotations
 
@@ -418,13 +417,3 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     name = root.get("model") or path.stem
     return build_robot(name, model, tip, geoms, {}, spec)
 
-
-# The writer's names, importable from here as before the split (``from robokit.description.mjcf
-# import robot_to_mjcf``). Known lazy import cycle mjcf ⇢ mjcf_write → mjcf (tests/test_layers.py):
-# remove once nothing imports them from here.
-def __getattr__(name: str) -> Any:
-    if name in ("robot_to_mjcf", "joint_armature_damping"):
-        import importlib
-
-        return getattr(importlib.import_module("robokit.description.mjcf_write"), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -224,18 +224,3 @@ class Robot:
         kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
-
-# Names that lived here before the loaders moved to their own modules. They are found in
-# their new homes on first use, so ``from robokit.description.robot import load`` keeps
-# working. Known lazy import cycle (tests/test_layers.py): remove once nothing imports them
-# from here.
-_MOVED = {"load": "loading", "serial_chain": "builder", "choose_tip": "builder", "default_tip": "builder",
-          "EXAMPLE_ROBOT_TIPS": "example_robots"}
-
-
-def __getattr__(name: str) -> Any:
-    if name in _MOVED:
-        import importlib
-
-        return getattr(importlib.import_module(f"robokit.description.{_MOVED[name]}"), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -196,11 +196,3 @@ def test_package_path_is_the_deprecated_name_of_package_dirs(tmp_path):
     with pytest.raises(InputError, match="package_dirs only"):
         load_xacro(elsewhere, package_dirs=[ws], package_path=[ws])
 
-
-def test_old_import_locations_still_work():
-    from robokit.description.mjcf import robot_to_mjcf
-    from robokit.description.mjcf_write import robot_to_mjcf as new
-    from robokit.description.robot import choose_tip, load as old_load
-    from robokit.description.builder import choose_tip as new_choose_tip
-
-    assert robot_to_mjcf is new and old_load is robokit.load and choose_tip is new_choose_tip
