@@ -128,7 +128,7 @@ def stick_robot(name: str, joint_types: ArrayLike, joint_placements: ArrayLike, 
     tip_placement : (4, 4) array
         The tip frame in the last joint's frame, m.
     tip : str
-        Name of the tip frame.
+        Name of the tip frame (``"tip"`` if it is empty or one of the generated link names).
 
     Returns
     -------
@@ -154,8 +154,9 @@ def stick_robot(name: str, joint_types: ArrayLike, joint_placements: ArrayLike, 
     types, X, A, X_tip = _checked(joint_types, joint_placements, joint_axes, tip_placement)
     if not isinstance(name, str) or not isinstance(tip, str):
         raise InputError("name, tip: expected strings")
-    safe_tip = tip if tip and tip not in ("base_link",) and not tip.startswith(("link_", "joint_")) else "tip"
     n = len(types)
+    generated = {"base_link"} | {f"link_{i}" for i in range(1, n + 1)}
+    safe_tip = tip if tip and tip not in generated else "tip"
     scale = max(float(np.abs(X[:, :3, 3]).max(initial=0.0)), float(np.abs(X_tip[:3, 3]).max()), 0.1)
     r_joint = max(0.01, 0.08 * scale)
     r_link = 0.45 * r_joint
