@@ -14,7 +14,7 @@ through its subpackage, one per course area: ``robokit.spatial``, ``robokit.desc
 """
 from robokit import control, description, dynamics, ik, kinematics, mobile, spatial, trajectory, workspace
 from robokit.control import SimResult, computed_torque, simulate, simulate_control
-from robokit.description import DHLink, DHTable, PoEParams, Robot, RobotLike, load, urdf_to_dh
+from robokit.description import DHLink, DHTable, PoEParams, Robot, RobotLike, RobotSpec, load, urdf_to_dh
 from robokit.dynamics import (
     end_effector_forces,
     euler_step,
@@ -93,7 +93,7 @@ __all__ = list(SEED_FUNCTIONS) + [
     # entry points
     "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "urdf_to_dh",
     # main types
-    "Robot", "RobotLike", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
+    "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap",
     # errors and warnings
     "RobokitError", "InputError", "DivergenceError", "RobokitWarning",

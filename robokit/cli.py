@@ -103,6 +103,8 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+    w.add_argument("--robot", metavar="MODEL", help="the robot to draw with a capability map (MAP.npz); default: "
+                   "the robot the map describes (a path stored in a map is never opened)")
     _add_format_options(w)
 
     t = sub.add_parser("teach", help="a self-contained teach-pendant page: joint sliders, 3-D view, live readouts")
@@ -135,14 +137,23 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import view_command
 
         opts = _format_options(args)
-        if opts:  # formats: a xacro robot with arguments/packages is loaded here
-            from robokit.description.robot import load
-
-            args.model = load(args.model, tip=args.tip, **opts)
         if str(args.model).lower().endswith(".npz"):  # a capability map (robokit workspace)
             from robokit.commands import capability_view_command
 
-            return capability_view_command(args.model, args.output)
+            robot = args.robot
+            if robot is not None and (opts or args.tip):
+                from robokit.description.loading import load
+
+                robot = load(robot, tip=args.tip, **opts)
+            return capability_view_command(args.model, args.output, robot=robot)
+        if args.robot is not None:
+            from robokit.errors import InputError
+
+            raise InputError("--robot: applies to capability maps (MAP.npz); give the robot as MODEL")
+        if opts:  # formats: a xacro robot with arguments/packages is loaded here
+            from robokit.description.loading import load
+
+            args.model = load(args.model, tip=args.tip, **opts)
         return view_command(args.model, args.output, q=args.q, frames=args.frames,
                         trajectory=args.trajectory, fps=args.fps, tip=args.tip)
     if args.command == "teach":
@@ -151,7 +162,7 @@ def _dispatch(args: argparse.Namespace) -> int:
         model = args.model
         opts = _format_options(args)
         if opts or args.tip:
-            from robokit.description.robot import load
+            from robokit.description.loading import load
 
             model = load(args.model, tip=args.tip, **opts)
         return teach_command(model, args.output)

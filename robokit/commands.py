@@ -56,7 +56,7 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
                  q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
                  fps: float = 30.0, tip: str | None = None) -> int:
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
-    from robokit.description.robot import load
+    from robokit.description.loading import load
     from robokit.viz.view import load_trajectory, view_html
 
     out = _output_file(output, (".html", ".htm"))
@@ -82,7 +82,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     import tempfile
     import webbrowser
 
-    from robokit.description.robot import load
+    from robokit.description.loading import load
     from robokit.viz.teach import teach_html
 
     if output is not None:
@@ -133,12 +133,16 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     return 0
 
 
-def capability_view_command(path: str | os.PathLike[str], output: str | os.PathLike[str]) -> int:
-    """``robokit view MAP.npz -o OUT.html``: the meshcat page of a capability map, written atomically."""
+def capability_view_command(path: str | os.PathLike[str], output: str | os.PathLike[str],
+                            robot: Any = None) -> int:
+    """``robokit view MAP.npz [--robot MODEL] -o OUT.html``: the meshcat page of a capability map,
+    written atomically. The robot drawn is ``robot`` when given (the user's own choice, loaded
+    like any MODEL), else the one the map describes without naming a file
+    (:mod:`robokit.workspace.map_robot`), else none (with a note)."""
     from robokit.workspace.plot import capability_html
 
     out = _output_file(output, (".html", ".htm"))
-    page = capability_html(path)
+    page = capability_html(path, robot=robot)
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
     return 0

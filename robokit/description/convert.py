@@ -43,7 +43,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     ``notes`` are human-readable remarks (e.g. joints locked off the chain) for stderr.
     """
     from robokit.description.dh import DHTable
-    from robokit.description.robot import load
+    from robokit.description.loading import load
     from robokit.description.urdf_gen import dh_to_urdf
 
     src = str(input)
@@ -52,7 +52,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     out_suffix = out.suffix.lower() if out is not None else None
     notes: list[str] = []
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
-        from robokit.description.mjcf import robot_to_mjcf
+        from robokit.description.mjcf_write import robot_to_mjcf
 
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
         text, notes = robot_to_mjcf(robot)

@@ -70,7 +70,7 @@ def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> Po
     """PoE parameters of a Pinocchio ``model`` that is a serial chain of 1-dof joints.
 
     model : ``pinocchio.Model`` whose joints 1..n form one chain (as made by
-    :func:`robokit.description.robot.serial_chain`); tip : the tip frame's name;
+    :func:`robokit.description.builder.serial_chain`); tip : the tip frame's name;
     gravity : (3,) (default: the model's gravity).
     """
     import pinocchio as pin

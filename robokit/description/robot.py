@@ -1,4 +1,4 @@
-r"""The Robot type and ``load``: one robot, its Pinocchio model, its course parameters.
+r"""The Robot type: one robot, its Pinocchio model, its course parameters.
 
 A :class:`Robot` holds a serial chain root → tip as a Pinocchio ``Model`` (joints off the
 chain — a gripper's fingers — locked at their neutral value and their bodies merged), one
@@ -10,164 +10,25 @@ All methods take **joint angles** θ (n,) — one number per joint, continuous j
 included — and convert to Pinocchio's configuration q internally (a continuous joint's
 q is (cos θ, sin θ)). Jacobians are returned **angular first**, ``(ω; v)``.
 
-``load(name_or_path)`` accepts a shipped model name (``models/<name>.yaml``), a DH
-``.yaml`` file, a ``.urdf`` file, or an example-robot-data name (``ur5``, ``panda``, ``z1``,
-``xarm7``, ``kinova``, …).
+Robots are made by :func:`robokit.load` (:mod:`robokit.description.loading`), which reads
+a shipped model name, a DH ``.yaml``, a ``.urdf``, a xacro file, an MJCF ``.xml`` or an
+example-robot-data name, and records a :class:`~robokit.description.spec.RobotSpec` on
+``robot.spec`` that rebuilds the same robot anywhere.
 """
 from __future__ import annotations
 
-import os
-from pathlib import Path
-from typing import Any, Iterable, Literal, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
-from robokit.errors import InputError, RobokitWarning
 
-__all__ = ["Robot", "load", "serial_chain", "choose_tip", "EXAMPLE_ROBOT_TIPS"]
+if TYPE_CHECKING:
+    from robokit.description.spec import RobotSpec
 
-#: Default tip frames of the example-robot-data arms (the last link of the arm's chain,
-#: a gripper's fingers excluded).
-EXAMPLE_ROBOT_TIPS = {
-    "ur3": "tool0",
-    "ur5": "tool0",
-    "ur10": "tool0",
-    "panda": "panda_hand_tcp",
-    "z1": "link06",
-    "xarm7": "link_eef",
-    "kinova": "j2s6s200_end_effector",
-}
-
-_ONE_DOF = {
-    "JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned",
-    "JointModelRUBX", "JointModelRUBY", "JointModelRUBZ", "JointModelRevoluteUnboundedUnaligned",
-    "JointModelPX", "JointModelPY", "JointModelPZ", "JointModelPrismaticUnaligned",
-}
-
-
-def _frame_depth(model: Any, fid: int) -> int:
-    depth = 0
-    while model.frames[fid].parentFrame != fid and fid != 0:
-        fid = model.frames[fid].parentFrame
-        depth += 1
-    return depth
-
-
-def _deepest_body_frame(model: Any, joint: int) -> str | None:
-    best, best_depth = None, -1
-    for fid, fr in enumerate(model.frames):
-        if fr.parentJoint == joint and fr.type == _body_type():
-            d = _frame_depth(model, fid)
-            if d >= best_depth:
-                best, best_depth = fr.name, d
-    return best
-
-
-def _tip_candidates(model: Any, children: Mapping[int, list[int]]) -> list[tuple[str, int]]:
-    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
-    out = []
-    for j in range(1, model.njoints):
-        if not children[j]:
-            depth, k = 0, j
-            while k != 0:
-                depth, k = depth + 1, model.parents[k]
-            name = _deepest_body_frame(model, j)
-            if name is not None:
-                out.append((name, depth))
-    return sorted(out, key=lambda c: (-c[1], c[0]))
-
-
-def choose_tip(model: Any) -> tuple[str, str]:
-    """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
-
-    From the root, follow the joints while each has exactly one child joint. At a branch:
-    if every branch is a single joint (a gripper's fingers), the tip is the deepest body frame
-    fixed to the current joint; if exactly one branch is longer than all others, follow it
-    (the longest chain — an arm rather than a head, a caster or a sensor); if two or more
-    branches tie for longest (two arms, four legs), there is no sensible default and
-    ``ValueError`` lists the candidate tips with their chain lengths.
-    """
-    children: dict[int, list[int]] = {j: [] for j in range(model.njoints)}
-    for j in range(1, model.njoints):
-        children[model.parents[j]].append(j)
-
-    def depth(j: int) -> int:
-        return 1 + max((depth(c) for c in children[j]), default=0)
-
-    j, chose = 0, False
-    while children[j]:
-        if len(children[j]) == 1:
-            j = children[j][0]
-            continue
-        depths = sorted(((depth(c), c) for c in children[j]), reverse=True)
-        if depths[0][0] <= 1 and j != 0:
-            break  # fingers
-        if depths[0][0] == depths[1][0]:
-            cands = _tip_candidates(model, children)
-            shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
-            raise ValueError(
-                f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "
-                f"with tip= (--tip): {shown}"
-            )
-        j, chose = depths[0][1], True
-    tip = _deepest_body_frame(model, j)
-    if tip is None:
-        raise ValueError("model: no body frame found for the chain's tip")
-    note = f"the robot is a tree; chose its longest chain, to {tip!r} (give --tip for another)" if chose else ""
-    return tip, note
-
-
-def default_tip(model: Any) -> str:
-    """The default tip frame of a model (see :func:`choose_tip`)."""
-    return choose_tip(model)[0]
-
-
-def _body_type() -> Any:
-    import pinocchio as pin
-
-    return pin.FrameType.BODY
-
-
-def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> tuple[Any, list[str], list[Any]]:
-    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
-
-    Returns ``(chain_model, locked_joint_names, geometry_models)``. Raises ``ValueError`` for
-    a tip that does not exist (listing some that do) or a joint on the chain that is not a
-    one-degree-of-freedom revolute/prismatic/continuous joint (e.g. a floating base).
-    """
-    import pinocchio as pin
-
-    if not model.existFrame(tip):
-        bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY]
-        shown = ", ".join(bodies[-12:])
-        raise ValueError(f"tip: no frame {tip!r}; frames include: {shown}")
-    fid = model.getFrameId(tip)
-    chain = []
-    j = model.frames[fid].parentJoint
-    while j != 0:
-        chain.append(j)
-        j = model.parents[j]
-    chain.reverse()
-    for j in chain:
-        sn = model.joints[j].shortname()
-        if sn not in _ONE_DOF:
-            kind = "floating base" if sn == "JointModelFreeFlyer" else sn
-            raise ValueError(
-                f"model: joint {model.names[j]!r} on the chain to {tip!r} is a {kind}; robokit handles fixed-base "
-                "serial chains of revolute, prismatic and continuous joints"
-            )
-    lock = [j for j in range(1, model.njoints) if j not in chain]
-    if not lock:
-        return model, [], list(geometry_models)
-    q0 = pin.neutral(model)
-    if geometry_models:
-        reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
-        return reduced, [model.names[j] for j in lock], list(geoms)
-    reduced = pin.buildReducedModel(model, lock, q0)
-    return reduced, [model.names[j] for j in lock], []
+__all__ = ["Robot"]
 
 
 class Robot:
@@ -181,8 +42,12 @@ class Robot:
     poe : :class:`PoEParams`; n : number of joint angles; joint_names : (n,);
     qlim : (n, 2) joint limits (±inf for continuous joints); gravity : (3,);
     configurations : dict of named configurations (joint angles), "zero" always;
-    locked_joints : names of the joints locked off the chain; source : where it came from.
+    locked_joints : names of the joints locked off the chain; source : where it came from;
+    spec : the :class:`~robokit.description.spec.RobotSpec` that rebuilds it
+    (``robokit.load(robot.spec)``), None for a Robot built by hand from a model.
     """
+
+    spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)
 
     def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
                  dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
@@ -359,218 +224,3 @@ class Robot:
         kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
-
-def _from_dh(table: DHTable, source: str) -> Robot:
-    import pinocchio as pin
-
-    from robokit.description.urdf_gen import dh_to_urdf
-
-    xml = dh_to_urdf(table)
-    model = pin.buildModelFromXML(xml)
-    model.gravity.linear = np.asarray(table.gravity, dtype=float)
-    try:
-        visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
-        collision = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION)
-    except Exception:  # pragma: no cover - geometry is optional
-        visual = collision = None
-    return Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table, source=source)
-
-
-def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-                    allow_outside_meshes: bool = False, text: str | None = None) -> Robot:
-    """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``)."""
-    import pinocchio as pin
-
-    from robokit.description.urdf_check import capture_native_output, read_urdf
-
-    doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, text=text)
-    with capture_native_output() as cap:
-        try:
-            model = pin.buildModelFromXML(doc.xml)
-        except Exception as exc:
-            failed: Exception | None = exc
-        else:
-            failed = None
-    if failed is not None:
-        why = cap.first_error() or _one_line(failed)
-        raise InputError(f"{path}: Pinocchio cannot read this URDF ({why})") from None
-    geoms, notes = [], []
-    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
-        with capture_native_output() as cap:
-            try:
-                geoms.append(pin.buildGeomFromUrdfString(model, doc.xml, gtype, package_dirs=doc.package_dirs))
-                err = None
-            except Exception as exc:
-                geoms.append(None)
-                err = cap.first_error() or _one_line(exc)
-        if err:
-            notes.append(f"{path}: {gtype.name.lower()} geometry not loaded ({err}); drawn without it")
-    return _finish(doc.name, model, tip, geoms, {}, str(path), notes, mimic=doc.mimic)
-
-
-def _one_line(exc: BaseException) -> str:
-    text = str(exc).strip()
-    return text.splitlines()[0][:200] if text else type(exc).__name__
-
-
-def _finish(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
-            source: str, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None) -> Robot:
-    import warnings
-
-    notes = list(notes)
-    if tip is None:
-        tip, note = choose_tip(model)
-        if note:
-            notes.append(f"{name}: {note}")
-    valid = [g for g in geoms if g is not None]
-    chain, locked, new_geoms = serial_chain(model, tip, valid)
-    if chain.nv == 0:
-        raise InputError(f"{source}: the chain to {tip!r} has no moving joint; robokit needs at least one")
-    for jn, target in (mimic or {}).items():
-        if jn not in locked:
-            raise InputError(
-                f"{source}: joint {jn!r} mimics {target!r} and is on the chain to {tip!r}; robokit's joints are "
-                "independent — remove the <mimic> or choose another tip"
-            )
-    if mimic and any(j in locked for j in mimic):
-        notes.append(f"{name}: mimic joints off the chain locked: {', '.join(j for j in mimic if j in locked)}")
-    it = iter(new_geoms)
-    geoms = [next(it) if g is not None else None for g in geoms]
-    robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
-                  configurations=configurations, locked_joints=locked, source=source)
-    robot.notes.extend(notes)
-    for note in notes:
-        warnings.warn(note, RobokitWarning, stacklevel=3)
-    return robot
-
-
-def _from_example_robot_data(name: str, tip: str | None) -> Robot:
-    import example_robot_data as erd
-
-    loader = erd.ROBOTS[name]
-    notes = []
-    try:
-        with _quiet():
-            if getattr(loader, "free_flyer", False):
-                # Loaded with its base fixed to the world: a fixed-base arm (so100) is then what its
-                # URDF describes; a mobile or legged robot's limbs are then chains like any other.
-                wrapper = type(loader.__name__, (loader,), {"free_flyer": False})().robot
-                notes.append(f"{name}: example-robot-data gives it a floating base; loaded with the base fixed "
-                             "to the world")
-            else:
-                wrapper = erd.load(name)
-    except Exception as exc:  # a dependency's failure is still one robokit line
-        raise InputError(f"model {name!r}: example-robot-data could not load it ({_one_line(exc)})") from None
-    model = wrapper.model
-    tip = tip or EXAMPLE_ROBOT_TIPS.get(name)
-    if tip is None:
-        try:
-            tip, note = choose_tip(model)
-        except ValueError as exc:
-            raise InputError(f"model {name!r}: {exc}") from None
-        if note:
-            notes.append(f"{name}: {note}")
-    configurations = {}
-    q0 = getattr(wrapper, "q0", None)
-    chain_names = []
-    if model.existFrame(tip):
-        j = model.frames[model.getFrameId(tip)].parentJoint
-        while j != 0:
-            chain_names.append(model.names[j])
-            j = model.parents[j]
-        chain_names.reverse()
-    if q0 is not None and chain_names and len(q0) == model.nq:
-        angles = []
-        for jn in chain_names:
-            jm = model.joints[model.getJointId(jn)]
-            qs = q0[jm.idx_q: jm.idx_q + jm.nq]
-            angles.append(float(np.arctan2(qs[1], qs[0])) if jm.nq == 2 else float(qs[0]))
-        if np.any(angles):
-            configurations["ready"] = np.array(angles)
-    return _finish(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
-                   f"example-robot-data:{name}", notes)
-
-
-class _quiet:
-    """Silence C/C++ output on fd 2 and Python prints while a dependency loads a model."""
-
-    def __enter__(self) -> _quiet:
-        import contextlib
-        import io
-
-        from robokit.description.urdf_check import capture_native_output
-
-        self._cap = capture_native_output()
-        self._cap.__enter__()
-        self._out = contextlib.redirect_stdout(io.StringIO())
-        self._out.__enter__()
-        return self
-
-    def __exit__(self, *exc: Any) -> Literal[False]:
-        self._out.__exit__(*exc)
-        self._cap.__exit__(*exc)
-        return False
-
-
-def _example_robot_names() -> list[str]:
-    try:
-        import example_robot_data as erd
-
-        return sorted(getattr(erd, "ROBOTS", {}).keys())
-    except Exception:  # pragma: no cover
-        return []
-
-
-def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None = None, *,
-         package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
-         allow_outside_meshes: bool = False) -> Robot:
-    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
-    an MJCF ``.xml``, or an example-robot-data name.
-
-    tip : the chain's tip frame (default: "tool" for DH models, the arm's end-effector
-    frame for example-robot-data arms, else the end of the chain — of the longest chain for a
-    tree, see :func:`choose_tip`).
-    package_dirs : folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF or
-    xacro file, and ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``;
-    the file's own folder and the folders above it are always searched).
-    xacro_args : dict of xacro argument values (``{"name": "value"}``), xacro files only.
-    allow_outside_meshes : read meshes that a URDF names outside its folder, its package and
-    ``package_dirs`` (absolute paths, ``../`` out of the package); refused by default.
-
-    Example: ``robokit.load("puma560").frame_pose(np.zeros(6))``.
-    """
-    from robokit.description.models import models_dir, shipped_models
-
-    if isinstance(name_or_path, Robot):
-        return name_or_path
-    if isinstance(name_or_path, DHTable):
-        return _from_dh(name_or_path, "<DHTable>")
-    s = str(name_or_path)
-    path = Path(s)
-    if path.suffix.lower() in (".yaml", ".yml"):
-        if tip not in (None, "tool"):
-            raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
-        return _from_dh(DHTable.from_yaml(path), str(path))
-    if path.name.lower().endswith(".xacro"):  # formats: xacro
-        from robokit.description.xacro_files import load_xacro
-
-        return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_dirs)
-    if xacro_args:
-        raise ValueError(f"xacro_args: apply to .xacro files, got {s!r}")
-    if path.suffix.lower() == ".xml":  # formats: MJCF
-        from robokit.description.mjcf import load_mjcf
-
-        return load_mjcf(path, tip)
-    if path.suffix.lower() == ".urdf":
-        if not path.is_file():
-            raise InputError(f"{path}: file not found")
-        return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
-    if s in shipped_models():
-        return _from_dh(DHTable.from_yaml(models_dir() / f"{s}.yaml"), f"models/{s}.yaml")
-    erd_names = _example_robot_names()
-    if s in erd_names:
-        return _from_example_robot_data(s, tip)
-    raise ValueError(
-        f"model: unknown robot {s!r}; give a .yaml or .urdf file, a shipped model ({', '.join(shipped_models())}) "
-        f"or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
-    )

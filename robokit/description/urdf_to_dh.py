@@ -142,7 +142,8 @@ def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
     example-robot-data name). The table is checked by FK against Pinocchio at ``samples`` random
     configurations; ``residual`` is the largest entry-wise pose error (≤ 1e-9: ``exact``).
     """
-    from robokit.description.robot import Robot, load
+    from robokit.description.loading import load
+    from robokit.description.robot import Robot
 
     if convention not in ("standard", "modified"):
         raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")

@@ -4,7 +4,7 @@ A xacro file is expanded to URDF with the ``xacro`` Python package, then loaded 
 URDF. ROS finds packages through its index (``$(find pkg)`` needs ``ament_index_python``);
 robokit finds them itself, in this order:
 
-1. each folder ``D`` of ``package_path``: ``D/<pkg>/package.xml``, ``D`` itself when its
+1. each folder ``D`` of ``package_dirs``: ``D/<pkg>/package.xml``, ``D`` itself when its
    ``package.xml`` is named ``<pkg>``, or a sub-folder of ``D`` whose ``package.xml`` is;
 2. the xacro file's own folder and every folder above it, by the same three rules — so a
    package found beside the file (a ROS workspace's ``src/``) needs no option.
@@ -33,6 +33,8 @@ from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from robokit._optional import require
 from robokit.description._notes import note
+from robokit.description.spec import RobotSpec, xacro_args_tuple
+from robokit.description.urdf_files import _from_urdf_file, absolute_dirs
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -40,8 +42,22 @@ if TYPE_CHECKING:
 
 __all__ = ["expand_xacro", "find_package", "load_xacro"]
 
+_UNSET: Any = object()
 _LOCK = threading.Lock()  # the xacro package keeps its state in module globals
 _IGNORED = ("gazebo", "transmission", "ros2_control")
+
+
+def _package_dirs(package_dirs: Any, package_path: Any, where: str) -> Any:
+    """``package_dirs``, or the value of its old name ``package_path`` (with a deprecation warning)."""
+    if package_path is _UNSET:
+        return package_dirs
+    import warnings
+
+    if package_dirs is not None and package_dirs != ():
+        raise InputError(f"{where}: give package_dirs only (package_path is its old name)")
+    warnings.warn(f"{where}: package_path= is now package_dirs= (the name robokit.load uses); "
+                  "package_path will be removed", FutureWarning, stacklevel=3)
+    return package_path
 
 
 def _package_name(package_xml: Path) -> str:
@@ -72,16 +88,17 @@ def _package_in(folder: Path, pkg: str) -> Path | None:
     return None
 
 
-def find_package(pkg: str, package_path: Sequence[str | os.PathLike[str]] | None = (),
-                 start: str | os.PathLike[str] | None = None) -> Path:
+def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None = (),
+                 start: str | os.PathLike[str] | None = None, *, package_path: Any = _UNSET) -> Path:
     """Folder of the package named ``pkg``.
 
     Parameters
     ----------
     pkg : str
         Package name (the ``<name>`` of its ``package.xml``).
-    package_path : sequence of str or Path
-        Folders searched first (see the module docstring for the rules).
+    package_dirs : sequence of str or Path
+        Folders searched first (see the module docstring for the rules). ``package_path`` is
+        its old name, deprecated.
     start : str or Path, optional
         A file or folder; its folder and every folder above it are searched next.
 
@@ -99,6 +116,7 @@ def find_package(pkg: str, package_path: Sequence[str | os.PathLike[str]] | None
     --------
     >>> find_package("my_arm_description", ["~/ws/src"])   # doctest: +SKIP
     """
+    package_path = _package_dirs(package_dirs, package_path, "find_package")
     folders = [Path(p).expanduser() for p in (package_path or ())]
     for d in folders:
         found = _package_in(d, pkg)
@@ -208,7 +226,7 @@ def _resolve_mesh_uri(uri: str, top: Path, package_path: Sequence[str | os.PathL
 
 
 def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | None = None,
-                 package_path: Sequence[str | os.PathLike[str]] | None = None) -> str:
+                 package_dirs: Sequence[str | os.PathLike[str]] | None = None, *, package_path: Any = _UNSET) -> str:
     """The URDF text of a xacro file, with packages and mesh paths resolved.
 
     Parameters
@@ -218,8 +236,9 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
         mesh URIs are resolved).
     xacro_args : dict, optional
         Argument values, ``{"name": "value"}`` (values are converted with ``str``).
-    package_path : sequence of str or Path, optional
-        Folders searched for packages (see the module docstring).
+    package_dirs : sequence of str or Path, optional
+        Folders searched for packages (see the module docstring). ``package_path`` is its old
+        name, deprecated.
 
     Returns
     -------
@@ -243,6 +262,7 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     except ImportError:  # pragma: no cover - xacro is a dependency
         raise InputError(f"{path}: reading xacro files needs the 'xacro' package (pip install xacro)") from None
 
+    package_path = _package_dirs(package_dirs, package_path, "expand_xacro")
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: file not found")
@@ -255,7 +275,7 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     for d in package_path:
         assert isinstance(d, Path)
         if not d.expanduser().is_dir():
-            raise InputError(f"package_path: {str(d)!r} is not a folder")
+            raise InputError(f"package_dirs: {str(d)!r} is not a folder")
     top = path.resolve()
     missing_pkg: list = []
 
@@ -316,22 +336,25 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
 
 
 def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_args: Mapping[str, str] | None = None,
-               package_path: Sequence[str | os.PathLike[str]] | None = None) -> Robot:
+               package_dirs: Sequence[str | os.PathLike[str]] | None = None, package_path: Any = _UNSET) -> Robot:
     """Load a xacro (or URDF) file as a :class:`robokit.Robot`.
 
     Parameters
     ----------
     path : str or Path
         ``.xacro`` / ``.urdf.xacro`` (or ``.urdf`` whose ``package://`` meshes need
-        ``package_path``).
+        ``package_dirs``).
     tip : str, optional
         Tip frame of the chain (default: the last link of the chain).
-    xacro_args, package_path
-        See :func:`expand_xacro`.
+    xacro_args, package_dirs
+        See :func:`expand_xacro` (``package_path`` is the old name of ``package_dirs``,
+        deprecated).
 
     Returns
     -------
     Robot
+        ``robot.spec == RobotSpec("xacro", path=<absolute path>, tip=tip, package_dirs=...,
+        xacro_args=...)``.
 
     Raises
     ------
@@ -342,14 +365,15 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
     --------
     >>> robot = load_xacro("arm.urdf.xacro", xacro_args={"l1": "0.4"})   # doctest: +SKIP
     """
-    from robokit.description.robot import _from_urdf_file
-
+    package_path = _package_dirs(package_dirs, package_path, "load_xacro")
     path = Path(path)
     name = path.name.lower()
     if not (name.endswith(".xacro") or name.endswith(".urdf")):
-        raise InputError(f"xacro_args/package_path: apply to .xacro and .urdf files, got {str(path)!r}")
+        raise InputError(f"xacro_args/package_dirs: apply to .xacro and .urdf files, got {str(path)!r}")
     text = expand_xacro(path, xacro_args, package_path)
+    spec = RobotSpec("xacro", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_path),
+                     xacro_args=xacro_args_tuple(xacro_args))
     # The expansion resolved $(find) and package:// through the package search above, so the
     # meshes it names are the packages' own: read like any URDF's, with those paths trusted.
-    return _from_urdf_file(path, tip, package_dirs=package_path, allow_outside_meshes=True, text=text)
+    return _from_urdf_file(path, tip, package_dirs=package_path, allow_outside_meshes=True, text=text, spec=spec)
 

@@ -57,7 +57,7 @@ class CheckRow:
 @functools.lru_cache(maxsize=None)
 def robot(name: str) -> Robot:
     """``robokit.load(name)``, loaded once per validation run and shared by the check modules."""
-    from robokit.description.robot import load
+    from robokit.description.loading import load
 
     return load(name)
 

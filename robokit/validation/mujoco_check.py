@@ -1,6 +1,6 @@
 r"""MuJoCo as a second, independent reference for robokit's kinematics and dynamics.
 
-A robot is written as MJCF (:func:`robokit.description.mjcf.robot_to_mjcf`) — or an MJCF
+A robot is written as MJCF (:func:`robokit.description.mjcf_write.robot_to_mjcf`) — or an MJCF
 file is taken as it is — and compiled by MuJoCo; at random states ``(q, q̇, q̈)`` MuJoCo's
 
 * body and site poses (``mj_kinematics``: ``xpos``/``xmat``, ``site_xpos``/``site_xmat``),
@@ -12,7 +12,7 @@ file is taken as it is — and compiled by MuJoCo; at random states ``(q, q̇, q
 are compared with Pinocchio's (the :class:`robokit.Robot` methods) and with the course
 code (:func:`robokit.mass_matrix` and :func:`robokit.inverse_dynamics` on ``robot.poe``),
 with the same gravity and contacts and constraints disabled. Armature and damping are those
-of :func:`~robokit.description.mjcf.joint_armature_damping` (``G² Jm`` and ``G² B`` for a
+of :func:`~robokit.description.mjcf_write.joint_armature_damping` (``G² Jm`` and ``G² B`` for a
 DH file), added to the references where they do not already include them.
 
 MuJoCo's compiler refuses some inertials (a moving body with no mass, a point mass, a
@@ -171,8 +171,9 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     True
     """
     mj = _require()
-    from robokit.description.mjcf import joint_armature_damping, robot_to_mjcf
-    from robokit.description.robot import Robot, load
+    from robokit.description.mjcf_write import joint_armature_damping, robot_to_mjcf
+    from robokit.description.loading import load
+    from robokit.description.robot import Robot
     from robokit.dynamics.newton_euler import inverse_dynamics, mass_matrix
 
     if not isinstance(robot, Robot):

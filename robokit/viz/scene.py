@@ -118,7 +118,9 @@ class Scene:
     def __init__(self, robot: Robot | DHTable | str | os.PathLike[str], vis: Any = None) -> None:
         from pinocchio.visualize import MeshcatVisualizer
 
-        from robokit.description.robot import Robot, load
+        from robokit.description.loading import load
+
+        from robokit.description.robot import Robot
 
         self.robot = robot if isinstance(robot, Robot) else load(robot)
         self._own = vis is None

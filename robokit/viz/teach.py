@@ -395,7 +395,7 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
 
     Example: ``Path("puma.html").write_text(teach_html("puma560"))``.
     """
-    from robokit.description.robot import load
+    from robokit.description.loading import load
 
     robot = load(model)
     d = teach_data(robot, q)

@@ -58,7 +58,7 @@ def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | No
               tip: str | None = None) -> str:
     """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
     and/or a (K, n) trajectory animation; the camera framed on the robot."""
-    from robokit.description.robot import load
+    from robokit.description.loading import load
     from robokit.viz.scene import Scene
 
     robot = load(model, tip=tip)

@@ -18,9 +18,9 @@ How it is computed:
 1. the grid and its pre-pass (:mod:`robokit.workspace.grid`): voxels the tool never comes
    near are dropped before any IK;
 2. the marked voxels, in lexicographic order of their lattice index, are cut into chunks of
-   ``chunk_size`` voxels; each chunk is one task: the worker rebuilds the robot from a
-   picklable description (a DH table, or a shipped/example-robot-data name or file path —
-   never a Pinocchio object), builds the chunk's ``chunk_size × K`` target poses and answers
+   ``chunk_size`` voxels; each chunk is one task: the worker rebuilds the robot from its
+   :class:`~robokit.description.spec.RobotSpec` (``robokit.load(robot.spec)``: a name, a file
+   with its options, or a DH table as text — never a Pinocchio object), builds the chunk's ``chunk_size × K`` target poses and answers
    them with :func:`robokit.workspace.ik_success`. Memory therefore grows with the chunk,
    never with ``M × K``;
 3. tasks run in-process (``client="serial"``) or on Dask (a ``LocalCluster`` of one
@@ -50,10 +50,12 @@ from numpy.typing import ArrayLike
 
 from robokit._optional import require
 from robokit._io import atomic_write
+from robokit.workspace.map_robot import MapRobot, map_robot_of
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
+    from robokit.description.spec import RobotSpec
 
 __all__ = ["CapabilityMap", "capability_map"]
 
@@ -79,6 +81,9 @@ class CapabilityMap:
         Voxel edge (m).
     robot : str
         The robot's name ("" when loaded from a file that does not store it).
+    description : :class:`~robokit.workspace.map_robot.MapRobot` or None
+        The robot as the map file stores it (its name, its DH table or its chain's geometry —
+        never a path), so a viewer draws it without opening any file; None when unknown.
     parameters : dict
         Everything that determined the map (IK back end, planar or not, chunk size,
         pre-pass samples, seed, fingerprint).
@@ -94,6 +99,7 @@ class CapabilityMap:
     robot: str = ""
     parameters: dict = field(default_factory=dict)
     timings: dict = field(default_factory=dict)
+    description: MapRobot | None = None
 
     @property
     def dexterous(self) -> np.ndarray:
@@ -107,11 +113,14 @@ class CapabilityMap:
 
     def to_bytes(self, include_robot: bool = False) -> bytes:
         """The ``.npz`` file's bytes: ``centres``, ``index``, ``orientations``, ``resolution``
-        (and ``robot``, the name, when ``include_robot``)."""
+        (and, when ``include_robot``, ``robot``, the name, with the robot's ``description``:
+        see :mod:`robokit.workspace.map_robot`)."""
         arrays = dict(centres=self.centres, index=self.index, orientations=self.orientations,
                       resolution=np.float64(self.resolution))
         if include_robot:
             arrays["robot"] = np.str_(self.robot)
+            if self.description is not None:
+                arrays.update(self.description.to_arrays())
         buf = io.BytesIO()
         np.savez(buf, **arrays)
         return buf.getvalue()
@@ -138,35 +147,43 @@ class CapabilityMap:
         if C.ndim != 2 or C.shape[1] != 3 or D.shape != (len(C),) or R.ndim != 3 or R.shape[1:] != (3, 3):
             raise ValueError(f"map: {str(p)!r} has inconsistent shapes: centres {C.shape}, index {D.shape}, "
                              f"orientations {R.shape}")
-        robot = str(data["robot"]) if "robot" in data else ""
-        return cls(C.astype(float), D.astype(float), R.astype(float), float(data["resolution"]), robot)
+        description, note = MapRobot.from_arrays(data, source=str(p))
+        if note:
+            import warnings
+
+            from robokit.errors import RobokitWarning
+
+            warnings.warn(note, RobokitWarning, stacklevel=2)
+        robot = description.name if description is not None else ""
+        return cls(C.astype(float), D.astype(float), R.astype(float), float(data["resolution"]), robot,
+                   description=description)
 
 
 # ----------------------------------------------------------------------------- robot descriptions
-def _describe(robot_arg: Any, robot: Robot) -> tuple:
-    """A picklable description the workers rebuild the robot from (never a Pinocchio object)."""
-    from robokit.description.dh import DHTable
+def _describe(robot_arg: Any, robot: Robot) -> RobotSpec:
+    """The picklable description the workers rebuild the robot from: its RobotSpec (never a
+    Pinocchio object), whatever format it was loaded from."""
+    from robokit.errors import InputError
 
-    if isinstance(robot_arg, DHTable):
-        return ("dh", robot_arg)
-    if robot.dh is not None:
-        return ("dh", robot.dh)
-    src = str(robot.source)
-    if src.startswith("example-robot-data:"):
-        return ("load", src.split(":", 1)[1], robot.tip)
-    if Path(src).suffix.lower() == ".urdf" and Path(src).is_file():
-        return ("load", str(Path(src).resolve()), robot.tip)
-    raise ValueError(f"robot: cannot describe {robot.name!r} (source {src!r}) for the workers; "
-                     "pass a shipped model name, a .yaml/.urdf path, an example-robot-data name or a DHTable")
+    if robot.spec is None:
+        raise InputError(f"robot: {robot.name!r} was built by hand from a Pinocchio model and has no RobotSpec "
+                         "for the workers; pass what robokit.load reads (a name, a file, a DHTable, a RobotSpec)")
+    return robot.spec
 
 
-def _description_digest(desc: tuple) -> str:
+def _description_digest(desc: RobotSpec) -> str:
+    """Fingerprint of a robot description: the spec's fields and the bytes of the file it names."""
+    import dataclasses
+
     h = hashlib.sha256()
-    if desc[0] == "dh":
-        h.update(desc[1].to_yaml_str(angle_unit="rad").encode())
+    h.update(json.dumps(dataclasses.asdict(desc), sort_keys=True).encode())
+    if desc.kind == "shipped":
+        from robokit.description.models import models_dir
+
+        files = [models_dir() / f"{desc.name}.yaml"]
     else:
-        h.update(repr(desc).encode())
-        p = Path(desc[1])
+        files = [Path(desc.path)] if desc.path is not None and desc.kind != "dh" else []
+    for p in files:
         if p.is_file():
             h.update(p.read_bytes())
     return h.hexdigest()
@@ -175,20 +192,20 @@ def _description_digest(desc: tuple) -> str:
 _WORKER_CACHE: dict = {}
 
 
-def _backend_for(desc: tuple, restarts: int) -> Any:
+def _backend_for(desc: RobotSpec, restarts: int) -> Any:
     """The robot and IK back end of ``desc``, built once per process."""
     key = (_description_digest(desc), restarts)
     hit = _WORKER_CACHE.get(key)
     if hit is None:
-        from robokit.description.robot import load
+        from robokit.description.loading import load
         from robokit.workspace.reach import _Backend
 
-        robot = load(desc[1]) if desc[0] == "dh" else load(desc[1], tip=desc[2])
+        robot = load(desc)
         hit = _WORKER_CACHE[key] = _Backend(robot, restarts)
     return hit
 
 
-def _chunk_counts(desc: tuple, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int) -> np.ndarray:
+def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -291,15 +308,17 @@ def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
                     TimeRemainingColumn(), console=console, disable=not show, transient=False), total
 
 
-def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
+def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
                    restarts: int | None = None, progress: bool | None = None) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
 
     Parameters
     ----------
-    robot : :class:`robokit.Robot`, :class:`robokit.DHTable`, or a name/path ``robokit.load`` accepts
-        The arm; its tip frame is the tool.
+    robot : :class:`robokit.Robot`, :class:`robokit.DHTable`, :class:`robokit.RobotSpec`, or a name/path ``robokit.load`` accepts
+        The arm; its tip frame is the tool. Workers rebuild it from its ``robot.spec``, so a
+        robot from any format robokit reads (DH, URDF, xacro, MJCF, example-robot-data) gets
+        a map.
     resolution : float
         Voxel edge (m).
     orientations : int or (K, 3, 3) array
@@ -344,7 +363,7 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
     >>> cmap.index.max()
     1.0
     """
-    from robokit.description.robot import load
+    from robokit.description.loading import load
     from robokit.workspace.reach import DEFAULT_RESTARTS, ik_backend, planar_chain
 
     t0 = time.perf_counter()
@@ -378,7 +397,7 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
                                int(seed), int(restarts), progress, t0)
 
 
-def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -438,7 +457,7 @@ def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarra
     timings = dict(prepass=t_pre, sweep=t_sweep, total=time.perf_counter() - t0,
                    problems=computed[0] * K,
                    chunks=len(todo), chunks_resumed=resumed, workers=workers)
-    return CapabilityMap(centres, index, R, res, rob.name, params, timings)
+    return CapabilityMap(centres, index, R, res, rob.name, params, timings, description=map_robot_of(rob))
 
 
 class _Cluster:
@@ -482,7 +501,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: tuple, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 

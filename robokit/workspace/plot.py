@@ -110,9 +110,11 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
     Parameters
     ----------
     cmap : :class:`CapabilityMap` or path of an ``.npz`` map
-    robot : robot or name, optional
-        Drawn at its zero configuration when given (default: the map's ``robot`` name when
-        the file stores one, else none).
+    robot : robot or anything ``robokit.load`` accepts, optional
+        Drawn at its zero configuration when given. Default: the robot the map describes
+        (its ``description``: a shipped or example-robot-data name, a DH table or the chain's
+        geometry, see :mod:`robokit.workspace.map_robot`), else none. A path stored in a map
+        is never opened: only one passed here.
     point_size : float, optional
         Point size (m); default 0.6 × the resolution.
 
@@ -131,8 +133,8 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
     from robokit.viz.scene import Scene, new_visualizer, stop_server
 
     m = _as_map(cmap)
-    if robot is None and m.robot:
-        robot = m.robot
+    if robot is None and m.description is not None:
+        robot = m.description.robot()
     P = m.centres.T.astype(np.float32)
     C = _colours(m.index).T.astype(np.float32)
     size = float(point_size) if point_size is not None else 0.6 * m.resolution

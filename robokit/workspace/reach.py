@@ -300,7 +300,7 @@ def ik_success(robot: Robot, targets: ArrayLike, *, rng: int | np.random.Generat
     >>> ik_success(robot, T[None]).tolist()
     [True]
     """
-    from robokit.description.robot import load
+    from robokit.description.loading import load
 
     robot = load(robot)
     T = np.asarray(targets, dtype=float)

@@ -6,7 +6,8 @@ import pytest
 
 import robokit
 from robokit.cli import main as cli_main
-from robokit.description.mjcf import first_body_placement, joint_armature_damping, robot_to_mjcf
+from robokit.description.mjcf import first_body_placement
+from robokit.description.mjcf_write import joint_armature_damping, robot_to_mjcf
 
 mujoco = pytest.importorskip("mujoco", reason="MuJoCo is an optional extra (pip install mujoco)")
 

@@ -1,0 +1,156 @@
+r"""Robots of example-robot-data, by name: :func:`load_example_robot` (``robokit.load("ur5")``).
+
+The models come from the ``example-robot-data-loaders`` package (its ``load(name)`` gives a
+Pinocchio ``RobotWrapper``); robokit keeps the chain to the arm's tip (:data:`EXAMPLE_ROBOT_TIPS`)
+with the fingers locked, and records the name on ``robot.spec``.
+"""
+from __future__ import annotations
+
+from typing import Any, Literal
+
+import numpy as np
+
+from robokit.description.builder import build_robot, choose_tip, one_line
+from robokit.description.robot import Robot
+from robokit.description.spec import RobotSpec
+from robokit.errors import InputError
+
+__all__ = ["load_example_robot", "example_robot_names", "EXAMPLE_ROBOT_TIPS"]
+
+#: Default tip frames of the example-robot-data arms (the last link of the arm's chain,
+#: a gripper's fingers excluded).
+EXAMPLE_ROBOT_TIPS = {
+    "ur3": "tool0",
+    "ur5": "tool0",
+    "ur10": "tool0",
+    "panda": "panda_hand_tcp",
+    "z1": "link06",
+    "xarm7": "link_eef",
+    "kinova": "j2s6s200_end_effector",
+}
+
+
+def load_example_robot(name: str, tip: str | None = None) -> Robot:
+    """An arm of example-robot-data by name (``ur5``, ``panda``, ``z1``, ``xarm7``, ``kinova``, …).
+
+    A robot that example-robot-data gives a floating base is loaded with its base fixed to the
+    world (a note says so); the tip defaults to :data:`EXAMPLE_ROBOT_TIPS` for the arms listed
+    there, else to :func:`~robokit.description.builder.choose_tip`'s choice. The robot's
+    ``"ready"`` configuration is example-robot-data's ``q0`` when that is not zero.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``example_robot_data.ROBOTS``.
+    tip : str, optional
+        The chain's tip frame.
+
+    Returns
+    -------
+    Robot
+        ``robot.spec == RobotSpec("example-robot-data", name=name, tip=tip)``.
+
+    Raises
+    ------
+    InputError
+        example-robot-data missing or failing to load the model; a tree with no default tip.
+
+    Examples
+    --------
+    >>> robot = load_example_robot("ur5")   # doctest: +SKIP
+    >>> robot.tip                           # doctest: +SKIP
+    'tool0'
+    """
+    try:
+        import example_robot_data as erd
+    except ImportError:
+        raise InputError(f"model {name!r}: example-robot-data is not installed "
+                         "(pip install example-robot-data-loaders)") from None
+
+    spec = RobotSpec("example-robot-data", name=name, tip=tip)
+    if name not in getattr(erd, "ROBOTS", {}):
+        raise InputError(f"model: {name!r} is not an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)")
+
+    loader = erd.ROBOTS[name]
+    notes = []
+    try:
+        with _quiet():
+            if getattr(loader, "free_flyer", False):
+                # Loaded with its base fixed to the world: a fixed-base arm (so100) is then what its
+                # URDF describes; a mobile or legged robot's limbs are then chains like any other.
+                wrapper = type(loader.__name__, (loader,), {"free_flyer": False})().robot
+                notes.append(f"{name}: example-robot-data gives it a floating base; loaded with the base fixed "
+                             "to the world")
+            else:
+                wrapper = erd.load(name)
+    except Exception as exc:  # a dependency's failure is still one robokit line
+        raise InputError(f"model {name!r}: example-robot-data could not load it ({one_line(exc)})") from None
+    model = wrapper.model
+    tip = tip or EXAMPLE_ROBOT_TIPS.get(name)
+    if tip is None:
+        try:
+            tip, note = choose_tip(model)
+        except ValueError as exc:
+            raise InputError(f"model {name!r}: {exc}") from None
+        if note:
+            notes.append(f"{name}: {note}")
+    configurations = {}
+    q0 = getattr(wrapper, "q0", None)
+    chain_names = []
+    if model.existFrame(tip):
+        j = model.frames[model.getFrameId(tip)].parentJoint
+        while j != 0:
+            chain_names.append(model.names[j])
+            j = model.parents[j]
+        chain_names.reverse()
+    if q0 is not None and chain_names and len(q0) == model.nq:
+        angles = []
+        for jn in chain_names:
+            jm = model.joints[model.getJointId(jn)]
+            qs = q0[jm.idx_q: jm.idx_q + jm.nq]
+            angles.append(float(np.arctan2(qs[1], qs[0])) if jm.nq == 2 else float(qs[0]))
+        if np.any(angles):
+            configurations["ready"] = np.array(angles)
+    return build_robot(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
+                       spec, notes)
+
+
+class _quiet:
+    """Silence C/C++ output on fd 2 and Python prints while a dependency loads a model."""
+
+    def __enter__(self) -> _quiet:
+        import contextlib
+        import io
+
+        from robokit.description.urdf_check import capture_native_output
+
+        self._cap = capture_native_output()
+        self._cap.__enter__()
+        self._out = contextlib.redirect_stdout(io.StringIO())
+        self._out.__enter__()
+        return self
+
+    def __exit__(self, *exc: Any) -> Literal[False]:
+        self._out.__exit__(*exc)
+        self._cap.__exit__(*exc)
+        return False
+
+
+def example_robot_names() -> list[str]:
+    """The names example-robot-data can load, sorted ([] when it is not installed).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> "ur5" in example_robot_names()   # doctest: +SKIP
+    True
+    """
+    try:
+        import example_robot_data as erd
+
+        return sorted(getattr(erd, "ROBOTS", {}).keys())
+    except Exception:  # pragma: no cover
+        return []

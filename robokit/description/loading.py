@@ -1,0 +1,195 @@
+r"""``robokit.load``: one table from a file's suffix (or a name's kind) to the loader of that format.
+
+=====================  ====================================================  ==========================
+input                  loader                                                options it takes
+=====================  ====================================================  ==========================
+``*.yaml``, ``*.yml``  :func:`~robokit.description.dh_robots.load_dh_file`    —
+``*.urdf``             :func:`~robokit.description.urdf_files.load_urdf`      ``package_dirs``,
+                                                                             ``allow_outside_meshes``
+``*.xacro``            :func:`~robokit.description.xacro_files.load_xacro`    ``package_dirs``,
+                                                                             ``xacro_args``
+``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            —
+a shipped model name   :func:`~robokit.description.dh_robots.load_shipped`    —
+an example-robot-data  :func:`~robokit.description.example_robots.load_example_robot`  —
+name
+=====================  ====================================================  ==========================
+
+``tip`` goes to every loader (a DH robot's tip is always ``tool``). An option the format does
+not use is refused (``InputError`` naming the option and the formats that take it), so a
+misplaced option is never silently ignored.
+
+Every robot carries the :class:`~robokit.description.spec.RobotSpec` it was loaded from
+(``robot.spec``); ``load(spec)`` dispatches on ``spec.kind`` to the same loader with the same
+arguments and so rebuilds an equal robot, in this process or another one.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Callable, Mapping, Sequence
+
+from robokit.description.dh import DHTable
+from robokit.description.dh_robots import load_dh_file, load_dh_text, load_shipped, robot_from_dh
+from robokit.description.example_robots import example_robot_names, load_example_robot
+from robokit.description.mjcf import load_mjcf
+from robokit.description.models import shipped_models
+from robokit.description.robot import Robot
+from robokit.description.spec import RobotSpec
+from robokit.description.urdf_files import load_urdf
+from robokit.description.xacro_files import load_xacro
+from robokit.errors import InputError
+
+__all__ = ["load", "FILE_LOADERS", "spec_of"]
+
+#: File suffix → (loader, the options of :func:`load` it takes). The longest matching suffix
+#: wins (``arm.urdf.xacro`` is a xacro file).
+FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
+    ".yaml": (load_dh_file, ()),
+    ".yml": (load_dh_file, ()),
+    ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes")),
+    ".xacro": (load_xacro, ("package_dirs", "xacro_args")),
+    ".xml": (load_mjcf, ()),
+}
+
+#: Spec kind → how ``load(spec)`` rebuilds the robot.
+_SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
+    "shipped": lambda s: load_shipped(s.name or "", s.tip),
+    "example-robot-data": lambda s: load_example_robot(s.name or "", s.tip),
+    "dh": lambda s: load_dh_text(s.text or "", source=s.describe(), spec=s),
+    "urdf": lambda s: load_urdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
+                                allow_outside_meshes=s.allow_outside_meshes),
+    "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
+                                  xacro_args=s.xacro_mapping or None),
+    "mjcf": lambda s: load_mjcf(s.path or "", s.tip),
+}
+
+
+def _file_loader(path: Path) -> tuple[str, Callable[..., Robot], tuple[str, ...]] | None:
+    name = path.name.lower()
+    hits = [suffix for suffix in FILE_LOADERS if name.endswith(suffix)]
+    if not hits:
+        return None
+    suffix = max(hits, key=len)
+    return (suffix, *FILE_LOADERS[suffix])
+
+
+def _options_for(what: str, accepted: tuple[str, ...], options: Mapping[str, Any]) -> dict[str, Any]:
+    given = {k: v for k, v in options.items() if v is not None and v is not False and v != () and v != {}}
+    for key in given:
+        if key not in accepted:
+            takes = sorted(s for s, (_, acc) in FILE_LOADERS.items() if key in acc)
+            raise InputError(f"{key}: apply to {', '.join(takes)} files, not to {what}")
+    return given
+
+
+def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip: str | None = None, *,
+         package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
+         allow_outside_meshes: bool = False) -> Robot:
+    """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
+    an MJCF ``.xml``, an example-robot-data name, a :class:`DHTable` or a :class:`RobotSpec`.
+
+    Parameters
+    ----------
+    name_or_path : str, Path, Robot, DHTable or RobotSpec
+        What to load (see the table in :mod:`robokit.description.loading`). A Robot is returned
+        as it is; a RobotSpec (``robot.spec`` of a robot loaded before, possibly in another
+        process) is rebuilt with the options it holds.
+    tip : str, optional
+        The chain's tip frame (default: ``"tool"`` for DH models, the arm's end-effector frame
+        for example-robot-data arms, else the end of the chain — of the longest chain for a
+        tree, see :func:`~robokit.description.builder.choose_tip`).
+    package_dirs : sequence of str or Path, optional
+        Folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF or xacro
+        file, and ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``; the
+        file's own folder and the folders above it are always searched).
+    xacro_args : dict of str to str, optional
+        xacro argument values (``{"name": "value"}``), xacro files only.
+    allow_outside_meshes : bool
+        Read meshes that a URDF names outside its folder, its package and ``package_dirs``
+        (absolute paths, ``../`` out of the package); refused by default.
+
+    Returns
+    -------
+    Robot
+        With ``robot.spec``, the :class:`RobotSpec` that rebuilds it (``load(robot.spec)``),
+        and ``robot.source``, its human-readable form.
+
+    Raises
+    ------
+    InputError
+        An unknown name, a file the format's loader refuses, an option the format does not
+        take, options given together with a RobotSpec (the spec holds its own).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("puma560")
+    >>> robot.frame_pose(np.zeros(6)).shape
+    (4, 4)
+    >>> robokit.load(robot.spec).n
+    6
+    """
+    options = dict(package_dirs=package_dirs, xacro_args=xacro_args, allow_outside_meshes=allow_outside_meshes)
+    if isinstance(name_or_path, Robot):
+        return name_or_path
+    if isinstance(name_or_path, RobotSpec):
+        given = [k for k, v in options.items() if v not in (None, False, (), {})] + (["tip"] if tip else [])
+        if given:
+            raise InputError(f"{', '.join(given)}: a RobotSpec holds its own options; load(spec) takes none")
+        return _SPEC_LOADERS[name_or_path.kind](name_or_path)
+    if isinstance(name_or_path, DHTable):
+        _options_for("a DHTable", (), options)
+        if tip not in (None, "tool"):
+            raise InputError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
+        return robot_from_dh(name_or_path)
+    if not isinstance(name_or_path, (str, os.PathLike)):
+        raise InputError(f"model: expected a name, a path, a Robot, a DHTable or a RobotSpec, "
+                         f"got {type(name_or_path).__name__}")
+    s = os.fspath(name_or_path)
+    if not isinstance(s, str):
+        raise InputError(f"model: expected a text path, got {s!r}")
+    path = Path(s)
+    found = _file_loader(path)
+    if found is not None:
+        suffix, loader, accepted = found
+        return loader(path, tip, **_options_for(f"{suffix} files", accepted, options))
+    if s in shipped_models():
+        _options_for("shipped models", (), options)
+        return load_shipped(s, tip)
+    if s in example_robot_names():
+        _options_for("example-robot-data models", (), options)
+        return load_example_robot(s, tip)
+    raise InputError(
+        f"model: unknown robot {s!r}; give a .yaml, .urdf, .xacro or MJCF .xml file, a shipped model "
+        f"({', '.join(shipped_models())}) or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
+    )
+
+
+def spec_of(robot: str | os.PathLike[str] | Robot | DHTable | RobotSpec) -> RobotSpec:
+    """The :class:`RobotSpec` of ``robot`` (loading it when it is not a Robot or a spec).
+
+    Parameters
+    ----------
+    robot : anything :func:`load` takes
+
+    Returns
+    -------
+    RobotSpec
+
+    Raises
+    ------
+    InputError
+        A Robot built by hand from a Pinocchio model, which has no spec.
+
+    Examples
+    --------
+    >>> spec_of("rrr")
+    RobotSpec(kind='shipped', name='rrr')
+    """
+    if isinstance(robot, RobotSpec):
+        return robot
+    rob = load(robot)
+    if rob.spec is None:
+        raise InputError(f"robot: {rob.name!r} was built from a Pinocchio model, not loaded; it has no RobotSpec "
+                         "(load it with robokit.load to ship it to other processes)")
+    return rob.spec

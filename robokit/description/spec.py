@@ -1,0 +1,138 @@
+r"""Where a robot came from, as a small frozen value: :class:`RobotSpec`.
+
+Every loader of :mod:`robokit.description.loading` records on the robot it returns
+(``robot.spec``) everything needed to build the same robot again: the kind of description,
+the file (an absolute path) or the name, the tip frame, the package folders and the xacro
+arguments, and — for a DH table — the table itself as YAML text. A spec holds only strings,
+booleans and tuples, so it pickles, hashes and compares by value; ``robokit.load(spec)``
+rebuilds an equal robot in any process (a Dask worker, a pool of processes), which is how
+capability maps ship their robot to the workers.
+
+``robot.source`` is the human-readable form of the spec (:meth:`RobotSpec.describe`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+from robokit.errors import InputError
+
+__all__ = ["RobotSpec", "SPEC_KINDS"]
+
+#: The kinds of robot description a spec may name.
+SPEC_KINDS = ("shipped", "dh", "urdf", "xacro", "mjcf", "example-robot-data")
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """A frozen, picklable recipe for one robot: ``robokit.load(spec)`` rebuilds it.
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`SPEC_KINDS`: ``"shipped"`` (a model of ``models/``, by name), ``"dh"`` (a
+        DH table, carried as YAML text), ``"urdf"``, ``"xacro"``, ``"mjcf"`` (a file, by
+        absolute path) or ``"example-robot-data"`` (by name).
+    name : str or None
+        The model name (``"shipped"``, ``"example-robot-data"``); None otherwise.
+    path : str or None
+        Absolute path of the file (``"urdf"``, ``"xacro"``, ``"mjcf"``, and ``"dh"`` when the
+        table was read from a file — for the human-readable form only: the table is ``text``).
+    tip : str or None
+        The tip frame asked for (None: the loader's default).
+    package_dirs : tuple of str
+        Absolute folders searched for ROS packages (``"urdf"``, ``"xacro"``).
+    xacro_args : tuple of (str, str)
+        The xacro argument values, sorted by name (``"xacro"``).
+    allow_outside_meshes : bool
+        Whether meshes outside the file's package were allowed (``"urdf"``).
+    text : str or None
+        The DH table as YAML text, angles in rad (``"dh"``): parsed by the strict YAML loader
+        when the spec is loaded, so a rebuilt table is the same table even if the file changed.
+
+    Examples
+    --------
+    >>> import pickle, robokit
+    >>> robot = robokit.load("rrr")
+    >>> robot.spec
+    RobotSpec(kind='shipped', name='rrr')
+    >>> robokit.load(pickle.loads(pickle.dumps(robot.spec))).n
+    3
+    """
+
+    kind: str
+    name: str | None = None
+    path: str | None = None
+    tip: str | None = None
+    package_dirs: tuple[str, ...] = ()
+    xacro_args: tuple[tuple[str, str], ...] = ()
+    allow_outside_meshes: bool = False
+    text: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in SPEC_KINDS:
+            raise InputError(f"spec: kind must be one of {', '.join(SPEC_KINDS)}, got {self.kind!r}")
+        for field_name in ("name", "path", "tip", "text"):
+            value = getattr(self, field_name)
+            if value is not None and not isinstance(value, str):
+                raise InputError(f"spec: {field_name} must be a string or None, got {type(value).__name__}")
+        if not isinstance(self.package_dirs, tuple) or not all(isinstance(d, str) for d in self.package_dirs):
+            raise InputError("spec: package_dirs must be a tuple of strings")
+        if not isinstance(self.xacro_args, tuple) or not all(
+                isinstance(kv, tuple) and len(kv) == 2 and all(isinstance(x, str) for x in kv)
+                for kv in self.xacro_args):
+            raise InputError("spec: xacro_args must be a tuple of (name, value) string pairs")
+        if not isinstance(self.allow_outside_meshes, bool):
+            raise InputError("spec: allow_outside_meshes must be a bool")
+        needs = {"shipped": "name", "example-robot-data": "name", "dh": "text",
+                 "urdf": "path", "xacro": "path", "mjcf": "path"}[self.kind]
+        if getattr(self, needs) is None:
+            raise InputError(f"spec: a {self.kind!r} spec needs {needs}")
+
+    @property
+    def xacro_mapping(self) -> dict[str, str]:
+        """The xacro arguments as a dict (``{}`` for other kinds)."""
+        return dict(self.xacro_args)
+
+    def describe(self) -> str:
+        """Human-readable origin (this is ``robot.source``).
+
+        Returns
+        -------
+        str
+            ``models/<name>.yaml`` for a shipped model, ``example-robot-data:<name>``, the file's
+            path for a file, ``DH table <name>`` for a table built in memory.
+
+        Examples
+        --------
+        >>> RobotSpec("example-robot-data", name="ur5").describe()
+        'example-robot-data:ur5'
+        """
+        if self.kind == "shipped":
+            return f"models/{self.name}.yaml"
+        if self.kind == "example-robot-data":
+            return f"example-robot-data:{self.name}"
+        if self.path is not None:
+            return self.path
+        return "<DHTable>"
+
+    def __repr__(self) -> str:
+        shown = [f"kind={self.kind!r}"]
+        for key in ("name", "path", "tip"):
+            value = getattr(self, key)
+            if value is not None:
+                shown.append(f"{key}={value!r}")
+        if self.package_dirs:
+            shown.append(f"package_dirs={self.package_dirs!r}")
+        if self.xacro_args:
+            shown.append(f"xacro_args={self.xacro_args!r}")
+        if self.allow_outside_meshes:
+            shown.append("allow_outside_meshes=True")
+        if self.text is not None:
+            shown.append(f"text=<{len(self.text)} characters of DH YAML>")
+        return f"RobotSpec({', '.join(shown)})"
+
+
+def xacro_args_tuple(xacro_args: Mapping[str, object] | None) -> tuple[tuple[str, str], ...]:
+    """``xacro_args`` as the sorted tuple of string pairs a spec holds."""
+    return tuple(sorted((str(k), str(v)) for k, v in (xacro_args or {}).items()))

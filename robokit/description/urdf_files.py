@@ -1,0 +1,117 @@
+r"""URDF files: :func:`load_urdf` (``robokit.load("arm.urdf")``).
+
+The file is read and checked by :mod:`robokit.description.urdf_check` (bounded size, names,
+joint and link structure, meshes inside the file's package or ``package_dirs``), the model
+built by Pinocchio (``pinocchio.buildModelFromXML``) and the visual and collision geometry by
+``pinocchio.buildGeomFromUrdfString``; a geometry Pinocchio cannot read is left out with a
+note. The robot is the chain root → tip (:func:`robokit.description.builder.build_robot`).
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Sequence
+
+from robokit.description.builder import build_robot, one_line
+from robokit.description.robot import Robot
+from robokit.description.spec import RobotSpec
+from robokit.errors import InputError
+
+__all__ = ["load_urdf", "absolute_dirs"]
+
+
+def absolute_dirs(folders: Sequence[str | os.PathLike[str]] | None) -> tuple[str, ...]:
+    """``folders`` as absolute path strings (``~`` expanded), the form a :class:`RobotSpec` holds.
+
+    Parameters
+    ----------
+    folders : sequence of str or Path, or None
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> absolute_dirs(["/opt/ws/src"])
+    ('/opt/ws/src',)
+    """
+    return tuple(os.path.abspath(Path(d).expanduser()) for d in (folders or ()))
+
+
+def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
+              package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+              allow_outside_meshes: bool = False) -> Robot:
+    """Load a URDF file as a :class:`~robokit.description.robot.Robot`.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.urdf`` file.
+    tip : str, optional
+        The chain's tip frame (default: the end of the chain — of the longest chain for a
+        tree, see :func:`~robokit.description.builder.choose_tip`).
+    package_dirs : sequence of str or Path, optional
+        Folders searched for the ROS packages of ``package://pkg/...`` mesh URIs.
+    allow_outside_meshes : bool
+        Read meshes the file names outside its folder, its package and ``package_dirs``
+        (refused by default).
+
+    Returns
+    -------
+    Robot
+        With ``robot.spec == RobotSpec("urdf", path=<absolute path>, tip=tip, ...)``.
+
+    Raises
+    ------
+    InputError
+        Missing or malformed file, a check of :mod:`robokit.description.urdf_check`, a URDF
+        Pinocchio cannot build, no serial chain to the tip.
+
+    Examples
+    --------
+    >>> robot = load_urdf("models/rrr.urdf", tip="tool")   # doctest: +SKIP
+    >>> robot.n                                            # doctest: +SKIP
+    3
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: file not found")
+    return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
+
+
+def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+                    allow_outside_meshes: bool = False, text: str | None = None,
+                    spec: RobotSpec | None = None) -> Robot:
+    """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``,
+    with that file's ``spec``)."""
+    import pinocchio as pin
+
+    from robokit.description.urdf_check import capture_native_output, read_urdf
+
+    doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, text=text)
+    with capture_native_output() as cap:
+        try:
+            model = pin.buildModelFromXML(doc.xml)
+        except Exception as exc:
+            failed: Exception | None = exc
+        else:
+            failed = None
+    if failed is not None:
+        why = cap.first_error() or one_line(failed)
+        raise InputError(f"{path}: Pinocchio cannot read this URDF ({why})") from None
+    geoms, notes = [], []
+    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
+        with capture_native_output() as cap:
+            try:
+                geoms.append(pin.buildGeomFromUrdfString(model, doc.xml, gtype, package_dirs=doc.package_dirs))
+                err = None
+            except Exception as exc:
+                geoms.append(None)
+                err = cap.first_error() or one_line(exc)
+        if err:
+            notes.append(f"{path}: {gtype.name.lower()} geometry not loaded ({err}); drawn without it")
+    if spec is None:
+        spec = RobotSpec("urdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
+                         allow_outside_meshes=bool(allow_outside_meshes))
+    return build_robot(doc.name, model, tip, geoms, {}, spec, notes, mimic=doc.mimic)
