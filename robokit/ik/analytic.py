@@ -219,9 +219,11 @@ def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IK
     hit = _PUMA_CHECKED.get(id(table))
     if hit is None or hit[0]() is not table or hit[1] is not table.links:
         _puma_params(table)  # the PUMA structure, checked once per table (its links are immutable)
+        def drop(_ref: weakref.ref, key: int = id(table)) -> None:
+            _PUMA_CHECKED.pop(key, None)
+
         try:
-            _PUMA_CHECKED[id(table)] = (weakref.ref(table, lambda _r, k=id(table): _PUMA_CHECKED.pop(k, None)),
-                                        table.links)
+            _PUMA_CHECKED[id(table)] = (weakref.ref(table, drop), table.links)
         except TypeError:  # pragma: no cover - a table without weak references: check every call
             pass
     ref = theta4_ref if type(theta4_ref) is float else as_scalar(theta4_ref, "theta4_ref")

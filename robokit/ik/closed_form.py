@@ -46,7 +46,7 @@ from __future__ import annotations
 import math
 import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Sequence, cast
+from typing import TYPE_CHECKING, Callable, Sequence, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -87,7 +87,7 @@ class ClosedFormKind:
 
 #: The solver class of each method :func:`_detect` can report (see :mod:`robokit.ik.solver`
 #: for the interface a new one implements).
-SOLVERS: dict[str, type[ClosedFormSolver]] = {
+SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
     "spherical wrist": PieperSolver,
     "three parallel axes": ParallelAxesSolver,
 }
@@ -113,10 +113,11 @@ def _table_key(table: DHTable, link_limits: bool) -> tuple:
 def _sources(robot: Robot | DHTable) -> tuple[tuple, tuple]:
     """(key, objects): the key changes when anything the closed form was built from changes —
     a replaced ``robot.dh``/``robot.qlim``/``table.links``, or ``base``/``tool``/limits
-    edited in place; ``objects`` are held so that the ids in the key stay unique."""
+    edited in place; ``objects`` are held so that the ids in the key stay unique (never the
+    robot itself: the per-robot cache must not keep it alive)."""
     if _is_table(robot):
         table = cast("DHTable", robot)
-        return _table_key(table, True), (table, table.links)
+        return _table_key(table, True), (table.links,)
     rob = cast("Robot", robot)
     dh, qlim = rob.dh, rob.qlim
     key: tuple = (id(dh), id(rob.model), np.asarray(qlim, dtype=float).tobytes())
@@ -170,8 +171,24 @@ class AnalyticIK:
     def __init__(self, robot: Robot | DHTable) -> None:
         if not (_is_table(robot) or _is_robot(robot)):
             raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
-        self._robot = robot
+        self._strong: Robot | DHTable | None = robot
+        self._weak: weakref.ref | None = None
         self._build()
+
+    @classmethod
+    def _shared(cls, robot: Robot | DHTable) -> AnalyticIK:
+        """An AnalyticIK that refers to ``robot`` only weakly (for the per-robot cache: it must
+        not keep its robot alive). Raises TypeError if ``robot`` has no weak references."""
+        ik = cls(robot)
+        ik._weak, ik._strong = weakref.ref(robot), None
+        return ik
+
+    @property
+    def _robot(self) -> Robot | DHTable:
+        robot = self._strong if self._weak is None else self._weak()
+        if robot is None:  # pragma: no cover - the cache drops an entry with its robot
+            raise ReferenceError("the robot of this AnalyticIK no longer exists")
+        return robot
 
     @property
     def method(self) -> str | None:
@@ -193,12 +210,15 @@ class AnalyticIK:
     def _build(self) -> None:
         robot = self._robot
         self._key, self._held = _sources(robot)
+        override: ClosedFormKind | None = None
+        qlim: np.ndarray | None = None
         if _is_table(robot):
-            table, qlim, override = cast("DHTable", robot), None, None
+            table = cast("DHTable", robot)
         else:
             rob = cast("Robot", robot)
-            table, override = rob.dh, None
-            if table is None:
+            if rob.dh is not None:
+                table = rob.dh
+            else:
                 from robokit.description.urdf_to_dh import urdf_to_dh
 
                 res = urdf_to_dh(rob, "standard")
@@ -300,12 +320,16 @@ class _Cache:
         hit = self._entries.get(key)
         if hit is not None and hit[0]() is robot:
             return hit[1]
-        ik = AnalyticIK(robot)
         entries = self._entries
+
+        def drop(_ref: weakref.ref, key: int = key) -> None:
+            entries.pop(key, None)
+
         try:
-            ref = weakref.ref(robot, lambda _r, key=key: entries.pop(key, None))
+            ref = weakref.ref(robot, drop)
         except TypeError:  # pragma: no cover - objects without weak references
-            return ik
+            return AnalyticIK(robot)
+        ik = AnalyticIK._shared(robot)
         entries[key] = (ref, ik)
         return ik
 

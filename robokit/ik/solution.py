@@ -113,7 +113,12 @@ def check_pose(T: ArrayLike, name: str = "T") -> np.ndarray:
         finite = math.isfinite(a + b + c + d + e + f + g + h + i + T[0, 3] + T[1, 3] + T[2, 3])
         if finite and dev < 1e-9 and det > 0.0 and last == [0.0, 0.0, 0.0, 1.0]:
             return T
-    return check_transform(T, name)
+    try:
+        return check_transform(T, name)
+    except InputError:
+        raise
+    except ValueError as exc:  # the spatial checks raise plain ValueErrors
+        raise InputError(str(exc)) from None
 
 
 _new = object.__new__
