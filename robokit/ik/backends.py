@@ -70,9 +70,9 @@ class IKProblem:
         As in :func:`robokit.solve_ik` (``max_iterations`` None: the back end's default).
     seed : int
         Seeds the restarts (:data:`DEFAULT_SEED` unless ``rng`` was given).
-    rng : numpy Generator
-        The generator the Pinocchio loop draws from (seeded with ``seed`` unless a
-        Generator was given).
+    rng : numpy Generator or None
+        The generator the Pinocchio loop draws from (None: one seeded with ``seed``, made by
+        :meth:`generator` on first use).
 
     Examples
     --------
@@ -98,8 +98,15 @@ class IKProblem:
     damping: float = 1e-2
     min_damping: float = 1e-9
     seed: int = DEFAULT_SEED
-    rng: np.random.Generator = field(default_factory=lambda: np.random.default_rng(DEFAULT_SEED))
+    rng: np.random.Generator | None = None
     t_start: float = field(default_factory=time.perf_counter)
+
+    def generator(self) -> np.random.Generator:
+        """The generator the restarts draw from: ``rng``, or one seeded with ``seed`` (made on
+        first use — a closed-form answer never pays for it)."""
+        if self.rng is None:
+            self.rng = np.random.default_rng(self.seed)
+        return self.rng
 
     @classmethod
     def tip_pose(cls, robot: Robot, T: np.ndarray, **options: object) -> IKProblem:
@@ -179,7 +186,7 @@ class IKBackend:
             q0 = rng.uniform(lo, hi)
             seed = int(rng.integers(2**31 - 1))
             p = IKProblem(robot, None, q0, T_target=T, q0_given=True, max_restarts=restarts, seed=seed,
-                          rng=np.random.default_rng(seed), max_iterations=60)
+                          max_iterations=60)
             out[b] = self.solve(p).success
         return out
 
@@ -323,7 +330,7 @@ class PinocchioLMBackend(IKBackend):
                        p_target=problem.p_target, T_target=problem.T_target, w=w, tol=problem.tol,
                        max_iterations=60 if problem.max_iterations is None else problem.max_iterations,
                        max_restarts=problem.max_restarts, time_budget=problem.time_budget, damping=problem.damping,
-                       min_damping=problem.min_damping, rng=problem.rng, t_start=problem.t_start)
+                       min_damping=problem.min_damping, rng=problem.generator(), t_start=problem.t_start)
 
 
 def _failed(robot: Robot, problem: IKProblem, name: str, why: str) -> IKResult:

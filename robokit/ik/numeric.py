@@ -264,15 +264,16 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     return solve_problem(problem, method)
 
 
-def _seeded(rng: int | np.random.Generator | None) -> tuple[int, np.random.Generator]:
-    """(integer seed, Generator) of ``rng``: None → :data:`DEFAULT_SEED`; an int → itself; a
-    Generator → an integer drawn from it (for the compiled solver) and the Generator itself."""
+def _seeded(rng: int | np.random.Generator | None) -> tuple[int, np.random.Generator | None]:
+    """(integer seed, Generator or None) of ``rng``: None → :data:`DEFAULT_SEED`; an int →
+    itself (the back ends seed a Generator with it when they need one); a Generator → an
+    integer drawn from it (for the compiled solver) and the Generator itself."""
     if rng is None:
-        return DEFAULT_SEED, np.random.default_rng(DEFAULT_SEED)
+        return DEFAULT_SEED, None
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
         if rng < 0:
             raise InputError(f"rng: expected a non-negative seed, got {rng}")
-        return int(rng), np.random.default_rng(int(rng))
+        return int(rng), None
     if isinstance(rng, np.random.Generator):
         return int(rng.integers(2**31 - 1)), rng
     raise InputError(f"rng: expected None, a non-negative integer seed or a numpy Generator, got {type(rng).__name__}")
