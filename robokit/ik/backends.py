@@ -31,6 +31,7 @@ Randomness: every back end draws from the problem's generator, seeded by default
 from __future__ import annotations
 
 import time
+import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, cast
 
@@ -38,7 +39,7 @@ import numpy as np
 
 from robokit.ik.closed_form import analytic_ik
 from robokit.ik.lm import IKResult, _result, lm_loop
-from robokit.ik.planar import planar_chain, planar_reason
+from robokit.ik.planar import PlanarChain, planar_chain, planar_reason
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -239,13 +240,38 @@ class PlanarBackend(IKBackend):
         why = _exact_reason(problem, "the planar closed form")
         if why is not None:
             return why
-        reason = planar_reason(cast("Robot", problem.robot))
+        reason = self._planar(cast("Robot", problem.robot))[1]
         return None if reason is None else f"not a planar arm: {reason}"
+
+    def __init__(self) -> None:
+        self._cache: dict[int, tuple[weakref.ref, bytes, PlanarChain | None, str | None]] = {}
+
+    def _planar(self, robot: Robot) -> tuple[PlanarChain | None, str | None]:
+        """(chain, reason) of ``robot``, cached per live robot and rebuilt when its screws, home
+        pose or limits change (the geometry costs ~50 µs; the check, well under one)."""
+        poe = robot.poe
+        key = (np.asarray(poe.Slist, dtype=float).tobytes() + np.asarray(poe.M, dtype=float).tobytes()
+               + np.asarray(robot.qlim, dtype=float).tobytes())
+        hit = self._cache.get(id(robot))
+        if hit is not None and hit[0]() is robot and hit[1] == key:
+            return hit[2], hit[3]
+        reason = planar_reason(robot)
+        chain = planar_chain(robot) if reason is None else None
+        cache = self._cache
+
+        def drop(_ref: weakref.ref, k: int = id(robot)) -> None:
+            cache.pop(k, None)
+
+        try:
+            cache[id(robot)] = (weakref.ref(robot, drop), key, chain, reason)
+        except TypeError:  # pragma: no cover - a robot without weak references
+            pass
+        return chain, reason
 
     def solve(self, problem: IKProblem) -> IKResult:
         robot = cast("Robot", problem.robot)
         assert problem.T_target is not None  # a full pose (unsupported() says so)
-        chain = planar_chain(robot)
+        chain = self._planar(robot)[0]
         assert chain is not None  # unsupported() checked it
         sols = chain.solutions(problem.T_target)
         if not sols:
@@ -254,7 +280,7 @@ class PlanarBackend(IKBackend):
         return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
-        chain = planar_chain(robot)
+        chain = self._planar(robot)[0]
         assert chain is not None  # chosen only for planar arms
         return chain.success(targets)
 
