@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import robokit as rk
 from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
@@ -181,3 +183,23 @@ def test_the_cache_keeps_one_object_per_live_robot_and_drops_it_with_the_robot()
     del table, robot
     gc.collect()
     assert key not in closed_form._CACHE._entries and rkey not in closed_form._CACHE._entries
+
+
+@settings(max_examples=10, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31 - 1))
+def test_any_in_place_edit_of_base_and_tool_is_followed(seed):
+    """Property: after random in-place edits of a table's base and tool, every solution of the one-call
+    form and of a held object reaches the table's own FK, the generating configuration among them."""
+    rng = np.random.default_rng(seed)
+    table = _puma_table()
+    held = AnalyticIK(table)
+    for _ in range(2):
+        table.base[:3, :3] = rpy_to_matrix(rng.uniform(-1, 1, 3))
+        table.base[:3, 3] = rng.uniform(-0.5, 0.5, 3)
+        table.tool[:3, :3] = rpy_to_matrix(rng.uniform(-1, 1, 3))
+        table.tool[:3, 3] = rng.uniform(-0.2, 0.2, 3)
+        q = rng.uniform(-2.5, 2.5, 6)
+        T = table.fk(q)
+        for sols in (ik_analytic(table, T), held.solve(T)):
+            assert sols and all(np.abs(table.fk(s.q) - T).max() < 1e-9 for s in sols)
+            assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in sols) < 1e-7

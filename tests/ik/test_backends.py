@@ -3,8 +3,11 @@ which one answered (result.method) and never swaps one silently, capability maps
 and solve_ik is deterministic by default."""
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import robokit as rk
+from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError
 from robokit.ik.backends import BACKENDS, IKProblem, backend, reach_backend
 from robokit.workspace import ik_backend
@@ -145,3 +148,29 @@ def test_planar_back_end_matches_the_lecture_closed_form(robots):
         assert res.method == "planar"
         _pinocchio_ok(arm, res, T)
         assert np.abs(np.angle(np.exp(1j * (res.q - q)))).max() < 1e-9  # the one next to q0
+
+
+# ---------------------------------------------------------------------------- properties
+@settings(max_examples=15, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31 - 1), st.sampled_from([2, 3]), st.sampled_from(["standard", "modified"]))
+def test_planar_back_end_on_random_planar_arms(seed, n, convention):
+    """Random planar 2R/3R arms (parallel axes, random lengths and offsets, a tilted base): the planar
+    back end's answer reaches the pose by Pinocchio's FK, and ik_success agrees on the same pose."""
+    rng = np.random.default_rng(seed)
+    links = tuple(DHLink("R", a=float(rng.uniform(0.2, 1.0)), theta=float(rng.uniform(-np.pi, np.pi)),
+                         qlim=np.array([-np.pi, np.pi])) for _ in range(n))
+    base = np.eye(4)
+    base[:3, 3] = rng.uniform(-0.5, 0.5, 3)
+    c, s = np.cos(0.4), np.sin(0.4)
+    base[:3, :3] = [[1, 0, 0], [0, c, -s], [0, s, c]]
+    robot = rk.load(DHTable(f"planar{n}", convention, links, base=base))
+    q = rng.uniform(-3.0, 3.0, n)
+    T = robot.frame_pose(q)
+    res = rk.solve_ik(robot, T)
+    assert res.method == "planar"
+    _pinocchio_ok(robot, res, T)
+    assert rk.workspace.ik_success(robot, T[None]).tolist() == [True]
+    off = T.copy()
+    off[:3, 3] += 0.05 * base[:3, 2]  # off the arm's plane: unreachable, and said so without iterating
+    assert rk.workspace.ik_success(robot, off[None]).tolist() == [False]
+    assert not rk.solve_ik(robot, off, method="planar").success
