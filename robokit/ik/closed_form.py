@@ -227,7 +227,16 @@ class AnalyticIK:
                     override = ClosedFormKind(None, f"the DH table extracted from {rob.name} reproduces its forward "
                                                     f"kinematics only to {res.residual:.2e} (> 1e-9)")
             qlim = np.asarray(rob.qlim, dtype=float)
-        self.chain = DHChain(table, qlim)
+        links = list(table.links)
+        if qlim is None and all(getattr(l, "qlim", None) is not None for l in links):
+            qlim = np.array([l.qlim for l in links], dtype=float)
+        # a flipped joint (θ = θ₀ − q, DHLink.flip) is solved as the unflipped joint of q′ = −q
+        flip = [bool(getattr(l, "flip", False)) for l in links]
+        self._flip = flip if any(flip) else None
+        qlim_chain = qlim
+        if qlim is not None and self._flip is not None:
+            qlim_chain = np.array([(-hi, -lo) if f else (lo, hi) for (lo, hi), f in zip(qlim, flip)])
+        self.chain = DHChain(table, qlim_chain)
         self.reversed = False
         self.kind, self.solver = _method(self.chain)
         if self.kind.method is None and self.chain.n == 6:
@@ -243,10 +252,13 @@ class AnalyticIK:
                 self.solver, self.reversed = solver, True
         if override is not None:
             self.kind, self.solver = override, None
-        ch = self.chain
-        self._revolute = [k == "R" for k in ch.kinds]
-        # limits with the 1e-12 tolerance of the within_limits flag folded in
-        self._limits = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
+        self._revolute = [k == "R" for k in self.chain.kinds]
+        # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
+        self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
+        # the joint a singular pose leaves free (wrist_ref's joint), in the order of self.chain
+        free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
+        self._free_flipped = (free is not None and self._flip is not None
+                              and self._flip[5 - free if self.reversed else free])
 
     def _refresh(self) -> None:
         """Rebuild the constants if what they were built from has changed."""
@@ -280,6 +292,8 @@ class AnalyticIK:
         solver = self.solver
         if solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+        if self._free_flipped:
+            wrist_ref = -wrist_ref  # the free joint is flipped: q′ = −wrist_ref gives q = wrist_ref
         if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
             R, p = T[:3, :3], T[:3, 3]
             Tinv = np.eye(4)
@@ -289,6 +303,9 @@ class AnalyticIK:
             rows = [(tuple(-v for v in q[::-1]), label + " (chain reversed)", degen) for q, label, degen in rows]
         else:
             rows = solver.joint_angles(self.chain.target_06(T), wrist_ref)
+        if self._flip is not None:  # q = −q′ for the flipped joints
+            flip = self._flip
+            rows = [(tuple(-v if f else v for v, f in zip(q, flip)), label, degen) for q, label, degen in rows]
         return solutions_from_rows(rows, self._revolute, self._limits)
 
 

@@ -203,3 +203,28 @@ def test_any_in_place_edit_of_base_and_tool_is_followed(seed):
         for sols in (ik_analytic(table, T), held.solve(T)):
             assert sols and all(np.abs(table.fk(s.q) - T).max() < 1e-9 for s in sols)
             assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in sols) < 1e-7
+
+
+@settings(max_examples=12, deadline=None, derandomize=True)
+@given(st.lists(st.booleans(), min_size=6, max_size=6), st.integers(0, 2**31 - 1))
+def test_flipped_joints_are_solved_in_their_own_sign(flips, seed):
+    """DHLink.flip (θ = θ₀ − q): every solution reaches the pose by Pinocchio's FK, the generating
+    configuration is among them, limits are flagged in q, and at a wrist singularity q₄ = wrist_ref."""
+    import dataclasses
+
+    table = _puma_table()
+    lim = np.array([[-2.0, 2.5], [-2.2, 1.9], [-2.4, 2.6], [-2.8, 2.7], [-1.9, 2.1], [-2.9, 2.8]])
+    links = tuple(dataclasses.replace(l, flip=f, qlim=lim[i]) for i, (l, f) in enumerate(zip(table.links, flips)))
+    robot = rk.load(dataclasses.replace(table, links=links))
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(lim[:, 0] + 0.05, lim[:, 1] - 0.05)
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    _reaches(robot, sols, T, q)
+    for s in sols:
+        assert s.within_limits == bool(np.all(s.q >= lim[:, 0] - 1e-12) and np.all(s.q <= lim[:, 1] + 1e-12))
+    q[4] = 0.0  # the wrist singularity: q₄ is the documented free choice
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T, wrist_ref=0.3)
+    assert all(np.abs(robot.frame_pose(s.q) - T).max() < 1e-9 for s in sols)
+    assert any(s.degenerate and abs(s.q[3] - 0.3) < 1e-12 for s in sols)
