@@ -110,11 +110,12 @@ class IKProblem:
         return self.rng
 
     @classmethod
-    def tip_pose(cls, robot: Robot, T: np.ndarray, **options: object) -> IKProblem:
-        """The problem "place the tip at the pose T (4, 4)" from q0 = 0 clipped to the limits."""
+    def tip_pose(cls, robot: Robot, T: np.ndarray) -> IKProblem:
+        """The problem "place the tip at the pose T (4, 4)" from q0 = 0 clipped to the limits,
+        with the defaults of :func:`robokit.solve_ik`."""
         qlim = np.asarray(robot.qlim, dtype=float)
         q0 = np.clip(np.zeros(robot.n), qlim[:, 0], qlim[:, 1])
-        return cls(robot, None, q0, T_target=np.asarray(T, dtype=float), **options)  # type: ignore[arg-type]
+        return cls(robot, None, q0, T_target=np.asarray(T, dtype=float))
 
 
 def _is_robot(robot: object) -> bool:

@@ -254,6 +254,11 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         raise InputError(f"weights: expected non-negative entries, got {w}")
     q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), qlim[:, 0], qlim[:, 1])
     tol = as_scalar(tol, "tol", positive=True)
+    _count(max_restarts, "max_restarts", 0)
+    if max_iterations is not None:
+        _count(max_iterations, "max_iterations", 1)
+    damping = as_scalar(damping, "damping", nonnegative=True)
+    min_damping = as_scalar(min_damping, "min_damping", nonnegative=True)
     if time_budget is not None:
         time_budget = as_scalar(time_budget, "time_budget", positive=True)
     seed, gen = _seeded(rng)
@@ -262,6 +267,12 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
                         max_restarts=int(max_restarts), time_budget=time_budget, damping=float(damping),
                         min_damping=float(min_damping), seed=seed, rng=gen, t_start=t_start)
     return solve_problem(problem, method)
+
+
+def _count(value: object, name: str, least: int) -> None:
+    """InputError unless ``value`` is an integer ≥ ``least`` (bools refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise InputError(f"{name}: expected an integer ≥ {least}, got {value!r}")
 
 
 def _seeded(rng: int | np.random.Generator | None) -> tuple[int, np.random.Generator | None]:

@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.ik.backends import reach_backend
-from robokit.ik.planar import PlanarChain, planar_chain
+from robokit.ik.planar import PlanarChain, planar_chain  # noqa: F401  (their former home; capability.py uses them)
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -35,7 +35,6 @@ __all__ = ["ik_success", "ik_backend"]
 
 #: Restarts of the numerical IK per target (after the first attempt).
 DEFAULT_RESTARTS = 20
-_REEXPORTED = (PlanarChain, planar_chain)  # robokit.workspace.reach.PlanarChain / planar_chain: their old home
 
 
 def ik_backend(robot: Robot) -> str:

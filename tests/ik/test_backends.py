@@ -174,3 +174,14 @@ def test_planar_back_end_on_random_planar_arms(seed, n, convention):
     off[:3, 3] += 0.05 * base[:3, 2]  # off the arm's plane: unreachable, and said so without iterating
     assert rk.workspace.ik_success(robot, off[None]).tolist() == [False]
     assert not rk.solve_ik(robot, off, method="planar").success
+
+
+def test_bad_options_name_the_argument(robots):
+    ur5 = robots["ur5"]
+    T = ur5.frame_pose(np.zeros(6))
+    for kwargs, name in (({"max_restarts": -1}, "max_restarts"), ({"max_restarts": 2.5}, "max_restarts"),
+                         ({"max_iterations": 0}, "max_iterations"), ({"damping": -1.0}, "damping"),
+                         ({"time_budget": 0.0}, "time_budget"), ({"method": 3}, "method"),
+                         ({"q0": np.zeros(5)}, "q0"), ({"weights": [1, 1, 1, 1, 1, -1]}, "weights")):
+        with pytest.raises(InputError, match=name):
+            rk.solve_ik(ur5, T, **kwargs)
