@@ -26,7 +26,9 @@ solver's constants, owned by an :class:`AnalyticIK` object (hold one, or let
 solve whether what it was built from changed (``robot.dh``/``robot.qlim`` replaced, a table's
 ``base``/``tool``/limits edited in place) and rebuilds itself if so. The solvers implement
 one interface, :class:`robokit.ik.solver.ClosedFormSolver` (position sub-problem, wrist
-sub-problem, joint angles); ``SOLVERS`` maps each method name to its solver class.
+sub-problem, joint angles); ``SOLVERS`` maps each detected structure's method name to its
+solver class, and ``FALLBACK`` lists solvers tried, in order, for a 6-joint arm with none of
+these structures (the first whose ``refusal()`` is None takes it).
 
 Solutions: joint values q (rad, m), revolute ones wrapped to (−π, π] — or shifted by 2π
 where that lands inside limits wider than ±π —, flagged ``within_limits``, labelled with
@@ -91,6 +93,11 @@ SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
     "spherical wrist": PieperSolver,
     "three parallel axes": ParallelAxesSolver,
 }
+
+
+#: Solvers tried, in order, for a 6-joint chain with none of the structures above (read either
+#: way): the first whose ``refusal()`` is None solves it. A general 6R solver registers here.
+FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = []
 
 
 def _is_table(robot: object) -> bool:
@@ -250,6 +257,17 @@ class AnalyticIK:
                 self.kind = ClosedFormKind(kind.method, f"{where}: the {kind.method} method on the chain read "
                                                         f"from the tool back to the base")
                 self.solver, self.reversed = solver, True
+        if self.kind.method is None and self.chain.n == 6:
+            # solvers for arms with no special structure (e.g. a general 6R elimination): each
+            # says by refusal() whether it takes the chain; the first that does solves it
+            for make in FALLBACK:
+                solver = make(self.chain)
+                why_not = solver.refusal()
+                if why_not is None:
+                    self.kind = ClosedFormKind(solver.method, f"{self.kind.reason}; the {solver.method} method "
+                                                              f"solves it")
+                    self.solver = solver
+                    break
         if override is not None:
             self.kind, self.solver = override, None
         self._revolute = [k == "R" for k in self.chain.kinds]
@@ -314,7 +332,10 @@ def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
     kind = _detect(chain)
     if kind.method is None:
         return kind, None
-    solver = SOLVERS[kind.method](chain)
+    make = SOLVERS.get(kind.method)
+    if make is None:  # a structure whose solver is not registered
+        return ClosedFormKind(None, f"{kind.reason}, but no solver for the {kind.method} method is registered"), None
+    solver = make(chain)
     why_not = solver.refusal()
     if why_not is not None:
         return ClosedFormKind(None, why_not), None

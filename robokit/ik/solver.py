@@ -34,8 +34,11 @@ A solver whose method has no natural split (a general 6R elimination) implements
 on them; ``joint_angles`` is what must be right. The test suite checks the interface with a
 hand-written toy solver.
 
-Register a new solver by adding its class to ``robokit.ik.closed_form.SOLVERS`` under its
-method name (the detection in ``robokit.ik.closed_form`` decides which method a chain gets).
+Register a new solver either under a structure the detection in ``robokit.ik.closed_form``
+reports (``closed_form.SOLVERS[method] = cls``), or — for a solver that decides for itself,
+such as a general 6R elimination — by appending its class to ``closed_form.FALLBACK``: it is
+then tried for every 6-joint arm none of the special structures fits, and takes the arm when
+its ``refusal()`` returns None.
 """
 from __future__ import annotations
 

@@ -228,3 +228,33 @@ def test_flipped_joints_are_solved_in_their_own_sign(flips, seed):
     sols = ik_analytic(robot, T, wrist_ref=0.3)
     assert all(np.abs(robot.frame_pose(s.q) - T).max() < 1e-9 for s in sols)
     assert any(s.degenerate and abs(s.q[3] - 0.3) < 1e-12 for s in sols)
+
+
+class _ToyGantryFallback(ToyGantrySolver):
+    method = "toy gantry"
+
+
+class _Refuses(ToyGantrySolver):
+    method = "never"
+
+    def refusal(self):
+        return "the toy takes no arm"
+
+
+def test_a_fallback_solver_takes_arms_without_a_registered_structure(monkeypatch):
+    """The hook a general 6R solver uses: FALLBACK solvers decide by refusal() whether they take an arm."""
+    robot = rk.load(_gantry_table())
+    monkeypatch.delitem(closed_form.SOLVERS, "spherical wrist")  # the gantry's structure has no solver now
+    monkeypatch.setattr(closed_form, "FALLBACK", [_Refuses, _ToyGantryFallback])
+    ik = AnalyticIK(robot)
+    assert ik.method == "toy gantry" and "no solver for the spherical wrist method" in ik.reason
+    q = np.array([0.1, -0.2, 0.3, 0.4, 1.1, -0.6])
+    T = robot.frame_pose(q)
+    _reaches(robot, ik.solve(T), T, q)
+    monkeypatch.setattr(closed_form, "FALLBACK", [_Refuses])
+    ik = AnalyticIK(robot)
+    assert ik.method is None
+    with pytest.raises(InputError, match="no closed-form inverse kinematics"):
+        ik.solve(T)
+    monkeypatch.setattr(closed_form, "FALLBACK", [_ToyGantryFallback])
+    assert AnalyticIK(rk.load("panda")).method is None  # 7 joints: fallbacks are for 6-joint arms only
