@@ -37,8 +37,9 @@ hand-written toy solver.
 Register a new solver either under a structure the detection in ``robokit.ik.closed_form``
 reports (``closed_form.SOLVERS[method] = cls``), or — for a solver that decides for itself,
 such as a general 6R elimination — by appending its class to ``closed_form.FALLBACK``: it is
-then tried for every 6-joint arm none of the special structures fits, and takes the arm when
-its ``refusal()`` returns None.
+then tried for every 6-joint arm none of the special structures fits (so its constructor must
+accept any 6-joint chain without raising), and takes the arm when its ``refusal()`` returns
+None.
 """
 from __future__ import annotations
 
