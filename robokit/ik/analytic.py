@@ -22,13 +22,16 @@ Solvers
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+import weakref
 from typing import TYPE_CHECKING, Iterable, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.errors import InputError
+from robokit.ik.closed_form import analytic_ik
+from robokit.ik.solution import IKSolution, _qlim_or_none, _within, check_pose
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
 
@@ -36,7 +39,6 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
 
 __all__ = [
-    "IKSolution",
     "ik_planar_2link",
     "ik_planar_rrr",
     "ik_spherical_wrist",
@@ -48,41 +50,6 @@ __all__ = [
 _TWO_PI = 2.0 * np.pi
 
 
-
-
-@dataclass(frozen=True)
-class IKSolution:
-    """One inverse-kinematics solution.
-
-    q : (n,) joint values (rad for revolute joints, m for prismatic).
-    within_limits : True if every joint is inside its limits (True when no limits given).
-    label : the branch, e.g. ``"elbow up"`` or ``"left, elbow up, no flip"``.
-    degenerate : True if the target is at a singularity where the solver made a documented
-        choice for a free angle (e.g. θ₅ = 0 of a spherical wrist).
-    """
-
-    q: np.ndarray
-    within_limits: bool = True
-    label: str = ""
-    degenerate: bool = False
-    extra: dict = field(default_factory=dict, compare=False, repr=False)
-
-
-def _within(q: np.ndarray, qlim: ArrayLike | None) -> bool:
-    if qlim is None:
-        return True
-    qlim = np.asarray(qlim, dtype=float)
-    tol = 1e-12
-    return bool(np.all(q >= qlim[:, 0] - tol) and np.all(q <= qlim[:, 1] + tol))
-
-
-def _qlim_or_none(qlim: ArrayLike | None, n: int, name: str = "qlim") -> np.ndarray | None:
-    if qlim is None:
-        return None
-    arr = np.asarray(qlim, dtype=float)
-    if arr.shape != (n, 2):
-        raise ValueError(f"{name}: expected shape ({n}, 2), got {arr.shape}")
-    return arr
 
 
 def _two_link_core(x: float, y: float, l1: float, l2: float) -> list[tuple[float, float, str]]:
@@ -212,14 +179,14 @@ def _puma_params(table: DHTable) -> tuple[float, float, float, float, float, flo
     """Check the PUMA 560 structure and return its constants (d1, a2, a3, d23, d4, d6, offsets)."""
     links = list(table.links)
     if len(links) != 6 or any(l.joint != "R" for l in links):
-        raise ValueError("table: ik_puma560 needs six revolute joints")
+        raise InputError("table: ik_puma560 needs six revolute joints")
     if table.convention != "standard":
-        raise ValueError("table: ik_puma560 needs the standard DH convention (Corke's/Paul's PUMA 560 frames)")
+        raise InputError("table: ik_puma560 needs the standard DH convention (Corke's/Paul's PUMA 560 frames)")
     alpha = np.array([l.alpha for l in links])
     a = np.array([l.a for l in links])
     d = np.array([l.d for l in links])
     if np.abs(wrap_angle(alpha - _PUMA_ALPHA)).max() > 1e-9 or np.abs(a[[0, 3, 4, 5]]).max() > 1e-12 or abs(d[4]) > 1e-12:
-        raise ValueError(
+        raise InputError(
             "table: not a PUMA 560-type arm (needs alpha = [90, 0, -90, 90, -90, 0] deg, a1 = a4 = a5 = a6 = 0, d5 = 0)"
         )
     offsets = np.array([l.theta for l in links])
@@ -249,13 +216,22 @@ def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IK
     Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
     of :func:`ik_spherical_wrist` applies), [] if unreachable.
     """
-    from robokit.ik.closed_form import _check_pose, _model
+    hit = _PUMA_CHECKED.get(id(table))
+    if hit is None or hit[0]() is not table or hit[1] is not table.links:
+        _puma_params(table)  # the PUMA structure, checked once per table (its links are immutable)
+        def drop(_ref: weakref.ref, key: int = id(table)) -> None:
+            _PUMA_CHECKED.pop(key, None)
 
-    if getattr(table, "_closed_form", None) is None:
-        _puma_params(table)  # the PUMA structure, checked once per table
-    model = _model(table)
+        try:
+            _PUMA_CHECKED[id(table)] = (weakref.ref(table, drop), table.links)
+        except TypeError:  # pragma: no cover - a table without weak references: check every call
+            pass
     ref = theta4_ref if type(theta4_ref) is float else as_scalar(theta4_ref, "theta4_ref")
-    return model.solve(_check_pose(T), ref)
+    return analytic_ik(table).solve(check_pose(T), ref)
+
+
+#: id(table) → (weak reference, links) of the tables whose PUMA structure was checked.
+_PUMA_CHECKED: dict[int, tuple[weakref.ref, tuple]] = {}
 
 
 

@@ -21,7 +21,14 @@ and ``ik_analytic`` raises ``ValueError`` with the reason in the arm's terms.
 
 The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.urdf_to_dh`
 extracts, whose FK equals the URDF's) is turned once into the canonical chain and the
-solver's constants; these are cached on the robot (attribute ``_closed_form``).
+solver's constants, owned by an :class:`AnalyticIK` object (hold one, or let
+:func:`ik_analytic` keep one per robot while the robot lives). The object checks on every
+solve whether what it was built from changed (``robot.dh``/``robot.qlim`` replaced, a table's
+``base``/``tool``/limits edited in place) and rebuilds itself if so. The solvers implement
+one interface, :class:`robokit.ik.solver.ClosedFormSolver` (position sub-problem, wrist
+sub-problem, joint angles); ``SOLVERS`` maps each detected structure's method name to its
+solver class, and ``FALLBACK`` lists solvers tried, in order, for a 6-joint arm with none of
+these structures (the first whose ``refusal()`` is None takes it).
 
 Solutions: joint values q (rad, m), revolute ones wrapped to (−π, π] — or shifted by 2π
 where that lands inside limits wider than ±π —, flagged ``within_limits``, labelled with
@@ -39,27 +46,27 @@ one side) get " #2".
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Sequence, cast
+from typing import TYPE_CHECKING, Callable, Sequence, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._arrays import as_scalar
+from robokit.errors import InputError
 from robokit.ik._dh_chain import DHChain
-from robokit.ik.analytic import IKSolution
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
-from robokit.spatial.se3 import check_transform
+from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
+from robokit.ik.solver import ClosedFormSolver
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-_Row = tuple[Sequence[float], str, bool]  # (q, label, degenerate) of one solution
+__all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_kind"]
 
-__all__ = ["ClosedFormKind", "ik_analytic", "ik_analytic_kind"]
-
-_TWO_PI = 2.0 * math.pi
 _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
 
@@ -80,197 +87,295 @@ class ClosedFormKind:
         return self.method is not None
 
 
-class ClosedFormModel:
-    """One robot's closed-form IK: canonical chain, method, solver constants (built once)."""
+#: The solver class of each method :func:`_detect` can report (see :mod:`robokit.ik.solver`
+#: for the interface a new one implements).
+SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
+    "spherical wrist": PieperSolver,
+    "three parallel axes": ParallelAxesSolver,
+}
 
-    def __init__(self, table: DHTable, qlim: ArrayLike | None = None) -> None:
-        self.chain = DHChain(table, qlim)
+
+#: Solvers tried, in order, for a 6-joint chain with none of the structures above (read either
+#: way): the first whose ``refusal()`` is None solves it. A general 6R solver registers here.
+FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = []
+
+
+def _is_table(robot: object) -> bool:
+    return hasattr(robot, "links") and hasattr(robot, "convention")
+
+
+def _is_robot(robot: object) -> bool:
+    return hasattr(robot, "model") and hasattr(robot, "qlim")
+
+
+def _table_key(table: DHTable, link_limits: bool) -> tuple:
+    """What the closed form of ``table`` depends on, as ids and bytes (cheap to compare)."""
+    key: tuple = (id(table.links), table.convention, np.asarray(table.base, dtype=float).tobytes(),
+                  np.asarray(table.tool, dtype=float).tobytes())
+    if link_limits:
+        key += tuple(None if l.qlim is None else np.asarray(l.qlim, dtype=float).tobytes() for l in table.links)
+    return key
+
+
+def _sources(robot: Robot | DHTable) -> tuple[tuple, tuple]:
+    """(key, objects): the key changes when anything the closed form was built from changes —
+    a replaced ``robot.dh``/``robot.qlim``/``table.links``, or ``base``/``tool``/limits
+    edited in place; ``objects`` are held so that the ids in the key stay unique (never the
+    robot itself: the per-robot cache must not keep it alive)."""
+    if _is_table(robot):
+        table = cast("DHTable", robot)
+        return _table_key(table, True), (table.links,)
+    rob = cast("Robot", robot)
+    dh, qlim = rob.dh, rob.qlim
+    key: tuple = (id(dh), id(rob.model), np.asarray(qlim, dtype=float).tobytes())
+    if dh is not None:
+        key += _table_key(dh, False)
+    return key, (dh, rob.model, qlim, None if dh is None else dh.links)
+
+
+class AnalyticIK:
+    r"""The closed-form inverse kinematics of one robot, as an object to hold and reuse.
+
+    Built once from the robot's DH table (``robot.dh``, or for a URDF the table
+    :func:`robokit.urdf_to_dh` extracts): the canonical chain, the method (see
+    :func:`ik_analytic_kind` and the module docstring) and the solver's constants. The object
+    owns them: when what they were built from changes — ``robot.dh`` or ``robot.qlim``
+    replaced, a table's ``base``/``tool`` or limits edited in place — the next :meth:`solve`
+    rebuilds them first, so an answer never comes from stale constants.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+        Any robot; one without a closed form gives an object whose ``kind.method`` is None
+        and whose ``reason`` says why (its :meth:`solve` raises).
+
+    Attributes
+    ----------
+    kind : ClosedFormKind
+        ``.method`` (``"spherical wrist"``, ``"three parallel axes"`` or None) and ``.reason``.
+    solver : ClosedFormSolver or None
+        The solver object (:mod:`robokit.ik.solver`) for the chain it solves.
+    reversed : bool
+        True when the structure is found counted from the tool (the chain is read backwards).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> ik = AnalyticIK(robokit.load("puma560"))
+    >>> ik.kind.method
+    'spherical wrist'
+    >>> T = robokit.load("puma560").frame_pose(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))
+    >>> len(ik.solve(T))
+    8
+    >>> AnalyticIK(robokit.load("panda")).reason
+    'the arm has 7 joints; the closed forms here need exactly 6 (use solve_ik)'
+    """
+
+    kind: ClosedFormKind
+    solver: ClosedFormSolver | None
+    reversed: bool
+
+    def __init__(self, robot: Robot | DHTable) -> None:
+        if not (_is_table(robot) or _is_robot(robot)):
+            raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
+        self._strong: Robot | DHTable | None = robot
+        self._weak: weakref.ref | None = None
+        self._build()
+
+    @classmethod
+    def _shared(cls, robot: Robot | DHTable) -> AnalyticIK:
+        """An AnalyticIK that refers to ``robot`` only weakly (for the per-robot cache: it must
+        not keep its robot alive). Raises TypeError if ``robot`` has no weak references."""
+        ik = cls(robot)
+        ik._weak, ik._strong = weakref.ref(robot), None
+        return ik
+
+    @property
+    def _robot(self) -> Robot | DHTable:
+        robot = self._strong if self._weak is None else self._weak()
+        if robot is None:  # pragma: no cover - the cache drops an entry with its robot
+            raise ReferenceError("the robot of this AnalyticIK no longer exists")
+        return robot
+
+    @property
+    def method(self) -> str | None:
+        """The closed form's name (``kind.method``), None without one."""
+        return self.kind.method
+
+    @property
+    def reason(self) -> str:
+        """Why the method applies, or why no closed form does (``kind.reason``)."""
+        return self.kind.reason
+
+    def __bool__(self) -> bool:
+        return self.kind.method is not None
+
+    def __repr__(self) -> str:
+        name = getattr(self._robot, "name", type(self._robot).__name__)
+        return f"AnalyticIK({name!r}, method={self.kind.method!r})"
+
+    def _build(self) -> None:
+        robot = self._robot
+        self._key, self._held = _sources(robot)
+        override: ClosedFormKind | None = None
+        qlim: np.ndarray | None = None
+        if _is_table(robot):
+            table = cast("DHTable", robot)
+        else:
+            rob = cast("Robot", robot)
+            if rob.dh is not None:
+                table = rob.dh
+            else:
+                from robokit.description.urdf_to_dh import urdf_to_dh
+
+                res = urdf_to_dh(rob, "standard")
+                table = res.table
+                if not res.exact:
+                    override = ClosedFormKind(None, f"the DH table extracted from {rob.name} reproduces its forward "
+                                                    f"kinematics only to {res.residual:.2e} (> 1e-9)")
+            qlim = np.asarray(rob.qlim, dtype=float)
+        links = list(table.links)
+        if qlim is None and all(getattr(l, "qlim", None) is not None for l in links):
+            qlim = np.array([l.qlim for l in links], dtype=float)
+        # a flipped joint (θ = θ₀ − q, DHLink.flip) is solved as the unflipped joint of q′ = −q
+        flip = [bool(getattr(l, "flip", False)) for l in links]
+        self._flip = flip if any(flip) else None
+        qlim_chain = qlim
+        if qlim is not None and self._flip is not None:
+            qlim_chain = np.array([(-hi, -lo) if f else (lo, hi) for (lo, hi), f in zip(qlim, flip)])
+        self.chain = DHChain(table, qlim_chain)
         self.reversed = False
-        self.kind, self.solver, self.solver_chain = self._method(self.chain)
+        self.kind, self.solver = _method(self.chain)
         if self.kind.method is None and self.chain.n == 6:
             # the same structures counted from the tool: axes 1–3 meeting (a spherical wrist at the
             # base), or axes 3–5 parallel with axes 1 and 2 meeting — solve the inverse pose
-            rc = self.chain.reversed()
-            kind, solver, _ = self._method(rc)
+            kind, solver = _method(self.chain.reversed())
             if kind.method is not None:
                 where = {"spherical wrist": "axes 1–3 meet in one point (a spherical joint group at the base)",
-                         "three parallel axes": "axes 3–5 are parallel and axes 1 and 2 meet"}[kind.method]
+                         "three parallel axes": "axes 3–5 are parallel and axes 1 and 2 meet"}.get(
+                             kind.method, "the structure is found counted from the tool")
                 self.kind = ClosedFormKind(kind.method, f"{where}: the {kind.method} method on the chain read "
                                                         f"from the tool back to the base")
-                self.solver, self.solver_chain, self.reversed = solver, rc, True
-        ch = self.chain
-        self.rev_list = [k == "R" for k in ch.kinds]
-        self.all_rev = all(self.rev_list)
-        # limits with the 1e-12 tolerance of the within_limits flag folded in
-        self.lim_list = None if ch.qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in ch.qlim]
+                self.solver, self.reversed = solver, True
+        if self.kind.method is None and self.chain.n == 6:
+            # solvers for arms with no special structure (e.g. a general 6R elimination): each
+            # says by refusal() whether it takes the chain; the first that does solves it
+            for make in FALLBACK:
+                solver = make(self.chain)
+                why_not = solver.refusal()
+                if why_not is None:
+                    self.kind = ClosedFormKind(solver.method, f"{self.kind.reason}; the {solver.method} method "
+                                                              f"solves it")
+                    self.solver = solver
+                    break
+        if override is not None:
+            self.kind, self.solver = override, None
+        self._revolute = [k == "R" for k in self.chain.kinds]
+        # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
+        self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
+        # the joint a singular pose leaves free (wrist_ref's joint), in the order of self.chain
+        free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
+        self._free_flipped = (free is not None and self._flip is not None
+                              and self._flip[5 - free if self.reversed else free])
 
-    @staticmethod
-    def _method(chain: DHChain) -> tuple[ClosedFormKind, PieperSolver | ParallelAxesSolver | None, DHChain]:
-        """(kind, solver, chain) for one reading of the chain."""
-        kind = _detect(chain)
-        solver: PieperSolver | ParallelAxesSolver | None = None
-        if kind.method == "spherical wrist":
-            solver = PieperSolver(chain)
-            if not _positions_in_3d(solver):
-                kind = ClosedFormKind(None, "axes 4–6 meet in one point, but joints 1–3 cannot move the wrist "
-                                            "centre in three independent directions (their axes confine it "
-                                            "to a surface)")
-                solver = None
-        elif kind.method == "three parallel axes":
-            solver = ParallelAxesSolver(chain)
-        if solver is not None:
-            solver.w6_list = [float(v) for v in solver.w6]
-            solver.th0_all = [float(t) for t in chain.th0]
-        return kind, solver, chain
+    def _refresh(self) -> None:
+        """Rebuild the constants if what they were built from has changed."""
+        if _sources(self._robot)[0] != self._key:
+            self._build()
 
-    # ------------------------------------------------------------------ solving
-    def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
-        if self.solver is None:
-            raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+    def solve(self, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
+        """Every closed-form solution for the tip pose ``T`` — the list :func:`ik_analytic` returns.
+
+        Parameters
+        ----------
+        T : (4, 4) array_like
+            Target pose of the tip in the base frame (m).
+        wrist_ref : float
+            The free joint's value at a wrist singularity (rad); default 0.
+
+        Returns
+        -------
+        list of IKSolution
+            See :func:`ik_analytic`; ``[]`` when T is out of reach.
+
+        Raises
+        ------
+        InputError
+            If the robot has no closed form (``reason`` is in the message) or T is not a rigid
+            transform.
+        """
+        self._refresh()
+        T = _check_pose(T)
+        wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        solver = self.solver
+        if solver is None:
+            raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+        if self._free_flipped:
+            wrist_ref = -wrist_ref  # the free joint is flipped: q′ = −wrist_ref gives q = wrist_ref
         if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
             R, p = T[:3, :3], T[:3, 3]
             Tinv = np.eye(4)
             Tinv[:3, :3] = R.T
             Tinv[:3, 3] = -R.T @ p
-            T06 = self.solver_chain.target_06(Tinv)
-            rows = self._rows(T06, -wrist_ref)
+            rows = solver.joint_angles(solver.chain.target_06(Tinv), -wrist_ref)
             rows = [(tuple(-v for v in q[::-1]), label + " (chain reversed)", degen) for q, label, degen in rows]
         else:
-            rows = self._rows(self.chain.target_06(T), wrist_ref)
-        return self._finish(rows)
-
-    def _rows(self, T06: np.ndarray, wrist_ref: float) -> list[_Row]:
-        if isinstance(self.solver, ParallelAxesSolver):
-            return self.solver.solve(T06, wrist_ref)
-        return self._pieper(T06, wrist_ref)
-
-    def _pieper(self, T06: np.ndarray, wrist_ref: float) -> list[_Row]:
-        sv = self.solver
-        assert isinstance(sv, PieperSolver)  # _rows sends the parallel-axes solver elsewhere
-        th0 = sv.th0_all
-        (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T06[:3].tolist()
-        w6x, w6y, w6z = sv.w6_list
-        W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
-             r20 * w6x + r21 * w6y + r22 * w6z + p2)
-        R06 = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
-        rows: list[_Row] = []
-        for q123, singular1, degen_pos in sv.position(W):
-            th, _ = sv._angles(q123)
-            head = self._shoulder(q123, th, W, singular1) + self._elbow(q123, th)
-            for t4, t5, t6, flip, degen in sv.wrist(th, R06, wrist_ref):
-                q = (q123[0], q123[1], q123[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
-                rows.append((q, head + flip, degen or degen_pos or singular1))
-        return rows
-
-    def _shoulder(self, q: Sequence[float], th: Sequence[float], W: Sequence[float], singular: bool) -> str:
-        if self.solver_chain.kinds[0] != "R":
-            return ""
-        if singular:
-            return "shoulder singular, "
-        x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
-        return "right, " if x1 >= 0.0 else "left, "
-
-    def _elbow(self, q: Sequence[float], th: Sequence[float]) -> str:
-        sv = self.solver
-        assert isinstance(sv, PieperSolver)  # called from _pieper only
-        if self.solver_chain.kinds[2] == "P":
-            d = self.solver_chain.d0[2] + q[2]
-            return "d3 +, " if d >= 0.0 else "d3 −, "
-        c3, s3 = math.cos(th[2]), math.sin(th[2])
-        e = (s3 * sv.v[0] + c3 * sv.v[1]) * (sv.a2 if sv.a2 != 0.0 else 1.0)
-        return "elbow down, " if e > 0.0 else "elbow up, "
-
-    def _finish(self, rows: list[_Row]) -> list[IKSolution]:
-        """Wrap, shift into limits, flag, drop duplicates, label: rows → IKSolutions.
-
-        Plain Python on at most a few dozen numbers (numpy's per-call overhead would dominate).
-        """
-        if not rows:
-            return []
-        rev = self.rev_list
-        all_rev = self.all_rev
-        lims = self.lim_list
-        rem = math.remainder
-        two_pi, pi = _TWO_PI, math.pi
-        kept: list[list[float]] = []
-        meta: list[tuple[bool, str, bool]] = []
-        labels: dict[str, int] = {}
-        for q, label, degen in rows:
-            if all_rev:
-                qq = [rem(v, two_pi) for v in q]
-            else:
-                qq = [(rem(v, two_pi) if r else float(v)) for v, r in zip(q, rev)]
-            if -pi in qq:  # (−π, π]
-                qq = [(pi if (v == -pi and r) else v) for v, r in zip(qq, rev)]
-            inside = True
-            if lims is not None:
-                for j, (lo, hi) in enumerate(lims):
-                    v = qq[j]
-                    if v < lo or v > hi:
-                        if rev[j] and lo <= v + two_pi <= hi:
-                            qq[j] = v + two_pi  # limits wider than ±π: the shifted angle is inside
-                        elif rev[j] and lo <= v - two_pi <= hi:
-                            qq[j] = v - two_pi
-                        else:
-                            inside = False
-            dup = False
-            for other in kept:  # distinct solutions only (angles compared modulo 2π)
-                for v, o, r in zip(qq, other, rev):
-                    d = rem(v - o, two_pi) if r else v - o
-                    if d >= 1e-9 or d <= -1e-9:
-                        break
-                else:
-                    dup = True
-                    break
-            if dup:
-                continue
-            kept.append(qq)
-            n = labels.get(label, 0) + 1
-            labels[label] = n
-            meta.append((inside, label if n == 1 else f"{label} #{n}", bool(degen)))
-        Q = np.array(kept)
-        return [_solution(Q[k], *meta[k]) for k in range(len(kept))]
+            rows = solver.joint_angles(self.chain.target_06(T), wrist_ref)
+        if self._flip is not None:  # q = −q′ for the flipped joints
+            flip = self._flip
+            rows = [(tuple(-v if f else v for v, f in zip(q, flip)), label, degen) for q, label, degen in rows]
+        return solutions_from_rows(rows, self._revolute, self._limits)
 
 
-_new = object.__new__
+def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
+    """(kind, solver) for one reading of the chain."""
+    kind = _detect(chain)
+    if kind.method is None:
+        return kind, None
+    make = SOLVERS.get(kind.method)
+    if make is None:  # a structure whose solver is not registered
+        return ClosedFormKind(None, f"{kind.reason}, but no solver for the {kind.method} method is registered"), None
+    solver = make(chain)
+    why_not = solver.refusal()
+    if why_not is not None:
+        return ClosedFormKind(None, why_not), None
+    return kind, solver
 
 
-def _solution(q: np.ndarray, within_limits: bool, label: str, degenerate: bool) -> IKSolution:
-    """An IKSolution built without the frozen dataclass's field-by-field ``__init__`` (a
-    quarter of the cost of a call for 8 solutions); the same object in every respect."""
-    sol = _new(IKSolution)
-    sol.__dict__.update(q=q, within_limits=within_limits, label=label, degenerate=degenerate, extra={})
-    return sol
+class _Cache:
+    """One :class:`AnalyticIK` per live robot or table, for the one-call :func:`ik_analytic`.
 
+    Keyed by the object's id and dropped when the object is collected (a weak reference);
+    each AnalyticIK checks its own sources on every solve, so an entry is never stale.
+    Objects that cannot be weakly referenced get a fresh AnalyticIK per call.
+    """
+
+    def __init__(self) -> None:
+        self._entries: dict[int, tuple[weakref.ref, AnalyticIK]] = {}
+
+    def get(self, robot: Robot | DHTable) -> AnalyticIK:
+        key = id(robot)
+        hit = self._entries.get(key)
+        if hit is not None and hit[0]() is robot:
+            return hit[1]
+        entries = self._entries
+
+        def drop(_ref: weakref.ref, key: int = key) -> None:
+            entries.pop(key, None)
+
+        try:
+            ref = weakref.ref(robot, drop)
+        except TypeError:  # pragma: no cover - objects without weak references
+            return AnalyticIK(robot)
+        ik = AnalyticIK._shared(robot)
+        entries[key] = (ref, ik)
+        return ik
+
+
+_CACHE = _Cache()
+_check_pose = check_pose
 
 # ---------------------------------------------------------------------- detection
-def _positions_in_3d(sv: PieperSolver) -> bool:
-    """True if joints 1–3 move the wrist centre in 3 independent directions somewhere.
-
-    The 3×3 Jacobian of the wrist centre (central differences) is checked at a few fixed
-    pseudo-random configurations; a positioning structure that is rank-deficient at all
-    of them (e.g. a prismatic joint perpendicular to a revolute one in a plane) has a
-    continuum of solutions, not a finite set.
-    """
-    rng = np.random.default_rng(12345)
-    scale = sv.chain.scale
-    for _ in range(4):
-        q = list(rng.uniform(-2.0, 2.0, 3))
-        J = np.empty((3, 3))
-        h = 1e-6
-        for j in range(3):
-            qp, qm = list(q), list(q)
-            qp[j] += h
-            qm[j] -= h
-            pp = sv._wrist_point(*sv._angles(qp))
-            pm = sv._wrist_point(*sv._angles(qm))
-            J[:, j] = [(pp[k] - pm[k]) / (2.0 * h) for k in range(3)]
-        J[:, [sv.chain.kinds[j] == "R" for j in range(3)]] /= scale  # revolute columns in m/rad → unitless
-        if np.linalg.svd(J, compute_uv=False)[-1] > 1e-6:
-            return True
-    return False
-
-
 def _line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
     """Distance between two lines (points p, unit directions d)."""
     c = np.cross(d1, d2)
@@ -362,33 +467,26 @@ def _detect(chain: DHChain) -> ClosedFormKind:
 
 
 # ---------------------------------------------------------------------- public API
-def _model(robot: Robot | DHTable) -> ClosedFormModel:
-    """The cached ClosedFormModel of a Robot or a DH table (built on first use)."""
-    cached = getattr(robot, "_closed_form", None)
-    if isinstance(cached, ClosedFormModel):
-        return cached
-    if hasattr(robot, "links") and hasattr(robot, "convention"):  # a DH table
-        model = ClosedFormModel(cast("DHTable", robot))
-    elif hasattr(robot, "model") and hasattr(robot, "qlim"):
-        table = getattr(robot, "dh", None)
-        if table is None:
-            from robokit.description.urdf_to_dh import urdf_to_dh
+def analytic_ik(robot: Robot | DHTable) -> AnalyticIK:
+    """The shared :class:`AnalyticIK` of ``robot`` (built on first use, kept while ``robot`` lives).
 
-            res = urdf_to_dh(robot, "standard")
-            table = res.table
-        qlim = np.asarray(robot.qlim, dtype=float)
-        model = ClosedFormModel(table, qlim)
-        if robot.dh is None and not res.exact:
-            model.kind = ClosedFormKind(None, f"the DH table extracted from {robot.name} reproduces its forward "
-                                              f"kinematics only to {res.residual:.2e} (> 1e-9)")
-            model.solver = None
-    else:
-        raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
-    try:
-        object.__setattr__(robot, "_closed_form", model)
-    except (AttributeError, TypeError):  # pragma: no cover - objects without a __dict__
-        pass
-    return model
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+
+    Returns
+    -------
+    AnalyticIK
+        The same object on every call for the same robot; it rebuilds itself when the robot's
+        table or limits change.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> analytic_ik(robokit.load("puma560")).method
+    'spherical wrist'
+    """
+    return _CACHE.get(robot)
 
 
 def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
@@ -417,11 +515,16 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     >>> ik_analytic_kind(robokit.load("puma560")).method
     'spherical wrist'
     """
-    return _model(robot).kind
+    ik = _CACHE.get(robot)
+    ik._refresh()
+    return ik.kind
 
 
 def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
     r"""Every closed-form IK solution of ``robot`` for the tip pose ``T``.
+
+    The one-call form of :class:`AnalyticIK`: ``ik_analytic(robot, T)`` is
+    ``AnalyticIK(robot).solve(T)`` with the object built once per robot and reused.
 
     Parameters
     ----------
@@ -446,9 +549,9 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
 
     Raises
     ------
-    ValueError
-        If the robot has no closed form (the reason is in the message) or T is not a rigid
-        transform.
+    InputError
+        (a ValueError) If the robot has no closed form (the reason is in the message) or T is
+        not a rigid transform.
 
     Notes
     -----
@@ -464,19 +567,4 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     >>> len(ik_analytic(robot, T))
     8
     """
-    model = _model(robot)
-    return model.solve(_check_pose(T), float(wrist_ref))
-
-
-def _check_pose(T: ArrayLike) -> np.ndarray:
-    """T as a float 4×4 rigid transform: a quick test for a clean float array (RᵀR = I to 1e-9,
-    det R > 0, last row exact), else the full :func:`check_transform` (which raises)."""
-    if type(T) is np.ndarray and T.dtype == np.float64 and T.shape == (4, 4):
-        (a, b, c, _), (d, e, f, _), (g, h, i, _), last = T.tolist()
-        dev = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0), abs(c * c + f * f + i * i - 1.0),
-                  abs(a * b + d * e + g * h), abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
-        det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-        finite = math.isfinite(a + b + c + d + e + f + g + h + i + T[0, 3] + T[1, 3] + T[2, 3])
-        if finite and dev < 1e-9 and det > 0.0 and last == [0.0, 0.0, 0.0, 1.0]:
-            return T
-    return check_transform(T, "T")
+    return _CACHE.get(robot).solve(T, wrist_ref)

@@ -8,28 +8,24 @@ Two solvers:
   until ``‖ω_b‖ ≤ eomg`` and ``‖v_b‖ ≤ ev``. Space form: ``V_s = Ad_{T_sb} V_b`` with
   ``J_s``. Up to ``max_iterations`` (default 100; Modern Robotics stops at 20).
 
-* :func:`solve_ik` — a robust solver for any :class:`robokit.Robot` and any frame:
-  Levenberg–Marquardt (damped least squares with the damping ``λ = λ₀ ‖e‖² + λ_min``
-  growing with the error, after Sugihara 2011), joint limits enforced by projection
-  after every step, full-pose or position-only mode, a weighted error, and random
-  restarts inside the limits until an iteration, restart or time budget runs out.
-  It uses Pinocchio (through the Robot's methods) for FK and Jacobians.
+* :func:`solve_ik` — inverse kinematics for any :class:`robokit.Robot` and any frame, by
+  the IK back ends of :mod:`robokit.ik.backends` tried in a documented order (closed form,
+  planar, compiled Levenberg–Marquardt, Pinocchio Levenberg–Marquardt — :mod:`robokit.ik.lm`);
+  ``IKResult.method`` names the one that answered. Deterministic by default (fixed seed).
 
-Errors are measured in the target frame: the pose error is the body twist
-``log(T(θ)⁻¹ T_target)`` (angular first, rad and m); the position error is
-``p_target − p(θ)`` in the base frame (m).
 """
 from __future__ import annotations
 
-import math
 import time
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit.errors import InputError
+from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
+from robokit.ik.lm import IKResult
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
 
@@ -37,12 +33,8 @@ if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
     from robokit.description.robot import Robot
 
-_Closures = tuple[Callable[[np.ndarray], tuple[np.ndarray, float]], Callable[[np.ndarray], np.ndarray], np.ndarray]
-
 __all__ = ["ikin_body", "ikin_space", "IKResult", "solve_ik"]
 
-# an attempt that is still this far off after this many iterations is abandoned for a fresh seed
-_EARLY_IT, _EARLY_ERR = 15, 1e-2
 
 
 def _check_screws(S: ArrayLike, name: str) -> np.ndarray:
@@ -72,16 +64,6 @@ def _newton_args(screws: ArrayLike, name: str, M: ArrayLike, T: ArrayLike, theta
     theta = as_vector(thetalist0, "thetalist0", screws.shape[1]).copy()
     return (screws, check_transform(M, "M"), check_transform(T, "T"), theta,
             as_scalar(eomg, "eomg", nonnegative=True), as_scalar(ev, "ev", nonnegative=True))
-
-
-def _spd_solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve A x = b for a symmetric positive definite A (LAPACK dposv: Cholesky, small overhead)."""
-    from scipy.linalg.lapack import dposv
-
-    _, x, info = dposv(A, b)
-    if info != 0:  # not positive definite after all: fall back to a general solve
-        return np.linalg.solve(A, b)
-    return x
 
 
 def _pinv_solve(J: np.ndarray, V: np.ndarray) -> np.ndarray:
@@ -176,269 +158,133 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
     return best.result(), False
 
 
-@dataclass
-class IKResult:
-    """Result of :func:`solve_ik`.
-
-    q : (n,) the best configuration found (joint angles, inside the limits);
-    success : True if the error is below the tolerance;
-    residual : ``hypot(orientation_error, position_error)`` at ``q`` (rad/m mixed for poses);
-    position_error, orientation_error : m and rad at ``q`` (orientation NaN-free 0 in position mode);
-    iterations : total iterations over all attempts; restarts : random restarts used;
-    seconds : wall time.
-    """
-
-    q: np.ndarray
-    success: bool
-    residual: float
-    position_error: float
-    orientation_error: float
-    iterations: int
-    restarts: int
-    seconds: float
-
-
 def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = None, q0: ArrayLike | None = None, *,
              position_only: bool = False, weights: ArrayLike | None = None, tol: float = 1e-10,
              max_iterations: int | None = None, max_restarts: int = 100, time_budget: float | None = None,
              damping: float = 1e-2, min_damping: float = 1e-9, rng: int | np.random.Generator | None = None,
              method: str = "auto") -> IKResult:
-    """Inverse kinematics for any Robot and frame: closed form, compiled LM, or Pinocchio LM.
+    """Inverse kinematics for any Robot and frame, by the first IK back end that supports the problem.
 
-    method : "auto" (default) — for a full pose of the robot's tip with no weights and no
-    time budget: the closed form when the arm has one (:func:`robokit.ik_analytic`; the
-    solution inside the limits nearest ``q0`` is returned), else the compiled
-    Levenberg–Marquardt solver (:func:`robokit.kernels.ik.solve_poe_ik`); anything else
-    (another frame, position only, weights, a time budget) uses the Pinocchio-based loop
-    below. "analytic", "compiled" and "lm" force one of them ("analytic" raises
-    ``ValueError`` for an arm without a closed form).
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or RobotLike
+        The arm (any object with ``n``, ``qlim``, ``frame_pose`` and ``jacobian`` works with
+        the ``"lm"`` back end).
+    target : (4, 4) or (3,) array_like
+        Pose of ``frame`` in the base frame (m), or with ``position_only`` its position (3,).
+    frame : str, optional
+        The frame to place (default the robot's tip).
+    q0 : (n,) array_like, optional
+        Initial guess (rad, m); default the zero configuration; clipped to the limits. The
+        closed forms return the in-limit solution nearest it.
+    position_only : bool
+        Match the position only.
+    weights : (6,) or (3,) array_like, optional
+        Non-negative weights of the body-twist error (ω, v), or of the position error.
+    tol : float
+        Success when the position error (m) and the orientation error (rad) are below it.
+    max_iterations : int, optional
+        Per attempt (default 30 for the compiled solver, 60 for the Pinocchio loop).
+    max_restarts : int
+        Random restarts (uniform inside the limits) after the first attempt.
+    time_budget : float, optional
+        Seconds after which no new restart begins (the ``"lm"`` back end; the closed forms
+        accept it and take microseconds).
+    damping, min_damping : float
+        ``λ = damping·‖e‖² + min_damping`` of the LM steps.
+    rng : int or numpy Generator, optional
+        Seeds the restarts. Default: the fixed seed :data:`robokit.ik.backends.DEFAULT_SEED`
+        (0), so the same call gives the same answer on every run — on a redundant arm too;
+        pass another seed (or a Generator) for another answer.
+    method : str
+        ``"auto"`` (default): the back ends of :mod:`robokit.ik.backends` in their documented
+        order — ``"analytic"`` (closed form), ``"planar"``, ``"compiled"`` (compiled LM),
+        ``"lm"`` (Pinocchio LM) —, the first that supports the problem and meets ``tol``.
+        A name picks that back end only.
 
-    The Pinocchio-based loop ("lm") is Levenberg–Marquardt with joint limits and random
-    restarts, for any Robot and frame:
+    Returns
+    -------
+    IKResult
+        ``.q`` (n,) inside the limits, ``.success``, the errors, and ``.method``: the back end
+        that answered (``.tried``: why the earlier ones did not).
 
-    robot : a :class:`robokit.Robot`; target : 4×4 pose (or a (3,) position with
-    ``position_only``) of ``frame`` (default the robot's tip) in the base frame;
-    q0 : (n,) initial guess (default: the robot's zero configuration clipped to the limits);
-    weights : (6,) weights of the body-twist error (ω, v), or (3,) in position mode;
-    tol : success when the position error (m) and the orientation error (rad) are below it (the
-    residual is ``hypot(orientation_error, position_error)``); max_iterations : per attempt (default
-    30 for the compiled solver, 60 for the Pinocchio loop);
-    max_restarts : random restarts (uniform inside the limits) after the first attempt;
-    time_budget : seconds, optional; damping : λ₀ in ``λ = λ₀‖e‖² + min_damping``;
-    rng : numpy Generator or seed for the restarts.
+    Raises
+    ------
+    InputError
+        For bad arguments, an unknown ``method``, or a named ``method`` that does not support
+        the problem (e.g. ``method="compiled"`` with ``weights``): the reason is in the
+        message. A back end is never swapped silently.
 
-    Each step solves ``(JᵀWJ + λI) Δq = JᵀWe`` and projects ``q + Δq`` onto the joint
-    limits; an attempt stops when ``‖e‖ < tol``, or when it stalls. The returned
-    configuration is always inside the limits.
+    Notes
+    -----
+    Lecture 5. The LM back ends solve ``(JᵀWJ + λI) Δq = JᵀWe`` per step and project
+    ``q + Δq`` onto the joint limits; the returned configuration is always inside them.
 
-    Example::
-
-        robot = robokit.load("ur5")
-        res = solve_ik(robot, robot.frame_pose(q_true))
-        res.success, res.q
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("ur5")
+    >>> res = solve_ik(robot, robot.frame_pose(np.full(6, 0.4)))
+    >>> bool(res.success), res.method
+    (True, 'analytic')
+    >>> solve_ik(robot, robot.frame_pose(np.full(6, 0.4)), weights=[1, 1, 1, 1, 1, 0]).method
+    'lm'
     """
     t_start = time.perf_counter()
     from robokit.description.protocol import RobotLike
     from robokit.description.robot import Robot
 
-    is_robot = isinstance(robot, Robot)
-    if not is_robot and not isinstance(robot, RobotLike):
+    if not isinstance(robot, Robot) and not isinstance(robot, RobotLike):
         raise TypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
                         f"(robokit.description.RobotLike), got {type(robot).__name__}")
+    if not isinstance(method, str):
+        raise InputError(f"method: expected a string, got {type(method).__name__}")
+    if method != "auto":
+        backend(method)  # an unknown name fails before any work
     n = robot.n
-    lo = np.asarray(robot.qlim, dtype=float)[:, 0]
-    hi = np.asarray(robot.qlim, dtype=float)[:, 1]
-    sample_lo = np.where(np.isfinite(lo), lo, -np.pi)
-    sample_hi = np.where(np.isfinite(hi), hi, np.pi)
+    qlim = np.asarray(robot.qlim, dtype=float)
     p_target = T_target = None
     if position_only:
         p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)
-        w = np.ones(3) if weights is None else as_vector(weights, "weights", 3)
+        w = None if weights is None else as_vector(weights, "weights", 3)
     else:
         T_target = check_transform(target, "target")
-        w = np.ones(6) if weights is None else as_vector(weights, "weights", 6)
-    if np.any(w < 0):
-        raise ValueError(f"weights: expected non-negative entries, got {w}")
-    q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), lo, hi)
+        w = None if weights is None else as_vector(weights, "weights", 6)
+    if w is not None and np.any(w < 0):
+        raise InputError(f"weights: expected non-negative entries, got {w}")
+    q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), qlim[:, 0], qlim[:, 1])
     tol = as_scalar(tol, "tol", positive=True)
-
-    if method not in ("auto", "analytic", "compiled", "lm"):
-        raise ValueError(f"method: expected 'auto', 'analytic', 'compiled' or 'lm', got {method!r}")
-    plain = (is_robot and not position_only and weights is None and time_budget is None
-             and (frame is None or frame == getattr(robot, "tip", None)))
-    if method in ("analytic", "compiled") and not plain:
-        raise ValueError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
-    if plain and method in ("auto", "analytic"):
-        assert T_target is not None  # plain: not position_only
-        res = _solve_closed_form(cast("Robot", robot), T_target, q, tol, t_start, required=method == "analytic")
-        if res is not None:
-            return res
-    if plain and method in ("auto", "compiled"):
-        assert T_target is not None  # plain: not position_only
-        return _solve_compiled(cast("Robot", robot), T_target, q, tol, 30 if max_iterations is None else max_iterations,
-                               max_restarts, rng, t_start)
-    if max_iterations is None:
-        max_iterations = 60
-
-    rng = np.random.default_rng(rng)
-    if is_robot:
-        error, jac, w_int = _pinocchio_closures(cast("Robot", robot), frame, position_only, p_target, T_target, w)
-    else:  # any RobotLike: frame_pose(q, frame) and jacobian(q, frame, reference) (angular first)
-        error, jac, w_int = _generic_closures(robot, frame, position_only, p_target, T_target, w)
-    w_pin = w_int
-
-    best_q, best_err = q.copy(), np.inf
-    iterations = 0
-    restarts = 0
-    eye = np.eye(n)
-    while True:
-        e, err = error(q)
-        stall = 0
-        for it in range(max_iterations):
-            if err < tol:
-                break
-            J = jac(q)
-            JW = J.T * w_pin
-            A = JW @ J
-            g = JW @ e
-            lam = damping * err * err + min_damping
-            q_new = np.clip(q + _spd_solve(A + lam * eye, g), lo, hi)
-            e_new, err_new = error(q_new)
-            iterations += 1
-            if err_new < err:
-                q, e, err = q_new, e_new, err_new
-                stall = 0
-            else:
-                # a worse step: retry once with heavier damping (shorter, more gradient-like step)
-                q_try = np.clip(q + _spd_solve(A + 10.0 * (lam + 1e-6) * eye, g), lo, hi)
-                e_try, err_try = error(q_try)
-                if err_try < err:
-                    q, e, err = q_try, e_try, err_try
-                stall += 1
-                if stall >= 3:
-                    break
-            if it == _EARLY_IT and err > _EARLY_ERR:
-                break  # far from converging from this seed: a fresh restart is cheaper
-        if err < best_err:
-            best_q, best_err = q.copy(), err
-        out_of_time = time_budget is not None and time.perf_counter() - t_start > time_budget
-        if best_err < tol or restarts >= max_restarts or out_of_time:
-            break
-        restarts += 1
-        q = rng.uniform(sample_lo, sample_hi)
-    T = robot.frame_pose(best_q, frame)
-    if position_only:
-        assert p_target is not None
-        pos_err, rot_err = float(np.linalg.norm(p_target - T[:3, 3])), 0.0
-    else:
-        assert T_target is not None  # not position_only
-        rot_err = _rotation_error(T[:3, :3], T_target[:3, :3])
-        pos_err = float(np.linalg.norm(T_target[:3, 3] - T[:3, 3]))
-    return IKResult(best_q, bool(best_err < tol), math.hypot(rot_err, pos_err), pos_err, rot_err,
-                    iterations, restarts, time.perf_counter() - t_start)
+    _count(max_restarts, "max_restarts", 0)
+    if max_iterations is not None:
+        _count(max_iterations, "max_iterations", 1)
+    damping = as_scalar(damping, "damping", nonnegative=True)
+    min_damping = as_scalar(min_damping, "min_damping", nonnegative=True)
+    if time_budget is not None:
+        time_budget = as_scalar(time_budget, "time_budget", positive=True)
+    seed, gen = _seeded(rng)
+    problem = IKProblem(robot, frame, q, position_only=position_only, T_target=T_target, p_target=p_target,
+                        weights=w, q0_given=q0 is not None, tol=tol, max_iterations=max_iterations,
+                        max_restarts=int(max_restarts), time_budget=time_budget, damping=float(damping),
+                        min_damping=float(min_damping), seed=seed, rng=gen, t_start=t_start)
+    return solve_problem(problem, method)
 
 
-def _result(robot: Robot, q: np.ndarray, T_target: np.ndarray, tol: float, iterations: int, restarts: int,
-            t_start: float) -> IKResult:
-    T = robot.frame_pose(q)
-    rot_err = _rotation_error(T[:3, :3], T_target[:3, :3])
-    d = T_target[:3, 3] - T[:3, 3]
-    pos_err = math.sqrt(float(d @ d))
-    return IKResult(q, bool(rot_err < tol and pos_err < tol), math.hypot(rot_err, pos_err), pos_err, rot_err,
-                    iterations, restarts, time.perf_counter() - t_start)
+def _count(value: object, name: str, least: int) -> None:
+    """InputError unless ``value`` is an integer ≥ ``least`` (bools refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise InputError(f"{name}: expected an integer ≥ {least}, got {value!r}")
 
 
-def _rotation_error(R: np.ndarray, R_target: np.ndarray) -> float:
-    """The angle (rad) of ``Rᵀ R_target``: atan2 of its skew part's norm and (trace − 1)/2 (accurate
-    near 0, unlike an arccos of the trace)."""
-    E = R.T @ R_target
-    s = 0.5 * math.sqrt((E[2, 1] - E[1, 2]) ** 2 + (E[0, 2] - E[2, 0]) ** 2 + (E[1, 0] - E[0, 1]) ** 2)
-    return math.atan2(s, 0.5 * (E[0, 0] + E[1, 1] + E[2, 2] - 1.0))
-
-
-def _solve_closed_form(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: float, t_start: float,
-                       required: bool) -> IKResult | None:
-    """The closed form's in-limit solution nearest ``q0`` (None: no closed form, or none of its
-    solutions inside the limits — the numerical solver then takes over)."""
-    from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
-
-    kind = ik_analytic_kind(robot)
-    if not kind.method:
-        if required:
-            raise ValueError(f"method: 'analytic' needs a closed form; {kind.reason}")
-        return None
-    sols = [s for s in ik_analytic(robot, T_target) if s.within_limits]
-    if not sols:
-        return None
-    revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
-    Q = np.array([s.q for s in sols], dtype=float)
-    D = Q - q0
-    D[:, revolute] = np.mod(D[:, revolute] + np.pi, 2 * np.pi) - np.pi  # angles compared modulo 2π
-    best = Q[int(np.argmin(np.einsum("ij,ij->i", D, D)))].copy()
-    res = _result(robot, best, T_target, tol, 0, 0, t_start)
-    return res if res.success else None  # a closed form off by more than tol: let LM polish from scratch
-
-
-def _solve_compiled(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: float, max_iterations: int,
-                    max_restarts: int, rng: int | np.random.Generator | None, t_start: float) -> IKResult:
-    from robokit.kernels.ik import solve_poe_ik
-
+def _seeded(rng: int | np.random.Generator | None) -> tuple[int, np.random.Generator | None]:
+    """(integer seed, Generator or None) of ``rng``: None → :data:`DEFAULT_SEED`; an int →
+    itself (the back ends seed a Generator with it when they need one); a Generator → an
+    integer drawn from it (for the compiled solver) and the Generator itself."""
+    if rng is None:
+        return DEFAULT_SEED, None
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
-        seed = int(rng)
-    else:
-        seed = int(np.random.default_rng(rng).integers(2**31 - 1))
-    p = robot.poe
-    q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, T_target, q0, np.asarray(robot.qlim, float), tol=tol,
-                                               max_iterations=int(max_iterations),
-                                               max_restarts=int(max_restarts), seed=seed)
-    return _result(robot, np.asarray(q, float), T_target, tol, int(iterations), int(restarts), t_start)
-
-
-def _pinocchio_closures(robot: Robot, frame: str | None, position_only: bool, p_target: np.ndarray | None,
-                        T_target: np.ndarray | None, w: np.ndarray) -> _Closures:
-    """Error and Jacobian evaluated with Pinocchio directly (one Data, no conversions).
-
-    The error is in Pinocchio's twist order (v, ω) — the weights are reordered to match."""
-    import pinocchio as pin
-
-    model, data = robot.model, robot.data  # the Robot's reused workspace
-    fid = robot.frame_id(frame)
-    to_q = (lambda qc: qc) if model.nq == model.nv else robot.q_pin
-    if position_only:
-        rf = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
-        w_int = w
-    else:
-        rf = pin.ReferenceFrame.LOCAL
-        assert T_target is not None  # not position_only
-        M_target = pin.SE3(T_target[:3, :3].copy(), T_target[:3, 3].copy())
-        w_int = np.r_[w[3:], w[:3]]
-
-    def error(qc: np.ndarray) -> tuple[np.ndarray, float]:
-        pin.forwardKinematics(model, data, to_q(qc))
-        oMf = pin.updateFramePlacement(model, data, fid)
-        e = p_target - oMf.translation if position_only else pin.log6(oMf.actInv(M_target)).vector
-        return e, float(np.sqrt(e @ e))
-
-    def jac(qc: np.ndarray) -> np.ndarray:
-        pin.computeJointJacobians(model, data, to_q(qc))
-        J = pin.getFrameJacobian(model, data, fid, rf)
-        return J[:3] if position_only else J
-
-    return error, jac, w_int
-
-
-def _generic_closures(robot: RobotLike, frame: str | None, position_only: bool, p_target: np.ndarray | None,
-                      T_target: np.ndarray | None, w: np.ndarray) -> _Closures:
-    """Error and Jacobian through ``robot.frame_pose`` / ``robot.jacobian`` (angular first)."""
-
-    def error(qc: np.ndarray) -> tuple[np.ndarray, float]:
-        T = robot.frame_pose(qc, frame)
-        e = p_target - T[:3, 3] if position_only else lie.log6(lie.inv(T) @ T_target)
-        return e, float(np.sqrt(e @ e))
-
-    def jac(qc: np.ndarray) -> np.ndarray:
-        if position_only:
-            return robot.jacobian(qc, frame, reference="local_world_aligned")[3:, :]
-        return robot.jacobian(qc, frame, reference="local")
-
-    return error, jac, w
+        if rng < 0:
+            raise InputError(f"rng: expected a non-negative seed, got {rng}")
+        return int(rng), None
+    if isinstance(rng, np.random.Generator):
+        return int(rng.integers(2**31 - 1)), rng
+    raise InputError(f"rng: expected None, a non-negative integer seed or a numpy Generator, got {type(rng).__name__}")

@@ -45,6 +45,8 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from robokit.ik.paden_kahan import _trig_roots
+from robokit.ik.solution import Row
+from robokit.ik.solver import PositionBranch
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -86,10 +88,26 @@ def _rx_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
 
 
 class PieperSolver:
-    """Precomputed constants of Pieper's method for one chain (see the module docstring)."""
+    """Pieper's method for one chain: its constants, computed once (see the module docstring).
 
-    w6_list: list[float]  # set by ClosedFormModel
-    th0_all: list[float]  # set by ClosedFormModel
+    Implements :class:`robokit.ik.solver.ClosedFormSolver`: ``position`` places the wrist
+    centre (θ₁–θ₃, labels "right/left, elbow up/down"), ``wrist`` the last three joints
+    ("no flip/flip"), ``joint_angles`` both.
+
+    Parameters
+    ----------
+    chain : DHChain
+        The canonical chain (6 joints, axes 4–6 revolute and meeting in one point).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> PieperSolver(DHChain(robokit.load("puma560").dh)).method
+    'spherical wrist'
+    """
+
+    method = "spherical wrist"
 
     def __init__(self, chain: DHChain) -> None:
         self.chain = chain
@@ -118,6 +136,7 @@ class PieperSolver:
         G = chain.x(3) @ chain.z(4, 0.0) @ chain.x(4) @ chain.z(5, 0.0)  # frame 4 → frame 6 at q₅ = q₆ = 0
         Ginv = np.linalg.inv(G)
         self.w6 = Ginv[:3, 3].copy()
+        self.w6_list = [float(v) for v in self.w6]
         # f(x₃) = X₂Z₃ · ³W as coefficient triples in (1, cos θ₃, sin θ₃) or (1, d, d²)
         if self.j3 == "R":
             v = w3 + np.array([0.0, 0.0, d0[2]])
@@ -310,7 +329,7 @@ class PieperSolver:
             q = [q[k] + float(dq[k]) for k in range(3)]
         return q, err
 
-    def position(self, W: Sequence[float]) -> list[tuple[list[float], bool, bool]]:
+    def wrist_centre_joints(self, W: Sequence[float]) -> list[tuple[list[float], bool, bool]]:
         """Every (q₁, q₂, q₃, label parts, degenerate) placing the wrist centre at W (frame 0′)."""
         th0, d0 = self.th0_list, self.d0_list
         ca1, sa1 = self.ca[0], self.sa[0]
@@ -426,8 +445,8 @@ class PieperSolver:
         return [qv / A, C / qv] if sq > 0.0 else [qv / A]
 
     # ------------------------------------------------------------------ orientation
-    def wrist(self, th: Sequence[float], R06: Sequence[Sequence[float]],
-              q4_ref: float) -> list[tuple[float, float, float, str, bool]]:
+    def wrist_angles(self, th: Sequence[float], R06: Sequence[Sequence[float]],
+                     q4_ref: float) -> list[tuple[float, float, float, str, bool]]:
         """Every (θ₄, θ₅, θ₆ rotation angles, flip, degenerate) with
         Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆) = R₃ᵀR₀₆, R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃).
 
@@ -484,3 +503,100 @@ class PieperSolver:
             if s5 == 0.0:
                 break
         return out
+
+    # ------------------------------------------------------------------ the solver interface
+    def refusal(self) -> str | None:
+        """None if joints 1–3 move the wrist centre in 3 independent directions, else the reason.
+
+        The 3×3 Jacobian of the wrist centre (central differences) is checked at a few fixed
+        pseudo-random configurations; a positioning structure that is rank-deficient at all
+        of them (e.g. a prismatic joint perpendicular to a revolute one in a plane) has a
+        continuum of solutions, not a finite set.
+        """
+        rng = np.random.default_rng(12345)
+        scale = self.chain.scale
+        for _ in range(4):
+            q = list(rng.uniform(-2.0, 2.0, 3))
+            J = np.empty((3, 3))
+            h = 1e-6
+            for j in range(3):
+                qp, qm = list(q), list(q)
+                qp[j] += h
+                qm[j] -= h
+                pp = self._wrist_point(*self._angles(qp))
+                pm = self._wrist_point(*self._angles(qm))
+                J[:, j] = [(pp[k] - pm[k]) / (2.0 * h) for k in range(3)]
+            J[:, [self.chain.kinds[j] == "R" for j in range(3)]] /= scale  # revolute columns in m/rad → unitless
+            if np.linalg.svd(J, compute_uv=False)[-1] > 1e-6:
+                return None
+        return ("axes 4–6 meet in one point, but joints 1–3 cannot move the wrist centre in three "
+                "independent directions (their axes confine it to a surface)")
+
+    def _branches(self, T: list[list[float]]) -> list[PositionBranch]:
+        (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T[:3]
+        w6x, w6y, w6z = self.w6_list
+        W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
+             r20 * w6x + r21 * w6y + r22 * w6z + p2)
+        out = []
+        for q123, singular1, degen_pos in self.wrist_centre_joints(W):
+            th, _ = self._angles(q123)
+            head = self._shoulder(th, W, singular1) + self._elbow(q123, th)
+            out.append(PositionBranch(q123, head, bool(degen_pos or singular1), th))
+        return out
+
+    def _complete(self, T: list[list[float]], branch: PositionBranch, wrist_ref: float) -> list[Row]:
+        th0 = self.th0_list
+        q123, head, degen_pos, th = branch
+        R06 = (T[0][:3], T[1][:3], T[2][:3])
+        rows: list[Row] = []
+        for t4, t5, t6, flip, degen in self.wrist_angles(th, R06, wrist_ref):
+            q = (q123[0], q123[1], q123[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
+            rows.append((q, head + flip, degen or degen_pos))
+        return rows
+
+    def position(self, T06: np.ndarray) -> list[PositionBranch]:
+        """θ₁–θ₃ placing the wrist centre ``⁰W = T06·⁶W``: one branch per (right/left, elbow up/down).
+
+        Parameters
+        ----------
+        T06 : (4, 4) ndarray
+            Target of ``Z₁X₁ ⋯ Z₆`` in frame 0′ (m).
+
+        Returns
+        -------
+        list of PositionBranch
+            ``q`` (3,) joint variables 1–3, ``label`` e.g. ``"right, elbow up, "``,
+            ``data`` the rotation angles θ₁–θ₃ (offsets included).
+        """
+        return self._branches(T06.tolist())
+
+    def wrist(self, T06: np.ndarray, branch: PositionBranch, wrist_ref: float) -> list[Row]:
+        """The wrist's (q₄, q₅, q₆) for one position branch: ``M = R₃ᵀR₀₆`` (flip/no flip).
+
+        Returns rows ``(q (6,), label, degenerate)``; at a wrist singularity ``q₄ = wrist_ref``.
+        """
+        return self._complete(T06.tolist(), branch, wrist_ref)
+
+    def joint_angles(self, T06: np.ndarray, wrist_ref: float) -> list[Row]:
+        """Every row ``(q (6,), label, degenerate)`` reaching ``T06`` (up to 4 positions × 2 wrists)."""
+        T = T06.tolist()
+        rows: list[Row] = []
+        for branch in self._branches(T):
+            rows.extend(self._complete(T, branch, wrist_ref))
+        return rows
+
+    def _shoulder(self, th: Sequence[float], W: Sequence[float], singular: bool) -> str:
+        if self.chain.kinds[0] != "R":
+            return ""
+        if singular:
+            return "shoulder singular, "
+        x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
+        return "right, " if x1 >= 0.0 else "left, "
+
+    def _elbow(self, q: Sequence[float], th: Sequence[float]) -> str:
+        if self.chain.kinds[2] == "P":
+            d = self.chain.d0[2] + q[2]
+            return "d3 +, " if d >= 0.0 else "d3 −, "
+        c3, s3 = math.cos(th[2]), math.sin(th[2])
+        e = (s3 * self.v[0] + c3 * self.v[1]) * (self.a2 if self.a2 != 0.0 else 1.0)
+        return "elbow down, " if e > 0.0 else "elbow up, "

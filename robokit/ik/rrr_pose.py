@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
-from robokit.ik.analytic import IKSolution, _qlim_or_none, _within
+from robokit.ik.solution import IKSolution, _qlim_or_none, _within
 from robokit.spatial.se3 import check_transform
 from robokit.spatial.basics import wrap_angle
 

@@ -74,4 +74,4 @@ def ik_jacobian_transpose(robot: Robot, T_target: ArrayLike, q0: ArrayLike | Non
         k += 1
     return IKResult(q=q, success=bool(np.linalg.norm(delta) < tol), residual=float(np.linalg.norm(delta)),
                     position_error=float(np.linalg.norm(delta[3:])), orientation_error=float(np.linalg.norm(delta[:3])),
-                    iterations=k, restarts=0, seconds=time.perf_counter() - t0)
+                    iterations=k, restarts=0, seconds=time.perf_counter() - t0, method="transpose")

@@ -3,7 +3,7 @@ r"""The voxel grid of a capability map and its reachability pre-pass.
 Voxel centres sit on the lattice ``resolution · (i, j, k)`` (integers i, j, k) in the base
 frame, so the same resolution always gives the same centres. For a planar arm the lattice
 is two-dimensional, ``height · n + resolution · (i u + j v)`` in the tool's plane (see
-:class:`robokit.workspace.reach.PlanarChain`).
+:class:`robokit.ik.planar.PlanarChain`).
 
 Pre-pass (cheap, before any IK): tool positions are computed by forward kinematics (product
 of exponentials, batched) at configurations drawn uniformly inside the joint limits (±π for
@@ -103,7 +103,7 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
         [20 000, 4 000 000]).
     seed : int
         Seed of the configuration samples.
-    chain : :class:`robokit.workspace.reach.PlanarChain`, optional
+    chain : :class:`robokit.ik.planar.PlanarChain`, optional
         For a planar arm: keys are 2-D plane coordinates.
 
     Returns

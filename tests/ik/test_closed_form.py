@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 import robokit
 from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
-from robokit.ik import ik_analytic, ik_analytic_kind, ik_puma560
+from robokit.ik import AnalyticIK, ik_analytic, ik_analytic_kind, ik_puma560
 
 TOL = 1e-9
 
@@ -247,7 +247,7 @@ def test_random_general_arm_quartic_numerical_ik_finds_no_other(convention, tmp_
         T = robot.frame_pose(q)
         sols = ik_analytic(robot, T)
         check_solutions(robot, q, T, sols)
-        assert robot._closed_form.solver.case == "RR-quartic"  # a1 ≠ 0, sin α1 ≠ 0: the quartic
+        assert AnalyticIK(robot).solver.case == "RR-quartic"  # a1 ≠ 0, sin α1 ≠ 0: the quartic
         for _ in range(12):
             res = robokit.solve_ik(robot, T, q0=rng.uniform(-np.pi, np.pi, 6))
             if res.success:

@@ -6,6 +6,9 @@ configurations drawn uniformly inside the limits; the volume (or, for a planar a
 area) is estimated by counting occupied voxels (pixels) of a given size, which — unlike a
 convex hull — keeps holes such as the inner disc of a two-link arm's annulus
 ``|l₁ − l₂| ≤ r ≤ l₁ + l₂``.
+
+(This is the *reachable* workspace of positions; :func:`robokit.workspace.capability_map`
+adds orientations — the dexterous workspace — by inverse kinematics.)
 """
 from __future__ import annotations
 
@@ -51,7 +54,7 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
     joint limits (unlimited joints: [−π, π]); cell : voxel edge (m) for the volume estimate
     (default: 1/40 of the largest extent); rng : Generator or seed.
 
-    Example: ``ws = sample_workspace(robokit.load("twolink"), 5000); ws.reach.max()`` ≈ l₁ + l₂.
+    Example: ``ws = robokit.workspace.sample_workspace(robokit.load("twolink"), 5000); ws.reach.max()`` ≈ l₁ + l₂.
     """
     if int(n_samples) < 1:
         raise ValueError(f"n_samples: expected a positive count, got {n_samples!r}")

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from robokit.ik.workspace import plot_workspace, sample_workspace
+from robokit.workspace.sampling import plot_workspace, sample_workspace
 
 
 class PlanarTwoLink:

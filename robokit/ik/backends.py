@@ -1,0 +1,484 @@
+r"""The IK back ends: objects that say whether they support a problem (and why not) and solve it.
+
+:func:`robokit.solve_ik` and the capability maps (:mod:`robokit.workspace.reach`) use the
+same ordered list, :data:`BACKENDS`:
+
+``"analytic"`` — :class:`ClosedFormBackend`
+    :func:`robokit.ik_analytic` (spherical wrist, three parallel axes): the in-limit solution
+    nearest ``q0``. Supports a full pose of the robot's tip on a :class:`robokit.Robot` with
+    a closed form; ``weights`` with every entry > 0 (an exact solution has zero weighted
+    error) and a time budget (it takes microseconds) do not change its answer.
+``"planar"`` — :class:`PlanarBackend`
+    2 or 3 revolute joints about parallel axes (:mod:`robokit.ik.planar`): the in-limit
+    solution nearest ``q0``. Same problems as the closed form.
+``"compiled"`` — :class:`CompiledLMBackend`
+    The compiled Levenberg–Marquardt solver (:func:`robokit.kernels.ik.solve_poe_ik`) on the
+    course PoE parameters: a full pose of the tip, no weights, no time budget.
+``"lm"`` — :class:`PinocchioLMBackend`
+    Levenberg–Marquardt with limits and restarts (:func:`robokit.ik.lm.lm_loop`), Pinocchio
+    FK/Jacobians: everything — any frame, position only, weights, a time budget, any
+    RobotLike.
+
+With ``method="auto"`` the back ends are tried in this order; the first that supports the
+problem and whose answer meets the tolerance answers, and ``IKResult.method`` names it
+(``IKResult.tried`` says why each earlier one did not). ``method=NAME`` uses that one only and
+raises :class:`robokit.errors.InputError` with its reason when it does not support the
+problem — a back end is never swapped silently.
+
+Randomness: every back end draws from the problem's generator, seeded by default with
+:data:`DEFAULT_SEED`, so the same call gives the same answer on every run.
+"""
+from __future__ import annotations
+
+import time
+import weakref
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, cast
+
+import numpy as np
+
+from robokit.ik.closed_form import analytic_ik
+from robokit.ik.lm import IKResult, _result, lm_loop
+from robokit.ik.planar import PlanarChain, planar_chain, planar_reason
+
+if TYPE_CHECKING:
+    from robokit.description.protocol import RobotLike
+    from robokit.description.robot import Robot
+
+__all__ = ["BACKENDS", "DEFAULT_SEED", "IKProblem", "IKBackend", "ClosedFormBackend", "PlanarBackend",
+           "CompiledLMBackend", "PinocchioLMBackend", "backend", "reach_backend", "solve_problem"]
+
+#: The seed of ``solve_ik``'s random restarts when ``rng`` is not given.
+DEFAULT_SEED = 0
+
+
+@dataclass
+class IKProblem:
+    """One inverse-kinematics problem, checked (what :func:`robokit.solve_ik` was asked).
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or RobotLike
+    frame : str or None
+        The frame to place (None: the robot's tip).
+    q0 : (n,) ndarray
+        Initial guess inside the limits (rad, m); ``q0_given`` False when it is the default.
+    position_only : bool
+        ``p_target`` (3,) only, else the pose ``T_target`` (4, 4); base frame, m.
+    weights : (6,) or (3,) ndarray or None
+        Error weights (ω, v) or position weights; None when not given.
+    tol, max_iterations, max_restarts, time_budget, damping, min_damping
+        As in :func:`robokit.solve_ik` (``max_iterations`` None: the back end's default).
+    seed : int
+        Seeds the restarts (:data:`DEFAULT_SEED` unless ``rng`` was given).
+    rng : numpy Generator or None
+        The generator the Pinocchio loop draws from (None: one seeded with ``seed``, made by
+        :meth:`generator` on first use).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("ur5")
+    >>> p = IKProblem.tip_pose(robot, robot.frame_pose(np.zeros(6)))
+    >>> ClosedFormBackend().unsupported(p) is None
+    True
+    """
+
+    robot: Robot | RobotLike
+    frame: str | None
+    q0: np.ndarray
+    position_only: bool = False
+    T_target: np.ndarray | None = None
+    p_target: np.ndarray | None = None
+    weights: np.ndarray | None = None
+    q0_given: bool = False
+    tol: float = 1e-10
+    max_iterations: int | None = None
+    max_restarts: int = 100
+    time_budget: float | None = None
+    damping: float = 1e-2
+    min_damping: float = 1e-9
+    seed: int = DEFAULT_SEED
+    rng: np.random.Generator | None = None
+    t_start: float = field(default_factory=time.perf_counter)
+
+    def generator(self) -> np.random.Generator:
+        """The generator the restarts draw from: ``rng``, or one seeded with ``seed`` (made on
+        first use — a closed-form answer never pays for it)."""
+        if self.rng is None:
+            self.rng = np.random.default_rng(self.seed)
+        return self.rng
+
+    @classmethod
+    def tip_pose(cls, robot: Robot, T: np.ndarray) -> IKProblem:
+        """The problem "place the tip at the pose T (4, 4)" from q0 = 0 clipped to the limits,
+        with the defaults of :func:`robokit.solve_ik`."""
+        qlim = np.asarray(robot.qlim, dtype=float)
+        q0 = np.clip(np.zeros(robot.n), qlim[:, 0], qlim[:, 1])
+        return cls(robot, None, q0, T_target=np.asarray(T, dtype=float))
+
+
+def _is_robot(robot: object) -> bool:
+    from robokit.description.robot import Robot
+
+    return isinstance(robot, Robot)
+
+
+def _tip_pose_reason(p: IKProblem, what: str) -> str | None:
+    """Why a back end that solves a full pose of a Robot's tip cannot take ``p`` (None: it can)."""
+    if not _is_robot(p.robot):
+        return f"{what} needs a robokit.Robot, got {type(p.robot).__name__}"
+    if p.position_only:
+        return f"{what} solves a full pose, not a position (position_only=True)"
+    tip = getattr(p.robot, "tip", None)
+    if p.frame is not None and p.frame != tip:
+        return f"{what} solves the tip frame {tip!r}, not {p.frame!r}"
+    return None
+
+
+def _exact_reason(p: IKProblem, what: str) -> str | None:
+    """Why an exact (closed-form) back end cannot take ``p``: as :func:`_tip_pose_reason`, and
+    weights with a zero entry (part of the pose left free: another problem)."""
+    why = _tip_pose_reason(p, what)
+    if why is None and p.weights is not None and not np.all(p.weights > 0):
+        why = f"{what} solves the whole pose; weights with a zero entry leave part of it free"
+    return why
+
+
+def _nearest(Q: np.ndarray, q0: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """The row of Q (k, n) nearest q0 (n,), revolute differences taken modulo 2π."""
+    D = Q - q0
+    D[:, revolute] = np.mod(D[:, revolute] + np.pi, 2 * np.pi) - np.pi
+    return cast(np.ndarray, Q[int(np.argmin(np.einsum("ij,ij->i", D, D)))].copy())
+
+
+class IKBackend:
+    """An IK back end: ``name``, :meth:`unsupported` (why not, or None) and :meth:`solve`.
+
+    :meth:`reaches` answers "which of these tip poses are reachable inside the limits?" for
+    capability maps; the default solves each target with :meth:`solve`.
+
+    Examples
+    --------
+    >>> [b.name for b in BACKENDS]
+    ['analytic', 'planar', 'compiled', 'lm']
+    """
+
+    name = ""
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        """None if this back end can solve ``problem``, else the reason (one sentence)."""
+        raise NotImplementedError
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        """Solve a supported ``problem``; ``IKResult.method`` is :attr:`name`."""
+        raise NotImplementedError
+
+    def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
+        """(B,) bool: which of the (B, 4, 4) tip poses this back end reaches inside the limits.
+
+        Each target is solved from a random initial guess (drawn from ``rng``, as the restarts'
+        seed), so a chunk's answers depend only on the generator's state.
+        """
+        qlim = np.asarray(robot.qlim, dtype=float)
+        lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
+        hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+        out = np.zeros(len(targets), dtype=bool)
+        for b, T in enumerate(targets):
+            q0 = rng.uniform(lo, hi)
+            seed = int(rng.integers(2**31 - 1))
+            p = IKProblem(robot, None, q0, T_target=T, q0_given=True, max_restarts=restarts, seed=seed,
+                          max_iterations=60)
+            out[b] = self.solve(p).success
+        return out
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
+
+
+class ClosedFormBackend(IKBackend):
+    """``"analytic"``: every closed-form solution (:func:`robokit.ik_analytic`), the in-limit one
+    nearest ``q0``; no iterations (see the module docstring)."""
+
+    name = "analytic"
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        why = _exact_reason(problem, "the closed form")
+        if why is not None:
+            return why
+        ik = analytic_ik(cast("Robot", problem.robot))
+        return None if ik.method else f"no closed form: {ik.reason}"
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        robot = cast("Robot", problem.robot)
+        assert problem.T_target is not None  # a full pose (unsupported() says so)
+        sols = [s for s in analytic_ik(robot).solve(problem.T_target) if s.within_limits]
+        if not sols:
+            return _failed(robot, problem, self.name, "no closed-form solution inside the joint limits")
+        revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
+        best = _nearest(np.array([s.q for s in sols], dtype=float), problem.q0, revolute)
+        return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
+
+    def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
+        ik = analytic_ik(robot)
+        tol_fk = 1e-6 * max(1.0, float(np.abs(robot.poe.M[:3, 3]).sum()))
+        out = np.zeros(len(targets), dtype=bool)
+        for b, T in enumerate(targets):
+            for sol in ik.solve(T):
+                if sol.within_limits and np.abs(robot.frame_pose(sol.q) - T).max() < tol_fk:
+                    out[b] = True
+                    break
+        return out
+
+
+class PlanarBackend(IKBackend):
+    """``"planar"``: the closed form of planar 2R/3R arms (:mod:`robokit.ik.planar`), the in-limit
+    solution nearest ``q0``."""
+
+    name = "planar"
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        why = _exact_reason(problem, "the planar closed form")
+        if why is not None:
+            return why
+        reason = self._planar(cast("Robot", problem.robot))[1]
+        return None if reason is None else f"not a planar arm: {reason}"
+
+    def __init__(self) -> None:
+        self._cache: dict[int, tuple[weakref.ref, bytes, PlanarChain | None, str | None]] = {}
+
+    def _planar(self, robot: Robot) -> tuple[PlanarChain | None, str | None]:
+        """(chain, reason) of ``robot``, cached per live robot and rebuilt when its screws, home
+        pose or limits change (the geometry costs ~50 µs; the check, well under one)."""
+        poe = robot.poe
+        key = (np.asarray(poe.Slist, dtype=float).tobytes() + np.asarray(poe.M, dtype=float).tobytes()
+               + np.asarray(robot.qlim, dtype=float).tobytes())
+        hit = self._cache.get(id(robot))
+        if hit is not None and hit[0]() is robot and hit[1] == key:
+            return hit[2], hit[3]
+        reason = planar_reason(robot)
+        chain = planar_chain(robot) if reason is None else None
+        cache = self._cache
+
+        def drop(_ref: weakref.ref, k: int = id(robot)) -> None:
+            cache.pop(k, None)
+
+        try:
+            cache[id(robot)] = (weakref.ref(robot, drop), key, chain, reason)
+        except TypeError:  # pragma: no cover - a robot without weak references
+            pass
+        return chain, reason
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        robot = cast("Robot", problem.robot)
+        assert problem.T_target is not None  # a full pose (unsupported() says so)
+        chain = self._planar(robot)[0]
+        assert chain is not None  # unsupported() checked it
+        sols = chain.solutions(problem.T_target)
+        if not sols:
+            return _failed(robot, problem, self.name, "no planar solution inside the joint limits")
+        best = _nearest(np.array(sols), problem.q0, np.ones(robot.n, dtype=bool))
+        return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
+
+    def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
+        chain = self._planar(robot)[0]
+        assert chain is not None  # chosen only for planar arms
+        return chain.success(targets)
+
+
+def _kernel_available() -> str | None:
+    try:
+        from robokit.kernels.ik import solve_poe_ik  # noqa: F401
+    except ImportError as exc:  # pragma: no cover - numba is a core dependency
+        return f"the compiled solver is unavailable ({exc})"
+    return None
+
+
+class CompiledLMBackend(IKBackend):
+    """``"compiled"``: the compiled Levenberg–Marquardt solver on the PoE parameters
+    (:func:`robokit.kernels.ik.solve_poe_ik`; 30 iterations per attempt by default)."""
+
+    name = "compiled"
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        why = _tip_pose_reason(problem, "the compiled solver")
+        if why is None and problem.weights is not None:
+            why = "the compiled solver has no error weights (method='lm' has)"
+        if why is None and problem.time_budget is not None:
+            why = "the compiled solver has no time budget (method='lm' has)"
+        return why or _kernel_available()
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        from robokit.kernels.ik import solve_poe_ik
+
+        robot = cast("Robot", problem.robot)
+        assert problem.T_target is not None  # a full pose (unsupported() says so)
+        p = robot.poe
+        its = 30 if problem.max_iterations is None else problem.max_iterations
+        q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, problem.T_target, problem.q0,
+                                                   np.asarray(robot.qlim, float), tol=problem.tol,
+                                                   max_iterations=int(its), max_restarts=int(problem.max_restarts),
+                                                   seed=int(problem.seed))
+        return _result(robot, np.asarray(q, float), problem.T_target, problem.tol, int(iterations), int(restarts),
+                       problem.t_start, self.name)
+
+    def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
+        from robokit.kernels.ik import solve_poe_ik
+
+        poe = robot.poe
+        qlim = np.asarray(robot.qlim, dtype=float)
+        lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
+        hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+        out = np.zeros(len(targets), dtype=bool)
+        for b, T in enumerate(targets):
+            q0 = rng.uniform(lo, hi)
+            _, ok, _, _ = solve_poe_ik(poe.M, poe.Slist, T, q0, qlim, 1e-10, 60, restarts, int(rng.integers(2**31 - 1)))
+            out[b] = bool(ok)
+        return out
+
+
+class PinocchioLMBackend(IKBackend):
+    """``"lm"``: Levenberg–Marquardt with limits, restarts, weights and a time budget, for any
+    Robot (Pinocchio) or RobotLike and any frame (:func:`robokit.ik.lm.lm_loop`; 60 iterations
+    per attempt by default)."""
+
+    name = "lm"
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        return None
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        robot = problem.robot
+        if problem.position_only:
+            w = np.ones(3) if problem.weights is None else problem.weights
+        else:
+            w = np.ones(6) if problem.weights is None else problem.weights
+        return lm_loop(robot, problem.frame, problem.q0.copy(), position_only=problem.position_only,
+                       p_target=problem.p_target, T_target=problem.T_target, w=w, tol=problem.tol,
+                       max_iterations=60 if problem.max_iterations is None else problem.max_iterations,
+                       max_restarts=problem.max_restarts, time_budget=problem.time_budget, damping=problem.damping,
+                       min_damping=problem.min_damping, rng=problem.generator(), t_start=problem.t_start)
+
+
+def _failed(robot: Robot, problem: IKProblem, name: str, why: str) -> IKResult:
+    """An unsuccessful result at ``q0`` (inside the limits) with the reason in ``tried``."""
+    assert problem.T_target is not None
+    res = _result(robot, problem.q0.copy(), problem.T_target, problem.tol, 0, 0, problem.t_start, name)
+    res.success = False
+    res.tried = {name: why}
+    return res
+
+
+#: The back ends in the order ``solve_ik(method="auto")`` and capability maps try them.
+BACKENDS: tuple[IKBackend, ...] = (ClosedFormBackend(), PlanarBackend(), CompiledLMBackend(), PinocchioLMBackend())
+
+
+def backend(name: str) -> IKBackend:
+    """The back end called ``name`` (``"analytic"``, ``"planar"``, ``"compiled"``, ``"lm"``).
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    IKBackend
+
+    Raises
+    ------
+    InputError
+        For another name (the message lists the names).
+
+    Examples
+    --------
+    >>> backend("lm").name
+    'lm'
+    """
+    from robokit.errors import InputError
+
+    for b in BACKENDS:
+        if b.name == name:
+            return b
+    names = ", ".join(repr(b.name) for b in BACKENDS)
+    raise InputError(f"method: expected 'auto' or one of {names}, got {name!r}")
+
+
+def solve_problem(problem: IKProblem, method: str = "auto") -> IKResult:
+    """Solve ``problem`` with the back end ``method``, or the first suitable one (``"auto"``).
+
+    Parameters
+    ----------
+    problem : IKProblem
+    method : str
+        ``"auto"`` or a back end's name.
+
+    Returns
+    -------
+    IKResult
+        ``.method`` the back end that answered; ``.tried`` why each earlier one did not.
+        With ``"auto"``, when no back end meets the tolerance, the result with the smallest
+        residual.
+
+    Raises
+    ------
+    InputError
+        If the named back end does not support the problem (its reason is in the message).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("panda")
+    >>> solve_problem(IKProblem.tip_pose(robot, robot.frame_pose(np.full(7, 0.2)))).method
+    'compiled'
+    """
+    from robokit.errors import InputError
+
+    if method != "auto":
+        b = backend(method)
+        why = b.unsupported(problem)
+        if why is not None:
+            raise InputError(f"method: {method!r} does not support this problem: {why}")
+        return b.solve(problem)
+    tried: dict[str, str] = {}
+    best: IKResult | None = None
+    for b in BACKENDS:
+        why = b.unsupported(problem)
+        if why is not None:
+            tried[b.name] = why
+            continue
+        res = b.solve(problem)
+        if res.success:
+            res.tried = tried
+            return res
+        tried[b.name] = res.tried.get(b.name, f"no solution within tol = {problem.tol:g} "
+                                              f"(residual {res.residual:.2e})")
+        if best is None or not (res.residual >= best.residual):
+            best = res
+    assert best is not None  # "lm" supports every problem
+    best.tried = {k: v for k, v in tried.items() if k != best.method}
+    return best
+
+
+def reach_backend(robot: Robot) -> IKBackend:
+    """The first back end of :data:`BACKENDS` that supports "the tip at a pose" for ``robot``.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot`
+
+    Returns
+    -------
+    IKBackend
+
+    Examples
+    --------
+    >>> import robokit
+    >>> reach_backend(robokit.load("rrr")).name
+    'planar'
+    """
+    p = IKProblem.tip_pose(robot, np.eye(4))
+    for b in BACKENDS:
+        if b.unsupported(p) is None:
+            return b
+    raise AssertionError("unreachable: the 'lm' back end supports every problem")  # pragma: no cover
+
