@@ -102,8 +102,6 @@ MODULE_NAMES = {name for name, _ in MODULES} | {"robokit"}
 
 #: Lazy import cycles known and being removed elsewhere; delete an entry when its fix lands.
 KNOWN_LAZY_CYCLES = [
-    # closed-form IK: the solvers call back into the model that builds them (branch ik-reshape)
-    {"robokit.ik.analytic", "robokit.ik.closed_form"},
     # the teach page draws a Scene, the Scene offers .teach() (branch harden-ws)
     {"robokit.viz.scene", "robokit.viz.teach"},
 ]
