@@ -8,6 +8,7 @@ positions), ``excitation`` (``excitation_trajectory``: optimised finite Fourier 
 ``data`` (the calibration CSV file of ``robokit calibrate``).
 """
 from robokit.calibration.chain import JointChain, chain_from_robot, chain_urdf, robot_from_chain
+from robokit.calibration.data import read_calibration_csv, write_calibration_csv
 from robokit.calibration.excitation import excitation_trajectory, fourier_series
 from robokit.calibration.identification import (
     IdentificationResult,
@@ -40,4 +41,4 @@ __all__ = ["JointChain", "chain_from_robot", "chain_urdf", "robot_from_chain", "
            "identify_dynamics", "IdentificationResult", "check_physical_consistency", "joint_derivatives",
            "pseudo_inertia", "excitation_trajectory", "fourier_series", "BaseParameters", "base_parameters",
            "friction_regressor", "full_regressor", "inertial_regressor", "standard_parameter_names",
-           "standard_parameters"]
+           "standard_parameters", "read_calibration_csv", "write_calibration_csv"]

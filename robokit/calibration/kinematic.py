@@ -375,9 +375,8 @@ def _describe_unidentified(J: np.ndarray, scale: np.ndarray, piv: np.ndarray, ra
         beta, *_ = np.linalg.lstsq(A, J[:, j], rcond=None)
         order = np.argsort(-np.abs(beta * colnorm[active]))
         terms = [f"{beta[k]:+.3g}·{names[active[k]]}" for k in order[:4]
-                 if abs(beta[k]) * colnorm[active[k]] > 1e-6 * colnorm[j]]
-        more = " …" if len(order) > 4 and len(terms) == 4 else ""
-        out.append(f"{names[j]}: acts like {' '.join(terms)}{more} (not separable from them)")
+                 if abs(beta[k]) * colnorm[active[k]] > 1e-2 * colnorm[j]]
+        out.append(f"{names[j]}: acts like {' '.join(terms)} (not separable from them)")
     return out
 
 
