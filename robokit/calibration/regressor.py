@@ -31,9 +31,12 @@ per joint.
 
 Base parameters. Some columns of Y are zero or combinations of others for every motion (a
 link's inertia about an axis that never turns, masses that only ever appear together). QR with
-column pivoting of Y stacked over many random motions picks r independent columns ``Y₁``;
-the others satisfy ``Y₂ = Y₁ β``, so ``Y π = Y₁ (π₁ + β π₂)``: the r base parameters
-``π_b = π₁ + β π₂`` are what data can identify (Gautier & Khalil 1990).
+column pivoting of Y stacked over many random motions (columns scaled to unit norm) gives its rank
+r; the r independent columns ``Y₁`` kept are the first ones in the standard order (link 1 first,
+by Gram–Schmidt), so that — as in Khalil & Dombre's regrouping — a later link's parameters are
+grouped into earlier ones and the choice does not depend on the samples. The others satisfy
+``Y₂ = Y₁ β``, so ``Y π = Y₁ (π₁ + β π₂)``: the r base parameters ``π_b = π₁ + β π₂`` are what
+data can identify (Gautier & Khalil 1990).
 """
 from __future__ import annotations
 
@@ -317,8 +320,22 @@ def base_parameters(robot: Robot, samples: int | None = None, rng: int | np.rand
     _, R, piv = scipy.linalg.qr(Ws, mode="economic", pivoting=True)
     d = np.abs(np.diag(R))
     r = int(np.sum(d > BASE_TOL * d[0]))
-    ind = np.sort(piv[:r])
-    dep = np.sort(piv[r:])
+    # which r columns: the first independent ones in the standard order (Gram–Schmidt, link 1 first),
+    # so a later link's parameters are regrouped into earlier ones and the choice does not depend
+    # on the random samples; the pivoted choice if round-off makes the two disagree
+    kept: list[int] = []
+    basis = np.zeros((Ws.shape[0], 0))
+    for j in range(p):
+        v = Ws[:, j]
+        if zero[j]:
+            continue
+        for _ in range(2):
+            v = v - basis @ (basis.T @ v)
+        if np.linalg.norm(v) > 1e-6:
+            kept.append(j)
+            basis = np.column_stack([basis, v / np.linalg.norm(v)])
+    ind = np.array(kept) if len(kept) == r else np.sort(piv[:r])
+    dep = np.setdiff1d(np.arange(p), ind)
     beta, *_ = np.linalg.lstsq(W[:, ind], W[:, dep], rcond=None)
     beta[np.abs(beta) < 1e-10] = 0.0
     return BaseParameters(ind, dep, beta, standard_parameter_names(n, friction))

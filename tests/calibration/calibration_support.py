@@ -22,3 +22,25 @@ def prismatic_arm():
 
 def configurations(robot, K, rng):
     return np.array([robot.random_configuration(rng) for _ in range(K)])
+
+
+def perturbed_inertias(robot, rng, name="true"):
+    """A "true" arm: the robot's geometry with every link's mass, centre of mass and inertia changed
+    (a physical body: positive mass, a positive-definite inertia)."""
+    import pinocchio as pin
+
+    from robokit.description.robot import Robot
+
+    model = pin.Model(robot.model)
+    for j in range(1, robot.n + 1):
+        Y = model.inertias[j]
+        A = rng.normal(0, 0.05, (3, 3))
+        model.inertias[j] = pin.Inertia(float(Y.mass) * rng.uniform(0.8, 1.2) + 0.3, Y.lever + rng.normal(0, 0.02, 3),
+                                        Y.inertia + A @ A.T + 0.01 * np.eye(3))
+    return Robot(name, model, robot.tip)
+
+
+def motions(robot, N, rng):
+    q = configurations(robot, N, rng)
+    dq, ddq = rng.standard_normal((2, N, robot.n))
+    return q, dq, ddq
