@@ -20,7 +20,8 @@ the centre of mass has non-negative principal moments satisfying the triangle in
 parameters that has the identified base parameters; with ``physically_consistent=True`` the
 nearest consistent set is computed: each ``J_i = L_i L_iᵀ`` (L lower triangular, so J ⪰ 0 by
 construction) and the weighted torque residual plus a small pull toward the nominal parameters
-(which fixes the directions the data cannot see) is minimised with ``scipy.optimize.least_squares``
+(1e-2 per parameter, relative to its size: it fixes the directions the data cannot see) is
+minimised with ``scipy.optimize.least_squares``
 — a constrained least squares by parametrisation, not a semidefinite program.
 
 Velocities and accelerations from measured positions: :func:`joint_derivatives` — a zero-phase
@@ -124,10 +125,11 @@ def check_physical_consistency(pi: ArrayLike, tol: float = 0.0) -> list[str]:
         I_C = I_O - m * (c @ c * np.eye(3) - np.outer(c, c))
         lam = np.sort(np.linalg.eigvalsh(I_C))
         shown = "[" + ", ".join(f"{x:.4g}" for x in lam) + "]"
-        if lam[0] <= tol:
+        rel = tol + 1e-12 * float(abs(lam).max())
+        if lam[0] <= rel:
             out.append(f"link {i + 1}: inertia about the centre of mass is not positive definite "
                        f"(principal moments {shown} kg·m²)")
-        elif lam[2] > lam[0] + lam[1] + tol:
+        elif lam[2] > lam[0] + lam[1] + rel:
             out.append(f"link {i + 1}: principal moments {shown} kg·m² break the triangle inequality")
     return out
 
@@ -256,16 +258,25 @@ def _consistent_fit(Ww: np.ndarray, tw: np.ndarray, C: np.ndarray, pi0: np.ndarr
         x0.append(np.linalg.cholesky(J)[tri])
     x0.append(pi0[10 * n:])
     x = np.concatenate(x0)
-    Wb = Ww @ C  # weighted full regressor (through the base parameters)
-    scale = np.linalg.norm(Wb, axis=0)
-    reg = pull * np.where(scale > 0, scale, 1.0) / math.sqrt(max(Wb.shape[0], 1))
+    Wb = Ww @ C  # weighted full regressor (through the base parameters): rows of unit noise variance
+    # the pull toward the nominal parameters, relative to each parameter's size (a floor per kind:
+    # masses, first moments, inertias, friction), so that it only decides what the data cannot
+    kinds = [np.r_[[10 * i for i in range(n)]], np.r_[[10 * i + k for i in range(n) for k in (1, 2, 3)]],
+             np.r_[[10 * i + k for i in range(n) for k in range(4, 10)]], np.arange(10 * n, pi_nom.size)]
+    size = np.abs(pi_nom).astype(float)
+    for idx in kinds:
+        if idx.size:
+            floor = 1e-2 * float(np.abs(pi_nom[idx]).mean()) or 1e-2
+            size[idx] = np.maximum(size[idx], floor)
+    reg = pull / size
+    eps = 1e-9 * max(float(np.abs(pi_nom[:10 * n]).max()), 1e-9)  # keeps J ≻ 0, off the boundary
 
     def params(x: np.ndarray) -> np.ndarray:
         out = np.empty(12 * n)
         for i in range(n):
             L = np.zeros((4, 4))
             L[tri] = x[10 * i:10 * i + 10]
-            out[10 * i:10 * i + 10] = _params_from_pseudo(L @ L.T)
+            out[10 * i:10 * i + 10] = _params_from_pseudo(L @ L.T + eps * np.eye(4))
         out[10 * n:] = x[10 * n:]
         return out
 
@@ -379,10 +390,10 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     method = "least squares; the standard set nearest the nominal one with these base parameters"
     pb_used = pb
     if physically_consistent:
-        pi_std = _consistent_fit(Ww, tw, C, pi_std, pi_nom, n, 1e-3, max_evaluations)
+        pi_std = _consistent_fit(Ww, tw, C, pi_std, pi_nom, n, 1e-2, max_evaluations)
         pb_used = C @ pi_std
-        method = ("nearest physically consistent set: pseudo-inertias L Lᵀ, weighted torque residual + 1e-3 pull "
-                  "to the nominal parameters, scipy.optimize.least_squares")
+        method = ("nearest physically consistent set: pseudo-inertias L Lᵀ, weighted torque residual + a 1e-2 "
+                  "relative pull to the nominal parameters, scipy.optimize.least_squares")
     if not friction:
         pi_std = np.concatenate([pi_std, np.zeros(2 * n)])
     rms = np.sqrt(np.mean((T - Wb @ pb_used) ** 2, axis=0))
@@ -395,7 +406,8 @@ def joint_derivatives(t: ArrayLike, q: ArrayLike, cutoff: float, order: int = 4)
     r"""Filtered positions, velocities and accelerations from measured joint positions.
 
     A zero-phase Butterworth low-pass filter of ``order`` and ``cutoff`` (Hz), applied forward and
-    backward (``scipy.signal.filtfilt``: no phase lag, effective order doubled), then second-order
+    backward (``scipy.signal.filtfilt``: no phase lag, effective order doubled; the signal is extended
+    at both ends by odd reflection over ``2·order/cutoff`` seconds), then second-order
     central differences ``q̇ₖ ≈ (q_{k+1} − q_{k−1}) / 2Δt`` (one-sided at the ends), twice.
 
     Parameters
@@ -413,8 +425,9 @@ def joint_derivatives(t: ArrayLike, q: ArrayLike, cutoff: float, order: int = 4)
     Returns
     -------
     q_f, dq, ddq : ndarray, shape (N, n)
-        Filtered positions, velocities, accelerations. The first and last few samples carry the
-        filter's edge transients: drop them (or use periodic data).
+        Filtered positions, velocities, accelerations. About ``order/cutoff`` seconds at each end
+        carry the filter's edge transients: drop them (or measure a periodic trajectory for one
+        period more than you use).
 
     Examples
     --------
@@ -449,7 +462,9 @@ def joint_derivatives(t: ArrayLike, q: ArrayLike, cutoff: float, order: int = 4)
     pad = 3 * max(len(a), len(b))
     if tt.size <= pad:
         raise InputError(f"t: expected more than {pad} samples for an order-{order} filter, got {tt.size}")
-    qf = filtfilt(b, a, Q, axis=0)
+    # odd extension at both ends over about two time constants of the filter (2·order/cutoff s)
+    padlen = min(tt.size - 1, max(pad, int(round(2 * order / (cutoff * h)))))
+    qf = filtfilt(b, a, Q, axis=0, padlen=padlen)
     dq = np.gradient(qf, h, axis=0, edge_order=2)
     ddq = np.gradient(dq, h, axis=0, edge_order=2)
     return qf, dq, ddq
