@@ -166,11 +166,10 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     else:
         text = _calibrated_dh_yaml(res.robot, robot)
     kind = "positions" if measured.ndim == 2 else "poses"
-    before, after = res.rms_before, res.rms_after
-    unit = "" if before.orientation is None else " / {:.4g} mrad"
     print(f"calibrated {robot.name} from {len(q)} measured {kind}")
-    print(f"RMS before: {1e3 * before:.4g} mm" + (unit.format(1e3 * before.orientation) if unit else ""))
-    print(f"RMS after:  {1e3 * after:.4g} mm" + (unit.format(1e3 * after.orientation) if unit else ""))
+    for label, rms in (("before", res.rms_before), ("after: ", res.rms_after)):
+        rot = "" if rms.orientation is None else f" / {1e3 * rms.orientation:.4g} mrad"
+        print(f"RMS {label} {1e3 * rms:.4g} mm{rot}")
     print(str(res.identifiability))
     atomic_write(out, text)
     print(f"wrote {out}", file=sys.stderr)

@@ -208,7 +208,8 @@ class IdentificationResult:
         N = arrs[0].shape[0]
         if any(a.shape[0] != N for a in arrs):
             raise InputError(f"q, dq, ddq: expected the same number of rows, got {[a.shape[0] for a in arrs]}")
-        W = full_regressor(self._chain, *arrs, self.robot.gravity)[:, :, self.base.independent]
+        W = full_regressor(self._chain, arrs[0], arrs[1], arrs[2], self.robot.gravity,
+                           self.base.count > 0 and len(self.base.names) == 12 * n)[:, :, self.base.independent]
         tau = W @ self.base_parameters
         return tau[0] if one else tau
 

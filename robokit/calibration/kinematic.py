@@ -296,10 +296,11 @@ class CalibrationResult:
         except ImportError:  # pragma: no cover
             raise ImportError("CalibrationResult.plot needs matplotlib: pip install matplotlib") from None
         poses = self.residuals.shape[1] == 6
+        axes: list[Any]
         if ax is None:
-            fig, axes = plt.subplots(2 if poses else 1, 1, figsize=(8, 5 if poses else 3), squeeze=False,
+            fig, grid = plt.subplots(2 if poses else 1, 1, figsize=(8, 5 if poses else 3), squeeze=False,
                                      constrained_layout=True)
-            axes = list(axes[:, 0])
+            axes = list(grid[:, 0])
         else:
             axes = [ax]
             fig = ax.figure
