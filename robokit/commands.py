@@ -167,7 +167,7 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
         text = _calibrated_dh_yaml(res.robot, robot)
     kind = "positions" if measured.ndim == 2 else "poses"
     print(f"calibrated {robot.name} from {len(q)} measured {kind}")
-    for label, rms in (("before", res.rms_before), ("after: ", res.rms_after)):
+    for label, rms in (("before:", res.rms_before), ("after: ", res.rms_after)):
         rot = "" if rms.orientation is None else f" / {1e3 * rms.orientation:.4g} mrad"
         print(f"RMS {label} {1e3 * rms:.4g} mm{rot}")
     print(str(res.identifiability))
