@@ -176,7 +176,7 @@ def standard_parameters(robot: Robot) -> np.ndarray:
     --------
     >>> import robokit
     >>> from robokit.calibration import standard_parameters
-    >>> standard_parameters(robokit.load("puma560"))[10]   # m₂ (kg)
+    >>> float(standard_parameters(robokit.load("puma560"))[10])   # m₂ (kg)
     17.4
     """
     return np.concatenate([robot.model.inertias[j].toDynamicParameters() for j in range(1, robot.n + 1)])
