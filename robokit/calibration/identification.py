@@ -391,7 +391,9 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     method = "least squares; the standard set nearest the nominal one with these base parameters"
     pb_used = pb
     if physically_consistent:
-        pi_std = _consistent_fit(Ww, tw, C, pi_std, pi_nom, n, 1e-2, max_evaluations)
+        # ‖Ww π_b − tw‖² = ‖R π_b − Qᵀtw‖² + const (Ww = QR): the fit works on r rows, not N·n
+        Qw, Rw = np.linalg.qr(Ww)
+        pi_std = _consistent_fit(Rw, Qw.T @ tw, C, pi_std, pi_nom, n, 1e-2, max_evaluations)
         pb_used = C @ pi_std
         method = ("nearest physically consistent set: pseudo-inertias L Lᵀ, weighted torque residual + a 1e-2 "
                   "relative pull to the nominal parameters, scipy.optimize.least_squares")

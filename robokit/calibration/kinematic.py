@@ -289,8 +289,18 @@ class CalibrationResult:
         return self.summary()
 
     def plot(self, ax: Any = None) -> Any:
-        """Bar plot of the per-sample position error before and after calibration (mm); a second
-        axes with the orientation error (mrad) for pose data. Returns the matplotlib Figure."""
+        """Bar plot (log scale) of the per-sample position error before and after calibration (mm); a
+        second axes with the orientation error (mrad) for pose data. Returns the matplotlib Figure.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the position errors there (no orientation axes) instead of a new figure.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
         try:
             import matplotlib.pyplot as plt
         except ImportError:  # pragma: no cover
@@ -311,6 +321,8 @@ class CalibrationResult:
         axes[0].bar(k - 0.2, before, 0.4, label=f"nominal (RMS {1e3 * self.rms_before:.3g} mm)")
         axes[0].bar(k + 0.2, after, 0.4, label=f"calibrated (RMS {1e3 * self.rms_after:.3g} mm)")
         axes[0].set_ylabel("position error (mm)")
+        for a in axes:
+            a.set_yscale("log")  # before and after differ by orders of magnitude
         axes[0].legend()
         if poses and len(axes) > 1:
             axes[1].bar(k - 0.2, 1e3 * np.linalg.norm(self.residuals_before[:, :3], axis=1), 0.4, label="nominal")
