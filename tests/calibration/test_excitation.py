@@ -12,7 +12,7 @@ from robokit.errors import InputError
 @pytest.fixture(scope="module")
 def puma_trajectory(robots):
     robot = robots("puma560")
-    return robot, robokit.excitation_trajectory(robot, 8.0, harmonics=4, qd_max=1.5, qdd_max=4.0, max_evaluations=150,
+    return robot, robokit.excitation_trajectory(robot, 8.0, harmonics=4, qd_max=1.5, qdd_max=4.0, max_evaluations=60,
                                                 samples=801)
 
 
@@ -46,8 +46,8 @@ def test_derivatives_are_those_of_the_positions(puma_trajectory):
 def test_optimisation_improves_conditioning_and_is_deterministic(robots, puma_trajectory):
     robot, tr = puma_trajectory
     assert tr.info["condition_number"] < tr.info["initial_condition_number"]
-    assert tr.info["evaluations"] <= 150
-    again = robokit.excitation_trajectory(robot, 8.0, harmonics=4, qd_max=1.5, qdd_max=4.0, max_evaluations=150,
+    assert tr.info["evaluations"] <= 60
+    again = robokit.excitation_trajectory(robot, 8.0, harmonics=4, qd_max=1.5, qdd_max=4.0, max_evaluations=60,
                                           samples=801)
     np.testing.assert_array_equal(again.q, tr.q)
 

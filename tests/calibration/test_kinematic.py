@@ -103,7 +103,7 @@ def test_noisy_data_reach_the_noise_floor(robots, positions_only):
     robot = robots("puma560")
     rng = np.random.default_rng(5)
     true = true_chain(robot, rng)
-    K, sigma = 150, 1e-4
+    K, sigma = 100, 1e-4
     q = configurations(robot, K, rng)
     T = true.fk(q)
     p_noisy = T[:, :3, 3] + rng.normal(0, sigma, (K, 3))
