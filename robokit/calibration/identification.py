@@ -285,7 +285,21 @@ def _consistent_fit(Ww: np.ndarray, tw: np.ndarray, C: np.ndarray, pi0: np.ndarr
         p = params(x)
         return np.concatenate([Wb @ p - tw, reg * (p - pi_nom)])
 
-    sol = least_squares(fun, x, method="trf", max_nfev=max_evaluations, x_scale="jac")
+    def jac(x: np.ndarray) -> np.ndarray:
+        # J = L Lᵀ + ε1 and π(J) is linear: ∂π/∂L_ab = π(E_ab Lᵀ + L E_ba)
+        dp = np.zeros((12 * n, x.size))
+        for i in range(n):
+            L = np.zeros((4, 4))
+            L[tri] = x[10 * i:10 * i + 10]
+            for k, (a, b) in enumerate(zip(*tri)):
+                dJ = np.zeros((4, 4))
+                dJ[a, :] += L[:, b]
+                dJ[:, a] += L[:, b]
+                dp[10 * i:10 * i + 10, 10 * i + k] = _params_from_pseudo(dJ)
+        dp[10 * n:, 10 * n:] = np.eye(x.size - 10 * n)
+        return np.vstack([Wb @ dp, reg[:, None] * dp])
+
+    sol = least_squares(fun, x, jac=jac, method="trf", max_nfev=max_evaluations, x_scale="jac")
     return params(sol.x)
 
 

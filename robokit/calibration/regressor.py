@@ -115,18 +115,18 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
         Ti = lie.inv(T)
         T_back[i] = Ti
         Ad = lie.adjoint(Ti)
-        V = np.einsum("kab,kb->ka", Ad, V) + A[None, :] * dq[:, i:i + 1]
-        dV = (np.einsum("kab,kb->ka", Ad, dV) + np.einsum("kab,b->ka", lie.ad(V), A) * dq[:, i:i + 1]
-              + A[None, :] * ddq[:, i:i + 1])
-        K[i] = _phi(dV) - np.einsum("kba,kbc->kac", lie.ad(V), _phi(V))
+        V = (Ad @ V[:, :, None])[:, :, 0] + A[None, :] * dq[:, i:i + 1]
+        adV = lie.ad(V)
+        dV = (Ad @ dV[:, :, None])[:, :, 0] + (adV @ A) * dq[:, i:i + 1] + A[None, :] * ddq[:, i:i + 1]
+        K[i] = _phi(dV) - np.swapaxes(adV, 1, 2) @ _phi(V)
     Y = np.zeros((N, n, 10 * n))
-    AdT = lie.adjoint(T_back)  # Ad_{T_{i,i-1}}
+    AdT_t = np.swapaxes(lie.adjoint(T_back), -1, -2)  # Ad_{T_{i,i-1}}ᵀ
     for i in range(n):
         U = K[i]
         for j in range(i, -1, -1):
-            Y[:, j, 10 * i:10 * i + 10] = np.einsum("a,kac->kc", chain.axes[j], U)
+            Y[:, j, 10 * i:10 * i + 10] = chain.axes[j] @ U
             if j > 0:
-                U = np.einsum("kba,kbc->kac", AdT[j], U)  # Ad_{T_{j,j-1}}ᵀ U
+                U = AdT_t[j] @ U  # Ad_{T_{j,j-1}}ᵀ U
     return Y
 
 
