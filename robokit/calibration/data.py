@@ -86,7 +86,7 @@ def read_calibration_csv(path: str | os.PathLike[str], n: int,
         raise InputError(f"{p}: cannot read ({exc.strerror})") from None
     if not stat.S_ISREG(st.st_mode):
         raise InputError(f"{p}: not a regular file (a calibration CSV is expected)")
-    text = read_input_text(p, MAX_BYTES, "a CSV file")
+    text = read_input_text(p, MAX_BYTES, "a CSV file").removeprefix("\ufeff")  # a spreadsheet's byte-order mark
     reader = csv.reader(io.StringIO(text))
     header: list[str] | None = None
     header_line = 0

@@ -31,6 +31,7 @@ second-order central differences (``numpy.gradient``).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -40,7 +41,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_array
 from robokit.calibration.chain import JointChain, chain_from_robot
 from robokit.calibration.regressor import BaseParameters, base_parameters, full_regressor, standard_parameters
-from robokit.errors import InputError
+from robokit.errors import InputError, RobokitWarning
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -382,6 +383,17 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     Wb = Wfull[:, :, base.independent]
     sv = np.linalg.svd(Wb.reshape(N * n, r), compute_uv=False)
     cond = float(sv[0] / sv[-1]) if sv[-1] > 0 else math.inf
+    if not sv[-1] > 1e-10 * sv[0]:
+        import scipy.linalg
+
+        Wn = Wb.reshape(N * n, r)
+        norms = np.linalg.norm(Wn, axis=0)
+        _, R, piv = scipy.linalg.qr(Wn / np.where(norms > 0, norms, 1.0), mode="economic", pivoting=True)
+        d = np.abs(np.diag(R))
+        weak = [base.meaning()[k] for k in piv[int(np.sum(d > 1e-10 * d[0])):]]
+        warnings.warn(f"identify_dynamics: the data do not excite {len(weak)} base parameter(s) of {robot.name} "
+                      f"(e.g. {weak[0]}); they stay at the least-norm solution — move every joint, in both "
+                      "directions, with varied speeds (see excitation_trajectory)", RobokitWarning, stacklevel=2)
     # pass 1: ordinary least squares; pass 2: rows of joint j weighted by 1/σ_j
     pb, *_ = np.linalg.lstsq(Wb.reshape(N * n, r), T.reshape(-1), rcond=None)
     resid = T - Wb @ pb

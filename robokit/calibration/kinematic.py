@@ -340,7 +340,7 @@ def _check_measured(measured: ArrayLike, K: int) -> np.ndarray:
     if m.shape == (K, 4, 4):
         R = m[:, :3, :3]
         err = np.abs(R @ np.swapaxes(R, 1, 2) - np.eye(3)).max(axis=(1, 2))
-        bad = np.flatnonzero((err > 1e-6) | (np.linalg.det(R) < 0) | (np.abs(m[:, 3] - [0, 0, 0, 1]).max(axis=1) > 0))
+        bad = np.flatnonzero((err > 1e-6) | (np.linalg.det(R) < 0) | (np.abs(m[:, 3] - [0, 0, 0, 1]).max(axis=1) > 1e-9))
         if bad.size:
             raise InputError(f"measured: pose {int(bad[0])} is not a rigid transform (rotation not orthonormal "
                              "to 1e-6, or last row not [0, 0, 0, 1])")
@@ -393,8 +393,9 @@ def _describe_unidentified(J: np.ndarray, scale: np.ndarray, piv: np.ndarray, ra
     return out
 
 
-def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iterations: int = 100,
-              tolerance: float = 1e-12, rng: int | np.random.Generator | None = 0) -> CalibrationResult:
+def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientation_weight: float = 1.0,
+              max_iterations: int = 100, tolerance: float = 1e-12,
+              rng: int | np.random.Generator | None = 0) -> CalibrationResult:
     r"""Calibrate a robot's geometry from measured tool poses or tool positions.
 
     Identifies per-joint SE(3) errors of the joint placements, the base and the tool (see the
@@ -411,6 +412,10 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
     measured : array_like, shape (K, 4, 4) or (K, 3)
         Measured tool poses, or tool positions only (a laser tracker, a camera marker), in the
         robot's base frame (m).
+    orientation_weight : float
+        Pose data: metres per radian of orientation error in the cost (the orientation rows of the
+        residual and the Jacobian are multiplied by it). For the maximum-likelihood fit use
+        σ_position / σ_orientation of your instrument; the default 1 m/rad weighs 1 mrad like 1 mm.
     max_iterations : int
         Levenberg–Marquardt iterations at most.
     tolerance : float
@@ -452,6 +457,13 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
     m = 3 if positions_only else 6
     if max_iterations < 1:
         raise InputError(f"max_iterations: expected a positive count, got {max_iterations}")
+    if not (math.isfinite(orientation_weight) and orientation_weight > 0):
+        raise InputError(f"orientation_weight: expected a positive number (m/rad), got {orientation_weight!r}")
+    row_w = np.ones(m) if positions_only else np.r_[[orientation_weight] * 3, [1.0] * 3]
+
+    def weighted_jacobian(chain: JointChain) -> np.ndarray:
+        return (identification_jacobian(chain, Q, positions_only) * row_w[None, :, None]).reshape(K * m, P)
+
     nominal = chain_from_robot(robot)
     P = 6 * (n + 1)
     names = parameter_names(robot)
@@ -463,7 +475,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
                          f"{robot.name}; at least {need} samples are needed (several times more for a good fit)")
     res0 = pose_residuals(nominal, Q, meas)
     chain = nominal
-    res = res0
+    res = res0 * row_w
     cost = float(np.sum(res**2))
     mu = 1e-3
     converged = False
@@ -472,7 +484,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
         # the identifiable set is found again at every linearisation point: an arm whose tool sits
         # exactly on its wrist axes (nominal) lets position data see the wrist's errors only once
         # the tool offset has been identified
-        Jfull = identification_jacobian(chain, Q, positions_only).reshape(K * m, P)
+        Jfull = weighted_jacobian(chain)
         scale, piv, _, rank = _scaled_qr(Jfull)
         active = np.sort(piv[:rank])
         J = Jfull[:, active] / scale[active]
@@ -485,7 +497,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
             delta = np.zeros(P)
             delta[active] = step / scale[active]
             trial = chain.perturbed(delta)
-            r_try = pose_residuals(trial, Q, meas)
+            r_try = pose_residuals(trial, Q, meas) * row_w
             c_try = float(np.sum(r_try**2))
             if c_try <= cost:
                 chain, res, accepted = trial, r_try, True
@@ -497,7 +509,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, max_iter
         if not accepted or small:
             converged = True
             break
-    Jf = identification_jacobian(chain, Q, positions_only).reshape(K * m, P)
+    Jf = weighted_jacobian(chain)
     scale, piv, _, rank = _scaled_qr(Jf)
     active = np.sort(piv[:rank])
     sv = np.linalg.svd(Jf / scale, compute_uv=False)

@@ -150,3 +150,13 @@ def test_bad_input(robots):
     bad[0, 0] = np.inf
     with pytest.raises(InputError, match="NaN or infinite"):
         robokit.identify_dynamics(robot, q, dq, ddq, bad)
+
+
+def test_unexcited_data_warn(robots):
+    robot = robots("rrr")
+    rng = np.random.default_rng(1)
+    q, dq, ddq = motions(robot, 50, rng)
+    dq[:, 2] = ddq[:, 2] = 0.0  # joint 3 never moves
+    with pytest.warns(robokit.RobokitWarning, match="do not excite"):
+        res = robokit.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq))
+    assert not math.isfinite(res.condition_number) or res.condition_number > 1e10
