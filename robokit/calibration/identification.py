@@ -214,6 +214,34 @@ class IdentificationResult:
         tau = W @ self.base_parameters
         return tau[0] if one else tau
 
+    def to_robot(self, name: str | None = None) -> Any:
+        """A :class:`robokit.Robot` with the robot's geometry and ``standard_parameters``' inertias.
+
+        Its rigid-body dynamics (``rnea``, ``crba``, …) equal this model without friction:
+        ``to_robot().rnea(q, dq, ddq) + friction = predict(q, dq, ddq)`` — for computed-torque control
+        with the identified model. Use ``physically_consistent=True`` when its forward dynamics
+        (``aba``) are needed: a non-physical set can make the mass matrix indefinite.
+
+        Parameters
+        ----------
+        name : str, optional
+            Name of the new robot (default ``robot.name + "_identified"``).
+
+        Returns
+        -------
+        Robot
+        """
+        import pinocchio as pin
+
+        from robokit.description.robot import Robot
+
+        n = self.robot.n
+        model = pin.Model(self.robot.model)
+        for j in range(n):
+            model.inertias[j + 1] = pin.Inertia.FromDynamicParameters(self.standard_parameters[10 * j:10 * j + 10])
+        return Robot(name or f"{self.robot.name}_identified", model, self.robot.tip,
+                     source=f"identified from {self.robot.source or self.robot.name}")
+
     def table(self) -> str:
         """The base parameters, one per line: value, relative standard deviation, meaning."""
         lines = [f"{'value':>12} {'σ %':>7}  base parameter (standard parameters in joint frames, about the "

@@ -39,6 +39,10 @@ def test_noiseless_identification_predicts_unseen_torques(robots, name):
                                atol=1e-7)
     assert res.condition_number > 1 and math.isfinite(res.condition_number)
     assert res.predict(q2[0], dq2[0], ddq2[0]).shape == (robot.n,)
+    # a Robot with the identified inertias: its rnea plus the friction is the prediction
+    ident = res.to_robot()
+    np.testing.assert_allclose(ident.rnea(q2, dq2, ddq2) + fv * dq2 + fc * np.sign(dq2), res.predict(q2, dq2, ddq2),
+                               atol=1e-7)
 
 
 def test_noisy_identification_reaches_the_noise_floor(robots):
