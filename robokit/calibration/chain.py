@@ -163,6 +163,23 @@ def _origin(T: np.ndarray) -> str:
 _DH_FRAME = re.compile(r"dh_\d+")
 
 
+def _cylinder(p0: np.ndarray, p1: np.ndarray, radius: float, material: str) -> str:
+    """A ``<visual>`` cylinder from p0 to p1 (link frame, m); "" when they coincide."""
+    d = p1 - p0
+    length = float(np.linalg.norm(d))
+    if length < 1e-9:
+        return ""
+    z = d / length
+    ref = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(ref, z)
+    x /= np.linalg.norm(x)
+    T = np.eye(4)
+    T[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    T[:3, 3] = 0.5 * (p0 + p1)
+    return (f'<visual>{_origin(T)}<geometry><cylinder radius="{_f(radius)}" length="{_f(length)}"/></geometry>'
+            f'<material name="{material}"/></visual>')
+
+
 def _carried_frames(robot: Robot, nominal: JointChain, chain: JointChain) -> list[tuple[str, int, np.ndarray]]:
     """The nominal robot's ``dh_<k>`` frames as (name, parent joint, placement in the new chain).
 
@@ -199,7 +216,8 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
     str
         A URDF: root ``base_link``; joints ``joint_1 … joint_n`` (revolute, continuous or
         prismatic) with ``<origin>`` ``X_i`` and ``<axis>`` the screw's direction; link ``link_i``
-        moved by joint i carrying the nominal mass, centre of mass and inertia; a massless ``tool``
+        moved by joint i carrying the nominal mass, centre of mass and inertia, and simple visuals (a
+        cylinder on the joint axis, a segment to the next joint or the tool); a massless ``tool``
         link fixed at ``X_{n+1}``; the nominal robot's ``dh_<k>`` frames as massless fixed links
         (a frame that was joint k+1's frame, or the tool's, follows it).
 
@@ -216,7 +234,13 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
         raise ValueError(f"chain: expected {robot.n} joints of kinds {nominal.kinds}, got {chain.kinds}")
     model = robot.model
     n = robot.n
-    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name or robot.name)}>", '  <link name="base_link"/>']
+    # simple visuals, sized from the arm: a cylinder on each joint axis, a segment to the next joint
+    reach = max([float(np.linalg.norm(chain.placements[i][:3, 3])) for i in range(n + 1)] + [0.1])
+    r_joint = max(0.01, 0.08 * reach)
+    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name or robot.name)}>",
+             '  <material name="robokit_joint"><color rgba="0.95 0.55 0.1 1"/></material>',
+             '  <material name="robokit_link"><color rgba="0.55 0.6 0.7 1"/></material>',
+             '  <link name="base_link"/>']
     for i in range(n):
         j = i + 1
         Y = model.inertias[j]
@@ -227,7 +251,10 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
                         f'<mass value="{_f(Y.mass)}"/><inertia ixx="{_f(I[0, 0])}" ixy="{_f(I[0, 1])}" '
                         f'ixz="{_f(I[0, 2])}" iyy="{_f(I[1, 1])}" iyz="{_f(I[1, 2])}" izz="{_f(I[2, 2])}"/>'
                         "</inertial>")
-        lines.append(f'  <link name="link_{j}">{inertial}</link>')
+        direction = chain.axes[i, :3] if chain.kinds[i] == "R" else chain.axes[i, 3:]
+        visual = _cylinder(-1.2 * r_joint * direction, 1.2 * r_joint * direction, r_joint, "robokit_joint")
+        visual += _cylinder(np.zeros(3), chain.placements[j][:3, 3], 0.45 * r_joint, "robokit_link")
+        lines.append(f'  <link name="link_{j}">{inertial}{visual}</link>')
         lo, hi = robot.qlim[i]
         if chain.kinds[i] == "R":
             axis = chain.axes[i, :3]
@@ -290,4 +317,5 @@ def robot_from_chain(robot: Robot, chain: JointChain, name: str | None = None) -
     xml = chain_urdf(robot, chain, name)
     model: Any = pin.buildModelFromXML(xml)
     model.gravity.linear = np.asarray(robot.gravity, dtype=float)
-    return Robot(name, model, "tool", source=f"calibrated from {robot.source or robot.name}")
+    visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
+    return Robot(name, model, "tool", visual_model=visual, source=f"calibrated from {robot.source or robot.name}")
