@@ -175,7 +175,7 @@ def test_orientation_weight_is_maximum_likelihood(robots):
     robot = robots("puma560")
     rng = np.random.default_rng(21)
     true = true_chain(robot, rng)
-    K = 60
+    K = 40
     q = configurations(robot, K, rng)
     T = true.fk(q)
     res0 = robokit.calibrate(robot, q, T, orientation_weight=0.1)
@@ -184,7 +184,7 @@ def test_orientation_weight_is_maximum_likelihood(robots):
     errs = {}
     for w in (1.0, 0.1):
         e = []
-        for trial in range(3):
+        for trial in range(2):
             r2 = np.random.default_rng(100 + trial)
             meas = T.copy()
             meas[:, :3, 3] += r2.normal(0, 1e-4, (K, 3))
@@ -192,6 +192,6 @@ def test_orientation_weight_is_maximum_likelihood(robots):
             res = robokit.calibrate(robot, q, meas, orientation_weight=w)
             e.append(np.linalg.norm(res.robot.frame_pose(unseen)[:, :3, 3] - true.fk(unseen)[:, :3, 3], axis=1).mean())
         errs[w] = np.mean(e)
-    assert errs[0.1] < errs[1.0]
+    assert errs[0.1] < 0.8 * errs[1.0]
     with pytest.raises(InputError, match="orientation_weight"):
         robokit.calibrate(robot, q, T, orientation_weight=0.0)
