@@ -7,7 +7,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from calibration_support import configurations
-from hardening_support import assert_one_line_error, run_main, tmp_leftovers
+from hardening_support import assert_one_line_error, run_cli, run_main, tmp_leftovers
 
 import robokit
 from robokit.calibration import chain_from_robot, write_calibration_csv
@@ -160,3 +160,20 @@ def test_not_a_regular_file_and_bad_output(tmp_path, capfd):
     run = run_main(["calibrate", "puma560", data, "-o", tmp_path / "o.json"], capfd)
     assert_one_line_error(run, "-o", ".urdf")
     assert not (tmp_path / "o.urdf").exists()
+
+
+def test_console_command_in_a_fresh_process(tmp_path):
+    """``python -m robokit.cli calibrate`` in a subprocess: a good file (exit 0, URDF written, RMS on stdout)
+    and a bad one (exit 2, one line)."""
+    robot = robokit.load("rrr")
+    rng = np.random.default_rng(9)
+    true = tilted_true_arm(robot, rng)
+    data = tmp_path / "rrr.csv"
+    write_data(data, robot, true.fk, 20, rng, poses=False)
+    run = run_cli("calibrate", "rrr", data, "-o", tmp_path / "rrr.urdf")
+    assert run.rc == 0, run.err
+    assert "RMS after:" in run.out and (tmp_path / "rrr.urdf").is_file()
+    data.write_text("q1,q2,q3,x,y,z\n0,0,0,1,2\n")
+    run = run_cli("calibrate", "rrr", data, "-o", tmp_path / "bad.urdf")
+    assert_one_line_error(run, "line 2", "expected 6 columns, got 5")
+    assert not (tmp_path / "bad.urdf").exists()

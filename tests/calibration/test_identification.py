@@ -164,3 +164,15 @@ def test_unexcited_data_warn(robots):
     with pytest.warns(robokit.RobokitWarning, match="do not excite"):
         res = robokit.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq))
     assert not math.isfinite(res.condition_number) or res.condition_number > 1e10
+
+
+def test_without_friction(robots):
+    robot = robots("rpr")
+    rng = np.random.default_rng(6)
+    true = perturbed_inertias(robot, rng)
+    q, dq, ddq = motions(robot, 80, rng)
+    res = robokit.identify_dynamics(robot, q, dq, ddq, true.rnea(q, dq, ddq), friction=False)
+    assert not any(name.startswith("f") for name in res.base.names)
+    q2, dq2, ddq2 = motions(robot, 20, rng)
+    np.testing.assert_allclose(res.predict(q2, dq2, ddq2), true.rnea(q2, dq2, ddq2), atol=1e-7)
+    np.testing.assert_array_equal(res.friction, 0.0)

@@ -5,6 +5,8 @@ import math
 import numpy as np
 import pytest
 from calibration_support import configurations
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import robokit
 from robokit.calibration import chain_from_robot, identification_jacobian, parameter_names, pose_residuals
@@ -195,3 +197,23 @@ def test_orientation_weight_is_maximum_likelihood(robots):
     assert errs[0.1] < 0.8 * errs[1.0]
     with pytest.raises(InputError, match="orientation_weight"):
         robokit.calibrate(robot, q, T, orientation_weight=0.0)
+
+
+@settings(max_examples=12, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 2**31 - 1), name=st.sampled_from(["rrr", "rpr", "twolink"]),
+       size=st.floats(1e-4, 2e-2), positions_only=st.booleans())
+def test_any_small_error_is_recovered(robots, seed, name, size, positions_only):
+    """Property: for any random true arm near the nominal one (errors from 0.1 mm / 0.1 mrad to 2 cm / 20 mrad),
+    noiseless data give a calibrated robot that predicts the measured quantity on unseen configurations."""
+    robot = robots(name)
+    rng = np.random.default_rng(seed)
+    true = true_chain(robot, rng, size)
+    q = configurations(robot, 25, rng)
+    T = true.fk(q)
+    res = robokit.calibrate(robot, q, T[:, :3, 3] if positions_only else T)
+    unseen = configurations(robot, 10, rng)
+    got, want = res.robot.frame_pose(unseen), true.fk(unseen)
+    if positions_only:
+        np.testing.assert_allclose(got[:, :3, 3], want[:, :3, 3], atol=1e-7)
+    else:
+        np.testing.assert_allclose(got, want, atol=1e-7)
