@@ -155,7 +155,7 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     and reading it back), else ``InputError`` saying to write a URDF. Nothing is written on error.
     """
     from robokit.calibration import calibrate, chain_urdf, read_calibration_csv
-    from robokit.description.robot import load
+    from robokit.description import load
 
     out = _output_file(output, (".urdf", ".yaml", ".yml"))
     robot = load(model, tip=tip, **load_options)

@@ -157,7 +157,7 @@ def excitation_trajectory(robot: Robot | str, duration: float, harmonics: int = 
     """
     from scipy.optimize import minimize
 
-    from robokit.description.robot import load
+    from robokit.description import load
 
     robot = load(robot)
     n = robot.n

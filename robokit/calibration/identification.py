@@ -384,7 +384,7 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     >>> bool(np.allclose(res.predict(q, dq, ddq), tau))
     True
     """
-    from robokit.description.robot import load
+    from robokit.description import load
 
     robot = load(robot)
     n = robot.n

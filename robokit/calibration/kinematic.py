@@ -444,7 +444,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
     >>> res.rms_after < 1e-9
     True
     """
-    from robokit.description.robot import load
+    from robokit.description import load
 
     robot = load(robot)
     n = robot.n
