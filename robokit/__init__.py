@@ -6,13 +6,21 @@ first, ``(w, x, y, z)``.
 
 The top level holds the seed function library (``near_zero`` … ``simulate_control``, the
 names of the course's function documentation), the main types and the entry points
-(``load``, ``solve_ik``, ``ik_analytic``, ``capability_map``). Everything else is reached
+(``load``, ``solve_ik``, ``ik_analytic``, ``capability_map``, ``calibrate``,
+``identify_dynamics``, ``excitation_trajectory``). Everything else is reached
 through its subpackage, one per course area: ``robokit.spatial``, ``robokit.description``,
 ``robokit.kinematics``, ``robokit.dynamics``, ``robokit.ik``, ``robokit.trajectory``,
 ``robokit.control``, ``robokit.mobile``, ``robokit.workspace``, ``robokit.viz``,
-``robokit.validation`` and ``robokit.symbolic`` (e.g. ``robokit.kinematics.dh_jacobian``).
+``robokit.validation``, ``robokit.calibration`` and ``robokit.symbolic`` (e.g. ``robokit.kinematics.dh_jacobian``).
 """
-from robokit import control, description, dynamics, ik, kinematics, mobile, spatial, trajectory, workspace
+from robokit import calibration, control, description, dynamics, ik, kinematics, mobile, spatial, trajectory, workspace
+from robokit.calibration import (
+    CalibrationResult,
+    IdentificationResult,
+    calibrate,
+    excitation_trajectory,
+    identify_dynamics,
+)
 from robokit.control import SimResult, computed_torque, simulate, simulate_control
 from robokit.description import DHLink, DHTable, PoEParams, Robot, RobotLike, RobotSpec, load, urdf_to_dh
 from robokit.dynamics import (
@@ -92,11 +100,13 @@ SEED_FUNCTIONS = (
 __all__ = list(SEED_FUNCTIONS) + [
     # entry points
     "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "urdf_to_dh",
+    "calibrate", "identify_dynamics", "excitation_trajectory",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
-    "SimResult", "CapabilityMap",
+    "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
     # errors and warnings
     "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
+    "calibration",
 ]

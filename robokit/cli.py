@@ -120,6 +120,14 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--orientations", type=int, default=100, help="number of tool orientations K (default 100)")
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
     cm.add_argument("-o", "--output", required=True, help="output .npz file")
+
+    # kinematic calibration (robokit.calibration)
+    cal = sub.add_parser("calibrate", help="calibrate a robot's geometry from measured tool poses or positions (CSV)")
+    cal.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    cal.add_argument("data", help="CSV with a header: q1..qn, x, y, z[, qw, qx, qy, qz] (base frame; m, rad)")
+    cal.add_argument("-o", "--output", required=True, help="output .urdf (always) or .yaml (a DH arm only)")
+    cal.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    _add_format_options(cal)
     return p
 
 
@@ -170,6 +178,10 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import workspace_command
 
         return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
+    if args.command == "calibrate":
+        from robokit.commands import calibrate_command
+
+        return calibrate_command(args.model, args.data, args.output, tip=args.tip, **_format_options(args))
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

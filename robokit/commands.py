@@ -20,7 +20,8 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command"]
+__all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command",
+           "calibrate_command"]
 
 
 def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> Path:
@@ -146,3 +147,66 @@ def capability_view_command(path: str | os.PathLike[str], output: str | os.PathL
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
     return 0
+
+
+def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str], output: str | os.PathLike[str],
+                      tip: str | None = None, **load_options: Any) -> int:
+    """``robokit calibrate MODEL DATA.csv -o OUT.urdf|OUT.yaml``: calibrate, print the RMS before and
+    after (stdout), write the calibrated robot atomically; return 0.
+
+    A URDF is always possible (the calibrated joint placements, the nominal inertias); a DH YAML
+    only when a DH table reproduces the calibrated arm to 1e-9 (checked after writing it to text
+    and reading it back), else ``InputError`` saying to write a URDF. Nothing is written on error.
+    """
+    from robokit.calibration import calibrate, chain_urdf, read_calibration_csv
+    from robokit.description import load
+
+    out = _output_file(output, (".urdf", ".yaml", ".yml"))
+    robot = load(model, tip=tip, **load_options)
+    q, measured = read_calibration_csv(data, robot.n, robot.qlim)
+    res = calibrate(robot, q, measured)
+    if out.suffix.lower() == ".urdf":
+        text = chain_urdf(robot, res.chain, res.robot.name)
+    else:
+        text = _calibrated_dh_yaml(res.robot, robot)
+    kind = "positions" if measured.ndim == 2 else "poses"
+    print(f"calibrated {robot.name} from {len(q)} measured {kind}")
+    for label, rms in (("before:", res.rms_before), ("after: ", res.rms_after)):
+        rot = "" if rms.orientation is None else f" / {1e3 * rms.orientation:.4g} mrad"
+        print(f"RMS {label} {1e3 * rms:.4g} mm{rot}")
+    print(str(res.identifiability))
+    atomic_write(out, text)
+    print(f"wrote {out}", file=sys.stderr)
+    return 0
+
+
+def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
+    """The DH YAML of a calibrated robot, refused unless it reproduces the robot to 1e-9 with offsets
+    of the arm's size (at most ten times the farthest joint origin or tool from the base, and 1 m):
+    nearly parallel axes need offsets far beyond the arm (the DH discontinuity)."""
+    import yaml
+
+    from robokit.description.dh import DHTable
+    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.errors import InputError
+
+    res = urdf_to_dh(robot, "standard")
+    frames = nominal.frame_poses(np.zeros(nominal.n))
+    size = 10.0 * max([1.0] + [float(np.linalg.norm(T[:3, 3])) for T in frames.values()])
+    big = max((abs(v), f"{k}{i + 1}") for i, l in enumerate(res.table.links) for k, v in (("a", l.a), ("d", l.d)))
+    if big[0] > size:
+        raise InputError(f"-o: the calibrated {nominal.name} has nearly parallel joint axes that a DH table describes "
+                         f"only with {big[1]} = {big[0]:.3g} m (the DH discontinuity); write a URDF instead "
+                         "(-o OUT.urdf)")
+    text = res.table.to_yaml_str("deg")
+    back = DHTable.from_dict(yaml.safe_load(text), source="<calibrated>")
+    rng = np.random.default_rng(0)
+    worst = 0.0
+    for _ in range(100):
+        qs = robot.random_configuration(rng)
+        worst = max(worst, float(np.abs(back.fk(qs) - robot.frame_pose(qs)).max()))
+    if not (res.exact and worst <= 1e-9):
+        raise InputError(f"-o: the calibrated {nominal.name} is not exactly a DH arm (a DH table reproduces it only "
+                         f"to {max(worst, res.residual):.2e}); write a URDF instead (-o OUT.urdf)")
+    return (f"# {robot.name}: calibrated by robokit; this DH table reproduces the calibrated geometry to "
+            f"{worst:.1e}\n") + text

@@ -16,8 +16,8 @@ doing, not an edge.
 
 Layers, bottom to top: the helpers (``_arrays``, ``_io``, ``_yaml``, ``_optional``, ``errors``); ``spatial``
 (no robot in it); ``kernels`` (the compiled recursions); ``description`` (DH tables, files,
-the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile`` and
-``symbolic``; ``viz``; ``workspace``; ``validation``; ``commands`` and ``cli``.
+the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile``,
+``symbolic`` and ``calibration``; ``viz``; ``workspace``; ``validation``; ``commands`` and ``cli``.
 """
 import ast
 from pathlib import Path
@@ -35,7 +35,7 @@ LAYER = {
     "dynamics": 5,
     "ik": 6,
     "trajectory": 7,
-    "control": 8, "mobile": 8, "symbolic": 8,
+    "control": 8, "mobile": 8, "symbolic": 8, "calibration": 8,
     "viz": 9,
     "workspace": 10,
     "validation": 11,

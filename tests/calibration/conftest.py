@@ -1,0 +1,25 @@
+"""Fixtures of the calibration tests: robots loaded once; the helpers in calibration_support.py and
+the hardening suite's CLI helpers (tests/hardening/hardening_support.py) put on sys.path."""
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hardening"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import calibration_support as cs  # noqa: E402
+
+import robokit  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def robots():
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = cs.prismatic_arm() if name == "rpr" else robokit.load(name)
+        return cache[name]
+
+    return get
