@@ -4,6 +4,7 @@ import os
 import re
 import subprocess
 import sys
+from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
@@ -84,3 +85,69 @@ def test_mkdocs_build_strict(tmp_path):
     # The API reference really was generated from the code (not an empty page).
     reference = (tmp_path / "site" / "reference" / "spatial" / "index.html").read_text(encoding="utf-8")
     assert "matrix_log_6" in reference
+    _check_formulas_and_assets(tmp_path / "site")
+
+
+class _TextOutsideMath(HTMLParser):
+    """Collects the text of a page that is outside ``arithmatex`` elements, code and scripts."""
+
+    SKIP = {"code", "pre", "script", "style"}
+    VOID = {"br", "img", "hr", "input", "meta", "link", "wbr", "source", "area", "base", "col", "embed", "param",
+            "track"}
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.stack: list[bool] = []  # per open element: is it (inside) math or code?
+        self.text: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        if tag in self.VOID:
+            return
+        classes = (dict(attrs).get("class") or "").split()
+        inside = bool(self.stack and self.stack[-1])
+        self.stack.append(inside or tag in self.SKIP or "arithmatex" in classes)
+
+    def handle_endtag(self, tag):
+        if tag not in self.VOID and self.stack:
+            self.stack.pop()
+
+    def handle_data(self, data):
+        if not (self.stack and self.stack[-1]):
+            self.text.append(data)
+
+
+# TeX outside math: a display/inline delimiter, or a control word MathJax would have typeset
+_TEX = (r"\\\[|\\\(|\\(?:begin|end|frac|mathrm|mathbf|operatorname|dot|ddot|hat|sum|theta|omega|alpha|"
+        r"beta|gamma|pi|cos|sin|big|qquad|quad|left|right|cdot|times|sqrt)\b")
+
+
+def _check_formulas_and_assets(site):
+    """Every formula of the built site sits in an ``arithmatex`` element (so MathJax typesets it)
+    and MathJax comes from the site itself, not a CDN (so formulas render offline)."""
+    bad = []
+    for page in sorted(site.rglob("*.html")):
+        if "reference" in page.parts:  # docstrings: code-like text, formulas not typeset there
+            continue
+        html = page.read_text(encoding="utf-8")
+        assert "cdn.jsdelivr" not in html and "mathjax@" not in html, f"{page}: MathJax from a CDN"
+        parser = _TextOutsideMath()
+        parser.feed(html)
+        stray = re.findall(_TEX, "".join(parser.text))
+        if stray:
+            bad.append(f"{page.relative_to(site)}: {len(stray)} formula fragment(s) outside arithmatex, e.g. {stray[0]}")
+    assert not bad, "\n".join(bad)
+    assert (site / "javascripts" / "mathjax" / "tex-chtml.js").stat().st_size > 500_000
+    assert list((site / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff"))
+
+
+def test_formula_check_catches_a_stray_formula(tmp_path):
+    page = tmp_path / "course" / "x.html"
+    page.parent.mkdir(parents=True)
+    (tmp_path / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").mkdir(parents=True)
+    (tmp_path / "javascripts" / "mathjax" / "tex-chtml.js").write_bytes(b"x" * 600_000)
+    (tmp_path / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2" / "a.woff").write_bytes(b"x")
+    page.write_text('<p><span class="arithmatex">\\(x\\)</span> fine</p>')
+    _check_formulas_and_assets(tmp_path)
+    page.write_text("<p>\\[\nc_2 = \\frac{1}{2}\n\\]</p>")  # a display block MathJax never sees
+    with pytest.raises(AssertionError, match="outside arithmatex"):
+        _check_formulas_and_assets(tmp_path)
