@@ -46,6 +46,15 @@ def safe_comment(text: str) -> str:
     return out.replace("*/", "* /").replace("/*", "/ *")
 
 
+def c_string(text: str) -> str:
+    """A C string literal of text (UTF-8; bytes outside printable ASCII as octal escapes)."""
+    out = []
+    for b in str(text).encode("utf-8"):
+        ch = chr(b)
+        out.append(ch if 32 <= b < 127 and ch not in '"\\?' else f"\\{b:03o}")
+    return '"' + "".join(out) + '"'
+
+
 def lit(x: float) -> str:
     """A C double literal that reads back as exactly ``x`` (``repr`` round-trips)."""
     x = float(x)
@@ -192,7 +201,7 @@ class CWriter:
 
 
 _FLOAT_LIT = re.compile(r"(?<![\w.])((?:\d+\.\d*|\.\d+)(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+)(?![\w.])")
-_MATH = re.compile(r"\b(sin|cos|tan|atan|atan2|sqrt|fabs|hypot|remainder|fmax|fmin|floor)\(")
+_MATH = re.compile(r"\b(sin|cos|tan|atan|atan2|sqrt|fabs|hypot|remainder|fmod|fmax|fmin|floor)\(")
 
 
 def _float_code(code: str) -> str:

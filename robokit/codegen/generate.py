@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from robokit._io import atomic_write
-from robokit.codegen._c import CWriter, lit, safe_comment, to_float32
+from robokit.codegen._c import CWriter, c_string, lit, safe_comment, to_float32
 from robokit.codegen.dynamics import emit_rnea
 from robokit.codegen.kinematics import emit_fk, emit_jacobian
 from robokit.errors import InputError
@@ -162,7 +162,7 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     names = [str(x) for x in poe.joint_names]
     qlim = np.asarray(poe.qlim, dtype=float)
     P = prefix
-    ik = emit_ik(robot, P)
+    ik = emit_ik(robot, P, float32)
 
     # ------------------------------------------------------------------ header
     h: list[str] = []
@@ -236,7 +236,7 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     rows = ", ".join(f"{{{_limit(lo)}, {_limit(hi)}}}" for lo, hi in qlim)
     s.append(f"const double {P}_qlim[{P}_N][2] = {{{rows}}};")
     s.append(f"const int {P}_joint_type[{P}_N] = {{{', '.join('0' if k == 'R' else '1' for k in kinds)}}};")
-    s.append(f"const char *const {P}_joint_names[{P}_N] = {{{', '.join(_c_string(x) for x in names)}}};")
+    s.append(f"const char *const {P}_joint_names[{P}_N] = {{{', '.join(c_string(x) for x in names)}}};")
     s.append("")
     w = CWriter()
     emit_fk(w, poe.Slist, poe.M, kinds, names)
@@ -248,6 +248,8 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
                        "geometric Jacobian, rows (w; v), v of the tool origin, base axes"))
     if ik.has_ik:
         s.append(ik.source)
+    else:
+        s.append(f"/* no {P}_ik: {ik.note} */\n")
     arm = _armature(robot)
     w = CWriter()
     emit_rnea(w, poe.Mlist, poe.Glist, poe.Slist, kinds, np.asarray(poe.gravity, dtype=float), arm,
@@ -268,12 +270,6 @@ def _limit(x: float) -> str:
     if math.isinf(x):
         return "HUGE_VAL" if x > 0 else "(-HUGE_VAL)"
     return f"({lit(x)})" if x < 0 else lit(x)
-
-
-def _c_string(text: str) -> str:
-    safe = "".join(ch if (32 <= ord(ch) < 127 and ch not in '"\\?') else f"\\{ord(ch) & 0xFF:03o}"
-                   for ch in text)
-    return f'"{safe}"'
 
 
 def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
