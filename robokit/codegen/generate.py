@@ -111,7 +111,10 @@ def _kinds(robot: Any) -> list[str]:
 
 def _function(signature: str, body: CWriter, doc: str) -> str:
     body.prune()
-    return f"/* {doc} */\n{signature}\n{{\n{body.text()}\n}}\n"
+    text = body.text()
+    unused = [p for p in re.findall(r"(\w+)\[[^\]]*\][,)]", signature) if not re.search(rf"\b{p}\[", text)]
+    voids = "".join(f"    (void){p};  /* not needed by this robot (e.g. massless links) */\n" for p in unused)
+    return f"/* {doc} */\n{signature}\n{{\n{voids}{text}\n}}\n"
 
 
 def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CSource:
