@@ -4,7 +4,7 @@ and no private name (``_x``) is imported from another subpackage.
 Layers, bottom to top: the helpers (``_arrays``, ``_io``, ``_yaml``, ``errors``); ``spatial``
 (no robot in it); ``kernels`` (the compiled recursions); ``description`` (DH tables, files,
 the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile`` and
-``symbolic``; ``viz``; ``workspace``; ``validation``; ``commands`` and ``cli``.
+``symbolic``; ``viz``; ``workspace``; ``validation`` and ``codegen``; ``commands`` and ``cli``.
 """
 import ast
 from pathlib import Path
@@ -25,7 +25,7 @@ LAYER = {
     "control": 8, "mobile": 8, "symbolic": 8,
     "viz": 9,
     "workspace": 10,
-    "validation": 11,
+    "validation": 11, "codegen": 11,
     "commands": 12, "cli": 12,
 }
 

@@ -71,7 +71,7 @@ class CLibrary:
             self.max_solutions = int(ctypes.c_int.in_dll(self.lib, f"{self.name}_ik_max_solutions").value)
             count = int(ctypes.c_int.in_dll(self.lib, f"{self.name}_ik_label_count").value)
             names = (ctypes.c_char_p * count).in_dll(self.lib, f"{self.name}_ik_label_names")
-            self.labels = [x.decode() for x in names]
+            self.labels = [(x or b"").decode() for x in names]
 
     def _arr(self, x: ArrayLike, size: int) -> np.ndarray:
         a = np.ascontiguousarray(np.asarray(x, dtype=float).reshape(-1), dtype=self._t)

@@ -630,7 +630,9 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         w.line(f"W[{i}] = {_c(W[i])};")
         for j in range(3):
             w.line(f"R06[{3 * i + j}] = {_c(R[i][j])};")
-    m_names = {"RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0], "RR-s1": ["h", 1.0]}[case]
+    monomials: dict[str, list[Val]] = {"RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0],
+                                       "RR-s1": ["h", 1.0]}
+    m_names = monomials[case]
     w.comment(f"joint 3 from a polynomial of degree {deg} in {'u = tan(th3/2)' if kind3 == 'R' else 'd3'} "
               f"({case}): coefficients linear in the monomials of (r, h)")
     for j in range(deg + 1):

@@ -61,8 +61,7 @@ def joint_exp(w: CWriter, S: np.ndarray, kind: str, i: int, qname: str, sign: fl
     om = [snap(x) for x in S[:3]]
     v = [snap(x) for x in S[3:]]
     if kind == "P":
-        R = Pose.identity().R
-        return Pose(R, [w.let(f"e{k}_p{j}", lin([(sign * v[j], qname)])) if v[j] != 0.0 else 0.0
+        return Pose(Pose.identity().R, [w.let(f"e{k}_p{j}", lin([(sign * v[j], qname)])) if v[j] != 0.0 else 0.0
                         for j in range(3)])
     c, s, vers = f"c{k}", f"s{k}", f"v{k}"
     W = np.array([[0.0, -om[2], om[1]], [om[2], 0.0, -om[0]], [-om[1], om[0], 0.0]])
