@@ -157,11 +157,10 @@ static double {P}_poly(const double c[5], int deg, double x)
 }}
 
 /* the root of c in [lo, hi] where c changes sign: bisection guarded Newton steps */
-static double {P}_refine(const double c[5], int deg, double lo, double hi)
+static double {P}_refine(const double c[5], int deg, double lo, double hi, double x)
 {{
     double d[5];
     double plo = {P}_poly(c, deg, lo);
-    double x = 0.5 * (lo + hi);
     int i, it;
     for (i = 1; i <= deg; ++i) {{
         d[i - 1] = i * c[i];
@@ -218,7 +217,12 @@ static int {P}_real_roots(const double c[5], int deg, double out[5])
         const double hi = i < nc ? crit[i] : bound;
         const double plo = {P}_poly(c, deg, lo), phi = {P}_poly(c, deg, hi);
         if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
-            out[nr++] = {P}_refine(c, deg, lo, hi);
+            /* start an outer piece next to its critical point, an inner one in its middle */
+            double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
+            if (!(x0 > lo && x0 < hi)) {{
+                x0 = 0.5 * (lo + hi);
+            }}
+            out[nr++] = {P}_refine(c, deg, lo, hi, x0);
         }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
             if (nr == 0 || out[nr - 1] != hi) {{
                 out[nr++] = hi;  /* a double root at a critical point */
@@ -236,8 +240,12 @@ static int {P}_real_roots(const double c[5], int deg, double out[5])
         lines = []
         for j in range(n):
             if k.rev[j]:
-                lines.append(f"        qq[{j}] = remainder(rows[r][{j}], {lit(2 * math.pi)});")
-                lines.append(f"        if (qq[{j}] == -{lit(math.pi)}) {{\n            qq[{j}] = {lit(math.pi)};\n        }}")
+                lines.append(f"        qq[{j}] = rows[r][{j}];")
+                lines.append(f"        if (qq[{j}] > {lit(math.pi)} || qq[{j}] <= -{lit(math.pi)}) {{\n"
+                             f"            qq[{j}] = remainder(qq[{j}], {lit(2 * math.pi)});  /* exact: same as "
+                             f"remainder on (-pi, pi] */\n"
+                             f"            if (qq[{j}] == -{lit(math.pi)}) {{\n                qq[{j}] = {lit(math.pi)};\n"
+                             f"            }}\n        }}")
             else:
                 lines.append(f"        qq[{j}] = rows[r][{j}];")
         if k.lims is not None:
@@ -261,12 +269,20 @@ static int {P}_real_roots(const double c[5], int deg, double out[5])
         same = []
         for j in range(n):
             if k.rev[j]:
-                same.append(f"fabs(remainder(qq[{j}] - q[6 * m + {j}], {lit(2 * math.pi)})) < {self.tol(1e-9)}")
+                same.append(f"{P}_same_angle(qq[{j}], q[6 * m + {j}], {self.tol(1e-9)})")
             else:
                 same.append(f"fabs(qq[{j}] - q[6 * m + {j}]) < {self.tol(1e-9)}")
         same_c = "\n                && ".join(same)
         body = "\n".join(lines)
         return f"""
+/* |remainder(a - b, 2 pi)| < tol, for a, b within (-3 pi, 3 pi) (wrapped or shifted by 2 pi) */
+static int {P}_same_angle(double a, double b, double tol)
+{{
+    const double d = fabs(a - b);
+    return d < tol || fabs(d - {lit(2 * math.pi)}) < tol || fabs(d - {lit(4 * math.pi)}) < tol
+        || fabs(d - {lit(6 * math.pi)}) < tol;
+}}
+
 /* ik_analytic's last step: revolute angles wrapped to (-pi, pi] (or shifted by 2 pi into wider
    limits), the within-limits flag, duplicates dropped (angles compared modulo 2 pi), and the
    repeat number of a label that occurs twice (" #2"). */
@@ -440,10 +456,11 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     }}
     c5 = c5 > 1.0 ? 1.0 : (c5 < -1.0 ? -1.0 : c5);
     s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);"""
-    rots_m = []
+    rots_m = [f"    const double ct[3] = {{cos(th[0]), cos(th[1]), cos(th[2])}};\n"
+              f"    const double st[3] = {{sin(th[0]), sin(th[1]), sin(th[2])}};"]
     for i in range(3):
-        rots_m.append(f"""    c = cos(th[{i}]);
-    s = sin(th[{i}]);
+        rots_m.append(f"""    c = ct[{i}];
+    s = st[{i}];
     x = c * mx + s * my; my = c * my - s * mx; mx = x;
     x = c * ex + s * ey; ey = c * ey - s * ex; ex = x;""")
         if sa[i] != 0.0 or ca[i] != 1.0:
@@ -454,7 +471,7 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         if sa[i] != 0.0 or ca[i] != 1.0:
             rots_n.append(f"    x = {lit(ca[i])} * ny - {lit(sa[i])} * nz; nz = {lit(sa[i])} * ny + {lit(ca[i])} * nz; "
                           f"ny = x;")
-        rots_n.append(f"    c = cos(th[{i}]);\n    s = sin(th[{i}]);\n"
+        rots_n.append(f"    c = ct[{i}];\n    s = st[{i}];\n"
                       f"    x = c * nx - s * ny; ny = s * nx + c * ny; nx = x;")
     gamma_ca4 = lit(ca4)
     text = f"""
