@@ -40,9 +40,15 @@ def snap(x: float) -> float:
     return x
 
 
+_ASCII = {"\u2013": "-", "\u2014": "-", "\u2212": "-", "\u00b0": " deg", "\u00d7": "x", "\u2192": "->",
+          "\u03b8": "th", "\u03b1": "al", "\u03c9": "w", "\u2009": " ", "\u00b2": "^2",
+          **{chr(0x2080 + i): str(i) for i in range(10)}}
+
+
 def safe_comment(text: str) -> str:
     """text fit for a C comment: printable ASCII, no ``*/`` (names come from robot files)."""
-    out = "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in str(text))
+    text = "".join(_ASCII.get(ch, ch) for ch in str(text))
+    out = "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text)
     return out.replace("*/", "* /").replace("/*", "/ *")
 
 

@@ -362,3 +362,19 @@ def test_urdf_file_and_generated_source_is_deterministic(tmp_path, build):
     robot = robokit.load(path)
     assert generate_c(robot).source == generate_c(robokit.load(path)).source
     check_dynamics_and_kinematics(robot, build(robot), samples=3)
+
+
+def test_the_documented_main_c_compiles_and_runs(tmp_path, cc):
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "codegen.md").read_text(encoding="utf-8")
+    main_c = re.search(r"```c\n(.*?)```", doc, flags=re.S).group(1)
+    assert main(["codegen", "puma560", "-o", str(tmp_path)]) == 0
+    (tmp_path / "main.c").write_text(main_c)
+    exe = tmp_path / "main"
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow", "-O2",
+                    str(tmp_path / "main.c"), str(tmp_path / "puma560.c"), "-o", str(exe), "-lm"], check=True)
+    out = subprocess.run([str(exe)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout
+    lines = out.stdout.splitlines()
+    assert len(lines) == 5 and all("solutions, chose" in line for line in lines)
