@@ -9,7 +9,7 @@ Read from the cached closed-form model: ``kind`` (method, reason), ``reversed``,
 ``rev_list``, ``lim_list``, ``solver_chain`` (``kinds``, ``th0``, ``d0``, ``base_inv``,
 ``tool_inv``, ``scale``) and the solver's constants (Pieper: ``case``, ``deg``, ``C_list``,
 ``w6_list``, ``w3_list``, ``th0_list``, ``d0_list``, ``ca``, ``sa``, ``a1``, ``a2``, ``d1``,
-``d2``, ``f``, ``Ka``, ``Kb``, ``v``; three parallel axes: ``ca``, ``sa``, ``s2``, ``sig``,
+``d2``, ``f``, ``Ka``, ``phi``, ``nf2``, ``v``, ``j1``, ``j2``; three parallel axes: ``ca``, ``sa``, ``s2``, ``sig``,
 ``a1``…``a5``, ``d1``, ``d5``, ``d6``, ``KW``, ``w6_list``, ``th0_list``).
 """
 from __future__ import annotations
@@ -64,6 +64,10 @@ def ik_constants(robot: Any) -> IKConstants:
     for name in names:
         if hasattr(sv, name):
             out.solver[name] = getattr(sv, name)
-    if kind.method == "spherical wrist" and getattr(sv, "j1", "R") == "R" and getattr(sv, "j2", "R") == "R":
-        out.solver["Ka"] = np.asarray(sv.Ka, dtype=float)
+    if kind.method == "spherical wrist":
+        if sv.j2 == "R" and sv.j1 == "R":
+            out.solver["Ka"] = np.asarray(sv.Ka, dtype=float)
+        if sv.j2 == "P":
+            out.solver["phi"] = tuple(np.asarray(x, dtype=float) for x in sv.phi)
+            out.solver["nf2"] = np.asarray(sv.nf2, dtype=float)
     return out

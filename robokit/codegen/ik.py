@@ -76,9 +76,9 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
     k = ik_constants(robot)
     if k.method is None:
         return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
-    if k.method == "spherical wrist" and (k.kinds[0] != "R" or k.kinds[1] != "R"):
-        return IKCode(False, "closed form exists (Pieper's method with a prismatic joint 1 or 2), but its C is "
-                             "not generated yet; use robokit.ik_analytic", 1)
+    if k.method not in ("spherical wrist", "three parallel axes"):
+        return IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
+                             "use robokit.ik_analytic", 1)
     return _Emitter(k, prefix, _Tol(float32)).code()
 
 
@@ -387,7 +387,8 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         wref = "-wrist_ref" if k.reversed else "wrist_ref"
         src = [self.tables()]
         quartic = k.method == "spherical wrist" and int(k.solver["deg"]) == 4
-        if not (k.method == "spherical wrist" and k.solver["case"] == "RR-quartic"):
+        if not (k.method == "spherical wrist" and k.solver["case"] in ("RR-quartic", "PR-quartic", "RP-quartic",
+                                                                        "RP-c1", "PP")):
             src.append(self.helpers())  # a cos t + b sin t = c
         if k.method == "spherical wrist":
             if quartic:
@@ -621,7 +622,7 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
 
 
 def _pieper(e: _Emitter, T06: Pose) -> str:
-    """Body of the Pieper solve: rows[], lab[], deg[], nr."""
+    """Body of the Pieper solve (``PieperSolver.position`` then the wrist): rows[], lab[], deg[], nr."""
     k, P, t = e.k, e.P, e.tol
     sv = k.solver
     case = str(sv["case"])
@@ -629,90 +630,166 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     C = [[float(x) for x in row] for row in sv["C_list"]]
     w6 = [snap(float(x)) for x in sv["w6_list"]]
     ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    ca1, sa1 = ca[0], sa[0]
     a1, a2, d1, d2 = (float(sv[x]) for x in ("a1", "a2", "d1", "d2"))
     f1c, f2c, f3c = sv["f"]
-    Ka = sv["Ka"]
     vv = [float(x) for x in sv["v"]]
     th0, d0 = k.th0, k.d0
-    kind3 = k.kinds[2]
+    j1, j2, kind3 = k.kinds[0], k.kinds[1], k.kinds[2]
     scale = k.scale
     w = CWriter()
     R = T06.R
     W = [w.let(f"W{i}", lin([(w6[0], R[i][0]), (w6[1], R[i][1]), (w6[2], R[i][2]), (1.0, T06.p[i])]))
          for i in range(3)]
-    w.comment("wrist centre W = T06 6W; Lecture 5: h = Wz - d1, r = |W|^2 - 2 d1 Wz + d1^2")
-    w.line(f"const double h = {_c(lin([(1.0, W[2])], -d1))};")
-    w.line(f"const double r = {_c(W[0])} * {_c(W[0])} + {_c(W[1])} * {_c(W[1])} + h * h;")
     for i in range(3):
         w.line(f"W[{i}] = {_c(W[i])};")
         for j in range(3):
             w.line(f"R06[{3 * i + j}] = {_c(R[i][j])};")
-    monomials: dict[str, list[Val]] = {"RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0],
-                                       "RR-s1": ["h", 1.0]}
+    if j1 == "R":
+        w.comment("wrist centre W = T06 6W; Lecture 5: h = Wz - d1, r = Wx^2 + Wy^2 + h^2 (invariant under joint 1)")
+        w.line(f"const double h = {_c(lin([(1.0, W[2])], -d1))};")
+        w.line(f"const double r = {_c(W[0])} * {_c(W[0])} + {_c(W[1])} * {_c(W[1])} + h * h;")
+    else:
+        c0, s0 = math.cos(th0[0]), math.sin(th0[0])
+        w.comment("wrist centre W = T06 6W; prismatic joint 1: (x', y') = W in frame 0' turned by th1's offset")
+        w.line(f"const double xp = {_c(lin([(c0, W[0]), (s0, W[1])]))};")
+        w.line(f"const double yp = {_c(lin([(-s0, W[0]), (c0, W[1])]))};")
+        w.line(f"const double X = xp - {lit(a1)};")
+    monomials: dict[str, list[Val]] = {
+        "RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0], "RR-s1": ["h", 1.0],
+        "RP-quartic": ["r", "h * h", "h", 1.0], "RP-c1": ["h", 1.0],
+        "PR-quartic": ["X * X", "yp * yp", "yp", 1.0], "PR-c1": ["yp", 1.0], "PP": ["X", 1.0]}
     m_names = monomials[case]
     w.comment(f"joint 3 from a polynomial of degree {deg} in {'u = tan(th3/2)' if kind3 == 'R' else 'd3'} "
-              f"({case}): coefficients linear in the monomials of (r, h)")
+              f"({case}): its coefficients are linear in these monomials of W")
     for j in range(deg + 1):
         terms: list[tuple[float, Val]] = [(C[m][j], mk) for m, mk in enumerate(m_names)]
         w.line(f"pc[{j}] = {_c(lin(terms))};")
     body = w.text()
-    if kind3 == "R":
-        ang = "2.0 * atan(ts[i])"
-    else:
-        ang = "ts[i]"
+    ang = "2.0 * atan(ts[i])" if kind3 == "R" else "ts[i]"
     extra = (f"""    if (dg < {deg}) {{
         x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
     }}""" if kind3 == "R" else "")
-    if deg == 4:
-        roots_deg = f""" else if (dg >= 3) {{
+    roots_deg = (f""" else if (dg >= 3) {{
             nt = {P}_real_roots(pc, dg, ts);  /* the quartic (or cubic): real roots, increasing */
+        }}""" if deg == 4 else "")
+    cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
+    fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
+             for name, coef in (("f1", f1c), ("f2", f2c), ("f3", f3c))]
+    # candidates (q2, g1, g2, g3) for this joint-3 value
+    if j2 == "R":
+        if j1 == "R":
+            ab = (f"""        const double F3 = f3 + {lit(d2)};
+        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = h - {lit(ca1)} * F3;""")
+            sa_, sb_ = 2.0 * a1, sa1
+        else:
+            ab = (f"""        const double F3 = f3 + {lit(d2)};
+        const double ra = X, rb = yp + {lit(sa1)} * F3;""")
+            sa_, sb_ = 1.0, ca1
+        if case in ("RR-quartic", "PR-quartic"):
+            th2 = f"""        if (f1 * f1 + f2 * f2 > {t(1e-24)} * {lit(scale * scale)}) {{
+            const double A = ra / {lit(sa_)}, B = rb / {lit(sb_)};
+            t2s[0] = atan2(f1 * B - f2 * A, f1 * A + f2 * B);
+        }} else {{
+            t2s[0] = {lit(th0[1])};
+            degenerate = 1;
+        }}
+        nt2 = 1;"""
+        elif case == "RR-a1":  # sb (F2 c2 + F1 s2) = rb
+            th2 = f"        nt2 = {P}_trig_roots({lit(sb_)} * f2, {lit(sb_)} * f1, rb, {t(1e-10)}, t2s);"
+        else:  # RR-s1, PR-c1: sa (F1 c2 - F2 s2) = ra
+            th2 = f"        nt2 = {P}_trig_roots({lit(sa_)} * f1, {lit(-sa_)} * f2, ra, {t(1e-10)}, t2s);"
+        cands = f"""{ab}
+        double t2s[2];
+        int nt2, i2;
+        (void)ra;
+        (void)rb;
+{th2}
+        if (nt2 < 0) {{
+            t2s[0] = {lit(th0[1])};
+            nt2 = 1;
+            degenerate = 1;
+        }}
+        for (i2 = 0; i2 < nt2; ++i2) {{
+            const double cc2 = cos(t2s[i2]), ss2 = sin(t2s[i2]);
+            const double uu = ss2 * f1 + cc2 * f2;
+            cq2[nc] = t2s[i2] - {lit(th0[1])};
+            cg1[nc] = {lit(a1)} + cc2 * f1 - ss2 * f2;
+            cg2[nc] = {lit(ca1)} * uu - {lit(sa1)} * F3;
+            cg3[nc] = {lit(sa1)} * uu + {lit(ca1)} * F3;
+            ++nc;
         }}"""
     else:
-        roots_deg = ""
-    # θ₃ → candidates
-    fvals = []
-    cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
-    for name, coef in (("f1", f1c), ("f2", f2c), ("f3", f3c)):
-        fvals.append(f"            const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};")
-    ka_val = _c(_val(Ka, kind3, "x3", *cs3))
-    if case == "RR-quartic":
-        th2 = f"""            const double n2 = f1 * f1 + f2 * f2;
-            if (n2 > {t(1e-24)} * {lit(scale * scale)}) {{
-                const double A = ra / {lit(2.0 * a1)}, B = rb / {lit(sa[0])};
-                t2s[0] = atan2(f1 * B - f2 * A, f1 * A + f2 * B);
-            }} else {{
-                t2s[0] = {lit(th0[1])};
-                degenerate = 1;
+        pc1, pc2 = sv["phi"]
+        pv = (f"""        const double p1 = {_c(_val(pc1, kind3, "x3", *cs3))};
+        const double p2 = {_c(_val(pc2, kind3, "x3", *cs3))};
+        double Ds[2];
+        int nD = 0, iD;""")
+        if case == "RP-quartic":
+            dcode = f"        Ds[nD++] = (h - {lit(sa1)} * p2) / {lit(ca1)} - f3;"
+        elif case == "RP-c1":  # D^2 + 2 f3 D + (a1^2 + |f|^2 + 2 a1 p1 - r) = 0
+            dcode = f"""        {{
+            const double nf2 = {_c(_val(sv["nf2"], kind3, "x3", *cs3))};
+            const double B = 2.0 * f3, C0 = {lit(a1 * a1)} + nf2 + {lit(2.0 * a1)} * p1 - r;
+            const double disc = B * B - 4.0 * C0;
+            const double big = B * B > fabs(4.0 * C0) ? B * B : fabs(4.0 * C0);
+            if (!(disc < -{t(1e-12)} * (big > {t(1e-300)} ? big : {t(1e-300)}))) {{
+                const double sq = sqrt(disc > 0.0 ? disc : 0.0);
+                const double qv = -0.5 * (B + (B >= 0.0 ? sq : -sq));
+                if (qv == 0.0) {{
+                    Ds[nD++] = 0.0;
+                }} else {{
+                    Ds[nD++] = qv;
+                    if (sq > 0.0) {{
+                        Ds[nD++] = C0 / qv;
+                    }}
+                }}
             }}
-            nt2 = 1;"""
-    elif case == "RR-a1":
-        th2 = f"""            nt2 = {P}_trig_roots({lit(sa[0])} * f2, {lit(sa[0])} * f1, rb, {t(1e-10)}, t2s);"""
+        }}"""
+        else:  # PP
+            dcode = f"        Ds[nD++] = ({lit(ca1)} * p2 - yp) / {lit(sa1)} - f3;"
+        cands = f"""{pv}
+{dcode}
+        for (iD = 0; iD < nD; ++iD) {{
+            const double D = Ds[iD];
+            cq2[nc] = D - {lit(d0[1])};
+            cg1[nc] = {lit(a1)} + p1;
+            cg2[nc] = {lit(ca1)} * p2 - {lit(sa1)} * (f3 + D);
+            cg3[nc] = {lit(sa1)} * p2 + {lit(ca1)} * (f3 + D);
+            ++nc;
+        }}"""
+    if j1 == "R":
+        q1 = f"""            if (sqrt(cg1[ic] * cg1[ic] + cg2[ic] * cg2[ic]) <= {t(1e-12)} * {lit(scale)}) {{
+                q123[0] = 0.0;
+                singular1 = 1;
+            }} else {{
+                q123[0] = atan2(W[1], W[0]) - atan2(cg2[ic], cg1[ic]) - {lit(th0[0])};
+            }}"""
     else:
-        th2 = f"""            nt2 = {P}_trig_roots({lit(2.0 * a1)} * f1, {lit(-2.0 * a1)} * f2, ra, {t(1e-10)}, t2s);"""
-    check = deg == 4
-    if check:
-        accept = f"""                    err = {P}_wrist_error(q123, W);
-                    if (err > {t(1e-12)} * {lit(scale)}) {{
-                        if (err > {t(1e-5)} * {lit(scale)}) {{
-                            continue;  /* a spurious root */
-                        }}
-                        err = {P}_polish(q123, W);
-                        if (err > {t(1e-11)} * {lit(scale)}) {{
-                            continue;
-                        }}
-                    }}"""
+        q1 = f"            q123[0] = {_c(W[2])} - {lit(d0[0])} - cg3[ic];"
+    if deg == 4:
+        accept = f"""            err = {P}_wrist_error(q123, W);
+            if (err > {t(1e-12)} * {lit(scale)}) {{
+                if (err > {t(1e-5)} * {lit(scale)}) {{
+                    continue;  /* a spurious root */
+                }}
+                err = {P}_polish(q123, W);
+                if (err > {t(1e-11)} * {lit(scale)}) {{
+                    continue;
+                }}
+            }}"""
     else:
-        accept = "                    /* closed-form roots (degree <= 2): the back-substitution is exact */"
-    if k.kinds[0] == "R":
-        shoulder = """                        si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"""
+        accept = "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
+    if j1 == "R":
+        shoulder = "                si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
     else:
-        shoulder = "                        si = 0;"
+        shoulder = "                si = 0;"
     if kind3 == "P":
-        elbow = f"""                        ei = {lit(d0[2])} + q123[2] >= 0.0 ? 0 : 1;"""
+        elbow = f"                ei = {lit(d0[2])} + q123[2] >= 0.0 ? 0 : 1;"
     else:
         a2f = a2 if a2 != 0.0 else 1.0
-        elbow = (f"""                        ei = (sin(th[2]) * {lit(vv[0])} + cos(th[2]) * {lit(vv[1])}) * {lit(a2f)} > 0.0 """
-                 f"""? 0 : 1;""")
+        elbow = (f"                ei = (sin(th[2]) * {lit(vv[0])} + cos(th[2]) * {lit(vv[1])}) * {lit(a2f)} > 0.0 "
+                 f"? 0 : 1;")
     q3 = f"x3 - {lit(th0[2])}" if kind3 == "R" else "x3"
     free3 = lit(th0[2]) if kind3 == "R" else "0.0"
     return f"""    {{
@@ -720,6 +797,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     double scale = 0.0;
     int dg = {deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;
 {body}
+    (void)W;
     /* its real roots (robokit's _roots: trailing coefficients below 1e-11 of the largest dropped) */
     for (i = 0; i <= {deg}; ++i) {{
         scale = fabs(pc[i]) > scale ? fabs(pc[i]) : scale;
@@ -755,70 +833,50 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         }}
     {extra}
     }}
+    /* every joint-3 value: joints 2 and 1 by back-substitution, then the wrist's two branches */
     for (i3 = 0; i3 < nx3; ++i3) {{
         const double x3 = x3s[i3];
         const double c3 = cos(x3), s3 = sin(x3);
-        double t2s[2];
-        int nt2, i2;
+        double cq2[2], cg1[2], cg2[2], cg3[2];
+        int nc = 0, ic;
+{chr(10).join(fvals)}
         (void)c3;
         (void)s3;
-        {{
-{chr(10).join(fvals)}
-            const double F3 = f3 + {lit(d2)};
-            const double ra = r - ({ka_val});
-            const double rb = h - {lit(ca[0])} * F3;
-            (void)ra;
-            (void)rb;
-{th2}
-            if (nt2 < 0) {{
-                t2s[0] = {lit(th0[1])};
-                nt2 = 1;
-                degenerate = 1;
-            }}
-            for (i2 = 0; i2 < nt2; ++i2) {{
-                const double t2 = t2s[i2];
-                const double cc2 = cos(t2), ss2 = sin(t2);
-                const double g1 = {lit(a1)} + cc2 * f1 - ss2 * f2;
-                const double uu = ss2 * f1 + cc2 * f2;
-                const double g2 = {lit(ca[0])} * uu - {lit(sa[0])} * F3;
-                double q123[3], err;
-                int singular1 = 0;
-                if (sqrt(g1 * g1 + g2 * g2) <= {t(1e-12)} * {lit(scale)}) {{
-                    q123[0] = 0.0;
-                    singular1 = 1;
-                }} else {{
-                    q123[0] = atan2(W[1], W[0]) - atan2(g2, g1) - {lit(th0[0])};
-                }}
-                q123[1] = t2 - {lit(th0[1])};
-                q123[2] = {q3};
-                (void)err;
-                {{
+        (void)f1;
+        (void)f2;
+        (void)f3;
+        (void)cg1;
+        (void)cg2;
+        (void)cg3;
+{cands}
+        for (ic = 0; ic < nc; ++ic) {{
+            double q123[3], err = 0.0, th[3], dd[3], wr[2][3];
+            int singular1 = 0, fl[2], nw, iw, si, ei;
+{q1}
+            q123[1] = cq2[ic];
+            q123[2] = {q3};
+            (void)err;
 {accept}
-                    {{
-                        double th[3], dd[3], wr[2][3];
-                        int fl[2], nw, iw, si, ei;
-                        {P}_angles(q123, th, dd);
+            {P}_angles(q123, th, dd);
 {shoulder}
 {elbow}
-                        nw = {P}_wrist(th, &T06R[0], ref, wr, fl);
-                        for (iw = 0; iw < nw && nr < {_RAW}; ++iw) {{
-                            rows[nr][0] = q123[0];
-                            rows[nr][1] = q123[1];
-                            rows[nr][2] = q123[2];
-                            rows[nr][3] = wr[iw][0] - {lit(th0[3])};
-                            rows[nr][4] = wr[iw][1] - {lit(th0[4])};
-                            rows[nr][5] = wr[iw][2] - {lit(th0[5])};
-                            lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
-                            deg[nr] = fl[iw] == 2 || degenerate || singular1;
-                            ++nr;
-                        }}
-                    }}
-                }}
+            nw = {P}_wrist(th, R06, ref, wr, fl);
+            for (iw = 0; iw < nw && nr < {_RAW}; ++iw) {{
+                rows[nr][0] = q123[0];
+                rows[nr][1] = q123[1];
+                rows[nr][2] = q123[2];
+                rows[nr][3] = wr[iw][0] - {lit(th0[3])};
+                rows[nr][4] = wr[iw][1] - {lit(th0[4])};
+                rows[nr][5] = wr[iw][2] - {lit(th0[5])};
+                lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
+                deg[nr] = fl[iw] == 2 || degenerate || singular1;
+                ++nr;
             }}
+            (void)singular1;
         }}
     }}
     }}
-""".replace("&T06R[0]", "R06")
+"""
 
 
 def _c(v: Val) -> str:
