@@ -76,9 +76,24 @@ def atom(v: Val) -> str:
     """v as a C operand that can be multiplied without parentheses."""
     if isinstance(v, float):
         return lit(v) if v >= 0.0 else f"({lit(v)})"
-    if _PRODUCT.match(v):
+    if _PRODUCT.match(v) or _one_group(v):
         return v
     return f"({v})"
+
+
+def _one_group(v: str) -> bool:
+    """True if v is one parenthesised group or one function call: ``(a + b)``, ``atan2(y, x)``."""
+    m = re.match(r"^[A-Za-z_][A-Za-z_0-9]*\(", v) or (v.startswith("(") and re.match(r"^", v))
+    if not m or not v.endswith(")"):
+        return False
+    depth = 0
+    start = v.index("(")
+    for k, ch in enumerate(v[start:], start):
+        depth += ch == "("
+        depth -= ch == ")"
+        if depth == 0 and k != len(v) - 1:
+            return False
+    return True
 
 
 def lin(terms: Iterable[tuple[float, Val]], const: float = 0.0) -> Val:

@@ -21,9 +21,10 @@ de-duplication and labels. Only the branches the robot needs are emitted.
 * Both read backwards when the structure is at the base: the C solves ``T⁻¹`` with the
   reversed chain and maps ``q = −q′`` in reverse order.
 
-Not generated (``NAME_HAS_IK 0`` with the reason in the header): spherical-wrist arms
-whose joint 1 or joint 2 is prismatic (robokit's Python solves them; their C is not written
-yet), and arms with no closed form in robokit.
+Every case of Pieper's positioning equation is generated (joints 1–3 revolute or prismatic:
+``RR-quartic``, ``RR-a1``, ``RR-s1``, ``PR-quartic``, ``PR-c1``, ``RP-quartic``, ``RP-c1``,
+``PP``). Not generated (``NAME_HAS_IK 0`` with the reason in the header): arms with no closed
+form in robokit, and closed-form methods other than these two (none yet has a C emitter).
 """
 from __future__ import annotations
 
@@ -667,9 +668,9 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         w.line(f"pc[{j}] = {_c(lin(terms))};")
     body = w.text()
     ang = "2.0 * atan(ts[i])" if kind3 == "R" else "ts[i]"
-    extra = (f"""    if (dg < {deg}) {{
-        x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
-    }}""" if kind3 == "R" else "")
+    extra = (f"""        if (dg < {deg}) {{
+            x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
+        }}""" if kind3 == "R" else "")
     roots_deg = (f""" else if (dg >= 3) {{
             nt = {P}_real_roots(pc, dg, ts);  /* the quartic (or cubic): real roots, increasing */
         }}""" if deg == 4 else "")
@@ -679,12 +680,12 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     # candidates (q2, g1, g2, g3) for this joint-3 value
     if j2 == "R":
         if j1 == "R":
-            ab = (f"""        const double F3 = f3 + {lit(d2)};
-        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = h - {lit(ca1)} * F3;""")
+            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
             sa_, sb_ = 2.0 * a1, sa1
         else:
-            ab = (f"""        const double F3 = f3 + {lit(d2)};
-        const double ra = X, rb = yp + {lit(sa1)} * F3;""")
+            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = X, rb = {_f([(1.0, "yp"), (sa1, "F3")])};""")
             sa_, sb_ = 1.0, ca1
         if case in ("RR-quartic", "PR-quartic"):
             th2 = f"""        if (f1 * f1 + f2 * f2 > {t(1e-24)} * {lit(scale * scale)}) {{
@@ -696,9 +697,9 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         }}
         nt2 = 1;"""
         elif case == "RR-a1":  # sb (F2 c2 + F1 s2) = rb
-            th2 = f"        nt2 = {P}_trig_roots({lit(sb_)} * f2, {lit(sb_)} * f1, rb, {t(1e-10)}, t2s);"
+            th2 = f"        nt2 = {P}_trig_roots({_f([(sb_, 'f2')])}, {_f([(sb_, 'f1')])}, rb, {t(1e-10)}, t2s);"
         else:  # RR-s1, PR-c1: sa (F1 c2 - F2 s2) = ra
-            th2 = f"        nt2 = {P}_trig_roots({lit(sa_)} * f1, {lit(-sa_)} * f2, ra, {t(1e-10)}, t2s);"
+            th2 = f"        nt2 = {P}_trig_roots({_f([(sa_, 'f1')])}, {_f([(-sa_, 'f2')])}, ra, {t(1e-10)}, t2s);"
         cands = f"""{ab}
         double t2s[2];
         int nt2, i2;
@@ -713,10 +714,10 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         for (i2 = 0; i2 < nt2; ++i2) {{
             const double cc2 = cos(t2s[i2]), ss2 = sin(t2s[i2]);
             const double uu = ss2 * f1 + cc2 * f2;
-            cq2[nc] = t2s[i2] - {lit(th0[1])};
-            cg1[nc] = {lit(a1)} + cc2 * f1 - ss2 * f2;
-            cg2[nc] = {lit(ca1)} * uu - {lit(sa1)} * F3;
-            cg3[nc] = {lit(sa1)} * uu + {lit(ca1)} * F3;
+            cq2[nc] = {_f([(1.0, "t2s[i2]")], -th0[1])};
+            cg1[nc] = {_f([(1.0, "cc2 * f1"), (-1.0, "ss2 * f2")], a1)};
+            cg2[nc] = {_f([(ca1, "uu"), (-sa1, "F3")])};
+            cg3[nc] = {_f([(sa1, "uu"), (ca1, "F3")])};
             ++nc;
         }}"""
     else:
@@ -752,10 +753,10 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
 {dcode}
         for (iD = 0; iD < nD; ++iD) {{
             const double D = Ds[iD];
-            cq2[nc] = D - {lit(d0[1])};
-            cg1[nc] = {lit(a1)} + p1;
-            cg2[nc] = {lit(ca1)} * p2 - {lit(sa1)} * (f3 + D);
-            cg3[nc] = {lit(sa1)} * p2 + {lit(ca1)} * (f3 + D);
+            cq2[nc] = {_f([(1.0, "D")], -d0[1])};
+            cg1[nc] = {_f([(1.0, "p1")], a1)};
+            cg2[nc] = {_f([(ca1, "p2"), (-sa1, "(f3 + D)")])};
+            cg3[nc] = {_f([(sa1, "p2"), (ca1, "(f3 + D)")])};
             ++nc;
         }}"""
     if j1 == "R":
@@ -763,10 +764,10 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
                 q123[0] = 0.0;
                 singular1 = 1;
             }} else {{
-                q123[0] = atan2(W[1], W[0]) - atan2(cg2[ic], cg1[ic]) - {lit(th0[0])};
+                q123[0] = {_f([(1.0, "atan2(W[1], W[0])"), (-1.0, "atan2(cg2[ic], cg1[ic])")], -th0[0])};
             }}"""
     else:
-        q1 = f"            q123[0] = {_c(W[2])} - {lit(d0[0])} - cg3[ic];"
+        q1 = f"            q123[0] = {_f([(1.0, _c(W[2])), (-1.0, 'cg3[ic]')], -d0[0])};"
     if deg == 4:
         accept = f"""            err = {P}_wrist_error(q123, W);
             if (err > {t(1e-12)} * {lit(scale)}) {{
@@ -781,16 +782,16 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     else:
         accept = "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
     if j1 == "R":
-        shoulder = "                si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
+        shoulder = "            si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
     else:
-        shoulder = "                si = 0;"
+        shoulder = "            si = 0;"
     if kind3 == "P":
-        elbow = f"                ei = {lit(d0[2])} + q123[2] >= 0.0 ? 0 : 1;"
+        elbow = f"            ei = {_f([(1.0, 'q123[2]')], d0[2])} >= 0.0 ? 0 : 1;"
     else:
         a2f = a2 if a2 != 0.0 else 1.0
-        elbow = (f"                ei = (sin(th[2]) * {lit(vv[0])} + cos(th[2]) * {lit(vv[1])}) * {lit(a2f)} > 0.0 "
-                 f"? 0 : 1;")
-    q3 = f"x3 - {lit(th0[2])}" if kind3 == "R" else "x3"
+        elbow = (f"            ei = {_f([(vv[0] * a2f, 'sin(th[2])'), (vv[1] * a2f, 'cos(th[2])')])} > 0.0 ? 0 : 1;"
+                 "  /* elbow down / up */")
+    q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
     free3 = lit(th0[2]) if kind3 == "R" else "0.0"
     return f"""    {{
     double pc[5], ts[5], x3s[6], W[3], R06[9];
@@ -831,7 +832,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         for (i = 0; i < nt; ++i) {{
             x3s[nx3++] = {ang};
         }}
-    {extra}
+{extra}
     }}
     /* every joint-3 value: joints 2 and 1 by back-substitution, then the wrist's two branches */
     for (i3 = 0; i3 < nx3; ++i3) {{
@@ -865,9 +866,9 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
                 rows[nr][0] = q123[0];
                 rows[nr][1] = q123[1];
                 rows[nr][2] = q123[2];
-                rows[nr][3] = wr[iw][0] - {lit(th0[3])};
-                rows[nr][4] = wr[iw][1] - {lit(th0[4])};
-                rows[nr][5] = wr[iw][2] - {lit(th0[5])};
+                rows[nr][3] = {_f([(1.0, "wr[iw][0]")], -th0[3])};
+                rows[nr][4] = {_f([(1.0, "wr[iw][1]")], -th0[4])};
+                rows[nr][5] = {_f([(1.0, "wr[iw][2]")], -th0[5])};
                 lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
                 deg[nr] = fl[iw] == 2 || degenerate || singular1;
                 ++nr;
@@ -877,6 +878,11 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     }}
     }}
 """
+
+
+def _f(terms: list[tuple[float, str]], const: float = 0.0) -> str:
+    """Σ cₖ·xₖ + const as folded C (no ``0.0 * x``, no ``- 0.0``)."""
+    return _c(lin([(c, x) for c, x in terms], const))
 
 
 def _c(v: Val) -> str:
@@ -952,7 +958,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             double t6, gx0, gy0, gz0, gx, gy, gz, ox, oy, oz, tmp, X0, X1, X2, O0, O1, O2, phi, x, y, c3, s3a, base;
             int degenerate, wi, k3, n3;
             if (rho <= {t(1e-10)}) {{
-                t6 = {lit(th0[5])} + ref;
+                t6 = {_f([(1.0, "ref")], th0[5])};
                 degenerate = 1;
             }} else {{
                 t6 = atan2(vy, vx) - atan2(uty, utx);
@@ -1000,12 +1006,12 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
                 const double t2 = base - atan2({lit(a3)} * s3, {lit(a2)} + {lit(a3)} * c3);
                 const double t3 = {lit(s2)} * psi, t4 = {lit(sig)} * (phi - t2 - psi);
                 const int ei = {lit(a2 * a3)} * s3 > 0.0 ? 0 : 1;
-                rows[nr][0] = t1 - {lit(th0[0])};
-                rows[nr][1] = t2 - {lit(th0[1])};
-                rows[nr][2] = t3 - {lit(th0[2])};
-                rows[nr][3] = t4 - {lit(th0[3])};
-                rows[nr][4] = t5 - {lit(th0[4])};
-                rows[nr][5] = t6 - {lit(th0[5])};
+                rows[nr][0] = {_f([(1.0, "t1")], -th0[0])};
+                rows[nr][1] = {_f([(1.0, "t2")], -th0[1])};
+                rows[nr][2] = {_f([(1.0, "t3")], -th0[2])};
+                rows[nr][3] = {_f([(1.0, "t4")], -th0[3])};
+                rows[nr][4] = {_f([(1.0, "t5")], -th0[4])};
+                rows[nr][5] = {_f([(1.0, "t6")], -th0[5])};
                 lab[nr] = {e.label_index("si", "ei", "wi")};
                 deg[nr] = degenerate;
                 ++nr;
