@@ -18,7 +18,7 @@ from robokit.codegen import c_name, generate_c
 from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
 from robokit.ik import ik_analytic, ik_analytic_kind
 
-SETTINGS = dict(max_examples=5, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
+SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "memset", "memcpy"}
 MATH |= {f + "f" for f in MATH}
@@ -235,7 +235,7 @@ def test_random_arms_kinematics_and_dynamics(build, seed, convention, n, prismat
     check_dynamics_and_kinematics(robot, build(robot), samples=4, seed=seed)
 
 
-@settings(**{**SETTINGS, "max_examples": 6})
+@settings(**{**SETTINGS, "max_examples": 5})
 @given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]),
        st.sampled_from(["RRR", "RRP", "RPR", "PRR", "RPP", "PPR", "PRP", "PPP"]), st.booleans())
 def test_random_spherical_wrist_arms_ik(build, seed, convention, kinds, oblique):
