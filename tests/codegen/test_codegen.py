@@ -384,3 +384,18 @@ def test_the_documented_main_c_compiles_and_runs(tmp_path, cc):
     assert out.returncode == 0, out.stdout
     lines = out.stdout.splitlines()
     assert len(lines) == 5 and all("solutions, chose" in line for line in lines)
+
+
+def test_mjcf_with_armature(tmp_path, build):
+    """An MJCF file (robokit's own export of the PUMA, whose drives give joint armature): the rotor
+    inertia enters Pinocchio's rnea, and the C's."""
+    from robokit.description.mjcf import robot_to_mjcf
+
+    text, _ = robot_to_mjcf(robokit.load("puma560"))
+    path = tmp_path / "puma.xml"
+    path.write_text(text)
+    robot = robokit.load(path)
+    assert np.abs(np.asarray(robot.model.armature)).max() > 0.1
+    lib = build(robot)
+    check_dynamics_and_kinematics(robot, lib, samples=3)
+    check_ik(robot, lib, random_poses(robot, 9, k=3))
