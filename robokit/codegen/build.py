@@ -26,7 +26,19 @@ STRICT_FLAGS = ("-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshad
 
 
 def find_compiler() -> str | None:
-    """The C compiler to use: ``$CC`` if set, else ``cc``/``gcc``/``clang`` on the PATH, else None."""
+    """The C compiler to use.
+
+    Returns
+    -------
+    str or None
+        The path of ``$CC`` if set and found, else of ``cc``, ``gcc`` or ``clang`` on the PATH;
+        None when there is none.
+
+    Examples
+    --------
+    >>> find_compiler()  # doctest: +SKIP
+    '/usr/bin/cc'
+    """
     cc = os.environ.get("CC")
     if cc and shutil.which(cc):
         return shutil.which(cc)
@@ -83,32 +95,110 @@ class CLibrary:
         return a.ctypes.data_as(self._ptr)
 
     def fk(self, q: ArrayLike) -> np.ndarray:
-        """(4, 4) tool pose at q (n,)."""
+        """``NAME_fk``: the tool pose in the base frame.
+
+        Parameters
+        ----------
+        q : (n,) array
+            Joint values (rad, m).
+
+        Returns
+        -------
+        (4, 4) array
+            The pose (as float64, computed in the library's precision).
+
+        Examples
+        --------
+        >>> lib.fk(np.zeros(lib.n))  # doctest: +SKIP
+        """
         qa, out = self._arr(q, self.n), np.zeros(16, self._t)
         getattr(self.lib, f"{self.name}_fk")(self._p(qa), self._p(out))
         return out.reshape(4, 4).astype(float)
 
     def jacobian(self, q: ArrayLike) -> np.ndarray:
-        """(6, n) geometric Jacobian (ω; v) at q."""
+        """``NAME_jacobian``: the geometric Jacobian.
+
+        Parameters
+        ----------
+        q : (n,) array
+            Joint values (rad, m).
+
+        Returns
+        -------
+        (6, n) array
+            Rows (ω; v) in base axes, v of the tool origin.
+
+        Examples
+        --------
+        >>> lib.jacobian(np.zeros(lib.n)).shape  # doctest: +SKIP
+        (6, 6)
+        """
         qa, out = self._arr(q, self.n), np.zeros(6 * self.n, self._t)
         getattr(self.lib, f"{self.name}_jacobian")(self._p(qa), self._p(out))
         return out.reshape(6, self.n).astype(float)
 
     def gravity(self, q: ArrayLike) -> np.ndarray:
-        """(n,) gravity torques at q."""
+        """``NAME_gravity``: the gravity torques.
+
+        Parameters
+        ----------
+        q : (n,) array
+            Joint values (rad, m).
+
+        Returns
+        -------
+        (n,) array
+            Torques (N·m) or forces (N).
+
+        Examples
+        --------
+        >>> lib.gravity(np.zeros(lib.n))  # doctest: +SKIP
+        """
         qa, out = self._arr(q, self.n), np.zeros(self.n, self._t)
         getattr(self.lib, f"{self.name}_gravity")(self._p(qa), self._p(out))
         return out.astype(float)
 
     def rnea(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> np.ndarray:
-        """(n,) inverse-dynamics torques."""
+        """``NAME_rnea``: inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q).
+
+        Parameters
+        ----------
+        q, qd, qdd : (n,) arrays
+            Joint values (rad, m), velocities (/s) and accelerations (/s²).
+
+        Returns
+        -------
+        (n,) array
+            Torques (N·m) or forces (N).
+
+        Examples
+        --------
+        >>> lib.rnea(q, qd, qdd)  # doctest: +SKIP
+        """
         a, b, c = self._arr(q, self.n), self._arr(qd, self.n), self._arr(qdd, self.n)
         out = np.zeros(self.n, self._t)
         getattr(self.lib, f"{self.name}_rnea")(self._p(a), self._p(b), self._p(c), self._p(out))
         return out.astype(float)
 
     def ik(self, T: ArrayLike, wrist_ref: float = 0.0) -> list[tuple[np.ndarray, str, bool, bool]]:
-        """Every solution as (q (n,), label, within_limits, degenerate), in the C function's order."""
+        """``NAME_ik_ex``: every closed-form solution, in the C function's order.
+
+        Parameters
+        ----------
+        T : (4, 4) array
+            Tool pose in the base frame (m).
+        wrist_ref : float
+            The free joint's value at a wrist singularity (rad).
+
+        Returns
+        -------
+        list of (q (n,) array, label str, within_limits bool, degenerate bool)
+            The label as ``ik_analytic`` writes it (with `` #2`` for a repeat).
+
+        Examples
+        --------
+        >>> [label for _, label, _, _ in lib.ik(T)]  # doctest: +SKIP
+        """
         if not self.has_ik:
             raise InputError(f"{self.name}: the generated code has no closed-form IK")
         Ta = self._arr(T, 16)

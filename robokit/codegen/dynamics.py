@@ -54,7 +54,45 @@ def _rot_t(R: list[list[Val]], x: list[Val]) -> list[Val]:
 
 def emit_rnea(w: CWriter, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, kinds: list[str],
               gravity: np.ndarray, armature: np.ndarray, velocities: bool = True) -> None:
-    """Body of ``NAME_rnea(q, qd, qdd, tau)`` (``velocities=False``: ``NAME_gravity(q, tau)``)."""
+    """Emit the body of ``NAME_rnea(q, qd, qdd, tau)`` (or of ``NAME_gravity(q, tau)``).
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the body goes.
+    Mlist : (n+1, 4, 4) array
+        ``Mlist[i]``: pose of link frame {i+1} (centre of mass) in {i} at q = 0 (``robot.poe``).
+    Glist : (n, 6, 6) array
+        Spatial inertias ``[[I_c, 0], [0, m 1]]`` in the link frames (kg, kg·m²).
+    Slist : (6, n) array
+        Space screw axes.
+    kinds : list of {"R", "P"}
+        Joint types.
+    gravity : (3,) array
+        Gravity in the base frame (m/s²).
+    armature : (n,) array
+        Rotor inertia added as ``armatureᵢ q̈ᵢ`` (Pinocchio's ``model.armature``).
+    velocities : bool
+        False for the gravity torques: q̇ = q̈ = 0 folded in.
+
+    Returns
+    -------
+    None
+        The body writes ``tau[n]`` (N·m or N).
+
+    Notes
+    -----
+    The recursion of the module docstring (Lecture 7, Modern Robotics ch. 8.3).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> p = robokit.load("twolink").poe
+    >>> w = CWriter()
+    >>> emit_rnea(w, p.Mlist, p.Glist, p.Slist, ["R", "R"], p.gravity, np.zeros(2))
+    >>> "tau[1] =" in w.text()
+    True
+    """
     n = Slist.shape[1]
     qn = [f"q[{i}]" for i in range(n)]
     qd: list[Val] = [f"qd[{i}]" for i in range(n)] if velocities else [0.0] * n

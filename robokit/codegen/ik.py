@@ -73,7 +73,29 @@ class _Tol:
 
 
 def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
-    """The IK code of ``robot`` with C prefix ``prefix`` (see the module docstring)."""
+    """The closed-form IK part of the generated files (see the module docstring).
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot`
+        The robot; its closed-form solver is built (and cached) by ``ik_analytic_kind``.
+    prefix : str
+        The C prefix NAME.
+    float32 : bool
+        Tolerances for ``float`` code (the square roots of robokit's double ones).
+
+    Returns
+    -------
+    IKCode
+        ``has_ik`` False (and ``note`` the reason) when no C is generated; else the header
+        declarations, the source (``NAME_ik``, ``NAME_ik_ex``, the label table) and the labels.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> emit_ik(robokit.load("puma560"), "puma560").labels[0]
+    'right, elbow down, no flip'
+    """
     k = ik_constants(robot)
     if k.method is None:
         return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)

@@ -25,22 +25,59 @@ __all__ = ["emit_fk", "emit_jacobian", "Pose"]
 
 @dataclass
 class Pose:
-    """A 3×4 pose [R | p] of folded values (R row-major lists, p a list of 3)."""
+    """A pose ``[R | p]`` whose entries are folded values (a float constant or a C expression).
+
+    Attributes
+    ----------
+    R : list of 3 lists of 3 values
+        Rotation, row-major.
+    p : list of 3 values
+        Position (m).
+
+    Examples
+    --------
+    >>> Pose.identity().p
+    [0.0, 0.0, 0.0]
+    """
 
     R: list[list[Val]]
     p: list[Val]
 
     @staticmethod
     def const(T: np.ndarray) -> "Pose":
+        """The constant pose of a 4×4 array T (round-off near 0 and ±1 folded, see ``SNAP``)."""
         return Pose([[snap(T[i, j]) for j in range(3)] for i in range(3)], [float(T[i, 3]) for i in range(3)])
 
     @staticmethod
     def identity() -> "Pose":
+        """The identity pose (all constants)."""
         return Pose.const(np.eye(4))
 
 
 def compose(w: CWriter, A: Pose, B: Pose, name: str) -> Pose:
-    """A·B, every non-constant entry bound to ``name_rc`` (rows r, columns c; c = 3 the position)."""
+    """Emit the product of two poses, ``A·B = [R_A R_B | R_A p_B + p_A]``.
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the temporaries are written.
+    A, B : Pose
+        The factors (constants are folded: a product with a constant pose costs only the
+        non-zero terms).
+    name : str
+        Prefix of the temporaries: entry (r, c) is ``name_rc`` (c = 3 the position).
+
+    Returns
+    -------
+    Pose
+        The product, its entries the temporaries' names (or constants).
+
+    Examples
+    --------
+    >>> w = CWriter()
+    >>> compose(w, Pose.identity(), Pose.identity(), "T").R[0][0]
+    1.0
+    """
     R: list[list[Val]] = [[0.0] * 3 for _ in range(3)]
     p: list[Val] = [0.0] * 3
     for i in range(3):
@@ -52,10 +89,37 @@ def compose(w: CWriter, A: Pose, B: Pose, name: str) -> Pose:
 
 
 def joint_exp(w: CWriter, S: np.ndarray, kind: str, i: int, qname: str, sign: float = 1.0) -> Pose:
-    """``e^{[S]·sign·q}`` of joint i (0-based, q = ``qname``), its trig bound to ``c{i+1}``/``s{i+1}``.
+    """Emit the screw motion ``e^{[S]·sign·q}`` of one joint (Lecture 4, Rodrigues' formula).
 
-    ``sign = −1`` gives the inverse motion used by the Newton–Euler link transforms; the sine
-    (and the linear term) change sign, the cosine does not.
+    Parameters
+    ----------
+    w : CWriter
+        Where the temporaries ``e{i+1}_rc`` are written.
+    S : (6,) array
+        Unit screw axis ``(ω, v)``; ω = 0 for a prismatic joint.
+    kind : {"R", "P"}
+        Joint type.
+    i : int
+        Joint index (0-based); the revolute joint's ``cos q``, ``sin q``, ``1 − cos q`` must
+        be bound to ``c{i+1}``, ``s{i+1}``, ``v{i+1}`` (see :func:`trig`).
+    qname : str
+        C expression of the joint value (``"q[0]"``).
+    sign : float
+        +1, or −1 for the inverse motion used by the Newton–Euler link transforms (the sine
+        and the linear term change sign, the cosine does not).
+
+    Returns
+    -------
+    Pose
+        ``R = I + s[ω] + (1 − c)[ω]²`` (or ``c I + s[ω] + (1 − c)ωωᵀ``, whichever has fewer
+        terms per entry), ``p = s v + (1 − c) ω × v (+ (q − s)(ω·v) ω)``; ``R = I, p = v q``
+        for a prismatic joint.
+
+    Examples
+    --------
+    >>> w = CWriter()
+    >>> joint_exp(w, np.array([0, 0, 1.0, 0, 0, 0]), "R", 0, "q[0]").R[2][2]
+    1.0
     """
     k = i + 1
     om = [snap(x) for x in S[:3]]
@@ -90,7 +154,26 @@ def joint_exp(w: CWriter, S: np.ndarray, kind: str, i: int, qname: str, sign: fl
 
 
 def trig(w: CWriter, kinds: list[str], qnames: list[str]) -> None:
-    """``c_k = cos q_k``, ``s_k = sin q_k``, ``v_k = 1 − c_k`` for every revolute joint."""
+    """Emit ``c_k = cos q_k``, ``s_k = sin q_k``, ``v_k = 1 − c_k`` for every revolute joint k.
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the temporaries go (unused ones are pruned later).
+    kinds : list of {"R", "P"}
+        Joint types.
+    qnames : list of str
+        C expressions of the joint values.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> w = CWriter(); trig(w, ["R"], ["q[0]"]); w.lines[0].strip()
+    'const double c1 = cos(q[0]);'
+    """
     for i, (kind, qn) in enumerate(zip(kinds, qnames)):
         if kind == "R":
             k = i + 1
@@ -100,7 +183,29 @@ def trig(w: CWriter, kinds: list[str], qnames: list[str]) -> None:
 
 
 def fk_chain(w: CWriter, Slist: np.ndarray, kinds: list[str], names: list[str]) -> list[Pose]:
-    """Emit the partial products ``T₀,ᵢ = e^{[S₁]q₁} ⋯ e^{[Sᵢ]qᵢ}``, i = 0..n (T₀,₀ = I)."""
+    """Emit the partial products of exponentials ``T₀,ᵢ = e^{[S₁]q₁} ⋯ e^{[Sᵢ]qᵢ}`` (Lecture 4).
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the code goes (in a function with the argument ``q``).
+    Slist : (6, n) array
+        Space screw axes, columns ``(ω, v)`` (``robot.poe.Slist``).
+    kinds : list of {"R", "P"}
+        Joint types.
+    names : list of str
+        Joint names (for the comments).
+
+    Returns
+    -------
+    list of Pose
+        ``T₀,₀ = I``, ``T₀,₁``, …, ``T₀,ₙ`` (n + 1 poses).
+
+    Examples
+    --------
+    >>> len(fk_chain(CWriter(), np.array([[0, 0, 1.0, 0, 0, 0]]).T, ["R"], ["j1"]))
+    2
+    """
     n = Slist.shape[1]
     qn = [f"q[{i}]" for i in range(n)]
     w.comment("Lecture 4, product of exponentials: T(q) = e^[S1]q1 ... e^[Sn]qn M")
@@ -116,7 +221,31 @@ def fk_chain(w: CWriter, Slist: np.ndarray, kinds: list[str], names: list[str]) 
 
 
 def emit_fk(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], names: list[str]) -> None:
-    """Body of ``NAME_fk(q, T)``: T = e^{[S₁]q₁} ⋯ e^{[Sₙ]qₙ} M, row-major 4×4."""
+    """Emit the body of ``NAME_fk(q, T)``: ``T = e^{[S₁]q₁} ⋯ e^{[Sₙ]qₙ} M`` (Lecture 4).
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the body goes.
+    Slist : (6, n) array
+        Space screw axes (``robot.poe.Slist``), base frame.
+    M : (4, 4) array
+        Tool pose at q = 0 in the base frame (``robot.poe.M``, m).
+    kinds, names : lists of n str
+        Joint types ("R"/"P") and names.
+
+    Returns
+    -------
+    None
+        The body writes ``T[16]``, the tool pose in the base frame, row-major.
+
+    Examples
+    --------
+    >>> w = CWriter()
+    >>> emit_fk(w, np.array([[0, 0, 1.0, 0, 0, 0]]).T, np.eye(4), ["R"], ["j1"])
+    >>> "T[15] = 1.0;" in w.text()
+    True
+    """
     chain = fk_chain(w, Slist, kinds, names)
     w.comment("the home pose M of the tool (pose at q = 0)")
     T = compose(w, chain[-1], Pose.const(M), "Tt")
@@ -129,7 +258,33 @@ def emit_fk(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], name
 
 
 def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], names: list[str]) -> None:
-    """Body of ``NAME_jacobian(q, J)``: the geometric Jacobian (ω; v), 6×n row-major."""
+    """Emit the body of ``NAME_jacobian(q, J)``: the geometric Jacobian (Lecture 4/6).
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the body goes.
+    Slist : (6, n) array
+        Space screw axes (``robot.poe.Slist``), base frame.
+    M : (4, 4) array
+        Tool pose at q = 0 (``robot.poe.M``).
+    kinds, names : lists of n str
+        Joint types ("R"/"P") and names.
+
+    Returns
+    -------
+    None
+        The body writes ``J[6 * n]``, row-major, rows ``(ω; v)`` in base axes, v the velocity
+        of the tool origin: column i is ``(R ωᵢ⁰, R vᵢ⁰ + R ωᵢ⁰ × (p_tool − p))`` with
+        ``(R, p) = T₀,ᵢ₋₁``.
+
+    Examples
+    --------
+    >>> w = CWriter()
+    >>> emit_jacobian(w, np.array([[0, 0, 1.0, 0, 0, 0]]).T, np.eye(4), ["R"], ["j1"])
+    >>> "J[2] = 1.0;" in w.text()
+    True
+    """
     n = Slist.shape[1]
     chain = fk_chain(w, Slist, kinds, names)
     w.comment("tool origin: p_tool = R_0n p_M + p_0n")

@@ -171,8 +171,8 @@ def test_header_macros_and_tables(models, build):
 
 
 def test_only_math_symbols_are_needed(models, build, nm):
-    for name in ("puma560", "ur5", "panda"):
-        lib = build(models[name])
+    for name, f32 in (("puma560", False), ("ur5", False), ("panda", False), ("puma560", True)):
+        lib = build(models[name], float32=f32)
         out = subprocess.run([nm, "-u", str(lib.path.with_suffix(".o"))], capture_output=True, text=True,
                              check=True).stdout
         undefined = {line.split()[-1] for line in out.splitlines() if line.strip()}
