@@ -180,7 +180,7 @@ static double {P}_poly(const double c[5], int deg, double x)
 }}
 
 /* the root of c in [lo, hi] where c changes sign: bisection guarded Newton steps */
-static double {P}_refine(const double c[5], int deg, double lo, double hi, double x)
+static double {P}_refine(const double c[5], int deg, double lo, double hi, double x, double tol)
 {{
     double d[5];
     double plo = {P}_poly(c, deg, lo);
@@ -205,7 +205,7 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
         if (!(next > lo && next < hi)) {{
             next = 0.5 * (lo + hi);
         }}
-        if (fabs(next - x) <= {t(1e-16)} * (1.0 + fabs(x)) || hi - lo <= {t(1e-16)} * (1.0 + fabs(x))) {{
+        if (fabs(next - x) <= tol * (1.0 + fabs(x)) || hi - lo <= tol * (1.0 + fabs(x))) {{
             return next;
         }}
         x = next;
@@ -216,7 +216,7 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
    root. A root of the derivative where c vanishes (to round-off) is a double root. */
-static int {P}_real_roots(const double c[5], int deg, double out[5])
+static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 {{
     double d[5], crit[5], bound = 0.0, lo, scale = 0.0;
     int i, nc, nr = 0;
@@ -234,7 +234,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5])
     for (i = 1; i <= deg; ++i) {{
         d[i - 1] = i * c[i];
     }}
-    nc = {P}_real_roots(d, deg - 1, crit);
+    nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
     lo = -bound;
     for (i = 0; i <= nc; ++i) {{
         const double hi = i < nc ? crit[i] : bound;
@@ -245,7 +245,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5])
             if (!(x0 > lo && x0 < hi)) {{
                 x0 = 0.5 * (lo + hi);
             }}
-            out[nr++] = {P}_refine(c, deg, lo, hi, x0);
+            out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
         }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
             if (nr == 0 || out[nr - 1] != hi) {{
                 out[nr++] = hi;  /* a double root at a critical point */
@@ -694,7 +694,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
         }}""" if kind3 == "R" else "")
     roots_deg = (f""" else if (dg >= 3) {{
-            nt = {P}_real_roots(pc, dg, ts);  /* the quartic (or cubic): real roots, increasing */
+            nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* the quartic (or cubic): real roots, increasing */
         }}""" if deg == 4 else "")
     cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
     fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
