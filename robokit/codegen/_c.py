@@ -116,6 +116,8 @@ def lin(terms: Iterable[tuple[float, Val]], const: float = 0.0) -> Val:
         neg = c < 0.0
         mag = -c if neg else c
         body = atom(v) if mag == 1.0 else f"{lit(mag)} * {atom(v)}"
+        if k == 0 and c == 1.0:  # (a + b) + c is a + b + c in C (left to right): no parentheses needed
+            body = v[1:-1] if v.startswith("(") and _one_group(v) else v
         if k == 0:
             out = f"-{body}" if neg else body
         else:
