@@ -119,7 +119,31 @@ def _c_times(robot, folder: Path, reps: int) -> dict[str, float]:
     subprocess.run([cc, "-std=c99", "-O2", "-I", str(folder), str(folder / "driver.c"), str(folder / "g.o"),
                     "-o", str(exe), "-lm"], check=True)
     out = subprocess.run([str(exe), str(reps)], capture_output=True, text=True, check=True).stdout
-    return {line.split()[0]: float(line.split()[1]) for line in out.splitlines()}
+    times = {line.split()[0]: float(line.split()[1]) for line in out.splitlines()}
+    times.update(_instructions(exe, src.name, folder))
+    return times
+
+
+def _instructions(exe: Path, name: str, folder: Path) -> dict[str, float]:
+    """Instructions per call of each function (valgrind's callgrind, inclusive counts): a figure the
+    load of a shared machine does not change. {} when valgrind is not installed."""
+    import re
+    import shutil
+
+    if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
+        return {}
+    out = folder / "callgrind.out"
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe), "1"],
+                   capture_output=True, check=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(out)], capture_output=True, text=True,
+                          check=True).stdout
+    calls = {"fk": 8 * 256, "jacobian": 7 * 256, "gravity": 7 * 256, "rnea": 7 * 256, "ik_ex": 7 * 256}
+    res = {}
+    for fn, n in calls.items():
+        m = re.search(rf"^\s*([\d,]+) .*:{name}_{fn} ", text, flags=re.M)
+        if m:
+            res[f"ir_{fn}"] = int(m.group(1).replace(",", "")) / n
+    return res
 
 
 def _quartic_arm():
@@ -147,7 +171,7 @@ def main(argv=None) -> None:
     reps = 20 if args.quick else 200
     warnings.simplefilter("ignore")
     robots = [robokit.load("puma560"), robokit.load("ur5"), robokit.load(_quartic_arm()), robokit.load("panda")]
-    rows = []
+    rows, irows = [], []
     rng = np.random.default_rng(0)
     with tempfile.TemporaryDirectory() as tmp:
         for robot in robots:
@@ -176,6 +200,9 @@ def main(argv=None) -> None:
                          f"{c['solutions']:.2f}" if "solutions" in c else "—",
                          fmt_time(t_py_ik) if kind else "—",
                          f"{t_py_ik / c['ik']:.0f}×" if "ik" in c else "—"])
+            if "ir_fk" in c:
+                irows.append([robot.name] + [f"{c[k]:,.0f}" if k in c else "—"
+                                             for k in ("ir_fk", "ir_jacobian", "ir_gravity", "ir_rnea", "ir_ik_ex")])
     print("## Generated C (robokit codegen), per call — machine shared with other jobs (under load)")
     print()
     print(machine() + "; C: gcc -O2, driver timing 256 inputs × reps; C and Python: fastest of 7 batches")
@@ -183,6 +210,12 @@ def main(argv=None) -> None:
     print(table(["robot", "C fk", "pin.forwardKinematics (Python)", "ratio", "Robot.frame_pose", "C jacobian",
                  "C gravity", "C rnea", "pin.rnea (Python)", "ratio", "C ik (all)", "solutions/pose",
                  "ik_analytic (Python)", "ratio"], rows))
+    if irows:
+        print()
+        print("Instructions per call of the generated C (valgrind callgrind, inclusive of libm; independent of "
+              "the machine's load):")
+        print()
+        print(table(["robot", "fk", "jacobian", "gravity", "rnea", "ik (all solutions)"], irows))
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ import numpy as np
 from robokit._io import atomic_write
 from robokit.codegen._c import CWriter, c_string, lit, safe_comment, to_float32
 from robokit.codegen.dynamics import emit_rnea
+from robokit.codegen.ik import emit_ik
 from robokit.codegen.kinematics import emit_fk, emit_jacobian
 from robokit.errors import InputError
 
@@ -156,8 +157,6 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     >>> "int puma560_ik(const double T[16]" in src.header
     True
     """
-    from robokit.codegen.ik import emit_ik
-
     prefix = c_name(robot.name, name)
     poe = robot.poe
     n = int(poe.n)

@@ -417,8 +417,6 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
             if quartic:
                 src.append(self.poly_helpers())
             src.append(_pieper_helpers(self, quartic))
-        else:
-            src.append(_parallel_helpers(self))
         src.append(self.finish())
         src.append(f"""
 /* every closed-form solution (Lecture 5), see {P}.h */
@@ -913,10 +911,6 @@ def _c(v: Val) -> str:
 
 def _indent(text: str, n: int) -> str:
     return "\n".join((" " * n + line) if line.strip() else line for line in text.split("\n"))
-
-
-def _parallel_helpers(e: _Emitter) -> str:
-    return ""
 
 
 def _parallel(e: _Emitter, T06: Pose) -> str:
