@@ -155,11 +155,13 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     from robokit.codegen import c_name, generate_c, write_c
     from robokit.description.robot import load
 
+    from robokit.errors import InputError
+
     out = Path(output)
     if out.exists() and not out.is_dir():
-        raise ValueError(f"-o: {str(out)!r} is a file, not a folder")
+        raise InputError(f"-o: {str(out)!r} is a file, not a folder")
     if not out.is_dir():
-        raise ValueError(f"-o: folder {str(out)!r} does not exist")
+        raise InputError(f"-o: folder {str(out)!r} does not exist")
     if name is not None:
         c_name("", name)  # checks the identifier
     robot = load(model, tip=tip, **load_options)
