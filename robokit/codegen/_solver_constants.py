@@ -54,6 +54,14 @@ def ik_constants(robot: Any) -> IKConstants:
     model = getattr(robot, "_closed_form", None)
     if not kind or model is None or getattr(model, "solver", None) is None:
         return IKConstants(None, kind.reason)
+    try:
+        return _read(kind, model)
+    except (AttributeError, KeyError, TypeError) as exc:  # the solver's internals moved: say so, keep FK etc.
+        return IKConstants(None, f"robokit's closed-form solver ({kind.method}) does not expose the constants "
+                                 f"the C emitter reads ({type(exc).__name__}: {exc}); please report")
+
+
+def _read(kind: Any, model: Any) -> IKConstants:
     sv, sc = model.solver, model.solver_chain
     out = IKConstants(kind.method, kind.reason, bool(model.reversed), list(model.rev_list),
                       None if model.lim_list is None else [(float(a), float(b)) for a, b in model.lim_list],

@@ -190,7 +190,8 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     h.append("")
     h.append(f"#define {P}_N {n}  /* joints */")
     h.append(f"#define {P}_HAS_IK {1 if ik.has_ik else 0}  /* {ik.note} */")
-    h.append(f"#define {P}_MAX_SOLUTIONS {ik.max_solutions}  /* most solutions {P}_ik returns */")
+    h.append(f"#define {P}_MAX_SOLUTIONS {ik.max_solutions}  /* "
+             + (f"most solutions {P}_ik returns */" if ik.has_ik else "no IK: 1, so that arrays sized with it are valid C */"))
     h.append("")
     h.append("/* joint types: 0 revolute (rad), 1 prismatic (m); joint names in order: */")
     for i in range(n):
