@@ -407,7 +407,14 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         }
     }
 """
-        wref = "-wrist_ref" if k.reversed else "wrist_ref"
+        if k.flip is not None and any(k.flip):
+            neg = [j for j, f in enumerate(k.flip) if f]
+            post += "    /* flipped joints (theta = offset - q) were solved as q' = -q */\n"
+            post += "    for (ir = 0; ir < nr; ++ir) {\n"
+            post += "".join(f"        rows[ir][{j}] = -rows[ir][{j}];\n" for j in neg)
+            post += "    }\n"
+        sign = (-1 if k.reversed else 1) * (-1 if k.free_flipped else 1)
+        wref = "-wrist_ref" if sign < 0 else "wrist_ref"
         src = [self.tables()]
         quartic = k.method == "spherical wrist" and int(k.solver["deg"]) == 4
         if not (k.method == "spherical wrist" and k.solver["case"] in ("RR-quartic", "PR-quartic", "RP-quartic",
