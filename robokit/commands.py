@@ -153,7 +153,7 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     only once both are generated (nothing is written on bad input).
     """
     from robokit.codegen import c_name, generate_c, write_c
-    from robokit.description.robot import load
+    from robokit.description import load
 
     from robokit.errors import InputError
 
