@@ -128,6 +128,13 @@ def _build_parser() -> argparse.ArgumentParser:
     cal.add_argument("-o", "--output", required=True, help="output .urdf (always) or .yaml (a DH arm only)")
     cal.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(cal)
+    g = sub.add_parser("codegen", help="C99 for a controller: FK, Jacobian, closed-form IK, gravity, RNEA")
+    g.add_argument("model", help="shipped model name, .yaml, .urdf, .xacro, MJCF .xml or example-robot-data name")
+    g.add_argument("-o", "--output", required=True, help="existing output folder (NAME.h and NAME.c go there)")
+    g.add_argument("--float32", action="store_true", help="float instead of double everywhere (single-precision FPUs)")
+    g.add_argument("--name", help="C prefix of the functions and macros (default: the robot's name)")
+    g.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    _add_format_options(g)
     return p
 
 
@@ -182,6 +189,11 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import calibrate_command
 
         return calibrate_command(args.model, args.data, args.output, tip=args.tip, **_format_options(args))
+    if args.command == "codegen":
+        from robokit.commands import codegen_command
+
+        return codegen_command(args.model, args.output, float32=args.float32, name=args.name, tip=args.tip,
+                               **_format_options(args))
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

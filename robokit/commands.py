@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
 __all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command",
-           "calibrate_command"]
+           "calibrate_command", "codegen_command"]
 
 
 def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> Path:
@@ -210,3 +210,28 @@ def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
                          f"to {max(worst, res.residual):.2e}); write a URDF instead (-o OUT.urdf)")
     return (f"# {robot.name}: calibrated by robokit; this DH table reproduces the calibrated geometry to "
             f"{worst:.1e}\n") + text
+def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str], float32: bool = False,
+                    name: str | None = None, tip: str | None = None, **load_options: Any) -> int:
+    """``robokit codegen``: write ``NAME.h`` and ``NAME.c`` into the folder ``output``; returns 0.
+
+    The folder and the name are checked before the robot is loaded, and both files are written
+    only once both are generated (nothing is written on bad input).
+    """
+    from robokit.codegen import c_name, generate_c, write_c
+    from robokit.description import load
+
+    from robokit.errors import InputError
+
+    out = Path(output)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"-o: {str(out)!r} is a file, not a folder")
+    if not out.is_dir():
+        raise InputError(f"-o: folder {str(out)!r} does not exist")
+    if name is not None:
+        c_name("", name)  # checks the identifier
+    robot = load(model, tip=tip, **load_options)
+    src = generate_c(robot, name=name, float32=float32)
+    h_path, c_path = write_c(src, out)
+    ik = "with" if src.has_ik else "without"
+    print(f"wrote {h_path} and {c_path} ({robot.n} joints, {ik} closed-form IK)", file=sys.stderr)
+    return 0

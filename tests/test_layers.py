@@ -17,7 +17,8 @@ doing, not an edge.
 Layers, bottom to top: the helpers (``_arrays``, ``_io``, ``_yaml``, ``_optional``, ``errors``); ``spatial``
 (no robot in it); ``kernels`` (the compiled recursions); ``description`` (DH tables, files,
 the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile``,
-``symbolic`` and ``calibration``; ``viz``; ``workspace``; ``validation``; ``commands`` and ``cli``.
+``symbolic`` and ``calibration``; ``viz``; ``workspace``; ``validation`` and ``codegen``; ``commands``
+and ``cli``.
 """
 import ast
 from pathlib import Path
@@ -38,7 +39,7 @@ LAYER = {
     "control": 8, "mobile": 8, "symbolic": 8, "calibration": 8,
     "viz": 9,
     "workspace": 10,
-    "validation": 11,
+    "validation": 11, "codegen": 11,
     "commands": 12, "cli": 12,
 }
 

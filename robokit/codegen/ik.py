@@ -1,0 +1,1045 @@
+r"""C for every closed-form IK solution, from the constants of robokit's closed-form solvers.
+
+The generated ``NAME_ik`` is :func:`robokit.ik_analytic` written out for one robot: the
+same method (chosen from the joint axes by :func:`robokit.ik_analytic_kind`), the same
+constants, the same branches in the same order, the same wrapping, limit flags,
+de-duplication and labels. Only the branches the robot needs are emitted.
+
+* **Spherical wrist** (Pieper, Lecture 5): the target in the canonical chain
+  ``T₀₆ = base′⁻¹ T tool′⁻¹``; the wrist centre ``W = T₀₆ ⁶W``; joint 3 from a polynomial
+  in ``u = tan(θ₃/2)`` (or d₃) whose coefficients are linear in ``(r², r, h², h, 1)``,
+  ``h = W_z − d₁``, ``r = ‖W‖² − …`` — degree 2 when ``a₁ = 0`` or ``sin α₁ = 0``, else the
+  quartic; θ₂ from ``a cos θ + b sin θ = c``, θ₁ from an atan2; then the wrist angles from
+  ``R₃ᵀR₀₆``. The quartic's real roots are found by isolating them between the roots of
+  its derivative and refining each by safeguarded Newton steps (robokit's Python takes the
+  companion matrix's eigenvalues: the same roots, possibly listed in another order — the
+  C lists them by increasing u); each solution is then checked and polished on the
+  wrist-centre equation as in Python.
+* **Three parallel axes** (UR family): θ₁ from ``a cos θ + b sin θ = c``, θ₅ from the
+  direction of the parallel axes seen from the tool, θ₆ from an atan2, θ₂–θ₄ from the
+  planar 2-link arm.
+* Both read backwards when the structure is at the base: the C solves ``T⁻¹`` with the
+  reversed chain and maps ``q = −q′`` in reverse order.
+
+Every case of Pieper's positioning equation is generated (joints 1–3 revolute or prismatic:
+``RR-quartic``, ``RR-a1``, ``RR-s1``, ``PR-quartic``, ``PR-c1``, ``RP-quartic``, ``RP-c1``,
+``PP``). Not generated (``NAME_HAS_IK 0`` with the reason in the header): arms with no closed
+form in robokit, and closed-form methods other than these two (none yet has a C emitter).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
+from robokit.codegen._solver_constants import IKConstants, ik_constants
+from robokit.codegen.kinematics import Pose, compose
+
+__all__ = ["IKCode", "emit_ik", "MAX_SOLUTIONS"]
+
+#: Most distinct solutions any of the closed forms returns (4 positions × 2 wrists).
+MAX_SOLUTIONS = 8
+_RAW = 16  # rows before de-duplication (bounded by 8; twice that for safety)
+
+
+@dataclass
+class IKCode:
+    """The IK part of the generated files: whether it exists, why (not), its header lines and source."""
+
+    has_ik: bool
+    note: str
+    max_solutions: int
+    header_lines: list[str] = field(default_factory=list)
+    source: str = ""
+    labels: list[str] = field(default_factory=list)
+
+
+class _Tol:
+    """Tolerance literals: robokit's own in double; in float their square roots (float's
+    precision is about the square root of double's), and 1e-30 for 1e-300."""
+
+    def __init__(self, float32: bool) -> None:
+        self.float32 = float32
+
+    def __call__(self, x: float) -> str:
+        if not self.float32:
+            return lit(x)
+        if x < 1e-100:
+            return lit(1e-30)
+        return lit(math.sqrt(x)) if x < 1e-3 else lit(x)
+
+
+def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
+    """The closed-form IK part of the generated files (see the module docstring).
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot`
+        The robot; its closed-form solver is built (and cached) by ``ik_analytic_kind``.
+    prefix : str
+        The C prefix NAME.
+    float32 : bool
+        Tolerances for ``float`` code (the square roots of robokit's double ones).
+
+    Returns
+    -------
+    IKCode
+        ``has_ik`` False (and ``note`` the reason) when no C is generated; else the header
+        declarations, the source (``NAME_ik``, ``NAME_ik_ex``, the label table) and the labels.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> emit_ik(robokit.load("puma560"), "puma560").labels[0]
+    'right, elbow down, no flip'
+    """
+    k = ik_constants(robot)
+    if k.method is None:
+        return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
+    if k.method not in ("spherical wrist", "three parallel axes"):
+        return IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
+                             "use robokit.ik_analytic", 1)
+    return _Emitter(k, prefix, _Tol(float32)).code()
+
+
+class _Emitter:
+    def __init__(self, k: IKConstants, prefix: str, tol: _Tol) -> None:
+        self.k, self.P, self.tol = k, prefix, tol
+        if k.method == "spherical wrist":
+            self.shoulders = ["right, ", "left, ", "shoulder singular, "] if k.kinds[0] == "R" else [""]
+            self.elbows = ["d3 +, ", "d3 \u2212, "] if k.kinds[2] == "P" else ["elbow down, ", "elbow up, "]
+        else:
+            self.shoulders = ["right, ", "left, "]
+            self.elbows = ["elbow down, ", "elbow up, "]
+        self.wrists = ["no flip", "flip", "wrist singular"]
+        suffix = " (chain reversed)" if k.reversed else ""
+        self.labels = [s + e + w + suffix for s in self.shoulders for e in self.elbows for w in self.wrists]
+
+    # ------------------------------------------------------------------ pieces
+    def label_index(self, s: str, e: str, w: str) -> str:
+        """C expression of the label index from the C expressions of the three parts' indices."""
+        ne, nw = len(self.elbows), len(self.wrists)
+        return f"(({s}) * {ne} + ({e})) * {nw} + ({w})"
+
+    def helpers(self) -> str:
+        P, t = self.P, self.tol
+        return f"""
+/* angle wrapped to (-pi, pi] */
+static double {P}_wrap(double a)
+{{
+    double w = fmod(a + {lit(math.pi)}, {lit(2 * math.pi)});
+    if (w <= 0.0) {{
+        w += {lit(2 * math.pi)};
+    }}
+    return w - {lit(math.pi)};
+}}
+
+/* Lecture 5: every t in (-pi, pi] with a cos t + b sin t = c, by u = tan(t/2):
+   (a + c) u^2 - 2 b u + (c - a) = 0. Returns the number of roots, -1 when every t solves it. */
+static int {P}_trig_roots(double a, double b, double c, double tol, double t[2])
+{{
+    const double r2 = a * a + b * b;
+    double disc, sq, A, C, qq;
+    if (r2 < {t(1e-300)}) {{
+        return c == 0.0 ? -1 : 0;
+    }}
+    disc = r2 - c * c;
+    if (disc < -tol * r2) {{
+        return 0;
+    }}
+    sq = disc > 0.0 ? sqrt(disc) : 0.0;
+    A = a + c;
+    C = c - a;
+    qq = b + (b >= 0.0 ? sq : -sq);
+    if (qq == 0.0) {{
+        t[0] = A != 0.0 ? 0.0 : {lit(math.pi)};
+        return 1;
+    }}
+    t[0] = {P}_wrap(2.0 * atan2(qq, A));
+    t[1] = {P}_wrap(2.0 * atan2(C, qq));
+    return sq == 0.0 ? 1 : 2;
+}}
+"""
+
+    def poly_helpers(self) -> str:
+        """Real roots of a polynomial of degree ≤ 4 (coefficients low → high)."""
+        P, t = self.P, self.tol
+        return f"""
+/* value of the polynomial c[0] + c[1] x + ... + c[deg] x^deg (Horner) */
+static double {P}_poly(const double c[5], int deg, double x)
+{{
+    double p = c[deg];
+    int i;
+    for (i = deg - 1; i >= 0; --i) {{
+        p = p * x + c[i];
+    }}
+    return p;
+}}
+
+/* the root of c in [lo, hi] where c changes sign: bisection guarded Newton steps */
+static double {P}_refine(const double c[5], int deg, double lo, double hi, double x, double tol)
+{{
+    double d[5];
+    double plo = {P}_poly(c, deg, lo);
+    int i, it;
+    for (i = 1; i <= deg; ++i) {{
+        d[i - 1] = i * c[i];
+    }}
+    for (it = 0; it < 200; ++it) {{
+        const double p = {P}_poly(c, deg, x);
+        const double dp = {P}_poly(d, deg - 1, x);
+        double next;
+        if (p == 0.0) {{
+            return x;
+        }}
+        if ((p < 0.0) == (plo < 0.0)) {{
+            lo = x;
+            plo = p;
+        }} else {{
+            hi = x;
+        }}
+        next = dp != 0.0 ? x - p / dp : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) {{
+            next = 0.5 * (lo + hi);
+        }}
+        if (fabs(next - x) <= tol * (1.0 + fabs(x)) || hi - lo <= tol * (1.0 + fabs(x))) {{
+            return next;
+        }}
+        x = next;
+    }}
+    return x;
+}}
+
+/* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
+   split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
+   root. A root of the derivative where c vanishes (to round-off) is a double root. */
+static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
+{{
+    double d[5], crit[5], bound = 0.0, lo, scale = 0.0;
+    int i, nc, nr = 0;
+    if (deg == 1) {{
+        out[0] = -c[0] / c[1];
+        return 1;
+    }}
+    for (i = 0; i < deg; ++i) {{
+        const double r = fabs(c[i] / c[deg]);
+        bound = r > bound ? r : bound;
+        scale = fabs(c[i]) > scale ? fabs(c[i]) : scale;
+    }}
+    scale = fabs(c[deg]) > scale ? fabs(c[deg]) : scale;
+    bound += 1.0;  /* Cauchy's bound on the roots */
+    for (i = 1; i <= deg; ++i) {{
+        d[i - 1] = i * c[i];
+    }}
+    nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
+    lo = -bound;
+    for (i = 0; i <= nc; ++i) {{
+        const double hi = i < nc ? crit[i] : bound;
+        const double plo = {P}_poly(c, deg, lo), phi = {P}_poly(c, deg, hi);
+        if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
+            /* start an outer piece next to its critical point, an inner one in its middle */
+            double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
+            if (!(x0 > lo && x0 < hi)) {{
+                x0 = 0.5 * (lo + hi);
+            }}
+            out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
+        }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
+            if (nr == 0 || out[nr - 1] != hi) {{
+                out[nr++] = hi;  /* a double root at a critical point */
+            }}
+        }}
+        lo = hi > lo ? hi : lo;
+    }}
+    return nr;
+}}
+"""
+
+    def finish(self) -> str:
+        """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``)."""
+        k, P, n = self.k, self.P, 6
+        lines = []
+        for j in range(n):
+            if k.rev[j]:
+                lines.append(f"        qq[{j}] = rows[r][{j}];")
+                lines.append(f"        if (qq[{j}] > {lit(math.pi)} || qq[{j}] <= -{lit(math.pi)}) {{\n"
+                             f"            qq[{j}] = remainder(qq[{j}], {lit(2 * math.pi)});  /* exact: same as "
+                             f"remainder on (-pi, pi] */\n"
+                             f"            if (qq[{j}] == -{lit(math.pi)}) {{\n                qq[{j}] = {lit(math.pi)};\n"
+                             f"            }}\n        }}")
+            else:
+                lines.append(f"        qq[{j}] = rows[r][{j}];")
+        if k.lims is not None:
+            for j, (lo, hi) in enumerate(k.lims):
+                if math.isinf(lo) and math.isinf(hi):
+                    continue
+                if k.rev[j]:
+                    two = lit(2 * math.pi)
+                    lines.append(f"""        if (qq[{j}] < {lit(lo)} || qq[{j}] > {lit(hi)}) {{
+            if ({lit(lo)} <= qq[{j}] + {two} && qq[{j}] + {two} <= {lit(hi)}) {{
+                qq[{j}] += {two};  /* limits wider than +-pi: the shifted angle is inside */
+            }} else if ({lit(lo)} <= qq[{j}] - {two} && qq[{j}] - {two} <= {lit(hi)}) {{
+                qq[{j}] -= {two};
+            }} else {{
+                inside = 0;
+            }}
+        }}""")
+                else:
+                    lines.append(f"        if (qq[{j}] < {lit(lo)} || qq[{j}] > {lit(hi)}) {{\n"
+                                 f"            inside = 0;\n        }}")
+        same = []
+        for j in range(n):
+            if k.rev[j]:
+                same.append(f"{P}_same_angle(qq[{j}], q[6 * m + {j}], {self.tol(1e-9)})")
+            else:
+                same.append(f"fabs(qq[{j}] - q[6 * m + {j}]) < {self.tol(1e-9)}")
+        same_c = "\n                && ".join(same)
+        body = "\n".join(lines)
+        return f"""
+/* |remainder(a - b, 2 pi)| < tol, for a, b within (-3 pi, 3 pi) (wrapped or shifted by 2 pi) */
+static int {P}_same_angle(double a, double b, double tol)
+{{
+    const double d = fabs(a - b);
+    return d < tol || fabs(d - {lit(2 * math.pi)}) < tol || fabs(d - {lit(4 * math.pi)}) < tol
+        || fabs(d - {lit(6 * math.pi)}) < tol;
+}}
+
+/* ik_analytic's last step: revolute angles wrapped to (-pi, pi] (or shifted by 2 pi into wider
+   limits), the within-limits flag, duplicates dropped (angles compared modulo 2 pi), and the
+   repeat number of a label that occurs twice (" #2"). */
+static int {P}_finish(const double rows[][6], const int lab[], const int deg[], int nr, double q[], int info[])
+{{
+    int count[{len(self.labels)}];
+    int r, m, nk = 0;
+    memset(count, 0, sizeof count);
+    for (r = 0; r < nr && nk < {MAX_SOLUTIONS}; ++r) {{
+        double qq[6];
+        int inside = 1, dup = 0, j;
+{body}
+        for (m = 0; m < nk && !dup; ++m) {{
+            dup = {same_c};
+        }}
+        if (dup) {{
+            continue;
+        }}
+        for (j = 0; j < 6; ++j) {{
+            q[6 * nk + j] = qq[j];
+        }}
+        count[lab[r]] += 1;
+        if (info) {{
+            info[4 * nk] = lab[r];
+            info[4 * nk + 1] = count[lab[r]];
+            info[4 * nk + 2] = inside;
+            info[4 * nk + 3] = deg[r];
+        }}
+        ++nk;
+    }}
+    return nk;
+}}
+"""
+
+    def target(self, w: CWriter) -> Pose:
+        """Emit T₀₆ (the pose to reach with the canonical chain) from the input T."""
+        k = self.k
+        T = Pose([[f"T[{4 * i + j}]" for j in range(3)] for i in range(3)], [f"T[{4 * i + 3}]" for i in range(3)])
+        if k.reversed:
+            w.comment("the chain read backwards reaches T^-1: R^T, -R^T p")
+            Rt: list[list[Val]] = [[T.R[j][i] for j in range(3)] for i in range(3)]
+            p = [w.let(f"ti{i}", lin([(-1.0, f"{T.R[0][i]} * {T.p[0]}"), (-1.0, f"{T.R[1][i]} * {T.p[1]}"),
+                                      (-1.0, f"{T.R[2][i]} * {T.p[2]}")])) for i in range(3)]
+            T = Pose(Rt, p)
+        w.comment("the pose reached by Z1 X1 ... Z6: T06 = base'^-1 T tool'^-1 (constants of the DH chain)")
+        if k.base_inv is not None:
+            T = compose(w, Pose.const(k.base_inv), T, "tb")
+        if k.tool_inv is not None:
+            T = compose(w, T, Pose.const(k.tool_inv), "t06")
+        return T
+
+    def declare(self) -> list[str]:
+        P = self.P
+        return [
+            f"/* Closed-form inverse kinematics ({safe_comment(self.k.method or '')}; Lecture 5): every solution for",
+            f"   the tool pose T, one row of {P}_N values each, {P}_ik returning how many (0: out of reach).",
+            "   The same solutions, in the same order, as robokit's ik_analytic (see the docs for the quartic",
+            "   case). Revolute angles in (-pi, pi] (or shifted by 2 pi into wider limits). */",
+            f"int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N]);",
+            "",
+            f"/* The same with, per solution k, info[4k..4k+3] = (label index into {P}_ik_label_names, repeat",
+            "   number (2 or more: ik_analytic's label ends in \" #repeat\"), within joint limits (0/1),",
+            "   degenerate: a free angle was set at a singularity (0/1)); info may be a null pointer.",
+            "   wrist_ref: the value of the free joint at a wrist singularity (ik_analytic's wrist_ref). */",
+            f"int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
+            f"int info[4 * {P}_MAX_SOLUTIONS]);",
+            "",
+            f"#define {P}_IK_LABEL_COUNT {len(self.labels)}",
+            f"extern const char *const {P}_ik_label_names[{P}_IK_LABEL_COUNT];",
+            f"extern const int {P}_ik_label_count;",
+            f"extern const int {P}_ik_max_solutions;",
+            "",
+        ]
+
+    def tables(self) -> str:
+        P = self.P
+        names = ",\n    ".join(c_string(x) for x in self.labels)
+        return (f"const char *const {P}_ik_label_names[{P}_IK_LABEL_COUNT] = {{\n    {names}\n}};\n"
+                f"const int {P}_ik_label_count = {P}_IK_LABEL_COUNT;\n"
+                f"const int {P}_ik_max_solutions = {P}_MAX_SOLUTIONS;\n")
+
+    def code(self) -> IKCode:
+        k, P = self.k, self.P
+        w = CWriter()
+        T06 = self.target(w)
+        target = w.text()
+        if k.method == "spherical wrist":
+            solve = _pieper(self, T06)
+        else:
+            solve = _parallel(self, T06)
+        post = ""
+        if k.reversed:
+            post = """    /* back to the robot's own joints: q = -q' in reverse order */
+    for (ir = 0; ir < nr; ++ir) {
+        for (jr = 0; jr < 3; ++jr) {
+            const double tmp = rows[ir][jr];
+            rows[ir][jr] = -rows[ir][5 - jr];
+            rows[ir][5 - jr] = -tmp;
+        }
+    }
+"""
+        if k.flip is not None and any(k.flip):
+            neg = [j for j, f in enumerate(k.flip) if f]
+            post += "    /* flipped joints (theta = offset - q) were solved as q' = -q */\n"
+            post += "    for (ir = 0; ir < nr; ++ir) {\n"
+            post += "".join(f"        rows[ir][{j}] = -rows[ir][{j}];\n" for j in neg)
+            post += "    }\n"
+        sign = (-1 if k.reversed else 1) * (-1 if k.free_flipped else 1)
+        wref = "-wrist_ref" if sign < 0 else "wrist_ref"
+        src = [self.tables()]
+        quartic = k.method == "spherical wrist" and int(k.solver["deg"]) == 4
+        if not (k.method == "spherical wrist" and k.solver["case"] in ("RR-quartic", "PR-quartic", "RP-quartic",
+                                                                        "RP-c1", "PP")):
+            src.append(self.helpers())  # a cos t + b sin t = c
+        if k.method == "spherical wrist":
+            if quartic:
+                src.append(self.poly_helpers())
+            src.append(_pieper_helpers(self, quartic))
+        src.append(self.finish())
+        src.append(f"""
+/* every closed-form solution (Lecture 5), see {P}.h */
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    double rows[{_RAW}][6];
+    int lab[{_RAW}], deg[{_RAW}];
+    int nr = 0, ir, jr;
+    const double ref = {wref};
+{target}
+{solve}
+{post}    (void)ir;
+    (void)jr;
+    (void)ref;
+    return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+}}
+
+int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
+{{
+    return {P}_ik_ex(T, 0.0, q, 0);
+}}
+""")
+        return IKCode(True, f"closed form: {safe_comment(k.reason)}", MAX_SOLUTIONS, self.declare(),
+                      "\n".join(src), self.labels)
+
+
+def _val(coef: Any, kind: str, x: str, c: str, s: str) -> Val:
+    """C of a coefficient triple at joint 3's value: k₀ + k₁ cos θ + k₂ sin θ, or k₀ + k₁ d + k₂ d²."""
+    k0, k1, k2 = (float(v) for v in coef)
+    if kind == "R":
+        return lin([(k1, c), (k2, s)], k0)
+    return lin([(k1, x), (k2, f"{x} * {x}")], k0)
+
+
+def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
+    k, P, t = e.k, e.P, e.tol
+    sv = k.solver
+    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    w3 = [float(x) for x in sv["w3_list"]]
+    a1, a2 = float(sv["a1"]), float(sv["a2"])
+    th0, d0 = k.th0, k.d0
+    ang = []
+    for i in range(3):
+        if k.kinds[i] == "R":
+            ang.append(f"    th[{i}] = {lit(th0[i])} + q[{i}];\n    dd[{i}] = {lit(d0[i])};")
+        else:
+            ang.append(f"    th[{i}] = {lit(th0[i])};\n    dd[{i}] = {lit(d0[i])} + q[{i}];")
+    angles = "\n".join(ang)
+    ca4, sa4, ca5, sa5 = (float(sv[x]) for x in ("ca4", "sa4", "ca5", "sa5"))
+    kk = sa4 * sa5
+    right = ca4 == 0.0 and ca5 == 0.0
+    if right:
+        c5s5 = f"""    c5 = -mz / {lit(kk)};  /* right-angled wrist (ZYZ type): |s5| = rho */
+    s5 = rho;"""
+    else:
+        c5s5 = f"""    c5 = ({lit(ca4 * ca5)} - mz) / {lit(kk)};
+    if (fabs(c5) > 1.0 + {t(1e-10)}) {{
+        return 0;  /* out of reach of an oblique wrist */
+    }}
+    c5 = c5 > 1.0 ? 1.0 : (c5 < -1.0 ? -1.0 : c5);
+    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);"""
+    rots_m = [f"    const double ct[3] = {{cos(th[0]), cos(th[1]), cos(th[2])}};\n"
+              f"    const double st[3] = {{sin(th[0]), sin(th[1]), sin(th[2])}};"]
+    for i in range(3):
+        rots_m.append(f"""    c = ct[{i}];
+    s = st[{i}];
+    x = c * mx + s * my; my = c * my - s * mx; mx = x;
+    x = c * ex + s * ey; ey = c * ey - s * ex; ex = x;""")
+        if sa[i] != 0.0 or ca[i] != 1.0:
+            rots_m.append(f"""    x = {lit(ca[i])} * my + {lit(sa[i])} * mz; mz = {lit(ca[i])} * mz - {lit(sa[i])} * my; my = x;
+    x = {lit(ca[i])} * ey + {lit(sa[i])} * ez; ez = {lit(ca[i])} * ez - {lit(sa[i])} * ey; ey = x;""")
+    rots_n = []
+    for i in (2, 1, 0):
+        if sa[i] != 0.0 or ca[i] != 1.0:
+            rots_n.append(f"    x = {lit(ca[i])} * ny - {lit(sa[i])} * nz; nz = {lit(sa[i])} * ny + {lit(ca[i])} * nz; "
+                          f"ny = x;")
+        rots_n.append(f"    c = ct[{i}];\n    s = st[{i}];\n"
+                      f"    x = c * nx - s * ny; ny = s * nx + c * ny; nx = x;")
+    gamma_ca4 = lit(ca4)
+    text = f"""
+/* joint values q1..q3 -> rotation angles th and offsets dd of joints 1-3 */
+static void {P}_angles(const double q[3], double th[3], double dd[3])
+{{
+{angles}
+}}
+
+@@CHECK_START@@
+/* the wrist centre of joints 1-3 (frame 0'): Rz(th1)Tz(d1) Rx(al1)Tx(a1) Rz(th2)Tz(d2) Rx(al2)Tx(a2) Rz(th3) (3W + d3 z) */
+static void {P}_wrist_point(const double th[3], const double dd[3], double p[3])
+{{
+    double c = cos(th[2]), s = sin(th[2]);
+    double x = c * {lit(w3[0])} - s * {lit(w3[1])}, y = s * {lit(w3[0])} + c * {lit(w3[1])}, z = {lit(w3[2])} + dd[2], u;
+    x += {lit(a2)};
+    u = {lit(ca[1])} * y - {lit(sa[1])} * z; z = {lit(sa[1])} * y + {lit(ca[1])} * z; y = u;
+    c = cos(th[1]); s = sin(th[1]);
+    z += dd[1];
+    u = c * x - s * y; y = s * x + c * y; x = u;
+    x += {lit(a1)};
+    u = {lit(ca[0])} * y - {lit(sa[0])} * z; z = {lit(sa[0])} * y + {lit(ca[0])} * z; y = u;
+    c = cos(th[0]); s = sin(th[0]);
+    z += dd[0];
+    p[0] = c * x - s * y;
+    p[1] = s * x + c * y;
+    p[2] = z;
+}}
+
+/* largest error of the wrist centre at q against W */
+static double {P}_wrist_error(const double q[3], const double W[3])
+{{
+    double th[3], dd[3], p[3], e0, e1, e2;
+    {P}_angles(q, th, dd);
+    {P}_wrist_point(th, dd, p);
+    e0 = fabs(W[0] - p[0]);
+    e1 = fabs(W[1] - p[1]);
+    e2 = fabs(W[2] - p[2]);
+    return e0 > e1 ? (e0 > e2 ? e0 : e2) : (e1 > e2 ? e1 : e2);
+}}
+
+/* Newton steps on the wrist-centre equation W(q1, q2, q3) = W (central-difference Jacobian);
+   returns the remaining error */
+static double {P}_polish(double q[3], const double W[3])
+{{
+    double err = HUGE_VAL;
+    int it, j, i;
+    for (it = 0; it < 4; ++it) {{
+        double th[3], dd[3], p[3], e[3], J[3][3], det, dq[3];
+        {P}_angles(q, th, dd);
+        {P}_wrist_point(th, dd, p);
+        for (i = 0; i < 3; ++i) {{
+            e[i] = W[i] - p[i];
+        }}
+        err = fabs(e[0]) > fabs(e[1]) ? fabs(e[0]) : fabs(e[1]);
+        err = fabs(e[2]) > err ? fabs(e[2]) : err;
+        if (err <= {t(1e-13)} * {lit(k.scale)} || it == 3) {{
+            break;
+        }}
+        for (j = 0; j < 3; ++j) {{
+            double qp[3], qm[3], pp[3], pm[3];
+            for (i = 0; i < 3; ++i) {{
+                qp[i] = q[i];
+                qm[i] = q[i];
+            }}
+            qp[j] += {t(1e-7)};
+            qm[j] -= {t(1e-7)};
+            {P}_angles(qp, th, dd);
+            {P}_wrist_point(th, dd, pp);
+            {P}_angles(qm, th, dd);
+            {P}_wrist_point(th, dd, pm);
+            for (i = 0; i < 3; ++i) {{
+                J[i][j] = (pp[i] - pm[i]) / (2.0 * {t(1e-7)});
+            }}
+        }}
+        det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
+            + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+        if (det == 0.0) {{
+            break;
+        }}
+        /* Cramer's rule */
+        dq[0] = (e[0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (e[1] * J[2][2] - J[1][2] * e[2])
+                 + J[0][2] * (e[1] * J[2][1] - J[1][1] * e[2])) / det;
+        dq[1] = (J[0][0] * (e[1] * J[2][2] - J[1][2] * e[2]) - e[0] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
+                 + J[0][2] * (J[1][0] * e[2] - e[1] * J[2][0])) / det;
+        dq[2] = (J[0][0] * (J[1][1] * e[2] - e[1] * J[2][1]) - J[0][1] * (J[1][0] * e[2] - e[1] * J[2][0])
+                 + e[0] * (J[1][0] * J[2][1] - J[1][1] * J[2][0])) / det;
+        for (i = 0; i < 3; ++i) {{
+            q[i] += dq[i];
+        }}
+    }}
+    return err;
+}}
+
+@@CHECK_END@@
+/* Lecture 5, the wrist: every (th4, th5, th6) with Rz(th4)Rx(al4)Rz(th5)Rx(al5)Rz(th6) = R3^T R06,
+   R3 = Rz(th1)Rx(al1)Rz(th2)Rx(al2)Rz(th3)Rx(al3). out[k] = rotation angles, flip[k] = 0 no flip /
+   1 flip / 2 wrist singular (axes 4 and 6 aligned: th4 = q4_ref + offset, flagged degenerate). */
+static int {P}_wrist(const double th[3], const double R[9], double q4_ref, double out[2][3], int flip[2])
+{{
+    double mx = R[2], my = R[5], mz = R[8], ex = R[0], ey = R[3], ez = R[6];
+    double nx = 0.0, ny = 0.0, nz = 1.0, c, s, x, row0, row1, rho, c5, s5, am, ar, sg;
+    const double yp_c = {lit(-ca4 * sa5)}, yp_0 = {lit(-sa4 * ca5)}, b_c = {lit(sa4 * ca5)}, b_0 = {lit(ca4 * sa5)};
+    double yp, b;
+    int i;
+    /* m = R3^T z6 and e = R3^T x6 */
+{chr(10).join(rots_m)}
+    /* n4 = R3 e3: axis 4 in frame 0' */
+{chr(10).join(rots_n)}
+    row0 = R[0] * nx + R[3] * ny + R[6] * nz;
+    row1 = R[1] * nx + R[4] * ny + R[7] * nz;
+    rho = sqrt(mx * mx + my * my);  /* |sin| of the angle between axes 4 and 6 */
+{c5s5}
+    if (rho <= {t(1e-10)}) {{
+        const double th4 = q4_ref + {lit(th0[3])};
+        const double gamma = atan2({gamma_ca4} * s5, c5);
+        const double sk = mz > 0.0 ? 1.0 : -1.0;
+        out[0][0] = th4;
+        out[0][1] = atan2(s5, c5);
+        out[0][2] = sk * (atan2(ey, ex) - th4 - gamma);
+        flip[0] = 2;
+        (void)ez;
+        return 1;
+    }}
+    am = atan2(my, mx);
+    ar = atan2(row1, row0);
+    yp = yp_c * c5 + yp_0;
+    b = b_c * c5 + b_0;
+    for (i = 0; i < 2; ++i) {{
+        sg = i == 0 ? s5 : -s5;
+        out[i][0] = am - atan2(yp, {lit(sa5)} * sg);
+        out[i][1] = atan2(sg, c5);
+        out[i][2] = atan2(b, {lit(sa4)} * sg) - ar;
+        flip[i] = sg * {lit(kk)} > 0.0 ? 0 : 1;
+        if (s5 == 0.0) {{
+            return 1;
+        }}
+    }}
+    return 2;
+}}
+"""
+    a, rest = text.split("@@CHECK_START@@")
+    mid, b = rest.split("@@CHECK_END@@")
+    if not quartic:  # the check and polish are for the quartic's numerical roots only
+        mid = ""
+    return a + mid + b
+
+
+def _pieper(e: _Emitter, T06: Pose) -> str:
+    """Body of the Pieper solve (``PieperSolver.position`` then the wrist): rows[], lab[], deg[], nr."""
+    k, P, t = e.k, e.P, e.tol
+    sv = k.solver
+    case = str(sv["case"])
+    deg = int(sv["deg"])
+    C = [[float(x) for x in row] for row in sv["C_list"]]
+    w6 = [snap(float(x)) for x in sv["w6_list"]]
+    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    ca1, sa1 = ca[0], sa[0]
+    a1, a2, d1, d2 = (float(sv[x]) for x in ("a1", "a2", "d1", "d2"))
+    f1c, f2c, f3c = sv["f"]
+    vv = [float(x) for x in sv["v"]]
+    th0, d0 = k.th0, k.d0
+    j1, j2, kind3 = k.kinds[0], k.kinds[1], k.kinds[2]
+    scale = k.scale
+    w = CWriter()
+    R = T06.R
+    W = [w.let(f"W{i}", lin([(w6[0], R[i][0]), (w6[1], R[i][1]), (w6[2], R[i][2]), (1.0, T06.p[i])]))
+         for i in range(3)]
+    for i in range(3):
+        w.line(f"W[{i}] = {_c(W[i])};")
+        for j in range(3):
+            w.line(f"R06[{3 * i + j}] = {_c(R[i][j])};")
+    if j1 == "R":
+        w.comment("wrist centre W = T06 6W; Lecture 5: h = Wz - d1, r = Wx^2 + Wy^2 + h^2 (invariant under joint 1)")
+        w.line(f"const double h = {_c(lin([(1.0, W[2])], -d1))};")
+        w.line(f"const double r = {_c(W[0])} * {_c(W[0])} + {_c(W[1])} * {_c(W[1])} + h * h;")
+    else:
+        c0, s0 = math.cos(th0[0]), math.sin(th0[0])
+        w.comment("wrist centre W = T06 6W; prismatic joint 1: (x', y') = W in frame 0' turned by th1's offset")
+        w.line(f"const double xp = {_c(lin([(c0, W[0]), (s0, W[1])]))};")
+        w.line(f"const double yp = {_c(lin([(-s0, W[0]), (c0, W[1])]))};")
+        w.line(f"const double X = xp - {lit(a1)};")
+    monomials: dict[str, list[Val]] = {
+        "RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0], "RR-s1": ["h", 1.0],
+        "RP-quartic": ["r", "h * h", "h", 1.0], "RP-c1": ["h", 1.0],
+        "PR-quartic": ["X * X", "yp * yp", "yp", 1.0], "PR-c1": ["yp", 1.0], "PP": ["X", 1.0]}
+    m_names = monomials[case]
+    w.comment(f"joint 3 from a polynomial of degree {deg} in {'u = tan(th3/2)' if kind3 == 'R' else 'd3'} "
+              f"({case}): its coefficients are linear in these monomials of W")
+    for j in range(deg + 1):
+        terms: list[tuple[float, Val]] = [(C[m][j], mk) for m, mk in enumerate(m_names)]
+        w.line(f"pc[{j}] = {_c(lin(terms))};")
+    body = w.text()
+    ang = "2.0 * atan(ts[i])" if kind3 == "R" else "ts[i]"
+    extra = (f"""        if (dg < {deg}) {{
+            x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
+        }}""" if kind3 == "R" else "")
+    roots_deg = (f""" else if (dg >= 3) {{
+            nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* the quartic (or cubic): real roots, increasing */
+        }}""" if deg == 4 else "")
+    cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
+    fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
+             for name, coef in (("f1", f1c), ("f2", f2c), ("f3", f3c))]
+    # candidates (q2, g1, g2, g3) for this joint-3 value
+    if j2 == "R":
+        if j1 == "R":
+            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
+            sa_, sb_ = 2.0 * a1, sa1
+        else:
+            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = X, rb = {_f([(1.0, "yp"), (sa1, "F3")])};""")
+            sa_, sb_ = 1.0, ca1
+        if case in ("RR-quartic", "PR-quartic"):
+            th2 = f"""        if (f1 * f1 + f2 * f2 > {t(1e-24)} * {lit(scale * scale)}) {{
+            const double A = ra / {lit(sa_)}, B = rb / {lit(sb_)};
+            t2s[0] = atan2(f1 * B - f2 * A, f1 * A + f2 * B);
+        }} else {{
+            t2s[0] = {lit(th0[1])};
+            degenerate = 1;
+        }}
+        nt2 = 1;"""
+        elif case == "RR-a1":  # sb (F2 c2 + F1 s2) = rb
+            th2 = f"        nt2 = {P}_trig_roots({_f([(sb_, 'f2')])}, {_f([(sb_, 'f1')])}, rb, {t(1e-10)}, t2s);"
+        else:  # RR-s1, PR-c1: sa (F1 c2 - F2 s2) = ra
+            th2 = f"        nt2 = {P}_trig_roots({_f([(sa_, 'f1')])}, {_f([(-sa_, 'f2')])}, ra, {t(1e-10)}, t2s);"
+        cands = f"""{ab}
+        double t2s[2];
+        int nt2, i2;
+        (void)ra;
+        (void)rb;
+{th2}
+        if (nt2 < 0) {{
+            t2s[0] = {lit(th0[1])};
+            nt2 = 1;
+            degenerate = 1;
+        }}
+        for (i2 = 0; i2 < nt2; ++i2) {{
+            const double cc2 = cos(t2s[i2]), ss2 = sin(t2s[i2]);
+            const double uu = ss2 * f1 + cc2 * f2;
+            cq2[nc] = {_f([(1.0, "t2s[i2]")], -th0[1])};
+            cg1[nc] = {_f([(1.0, "cc2 * f1"), (-1.0, "ss2 * f2")], a1)};
+            cg2[nc] = {_f([(ca1, "uu"), (-sa1, "F3")])};
+            cg3[nc] = {_f([(sa1, "uu"), (ca1, "F3")])};
+            ++nc;
+        }}"""
+    else:
+        pc1, pc2 = sv["phi"]
+        pv = (f"""        const double p1 = {_c(_val(pc1, kind3, "x3", *cs3))};
+        const double p2 = {_c(_val(pc2, kind3, "x3", *cs3))};
+        double Ds[2];
+        int nD = 0, iD;""")
+        if case == "RP-quartic":
+            dcode = f"        Ds[nD++] = (h - {lit(sa1)} * p2) / {lit(ca1)} - f3;"
+        elif case == "RP-c1":  # D^2 + 2 f3 D + (a1^2 + |f|^2 + 2 a1 p1 - r) = 0
+            dcode = f"""        {{
+            const double nf2 = {_c(_val(sv["nf2"], kind3, "x3", *cs3))};
+            const double B = 2.0 * f3, C0 = {lit(a1 * a1)} + nf2 + {lit(2.0 * a1)} * p1 - r;
+            const double disc = B * B - 4.0 * C0;
+            const double big = B * B > fabs(4.0 * C0) ? B * B : fabs(4.0 * C0);
+            if (!(disc < -{t(1e-12)} * (big > {t(1e-300)} ? big : {t(1e-300)}))) {{
+                const double sq = sqrt(disc > 0.0 ? disc : 0.0);
+                const double qv = -0.5 * (B + (B >= 0.0 ? sq : -sq));
+                if (qv == 0.0) {{
+                    Ds[nD++] = 0.0;
+                }} else {{
+                    Ds[nD++] = qv;
+                    if (sq > 0.0) {{
+                        Ds[nD++] = C0 / qv;
+                    }}
+                }}
+            }}
+        }}"""
+        else:  # PP
+            dcode = f"        Ds[nD++] = ({lit(ca1)} * p2 - yp) / {lit(sa1)} - f3;"
+        cands = f"""{pv}
+{dcode}
+        for (iD = 0; iD < nD; ++iD) {{
+            const double D = Ds[iD];
+            cq2[nc] = {_f([(1.0, "D")], -d0[1])};
+            cg1[nc] = {_f([(1.0, "p1")], a1)};
+            cg2[nc] = {_f([(ca1, "p2"), (-sa1, "(f3 + D)")])};
+            cg3[nc] = {_f([(sa1, "p2"), (ca1, "(f3 + D)")])};
+            ++nc;
+        }}"""
+    if j1 == "R":
+        q1 = f"""            if (sqrt(cg1[ic] * cg1[ic] + cg2[ic] * cg2[ic]) <= {t(1e-12)} * {lit(scale)}) {{
+                q123[0] = 0.0;
+                singular1 = 1;
+            }} else {{
+                q123[0] = {_f([(1.0, "atan2(W[1], W[0])"), (-1.0, "atan2(cg2[ic], cg1[ic])")], -th0[0])};
+            }}"""
+    else:
+        q1 = f"            q123[0] = {_f([(1.0, _c(W[2])), (-1.0, 'cg3[ic]')], -d0[0])};"
+    if deg == 4:
+        accept = f"""            err = {P}_wrist_error(q123, W);
+            if (err > {t(1e-12)} * {lit(scale)}) {{
+                if (err > {t(1e-5)} * {lit(scale)}) {{
+                    continue;  /* a spurious root */
+                }}
+                err = {P}_polish(q123, W);
+                if (err > {t(1e-11)} * {lit(scale)}) {{
+                    continue;
+                }}
+            }}"""
+    else:
+        accept = "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
+    if j1 == "R":
+        shoulder = "            si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
+    else:
+        shoulder = "            si = 0;"
+    if kind3 == "P":
+        elbow = f"            ei = {_f([(1.0, 'q123[2]')], d0[2])} >= 0.0 ? 0 : 1;"
+    else:
+        a2f = a2 if a2 != 0.0 else 1.0
+        elbow = (f"            ei = {_f([(vv[0] * a2f, 'sin(th[2])'), (vv[1] * a2f, 'cos(th[2])')])} > 0.0 ? 0 : 1;"
+                 "  /* elbow down / up */")
+    q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
+    free3 = lit(th0[2]) if kind3 == "R" else "0.0"
+    return f"""    {{
+    double pc[5], ts[5], x3s[6], W[3], R06[9];
+    double scale = 0.0;
+    int dg = {deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;
+{body}
+    (void)W;
+    /* its real roots (robokit's _roots: trailing coefficients below 1e-11 of the largest dropped) */
+    for (i = 0; i <= {deg}; ++i) {{
+        scale = fabs(pc[i]) > scale ? fabs(pc[i]) : scale;
+    }}
+    if (scale == 0.0) {{
+        x3s[nx3++] = {free3};  /* identically satisfied: joint 3 free, the documented choice q3 = 0 */
+        degenerate = 1;
+    }} else {{
+        while (dg > 0 && fabs(pc[dg]) <= {t(1e-11)} * scale) {{
+            --dg;
+        }}
+        if (dg == 1) {{
+            ts[0] = -pc[0] / pc[1];
+            nt = 1;
+        }} else if (dg == 2) {{
+            const double disc = pc[1] * pc[1] - 4.0 * pc[2] * pc[0];
+            const double big = pc[1] * pc[1] > fabs(4.0 * pc[2] * pc[0]) ? pc[1] * pc[1] : fabs(4.0 * pc[2] * pc[0]);
+            if (!(disc < -{t(1e-12)} * (big > {t(1e-300)} ? big : {t(1e-300)}))) {{
+                const double sq = sqrt(disc > 0.0 ? disc : 0.0);
+                const double qv = -0.5 * (pc[1] + (pc[1] >= 0.0 ? sq : -sq));
+                if (qv != 0.0) {{
+                    ts[0] = qv / pc[2];
+                    ts[1] = pc[0] / qv;
+                    nt = 2;
+                }} else {{
+                    ts[0] = 0.0;
+                    nt = 1;
+                }}
+            }}
+        }}{roots_deg}
+        for (i = 0; i < nt; ++i) {{
+            x3s[nx3++] = {ang};
+        }}
+{extra}
+    }}
+    /* every joint-3 value: joints 2 and 1 by back-substitution, then the wrist's two branches */
+    for (i3 = 0; i3 < nx3; ++i3) {{
+        const double x3 = x3s[i3];
+        const double c3 = cos(x3), s3 = sin(x3);
+        double cq2[2], cg1[2], cg2[2], cg3[2];
+        int nc = 0, ic;
+{chr(10).join(fvals)}
+        (void)c3;
+        (void)s3;
+        (void)f1;
+        (void)f2;
+        (void)f3;
+        (void)cg1;
+        (void)cg2;
+        (void)cg3;
+{cands}
+        for (ic = 0; ic < nc; ++ic) {{
+            double q123[3], err = 0.0, th[3], dd[3], wr[2][3];
+            int singular1 = 0, fl[2], nw, iw, si, ei;
+{q1}
+            q123[1] = cq2[ic];
+            q123[2] = {q3};
+            (void)err;
+{accept}
+            {P}_angles(q123, th, dd);
+{shoulder}
+{elbow}
+            nw = {P}_wrist(th, R06, ref, wr, fl);
+            for (iw = 0; iw < nw && nr < {_RAW}; ++iw) {{
+                rows[nr][0] = q123[0];
+                rows[nr][1] = q123[1];
+                rows[nr][2] = q123[2];
+                rows[nr][3] = {_f([(1.0, "wr[iw][0]")], -th0[3])};
+                rows[nr][4] = {_f([(1.0, "wr[iw][1]")], -th0[4])};
+                rows[nr][5] = {_f([(1.0, "wr[iw][2]")], -th0[5])};
+                lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
+                deg[nr] = fl[iw] == 2 || degenerate || singular1;
+                ++nr;
+            }}
+            (void)singular1;
+        }}
+    }}
+    }}
+"""
+
+
+def _f(terms: list[tuple[float, str]], const: float = 0.0) -> str:
+    """Σ cₖ·xₖ + const as folded C (no ``0.0 * x``, no ``- 0.0``)."""
+    return _c(lin([(c, x) for c, x in terms], const))
+
+
+def _c(v: Val) -> str:
+    return lit(v) if isinstance(v, float) else v
+
+
+def _indent(text: str, n: int) -> str:
+    return "\n".join((" " * n + line) if line.strip() else line for line in text.split("\n"))
+
+
+def _parallel(e: _Emitter, T06: Pose) -> str:
+    """Body of the three-parallel-axes solve (UR family)."""
+    k, P, t = e.k, e.P, e.tol
+    sv = k.solver
+    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    ca1, sa1, ca4, sa4, ca5, sa5 = ca[0], sa[0], ca[3], sa[3], ca[4], sa[4]
+    s2, sig = float(sv["s2"]), float(sv["sig"])
+    a1, a2, a3, a4, a5 = (float(sv[x]) for x in ("a1", "a2", "a3", "a4", "a5"))
+    d1, d5, d6, KW = (float(sv[x]) for x in ("d1", "d5", "d6", "KW"))
+    w6 = [snap(float(x)) for x in sv["w6_list"]]
+    th0 = [float(x) for x in sv["th0_list"]]
+    right = ca4 == 0.0 and ca5 == 0.0
+    w = CWriter()
+    R, p = T06.R, T06.p
+    W = [w.let(f"W{i}", lin([(w6[0], R[i][0]), (w6[1], R[i][1]), (w6[2], R[i][2]), (1.0, p[i])])) for i in range(3)]
+    body = w.text()
+    if right:
+        t5 = f"""            const double c5r = -utz / {lit(sa4 * sa5)};
+            if (rho > {t(1e-10)}) {{
+                t5s[0] = atan2(rho, c5r);
+                t5s[1] = atan2(-rho, c5r);
+                nt5 = 2;
+            }} else {{
+                t5s[0] = atan2(0.0, c5r);
+                nt5 = 1;
+            }}"""
+    else:
+        t5 = f"""            nt5 = {P}_trig_roots({lit(-sa4 * sa5)}, 0.0, utz - {lit(ca4 * ca5)}, {t(1e-10)}, t5s);
+            if (nt5 < 0) {{
+                nt5 = 0;
+            }}"""
+    r = [[_c(x) for x in row] for row in R]
+    pp = [_c(x) for x in p]
+    return f"""    {{
+{body}
+    double t1s[2];
+    int nt1 = {P}_trig_roots({lit(-sa1)} * {_c(W[1])}, {lit(sa1)} * {_c(W[0])}, {lit(KW)} - {lit(ca1)} * ({_c(W[2])} - {lit(d1)}), {t(1e-10)}, t1s);
+    int i1;
+    /* Lecture 5, three parallel axes: th1 from W's coordinate along the parallel axes */
+    for (i1 = 0; i1 < nt1; ++i1) {{
+        const double t1 = t1s[i1];
+        const double c1 = cos(t1), s1 = sin(t1);
+        const int si = ({_c(W[0])} * c1 + {_c(W[1])} * s1) * {lit(sa1)} >= 0.0 ? 0 : 1;
+        const double ux = {lit(sa1)} * s1, uy = {lit(-sa1)} * c1, uz = {lit(ca1)};
+        /* u seen from the tool: th5 (wrist flip / no flip), th6 */
+        const double utx = {lit(sig)} * ({r[0][0]} * ux + {r[1][0]} * uy + {r[2][0]} * uz);
+        const double uty = {lit(sig)} * ({r[0][1]} * ux + {r[1][1]} * uy + {r[2][1]} * uz);
+        const double utz = {lit(sig)} * ({r[0][2]} * ux + {r[1][2]} * uy + {r[2][2]} * uz);
+        const double rho = sqrt(utx * utx + uty * uty);
+        double t5s[2];
+        int nt5, i5;
+        {{
+{t5}
+        }}
+        for (i5 = 0; i5 < nt5; ++i5) {{
+            const double t5 = t5s[i5];
+            const double c5 = cos(t5), s5 = sin(t5);
+            const double vx = s5 * {lit(sa4)}, vy = {lit(ca5 * sa4)} * c5 + {lit(sa5 * ca4)};
+            double t6, gx0, gy0, gz0, gx, gy, gz, ox, oy, oz, tmp, X0, X1, X2, O0, O1, O2, phi, x, y, c3, s3a, base;
+            int degenerate, wi, k3, n3;
+            if (rho <= {t(1e-10)}) {{
+                t6 = {_f([(1.0, "ref")], th0[5])};
+                degenerate = 1;
+            }} else {{
+                t6 = atan2(vy, vx) - atan2(uty, utx);
+                degenerate = 0;
+            }}
+            {{
+                const double c6 = cos(t6), s6 = sin(t6);
+                /* x4 in frame 6: Rz(-th6) Rx(-al5) Rz(-th5) e1 */
+                gx0 = c5;
+                gy0 = {lit(-ca5)} * s5;
+                gz0 = {lit(sa5)} * s5;
+                gx = c6 * gx0 + s6 * gy0;
+                gy = -s6 * gx0 + c6 * gy0;
+                gz = gz0;
+                /* frame 4's origin in frame 6 */
+                ox = {lit(-a4)};
+                oy = 0.0;
+                oz = 0.0;
+                tmp = c5 * ox + s5 * oy; oy = -s5 * ox + c5 * oy; ox = tmp; oz = oz - {lit(d5)};
+                ox = ox - {lit(a5)}; tmp = {lit(ca5)} * oy + {lit(sa5)} * oz; oz = {lit(-sa5)} * oy + {lit(ca5)} * oz; oy = tmp;
+                tmp = c6 * ox + s6 * oy; oy = -s6 * ox + c6 * oy; ox = tmp; oz = oz - {lit(d6)};
+            }}
+            X0 = {r[0][0]} * gx + {r[0][1]} * gy + {r[0][2]} * gz;
+            X1 = {r[1][0]} * gx + {r[1][1]} * gy + {r[1][2]} * gz;
+            X2 = {r[2][0]} * gx + {r[2][1]} * gy + {r[2][2]} * gz;
+            O0 = {pp[0]} + {r[0][0]} * ox + {r[0][1]} * oy + {r[0][2]} * oz - {lit(a1)} * c1;
+            O1 = {pp[1]} + {r[1][0]} * ox + {r[1][1]} * oy + {r[1][2]} * oz - {lit(a1)} * s1;
+            O2 = {pp[2]} + {r[2][0]} * ox + {r[2][1]} * oy + {r[2][2]} * oz - {lit(d1)};
+            /* the planar 3R arm in the frame after X1: angle phi = th2 + th3 + th4, 2-link (a2, a3) */
+            phi = atan2(-s1 * {lit(ca1)} * X0 + c1 * {lit(ca1)} * X1 + {lit(sa1)} * X2, c1 * X0 + s1 * X1);
+            x = c1 * O0 + s1 * O1;
+            y = -s1 * {lit(ca1)} * O0 + c1 * {lit(ca1)} * O1 + {lit(sa1)} * O2;
+            c3 = (x * x + y * y - {lit(a2 * a2 + a3 * a3)}) / {lit(2.0 * a2 * a3)};
+            if (fabs(c3) > 1.0 + {t(1e-10)}) {{
+                continue;
+            }}
+            c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
+            s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);
+            wi = degenerate ? 2 : (s5 * {lit(sa4 * sa5)} > 0.0 ? 0 : 1);
+            base = atan2(y, x);
+            n3 = s3a > 0.0 ? 2 : 1;
+            for (k3 = 0; k3 < n3 && nr < {_RAW}; ++k3) {{
+                const double s3 = k3 == 0 ? s3a : -s3a;
+                const double psi = atan2(s3, c3);
+                const double t2 = base - atan2({lit(a3)} * s3, {lit(a2)} + {lit(a3)} * c3);
+                const double t3 = {lit(s2)} * psi, t4 = {lit(sig)} * (phi - t2 - psi);
+                const int ei = {lit(a2 * a3)} * s3 > 0.0 ? 0 : 1;
+                rows[nr][0] = {_f([(1.0, "t1")], -th0[0])};
+                rows[nr][1] = {_f([(1.0, "t2")], -th0[1])};
+                rows[nr][2] = {_f([(1.0, "t3")], -th0[2])};
+                rows[nr][3] = {_f([(1.0, "t4")], -th0[3])};
+                rows[nr][4] = {_f([(1.0, "t5")], -th0[4])};
+                rows[nr][5] = {_f([(1.0, "t6")], -th0[5])};
+                lab[nr] = {e.label_index("si", "ei", "wi")};
+                deg[nr] = degenerate;
+                ++nr;
+            }}
+        }}
+    }}
+    }}
+"""

@@ -1,0 +1,426 @@
+"""`robokit codegen`: the generated C99, compiled with the strict flags (-Werror), against Pinocchio
+(pose, Jacobian, gravity, rnea) and against robokit's ik_analytic (same solutions, order, labels,
+flags) on the shipped models, example-robot-data arms and random DH arms (both conventions,
+prismatic and flipped joints, masses). The C is loaded through ctypes."""
+import math
+import re
+from dataclasses import replace
+import subprocess
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, Phase, assume, given, settings
+from hypothesis import strategies as st
+
+import robokit
+from robokit.cli import main
+from robokit.codegen import c_name, generate_c
+from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.ik import ik_analytic, ik_analytic_kind
+
+SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
+                suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "memset", "memcpy"}
+MATH |= {f + "f" for f in MATH}
+
+
+@pytest.fixture(scope="module")
+def models():
+    return {name: robokit.load(name) for name in ("twolink", "rrr", "puma560", "ur5", "panda", "kinova")}
+
+
+def check_dynamics_and_kinematics(robot, lib, samples=6, seed=0):
+    """The C against Pinocchio (through the Robot) at random q, qd, qdd."""
+    rng = np.random.default_rng(seed)
+    f32 = lib.float32
+    for _ in range(samples):
+        q = robot.random_configuration(rng)
+        qd, qdd = rng.normal(size=robot.n), rng.normal(size=robot.n)
+        T = robot.frame_pose(q)
+        J = robot.jacobian(q, reference="local_world_aligned")
+        g = robot.gravity_torques(q)
+        tau = robot.rnea(q, qd, qdd)
+        if f32:
+            q32 = q.astype(np.float32).astype(float)  # the C sees float inputs
+            T, J = robot.frame_pose(q32), robot.jacobian(q32, reference="local_world_aligned")
+            g, tau = robot.gravity_torques(q32), robot.rnea(q32, qd.astype(np.float32), qdd.astype(np.float32))
+            tol = lambda ref: 1e-4 * max(1.0, float(np.abs(ref).max()))  # noqa: E731
+        else:
+            tol = lambda ref: 1e-12 * max(1.0, float(np.abs(ref).max()))  # noqa: E731
+        assert np.abs(lib.fk(q) - T).max() <= tol(T)
+        assert np.abs(lib.jacobian(q) - J).max() <= tol(J)
+        assert np.abs(lib.gravity(q) - g).max() <= tol(g)
+        assert np.abs(lib.rnea(q, qd, qdd) - tau).max() <= tol(tau)
+
+
+def closed_form_solver(robot):
+    """robokit's closed-form solver object of ``robot`` (its constants are what the C is built from)."""
+    import robokit.ik as rik
+
+    if hasattr(rik, "analytic_ik"):
+        return rik.analytic_ik(robot).solver
+    ik_analytic_kind(robot)
+    return robot._closed_form.solver
+
+
+def _dist(a, b, rev):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    d[rev] = np.remainder(d[rev] + np.pi, 2 * np.pi) - np.pi
+    return float(np.abs(d).max())
+
+
+def check_ik(robot, lib, poses, tol=1e-9):
+    """The C returns ik_analytic's solutions: in order with the same labels and flags, or (the
+    quartic, whose roots the two find in different orders) the same set with the same labels."""
+    rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
+    quartic = getattr(closed_form_solver(robot), "deg", 2) == 4
+    base = re.compile(r" #\d+$")
+    for T in poses:
+        py = ik_analytic(robot, T)
+        c = lib.ik(T)
+        assert len(c) == len(py), ([s.label for s in py], [x[1] for x in c])
+        if not quartic:
+            for s, (q, label, inside, degen) in zip(py, c):
+                assert label == s.label
+                assert (inside, degen) == (s.within_limits, s.degenerate)
+                assert _dist(q, s.q, rev) < tol, label
+        else:
+            for s in py:
+                k = min(range(len(c)), key=lambda i: _dist(c[i][0], s.q, rev))
+                q, label, inside, degen = c[k]
+                assert _dist(q, s.q, rev) < tol
+                assert base.sub("", label) == base.sub("", s.label)
+                assert (inside, degen) == (s.within_limits, s.degenerate)
+        for q, *_ in c:  # and every C solution reaches T (Pinocchio)
+            assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
+
+
+# ------------------------------------------------------------------ shipped and example arms
+@pytest.mark.parametrize("name", ["twolink", "rrr", "puma560", "ur5", "panda", "kinova"])
+def test_kinematics_and_dynamics_match_pinocchio(models, build, name):
+    robot = models[name]
+    check_dynamics_and_kinematics(robot, build(robot))
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "panda"])
+def test_float32_matches_to_1e_4(models, build, name):
+    robot = models[name]
+    lib = build(robot, float32=True)
+    check_dynamics_and_kinematics(robot, lib)
+    text = (lib.path.parent / f"{lib.name}.c").read_text() + (lib.path.parent / f"{lib.name}.h").read_text()
+    code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+    assert "double" not in code
+    assert not re.search(r"\b(sin|cos|atan2|sqrt|fabs)\(", code)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "kinova"])
+def test_ik_matches_ik_analytic(models, build, name):
+    robot = models[name]
+    lib = build(robot)
+    assert lib.has_ik and lib.max_solutions == 8
+    rng = np.random.default_rng(1)
+    check_ik(robot, lib, [robot.frame_pose(robot.random_configuration(rng)) for _ in range(30)])
+
+
+def test_ik_out_of_reach_and_singular(models, build):
+    robot = models["puma560"]
+    lib = build(robot)
+    far = np.eye(4)
+    far[:3, 3] = [5.0, 0.0, 0.0]
+    assert lib.ik(far) == [] and ik_analytic(robot, far) == []
+    q = np.array([0.3, -0.4, 0.2, 0.5, 0.0, -0.2])  # q5 = 0: the wrist singularity
+    check_ik(robot, lib, [robot.frame_pose(q)])
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_float32_ik_reaches_the_pose(models, build, name):
+    robot = models[name]
+    lib = build(robot, float32=True)
+    rng = np.random.default_rng(2)
+    full = 0
+    for _ in range(20):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        py, c = ik_analytic(robot, T), lib.ik(T)
+        full += len(c) == len(py)
+        for q, label, *_ in c:  # no spurious solution: each is near ik_analytic's one of that label
+            ref = [s for s in py if s.label == label]
+            assert ref and _dist(q, ref[0].q, np.ones(robot.n, bool)) < 1e-2
+    assert full >= 18
+
+
+def test_arm_without_closed_form_has_no_ik(models, build):
+    lib = build(models["panda"])
+    assert not lib.has_ik
+    header = (lib.path.parent / "panda.h").read_text()
+    assert "#define panda_HAS_IK 0" in header and "the arm has 7 joints" in header
+    assert "panda_ik" not in re.sub(r"/\*.*?\*/", "", header, flags=re.S)
+    with pytest.raises(ValueError):
+        ik_analytic(models["panda"], np.eye(4))
+
+
+def test_header_macros_and_tables(models, build):
+    robot = models["ur5"]
+    lib = build(robot)
+    h = (lib.path.parent / "ur5.h").read_text()
+    for macro in ("ur5_N 6", "ur5_HAS_IK 1", "ur5_MAX_SOLUTIONS 8", "ur5_JOINT0_TYPE 0", "ur5_JOINT5_UPPER"):
+        assert f"#define {macro}" in h
+    for text in ("void ur5_fk(const double q[ur5_N], double T[16]);",
+                 "void ur5_jacobian(const double q[ur5_N], double J[6 * ur5_N]);",
+                 "int ur5_ik(const double T[16], double q[ur5_MAX_SOLUTIONS * ur5_N]);",
+                 "void ur5_gravity(const double q[ur5_N], double tau[ur5_N]);",
+                 "void ur5_rnea(const double q[ur5_N], const double qd[ur5_N], const double qdd[ur5_N], "
+                 "double tau[ur5_N]);", "robokit", "LOCAL_WORLD_ALIGNED", "'tool0'"):
+        assert text in h
+    import ctypes
+
+    qlim = (ctypes.c_double * 12).in_dll(lib.lib, "ur5_qlim")
+    assert np.allclose(np.array(qlim).reshape(6, 2), robot.qlim)
+    types = (ctypes.c_int * 6).in_dll(lib.lib, "ur5_joint_type")
+    assert list(types) == [0] * 6
+
+
+def test_only_math_symbols_are_needed(models, build, nm):
+    for name, f32 in (("puma560", False), ("ur5", False), ("panda", False), ("puma560", True)):
+        lib = build(models[name], float32=f32)
+        out = subprocess.run([nm, "-u", str(lib.path.with_suffix(".o"))], capture_output=True, text=True,
+                             check=True).stdout
+        undefined = {line.split()[-1] for line in out.splitlines() if line.strip()}
+        assert undefined <= MATH, undefined - MATH
+
+
+# ------------------------------------------------------------------ random DH arms
+def random_table(seed, convention, kinds, structure=None, n=None, oblique=True):
+    """A random DH table: lengths, twists, offsets, flips, masses, base and tool; ``structure``
+    "wrist" makes axes 4–6 meet, "parallel" makes axes 2–4 parallel with axes 5, 6 meeting."""
+    rng = np.random.default_rng(seed)
+    n = n or len(kinds)
+    rows = []
+    for i in range(n):
+        I = rng.uniform(0.01, 0.1, 3)
+        al = rng.uniform(-np.pi, np.pi) if oblique else rng.choice([-np.pi / 2, np.pi / 2, 0.0])
+        rows.append({"joint": kinds[i], "a": rng.uniform(-0.5, 0.5), "alpha": al,
+                     "d": rng.uniform(-0.5, 0.5), "theta": rng.uniform(-np.pi, np.pi),
+                     "mass": rng.uniform(0.5, 3.0), "com": rng.uniform(-0.1, 0.1, 3),
+                     "inertia": np.r_[I, 0.1 * rng.uniform(-1, 1, 3) * I.min()],
+                     "flip": bool(rng.integers(2)) and structure is None})
+    if structure == "wrist":
+        w = (3, 4) if convention == "standard" else (4, 5)
+        rows[w[0]]["a"] = rows[w[1]]["a"] = 0.0
+        rows[4]["d"] = 0.0
+        for i in w:
+            while abs(math.sin(rows[i]["alpha"])) < 0.3:
+                rows[i]["alpha"] = rng.uniform(-np.pi, np.pi)
+    if structure == "parallel":
+        a = rng.uniform(0.1, 0.6, 6) * rng.choice([-1, 1], 6)
+        al = rng.uniform(0.4, 2.7, 6) * rng.choice([-1, 1], 6)
+        al[1], al[2] = rng.choice([0.0, np.pi]), rng.choice([0.0, np.pi])
+        a[4] = 0.0
+        if convention == "modified":
+            a, al = np.r_[rng.uniform(-0.2, 0.2), a[:5]], np.r_[rng.uniform(-1, 1), al[:5]]
+        for i in range(6):
+            rows[i]["a"], rows[i]["alpha"] = a[i], al[i]
+    base, tool = np.eye(4), np.eye(4)
+    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    return DHTable(f"Arm-{seed}", convention, tuple(DHLink(**r) for r in rows), base=base, tool=tool)
+
+
+def random_poses(robot, seed, k=6):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(k):
+        q = rng.uniform(-np.pi, np.pi, robot.n)
+        q[np.abs(robot.poe.Slist[:3]).sum(axis=0) < 0.5] *= 0.15  # prismatic: ±0.5 m
+        out.append(robot.frame_pose(q))
+    return out
+
+
+@settings(**SETTINGS)
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]), st.integers(1, 7),
+       st.booleans())
+def test_random_arms_kinematics_and_dynamics(build, seed, convention, n, prismatic):
+    kinds = "".join("P" if (prismatic and i % 2 == 1) else "R" for i in range(n))
+    robot = robokit.load(random_table(seed, convention, kinds))
+    check_dynamics_and_kinematics(robot, build(robot), samples=4, seed=seed)
+
+
+@settings(**{**SETTINGS, "max_examples": 5})
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]),
+       st.sampled_from(["RRR", "RRP", "RPR", "PRR", "RPP", "PPR", "PRP", "PPP"]), st.booleans())
+def test_random_spherical_wrist_arms_ik(build, seed, convention, kinds, oblique):
+    robot = robokit.load(random_table(seed, convention, kinds + "RRR", "wrist", oblique=oblique))
+    kind = ik_analytic_kind(robot)
+    assume(kind.method is not None)  # right-angled twists can confine the wrist centre to a surface
+    assert kind.method == "spherical wrist"
+    lib = build(robot)
+    assert lib.has_ik
+    check_ik(robot, lib, random_poses(robot, seed, k=4))
+
+
+@pytest.mark.parametrize("kinds, cases", [
+    ("RR", {"RR-quartic", "RR-a1", "RR-s1"}), ("PR", {"PR-quartic", "PR-c1"}), ("RP", {"RP-quartic", "RP-c1"}),
+    ("PP", {"PP"})])
+def test_every_pieper_case(build, kinds, cases):
+    """Each case of Pieper's positioning equation (robokit.ik.pieper) is met and solved by the C:
+    a1 = 0 / sin al1 = 0 / cos al1 = 0 variants of random arms."""
+    seen = set()
+    for convention in ("standard", "modified"):
+        for seed in (11, 12):
+            table = random_table(seed, convention, kinds + "RRRR", "wrist")
+            rows = list(table.links)
+            i1 = 0 if convention == "standard" else 1  # the row holding a1, al1
+            for change in ({}, {"a": 0.0}, {"alpha": 0.0}, {"alpha": np.pi / 2}):
+                rr = rows[:i1] + [replace(rows[i1], **change)] + rows[i1 + 1:]
+                robot = robokit.load(DHTable("case", convention, tuple(rr), base=table.base, tool=table.tool))
+                if ik_analytic_kind(robot).method != "spherical wrist":
+                    continue
+                case = closed_form_solver(robot).case
+                if case in seen:
+                    continue
+                seen.add(case)
+                check_ik(robot, build(robot), random_poses(robot, 7, k=6))
+    assert seen == cases
+
+
+@settings(**SETTINGS)
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]))
+def test_random_three_parallel_axes_arms_ik(build, seed, convention):
+    robot = robokit.load(random_table(seed, convention, "RRRRRR", "parallel"))
+    assert ik_analytic_kind(robot).method == "three parallel axes"
+    check_ik(robot, build(robot), random_poses(robot, seed))
+
+
+def _reversed(table):
+    """The chain of ``table`` read from the tool to the base, as a modified-DH table."""
+    from robokit.ik._dh_chain import DHChain  # the test's own construction (as in tests/ik)
+
+    rc = DHChain(table).reversed()
+    rows = [DHLink(rc.kinds[0], 0.0, 0.0, rc.d0[0], rc.th0[0])]
+    rows += [DHLink(rc.kinds[i], rc.a[i - 1], rc.alpha[i - 1], rc.d0[i], rc.th0[i]) for i in range(1, 6)]
+    return DHTable(f"{table.name}_rev", "modified", tuple(rows), base=rc.base, tool=rc.tool)
+
+
+@pytest.mark.parametrize("structure", ["wrist", "parallel"])
+def test_structures_counted_from_the_tool(build, structure):
+    robot = robokit.load(_reversed(random_table(3, "standard", "RRRRRR", structure)))
+    kind = ik_analytic_kind(robot)
+    assert "from the tool back to the base" in kind.reason
+    lib = build(robot)
+    assert lib.labels[0].endswith("(chain reversed)")
+    check_ik(robot, lib, random_poses(robot, 5))
+
+
+def test_limits_wider_than_pi_and_continuous_joints(build, models):
+    table = random_table(21, "standard", "RRRRRR", "wrist")
+    rows = list(table.links)
+    rows[0] = replace(rows[0], qlim=np.array([0.0, 2 * np.pi]))
+    rows[2] = replace(rows[2], qlim=np.array([-1.0, 1.0]))
+    robot = robokit.load(DHTable("wide", "standard", tuple(rows)))
+    lib = build(robot)
+    q = np.array([4.5, 0.3, -0.2, 0.5, 0.7, 0.1])
+    check_ik(robot, lib, [robot.frame_pose(q)] + random_poses(robot, 3))
+    flags = [x[2] for T in random_poses(robot, 4, 10) for x in lib.ik(T)]
+    assert True in flags and False in flags  # limits are checked both ways
+    kin = models["kinova"]  # continuous joints 1, 4, 6: no limits, one angle each
+    assert np.isinf(kin.qlim).any()
+    check_dynamics_and_kinematics(kin, build(kin), samples=3)
+
+
+# ------------------------------------------------------------------ names and the command line
+def test_names():
+    assert c_name("PUMA-560 arm") == "puma_560_arm"
+    assert c_name("6dof") == "r6dof"
+    assert c_name("x", "my_arm") == "my_arm"
+    for bad in ("int", "9a", "a-b", ""):
+        with pytest.raises(ValueError, match="--name"):
+            c_name("x", bad)
+
+
+def test_cli_writes_two_files_that_compile(tmp_path, cc, capsys):
+    assert main(["codegen", "puma560", "-o", str(tmp_path)]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["puma560.c", "puma560.h"]
+    assert main(["codegen", "ur5", "-o", str(tmp_path), "--float32", "--name", "arm"]) == 0
+    for stem, extra in (("puma560", []), ("arm", ["-Wdouble-promotion"])):
+        subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow", *extra, "-c",
+                        str(tmp_path / f"{stem}.c"), "-o", str(tmp_path / f"{stem}.o")], check=True)
+    assert "#define arm_HAS_IK 1" in (tmp_path / "arm.h").read_text()
+
+
+@pytest.mark.parametrize("args, message", [
+    (["nosuch_robot"], "unknown robot"),
+    (["puma560", "--name", "int"], "C keyword"),
+    (["puma560", "--name", "2x"], "not a C identifier"),
+])
+def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path, capsys, args, message):
+    assert main(["codegen", args[0], "-o", str(tmp_path), *args[1:]]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("robokit: error:") and message in err[0]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cli_output_must_be_a_folder(tmp_path, capsys):
+    f = tmp_path / "file.txt"
+    f.write_text("x")
+    assert main(["codegen", "puma560", "-o", str(f)]) == 2
+    assert main(["codegen", "puma560", "-o", str(tmp_path / "missing")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and "is a file" in err[0] and "does not exist" in err[1]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.txt"]
+
+
+def test_urdf_file_and_generated_source_is_deterministic(tmp_path, build):
+    from robokit.description.urdf_gen import dh_to_urdf
+
+    table = random_table(8, "modified", "RRPRRR")
+    path = tmp_path / "arm.urdf"
+    path.write_text(dh_to_urdf(table))
+    robot = robokit.load(path)
+    assert generate_c(robot).source == generate_c(robokit.load(path)).source
+    check_dynamics_and_kinematics(robot, build(robot), samples=3)
+
+
+def test_the_documented_main_c_compiles_and_runs(tmp_path, cc):
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "codegen.md").read_text(encoding="utf-8")
+    main_c = re.search(r"```c\n(.*?)```", doc, flags=re.S).group(1)
+    assert main(["codegen", "puma560", "-o", str(tmp_path)]) == 0
+    (tmp_path / "main.c").write_text(main_c)
+    exe = tmp_path / "main"
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow", "-O2",
+                    str(tmp_path / "main.c"), str(tmp_path / "puma560.c"), "-o", str(exe), "-lm"], check=True)
+    out = subprocess.run([str(exe)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout
+    lines = out.stdout.splitlines()
+    assert len(lines) == 5 and all("solutions, chose" in line for line in lines)
+
+
+def test_mjcf_with_armature(tmp_path, build):
+    """An MJCF file (robokit's own export of the PUMA, whose drives give joint armature): the rotor
+    inertia enters Pinocchio's rnea, and the C's."""
+    try:
+        from robokit.description.mjcf_write import robot_to_mjcf
+    except ImportError:  # before the MJCF reader and writer were split
+        from robokit.description.mjcf import robot_to_mjcf
+
+    text, _ = robot_to_mjcf(robokit.load("puma560"))
+    path = tmp_path / "puma.xml"
+    path.write_text(text)
+    robot = robokit.load(path)
+    assert np.abs(np.asarray(robot.model.armature)).max() > 0.1
+    lib = build(robot)
+    check_dynamics_and_kinematics(robot, lib, samples=3)
+    check_ik(robot, lib, random_poses(robot, 9, k=3))
+
+
+def test_flipped_joints(build):
+    """DH joints with ``flip: true`` (θ = offset − q): FK, dynamics, and — where robokit's
+    ik_analytic solves flipped joints (it reaches the pose) — the IK."""
+    t = robokit.load("puma560").dh
+    links = [replace(l, flip=(i in (1, 3, 4))) for i, l in enumerate(t.links)]
+    robot = robokit.load(DHTable("pflip", t.convention, tuple(links), base=t.base, tool=t.tool))
+    lib = build(robot)
+    check_dynamics_and_kinematics(robot, lib, samples=3)
+    poses = random_poses(robot, 4, k=4)
+    if all(np.abs(robot.frame_pose(s.q) - T).max() < 1e-9 for T in poses for s in ik_analytic(robot, T)):
+        check_ik(robot, lib, poses)
