@@ -11,7 +11,7 @@ the plant is integrated with ``substeps`` fixed steps of RK4 (default) or explic
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Iterable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,6 +49,13 @@ class SimResult:
     def rms_error(self) -> np.ndarray:
         """(n,) RMS tracking error per joint."""
         return np.sqrt(np.mean(self.error**2, axis=0))
+
+    def plot(self, joints: Iterable[int] | None = None, title: str | None = None) -> Any:
+        """Desired and actual joint angles, the tracking error and the torques, stacked: see
+        :func:`robokit.control.plot_tracking` (needs the ``plot`` extra). Returns the Figure."""
+        from robokit.control.plot import plot_tracking
+
+        return plot_tracking(self, joints=joints, title=title)
 
     def __repr__(self) -> str:
         K, n = self.q.shape

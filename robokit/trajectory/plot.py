@@ -12,6 +12,7 @@ from typing import Sequence
 import numpy as np
 
 from robokit._optional import require
+from robokit.errors import InputError
 from robokit.trajectory.core import Trajectory
 
 if TYPE_CHECKING:
@@ -30,8 +31,10 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Seque
 
     Parameters
     ----------
-    traj : Trajectory
-        Any trajectory of :mod:`robokit.trajectory` (``qd``/``qdd`` panels are drawn when present).
+    traj : Trajectory or SimResult
+        Any trajectory of :mod:`robokit.trajectory` (``qd``/``qdd`` panels are drawn when present), or
+        a simulation's result (:class:`robokit.control.SimResult`: its ``q`` and ``dq``; for desired vs
+        actual use :func:`robokit.control.plot_tracking` or ``result.plot()``).
     title : str, optional
         Figure title (default: the trajectory's name).
     labels : sequence of str, optional
@@ -54,7 +57,12 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Seque
     3
     """
     if not isinstance(traj, Trajectory):
-        raise TypeError(f"traj: expected a robokit Trajectory, got {type(traj).__name__}")
+        if hasattr(traj, "t") and hasattr(traj, "q") and hasattr(traj, "dq"):  # a simulation (SimResult)
+            traj = Trajectory(np.asarray(traj.t, float), np.asarray(traj.q, float), np.asarray(traj.dq, float),
+                              name="simulation")
+        else:
+            raise InputError(f"traj: expected a robokit Trajectory or a simulation result (t, q, dq), got "
+                             f"{type(traj).__name__}")
     names = tuple(labels) if labels is not None else traj.column_labels()
     if len(names) != traj.n:
         raise ValueError(f"labels: expected {traj.n} names (one per axis), got {len(names)}")

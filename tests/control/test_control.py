@@ -157,3 +157,23 @@ def test_plot_tracking(twolink):
     assert len(fig.axes) == 3
     assert len(fig.axes[0].lines) == 4 and len(fig.axes[2].lines) == 2  # desired + actual per joint; torques
     assert np.allclose(fig.axes[1].lines[0].get_ydata(), res.error[:, 0])
+
+
+def test_sim_result_plots_and_legend_sits_beside_the_curves(twolink):
+    from robokit.trajectory import plot_trajectory
+
+    traj = hold(np.array([0.2, 0.1]), 0.2, 0.01)
+    res = simulate(twolink, GravityPD(twolink, 50.0, 10.0), traj, q0=np.zeros(2))
+    fig = res.plot(title="PD")
+    ax = fig.axes[0]
+    actual, desired = ax.lines[0], ax.lines[1]
+    assert np.allclose(actual.get_ydata(), res.q[:, 0]) and np.allclose(desired.get_ydata(), res.q_des[:, 0])
+    assert desired.get_zorder() > actual.get_zorder()  # the desired line is drawn on top
+    fig.canvas.draw()
+    legend_box = ax.get_legend().get_window_extent()
+    assert legend_box.x0 >= ax.get_window_extent().x1 - 1  # outside the panel: covers no curve
+    f2 = plot_trajectory(res)
+    assert np.allclose(f2.axes[0].lines[0].get_ydata(), res.q[:, 0])
+    assert np.allclose(f2.axes[1].lines[1].get_ydata(), res.dq[:, 1])
+    with pytest.raises(ValueError, match="traj"):
+        plot_trajectory(object())

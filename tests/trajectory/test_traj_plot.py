@@ -43,7 +43,7 @@ def test_plot_path_3d_from_trajectory_or_pose_list(tmp_path):
 
 
 def test_plot_errors():
-    with pytest.raises(TypeError, match="traj"):
+    with pytest.raises(ValueError, match="traj"):
         plot_trajectory(joint_trajectory([0], [1], 1.0, 5, 3))
     with pytest.raises(ValueError, match="poses"):
         plot_path_3d(cubic_trajectory(0, 1, 1.0))
