@@ -82,6 +82,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     import tempfile
     import webbrowser
 
+    from robokit._names import safe_stem
     from robokit.description.robot import load
     from robokit.viz.teach import teach_html
 
@@ -93,9 +94,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
         return 0
-    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{robot.name}-", suffix=".html")
-    import os
-
+    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{safe_stem(robot.name)}-", suffix=".html")
     os.close(fd)
     atomic_write(tmp, page)
     print(f"wrote {tmp} ({len(page.encode('utf-8')) / 1e6:.1f} MB); opening it in the browser", file=sys.stderr)
