@@ -6,7 +6,6 @@ one line and an exit status).
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -110,10 +109,12 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
     atomically. Finished chunks go to ``OUTPUT.chunks/`` while the map is computed (an
     interrupted run started again with the same arguments resumes there); the folder is
-    removed once the map is written. ``scheduler``: a Dask scheduler address
+    removed once the map is written (:mod:`robokit.workspace.store`: only a folder robokit
+    made, holding only its chunk files, is ever used or removed). ``scheduler``: a Dask scheduler address
     (``tcp://host:port``), or None for a local cluster of one worker process per core.
     """
     from robokit.workspace.capability import capability_map
+    from robokit.workspace.store import remove_store
 
     out = _output_file(output, (".npz",))
     if not (np.isfinite(resolution) and resolution > 0):
@@ -125,7 +126,7 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     store = out.with_name(out.name + ".chunks")
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store)
     cmap.save(out)
-    shutil.rmtree(store, ignore_errors=True)
+    remove_store(store)  # only robokit's own marker and chunk files are ever deleted
     t = cmap.timings
     print(f"wrote {out}: {len(cmap.centres)} voxels, {len(cmap.dexterous)} dexterous (index 1), "
           f"{t['problems']} IK problems in {t['total']:.1f} s", file=sys.stderr)

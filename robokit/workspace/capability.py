@@ -39,8 +39,8 @@ import hashlib
 import io
 import json
 import os
-import shutil
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, TYPE_CHECKING
@@ -49,16 +49,27 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+from robokit.errors import InputError, RobokitWarning
+from robokit.workspace.store import ChunkStore
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["CapabilityMap", "capability_map"]
+__all__ = ["CapabilityMap", "capability_map", "MAX_MAP_BYTES"]
 
 #: Format version of the chunk store; part of the fingerprint.
-_STORE_VERSION = 1
+_STORE_VERSION = 2
 _SERIAL = ("serial", "local-process")
+
+#: The most memory a capability map may need (bytes): its orientation set, one chunk's IK
+#: targets and its grid (:func:`robokit.workspace.grid.reachable_voxels`); larger maps are refused
+#: up front, saying how much they would need.
+MAX_MAP_BYTES = 4 * 1024**3
+#: Bytes per orientation of the set (a float64 3×3 matrix and the quaternions it is built from).
+_BYTES_PER_ORIENTATION = 160
+#: Bytes per IK problem of a chunk (its 4×4 float64 target and the solver's work arrays).
+_BYTES_PER_PROBLEM = 256
 
 
 @dataclass
@@ -121,24 +132,18 @@ class CapabilityMap:
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> "CapabilityMap":
-        """Read a map written by :meth:`save` or ``robokit workspace``; ValueError naming the file if it is not one."""
-        p = Path(path)
-        if not p.is_file():
-            raise ValueError(f"map: file {str(p)!r} not found")
-        try:
-            with np.load(p, allow_pickle=False) as z:
-                data = {k: z[k] for k in z.files}
-        except (OSError, ValueError) as exc:
-            raise ValueError(f"map: cannot read {str(p)!r} as an .npz file: {exc}") from None
-        missing = [k for k in ("centres", "index", "orientations", "resolution") if k not in data]
-        if missing:
-            raise ValueError(f"map: {str(p)!r} is not a capability map (missing {', '.join(missing)})")
-        C, D, R = data["centres"], data["index"], data["orientations"]
-        if C.ndim != 2 or C.shape[1] != 3 or D.shape != (len(C),) or R.ndim != 3 or R.shape[1:] != (3, 3):
-            raise ValueError(f"map: {str(p)!r} has inconsistent shapes: centres {C.shape}, index {D.shape}, "
-                             f"orientations {R.shape}")
+        """Read a map written by :meth:`save` or ``robokit workspace``.
+
+        The file is checked before anything is allocated and its values after
+        (:func:`robokit.workspace.mapfile.read_map_arrays`: a regular file, the members'
+        headers, sizes, dtypes, finite values, index in [0, 1], rotations, a positive
+        resolution); InputError naming the file and the member otherwise.
+        """
+        from robokit.workspace.mapfile import read_map_arrays
+
+        data = read_map_arrays(path)
         robot = str(data["robot"]) if "robot" in data else ""
-        return cls(C.astype(float), D.astype(float), R.astype(float), float(data["resolution"]), robot)
+        return cls(data["centres"], data["index"], data["orientations"], float(data["resolution"]), robot)
 
 
 # ----------------------------------------------------------------------------- robot descriptions
@@ -200,54 +205,6 @@ def _chunk_counts(desc: tuple, centres: np.ndarray, orientations: np.ndarray, re
     return ok.reshape(m, K).sum(axis=1).astype(np.int64)
 
 
-# ----------------------------------------------------------------------------- chunk store
-class _Store:
-    """A folder of finished chunks: ``params.json`` and ``chunk_00000.npz`` … (see the module docstring)."""
-
-    def __init__(self, path: str | os.PathLike[str], fingerprint: str, params: dict) -> None:
-        self.path = Path(path)
-        self.fp = fingerprint
-        meta = self.path / "params.json"
-        if self.path.exists() and not self.path.is_dir():
-            raise ValueError(f"store: {str(self.path)!r} exists and is not a folder")
-        if self.path.is_dir():
-            try:
-                old = json.loads(meta.read_text(encoding="utf-8")).get("fingerprint")
-            except (OSError, ValueError):
-                old = None
-            if old != fingerprint:  # other parameters (or not a store of ours): start afresh
-                for f in self.path.glob("chunk_*.npz"):
-                    f.unlink()
-        else:
-            if not (self.path.parent if str(self.path.parent) else Path(".")).is_dir():
-                raise ValueError(f"store: folder {str(self.path.parent)!r} does not exist")
-            self.path.mkdir()
-        atomic_write(meta, json.dumps({"fingerprint": fingerprint, "parameters": params}, indent=1, sort_keys=True))
-
-    def _file(self, chunk: int) -> Path:
-        return self.path / f"chunk_{chunk:05d}.npz"
-
-    def read(self, chunk: int, centres: np.ndarray) -> np.ndarray | None:
-        f = self._file(chunk)
-        if not f.is_file():
-            return None
-        try:
-            with np.load(f, allow_pickle=False) as z:
-                if str(z["fingerprint"]) != self.fp or not np.array_equal(z["centres"], centres):
-                    return None
-                return z["counts"].astype(np.int64)
-        except (OSError, ValueError, KeyError):
-            return None  # damaged: recompute
-
-    def write(self, chunk: int, centres: np.ndarray, counts: np.ndarray) -> None:
-        buf = io.BytesIO()
-        np.savez(buf, counts=counts, centres=centres, fingerprint=np.str_(self.fp))
-        atomic_write(self._file(chunk), buf.getvalue())
-
-    def remove(self) -> None:
-        shutil.rmtree(self.path, ignore_errors=True)
-
-
 # ----------------------------------------------------------------------------- the map
 def _check_resolution(resolution: object) -> float:
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating)):
@@ -292,7 +249,8 @@ def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
 
 def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
-                   restarts: int | None = None, progress: bool | None = None) -> CapabilityMap:
+                   restarts: int | None = None, progress: bool | None = None,
+                   dashboard: bool = False) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
 
     Parameters
@@ -323,6 +281,8 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
         Random restarts of the numerical IK per target (default 20).
     progress : bool, optional
         Show a progress bar of chunks on stderr (default: only when stderr is a terminal).
+    dashboard : bool
+        With ``client=None``: serve Dask's dashboard on 127.0.0.1 (its link is given as a note).
 
     Returns
     -------
@@ -362,27 +322,33 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
     chain = planar_chain(rob)
     if chain is not None and chain.n < 2:
         chain = None
-    R = _orientation_set(orientations, chain)
-    K = len(R)
+    K_asked = int(orientations) if isinstance(orientations, (int, np.integer)) else len(orientations)  # type: ignore[arg-type]
     if chunk_size is None:
-        chunk_size = max(1, 4096 // K)
+        chunk_size = max(1, 4096 // max(K_asked, 1))
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
+    fixed = K_asked * (_BYTES_PER_ORIENTATION + _BYTES_PER_PROBLEM * int(chunk_size))
+    if fixed > MAX_MAP_BYTES:
+        raise InputError(f"orientations: {K_asked} orientations ({int(chunk_size)} voxels per chunk) need about "
+                         f"{fixed / 1e9:.3g} GB; robokit refuses maps above {MAX_MAP_BYTES / 1e9:.3g} GB "
+                         "(fewer orientations)")
+    R = _orientation_set(orientations, chain)
+    K = len(R)
     if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
                                 or samples < 1):
         raise ValueError(f"samples: expected a positive integer, got {samples!r}")
 
-    with _Cluster(client) as cl:
+    with _Cluster(client, dashboard) as cl:
         return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,
-                               int(seed), int(restarts), progress, t0)
+                               int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed)
 
 
-def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
 
-    keys, used = reachable_voxels(rob, res, samples=samples, seed=int(seed), chain=chain)
+    keys, used = reachable_voxels(rob, res, samples=samples, seed=int(seed), chain=chain, max_bytes=max_bytes)
     if chain is not None:
         centres = chain.from_plane(keys.astype(float) * res)
     else:
@@ -396,8 +362,21 @@ def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarra
                   voxels=M, chunks=n_chunks, version=_STORE_VERSION)
     fingerprint = hashlib.sha256(json.dumps(params, sort_keys=True).encode()).hexdigest()
     params["fingerprint"] = fingerprint
-    st = _Store(store, fingerprint, params) if store is not None else None
+    st = ChunkStore(store, fingerprint, params, K) if store is not None else None
+    try:
+        return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre)
+    finally:
+        if st is not None:
+            st.close()
 
+
+def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,
+           chunk_size: int, desc: tuple, restarts: int, seed: int, progress: bool | None, params: dict, t0: float,
+           t_pre: float) -> CapabilityMap:
+    """The orientation sweep over the chunks (those not already in the store ``st``)."""
+    K, M = len(R), len(centres)
+    n_chunks = params["chunks"]
+    fingerprint = params["fingerprint"]
     counts = np.zeros(M, dtype=np.int64)
     todo = []
     resumed = 0
@@ -414,6 +393,11 @@ def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarra
 
     def finish(c: int, result: np.ndarray) -> None:
         sl = slice(c * chunk_size, min(M, (c + 1) * chunk_size))
+        result = np.asarray(result)
+        if (result.shape != (sl.stop - sl.start,) or result.dtype.kind not in "iu"
+                or result.min(initial=0) < 0 or result.max(initial=0) > K):
+            raise InputError(f"scheduler: a worker returned an invalid result for chunk {c} "
+                             f"(expected {sl.stop - sl.start} counts in [0, {K}])")
         counts[sl] = result
         computed[0] += len(result)
         if st is not None:
@@ -441,27 +425,26 @@ def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarra
 
 
 class _Cluster:
-    """The Dask client for a call: None (serial), the caller's Client, or one made here (closed on exit)."""
+    """The Dask client for a call: None (serial), the caller's Client, a scheduler address
+    (probed and time-bounded, :func:`robokit.workspace.cluster.connect_scheduler`) or robokit's
+    own TLS cluster (:func:`robokit.workspace.cluster.local_cluster`), closed on exit."""
 
-    def __init__(self, client: Any) -> None:
+    def __init__(self, client: Any, dashboard: bool = False) -> None:
+        from robokit.workspace.cluster import connect_scheduler, local_cluster
+
         self.client: Any = None
         self.cluster: Any = None
+        self.security: Any = None
         self.own = False
         if isinstance(client, str) and client in _SERIAL:
             return
-        import logging
-
-        from distributed import Client, LocalCluster
-
         if client is None:
-            self.cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
-            self.client, self.own = Client(self.cluster), True
+            self.cluster, self.client, self.security = local_cluster(os.cpu_count() or 1, dashboard)
+            self.own = True
+            if dashboard:
+                warnings.warn(f"Dask dashboard: {self.client.dashboard_link}", RobokitWarning, stacklevel=3)
         elif isinstance(client, str):
-            try:
-                self.client, self.own = Client(client, timeout="10s"), True
-            except (OSError, TimeoutError, ValueError) as exc:
-                raise OSError(f"scheduler: cannot connect to {client!r}: {_first_line(exc)}") from None
+            self.client, self.own = connect_scheduler(client), True
         else:
             self.client = client
 
