@@ -28,10 +28,13 @@ How it is computed:
    per worker in flight. The random numbers of the numerical IK are seeded per chunk
    (``SeedSequence([seed, chunk])``), so the map is identical bit for bit wherever it runs;
 4. with a ``store`` folder, each finished chunk is written there as ``chunk_00042.npz``
-   (atomically) next to ``params.json``, the fingerprint of every parameter that affects the
-   result. A rerun with the same parameters reads the finished chunks back and computes
-   only the rest; a store with another fingerprint is emptied first. ``robokit workspace``
-   uses ``MAP.npz.chunks`` and removes it once ``MAP.npz`` is written.
+   (atomically) beside the marker ``robokit-store.json``, which holds the fingerprint of
+   every parameter that affects the result. A rerun with the same parameters reads the
+   finished chunks back (each checked; a damaged one is recomputed with a note) and
+   computes only the rest; a store with another fingerprint has its chunks removed first.
+   The folder must be robokit's own and is locked while a run uses it
+   (:mod:`robokit.workspace.store`). ``robokit workspace`` uses ``MAP.npz.chunks`` and
+   removes it once ``MAP.npz`` is written.
 """
 from __future__ import annotations
 
@@ -338,12 +341,19 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
                                 or samples < 1):
         raise ValueError(f"samples: expected a positive integer, got {samples!r}")
 
-    with _Cluster(client, dashboard) as cl:
-        return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,
-                               int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed)
+    if isinstance(store, bool):
+        raise InputError(f"store: expected a folder path, got {store!r}")
+    st = ChunkStore(store) if store is not None else None  # the folder checked and locked before any work
+    try:
+        with _Cluster(client, dashboard) as cl:
+            return _capability_map(rob, desc, kind, chain, R, res, cl.client, st, int(chunk_size), samples,
+                                   int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed)
+    finally:
+        if st is not None:
+            st.close()
 
 
-def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -362,12 +372,9 @@ def _capability_map(rob: Robot, desc: tuple, kind: str, chain: Any, R: np.ndarra
                   voxels=M, chunks=n_chunks, version=_STORE_VERSION)
     fingerprint = hashlib.sha256(json.dumps(params, sort_keys=True).encode()).hexdigest()
     params["fingerprint"] = fingerprint
-    st = ChunkStore(store, fingerprint, params, K) if store is not None else None
-    try:
-        return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre)
-    finally:
-        if st is not None:
-            st.close()
+    if st is not None:
+        st.begin(fingerprint, params, K)
+    return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre)
 
 
 def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,

@@ -73,9 +73,11 @@ def local_cluster(n_workers: int, dashboard: bool = False) -> tuple[Any, Any, An
     from distributed.security import Security
 
     security = Security.temporary()
+    # the scheduler always runs an HTTP server (health checks; the dashboard's pages only when
+    # asked): on 127.0.0.1 and a free port, never 8787 on every interface
     cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, protocol="tls://",
-                           host="127.0.0.1", security=security,
-                           dashboard_address="127.0.0.1:0" if dashboard else None, silence_logs=logging.ERROR)
+                           host="127.0.0.1", security=security, silence_logs=logging.ERROR,
+                           scheduler_kwargs={"dashboard": bool(dashboard), "dashboard_address": "127.0.0.1:0"})
     try:
         client = Client(cluster, security=security)
     except BaseException:

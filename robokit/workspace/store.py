@@ -146,35 +146,32 @@ def _open_marker(dir_fd: int, path: Path) -> int:
 class ChunkStore:
     """An open, locked chunk store (see the module docstring); close it (or use ``with``).
 
+    Opening checks the folder and takes the lock (errors before any work);
+    :meth:`begin` then sets the run's fingerprint and K.
+
     Parameters
     ----------
     path : path
         The store folder; created if it does not exist (its parent must).
-    fingerprint : str
-        The run's fingerprint (hex digest of its parameters).
-    params : dict
-        The parameters, written to the marker beside the fingerprint (JSON-able).
-    K : int
-        The number of orientations (chunk counts must be in [0, K]).
 
     Examples
     --------
     >>> import tempfile, os, numpy as np
     >>> folder = os.path.join(tempfile.mkdtemp(), "m.chunks")
-    >>> with ChunkStore(folder, "f00d", {}, K=4) as st:
+    >>> with ChunkStore(folder) as st:
+    ...     st.begin("f00d", {}, K=4)
     ...     st.write(0, np.zeros((2, 3)), np.array([4, 1]))
     ...     st.read(0, np.zeros((2, 3))).tolist()
     [4, 1]
     """
 
-    def __init__(self, path: str | os.PathLike[str], fingerprint: str, params: dict, K: int) -> None:
+    def __init__(self, path: str | os.PathLike[str]) -> None:
         self.path = Path(path)
-        self.fp = str(fingerprint)
-        self.K = int(K)
+        self.fp = ""
+        self.K = 0
         self.dir_fd = -1
         self.marker_fd = -1
-        marker = json.dumps({"robokit_chunk_store": 1, "fingerprint": self.fp, "parameters": params},
-                            indent=1, sort_keys=True, default=str).encode("utf-8")
+        marker = json.dumps({"robokit_chunk_store": 1, "fingerprint": None}).encode("utf-8")
         for _ in range(3):
             try:
                 self.dir_fd = _open_dir(self.path)
@@ -182,11 +179,11 @@ class ChunkStore:
                 if self._create(marker):
                     return
                 continue  # another run made it meanwhile: open it
-            self._adopt(marker)
+            self._adopt()
             return
         raise InputError(f"{_label(self.path)}: the folder keeps appearing and disappearing; is another program using it?")
 
-    def _adopt(self, marker: bytes) -> None:
+    def _adopt(self) -> None:
         """Use the existing folder ``self.dir_fd`` if it is a robokit store nobody else holds."""
         try:
             self.marker_fd = _open_marker(self.dir_fd, self.path)
@@ -196,17 +193,24 @@ class ChunkStore:
                 raise InputError(f"{_label(self.path)} holds files robokit did not write ({', '.join(map(repr, foreign[:3]))}"
                                  f"{', …' if len(foreign) > 3 else ''}); robokit leaves the folder alone: "
                                  "move them or choose another -o")
-            old = self._marker_fingerprint()
-            for name in os.listdir(self.dir_fd):
-                if _TMP.match(name) or (old != self.fp and _CHUNK.match(name)):
-                    os.unlink(name, dir_fd=self.dir_fd)
-            if old != self.fp:
-                os.ftruncate(self.marker_fd, 0)
-                os.pwrite(self.marker_fd, marker, 0)
-                os.fsync(self.marker_fd)
         except BaseException:
             self.close()
             raise
+
+    def begin(self, fingerprint: str, params: dict, K: int) -> None:
+        """Start a run with ``fingerprint`` (its ``params`` written to the marker) and K
+        orientations: chunks of another fingerprint are removed, those of this one kept."""
+        self.fp, self.K = str(fingerprint), int(K)
+        old = self._marker_fingerprint()
+        for name in os.listdir(self.dir_fd):
+            if _TMP.match(name) or (old != self.fp and _CHUNK.match(name)):
+                os.unlink(name, dir_fd=self.dir_fd)
+        if old != self.fp:
+            marker = json.dumps({"robokit_chunk_store": 1, "fingerprint": self.fp, "parameters": params},
+                                indent=1, sort_keys=True, default=str).encode("utf-8")
+            os.ftruncate(self.marker_fd, 0)
+            os.pwrite(self.marker_fd, marker, 0)
+            os.fsync(self.marker_fd)
 
     def _create(self, marker: bytes) -> bool:
         """Make the store: a hidden folder with the locked marker, renamed into place.
