@@ -155,8 +155,9 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
         np.rint(chain.to_plane(tool_positions(poe, pilot))[0] / resolution)
     box = float(np.prod(pk.max(axis=0) - pk.min(axis=0) + 3))
     if box > _MAX_BOX_VOXELS:
-        raise ValueError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
-                         f"use a coarser resolution (at most {_MAX_BOX_VOXELS:.0e} voxels)")
+        raise InputError(f"resolution: a map at {resolution:g} m spans about {box:.3g} voxels and would need "
+                         f"more than {GRID_BYTES_PER_VOXEL * box / 1e9:.3g} GB; robokit refuses maps above "
+                         f"{_MAX_BOX_VOXELS:.0e} voxels (use a coarser resolution)")
     if samples is None:
         samples = int(min(max(10 * box, 20_000), 4_000_000))
     if max_bytes is not None:

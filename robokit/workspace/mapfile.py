@@ -39,9 +39,9 @@ __all__ = ["Member", "MAP_MEMBERS", "CHUNK_MEMBERS", "MAX_FILE_BYTES", "MAX_MEMB
 #: Largest ``.npz`` file read (bytes).
 MAX_FILE_BYTES = 2 * 1024**3
 #: Largest declared uncompressed size of one member (bytes).
-MAX_MEMBER_BYTES = 2 * 1024**3
+MAX_MEMBER_BYTES = 1024**3
 #: Largest expansion of a deflated member (uncompressed / compressed size), above 1 MiB.
-MAX_RATIO = 1100
+MAX_RATIO = 200
 #: Longest string member (characters), e.g. a robot name.
 MAX_TEXT = 10_000
 

@@ -171,6 +171,7 @@ class ChunkStore:
         self.K = 0
         self.dir_fd = -1
         self.marker_fd = -1
+        self.created = False  # made by this object (removed again if it ends holding no chunk)
         marker = json.dumps({"robokit_chunk_store": 1, "fingerprint": None}).encode("utf-8")
         for _ in range(3):
             try:
@@ -244,6 +245,7 @@ class ChunkStore:
                 return False
             raise
         self.dir_fd, self.marker_fd = dfd, mfd
+        self.created = True
         return True
 
     def _marker_fingerprint(self) -> str | None:
@@ -309,7 +311,17 @@ class ChunkStore:
         _write_at(self.dir_fd, self._name(chunk), buf.getvalue())
 
     def close(self) -> None:
-        """Release the lock and the folder."""
+        """Release the lock and the folder; a store this object created that holds no chunk
+        (the run failed before finishing one) is removed."""
+        if self.created and self.dir_fd >= 0:
+            try:
+                if not any(_CHUNK.match(n) for n in os.listdir(self.dir_fd)):
+                    for name in os.listdir(self.dir_fd):
+                        if name == MARKER or _TMP.match(name):
+                            os.unlink(name, dir_fd=self.dir_fd)
+                    os.rmdir(self.path)
+            except OSError:
+                pass
         for attr in ("marker_fd", "dir_fd"):
             fd = getattr(self, attr)
             if fd >= 0:
