@@ -51,10 +51,29 @@ def test_own_cluster_refuses_clients_without_its_credentials():
         listening = [c.laddr for p in [me, *me.children(recursive=True)] for c in p.net_connections("tcp")
                      if c.status == psutil.CONN_LISTEN]
         assert listening and all(a.ip == "127.0.0.1" for a in listening), listening  # no dashboard on 0.0.0.0:8787
-        for attempt in (dict(address=addr), dict(address=addr.replace("tls://", "tcp://")),
-                        dict(address=addr, security=Security.temporary())):  # no / plain / someone else's credentials
-            with pytest.raises((OSError, TypeError, ValueError, TimeoutError)):
-                distributed.Client(timeout=5, **attempt)
+        import asyncio
+        import ssl
+
+        from distributed.comm import connect
+
+        anyone = ssl.create_default_context(ssl.Purpose.SERVER_AUTH)  # TLS, trusting any server, no client cert
+        anyone.check_hostname, anyone.verify_mode = False, ssl.CERT_NONE
+
+        async def identity(address, **kw):
+            comm = await connect(address, timeout=5, **kw)
+            try:
+                await comm.write({"op": "identity"})
+                return await asyncio.wait_for(comm.read(), 5)
+            finally:
+                comm.abort()
+
+        attempts = [(addr, {"ssl_context": anyone}),  # no credentials
+                    (addr.replace("tls://", "tcp://"), {}),  # plain TCP
+                    (addr, Security.temporary().get_connection_args("client"))]  # someone else's credentials
+        for address, kw in attempts:
+            with pytest.raises((OSError, TypeError, ValueError, asyncio.TimeoutError)):
+                asyncio.run(identity(address, **kw))
+        assert asyncio.run(identity(addr, **cl.security.get_connection_args("client")))["type"] == "Scheduler"
         with distributed.Client(addr, security=cl.security, timeout=20) as ours:
             assert ours.submit(sum, [1, 2, 3]).result() == 6
             serial = capability_map("rrr", 0.2, orientations=4, client="serial")
