@@ -135,8 +135,7 @@ def run_page(path: Path, fragment: str) -> _Page:
 @needs_chromium
 @pytest.mark.parametrize("fragment, says", [
     ("#q=%E0%A4%A", "not valid percent-encoding; ignored"),
-    ("#q=NaN", "expected 1 finite numbers"),
-    ("#q=0.1,0.2", "expected 1 finite numbers"),
+    ("#q=0.1,NaN", "expected 1 finite numbers"),  # NaN and the wrong count (more cases run under Node)
 ])
 def test_teach_page_survives_hostile_name_and_fragment(fragment, says, tmp_path, write):
     """A robot and joint named to end the script and open a comment, and a bad #q= fragment:

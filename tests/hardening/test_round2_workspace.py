@@ -395,7 +395,7 @@ class _Server:
     (None, "did not answer"),
     (struct.pack("<Q", 6 * 10**9) + b"\x00" * 64, "not a Dask scheduler"),
     (b"HTTP/1.1 200 OK\r\n\r\nhello", "not a Dask scheduler"),
-])
+], ids=["silent", "6GB-length-prefix", "http"])
 def test_scheduler_that_hangs_or_lies_is_refused(reply, word, tmp_path):
     server = _Server(reply)
     try:
@@ -415,5 +415,5 @@ def test_scheduler_probe_accepts_a_real_scheduler():
     from robokit.workspace.cluster import probe_scheduler
 
     with distributed.LocalCluster(n_workers=0, processes=False, protocol="tcp://", host="127.0.0.1",
-                                  dashboard_address=None) as lc:
+                                  scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"}) as lc:
         probe_scheduler(lc.scheduler_address, timeout=10)  # no exception: a Dask frame of sane size
