@@ -140,7 +140,27 @@ class CapabilityMap:
         The file is checked before anything is allocated and its values after
         (:func:`robokit.workspace.mapfile.read_map_arrays`: a regular file, the members'
         headers, sizes, dtypes, finite values, index in [0, 1], rotations, a positive
-        resolution); InputError naming the file and the member otherwise.
+        resolution).
+
+        Parameters
+        ----------
+        path : path
+            The ``.npz`` file (not a symbolic link).
+
+        Returns
+        -------
+        CapabilityMap
+            ``centres`` (M, 3) m, ``index`` (M,), ``orientations`` (K, 3, 3), ``resolution``
+            m, ``robot`` (the stored name or ""); InputError naming the file and the member
+            when a check fails.
+
+        Examples
+        --------
+        >>> import robokit, tempfile, os
+        >>> p = os.path.join(tempfile.mkdtemp(), "m.npz")
+        >>> _ = robokit.capability_map("rrr", 0.2, orientations=4, client="serial").save(p)
+        >>> CapabilityMap.load(p).orientations.shape
+        (4, 3, 3)
         """
         from robokit.workspace.mapfile import read_map_arrays
 
