@@ -103,7 +103,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
 
 
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
-                      scheduler: str | None = None) -> int:
+                      scheduler: str | None = None, dashboard: bool = False) -> int:
     """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
@@ -111,7 +111,8 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     interrupted run started again with the same arguments resumes there); the folder is
     removed once the map is written (:mod:`robokit.workspace.store`: only a folder robokit
     made, holding only its chunk files, is ever used or removed). ``scheduler``: a Dask scheduler address
-    (``tcp://host:port``), or None for a local cluster of one worker process per core.
+    (``tcp://host:port``), or None for a local cluster of one worker process per core
+    (TLS with per-run credentials; ``dashboard``: serve its dashboard on 127.0.0.1).
     """
     from robokit.workspace.capability import capability_map
     from robokit.workspace.store import remove_store
@@ -124,7 +125,8 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     if scheduler is not None and not scheduler.strip():
         raise ValueError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
-    cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store)
+    cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
+                          dashboard=dashboard)
     cmap.save(out)
     remove_store(store)  # only robokit's own marker and chunk files are ever deleted
     t = cmap.timings
