@@ -152,3 +152,38 @@ def test_teach_page_survives_hostile_name_and_fragment(fragment, says, tmp_path,
     assert p.text["rk-title"] == NAME
     assert says in p.text["rk-msg"], p.text["rk-msg"]
     assert "j<!--</script>" in p.text["rk-sliders"]
+
+
+def _npy_header_only(shape, dtype="<f8") -> bytes:
+    import io
+
+    buf = io.BytesIO()
+    np.lib.format.write_array_header_1_0(buf, {"descr": dtype, "fortran_order": False, "shape": shape})
+    return buf.getvalue()
+
+
+@pytest.mark.parametrize("name, content, word", [
+    ("huge.npy", _npy_header_only((10**11, 1)), "does not match the file's size"),
+    ("rows.npy", _npy_header_only((300_000, 1)) + b"\0" * 8 * 300_000, "K ≤ 200000"),
+    ("object.npy", _npy_header_only((2, 1), "|O") + b"\0" * 16, "expected real numbers"),
+    ("complex.npy", _npy_header_only((2, 1), "<c16") + b"\0" * 32, "expected real numbers"),
+    ("rows.csv", "0.1\n" * 300_001, "at most 200000"),
+])
+def test_trajectory_files_are_bounded(name, content, word, write, tmp_path):
+    """``robokit view --trajectory``: a .npy header is checked before loading and the rows are
+    bounded, under a 3 GB address-space limit (a (10¹¹, 1) header was a MemoryError)."""
+    import resource
+    import sys
+
+    traj = write(name, content)
+    model = write("pend.urdf", hs.pendulum_urdf())
+    out = tmp_path / "out.html"
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (3 * 1024**3, 3 * 1024**3))
+
+    p = subprocess.run([sys.executable, "-m", "robokit.cli", "view", str(model), "--trajectory", str(traj),
+                        "-o", str(out)], capture_output=True, text=True, timeout=hs.HANG_GUARD,
+                       env=hs.subprocess_env(), preexec_fn=limit)
+    hs.assert_one_line_error(hs.Run(p.returncode, p.stdout, p.stderr), "--trajectory", name, word)
+    assert not out.exists()
