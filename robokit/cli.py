@@ -119,6 +119,7 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--resolution", type=float, required=True, help="voxel size (m)")
     cm.add_argument("--orientations", type=int, default=100, help="number of tool orientations K (default 100)")
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
+    cm.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1")
     cm.add_argument("-o", "--output", required=True, help="output .npz file")
 
     # kinematic calibration (robokit.calibration)
@@ -184,7 +185,8 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "workspace":
         from robokit.commands import workspace_command
 
-        return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler)
+        return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler,
+                                 dashboard=args.dashboard)
     if args.command == "calibrate":
         from robokit.commands import calibrate_command
 

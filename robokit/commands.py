@@ -6,7 +6,6 @@ one line and an exit status).
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -83,6 +82,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     import tempfile
     import webbrowser
 
+    from robokit._names import safe_stem
     from robokit.description.loading import load
     from robokit.viz.teach import teach_html
 
@@ -94,9 +94,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
         return 0
-    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{robot.name}-", suffix=".html")
-    import os
-
+    fd, tmp = tempfile.mkstemp(prefix=f"robokit-teach-{safe_stem(robot.name)}-", suffix=".html")
     os.close(fd)
     atomic_write(tmp, page)
     print(f"wrote {tmp} ({len(page.encode('utf-8')) / 1e6:.1f} MB); opening it in the browser", file=sys.stderr)
@@ -106,16 +104,19 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
 
 
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
-                      scheduler: str | None = None) -> int:
+                      scheduler: str | None = None, dashboard: bool = False) -> int:
     """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
     atomically. Finished chunks go to ``OUTPUT.chunks/`` while the map is computed (an
     interrupted run started again with the same arguments resumes there); the folder is
-    removed once the map is written. ``scheduler``: a Dask scheduler address
-    (``tcp://host:port``), or None for a local cluster of one worker process per core.
+    removed once the map is written (:mod:`robokit.workspace.store`: only a folder robokit
+    made, holding only its chunk files, is ever used or removed). ``scheduler``: a Dask scheduler address
+    (``tcp://host:port``), or None for a local cluster of one worker process per core
+    (TLS with per-run credentials; ``dashboard``: serve its dashboard on 127.0.0.1).
     """
     from robokit.workspace.capability import capability_map
+    from robokit.workspace.store import remove_store
 
     out = _output_file(output, (".npz",))
     if not (np.isfinite(resolution) and resolution > 0):
@@ -125,9 +126,10 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     if scheduler is not None and not scheduler.strip():
         raise ValueError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
-    cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store)
+    cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
+                          dashboard=dashboard)
     cmap.save(out)
-    shutil.rmtree(store, ignore_errors=True)
+    remove_store(store)  # only robokit's own marker and chunk files are ever deleted
     t = cmap.timings
     print(f"wrote {out}: {len(cmap.centres)} voxels, {len(cmap.dexterous)} dexterous (index 1), "
           f"{t['problems']} IK problems in {t['total']:.1f} s", file=sys.stderr)

@@ -23,26 +23,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._optional import require
+from robokit.viz._labels import label_png
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
 __all__ = ["Scene"]
-
-
-def _label_png(text: str, color: str = "#222222") -> bytes:
-    """A small transparent PNG with ``text`` (for labels drawn on a plane in the scene)."""
-    matplotlib = require("matplotlib", "frame labels in the viewer")
-    matplotlib.use("Agg", force=False)
-    Figure = require("matplotlib.figure").Figure
-
-    fig = Figure(figsize=(1.6, 0.5), dpi=100)
-    fig.patch.set_alpha(0.0)
-    fig.text(0.5, 0.5, text, ha="center", va="center", fontsize=20, color=color, weight="bold")
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", transparent=True)
-    return buf.getvalue()
 
 
 def start_server() -> tuple[subprocess.Popen, str, str]:
@@ -174,7 +161,7 @@ class Scene:
             node["triad"].set_object(g.triad(scale))
             node.set_transform(poses[name])
             if labels:
-                png = g.PngImage(_label_png(name))
+                png = g.PngImage(label_png(name))
                 mat = g.MeshBasicMaterial(map=g.ImageTexture(image=png), transparent=True)
                 T = np.eye(4)
                 T[:3, 3] = [0.3 * scale, 0.3 * scale, 0.6 * scale]
@@ -314,7 +301,8 @@ class Scene:
 
     def notebook(self, height: int = 480, path: str | os.PathLike[str] | None = None) -> Any:
         """Show the scene in a Jupyter notebook: the self-contained page is written to a file
-        (default ``robokit_views/<robot>-<k>.html`` beside the notebook) and displayed in an
+        (default ``robokit_views/<robot>-<k>.html`` beside the notebook, ``<robot>`` the robot's name
+        made a plain file name by :func:`robokit._names.safe_stem`) and displayed in an
         ``IFrame``, so the executed notebook stays small (a meshed robot's page is 5–25 MB).
 
         Returns the ``IPython.display.IFrame``.
@@ -322,12 +310,13 @@ class Scene:
         IFrame = require("IPython.display", "showing a scene in a notebook").IFrame
 
         from robokit._io import atomic_write
+        from robokit._names import safe_stem
 
         if path is None:
             folder = Path("robokit_views")
             folder.mkdir(exist_ok=True)
             Scene._views += 1
-            path = folder / f"{self.robot.name}-{Scene._views}.html"
+            path = folder / f"{safe_stem(self.robot.name)}-{Scene._views}.html"
         path = Path(path)
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))

@@ -45,17 +45,18 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._optional import require
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
-    from robokit.viz.scene import Scene
 
 
 __all__ = [
     "NAMED_POSES",
     "SINGULAR_RATIO",
     "task_rows",
+    "teach_parameters",
     "teach_data",
     "teach_readouts",
     "teach_html",
@@ -171,7 +172,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     from pinocchio.visualize import MeshcatVisualizer
 
     from robokit.viz._meshes import mesh_parts
-    from robokit.viz.scene import _label_png
+    from robokit.viz._labels import label_png
 
     window = _RecordingWindow()
     vis = meshcat.Visualizer(window=window)
@@ -215,7 +216,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
         big = name in ("tool", robot.tip)
         node["triad"].set_object(g.triad(triad_scale * (1.4 if big else 1.0)))
         if robot.dh is not None:
-            mat = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(_label_png(name))), transparent=True)
+            mat = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(label_png(name))), transparent=True)
             T = np.eye(4)
             T[:3, 3] = [0.3 * triad_scale, 0.3 * triad_scale, 0.6 * triad_scale]
             node["label"].set_object(g.Box([0.8 * triad_scale, 0.25 * triad_scale, 1e-4 * triad_scale]), mat)
@@ -241,6 +242,44 @@ def _camera(points: np.ndarray, fill: float = 1.0) -> tuple[np.ndarray, np.ndarr
     return centre, centre + offset
 
 
+def teach_parameters(robot: Robot) -> dict:
+    """The robot's data the teach pendant's math needs (``teach_math.js``'s ``readouts``).
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot`
+        The arm (n joints).
+
+    Returns
+    -------
+    dict
+        Plain JSON-able values: ``n``; ``M`` (4×4 home pose of the tip in the base frame, m);
+        ``S`` (n lists of 6: the space screw axes ``(ω, v)`` of Lecture 4, base frame);
+        ``rows`` (task rows of the Jacobian, :func:`task_rows`); ``joints`` (per joint:
+        ``name``, ``type`` 'R'/'P', slider range ``lo``/``hi`` in rad/m — the joint limits, or
+        ±180° / ±1 m without limits — and ``limited``); ``singular_ratio`` and
+        ``singular_tol`` (:data:`SINGULAR_RATIO`, :data:`SINGULAR_TOL`).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> teach_parameters(robokit.load("twolink"))["rows"]
+    [3, 4]
+    """
+    types = _joint_types(robot)
+    rng = _slider_ranges(robot, types)
+    return {
+        "n": robot.n,
+        "M": robot.poe.M.tolist(),
+        "S": robot.poe.Slist.T.tolist(),
+        "rows": task_rows(robot),
+        "joints": [{"name": robot.joint_names[i], "type": types[i], "lo": float(rng[i, 0]), "hi": float(rng[i, 1]),
+                    "limited": bool(np.isfinite(robot.qlim[i]).all())} for i in range(robot.n)],
+        "singular_ratio": SINGULAR_RATIO,
+        "singular_tol": SINGULAR_TOL,
+    }
+
+
 def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002) -> dict:
     """Everything the teach page needs about ``robot``, as plain JSON-able values.
 
@@ -260,7 +299,9 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     zero = np.zeros(robot.n)
     q0 = zero if q is None else np.asarray(q, dtype=float)
     if q0.shape != (robot.n,):
-        raise ValueError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
+        raise InputError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
+    if not np.isfinite(q0).all():
+        raise InputError("q: contains NaN or infinite values")
     poses = _named_poses(robot)
     frame_names = _frame_names(robot)
 
@@ -291,20 +332,14 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
                        "T": poses0[name].tolist()})
     target, position = _camera(P)
-    rows = task_rows(robot)
+    params = teach_parameters(robot)
+    rows = params["rows"]
     return {
+        **params,
         "name": robot.name,
-        "n": robot.n,
         "tip": robot.tip,
-        "joints": [{"name": robot.joint_names[i], "type": types[i], "lo": float(rng[i, 0]), "hi": float(rng[i, 1]),
-                    "limited": bool(np.isfinite(robot.qlim[i]).all())} for i in range(robot.n)],
-        "M": robot.poe.M.tolist(),
-        "S": robot.poe.Slist.T.tolist(),
-        "rows": rows,
         "row_names": [ROW_NAMES[r] for r in rows],
         "row_symbols": list(ROW_SYMBOLS),
-        "singular_ratio": SINGULAR_RATIO,
-        "singular_tol": SINGULAR_TOL,
         "poses": {k: v.tolist() for k, v in poses.items()},
         "q0": q0.tolist(),
         "visuals": visuals,
@@ -378,9 +413,19 @@ def _meshcat_bundle() -> str:
     return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text(encoding="utf-8")
 
 
+#: Characters of a JSON text that could end or confuse the HTML element it is embedded in
+#: (``</script>``, ``<!--``, ``]]>``, ``&`` entities) or a JavaScript string (U+2028/9):
+#: written as JSON ``\\uXXXX`` escapes, which JSON.parse reads back unchanged.
+_SCRIPT_ESCAPES = {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028", "\u2029": "\\u2029"}
+
+
 def _script_json(obj: Any) -> str:
-    """JSON safe to put inside a <script> element."""
-    return json.dumps(obj, separators=(",", ":")).replace("</", "<\\/")
+    """JSON safe to put inside a ``<script>`` element: no ``<``, ``>``, ``&``, U+2028 or U+2029
+    (escaped inside strings, where alone they can occur; JSON's structure never holds them)."""
+    text = json.dumps(obj, separators=(",", ":"), allow_nan=False)
+    for ch, esc in _SCRIPT_ESCAPES.items():
+        text = text.replace(ch, esc)
+    return text
 
 
 def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None) -> str:
@@ -409,6 +454,7 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         f"<script>\n{_meshcat_bundle()}\n</script>\n"
         f"<script id=\"rk-robot\" type=\"application/json\">{_script_json(d)}</script>\n"
         f"<script>var RK_SCENE = {scene};</script>\n"
+        f"<script>\n{_asset('teach_math.js')}\n</script>\n"
         f"<script>\n{_asset('teach.js')}\n</script>\n"
         "</body>\n</html>\n"
     )
@@ -446,7 +492,7 @@ def _readouts_html(robot: Robot, r: dict) -> str:
     )
 
 
-def teach_widget(scene: Scene, q: ArrayLike | None = None, height: int = 420) -> Any:
+def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> Any:
     """A notebook teach pendant on a :class:`robokit.viz.Scene`: ipywidgets sliders (degrees for
     revolute joints, metres for prismatic ones), named-pose buttons, the scene's live meshcat
     view (an iframe of its server) and the readouts of :func:`teach_readouts`.

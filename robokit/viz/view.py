@@ -19,19 +19,53 @@ if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
 
-__all__ = ["view_html", "load_trajectory"]
+__all__ = ["view_html", "load_trajectory", "MAX_TRAJECTORY_ROWS"]
+
+#: Most configurations a ``--trajectory`` file may hold (an hour at 30 frames per second is 108 000).
+MAX_TRAJECTORY_ROWS = 200_000
+
+
+def _npy_shape(path: Path) -> tuple[int, ...]:
+    """The shape a ``.npy`` file declares, checked from its header before anything is loaded:
+    a real-number dtype and header plus data exactly the file's size (ValueError otherwise)."""
+    import stat
+
+    st = os.stat(path)
+    if not stat.S_ISREG(st.st_mode):
+        raise ValueError("not a regular file")
+    with open(path, "rb") as f:
+        version = np.lib.format.read_magic(f)
+        if version == (1, 0):
+            shape, _, dtype = np.lib.format.read_array_header_1_0(f, max_header_size=10_000)
+        else:
+            shape, _, dtype = np.lib.format.read_array_header_2_0(f, max_header_size=10_000)
+        start = f.tell()
+    if dtype.hasobject or dtype.kind not in "fiu" or dtype.fields is not None:
+        raise ValueError(f"dtype {dtype.str!r}: expected real numbers")
+    if start + int(np.prod(shape, dtype=object)) * dtype.itemsize != st.st_size:
+        raise ValueError(f"its header declares shape {tuple(shape)}, which does not match the file's size")
+    return tuple(shape)
 
 
 def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
-    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise."""
+    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise.
+
+    At most :data:`MAX_TRAJECTORY_ROWS` configurations; a ``.npy`` file's header (shape,
+    dtype, size) is checked before its data are loaded.
+    """
     p = Path(path)
     if not p.is_file():
         raise ValueError(f"--trajectory: file {str(p)!r} not found")
     try:
         if p.suffix.lower() == ".npy":
+            shape = _npy_shape(p)
+            if len(shape) != 2 or shape[1] != n or not 0 < shape[0] <= MAX_TRAJECTORY_ROWS:
+                raise ValueError(f"shape {shape}; expected (K, {n}) joint values with 1 ≤ K ≤ {MAX_TRAJECTORY_ROWS}")
             Q = np.load(p, allow_pickle=False)
         elif p.suffix.lower() == ".csv":
             lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.startswith("#")]
+            if len(lines) > MAX_TRAJECTORY_ROWS + 1:
+                raise ValueError(f"{len(lines)} rows; at most {MAX_TRAJECTORY_ROWS} configurations")
             rows = []
             for k, ln in enumerate(lines):
                 try:

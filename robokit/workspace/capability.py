@@ -28,10 +28,13 @@ How it is computed:
    per worker in flight. The random numbers of the numerical IK are seeded per chunk
    (``SeedSequence([seed, chunk])``), so the map is identical bit for bit wherever it runs;
 4. with a ``store`` folder, each finished chunk is written there as ``chunk_00042.npz``
-   (atomically) next to ``params.json``, the fingerprint of every parameter that affects the
-   result. A rerun with the same parameters reads the finished chunks back and computes
-   only the rest; a store with another fingerprint is emptied first. ``robokit workspace``
-   uses ``MAP.npz.chunks`` and removes it once ``MAP.npz`` is written.
+   (atomically) beside the marker ``robokit-store.json``, which holds the fingerprint of
+   every parameter that affects the result. A rerun with the same parameters reads the
+   finished chunks back (each checked; a damaged one is recomputed with a note) and
+   computes only the rest; a store with another fingerprint has its chunks removed first.
+   The folder must be robokit's own and is locked while a run uses it
+   (:mod:`robokit.workspace.store`). ``robokit workspace`` uses ``MAP.npz.chunks`` and
+   removes it once ``MAP.npz`` is written.
 """
 from __future__ import annotations
 
@@ -39,8 +42,8 @@ import hashlib
 import io
 import json
 import os
-import shutil
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, TYPE_CHECKING
@@ -51,17 +54,42 @@ from numpy.typing import ArrayLike
 from robokit._optional import require
 from robokit._io import atomic_write
 from robokit.workspace.map_robot import MapRobot, map_robot_of
+from robokit.errors import InputError, RobokitWarning
+from robokit.workspace.mapfile import Member
+from robokit.workspace.store import ChunkStore
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
     from robokit.description.spec import RobotSpec
 
-__all__ = ["CapabilityMap", "capability_map"]
+__all__ = ["CapabilityMap", "capability_map", "MAX_MAP_BYTES"]
+
+#: The map-file members that describe the robot (:mod:`robokit.workspace.map_robot`), read and
+#: checked with the map's own members.
+ROBOT_MEMBERS = {
+    "robot_kind": Member((), "U", required=False),
+    "robot_model": Member((), "U", required=False),
+    "robot_tip": Member((), "U", required=False),
+    "robot_dh": Member((), "U", required=False, max_text=1_000_000),  # a DH table's YAML text
+    "robot_joint_types": Member((None,), "U", required=False),
+    "robot_joint_placements": Member((None, 4, 4), "f", required=False),
+    "robot_joint_axes": Member((None, 3), "f", required=False),
+    "robot_tip_placement": Member((4, 4), "f", required=False),
+}
 
 #: Format version of the chunk store; part of the fingerprint.
-_STORE_VERSION = 1
+_STORE_VERSION = 2
 _SERIAL = ("serial", "local-process")
+
+#: The most memory a capability map may need (bytes): its orientation set, one chunk's IK
+#: targets and its grid (:func:`robokit.workspace.grid.reachable_voxels`); larger maps are refused
+#: up front, saying how much they would need.
+MAX_MAP_BYTES = 4 * 1024**3
+#: Bytes per orientation of the set (a float64 3×3 matrix and the quaternions it is built from).
+_BYTES_PER_ORIENTATION = 160
+#: Bytes per IK problem of a chunk (its 4×4 float64 target and the solver's work arrays).
+_BYTES_PER_PROBLEM = 256
 
 
 @dataclass
@@ -131,31 +159,41 @@ class CapabilityMap:
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> "CapabilityMap":
-        """Read a map written by :meth:`save` or ``robokit workspace``; ValueError naming the file if it is not one."""
-        p = Path(path)
-        if not p.is_file():
-            raise ValueError(f"map: file {str(p)!r} not found")
-        try:
-            with np.load(p, allow_pickle=False) as z:
-                data = {k: z[k] for k in z.files}
-        except (OSError, ValueError) as exc:
-            raise ValueError(f"map: cannot read {str(p)!r} as an .npz file: {exc}") from None
-        missing = [k for k in ("centres", "index", "orientations", "resolution") if k not in data]
-        if missing:
-            raise ValueError(f"map: {str(p)!r} is not a capability map (missing {', '.join(missing)})")
-        C, D, R = data["centres"], data["index"], data["orientations"]
-        if C.ndim != 2 or C.shape[1] != 3 or D.shape != (len(C),) or R.ndim != 3 or R.shape[1:] != (3, 3):
-            raise ValueError(f"map: {str(p)!r} has inconsistent shapes: centres {C.shape}, index {D.shape}, "
-                             f"orientations {R.shape}")
-        description, note = MapRobot.from_arrays(data, source=str(p))
+        """Read a map written by :meth:`save` or ``robokit workspace``.
+
+        The file is checked before anything is allocated and its values after
+        (:func:`robokit.workspace.mapfile.read_map_arrays`: a regular file, the members'
+        headers, sizes, dtypes, finite values, index in [0, 1], rotations, a positive
+        resolution).
+
+        Parameters
+        ----------
+        path : path
+            The ``.npz`` file (not a symbolic link).
+
+        Returns
+        -------
+        CapabilityMap
+            ``centres`` (M, 3) m, ``index`` (M,), ``orientations`` (K, 3, 3), ``resolution``
+            m, ``robot`` (the stored name or ""); InputError naming the file and the member
+            when a check fails.
+
+        Examples
+        --------
+        >>> import robokit, tempfile, os
+        >>> p = os.path.join(tempfile.mkdtemp(), "m.npz")
+        >>> _ = robokit.capability_map("rrr", 0.2, orientations=4, client="serial").save(p)
+        >>> CapabilityMap.load(p).orientations.shape
+        (4, 3, 3)
+        """
+        from robokit.workspace.mapfile import read_map_arrays
+
+        data = read_map_arrays(path, extra=ROBOT_MEMBERS)
+        description, note = MapRobot.from_arrays(data, source=str(path))
         if note:
-            import warnings
-
-            from robokit.errors import RobokitWarning
-
             warnings.warn(note, RobokitWarning, stacklevel=2)
-        robot = description.name if description is not None else ""
-        return cls(C.astype(float), D.astype(float), R.astype(float), float(data["resolution"]), robot,
+        robot = description.name if description is not None else (str(data["robot"]) if "robot" in data else "")
+        return cls(data["centres"], data["index"], data["orientations"], float(data["resolution"]), robot,
                    description=description)
 
 
@@ -218,54 +256,6 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
     return ok.reshape(m, K).sum(axis=1).astype(np.int64)
 
 
-# ----------------------------------------------------------------------------- chunk store
-class _Store:
-    """A folder of finished chunks: ``params.json`` and ``chunk_00000.npz`` … (see the module docstring)."""
-
-    def __init__(self, path: str | os.PathLike[str], fingerprint: str, params: dict) -> None:
-        self.path = Path(path)
-        self.fp = fingerprint
-        meta = self.path / "params.json"
-        if self.path.exists() and not self.path.is_dir():
-            raise ValueError(f"store: {str(self.path)!r} exists and is not a folder")
-        if self.path.is_dir():
-            try:
-                old = json.loads(meta.read_text(encoding="utf-8")).get("fingerprint")
-            except (OSError, ValueError):
-                old = None
-            if old != fingerprint:  # other parameters (or not a store of ours): start afresh
-                for f in self.path.glob("chunk_*.npz"):
-                    f.unlink()
-        else:
-            if not (self.path.parent if str(self.path.parent) else Path(".")).is_dir():
-                raise ValueError(f"store: folder {str(self.path.parent)!r} does not exist")
-            self.path.mkdir()
-        atomic_write(meta, json.dumps({"fingerprint": fingerprint, "parameters": params}, indent=1, sort_keys=True))
-
-    def _file(self, chunk: int) -> Path:
-        return self.path / f"chunk_{chunk:05d}.npz"
-
-    def read(self, chunk: int, centres: np.ndarray) -> np.ndarray | None:
-        f = self._file(chunk)
-        if not f.is_file():
-            return None
-        try:
-            with np.load(f, allow_pickle=False) as z:
-                if str(z["fingerprint"]) != self.fp or not np.array_equal(z["centres"], centres):
-                    return None
-                return z["counts"].astype(np.int64)
-        except (OSError, ValueError, KeyError):
-            return None  # damaged: recompute
-
-    def write(self, chunk: int, centres: np.ndarray, counts: np.ndarray) -> None:
-        buf = io.BytesIO()
-        np.savez(buf, counts=counts, centres=centres, fingerprint=np.str_(self.fp))
-        atomic_write(self._file(chunk), buf.getvalue())
-
-    def remove(self) -> None:
-        shutil.rmtree(self.path, ignore_errors=True)
-
-
 # ----------------------------------------------------------------------------- the map
 def _check_resolution(resolution: object) -> float:
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating)):
@@ -310,7 +300,8 @@ def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
 
 def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
-                   restarts: int | None = None, progress: bool | None = None) -> CapabilityMap:
+                   restarts: int | None = None, progress: bool | None = None,
+                   dashboard: bool = False) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
 
     Parameters
@@ -343,6 +334,8 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
         Random restarts of the numerical IK per target (default 20).
     progress : bool, optional
         Show a progress bar of chunks on stderr (default: only when stderr is a terminal).
+    dashboard : bool
+        With ``client=None``: serve Dask's dashboard on 127.0.0.1 (its link is given as a note).
 
     Returns
     -------
@@ -382,27 +375,40 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     chain = planar_chain(rob)
     if chain is not None and chain.n < 2:
         chain = None
-    R = _orientation_set(orientations, chain)
-    K = len(R)
+    K_asked = int(orientations) if isinstance(orientations, (int, np.integer)) else len(orientations)  # type: ignore[arg-type]
     if chunk_size is None:
-        chunk_size = max(1, 4096 // K)
+        chunk_size = max(1, 4096 // max(K_asked, 1))
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
+    fixed = K_asked * (_BYTES_PER_ORIENTATION + _BYTES_PER_PROBLEM * int(chunk_size))
+    if fixed > MAX_MAP_BYTES:
+        raise InputError(f"orientations: {K_asked} orientations ({int(chunk_size)} voxels per chunk) need about "
+                         f"{fixed / 1e9:.3g} GB; robokit refuses maps above {MAX_MAP_BYTES / 1e9:.3g} GB "
+                         "(fewer orientations)")
+    R = _orientation_set(orientations, chain)
+    K = len(R)
     if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
                                 or samples < 1):
         raise ValueError(f"samples: expected a positive integer, got {samples!r}")
 
-    with _Cluster(client) as cl:
-        return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,
-                               int(seed), int(restarts), progress, t0)
+    if isinstance(store, bool):
+        raise InputError(f"store: expected a folder path, got {store!r}")
+    st = ChunkStore(store) if store is not None else None  # the folder checked and locked before any work
+    try:
+        with _Cluster(client, dashboard) as cl:
+            return _capability_map(rob, desc, kind, chain, R, res, cl.client, st, int(chunk_size), samples,
+                                   int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed)
+    finally:
+        if st is not None:
+            st.close()
 
 
-def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
 
-    keys, used = reachable_voxels(rob, res, samples=samples, seed=int(seed), chain=chain)
+    keys, used = reachable_voxels(rob, res, samples=samples, seed=int(seed), chain=chain, max_bytes=max_bytes)
     if chain is not None:
         centres = chain.from_plane(keys.astype(float) * res)
     else:
@@ -416,8 +422,18 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
                   voxels=M, chunks=n_chunks, version=_STORE_VERSION)
     fingerprint = hashlib.sha256(json.dumps(params, sort_keys=True).encode()).hexdigest()
     params["fingerprint"] = fingerprint
-    st = _Store(store, fingerprint, params) if store is not None else None
+    if st is not None:
+        st.begin(fingerprint, params, K)
+    return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre)
 
+
+def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,
+           chunk_size: int, desc: RobotSpec, restarts: int, seed: int, progress: bool | None, params: dict, t0: float,
+           t_pre: float) -> CapabilityMap:
+    """The orientation sweep over the chunks (those not already in the store ``st``)."""
+    K, M = len(R), len(centres)
+    n_chunks = params["chunks"]
+    fingerprint = params["fingerprint"]
     counts = np.zeros(M, dtype=np.int64)
     todo = []
     resumed = 0
@@ -434,6 +450,11 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
 
     def finish(c: int, result: np.ndarray) -> None:
         sl = slice(c * chunk_size, min(M, (c + 1) * chunk_size))
+        result = np.asarray(result)
+        if (result.shape != (sl.stop - sl.start,) or result.dtype.kind not in "iu"
+                or result.min(initial=0) < 0 or result.max(initial=0) > K):
+            raise InputError(f"scheduler: a worker returned an invalid result for chunk {c} "
+                             f"(expected {sl.stop - sl.start} counts in [0, {K}])")
         counts[sl] = result
         computed[0] += len(result)
         if st is not None:
@@ -461,28 +482,26 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
 
 
 class _Cluster:
-    """The Dask client for a call: None (serial), the caller's Client, or one made here (closed on exit)."""
+    """The Dask client for a call: None (serial), the caller's Client, a scheduler address
+    (probed and time-bounded, :func:`robokit.workspace.cluster.connect_scheduler`) or robokit's
+    own TLS cluster (:func:`robokit.workspace.cluster.local_cluster`), closed on exit."""
 
-    def __init__(self, client: Any) -> None:
+    def __init__(self, client: Any, dashboard: bool = False) -> None:
+        from robokit.workspace.cluster import connect_scheduler, local_cluster
+
         self.client: Any = None
         self.cluster: Any = None
+        self.security: Any = None
         self.own = False
         if isinstance(client, str) and client in _SERIAL:
             return
-        import logging
-
-        distributed = require("distributed", "a capability map on a Dask cluster")
-        Client, LocalCluster = distributed.Client, distributed.LocalCluster
-
         if client is None:
-            self.cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
-            self.client, self.own = Client(self.cluster), True
+            self.cluster, self.client, self.security = local_cluster(os.cpu_count() or 1, dashboard)
+            self.own = True
+            if dashboard:
+                warnings.warn(f"Dask dashboard: {self.client.dashboard_link}", RobokitWarning, stacklevel=3)
         elif isinstance(client, str):
-            try:
-                self.client, self.own = Client(client, timeout="10s"), True
-            except (OSError, TimeoutError, ValueError) as exc:
-                raise OSError(f"scheduler: cannot connect to {client!r}: {_first_line(exc)}") from None
+            self.client, self.own = connect_scheduler(client), True
         else:
             self.client = client
 

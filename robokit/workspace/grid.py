@@ -21,6 +21,8 @@ from typing import Any, Callable, TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit.errors import InputError
+
 if TYPE_CHECKING:
     from robokit.description.poe import PoEParams
     from robokit.description.robot import Robot
@@ -28,6 +30,9 @@ if TYPE_CHECKING:
 __all__ = ["reachable_voxels"]
 
 _BATCH = 8192
+#: Bytes per voxel of the grid and the map at their peak (grown int64 codes and their sorted
+#: copy, int64 keys, float64 centres, counts and index).
+GRID_BYTES_PER_VOXEL = 56
 _MAX_BOX_VOXELS = 200_000_000
 
 
@@ -90,7 +95,8 @@ def _sampler(qlim: ArrayLike, seed: int | np.random.Generator | None) -> Callabl
     return lambda m: rng.uniform(lo, hi, size=(m, len(lo)))
 
 
-def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = None, seed: int = 0, chain: Any = None) -> tuple[np.ndarray, int]:
+def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = None, seed: int = 0, chain: Any = None,
+                     max_bytes: float | None = None) -> tuple[np.ndarray, int]:
     """Integer lattice keys of the voxels the pre-pass marks (see the module docstring).
 
     Parameters
@@ -105,6 +111,11 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
         Seed of the configuration samples.
     chain : :class:`robokit.ik.planar.PlanarChain`, optional
         For a planar arm: keys are 2-D plane coordinates.
+    max_bytes : float, optional
+        Refuse (``InputError``, before sampling) when the grid could need more memory than
+        this: ``GRID_BYTES_PER_VOXEL · 3^d · min(box, samples)`` bytes, ``box`` the voxels of
+        the sampled bounding box (the marked voxels grown by one in every direction, their
+        keys, centres, counts and index).
 
     Returns
     -------
@@ -144,10 +155,18 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
         np.rint(chain.to_plane(tool_positions(poe, pilot))[0] / resolution)
     box = float(np.prod(pk.max(axis=0) - pk.min(axis=0) + 3))
     if box > _MAX_BOX_VOXELS:
-        raise ValueError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
-                         f"use a coarser resolution (at most {_MAX_BOX_VOXELS:.0e} voxels)")
+        raise InputError(f"resolution: a map at {resolution:g} m spans about {box:.3g} voxels and would need "
+                         f"more than {GRID_BYTES_PER_VOXEL * box / 1e9:.3g} GB; robokit refuses maps above "
+                         f"{_MAX_BOX_VOXELS:.0e} voxels (use a coarser resolution)")
     if samples is None:
         samples = int(min(max(10 * box, 20_000), 4_000_000))
+    if max_bytes is not None:
+        most = 3**dims * min(box, float(samples))
+        need = GRID_BYTES_PER_VOXEL * most
+        if need > max_bytes:
+            raise InputError(f"resolution: a map at {resolution:g} m may hold {most:.3g} voxels and need about "
+                             f"{need / 1e9:.3g} GB; robokit refuses maps above {max_bytes / 1e9:.3g} GB "
+                             "(use a coarser resolution)")
     found = [codes_of(pilot)]
     left = int(samples) - len(pilot)
     while left > 0:

@@ -1,0 +1,195 @@
+"""Hardening round 2, viewers: a robot/joint name never becomes a path, and the teach page
+survives any name and any URL fragment and says what it ignored."""
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+from html.parser import HTMLParser
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+import pytest
+
+import hardening_support as hs
+from robokit._names import MAX_STEM, safe_stem
+
+CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if os.path.exists("/usr/bin/chromium") else None)
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
+
+#: Names that end HTML comments/scripts, climb folders, or are not file names at all.
+HOSTILE = ["../../X", "a/../../b", "/etc/passwd", "..", ".", "", "-rf", "x<!--</script><script>alert(1)</script>",
+           "\u2028\u2029", "C:\\Windows\\x", "名前/../ロボット", "a\x00b", "~/x", "$HOME", "x" * 5000, "....//....//y"]
+
+
+@pytest.mark.parametrize("name", HOSTILE, ids=range(len(HOSTILE)))
+def test_safe_stem_is_one_plain_component(name, tmp_path):
+    stem = safe_stem(name)
+    assert 1 <= len(stem) <= MAX_STEM
+    assert ".." not in stem and "/" not in stem and "\\" not in stem and not stem.startswith((".", "-"))
+    assert all(c.isascii() and (c.isalnum() or c in "_.+-") for c in stem)
+    p = tmp_path / f"{stem}.html"
+    assert p.resolve().parent == tmp_path.resolve()  # a file of this folder, nothing else
+    p.write_text("ok")
+
+
+def _hostile_urdf(write, robot_name, joint_name="shoulder"):
+    text = hs.pendulum_urdf().replace('name="pendulum"', "name=" + quoteattr(robot_name))
+    return write("hostile.urdf", text.replace('name="shoulder"', "name=" + quoteattr(joint_name)))
+
+
+def test_notebook_page_stays_in_robokit_views(tmp_path, monkeypatch):
+    pytest.importorskip("IPython")
+    import robokit
+    from robokit.description.dh import DHLink, DHTable
+    from robokit.viz import Scene
+
+    work = tmp_path / "a" / "b"
+    work.mkdir(parents=True)
+    monkeypatch.chdir(work)
+    robot = robokit.load(DHTable("../../X", "standard", (DHLink(a=0.3), DHLink(a=0.2))))
+    with Scene(robot) as scene:
+        frame = scene.notebook()
+    written = [p for p in tmp_path.rglob("*") if p.is_file()]
+    assert len(written) == 1 and written[0].parent == work / "robokit_views", written
+    assert Path(frame.src).resolve() == written[0].resolve()
+
+
+def test_teach_without_output_stays_in_the_temporary_folder(tmp_path, write):
+    src = _hostile_urdf(write, "pend/../../../../escaped")
+    tmp = tmp_path / "tmp" / "deep"
+    tmp.mkdir(parents=True)
+    before = {p for p in tmp_path.rglob("*")}
+    run = hs.run_cli("teach", src, cwd=tmp_path, env=hs.subprocess_env(TMPDIR=str(tmp), BROWSER="true"))
+    assert run.rc == 0, run.err
+    new = [p for p in tmp_path.rglob("*") if p not in before and p.is_file()]
+    assert len(new) == 1 and new[0].parent == tmp and new[0].name.startswith("robokit-teach-pend_escaped"), new
+    assert not list(Path("/").glob("escaped*"))
+
+
+class _Page(HTMLParser):
+    """Script elements (type, text) and the text of the elements with an id."""
+
+    def __init__(self):
+        super().__init__()
+        self.scripts, self.text, self.attrs, self._stack = [], {}, {}, []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "script":
+            self.scripts.append([a.get("type"), ""])
+        self._stack.append((tag, a.get("id")))
+        if a.get("id"):
+            self.attrs[a["id"]] = a
+            self.text.setdefault(a["id"], "")
+
+    def handle_endtag(self, tag):
+        while self._stack:
+            t, _ = self._stack.pop()
+            if t == tag:
+                break
+
+    def handle_data(self, data):
+        if self._stack and self._stack[-1][0] == "script" and self.scripts:
+            self.scripts[-1][1] += data
+        for _, i in self._stack:
+            if i:
+                self.text[i] = self.text.get(i, "") + data
+
+
+NAME = "x<!--</script><script>alert(1)</script>&amp;]]>"
+
+
+def test_teach_page_json_survives_any_name():
+    """The embedded JSON block holds no '<', '>' or '&' and parses back to the exact names."""
+    import robokit
+    from robokit.description.dh import DHLink, DHTable
+    from robokit.viz.teach import teach_html
+
+    name = NAME + "\u2028\u2029 -->"
+    page = teach_html(robokit.load(DHTable(name, "standard", (DHLink(a=0.3), DHLink(a=0.2)))))
+    p = _Page()
+    p.feed(page)
+    assert [t for t, _ in p.scripts] == [None, "application/json", None, None, None]
+    block = p.scripts[1][1]
+    assert not set("<>&\u2028\u2029") & set(block)
+    assert json.loads(block)["name"] == name
+    assert page.count("</script>") == 5  # no element ended early, none injected
+
+
+def run_page(path: Path, fragment: str) -> _Page:
+    with tempfile.TemporaryDirectory() as profile:
+        out = subprocess.run(
+            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
+             "--virtual-time-budget=15000", "--dump-dom", path.resolve().as_uri() + fragment],
+            capture_output=True, text=True, timeout=180)
+    assert out.returncode == 0, out.stderr[-2000:]
+    p = _Page()
+    p.feed(out.stdout)
+    return p
+
+
+@needs_chromium
+@pytest.mark.parametrize("fragment, says", [
+    ("#q=%E0%A4%A", "not valid percent-encoding; ignored"),
+    ("#q=0.1,NaN", "expected 1 finite numbers"),  # NaN and the wrong count (more cases run under Node)
+])
+def test_teach_page_survives_hostile_name_and_fragment(fragment, says, tmp_path, write):
+    """A robot and joint named to end the script and open a comment, and a bad #q= fragment:
+    the page's script runs (readouts present), shows the names as text and keeps saying what
+    it ignored."""
+    src = _hostile_urdf(write, NAME, "j<!--</script>")
+    page = tmp_path / "teach.html"
+    run = hs.run_cli("teach", src, "-o", page)
+    assert run.rc == 0, run.err
+    p = run_page(page, fragment)
+    assert "data-t" in p.attrs.get("rk-pose", {}), "the page's script did not run"
+    T = np.array([float(x) for x in p.attrs["rk-pose"]["data-t"].split(",")]).reshape(4, 4)
+    assert np.allclose(T[:3, 3], [hs.PEND_L, 0, 0], atol=1e-12)  # q = 0: the closed form
+    assert p.text["rk-title"] == NAME
+    assert says in p.text["rk-msg"], p.text["rk-msg"]
+    assert "j<!--</script>" in p.text["rk-sliders"]
+
+
+def _npy_header_only(shape, dtype="<f8") -> bytes:
+    import io
+
+    buf = io.BytesIO()
+    np.lib.format.write_array_header_1_0(buf, {"descr": dtype, "fortran_order": False, "shape": shape})
+    return buf.getvalue()
+
+
+TRAJECTORIES = [
+    ("huge.npy", _npy_header_only((10**11, 1)), "does not match the file's size"),
+    ("rows.npy", _npy_header_only((300_000, 1)) + b"\0" * 8 * 300_000, "K ≤ 200000"),
+    ("object.npy", _npy_header_only((2, 1), "|O") + b"\0" * 16, "expected real numbers"),
+    ("complex.npy", _npy_header_only((2, 1), "<c16") + b"\0" * 32, "expected real numbers"),
+    ("rows.csv", "0.1\n" * 300_001, "at most 200000"),
+]
+
+
+@pytest.mark.parametrize("name, content, word", TRAJECTORIES, ids=[t[0] for t in TRAJECTORIES])
+def test_trajectory_files_are_bounded(name, content, word, write, tmp_path, main_cli):
+    """``robokit view --trajectory``: a .npy header is checked before loading and the rows are
+    bounded (a (10¹¹, 1) header was a MemoryError; it runs under a 3 GB address-space limit)."""
+    import resource
+    import sys
+
+    traj = write(name, content)
+    model = write("pend.urdf", hs.pendulum_urdf())
+    out = tmp_path / "out.html"
+    if name != "huge.npy":
+        run = main_cli("view", model, "--trajectory", traj, "-o", out)
+    else:
+        def limit():
+            resource.setrlimit(resource.RLIMIT_AS, (3 * 1024**3, 3 * 1024**3))
+
+        p = subprocess.run([sys.executable, "-m", "robokit.cli", "view", str(model), "--trajectory", str(traj),
+                            "-o", str(out)], capture_output=True, text=True, timeout=hs.HANG_GUARD,
+                           env=hs.subprocess_env(), preexec_fn=limit)
+        run = hs.Run(p.returncode, p.stdout, p.stderr)
+    hs.assert_one_line_error(run, "--trajectory", name, word)
+    assert not out.exists()

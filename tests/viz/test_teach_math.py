@@ -1,0 +1,196 @@
+"""The teach pendant's math exists once per language: Python (``teach_readouts``, via Pinocchio)
+and JavaScript (``teach_math.js``, DOM-free). Golden values written from the Python readouts
+(``teach_golden.json``) are checked against Python here and against the JS module with Node.
+
+Regenerate the golden file after a deliberate change of the readouts:
+``python tests/viz/test_teach_math.py``.
+"""
+import json
+import math
+import shutil
+import subprocess
+import sys
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+GOLDEN = Path(__file__).with_name("teach_golden.json")
+NODE = shutil.which("node")
+needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
+MATH_JS = Path(str(resources.files("robokit.viz").joinpath("teach_math.js")))
+
+
+def _stanford():
+    """A spatial R-R-P-R-R-R arm (Stanford-like) with one prismatic joint, as a DH table."""
+    from robokit.description.dh import DHLink, DHTable
+
+    h = math.pi / 2
+    links = (DHLink(joint="R", d=0.4, alpha=-h, qlim=(-3, 3)), DHLink(joint="R", d=0.15, alpha=h, qlim=(-2, 2)),
+             DHLink(joint="P", alpha=0.0, qlim=(0.1, 0.8)), DHLink(joint="R", alpha=-h),
+             DHLink(joint="R", alpha=h, qlim=(-2, 2)), DHLink(joint="R", d=0.1))
+    return DHTable("stanford", "standard", links)
+
+
+def _robots():
+    import robokit
+
+    return {"puma560": robokit.load("puma560"), "ur5": robokit.load("ur5"), "panda": robokit.load("panda"),
+            "twolink": robokit.load("twolink"), "stanford": robokit.load(_stanford())}
+
+
+def _inf_to_none(x):
+    return [None if not math.isfinite(v) else float(v) for v in np.ravel(x)]
+
+
+def golden_case(robot, q) -> dict:
+    """Inputs (the page's data) and outputs (``teach_readouts``) at q, JSON-able (∞ → null)."""
+    from robokit.viz.teach import teach_parameters, teach_readouts
+
+    r = teach_readouts(robot, q)
+    sv = np.linalg.svd(r["J"][r["rows"]], compute_uv=False)
+    return {"robot": robot.name, "params": teach_parameters(robot), "q": [float(v) for v in q],
+            "T": np.asarray(r["T"]).ravel().tolist(), "rpy": [float(v) for v in r["rpy"]],
+            "quat": [float(v) for v in r["quat"]], "J": np.asarray(r["J"]).tolist(), "w": float(r["w"]),
+            "cond": None if not math.isfinite(r["cond"]) else float(r["cond"]), "sigma_min": r["sigma_min"],
+            "sigma": sv.tolist(), "level": r["level"], "direction": [float(v) for v in r["direction"]],
+            "margins": _inf_to_none(r["margins"]),
+            "margin_joint": r["margin_joint"] if math.isfinite(r["margin"]) else None}
+
+
+def golden_cases() -> list:
+    """Zero (singular for several arms), a named pose, and random configurations away from the
+    RPY gimbal lock, for every robot of :func:`_robots`."""
+    cases = []
+    for name, robot in _robots().items():
+        qs = [np.zeros(robot.n)]
+        rng = np.random.default_rng([7, len(name)])
+        lo, hi = np.clip(robot.qlim[:, 0], -3, 3), np.clip(robot.qlim[:, 1], -3, 3)
+        while len(qs) < 4:
+            q = rng.uniform(lo, hi)
+            T = robot.frame_pose(q)
+            if abs(T[2, 0]) < 0.99:  # |pitch| well below 90°
+                qs.append(q)
+        if name == "puma560":
+            qs.append(np.array([0.0, math.pi / 2, -math.pi / 2, 0.0, 0.0, 0.0]))
+        cases += [golden_case(robot, q) for q in qs]
+    return cases
+
+
+def write_golden() -> None:
+    GOLDEN.write_text(json.dumps(golden_cases(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
+
+
+@pytest.fixture(scope="module")
+def golden():
+    return json.loads(GOLDEN.read_text(encoding="utf-8"))
+
+
+def _close(a, b, tol=1e-9):
+    a = np.array([np.inf if v is None else v for v in np.ravel(a)], dtype=float)
+    b = np.array([np.inf if v is None else v for v in np.ravel(b)], dtype=float)
+    if a.shape != b.shape:
+        return False
+    same = a == b  # equal infinities included
+    diff = np.abs(np.where(same, 0.0, a) - np.where(same, 0.0, b))
+    return bool(np.all(same | (diff <= tol)))
+
+
+def test_golden_file_is_the_python_readouts(golden):
+    """The golden file still says what Python computes (so it is not a copy of stale numbers)."""
+    fresh = golden_cases()
+    assert [c["robot"] for c in fresh] == [c["robot"] for c in golden]
+    for new, old in zip(fresh, golden):
+        assert new["params"]["rows"] == old["params"]["rows"] and new["level"] == old["level"], new["robot"]
+        for key in ("q", "T", "rpy", "quat", "J", "w", "cond", "margins"):
+            assert _close(new[key], old[key], 1e-12), (new["robot"], key)
+
+
+NODE_CHECK = r"""
+const M = require(process.argv[1]);
+const cases = JSON.parse(require("fs").readFileSync(process.argv[2], "utf8"));
+const inf = (x) => (x === null ? Infinity : x);
+const out = cases.map(function (c) {
+  const P = c.params;
+  const R = { n: P.n, M: P.M, S: P.S, rows: P.rows, joints: P.joints,
+              singular_tol: P.singular_tol, singular_ratio: P.singular_ratio };
+  const r = M.readouts(R, c.q);
+  const d = (a, b) => Math.max.apply(null, a.map((v, i) => (v === inf(b[i]) ? 0 : Math.abs(v - inf(b[i])))).concat([0]));
+  const J = [].concat.apply([], r.J), Jg = [].concat.apply([], c.J);
+  // the lost direction is defined when the smallest singular value is simple
+  const s = c.sigma, simple = s.length < 2 || s[s.length - 2] - s[s.length - 1] > 1e-6;
+  return { robot: c.robot, T: d(r.T, c.T), rpy: d(r.rpy, c.rpy), quat: d(r.quat, c.quat), J: d(J, Jg),
+           w: Math.abs(r.w - c.w), cond: (c.cond === null ? (r.cond === Infinity ? 0 : 1) : Math.abs(r.cond - c.cond) / c.cond),
+           sigma_min: Math.abs(r.sigmaMin - c.sigma_min),
+           direction: simple ? d(r.direction, c.direction) : 0,
+           margins: d(r.margins, c.margins), level: r.level === c.level,
+           margin_joint: (r.marginJoint < 0 ? null : P.joints[r.marginJoint].name) === c.margin_joint };
+});
+process.stdout.write(JSON.stringify(out));
+"""
+
+
+def _node(script: str, *args) -> object:
+    p = subprocess.run([NODE, "-e", script, "--", *map(str, args)], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr[-2000:]
+    return json.loads(p.stdout)
+
+
+@needs_node
+def test_js_math_module_matches_the_golden_values(golden):
+    """teach_math.js's readouts (pose, RPY, quaternion, Jacobian, w, cond, σ_min, level, lost
+    direction, margins) equal the Python readouts to 1e-9 on every golden case."""
+    results = _node(NODE_CHECK, MATH_JS, GOLDEN)
+    assert len(results) == len(golden) >= 15
+    levels = {c["level"] for c in golden}
+    assert {"ok", "singular"} <= levels  # both branches are exercised
+    for r in results:
+        for key in ("T", "rpy", "quat", "J", "w", "sigma_min", "direction", "margins"):
+            assert r[key] <= 1e-9, (r["robot"], key, r[key])
+        assert r["cond"] <= 1e-9, (r["robot"], "cond", r["cond"])
+        assert r["level"] and r["margin_joint"], r
+
+
+FRAGMENTS = r"""
+const M = require(process.argv[1]);
+const tests = JSON.parse(process.argv[2]);
+process.stdout.write(JSON.stringify(tests.map(function (t) {
+  try { return M.parseFragment(t[0], t[1]); } catch (e) { return { threw: String(e) }; }
+})));
+"""
+
+
+@needs_node
+def test_js_fragment_parser_never_throws_and_says_what_it_ignored():
+    bad = ["#q=%E0%A4%A", "#q=%", "#q=1,2,NaN", "#q=1,2", "#q=1,2,3,4", "#q=1,2,1e999", "#q=,,",
+           "#q=1,2,0x10", "#q=1;2;3", "#q=" + "9," * 5000 + "9", "#q=1,2,3%00", "#x=1&q=a,b,c"]
+    good = [("#q=0.5,-1e-3,2", [0.5, -1e-3, 2.0]), ("#a=b&q=1,%202,3", [1.0, 2.0, 3.0]), ("#q=+1.,.5,-0", [1.0, 0.5, 0.0])]
+    none = ["", "#", "#qq=1,2,3", None]
+    res = _node(FRAGMENTS, MATH_JS, json.dumps([[f, 3] for f in bad + [g for g, _ in good] + none]))
+    for f, r in zip(bad, res):
+        assert "threw" not in r, (f, r)
+        assert r["q"] is None and r["given"] and "ignored" in r["problem"] and len(r["problem"]) < 200, (f, r)
+    for (f, want), r in zip(good, res[len(bad):]):
+        assert r["q"] == want and r["problem"] == "", (f, r)
+    for f, r in zip(none, res[len(bad) + len(good):]):
+        assert r == {"q": None, "given": False, "problem": ""}, (f, r)
+
+
+def test_scene_and_teach_do_not_import_each_other():
+    import ast
+
+    import robokit.viz.scene as scene_mod
+    import robokit.viz.teach as teach_mod
+
+    def imported(mod):
+        tree = ast.parse(Path(mod.__file__).read_text(encoding="utf-8"))
+        return {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module}
+
+    assert "robokit.viz.scene" not in imported(teach_mod)
+    assert "robokit.viz.teach" in imported(scene_mod)  # one direction only
+
+
+if __name__ == "__main__":
+    write_golden()
+    print(f"wrote {GOLDEN}", file=sys.stderr)
