@@ -17,6 +17,7 @@ q is (cos θ, sin θ)). Jacobians are returned **angular first**, ``(ω; v)``.
 from __future__ import annotations
 
 import os
+from math import isfinite
 from pathlib import Path
 from typing import Any, Iterable, Literal, Mapping, Sequence
 
@@ -26,6 +27,8 @@ from numpy.typing import ArrayLike
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 from robokit.errors import InputError, RobokitWarning
+
+_F64 = np.dtype(np.float64)
 
 __all__ = ["Robot", "load", "serial_chain", "choose_tip", "EXAMPLE_ROBOT_TIPS"]
 
@@ -214,6 +217,8 @@ class Robot:
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids: dict[str, int] = {}
         self._lower = np.tril_indices(self.n, -1)
+        self._lower_mask = np.tri(self.n, k=-1, dtype=bool)  # strictly lower triangle, for crba
+        self._shape = (self.n,)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
@@ -266,14 +271,19 @@ class Robot:
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
-        if np.ndim(q) == 2:
+        pin = self._pin
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_frame_pose
 
             return batch_frame_pose(self, q, frame)
-        pin = self._pin
-        q = self.q_pin(self._check_q(q))
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
         pin.forwardKinematics(self.model, self.data, q)
-        return pin.updateFramePlacement(self.model, self.data, self.frame_id(frame)).homogeneous
+        fid = self.tip_id if frame is None else self.frame_id(frame)
+        return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
         """Poses (4×4) of every frame, by name, at θ."""
@@ -291,56 +301,75 @@ class Robot:
         "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
         the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
-        if np.ndim(q) == 2:
-            from robokit.description.batch import batch_jacobian
-
-            return batch_jacobian(self, q, frame, reference)
         pin = self._pin
         try:
             rf = getattr(pin.ReferenceFrame, self._REFS[reference])
         except KeyError:
             raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
-        q = self.q_pin(self._check_q(q))
-        J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
+            from robokit.description.batch import batch_jacobian
+
+            return batch_jacobian(self, q, frame, reference)
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
+        fid = self.tip_id if frame is None else self.frame_id(frame)
+        J = pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
         return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
+                and q.shape == dq.shape == ddq.shape == self._shape and isfinite(q.dot(q) + dq.dot(dq) + ddq.dot(ddq))):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_rnea
 
             return batch_rnea(self, q, dq, ddq, threads)
-        q = self.q_pin(self._check_q(q))
-        dq, ddq = self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
+        else:
+            q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
+        q = q if self._same_coords else self.q_pin(q)
         return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
 
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
-        if np.ndim(q) == 2:
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_crba
 
             return batch_crba(self, q)
-        q = self.q_pin(self._check_q(q))
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
         M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
-        M[self._lower] = M.T[self._lower]
+        np.copyto(M, M.T, where=self._lower_mask)
         return M
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
+                and q.shape == dq.shape == tau.shape == self._shape and isfinite(q.dot(q) + dq.dot(dq) + tau.dot(tau))):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_aba
 
             return batch_aba(self, q, dq, tau, threads)
-        q = self.q_pin(self._check_q(q))
-        dq, tau = self._check_q(dq, "dq"), self._check_q(tau, "tau")
+        else:
+            q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
+        q = q if self._same_coords else self.q_pin(q)
         return self._pin.aba(self.model, self.data, q, dq, tau).copy()
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
-        q = self.q_pin(self._check_q(q))
+        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q @ q)):
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
