@@ -367,7 +367,7 @@ class Robot:
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
-        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q @ q)):
+        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q))):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()

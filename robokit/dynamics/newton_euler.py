@@ -149,6 +149,25 @@ def _model_lookup(Mlist: Any, Glist: Any, Slist: Any) -> _Model:
     return m
 
 
+def checked_model(Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The model (Mlist, Glist, Slist) checked once and remembered, as the compiled kernels take it.
+
+    Parameters
+    ----------
+    Mlist : (n+1, 4, 4) link frames; Glist : (n, 6, 6) spatial inertias; Slist : (6, n) screw axes
+        (Modern Robotics form; see the module docstring).
+
+    Returns
+    -------
+    (Mlist, Glist, Slist) : C-contiguous float64 arrays (the same objects on every call with
+    unchanged inputs). ``InputError`` names a wrong shape or a non-symmetric inertia.
+
+    Example: ``Ml, Gl, Sl = checked_model(p.Mlist, p.Glist, p.Slist)`` for ``p = robokit.load("ur5").poe``.
+    """
+    m = _model(Mlist, Glist, Slist)
+    return m.Mlist, m.Glist, m.Slist
+
+
 def _vec(x: ArrayLike, name: str, n: int) -> np.ndarray:
     return as_vector(x, name, n)
 
