@@ -43,4 +43,4 @@ def test_kernels_run_as_plain_python():
     proc = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert proc.stdout.strip().endswith("ok")
-    assert "compiling course kernels" not in proc.stderr  # nothing is compiled
+    assert "robokit: compiling" not in proc.stderr  # nothing is compiled
