@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from types import ModuleType
 
-__all__ = ["lie", "poe", "dynamics", "dh", "ik"]
+__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm"]
 
 
 def __getattr__(name: str) -> ModuleType:

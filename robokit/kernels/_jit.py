@@ -36,7 +36,7 @@ import numba
 from numba.core import event as _event
 from numba.core.dispatcher import Dispatcher
 
-__all__ = ["njit", "prange", "cache_dir", "jit_disabled"]
+__all__ = ["njit", "prange", "cache_dir", "jit_disabled", "compile_now"]
 
 prange = numba.prange
 
@@ -77,7 +77,7 @@ def njit(signature: Any = None, *, parallel: bool = False) -> Any:
         dispatcher = numba.njit(**options)(func)
         if isinstance(dispatcher, Dispatcher):  # not under NUMBA_DISABLE_JIT
             _compile_on_first_call(dispatcher, signature)
-        return dispatcher  # type: ignore[no-any-return]
+        return dispatcher
 
     return decorate
 
@@ -92,14 +92,30 @@ def _compile_on_first_call(dispatcher: Dispatcher, signature: str) -> None:
     runs at full speed: the replacement is never reached again."""
     module = dispatcher.py_func.__module__.rsplit(".", 1)[-1]
     _KERNELS.setdefault(module, []).append(dispatcher.py_func.__name__)
+    dispatcher._robokit_signature = signature  # type: ignore[attr-defined]
 
     def first_call(*args: Any, **kwargs: Any) -> Dispatcher:
-        if dispatcher._can_compile:
-            dispatcher.compile(signature)
-            dispatcher.disable_compile()
+        compile_now(dispatcher)
         return dispatcher
 
-    dispatcher._compile_for_args = first_call  # type: ignore[method-assign]
+    setattr(dispatcher, "_compile_for_args", first_call)  # numba's hook, for this dispatcher only
+
+
+def compile_now(kernel: Any) -> None:
+    """Compile ``kernel``'s declared signature now (or load it from numba's cache) and switch
+    further compilation off — what its first call would do. Nothing for a helper without a
+    signature, or under ``NUMBA_DISABLE_JIT``.
+
+    Example: ``compile_now(robokit.kernels.poe.fkin_space)``.
+    """
+    signature = getattr(kernel, "_robokit_signature", None)
+    if signature is not None and isinstance(kernel, Dispatcher) and getattr(kernel, "_can_compile", False):
+        kernel.compile(signature)
+        kernel.disable_compile()
+
+
+#: True in the worker processes of :mod:`robokit.kernels.warm` (their parent prints the progress).
+quiet = False
 
 
 #: The kernels declared with a signature, by kernel module (``"poe"`` → ``["fkin_space", …]``), in
@@ -131,7 +147,7 @@ class _CompileNotice(_event.Listener):
             return
         module = module.rsplit(".", 1)[-1]
         name = getattr(func, "__name__", "?")
-        if name in _KERNELS.get(module, ()) and name not in _COMPILED.get(module, ()):
+        if not quiet and name in _KERNELS.get(module, ()) and name not in _COMPILED.get(module, ()):
             print(notice(module, name), file=sys.stderr, flush=True)
 
     def on_end(self, ev: _event.Event) -> None:

@@ -37,7 +37,7 @@ _A3 = "float64[:, :, ::1]"
 
 
 @njit
-def model_scratch(Mlist: np.ndarray, Slist: np.ndarray) -> tuple:  # type: ignore[type-arg]
+def model_scratch(Mlist: np.ndarray, Slist: np.ndarray) -> tuple:
     """(A, Minv, Tl, E, V, Vd, v6, Ia, P, C, U, du, X3) for one model: constants and scratch."""
     n = Slist.shape[1]
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
@@ -98,7 +98,7 @@ def simulate_control(thetalist: np.ndarray, dthetalist: np.ndarray, g: np.ndarra
 
 @njit
 def plant_accel(q: np.ndarray, dq: np.ndarray, tau: np.ndarray, Glist: np.ndarray, g: np.ndarray, F: np.ndarray,
-                arm: np.ndarray, B: np.ndarray, Tc: np.ndarray, use_fric: int, sc: tuple,  # type: ignore[type-arg]
+                arm: np.ndarray, B: np.ndarray, Tc: np.ndarray, use_fric: int, sc: tuple,
                 taup: np.ndarray, out: np.ndarray) -> None:
     """out ← q̈ of the plant: ABA at (q, q̇) under τ − τ_f(q̇), the tip wrench F and the armature."""
     A, Minv, Tl, E, V, Vd, v6, Ia, P, C, U, du, X3 = sc
@@ -117,7 +117,7 @@ def plant_accel(q: np.ndarray, dq: np.ndarray, tau: np.ndarray, Glist: np.ndarra
 
 @njit
 def controller_rnea(q: np.ndarray, dq: np.ndarray, a: np.ndarray, Gc: np.ndarray, gc: np.ndarray,
-                    armc: np.ndarray, sc: tuple, zero6: np.ndarray, out: np.ndarray) -> None:  # type: ignore[type-arg]
+                    armc: np.ndarray, sc: tuple, zero6: np.ndarray, out: np.ndarray) -> None:
     """out ← the controller model's inverse dynamics M(q) a + c(q, q̇) + g(q) (+ armature · a)."""
     A, Minv, Tl, E, V, Vd, v6, _, _, _, _, _, _ = sc
     link_transforms(A, Minv, q, Tl, E)
