@@ -31,7 +31,7 @@ import time
 import numpy as np
 
 from benchmarks._chains import random_chain
-from benchmarks._harness import fmt_time, machine, table, time_call
+from benchmarks._harness import fmt_time, machine, table, time_best
 
 
 def _ratio(a: float, b: float) -> str:
@@ -111,7 +111,7 @@ def closed_form(quick: bool) -> None:
         r = rk.load(name)
         poses = [r.frame_pose(r.random_configuration(rng)) for _ in range(n_poses)]
         rk.ik_analytic(r, poses[0])
-        t_rk = statistics.median(time_call(rk.ik_analytic, r, T, repeats=3, target=0.005) for T in poses)
+        t_rk = statistics.median(time_best(rk.ik_analytic, r, T, batches=20) for T in poses)
         n_rk = statistics.mean(len(rk.ik_analytic(r, T)) for T in poses)
         rows.append([name, "robokit ik_analytic", fmt_time(t_rk), f"{n_rk:.1f}", "1.00×"])
         try:
@@ -125,7 +125,7 @@ def closed_form(quick: bool) -> None:
                 bot = _eaik_from_poe(r.poe)
             qs = [r.random_configuration(rng) for _ in range(n_poses)]
             eposes = [bot.fwdKin(q) for q in qs]  # EAIK's own frames: the same problem, all solutions
-            t_e = statistics.median(time_call(bot.IK, T, repeats=3, target=0.005) for T in eposes)
+            t_e = statistics.median(time_best(bot.IK, T, batches=20) for T in eposes)
             n_e = statistics.mean(len(bot.IK(T).Q) for T in eposes)
             rows.append([name, "EAIK (C++)", fmt_time(t_e), f"{n_e:.1f}", _ratio(t_rk, t_e)])
         except ImportError:
@@ -136,7 +136,7 @@ def closed_form(quick: bool) -> None:
 
                 qs = [r.random_configuration(rng) for _ in range(n_poses)]
                 uposes = [np.ascontiguousarray(uik.ur5.forward_kinematics(*q)) for q in qs]
-                t_u = statistics.median(time_call(uik.ur5.inverse_kinematics, T, repeats=3, target=0.005)
+                t_u = statistics.median(time_best(uik.ur5.inverse_kinematics, T, batches=20)
                                         for T in uposes)
                 n_u = statistics.mean(len(uik.ur5.inverse_kinematics(T)) for T in uposes)
                 rows.append([name, "ur-analytic-ik (C++)", fmt_time(t_u), f"{n_u:.1f}", _ratio(t_rk, t_u)])
@@ -202,8 +202,8 @@ def per_call(ns: list[int], reps: int) -> None:
         rng = np.random.default_rng(n)
         q, dq, a = rng.uniform(-2, 2, n), rng.normal(size=n), rng.normal(size=n)
         for name, ours, peer in _cases(model, data, fid, p, q, dq, a):
-            t_p = time_call(peer, repeats=reps, target=0.01)
-            t_o = time_call(ours, repeats=reps, target=0.01)
+            t_p = time_best(peer, batches=reps)
+            t_o = time_best(ours, batches=reps)
             rows.append([n, name, fmt_time(t_o), fmt_time(t_p), _ratio(t_o, t_p)])
     print("\n## 3. Per call against Pinocchio, growth with n (random chains; target ≤ 3×)\n")
     print(table(["n", "function", "robokit (seed function)", "Pinocchio", "robokit / Pinocchio"], rows))
@@ -250,12 +250,12 @@ def batched(ns: list[int], N: int, reps: int) -> None:
              lambda: pin.abaInParallel(threads, pool, QT, DT, AT)),
         ]
         for name, ours, pin_loop, par in cases:
-            t_loop = time_call(pin_loop, repeats=reps, target=0.05) / N
+            t_loop = time_best(pin_loop, batches=max(3, reps // 20)) / N
             numba.set_num_threads(1)
-            t_one = time_call(ours, repeats=reps, target=0.05) / N
+            t_one = time_best(ours, batches=max(3, reps // 20)) / N
             numba.set_num_threads(threads)
-            t_ours = time_call(ours, repeats=reps, target=0.05) / N
-            t_par = time_call(par, repeats=reps, target=0.05) / N if par else float("nan")
+            t_ours = time_best(ours, batches=max(3, reps // 20)) / N
+            t_par = time_best(par, batches=max(3, reps // 20)) / N if par else float("nan")
             rows.append([n, name, fmt_time(t_one), fmt_time(t_ours), fmt_time(t_loop), _ratio(t_ours, t_loop),
                          fmt_time(t_par) if par else "—", _ratio(t_ours, t_par) if par else "—"])
     print(f"\n## 4. Batched, N = {N:,} configurations, time per configuration ({threads} threads)\n")
@@ -286,8 +286,8 @@ def robot_methods(reps: int) -> None:
             ("gravity_torques(q)", lambda: r.gravity_torques(q), lambda: pin.computeGeneralizedGravity(m, d, q)),
         ]
         for meth, ours, raw in cases:
-            t_raw = time_call(raw, repeats=reps, target=0.01)
-            t_o = time_call(ours, repeats=reps, target=0.01)
+            t_raw = time_best(raw, batches=reps)
+            t_o = time_best(ours, batches=reps)
             rows.append([name, meth, fmt_time(t_o), fmt_time(t_raw), _ratio(t_o, t_raw)])
     print("\n## 5. Robot methods against the raw Pinocchio call they wrap (target ≤ 2×)\n")
     print(table(["robot", "method", "Robot method", "raw Pinocchio", "ratio"], rows))
@@ -370,7 +370,7 @@ def main(argv=None) -> None:
     ap.add_argument("--only", choices=["cold", "ik", "call", "batch", "robot", "sim"], help="run one table")
     args = ap.parse_args(argv)
     quick = args.quick
-    reps = 3 if quick else 7
+    reps = 60 if quick else 200  # short batches; the minimum is reported
     print(f"# Speed targets\n\nmachine: {machine()}")
     if args.only in (None, "cold"):
         cold_start(quick)

@@ -217,8 +217,11 @@ class Robot:
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids: dict[str, int] = {}
         self._lower = np.tril_indices(self.n, -1)
-        self._lower_mask = np.tri(self.n, k=-1, dtype=bool)  # strictly lower triangle, for crba
+        lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
+        self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
+        self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
         self._shape = (self.n,)
+        self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
@@ -302,10 +305,11 @@ class Robot:
         the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
         pin = self._pin
-        try:
-            rf = getattr(pin.ReferenceFrame, self._REFS[reference])
-        except KeyError:
-            raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
+        rf = self._ref_frames.get(reference)
+        if rf is None:
+            if reference not in self._REFS:
+                raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}")
+            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[reference])
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif np.ndim(q) == 2:
@@ -317,22 +321,25 @@ class Robot:
         q = q if self._same_coords else self.q_pin(q)
         fid = self.tip_id if frame is None else self.frame_id(frame)
         J = pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
-        return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
+        return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
         if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
-                and q.shape == dq.shape == ddq.shape == self._shape and isfinite(q.dot(q) + dq.dot(dq) + ddq.dot(ddq))):
-            pass  # finite float64 (n,) arrays: straight to Pinocchio
+                and q.shape == dq.shape == ddq.shape == self._shape):
+            # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
+            # any input reaches the result, so one test of the result stands for three of the inputs
+            tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
+            if isfinite(tau.dot(tau)):
+                return tau
         elif np.ndim(q) == 2:
             from robokit.description.batch import batch_rnea
 
             return batch_rnea(self, q, dq, ddq, threads)
-        else:
-            q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
+        q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         q = q if self._same_coords else self.q_pin(q)
-        return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
+        return self._pin.rnea(self.model, self.data, q, dq, ddq)
 
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
@@ -346,31 +353,36 @@ class Robot:
         else:
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
-        M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
-        np.copyto(M, M.T, where=self._lower_mask)
+        M = self._pin.crba(self.model, self.data, q)  # a new array; Pinocchio fills its upper triangle
+        if not M.flags.c_contiguous:
+            M = np.ascontiguousarray(M)
+        flat = M.ravel()  # a view of M
+        flat[self._lower_flat] = flat[self._upper_flat]
         return M
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
         if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
-                and q.shape == dq.shape == tau.shape == self._shape and isfinite(q.dot(q) + dq.dot(dq) + tau.dot(tau))):
-            pass  # finite float64 (n,) arrays: straight to Pinocchio
+                and q.shape == dq.shape == tau.shape == self._shape):
+            # as in rnea: one test of the (new) result stands for the inputs' finiteness
+            ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
+            if isfinite(ddq.dot(ddq)):
+                return ddq
         elif np.ndim(q) == 2:
             from robokit.description.batch import batch_aba
 
             return batch_aba(self, q, dq, tau, threads)
-        else:
-            q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
+        q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
         q = q if self._same_coords else self.q_pin(q)
-        return self._pin.aba(self.model, self.data, q, dq, tau).copy()
+        return self._pin.aba(self.model, self.data, q, dq, tau)
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
         if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q))):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
-        return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
+        return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
         """c(θ, θ̇) + g(θ) (n,)."""
