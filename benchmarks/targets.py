@@ -250,12 +250,12 @@ def batched(ns: list[int], N: int, reps: int) -> None:
              lambda: pin.abaInParallel(threads, pool, QT, DT, AT)),
         ]
         for name, ours, pin_loop, par in cases:
-            t_loop = time_best(pin_loop, batches=max(3, reps // 20)) / N
+            t_loop = time_best(pin_loop, batches=max(10, reps // 4)) / N
             numba.set_num_threads(1)
-            t_one = time_best(ours, batches=max(3, reps // 20)) / N
+            t_one = time_best(ours, batches=max(10, reps // 4)) / N
             numba.set_num_threads(threads)
-            t_ours = time_best(ours, batches=max(3, reps // 20)) / N
-            t_par = time_best(par, batches=max(3, reps // 20)) / N if par else float("nan")
+            t_ours = time_best(ours, batches=max(10, reps // 4)) / N
+            t_par = time_best(par, batches=max(10, reps // 4)) / N if par else float("nan")
             rows.append([n, name, fmt_time(t_one), fmt_time(t_ours), fmt_time(t_loop), _ratio(t_ours, t_loop),
                          fmt_time(t_par) if par else "—", _ratio(t_ours, t_par) if par else "—"])
     print(f"\n## 4. Batched, N = {N:,} configurations, time per configuration ({threads} threads)\n")
