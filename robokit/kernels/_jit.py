@@ -1,5 +1,5 @@
-r"""How the course kernels are compiled: numba ``@njit(cache=True)``, and a one-line notice
-on stderr the first time they are compiled.
+r"""How the course kernels are compiled: numba ``@njit(cache=True)``, lazily on first call, with a
+one-line notice on stderr for each kernel compiled.
 
 Compilation and its cache
 -------------------------
@@ -16,13 +16,23 @@ instead of compiling again. numba picks the cache directory in this order:
 :func:`cache_dir` reports the folder one kernel actually uses. A cache entry is reused only
 for the same source file contents, numba version and CPU; otherwise numba compiles again.
 
+Lazy compilation
+----------------
+Kernels declared with a signature (:func:`njit` ``(signature)``) compile on their **first call**,
+not when their module is imported: a program compiles only the kernels it calls, and a parallel
+``*_batch`` twin only on its first batched call. :func:`compile_now` does the same ahead of time,
+and ``python -m robokit.kernels`` (:mod:`robokit.kernels.warm`) compiles every kernel in parallel
+worker processes.
+
 The notice
 ----------
-``compiling course kernels (first run only) ...`` is printed once per process to stderr when
-a kernel of this package misses the cache and is compiled. Detection costs nothing per call:
-numba announces every compilation (its ``numba:compile`` event, fired only after a cache
-miss), and a listener installed here prints on the first one that belongs to
-``robokit.kernels``.
+When a kernel misses the cache and is compiled, one line goes to stderr, e.g.
+``robokit: compiling dynamics kernels (2/9: inverse_dynamics) - each kernel once per machine on
+first use, then loaded from numba's cache ...``: which kernel, and how many of its module's
+kernels this process has compiled so far. Detection costs nothing per call: numba announces
+every compilation (its ``numba:compile`` event, fired only after a cache miss), and a listener
+installed here prints for the kernels of ``robokit.kernels`` (not for the small helpers compiled
+inside them).
 
 Setting ``NUMBA_DISABLE_JIT=1`` runs the very same source as plain Python (slow, but every
 line can be stepped through in a debugger); nothing is compiled and no notice is printed.
