@@ -74,7 +74,8 @@ def check_model(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None
 
 @njit
 def check_vector(x: np.ndarray, n: int, which: int) -> None:
-    """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument)."""
+    """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument). Callers pass
+    constants as ``np.int64(k)``: a literal ``k`` would make numba compile one copy per value."""
     if x.shape[0] != n or not all_finite(x):
         if which == 0:
             raise ValueError("thetalist: expected one finite value per joint")
@@ -385,11 +386,11 @@ def inverse_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, ddthetalist:
     """Joint torques τ (n,) = M θ̈ + c + g(θ) + Jᵀ Ftip by recursive Newton–Euler."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
-    check_vector(dthetalist, n, 1)
-    check_vector(ddthetalist, n, 2)
-    check_vector(g, 3, 3)
-    check_vector(Ftip, 6, 4)
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(ddthetalist, n, np.int64(2))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -403,7 +404,7 @@ def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Sli
     """Mass matrix M(θ) (n, n), symmetric positive definite, by the composite-rigid-body algorithm."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
+    check_vector(thetalist, n, np.int64(0))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -417,11 +418,11 @@ def forward_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.
     """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip) by the articulated-body algorithm, O(n)."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
-    check_vector(dthetalist, n, 1)
-    check_vector(taulist, n, 5)
-    check_vector(g, 3, 3)
-    check_vector(Ftip, 6, 4)
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(taulist, n, np.int64(5))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -438,11 +439,11 @@ def forward_dynamics_crba(thetalist: np.ndarray, dthetalist: np.ndarray, taulist
     """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip): the lecture's form, CRBA + Cholesky, O(n²)."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
-    check_vector(dthetalist, n, 1)
-    check_vector(taulist, n, 5)
-    check_vector(g, 3, 3)
-    check_vector(Ftip, 6, 4)
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(taulist, n, np.int64(5))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -517,7 +518,7 @@ def inverse_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, ddthetas: np
     N, n = thetas.shape
     out = np.empty((N, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        inverse_dynamics_rows(0, N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
+        inverse_dynamics_rows(np.int64(0), N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -532,7 +533,7 @@ def mass_matrix_batch(thetas: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, 
     N, n = thetas.shape
     out = np.empty((N, n, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        mass_matrix_rows(0, N, thetas, Mlist, Glist, Slist, out)
+        mass_matrix_rows(np.int64(0), N, thetas, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -548,7 +549,7 @@ def forward_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: np.nda
     N, n = thetas.shape
     out = np.empty((N, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        forward_dynamics_rows(0, N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        forward_dynamics_rows(np.int64(0), N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -564,7 +565,7 @@ def forward_dynamics_crba_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: n
     N, n = thetas.shape
     out = np.empty((N, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        forward_dynamics_crba_rows(0, N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        forward_dynamics_crba_rows(np.int64(0), N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
