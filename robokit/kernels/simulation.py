@@ -161,7 +161,8 @@ def simulate_robot(q0: np.ndarray, dq0: np.ndarray, t: np.ndarray, q_des: np.nda
                 tau[j] = tau[j] + Kp[j] * (q_des[k, j] - q[j]) + Kv[j] * (dq_des[k, j] - dq[j])
         elif kind == 2:  # computed torque
             for j in range(n):
-                a[j] = ddq_des[k, j] + Kv[j] * (dq_des[k, j] - dq[j]) + Kp[j] * (q_des[k, j] - q[j]) + Ki[j] * integral[j]
+                a[j] = (ddq_des[k, j] + Kv[j] * (dq_des[k, j] - dq[j]) + Kp[j] * (q_des[k, j] - q[j])
+                        + Ki[j] * integral[j])
             controller_rnea(q, dq, a, Gc, gc, armc, sc, zero6, tau)
         else:  # independent joints: position P around a velocity P/PI loop on a nominal inertia
             for j in range(n):
