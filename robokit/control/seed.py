@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.control.controllers import gains
+from robokit.errors import InputError
 
 __all__ = ["computed_torque", "simulate_control"]
 
@@ -62,7 +63,7 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
                      Glist: ArrayLike, Slist: ArrayLike, thetamatd: ArrayLike, dthetamatd: ArrayLike,
                      ddthetamatd: ArrayLike, gtilde: ArrayLike, Mtildelist: ArrayLike, Gtildelist: ArrayLike,
                      Kp: ArrayLike, Ki: ArrayLike, Kd: ArrayLike, dt: float,
-                     intRes: int) -> tuple[np.ndarray, np.ndarray]:
+                     intRes: int, *, compiled: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Closed-loop computed-torque simulation with model error (seed 004 §6, MR ``SimulateControl``).
 
     thetalist, dthetalist : (n,) initial state; g : (3,) true gravity; Ftipmat : (N, 6) tip
@@ -75,6 +76,15 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
     Modern Robotics; the error integral is updated with the error at the end of the period.
     Unlike Modern Robotics' version it plots nothing; use
     :func:`robokit.control.plot.plot_tracking` on the result.
+
+    compiled : True (default) steps the whole loop — control law, Newton–Euler on the estimated
+    model, articulated-body forward dynamics of the plant, Euler steps — inside one compiled
+    kernel (:mod:`robokit.kernels.simulation`); False runs the same loop in Python over
+    :func:`robokit.inverse_dynamics` and :func:`robokit.forward_dynamics` (equal to 1e-12).
+    A diverging loop raises :class:`robokit.errors.DivergenceError` either way.
+
+    Example: ``taumat, thetamat = simulate_control(q0, dq0, g, np.zeros((N, 6)), Ml, Gl, Sl, qd, dqd, ddqd,
+    g, Ml, Gl, 20.0, 10.0, 18.0, 0.01, 8)``.
     """
     from robokit.dynamics import forward_dynamics, inverse_dynamics
 
@@ -91,6 +101,22 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
     if intRes < 1:
         raise ValueError(f"intRes: expected a positive integer, got {intRes}")
     Kp, Ki, Kd = gains(Kp, n, "Kp"), gains(Ki, n, "Ki"), gains(Kd, n, "Kd")
+    if compiled:
+        from robokit.dynamics.newton_euler import checked_model
+        from robokit.kernels.simulation import simulate_control as kernel
+
+        Ml, Gl, Sl = checked_model(Mlist, Glist, Slist)
+        Mt, Gt, _ = checked_model(Mtildelist, Gtildelist, Slist)
+        c = np.ascontiguousarray
+        taumat, thetamat, status = kernel(c(theta), c(dtheta), c(as_vector(g, "g", 3)), c(Ftipmat), Ml, Gl, Sl,
+                                          c(thetamatd), c(dthetamatd), c(ddthetamatd),
+                                          c(as_vector(gtilde, "gtilde", 3)), Mt, Gt, c(Kp), c(Ki), c(Kd), dt, intRes)
+        if status >= 0:
+            _diverged(int(status), dt, taumat, thetamat)
+        if status < -1:
+            raise InputError("Glist: the plant's mass matrix is not positive definite along the trajectory "
+                             "(a joint drives no inertia)")
+        return taumat, thetamat
     h = dt / intRes
     eint = np.zeros(n)
     taumat = np.empty((N, n))

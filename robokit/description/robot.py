@@ -17,6 +17,7 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 """
 from __future__ import annotations
 
+from math import isfinite
 from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 import numpy as np
@@ -27,6 +28,8 @@ from robokit.description.poe import PoEParams, poe_from_model
 
 if TYPE_CHECKING:
     from robokit.description.spec import RobotSpec
+
+_F64 = np.dtype(np.float64)
 
 __all__ = ["Robot"]
 
@@ -79,6 +82,11 @@ class Robot:
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids: dict[str, int] = {}
         self._lower = np.tril_indices(self.n, -1)
+        lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
+        self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
+        self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
+        self._shape = (self.n,)
+        self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
@@ -131,14 +139,19 @@ class Robot:
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
-        if np.ndim(q) == 2:
+        pin = self._pin
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_frame_pose
 
             return batch_frame_pose(self, q, frame)
-        pin = self._pin
-        q = self.q_pin(self._check_q(q))
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
         pin.forwardKinematics(self.model, self.data, q)
-        return pin.updateFramePlacement(self.model, self.data, self.frame_id(frame)).homogeneous
+        fid = self.tip_id if frame is None else self.frame_id(frame)
+        return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
         """Poses (4×4) of every frame, by name, at θ."""
@@ -156,57 +169,85 @@ class Robot:
         "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
         the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
-        if np.ndim(q) == 2:
+        pin = self._pin
+        rf = self._ref_frames.get(reference)
+        if rf is None:
+            if reference not in self._REFS:
+                raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}")
+            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[reference])
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_jacobian
 
             return batch_jacobian(self, q, frame, reference)
-        pin = self._pin
-        try:
-            rf = getattr(pin.ReferenceFrame, self._REFS[reference])
-        except KeyError:
-            raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
-        q = self.q_pin(self._check_q(q))
-        J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
-        return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
+        fid = self.tip_id if frame is None else self.frame_id(frame)
+        J = pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
+        return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
+                and q.shape == dq.shape == ddq.shape == self._shape):
+            # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
+            # any input reaches the result, so one test of the result stands for three of the inputs
+            tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
+            if isfinite(tau.dot(tau)):
+                return tau
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_rnea
 
             return batch_rnea(self, q, dq, ddq, threads)
-        q = self.q_pin(self._check_q(q))
-        dq, ddq = self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
-        return self._pin.rnea(self.model, self.data, q, dq, ddq).copy()
+        q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
+        q = q if self._same_coords else self.q_pin(q)
+        return self._pin.rnea(self.model, self.data, q, dq, ddq)
 
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
-        if np.ndim(q) == 2:
+        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_crba
 
             return batch_crba(self, q)
-        q = self.q_pin(self._check_q(q))
-        M = self._pin.crba(self.model, self.data, q).copy()  # Pinocchio fills the upper triangle
-        M[self._lower] = M.T[self._lower]
+        else:
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
+        M = self._pin.crba(self.model, self.data, q)  # a new array; Pinocchio fills its upper triangle
+        if not M.flags.c_contiguous:
+            M = np.ascontiguousarray(M)
+        flat = M.ravel()  # a view of M
+        flat[self._lower_flat] = flat[self._upper_flat]
         return M
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
+                and q.shape == dq.shape == tau.shape == self._shape):
+            # as in rnea: one test of the (new) result stands for the inputs' finiteness
+            ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
+            if isfinite(ddq.dot(ddq)):
+                return ddq
+        elif np.ndim(q) == 2:
             from robokit.description.batch import batch_aba
 
             return batch_aba(self, q, dq, tau, threads)
-        q = self.q_pin(self._check_q(q))
-        dq, tau = self._check_q(dq, "dq"), self._check_q(tau, "tau")
-        return self._pin.aba(self.model, self.data, q, dq, tau).copy()
+        q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
+        q = q if self._same_coords else self.q_pin(q)
+        return self._pin.aba(self.model, self.data, q, dq, tau)
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
-        q = self.q_pin(self._check_q(q))
-        return self._pin.computeGeneralizedGravity(self.model, self.data, q).copy()
+        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q))):
+            q = self._check_q(q)
+        q = q if self._same_coords else self.q_pin(q)
+        return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
         """c(θ, θ̇) + g(θ) (n,)."""

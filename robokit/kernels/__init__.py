@@ -4,27 +4,29 @@ with numba (``@njit(cache=True)``).
 * :mod:`robokit.kernels.lie` — small pose/twist/wrench helpers written entry by entry;
 * :mod:`robokit.kernels.poe` — product-of-exponentials FK and Jacobians (space and body);
 * :mod:`robokit.kernels.dynamics` — Newton–Euler inverse dynamics, CRBA mass matrix,
-  forward dynamics (Modern Robotics form);
+  forward dynamics by the articulated-body algorithm and by CRBA + Cholesky (Modern Robotics form);
 * :mod:`robokit.kernels.dh` — DH forward kinematics, the Jacobian by outward propagation,
   inward static forces, Craig's recursive Newton–Euler (both conventions, R and P joints);
 * :mod:`robokit.kernels.ik` — damped least-squares / Levenberg–Marquardt IK for a PoE chain,
-  joint limits and random restarts, compiled end to end.
+  joint limits and random restarts, compiled end to end;
+* :mod:`robokit.kernels.simulation` — closed-loop simulation (built-in controllers, plant, integrator);
+* :mod:`robokit.kernels.warm` — ``python -m robokit.kernels``: compile every kernel ahead of use.
 
 Each kernel has a ``*_batch`` twin over a leading dimension of configurations, run in
 parallel over the CPU cores. The seed functions (:func:`robokit.fkin_space`,
 :func:`robokit.inverse_dynamics`, …) check their arguments and call these kernels; use them
 directly only with C-contiguous float64 arrays of the documented shapes.
 
-The first use in a fresh environment compiles the kernels (a notice is printed once on
-stderr) and stores the machine code in numba's cache; see :mod:`robokit.kernels._jit` for where
-the cache lives and ``NUMBA_DISABLE_JIT=1`` to run the same source as plain Python.
+Each kernel compiles on its first call in a fresh environment (a notice on stderr names it) and
+its machine code is kept in numba's cache; see :mod:`robokit.kernels._jit` for where the cache
+lives and ``NUMBA_DISABLE_JIT=1`` to run the same source as plain Python.
 The submodules are imported on demand, so ``import robokit`` does not load numba.
 """
 from __future__ import annotations
 
 from types import ModuleType
 
-__all__ = ["lie", "poe", "dynamics", "dh", "ik"]
+__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm"]
 
 
 def __getattr__(name: str) -> ModuleType:

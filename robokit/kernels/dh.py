@@ -427,7 +427,7 @@ def dh_fk_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray
     N = Q.shape[0]
     out = np.empty((N, 4, 4))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        fk_rows(0, N, P, modified, base, tool, Q, out)
+        fk_rows(np.int64(0), N, P, modified, base, tool, Q, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -442,7 +442,7 @@ def dh_jacobian_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.n
     N = Q.shape[0]
     out = np.empty((N, 6, P.shape[0]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        jacobian_rows(0, N, P, modified, base, tool, Q, in_tool, out)
+        jacobian_rows(np.int64(0), N, P, modified, base, tool, Q, in_tool, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -457,7 +457,7 @@ def dh_static_torques_batch(P: np.ndarray, modified: int, base: np.ndarray, tool
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        static_torques_rows(0, N, P, modified, base, tool, Q, Fs, out)
+        static_torques_rows(np.int64(0), N, P, modified, base, tool, Q, Fs, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -472,7 +472,7 @@ def dh_inverse_dynamics_batch(P: np.ndarray, modified: int, base: np.ndarray, to
     N = Q.shape[0]
     out = np.empty((N, P.shape[0]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        rnea_rows(0, N, P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g, Fs, out)
+        rnea_rows(np.int64(0), N, P, modified, base, tool, mass, com, inertia, Q, dQ, ddQ, g, Fs, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):

@@ -48,8 +48,8 @@ from robokit.kernels.lie import (
 from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
 __all__ = [
-    "inverse_dynamics", "mass_matrix", "forward_dynamics",
-    "inverse_dynamics_batch", "mass_matrix_batch", "forward_dynamics_batch",
+    "inverse_dynamics", "mass_matrix", "forward_dynamics", "forward_dynamics_crba",
+    "inverse_dynamics_batch", "mass_matrix_batch", "forward_dynamics_batch", "forward_dynamics_crba_batch",
     "forward_dynamics_trajectory",
 ]
 
@@ -74,7 +74,8 @@ def check_model(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None
 
 @njit
 def check_vector(x: np.ndarray, n: int, which: int) -> None:
-    """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument)."""
+    """Raise ``ValueError`` unless x has n finite entries (``which`` numbers the argument). Callers pass
+    constants as ``np.int64(k)``: a literal ``k`` would make numba compile one copy per value."""
     if x.shape[0] != n or not all_finite(x):
         if which == 0:
             raise ValueError("thetalist: expected one finite value per joint")
@@ -266,17 +267,130 @@ def forward_dynamics_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthe
     return cholesky_solve(Mm, h, L, ddq)
 
 
+# ------------------------------------------------------------------ articulated-body forward dynamics
+@njit
+def congruence_add(Ad: np.ndarray, Ia: np.ndarray, tmp: np.ndarray, out: np.ndarray) -> None:
+    """out ← out + Adᵀ Ia Ad for 6×6 matrices (an inertia carried into the parent frame)."""
+    for r in range(6):
+        for c in range(6):
+            acc = 0.0
+            for k in range(6):
+                acc += Ia[r, k] * Ad[k, c]
+            tmp[r, c] = acc
+    for r in range(6):
+        for c in range(6):
+            acc = 0.0
+            for k in range(6):
+                acc += Ad[k, r] * tmp[k, c]
+            out[r, c] += acc
+
+
+@njit
+def aba_workspace(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Scratch for the articulated-body recursion: Ia (n, 6, 6) articulated inertias, P (n, 6) bias
+    forces, C (n, 6) velocity-product accelerations, U (n, 6) ``Iᵃᵢ Aᵢ``, du (n, 2) ``(Dᵢ, uᵢ)``,
+    X (3, 6, 6) scratch."""
+    return (np.empty((n, 6, 6)), np.empty((n, 6)), np.empty((n, 6)), np.empty((n, 6)), np.empty((n, 2)),
+            np.empty((3, 6, 6)))
+
+
+@njit
+def aba_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray,
+             g: np.ndarray, Ftip: np.ndarray, armature: np.ndarray, V: np.ndarray, v6: np.ndarray, Ia: np.ndarray,
+             P: np.ndarray, C: np.ndarray, U: np.ndarray, du: np.ndarray, X: np.ndarray, ddq: np.ndarray) -> bool:
+    """θ̈ ← forward dynamics by Featherstone's articulated-body algorithm, with the link transforms Tl
+    already at θ (three passes, see the module docstring); ``armature`` (n,) is added to each joint's
+    ``Dᵢ`` (reflected motor inertia, 0 for none). Returns False when some ``Dᵢ ≤ 0`` (then θ̈ is NaN)."""
+    n = A.shape[1]
+    Ai, Vprev, t1, t2, pa = v6[0], v6[1], v6[2], v6[3], v6[4]
+    Ad, tmp, Iaa = X[0], X[1], X[2]
+    for r in range(6):
+        Vprev[r] = 0.0
+    # pass 1, outward: link twists Vᵢ, velocity-product accelerations cᵢ = ad_{Vᵢ} Aᵢ θ̇ᵢ,
+    # bias forces pᵢ = −ad_{Vᵢ}ᵀ Gᵢ Vᵢ, and Iᵃᵢ = Gᵢ to start with
+    for i in range(n):
+        for r in range(6):
+            Ai[r] = A[r, i]
+        adjoint_twist(Tl[i], Vprev, t1)
+        for r in range(6):
+            V[i, r] = t1[r] + Ai[r] * dthetalist[i]
+        ad_twist(V[i], Ai, t2)
+        for r in range(6):
+            C[i, r] = t2[r] * dthetalist[i]
+        mat6_vec(Glist[i], V[i], t1)
+        ad_transpose_wrench(V[i], t1, t2)
+        for r in range(6):
+            P[i, r] = -t2[r]
+            for c in range(6):
+                Ia[i, r, c] = Glist[i, r, c]
+        Vprev = V[i]
+    # the tip wrench the end-effector exerts on the environment loads the last link
+    adjoint_transpose_wrench(Tl[n], Ftip, t1)
+    for r in range(6):
+        P[n - 1, r] += t1[r]
+    # pass 2, inward: Uᵢ = Iᵃᵢ Aᵢ, Dᵢ = Aᵢᵀ Uᵢ, uᵢ = τᵢ − Aᵢᵀ pᵢ; the parent receives
+    # Ad_{T_{i,i−1}}ᵀ (Iᵃᵢ − Uᵢ Uᵢᵀ / Dᵢ) Ad_{T_{i,i−1}} and Ad_{T_{i,i−1}}ᵀ (pᵢ + Iᵃ cᵢ + Uᵢ uᵢ / Dᵢ)
+    for i in range(n - 1, -1, -1):
+        D = armature[i]
+        u = taulist[i]
+        for r in range(6):
+            acc = 0.0
+            for c in range(6):
+                acc += Ia[i, r, c] * A[c, i]
+            U[i, r] = acc
+            D += A[r, i] * acc
+            u -= A[r, i] * P[i, r]
+        if not D > 0.0:
+            for r in range(n):
+                ddq[r] = np.nan
+            return False
+        du[i, 0] = D
+        du[i, 1] = u
+        if i == 0:
+            break
+        for r in range(6):
+            for c in range(6):
+                Iaa[r, c] = Ia[i, r, c] - U[i, r] * U[i, c] / D
+        for r in range(6):
+            acc = P[i, r] + U[i, r] * u / D
+            for c in range(6):
+                acc += Iaa[r, c] * C[i, c]
+            pa[r] = acc
+        adjoint_matrix(Tl[i], Ad)
+        congruence_add(Ad, Iaa, tmp, Ia[i - 1])
+        adjoint_transpose_wrench(Tl[i], pa, t1)
+        for r in range(6):
+            P[i - 1, r] += t1[r]
+    # pass 3, outward: a'ᵢ = Ad_{T_{i,i−1}} a_{i−1} + cᵢ, θ̈ᵢ = (uᵢ − Uᵢᵀ a'ᵢ) / Dᵢ, aᵢ = a'ᵢ + Aᵢ θ̈ᵢ,
+    # from the base's a₀ = (0, −g) (gravity as an upward acceleration of the base)
+    acc6 = v6[5]
+    for r in range(6):
+        acc6[r] = 0.0
+    acc6[3], acc6[4], acc6[5] = -g[0], -g[1], -g[2]
+    for i in range(n):
+        adjoint_twist(Tl[i], acc6, t1)
+        s = du[i, 1]
+        for r in range(6):
+            t1[r] += C[i, r]
+            s -= U[i, r] * t1[r]
+        qdd = s / du[i, 0]
+        ddq[i] = qdd
+        for r in range(6):
+            acc6[r] = t1[r] + A[r, i] * qdd
+    return True
+
+
 # ------------------------------------------------------------------ one configuration
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
 def inverse_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, ddthetalist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint torques τ (n,) = M θ̈ + c + g(θ) + Jᵀ Ftip by recursive Newton–Euler."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
-    check_vector(dthetalist, n, 1)
-    check_vector(ddthetalist, n, 2)
-    check_vector(g, 3, 3)
-    check_vector(Ftip, 6, 4)
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(ddthetalist, n, np.int64(2))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -290,7 +404,7 @@ def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Sli
     """Mass matrix M(θ) (n, n), symmetric positive definite, by the composite-rigid-body algorithm."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
+    check_vector(thetalist, n, np.int64(0))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -301,14 +415,35 @@ def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Sli
 
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
 def forward_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
-    """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip)."""
+    """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip) by the articulated-body algorithm, O(n)."""
     check_model(Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, 0)
-    check_vector(dthetalist, n, 1)
-    check_vector(taulist, n, 5)
-    check_vector(g, 3, 3)
-    check_vector(Ftip, 6, 4)
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(taulist, n, np.int64(5))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    link_transforms(A, Minv, thetalist, Tl, E)
+    Ia, P, C, U, du, X3 = aba_workspace(n)
+    ddq = np.empty(n)
+    if not aba_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, np.zeros(n), V, v6, Ia, P, C, U, du, X3, ddq):
+        raise ValueError("Glist: the mass matrix is not positive definite at this configuration "
+                         "(a joint drives no inertia)")
+    return ddq
+
+
+@njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
+def forward_dynamics_crba(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
+    """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip): the lecture's form, CRBA + Cholesky, O(n²)."""
+    check_model(Mlist, Glist, Slist)
+    n = Slist.shape[1]
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(taulist, n, np.int64(5))
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
     link_transforms(A, Minv, thetalist, Tl, E)
@@ -348,6 +483,20 @@ def mass_matrix_rows(lo: int, hi: int, thetas: np.ndarray, Mlist: np.ndarray, Gl
 
 @njit
 def forward_dynamics_rows(lo: int, hi: int, thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, out: np.ndarray) -> None:
+    """out[k] ← θ̈ by the articulated-body algorithm for rows lo ≤ k < hi (NaN where some Dᵢ ≤ 0)."""
+    n = Slist.shape[1]
+    A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
+    link_screws(Mlist, Slist, A, Minv)
+    Ia, P, C, U, du, X3 = aba_workspace(n)
+    zeros = np.zeros(n)
+    for k in range(lo, hi):
+        link_transforms(A, Minv, thetas[k], Tl, E)
+        aba_into(A, Tl, Glist, dthetas[k], taus[k], g, Ftips[k if Ftips.shape[0] > 1 else 0], zeros, V, v6,
+                 Ia, P, C, U, du, X3, out[k])
+
+
+@njit
+def forward_dynamics_crba_rows(lo: int, hi: int, thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← θ̈ for rows lo ≤ k < hi (NaN where M is not positive definite)."""
     n = Slist.shape[1]
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
@@ -369,7 +518,7 @@ def inverse_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, ddthetas: np
     N, n = thetas.shape
     out = np.empty((N, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        inverse_dynamics_rows(0, N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
+        inverse_dynamics_rows(np.int64(0), N, thetas, dthetas, ddthetas, g, Ftips, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -384,7 +533,7 @@ def mass_matrix_batch(thetas: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, 
     N, n = thetas.shape
     out = np.empty((N, n, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        mass_matrix_rows(0, N, thetas, Mlist, Glist, Slist, out)
+        mass_matrix_rows(np.int64(0), N, thetas, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -396,16 +545,32 @@ def mass_matrix_batch(thetas: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, 
 @njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
 def forward_dynamics_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Accelerations (N, n) for the rows of thetas, dthetas, taus (N, n); Ftips (N, 6) or (1, 6).
-    A row whose mass matrix is not positive definite comes back NaN."""
+    Articulated-body algorithm per row; a row whose mass matrix is not positive definite comes back NaN."""
     N, n = thetas.shape
     out = np.empty((N, n))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        forward_dynamics_rows(0, N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        forward_dynamics_rows(np.int64(0), N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
         forward_dynamics_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+    return out
+
+
+@njit(f"{_A2}({_A2}, {_A2}, {_A2}, {_A1}, {_A2}, {_MODEL})", parallel=True)
+def forward_dynamics_crba_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, g: np.ndarray, Ftips: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
+    """Accelerations (N, n) for the rows of thetas, dthetas, taus (N, n); Ftips (N, 6) or (1, 6).
+    CRBA + Cholesky per row. A row whose mass matrix is not positive definite comes back NaN."""
+    N, n = thetas.shape
+    out = np.empty((N, n))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        forward_dynamics_crba_rows(np.int64(0), N, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        forward_dynamics_crba_rows(lo, hi, thetas, dthetas, taus, g, Ftips, Mlist, Glist, Slist, out)
     return out
 
 
@@ -418,9 +583,7 @@ def forward_dynamics_trajectory(thetalist: np.ndarray, dthetalist: np.ndarray, t
     out = np.empty((2, N, n))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
     link_screws(Mlist, Slist, A, Minv)
-    Mm = np.empty((n, n))
-    L = np.zeros((n, n))
-    h = np.empty(n)
+    Ia, P, C, U, du, X3 = aba_workspace(n)
     ddq = np.empty(n)
     zeros = np.zeros(n)
     th = np.empty(n)
@@ -434,8 +597,7 @@ def forward_dynamics_trajectory(thetalist: np.ndarray, dthetalist: np.ndarray, t
     for k in range(N - 1):
         for _ in range(intRes):
             link_transforms(A, Minv, th, Tl, E)
-            if not forward_dynamics_into(A, Tl, Glist, dth, taumat[k], g, Ftipmat[k], zeros, V, Vd, v6, K, X, Mm, L,
-                                         h, ddq):
+            if not aba_into(A, Tl, Glist, dth, taumat[k], g, Ftipmat[k], zeros, V, v6, Ia, P, C, U, du, X3, ddq):
                 raise ValueError("Glist: the mass matrix is not positive definite along the trajectory")
             for i in range(n):
                 th[i] += step * dth[i]  # θ ← θ + h θ̇ (with the old θ̇) …

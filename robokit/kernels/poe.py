@@ -48,7 +48,9 @@ _SIG_J_BATCH = "float64[:, :, ::1](float64[:, ::1], float64[:, ::1])"
 
 
 # ------------------------------------------------------------------ blocks for the batched kernels
-#: Below this many rows a batched kernel runs serially on the calling thread.
+#: Below this many rows a batched kernel runs serially on the calling thread (calling its
+#: ``*_rows`` function from row ``np.int64(0)``: a literal 0 would make numba compile that function
+#: a second time, for the constant).
 SERIAL_BELOW = 256
 
 #: The batched kernels cut N configurations into at most this many blocks, handed out to
@@ -137,7 +139,7 @@ def fkin_space_batch(M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray) -> np
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        fkin_space_rows(0, N, M, Slist, thetas, out)
+        fkin_space_rows(np.int64(0), N, M, Slist, thetas, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -152,7 +154,7 @@ def fkin_body_batch(M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray) -> np.
     N = thetas.shape[0]
     out = np.empty((N, 4, 4))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        fkin_body_rows(0, N, M, Blist, thetas, out)
+        fkin_body_rows(np.int64(0), N, M, Blist, thetas, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -229,7 +231,7 @@ def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     N = thetas.shape[0]
     out = np.empty((N, 6, Slist.shape[1]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        jacobian_space_rows(0, N, Slist, thetas, out)
+        jacobian_space_rows(np.int64(0), N, Slist, thetas, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
@@ -244,7 +246,7 @@ def jacobian_body_batch(Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     N = thetas.shape[0]
     out = np.empty((N, 6, Blist.shape[1]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        jacobian_body_rows(0, N, Blist, thetas, out)
+        jacobian_body_rows(np.int64(0), N, Blist, thetas, out)
         return out
     nb = n_blocks(N)
     for b in prange(nb):
