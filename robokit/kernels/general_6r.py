@@ -1,0 +1,274 @@
+r"""Compiled per-pose parts of the general 6R closed-form IK (Raghavan–Roth elimination,
+Manocha–Canny eigenproblem); the derivation is in :mod:`robokit.ik.general_6r`.
+
+Every array is C-contiguous float64; lengths are in units of the arm's scale (the caller
+divides them by it). Vectors of the 14 loop-closure quantities carry a 15th entry, 1, so
+that a translation acts on them linearly:
+``f(l, p) = (l, p, p·p, l·p, l×p, (p·p)l − 2(l·p)p, 1)`` for a unit vector l and a point p.
+
+Kernels
+-------
+``pencil(P, K1, Tz2, d6, T06, gc, gs, out)``
+    the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
+    θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
+    matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
+``fk_pose(alpha, a, d, theta, out)``
+    the pose of ``Z₁X₁ ⋯ X₅Z₆`` (canonical DH chain) at the rotation angles θ.
+``polish(alpha, a, d, T06, theta, iters)``
+    Newton–Raphson on the pose error ``(p* − p, log(R* Rᵀ))`` with the geometric Jacobian;
+    updates θ in place and returns the final error norm.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit.kernels._jit import njit
+
+__all__ = ["pencil", "fk_pose", "polish", "fvec"]
+
+
+@njit
+def fvec(l0: float, l1: float, l2: float, p0: float, p1: float, p2: float, out: np.ndarray) -> None:
+    """The 15 quantities ``f(l, p)`` (see the module docstring) into ``out``."""
+    pp = p0 * p0 + p1 * p1 + p2 * p2
+    lp = l0 * p0 + l1 * p1 + l2 * p2
+    out[0] = l0
+    out[1] = l1
+    out[2] = l2
+    out[3] = p0
+    out[4] = p1
+    out[5] = p2
+    out[6] = pp
+    out[7] = lp
+    out[8] = l1 * p2 - l2 * p1
+    out[9] = l2 * p0 - l0 * p2
+    out[10] = l0 * p1 - l1 * p0
+    out[11] = pp * l0 - 2.0 * lp * p0
+    out[12] = pp * l1 - 2.0 * lp * p1
+    out[13] = pp * l2 - 2.0 * lp * p2
+    out[14] = 1.0
+
+
+@njit
+def _rz_parts(v: np.ndarray, sign: float, out: np.ndarray) -> None:
+    """Split Rz(θ)·v (v a 15-vector) into its cos θ, sin θ and constant parts.
+
+    out[0] · cos θ + out[1] · sin θ + out[2] = F_{Rz(sign·θ)} v.
+    """
+    for k in range(15):
+        out[0, k] = 0.0
+        out[1, k] = 0.0
+        out[2, k] = v[k]
+    for b in (0, 3, 8, 11):  # the four vector blocks
+        x, y = v[b], v[b + 1]
+        out[0, b] = x
+        out[0, b + 1] = y
+        out[1, b] = -sign * y
+        out[1, b + 1] = sign * x
+        out[2, b] = 0.0
+        out[2, b + 1] = 0.0
+
+
+@njit
+def pencil(P: np.ndarray, K1: np.ndarray, Tz2: np.ndarray, d6: float, T06: np.ndarray,
+           gc: float, gs: float, out: np.ndarray, Np: np.ndarray, Pinv: np.ndarray) -> float:
+    """The quadratic matrix polynomial of one pose.
+
+    P : (3, 15, 9) the arm's left-hand coefficients (θ₃ basis (cos, sin, 1), rows f, columns
+    the trig monomials of θ₄, θ₅); K1 : (15, 15) ``F(X₁⁻¹ Tz(−d₁))``; Tz2 : (15, 15)
+    ``F(Tz(−d₂))``; d6 : joint 6's offset; T06 : (4, 4) the target of ``Z₁ ⋯ Z₆``; (gc, gs):
+    cos γ, sin γ of the θ₃ shift. Writes out : (3, 12, 12) = (A, B, C); Np : (3, 14, 9)
+    the right-hand side pieces ``P′`` (θ₃ basis) for the back-substitution; Pinv : (8, 14)
+    the pseudo-inverse of the 14×8 matrix of joints 1–2. Returns σ_min/σ_max of that matrix.
+    """
+    f = np.empty(15)
+    l0, l1, l2 = T06[0, 2], T06[1, 2], T06[2, 2]
+    fvec(l0, l1, l2, T06[0, 3] - d6 * l0, T06[1, 3] - d6 * l1, T06[2, 3] - d6 * l2, f)
+    parts1 = np.empty((3, 15))
+    _rz_parts(f, -1.0, parts1)
+    r = np.empty((15, 9))
+    u = np.empty(15)
+    parts2 = np.empty((3, 15))
+    for i1 in range(3):
+        for k in range(15):
+            s = 0.0
+            for m in range(15):
+                s += K1[k, m] * parts1[i1, m]
+            u[k] = s
+        _rz_parts(u, -1.0, parts2)
+        for i2 in range(3):
+            for k in range(15):
+                s = 0.0
+                for m in range(15):
+                    s += Tz2[k, m] * parts2[i2, m]
+                r[k, i1 * 3 + i2] = s
+    Q = np.ascontiguousarray(r[:14, :8])
+    U, sv, Vt = np.linalg.svd(Q)
+    ratio = sv[7] / sv[0] if sv[0] > 0.0 else 0.0
+    for i in range(8):
+        for k in range(14):
+            acc = 0.0
+            for j in range(8):
+                if sv[j] > 1e-14 * sv[0]:
+                    acc += Vt[j, i] * U[k, j] / sv[j]
+            Pinv[i, k] = acc
+    for i3 in range(3):
+        for k in range(14):
+            for m in range(9):
+                Np[i3, k, m] = P[i3, k, m]
+    for k in range(14):
+        Np[2, k, 8] -= r[k, 8]
+    # Σ_i3 = N P′_i3, N the left null space of Q (6 × 14)
+    sig = np.zeros((3, 6, 9))
+    for i3 in range(3):
+        for e in range(6):
+            for m in range(9):
+                s = 0.0
+                for k in range(14):
+                    s += U[k, 8 + e] * Np[i3, k, m]
+                sig[i3, e, m] = s
+    # θ₃ = φ + γ: (cos, sin) of θ₃ in terms of φ; then x = tan(φ/2): A x² + B x + C
+    G = np.array([[1.0, 0.0, -1.0], [0.0, 2.0, 0.0], [1.0, 0.0, 1.0]])
+    for c in range(3):
+        for i in range(12):
+            for j in range(12):
+                out[c, i, j] = 0.0
+    for e in range(6):
+        for m in range(9):
+            sc = sig[0, e, m] * gc + sig[1, e, m] * gs
+            ss = -sig[0, e, m] * gs + sig[1, e, m] * gc
+            s1 = sig[2, e, m]
+            coef2 = s1 - sc  # x²
+            coef1 = 2.0 * ss  # x
+            coef0 = s1 + sc  # 1
+            if coef0 == 0.0 and coef1 == 0.0 and coef2 == 0.0:
+                continue
+            i4, i5 = m // 3, m % 3
+            for j4 in range(3):
+                g4 = G[i4, j4]
+                if g4 == 0.0:
+                    continue
+                for j5 in range(3):
+                    g = g4 * G[i5, j5]
+                    if g == 0.0:
+                        continue
+                    col = j4 * 3 + j5
+                    out[0, e, col] += g * coef2
+                    out[1, e, col] += g * coef1
+                    out[2, e, col] += g * coef0
+                    out[0, 6 + e, col + 3] += g * coef2
+                    out[1, 6 + e, col + 3] += g * coef1
+                    out[2, 6 + e, col + 3] += g * coef0
+    return ratio
+
+
+@njit
+def fk_pose(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, out: np.ndarray) -> None:
+    """Pose of ``Z₁X₁ ⋯ X₅Z₆`` at the rotation angles θ (6,) into out (4, 4)."""
+    for i in range(4):
+        for j in range(4):
+            out[i, j] = 1.0 if i == j else 0.0
+    for i in range(6):
+        c, s = math.cos(theta[i]), math.sin(theta[i])
+        # out ← out · Rz(θ)Tz(d)
+        for r in range(3):
+            x, y = out[r, 0], out[r, 1]
+            out[r, 0] = c * x + s * y
+            out[r, 1] = -s * x + c * y
+            out[r, 3] += d[i] * out[r, 2]
+        if i < 5:
+            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
+            # out ← out · Tx(a)Rx(α)
+            for r in range(3):
+                out[r, 3] += a[i] * out[r, 0]
+                y, z = out[r, 1], out[r, 2]
+                out[r, 1] = ca * y + sa * z
+                out[r, 2] = -sa * y + ca * z
+
+
+@njit
+def _pose_error(Tt: np.ndarray, T: np.ndarray, e: np.ndarray) -> float:
+    """e = (p* − p, ω) with exp([ω]) = R* Rᵀ (space frame); returns ‖e‖."""
+    for r in range(3):
+        e[r] = Tt[r, 3] - T[r, 3]
+    # R_err = R* Rᵀ
+    Re = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for k in range(3):
+                s += Tt[i, k] * T[j, k]
+            Re[i, j] = s
+    tr = Re[0, 0] + Re[1, 1] + Re[2, 2]
+    cth = min(1.0, max(-1.0, 0.5 * (tr - 1.0)))
+    wx, wy, wz = Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]
+    sth = 0.5 * math.sqrt(wx * wx + wy * wy + wz * wz)
+    th = math.atan2(sth, cth)
+    if sth < 1e-12:
+        k = 0.5
+    else:
+        k = 0.5 * th / sth
+    e[3] = k * wx
+    e[4] = k * wy
+    e[5] = k * wz
+    return math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5])
+
+
+@njit
+def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, theta: np.ndarray,
+           iters: int) -> float:
+    """Newton–Raphson on the pose error (geometric Jacobian of ``Z₁X₁ ⋯ Z₆``, space frame).
+
+    Updates theta (6,) in place; returns the final ‖(Δp, Δω)‖ (a step that does not lower
+    the error is not taken).
+    """
+    T = np.empty((4, 4))
+    e = np.empty(6)
+    J = np.empty((6, 6))
+    fk_pose(alpha, a, d, theta, T)
+    err = _pose_error(T06, T, e)
+    trial = np.empty(6)
+    for _ in range(iters):
+        if err < 1e-15:
+            break
+        # geometric Jacobian: column i = (z_i × (p − o_i), z_i), frames before Z_i
+        G = np.eye(4)
+        p = T[:3, 3]
+        for i in range(6):
+            z0, z1, z2 = G[0, 2], G[1, 2], G[2, 2]
+            ox, oy, oz = G[0, 3], G[1, 3], G[2, 3]
+            rx, ry, rz = p[0] - ox, p[1] - oy, p[2] - oz
+            J[0, i] = z1 * rz - z2 * ry
+            J[1, i] = z2 * rx - z0 * rz
+            J[2, i] = z0 * ry - z1 * rx
+            J[3, i] = z0
+            J[4, i] = z1
+            J[5, i] = z2
+            c, s = math.cos(theta[i]), math.sin(theta[i])
+            for r in range(3):
+                x, y = G[r, 0], G[r, 1]
+                G[r, 0] = c * x + s * y
+                G[r, 1] = -s * x + c * y
+                G[r, 3] += d[i] * G[r, 2]
+            if i < 5:
+                ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
+                for r in range(3):
+                    G[r, 3] += a[i] * G[r, 0]
+                    y, z = G[r, 1], G[r, 2]
+                    G[r, 1] = ca * y + sa * z
+                    G[r, 2] = -sa * y + ca * z
+        dq = np.linalg.lstsq(J, e, rcond=1e-12)[0]
+        for i in range(6):
+            trial[i] = theta[i] + dq[i]
+        fk_pose(alpha, a, d, trial, T)
+        new = _pose_error(T06, T, e)
+        if not new < err:
+            fk_pose(alpha, a, d, theta, T)
+            _pose_error(T06, T, e)
+            break
+        err = new
+        for i in range(6):
+            theta[i] = trial[i]
+    return err
