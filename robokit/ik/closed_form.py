@@ -8,7 +8,10 @@ which method applies, or why none does:
   any twists and lengths, revolute or prismatic joints 1–3;
 * **three parallel axes** — 6 revolute joints, axes 2, 3, 4 parallel, axes 5 and 6 meeting,
   axis 1 and axis 5 not parallel to the others (UR3/UR5/UR10/UR16):
-  :mod:`robokit.ik.parallel_axes`.
+  :mod:`robokit.ik.parallel_axes`;
+* **general 6R** — any other arm of 6 revolute joints (an offset wrist such as the Kinova
+  Jaco's, axes that miss by a millimetre): :mod:`robokit.ik.general_6r`, up to 16
+  solutions labelled ``"solution k of m"``. The special methods stay first (they are faster).
 
 Both structures are also recognised counted from the tool (axes 1–3 meeting in one point;
 axes 3–5 parallel with axes 1 and 2 meeting): the chain is then read backwards (its FK is
@@ -16,8 +19,9 @@ the inverse pose, joint k ↔ joint 7 − k, q′ = −q), solved for T⁻¹, an
 "(chain reversed)"; at a singularity the free joint is then joint 3 (or 1) with the value
 ``wrist_ref``.
 
-Other arms — 7 joints (panda), wrists whose axes do not meet, … — have no closed form here
-and ``ik_analytic`` raises ``ValueError`` with the reason in the arm's terms.
+Other arms — 7 joints (panda), fewer than 6, a prismatic joint without the special
+structures, axes dependent everywhere — have no closed form here and ``ik_analytic`` raises
+``ValueError`` with the reason in the arm's terms.
 
 The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.urdf_to_dh`
 extracts, whose FK equals the URDF's) is turned once into the canonical chain and the
@@ -47,6 +51,7 @@ from numpy.typing import ArrayLike
 
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.analytic import IKSolution
+from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.spatial.se3 import check_transform
@@ -86,6 +91,7 @@ class ClosedFormModel:
     def __init__(self, table: DHTable, qlim: ArrayLike | None = None) -> None:
         self.chain = DHChain(table, qlim)
         self.reversed = False
+        self.solver: PieperSolver | ParallelAxesSolver | GeneralSixR | None
         self.kind, self.solver, self.solver_chain = self._method(self.chain)
         if self.kind.method is None and self.chain.n == 6:
             # the same structures counted from the tool: axes 1–3 meeting (a spherical wrist at the
@@ -98,6 +104,13 @@ class ClosedFormModel:
                 self.kind = ClosedFormKind(kind.method, f"{where}: the {kind.method} method on the chain read "
                                                         f"from the tool back to the base")
                 self.solver, self.solver_chain, self.reversed = solver, rc, True
+        if self.kind.method is None and self.chain.n == 6:  # no special structure: the general 6R method
+            why = GeneralSixR.refusal(self.chain)
+            if why is None:
+                self.kind = ClosedFormKind("general 6R", self.kind.reason + GeneralSixR.REASON)
+                self.solver, self.solver_chain = GeneralSixR.from_chain(self.chain), self.chain
+            else:
+                self.kind = ClosedFormKind(None, f"{self.kind.reason}; {why}")
         ch = self.chain
         self.rev_list = [k == "R" for k in ch.kinds]
         self.all_rev = all(self.rev_list)
@@ -140,7 +153,7 @@ class ClosedFormModel:
         return self._finish(rows)
 
     def _rows(self, T06: np.ndarray, wrist_ref: float) -> list[_Row]:
-        if isinstance(self.solver, ParallelAxesSolver):
+        if isinstance(self.solver, (ParallelAxesSolver, GeneralSixR)):
             return self.solver.solve(T06, wrist_ref)
         return self._pieper(T06, wrist_ref)
 
@@ -401,8 +414,8 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     Returns
     -------
     ClosedFormKind
-        ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family)
-        or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not
+        ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family),
+        ``"general 6R"`` (any other 6R arm) or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not
         intersect: closest distance 0.0946 m; …"``).
 
     Notes

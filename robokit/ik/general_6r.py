@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.kernels.general_6r import fk_pose, fvec, pencil, polish
+from robokit.kernels.general_6r import fk_pose, fvec, jacobian, pencil, polish
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -240,13 +240,56 @@ class GeneralSixR:
     in rad, offsets removed), as the other closed-form solvers do.
     """
 
+    #: what ``ik_analytic_kind`` adds to the reason when this solver takes an arm
+    REASON = "; the general 6R method applies (Raghavan–Roth elimination, up to 16 solutions)"
+
     def __init__(self, chain: DHChain) -> None:
-        if chain.n != 6 or any(k != "R" for k in chain.kinds):
-            raise ValueError("robot: the general 6R solver needs six revolute joints")
+        why = self.refusal(chain)
+        if why is not None:
+            raise ValueError(f"robot: {why}")
         self.chain = chain
         self.scale = float(chain.scale)
         self.forward = _Elimination(chain, self.scale)
         self.backward = _Elimination(chain.reversed(), self.scale)
+
+    @staticmethod
+    def refusal(chain: DHChain) -> str | None:
+        """Why the general 6R method does not apply to ``chain``, or None when it does.
+
+        It needs six revolute joints whose axes are independent somewhere: an arm whose 6 × 6
+        Jacobian is rank-deficient at every configuration (two axes coincide, …) has a
+        continuum of solutions, not a finite set. The Jacobian is checked at four fixed
+        pseudo-random configurations (smallest / largest singular value above 1e-9).
+
+        Parameters
+        ----------
+        chain : DHChain
+            The canonical chain of the arm.
+
+        Returns
+        -------
+        str or None
+        """
+        if chain.n != 6:
+            return f"the general 6R method needs 6 joints, the arm has {chain.n}"
+        if any(k != "R" for k in chain.kinds):
+            j = 1 + list(chain.kinds).index("P")
+            return f"the general 6R method needs revolute joints, joint {j} is prismatic"
+        scale = float(chain.scale)
+        al = np.ascontiguousarray(chain.alpha, dtype=float)
+        a = np.ascontiguousarray(chain.a, dtype=float) / scale
+        d = np.ascontiguousarray(chain.d0, dtype=float) / scale
+        rng = np.random.default_rng(12345)
+        T, J = np.empty((4, 4)), np.empty((6, 6))
+        for _ in range(4):
+            th = rng.uniform(-math.pi, math.pi, 6)
+            fk_pose(al, a, d, th, T)
+            jacobian(al, a, d, th, T, J)
+            sv = np.linalg.svd(J, compute_uv=False)
+            if sv[-1] > 1e-9 * sv[0]:
+                return None
+        return ("the joint axes are dependent at every configuration (the 6 × 6 Jacobian is singular "
+                "everywhere), so a pose has a continuum of solutions")
 
     @classmethod
     def from_chain(cls, chain: DHChain) -> "GeneralSixR":

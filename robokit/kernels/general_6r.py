@@ -14,6 +14,8 @@ Kernels
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
 ``fk_pose(alpha, a, d, theta, out)``
     the pose of ``Z₁X₁ ⋯ X₅Z₆`` (canonical DH chain) at the rotation angles θ.
+``jacobian(alpha, a, d, theta, T, J)``
+    the geometric Jacobian of that chain.
 ``polish(alpha, a, d, T06, theta, iters)``
     Newton–Raphson on the pose error ``(p* − p, log(R* Rᵀ))`` with the geometric Jacobian;
     updates θ in place and returns the final error norm.
@@ -26,7 +28,7 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["pencil", "fk_pose", "polish", "fvec"]
+__all__ = ["pencil", "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
@@ -217,6 +219,37 @@ def _pose_error(Tt: np.ndarray, T: np.ndarray, e: np.ndarray) -> float:
 
 
 @njit
+def jacobian(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, T: np.ndarray,
+             J: np.ndarray) -> None:
+    """Geometric Jacobian (6 × 6, rows (v, ω), space frame, at the end point T[:3, 3]) of
+    ``Z₁X₁ ⋯ Z₆`` at θ into J; column i is ``(zᵢ × (p − oᵢ), zᵢ)`` for joint i's axis
+    (zᵢ, oᵢ) and the pose T = fk_pose(θ)."""
+    G = np.eye(4)
+    for i in range(6):
+        z0, z1, z2 = G[0, 2], G[1, 2], G[2, 2]
+        rx, ry, rz = T[0, 3] - G[0, 3], T[1, 3] - G[1, 3], T[2, 3] - G[2, 3]
+        J[0, i] = z1 * rz - z2 * ry
+        J[1, i] = z2 * rx - z0 * rz
+        J[2, i] = z0 * ry - z1 * rx
+        J[3, i] = z0
+        J[4, i] = z1
+        J[5, i] = z2
+        c, s = math.cos(theta[i]), math.sin(theta[i])
+        for r in range(3):
+            x, y = G[r, 0], G[r, 1]
+            G[r, 0] = c * x + s * y
+            G[r, 1] = -s * x + c * y
+            G[r, 3] += d[i] * G[r, 2]
+        if i < 5:
+            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
+            for r in range(3):
+                G[r, 3] += a[i] * G[r, 0]
+                y, z = G[r, 1], G[r, 2]
+                G[r, 1] = ca * y + sa * z
+                G[r, 2] = -sa * y + ca * z
+
+
+@njit
 def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, theta: np.ndarray,
            iters: int) -> float:
     """Newton–Raphson on the pose error (geometric Jacobian of ``Z₁X₁ ⋯ Z₆``, space frame).
@@ -233,32 +266,7 @@ def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, the
     for _ in range(iters):
         if err < 1e-15:
             break
-        # geometric Jacobian: column i = (z_i × (p − o_i), z_i), frames before Z_i
-        G = np.eye(4)
-        p = T[:3, 3]
-        for i in range(6):
-            z0, z1, z2 = G[0, 2], G[1, 2], G[2, 2]
-            ox, oy, oz = G[0, 3], G[1, 3], G[2, 3]
-            rx, ry, rz = p[0] - ox, p[1] - oy, p[2] - oz
-            J[0, i] = z1 * rz - z2 * ry
-            J[1, i] = z2 * rx - z0 * rz
-            J[2, i] = z0 * ry - z1 * rx
-            J[3, i] = z0
-            J[4, i] = z1
-            J[5, i] = z2
-            c, s = math.cos(theta[i]), math.sin(theta[i])
-            for r in range(3):
-                x, y = G[r, 0], G[r, 1]
-                G[r, 0] = c * x + s * y
-                G[r, 1] = -s * x + c * y
-                G[r, 3] += d[i] * G[r, 2]
-            if i < 5:
-                ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-                for r in range(3):
-                    G[r, 3] += a[i] * G[r, 0]
-                    y, z = G[r, 1], G[r, 2]
-                    G[r, 1] = ca * y + sa * z
-                    G[r, 2] = -sa * y + ca * z
+        jacobian(alpha, a, d, theta, T, J)
         dq = np.linalg.lstsq(J, e, rcond=1e-12)[0]
         for i in range(6):
             trial[i] = theta[i] + dq[i]
