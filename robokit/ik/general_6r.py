@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.kernels.general_6r import fk_pose, fvec, jacobian, pencil, polish
+from robokit.kernels.general_6r import fill_joint, fk_pose, fvec, jacobian, pencil, polish, side_tensor
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -115,50 +115,141 @@ def _rz_parts(v: np.ndarray, sign: float) -> np.ndarray:
     return out
 
 
+def _f_rotate(R: np.ndarray) -> np.ndarray:
+    """15 × 15 map of f(l, p) under a rotation R (3 × 3)."""
+    F = np.eye(15)
+    for b in (0, 3, 8, 11):
+        F[b:b + 3, b:b + 3] = R
+    return F
+
+
+class _Arrangement:
+    """One way of writing the loop equation (eliminated joint j, the three-joint group on
+    either side, its pivot joint), with the per-arm constant maps of both sides.
+
+    The loop ``Z₁X₁ ⋯ X₅Z₆W = I`` with ``W = T₀₆⁻¹`` is read cyclically from just after
+    ``Z_j``: ``R Z_j = I`` with ``R = L_j Z_{j+1} L_{j+1} ⋯ L_{j−1}`` (Lᵢ = Xᵢ, L₆ = W), so
+    ``R (e_z, 0) = (e_z, −d_j e_z)``; R is cut into ``G₁G₂`` after the first n₁ joints:
+    ``G₂ (e_z, 0) = G₁⁻¹ (e_z, −d_j e_z)``. j = 6, n₁ = 2 is the reading of the module
+    docstring; the others are its cyclic re-indexings.
+    """
+
+    def __init__(self, el: "_Elimination", j: int, n1: int, piv: int) -> None:
+        self.j, self.n1, self.piv = j, n1, piv
+        J = [(j + t) % 6 for t in range(1, 6)]
+        ez, ex = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+        al, a, d = el.alpha, el.a, el.d
+
+        I15 = np.eye(15)
+        Op = tuple[np.ndarray, int, np.ndarray]  # pre @ F(W)^w @ post (w = 0: pre alone)
+
+        def const(M: np.ndarray) -> Op:
+            return (M, 0, I15)
+
+        def L(i: int, inverse: bool) -> Op:  # the link after joint i: Xᵢ, or W after joint 6
+            if i == 5:
+                return (I15, -1 if inverse else 1, I15)
+            if inverse:
+                return const(_f_rotate_x(-al[i]) @ _f_translate(-a[i] * ex))
+            return const(_f_translate(a[i] * ex) @ _f_rotate_x(al[i]))
+
+        def comp(X: Op, Y: Op) -> Op:  # X applied after Y
+            if X[1] != 0:
+                return (X[0], X[1], X[2] @ Y[0])
+            if Y[1] != 0:
+                return (X[0] @ Y[0], Y[1], Y[2])
+            return const(X[0] @ Y[0])
+
+        def Tz(dz: float) -> Op:
+            return const(_f_translate(dz * ez))
+
+        # side 1: G₁⁻¹ (e_z, −d_j e_z): L_j⁻¹, Rz(−θ_{J0}), Tz(−d_{J0}) then L_{J0}⁻¹, Rz(−θ_{J1}), …
+        ops1 = [L(j, True)]
+        for t in range(1, n1):
+            ops1.append(comp(L(J[t - 1], True), Tz(-d[J[t - 1]])))
+        ops1.append(Tz(-d[J[n1 - 1]]))
+        joints1 = J[:n1]
+        # side 2: G₂ (e_z, 0): L_{J4} then Tz(d_{J4}), Rz(θ_{J4}), L_{J3}, Tz, Rz, …, L_{J[n1−1]}
+        rest = J[n1:][::-1]
+        ops2 = [comp(Tz(d[i]), L(i, False)) for i in rest] + [L(J[n1 - 1], False)]
+        joints2 = rest
+        self.sides = [(ops1, np.array([-1.0] * n1), joints1), (ops2, np.array([1.0] * len(rest)), joints2)]
+        f1 = np.zeros(15)
+        fvec(0.0, 0.0, 1.0, 0.0, 0.0, -d[j], f1)
+        f2 = np.zeros(15)
+        fvec(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f2)
+        self.fstart = [f1, f2]
+        three = 0 if n1 == 3 else 1
+        self.three, self.two = three, 1 - three
+        o = self.sides[three][2]
+        self.pivot = o[piv]
+        self.others = [o[k] for k in range(3) if k != piv]
+        self.pair = list(self.sides[self.two][2])
+        self.t3 = np.empty((27, 15))
+        self.t2 = np.empty((9, 15))
+
+    def matrices(self, T06s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(P (3, 15, 9), r (15, 9)) of the pose: the three-joint side with the pivot first
+        and the two-joint side (see :func:`robokit.kernels.general_6r.pencil`)."""
+        R, p = T06s[:3, :3], T06s[:3, 3]
+        FW = {1: _f_translate(-R.T @ p) @ _f_rotate(R.T), -1: _f_translate(p) @ _f_rotate(R)}
+        outs = []
+        for (ops, signs, joints), f, buf in zip(self.sides, self.fstart,
+                                                 (self.t3, self.t2) if self.three == 0 else (self.t2, self.t3)):
+            Ms = np.stack([pre if w == 0 else pre @ FW[w] @ post for pre, w, post in ops])
+            side_tensor(Ms, signs, f, buf)
+            outs.append(buf)
+        G3, G2 = outs[self.three], outs[self.two]
+        T3 = G3.reshape(3, 3, 3, 15)  # axes (t2, t1, t0, k)
+        axes = {0: 2, 1: 1, 2: 0}  # joint position in the group → axis of T3
+        b, c = [k for k in range(3) if k != self.piv]
+        P = np.ascontiguousarray(T3.transpose(axes[self.piv], 3, axes[b], axes[c]).reshape(3, 15, 9))
+        r = np.ascontiguousarray(G2.reshape(3, 3, 15).transpose(2, 1, 0).reshape(15, 9))
+        return P, r
+
+
 class _Elimination:
-    """The per-arm constants of one reading of the chain (lengths divided by ``scale``)."""
+    """The per-arm constants (lengths divided by ``scale``) and the chosen arrangements."""
 
     def __init__(self, chain: DHChain, scale: float) -> None:
         self.alpha = np.ascontiguousarray(chain.alpha, dtype=float)
         self.a = np.ascontiguousarray(chain.a, dtype=float) / scale
         self.d = np.ascontiguousarray(chain.d0, dtype=float) / scale
         self.th0 = np.asarray(chain.th0, dtype=float)
-        al, a, d = self.alpha, self.a, self.d
-        ez = np.array([0.0, 0.0, 1.0])
-        ex = np.array([1.0, 0.0, 0.0])
-
-        def FX(i: int) -> np.ndarray:  # X_{i+1} = Tx(a)Rx(α) on f
-            return _f_translate(a[i] * ex) @ _f_rotate_x(al[i])
-
-        def FTz(i: int) -> np.ndarray:
-            return _f_translate(d[i] * ez)
-
-        f0 = np.zeros(15)
-        fvec(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f0)
-        g5 = _rz_parts(FTz(4) @ FX(4) @ f0, 1.0)  # Z₅X₅(e_z, 0): (c₅, s₅, 1) parts
-        P = np.empty((3, 15, 9))
-        M4 = FTz(3) @ FX(3)
-        M3 = FTz(2) @ FX(2)
-        X2 = FX(1)
-        for i5 in range(3):
-            g4 = _rz_parts(M4 @ g5[i5], 1.0)
-            for i4 in range(3):
-                g3 = _rz_parts(M3 @ g4[i4], 1.0)
-                for i3 in range(3):
-                    P[i3, :, i4 * 3 + i5] = X2 @ g3[i3]
-        self.P = np.ascontiguousarray(P)
-        self.K1 = np.ascontiguousarray(_f_rotate_x(-al[0]) @ _f_translate(-a[0] * ex) @ _f_translate(-d[0] * ez))
-        self.Tz2 = np.ascontiguousarray(_f_translate(-d[1] * ez))
-        self.d6 = float(d[5])
         self.gc, self.gs = math.cos(_GAMMA), math.sin(_GAMMA)
         self.work = np.empty((3, 12, 12))
         self.Np = np.empty((3, 14, 9))
         self.Pinv = np.empty((8, 14))
+        # score every arrangement on a few poses; keep them best first
+        rng = np.random.default_rng(2024)
+        poses = []
+        for _ in range(3):
+            T = np.empty((4, 4))
+            fk_pose(self.alpha, self.a, self.d, rng.uniform(-math.pi, math.pi, 6), T)
+            poses.append(T)
+        scored = []
+        for j in range(6):
+            for n1 in (2, 3):
+                for piv in range(3):
+                    arr = _Arrangement(self, j, n1, piv)
+                    scored.append((min(self._score(arr, T) for T in poses), j, n1, piv, arr))
+        scored.sort(key=lambda t: -t[0])
+        self.arrangements = [t[4] for t in scored]
+        self.scores = [t[0] for t in scored]
 
-    def candidates(self, T06s: np.ndarray) -> tuple[list[np.ndarray], float]:
-        """Polished rotation angles θ (6,) of the solutions for the scaled target, and a
-        conditioning figure (the smaller of Q's and A's singular value ratios)."""
-        ratio = pencil(self.P, self.K1, self.Tz2, self.d6, T06s, self.gc, self.gs, self.work, self.Np, self.Pinv)
+    def _score(self, arr: _Arrangement, T06s: np.ndarray) -> float:
+        P, r = arr.matrices(T06s)
+        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
+        A, B, C = self.work
+        Lx = A * 0.37 ** 2 + B * 0.37 + C
+        sv = np.linalg.svd(Lx, compute_uv=False)
+        return min(ratio, sv[-1] / sv[0] if sv[0] > 0 else 0.0)
+
+    def candidates(self, T06s: np.ndarray, arr: _Arrangement) -> tuple[list[np.ndarray], float]:
+        """Polished rotation angles θ (6,) of the solutions for the scaled target with one
+        arrangement, and a conditioning figure (the smaller of Q's and A's singular value ratios)."""
+        P, r = arr.matrices(T06s)
+        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
         A, B, C = self.work
         sA = np.linalg.svd(A, compute_uv=False)
         condA = sA[-1] / sA[0] if sA[0] > 0.0 else 0.0
@@ -195,40 +286,40 @@ class _Elimination:
                 phi = math.pi
             z = Z[:, k]
             v = z[:n] if abs(math.tan(phi / 2.0)) <= 1.0 else z[n:]
-            j = int(np.argmax(np.abs(v)))
-            v = (v * (abs(v[j]) / v[j])).real
-            th = self._back(phi + _GAMMA, v, T06s)
+            jmax = int(np.argmax(np.abs(v)))
+            v = (v * (abs(v[jmax]) / v[jmax])).real
+            th = self._back(arr, phi + _GAMMA, v, T06s)
             err = polish(self.alpha, self.a, self.d, T06s, th, 12)
             if err < _CONVERGED:
                 out.append(th)
         return out, min(ratio, condA)
 
-    def _back(self, th3: float, v: np.ndarray, T06s: np.ndarray) -> np.ndarray:
-        V = v.reshape(4, 3)  # V[i, j] ~ x₄ⁱ x₅ʲ
-        best, th4 = -1.0, 0.0
+    def _back(self, arr: _Arrangement, thp: float, v: np.ndarray, T06s: np.ndarray) -> np.ndarray:
+        V = v.reshape(4, 3)  # V[i, j] ~ x_bⁱ x_cʲ
+        best, thb = -1.0, 0.0
         for i in range(3):
             for j in range(3):
                 w = V[i, j] ** 2 + V[i + 1, j] ** 2
                 if w > best:
-                    best, th4 = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
-        best, th5 = -1.0, 0.0
+                    best, thb = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
+        best, thc = -1.0, 0.0
         for i in range(4):
             for j in range(2):
                 w = V[i, j] ** 2 + V[i, j + 1] ** 2
                 if w > best:
-                    best, th5 = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
-        t4 = np.array([math.cos(th4), math.sin(th4), 1.0])
-        t5 = np.array([math.cos(th5), math.sin(th5), 1.0])
-        m45 = np.outer(t4, t5).ravel()
-        rhs = (self.Np[0] * math.cos(th3) + self.Np[1] * math.sin(th3) + self.Np[2]) @ m45
+                    best, thc = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
+        tb = np.array([math.cos(thb), math.sin(thb), 1.0])
+        tc = np.array([math.cos(thc), math.sin(thc), 1.0])
+        mbc = np.outer(tb, tc).ravel()
+        rhs = (self.Np[0] * math.cos(thp) + self.Np[1] * math.sin(thp) + self.Np[2]) @ mbc
         m12 = self.Pinv @ rhs
-        th1 = math.atan2(m12[5], m12[2])
-        th2 = math.atan2(m12[7], m12[6])
-        th = np.array([th1, th2, th3, th4, th5, 0.0])
-        T = np.empty((4, 4))
-        fk_pose(self.alpha, self.a, self.d, th, T)
-        R = T[:3, :3].T @ T06s[:3, :3]
-        th[5] = math.atan2(R[1, 0], R[0, 0])
+        th = np.zeros(6)
+        th[arr.pivot] = thp
+        th[arr.others[0]] = thb
+        th[arr.others[1]] = thc
+        th[arr.pair[0]] = math.atan2(m12[5], m12[2])
+        th[arr.pair[1]] = math.atan2(m12[7], m12[6])
+        fill_joint(self.alpha, self.a, self.d, T06s, th, arr.j)
         return th
 
 
@@ -249,8 +340,7 @@ class GeneralSixR:
             raise ValueError(f"robot: {why}")
         self.chain = chain
         self.scale = float(chain.scale)
-        self.forward = _Elimination(chain, self.scale)
-        self.backward = _Elimination(chain.reversed(), self.scale)
+        self.elim = _Elimination(chain, self.scale)
 
     @staticmethod
     def refusal(chain: DHChain) -> str | None:
@@ -324,15 +414,13 @@ class GeneralSixR:
         """
         T06s = np.array(T06, dtype=float)
         T06s[:3, 3] /= self.scale
-        sols, ratio = self.forward.candidates(T06s)
-        if ratio < 1e-6:
-            Ti = np.eye(4)
-            Ti[:3, :3] = T06s[:3, :3].T
-            Ti[:3, 3] = -T06s[:3, :3].T @ T06s[:3, 3]
-            back, _ = self.backward.candidates(Ti)
-            sols = sols + [-th[::-1] for th in back]
+        el = self.elim
+        sols, ratio = el.candidates(T06s, el.arrangements[0])
+        if ratio < 1e-6:  # this pose is badly conditioned for the best reading: add the next one
+            more, _ = el.candidates(T06s, el.arrangements[1])
+            sols = sols + more
         q_list: list[np.ndarray] = []
-        th0 = self.forward.th0
+        th0 = el.th0
         for th in sols:
             q = np.remainder(th - th0 + math.pi, 2.0 * math.pi) - math.pi
             if not any(np.all(np.abs(np.remainder(q - o + math.pi, 2.0 * math.pi) - math.pi) < _SAME) for o in q_list):

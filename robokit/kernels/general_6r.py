@@ -28,7 +28,7 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["pencil", "fk_pose", "jacobian", "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
@@ -74,38 +74,55 @@ def _rz_parts(v: np.ndarray, sign: float, out: np.ndarray) -> None:
 
 
 @njit
-def pencil(P: np.ndarray, K1: np.ndarray, Tz2: np.ndarray, d6: float, T06: np.ndarray,
-           gc: float, gs: float, out: np.ndarray, Np: np.ndarray, Pinv: np.ndarray) -> float:
+def side_tensor(Ms: np.ndarray, signs: np.ndarray, f: np.ndarray, out: np.ndarray) -> None:
+    """One side of the loop equation as a tensor over its joints' (cos θ, sin θ, 1).
+
+    Ms : (k + 1, 15, 15) constant maps, signs : (k,) ±1 — the side is
+    ``Ms[k] · Rz(±θ_{k−1}) · ⋯ · Ms[1] · Rz(±θ₀) · Ms[0] · f`` (Ms[0] applied first);
+    out : (3**k, 15), row ``i₀ + 3 i₁ + 9 i₂`` … the coefficient of ``b(θ₀)ᵢ₀ b(θ₁)ᵢ₁ ⋯``
+    with ``b(θ) = (cos θ, sin θ, 1)``.
+    """
+    k = signs.shape[0]
+    cur = np.empty((27, 15))
+    nxt = np.empty((27, 15))
+    for r in range(15):
+        acc = 0.0
+        for m in range(15):
+            acc += Ms[0, r, m] * f[m]
+        cur[0, r] = acc
+    n = 1
+    parts = np.empty((3, 15))
+    for j in range(k):
+        for t in range(n):
+            _rz_parts(cur[t], signs[j], parts)
+            for b in range(3):
+                row = t + n * b
+                for r in range(15):
+                    acc = 0.0
+                    for m in range(15):
+                        acc += Ms[j + 1, r, m] * parts[b, m]
+                    nxt[row, r] = acc
+        n *= 3
+        for t in range(n):
+            for r in range(15):
+                cur[t, r] = nxt[t, r]
+    for t in range(n):
+        for r in range(15):
+            out[t, r] = cur[t, r]
+
+
+@njit
+def pencil(P: np.ndarray, r: np.ndarray, gc: float, gs: float, out: np.ndarray, Np: np.ndarray,
+           Pinv: np.ndarray) -> float:
     """The quadratic matrix polynomial of one pose.
 
-    P : (3, 15, 9) the arm's left-hand coefficients (θ₃ basis (cos, sin, 1), rows f, columns
-    the trig monomials of θ₄, θ₅); K1 : (15, 15) ``F(X₁⁻¹ Tz(−d₁))``; Tz2 : (15, 15)
-    ``F(Tz(−d₂))``; d6 : joint 6's offset; T06 : (4, 4) the target of ``Z₁ ⋯ Z₆``; (gc, gs):
-    cos γ, sin γ of the θ₃ shift. Writes out : (3, 12, 12) = (A, B, C); Np : (3, 14, 9)
-    the right-hand side pieces ``P′`` (θ₃ basis) for the back-substitution; Pinv : (8, 14)
-    the pseudo-inverse of the 14×8 matrix of joints 1–2. Returns σ_min/σ_max of that matrix.
+    P : (3, 15, 9) the three-joint side (pivot basis (cos, sin, 1); rows f; columns the
+    monomials ``b(θ_b) ⊗ b(θ_c)`` of the other two joints); r : (15, 9) the two-joint side
+    (columns ``b(θ_d) ⊗ b(θ_e)``, the last one the constant); (gc, gs): cos γ, sin γ of the
+    pivot's shift. Writes out : (3, 12, 12) = (A, B, C); Np : (3, 14, 9) ``P`` with the
+    constant of the two-joint side moved over (for the back-substitution); Pinv : (8, 14)
+    the pseudo-inverse of the 14 × 8 matrix Q of the two-joint side. Returns σ_min/σ_max of Q.
     """
-    f = np.empty(15)
-    l0, l1, l2 = T06[0, 2], T06[1, 2], T06[2, 2]
-    fvec(l0, l1, l2, T06[0, 3] - d6 * l0, T06[1, 3] - d6 * l1, T06[2, 3] - d6 * l2, f)
-    parts1 = np.empty((3, 15))
-    _rz_parts(f, -1.0, parts1)
-    r = np.empty((15, 9))
-    u = np.empty(15)
-    parts2 = np.empty((3, 15))
-    for i1 in range(3):
-        for k in range(15):
-            s = 0.0
-            for m in range(15):
-                s += K1[k, m] * parts1[i1, m]
-            u[k] = s
-        _rz_parts(u, -1.0, parts2)
-        for i2 in range(3):
-            for k in range(15):
-                s = 0.0
-                for m in range(15):
-                    s += Tz2[k, m] * parts2[i2, m]
-                r[k, i1 * 3 + i2] = s
     Q = np.ascontiguousarray(r[:14, :8])
     U, sv, Vt = np.linalg.svd(Q)
     ratio = sv[7] / sv[0] if sv[0] > 0.0 else 0.0
@@ -164,6 +181,44 @@ def pencil(P: np.ndarray, K1: np.ndarray, Tz2: np.ndarray, d6: float, T06: np.nd
                     out[1, 6 + e, col + 3] += g * coef1
                     out[2, 6 + e, col + 3] += g * coef0
     return ratio
+
+
+@njit
+def fill_joint(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, theta: np.ndarray, j: int) -> None:
+    """Set θ_j from the others: ``Rz(θ_j) = (Z₁X₁⋯X_{j−1})⁻¹ T₀₆ (X_j Z_{j+1} ⋯ Z₆)⁻¹ Tz(−d_j)``."""
+    A = np.eye(4)
+    B = np.eye(4)
+    for i in range(6):
+        c, s = math.cos(theta[i]), math.sin(theta[i])
+        M = B if i > j else A
+        if i != j:
+            for r in range(3):
+                x, y = M[r, 0], M[r, 1]
+                M[r, 0] = c * x + s * y
+                M[r, 1] = -s * x + c * y
+                M[r, 3] += d[i] * M[r, 2]
+        if i < 5:
+            M = B if i >= j else A
+            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
+            for r in range(3):
+                M[r, 3] += a[i] * M[r, 0]
+                y, z = M[r, 1], M[r, 2]
+                M[r, 1] = ca * y + sa * z
+                M[r, 2] = -sa * y + ca * z
+    # R = A_Rᵀ R₀₆ B_Rᵀ (rotation part of A⁻¹ T B⁻¹)
+    R1 = np.empty((3, 3))
+    for i in range(3):
+        for k in range(3):
+            acc = 0.0
+            for m in range(3):
+                acc += A[m, i] * T06[m, k]
+            R1[i, k] = acc
+    r00 = 0.0
+    r10 = 0.0
+    for m in range(3):
+        r00 += R1[0, m] * B[0, m]
+        r10 += R1[1, m] * B[0, m]
+    theta[j] = math.atan2(r10, r00)
 
 
 @njit
