@@ -76,9 +76,8 @@ _CONVERGED = 1e-11  # pose error (scaled units) below which a polished candidate
 _SAME = 1e-7  # rad: solutions this close in every joint are one
 
 
-def _f_translate(t: Sequence[float]) -> np.ndarray:
+def _f_translate(t: np.ndarray) -> np.ndarray:
     """15 × 15 map of f(l, p) (with its trailing 1) under p → p + t."""
-    t = np.asarray(t, dtype=float)
     tt = float(t @ t)
     tx = np.array([[0.0, -t[2], t[1]], [t[2], 0.0, -t[0]], [-t[1], t[0], 0.0]])
     F = np.eye(15)
@@ -427,4 +426,6 @@ class GeneralSixR:
                 q_list.append(q)
         q_list.sort(key=lambda q: tuple(q[[2, 0, 1, 3, 4, 5]]))
         m = len(q_list)
-        return [(q, f"solution {k + 1} of {m}", False) for k, q in enumerate(q_list)]
+        rows: list[tuple[Sequence[float], str, bool]] = [(q.tolist(), f"solution {k + 1} of {m}", False)
+                                                        for k, q in enumerate(q_list)]
+        return rows

@@ -259,17 +259,17 @@ def _pose_error(Tt: np.ndarray, T: np.ndarray, e: np.ndarray) -> float:
                 s += Tt[i, k] * T[j, k]
             Re[i, j] = s
     tr = Re[0, 0] + Re[1, 1] + Re[2, 2]
-    cth = min(1.0, max(-1.0, 0.5 * (tr - 1.0)))
+    cth = 0.5 * (tr - 1.0)
+    cth = 1.0 if cth > 1.0 else (-1.0 if cth < -1.0 else cth)
     wx, wy, wz = Re[2, 1] - Re[1, 2], Re[0, 2] - Re[2, 0], Re[1, 0] - Re[0, 1]
     sth = 0.5 * math.sqrt(wx * wx + wy * wy + wz * wz)
     th = math.atan2(sth, cth)
-    if sth < 1e-12:
-        k = 0.5
-    else:
-        k = 0.5 * th / sth
-    e[3] = k * wx
-    e[4] = k * wy
-    e[5] = k * wz
+    fac = 0.5
+    if sth >= 1e-12:
+        fac = 0.5 * th / sth
+    e[3] = fac * wx
+    e[4] = fac * wy
+    e[5] = fac * wz
     return math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5])
 
 
