@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.kernels.general_6r import fill_joint, fk_pose, fvec, jacobian, pencil, polish, side_tensor
+from robokit.kernels.general_6r import distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover, side_tensor
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -186,17 +186,27 @@ class _Arrangement:
         self.pair = list(self.sides[self.two][2])
         self.t3 = np.empty((27, 15))
         self.t2 = np.empty((9, 15))
+        self.roles = np.array([self.pivot, *self.others, *self.pair, j], dtype=np.int64)
+        # per side: the stacked maps, and where the target's W sits (index, pre, inverse?, post)
+        self.Ms: list[np.ndarray] = []
+        self.w_at: list[tuple[int, np.ndarray, bool, np.ndarray] | None] = []
+        for ops, _, _ in self.sides:
+            self.Ms.append(np.ascontiguousarray(np.stack([pre for pre, _, _ in ops])))
+            at = [(i, pre, w < 0, post) for i, (pre, w, post) in enumerate(ops) if w != 0]
+            self.w_at.append(at[0] if at else None)
+        self.FW = np.empty((15, 15))
 
     def matrices(self, T06s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(P (3, 15, 9), r (15, 9)) of the pose: the three-joint side with the pivot first
         and the two-joint side (see :func:`robokit.kernels.general_6r.pencil`)."""
-        R, p = T06s[:3, :3], T06s[:3, 3]
-        FW = {1: _f_translate(-R.T @ p) @ _f_rotate(R.T), -1: _f_translate(p) @ _f_rotate(R)}
         outs = []
-        for (ops, signs, joints), f, buf in zip(self.sides, self.fstart,
-                                                 (self.t3, self.t2) if self.three == 0 else (self.t2, self.t3)):
-            Ms = np.stack([pre if w == 0 else pre @ FW[w] @ post for pre, w, post in ops])
-            side_tensor(Ms, signs, f, buf)
+        for side, f, buf in zip(range(2), self.fstart, (self.t3, self.t2) if self.three == 0 else (self.t2, self.t3)):
+            Ms, at = self.Ms[side], self.w_at[side]
+            if at is not None:
+                i, pre, inverse, post = at
+                f_pose(T06s, not inverse, self.FW)  # W = T₀₆⁻¹; W⁻¹ = T₀₆
+                Ms[i] = pre @ self.FW @ post
+            side_tensor(Ms, self.sides[side][1], f, buf)
             outs.append(buf)
         G3, G2 = outs[self.three], outs[self.two]
         T3 = G3.reshape(3, 3, 3, 15)  # axes (t2, t1, t0, k)
@@ -219,6 +229,7 @@ class _Elimination:
         self.work = np.empty((3, 12, 12))
         self.Np = np.empty((3, 14, 9))
         self.Pinv = np.empty((8, 14))
+        self.found = np.empty((24, 6))
         # score every arrangement on a few poses; keep them best first
         rng = np.random.default_rng(2024)
         poses = []
@@ -259,8 +270,9 @@ class _Elimination:
             M[:n, n:] = np.eye(n)
             M[n:, :n] = -Ainv @ C
             M[n:, n:] = -Ainv @ B
-            lam, Z = np.linalg.eig(M)
-            xs = [(complex(v), 1.0 + 0j) for v in lam]
+            num, Z = np.linalg.eig(M)
+            num = num.astype(np.complex128)
+            den = np.ones(2 * n, dtype=np.complex128)
         else:
             import scipy.linalg
 
@@ -271,55 +283,11 @@ class _Elimination:
             L1 = np.eye(2 * n)
             L1[n:, n:] = A
             w, Z = scipy.linalg.eig(L0, L1, homogeneous_eigvals=True)
-            xs = [(complex(w[0, k]), complex(w[1, k])) for k in range(2 * n)]
-        out: list[np.ndarray] = []
-        for k, (num, den) in enumerate(xs):
-            # angle φ = 2 atan(num/den); a real root has num/den real
-            if abs(den) > 1e-300:
-                lam_k = num / den
-                imag = 2.0 * abs(lam_k.imag) / (1.0 + abs(lam_k) ** 2)
-                if imag > _IMAG_TOL:
-                    continue
-                phi = 2.0 * math.atan(lam_k.real)
-            else:
-                phi = math.pi
-            z = Z[:, k]
-            v = z[:n] if abs(math.tan(phi / 2.0)) <= 1.0 else z[n:]
-            jmax = int(np.argmax(np.abs(v)))
-            v = (v * (abs(v[jmax]) / v[jmax])).real
-            th = self._back(arr, phi + _GAMMA, v, T06s)
-            err = polish(self.alpha, self.a, self.d, T06s, th, 12)
-            if err < _CONVERGED:
-                out.append(th)
-        return out, min(ratio, condA)
-
-    def _back(self, arr: _Arrangement, thp: float, v: np.ndarray, T06s: np.ndarray) -> np.ndarray:
-        V = v.reshape(4, 3)  # V[i, j] ~ x_bⁱ x_cʲ
-        best, thb = -1.0, 0.0
-        for i in range(3):
-            for j in range(3):
-                w = V[i, j] ** 2 + V[i + 1, j] ** 2
-                if w > best:
-                    best, thb = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
-        best, thc = -1.0, 0.0
-        for i in range(4):
-            for j in range(2):
-                w = V[i, j] ** 2 + V[i, j + 1] ** 2
-                if w > best:
-                    best, thc = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
-        tb = np.array([math.cos(thb), math.sin(thb), 1.0])
-        tc = np.array([math.cos(thc), math.sin(thc), 1.0])
-        mbc = np.outer(tb, tc).ravel()
-        rhs = (self.Np[0] * math.cos(thp) + self.Np[1] * math.sin(thp) + self.Np[2]) @ mbc
-        m12 = self.Pinv @ rhs
-        th = np.zeros(6)
-        th[arr.pivot] = thp
-        th[arr.others[0]] = thb
-        th[arr.others[1]] = thc
-        th[arr.pair[0]] = math.atan2(m12[5], m12[2])
-        th[arr.pair[1]] = math.atan2(m12[7], m12[6])
-        fill_joint(self.alpha, self.a, self.d, T06s, th, arr.j)
-        return th
+            num, den = np.ascontiguousarray(w[0], dtype=np.complex128), np.ascontiguousarray(w[1], dtype=np.complex128)
+        Z = Z.astype(np.complex128)
+        count = recover(self.alpha, self.a, self.d, T06s, num, den, np.ascontiguousarray(Z), self.Np, self.Pinv,
+                        arr.roles, _GAMMA, _IMAG_TOL, _CONVERGED, self.found)
+        return [self.found[i].copy() for i in range(count)], min(ratio, condA)
 
 
 class GeneralSixR:
@@ -418,14 +386,10 @@ class GeneralSixR:
         if ratio < 1e-6:  # this pose is badly conditioned for the best reading: add the next one
             more, _ = el.candidates(T06s, el.arrangements[1])
             sols = sols + more
-        q_list: list[np.ndarray] = []
-        th0 = el.th0
-        for th in sols:
-            q = np.remainder(th - th0 + math.pi, 2.0 * math.pi) - math.pi
-            if not any(np.all(np.abs(np.remainder(q - o + math.pi, 2.0 * math.pi) - math.pi) < _SAME) for o in q_list):
-                q_list.append(q)
-        q_list.sort(key=lambda q: tuple(q[[2, 0, 1, 3, 4, 5]]))
-        m = len(q_list)
+        TH = np.array(sols, dtype=float).reshape(len(sols), 6)
+        Q = np.empty((max(1, len(sols)), 6))
+        m = distinct(TH, len(sols), el.th0, _SAME, Q)
+        q_list = sorted((Q[k] for k in range(m)), key=lambda q: tuple(q[[2, 0, 1, 3, 4, 5]]))
         rows: list[tuple[Sequence[float], str, bool]] = [(q.tolist(), f"solution {k + 1} of {m}", False)
                                                         for k, q in enumerate(q_list)]
         return rows

@@ -12,6 +12,12 @@ Kernels
     the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
     θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
+``recover(…)``, ``distinct(…)``
+    back-substitution and polish of the real eigenvalues; solutions without repeats.
+``f_pose(T, inverse, out)``
+    the 15 × 15 map of the 14 quantities under a rigid motion (the target's W = T₀₆⁻¹).
+``fill_joint(alpha, a, d, T06, theta, j)``
+    the eliminated joint from the five others.
 ``fk_pose(alpha, a, d, theta, out)``
     the pose of ``Z₁X₁ ⋯ X₅Z₆`` (canonical DH chain) at the rotation angles θ.
 ``jacobian(alpha, a, d, theta, T, J)``
@@ -28,7 +34,7 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
@@ -335,3 +341,163 @@ def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, the
         for i in range(6):
             theta[i] = trial[i]
     return err
+
+
+@njit
+def f_pose(T: np.ndarray, inverse: bool, out: np.ndarray) -> None:
+    """15 × 15 map of f(l, p) under the rigid motion T (or T⁻¹): ``F_tr(p) F_rot(R)``."""
+    R = np.empty((3, 3))
+    p = np.empty(3)
+    for i in range(3):
+        for k in range(3):
+            R[i, k] = T[k, i] if inverse else T[i, k]
+    for i in range(3):
+        acc = 0.0
+        for k in range(3):
+            acc += R[i, k] * T[k, 3]
+        p[i] = -acc if inverse else T[i, 3]
+    tt = p[0] * p[0] + p[1] * p[1] + p[2] * p[2]
+    Ft = np.eye(15)
+    for i in range(3):
+        Ft[3 + i, 14] = p[i]
+        Ft[6, 3 + i] = 2.0 * p[i]
+        Ft[7, i] = p[i]
+        Ft[11 + i, 7] = -2.0 * p[i]
+        for k in range(3):
+            Ft[11 + i, k] = (tt if i == k else 0.0) - 2.0 * p[i] * p[k]
+    Ft[6, 14] = tt
+    # l×p → l×p − [p]× l ; v → v + 2[p]× (l×p)
+    Ft[8, 1], Ft[8, 2] = -p[2], p[1]
+    Ft[9, 0], Ft[9, 2] = p[2], -p[0]
+    Ft[10, 0], Ft[10, 1] = -p[1], p[0]
+    Ft[11, 9], Ft[11, 10] = -2.0 * p[2], 2.0 * p[1]
+    Ft[12, 8], Ft[12, 10] = 2.0 * p[2], -2.0 * p[0]
+    Ft[13, 8], Ft[13, 9] = -2.0 * p[1], 2.0 * p[0]
+    for i in range(15):
+        for k in range(15):
+            out[i, k] = 0.0
+    # out = Ft · F_rot(R): F_rot is block-diagonal (R on the blocks 0, 3, 8, 11; 1 elsewhere)
+    for i in range(15):
+        for k in (6, 7, 14):
+            out[i, k] = Ft[i, k]
+        for b in (0, 3, 8, 11):
+            for c in range(3):
+                acc = 0.0
+                for m in range(3):
+                    acc += Ft[i, b + m] * R[m, c]
+                out[i, b + c] = acc
+
+
+@njit
+def recover(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, num: np.ndarray, den: np.ndarray,
+            Z: np.ndarray, Np: np.ndarray, Pinv: np.ndarray, roles: np.ndarray, gamma: float, imag_tol: float,
+            conv_tol: float, out: np.ndarray) -> int:
+    """Back-substitution and polish of every eigenvalue ``num/den`` that is real to ``imag_tol``
+    (as an angle): roles = (pivot, b, c, d, e, j) joint indices (the eigenvalue's joint, the
+    two of the eigenvector's monomials ``x_bⁱx_cʲ``, the two of the 14 × 8 system, the
+    eliminated one); Z (24, 24) complex eigenvectors. Writes the converged θ (6,) into the
+    rows of out (24, 6); returns how many."""
+    count = 0
+    V = np.empty((4, 3))
+    th = np.empty(6)
+    mbc = np.empty(9)
+    rhs = np.empty(14)
+    for k in range(num.shape[0]):
+        nu, de = num[k], den[k]
+        if abs(de) > 1e-300:
+            lam = nu / de
+            imag = 2.0 * abs(lam.imag) / (1.0 + abs(lam) ** 2)
+            if imag > imag_tol:
+                continue
+            phi = 2.0 * math.atan(lam.real)
+        else:
+            phi = math.pi
+        off = 0 if abs(math.tan(0.5 * phi)) <= 1.0 else 12
+        jm, big = 0, -1.0
+        for i in range(12):
+            w = abs(Z[off + i, k])
+            if w > big:
+                big, jm = w, i
+        if big <= 0.0:
+            continue
+        ph = Z[off + jm, k].conjugate() / big
+        for i in range(12):
+            V[i // 3, i % 3] = (Z[off + i, k] * ph).real
+        best, thb = -1.0, 0.0
+        for i in range(3):
+            for j in range(3):
+                w = V[i, j] ** 2 + V[i + 1, j] ** 2
+                if w > best:
+                    best, thb = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
+        best, thc = -1.0, 0.0
+        for i in range(4):
+            for j in range(2):
+                w = V[i, j] ** 2 + V[i, j + 1] ** 2
+                if w > best:
+                    best, thc = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
+        thp = phi + gamma
+        cb, sb, cc, sc = math.cos(thb), math.sin(thb), math.cos(thc), math.sin(thc)
+        tb = (cb, sb, 1.0)
+        tc = (cc, sc, 1.0)
+        for i in range(3):
+            for j in range(3):
+                mbc[i * 3 + j] = tb[i] * tc[j]
+        cp, sp = math.cos(thp), math.sin(thp)
+        for r in range(14):
+            acc = 0.0
+            for m in range(9):
+                acc += (Np[0, r, m] * cp + Np[1, r, m] * sp + Np[2, r, m]) * mbc[m]
+            rhs[r] = acc
+        m2 = 0.0
+        m5 = 0.0
+        m6 = 0.0
+        m7 = 0.0
+        for r in range(14):
+            m2 += Pinv[2, r] * rhs[r]
+            m5 += Pinv[5, r] * rhs[r]
+            m6 += Pinv[6, r] * rhs[r]
+            m7 += Pinv[7, r] * rhs[r]
+        th[roles[0]] = thp
+        th[roles[1]] = thb
+        th[roles[2]] = thc
+        th[roles[3]] = math.atan2(m5, m2)
+        th[roles[4]] = math.atan2(m7, m6)
+        th[roles[5]] = 0.0
+        fill_joint(alpha, a, d, T06, th, roles[5])
+        err = polish(alpha, a, d, T06, th, 12)
+        if err < conv_tol:
+            for i in range(6):
+                out[count, i] = th[i]
+            count += 1
+    return count
+
+
+@njit
+def distinct(TH: np.ndarray, n: int, th0: np.ndarray, same: float, out: np.ndarray) -> int:
+    """Rows 0..n−1 of TH as joint values ``q = θ − θ₀`` wrapped to [−π, π), without repeats
+    (two rows closer than ``same`` rad in every joint, modulo 2π, are one) into out; returns
+    how many."""
+    m = 0
+    two_pi = 2.0 * math.pi
+    q = np.empty(6)
+    for r in range(n):
+        for i in range(6):
+            v = TH[r, i] - th0[i]
+            q[i] = v - two_pi * math.floor((v + math.pi) / two_pi)
+        dup = False
+        for o in range(m):
+            close = True
+            for i in range(6):
+                dv = q[i] - out[o, i]
+                dv = dv - two_pi * math.floor((dv + math.pi) / two_pi)
+                if abs(dv) >= same:
+                    close = False
+                    break
+            if close:
+                dup = True
+                break
+        if not dup:
+            for i in range(6):
+                out[m, i] = q[i]
+            m += 1
+    return m
