@@ -366,10 +366,10 @@ def f_pose(T: np.ndarray, inverse: bool, out: np.ndarray) -> None:
         for k in range(3):
             Ft[11 + i, k] = (tt if i == k else 0.0) - 2.0 * p[i] * p[k]
     Ft[6, 14] = tt
-    # l×p → l×p − [p]× l ; v → v + 2[p]× (l×p)
-    Ft[8, 1], Ft[8, 2] = -p[2], p[1]
-    Ft[9, 0], Ft[9, 2] = p[2], -p[0]
-    Ft[10, 0], Ft[10, 1] = -p[1], p[0]
+    # l×p → l×p + l×p_T ; v → v + 2 p_T×(l×p)
+    Ft[8, 1], Ft[8, 2] = p[2], -p[1]
+    Ft[9, 0], Ft[9, 2] = -p[2], p[0]
+    Ft[10, 0], Ft[10, 1] = p[1], -p[0]
     Ft[11, 9], Ft[11, 10] = -2.0 * p[2], 2.0 * p[1]
     Ft[12, 8], Ft[12, 10] = 2.0 * p[2], -2.0 * p[0]
     Ft[13, 8], Ft[13, 9] = -2.0 * p[1], 2.0 * p[0]
