@@ -3,7 +3,8 @@
 ``analytic``: closed-form solvers returning every solution (2-link, RRR, spherical wrist,
 PUMA 560). ``closed_form``: ``ik_analytic`` for any arm whose geometry has a closed form
 (Pieper's method for a spherical wrist — ``pieper`` —, the UR family's three parallel
-axes — ``parallel_axes``), ``ik_analytic_kind`` to ask which applies. ``paden_kahan``: the
+axes — ``parallel_axes``, and every other 6R arm — ``general_6r``, Raghavan–Roth /
+Manocha–Canny), ``ik_analytic_kind`` to ask which applies. ``paden_kahan``: the
 Lecture 5 building blocks (``solve_trig``, Paden–Kahan subproblems 1–3). ``rrr_pose``:
 the homework RRR arm with a full pose. ``numeric``: the seed library's Newton–Raphson
 ``ikin_body``/``ikin_space`` and a robust Levenberg–Marquardt ``solve_ik`` with joint
