@@ -101,6 +101,8 @@ def main(argv=None):
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     print(f"## General 6R closed-form IK, all solutions of one pose ({machine()}; load average {load}, "
           f"shared machine: times are under load)\n")
+    M = np.random.default_rng(1).standard_normal((24, 24))
+    t_eig = time_call(np.linalg.eig, M, repeats=5, target=0.02)
     rows = []
     for k, (name, tab) in enumerate(arms):
         robot = robokit.load(tab)
@@ -152,6 +154,8 @@ def main(argv=None):
     print(table(["arm", "robokit build", "robokit all solutions", "# solutions (min–max)", "max FK error",
                  "rtb derivation", "rtb solve", "# rtb", "rtb / robokit", "numerical IK ×200 seeds",
                  "# distinct numerical", "numerical / robokit"], rows))
+    print(f"\nFor scale, in the same run: numpy.linalg.eig of one 24 × 24 matrix (the eigenproblem each "
+          f"pose needs) {fmt_time(t_eig)}.")
     print(f"\n{n_poses} poses per arm. robokit: `ik_analytic` (general 6R method); rtb: roboticstoolbox "
           "`DHRobot.analytic_ik().solve` (1.5.0, SymPy derivation once per arm); numerical: robokit's "
           "compiled LM from 200 random seeds, de-duplicated.")

@@ -389,7 +389,8 @@ class GeneralSixR:
         TH = np.array(sols, dtype=float).reshape(len(sols), 6)
         Q = np.empty((max(1, len(sols)), 6))
         m = distinct(TH, len(sols), el.th0, _SAME, Q)
-        q_list = sorted((Q[k] for k in range(m)), key=lambda q: tuple(q[[2, 0, 1, 3, 4, 5]]))
+        Q = Q[:m][np.lexsort(Q[:m, [5, 4, 3, 1, 0, 2]].T)]  # ordered by q₃, then q₁, q₂, …
+        q_list = list(Q)
         rows: list[tuple[Sequence[float], str, bool]] = [(q.tolist(), f"solution {k + 1} of {m}", False)
                                                         for k, q in enumerate(q_list)]
         return rows
