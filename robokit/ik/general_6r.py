@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.kernels.general_6r import distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover, side_tensor
+from robokit.kernels.general_6r import companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover, side_tensor
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -230,6 +230,7 @@ class _Elimination:
         self.Np = np.empty((3, 14, 9))
         self.Pinv = np.empty((8, 14))
         self.found = np.empty((24, 6))
+        self.M24 = np.empty((24, 24))
         # score every arrangement on a few poses; keep them best first
         rng = np.random.default_rng(2024)
         poses = []
@@ -260,22 +261,16 @@ class _Elimination:
         arrangement, and a conditioning figure (the smaller of Q's and A's singular value ratios)."""
         P, r = arr.matrices(T06s)
         ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
-        A, B, C = self.work
-        sA = np.linalg.svd(A, compute_uv=False)
-        condA = sA[-1] / sA[0] if sA[0] > 0.0 else 0.0
         n = 12
+        condA = companion(self.work, self.M24)
         if condA > 1e-10:
-            Ainv = np.linalg.inv(A)
-            M = np.zeros((2 * n, 2 * n))
-            M[:n, n:] = np.eye(n)
-            M[n:, :n] = -Ainv @ C
-            M[n:, n:] = -Ainv @ B
-            num, Z = np.linalg.eig(M)
+            num, Z = np.linalg.eig(self.M24)
             num = num.astype(np.complex128)
             den = np.ones(2 * n, dtype=np.complex128)
         else:
             import scipy.linalg
 
+            A, B, C = self.work
             L0 = np.zeros((2 * n, 2 * n))
             L0[:n, n:] = np.eye(n)
             L0[n:, :n] = -C

@@ -12,6 +12,8 @@ Kernels
     the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
     θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
+``companion(work, M)``
+    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned).
 ``recover(…)``, ``distinct(…)``
     back-substitution and polish of the real eigenvalues; solutions without repeats.
 ``f_pose(T, inverse, out)``
@@ -34,7 +36,7 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "companion", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
@@ -501,3 +503,30 @@ def distinct(TH: np.ndarray, n: int, th0: np.ndarray, same: float, out: np.ndarr
                 out[m, i] = q[i]
             m += 1
     return m
+
+
+@njit
+def companion(work: np.ndarray, M: np.ndarray) -> float:
+    """From (A, B, C) = work (3, 12, 12): the 24 × 24 companion matrix
+    ``[[0, I], [−A⁻¹C, −A⁻¹B]]`` into M when A is well conditioned; returns σ_min/σ_max of A
+    (the caller uses the generalised eigenproblem instead when it is below 1e-10, and M is
+    then left unset)."""
+    A = np.ascontiguousarray(work[0])
+    sv = np.linalg.svd(A)[1]
+    cond = sv[11] / sv[0] if sv[0] > 0.0 else 0.0
+    if cond <= 1e-10:
+        return cond
+    rhs = np.empty((12, 24))
+    for i in range(12):
+        for j in range(12):
+            rhs[i, j] = work[2, i, j]
+            rhs[i, 12 + j] = work[1, i, j]
+    X = np.linalg.solve(A, rhs)
+    for i in range(24):
+        for j in range(24):
+            M[i, j] = 0.0
+    for i in range(12):
+        M[i, 12 + i] = 1.0
+        for j in range(24):
+            M[12 + i, j] = -X[i, j]
+    return cond

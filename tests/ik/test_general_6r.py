@@ -231,3 +231,18 @@ def test_arm_with_coinciding_axes_is_refused():
     robot = robokit.load(DHTable("coincide", "standard", tuple(rows)))
     kind = ik_analytic_kind(robot)
     assert kind.method is None and "continuum" in kind.reason
+
+
+def test_pivot_at_the_shifted_point_at_infinity(jaco):
+    """A joint at π + γ (γ the half-angle variable's shift) makes the leading coefficient A
+    singular for the reading that uses it as the eigenvalue: the generalised eigenproblem
+    (QZ) takes over and the solutions are still all there."""
+    from robokit.ik.general_6r import _GAMMA
+
+    for j in range(6):
+        q = np.array([0.4, 1.9, 1.1, -0.6, 2.2, 0.3])
+        q[j] = math.pi + _GAMMA
+        T = jaco.frame_pose(q)
+        sols = ik_analytic(jaco, T)
+        check(jaco, q, T, sols)
+    assert_none_missed(jaco, T, sols)
