@@ -290,7 +290,24 @@ class GeneralSixR:
 
     Build once per arm with :meth:`from_chain`; :meth:`solve` returns, for a target ``T₀₆``
     of the canonical chain, the solutions as ``(q, label, degenerate)`` rows (q: joint values
-    in rad, offsets removed), as the other closed-form solvers do.
+    in rad, offsets removed), as the other closed-form solvers do. Users normally call
+    :func:`robokit.ik_analytic`, which builds this solver for a general 6R arm, caches it on
+    the robot and turns the rows into :class:`robokit.ik.IKSolution` objects.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from robokit.description.dh import DHLink, DHTable
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> rng = np.random.default_rng(3)
+    >>> table = DHTable("g", "standard", tuple(DHLink("R", a=rng.uniform(-.5, .5), alpha=rng.uniform(-3, 3),
+    ...                                               d=rng.uniform(-.5, .5)) for _ in range(6)))
+    >>> chain = DHChain(table)
+    >>> solver = GeneralSixR.from_chain(chain)
+    >>> q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    >>> rows = solver.solve(chain.fk6(q))
+    >>> min(float(np.abs(np.asarray(r[0]) - q).max()) for r in rows) < 1e-9
+    True
     """
 
     #: what ``ik_analytic_kind`` adds to the reason when this solver takes an arm
@@ -321,6 +338,13 @@ class GeneralSixR:
         Returns
         -------
         str or None
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> GeneralSixR.refusal(DHChain(robokit.load("puma560").dh)) is None  # six independent axes
+        True
         """
         if chain.n != 6:
             return f"the general 6R method needs 6 joints, the arm has {chain.n}"
@@ -355,6 +379,13 @@ class GeneralSixR:
         Returns
         -------
         GeneralSixR
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> len(GeneralSixR.from_chain(DHChain(robokit.load("puma560").dh)).elim.arrangements)
+        36
         """
         return cls(chain)
 
@@ -372,7 +403,23 @@ class GeneralSixR:
         -------
         list of (q, label, degenerate)
             q (6,) joint values (rad) — ``θ − θ_offset`` —, label ``"solution k of m"``
-            (ordered by q₃), degenerate False.
+            (ordered by q₃), degenerate False. ``[]`` when the pose is out of reach.
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001  # axes 4 and 5 of the PUMA 1 mm apart: no spherical wrist
+        >>> len(GeneralSixR.from_chain(chain).solve(chain.fk6(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))))
+        8
+
+        Notes
+        -----
+        An arm that is *exactly* special (a spherical wrist, three parallel axes) makes the
+        eigenproblem degenerate (double and infinite roots) and may lose solutions here;
+        :func:`robokit.ik_analytic` sends such arms to their special solvers. Arms special
+        only approximately (1e-8 m, 1e-8 rad and more off) are solved here in full.
         """
         T06s = np.array(T06, dtype=float)
         T06s[:3, 3] /= self.scale
