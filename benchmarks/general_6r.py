@@ -112,10 +112,14 @@ def main(argv=None):
         use_rtb = args.rtb == "all" or (args.rtb == "jaco" and k == 0)
         ik_rtb, rtb_build = None, float("nan")
         if use_rtb:
-            r = _rtb_robot(tab)
-            t0 = time.perf_counter()
-            ik_rtb = r.analytic_ik()
-            rtb_build = time.perf_counter() - t0
+            try:
+                r = _rtb_robot(tab)
+                t0 = time.perf_counter()
+                ik_rtb = r.analytic_ik()  # roboticstoolbox ≥ 1.5 (and SymPy)
+                rtb_build = time.perf_counter() - t0
+            except (ImportError, AttributeError) as exc:  # an older toolbox: no analytic IK for a general arm
+                print(f"roboticstoolbox analytic_ik not available: {exc}")
+                use_rtb = False
         rng = np.random.default_rng(0)
         t_rk, t_rtb, t_num, n_rk, n_rtb, n_num, missed, worst, agree = [], [], [], [], [], [], 0, 0.0, 0
         for _ in range(n_poses):
