@@ -48,10 +48,15 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    roots with a small imaginary part, kept on purpose so that near-double real roots are not
    lost) are dropped, and solutions closer than 1e-7 rad in every joint are merged.
 
-Numerics: lengths are divided by the arm's size; the elimination is run on the chain and on
-the chain read backwards (joint 4 becomes the eigenvalue variable) when the 14 × 8 matrix Q
-or the leading coefficient A is badly conditioned for the forward reading, and the
-solutions of both are merged.
+Numerics: lengths are divided by the arm's size. The reading above (θ₆ eliminated, θ₁θ₂ on
+one side, θ₃ the eigenvalue) is one of 36: the loop ``Z₁X₁ ⋯ Z₆ T₀₆⁻¹ = I`` can be read
+cyclically from any joint j (θ_j eliminated), with the three-joint group before or after it
+and any of its joints as the eigenvalue (:class:`_Arrangement`). Special neighbours make some
+readings degenerate — on the Kinova Jaco every consecutive pair of axes meets or is parallel,
+and with θ₃ as the eigenvalue ``det(A x² + B x + C)`` vanishes identically —, so all 36 are
+scored once per arm (the conditioning of Q and of the pencil at random poses) and the best
+solves; a pose badly conditioned for it (σ_min/σ_max of Q or A below 1e-6) is also solved
+with the second best and the solutions merged.
 
 Use through :func:`robokit.ik_analytic` (it picks this solver for a 6R arm that has neither
 a spherical wrist nor three parallel axes); :class:`GeneralSixR` is the solver object.
@@ -96,26 +101,6 @@ def _f_rotate_x(alpha: float) -> np.ndarray:
     """15 × 15 map of f(l, p) under the rotation Rx(α)."""
     c, s = math.cos(alpha), math.sin(alpha)
     R = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-    F = np.eye(15)
-    for b in (0, 3, 8, 11):
-        F[b:b + 3, b:b + 3] = R
-    return F
-
-
-def _rz_parts(v: np.ndarray, sign: float) -> np.ndarray:
-    """(3, 15): the cos θ, sin θ and constant parts of f under Rz(sign·θ)."""
-    out = np.zeros((3, 15))
-    out[2] = v
-    for b in (0, 3, 8, 11):
-        x, y = v[b], v[b + 1]
-        out[0, b], out[0, b + 1] = x, y
-        out[1, b], out[1, b + 1] = -sign * y, sign * x
-        out[2, b] = out[2, b + 1] = 0.0
-    return out
-
-
-def _f_rotate(R: np.ndarray) -> np.ndarray:
-    """15 × 15 map of f(l, p) under a rotation R (3 × 3)."""
     F = np.eye(15)
     for b in (0, 3, 8, 11):
         F[b:b + 3, b:b + 3] = R
