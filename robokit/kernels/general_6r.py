@@ -391,6 +391,57 @@ def f_pose(T: np.ndarray, inverse: bool, out: np.ndarray) -> None:
 
 
 @njit
+def _candidate(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, V: np.ndarray, phi: float,
+               Np: np.ndarray, Pinv: np.ndarray, roles: np.ndarray, gamma: float, th: np.ndarray) -> float:
+    """θ (6,) into th from the pivot's φ and the monomial vector V (4, 3) ~ x_bⁱx_cʲ, then
+    polished; returns the final pose error."""
+    mbc = np.empty(9)
+    rhs = np.empty(14)
+    best, thb = -1.0, 0.0
+    for i in range(3):
+        for j in range(3):
+            w = V[i, j] ** 2 + V[i + 1, j] ** 2
+            if w > best:
+                best, thb = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
+    best, thc = -1.0, 0.0
+    for i in range(4):
+        for j in range(2):
+            w = V[i, j] ** 2 + V[i, j + 1] ** 2
+            if w > best:
+                best, thc = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
+    thp = phi + gamma
+    cb, sb, cc, sc = math.cos(thb), math.sin(thb), math.cos(thc), math.sin(thc)
+    tb = (cb, sb, 1.0)
+    tc = (cc, sc, 1.0)
+    for i in range(3):
+        for j in range(3):
+            mbc[i * 3 + j] = tb[i] * tc[j]
+    cp, sp = math.cos(thp), math.sin(thp)
+    for r in range(14):
+        acc = 0.0
+        for m in range(9):
+            acc += (Np[0, r, m] * cp + Np[1, r, m] * sp + Np[2, r, m]) * mbc[m]
+        rhs[r] = acc
+    m2 = 0.0
+    m5 = 0.0
+    m6 = 0.0
+    m7 = 0.0
+    for r in range(14):
+        m2 += Pinv[2, r] * rhs[r]
+        m5 += Pinv[5, r] * rhs[r]
+        m6 += Pinv[6, r] * rhs[r]
+        m7 += Pinv[7, r] * rhs[r]
+    th[roles[0]] = thp
+    th[roles[1]] = thb
+    th[roles[2]] = thc
+    th[roles[3]] = math.atan2(m5, m2)
+    th[roles[4]] = math.atan2(m7, m6)
+    th[roles[5]] = 0.0
+    fill_joint(alpha, a, d, T06, th, roles[5])
+    return polish(alpha, a, d, T06, th, 12)
+
+
+@njit
 def recover(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, num: np.ndarray, den: np.ndarray,
             Z: np.ndarray, Np: np.ndarray, Pinv: np.ndarray, roles: np.ndarray, gamma: float, imag_tol: float,
             conv_tol: float, out: np.ndarray) -> int:
@@ -402,8 +453,6 @@ def recover(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, nu
     count = 0
     V = np.empty((4, 3))
     th = np.empty(6)
-    mbc = np.empty(9)
-    rhs = np.empty(14)
     for k in range(num.shape[0]):
         nu, de = num[k], den[k]
         if abs(de) > 1e-300:
@@ -425,48 +474,7 @@ def recover(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, nu
         ph = Z[off + jm, k].conjugate() / big
         for i in range(12):
             V[i // 3, i % 3] = (Z[off + i, k] * ph).real
-        best, thb = -1.0, 0.0
-        for i in range(3):
-            for j in range(3):
-                w = V[i, j] ** 2 + V[i + 1, j] ** 2
-                if w > best:
-                    best, thb = w, 2.0 * math.atan2(V[i + 1, j], V[i, j])
-        best, thc = -1.0, 0.0
-        for i in range(4):
-            for j in range(2):
-                w = V[i, j] ** 2 + V[i, j + 1] ** 2
-                if w > best:
-                    best, thc = w, 2.0 * math.atan2(V[i, j + 1], V[i, j])
-        thp = phi + gamma
-        cb, sb, cc, sc = math.cos(thb), math.sin(thb), math.cos(thc), math.sin(thc)
-        tb = (cb, sb, 1.0)
-        tc = (cc, sc, 1.0)
-        for i in range(3):
-            for j in range(3):
-                mbc[i * 3 + j] = tb[i] * tc[j]
-        cp, sp = math.cos(thp), math.sin(thp)
-        for r in range(14):
-            acc = 0.0
-            for m in range(9):
-                acc += (Np[0, r, m] * cp + Np[1, r, m] * sp + Np[2, r, m]) * mbc[m]
-            rhs[r] = acc
-        m2 = 0.0
-        m5 = 0.0
-        m6 = 0.0
-        m7 = 0.0
-        for r in range(14):
-            m2 += Pinv[2, r] * rhs[r]
-            m5 += Pinv[5, r] * rhs[r]
-            m6 += Pinv[6, r] * rhs[r]
-            m7 += Pinv[7, r] * rhs[r]
-        th[roles[0]] = thp
-        th[roles[1]] = thb
-        th[roles[2]] = thc
-        th[roles[3]] = math.atan2(m5, m2)
-        th[roles[4]] = math.atan2(m7, m6)
-        th[roles[5]] = 0.0
-        fill_joint(alpha, a, d, T06, th, roles[5])
-        err = polish(alpha, a, d, T06, th, 12)
+        err = _candidate(alpha, a, d, T06, V, phi, Np, Pinv, roles, gamma, th)
         if err < conv_tol:
             for i in range(6):
                 out[count, i] = th[i]
@@ -530,3 +538,4 @@ def companion(work: np.ndarray, M: np.ndarray) -> float:
         for j in range(24):
             M[12 + i, j] = -X[i, j]
     return cond
+
