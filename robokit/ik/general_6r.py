@@ -79,6 +79,9 @@ _GAMMA = 0.6180339887498949  # rad: the θ₃ shift of the half-angle variable (
 _IMAG_TOL = 1e-3  # an eigenvalue is a candidate when its imaginary part, as an angle, is below this
 _CONVERGED = 1e-11  # pose error (scaled units) below which a polished candidate is a solution
 _SAME = 1e-7  # rad: solutions this close in every joint are one
+_X0 = 0.37  # where the pencil's regularity is measured (σ_min/σ_max of A x² + B x + C)
+_POOR = 1e-4  # below this conditioning figure a pose is also solved with the next readings …
+_EXTRA = 3  # … this many of them
 
 
 def _f_translate(t: np.ndarray) -> np.ndarray:
@@ -248,6 +251,9 @@ class _Elimination:
         ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
         n = 12
         condA = companion(self.work, self.M24)
+        A, B, C = self.work
+        sv = np.linalg.svd(A * _X0 * _X0 + B * _X0 + C, compute_uv=False)  # ~0 everywhere: a near-continuum
+        reg = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
         if condA > 1e-10:
             num, Z = np.linalg.eig(self.M24)
             num = num.astype(np.complex128)
@@ -255,7 +261,6 @@ class _Elimination:
         else:
             import scipy.linalg
 
-            A, B, C = self.work
             L0 = np.zeros((2 * n, 2 * n))
             L0[:n, n:] = np.eye(n)
             L0[n:, :n] = -C
@@ -267,7 +272,7 @@ class _Elimination:
         Z = Z.astype(np.complex128)
         count = recover(self.alpha, self.a, self.d, T06s, num, den, np.ascontiguousarray(Z), self.Np, self.Pinv,
                         arr.roles, _GAMMA, _IMAG_TOL, _CONVERGED, self.found)
-        return [self.found[i].copy() for i in range(count)], min(ratio, condA)
+        return [self.found[i].copy() for i in range(count)], min(ratio, condA, reg)
 
 
 class GeneralSixR:
@@ -388,7 +393,13 @@ class GeneralSixR:
         -------
         list of (q, label, degenerate)
             q (6,) joint values (rad) — ``θ − θ_offset`` —, label ``"solution k of m"``
-            (ordered by q₃), degenerate False. ``[]`` when the pose is out of reach.
+            (ordered by q₃), degenerate False; ``[]`` when the pose is out of reach. Near a
+            singular pose (the conditioning figure of the elimination below 1e-4) the next three
+            readings are solved too, and a solution whose 6 × 6 Jacobian is singular
+            (σ_min < 1e-8 σ_max) is labelled ``"solution k of m, singular"`` and flagged
+            degenerate: there the solutions may form a continuum (e.g. four parallel axes), of
+            which the ones returned are points, not necessarily the configuration that
+            generated the pose.
 
         Examples
         --------
@@ -410,14 +421,25 @@ class GeneralSixR:
         T06s[:3, 3] /= self.scale
         el = self.elim
         sols, ratio = el.candidates(T06s, el.arrangements[0])
-        if ratio < 1e-6:  # this pose is badly conditioned for the best reading: add the next one
-            more, _ = el.candidates(T06s, el.arrangements[1])
-            sols = sols + more
+        if ratio < _POOR:  # this pose is badly conditioned for the best reading (near a singular pose):
+            for arr in el.arrangements[1:_EXTRA + 1]:  # add the next readings' solutions
+                more, _ = el.candidates(T06s, arr)
+                sols = sols + more
         TH = np.array(sols, dtype=float).reshape(len(sols), 6)
         Q = np.empty((max(1, len(sols)), 6))
         m = distinct(TH, len(sols), el.th0, _SAME, Q)
         Q = Q[:m][np.lexsort(Q[:m, [5, 4, 3, 1, 0, 2]].T)]  # ordered by q₃, then q₁, q₂, …
         q_list = list(Q)
-        rows: list[tuple[Sequence[float], str, bool]] = [(q.tolist(), f"solution {k + 1} of {m}", False)
-                                                        for k, q in enumerate(q_list)]
+        rows: list[tuple[Sequence[float], str, bool]] = []
+        T, J = np.empty((4, 4)), np.empty((6, 6))
+        for k, q in enumerate(q_list):
+            singular = False
+            if ratio < _POOR:  # near a singular pose: flag the solutions where the Jacobian is singular
+                th = q + el.th0
+                fk_pose(el.alpha, el.a, el.d, th, T)
+                jacobian(el.alpha, el.a, el.d, th, T, J)
+                sv = np.linalg.svd(J, compute_uv=False)
+                singular = bool(sv[-1] < 1e-8 * sv[0])
+            label = f"solution {k + 1} of {m}" + (", singular" if singular else "")
+            rows.append((q.tolist(), label, singular))
         return rows

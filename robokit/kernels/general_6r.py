@@ -438,7 +438,7 @@ def _candidate(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray,
     th[roles[4]] = math.atan2(m7, m6)
     th[roles[5]] = 0.0
     fill_joint(alpha, a, d, T06, th, roles[5])
-    return polish(alpha, a, d, T06, th, 12)
+    return polish(alpha, a, d, T06, th, 30)
 
 
 @njit

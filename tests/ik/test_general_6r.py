@@ -299,3 +299,24 @@ def test_every_reading_of_the_loop_holds_at_the_true_configuration(seed):
         lhs = np.einsum("i,ikm->km", b(th[arr.pivot]), P) @ np.outer(b(th[arr.others[0]]), b(th[arr.others[1]])).ravel()
         rhs = r @ np.outer(b(th[arr.pair[0]]), b(th[arr.pair[1]])).ravel()
         assert np.abs(lhs - rhs)[:14].max() < 1e-10, (arr.j, arr.n1, arr.piv)
+
+
+def test_singular_poses_of_the_jaco(jaco):
+    """Configurations on a grid of right angles (many of them singular: axes 4 and 6 parallel
+    at q₅ = π, axes 2 and 3 always parallel): never an empty answer for a reachable pose, every
+    solution reaches it, and the generating configuration is among them unless it is singular
+    (a known limit: at a singular configuration the double root or continuum it sits on can be
+    lost; the isolated solutions of the pose are still returned)."""
+    rng = np.random.default_rng(0)
+    missed = 0
+    for _ in range(30):
+        q = rng.choice([0.0, math.pi / 2, math.pi, -math.pi / 2], 6)
+        T = jaco.frame_pose(q)
+        sols = ik_analytic(jaco, T)
+        assert sols, q
+        check(jaco, None, T, sols)
+        if min(angle_dist(s.q, q) for s in sols) > 1e-6:
+            missed += 1
+            sv = np.linalg.svd(jaco.jacobian(q), compute_uv=False)
+            assert sv[-1] < 1e-8 * sv[0], q  # only a singular generator may be missed
+    assert missed < 5
