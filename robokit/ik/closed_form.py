@@ -452,7 +452,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     -------
     list of :class:`IKSolution`
         Distinct solutions (8 for a PUMA 560 or a UR in general position, up to 8 — 4
-        positions × 2 wrists — for any spherical-wrist arm); each ``.q`` (6,) in rad/m,
+        positions × 2 wrists — for any spherical-wrist arm, up to 16 for a general 6R arm,
+        labelled ``"solution k of m"``); each ``.q`` (6,) in rad/m,
         revolute joints wrapped to (−π, π] (or shifted by 2π into wider limits),
         ``.within_limits``, ``.label`` (branch, see the module docstring), ``.degenerate``
         (a singular choice was made). ``[]`` when T is out of reach.
