@@ -66,7 +66,8 @@ def puma_offset_table(eps=1e-3):
     from robokit.description.dh import DHLink, DHTable
 
     t = robokit.load("puma560").dh
-    rows = [DHLink("R", r.a + (eps if i == 3 else 0.0), r.alpha, r.d, r.theta, qlim=WIDE) for i, r in enumerate(t.links)]
+    rows = [DHLink("R", r.a + (eps if i == 3 else 0.0), r.alpha, r.d, r.theta, qlim=WIDE)
+            for i, r in enumerate(t.links)]
     return DHTable("puma560_offset_1mm", t.convention, tuple(rows), base=t.base, tool=t.tool)
 
 

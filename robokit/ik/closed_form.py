@@ -415,8 +415,8 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     -------
     ClosedFormKind
         ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family),
-        ``"general 6R"`` (any other 6R arm) or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not
-        intersect: closest distance 0.0946 m; …"``).
+        ``"general 6R"`` (any other 6R arm) or None; ``.reason`` says why, in the arm's terms
+        (e.g. ``"axes 4–6 do not intersect: closest distance 0.0946 m; …"``).
 
     Notes
     -----

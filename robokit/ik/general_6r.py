@@ -68,7 +68,8 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.kernels.general_6r import companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover, side_tensor
+from robokit.kernels.general_6r import (companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover,
+                                        side_tensor)
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain

@@ -36,7 +36,8 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "companion", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian", "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "companion", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian",
+           "polish", "fvec"]
 
 
 @njit
