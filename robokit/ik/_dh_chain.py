@@ -74,20 +74,6 @@ class DHChain:
             first = links[0]
             if first.alpha != 0.0 or first.a != 0.0:
                 base = base @ _rx4(float(first.alpha), float(first.a))
-        # a flipped joint (θ = θ₀ − q, d = d₀ − q) is an ordinary one between two half turns:
-        # Rz(θ₀ − q)Tz(d₀) = Rx(π)·Rz(q − θ₀)Tz(−d₀)·Rx(π), the half turns folded into the
-        # neighbouring twists (Rx, Tx commute) or into base′/tool′ at the ends
-        for i, l in enumerate(links):
-            if getattr(l, "flip", False):
-                self.th0[i], self.d0[i] = -self.th0[i], -self.d0[i]
-                if i > 0:
-                    self.alpha[i - 1] += math.pi
-                else:
-                    base = base @ _rx4(math.pi, 0.0)
-                if i < n - 1:
-                    self.alpha[i] += math.pi
-                else:
-                    tool = _rx4(math.pi, 0.0) @ tool
         self.base, self.tool = base, tool
         self.base_inv = None if np.array_equal(base, np.eye(4)) else lie.inv(base)
         self.tool_inv = None if np.array_equal(tool, np.eye(4)) else lie.inv(tool)

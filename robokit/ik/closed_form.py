@@ -105,10 +105,11 @@ class ClosedFormModel:
                                                         f"from the tool back to the base")
                 self.solver, self.solver_chain, self.reversed = solver, rc, True
         if self.kind.method is None and self.chain.n == 6:  # no special structure: the general 6R method
-            why = GeneralSixR.refusal(self.chain)
+            general = GeneralSixR(self.chain)
+            why = general.refusal()
             if why is None:
-                self.kind = ClosedFormKind("general 6R", self.kind.reason + GeneralSixR.REASON)
-                self.solver, self.solver_chain = GeneralSixR.from_chain(self.chain), self.chain
+                self.kind = ClosedFormKind(general.method, self.kind.reason + GeneralSixR.REASON)
+                self.solver, self.solver_chain = general, self.chain
             else:
                 self.kind = ClosedFormKind(None, f"{self.kind.reason}; {why}")
         ch = self.chain

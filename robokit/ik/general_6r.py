@@ -304,16 +304,45 @@ class GeneralSixR:
     #: what ``ik_analytic_kind`` adds to the reason when this solver takes an arm
     REASON = "; the general 6R method applies (Raghavan–Roth elimination, up to 16 solutions)"
 
+    #: the structure's name, as :func:`robokit.ik_analytic_kind` reports it
+    method = "general 6R"
+
     def __init__(self, chain: DHChain) -> None:
-        why = self.refusal(chain)
-        if why is not None:
-            raise ValueError(f"robot: {why}")
+        """Any 6-joint chain is accepted; :meth:`refusal` says whether the method applies (the
+        elimination's constants are then built, which scores the 36 readings: ~0.1 s)."""
         self.chain = chain
         self.scale = float(chain.scale)
-        self.elim = _Elimination(chain, self.scale)
+        self._why = self.refusal_of(chain)
+        self._elim: _Elimination | None = None
+
+    @property
+    def elim(self) -> "_Elimination":
+        """The per-arm constants of the elimination (built on first use)."""
+        if self._elim is None:
+            if self._why is not None:
+                raise ValueError(f"robot: {self._why}")
+            self._elim = _Elimination(self.chain, self.scale)
+        return self._elim
+
+    def refusal(self) -> str | None:
+        """None when the general 6R method applies to this chain, else the reason (see
+        :meth:`refusal_of`).
+
+        Returns
+        -------
+        str or None
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> GeneralSixR(DHChain(robokit.load("puma560").dh)).refusal() is None
+        True
+        """
+        return self._why
 
     @staticmethod
-    def refusal(chain: DHChain) -> str | None:
+    def refusal_of(chain: DHChain) -> str | None:
         """Why the general 6R method does not apply to ``chain``, or None when it does.
 
         It needs six revolute joints whose axes are independent somewhere: an arm whose 6 × 6
@@ -334,7 +363,7 @@ class GeneralSixR:
         --------
         >>> import robokit
         >>> from robokit.ik._dh_chain import DHChain
-        >>> GeneralSixR.refusal(DHChain(robokit.load("puma560").dh)) is None  # six independent axes
+        >>> GeneralSixR.refusal_of(DHChain(robokit.load("puma560").dh)) is None  # six independent axes
         True
         """
         if chain.n != 6:
@@ -444,3 +473,78 @@ class GeneralSixR:
             label = f"solution {k + 1} of {m}" + (", singular" if singular else "")
             rows.append((q.tolist(), label, singular))
         return rows
+
+    def joint_angles(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:
+        """Every solution for ``T06``: the same as :meth:`solve` (the name of the closed-form
+        solver interface).
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target of the canonical chain, m.
+        wrist_ref : float
+            Unused (no free joint in the general case).
+
+        Returns
+        -------
+        list of (q, label, degenerate)
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001
+        >>> len(GeneralSixR(chain).joint_angles(chain.fk6(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))))
+        8
+        """
+        return self.solve(T06, wrist_ref)
+
+    def position(self, T06: np.ndarray) -> list[tuple[Sequence[float], str, bool, None]]:
+        """The elimination has no position/wrist split: the whole solve, each solution a
+        complete branch ``(q, label, degenerate, None)``.
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target of the canonical chain, m.
+
+        Returns
+        -------
+        list of (q (6,), label, degenerate, None)
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001
+        >>> len(GeneralSixR(chain).position(chain.fk6(np.zeros(6)))) > 0
+        True
+        """
+        return [(q, label, degen, None) for q, label, degen in self.solve(T06)]
+
+    def wrist(self, T06: np.ndarray, branch: Sequence, wrist_ref: float = 0.0
+              ) -> list[tuple[Sequence[float], str, bool]]:
+        """The identity on a branch of :meth:`position` (already a full solution).
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target (unused).
+        branch : (q, label, degenerate, data)
+            One item of :meth:`position`.
+        wrist_ref : float
+            Unused.
+
+        Returns
+        -------
+        list of (q, label, degenerate)
+            The one row of the branch.
+
+        Examples
+        --------
+        >>> GeneralSixR.wrist(None, None, ([0.0] * 6, "solution 1 of 1", False, None))
+        [([0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 'solution 1 of 1', False)]
+        """
+        return [(branch[0], branch[1], bool(branch[2]))]

@@ -321,15 +321,3 @@ def test_singular_poses_of_the_jaco(jaco):
             assert sv[-1] < 1e-8 * sv[0], q  # only a singular generator may be missed
     assert missed < 5
 
-
-@pytest.mark.parametrize("make", ["puma", "general standard", "general modified"])
-def test_flipped_joints(make):
-    """Joints with ``flip`` (θ = θ₀ − q, as Corke models the Kinova arms) in the special and
-    the general solvers: folded into the canonical chain as half turns."""
-    src = robokit.load("puma560").dh if make == "puma" else random_general_arm(21, make.split()[1])
-    rows = [DHLink(l.joint, l.a, l.alpha, l.d, l.theta, qlim=WIDE, flip=(i in (0, 2, 5)))
-            for i, l in enumerate(src.links)]
-    robot = robokit.load(DHTable("flipped", src.convention, tuple(rows), base=src.base, tool=src.tool))
-    q = np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2])
-    T = robot.frame_pose(q)
-    check(robot, q, T, ik_analytic(robot, T))
