@@ -4,7 +4,8 @@
 closed-form solvers of the lecture returning every solution (2-link, RRR, spherical wrist,
 PUMA 560). ``closed_form``: ``ik_analytic`` for any arm whose geometry has a closed form
 (Pieper's method for a spherical wrist — ``pieper`` —, the UR family's three parallel
-axes — ``parallel_axes``), ``ik_analytic_kind`` to ask which applies, and
+axes — ``parallel_axes``, and every other 6R arm — ``general_6r``, Raghavan–Roth /
+Manocha–Canny, through ``closed_form.FALLBACK``), ``ik_analytic_kind`` to ask which applies, and
 :class:`AnalyticIK`, the same solver as an object to hold. ``solver``: the interface
 (``ClosedFormSolver``) every closed-form solver implements. ``paden_kahan``: the Lecture 5
 building blocks (``solve_trig``, Paden–Kahan subproblems 1–3). ``rrr_pose``: the homework

@@ -8,7 +8,10 @@ which method applies, or why none does:
   any twists and lengths, revolute or prismatic joints 1–3;
 * **three parallel axes** — 6 revolute joints, axes 2, 3, 4 parallel, axes 5 and 6 meeting,
   axis 1 and axis 5 not parallel to the others (UR3/UR5/UR10/UR16):
-  :mod:`robokit.ik.parallel_axes`.
+  :mod:`robokit.ik.parallel_axes`;
+* **general 6R** — any other arm of 6 revolute joints (an offset wrist such as the Kinova
+  Jaco's, axes that miss by a millimetre): :mod:`robokit.ik.general_6r`, up to 16
+  solutions labelled ``"solution k of m"``. The special methods stay first (they are faster).
 
 Both structures are also recognised counted from the tool (axes 1–3 meeting in one point;
 axes 3–5 parallel with axes 1 and 2 meeting): the chain is then read backwards (its FK is
@@ -16,8 +19,9 @@ the inverse pose, joint k ↔ joint 7 − k, q′ = −q), solved for T⁻¹, an
 "(chain reversed)"; at a singularity the free joint is then joint 3 (or 1) with the value
 ``wrist_ref``.
 
-Other arms — 7 joints (panda), wrists whose axes do not meet, … — have no closed form here
-and ``ik_analytic`` raises ``ValueError`` with the reason in the arm's terms.
+Other arms — 7 joints (panda), fewer than 6, a prismatic joint without the special
+structures, axes dependent everywhere — have no closed form here and ``ik_analytic`` raises
+``ValueError`` with the reason in the arm's terms.
 
 The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.urdf_to_dh`
 extracts, whose FK equals the URDF's) is turned once into the canonical chain and the
@@ -56,6 +60,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_scalar
 from robokit.errors import InputError
 from robokit.ik._dh_chain import DHChain
+from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
@@ -97,7 +102,7 @@ SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
 
 #: Solvers tried, in order, for a 6-joint chain with none of the structures above (read either
 #: way): the first whose ``refusal()`` is None solves it. A general 6R solver registers here.
-FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = []
+FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = [GeneralSixR]
 
 
 def _is_table(robot: object) -> bool:
@@ -260,6 +265,7 @@ class AnalyticIK:
         if self.kind.method is None and self.chain.n == 6:
             # solvers for arms with no special structure (e.g. a general 6R elimination): each
             # says by refusal() whether it takes the chain; the first that does solves it
+            reasons: list[str] = []
             for make in FALLBACK:
                 solver = make(self.chain)
                 why_not = solver.refusal()
@@ -268,6 +274,10 @@ class AnalyticIK:
                                                               f"solves it")
                     self.solver = solver
                     break
+                reasons.append(why_not)
+            else:
+                if reasons:
+                    self.kind = ClosedFormKind(None, f"{self.kind.reason}; {'; '.join(reasons)}")
         if override is not None:
             self.kind, self.solver = override, None
         self._revolute = [k == "R" for k in self.chain.kinds]
@@ -499,9 +509,9 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     Returns
     -------
     ClosedFormKind
-        ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family)
-        or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not
-        intersect: closest distance 0.0946 m; …"``).
+        ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family),
+        ``"general 6R"`` (any other 6R arm) or None; ``.reason`` says why, in the arm's terms
+        (e.g. ``"axes 4–6 do not intersect: closest distance 0.0946 m; …"``).
 
     Notes
     -----
@@ -542,7 +552,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     -------
     list of :class:`IKSolution`
         Distinct solutions (8 for a PUMA 560 or a UR in general position, up to 8 — 4
-        positions × 2 wrists — for any spherical-wrist arm); each ``.q`` (6,) in rad/m,
+        positions × 2 wrists — for any spherical-wrist arm, up to 16 for a general 6R arm,
+        labelled ``"solution k of m"``); each ``.q`` (6,) in rad/m,
         revolute joints wrapped to (−π, π] (or shifted by 2π into wider limits),
         ``.within_limits``, ``.label`` (branch, see the module docstring), ``.degenerate``
         (a singular choice was made). ``[]`` when T is out of reach.

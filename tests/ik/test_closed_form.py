@@ -269,13 +269,25 @@ def test_stanford_arm_rrp():
     assert len(sols) == 8  # 2 θ1 × 2 (θ2, d3) × 2 wrists
 
 
-def test_offset_wrist_is_refused_with_the_distance():
+def test_offset_wrist_goes_to_the_general_method_with_the_distance():
     table = random_arm(5, "standard", "RRR", oblique=False)
     rows = list(table.links)
     rows[4] = DHLink("R", 0.06, rows[4].alpha, 0.0, rows[4].theta)  # a5 = 6 cm: axes 5, 6 miss
     robot = robokit.load(DHTable("offset", "standard", tuple(rows)))
     kind = ik_analytic_kind(robot)
-    assert kind.method is None and "axes 4–6 do not intersect" in kind.reason
+    assert kind.method == "general 6R" and "axes 4–6 do not intersect: closest distance" in kind.reason
+    q = np.array([0.3, -0.4, 0.8, 0.2, 0.9, -0.6])
+    T = robot.frame_pose(q)
+    check_solutions(robot, q, T, ik_analytic(robot, T))
+
+
+def test_offset_wrist_with_a_prismatic_joint_is_refused_with_the_distance():
+    table = random_arm(5, "standard", "RRP", oblique=False)
+    rows = list(table.links)
+    rows[4] = DHLink("R", 0.06, rows[4].alpha, 0.0, rows[4].theta)  # a5 = 6 cm: axes 5, 6 miss
+    robot = robokit.load(DHTable("offset", "standard", tuple(rows)))
+    kind = ik_analytic_kind(robot)
+    assert kind.method is None and "axes 4–6 do not intersect" in kind.reason and "prismatic" in kind.reason
     with pytest.raises(ValueError, match="axes 4–6 do not intersect: closest distance"):
         ik_analytic(robot, robot.frame_pose(np.zeros(6)))
 

@@ -1,0 +1,551 @@
+r"""Closed-form inverse kinematics of a general 6R arm (Raghavan–Roth elimination, Manocha–Canny
+eigenproblem): every solution — at most 16 — of an arm with no special structure, such as the
+Kinova Jaco's offset wrist.
+
+Notation: the canonical DH chain of :mod:`robokit.ik._dh_chain`,
+``T₀₆ = Z₁X₁Z₂X₂Z₃X₃Z₄X₄Z₅X₅Z₆`` with ``Zᵢ = Rz(θᵢ)Tz(dᵢ)`` and ``Xᵢ = Rx(αᵢ)Tx(aᵢ)`` (θᵢ the
+joint's total angle, offset included), T₀₆ the target with base and tool removed.
+
+1. **Loop equation.** Z₆ turns about and slides along its own z axis, so the z axis ``l`` of
+   T₀₆ and the point ``p = o − d₆ l`` (o the origin of T₀₆) do not depend on θ₆. Splitting
+   the chain after joint 2,
+
+   ``X₂Z₃X₃Z₄X₄Z₅X₅ · (e_z, 0) = Z₂⁻¹X₁⁻¹Z₁⁻¹ · (l, p)``:
+
+   a unit vector and a point whose left side depends on θ₃, θ₄, θ₅ and right side on θ₁, θ₂.
+2. **The 14 equations.** Both sides are the same pair (l, p), so they have the same
+   ``f(l, p) = (l, p, p·p, l·p, l×p, (p·p)l − 2(l·p)p)`` — 3 + 3 + 1 + 1 + 3 + 3 = 14
+   scalars (Raghavan & Roth 1993). A rotation R maps f(l, p) linearly (vectors by R, scalars
+   unchanged), and so does a translation t: ``p·p → p·p + 2t·p + t·t``, ``l·p → l·p + t·l``,
+   ``l×p → l×p + l×t``, ``(p·p)l − 2(l·p)p → … + 2t×(l×p) + t²l − 2(l·p)t − 2(t·l)t`` (the
+   products that would raise the degree combine into ``t×(l×p)``). Hence each side of the 14
+   equations is linear in the products of (cos θᵢ, sin θᵢ, 1) of its joints:
+   ``P(θ₃) · m₄₅ = Q · m₁₂`` with ``m₄₅ = (c₄,s₄,1)⊗(c₅,s₅,1)`` (9 monomials),
+   ``m₁₂ = (c₁,s₁,1)⊗(c₂,s₂,1)`` without its constant (8), P (14 × 9) linear in c₃, s₃ — the
+   arm's constants and the constant of the right side —, Q (14 × 8) fixed by the pose.
+   The coefficients are built by chaining these linear maps along the chain (no symbolic
+   algebra): P once per arm, Q per pose.
+3. **Elimination of θ₁, θ₂.** With N the 6 × 14 left null space of Q (from its SVD),
+   ``Σ(θ₃) m₄₅ = 0`` with ``Σ = N P`` (6 × 9). The half-angle substitution
+   ``xᵢ = tan(θᵢ/2)`` (``cos θ = (1 − x²)/(1 + x²)``, ``sin θ = 2x/(1 + x²)``) and
+   multiplication by ``(1 + x₄²)(1 + x₅²)`` give 6 equations in the monomials ``x₄ⁱx₅ʲ``
+   (i, j ≤ 2); with the same 6 multiplied by x₄ these are 12 equations in the 12 monomials
+   ``x₄ⁱx₅ʲ`` (i ≤ 3, j ≤ 2): ``(A x₃² + B x₃ + C) v = 0`` (12 × 12, entries quadratic in x₃).
+   A solution needs ``det(A x² + B x + C) = 0``: a polynomial of degree 24 with the factor
+   ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm.
+4. **Eigenproblem** (Manocha & Canny 1994). Instead of expanding the determinant, the
+   quadratic matrix polynomial is linearised: ``[[0, I], [−C, −B]] z = x [[I, 0], [0, A]] z``
+   with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions and each
+   eigenvector holds v, the monomials of x₄ and x₅. When A is close to singular (a solution
+   near the half-angle's point at infinity) the generalised eigenproblem (QZ) is used; the
+   variable is turned by a fixed angle γ first (``θ₃ = 2 atan x + γ``) so that θ₃ = π is an
+   ordinary point.
+5. **Back-substitution.** θ₄, θ₅ from ratios of v's entries (as ``2 atan2(vᵢ₊₁, vᵢ)``, so
+   that x = ∞ is θ = π), θ₁, θ₂ from ``m₁₂ = Q⁺ P(θ₃) m₄₅`` (least squares, 14 equations),
+   θ₆ from ``Rz(θ₆) = (Z₁X₁⋯X₅ Tz(d₆))⁻¹ T₀₆``.
+6. **Polish.** A few Newton–Raphson steps on the pose error with the geometric Jacobian
+   bring every candidate to the pose to rounding; candidates that do not converge (complex
+   roots with a small imaginary part, kept on purpose so that near-double real roots are not
+   lost) are dropped, and solutions closer than 1e-7 rad in every joint are merged.
+
+Numerics: lengths are divided by the arm's size. The reading above (θ₆ eliminated, θ₁θ₂ on
+one side, θ₃ the eigenvalue) is one of 36: the loop ``Z₁X₁ ⋯ Z₆ T₀₆⁻¹ = I`` can be read
+cyclically from any joint j (θ_j eliminated), with the three-joint group before or after it
+and any of its joints as the eigenvalue (:class:`_Arrangement`). Special neighbours make some
+readings degenerate — on the Kinova Jaco every consecutive pair of axes meets or is parallel,
+and with θ₃ as the eigenvalue ``det(A x² + B x + C)`` vanishes identically —, so all 36 are
+scored once per arm (the conditioning of Q and of the pencil at random poses) and the best
+solves; a pose badly conditioned for it (σ_min/σ_max of Q or A below 1e-6) is also solved
+with the second best and the solutions merged.
+
+Use through :func:`robokit.ik_analytic` (it picks this solver for a 6R arm that has neither
+a spherical wrist nor three parallel axes); :class:`GeneralSixR` is the solver object.
+"""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from robokit.ik.solver import PositionBranch
+from robokit.kernels.general_6r import (companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover,
+                                        side_tensor)
+
+if TYPE_CHECKING:
+    from robokit.ik._dh_chain import DHChain
+
+__all__ = ["GeneralSixR"]
+
+_GAMMA = 0.6180339887498949  # rad: the θ₃ shift of the half-angle variable (any non-special value)
+_IMAG_TOL = 1e-3  # an eigenvalue is a candidate when its imaginary part, as an angle, is below this
+_CONVERGED = 1e-11  # pose error (scaled units) below which a polished candidate is a solution
+_SAME = 1e-7  # rad: solutions this close in every joint are one
+_X0 = 0.37  # where the pencil's regularity is measured (σ_min/σ_max of A x² + B x + C)
+_POOR = 1e-4  # below this conditioning figure a pose is also solved with the next readings …
+_EXTRA = 3  # … this many of them
+
+
+def _f_translate(t: np.ndarray) -> np.ndarray:
+    """15 × 15 map of f(l, p) (with its trailing 1) under p → p + t."""
+    tt = float(t @ t)
+    tx = np.array([[0.0, -t[2], t[1]], [t[2], 0.0, -t[0]], [-t[1], t[0], 0.0]])
+    F = np.eye(15)
+    F[3:6, 14] = t
+    F[6, 3:6] = 2.0 * t
+    F[6, 14] = tt
+    F[7, 0:3] = t
+    F[8:11, 0:3] = -tx
+    F[11:14, 8:11] = 2.0 * tx
+    F[11:14, 0:3] = tt * np.eye(3) - 2.0 * np.outer(t, t)
+    F[11:14, 7] = -2.0 * t
+    return F
+
+
+def _f_rotate_x(alpha: float) -> np.ndarray:
+    """15 × 15 map of f(l, p) under the rotation Rx(α)."""
+    c, s = math.cos(alpha), math.sin(alpha)
+    R = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    F = np.eye(15)
+    for b in (0, 3, 8, 11):
+        F[b:b + 3, b:b + 3] = R
+    return F
+
+
+class _Arrangement:
+    """One way of writing the loop equation (eliminated joint j, the three-joint group on
+    either side, its pivot joint), with the per-arm constant maps of both sides.
+
+    The loop ``Z₁X₁ ⋯ X₅Z₆W = I`` with ``W = T₀₆⁻¹`` is read cyclically from just after
+    ``Z_j``: ``R Z_j = I`` with ``R = L_j Z_{j+1} L_{j+1} ⋯ L_{j−1}`` (Lᵢ = Xᵢ, L₆ = W), so
+    ``R (e_z, 0) = (e_z, −d_j e_z)``; R is cut into ``G₁G₂`` after the first n₁ joints:
+    ``G₂ (e_z, 0) = G₁⁻¹ (e_z, −d_j e_z)``. j = 6, n₁ = 2 is the reading of the module
+    docstring; the others are its cyclic re-indexings.
+    """
+
+    def __init__(self, el: "_Elimination", j: int, n1: int, piv: int) -> None:
+        self.j, self.n1, self.piv = j, n1, piv
+        J = [(j + t) % 6 for t in range(1, 6)]
+        ez, ex = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+        al, a, d = el.alpha, el.a, el.d
+
+        I15 = np.eye(15)
+        Op = tuple[np.ndarray, int, np.ndarray]  # pre @ F(W)^w @ post (w = 0: pre alone)
+
+        def const(M: np.ndarray) -> Op:
+            return (M, 0, I15)
+
+        def L(i: int, inverse: bool) -> Op:  # the link after joint i: Xᵢ, or W after joint 6
+            if i == 5:
+                return (I15, -1 if inverse else 1, I15)
+            if inverse:
+                return const(_f_rotate_x(-al[i]) @ _f_translate(-a[i] * ex))
+            return const(_f_translate(a[i] * ex) @ _f_rotate_x(al[i]))
+
+        def comp(X: Op, Y: Op) -> Op:  # X applied after Y
+            if X[1] != 0:
+                return (X[0], X[1], X[2] @ Y[0])
+            if Y[1] != 0:
+                return (X[0] @ Y[0], Y[1], Y[2])
+            return const(X[0] @ Y[0])
+
+        def Tz(dz: float) -> Op:
+            return const(_f_translate(dz * ez))
+
+        # side 1: G₁⁻¹ (e_z, −d_j e_z): L_j⁻¹, Rz(−θ_{J0}), Tz(−d_{J0}) then L_{J0}⁻¹, Rz(−θ_{J1}), …
+        ops1 = [L(j, True)]
+        for t in range(1, n1):
+            ops1.append(comp(L(J[t - 1], True), Tz(-d[J[t - 1]])))
+        ops1.append(Tz(-d[J[n1 - 1]]))
+        joints1 = J[:n1]
+        # side 2: G₂ (e_z, 0): L_{J4} then Tz(d_{J4}), Rz(θ_{J4}), L_{J3}, Tz, Rz, …, L_{J[n1−1]}
+        rest = J[n1:][::-1]
+        ops2 = [comp(Tz(d[i]), L(i, False)) for i in rest] + [L(J[n1 - 1], False)]
+        joints2 = rest
+        self.sides = [(ops1, np.array([-1.0] * n1), joints1), (ops2, np.array([1.0] * len(rest)), joints2)]
+        f1 = np.zeros(15)
+        fvec(0.0, 0.0, 1.0, 0.0, 0.0, -d[j], f1)
+        f2 = np.zeros(15)
+        fvec(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f2)
+        self.fstart = [f1, f2]
+        three = 0 if n1 == 3 else 1
+        self.three, self.two = three, 1 - three
+        o = self.sides[three][2]
+        self.pivot = o[piv]
+        self.others = [o[k] for k in range(3) if k != piv]
+        self.pair = list(self.sides[self.two][2])
+        self.t3 = np.empty((27, 15))
+        self.t2 = np.empty((9, 15))
+        self.roles = np.array([self.pivot, *self.others, *self.pair, j], dtype=np.int64)
+        # per side: the stacked maps, and where the target's W sits (index, pre, inverse?, post)
+        self.Ms: list[np.ndarray] = []
+        self.w_at: list[tuple[int, np.ndarray, bool, np.ndarray] | None] = []
+        for ops, _, _ in self.sides:
+            self.Ms.append(np.ascontiguousarray(np.stack([pre for pre, _, _ in ops])))
+            at = [(i, pre, w < 0, post) for i, (pre, w, post) in enumerate(ops) if w != 0]
+            self.w_at.append(at[0] if at else None)
+        self.FW = np.empty((15, 15))
+
+    def matrices(self, T06s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(P (3, 15, 9), r (15, 9)) of the pose: the three-joint side with the pivot first
+        and the two-joint side (see :func:`robokit.kernels.general_6r.pencil`)."""
+        outs = []
+        for side, f, buf in zip(range(2), self.fstart, (self.t3, self.t2) if self.three == 0 else (self.t2, self.t3)):
+            Ms, at = self.Ms[side], self.w_at[side]
+            if at is not None:
+                i, pre, inverse, post = at
+                f_pose(T06s, not inverse, self.FW)  # W = T₀₆⁻¹; W⁻¹ = T₀₆
+                Ms[i] = pre @ self.FW @ post
+            side_tensor(Ms, self.sides[side][1], f, buf)
+            outs.append(buf)
+        G3, G2 = outs[self.three], outs[self.two]
+        T3 = G3.reshape(3, 3, 3, 15)  # axes (t2, t1, t0, k)
+        axes = {0: 2, 1: 1, 2: 0}  # joint position in the group → axis of T3
+        b, c = [k for k in range(3) if k != self.piv]
+        P = np.ascontiguousarray(T3.transpose(axes[self.piv], 3, axes[b], axes[c]).reshape(3, 15, 9))
+        r = np.ascontiguousarray(G2.reshape(3, 3, 15).transpose(2, 1, 0).reshape(15, 9))
+        return P, r
+
+
+class _Elimination:
+    """The per-arm constants (lengths divided by ``scale``) and the chosen arrangements."""
+
+    def __init__(self, chain: DHChain, scale: float) -> None:
+        self.alpha = np.ascontiguousarray(chain.alpha, dtype=float)
+        self.a = np.ascontiguousarray(chain.a, dtype=float) / scale
+        self.d = np.ascontiguousarray(chain.d0, dtype=float) / scale
+        self.th0 = np.asarray(chain.th0, dtype=float)
+        self.gc, self.gs = math.cos(_GAMMA), math.sin(_GAMMA)
+        self.work = np.empty((3, 12, 12))
+        self.Np = np.empty((3, 14, 9))
+        self.Pinv = np.empty((8, 14))
+        self.found = np.empty((24, 6))
+        self.M24 = np.empty((24, 24))
+        # score every arrangement on a few poses; keep them best first
+        rng = np.random.default_rng(2024)
+        poses = []
+        for _ in range(3):
+            T = np.empty((4, 4))
+            fk_pose(self.alpha, self.a, self.d, rng.uniform(-math.pi, math.pi, 6), T)
+            poses.append(T)
+        scored = []
+        for j in range(6):
+            for n1 in (2, 3):
+                for piv in range(3):
+                    arr = _Arrangement(self, j, n1, piv)
+                    scored.append((min(self._score(arr, T) for T in poses), j, n1, piv, arr))
+        scored.sort(key=lambda t: -t[0])
+        self.arrangements = [t[4] for t in scored]
+        self.scores = [t[0] for t in scored]
+
+    def _score(self, arr: _Arrangement, T06s: np.ndarray) -> float:
+        P, r = arr.matrices(T06s)
+        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
+        A, B, C = self.work
+        Lx = A * 0.37 ** 2 + B * 0.37 + C
+        sv = np.linalg.svd(Lx, compute_uv=False)
+        return min(ratio, sv[-1] / sv[0] if sv[0] > 0 else 0.0)
+
+    def candidates(self, T06s: np.ndarray, arr: _Arrangement) -> tuple[list[np.ndarray], float]:
+        """Polished rotation angles θ (6,) of the solutions for the scaled target with one
+        arrangement, and a conditioning figure (the smaller of Q's and A's singular value ratios)."""
+        P, r = arr.matrices(T06s)
+        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
+        n = 12
+        condA = companion(self.work, self.M24)
+        A, B, C = self.work
+        sv = np.linalg.svd(A * _X0 * _X0 + B * _X0 + C, compute_uv=False)  # ~0 everywhere: a near-continuum
+        reg = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
+        if condA > 1e-10:
+            num, Z = np.linalg.eig(self.M24)
+            num = num.astype(np.complex128)
+            den = np.ones(2 * n, dtype=np.complex128)
+        else:
+            import scipy.linalg
+
+            L0 = np.zeros((2 * n, 2 * n))
+            L0[:n, n:] = np.eye(n)
+            L0[n:, :n] = -C
+            L0[n:, n:] = -B
+            L1 = np.eye(2 * n)
+            L1[n:, n:] = A
+            w, Z = scipy.linalg.eig(L0, L1, homogeneous_eigvals=True)
+            num, den = np.ascontiguousarray(w[0], dtype=np.complex128), np.ascontiguousarray(w[1], dtype=np.complex128)
+        Z = Z.astype(np.complex128)
+        count = recover(self.alpha, self.a, self.d, T06s, num, den, np.ascontiguousarray(Z), self.Np, self.Pinv,
+                        arr.roles, _GAMMA, _IMAG_TOL, _CONVERGED, self.found)
+        return [self.found[i].copy() for i in range(count)], min(ratio, condA, reg)
+
+
+class GeneralSixR:
+    """Every closed-form IK solution of a 6R arm in general position (see the module docstring).
+
+    Build once per arm with :meth:`from_chain`; :meth:`solve` returns, for a target ``T₀₆``
+    of the canonical chain, the solutions as ``(q, label, degenerate)`` rows (q: joint values
+    in rad, offsets removed), as the other closed-form solvers do. Users normally call
+    :func:`robokit.ik_analytic`, which builds this solver for a general 6R arm, caches it on
+    the robot and turns the rows into :class:`robokit.ik.IKSolution` objects.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from robokit.description.dh import DHLink, DHTable
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> rng = np.random.default_rng(3)
+    >>> table = DHTable("g", "standard", tuple(DHLink("R", a=rng.uniform(-.5, .5), alpha=rng.uniform(-3, 3),
+    ...                                               d=rng.uniform(-.5, .5)) for _ in range(6)))
+    >>> chain = DHChain(table)
+    >>> solver = GeneralSixR.from_chain(chain)
+    >>> q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    >>> rows = solver.solve(chain.fk6(q))
+    >>> min(float(np.abs(np.asarray(r[0]) - q).max()) for r in rows) < 1e-9
+    True
+    """
+
+    #: what ``ik_analytic_kind`` adds to the reason when this solver takes an arm
+    REASON = "; the general 6R method applies (Raghavan–Roth elimination, up to 16 solutions)"
+
+    #: the structure's name, as :func:`robokit.ik_analytic_kind` reports it
+    method = "general 6R"
+
+    def __init__(self, chain: DHChain) -> None:
+        """Any 6-joint chain is accepted; :meth:`refusal` says whether the method applies (the
+        elimination's constants are then built, which scores the 36 readings: ~0.1 s)."""
+        self.chain = chain
+        self.scale = float(chain.scale)
+        self._why = self.refusal_of(chain)
+        self._elim: _Elimination | None = None
+
+    @property
+    def elim(self) -> "_Elimination":
+        """The per-arm constants of the elimination (built on first use)."""
+        if self._elim is None:
+            if self._why is not None:
+                raise ValueError(f"robot: {self._why}")
+            self._elim = _Elimination(self.chain, self.scale)
+        return self._elim
+
+    def refusal(self) -> str | None:
+        """None when the general 6R method applies to this chain, else the reason (see
+        :meth:`refusal_of`).
+
+        Returns
+        -------
+        str or None
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> GeneralSixR(DHChain(robokit.load("puma560").dh)).refusal() is None
+        True
+        """
+        return self._why
+
+    @staticmethod
+    def refusal_of(chain: DHChain) -> str | None:
+        """Why the general 6R method does not apply to ``chain``, or None when it does.
+
+        It needs six revolute joints whose axes are independent somewhere: an arm whose 6 × 6
+        Jacobian is rank-deficient at every configuration (two axes coincide, …) has a
+        continuum of solutions, not a finite set. The Jacobian is checked at four fixed
+        pseudo-random configurations (smallest / largest singular value above 1e-9).
+
+        Parameters
+        ----------
+        chain : DHChain
+            The canonical chain of the arm.
+
+        Returns
+        -------
+        str or None
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> GeneralSixR.refusal_of(DHChain(robokit.load("puma560").dh)) is None  # six independent axes
+        True
+        """
+        if chain.n != 6:
+            return f"the general 6R method needs 6 joints, the arm has {chain.n}"
+        if any(k != "R" for k in chain.kinds):
+            j = 1 + list(chain.kinds).index("P")
+            return f"the general 6R method needs revolute joints, joint {j} is prismatic"
+        scale = float(chain.scale)
+        al = np.ascontiguousarray(chain.alpha, dtype=float)
+        a = np.ascontiguousarray(chain.a, dtype=float) / scale
+        d = np.ascontiguousarray(chain.d0, dtype=float) / scale
+        rng = np.random.default_rng(12345)
+        T, J = np.empty((4, 4)), np.empty((6, 6))
+        for _ in range(4):
+            th = rng.uniform(-math.pi, math.pi, 6)
+            fk_pose(al, a, d, th, T)
+            jacobian(al, a, d, th, T, J)
+            sv = np.linalg.svd(J, compute_uv=False)
+            if sv[-1] > 1e-9 * sv[0]:
+                return None
+        return ("the joint axes are dependent at every configuration (the 6 × 6 Jacobian is singular "
+                "everywhere), so a pose has a continuum of solutions")
+
+    @classmethod
+    def from_chain(cls, chain: DHChain) -> "GeneralSixR":
+        """The solver of a canonical DH chain of six revolute joints.
+
+        Parameters
+        ----------
+        chain : DHChain
+            The arm (:mod:`robokit.ik._dh_chain`), six revolute joints.
+
+        Returns
+        -------
+        GeneralSixR
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> len(GeneralSixR.from_chain(DHChain(robokit.load("puma560").dh)).elim.arrangements)
+        36
+        """
+        return cls(chain)
+
+    def solve(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:
+        """Every solution for the pose ``T06`` (4 × 4, m) of ``Z₁X₁ ⋯ Z₆``.
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target of the canonical chain (base′ and tool′ removed), m.
+        wrist_ref : float
+            Unused (the general case has no free joint); accepted for the common solver shape.
+
+        Returns
+        -------
+        list of (q, label, degenerate)
+            q (6,) joint values (rad) — ``θ − θ_offset`` —, label ``"solution k of m"``
+            (ordered by q₃), degenerate False; ``[]`` when the pose is out of reach. Near a
+            singular pose (the conditioning figure of the elimination below 1e-4) the next three
+            readings are solved too, and a solution whose 6 × 6 Jacobian is singular
+            (σ_min < 1e-8 σ_max) is labelled ``"solution k of m, singular"`` and flagged
+            degenerate: there the solutions may form a continuum (e.g. four parallel axes), of
+            which the ones returned are points, not necessarily the configuration that
+            generated the pose.
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001  # axes 4 and 5 of the PUMA 1 mm apart: no spherical wrist
+        >>> len(GeneralSixR.from_chain(chain).solve(chain.fk6(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))))
+        8
+
+        Notes
+        -----
+        An arm that is *exactly* special (a spherical wrist, three parallel axes) makes the
+        eigenproblem degenerate (double and infinite roots) and may lose solutions here;
+        :func:`robokit.ik_analytic` sends such arms to their special solvers. Arms special
+        only approximately (1e-8 m, 1e-8 rad and more off) are solved here in full.
+        """
+        T06s = np.array(T06, dtype=float)
+        T06s[:3, 3] /= self.scale
+        el = self.elim
+        sols, ratio = el.candidates(T06s, el.arrangements[0])
+        if ratio < _POOR:  # this pose is badly conditioned for the best reading (near a singular pose):
+            for arr in el.arrangements[1:_EXTRA + 1]:  # add the next readings' solutions
+                more, _ = el.candidates(T06s, arr)
+                sols = sols + more
+        TH = np.array(sols, dtype=float).reshape(len(sols), 6)
+        Q = np.empty((max(1, len(sols)), 6))
+        m = distinct(TH, len(sols), el.th0, _SAME, Q)
+        Q = Q[:m][np.lexsort(Q[:m, [5, 4, 3, 1, 0, 2]].T)]  # ordered by q₃, then q₁, q₂, …
+        q_list = list(Q)
+        rows: list[tuple[Sequence[float], str, bool]] = []
+        T, J = np.empty((4, 4)), np.empty((6, 6))
+        for k, q in enumerate(q_list):
+            singular = False
+            if ratio < _POOR:  # near a singular pose: flag the solutions where the Jacobian is singular
+                th = q + el.th0
+                fk_pose(el.alpha, el.a, el.d, th, T)
+                jacobian(el.alpha, el.a, el.d, th, T, J)
+                sv = np.linalg.svd(J, compute_uv=False)
+                singular = bool(sv[-1] < 1e-8 * sv[0])
+            label = f"solution {k + 1} of {m}" + (", singular" if singular else "")
+            rows.append((q.tolist(), label, singular))
+        return rows
+
+    def joint_angles(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:
+        """Every solution for ``T06``: the same as :meth:`solve` (the name of the closed-form
+        solver interface).
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target of the canonical chain, m.
+        wrist_ref : float
+            Unused (no free joint in the general case).
+
+        Returns
+        -------
+        list of (q, label, degenerate)
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001
+        >>> len(GeneralSixR(chain).joint_angles(chain.fk6(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))))
+        8
+        """
+        return self.solve(T06, wrist_ref)
+
+    def position(self, T06: np.ndarray) -> list[PositionBranch]:
+        """The elimination has no position/wrist split: the whole solve, each solution a
+        complete branch ``(q, label, degenerate, None)``.
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target of the canonical chain, m.
+
+        Returns
+        -------
+        list of (q (6,), label, degenerate, None)
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> chain.a[3] = 0.001
+        >>> len(GeneralSixR(chain).position(chain.fk6(np.zeros(6)))) > 0
+        True
+        """
+        return [PositionBranch(q, label, degen, None) for q, label, degen in self.solve(T06)]
+
+    def wrist(self, T06: np.ndarray, branch: PositionBranch, wrist_ref: float = 0.0
+              ) -> list[tuple[Sequence[float], str, bool]]:
+        """The identity on a branch of :meth:`position` (already a full solution).
+
+        Parameters
+        ----------
+        T06 : (4, 4) array
+            Target (unused).
+        branch : (q, label, degenerate, data)
+            One item of :meth:`position`.
+        wrist_ref : float
+            Unused.
+
+        Returns
+        -------
+        list of (q, label, degenerate)
+            The one row of the branch.
+
+        Examples
+        --------
+        >>> GeneralSixR.wrist(None, None, ([0.0] * 6, "solution 1 of 1", False, None))
+        [([0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 'solution 1 of 1', False)]
+        """
+        return [(branch[0], branch[1], bool(branch[2]))]

@@ -1,0 +1,323 @@
+"""The general 6R closed form (Raghavan–Roth / Manocha–Canny), checked against Pinocchio and
+against a numerical IK from many seeds.
+
+Every solution must reach the pose through the robot's Pinocchio model (``frame_pose``) to
+1e-9, the generating configuration must be among them, and every distinct solution that the
+compiled Levenberg–Marquardt solver finds from 200 random seeds must be among them (so none
+is missed). Arms: the Kinova JACO² 6-DOF with its offset ("non-spherical") wrist from
+Kinova's DH table, random general 6R arms in both conventions, and special arms (spherical
+wrist, UR) made general by small offsets.
+"""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import robokit
+from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.ik import ik_analytic, ik_analytic_kind
+
+TOL = 1e-9
+
+
+def angle_dist(a, b):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    return float(np.abs(np.angle(np.exp(1j * d))).max())
+
+
+def check(robot, q_true, T, sols):
+    """Every solution reaches T (Pinocchio), the generator is among them, all distinct."""
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL, s.label
+        inside = bool(np.all(s.q >= robot.qlim[:, 0] - 1e-12) and np.all(s.q <= robot.qlim[:, 1] + 1e-12))
+        assert s.within_limits == inside
+    for i in range(len(sols)):
+        for j in range(i):
+            assert angle_dist(sols[i].q, sols[j].q) > 1e-9
+    assert len({s.label for s in sols}) == len(sols)
+    if q_true is not None:
+        assert min(angle_dist(s.q, q_true) for s in sols) < 1e-7
+
+
+def numerical_solutions(robot, T, seeds=200, rng=0):
+    """Distinct solutions the compiled LM solver finds from ``seeds`` random starts."""
+    rng = np.random.default_rng(rng)
+    found = []
+    for _ in range(seeds):
+        r = robokit.solve_ik(robot, T, q0=rng.uniform(-np.pi, np.pi, robot.n), method="compiled", max_restarts=0)
+        if r.success and not any(angle_dist(r.q, f) < 1e-6 for f in found):
+            found.append(r.q)
+    return found
+
+
+def assert_none_missed(robot, T, sols, seeds=200):
+    found = numerical_solutions(robot, T, seeds)
+    assert found, "the numerical IK found nothing: the check would be empty"
+    for f in found:
+        assert min(angle_dist(f, s.q) for s in sols) < 1e-6, f"numerical solution {f} not returned"
+
+
+WIDE = np.array([-2 * np.pi, 2 * np.pi])  # limits that let the numerical solver reach every angle
+
+
+# ---------------------------------------------------------------- the Kinova JACO² (offset wrist)
+def jaco2_table():
+    """Kinova JACO² 6-DOF non-spherical (j2n6s300), classic DH, from Kinova's "JACO² 6 DOF
+    Advanced Specification Guide" (as also used by WPI's jaco_kinematics): D1 = 0.2755,
+    D2 = 0.4100, D3 = 0.2073, D4 = D5 = 0.0741, D6 = 0.1600, e2 = 0.0098 m, aa = 30°."""
+    D1, D2, D3, D4, D5, D6, e2 = 0.2755, 0.4100, 0.2073, 0.0741, 0.0741, 0.1600, 0.0098
+    aa = math.radians(30.0)
+    k = math.sin(aa) / math.sin(2 * aa)
+    d4b, d5b, d6b = D3 + k * D4, k * D4 + k * D5, k * D5 + D6
+    alpha = [math.pi / 2, math.pi, math.pi / 2, 2 * aa, 2 * aa, math.pi]
+    a = [0.0, D2, 0.0, 0.0, 0.0, 0.0]
+    d = [D1, 0.0, -e2, -d4b, -d5b, -d6b]
+    return DHTable("jaco2_6n", "standard", tuple(DHLink("R", a=a[i], alpha=alpha[i], d=d[i], qlim=WIDE)
+                                                  for i in range(6)))
+
+
+@pytest.fixture(scope="module")
+def jaco():
+    return robokit.load(jaco2_table())
+
+
+def test_jaco_is_general_6r(jaco):
+    kind = ik_analytic_kind(jaco)
+    assert kind.method == "general 6R"
+    assert "axes 4–6 do not intersect" in kind.reason
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_jaco_every_solution(jaco, seed):
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(-np.pi, np.pi, 6)
+    T = jaco.frame_pose(q)
+    sols = ik_analytic(jaco, T)
+    check(jaco, q, T, sols)
+    assert_none_missed(jaco, T, sols)
+    assert all(s.label.startswith("solution ") for s in sols)
+
+
+def test_jaco_from_its_urdf(tmp_path):
+    """The same arm as a URDF (no DH table on the Robot): solved through urdf_to_dh's table."""
+    from robokit.description.urdf_gen import dh_to_urdf
+
+    path = tmp_path / "jaco2_6n.urdf"
+    path.write_text(dh_to_urdf(jaco2_table()), encoding="utf-8")
+    robot = robokit.load(str(path))
+    assert robot.dh is None
+    assert ik_analytic_kind(robot).method == "general 6R"
+    q = np.array([0.3, 2.1, 1.2, -0.7, 1.9, 0.4])
+    T = robot.frame_pose(q)
+    check(robot, q, T, ik_analytic(robot, T))
+
+
+def test_example_robot_data_kinova_keeps_the_spherical_wrist_method():
+    """example-robot-data's "kinova" is the j2s6s200: a spherical wrist (Pieper, faster)."""
+    robot = robokit.load("kinova")
+    assert ik_analytic_kind(robot).method == "spherical wrist"
+
+
+def test_unreachable_pose_gives_empty_list(jaco):
+    T = np.eye(4)
+    T[:3, 3] = [3.0, 0.0, 0.0]  # 3 m away; the arm is about 1 m long
+    assert ik_analytic(jaco, T) == []
+
+
+def test_joint_angles_at_pi(jaco):
+    """θ = π is the half-angle variable's point at infinity: solutions there are still found."""
+    for j in range(6):
+        q = np.array([0.4, 1.9, 1.1, -0.6, 2.2, 0.3])
+        q[j] = math.pi
+        T = jaco.frame_pose(q)
+        check(jaco, q, T, ik_analytic(jaco, T))
+
+
+# ---------------------------------------------------------------- random general arms
+def random_general_arm(seed, convention):
+    rng = np.random.default_rng(seed)
+    rows = tuple(DHLink("R", a=rng.uniform(-0.5, 0.5), alpha=rng.uniform(-np.pi, np.pi), d=rng.uniform(-0.5, 0.5),
+                        theta=rng.uniform(-np.pi, np.pi), qlim=WIDE) for _ in range(6))
+    base, tool = np.eye(4), np.eye(4)
+    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    return DHTable(f"g{seed}", convention, rows, base=base, tool=tool)
+
+
+@settings(max_examples=12, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]))
+def test_random_general_arms(seed, convention):
+    robot = robokit.load(random_general_arm(seed, convention))
+    assert ik_analytic_kind(robot).method == "general 6R"
+    q = np.random.default_rng(seed + 1).uniform(-np.pi, np.pi, 6)
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    assert len(sols) <= 16 and len(sols) % 2 == 0  # real roots of a real polynomial of degree 16, in pairs
+
+
+@pytest.mark.parametrize("seed, convention", [(3, "standard"), (4, "modified")])
+def test_random_general_arms_numerical_ik_finds_no_other(seed, convention):
+    robot = robokit.load(random_general_arm(seed, convention))
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, 6)
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    assert_none_missed(robot, T, sols)
+
+
+# ---------------------------------------------------------------- almost special arms
+def puma_with_offset(eps):
+    """Corke's PUMA 560 (spherical wrist) with axes 4 and 5 moved eps apart (a₄ = eps)."""
+    table = robokit.load("puma560").dh
+    rows = list(table.links)
+    rows[3] = DHLink("R", eps, rows[3].alpha, rows[3].d, rows[3].theta, qlim=WIDE)
+    rows = [DHLink("R", r.a, r.alpha, r.d, r.theta, qlim=WIDE) for r in rows]
+    return DHTable(f"puma_eps{eps:g}", table.convention, tuple(rows), base=table.base, tool=table.tool)
+
+
+@pytest.mark.parametrize("eps", [1e-6, 1e-4, 1e-2])
+def test_spherical_wrist_off_by_a_little(eps):
+    robot = robokit.load(puma_with_offset(eps))
+    assert ik_analytic_kind(robot).method == "general 6R"
+    q = np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5])
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    assert len(sols) >= 8  # the 8 of the exact PUMA survive a small offset
+    assert_none_missed(robot, T, sols)
+
+
+def ur5_with_tilt(angle):
+    """The UR5 (three parallel axes) with axis 3 tilted by ``angle`` rad (α₂ += angle)."""
+    from robokit.description.urdf_to_dh import urdf_to_dh
+
+    table = urdf_to_dh(robokit.load("ur5"), "standard").table
+    rows = [DHLink("R", r.a, r.alpha + (angle if i == 1 else 0.0), r.d, r.theta, qlim=WIDE)
+            for i, r in enumerate(table.links)]
+    return DHTable("ur5_tilt", "standard", tuple(rows), base=table.base, tool=table.tool)
+
+
+def test_ur5_with_axes_off_by_a_milliradian():
+    robot = robokit.load(ur5_with_tilt(1e-3))
+    assert ik_analytic_kind(robot).method == "general 6R"
+    q = np.array([0.4, -1.3, 1.2, -0.6, 1.1, 0.3])
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    assert len(sols) >= 8
+    assert_none_missed(robot, T, sols)
+
+
+# ---------------------------------------------------------------- refusals
+def test_seven_and_five_joint_arms_are_refused_with_the_reason():
+    with pytest.raises(ValueError, match="7 joints"):
+        ik_analytic(robokit.load("panda"), np.eye(4))
+    rows = random_general_arm(7, "standard").links[:5]
+    robot = robokit.load(DHTable("five", "standard", tuple(rows)))
+    kind = ik_analytic_kind(robot)
+    assert kind.method is None and "5 joints" in kind.reason
+    with pytest.raises(ValueError, match="5 joints"):
+        ik_analytic(robot, robot.frame_pose(np.zeros(5)))
+
+
+def test_arm_with_coinciding_axes_is_refused():
+    """Axes 1 and 2 on one line (α₁ = 0, a₁ = 0): joints 1 and 2 add up, a continuum of solutions."""
+    t = random_general_arm(8, "standard")
+    rows = list(t.links)
+    rows[0] = DHLink("R", 0.0, 0.0, rows[0].d, rows[0].theta, qlim=WIDE)
+    robot = robokit.load(DHTable("coincide", "standard", tuple(rows)))
+    kind = ik_analytic_kind(robot)
+    assert kind.method is None and "continuum" in kind.reason
+
+
+def test_pivot_at_the_shifted_point_at_infinity(jaco):
+    """A joint at π + γ (γ the half-angle variable's shift) makes the leading coefficient A
+    singular for the reading that uses it as the eigenvalue: the generalised eigenproblem
+    (QZ) takes over and the solutions are still all there."""
+    from robokit.ik.general_6r import _GAMMA
+
+    for j in range(6):
+        q = np.array([0.4, 1.9, 1.1, -0.6, 2.2, 0.3])
+        q[j] = math.pi + _GAMMA
+        T = jaco.frame_pose(q)
+        sols = ik_analytic(jaco, T)
+        check(jaco, q, T, sols)
+    assert_none_missed(jaco, T, sols)
+
+
+# ---------------------------------------------------------------- the elimination's pieces
+@settings(max_examples=20, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31))
+def test_the_14_quantities_map_linearly_under_a_rigid_motion(seed):
+    """f(l, p) = (l, p, p·p, l·p, l×p, (p·p)l − 2(l·p)p, 1): f(R l, R p + t) = F(T) f(l, p), with
+    F(T) the 15 × 15 map used on both sides of the loop equation (Raghavan & Roth)."""
+    from scipy.spatial.transform import Rotation
+
+    from robokit.kernels.general_6r import f_pose, fvec
+
+    rng = np.random.default_rng(seed)
+    l = rng.standard_normal(3)
+    l /= np.linalg.norm(l)
+    p = rng.uniform(-1, 1, 3)
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = Rotation.random(random_state=seed % 2**32).as_matrix(), rng.uniform(-1, 1, 3)
+    f, g, F = np.empty(15), np.empty(15), np.empty((15, 15))
+    fvec(*l, *p, f)
+    fvec(*(T[:3, :3] @ l), *(T[:3, :3] @ p + T[:3, 3]), g)
+    f_pose(T, False, F)
+    assert np.abs(F @ f - g).max() < 1e-12
+    Ti = np.linalg.inv(T)
+    fvec(*(Ti[:3, :3] @ l), *(Ti[:3, :3] @ p + Ti[:3, 3]), g)
+    f_pose(T, True, F)
+    assert np.abs(F @ f - g).max() < 1e-12
+
+
+@pytest.mark.parametrize("seed", [11, 12])
+def test_every_reading_of_the_loop_holds_at_the_true_configuration(seed):
+    """All 36 readings (eliminated joint, side, pivot): both sides of the 14 equations agree at
+    the configuration that generated the pose — an independent check of each coefficient build."""
+    from robokit.ik.closed_form import analytic_ik as _model
+
+    robot = robokit.load(random_general_arm(seed, "standard" if seed % 2 else "modified"))
+    model = _model(robot)
+    solver = model.solver
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, 6)
+    T06 = model.chain.target_06(robot.frame_pose(q))
+    T06s = T06.copy()
+    T06s[:3, 3] /= solver.scale
+    th = q + solver.elim.th0
+
+    def b(t):
+        return np.array([math.cos(t), math.sin(t), 1.0])
+
+    assert len(solver.elim.arrangements) == 36
+    for arr in solver.elim.arrangements:
+        P, r = arr.matrices(T06s)
+        lhs = np.einsum("i,ikm->km", b(th[arr.pivot]), P) @ np.outer(b(th[arr.others[0]]), b(th[arr.others[1]])).ravel()
+        rhs = r @ np.outer(b(th[arr.pair[0]]), b(th[arr.pair[1]])).ravel()
+        assert np.abs(lhs - rhs)[:14].max() < 1e-10, (arr.j, arr.n1, arr.piv)
+
+
+def test_singular_poses_of_the_jaco(jaco):
+    """Configurations on a grid of right angles (many of them singular: axes 4 and 6 parallel
+    at q₅ = π, axes 2 and 3 always parallel): never an empty answer for a reachable pose, every
+    solution reaches it, and the generating configuration is among them unless it is singular
+    (a known limit: at a singular configuration the double root or continuum it sits on can be
+    lost; the isolated solutions of the pose are still returned)."""
+    rng = np.random.default_rng(0)
+    missed = 0
+    for _ in range(30):
+        q = rng.choice([0.0, math.pi / 2, math.pi, -math.pi / 2], 6)
+        T = jaco.frame_pose(q)
+        sols = ik_analytic(jaco, T)
+        assert sols, q
+        check(jaco, None, T, sols)
+        if min(angle_dist(s.q, q) for s in sols) > 1e-6:
+            missed += 1
+            sv = np.linalg.svd(jaco.jacobian(q), compute_uv=False)
+            assert sv[-1] < 1e-8 * sv[0], q  # only a singular generator may be missed
+    assert missed < 5
+
