@@ -60,6 +60,9 @@ from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
 from robokit.ik.solver import ClosedFormSolver
+from robokit.kernels.closed_form import closed_form_solve as _closed_form_solve
+
+_new_object = object.__new__
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -174,6 +177,9 @@ class AnalyticIK:
     kind: ClosedFormKind
     solver: ClosedFormSolver | None
     reversed: bool
+    #: Use the compiled kernel (:mod:`robokit.kernels.closed_form`) when it covers the chain;
+    #: False runs the Python solver (the reference the kernel is tested against).
+    use_kernel: bool = True
 
     def __init__(self, robot: Robot | DHTable) -> None:
         if not (_is_table(robot) or _is_robot(robot)):
@@ -277,6 +283,47 @@ class AnalyticIK:
         free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
                               and self._flip[5 - free if self.reversed else free])
+        self._kernel = self._kernel_args()
+
+    def _kernel_args(self) -> tuple | None:
+        """The compiled path's arguments (:mod:`robokit.kernels.closed_form`), or None when the
+        solver has no kernel for this chain (then the Python solver answers)."""
+        solver = self.solver
+        consts = getattr(solver, "kernel_constants", None)
+        if solver is None or consts is None or self.chain.n != 6:
+            return None
+        packed = consts()
+        if packed is None:
+            return None
+        ci, cf, C = packed
+        ci = ci.copy()
+        ci[5] = int(self.reversed)
+        chain = solver.chain  # the reversed chain when self.reversed
+        pre = np.eye(4) if chain.base_inv is None else np.ascontiguousarray(chain.base_inv, dtype=float)
+        post = np.eye(4) if chain.tool_inv is None else np.ascontiguousarray(chain.tool_inv, dtype=float)
+        post_q = np.zeros((5, 6))
+        sign = -1.0 if self.reversed else 1.0
+        post_q[0] = [(-sign if (self._flip is not None and self._flip[j]) else sign) for j in range(6)]
+        post_q[1] = [1.0 if r else 0.0 for r in self._revolute]
+        if self._limits is not None:
+            post_q[2] = [lo for lo, _ in self._limits]
+            post_q[3] = [hi for _, hi in self._limits]
+            post_q[4, 0] = 1.0
+        else:
+            post_q[2], post_q[3] = -np.inf, np.inf
+        suffix = " (chain reversed)" if self.reversed else ""
+        labels = {}
+        for s, shoulder in enumerate(_SHOULDER):
+            for e, elbow in enumerate(_ELBOW):
+                for w, wrist in enumerate(_WRIST):
+                    labels[(s, e, w)] = shoulder + elbow + wrist + suffix
+        return ci, cf, C, pre, post, post_q, labels
+
+    def _kernel_ref(self, wrist_ref: float) -> float:
+        """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
+        if self._free_flipped:
+            wrist_ref = -wrist_ref
+        return -wrist_ref if self.reversed else wrist_ref
 
     def _refresh(self) -> None:
         """Rebuild the constants if what they were built from has changed."""
@@ -307,6 +354,12 @@ class AnalyticIK:
         self._refresh()
         T = _check_pose(T)
         wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        kernel = self._kernel
+        if kernel is not None and self.use_kernel:
+            ci, cf, C, pre, post, post_q, labels = kernel
+            Q, within, codes, degen = _closed_form_solve(ci, cf, C, pre, post, post_q, T,
+                                                         self._kernel_ref(wrist_ref))
+            return _solutions(Q, within.tolist(), codes.tolist(), degen.tolist(), labels)
         solver = self.solver
         if solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
@@ -325,6 +378,29 @@ class AnalyticIK:
             flip = self._flip
             rows = [(tuple(-v if f else v for v, f in zip(q, flip)), label, degen) for q, label, degen in rows]
         return solutions_from_rows(rows, self._revolute, self._limits)
+
+
+_SHOULDER = ("right, ", "left, ", "shoulder singular, ", "")
+_ELBOW = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 −, ")
+_WRIST = ("no flip", "flip", "wrist singular")
+
+
+def _solutions(Q: np.ndarray, within: list, codes: list, degen: list, labels: dict) -> list[IKSolution]:
+    """IKSolution objects from the kernel's arrays; a label that repeats gets " #2", …"""
+    out = []
+    seen: dict[str, int] = {}
+    new = _new_object
+    for k in range(len(within)):
+        label = labels[tuple(codes[k])]
+        if label in seen:
+            seen[label] += 1
+            label = f"{label} #{seen[label]}"
+        else:
+            seen[label] = 1
+        sol = new(IKSolution)
+        sol.__dict__.update(q=Q[k], within_limits=within[k], label=label, degenerate=degen[k], extra={})
+        out.append(sol)
+    return out
 
 
 def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
