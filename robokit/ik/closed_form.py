@@ -61,6 +61,8 @@ from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
 from robokit.ik.solver import ClosedFormSolver
 from robokit.kernels.closed_form import closed_form_solve as _closed_form_solve
+from robokit.kernels.closed_form import pack_constants as _pack_constants
+from robokit.kernels.closed_form import closed_form_batch as _closed_form_batch
 
 _new_object = object.__new__
 
@@ -68,7 +70,7 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_kind"]
+__all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_batch", "ik_analytic_kind"]
 
 _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
@@ -316,8 +318,8 @@ class AnalyticIK:
         for s, shoulder in enumerate(_SHOULDER):
             for e, elbow in enumerate(_ELBOW):
                 for w, wrist in enumerate(_WRIST):
-                    labels[(s, e, w)] = shoulder + elbow + wrist + suffix
-        return ci, cf, C, pre, post, post_q, labels
+                    labels[float(100 * s + 10 * e + w)] = shoulder + elbow + wrist + suffix
+        return _pack_constants(ci, cf, C, pre, post, post_q), labels
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -352,14 +354,79 @@ class AnalyticIK:
             transform.
         """
         self._refresh()
-        T = _check_pose(T)
         wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
         kernel = self._kernel
         if kernel is not None and self.use_kernel:
-            ci, cf, C, pre, post, post_q, labels = kernel
-            Q, within, codes, degen = _closed_form_solve(ci, cf, C, pre, post, post_q, T,
-                                                         self._kernel_ref(wrist_ref))
-            return _solutions(Q, within.tolist(), codes.tolist(), degen.tolist(), labels)
+            if type(T) is not np.ndarray or T.dtype != np.float64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+            out = _closed_form_solve(kernel[0], T, self._kernel_ref(wrist_ref))
+            if out.shape[1] == 0:  # not a clean rigid transform: the full check (raises, or converts)
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+                out = _closed_form_solve(kernel[0], T, self._kernel_ref(wrist_ref))
+                if out.shape[1] == 0:
+                    return self._solve_python(T, wrist_ref)
+            return _solutions(out, kernel[1])
+        return self._solve_python(_check_pose(T), wrist_ref)
+
+    def solve_batch(self, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every closed-form solution of each of N tip poses, as arrays (compiled, parallel over poses).
+
+        Parameters
+        ----------
+        Ts : (N, 4, 4) array_like
+            Target poses of the tip in the base frame (m); each must be a rigid transform.
+        wrist_ref : float
+            The free joint's value at a wrist singularity (rad); default 0.
+
+        Returns
+        -------
+        Q : (N, m_max, 6) ndarray
+            ``Q[i, :counts[i]]`` are the solutions of ``Ts[i]`` — the same values, in the same
+            order, as ``solve(Ts[i])`` gives — and the rows after them are NaN; ``m_max`` is
+            the largest count in the batch (0 when no pose is reachable).
+        within : (N, m_max) bool
+            ``within_limits`` of each solution (False on the NaN rows).
+        counts : (N,) int
+            Number of solutions of each pose (0: out of reach).
+
+        Raises
+        ------
+        InputError
+            If the robot has no closed form, ``Ts`` is not (N, 4, 4), or a pose is not a rigid
+            transform (the first such index is named).
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> robot = robokit.load("puma560")
+        >>> Ts = np.stack([robot.frame_pose(np.full(6, 0.1 * k)) for k in range(1, 4)])
+        >>> Q, within, counts = AnalyticIK(robot).solve_batch(Ts)
+        >>> Q.shape, counts.tolist()
+        ((3, 8, 6), [8, 8, 8])
+        """
+        self._refresh()
+        wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        if self.solver is None:
+            raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+        Ts = _check_poses(Ts)
+        N = Ts.shape[0]
+        kernel = self._kernel
+        if kernel is None or not self.use_kernel:  # the Python solver, pose by pose
+            sols = [self._solve_python(T, wrist_ref) for T in Ts]
+            counts = np.array([len(s) for s in sols], dtype=np.int64)
+            m = int(counts.max()) if N else 0
+            Q = np.full((N, m, 6), np.nan)
+            within = np.zeros((N, m), dtype=bool)
+            for i, row in enumerate(sols):
+                for k, sol in enumerate(row):
+                    Q[i, k], within[i, k] = sol.q, sol.within_limits
+            return Q, within, counts
+        out, counts = _closed_form_batch(kernel[0], Ts, self._kernel_ref(wrist_ref))
+        m = int(counts.max()) if N else 0
+        return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
+
+    def _solve_python(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
+        """The Python solver (the reference of the compiled path)."""
         solver = self.solver
         if solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
@@ -385,22 +452,23 @@ _ELBOW = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 −, ")
 _WRIST = ("no flip", "flip", "wrist singular")
 
 
-def _solutions(Q: np.ndarray, within: list, codes: list, degen: list, labels: dict) -> list[IKSolution]:
-    """IKSolution objects from the kernel's arrays; a label that repeats gets " #2", …"""
-    out = []
+def _solutions(out: np.ndarray, labels: dict) -> list[IKSolution]:
+    """IKSolution objects from the kernel's rows (q, within, code, degenerate); a label that
+    repeats gets " #2", …"""
+    result = []
     seen: dict[str, int] = {}
     new = _new_object
-    for k in range(len(within)):
-        label = labels[tuple(codes[k])]
+    for q, (_, _, _, _, _, _, inside, code, degen) in zip(out[:, :6], out.tolist()):
+        label = labels[code]
         if label in seen:
             seen[label] += 1
             label = f"{label} #{seen[label]}"
         else:
             seen[label] = 1
         sol = new(IKSolution)
-        sol.__dict__.update(q=Q[k], within_limits=within[k], label=label, degenerate=degen[k], extra={})
-        out.append(sol)
-    return out
+        sol.__dict__.update(q=q, within_limits=inside == 1.0, label=label, degenerate=degen == 1.0, extra={})
+        result.append(sol)
+    return result
 
 
 def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
@@ -450,6 +518,25 @@ class _Cache:
 
 _CACHE = _Cache()
 _check_pose = check_pose
+
+
+def _check_poses(Ts: ArrayLike) -> np.ndarray:
+    """(N, 4, 4) float64 C-contiguous rigid transforms, or InputError naming ``Ts`` (and the index)."""
+    arr = np.asarray(Ts)
+    if arr.ndim != 3 or arr.shape[1:] != (4, 4):
+        raise InputError(f"Ts: expected shape (N, 4, 4), got {arr.shape}")
+    if not np.issubdtype(arr.dtype, np.number) or np.iscomplexobj(arr):
+        raise InputError(f"Ts: expected real numbers, got dtype {arr.dtype}")
+    arr = np.ascontiguousarray(arr, dtype=np.float64)
+    R = arr[:, :3, :3]
+    dev = np.abs(np.einsum("nji,njk->nik", R, R) - np.eye(3)).max(axis=(1, 2)) if len(arr) else np.zeros(0)
+    bad = ~np.isfinite(arr).all(axis=(1, 2)) | (dev >= 1e-9) | (np.linalg.det(R) <= 0.0) if len(arr) else dev > 0
+    bad |= (arr[:, 3] != np.array([0.0, 0.0, 0.0, 1.0])).any(axis=1) if len(arr) else bad
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        _check_pose(arr[i], f"Ts[{i}]")  # raises with the reason
+        arr[i] = _check_pose(arr[i], f"Ts[{i}]")  # pragma: no cover - a looser full check accepted it
+    return arr
 
 # ---------------------------------------------------------------------- detection
 def _line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
@@ -644,3 +731,51 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     8
     """
     return _CACHE.get(robot).solve(T, wrist_ref)
+
+
+def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    r"""Every closed-form IK solution of ``robot`` for each of N tip poses, as arrays.
+
+    The batched :func:`ik_analytic`: compiled and parallel over the poses (numba ``prange``)
+    for capability maps and data sets.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+        An arm with a closed form (see :func:`ik_analytic_kind`).
+    Ts : (N, 4, 4) array_like
+        Target poses of the tip in the base frame (m).
+    wrist_ref : float
+        The free joint's value at a wrist singularity (rad); default 0.
+
+    Returns
+    -------
+    Q : (N, m_max, 6) ndarray
+        ``Q[i, :counts[i]]`` are the joint values (rad, m) of the solutions of ``Ts[i]``, equal
+        and in the same order to ``[s.q for s in ik_analytic(robot, Ts[i])]``; the remaining
+        rows are NaN. ``m_max`` is the largest count in the batch.
+    counts : (N,) int
+        Number of solutions per pose (0: out of reach).
+
+    Raises
+    ------
+    InputError
+        (a ValueError) If the robot has no closed form, ``Ts`` is not (N, 4, 4) or a pose is
+        not a rigid transform.
+
+    Notes
+    -----
+    Lecture 5 (the same methods as :func:`ik_analytic`). For the within-limits flags use
+    :meth:`AnalyticIK.solve_batch`.
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("ur5")
+    >>> Ts = np.stack([robot.frame_pose(np.full(6, 0.2)), robot.frame_pose(np.full(6, -0.4))])
+    >>> Q, counts = ik_analytic_batch(robot, Ts)
+    >>> Q.shape, counts.tolist()
+    ((2, 8, 6), [8, 8])
+    """
+    Q, _, counts = _CACHE.get(robot).solve_batch(Ts, wrist_ref)
+    return Q, counts

@@ -41,7 +41,8 @@ import numpy as np
 
 from robokit.kernels._jit import njit, prange
 
-__all__ = ["closed_form_solve", "closed_form_batch", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
+__all__ = ["closed_form_solve", "closed_form_batch", "pack_constants", "K_SIZE", "OUT_COLS", "MAX_ROWS", "PIEPER",
+           "PARALLEL_AXES"]
 
 #: The most rows one pose can produce before duplicates are dropped.
 MAX_ROWS = 16
@@ -589,74 +590,164 @@ def _solve_into(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, 
     return n
 
 
-@njit
-def closed_form_solve(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, post: np.ndarray,
-                      post_q: np.ndarray, T: np.ndarray, wrist_ref: float
-                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    r"""Every closed-form solution of one pose, in compiled code.
+#: Layout of the packed constants ``K`` (one float64 array per robot, built by
+#: :func:`pack_constants`): offsets of cf (64), C (5×5), pre (4×4), post (4×4), post_q (5×6), ci (6).
+_K_CF, _K_C, _K_PRE, _K_POST, _K_PQ, _K_CI, K_SIZE = 0, 64, 89, 105, 121, 151, 157
+#: Columns of a solve's output row: q (6), within (0/1), branch code s·100 + e·10 + w, degenerate (0/1).
+OUT_COLS = 9
+
+
+def pack_constants(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, post: np.ndarray,
+                   post_q: np.ndarray) -> np.ndarray:
+    """The packed constants ``K`` (K_SIZE,) of one robot for :func:`closed_form_solve`.
 
     Parameters
     ----------
-    ci : (6,) int64
+    ci : (6,) int
         ``[method (PIEPER/PARALLEL_AXES), case, joint 3 revolute, degree, rows of C, reversed]``.
-    cf : (64,) float64
+    cf : (64,) float
         The solver's constants (layout: this module's ``_TH0`` … indices).
-    C : (5, 5) float64
-        Position polynomial coefficients (Pieper), rows per monomial of the target.
-    pre, post : (4, 4) float64
+    C : (5, 5) float
+        Position polynomial coefficients (Pieper), one row per monomial of the target.
+    pre, post : (4, 4) float
         ``T₀₆ = pre · T · post`` (or ``pre · T⁻¹ · post`` when reversed): base′⁻¹ and tool′⁻¹.
-    post_q : (5, 6) float64
-        Per joint: sign (−1 for a flipped joint or a reversed chain), revolute flag, lower and
-        upper limits (tolerance included), and ``post_q[4, 0]`` = 1 when limits apply.
-    T : (4, 4) float64
-        Tip pose in the base frame (m).
-    wrist_ref : float
-        The free joint's value at a singularity (rad), in the chain's own sign.
+    post_q : (5, 6) float
+        Per joint: sign (−1 for a flipped joint or a reversed chain), revolute flag (1/0), lower
+        and upper limit (tolerance included; ±inf without), and ``post_q[4, 0]`` = 1 with limits.
 
     Returns
     -------
-    Q : (m, 6) float64
-        Distinct solutions (rad, m), revolute joints wrapped to (−π, π] or shifted into limits.
-    within : (m,) bool
-    codes : (m, 3) int64
-        Branch codes (module docstring).
-    degen : (m,) bool
+    (K_SIZE,) ndarray
 
-    Notes
-    -----
-    Lecture 5: Pieper's decoupling / the three-parallel-axes method (see
-    :mod:`robokit.ik.pieper`, :mod:`robokit.ik.parallel_axes`).
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pack_constants(np.zeros(6, int), np.zeros(64), np.zeros((5, 5)), np.eye(4), np.eye(4),
+    ...                np.zeros((5, 6))).shape
+    (157,)
     """
+    K = np.zeros(K_SIZE)
+    K[_K_CF:_K_C] = cf
+    K[_K_C:_K_PRE] = np.asarray(C, dtype=float).ravel()
+    K[_K_PRE:_K_POST] = np.asarray(pre, dtype=float).ravel()
+    K[_K_POST:_K_PQ] = np.asarray(post, dtype=float).ravel()
+    K[_K_PQ:_K_CI] = np.asarray(post_q, dtype=float).ravel()
+    K[_K_CI:K_SIZE] = np.asarray(ci, dtype=float)
+    return K
+
+
+@njit
+def _rigid(T: np.ndarray) -> bool:
+    """The quick rigid-transform test of :func:`robokit.ik.solution.check_pose`."""
+    a, b, c, d, e, f, g, h, i = T[0, 0], T[0, 1], T[0, 2], T[1, 0], T[1, 1], T[1, 2], T[2, 0], T[2, 1], T[2, 2]
+    dev = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0), abs(c * c + f * f + i * i - 1.0),
+              abs(a * b + d * e + g * h), abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    finite = math.isfinite(a + b + c + d + e + f + g + h + i + T[0, 3] + T[1, 3] + T[2, 3])
+    return (finite and dev < 1e-9 and det > 0.0 and T[3, 0] == 0.0 and T[3, 1] == 0.0 and T[3, 2] == 0.0
+            and T[3, 3] == 1.0)
+
+
+@njit
+def _solve_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci = np.empty(6, dtype=np.int64)
+    for j in range(6):
+        ci[j] = int(K[_K_CI + j])
+    cf = K[_K_CF:_K_C]
+    C = K[_K_C:_K_PRE].reshape((5, 5))
+    pre = K[_K_PRE:_K_POST].reshape((4, 4))
+    post = K[_K_POST:_K_PQ].reshape((4, 4))
+    post_q = K[_K_PQ:_K_CI].reshape((5, 6))
     Q = np.empty((MAX_ROWS, 6))
     within = np.empty(MAX_ROWS, dtype=np.bool_)
     codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
     degen = np.empty(MAX_ROWS, dtype=np.bool_)
     n = _solve_into(ci, cf, C, pre, post, post_q, T, wrist_ref, Q, within, codes, degen)
-    return Q[:n], within[:n], codes[:n], degen[:n]
+    for k in range(n):
+        for j in range(6):
+            out[k, j] = Q[k, j]
+        out[k, 6] = 1.0 if within[k] else 0.0
+        out[k, 7] = codes[k, 0] * 100 + codes[k, 1] * 10 + codes[k, 2]
+        out[k, 8] = 1.0 if degen[k] else 0.0
+    return n
 
 
-@njit(parallel=True)
-def closed_form_batch(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, post: np.ndarray,
-                      post_q: np.ndarray, Ts: np.ndarray, wrist_ref: float
-                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    r""":func:`closed_form_solve` over (N, 4, 4) targets, in parallel over targets (``prange``).
+@njit
+def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    r"""Every closed-form solution of one pose, in compiled code.
+
+    Parameters
+    ----------
+    K : (K_SIZE,) float64
+        The robot's packed constants (:func:`pack_constants`).
+    T : (4, 4) float64
+        Tip pose in the base frame (m).
+    wrist_ref : float
+        The free joint's value at a singularity (rad), in the sign of the solver's chain.
 
     Returns
     -------
-    Q : (N, 16, 6) float64
-        Solutions; rows past ``counts[i]`` are NaN.
-    within : (N, 16) bool
-    codes : (N, 16, 3) int64
-    degen : (N, 16) bool
+    (m, 9) float64
+        One row per distinct solution: q (6; rad, m — revolute joints wrapped to (−π, π] or
+        shifted into limits wider than ±π), within limits (1/0), branch code
+        ``shoulder·100 + elbow·10 + wrist`` (module docstring), degenerate (1/0).
+        Shape (0, 9) when T is out of reach; **shape (0, 0) when T fails the quick
+        rigid-transform test** (the caller then checks T properly).
+
+    Notes
+    -----
+    Lecture 5: Pieper's decoupling / the three-parallel-axes method (see
+    :mod:`robokit.ik.pieper`, :mod:`robokit.ik.parallel_axes`).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("puma560")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> closed_form_solve(K, robot.frame_pose(np.full(6, 0.3)), 0.0).shape
+    (8, 9)
+    """
+    if not _rigid(T):
+        return np.empty((0, 0))
+    out = np.empty((MAX_ROWS, OUT_COLS))
+    n = _solve_packed(K, T, wrist_ref, out)
+    return out[:n].copy()
+
+
+@njit(parallel=True)
+def closed_form_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    r""":func:`closed_form_solve` over (N, 4, 4) targets, in parallel over targets (``prange``).
+
+    Parameters
+    ----------
+    K : (K_SIZE,) float64
+        Packed constants (:func:`pack_constants`).
+    Ts : (N, 4, 4) float64
+        Tip poses (m), each already checked to be a rigid transform.
+    wrist_ref : float
+        As in :func:`closed_form_solve`.
+
+    Returns
+    -------
+    out : (N, 16, 9) float64
+        Per target the rows of :func:`closed_form_solve`; rows past ``counts[i]`` are NaN.
     counts : (N,) int64
+        Number of distinct solutions of each target.
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("ur5")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> out, counts = closed_form_batch(K, np.stack([robot.frame_pose(np.full(6, 0.3))] * 3), 0.0)
+    >>> out.shape, counts.tolist()
+    ((3, 16, 9), [8, 8, 8])
     """
     N = Ts.shape[0]
-    Q = np.full((N, MAX_ROWS, 6), np.nan)
-    within = np.zeros((N, MAX_ROWS), dtype=np.bool_)
-    codes = np.full((N, MAX_ROWS, 3), -1, dtype=np.int64)
-    degen = np.zeros((N, MAX_ROWS), dtype=np.bool_)
+    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
-        counts[i] = _solve_into(ci, cf, C, pre, post, post_q, Ts[i], wrist_ref, Q[i], within[i], codes[i],
-                                degen[i])
-    return Q, within, codes, degen, counts
+        counts[i] = _solve_packed(K, Ts[i], wrist_ref, out[i])
+    return out, counts
