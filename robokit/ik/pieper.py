@@ -26,7 +26,8 @@ gives d₁ last. The polynomial's coefficients are linear in a few monomials of 
 (r², r, h², h, 1); their matrix is computed once per robot.
 
 Roots come from ``numpy.roots`` (the eigenvalues of the companion matrix), are polished by
-Newton steps on the polynomial, and each (θ₁, θ₂, θ₃) is checked — and, if needed,
+Newton steps on the polynomial, taken in ascending order (so the solutions come in an order
+that does not depend on the eigen-solver), and each (θ₁, θ₂, θ₃) is checked — and, if needed,
 polished by Newton steps on the wrist-centre equation ``⁰W(q₁, q₂, q₃) = ⁰W`` itself.
 
 **Orientation.** With ``R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃)`` the wrist must give
@@ -275,7 +276,7 @@ class PieperSolver:
             comp[np.arange(1, deg), np.arange(deg - 1)] = 1.0
             rts = np.linalg.eigvals(comp).tolist()
             ts = [float(z.real) for z in rts if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real))]
-            ts = [self._newton_poly(c[: deg + 1], t) for t in ts]
+            ts = sorted(self._newton_poly(c[: deg + 1], t) for t in ts)  # ascending: an order that does not depend on LAPACK
         if self.j3 == "R":
             return [2.0 * math.atan(t) for t in ts] + extra
         return ts

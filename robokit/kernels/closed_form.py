@@ -165,7 +165,12 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
         ev = np.linalg.eigvals(comp)
         for z in ev:
             if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real)):
-                ts[n] = _newton_poly(c, deg, z.real)
+                t = _newton_poly(c, deg, z.real)
+                k = n  # insertion: the real roots ascending (as the Python solver sorts them)
+                while k > 0 and ts[k - 1] > t:
+                    ts[k] = ts[k - 1]
+                    k -= 1
+                ts[k] = t
                 n += 1
     for j in range(n):
         out[j] = 2.0 * math.atan(ts[j]) if rev else ts[j]
