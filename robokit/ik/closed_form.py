@@ -775,7 +775,7 @@ def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 
     >>> Ts = np.stack([robot.frame_pose(np.full(6, 0.2)), robot.frame_pose(np.full(6, -0.4))])
     >>> Q, counts = ik_analytic_batch(robot, Ts)
     >>> Q.shape, counts.tolist()
-    ((2, 8, 6), [8, 8])
+    ((2, 8, 6), [8, 4])
     """
     Q, _, counts = _CACHE.get(robot).solve_batch(Ts, wrist_ref)
     return Q, counts

@@ -5,16 +5,17 @@ These kernels are the same algorithms as :mod:`robokit.ik.pieper` and
 :mod:`robokit.ik.parallel_axes` (which stay the readable reference; a test checks that both
 give the same solutions, in the same order, to 1e-9), written over flat arrays:
 
-* the solver's constants are packed once per robot by the solver objects
-  (``PieperSolver.kernel_constants()``, ``ParallelAxesSolver.kernel_constants()``) into an
-  int array ``ci`` (which method and case), a float array ``cf`` (the DH numbers and the
-  polynomial's pieces) and the (5, 5) coefficient matrix ``C`` of the position polynomial;
-* :func:`closed_form_solve` takes them, the pre/post transforms that turn the tip pose into
-  the canonical chain's target ``T₀₆ = pre · T · post`` (or ``pre · T⁻¹ · post`` when the
-  chain is read from the tool), and returns the raw rows of every solution together with the
-  branch codes and the post-processing of :func:`robokit.ik.solution.solutions_from_rows`
-  (flipped joints, wrapping to (−π, π], the ±2π shift into wide limits, the within-limits
-  flag, duplicates dropped);
+* the solver's constants are computed once per robot by the solver objects
+  (``PieperSolver.kernel_constants()``, ``ParallelAxesSolver.kernel_constants()``: an int
+  array ``ci`` — which method and case —, a float array ``cf`` — the DH numbers and the
+  polynomial's pieces — and the (5, 5) coefficient matrix ``C`` of the position polynomial)
+  and packed by :func:`pack_constants`, with the pre/post transforms that turn the tip pose
+  into the canonical chain's target ``T₀₆ = pre · T · post`` (or ``pre · T⁻¹ · post`` when
+  the chain is read from the tool) and the per-joint post-processing, into one array ``K``;
+* :func:`closed_form_solve` takes ``K`` and the pose and returns every solution, the
+  post-processing of :func:`robokit.ik.solution.solutions_from_rows` included (flipped
+  joints, wrapping to (−π, π], the ±2π shift into wide limits, the within-limits flag,
+  duplicates dropped), with its branch code;
 * :func:`closed_form_batch` runs it over N targets with ``prange``.
 
 Branch codes (one row of ``codes`` per solution): ``[shoulder, elbow, wrist]`` with
@@ -26,12 +27,15 @@ Position polynomial roots (Pieper, general case): the quartic in u = tan(θ₃/2
 the eigenvalues of its companion matrix (complex, so numba's ``eigvals`` never changes
 domain), real ones polished by Newton steps on the polynomial; quadratics in closed form.
 
-Example::
+Example (``AnalyticIK`` packs the constants; ``ik_analytic`` and ``ik_analytic_batch`` call
+these kernels)::
 
     >>> import numpy as np, robokit
     >>> from robokit.ik.closed_form import AnalyticIK
-    >>> ik = AnalyticIK(robokit.load("puma560"))
-    >>> Q, within, codes, degen = ik.solve_arrays(np.eye(4) @ robokit.load("puma560").frame_pose(np.zeros(6)))
+    >>> robot = robokit.load("puma560")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> closed_form_solve(K, robot.frame_pose(np.full(6, 0.3)), 0.0)[:, :6].shape
+    (8, 6)
 """
 from __future__ import annotations
 
@@ -74,7 +78,7 @@ def _wrap(a: float) -> float:
 def _rem(v: float) -> float:
     """IEEE remainder of v by 2π (``math.remainder``)."""
     n = v / _TWO_PI
-    k = math.floor(n + 0.5)
+    k = float(math.floor(n + 0.5))
     if k - n == 0.5 and k % 2.0 != 0.0:  # a tie: round half to even
         k -= 1.0
     return v - k * _TWO_PI
