@@ -720,7 +720,10 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     -----
     Lecture 5: Pieper's wrist-centre decoupling (θ₁–θ₃ from a polynomial in tan(θ₃/2) of
     degree 2 or 4, the wrist from Euler-type angles), or for the UR family θ₁, θ₅, θ₆ from
-    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm.
+    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm. Both run as compiled code
+    (:mod:`robokit.kernels.closed_form`) when the arm's joints 1 and 2 are revolute; the
+    Python solvers are the reference (``AnalyticIK.use_kernel = False``). Many poses at once:
+    :func:`ik_analytic_batch`.
 
     Examples
     --------
