@@ -60,9 +60,8 @@ from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
 from robokit.ik.solver import ClosedFormSolver
-from robokit.kernels.closed_form import closed_form_solve as _closed_form_solve
+from robokit.kernels import closed_form as _kcf
 from robokit.kernels.closed_form import pack_constants as _pack_constants
-from robokit.kernels.closed_form import closed_form_batch as _closed_form_batch
 
 _new_object = object.__new__
 
@@ -319,7 +318,10 @@ class AnalyticIK:
             for e, elbow in enumerate(_ELBOW):
                 for w, wrist in enumerate(_WRIST):
                     labels[float(100 * s + 10 * e + w)] = shoulder + elbow + wrist + suffix
-        return _pack_constants(ci, cf, C, pre, post, post_q), labels
+        pieper = int(ci[0]) == _kcf.PIEPER
+        return (_pack_constants(ci, cf, C, pre, post, post_q), labels,
+                _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
+                _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch)
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -359,10 +361,10 @@ class AnalyticIK:
         if kernel is not None and self.use_kernel:
             if type(T) is not np.ndarray or T.dtype != np.float64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            out = _closed_form_solve(kernel[0], T, self._kernel_ref(wrist_ref))
+            out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
             if out.shape[1] == 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-                out = _closed_form_solve(kernel[0], T, self._kernel_ref(wrist_ref))
+                out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
                 if out.shape[1] == 0:
                     return self._solve_python(T, wrist_ref)
             return _solutions(out, kernel[1])
@@ -421,7 +423,7 @@ class AnalyticIK:
                 for k, sol in enumerate(row):
                     Q[i, k], within[i, k] = sol.q, sol.within_limits
             return Q, within, counts
-        out, counts = _closed_form_batch(kernel[0], Ts, self._kernel_ref(wrist_ref))
+        out, counts = kernel[3](kernel[0], Ts, self._kernel_ref(wrist_ref))
         m = int(counts.max()) if N else 0
         return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
 

@@ -45,7 +45,8 @@ import numpy as np
 
 from robokit.kernels._jit import njit, prange
 
-__all__ = ["closed_form_solve", "closed_form_batch", "pack_constants", "K_SIZE", "OUT_COLS", "MAX_ROWS", "PIEPER",
+__all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
+           "parallel_axes_batch", "pack_constants", "K_SIZE", "OUT_COLS", "MAX_ROWS", "PIEPER",
            "PARALLEL_AXES"]
 
 #: The most rows one pose can produce before duplicates are dropped.
@@ -243,9 +244,23 @@ def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
             _wrist_point(cf, th, dd, p3)
             for k in range(3):
                 J[k, j] = (p2[k] - p3[k]) / (2 * h)
-        dq = np.linalg.lstsq(J, e, rcond=1e-12)[0]
-        for k in range(3):
-            q[k] += dq[k, 0]
+        # the 3×3 Newton step by Cramer's rule (the Python solver's least squares, without
+        # compiling LAPACK's: J is square); a numerically singular J ends the polishing
+        c0 = J[1, 1] * J[2, 2] - J[1, 2] * J[2, 1]
+        c1 = J[1, 2] * J[2, 0] - J[1, 0] * J[2, 2]
+        c2 = J[1, 0] * J[2, 1] - J[1, 1] * J[2, 0]
+        det = J[0, 0] * c0 + J[0, 1] * c1 + J[0, 2] * c2
+        size = 1.0
+        for j in range(3):
+            size *= math.sqrt(J[0, j] ** 2 + J[1, j] ** 2 + J[2, j] ** 2)
+        if abs(det) <= 1e-12 * size:
+            break
+        for j in range(3):
+            A = J.copy()
+            A[0, j], A[1, j], A[2, j] = e[0, 0], e[1, 0], e[2, 0]
+            dj = (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]) - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+                  + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+            q[j] += dj / det
     return err
 
 
@@ -526,14 +541,10 @@ def _mul44(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 
 
 @njit
-def _solve_into(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, post: np.ndarray,
-                post_q: np.ndarray, T: np.ndarray, wrist_ref: float, Q: np.ndarray, within: np.ndarray,
-                codes: np.ndarray, degen: np.ndarray) -> int:
-    """One pose: target of the canonical chain, raw rows, then the rows' post-processing
-    (see :func:`closed_form_solve`); the number of distinct solutions written."""
-    reverse = ci[5] == 1
+def _target(ci: np.ndarray, pre: np.ndarray, post: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """The canonical chain's target ``pre · T · post`` (T⁻¹ when the chain is reversed)."""
     Tin = np.empty((4, 4))
-    if reverse:  # T⁻¹
+    if ci[5] == 1:  # T⁻¹
         for i in range(3):
             for j in range(3):
                 Tin[i, j] = T[j, i]
@@ -542,14 +553,15 @@ def _solve_into(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, 
         Tin[3, 3] = 1.0
     else:
         Tin[:, :] = T
-    T06 = _mul44(_mul44(pre, Tin), post)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
-    if ci[0] == PIEPER:
-        m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen)
-    else:
-        m = _parallel_axes(cf, T06, wrist_ref, rows, rcodes, rdegen)
+    return _mul44(_mul44(pre, Tin), post)
+
+
+@njit
+def _finish(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
+            m: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray) -> int:
+    """The raw rows' post-processing (as :func:`robokit.ik.solution.solutions_from_rows`); the
+    number of distinct solutions written."""
+    reverse = ci[5] == 1
     # post_q: row 0 the sign of each joint (−1: flipped or reversed), row 1 revolute (1/0),
     # rows 2, 3 the limits with their tolerance (±inf without), row 4 [has limits]
     has_lim = post_q[4, 0] != 0.0
@@ -658,30 +670,99 @@ def _rigid(T: np.ndarray) -> bool:
 
 
 @njit
-def _solve_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+def _unpack(K: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     ci = np.empty(6, dtype=np.int64)
     for j in range(6):
         ci[j] = int(K[_K_CI + j])
-    cf = K[_K_CF:_K_C]
-    C = K[_K_C:_K_PRE].reshape((5, 5))
-    pre = K[_K_PRE:_K_POST].reshape((4, 4))
-    post = K[_K_POST:_K_PQ].reshape((4, 4))
-    post_q = K[_K_PQ:_K_CI].reshape((5, 6))
-    Q = np.empty((MAX_ROWS, 6))
-    within = np.empty(MAX_ROWS, dtype=np.bool_)
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
-    n = _solve_into(ci, cf, C, pre, post, post_q, T, wrist_ref, Q, within, codes, degen)
+    return (ci, K[_K_CF:_K_C], K[_K_C:_K_PRE].reshape((5, 5)), K[_K_PRE:_K_POST].reshape((4, 4)),
+            K[_K_POST:_K_PQ].reshape((4, 4)), K[_K_PQ:_K_CI].reshape((5, 6)))
+
+
+@njit
+def _write(n: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray, out: np.ndarray) -> None:
     for k in range(n):
         for j in range(6):
             out[k, j] = Q[k, j]
         out[k, 6] = 1.0 if within[k] else 0.0
         out[k, 7] = codes[k, 0] * 100 + codes[k, 1] * 10 + codes[k, 2]
         out[k, 8] = 1.0 if degen[k] else 0.0
+
+
+@njit
+def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci, cf, C, pre, post, post_q = _unpack(K)
+    rows = np.empty((MAX_ROWS, 6))
+    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+    Q = np.empty((MAX_ROWS, 6))
+    within = np.empty(MAX_ROWS, dtype=np.bool_)
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
+    _write(n, Q, within, codes, degen, out)
     return n
 
 
 @njit
+def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci, cf, C, pre, post, post_q = _unpack(K)
+    rows = np.empty((MAX_ROWS, 6))
+    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+    Q = np.empty((MAX_ROWS, 6))
+    within = np.empty(MAX_ROWS, dtype=np.bool_)
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
+    _write(n, Q, within, codes, degen, out)
+    return n
+
+
+@njit
+def pieper_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    """:func:`closed_form_solve` for a spherical wrist (its own kernel: only the structure a
+    robot uses is compiled)."""
+    if not _rigid(T):
+        return np.empty((0, 0))
+    out = np.empty((MAX_ROWS, OUT_COLS))
+    n = _pieper_packed(K, T, wrist_ref, out)
+    return out[:n].copy()
+
+
+@njit
+def parallel_axes_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    """:func:`closed_form_solve` for three parallel axes (its own kernel)."""
+    if not _rigid(T):
+        return np.empty((0, 0))
+    out = np.empty((MAX_ROWS, OUT_COLS))
+    n = _parallel_axes_packed(K, T, wrist_ref, out)
+    return out[:n].copy()
+
+
+@njit(parallel=True)
+def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`closed_form_batch` for a spherical wrist."""
+    N = Ts.shape[0]
+    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
+    counts = np.zeros(N, dtype=np.int64)
+    for i in prange(N):
+        counts[i] = _pieper_packed(K, Ts[i], wrist_ref, out[i])
+    return out, counts
+
+
+@njit(parallel=True)
+def parallel_axes_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`closed_form_batch` for three parallel axes."""
+    N = Ts.shape[0]
+    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
+    counts = np.zeros(N, dtype=np.int64)
+    for i in prange(N):
+        counts[i] = _parallel_axes_packed(K, Ts[i], wrist_ref, out[i])
+    return out, counts
+
+
 def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
     r"""Every closed-form solution of one pose, in compiled code.
 
@@ -717,14 +798,9 @@ def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndar
     >>> closed_form_solve(K, robot.frame_pose(np.full(6, 0.3)), 0.0).shape
     (8, 9)
     """
-    if not _rigid(T):
-        return np.empty((0, 0))
-    out = np.empty((MAX_ROWS, OUT_COLS))
-    n = _solve_packed(K, T, wrist_ref, out)
-    return out[:n].copy()
+    return (pieper_solve if K[_K_CI] == PIEPER else parallel_axes_solve)(K, T, wrist_ref)
 
 
-@njit(parallel=True)
 def closed_form_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     r""":func:`closed_form_solve` over (N, 4, 4) targets, in parallel over targets (``prange``).
 
@@ -754,9 +830,4 @@ def closed_form_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[
     >>> out.shape, counts.tolist()
     ((3, 16, 9), [8, 8, 8])
     """
-    N = Ts.shape[0]
-    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
-    counts = np.zeros(N, dtype=np.int64)
-    for i in prange(N):
-        counts[i] = _solve_packed(K, Ts[i], wrist_ref, out[i])
-    return out, counts
+    return (pieper_batch if K[_K_CI] == PIEPER else parallel_axes_batch)(K, Ts, wrist_ref)
