@@ -5,8 +5,8 @@ Each benchmark module has ``main(argv)``; they are run in turn in this process.
 import importlib
 import sys
 
-MODULES = ["benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.speed",
-           "benchmarks.control", "benchmarks.calibration"]
+MODULES = ["benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
+           "benchmarks.speed", "benchmarks.control", "benchmarks.calibration"]
 
 
 def main(argv=None):

@@ -65,12 +65,16 @@ from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
 from robokit.ik.solver import ClosedFormSolver
+from robokit.kernels import closed_form as _kcf
+from robokit.kernels.closed_form import pack_constants as _pack_constants
+
+_new_object = object.__new__
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_kind"]
+__all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_batch", "ik_analytic_kind"]
 
 _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
@@ -179,6 +183,9 @@ class AnalyticIK:
     kind: ClosedFormKind
     solver: ClosedFormSolver | None
     reversed: bool
+    #: Use the compiled kernel (:mod:`robokit.kernels.closed_form`) when it covers the chain;
+    #: False runs the Python solver (the reference the kernel is tested against).
+    use_kernel: bool = True
 
     def __init__(self, robot: Robot | DHTable) -> None:
         if not (_is_table(robot) or _is_robot(robot)):
@@ -287,6 +294,50 @@ class AnalyticIK:
         free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
                               and self._flip[5 - free if self.reversed else free])
+        self._kernel = self._kernel_args()
+
+    def _kernel_args(self) -> tuple | None:
+        """The compiled path's arguments (:mod:`robokit.kernels.closed_form`), or None when the
+        solver has no kernel for this chain (then the Python solver answers)."""
+        solver = self.solver
+        consts = getattr(solver, "kernel_constants", None)
+        if solver is None or consts is None or self.chain.n != 6:
+            return None
+        packed = consts()
+        if packed is None:
+            return None
+        ci, cf, C = packed
+        ci = ci.copy()
+        ci[5] = int(self.reversed)
+        chain = solver.chain  # the reversed chain when self.reversed
+        pre = np.eye(4) if chain.base_inv is None else np.ascontiguousarray(chain.base_inv, dtype=float)
+        post = np.eye(4) if chain.tool_inv is None else np.ascontiguousarray(chain.tool_inv, dtype=float)
+        post_q = np.zeros((5, 6))
+        sign = -1.0 if self.reversed else 1.0
+        post_q[0] = [(-sign if (self._flip is not None and self._flip[j]) else sign) for j in range(6)]
+        post_q[1] = [1.0 if r else 0.0 for r in self._revolute]
+        if self._limits is not None:
+            post_q[2] = [lo for lo, _ in self._limits]
+            post_q[3] = [hi for _, hi in self._limits]
+            post_q[4, 0] = 1.0
+        else:
+            post_q[2], post_q[3] = -np.inf, np.inf
+        suffix = " (chain reversed)" if self.reversed else ""
+        labels = {}
+        for s, shoulder in enumerate(_SHOULDER):
+            for e, elbow in enumerate(_ELBOW):
+                for w, wrist in enumerate(_WRIST):
+                    labels[float(100 * s + 10 * e + w)] = shoulder + elbow + wrist + suffix
+        pieper = int(ci[0]) == _kcf.PIEPER
+        return (_pack_constants(ci, cf, C, pre, post, post_q), labels,
+                _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
+                _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch)
+
+    def _kernel_ref(self, wrist_ref: float) -> float:
+        """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
+        if self._free_flipped:
+            wrist_ref = -wrist_ref
+        return -wrist_ref if self.reversed else wrist_ref
 
     def _refresh(self) -> None:
         """Rebuild the constants if what they were built from has changed."""
@@ -315,8 +366,79 @@ class AnalyticIK:
             transform.
         """
         self._refresh()
-        T = _check_pose(T)
         wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        kernel = self._kernel
+        if kernel is not None and self.use_kernel:
+            if type(T) is not np.ndarray or T.dtype != np.float64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+            out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
+            if out.shape[1] == 0:  # not a clean rigid transform: the full check (raises, or converts)
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+                out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
+                if out.shape[1] == 0:
+                    return self._solve_python(T, wrist_ref)
+            return _solutions(out, kernel[1])
+        return self._solve_python(_check_pose(T), wrist_ref)
+
+    def solve_batch(self, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every closed-form solution of each of N tip poses, as arrays (compiled, parallel over poses).
+
+        Parameters
+        ----------
+        Ts : (N, 4, 4) array_like
+            Target poses of the tip in the base frame (m); each must be a rigid transform.
+        wrist_ref : float
+            The free joint's value at a wrist singularity (rad); default 0.
+
+        Returns
+        -------
+        Q : (N, m_max, 6) ndarray
+            ``Q[i, :counts[i]]`` are the solutions of ``Ts[i]`` — the same values, in the same
+            order, as ``solve(Ts[i])`` gives — and the rows after them are NaN; ``m_max`` is
+            the largest count in the batch (0 when no pose is reachable).
+        within : (N, m_max) bool
+            ``within_limits`` of each solution (False on the NaN rows).
+        counts : (N,) int
+            Number of solutions of each pose (0: out of reach).
+
+        Raises
+        ------
+        InputError
+            If the robot has no closed form, ``Ts`` is not (N, 4, 4), or a pose is not a rigid
+            transform (the first such index is named).
+
+        Examples
+        --------
+        >>> import numpy as np, robokit
+        >>> robot = robokit.load("puma560")
+        >>> Ts = np.stack([robot.frame_pose(np.full(6, 0.1 * k)) for k in range(1, 4)])
+        >>> Q, within, counts = AnalyticIK(robot).solve_batch(Ts)
+        >>> Q.shape, counts.tolist()
+        ((3, 8, 6), [8, 8, 8])
+        """
+        self._refresh()
+        wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        if self.solver is None:
+            raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+        Ts = _check_poses(Ts)
+        N = Ts.shape[0]
+        kernel = self._kernel
+        if kernel is None or not self.use_kernel:  # the Python solver, pose by pose
+            sols = [self._solve_python(T, wrist_ref) for T in Ts]
+            counts = np.array([len(s) for s in sols], dtype=np.int64)
+            m = int(counts.max()) if N else 0
+            Q = np.full((N, m, 6), np.nan)
+            within = np.zeros((N, m), dtype=bool)
+            for i, row in enumerate(sols):
+                for k, sol in enumerate(row):
+                    Q[i, k], within[i, k] = sol.q, sol.within_limits
+            return Q, within, counts
+        out, counts = kernel[3](kernel[0], Ts, self._kernel_ref(wrist_ref))
+        m = int(counts.max()) if N else 0
+        return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
+
+    def _solve_python(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
+        """The Python solver (the reference of the compiled path)."""
         solver = self.solver
         if solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
@@ -335,6 +457,30 @@ class AnalyticIK:
             flip = self._flip
             rows = [(tuple(-v if f else v for v, f in zip(q, flip)), label, degen) for q, label, degen in rows]
         return solutions_from_rows(rows, self._revolute, self._limits)
+
+
+_SHOULDER = ("right, ", "left, ", "shoulder singular, ", "")
+_ELBOW = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 −, ")
+_WRIST = ("no flip", "flip", "wrist singular")
+
+
+def _solutions(out: np.ndarray, labels: dict) -> list[IKSolution]:
+    """IKSolution objects from the kernel's rows (q, within, code, degenerate); a label that
+    repeats gets " #2", …"""
+    result = []
+    seen: dict[str, int] = {}
+    new = _new_object
+    for q, (_, _, _, _, _, _, inside, code, degen) in zip(out[:, :6], out.tolist()):
+        label = labels[code]
+        if label in seen:
+            seen[label] += 1
+            label = f"{label} #{seen[label]}"
+        else:
+            seen[label] = 1
+        sol = new(IKSolution)
+        sol.__dict__.update(q=q, within_limits=inside == 1.0, label=label, degenerate=degen == 1.0, extra={})
+        result.append(sol)
+    return result
 
 
 def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
@@ -384,6 +530,25 @@ class _Cache:
 
 _CACHE = _Cache()
 _check_pose = check_pose
+
+
+def _check_poses(Ts: ArrayLike) -> np.ndarray:
+    """(N, 4, 4) float64 C-contiguous rigid transforms, or InputError naming ``Ts`` (and the index)."""
+    arr = np.asarray(Ts)
+    if arr.ndim != 3 or arr.shape[1:] != (4, 4):
+        raise InputError(f"Ts: expected shape (N, 4, 4), got {arr.shape}")
+    if not np.issubdtype(arr.dtype, np.number) or np.iscomplexobj(arr):
+        raise InputError(f"Ts: expected real numbers, got dtype {arr.dtype}")
+    arr = np.ascontiguousarray(arr, dtype=np.float64)
+    R = arr[:, :3, :3]
+    dev = np.abs(np.einsum("nji,njk->nik", R, R) - np.eye(3)).max(axis=(1, 2)) if len(arr) else np.zeros(0)
+    bad = ~np.isfinite(arr).all(axis=(1, 2)) | (dev >= 1e-9) | (np.linalg.det(R) <= 0.0) if len(arr) else dev > 0
+    bad |= (arr[:, 3] != np.array([0.0, 0.0, 0.0, 1.0])).any(axis=1) if len(arr) else bad
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        _check_pose(arr[i], f"Ts[{i}]")  # raises with the reason
+        arr[i] = _check_pose(arr[i], f"Ts[{i}]")  # pragma: no cover - a looser full check accepted it
+    return arr
 
 # ---------------------------------------------------------------------- detection
 def _line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
@@ -568,7 +733,10 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     -----
     Lecture 5: Pieper's wrist-centre decoupling (θ₁–θ₃ from a polynomial in tan(θ₃/2) of
     degree 2 or 4, the wrist from Euler-type angles), or for the UR family θ₁, θ₅, θ₆ from
-    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm.
+    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm. Both run as compiled code
+    (:mod:`robokit.kernels.closed_form`) when the arm's joints 1 and 2 are revolute; the
+    Python solvers are the reference (``AnalyticIK.use_kernel = False``). Many poses at once:
+    :func:`ik_analytic_batch`.
 
     Examples
     --------
@@ -579,3 +747,51 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     8
     """
     return _CACHE.get(robot).solve(T, wrist_ref)
+
+
+def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    r"""Every closed-form IK solution of ``robot`` for each of N tip poses, as arrays.
+
+    The batched :func:`ik_analytic`: compiled and parallel over the poses (numba ``prange``)
+    for capability maps and data sets.
+
+    Parameters
+    ----------
+    robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+        An arm with a closed form (see :func:`ik_analytic_kind`).
+    Ts : (N, 4, 4) array_like
+        Target poses of the tip in the base frame (m).
+    wrist_ref : float
+        The free joint's value at a wrist singularity (rad); default 0.
+
+    Returns
+    -------
+    Q : (N, m_max, 6) ndarray
+        ``Q[i, :counts[i]]`` are the joint values (rad, m) of the solutions of ``Ts[i]``, equal
+        and in the same order to ``[s.q for s in ik_analytic(robot, Ts[i])]``; the remaining
+        rows are NaN. ``m_max`` is the largest count in the batch.
+    counts : (N,) int
+        Number of solutions per pose (0: out of reach).
+
+    Raises
+    ------
+    InputError
+        (a ValueError) If the robot has no closed form, ``Ts`` is not (N, 4, 4) or a pose is
+        not a rigid transform.
+
+    Notes
+    -----
+    Lecture 5 (the same methods as :func:`ik_analytic`). For the within-limits flags use
+    :meth:`AnalyticIK.solve_batch`.
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> robot = robokit.load("ur5")
+    >>> Ts = np.stack([robot.frame_pose(np.full(6, 0.2)), robot.frame_pose(np.full(6, -0.4))])
+    >>> Q, counts = ik_analytic_batch(robot, Ts)
+    >>> Q.shape, counts.tolist()
+    ((2, 8, 6), [8, 4])
+    """
+    Q, _, counts = _CACHE.get(robot).solve_batch(Ts, wrist_ref)
+    return Q, counts

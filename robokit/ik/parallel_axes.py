@@ -90,6 +90,17 @@ class ParallelAxesSolver:
         self.w6_list = [float(v) for v in self.w6]
         self.a4, self.a5 = float(a[3]), float(a[4])
 
+    def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve`."""
+        ci = np.array([1, 0, 1, 0, 0, 0], dtype=np.int64)
+        cf = np.zeros(64)
+        cf[0:6], cf[6:12] = self.th0_list, [float(v) for v in self.chain.d0]
+        cf[12:17], cf[17:22] = self.ca, self.sa
+        cf[22:31] = self.a1, self.a2, self.a3, self.a4, self.a5, self.d1, self.d5, self.d6, self.KW
+        cf[31:34] = self.w6_list
+        cf[34], cf[35] = self.s2, self.sig
+        return ci, cf, np.zeros((5, 5))
+
     def solve(self, T06: np.ndarray, q6_ref: float) -> list[tuple[Sequence[float], str, bool]]:
         """Rows (q (6,), label, degenerate) of every solution for the pose T06 (frame 0′).
 

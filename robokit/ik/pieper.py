@@ -26,7 +26,8 @@ gives d₁ last. The polynomial's coefficients are linear in a few monomials of 
 (r², r, h², h, 1); their matrix is computed once per robot.
 
 Roots come from ``numpy.roots`` (the eigenvalues of the companion matrix), are polished by
-Newton steps on the polynomial, and each (θ₁, θ₂, θ₃) is checked — and, if needed,
+Newton steps on the polynomial, taken in ascending order (so the solutions come in an order
+that does not depend on the eigen-solver), and each (θ₁, θ₂, θ₃) is checked — and, if needed,
 polished by Newton steps on the wrist-centre equation ``⁰W(q₁, q₂, q₃) = ⁰W`` itself.
 
 **Orientation.** With ``R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃)`` the wrist must give
@@ -222,6 +223,26 @@ class PieperSolver:
         self.ca4, self.sa4, self.ca5, self.sa5 = self.ca[3], self.sa[3], self.ca[4], self.sa[4]
         self.rot_kinds = k[:3]
 
+    def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve` (revolute
+        joints 1 and 2; joint 3 revolute or prismatic), or None when only this Python solver
+        covers the chain (a prismatic joint 1 or 2)."""
+        if self.j1 != "R" or self.j2 != "R" or self.case is None:
+            return None
+        ci = np.array([0, {"RR-quartic": 0, "RR-a1": 1, "RR-s1": 2}[self.case], int(self.j3 == "R"), self.deg,
+                       self.C.shape[0], 0], dtype=np.int64)
+        cf = np.zeros(64)
+        cf[0:6], cf[6:12] = self.th0_list, self.d0_list
+        cf[12:17], cf[17:22] = self.ca, self.sa
+        cf[22:26] = self.a1, self.a2, self.d1, self.d2
+        cf[26:29], cf[29:32] = self.w3_list, self.w6_list
+        cf[32:41] = np.concatenate([np.asarray(f, dtype=float) for f in self.f])
+        cf[41:44], cf[44:47], cf[47:50] = self.Ka, self.Kb, self.v[:3]
+        cf[50] = self.chain.scale
+        C = np.zeros((5, 5))
+        C[: self.C.shape[0], : self.C.shape[1]] = self.C
+        return ci, cf, C
+
     # ------------------------------------------------------------------ position
     def _roots(self, coeffs: Sequence[float]) -> list[float] | None:
         """Real roots of Σ cₖ tᵏ as joint-3 values (θ₃ total angle or d₃ variable)."""
@@ -255,7 +276,7 @@ class PieperSolver:
             comp[np.arange(1, deg), np.arange(deg - 1)] = 1.0
             rts = np.linalg.eigvals(comp).tolist()
             ts = [float(z.real) for z in rts if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real))]
-            ts = [self._newton_poly(c[: deg + 1], t) for t in ts]
+            ts = sorted(self._newton_poly(c[: deg + 1], t) for t in ts)  # ascending: an order that does not depend on LAPACK
         if self.j3 == "R":
             return [2.0 * math.atan(t) for t in ts] + extra
         return ts

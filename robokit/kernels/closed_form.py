@@ -1,0 +1,833 @@
+r"""The closed-form inverse kinematics of Lecture 5 in compiled code: Pieper's spherical wrist
+and the three-parallel-axes (UR) method, per pose and batched over (N, 4, 4) targets.
+
+These kernels are the same algorithms as :mod:`robokit.ik.pieper` and
+:mod:`robokit.ik.parallel_axes` (which stay the readable reference; a test checks that both
+give the same solutions, in the same order, to 1e-9), written over flat arrays:
+
+* the solver's constants are computed once per robot by the solver objects
+  (``PieperSolver.kernel_constants()``, ``ParallelAxesSolver.kernel_constants()``: an int
+  array ``ci`` — which method and case —, a float array ``cf`` — the DH numbers and the
+  polynomial's pieces — and the (5, 5) coefficient matrix ``C`` of the position polynomial)
+  and packed by :func:`pack_constants`, with the pre/post transforms that turn the tip pose
+  into the canonical chain's target ``T₀₆ = pre · T · post`` (or ``pre · T⁻¹ · post`` when
+  the chain is read from the tool) and the per-joint post-processing, into one array ``K``;
+* :func:`closed_form_solve` takes ``K`` and the pose and returns every solution, the
+  post-processing of :func:`robokit.ik.solution.solutions_from_rows` included (flipped
+  joints, wrapping to (−π, π], the ±2π shift into wide limits, the within-limits flag,
+  duplicates dropped), with its branch code;
+* :func:`closed_form_batch` runs it over N targets with ``prange``.
+
+Branch codes (one row of ``codes`` per solution): ``[shoulder, elbow, wrist]`` with
+shoulder 0 "right", 1 "left", 2 "shoulder singular", 3 none (prismatic joint 1); elbow 0
+"elbow down", 1 "elbow up", 2 "d3 +", 3 "d3 −"; wrist 0 "no flip", 1 "flip", 2 "wrist
+singular". The label strings are built in Python from these.
+
+Position polynomial roots (Pieper, general case): the quartic in u = tan(θ₃/2) is solved as
+the eigenvalues of its companion matrix (complex, so numba's ``eigvals`` never changes
+domain), real ones polished by Newton steps on the polynomial; quadratics in closed form.
+
+Example (``AnalyticIK`` packs the constants; ``ik_analytic`` and ``ik_analytic_batch`` call
+these kernels)::
+
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("puma560")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> closed_form_solve(K, robot.frame_pose(np.full(6, 0.3)), 0.0)[:, :6].shape
+    (8, 6)
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit.kernels._jit import njit, prange
+
+__all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
+           "parallel_axes_batch", "pack_constants", "K_SIZE", "OUT_COLS", "MAX_ROWS", "PIEPER",
+           "PARALLEL_AXES"]
+
+#: The most rows one pose can produce before duplicates are dropped.
+MAX_ROWS = 16
+PIEPER = 0
+PARALLEL_AXES = 1
+
+_PI = math.pi
+_TWO_PI = 2.0 * math.pi
+
+# layout of the float constants (Pieper)
+_TH0, _D0, _CA, _SA = 0, 6, 12, 17
+_A1, _A2, _D1, _D2 = 22, 23, 24, 25
+_W3, _W6, _F, _KA, _KB, _V, _SCALE = 26, 29, 32, 41, 44, 47, 50
+# layout of the float constants (parallel axes), after th0, d0, ca, sa as above
+_PA_A1, _PA_A2, _PA_A3, _PA_A4, _PA_A5, _PA_D1, _PA_D5, _PA_D6, _PA_KW, _PA_W6, _PA_S2, _PA_SIG = (
+    22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 34, 35)
+
+
+@njit
+def _wrap(a: float) -> float:
+    """(−π, π], as :func:`robokit.spatial.wrap_angle`."""
+    w = np.fmod(a + _PI, _TWO_PI)
+    if w <= 0.0:
+        w += _TWO_PI
+    return w - _PI
+
+
+@njit
+def _rem(v: float) -> float:
+    """IEEE remainder of v by 2π (``math.remainder``)."""
+    n = v / _TWO_PI
+    k = float(math.floor(n + 0.5))
+    if k - n == 0.5 and k % 2.0 != 0.0:  # a tie: round half to even
+        k -= 1.0
+    return v - k * _TWO_PI
+
+
+@njit
+def _trig_roots(a: float, b: float, c: float, tol: float, out: np.ndarray) -> int:
+    """Roots of a cos θ + b sin θ = c into ``out``; their count, or −1 when every θ solves it
+    (as ``robokit.ik.paden_kahan._trig_roots``)."""
+    r2 = a * a + b * b
+    if r2 < 1e-300:
+        return -1 if c == 0.0 else 0
+    disc = r2 - c * c
+    if disc < -tol * r2:
+        return 0
+    sq = math.sqrt(disc) if disc > 0.0 else 0.0
+    A, C = a + c, c - a
+    q = b + (sq if b >= 0.0 else -sq)
+    if q == 0.0:
+        out[0] = 0.0 if A != 0.0 else _PI
+        return 1
+    out[0] = _wrap(2.0 * math.atan2(q, A))
+    if sq == 0.0:
+        return 1
+    out[1] = _wrap(2.0 * math.atan2(C, q))
+    return 2
+
+
+@njit
+def _val(cf: np.ndarray, k: int, x: float, rev: bool, c: float, s: float) -> float:
+    """Value of the coefficient triple cf[k:k+3] at θ (revolute: (cos, sin)) or q (prismatic)."""
+    if rev:
+        return cf[k] + cf[k + 1] * c + cf[k + 2] * s
+    return cf[k] + (cf[k + 1] + cf[k + 2] * x) * x
+
+
+@njit
+def _newton_poly(c: np.ndarray, deg: int, t: float) -> float:
+    for _ in range(3):
+        p, dp = 0.0, 0.0
+        for j in range(deg, -1, -1):
+            dp = dp * t + p
+            p = p * t + c[j]
+        if dp == 0.0:
+            break
+        step = p / dp
+        t -= step
+        if abs(step) <= 1e-15 * (1.0 + abs(t)):
+            break
+    return t
+
+
+@njit
+def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
+    """Real roots of Σ c_k t^k (k ≤ ndeg) as joint-3 values into ``out``; count, −1 if c ≡ 0."""
+    scale = 0.0
+    for j in range(ndeg + 1):
+        scale = max(scale, abs(c[j]))
+    if scale == 0.0:
+        return -1
+    deg = ndeg
+    while deg > 0 and abs(c[deg]) <= 1e-11 * scale:
+        deg -= 1
+    extra = rev and deg < ndeg
+    n = 0
+    ts = np.empty(4)
+    if deg == 1:
+        ts[0] = -c[0] / c[1]
+        n = 1
+    elif deg == 2:
+        A, B, C0 = c[2], c[1], c[0]
+        disc = B * B - 4.0 * A * C0
+        if disc >= -1e-12 * max(B * B, abs(4.0 * A * C0), 1e-300):
+            sq = math.sqrt(max(disc, 0.0))
+            q = -0.5 * (B + (sq if B >= 0.0 else -sq))
+            if q != 0.0:
+                ts[0], ts[1] = q / A, C0 / q
+                n = 2
+            else:
+                ts[0] = 0.0
+                n = 1
+    elif deg > 2:
+        comp = np.zeros((deg, deg), dtype=np.complex128)
+        for j in range(deg):
+            comp[0, j] = -c[deg - 1 - j] / c[deg]
+        for j in range(1, deg):
+            comp[j, j - 1] = 1.0
+        ev = np.linalg.eigvals(comp)
+        for z in ev:
+            if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real)):
+                t = _newton_poly(c, deg, z.real)
+                k = n  # insertion: the real roots ascending (as the Python solver sorts them)
+                while k > 0 and ts[k - 1] > t:
+                    ts[k] = ts[k - 1]
+                    k -= 1
+                ts[k] = t
+                n += 1
+    for j in range(n):
+        out[j] = 2.0 * math.atan(ts[j]) if rev else ts[j]
+    if extra:
+        out[n] = _PI
+        n += 1
+    return n
+
+
+@njit
+def _angles(cf: np.ndarray, rev3: bool, q: np.ndarray, th: np.ndarray, dd: np.ndarray) -> None:
+    """Rotation angles and offsets of joints 1–3 (joints 1, 2 revolute) at joint values q."""
+    th[0], dd[0] = cf[_TH0] + q[0], cf[_D0]
+    th[1], dd[1] = cf[_TH0 + 1] + q[1], cf[_D0 + 1]
+    if rev3:
+        th[2], dd[2] = cf[_TH0 + 2] + q[2], cf[_D0 + 2]
+    else:
+        th[2], dd[2] = cf[_TH0 + 2], cf[_D0 + 2] + q[2]
+
+
+@njit
+def _wrist_point(cf: np.ndarray, th: np.ndarray, dd: np.ndarray, W: np.ndarray) -> None:
+    """⁰W for the rotation angles th and offsets dd of joints 1–3."""
+    c3, s3 = math.cos(th[2]), math.sin(th[2])
+    x, y, z = cf[_W3], cf[_W3 + 1], cf[_W3 + 2] + dd[2]
+    x, y = c3 * x - s3 * y, s3 * x + c3 * y
+    x += cf[_A2]
+    c, s = cf[_CA + 1], cf[_SA + 1]
+    y, z = c * y - s * z, s * y + c * z
+    c2, s2 = math.cos(th[1]), math.sin(th[1])
+    z += dd[1]
+    x, y = c2 * x - s2 * y, s2 * x + c2 * y
+    x += cf[_A1]
+    c, s = cf[_CA], cf[_SA]
+    y, z = c * y - s * z, s * y + c * z
+    c1, s1 = math.cos(th[0]), math.sin(th[0])
+    z += dd[0]
+    W[0], W[1], W[2] = c1 * x - s1 * y, s1 * x + c1 * y, z
+
+
+@njit
+def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
+    """Newton steps (central-difference Jacobian, least squares) on ⁰W(q₁..q₃) = W; q in place."""
+    th, dd, p = np.empty(3), np.empty(3), np.empty(3)
+    p2, p3, qq = np.empty(3), np.empty(3), np.empty(3)
+    J = np.empty((3, 3))
+    e = np.empty((3, 1))
+    err = np.inf
+    scale = cf[_SCALE]
+    for it in range(4):
+        _angles(cf, rev3, q, th, dd)
+        _wrist_point(cf, th, dd, p)
+        for k in range(3):
+            e[k, 0] = W[k] - p[k]
+        err = max(abs(e[0, 0]), abs(e[1, 0]), abs(e[2, 0]))
+        if err <= 1e-13 * scale or it == 3:
+            break
+        h = 1e-7
+        for j in range(3):
+            qq[:] = q
+            qq[j] += h
+            _angles(cf, rev3, qq, th, dd)
+            _wrist_point(cf, th, dd, p2)
+            qq[j] -= 2 * h
+            _angles(cf, rev3, qq, th, dd)
+            _wrist_point(cf, th, dd, p3)
+            for k in range(3):
+                J[k, j] = (p2[k] - p3[k]) / (2 * h)
+        # the 3×3 Newton step by Cramer's rule (the Python solver's least squares, without
+        # compiling LAPACK's: J is square); a numerically singular J ends the polishing
+        c0 = J[1, 1] * J[2, 2] - J[1, 2] * J[2, 1]
+        c1 = J[1, 2] * J[2, 0] - J[1, 0] * J[2, 2]
+        c2 = J[1, 0] * J[2, 1] - J[1, 1] * J[2, 0]
+        det = J[0, 0] * c0 + J[0, 1] * c1 + J[0, 2] * c2
+        size = 1.0
+        for j in range(3):
+            size *= math.sqrt(J[0, j] ** 2 + J[1, j] ** 2 + J[2, j] ** 2)
+        if abs(det) <= 1e-12 * size:
+            break
+        for j in range(3):
+            A = J.copy()
+            A[0, j], A[1, j], A[2, j] = e[0, 0], e[1, 0], e[2, 0]
+            dj = (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]) - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+                  + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+            q[j] += dj / det
+    return err
+
+
+@njit
+def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, out: np.ndarray,
+                  flips: np.ndarray) -> int:
+    """(θ₄, θ₅, θ₆) rows into ``out`` (2, 3) and wrist codes into ``flips``; their count
+    (as ``PieperSolver.wrist_angles``)."""
+    mx, my, mz = T[0, 2], T[1, 2], T[2, 2]
+    ex, ey, ez = T[0, 0], T[1, 0], T[2, 0]
+    for i in range(3):
+        c, s_ = math.cos(th[i]), math.sin(th[i])
+        mx, my = c * mx + s_ * my, c * my - s_ * mx
+        ex, ey = c * ex + s_ * ey, c * ey - s_ * ex
+        c, s_ = cf[_CA + i], cf[_SA + i]
+        my, mz = c * my + s_ * mz, c * mz - s_ * my
+        ey, ez = c * ey + s_ * ez, c * ez - s_ * ey
+    nx, ny, nz = 0.0, 0.0, 1.0
+    for i in range(2, -1, -1):
+        c, s_ = cf[_CA + i], cf[_SA + i]
+        ny, nz = c * ny - s_ * nz, s_ * ny + c * nz
+        c, s_ = math.cos(th[i]), math.sin(th[i])
+        nx, ny = c * nx - s_ * ny, s_ * nx + c * ny
+    row0 = T[0, 0] * nx + T[1, 0] * ny + T[2, 0] * nz
+    row1 = T[0, 1] * nx + T[1, 1] * ny + T[2, 1] * nz
+    ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
+    k = sa4 * sa5
+    rho = math.hypot(mx, my)
+    if ca4 == 0.0 and ca5 == 0.0:
+        c5, s5 = -mz / k, rho
+    else:
+        c5 = (ca4 * ca5 - mz) / k
+        if abs(c5) > 1.0 + 1e-10:
+            return 0
+        c5 = max(-1.0, min(1.0, c5))
+        s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
+    if rho <= 1e-10:
+        th4_ref = q4_ref + cf[_TH0 + 3]
+        gamma = math.atan2(ca4 * s5, c5)
+        sk = 1.0 if mz > 0.0 else -1.0
+        out[0, 0] = th4_ref
+        out[0, 1] = math.atan2(s5, c5)
+        out[0, 2] = sk * (math.atan2(ey, ex) - th4_ref - gamma)
+        flips[0] = 2
+        return 1
+    am = math.atan2(my, mx)
+    ar = math.atan2(row1, row0)
+    yp = -ca4 * sa5 * c5 - sa4 * ca5
+    b_ = sa4 * c5 * ca5 + ca4 * sa5
+    n = 0
+    for j in range(2):
+        s = s5 if j == 0 else -s5
+        out[n, 0] = am - math.atan2(yp, sa5 * s)
+        out[n, 1] = math.atan2(s, c5)
+        out[n, 2] = math.atan2(b_, sa4 * s) - ar
+        flips[n] = 0 if s * k > 0.0 else 1
+        n += 1
+        if s5 == 0.0:
+            break
+    return n
+
+
+@njit
+def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
+            codes: np.ndarray, degen: np.ndarray) -> int:
+    """Pieper's method with revolute joints 1 and 2 (cases quartic / a₁ = 0 / sin α₁ = 0), joint 3
+    revolute or prismatic: raw rows into Q, codes, degen; their count."""
+    case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
+    scale = cf[_SCALE]
+    w6x, w6y, w6z = cf[_W6], cf[_W6 + 1], cf[_W6 + 2]
+    W = np.empty(3)
+    W[0] = T[0, 0] * w6x + T[0, 1] * w6y + T[0, 2] * w6z + T[0, 3]
+    W[1] = T[1, 0] * w6x + T[1, 1] * w6y + T[1, 2] * w6z + T[1, 3]
+    W[2] = T[2, 0] * w6x + T[2, 1] * w6y + T[2, 2] * w6z + T[2, 3]
+    Wx, Wy, Wz = W[0], W[1], W[2]
+    ca1, sa1, a1 = cf[_CA], cf[_SA], cf[_A1]
+    h = Wz - cf[_D1]
+    r = Wx * Wx + Wy * Wy + h * h
+    m = np.zeros(5)
+    if case == 0:
+        m[0], m[1], m[2], m[3], m[4] = r * r, r, h * h, h, 1.0
+    elif case == 1:
+        m[0], m[1] = r, 1.0
+    else:
+        m[0], m[1] = h, 1.0
+    coeffs = np.zeros(5)
+    for j in range(deg + 1):
+        acc = 0.0
+        for k in range(nrows):
+            acc += m[k] * C[k, j]
+        coeffs[j] = acc
+    roots3 = np.empty(6)
+    nr = _roots(coeffs, deg, rev3, roots3)
+    check = deg == 4
+    degenerate = False
+    if nr < 0:
+        roots3[0] = cf[_TH0 + 2] if rev3 else 0.0
+        nr = 1
+        degenerate = True
+    th2s = np.empty(2)
+    q = np.empty(3)
+    th, dd, p = np.empty(3), np.empty(3), np.empty(3)
+    wa = np.empty((2, 3))
+    flips = np.empty(2, dtype=np.int64)
+    n = 0
+    for ir in range(nr):
+        x3 = roots3[ir]
+        c3, s3 = (math.cos(x3), math.sin(x3)) if rev3 else (0.0, 0.0)
+        f1 = _val(cf, _F, x3, rev3, c3, s3)
+        f2 = _val(cf, _F + 3, x3, rev3, c3, s3)
+        f3 = _val(cf, _F + 6, x3, rev3, c3, s3)
+        q3 = x3 - cf[_TH0 + 2] if rev3 else x3
+        F3 = f3 + cf[_D2]
+        Ka = _val(cf, _KA, x3, rev3, c3, s3)
+        sa_, ra = 2.0 * a1, r - Ka
+        sb_, rb = sa1, h - ca1 * F3
+        if case == 0:
+            n2 = f1 * f1 + f2 * f2
+            if n2 > 1e-24 * scale * scale:
+                A, B = ra / sa_, rb / sb_
+                th2s[0] = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+            else:
+                th2s[0] = cf[_TH0 + 1]
+                degenerate = True
+            n2s = 1
+        elif case == 1:
+            n2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10, th2s)
+        else:
+            n2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10, th2s)
+        if n2s < 0:
+            th2s[0] = cf[_TH0 + 1]
+            n2s = 1
+            degenerate = True
+        for i2 in range(n2s):
+            t2 = th2s[i2]
+            c2, s2 = math.cos(t2), math.sin(t2)
+            g1 = a1 + c2 * f1 - s2 * f2
+            u = s2 * f1 + c2 * f2
+            g2 = ca1 * u - sa1 * F3
+            if math.hypot(g1, g2) <= 1e-12 * scale:
+                t1, singular1 = cf[_TH0], True
+            else:
+                t1, singular1 = math.atan2(Wy, Wx) - math.atan2(g2, g1), False
+            q[0], q[1], q[2] = t1 - cf[_TH0], t2 - cf[_TH0 + 1], q3
+            if check:
+                _angles(cf, rev3, q, th, dd)
+                _wrist_point(cf, th, dd, p)
+                err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
+                if err > 1e-12 * scale:
+                    if err > 1e-5 * scale:
+                        continue
+                    err = _polish(cf, rev3, q, W)
+                    if err > 1e-11 * scale:
+                        continue
+            _angles(cf, rev3, q, th, dd)
+            # labels: shoulder from frame 1's x axis, elbow from the sign of the normal's cross product
+            if singular1:
+                shoulder = 2
+            else:
+                shoulder = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
+            if not rev3:
+                elbow = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
+            else:
+                e = (math.sin(th[2]) * cf[_V] + math.cos(th[2]) * cf[_V + 1]) * (cf[_A2] if cf[_A2] != 0.0 else 1.0)
+                elbow = 0 if e > 0.0 else 1
+            nw = _wrist_angles(cf, th, T, q4_ref, wa, flips)
+            for k in range(nw):
+                if n >= Q.shape[0]:
+                    break
+                Q[n, 0], Q[n, 1], Q[n, 2] = q[0], q[1], q[2]
+                Q[n, 3] = wa[k, 0] - cf[_TH0 + 3]
+                Q[n, 4] = wa[k, 1] - cf[_TH0 + 4]
+                Q[n, 5] = wa[k, 2] - cf[_TH0 + 5]
+                codes[n, 0], codes[n, 1], codes[n, 2] = shoulder, elbow, flips[k]
+                degen[n] = degenerate or singular1 or flips[k] == 2
+                n += 1
+    return n
+
+
+@njit
+def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
+                   degen: np.ndarray) -> int:
+    """The three-parallel-axes method (as ``ParallelAxesSolver.solve``): raw rows; their count."""
+    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
+    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
+    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
+    w6x, w6y, w6z = cf[_PA_W6], cf[_PA_W6 + 1], cf[_PA_W6 + 2]
+    Wx = r00 * w6x + r01 * w6y + r02 * w6z + px
+    Wy = r10 * w6x + r11 * w6y + r12 * w6z + py
+    Wz = r20 * w6x + r21 * w6y + r22 * w6z + pz
+    ca1, sa1 = cf[_CA], cf[_SA]
+    ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
+    a1, a2, a3, a4, a5 = cf[_PA_A1], cf[_PA_A2], cf[_PA_A3], cf[_PA_A4], cf[_PA_A5]
+    d1, d5, d6, sig, sgn2 = cf[_PA_D1], cf[_PA_D5], cf[_PA_D6], cf[_PA_SIG], cf[_PA_S2]
+    right_angles = ca4 == 0.0 and ca5 == 0.0
+    t1s = np.empty(2)
+    n1 = _trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - d1), 1e-10, t1s)
+    t5s = np.empty(2)
+    n = 0
+    for i1 in range(max(n1, 0)):
+        t1 = t1s[i1]
+        c1, s1 = math.cos(t1), math.sin(t1)
+        shoulder = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+        ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
+        utx = sig * (r00 * ux + r10 * uy + r20 * uz)
+        uty = sig * (r01 * ux + r11 * uy + r21 * uz)
+        utz = sig * (r02 * ux + r12 * uy + r22 * uz)
+        rho = math.hypot(utx, uty)
+        if right_angles:
+            c5r = -utz / (sa4 * sa5)
+            if rho > 1e-10:
+                t5s[0], t5s[1] = math.atan2(rho, c5r), math.atan2(-rho, c5r)
+                n5 = 2
+            else:
+                t5s[0] = math.atan2(0.0, c5r)
+                n5 = 1
+        else:
+            n5 = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10, t5s)
+        for i5 in range(max(n5, 0)):
+            t5 = t5s[i5]
+            c5, s5 = math.cos(t5), math.sin(t5)
+            vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
+            if rho <= 1e-10:
+                t6, degenerate = cf[_TH0 + 5] + q6_ref, True
+            else:
+                t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
+            c6, s6 = math.cos(t6), math.sin(t6)
+            gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
+            gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
+            ox, oy, oz = -a4, 0.0, 0.0
+            ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
+            ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
+            ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
+            X0 = r00 * gxa + r01 * gxb + r02 * gxc
+            X1 = r10 * gxa + r11 * gxb + r12 * gxc
+            X2 = r20 * gxa + r21 * gxb + r22 * gxc
+            O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
+            O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
+            O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
+            phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
+            x = c1 * O0 + s1 * O1
+            y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
+            c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+            if abs(c3) > 1.0 + 1e-10:
+                continue
+            c3 = max(-1.0, min(1.0, c3))
+            s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
+            wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
+            base = math.atan2(y, x)
+            for k3 in range(2 if s3a > 0.0 else 1):
+                s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
+                psi = math.atan2(s3, c3)
+                t2 = base - math.atan2(a3 * s3, a2 + a3 * c3)
+                t3, t4 = sgn2 * psi, sig * (phi - t2 - psi)
+                if n >= Q.shape[0]:
+                    break
+                Q[n, 0] = t1 - cf[_TH0]
+                Q[n, 1] = t2 - cf[_TH0 + 1]
+                Q[n, 2] = t3 - cf[_TH0 + 2]
+                Q[n, 3] = t4 - cf[_TH0 + 3]
+                Q[n, 4] = t5 - cf[_TH0 + 4]
+                Q[n, 5] = t6 - cf[_TH0 + 5]
+                codes[n, 0] = shoulder
+                codes[n, 1] = 0 if a2 * a3 * s3 > 0.0 else 1
+                codes[n, 2] = wrist
+                degen[n] = degenerate
+                n += 1
+    return n
+
+
+@njit
+def _mul44(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    out = np.empty((4, 4))
+    for i in range(4):
+        for j in range(4):
+            out[i, j] = A[i, 0] * B[0, j] + A[i, 1] * B[1, j] + A[i, 2] * B[2, j] + A[i, 3] * B[3, j]
+    return out
+
+
+@njit
+def _target(ci: np.ndarray, pre: np.ndarray, post: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """The canonical chain's target ``pre · T · post`` (T⁻¹ when the chain is reversed)."""
+    Tin = np.empty((4, 4))
+    if ci[5] == 1:  # T⁻¹
+        for i in range(3):
+            for j in range(3):
+                Tin[i, j] = T[j, i]
+            Tin[i, 3] = -(T[0, i] * T[0, 3] + T[1, i] * T[1, 3] + T[2, i] * T[2, 3])
+            Tin[3, i] = 0.0
+        Tin[3, 3] = 1.0
+    else:
+        Tin[:, :] = T
+    return _mul44(_mul44(pre, Tin), post)
+
+
+@njit
+def _finish(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
+            m: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray) -> int:
+    """The raw rows' post-processing (as :func:`robokit.ik.solution.solutions_from_rows`); the
+    number of distinct solutions written."""
+    reverse = ci[5] == 1
+    # post_q: row 0 the sign of each joint (−1: flipped or reversed), row 1 revolute (1/0),
+    # rows 2, 3 the limits with their tolerance (±inf without), row 4 [has limits]
+    has_lim = post_q[4, 0] != 0.0
+    n = 0
+    qq = np.empty(6)
+    for k in range(m):
+        for j in range(6):
+            src = 5 - j if reverse else j
+            v = post_q[0, j] * rows[k, src]
+            if post_q[1, j] != 0.0:
+                v = _rem(v)
+                if v == -_PI:
+                    v = _PI
+            qq[j] = v
+        inside = True
+        if has_lim:
+            for j in range(6):
+                v, lo, hi = qq[j], post_q[2, j], post_q[3, j]
+                if v < lo or v > hi:
+                    rev = post_q[1, j] != 0.0
+                    if rev and lo <= v + _TWO_PI <= hi:
+                        qq[j] = v + _TWO_PI
+                    elif rev and lo <= v - _TWO_PI <= hi:
+                        qq[j] = v - _TWO_PI
+                    else:
+                        inside = False
+        dup = False
+        for o in range(n):
+            same = True
+            for j in range(6):
+                d = qq[j] - Q[o, j]
+                if post_q[1, j] != 0.0:
+                    d = _rem(d)
+                if d >= 1e-9 or d <= -1e-9:
+                    same = False
+                    break
+            if same:
+                dup = True
+                break
+        if dup:
+            continue
+        Q[n, :] = qq
+        within[n] = inside
+        codes[n, :] = rcodes[k, :]
+        degen[n] = rdegen[k]
+        n += 1
+    return n
+
+
+#: Layout of the packed constants ``K`` (one float64 array per robot, built by
+#: :func:`pack_constants`): offsets of cf (64), C (5×5), pre (4×4), post (4×4), post_q (5×6), ci (6).
+_K_CF, _K_C, _K_PRE, _K_POST, _K_PQ, _K_CI, K_SIZE = 0, 64, 89, 105, 121, 151, 157
+#: Columns of a solve's output row: q (6), within (0/1), branch code s·100 + e·10 + w, degenerate (0/1).
+OUT_COLS = 9
+
+
+def pack_constants(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, pre: np.ndarray, post: np.ndarray,
+                   post_q: np.ndarray) -> np.ndarray:
+    """The packed constants ``K`` (K_SIZE,) of one robot for :func:`closed_form_solve`.
+
+    Parameters
+    ----------
+    ci : (6,) int
+        ``[method (PIEPER/PARALLEL_AXES), case, joint 3 revolute, degree, rows of C, reversed]``.
+    cf : (64,) float
+        The solver's constants (layout: this module's ``_TH0`` … indices).
+    C : (5, 5) float
+        Position polynomial coefficients (Pieper), one row per monomial of the target.
+    pre, post : (4, 4) float
+        ``T₀₆ = pre · T · post`` (or ``pre · T⁻¹ · post`` when reversed): base′⁻¹ and tool′⁻¹.
+    post_q : (5, 6) float
+        Per joint: sign (−1 for a flipped joint or a reversed chain), revolute flag (1/0), lower
+        and upper limit (tolerance included; ±inf without), and ``post_q[4, 0]`` = 1 with limits.
+
+    Returns
+    -------
+    (K_SIZE,) ndarray
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pack_constants(np.zeros(6, int), np.zeros(64), np.zeros((5, 5)), np.eye(4), np.eye(4),
+    ...                np.zeros((5, 6))).shape
+    (157,)
+    """
+    K = np.zeros(K_SIZE)
+    K[_K_CF:_K_C] = cf
+    K[_K_C:_K_PRE] = np.asarray(C, dtype=float).ravel()
+    K[_K_PRE:_K_POST] = np.asarray(pre, dtype=float).ravel()
+    K[_K_POST:_K_PQ] = np.asarray(post, dtype=float).ravel()
+    K[_K_PQ:_K_CI] = np.asarray(post_q, dtype=float).ravel()
+    K[_K_CI:K_SIZE] = np.asarray(ci, dtype=float)
+    return K
+
+
+@njit
+def _rigid(T: np.ndarray) -> bool:
+    """The quick rigid-transform test of :func:`robokit.ik.solution.check_pose`."""
+    a, b, c, d, e, f, g, h, i = T[0, 0], T[0, 1], T[0, 2], T[1, 0], T[1, 1], T[1, 2], T[2, 0], T[2, 1], T[2, 2]
+    dev = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0), abs(c * c + f * f + i * i - 1.0),
+              abs(a * b + d * e + g * h), abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    finite = math.isfinite(a + b + c + d + e + f + g + h + i + T[0, 3] + T[1, 3] + T[2, 3])
+    return (finite and dev < 1e-9 and det > 0.0 and T[3, 0] == 0.0 and T[3, 1] == 0.0 and T[3, 2] == 0.0
+            and T[3, 3] == 1.0)
+
+
+@njit
+def _unpack(K: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    ci = np.empty(6, dtype=np.int64)
+    for j in range(6):
+        ci[j] = int(K[_K_CI + j])
+    return (ci, K[_K_CF:_K_C], K[_K_C:_K_PRE].reshape((5, 5)), K[_K_PRE:_K_POST].reshape((4, 4)),
+            K[_K_POST:_K_PQ].reshape((4, 4)), K[_K_PQ:_K_CI].reshape((5, 6)))
+
+
+@njit
+def _write(n: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray, out: np.ndarray) -> None:
+    for k in range(n):
+        for j in range(6):
+            out[k, j] = Q[k, j]
+        out[k, 6] = 1.0 if within[k] else 0.0
+        out[k, 7] = codes[k, 0] * 100 + codes[k, 1] * 10 + codes[k, 2]
+        out[k, 8] = 1.0 if degen[k] else 0.0
+
+
+@njit
+def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci, cf, C, pre, post, post_q = _unpack(K)
+    rows = np.empty((MAX_ROWS, 6))
+    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+    Q = np.empty((MAX_ROWS, 6))
+    within = np.empty(MAX_ROWS, dtype=np.bool_)
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
+    _write(n, Q, within, codes, degen, out)
+    return n
+
+
+@njit
+def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci, cf, C, pre, post, post_q = _unpack(K)
+    rows = np.empty((MAX_ROWS, 6))
+    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+    Q = np.empty((MAX_ROWS, 6))
+    within = np.empty(MAX_ROWS, dtype=np.bool_)
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
+    _write(n, Q, within, codes, degen, out)
+    return n
+
+
+@njit
+def pieper_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    """:func:`closed_form_solve` for a spherical wrist (its own kernel: only the structure a
+    robot uses is compiled)."""
+    if not _rigid(T):
+        return np.empty((0, 0))
+    out = np.empty((MAX_ROWS, OUT_COLS))
+    n = _pieper_packed(K, T, wrist_ref, out)
+    return out[:n].copy()
+
+
+@njit
+def parallel_axes_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    """:func:`closed_form_solve` for three parallel axes (its own kernel)."""
+    if not _rigid(T):
+        return np.empty((0, 0))
+    out = np.empty((MAX_ROWS, OUT_COLS))
+    n = _parallel_axes_packed(K, T, wrist_ref, out)
+    return out[:n].copy()
+
+
+@njit(parallel=True)
+def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`closed_form_batch` for a spherical wrist."""
+    N = Ts.shape[0]
+    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
+    counts = np.zeros(N, dtype=np.int64)
+    for i in prange(N):
+        counts[i] = _pieper_packed(K, Ts[i], wrist_ref, out[i])
+    return out, counts
+
+
+@njit(parallel=True)
+def parallel_axes_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`closed_form_batch` for three parallel axes."""
+    N = Ts.shape[0]
+    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
+    counts = np.zeros(N, dtype=np.int64)
+    for i in prange(N):
+        counts[i] = _parallel_axes_packed(K, Ts[i], wrist_ref, out[i])
+    return out, counts
+
+
+def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
+    r"""Every closed-form solution of one pose, in compiled code.
+
+    Parameters
+    ----------
+    K : (K_SIZE,) float64
+        The robot's packed constants (:func:`pack_constants`).
+    T : (4, 4) float64
+        Tip pose in the base frame (m).
+    wrist_ref : float
+        The free joint's value at a singularity (rad), in the sign of the solver's chain.
+
+    Returns
+    -------
+    (m, 9) float64
+        One row per distinct solution: q (6; rad, m — revolute joints wrapped to (−π, π] or
+        shifted into limits wider than ±π), within limits (1/0), branch code
+        ``shoulder·100 + elbow·10 + wrist`` (module docstring), degenerate (1/0).
+        Shape (0, 9) when T is out of reach; **shape (0, 0) when T fails the quick
+        rigid-transform test** (the caller then checks T properly).
+
+    Notes
+    -----
+    Lecture 5: Pieper's decoupling / the three-parallel-axes method (see
+    :mod:`robokit.ik.pieper`, :mod:`robokit.ik.parallel_axes`).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("puma560")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> closed_form_solve(K, robot.frame_pose(np.full(6, 0.3)), 0.0).shape
+    (8, 9)
+    """
+    return (pieper_solve if K[_K_CI] == PIEPER else parallel_axes_solve)(K, T, wrist_ref)
+
+
+def closed_form_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    r""":func:`closed_form_solve` over (N, 4, 4) targets, in parallel over targets (``prange``).
+
+    Parameters
+    ----------
+    K : (K_SIZE,) float64
+        Packed constants (:func:`pack_constants`).
+    Ts : (N, 4, 4) float64
+        Tip poses (m), each already checked to be a rigid transform.
+    wrist_ref : float
+        As in :func:`closed_form_solve`.
+
+    Returns
+    -------
+    out : (N, 16, 9) float64
+        Per target the rows of :func:`closed_form_solve`; rows past ``counts[i]`` are NaN.
+    counts : (N,) int64
+        Number of distinct solutions of each target.
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("ur5")
+    >>> K = AnalyticIK(robot)._kernel[0]
+    >>> out, counts = closed_form_batch(K, np.stack([robot.frame_pose(np.full(6, 0.3))] * 3), 0.0)
+    >>> out.shape, counts.tolist()
+    ((3, 16, 9), [8, 8, 8])
+    """
+    return (pieper_batch if K[_K_CI] == PIEPER else parallel_axes_batch)(K, Ts, wrist_ref)
