@@ -1,0 +1,10 @@
+"""robokit.collision — collision model of a robot and its surroundings.
+
+Modules: ``shapes`` (the obstacles ``Box``, ``Sphere``, ``Cylinder``, ``Mesh``), ``world``
+(:class:`World`: robot geometry + obstacles in one ``pinocchio.GeometryModel``, queried
+with coal through Pinocchio; self-collision pairs computed once per robot).
+"""
+from robokit.collision.shapes import Box, Cylinder, Mesh, Obstacle, Sphere
+from robokit.collision.world import World, self_collision_pairs
+
+__all__ = ["World", "Box", "Sphere", "Cylinder", "Mesh", "Obstacle", "self_collision_pairs"]
