@@ -12,7 +12,9 @@ the torques come from robokit's Newton–Euler on ``robot.poe``
 
 The returned samples are the grid points: at each, ``q̇`` and ``q̈`` are computed from the
 grid's ``ṡᵢ`` and the stage's constant ``s̈ᵢ = (ṡᵢ₊₁² − ṡᵢ²)/(2Δs)`` — the values TOPP-RA's
-constraints hold (up to its LP solver's tolerance) — and time advances by
+constraints hold (up to its LP solver's tolerance, ~1e-8 relative). ``q̈`` is
+right-continuous: sample i carries stage i's acceleration, valid on ``[tᵢ, tᵢ₊₁)``, and the
+last sample (at rest, after arrival) has ``q̈ = 0``. Time advances by
 ``Δt = 2Δs/(ṡᵢ + ṡᵢ₊₁)`` (constant ``s̈`` per stage). Between grid points the limits hold
 only approximately (the discretisation error of TOPP-RA shrinks with the grid spacing).
 """
@@ -138,7 +140,7 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
     sd = np.maximum(np.asarray(sd, dtype=float), 0.0)
     ds = np.diff(s)
     u = (sd[1:] ** 2 - sd[:-1] ** 2) / (2 * ds)
-    sdd = np.r_[u, u[-1]]
+    sdd = np.r_[u, 0.0]  # right-continuous: stage i's s̈ on [tᵢ, tᵢ₊₁); at rest after the end
     dt = 2 * ds / (sd[:-1] + sd[1:])
     t = np.r_[0.0, np.cumsum(dt)]
     q, qs, qss = spline(s), spline(s, 1), spline(s, 2)
