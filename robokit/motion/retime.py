@@ -72,6 +72,7 @@ def path_spline(waypoints: Any, n: int) -> tuple[Any, np.ndarray]:
     if len(W) < 2:
         raise InputError("path: all waypoints are the same configuration; nothing to retime")
     ss = np.r_[0.0, np.cumsum(step)] / step.sum()
+    ss[-1] = 1.0
     return CubicSpline(ss, W, bc_type="not-a-knot"), ss
 
 
