@@ -7,7 +7,6 @@ centred on their frame's origin; a cylinder's axis is its frame's z axis.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -32,19 +31,25 @@ def _pose(pose: Any) -> np.ndarray:
     return T
 
 
-@dataclass(frozen=True, eq=False)
 class Obstacle:
-    """Base of the obstacle shapes (not used directly)."""
+    """Base of the obstacle shapes (not used directly): ``pose`` (4, 4) and ``name``."""
 
-    pose: np.ndarray = field(default_factory=lambda: np.eye(4))
-    name: str = ""
+    pose: np.ndarray
+    name: str
+
+    def __setattr__(self, key: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is read-only")
+
+    def __repr__(self) -> str:
+        fields = {k: v for k, v in vars(self).items() if k not in ("pose", "vertices", "faces")}
+        body = ", ".join(f"{k}={v.tolist() if isinstance(v, np.ndarray) else v!r}" for k, v in fields.items())
+        return f"{type(self).__name__}({body}, xyz={self.pose[:3, 3].tolist()})"
 
     def geometry(self) -> Any:  # pragma: no cover - overridden
         """The coal collision geometry of the shape (in its own frame)."""
         raise NotImplementedError
 
 
-@dataclass(frozen=True, eq=False, init=False)
 class Box(Obstacle):
     """A box of full edge lengths ``size`` = (x, y, z) in m, centred on ``pose``'s origin.
 
@@ -80,7 +85,6 @@ class Box(Obstacle):
         return coal.Box(*self.size)
 
 
-@dataclass(frozen=True, eq=False, init=False)
 class Sphere(Obstacle):
     """A sphere of ``radius`` (m) centred on ``pose``'s origin.
 
@@ -109,7 +113,6 @@ class Sphere(Obstacle):
         return coal.Sphere(self.radius)
 
 
-@dataclass(frozen=True, eq=False, init=False)
 class Cylinder(Obstacle):
     """A cylinder of ``radius`` and full ``length`` (m) along ``pose``'s z axis, centred on its origin.
 
@@ -140,7 +143,6 @@ class Cylinder(Obstacle):
         return coal.Cylinder(self.radius, self.length)
 
 
-@dataclass(frozen=True, eq=False, init=False)
 class Mesh(Obstacle):
     """A triangle mesh read from ``path`` (STL, OBJ, PLY, … — what trimesh reads), in m.
 

@@ -92,9 +92,10 @@ def goal_configurations(robot: Any, T: Any, world: Any = None, q_start: Any = No
     cands: list[np.ndarray] = []
     try:
         cands = [s.q for s in ik_analytic(robot, T) if s.within_limits]
+        closed_form = True
     except (InputError, ValueError, NotImplementedError):
-        cands = []
-    if not cands:
+        closed_form = False  # no closed form for this arm: numerical IK from seeds
+    if not closed_form:
         g = np.random.default_rng(rng)
         for k in range(seeds):
             seed = q0 if k == 0 else robot.random_configuration(g)

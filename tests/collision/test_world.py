@@ -141,3 +141,20 @@ def test_bad_input(puma, tmp_path):
         w.in_collision(np.zeros(5))
     with pytest.raises(InputError, match="obstacles"):
         World(puma, ["box"])
+
+
+def test_ik_with_a_world(puma):
+    wall = Box([0.4, 0.05, 0.8], _T([0.45, 0.35, 0.4]), name="wall")
+    w = World(puma, [wall])
+    q_goal = np.array([1.4, 0.3, -0.3, 0, 0, 0])
+    T = puma.frame_pose(q_goal)
+    sols = robokit.ik_analytic(puma, T, world=w)
+    assert all(s.collision_free is None for s in robokit.ik_analytic(puma, T))
+    flags = [s.collision_free for s in sols]
+    assert True in flags and False in flags  # the wall blocks some branches
+    ref = FclWorld(w)
+    for s in sols:
+        assert s.collision_free == (not any(h for h, _ in ref.pair_distances(s.q)))
+    res = robokit.solve_ik(puma, T, world=w, q0=[0, 0.3, -0.3, 0, 0, 0])
+    assert res.success and res.method == "analytic" and not w.in_collision(res.q)
+    np.testing.assert_allclose(puma.frame_pose(res.q), T, atol=1e-9)
