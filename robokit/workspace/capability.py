@@ -38,6 +38,7 @@ from __future__ import annotations
 import hashlib
 import io
 import json
+import pickle
 import os
 import shutil
 import time
@@ -205,7 +206,8 @@ def _backend_for(desc: RobotSpec, restarts: int) -> Any:
     return hit
 
 
-def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int) -> np.ndarray:
+def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int,
+                  world: tuple | None = None) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -214,8 +216,46 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
     T[:, :, :3, 3] = centres[:, None, :]
     T[:, :, 3, 3] = 1.0
     rng = np.random.default_rng(np.random.SeedSequence([int(seed), int(chunk)]))
-    ok = backend.success(T.reshape(m * K, 4, 4), rng)
+    if world is None:
+        ok = backend.success(T.reshape(m * K, 4, 4), rng)
+    else:
+        ok = _collision_free_success(backend.robot, world, T.reshape(m * K, 4, 4), restarts, rng)
     return ok.reshape(m, K).sum(axis=1).astype(np.int64)
+
+
+_WORLD_CACHE: dict = {}
+
+
+def _world_state(world: Any, robot: Robot) -> tuple | None:
+    """The picklable part of a ``robokit.collision.World`` the workers rebuild it from."""
+    if world is None:
+        return None
+    from robokit.errors import InputError
+    if not hasattr(world, "obstacles") or not hasattr(world, "padding") or not hasattr(world, "in_collision"):
+        raise InputError(f"world: expected a robokit.collision.World, got {type(world).__name__}")
+    if getattr(world.robot, "name", None) != robot.name:
+        raise InputError(f"world: built for {world.robot.name!r}, not for {robot.name!r}")
+    return (tuple(world.obstacles), float(world.padding))
+
+
+def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
+    """Per pose: reached by an IK solution inside the limits that is collision-free in the world."""
+    from robokit.collision import World
+    from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
+    from robokit.ik.numeric import solve_ik
+
+    key = (id(robot), hashlib.sha256(pickle.dumps(world)).hexdigest())
+    w = _WORLD_CACHE.get(key)
+    if w is None:
+        w = _WORLD_CACHE[key] = World(robot, world[0], world[1])
+    closed = robot.n == 6 and ik_analytic_kind(robot).method is not None
+    out = np.zeros(len(T), dtype=bool)
+    for k, Tk in enumerate(T):
+        if closed:
+            out[k] = any(s.within_limits and s.collision_free for s in ik_analytic(robot, Tk, world=w))
+        else:
+            out[k] = solve_ik(robot, Tk, world=w, max_restarts=restarts, rng=rng).success
+    return out
 
 
 # ----------------------------------------------------------------------------- chunk store
@@ -310,7 +350,7 @@ def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
 
 def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
-                   restarts: int | None = None, progress: bool | None = None) -> CapabilityMap:
+                   restarts: int | None = None, progress: bool | None = None, world: Any = None) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
 
     Parameters
@@ -343,6 +383,11 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
         Random restarts of the numerical IK per target (default 20).
     progress : bool, optional
         Show a progress bar of chunks on stderr (default: only when stderr is a terminal).
+    world : :class:`robokit.collision.World`, optional
+        Count only orientations reached by an IK solution inside the limits that is free of
+        self- and obstacle collisions (closed form: any such branch; otherwise ``solve_ik``
+        with ``world``). The workers rebuild the world from its obstacles and padding; the
+        store's fingerprint includes them. Slower than the plain map (one IK call per pose).
 
     Returns
     -------
@@ -394,10 +439,10 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
 
     with _Cluster(client) as cl:
         return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,
-                               int(seed), int(restarts), progress, t0)
+                               int(seed), int(restarts), progress, t0, _world_state(world, rob))
 
 
-def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, store: Any, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, world: tuple | None = None) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -414,6 +459,8 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
                   orientations=hashlib.sha256(R.tobytes()).hexdigest(), chunk_size=int(chunk_size),
                   samples=used, seed=int(seed), restarts=int(restarts), ik=kind, planar=chain is not None,
                   voxels=M, chunks=n_chunks, version=_STORE_VERSION)
+    if world is not None:  # collision-free counts: a different map, a different store fingerprint
+        params["world"] = hashlib.sha256(pickle.dumps(world)).hexdigest()
     fingerprint = hashlib.sha256(json.dumps(params, sort_keys=True).encode()).hexdigest()
     params["fingerprint"] = fingerprint
     st = _Store(store, fingerprint, params) if store is not None else None
@@ -447,11 +494,11 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
         if client is None:
             for c in todo:
                 sl = slice(c * chunk_size, min(M, (c + 1) * chunk_size))
-                finish(c, _chunk_counts(desc, centres[sl], R, restarts, seed, c))
+                finish(c, _chunk_counts(desc, centres[sl], R, restarts, seed, c, world))
                 bar.advance(task)
         elif todo:
             workers = _run_dask(client, todo, lambda c: centres[c * chunk_size: min(M, (c + 1) * chunk_size)],
-                                desc, R, restarts, seed, finish, lambda: bar.advance(task), fingerprint)
+                                desc, R, restarts, seed, finish, lambda: bar.advance(task), fingerprint, world)
     t_sweep = time.perf_counter() - t1
     index = counts / K
     timings = dict(prepass=t_pre, sweep=t_sweep, total=time.perf_counter() - t0,
@@ -501,7 +548,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: tuple | None = None) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 
@@ -513,7 +560,7 @@ def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarr
 
     def submit() -> None:
         c = pending.pop(0)
-        f = client.submit(_chunk_counts, desc, centres_of(c), R, restarts, seed, c,
+        f = client.submit(_chunk_counts, desc, centres_of(c), R, restarts, seed, c, world,
                           key=f"capability-{fingerprint[:16]}-{c:05d}")
         futures[f.key] = c
         ac.add(f)

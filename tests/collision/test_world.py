@@ -158,3 +158,39 @@ def test_ik_with_a_world(puma):
     res = robokit.solve_ik(puma, T, world=w, q0=[0, 0.3, -0.3, 0, 0, 0])
     assert res.success and res.method == "analytic" and not w.in_collision(res.q)
     np.testing.assert_allclose(puma.frame_pose(res.q), T, atol=1e-9)
+
+
+def test_capability_map_counts_collision_free_only(puma):
+    import pickle
+    floor = Box([3.0, 3.0, 0.1], _T([0, 0, -0.1]), name="floor")  # top 5 cm below the base
+    w = World(puma, [floor])
+    assert pickle.loads(pickle.dumps(floor)).size.tolist() == floor.size.tolist()  # shipped to workers
+    a = robokit.capability_map(puma, 0.3, 8, client="serial")
+    b = robokit.capability_map(puma, 0.3, 8, client="serial", world=w)
+    np.testing.assert_array_equal(a.centres, b.centres)
+    assert np.all(b.index <= a.index + 1e-12)
+    assert b.index.sum() < a.index.sum()  # the floor takes some poses away
+    # an independent recount of a few voxels: any in-limit branch free by python-fcl
+    ref = FclWorld(w)
+    R = b.orientations
+    low = np.flatnonzero(a.index > 0)
+    for i in low[np.argsort(a.centres[low, 2])][:6]:  # the lowest voxels: where the floor matters
+        T = np.eye(4)
+        T[:3, 3] = b.centres[i]
+        n_ok = 0
+        for Rk in R:
+            T[:3, :3] = Rk
+            sols = robokit.ik_analytic(puma, T)
+            n_ok += any(s.within_limits and not any(h for h, _ in ref.pair_distances(s.q)) for s in sols)
+        assert b.index[i] == pytest.approx(n_ok / len(R))
+
+
+def test_capsule_resting_in_a_box_at_every_angle(puma):
+    """coal's boolean test alone missed this contact at some q1 (World also consults the distance)."""
+    w = World(puma, [Box([3.0, 3.0, 0.1], _T([0, 0, -0.05]), name="floor")])
+    ref = FclWorld(w)
+    for q1 in np.linspace(-2.5, 2.5, 11):
+        q = np.array([q1, 0, 0, 0, 0, 0])
+        assert any(h for h, _ in ref.pair_distances(q))
+        assert w.in_collision(q) and ("link_1", "floor") in w.colliding_pairs(q)
+        assert w.distance(q) == pytest.approx(-0.0241848, abs=1e-6)  # the capsule radius, 0 m above the floor top
