@@ -128,6 +128,20 @@ def _build_parser() -> argparse.ArgumentParser:
     cal.add_argument("-o", "--output", required=True, help="output .urdf (always) or .yaml (a DH arm only)")
     cal.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(cal)
+
+    # collision-free planning (robokit.motion)
+    pl = sub.add_parser("plan", help="a collision-free, time-optimal joint trajectory (RRT-Connect + TOPP-RA) to CSV")
+    pl.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    pl.add_argument("--start", nargs="+", type=float, required=True, help="start joint values (rad / m)")
+    pl.add_argument("--goal", nargs="+", type=float, required=True,
+                    help="goal joint values, or x y z roll pitch yaw of the tip (m, rad)")
+    pl.add_argument("--obstacles", help="scene YAML file of obstacles")
+    pl.add_argument("--vmax", type=float, default=1.0, help="joint velocity limit (rad/s, default 1)")
+    pl.add_argument("--amax", type=float, default=2.0, help="joint acceleration limit (rad/s², default 2)")
+    pl.add_argument("--dt", type=float, default=1 / 30, help="time step of the CSV rows (s, default 1/30)")
+    pl.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    pl.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    pl.add_argument("-o", "--output", required=True, help="output .csv file")
     return p
 
 
@@ -182,6 +196,11 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import calibrate_command
 
         return calibrate_command(args.model, args.data, args.output, tip=args.tip, **_format_options(args))
+    if args.command == "plan":
+        from robokit.commands import plan_command
+
+        return plan_command(args.model, args.start, args.goal, args.output, obstacles=args.obstacles,
+                            vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

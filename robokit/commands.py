@@ -210,3 +210,47 @@ def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
                          f"to {max(worst, res.residual):.2e}); write a URDF instead (-o OUT.urdf)")
     return (f"# {robot.name}: calibrated by robokit; this DH table reproduces the calibrated geometry to "
             f"{worst:.1e}\n") + text
+
+
+def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
+                 obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
+                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None) -> int:
+    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``.
+
+    ``goal`` is n joint values, or 6 numbers x y z roll pitch yaw (m, rad) of the tip pose.
+    The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
+    (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
+    --fps 1/dt`` plays it in real time.
+    """
+    from robokit.collision import World, load_scene, pose_from_xyz_rpy
+    from robokit.description.loading import load
+    from robokit.errors import InputError
+    from robokit.motion import plan
+
+    out = _output_file(output, (".csv",))
+    if not (dt > 0 and np.isfinite(dt)):
+        raise InputError(f"--dt: expected a positive time step, got {dt:g}")
+    robot = load(model, tip=tip)
+    q0 = np.asarray(start, dtype=float)
+    if q0.shape != (robot.n,):
+        raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")
+    g = np.asarray(goal, dtype=float)
+    if g.shape == (robot.n,):
+        target: np.ndarray = g
+    elif g.shape == (6,):
+        target = pose_from_xyz_rpy(g[:3], g[3:])
+    else:
+        raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
+    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
+    world = World(robot, obs, padding)
+    tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    t = np.arange(0.0, tr.t[-1], dt)
+    t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t
+    Q = np.column_stack([np.interp(t, tr.t, tr.q[:, j]) for j in range(robot.n)])
+    lines = [f"# robokit plan {robot.name}: duration {tr.t[-1]:.6g} s, one row per {dt:.6g} s",
+             ",".join(f"q{j + 1}" for j in range(robot.n))]
+    lines += [",".join(f"{x:.10g}" for x in row) for row in Q]
+    atomic_write(out, "\n".join(lines) + "\n")
+    print(f"wrote {out}: {len(Q)} rows, {tr.t[-1]:.3f} s, {len(tr.info['waypoints'])} waypoints "
+          f"after shortcutting", file=sys.stderr)
+    return 0

@@ -107,11 +107,19 @@ def goal_configurations(robot: Any, T: Any, world: Any = None, q_start: Any = No
     return ok
 
 
-def _rrt_connect(robot: Any, chk: _Checker, qa: np.ndarray, qb: np.ndarray, timeout: float) -> np.ndarray:
+_SEEDED: list[int] = []
+
+
+def _rrt_connect(robot: Any, chk: _Checker, qa: np.ndarray, qb: np.ndarray, timeout: float, seed: int) -> np.ndarray:
     ob = require("ompl.base", "plan")
     og = require("ompl.geometric", "plan")
     ou = require("ompl.util", "plan")
     ou.setLogLevel(ou.LogLevel.LOG_WARN)
+    if not _SEEDED:  # OMPL takes one seed per process, before its first random number
+        ou.setLogLevel(ou.LogLevel.LOG_ERROR)
+        ou.RNG.setSeed(int(seed) + 1)
+        ou.setLogLevel(ou.LogLevel.LOG_WARN)
+        _SEEDED.append(int(seed))
     n = robot.n
     space = ob.RealVectorStateSpace(n)
     bounds = ob.RealVectorBounds(n)
@@ -178,7 +186,8 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     resolution : float, rad — the largest joint-space step between checked states.
     timeout : float, s — RRT-Connect's time budget.
     shortcuts : int — random shortcut attempts; spacing : float, rad — waypoint spacing for the spline.
-    seed : int — the shortcutting's (and IK seeds') random seed; grid : TOPP-RA stages (at least
+    seed : int — the shortcutting's and IK seeds' random seed, and OMPL's (OMPL accepts one
+        seed per process: the first plan's; later calls continue its stream); grid : TOPP-RA stages (at least
         4 per waypoint interval of the densified path).
 
     Returns
@@ -226,7 +235,7 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     if chk.segment(q0, qg):
         rrt = np.array([q0, qg])
     else:
-        rrt = _rrt_connect(robot, chk, q0, qg, timeout)
+        rrt = _rrt_connect(robot, chk, q0, qg, timeout, seed)
     way = _shortcut(rrt, chk, shortcuts, np.random.default_rng(seed))
     d = spacing
     for _ in range(7):
