@@ -103,6 +103,7 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+    w.add_argument("--obstacles", help="scene YAML file of obstacles to draw")
     w.add_argument("--robot", metavar="MODEL", help="the robot to draw with a capability map (MAP.npz); default: "
                    "the robot the map describes (a path stored in a map is never opened)")
     _add_format_options(w)
@@ -177,7 +178,7 @@ def _dispatch(args: argparse.Namespace) -> int:
 
             args.model = load(args.model, tip=args.tip, **opts)
         return view_command(args.model, args.output, q=args.q, frames=args.frames,
-                        trajectory=args.trajectory, fps=args.fps, tip=args.tip)
+                        trajectory=args.trajectory, fps=args.fps, tip=args.tip, obstacles=args.obstacles)
     if args.command == "teach":
         from robokit.commands import teach_command
 

@@ -55,7 +55,7 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
 
 def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str],
                  q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
-                 fps: float = 30.0, tip: str | None = None) -> int:
+                 fps: float = 30.0, tip: str | None = None, obstacles: str | os.PathLike[str] | None = None) -> int:
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
     from robokit.description.loading import load
     from robokit.viz.view import load_trajectory, view_html
@@ -67,7 +67,12 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
         raise ValueError("-q: contains NaN or infinite values")
     robot = load(model, tip=tip)
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
-    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps)
+    obs = None
+    if obstacles:
+        from robokit.collision import load_scene
+
+        obs = load_scene(obstacles)[0]
+    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps, obstacles=obs)
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
     return 0
