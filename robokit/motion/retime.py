@@ -110,8 +110,8 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
     True
     """
     ta = require("toppra", "retime")
-    import toppra.algorithm as algo
-    import toppra.constraint as constraint
+    algo = require("toppra.algorithm", "retime")
+    constraint = require("toppra.constraint", "retime")
 
     n = robot.n
     vm, am = _limit(vmax, "vmax", n), _limit(amax, "amax", n)
