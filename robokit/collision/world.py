@@ -264,7 +264,12 @@ class World:
         self.geometry_model = gm
         self._gd = pin.GeometryData(gm)
         for k, m in enumerate(margins):
-            self._gd.collisionRequests[k].security_margin = m
+            req = self._gd.collisionRequests[k]
+            req.security_margin = m
+            # Pinocchio's default requests (enable_contact=False) missed a capsule resting 2 cm
+            # deep in a box at some joint angles; with contacts enabled coal finds it.
+            req.enable_contact = True
+            req.num_max_contacts = 1
         self._data = robot.model.createData()
         self._pin = pin
 
@@ -286,9 +291,7 @@ class World:
     def _pairs_state(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Per checked pair: in contact (bool) and signed distance of the padded geometry (m).
 
-        A pair is in contact when coal's collision test says so *or* its distance is ≤ 0:
-        coal's boolean test alone missed a capsule resting 2 cm deep in a box at some joint
-        angles (its GJK guess), while its distance stayed right; both are consulted.
+        A pair is in contact when coal's collision test says so (its distance is then ≤ 0).
         """
         pin = self._pin
         if not self._pairs:
@@ -299,13 +302,10 @@ class World:
         pin.computeCollisions(self.robot.model, self._data, self.geometry_model, self._gd, qp, False)
         flags = np.array([r.isCollision() for r in self._gd.collisionResults])
         d = np.where(flags, np.minimum(d, 0.0), d)
-        return flags | (d <= 0), d
+        return flags, d
 
     def _hit(self, q: np.ndarray) -> bool:
-        if self._collide(q, True):
-            return True
-        flags, _ = self._pairs_state(q)
-        return bool(flags.any())
+        return self._collide(q, True)
 
     # ------------------------------------------------------------------ queries
     def in_collision(self, q: Any) -> Any:

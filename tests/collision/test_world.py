@@ -186,7 +186,7 @@ def test_capability_map_counts_collision_free_only(puma):
 
 
 def test_capsule_resting_in_a_box_at_every_angle(puma):
-    """coal's boolean test alone missed this contact at some q1 (World also consults the distance)."""
+    """Pinocchio's default requests (no contacts) missed this contact at some q1; World enables contacts."""
     w = World(puma, [Box([3.0, 3.0, 0.1], _T([0, 0, -0.05]), name="floor")])
     ref = FclWorld(w)
     for q1 in np.linspace(-2.5, 2.5, 11):
