@@ -6,7 +6,7 @@ import importlib
 import sys
 
 MODULES = ["benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.speed", "benchmarks.control",
-           "benchmarks.calibration"]
+           "benchmarks.calibration", "benchmarks.motion"]
 
 
 def main(argv=None):
