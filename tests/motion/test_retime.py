@@ -81,3 +81,12 @@ def test_bad_input(puma):
         retime(puma, np.zeros((3, 6)), 1.0, 1.0)
     with pytest.raises(InputError, match="path"):
         retime(puma, P, 1.0, 1.0, tau_max=[1e-3] * 6)  # below gravity: infeasible
+
+
+def test_a_trajectory_as_the_path(puma):
+    from robokit import cubic_trajectory
+    tr0 = cubic_trajectory(P[0], P[1], tf=2.0, t=20)
+    a = retime(puma, tr0, 1.0, 2.0)
+    b = retime(puma, tr0.q, 1.0, 2.0)
+    np.testing.assert_array_equal(a.t, b.t)
+    assert np.all(np.abs(a.qd) <= 1.0 * (1 + REL))
