@@ -84,7 +84,7 @@ def test_bad_input(puma):
 
 
 def test_a_trajectory_as_the_path(puma):
-    from robokit import cubic_trajectory
+    from robokit.trajectory import cubic_trajectory
     tr0 = cubic_trajectory(P[0], P[1], tf=2.0, t=20)
     a = retime(puma, tr0, 1.0, 2.0)
     b = retime(puma, tr0.q, 1.0, 2.0)
