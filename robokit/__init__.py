@@ -75,6 +75,8 @@ from robokit.trajectory import (
     screw_trajectory,
 )
 from robokit.workspace import CapabilityMap, capability_map
+from robokit import collision, motion
+from robokit.motion import plan, retime
 
 try:
     from importlib.metadata import PackageNotFoundError as _NotFound, version as _version
@@ -100,7 +102,7 @@ SEED_FUNCTIONS = (
 __all__ = list(SEED_FUNCTIONS) + [
     # entry points
     "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "urdf_to_dh",
-    "calibrate", "identify_dynamics", "excitation_trajectory",
+    "calibrate", "identify_dynamics", "excitation_trajectory", "plan", "retime",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
@@ -108,5 +110,5 @@ __all__ = list(SEED_FUNCTIONS) + [
     "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
-    "calibration",
+    "calibration", "collision", "motion",
 ]

@@ -27,6 +27,8 @@ EXTRAS: dict[str, tuple[str, str]] = {
     "dask": ("dask", "workspace"),
     "xacro": ("xacro", "formats"),
     "mujoco": ("mujoco", "mujoco"),
+    "toppra": ("toppra", "motion"),
+    "ompl": ("ompl", "motion"),
 }
 
 

@@ -103,6 +103,7 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--frames", action="store_true", help="draw the DH frames and the tool frame")
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
+    w.add_argument("--obstacles", help="scene YAML file of obstacles to draw")
     w.add_argument("--robot", metavar="MODEL", help="the robot to draw with a capability map (MAP.npz); default: "
                    "the robot the map describes (a path stored in a map is never opened)")
     _add_format_options(w)
@@ -136,6 +137,20 @@ def _build_parser() -> argparse.ArgumentParser:
     g.add_argument("--name", help="C prefix of the functions and macros (default: the robot's name)")
     g.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(g)
+
+    # collision-free planning (robokit.motion)
+    pl = sub.add_parser("plan", help="a collision-free, time-optimal joint trajectory (RRT-Connect + TOPP-RA) to CSV")
+    pl.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    pl.add_argument("--start", nargs="+", type=float, required=True, help="start joint values (rad / m)")
+    pl.add_argument("--goal", nargs="+", type=float, required=True,
+                    help="goal joint values, or x y z roll pitch yaw of the tip (m, rad)")
+    pl.add_argument("--obstacles", help="scene YAML file of obstacles")
+    pl.add_argument("--vmax", type=float, default=1.0, help="joint velocity limit (rad/s, default 1)")
+    pl.add_argument("--amax", type=float, default=2.0, help="joint acceleration limit (rad/s², default 2)")
+    pl.add_argument("--dt", type=float, default=1 / 30, help="time step of the CSV rows (s, default 1/30)")
+    pl.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    pl.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    pl.add_argument("-o", "--output", required=True, help="output .csv file")
     return p
 
 
@@ -171,7 +186,7 @@ def _dispatch(args: argparse.Namespace) -> int:
 
             args.model = load(args.model, tip=args.tip, **opts)
         return view_command(args.model, args.output, q=args.q, frames=args.frames,
-                        trajectory=args.trajectory, fps=args.fps, tip=args.tip)
+                        trajectory=args.trajectory, fps=args.fps, tip=args.tip, obstacles=args.obstacles)
     if args.command == "teach":
         from robokit.commands import teach_command
 
@@ -196,6 +211,11 @@ def _dispatch(args: argparse.Namespace) -> int:
 
         return codegen_command(args.model, args.output, float32=args.float32, name=args.name, tip=args.tip,
                                **_format_options(args))
+    if args.command == "plan":
+        from robokit.commands import plan_command
+
+        return plan_command(args.model, args.start, args.goal, args.output, obstacles=args.obstacles,
+                            vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

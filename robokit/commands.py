@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
 __all__ = ["convert_command", "view_command", "teach_command", "workspace_command", "capability_view_command",
-           "calibrate_command", "codegen_command"]
+           "calibrate_command", "codegen_command", "plan_command"]
 
 
 def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> Path:
@@ -54,7 +54,7 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
 
 def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str],
                  q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
-                 fps: float = 30.0, tip: str | None = None) -> int:
+                 fps: float = 30.0, tip: str | None = None, obstacles: str | os.PathLike[str] | None = None) -> int:
     """The ``robokit view`` command: write the page to ``output``; return the exit status."""
     from robokit.description.loading import load
     from robokit.viz.view import load_trajectory, view_html
@@ -66,7 +66,12 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
         raise ValueError("-q: contains NaN or infinite values")
     robot = load(model, tip=tip)
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
-    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps)
+    obs = None
+    if obstacles:
+        from robokit.collision import load_scene
+
+        obs = load_scene(obstacles)[0]
+    page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps, obstacles=obs)
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
     return 0
@@ -236,4 +241,48 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     h_path, c_path = write_c(src, out)
     ik = "with" if src.has_ik else "without"
     print(f"wrote {h_path} and {c_path} ({robot.n} joints, {ik} closed-form IK)", file=sys.stderr)
+    return 0
+
+
+def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
+                 obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
+                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None) -> int:
+    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``.
+
+    ``goal`` is n joint values, or 6 numbers x y z roll pitch yaw (m, rad) of the tip pose.
+    The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
+    (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
+    --fps 1/dt`` plays it in real time.
+    """
+    from robokit.collision import World, load_scene, pose_from_xyz_rpy
+    from robokit.description.loading import load
+    from robokit.errors import InputError
+    from robokit.motion import plan
+
+    out = _output_file(output, (".csv",))
+    if not (dt > 0 and np.isfinite(dt)):
+        raise InputError(f"--dt: expected a positive time step, got {dt:g}")
+    robot = load(model, tip=tip)
+    q0 = np.asarray(start, dtype=float)
+    if q0.shape != (robot.n,):
+        raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")
+    g = np.asarray(goal, dtype=float)
+    if g.shape == (robot.n,):
+        target: np.ndarray = g
+    elif g.shape == (6,):
+        target = pose_from_xyz_rpy(g[:3], g[3:])
+    else:
+        raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
+    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
+    world = World(robot, obs, padding)
+    tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    t = np.arange(0.0, tr.t[-1], dt)
+    t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t
+    Q = np.column_stack([np.interp(t, tr.t, tr.q[:, j]) for j in range(robot.n)])
+    lines = [f"# robokit plan {robot.name}: duration {tr.t[-1]:.6g} s, one row per {dt:.6g} s",
+             ",".join(f"q{j + 1}" for j in range(robot.n))]
+    lines += [",".join(f"{x:.10g}" for x in row) for row in Q]
+    atomic_write(out, "\n".join(lines) + "\n")
+    print(f"wrote {out}: {len(Q)} rows, {tr.t[-1]:.3f} s, {len(tr.info['waypoints'])} waypoints "
+          f"after shortcutting", file=sys.stderr)
     return 0

@@ -63,7 +63,7 @@ from robokit.ik._dh_chain import DHChain
 from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
-from robokit.ik.solution import IKSolution, check_pose, solutions_from_rows
+from robokit.ik.solution import CollisionChecker, IKSolution, check_pose, solutions_from_rows, with_collision_flags
 from robokit.ik.solver import ClosedFormSolver
 from robokit.kernels import closed_form as _kcf
 from robokit.kernels.closed_form import pack_constants as _pack_constants
@@ -695,7 +695,8 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     return ik.kind
 
 
-def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
+def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
+                world: CollisionChecker | None = None) -> list[IKSolution]:
     r"""Every closed-form IK solution of ``robot`` for the tip pose ``T``.
 
     The one-call form of :class:`AnalyticIK`: ``ik_analytic(robot, T)`` is
@@ -712,6 +713,9 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     wrist_ref : float
         At a wrist singularity, the value given to the free joint (q₄ for a spherical wrist,
         q₆ for the parallel-axes arms; rad). Default 0.
+    world : :class:`robokit.collision.World`, optional
+        When given, each solution's ``.collision_free`` says whether the arm is free of self-
+        and obstacle collisions there (None without a world). All solutions are returned.
 
     Returns
     -------
@@ -746,7 +750,7 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0) ->
     >>> len(ik_analytic(robot, T))
     8
     """
-    return _CACHE.get(robot).solve(T, wrist_ref)
+    return with_collision_flags(_CACHE.get(robot).solve(T, wrist_ref), world)
 
 
 def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:

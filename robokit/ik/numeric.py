@@ -26,6 +26,7 @@ from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
 from robokit.ik.lm import IKResult
+from robokit.ik.solution import CollisionChecker
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
 
@@ -158,11 +159,31 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
     return best.result(), False
 
 
+def _collision_free(robot: Robot | RobotLike, target: ArrayLike, frame: str | None, q0: ArrayLike | None,
+                    world: CollisionChecker, max_restarts: int, rng: int | np.random.Generator | None,
+                    kw: dict) -> IKResult:
+    """solve_ik's answer when it is collision-free in ``world``, else retried from new seeds."""
+    g = np.random.default_rng(DEFAULT_SEED if rng is None else rng)
+    qlim = np.asarray(robot.qlim, dtype=float)
+    lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
+    hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+    res = None
+    for k in range(int(max_restarts) + 1):
+        seed = q0 if k == 0 else g.uniform(lo, hi)
+        res = solve_ik(robot, target, frame, seed, **kw)
+        if res.success and not bool(world.in_collision(res.q)):
+            return res
+    assert res is not None
+    res.success = False
+    res.tried["world"] = f"no collision-free solution in {int(max_restarts) + 1} attempts"
+    return res
+
+
 def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = None, q0: ArrayLike | None = None, *,
              position_only: bool = False, weights: ArrayLike | None = None, tol: float = 1e-10,
              max_iterations: int | None = None, max_restarts: int = 100, time_budget: float | None = None,
              damping: float = 1e-2, min_damping: float = 1e-9, rng: int | np.random.Generator | None = None,
-             method: str = "auto") -> IKResult:
+             method: str = "auto", world: CollisionChecker | None = None) -> IKResult:
     """Inverse kinematics for any Robot and frame, by the first IK back end that supports the problem.
 
     Parameters
@@ -201,6 +222,11 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         order — ``"analytic"`` (closed form), ``"planar"``, ``"compiled"`` (compiled LM),
         ``"lm"`` (Pinocchio LM) —, the first that supports the problem and meets ``tol``.
         A name picks that back end only.
+    world : :class:`robokit.collision.World`, optional
+        Collision-free answers only: a solution where ``world.in_collision`` is True is
+        rejected and the solve repeated from a new seed (``q0`` first, then up to
+        ``max_restarts`` seeds uniform in the limits from ``rng``); ``.success`` is False if
+        no collision-free solution was found (``.tried["world"]`` says so).
 
     Returns
     -------
@@ -231,6 +257,12 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     'lm'
     """
     t_start = time.perf_counter()
+    if world is not None:
+        return _collision_free(robot, target, frame, q0, world, max_restarts, rng,
+                               dict(position_only=position_only, weights=weights, tol=tol,
+                                    max_iterations=max_iterations, max_restarts=max_restarts,
+                                    time_budget=time_budget, damping=damping, min_damping=min_damping,
+                                    rng=rng, method=method))
     from robokit.description.protocol import RobotLike
     from robokit.description.robot import Robot
 

@@ -13,8 +13,8 @@ lands inside limits wider than ±π —; prismatic joint values in m, untouched.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any, Protocol, Sequence, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -45,6 +45,9 @@ class IKSolution:
     degenerate : bool
         True if the target is at a singularity where the solver made a documented choice
         for a free angle (e.g. θ₅ = 0 of a spherical wrist).
+    collision_free : bool or None
+        With a ``world`` (:class:`robokit.collision.World`) given to the solver: whether the
+        arm at ``q`` is free of self- and world collisions; None without a world.
 
     Examples
     --------
@@ -58,6 +61,23 @@ class IKSolution:
     label: str = ""
     degenerate: bool = False
     extra: dict = field(default_factory=dict, compare=False, repr=False)
+    collision_free: bool | None = None
+
+
+@runtime_checkable
+class CollisionChecker(Protocol):
+    """What IK needs of a collision world (:class:`robokit.collision.World` is one)."""
+
+    def in_collision(self, q: Any) -> Any:
+        """True if the arm at joint values ``q`` (n,) touches itself or an obstacle."""
+        ...
+
+
+def with_collision_flags(solutions: Sequence[IKSolution], world: CollisionChecker | None) -> list[IKSolution]:
+    """The solutions with ``.collision_free`` set from ``world`` (unchanged when world is None)."""
+    if world is None:
+        return list(solutions)
+    return [replace(s, collision_free=not bool(world.in_collision(s.q))) for s in solutions]
 
 
 def _within(q: np.ndarray, qlim: ArrayLike | None) -> bool:

@@ -224,6 +224,35 @@ class Scene:
         self.vis["ellipsoid"].set_transform(T)
         return self
 
+    def obstacles(self, obstacles: Iterable[Any], color: int = 0xC08040, opacity: float = 0.6) -> Scene:
+        """Draw collision obstacles (:mod:`robokit.collision` Box, Sphere, Cylinder, Mesh) at their poses.
+
+        Nodes are ``obstacles/<index>`` (an obstacle's name never becomes a scene path).
+
+        Examples
+        --------
+        >>> scene.obstacles([Box([0.1, 1, 1])])  # doctest: +SKIP
+        """
+        g = require("meshcat.geometry", "the viewer")
+        mat = g.MeshLambertMaterial(color=color, opacity=opacity, transparent=opacity < 1)
+        Rx = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])  # meshcat's cylinder axis y → z
+        for k, o in enumerate(obstacles):
+            kind = type(o).__name__
+            T = np.asarray(o.pose, dtype=float)
+            if kind == "Box":
+                geom = g.Box([float(x) for x in o.size])
+            elif kind == "Sphere":
+                geom = g.Sphere(float(o.radius))
+            elif kind == "Cylinder":
+                geom, T = g.Cylinder(float(o.length), float(o.radius)), T @ Rx
+            elif kind == "Mesh":
+                geom = g.TriangularMeshGeometry(np.asarray(o.vertices, dtype=float), np.asarray(o.faces, dtype=np.int64))
+            else:
+                raise ValueError(f"obstacles: item {k} is a {kind}, not a Box, Sphere, Cylinder or Mesh")
+            self.vis["obstacles"][str(k)].set_object(geom, mat)
+            self.vis["obstacles"][str(k)].set_transform(T)
+        return self
+
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
         """Animate joint configurations ``Q`` (K, n) (at times ``t`` (K,), or ``fps``), playable in the page."""
         Animation = require("meshcat.animation", "the viewer").Animation

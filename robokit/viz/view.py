@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -89,9 +89,10 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
 
 def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None, frames: bool = False,
               trajectory: ArrayLike | None = None, fps: float = 30.0,
-              tip: str | None = None) -> str:
+              tip: str | None = None, obstacles: Any = None) -> str:
     """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
-    and/or a (K, n) trajectory animation; the camera framed on the robot."""
+    and/or a (K, n) trajectory animation, and collision ``obstacles`` (robokit.collision
+    shapes) drawn at their poses; the camera framed on the robot."""
     from robokit.description.loading import load
     from robokit.viz.scene import Scene
 
@@ -106,5 +107,7 @@ def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | No
             scene.frames()
         if trajectory is not None:
             scene.animate(trajectory, fps=fps)
+        if obstacles:
+            scene.obstacles(obstacles)
         scene.frame_camera()
         return scene.html()

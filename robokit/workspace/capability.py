@@ -41,6 +41,7 @@ from __future__ import annotations
 import hashlib
 import io
 import json
+import pickle
 import os
 import time
 import warnings
@@ -243,7 +244,8 @@ def _backend_for(desc: RobotSpec, restarts: int) -> Any:
     return hit
 
 
-def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int) -> np.ndarray:
+def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int,
+                  world: tuple | None = None) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -252,8 +254,46 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
     T[:, :, :3, 3] = centres[:, None, :]
     T[:, :, 3, 3] = 1.0
     rng = np.random.default_rng(np.random.SeedSequence([int(seed), int(chunk)]))
-    ok = backend.success(T.reshape(m * K, 4, 4), rng)
+    if world is None:
+        ok = backend.success(T.reshape(m * K, 4, 4), rng)
+    else:
+        ok = _collision_free_success(backend.robot, world, T.reshape(m * K, 4, 4), restarts, rng)
     return ok.reshape(m, K).sum(axis=1).astype(np.int64)
+
+
+_WORLD_CACHE: dict = {}
+
+
+def _world_state(world: Any, robot: Robot) -> tuple | None:
+    """The picklable part of a ``robokit.collision.World`` the workers rebuild it from."""
+    if world is None:
+        return None
+    from robokit.errors import InputError
+    if not hasattr(world, "obstacles") or not hasattr(world, "padding") or not hasattr(world, "in_collision"):
+        raise InputError(f"world: expected a robokit.collision.World, got {type(world).__name__}")
+    if getattr(world.robot, "name", None) != robot.name:
+        raise InputError(f"world: built for {world.robot.name!r}, not for {robot.name!r}")
+    return (tuple(world.obstacles), float(world.padding))
+
+
+def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
+    """Per pose: reached by an IK solution inside the limits that is collision-free in the world."""
+    from robokit.collision import World
+    from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
+    from robokit.ik.numeric import solve_ik
+
+    key = (id(robot), hashlib.sha256(pickle.dumps(world)).hexdigest())
+    w = _WORLD_CACHE.get(key)
+    if w is None:
+        w = _WORLD_CACHE[key] = World(robot, world[0], world[1])
+    closed = robot.n == 6 and ik_analytic_kind(robot).method is not None
+    out = np.zeros(len(T), dtype=bool)
+    for k, Tk in enumerate(T):
+        if closed:
+            out[k] = any(s.within_limits and s.collision_free for s in ik_analytic(robot, Tk, world=w))
+        else:
+            out[k] = solve_ik(robot, Tk, world=w, max_restarts=restarts, rng=rng).success
+    return out
 
 
 # ----------------------------------------------------------------------------- the map
@@ -301,7 +341,7 @@ def _progress(total: int, enabled: bool | None) -> tuple[Any, Any]:
 def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], resolution: float, orientations: int | ArrayLike = 100, client: Any = None, *, store: str | os.PathLike[str] | bool | None = None,
                    chunk_size: int | None = None, samples: int | None = None, seed: int = 0,
                    restarts: int | None = None, progress: bool | None = None,
-                   dashboard: bool = False) -> CapabilityMap:
+                   dashboard: bool = False, world: Any = None) -> CapabilityMap:
     """Capability map of ``robot``'s tip: per voxel, the fraction of K orientations it reaches.
 
     Parameters
@@ -336,6 +376,11 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
         Show a progress bar of chunks on stderr (default: only when stderr is a terminal).
     dashboard : bool
         With ``client=None``: serve Dask's dashboard on 127.0.0.1 (its link is given as a note).
+    world : :class:`robokit.collision.World`, optional
+        Count only orientations reached by an IK solution inside the limits that is free of
+        self- and obstacle collisions (closed form: any such branch; otherwise ``solve_ik``
+        with ``world``). The workers rebuild the world from its obstacles and padding; the
+        store's fingerprint includes them. Slower than the plain map (one IK call per pose).
 
     Returns
     -------
@@ -397,13 +442,14 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     try:
         with _Cluster(client, dashboard) as cl:
             return _capability_map(rob, desc, kind, chain, R, res, cl.client, st, int(chunk_size), samples,
-                                   int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed)
+                                   int(seed), int(restarts), progress, t0, MAX_MAP_BYTES - fixed,
+                                   _world_state(world, rob))
     finally:
         if st is not None:
             st.close()
 
 
-def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float, world: tuple | None = None) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -420,16 +466,19 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
                   orientations=hashlib.sha256(R.tobytes()).hexdigest(), chunk_size=int(chunk_size),
                   samples=used, seed=int(seed), restarts=int(restarts), ik=kind, planar=chain is not None,
                   voxels=M, chunks=n_chunks, version=_STORE_VERSION)
+    if world is not None:  # collision-free counts: a different map, a different store fingerprint
+        params["world"] = hashlib.sha256(pickle.dumps(world)).hexdigest()
     fingerprint = hashlib.sha256(json.dumps(params, sort_keys=True).encode()).hexdigest()
     params["fingerprint"] = fingerprint
     if st is not None:
         st.begin(fingerprint, params, K)
-    return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre)
+    return _sweep(rob, centres, R, res, client, st, chunk_size, desc, restarts, seed, progress, params, t0, t_pre,
+                  world)
 
 
 def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,
            chunk_size: int, desc: RobotSpec, restarts: int, seed: int, progress: bool | None, params: dict, t0: float,
-           t_pre: float) -> CapabilityMap:
+           t_pre: float, world: tuple | None = None) -> CapabilityMap:
     """The orientation sweep over the chunks (those not already in the store ``st``)."""
     K, M = len(R), len(centres)
     n_chunks = params["chunks"]
@@ -468,11 +517,11 @@ def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: A
         if client is None:
             for c in todo:
                 sl = slice(c * chunk_size, min(M, (c + 1) * chunk_size))
-                finish(c, _chunk_counts(desc, centres[sl], R, restarts, seed, c))
+                finish(c, _chunk_counts(desc, centres[sl], R, restarts, seed, c, world))
                 bar.advance(task)
         elif todo:
             workers = _run_dask(client, todo, lambda c: centres[c * chunk_size: min(M, (c + 1) * chunk_size)],
-                                desc, R, restarts, seed, finish, lambda: bar.advance(task), fingerprint)
+                                desc, R, restarts, seed, finish, lambda: bar.advance(task), fingerprint, world)
     t_sweep = time.perf_counter() - t1
     index = counts / K
     timings = dict(prepass=t_pre, sweep=t_sweep, total=time.perf_counter() - t0,
@@ -520,7 +569,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: tuple | None = None) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 
@@ -532,7 +581,7 @@ def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarr
 
     def submit() -> None:
         c = pending.pop(0)
-        f = client.submit(_chunk_counts, desc, centres_of(c), R, restarts, seed, c,
+        f = client.submit(_chunk_counts, desc, centres_of(c), R, restarts, seed, c, world,
                           key=f"capability-{fingerprint[:16]}-{c:05d}")
         futures[f.key] = c
         ac.add(f)

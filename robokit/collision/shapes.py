@@ -1,0 +1,208 @@
+"""Obstacles: primitive shapes and meshes placed in the robot's base frame.
+
+Every obstacle has a ``pose`` (4×4 homogeneous transform of the shape's own frame in the
+base frame, metres) and a ``name`` (used by :meth:`World.colliding_pairs`). Shapes are
+centred on their frame's origin; a cylinder's axis is its frame's z axis.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from robokit._arrays import as_array, as_scalar
+from robokit._optional import require
+from robokit.errors import InputError
+
+__all__ = ["Obstacle", "Box", "Sphere", "Cylinder", "Mesh", "MAX_MESH_BYTES"]
+
+MAX_MESH_BYTES = 64 * 2**20  # a user's obstacle mesh file may be at most 64 MiB
+
+
+def _pose(pose: Any) -> np.ndarray:
+    if pose is None:
+        return np.eye(4)
+    T = as_array(pose, "pose", (4, 4))
+    R = T[:3, :3]
+    if not np.allclose(R @ R.T, np.eye(3), atol=1e-6) or np.linalg.det(R) < 0 or not np.allclose(T[3], [0, 0, 0, 1]):
+        raise InputError("pose: not a homogeneous transform (rotation part must be orthonormal, last row 0 0 0 1)")
+    return T
+
+
+class Obstacle:
+    """Base of the obstacle shapes (not used directly): ``pose`` (4, 4) and ``name``."""
+
+    pose: np.ndarray
+    name: str
+
+    def __setattr__(self, key: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is read-only")
+
+    def __repr__(self) -> str:
+        fields = {k: v for k, v in vars(self).items() if k not in ("pose", "vertices", "faces")}
+        body = ", ".join(f"{k}={v.tolist() if isinstance(v, np.ndarray) else v!r}" for k, v in fields.items())
+        return f"{type(self).__name__}({body}, xyz={self.pose[:3, 3].tolist()})"
+
+    def geometry(self) -> Any:  # pragma: no cover - overridden
+        """The coal collision geometry of the shape (in its own frame)."""
+        raise NotImplementedError
+
+
+class Box(Obstacle):
+    """A box of full edge lengths ``size`` = (x, y, z) in m, centred on ``pose``'s origin.
+
+    Parameters
+    ----------
+    size : array_like, shape (3,)
+        Full edge lengths along the box frame's x, y, z axes (m), each > 0.
+    pose : array_like, shape (4, 4), optional
+        Pose of the box centre in the base frame (identity by default).
+    name : str, optional
+        Name reported by ``colliding_pairs`` (default ``box_<k>`` by the World).
+
+    Examples
+    --------
+    >>> from robokit.collision import Box
+    >>> Box([0.1, 0.2, 0.3]).size.tolist()
+    [0.1, 0.2, 0.3]
+    """
+
+    size: np.ndarray
+
+    def __init__(self, size: Any, pose: Any = None, name: str = "") -> None:
+        s = as_array(size, "size", (3,))
+        if (s <= 0).any():
+            raise InputError(f"size: every edge length must be > 0, got {s.tolist()}")
+        object.__setattr__(self, "size", s)
+        object.__setattr__(self, "pose", _pose(pose))
+        object.__setattr__(self, "name", str(name))
+
+    def geometry(self) -> Any:
+        """coal.Box with the full edge lengths."""
+        import coal
+        return coal.Box(*self.size)
+
+
+class Sphere(Obstacle):
+    """A sphere of ``radius`` (m) centred on ``pose``'s origin.
+
+    Parameters
+    ----------
+    radius : float, > 0, m.
+    pose : array_like (4, 4), optional; name : str, optional.
+
+    Examples
+    --------
+    >>> from robokit.collision import Sphere
+    >>> Sphere(0.1).radius
+    0.1
+    """
+
+    radius: float
+
+    def __init__(self, radius: Any, pose: Any = None, name: str = "") -> None:
+        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True))
+        object.__setattr__(self, "pose", _pose(pose))
+        object.__setattr__(self, "name", str(name))
+
+    def geometry(self) -> Any:
+        """coal.Sphere."""
+        import coal
+        return coal.Sphere(self.radius)
+
+
+class Cylinder(Obstacle):
+    """A cylinder of ``radius`` and full ``length`` (m) along ``pose``'s z axis, centred on its origin.
+
+    Parameters
+    ----------
+    radius, length : float, > 0, m.
+    pose : array_like (4, 4), optional; name : str, optional.
+
+    Examples
+    --------
+    >>> from robokit.collision import Cylinder
+    >>> Cylinder(0.05, 1.0).length
+    1.0
+    """
+
+    radius: float
+    length: float
+
+    def __init__(self, radius: Any, length: Any, pose: Any = None, name: str = "") -> None:
+        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True))
+        object.__setattr__(self, "length", as_scalar(length, "length", positive=True))
+        object.__setattr__(self, "pose", _pose(pose))
+        object.__setattr__(self, "name", str(name))
+
+    def geometry(self) -> Any:
+        """coal.Cylinder (coal's length is the full length)."""
+        import coal
+        return coal.Cylinder(self.radius, self.length)
+
+
+class Mesh(Obstacle):
+    """A triangle mesh read from ``path`` (STL, OBJ, PLY, … — what trimesh reads), in m.
+
+    The file must be a regular file of at most :data:`MAX_MESH_BYTES` bytes; it is read with
+    trimesh (the ``viz`` extra). The mesh is used as given (a triangle soup for coal's
+    BVH, no convex hull): collisions are with its surface.
+
+    Parameters
+    ----------
+    path : str or path-like, the mesh file.
+    pose : array_like (4, 4), optional; name : str, optional (default the file's stem).
+
+    Attributes
+    ----------
+    vertices : (V, 3) float, m, in the mesh frame; faces : (F, 3) int.
+
+    Examples
+    --------
+    >>> from robokit.collision import Mesh
+    >>> m = Mesh("table.stl")  # doctest: +SKIP
+    """
+
+    path: Path
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    def __init__(self, path: str | os.PathLike[str], pose: Any = None, name: str = "") -> None:
+        p = Path(path)
+        try:
+            st = p.stat()
+        except FileNotFoundError:
+            raise InputError(f"path: mesh file {p} not found") from None
+        except OSError as exc:
+            raise InputError(f"path: cannot read {p} ({exc.strerror})") from None
+        import stat
+        if not stat.S_ISREG(st.st_mode):
+            raise InputError(f"path: {p} is not a regular file")
+        if st.st_size > MAX_MESH_BYTES:
+            raise InputError(f"path: {p} is too large ({st.st_size} bytes; at most {MAX_MESH_BYTES})")
+        trimesh = require("trimesh", "a Mesh obstacle")
+        try:
+            tm = trimesh.load(str(p), force="mesh")
+        except Exception as exc:  # trimesh raises many types for bad files
+            raise InputError(f"path: cannot read mesh {p} ({exc})") from None
+        V = np.asarray(getattr(tm, "vertices", np.zeros((0, 3))), dtype=float)
+        F = np.asarray(getattr(tm, "faces", np.zeros((0, 3))), dtype=np.int64)
+        if V.ndim != 2 or V.shape[1:] != (3,) or len(F) == 0 or not np.isfinite(V).all():
+            raise InputError(f"path: {p} holds no triangles")
+        object.__setattr__(self, "path", p)
+        object.__setattr__(self, "vertices", V)
+        object.__setattr__(self, "faces", F)
+        object.__setattr__(self, "pose", _pose(pose))
+        object.__setattr__(self, "name", str(name) or p.stem)
+
+    def geometry(self) -> Any:
+        """coal.BVHModelOBBRSS of the triangles."""
+        import coal
+        bvh = coal.BVHModelOBBRSS()
+        bvh.beginModel(len(self.faces), len(self.vertices))
+        bvh.addVertices(self.vertices)
+        bvh.addTriangles(self.faces)
+        bvh.endModel()
+        return bvh

@@ -1,0 +1,384 @@
+"""The collision world: a robot's geometry and the obstacles around it, queried with coal.
+
+Geometry of the robot
+    * A robot with collision geometry (``robot.collision_model``: URDF/MJCF collision meshes,
+      example-robot-data) uses it as loaded — meshes as triangle BVHs, no convex hulls.
+    * A robot without it (the DH models, whose generated URDF has only visuals) gets one
+      **capsule per link**: the segment from the link's joint origin to the next joint's origin
+      (to the tip frame for the last link), radius the thinnest visual cylinder attached to that
+      joint (the generated URDF's link cylinders), or :data:`DEFAULT_CAPSULE_RADIUS`. A
+      zero-length segment becomes a sphere of that radius.
+
+Pairs checked
+    Every robot geometry against every obstacle, and the robot's **self-collision pairs**:
+    all pairs of geometries on different links except (a) adjacent links (parent and child
+    joint) and (b) pairs in contact in *every* one of :data:`SELF_SAMPLES` random
+    configurations (uniform in the joint limits, ``numpy.random.default_rng(SELF_SEED)``) —
+    MoveIt setup assistant's "adjacent" and "always in collision" rules. Pairs that never
+    collided in the samples are listed too but are *kept* (a folded arm must still be seen).
+    The result is computed once per robot and cached (:func:`self_collision_pairs`).
+
+Padding
+    ``padding`` (m) inflates every robot geometry: a robot–obstacle pair counts as colliding
+    when its distance is below ``padding``, a self pair below ``2·padding``, and
+    :meth:`World.distance` reports the distance of the inflated geometry.
+"""
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+from typing import Any, Iterable, Sequence
+
+import numpy as np
+
+from robokit._arrays import as_array, as_scalar
+from robokit.collision.shapes import Box, Cylinder, Mesh, Obstacle, Sphere
+from robokit.errors import InputError
+
+__all__ = ["World", "SelfCollisionPairs", "self_collision_pairs", "DEFAULT_CAPSULE_RADIUS",
+           "SELF_SAMPLES", "SELF_SEED"]
+
+DEFAULT_CAPSULE_RADIUS = 0.04  # m, for a DH link with no visual cylinder
+SELF_SAMPLES = 1000
+SELF_SEED = 0
+
+_CACHE: "weakref.WeakKeyDictionary[Any, tuple[Any, SelfCollisionPairs]]" = weakref.WeakKeyDictionary()
+
+
+def _se3(T: np.ndarray) -> Any:
+    import pinocchio as pin
+    return pin.SE3(np.asarray(T[:3, :3], dtype=float).copy(), np.asarray(T[:3, 3], dtype=float).copy())
+
+
+def _link_name(model: Any, joint: int) -> str:
+    for f in model.frames:
+        if f.parentJoint == joint and str(f.type) == "BODY":
+            return str(f.name)
+    return str(model.names[joint])
+
+
+def _capsule_model(robot: Any) -> Any:
+    """One capsule (or sphere) per moving link, from consecutive joint origins."""
+    import coal
+    import pinocchio as pin
+    model = robot.model
+    gm = pin.GeometryModel()
+    radius: dict[int, float] = {}
+    if robot.visual_model is not None:
+        for g in robot.visual_model.geometryObjects:
+            if isinstance(g.geometry, coal.Cylinder):
+                r = float(g.geometry.radius)
+                radius[g.parentJoint] = min(radius.get(g.parentJoint, np.inf), r)
+    tip_frame = model.frames[robot.tip_id]
+    for j in range(1, model.njoints):
+        ends = [np.asarray(model.jointPlacements[k].translation) for k in range(1, model.njoints)
+                if model.parents[k] == j]
+        if not ends:
+            ends = [np.asarray(tip_frame.placement.translation) if tip_frame.parentJoint == j else np.zeros(3)]
+        r = radius.get(j, DEFAULT_CAPSULE_RADIUS)
+        name = _link_name(model, j)
+        for e_i, end in enumerate(ends):
+            L = float(np.linalg.norm(end))
+            if L < 1e-9:
+                geom, R = coal.Sphere(r), np.eye(3)
+            else:
+                z = end / L
+                a = np.array([1.0, 0, 0]) if abs(z[0]) < 0.9 else np.array([0, 1.0, 0])
+                x = np.cross(a, z)
+                x /= np.linalg.norm(x)
+                R = np.column_stack([x, np.cross(z, x), z])
+                geom = coal.Capsule(r, L)
+            T = np.eye(4)
+            T[:3, :3], T[:3, 3] = R, end / 2
+            go = pin.GeometryObject(f"{name}_capsule{e_i}", j, _se3(T), geom)
+            gm.addGeometryObject(go)
+    return gm
+
+
+def _robot_geometry(robot: Any) -> tuple[Any, list[str], str]:
+    import pinocchio as pin
+    cm = robot.collision_model
+    if cm is not None and cm.ngeoms > 0:
+        gm = pin.GeometryModel()
+        for g in cm.geometryObjects:
+            gm.addGeometryObject(pin.GeometryObject(g))
+        names = [str(robot.model.frames[g.parentFrame].name) if g.parentFrame < len(robot.model.frames)
+                 else _link_name(robot.model, g.parentJoint) for g in gm.geometryObjects]
+        return gm, names, "collision meshes"
+    gm = _capsule_model(robot)
+    return gm, [_link_name(robot.model, g.parentJoint) for g in gm.geometryObjects], "capsules"
+
+
+def _adjacent(model: Any, a: int, b: int) -> bool:
+    return a == b or model.parents[a] == b or model.parents[b] == a
+
+
+@dataclass(frozen=True)
+class SelfCollisionPairs:
+    """The self-collision pairs of one robot, computed once (see the module docstring).
+
+    Attributes
+    ----------
+    checked : list of (link, link) name pairs that are checked.
+    adjacent : pairs skipped as adjacent links (or geometries on the same link).
+    always : pairs skipped because they were in contact in every sample.
+    never : checked pairs that never collided in the samples (kept, listed for information).
+    samples, seed : the sampling used; geometry : "collision meshes" or "capsules".
+    """
+
+    checked: list[tuple[str, str]]
+    adjacent: list[tuple[str, str]]
+    always: list[tuple[str, str]]
+    never: list[tuple[str, str]]
+    index_pairs: list[tuple[int, int]]
+    samples: int
+    seed: int
+    geometry: str
+
+    def __str__(self) -> str:
+        lines = [f"self-collision pairs ({self.geometry}; {self.samples} samples, seed {self.seed}):",
+                 f"  checked ({len(self.checked)}):"]
+        lines += [f"    {a} – {b}" for a, b in self.checked]
+        lines.append(f"  skipped, adjacent ({len(self.adjacent)}): " + ", ".join(f"{a}–{b}" for a, b in self.adjacent))
+        lines.append(f"  skipped, always in contact ({len(self.always)}): " + ", ".join(f"{a}–{b}" for a, b in self.always))
+        lines.append(f"  checked but never colliding in the samples ({len(self.never)})")
+        return "\n".join(lines)
+
+
+def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
+    """The robot's self-collision pairs: adjacent and always-in-contact pairs removed.
+
+    Computed once per robot object (cached), with :data:`SELF_SAMPLES` configurations drawn
+    by ``robot.random_configuration`` from ``numpy.random.default_rng(SELF_SEED)``.
+
+    Parameters
+    ----------
+    robot : robokit.Robot
+
+    Returns
+    -------
+    SelfCollisionPairs
+        ``print()`` it for the table of checked and skipped pairs.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.collision import self_collision_pairs
+    >>> print(self_collision_pairs(robokit.load("puma560")))  # doctest: +SKIP
+    """
+    hit = _CACHE.get(robot)
+    if hit is not None:
+        return hit[1]
+    import pinocchio as pin
+    gm, names, kind = _robot_geometry(robot)
+    model = robot.model
+    objs = list(gm.geometryObjects)
+    adjacent, cand = [], []
+    for i in range(len(objs)):
+        for j in range(i + 1, len(objs)):
+            if _adjacent(model, objs[i].parentJoint, objs[j].parentJoint):
+                if names[i] != names[j]:
+                    adjacent.append((names[i], names[j]))
+            else:
+                cand.append((i, j))
+    for i, j in cand:
+        gm.addCollisionPair(pin.CollisionPair(i, j))
+    gd = pin.GeometryData(gm)
+    data = model.createData()
+    rng = np.random.default_rng(SELF_SEED)
+    counts = np.zeros(len(cand), dtype=int)
+    for _ in range(SELF_SAMPLES):
+        q = robot.q_pin(robot.random_configuration(rng))
+        pin.computeCollisions(model, data, gm, gd, q, False)
+        counts += [gd.collisionResults[k].isCollision() for k in range(len(cand))]
+    keep = [c for c, n in zip(cand, counts) if n < SELF_SAMPLES]
+    always = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == SELF_SAMPLES]
+    never = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == 0]
+    res = SelfCollisionPairs(checked=[(names[i], names[j]) for i, j in keep], adjacent=adjacent, always=always,
+                             never=never, index_pairs=keep, samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind)
+    _CACHE[robot] = (None, res)
+    return res
+
+
+class World:
+    """A robot and its obstacles, with collision and distance queries (coal through Pinocchio).
+
+    Parameters
+    ----------
+    robot : robokit.Robot
+        Its collision meshes are used, or capsules for a model without them (module docstring).
+    obstacles : iterable of Box, Sphere, Cylinder, Mesh
+        Placed in the robot's base frame (m). Unnamed ones are called ``<type>_<k>``.
+    padding : float, >= 0, m
+        Security margin inflating the robot's geometry.
+
+    Attributes
+    ----------
+    robot, obstacles, padding; self_pairs : :class:`SelfCollisionPairs`;
+    geometry_model : the ``pinocchio.GeometryModel`` (robot geometries first, then obstacles).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.collision import World, Box
+    >>> T = np.eye(4); T[:3, 3] = [0.6, 0, 0.3]
+    >>> w = World(robokit.load("puma560"), [Box([0.1, 1.0, 1.0], T, name="wall")])
+    >>> w.in_collision(np.zeros(6))  # doctest: +SKIP
+    False
+    """
+
+    def __init__(self, robot: Any, obstacles: Iterable[Obstacle] = (), padding: float = 0.0) -> None:
+        import pinocchio as pin
+        self.robot = robot
+        self.padding = as_scalar(padding, "padding", nonnegative=True)
+        obs = list(obstacles)
+        for k, o in enumerate(obs):
+            if not isinstance(o, Obstacle):
+                raise InputError(f"obstacles: item {k} is a {type(o).__name__}, not a Box, Sphere, Cylinder or Mesh")
+        self.self_pairs = self_collision_pairs(robot)
+        gm, names, _ = _robot_geometry(robot)
+        self._n_robot = gm.ngeoms
+        counters: dict[str, int] = {}
+        self.obstacle_names: list[str] = []
+        for o in obs:
+            kind = type(o).__name__.lower()
+            nm = o.name or f"{kind}_{counters.get(kind, 0)}"
+            counters[kind] = counters.get(kind, 0) + 1
+            if nm in self.obstacle_names:
+                raise InputError(f"obstacles: two obstacles are named {nm!r}")
+            self.obstacle_names.append(nm)
+            gm.addGeometryObject(pin.GeometryObject(f"obstacle:{nm}", 0, _se3(o.pose), o.geometry()))
+            names.append(nm)
+        self.obstacles = tuple(obs)
+        self._names = names
+        pairs = list(self.self_pairs.index_pairs)
+        margins = [2 * self.padding] * len(pairs)
+        for i in range(self._n_robot):
+            for j in range(self._n_robot, gm.ngeoms):
+                pairs.append((i, j))
+                margins.append(self.padding)
+        for i, j in pairs:
+            gm.addCollisionPair(pin.CollisionPair(i, j))
+        self._pairs = pairs
+        self._margins = np.array(margins)
+        self.geometry_model = gm
+        self._gd = pin.GeometryData(gm)
+        for k, m in enumerate(margins):
+            req = self._gd.collisionRequests[k]
+            req.security_margin = m
+            # Pinocchio's default requests (enable_contact=False) missed a capsule resting 2 cm
+            # deep in a box at some joint angles; with contacts enabled coal finds it.
+            req.enable_contact = True
+            req.num_max_contacts = 1
+        self._data = robot.model.createData()
+        self._pin = pin
+
+    # ------------------------------------------------------------------ helpers
+    def _qs(self, q: Any) -> tuple[np.ndarray, bool]:
+        a = as_array(q, "q")
+        n = self.robot.n
+        if a.ndim == 1 and a.shape == (n,):
+            return a[None], False
+        if a.ndim == 2 and a.shape[1] == n:
+            return a, True
+        raise InputError(f"q: expected shape ({n},) or (N, {n}) for {self.robot.name}, got {a.shape}")
+
+    def _collide(self, q: np.ndarray, stop: bool) -> bool:
+        pin = self._pin
+        return bool(pin.computeCollisions(self.robot.model, self._data, self.geometry_model, self._gd,
+                                          self.robot.q_pin(q), stop))
+
+    def _pairs_state(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Per checked pair: in contact (bool) and signed distance of the padded geometry (m).
+
+        A pair is in contact when coal's collision test says so (its distance is then ≤ 0).
+        """
+        pin = self._pin
+        if not self._pairs:
+            return np.zeros(0, dtype=bool), np.zeros(0)
+        qp = self.robot.q_pin(q)
+        pin.computeDistances(self.robot.model, self._data, self.geometry_model, self._gd, qp)
+        d = np.array([r.min_distance for r in self._gd.distanceResults]) - self._margins
+        pin.computeCollisions(self.robot.model, self._data, self.geometry_model, self._gd, qp, False)
+        flags = np.array([r.isCollision() for r in self._gd.collisionResults])
+        d = np.where(flags, np.minimum(d, 0.0), d)
+        return flags, d
+
+    def _hit(self, q: np.ndarray) -> bool:
+        return self._collide(q, True)
+
+    # ------------------------------------------------------------------ queries
+    def in_collision(self, q: Any) -> Any:
+        """Whether the (padded) robot touches itself or an obstacle at ``q``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n), joint values (rad / m).
+
+        Returns
+        -------
+        bool, or ndarray of bool (N,) for a batch.
+
+        Examples
+        --------
+        >>> w.in_collision(np.zeros(6))  # doctest: +SKIP
+        False
+        """
+        qs, batch = self._qs(q)
+        out = np.array([self._hit(x) for x in qs], dtype=bool)
+        return out if batch else bool(out[0])
+
+    def distance(self, q: Any) -> Any:
+        """Minimum distance (m) over the checked pairs of the padded geometry; ≤ 0 in contact.
+
+        A pair in contact reports coal's signed (penetration) distance, at most 0.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n).
+
+        Returns
+        -------
+        float, or ndarray (N,); ``inf`` when no pair is checked.
+
+        Examples
+        --------
+        >>> w.distance(np.zeros(6))  # doctest: +SKIP
+        0.25
+        """
+        qs, batch = self._qs(q)
+        out = np.array([float(self._pairs_state(x)[1].min()) if self._pairs else np.inf for x in qs])
+        return out if batch else float(out[0])
+
+    def colliding_pairs(self, q: Any) -> Any:
+        """The (link or obstacle name, link or obstacle name) pairs in contact at ``q``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n).
+
+        Returns
+        -------
+        list of (str, str), or a list of such lists for a batch (one per row).
+
+        Examples
+        --------
+        >>> w.colliding_pairs(np.zeros(6))  # doctest: +SKIP
+        []
+        """
+        qs, batch = self._qs(q)
+        out = []
+        for x in qs:
+            flags, _ = self._pairs_state(x)
+            got: list[tuple[str, str]] = []
+            for k, (i, j) in enumerate(self._pairs):
+                if flags[k]:
+                    p = (self._names[i], self._names[j])
+                    if p not in got:
+                        got.append(p)
+            out.append(got)
+        return out if batch else out[0]
+
+    def __repr__(self) -> str:
+        return (f"World({self.robot.name!r}, {len(self.obstacles)} obstacles, padding={self.padding}, "
+                f"{len(self._pairs)} pairs, robot geometry: {self.self_pairs.geometry})")
