@@ -554,7 +554,8 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
     if path.name.lower().endswith(".xacro"):  # formats: xacro
         from robokit.description.xacro_files import load_xacro
 
-        return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_dirs)
+        return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_dirs,
+                          allow_outside_meshes=allow_outside_meshes)
     if xacro_args:
         raise ValueError(f"xacro_args: apply to .xacro files, got {s!r}")
     if path.suffix.lower() == ".xml":  # formats: MJCF

@@ -30,6 +30,9 @@ from typing import Iterable, Literal, NoReturn, Sequence
 import numpy as np
 
 from robokit._io import read_input_text
+from robokit._xml import parse_xml
+from robokit.description.limits import check_joint_count
+from robokit.description.meshes import allowed_roots, is_inside, package_name
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -115,20 +118,13 @@ def _package_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | 
 
 
 def _allowed_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | None) -> list[Path]:
-    """Folders a mesh may be read from without ``allow_outside_meshes``: the URDF's folder, the
-    ROS package that holds it (nearest folder above with a ``package.xml``), ``package_dirs``."""
-    folder = path.parent.resolve()
-    roots = [folder] + [Path(p).resolve() for p in (package_dirs or [])]
-    for parent in (folder, *folder.parents):
-        if (parent / "package.xml").is_file():
-            roots.append(parent)
-            break
-    return roots
+    """Folders a mesh may be read from without ``allow_outside_meshes`` (one rule for every format:
+    :func:`robokit.description.meshes.allowed_roots`)."""
+    return allowed_roots(path, package_dirs)
 
 
 def _inside(p: Path, roots: Iterable[Path]) -> bool:
-    p = p.resolve()
-    return any(p == r or r in p.parents for r in roots)
+    return is_inside(p, roots)
 
 
 def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]) -> tuple[Path | None, str]:
@@ -152,11 +148,7 @@ def _is_package(root: Path, pkg: str) -> bool:
     manifest = root / "package.xml"
     if not manifest.is_file():
         return False
-    try:
-        name = ET.parse(manifest).getroot().findtext("name")
-    except (ET.ParseError, OSError):
-        return False
-    return (name or "").strip() == pkg
+    return package_name(manifest) == pkg
 
 
 def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
@@ -178,13 +170,10 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
 
 def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
            allow_outside_meshes: bool) -> UrdfDocument:
-    try:
-        root = ET.fromstring(raw)
-    except ET.ParseError as exc:
-        line, col = exc.position
-        raise InputError(f"{path}: not well-formed XML at line {line}, column {col + 1}") from None
+    root = parse_xml(raw, path)  # bounded: no DTD/entities, depth and element count capped
     if root.tag != "robot":
         _fail(path, f"expected a <robot> root element, got <{root.tag}>")
+    check_joint_count(len(root.findall("joint")), path, "<joint> elements")
     name = root.get("name") or path.stem
     _check_name(name, path, "robot name")
 
