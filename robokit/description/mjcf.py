@@ -74,14 +74,9 @@ _INERTIA_FLOOR = 1e-9
 
 # --------------------------------------------------------------------------- XML helpers
 def _parse_xml(path: Path) -> ET.Element:
-    try:
-        return ET.parse(path).getroot()
-    except ET.ParseError as exc:
-        line, col = exc.position
-        msg = str(exc).split(":")[0]
-        raise InputError(f"{path}:{line}:{col + 1}: not well-formed XML ({msg})") from None
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    from robokit.description.mjcf_safety import read_mjcf_root
+
+    return read_mjcf_root(path)  # bounded: regular file, byte cap, no DTD, depth and size capped
 
 
 def _floats(elem: ET.Element | _Attr, attr: str, n: int | None, path: str | os.PathLike[str]) -> np.ndarray | None:
@@ -369,7 +364,7 @@ def _default_tip(model: Any) -> str:
     return sites[-1] if sites else body
 
 
-def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
+def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_outside_meshes: bool = False) -> Robot:
     """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
 
     Parameters
@@ -379,6 +374,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     tip : str, optional
         The chain's tip frame (a body or site name). Default: the last site of the chain's
         last body, else that body.
+    allow_outside_meshes : bool
+        Read mesh files outside the file's folder and its package (refused by default; see
+        :mod:`robokit.description.meshes`). Includes are always confined.
 
     Returns
     -------
@@ -403,7 +401,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: file not found")
-    root = _parse_xml(path)
+    from robokit.description.mjcf_safety import check_mjcf
+
+    root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes)  # includes, files, joint count
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
     world = root.find("worldbody")

@@ -363,8 +363,10 @@ class Robot:
 def _from_dh(table: DHTable, source: str) -> Robot:
     import pinocchio as pin
 
+    from robokit.description.limits import check_joint_count
     from robokit.description.urdf_gen import dh_to_urdf
 
+    check_joint_count(len(table.links), source, "links (joints)")  # before Pinocchio builds anything
     xml = dh_to_urdf(table)
     model = pin.buildModelFromXML(xml)
     model.gravity.linear = np.asarray(table.gravity, dtype=float)
@@ -561,7 +563,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
     if path.suffix.lower() == ".xml":  # formats: MJCF
         from robokit.description.mjcf import load_mjcf
 
-        return load_mjcf(path, tip)
+        return load_mjcf(path, tip, allow_outside_meshes=allow_outside_meshes)
     if path.suffix.lower() == ".urdf":
         if not path.is_file():
             raise InputError(f"{path}: file not found")
