@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.control.controllers import gains
+from robokit.errors import InputError
 
 __all__ = ["computed_torque", "simulate_control"]
 
@@ -89,7 +90,7 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
     dt = as_scalar(dt, "dt", positive=True)
     intRes = int(intRes)
     if intRes < 1:
-        raise ValueError(f"intRes: expected a positive integer, got {intRes}")
+        raise InputError(f"intRes: expected a positive integer, got {intRes}")
     Kp, Ki, Kd = gains(Kp, n, "Kp"), gains(Ki, n, "Ki"), gains(Kd, n, "Kd")
     h = dt / intRes
     eint = np.zeros(n)

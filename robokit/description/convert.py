@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from robokit._io import atomic_write
+from robokit.errors import InputError
 
 __all__ = ["convert"]
 
@@ -19,9 +20,9 @@ def _check_output(output: str | os.PathLike[str]) -> Path:
     out = Path(output)
     parent = out.parent if str(out.parent) else Path(".")
     if not parent.is_dir():
-        raise ValueError(f"output: folder {str(parent)!r} does not exist")
+        raise InputError(f"output: folder {str(parent)!r} does not exist")
     if out.is_dir():
-        raise ValueError(f"output: {str(out)!r} is a folder")
+        raise InputError(f"output: {str(out)!r} is a folder")
     return out
 
 
@@ -60,9 +61,9 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     elif in_suffix in (".yaml", ".yml"):
         if out_suffix not in (".urdf", None):
             assert out is not None  # out_suffix is not None
-            raise ValueError(f"output: a DH file converts to .urdf, got {out.name!r}")
+            raise InputError(f"output: a DH file converts to .urdf, got {out.name!r}")
         if tip is not None:
-            raise ValueError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
+            raise InputError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
         text = dh_to_urdf(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
@@ -77,7 +78,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
             text = urdf_to_dh_text(robot, convention=convention, as_yaml=out_suffix is not None)
         else:
             assert out is not None  # out_suffix is not None
-            raise ValueError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
+            raise InputError(f"output: expected a .json (PoE parameters) or .yaml (DH table) file, got {out.name!r}")
     if out is not None:
         atomic_write(out, text)
     return text, notes

@@ -108,14 +108,14 @@ def choose_tip(model: Any) -> tuple[str, str]:
         if depths[0][0] == depths[1][0]:
             cands = _tip_candidates(model, children)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
-            raise ValueError(
+            raise InputError(
                 f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "
                 f"with tip= (--tip): {shown}"
             )
         j, chose = depths[0][1], True
     tip = _deepest_body_frame(model, j)
     if tip is None:
-        raise ValueError("model: no body frame found for the chain's tip")
+        raise InputError("model: no body frame found for the chain's tip")
     note = f"the robot is a tree; chose its longest chain, to {tip!r} (give --tip for another)" if chose else ""
     return tip, note
 
@@ -143,7 +143,7 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
     if not model.existFrame(tip):
         bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY]
         shown = ", ".join(bodies[-12:])
-        raise ValueError(f"tip: no frame {tip!r}; frames include: {shown}")
+        raise InputError(f"tip: no frame {tip!r}; frames include: {shown}")
     fid = model.getFrameId(tip)
     chain = []
     j = model.frames[fid].parentJoint
@@ -155,7 +155,7 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
         sn = model.joints[j].shortname()
         if sn not in _ONE_DOF:
             kind = "floating base" if sn == "JointModelFreeFlyer" else sn
-            raise ValueError(
+            raise InputError(
                 f"model: joint {model.names[j]!r} on the chain to {tip!r} is a {kind}; robokit handles fixed-base "
                 "serial chains of revolute, prismatic and continuous joints"
             )
@@ -250,16 +250,16 @@ class Robot:
         if fid is None:
             if not self.model.existFrame(frame):
                 names = [f.name for f in self.model.frames]
-                raise ValueError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
+                raise InputError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
             fid = self._frame_ids[frame] = self.model.getFrameId(frame)
         return fid
 
     def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
         q = np.asarray(q, dtype=float)
         if q.shape != (self.n,):
-            raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
+            raise InputError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
         if not np.isfinite(q).all():
-            raise ValueError(f"{name}: contains NaN or infinite values ({q.tolist()})")
+            raise InputError(f"{name}: contains NaN or infinite values ({q.tolist()})")
         return q
 
     # ------------------------------------------------------------ fast answers
@@ -299,7 +299,7 @@ class Robot:
         try:
             rf = getattr(pin.ReferenceFrame, self._REFS[reference])
         except KeyError:
-            raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
+            raise InputError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}") from None
         q = self.q_pin(self._check_q(q))
         J = pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame), rf)
         return J.reshape(6, self.n)[self._swap]  # (a one-joint chain's 6×1 comes back from Pinocchio as (6,))
@@ -551,7 +551,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
     path = Path(s)
     if path.suffix.lower() in (".yaml", ".yml"):
         if tip not in (None, "tool"):
-            raise ValueError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
+            raise InputError(f"tip: a DH model's tip is its 'tool' frame, got {tip!r}")
         return _from_dh(DHTable.from_yaml(path), str(path))
     if path.name.lower().endswith(".xacro"):  # formats: xacro
         from robokit.description.xacro_files import load_xacro
@@ -559,7 +559,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
         return load_xacro(path, tip, xacro_args=xacro_args, package_path=package_dirs,
                           allow_outside_meshes=allow_outside_meshes)
     if xacro_args:
-        raise ValueError(f"xacro_args: apply to .xacro files, got {s!r}")
+        raise InputError(f"xacro_args: apply to .xacro files, got {s!r}")
     if path.suffix.lower() == ".xml":  # formats: MJCF
         from robokit.description.mjcf import load_mjcf
 
@@ -573,7 +573,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
     erd_names = _example_robot_names()
     if s in erd_names:
         return _from_example_robot_data(s, tip)
-    raise ValueError(
+    raise InputError(
         f"model: unknown robot {s!r}; give a .yaml or .urdf file, a shipped model ({', '.join(shipped_models())}) "
         f"or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
     )

@@ -395,7 +395,7 @@ def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xac
     funcs = dict(_MATH_FUNCS)
     funcs.update(_PYTHON_FUNCS)
     funcs.update(functions or {})
-    ns = {"math": _MATH_FUNCS, "python": _PYTHON_FUNCS}
+    ns: dict[str, Mapping[str, Callable[..., Any]]] = {"math": _MATH_FUNCS, "python": _PYTHON_FUNCS}
     ns.update(namespaces or {})
     interp = _Interpreter(symbols, funcs, ns, globals_ids or set())
     try:
@@ -558,7 +558,7 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
                 return sargs.convert_value(args[key], "auto")
 
         names = _Args()
-        functions = {
+        functions: dict[str, Callable[..., Any]] = {
             "arg": lambda name: sargs.convert_value(sargs._eval_arg(name, args=args), "auto"),
             "dirname": lambda: sargs._eval_dirname(context.get("filename")),
             "env": eval_env, "optenv": eval_optenv,

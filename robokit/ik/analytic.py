@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -81,7 +82,7 @@ def _qlim_or_none(qlim: ArrayLike | None, n: int, name: str = "qlim") -> np.ndar
         return None
     arr = np.asarray(qlim, dtype=float)
     if arr.shape != (n, 2):
-        raise ValueError(f"{name}: expected shape ({n}, 2), got {arr.shape}")
+        raise InputError(f"{name}: expected shape ({n}, 2), got {arr.shape}")
     return arr
 
 
@@ -212,14 +213,14 @@ def _puma_params(table: DHTable) -> tuple[float, float, float, float, float, flo
     """Check the PUMA 560 structure and return its constants (d1, a2, a3, d23, d4, d6, offsets)."""
     links = list(table.links)
     if len(links) != 6 or any(l.joint != "R" for l in links):
-        raise ValueError("table: ik_puma560 needs six revolute joints")
+        raise InputError("table: ik_puma560 needs six revolute joints")
     if table.convention != "standard":
-        raise ValueError("table: ik_puma560 needs the standard DH convention (Corke's/Paul's PUMA 560 frames)")
+        raise InputError("table: ik_puma560 needs the standard DH convention (Corke's/Paul's PUMA 560 frames)")
     alpha = np.array([l.alpha for l in links])
     a = np.array([l.a for l in links])
     d = np.array([l.d for l in links])
     if np.abs(wrap_angle(alpha - _PUMA_ALPHA)).max() > 1e-9 or np.abs(a[[0, 3, 4, 5]]).max() > 1e-12 or abs(d[4]) > 1e-12:
-        raise ValueError(
+        raise InputError(
             "table: not a PUMA 560-type arm (needs alpha = [90, 0, -90, 90, -90, 0] deg, a1 = a4 = a5 = a6 = 0, d5 = 0)"
         )
     offsets = np.array([l.theta for l in links])

@@ -50,6 +50,7 @@ from robokit.ik.analytic import IKSolution
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.spatial.se3 import check_transform
+from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -126,7 +127,7 @@ class ClosedFormModel:
     # ------------------------------------------------------------------ solving
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         if self.solver is None:
-            raise ValueError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
+            raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
         if self.reversed:  # solve T⁻¹ with the reversed chain; q = −q′ in reverse order
             R, p = T[:3, :3], T[:3, 3]
             Tinv = np.eye(4)
@@ -383,7 +384,7 @@ def _model(robot: Robot | DHTable) -> ClosedFormModel:
                                               f"kinematics only to {res.residual:.2e} (> 1e-9)")
             model.solver = None
     else:
-        raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
+        raise InputTypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
     try:
         object.__setattr__(robot, "_closed_form", model)
     except (AttributeError, TypeError):  # pragma: no cover - objects without a __dict__

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -243,7 +244,7 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
 
     is_robot = isinstance(robot, Robot)
     if not is_robot and not isinstance(robot, RobotLike):
-        raise TypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
+        raise InputTypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
                         f"(robokit.description.RobotLike), got {type(robot).__name__}")
     n = robot.n
     lo = np.asarray(robot.qlim, dtype=float)[:, 0]
@@ -258,16 +259,16 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         T_target = check_transform(target, "target")
         w = np.ones(6) if weights is None else as_vector(weights, "weights", 6)
     if np.any(w < 0):
-        raise ValueError(f"weights: expected non-negative entries, got {w}")
+        raise InputError(f"weights: expected non-negative entries, got {w}")
     q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), lo, hi)
     tol = as_scalar(tol, "tol", positive=True)
 
     if method not in ("auto", "analytic", "compiled", "lm"):
-        raise ValueError(f"method: expected 'auto', 'analytic', 'compiled' or 'lm', got {method!r}")
+        raise InputError(f"method: expected 'auto', 'analytic', 'compiled' or 'lm', got {method!r}")
     plain = (is_robot and not position_only and weights is None and time_budget is None
              and (frame is None or frame == getattr(robot, "tip", None)))
     if method in ("analytic", "compiled") and not plain:
-        raise ValueError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
+        raise InputError(f"method: {method!r} solves a full pose of the robot's tip without weights or time budget")
     if plain and method in ("auto", "analytic"):
         assert T_target is not None  # plain: not position_only
         res = _solve_closed_form(cast("Robot", robot), T_target, q, tol, t_start, required=method == "analytic")
@@ -365,7 +366,7 @@ def _solve_closed_form(robot: Robot, T_target: np.ndarray, q0: np.ndarray, tol: 
     kind = ik_analytic_kind(robot)
     if not kind.method:
         if required:
-            raise ValueError(f"method: 'analytic' needs a closed form; {kind.reason}")
+            raise InputError(f"method: 'analytic' needs a closed form; {kind.reason}")
         return None
     sols = [s for s in ik_analytic(robot, T_target) if s.within_limits]
     if not sols:

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = ["mesh_parts", "cluster_decimate"]
 
@@ -31,7 +32,7 @@ def cluster_decimate(vertices: ArrayLike, faces: ArrayLike, cell: float) -> tupl
     V = np.asarray(vertices, dtype=float)
     F = np.asarray(faces, dtype=np.int64)
     if not cell > 0:
-        raise ValueError(f"cell: expected a positive cube side, got {cell!r}")
+        raise InputError(f"cell: expected a positive cube side, got {cell!r}")
     if len(V) == 0 or len(F) == 0:
         return np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64)
     keys = np.floor(V / cell).astype(np.int64)

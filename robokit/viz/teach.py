@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -258,7 +259,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     zero = np.zeros(robot.n)
     q0 = zero if q is None else np.asarray(q, dtype=float)
     if q0.shape != (robot.n,):
-        raise ValueError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
+        raise InputError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
     poses = _named_poses(robot)
     frame_names = _frame_names(robot)
 
@@ -331,7 +332,7 @@ def teach_readouts(robot: Robot, q: ArrayLike) -> dict:
 
     q = np.asarray(q, dtype=float)
     if q.shape != (robot.n,):
-        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     T = robot.frame_pose(q)
     J = robot.jacobian(q, reference="local_world_aligned")
     rows = task_rows(robot)
@@ -461,7 +462,7 @@ def teach_widget(scene: Scene, q: ArrayLike | None = None, height: int = 420) ->
     unit = np.array([180.0 / math.pi if t == "R" else 1.0 for t in types])
     q = np.zeros(robot.n) if q is None else np.asarray(q, dtype=float)
     if q.shape != (robot.n,):
-        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     q = np.clip(q, rng[:, 0], rng[:, 1])
     names = _frame_names(robot)
     scene.show(q).frames(names, labels=robot.dh is not None)

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -26,7 +27,7 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
     """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise."""
     p = Path(path)
     if not p.is_file():
-        raise ValueError(f"--trajectory: file {str(p)!r} not found")
+        raise InputError(f"--trajectory: file {str(p)!r} not found")
     try:
         if p.suffix.lower() == ".npy":
             Q = np.load(p, allow_pickle=False)
@@ -39,17 +40,17 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
                 except ValueError:
                     if k == 0:
                         continue  # header
-                    raise ValueError(f"line {k + 1} is not numbers") from None
+                    raise InputError(f"line {k + 1} is not numbers") from None
             Q = np.array(rows, dtype=float)
         else:
-            raise ValueError("expected a .npy or .csv file")
+            raise InputError("expected a .npy or .csv file")
     except (OSError, ValueError, UnicodeDecodeError) as exc:
-        raise ValueError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
+        raise InputError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
     Q = np.asarray(Q, dtype=float)
     if Q.ndim != 2 or Q.shape[1] != n or len(Q) == 0:
-        raise ValueError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
+        raise InputError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
     if not np.all(np.isfinite(Q)):
-        raise ValueError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
+        raise InputError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
     return Q
 
 
@@ -65,7 +66,7 @@ def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | No
     if q is not None:
         q = np.asarray(q, dtype=float)
         if q.shape != (robot.n,):
-            raise ValueError(f"-q: {robot.name} has {robot.n} joints, got {q.size} values")
+            raise InputError(f"-q: {robot.name} has {robot.n} joints, got {q.size} values")
     with Scene(robot) as scene:
         scene.show(q)
         if frames:

@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -124,18 +125,18 @@ class CapabilityMap:
         """Read a map written by :meth:`save` or ``robokit workspace``; ValueError naming the file if it is not one."""
         p = Path(path)
         if not p.is_file():
-            raise ValueError(f"map: file {str(p)!r} not found")
+            raise InputError(f"map: file {str(p)!r} not found")
         try:
             with np.load(p, allow_pickle=False) as z:
                 data = {k: z[k] for k in z.files}
         except (OSError, ValueError) as exc:
-            raise ValueError(f"map: cannot read {str(p)!r} as an .npz file: {exc}") from None
+            raise InputError(f"map: cannot read {str(p)!r} as an .npz file: {exc}") from None
         missing = [k for k in ("centres", "index", "orientations", "resolution") if k not in data]
         if missing:
-            raise ValueError(f"map: {str(p)!r} is not a capability map (missing {', '.join(missing)})")
+            raise InputError(f"map: {str(p)!r} is not a capability map (missing {', '.join(missing)})")
         C, D, R = data["centres"], data["index"], data["orientations"]
         if C.ndim != 2 or C.shape[1] != 3 or D.shape != (len(C),) or R.ndim != 3 or R.shape[1:] != (3, 3):
-            raise ValueError(f"map: {str(p)!r} has inconsistent shapes: centres {C.shape}, index {D.shape}, "
+            raise InputError(f"map: {str(p)!r} has inconsistent shapes: centres {C.shape}, index {D.shape}, "
                              f"orientations {R.shape}")
         robot = str(data["robot"]) if "robot" in data else ""
         return cls(C.astype(float), D.astype(float), R.astype(float), float(data["resolution"]), robot)
@@ -155,7 +156,7 @@ def _describe(robot_arg: Any, robot: Robot) -> tuple:
         return ("load", src.split(":", 1)[1], robot.tip)
     if Path(src).suffix.lower() == ".urdf" and Path(src).is_file():
         return ("load", str(Path(src).resolve()), robot.tip)
-    raise ValueError(f"robot: cannot describe {robot.name!r} (source {src!r}) for the workers; "
+    raise InputError(f"robot: cannot describe {robot.name!r} (source {src!r}) for the workers; "
                      "pass a shipped model name, a .yaml/.urdf path, an example-robot-data name or a DHTable")
 
 
@@ -209,7 +210,7 @@ class _Store:
         self.fp = fingerprint
         meta = self.path / "params.json"
         if self.path.exists() and not self.path.is_dir():
-            raise ValueError(f"store: {str(self.path)!r} exists and is not a folder")
+            raise InputError(f"store: {str(self.path)!r} exists and is not a folder")
         if self.path.is_dir():
             try:
                 old = json.loads(meta.read_text(encoding="utf-8")).get("fingerprint")
@@ -220,7 +221,7 @@ class _Store:
                     f.unlink()
         else:
             if not (self.path.parent if str(self.path.parent) else Path(".")).is_dir():
-                raise ValueError(f"store: folder {str(self.path.parent)!r} does not exist")
+                raise InputError(f"store: folder {str(self.path.parent)!r} does not exist")
             self.path.mkdir()
         atomic_write(meta, json.dumps({"fingerprint": fingerprint, "parameters": params}, indent=1, sort_keys=True))
 
@@ -251,10 +252,10 @@ class _Store:
 # ----------------------------------------------------------------------------- the map
 def _check_resolution(resolution: object) -> float:
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating)):
-        raise TypeError(f"resolution: expected a number of metres, got {type(resolution).__name__}")
+        raise InputTypeError(f"resolution: expected a number of metres, got {type(resolution).__name__}")
     r = float(resolution)
     if not (np.isfinite(r) and r > 0):
-        raise ValueError(f"resolution: expected a positive voxel size in m, got {resolution!r}")
+        raise InputError(f"resolution: expected a positive voxel size in m, got {resolution!r}")
     return r
 
 
@@ -266,16 +267,16 @@ def _orientation_set(orientations: int | ArrayLike, chain: Any) -> np.ndarray:
             return planar_rotations(int(orientations), chain.normal, chain.R0)
         return super_fibonacci_rotations(int(orientations))
     if isinstance(orientations, bool) or np.ndim(orientations) != 3:
-        raise TypeError(f"orientations: expected a count K or a (K, 3, 3) array, got {type(orientations).__name__}")
+        raise InputTypeError(f"orientations: expected a count K or a (K, 3, 3) array, got {type(orientations).__name__}")
     R = np.asarray(orientations, dtype=float)
     if R.shape[1:] != (3, 3) or len(R) == 0:
-        raise ValueError(f"orientations: expected shape (K, 3, 3) with K ≥ 1, got {R.shape}")
+        raise InputError(f"orientations: expected shape (K, 3, 3) with K ≥ 1, got {R.shape}")
     if not np.isfinite(R).all():
-        raise ValueError("orientations: contains NaN or infinite values")
+        raise InputError("orientations: contains NaN or infinite values")
     err = np.abs(R @ np.transpose(R, (0, 2, 1)) - np.eye(3)).max(axis=(1, 2))
     if np.any(err > 1e-6) or np.any(np.linalg.det(R) < 0):
         k = int(np.argmax(err))
-        raise ValueError(f"orientations: matrix {k} is not a rotation (‖RRᵀ − I‖ = {err[k]:.2g})")
+        raise InputError(f"orientations: matrix {k} is not a rotation (‖RRᵀ − I‖ = {err[k]:.2g})")
     return np.ascontiguousarray(R)
 
 
@@ -349,12 +350,12 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
     t0 = time.perf_counter()
     res = _check_resolution(resolution)
     if seed is None or isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed: expected a non-negative integer, got {seed!r}")
+        raise InputError(f"seed: expected a non-negative integer, got {seed!r}")
     restarts = DEFAULT_RESTARTS if restarts is None else restarts
     if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise ValueError(f"restarts: expected a non-negative integer, got {restarts!r}")
+        raise InputError(f"restarts: expected a non-negative integer, got {restarts!r}")
     if not (client is None or isinstance(client, str) or hasattr(client, "submit")):
-        raise TypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
+        raise InputTypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
                         f"got {type(client).__name__}")
     rob = load(robot)
     desc = _describe(robot, rob)
@@ -367,10 +368,10 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
     if chunk_size is None:
         chunk_size = max(1, 4096 // K)
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
-        raise ValueError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
+        raise InputError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
     if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
                                 or samples < 1):
-        raise ValueError(f"samples: expected a positive integer, got {samples!r}")
+        raise InputError(f"samples: expected a positive integer, got {samples!r}")
 
     with _Cluster(client) as cl:
         return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,

@@ -20,6 +20,7 @@ from typing import Any, Callable, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.poe import PoEParams
@@ -130,7 +131,7 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
     size = np.full(len(lo), int(np.ceil(2 * radius / resolution)) + 5, dtype=np.int64)
     dims = len(lo)
     if float(np.prod(size.astype(float))) > 2.0**62:
-        raise ValueError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
+        raise InputError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
     stride = np.cumprod(np.r_[1, size[::-1][:-1]])[::-1].astype(np.int64)
 
     def codes_of(Q: np.ndarray) -> np.ndarray:
@@ -144,7 +145,7 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
         np.rint(chain.to_plane(tool_positions(poe, pilot))[0] / resolution)
     box = float(np.prod(pk.max(axis=0) - pk.min(axis=0) + 3))
     if box > _MAX_BOX_VOXELS:
-        raise ValueError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
+        raise InputError(f"resolution: {resolution:g} m gives about {box:.3g} voxels in the reachable box; "
                          f"use a coarser resolution (at most {_MAX_BOX_VOXELS:.0e} voxels)")
     if samples is None:
         samples = int(min(max(10 * box, 20_000), 4_000_000))

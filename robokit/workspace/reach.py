@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Callable, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.poe import PoEParams
@@ -305,9 +306,9 @@ def ik_success(robot: Robot, targets: ArrayLike, *, rng: int | np.random.Generat
     robot = load(robot)
     T = np.asarray(targets, dtype=float)
     if T.ndim != 3 or T.shape[1:] != (4, 4):
-        raise ValueError(f"targets: expected shape (B, 4, 4), got {T.shape}")
+        raise InputError(f"targets: expected shape (B, 4, 4), got {T.shape}")
     if not np.isfinite(T).all():
-        raise ValueError("targets: contains NaN or infinite values")
+        raise InputError("targets: contains NaN or infinite values")
     if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise ValueError(f"restarts: expected a non-negative integer, got {restarts!r}")
+        raise InputError(f"restarts: expected a non-negative integer, got {restarts!r}")
     return _Backend(robot, restarts).success(T, np.random.default_rng(rng))
