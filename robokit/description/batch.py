@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit._arrays import as_joints
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -26,12 +27,7 @@ __all__ = ["batch_frame_pose", "batch_jacobian", "batch_crba", "batch_rnea", "ba
 
 
 def _rows(robot: Robot, Q: ArrayLike, name: str) -> np.ndarray:
-    Q = np.ascontiguousarray(np.asarray(Q, dtype=float))
-    if Q.ndim != 2 or Q.shape[1] != robot.n:
-        raise InputError(f"{name}: expected shape (N, {robot.n}) for {robot.name}, got {Q.shape}")
-    if not np.isfinite(Q).all():
-        raise InputError(f"{name}: contains NaN or infinite values")
-    return Q
+    return as_joints(Q, robot.n, name, robot.name, batch=True)
 
 
 def _tip_only(robot: Robot, frame: str | None) -> None:

@@ -23,6 +23,7 @@ from typing import Any, Iterable, Literal, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._arrays import as_joints
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 from robokit.errors import InputError, RobokitWarning
@@ -255,12 +256,7 @@ class Robot:
         return fid
 
     def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
-        q = np.asarray(q, dtype=float)
-        if q.shape != (self.n,):
-            raise InputError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
-        if not np.isfinite(q).all():
-            raise InputError(f"{name}: contains NaN or infinite values ({q.tolist()})")
-        return q
+        return as_joints(q, self.n, name, self.name)
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:

@@ -23,16 +23,68 @@ if TYPE_CHECKING:
 __all__ = ["view_html", "load_trajectory"]
 
 
+#: Most samples (rows) a trajectory file may hold: 10⁵ frames are an hour at 30 fps, and the page
+#: stays below about 100 MB for a 6-joint arm.
+MAX_TRAJECTORY_ROWS = 100_000
+#: Largest trajectory file read (bytes).
+MAX_TRAJECTORY_BYTES = 64 << 20
+
+
 def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
-    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise."""
+    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv`` (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        A regular file of at most :data:`MAX_TRAJECTORY_BYTES` bytes and
+        :data:`MAX_TRAJECTORY_ROWS` rows; a ``.npy`` file must hold a real (K, n) array (its
+        header is checked before the data are read).
+    n : int
+        Joints of the robot.
+
+    Returns
+    -------
+    numpy.ndarray
+        (K, n) joint values (rad / m).
+
+    Raises
+    ------
+    InputError
+        ``--trajectory: …`` naming the file and what was wrong (rows beyond the limit with their count).
+
+    Examples
+    --------
+    >>> load_trajectory("wave.csv", 6).shape   # doctest: +SKIP
+    (120, 6)
+    """
+    import io
+
+    from robokit._io import decode_utf8, read_input_bytes
+
     p = Path(path)
-    if not p.is_file():
+    if not os.path.lexists(p):
         raise InputError(f"--trajectory: file {str(p)!r} not found")
+    raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
+    too_many = (f"--trajectory: {str(p)!r} has more than {MAX_TRAJECTORY_ROWS} rows (samples); "
+                f"at most {MAX_TRAJECTORY_ROWS} are read")
     try:
         if p.suffix.lower() == ".npy":
-            Q = np.load(p, allow_pickle=False)
+            f = io.BytesIO(raw)
+            version = np.lib.format.read_magic(f)
+            reader = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+            shape, _, dtype = reader(f)
+            if dtype.kind not in "fiu" or dtype.hasobject:
+                raise InputError(f"expected real numbers, got dtype {dtype}")
+            if len(shape) != 2 or shape[1] != n:
+                raise InputError(f"has shape {shape}; expected (K, {n}) joint values")
+            if shape[0] > MAX_TRAJECTORY_ROWS:
+                raise InputError(f"has {shape[0]} rows; at most {MAX_TRAJECTORY_ROWS}")
+            f.seek(0)
+            Q = np.load(f, allow_pickle=False)
         elif p.suffix.lower() == ".csv":
-            lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.startswith("#")]
+            lines = [ln for ln in decode_utf8(raw, p).splitlines() if ln.strip() and not ln.startswith("#")]
+            if len(lines) > MAX_TRAJECTORY_ROWS + 1:  # + a header
+                raise InputError(f"has {len(lines)} rows; at most {MAX_TRAJECTORY_ROWS}")
             rows = []
             for k, ln in enumerate(lines):
                 try:
@@ -41,10 +93,19 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
                     if k == 0:
                         continue  # header
                     raise InputError(f"line {k + 1} is not numbers") from None
-            Q = np.array(rows, dtype=float)
+            if len(rows) > MAX_TRAJECTORY_ROWS:
+                raise InputError(too_many)
+            try:
+                Q = np.array(rows, dtype=float)
+            except ValueError:
+                raise InputError("rows of different lengths") from None
         else:
             raise InputError("expected a .npy or .csv file")
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
+    except InputError as exc:
+        msg = str(exc)
+        raise InputError(msg if msg.startswith("--trajectory") else f"--trajectory: {str(p)!r} {msg}"
+                         if msg.startswith(("has ", "line ")) else f"--trajectory: cannot read {str(p)!r}: {msg}") from None
+    except (OSError, ValueError, EOFError) as exc:
         raise InputError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
     Q = np.asarray(Q, dtype=float)
     if Q.ndim != 2 or Q.shape[1] != n or len(Q) == 0:

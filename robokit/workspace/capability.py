@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+from robokit._arrays import as_int
 from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
@@ -349,11 +350,9 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
 
     t0 = time.perf_counter()
     res = _check_resolution(resolution)
-    if seed is None or isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise InputError(f"seed: expected a non-negative integer, got {seed!r}")
+    seed = as_int(seed, "seed", minimum=0)
     restarts = DEFAULT_RESTARTS if restarts is None else restarts
-    if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise InputError(f"restarts: expected a non-negative integer, got {restarts!r}")
+    restarts = as_int(restarts, "restarts", minimum=0)
     if not (client is None or isinstance(client, str) or hasattr(client, "submit")):
         raise InputTypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
                         f"got {type(client).__name__}")
@@ -367,11 +366,9 @@ def capability_map(robot: Robot | DHTable | str | os.PathLike[str], resolution: 
     K = len(R)
     if chunk_size is None:
         chunk_size = max(1, 4096 // K)
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
-        raise InputError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
-    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
-                                or samples < 1):
-        raise InputError(f"samples: expected a positive integer, got {samples!r}")
+    chunk_size = as_int(chunk_size, "chunk_size", minimum=1)
+    if samples is not None:
+        samples = as_int(samples, "samples", minimum=1)
 
     with _Cluster(client) as cl:
         return _capability_map(rob, desc, kind, chain, R, res, cl.client, store, int(chunk_size), samples,

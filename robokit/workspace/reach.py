@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Callable, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit._arrays import as_int
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -309,6 +310,5 @@ def ik_success(robot: Robot, targets: ArrayLike, *, rng: int | np.random.Generat
         raise InputError(f"targets: expected shape (B, 4, 4), got {T.shape}")
     if not np.isfinite(T).all():
         raise InputError("targets: contains NaN or infinite values")
-    if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise InputError(f"restarts: expected a non-negative integer, got {restarts!r}")
+    restarts = as_int(restarts, "restarts", minimum=0)
     return _Backend(robot, restarts).success(T, np.random.default_rng(rng))
