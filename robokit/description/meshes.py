@@ -24,7 +24,8 @@ from typing import Iterable, Sequence
 
 from robokit.errors import InputError
 
-__all__ = ["allowed_roots", "confine", "is_inside", "package_name"]
+__all__ = ["MAX_MESH_BYTES", "MAX_TOTAL_MESH_BYTES", "allowed_roots", "confine", "is_inside", "mesh_file_problem",
+           "package_name"]
 
 
 def allowed_roots(top: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = (),
@@ -138,3 +139,33 @@ def package_name(package_xml: str | os.PathLike[str]) -> str | None:
     except InputError:
         return None
     return (root.findtext("name") or Path(package_xml).parent.name).strip()
+
+
+#: Largest mesh file read (bytes). The largest mesh of example-robot-data is 28.8 MB (a
+#: quadruped's trunk, COLLADA); a page embedding a larger one would be unwieldy and loading a
+#: 2-million-face mesh takes Pinocchio's loader over a gigabyte.
+MAX_MESH_BYTES = 32 << 20
+#: Most mesh bytes one robot description may make robokit read in total.
+MAX_TOTAL_MESH_BYTES = 256 << 20
+
+
+def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
+    """Why the mesh file ``path`` is not read, or None if it may be: not a regular file (a FIFO,
+    a device such as ``/dev/zero``), or larger than :data:`MAX_MESH_BYTES`.
+
+    Examples
+    --------
+    >>> mesh_file_problem("/dev/zero")
+    'not a regular file'
+    """
+    import stat
+
+    try:
+        st = os.stat(path)
+    except OSError:
+        return "not found"
+    if not stat.S_ISREG(st.st_mode):
+        return "not a regular file"
+    if st.st_size > MAX_MESH_BYTES:
+        return f"{st.st_size / 1e6:.1f} MB; robokit reads mesh files of at most {MAX_MESH_BYTES / 1e6:.1f} MB"
+    return None

@@ -7,7 +7,8 @@ its XML (:func:`robokit._xml.check_xml`: no DTD, bounded depth and size), then f
 ``<mesh>``/``<skin>`` (relative to ``meshdir``/``assetdir``), ``<texture>``/``<hfield>``
 (relative to ``texturedir``/``assetdir``) and ``<model>`` — with the rule of
 :mod:`robokit.description.meshes` (the file's folder, its package, the package folders given),
-meshes excepted when ``allow_outside_meshes``. Joints are counted across the includes
+meshes excepted when ``allow_outside_meshes``; an asset that is not a regular file or is larger
+than :data:`robokit.description.meshes.MAX_MESH_BYTES` is refused. Joints are counted across the includes
 and limited to :data:`robokit.description.limits.MAX_JOINTS`.
 """
 from __future__ import annotations
@@ -20,7 +21,7 @@ from typing import Sequence
 from robokit._io import decode_utf8, read_input_bytes
 from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
-from robokit.description.meshes import allowed_roots, confine
+from robokit.description.meshes import allowed_roots, confine, mesh_file_problem
 from robokit.errors import InputError
 
 __all__ = ["MAX_INCLUDES", "MAX_INCLUDE_DEPTH", "MAX_MJCF_BYTES", "check_mjcf", "read_mjcf_root"]
@@ -115,7 +116,10 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                 continue
             sub = compiler.get(_ASSET_DIR.get(el.tag, ""), compiler.get("assetdir", ""))
             base = top_dir / sub if sub else top_dir
-            confine(base / f, roots, source, what, allow_outside=allow_outside_meshes and el.tag in _ASSET_DIR)
+            asset = confine(base / f, roots, source, what, allow_outside=allow_outside_meshes and el.tag in _ASSET_DIR)
+            problem = mesh_file_problem(asset) if os.path.lexists(asset) else None
+            if problem is not None:
+                raise InputError(f"{source}: {what}: {problem}")
 
     walk(top, path, 0)
     return top

@@ -12,7 +12,9 @@ joint, and returns the document with every mesh reference resolved:
 * a relative path is taken from the URDF's folder;
 * a mesh that resolves outside the URDF's folder and the package roots (an absolute path,
   ``../``, ``file://``) is refused unless ``allow_outside_meshes=True``;
-* a mesh file that does not exist is dropped from the geometry with a warning naming it.
+* a mesh file that does not exist, is not a regular file (a FIFO, ``/dev/zero``) or is larger
+  than :data:`robokit.description.meshes.MAX_MESH_BYTES` is dropped from the geometry with a
+  warning naming it (and the size).
 
 Mimic joints are reported (``mimic`` in the result) so that the loader can refuse one on
 the chain (robokit's joints are independent) and lock one off it.
@@ -32,7 +34,8 @@ import numpy as np
 from robokit._io import read_input_text
 from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
-from robokit.description.meshes import allowed_roots, is_inside, package_name
+from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, allowed_roots, is_inside, mesh_file_problem,
+                                         package_name)
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -277,6 +280,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
     pkg_roots = _package_roots(path, package_dirs)
     allowed = _allowed_roots(path, package_dirs)
     notes = []
+    mesh_bytes = 0
     for lname, el in links.items():
         for kind in ("visual", "collision"):
             for geo_el in list(el.findall(kind)):
@@ -288,8 +292,17 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                 if reason == "outside" and not allow_outside_meshes:
                     _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
                                 "package folders given (allow_outside_meshes=True reads it)")
-                if resolved is None or not resolved.is_file():
+                if resolved is None or not os.path.exists(resolved):
                     notes.append(f"link {lname!r}: {kind} mesh {uri!r} not found; drawn without it")
+                    el.remove(geo_el)
+                    continue
+                problem = mesh_file_problem(resolved)
+                if problem is None and kind == "visual":
+                    mesh_bytes += resolved.stat().st_size
+                    if mesh_bytes > MAX_TOTAL_MESH_BYTES:
+                        problem = f"the robot's meshes exceed {MAX_TOTAL_MESH_BYTES >> 20} MiB in total"
+                if problem is not None:
+                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not read ({problem}); drawn without it")
                     el.remove(geo_el)
                     continue
                 mesh.set("filename", str(resolved))

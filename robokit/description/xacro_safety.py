@@ -39,7 +39,8 @@ Reading: the top file and every ``<xacro:include>`` are read with robokit's boun
 :func:`robokit._xml.check_xml` (no DTD, bounded depth and size) before xacro parses them; an
 include or a YAML file must lie inside the allowed roots of
 :mod:`robokit.description.meshes` (the file's folder, its package, the package folders given
-and the packages found), at most :data:`MAX_INCLUDES` files are read.
+and the packages found), at most :data:`MAX_INCLUDES` files are read, nested at most
+:data:`MAX_INCLUDE_DEPTH` deep.
 
 Work: at most :data:`MAX_MACRO_DEPTH` nested macro calls, :data:`MAX_ELEMENTS` elements
 processed in total and :data:`MAX_SECONDS` seconds of expansion (a self-doubling macro fails
@@ -59,7 +60,7 @@ from typing import Any, Callable, Iterator, Mapping, Sequence
 from robokit.description._notes import note
 from robokit.errors import InputError
 
-__all__ = ["MAX_ELEMENTS", "MAX_EXPRESSION", "MAX_INCLUDES", "MAX_INT_BITS", "MAX_MACRO_DEPTH", "MAX_SECONDS",
+__all__ = ["MAX_ELEMENTS", "MAX_EXPRESSION", "MAX_INCLUDE_DEPTH", "MAX_INCLUDES", "MAX_INT_BITS", "MAX_MACRO_DEPTH", "MAX_SECONDS",
            "MAX_STRING", "UnsafeXacro", "evaluate", "guarded"]
 
 #: Longest ``${…}`` expression accepted (characters).
@@ -71,11 +72,15 @@ MAX_INT_BITS = 4096
 #: Deepest nesting of macro calls.
 MAX_MACRO_DEPTH = 100
 #: Most elements xacro may process while expanding one file (its includes and macros included).
-MAX_ELEMENTS = 200_000
+#: xacro spends about 0.1-0.3 ms per element (measured here, under load), so this bounds a
+#: runaway macro to a few seconds; real descriptions process a few hundred to a few thousand.
+MAX_ELEMENTS = 20_000
 #: Most files (includes, YAML) one expansion may read.
 MAX_INCLUDES = 500
+#: Deepest nesting of ``<xacro:include>`` (a file including itself stops here).
+MAX_INCLUDE_DEPTH = 20
 #: Longest expansion, wall-clock seconds (a safety net: a real description takes < 1 s).
-MAX_SECONDS = 60.0
+MAX_SECONDS = 30.0
 
 
 class UnsafeXacro(InputError):
@@ -248,6 +253,8 @@ class _Interpreter:
         raise _Refused(f"the attribute {attr!r} of a {type(base).__name__}")
 
     def _Call(self, node: ast.Call) -> Any:
+        if isinstance(node.func, ast.Name) and node.func.id not in self.functions:
+            raise _Refused(f"a call to {node.func.id!r} (not an allowed function)")
         fn = self.run(node.func)
         if not isinstance(fn, _Fn):
             raise _Refused("calling a value that is not an allowed function")
@@ -459,6 +466,9 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
             raise UnsafeXacro(f"{current()}: expansion took longer than {MAX_SECONDS:g} s; stopped")
 
     def read_file(filename: str, what: str) -> str:
+        if len(getattr(xacro, "filestack", None) or []) > MAX_INCLUDE_DEPTH:
+            raise UnsafeXacro(f"{current(2)}: includes nested deeper than {MAX_INCLUDE_DEPTH} levels (an include "
+                              "loop?); stopped")
         state["files"] += 1
         if state["files"] > MAX_INCLUDES:
             raise UnsafeXacro(f"{current()}: more than {MAX_INCLUDES} files included; stopped")
