@@ -399,7 +399,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     from robokit.description.robot import _finish
 
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():  # a FIFO or device is refused by the bounded reader
         raise InputError(f"{path}: file not found")
     from robokit.description.mjcf_safety import check_mjcf
 

@@ -561,7 +561,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable, tip: str | None
 
         return load_mjcf(path, tip, allow_outside_meshes=allow_outside_meshes)
     if path.suffix.lower() == ".urdf":
-        if not path.is_file():
+        if not path.exists():  # anything else (a FIFO, a device) is refused by the bounded reader
             raise InputError(f"{path}: file not found")
         return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
     if s in shipped_models():

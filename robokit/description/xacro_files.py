@@ -32,7 +32,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from robokit.description._notes import note
-from robokit._xml import parse_xml
+from robokit._io import read_input_bytes
+from robokit._xml import check_xml, parse_xml
 from robokit.description.limits import check_joint_count
 from robokit.description.meshes import allowed_roots, confine, package_name
 from robokit.description.urdf_check import MAX_URDF_BYTES
@@ -252,7 +253,7 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
         raise InputError(f"{path}: reading xacro files needs the 'xacro' package (pip install xacro)") from None
 
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():  # a FIFO or device is refused by the bounded reader
         raise InputError(f"{path}: file not found")
     args = {}
     for k, v in (xacro_args or {}).items():
@@ -264,6 +265,7 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
         assert isinstance(d, Path)
         if not d.expanduser().is_dir():
             raise InputError(f"package_path: {str(d)!r} is not a folder")
+    check_xml(read_input_bytes(path, MAX_URDF_BYTES, "a xacro file"), path)  # named as the user gave it
     top = path.resolve()
     missing_pkg: list = []
     found: list[Path] = []

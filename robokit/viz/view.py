@@ -64,7 +64,10 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
     p = Path(path)
     if not os.path.lexists(p):
         raise InputError(f"--trajectory: file {str(p)!r} not found")
-    raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
+    try:
+        raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
+    except InputError as exc:
+        raise InputError(f"--trajectory: {exc}") from None
     too_many = (f"--trajectory: {str(p)!r} has more than {MAX_TRAJECTORY_ROWS} rows (samples); "
                 f"at most {MAX_TRAJECTORY_ROWS} are read")
     try:
