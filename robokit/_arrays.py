@@ -102,6 +102,21 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     return arr
 
 
+def ndim(x: object, name: str) -> int:
+    """The number of dimensions of an array-like, or :class:`InputError` naming ``name`` for a
+    ragged nesting numpy cannot make an array of (``[[0, 0], [0]]``).
+
+    Examples
+    --------
+    >>> ndim([[0.0, 1.0]], "q")
+    2
+    """
+    try:
+        return int(np.ndim(x))
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: expected an array of numbers, got a ragged {type(x).__name__}") from None
+
+
 def as_joints(x: object, n: int, name: str = "q", robot: str = "", *, batch: bool = False) -> np.ndarray:
     """Joint values for a robot of ``n`` joints: a real, finite float64 vector (n,) — or, with
     ``batch``, rows (N, n), C-contiguous.

@@ -23,7 +23,7 @@ from typing import Any, Iterable, Literal, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_joints
+from robokit._arrays import as_joints, ndim
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 from robokit.errors import InputError, RobokitWarning
@@ -262,7 +262,7 @@ class Robot:
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
-        if np.ndim(q) == 2:
+        if ndim(q, "q") == 2:
             from robokit.description.batch import batch_frame_pose
 
             return batch_frame_pose(self, q, frame)
@@ -287,7 +287,7 @@ class Robot:
         "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
         the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
-        if np.ndim(q) == 2:
+        if ndim(q, "q") == 2:
             from robokit.description.batch import batch_jacobian
 
             return batch_jacobian(self, q, frame, reference)
@@ -303,7 +303,7 @@ class Robot:
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if ndim(q, "q") == 2:
             from robokit.description.batch import batch_rnea
 
             return batch_rnea(self, q, dq, ddq, threads)
@@ -314,7 +314,7 @@ class Robot:
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
-        if np.ndim(q) == 2:
+        if ndim(q, "q") == 2:
             from robokit.description.batch import batch_crba
 
             return batch_crba(self, q)
@@ -326,7 +326,7 @@ class Robot:
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
-        if np.ndim(q) == 2:
+        if ndim(q, "q") == 2:
             from robokit.description.batch import batch_aba
 
             return batch_aba(self, q, dq, tau, threads)
