@@ -227,9 +227,6 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     allow_outside_meshes : bool
         Accept meshes outside the allowed roots of :mod:`robokit.description.meshes`.
 
-    Expressions are evaluated by robokit's whitelist interpreter, never by Python's ``eval``;
-    files are read bounded and confined; see :mod:`robokit.description.xacro_safety`.
-
     Returns
     -------
     str
@@ -240,7 +237,13 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     InputError
         One line naming the file (and line/element where known): file or include not
         found, undefined argument, unknown ``xacro_args`` key, package not found,
-        malformed XML, mesh file missing.
+        malformed XML, mesh file missing; an expression, include, environment variable or
+        amount of work :mod:`robokit.description.xacro_safety` refuses.
+
+    Notes
+    -----
+    Expressions are evaluated by robokit's whitelist interpreter, never by Python's ``eval``;
+    files are read bounded and confined; see :mod:`robokit.description.xacro_safety`.
 
     Examples
     --------
