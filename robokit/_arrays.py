@@ -112,7 +112,7 @@ def ndim(x: object, name: str) -> int:
     2
     """
     try:
-        return int(np.ndim(x))
+        return int(np.ndim(x))  # type: ignore[arg-type]
     except (TypeError, ValueError):
         raise InputError(f"{name}: expected an array of numbers, got a ragged {type(x).__name__}") from None
 
