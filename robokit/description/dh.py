@@ -280,6 +280,9 @@ class DHTable:
         links_data = data["links"]
         if not isinstance(links_data, list) or not links_data:
             fail("key 'links': expected a non-empty list of links")
+        from robokit.description.limits import check_joint_count
+
+        check_joint_count(len(links_data), source, "links (joints)")  # before anything is built
         links = []
         for i, ld in enumerate(links_data, start=1):
             where = f"link {i}"

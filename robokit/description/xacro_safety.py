@@ -511,8 +511,17 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         state["files"] += 1
         p = Path(spec)
         confine(p, roots(), current(), f"xacro.load_yaml({filename!r})")
-        data = load_yaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p))
+        data = load_yaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
+                              scalar_tags=unit_tags(str(p)))
         return xacro.YamlListWrapper.wrap(data)
+
+    def unit_tags(source: str) -> dict[str, Callable[[str], Any]]:
+        """xacro's YAML unit tags (``!degrees 90``), their values evaluated by robokit's interpreter."""
+        def make(factor: float) -> Callable[[str], Any]:
+            return lambda text: float(evaluate(text, {}, source=source)) * factor
+        units = {"!radians": 1.0, "!degrees": math.pi / 180.0, "!meters": 1.0, "!millimeters": 0.001,
+                 "!foot": 0.3048, "!inches": 0.0254}
+        return {tag: make(f) for tag, f in units.items()}
 
     def message(*args: Any) -> str:
         note(f"{current()}: xacro: {' '.join(map(str, args))}")
@@ -577,10 +586,30 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
             functions["find"] = sargs._eval_dict["find"]
         return str(evaluate(s, names, source=current(), functions=functions))
 
+    import glob as _glob
+    import types
+
+    def safe_glob(pattern: str) -> list[str]:
+        parts = Path(pattern).parts
+        fixed = []
+        for part in parts:
+            if any(ch in part for ch in "*?["):
+                break
+            fixed.append(part)
+        base = Path(*fixed) if fixed else Path(".")
+        confine(base if base.is_absolute() else Path(os.path.join(getattr(xacro, "root_dir", "."), base)),
+                roots(), current(), f"<xacro:include filename={pattern!r}>")
+        found = sorted(_glob.glob(pattern))
+        if len(found) > MAX_INCLUDES:
+            raise UnsafeXacro(f"{current()}: <xacro:include filename={pattern!r}> matches more than {MAX_INCLUDES} files")
+        return found
+
     saved = {"parse": xacro.parse, "eval_all": xacro.eval_all, "safe_eval": xacro.safe_eval,
              "load_yaml": xacro.load_yaml, "_eval": sargs._eval, "_eval_env": sargs._eval_env,
              "_eval_optenv": sargs._eval_optenv}
     xacro.parse, xacro.eval_all, xacro.safe_eval, xacro.load_yaml = parse, eval_all, safe_eval, load_yaml
+    saved_glob = xacro.glob
+    xacro.glob = types.SimpleNamespace(glob=safe_glob)
     sargs._eval, sargs._eval_env, sargs._eval_optenv = sargs_eval, eval_env, eval_optenv
     saved_env = sargs._eval_dict.get("env"), sargs._eval_dict.get("optenv")
     sargs._eval_dict["env"], sargs._eval_dict["optenv"] = eval_env, eval_optenv
@@ -589,6 +618,7 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
     finally:
         xacro.parse, xacro.eval_all, xacro.safe_eval, xacro.load_yaml = (
             saved["parse"], saved["eval_all"], saved["safe_eval"], saved["load_yaml"])
+        xacro.glob = saved_glob
         sargs._eval, sargs._eval_env, sargs._eval_optenv = saved["_eval"], saved["_eval_env"], saved["_eval_optenv"]
         for key, val in zip(("env", "optenv"), saved_env):
             if val is not None:

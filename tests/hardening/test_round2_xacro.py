@@ -109,7 +109,7 @@ def test_what_a_description_needs_still_evaluates(tmp_path):
     lists, dicts, YAML and $(eval)."""
     from robokit.description.xacro_files import expand_xacro
 
-    (tmp_path / "p.yaml").write_text("arm: {l1: 0.4, names: [a, b]}\n")
+    (tmp_path / "p.yaml").write_text("arm: {l1: 0.4, names: [a, b], deg: !degrees 90, mm: !millimeters 2 * 5}\n")
     body = """
 <xacro:property name="l" value="0.25"/>
 <xacro:property name="d" value="${dict([('k', 1)]) if False else dict([('k', 2)])}"/>
@@ -122,7 +122,7 @@ def test_what_a_description_needs_still_evaluates(tmp_path):
   <inertia ixx="${radians(10)}" iyy="${math.pi / 100}" izz="${sin(pi / 6) ** 2}" ixy="0" iyz="0" ixz="0"/></inertial></link>
   <joint name="j_${n.upper()}" type="revolute"><parent link="${parent}"/><child link="$(arg pre)${n}"/>
   <axis xyz="0 0 1"/><limit lower="${-pi if ln > 0 else 0}" upper="${round(pi, 3)}" effort="${d['k']}"
-  velocity="${y['arm']['l1'] * 10}"/></joint>
+  velocity="${y['arm']['l1'] * 10 + y.arm.deg + y.arm.mm}"/></joint>
 </xacro:macro>
 <xacro:seg n="${y.arm.names[0]}" parent="base"><box size="1 1 1"/></xacro:seg>
 <xacro:if value="${l > 0.1 and not False}">
