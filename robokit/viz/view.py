@@ -107,7 +107,7 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
     except InputError as exc:
         msg = str(exc)
         raise InputError(msg if msg.startswith("--trajectory") else f"--trajectory: {str(p)!r} {msg}"
-                         if msg.startswith(("has ", "line ")) else f"--trajectory: cannot read {str(p)!r}: {msg}") from None
+                         if msg.startswith("has ") else f"--trajectory: cannot read {str(p)!r}: {msg}") from None
     except (OSError, ValueError, EOFError) as exc:
         raise InputError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
     Q = np.asarray(Q, dtype=float)

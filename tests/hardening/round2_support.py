@@ -44,3 +44,29 @@ def arm_links(n: int, prefix: str = "l") -> str:
         out.append(hs.joint(f"j{i}", parent, f"{prefix}{i}", xyz="0 0 0.1"))
         parent = f"{prefix}{i}"
     return "\n".join(out)
+
+
+_DRIVER = r"""
+import contextlib, io, json, sys, warnings
+warnings.simplefilter("always")
+import robokit.cli
+out = []
+for argv in json.loads(sys.argv[1]):
+    err, std = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(std):
+        rc = robokit.cli.main(argv)
+    out.append([rc, std.getvalue(), err.getvalue()])
+sys.__stdout__.write(json.dumps(out))
+"""
+
+
+def run_many(argvs, cwd=None, timeout=TIMEOUT) -> list:
+    """Several ``robokit`` command lines in **one** limited subprocess (one import of robokit,
+    Pinocchio and numba for all of them): a list of :class:`hardening_support.Run`."""
+    import json
+
+    p = subprocess.run([sys.executable, "-c", _DRIVER, json.dumps([[str(a) for a in argv] for argv in argvs])],
+                       cwd=cwd, capture_output=True, check=False, text=True, timeout=timeout,
+                       env=hs.subprocess_env(), preexec_fn=_limit)
+    assert p.returncode == 0, f"driver exit {p.returncode}: {p.stderr[-2000:]}"
+    return [hs.Run(rc, out, err) for rc, out, err in json.loads(p.stdout)]

@@ -1,5 +1,5 @@
 """Round 2: every robot file is read bounded — regular files only, bytes counted as read, no
-DTD or entities, bounded nesting and element count, at most 256 joints — before anything
+DTD or entities, bounded nesting and element count, at most 128 joints — before anything
 recursive or Pinocchio sees it; trajectory CSVs are bounded in rows. Each case runs the CLI
 in a subprocess with a 3 GB address-space limit and a hang guard (a safety net, not a timing)."""
 import os
@@ -13,21 +13,27 @@ import round2_support as r2
 SUFFIXES = [".urdf", ".yaml", ".urdf.xacro", ".xml"]
 
 
-@pytest.mark.parametrize("suffix", SUFFIXES)
-def test_endless_device_is_refused_by_bytes_read(suffix, tmp_path):
-    """/dev/zero has stat size 0: the cap must hold on the bytes read."""
-    src = tmp_path / f"zero{suffix}"
-    src.symlink_to("/dev/zero")
-    run = r2.run_limited("view", src, "-o", tmp_path / "o.html")
-    hs.assert_one_line_error(run, src.name, "device")
+def test_endless_device_is_refused_by_bytes_read(tmp_path):
+    """/dev/zero has stat size 0: the cap must hold on the bytes read (every format)."""
+    srcs = []
+    for suffix in SUFFIXES:
+        src = tmp_path / f"zero{suffix}"
+        src.symlink_to("/dev/zero")
+        srcs.append(src)
+    runs = r2.run_many([["view", src, "-o", tmp_path / "o.html"] for src in srcs])
+    for src, run in zip(srcs, runs):
+        hs.assert_one_line_error(run, src.name, "device")
 
 
-@pytest.mark.parametrize("suffix", SUFFIXES)
-def test_fifo_does_not_block(suffix, tmp_path):
-    src = tmp_path / f"f{suffix}"
-    os.mkfifo(src)
-    run = r2.run_limited("view", src, "-o", tmp_path / "o.html", timeout=60)
-    hs.assert_one_line_error(run, src.name, "FIFO")
+def test_fifo_does_not_block(tmp_path):
+    srcs = []
+    for suffix in SUFFIXES:
+        src = tmp_path / f"f{suffix}"
+        os.mkfifo(src)
+        srcs.append(src)
+    runs = r2.run_many([["view", src, "-o", tmp_path / "o.html"] for src in srcs], timeout=60)
+    for src, run in zip(srcs, runs):
+        hs.assert_one_line_error(run, src.name, "FIFO")
 
 
 def test_growing_file_cap_holds_on_bytes_read(tmp_path):
@@ -50,18 +56,24 @@ BOMB_DTD = ('<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY a "aaaaaaaaaa"><!ENTIT
 EXTERNAL = '<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY x SYSTEM "file:///etc/passwd">]>\n'
 
 
-@pytest.mark.parametrize("suffix,root", [(".urdf", '<robot name="&h;"><link name="a"/></robot>'),
-                                         (".urdf.xacro", '<robot name="&h;"><link name="a"/></robot>'),
-                                         (".xml", '<mujoco model="&h;"><worldbody><body name="b"><joint name="j"/>'
-                                                  '<geom size="0.1"/></body></worldbody></mujoco>')])
-@pytest.mark.parametrize("prolog", ["bomb", "external"])
-def test_dtd_and_entities_are_refused(suffix, root, prolog, tmp_path):
-    text = (BOMB_DTD if prolog == "bomb" else EXTERNAL) + (root if prolog == "bomb" else root.replace("&h;", "&x;"))
-    src = tmp_path / f"e{suffix}"
-    src.write_text(text)
-    run = r2.run_limited("convert", src, "-o", tmp_path / "o.json")
-    hs.assert_one_line_error(run, src.name, "DOCTYPE")
-    assert "root:" not in run.out + run.err  # /etc/passwd never echoed
+ROOTS = {".urdf": '<robot name="&h;"><link name="a"/></robot>',
+         ".urdf.xacro": '<robot name="&h;"><link name="a"/></robot>',
+         ".xml": '<mujoco model="&h;"><worldbody><body name="b"><joint name="j"/><geom size="0.1"/></body></worldbody>'
+                 '</mujoco>'}
+
+
+def test_dtd_and_entities_are_refused(tmp_path):
+    cases = []
+    for suffix, root in ROOTS.items():
+        for prolog in ("bomb", "external"):
+            text = BOMB_DTD + root if prolog == "bomb" else EXTERNAL + root.replace("&h;", "&x;")
+            src = tmp_path / f"e_{prolog}{suffix}"
+            src.write_text(text)
+            cases.append(src)
+    runs = r2.run_many([["convert", src, "-o", tmp_path / "o.json"] for src in cases])
+    for src, run in zip(cases, runs):
+        hs.assert_one_line_error(run, src.name, "DOCTYPE")
+        assert "root:" not in run.out + run.err  # /etc/passwd never echoed
 
 
 def _deep_mjcf(depth):
@@ -73,21 +85,18 @@ def _nested_visuals(depth):
     return (f'<robot name="r"><link name="a">{"<visual>" * depth}{"</visual>" * depth}</link></robot>')
 
 
-@pytest.mark.parametrize("name,text", [("deep.xml", _deep_mjcf(20_000)), ("vis.urdf", _nested_visuals(50_000)),
-                                       ("vis.urdf.xacro", _nested_visuals(30_000))])
-def test_deep_nesting_is_refused_before_any_recursive_parser(name, text, tmp_path):
-    src = tmp_path / name
-    src.write_text(text)
-    run = r2.run_limited("view", src, "-o", tmp_path / "v.html")
-    hs.assert_one_line_error(run, name, "nested deeper than 512")
+def test_deep_nesting_and_size_are_refused_before_any_recursive_parser(tmp_path):
+    cases = {"deep.xml": (_deep_mjcf(20_000), "nested deeper than 512"),
+             "vis.urdf": (_nested_visuals(50_000), "nested deeper than 512"),
+             "vis.urdf.xacro": (_nested_visuals(30_000), "nested deeper than 512"),
+             "many.urdf": ('<robot name="r"><link name="a">' + "<x/>" * 250_000 + "</link></robot>",
+                           "more than 200000 elements")}
+    for name, (text, _) in cases.items():
+        (tmp_path / name).write_text(text)
+    runs = r2.run_many([["view", tmp_path / name, "-o", tmp_path / "v.html"] for name in cases])
+    for (name, (_, want)), run in zip(cases.items(), runs):
+        hs.assert_one_line_error(run, name, want)
     assert not (tmp_path / "v.html").exists()
-
-
-def test_element_count_is_bounded(tmp_path):
-    src = tmp_path / "many.urdf"
-    src.write_text('<robot name="r"><link name="a">' + "<x/>" * 250_000 + "</link></robot>")
-    run = r2.run_limited("convert", src, "-o", tmp_path / "o.json")
-    hs.assert_one_line_error(run, "many.urdf", "more than 200000 elements")
 
 
 def _dh_yaml(n):
@@ -113,37 +122,38 @@ def _xacro_chain(n):
         '</xacro:macro>' + calls)
 
 
-@pytest.mark.parametrize("name,make", [("snake.urdf", lambda n: hs.urdf_text(links=[hs.link("base")],
-                                                                               joints=[]).replace(
-                                            "</robot>", r2.arm_links(n) + "</robot>")),
-                                       ("snake.yaml", _dh_yaml), ("snake.xml", _mjcf_chain),
-                                       ("snake.urdf.xacro", _xacro_chain)])
-def test_joint_limit(name, make, tmp_path):
-    src = tmp_path / name
-    src.write_text(make(257))
-    run = r2.run_limited("view", src, "-o", tmp_path / "v.html")
-    hs.assert_one_line_error(run, name, "257", "at most 256 joints")
+MAKERS = {"snake.urdf": lambda n: hs.urdf_text(links=[hs.link("base")], joints=[]).replace(
+              "</robot>", r2.arm_links(n) + "</robot>"),
+          "snake.yaml": _dh_yaml, "snake.xml": _mjcf_chain, "snake.urdf.xacro": _xacro_chain}
+
+
+def test_joint_limit(tmp_path):
+    for name, make in MAKERS.items():
+        (tmp_path / name).write_text(make(129))
+    runs = r2.run_many([["view", tmp_path / name, "-o", tmp_path / "v.html"] for name in MAKERS])
+    for name, run in zip(MAKERS, runs):
+        hs.assert_one_line_error(run, name, "129", "at most 128 joints")
     assert not (tmp_path / "v.html").exists()
 
 
 def test_joint_limit_is_inclusive(tmp_path):
-    """256 joints load, and the chain's FK is the closed form (all joints about z, 0.1 m apart)."""
+    """128 joints load, and the chain's FK is the closed form (all joints about z, 0.1 m apart)."""
     from robokit.description.robot import load
 
     src = tmp_path / "snake.yaml"
-    src.write_text(_dh_yaml(256))
+    src.write_text(_dh_yaml(128))
     robot = load(src)
-    assert robot.n == 256
-    q = np.full(256, 2 * np.pi / 256)
+    assert robot.n == 128
+    q = np.full(128, 2 * np.pi / 128)
     T = robot.frame_pose(q)
-    # planar chain of equal links turning by 2π/256 each: its tip returns to the base (a closed polygon)
+    # planar chain of equal links turning by 2π/128 each: its tip returns to the base (a closed polygon)
     assert np.allclose(T[:3, 3], 0, atol=1e-9)
 
 
-def test_trajectory_rows_are_bounded(tmp_path):
+def test_trajectory_rows_are_bounded(tmp_path, main_cli):
     csv = tmp_path / "t.csv"
     csv.write_text("q1,q2,q3,q4,q5,q6\n" + "0,0,0,0,0,0\n" * 100_001)
-    run = r2.run_limited("view", "puma560", "-o", tmp_path / "v.html", "--trajectory", csv)
+    run = main_cli("view", "puma560", "-o", tmp_path / "v.html", "--trajectory", csv)
     hs.assert_one_line_error(run, "t.csv", "100000")
     assert not (tmp_path / "v.html").exists()
 
