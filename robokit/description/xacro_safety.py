@@ -109,12 +109,34 @@ def _bounded_range(*args: Any) -> list[int]:
     return list(r)
 
 
+def _bounded_round(x: Any, ndigits: Any = None) -> Any:
+    if ndigits is None:
+        return round(x)
+    if not isinstance(ndigits, int) or abs(ndigits) > 100:
+        raise _Refused("round() with more than 100 digits")
+    return round(x, ndigits)
+
+
+def _numeric_sum(items: Any, start: Any = 0) -> Any:
+    values = list(items)
+    if not all(isinstance(v, (int, float)) for v in values + [start]):
+        raise _Refused("sum() of values that are not numbers")
+    return sum(values, start)
+
+
+def _bounded_replace(s: str, old: str, new: str, count: int = -1) -> str:
+    n = s.count(old) if count < 0 else min(count, s.count(old))
+    if len(s) + n * (len(new) - len(old)) > MAX_STRING:
+        raise _Refused(f"a replace() result of more than {MAX_STRING} characters")
+    return s.replace(old, new, count)
+
+
 _MATH_FUNCS = {k: v for k, v in vars(math).items() if not k.startswith("_") and callable(v)
                and k not in ("factorial", "comb", "perm", "prod")}
 _MATH_CONSTS = {k: v for k, v in vars(math).items() if isinstance(v, float)}
 _PYTHON_FUNCS: dict[str, Callable[..., Any]] = {
-    "abs": abs, "min": min, "max": max, "round": round, "len": len, "int": int, "float": float, "str": str,
-    "bool": bool, "list": list, "tuple": tuple, "dict": dict, "sorted": sorted, "sum": sum, "any": any, "all": all,
+    "abs": abs, "min": min, "max": max, "round": _bounded_round, "len": len, "int": int, "float": float, "str": str,
+    "bool": bool, "list": list, "tuple": tuple, "dict": dict, "sorted": sorted, "sum": _numeric_sum, "any": any, "all": all,
     "range": _bounded_range, "zip": lambda *a: list(zip(*a)), "enumerate": lambda a, s=0: list(enumerate(a, s)),
     "reversed": lambda a: list(reversed(a)), "divmod": divmod, "ord": ord, "set": set,
 }
@@ -138,31 +160,61 @@ class _Refused(Exception):
     pass
 
 
+def _size(v: Any, depth: int = 0) -> int:
+    """The size of a value in items: characters of a string, the sizes of a container's items
+    (at least 1 each) — stops counting past :data:`MAX_STRING`."""
+    if isinstance(v, str):
+        return len(v)
+    if isinstance(v, (list, tuple, set, frozenset, dict)):
+        if depth > 20:
+            raise _Refused("values nested too deeply")
+        total = len(v)
+        for x in (v.items() if isinstance(v, dict) else v):
+            total += _size(x, depth + 1)
+            if total > MAX_STRING:
+                break
+        return total
+    return 1
+
+
 def _check_value(v: Any, depth: int = 0) -> Any:
-    """``v`` if it is plain data (numbers, strings, lists/tuples/dicts of them, bounded), else refuse."""
+    """``v`` if it is plain data (numbers, strings, lists/tuples/dicts of them) of bounded size
+    (at most :data:`MAX_STRING` characters and items in all), else refuse."""
     if v is None or isinstance(v, (bool, float)):
         return v
     if isinstance(v, int):
         if v.bit_length() > MAX_INT_BITS:
             raise _Refused(f"an integer of {v.bit_length()} bits (at most {MAX_INT_BITS})")
         return v
-    if isinstance(v, str):
-        if len(v) > MAX_STRING:
-            raise _Refused(f"a string of {len(v)} characters (at most {MAX_STRING})")
-        return v
-    if isinstance(v, (list, tuple, set, frozenset, dict)):
-        if len(v) > MAX_STRING:
-            raise _Refused(f"a collection of {len(v)} items (at most {MAX_STRING})")
-        if depth > 20:
-            raise _Refused("values nested too deeply")
-        items = list(v.items()) if isinstance(v, dict) else [(None, x) for x in v]
-        for k, x in items[:1000]:  # a bounded sample: values built here were checked when made
-            _check_value(k, depth + 1)
-            _check_value(x, depth + 1)
+    if isinstance(v, (str, list, tuple, set, frozenset, dict)):
+        if _size(v) > MAX_STRING:
+            raise _Refused(f"a value of more than {MAX_STRING} characters and items")
+        if not isinstance(v, str):
+            for x in (v.items() if isinstance(v, dict) else v):
+                _check_item(x, depth + 1)
         return v
     if _is_namespace_table(v):
         return v
     raise _Refused(f"a value of type {type(v).__name__}")
+
+
+def _check_item(x: Any, depth: int) -> None:
+    if isinstance(x, tuple) and depth > 0:
+        for y in x:
+            _check_item(y, depth + 1)
+        return
+    if depth > 20:
+        raise _Refused("values nested too deeply")
+    if x is None or isinstance(x, (bool, int, float, str)):
+        if isinstance(x, int) and not isinstance(x, bool) and x.bit_length() > MAX_INT_BITS:
+            raise _Refused(f"an integer of {x.bit_length()} bits (at most {MAX_INT_BITS})")
+        return
+    if isinstance(x, (list, tuple, set, frozenset, dict)):
+        for y in (x.items() if isinstance(x, dict) else x):
+            _check_item(y, depth + 1)
+        return
+    if not _is_namespace_table(x):
+        raise _Refused(f"a value of type {type(x).__name__}")
 
 
 def _is_namespace_table(v: Any) -> bool:
@@ -179,6 +231,7 @@ class _Interpreter:
         self.namespaces = namespaces
         self.globals_ids = globals_ids  # ids of xacro's own global objects (functions, namespaces)
         self.steps = 0
+        self.work = 0
 
     def run(self, node: ast.AST) -> Any:
         self.steps += 1
@@ -187,7 +240,12 @@ class _Interpreter:
         method = getattr(self, "_" + type(node).__name__, None)
         if method is None:
             raise _Refused(f"{type(node).__name__} is not allowed")
-        return method(node)
+        v = method(node)
+        if isinstance(v, (str, list, tuple, dict, set, frozenset)):
+            self.work += len(v)  # every value built is also checked: bound the total
+            if self.work > 100 * MAX_STRING:
+                raise _Refused("too much work in one expression")
+        return v
 
     def _Expression(self, node: ast.Expression) -> Any:
         return _check_value(self.value(node.body))
@@ -239,6 +297,8 @@ class _Interpreter:
             raise _Refused(f"{base.name}.{attr}")
         if isinstance(base, _Fn):
             raise _Refused(f"an attribute of the function {base.name}")
+        if isinstance(base, str) and attr == "replace":
+            return _Fn("str.replace", lambda *a: _bounded_replace(base, *a))
         if isinstance(base, str) and attr in _STR_METHODS:
             return _Fn(f"str.{attr}", getattr(base, attr))
         if isinstance(base, (list, tuple)) and attr in _LIST_METHODS:
@@ -277,8 +337,8 @@ class _Interpreter:
                 raise _Refused(f"an integer power of about {a.bit_length() * b} bits (at most {MAX_INT_BITS})")
         if isinstance(node.op, ast.Mult):
             for seq, k in ((a, b), (b, a)):
-                if isinstance(seq, (str, list, tuple)) and isinstance(k, int) and len(seq) * k > MAX_STRING:
-                    raise _Refused(f"a repetition of {len(seq) * k} items (at most {MAX_STRING})")
+                if isinstance(seq, (str, list, tuple)) and isinstance(k, int) and max(_size(seq), 1) * k > MAX_STRING:
+                    raise _Refused(f"a repetition of more than {MAX_STRING} characters and items")
         if isinstance(node.op, ast.Mod) and isinstance(a, str):
             raise _Refused("%-formatting of strings")
         return _check_value(op(a, b))
