@@ -103,8 +103,23 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
 
 
 def ndim(x: object, name: str) -> int:
-    """The number of dimensions of an array-like, or :class:`InputError` naming ``name`` for a
-    ragged nesting numpy cannot make an array of (``[[0, 0], [0]]``).
+    """The number of dimensions of an array-like.
+
+    Parameters
+    ----------
+    x : array_like
+        The argument.
+    name : str
+        Its name, for the message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        For a ragged nesting numpy cannot make an array of (``[[0, 0], [0]]``).
 
     Examples
     --------

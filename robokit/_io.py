@@ -183,7 +183,29 @@ def read_input_bytes(path: str | os.PathLike[str], max_bytes: int, kind: str) ->
 
 
 def decode_utf8(raw: bytes, source: str | os.PathLike[str]) -> str:
-    """``raw`` decoded as UTF-8, or :class:`robokit.InputError` naming ``source``, the byte and its offset."""
+    """``raw`` decoded as UTF-8.
+
+    Parameters
+    ----------
+    raw : bytes
+        What was read.
+    source : str or Path
+        The file it came from, named in the message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        ``SOURCE: not UTF-8 text (byte 0xe9 at offset 12)``.
+
+    Examples
+    --------
+    >>> decode_utf8("é".encode(), "a.urdf")
+    'é'
+    """
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -191,9 +213,31 @@ def decode_utf8(raw: bytes, source: str | os.PathLike[str]) -> str:
 
 
 def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> str:
-    """The UTF-8 text of an input file robokit was pointed at (a DH YAML, a URDF), read with
-    :func:`read_input_bytes` (regular files only, at most ``max_bytes`` bytes read), refusing with
-    :class:`robokit.InputError` naming the file: missing, unreadable, a folder, a FIFO or device,
-    too large, or not UTF-8 (with the byte and its offset). ``kind`` names the expected file in
-    the messages ("a YAML file")."""
+    """The UTF-8 text of an input file robokit was pointed at (a DH YAML, a URDF).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; read with :func:`read_input_bytes` (regular files only, at most
+        ``max_bytes`` bytes read).
+    max_bytes : int
+        Largest size accepted, in bytes.
+    kind : str
+        The expected file in the messages ("a YAML file").
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        Naming the file: missing, unreadable, a folder, a FIFO or device, too large, or not
+        UTF-8 (with the byte and its offset).
+
+    Examples
+    --------
+    >>> read_input_text("arm.yaml", 1 << 20, "a YAML file")   # doctest: +SKIP
+    'name: arm\n...'
+    """
     return decode_utf8(read_input_bytes(path, max_bytes, kind), path)
