@@ -237,7 +237,6 @@ def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> 
 
     Examples
     --------
-    >>> read_input_text("arm.yaml", 1 << 20, "a YAML file")   # doctest: +SKIP
-    'name: arm\n...'
+    >>> text = read_input_text("arm.yaml", 1 << 20, "a YAML file")   # doctest: +SKIP
     """
     return decode_utf8(read_input_bytes(path, max_bytes, kind), path)
