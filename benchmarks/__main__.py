@@ -5,7 +5,8 @@ Each benchmark module has ``main(argv)``; they are run in turn in this process.
 import importlib
 import sys
 
-MODULES = ["benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.speed", "benchmarks.control"]
+MODULES = ["benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.speed", "benchmarks.control",
+           "benchmarks.input_checks"]
 
 
 def main(argv=None):

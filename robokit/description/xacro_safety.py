@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import ast
 import contextlib
+import functools
 import math
 import operator
 import os
@@ -404,6 +405,13 @@ def _listify(v: Any) -> Any:
     return list(v) if not isinstance(v, (str, int, float, bool, type(None), list, tuple, dict)) else v
 
 
+@functools.lru_cache(maxsize=4096)
+def _parse(text: str) -> ast.Expression:
+    """The syntax tree of an expression (cached: a macro evaluates the same text many times;
+    the interpreter never modifies a tree)."""
+    return ast.parse(text, mode="eval")
+
+
 def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xacro>",
              functions: Mapping[str, Callable[..., Any]] | None = None,
              namespaces: Mapping[str, Mapping[str, Callable[..., Any]]] | None = None,
@@ -454,7 +462,7 @@ def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xac
     if len(expression) > MAX_EXPRESSION:
         raise refuse(f"{len(expression)} characters; at most {MAX_EXPRESSION}")
     try:
-        tree = ast.parse(expression.strip(), mode="eval")
+        tree = _parse(expression.strip())
     except SyntaxError as exc:
         raise SyntaxError(f"invalid expression: {exc.msg}") from None
     except (RecursionError, MemoryError, ValueError):
