@@ -408,8 +408,13 @@ def _listify(v: Any) -> Any:
 @functools.lru_cache(maxsize=4096)
 def _parse(text: str) -> ast.Expression:
     """The syntax tree of an expression (cached: a macro evaluates the same text many times;
-    the interpreter never modifies a tree)."""
-    return ast.parse(text, mode="eval")
+    the interpreter never modifies a tree). Python's SyntaxWarnings ("invalid escape
+    sequence", "invalid decimal literal") are not shown: the text is data, not code."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SyntaxWarning)
+        return ast.parse(text, mode="eval")
 
 
 def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xacro>",

@@ -260,3 +260,35 @@ def test_evaluator_agrees_with_python_on_arithmetic():
         assert got == want or (isinstance(want, float) and np.isclose(got, want, rtol=0, atol=0))
 
     check()
+
+
+def test_fuzzed_expressions_only_ever_give_plain_data():
+    """Property: for token soup mixing dunders, builtins, lambdas, calls, attributes and
+    subscripts, the interpreter returns plain data (numbers, strings, lists, tuples, dicts) or
+    raises one of the expected errors — never a function, class, module or other object."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    from robokit.description.xacro_safety import evaluate
+
+    tokens = st.sampled_from([
+        "(", ")", "[", "]", ".", ",", ":", " ", "+", "*", "**", "-", "if", "else", "lambda", "for", "in", "not",
+        "__class__", "__mro__", "__subclasses__", "__globals__", "__builtins__", "__import__", "mro",
+        "open", "eval", "exec", "getattr", "type", "vars", "print", "python", "math", "xacro", "sin", "pi",
+        "len", "str", "list", "dict", "range", "sorted", "p", "q", "''", "'a'", "0", "1", "2.5", "9", "x",
+        "upper", "join", "split", "format", "real", "imag", "load_yaml", "arg", "dotify", "abs_filename",
+    ])
+    data = (int, float, bool, str, list, tuple, dict, type(None))
+
+    @settings(max_examples=300, derandomize=True, deadline=None)
+    @given(st.lists(tokens, min_size=1, max_size=14))
+    def check(parts):
+        text = "".join(parts)
+        try:
+            v = evaluate(text, {"p": 2, "q": "s"})
+        except (SyntaxError, NameError, ArithmeticError, TypeError, ValueError, KeyError, IndexError,
+                AttributeError):  # UnsafeXacro is an InputError (a ValueError)
+            return
+        assert isinstance(v, data), (text, type(v))
+
+    check()
