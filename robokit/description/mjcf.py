@@ -403,29 +403,37 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
         raise InputError(f"{path}: file not found")
     from robokit.description.mjcf_safety import check_mjcf
 
-    root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes)  # includes, files, joint count
-    if root.tag != "mujoco":
-        raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
-    world = root.find("worldbody")
-    if world is None or world.find("body") is None:
-        raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
-    for n in _ignored_notes(root, path):
-        note(n)
-    gravity = _gravity(root, path)
-    exact = _custom_inertials(root, path)
-    first_name, X = first_body_placement(path)
+    import tempfile
+
+    # Pinocchio reads robokit's checked copy (includes, files, joints checked), never the user's files again
+    checked_dir = tempfile.TemporaryDirectory(prefix="robokit-mjcf-")
+    checked = str(Path(checked_dir.name) / "model.xml")
     try:
-        model = pin.buildModelFromMJCF(str(path))
-    except Exception as exc:  # Pinocchio raises ValueError/RuntimeError with multi-line text
-        msg = " ".join(str(exc).split()) or type(exc).__name__
-        raise InputError(f"{path}: Pinocchio's MJCF parser rejected the file ({msg[:300]})") from None
-    geoms = []
-    for gtype, label in ((pin.GeometryType.VISUAL, "visual"), (pin.GeometryType.COLLISION, "collision")):
+        root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, copy_to=checked_dir.name)
+        if root.tag != "mujoco":
+            raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
+        world = root.find("worldbody")
+        if world is None or world.find("body") is None:
+            raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
+        for n in _ignored_notes(root, path):
+            note(n)
+        gravity = _gravity(root, path)
+        exact = _custom_inertials(root, path)
+        first_name, X = first_body_placement(path)
         try:
-            geoms.append(pin.buildGeomFromMJCF(model, str(path), gtype))
-        except Exception as exc:
-            note(f"{path}: {label} geometry not loaded ({' '.join(str(exc).split())[:200]})")
-            geoms.append(None)
+            model = pin.buildModelFromMJCF(checked)
+        except Exception as exc:  # Pinocchio raises ValueError/RuntimeError with multi-line text
+            msg = " ".join(str(exc).replace(checked, str(path)).split()) or type(exc).__name__
+            raise InputError(f"{path}: Pinocchio's MJCF parser rejected the file ({msg[:300]})") from None
+        geoms = []
+        for gtype, label in ((pin.GeometryType.VISUAL, "visual"), (pin.GeometryType.COLLISION, "collision")):
+            try:
+                geoms.append(pin.buildGeomFromMJCF(model, checked, gtype))
+            except Exception as exc:
+                note(f"{path}: {label} geometry not loaded ({' '.join(str(exc).replace(checked, str(path)).split())[:200]})")
+                geoms.append(None)
+    finally:
+        checked_dir.cleanup()
     if X is not None:
         _apply_first_body_fix(model, geoms, first_name, X)
     model.gravity.linear = gravity

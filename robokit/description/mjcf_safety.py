@@ -61,7 +61,7 @@ def read_mjcf_root(path: str | os.PathLike[str]) -> ET.Element:
 
 
 def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-               allow_outside_meshes: bool = False) -> ET.Element:
+               allow_outside_meshes: bool = False, copy_to: str | os.PathLike[str] | None = None) -> ET.Element:
     """Check an MJCF file, its includes and the files it names; return its root element.
 
     Parameters
@@ -72,6 +72,11 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
         Further folders files may be read from.
     allow_outside_meshes : bool
         Accept mesh, skin, texture and height-field files outside the allowed roots.
+    copy_to : str or Path, optional
+        A folder to write the **checked** text to, for a parser that reads files (Pinocchio):
+        ``model.xml`` and one ``include_<k>.xml`` per include, with every asset path made
+        absolute (it was confined) and every ``<include>`` pointing to its checked copy — so
+        that the parser never re-reads the user's files.
 
     Returns
     -------
@@ -96,6 +101,12 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
     for c in top.iter("compiler"):
         compiler.update({k: v for k, v in c.attrib.items() if k in ("meshdir", "texturedir", "assetdir")})
     count = {"joints": 0, "files": 1}
+    copies: list[tuple[str, ET.Element]] = [("model.xml", top)]
+    if copy_to is not None:  # the checked copy lives elsewhere: asset folders become absolute
+        for c in top.iter("compiler"):
+            for key in ("meshdir", "texturedir", "assetdir"):
+                if c.get(key) is not None:
+                    c.set(key, str(top_dir / c.get(key, "")))
 
     def walk(root: ET.Element, source: Path, depth: int) -> None:
         count["joints"] += sum(1 for _ in root.iter("joint")) + sum(1 for _ in root.iter("freejoint"))
@@ -112,7 +123,12 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                 count["files"] += 1
                 if count["files"] > MAX_INCLUDES:
                     raise InputError(f"{path}: more than {MAX_INCLUDES} files included")
-                walk(read_mjcf_root(inc), inc, depth + 1)
+                inc_root = read_mjcf_root(inc)
+                walk(inc_root, inc, depth + 1)
+                if copy_to is not None:
+                    name = f"include_{len(copies)}.xml"
+                    copies.append((name, inc_root))
+                    el.set("file", name)
                 continue
             sub = compiler.get(_ASSET_DIR.get(el.tag, ""), compiler.get("assetdir", ""))
             base = top_dir / sub if sub else top_dir
@@ -120,6 +136,11 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
             problem = mesh_file_problem(asset) if os.path.lexists(asset) else None
             if problem is not None:
                 raise InputError(f"{source}: {what}: {problem}")
+            if copy_to is not None:
+                el.set("file", str(asset))
 
     walk(top, path, 0)
+    if copy_to is not None:
+        for name, root in copies:
+            (Path(copy_to) / name).write_text(ET.tostring(root, encoding="unicode"), encoding="utf-8")
     return top

@@ -172,3 +172,32 @@ def test_teach_mesh_face_cap_refuses_by_count(tmp_path, monkeypatch):
     trimesh.creation.icosphere(subdivisions=5).export(p)  # 20,480 faces
     with pytest.raises(InputError, match="s.obj: mesh of more than 10000 triangles"):
         vm.mesh_parts(p, 0.001)
+
+
+def test_pinocchio_reads_the_checked_mjcf_copy(layout, monkeypatch):
+    """Pinocchio is handed robokit's checked copy (includes and asset paths rewritten), never the
+    user's path; relative meshdir and includes still resolve (the mesh geometry is loaded from
+    the package's own file)."""
+    import pinocchio as pin
+
+    from robokit.description.robot import load
+
+    pkg, _ = layout
+    (pkg / "sub").mkdir()
+    (pkg / "sub" / "extra.xml").write_text('<mujoco><default><geom rgba="1 0 0 1"/></default></mujoco>')
+    src = pkg / "r.xml"
+    src.write_text(_mjcf("inside.stl", meshdir="meshes", include="sub/extra.xml"))
+    seen = []
+    real = pin.buildModelFromMJCF
+
+    def spy(filename, *a):
+        seen.append((filename, open(filename).read()))
+        return real(filename, *a)
+
+    monkeypatch.setattr(pin, "buildModelFromMJCF", spy)
+    robot = load(src)
+    (name, text), = seen
+    assert name != str(src) and not name.startswith(str(pkg))
+    assert str((pkg / "meshes" / "inside.stl").resolve()) in text and 'file="include_1.xml"' in text
+    paths = [go.meshPath for go in robot.visual_model.geometryObjects]
+    assert any(p.endswith("inside.stl") and p.startswith(str(pkg.resolve())) for p in paths), paths
