@@ -6,7 +6,8 @@ import importlib
 import sys
 
 MODULES = ["benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
-           "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.motion"]
+           "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.motion",
+           "benchmarks.input_checks"]
 
 
 def main(argv=None):

@@ -1,7 +1,9 @@
 """Boundary checks: turn array-likes into float64 arrays of the expected shape, or raise.
 
 Every public function validates its arguments once, here, so that the numerical code
-below it can assume clean input. Errors name the argument and what was received.
+below it can assume clean input. Errors name the argument and what was received. Nothing is
+cast silently: complex values, strings, booleans and other objects are refused
+(:class:`robokit.errors.InputTypeError`), never turned into floats.
 """
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ from typing import TypeAlias
 
 import numpy as np
 
-from robokit.errors import InputError
+from robokit.errors import InputError, InputTypeError
 
 #: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
 FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
@@ -21,16 +23,75 @@ def _describe(a: object) -> str:
     return f"shape {arr.shape}" if arr.ndim else f"value {arr!r}"
 
 
+def _real_array(x: object, name: str) -> np.ndarray:
+    """``x`` as a float64 array, refusing what ``np.asarray(x, dtype=float)`` would cast silently:
+    complex values (their imaginary part would be dropped), strings (``"0"`` would become 0.0),
+    booleans (True would become 1.0), arbitrary objects, ragged nestings."""
+    if isinstance(x, (str, bytes)):
+        raise InputTypeError(f"{name}: expected numbers, got a string {x!r:.60}")
+    try:
+        arr = np.asarray(x)
+    except (TypeError, ValueError):  # ragged nesting ("inhomogeneous shape"), objects numpy refuses
+        raise InputError(f"{name}: expected an array of numbers, got {type(x).__name__} {x!r:.80}") from None
+    kind = arr.dtype.kind
+    if kind in "fiu":
+        return arr.astype(float, copy=False) if kind != "f" or arr.dtype != np.float64 else arr
+    if kind == "c":
+        raise InputTypeError(f"{name}: expected real numbers, got complex values (dtype {arr.dtype})")
+    if kind == "b":
+        raise InputTypeError(f"{name}: expected numbers, got booleans (True/False)")
+    if kind in "USa":
+        raise InputTypeError(f"{name}: expected numbers, got strings (dtype {arr.dtype})")
+    if kind == "O":
+        import numbers
+
+        for v in arr.flat:
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+                shown = f"{type(v).__name__} {v!r:.40}"
+                raise InputTypeError(f"{name}: expected an array of real numbers, got an entry {shown}")
+        try:
+            return arr.astype(float)
+        except (OverflowError, TypeError, ValueError):
+            raise InputError(f"{name}: a value is too large for a double") from None
+    raise InputTypeError(f"{name}: expected an array of numbers, got dtype {arr.dtype}")
+
+
 def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, *, finite: bool = True) -> np.ndarray:
     """Return ``x`` as a float64 array, checking its shape (``None`` in ``shape`` = any size).
 
-    Raises ``ValueError`` naming ``name`` when the shape differs, the values are not
-    numbers, or (with ``finite``) any entry is NaN or infinite.
+    Parameters
+    ----------
+    x : array_like
+        Real numbers (ints or floats; numpy arrays of integer or float dtype).
+    name : str
+        The argument's name, used in the messages.
+    shape : tuple of int or None, optional
+        Expected shape; ``None`` entries match any size.
+    finite : bool
+        Refuse NaN and ±inf.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, of the expected shape.
+
+    Raises
+    ------
+    InputError
+        Naming ``name``: the shape differs, or (with ``finite``) an entry is NaN or infinite.
+    InputTypeError
+        Complex values, strings, booleans or other objects (never cast silently).
+
+    Examples
+    --------
+    >>> as_array([1, 2.5], "q", (2,))
+    array([1. , 2.5])
+    >>> as_array([1 + 2j], "q")
+    Traceback (most recent call last):
+    ...
+    robokit.errors.InputTypeError: q: expected real numbers, got complex values (dtype complex128)
     """
-    try:
-        arr = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected an array of numbers, got {type(x).__name__} {x!r:.80}") from None
+    arr = _real_array(x, name)
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == d for s, d in zip(shape, arr.shape))
         if not ok:
@@ -39,6 +100,124 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     if finite and not np.isfinite(arr).all():
         raise InputError(f"{name}: contains NaN or infinite values")
     return arr
+
+
+def ndim(x: object, name: str) -> int:
+    """The number of dimensions of an array-like.
+
+    Parameters
+    ----------
+    x : array_like
+        The argument.
+    name : str
+        Its name, for the message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        For a ragged nesting numpy cannot make an array of (``[[0, 0], [0]]``).
+
+    Examples
+    --------
+    >>> ndim([[0.0, 1.0]], "q")
+    2
+    """
+    try:
+        return int(np.ndim(x))  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: expected an array of numbers, got a ragged {type(x).__name__}") from None
+
+
+def as_joints(x: object, n: int, name: str = "q", robot: str = "", *, batch: bool = False) -> np.ndarray:
+    """Joint values for a robot of ``n`` joints: a real, finite float64 vector (n,) — or, with
+    ``batch``, rows (N, n), C-contiguous.
+
+    Parameters
+    ----------
+    x : array_like
+        Joint values (rad for revolute, m for prismatic joints).
+    n : int
+        The robot's number of joints.
+    name : str
+        The argument's name (``q``, ``dq``, ``tau``…).
+    robot : str
+        The robot's name, for the message.
+    batch : bool
+        Expect (N, n) rows instead of one (n,) vector.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) or (N, n) float64.
+
+    Raises
+    ------
+    InputError
+        ``q: expected shape (6,) for puma560, got (5,)``; NaN/inf; complex, strings, booleans.
+
+    Examples
+    --------
+    >>> as_joints([0, 0.5], 2, "q", "pendulum")
+    array([0. , 0.5])
+    """
+    arr = _real_array(x, name)
+    want = (None, n) if batch else (n,)
+    if arr.ndim != len(want) or arr.shape[-1] != n:
+        owner = f" for {robot}" if robot else ""
+        shown = "(N, " + str(n) + ")" if batch else f"({n},)"
+        raise InputError(f"{name}: expected shape {shown}{owner}, got {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise InputError(f"{name}: contains NaN or infinite values" + ("" if batch else f" ({arr.tolist()})"))
+    return np.ascontiguousarray(arr) if batch else arr
+
+
+def as_int(x: object, name: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """An integer argument (a count, an index, a seed): Python or numpy integers; never a bool,
+    a float (``2.0`` included: a count written as a float is usually a mistake), a string.
+
+    Parameters
+    ----------
+    x : int
+        The value.
+    name : str
+        The argument's name, used in the messages.
+    minimum, maximum : int, optional
+        Inclusive bounds.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        Out of bounds.
+    InputTypeError
+        A bool, a float, a string or another type.
+
+    Examples
+    --------
+    >>> as_int(3, "orientations", minimum=1)
+    3
+    >>> as_int(True, "n")
+    Traceback (most recent call last):
+    ...
+    robokit.errors.InputTypeError: n: expected an integer, got bool True
+    """
+    import numbers
+
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, numbers.Integral):
+        raise InputTypeError(f"{name}: expected an integer, got {type(x).__name__} {x!r:.40}")
+    v = int(x)
+    if minimum is not None and v < minimum:
+        raise InputError(f"{name}: expected an integer >= {minimum}, got {v}")
+    if maximum is not None and v > maximum:
+        raise InputError(f"{name}: expected an integer <= {maximum}, got {v}")
+    return v
 
 
 def as_vector(x: object, name: str, n: int | None = None) -> np.ndarray:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from robokit.errors import InputError
 
-__all__ = ["atomic_write", "read_input_text"]
+__all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text"]
 
 
 def _umask() -> int:
@@ -34,14 +34,14 @@ def _write_all(fd: int, data: bytes) -> None:
 def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
     """Write ``data`` to ``path`` atomically; ``path`` is untouched unless the write completes.
 
-    Raises ``ValueError`` naming the folder if it does not exist.
+    Raises :class:`robokit.InputError` naming the folder if it does not exist.
     """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
-        raise ValueError(f"output: folder {str(folder)!r} does not exist")
+        raise InputError(f"output: folder {str(folder)!r} does not exist")
     if path.is_dir():
-        raise ValueError(f"output: {str(path)!r} is a folder")
+        raise InputError(f"output: {str(path)!r} is a folder")
     raw = data if isinstance(data, bytes) else data.encode("utf-8")
     mode = 0o666 & ~_umask()
     tmp = folder / f".{path.name}.{secrets.token_hex(4)}.tmp"
@@ -107,27 +107,136 @@ def _unlink(p: str | os.PathLike[str]) -> None:
         pass
 
 
-def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> str:
-    """The UTF-8 text of an input file robokit was pointed at (a DH YAML, a URDF), refusing with
-    :class:`robokit.InputError` naming the file: missing, unreadable, a folder, larger than
-    ``max_bytes`` (checked before reading), or not UTF-8 (with the byte and its offset).
-    ``kind`` names the expected file in the folder message ("a YAML file")."""
+def read_input_bytes(path: str | os.PathLike[str], max_bytes: int, kind: str) -> bytes:
+    """The bytes of an input file robokit was pointed at, read from a **regular file only** and
+    never more than ``max_bytes`` of them.
+
+    The file is opened with ``O_NONBLOCK`` (a FIFO does not block the open) and checked with
+    ``fstat`` on the open descriptor (no race with a rename): FIFOs, devices, sockets and
+    folders are refused. The size cap is enforced on the bytes actually read (at most
+    ``max_bytes + 1`` are read), so a symlink to ``/dev/zero`` or a file that grows while it is
+    read cannot defeat it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (a symlink is followed; what it points to must be a regular file).
+    max_bytes : int
+        Largest size accepted, in bytes.
+    kind : str
+        What the file should be ("a URDF file"), used in the messages.
+
+    Returns
+    -------
+    bytes
+        The file's content (at most ``max_bytes`` bytes).
+
+    Raises
+    ------
+    InputError
+        Naming the file: missing, unreadable, a folder, not a regular file, larger than
+        ``max_bytes``.
+
+    Examples
+    --------
+    >>> read_input_bytes("arm.urdf", 1 << 20, "a URDF file")[:5]   # doctest: +SKIP
+    b'<?xml'
+    """
+    import stat
+
     path = Path(path)
     try:
-        size = path.stat().st_size
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
     except FileNotFoundError:
         raise InputError(f"{path}: file not found") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder, not {kind}") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read ({exc.strerror})") from None
-    if path.is_dir():
-        raise InputError(f"{path}: is a folder, not {kind}")
-    if size > max_bytes:
-        raise InputError(f"{path}: file too large ({size} bytes; at most {max_bytes})")
     try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise InputError(f"{path}: is a folder, not {kind}")
+        if not stat.S_ISREG(st.st_mode):
+            what = ("a FIFO" if stat.S_ISFIFO(st.st_mode) else "a device" if stat.S_ISCHR(st.st_mode)
+                    or stat.S_ISBLK(st.st_mode) else "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
+            raise InputError(f"{path}: is {what}, not {kind} (only regular files are read)")
+        if st.st_size > max_bytes:
+            raise InputError(f"{path}: file too large ({st.st_size} bytes; at most {max_bytes})")
+        chunks, total = [], 0
+        while total <= max_bytes:
+            try:
+                chunk = os.read(fd, min(1 << 20, max_bytes + 1 - total))
+            except BlockingIOError:  # pragma: no cover - regular files never block
+                continue
+            except OSError as exc:
+                raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+            if not chunk:
+                break
+            chunks.append(chunk)
+            total += len(chunk)
+        if total > max_bytes:
+            raise InputError(f"{path}: file too large (more than {max_bytes} bytes read; at most {max_bytes})")
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
+def decode_utf8(raw: bytes, source: str | os.PathLike[str]) -> str:
+    """``raw`` decoded as UTF-8.
+
+    Parameters
+    ----------
+    raw : bytes
+        What was read.
+    source : str or Path
+        The file it came from, named in the message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        ``SOURCE: not UTF-8 text (byte 0xe9 at offset 12)``.
+
+    Examples
+    --------
+    >>> decode_utf8("é".encode(), "a.urdf")
+    'é'
+    """
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None
+        raise InputError(f"{source}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start})") from None
+
+
+def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> str:
+    """The UTF-8 text of an input file robokit was pointed at (a DH YAML, a URDF).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; read with :func:`read_input_bytes` (regular files only, at most
+        ``max_bytes`` bytes read).
+    max_bytes : int
+        Largest size accepted, in bytes.
+    kind : str
+        The expected file in the messages ("a YAML file").
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        Naming the file: missing, unreadable, a folder, a FIFO or device, too large, or not
+        UTF-8 (with the byte and its offset).
+
+    Examples
+    --------
+    >>> text = read_input_text("arm.yaml", 1 << 20, "a YAML file")   # doctest: +SKIP
+    """
+    return decode_utf8(read_input_bytes(path, max_bytes, kind), path)

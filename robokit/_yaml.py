@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Any
+from typing import Any, Callable
 
 import yaml
 
@@ -112,15 +112,25 @@ _StrictLoader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 _StrictLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 
 
-def load_yaml_text(text: str, source: str = "<string>") -> Any:
+def load_yaml_text(text: str, source: str = "<string>",
+                   scalar_tags: dict[str, Callable[[str], Any]] | None = None) -> Any:
     """Parse YAML ``text`` strictly (see the module docstring); errors name ``source`` and the line.
+
+    scalar_tags : optional ``{"!tag": function}``; a scalar written ``!tag text`` becomes
+    ``function(text)`` (e.g. xacro's unit tags ``!degrees 90``). Other tags stay refused.
 
     Raises :class:`robokit.InputError` for anything refused.
     """
     if len(text) > MAX_BYTES:
         raise InputError(f"{source}: file too large ({len(text)} characters; at most {MAX_BYTES})")
+    loader: type = _StrictLoader
+    if scalar_tags:
+        loader = type("_TaggedLoader", (_StrictLoader,), {"yaml_constructors": dict(_StrictLoader.yaml_constructors)})
+        for tag, fn in scalar_tags.items():
+            loader.add_constructor(  # type: ignore[attr-defined]
+                tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
     try:
-        return yaml.load(text, Loader=_StrictLoader)  # noqa: S506 - a SafeLoader subclass
+        return yaml.load(text, Loader=loader)  # noqa: S506 - a SafeLoader subclass
     except _Error as exc:
         where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
         raise InputError(f"{source}: {exc}{where}") from None

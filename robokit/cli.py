@@ -5,9 +5,11 @@ Exit status:
 
 * 0 — success;
 * 1 — a check failed (``robokit validate``);
-* 2 — bad input: one line on stderr starting ``robokit:``, naming the file / link / joint /
+* 2 — bad input (an :class:`robokit.errors.InputError`, or an ``OSError`` on a file the
+  user named): one line on stderr starting ``robokit:``, naming the file / link / joint /
   key, no traceback, nothing written;
-* 3 — an internal error (a bug in robokit or a dependency): a short "please report" line;
+* 3 — any other exception, whatever raised it (a bug in robokit or a dependency): a short
+  "please report" line;
   ``--debug`` shows the traceback;
 * 130 — interrupted (Ctrl-C), 143 — terminated (SIGTERM); no file is left half-written and
   no viewer server outlives the command.
@@ -227,26 +229,13 @@ def _one_line(exc: BaseException) -> str:
     return msg
 
 
-def _raised_by_robokit(exc: BaseException) -> bool:
-    """True if the exception was raised by robokit's own code (a deliberate input check),
-    False if it came from inside a dependency (numpy, Pinocchio, ...) or Python itself."""
-    root = os.path.dirname(os.path.abspath(__file__))  # this file is robokit/cli.py
-    tb = exc.__traceback__
-    last = None
-    while tb is not None:
-        last = tb
-        tb = tb.tb_next
-    if last is None:
-        return False
-    return os.path.abspath(last.tb_frame.f_code.co_filename).startswith(root + os.sep)
-
-
 def _is_input_error(exc: BaseException) -> bool:
+    """Exit status 2 or 3 by the exception's type only: :class:`robokit.errors.InputError` (every
+    deliberate check raises it) and ``OSError`` (a file the user named cannot be read or written)
+    are bad input; anything else — a plain ``ValueError`` included — is a bug."""
     from robokit.errors import InputError
 
-    if isinstance(exc, (InputError, OSError)):
-        return True  # InputError: a checked input; OSError: a file that cannot be read/written
-    return isinstance(exc, ValueError) and _raised_by_robokit(exc)
+    return isinstance(exc, (InputError, OSError))
 
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._io import atomic_write
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -27,11 +28,11 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
     """The ``-o`` path, checked before any work: the right extension, an existing folder, not a folder."""
     out = Path(output)
     if out.suffix.lower() not in suffixes:
-        raise ValueError(f"-o: expected a {' or '.join(suffixes)} file, got {str(out)!r}")
+        raise InputError(f"-o: expected a {' or '.join(suffixes)} file, got {str(out)!r}")
     if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise ValueError(f"-o: folder {str(out.parent)!r} does not exist")
+        raise InputError(f"-o: folder {str(out.parent)!r} does not exist")
     if out.is_dir():
-        raise ValueError(f"-o: {str(out)!r} is a folder")
+        raise InputError(f"-o: {str(out)!r} is a folder")
     return out
 
 
@@ -41,7 +42,7 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
     from robokit.description.convert import convert
 
     if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
-        raise ValueError("-o/--output: required (e.g. -o robot.urdf)")
+        raise InputError("-o/--output: required (e.g. -o robot.urdf)")
     text, notes = convert(input, output, tip=tip, convention=convention, **load_options)
     for note in notes:
         print(f"robokit: note: {note}", file=sys.stderr)
@@ -61,9 +62,9 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 
     out = _output_file(output, (".html", ".htm"))
     if not (fps > 0 and np.isfinite(fps)):
-        raise ValueError(f"--fps: expected a positive frame rate, got {fps:g}")
+        raise InputError(f"--fps: expected a positive frame rate, got {fps:g}")
     if q is not None and not np.all(np.isfinite(q)):
-        raise ValueError("-q: contains NaN or infinite values")
+        raise InputError("-q: contains NaN or infinite values")
     robot = load(model, tip=tip)
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
     obs = None
@@ -125,11 +126,11 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
 
     out = _output_file(output, (".npz",))
     if not (np.isfinite(resolution) and resolution > 0):
-        raise ValueError(f"--resolution: expected a positive voxel size in m, got {resolution:g}")
+        raise InputError(f"--resolution: expected a positive voxel size in m, got {resolution:g}")
     if orientations < 1:
-        raise ValueError(f"--orientations: expected a positive count, got {orientations}")
+        raise InputError(f"--orientations: expected a positive count, got {orientations}")
     if scheduler is not None and not scheduler.strip():
-        raise ValueError("--scheduler: empty address")
+        raise InputError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
                           dashboard=dashboard)

@@ -1,9 +1,14 @@
 """Exceptions raised by robokit.
 
-``InputError`` is a ``ValueError``: bad input (a wrong shape, a non-finite value, a
-malformed file) raises it, or a plain ``ValueError``/``TypeError``, with a message that
-names the argument and what was received. The CLI turns these into one line on stderr
-and exit status 2.
+Every deliberate check in robokit raises :class:`InputError` (a ``ValueError``): bad input (a
+wrong shape, a non-finite value, a complex or non-numeric array, a malformed or hostile file),
+with a message that names the argument (or the file, link and key) and what was received.
+A wrong *type* (a string where a number is needed, a robot where a table is needed) raises
+:class:`InputTypeError`, which is an ``InputError`` and also a ``TypeError``, so that both
+``except ValueError`` and ``except TypeError`` code keep working. The CLI maps ``InputError``
+(and an ``OSError`` on a file the user named) to one line on stderr and exit status 2, and
+any other exception to exit status 3 (a bug): no heuristics. Plain ``ValueError``/``TypeError``
+raises are banned outside the compiled kernels (``tests/hardening/test_errors_by_type.py``).
 """
 
 
@@ -23,6 +28,10 @@ class MissingExtraError(InputError, ImportError):
     def __init__(self, message: str, extra: str = "") -> None:
         super().__init__(message)
         self.extra = extra
+
+
+class InputTypeError(InputError, TypeError):
+    """Bad input of the wrong type (e.g. a string where a number is needed); an :class:`InputError`."""
 
 
 class RobokitWarning(UserWarning):

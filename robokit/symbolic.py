@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 from robokit._optional import require
 
@@ -158,16 +159,16 @@ class SymbolicArm:
                  convention: str = "standard", base: Any = None, tool: Any = None) -> None:
         rows = [tuple(r) for r in rows]
         if not rows:
-            raise ValueError("rows: expected at least one DH row")
+            raise InputError("rows: expected at least one DH row")
         for i, r in enumerate(rows):
             if len(r) != 4:
-                raise ValueError(f"rows[{i}]: expected (a, alpha, d, theta), got {len(r)} entries")
+                raise InputError(f"rows[{i}]: expected (a, alpha, d, theta), got {len(r)} entries")
         n = len(rows)
         jt = ["R"] * n if joint_types is None else list(joint_types)
         if len(jt) != n or any(t not in ("R", "P") for t in jt):
-            raise ValueError(f"joint_types: expected {n} entries of 'R' or 'P', got {joint_types!r}")
+            raise InputError(f"joint_types: expected {n} entries of 'R' or 'P', got {joint_types!r}")
         if convention not in ("standard", "modified"):
-            raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+            raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
         self.n = n
         self.convention = convention
         self.joint_types = tuple(jt)
@@ -208,7 +209,7 @@ class SymbolicArm:
         if simplify is False:
             return "none"
         if simplify != "auto":
-            raise ValueError(f"simplify: expected True, False or 'auto', got {simplify!r}")
+            raise InputError(f"simplify: expected True, False or 'auto', got {simplify!r}")
         if self.n <= MAX_SYMBOLIC_DYNAMICS_JOINTS:
             return "full"
         return "none" if heavy else "trig"
@@ -217,7 +218,7 @@ class SymbolicArm:
     def link_transform(self, i: int) -> sp.Matrix:
         """``ⁱ⁻¹Tᵢ`` for joint i (1-based), with the joint variable ``qᵢ`` substituted."""
         if not 1 <= i <= self.n:
-            raise ValueError(f"i: expected 1..{self.n}, got {i}")
+            raise InputError(f"i: expected 1..{self.n}, got {i}")
         a, alpha, d, theta = self.rows[i - 1]
         qi = self.q[i - 1]
         if self.joint_types[i - 1] == "R":
@@ -272,7 +273,7 @@ class SymbolicArm:
         base frame and no simplification for the tool frame, which would take minutes).
         """
         if reference not in ("base", "tool"):
-            raise ValueError(f"reference: expected 'base' or 'tool', got {reference!r}")
+            raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
         cols = []
         if reference == "base":
             p_e = (self._frames()[-1] * self.tool)[:3, 3]
@@ -319,14 +320,14 @@ class SymbolicArm:
         """
         n = self.n
         if n > MAX_SYMBOLIC_DYNAMICS_JOINTS and not allow_slow:
-            raise ValueError(
+            raise InputError(
                 f"dynamics: {n} joints is more than the {MAX_SYMBOLIC_DYNAMICS_JOINTS} that simplify in seconds; "
                 "use the numeric dynamics (robokit.dynamics) or pass allow_slow=True"
             )
         if len(masses) != n or len(coms) != n:
-            raise ValueError(f"masses, coms: expected {n} entries each, got {len(masses)} and {len(coms)}")
+            raise InputError(f"masses, coms: expected {n} entries each, got {len(masses)} and {len(coms)}")
         if inertias is not None and len(inertias) != n:
-            raise ValueError(f"inertias: expected {n} 3×3 entries or None, got {len(inertias)}")
+            raise InputError(f"inertias: expected {n} 3×3 entries or None, got {len(inertias)}")
         level = self._level(simplify)
         g = sp.Matrix([_sym(x) for x in gravity])
         frames = self._frames()
@@ -344,7 +345,7 @@ class SymbolicArm:
             if inertias is not None:
                 I = sp.Matrix(inertias[i - 1]).applyfunc(_sym)
                 if I.shape != (3, 3):
-                    raise ValueError(f"inertias[{i - 1}]: expected a 3×3 matrix, got shape {I.shape}")
+                    raise InputError(f"inertias[{i - 1}]: expected a 3×3 matrix, got shape {I.shape}")
                 Jw = sp.zeros(3, n)
                 for j in range(i):
                     # the moving body of link i turns about the axes of joints 1..i
@@ -387,7 +388,7 @@ class SymbolicArm:
         args = [list(self.q)] + ([list(self.dq)] if uses_dq else []) + list(extra_symbols)
         free = expr.free_symbols - set(self.q) - set(self.dq) - set(extra_symbols)
         if free:
-            raise ValueError(f"expr: symbols {sorted(map(str, free))} have no value; pass them as extra_symbols")
+            raise InputError(f"expr: symbols {sorted(map(str, free))} have no value; pass them as extra_symbols")
         f = sp.lambdify(args, expr, modules="numpy")
 
         def numeric(*values: ArrayLike) -> np.ndarray:

@@ -30,6 +30,7 @@ import numpy as np
 
 from robokit.description.dh import matrix_to_rpy
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -144,7 +145,7 @@ def chain_from_robot(robot: Robot) -> JointChain:
             kinds.append("P")
     tip = model.frames[robot.tip_id]
     if tip.parentJoint != n:
-        raise ValueError(f"robot: the tip frame {robot.tip!r} is not on the last joint of the chain")
+        raise InputError(f"robot: the tip frame {robot.tip!r} is not on the last joint of the chain")
     placements[n] = tip.placement.homogeneous
     return JointChain(placements, axes, tuple(kinds))
 
@@ -231,7 +232,7 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
     """
     nominal = chain_from_robot(robot)
     if chain.n != robot.n or chain.kinds != nominal.kinds:
-        raise ValueError(f"chain: expected {robot.n} joints of kinds {nominal.kinds}, got {chain.kinds}")
+        raise InputError(f"chain: expected {robot.n} joints of kinds {nominal.kinds}, got {chain.kinds}")
     model = robot.model
     n = robot.n
     # simple visuals, sized from the arm: a cylinder on each joint axis, a segment to the next joint

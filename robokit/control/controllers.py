@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -47,7 +48,7 @@ def gains(value: ArrayLike, n: int, name: str) -> np.ndarray:
         arr = np.full(n, float(arr))
     arr = as_vector(arr, name, n)
     if not np.isfinite(arr).all() or np.any(arr < 0):
-        raise ValueError(f"{name}: gains must be finite and non-negative, got {arr.tolist()}")
+        raise InputError(f"{name}: gains must be finite and non-negative, got {arr.tolist()}")
     return arr
 
 

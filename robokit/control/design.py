@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 
 from robokit._optional import require
 from robokit._arrays import as_scalar, as_vector
+from robokit.errors import InputError
 
 __all__ = ["critical_gains", "pid_gains_bandwidth", "StepInfo", "step_info", "plot_step_response"]
 
@@ -35,17 +36,17 @@ def critical_gains(inertia: ArrayLike, omega_n: ArrayLike | None = None,
     """
     J = np.asarray(inertia, dtype=float)
     if np.any(J <= 0) or not np.all(np.isfinite(J)):
-        raise ValueError(f"inertia: expected positive inertias, got {J}")
+        raise InputError(f"inertia: expected positive inertias, got {J}")
     if (omega_n is None) == (Kp is None):
-        raise ValueError("omega_n, Kp: give exactly one of them")
+        raise InputError("omega_n, Kp: give exactly one of them")
     if omega_n is not None:
         w = np.asarray(omega_n, dtype=float)
         if np.any(w <= 0):
-            raise ValueError(f"omega_n: expected a positive frequency, got {w}")
+            raise InputError(f"omega_n: expected a positive frequency, got {w}")
         return J * w * w, 2.0 * J * w
     Kp = np.asarray(Kp, dtype=float)
     if np.any(Kp <= 0):
-        raise ValueError(f"Kp: expected a positive gain, got {Kp}")
+        raise InputError(f"Kp: expected a positive gain, got {Kp}")
     return Kp, 2.0 * np.sqrt(Kp * J)
 
 
@@ -61,9 +62,9 @@ def pid_gains_bandwidth(inertia: ArrayLike, bandwidth: ArrayLike) -> tuple[np.nd
     J = np.asarray(inertia, dtype=float)
     w = np.asarray(bandwidth, dtype=float)
     if np.any(J <= 0):
-        raise ValueError(f"inertia: expected positive inertias, got {J}")
+        raise InputError(f"inertia: expected positive inertias, got {J}")
     if np.any(w <= 0):
-        raise ValueError(f"bandwidth: expected a positive frequency, got {w}")
+        raise InputError(f"bandwidth: expected a positive frequency, got {w}")
     return 3.0 * J * w**2, J * w**3, 3.0 * J * w
 
 
@@ -111,13 +112,13 @@ def step_info(t: ArrayLike, y: ArrayLike, target: float | None = None, y0: float
     t = as_vector(t, "t")
     y = as_vector(y, "y", len(t))
     if np.any(np.diff(t) <= 0):
-        raise ValueError("t: times must increase strictly")
+        raise InputError("t: times must increase strictly")
     y0 = float(y[0]) if y0 is None else as_scalar(y0, "y0")
     final = float(y[-1])
     target = final if target is None else as_scalar(target, "target")
     step = final - y0
     if step == 0:
-        raise ValueError("y: the response does not move (final value equals the initial value)")
+        raise InputError("y: the response does not move (final value equals the initial value)")
     s = (y - y0) / step  # normalised: 0 → 1, increasing
     k_peak = int(np.argmax(s))
     overshoot = max(0.0, (s[k_peak] - 1.0) * 100.0)

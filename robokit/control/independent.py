@@ -37,6 +37,7 @@ from robokit._arrays import as_scalar, as_vector
 from robokit.control.controllers import gains
 from robokit.control.simulate import _desired
 from robokit.dynamics.drives import drive_parameters, forward_dynamics_with_drives
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -97,13 +98,13 @@ def simulate_independent_joints(robot: Robot, trajectory: Any, Kp: ArrayLike, Kv
     t, qd, dqd, ddqd = _desired(trajectory)
     n = robot.n
     if qd.shape[1] != n:
-        raise ValueError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {qd.shape[1]}")
+        raise InputError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {qd.shape[1]}")
     Kp, Kv, Ki = gains(Kp, n, "Kp"), gains(Kv, n, "Kv"), gains(Ki, n, "Ki")
     Ka = as_scalar(Ka, "Ka", positive=True)
     Km = as_scalar(Km, "Km", positive=True)
     substeps = int(substeps)
     if substeps < 1:
-        raise ValueError(f"substeps: expected a positive integer, got {substeps}")
+        raise InputError(f"substeps: expected a positive integer, got {substeps}")
     Jm, G, B, Tc = drive_parameters(robot)
     q = qd[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
     dq = dqd[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()

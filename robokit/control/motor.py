@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.errors import InputError
 
 __all__ = ["DCMotor", "reflect_to_joint", "effective_inertia"]
 
@@ -108,7 +109,7 @@ class DCMotor:
         """
         t = as_vector(t, "t")
         if np.any(np.diff(t) <= 0):
-            raise ValueError("t: times must increase strictly")
+            raise InputError("t: times must increase strictly")
         uu = np.broadcast_to(np.asarray(u, dtype=float), t.shape)
         dd = np.zeros_like(t) if tau_d is None else np.broadcast_to(np.asarray(tau_d, dtype=float), t.shape)
         w = np.empty_like(t)
@@ -135,7 +136,7 @@ def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
     """
     G = np.asarray(G, dtype=float)
     if np.any(G == 0):
-        raise ValueError(f"G: a gear ratio cannot be 0, got {G}")
+        raise InputError(f"G: a gear ratio cannot be 0, got {G}")
     return G * G * np.asarray(Jm, float), G * G * np.asarray(Bm, float), G * np.asarray(tau_c, float)
 
 
@@ -147,5 +148,5 @@ def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarra
     """
     G = np.asarray(G, dtype=float)
     if np.any(G == 0):
-        raise ValueError(f"G: a gear ratio cannot be 0, got {G}")
+        raise InputError(f"G: a gear ratio cannot be 0, got {G}")
     return np.asarray(Jm, float) + np.asarray(M_jj, float) / (G * G)

@@ -99,7 +99,7 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
     dt = as_scalar(dt, "dt", positive=True)
     intRes = int(intRes)
     if intRes < 1:
-        raise ValueError(f"intRes: expected a positive integer, got {intRes}")
+        raise InputError(f"intRes: expected a positive integer, got {intRes}")
     Kp, Ki, Kd = gains(Kp, n, "Kp"), gains(Ki, n, "Ki"), gains(Kd, n, "Kd")
     if compiled:
         from robokit.dynamics.newton_euler import checked_model

@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_array, as_vector
 from robokit.dynamics.drives import friction_torque, joint_drive_parameters
 from robokit.dynamics.integration import second_order_step
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -92,12 +93,12 @@ def _desired(trajectory: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nd
     dq_des = np.zeros_like(q_des) if dq_des is None else as_array(dq_des, "trajectory.qd", q_des.shape)
     ddq_des = np.zeros_like(q_des) if ddq_des is None else as_array(ddq_des, "trajectory.qdd", q_des.shape)
     if len(t) < 2:
-        raise ValueError("trajectory: needs at least two samples")
+        raise InputError("trajectory: needs at least two samples")
     steps = np.diff(t)
     if np.any(steps <= 0):
-        raise ValueError("trajectory.t: times must increase strictly")
+        raise InputError("trajectory.t: times must increase strictly")
     if np.ptp(steps) > 1e-9 * max(1.0, steps.mean()):
-        raise ValueError("trajectory.t: the control grid must be uniform (one control period)")
+        raise InputError("trajectory.t: the control grid must be uniform (one control period)")
     return t, q_des, dq_des, ddq_des
 
 
@@ -137,12 +138,12 @@ def simulate(robot: Robot, controller: Callable[..., ArrayLike], trajectory: Any
     t, q_des, dq_des, ddq_des = _desired(trajectory)
     n = robot.n
     if q_des.shape[1] != n:
-        raise ValueError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {q_des.shape[1]}")
+        raise InputError(f"trajectory.q: expected {n} joint columns for {robot.name}, got {q_des.shape[1]}")
     if method not in ("rk4", "euler"):
-        raise ValueError(f"method: expected 'rk4' or 'euler', got {method!r}")
+        raise InputError(f"method: expected 'rk4' or 'euler', got {method!r}")
     substeps = int(substeps)
     if substeps < 1:
-        raise ValueError(f"substeps: expected a positive integer, got {substeps}")
+        raise InputError(f"substeps: expected a positive integer, got {substeps}")
     q = q_des[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
     dq = dq_des[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()
     K = len(t)
@@ -177,7 +178,7 @@ def simulate(robot: Robot, controller: Callable[..., ArrayLike], trajectory: Any
         Q[k], DQ[k] = q, dq
         tau = np.asarray(controller(t[k], q, dq, q_des[k], dq_des[k], ddq_des[k]), dtype=float)
         if tau.shape != (n,) or not np.all(np.isfinite(tau)):
-            raise ValueError(f"controller: returned {tau!r} at t = {t[k]:g} s; expected {n} finite torques")
+            raise InputError(f"controller: returned {tau!r} at t = {t[k]:g} s; expected {n} finite torques")
         TAU[k] = tau
         if k == K - 1:
             break
@@ -246,7 +247,7 @@ def _simulate_compiled(robot: Robot, controller: Any, kind: int, t: np.ndarray, 
         0 if method == "rk4" else 1)
     if status < -1:
         k = -int(status) - 2
-        raise ValueError(f"controller: returned {TAU[k]!r} at t = {t[k]:g} s; expected {n} finite torques")
+        raise InputError(f"controller: returned {TAU[k]!r} at t = {t[k]:g} s; expected {n} finite torques")
     if status >= 0:
         from robokit.errors import DivergenceError
 

@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit._arrays import as_joints
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -25,17 +27,12 @@ __all__ = ["batch_frame_pose", "batch_jacobian", "batch_crba", "batch_rnea", "ba
 
 
 def _rows(robot: Robot, Q: ArrayLike, name: str) -> np.ndarray:
-    Q = np.ascontiguousarray(np.asarray(Q, dtype=float))
-    if Q.ndim != 2 or Q.shape[1] != robot.n:
-        raise ValueError(f"{name}: expected shape (N, {robot.n}) for {robot.name}, got {Q.shape}")
-    if not np.isfinite(Q).all():
-        raise ValueError(f"{name}: contains NaN or infinite values")
-    return Q
+    return as_joints(Q, robot.n, name, robot.name, batch=True)
 
 
 def _tip_only(robot: Robot, frame: str | None) -> None:
     if frame is not None and frame != robot.tip:
-        raise ValueError(f"frame: batched calls answer for the tip {robot.tip!r} only, got {frame!r}")
+        raise InputError(f"frame: batched calls answer for the tip {robot.tip!r} only, got {frame!r}")
 
 
 def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -56,7 +53,7 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, referen
 
     _tip_only(robot, frame)
     if reference not in ("world", "local", "local_world_aligned"):
-        raise ValueError(f"reference: expected 'world', 'local' or 'local_world_aligned', got {reference!r}")
+        raise InputError(f"reference: expected 'world', 'local' or 'local_world_aligned', got {reference!r}")
     Q = _rows(robot, Q, "q")
     p = robot.poe
     Slist = np.ascontiguousarray(p.Slist)
@@ -89,7 +86,7 @@ def batch_crba(robot: Robot, Q: ArrayLike) -> np.ndarray:
 def _pool(robot: Robot, threads: int) -> tuple[Any, int]:
     threads = int(threads)
     if threads < 1:
-        raise ValueError(f"threads: expected a positive integer, got {threads}")
+        raise InputError(f"threads: expected a positive integer, got {threads}")
     cache = robot.__dict__.setdefault("_pools", {})
     if threads not in cache:
         cache[threads] = robot._pin.ModelPool(robot.model, threads)
@@ -106,7 +103,7 @@ def batch_rnea(robot: Robot, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, thread
     """(N, n) inverse dynamics, Pinocchio's ``rneaInParallel`` on ``threads`` threads."""
     Q, dQ, ddQ = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, ddQ, "ddq")
     if not (Q.shape == dQ.shape == ddQ.shape):
-        raise ValueError(f"q, dq, ddq: expected equal shapes, got {Q.shape}, {dQ.shape}, {ddQ.shape}")
+        raise InputError(f"q, dq, ddq: expected equal shapes, got {Q.shape}, {dQ.shape}, {ddQ.shape}")
     pool, threads = _pool(robot, threads)
     tau = robot._pin.rneaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
                                     np.asfortranarray(ddQ.T))
@@ -117,7 +114,7 @@ def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads
     """(N, n) forward dynamics, Pinocchio's ``abaInParallel`` on ``threads`` threads."""
     Q, dQ, tau = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, tau, "tau")
     if not (Q.shape == dQ.shape == tau.shape):
-        raise ValueError(f"q, dq, tau: expected equal shapes, got {Q.shape}, {dQ.shape}, {tau.shape}")
+        raise InputError(f"q, dq, tau: expected equal shapes, got {Q.shape}, {dQ.shape}, {tau.shape}")
     pool, threads = _pool(robot, threads)
     ddq = robot._pin.abaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
                                    np.asfortranarray(tau.T))

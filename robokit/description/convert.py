@@ -12,6 +12,7 @@ from typing import Mapping, Sequence
 
 from robokit.errors import InputError
 from robokit._io import atomic_write
+from robokit.errors import InputError
 
 __all__ = ["convert"]
 
@@ -20,9 +21,9 @@ def _check_output(output: str | os.PathLike[str]) -> Path:
     out = Path(output)
     parent = out.parent if str(out.parent) else Path(".")
     if not parent.is_dir():
-        raise ValueError(f"output: folder {str(parent)!r} does not exist")
+        raise InputError(f"output: folder {str(parent)!r} does not exist")
     if out.is_dir():
-        raise ValueError(f"output: {str(out)!r} is a folder")
+        raise InputError(f"output: {str(out)!r} is a folder")
     return out
 
 

@@ -73,7 +73,7 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
                 [0.0, 0.0, 0.0, 1.0],
             ]
         )
-    raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+    raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
 
 
 def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
@@ -184,9 +184,9 @@ class DHTable:
     def _q(self, q: ArrayLike) -> np.ndarray:
         q = np.asarray(q, dtype=float)
         if q.shape != (self.n,):
-            raise ValueError(f"q: expected shape ({self.n},) for {self.name}, got {q.shape}")
+            raise InputError(f"q: expected shape ({self.n},) for {self.name}, got {q.shape}")
         if not np.all(np.isfinite(q)):
-            raise ValueError("q: contains NaN or infinite values")
+            raise InputError("q: contains NaN or infinite values")
         return q
 
     def frames(self, q: ArrayLike) -> np.ndarray:
@@ -280,6 +280,9 @@ class DHTable:
         links_data = data["links"]
         if not isinstance(links_data, list) or not links_data:
             fail("key 'links': expected a non-empty list of links")
+        from robokit.description.limits import check_joint_count
+
+        check_joint_count(len(links_data), source, "links (joints)")  # before anything is built
         links = []
         for i, ld in enumerate(links_data, start=1):
             where = f"link {i}"
@@ -336,7 +339,7 @@ class DHTable:
     def to_dict(self, angle_unit: str = "deg") -> dict:
         """The YAML mapping of the DH file format page of the documentation (angles in ``angle_unit``; numbers round-trip exactly)."""
         if angle_unit not in ("deg", "rad"):
-            raise ValueError(f"angle_unit: expected 'deg' or 'rad', got {angle_unit!r}")
+            raise InputError(f"angle_unit: expected 'deg' or 'rad', got {angle_unit!r}")
         k = 180.0 / math.pi if angle_unit == "deg" else 1.0
 
         def ang(x: float) -> float:

@@ -55,6 +55,9 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
 
     if not isinstance(table, DHTable):
         raise InputError(f"table: expected a DHTable, got {type(table).__name__}")
+    from robokit.description.limits import check_joint_count
+
+    check_joint_count(len(table.links), table.name, "links (joints)")  # before Pinocchio builds anything
     if spec is None:
         spec = RobotSpec("dh", text=table.to_yaml_str(angle_unit="rad"))
     xml = dh_to_urdf(table)

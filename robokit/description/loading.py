@@ -47,8 +47,8 @@ FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
     ".yaml": (load_dh_file, ()),
     ".yml": (load_dh_file, ()),
     ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes")),
-    ".xacro": (load_xacro, ("package_dirs", "xacro_args")),
-    ".xml": (load_mjcf, ()),
+    ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes")),
+    ".xml": (load_mjcf, ("allow_outside_meshes",)),
 }
 
 #: Spec kind → how ``load(spec)`` rebuilds the robot.
@@ -59,8 +59,8 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
     "urdf": lambda s: load_urdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                                 allow_outside_meshes=s.allow_outside_meshes),
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
-                                  xacro_args=s.xacro_mapping or None),
-    "mjcf": lambda s: load_mjcf(s.path or "", s.tip),
+                                  xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes),
+    "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes),
 }
 
 

@@ -56,14 +56,9 @@ _IGNORED_SECTIONS = ("actuator", "tendon", "equality", "sensor", "contact", "key
 
 # --------------------------------------------------------------------------- XML helpers
 def _parse_xml(path: Path) -> ET.Element:
-    try:
-        return ET.parse(path).getroot()
-    except ET.ParseError as exc:
-        line, col = exc.position
-        msg = str(exc).split(":")[0]
-        raise InputError(f"{path}:{line}:{col + 1}: not well-formed XML ({msg})") from None
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    from robokit.description.mjcf_safety import read_mjcf_root
+
+    return read_mjcf_root(path)  # bounded: regular file, byte cap, no DTD, depth and size capped
 
 
 def _floats(elem: ET.Element | _Attr, attr: str, n: int | None, path: str | os.PathLike[str]) -> np.ndarray | None:
@@ -349,7 +344,7 @@ def _default_tip(model: Any) -> str:
     return sites[-1] if sites else body
 
 
-def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
+def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_outside_meshes: bool = False) -> Robot:
     """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
 
     Parameters
@@ -359,6 +354,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     tip : str, optional
         The chain's tip frame (a body or site name). Default: the last site of the chain's
         last body, else that body.
+    allow_outside_meshes : bool
+        Read mesh files outside the file's folder and its package (refused by default; see
+        :mod:`robokit.description.meshes`). Includes are always confined.
 
     Returns
     -------
@@ -380,38 +378,48 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
     import pinocchio as pin
 
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():  # a FIFO or device is refused by the bounded reader
         raise InputError(f"{path}: file not found")
-    root = _parse_xml(path)
-    if root.tag != "mujoco":
-        raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
-    world = root.find("worldbody")
-    if world is None or world.find("body") is None:
-        raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
-    for n in _ignored_notes(root, path):
-        note(n)
-    gravity = _gravity(root, path)
-    exact = _custom_inertials(root, path)
-    first_name, X = first_body_placement(path)
+    from robokit.description.mjcf_safety import check_mjcf
+
+    import tempfile
+
+    # Pinocchio reads robokit's checked copy (includes, files, joints checked), never the user's files again
+    checked_dir = tempfile.TemporaryDirectory(prefix="robokit-mjcf-")
+    checked = str(Path(checked_dir.name) / "model.xml")
     try:
-        model = pin.buildModelFromMJCF(str(path))
-    except Exception as exc:  # Pinocchio raises ValueError/RuntimeError with multi-line text
-        msg = " ".join(str(exc).split()) or type(exc).__name__
-        raise InputError(f"{path}: Pinocchio's MJCF parser rejected the file ({msg[:300]})") from None
-    geoms = []
-    for gtype, label in ((pin.GeometryType.VISUAL, "visual"), (pin.GeometryType.COLLISION, "collision")):
+        root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, copy_to=checked_dir.name)
+        if root.tag != "mujoco":
+            raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
+        world = root.find("worldbody")
+        if world is None or world.find("body") is None:
+            raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
+        for n in _ignored_notes(root, path):
+            note(n)
+        gravity = _gravity(root, path)
+        exact = _custom_inertials(root, path)
+        first_name, X = first_body_placement(path)
         try:
-            geoms.append(pin.buildGeomFromMJCF(model, str(path), gtype))
-        except Exception as exc:
-            note(f"{path}: {label} geometry not loaded ({' '.join(str(exc).split())[:200]})")
-            geoms.append(None)
+            model = pin.buildModelFromMJCF(checked)
+        except Exception as exc:  # Pinocchio raises ValueError/RuntimeError with multi-line text
+            msg = " ".join(str(exc).replace(checked, str(path)).split()) or type(exc).__name__
+            raise InputError(f"{path}: Pinocchio's MJCF parser rejected the file ({msg[:300]})") from None
+        geoms = []
+        for gtype, label in ((pin.GeometryType.VISUAL, "visual"), (pin.GeometryType.COLLISION, "collision")):
+            try:
+                geoms.append(pin.buildGeomFromMJCF(model, checked, gtype))
+            except Exception as exc:
+                note(f"{path}: {label} geometry not loaded ({' '.join(str(exc).replace(checked, str(path)).split())[:200]})")
+                geoms.append(None)
+    finally:
+        checked_dir.cleanup()
     if X is not None:
         _apply_first_body_fix(model, geoms, first_name, X)
     model.gravity.linear = gravity
     _fix_slide_ranges(model, root, path)
     if exact:
         _apply_custom_inertials(model, exact, path)
-    spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip)
+    spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes)
     tip = tip or _default_tip(model)
     name = root.get("model") or path.stem
     return build_robot(name, model, tip, geoms, {}, spec)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from importlib import resources
 from pathlib import Path
+from robokit.errors import InputError
 
 __all__ = ["models_dir", "shipped_models", "model_path"]
 
@@ -28,7 +29,7 @@ def model_path(name: str, suffix: str = ".yaml") -> Path:
     """Path of a shipped model file; ``ValueError`` listing the available names if unknown."""
     p = models_dir() / f"{name}{suffix}"
     if not p.is_file():
-        raise ValueError(f"model: no shipped model {name!r}; available: {', '.join(shipped_models())}")
+        raise InputError(f"model: no shipped model {name!r}; available: {', '.join(shipped_models())}")
     return p
 
 

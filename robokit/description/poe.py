@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 
 __all__ = ["PoEParams", "poe_from_model"]
@@ -76,13 +77,13 @@ def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> Po
     import pinocchio as pin
 
     if not model.existFrame(tip):
-        raise ValueError(f"tip: no frame {tip!r} in the model")
+        raise InputError(f"tip: no frame {tip!r} in the model")
     n = model.njoints - 1
     if model.nv != n:
-        raise ValueError(f"model: expected {n} one-dof joints, got nv = {model.nv}")
+        raise InputError(f"model: expected {n} one-dof joints, got nv = {model.nv}")
     for j in range(1, model.njoints):
         if model.parents[j] != j - 1:
-            raise ValueError("model: joints do not form one chain in order")
+            raise InputError("model: joints do not form one chain in order")
     data = model.createData()
     q0 = pin.neutral(model)
     pin.forwardKinematics(model, data, q0)

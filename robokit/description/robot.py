@@ -23,6 +23,10 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._arrays import as_joints, ndim
+from robokit.errors import InputError
+from robokit._arrays import as_joints, ndim
+from robokit.errors import InputError
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 
@@ -123,17 +127,12 @@ class Robot:
         if fid is None:
             if not self.model.existFrame(frame):
                 names = [f.name for f in self.model.frames]
-                raise ValueError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
+                raise InputError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
             fid = self._frame_ids[frame] = self.model.getFrameId(frame)
         return fid
 
     def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
-        q = np.asarray(q, dtype=float)
-        if q.shape != (self.n,):
-            raise ValueError(f"{name}: expected shape ({self.n},) for {self.name}, got {q.shape}")
-        if not np.isfinite(q).all():
-            raise ValueError(f"{name}: contains NaN or infinite values ({q.tolist()})")
-        return q
+        return as_joints(q, self.n, name, self.name)
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -142,7 +141,7 @@ class Robot:
         pin = self._pin
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
-        elif np.ndim(q) == 2:
+        elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_frame_pose
 
             return batch_frame_pose(self, q, frame)
@@ -173,11 +172,11 @@ class Robot:
         rf = self._ref_frames.get(reference)
         if rf is None:
             if reference not in self._REFS:
-                raise ValueError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}")
+                raise InputError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}")
             rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[reference])
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
-        elif np.ndim(q) == 2:
+        elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_jacobian
 
             return batch_jacobian(self, q, frame, reference)
@@ -198,7 +197,7 @@ class Robot:
             tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
             if isfinite(tau.dot(tau)):
                 return tau
-        elif np.ndim(q) == 2:
+        elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_rnea
 
             return batch_rnea(self, q, dq, ddq, threads)
@@ -211,7 +210,7 @@ class Robot:
         compiled composite-rigid-body kernel."""
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
-        elif np.ndim(q) == 2:
+        elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_crba
 
             return batch_crba(self, q)
@@ -234,7 +233,7 @@ class Robot:
             ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
             if isfinite(ddq.dot(ddq)):
                 return ddq
-        elif np.ndim(q) == 2:
+        elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_aba
 
             return batch_aba(self, q, dq, tau, threads)

@@ -12,7 +12,9 @@ joint, and returns the document with every mesh reference resolved:
 * a relative path is taken from the URDF's folder;
 * a mesh that resolves outside the URDF's folder and the package roots (an absolute path,
   ``../``, ``file://``) is refused unless ``allow_outside_meshes=True``;
-* a mesh file that does not exist is dropped from the geometry with a warning naming it.
+* a mesh file that does not exist, is not a regular file (a FIFO, ``/dev/zero``) or is larger
+  than :data:`robokit.description.meshes.MAX_MESH_BYTES` is dropped from the geometry with a
+  warning naming it (and the size).
 
 Mimic joints are reported (``mimic`` in the result) so that the loader can refuse one on
 the chain (robokit's joints are independent) and lock one off it.
@@ -30,6 +32,10 @@ from typing import Iterable, Literal, NoReturn, Sequence
 import numpy as np
 
 from robokit._io import read_input_text
+from robokit._xml import parse_xml
+from robokit.description.limits import check_joint_count
+from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, allowed_roots, is_inside, mesh_file_problem,
+                                         package_name)
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -115,20 +121,13 @@ def _package_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | 
 
 
 def _allowed_roots(path: Path, package_dirs: Sequence[str | os.PathLike[str]] | None) -> list[Path]:
-    """Folders a mesh may be read from without ``allow_outside_meshes``: the URDF's folder, the
-    ROS package that holds it (nearest folder above with a ``package.xml``), ``package_dirs``."""
-    folder = path.parent.resolve()
-    roots = [folder] + [Path(p).resolve() for p in (package_dirs or [])]
-    for parent in (folder, *folder.parents):
-        if (parent / "package.xml").is_file():
-            roots.append(parent)
-            break
-    return roots
+    """Folders a mesh may be read from without ``allow_outside_meshes`` (one rule for every format:
+    :func:`robokit.description.meshes.allowed_roots`)."""
+    return allowed_roots(path, package_dirs)
 
 
 def _inside(p: Path, roots: Iterable[Path]) -> bool:
-    p = p.resolve()
-    return any(p == r or r in p.parents for r in roots)
+    return is_inside(p, roots)
 
 
 def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]) -> tuple[Path | None, str]:
@@ -152,11 +151,7 @@ def _is_package(root: Path, pkg: str) -> bool:
     manifest = root / "package.xml"
     if not manifest.is_file():
         return False
-    try:
-        name = ET.parse(manifest).getroot().findtext("name")
-    except (ET.ParseError, OSError):
-        return False
-    return (name or "").strip() == pkg
+    return package_name(manifest) == pkg
 
 
 def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
@@ -178,13 +173,10 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
 
 def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
            allow_outside_meshes: bool) -> UrdfDocument:
-    try:
-        root = ET.fromstring(raw)
-    except ET.ParseError as exc:
-        line, col = exc.position
-        raise InputError(f"{path}: not well-formed XML at line {line}, column {col + 1}") from None
+    root = parse_xml(raw, path)  # bounded: no DTD/entities, depth and element count capped
     if root.tag != "robot":
         _fail(path, f"expected a <robot> root element, got <{root.tag}>")
+    check_joint_count(len(root.findall("joint")), path, "<joint> elements")
     name = root.get("name") or path.stem
     _check_name(name, path, "robot name")
 
@@ -288,6 +280,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
     pkg_roots = _package_roots(path, package_dirs)
     allowed = _allowed_roots(path, package_dirs)
     notes = []
+    mesh_bytes = 0
     for lname, el in links.items():
         for kind in ("visual", "collision"):
             for geo_el in list(el.findall(kind)):
@@ -299,8 +292,17 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                 if reason == "outside" and not allow_outside_meshes:
                     _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
                                 "package folders given (allow_outside_meshes=True reads it)")
-                if resolved is None or not resolved.is_file():
+                if resolved is None or not os.path.exists(resolved):
                     notes.append(f"link {lname!r}: {kind} mesh {uri!r} not found; drawn without it")
+                    el.remove(geo_el)
+                    continue
+                problem = mesh_file_problem(resolved)
+                if problem is None and kind == "visual":
+                    mesh_bytes += resolved.stat().st_size
+                    if mesh_bytes > MAX_TOTAL_MESH_BYTES:
+                        problem = f"the robot's meshes exceed {MAX_TOTAL_MESH_BYTES >> 20} MiB in total"
+                if problem is not None:
+                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not read ({problem}); drawn without it")
                     el.remove(geo_el)
                     continue
                 mesh.set("filename", str(resolved))

@@ -75,7 +75,7 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
     3
     """
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():  # anything else (a FIFO, a device) is refused by the bounded reader
         raise InputError(f"{path}: file not found")
     return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
 

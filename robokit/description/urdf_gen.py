@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHTable, dh_transform, matrix_to_rpy
+from robokit.errors import InputTypeError
 
 __all__ = ["dh_to_urdf"]
 
@@ -77,7 +78,7 @@ def dh_to_urdf(table: DHTable) -> str:
         model = pinocchio.buildModelFromXML(dh_to_urdf(table))
     """
     if not isinstance(table, DHTable):
-        raise TypeError(f"table: expected a DHTable, got {type(table).__name__}")
+        raise InputTypeError(f"table: expected a DHTable, got {type(table).__name__}")
     n = table.n
     scale = max([abs(l.a) for l in table.links] + [abs(l.d) for l in table.links] + [0.1])
     r_joint = max(0.01, 0.08 * scale)

@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHLink, DHTable
 from robokit.spatial.lines import common_normal
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -146,7 +147,7 @@ def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
     from robokit.description.robot import Robot
 
     if convention not in ("standard", "modified"):
-        raise ValueError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+        raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
     robot = robot if isinstance(robot, Robot) else load(robot)
     axes = joint_axes(robot)
     n = len(axes)
@@ -260,7 +261,7 @@ def urdf_to_dh_text(robot: Robot, convention: str = "standard", as_yaml: bool = 
     table with its residual (printed either way, an inexact one marked as such)."""
     res = urdf_to_dh(robot, convention)
     if as_yaml and not res.exact:
-        raise ValueError(f"{robot.name}: the DH table reproduces the URDF only to {res.residual:.2e} "
+        raise InputError(f"{robot.name}: the DH table reproduces the URDF only to {res.residual:.2e} "
                          f"(> 1e-9); not written")
     if as_yaml:
         header = (f"# DH table of {robot.name} (root → {robot.tip}), extracted by robokit; "

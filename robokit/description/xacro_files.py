@@ -35,6 +35,12 @@ from robokit._optional import require
 from robokit.description._notes import note
 from robokit.description.spec import RobotSpec, xacro_args_tuple
 from robokit.description.urdf_files import _from_urdf_file, absolute_dirs
+from robokit._io import read_input_bytes
+from robokit._xml import check_xml, parse_xml
+from robokit.description.limits import check_joint_count
+from robokit.description.meshes import allowed_roots, confine, package_name
+from robokit.description.urdf_check import MAX_URDF_BYTES
+from robokit.description.xacro_safety import guarded
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -61,11 +67,7 @@ def _package_dirs(package_dirs: Any, package_path: Any, where: str) -> Any:
 
 
 def _package_name(package_xml: Path) -> str:
-    try:
-        name = ET.parse(package_xml).getroot().findtext("name")
-    except (ET.ParseError, OSError):
-        name = None
-    return (name or package_xml.parent.name).strip()
+    return package_name(package_xml) or ""
 
 
 def _package_in(folder: Path, pkg: str) -> Path | None:
@@ -226,7 +228,8 @@ def _resolve_mesh_uri(uri: str, top: Path, package_path: Sequence[str | os.PathL
 
 
 def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | None = None,
-                 package_dirs: Sequence[str | os.PathLike[str]] | None = None, *, package_path: Any = _UNSET) -> str:
+                 package_dirs: Sequence[str | os.PathLike[str]] | None = None, *, package_path: Any = _UNSET,
+                 package_dirs_out: list[Path] | None = None, allow_outside_meshes: bool = False) -> str:
     """The URDF text of a xacro file, with packages and mesh paths resolved.
 
     Parameters
@@ -239,6 +242,10 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     package_dirs : sequence of str or Path, optional
         Folders searched for packages (see the module docstring). ``package_path`` is its old
         name, deprecated.
+    package_dirs_out : list, optional
+        Filled with the folders of the packages ``$(find …)`` found (meshes may be read there).
+    allow_outside_meshes : bool
+        Accept meshes outside the allowed roots of :mod:`robokit.description.meshes`.
 
     Returns
     -------
@@ -250,7 +257,13 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     InputError
         One line naming the file (and line/element where known): file or include not
         found, undefined argument, unknown ``xacro_args`` key, package not found,
-        malformed XML, mesh file missing.
+        malformed XML, mesh file missing; an expression, include, environment variable or
+        amount of work :mod:`robokit.description.xacro_safety` refuses.
+
+    Notes
+    -----
+    Expressions are evaluated by robokit's whitelist interpreter, never by Python's ``eval``;
+    files are read bounded and confined; see :mod:`robokit.description.xacro_safety`.
 
     Examples
     --------
@@ -264,7 +277,7 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
 
     package_path = _package_dirs(package_dirs, package_path, "expand_xacro")
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():  # a FIFO or device is refused by the bounded reader
         raise InputError(f"{path}: file not found")
     args = {}
     for k, v in (xacro_args or {}).items():
@@ -276,25 +289,34 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
         assert isinstance(d, Path)
         if not d.expanduser().is_dir():
             raise InputError(f"package_dirs: {str(d)!r} is not a folder")
+    check_xml(read_input_bytes(path, MAX_URDF_BYTES, "a xacro file"), path)  # named as the user gave it
     top = path.resolve()
     missing_pkg: list = []
+    found: list[Path] = []
 
     def find(pkg: str) -> str:
         try:
-            return str(find_package(pkg, package_path, top))
+            folder = find_package(pkg, package_path, top)
         except InputError as exc:
             missing_pkg.append((pkg, str(exc)))
             raise
+        found.append(folder)
+        return str(folder)
 
     recorder = _ArgRecorder(args)
+    env_seen: set = set()
     with _LOCK:
         saved = sargs._eval_find, sargs._eval_dict.get("find")
         sargs._eval_find = find
         sargs._eval_dict["find"] = find
         try:
-            doc = xacro.process_file(str(top), mappings=recorder)
-            text = doc.toxml()
+            with guarded(top, lambda: allowed_roots(top, package_path, found), args, env_seen, MAX_URDF_BYTES):
+                doc = xacro.process_file(str(top), mappings=recorder)
+                text = doc.toxml()
         except Exception as exc:  # xacro raises XacroException, ExpatError, NameError, ...
+            refused = None if missing_pkg else _robokit_error(exc)
+            if refused is not None:
+                raise refused from None
             files = [str(f) if f else None for f in (getattr(xacro, "filestack", None) or [])]
             macros = [m.body.getAttribute("name") for m in (getattr(xacro, "macrostack", None) or [])
                       if getattr(m, "body", None) is not None]
@@ -303,19 +325,33 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
             sargs._eval_find = saved[0]
             if saved[1] is not None:
                 sargs._eval_dict["find"] = saved[1]
+    recorder.seen |= env_seen
     unknown = sorted(set(args) - recorder.seen)
     if unknown:
         declared = sorted(recorder.seen)
         raise InputError(f"{path}: unknown xacro argument(s) {', '.join(unknown)}; the file declares "
                          f"{', '.join(declared) if declared else 'no arguments'}")
-    return _resolve_meshes(text, top, package_path)
+    if package_dirs_out is not None:
+        package_dirs_out.extend(found)
+    return _resolve_meshes(text, top, package_path, allowed_roots(top, package_path, found), allow_outside_meshes)
 
 
-def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLike[str]] | None) -> str:
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError as exc:  # pragma: no cover - xacro output is well formed
-        raise InputError(f"{top}: expanded URDF is not well-formed XML ({exc})") from None
+def _robokit_error(exc: BaseException) -> InputError | None:
+    """The InputError robokit's own hooks raised inside xacro (possibly wrapped by xacro), or None."""
+    seen = 0
+    e: BaseException | None = exc
+    while e is not None and seen < 10:
+        if isinstance(e, InputError):
+            return InputError(str(e))
+        e = getattr(e, "exc", None)
+        seen += 1
+    return None
+
+
+def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLike[str]] | None,
+                    roots: Sequence[Path], allow_outside: bool) -> str:
+    root = parse_xml(text, f"{top} (expanded)")
+    check_joint_count(len(root.findall("joint")), top, "<joint> elements in the expansion")
     if root.tag != "robot":
         raise InputError(f"{top}: root element <{root.tag}> is not <robot>; a xacro robot description "
                          "expands to a URDF <robot>")
@@ -329,6 +365,7 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
             p = _resolve_mesh_uri(uri, top, package_path)
         except InputError as exc:
             raise InputError(f"{top}: <mesh filename={uri!r}>: {exc}") from None
+        p = confine(p, roots, top, f"<mesh filename={uri!r}>", allow_outside=allow_outside)
         if not p.is_file():
             raise InputError(f"{top}: <mesh filename={uri!r}>: file {str(p)!r} not found")
         mesh.set("filename", str(p.resolve()))
@@ -336,7 +373,8 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
 
 
 def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_args: Mapping[str, str] | None = None,
-               package_dirs: Sequence[str | os.PathLike[str]] | None = None, package_path: Any = _UNSET) -> Robot:
+               package_dirs: Sequence[str | os.PathLike[str]] | None = None, package_path: Any = _UNSET,
+               allow_outside_meshes: bool = False) -> Robot:
     """Load a xacro (or URDF) file as a :class:`robokit.Robot`.
 
     Parameters
@@ -349,6 +387,10 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
     xacro_args, package_dirs
         See :func:`expand_xacro` (``package_path`` is the old name of ``package_dirs``,
         deprecated).
+    allow_outside_meshes : bool
+        Read meshes outside the file's folder, its package, the package folders given and the
+        packages ``$(find …)`` found (refused by default; the rule of
+        :mod:`robokit.description.meshes`, the same for every format).
 
     Returns
     -------
@@ -370,10 +412,14 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
     name = path.name.lower()
     if not (name.endswith(".xacro") or name.endswith(".urdf")):
         raise InputError(f"xacro_args/package_dirs: apply to .xacro and .urdf files, got {str(path)!r}")
-    text = expand_xacro(path, xacro_args, package_path)
+    found: list[Path] = []
+    text = expand_xacro(path, xacro_args, package_path, package_dirs_out=found,
+                        allow_outside_meshes=allow_outside_meshes)
     spec = RobotSpec("xacro", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_path),
-                     xacro_args=xacro_args_tuple(xacro_args))
-    # The expansion resolved $(find) and package:// through the package search above, so the
-    # meshes it names are the packages' own: read like any URDF's, with those paths trusted.
-    return _from_urdf_file(path, tip, package_dirs=package_path, allow_outside_meshes=True, text=text, spec=spec)
+                     xacro_args=xacro_args_tuple(xacro_args), allow_outside_meshes=allow_outside_meshes)
+    # One mesh rule for every format: the meshes must lie in the file's folder, its package, the
+    # package folders given or the packages $(find) found, unless allow_outside_meshes.
+    dirs = [*(package_path or []), *found]
+    return _from_urdf_file(path, tip, package_dirs=dirs, allow_outside_meshes=allow_outside_meshes, text=text,
+                           spec=spec)
 

@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -60,7 +61,7 @@ def cartesian_dynamics(robot: Robot, q: ArrayLike, dq: ArrayLike, frame: str | N
     dq = as_vector(dq, "dq", robot.n)
     rows = {"full": slice(0, 6), "rotation": slice(0, 3), "translation": slice(3, 6)}.get(part)
     if rows is None:
-        raise ValueError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
+        raise InputError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
     J = robot.jacobian(q, frame, reference="local_world_aligned")[rows]
     M = robot.crba(q)
     g = robot.gravity_torques(q)

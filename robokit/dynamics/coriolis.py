@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_vector
 from robokit.dynamics.newton_euler import _Model, _model, inverse_dynamics
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 __all__ = ["coriolis_matrix"]
 
@@ -61,7 +62,7 @@ def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLik
     Example: ``coriolis_matrix(q, dq, robot.poe.Mlist, robot.poe.Glist, robot.poe.Slist, "lecture")``.
     """
     if method not in ("christoffel", "lecture"):
-        raise ValueError(f"method: expected 'christoffel' or 'lecture', got {method!r}")
+        raise InputError(f"method: expected 'christoffel' or 'lecture', got {method!r}")
     m = _model(Mlist, Glist, Slist)
     th = as_vector(thetalist, "thetalist", m.n)
     dth = as_vector(dthetalist, "dthetalist", m.n)

@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -57,7 +58,7 @@ def drive_parameters(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
     """
     dh = getattr(robot, "dh", None)
     if dh is None:
-        raise ValueError(f"robot: {getattr(robot, 'name', robot)!r} has no DH table, hence no drive data "
+        raise InputError(f"robot: {getattr(robot, 'name', robot)!r} has no DH table, hence no drive data "
                          "(Jm, G, B, Tc come from the DH file)")
     Jm = np.array([float(l.Jm) for l in dh.links])
     G = np.array([float(l.G) for l in dh.links])
@@ -201,4 +202,4 @@ def dynamic_manipulability(robot: Robot, q: ArrayLike, method: str = "asada", *,
     if method == "yoshikawa":
         JMi = np.linalg.solve(M.T, J.T).T  # J M⁻¹
         return float(np.sqrt(max(0.0, np.linalg.det(JMi @ JMi.T))))
-    raise ValueError(f"method: expected 'asada' or 'yoshikawa', got {method!r}")
+    raise InputError(f"method: expected 'asada' or 'yoshikawa', got {method!r}")

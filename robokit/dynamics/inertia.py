@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
+from robokit.errors import InputError
 
 __all__ = [
     "inertia_box",
@@ -44,7 +45,7 @@ _AXES = {"x": 0, "y": 1, "z": 2}
 
 def _axis(axis: str) -> int:
     if not isinstance(axis, str) or axis.lower() not in _AXES:
-        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+        raise InputError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
     return _AXES[axis.lower()]
 
 
@@ -111,7 +112,7 @@ def inertia_rod(mass: float, length: float, axis: str = "z") -> np.ndarray:
 def _tensor(I: ArrayLike, name: str) -> np.ndarray:
     I = as_matrix(I, name, 3, 3)
     if np.abs(I - I.T).max() > 1e-9 * max(1.0, np.abs(I).max()):
-        raise ValueError(f"{name}: expected a symmetric 3×3 inertia tensor, got {I.tolist()}")
+        raise InputError(f"{name}: expected a symmetric 3×3 inertia tensor, got {I.tolist()}")
     return I
 
 

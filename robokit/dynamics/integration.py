@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.dynamics.newton_euler import forward_dynamics
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -72,7 +73,7 @@ def integrate(thetalist: ArrayLike, dthetalist: ArrayLike, taufun: Callable[[flo
     dth = as_vector(dthetalist, "dthetalist", len(th)).copy()
     dt = as_scalar(dt, "dt", positive=True)
     if method not in METHODS:
-        raise ValueError(f"method: expected 'rk4', 'euler' or 'taylor', got {method!r}")
+        raise InputError(f"method: expected 'rk4', 'euler' or 'taylor', got {method!r}")
     z6 = np.zeros(6)
 
     def acc(t: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:

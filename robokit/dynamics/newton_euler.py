@@ -34,6 +34,7 @@ from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 __all__ = [
     "inverse_dynamics",
@@ -140,9 +141,9 @@ def _model_lookup(Mlist: Any, Glist: Any, Slist: Any) -> _Model:
     m = _MODELS.get(key)
     if m is None:
         if np.abs(Mlist[:, 3, :] - np.array([0.0, 0.0, 0.0, 1.0])).max() > 1e-9:
-            raise ValueError("Mlist: expected homogeneous transforms (last row [0, 0, 0, 1])")
+            raise InputError("Mlist: expected homogeneous transforms (last row [0, 0, 0, 1])")
         if np.abs(Glist - np.swapaxes(Glist, 1, 2)).max() > 1e-9 * max(1.0, np.abs(Glist).max()):
-            raise ValueError("Glist: expected symmetric 6×6 spatial inertias")
+            raise InputError("Glist: expected symmetric 6×6 spatial inertias")
         if len(_MODELS) > 32:
             _MODELS.clear()
         m = _MODELS[key] = _Model(Mlist, Glist, Slist)
@@ -369,7 +370,7 @@ def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, tau
     dt = as_scalar(dt, "dt", positive=True)
     intRes = int(intRes)
     if intRes < 1:
-        raise ValueError(f"intRes: expected a positive integer, got {intRes}")
+        raise InputError(f"intRes: expected a positive integer, got {intRes}")
     if N == 0:
         return np.empty((0, m.n)), np.empty((0, m.n))
     c = np.ascontiguousarray

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -52,12 +53,12 @@ class DHChain:
         n = len(links)
         conv = getattr(table, "convention", "standard")
         if conv not in ("standard", "modified"):
-            raise ValueError(f"robot: DH convention must be 'standard' or 'modified', got {conv!r}")
+            raise InputError(f"robot: DH convention must be 'standard' or 'modified', got {conv!r}")
         self.n = n
         self.kinds = [str(l.joint) for l in links]
         for i, k in enumerate(self.kinds):
             if k not in ("R", "P"):
-                raise ValueError(f"robot: joint {i + 1} has type {k!r}; expected 'R' or 'P'")
+                raise InputError(f"robot: joint {i + 1} has type {k!r}; expected 'R' or 'P'")
         self.th0 = np.array([float(l.theta) for l in links])
         self.d0 = np.array([float(l.d) for l in links])
         base = np.asarray(getattr(table, "base", np.eye(4)), dtype=float)

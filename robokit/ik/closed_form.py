@@ -58,7 +58,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
-from robokit.errors import InputError
+from robokit.errors import InputError, InputTypeError
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
@@ -189,7 +189,7 @@ class AnalyticIK:
 
     def __init__(self, robot: Robot | DHTable) -> None:
         if not (_is_table(robot) or _is_robot(robot)):
-            raise TypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
+            raise InputTypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
         self._strong: Robot | DHTable | None = robot
         self._weak: weakref.ref | None = None
         self._build()

@@ -71,6 +71,7 @@ import numpy as np
 from robokit.ik.solver import PositionBranch
 from robokit.kernels.general_6r import (companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover,
                                         side_tensor)
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
@@ -321,7 +322,7 @@ class GeneralSixR:
         """The per-arm constants of the elimination (built on first use)."""
         if self._elim is None:
             if self._why is not None:
-                raise ValueError(f"robot: {self._why}")
+                raise InputError(f"robot: {self._why}")
             self._elim = _Elimination(self.chain, self.scale)
         return self._elim
 

@@ -23,12 +23,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
-from robokit.errors import InputError
 from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
 from robokit.ik.lm import IKResult
 from robokit.ik.solution import CollisionChecker
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -267,7 +267,7 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     from robokit.description.robot import Robot
 
     if not isinstance(robot, Robot) and not isinstance(robot, RobotLike):
-        raise TypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
+        raise InputTypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
                         f"(robokit.description.RobotLike), got {type(robot).__name__}")
     if not isinstance(method, str):
         raise InputError(f"method: expected a string, got {type(method).__name__}")

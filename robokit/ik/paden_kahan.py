@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.basics import unit_vector, wrap_angle
+from robokit.errors import InputError
 
 __all__ = ["pk_subproblem1", "pk_subproblem2", "pk_subproblem3", "solve_trig"]
 
@@ -101,7 +102,7 @@ def solve_trig(a: float, b: float, c: float) -> list[float]:
     a, b, c = as_scalar(a, "a"), as_scalar(b, "b"), as_scalar(c, "c")
     roots = _trig_roots(a, b, c)
     if roots is None:
-        raise ValueError("a, b, c: all zero, so every angle solves 0·cos θ + 0·sin θ = 0")
+        raise InputError("a, b, c: all zero, so every angle solves 0·cos θ + 0·sin θ = 0")
     return sorted(roots)
 
 
@@ -181,7 +182,7 @@ def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayL
     cr = np.cross(w1, w2)
     ncr2 = float(cr @ cr)
     if ncr2 < 1e-18:
-        raise ValueError("omega1, omega2: the axes are parallel; subproblem 2 needs intersecting axes")
+        raise InputError("omega1, omega2: the axes are parallel; subproblem 2 needs intersecting axes")
     u, v = p - r, q - r
     if abs(np.linalg.norm(u) - np.linalg.norm(v)) > tol:
         return []

@@ -32,7 +32,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_scalar
+from robokit._arrays import as_array, as_int, as_scalar
+from robokit.errors import InputError
 from robokit.kernels._jit import njit
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.poe import fkin_space_into
@@ -181,13 +182,11 @@ def solve_poe_ik(M: ArrayLike, Slist: ArrayLike, T: ArrayLike, q0: ArrayLike, ql
     q0 = np.ascontiguousarray(as_array(q0, "q0", (n,)))
     qlim = np.ascontiguousarray(as_array(qlim, "qlim", (n, 2), finite=False))
     if np.isnan(qlim).any() or (qlim[:, 0] > qlim[:, 1]).any():
-        raise ValueError("qlim: expected rows [lower, upper] with lower <= upper and no NaN")
+        raise InputError("qlim: expected rows [lower, upper] with lower <= upper and no NaN")
     tol = as_scalar(tol, "tol", positive=True)
-    for name, v in (("max_iterations", max_iterations), ("max_restarts", max_restarts)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
-            raise ValueError(f"{name}: expected a non-negative integer, got {v!r}")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
-        raise TypeError(f"seed: expected an integer, got {type(seed).__name__}")
+    max_iterations = as_int(max_iterations, "max_iterations", minimum=0)
+    max_restarts = as_int(max_restarts, "max_restarts", minimum=0)
+    seed = as_int(seed, "seed")
     q, ok, it, rs = solve_poe_ik_kernel(M, Slist, T, q0, qlim, tol, int(max_iterations), int(max_restarts),
                                         int(seed) % (2**32))
     return q, bool(ok), int(it), int(rs)

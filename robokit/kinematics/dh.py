@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike
 
 from robokit.errors import InputError
 from robokit._arrays import as_vector
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -83,7 +84,7 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
     Example: for the planar 2-link arm the v rows are Lecture 6's ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], …]``.
     """
     if reference not in ("base", "tool"):
-        raise ValueError(f"reference: expected 'base' or 'tool', got {reference!r}")
+        raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     in_tool = 1 if reference == "tool" else 0

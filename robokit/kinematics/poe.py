@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_matrix
 from robokit.spatial.se3 import check_transform
+from robokit.errors import InputError
 
 __all__ = ["fkin_body", "fkin_space", "jacobian_body", "jacobian_space"]
 
@@ -73,9 +74,9 @@ def _theta(thetalist: ArrayLike, n: int, name: str = "thetalist") -> np.ndarray:
     """(n,) or (N, n) finite joint values as a C-contiguous float64 array."""
     th = as_array(thetalist, name, finite=False)
     if th.ndim not in (1, 2) or th.shape[-1] != n:
-        raise ValueError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
+        raise InputError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
     if not np.isfinite(th).all():
-        raise ValueError(f"{name}: contains NaN or infinite values")
+        raise InputError(f"{name}: contains NaN or infinite values")
     return np.ascontiguousarray(th)
 
 

@@ -16,6 +16,7 @@ from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -114,7 +115,7 @@ def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: 
     E = euler_rate_matrix(angles, seq, extrinsic=extrinsic)
     d = float(np.linalg.det(E))
     if abs(d) < tol:
-        raise ValueError(f"angles: representation singularity of {seq} Euler angles (det E = {d:.2e}); "
+        raise InputError(f"angles: representation singularity of {seq} Euler angles (det E = {d:.2e}); "
                          "E(φ) has no inverse here")
     return np.vstack([np.linalg.solve(E, J[:3]), J[3:]])
 
@@ -174,12 +175,12 @@ def _rows(J: ArrayLike, part: str) -> np.ndarray:
     if part == "full":
         return J
     if J.shape[0] != 6:
-        raise ValueError(f"part: {part!r} needs a 6-row Jacobian (ω; v), got shape {J.shape}")
+        raise InputError(f"part: {part!r} needs a 6-row Jacobian (ω; v), got shape {J.shape}")
     if part == "translation":
         return J[3:]
     if part == "rotation":
         return J[:3]
-    raise ValueError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
+    raise InputError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
 
 
 def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") -> float:
@@ -204,7 +205,7 @@ def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") ->
         return float(s[-1] / s[0]) if s[0] > 0 and A.shape[1] >= m else 0.0
     if kind == "min_singular":
         return float(s[-1]) if A.shape[1] >= m else 0.0
-    raise ValueError(f"kind: expected 'yoshikawa', 'condition', 'inverse_condition' or 'min_singular', got {kind!r}")
+    raise InputError(f"kind: expected 'yoshikawa', 'condition', 'inverse_condition' or 'min_singular', got {kind!r}")
 
 
 def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray, np.ndarray]:
@@ -284,11 +285,11 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
         Jp = J.T @ np.linalg.inv(J @ J.T + lam2 * np.eye(m)) if lam2 > 0 else np.linalg.pinv(J, rcond=rcond)
     elif method == "damped_inverse":
         if m != n:
-            raise ValueError(f"J: the damped inverse (J + pI)⁻¹ needs a square Jacobian, got shape {J.shape}")
+            raise InputError(f"J: the damped inverse (J + pI)⁻¹ needs a square Jacobian, got shape {J.shape}")
         p = as_scalar(damping, "damping", nonnegative=True)
         Jp = np.linalg.inv(J + p * np.eye(n))
     else:
-        raise ValueError(f"method: expected 'pinv', 'dls' or 'damped_inverse', got {method!r}")
+        raise InputError(f"method: expected 'pinv', 'dls' or 'damped_inverse', got {method!r}")
     dq = Jp @ V
     if z is not None:
         z = as_vector(z, "z", n)

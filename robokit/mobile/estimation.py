@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import FloatVector, as_array, as_matrix, as_vector
 from robokit.mobile.vehicle import angdiff
+from robokit.errors import InputError
 
 __all__ = [
     "odometry_model",
@@ -48,7 +49,7 @@ _ORDERS = ("turn-move", "move-turn")
 
 def _check_order(order: str) -> str:
     if order not in _ORDERS:
-        raise ValueError(f"order: expected 'turn-move' or 'move-turn', got {order!r}")
+        raise InputError(f"order: expected 'turn-move' or 'move-turn', got {order!r}")
     return order
 
 
@@ -86,7 +87,7 @@ class Odometry:
     def __init__(self, V: ArrayLike, rng: int | np.random.Generator | None = None) -> None:
         self.V = as_matrix(V, "V", 2, 2)
         if np.linalg.eigvalsh(self.V).min() < 0:
-            raise ValueError("V: expected a positive semi-definite covariance")
+            raise InputError("V: expected a positive semi-definite covariance")
         self.rng = np.random.default_rng(rng)
 
     def measure(self, delta: ArrayLike) -> np.ndarray:
@@ -269,10 +270,10 @@ def error_ellipse(P: ArrayLike, mean: ArrayLike = (0.0, 0.0), n_sigma: float = 1
     """
     P = as_matrix(P, "P", 2, 2)
     if np.abs(P - P.T).max() > 1e-12 * max(1.0, np.abs(P).max()):
-        raise ValueError("P: expected a symmetric covariance")
+        raise InputError("P: expected a symmetric covariance")
     lam, vec = np.linalg.eigh(P)
     if lam.min() < 0:
-        raise ValueError("P: expected a positive semi-definite covariance")
+        raise InputError("P: expected a positive semi-definite covariance")
     radii = n_sigma * np.sqrt(lam)
     a = np.linspace(0, 2 * np.pi, int(points))
     pts = (vec @ (radii[:, None] * np.vstack([np.cos(a), np.sin(a)]))).T + np.asarray(mean, float)[:2]

@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.mobile.estimation import LandmarkMap, _check_order
 from robokit.mobile.vehicle import angdiff
+from robokit.errors import InputError
 
 __all__ = ["ParticleFilter", "systematic_resample", "uncertainty"]
 
@@ -44,7 +45,7 @@ def systematic_resample(weights: ArrayLike, rng: int | np.random.Generator | Non
     """
     w = as_vector(weights, "weights")
     if np.any(w < 0) or w.sum() <= 0:
-        raise ValueError("weights: expected non-negative weights with a positive sum")
+        raise InputError("weights: expected non-negative weights with a positive sum")
     w = w / w.sum()
     n = len(w)
     rng = np.random.default_rng(rng)
@@ -64,19 +65,19 @@ def uncertainty(P: ArrayLike, kind: str = "det") -> float:
     """
     P = as_matrix(P, "P")
     if P.shape[0] != P.shape[1]:
-        raise ValueError(f"P: expected a square covariance, got shape {P.shape}")
+        raise InputError(f"P: expected a square covariance, got shape {P.shape}")
     if np.abs(P - P.T).max() > 1e-9 * max(1.0, np.abs(P).max()):
-        raise ValueError("P: expected a symmetric covariance")
+        raise InputError("P: expected a symmetric covariance")
     if kind == "det":
         return float(np.linalg.det(P))
     if kind == "area":
         if P.shape[0] < 2:
-            raise ValueError("P: the ellipse area needs at least a 2×2 (x, y) block")
+            raise InputError("P: the ellipse area needs at least a 2×2 (x, y) block")
         lam = np.linalg.eigvalsh(P[:2, :2])
         if lam.min() < -1e-12:
-            raise ValueError("P: expected a positive semi-definite covariance")
+            raise InputError("P: expected a positive semi-definite covariance")
         return float(math.pi * math.sqrt(max(lam[0], 0.0) * max(lam[1], 0.0)))
-    raise ValueError(f"kind: expected 'det' or 'area', got {kind!r}")
+    raise InputError(f"kind: expected 'det' or 'area', got {kind!r}")
 
 
 class ParticleFilter:
@@ -99,7 +100,7 @@ class ParticleFilter:
         self.rng = np.random.default_rng(rng)
         self.N = int(n_particles)
         if self.N < 1:
-            raise ValueError(f"n_particles: expected a positive count, got {n_particles!r}")
+            raise InputError(f"n_particles: expected a positive count, got {n_particles!r}")
         self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
         self.Winv = np.linalg.inv(self.W)
         self.map = landmarks

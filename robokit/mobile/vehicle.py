@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import FloatVector, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.basics import wrap_angle
+from robokit.errors import InputError
 
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
 
@@ -50,7 +51,7 @@ class BicycleModel:
         self.L = as_scalar(L, "L", positive=True)
         self.steer_max = as_scalar(steer_max, "steer_max", positive=True)
         if self.steer_max >= np.pi / 2:
-            raise ValueError(f"steer_max: must be below π/2 (the model is undefined at ±π/2), got {steer_max!r}")
+            raise InputError(f"steer_max: must be below π/2 (the model is undefined at ±π/2), got {steer_max!r}")
         self.speed_max = as_scalar(speed_max, "speed_max", positive=True)
 
     def limit(self, u: ArrayLike) -> np.ndarray:

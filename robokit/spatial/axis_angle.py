@@ -14,6 +14,7 @@ from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial import lie
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = ["matrix_from_axis_angle", "axis_angle_from_matrix", "matrix_from_two_vectors"]
 
@@ -23,7 +24,7 @@ def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
     if n == 0.0:
-        raise ValueError("axis: the zero vector has no direction")
+        raise InputError("axis: the zero vector has no direction")
     return lie.exp3(axis / n * as_scalar(angle, "angle"))
 
 
@@ -46,8 +47,8 @@ def matrix_from_two_vectors(o: ArrayLike, a: ArrayLike, tol: float = 1e-6) -> np
     a = as_vector(a, "a", 3)
     no, na = float(np.linalg.norm(o)), float(np.linalg.norm(a))
     if no == 0.0 or na == 0.0:
-        raise ValueError("o, a: expected non-zero vectors")
+        raise InputError("o, a: expected non-zero vectors")
     o, a = o / no, a / na
     if abs(float(o @ a)) > tol:
-        raise ValueError(f"o, a: expected orthogonal vectors, got o·a = {float(o @ a):.3g}")
+        raise InputError(f"o, a: expected orthogonal vectors, got o·a = {float(o @ a):.3g}")
     return np.column_stack([np.cross(o, a), o, a])

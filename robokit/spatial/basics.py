@@ -29,7 +29,7 @@ def normalize(V: ArrayLike) -> np.ndarray:
     V = as_vector(V, "V")
     n = float(np.linalg.norm(V))
     if n == 0.0:
-        raise ValueError("V: cannot normalize the zero vector")
+        raise InputError("V: cannot normalize the zero vector")
     return V / n
 
 

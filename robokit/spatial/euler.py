@@ -32,6 +32,7 @@ from robokit._arrays import as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
+from robokit.errors import InputError
 
 __all__ = ["matrix_from_euler", "euler_from_matrix", "EULER_SEQUENCES", "elementary_rotation", "check_sequence"]
 
@@ -44,7 +45,7 @@ EULER_SEQUENCES = tuple(
 def check_sequence(seq: str) -> str:
     """The Euler sequence ``seq`` upper-cased (one of the 12 of :data:`EULER_SEQUENCES`); ``ValueError`` otherwise."""
     if not isinstance(seq, str) or seq.upper() not in EULER_SEQUENCES:
-        raise ValueError(f"seq: expected one of {', '.join(EULER_SEQUENCES)}, got {seq!r}")
+        raise InputError(f"seq: expected one of {', '.join(EULER_SEQUENCES)}, got {seq!r}")
     return seq.upper()
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from robokit._arrays import as_scalar, as_vector
 from robokit.spatial.so3 import check_rotation
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = [
     "check_quaternion",
@@ -32,7 +33,7 @@ def check_quaternion(q: ArrayLike, name: str = "q", tol: float = 1e-6) -> np.nda
     q = as_vector(q, name, 4)
     n = float(np.linalg.norm(q))
     if abs(n - 1.0) > tol:
-        raise ValueError(f"{name}: expected a unit quaternion (w, x, y, z), got norm {n:.6g}")
+        raise InputError(f"{name}: expected a unit quaternion (w, x, y, z), got norm {n:.6g}")
     return q / n
 
 
@@ -75,7 +76,7 @@ def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
     if n == 0.0:
-        raise ValueError("axis: the zero vector has no direction")
+        raise InputError("axis: the zero vector has no direction")
     th = as_scalar(angle, "angle")
     return np.r_[math.cos(0.5 * th), math.sin(0.5 * th) * axis / n]
 
@@ -131,7 +132,7 @@ def quaternion_slerp(q0: ArrayLike, q1: ArrayLike, s: ArrayLike) -> np.ndarray:
     q0, q1 = check_quaternion(q0, "q0"), check_quaternion(q1, "q1")
     s_arr = np.asarray(s, dtype=float)
     if not np.all(np.isfinite(s_arr)):
-        raise ValueError("s: contains NaN or infinite values")
+        raise InputError("s: contains NaN or infinite values")
     d = float(q0 @ q1)
     if d < 0.0:
         q1, d = -q1, -d

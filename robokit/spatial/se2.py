@@ -11,6 +11,7 @@ import numpy as np
 
 from robokit._arrays import as_array, as_matrix, as_vector
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = ["se2_from_pose", "pose_from_se2", "se2_compose", "se2_inverse", "se2_transform_points"]
 
@@ -27,7 +28,7 @@ def _check_se2(T: ArrayLike, name: str = "T") -> np.ndarray:
     R = T[:2, :2]
     err = float(np.abs(R.T @ R - np.eye(2)).max()) + abs(float(np.linalg.det(R)) - 1.0)
     if err > 1e-6 or np.abs(T[2] - (0.0, 0.0, 1.0)).max() > 1e-9:
-        raise ValueError(f"{name}: not an SE(2) matrix (rotation error {err:.3g} or last row {T[2]})")
+        raise InputError(f"{name}: not an SE(2) matrix (rotation error {err:.3g} or last row {T[2]})")
     return T
 
 
@@ -41,7 +42,7 @@ def pose_from_se2(T: ArrayLike) -> np.ndarray:
 def se2_compose(*poses: ArrayLike) -> np.ndarray:
     """The pose ``p₁ ⊕ p₂ ⊕ …`` of planar poses (x, y, θ): the product of their matrices."""
     if not poses:
-        raise ValueError("poses: expected at least one pose")
+        raise InputError("poses: expected at least one pose")
     T = np.eye(3)
     for k, p in enumerate(poses):
         T = T @ se2_from_pose(as_vector(p, f"poses[{k}]", 3))
@@ -62,7 +63,7 @@ def se2_transform_points(pose: ArrayLike, points: ArrayLike) -> np.ndarray:
     x, y, th = as_vector(pose, "pose", 3)
     P = as_array(points, "points")
     if P.shape[-1] != 2 or P.ndim not in (1, 2):
-        raise ValueError(f"points: expected shape (2,) or (K, 2), got {P.shape}")
+        raise InputError(f"points: expected shape (2,) or (K, 2), got {P.shape}")
     c, s = math.cos(th), math.sin(th)
     R = np.array([[c, -s], [s, c]])
     return P @ R.T + np.array([x, y])

@@ -17,6 +17,7 @@ from robokit._arrays import as_matrix, as_vector
 from robokit.spatial import lie
 from robokit.spatial.so3 import SO3_TOLERANCE, _distance_so3, project_to_SO3
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = [
     "trans_inv",
@@ -44,7 +45,7 @@ def check_transform(T: ArrayLike, name: str = "T", tol: float = SO3_TOLERANCE) -
     T = as_matrix(T, name, 4, 4)
     d = _distance_se3(T)
     if d > tol:
-        raise ValueError(f"{name}: not a homogeneous transform (distance to SE(3) {d:.3g} > {tol:g})")
+        raise InputError(f"{name}: not a homogeneous transform (distance to SE(3) {d:.3g} > {tol:g})")
     return T
 
 
@@ -101,7 +102,7 @@ def axis_ang_6(expc6: ArrayLike) -> tuple[np.ndarray, float]:
     if theta == 0.0:
         theta = float(np.linalg.norm(V[3:]))
     if theta == 0.0:
-        raise ValueError("expc6: the zero vector has no screw axis")
+        raise InputError("expc6: the zero vector has no screw axis")
     return V / theta, theta
 
 

@@ -19,6 +19,7 @@ from robokit._arrays import as_matrix, as_vector
 from robokit.spatial.lie import exp3, hat, log3
 from robokit.spatial.basics import wrap_angle
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 __all__ = [
     "rot_inv",
@@ -48,7 +49,7 @@ def check_rotation(R: ArrayLike, name: str = "R", tol: float = SO3_TOLERANCE) ->
     R = as_matrix(R, name, 3, 3)
     d = _distance_so3(R)
     if d > tol:
-        raise ValueError(f"{name}: not a rotation matrix (distance to SO(3) {d:.3g} > {tol:g})")
+        raise InputError(f"{name}: not a rotation matrix (distance to SO(3) {d:.3g} > {tol:g})")
     return R
 
 
@@ -91,7 +92,7 @@ def axis_ang_3(expc3: ArrayLike) -> tuple[np.ndarray, float]:
     v = as_vector(expc3, "expc3", 3)
     theta = float(np.linalg.norm(v))
     if theta == 0.0:
-        raise ValueError("expc3: the zero vector has no rotation axis")
+        raise InputError("expc3: the zero vector has no rotation axis")
     return v / theta, theta
 
 

@@ -41,6 +41,7 @@ from robokit.spatial.so3 import check_rotation
 from robokit.trajectory.core import Trajectory, positive_duration, sample_times
 from robokit.trajectory.timescaling import time_scaling
 from robokit.spatial import lie
+from robokit.errors import InputError, InputTypeError
 
 __all__ = ["slerp_rotation", "cartesian_line_trajectory", "cartesian_to_joint"]
 
@@ -52,7 +53,7 @@ def _relative_rotation_vector(R0: np.ndarray, R1: np.ndarray, shortest: bool) ->
         return w
     theta = float(np.linalg.norm(w))
     if theta < 1e-12:
-        raise ValueError("shortest=False: R0 and R1 are equal, so the 'long way' (a full turn) has no defined axis")
+        raise InputError("shortest=False: R0 and R1 are equal, so the 'long way' (a full turn) has no defined axis")
     return w * (theta - 2.0 * np.pi) / theta
 
 
@@ -90,7 +91,7 @@ def slerp_rotation(R0: ArrayLike, R1: ArrayLike, s: ArrayLike, shortest: bool = 
     if sv.ndim == 0:
         return A @ lie.exp3(w * float(sv))
     if sv.ndim != 1:
-        raise ValueError(f"s: expected a number or a 1-D array, got shape {sv.shape}")
+        raise InputError(f"s: expected a number or a 1-D array, got shape {sv.shape}")
     return np.array([A @ lie.exp3(w * x) for x in sv])
 
 
@@ -170,7 +171,7 @@ def _ik_answer(ans: Any, q_prev: np.ndarray | None) -> tuple[np.ndarray | None, 
         if q_prev is None:
             return cands[0], True
         return min(cands, key=lambda c: float(np.linalg.norm(c - q_prev))), True
-    raise TypeError(
+    raise InputTypeError(
         "ik: expected the IK callable to return an object with .q and .success, a (q, success) pair, "
         f"or a list of solutions; got {type(ans).__name__}"
     )
@@ -223,7 +224,7 @@ def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, n
     ``qtraj = cartesian_to_joint(robot, cartesian_line_trajectory(T_a, T_b, 2.0), qd_limit=3.0)``
     """
     if not isinstance(traj, Trajectory) or traj.poses is None:
-        raise ValueError("traj: expected a Cartesian Trajectory with poses (e.g. from cartesian_line_trajectory)")
+        raise InputError("traj: expected a Cartesian Trajectory with poses (e.g. from cartesian_line_trajectory)")
     n = int(robot.n)
     poses = np.asarray(traj.poses, dtype=float)
     K = poses.shape[0]
@@ -263,7 +264,7 @@ def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, n
     if not ok.all():
         bad = np.flatnonzero(~ok)
         shown = ", ".join(f"{i} (t = {traj.t[i]:.3g} s, p = {np.round(poses[i, :3, 3], 4).tolist()})" for i in bad[:3])
-        raise ValueError(
+        raise InputError(
             f"traj: {bad.size} of {K} poses cannot be reached (IK failed): samples {shown}"
             + (" …" if bad.size > 3 else "")
             + " — the path leaves the workspace (Lecture 3: intermediate points unreachable)"

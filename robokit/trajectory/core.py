@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike
 
 from robokit.errors import InputError
 from robokit._arrays import as_array, as_scalar
+from robokit.errors import InputError, InputTypeError
 
 __all__ = ["Trajectory"]
 
@@ -103,9 +104,9 @@ def as_axes(x: ArrayLike, name: str, n: int | None = None) -> np.ndarray:
     if arr.ndim == 0:
         return np.full(1 if n is None else n, float(arr))
     if arr.ndim != 1:
-        raise ValueError(f"{name}: expected a number or a 1-D array of axes, got shape {arr.shape}")
+        raise InputError(f"{name}: expected a number or a 1-D array of axes, got shape {arr.shape}")
     if n is not None and arr.shape[0] != n:
-        raise ValueError(f"{name}: expected {n} axes (one per axis), got {arr.shape[0]}")
+        raise InputError(f"{name}: expected {n} axes (one per axis), got {arr.shape[0]}")
     return arr.copy()
 
 
@@ -118,7 +119,7 @@ def positive_duration(tf: ArrayLike, name: str = "tf") -> float:
     """A finite duration > 0, else ``ValueError`` naming the argument."""
     v = as_scalar(tf, name)
     if not v > 0.0:
-        raise ValueError(f"{name}: the duration must be positive, got {v!r}")
+        raise InputError(f"{name}: the duration must be positive, got {v!r}")
     return v
 
 
@@ -132,20 +133,20 @@ def sample_times(t: ArrayLike | None, t_start: float, t_end: float, name: str = 
     if t is None:
         return np.linspace(t_start, t_end, DEFAULT_SAMPLES)
     if isinstance(t, bool):
-        raise TypeError(f"{name}: expected a number of samples or an array of times, got {t!r}")
+        raise InputTypeError(f"{name}: expected a number of samples or an array of times, got {t!r}")
     if isinstance(t, Integral):
         if t < 2:
-            raise ValueError(f"{name}: a number of samples must be at least 2, got {t}")
+            raise InputError(f"{name}: a number of samples must be at least 2, got {t}")
         return np.linspace(t_start, t_end, int(t))
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size == 0:
-        raise ValueError(f"{name}: expected an integer number of samples or a non-empty 1-D array of times, got shape {arr.shape}")
+        raise InputError(f"{name}: expected an integer number of samples or a non-empty 1-D array of times, got shape {arr.shape}")
     if arr.size > 1 and not np.all(np.diff(arr) > 0):
         k = int(np.argmin(np.diff(arr)))
-        raise ValueError(f"{name}: sample times must be strictly increasing, but {name}[{k + 1}] = {arr[k + 1]!r} <= {name}[{k}] = {arr[k]!r}")
+        raise InputError(f"{name}: sample times must be strictly increasing, but {name}[{k + 1}] = {arr[k + 1]!r} <= {name}[{k}] = {arr[k]!r}")
     slack = 1e-9 * max(1.0, abs(t_start), abs(t_end))
     if arr[0] < t_start - slack or arr[-1] > t_end + slack:
-        raise ValueError(f"{name}: sample times must lie in [{t_start:g}, {t_end:g}] s, got [{arr[0]:g}, {arr[-1]:g}]")
+        raise InputError(f"{name}: sample times must lie in [{t_start:g}, {t_end:g}] s, got [{arr[0]:g}, {arr[-1]:g}]")
     return np.clip(arr, t_start, t_end)
 
 
@@ -153,11 +154,11 @@ def increasing_times(times: ArrayLike, name: str, m: int | None = None) -> np.nd
     """A 1-D array of strictly increasing times (length ``m`` if given)."""
     arr = as_array(times, name, (None,))
     if m is not None and arr.shape[0] != m:
-        raise ValueError(f"{name}: expected {m} times (one per via point), got {arr.shape[0]}")
+        raise InputError(f"{name}: expected {m} times (one per via point), got {arr.shape[0]}")
     d = np.diff(arr)
     if np.any(d <= 0):
         k = int(np.argmin(d))
-        raise ValueError(
+        raise InputError(
             f"{name}: times must be strictly increasing, but {name}[{k + 1}] = {arr[k + 1]!r} <= {name}[{k}] = {arr[k]!r}"
         )
     return arr
@@ -174,7 +175,7 @@ def viapoint_matrix(viapoints: ArrayLike, name: str, min_rows: int = 2) -> np.nd
             f"{name}: expected a 2-D array with one row per point and one column per axis (or a 1-D list "
             f"for one axis), got shape {arr.shape}")
     if arr.shape[0] < min_rows or arr.shape[1] < 1:
-        raise ValueError(f"{name}: expected at least {min_rows} rows (points) and 1 column (axis), got shape {arr.shape}")
+        raise InputError(f"{name}: expected at least {min_rows} rows (points) and 1 column (axis), got shape {arr.shape}")
     return arr.copy()
 
 

@@ -38,6 +38,7 @@ from robokit.trajectory.core import (
     sample_times,
     viapoint_matrix,
 )
+from robokit.errors import InputError
 
 __all__ = ["lspb_trajectory", "lspb_via_trajectory"]
 
@@ -109,25 +110,25 @@ def lspb_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None
     T = positive_duration(tf, "tf")
     given = [k for k, v in (("blend_time", blend_time), ("acceleration", acceleration), ("max_velocity", max_velocity)) if v is not None]
     if len(given) > 1:
-        raise ValueError(f"lspb_trajectory: give at most one of blend_time, acceleration, max_velocity; got {', '.join(given)}")
+        raise InputError(f"lspb_trajectory: give at most one of blend_time, acceleration, max_velocity; got {', '.join(given)}")
     d = af - a0
     ad = np.abs(d)
     sgn = np.sign(d)
     if blend_time is not None:
         tb_all = as_scalar(blend_time, "blend_time")
         if not 0.0 < tb_all <= 0.5 * T * (1.0 + _REL):
-            raise ValueError(f"blend_time: must satisfy 0 < t_b <= tf/2 = {0.5 * T:g} s, got {tb_all!r}")
+            raise InputError(f"blend_time: must satisfy 0 < t_b <= tf/2 = {0.5 * T:g} s, got {tb_all!r}")
         tb = np.full(n, min(tb_all, 0.5 * T))
         speed = ad / (T - tb)
     elif acceleration is not None:
         acc = as_axes(acceleration, "acceleration", n)
         if np.any(acc <= 0):
-            raise ValueError(f"acceleration: magnitudes must be positive, got {acc.tolist()}")
+            raise InputError(f"acceleration: magnitudes must be positive, got {acc.tolist()}")
         need = 4.0 * ad / T**2
         bad = acc < need * (1.0 - _REL)
         if np.any(bad):
             j = int(np.argmax(bad))
-            raise ValueError(
+            raise InputError(
                 f"acceleration: too small for axis {j}: |θ̈| = {acc[j]:g} but moving {ad[j]:g} in {T:g} s "
                 f"needs |θ̈| >= 4|θf − θ0|/tf² = {need[j]:g}"
             )
@@ -142,7 +143,7 @@ def lspb_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None
             bad = (ad > 0) & ((speed <= lo) | (speed > hi * (1.0 + _REL)))
             if np.any(bad):
                 j = int(np.argmax(bad))
-                raise ValueError(
+                raise InputError(
                     f"max_velocity: for axis {j} (moving {ad[j]:g} in {T:g} s) the peak speed must satisfy "
                     f"{lo[j]:g} < |V| <= {hi[j]:g}, got {speed[j]:g}"
                 )
@@ -218,16 +219,16 @@ def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration
     td = as_array(durations, "durations", (m - 1,))
     if np.any(td <= 0):
         k = int(np.argmin(td))
-        raise ValueError(f"durations: every duration must be positive, got durations[{k}] = {td[k]!r}")
+        raise InputError(f"durations: every duration must be positive, got durations[{k}] = {td[k]!r}")
     acc_in = as_array(acceleration, "acceleration")
     if acc_in.ndim == 2:
         if acc_in.shape != (m, n):
-            raise ValueError(f"acceleration: expected a number, shape ({n},) or ({m}, {n}), got shape {acc_in.shape}")
+            raise InputError(f"acceleration: expected a number, shape ({n},) or ({m}, {n}), got shape {acc_in.shape}")
         A = acc_in.copy()
     else:
         A = np.tile(as_axes(acc_in, "acceleration", n), (m, 1))
     if np.any(A <= 0):
-        raise ValueError("acceleration: magnitudes must be positive")
+        raise InputError("acceleration: magnitudes must be positive")
     times = np.concatenate([[0.0], np.cumsum(td)])
     tb = np.zeros((m, n))
     acc = np.zeros((m, n))
@@ -241,7 +242,7 @@ def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration
             a = A[0, j]
             T = td[0]
             if abs(d) > 0 and a < 4 * abs(d) / T**2 * (1 - _REL):
-                raise ValueError(
+                raise InputError(
                     f"acceleration: too small for axis {j}: |θ̈| = {a:g} but moving {abs(d):g} in {T:g} s "
                     f"needs |θ̈| >= 4|θf − θ0|/tf² = {4 * abs(d) / T**2:g}"
                 )
@@ -257,7 +258,7 @@ def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration
             if a1 != 0.0:
                 disc = td[0] ** 2 - 2.0 * d / a1
                 if disc < -_REL * td[0] ** 2:
-                    raise ValueError(
+                    raise InputError(
                         f"acceleration: too small for the first segment of axis {j}: need |θ̈| >= "
                         f"2|θ2 − θ1|/t_d12² = {2 * abs(d) / td[0] ** 2:g}, got {A[0, j]:g}"
                     )
@@ -270,7 +271,7 @@ def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration
             if an != 0.0:
                 disc = td[-1] ** 2 + 2.0 * d / an
                 if disc < -_REL * td[-1] ** 2:
-                    raise ValueError(
+                    raise InputError(
                         f"acceleration: too small for the last segment of axis {j}: need |θ̈| >= "
                         f"2|θn − θ(n−1)|/t_d² = {2 * abs(d) / td[-1] ** 2:g}, got {A[-1, j]:g}"
                     )
@@ -292,7 +293,7 @@ def lspb_via_trajectory(viapoints: ArrayLike, durations: ArrayLike, acceleration
                 lin[k, j] = td[k] - first - last
             if np.any(lin[:, j] < -_REL * td.max()):
                 k = int(np.argmin(lin[:, j]))
-                raise ValueError(
+                raise InputError(
                     f"acceleration: too small for axis {j}: the blends around segment {k} overlap "
                     f"(linear part {lin[k, j]:g} s < 0); increase the acceleration or the durations"
                 )

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
 from robokit.trajectory.core import Trajectory, as_axes
+from robokit.errors import InputError, InputTypeError
 
 __all__ = ["ms_trajectory"]
 
@@ -59,7 +60,7 @@ def _per_axis(x: ArrayLike, name: str, n: int, *, allow_scalar: bool = True) -> 
     if arr.ndim == 0 and allow_scalar:
         return np.full(n, float(arr))
     if arr.ndim != 1 or arr.shape[0] != n:
-        raise ValueError(f"{name}: expected a number or {n} values (one per axis), got shape {arr.shape}")
+        raise InputError(f"{name}: expected a number or {n} values (one per axis), got shape {arr.shape}")
     return arr.copy()
 
 
@@ -127,60 +128,60 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
     """
     if viapoints is not None:
         if viapoint is not None:
-            raise TypeError("viapoint, viapoints: give one of them (viapoints is an alias of viapoint)")
+            raise InputTypeError("viapoint, viapoints: give one of them (viapoints is an alias of viapoint)")
         viapoint = viapoints
     for name, value in (("viapoint", viapoint), ("dt", dt), ("tacc", tacc)):
         if value is None:
-            raise TypeError(f"ms_trajectory: missing the argument {name!r}")
+            raise InputTypeError(f"ms_trajectory: missing the argument {name!r}")
     qdmax = None if _empty(qdmax) else qdmax
     tsegment = None if _empty(tsegment) else tsegment
     if (qdmax is None) == (tsegment is None):
-        raise ValueError(
+        raise InputError(
             "qdmax/tsegment: give exactly one of them (qdmax = speed limit per axis, or tsegment = "
             f"duration of each segment); got {'both' if qdmax is not None else 'neither'}"
         )
     W = as_array(viapoint, "viapoint")
     if W.ndim != 2 or W.shape[1] < 1:
-        raise ValueError(
+        raise InputError(
             f"viapoint: expected a 2-D array, one row per point and one column per axis, got shape {W.shape}"
             + (" (for a single axis use np.reshape(viapoint, (-1, 1)))" if W.ndim == 1 else "")
         )
     n = W.shape[1]
     if q0 is None:
         if W.shape[0] < 2:
-            raise ValueError(f"viapoint: without q0 the first row is the start, so at least 2 rows are needed, got {W.shape[0]}")
+            raise InputError(f"viapoint: without q0 the first row is the start, so at least 2 rows are needed, got {W.shape[0]}")
         start = W[0].copy()
         targets = W[1:].copy()
     else:
         start = as_axes(q0, "q0")
         if start.shape[0] != n:
-            raise ValueError(f"q0: expected {n} values (the number of columns of viapoint), got {start.shape[0]}")
+            raise InputError(f"q0: expected {n} values (the number of columns of viapoint), got {start.shape[0]}")
         if W.shape[0] < 1:
-            raise ValueError("viapoint: needs at least one row (the goal)")
+            raise InputError("viapoint: needs at least one row (the goal)")
         targets = W.copy()
     ns = targets.shape[0]
     dt = as_scalar(dt, "dt")
     if not dt > 0:
-        raise ValueError(f"dt: the time step must be positive, got {dt!r}")
+        raise InputError(f"dt: the time step must be positive, got {dt!r}")
     tacc_arr = as_array(tacc, "tacc")
     if tacc_arr.ndim == 0:
         tacc_arr = np.full(ns, float(tacc_arr))
     elif tacc_arr.shape != (ns,):
-        raise ValueError(f"tacc: expected a number or {ns} values (one per segment), got shape {tacc_arr.shape}")
+        raise InputError(f"tacc: expected a number or {ns} values (one per segment), got shape {tacc_arr.shape}")
     if np.any(tacc_arr < 0):
-        raise ValueError(f"tacc: blend times must be non-negative, got {tacc_arr.tolist()}")
+        raise InputError(f"tacc: blend times must be non-negative, got {tacc_arr.tolist()}")
     if qdmax is not None:
         speed = _per_axis(qdmax, "qdmax", n)
         if np.any(speed <= 0):
-            raise ValueError(f"qdmax: speeds must be positive, got {speed.tolist()}")
+            raise InputError(f"qdmax: speeds must be positive, got {speed.tolist()}")
         seg_given = None
     else:
         seg_given = as_array(tsegment, "tsegment")
         if seg_given.ndim != 1 or seg_given.shape[0] != ns:
-            raise ValueError(f"tsegment: expected {ns} segment times (one per segment), got shape {seg_given.shape}")
+            raise InputError(f"tsegment: expected {ns} segment times (one per segment), got shape {seg_given.shape}")
         if np.any(seg_given <= 0):
             k = int(np.argmin(seg_given))
-            raise ValueError(f"tsegment: segment times must be positive, got tsegment[{k}] = {seg_given[k]!r}")
+            raise InputError(f"tsegment: segment times must be positive, got tsegment[{k}] = {seg_given[k]!r}")
     v_start = np.zeros(n) if qd0 is None else _per_axis(qd0, "qd0", n, allow_scalar=False)
     v_end = np.zeros(n) if qdf is None else _per_axis(qdf, "qdf", n, allow_scalar=False)
 
@@ -221,7 +222,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
         nb = round(taccx / dt) if taccx > 0 else 0
         if nb > 0:
             if nb > 1 and not np.array_equal(blend_from, last):
-                raise ValueError(
+                raise InputError(
                     f"tsegment: segment {seg - 1} (tsegment[{seg - 1}] = {seg_times[-2]:g} s) is too short for its blends "
                     f"(tacc = {tacc_arr[seg - 1]:g} s at dt = {dt:g} s): it has no linear part before the next blend"
                 )
@@ -259,7 +260,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
     nb = round(tacc2 / dt) if tacc2 > 0 else 0
     if nb > 0:
         if nb > 1 and not np.array_equal(blend_from, last):
-            raise ValueError(
+            raise InputError(
                 f"tsegment: the last segment (tsegment[{ns - 1}] = {seg_times[-1]:g} s) is too short for its blends "
                 f"(tacc = {tacc_arr[-1]:g} s at dt = {dt:g} s): it has no linear part before the final blend"
             )
@@ -271,7 +272,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
         blend_flags.append(np.ones(nb, dtype=bool))
         count += nb
     if count == 0:
-        raise ValueError("viapoint: the motion has no samples (every segment has zero length and tacc = 0)")
+        raise InputError("viapoint: the motion has no samples (every segment has zero length and tacc = 0)")
     q = np.vstack(chunks_q)
     qdv = np.vstack(chunks_qd)
     qddv = np.vstack(chunks_qdd)

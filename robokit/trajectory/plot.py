@@ -14,6 +14,7 @@ import numpy as np
 from robokit._optional import require
 from robokit.errors import InputError
 from robokit.trajectory.core import Trajectory
+from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -65,7 +66,7 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Seque
                              f"{type(traj).__name__}")
     names = tuple(labels) if labels is not None else traj.column_labels()
     if len(names) != traj.n:
-        raise ValueError(f"labels: expected {traj.n} names (one per axis), got {len(names)}")
+        raise InputError(f"labels: expected {traj.n} names (one per axis), got {len(names)}")
     panels = [("position", traj.q)]
     if traj.qd is not None:
         panels.append(("velocity", traj.qd))
@@ -118,14 +119,14 @@ def plot_path_3d(traj: Trajectory, *, frames: int = 5, axis_length: float | None
     """
     if isinstance(traj, Trajectory):
         if traj.poses is None:
-            raise ValueError("traj: this trajectory has no poses (only Cartesian trajectories can be drawn in 3-D)")
+            raise InputError("traj: this trajectory has no poses (only Cartesian trajectories can be drawn in 3-D)")
         P = np.asarray(traj.poses, dtype=float)
         name = traj.name
     else:
         P = np.asarray(traj, dtype=float)
         name = "path"
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
-        raise ValueError(f"traj: expected poses of shape (K, 4, 4), got shape {P.shape}")
+        raise InputError(f"traj: expected poses of shape (K, 4, 4), got shape {P.shape}")
     p = P[:, :3, 3]
     extent = float(np.max(np.ptp(p, axis=0))) if len(p) > 1 else 0.0
     L = axis_length if axis_length is not None else (0.15 * extent if extent > 0 else 0.1)

@@ -47,6 +47,7 @@ from robokit.trajectory.core import (
     sample_times,
     viapoint_matrix,
 )
+from robokit.errors import InputError
 
 __all__ = [
     "cubic_coefficients",
@@ -218,7 +219,7 @@ def via_point_velocities(viapoints: ArrayLike, times: ArrayLike, method: str = "
     [0.0, 1.5, 0.0, 0.0]
     """
     if method not in ("heuristic", "continuous"):
-        raise ValueError(f"method: expected 'heuristic' or 'continuous', got {method!r}")
+        raise InputError(f"method: expected 'heuristic' or 'continuous', got {method!r}")
     P = viapoint_matrix(viapoints, "viapoints")
     m, n = P.shape
     T = increasing_times(times, "times", m)
@@ -293,7 +294,7 @@ def cubic_via_trajectory(viapoints: ArrayLike, times: ArrayLike, t: ArrayLike | 
         V = via_point_velocities(P, T, velocities, qd0, qdf)
     else:
         if qd0 is not None or qdf is not None:
-            raise ValueError("qd0/qdf: not used when velocities is an array (its first and last rows are the end velocities)")
+            raise InputError("qd0/qdf: not used when velocities is an array (its first and last rows are the end velocities)")
         from robokit._arrays import as_array
 
         V = as_array(velocities, "velocities", (m, n)).copy()

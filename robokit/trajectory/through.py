@@ -40,6 +40,7 @@ from robokit.spatial.se3 import check_transform
 from robokit.trajectory.core import Trajectory
 from robokit.trajectory.multisegment import _empty, ms_trajectory
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 __all__ = ["through_viapoints", "ms_through_trajectory", "ms_cartesian_trajectory"]
 
@@ -61,13 +62,13 @@ def through_viapoints(viapoint: ArrayLike, through: Sequence[int] | None = None,
     """
     W = as_array(viapoint, "viapoint")
     if W.ndim != 2 or W.shape[0] < 3:
-        raise ValueError(f"viapoint: expected an (M, n) array with M ≥ 3 (a start, interior points, a goal), "
+        raise InputError(f"viapoint: expected an (M, n) array with M ≥ 3 (a start, interior points, a goal), "
                          f"got shape {W.shape}")
     M = W.shape[0]
     idx = list(range(1, M - 1)) if through is None else sorted({int(i) for i in np.atleast_1d(through)})
     for i in idx:
         if not 0 < i < M - 1:
-            raise ValueError(f"through: index {i} is not an interior via point (1 … {M - 2})")
+            raise InputError(f"through: index {i} is not an interior via point (1 … {M - 2})")
     d = as_scalar(distance, "distance", positive=True)
     frac = [[0.0, 0.0] for _ in range(M - 1)]
     out = [W[0]]
@@ -76,14 +77,14 @@ def through_viapoints(viapoint: ArrayLike, through: Sequence[int] | None = None,
             a, p, b = W[i - 1], W[i], W[i + 1]
             lin, lout = np.linalg.norm(p - a), np.linalg.norm(b - p)
             if lin == 0 or lout == 0:
-                raise ValueError(f"viapoint: row {i} repeats a neighbour; a through point needs distinct neighbours")
+                raise InputError(f"viapoint: row {i} repeats a neighbour; a through point needs distinct neighbours")
             u = (p - a) / lin + (b - p) / lout
             if np.linalg.norm(u) < 1e-9:  # the path turns straight back: use the incoming direction
                 u = (p - a) / lin
             u = u / np.linalg.norm(u)
             dist = d * min(lin, lout) if d < 1 else d
             if dist >= min(lin, lout):
-                raise ValueError(f"distance: {dist:g} does not fit between via point {i} and its neighbours "
+                raise InputError(f"distance: {dist:g} does not fit between via point {i} and its neighbours "
                                  f"(segments of length {lin:g} and {lout:g})")
             out.extend([p - dist * u, p + dist * u])
             frac[i - 1][1] = dist / lin
@@ -113,7 +114,7 @@ def ms_through_trajectory(viapoint: ArrayLike, dt: float, tacc: ArrayLike, qdmax
     if tsegment is not None and not _empty(tsegment):
         T = as_array(tsegment, "tsegment")
         if T.shape != (M - 1,):
-            raise ValueError(f"tsegment: expected {M - 1} segment times (one per original segment), got shape {T.shape}")
+            raise InputError(f"tsegment: expected {M - 1} segment times (one per original segment), got shape {T.shape}")
         new = []
         carry = 0.0
         for k in range(M - 1):
@@ -160,7 +161,7 @@ def ms_cartesian_trajectory(poses: ArrayLike, dt: float, tacc: ArrayLike, speed:
     """
     P = as_array(poses, "poses")
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 2:
-        raise ValueError(f"poses: expected an (M, 4, 4) array of at least two poses, got shape {P.shape}")
+        raise InputError(f"poses: expected an (M, 4, 4) array of at least two poses, got shape {P.shape}")
     Ts = [check_transform(T, f"poses[{i}]") for i, T in enumerate(P)]
     M = len(Ts)
     ns = M - 1
@@ -173,11 +174,11 @@ def ms_cartesian_trajectory(poses: ArrayLike, dt: float, tacc: ArrayLike, speed:
         via[i, 3:3 + i] = 1.0  # segments before via i are complete
     if tsegment is not None and not _empty(tsegment):
         if speed is not None or angular_speed is not None:
-            raise ValueError("speed/angular_speed, tsegment: give the speed limits or the segment times, not both")
+            raise InputError("speed/angular_speed, tsegment: give the speed limits or the segment times, not both")
         tr = ms_trajectory(via, dt, tacc, tsegment=tsegment, verbose=verbose)
     else:
         if speed is None or angular_speed is None:
-            raise ValueError("speed, angular_speed: give both speed limits (or tsegment)")
+            raise InputError("speed, angular_speed: give both speed limits (or tsegment)")
         v = as_scalar(speed, "speed", positive=True)
         w = as_scalar(angular_speed, "angular_speed", positive=True)
         # a segment without rotation is never limited by its progress variable

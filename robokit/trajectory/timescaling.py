@@ -26,6 +26,7 @@ from robokit._arrays import as_array, as_vector
 from robokit.spatial.se3 import check_transform
 from robokit.trajectory.core import positive_duration
 from robokit.spatial import lie
+from robokit.errors import InputError
 
 __all__ = [
     "cubic_time_scaling",
@@ -87,7 +88,7 @@ def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
 
 def _method_name(method: int | str) -> str:
     if isinstance(method, bool):
-        raise ValueError(f"method: expected 3 (cubic) or 5 (quintic), got {method!r}")
+        raise InputError(f"method: expected 3 (cubic) or 5 (quintic), got {method!r}")
     if isinstance(method, Integral) or (isinstance(method, float) and float(method).is_integer()):
         if int(method) == 3:
             return "cubic"
@@ -95,7 +96,7 @@ def _method_name(method: int | str) -> str:
             return "quintic"
     if method in ("cubic", "quintic", "lspb"):
         return method
-    raise ValueError(f"method: expected 3 (cubic) or 5 (quintic) (or 'cubic', 'quintic', 'lspb'), got {method!r}")
+    raise InputError(f"method: expected 3 (cubic) or 5 (quintic) (or 'cubic', 'quintic', 'lspb'), got {method!r}")
 
 
 def time_scaling(method: int | str, Tf: float, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -145,10 +146,10 @@ def time_scaling(method: int | str, Tf: float, t: ArrayLike) -> tuple[np.ndarray
 def _grid(Tf: float, N: int, method: int | str) -> np.ndarray:
     kind = _method_name(method)
     if kind == "lspb":
-        raise ValueError("method: expected 3 (cubic) or 5 (quintic), got 'lspb'")
+        raise InputError("method: expected 3 (cubic) or 5 (quintic), got 'lspb'")
     T = positive_duration(Tf, "Tf")
     if isinstance(N, bool) or not isinstance(N, Integral) or N < 2:
-        raise ValueError(f"N: the number of points must be an integer >= 2, got {N!r}")
+        raise InputError(f"N: the number of points must be an integer >= 2, got {N!r}")
     t = T / (int(N) - 1) * np.arange(int(N))
     t[-1] = T
     s = cubic_time_scaling(T, t) if kind == "cubic" else quintic_time_scaling(T, t)

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -184,12 +185,12 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     d = mj.MjData(m)
     n = robot.n
     if m.nv != n:
-        raise ValueError(f"mjcf: MuJoCo has {m.nv} degrees of freedom, {robot.name} has {n} joints")
+        raise InputError(f"mjcf: MuJoCo has {m.nv} degrees of freedom, {robot.name} has {n} joints")
     qadr_list, dadr_list = [], []
     for jn in robot.joint_names:
         jid = mj.mj_name2id(m, mj.mjtObj.mjOBJ_JOINT, jn)
         if jid < 0:
-            raise ValueError(f"mjcf: no joint {jn!r} in the MuJoCo model")
+            raise InputError(f"mjcf: no joint {jn!r} in the MuJoCo model")
         qadr_list.append(m.jnt_qposadr[jid])
         dadr_list.append(m.jnt_dofadr[jid])
     qadr, dadr = np.array(qadr_list), np.array(dadr_list)
@@ -199,7 +200,7 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     poe = robot.poe
     g = robot.gravity
     if not np.allclose(m.opt.gravity, g, rtol=0, atol=1e-12):
-        raise ValueError(f"mjcf: MuJoCo gravity {m.opt.gravity.tolist()} differs from the robot's {g.tolist()}")
+        raise InputError(f"mjcf: MuJoCo gravity {m.opt.gravity.tolist()} differs from the robot's {g.tolist()}")
 
     frame_names = {f.name for f in robot.model.frames}
     bodies = [(b, mj.mj_id2name(m, mj.mjtObj.mjOBJ_BODY, b)) for b in range(1, m.nbody)]

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 from robokit._optional import require
 
@@ -33,7 +34,7 @@ def cluster_decimate(vertices: ArrayLike, faces: ArrayLike, cell: float) -> tupl
     V = np.asarray(vertices, dtype=float)
     F = np.asarray(faces, dtype=np.int64)
     if not cell > 0:
-        raise ValueError(f"cell: expected a positive cube side, got {cell!r}")
+        raise InputError(f"cell: expected a positive cube side, got {cell!r}")
     if len(V) == 0 or len(F) == 0:
         return np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64)
     keys = np.floor(V / cell).astype(np.int64)
@@ -75,32 +76,71 @@ def _color_of(geom: Any) -> tuple:
     return tuple(np.round(c[:4] / 255.0, 3))
 
 
+#: Most triangles a mesh file may hold to be drawn (the file is refused beyond, with its count).
+MAX_MESH_FACES = 2_000_000
+#: Most triangles one mesh file may put on a page after decimation; beyond, the cube side is
+#: doubled until it fits (a note gives the sizes).
+MAX_PAGE_FACES = 200_000
+
+
 def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLike | None = None) -> list:
     """The mesh file ``path`` as decimated parts ``[(vertices (V, 3), faces (F, 3), rgba), …]``.
 
     Parts of one colour are merged; ``override_rgba`` (4,) paints everything one colour (the
     URDF's material when it overrides the file's). Vertices are in the file's frame (node
     transforms applied, mesh scale not), in the file's unit as trimesh reads it.
+
+    The file is read bounded (a regular file of at most
+    :data:`robokit.description.meshes.MAX_MESH_BYTES`); a mesh of more than
+    :data:`MAX_MESH_FACES` triangles is refused with its count; the decimated result keeps at
+    most :data:`MAX_PAGE_FACES` triangles (``cell`` is doubled until it does, with a note).
     """
+    import io
+    import warnings
+
     trimesh = require("trimesh", "drawing meshes")
 
-    scene: Any = trimesh.load(str(path), force="scene")
+    from robokit._io import read_input_bytes
+    from robokit.description.meshes import MAX_MESH_BYTES
+    from robokit.errors import InputError, RobokitWarning
+
+    raw = read_input_bytes(path, MAX_MESH_BYTES, "a mesh file")
+    ext = os.path.splitext(str(path))[1].lower().lstrip(".")
+    resolver = trimesh.resolvers.FilePathResolver(str(path))  # an OBJ's .mtl, a COLLADA's textures
+    scene: Any = trimesh.load(io.BytesIO(raw), file_type=ext, force="scene", resolver=resolver)
     groups: dict[tuple, list[tuple[np.ndarray, np.ndarray]]] = {}
+    total = 0
     for node in scene.graph.nodes_geometry:
         T, name = scene.graph[node]
         geom = scene.geometry.get(name)
         if geom is None or not hasattr(geom, "faces") or len(geom.faces) == 0:
             continue
+        total += len(geom.faces)
+        if total > MAX_MESH_FACES:
+            raise InputError(f"{path}: mesh of more than {MAX_MESH_FACES} triangles; robokit draws meshes of at most "
+                             f"{MAX_MESH_FACES} (decimate it first)")
         V = np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
         F = np.asarray(geom.faces, dtype=np.int64)
         rgba = tuple(np.round(np.asarray(override_rgba, float), 3)) if override_rgba is not None else _color_of(geom)
         groups.setdefault(rgba, []).append((V, F))
-    parts = []
+    merged = []
     for rgba, items in groups.items():
         offs = np.cumsum([0] + [len(v) for v, _ in items[:-1]])
         V = np.vstack([v for v, _ in items])
         F = np.vstack([f + o for (_, f), o in zip(items, offs)])
-        V, F = cluster_decimate(V, F, cell)
-        if len(F):
-            parts.append((V, F, rgba))
+        merged.append((V, F, rgba))
+    c = cell
+    for _ in range(40):
+        parts = []
+        for V, F, rgba in merged:
+            Vd, Fd = cluster_decimate(V, F, c)
+            if len(Fd):
+                parts.append((Vd, Fd, rgba))
+        kept = sum(len(p[1]) for p in parts)
+        if kept <= MAX_PAGE_FACES:
+            break
+        c *= 2.0
+    if c != cell:
+        warnings.warn(f"{path}: {total} triangles decimated to {kept} for the page (cube side {c:g} instead of "
+                      f"{cell:g}; at most {MAX_PAGE_FACES} per mesh)", RobokitWarning, stacklevel=2)
     return parts

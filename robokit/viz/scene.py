@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any, Iterable
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 from robokit._optional import require
 from robokit.viz._labels import label_png
@@ -130,9 +131,9 @@ class Scene:
         """Draw the robot at joint angles ``q`` (default zero). Returns self."""
         q = np.zeros(self.robot.n) if q is None else np.asarray(q, dtype=float)
         if q.shape != (self.robot.n,):
-            raise ValueError(f"q: expected {self.robot.n} joint values for {self.robot.name}, got shape {q.shape}")
+            raise InputError(f"q: expected {self.robot.n} joint values for {self.robot.name}, got shape {q.shape}")
         if not np.all(np.isfinite(q)):
-            raise ValueError("q: contains NaN or infinite values")
+            raise InputError("q: contains NaN or infinite values")
         self.q = q
         self.viz.display(self.robot.q_pin(q))
         return self
@@ -156,7 +157,7 @@ class Scene:
         scale = scale or 0.12 * self._size()
         for name in names:
             if name not in poses:
-                raise ValueError(f"frames: no frame {name!r} in {r.name}")
+                raise InputError(f"frames: no frame {name!r} in {r.name}")
             node = self.vis["frames"][name]
             node["triad"].set_object(g.triad(scale))
             node.set_transform(poses[name])
@@ -195,7 +196,7 @@ class Scene:
 
         P = np.asarray(points, dtype=float)
         if P.ndim != 2 or P.shape[1] != 3 or len(P) < 2:
-            raise ValueError(f"points: expected shape (K, 3) with K >= 2, got {P.shape}")
+            raise InputError(f"points: expected shape (K, 3) with K >= 2, got {P.shape}")
         self.vis["paths"][name].set_object(
             g.Line(g.PointsGeometry(P.T.astype(np.float32)), g.LineBasicMaterial(color=color, linewidth=linewidth)))
         self._extra_points.extend(P)
@@ -248,7 +249,7 @@ class Scene:
             elif kind == "Mesh":
                 geom = g.TriangularMeshGeometry(np.asarray(o.vertices, dtype=float), np.asarray(o.faces, dtype=np.int64))
             else:
-                raise ValueError(f"obstacles: item {k} is a {kind}, not a Box, Sphere, Cylinder or Mesh")
+                raise InputError(f"obstacles: item {k} is a {kind}, not a Box, Sphere, Cylinder or Mesh")
             self.vis["obstacles"][str(k)].set_object(geom, mat)
             self.vis["obstacles"][str(k)].set_transform(T)
         return self
@@ -259,15 +260,15 @@ class Scene:
 
         Q = np.asarray(Q, dtype=float)
         if Q.ndim != 2 or Q.shape[1] != self.robot.n or len(Q) < 1:
-            raise ValueError(f"Q: expected shape (K, {self.robot.n}), got {Q.shape}")
+            raise InputError(f"Q: expected shape (K, {self.robot.n}), got {Q.shape}")
         if not np.all(np.isfinite(Q)):
-            raise ValueError("Q: contains NaN or infinite values")
+            raise InputError("Q: contains NaN or infinite values")
         if not fps > 0:
-            raise ValueError(f"fps: expected a positive frame rate, got {fps!r}")
+            raise InputError(f"fps: expected a positive frame rate, got {fps!r}")
         if t is not None:
             t = np.asarray(t, dtype=float)
             if t.shape != (len(Q),) or np.any(np.diff(t) <= 0):
-                raise ValueError("t: expected increasing times, one per configuration")
+                raise InputError("t: expected increasing times, one per configuration")
             frames = np.round((t - t[0]) * fps).astype(int)
         else:
             frames = np.arange(len(Q))

@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 from robokit._optional import require
 from robokit.errors import InputError
@@ -368,7 +369,7 @@ def teach_readouts(robot: Robot, q: ArrayLike) -> dict:
 
     q = np.asarray(q, dtype=float)
     if q.shape != (robot.n,):
-        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     T = robot.frame_pose(q)
     J = robot.jacobian(q, reference="local_world_aligned")
     rows = task_rows(robot)
@@ -509,7 +510,7 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> A
     unit = np.array([180.0 / math.pi if t == "R" else 1.0 for t in types])
     q = np.zeros(robot.n) if q is None else np.asarray(q, dtype=float)
     if q.shape != (robot.n,):
-        raise ValueError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     q = np.clip(q, rng[:, 0], rng[:, 1])
     names = _frame_names(robot)
     scene.show(q).frames(names, labels=robot.dh is not None)

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -32,7 +33,7 @@ def _npy_shape(path: Path) -> tuple[int, ...]:
 
     st = os.stat(path)
     if not stat.S_ISREG(st.st_mode):
-        raise ValueError("not a regular file")
+        raise InputError("not a regular file")
     with open(path, "rb") as f:
         version = np.lib.format.read_magic(f)
         if version == (1, 0):
@@ -41,31 +42,77 @@ def _npy_shape(path: Path) -> tuple[int, ...]:
             shape, _, dtype = np.lib.format.read_array_header_2_0(f, max_header_size=10_000)
         start = f.tell()
     if dtype.hasobject or dtype.kind not in "fiu" or dtype.fields is not None:
-        raise ValueError(f"dtype {dtype.str!r}: expected real numbers")
+        raise InputError(f"dtype {dtype.str!r}: expected real numbers")
     if start + int(np.prod(shape, dtype=object)) * dtype.itemsize != st.st_size:
-        raise ValueError(f"its header declares shape {tuple(shape)}, which does not match the file's size")
+        raise InputError(f"its header declares shape {tuple(shape)}, which does not match the file's size")
     return tuple(shape)
 
 
-def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
-    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv``; ValueError naming the file otherwise.
+#: Most samples (rows) a trajectory file may hold: 10⁵ frames are an hour at 30 fps, and the page
+#: stays below about 100 MB for a 6-joint arm.
+MAX_TRAJECTORY_ROWS = 100_000
+#: Largest trajectory file read (bytes).
+MAX_TRAJECTORY_BYTES = 64 << 20
 
-    At most :data:`MAX_TRAJECTORY_ROWS` configurations; a ``.npy`` file's header (shape,
-    dtype, size) is checked before its data are loaded.
+
+def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
+    """Read a (K, n) joint trajectory from ``.npy`` or ``.csv`` (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        A regular file of at most :data:`MAX_TRAJECTORY_BYTES` bytes and
+        :data:`MAX_TRAJECTORY_ROWS` rows; a ``.npy`` file must hold a real (K, n) array (its
+        header is checked before the data are read).
+    n : int
+        Joints of the robot.
+
+    Returns
+    -------
+    numpy.ndarray
+        (K, n) joint values (rad / m).
+
+    Raises
+    ------
+    InputError
+        ``--trajectory: …`` naming the file and what was wrong (rows beyond the limit with their count).
+
+    Examples
+    --------
+    >>> load_trajectory("wave.csv", 6).shape   # doctest: +SKIP
+    (120, 6)
     """
+    import io
+
+    from robokit._io import decode_utf8, read_input_bytes
+
     p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"--trajectory: file {str(p)!r} not found")
+    if not os.path.lexists(p):
+        raise InputError(f"--trajectory: file {str(p)!r} not found")
+    try:
+        raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
+    except InputError as exc:
+        raise InputError(f"--trajectory: {exc}") from None
+    too_many = (f"--trajectory: {str(p)!r} has more than {MAX_TRAJECTORY_ROWS} rows (samples); "
+                f"at most {MAX_TRAJECTORY_ROWS} are read")
     try:
         if p.suffix.lower() == ".npy":
-            shape = _npy_shape(p)
-            if len(shape) != 2 or shape[1] != n or not 0 < shape[0] <= MAX_TRAJECTORY_ROWS:
-                raise ValueError(f"shape {shape}; expected (K, {n}) joint values with 1 ≤ K ≤ {MAX_TRAJECTORY_ROWS}")
-            Q = np.load(p, allow_pickle=False)
+            f = io.BytesIO(raw)
+            version = np.lib.format.read_magic(f)
+            reader = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+            shape, _, dtype = reader(f)
+            if dtype.kind not in "fiu" or dtype.hasobject:
+                raise InputError(f"expected real numbers, got dtype {dtype}")
+            if len(shape) != 2 or shape[1] != n:
+                raise InputError(f"has shape {shape}; expected (K, {n}) joint values")
+            if shape[0] > MAX_TRAJECTORY_ROWS:
+                raise InputError(f"has {shape[0]} rows; at most {MAX_TRAJECTORY_ROWS}")
+            f.seek(0)
+            Q = np.load(f, allow_pickle=False)
         elif p.suffix.lower() == ".csv":
-            lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.startswith("#")]
-            if len(lines) > MAX_TRAJECTORY_ROWS + 1:
-                raise ValueError(f"{len(lines)} rows; at most {MAX_TRAJECTORY_ROWS} configurations")
+            lines = [ln for ln in decode_utf8(raw, p).splitlines() if ln.strip() and not ln.startswith("#")]
+            if len(lines) > MAX_TRAJECTORY_ROWS + 1:  # + a header
+                raise InputError(f"has {len(lines)} rows; at most {MAX_TRAJECTORY_ROWS}")
             rows = []
             for k, ln in enumerate(lines):
                 try:
@@ -73,17 +120,26 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
                 except ValueError:
                     if k == 0:
                         continue  # header
-                    raise ValueError(f"line {k + 1} is not numbers") from None
-            Q = np.array(rows, dtype=float)
+                    raise InputError(f"line {k + 1} is not numbers") from None
+            if len(rows) > MAX_TRAJECTORY_ROWS:
+                raise InputError(too_many)
+            try:
+                Q = np.array(rows, dtype=float)
+            except ValueError:
+                raise InputError("rows of different lengths") from None
         else:
-            raise ValueError("expected a .npy or .csv file")
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
-        raise ValueError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
+            raise InputError("expected a .npy or .csv file")
+    except InputError as exc:
+        msg = str(exc)
+        raise InputError(msg if msg.startswith("--trajectory") else f"--trajectory: {str(p)!r} {msg}"
+                         if msg.startswith("has ") else f"--trajectory: cannot read {str(p)!r}: {msg}") from None
+    except (OSError, ValueError, EOFError) as exc:
+        raise InputError(f"--trajectory: cannot read {str(p)!r}: {exc}") from None
     Q = np.asarray(Q, dtype=float)
     if Q.ndim != 2 or Q.shape[1] != n or len(Q) == 0:
-        raise ValueError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
+        raise InputError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
     if not np.all(np.isfinite(Q)):
-        raise ValueError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
+        raise InputError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
     return Q
 
 
@@ -100,7 +156,7 @@ def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | No
     if q is not None:
         q = np.asarray(q, dtype=float)
         if q.shape != (robot.n,):
-            raise ValueError(f"-q: {robot.name} has {robot.n} joints, got {q.size} values")
+            raise InputError(f"-q: {robot.name} has {robot.n} joints, got {q.size} values")
     with Scene(robot) as scene:
         scene.show(q)
         if frames:

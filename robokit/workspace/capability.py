@@ -54,8 +54,9 @@ from numpy.typing import ArrayLike
 
 from robokit._optional import require
 from robokit._io import atomic_write
+from robokit._arrays import as_int
 from robokit.workspace.map_robot import MapRobot, map_robot_of
-from robokit.errors import InputError, RobokitWarning
+from robokit.errors import InputError, InputTypeError, RobokitWarning
 from robokit.workspace.mapfile import Member
 from robokit.workspace.store import ChunkStore
 
@@ -299,10 +300,10 @@ def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts:
 # ----------------------------------------------------------------------------- the map
 def _check_resolution(resolution: object) -> float:
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating)):
-        raise TypeError(f"resolution: expected a number of metres, got {type(resolution).__name__}")
+        raise InputTypeError(f"resolution: expected a number of metres, got {type(resolution).__name__}")
     r = float(resolution)
     if not (np.isfinite(r) and r > 0):
-        raise ValueError(f"resolution: expected a positive voxel size in m, got {resolution!r}")
+        raise InputError(f"resolution: expected a positive voxel size in m, got {resolution!r}")
     return r
 
 
@@ -314,16 +315,16 @@ def _orientation_set(orientations: int | ArrayLike, chain: Any) -> np.ndarray:
             return planar_rotations(int(orientations), chain.normal, chain.R0)
         return super_fibonacci_rotations(int(orientations))
     if isinstance(orientations, bool) or np.ndim(orientations) != 3:
-        raise TypeError(f"orientations: expected a count K or a (K, 3, 3) array, got {type(orientations).__name__}")
+        raise InputTypeError(f"orientations: expected a count K or a (K, 3, 3) array, got {type(orientations).__name__}")
     R = np.asarray(orientations, dtype=float)
     if R.shape[1:] != (3, 3) or len(R) == 0:
-        raise ValueError(f"orientations: expected shape (K, 3, 3) with K ≥ 1, got {R.shape}")
+        raise InputError(f"orientations: expected shape (K, 3, 3) with K ≥ 1, got {R.shape}")
     if not np.isfinite(R).all():
-        raise ValueError("orientations: contains NaN or infinite values")
+        raise InputError("orientations: contains NaN or infinite values")
     err = np.abs(R @ np.transpose(R, (0, 2, 1)) - np.eye(3)).max(axis=(1, 2))
     if np.any(err > 1e-6) or np.any(np.linalg.det(R) < 0):
         k = int(np.argmax(err))
-        raise ValueError(f"orientations: matrix {k} is not a rotation (‖RRᵀ − I‖ = {err[k]:.2g})")
+        raise InputError(f"orientations: matrix {k} is not a rotation (‖RRᵀ − I‖ = {err[k]:.2g})")
     return np.ascontiguousarray(R)
 
 
@@ -406,13 +407,11 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
 
     t0 = time.perf_counter()
     res = _check_resolution(resolution)
-    if seed is None or isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed: expected a non-negative integer, got {seed!r}")
+    seed = as_int(seed, "seed", minimum=0)
     restarts = DEFAULT_RESTARTS if restarts is None else restarts
-    if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise ValueError(f"restarts: expected a non-negative integer, got {restarts!r}")
+    restarts = as_int(restarts, "restarts", minimum=0)
     if not (client is None or isinstance(client, str) or hasattr(client, "submit")):
-        raise TypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
+        raise InputTypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
                         f"got {type(client).__name__}")
     rob = load(robot)
     desc = _describe(robot, rob)
@@ -424,7 +423,7 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     if chunk_size is None:
         chunk_size = max(1, 4096 // max(K_asked, 1))
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
-        raise ValueError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
+        raise InputError(f"chunk_size: expected a positive integer, got {chunk_size!r}")
     fixed = K_asked * (_BYTES_PER_ORIENTATION + _BYTES_PER_PROBLEM * int(chunk_size))
     if fixed > MAX_MAP_BYTES:
         raise InputError(f"orientations: {K_asked} orientations ({int(chunk_size)} voxels per chunk) need about "
@@ -434,7 +433,7 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     K = len(R)
     if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
                                 or samples < 1):
-        raise ValueError(f"samples: expected a positive integer, got {samples!r}")
+        raise InputError(f"samples: expected a positive integer, got {samples!r}")
 
     if isinstance(store, bool):
         raise InputError(f"store: expected a folder path, got {store!r}")

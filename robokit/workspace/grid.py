@@ -20,6 +20,7 @@ from typing import Any, Callable, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError
 
 from robokit.errors import InputError
 
@@ -141,7 +142,7 @@ def reachable_voxels(robot: Robot, resolution: float, *, samples: int | None = N
     size = np.full(len(lo), int(np.ceil(2 * radius / resolution)) + 5, dtype=np.int64)
     dims = len(lo)
     if float(np.prod(size.astype(float))) > 2.0**62:
-        raise ValueError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
+        raise InputError(f"resolution: {resolution:g} m is too fine for an arm of reach {radius:.3g} m")
     stride = np.cumprod(np.r_[1, size[::-1][:-1]])[::-1].astype(np.int64)
 
     def codes_of(Q: np.ndarray) -> np.ndarray:

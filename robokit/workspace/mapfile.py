@@ -90,7 +90,7 @@ def _check_header(f: IO[bytes], label: str, key: str, spec: Member, size: int) -
         elif version in ((2, 0), (3, 0)):
             shape, fortran, dtype = np.lib.format.read_array_header_2_0(f, max_header_size=10_000)
         else:
-            raise ValueError(f"unknown .npy version {version}")
+            raise InputError(f"unknown .npy version {version}")
     except (ValueError, OSError, EOFError, SyntaxError, zipfile.BadZipFile) as exc:
         raise _fail(label, f"member {key!r} is not a valid .npy array ({exc})") from None
     if dtype.hasobject or dtype.kind not in spec.kinds or dtype.fields is not None or dtype.subdtype is not None:

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError, InputTypeError
 
 __all__ = ["super_fibonacci_rotations", "planar_rotations"]
 
@@ -34,9 +35,9 @@ _PHI = np.sqrt(2.0)
 
 def _count(K: object, name: str = "orientations") -> int:
     if isinstance(K, bool) or not isinstance(K, (int, np.integer)):
-        raise TypeError(f"{name}: expected a positive integer count, got {type(K).__name__} {K!r}")
+        raise InputTypeError(f"{name}: expected a positive integer count, got {type(K).__name__} {K!r}")
     if K < 1:
-        raise ValueError(f"{name}: expected a positive count, got {K}")
+        raise InputError(f"{name}: expected a positive count, got {K}")
     return int(K)
 
 
@@ -111,7 +112,7 @@ def planar_rotations(K: int, normal: ArrayLike, R0: ArrayLike | None = None) -> 
     K = _count(K)
     n = np.asarray(normal, dtype=float)
     if n.shape != (3,) or not np.isfinite(n).all() or np.linalg.norm(n) < 1e-12:
-        raise ValueError(f"normal: expected a non-zero finite (3,) vector, got {np.asarray(normal).tolist()!r}")
+        raise InputError(f"normal: expected a non-zero finite (3,) vector, got {np.asarray(normal).tolist()!r}")
     n = n / np.linalg.norm(n)
     R0 = np.eye(3) if R0 is None else np.asarray(R0, dtype=float)
     phi = 2.0 * np.pi * np.arange(K) / K

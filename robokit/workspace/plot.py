@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit.errors import InputError, InputTypeError
 
 from robokit._optional import require
 
@@ -31,7 +32,7 @@ def _as_map(cmap: CapabilityMap | str | os.PathLike[str]) -> CapabilityMap:
         return cmap
     if isinstance(cmap, (str, bytes)) or hasattr(cmap, "__fspath__"):
         return CapabilityMap.load(cast("str | os.PathLike[str]", cmap))
-    raise TypeError(f"map: expected a CapabilityMap or an .npz path, got {type(cmap).__name__}")
+    raise InputTypeError(f"map: expected a CapabilityMap or an .npz path, got {type(cmap).__name__}")
 
 
 def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: str = "z", value: float | None = None, ax: Axes | None = None, cmap_name: str = "viridis") -> Figure | SubFigure:
@@ -64,21 +65,21 @@ def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: st
 
     m = _as_map(cmap)
     if axis not in _AXES:
-        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+        raise InputError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
     k = _AXES[axis]
     others = [i for i in range(3) if i != k]
     coord = m.centres[:, k]
     if len(coord) == 0:
-        raise ValueError("map: has no voxels")
+        raise InputError("map: has no voxels")
     if value is None:
         levels, counts = np.unique(np.round(coord / m.resolution), return_counts=True)
         value = float(levels[np.argmax(counts)] * m.resolution)
     value = float(value)
     if not np.isfinite(value):
-        raise ValueError(f"value: expected a finite coordinate in m, got {value!r}")
+        raise InputError(f"value: expected a finite coordinate in m, got {value!r}")
     sel = np.abs(coord - value) <= 0.5 * m.resolution + 1e-12
     if not sel.any():
-        raise ValueError(f"value: no voxel centre within {0.5 * m.resolution:g} m of {axis} = {value:g} m "
+        raise InputError(f"value: no voxel centre within {0.5 * m.resolution:g} m of {axis} = {value:g} m "
                          f"(the map spans {coord.min():.3g} … {coord.max():.3g} m)")
     fig: Figure | SubFigure
     if ax is None:

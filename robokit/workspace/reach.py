@@ -24,6 +24,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit._arrays import as_int
+from robokit.errors import InputError
 
 from robokit.ik.backends import reach_backend
 from robokit.ik.planar import PlanarChain, planar_chain  # noqa: F401  (their former home; capability.py uses them)
@@ -105,9 +107,8 @@ def ik_success(robot: Robot, targets: ArrayLike, *, rng: int | np.random.Generat
     robot = load(robot)
     T = np.asarray(targets, dtype=float)
     if T.ndim != 3 or T.shape[1:] != (4, 4):
-        raise ValueError(f"targets: expected shape (B, 4, 4), got {T.shape}")
+        raise InputError(f"targets: expected shape (B, 4, 4), got {T.shape}")
     if not np.isfinite(T).all():
-        raise ValueError("targets: contains NaN or infinite values")
-    if isinstance(restarts, bool) or not isinstance(restarts, (int, np.integer)) or restarts < 0:
-        raise ValueError(f"restarts: expected a non-negative integer, got {restarts!r}")
+        raise InputError("targets: contains NaN or infinite values")
+    restarts = as_int(restarts, "restarts", minimum=0)
     return _Backend(robot, restarts).success(T, np.random.default_rng(rng))

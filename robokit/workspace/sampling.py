@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from robokit.errors import InputError
 
 from robokit._optional import require
 
@@ -57,7 +58,7 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
     Example: ``ws = robokit.workspace.sample_workspace(robokit.load("twolink"), 5000); ws.reach.max()`` ≈ l₁ + l₂.
     """
     if int(n_samples) < 1:
-        raise ValueError(f"n_samples: expected a positive count, got {n_samples!r}")
+        raise InputError(f"n_samples: expected a positive count, got {n_samples!r}")
     rng = np.random.default_rng(rng)
     qlim = np.asarray(robot.qlim, dtype=float)
     lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
@@ -72,7 +73,7 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
     if cell is None:
         cell = float(max(span.max(), 1e-9) / 40.0)
     elif not cell > 0:
-        raise ValueError(f"cell: expected a positive size, got {cell!r}")
+        raise InputError(f"cell: expected a positive size, got {cell!r}")
     dims = 2 if planar else 3
     idx = np.floor((P[:, :dims] - lower[:dims]) / cell).astype(np.int64)
     occupied = len(np.unique(idx, axis=0))

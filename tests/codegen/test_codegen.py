@@ -401,7 +401,7 @@ def test_mjcf_with_armature(tmp_path, build):
     try:
         from robokit.description.mjcf_write import robot_to_mjcf
     except ImportError:  # before the MJCF reader and writer were split
-        from robokit.description.mjcf import robot_to_mjcf
+        from robokit.description.mjcf_write import robot_to_mjcf
 
     text, _ = robot_to_mjcf(robokit.load("puma560"))
     path = tmp_path / "puma.xml"

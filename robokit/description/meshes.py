@@ -1,0 +1,171 @@
+r"""One rule for the files a robot description may make robokit read: meshes (URDF, xacro,
+MJCF ``<mesh file>``, MJCF ``meshdir``/``assetdir``), MJCF ``<include file>`` and xacro
+``<xacro:include>`` / ``xacro.load_yaml``.
+
+A file named by a robot description is read only if, after resolving symbolic links, it lies
+inside one of the **allowed roots**:
+
+* the folder of the top-level description file;
+* the ROS package holding it (the nearest folder above it with a ``package.xml``);
+* every folder given by the user as a package folder (``package_dirs=``, ``--package-path``)
+  and every package found in them (``$(find pkg)``, ``package://pkg``).
+
+Anything else — an absolute path such as ``/etc/passwd``, ``../`` out of the package, a
+``file://`` URI elsewhere, a symlink inside the folder that points out of it — is refused with
+one line naming the file that asked for it, unless the user allows it explicitly
+(``allow_outside_meshes=True``, which applies to meshes only: an include is data that is
+parsed and is always confined).
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Iterable, Sequence
+
+from robokit.errors import InputError
+
+__all__ = ["MAX_MESH_BYTES", "MAX_TOTAL_MESH_BYTES", "allowed_roots", "confine", "is_inside", "mesh_file_problem",
+           "package_name"]
+
+
+def allowed_roots(top: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = (),
+                  extra: Iterable[str | os.PathLike[str]] = ()) -> list[Path]:
+    """The folders files named by ``top`` may be read from (see the module docstring).
+
+    Parameters
+    ----------
+    top : str or Path
+        The top-level description file the user gave.
+    package_dirs : sequence of str or Path
+        Package folders the user gave.
+    extra : iterable of str or Path
+        Folders of packages found for the file (``$(find pkg)``).
+
+    Returns
+    -------
+    list of Path
+        Resolved folders.
+
+    Examples
+    --------
+    >>> allowed_roots("/ws/src/arm/urdf/arm.urdf")[0]   # doctest: +SKIP
+    PosixPath('/ws/src/arm/urdf')
+    """
+    folder = Path(top).resolve().parent
+    roots = [folder] + [Path(p).expanduser().resolve() for p in (package_dirs or ())]
+    roots += [Path(p).resolve() for p in extra]
+    for parent in (folder, *folder.parents):
+        if (parent / "package.xml").is_file():
+            roots.append(parent)
+            break
+    return roots
+
+
+def is_inside(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]]) -> bool:
+    """True if ``path`` (symlinks resolved) is one of ``roots`` or inside one.
+
+    Examples
+    --------
+    >>> is_inside("/a/b/c.stl", ["/a"]), is_inside("/a/../etc/passwd", ["/a"])
+    (True, False)
+    """
+    p = Path(path).resolve()
+    for r in roots:
+        r = Path(r).resolve()
+        if p == r or r in p.parents:
+            return True
+    return False
+
+
+def confine(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]], source: str | os.PathLike[str],
+            what: str, *, allow_outside: bool = False) -> Path:
+    """``path`` resolved, or :class:`InputError` if it lies outside ``roots`` (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file the description names (already made absolute by the caller).
+    roots : iterable of str or Path
+        :func:`allowed_roots`.
+    source : str or Path
+        The description file that names it (in the message).
+    what : str
+        What it is, e.g. ``"<mesh file='../x.stl'>"`` (in the message).
+    allow_outside : bool
+        Accept it anyway (the user's explicit choice, for meshes).
+
+    Returns
+    -------
+    Path
+        The resolved path.
+
+    Raises
+    ------
+    InputError
+        ``SOURCE: WHAT is outside the file's folder, its package and the package folders given``.
+
+    Examples
+    --------
+    >>> confine("/etc/passwd", ["/ws/arm"], "arm.xml", "<include file='/etc/passwd'>")
+    Traceback (most recent call last):
+    ...
+    robokit.errors.InputError: arm.xml: <include file='/etc/passwd'> is outside the file's folder, its package and the package folders given
+    """
+    p = Path(path).resolve()
+    roots = list(roots)
+    if allow_outside or is_inside(p, roots):
+        return p
+    raise InputError(f"{source}: {what} is outside the file's folder, its package and the package folders given")
+
+
+#: Largest ``package.xml`` read to learn a package's name.
+MAX_PACKAGE_XML_BYTES = 1 << 20
+
+
+def package_name(package_xml: str | os.PathLike[str]) -> str | None:
+    """The ``<name>`` of a ROS ``package.xml`` (bounded, regular files only), the folder's name if
+    it has none, or None if the file cannot be read as a manifest.
+
+    Examples
+    --------
+    >>> package_name("/ws/src/arm_description/package.xml")   # doctest: +SKIP
+    'arm_description'
+    """
+    from robokit._io import read_input_bytes
+    from robokit._xml import parse_xml
+
+    try:
+        root = parse_xml(read_input_bytes(package_xml, MAX_PACKAGE_XML_BYTES, "a package.xml"), package_xml)
+    except InputError:
+        return None
+    return (root.findtext("name") or Path(package_xml).parent.name).strip()
+
+
+#: Largest mesh file read (bytes). The largest mesh of example-robot-data is 28.8 MB (a
+#: quadruped's trunk, COLLADA); a page embedding a larger one would be unwieldy and loading a
+#: 2-million-face mesh takes Pinocchio's loader over a gigabyte.
+MAX_MESH_BYTES = 32 << 20
+#: Most mesh bytes one robot description may make robokit read in total.
+MAX_TOTAL_MESH_BYTES = 256 << 20
+
+
+def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
+    """Why the mesh file ``path`` is not read, or None if it may be: not a regular file (a FIFO,
+    a device such as ``/dev/zero``), or larger than :data:`MAX_MESH_BYTES`.
+
+    Examples
+    --------
+    >>> mesh_file_problem("/dev/zero")
+    'not a regular file'
+    """
+    import stat
+
+    try:
+        st = os.stat(path)
+    except OSError:
+        return "not found"
+    if not stat.S_ISREG(st.st_mode):
+        return "not a regular file"
+    if st.st_size > MAX_MESH_BYTES:
+        return f"{st.st_size / 1e6:.1f} MB; robokit reads mesh files of at most {MAX_MESH_BYTES / 1e6:.1f} MB"
+    return None

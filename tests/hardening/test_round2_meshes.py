@@ -1,0 +1,203 @@
+"""Round 2: one confinement rule for every file a robot description names (URDF, xacro and
+MJCF meshes, MJCF ``meshdir``/``include``), and bounded mesh sizes for the viewers."""
+import os
+
+import numpy as np
+import pytest
+
+import hardening_support as hs
+import round2_support as r2
+
+
+@pytest.fixture
+def layout(tmp_path):
+    """tmp/pkg (the robot's folder, with meshes/inside.stl) and tmp/outside/box.stl."""
+    import trimesh
+
+    pkg, outside = tmp_path / "pkg", tmp_path / "outside"
+    (pkg / "meshes").mkdir(parents=True)
+    outside.mkdir()
+    box = trimesh.creation.box((0.1, 0.1, 0.1))
+    box.export(pkg / "meshes" / "inside.stl")
+    box.export(outside / "box.stl")
+    (pkg / "meshes" / "link.stl").symlink_to(outside / "box.stl")  # inside by name, outside in fact
+    return pkg, outside
+
+
+def _urdf(mesh):
+    return hs.urdf_text(
+        links=[hs.link("base"), hs.link("arm", mass="1", extra=f'<visual><geometry><mesh filename="{mesh}"/>'
+                                                              '</geometry></visual>')],
+        joints=[hs.joint("j", "base", "arm")])
+
+
+def _mjcf(mesh, meshdir=None, include=None):
+    comp = f'<compiler meshdir="{meshdir}"/>' if meshdir else ""
+    inc = f'<include file="{include}"/>' if include else ""
+    return (f'<mujoco model="m">{comp}{inc}<asset><mesh name="mm" file="{mesh}"/></asset><worldbody>'
+            '<body name="b"><joint name="j" axis="0 0 1"/><geom type="mesh" mesh="mm" mass="1"/></body>'
+            '</worldbody></mujoco>')
+
+
+def _refs(outside):
+    return {"relative ../": "../outside/box.stl", "absolute": str(outside / "box.stl"),
+            "symlink out": "meshes/link.stl"}
+
+
+@pytest.mark.parametrize("fmt", ["urdf", "xacro", "mjcf"])
+@pytest.mark.parametrize("ref", ["relative ../", "absolute", "symlink out"])
+def test_outside_mesh_is_refused_by_every_format(fmt, ref, layout, main_cli):
+    pkg, outside = layout
+    mesh = _refs(outside)[ref]
+    if fmt == "urdf":
+        src = pkg / "r.urdf"
+        src.write_text(_urdf(mesh if ref != "absolute" else f"file://{mesh}"))
+    elif fmt == "xacro":
+        src = pkg / "r.urdf.xacro"
+        src.write_text(_urdf(mesh))
+    else:
+        src = pkg / "r.xml"
+        src.write_text(_mjcf(mesh))
+    run = main_cli("convert", src, "-o", pkg / "o.json")
+    hs.assert_one_line_error(run, src.name, "outside")
+    assert not (pkg / "o.json").exists()
+
+
+@pytest.mark.parametrize("fmt", ["urdf", "xacro", "mjcf"])
+def test_inside_mesh_loads_and_outside_one_only_when_allowed(fmt, layout):
+    """The same robot loads with its mesh inside the folder, and with the outside mesh only with
+    allow_outside_meshes=True; its FK is the one-joint closed form either way."""
+    from robokit.description.loading import load
+
+    pkg, outside = layout
+    for mesh, allow in (("meshes/inside.stl", False), (str(outside / "box.stl"), True)):
+        src = pkg / {"urdf": "r.urdf", "xacro": "r.urdf.xacro", "mjcf": "r.xml"}[fmt]
+        src.write_text(_urdf(mesh) if fmt != "mjcf" else _mjcf(mesh))
+        robot = load(src, allow_outside_meshes=allow)
+        assert robot.n == 1
+        assert robot.visual_model is not None and robot.visual_model.ngeoms >= 1
+        T = robot.frame_pose([0.3])
+        assert np.allclose(T[:3, :3], [[np.cos(0.3), -np.sin(0.3), 0], [np.sin(0.3), np.cos(0.3), 0], [0, 0, 1]])
+
+
+@pytest.mark.parametrize("case", ["meshdir absolute", "meshdir ../", "include outside", "include absolute"])
+def test_mjcf_directories_and_includes_are_confined(case, layout, main_cli):
+    pkg, outside = layout
+    (outside / "inc.xml").write_text('<mujoco><default/></mujoco>')
+    text = {
+        "meshdir absolute": _mjcf("box.stl", meshdir=str(outside)),
+        "meshdir ../": _mjcf("box.stl", meshdir="../outside"),
+        "include outside": _mjcf("meshes/inside.stl", include="../outside/inc.xml"),
+        "include absolute": _mjcf("meshes/inside.stl", include=str(outside / "inc.xml")),
+    }[case]
+    src = pkg / "r.xml"
+    src.write_text(text)
+    run = main_cli("convert", src, "-o", pkg / "o.json")
+    hs.assert_one_line_error(run, "r.xml", "outside")
+
+
+def test_mjcf_include_is_bounded_and_counted(layout, main_cli):
+    """An include inside the folder is read with the same bounds: a DTD in it is refused, and
+    its joints count toward the limit."""
+    pkg, _ = layout
+    (pkg / "bad.xml").write_text('<?xml version="1.0"?><!DOCTYPE m [<!ENTITY a "x">]><mujoco/>')
+    src = pkg / "r.xml"
+    src.write_text(_mjcf("meshes/inside.stl", include="bad.xml"))
+    hs.assert_one_line_error(main_cli("convert", src, "-o", pkg / "o.json"), "bad.xml", "DOCTYPE")
+    joints = "".join(f'<body name="c{i}"><joint name="k{i}"/><geom size="0.1" mass="1"/></body>' for i in range(200))
+    (pkg / "many.xml").write_text(f"<mujoco><worldbody>{joints}</worldbody></mujoco>")
+    src.write_text(_mjcf("meshes/inside.stl", include="many.xml"))
+    hs.assert_one_line_error(main_cli("convert", src, "-o", pkg / "o.json"), "r.xml", "at most 128 joints")
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "oversize"])
+def test_unreadable_or_huge_mesh_is_not_read(kind, layout):
+    """A URDF mesh that is a device, a FIFO or over 32 MB is dropped with a note naming it (the
+    robot still loads); in MJCF it is refused (Pinocchio reads the file's meshes itself)."""
+    from robokit.description.loading import load
+    from robokit.errors import InputError, RobokitWarning
+
+    pkg, _ = layout
+    m = pkg / "meshes" / "bad.stl"
+    if kind == "device":
+        m.symlink_to("/dev/zero")
+    elif kind == "fifo":
+        os.mkfifo(m)
+    else:
+        with open(m, "wb") as f:
+            f.truncate(40 << 20)
+    src = pkg / "r.urdf"
+    src.write_text(_urdf("meshes/bad.stl"))
+    # allowed outside: a symlink to /dev/zero resolves outside the folder; the size check still holds
+    with pytest.warns(RobokitWarning, match="bad.stl.*not read"):
+        robot = load(src, allow_outside_meshes=True)
+    assert robot.n == 1
+    mj = pkg / "r.xml"
+    mj.write_text(_mjcf("meshes/bad.stl"))
+    with pytest.raises(InputError, match="bad.stl"):
+        load(mj, allow_outside_meshes=True)
+
+
+def test_teach_mesh_faces_are_bounded(tmp_path, monkeypatch):
+    """A mesh with more triangles than a page may hold is decimated until it fits, with a note
+    giving both counts — and the decimated vertices stay on the unit sphere (within the
+    clustering bound). The page cap is lowered to 5,000 here to keep the test small."""
+    import trimesh
+
+    import robokit.viz._meshes as vm
+    from robokit.errors import RobokitWarning
+
+    monkeypatch.setattr(vm, "MAX_PAGE_FACES", 5_000)
+    sphere = trimesh.creation.icosphere(subdivisions=6, radius=1.0)  # 81,920 faces
+    p = tmp_path / "s.stl"
+    sphere.export(p)
+    with pytest.warns(RobokitWarning, match=r"81920 triangles decimated to \d+ for the page"):
+        parts = vm.mesh_parts(p, 0.01)
+    faces = sum(len(F) for _, F, _ in parts)
+    assert 0 < faces <= 5_000
+    V = np.vstack([V for V, _, _ in parts])
+    assert np.all(np.abs(np.linalg.norm(V, axis=1) - 1.0) < 0.1)
+
+
+def test_teach_mesh_face_cap_refuses_by_count(tmp_path, monkeypatch):
+    """The face cap refuses with the count (the cap lowered to 10,000 here, so that the test does
+    not have to write a 2M-triangle file)."""
+    import trimesh
+
+    import robokit.viz._meshes as vm
+    from robokit.errors import InputError
+
+    monkeypatch.setattr(vm, "MAX_MESH_FACES", 10_000)
+    p = tmp_path / "s.obj"
+    trimesh.creation.icosphere(subdivisions=5).export(p)  # 20,480 faces
+    with pytest.raises(InputError, match="s.obj: mesh of more than 10000 triangles"):
+        vm.mesh_parts(p, 0.001)
+
+
+def test_pinocchio_reads_the_checked_mjcf_copy(layout, monkeypatch):
+    """Pinocchio is handed robokit's checked copy (includes and asset paths rewritten), never the
+    user's path; relative meshdir and includes still resolve (the mesh geometry is loaded from
+    the package's own file)."""
+    import pinocchio as pin
+
+    from robokit.description.loading import load
+
+    pkg, _ = layout
+    (pkg / "sub").mkdir()
+    (pkg / "sub" / "extra.xml").write_text('<mujoco><default><geom rgba="1 0 0 1"/></default></mujoco>')
+    src = pkg / "r.xml"
+    src.write_text(_mjcf("inside.stl", meshdir="meshes", include="sub/extra.xml"))
+    seen = []
+    real = pin.buildModelFromMJCF
+
+    def spy(filename, *a):
+        seen.append((filename, open(filename).read()))
+        return real(filename, *a)
+
+    monkeypatch.setattr(pin, "buildModelFromMJCF", spy)
+    robot = load(src)
+    (name, text), = seen
+    assert name != str(src) and not name.startswith(str(pkg))
+    assert str((pkg / "meshes" / "inside.stl").resolve()) in text and 'file="include_1.xml"' in text
+    paths = [go.meshPath for go in robot.visual_model.geometryObjects]
+    assert any(p.endswith("inside.stl") and p.startswith(str(pkg.resolve())) for p in paths), paths
