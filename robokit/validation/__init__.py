@@ -92,8 +92,8 @@ def _line(cells: Sequence[str]) -> str:
     lead: list[str] = []
     width = _WIDTHS[0]
     while len(first) > width:
-        cut = first.rfind(" ", 0, width + 1)
-        cut = width if cut <= 0 else cut
+        cut = first.rfind(" ", 3, width + 1)  # after the continuation indent: always progress
+        cut = width if cut < 3 else cut
         lead.append(first[:cut].rstrip())
         first = "  " + first[cut:].lstrip()
     row = "  ".join(c.ljust(w) for c, w in zip([first, *rest], _WIDTHS)).rstrip()
