@@ -516,10 +516,11 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
     """
     import xml.dom.minidom
 
-    import xacro
-    import xacro.substitution_args as sargs
-
     from robokit._io import decode_utf8, read_input_bytes
+    from robokit._optional import require
+
+    xacro = require("xacro", "reading a .xacro file")
+    sargs = require("xacro.substitution_args", "reading a .xacro file")
     from robokit._xml import check_xml
     from robokit.description.meshes import confine, is_inside
 
