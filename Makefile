@@ -37,8 +37,9 @@ bench: $(VENV)/.installed-all,bench
 docs: $(VENV)/.installed-docs
 	$(BIN)/mkdocs build --strict
 
+# As root (containers, CI images) JupyterLab refuses to start without --allow-root.
 notebooks: $(VENV)/.installed-notebooks
-	$(BIN)/jupyter lab notebooks/
+	$(BIN)/jupyter lab $$( [ "$$(id -u)" = 0 ] && echo --allow-root ) notebooks/
 
 clean:
 	rm -rf $(VENV) build site *.egg-info
