@@ -37,3 +37,21 @@ def test_notebook_runs(path, tmp_path):
     assert not warned, f"{path.name}: warnings in the outputs: {warned[0][:300]}"
     size = len(nbformat.writes(nb).encode("utf-8"))
     assert size < 3_000_000, f"{path.name}: {size / 1e6:.1f} MB once executed (views must be files, not embedded)"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def test_notebook_file_is_valid_without_warnings(path):
+    """The stored file validates with no nbformat warning (e.g. MissingIDFieldWarning: cells
+    without ids, which Jupyter and nbmake report on every run)."""
+    import warnings
+
+    import nbformat
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        nb = nbformat.read(path, as_version=4)
+        nbformat.validate(nb)
+    names = sorted({w.category.__name__ for w in caught})
+    assert not names, f"{path.name}: {names} — normalise it (nbformat.read then nbformat.write)"
+    raw = json.loads(path.read_text(encoding="utf-8"))
+    assert all("id" in cell for cell in raw["cells"]), f"{path.name}: cells without ids"
