@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from robokit.description.robot import Robot
     from robokit.workspace.capability import CapabilityMap
 
-__all__ = ["plot_capability_slice", "capability_html"]
+__all__ = ["plot_capability_slice", "capability_html", "legend_html"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -99,6 +99,27 @@ def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: st
     return fig
 
 
+def legend_html(cmap: CapabilityMap, cmap_name: str = "viridis") -> str:
+    """The colour legend of a map page: a bar from index 0 to 1 in the points' colour map, with
+    what the index means and the map's size (an HTML ``<div>`` fixed in the page's corner)."""
+    stops = ", ".join(f"rgb({r * 255:.0f},{g * 255:.0f},{b * 255:.0f}) {100 * t:.0f}%"
+                      for t, (r, g, b) in zip(np.linspace(0, 1, 11), _colours(np.linspace(0, 1, 11), cmap_name)))
+    K = len(cmap.orientations)
+    return (
+        '<div id="robokit-legend" style="position:fixed;left:12px;bottom:12px;z-index:10;padding:8px 10px;'
+        'background:rgba(255,255,255,0.88);border-radius:6px;font:13px sans-serif;color:#222">'
+        f'<div>capability index: fraction of the {K} tool orientations reachable</div>'
+        f'<div style="height:14px;width:260px;margin:6px 0 2px;background:linear-gradient(to right, {stops})"></div>'
+        '<div style="display:flex;justify-content:space-between;width:260px"><span>0</span><span>0.5</span>'
+        f'<span>1</span></div><div>{len(cmap.centres)} voxels of {cmap.resolution:g} m</div></div>')
+
+
+def _with_legend(page: str, cmap: CapabilityMap) -> str:
+    i = page.rfind("</body>")
+    legend = legend_html(cmap)
+    return page[:i] + legend + page[i:] if i >= 0 else page + legend
+
+
 def _colours(index: ArrayLike, cmap_name: str = "viridis") -> np.ndarray:
     colormaps = require("matplotlib", "colouring a capability map").colormaps
 
@@ -147,7 +168,7 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
             if len(m.centres):
                 scene._extra_points.extend([m.centres.min(axis=0), m.centres.max(axis=0)])
             scene.frame_camera()
-            return scene.html()
+            return _with_legend(scene.html(), m)
     vis = new_visualizer()
     try:
         vis["points/capability"].set_object(cloud)
@@ -162,6 +183,6 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
         for name in ("points", "/Grid", "/Axes"):
             vis[name].set_transform(T)
         vis["/Cameras/default/rotated/<object>"].set_property("position", [off[0], off[2], -off[1]])
-        return vis.static_html()
+        return _with_legend(vis.static_html(), m)
     finally:
         stop_server(getattr(vis.window, "server_proc", None))
