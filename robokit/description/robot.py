@@ -26,7 +26,6 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_joints, ndim
 from robokit.errors import InputError
 from robokit._arrays import as_joints, ndim
-from robokit.errors import InputError
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 
@@ -260,39 +259,7 @@ class Robot:
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
         return rng.uniform(lo, hi)
 
-    def dh_table(self, convention: str = "standard") -> DHTable:
-        """The robot's DH table: its own when it was loaded from one (``robot.dh``), else the one
-        :func:`robokit.urdf_to_dh` extracts from the chain's joint axes (with the base and tool
-        transforms that make it exact).
-
-        Parameters
-        ----------
-        convention : {"standard", "modified"}
-            For an extracted table; a DH model in the other convention is extracted too.
-
-        Returns
-        -------
-        DHTable
-            Its forward kinematics equals :meth:`frame_pose` (checked to 1e-9 on sampled
-            configurations; ``InputError`` if no exact table exists).
-
-        Examples
-        --------
-        >>> import robokit
-        >>> robokit.load("ur5").dh is None, robokit.load("ur5").dh_table().n
-        (True, 6)
-        """
-        if self.dh is not None and self.dh.convention == convention:
-            return self.dh
-        from robokit.description.urdf_to_dh import urdf_to_dh
-
-        res = urdf_to_dh(self, convention)
-        if not res.exact:
-            raise InputError(f"{self.name}: no exact DH table ({convention}) reproduces the chain; the best one is "
-                             f"off by {res.residual:.2g} (see robokit.urdf_to_dh)")
-        return res.table
-
     def __repr__(self) -> str:
-        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; DH table: robot.dh_table()"
+        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.urdf_to_dh(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
