@@ -25,7 +25,6 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_joints, ndim
 from robokit.errors import InputError
-from robokit._arrays import as_joints, ndim
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 
