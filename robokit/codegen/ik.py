@@ -32,7 +32,6 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
 
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
 from robokit.codegen._solver_constants import IKConstants, ik_constants

@@ -27,12 +27,12 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
-from typing import Any, Iterable, Sequence
+from typing import Any, Iterable
 
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar
-from robokit.collision.shapes import Box, Cylinder, Mesh, Obstacle, Sphere
+from robokit.collision.shapes import Obstacle
 from robokit.errors import InputError
 
 __all__ = ["World", "SelfCollisionPairs", "self_collision_pairs", "DEFAULT_CAPSULE_RADIUS",

@@ -12,7 +12,6 @@ from typing import Mapping, Sequence
 
 from robokit.errors import InputError
 from robokit._io import atomic_write
-from robokit.errors import InputError
 
 __all__ = ["convert"]
 

@@ -34,7 +34,6 @@ from robokit._arrays import as_array, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
-from robokit.errors import InputError
 
 __all__ = [
     "inverse_dynamics",

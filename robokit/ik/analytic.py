@@ -34,7 +34,6 @@ from robokit.ik.closed_form import analytic_ik
 from robokit.ik.solution import IKSolution, _qlim_or_none, _within, check_pose
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
-from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable

@@ -135,7 +135,6 @@ class PlanarChain:
         def rot(c: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
             return np.stack([c * d[0] - s * d[1], s * d[0] + c * d[1]], axis=1)
 
-        found = np.zeros(B, dtype=bool)
         d1 = self.d[0]
         l1 = float(np.linalg.norm(d1))
         b1 = float(np.arctan2(d1[1], d1[0]))

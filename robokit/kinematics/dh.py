@@ -36,7 +36,6 @@ from numpy.typing import ArrayLike
 
 from robokit.errors import InputError
 from robokit._arrays import as_vector
-from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable

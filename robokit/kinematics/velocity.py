@@ -16,7 +16,6 @@ from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
-from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike

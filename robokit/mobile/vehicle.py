@@ -30,7 +30,6 @@ from numpy.typing import ArrayLike
 from robokit._arrays import FloatVector, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.basics import wrap_angle
-from robokit.errors import InputError
 
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
 

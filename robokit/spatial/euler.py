@@ -32,7 +32,6 @@ from robokit._arrays import as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial.basics import wrap_angle
-from robokit.errors import InputError
 
 __all__ = ["matrix_from_euler", "euler_from_matrix", "EULER_SEQUENCES", "elementary_rotation", "check_sequence"]
 

@@ -19,7 +19,6 @@ from robokit._arrays import as_matrix, as_vector
 from robokit.spatial.lie import exp3, hat, log3
 from robokit.spatial.basics import wrap_angle
 from numpy.typing import ArrayLike
-from robokit.errors import InputError
 
 __all__ = [
     "rot_inv",

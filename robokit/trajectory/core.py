@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike
 
 from robokit.errors import InputError
 from robokit._arrays import as_array, as_scalar
-from robokit.errors import InputError, InputTypeError
+from robokit.errors import InputTypeError
 
 __all__ = ["Trajectory"]
 

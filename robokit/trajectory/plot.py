@@ -14,7 +14,6 @@ import numpy as np
 from robokit._optional import require
 from robokit.errors import InputError
 from robokit.trajectory.core import Trajectory
-from robokit.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

@@ -46,7 +46,6 @@ from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
 from robokit._optional import require
-from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable

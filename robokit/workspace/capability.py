@@ -430,7 +430,6 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
                          f"{fixed / 1e9:.3g} GB; robokit refuses maps above {MAX_MAP_BYTES / 1e9:.3g} GB "
                          "(fewer orientations)")
     R = _orientation_set(orientations, chain)
-    K = len(R)
     if samples is not None and (isinstance(samples, bool) or not isinstance(samples, (int, np.integer))
                                 or samples < 1):
         raise InputError(f"samples: expected a positive integer, got {samples!r}")

@@ -22,7 +22,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
-from robokit.errors import InputError
 
 if TYPE_CHECKING:
     from robokit.description.poe import PoEParams
