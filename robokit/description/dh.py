@@ -46,12 +46,37 @@ _TOP_KEYS = {"name", "convention", "angle_unit", "gravity", "base", "tool", "lin
 
 
 def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str = "standard") -> np.ndarray:
-    """The 4×4 link transform ``ⁱ⁻¹Tᵢ`` of one DH row (m, rad).
+    """The 4×4 link transform ``ⁱ⁻¹Tᵢ`` of one DH row: the pose of frame {i} in frame {i−1}.
 
-    standard: ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (seed 003 eq. 13); modified: ``Rx(α) Tx(a) Rz(θ) Tz(d)``
+    standard: ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (seed 003 eq. 13); modified (Craig): ``Rx(α) Tx(a) Rz(θ) Tz(d)``
     with ``a, α`` the row's ``a_{i−1}, α_{i−1}``.
 
-    Example: ``dh_transform(1.0, 0.0, 0.0, np.pi / 2)`` moves 1 m along the rotated x axis (y).
+    Parameters
+    ----------
+    a : float
+        Link length, m (standard: along ``x_i``; modified: ``a_{i−1}`` along ``x_{i−1}``).
+    alpha : float
+        Link twist, rad (standard: about ``x_i``; modified: ``α_{i−1}`` about ``x_{i−1}``).
+    d : float
+        Link offset along the joint's z axis, m.
+    theta : float
+        Joint angle about the joint's z axis, rad (the offset plus ``q`` for a revolute joint).
+    convention : {"standard", "modified"}, optional
+        Which DH convention the row follows (default ``"standard"``); anything else raises
+        :class:`~robokit.errors.InputError`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (4, 4)
+        Homogeneous transform of frame {i} in frame {i−1} (translation in m).
+
+    Examples
+    --------
+    θ = 90° turns the 1 m link onto the y axis of frame {i−1}:
+
+    >>> T = dh_transform(1.0, 0.0, 0.0, np.pi / 2)
+    >>> T[:3, 3].round(4).tolist()
+    [0.0, 1.0, 0.0]
     """
     ct, st = math.cos(theta), math.sin(theta)
     ca, sa = math.cos(alpha), math.sin(alpha)
@@ -77,16 +102,53 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
 
 
 def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
-    """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
+    """URDF roll-pitch-yaw to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
 
     Not a third rotation API: it is :func:`robokit.spatial.matrix_from_euler` with the extrinsic
     XYZ sequence (= the seed's ZYX ``euler_to_matrix`` with the angles reversed), named for the
-    files that write rpy (URDF, the DH file's base/tool)."""
+    files that write rpy (URDF, the DH file's base/tool).
+
+    Parameters
+    ----------
+    rpy : array_like, shape (3,)
+        ``[roll, pitch, yaw]`` in rad: rotations about the fixed x, y and z axes, in that order.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+        The rotation matrix (columns: the rotated frame's axes in the fixed frame).
+
+    Examples
+    --------
+    A yaw of 90° maps x onto y:
+
+    >>> (rpy_to_matrix([0.0, 0.0, np.pi / 2]) @ [1.0, 0.0, 0.0]).round(4).tolist()
+    [0.0, 1.0, 0.0]
+    """
     return matrix_from_euler(np.asarray(rpy, dtype=float), "XYZ", extrinsic=True)
 
 
 def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
-    """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2] (roll = 0 at gimbal lock)."""
+    """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2].
+
+    At gimbal lock (pitch = ±π/2) only roll ∓ yaw is determined; roll is then set to 0.
+
+    Parameters
+    ----------
+    R : array_like, shape (3, 3)
+        A rotation matrix.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+        ``[roll, pitch, yaw]`` in rad, roll and yaw in (−π, π].
+
+    Examples
+    --------
+    >>> rpy = [0.1, -0.2, 0.3]
+    >>> np.allclose(matrix_to_rpy(rpy_to_matrix(rpy)), rpy)
+    True
+    """
     y, p, r = matrix_to_euler(R)
     return np.array([r, p, y])
 
@@ -95,18 +157,47 @@ def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
 class DHLink:
     """One row of a DH table and the link's optional inertial and drive parameters.
 
-    joint : "R" (revolute) or "P" (prismatic); a, d : m; alpha, theta : rad (θ the offset
-    added to a revolute q, d the offset added to a prismatic q); qlim : (2,) limits of q
-    (rad or m) or None; mass : kg; com : (3,) centre of mass in DH frame {i} (m);
-    inertia : (6,) ``[Ixx, Iyy, Izz, Ixy, Iyz, Ixz]`` about the centre of mass in frame-{i}
-    axes (kg·m²); Jm : motor inertia (kg·m², motor side); G : gear ratio (motor turns per
-    joint turn; its sign is the motor's direction); B : viscous friction (N·m·s/rad, motor
-    side); Tc : (2,) Coulomb friction for positive and negative motion (N·m, motor side;
-    the negative-motion value is usually negative). These drive parameters follow Corke's
-    toolbox: referred to the joint they give inertia ``G² Jm``, viscous friction ``G² B``
-    and Coulomb friction ``|G| Tc`` (see :func:`robokit.dynamics.friction_torques`). flip : the joint variable
-    enters with a minus sign, ``θ = θ_offset − q`` (``d = d_offset − q``): the joint turns
-    (slides) about −z (YAML key ``flip: true``; default False).
+    The drive parameters follow Corke's toolbox: referred to the joint they give inertia
+    ``G² Jm``, viscous friction ``G² B`` and Coulomb friction ``|G| Tc`` (see
+    :func:`robokit.dynamics.friction_torques`).
+
+    Attributes
+    ----------
+    joint : {"R", "P"}
+        Revolute or prismatic.
+    a, d : float
+        Link length and link offset, m (``d`` is the offset added to a prismatic joint's q).
+    alpha, theta : float
+        Link twist and joint angle, rad (``theta`` is the offset added to a revolute joint's q).
+        In the modified convention ``a, alpha`` are the row's ``a_{i−1}, α_{i−1}``.
+    qlim : numpy.ndarray, shape (2,), or None
+        Lower and upper limits of q (rad or m); None when the file gives none.
+    mass : float
+        Link mass, kg.
+    com : numpy.ndarray, shape (3,)
+        Centre of mass in DH frame {i}, m.
+    inertia : numpy.ndarray, shape (6,)
+        ``[Ixx, Iyy, Izz, Ixy, Iyz, Ixz]`` about the centre of mass, frame-{i} axes, kg·m².
+    Jm : float
+        Motor (rotor) inertia, kg·m², motor side.
+    G : float
+        Gear ratio: motor turns per joint turn; its sign is the motor's direction.
+    B : float
+        Viscous friction, N·m·s/rad, motor side.
+    Tc : numpy.ndarray, shape (2,)
+        Coulomb friction for positive and negative motion, N·m, motor side (the negative-motion
+        value is usually negative).
+    name : str or None
+        Joint name (None: ``joint_<i>``).
+    flip : bool
+        The joint variable enters with a minus sign, ``θ = θ_offset − q`` (``d = d_offset − q``):
+        the joint turns (slides) about −z (YAML key ``flip: true``; default False).
+
+    Examples
+    --------
+    >>> link = DHLink(joint="R", a=0.5, G=10.0, Jm=2e-4)
+    >>> round(link.joint_inertia, 6)
+    0.02
     """
 
     joint: str = "R"
@@ -141,9 +232,31 @@ class DHLink:
 class DHTable:
     """A serial arm described by a DH table (either convention), with base and tool frames.
 
-    name : robot name; convention : "standard" or "modified"; links : tuple of
-    :class:`DHLink`; gravity : (3,) gravity acceleration in base_link (m/s²); base : 4×4
-    pose of DH frame {0} in base_link; tool : 4×4 pose of the tool in frame {N}.
+    Frame poses in ``base_link``: ``T_base_0 = base``, ``T_base_i = base · ⁰T₁ ⋯ ⁱ⁻¹Tᵢ`` and the
+    tool ``T_base_N · tool`` (Lecture 4).
+
+    Attributes
+    ----------
+    name : str
+        Robot name (the URDF's robot name).
+    convention : {"standard", "modified"}
+        Standard (Spong, Corke) or modified (Craig) DH.
+    links : tuple of DHLink
+        One row per joint, i = 1..N.
+    gravity : numpy.ndarray, shape (3,)
+        Gravity acceleration in base_link, m/s² (default ``[0, 0, −9.81]``).
+    base : numpy.ndarray, shape (4, 4)
+        Pose of DH frame {0} in base_link (default identity).
+    tool : numpy.ndarray, shape (4, 4)
+        Pose of the tool frame in DH frame {N} (default identity).
+
+    Examples
+    --------
+    A planar two-link arm (1 m and 0.5 m) stretched along x:
+
+    >>> table = DHTable("arm", "standard", (DHLink(a=1.0), DHLink(a=0.5)))
+    >>> table.n, table.frames([0.0, 0.0])[-1][:3, 3].round(4).tolist()
+    (2, [1.5, 0.0, 0.0])
     """
 
     name: str

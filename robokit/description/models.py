@@ -16,17 +16,57 @@ __all__ = ["models_dir", "shipped_models", "model_path"]
 
 
 def models_dir() -> Path:
-    """Path of the shipped models folder (the package ``robokit.models``, i.e. ``models/``)."""
+    """Path of the shipped models folder (the package ``robokit.models``, i.e. ``models/``).
+
+    Returns
+    -------
+    pathlib.Path
+        The installed folder holding ``<name>.yaml`` and ``<name>.urdf``.
+
+    Examples
+    --------
+    >>> (models_dir() / "puma560.yaml").is_file()
+    True
+    """
     return Path(str(resources.files("robokit.models")))
 
 
 def shipped_models() -> list[str]:
-    """Names of the shipped DH models (``models/<name>.yaml``), sorted."""
+    """Names of the shipped DH models (``models/<name>.yaml``), sorted.
+
+    Returns
+    -------
+    list of str
+        The names ``robokit.load`` accepts for the shipped models.
+
+    Examples
+    --------
+    >>> {"twolink", "rrr", "puma560"} <= set(shipped_models())
+    True
+    """
     return sorted(p.stem for p in models_dir().glob("*.yaml"))
 
 
 def model_path(name: str, suffix: str = ".yaml") -> Path:
-    """Path of a shipped model file; ``ValueError`` listing the available names if unknown."""
+    """Path of a shipped model file.
+
+    Parameters
+    ----------
+    name : str
+        A shipped model name (see :func:`shipped_models`).
+    suffix : str, optional
+        ``".yaml"`` (the DH file, default) or ``".urdf"`` (the generated URDF).
+
+    Returns
+    -------
+    pathlib.Path
+        The file; :class:`~robokit.errors.InputError` listing the available names if there is none.
+
+    Examples
+    --------
+    >>> model_path("rrr", ".urdf").name
+    'rrr.urdf'
+    """
     p = models_dir() / f"{name}{suffix}"
     if not p.is_file():
         raise InputError(f"model: no shipped model {name!r}; available: {', '.join(shipped_models())}")

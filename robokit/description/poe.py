@@ -36,8 +36,36 @@ __all__ = ["PoEParams", "poe_from_model"]
 class PoEParams:
     """Product-of-exponentials parameters of a serial chain (see the module docstring).
 
-    M (4×4), Slist (6×n), Blist (6×n), Mlist (n+1, 4, 4), Glist (n, 6, 6), joint_names (n),
-    tip (frame name), qlim (n, 2) (±inf for continuous joints), gravity (3,) m/s².
+    ``T(θ) = e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M = M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ}`` (Modern Robotics ch. 4).
+
+    Attributes
+    ----------
+    M : numpy.ndarray, shape (4, 4)
+        Tip pose in the root frame at q = 0 (m).
+    Slist : numpy.ndarray, shape (6, n)
+        Space screw axes, one column per joint, rows ``(ω, v)``, root frame.
+    Blist : numpy.ndarray, shape (6, n)
+        Body screw axes ``Ad_{M⁻¹} Slist``, tip frame.
+    Mlist : numpy.ndarray, shape (n + 1, 4, 4)
+        ``Mlist[i]``: pose of link i+1's centre-of-mass frame in the previous one; ``Mlist[n]``
+        the tip in link n's centre-of-mass frame.
+    Glist : numpy.ndarray, shape (n, 6, 6)
+        Spatial inertia ``[[I_c, 0], [0, m 1]]`` of each link in its centre-of-mass frame
+        (kg·m², kg).
+    joint_names : tuple of str
+        The n joint names, root to tip.
+    tip : str
+        Name of the tip frame.
+    qlim : numpy.ndarray, shape (n, 2)
+        Joint limits (rad or m; ±inf for continuous joints).
+    gravity : numpy.ndarray, shape (3,)
+        Gravity acceleration in the root frame, m/s².
+
+    Examples
+    --------
+    >>> poe = rk.load("twolink").poe
+    >>> poe.Slist.shape, poe.M[:3, 3].round(4).tolist()
+    ((6, 2), [1.8, 0.0, 0.0])
     """
 
     M: np.ndarray
@@ -70,9 +98,31 @@ class PoEParams:
 def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> PoEParams:
     """PoE parameters of a Pinocchio ``model`` that is a serial chain of 1-dof joints.
 
-    model : ``pinocchio.Model`` whose joints 1..n form one chain (as made by
-    :func:`robokit.description.builder.serial_chain`); tip : the tip frame's name;
-    gravity : (3,) (default: the model's gravity).
+    The space screw axes are the columns of the world Jacobian at the neutral configuration
+    (reordered to ``(ω, v)``), ``Blist = Ad_{M⁻¹} Slist``; ``Mlist``/``Glist`` come from the joints'
+    inertias so that Newton–Euler on them equals ``pinocchio.rnea`` (module docstring).
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+        A model whose joints 1..n form one chain in order (as made by
+        :func:`robokit.description.builder.serial_chain`).
+    tip : str
+        Name of the tip frame (must exist in the model).
+    gravity : array_like, shape (3,), optional
+        Gravity in the root frame, m/s² (default: the model's gravity).
+
+    Returns
+    -------
+    PoEParams
+        ``M``, ``Slist``, ``Blist``, ``Mlist``, ``Glist``, joint names, limits and gravity.
+
+    Examples
+    --------
+    >>> robot = rk.load("twolink")
+    >>> poe = poe_from_model(robot.model, robot.tip)
+    >>> poe.Slist[:, 1].round(4).tolist()    # joint 2: ω = z, through (1, 0, 0): v = −ω × p
+    [0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
     """
     import pinocchio as pin
 

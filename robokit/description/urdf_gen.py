@@ -70,12 +70,29 @@ def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str
 
 
 def dh_to_urdf(table: DHTable) -> str:
-    """The URDF text of a :class:`DHTable` (see the URDF format page of the documentation); loads in Pinocchio and yourdfpy.
+    r"""The URDF text of a :class:`DHTable`; it loads in Pinocchio and yourdfpy.
 
-    Example::
+    The layout is the one of the URDF format page of the documentation: root link ``base_link``,
+    a massless link ``dh_<i>`` fixed at each DH frame {i} (base transform applied), joints
+    ``joint_<i>`` with the table's limits, the links' inertia carried into the URDF link frames,
+    a ``tool`` link at ``T_base_N · tool`` and simple visual geometry.
 
-        table = robokit.DHTable.from_yaml("models/puma560.yaml")
-        model = pinocchio.buildModelFromXML(dh_to_urdf(table))
+    Parameters
+    ----------
+    table : DHTable
+        The arm (either convention; lengths in m, angles in rad).
+
+    Returns
+    -------
+    str
+        The URDF document (XML text).
+
+    Examples
+    --------
+    >>> table = rk.load("twolink").dh
+    >>> urdf = dh_to_urdf(table)
+    >>> urdf.count("<joint name=\"joint_"), "<link name=\"tool\"" in urdf
+    (2, True)
     """
     if not isinstance(table, DHTable):
         raise InputTypeError(f"table: expected a DHTable, got {type(table).__name__}")

@@ -58,10 +58,26 @@ def _unit(v: np.ndarray) -> np.ndarray:
 
 
 def joint_axes(robot: Robot) -> list[tuple[np.ndarray, np.ndarray, str]]:
-    """Joint axes of a Robot's chain at q = 0: list of (point (3,), direction (3,), kind 'R'|'P').
+    """Joint axes of a Robot's chain at q = 0, as lines in the root frame.
 
     Directions are the space screw axes' ω (revolute) or v (prismatic); a revolute axis passes
-    through the joint frame's origin.
+    through the joint frame's origin (a prismatic one is taken through it too).
+
+    Parameters
+    ----------
+    robot : Robot
+        The serial chain.
+
+    Returns
+    -------
+    list of (numpy.ndarray, numpy.ndarray, str)
+        One ``(point (3,), unit direction (3,), kind)`` per joint, root to tip; the point in m,
+        root frame; kind ``"R"`` or ``"P"``.
+
+    Examples
+    --------
+    >>> [(p.tolist(), w.tolist(), k) for p, w, k in joint_axes(rk.load("twolink"))]
+    [([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 'R'), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 'R')]
     """
     import pinocchio as pin
 
@@ -124,7 +140,26 @@ def _clean(x: float) -> float:
 
 @dataclass
 class URDFToDH:
-    """Result of :func:`urdf_to_dh`: the table, and its largest FK error against Pinocchio (m/rad)."""
+    """Result of :func:`urdf_to_dh`: the table and how well it reproduces the robot.
+
+    Attributes
+    ----------
+    table : DHTable
+        The extracted table, with the base and tool transforms that make it exact.
+    residual : float
+        Largest entry-wise difference between the table's tool pose and Pinocchio's over the
+        sampled configurations (m for the translation, dimensionless for the rotation).
+    samples : int
+        Number of random configurations checked.
+    exact : bool
+        Property: ``residual ≤ 1e-9``.
+
+    Examples
+    --------
+    >>> res = urdf_to_dh(rk.load("puma560"), samples=20)
+    >>> res.exact, res.table.n
+    (True, 6)
+    """
 
     table: DHTable
     residual: float
@@ -139,9 +174,35 @@ def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
                rng: int | np.random.Generator | None = 0) -> URDFToDH:
     """DH table (either convention) of a Robot's chain root → tip, with base and tool transforms.
 
-    robot : a :class:`robokit.Robot` or anything ``robokit.load`` accepts (a URDF path or an
-    example-robot-data name). The table is checked by FK against Pinocchio at ``samples`` random
-    configurations; ``residual`` is the largest entry-wise pose error (≤ 1e-9: ``exact``).
+    Frames are placed on the common normals of consecutive joint axes at q = 0 (Lecture 4; the
+    choices for parallel, intersecting and coincident axes are in the module docstring). The table
+    is checked by DH forward kinematics against Pinocchio at ``samples`` random configurations.
+
+    Parameters
+    ----------
+    robot : Robot or str
+        A :class:`robokit.Robot`, or anything ``robokit.load`` accepts (a URDF path or an
+        example-robot-data name).
+    convention : {"standard", "modified"}, optional
+        Standard (Spong/Corke, default) or modified (Craig) DH.
+    samples : int, optional
+        Number of random configurations for the check (default 200).
+    rng : int, numpy.random.Generator or None, optional
+        Seed or generator for those configurations (default 0: reproducible).
+
+    Returns
+    -------
+    URDFToDH
+        ``.table`` (a :class:`DHTable`, lengths in m, angles in rad), ``.residual`` (the largest
+        pose error found) and ``.exact`` (residual ≤ 1e-9).
+
+    Examples
+    --------
+    The two parallel axes of the planar arm give a = 1 m and 0.8 m, α = 0:
+
+    >>> res = urdf_to_dh(rk.load("twolink"), samples=20)
+    >>> [(l.a, l.alpha) for l in res.table.links], res.exact
+    ([(1.0, 0.0), (0.8, 0.0)], True)
     """
     from robokit.description.loading import load
     from robokit.description.robot import Robot
@@ -251,8 +312,33 @@ def _check(robot: Robot, table: DHTable, samples: int, rng: int | np.random.Gene
 
 
 def format_dh_table(table: DHTable, digits: int = 5) -> str:
-    """The table as the lecture writes it (one row per joint, angles in degrees), with the base
-    and tool transforms that make it exact: ``table.to_text(digits)``."""
+    """The table as the lecture writes it: ``table.to_text(digits)``.
+
+    One row per joint (lengths in m, angles in degrees, ``+ q`` on the joint variable), then the
+    base and tool transforms when they are not the identity (without them the table alone does not
+    reproduce the robot's tool pose).
+
+    Parameters
+    ----------
+    table : DHTable
+        The table to print.
+    digits : int, optional
+        Decimals of the lengths in m (default 5); angles in degrees get ``digits − 2``.
+
+    Returns
+    -------
+    str
+        The printable table, one line per row.
+
+    Examples
+    --------
+    >>> print(format_dh_table(rk.load("twolink").dh, 3))
+    # twolink: standard DH
+    i  joint  a_i [m]  alpha_i [deg]  d_i [m]  theta_i [deg]
+    -  -----  -------  -------------  -------  -------------
+    1      R    1.000            0.0    0.000        0.0 + q
+    2      R    0.800            0.0    0.000        0.0 + q
+    """
     return table.to_text(digits)
 
 
