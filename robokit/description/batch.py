@@ -36,7 +36,30 @@ def _tip_only(robot: Robot, frame: str | None) -> None:
 
 
 def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np.ndarray:
-    """(N, 4, 4) tip poses (compiled PoE kernel)."""
+    """Tip poses for many configurations (compiled PoE kernel ``T = e^{[S₁]q₁} ⋯ e^{[Sₙ]qₙ} M``).
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot (its PoE parameters are used).
+    Q : array_like, shape (N, n)
+        Joint values, one configuration per row (rad or m).
+    frame : str or None, optional
+        Must be None or the robot's tip: batched calls answer for the tip only.
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, 4, 4)
+        Tip pose in the base frame for each row of ``Q`` (m), as :meth:`Robot.frame_pose`.
+
+    Examples
+    --------
+    The planar arm (links 1 m and 0.8 m) stretched out, then turned 90° at the shoulder:
+
+    >>> T = batch_frame_pose(rk.load("twolink"), [[0.0, 0.0], [np.pi / 2, 0.0]])
+    >>> T[:, :2, 3].round(4).tolist()
+    [[1.8, 0.0], [0.0, 1.8]]
+    """
     from robokit.kernels.poe import fkin_space_batch
 
     _tip_only(robot, frame)
@@ -46,8 +69,35 @@ def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np
 
 
 def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
-    """(N, 6, n) tip Jacobians, angular rows first (compiled PoE kernel): "world" = the space
-    Jacobian J_s; "local" = ``Ad_{T⁻¹} J_s``; "local_world_aligned" = ``[[I, 0], [−[p], I]] J_s``."""
+    """Tip Jacobians for many configurations (compiled PoE kernel), angular rows first.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot (its PoE parameters are used).
+    Q : array_like, shape (N, n)
+        Joint values, one configuration per row (rad or m).
+    frame : str or None, optional
+        Must be None or the robot's tip: batched calls answer for the tip only.
+    reference : {"world", "local", "local_world_aligned"}, optional
+        ``"world"`` (default): the space Jacobian ``J_s`` (twist of the tip in the base frame);
+        ``"local"``: the body Jacobian ``Ad_{T⁻¹} J_s`` (tip axes); ``"local_world_aligned"``:
+        ``[[I, 0], [−[p], I]] J_s`` — ω and the velocity of the tip origin in base axes (the
+        course's geometric Jacobian).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, 6, n)
+        One Jacobian per row of ``Q``: rows ``(ω; v)`` (rad/s and m/s per unit joint rate).
+
+    Examples
+    --------
+    At q = 0 the tip origin (1.8, 0, 0) moves along +y at 1.8 m/s per rad/s of joint 1:
+
+    >>> J = batch_jacobian(rk.load("twolink"), [[0.0, 0.0]], reference="local_world_aligned")
+    >>> J[0, 3:5].round(4).tolist()
+    [[0.0, 0.0], [1.8, 0.8]]
+    """
     from robokit.kernels.poe import fkin_space_batch, jacobian_space_batch
     from robokit.spatial import lie
 
@@ -69,8 +119,32 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, referen
 
 
 def batch_crba(robot: Robot, Q: ArrayLike) -> np.ndarray:
-    """(N, n, n) mass matrices (compiled composite-rigid-body kernel; the motors' armature of the
-    Pinocchio model, if any, added on the diagonal)."""
+    """Joint-space mass matrices for many configurations (compiled composite-rigid-body kernel).
+
+    The motors' armature of the Pinocchio model, if any, is added on the diagonal.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot (its PoE ``Mlist``/``Glist``/``Slist`` are used).
+    Q : array_like, shape (N, n)
+        Joint values, one configuration per row (rad or m).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n, n)
+        Symmetric positive-definite ``M(q)`` per row (kg·m² for revolute joints), as
+        :meth:`Robot.crba`.
+
+    Examples
+    --------
+    Point masses 2 kg at (1, 0) and 1.5 kg at (1.8, 0): ``M₂₂ = m₂ l₂² = 0.96``,
+    ``M₁₁ = m₁ l₁² + m₂ (l₁ + l₂)² = 6.86``:
+
+    >>> M = batch_crba(rk.load("twolink"), [[0.0, 0.0]])
+    >>> M[0].round(4).tolist()
+    [[6.86, 2.16], [2.16, 0.96]]
+    """
     from robokit.kernels.dynamics import mass_matrix_batch
 
     Q = _rows(robot, Q, "q")
@@ -100,22 +174,72 @@ def _q_pin_columns(robot: Robot, Q: np.ndarray) -> np.ndarray:
 
 
 def batch_rnea(robot: Robot, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, threads: int = 1) -> np.ndarray:
-    """(N, n) inverse dynamics, Pinocchio's ``rneaInParallel`` on ``threads`` threads."""
+    """Inverse dynamics for many configurations: Pinocchio's ``rneaInParallel`` on ``threads`` threads.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    Q, dQ, ddQ : array_like, shape (N, n)
+        Joint positions (rad or m), velocities (rad/s or m/s) and accelerations (rad/s² or m/s²),
+        one configuration per row.
+    threads : int, optional
+        OpenMP threads (default 1; must be positive).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n)
+        Joint torques (N·m) or forces (N), ``τ = M(q) q̈ + C(q, q̇) q̇ + g(q)``, the model's gravity.
+
+    Examples
+    --------
+    At rest, stretched along x under gravity −9.81 m/s² along y: ``τ₂ = 9.81 · 1.5 · 0.8`` and
+    ``τ₁ = 9.81 · (2 · 1 + 1.5 · 1.8)``:
+
+    >>> Z = np.zeros((1, 2))
+    >>> batch_rnea(rk.load("twolink"), Z, Z, Z).round(4).tolist()
+    [[46.107, 11.772]]
+    """
     Q, dQ, ddQ = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, ddQ, "ddq")
     if not (Q.shape == dQ.shape == ddQ.shape):
         raise InputError(f"q, dq, ddq: expected equal shapes, got {Q.shape}, {dQ.shape}, {ddQ.shape}")
     pool, threads = _pool(robot, threads)
     tau = robot._pin.rneaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
                                     np.asfortranarray(ddQ.T))
-    return np.ascontiguousarray(np.asarray(tau).T)
+    return np.ascontiguousarray(np.asarray(tau).reshape(robot.n, -1).T)  # N = 1 comes back as (n,)
 
 
 def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
-    """(N, n) forward dynamics, Pinocchio's ``abaInParallel`` on ``threads`` threads."""
+    """Forward dynamics for many configurations: Pinocchio's ``abaInParallel`` on ``threads`` threads.
+
+    Parameters
+    ----------
+    robot : Robot
+        The robot.
+    Q, dQ, tau : array_like, shape (N, n)
+        Joint positions (rad or m), velocities (rad/s or m/s) and torques (N·m) or forces (N),
+        one configuration per row.
+    threads : int, optional
+        OpenMP threads (default 1; must be positive).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n)
+        Joint accelerations ``q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q))``.
+
+    Examples
+    --------
+    Holding the gravity torques keeps the arm at rest:
+
+    >>> robot = rk.load("twolink")
+    >>> Z = np.zeros((1, 2))
+    >>> np.allclose(batch_aba(robot, Z, Z, [[46.107, 11.772]]), 0.0)
+    True
+    """
     Q, dQ, tau = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, tau, "tau")
     if not (Q.shape == dQ.shape == tau.shape):
         raise InputError(f"q, dq, tau: expected equal shapes, got {Q.shape}, {dQ.shape}, {tau.shape}")
     pool, threads = _pool(robot, threads)
     ddq = robot._pin.abaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
                                    np.asfortranarray(tau.T))
-    return np.ascontiguousarray(np.asarray(ddq).T)
+    return np.ascontiguousarray(np.asarray(ddq).reshape(robot.n, -1).T)  # N = 1 comes back as (n,)

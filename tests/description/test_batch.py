@@ -36,3 +36,19 @@ def test_batched_methods_refuse_bad_input():
         r.rnea(np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((2, 6)), threads=0)
     with pytest.raises(ValueError, match="NaN"):
         r.crba(np.full((2, 6), np.nan))
+
+
+def test_one_row_batch_keeps_its_batch_axis():
+    """Q of shape (1, n) gives (1, ...) results, equal to the per-configuration call (Pinocchio
+    returns a (n,) vector for a single column; the batch axis must survive)."""
+    r = rk.load("puma560")
+    rng = np.random.default_rng(2)
+    q, dq, ddq = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n)
+    tau = r.rnea(q[None], dq[None], ddq[None])
+    assert tau.shape == (1, r.n)
+    assert np.abs(tau[0] - r.rnea(q, dq, ddq)).max() < 1e-10
+    ddq_back = r.aba(q[None], dq[None], tau)
+    assert ddq_back.shape == (1, r.n)
+    assert np.abs(ddq_back[0] - ddq).max() < 1e-8
+    assert r.frame_pose(q[None]).shape == (1, 4, 4)
+    assert r.crba(q[None]).shape == (1, r.n, r.n)
