@@ -29,7 +29,7 @@ def _check_output(output: str | os.PathLike[str]) -> Path:
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
             convention: str = "standard", *, xacro_args: Mapping[str, str] | None = None,
             package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> tuple[str, list[str]]:
-    """Convert ``input`` and write ``output``; returns ``(text_written_or_printed, notes)``.
+    """Convert a robot description and write the result (what ``robokit convert`` runs).
 
     * ``IN.yaml|NAME -o OUT.urdf`` — a DH model (a DH file or a shipped model) to URDF (see the URDF
       format page of the documentation);
@@ -39,8 +39,41 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
       URDF → DH converter finds an exact one (a DH model writes its own table);
     * ``ROBOT -o OUT.xml`` — MJCF for any robot ``robokit.load`` reads (DH file, URDF, xacro,
       MJCF, example-robot-data name), see :mod:`robokit.description.mjcf`.
-    ``xacro_args``/``package_dirs`` are passed to ``robokit.load``.
-    ``notes`` are human-readable remarks (e.g. joints locked off the chain) for stderr.
+
+    The file is written atomically: on any error nothing is written.
+
+    Parameters
+    ----------
+    input : str or os.PathLike
+        A DH ``.yaml``, ``.urdf``, ``.xacro``, MJCF ``.xml`` file, a shipped model name or an
+        example-robot-data name.
+    output : str or os.PathLike or None, optional
+        The file to write; its suffix picks the format (``.urdf``, ``.json``, ``.yaml``/``.yml``,
+        ``.xml``). None: nothing is written (the text is only returned).
+    tip : str or None, optional
+        Tip frame of the chain for URDF-like input (default: the end of the longest chain).
+    convention : {"standard", "modified"}, optional
+        DH convention of a ``.yaml`` output extracted from a URDF (default ``"standard"``).
+    xacro_args : mapping of str to str, optional
+        Arguments of a xacro file, passed to ``robokit.load``.
+    package_dirs : sequence of path-like, optional
+        Folders where ``package://`` names are looked up, passed to ``robokit.load``.
+
+    Returns
+    -------
+    text : str
+        The text written (or that would be written).
+    notes : list of str
+        Human-readable remarks for stderr (e.g. joints locked off the chain).
+
+    Examples
+    --------
+    >>> import json, pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     text, notes = convert("twolink", pathlib.Path(tmp, "twolink.json"))
+    >>> poe = json.loads(text)
+    >>> poe["M"][0][3], len(poe["Slist"]), notes
+    (1.8, 6, [])
     """
     from robokit.description.dh import DHTable
     from robokit.description.loading import load

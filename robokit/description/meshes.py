@@ -62,7 +62,19 @@ def allowed_roots(top: str | os.PathLike[str], package_dirs: Sequence[str | os.P
 
 
 def is_inside(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]]) -> bool:
-    """True if ``path`` (symlinks resolved) is one of ``roots`` or inside one.
+    """Whether ``path`` (symlinks resolved) is one of ``roots`` or inside one.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file or folder to test.
+    roots : iterable of str or os.PathLike
+        The allowed folders.
+
+    Returns
+    -------
+    bool
+        True if the resolved path equals a resolved root or lies below one.
 
     Examples
     --------
@@ -123,13 +135,27 @@ MAX_PACKAGE_XML_BYTES = 1 << 20
 
 
 def package_name(package_xml: str | os.PathLike[str]) -> str | None:
-    """The ``<name>`` of a ROS ``package.xml`` (bounded, regular files only), the folder's name if
-    it has none, or None if the file cannot be read as a manifest.
+    """The ``<name>`` of a ROS ``package.xml`` (bounded, regular files only).
+
+    Parameters
+    ----------
+    package_xml : str or os.PathLike
+        Path of the manifest.
+
+    Returns
+    -------
+    str or None
+        The package name; the folder's name if the manifest has no ``<name>``; None if the file
+        cannot be read as a manifest.
 
     Examples
     --------
-    >>> package_name("/ws/src/arm_description/package.xml")   # doctest: +SKIP
-    'arm_description'
+    >>> import pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     manifest = pathlib.Path(tmp, "package.xml")
+    ...     _ = manifest.write_text("<package><name>arm_description</name></package>")
+    ...     print(package_name(manifest))
+    arm_description
     """
     from robokit._io import read_input_bytes
     from robokit._xml import parse_xml
@@ -150,8 +176,18 @@ MAX_TOTAL_MESH_BYTES = 256 << 20
 
 
 def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
-    """Why the mesh file ``path`` is not read, or None if it may be: not a regular file (a FIFO,
-    a device such as ``/dev/zero``), or larger than :data:`MAX_MESH_BYTES`.
+    """Why the mesh file ``path`` is not read, or None if it may be.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The mesh file.
+
+    Returns
+    -------
+    str or None
+        ``"not found"``, ``"not a regular file"`` (a FIFO, a device such as ``/dev/zero``), the
+        size when it is larger than :data:`MAX_MESH_BYTES`, or None when the file may be read.
 
     Examples
     --------

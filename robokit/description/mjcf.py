@@ -142,10 +142,34 @@ def _body_rotation(body: ET.Element, compiler: dict, path: str | os.PathLike[str
 
 
 def first_body_placement(path: str | os.PathLike[str]) -> tuple[str | None, np.ndarray | None]:
-    """The worldbody's first ``<body>`` if it has no joint: ``(name, 4×4 pose in the world)``.
+    """The worldbody's first ``<body>`` and its pose, if that body has no joint.
 
-    Returns ``(None, None)`` when the first body has a joint (Pinocchio places it correctly)
-    or there is no body. This is the placement Pinocchio 4.1's MJCF parser drops.
+    This is the placement Pinocchio 4.1's MJCF parser drops; robokit puts it back.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The MJCF file.
+
+    Returns
+    -------
+    name : str or None
+        The body's name; None when the first body has a joint (Pinocchio places it correctly)
+        or there is no body.
+    pose : numpy.ndarray, shape (4, 4), or None
+        Its pose in the world frame (``pos`` in m, ``quat``/``euler``/``axisangle`` rotation).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> xml = ('<mujoco><worldbody><body name="base" pos="0 0 0.5">'
+    ...        '<body name="l1"><joint name="j1"/></body></body></worldbody></mujoco>')
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "arm.xml")
+    ...     _ = path.write_text(xml)
+    ...     name, T = first_body_placement(path)
+    >>> name, T[:3, 3].tolist()
+    ('base', [0.0, 0.0, 0.5])
     """
     path = Path(path)
     root = _parse_xml(path)

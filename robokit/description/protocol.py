@@ -24,7 +24,29 @@ __all__ = ["RobotLike"]
 
 @runtime_checkable
 class RobotLike(Protocol):
-    """What robokit needs of a robot: ``n``, ``qlim``, ``frame_pose`` and ``jacobian``."""
+    """What robokit needs of a robot: ``n``, ``qlim``, ``frame_pose`` and ``jacobian``.
+
+    A structural type: any object with these members satisfies it (``isinstance`` checks the
+    members' presence only). Conventions are those of the module docstring.
+
+    Attributes
+    ----------
+    n : int
+        Number of joints.
+    qlim : numpy.ndarray, shape (n, 2)
+        Lower and upper joint limits, rad or m (±inf where unlimited).
+    frame_pose : callable
+        ``frame_pose(q, frame=None) -> (4, 4)``: pose of ``frame`` (default the tip) in the base
+        frame at q (n,), m.
+    jacobian : callable
+        ``jacobian(q, frame=None, reference="world") -> (6, n)``: rows ``(ω; v)``, expressed as
+        ``reference`` says (``"world"``, ``"local"`` or ``"local_world_aligned"``).
+
+    Examples
+    --------
+    >>> isinstance(rk.load("twolink"), RobotLike), isinstance(object(), RobotLike)
+    (True, False)
+    """
 
     #: number of joints
     n: int

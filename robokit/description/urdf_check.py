@@ -51,8 +51,30 @@ _JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "pla
 
 @dataclass
 class UrdfDocument:
-    """A checked URDF: ``xml`` (text, meshes resolved to absolute paths), ``name``,
-    ``mimic`` ({joint: mimicked joint}), ``package_dirs`` and ``warnings`` (one line each)."""
+    """A checked URDF, as :func:`read_urdf` returns it.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file it was read from (or that names it, for a xacro expansion).
+    xml : str
+        The URDF text, mesh references resolved to absolute paths.
+    name : str
+        The ``<robot name>``.
+    mimic : dict of str to str
+        ``{joint: the joint it mimics}``.
+    package_dirs : list of pathlib.Path
+        Folders searched for ``package://`` names.
+    warnings : list of str
+        One line per remark (e.g. a mesh outside the allowed folders dropped).
+
+    Examples
+    --------
+    >>> from robokit.description.models import model_path
+    >>> doc = read_urdf(model_path("twolink", ".urdf"))
+    >>> doc.name, doc.mimic, doc.warnings
+    ('twolink', {}, [])
+    """
 
     path: Path
     xml: str
@@ -156,10 +178,31 @@ def _is_package(root: Path, pkg: str) -> bool:
 
 def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
               allow_outside_meshes: bool = False, text: str | None = None) -> UrdfDocument:
-    """Read and check a URDF file; see the module docstring. Raises :class:`InputError`.
+    """Read and check a URDF file (see the module docstring for what is checked).
 
-    text : the URDF's text when it does not come from ``path`` itself (a xacro expansion);
-    ``path`` then only names it and anchors relative mesh paths.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The URDF file (at most :data:`MAX_URDF_BYTES`).
+    package_dirs : sequence of path-like, optional
+        Folders where ``package://`` names are looked up (besides the file's own package).
+    allow_outside_meshes : bool, optional
+        Read meshes outside the file's folder, its package and ``package_dirs`` (default False).
+    text : str or None, optional
+        The URDF's text when it does not come from ``path`` itself (a xacro expansion);
+        ``path`` then only names it and anchors relative mesh paths.
+
+    Returns
+    -------
+    UrdfDocument
+        The checked text and what was learnt on the way; a bad file raises
+        :class:`~robokit.errors.InputError` naming the file and the element.
+
+    Examples
+    --------
+    >>> from robokit.description.models import model_path
+    >>> read_urdf(model_path("rrr", ".urdf")).xml.count('type="revolute"')    # three joints
+    3
     """
     path = Path(path)
     if text is not None:

@@ -86,7 +86,20 @@ MAX_SECONDS = 30.0
 
 class UnsafeXacro(InputError):
     """A xacro file asked for something robokit does not do: code, a file outside its roots, the
-    environment, unbounded work. The message names the file and the expression or element."""
+    environment, unbounded work. The message names the file and the expression or element.
+
+    A subclass of :class:`~robokit.errors.InputError` (so the CLI exits with status 2).
+
+    Parameters
+    ----------
+    *args : object
+        The message, as for any exception.
+
+    Examples
+    --------
+    >>> issubclass(UnsafeXacro, ValueError)
+    True
+    """
 
 
 class _Fn:
@@ -508,6 +521,12 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         Names of user arguments consulted (filled in; unknown-argument check).
     max_bytes : int
         Largest file read.
+
+    Yields
+    ------
+    None
+        The body of the ``with`` block runs with xacro's evaluation and file reading replaced
+        by robokit's; xacro's own functions are put back when the block exits (even on error).
 
     Examples
     --------
