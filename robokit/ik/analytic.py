@@ -76,12 +76,31 @@ def _two_link_core(x: float, y: float, l1: float, l2: float) -> list[tuple[float
 def ik_planar_2link(x: float, y: float, l1: float, l2: float, qlim: ArrayLike | None = None) -> list[IKSolution]:
     """All joint angles (θ₁, θ₂) of a planar 2-link arm whose tip reaches (x, y).
 
-    x, y : target in the base frame (m); l1, l2 : link lengths (m, > 0);
-    qlim : optional (2, 2) limits [[lo, hi], …] (rad).
-    Returns up to two solutions ("elbow down": θ₂ > 0, "elbow up": θ₂ < 0 — with the
-    base x axis horizontal and y up); one at the workspace boundary; [] if unreachable.
+    Lecture 5's algebraic solution: ``c₂ = (x² + y² − l₁² − l₂²)/(2 l₁ l₂)``, ``s₂ = ±√(1 − c₂²)``,
+    ``θ₁ = atan2(y, x) − atan2(l₂ s₂, l₁ + l₂ c₂)``.
 
-    Example: ``ik_planar_2link(1.0, 1.0, 1.0, 1.0)`` → θ = (0, π/2) and (π/2, −π/2).
+    Parameters
+    ----------
+    x, y : float
+        Target of the tip in the base frame, m.
+    l1, l2 : float
+        Link lengths, m (> 0).
+    qlim : array_like, shape (2, 2), optional
+        Joint limits ``[[lo₁, hi₁], [lo₂, hi₂]]`` in rad, used for ``within_limits``.
+
+    Returns
+    -------
+    list of IKSolution
+        Up to two solutions, ``q`` (2,) in rad wrapped to (−π, π]: ``"elbow down"`` (θ₂ > 0) and
+        ``"elbow up"`` (θ₂ < 0) — with the base x axis horizontal and y up; one at the workspace
+        boundary; [] if unreachable.
+
+    Examples
+    --------
+    >>> [(s.q.round(4).tolist(), s.label) for s in ik_planar_2link(1.0, 1.0, 1.0, 1.0)]
+    [([0.0, 1.5708], 'elbow down'), ([1.5708, -1.5708], 'elbow up')]
+    >>> ik_planar_2link(3.0, 0.0, 1.0, 1.0)
+    []
     """
     x, y = as_scalar(x, "x"), as_scalar(y, "y")
     l1, l2 = as_scalar(l1, "l1", positive=True), as_scalar(l2, "l2", positive=True)
@@ -98,7 +117,36 @@ def ik_planar_rrr(x: float, y: float, phi: float, l1: float, l2: float, l3: floa
     """All (θ₁, θ₂, θ₃) of a planar RRR arm with tool pose (x, y, φ), φ = θ₁ + θ₂ + θ₃.
 
     Geometric form of Lecture 5: the wrist point (x − l₃ cos φ, y − l₃ sin φ) is reached
-    by the 2-link sub-arm, and θ₃ = φ − θ₁ − θ₂. Lengths in m, angles in rad.
+    by the 2-link sub-arm (:func:`ik_planar_2link`), and θ₃ = φ − θ₁ − θ₂.
+
+    Parameters
+    ----------
+    x, y : float
+        Tool position in the base frame, m.
+    phi : float
+        Tool orientation (angle of the last link from the base x axis), rad.
+    l1, l2, l3 : float
+        Link lengths, m (> 0).
+    qlim : array_like, shape (3, 2), optional
+        Joint limits in rad, used for ``within_limits``.
+
+    Returns
+    -------
+    list of IKSolution
+        Up to two solutions (elbow down/up), ``q`` (3,) in rad; [] if unreachable.
+
+    Examples
+    --------
+    Both solutions put the last link at φ = 90° and the tip at (1, 1):
+
+    >>> sols = ik_planar_rrr(1.0, 1.0, np.pi / 2, 1.0, 1.0, 0.5)
+    >>> [round(float(s.q.sum()), 4) for s in sols]
+    [1.5708, 1.5708]
+    >>> q = sols[0].q
+    >>> x = np.cos(q[0]) + np.cos(q[0] + q[1]) + 0.5 * np.cos(q.sum())
+    >>> y = np.sin(q[0]) + np.sin(q[0] + q[1]) + 0.5 * np.sin(q.sum())
+    >>> round(float(x), 6), round(float(y), 6)
+    (1.0, 1.0)
     """
     x, y, phi = as_scalar(x, "x"), as_scalar(y, "y"), as_scalar(phi, "phi")
     l1, l2 = as_scalar(l1, "l1", positive=True), as_scalar(l2, "l2", positive=True)
@@ -123,6 +171,28 @@ def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSoluti
     determined. The documented choice: θ₄ = ``theta4_ref`` (default 0, or pass the current
     θ₄ to avoid a jump) and θ₆ takes the rest; one solution is returned, flagged
     ``degenerate``.
+
+    Parameters
+    ----------
+    R36 : array_like, shape (3, 3)
+        Orientation of the wrist's last frame in the frame before it (a rotation matrix).
+    theta4_ref : float, optional
+        θ₄ taken at the degenerate case, rad (default 0).
+
+    Returns
+    -------
+    list of IKSolution
+        Two solutions (``"no flip"``: θ₅ > 0, ``"flip"``: θ₅ < 0), ``q`` (3,) in rad wrapped to
+        (−π, π]; one ``"wrist singular"`` solution at the degenerate case.
+
+    Examples
+    --------
+    >>> from robokit.spatial import elementary_rotation as rot
+    >>> sols = ik_spherical_wrist(rot("z", 0.3) @ rot("y", 0.5) @ rot("z", 0.7))
+    >>> [(s.q.round(4).tolist(), s.label) for s in sols]
+    [([0.3, 0.5, 0.7], 'no flip'), ([-2.8416, -0.5, -2.4416], 'flip')]
+    >>> [(s.label, s.degenerate) for s in ik_spherical_wrist(np.eye(3))]
+    [('wrist singular', True)]
     """
     R = check_rotation(R36, "R36")
     t4_ref = as_scalar(theta4_ref, "theta4_ref")
@@ -154,6 +224,29 @@ def ik_rrr_position(p: ArrayLike, L1: float, L2: float, L3: float, qlim: ArrayLi
     position is P = (C₁(L₁ + L₂C₂ + L₃C₂₃), S₁(L₁ + L₂C₂ + L₃C₂₃), L₂S₂ + L₃S₂₃).
     With ρ = ±√(P_x² + P_y²) (the sign choosing θ₁ or θ₁ + π), the 2-link problem
     (ρ − L₁, P_z) with links L₂, L₃ gives θ₂, θ₃: up to 4 solutions.
+
+    Parameters
+    ----------
+    p : array_like, shape (3,)
+        Tool position in the base frame, m.
+    L1, L2, L3 : float
+        The arm's lengths, m.
+    qlim : array_like, shape (3, 2), optional
+        Joint limits in rad, used for ``within_limits``.
+
+    Returns
+    -------
+    list of IKSolution
+        Up to four solutions, ``q`` (3,) in rad, labelled ``"front"``/``"back"`` and elbow
+        down/up; [] if unreachable.
+
+    Examples
+    --------
+    With all lengths 0.5 m, p = (1, 0, 0.5) asks the 2-link sub-arm for (0.5, 0.5) in front
+    (reaching behind is too far):
+
+    >>> [(s.q.round(4).tolist(), s.label) for s in ik_rrr_position([1.0, 0.0, 0.5], 0.5, 0.5, 0.5)]
+    [([0.0, 0.0, 1.5708], 'front, elbow down'), ([0.0, 1.5708, -1.5708], 'front, elbow up')]
     """
     p = as_vector(p, "p", 3)
     L1 = as_scalar(L1, "L1", nonnegative=True)
@@ -196,11 +289,6 @@ def _puma_params(table: DHTable) -> tuple[float, float, float, float, float, flo
 def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IKSolution]:
     """All 8 configurations of a PUMA 560-type arm reaching the tool pose T (Pieper's method).
 
-    table : a standard-convention :class:`robokit.DHTable` with the PUMA structure
-        (α = 90°, 0, −90°, 90°, −90°, 0; a₁ = a₄ = a₅ = a₆ = 0; d₅ = 0; any d₁, a₂, a₃,
-        d₂ + d₃, d₄, d₆, θ offsets, base and tool transforms).
-    T : 4×4 target pose of the tool frame in base_link (as ``table.fk`` returns it).
-
     Method. With ⁰T₆ = base⁻¹ T tool⁻¹, the wrist centre p = ⁰p₆ − d₆ ⁰z₆ satisfies
     p_x = c₁X + s₁D, p_y = s₁X − c₁D, p_z = d₁ + Y with D = d₂ + d₃,
     X = a₂c₂ + a₃c₂₃ − d₄s₂₃, Y = a₂s₂ + a₃s₂₃ + d₄c₂₃. So θ₁ = atan2(p_y, p_x) + {asin(D/r),
@@ -208,13 +296,38 @@ def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IK
     (X² + Y² − a₂² − a₃² − d₄²)/(2a₂) gives two θ₃ (elbow up/down); θ₂ = atan2(Y, X) −
     atan2(a₃s₃ + d₄c₃, a₂ + a₃c₃ − d₄s₃). Then ³R₆ = Rz(θ₄) Ry(−θ₅) Rz(θ₆) (the frames'
     α₄ = 90°, α₅ = −90°) gives the wrist flip/no-flip pair by :func:`ik_spherical_wrist`.
-    Joint values returned are the joint variables q (θ = q + offset), wrapped to (−π, π].
     This is the PUMA case of :func:`robokit.ik.closed_form.ik_analytic` (Pieper's general
     method, whose θ₃ equation is a quadratic here because a₁ = 0), with the PUMA structure
     checked first.
 
-    Returns up to 8 :class:`IKSolution` (fewer at singular targets, where the wrist choice
-    of :func:`ik_spherical_wrist` applies), [] if unreachable.
+    Parameters
+    ----------
+    table : DHTable
+        A standard-convention table with the PUMA structure (α = 90°, 0, −90°, 90°, −90°, 0;
+        a₁ = a₄ = a₅ = a₆ = 0; d₅ = 0; any d₁, a₂, a₃, d₂ + d₃, d₄, d₆, θ offsets, base and tool
+        transforms); anything else raises :class:`~robokit.errors.InputError`.
+    T : array_like, shape (4, 4)
+        Target pose of the tool frame in base_link, m (as ``table.fk`` returns it).
+    theta4_ref : float, optional
+        θ₄ taken at a wrist singularity, rad (default 0).
+
+    Returns
+    -------
+    list of IKSolution
+        Up to 8 solutions, ``q`` (6,) the joint variables in rad (θ = q + offset), wrapped to
+        (−π, π], labelled arm (left/right), elbow (up/down) and wrist (flip/no flip); fewer at
+        singular targets (where the wrist choice of :func:`ik_spherical_wrist` applies); [] if
+        unreachable.
+
+    Examples
+    --------
+    >>> table = rk.load("puma560").dh
+    >>> q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    >>> sols = ik_puma560(table, table.fk(q))
+    >>> len(sols), any(np.allclose(s.q, q) for s in sols)
+    (8, True)
+    >>> all(np.allclose(table.fk(s.q), table.fk(q)) for s in sols)
+    True
     """
     hit = _PUMA_CHECKED.get(id(table))
     if hit is None or hit[0]() is not table or hit[1] is not table.links:
@@ -242,10 +355,32 @@ def select_solution(solutions: Iterable[IKSolution], q_ref: ArrayLike, weights: 
                     within_limits: bool = True, proximal_first: bool = False) -> IKSolution | None:
     """The solution closest to ``q_ref`` (Lecture 5's choice among multiple solutions).
 
-    Distance: ``Σ wᵢ |wrap(qᵢ − q_refᵢ)|`` (angles compared modulo 2π). ``weights`` (n,)
-    default to ones; ``proximal_first=True`` uses wᵢ = n − i + 1, preferring to move the
-    big proximal joints little (Lecture 5). With ``within_limits`` (default), solutions
-    outside the joint limits are not considered. Returns the :class:`IKSolution` or None.
+    Distance: ``Σ wᵢ |wrap(qᵢ − q_refᵢ)|`` (angles compared modulo 2π).
+
+    Parameters
+    ----------
+    solutions : iterable of IKSolution
+        The candidates (e.g. from :func:`robokit.ik_analytic`).
+    q_ref : array_like, shape (n,)
+        The reference configuration (usually the current one), rad or m.
+    weights : array_like, shape (n,), optional
+        Per-joint weights wᵢ (default ones).
+    within_limits : bool, optional
+        Consider only the solutions inside the joint limits (default True).
+    proximal_first : bool, optional
+        Use wᵢ = n − i + 1 (ignored when ``weights`` is given), preferring to move the big
+        proximal joints little (Lecture 5).
+
+    Returns
+    -------
+    IKSolution or None
+        The nearest solution; None when no candidate is left.
+
+    Examples
+    --------
+    >>> sols = ik_planar_2link(1.0, 1.0, 1.0, 1.0)
+    >>> select_solution(sols, [1.4, -1.4]).label
+    'elbow up'
     """
     sols = [s for s in solutions if s.within_limits or not within_limits]
     if not sols:

@@ -82,11 +82,24 @@ _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
 
 @dataclass(frozen=True)
 class ClosedFormKind:
-    """Which closed form applies to a robot.
+    """Which closed form applies to a robot (what :func:`ik_analytic_kind` returns).
 
-    method : ``"spherical wrist"``, ``"three parallel axes"`` or None (no closed form);
-    reason : one sentence in the arm's terms — why the method applies, or why none does.
     ``bool(kind)`` is True when a method applies.
+
+    Attributes
+    ----------
+    method : str or None
+        ``"spherical wrist"``, ``"three parallel axes"``, ``"general 6R"`` or None (no closed form).
+    reason : str
+        One sentence in the arm's terms: why the method applies, or why none does.
+
+    Examples
+    --------
+    >>> kind = ik_analytic_kind(rk.load("puma560"))
+    >>> kind.method, bool(kind)
+    ('spherical wrist', True)
+    >>> bool(ik_analytic_kind(rk.load("twolink")))
+    False
     """
 
     method: str | None

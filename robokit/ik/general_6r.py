@@ -287,6 +287,12 @@ class GeneralSixR:
     :func:`robokit.ik_analytic`, which builds this solver for a general 6R arm, caches it on
     the robot and turns the rows into :class:`robokit.ik.IKSolution` objects.
 
+    Parameters
+    ----------
+    chain : DHChain
+        The arm's canonical chain (:mod:`robokit.ik._dh_chain`); any 6-joint chain is accepted,
+        and :meth:`refusal` says whether the method applies.
+
     Examples
     --------
     >>> import numpy as np

@@ -47,24 +47,40 @@ def _spd_solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 @dataclass
 class IKResult:
-    """Result of :func:`solve_ik`.
+    """Result of :func:`solve_ik` (and of :func:`robokit.ik.ik_jacobian_transpose`).
 
-    q : (n,) the best configuration found (joint angles, inside the limits);
-    success : True if the error is below the tolerance;
-    residual : ``hypot(orientation_error, position_error)`` at ``q`` (rad/m mixed for poses);
-    position_error, orientation_error : m and rad at ``q`` (orientation NaN-free 0 in position mode);
-    iterations : total iterations over all attempts; restarts : random restarts used;
-    seconds : wall time; method : the back end that answered (``"analytic"``, ``"planar"``,
-    ``"compiled"``, ``"lm"``; ``"transpose"`` for :func:`robokit.ik.ik_jacobian_transpose`);
-    tried : for each back end ``solve_ik`` considered but did not take the answer from, why
-    (it does not support the problem, or its answer missed the tolerance).
+    Attributes
+    ----------
+    q : numpy.ndarray, shape (n,)
+        The best configuration found (rad, m; inside the joint limits).
+    success : bool
+        True if the error is below the tolerance.
+    residual : float
+        ``hypot(orientation_error, position_error)`` at ``q`` (rad and m mixed for poses).
+    position_error : float
+        Distance of the frame's origin from the target at ``q``, m.
+    orientation_error : float
+        Angle of the remaining rotation at ``q``, rad (0 in position mode).
+    iterations : int
+        Total iterations over all attempts.
+    restarts : int
+        Random restarts used.
+    seconds : float
+        Wall time, s.
+    method : str
+        The back end that answered: ``"analytic"``, ``"planar"``, ``"compiled"``, ``"lm"``;
+        ``"transpose"`` for :func:`robokit.ik.ik_jacobian_transpose`.
+    tried : dict of str to str
+        For each back end ``solve_ik`` considered but did not take the answer from, why (it does
+        not support the problem, or its answer missed the tolerance).
 
     Examples
     --------
     >>> import numpy as np, robokit
     >>> robot = robokit.load("puma560")
-    >>> robokit.solve_ik(robot, robot.frame_pose(np.full(6, 0.3))).method
-    'analytic'
+    >>> res = robokit.solve_ik(robot, robot.frame_pose(np.full(6, 0.3)))
+    >>> res.method, res.success, res.position_error < 1e-9
+    ('analytic', True, True)
     """
 
     q: np.ndarray

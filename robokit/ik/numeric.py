@@ -106,16 +106,48 @@ def ikin_body(Blist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLik
               max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
 
-    Blist : 6×n body screw axes (columns, angular first) in the end-effector frame at zero;
-    M : 4×4 end-effector pose at θ = 0; T : 4×4 target pose; thetalist0 : (n,) initial guess;
-    eomg, ev : tolerances on the angular (rad) and linear (m) parts of the body twist error.
+    Iterates ``θ ← θ + J_b(θ)⁺ V_b`` with the body error twist ``V_b = log(T_sb(θ)⁻¹ T)`` until
+    ``‖ω_b‖ ≤ eomg`` and ``‖v_b‖ ≤ ev``.
 
-    Returns ``(thetalist, success)``; ``success`` is False (no exception) when the iteration
-    does not converge, e.g. for an unreachable target — ``thetalist`` is then the iterate with
-    the smallest error seen (revolute angles wrapped to (−π, π]), never a diverged value.
+    Parameters
+    ----------
+    Blist : array_like, shape (6, n)
+        Body screw axes (columns, rows ``(ω, v)``) in the end-effector frame at θ = 0.
+    M : array_like, shape (4, 4)
+        End-effector pose in the space frame at θ = 0 (m).
+    T : array_like, shape (4, 4)
+        Target end-effector pose in the space frame (m).
+    thetalist0 : array_like, shape (n,)
+        Initial guess (rad, m for prismatic joints).
+    eomg : float
+        Tolerance on the angular part of the body twist error, rad.
+    ev : float
+        Tolerance on the linear part of the body twist error, m.
+    max_iterations : int, optional
+        Newton steps at most (default 100).
 
-    Example: for a planar 2R arm, ``ikin_body(Blist, M, fkin_body(M, Blist, [0.3, 0.4]),
-    [0.2, 0.5], 1e-9, 1e-9)`` → ``(array([0.3, 0.4]), True)``.
+    Returns
+    -------
+    thetalist : numpy.ndarray, shape (n,)
+        Joint values reaching ``T``; when the iteration does not converge (e.g. an unreachable
+        target), the iterate with the smallest error seen (revolute angles wrapped to (−π, π]),
+        never a diverged value.
+    success : bool
+        True when both tolerances are met; False (no exception) otherwise.
+
+    Examples
+    --------
+    The planar arm with links 1 m and 0.8 m: the tip at (0, 1.8) turned by 90° needs θ = (π/2, 0);
+    a tip 3 m away is out of reach:
+
+    >>> poe = rk.load("twolink").poe
+    >>> T = np.array([[0.0, -1, 0, 0], [1, 0, 0, 1.8], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, ok = ikin_body(poe.Blist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)
+    >>> np.allclose(theta, [np.pi / 2, 0.0]), ok
+    (True, True)
+    >>> T[1, 3] = 3.0
+    >>> ikin_body(poe.Blist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)[1]
+    False
     """
     Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
     best = _Best(Blist)
@@ -133,9 +165,40 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
                max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the space frame (seed 004 §3, Modern Robotics 6.2).
 
-    Slist : 6×n space screw axes; M, T, thetalist0, eomg, ev as in :func:`ikin_body`.
-    The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``J_s⁺ V_s``.
-    Returns ``(thetalist, success)``.
+    The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``θ ← θ + J_s(θ)⁺ V_s``, until
+    ``‖ω_s‖ ≤ eomg`` and ``‖v_s‖ ≤ ev``.
+
+    Parameters
+    ----------
+    Slist : array_like, shape (6, n)
+        Space screw axes (columns, rows ``(ω, v)``) in the space frame at θ = 0.
+    M : array_like, shape (4, 4)
+        End-effector pose in the space frame at θ = 0 (m).
+    T : array_like, shape (4, 4)
+        Target end-effector pose in the space frame (m).
+    thetalist0 : array_like, shape (n,)
+        Initial guess (rad, m for prismatic joints).
+    eomg : float
+        Tolerance on the angular part of the space twist error, rad.
+    ev : float
+        Tolerance on the linear part of the space twist error, m.
+    max_iterations : int, optional
+        Newton steps at most (default 100).
+
+    Returns
+    -------
+    thetalist : numpy.ndarray, shape (n,)
+        Joint values reaching ``T`` (the best iterate, wrapped, when it does not converge).
+    success : bool
+        True when both tolerances are met; False (no exception) otherwise.
+
+    Examples
+    --------
+    >>> poe = rk.load("twolink").poe
+    >>> T = np.array([[0.0, -1, 0, 0], [1, 0, 0, 1.8], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, ok = ikin_space(poe.Slist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)
+    >>> np.allclose(theta, [np.pi / 2, 0.0]), ok
+    (True, True)
     """
     Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
     n = Slist.shape[1]

@@ -58,10 +58,22 @@ __all__ = ["ClosedFormSolver", "PositionBranch"]
 class PositionBranch(NamedTuple):
     """One branch of the position sub-problem.
 
-    q : joint values fixed by the position step (joints 1..k, rad/m, offsets removed);
-    label : the branch label so far (ends with ", " when the wrist step appends to it);
-    degenerate : True if a singular choice was made; data : what the wrist step needs
-    (solver-specific; e.g. Pieper's rotation angles θ₁–θ₃).
+    Attributes
+    ----------
+    q : sequence of float
+        Joint values fixed by the position step (joints 1..k; rad or m, offsets removed).
+    label : str
+        The branch label so far (ends with ``", "`` when the wrist step appends to it).
+    degenerate : bool
+        True if a singular choice was made.
+    data : object, optional
+        What the wrist step needs (solver-specific; e.g. Pieper's rotation angles θ₁–θ₃).
+
+    Examples
+    --------
+    >>> b = PositionBranch(q=(0.1, 0.2, 0.3), label="right, elbow up, ", degenerate=False)
+    >>> b.label + "no flip", b.data is None
+    ('right, elbow up, no flip', True)
     """
 
     q: Sequence[float]
@@ -74,12 +86,22 @@ class PositionBranch(NamedTuple):
 class ClosedFormSolver(Protocol):
     """A closed-form solver for one canonical chain (see the module docstring).
 
+    A :class:`typing.Protocol`: any class with these members is a solver.
+
+    Attributes
+    ----------
+    method : str
+        The structure's name, as :func:`robokit.ik_analytic_kind` reports it.
+    chain : DHChain
+        The canonical chain ``Z₁X₁ ⋯ Z₆`` the solver was built for (:mod:`robokit.ik._dh_chain`).
+
     Examples
     --------
     >>> import robokit
     >>> from robokit.ik.closed_form import AnalyticIK
-    >>> isinstance(AnalyticIK(robokit.load("puma560")).solver, ClosedFormSolver)
-    True
+    >>> solver = AnalyticIK(robokit.load("puma560")).solver
+    >>> isinstance(solver, ClosedFormSolver), solver.method, solver.refusal() is None
+    (True, 'spherical wrist', True)
     """
 
     method: str
