@@ -57,10 +57,14 @@ class Trajectory:
 
     Examples
     --------
-    >>> from robokit import cubic_trajectory
+    A cubic rest-to-rest move over 2 s, sampled 5 times (every 0.5 s):
+
+    >>> from robokit.trajectory import cubic_trajectory
     >>> tr = cubic_trajectory([0.0], [1.0], tf=2.0, t=5)
     >>> tr.t.shape, tr.q.shape, len(tr)
     ((5,), (5, 1), 5)
+    >>> tr.t.tolist(), float(tr.q[2, 0]), tr.name
+    ([0.0, 0.5, 1.0, 1.5, 2.0], 0.5, 'cubic')
     """
 
     t: np.ndarray

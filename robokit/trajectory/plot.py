@@ -48,13 +48,16 @@ def plot_trajectory(traj: Trajectory, *, title: str | None = None, labels: Seque
     Returns
     -------
     matplotlib.figure.Figure
+        One panel per quantity (position, velocity, acceleration), time in s on the shared x axis.
 
     Examples
     --------
-    >>> from robokit import cubic_trajectory, plot_trajectory
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from robokit.trajectory import cubic_trajectory
     >>> fig = plot_trajectory(cubic_trajectory([0, 1], [1, 0], 2.0))
-    >>> len(fig.axes)
-    3
+    >>> len(fig.axes), [ax.get_ylabel() for ax in fig.axes]
+    (3, ['position', 'velocity', 'acceleration'])
     """
     if not isinstance(traj, Trajectory):
         if hasattr(traj, "t") and hasattr(traj, "q") and hasattr(traj, "dq"):  # a simulation (SimResult)
@@ -108,13 +111,18 @@ def plot_path_3d(traj: Trajectory, *, frames: int = 5, axis_length: float | None
     Returns
     -------
     matplotlib.figure.Figure
+        One 3-D axes: the path of the tool origin (m, base frame) and the triads.
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from robokit import cartesian_line_trajectory, plot_path_3d
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from robokit.trajectory import cartesian_line_trajectory
     >>> T1 = np.eye(4); T1[:3, 3] = [0.3, 0.2, 0.1]
     >>> fig = plot_path_3d(cartesian_line_trajectory(np.eye(4), T1, 1.0))
+    >>> ax = fig.axes[0]
+    >>> len(fig.axes), ax.name, np.array(ax.lines[0].get_data_3d())[:, -1].tolist()    # the path ends at T1
+    (1, '3d', [0.3, 0.2, 0.1])
     """
     if isinstance(traj, Trajectory):
         if traj.poses is None:

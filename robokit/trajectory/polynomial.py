@@ -179,14 +179,35 @@ def cubic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | Non
 def quintic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None = None, qd0: ArrayLike | None = None, qdf: ArrayLike | None = None, qdd0: ArrayLike | None = None, qddf: ArrayLike | None = None) -> Trajectory:
     """A quintic from ``q0`` to ``qf`` in ``tf`` seconds with given end velocities and accelerations.
 
-    Arguments as :func:`cubic_trajectory`, plus ``qdd0``, ``qddf`` (default 0).
-    ``info["coefficients"]`` is (6, n), ascending.
+    ``q(t) = Σₖ cₖ tᵏ`` (k = 0..5), the six coefficients per axis fixed by the end positions,
+    velocities and accelerations (Lecture 3).
+
+    Parameters
+    ----------
+    q0, qf : float or array_like, shape (n,)
+        Start and end positions (rad or m).
+    tf : float
+        Duration, s (> 0).
+    t : None, int or array_like, shape (K,), optional
+        Sample grid on ``[0, tf]``: None (101 samples), a number of samples (ends included), or
+        increasing times.
+    qd0, qdf : float or array_like, shape (n,), optional
+        End velocities (default 0).
+    qdd0, qddf : float or array_like, shape (n,), optional
+        End accelerations (default 0).
+
+    Returns
+    -------
+    Trajectory
+        ``t`` (K,), ``q``/``qd``/``qdd`` (K, n); ``info["coefficients"]`` is (6, n), ascending.
 
     Examples
     --------
+    Rest to rest in 1 s: halfway at t = 0.5 with the peak speed ``15/8 · Δq``:
+
     >>> tr = quintic_trajectory([0.0, 1.0], [1.0, 0.0], 1.0, t=3)
-    >>> tr.q[1].tolist()
-    [0.5, 0.5]
+    >>> tr.q[1].tolist(), tr.qd[1].tolist()
+    ([0.5, 0.5], [1.875, -1.875])
     """
     T = positive_duration(tf, "tf")
     return _single("quintic", quintic_coefficients(q0, qf, T, qd0, qdf, qdd0, qddf), T, t)

@@ -48,17 +48,35 @@ __all__ = ["through_viapoints", "ms_through_trajectory", "ms_cartesian_trajector
 def through_viapoints(viapoint: ArrayLike, through: Sequence[int] | None = None, distance: float = 0.25) -> tuple[np.ndarray, list[tuple[float, ...]]]:
     """Via points with every through point replaced by the two pseudo via points around it.
 
-    viapoint : (M, n) points (first row the start, last the goal); through : indices of the interior
-    rows the path must pass exactly (default all interior rows 1 … M−2); distance : d > 0 — below 1 it
-    is a fraction of the shorter of the two segments next to the point (default 0.25), from 1 up an
-    absolute distance in axis units. The pseudo points are ``P ∓ d û`` (module docstring).
+    The pseudo points are ``P ∓ d û``, û the unit bisector of the incoming and outgoing
+    directions (module docstring, Lecture 3).
 
-    Returns ``(points, fractions)``: the augmented (M + len(through), n) array and, per original
-    segment, the pair ``(f_start, f_end)`` of the fractions of its length cut off at its start and
-    at its end by pseudo points (used to split segment times).
+    Parameters
+    ----------
+    viapoint : array_like, shape (M, n)
+        Points (first row the start, last the goal), axis units (rad or m).
+    through : sequence of int, optional
+        Indices of the interior rows the path must pass exactly (default all interior rows
+        1 … M−2).
+    distance : float, optional
+        d > 0: below 1 a fraction of the shorter of the two segments next to the point (default
+        0.25); from 1 up an absolute distance in axis units.
 
-    Example: ``through_viapoints([[0, 0], [1, 0], [1, 1]], [1], 0.2)[0]`` replaces the corner (1, 0)
-    by ``(1, 0) ∓ 0.2 (1, 1)/√2``.
+    Returns
+    -------
+    points : numpy.ndarray, shape (M + len(through), n)
+        The augmented via points.
+    fractions : list of tuple of float
+        Per original segment, ``(f_start, f_end)``: the fractions of its length cut off at its
+        start and at its end by pseudo points (used to split segment times).
+
+    Examples
+    --------
+    The corner (1, 0) is replaced by ``(1, 0) ∓ 0.2 (1, 1)/√2``:
+
+    >>> points, fractions = through_viapoints([[0, 0], [1, 0], [1, 1]], [1], 0.2)
+    >>> points.round(4).tolist()
+    [[0.0, 0.0], [0.8586, -0.1414], [1.1414, 0.1414], [1.0, 1.0]]
     """
     W = as_array(viapoint, "viapoint")
     if W.ndim != 2 or W.shape[0] < 3:
@@ -97,15 +115,39 @@ def through_viapoints(viapoint: ArrayLike, through: Sequence[int] | None = None,
 def ms_through_trajectory(viapoint: ArrayLike, dt: float, tacc: ArrayLike, qdmax: ArrayLike | None = None, tsegment: ArrayLike | None = None, through: Sequence[int] | None = None, distance: float = 0.25, **kwargs: Any) -> Trajectory:
     """:func:`ms_trajectory` whose path passes exactly through the chosen via points (Lecture 3).
 
-    viapoint (M, n), dt, tacc, qdmax/tsegment as :func:`ms_trajectory` (``tsegment`` has one time per
-    *original* segment, M−1 of them; each is split between the pieces in proportion to their
-    lengths, and the piece between two pseudo points gets the two adjacent shares);
-    through, distance : as :func:`through_viapoints`; other keywords go to :func:`ms_trajectory`.
+    Parameters
+    ----------
+    viapoint : array_like, shape (M, n)
+        Points (first row the start, last the goal), axis units (rad or m).
+    dt : float
+        Sample time step, s (> 0).
+    tacc : float or array_like
+        Blend time(s), s, as :func:`ms_trajectory` (per segment of the augmented list).
+    qdmax : float or array_like, shape (n,), optional
+        Maximum speed per axis; exactly one of ``qdmax``/``tsegment``.
+    tsegment : array_like, shape (M − 1,), optional
+        One duration (s) per *original* segment; each is split between the pieces in proportion
+        to their lengths, and the piece between two pseudo points gets the two adjacent shares.
+    through, distance : optional
+        As :func:`through_viapoints`.
+    **kwargs
+        Passed on to :func:`ms_trajectory` (``q0``, ``qd0``, ``qdf``, ``verbose``).
 
-    Returns the :class:`Trajectory`; ``info["through_times"]`` holds the time (on ``t``'s axis) at
-    which the path is at each through point, ``info["through"]`` their indices.
+    Returns
+    -------
+    Trajectory
+        As :func:`ms_trajectory`; ``info["through_times"]`` holds the time (on ``t``'s axis) at
+        which the path is at each through point, ``info["through"]`` their indices.
 
-    Example: ``ms_through_trajectory([[0, 0], [1, 0], [1, 1]], 0.01, 0.2, qdmax=0.5)`` passes (1, 0).
+    Examples
+    --------
+    The path is exactly at the corner (1, 0) at its through time (a plain ``ms_trajectory``
+    cuts the corner):
+
+    >>> tr = ms_through_trajectory([[0, 0], [1, 0], [1, 1]], 0.01, 0.2, qdmax=0.5)
+    >>> t1 = tr.info["through_times"][0]
+    >>> [round(float(np.interp(t1, tr.t, tr.q[:, j])), 6) for j in range(2)]
+    [1.0, 0.0]
     """
     W = as_array(viapoint, "viapoint")
     pts, frac = through_viapoints(W, through, distance)
@@ -146,18 +188,45 @@ def ms_through_trajectory(viapoint: ArrayLike, dt: float, tacc: ArrayLike, qdmax
 def ms_cartesian_trajectory(poses: ArrayLike, dt: float, tacc: ArrayLike, speed: ArrayLike | None = None, angular_speed: float | None = None, tsegment: ArrayLike | None = None, verbose: bool = False) -> Trajectory:
     """Multi-segment Cartesian tool path through ``poses`` with blends in position and orientation.
 
-    poses : (M, 4, 4) via poses ``T_world_tool`` (first the start, last the goal); dt : sample time
-    (s); tacc : blend time (s); speed : linear speed limit per axis (m/s) and angular_speed : angular
-    speed limit (rad/s) — give both — or tsegment : (M−1,) segment durations (s). See the module
-    docstring for the construction.
+    See the module docstring for the construction (straight lines in position, fixed-axis
+    rotations in orientation, blended over ``tacc``, timed like :func:`ms_trajectory`).
 
-    Returns a :class:`Trajectory` with ``poses`` (K, 4, 4), ``q`` (K, 6) = ``(φ, p)`` with φ the rotation
-    vector of ``R(t) R₀ᵀ`` (world frame) and p the position, ``qd`` = ``(ω, ṗ)`` (world-frame angular
-    velocity and the tool origin's velocity), ``qdd`` = ``(ω̇, p̈)`` by differentiating ω numerically
-    (central differences); ``info``: ``"s"`` (K, M−1) the progress variables, ``"via_times"``,
-    ``"segment_times"``, ``"angles"`` θᵢ, ``"axes"`` k̂ᵢ (in frame i).
+    Parameters
+    ----------
+    poses : array_like, shape (M, 4, 4)
+        Via poses ``T_world_tool`` (first the start, last the goal), m.
+    dt : float
+        Sample time, s (> 0).
+    tacc : float or array_like
+        Blend time(s), s.
+    speed : float or array_like, shape (3,), optional
+        Linear speed limit per axis, m/s; give it with ``angular_speed``.
+    angular_speed : float, optional
+        Angular speed limit about each segment's axis, rad/s.
+    tsegment : array_like, shape (M − 1,), optional
+        Segment durations, s (instead of the two speeds).
+    verbose : bool, optional
+        Print the timing of each segment.
 
-    Example: ``ms_cartesian_trajectory([T0, T1, T2], 0.01, 0.2, speed=0.5, angular_speed=1.0)``.
+    Returns
+    -------
+    Trajectory
+        ``poses`` (K, 4, 4); ``q`` (K, 6) = ``(φ, p)`` with φ the rotation vector of ``R(t) R₀ᵀ``
+        (world frame, rad) and p the position (m); ``qd`` = ``(ω, ṗ)`` (world-frame angular
+        velocity and the tool origin's velocity); ``qdd`` = ``(ω̇, p̈)`` (ω̇ by central
+        differences); ``info``: ``"s"`` (K, M−1) the progress variables, ``"via_times"``,
+        ``"segment_times"``, ``"angles"`` θᵢ (rad), ``"axes"`` k̂ᵢ (in frame i).
+
+    Examples
+    --------
+    0.5 m along x, then 0.5 m along y while turning 90° about z:
+
+    >>> T0, T1 = np.eye(4), np.eye(4)
+    >>> T1[:3, 3] = [0.5, 0.0, 0.0]
+    >>> T2 = rk.Rp_to_trans(rk.euler_to_matrix([np.pi / 2, 0, 0]), [0.5, 0.5, 0.0])
+    >>> tr = ms_cartesian_trajectory([T0, T1, T2], 0.01, 0.2, speed=0.5, angular_speed=1.0)
+    >>> np.allclose(tr.poses[-1], T2), tr.info["angles"].round(4).tolist()
+    (True, [0.0, 1.5708])
     """
     P = as_array(poses, "poses")
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 2:

@@ -72,12 +72,24 @@ def cubic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
 def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
     """Quintic time scaling s(t) = 10(t/Tf)³ − 15(t/Tf)⁴ + 6(t/Tf)⁵ (zero end velocity and acceleration).
 
-    Arguments and return as :func:`cubic_time_scaling`.
+    Parameters
+    ----------
+    Tf : float
+        Total time, s (> 0).
+    t : float or array_like
+        Current time(s), s (usually in [0, Tf]; the polynomial is evaluated as is outside).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The path parameter s ∈ [0, 1] for t ∈ [0, Tf], same shape as ``t``.
 
     Examples
     --------
-    >>> round(quintic_time_scaling(2, 0.6), 12)
-    0.16308
+    ``s(0.6) = 10·0.3³ − 15·0.3⁴ + 6·0.3⁵`` for Tf = 2; halfway, s = 1/2:
+
+    >>> round(quintic_time_scaling(2, 0.6), 12), quintic_time_scaling(2, 1.0)
+    (0.16308, 0.5)
     """
     T = positive_duration(Tf, "Tf")
     x, scalar = _times(t)
@@ -225,9 +237,23 @@ def cartesian_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, 
 
     p(s) = p_start + s (p_end − p_start),  R(s) = R_start exp(log(R_startᵀ R_end) s): the
     tool origin moves on a straight line while the orientation turns about one fixed axis
-    (the same path as quaternion slerp).
+    (the same path as quaternion slerp); s from the cubic (3) or quintic (5) time scaling.
 
-    Arguments and return as :func:`screw_trajectory`.
+    Parameters
+    ----------
+    Xstart, Xend : array_like, shape (4, 4)
+        Start and end poses in SE(3) (``T_world_tool``, m).
+    Tf : float
+        Total time, s (> 0).
+    N : int
+        Number of points (≥ 2), evenly spaced in time.
+    method : {3, 5}
+        Cubic or quintic time scaling (``"cubic"``, ``"quintic"`` also accepted).
+
+    Returns
+    -------
+    list of numpy.ndarray, shape (4, 4) each
+        The N poses; the first is ``Xstart``, the last ``Xend``.
 
     Examples
     --------
