@@ -69,6 +69,19 @@ class RMS(float):
 
     ``position = sqrt(mean_k ‖p_meas,k − p_pred,k‖²)``,
     ``orientation = sqrt(mean_k ‖log(R_meas,k R_pred,kᵀ)‖²)``.
+
+    Parameters
+    ----------
+    position : float
+        Position RMS, m.
+    orientation : float or None, optional
+        Orientation RMS, rad (None: position data only).
+
+    Examples
+    --------
+    >>> e = RMS(0.002, 0.001)
+    >>> float(e), e.position, e.orientation, e
+    (0.002, 0.002, 0.001, 0.002 m, 0.001 rad)
     """
 
     orientation: float | None

@@ -343,7 +343,41 @@ def base_parameters(robot: Robot, samples: int | None = None, rng: int | np.rand
 
 def full_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, gravity: np.ndarray,
                    friction: bool = True) -> np.ndarray:
-    """Inertial and friction regressor side by side, (N, n, 12n) (or (N, n, 10n) without friction)."""
+    """Inertial and friction regressor side by side: ``τ = Y [π; f]``.
+
+    :func:`inertial_regressor` (10 standard parameters per link) followed by
+    :func:`friction_regressor` (viscous and Coulomb per joint).
+
+    Parameters
+    ----------
+    chain : JointChain
+        The arm's geometry (:func:`robokit.calibration.chain_from_robot`).
+    q, dq, ddq : numpy.ndarray, shape (N, n)
+        Joint positions (rad, m), velocities, accelerations.
+    gravity : numpy.ndarray, shape (3,)
+        Gravity in the base frame, m/s² (e.g. ``robot.gravity``).
+    friction : bool, optional
+        Append the friction columns (default True).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n, 12n) or (N, n, 10n) without friction
+        Columns: the 10n inertial parameters (link by link), then ``(f_v,1, f_c,1, …)``.
+
+    Examples
+    --------
+    With every viscous and Coulomb coefficient 0.5, the torque is Pinocchio's plus
+    ``0.5 (q̇ + sign q̇)``:
+
+    >>> robot = rk.load("rrr")
+    >>> q = np.full((1, 3), 0.3)
+    >>> Y = full_regressor(chain_from_robot(robot), q, q, q, robot.gravity)
+    >>> Y.shape
+    (1, 3, 36)
+    >>> pi = np.r_[standard_parameters(robot), np.full(6, 0.5)]
+    >>> np.allclose(Y[0] @ pi, robot.rnea(q[0], q[0], q[0]) + 0.5 * (q[0] + np.sign(q[0])))
+    True
+    """
     Y = inertial_regressor(chain, q, dq, ddq, gravity)
     if not friction:
         return Y

@@ -38,8 +38,27 @@ _C_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 @dataclass(frozen=True)
 class CSource:
-    """The generated files: ``name`` (the C prefix), ``header`` (NAME.h) and ``source`` (NAME.c) text,
-    ``has_ik`` (whether ``NAME_ik`` is defined) and ``ik_note`` (why not, or which method)."""
+    """The generated files of :func:`generate_c`.
+
+    Attributes
+    ----------
+    name : str
+        The C prefix NAME of every function (see :func:`c_name`).
+    header : str
+        Text of ``NAME.h``.
+    source : str
+        Text of ``NAME.c``.
+    has_ik : bool
+        Whether ``NAME_ik`` is defined (the arm has a closed form).
+    ik_note : str
+        Why there is no IK, or which closed-form method it uses.
+
+    Examples
+    --------
+    >>> src = generate_c(rk.load("twolink"))
+    >>> src.name, src.has_ik, "void twolink_fk(" in src.header
+    ('twolink', False, True)
+    """
 
     name: str
     header: str

@@ -46,7 +46,29 @@ _RAW = 16  # rows before de-duplication (bounded by 8; twice that for safety)
 
 @dataclass
 class IKCode:
-    """The IK part of the generated files: whether it exists, why (not), its header lines and source."""
+    """The IK part of the generated files (what :func:`emit_ik` returns).
+
+    Attributes
+    ----------
+    has_ik : bool
+        Whether ``NAME_ik`` is emitted.
+    note : str
+        Why not, or which closed-form method it uses.
+    max_solutions : int
+        Rows of the solution array (``NAME_MAX_SOLUTIONS``).
+    header_lines : list of str
+        Lines added to ``NAME.h``.
+    source : str
+        The C code added to ``NAME.c``.
+    labels : list of str
+        The solution labels, indexed by the label code the C function reports.
+
+    Examples
+    --------
+    >>> code = emit_ik(rk.load("puma560"), "puma560")
+    >>> code.has_ik, code.max_solutions, code.labels[0]
+    (True, 8, 'right, elbow down, no flip')
+    """
 
     has_ik: bool
     note: str

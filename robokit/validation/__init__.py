@@ -37,7 +37,30 @@ AREAS = (
 
 
 def iter_rows(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> Iterator[tuple[str, list[CheckRow]]]:
-    """Yield ``(area, rows)`` as each module of ``areas`` finishes (in the order given)."""
+    """Run the checks area by area, yielding each area's rows as soon as it finishes.
+
+    A check module that raises gives one failed row carrying the exception text.
+
+    Parameters
+    ----------
+    seed : int, optional
+        Seed of each area's random generator (default 0: reproducible).
+    areas : sequence of (str, str), optional
+        ``(area, module)`` pairs, the module being ``robokit.validation.<module>`` (default
+        :data:`AREAS`, all of them, in dependency order).
+
+    Yields
+    ------
+    area : str
+        The area's name.
+    rows : list of CheckRow
+        Its rows.
+
+    Examples
+    --------
+    >>> [(area, len(rows) > 0) for area, rows in iter_rows(areas=[("trajectory", "trajectory")])]
+    [('trajectory', True)]
+    """
     for area, module in areas:
         modname = f"robokit.validation.{module}"
         try:
@@ -51,12 +74,53 @@ def iter_rows(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> Iterat
 
 
 def run_all(seed: int = 0, areas: Sequence[tuple[str, str]] = AREAS) -> list[CheckRow]:
-    """Run every available area's checks with a seeded generator; return all rows."""
+    """Run every area's checks with a seeded generator and return all rows.
+
+    Parameters
+    ----------
+    seed : int, optional
+        Seed of each area's random generator (default 0).
+    areas : sequence of (str, str), optional
+        ``(area, module)`` pairs (default :data:`AREAS`).
+
+    Returns
+    -------
+    list of CheckRow
+        The rows of every area, in order.
+
+    Examples
+    --------
+    The trajectory checks (course time scalings and screw paths against Pinocchio's exp/log):
+
+    >>> rows = run_all(areas=[("trajectory", "trajectory")])
+    >>> all(r.passed for r in rows)
+    True
+    """
     return [row for _, rows in iter_rows(seed, areas) for row in rows]
 
 
 def format_table(rows: list[CheckRow]) -> str:
-    """The rows as an aligned text table."""
+    """The rows as an aligned text table (with the errors of failed checks below it).
+
+    Parameters
+    ----------
+    rows : list of CheckRow
+        The rows to print.
+
+    Returns
+    -------
+    str
+        A header line, a rule, one line per row (max error to 3 significant digits, ``ok`` or
+        ``FAIL``).
+
+    Examples
+    --------
+    >>> print(format_table([CheckRow("matrix_exp_6 vs pinocchio.exp6", "-", 100, 3.1e-16, 1e-9,
+    ...                              "abs, Frobenius")]))
+    quantity                        model  cases  max error  tol    metric          pass
+    ------------------------------  -----  -----  ---------  -----  --------------  ----
+    matrix_exp_6 vs pinocchio.exp6  -      100    3.10e-16   1e-09  abs, Frobenius  ok
+    """
     head = ("quantity", "model", "cases", "max error", "tol", "metric", "pass")
     body = [_row_cells(r) for r in rows]
     widths = [max(len(x) for x in col) for col in zip(head, *body)]
@@ -101,11 +165,22 @@ def _line(cells: Sequence[str]) -> str:
 
 
 def main(as_json: bool = False, seed: int = 0) -> int:
-    """Run and print the table (rows streamed as each area finishes) or, with ``as_json``, one
-    JSON document at the end. Returns the exit status: 0 if every row passes, else 1.
+    """What ``robokit validate`` runs: every check, printed as a table or as JSON.
 
-    On a terminal a progress line on stderr says which area is running; piped, the output is
-    plain lines only.
+    Without ``as_json`` the rows are streamed as each area finishes; on a terminal a progress
+    line on stderr says which area is running (piped, the output is plain lines only).
+
+    Parameters
+    ----------
+    as_json : bool, optional
+        Print one JSON document at the end instead of the table (default False).
+    seed : int, optional
+        Seed of the random samples (default 0).
+
+    Returns
+    -------
+    int
+        The exit status: 0 if every row passes, else 1.
     """
     import sys
 

@@ -26,13 +26,33 @@ MODELS = SHIPPED + ARMS
 class CheckRow:
     """One row of the validation table.
 
-    quantity  : what is compared, e.g. ``"matrix_exp_6 vs pinocchio.exp6"``.
-    model     : robot model name, or ``"-"`` for robot-free checks.
-    cases     : number of samples compared.
-    max_error : the largest error over the samples (norm or relative error as ``metric`` says).
-    tolerance : the row passes when ``max_error <= tolerance``.
-    metric    : how the error is measured (e.g. ``"abs, Frobenius"``, ``"rel, inf-norm"``).
-    note      : free text (e.g. the Pinocchio reference frame used).
+    Attributes
+    ----------
+    quantity : str
+        What is compared, e.g. ``"matrix_exp_6 vs pinocchio.exp6"``.
+    model : str
+        Robot model name, or ``"-"`` for robot-free checks.
+    cases : int
+        Number of samples compared.
+    max_error : float
+        The largest error over the samples (norm or relative error as ``metric`` says; SI units).
+    tolerance : float
+        The row passes when ``max_error <= tolerance``.
+    metric : str
+        How the error is measured (e.g. ``"abs, Frobenius"``, ``"rel, inf-norm"``).
+    note : str
+        Free text (e.g. the Pinocchio reference frame used).
+    error : str
+        The exception text when the check raised (the row then fails).
+    passed : bool
+        Property: no error, ``cases > 0`` and a finite ``max_error <= tolerance``.
+
+    Examples
+    --------
+    >>> CheckRow("matrix_exp_6 vs pinocchio.exp6", "-", 100, 3e-16, 1e-9).passed
+    True
+    >>> CheckRow("fk", "ur5", 100, 2e-6, 1e-9).passed
+    False
     """
 
     quantity: str
@@ -63,7 +83,23 @@ def robot(name: str) -> Robot:
 
 
 def max_error(pairs: Iterable[tuple[ArrayLike, ArrayLike]]) -> float:
-    """Largest ``‖a − b‖`` (Frobenius / 2-norm) over an iterable of ``(a, b)`` array pairs."""
+    """Largest ``‖a − b‖`` (Frobenius / 2-norm) over an iterable of ``(a, b)`` array pairs.
+
+    Parameters
+    ----------
+    pairs : iterable of (array_like, array_like)
+        Pairs of arrays of equal shape (a computed value and its reference).
+
+    Returns
+    -------
+    float
+        The largest norm of the difference (0.0 for no pairs; ``inf`` as soon as one is not finite).
+
+    Examples
+    --------
+    >>> max_error([([1.0, 2.0], [1.0, 2.0]), ([3.0, 0.0], [0.0, 4.0])])
+    5.0
+    """
     worst = 0.0
     for a, b in pairs:
         e = float(np.linalg.norm(np.asarray(a, dtype=float) - np.asarray(b, dtype=float)))

@@ -41,7 +41,13 @@ __all__ = ["import_mujoco", "mujoco_model", "compare_with_mujoco", "MujocoCompar
 
 
 def import_mujoco() -> ModuleType | None:
-    """The ``mujoco`` module, or None if it is not installed."""
+    """The ``mujoco`` module, or None if it is not installed.
+
+    Returns
+    -------
+    module or None
+        ``mujoco`` when it imports.
+    """
     try:
         import mujoco
     except ImportError:
@@ -114,10 +120,24 @@ def mujoco_model(mjcf_text: str) -> tuple[Any, list[str]]:
 class MujocoComparison:
     """Largest absolute differences (max entry over the samples) between MuJoCo and robokit.
 
-    fk : body/site positions (m) and rotation matrices; M_pinocchio, M_course : mass matrix;
-    bias_pinocchio, bias_course : ``c + g``; inverse_pinocchio, inverse_course : inverse
-    dynamics; samples : number of states; restored : bodies whose exact inertial was put into
-    the MjModel; frames : how many bodies/sites were compared.
+    Attributes
+    ----------
+    robot : str
+        The robot's name.
+    samples : int
+        Number of states compared.
+    fk : float
+        Body/site positions (m) and rotation matrices.
+    M_pinocchio, M_course : float
+        Mass matrix, against Pinocchio's and against the course's (kg·m²).
+    bias_pinocchio, bias_course : float
+        Bias forces ``c + g`` (N·m).
+    inverse_pinocchio, inverse_course : float
+        Inverse dynamics torques (N·m).
+    frames : int
+        How many bodies/sites were compared.
+    restored : list of str
+        Bodies whose exact inertial was put into the MjModel.
     """
 
     robot: str
