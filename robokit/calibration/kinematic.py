@@ -70,12 +70,13 @@ class RMS(float):
     ``position = sqrt(mean_k ‖p_meas,k − p_pred,k‖²)``,
     ``orientation = sqrt(mean_k ‖log(R_meas,k R_pred,kᵀ)‖²)``.
 
-    Parameters
+    Attributes
     ----------
     position : float
-        Position RMS, m.
-    orientation : float or None, optional
-        Orientation RMS, rad (None: position data only).
+        Position RMS, m (also the float's own value; the first constructor argument).
+    orientation : float or None
+        Orientation RMS, rad (None: position data only; the second constructor argument,
+        default None).
 
     Examples
     --------

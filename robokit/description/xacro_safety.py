@@ -90,10 +90,10 @@ class UnsafeXacro(InputError):
 
     A subclass of :class:`~robokit.errors.InputError` (so the CLI exits with status 2).
 
-    Parameters
+    Attributes
     ----------
-    *args : object
-        The message, as for any exception.
+    args : tuple
+        ``(message,)``, as for any exception: one line naming the file and what was refused.
 
     Examples
     --------
