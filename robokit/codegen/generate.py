@@ -295,7 +295,7 @@ def _limit(x: float) -> str:
 
 
 def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
-    """Write ``NAME.h`` and ``NAME.c`` into ``folder``: both or neither.
+    r"""Write ``NAME.h`` and ``NAME.c`` into ``folder``: both or neither.
 
     Parameters
     ----------
@@ -316,7 +316,11 @@ def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
 
     Examples
     --------
-    >>> write_c(generate_c(robokit.load("puma560")), "out")  # doctest: +SKIP
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     h, c = write_c(generate_c(rk.load("twolink")), tmp)
+    ...     print(h.name, c.name, "#include \"twolink.h\"" in c.read_text())
+    twolink.h twolink.c True
     """
     out = Path(folder)
     if out.exists() and not out.is_dir():

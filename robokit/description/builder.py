@@ -88,7 +88,8 @@ def choose_tip(model: Any) -> tuple[str, str]:
 
     Examples
     --------
-    >>> tip, note = choose_tip(robokit.load("ur5").model)   # doctest: +SKIP
+    >>> choose_tip(rk.load("rrr").model)      # one chain: its end, no note
+    ('tool', '')
     """
     children: dict[int, list[int]] = {j: [] for j in range(model.njoints)}
     for j in range(1, model.njoints):
@@ -134,7 +135,7 @@ def default_tip(model: Any) -> str:
 
     Examples
     --------
-    >>> default_tip(robokit.load("rrr").model)   # doctest: +SKIP
+    >>> default_tip(rk.load("rrr").model)
     'tool'
     """
     return choose_tip(model)[0]
@@ -172,7 +173,14 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
 
     Examples
     --------
-    >>> chain, locked, _ = serial_chain(model, "panda_hand_tcp")   # doctest: +SKIP
+    The chain of the shipped 3-joint arm up to DH frame {2} locks joint 3:
+
+    >>> import pinocchio as pin
+    >>> from robokit.description.models import model_path
+    >>> model = pin.buildModelFromUrdf(str(model_path("rrr", ".urdf")))
+    >>> chain, locked, _ = serial_chain(model, "dh_2")
+    >>> chain.nv, locked
+    (2, ['joint_3'])
     """
     import pinocchio as pin
 
@@ -248,9 +256,13 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
 
     Examples
     --------
-    >>> import pinocchio as pin                                  # doctest: +SKIP
-    >>> robot = build_robot("arm", pin.buildModelFromUrdf("arm.urdf"), None, [None, None], {},
-    ...                     RobotSpec("urdf", path="/abs/arm.urdf"))  # doctest: +SKIP
+    >>> import pinocchio as pin
+    >>> from robokit.description.models import model_path
+    >>> path = str(model_path("rrr", ".urdf"))
+    >>> robot = build_robot("rrr", pin.buildModelFromUrdf(path), "dh_2", [None, None], {},
+    ...                     RobotSpec("urdf", path=path))
+    >>> robot.n, robot.locked_joints, robot.frame_pose([0.0, 0.0])[:3, 3].round(4).tolist()   # 0.5 + 0.4 m
+    (2, ('joint_3',), [0.9, 0.0, 0.0])
     """
     import warnings
 

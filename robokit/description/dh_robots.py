@@ -132,7 +132,10 @@ def load_dh_file(path: str | os.PathLike[str], tip: str | None = None) -> Robot:
 
     Examples
     --------
-    >>> robot = load_dh_file("models/puma560.yaml")   # doctest: +SKIP
+    >>> from robokit.description.models import model_path
+    >>> robot = load_dh_file(model_path("twolink"))
+    >>> robot.n, robot.tip, robot.frame_pose([0.0, 0.0])[:3, 3].round(4).tolist()
+    (2, 'tool', [1.8, 0.0, 0.0])
     """
     _check_tip(tip)
     path = Path(path)

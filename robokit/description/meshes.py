@@ -48,8 +48,13 @@ def allowed_roots(top: str | os.PathLike[str], package_dirs: Sequence[str | os.P
 
     Examples
     --------
-    >>> allowed_roots("/ws/src/arm/urdf/arm.urdf")[0]   # doctest: +SKIP
-    PosixPath('/ws/src/arm/urdf')
+    A file outside any ROS package may read meshes from its own folder only:
+
+    >>> import pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     urdf = pathlib.Path(tmp, "arm.urdf")
+    ...     print(allowed_roots(urdf) == [urdf.parent.resolve()])
+    True
     """
     folder = Path(top).resolve().parent
     roots = [folder] + [Path(p).expanduser().resolve() for p in (package_dirs or ())]

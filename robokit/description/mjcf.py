@@ -396,8 +396,16 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
 
     Examples
     --------
-    >>> robot = load_mjcf("arm.xml")            # doctest: +SKIP
-    >>> robot.frame_pose(np.zeros(robot.n))     # doctest: +SKIP
+    The shipped planar arm written as MJCF and read back:
+
+    >>> import pathlib, tempfile
+    >>> from robokit.description.mjcf_write import robot_to_mjcf
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "twolink.xml")
+    ...     _ = path.write_text(robot_to_mjcf(rk.load("twolink"))[0])
+    ...     robot = load_mjcf(path)
+    >>> robot.n, robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
+    (2, [1.0, 0.8, 0.0])
     """
     import pinocchio as pin
 

@@ -53,8 +53,12 @@ def read_mjcf_root(path: str | os.PathLike[str]) -> ET.Element:
 
     Examples
     --------
-    >>> read_mjcf_root("arm.xml").tag   # doctest: +SKIP
-    'mujoco'
+    >>> import pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "empty.xml")
+    ...     _ = path.write_text('<mujoco model="empty"><worldbody/></mujoco>')
+    ...     print(read_mjcf_root(path).tag)
+    mujoco
     """
     raw = read_input_bytes(path, MAX_MJCF_BYTES, "an MJCF file")
     return parse_xml(decode_utf8(raw, path), path)
@@ -90,8 +94,13 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
 
     Examples
     --------
-    >>> check_mjcf("arm.xml").get("model")   # doctest: +SKIP
-    'arm'
+    >>> import pathlib, tempfile
+    >>> from robokit.description.mjcf_write import robot_to_mjcf
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "twolink.xml")
+    ...     _ = path.write_text(robot_to_mjcf(rk.load("twolink"))[0])
+    ...     print(check_mjcf(path).get("model"))
+    twolink
     """
     path = Path(path)
     roots = allowed_roots(path, package_dirs)

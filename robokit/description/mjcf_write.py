@@ -199,7 +199,9 @@ def robot_to_mjcf(robot: Robot) -> tuple[str, list[str]]:
 
     Examples
     --------
-    >>> text, notes = robot_to_mjcf("puma560")   # doctest: +SKIP
+    >>> text, notes = robot_to_mjcf(rk.load("twolink"))
+    >>> '<mujoco model="twolink">' in text, text.count('type="hinge"')
+    (True, 2)
     """
     import pinocchio as pin
 

@@ -70,9 +70,10 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
 
     Examples
     --------
-    >>> robot = load_urdf("models/rrr.urdf", tip="tool")   # doctest: +SKIP
-    >>> robot.n                                            # doctest: +SKIP
-    3
+    >>> from robokit.description.models import model_path
+    >>> robot = load_urdf(model_path("rrr", ".urdf"), tip="tool")
+    >>> robot.n, robot.frame_pose(np.zeros(3))[:3, 3].round(4).tolist()   # 0.5 + 0.4 + 0.2 m
+    (3, [1.1, 0.0, 0.0])
     """
     path = Path(path)
     if not path.exists():  # anything else (a FIFO, a device) is refused by the bounded reader

@@ -116,7 +116,13 @@ def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None
 
     Examples
     --------
-    >>> find_package("my_arm_description", ["~/ws/src"])   # doctest: +SKIP
+    >>> import pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     pkg = pathlib.Path(tmp, "src", "my_arm_description")
+    ...     pkg.mkdir(parents=True)
+    ...     _ = (pkg / "package.xml").write_text("<package><name>my_arm_description</name></package>")
+    ...     print(find_package("my_arm_description", [pathlib.Path(tmp, "src")]) == pkg.resolve())
+    True
     """
     package_path = _package_dirs(package_dirs, package_path, "find_package")
     folders = [Path(p).expanduser() for p in (package_path or ())]
@@ -267,7 +273,20 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
 
     Examples
     --------
-    >>> urdf = expand_xacro("arm.urdf.xacro", {"prefix": "left_"}, ["~/ws/src"])  # doctest: +SKIP
+    >>> import pathlib, tempfile
+    >>> XACRO = ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">'
+    ...          '<xacro:arg name="l1" default="0.4"/>'
+    ...          '<link name="base_link"/><link name="link1"/><link name="tool"/>'
+    ...          '<joint name="j1" type="continuous"><parent link="base_link"/><child link="link1"/>'
+    ...          '<axis xyz="0 0 1"/></joint>'
+    ...          '<joint name="j2" type="continuous"><parent link="link1"/><child link="tool"/>'
+    ...          '<origin xyz="$(arg l1) 0 0"/><axis xyz="0 0 1"/></joint></robot>')
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "arm.urdf.xacro")
+    ...     _ = path.write_text(XACRO)
+    ...     urdf = expand_xacro(path, {"l1": "0.5"})
+    >>> 'xyz="0.5 0 0"' in urdf
+    True
     """
     try:
         xacro = require("xacro", "reading a .xacro file")
@@ -405,7 +424,20 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
 
     Examples
     --------
-    >>> robot = load_xacro("arm.urdf.xacro", xacro_args={"l1": "0.4"})   # doctest: +SKIP
+    >>> import pathlib, tempfile
+    >>> XACRO = ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">'
+    ...          '<xacro:arg name="l1" default="0.4"/>'
+    ...          '<link name="base_link"/><link name="link1"/><link name="tool"/>'
+    ...          '<joint name="j1" type="continuous"><parent link="base_link"/><child link="link1"/>'
+    ...          '<axis xyz="0 0 1"/></joint>'
+    ...          '<joint name="j2" type="continuous"><parent link="link1"/><child link="tool"/>'
+    ...          '<origin xyz="$(arg l1) 0 0"/><axis xyz="0 0 1"/></joint></robot>')
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = pathlib.Path(tmp, "arm.urdf.xacro")
+    ...     _ = path.write_text(XACRO)
+    ...     robot = load_xacro(path, xacro_args={"l1": "0.5"})
+    >>> robot.n, robot.frame_pose([0.0, 0.0])[:3, 3].tolist()
+    (2, [0.5, 0.0, 0.0])
     """
     package_path = _package_dirs(package_dirs, package_path, "load_xacro")
     path = Path(path)

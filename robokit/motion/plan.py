@@ -83,7 +83,10 @@ def goal_configurations(robot: Any, T: Any, world: Any = None, q_start: Any = No
     --------
     >>> import robokit
     >>> r = robokit.load("puma560")
-    >>> qs = goal_configurations(r, r.frame_pose([0.1] * 6))  # doctest: +SKIP
+    >>> T = r.frame_pose([0.1] * 6)
+    >>> qs = goal_configurations(r, T)
+    >>> len(qs) > 0, all(np.allclose(r.frame_pose(q), T) for q in qs)
+    (True, True)
     """
     from robokit.ik.closed_form import ik_analytic
     from robokit.ik.numeric import solve_ik
@@ -209,7 +212,11 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     >>> from robokit.collision import World, Box
     >>> r = robokit.load("puma560")
     >>> T = np.eye(4); T[:3, 3] = [0.5, 0.0, 0.3]
-    >>> tr = robokit.plan(r, np.zeros(6), [1.0, 0.3, -0.5, 0, 0, 0], World(r, [Box([0.1, 0.3, 0.3], T)]))  # doctest: +SKIP
+    >>> world = World(r, [Box([0.1, 0.3, 0.3], T)])
+    >>> goal = [1.0, 0.3, -0.5, 0, 0, 0]
+    >>> tr = robokit.plan(r, np.zeros(6), goal, world)
+    >>> np.allclose(tr.q[-1], goal), bool(world.in_collision(tr.q).any())
+    (True, False)
     """
     n = robot.n
     q0 = as_array(q_start, "q_start", (n,))
