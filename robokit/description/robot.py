@@ -39,17 +39,73 @@ __all__ = ["Robot"]
 class Robot:
     """One serial robot: Pinocchio model and data, PoE parameters, DH table when it has one.
 
+    Made by :func:`robokit.load`; the constructor takes a chain model built by
+    :func:`robokit.description.builder.serial_chain`.
+
+    Parameters
+    ----------
+    name : str
+        The robot's name.
+    model : pinocchio.Model
+        The serial chain root → tip (one-degree-of-freedom joints only).
+    tip : str
+        Name of the tip frame.
+    visual_model, collision_model : pinocchio.GeometryModel or None, optional
+        Geometry for the viewers and collision checks.
+    dh : DHTable or None, optional
+        The DH table the robot was built from.
+    configurations : mapping of str to array_like, optional
+        Named joint configurations (n,) besides ``"zero"``.
+    locked_joints : iterable of str, optional
+        Joints locked off the chain.
+    source : str, optional
+        Where the robot came from (shown in messages).
+
     Attributes
     ----------
-    name : str; model, data : the chain's ``pinocchio.Model`` and its reused ``Data``;
-    visual_model, collision_model : ``pinocchio.GeometryModel`` or None;
-    tip : tip frame name; tip_id : its frame id; dh : :class:`DHTable` or None;
-    poe : :class:`PoEParams`; n : number of joint angles; joint_names : (n,);
-    qlim : (n, 2) joint limits (±inf for continuous joints); gravity : (3,);
-    configurations : dict of named configurations (joint angles), "zero" always;
-    locked_joints : names of the joints locked off the chain; source : where it came from;
-    spec : the :class:`~robokit.description.spec.RobotSpec` that rebuilds it
-    (``robokit.load(robot.spec)``), None for a Robot built by hand from a model.
+    name : str
+        The robot's name.
+    model, data : pinocchio.Model, pinocchio.Data
+        The chain's model and its reused workspace.
+    visual_model, collision_model : pinocchio.GeometryModel or None
+        Geometry, when the description has any.
+    tip : str
+        Tip frame name; ``tip_id`` its frame id.
+    dh : DHTable or None
+        The DH table for robots loaded from one.
+    poe : PoEParams
+        Product-of-exponentials parameters of the chain (``M``, ``Slist``, ``Blist``, ``Mlist``,
+        ``Glist``).
+    n : int
+        Number of joint angles (a continuous joint counts as one).
+    joint_names : tuple of str
+        The n joint names, root to tip.
+    qlim : numpy.ndarray, shape (n, 2)
+        Joint limits, rad or m (±inf for continuous joints).
+    gravity : numpy.ndarray, shape (3,)
+        Gravity in the base frame, m/s².
+    configurations : dict of str to numpy.ndarray
+        Named configurations (joint angles), ``"zero"`` always.
+    locked_joints : tuple of str
+        The joints locked off the chain.
+    source : str
+        Where it came from.
+    spec : RobotSpec or None
+        The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
+        (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
+
+    Examples
+    --------
+    The shipped planar arm (links 1 m and 0.8 m): tip pose, geometric Jacobian (rows ω; v) and
+    gravity torques when stretched (2 kg and 1.5 kg point masses, g = 9.81 m/s² along −y):
+
+    >>> robot = rk.load("twolink")
+    >>> robot.n, robot.joint_names, robot.frame_pose([0.0, np.pi / 2])[:2, 3].round(4).tolist()
+    (2, ('joint_1', 'joint_2'), [1.0, 0.8])
+    >>> robot.jacobian([0.0, 0.0], reference="local_world_aligned")[3:5].round(4).tolist()
+    [[0.0, 0.0], [1.8, 0.8]]
+    >>> robot.gravity_torques([0.0, 0.0]).round(4).tolist()
+    [46.107, 11.772]
     """
 
     spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)

@@ -262,7 +262,24 @@ class ClosedFormBackend(IKBackend):
 
 class PlanarBackend(IKBackend):
     """``"planar"``: the closed form of planar 2R/3R arms (:mod:`robokit.ik.planar`), the in-limit
-    solution nearest ``q0``."""
+    solution nearest ``q0``.
+
+    Supports a full tip pose of a :class:`robokit.Robot` whose joints are parallel revolute axes
+    in one plane. The arm's planar geometry is cached per robot and rebuilt when its screws,
+    home pose or limits change.
+
+    Attributes
+    ----------
+    name : str
+        ``"planar"``.
+
+    Examples
+    --------
+    >>> robot = rk.load("twolink")
+    >>> res = PlanarBackend().solve(IKProblem.tip_pose(robot, robot.frame_pose([0.3, 0.4])))
+    >>> res.method, res.success, res.q.round(6).tolist()
+    ('planar', True, [0.3, 0.4])
+    """
 
     name = "planar"
 

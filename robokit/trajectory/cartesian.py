@@ -221,7 +221,15 @@ def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, n
 
     Examples
     --------
-    ``qtraj = cartesian_to_joint(robot, cartesian_line_trajectory(T_a, T_b, 2.0), qd_limit=3.0)``
+    The planar arm's tip on a straight line between two reachable points (positions only: a
+    2-joint arm cannot also hold an interpolated orientation):
+
+    >>> robot = rk.load("twolink")
+    >>> T_a, T_b = robot.frame_pose([0.2, 0.6]), robot.frame_pose([0.6, 0.4])
+    >>> line = cartesian_line_trajectory(T_a, T_b, 1.0, t=11)
+    >>> qtraj = cartesian_to_joint(robot, line, q0=[0.2, 0.6], position_only=True)
+    >>> qtraj.q.shape, qtraj.q[-1].round(6).tolist(), bool(qtraj.info["pose_error"].max() < 1e-6)
+    ((11, 2), [0.6, 0.4], True)
     """
     if not isinstance(traj, Trajectory) or traj.poses is None:
         raise InputError("traj: expected a Cartesian Trajectory with poses (e.g. from cartesian_line_trajectory)")
