@@ -109,19 +109,25 @@ def solve_trig(a: float, b: float, c: float) -> list[float]:
 
 
 def pk_subproblem1(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, tol: float = 1e-9) -> list[float]:
-    r"""Paden–Kahan subproblem 1: θ with ``exp([ω]θ)(p − r) = q − r``.
+    """Paden–Kahan subproblem 1: θ with ``exp([ω]θ)(p − r) = q − r``.
 
     Parameters
     ----------
-    omega : (3,) axis direction (normalised here); r : (3,) a point on the axis (m);
-    p, q : (3,) the point before and after the rotation (m), all in one frame.
-    tol : consistency tolerance (m).
+    omega : array_like, shape (3,)
+        Axis direction (normalised here).
+    r : array_like, shape (3,)
+        A point on the axis, m.
+    p, q : array_like, shape (3,)
+        The point before and after the rotation, m (all vectors in one frame).
+    tol : float, optional
+        Consistency tolerance, m (default 1e-9).
 
     Returns
     -------
-    ``[θ]`` when q is p rotated about the axis (same height along ω and same distance from
-    the axis, to ``tol``); ``[]`` otherwise. If p lies on the axis every θ works and the
-    documented choice is ``[0.0]``.
+    list of float
+        ``[θ]`` (rad, in (−π, π]) when q is p rotated about the axis (same height along ω and
+        same distance from the axis, to ``tol``); ``[]`` otherwise. If p lies on the axis every θ
+        works and the documented choice is ``[0.0]``.
 
     Notes
     -----
@@ -151,17 +157,25 @@ def _sp1(w: np.ndarray, u: np.ndarray, v: np.ndarray, tol: float) -> list[float]
 
 def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike,
                    tol: float = 1e-9) -> list[tuple[float, float]]:
-    r"""Paden–Kahan subproblem 2: (θ₁, θ₂) with ``exp([ω₁]θ₁) exp([ω₂]θ₂)(p − r) = q − r``.
+    """Paden–Kahan subproblem 2: (θ₁, θ₂) with ``exp([ω₁]θ₁) exp([ω₂]θ₂)(p − r) = q − r``.
 
     Parameters
     ----------
-    omega1, omega2 : (3,) directions of two non-parallel axes through the point r (m);
-    p, q : (3,) points (m); tol : consistency tolerance (m).
+    omega1, omega2 : array_like, shape (3,)
+        Directions of two non-parallel axes (normalised here); parallel axes raise
+        :class:`~robokit.errors.InputError`.
+    r : array_like, shape (3,)
+        The point where the two axes meet, m.
+    p, q : array_like, shape (3,)
+        The point before and after the two rotations, m (all vectors in one frame).
+    tol : float, optional
+        Consistency tolerance, m (default 1e-9).
 
     Returns
     -------
-    list of (θ₁, θ₂): two pairs in general, one when the intermediate point is unique,
-    none when q cannot be reached (``‖p − r‖ ≠ ‖q − r‖`` or the circles do not meet).
+    list of (float, float)
+        ``(θ₁, θ₂)`` pairs in rad: two in general, one when the intermediate point is unique,
+        none when q cannot be reached (``‖p − r‖ ≠ ‖q − r‖`` or the circles do not meet).
 
     Notes
     -----
@@ -173,9 +187,12 @@ def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayL
 
     Examples
     --------
+    Both pairs carry y onto x (rotations about z, then x, through the origin):
+
     >>> sols = pk_subproblem2([0, 0, 1], [1, 0, 0], [0, 0, 0], [0, 1, 0], [1, 0, 0])
-    >>> len(sols)
-    2
+    >>> from robokit.spatial import elementary_rotation as rot
+    >>> len(sols), all(np.allclose(rot("z", t1) @ rot("x", t2) @ [0, 1, 0], [1, 0, 0]) for t1, t2 in sols)
+    (2, True)
     """
     w1, w2 = unit_vector(omega1, "omega1"), unit_vector(omega2, "omega2")
     r, p, q = as_vector(r, "r", 3), as_vector(p, "p", 3), as_vector(q, "q", 3)
@@ -207,18 +224,27 @@ def pk_subproblem2(omega1: ArrayLike, omega2: ArrayLike, r: ArrayLike, p: ArrayL
 
 def pk_subproblem3(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, delta: float,
                    tol: float = 1e-9) -> list[float]:
-    r"""Paden–Kahan subproblem 3: θ with ``‖exp([ω]θ)(p − r) − (q − r)‖ = δ``.
+    """Paden–Kahan subproblem 3: θ with ``‖exp([ω]θ)(p − r) − (q − r)‖ = δ``.
 
     Parameters
     ----------
-    omega : (3,) axis direction; r : (3,) a point on the axis (m); p, q : (3,) points (m);
-    delta : the required distance (m, ≥ 0); tol : tolerance (m).
+    omega : array_like, shape (3,)
+        Axis direction (normalised here).
+    r : array_like, shape (3,)
+        A point on the axis, m.
+    p, q : array_like, shape (3,)
+        The rotated point and the fixed point, m (all vectors in one frame).
+    delta : float
+        The required distance, m (≥ 0).
+    tol : float, optional
+        Tolerance, m (default 1e-9).
 
     Returns
     -------
-    Two angles in general, one at tangency, none when δ is out of reach. If p or q lies on
-    the axis the distance does not depend on θ: ``[0.0]`` (the documented choice) when it
-    equals δ, else ``[]``.
+    list of float
+        Angles θ in rad, sorted: two in general, one at tangency, none when δ is out of reach.
+        If p or q lies on the axis the distance does not depend on θ: ``[0.0]`` (the documented
+        choice) when it equals δ, else ``[]``.
 
     Notes
     -----
@@ -228,6 +254,8 @@ def pk_subproblem3(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, d
 
     Examples
     --------
+    Rotating (1, 0, 0) about z to be 2 m from itself takes half a turn:
+
     >>> sorted(round(t, 12) for t in pk_subproblem3([0, 0, 1], [0, 0, 0], [1, 0, 0], [1, 0, 0], 2.0))
     [3.14159265359]
     """

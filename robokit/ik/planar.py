@@ -41,13 +41,23 @@ class PlanarChain:
 
     Attributes
     ----------
-
-    normal : (3,) unit normal n (the first joint's axis); u, v : (3,) in-plane unit axes
-    (u the base x axis projected on the plane, or y/z if x is along n), n = u × v;
-    height : n · p_tool (m), the plane the tool point moves in; signs : (N,) ±1, ω_i · n;
-    r : (N, 2) a point of each axis, plane coordinates (m); d : (N, 2) link vectors
-    r_{i+1} − r_i, the last one to the tool point; R0 : (3, 3) tool orientation at θ = 0;
-    qlim : (N, 2).
+    normal : (3,) ndarray
+        Unit normal n of the plane (the first joint's axis), base frame.
+    u, v : (3,) ndarray
+        In-plane unit axes (u the base x axis projected on the plane, or y/z if x is along n),
+        n = u × v.
+    height : float
+        ``n · p_tool`` (m): the plane the tool point moves in.
+    signs : (N,) ndarray
+        ±1 per joint, ``ω_i · n``.
+    r : (N, 2) ndarray
+        A point of each axis, plane coordinates (m).
+    d : (N, 2) ndarray
+        Link vectors ``r_{i+1} − r_i``, the last one to the tool point (m).
+    R0 : (3, 3) ndarray
+        Tool orientation at θ = 0.
+    qlim : (N, 2) ndarray
+        Joint limits (rad).
 
     Examples
     --------

@@ -71,13 +71,24 @@ def goal_configurations(robot: Any, T: Any, world: Any = None, q_start: Any = No
 
     Parameters
     ----------
-    robot : robokit.Robot; T : (4, 4) tip pose in the base frame (m);
-    world : robokit.collision.World or None; q_start : (n,), default zeros;
-    seeds : random seeds for ``solve_ik`` when there is no closed form; rng : their seed.
+    robot : robokit.Robot
+        The robot.
+    T : (4, 4) array_like
+        Tip pose in the base frame (m).
+    world : robokit.collision.World or None, optional
+        Obstacles and self-collision (None: joint limits only).
+    q_start : (n,) array_like, optional
+        The configuration the solutions are sorted by distance to (default zeros).
+    seeds : int, optional
+        Random initial guesses for ``solve_ik`` when there is no closed form (default 20).
+    rng : int, optional
+        Their seed (default 0).
 
     Returns
     -------
-    list of (n,) arrays (possibly empty), inside the joint limits and collision-free.
+    list of (n,) ndarray
+        Joint values (rad / m), possibly none, inside the joint limits and collision-free,
+        nearest to ``q_start`` first.
 
     Examples
     --------
@@ -182,16 +193,30 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     Parameters
     ----------
     robot : robokit.Robot
-    q_start : (n,) joint values (rad / m), inside the limits and collision-free.
-    goal : (n,) joint values, or a (4, 4) tip pose in the base frame (m).
-    world : robokit.collision.World or None (None: joint limits only).
-    vmax, amax, tau_max : limits for :func:`robokit.motion.retime.retime` (rad/s, rad/s², N·m).
-    resolution : float, rad — the largest joint-space step between checked states.
-    timeout : float, s — RRT-Connect's time budget.
-    shortcuts : int — random shortcut attempts; spacing : float, rad — waypoint spacing for the spline.
-    seed : int — the shortcutting's and IK seeds' random seed, and OMPL's (OMPL accepts one
-        seed per process: the first plan's; later calls continue its stream); grid : TOPP-RA stages (at least
-        4 per waypoint interval of the densified path).
+        The robot.
+    q_start : (n,) array_like
+        Start joint values (rad / m), inside the limits and collision-free.
+    goal : (n,) or (4, 4) array_like
+        Goal joint values, or a tip pose in the base frame (m; solved by IK, the nearest
+        collision-free solution taken).
+    world : robokit.collision.World or None, optional
+        Obstacles and self-collision (None: joint limits only).
+    vmax, amax, tau_max : float or (n,) array_like, optional
+        Velocity (rad/s), acceleration (rad/s²) and torque (N·m / N; None: no torque limit)
+        limits for :func:`robokit.motion.retime.retime` (defaults 1.0, 2.0, None).
+    resolution : float, optional
+        The largest joint-space step between checked states, rad.
+    timeout : float, optional
+        RRT-Connect's time budget, s (default 5).
+    shortcuts : int, optional
+        Random shortcut attempts (default 100).
+    spacing : float, optional
+        Waypoint spacing for the spline, rad (default 0.1).
+    seed : int, optional
+        The shortcutting's and IK seeds' random seed, and OMPL's (OMPL accepts one seed per
+        process: the first plan's; later calls continue its stream).
+    grid : int, optional
+        TOPP-RA stages (at least 4 per waypoint interval of the densified path; default 200).
 
     Returns
     -------

@@ -48,12 +48,19 @@ def path_spline(waypoints: Any, n: int) -> tuple[Any, np.ndarray]:
 
     Parameters
     ----------
-    waypoints : array_like (K, n), K ≥ 2, or a :class:`~robokit.trajectory.Trajectory` (its ``q``).
-    n : int, number of joints.
+    waypoints : (K, n) array_like or Trajectory
+        K ≥ 2 joint-space waypoints (rad / m), or a :class:`~robokit.trajectory.Trajectory`
+        (its ``q``).
+    n : int
+        Number of joints.
 
     Returns
     -------
-    (scipy.interpolate.CubicSpline, ss) — the spline and the waypoints' parameters ss (K,).
+    spline : scipy.interpolate.CubicSpline
+        ``q(s)`` for ``s ∈ [0, 1]``, (n,) values.
+    ss : (K',) ndarray
+        The waypoints' parameters (cumulative chord length, normalised to end at 1); repeated
+        waypoints are dropped, so K' ≤ K.
 
     Examples
     --------
@@ -81,12 +88,17 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
 
     Parameters
     ----------
-    robot : robokit.Robot (``robot.poe`` gives Newton–Euler's parameters; gravity ``robot.gravity``).
-    path : array_like (K, n) waypoints (joint values, rad / m), or a Trajectory (its ``q`` rows
-        are the waypoints); interpolated by a cubic spline (module docstring).
-    vmax, amax : float or (n,), > 0 — symmetric joint velocity (rad/s) and acceleration (rad/s²) limits.
-    tau_max : float or (n,), > 0, optional — symmetric joint torque limits (N·m / N).
-    grid : int, number of TOPP-RA stages (grid points − 1), default 200.
+    robot : robokit.Robot
+        The robot (``robot.poe`` gives Newton–Euler's parameters; gravity ``robot.gravity``).
+    path : (K, n) array_like or Trajectory
+        Waypoints (joint values, rad / m), or a Trajectory (its ``q`` rows are the waypoints);
+        interpolated by a cubic spline (module docstring).
+    vmax, amax : float or (n,) array_like
+        Symmetric joint velocity (rad/s) and acceleration (rad/s²) limits, > 0.
+    tau_max : float or (n,) array_like, optional
+        Symmetric joint torque limits (N·m / N), > 0 (default None: none).
+    grid : int, optional
+        Number of TOPP-RA stages (grid points − 1), default 200.
 
     Returns
     -------
