@@ -271,8 +271,10 @@ def compile_library(src: CSource, folder: str | os.PathLike[str], n: int, float3
         The robot's number of joints.
     float32 : bool
         Whether ``src`` was generated with ``float32=True`` (adds ``-Wdouble-promotion``).
-    flags : extra compiler flags (default ``-O2``).
-    compiler : path of the compiler (default :func:`find_compiler`).
+    flags : sequence of str, optional
+        Extra compiler flags (default ``("-O2",)``).
+    compiler : str, optional
+        Path of the compiler (default :func:`find_compiler`).
 
     Returns
     -------

@@ -59,14 +59,21 @@ class IKProblem:
     Parameters
     ----------
     robot : :class:`robokit.Robot` or RobotLike
+        The robot.
     frame : str or None
         The frame to place (None: the robot's tip).
     q0 : (n,) ndarray
-        Initial guess inside the limits (rad, m); ``q0_given`` False when it is the default.
+        Initial guess inside the limits (rad, m).
     position_only : bool
-        ``p_target`` (3,) only, else the pose ``T_target`` (4, 4); base frame, m.
+        Place the frame's origin at ``p_target`` only, else the whole pose ``T_target``.
+    T_target : (4, 4) ndarray or None
+        Target pose of the frame in the base frame (m); None in position mode.
+    p_target : (3,) ndarray or None
+        Target position of the frame's origin in the base frame (m); None in pose mode.
     weights : (6,) or (3,) ndarray or None
         Error weights (ω, v) or position weights; None when not given.
+    q0_given : bool
+        True when the caller chose ``q0`` (False: the default, zeros clipped to the limits).
     tol, max_iterations, max_restarts, time_budget, damping, min_damping
         As in :func:`robokit.solve_ik` (``max_iterations`` None: the back end's default).
     seed : int
@@ -74,6 +81,9 @@ class IKProblem:
     rng : numpy Generator or None
         The generator the Pinocchio loop draws from (None: one seeded with ``seed``, made by
         :meth:`generator` on first use).
+    t_start : float
+        ``time.perf_counter()`` when the problem was made (default now): the results'
+        ``seconds`` and the time budget count from it.
 
     Examples
     --------

@@ -110,7 +110,11 @@ def lm_loop(robot: Robot | RobotLike, frame: str | None, q: np.ndarray, *, posit
     q : (n,) ndarray
         Initial guess, inside the limits (rad, m).
     position_only : bool
-        Match ``p_target`` (3,) only, else the pose ``T_target`` (4, 4), base frame (m).
+        Match ``p_target`` only, else the pose ``T_target``.
+    p_target : (3,) ndarray or None
+        Target position of the frame's origin, base frame (m); used in position mode.
+    T_target : (4, 4) ndarray or None
+        Target pose of the frame, base frame (m); used in pose mode.
     w : (6,) or (3,) ndarray
         Non-negative weights of the body-twist error (ω, v), or of the position error.
     tol : float

@@ -45,6 +45,8 @@ class IKSolution:
     degenerate : bool
         True if the target is at a singularity where the solver made a documented choice
         for a free angle (e.g. θ₅ = 0 of a spherical wrist).
+    extra : dict
+        Solver-specific extras (empty for robokit's closed forms); not compared by ``==``.
     collision_free : bool or None
         With a ``world`` (:class:`robokit.collision.World`) given to the solver: whether the
         arm at ``q`` is free of self- and world collisions; None without a world.

@@ -106,7 +106,9 @@ def plot_path_3d(traj: Trajectory, *, frames: int = 5, axis_length: float | None
     axis_length : float, optional
         Triad length, m (default: 15 % of the path's extent, or 0.1 m).
     title : str, optional
+        Figure title (default: the trajectory's name).
     figsize : (float, float)
+        Size in inches.
 
     Returns
     -------

@@ -209,8 +209,9 @@ def screw_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, meth
     Tf : float
         Total time, s (> 0).
     N : int
-        Number of points (≥ 2).
+        Number of points (≥ 2), equally spaced in time, both ends included.
     method : 3 or 5
+        Cubic or quintic time scaling (``"cubic"``, ``"quintic"`` also accepted).
 
     Returns
     -------

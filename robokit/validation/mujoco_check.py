@@ -181,6 +181,7 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
         Number of random states ``(q, q̇, q̈)``: q uniform in the limits, q̇ and q̈ standard
         normal.
     rng : numpy Generator or seed, optional
+        Draws the sampled states (None: fresh entropy).
 
     Returns
     -------
