@@ -188,7 +188,8 @@ class DHLink:
         Coulomb friction for positive and negative motion, N·m, motor side (the negative-motion
         value is usually negative).
     name : str or None
-        Joint name (None: ``joint_<i>``).
+        A label for the link (YAML key ``name``; kept when the table is written back). The
+        generated URDF names its joints ``joint_<i>`` whatever the label.
     flip : bool
         The joint variable enters with a minus sign, ``θ = θ_offset − q`` (``d = d_offset − q``):
         the joint turns (slides) about −z (YAML key ``flip: true``; default False).

@@ -157,7 +157,8 @@ def first_body_placement(path: str | os.PathLike[str]) -> tuple[str | None, np.n
         The body's name; None when the first body has a joint (Pinocchio places it correctly)
         or there is no body.
     pose : numpy.ndarray, shape (4, 4), or None
-        Its pose in the world frame (``pos`` in m, ``quat``/``euler``/``axisangle`` rotation).
+        Its pose in the world frame: ``pos`` in m, the rotation by MuJoCo's rules (``quat``,
+        ``axisangle``, ``euler``, ``xyaxes`` or ``zaxis``, the compiler's angle unit).
 
     Examples
     --------

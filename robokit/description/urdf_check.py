@@ -66,7 +66,8 @@ class UrdfDocument:
     package_dirs : list of pathlib.Path
         Folders searched for ``package://`` names.
     warnings : list of str
-        One line per remark (e.g. a mesh outside the allowed folders dropped).
+        One line per remark (e.g. a mesh not found or too large: the link is drawn without it);
+        also issued as :class:`~robokit.errors.RobokitWarning`.
 
     Examples
     --------
