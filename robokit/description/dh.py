@@ -287,8 +287,26 @@ class DHTable:
 
     # ----------------------------------------------------------------- kinematics
     def link_transform(self, i: int, q_i: float) -> np.ndarray:
-        """Pose of frame {i+1} in frame {i} (0-based ``i``) at joint value ``q_i`` (rad or m)
-        (``−q_i`` enters for a flipped joint)."""
+        """Pose of frame {i+1} in frame {i} (0-based ``i``): the DH transform of row i+1 at ``q_i``.
+
+        Parameters
+        ----------
+        i : int
+            Row index, 0-based (row ``i`` is joint i+1).
+        q_i : float
+            The joint variable, rad (revolute: added to θ) or m (prismatic: added to d); ``−q_i``
+            enters for a flipped joint.
+
+        Returns
+        -------
+        numpy.ndarray, shape (4, 4)
+            ``ⁱTᵢ₊₁`` (:func:`dh_transform` of the row), m.
+
+        Examples
+        --------
+        >>> rk.load("twolink").dh.link_transform(1, np.pi / 2)[:3, 3].round(4).tolist()   # 0.8 m along y
+        [0.0, 0.8, 0.0]
+        """
         l = self.links[i]
         if l.flip:
             q_i = -q_i
@@ -304,7 +322,23 @@ class DHTable:
         return q
 
     def frames(self, q: ArrayLike) -> np.ndarray:
-        """(N+1, 4, 4) poses of DH frames {0..N} in base_link at joint values q (n,)."""
+        """Poses of DH frames {0..N} in base_link: ``T_base_i = base · ⁰T₁ ⋯ ⁱ⁻¹Tᵢ`` (Lecture 4).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad or m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n + 1, 4, 4)
+            Row i is frame {i}'s pose in base_link (m); row 0 is ``base``.
+
+        Examples
+        --------
+        >>> rk.load("twolink").dh.frames([np.pi / 2, 0.0])[:, :2, 3].round(4).tolist()
+        [[0.0, 0.0], [0.0, 1.0], [0.0, 1.8]]
+        """
         q = self._q(q)
         out = np.empty((self.n + 1, 4, 4))
         T = np.asarray(self.base, dtype=float)
@@ -315,13 +349,50 @@ class DHTable:
         return out
 
     def fk(self, q: ArrayLike) -> np.ndarray:
-        """4×4 pose of the tool in base_link: ``base · ⁰T₁(q₁) ⋯ ᴺ⁻¹T_N(q_N) · tool``."""
+        """Pose of the tool in base_link: ``base · ⁰T₁(q₁) ⋯ ᴺ⁻¹T_N(q_N) · tool``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad or m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (4, 4)
+            The tool pose, m (equal to the generated URDF's ``tool`` frame in Pinocchio).
+
+        Examples
+        --------
+        >>> table = rk.load("puma560").dh
+        >>> q = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]
+        >>> np.allclose(table.fk(q), rk.load("puma560").frame_pose(q))
+        True
+        """
         return self.frames(q)[-1] @ self.tool
 
     # ------------------------------------------------------------------ YAML I/O
     @classmethod
     def from_yaml(cls, path: str | os.PathLike[str]) -> "DHTable":
-        """Load a DH YAML file (see the DH file format page of the documentation); errors name the file, the link and the key."""
+        """Load a DH YAML file (the DH file format page of the documentation).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The ``.yaml`` file (lengths in m; angles in the file's ``angle_unit``).
+
+        Returns
+        -------
+        DHTable
+            The table, angles in rad; a bad file raises :class:`~robokit.errors.InputError` naming
+            the file, the link and the key.
+
+        Examples
+        --------
+        >>> from robokit.description.models import model_path
+        >>> table = DHTable.from_yaml(model_path("puma560"))
+        >>> table.n, table.convention, round(float(np.degrees(table.links[0].alpha)), 6)
+        (6, 'standard', 90.0)
+        """
         from robokit._yaml import load_yaml_file
 
         path = Path(path)
@@ -330,7 +401,28 @@ class DHTable:
 
     @classmethod
     def from_dict(cls, data: Any, source: str = "<dict>") -> "DHTable":
-        """Build from the parsed YAML mapping; see :meth:`from_yaml`."""
+        """Build a table from the parsed YAML mapping (the checks of :meth:`from_yaml`).
+
+        Parameters
+        ----------
+        data : mapping
+            The mapping of the DH file format (keys ``name``, ``convention``, ``angle_unit``,
+            ``links``, …).
+        source : str, optional
+            What to call it in error messages (default ``"<dict>"``).
+
+        Returns
+        -------
+        DHTable
+            The table, angles in rad.
+
+        Examples
+        --------
+        >>> t = DHTable.from_dict({"name": "arm", "convention": "standard", "angle_unit": "deg",
+        ...                        "links": [{"joint": "R", "a": 1.0, "alpha": 90, "d": 0, "theta": 0}]})
+        >>> t.n, round(t.links[0].alpha, 6)
+        (1, 1.570796)
+        """
         def fail(msg: str) -> NoReturn:
             if len(msg) > 300:  # a value echoed back is never allowed to make a huge line
                 msg = msg[:297] + "..."
@@ -451,7 +543,26 @@ class DHTable:
         return cls(name, convention, tuple(links), gravity, base, tool)
 
     def to_dict(self, angle_unit: str = "deg") -> dict:
-        """The YAML mapping of the DH file format page of the documentation (angles in ``angle_unit``; numbers round-trip exactly)."""
+        """The YAML mapping of the DH file format page of the documentation (numbers round-trip exactly).
+
+        Parameters
+        ----------
+        angle_unit : {"deg", "rad"}, optional
+            Unit of the angles written (default ``"deg"``).
+
+        Returns
+        -------
+        dict
+            ``name``, ``convention``, ``angle_unit``, ``gravity``, ``base``/``tool`` when not the
+            identity, ``links``; :meth:`from_dict` of it gives the table back.
+
+        Examples
+        --------
+        >>> table = rk.load("twolink").dh
+        >>> d = table.to_dict("deg")
+        >>> d["links"][1]["a"], DHTable.from_dict(d).links[1].a
+        (0.8, 0.8)
+        """
         if angle_unit not in ("deg", "rad"):
             raise InputError(f"angle_unit: expected 'deg' or 'rad', got {angle_unit!r}")
         k = 180.0 / math.pi if angle_unit == "deg" else 1.0
@@ -496,13 +607,51 @@ class DHTable:
         return out
 
     def to_yaml_str(self, angle_unit: str = "deg") -> str:
-        """The table as YAML text (see the DH file format page of the documentation)."""
+        """The table as YAML text (the DH file format page of the documentation).
+
+        Parameters
+        ----------
+        angle_unit : {"deg", "rad"}, optional
+            Unit of the angles written (default ``"deg"``).
+
+        Returns
+        -------
+        str
+            The YAML document of :meth:`to_dict`.
+
+        Examples
+        --------
+        >>> print(rk.load("twolink").dh.to_yaml_str().splitlines()[0])
+        name: twolink
+        """
         import yaml
 
         return yaml.safe_dump(self.to_dict(angle_unit), sort_keys=False, default_flow_style=None, width=100)
 
     def save(self, path: str | os.PathLike[str], angle_unit: str = "deg") -> Path:
-        """Write the YAML file atomically."""
+        """Write the table as a YAML file, atomically (nothing is written on error).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+        angle_unit : {"deg", "rad"}, optional
+            Unit of the angles written (default ``"deg"``).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+
+        Examples
+        --------
+        >>> import pathlib, tempfile
+        >>> table = rk.load("twolink").dh
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     back = DHTable.from_yaml(table.save(pathlib.Path(tmp, "twolink.yaml")))
+        >>> [l.a for l in back.links]
+        [1.0, 0.8]
+        """
         return atomic_write(path, self.to_yaml_str(angle_unit))
 
     def __repr__(self) -> str:
@@ -513,10 +662,27 @@ class DHTable:
         return self.to_text()
 
     def to_text(self, digits: int = 5) -> str:
-        """The table as the lecture writes it: one row per joint (lengths in m, angles in degrees,
-        ``+ q`` on the joint variable), then the base and tool transforms when they are not the
-        identity (``xyz`` in m, URDF ``rpy`` in degrees) — without them the table alone does not
-        reproduce the robot's tool pose."""
+        """The table as the lecture writes it.
+
+        One row per joint (lengths in m, angles in degrees, ``+ q`` on the joint variable), then the
+        base and tool transforms when they are not the identity (``xyz`` in m, URDF ``rpy`` in
+        degrees) — without them the table alone does not reproduce the robot's tool pose.
+
+        Parameters
+        ----------
+        digits : int, optional
+            Decimals of the lengths (default 5); angles get ``digits − 2``.
+
+        Returns
+        -------
+        str
+            The printable table (also ``str(table)``).
+
+        Examples
+        --------
+        >>> print(rk.load("rrr").dh.to_text(3).splitlines()[3])
+        1      R    0.500            0.0    0.000        0.0 + q
+        """
         if self.convention == "standard":
             head = ("i", "joint", "a_i [m]", "alpha_i [deg]", "d_i [m]", "theta_i [deg]")
         else:
