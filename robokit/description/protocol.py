@@ -54,9 +54,37 @@ class RobotLike(Protocol):
     qlim: np.ndarray
 
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
-        """4×4 pose of ``frame`` (default the tip) in the base frame at q."""
+        """Pose of ``frame`` in the base frame at q.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values, rad or m.
+        frame : str or None, optional
+            The frame (None: the tip).
+
+        Returns
+        -------
+        numpy.ndarray, shape (4, 4)
+            ``T_base_frame``, m.
+        """
         ...
 
     def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
-        """6×n Jacobian of ``frame`` at q, angular rows first, expressed as ``reference`` says."""
+        """Jacobian of ``frame`` at q, angular rows first.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values, rad or m.
+        frame : str or None, optional
+            The frame (None: the tip).
+        reference : {"world", "local", "local_world_aligned"}, optional
+            Where it is expressed (module docstring; default ``"world"``, the space Jacobian).
+
+        Returns
+        -------
+        numpy.ndarray, shape (6, n)
+            Rows ``(ω; v)``: the frame's twist per unit joint rate.
+        """
         ...

@@ -91,18 +91,76 @@ class PlanarChain:
 
     @property
     def n(self) -> int:
+        """Number of joints N."""
         return len(self.signs)
 
     def to_plane(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(B, 2) plane coordinates and (B,) heights of (B, 3) base-frame points."""
+        """Plane coordinates of base-frame points.
+
+        Parameters
+        ----------
+        P : numpy.ndarray, shape (B, 3)
+            Points in the base frame, m.
+
+        Returns
+        -------
+        xy : numpy.ndarray, shape (B, 2)
+            Their coordinates along ``u`` and ``v``, m.
+        height : numpy.ndarray, shape (B,)
+            Their heights along ``normal``, m.
+
+        Examples
+        --------
+        >>> chain = planar_chain(rk.load("rrr"))      # joints about z: the plane is x-y
+        >>> xy, h = chain.to_plane(np.array([[1.0, 2.0, 3.0]]))
+        >>> xy.tolist(), h.tolist()
+        ([[1.0, 2.0]], [3.0])
+        """
         return np.stack([P @ self.u, P @ self.v], axis=1), P @ self.normal
 
     def from_plane(self, xy: np.ndarray) -> np.ndarray:
-        """(B, 3) base-frame points of (B, 2) plane coordinates at the tool's height."""
+        """Base-frame points of plane coordinates, at the tool's height.
+
+        Parameters
+        ----------
+        xy : numpy.ndarray, shape (B, 2)
+            Coordinates along ``u`` and ``v``, m.
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 3)
+            The points in the base frame, m.
+
+        Examples
+        --------
+        >>> planar_chain(rk.load("rrr")).from_plane(np.array([[1.0, 2.0]])).tolist()
+        [[1.0, 2.0, 0.0]]
+        """
         return self.height * self.normal + xy[:, :1] * self.u + xy[:, 1:2] * self.v
 
     def fk(self, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(B, 2) tool points and (B,) tool angles of (B, N) plane angles ψ."""
+        """Planar forward kinematics: ``p = r₁ + Σ_i Rot(ψ₁+…+ψ_i) d_i``, ``φ = ψ₁+…+ψ_N``.
+
+        Parameters
+        ----------
+        psi : numpy.ndarray, shape (B, N)
+            Plane angles ψ (rad; ``ψ_i = signs_i · θ_i``).
+
+        Returns
+        -------
+        p : numpy.ndarray, shape (B, 2)
+            Tool points, plane coordinates (m).
+        phi : numpy.ndarray, shape (B,)
+            Tool angles, rad.
+
+        Examples
+        --------
+        The 0.5 + 0.4 + 0.2 m arm stretched, then turned 90° at the first joint:
+
+        >>> p, phi = planar_chain(rk.load("rrr")).fk(np.array([[0.0, 0.0, 0.0], [np.pi / 2, 0.0, 0.0]]))
+        >>> p.round(4).tolist(), phi.round(4).tolist()
+        ([[1.1, 0.0], [0.0, 1.1]], [0.0, 1.5708])
+        """
         acc = np.cumsum(psi, axis=1)
         c, s = np.cos(acc), np.sin(acc)
         p = self.r[0] + np.stack([(c * self.d[:, 0] - s * self.d[:, 1]).sum(1),
@@ -198,11 +256,27 @@ class PlanarChain:
         return found
 
     def solutions(self, T: np.ndarray) -> list[np.ndarray]:
-        """Every joint configuration θ (N,) reaching the pose T (4, 4), shifted into the limits.
+        """Every joint configuration reaching the pose T, shifted into the limits.
 
         Each angle is moved by a multiple of 2π to the smallest value not below its lower
-        limit; configurations outside the limits after that shift are dropped. Up to 2
-        configurations for 3 joints (elbow ±), 1 for 2 joints; ``[]`` out of reach.
+        limit; configurations outside the limits after that shift are dropped.
+
+        Parameters
+        ----------
+        T : numpy.ndarray, shape (4, 4)
+            Tool pose in the base frame, m.
+
+        Returns
+        -------
+        list of numpy.ndarray, shape (N,)
+            Joint values θ (rad): up to 2 for 3 joints (elbow ±), 1 for 2 joints; ``[]`` out of reach.
+
+        Examples
+        --------
+        >>> robot = rk.load("rrr")
+        >>> sols = planar_chain(robot).solutions(robot.frame_pose([0.3, 0.4, 0.5]))
+        >>> [s.round(4).tolist() for s in sols]
+        [[0.3, 0.4, 0.5], [0.655, -0.4, 0.945]]
         """
         candidates, good = self._candidates(np.asarray(T, dtype=float)[None])
         out = []

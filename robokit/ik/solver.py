@@ -108,17 +108,84 @@ class ClosedFormSolver(Protocol):
     chain: DHChain
 
     def refusal(self) -> str | None:
-        """None if the method applies to ``chain``, else why not (one sentence)."""
+        """Whether the method applies to ``chain``.
+
+        Returns
+        -------
+        str or None
+            None if it applies, else why not (one sentence in the arm's terms).
+        """
         ...
 
     def position(self, T06: np.ndarray) -> list[PositionBranch]:
-        """The position sub-problem's branches for the (4, 4) target ``T06`` (frame 0′, m)."""
+        """The position sub-problem: every branch of the joints a point of the arm fixes.
+
+        Parameters
+        ----------
+        T06 : numpy.ndarray, shape (4, 4)
+            Target of the canonical chain ``Z₁X₁ ⋯ Z₆`` (the tip pose with base′ and tool′ removed),
+            in frame 0′, m.
+
+        Returns
+        -------
+        list of PositionBranch
+            One per branch (e.g. Pieper's four: left/right × elbow up/down); [] if out of reach.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik.closed_form import AnalyticIK
+        >>> solver = AnalyticIK(robokit.load("puma560")).solver
+        >>> T06 = solver.chain.fk6(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+        >>> [b.label for b in solver.position(T06)]
+        ['left, elbow up, ', 'right, elbow up, ', 'left, elbow down, ', 'right, elbow down, ']
+        """
         ...
 
     def wrist(self, T06: np.ndarray, branch: PositionBranch, wrist_ref: float) -> list[Row]:
-        """Every full row ``(q (6,), label, degenerate)`` completing ``branch``."""
+        """The wrist sub-problem: every full solution completing one position branch.
+
+        Parameters
+        ----------
+        T06 : numpy.ndarray, shape (4, 4)
+            The target of :meth:`position`.
+        branch : PositionBranch
+            One of its branches.
+        wrist_ref : float
+            The free joint's value at a wrist singularity, rad.
+
+        Returns
+        -------
+        list of Row
+            Rows ``(q (6,), label, degenerate)``: joint variables in rad or m (DH offsets removed,
+            any angle range), the full label, whether a singular choice was made.
+        """
         ...
 
     def joint_angles(self, T06: np.ndarray, wrist_ref: float) -> list[Row]:
-        """Every row of every branch (``wrist`` over ``position``)."""
+        """Every row of every branch (:meth:`wrist` over :meth:`position`): the call
+        :class:`robokit.ik.AnalyticIK` makes.
+
+        Parameters
+        ----------
+        T06 : numpy.ndarray, shape (4, 4)
+            Target of the canonical chain, frame 0′, m.
+        wrist_ref : float
+            The free joint's value at a wrist singularity, rad.
+
+        Returns
+        -------
+        list of Row
+            Rows ``(q (6,), label, degenerate)`` (joint variables, any angle range); [] if out of reach.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik.closed_form import AnalyticIK
+        >>> solver = AnalyticIK(robokit.load("puma560")).solver
+        >>> T06 = solver.chain.fk6(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+        >>> rows = solver.joint_angles(T06, 0.0)
+        >>> len(rows), all(np.allclose(solver.chain.fk6(np.asarray(q)), T06) for q, _, _ in rows)
+        (8, True)
+        """
         ...
