@@ -72,15 +72,48 @@ class JointChain:
         return int(self.axes.shape[0])
 
     def fk(self, q: np.ndarray) -> np.ndarray:
-        """Tool poses ``T(q)`` (K, 4, 4) in the base frame for joint values q (K, n) (rad, m)."""
+        """Tool poses ``T(q) = X_1 e^{[A_1]q_1} X_2 ⋯ e^{[A_n]q_n} X_{n+1}`` in the base frame.
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (K, n)
+            Joint values, one configuration per row (rad, m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (K, 4, 4)
+            The tool poses, m.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> chain_from_robot(robot).fk(np.array([[0.0, np.pi / 2]]))[0][:2, 3].round(4).tolist()
+        [1.0, 0.8]
+        """
         return self.frames(q)[-1]
 
     def frames(self, q: np.ndarray) -> np.ndarray:
-        r"""Poses (n + 2, K, 4, 4) in the base frame of the frames the errors act in.
+        """Poses in the base frame of the frames the errors act in.
 
         Row i (i = 0..n−1) is ``P_{i+1} = X_1 e^{[A_1]q_1} ⋯ X_{i+1}`` — joint i+1's frame before
         its own motion; row n is the tool frame ``T(q)``; row n + 1 repeats it (so the tool's
         error frame is row n as well).
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (K, n)
+            Joint values, one configuration per row (rad, m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n + 2, K, 4, 4)
+            The frames, m.
+
+        Examples
+        --------
+        >>> F = chain_from_robot(rk.load("twolink")).frames(np.zeros((1, 2)))
+        >>> F.shape, F[1, 0, :3, 3].tolist(), F[2, 0, :3, 3].tolist()   # joint 2 at 1 m, the tool at 1.8 m
+        ((4, 1, 4, 4), [1.0, 0.0, 0.0], [1.8, 0.0, 0.0])
         """
         q = np.asarray(q, dtype=float)
         K = q.shape[0]
@@ -95,8 +128,27 @@ class JointChain:
         return out
 
     def perturbed(self, delta: np.ndarray) -> JointChain:
-        """The chain with every placement moved by its own small SE(3) error:
-        ``X_i ← X_i e^{[δ_i]}`` (δ (n + 1, 6), angular first, in the placement's child frame)."""
+        """The chain with every placement moved by its own small SE(3) error: ``X_i ← X_i e^{[δ_i]}``.
+
+        Parameters
+        ----------
+        delta : numpy.ndarray, shape (n + 1, 6) or (6(n + 1),)
+            One twist ``δ_i = (ω, v)`` per placement (rad, m), in the placement's child frame.
+
+        Returns
+        -------
+        JointChain
+            A new chain (this one is unchanged).
+
+        Examples
+        --------
+        Lengthening the tool placement by 1 cm moves the tool 1 cm along the last link:
+
+        >>> chain = chain_from_robot(rk.load("twolink"))
+        >>> delta = np.zeros((3, 6)); delta[2, 3] = 0.01
+        >>> round(float(chain.perturbed(delta).fk(np.zeros((1, 2)))[0][0, 3]), 6)
+        1.81
+        """
         delta = np.asarray(delta, dtype=float).reshape(self.n + 1, 6)
         return JointChain(self.placements @ lie.exp6(delta), self.axes.copy(), self.kinds)
 

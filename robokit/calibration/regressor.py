@@ -254,11 +254,47 @@ class BaseParameters:
         return C
 
     def of(self, pi: np.ndarray) -> np.ndarray:
-        """Base parameters ``π_b = C π`` of a full parameter vector π."""
+        """Base parameters ``π_b = C π = π[independent] + β π[dependent]`` of a full parameter vector.
+
+        Parameters
+        ----------
+        pi : numpy.ndarray, shape (p,)
+            Full parameter vector: the 10 inertial parameters per link, then the friction ones
+            (:func:`standard_parameter_names`).
+
+        Returns
+        -------
+        numpy.ndarray, shape (r,)
+            The base parameters; ``Y[:, :, independent] @ π_b`` equals ``Y @ π`` for every motion.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> bp = base_parameters(robot)
+        >>> q = np.random.default_rng(0).normal(size=(5, 2))
+        >>> Y = full_regressor(chain_from_robot(robot), q, q, q, robot.gravity)
+        >>> pi = np.r_[standard_parameters(robot), np.full(4, 0.1)]
+        >>> np.allclose(Y[:, :, bp.independent] @ bp.of(pi), Y @ pi)
+        True
+        """
         return self.matrix @ np.asarray(pi, dtype=float)
 
     def meaning(self) -> list[str]:
-        """Each base parameter as a combination of standard ones, e.g. ``"I2xx + 0.432·m3·c3y + …"``."""
+        """Each base parameter as a combination of standard ones.
+
+        Returns
+        -------
+        list of str
+            One string per base parameter, e.g. ``"I2xx + 0.432·m3·c3y + …"`` (names of
+            :func:`standard_parameter_names`; coefficients in SI units).
+
+        Examples
+        --------
+        For the planar arm with a 1 m first link, joint 1 only ever sees ``I1zz + m2·l1²``:
+
+        >>> base_parameters(rk.load("twolink")).meaning()[:3]
+        ['m1·c1x + m2', 'm1·c1y', 'I1zz + m2']
+        """
         out = []
         for k, col in enumerate(self.independent):
             terms = [self.names[col]]
