@@ -243,7 +243,14 @@ class IdentificationResult:
                      source=f"identified from {self.robot.source or self.robot.name}")
 
     def table(self) -> str:
-        """The base parameters, one per line: value, relative standard deviation, meaning."""
+        """The base parameters, one per line: value, relative standard deviation, meaning.
+
+        Returns
+        -------
+        str
+            A header line, then one line per base parameter (value in SI units, σ in % of it, the
+            combination of standard parameters it stands for).
+        """
         lines = [f"{'value':>12} {'σ %':>7}  base parameter (standard parameters in joint frames, about the "
                  "joint origin)"]
         for v, s, meaning in zip(self.base_parameters, self.standard_deviation, self.base.meaning()):

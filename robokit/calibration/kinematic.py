@@ -296,7 +296,13 @@ class CalibrationResult:
     converged: bool
 
     def summary(self) -> str:
-        """A few lines: before/after RMS, identifiability, what stays nominal."""
+        """A few lines: before/after RMS, identifiability, what stays nominal.
+
+        Returns
+        -------
+        str
+            The text (also ``str(result)``).
+        """
         return (f"calibrated {self.nominal.name}: {len(self.residuals)} samples; RMS before {self.rms_before!r}, "
                 f"after {self.rms_after!r}\n{self.identifiability}")
 

@@ -80,10 +80,25 @@ class PoEParams:
 
     @property
     def n(self) -> int:
+        """Number of joints n (columns of ``Slist``)."""
         return self.Slist.shape[1]
 
     def to_json_dict(self) -> dict:
-        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (see the PoE JSON format page of the documentation)."""
+        """The JSON object of ``robokit convert IN.urdf -o OUT.json`` (the PoE JSON format page of the
+        documentation).
+
+        Returns
+        -------
+        dict
+            ``M`` (4×4), ``Slist``, ``Blist`` (6×n), ``Mlist`` (n+1 4×4), ``Glist`` (n 6×6) as nested
+            lists, ``joint_names`` (n), ``tip``.
+
+        Examples
+        --------
+        >>> d = rk.load("twolink").poe.to_json_dict()
+        >>> sorted(d), len(d["Mlist"]), d["tip"]
+        (['Blist', 'Glist', 'M', 'Mlist', 'Slist', 'joint_names', 'tip'], 3, 'tool')
+        """
         return {
             "M": self.M.tolist(),
             "Slist": self.Slist.tolist(),

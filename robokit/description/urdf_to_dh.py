@@ -167,6 +167,7 @@ class URDFToDH:
 
     @property
     def exact(self) -> bool:
+        """True when the table reproduces the robot to 1e-9 (``residual ≤ 1e-9``)."""
         return self.residual <= 1e-9
 
 

@@ -113,16 +113,41 @@ class IKProblem:
     t_start: float = field(default_factory=time.perf_counter)
 
     def generator(self) -> np.random.Generator:
-        """The generator the restarts draw from: ``rng``, or one seeded with ``seed`` (made on
-        first use — a closed-form answer never pays for it)."""
+        """The generator the restarts draw from: ``rng``, or one seeded with ``seed`` (made on first
+        use — a closed-form answer never pays for it).
+
+        Returns
+        -------
+        numpy.random.Generator
+            The same generator on every call.
+        """
         if self.rng is None:
             self.rng = np.random.default_rng(self.seed)
         return self.rng
 
     @classmethod
     def tip_pose(cls, robot: Robot, T: np.ndarray) -> IKProblem:
-        """The problem "place the tip at the pose T (4, 4)" from q0 = 0 clipped to the limits,
-        with the defaults of :func:`robokit.solve_ik`."""
+        """The problem "place the tip at the pose T" from q0 = 0 clipped to the limits, with the
+        defaults of :func:`robokit.solve_ik`.
+
+        Parameters
+        ----------
+        robot : Robot
+            The robot.
+        T : array_like, shape (4, 4)
+            Target tip pose in the base frame, m.
+
+        Returns
+        -------
+        IKProblem
+            ``frame=None``, ``position_only=False``, ``T_target=T``.
+
+        Examples
+        --------
+        >>> p = IKProblem.tip_pose(rk.load("twolink"), np.eye(4))
+        >>> p.q0.tolist(), p.position_only, p.T_target.shape
+        ([0.0, 0.0], False, (4, 4))
+        """
         qlim = np.asarray(robot.qlim, dtype=float)
         q0 = np.clip(np.zeros(robot.n), qlim[:, 0], qlim[:, 1])
         return cls(robot, None, q0, T_target=np.asarray(T, dtype=float))
@@ -183,18 +208,68 @@ class IKBackend:
     name = ""
 
     def unsupported(self, problem: IKProblem) -> str | None:
-        """None if this back end can solve ``problem``, else the reason (one sentence)."""
+        """Whether this back end can solve ``problem``.
+
+        Parameters
+        ----------
+        problem : IKProblem
+            The problem.
+
+        Returns
+        -------
+        str or None
+            None if it can, else the reason (one sentence; ``solve_ik`` records it in
+            ``IKResult.tried``).
+        """
         raise NotImplementedError
 
     def solve(self, problem: IKProblem) -> IKResult:
-        """Solve a supported ``problem``; ``IKResult.method`` is :attr:`name`."""
+        """Solve a supported ``problem``.
+
+        Parameters
+        ----------
+        problem : IKProblem
+            A problem :meth:`unsupported` accepted.
+
+        Returns
+        -------
+        IKResult
+            ``method`` is :attr:`name`; ``success`` False (no exception) when no answer meets the
+            tolerance.
+        """
         raise NotImplementedError
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
-        """(B,) bool: which of the (B, 4, 4) tip poses this back end reaches inside the limits.
+        """Which of these tip poses the back end reaches inside the limits (for capability maps).
 
         Each target is solved from a random initial guess (drawn from ``rng``, as the restarts'
         seed), so a chunk's answers depend only on the generator's state.
+
+        Parameters
+        ----------
+        robot : Robot
+            The robot.
+        targets : numpy.ndarray, shape (B, 4, 4)
+            Tip poses in the base frame, m.
+        rng : numpy.random.Generator
+            Draws the initial guesses and seeds.
+        restarts : int
+            Random restarts per target (iterative back ends).
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (B,)
+            True where a solution inside the limits was found.
+
+        Examples
+        --------
+        Half a turn at the shoulder is reachable, 3 m away is not (links 1 m and 0.8 m):
+
+        >>> robot = rk.load("twolink")
+        >>> far = np.eye(4); far[0, 3] = 3.0
+        >>> targets = np.stack([robot.frame_pose([np.pi / 2, 0.3]), far])
+        >>> backend("planar").reaches(robot, targets, np.random.default_rng(0), 0).tolist()
+        [True, False]
         """
         qlim = np.asarray(robot.qlim, dtype=float)
         lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)

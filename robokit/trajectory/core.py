@@ -87,7 +87,19 @@ class Trajectory:
         return float(self.t[-1] - self.t[0]) if len(self.t) else 0.0
 
     def column_labels(self) -> tuple:
-        """``labels`` or the default ``("q1", …, "qn")``."""
+        """Names of the columns of ``q``: ``labels`` or the default ``("q1", …, "qn")``.
+
+        Returns
+        -------
+        tuple of str
+            n names.
+
+        Examples
+        --------
+        >>> from robokit.trajectory import cubic_trajectory
+        >>> cubic_trajectory([0.0, 0.0], [1.0, 2.0], 1.0, t=3).column_labels()
+        ('q1', 'q2')
+        """
         return tuple(self.labels) if self.labels is not None else tuple(f"q{i + 1}" for i in range(self.n))
 
     def __len__(self) -> int:

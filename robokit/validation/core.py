@@ -66,9 +66,22 @@ class CheckRow:
 
     @property
     def passed(self) -> bool:
+        """True when there is no error, ``cases > 0`` and ``max_error`` is finite and ≤ ``tolerance``."""
         return not self.error and math.isfinite(self.max_error) and self.max_error <= self.tolerance and self.cases > 0
 
     def as_dict(self) -> dict:
+        """The row as a JSON-ready dict (what ``robokit validate --json`` prints per row).
+
+        Returns
+        -------
+        dict
+            The fields and ``passed``.
+
+        Examples
+        --------
+        >>> CheckRow("fk", "ur5", 10, 1e-15, 1e-9).as_dict()["passed"]
+        True
+        """
         d = asdict(self)
         d["passed"] = self.passed
         return d
