@@ -41,14 +41,28 @@ _Z = np.array([0.0, 0.0, 1.0])
 
 @dataclass(frozen=True)
 class DHDynamicsTrace:
-    """The intermediate quantities of Craig's Newton–Euler, one row per link i = 1..n, each in
-    frame {i}'s axes (Lecture 7's symbols).
+    """The intermediate quantities of Craig's Newton–Euler (:func:`dh_newton_euler_trace`).
 
-    omega, domega : (n, 3) ⁱωᵢ (rad/s), ⁱω̇ᵢ (rad/s²); dv : (n, 3) ⁱv̇ᵢ, the acceleration of the origin
-    of frame {i} (m/s², gravity included as v̇₀ = −g); dv_com : (n, 3) v̇_Cᵢ, of link i's centre of
-    mass; F, N : (n, 3) the inertial force mᵢ v̇_Cᵢ (N) and moment I_Cᵢ ω̇ᵢ + ωᵢ × I_Cᵢ ωᵢ (N·m);
-    f, n : (n, 3) ⁱfᵢ (N), ⁱnᵢ (N·m), the force and moment link i−1 exerts on link i, about the
-    origin of frame {i}; tau : (n,) the joint torques/forces. ``print(trace)`` is the per-link table.
+    One row per link i = 1..n, each in frame {i}'s axes (Lecture 7's symbols). ``print(trace)`` is
+    the per-link table.
+
+    Attributes
+    ----------
+    omega, domega : (n, 3) ndarray
+        ⁱωᵢ (rad/s) and ⁱω̇ᵢ (rad/s²).
+    dv : (n, 3) ndarray
+        ⁱv̇ᵢ, the acceleration of the origin of frame {i} (m/s², gravity included as v̇₀ = −g).
+    dv_com : (n, 3) ndarray
+        v̇_Cᵢ, the acceleration of link i's centre of mass (m/s²).
+    F, N : (n, 3) ndarray
+        The inertial force mᵢ v̇_Cᵢ (N) and moment I_Cᵢ ω̇ᵢ + ωᵢ × I_Cᵢ ωᵢ (N·m).
+    f, n : (n, 3) ndarray
+        ⁱfᵢ (N), ⁱnᵢ (N·m): the force and moment link i−1 exerts on link i, about the origin of
+        frame {i}.
+    tau : (n,) ndarray
+        The joint torques/forces (N·m / N).
+    convention : str
+        "standard" or "modified".
     """
 
     omega: np.ndarray
