@@ -106,16 +106,45 @@ def ikin_body(Blist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLik
               max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
 
-    Blist : 6×n body screw axes (columns, angular first) in the end-effector frame at zero;
-    M : 4×4 end-effector pose at θ = 0; T : 4×4 target pose; thetalist0 : (n,) initial guess;
-    eomg, ev : tolerances on the angular (rad) and linear (m) parts of the body twist error.
+    Iterates ``θ ← θ + J_b(θ)⁺ V_b`` with the body error twist ``[V_b] = log(T_sb(θ)⁻¹ T)`` until
+    ``‖ω_b‖ ≤ eomg`` and ``‖v_b‖ ≤ ev``.
 
-    Returns ``(thetalist, success)``; ``success`` is False (no exception) when the iteration
-    does not converge, e.g. for an unreachable target — ``thetalist`` is then the iterate with
-    the smallest error seen (revolute angles wrapped to (−π, π]), never a diverged value.
+    Parameters
+    ----------
+    Blist : (6, n) array_like
+        Body screw axes (columns, angular first ``(ω; v)``) in the end-effector frame at θ = 0.
+    M : (4, 4) array_like
+        End-effector pose at θ = 0 in the space frame (metres).
+    T : (4, 4) array_like
+        Target end-effector pose in the space frame (metres).
+    thetalist0 : (n,) array_like
+        Initial guess (rad / m).
+    eomg : float
+        Tolerance on the angular part of the error twist (rad).
+    ev : float
+        Tolerance on the linear part of the error twist (m).
+    max_iterations : int, optional
+        Newton steps before giving up; default 100.
 
-    Example: for a planar 2R arm, ``ikin_body(Blist, M, fkin_body(M, Blist, [0.3, 0.4]),
-    [0.2, 0.5], 1e-9, 1e-9)`` → ``(array([0.3, 0.4]), True)``.
+    Returns
+    -------
+    thetalist : (n,) ndarray
+        The joint values (rad / m; revolute angles wrapped to (−π, π]).
+    success : bool
+        False (no exception) when the iteration does not converge, e.g. for an unreachable target —
+        ``thetalist`` is then the iterate with the smallest error seen, never a diverged value.
+
+    Examples
+    --------
+    The planar 2R arm of :func:`robokit.fkin_body` (unit links): the tip at (1, 1) pointing along x
+    is reached with the shoulder up and the elbow back, θ = (π/2, −π/2):
+
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Blist = np.array([[0, 0, 1, 0, 2, 0], [0, 0, 1, 0, 1, 0]]).T
+    >>> T = np.array([[1., 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, success = rk.ikin_body(Blist, M, T, [1.2, -1.2], 1e-9, 1e-9)
+    >>> theta.round(4), success
+    (array([ 1.5708, -1.5708]), True)
     """
     Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
     best = _Best(Blist)
@@ -133,9 +162,49 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
                max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the space frame (seed 004 §3, Modern Robotics 6.2).
 
-    Slist : 6×n space screw axes; M, T, thetalist0, eomg, ev as in :func:`ikin_body`.
-    The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``J_s⁺ V_s``.
-    Returns ``(thetalist, success)``.
+    The error twist is ``V_s = Ad_{T_sb} log(T_sb⁻¹ T)`` and the step ``θ ← θ + J_s(θ)⁺ V_s``, until
+    ``‖ω_s‖ ≤ eomg`` and ``‖v_s‖ ≤ ev``.
+
+    Parameters
+    ----------
+    Slist : (6, n) array_like
+        Space screw axes (columns, ``(ω; v)``).
+    M : (4, 4) array_like
+        End-effector pose at θ = 0 in the space frame (metres).
+    T : (4, 4) array_like
+        Target end-effector pose in the space frame (metres).
+    thetalist0 : (n,) array_like
+        Initial guess (rad / m).
+    eomg : float
+        Tolerance on the angular part of the error twist (rad).
+    ev : float
+        Tolerance on the linear part of the error twist (m).
+    max_iterations : int, optional
+        Newton steps before giving up; default 100.
+
+    Returns
+    -------
+    thetalist : (n,) ndarray
+        The joint values (rad / m; revolute angles wrapped to (−π, π]).
+    success : bool
+        False (no exception) when the iteration does not converge (e.g. an unreachable target);
+        ``thetalist`` is then the best iterate seen.
+
+    Examples
+    --------
+    The planar 2R arm of :func:`robokit.fkin_space` (unit links): the pose of :func:`ikin_body`'s
+    example, and a target 3 m away, out of reach:
+
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Slist = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -1, 0]]).T
+    >>> T = np.array([[1., 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, success = rk.ikin_space(Slist, M, T, [1.2, -1.2], 1e-9, 1e-9)
+    >>> theta.round(4), success
+    (array([ 1.5708, -1.5708]), True)
+    >>> far = M.copy()
+    >>> far[0, 3] = 3.0
+    >>> rk.ikin_space(Slist, M, far, [0.2, 1.2], 1e-9, 1e-9)[1]
+    False
     """
     Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
     n = Slist.shape[1]

@@ -73,14 +73,43 @@ def flip_signs(table: DHTable) -> np.ndarray | None:
 
 
 def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.ndarray:
-    """Geometric Jacobian (6×n, rows (ω; v) of the tool origin) of a :class:`DHTable` by outward
-    velocity propagation.
+    """Geometric Jacobian of a DH table by outward velocity propagation (Lecture 7, Craig ch. 5).
 
-    table : DHTable (standard or modified, revolute and prismatic joints); q : (n,) joint values;
-    reference : "base" — expressed in base_link axes (= Pinocchio's LOCAL_WORLD_ALIGNED), or
-    "tool" — in the tool frame's axes (= Pinocchio's LOCAL).
+    The recursion of this module's docstring, run for all columns in one O(n) pass: column j is
+    ``(ẑ_j, ẑ_j × (p − o_j))`` for a revolute joint and ``(0, ẑ_j)`` for a prismatic one, with
+    ``ẑ_j``, ``o_j`` the joint's axis and origin and p the tool origin. Flipped joints
+    (``flip: true``) get their column negated.
 
-    Example: for the planar 2-link arm the v rows are Lecture 6's ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], …]``.
+    Parameters
+    ----------
+    table : DHTable
+        Standard or modified convention, revolute and prismatic joints (base and tool included).
+    q : (n,) array_like
+        Joint values (rad for revolute, m for prismatic joints).
+    reference : {"base", "tool"}, optional
+        Axes of the result: ``"base"`` (default) — base_link axes (Pinocchio's
+        LOCAL_WORLD_ALIGNED); ``"tool"`` — the tool frame's axes (Pinocchio's LOCAL).
+
+    Returns
+    -------
+    (6, n) ndarray
+        Rows ``(ω; v)``: angular velocity (rad/s) and velocity of the tool origin (m/s) per unit
+        joint rate, in the chosen axes.
+
+    Raises
+    ------
+    InputError
+        When ``q`` has the wrong length or non-finite values, or ``reference`` is unknown.
+
+    Examples
+    --------
+    The course's planar two-link arm (l₁ = 1 m, l₂ = 0.8 m) at q = (0, π/2): the v rows x, y are
+    Lecture 6's ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], [l₁c₁ + l₂c₁₂, l₂c₁₂]] = [[−0.8, −0.8], [1, 0]]``:
+
+    >>> table = rk.load("twolink").dh
+    >>> dh_jacobian(table, [0, np.pi / 2])[3:5].round(4)
+    array([[-0.8, -0.8],
+           [ 1. ,  0. ]])
     """
     if reference not in ("base", "tool"):
         raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
@@ -99,25 +128,44 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
 
 
 def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference: str = "tool") -> np.ndarray:
-    """Joint torques (n,) that balance a static tip wrench, by inward force propagation.
+    """Joint torques that balance a static tip wrench, by inward force propagation (Lecture 7).
+
+    ``f_i = f_{i+1}``, ``n_i = n_{i+1} + (o_{i+1} − o_i) × f_{i+1}``, ``τ_i = ẑ_iᵀ n_i`` (revolute) or
+    ``ẑ_iᵀ f_i`` (prismatic), the same as ``τ = Jᵀ F_tip``.
 
     Parameters
     ----------
     table : DHTable
-    q : (n,) joint values (rad, m).
-    F_tip : (6,) ``(n, f)`` — moment (N·m, about the tool origin) and force (N) the tool exerts on
-        the environment, angular first as Modern Robotics' F_tip.
-    reference : "tool" (default) — F_tip in the tool frame's axes; "base" — in base_link's axes
+        Standard or modified convention, revolute and prismatic joints.
+    q : (n,) array_like
+        Joint values (rad, m).
+    F_tip : (6,) array_like
+        ``(n, f)`` — moment (N·m, about the tool origin) and force (N) the tool exerts on the
+        environment, angular first as Modern Robotics' ``Ftip``.
+    reference : {"tool", "base"}, optional
+        ``"tool"`` (default) — ``F_tip`` in the tool frame's axes; ``"base"`` — in base_link's axes
         (the wrench a force sensor mounted in the world would report, moved to the tool origin).
 
     Returns
     -------
     (n,) ndarray
-        τ with ``τ = J_toolᵀ F_tip`` ("tool") or ``τ = J_baseᵀ F_tip`` ("base", J with rows (ω; v)
-        of the tool origin in base axes, as :func:`dh_jacobian`).
+        τ (N·m for revolute, N for prismatic joints) with ``τ = J_toolᵀ F_tip`` ("tool") or
+        ``τ = J_baseᵀ F_tip`` ("base", J with rows (ω; v) of the tool origin in base axes, as
+        :func:`dh_jacobian`).
 
-    Example: ``dh_static_torques(table, q, [0, 0, 0, 0, 0, -10], reference="base")`` holds 10 N
-    pushing down on the environment.
+    Raises
+    ------
+    InputError
+        On a wrong length, non-finite values or an unknown ``reference``.
+
+    Examples
+    --------
+    The planar two-link arm stretched along x (tip at 1.8 m) pushing 10 N down (−y of the base)
+    on the environment needs τ = (−10 N × 1.8 m, −10 N × 0.8 m):
+
+    >>> table = rk.load("twolink").dh
+    >>> dh_static_torques(table, [0, 0], [0, 0, 0, 0, -10, 0], reference="base").round(4)
+    array([-18.,  -8.])
     """
     if reference not in ("tool", "base"):
         raise InputError(f"reference: expected 'tool' or 'base', got {reference!r}")
