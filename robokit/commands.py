@@ -195,10 +195,10 @@ def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
     import yaml
 
     from robokit.description.dh import DHTable
-    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.description.urdf_to_dh import dh_from_urdf
     from robokit.errors import InputError
 
-    res = urdf_to_dh(robot, "standard")
+    res = dh_from_urdf(robot, "standard")
     frames = nominal.frame_poses(np.zeros(nominal.n))
     size = 10.0 * max([1.0] + [float(np.linalg.norm(T[:3, 3])) for T in frames.values()])
     big = max((abs(v), f"{k}{i + 1}") for i, l in enumerate(res.table.links) for k, v in (("a", l.a), ("d", l.d)))

@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
+from robokit._arrays import check_reference
 
 from robokit._optional import require
 
@@ -272,10 +273,12 @@ class SymbolicArm:
         ``simplify``: True, False or "auto" (full up to 3 joints; beyond, trigsimp for the
         base frame and no simplification for the tool frame, which would take minutes).
         """
-        if reference not in ("base", "tool"):
-            raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
+        ref = check_reference(reference)
         cols = []
-        if reference == "base":
+        if ref == "world":  # space Jacobian: v of the point at the base origin, columns [zᵢ; pᵢ × zᵢ]
+            for (z, p), jt in zip(self._joint_axes(), self.joint_types):
+                cols.append(sp.Matrix.vstack(z, p.cross(z)) if jt == "R" else sp.Matrix.vstack(sp.zeros(3, 1), z))
+        elif ref == "local_world_aligned":
             p_e = (self._frames()[-1] * self.tool)[:3, 3]
             for (z, p), jt in zip(self._joint_axes(), self.joint_types):
                 if jt == "R":
@@ -302,7 +305,7 @@ class SymbolicArm:
                 else:
                     cols.append(sp.Matrix.vstack(sp.zeros(3, 1), z))
         J = sp.Matrix.hstack(*cols)
-        return _simplify_matrix(J, self._level(simplify, heavy=(reference == "tool")))
+        return _simplify_matrix(J, self._level(simplify, heavy=(ref == "local")))
 
     # ------------------------------------------------------------------ dynamics
     def dynamics(self, masses: Sequence[Any], coms: Sequence[Any], inertias: Sequence[Any] | None = None,

@@ -16,6 +16,7 @@ from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit._deprecation import deprecated_alias
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -28,7 +29,7 @@ __all__ = [
     "geometric_jacobian",
     "twist_transform",
     "wrench_transform",
-    "jacobian_to_frame",
+    "jacobian_in_frame",
     "manipulability",
     "velocity_ellipsoid",
     "singularity",
@@ -158,7 +159,7 @@ def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
     return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
-def jacobian_to_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
+def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     """Re-express a geometric Jacobian (ω; v) in rotated axes: ``blockdiag(R, R) J``.
 
     With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one and
@@ -329,3 +330,6 @@ def resolved_rate_at(robot: RobotLike, q: ArrayLike, V: ArrayLike, frame: str | 
 
 
 __all__ += ["manipulability_at", "velocity_ellipsoid_at", "resolved_rate_at", "SingularityReport"]
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+jacobian_to_frame = deprecated_alias(jacobian_in_frame, "jacobian_to_frame")
