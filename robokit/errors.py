@@ -15,10 +15,10 @@ raises are banned outside the compiled kernels (``tests/hardening/test_errors_by
 class RobokitError(Exception):
     """Base class of robokit's own exceptions.
 
-    Parameters
+    Attributes
     ----------
-    *args : object
-        As for any exception; robokit passes one message string.
+    args : tuple
+        As for any exception: robokit raises it with one message string, ``args == (message,)``.
     """
 
 
@@ -28,10 +28,11 @@ class InputError(RobokitError, ValueError):
     A ``ValueError``, so ``except ValueError`` code keeps working; the CLI prints it as one
     ``robokit: error: ...`` line and exits with status 2.
 
-    Parameters
+    Attributes
     ----------
-    message : str
-        What was wrong, starting with the argument's name (``"q: expected shape (6,), got (5,)"``).
+    args : tuple
+        ``(message,)``: what was wrong, starting with the argument's name
+        (``"q: expected shape (6,), got (5,)"``).
 
     Examples
     --------
@@ -61,10 +62,10 @@ class RobokitWarning(UserWarning):
     """Something robokit did on the user's behalf that they should know (a mesh not found and
     drawn without, a floating base fixed, a tree's tip chosen); the CLI prints it as one line.
 
-    Parameters
+    Attributes
     ----------
-    *args : object
-        As for any warning; robokit passes one message string (``warnings.warn(msg, RobokitWarning)``).
+    args : tuple
+        ``(message,)``, as ``warnings.warn(message, RobokitWarning)`` makes it.
     """
 
 
