@@ -134,7 +134,8 @@ class SymbolicDynamics:
     G : sympy.Matrix, (n, 1)
         Gravity torques.
     B : sympy.Matrix, (n, n(n−1)/2)
-        Coriolis coefficients of the configuration-space form ``τ = M q̈ + B [q̇ᵢq̇ⱼ]_{i<j} + Ccf [q̇ᵢ²] + G``.
+        Coriolis coefficients of the configuration-space form
+    ``τ = M q̈ + B [q̇ᵢq̇ⱼ]_{i<j} + Ccf [q̇ᵢ²] + G``.
     Ccf : sympy.Matrix, (n, n)
         Centrifugal coefficients of that form.
     """
@@ -302,7 +303,8 @@ class SymbolicArm:
         cols = []
         if ref == "world":  # space Jacobian: v of the point at the base origin, columns [zᵢ; pᵢ × zᵢ]
             for (z, p), jt in zip(self._joint_axes(), self.joint_types):
-                cols.append(sp.Matrix.vstack(z, p.cross(z)) if jt == "R" else sp.Matrix.vstack(sp.zeros(3, 1), z))
+                rev = jt == "R"
+                cols.append(sp.Matrix.vstack(z, p.cross(z)) if rev else sp.Matrix.vstack(sp.zeros(3, 1), z))
         elif ref == "local_world_aligned":
             p_e = (self._frames()[-1] * self.tool)[:3, 3]
             for (z, p), jt in zip(self._joint_axes(), self.joint_types):

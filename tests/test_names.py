@@ -66,7 +66,7 @@ def test_old_name_warns_and_names_the_new_one(old: str) -> None:
     assert alias.__name__ == old and alias.__wrapped__.__name__ == new
     with pytest.warns(DeprecationWarning, match=rf"{old} is deprecated: use robokit\..*\.{new}\b"):
         with pytest.raises(TypeError):
-            alias()  # every one of them needs arguments: the warning comes first, then the new function's error
+            alias()  # each needs arguments: the warning comes first, then the new function's error
 
 
 def test_alias_returns_the_new_functions_result() -> None:
@@ -95,6 +95,7 @@ def test_deprecated_alias_helper() -> None:
         warnings.simplefilter("always")
         assert side_to_area(3.0) == 9.0 and side_to_area(3.0, square=False) == 3.0
     assert len(caught) == 2 and all(w.category is DeprecationWarning for w in caught)
-    assert "side_to_area is deprecated: use" in str(caught[0].message) and "area_from_side" in str(caught[0].message)
+    message = str(caught[0].message)
+    assert "side_to_area is deprecated: use" in message and "area_from_side" in message
     assert caught[0].filename == __file__  # attributed to the caller, not to the helper
     assert "area_from_side" in (side_to_area.__doc__ or "")

@@ -169,7 +169,7 @@ class Robot:
         pin = self._pin
         rf = self._ref_frames.get(reference)
         if rf is None:
-            canonical = check_reference(reference)  # the shared vocabulary: synonyms map onto Pinocchio's names
+            canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
             rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio

@@ -35,10 +35,27 @@ _Z = np.array([0.0, 0.0, 1.0])
 
 
 def dh_link_transform(a: float, alpha: float, d: float, theta: float, modified: bool) -> np.ndarray:
-    """ⁱ⁻¹Tᵢ (4×4) of one DH row: ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (standard) or ``Rx(α) Tx(a) Rz(θ) Tz(d)``
-    (modified); a, d in m, α, θ in rad (the joint value already added).
+    """ⁱ⁻¹Tᵢ (4×4) of one DH row (Lecture 4).
 
-    Example: ``dh_link_transform(1.0, 0.0, 0.0, np.pi / 2, False)[:3, 3]`` is ``[0, 1, 0]``.
+    Standard ``Rz(θ) Tz(d) Tx(a) Rx(α)``; modified (Craig) ``Rx(α) Tx(a) Rz(θ) Tz(d)``.
+
+    Parameters
+    ----------
+    a, alpha, d, theta : float
+        The row's link length (m), twist (rad), offset (m) and angle (rad, the joint value already
+        added); for the modified convention a and α are a_{i−1}, α_{i−1}.
+    modified : bool
+        True for the modified convention.
+
+    Returns
+    -------
+    (4, 4) ndarray
+        The pose of frame {i} in frame {i−1}.
+
+    Examples
+    --------
+    >>> dh_link_transform(1.0, 0.0, 0.0, np.pi / 2, False)[:3, 3].round(4)
+    array([0., 1., 0.])
     """
     ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
     if modified:
@@ -64,7 +81,31 @@ def _shown(text: str) -> int:
 
 
 def format_trace(title: str, rows: list[tuple[str, np.ndarray]], n: int, first: int = 1) -> str:
-    """The per-link table of a trace: for each frame i, one line per quantity with its x, y, z."""
+    """The per-link table of a trace: for each frame i, one line per quantity with its x, y, z.
+
+    Parameters
+    ----------
+    title : str
+        First line.
+    rows : list of (str, (n, 3) ndarray)
+        The quantities: a label (e.g. "ω") and one row of x, y, z per frame.
+    n : int
+        Number of frames shown.
+    first : int
+        Index of the first frame (0 or 1).
+
+    Returns
+    -------
+    str
+        The table (values to 6 significant digits; |x| < 1e-12 shown as 0).
+
+    Examples
+    --------
+    >>> print(format_trace("trace", [("ω", np.array([[0.0, 0.0, 1.5]]))], 1))
+    trace
+      i             x            y            z
+      1  ω          0            0          1.5
+    """
     width = max(_shown(name) for name, _ in rows)
     lines = [title, f"{'i':>3}  {'':<{width}}  {'x':>12} {'y':>12} {'z':>12}"]
     for i in range(n):
@@ -78,12 +119,19 @@ def format_trace(title: str, rows: list[tuple[str, np.ndarray]], n: int, first: 
 
 @dataclass(frozen=True)
 class DHVelocityTrace:
-    """The outward velocity iteration, frame by frame.
+    """The outward velocity iteration of :func:`dh_velocity_trace`, frame by frame (Lecture 6).
 
-    omega : (n+1, 3) ⁱωᵢ, the angular velocity of frame {i} in its own axes (rad/s);
-    v : (n+1, 3) ⁱvᵢ, the velocity of the origin of frame {i} in its own axes (m/s).
-    Row 0 is the base frame {0} (at rest), rows 1..n the DH frames {1}..{n}.
-    ``print(trace)`` shows the Lecture 6 table.
+    Row 0 is the base frame {0} (at rest), rows 1..n the DH frames {1}..{n}; ``print(trace)``
+    shows the Lecture 6 table.
+
+    Attributes
+    ----------
+    omega : (n+1, 3) ndarray
+        ⁱωᵢ, the angular velocity of frame {i} in its own axes (rad/s).
+    v : (n+1, 3) ndarray
+        ⁱvᵢ, the velocity of the origin of frame {i} in its own axes (m/s).
+    convention : str
+        "standard" or "modified", the table's DH convention.
     """
 
     omega: np.ndarray

@@ -126,7 +126,9 @@ def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
 
 
 def exp3(w: np.ndarray) -> np.ndarray:
-    """``exp([ωθ])``: exponential coordinates → rotations, ``I + A[ωθ] + B[ωθ]²`` (Rodrigues); batched, unchecked.
+    """``exp([ωθ])``: exponential coordinates → rotations, ``I + A[ωθ] + B[ωθ]²`` (Rodrigues).
+
+    Batched and unchecked.
 
     Parameters
     ----------

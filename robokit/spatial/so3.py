@@ -41,7 +41,7 @@ SO3_TOLERANCE = 1e-6
 
 
 def check_rotation(R: ArrayLike, name: str = "R", tol: float = SO3_TOLERANCE) -> np.ndarray:
-    """Return ``R`` as a 3×3 float array, or raise :class:`~robokit.errors.InputError` if it is not a rotation.
+    """``R`` as a 3×3 float array, or :class:`~robokit.errors.InputError` if it is not a rotation.
 
     The test is ``distance_to_SO3(R) <= tol`` (orthonormal columns and det +1).
 

@@ -105,7 +105,7 @@ def test_seed_dh_functions_use_checks(cases):
     with pytest.raises(ValueError, match="NaN"):
         dh_static_torques(table, np.array([np.nan] + [0.0] * 5), np.zeros(6))
     with pytest.raises(ValueError, match="reference"):
-        dh_jacobian(table, np.zeros(6), reference="spatial")  # "world" is accepted since the shared vocabulary
+        dh_jacobian(table, np.zeros(6), reference="spatial")  # "world" is accepted now
     with pytest.raises(ValueError, match="dq"):
         dh_inverse_dynamics(table, np.zeros(6), np.zeros(3), np.zeros(6))
     assert dh_jacobian(table, [0, 0, 0, 0, 0, 0]).shape == (6, 6)  # lists are converted

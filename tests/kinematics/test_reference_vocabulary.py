@@ -62,10 +62,12 @@ def test_every_name_maps_onto_one_pinocchio_frame():
 @pytest.mark.parametrize("bad", ["World", "spatial", "", None, 0])
 def test_unknown_reference_lists_the_accepted_names(robots, bad):
     table = robots["rrr"].dh
-    for call in (lambda: dh_jacobian(table, np.zeros(3), bad), lambda: robots["rrr"].jacobian(np.zeros(3), reference=bad),
-                 lambda: dh_static_torques(table, np.zeros(3), np.ones(6), reference=bad),
-                 lambda: batch_jacobian(robots["rrr"], np.zeros((2, 3)), reference=bad)):
-        with pytest.raises(InputError, match=r"reference: expected one of 'world', .*'local_world_aligned', 'base'"):
+    calls = (lambda: dh_jacobian(table, np.zeros(3), bad),
+             lambda: robots["rrr"].jacobian(np.zeros(3), reference=bad),
+             lambda: dh_static_torques(table, np.zeros(3), np.ones(6), reference=bad),
+             lambda: batch_jacobian(robots["rrr"], np.zeros((2, 3)), reference=bad))
+    for call in calls:
+        with pytest.raises(InputError, match=r"reference: expected one of 'world', .*'base'"):
             call()
 
 
@@ -89,10 +91,11 @@ def test_every_function_equals_pinocchio(robots, model, name):
 def test_defaults_are_unchanged(robots):
     robot = robots["puma560"]
     q = _configurations(robot)[0]
-    np.testing.assert_allclose(robot.jacobian(q), _pin_jacobian(robot, q, "world"), atol=1e-9)
-    np.testing.assert_allclose(dh_jacobian(robot.dh, q), _pin_jacobian(robot, q, "local_world_aligned"), atol=1e-9)
+    J_world, J_lwa, J_local = (_pin_jacobian(robot, q, c) for c in ("world", "local_world_aligned", "local"))
+    np.testing.assert_allclose(robot.jacobian(q), J_world, atol=1e-9)
+    np.testing.assert_allclose(dh_jacobian(robot.dh, q), J_lwa, atol=1e-9)
     F = np.arange(1.0, 7.0)
-    np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), _pin_jacobian(robot, q, "local").T @ F, atol=1e-9)
+    np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), J_local.T @ F, atol=1e-9)
 
 
 @pytest.mark.parametrize("name", sorted(REFERENCES))
@@ -103,4 +106,5 @@ def test_symbolic_jacobian_equals_pinocchio(robots, name):
     arm = SymbolicArm.from_dh_table(robot.dh)
     J = arm.lambdify(arm.jacobian(name, simplify=False))
     for q in _configurations(robot, k=2, seed=1):
-        np.testing.assert_allclose(np.asarray(J(q), dtype=float), _pin_jacobian(robot, q, REFERENCES[name]), atol=1e-9)
+        J_pin = _pin_jacobian(robot, q, REFERENCES[name])
+        np.testing.assert_allclose(np.asarray(J(q), dtype=float), J_pin, atol=1e-9)
