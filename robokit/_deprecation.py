@@ -3,8 +3,10 @@
 robokit's naming rule (see the docs' *Conventions* page): the seed library keeps the names of the
 course's function documentation (``euler_to_matrix``, ``Rp_to_trans``, …); every other public
 conversion reads ``X_from_Y`` (``matrix_from_rpy``, ``urdf_from_dh``). A function renamed to the
-rule keeps its old name as an alias made by :func:`deprecated_alias`: calling it warns once per call
-site with a ``DeprecationWarning`` naming the new function, then calls it with the same arguments.
+rule keeps its old name as an alias made by :func:`deprecated_alias`: every call emits a
+``DeprecationWarning`` naming the new function, attributed to the caller's line (Python shows it
+in scripts' ``__main__``, notebooks and test runs, once per line by default), then calls the new
+function with the same arguments.
 Old names are not listed in any ``__all__`` (so star-imports and the API pages show only the new
 ones) but stay importable from where they were.
 """
