@@ -16,7 +16,7 @@ DC gain ``K_m K_a / B`` and time constant ``J / B``, whose response to a voltage
 
 A gearbox of ratio G (motor turns per joint turn) between motor and link gives, seen from the
 link side (Lecture 8): ``ˡJ = G² ᵐJ``, ``ˡB = G² ᵐB``, ``ˡτ_C = G ᵐτ_C``, ``ˡτ = G ᵐτ``,
-``ˡθ̇ = ᵐθ̇ / G``, ``ˡθ̈ = ᵐθ̈ / G`` (:func:`reflect_to_joint`); the motor of joint j sees the
+``ˡθ̇ = ᵐθ̇ / G``, ``ˡθ̈ = ᵐθ̈ / G`` (:func:`joint_from_motor`); the motor of joint j sees the
 effective inertia ``J = J_m + M_jj / G²`` (:func:`effective_inertia`).
 
 Units: V, A, N·m, kg·m², N·m·s/rad, rad/s.
@@ -30,8 +30,9 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.errors import InputError
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["DCMotor", "reflect_to_joint", "effective_inertia"]
+__all__ = ["DCMotor", "joint_from_motor", "effective_inertia"]
 
 
 @dataclass(frozen=True)
@@ -150,7 +151,7 @@ class DCMotor:
         return w
 
 
-def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
+def joint_from_motor(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
                      tau_c: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G.
 
@@ -179,7 +180,7 @@ def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
 
     Examples
     --------
-    >>> [float(x) for x in reflect_to_joint(100, 2e-4, 1e-3, 0.1)]
+    >>> [float(x) for x in joint_from_motor(100, 2e-4, 1e-3, 0.1)]
     [2.0, 10.0, 10.0]
     """
     G = np.asarray(G, dtype=float)
@@ -223,3 +224,6 @@ def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarra
     if np.any(G == 0):
         raise InputError(f"G: a gear ratio cannot be 0, got {G}")
     return np.asarray(Jm, float) + np.asarray(M_jj, float) / (G * G)
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+reflect_to_joint = deprecated_alias(joint_from_motor, "reflect_to_joint")

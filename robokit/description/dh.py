@@ -33,8 +33,9 @@ from numpy.typing import ArrayLike
 
 from robokit.spatial.euler import matrix_from_euler
 from robokit.spatial.so3 import matrix_to_euler
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["DHLink", "DHTable", "dh_transform", "rpy_to_matrix", "matrix_to_rpy"]
+__all__ = ["DHLink", "DHTable", "dh_transform", "matrix_from_rpy", "rpy_from_matrix"]
 
 _LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name",
               "flip"}
@@ -76,7 +77,7 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
     raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
 
 
-def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
+def matrix_from_rpy(rpy: ArrayLike) -> np.ndarray:
     """URDF roll-pitch-yaw (rad) to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
 
     Not a third rotation API: it is :func:`robokit.spatial.matrix_from_euler` with the extrinsic
@@ -85,8 +86,8 @@ def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
     return matrix_from_euler(np.asarray(rpy, dtype=float), "XYZ", extrinsic=True)
 
 
-def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
-    """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2] (roll = 0 at gimbal lock)."""
+def rpy_from_matrix(R: ArrayLike) -> np.ndarray:
+    """Inverse of :func:`matrix_from_rpy`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2] (roll = 0 at gimbal lock)."""
     y, p, r = matrix_to_euler(R)
     return np.array([r, p, y])
 
@@ -273,7 +274,7 @@ class DHTable:
                 fail(f"key '{key}': expected a mapping with 'xyz' and/or 'rpy'")
             T = np.eye(4)
             T[:3, 3] = vector(spec.get("xyz", [0, 0, 0]), 3, f"key '{key}.xyz'")
-            T[:3, :3] = rpy_to_matrix(vector(spec.get("rpy", [0, 0, 0]), 3, f"key '{key}.rpy'") * k)
+            T[:3, :3] = matrix_from_rpy(vector(spec.get("rpy", [0, 0, 0]), 3, f"key '{key}.rpy'") * k)
             return T
 
         base, tool = frame("base"), frame("tool")
@@ -355,7 +356,7 @@ class DHTable:
         for key, T in (("base", self.base), ("tool", self.tool)):
             T = np.asarray(T, dtype=float)
             if not np.allclose(T, np.eye(4), atol=0, rtol=0):
-                out[key] = {"xyz": [num(v) for v in T[:3, 3]], "rpy": [ang(v) for v in matrix_to_rpy(T[:3, :3])]}
+                out[key] = {"xyz": [num(v) for v in T[:3, 3]], "rpy": [ang(v) for v in rpy_from_matrix(T[:3, :3])]}
         links = []
         for l in self.links:
             d = {"joint": l.joint, "a": num(l.a), "alpha": ang(l.alpha), "d": num(l.d), "theta": ang(l.theta)}
@@ -423,6 +424,10 @@ class DHTable:
         for label, T in (("base (frame {0} in base_link)", self.base), ("tool (tool frame in frame {N})", self.tool)):
             if not np.allclose(T, np.eye(4), atol=10.0 ** -(digits + 1)):
                 xyz = ", ".join(fmt(v, digits) for v in T[:3, 3])
-                rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(matrix_to_rpy(T[:3, :3])))
+                rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(rpy_from_matrix(T[:3, :3])))
                 out.append(f"# {label}: xyz [{xyz}] m, rpy [{rpy}] deg")
         return "\n".join(out) + "\n"
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+rpy_to_matrix = deprecated_alias(matrix_from_rpy, "rpy_to_matrix")
+matrix_to_rpy = deprecated_alias(rpy_from_matrix, "matrix_to_rpy")

@@ -16,6 +16,7 @@ from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit._deprecation import deprecated_alias
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -28,7 +29,7 @@ __all__ = [
     "geometric_jacobian",
     "twist_transform",
     "wrench_transform",
-    "jacobian_to_frame",
+    "jacobian_in_frame",
     "manipulability",
     "velocity_ellipsoid",
     "singularity",
@@ -294,7 +295,7 @@ def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
     return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
-def jacobian_to_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
+def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     """Re-express a geometric Jacobian ``(ω; v)`` in rotated axes: ``blockdiag(R, R) J``.
 
     With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one, and vice
@@ -320,7 +321,7 @@ def jacobian_to_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     >>> robot = rk.load("twolink")
     >>> J = geometric_jacobian(robot, [0, np.pi / 2])
     >>> R_tool_base = robot.frame_pose([0, np.pi / 2])[:3, :3].T
-    >>> bool(np.allclose(jacobian_to_frame(J, R_tool_base)[3:5], [[1, 0], [0.8, 0.8]]))
+    >>> bool(np.allclose(jacobian_in_frame(J, R_tool_base)[3:5], [[1, 0], [0.8, 0.8]]))
     True
     """
     J = as_matrix(J, "J", 6, None)
@@ -602,8 +603,8 @@ def joint_limit_gradient(q: ArrayLike, qlim: ArrayLike) -> np.ndarray:
     span = qlim[:, 1] - qlim[:, 0]
     ok = np.isfinite(span) & (span > 0)
     g = np.zeros(len(q))
-    mid = 0.5 * (qlim[:, 0] + qlim[:, 1])
-    g[ok] = -(q[ok] - mid[ok]) / span[ok] ** 2
+    mid = 0.5 * (qlim[ok, 0] + qlim[ok, 1])  # only where finite (−inf + inf would warn)
+    g[ok] = -(q[ok] - mid) / span[ok] ** 2
     return g
 
 
@@ -703,3 +704,6 @@ def resolved_rate_at(robot: RobotLike, q: ArrayLike, V: ArrayLike, frame: str | 
 
 
 __all__ += ["manipulability_at", "velocity_ellipsoid_at", "resolved_rate_at", "SingularityReport"]
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+jacobian_to_frame = deprecated_alias(jacobian_in_frame, "jacobian_to_frame")
