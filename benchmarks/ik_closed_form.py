@@ -48,11 +48,11 @@ def _spherical_arm():
 
 def _standard_dh(robot):
     """The arm's standard DH table (its own, or the one extracted from its URDF), or None."""
-    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.description.urdf_to_dh import dh_from_urdf
 
     if robot.dh is not None:
         return robot.dh if robot.dh.convention == "standard" else None
-    res = urdf_to_dh(robot, "standard")
+    res = dh_from_urdf(robot, "standard")
     return res.table if res.exact else None
 
 

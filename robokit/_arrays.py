@@ -239,3 +239,30 @@ def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool
     if nonnegative and not v >= 0:
         raise InputError(f"{name}: expected a non-negative number, got {v!r}")
     return v
+
+
+#: The ``reference=`` vocabulary of every Jacobian (and tip-wrench) function: accepted name → the
+#: canonical name, which is Pinocchio's ``ReferenceFrame`` lower-cased. For a frame F at position p:
+#:
+#: * ``"world"`` (synonym ``"space"``): the twist of F expressed at the root origin, root axes —
+#:   Modern Robotics' space Jacobian J_s, Pinocchio's WORLD;
+#: * ``"local"`` (synonyms ``"body"``, ``"tool"``): the twist of F at its origin, in F's own axes —
+#:   the body Jacobian J_b, Pinocchio's LOCAL;
+#: * ``"local_world_aligned"`` (synonym ``"base"``): ω and the velocity of F's origin, in root axes —
+#:   the lecture's geometric Jacobian ⁰J, Pinocchio's LOCAL_WORLD_ALIGNED.
+REFERENCES: dict[str, str] = {
+    "world": "world", "space": "world",
+    "local": "local", "body": "local", "tool": "local",
+    "local_world_aligned": "local_world_aligned", "base": "local_world_aligned",
+}
+
+
+def check_reference(reference: object, name: str = "reference") -> str:
+    """The canonical name (``"world"``, ``"local"`` or ``"local_world_aligned"``) of a Jacobian
+    reference frame given in the shared vocabulary (:data:`REFERENCES`), or :class:`InputError`
+    listing every accepted name."""
+    canonical = REFERENCES.get(reference) if isinstance(reference, str) else None
+    if canonical is None:
+        accepted = ", ".join(repr(k) for k in REFERENCES)
+        raise InputError(f"{name}: expected one of {accepted}, got {reference!r}")
+    return canonical

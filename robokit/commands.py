@@ -38,7 +38,30 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
 
 def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str] | None, tip: str | None = None,
                     convention: str = "standard", **load_options: Any) -> int:
-    """``robokit convert``: write ``output`` (or print a DH table); notes on stderr. Returns 0."""
+    """``robokit convert IN -o OUT``: convert a robot description; notes on stderr.
+
+    DH YAML → URDF, URDF (or an example-robot-data name) → PoE JSON, DH YAML, MJCF; without ``output``
+    (URDF input) the extracted DH table is printed.
+
+    Parameters
+    ----------
+    input : str or path-like
+        A DH ``.yaml``, ``.urdf``, xacro or MJCF file, or a model name ``robokit.load`` accepts.
+    output : str, path-like or None
+        The file to write (its suffix chooses the format), written atomically; None prints the DH table
+        of a URDF on stdout (required for a ``.yaml`` input).
+    tip : str, optional
+        Tip frame of the chain (default: the last link).
+    convention : {"standard", "modified"}
+        DH convention of an extracted table.
+    **load_options
+        Passed to the loader (e.g. ``package_dirs``, ``xacro_args``).
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
+    """
     from robokit.description.convert import convert
 
     if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
@@ -56,7 +79,32 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
 def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str],
                  q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
                  fps: float = 30.0, tip: str | None = None, obstacles: str | os.PathLike[str] | None = None) -> int:
-    """The ``robokit view`` command: write the page to ``output``; return the exit status."""
+    """``robokit view MODEL -o OUT.html``: write a self-contained meshcat page of the model.
+
+    Parameters
+    ----------
+    model : Robot, DHTable, str or path-like
+        Anything ``robokit.load`` accepts.
+    output : str or path-like
+        The ``.html`` page to write (atomically).
+    q : (n,) array_like, optional
+        The configuration drawn (rad, m); default the zero configuration.
+    frames : bool
+        Draw the DH / joint frames.
+    trajectory : str or path-like, optional
+        A CSV or ``.npy`` file of configurations (K, n) to animate.
+    fps : float
+        Frames per second of the animation (> 0).
+    tip : str, optional
+        Tip frame.
+    obstacles : str or path-like, optional
+        A scene YAML file whose obstacles are drawn.
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
+    """
     from robokit.description.loading import load
     from robokit.viz.view import load_trajectory, view_html
 
@@ -80,10 +128,26 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 
 def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
                   q: ArrayLike | None = None, open_browser: bool = True) -> int:
-    """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
+    """``robokit teach MODEL [-o OUT.html]``: write the teach-pendant page.
 
     Without ``output`` the page goes to a new temporary file, which is opened in the web
-    browser (``webbrowser``); its path is returned in the message on stdout.
+    browser (``webbrowser``); its path is printed on stderr.
+
+    Parameters
+    ----------
+    model : Robot, DHTable, str or path-like
+        Anything ``robokit.load`` accepts.
+    output : str, path-like or None
+        The ``.html`` page to write (atomically), or None for a temporary file.
+    q : (n,) array_like, optional
+        The starting configuration (rad, m).
+    open_browser : bool
+        Open the temporary page in the browser (only without ``output``).
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
     """
     import tempfile
     import webbrowser
@@ -111,15 +175,34 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
 
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
                       scheduler: str | None = None, dashboard: bool = False) -> int:
-    """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
+    """``robokit workspace ROBOT --resolution R -o MAP.npz``: compute a capability map and write it.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
     atomically. Finished chunks go to ``OUTPUT.chunks/`` while the map is computed (an
     interrupted run started again with the same arguments resumes there); the folder is
     removed once the map is written (:mod:`robokit.workspace.store`: only a folder robokit
-    made, holding only its chunk files, is ever used or removed). ``scheduler``: a Dask scheduler address
-    (``tcp://host:port``), or None for a local cluster of one worker process per core
-    (TLS with per-run credentials; ``dashboard``: serve its dashboard on 127.0.0.1).
+    made, holding only its chunk files, is ever used or removed).
+
+    Parameters
+    ----------
+    robot : str
+        A model name or file ``robokit.load`` accepts.
+    output : str or path-like
+        The ``.npz`` file to write.
+    resolution : float
+        Voxel edge length (m, > 0).
+    orientations : int
+        Number K of tool orientations tried per voxel (≥ 1).
+    scheduler : str, optional
+        A Dask scheduler address (``tcp://host:port``), or None for a local cluster of one worker
+        process per core (TLS with per-run credentials).
+    dashboard : bool
+        Serve the local cluster's dashboard on 127.0.0.1.
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
     """
     from robokit.workspace.capability import capability_map
     from robokit.workspace.store import remove_store
@@ -145,9 +228,23 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
 def capability_view_command(path: str | os.PathLike[str], output: str | os.PathLike[str],
                             robot: Any = None) -> int:
     """``robokit view MAP.npz [--robot MODEL] -o OUT.html``: the meshcat page of a capability map,
-    written atomically. The robot drawn is ``robot`` when given (the user's own choice, loaded
-    like any MODEL), else the one the map describes without naming a file
-    (:mod:`robokit.workspace.map_robot`), else none (with a note)."""
+    written atomically.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.npz`` map written by ``robokit workspace``.
+    output : str or path-like
+        The ``.html`` page to write.
+    robot : optional
+        The robot drawn with the map (anything ``robokit.load`` accepts); default the one the map
+        describes without naming a file (:mod:`robokit.workspace.map_robot`), else none (with a note).
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
+    """
     from robokit.workspace.plot import capability_html
 
     out = _output_file(output, (".html", ".htm"))
@@ -160,11 +257,29 @@ def capability_view_command(path: str | os.PathLike[str], output: str | os.PathL
 def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str], output: str | os.PathLike[str],
                       tip: str | None = None, **load_options: Any) -> int:
     """``robokit calibrate MODEL DATA.csv -o OUT.urdf|OUT.yaml``: calibrate, print the RMS before and
-    after (stdout), write the calibrated robot atomically; return 0.
+    after (stdout), write the calibrated robot atomically.
 
     A URDF is always possible (the calibrated joint placements, the nominal inertias); a DH YAML
     only when a DH table reproduces the calibrated arm to 1e-9 (checked after writing it to text
     and reading it back), else ``InputError`` saying to write a URDF. Nothing is written on error.
+
+    Parameters
+    ----------
+    model : str or path-like
+        The nominal robot (anything ``robokit.load`` accepts).
+    data : str or path-like
+        The CSV: a header row, columns ``q1..qn, x, y, z`` (m) optionally followed by ``qw, qx, qy, qz``.
+    output : str or path-like
+        ``.urdf`` or ``.yaml`` file to write.
+    tip : str, optional
+        Tip frame of the nominal robot.
+    **load_options
+        Passed to the loader.
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
     """
     from robokit.calibration import calibrate, chain_urdf, read_calibration_csv
     from robokit.description import load
@@ -195,10 +310,10 @@ def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
     import yaml
 
     from robokit.description.dh import DHTable
-    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.description.urdf_to_dh import dh_from_urdf
     from robokit.errors import InputError
 
-    res = urdf_to_dh(robot, "standard")
+    res = dh_from_urdf(robot, "standard")
     frames = nominal.frame_poses(np.zeros(nominal.n))
     size = 10.0 * max([1.0] + [float(np.linalg.norm(T[:3, 3])) for T in frames.values()])
     big = max((abs(v), f"{k}{i + 1}") for i, l in enumerate(res.table.links) for k, v in (("a", l.a), ("d", l.d)))
@@ -220,10 +335,30 @@ def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
             f"{worst:.1e}\n") + text
 def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str], float32: bool = False,
                     name: str | None = None, tip: str | None = None, **load_options: Any) -> int:
-    """``robokit codegen``: write ``NAME.h`` and ``NAME.c`` into the folder ``output``; returns 0.
+    """``robokit codegen MODEL -o DIR``: write ``NAME.h`` and ``NAME.c`` into the folder ``output``.
 
     The folder and the name are checked before the robot is loaded, and both files are written
     only once both are generated (nothing is written on bad input).
+
+    Parameters
+    ----------
+    model : str or path-like
+        Anything ``robokit.load`` accepts.
+    output : str or path-like
+        An existing folder.
+    float32 : bool
+        Emit ``float`` instead of ``double``.
+    name : str, optional
+        The C identifier prefix (default: the robot's name, made an identifier).
+    tip : str, optional
+        Tip frame.
+    **load_options
+        Passed to the loader.
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
     """
     from robokit.codegen import c_name, generate_c, write_c
     from robokit.description import load
@@ -248,12 +383,38 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
 def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
                  obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
                  dt: float = 1 / 30, seed: int = 0, tip: str | None = None) -> int:
-    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``.
+    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``: plan a
+    collision-free motion, retime it and write it as a CSV.
 
-    ``goal`` is n joint values, or 6 numbers x y z roll pitch yaw (m, rad) of the tip pose.
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
     (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
     --fps 1/dt`` plays it in real time.
+
+    Parameters
+    ----------
+    model : str or path-like
+        Anything ``robokit.load`` accepts.
+    start : (n,) array_like
+        Start configuration (rad, m).
+    goal : (n,) or (6,) array_like
+        Goal configuration, or x y z roll pitch yaw (m, rad) of the tip pose in the base frame.
+    output : str or path-like
+        The ``.csv`` file to write.
+    obstacles : str or path-like, optional
+        A scene YAML file (obstacles and padding).
+    vmax, amax : float
+        Joint velocity (rad/s) and acceleration (rad/s²) limits of the retiming.
+    dt : float
+        Sample period of the CSV (s, > 0).
+    seed : int
+        Seed of the sampling planner.
+    tip : str, optional
+        Tip frame.
+
+    Returns
+    -------
+    int
+        The exit status, 0 (errors raise).
     """
     from robokit.collision import World, load_scene, pose_from_xyz_rpy
     from robokit.description.loading import load

@@ -13,11 +13,35 @@ raises are banned outside the compiled kernels (``tests/hardening/test_errors_by
 
 
 class RobokitError(Exception):
-    """Base class of robokit's own exceptions."""
+    """Base class of robokit's own exceptions.
+
+    Attributes
+    ----------
+    args : tuple
+        As for any exception: robokit raises it with one message string, ``args == (message,)``.
+    """
 
 
 class InputError(RobokitError, ValueError):
-    """Bad input: the message names the argument (or file, link and key) and what was wrong."""
+    """Bad input: the message names the argument (or file, link and key) and what was wrong.
+
+    A ``ValueError``, so ``except ValueError`` code keeps working; the CLI prints it as one
+    ``robokit: error: ...`` line and exits with status 2.
+
+    Attributes
+    ----------
+    args : tuple
+        ``(message,)``: what was wrong, starting with the argument's name
+        (``"q: expected shape (6,), got (5,)"``).
+
+    Examples
+    --------
+    >>> try:
+    ...     rk.normalize([0.0, 0.0, 0.0])
+    ... except rk.InputError as e:
+    ...     print(isinstance(e, ValueError))
+    True
+    """
 
 
 class MissingExtraError(InputError, ImportError):
@@ -36,13 +60,27 @@ class InputTypeError(InputError, TypeError):
 
 class RobokitWarning(UserWarning):
     """Something robokit did on the user's behalf that they should know (a mesh not found and
-    drawn without, a floating base fixed, a tree's tip chosen); the CLI prints it as one line."""
+    drawn without, a floating base fixed, a tree's tip chosen); the CLI prints it as one line.
+
+    Attributes
+    ----------
+    args : tuple
+        ``(message,)``, as ``warnings.warn(message, RobokitWarning)`` makes it.
+    """
 
 
 class DivergenceError(RobokitError, ArithmeticError):
     """A simulation or iteration blew up (non-finite or runaway values): the model, the gains or
-    the step make it unstable — not bad input. ``partial`` holds the result up to the last
-    finite step (the same type the function returns on success)."""
+    the step make it unstable — not bad input.
+
+    Parameters
+    ----------
+    message : str
+        What diverged and where (the step, the time).
+    partial : object, optional
+        The result up to the last finite step, of the type the function returns on success;
+        kept as the attribute ``partial``.
+    """
 
     def __init__(self, message: str, partial: object = None) -> None:
         super().__init__(message)

@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
+from robokit._arrays import check_reference
 
 from robokit._optional import require
 
@@ -115,12 +116,28 @@ def _simplify_matrix(m: sp.Matrix, level: str = "full") -> sp.Matrix:
 
 @dataclass
 class SymbolicDynamics:
-    """The Lagrangian dynamics ``τ = M q̈ + V + G`` of a :class:`SymbolicArm`.
+    """The Lagrangian dynamics ``τ = M q̈ + V + G`` of a :class:`SymbolicArm` (Lecture 7).
 
-    M : n×n mass matrix; C : n×n Coriolis matrix (Christoffel symbols, Ṁ − 2C skew);
-    V : (n×1) ``C q̇``; G : (n×1) gravity torques; B : n × n(n−1)/2 Coriolis coefficients and
-    Ccf : n×n centrifugal coefficients of the configuration-space form
-    ``τ = M q̈ + B [q̇ᵢq̇ⱼ]_{i<j} + Ccf [q̇ᵢ²] + G`` (Lecture 7).
+    Made by :meth:`SymbolicArm.dynamics`; every entry is a sympy expression in the joint symbols
+    ``q1..qn``, ``dq1..dqn`` and the arm's own symbols (SI units once numbers are substituted).
+
+    Attributes
+    ----------
+    q, dq : sympy.Matrix, (n, 1)
+        The joint variables and rates.
+    M : sympy.Matrix, (n, n)
+        Mass matrix (symmetric positive definite).
+    C : sympy.Matrix, (n, n)
+        Coriolis matrix from the Christoffel symbols, so that Ṁ − 2C is skew-symmetric.
+    V : sympy.Matrix, (n, 1)
+        Velocity terms ``C q̇``.
+    G : sympy.Matrix, (n, 1)
+        Gravity torques.
+    B : sympy.Matrix, (n, n(n−1)/2)
+        Coriolis coefficients of the configuration-space form
+    ``τ = M q̈ + B [q̇ᵢq̇ⱼ]_{i<j} + Ccf [q̇ᵢ²] + G``.
+    Ccf : sympy.Matrix, (n, n)
+        Centrifugal coefficients of that form.
     """
 
     q: sp.Matrix
@@ -263,19 +280,32 @@ class SymbolicArm:
         return axes
 
     def jacobian(self, reference: str = "base", simplify: bool | str = "auto") -> sp.Matrix:
-        """The 6×n geometric Jacobian of the tool, angular rows first.
+        """The 6×n Jacobian of the tool, angular rows first (Lecture 6).
 
-        ``reference="base"``: twist (ω, v) of the tool origin in base coordinates, columns
-        ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic) (Lecture 6).
-        ``reference="tool"``: the same twist expressed in tool-frame axes
-        (``blockdiag(Rᵀ, Rᵀ) J_base``), i.e. the body Jacobian.
-        ``simplify``: True, False or "auto" (full up to 3 joints; beyond, trigsimp for the
-        base frame and no simplification for the tool frame, which would take minutes).
+        Parameters
+        ----------
+        reference : str, default "base"
+            robokit's one ``reference=`` vocabulary (the *Conventions* page): "base" =
+            "local_world_aligned" — twist (ω, v) of the tool origin in base coordinates, columns
+            ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic); "tool" = "local" =
+            "body" — the same twist in tool-frame axes (``blockdiag(Rᵀ, Rᵀ) J_base``, the body Jacobian);
+            "world" = "space" — the space Jacobian, columns ``[zᵢ; pᵢ × zᵢ]``.
+        simplify : bool or "auto"
+            True, False or "auto" (full up to 3 joints; beyond, trigsimp for the base frame and no
+            simplification for the tool frame, which would take minutes).
+
+        Returns
+        -------
+        sympy.Matrix, (6, n)
+            Rows ω (rad/s per unit joint rate) then v (m/s).
         """
-        if reference not in ("base", "tool"):
-            raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
+        ref = check_reference(reference)
         cols = []
-        if reference == "base":
+        if ref == "world":  # space Jacobian: v of the point at the base origin, columns [zᵢ; pᵢ × zᵢ]
+            for (z, p), jt in zip(self._joint_axes(), self.joint_types):
+                rev = jt == "R"
+                cols.append(sp.Matrix.vstack(z, p.cross(z)) if rev else sp.Matrix.vstack(sp.zeros(3, 1), z))
+        elif ref == "local_world_aligned":
             p_e = (self._frames()[-1] * self.tool)[:3, 3]
             for (z, p), jt in zip(self._joint_axes(), self.joint_types):
                 if jt == "R":
@@ -302,7 +332,7 @@ class SymbolicArm:
                 else:
                     cols.append(sp.Matrix.vstack(sp.zeros(3, 1), z))
         J = sp.Matrix.hstack(*cols)
-        return _simplify_matrix(J, self._level(simplify, heavy=(reference == "tool")))
+        return _simplify_matrix(J, self._level(simplify, heavy=(ref == "local")))
 
     # ------------------------------------------------------------------ dynamics
     def dynamics(self, masses: Sequence[Any], coms: Sequence[Any], inertias: Sequence[Any] | None = None,
@@ -401,8 +431,24 @@ class SymbolicArm:
 def shorthand(expr: Any, q: Sequence[sp.Symbol] | None = None) -> Any:
     """Replace ``cos(q1 + q2)`` by the symbol ``c₁₂`` (``c_{12}``), ``sin(q1)`` by ``s₁``, as the lectures write them.
 
-    ``q`` are the joint symbols (default: every symbol named ``q<digits>``). Works on
-    expressions and matrices; returns a new object (for display, not for computing).
+    Parameters
+    ----------
+    expr : sympy expression or Matrix
+        What to rewrite.
+    q : sequence of sympy.Symbol, optional
+        The joint symbols (default: every symbol named ``q<digits>``).
+
+    Returns
+    -------
+    sympy expression or Matrix
+        A new object with the shorthand symbols ``c_{…}``, ``s_{…}`` (for display, not for computing).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> q1, q2 = sp.symbols("q1 q2")
+    >>> shorthand(sp.cos(q1) + sp.sin(q1 + q2))
+    c_{1} + s_{12}
     """
     def joint_index(sym: sp.Basic) -> int | None:
         name = str(sym)
@@ -433,5 +479,25 @@ def shorthand(expr: Any, q: Sequence[sp.Symbol] | None = None) -> Any:
 
 
 def to_latex(expr: Any, use_shorthand: bool = True) -> str:
-    """LaTeX of an expression or matrix, with the lectures' cᵢ/sᵢⱼ shorthand by default."""
+    """LaTeX of an expression or matrix, with the lectures' cᵢ/sᵢⱼ shorthand by default.
+
+    Parameters
+    ----------
+    expr : sympy expression or Matrix
+        What to typeset.
+    use_shorthand : bool
+        Apply :func:`shorthand` first.
+
+    Returns
+    -------
+    str
+        The LaTeX source (``sympy.latex``).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> q1, l1 = sp.symbols("q1 l1")
+    >>> to_latex(l1 * sp.cos(q1))
+    'c_{1} l_{1}'
+    """
     return sp.latex(shorthand(expr) if use_shorthand else expr)

@@ -28,7 +28,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from robokit.description.dh import matrix_to_rpy
+from robokit.description.dh import rpy_from_matrix
 from robokit.spatial import lie
 from robokit.errors import InputError
 
@@ -209,7 +209,7 @@ def _f(x: float) -> str:
 
 def _origin(T: np.ndarray) -> str:
     xyz = " ".join(_f(v) for v in T[:3, 3])
-    rpy = " ".join(_f(v) for v in matrix_to_rpy(T[:3, :3]))
+    rpy = " ".join(_f(v) for v in rpy_from_matrix(T[:3, :3]))
     return f'<origin xyz="{xyz}" rpy="{rpy}"/>'
 
 

@@ -13,6 +13,7 @@ from robokit.control.line import *  # noqa: F401,F403
 from robokit.control.line import __all__ as _line_all
 from robokit.control.motor import *  # noqa: F401,F403
 from robokit.control.motor import __all__ as _motor_all
+from robokit.control.motor import reflect_to_joint  # noqa: F401  (deprecated alias, not in __all__)
 from robokit.control.plot import *  # noqa: F401,F403
 from robokit.control.plot import __all__ as _plot_all
 from robokit.control.seed import *  # noqa: F401,F403

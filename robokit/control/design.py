@@ -27,12 +27,38 @@ __all__ = ["critical_gains", "pid_gains_bandwidth", "StepInfo", "step_info", "pl
 
 def critical_gains(inertia: ArrayLike, omega_n: ArrayLike | None = None,
                    Kp: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """``(K_p, K_v)`` of a critically damped PD loop on ``inertia`` (kg·m², scalar or (n,)).
+    """``(K_p, K_v)`` of a critically damped PD loop on an inertia J (Lecture 8).
 
-    Give the natural frequency ``omega_n`` (rad/s): ``K_p = J ω_n²``, ``K_v = 2 J ω_n``; or give
-    ``Kp``: ``K_v = 2 √(K_p J)``. Exactly one of the two.
+    ``J s² + K_v s + K_p`` with ζ = 1 at natural frequency ω_n: ``K_p = J ω_n²``,
+    ``K_v = 2 J ω_n = 2√(K_p J)``.
 
-    Example: ``critical_gains(1.0, Kp=100.0)`` is ``(100.0, 20.0)`` — the lecture's ``K_v = 2√K_p``.
+    Parameters
+    ----------
+    inertia : float or (n,) array_like
+        J (kg·m²), positive.
+    omega_n : float or (n,) array_like, optional
+        Natural frequency (rad/s).
+    Kp : float or (n,) array_like, optional
+        Position gain (N·m/rad). Give exactly one of ``omega_n`` and ``Kp``.
+
+    Returns
+    -------
+    Kp, Kv : ndarray
+        Position (N·m/rad) and velocity (N·m·s/rad) gains.
+
+    Raises
+    ------
+    InputError
+        On a non-positive inertia, frequency or gain, or not exactly one of ``omega_n``/``Kp``.
+
+    Examples
+    --------
+    For unit inertia the lecture's ``K_v = 2√K_p``:
+
+    >>> [float(k) for k in critical_gains(1.0, Kp=100.0)]
+    [100.0, 20.0]
+    >>> [float(k) for k in critical_gains(2.0, omega_n=10.0)]
+    [200.0, 40.0]
     """
     J = np.asarray(inertia, dtype=float)
     if np.any(J <= 0) or not np.all(np.isfinite(J)):
@@ -51,13 +77,33 @@ def critical_gains(inertia: ArrayLike, omega_n: ArrayLike | None = None,
 
 
 def pid_gains_bandwidth(inertia: ArrayLike, bandwidth: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(K_p, K_i, K_d)`` placing the three poles of the PID loop on inertia J at ``−ω_b``.
+    """``(K_p, K_i, K_d)`` placing the three poles of a PID loop on inertia J at ``s = −ω_b``.
 
-    inertia : kg·m² (scalar or (n,)); bandwidth : ω_b (rad/s). ``K_p = 3Jω_b²``, ``K_i = Jω_b³``,
-    ``K_d = 3Jω_b`` (module docstring). The integral term removes the steady-state error of a
-    constant disturbance (a type-1 loop, Lecture 8) at the price of some overshoot of steps.
+    ``J s³ + K_d s² + K_p s + K_i = J (s + ω_b)³`` ⇒ ``K_p = 3Jω_b²``, ``K_i = Jω_b³``,
+    ``K_d = 3Jω_b``. The integral term removes the steady-state error of a constant disturbance (a
+    type-1 loop, Lecture 8) at the price of some overshoot of steps.
 
-    Example: ``pid_gains_bandwidth(1.0, 10.0)`` is ``(300.0, 1000.0, 30.0)``.
+    Parameters
+    ----------
+    inertia : float or (n,) array_like
+        J (kg·m²), positive.
+    bandwidth : float or (n,) array_like
+        ω_b (rad/s), positive.
+
+    Returns
+    -------
+    Kp, Ki, Kd : ndarray
+        Gains (N·m/rad, N·m/(rad·s), N·m·s/rad).
+
+    Raises
+    ------
+    InputError
+        On a non-positive inertia or bandwidth.
+
+    Examples
+    --------
+    >>> [float(k) for k in pid_gains_bandwidth(1.0, 10.0)]
+    [300.0, 1000.0, 30.0]
     """
     J = np.asarray(inertia, dtype=float)
     w = np.asarray(bandwidth, dtype=float)
@@ -70,12 +116,23 @@ def pid_gains_bandwidth(inertia: ArrayLike, bandwidth: ArrayLike) -> tuple[np.nd
 
 @dataclass
 class StepInfo:
-    """Step-response measures.
+    """Step-response measures, from :func:`step_info`.
 
-    overshoot : peak beyond the final value, % of the step (0 if none); peak, peak_time : value
-    and time of the extreme; rise_time : time from 10 % to 90 % of the step (s); settling_time :
-    first time after which the response stays within ±``settle`` of the step around the final
-    value (s); steady_state_error : target − final value; final : the final value (last sample).
+    Attributes
+    ----------
+    overshoot : float
+        Peak beyond the final value, % of the step (0 if none).
+    peak, peak_time : float
+        Value and time (s) of the extreme.
+    rise_time : float
+        Time from 10 % to 90 % of the step (s).
+    settling_time : float
+        First time after which the response stays within ±``settle`` of the step around the final
+        value (s); NaN if it never settles within the record.
+    steady_state_error : float
+        Target − final value.
+    final : float
+        The final value (last sample).
     """
 
     overshoot: float
@@ -100,14 +157,46 @@ def _crossing(t: np.ndarray, y: np.ndarray, level: float) -> float:
 
 def step_info(t: ArrayLike, y: ArrayLike, target: float | None = None, y0: float | None = None, settle: float = 0.02,
               rise: tuple[float, float] = (0.1, 0.9)) -> StepInfo:
-    """Measures of a step response y(t) (see :class:`StepInfo`).
+    """Measures of a step response y(t) (see :class:`StepInfo`; Lecture 8).
 
-    t : (K,) increasing times (s); y : (K,) response; target : the commanded final value (default
-    the last sample, then the steady-state error is 0); y0 : the initial value (default y[0]);
-    settle : settling band, fraction of the step (2 %); rise : the rise-time band (10–90 %).
     The response is assumed to have settled by the end of the record (the final value is y[-1]).
 
-    Example: a first-order lag ``1 − e^{−t/τ}`` has rise time ``τ ln 9`` and 2 % settling time ``τ ln 50``.
+    Parameters
+    ----------
+    t : (K,) array_like
+        Increasing times (s).
+    y : (K,) array_like
+        The response.
+    target : float, optional
+        The commanded final value (default the last sample, then the steady-state error is 0).
+    y0 : float, optional
+        The initial value (default y[0]).
+    settle : float, optional
+        Settling band, fraction of the step; default 0.02 (2 %).
+    rise : (float, float), optional
+        The rise-time band; default (0.1, 0.9).
+
+    Returns
+    -------
+    StepInfo
+        Overshoot, peak, rise and settling times, steady-state error, final value.
+
+    Raises
+    ------
+    InputError
+        When the times do not increase or the response does not move.
+
+    Examples
+    --------
+    A first-order lag ``1 − e^{−t/τ}`` (τ = 0.5 s) has rise time ``τ ln 9`` and 2 % settling time
+    ``τ ln 50``, and no overshoot:
+
+    >>> t = np.linspace(0, 5, 5001)
+    >>> info = step_info(t, 1 - np.exp(-t / 0.5), target=1.0)
+    >>> info.overshoot, round(info.rise_time, 2), round(info.settling_time, 2)
+    (0.0, 1.1, 1.95)
+    >>> round(float(0.5 * np.log(9)), 2), round(float(0.5 * np.log(50)), 2)
+    (1.1, 1.96)
     """
     t = as_vector(t, "t")
     y = as_vector(y, "y", len(t))
@@ -138,13 +227,28 @@ def step_info(t: ArrayLike, y: ArrayLike, target: float | None = None, y0: float
 
 def plot_step_response(t: ArrayLike, y: ArrayLike, target: float | None = None, info: StepInfo | None = None,
                        ax: Any = None, label: str | None = None) -> Any:
-    """Plot a step response with its measures marked: the target, the settling band, the peak,
-    the 10–90 % rise and the settling time. Returns the matplotlib Axes.
+    """Plot a step response with its measures marked (Lecture 8).
 
-    t, y : (K,) times (s) and response; target : commanded value (default the final value);
-    info : precomputed :func:`step_info` (computed when None); ax : Axes to draw on (new figure otherwise).
+    The target, the settling band, the peak, the 10–90 % rise and the settling time. Needs the
+    ``plot`` extra (matplotlib).
 
-    Example: ``plot_step_response(t, 1 - np.exp(-t), target=1.0)``.
+    Parameters
+    ----------
+    t, y : (K,) array_like
+        Times (s) and response.
+    target : float, optional
+        Commanded value (default the final value).
+    info : StepInfo, optional
+        Precomputed :func:`step_info` (computed when None).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (a new figure otherwise).
+    label : str, optional
+        Legend label of the response.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
     """
     plt = require("matplotlib.pyplot", "plotting")
 

@@ -49,10 +49,22 @@ __all__ = ["IndependentJointRun", "simulate_independent_joints"]
 class IndependentJointRun:
     """Result of :func:`simulate_independent_joints`, arrays over the K control instants.
 
-    t : (K,) s; q, dq : (K, n) joint angles and rates; u : (K, n) motor voltages (V, held over
-    each period); q_des, dq_des : (K, n) the desired trajectory; disturbance : (K, n) the
-    disturbance torque each motor sees (N·m, motor side; see the module docstring);
-    effective_inertia : (K, n) ``J_m + M_jj(q)/G²`` along the run (kg·m², motor side).
+    ``error`` (K, n) is ``q_des − q`` (rad).
+
+    Attributes
+    ----------
+    t : (K,) ndarray
+        Control instants (s).
+    q, dq : (K, n) ndarray
+        Joint angles (rad) and rates (rad/s).
+    u : (K, n) ndarray
+        Motor voltages (V), held over each period.
+    q_des, dq_des : (K, n) ndarray
+        The desired trajectory.
+    disturbance : (K, n) ndarray
+        The disturbance torque each motor sees (N·m, motor side; see the module docstring).
+    effective_inertia : (K, n) ndarray
+        ``J_m + M_jj(q)/G²`` along the run (kg·m², motor side).
     """
 
     t: np.ndarray
@@ -74,26 +86,61 @@ def simulate_independent_joints(robot: Robot, trajectory: Any, Kp: ArrayLike, Kv
                                 Ka: float = 1.0, Km: float = 0.228, gravity_ff: bool = False,
                                 q0: ArrayLike | None = None, dq0: ArrayLike | None = None, substeps: int = 2,
                                 coulomb: bool = True) -> IndependentJointRun:
-    """Simulate independent joint control of ``robot`` (a DH robot with drive data) along ``trajectory``.
+    """Simulate independent joint control of a DH robot with drive data along a trajectory (Lecture 8).
 
-    robot : :class:`robokit.Robot` with a DH table (Jm, G, B, Tc per link); trajectory : object with
-    ``t``, ``q``, ``qd``, ``qdd`` on a uniform grid (the control period) or a tuple (t, q, qd, qdd);
-    Kp : position-loop gain (1/s); Kv : velocity-loop gain (V·s/rad, motor side); Ki : its integral
-    gain (V/rad); scalars or (n,). Ka : amplifier gain (A/V); Km : torque constant (N·m/A) — the
-    defaults are illustrative values of a small servo motor (Km = 0.228 N·m/A as Corke quotes for the
-    PUMA's joint motors), the same for every joint; gravity_ff : add ``g_j(q)/(G_j K_m K_a)`` to u;
-    q0, dq0 : start (default the desired start); substeps : RK4 plant steps per control period;
-    coulomb : include Coulomb friction in the plant.
+    See the module docstring for the loops and the disturbance each motor sees.
 
-    Returns an :class:`IndependentJointRun`. See the module docstring for the loops and the disturbance.
-    Raises :class:`~robokit.errors.DivergenceError` (with the run so far in ``.partial``) when the
-    loop blows up — velocity-loop gains too high for the control period.
+    Parameters
+    ----------
+    robot : Robot
+        A :class:`robokit.Robot` with a DH table carrying drive data (Jm, G, B, Tc per link).
+    trajectory : Trajectory or tuple
+        An object with ``t``, ``q``, ``qd``, ``qdd`` on a uniform grid (the control period), or a
+        tuple ``(t, q, qd, qdd)``.
+    Kp : float or (n,) array_like
+        Position-loop gain (1/s).
+    Kv : float or (n,) array_like
+        Velocity-loop gain (V·s/rad, motor side).
+    Ki : float or (n,) array_like, optional
+        Velocity-loop integral gain (V/rad); default 0.
+    Ka : float, optional
+        Amplifier gain (A/V); default 1.
+    Km : float, optional
+        Torque constant (N·m/A); default 0.228 (the value Corke quotes for the PUMA's joint motors;
+        illustrative, the same for every joint).
+    gravity_ff : bool, optional
+        Add ``g_j(q)/(G_j K_m K_a)`` to u; default False.
+    q0, dq0 : (n,) array_like, optional
+        Start (default the desired start).
+    substeps : int, optional
+        RK4 plant steps per control period; default 2.
+    coulomb : bool, optional
+        Include Coulomb friction in the plant; default True.
 
-    Example, a 1 s quintic move sampled at a 5 ms control period (Kv = 0.2 diverges at this period)::
+    Returns
+    -------
+    IndependentJointRun
+        State, voltages, the disturbances and effective inertias over the run.
 
-        t = np.arange(0, 1.0 + 1e-9, 0.005)
-        traj = quintic_trajectory(np.zeros(6), [0.5, 0.3, -0.4, 0.2, 0.3, 0.1], 1.0, t)
-        run = simulate_independent_joints(robokit.load("puma560"), traj, Kp=10, Kv=0.05)
+    Raises
+    ------
+    DivergenceError
+        When the loop blows up — velocity-loop gains too high for the control period (the run so far
+        in ``.partial``; at a 5 ms period Kv = 0.2 diverges on the PUMA 560).
+    InputError
+        On bad arguments.
+
+    Examples
+    --------
+    A 0.2 s quintic move of the PUMA 560 at a 5 ms control period; a P velocity loop lags the path:
+
+    >>> puma = rk.load("puma560")
+    >>> t = np.arange(0, 0.2 + 1e-9, 0.005)
+    >>> from robokit.trajectory import quintic_trajectory
+    >>> traj = quintic_trajectory(np.zeros(6), [0.1, 0.1, -0.1, 0, 0, 0], 0.2, t=t)
+    >>> run = simulate_independent_joints(puma, traj, Kp=10, Kv=0.05)
+    >>> run.q.shape, run.disturbance.shape, bool(abs(run.error).max() > 0)
+    ((41, 6), (41, 6), True)
     """
     t, qd, dqd, ddqd = _desired(trajectory)
     n = robot.n

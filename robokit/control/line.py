@@ -27,7 +27,21 @@ __all__ = ["LineTrackingResult", "track_line"]
 
 @dataclass
 class LineTrackingResult:
-    """t (K,), q (K, n), p (K, 3) actual positions, p_des (K, 3), error (K,) position error (m)."""
+    """Result of :func:`track_line`, over the K + 1 control steps.
+
+    Attributes
+    ----------
+    t : (K+1,) ndarray
+        Times (s).
+    q : (K+1, n) ndarray
+        Joint values (rad).
+    p : (K+1, 3) ndarray
+        Actual tool positions, base frame (m).
+    p_des : (K+1, 3) ndarray
+        Desired positions on the line (m).
+    error : (K+1,) ndarray
+        ``‖p_des − p‖`` (m).
+    """
 
     t: np.ndarray
     q: np.ndarray
@@ -39,10 +53,51 @@ class LineTrackingResult:
 def track_line(robot: Robot, q0: ArrayLike, p_goal: ArrayLike, duration: float, dt: float = 0.005,
                method: str = "dls", gain: float = 5.0, damping: float = 0.02, null_gain: float = 0.0,
                frame: str | None = None) -> LineTrackingResult:
-    """Resolved-rate control along a straight line from the current tool position to ``p_goal``
-    (see the module docstring). Returns the tracking error along the path.
+    """Resolved-rate control of the tool along a straight line to ``p_goal`` (Lecture 6).
 
-    Example: ``track_line(robokit.load("puma560"), q0, p0 + [0.1, 0, 0], duration=1.0).error.max()``.
+    The desired position is timed by a quintic, the orientation held; each step commands
+    ``V = (K e_ω, ṗ_des + K e_p)`` and integrates ``q̇ = resolved_rate(J, V)`` with an Euler step
+    (see the module docstring).
+
+    Parameters
+    ----------
+    robot : Robot
+        A :class:`robokit.Robot`.
+    q0 : (n,) array_like
+        Start configuration (rad); the line starts at its tool position.
+    p_goal : (3,) array_like
+        End of the line, base frame (m).
+    duration : float
+        Duration of the move (s), positive.
+    dt : float, optional
+        Control step (s); default 0.005.
+    method : str, optional
+        :func:`robokit.kinematics.resolved_rate` method; default "dls" (adaptive damping).
+    gain : float, optional
+        Feedback gain K on the position and orientation errors (1/s); default 5.
+    damping : float, optional
+        Maximum damping λ of "dls"; default 0.02.
+    null_gain : float, optional
+        Weight of the null-space push away from the joint limits
+        (:func:`robokit.kinematics.joint_limit_gradient`); default 0 (off).
+    frame : str, optional
+        Tool frame; default the robot's tip.
+
+    Returns
+    -------
+    LineTrackingResult
+        Joint path, actual and desired positions and the error along the line.
+
+    Examples
+    --------
+    10 cm along x with the PUMA 560 in half a second stays within a millimetre of the line:
+
+    >>> puma = rk.load("puma560")
+    >>> q0 = np.array([0, 0.5, -0.3, 0, 0.7, 0])
+    >>> p0 = puma.frame_pose(q0)[:3, 3]
+    >>> res = track_line(puma, q0, p0 + [0.1, 0, 0], duration=0.5)
+    >>> res.q.shape, bool(res.error.max() < 1e-3)
+    ((101, 6), True)
     """
     q = as_vector(q0, "q0", robot.n).copy()
     p_goal = as_vector(p_goal, "p_goal", 3)

@@ -16,7 +16,7 @@ DC gain ``K_m K_a / B`` and time constant ``J / B``, whose response to a voltage
 
 A gearbox of ratio G (motor turns per joint turn) between motor and link gives, seen from the
 link side (Lecture 8): ``ˡJ = G² ᵐJ``, ``ˡB = G² ᵐB``, ``ˡτ_C = G ᵐτ_C``, ``ˡτ = G ᵐτ``,
-``ˡθ̇ = ᵐθ̇ / G``, ``ˡθ̈ = ᵐθ̈ / G`` (:func:`reflect_to_joint`); the motor of joint j sees the
+``ˡθ̇ = ᵐθ̇ / G``, ``ˡθ̈ = ᵐθ̈ / G`` (:func:`joint_from_motor`); the motor of joint j sees the
 effective inertia ``J = J_m + M_jj / G²`` (:func:`effective_inertia`).
 
 Units: V, A, N·m, kg·m², N·m·s/rad, rad/s.
@@ -30,20 +30,44 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.errors import InputError
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["DCMotor", "reflect_to_joint", "effective_inertia"]
+__all__ = ["DCMotor", "joint_from_motor", "effective_inertia"]
 
 
 @dataclass(frozen=True)
 class DCMotor:
     """A DC motor with its current amplifier (Lecture 8).
 
-    Ka : amplifier transconductance (A/V); Km : torque constant (N·m/A); J : total inertia on the
-    motor shaft (kg·m², e.g. :func:`effective_inertia`); B : viscous friction (N·m·s/rad, motor
-    side); Tc : (2,) Coulomb friction for positive and negative speed (N·m, motor side, the second
-    usually negative; default none).
+    ``i = K_a u``, ``τ_m = K_m K_a u`` and ``J ω̇ + B ω + τ_c(ω) = K_m K_a u − τ_d``: methods
+    ``current``, ``torque``, ``transfer_function`` (``K_m K_a / (J s + B)``), ``time_constant``
+    (J/B), ``dc_gain`` (K_m K_a / B), ``step_response`` (closed form), ``acceleration`` and
+    ``simulate`` (RK4, Coulomb friction included).
 
-    Example: ``DCMotor(Ka=1.0, Km=0.228, J=3.3e-4, B=8.2e-4).step_response([0, 0.1], 1.0)``.
+    Attributes
+    ----------
+    Ka : float
+        Amplifier transconductance (A/V), positive.
+    Km : float
+        Torque constant (N·m/A), positive.
+    J : float
+        Total inertia on the motor shaft (kg·m², e.g. :func:`effective_inertia`), positive.
+    B : float
+        Viscous friction (N·m·s/rad, motor side), non-negative.
+    Tc : (2,) tuple, optional
+        Coulomb friction for positive and negative speed (N·m, motor side, the second usually
+        negative); default none.
+
+    Examples
+    --------
+    After one time constant J/B the speed reaches 1 − 1/e ≈ 63 % of its final value K_m K_a u / B:
+
+    >>> motor = DCMotor(Ka=1.0, Km=0.228, J=3.3e-4, B=8.2e-4)
+    >>> round(motor.time_constant, 4), round(motor.dc_gain, 2)
+    (0.4024, 278.05)
+    >>> w = motor.step_response([motor.time_constant], 1.0)
+    >>> round(float(w[0] / motor.dc_gain), 4)
+    0.6321
     """
 
     Ka: float
@@ -127,12 +151,37 @@ class DCMotor:
         return w
 
 
-def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
+def joint_from_motor(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
                      tau_c: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G:
+    """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G.
+
     ``(ˡJ, ˡB, ˡτ) = (G² Jm, G² Bm, G τ)`` (Lecture 8). Scalars or arrays (broadcast).
 
-    Example: ``reflect_to_joint(100, 2e-4, 1e-3, 0.1)`` is ``(2.0, 10.0, 10.0)``.
+    Parameters
+    ----------
+    G : float or array_like
+        Gear ratio (motor turns per joint turn), non-zero.
+    Jm : float or array_like, optional
+        Motor-side inertia (kg·m²).
+    Bm : float or array_like, optional
+        Motor-side viscous friction (N·m·s/rad).
+    tau_c : float or array_like, optional
+        A motor-side torque (N·m), e.g. Coulomb friction.
+
+    Returns
+    -------
+    J, B, tau : ndarray
+        The same three seen from the joint.
+
+    Raises
+    ------
+    InputError
+        When a gear ratio is 0.
+
+    Examples
+    --------
+    >>> [float(x) for x in joint_from_motor(100, 2e-4, 1e-3, 0.1)]
+    [2.0, 10.0, 10.0]
     """
     G = np.asarray(G, dtype=float)
     if np.any(G == 0):
@@ -141,12 +190,40 @@ def reflect_to_joint(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
 
 
 def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarray:
-    """The inertia the motor of joint j sees: ``J = J_m + M_jj / G²`` (kg·m², motor side; Lecture 8).
+    """The inertia the motor of joint j sees: ``J = J_m + M_jj / G²`` (motor side; Lecture 8).
 
-    Jm : rotor inertia; M_jj : the arm's inertia about joint j (diagonal of M(q), kg·m²); G : gear
-    ratio. Scalars or arrays. ``M_jj`` changes with the pose — "M₂₂ varies a lot" (Lecture 8).
+    ``M_jj`` changes with the pose — "M₂₂ varies a lot" (Lecture 8).
+
+    Parameters
+    ----------
+    Jm : float or array_like
+        Rotor inertia (kg·m²).
+    M_jj : float or array_like
+        The arm's inertia about joint j (diagonal of M(q), kg·m²).
+    G : float or array_like
+        Gear ratio, non-zero.
+
+    Returns
+    -------
+    ndarray
+        Effective inertia on the motor shaft (kg·m²).
+
+    Raises
+    ------
+    InputError
+        When a gear ratio is 0.
+
+    Examples
+    --------
+    A 2 kg·m² link behind a 100:1 gearbox adds only 2e-4 kg·m² to a 2e-4 kg·m² rotor:
+
+    >>> float(effective_inertia(2e-4, 2.0, 100))
+    0.0004
     """
     G = np.asarray(G, dtype=float)
     if np.any(G == 0):
         raise InputError(f"G: a gear ratio cannot be 0, got {G}")
     return np.asarray(Jm, float) + np.asarray(M_jj, float) / (G * G)
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+reflect_to_joint = deprecated_alias(joint_from_motor, "reflect_to_joint")

@@ -11,10 +11,25 @@ __all__ = ["plot_tracking"]
 
 
 def plot_tracking(result: Any, joints: Iterable[int] | None = None, title: str | None = None) -> Any:
-    """Three stacked panels for a :class:`~robokit.control.simulate.SimResult` (or any object with
-    ``t``, ``q``, ``q_des``, ``tau``): desired (dashed) and actual joint angles, tracking
-    error ``q_des − q``, and commanded torques. ``joints`` selects columns (default all).
-    Returns the matplotlib Figure.
+    """Three stacked panels of a closed-loop run: joint angles, tracking error, torques.
+
+    Desired (dashed) and actual joint angles, the error ``q_des − q`` and the commanded torques
+    against time. Needs the ``plot`` extra (matplotlib).
+
+    Parameters
+    ----------
+    result : SimResult or object
+        A :class:`~robokit.control.simulate.SimResult`, or any object with ``t`` (K,), ``q``,
+        ``q_des`` and ``tau`` (K, n).
+    joints : iterable of int, optional
+        Columns (0-based joints) to draw; default all.
+    title : str, optional
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure with its three axes.
     """
     plt = require("matplotlib.pyplot", "plotting")
 

@@ -37,14 +37,53 @@ def _diverged(i: int, dt: float, taumat: np.ndarray, thetamat: np.ndarray) -> No
 def computed_torque(thetalist: ArrayLike, dthetalist: ArrayLike, eint: ArrayLike, g: ArrayLike, Mlist: ArrayLike,
                     Glist: ArrayLike, Slist: ArrayLike, thetalistd: ArrayLike, dthetalistd: ArrayLike,
                     ddthetalistd: ArrayLike, Kp: ArrayLike, Ki: ArrayLike, Kd: ArrayLike) -> np.ndarray:
-    """Joint torques of the computed-torque (PID) law, Modern Robotics eq. 11.35.
+    """Joint torques of the computed-torque (PID) law, Modern Robotics eq. 11.35 (seed 004 §6).
 
-    thetalist, dthetalist : (n,) measured θ (rad) and θ̇ (rad/s); eint : (n,) time integral
-    of the error (rad·s); g : (3,) gravity in the base frame (m/s²); Mlist, Glist, Slist :
-    the (estimated) model in Modern Robotics form; thetalistd, dthetalistd, ddthetalistd :
-    (n,) desired θ, θ̇, θ̈; Kp, Ki, Kd : scalar gains (or (n,) per joint).
-    Returns τ (n,) = ``M(θ)(θ̈_d + Kp e + Ki (eint + e) + Kd ė) + h(θ, θ̇)`` — the integral
-    term includes the current error, as in Modern Robotics' ``ComputedTorque``.
+    ``τ = M̃(θ)(θ̈_d + K_p e + K_i (eint + e) + K_d ė) + h̃(θ, θ̇)`` with ``e = θ_d − θ``, computed as
+    one :func:`robokit.inverse_dynamics` call on the (estimated) model with no tip wrench; the
+    integral term includes the current error, as in Modern Robotics' ``ComputedTorque``.
+
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Measured joint values θ (rad) and rates θ̇ (rad/s).
+    eint : (n,) array_like
+        Time integral of the error so far (rad·s).
+    g : (3,) array_like
+        Gravity in the base frame (m/s²) of the controller's model.
+    Mlist : (n+1, 4, 4) array_like
+        The controller's (estimated) model: link frames at the centres of mass, each in the previous
+        one (Modern Robotics form, metres).
+    Glist : (n, 6, 6) array_like
+        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    thetalistd, dthetalistd, ddthetalistd : (n,) array_like
+        Desired θ_d (rad), θ̇_d (rad/s), θ̈_d (rad/s²).
+    Kp, Ki, Kd : float or (n,) array_like
+        Gains (1/s², 1/s³, 1/s), scalars or one per joint; finite and non-negative.
+
+    Returns
+    -------
+    (n,) ndarray
+        τ (N·m; N for prismatic joints).
+
+    Raises
+    ------
+    InputError
+        On a wrong length, a negative or non-finite gain, or a bad model.
+
+    Examples
+    --------
+    The planar two-link arm at rest, horizontal (θ = 0), asked to be 0.1 rad further on joint 1 with
+    Kp = 20: ``τ = M(0) (20 × 0.1, 0) + g(0)`` with ``M(0) = [[6.86, 2.16], [2.16, 0.96]]`` and
+    ``g(0) = (46.107, 11.772)``:
+
+    >>> p = rk.load("twolink").poe
+    >>> z = np.zeros(2)
+    >>> computed_torque(z, z, z, [0, -9.81, 0], p.Mlist, p.Glist, p.Slist, [0.1, 0], z, z,
+    ...                 20, 0, 18).round(4)
+    array([59.827, 16.092])
     """
     from robokit.dynamics import inverse_dynamics
 
@@ -66,25 +105,76 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
                      intRes: int, *, compiled: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Closed-loop computed-torque simulation with model error (seed 004 §6, MR ``SimulateControl``).
 
-    thetalist, dthetalist : (n,) initial state; g : (3,) true gravity; Ftipmat : (N, 6) tip
-    wrenches; Mlist, Glist, Slist : the true plant; thetamatd, dthetamatd, ddthetamatd :
-    (N, n) desired trajectory sampled every ``dt`` (s); gtilde, Mtildelist, Gtildelist : the
-    controller's estimated model; Kp, Ki, Kd : gains; intRes : Euler steps per period.
+    At each control period k the law of :func:`computed_torque` (on the estimated model
+    ``gtilde``, ``Mtildelist``, ``Gtildelist``) gives τ, held while the true plant (``g``,
+    ``Mlist``, ``Glist``) is integrated with ``intRes`` Euler steps of ``dt/intRes``; the error
+    integral is updated with the error at the end of the period (``eint ← eint + e·dt``). Unlike
+    Modern Robotics' version it plots nothing; use :func:`robokit.control.plot.plot_tracking`.
 
-    Returns ``(taumat, thetamat)``, both (N, n): the commanded torques and the actual joint
-    angles at the end of each control period (row k: after integrating period k), as in
-    Modern Robotics; the error integral is updated with the error at the end of the period.
-    Unlike Modern Robotics' version it plots nothing; use
-    :func:`robokit.control.plot.plot_tracking` on the result.
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Initial joint values (rad) and rates (rad/s).
+    g : (3,) array_like
+        True gravity in the base frame (m/s²).
+    Ftipmat : (N, 6) array_like
+        Tip wrench ``(m, f)`` at each period, end-effector frame (N·m, N).
+    Mlist : (n+1, 4, 4) array_like
+        The true plant: link frames at the centres of mass, each in the previous one (Modern
+        Robotics form, metres).
+    Glist : (n, 6, 6) array_like
+        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    thetamatd, dthetamatd, ddthetamatd : (N, n) array_like
+        Desired trajectory sampled every ``dt`` (rad, rad/s, rad/s²).
+    gtilde : (3,) array_like
+        The controller's gravity estimate (m/s²).
+    Mtildelist : (n+1, 4, 4) array_like
+        The controller's estimated link frames.
+    Gtildelist : (n, 6, 6) array_like
+        The controller's estimated spatial inertias.
+    Kp, Ki, Kd : float or (n,) array_like
+        Gains (1/s², 1/s³, 1/s).
+    dt : float
+        Control period (s), positive.
+    intRes : int
+        Euler steps of the plant per period (≥ 1).
+    compiled : bool, optional
+        True (default) steps the whole loop — control law, Newton–Euler on the estimated model,
+        articulated-body forward dynamics of the plant, Euler steps — inside one compiled kernel
+        (:mod:`robokit.kernels.simulation`); False runs the same loop in Python over
+        :func:`robokit.inverse_dynamics` and :func:`robokit.forward_dynamics` (equal to 1e-12).
 
-    compiled : True (default) steps the whole loop — control law, Newton–Euler on the estimated
-    model, articulated-body forward dynamics of the plant, Euler steps — inside one compiled
-    kernel (:mod:`robokit.kernels.simulation`); False runs the same loop in Python over
-    :func:`robokit.inverse_dynamics` and :func:`robokit.forward_dynamics` (equal to 1e-12).
-    A diverging loop raises :class:`robokit.errors.DivergenceError` either way.
+    Returns
+    -------
+    taumat : (N, n) ndarray
+        The commanded torques, row k over period k (N·m).
+    thetamat : (N, n) ndarray
+        The actual joint values at the end of each period (row k: after integrating period k), as
+        in Modern Robotics.
 
-    Example: ``taumat, thetamat = simulate_control(q0, dq0, g, np.zeros((N, 6)), Ml, Gl, Sl, qd, dqd, ddqd,
-    g, Ml, Gl, 20.0, 10.0, 18.0, 0.01, 8)``.
+    Raises
+    ------
+    DivergenceError
+        When the closed loop blows up (the result so far is in ``.partial``).
+    InputError
+        On bad arguments or a plant mass matrix that is not positive definite.
+
+    Examples
+    --------
+    A 3-step trajectory holding the planar two-link arm horizontal, with a perfect model: the
+    torques are the gravity torques and the arm does not move:
+
+    >>> p = rk.load("twolink").poe
+    >>> g, N = [0, -9.81, 0], 3
+    >>> Z = np.zeros((N, 2))
+    >>> taumat, thetamat = simulate_control([0, 0], [0, 0], g, np.zeros((N, 6)), p.Mlist, p.Glist, p.Slist,
+    ...                                     Z, Z, Z, g, p.Mlist, p.Glist, 20, 10, 18, 0.01, 8)
+    >>> taumat.shape, thetamat.shape
+    ((3, 2), (3, 2))
+    >>> taumat[0].round(4), bool(np.allclose(thetamat, 0))
+    (array([46.107, 11.772]), True)
     """
     from robokit.dynamics import forward_dynamics, inverse_dynamics
 

@@ -36,9 +36,19 @@ __all__ = ["SimResult", "simulate"]
 class SimResult:
     """Result of :func:`simulate`: arrays over the K control instants.
 
-    t : (K,) s; q, dq : (K, n) measured joint angles and rates; tau : (K, n) commanded
-    torques (held over [t_k, t_k+1)); q_des, dq_des : (K, n) the desired trajectory;
-    error : (K, n) ``q_des − q``.
+    ``error`` (K, n) is ``q_des − q``; ``rms_error()`` the (n,) RMS error per joint; ``plot()``
+    draws :func:`robokit.control.plot_tracking`.
+
+    Attributes
+    ----------
+    t : (K,) ndarray
+        Control instants (s).
+    q, dq : (K, n) ndarray
+        Measured joint angles (rad) and rates (rad/s).
+    tau : (K, n) ndarray
+        Commanded torques (N·m), held over ``[t_k, t_k+1)``.
+    q_des, dq_des : (K, n) ndarray
+        The desired trajectory.
     """
 
     t: np.ndarray
@@ -105,33 +115,67 @@ def _desired(trajectory: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nd
 def simulate(robot: Robot, controller: Callable[..., ArrayLike], trajectory: Any, q0: ArrayLike | None = None,
              dq0: ArrayLike | None = None, *, substeps: int = 1, method: str = "rk4", friction: bool = False,
              motor_inertia: bool = False, Ftip: ArrayLike | None = None, compiled: bool = True) -> SimResult:
-    """Simulate ``robot`` under ``controller`` tracking ``trajectory``.
+    """Simulate ``robot`` under ``controller`` tracking ``trajectory`` (Lecture 8).
 
-    robot : the plant (:class:`robokit.Robot`); controller : called as
-    ``controller(t, q, dq, q_des, dq_des, ddq_des) -> tau`` (see :mod:`robokit.control.controllers`);
-    trajectory : an object with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n) on a uniform grid (a
-      :class:`~robokit.trajectory.Trajectory`), or a tuple ``(t, q_des, dq_des, ddq_des)``; the grid
-    spacing is the control period;
-    q0, dq0 : initial state (default: the desired state at t₀);
-    substeps : plant integration steps per control period; method : "rk4" or "euler";
-    friction, motor_inertia : include the DH file's friction and reflected motor inertia;
-    Ftip : optional (K, 6) wrench history (m, f) applied *by* the tip on the environment,
-    expressed in the tip frame (Modern Robotics' Ftip), resisted through ``J_bᵀ F``;
-    compiled : with one of the built-in controllers (:class:`~robokit.control.GravityPD`,
-    :class:`~robokit.control.ModelFeedforward`, :class:`~robokit.control.ComputedTorque`,
-    :class:`~robokit.control.IndependentJoint`) the whole loop — control law, the plant's
-    articulated-body forward dynamics on the Robot's PoE model, friction, motor inertia, RK4 or
-    Euler — steps inside one compiled kernel (:mod:`robokit.kernels.simulation`); it agrees with
-    the Python loop over Pinocchio to 1e-9. Any other controller (a Python callable) runs in the
-    Python loop, as does ``compiled=False``. The compiled loop does not write the controller's
-    integral state back (the Python loop leaves it at its final value).
+    The plant is the robot's rigid-body model integrated with the articulated-body algorithm (see
+    the module docstring); the controller is sampled once per control period and its torque held
+    while the plant takes ``substeps`` RK4 (or Euler) steps.
+
+    Parameters
+    ----------
+    robot : Robot
+        The plant (:class:`robokit.Robot`).
+    controller : callable
+        Called as ``controller(t, q, dq, q_des, dq_des, ddq_des) -> tau`` (see
+        :mod:`robokit.control.controllers`); ``reset()``/``update(...)`` are called when present.
+    trajectory : Trajectory or tuple
+        An object with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n) on a uniform grid (a
+        :class:`~robokit.trajectory.Trajectory`), or a tuple ``(t, q_des, dq_des, ddq_des)``; the grid
+        spacing is the control period (s).
+    q0, dq0 : (n,) array_like, optional
+        Initial state (default: the desired state at t₀).
+    substeps : int, optional
+        Plant integration steps per control period; default 1.
+    method : {"rk4", "euler"}, optional
+        Plant integrator; default "rk4".
+    friction, motor_inertia : bool, optional
+        Include the DH file's joint friction and reflected motor inertia ``G² J_m``; default False.
+    Ftip : (K, 6) array_like, optional
+        Wrench history ``(m, f)`` applied *by* the tip on the environment, in the tip frame (Modern
+        Robotics' Ftip), resisted through ``J_bᵀ F``.
+    compiled : bool, optional
+        With one of the built-in controllers (:class:`~robokit.control.GravityPD`,
+        :class:`~robokit.control.ModelFeedforward`, :class:`~robokit.control.ComputedTorque`,
+        :class:`~robokit.control.IndependentJoint`) the whole loop steps inside one compiled kernel
+        (:mod:`robokit.kernels.simulation`), agreeing with the Python loop over Pinocchio to 1e-9; any
+        other controller, or ``compiled=False``, runs the Python loop. The compiled loop does not
+        write the controller's integral state back.
 
     Returns
     -------
-    SimResult : ``t``, ``q``, ``dq``, ``tau``, ``q_des``, ``dq_des`` over the K control instants.
-    ``DivergenceError`` (with the result so far in ``.partial``) when the state blows up.
+    SimResult
+        ``t``, ``q``, ``dq``, ``tau``, ``q_des``, ``dq_des`` over the K control instants.
 
-    Example: ``simulate(robot, ComputedTorque(robot, Kp=100.0), joint_trajectory_of_robot)``.
+    Raises
+    ------
+    DivergenceError
+        When the state blows up (the result so far in ``.partial``).
+    InputError
+        On a bad trajectory, option or controller output.
+
+    Examples
+    --------
+    Computed torque with Kp = 100 (critically damped, ω = 10 rad/s) pulls the planar arm back from a
+    0.1 rad error within 1 s (the Python loop here; the default compiled loop gives the same):
+
+    >>> robot = rk.load("twolink")
+    >>> t = np.arange(0, 1.0 + 1e-9, 0.01)
+    >>> hold = np.zeros((len(t), 2))
+    >>> from robokit.control import ComputedTorque
+    >>> res = simulate(robot, ComputedTorque(robot, Kp=100.0), (t, hold, hold, hold), q0=[0.1, 0.0],
+    ...                compiled=False)
+    >>> res.q.shape, bool(abs(res.error[-1]).max() < 1e-3)
+    ((101, 2), True)
     """
     import pinocchio as pin
 

@@ -31,6 +31,10 @@ from robokit.description.urdf_gen import *  # noqa: F401,F403
 from robokit.description.urdf_gen import __all__ as _urdf_gen_all
 from robokit.description.urdf_to_dh import *  # noqa: F401,F403
 from robokit.description.urdf_to_dh import __all__ as _urdf_to_dh_all
+# Former names (deprecated aliases that warn; not in __all__).
+from robokit.description.dh import matrix_to_rpy, rpy_to_matrix  # noqa: F401
+from robokit.description.urdf_gen import dh_to_urdf  # noqa: F401
+from robokit.description.urdf_to_dh import urdf_to_dh  # noqa: F401
 
 __all__ = (list(_dh_all) + list(_urdf_gen_all) + list(_poe_all) + list(_robot_all) + list(_models_all)
            + list(_urdf_to_dh_all) + list(_protocol_all) + list(_spec_all) + list(_loading_all)

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from robokit._arrays import as_joints
+from robokit._arrays import as_joints, check_reference
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -102,8 +102,7 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, referen
     from robokit.spatial import lie
 
     _tip_only(robot, frame)
-    if reference not in ("world", "local", "local_world_aligned"):
-        raise InputError(f"reference: expected 'world', 'local' or 'local_world_aligned', got {reference!r}")
+    reference = check_reference(reference)
     Q = _rows(robot, Q, "q")
     p = robot.poe
     Slist = np.ascontiguousarray(p.Slist)

@@ -77,7 +77,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     """
     from robokit.description.dh import DHTable
     from robokit.description.loading import load
-    from robokit.description.urdf_gen import dh_to_urdf
+    from robokit.description.urdf_gen import urdf_from_dh
 
     src = str(input)
     in_suffix = Path(src).suffix.lower()
@@ -85,10 +85,10 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     out_suffix = out.suffix.lower() if out is not None else None
     notes: list[str] = []
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
-        from robokit.description.mjcf_write import robot_to_mjcf
+        from robokit.description.mjcf_write import mjcf_from_robot
 
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
-        text, notes = robot_to_mjcf(robot)
+        text, notes = mjcf_from_robot(robot)
         if robot.locked_joints:
             notes.insert(0, f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
                             f"their bodies merged: {', '.join(robot.locked_joints)}")
@@ -99,7 +99,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     elif in_suffix in (".yaml", ".yml") and out_suffix in (".urdf", None):
         if tip is not None:
             raise InputError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
-        text = dh_to_urdf(DHTable.from_yaml(src))
+        text = urdf_from_dh(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
         if robot.locked_joints:
@@ -111,7 +111,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
             if robot.dh is None:
                 raise InputError(f"output: {robot.name} is not a DH model, and robokit writes URDF from DH tables; "
                                  f"write .json (PoE), .yaml (its DH table, when it has an exact one) or .xml (MJCF)")
-            text = dh_to_urdf(robot.dh)
+            text = urdf_from_dh(robot.dh)
         elif robot.dh is not None:  # a DH model: its own table
             text = robot.dh.to_yaml_str() if out_suffix is not None else robot.dh.to_text() + "\n"
         else:

@@ -33,8 +33,9 @@ from numpy.typing import ArrayLike
 
 from robokit.spatial.euler import matrix_from_euler
 from robokit.spatial.so3 import matrix_to_euler
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["DHLink", "DHTable", "dh_transform", "rpy_to_matrix", "matrix_to_rpy"]
+__all__ = ["DHLink", "DHTable", "dh_transform", "matrix_from_rpy", "rpy_from_matrix"]
 
 _LINK_KEYS = {"joint", "a", "alpha", "d", "theta", "qlim", "mass", "com", "inertia", "Jm", "G", "B", "Tc", "name",
               "flip"}
@@ -101,7 +102,7 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
     raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
 
 
-def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
+def matrix_from_rpy(rpy: ArrayLike) -> np.ndarray:
     """URDF roll-pitch-yaw to a rotation: ``Rz(yaw) Ry(pitch) Rx(roll)``, ``rpy = [roll, pitch, yaw]``.
 
     Not a third rotation API: it is :func:`robokit.spatial.matrix_from_euler` with the extrinsic
@@ -122,14 +123,14 @@ def rpy_to_matrix(rpy: ArrayLike) -> np.ndarray:
     --------
     A yaw of 90° maps x onto y:
 
-    >>> (rpy_to_matrix([0.0, 0.0, np.pi / 2]) @ [1.0, 0.0, 0.0]).round(4).tolist()
+    >>> (matrix_from_rpy([0.0, 0.0, np.pi / 2]) @ [1.0, 0.0, 0.0]).round(4).tolist()
     [0.0, 1.0, 0.0]
     """
     return matrix_from_euler(np.asarray(rpy, dtype=float), "XYZ", extrinsic=True)
 
 
-def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
-    """Inverse of :func:`rpy_to_matrix`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2].
+def rpy_from_matrix(R: ArrayLike) -> np.ndarray:
+    """Inverse of :func:`matrix_from_rpy`: ``[roll, pitch, yaw]`` with pitch ∈ [−π/2, π/2].
 
     At gimbal lock (pitch = ±π/2) only roll ∓ yaw is determined; roll is then set to 0.
 
@@ -146,7 +147,7 @@ def matrix_to_rpy(R: ArrayLike) -> np.ndarray:
     Examples
     --------
     >>> rpy = [0.1, -0.2, 0.3]
-    >>> np.allclose(matrix_to_rpy(rpy_to_matrix(rpy)), rpy)
+    >>> np.allclose(rpy_from_matrix(matrix_from_rpy(rpy)), rpy)
     True
     """
     y, p, r = matrix_to_euler(R)
@@ -479,7 +480,7 @@ class DHTable:
                 fail(f"key '{key}': expected a mapping with 'xyz' and/or 'rpy'")
             T = np.eye(4)
             T[:3, 3] = vector(spec.get("xyz", [0, 0, 0]), 3, f"key '{key}.xyz'")
-            T[:3, :3] = rpy_to_matrix(vector(spec.get("rpy", [0, 0, 0]), 3, f"key '{key}.rpy'") * k)
+            T[:3, :3] = matrix_from_rpy(vector(spec.get("rpy", [0, 0, 0]), 3, f"key '{key}.rpy'") * k)
             return T
 
         base, tool = frame("base"), frame("tool")
@@ -580,7 +581,7 @@ class DHTable:
         for key, T in (("base", self.base), ("tool", self.tool)):
             T = np.asarray(T, dtype=float)
             if not np.allclose(T, np.eye(4), atol=0, rtol=0):
-                out[key] = {"xyz": [num(v) for v in T[:3, 3]], "rpy": [ang(v) for v in matrix_to_rpy(T[:3, :3])]}
+                out[key] = {"xyz": [num(v) for v in T[:3, 3]], "rpy": [ang(v) for v in rpy_from_matrix(T[:3, :3])]}
         links = []
         for l in self.links:
             d = {"joint": l.joint, "a": num(l.a), "alpha": ang(l.alpha), "d": num(l.d), "theta": ang(l.theta)}
@@ -703,6 +704,10 @@ class DHTable:
         for label, T in (("base (frame {0} in base_link)", self.base), ("tool (tool frame in frame {N})", self.tool)):
             if not np.allclose(T, np.eye(4), atol=10.0 ** -(digits + 1)):
                 xyz = ", ".join(fmt(v, digits) for v in T[:3, 3])
-                rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(matrix_to_rpy(T[:3, :3])))
+                rpy = ", ".join(fmt(v, digits - 2) for v in np.degrees(rpy_from_matrix(T[:3, :3])))
                 out.append(f"# {label}: xyz [{xyz}] m, rpy [{rpy}] deg")
         return "\n".join(out) + "\n"
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+rpy_to_matrix = deprecated_alias(matrix_from_rpy, "rpy_to_matrix")
+matrix_to_rpy = deprecated_alias(rpy_from_matrix, "matrix_to_rpy")

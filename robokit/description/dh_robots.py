@@ -1,6 +1,6 @@
 r"""Robots from DH tables: a shipped model, a DH ``.yaml`` file, a :class:`DHTable` in memory.
 
-The table becomes a URDF (:func:`robokit.description.urdf_gen.dh_to_urdf`: frames ``dh_0`` …
+The table becomes a URDF (:func:`robokit.description.urdf_gen.urdf_from_dh`: frames ``dh_0`` …
 ``dh_N`` and ``tool``), which Pinocchio builds; the robot's tip is ``tool`` and ``robot.dh`` is
 the table. The robot's :class:`~robokit.description.spec.RobotSpec` carries the table itself as
 YAML text (angles in rad), so ``robokit.load(robot.spec)`` rebuilds the same table without
@@ -51,7 +51,7 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
     """
     import pinocchio as pin
 
-    from robokit.description.urdf_gen import dh_to_urdf
+    from robokit.description.urdf_gen import urdf_from_dh
 
     if not isinstance(table, DHTable):
         raise InputError(f"table: expected a DHTable, got {type(table).__name__}")
@@ -60,7 +60,7 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
     check_joint_count(len(table.links), table.name, "links (joints)")  # before Pinocchio builds anything
     if spec is None:
         spec = RobotSpec("dh", text=table.to_yaml_str(angle_unit="rad"))
-    xml = dh_to_urdf(table)
+    xml = urdf_from_dh(table)
     model = pin.buildModelFromXML(xml)
     model.gravity.linear = np.asarray(table.gravity, dtype=float)
     try:

@@ -12,7 +12,7 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     * gravity, from ``<option gravity>`` (MuJoCo's default ``0 0 -9.81``);
     * the range of slide joints, which Pinocchio converts from degrees as if they were
       angles (MuJoCo takes them in metres whatever ``<compiler angle>`` says);
-    * exact inertials written by :func:`robot_to_mjcf` for bodies MuJoCo's compiler cannot
+    * exact inertials written by :func:`mjcf_from_robot` for bodies MuJoCo's compiler cannot
       take as they are (see below).
 
     Elements with no meaning for a serial-chain model (actuators, tendons, equality
@@ -21,11 +21,11 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     stderr (a ``RobokitWarning``). Joint ``damping`` is kept in
     ``robot.model.damping`` (robokit's rigid-body dynamics does not add it).
 
-    Exact inertials written by :func:`robokit.description.mjcf_write.robot_to_mjcf` in
+    Exact inertials written by :func:`robokit.description.mjcf_write.mjcf_from_robot` in
     ``<custom><numeric name="robokit_inertial:BODY">`` replace the approximate ones MuJoCo
     needed (see :mod:`robokit.description.mjcf_write`).
 
-Writing is :mod:`robokit.description.mjcf_write` (``robot_to_mjcf``, ``joint_armature_damping``).
+Writing is :mod:`robokit.description.mjcf_write` (``mjcf_from_robot``, ``joint_armature_damping``).
 """
 from __future__ import annotations
 
@@ -400,10 +400,10 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     The shipped planar arm written as MJCF and read back:
 
     >>> import pathlib, tempfile
-    >>> from robokit.description.mjcf_write import robot_to_mjcf
+    >>> from robokit.description.mjcf_write import mjcf_from_robot
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     path = pathlib.Path(tmp, "twolink.xml")
-    ...     _ = path.write_text(robot_to_mjcf(rk.load("twolink"))[0])
+    ...     _ = path.write_text(mjcf_from_robot(rk.load("twolink"))[0])
     ...     robot = load_mjcf(path)
     >>> robot.n, robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
     (2, [1.0, 0.8, 0.0])

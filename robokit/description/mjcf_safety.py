@@ -95,10 +95,10 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> from robokit.description.mjcf_write import robot_to_mjcf
+    >>> from robokit.description.mjcf_write import mjcf_from_robot
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     path = pathlib.Path(tmp, "twolink.xml")
-    ...     _ = path.write_text(robot_to_mjcf(rk.load("twolink"))[0])
+    ...     _ = path.write_text(mjcf_from_robot(rk.load("twolink"))[0])
     ...     print(check_mjcf(path).get("model"))
     twolink
     """

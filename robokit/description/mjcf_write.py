@@ -1,6 +1,6 @@
-r"""MJCF out: :func:`robot_to_mjcf` (``robokit convert ROBOT -o OUT.xml``).
+r"""MJCF out: :func:`mjcf_from_robot` (``robokit convert ROBOT -o OUT.xml``).
 
-Writing (:func:`robot_to_mjcf`, used by ``robokit convert ROBOT -o OUT.xml``)
+Writing (:func:`mjcf_from_robot`, used by ``robokit convert ROBOT -o OUT.xml``)
     One MJCF body per joint of the robot's chain, placed in its parent body as Pinocchio's
     joint placement; the joint at the body's origin (``hinge``/``slide`` with the axis in the
     body frame, ``range`` from the limits, ``armature`` and ``damping``); the inertial
@@ -31,11 +31,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.mjcf import CUSTOM_INERTIAL_PREFIX
+from robokit._deprecation import deprecated_alias
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
-__all__ = ["robot_to_mjcf", "joint_armature_damping"]
+__all__ = ["mjcf_from_robot", "joint_armature_damping"]
 
 #: mesh files MuJoCo reads
 _MUJOCO_MESH_EXT = {".stl", ".obj", ".msh"}
@@ -174,7 +175,7 @@ def joint_armature_damping(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
     return np.array(model.armature)[idx], np.array(model.damping)[idx]
 
 
-def robot_to_mjcf(robot: Robot) -> tuple[str, list[str]]:
+def mjcf_from_robot(robot: Robot) -> tuple[str, list[str]]:
     """MJCF text of a robot's chain, and notes for stderr (see the module docstring).
 
     Parameters
@@ -199,7 +200,7 @@ def robot_to_mjcf(robot: Robot) -> tuple[str, list[str]]:
 
     Examples
     --------
-    >>> text, notes = robot_to_mjcf(rk.load("twolink"))
+    >>> text, notes = mjcf_from_robot(rk.load("twolink"))
     >>> '<mujoco model="twolink">' in text, text.count('type="hinge"')
     (True, 2)
     """
@@ -345,3 +346,6 @@ def robot_to_mjcf(robot: Robot) -> tuple[str, list[str]]:
     out.append("  </worldbody>")
     out.append("</mujoco>")
     return "\n".join(out) + "\n", notes
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+robot_to_mjcf = deprecated_alias(mjcf_from_robot, "robot_to_mjcf")

@@ -77,12 +77,12 @@ def regenerate() -> list[Path]:
     """Write ``models/<name>.urdf`` for every shipped YAML file; returns the paths written."""
     from robokit._io import atomic_write
     from robokit.description.dh import DHTable
-    from robokit.description.urdf_gen import dh_to_urdf
+    from robokit.description.urdf_gen import urdf_from_dh
 
     out = []
     for name in shipped_models():
         table = DHTable.from_yaml(model_path(name))
-        out.append(atomic_write(models_dir() / f"{name}.urdf", dh_to_urdf(table)))
+        out.append(atomic_write(models_dir() / f"{name}.urdf", urdf_from_dh(table)))
     return out
 
 

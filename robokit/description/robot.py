@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_joints, ndim
+from robokit._arrays import as_joints, check_reference, ndim
 from robokit.errors import InputError
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
@@ -225,9 +225,8 @@ class Robot:
         pin = self._pin
         rf = self._ref_frames.get(reference)
         if rf is None:
-            if reference not in self._REFS:
-                raise InputError(f"reference: expected one of {sorted(self._REFS)}, got {reference!r}")
-            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[reference])
+            canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
+            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
         if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
@@ -315,6 +314,6 @@ class Robot:
         return rng.uniform(lo, hi)
 
     def __repr__(self) -> str:
-        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.urdf_to_dh(robot).table"
+        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 

@@ -28,10 +28,11 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit.description.dh import DHTable, dh_transform, matrix_to_rpy
+from robokit.description.dh import DHTable, dh_transform, rpy_from_matrix
 from robokit.errors import InputTypeError
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["dh_to_urdf"]
+__all__ = ["urdf_from_dh"]
 
 
 def _f(x: float) -> str:
@@ -48,7 +49,7 @@ def _vec(v: np.ndarray) -> str:
 
 def _origin(T: np.ndarray) -> str:
     T = np.asarray(T, dtype=float)
-    return f'<origin xyz="{_vec(T[:3, 3])}" rpy="{_vec(matrix_to_rpy(T[:3, :3]))}"/>'
+    return f'<origin xyz="{_vec(T[:3, 3])}" rpy="{_vec(rpy_from_matrix(T[:3, :3]))}"/>'
 
 
 def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str) -> str | None:
@@ -69,7 +70,7 @@ def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str
             f"</geometry><material name=\"{material}\"/></visual>")
 
 
-def dh_to_urdf(table: DHTable) -> str:
+def urdf_from_dh(table: DHTable) -> str:
     r"""The URDF text of a :class:`DHTable`; it loads in Pinocchio and yourdfpy.
 
     The layout is the one of the URDF format page of the documentation: root link ``base_link``,
@@ -90,7 +91,7 @@ def dh_to_urdf(table: DHTable) -> str:
     Examples
     --------
     >>> table = rk.load("twolink").dh
-    >>> urdf = dh_to_urdf(table)
+    >>> urdf = urdf_from_dh(table)
     >>> urdf.count("<joint name=\"joint_"), "<link name=\"tool\"" in urdf
     (2, True)
     """
@@ -159,3 +160,6 @@ def dh_to_urdf(table: DHTable) -> str:
                  f"{_origin(table.tool)}</joint>")
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+dh_to_urdf = deprecated_alias(urdf_from_dh, "dh_to_urdf")

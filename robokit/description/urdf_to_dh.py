@@ -44,11 +44,12 @@ from numpy.typing import ArrayLike
 from robokit.description.dh import DHLink, DHTable
 from robokit.spatial.lines import common_normal
 from robokit.errors import InputError
+from robokit._deprecation import deprecated_alias
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
-__all__ = ["urdf_to_dh", "URDFToDH", "format_dh_table", "joint_axes"]
+__all__ = ["dh_from_urdf", "URDFToDH", "format_dh_table", "joint_axes"]
 
 _EPS = 1e-9
 
@@ -140,7 +141,7 @@ def _clean(x: float) -> float:
 
 @dataclass
 class URDFToDH:
-    """Result of :func:`urdf_to_dh`: the table and how well it reproduces the robot.
+    """Result of :func:`dh_from_urdf`: the table and how well it reproduces the robot.
 
     Attributes
     ----------
@@ -156,7 +157,7 @@ class URDFToDH:
 
     Examples
     --------
-    >>> res = urdf_to_dh(rk.load("puma560"), samples=20)
+    >>> res = dh_from_urdf(rk.load("puma560"), samples=20)
     >>> res.exact, res.table.n
     (True, 6)
     """
@@ -171,7 +172,7 @@ class URDFToDH:
         return self.residual <= 1e-9
 
 
-def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
+def dh_from_urdf(robot: Robot, convention: str = "standard", samples: int = 200,
                rng: int | np.random.Generator | None = 0) -> URDFToDH:
     """DH table (either convention) of a Robot's chain root → tip, with base and tool transforms.
 
@@ -201,7 +202,7 @@ def urdf_to_dh(robot: Robot, convention: str = "standard", samples: int = 200,
     --------
     The two parallel axes of the planar arm give a = 1 m and 0.8 m, α = 0:
 
-    >>> res = urdf_to_dh(rk.load("twolink"), samples=20)
+    >>> res = dh_from_urdf(rk.load("twolink"), samples=20)
     >>> [(l.a, l.alpha) for l in res.table.links], res.exact
     ([(1.0, 0.0), (0.8, 0.0)], True)
     """
@@ -346,7 +347,7 @@ def format_dh_table(table: DHTable, digits: int = 5) -> str:
 def urdf_to_dh_text(robot: Robot, convention: str = "standard", as_yaml: bool = True) -> str:
     """Text for ``robokit convert``: the YAML file (refused for an inexact table), or the printed
     table with its residual (printed either way, an inexact one marked as such)."""
-    res = urdf_to_dh(robot, convention)
+    res = dh_from_urdf(robot, convention)
     if as_yaml and not res.exact:
         raise InputError(f"{robot.name}: the DH table reproduces the URDF only to {res.residual:.2e} "
                          f"(> 1e-9); not written")
@@ -356,3 +357,6 @@ def urdf_to_dh_text(robot: Robot, convention: str = "standard", as_yaml: bool = 
         return header + res.table.to_yaml_str("deg")
     verdict = "" if res.exact else " — NOT exact (> 1e-9): this table only approximates the URDF"
     return format_dh_table(res.table) + f"# FK residual vs the URDF: {res.residual:.1e}{verdict}\n"
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+urdf_to_dh = deprecated_alias(dh_from_urdf, "urdf_to_dh")

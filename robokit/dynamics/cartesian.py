@@ -19,14 +19,26 @@ __all__ = ["CartesianDynamics", "cartesian_dynamics"]
 class CartesianDynamics:
     """Operational-space terms at one state (Lecture 7): ``F = Λ(q) ẍ + μ(q, q̇) + p(q)``.
 
-    Lambda (6×6 or m×m) ``(J M⁻¹ Jᵀ)⁻¹``; mu ``Λ (J M⁻¹ c − J̇ q̇)``; p ``Λ J M⁻¹ g``; plus the
-    dynamic manipulability measures: ``yoshikawa = √det(J (MᵀM)⁻¹ Jᵀ)`` (Yoshikawa's dynamic
-    manipulability) and ``asada`` = ratio of the smallest to the largest eigenvalue of Λ (the
-    isotropy of Asada's generalized inertia ellipsoid), with ``inertia_axes``/``inertia_radii``
-    of that ellipsoid (eigenvectors, √eigenvalues of Λ).
-
     The lecture writes the same equation ``F = M_x(q) ẍ + V_x(q, q̇) + G_x(q)``: ``M_x``, ``V_x`` and
-    ``G_x`` are aliases of ``Lambda``, ``mu`` and ``p``.
+    ``G_x`` are aliases of ``Lambda``, ``mu`` and ``p``. Built by :func:`cartesian_dynamics`.
+
+    Attributes
+    ----------
+    Lambda : (m, m) ndarray
+        ``(J M⁻¹ Jᵀ)⁻¹``, the Cartesian mass matrix (kg, kg·m²), m = 6, or 3 for one part.
+    mu : (m,) ndarray
+        ``Λ (J M⁻¹ c − J̇ q̇)``, the velocity-product wrench (N, N·m).
+    p : (m,) ndarray
+        ``Λ J M⁻¹ g``, the gravity wrench (N, N·m).
+    yoshikawa : float
+        Yoshikawa's dynamic manipulability ``√det(J (MᵀM)⁻¹ Jᵀ)``.
+    asada : float
+        Smallest over largest eigenvalue of Λ: the isotropy of Asada's generalized inertia
+        ellipsoid (1 = isotropic).
+    inertia_radii : (m,) ndarray
+        √eigenvalues of Λ, ascending: the ellipsoid's radii.
+    inertia_axes : (m, m) ndarray
+        Eigenvectors of Λ as columns (base axes): the ellipsoid's axes.
     """
 
     @property
@@ -53,8 +65,49 @@ class CartesianDynamics:
 
 def cartesian_dynamics(robot: Robot, q: ArrayLike, dq: ArrayLike, frame: str | None = None,
                        part: str = "full") -> CartesianDynamics:
-    """:class:`CartesianDynamics` of ``robot`` at (q, q̇) for the frame's geometric Jacobian
-    (base axes; ``part`` "full", "translation" or "rotation" selects the rows)."""
+    """:class:`CartesianDynamics` of ``robot`` at (q, q̇) for a frame's geometric Jacobian (Lecture 7).
+
+    With J the frame's Jacobian (rows ``(ω; v)``, base axes), M, c, g from Pinocchio (CRBA and
+    RNEA) and J̇q̇ the frame's classical acceleration at q̈ = 0.
+
+    Parameters
+    ----------
+    robot : Robot
+        A :class:`robokit.Robot`.
+    q, dq : (n,) array_like
+        Joint values and rates (rad, rad/s).
+    frame : str, optional
+        Frame name; default the robot's tip.
+    part : {"full", "translation", "rotation"}, optional
+        The Jacobian rows used: all six (default), v or ω. J must have full row rank.
+
+    Returns
+    -------
+    CartesianDynamics
+        Λ, μ, p and the dynamic manipulability measures.
+
+    Raises
+    ------
+    InputError
+        On a bad argument or an unknown ``part``.
+    numpy.linalg.LinAlgError
+        At a singularity of the chosen rows (``J M⁻¹ Jᵀ`` not invertible).
+
+    Examples
+    --------
+    For a square J, ``Λ = J⁻ᵀ M J⁻¹`` and ``Jᵀ p`` is the gravity torque (PUMA 560 away from
+    singularities):
+
+    >>> puma = rk.load("puma560")
+    >>> q = [0, 0.5, -0.3, 0, 0.7, 0]
+    >>> cd = cartesian_dynamics(puma, q, np.zeros(6))
+    >>> J = puma.jacobian(q, reference="local_world_aligned")
+    >>> Ji = np.linalg.inv(J)
+    >>> bool(np.allclose(cd.Lambda, Ji.T @ puma.crba(q) @ Ji))
+    True
+    >>> bool(np.allclose(J.T @ cd.p, puma.gravity_torques(q)))
+    True
+    """
     import pinocchio as pin
 
     q = as_vector(q, "q", robot.n)

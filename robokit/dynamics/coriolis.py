@@ -42,24 +42,55 @@ def _link_jacobians(m: _Model, theta: np.ndarray) -> np.ndarray:
 
 def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
                     Slist: ArrayLike, method: str = "christoffel") -> np.ndarray:
-    """The n×n Coriolis matrix C(θ, θ̇) with ``C θ̇ = c(θ, θ̇)``, in one of two factorisations.
+    """The n×n Coriolis matrix C(θ, θ̇) with ``C θ̇ = c(θ, θ̇)``, in one of two factorisations (Lecture 7).
 
-    Arguments in Modern Robotics form (see :func:`robokit.inverse_dynamics`); θ, θ̇ (n,) rad, rad/s.
     The velocity-product torque ``c(θ, θ̇) = Σⱼₖ cᵢⱼₖ θ̇ⱼ θ̇ₖ`` is a quadratic form in θ̇; C is not
-    unique, only ``C θ̇`` is.
+    unique, only ``C θ̇`` is. For the PUMA 560 at the lecture's nominal pose
+    ``qn = (0, π/4, π, 0, π/4, 0)`` with all rates 0.5 rad/s, ``C₁₂`` is −0.9115 (lecture) and
+    −0.6453 (Christoffel); ``C θ̇`` agrees.
 
-    method : "christoffel" (default) — the Christoffel-symbol matrix ``Cₖⱼ = Σᵢ Γᵢⱼₖ θ̇ᵢ`` of the mass
-    matrix, the one with ``Ṁ − 2C`` skew-symmetric (computed from the link body Jacobians, see the
-    module docstring); "lecture" — the factorisation the lecture prints (Corke's toolbox, from
-    Newton–Euler runs with ``θ̈ = 0`` and no gravity): column k collects the centripetal term of
-    θ̇ₖ and every Coriolis product θ̇ⱼθ̇ₖ with j < k,
-    ``C[:, k] = c(eₖ) θ̇ₖ + Σ_{j<k} (c(eⱼ + eₖ) − c(eⱼ) − c(eₖ)) θ̇ⱼ``,
-    where ``c(u)`` is the velocity-product torque at joint rates u.
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Joint values and rates (rad, rad/s).
+    Mlist : (n+1, 4, 4) array_like
+        Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
+    Glist : (n, 6, 6) array_like
+        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    method : {"christoffel", "lecture"}, optional
+        ``"christoffel"`` (default) — the Christoffel-symbol matrix ``Cₖⱼ = Σᵢ Γᵢⱼₖ θ̇ᵢ`` of the mass
+        matrix, the one with ``Ṁ − 2C`` skew-symmetric (computed from the link body Jacobians, see
+        the module docstring); ``"lecture"`` — the factorisation the lecture prints (Corke's
+        toolbox, from Newton–Euler runs with ``θ̈ = 0`` and no gravity): column k collects the
+        centripetal term of θ̇ₖ and every Coriolis product θ̇ⱼθ̇ₖ with j < k,
+        ``C[:, k] = c(eₖ) θ̇ₖ + Σ_{j<k} (c(eⱼ + eₖ) − c(eⱼ) − c(eₖ)) θ̇ⱼ``, with ``c(u)`` the
+        velocity-product torque at joint rates u.
 
-    For the PUMA 560 at the lecture's nominal pose ``qn = (0, π/4, π, 0, π/4, 0)`` with all
-    rates 0.5 rad/s, ``C₁₂`` is −0.9115 (lecture) and −0.6453 (Christoffel); ``C θ̇`` agrees.
+    Returns
+    -------
+    (n, n) ndarray
+        C(θ, θ̇) in N·m·s (revolute joints).
 
-    Example: ``coriolis_matrix(q, dq, robot.poe.Mlist, robot.poe.Glist, robot.poe.Slist, "lecture")``.
+    Raises
+    ------
+    InputError
+        On an unknown ``method`` or bad arguments.
+
+    Examples
+    --------
+    The planar two-link arm at θ₂ = π/2, θ̇ = (1, 1): both factorisations give the same
+    ``C θ̇ = c(θ, θ̇) = (−3.6, 1.2)`` (:func:`robokit.vel_quadratic_forces`), but different C:
+
+    >>> p = rk.load("twolink").poe
+    >>> q, dq = [0.3, np.pi / 2], [1.0, 1.0]
+    >>> C = coriolis_matrix(q, dq, p.Mlist, p.Glist, p.Slist)
+    >>> C.round(4), (C @ dq).round(4)
+    (array([[-1.2, -2.4],
+           [ 1.2,  0. ]]), array([-3.6,  1.2]))
+    >>> (coriolis_matrix(q, dq, p.Mlist, p.Glist, p.Slist, "lecture") @ dq).round(4)
+    array([-3.6,  1.2])
     """
     if method not in ("christoffel", "lecture"):
         raise InputError(f"method: expected 'christoffel' or 'lecture', got {method!r}")

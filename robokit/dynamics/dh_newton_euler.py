@@ -88,8 +88,19 @@ def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayL
 
     Examples
     --------
-    >>> import robokit as rk  # doctest: +SKIP
-    >>> tau, tr = dh_inverse_dynamics(rk.load("puma560").dh, [0] * 6, [0] * 6, [0] * 6, trace=True)  # doctest: +SKIP
+    The course's planar two-link arm (point masses m₁ = 2 kg, m₂ = 1.5 kg at the link ends,
+    l₁ = 1 m, l₂ = 0.8 m, gravity −y) held horizontal carries ``τ₁ = (m₁ + m₂) g l₁ + m₂ g l₂``,
+    ``τ₂ = m₂ g l₂``; at any state Craig's recursion equals the PoE form
+    :func:`robokit.inverse_dynamics`:
+
+    >>> robot = rk.load("twolink")
+    >>> dh_inverse_dynamics(robot.dh, [0, 0], [0, 0], [0, 0]).round(4)
+    array([46.107, 11.772])
+    >>> p = robot.poe
+    >>> tau = rk.inverse_dynamics([0.3, -0.4], [0.5, 1], [1, -2], robot.gravity, np.zeros(6),
+    ...                           p.Mlist, p.Glist, p.Slist)
+    >>> bool(np.allclose(dh_inverse_dynamics(robot.dh, [0.3, -0.4], [0.5, 1], [1, -2]), tau))
+    True
     """
     if trace:
         return dh_newton_euler_trace(table, q, dq, ddq, gravity, F_tip)

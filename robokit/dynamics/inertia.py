@@ -50,13 +50,32 @@ def _axis(axis: str) -> int:
 
 
 def inertia_box(mass: float, lx: float, ly: float, lz: float) -> np.ndarray:
-    """Inertia (3×3, kg·m²) of a uniform solid box about its centre, axes along its edges.
+    """Inertia of a uniform solid box about its centre, axes along its edges (Lecture 7).
 
-    ``diag(m (l_y² + l_z²)/12, m (l_x² + l_z²)/12, m (l_x² + l_y²)/12)`` — the lecture's
-    integrals ``I_xx = ∭ (y² + z²) ρ dv`` over ``[−l_x/2, l_x/2] × …``; products of inertia vanish
-    by symmetry. mass : kg; lx, ly, lz : edge lengths along x, y, z (m).
+    ``diag(m (l_y² + l_z²)/12, m (l_x² + l_z²)/12, m (l_x² + l_y²)/12)`` — the lecture's integrals
+    ``I_xx = ∭ (y² + z²) ρ dv`` over ``[−l_x/2, l_x/2] × …``; products of inertia vanish by
+    symmetry.
 
-    Example: ``inertia_box(12.0, 1.0, 1.0, 1.0)`` is ``2 I₃``.
+    Parameters
+    ----------
+    mass : float
+        Mass (kg), non-negative.
+    lx, ly, lz : float
+        Edge lengths along x, y, z (m), non-negative.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The inertia tensor (kg·m²) about the centre of mass, in the box's axes.
+
+    Examples
+    --------
+    A 12 kg unit cube: ``12 × (1 + 1)/12 = 2`` about every axis:
+
+    >>> inertia_box(12.0, 1.0, 1.0, 1.0)
+    array([[2., 0., 0.],
+           [0., 2., 0.],
+           [0., 0., 2.]])
     """
     m = as_scalar(mass, "mass", nonnegative=True)
     a = as_scalar(lx, "lx", nonnegative=True)
@@ -66,12 +85,37 @@ def inertia_box(mass: float, lx: float, ly: float, lz: float) -> np.ndarray:
 
 
 def inertia_cylinder(mass: float, radius: float, length: float, axis: str = "z") -> np.ndarray:
-    """Inertia (3×3) of a uniform solid cylinder about its centre; its axis along ``axis``.
+    """Inertia of a uniform solid cylinder about its centre, its axis along ``axis`` (Lecture 7).
 
-    About the cylinder's axis ``m r²/2``; about any diameter through the centre
-    ``m (3 r² + L²)/12``. mass : kg; radius, length : m; axis : "x", "y" or "z".
+    About the cylinder's axis ``m r²/2``; about any diameter through the centre ``m (3 r² + L²)/12``.
 
-    Example: ``inertia_cylinder(2.0, 0.1, 0.0)`` (a disc) is ``diag(0.005, 0.005, 0.01)``.
+    Parameters
+    ----------
+    mass : float
+        Mass (kg).
+    radius, length : float
+        Radius and length (m).
+    axis : {"x", "y", "z"}, optional
+        Direction of the cylinder's axis; default "z".
+
+    Returns
+    -------
+    (3, 3) ndarray
+        Diagonal inertia tensor (kg·m²) about the centre of mass.
+
+    Raises
+    ------
+    InputError
+        On a negative value or an unknown axis.
+
+    Examples
+    --------
+    A 2 kg disc of radius 0.1 m (length 0): ``m r²/2 = 0.01`` about its axis, half that across:
+
+    >>> inertia_cylinder(2.0, 0.1, 0.0)
+    array([[0.005, 0.   , 0.   ],
+           [0.   , 0.005, 0.   ],
+           [0.   , 0.   , 0.01 ]])
     """
     m = as_scalar(mass, "mass", nonnegative=True)
     r = as_scalar(radius, "radius", nonnegative=True)
@@ -83,10 +127,26 @@ def inertia_cylinder(mass: float, radius: float, length: float, axis: str = "z")
 
 
 def inertia_sphere(mass: float, radius: float, hollow: bool = False) -> np.ndarray:
-    """Inertia (3×3) of a uniform sphere about its centre: ``2/5 m r² I₃`` (solid) or
-    ``2/3 m r² I₃`` (a thin spherical shell, ``hollow=True``).
+    """Inertia of a uniform sphere about its centre: ``2/5 m r² I₃`` (solid) or ``2/3 m r² I₃`` (shell).
 
-    Example: ``inertia_sphere(5.0, 1.0)`` is ``2 I₃``.
+    Parameters
+    ----------
+    mass : float
+        Mass (kg).
+    radius : float
+        Radius (m).
+    hollow : bool, optional
+        A thin spherical shell instead of a solid ball; default False.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        Isotropic inertia tensor (kg·m²).
+
+    Examples
+    --------
+    >>> float(inertia_sphere(5.0, 1.0)[0, 0]), float(inertia_sphere(3.0, 1.0, hollow=True)[0, 0])
+    (2.0, 2.0)
     """
     m = as_scalar(mass, "mass", nonnegative=True)
     r = as_scalar(radius, "radius", nonnegative=True)
@@ -94,13 +154,36 @@ def inertia_sphere(mass: float, radius: float, hollow: bool = False) -> np.ndarr
 
 
 def inertia_rod(mass: float, length: float, axis: str = "z") -> np.ndarray:
-    """Inertia (3×3) of a thin uniform rod about its centre, lying along ``axis``.
+    """Inertia of a thin uniform rod about its centre, lying along ``axis`` (Lecture 7).
 
     ``m L²/12`` about the two axes across the rod, 0 about the rod itself (the limit of
-    :func:`inertia_cylinder` as r → 0). Use :func:`parallel_axis` with ``p = (L/2)·axis`` for the
-    rod about one end (``m L²/3``).
+    :func:`inertia_cylinder` as r → 0). Use :func:`parallel_axis` with ``p = (L/2)·axis`` for the rod
+    about one end (``m L²/3``).
 
-    Example: ``inertia_rod(3.0, 2.0, "x")`` is ``diag(0, 1, 1)``.
+    Parameters
+    ----------
+    mass : float
+        Mass (kg).
+    length : float
+        Length (m).
+    axis : {"x", "y", "z"}, optional
+        Direction of the rod; default "z".
+
+    Returns
+    -------
+    (3, 3) ndarray
+        Diagonal inertia tensor (kg·m²) about the centre of mass.
+
+    Examples
+    --------
+    A 3 kg, 2 m rod along x: ``3 × 2²/12 = 1`` across it; about one end ``m L²/3 = 4``:
+
+    >>> inertia_rod(3.0, 2.0, "x")
+    array([[0., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    >>> float(parallel_axis(inertia_rod(3.0, 2.0, "x"), 3.0, [1, 0, 0])[2, 2])
+    4.0
     """
     m = as_scalar(mass, "mass", nonnegative=True)
     L = as_scalar(length, "length", nonnegative=True)
@@ -119,13 +202,36 @@ def _tensor(I: ArrayLike, name: str) -> np.ndarray:
 def parallel_axis(I_c: ArrayLike, mass: float, p_c: ArrayLike) -> np.ndarray:
     """The inertia about the origin of {A} from the inertia about the centre of mass (same axes).
 
-    ``ᴬI = ᶜI + m (p_cᵀ p_c I₃ − p_c p_cᵀ)`` (Lecture 7, the parallel-axis theorem), with
+    ``ᴬI = ᶜI + m (p_cᵀ p_c I₃ − p_c p_cᵀ)`` (Lecture 7, the parallel-axis theorem; e.g.
+    ``ᴬI_zz = ᶜI_zz + m (x_c² + y_c²)``, ``ᴬI_xy = ᶜI_xy − m x_c y_c``).
 
-    I_c : (3, 3) inertia about the centre of mass, in {A}'s axes (kg·m²);
-    mass : kg; p_c : (3,) position of the centre of mass in {A} (m).
+    Parameters
+    ----------
+    I_c : (3, 3) array_like
+        Inertia about the centre of mass, in {A}'s axes (kg·m²), symmetric.
+    mass : float
+        Mass (kg).
+    p_c : (3,) array_like
+        Position of the centre of mass in {A} (m).
 
-    Example: a point mass 2 kg at (1, 0, 0): ``parallel_axis(np.zeros((3, 3)), 2, [1, 0, 0])`` is
-    ``diag(0, 2, 2)``.
+    Returns
+    -------
+    (3, 3) ndarray
+        The inertia about {A}'s origin, in {A}'s axes (kg·m²).
+
+    Raises
+    ------
+    InputError
+        When ``I_c`` is not a symmetric 3×3 matrix, or on a bad mass or position.
+
+    Examples
+    --------
+    A 2 kg point mass at (1, 0, 0): ``m x² = 2`` about y and z, nothing about x:
+
+    >>> parallel_axis(np.zeros((3, 3)), 2, [1, 0, 0])
+    array([[0., 0., 0.],
+           [0., 2., 0.],
+           [0., 0., 2.]])
     """
     I = _tensor(I_c, "I_c")
     m = as_scalar(mass, "mass", nonnegative=True)
@@ -134,13 +240,29 @@ def parallel_axis(I_c: ArrayLike, mass: float, p_c: ArrayLike) -> np.ndarray:
 
 
 def rotate_inertia(I_b: ArrayLike, R_a_b: ArrayLike) -> np.ndarray:
-    """The same inertia tensor expressed in the axes of {A}: ``ᴬI = ᴬR_B ᴮI ᴬR_Bᵀ``.
+    """The same inertia tensor expressed in the axes of {A}: ``ᴬI = ᴬR_B ᴮI ᴬR_Bᵀ`` (Lecture 7).
 
-    I_b : (3, 3) inertia in {B}'s axes (about some point); R_a_b : (3, 3) orientation of {B}
-    in {A}. The reference point does not change (combine with :func:`parallel_axis` to move it).
+    The reference point does not change (combine with :func:`parallel_axis` to move it).
 
-    Example: a rod along z turned 90° about y lies along x:
-    ``rotate_inertia(inertia_rod(3, 2, "z"), Ry(π/2))`` equals ``inertia_rod(3, 2, "x")``.
+    Parameters
+    ----------
+    I_b : (3, 3) array_like
+        Inertia in {B}'s axes (about some point), kg·m², symmetric.
+    R_a_b : (3, 3) array_like
+        Orientation of {B} in {A} (a rotation matrix).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The tensor in {A}'s axes (kg·m²).
+
+    Examples
+    --------
+    A rod along z turned 90° about y lies along x:
+
+    >>> R_a_b = np.array([[0.0, 0, 1], [0, 1, 0], [-1, 0, 0]])  # Ry(π/2)
+    >>> bool(np.allclose(rotate_inertia(inertia_rod(3, 2, "z"), R_a_b), inertia_rod(3, 2, "x")))
+    True
     """
     I = _tensor(I_b, "I_b")
     R = check_rotation(R_a_b, "R_a_b")

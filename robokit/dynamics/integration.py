@@ -27,11 +27,40 @@ METHODS = ("rk4", "euler", "taylor")
 
 def second_order_step(accel: Callable[[float, np.ndarray, np.ndarray], np.ndarray], t: float, q: np.ndarray,
                       dq: np.ndarray, h: float, method: str = "rk4") -> tuple[np.ndarray, np.ndarray]:
-    """``(q, q̇)`` after one step ``h`` of ``q̈ = accel(t, q, q̇)``.
+    """``(q, q̇)`` after one step ``h`` of ``q̈ = accel(t, q, q̇)``: the integrator robokit uses.
 
-    method : "rk4" — classical fourth-order Runge–Kutta on the state (q, q̇); "euler" —
-    ``q ← q + q̇h``, ``q̇ ← q̇ + q̈h``; "taylor" — the lecture's ``q ← q + q̇h + ½q̈h²``, ``q̇ ← q̇ + q̈h``.
     No argument checks (the callers have made them).
+
+    Parameters
+    ----------
+    accel : callable
+        ``accel(t, q, dq) -> (n,)`` acceleration.
+    t : float
+        Time at the start of the step (s).
+    q, dq : (n,) ndarray
+        State at t.
+    h : float
+        Step (s).
+    method : {"rk4", "euler", "taylor"}, optional
+        ``"rk4"`` (default) — classical fourth-order Runge–Kutta on the state (q, q̇);
+        ``"euler"`` — ``q ← q + q̇h``, ``q̇ ← q̇ + q̈h``; ``"taylor"`` — the lecture's
+        ``q ← q + q̇h + ½q̈h²``, ``q̇ ← q̇ + q̈h``.
+
+    Returns
+    -------
+    q, dq : (n,) ndarray
+        State at t + h.
+
+    Examples
+    --------
+    The harmonic oscillator ``q̈ = −q`` from (1, 0): RK4 gives (cos 0.1, −sin 0.1) to 4 digits; the
+    lecture's step under a constant 2 m/s² is exact, ``q = q̇h + h²``:
+
+    >>> second_order_step(lambda t, q, dq: -q, 0.0, np.array([1.0]), np.array([0.0]), 0.1)
+    (array([0.995]), array([-0.0998]))
+    >>> second_order_step(lambda t, q, dq: np.array([2.0]), 0.0, np.array([0.0]), np.array([1.0]), 0.1,
+    ...                   "taylor")
+    (array([0.11]), array([1.2]))
     """
     if method == "euler":
         a = accel(t, q, dq)
@@ -48,7 +77,29 @@ def second_order_step(accel: Callable[[float, np.ndarray, np.ndarray], np.ndarra
 
 
 def total_energy(robot: Robot, q: ArrayLike, dq: ArrayLike) -> float:
-    """Kinetic plus potential energy ``½ q̇ᵀ M q̇ + V(q)`` (J), V from the robot's gravity."""
+    """Kinetic plus potential energy ``½ q̇ᵀ M q̇ + V(q)`` of the robot (J), V from its gravity.
+
+    Parameters
+    ----------
+    robot : Robot
+        A :class:`robokit.Robot` (Pinocchio's potential energy, zero at the base height).
+    q, dq : (n,) array_like
+        Joint values and rates (rad, rad/s).
+
+    Returns
+    -------
+    float
+        The energy in joules.
+
+    Examples
+    --------
+    The planar two-link arm hanging straight down (θ₁ = −π/2) has ``V = −(m₁ l₁ + m₂ (l₁ + l₂)) g``;
+    horizontal, turning at θ̇₁ = 1 rad/s, ``½ M₁₁ = ½ × 6.86``:
+
+    >>> robot = rk.load("twolink")
+    >>> round(total_energy(robot, [-np.pi / 2, 0], [0, 0]), 4), round(total_energy(robot, [0, 0], [1, 0]), 4)
+    (-46.107, 3.43)
+    """
     import pinocchio as pin
 
     q = as_vector(q, "q", robot.n)
@@ -60,14 +111,53 @@ def total_energy(robot: Robot, q: ArrayLike, dq: ArrayLike) -> float:
 def integrate(thetalist: ArrayLike, dthetalist: ArrayLike, taufun: Callable[[float, np.ndarray, np.ndarray], ArrayLike],
               g: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike, dt: float, steps: int,
               method: str = "rk4") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` with Euler, the lecture's step or RK4.
+    """Integrate the course forward dynamics ``θ̈ = M⁻¹(τ − c − g)`` over time (Lecture 7).
 
-    method : "rk4" (default, fourth-order Runge–Kutta); "euler" (``θ ← θ + θ̇Δt``, ``θ̇ ← θ̇ + θ̈Δt``);
-    "taylor" — the lecture's step (Lecture 7, forward dynamics)
-    ``θ̇(t+Δt) = θ̇ + θ̈Δt``, ``θ(t+Δt) = θ + θ̇Δt + ½θ̈Δt²``.
-    taufun : function (t, θ, θ̇) → τ (n,) (e.g. ``lambda t, q, dq: np.zeros(n)`` for a free
-    fall); dt : step (s); steps : number of steps. Returns ``(t, thetamat, dthetamat)`` with
-    ``steps + 1`` rows.
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Initial joint values and rates (rad, rad/s).
+    taufun : callable
+        ``taufun(t, θ, θ̇) -> τ (n,)`` (N·m), e.g. ``lambda t, q, dq: np.zeros(n)`` for a free fall.
+    g : (3,) array_like
+        Gravity in the base frame (m/s²).
+    Mlist : (n+1, 4, 4) array_like
+        Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
+    Glist : (n, 6, 6) array_like
+        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    dt : float
+        Step (s), positive.
+    steps : int
+        Number of steps.
+    method : {"rk4", "euler", "taylor"}, optional
+        ``"rk4"`` (default, fourth-order Runge–Kutta); ``"euler"`` (``θ ← θ + θ̇Δt``,
+        ``θ̇ ← θ̇ + θ̈Δt``); ``"taylor"`` — the lecture's step ``θ̇(t+Δt) = θ̇ + θ̈Δt``,
+        ``θ(t+Δt) = θ + θ̇Δt + ½θ̈Δt²``.
+
+    Returns
+    -------
+    t : (steps+1,) ndarray
+        Times (s), from 0.
+    thetamat, dthetamat : (steps+1, n) ndarray
+        Joint values and rates at those times; row 0 the initial state.
+
+    Raises
+    ------
+    InputError
+        On an unknown ``method`` or bad arguments.
+
+    Examples
+    --------
+    The planar two-link arm falls freely for 1 s; RK4 keeps its energy (0 J at the start):
+
+    >>> robot = rk.load("twolink")
+    >>> p = robot.poe
+    >>> t, Q, dQ = integrate([0, 0], [0, 0], lambda t, q, dq: np.zeros(2), [0, -9.81, 0],
+    ...                      p.Mlist, p.Glist, p.Slist, 0.01, 100)
+    >>> Q.shape, abs(total_energy(robot, Q[-1], dQ[-1])) < 1e-5
+    ((101, 2), True)
     """
     th = as_vector(thetalist, "thetalist").copy()
     dth = as_vector(dthetalist, "dthetalist", len(th)).copy()

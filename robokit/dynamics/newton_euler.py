@@ -190,12 +190,51 @@ def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthet
 
 def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
                      Ftip: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
-    """Joint torques ``τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) + Jᵀ(θ) F_tip`` by Newton–Euler (n,).
+    """Joint torques by the recursive Newton–Euler algorithm (Lecture 7, seed 004 §4, MR ch. 8).
 
-    thetalist, dthetalist, ddthetalist : (n,) rad, rad/s, rad/s² — or (N, n) for N states at
-    once (then τ is (N, n), computed vectorised over N); g : (3,) gravity (m/s²), e.g.
-    [0, 0, −9.81]; Ftip : (6,) (or (N, 6)) wrench (m, f) applied by the end-effector, in its
-    frame; Mlist : n+1 4×4; Glist : n 6×6; Slist : 6×n (Modern Robotics form).
+    ``τ = M(θ)θ̈ + c(θ, θ̇) + g(θ) + Jᵀ(θ) F_tip``: the forward iterations for the link twists and
+    accelerations (gravity as a base acceleration ``V̇₀ = (0, −g)``) and the backward iterations for
+    the link wrenches, ``τᵢ = Fᵢᵀ Aᵢ`` (see the module docstring).
+
+    Parameters
+    ----------
+    thetalist, dthetalist, ddthetalist : (n,) or (N, n) array_like
+        Joint values, rates and accelerations (rad, rad/s, rad/s²; m, m/s, m/s² for prismatic
+        joints), or N states at once (computed in parallel over the rows).
+    g : (3,) array_like
+        Gravity in the space (base) frame, m/s², e.g. ``[0, 0, -9.81]``.
+    Ftip : (6,) or (N, 6) array_like
+        Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
+        end-effector frame.
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (n,) ndarray, or (N, n) for N states
+        τ: N·m for revolute, N for prismatic joints.
+
+    Raises
+    ------
+    InputError
+        On a shape mismatch, non-finite values, a non-homogeneous ``Mlist`` or a non-symmetric
+        ``Glist``; the message names the argument.
+
+    Examples
+    --------
+    The course's planar two-link arm (``models/twolink.yaml``: point masses m₁ = 2 kg, m₂ = 1.5 kg
+    at the link ends, l₁ = 1 m, l₂ = 0.8 m, gravity −y) at θ = (0, π/2), turning at θ̇₁ = 1 rad/s:
+    τ₁ = (m₁ + m₂) g l₁ (link 2 points straight up) and τ₂ = m₂ l₁ l₂ θ̇₁² (the centrifugal pull):
+
+    >>> p = rk.load("twolink").poe
+    >>> inverse_dynamics([0, np.pi / 2], [1, 0], [0, 0], [0, -9.81, 0], np.zeros(6),
+    ...                  p.Mlist, p.Glist, p.Slist).round(4)
+    array([34.335,  1.2  ])
     """
     m = _model(Mlist, Glist, Slist)
     k = _kd or _kernels()
@@ -217,9 +256,41 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
 
 
 def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
-    """The n×n mass matrix M(θ) (composite-rigid-body algorithm), symmetric positive definite.
+    """The joint-space mass matrix M(θ) by the composite-rigid-body algorithm (Lecture 7, seed §4).
 
-    thetalist : (n,), or (N, n) for N configurations at once (then (N, n, n), vectorised).
+    Equal to n calls of :func:`inverse_dynamics` with unit accelerations and no gravity, velocity or
+    tip wrench, at a fraction of the cost. Symmetric positive definite.
+
+    Parameters
+    ----------
+    thetalist : (n,) or (N, n) array_like
+        Joint values (rad / m), or N configurations at once.
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (n, n) ndarray, or (N, n, n) for N configurations
+        M(θ) in kg·m² (revolute rows/columns) and kg (prismatic ones).
+
+    Examples
+    --------
+    The planar two-link arm of :func:`inverse_dynamics`; Lecture 7 gives
+    ``M = [[l₂²m₂ + 2l₁l₂m₂c₂ + l₁²(m₁ + m₂), l₂²m₂ + l₁l₂m₂c₂], [⋯, l₂²m₂]]``, at θ₂ = π/2
+    ``[[4.46, 0.96], [0.96, 0.96]]``:
+
+    >>> p = rk.load("twolink").poe
+    >>> M = mass_matrix([0, np.pi / 2], p.Mlist, p.Glist, p.Slist)
+    >>> M.round(4)
+    array([[4.46, 0.96],
+           [0.96, 0.96]])
+    >>> bool(np.allclose(M, M.T)), bool(np.all(np.linalg.eigvalsh(M) > 0))
+    (True, True)
     """
     m = _model(Mlist, Glist, Slist)
     k = _kd or _kernels()
@@ -236,7 +307,34 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
 
 def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
                          Slist: ArrayLike) -> np.ndarray:
-    """Coriolis and centripetal torques ``c(θ, θ̇)`` (n,): inverse dynamics with θ̈ = 0, g = 0, F_tip = 0."""
+    """Coriolis and centripetal torques ``c(θ, θ̇)``: inverse dynamics with θ̈ = 0, g = 0, F_tip = 0.
+
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Joint values and rates (rad, rad/s; m, m/s).
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (n,) ndarray
+        c(θ, θ̇) (N·m / N), quadratic in θ̇.
+
+    Examples
+    --------
+    The planar two-link arm: ``c = (−m₂l₁l₂s₂(2θ̇₁θ̇₂ + θ̇₂²), m₂l₁l₂s₂θ̇₁²)``, at θ₂ = π/2 and
+    θ̇ = (1, 1): ``(−1.2 × 3, 1.2)``:
+
+    >>> p = rk.load("twolink").poe
+    >>> vel_quadratic_forces([0, np.pi / 2], [1, 1], p.Mlist, p.Glist, p.Slist).round(4)
+    array([-3.6,  1.2])
+    """
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, dthetalist, z, _zeros(3), _zeros(6))
@@ -244,7 +342,36 @@ def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: Arr
 
 def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
                    Slist: ArrayLike) -> np.ndarray:
-    """Gravity torques ``g(θ)`` (n,): inverse dynamics with θ̇ = θ̈ = 0, F_tip = 0."""
+    """Gravity torques ``g(θ)``: inverse dynamics with θ̇ = θ̈ = 0 and F_tip = 0 (Lecture 7, seed §4).
+
+    Parameters
+    ----------
+    thetalist : (n,) array_like
+        Joint values (rad / m).
+    g : (3,) array_like
+        Gravity in the space (base) frame, m/s², e.g. ``[0, 0, -9.81]``.
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (n,) ndarray
+        The torques (N·m / N) that hold the arm still against gravity.
+
+    Examples
+    --------
+    The planar two-link arm held horizontal (θ = 0, gravity −y): each joint carries every mass
+    outboard of it times its lever arm, ``τ₁ = (m₁ + m₂) g l₁ + m₂ g l₂``, ``τ₂ = m₂ g l₂``:
+
+    >>> p = rk.load("twolink").poe
+    >>> gravity_forces([0, 0], [0, -9.81, 0], p.Mlist, p.Glist, p.Slist).round(4)
+    array([46.107, 11.772])
+    """
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, g, _zeros(6))
@@ -252,7 +379,37 @@ def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: 
 
 def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
                         Slist: ArrayLike) -> np.ndarray:
-    """Torques ``Jᵀ(θ) F_tip`` (n,) that balance the tip wrench: inverse dynamics with no motion, no gravity."""
+    """Torques ``Jᵀ(θ) F_tip`` that balance a tip wrench: inverse dynamics with no motion, no gravity.
+
+    Parameters
+    ----------
+    thetalist : (n,) array_like
+        Joint values (rad / m).
+    Ftip : (6,) array_like
+        Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
+        end-effector frame.
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (n,) ndarray
+        τ = J_bᵀ F_tip (N·m / N).
+
+    Examples
+    --------
+    The planar two-link arm stretched out (tip 1.8 m from joint 1, 0.8 m from joint 2) pushing
+    10 N along the tip frame's y: ``τ = (1.8 × 10, 0.8 × 10)``:
+
+    >>> p = rk.load("twolink").poe
+    >>> end_effector_forces([0, 0], [0, 0, 0, 0, 10, 0], p.Mlist, p.Glist, p.Slist).round(4)
+    array([18.,  8.])
+    """
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, _zeros(3), Ftip)
@@ -260,17 +417,27 @@ def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike,
 
 def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: ArrayLike, g: ArrayLike, Ftip: ArrayLike,
                      Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike, method: str = "aba") -> np.ndarray:
-    """Joint accelerations ``θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ) − Jᵀ F_tip)`` (n,).
+    """Joint accelerations ``θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ) − Jᵀ F_tip)`` (Lecture 7, seed §4).
 
     Parameters
     ----------
-    thetalist, dthetalist, taulist : (n,) rad, rad/s, N·m (N for prismatic joints) — or (N, n)
-        for N states at once (then θ̈ is (N, n), computed in parallel over the rows).
-    g : (3,) gravity in the base frame (m/s²), e.g. ``[0, 0, -9.81]``.
-    Ftip : (6,) (or (N, 6)) wrench (m, f) the end-effector applies to the environment, in its frame.
-    Mlist, Glist, Slist : the model in Modern Robotics form (n+1 4×4, n 6×6, 6×n).
-    method : ``"aba"`` (default) — Featherstone's articulated-body algorithm, O(n): an outward
-        pass for the link twists, an inward pass for the articulated inertias
+    thetalist, dthetalist, taulist : (n,) or (N, n) array_like
+        Joint values, rates and torques (rad, rad/s, N·m; m, m/s, N for prismatic joints), or N
+        states at once (θ̈ is then (N, n), computed in parallel over the rows).
+    g : (3,) array_like
+        Gravity in the base frame (m/s²), e.g. ``[0, 0, -9.81]``.
+    Ftip : (6,) or (N, 6) array_like
+        Wrench ``(m, f)`` the end-effector applies to the environment, in its frame (N·m, N).
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    method : {"aba", "crba"}, optional
+        ``"aba"`` (default) — Featherstone's articulated-body algorithm, O(n): an outward pass for
+        the link twists, an inward pass for the articulated inertias
         ``Iᵃᵢ = Gᵢ + Σ Ad_{T}ᵀ (Iᵃ − U Uᵀ/D) Ad_{T}`` and bias forces, an outward pass for the
         accelerations (docs: course → dynamics, "Articulated-body forward dynamics");
         ``"crba"`` — the lecture's ``M⁻¹(τ − h)``: one Newton–Euler pass for ``h = c + g + JᵀF``,
@@ -279,9 +446,27 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
 
     Returns
     -------
-    θ̈ : (n,) rad/s² (or (N, n)).
+    (n,) ndarray, or (N, n) for N states
+        θ̈ (rad/s², m/s²).
 
-    Example: ``forward_dynamics(q, dq, inverse_dynamics(q, dq, ddq, g, F, *m), g, F, *m)`` is ``ddq``.
+    Raises
+    ------
+    InputError
+        On a bad argument, an unknown ``method``, or a mass matrix that is not positive definite.
+
+    Examples
+    --------
+    Released at rest from horizontal with no torque, the planar two-link arm (point masses) starts
+    in free fall: the elbow drops at g (θ̈₁ l₁ = −9.81 m/s²) and link 2 keeps its direction
+    (θ̈₁ + θ̈₂ = 0). Forward dynamics undoes :func:`inverse_dynamics`:
+
+    >>> p = rk.load("twolink").poe
+    >>> g = [0, -9.81, 0]
+    >>> forward_dynamics([0, 0], [0, 0], [0, 0], g, np.zeros(6), p.Mlist, p.Glist, p.Slist).round(4)
+    array([-9.81,  9.81])
+    >>> tau = inverse_dynamics([0.3, -0.4], [0.5, 1], [1, -2], g, np.zeros(6), p.Mlist, p.Glist, p.Slist)
+    >>> forward_dynamics([0.3, -0.4], [0.5, 1], tau, g, np.zeros(6), p.Mlist, p.Glist, p.Slist).round(4)
+    array([ 1., -2.])
     """
     if method not in ("aba", "crba"):
         raise InputError(f"method: expected 'aba' or 'crba', got {method!r}")
@@ -313,12 +498,29 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
 
 def euler_step(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike,
                dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """One explicit Euler step (Modern Robotics' ``EulerStep``): ``(θ + dt θ̇, θ̇ + dt θ̈)``; dt in s.
+    """One explicit Euler step (Modern Robotics' ``EulerStep``): ``(θ + dt θ̇, θ̇ + dt θ̈)``.
 
     The lecture's step keeps the second-order term, ``θ + θ̇Δt + ½θ̈Δt²``: that is
     :func:`robokit.dynamics.integrate` with ``method="taylor"`` (and ``"rk4"`` for fourth order).
 
-    Example: ``euler_step([0.0], [1.0], [2.0], 0.1)`` is ``([0.1], [1.2])``.
+    Parameters
+    ----------
+    thetalist, dthetalist, ddthetalist : (n,) array_like
+        Joint values, rates and accelerations (rad, rad/s, rad/s²; or m, m/s, m/s²).
+    dt : float
+        Time step (s).
+
+    Returns
+    -------
+    thetalistNext : (n,) ndarray
+        ``θ + dt θ̇``.
+    dthetalistNext : (n,) ndarray
+        ``θ̇ + dt θ̈``.
+
+    Examples
+    --------
+    >>> euler_step([0.0], [1.0], [2.0], 0.1)
+    (array([0.1]), array([1.2]))
     """
     th = as_vector(thetalist, "thetalist")
     n = len(th)
@@ -331,9 +533,40 @@ def euler_step(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLi
 def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthetamat: ArrayLike, g: ArrayLike,
                                 Ftipmat: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
                                 Slist: ArrayLike) -> np.ndarray:
-    """Torques along a trajectory: row k of the (N, n) result is ``inverse_dynamics`` of row k.
+    """Torques along a trajectory: row k of the result is :func:`inverse_dynamics` of row k (seed §4).
 
-    thetamat, dthetamat, ddthetamat : (N, n); Ftipmat : (N, 6); g : (3,).
+    Parameters
+    ----------
+    thetamat, dthetamat, ddthetamat : (N, n) array_like
+        Joint values, rates and accelerations at N time steps (rad, rad/s, rad/s²).
+    g : (3,) array_like
+        Gravity in the base frame (m/s²).
+    Ftipmat : (N, 6) array_like
+        Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+
+    Returns
+    -------
+    (N, n) ndarray
+        τ at each step (N·m / N).
+
+    Examples
+    --------
+    A 3-step trajectory of the planar two-link arm held horizontal: every row is the gravity torque
+    of :func:`gravity_forces`:
+
+    >>> p = rk.load("twolink").poe
+    >>> Q = np.zeros((3, 2))
+    >>> inverse_dynamics_trajectory(Q, Q, Q, [0, -9.81, 0], np.zeros((3, 6)), p.Mlist, p.Glist, p.Slist)
+    array([[46.107, 11.772],
+           [46.107, 11.772],
+           [46.107, 11.772]])
     """
     m = _model(Mlist, Glist, Slist)
     Q = as_array(thetamat, "thetamat", (None, m.n))
@@ -352,12 +585,53 @@ def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthe
 def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, taumat: ArrayLike, g: ArrayLike,
                                 Ftipmat: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike, dt: float,
                                 intRes: int) -> tuple[np.ndarray, np.ndarray]:
-    """Simulate the arm under a torque history with Euler integration (Modern Robotics semantics).
+    """Simulate the arm under a torque history by Euler integration (seed §4, Modern Robotics).
 
-    thetalist, dthetalist : (n,) initial state; taumat : (N, n) torques, row k held over
-    [k dt, (k+1) dt); Ftipmat : (N, 6); dt : s; intRes : Euler steps per dt.
-    Returns ``(thetamat, dthetamat)``, both (N, n): row 0 is the initial state, row k+1 the
-    state after applying row k (the last torque row is not applied, as in Modern Robotics).
+    Each torque row is held over ``[k dt, (k+1) dt)`` and integrated with ``intRes`` Euler steps of
+    :func:`forward_dynamics` and :func:`euler_step`.
+
+    Parameters
+    ----------
+    thetalist, dthetalist : (n,) array_like
+        Initial joint values and rates (rad, rad/s; m, m/s).
+    taumat : (N, n) array_like
+        Joint torques, one row per time step (N·m / N).
+    g : (3,) array_like
+        Gravity in the base frame (m/s²).
+    Ftipmat : (N, 6) array_like
+        Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
+    Mlist : (n+1, 4, 4) array_like
+        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
+        ``Mlist[n]`` the end-effector frame in {n}.
+    Glist : (n, 6, 6) array_like
+        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
+    Slist : (6, n) array_like
+        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    dt : float
+        Time step between rows (s), positive.
+    intRes : int
+        Euler steps per ``dt`` (≥ 1).
+
+    Returns
+    -------
+    thetamat : (N, n) ndarray
+        Joint values: row 0 is the initial state, row k+1 the state after applying torque row k
+        (the last torque row is not applied, as in Modern Robotics).
+    dthetamat : (N, n) ndarray
+        Joint rates, rows as ``thetamat``.
+
+    Examples
+    --------
+    The planar two-link arm released from horizontal with no torque, 3 rows 0.1 s apart: after
+    0.1 s joint 1 turns at about −g t / l₁ ≈ −0.98 rad/s while link 2 keeps its direction:
+
+    >>> p = rk.load("twolink").poe
+    >>> th, dth = forward_dynamics_trajectory([0, 0], [0, 0], np.zeros((3, 2)), [0, -9.81, 0],
+    ...                                       np.zeros((3, 6)), p.Mlist, p.Glist, p.Slist, 0.1, 10)
+    >>> th.shape, dth.round(4)
+    ((3, 2), array([[ 0.    ,  0.    ],
+           [-0.9802,  0.9782],
+           [-1.93  ,  1.853 ]]))
     """
     m = _model(Mlist, Glist, Slist)
     th = _vec(thetalist, "thetalist", m.n)

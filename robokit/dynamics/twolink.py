@@ -23,7 +23,39 @@ __all__ = ["twolink_dynamics"]
 
 def twolink_dynamics(q: ArrayLike, dq: ArrayLike, l1: float, l2: float, m1: float, m2: float,
                      g: float = 9.81) -> dict[str, np.ndarray]:
-    """The Lecture 7 closed forms at (q, q̇): a dict with M (2×2), V (2,), G (2,), B (2×1), C (2×2)."""
+    """The Lecture 7 closed forms of the planar two-link arm with point masses at the link ends.
+
+    See the module docstring for M, V, G, B and C.
+
+    Parameters
+    ----------
+    q, dq : (2,) array_like
+        Joint angles (rad) and rates (rad/s).
+    l1, l2 : float
+        Link lengths (m).
+    m1, m2 : float
+        Point masses at the ends of links 1 and 2 (kg).
+    g : float, optional
+        Gravity magnitude (m/s²), acting along −y; default 9.81.
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``"M"`` (2, 2) kg·m²; ``"V"`` (2,) and ``"G"`` (2,) N·m; ``"B"`` (2, 1) and ``"C"`` (2, 2)
+        N·m·s², so that ``τ = M θ̈ + V + G = M θ̈ + B θ̇₁θ̇₂ + C (θ̇₁², θ̇₂²) + G``.
+
+    Examples
+    --------
+    They agree with the course Newton–Euler on the shipped model of the same arm:
+
+    >>> d = twolink_dynamics([0, np.pi / 2], [1, 1], 1.0, 0.8, 2.0, 1.5)
+    >>> d["M"].round(4), d["V"].round(4)
+    (array([[4.46, 0.96],
+           [0.96, 0.96]]), array([-3.6,  1.2]))
+    >>> p = rk.load("twolink").poe
+    >>> bool(np.allclose(d["M"], rk.mass_matrix([0, np.pi / 2], p.Mlist, p.Glist, p.Slist)))
+    True
+    """
     q1, q2 = as_vector(q, "q", 2)
     d1, d2 = as_vector(dq, "dq", 2)
     c1, c2, s2, c12 = math.cos(q1), math.cos(q2), math.sin(q2), math.cos(q1 + q2)

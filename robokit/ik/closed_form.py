@@ -23,7 +23,7 @@ Other arms — 7 joints (panda), fewer than 6, a prismatic joint without the spe
 structures, axes dependent everywhere — have no closed form here and ``ik_analytic`` raises
 ``ValueError`` with the reason in the arm's terms.
 
-The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.urdf_to_dh`
+The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.dh_from_urdf`
 extracts, whose FK equals the URDF's) is turned once into the canonical chain and the
 solver's constants, owned by an :class:`AnalyticIK` object (hold one, or let
 :func:`ik_analytic` keep one per robot while the robot lives). The object checks on every
@@ -159,7 +159,7 @@ class AnalyticIK:
     r"""The closed-form inverse kinematics of one robot, as an object to hold and reuse.
 
     Built once from the robot's DH table (``robot.dh``, or for a URDF the table
-    :func:`robokit.urdf_to_dh` extracts): the canonical chain, the method (see
+    :func:`robokit.dh_from_urdf` extracts): the canonical chain, the method (see
     :func:`ik_analytic_kind` and the module docstring) and the solver's constants. The object
     owns them: when what they were built from changes — ``robot.dh`` or ``robot.qlim``
     replaced, a table's ``base``/``tool`` or limits edited in place — the next :meth:`solve`
@@ -251,9 +251,9 @@ class AnalyticIK:
             if rob.dh is not None:
                 table = rob.dh
             else:
-                from robokit.description.urdf_to_dh import urdf_to_dh
+                from robokit.description.urdf_to_dh import dh_from_urdf
 
-                res = urdf_to_dh(rob, "standard")
+                res = dh_from_urdf(rob, "standard")
                 table = res.table
                 if not res.exact:
                     override = ClosedFormKind(None, f"the DH table extracted from {rob.name} reproduces its forward "

@@ -106,48 +106,45 @@ def ikin_body(Blist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLik
               max_iterations: int = 100) -> tuple[np.ndarray, bool]:
     """Newton–Raphson inverse kinematics in the body frame (seed 004 §3, Modern Robotics 6.2).
 
-    Iterates ``θ ← θ + J_b(θ)⁺ V_b`` with the body error twist ``V_b = log(T_sb(θ)⁻¹ T)`` until
+    Iterates ``θ ← θ + J_b(θ)⁺ V_b`` with the body error twist ``[V_b] = log(T_sb(θ)⁻¹ T)`` until
     ``‖ω_b‖ ≤ eomg`` and ``‖v_b‖ ≤ ev``.
 
     Parameters
     ----------
-    Blist : array_like, shape (6, n)
-        Body screw axes (columns, rows ``(ω, v)``) in the end-effector frame at θ = 0.
-    M : array_like, shape (4, 4)
-        End-effector pose in the space frame at θ = 0 (m).
-    T : array_like, shape (4, 4)
-        Target end-effector pose in the space frame (m).
-    thetalist0 : array_like, shape (n,)
-        Initial guess (rad, m for prismatic joints).
+    Blist : (6, n) array_like
+        Body screw axes (columns, angular first ``(ω; v)``) in the end-effector frame at θ = 0.
+    M : (4, 4) array_like
+        End-effector pose at θ = 0 in the space frame (metres).
+    T : (4, 4) array_like
+        Target end-effector pose in the space frame (metres).
+    thetalist0 : (n,) array_like
+        Initial guess (rad / m).
     eomg : float
-        Tolerance on the angular part of the body twist error, rad.
+        Tolerance on the angular part of the error twist (rad).
     ev : float
-        Tolerance on the linear part of the body twist error, m.
+        Tolerance on the linear part of the error twist (m).
     max_iterations : int, optional
-        Newton steps at most (default 100).
+        Newton steps before giving up; default 100.
 
     Returns
     -------
-    thetalist : numpy.ndarray, shape (n,)
-        Joint values reaching ``T``; when the iteration does not converge (e.g. an unreachable
-        target), the iterate with the smallest error seen (revolute angles wrapped to (−π, π]),
-        never a diverged value.
+    thetalist : (n,) ndarray
+        The joint values (rad / m; revolute angles wrapped to (−π, π]).
     success : bool
-        True when both tolerances are met; False (no exception) otherwise.
+        False (no exception) when the iteration does not converge, e.g. for an unreachable target —
+        ``thetalist`` is then the iterate with the smallest error seen, never a diverged value.
 
     Examples
     --------
-    The planar arm with links 1 m and 0.8 m: the tip at (0, 1.8) turned by 90° needs θ = (π/2, 0);
-    a tip 3 m away is out of reach:
+    The planar 2R arm of :func:`robokit.fkin_body` (unit links): the tip at (1, 1) pointing along x
+    is reached with the shoulder up and the elbow back, θ = (π/2, −π/2):
 
-    >>> poe = rk.load("twolink").poe
-    >>> T = np.array([[0.0, -1, 0, 0], [1, 0, 0, 1.8], [0, 0, 1, 0], [0, 0, 0, 1]])
-    >>> theta, ok = ikin_body(poe.Blist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)
-    >>> np.allclose(theta, [np.pi / 2, 0.0]), ok
-    (True, True)
-    >>> T[1, 3] = 3.0
-    >>> ikin_body(poe.Blist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)[1]
-    False
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Blist = np.array([[0, 0, 1, 0, 2, 0], [0, 0, 1, 0, 1, 0]]).T
+    >>> T = np.array([[1., 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, success = rk.ikin_body(Blist, M, T, [1.2, -1.2], 1e-9, 1e-9)
+    >>> theta.round(4), success
+    (array([ 1.5708, -1.5708]), True)
     """
     Blist, M, T, theta, eomg, ev = _newton_args(Blist, "Blist", M, T, thetalist0, eomg, ev)
     best = _Best(Blist)
@@ -170,35 +167,44 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
 
     Parameters
     ----------
-    Slist : array_like, shape (6, n)
-        Space screw axes (columns, rows ``(ω, v)``) in the space frame at θ = 0.
-    M : array_like, shape (4, 4)
-        End-effector pose in the space frame at θ = 0 (m).
-    T : array_like, shape (4, 4)
-        Target end-effector pose in the space frame (m).
-    thetalist0 : array_like, shape (n,)
-        Initial guess (rad, m for prismatic joints).
+    Slist : (6, n) array_like
+        Space screw axes (columns, ``(ω; v)``).
+    M : (4, 4) array_like
+        End-effector pose at θ = 0 in the space frame (metres).
+    T : (4, 4) array_like
+        Target end-effector pose in the space frame (metres).
+    thetalist0 : (n,) array_like
+        Initial guess (rad / m).
     eomg : float
-        Tolerance on the angular part of the space twist error, rad.
+        Tolerance on the angular part of the error twist (rad).
     ev : float
-        Tolerance on the linear part of the space twist error, m.
+        Tolerance on the linear part of the error twist (m).
     max_iterations : int, optional
-        Newton steps at most (default 100).
+        Newton steps before giving up; default 100.
 
     Returns
     -------
-    thetalist : numpy.ndarray, shape (n,)
-        Joint values reaching ``T`` (the best iterate, wrapped, when it does not converge).
+    thetalist : (n,) ndarray
+        The joint values (rad / m; revolute angles wrapped to (−π, π]).
     success : bool
-        True when both tolerances are met; False (no exception) otherwise.
+        False (no exception) when the iteration does not converge (e.g. an unreachable target);
+        ``thetalist`` is then the best iterate seen.
 
     Examples
     --------
-    >>> poe = rk.load("twolink").poe
-    >>> T = np.array([[0.0, -1, 0, 0], [1, 0, 0, 1.8], [0, 0, 1, 0], [0, 0, 0, 1]])
-    >>> theta, ok = ikin_space(poe.Slist, poe.M, T, [1.0, 0.3], 1e-9, 1e-9)
-    >>> np.allclose(theta, [np.pi / 2, 0.0]), ok
-    (True, True)
+    The planar 2R arm of :func:`robokit.fkin_space` (unit links): the pose of :func:`ikin_body`'s
+    example, and a target 3 m away, out of reach:
+
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Slist = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -1, 0]]).T
+    >>> T = np.array([[1., 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> theta, success = rk.ikin_space(Slist, M, T, [1.2, -1.2], 1e-9, 1e-9)
+    >>> theta.round(4), success
+    (array([ 1.5708, -1.5708]), True)
+    >>> far = M.copy()
+    >>> far[0, 3] = 3.0
+    >>> rk.ikin_space(Slist, M, far, [0.2, 1.2], 1e-9, 1e-9)[1]
+    False
     """
     Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
     n = Slist.shape[1]

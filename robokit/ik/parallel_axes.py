@@ -53,8 +53,8 @@ class ParallelAxesSolver:
     --------
     >>> import robokit
     >>> from robokit.ik._dh_chain import DHChain
-    >>> from robokit.description.urdf_to_dh import urdf_to_dh
-    >>> ParallelAxesSolver(DHChain(urdf_to_dh(robokit.load("ur5"), "standard").table)).method
+    >>> from robokit.description.urdf_to_dh import dh_from_urdf
+    >>> ParallelAxesSolver(DHChain(dh_from_urdf(robokit.load("ur5"), "standard").table)).method
     'three parallel axes'
     """
 

@@ -13,5 +13,6 @@ from robokit.kinematics.poe import *  # noqa: F401,F403
 from robokit.kinematics.poe import __all__ as _poe_all
 from robokit.kinematics.velocity import *  # noqa: F401,F403
 from robokit.kinematics.velocity import __all__ as _vel_all
+from robokit.kinematics.velocity import jacobian_to_frame  # noqa: F401  (deprecated alias, not in __all__)
 
 __all__ = list(_poe_all) + list(_dh_all) + list(_vel_all) + ["DHVelocityTrace", "dh_velocity_trace"]

@@ -34,8 +34,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit.errors import InputError
-from robokit._arrays import as_vector
+from robokit._arrays import as_vector, check_reference
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -72,21 +71,57 @@ def flip_signs(table: DHTable) -> np.ndarray | None:
     return signs
 
 
+def _tool_pose(k: ModuleType, table: DHTable, q: ArrayLike) -> np.ndarray:
+    """4×4 tool pose in base_link (the compiled DH product, flipped joints included)."""
+    P, modified, base, tool = k.pack_dh(table)[:4]
+    qv = _q(q, table.n)
+    signs = flip_signs(table)
+    return np.asarray(k.dh_fk(P, modified, base, tool, qv * signs if signs is not None else qv))
+
+
 def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.ndarray:
-    """Geometric Jacobian (6×n, rows (ω; v) of the tool origin) of a :class:`DHTable` by outward
-    velocity propagation.
+    """Jacobian (6×n, rows (ω; v)) of the tool of a :class:`DHTable`, by outward velocity propagation.
 
-    table : DHTable (standard or modified, revolute and prismatic joints); q : (n,) joint values;
-    reference : "base" — expressed in base_link axes (= Pinocchio's LOCAL_WORLD_ALIGNED), or
-    "tool" — in the tool frame's axes (= Pinocchio's LOCAL).
+    Parameters
+    ----------
+    table : DHTable
+        Standard or modified convention, revolute and prismatic joints, with its base and tool.
+    q : (n,) array_like
+        Joint values (rad for revolute, m for prismatic joints).
+    reference : str, default "base"
+        Where the twist is expressed, in robokit's one vocabulary (the *Conventions* page):
+        "base" = "local_world_aligned" — ω and the velocity of the tool origin in base_link axes
+        (the lecture's geometric Jacobian ⁰J, Pinocchio's LOCAL_WORLD_ALIGNED); "tool" = "local" =
+        "body" — the same twist in the tool frame's axes (body Jacobian, LOCAL); "world" = "space" —
+        the twist taken at the base origin, ``v₀ = v_tool + p × ω`` (space Jacobian, WORLD).
 
-    Example: for the planar 2-link arm the v rows are Lecture 6's ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], …]``.
+    Returns
+    -------
+    (6, n) ndarray
+        Column j is the tool twist for unit rate of joint j: rows 0–2 ω (rad/s), rows 3–5 v (m/s).
+
+    Examples
+    --------
+    The planar 2-link arm (l₁ = l₂ = 1) at q = (0, 90°): Lecture 6's v rows
+    ``[[−l₁s₁ − l₂s₁₂, −l₂s₁₂], [l₁c₁ + l₂c₁₂, l₂c₁₂]]``, and ω = ż for both joints.
+
+    >>> from robokit.description import DHTable, DHLink
+    >>> arm = DHTable("planar2", "standard", (DHLink("R", a=1.0), DHLink("R", a=1.0)))
+    >>> J = dh_jacobian(arm, [0.0, np.pi / 2])
+    >>> J[[2, 3, 4]].round(4)
+    array([[ 1.,  1.],
+           [-1., -1.],
+           [ 1.,  0.]])
     """
-    if reference not in ("base", "tool"):
-        raise InputError(f"reference: expected 'base' or 'tool', got {reference!r}")
+    ref = check_reference(reference)
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
-    in_tool = 1 if reference == "tool" else 0
+    if ref == "world":  # the space Jacobian: the same twist with v taken at the base origin, v₀ = v_p + p × ω
+        J = dh_jacobian(table, q, "local_world_aligned")
+        p = _tool_pose(k, table, q)[:3, 3]
+        J[3:] += np.cross(p, J[:3], axis=0)
+        return J
+    in_tool = 1 if ref == "local" else 0
     signs = flip_signs(table)
     if signs is not None:
         return k.dh_jacobian(P, modified, base, tool, _q(q, table.n) * signs, in_tool) * signs
@@ -99,35 +134,52 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
 
 
 def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference: str = "tool") -> np.ndarray:
-    """Joint torques (n,) that balance a static tip wrench, by inward force propagation.
+    """Joint torques that balance a static tip wrench, by inward force propagation (Lecture 7).
+
+    ``f_i = f_{i+1}``, ``n_i = n_{i+1} + (o_{i+1} − o_i) × f_{i+1}``, ``τ_i = ẑ_iᵀ n_i`` (revolute) or
+    ``ẑ_iᵀ f_i`` (prismatic), the same as ``τ = Jᵀ F_tip``.
 
     Parameters
     ----------
     table : DHTable
-    q : (n,) joint values (rad, m).
-    F_tip : (6,) ``(n, f)`` — moment (N·m, about the tool origin) and force (N) the tool exerts on
-        the environment, angular first as Modern Robotics' F_tip.
-    reference : "tool" (default) — F_tip in the tool frame's axes; "base" — in base_link's axes
-        (the wrench a force sensor mounted in the world would report, moved to the tool origin).
+        The arm (standard or modified convention, with its base and tool).
+    q : (n,) array_like
+        Joint values (rad, m).
+    F_tip : (6,) array_like
+        ``(n, f)``: moment (N·m) and force (N) the tool exerts on the environment, angular first
+        as Modern Robotics' F_tip, in the frame ``reference`` names.
+    reference : str, default "tool"
+        The frame F_tip is given in, in the same vocabulary as :func:`dh_jacobian`: "tool" = "local"
+        — tool axes, moment about the tool origin; "base" = "local_world_aligned" — base_link axes,
+        moment about the tool origin (a force sensor's reading moved to the tool); "world" = "space"
+        — base_link axes, moment about the base origin.
 
     Returns
     -------
     (n,) ndarray
-        τ with ``τ = J_toolᵀ F_tip`` ("tool") or ``τ = J_baseᵀ F_tip`` ("base", J with rows (ω; v)
-        of the tool origin in base axes, as :func:`dh_jacobian`).
+        τ (N·m for revolute, N for prismatic joints) with ``τ = J_refᵀ F_tip``, J_ref the
+        :func:`dh_jacobian` with the same ``reference``.
 
-    Example: ``dh_static_torques(table, q, [0, 0, 0, 0, 0, -10], reference="base")`` holds 10 N
-    pushing down on the environment.
+    Examples
+    --------
+    The planar 2-link arm (l₁ = l₂ = 1) stretched along x pushing 10 N down (−y, base axes) on the
+    environment: ``τ = Jᵀ F`` gives 10 N × 2 m at the shoulder and 10 N × 1 m at the elbow.
+
+    >>> from robokit.description import DHTable, DHLink
+    >>> arm = DHTable("planar2", "standard", (DHLink("R", a=1.0), DHLink("R", a=1.0)))
+    >>> dh_static_torques(arm, [0.0, 0.0], [0, 0, 0, 0, -10, 0], reference="base").round(4)
+    array([-20., -10.])
     """
-    if reference not in ("tool", "base"):
-        raise InputError(f"reference: expected 'tool' or 'base', got {reference!r}")
+    ref = check_reference(reference)
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     signs = flip_signs(table)
-    if reference == "base":
-        qv = _q(q, table.n)
+    if ref != "local":
         Fb = _q(F_tip, 6, "F_tip")
-        R = k.dh_fk(P, modified, base, tool, qv * signs if signs is not None else qv)[:3, :3]
+        T = _tool_pose(k, table, q)
+        if ref == "world":  # moment about the base origin → about the tool origin: n_p = n₀ − p × f
+            Fb = np.concatenate([Fb[:3] - np.cross(T[:3, 3], Fb[3:]), Fb[3:]])
+        R = T[:3, :3]
         F_tip = np.ascontiguousarray(np.concatenate([R.T @ Fb[:3], R.T @ Fb[3:]]))
     if signs is not None:
         return k.dh_static_torques(P, modified, base, tool, _q(q, table.n) * signs, _q(F_tip, 6, "F_tip")) * signs

@@ -35,10 +35,34 @@ _Z = np.array([0.0, 0.0, 1.0])
 
 
 def dh_link_transform(a: float, alpha: float, d: float, theta: float, modified: bool) -> np.ndarray:
-    """ⁱ⁻¹Tᵢ (4×4) of one DH row: ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (standard) or ``Rx(α) Tx(a) Rz(θ) Tz(d)``
-    (modified); a, d in m, α, θ in rad (the joint value already added).
+    """The link transform ⁱ⁻¹Tᵢ of one DH row (Lecture 4).
 
-    Example: ``dh_link_transform(1.0, 0.0, 0.0, np.pi / 2, False)[:3, 3]`` is ``[0, 1, 0]``.
+    ``Rz(θ) Tz(d) Tx(a) Rx(α)`` (standard) or ``Rx(α) Tx(a) Rz(θ) Tz(d)`` (modified, Craig).
+
+    Parameters
+    ----------
+    a : float
+        Link length (m).
+    alpha : float
+        Link twist (rad).
+    d : float
+        Link offset (m), the joint value already added for a prismatic joint.
+    theta : float
+        Joint angle (rad), the joint value already added for a revolute joint.
+    modified : bool
+        True for the modified (Craig) convention, False for the standard one.
+
+    Returns
+    -------
+    (4, 4) ndarray
+        Pose of frame {i} in frame {i−1} (metres).
+
+    Examples
+    --------
+    A 1 m link turned by 90°: frame {i} sits 1 m along y of frame {i−1}:
+
+    >>> dh_link_transform(1.0, 0.0, 0.0, np.pi / 2, False)[:3, 3].round(4)
+    array([0., 1., 0.])
     """
     ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
     if modified:
@@ -64,7 +88,32 @@ def _shown(text: str) -> int:
 
 
 def format_trace(title: str, rows: list[tuple[str, np.ndarray]], n: int, first: int = 1) -> str:
-    """The per-link table of a trace: for each frame i, one line per quantity with its x, y, z."""
+    """The per-link table of a trace: for each frame i, one line per quantity with its x, y, z.
+
+    Parameters
+    ----------
+    title : str
+        First line of the table.
+    rows : list of (str, (n, 3) ndarray)
+        The quantities, each a name (with its unit) and one 3-vector per frame.
+    n : int
+        Number of frames (lines per quantity) to show.
+    first : int, optional
+        Index printed for the first frame; default 1.
+
+    Returns
+    -------
+    str
+        The table, one line per frame and quantity; values within 1e-12 of zero print as 0.
+
+    Examples
+    --------
+    >>> print(format_trace("ω", [("ω_i", np.array([[0, 0, 1.0], [0, 0, 2.0]]))], 2))
+    ω
+      i              x            y            z
+      1  ω_i         0            0            1
+      2  ω_i         0            0            2
+    """
     width = max(_shown(name) for name, _ in rows)
     lines = [title, f"{'i':>3}  {'':<{width}}  {'x':>12} {'y':>12} {'z':>12}"]
     for i in range(n):
@@ -78,12 +127,18 @@ def format_trace(title: str, rows: list[tuple[str, np.ndarray]], n: int, first: 
 
 @dataclass(frozen=True)
 class DHVelocityTrace:
-    """The outward velocity iteration, frame by frame.
+    """The outward velocity iteration of :func:`dh_velocity_trace`, frame by frame.
 
-    omega : (n+1, 3) ⁱωᵢ, the angular velocity of frame {i} in its own axes (rad/s);
-    v : (n+1, 3) ⁱvᵢ, the velocity of the origin of frame {i} in its own axes (m/s).
-    Row 0 is the base frame {0} (at rest), rows 1..n the DH frames {1}..{n}.
     ``print(trace)`` shows the Lecture 6 table.
+
+    Attributes
+    ----------
+    omega : (n+1, 3) ndarray
+        ⁱωᵢ, the angular velocity of frame {i} in its own axes (rad/s).
+    v : (n+1, 3) ndarray
+        ⁱvᵢ, the velocity of the origin of frame {i} in its own axes (m/s).
+    convention : str
+        "standard" or "modified". Row 0 is the base frame {0} (at rest), rows 1..n the DH frames.
     """
 
     omega: np.ndarray
@@ -114,13 +169,12 @@ def dh_velocity_trace(table: DHTable, q: ArrayLike, dq: ArrayLike) -> DHVelocity
 
     Examples
     --------
-    A planar two-link arm (standard DH, a₁ = a₂ = 1) at q = 0 with q̇ = (1, 0): frame {2} turns at
-    1 rad/s and its origin moves at 2 m/s along y::
+    The course's planar two-link arm (standard DH, a₁ = 1 m, a₂ = 0.8 m) at q = 0 with q̇ = (1, 0):
+    frame {2} turns at 1 rad/s and its origin, 1.8 m out, moves at 1.8 m/s along y:
 
-        >>> import robokit as rk
-        >>> tr = dh_velocity_trace(rk.load("twolink").dh, [0, 0], [1, 0])  # doctest: +SKIP
-        >>> tr.omega[2], tr.v[2]  # doctest: +SKIP
-        (array([0., 0., 1.]), array([0., 2., 0.]))
+    >>> tr = dh_velocity_trace(rk.load("twolink").dh, [0, 0], [1, 0])
+    >>> tr.omega[2], tr.v[2]
+    (array([0., 0., 1.]), array([0. , 1.8, 0. ]))
     """
     n = table.n
     q = as_vector(q, "q", n)

@@ -155,13 +155,48 @@ def prefix_products(E: np.ndarray) -> np.ndarray:
 
 
 def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
-    """End-effector pose ``e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M`` (space form of the PoE formula).
+    """End-effector pose by the space form of the product of exponentials (Lecture 4, seed 004 §3).
 
-    M : 4×4 home pose of the end-effector; Slist : 6×n space screw axes (columns, (ω, v));
-    thetalist : (n,) joint values, or (N, n) for N configurations at once.
-    Returns 4×4 (or (N, 4, 4)).
+    ``T(θ) = e^{[S₁]θ₁} e^{[S₂]θ₂} ⋯ e^{[Sₙ]θₙ} M`` with each exponential in closed form (Rodrigues
+    for the rotation, ``G(θ) v`` for the translation).
 
-    Example: ``fkin_space(M, Slist, np.zeros(n))`` is ``M``.
+    Parameters
+    ----------
+    M : (4, 4) array_like
+        Home pose of the end-effector frame in the space (base) frame, at θ = 0; metres.
+    Slist : (6, n) array_like
+        Screw axes of the joints in the space frame, one column each, angular first ``(ω; v)``:
+        a revolute joint ``(ω̂, −ω̂ × q)`` (q a point on its axis, m), a prismatic one ``(0, v̂)``.
+    thetalist : (n,) or (N, n) array_like
+        Joint values (rad for revolute, m for prismatic joints), or N configurations at once.
+
+    Returns
+    -------
+    (4, 4) ndarray, or (N, 4, 4) for N configurations
+        Pose of the end-effector in the space frame (rotation and position in metres).
+
+    Raises
+    ------
+    InputError
+        When a shape does not match (``Slist`` not 6×n, ``thetalist`` not (n,) or (N, n)), ``M`` is
+        not a rigid transform, or a value is NaN/infinite.
+
+    See Also
+    --------
+    fkin_body : the same pose from the body-frame screw axes.
+
+    Examples
+    --------
+    A planar 2R arm with unit links: joint 1 about z at the origin, joint 2 about z at (1, 0, 0),
+    the tip at (2, 0, 0) at home. At θ = (0, π/2) the tip is at (1, 1, 0):
+
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Slist = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -1, 0]]).T
+    >>> T = rk.fkin_space(M, Slist, [0, np.pi / 2])
+    >>> T[:3, 3].round(4)
+    array([1., 1., 0.])
+    >>> rk.fkin_space(M, Slist, np.zeros((5, 2))).shape  # five configurations at once
+    (5, 4, 4)
     """
     Slist = _screws(Slist, "Slist")
     M = _home(M)
@@ -175,10 +210,42 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
 
 
 def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
-    """End-effector pose ``M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ}`` (body form of the PoE formula).
+    """End-effector pose by the body form of the product of exponentials (Lecture 4, seed 004 §3).
 
-    M : 4×4 home pose; Blist : 6×n body screw axes (in the end-effector frame at home);
-    thetalist : (n,) or (N, n). Returns 4×4 (or (N, 4, 4)).
+    ``T(θ) = M e^{[B₁]θ₁} e^{[B₂]θ₂} ⋯ e^{[Bₙ]θₙ}``; the body screws are ``Bᵢ = Ad_{M⁻¹} Sᵢ``.
+
+    Parameters
+    ----------
+    M : (4, 4) array_like
+        Home pose of the end-effector frame in the space (base) frame, at θ = 0; metres.
+    Blist : (6, n) array_like
+        Screw axes of the joints in the end-effector frame at home, one column each, ``(ω; v)``.
+    thetalist : (n,) or (N, n) array_like
+        Joint values (rad / m), or N configurations at once.
+
+    Returns
+    -------
+    (4, 4) ndarray, or (N, 4, 4) for N configurations
+        Pose of the end-effector in the space frame (metres), the same as :func:`fkin_space`.
+
+    Raises
+    ------
+    InputError
+        On a shape mismatch, a non-rigid ``M`` or NaN/infinite values.
+
+    Examples
+    --------
+    The planar 2R arm of :func:`fkin_space` (unit links), seen from its tip: joint 1's axis is 2 m
+    behind the tip, joint 2's 1 m, so ``B₁ = (0, 0, 1, 0, 2, 0)``, ``B₂ = (0, 0, 1, 0, 1, 0)``.
+    Turning joint 1 by π/2 swings the tip from (2, 0) to (0, 2):
+
+    >>> M = np.array([[1., 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> Blist = np.array([[0, 0, 1, 0, 2, 0], [0, 0, 1, 0, 1, 0]]).T
+    >>> rk.fkin_body(M, Blist, [np.pi / 2, 0]).round(4)
+    array([[ 0., -1.,  0.,  0.],
+           [ 1.,  0.,  0.,  2.],
+           [ 0.,  0.,  1.,  0.],
+           [ 0.,  0.,  0.,  1.]])
     """
     Blist = _screws(Blist, "Blist")
     M = _home(M)
@@ -192,10 +259,38 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
 
 
 def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
-    """Space Jacobian ``J_s(θ)`` (6×n, rows (ω; v)): twist of the end-effector in the space frame.
+    """Space Jacobian ``J_s(θ)`` (Lecture 6, seed 004 §3): the end-effector twist in the space frame.
 
-    Column i is ``Ad_{e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}} Sᵢ``. Slist : 6×n; thetalist : (n,) or (N, n).
-    Returns 6×n (or (N, 6, n)).
+    Column i is ``Ad_{e^{[S₁]θ₁} ⋯ e^{[S_{i−1}]θ_{i−1}}} Sᵢ`` (column 1 is ``S₁``), so that
+    ``V_s = J_s(θ) θ̇``. Its linear rows are the velocity of the point of the body at the space
+    origin, not of the tool (see :func:`robokit.kinematics.geometric_jacobian` for that).
+
+    Parameters
+    ----------
+    Slist : (6, n) array_like
+        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    thetalist : (n,) or (N, n) array_like
+        Joint values (rad / m), or N configurations at once.
+
+    Returns
+    -------
+    (6, n) ndarray, or (N, 6, n) for N configurations
+        Rows ``(ω; v)`` (rad/s and m/s per unit joint rate), space-frame axes.
+
+    Raises
+    ------
+    InputError
+        On a shape mismatch or NaN/infinite values.
+
+    Examples
+    --------
+    The planar 2R arm of :func:`fkin_space`: with θ₁ = 0, column 2 is the screw of joint 2,
+    ``(ẑ, −ẑ × (1, 0, 0)) = (0, 0, 1, 0, −1, 0)``:
+
+    >>> Slist = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -1, 0]]).T
+    >>> rk.jacobian_space(Slist, [0, np.pi / 2]).T.round(4)
+    array([[ 0.,  0.,  1.,  0.,  0.,  0.],
+           [ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     Slist = _screws(Slist, "Slist")
     k = _kp or _kernels()
@@ -208,10 +303,38 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
 
 
 def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
-    """Body Jacobian ``J_b(θ)`` (6×n, rows (ω; v)): twist of the end-effector in its own frame.
+    """Body Jacobian ``J_b(θ)`` (Lecture 6, seed 004 §3): the end-effector twist in its own frame.
 
-    Column i is ``Ad_{e^{−[Bₙ]θₙ}⋯e^{−[B_{i+1}]θ_{i+1}}} Bᵢ``. Blist : 6×n; thetalist : (n,) or (N, n).
-    Returns 6×n (or (N, 6, n)).
+    Column i is ``Ad_{e^{−[Bₙ]θₙ} ⋯ e^{−[B_{i+1}]θ_{i+1}}} Bᵢ`` (column n is ``Bₙ``), so that
+    ``V_b = J_b(θ) θ̇``; ``J_b = Ad_{T⁻¹} J_s``.
+
+    Parameters
+    ----------
+    Blist : (6, n) array_like
+        Body-frame screw axes (end-effector frame at home), one column per joint, ``(ω; v)``.
+    thetalist : (n,) or (N, n) array_like
+        Joint values (rad / m), or N configurations at once.
+
+    Returns
+    -------
+    (6, n) ndarray, or (N, 6, n) for N configurations
+        Rows ``(ω; v)``: angular velocity and velocity of the end-effector origin, both in
+        end-effector axes, per unit joint rate.
+
+    Raises
+    ------
+    InputError
+        On a shape mismatch or NaN/infinite values.
+
+    Examples
+    --------
+    The planar 2R arm of :func:`fkin_body` at θ = (0, π/2): the tip is at (1, 1) turned by 90°;
+    joint 2 moves it along its own y axis at 1 m/s per rad/s, joint 1 along (1, 1) in tip axes:
+
+    >>> Blist = np.array([[0, 0, 1, 0, 2, 0], [0, 0, 1, 0, 1, 0]]).T
+    >>> rk.jacobian_body(Blist, [0, np.pi / 2]).T.round(4)
+    array([[0., 0., 1., 1., 1., 0.],
+           [0., 0., 1., 0., 1., 0.]])
     """
     Blist = _screws(Blist, "Blist")
     k = _kp or _kernels()

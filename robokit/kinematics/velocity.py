@@ -16,6 +16,7 @@ from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
+from robokit._deprecation import deprecated_alias
 
 if TYPE_CHECKING:
     from robokit.description.protocol import RobotLike
@@ -28,7 +29,7 @@ __all__ = [
     "geometric_jacobian",
     "twist_transform",
     "wrench_transform",
-    "jacobian_to_frame",
+    "jacobian_in_frame",
     "manipulability",
     "velocity_ellipsoid",
     "singularity",
@@ -38,12 +39,39 @@ __all__ = [
 
 
 def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike] | RobotLike, q: ArrayLike, h: float = 1e-6) -> np.ndarray:
-    """Jacobian (6×n, (ω; v) in the base frame) of any forward kinematics by central differences.
+    """Geometric Jacobian of any forward kinematics by central differences (Lecture 6).
 
-    fk : function q (n,) → 4×4 pose, or a robot (its ``frame_pose``, the tool); q : (n,);
-    h : perturbation. Column j is
-    ``ω_j = vee(Ṙ Rᵀ)``, ``v_j = ṗ`` with the derivatives ``(f(q + h e_j) − f(q − h e_j)) / 2h``
-    (Lecture 6: the Jacobian by perturbation). Accurate to about h².
+    Column j is ``ω_j = vee(Ṙ Rᵀ)``, ``v_j = ṗ`` with the derivatives
+    ``(f(q + h e_j) − f(q − h e_j)) / 2h`` (the Jacobian by perturbation); accurate to about h².
+
+    Parameters
+    ----------
+    fk : callable or robot
+        A function q (n,) → (4, 4) pose in the base frame, or a robot (its ``frame_pose``, the tool).
+    q : (n,) array_like
+        Joint values (rad / m) where the Jacobian is taken.
+    h : float, optional
+        Perturbation of each joint (rad / m), positive; default 1e-6.
+
+    Returns
+    -------
+    (6, n) ndarray
+        Rows ``(ω; v)``: angular velocity and velocity of the frame's origin per unit joint rate,
+        base-frame axes (Pinocchio's LOCAL_WORLD_ALIGNED).
+
+    Raises
+    ------
+    InputError
+        When ``fk`` is neither callable nor a robot, or ``q``/``h`` are invalid.
+
+    Examples
+    --------
+    It agrees with the analytic geometric Jacobian of the planar two-link arm:
+
+    >>> robot = rk.load("twolink")
+    >>> bool(np.allclose(numerical_jacobian(robot, [0.3, 0.5]), geometric_jacobian(robot, [0.3, 0.5]),
+    ...                  atol=1e-8))
+    True
     """
     if not callable(fk):
         if not hasattr(fk, "frame_pose"):
@@ -66,22 +94,46 @@ def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike] | RobotLike, q: Arr
 
 
 def euler_rate_matrix(angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
-    """E(φ) (3×3) with ``ω = E(φ) φ̇``: Euler-angle rates to the angular velocity (base axes).
+    """The matrix E(φ) with ``ω = E(φ) φ̇``: Euler-angle rates to the angular velocity in base axes.
 
-    angles : (3,) ``φ = (a, b, c)`` (rad) of the sequence ``seq`` — any of the 12 sequences
-    (``robokit.EULER_SEQUENCES``: "XYZ", "ZYX", "ZYZ", …); extrinsic : fixed axes instead of moving
-    axes (see :func:`robokit.matrix_from_euler`). With the axes ``e₁, e₂, e₃`` of the sequence:
+    With the axes ``e₁, e₂, e₃`` of the sequence (differentiate R and read ω off
+    ``Ṙ Rᵀ = S(ω)``, Lecture 6):
 
     * intrinsic, ``R = R₁(a) R₂(b) R₃(c)``: ``E = [e₁, R₁(a) e₂, R₁(a) R₂(b) e₃]``;
-    * extrinsic, ``R = R₃(c) R₂(b) R₁(a)``: ``E = [R₃(c) R₂(b) e₁, R₃(c) e₂, e₃]``
+    * extrinsic, ``R = R₃(c) R₂(b) R₁(a)``: ``E = [R₃(c) R₂(b) e₁, R₃(c) e₂, e₃]``.
 
-    (differentiate R and read ``ω`` off ``Ṙ Rᵀ = S(ω)``, Lecture 6). Examples: ZYX
-    ``[[0, −sα, cα cβ], [0, cα, sα cβ], [1, 0, −sβ]]`` (singular at cos β = 0); ZYZ
+    ZYX gives ``[[0, −sα, cα cβ], [0, cα, sα cβ], [1, 0, −sβ]]`` (singular at cos β = 0); ZYZ
     ``[[0, −sφ, cφ sθ], [0, cφ, sφ sθ], [1, 0, cθ]]`` (the Lecture 6 homework's B(Γ), singular at
     sin θ = 0); the lecture's roll–pitch–yaw ``R = Rx(θr) Ry(θp) Rz(θy)`` is intrinsic "XYZ" with
     ``φ = (θr, θp, θy)`` and ``B(Γ) = [[1, 0, sθp], [0, cθr, −cθp sθr], [0, sθr, cθp cθr]]``.
-    The matrix is singular when the first and third axes line up (Tait–Bryan b = ±π/2, proper
-    Euler b ∈ {0, π}); :func:`analytical_jacobian` raises there (``tol`` is its threshold on det E).
+    E is singular when the first and third axes line up (Tait–Bryan b = ±π/2, proper Euler
+    b ∈ {0, π}).
+
+    Parameters
+    ----------
+    angles : (3,) array_like
+        ``φ = (a, b, c)`` in rad, in the order of ``seq``.
+    seq : str, optional
+        Any of the 12 sequences (``robokit.EULER_SEQUENCES``: "XYZ", "ZYX", "ZYZ", …); default "ZYX".
+    tol : float, optional
+        Unused here; kept for the signature shared with :func:`analytical_jacobian`.
+    extrinsic : bool, optional
+        Fixed (extrinsic) axes instead of moving (intrinsic) axes, as
+        :func:`robokit.matrix_from_euler`; default False.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E(φ); column k is the base-frame axis of the k-th angle's rotation.
+
+    Examples
+    --------
+    ZYX at φ = 0: the yaw rate turns about z, the pitch rate about y, the roll rate about x:
+
+    >>> euler_rate_matrix([0, 0, 0], "ZYX")
+    array([[0., 0., 1.],
+           [0., 1., 0.],
+           [1., 0., 0.]])
     """
     from robokit.spatial.euler import check_sequence, elementary_rotation
 
@@ -98,17 +150,45 @@ def euler_rate_matrix(angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9, ex
 
 def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9,
                         extrinsic: bool = False) -> np.ndarray:
-    """``J_a = blockdiag(E(φ)⁻¹, I) J``: rows (φ̇; ṗ) — Euler-angle rates and linear velocity.
+    """Analytical Jacobian ``J_a = blockdiag(E(φ)⁻¹, I) J`` (Lecture 6): rows (φ̇; ṗ).
 
-    J : 6×n geometric Jacobian (ω; v) in the base frame; angles : the current Euler angles of
-    the tool orientation in the sequence ``seq`` (any of the 12; ``extrinsic`` for fixed axes), see
-    :func:`euler_rate_matrix`. (The lecture writes the same with the rows in the order (v; ω):
-    ``J_a = blockdiag(I, B(Γ)⁻¹) J``; robokit keeps angular rows first.)
-    Raises ``ValueError`` ("representation singularity") where E(φ) is singular
-    (|det E| < tol: β = ±π/2 for ZYX, θ = 0 or π for ZYZ) — the analytical Jacobian does not
-    exist there even though the arm itself may be far from any singularity.
+    (The lecture writes the same with the rows in the order (v; ω): ``J_a = blockdiag(I, B(Γ)⁻¹) J``;
+    robokit keeps angular rows first.) It does not exist where E(φ) is singular (β = ±π/2 for ZYX,
+    θ = 0 or π for ZYZ) even when the arm is far from any singularity.
 
-    Example: ``analytical_jacobian(J, matrix_to_euler(R), "ZYX")``.
+    Parameters
+    ----------
+    J : (6, n) array_like
+        Geometric Jacobian ``(ω; v)`` in the base frame (:func:`geometric_jacobian`).
+    angles : (3,) array_like
+        The current Euler angles (rad) of the tool orientation in the sequence ``seq``.
+    seq : str, optional
+        Any of the 12 Euler sequences; default "ZYX" (see :func:`euler_rate_matrix`).
+    tol : float, optional
+        Threshold on ``|det E|`` below which the angles are a representation singularity.
+    extrinsic : bool, optional
+        Fixed axes instead of moving axes; default False.
+
+    Returns
+    -------
+    (6, n) ndarray
+        Rows ``(φ̇; ṗ)``: Euler-angle rates (rad/s) and tool-origin velocity (m/s, base axes) per
+        unit joint rate.
+
+    Raises
+    ------
+    InputError
+        ``"representation singularity"`` where ``|det E(φ)| < tol``, or on bad shapes.
+
+    Examples
+    --------
+    For ZYX at φ = 0 the Euler rates are (ω_z, ω_y, ω_x): the planar arm turns only in yaw:
+
+    >>> J = geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])
+    >>> analytical_jacobian(J, [0, 0, 0], "ZYX")[:3]
+    array([[1., 1.],
+           [0., 0.],
+           [0., 0.]])
     """
     J = as_matrix(J, "J", 6, None)
     E = euler_rate_matrix(angles, seq, extrinsic=extrinsic)
@@ -120,18 +200,35 @@ def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: 
 
 
 def geometric_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
-    """The geometric Jacobian (6×n) of the robot's tool point, world (base) axes, rows ``(ω; v)``.
+    """Geometric Jacobian of the robot's tool point, base axes, rows ``(ω; v)`` (Lecture 6).
 
-    ``ω = J_ω q̇`` is the tool's angular velocity and ``v = J_v q̇`` the velocity of the tool
-    frame's origin, both in base-frame axes (Lecture 6; the lecture stacks them as (v; ω) —
-    robokit keeps angular rows first, like every twist in the package). Built from the
-    product-of-exponentials space Jacobian ``J_s`` (whose linear rows are the velocity of the point
-    at the base origin): column i is ``(ω_i, v_i + ω_i × p)`` with p the tool position, i.e. for a
-    revolute joint ``(zᵢ, zᵢ × (p − oᵢ))`` and for a prismatic one ``(0, zᵢ)``.
+    ``ω = J_ω q̇`` is the tool's angular velocity and ``v = J_v q̇`` the velocity of the tool frame's
+    origin, both in base-frame axes (the lecture stacks them as (v; ω); robokit keeps angular rows
+    first). Built from the product-of-exponentials space Jacobian ``J_s``: column i is
+    ``(ω_i, v_i + ω_i × p)`` with p the tool position, i.e. ``(zᵢ, zᵢ × (p − oᵢ))`` for a revolute
+    joint and ``(0, zᵢ)`` for a prismatic one.
 
-    robot : a :class:`robokit.Robot` (its ``poe`` parameters, tip = the tool); q : (n,) rad/m.
-    Example: for the planar 2-link arm the v rows x, y are the lecture's
-    ``J_v = [[−a₁s₁ − a₂s₁₂, −a₂s₁₂], [a₁c₁ + a₂c₁₂, a₂c₁₂]]``.
+    Parameters
+    ----------
+    robot : Robot
+        A :class:`robokit.Robot` (its ``poe`` parameters; the tip is the tool).
+    q : (n,) array_like
+        Joint values (rad / m).
+
+    Returns
+    -------
+    (6, n) ndarray
+        Rows ``(ω; v)`` in base axes, rad/s and m/s per unit joint rate (Pinocchio's
+        LOCAL_WORLD_ALIGNED Jacobian of the tip frame).
+
+    Examples
+    --------
+    The planar two-link arm (l₁ = 1, l₂ = 0.8) at q = (0, π/2): the v rows x, y are the lecture's
+    ``J_v = [[−l₁s₁ − l₂s₁₂, −l₂s₁₂], [l₁c₁ + l₂c₁₂, l₂c₁₂]]``:
+
+    >>> geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])[3:5].round(4)
+    array([[-0.8, -0.8],
+           [ 1. ,  0. ]])
     """
     from robokit.kinematics.poe import fkin_space, jacobian_space
 
@@ -145,24 +242,87 @@ def geometric_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
 
 
 def twist_transform(T_a_b: ArrayLike) -> np.ndarray:
-    """The 6×6 map of twists ``(ω, v)`` expressed in frame b to frame a: ``V_a = Ad_{T_ab} V_b``.
+    """The 6×6 map of twists from frame b's axes to frame a's: ``V_a = Ad_{T_ab} V_b`` (Lecture 6).
 
-    For two frames on the same body, or a frame on another body rigidly fixed to it (Lecture 6).
+    For two frames on the same body, or a frame on another body rigidly fixed to it.
+
+    Parameters
+    ----------
+    T_a_b : (4, 4) array_like
+        Pose of frame b in frame a (metres).
+
+    Returns
+    -------
+    (6, 6) ndarray
+        ``Ad_{T_ab} = [[R, 0], [[p] R, R]]``, acting on twists ``(ω; v)``.
+
+    Examples
+    --------
+    A spin of 1 rad/s about the z axis of a frame b placed at x = 1 m: seen from a, the point at
+    a's origin moves at 1 m/s along −y:
+
+    >>> T_a_b = np.array([[1., 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> twist_transform(T_a_b) @ [0, 0, 1, 0, 0, 0]
+    array([ 0.,  0.,  1.,  0., -1.,  0.])
     """
     return lie.adjoint(check_transform(T_a_b, "T_a_b"))
 
 
 def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
-    """The 6×6 map of wrenches ``(m, f)`` expressed in frame b to frame a: ``F_a = Ad_{T_ba}ᵀ F_b``
-    (the same physical force, its moment taken about a's origin)."""
+    """The 6×6 map of wrenches from frame b's axes to frame a's: ``F_a = Ad_{T_ba}ᵀ F_b``.
+
+    The same physical force, its moment taken about a's origin (Lecture 6).
+
+    Parameters
+    ----------
+    T_a_b : (4, 4) array_like
+        Pose of frame b in frame a (metres).
+
+    Returns
+    -------
+    (6, 6) ndarray
+        ``Ad_{T_ab⁻¹}ᵀ``, acting on wrenches ``(m; f)`` (N·m, N).
+
+    Examples
+    --------
+    1 N along y applied at b's origin, 1 m along x from a's origin, has a moment of 1 N·m about z
+    at a:
+
+    >>> T_a_b = np.array([[1., 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    >>> wrench_transform(T_a_b) @ [0, 0, 0, 0, 1, 0]
+    array([0., 0., 1., 0., 1., 0.])
+    """
     return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
-def jacobian_to_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
-    """Re-express a geometric Jacobian (ω; v) in rotated axes: ``blockdiag(R, R) J``.
+def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
+    """Re-express a geometric Jacobian ``(ω; v)`` in rotated axes: ``blockdiag(R, R) J``.
 
-    With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one and
-    vice versa with R_base_tool (the origin of v is unchanged: only the axes rotate).
+    With R = R_tool_base (= R_base_toolᵀ) a base-frame Jacobian becomes the tool-frame one, and vice
+    versa with R_base_tool; the point whose velocity v is stays the same, only the axes rotate.
+
+    Parameters
+    ----------
+    J : (6, n) array_like
+        Jacobian with rows ``(ω; v)``.
+    R : (3, 3) array_like
+        Rotation from J's axes to the new axes (``R_new_old``).
+
+    Returns
+    -------
+    (6, n) ndarray
+        The same Jacobian in the new axes.
+
+    Examples
+    --------
+    The planar two-link arm at q = (0, π/2): its tool is turned by 90° about z, so in tool axes joint
+    2 moves the tip along the tool's y axis and joint 1 along (1, 0.8):
+
+    >>> robot = rk.load("twolink")
+    >>> J = geometric_jacobian(robot, [0, np.pi / 2])
+    >>> R_tool_base = robot.frame_pose([0, np.pi / 2])[:3, :3].T
+    >>> bool(np.allclose(jacobian_in_frame(J, R_tool_base)[3:5], [[1, 0], [0.8, 0.8]]))
+    True
     """
     J = as_matrix(J, "J", 6, None)
     R = as_matrix(R, "R", 3, 3)
@@ -183,13 +343,39 @@ def _rows(J: ArrayLike, part: str) -> np.ndarray:
 
 
 def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") -> float:
-    """A manipulability measure of the Jacobian (or of its translation/rotation rows).
+    """A manipulability measure of a Jacobian, or of its translation or rotation rows (Lecture 6).
 
-    kind : "yoshikawa" — ``w = √det(J Jᵀ)`` (the product of the singular values; 0 at a
-    singularity); "condition" — ``σ_max / σ_min`` (∞ at a singularity); "inverse_condition" —
-    ``σ_min / σ_max`` (the ratio of the shortest to the longest ellipsoid axis); "min_singular"
-    — ``σ_min``. part : "full", "translation" (rows v) or "rotation" (rows ω).
-    For the planar 2-link arm's 2×2 translational Jacobian, ``w = |l₁ l₂ sin θ₂|``.
+    Parameters
+    ----------
+    J : (m, n) array_like
+        A Jacobian; a 6-row one ``(ω; v)`` when ``part`` is not "full".
+    kind : {"yoshikawa", "condition", "inverse_condition", "min_singular"}, optional
+        ``"yoshikawa"`` (default) — ``w = √det(J Jᵀ)``, the product of the singular values (0 at a
+        singularity); ``"condition"`` — ``σ_max / σ_min`` (∞ at a singularity);
+        ``"inverse_condition"`` — ``σ_min / σ_max`` (the ratio of the shortest to the longest
+        ellipsoid axis); ``"min_singular"`` — ``σ_min``.
+    part : {"full", "translation", "rotation"}, optional
+        Which rows: all (default), the v rows or the ω rows of a 6-row Jacobian.
+
+    Returns
+    -------
+    float
+        The measure (units of the rows chosen; with fewer joints than rows: 0, or ∞ for
+        "condition").
+
+    Raises
+    ------
+    InputError
+        On an unknown ``kind``/``part``, or a ``part`` other than "full" of a non-6-row Jacobian.
+
+    Examples
+    --------
+    For the planar two-link arm's 2×2 translational Jacobian ``w = |l₁ l₂ sin θ₂|``, here
+    1 × 0.8 × sin(π/2):
+
+    >>> J = geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])
+    >>> round(manipulability(J[3:5]), 4)
+    0.8
     """
     A = _rows(J, part)
     s = np.linalg.svd(A, compute_uv=False)
@@ -208,10 +394,31 @@ def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") ->
 
 
 def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray, np.ndarray]:
-    """Axes and radii of the velocity ellipsoid ``{J q̇ : ‖q̇‖ ≤ 1}`` for the chosen rows.
+    """Axes and radii of the velocity ellipsoid ``{J q̇ : ‖q̇‖ ≤ 1}`` of the chosen rows (Lecture 6).
 
-    Returns ``(radii, axes)``: radii (m,) = the singular values (descending), axes (m×m) = the
-    left singular vectors as columns (directions in the base frame).
+    Parameters
+    ----------
+    J : (m, n) array_like
+        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``.
+    part : {"translation", "rotation", "full"}, optional
+        Which rows (default the translation rows v).
+
+    Returns
+    -------
+    radii : (k,) ndarray
+        The singular values, descending (m/s or rad/s per unit joint-rate norm); k = 3 for
+        "translation"/"rotation", m for "full". Zero along lost directions.
+    axes : (k, k) ndarray
+        The left singular vectors as columns: the ellipsoid's axes in J's (base) axes.
+
+    Examples
+    --------
+    The planar arm's 2×2 J_v: the radii multiply to the manipulability ``l₁ l₂ |sin θ₂|``:
+
+    >>> J = geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])
+    >>> radii, axes = velocity_ellipsoid(J[3:5], part="full")
+    >>> radii.round(4), round(float(np.prod(radii)), 4)
+    (array([1.3972, 0.5726]), 0.8)
     """
     A = _rows(J, part)
     U, s, _ = np.linalg.svd(A)
@@ -226,7 +433,22 @@ _NAMES = ("rotation about x", "rotation about y", "rotation about z",
 
 @dataclass
 class SingularityReport:
-    """rank, σ_min, whether singular (σ_min < tol), and the lost Cartesian direction (ω; v)."""
+    """The result of :func:`singularity`.
+
+    Attributes
+    ----------
+    rank : int
+        Number of singular values above the tolerance.
+    sigma_min : float
+        The smallest singular value (0 when there are fewer columns than rows).
+    singular : bool
+        ``sigma_min < tol``.
+    lost_direction : (m,) ndarray
+        Unit left singular vector of ``sigma_min``: the twist ``(ω; v)`` (for a 6-row J) the arm
+        cannot produce, signed so that its largest component is positive.
+    description : str
+        Its dominant component in words, e.g. ``"translation along x (0.98)"``.
+    """
 
     rank: int
     sigma_min: float
@@ -236,11 +458,34 @@ class SingularityReport:
 
 
 def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
-    """Rank test of a 6×n (or m×n) Jacobian and the Cartesian direction that cannot be produced.
+    """Rank test of a Jacobian and the Cartesian direction it cannot produce (Lecture 6).
 
     The lost direction is the left singular vector of the smallest singular value — the twist
-    (ω; v) the arm cannot move along — described by its dominant component, e.g.
-    "translation along x (0.98)".
+    ``(ω; v)`` the arm cannot move along — described by its dominant component.
+
+    Parameters
+    ----------
+    J : (m, n) array_like
+        A Jacobian, usually 6×n with rows ``(ω; v)`` (other row counts: directions by index).
+    tol : float, optional
+        Singular values below this count as zero; default 1e-9.
+
+    Returns
+    -------
+    SingularityReport
+        Rank, smallest singular value, whether singular, the lost direction and its description.
+
+    Examples
+    --------
+    The PUMA 560 at q = 0 has its wrist aligned (θ₅ = 0: the axes of joints 4 and 6 coincide) and
+    loses one rotation; bending the wrist restores full rank:
+
+    >>> puma = rk.load("puma560")
+    >>> report = singularity(puma.jacobian(np.zeros(6), reference="local_world_aligned"))
+    >>> report.rank, report.singular, report.description
+    (5, True, 'rotation about x (1.00)')
+    >>> singularity(puma.jacobian([0, 0.5, -0.3, 0, 0.7, 0], reference="local_world_aligned")).rank
+    6
     """
     A = as_array(J, "J", (None, None))
     U, s, _ = np.linalg.svd(A)
@@ -260,15 +505,48 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
                   epsilon: float = 0.05, z: ArrayLike | None = None, rcond: float = 1e-12) -> np.ndarray:
     """Joint velocities for a desired Cartesian twist (Lecture 6): ``q̇ = J⁺V + (I − J⁺J) z``.
 
-    J : m×n Jacobian (m ≤ 6; use the rows that matter, e.g. the 2 planar rows of the 2-link arm);
-    V : (m,) desired twist; method : "pinv" (Moore–Penrose), "dls" (damped least squares
-    ``q̇ = Jᵀ(JJᵀ + λ²I)⁻¹V``) or "damped_inverse" — the lecture's damped inverse
-    ``q̇ = (J + pI)⁻¹ V`` for a square J, p a small constant added to the diagonal (it leaves an
-    error ``J q̇ − V = −p q̇`` that accumulates in the end-effector position, as the lecture warns);
-    damping : λ (or λ_max when adaptive) for "dls", p for "damped_inverse"; adaptive : λ² =
-    λ_max² (1 − (σ_min/ε)²) when σ_min < ε, else 0 (undamped away from singularities);
-    z : (n,) joint velocity projected into the null space (redundant arms: secondary tasks such
-    as joint-limit avoidance), which leaves the task twist unchanged.
+    Parameters
+    ----------
+    J : (m, n) array_like
+        Jacobian (m ≤ 6 rows; use the rows that matter, e.g. the 2 planar rows of the 2-link arm).
+    V : (m,) array_like
+        Desired twist in J's rows and axes (rad/s, m/s).
+    method : {"pinv", "dls", "damped_inverse"}, optional
+        ``"pinv"`` (default) — Moore–Penrose; ``"dls"`` — damped least squares
+        ``q̇ = Jᵀ(JJᵀ + λ²I)⁻¹V``; ``"damped_inverse"`` — the lecture's ``q̇ = (J + pI)⁻¹ V`` for a
+        square J, which leaves an error ``J q̇ − V = −p q̇`` that accumulates in the end-effector
+        position, as the lecture warns.
+    damping : float, optional
+        λ (or λ_max when adaptive) for "dls", p for "damped_inverse"; default 0.05.
+    adaptive : bool, optional
+        For "dls": ``λ² = λ_max² (1 − (σ_min/ε)²)`` when σ_min < ε, else 0 (undamped away from
+        singularities).
+    epsilon : float, optional
+        ε of the adaptive damping; default 0.05.
+    z : (n,) array_like, optional
+        Joint velocity projected into the null space (redundant arms: secondary tasks such as
+        :func:`joint_limit_gradient`); it leaves the task twist unchanged.
+    rcond : float, optional
+        Cut-off of the pseudo-inverse's small singular values.
+
+    Returns
+    -------
+    (n,) ndarray
+        q̇ (rad/s, m/s).
+
+    Raises
+    ------
+    InputError
+        On an unknown method, a non-square J for "damped_inverse", or bad shapes.
+
+    Examples
+    --------
+    To move the tip of the planar arm at q = (0, π/2) (tip at (1, 0.8)) along +y at 1 m/s:
+
+    >>> J = geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])
+    >>> dq = resolved_rate(J[3:5], [0, 1])
+    >>> dq.round(4), (J[3:5] @ dq).round(4)
+    (array([ 1., -1.]), array([0., 1.]))
     """
     J = as_array(J, "J", (None, None))
     m, n = J.shape
@@ -297,35 +575,135 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
 
 
 def joint_limit_gradient(q: ArrayLike, qlim: ArrayLike) -> np.ndarray:
-    """``−∇H`` for ``H = ½ Σ ((qᵢ − q̄ᵢ)/(q_maxᵢ − q_minᵢ))²``: a null-space velocity pushing the joints
-    toward the middle of their ranges (unlimited joints are left alone)."""
+    """``−∇H`` for ``H = ½ Σ ((qᵢ − q̄ᵢ)/(q_maxᵢ − q_minᵢ))²``: a null-space velocity toward mid-range.
+
+    Pass it as ``z`` to :func:`resolved_rate`; joints with infinite or empty ranges are left alone.
+
+    Parameters
+    ----------
+    q : (n,) array_like
+        Joint values (rad / m).
+    qlim : (n, 2) array_like
+        Lower and upper limit of each joint (may be ±inf).
+
+    Returns
+    -------
+    (n,) ndarray
+        ``−(qᵢ − q̄ᵢ) / (q_maxᵢ − q_minᵢ)²`` (0 for unlimited joints), q̄ the middle of the range.
+
+    Examples
+    --------
+    A joint at 1 in [−2, 2] is pushed back by 1/4²; one at 0.5 in [−1, 1] by 0.5/2²:
+
+    >>> joint_limit_gradient([1.0, 0.5], [[-2, 2], [-1, 1]])
+    array([-0.0625, -0.125 ])
+    """
     q = as_vector(q, "q")
     qlim = as_array(qlim, "qlim", (len(q), 2), finite=False)
     span = qlim[:, 1] - qlim[:, 0]
     ok = np.isfinite(span) & (span > 0)
     g = np.zeros(len(q))
-    mid = 0.5 * (qlim[:, 0] + qlim[:, 1])
-    g[ok] = -(q[ok] - mid[ok]) / span[ok] ** 2
+    mid = 0.5 * (qlim[ok, 0] + qlim[ok, 1])  # only where finite (−inf + inf would warn)
+    g[ok] = -(q[ok] - mid) / span[ok] ** 2
     return g
 
 
 def manipulability_at(robot: RobotLike, q: ArrayLike, kind: str = "yoshikawa", part: str = "full",
                       frame: str | None = None) -> float:
-    """:func:`manipulability` of ``robot``'s base-frame geometric Jacobian at q (one call)."""
+    """:func:`manipulability` of the robot's base-frame geometric Jacobian at q, in one call.
+
+    Parameters
+    ----------
+    robot : RobotLike
+        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
+    q : (n,) array_like
+        Joint values (rad / m).
+    kind, part : str, optional
+        As :func:`manipulability`.
+    frame : str, optional
+        Frame name; default the robot's tip.
+
+    Returns
+    -------
+    float
+        The measure.
+
+    Examples
+    --------
+    The planar arm's translation rows are 3×2 (two joints cannot span x, y and z), so its
+    "translation" measure is 0 however the arm stands:
+
+    >>> robot = rk.load("twolink")
+    >>> manipulability_at(robot, [0, np.pi / 2], part="translation")
+    0.0
+    """
     return manipulability(robot.jacobian(q, frame, reference="local_world_aligned"), kind, part)
 
 
 def velocity_ellipsoid_at(robot: RobotLike, q: ArrayLike, part: str = "translation",
                           frame: str | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`velocity_ellipsoid` of ``robot`` at q (base-frame axes)."""
+    """:func:`velocity_ellipsoid` of the robot's base-frame geometric Jacobian at q.
+
+    Parameters
+    ----------
+    robot : RobotLike
+        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
+    q : (n,) array_like
+        Joint values (rad / m).
+    part : {"translation", "rotation", "full"}, optional
+        Which rows (default translation).
+    frame : str, optional
+        Frame name; default the robot's tip.
+
+    Returns
+    -------
+    radii : ndarray
+        Semi-axes (descending), base-frame units of the rows.
+    axes : ndarray
+        The axes as columns, base-frame axes.
+
+    Examples
+    --------
+    The planar arm's ellipsoid is flat in z (a zero third radius):
+
+    >>> radii, axes = velocity_ellipsoid_at(rk.load("twolink"), [0, np.pi / 2])
+    >>> radii.round(4)
+    array([1.3972, 0.5726, 0.    ])
+    """
     return velocity_ellipsoid(robot.jacobian(q, frame, reference="local_world_aligned"), part)
 
 
 def resolved_rate_at(robot: RobotLike, q: ArrayLike, V: ArrayLike, frame: str | None = None,
                      **kwargs: Any) -> np.ndarray:
-    """Joint velocities of ``robot`` at q for the desired twist V (6,) = (ω; v of the frame origin,
-    base axes); keyword arguments as :func:`resolved_rate`."""
+    """Joint velocities of ``robot`` at q for a desired twist, via :func:`resolved_rate`.
+
+    Parameters
+    ----------
+    robot : RobotLike
+        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
+    q : (n,) array_like
+        Joint values (rad / m).
+    V : (6,) array_like
+        Desired twist ``(ω; v)`` of the frame origin, base axes (rad/s, m/s).
+    frame : str, optional
+        Frame name; default the robot's tip.
+    **kwargs
+        ``method``, ``damping``, ``adaptive``, ``epsilon``, ``z``, ``rcond`` as :func:`resolved_rate`.
+
+    Returns
+    -------
+    (n,) ndarray
+        q̇ (rad/s, m/s), the least-squares solution when V is not reachable exactly.
+
+    Examples
+    --------
+    >>> resolved_rate_at(rk.load("twolink"), [0, np.pi / 2], [0, 0, 0, 0, 1, 0]).round(4)
+    array([ 1., -1.])
+    """
     return resolved_rate(robot.jacobian(q, frame, reference="local_world_aligned"), V, **kwargs)
 
 
 __all__ += ["manipulability_at", "velocity_ellipsoid_at", "resolved_rate_at", "SingularityReport"]
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+jacobian_to_frame = deprecated_alias(jacobian_in_frame, "jacobian_to_frame")

@@ -54,8 +54,34 @@ def _check_order(order: str) -> str:
 
 
 def odometry_model(x: FloatVector, delta: FloatVector, v: FloatVector = (0.0, 0.0), order: str = "turn-move") -> np.ndarray:
-    """``f(x, δ, v)`` of the module docstring: the pose (3,) after the odometry increment
-    δ = (δ_d, δ_θ) (m, rad) with noise v (2,); order : "turn-move" (default) or "move-turn" (Corke)."""
+    """``f(x, δ, v)`` of the module docstring: the pose after an odometry increment (Lecture 9).
+
+    Parameters
+    ----------
+    x : (3,) array_like
+        Pose (x, y, θ) in the world frame (m, m, rad).
+    delta : (2,) array_like
+        Odometry increment (δ_d, δ_θ): distance travelled (m) and heading change (rad).
+    v : (2,) array_like, default (0, 0)
+        Odometry noise added to δ (m, rad).
+    order : {"turn-move", "move-turn"}
+        "turn-move" (default, the lecture's three-vector form): turn by δ_θ, then move δ_d along the
+        new heading; "move-turn" (Corke's book): move along the old heading, then turn.
+
+    Returns
+    -------
+    (3,) ndarray
+        The new pose (x, y, θ), θ wrapped to (−π, π].
+
+    Examples
+    --------
+    Turn 90° then drive 1 m from the origin facing +x: the vehicle ends at (0, 1) facing +y.
+
+    >>> odometry_model([0, 0, 0], [1.0, np.pi / 2]).round(4)
+    array([0.    , 1.    , 1.5708])
+    >>> odometry_model([0, 0, 0], [1.0, np.pi / 2], order="move-turn").round(4)
+    array([1.    , 0.    , 1.5708])
+    """
     _check_order(order)
     d = delta[0] + v[0]
     th = x[2] + delta[1] + v[1]
@@ -64,11 +90,35 @@ def odometry_model(x: FloatVector, delta: FloatVector, v: FloatVector = (0.0, 0.
 
 
 def odometry_jacobians(x: FloatVector, delta: FloatVector, order: str = "turn-move") -> tuple[np.ndarray, np.ndarray]:
-    """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v at v = 0 (3×3 and 3×2), for either order.
+    """``(F_x, F_v)``: ∂f/∂x and ∂f/∂v of :func:`odometry_model` at v = 0, for either order.
 
     turn-move: ``F_x = [[1, 0, −δ_d s], [0, 1, δ_d c], [0, 0, 1]]``, ``F_v = [[c, −δ_d s], [s, δ_d c], [0, 1]]``
     with c, s of θ + δ_θ (the lecture's); move-turn: the same F_x with c, s of θ, and
     ``F_v = [[c, 0], [s, 0], [0, 1]]``.
+
+    Parameters
+    ----------
+    x : (3,) array_like
+        Pose (x, y, θ) (m, m, rad) where the Jacobians are taken.
+    delta : (2,) array_like
+        Odometry increment (δ_d, δ_θ) (m, rad).
+    order : {"turn-move", "move-turn"}
+        As for :func:`odometry_model`.
+
+    Returns
+    -------
+    F_x : (3, 3) ndarray
+        ∂f/∂x.
+    F_v : (3, 2) ndarray
+        ∂f/∂v (columns: distance noise, heading noise).
+
+    Examples
+    --------
+    Driving 2 m along +x: a heading error moves the end point sideways by 2 m per rad.
+
+    >>> Fx, Fv = odometry_jacobians([0, 0, 0], [2.0, 0.0])
+    >>> Fx[:, 2].tolist(), Fv[:, 1].tolist()
+    ([-0.0, 2.0, 1.0], [-0.0, 2.0, 1.0])
     """
     _check_order(order)
     th = x[2] + delta[1] if order == "turn-move" else x[2]
@@ -82,7 +132,15 @@ def odometry_jacobians(x: FloatVector, delta: FloatVector, order: str = "turn-mo
 
 
 class Odometry:
-    """A vehicle's odometer: the true increment plus zero-mean Gaussian noise of covariance V (2×2)."""
+    """A vehicle's odometer: the true increment plus zero-mean Gaussian noise.
+
+    Parameters
+    ----------
+    V : (2, 2) array_like
+        Noise covariance of (δ_d, δ_θ) (m², rad²), positive semi-definite.
+    rng : int, numpy.random.Generator or None
+        Seed or generator of the noise.
+    """
 
     def __init__(self, V: ArrayLike, rng: int | np.random.Generator | None = None) -> None:
         self.V = as_matrix(V, "V", 2, 2)
@@ -96,7 +154,13 @@ class Odometry:
 
 
 class LandmarkMap:
-    """Point landmarks in the plane: ``points`` (N, 2) (m)."""
+    """Point landmarks in the plane.
+
+    Parameters
+    ----------
+    points : (N, 2) array_like
+        Landmark positions in the world frame (m).
+    """
 
     def __init__(self, points: ArrayLike) -> None:
         self.points = as_array(points, "points", (None, 2))
@@ -111,8 +175,31 @@ class LandmarkMap:
 
 
 class RangeBearingSensor:
-    """Range–bearing sensor: ``z = (r, β)`` with noise covariance W (2×2); optional max range (m)
-    and field of view (rad, centred on the vehicle's x axis)."""
+    """Range–bearing sensor: ``z = (r, β) + w``, ``w ~ N(0, W)`` (Lecture 9).
+
+    ``r`` is the distance to the landmark (m), ``β`` its bearing from the vehicle's x axis (rad, in
+    (−π, π]).
+
+    Parameters
+    ----------
+    landmarks : LandmarkMap
+        The landmarks it can see.
+    W : (2, 2) array_like
+        Measurement noise covariance (m², rad²).
+    max_range : float, optional
+        Landmarks farther than this (m) are not visible.
+    fov : float, optional
+        Field of view (rad), centred on the vehicle's x axis.
+    rng : int, numpy.random.Generator or None
+        Seed or generator of the noise.
+
+    Examples
+    --------
+    A landmark at (3, 4) seen from the origin facing +y: 5 m away, bearing atan2(4, 3) − 90°.
+
+    >>> RangeBearingSensor.h([0, 0, np.pi / 2], [3.0, 4.0]).round(4)
+    array([ 5.    , -0.6435])
+    """
 
     def __init__(self, landmarks: LandmarkMap, W: ArrayLike, max_range: float | None = None, fov: float | None = None,
                  rng: int | np.random.Generator | None = None) -> None:
@@ -164,11 +251,26 @@ def _joseph(P: np.ndarray, K: np.ndarray, H: np.ndarray, W: np.ndarray) -> np.nd
 
 
 class EKFLocalization:
-    """EKF localisation with a known landmark map.
+    """EKF localisation with a known landmark map (Lecture 9).
 
-    x0 (3,), P0 (3×3): initial estimate and covariance; V: odometry noise covariance used by the
-    filter; W: sensor noise covariance used by the filter; landmarks: the known map;
-    order: the odometry model's order, "turn-move" (default) or "move-turn".
+    Prediction with odometry (:meth:`predict`), update with range–bearing measurements of known
+    landmarks (:meth:`update`, Joseph-form covariance); the estimate is ``.x`` (3,), its
+    covariance ``.P`` (3, 3).
+
+    Parameters
+    ----------
+    x0 : (3,) array_like
+        Initial pose estimate (x, y, θ) (m, m, rad).
+    P0 : (3, 3) array_like
+        Its covariance.
+    V : (2, 2) array_like
+        Odometry noise covariance the filter assumes (m², rad²).
+    W : (2, 2) array_like
+        Sensor noise covariance the filter assumes (m², rad²).
+    landmarks : LandmarkMap
+        The known map.
+    order : {"turn-move", "move-turn"}
+        The odometry model's order (:func:`odometry_model`).
     """
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, landmarks: LandmarkMap, order: str = "turn-move") -> None:
@@ -198,11 +300,24 @@ class EKFLocalization:
 
 
 class EKFSLAM:
-    """EKF SLAM: the vehicle pose and the landmark positions estimated together.
+    """EKF SLAM: the vehicle pose and the landmark positions estimated together (Lecture 9).
 
-    The state is ``(x, y, θ, x₁, y₁, x₂, y₂, …)``; landmarks are added at their first
-    observation. ``landmark_index[i]`` is the position of landmark i in the state (or absent);
-    ``order`` as for :class:`EKFLocalization`.
+    The state ``.x`` is ``(x, y, θ, x₁, y₁, x₂, y₂, …)`` with covariance ``.P``; a landmark is added
+    at its first observation (``x_i = (x + r cos(θ + β), y + r sin(θ + β))`` with the insertion
+    Jacobians G_x, G_z). ``landmark_index[i]`` is the position of landmark i in the state.
+
+    Parameters
+    ----------
+    x0 : (3,) array_like
+        Initial pose estimate (m, m, rad).
+    P0 : (3, 3) array_like
+        Its covariance.
+    V : (2, 2) array_like
+        Odometry noise covariance (m², rad²).
+    W : (2, 2) array_like
+        Sensor noise covariance (m², rad²).
+    order : {"turn-move", "move-turn"}
+        As for :class:`EKFLocalization`.
     """
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, order: str = "turn-move") -> None:
@@ -263,10 +378,35 @@ class EKFSLAM:
 
 
 def error_ellipse(P: ArrayLike, mean: ArrayLike = (0.0, 0.0), n_sigma: float = 1.0, points: int = 100) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Points (points, 2) on the ellipse ``(x − μ)ᵀ P⁻¹ (x − μ) = n_sigma²`` of a 2×2 covariance.
+    """Points on the ellipse ``(x − μ)ᵀ P⁻¹ (x − μ) = n_sigma²`` of a 2×2 covariance (Lecture 9).
 
-    Axes along the eigenvectors of P with half-lengths ``n_sigma √λᵢ`` (Lecture 9). Also
-    returns ``(radii, axes)``: the half-lengths (ascending) and the unit axis vectors (columns).
+    Axes along the eigenvectors of P with half-lengths ``n_sigma √λᵢ``.
+
+    Parameters
+    ----------
+    P : (2, 2) array_like
+        Symmetric positive semi-definite covariance (m²).
+    mean : (2,) array_like
+        Centre μ (m).
+    n_sigma : float
+        Size in standard deviations.
+    points : int
+        Number of points on the ellipse.
+
+    Returns
+    -------
+    pts : (points, 2) ndarray
+        The ellipse, closed (first point = last), in the frame of ``mean`` (m).
+    radii : (2,) ndarray
+        Half-lengths of the axes, ascending (m).
+    axes : (2, 2) ndarray
+        Unit axis vectors (columns), in the order of ``radii``.
+
+    Examples
+    --------
+    >>> pts, radii, axes = error_ellipse(np.diag([4.0, 1.0]), n_sigma=2.0)
+    >>> radii.round(4)
+    array([2., 4.])
     """
     P = as_matrix(P, "P", 2, 2)
     if np.abs(P - P.T).max() > 1e-12 * max(1.0, np.abs(P).max()):

@@ -35,13 +35,27 @@ __all__ = ["ParticleFilter", "systematic_resample", "uncertainty"]
 
 
 def systematic_resample(weights: ArrayLike, rng: int | np.random.Generator | None = None) -> np.ndarray:
-    """Indices (N,) of the particles kept by systematic resampling of ``weights`` (N,).
+    """Indices of the particles kept by systematic resampling of ``weights`` (Lecture 9).
 
     One uniform draw ``u ~ U[0, 1/N)``; pointer k = ``u + k/N`` selects the first particle whose
-    cumulative weight exceeds it. Each particle i appears ⌊N wᵢ⌋ or ⌈N wᵢ⌉ times. rng : a seed or
-    ``numpy.random.Generator``.
+    cumulative weight exceeds it. Each particle i appears ⌊N wᵢ⌋ or ⌈N wᵢ⌉ times.
 
-    Example: ``systematic_resample([0.5, 0.5, 0, 0], rng=1)`` is ``[0, 0, 1, 1]``.
+    Parameters
+    ----------
+    weights : (N,) array_like
+        Non-negative weights with a positive sum (normalised here).
+    rng : int, numpy.random.Generator or None
+        Seed or generator of the one uniform draw.
+
+    Returns
+    -------
+    (N,) ndarray of int
+        Indices into the particles, ascending.
+
+    Examples
+    --------
+    >>> systematic_resample([0.5, 0.5, 0, 0], rng=1).tolist()
+    [0, 0, 1, 1]
     """
     w = as_vector(weights, "weights")
     if np.any(w < 0) or w.sum() <= 0:
@@ -58,10 +72,25 @@ def systematic_resample(weights: ArrayLike, rng: int | np.random.Generator | Non
 def uncertainty(P: ArrayLike, kind: str = "det") -> float:
     """A scalar uncertainty of a covariance P (Lecture 9).
 
-    kind : "det" — ``det P = Π λᵢ`` (any square P, e.g. the 3×3 pose covariance); "area" — the area
-    ``π r₁ r₂`` of the 1-σ error ellipse of the (x, y) block ``P[:2, :2]``, ``rᵢ = √λᵢ``.
+    Parameters
+    ----------
+    P : (m, m) array_like
+        Symmetric covariance (e.g. the 3×3 pose covariance).
+    kind : {"det", "area"}
+        "det" — ``det P = Π λᵢ``; "area" — the area ``π r₁ r₂`` of the 1-σ error ellipse of the
+        (x, y) block ``P[:2, :2]``, ``rᵢ = √λᵢ`` (m²).
 
-    Example: ``uncertainty(np.diag([4.0, 1.0]), "area")`` is ``2π``.
+    Returns
+    -------
+    float
+        The measure.
+
+    Examples
+    --------
+    Standard deviations 2 m and 1 m: the 1-σ ellipse has area π · 2 · 1.
+
+    >>> round(uncertainty(np.diag([4.0, 1.0]), "area") / np.pi, 4)
+    2.0
     """
     P = as_matrix(P, "P")
     if P.shape[0] != P.shape[1]:
@@ -81,18 +110,43 @@ def uncertainty(P: ArrayLike, kind: str = "det") -> float:
 
 
 class ParticleFilter:
-    """Monte Carlo localisation with a known landmark map (module docstring).
+    """Monte Carlo localisation with a known landmark map (module docstring, Lecture 9).
 
-    n_particles : N; x0 (3,), P0 (3×3): the initial belief, particles drawn from N(x0, P0)
-    (or pass ``particles`` (N, 3) directly, e.g. uniform over the map for global localisation);
-    V : odometry noise covariance (2×2) used to move the particles; W : sensor noise covariance
-    (2×2) of the likelihood; landmarks : the known :class:`LandmarkMap`; rng : seed or Generator;
-    order : odometry order ("turn-move" default, "move-turn"); resample_threshold : resample when
-    ``N_eff < threshold · N`` (1 resamples after every update).
+    Attributes after construction: ``particles`` (N, 3) poses (m, m, rad), ``weights`` (N,); the
+    estimate :attr:`x` (3,) and covariance :attr:`P` (3, 3).
 
-    Attributes: ``particles`` (N, 3), ``weights`` (N,); the estimate :attr:`x` and covariance :attr:`P`.
+    Parameters
+    ----------
+    n_particles : int
+        Number N of particles (≥ 1).
+    x0 : (3,) array_like
+        Mean of the initial belief (x, y, θ) (m, m, rad); particles are drawn from N(x0, P0).
+    P0 : (3, 3) array_like
+        Covariance of the initial belief.
+    V : (2, 2) array_like
+        Odometry noise covariance used to move the particles (m², rad²).
+    W : (2, 2) array_like
+        Sensor noise covariance of the likelihood (m², rad²).
+    landmarks : LandmarkMap
+        The known map.
+    rng : int, numpy.random.Generator or None
+        Seed or generator of all the filter's randomness.
+    order : {"turn-move", "move-turn"}
+        Odometry order (:func:`robokit.mobile.odometry_model`).
+    resample_threshold : float
+        Resample when ``N_eff < threshold · N`` (1 resamples after every update).
+    particles : (N, 3) array_like, optional
+        Initial particles given directly (e.g. uniform over the map for global localisation);
+        then x0 and P0 are ignored.
 
-    Example: ``pf = ParticleFilter(500, x0, P0, V, W, landmarks, rng=0); pf.predict(delta); pf.update(z, i); pf.x``.
+    Examples
+    --------
+    >>> lm = LandmarkMap([[5.0, 0.0], [0.0, 5.0]])
+    >>> pf = ParticleFilter(200, [0, 0, 0], np.diag([0.01, 0.01, 0.001]), np.diag([1e-4, 1e-4]),
+    ...                     np.diag([0.01, 1e-4]), lm, rng=0)
+    >>> pf.predict([1.0, 0.0])
+    >>> bool(np.abs(pf.x - [1.0, 0.0, 0.0]).max() < 0.05)
+    True
     """
 
     def __init__(self, n_particles: int, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, landmarks: LandmarkMap, rng: int | np.random.Generator | None = None, order: str = "turn-move",

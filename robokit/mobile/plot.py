@@ -19,8 +19,32 @@ __all__ = ["plot_estimation"]
 
 def plot_estimation(true_path: ArrayLike, est_path: ArrayLike | None = None, covariances: Sequence[ArrayLike] | np.ndarray | None = None, landmarks: ArrayLike | None = None, landmark_estimates: ArrayLike | None = None,
                     every: int = 10, n_sigma: float = 1.0, ax: Axes | None = None) -> Figure | SubFigure:
-    """True (K, ≥2) and estimated paths, landmarks (N, 2), estimated landmarks, and the
-    ``n_sigma`` error ellipses of the position covariances (K, ≥2, ≥2) every ``every`` steps."""
+    """Plot a true path, an estimated path with its error ellipses, and landmarks (matplotlib).
+
+    Parameters
+    ----------
+    true_path : (K, ≥2) array_like
+        True poses; columns x, y (m) are drawn.
+    est_path : (K, ≥2) array_like, optional
+        Estimated poses.
+    covariances : sequence of (≥2, ≥2) arrays, optional
+        The estimate's covariances; the (x, y) block's ``n_sigma`` ellipse is drawn every ``every`` steps.
+    landmarks : (N, 2) array_like, optional
+        True landmark positions (m).
+    landmark_estimates : (M, 2) array_like, optional
+        Estimated landmark positions (m).
+    every : int
+        Draw one ellipse every this many steps.
+    n_sigma : float
+        Ellipse size in standard deviations.
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new 6×6 in figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn into.
+    """
     plt = require("matplotlib.pyplot", "plotting")
 
     fig = ax.figure if ax is not None else plt.figure(figsize=(6, 6))

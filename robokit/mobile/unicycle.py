@@ -35,9 +35,21 @@ __all__ = ["UnicycleModel", "DifferentialDrive"]
 
 
 class UnicycleModel:
-    """Unicycle with speed limit ``speed_max`` (m/s) and turn-rate limit ``omega_max`` (rad/s).
+    """Unicycle: ``ẋ = v cos θ, ẏ = v sin θ, θ̇ = ω``, inputs u = (v, ω) (Lecture 9).
 
-    Example: ``UnicycleModel().step([0, 0, 0], [1.0, 0.5], 0.1)``.
+    Parameters
+    ----------
+    speed_max : float
+        Speed limit (m/s, > 0).
+    omega_max : float
+        Turn-rate limit (rad/s, > 0).
+
+    Examples
+    --------
+    Half a turn at v = 1 m/s, ω = 1 rad/s (π s): a semicircle of radius v/ω = 1 m.
+
+    >>> UnicycleModel().step([0, 0, 0], [1.0, 1.0], np.pi).round(4)
+    array([0.    , 2.    , 3.1416])
     """
 
     def __init__(self, speed_max: float = 5.0, omega_max: float = 4.0) -> None:
@@ -70,12 +82,28 @@ class UnicycleModel:
 
 
 class DifferentialDrive(UnicycleModel):
-    """A differential-drive vehicle: wheel radius ``r`` (m), track ``W`` (m, distance between the wheels),
-    wheel-speed limit ``wheel_max`` (rad/s). Inputs to ``step``/``deriv`` are (v, ω) as for the unicycle
-    (the wheel-speed limit is applied through them); :meth:`wheel_speeds` and :meth:`body_velocity`
-    convert (module docstring).
+    """A differential-drive vehicle: two wheels on one axle, a unicycle with
+    ``v = r (ω_R + ω_L)/2``, ``ω = r (ω_R − ω_L)/W``.
 
-    Example: ``DifferentialDrive(0.1, 0.5).body_velocity([10, 10])`` is ``(1.0, 0.0)`` (straight ahead).
+    Inputs to ``step``/``deriv`` are (v, ω) as for the unicycle (the wheel-speed limit is applied
+    through them); :meth:`wheel_speeds` and :meth:`body_velocity` convert.
+
+    Parameters
+    ----------
+    r : float
+        Wheel radius (m, > 0).
+    W : float
+        Track: distance between the wheels (m, > 0).
+    wheel_max : float
+        Wheel-speed limit (rad/s, > 0).
+
+    Examples
+    --------
+    >>> dd = DifferentialDrive(0.1, 0.5)
+    >>> dd.body_velocity([10, 10]).tolist()          # both wheels at 10 rad/s: straight ahead at 1 m/s
+    [1.0, 0.0]
+    >>> dd.wheel_speeds([0.0, 1.0]).tolist()          # turning on the spot at 1 rad/s
+    [-2.5, 2.5]
     """
 
     def __init__(self, r: float, W: float, wheel_max: float = 50.0) -> None:

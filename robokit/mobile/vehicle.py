@@ -39,12 +39,49 @@ def angdiff(a: float, b: float = 0.0) -> float: ...
 @overload
 def angdiff(a: float | np.ndarray, b: float | np.ndarray = 0.0) -> float | np.ndarray: ...
 def angdiff(a: float | np.ndarray, b: float | np.ndarray = 0.0) -> float | np.ndarray:
-    """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array), Corke's name for it."""
+    """The angle ``a ⊖ b`` wrapped to (−π, π] (scalar or array), Corke's name for it.
+
+    Parameters
+    ----------
+    a : float or ndarray
+        Angle(s) (rad).
+    b : float or ndarray, default 0
+        Angle(s) subtracted (rad), broadcast against ``a``.
+
+    Returns
+    -------
+    float or ndarray
+        ``wrap(a − b)`` in (−π, π] (rad): a float for scalar input, else an array of the broadcast shape.
+
+    Examples
+    --------
+    >>> round(angdiff(np.radians(170), np.radians(-170)), 4)   # 340° is −20°
+    -0.3491
+    """
     return wrap_angle(np.asarray(a, dtype=float) - b) if np.ndim(a) else wrap_angle(float(a) - float(b))
 
 
 class BicycleModel:
-    """Kinematic bicycle with wheelbase ``L`` (m), steering limit (rad) and speed limit (m/s)."""
+    """Kinematic bicycle: ``ẋ = v cos θ, ẏ = v sin θ, θ̇ = (v / L) tan γ`` (Lecture 9).
+
+    Parameters
+    ----------
+    L : float
+        Wheelbase (m, > 0).
+    steer_max : float
+        Steering-angle limit (rad, 0 < steer_max < π/2); inputs beyond it are clipped.
+    speed_max : float
+        Speed limit (m/s, > 0); inputs beyond it are clipped.
+
+    Examples
+    --------
+    Full steering lock of 45° on a 1 m wheelbase: a circle of radius L / tan γ = 1 m, so a quarter
+    turn at 1 m/s (π/2 s) ends at (1, 1) heading +y.
+
+    >>> car = BicycleModel(L=1.0)
+    >>> car.step([0, 0, 0], [1.0, np.pi / 4], np.pi / 2).round(4)
+    array([1.    , 1.    , 1.5708])
+    """
 
     def __init__(self, L: float = 1.0, steer_max: float = np.deg2rad(60.0), speed_max: float = 5.0) -> None:
         self.L = as_scalar(L, "L", positive=True)
@@ -88,7 +125,19 @@ class BicycleModel:
 
 @dataclass
 class MoveToPoint:
-    """Drive to ``goal`` (x*, y*) (m): speed proportional to the distance, heading P control."""
+    """Drive to ``goal``: speed proportional to the distance, heading P control (Lecture 9).
+
+    ``v = K_v ‖p* − p‖``, ``γ = K_h (atan2(y* − y, x* − x) ⊖ θ)``; called as ``ctrl(t, x, dt) -> (v, γ)``.
+
+    Attributes
+    ----------
+    goal : tuple
+        (x*, y*) of the goal in the world frame (m).
+    Kv : float
+        Speed gain (1/s).
+    Kh : float
+        Heading gain (dimensionless: rad of steering per rad of heading error).
+    """
 
     goal: tuple
     Kv: float = 0.5
@@ -101,7 +150,22 @@ class MoveToPoint:
 
 @dataclass
 class FollowLine:
-    """Follow the line a x + b y + c = 0 at speed ``v`` (m/s): distance and heading terms combined."""
+    """Follow the line ``a x + b y + c = 0`` at constant speed (Lecture 9).
+
+    ``γ = −K_d d + K_h (θ* ⊖ θ)`` with d the signed distance to the line and ``θ* = atan2(−a, b)``
+    its direction; called as ``ctrl(t, x, dt) -> (v, γ)``.
+
+    Attributes
+    ----------
+    line : tuple
+        (a, b, c), not both a and b zero.
+    v : float
+        Speed (m/s).
+    Kd : float
+        Distance gain (rad/m, ≥ 0).
+    Kh : float
+        Heading gain (≥ 0).
+    """
 
     line: tuple
     v: float = 1.0
@@ -132,9 +196,23 @@ class FollowLine:
 
 
 class PurePursuit:
-    """Chase a target moving along ``path(t) -> (x*, y*)`` at distance ``d_star`` (m).
+    """Chase a target moving along ``path(t) -> (x*, y*)`` at distance ``d_star`` (Lecture 9).
 
-    Speed: PI on ``e = ‖p* − p‖ − d*``; steering: P on the heading to the target.
+    Speed: PI on ``e = ‖p* − p‖ − d*``; steering: P on the heading to the target. Called as
+    ``ctrl(t, x, dt) -> (v, γ)``; ``dt`` advances the integral.
+
+    Parameters
+    ----------
+    path : callable
+        ``path(t) -> (x*, y*)``: the target's position at time t (s), world frame (m).
+    d_star : float
+        Distance to keep behind the target (m).
+    Kv : float
+        Proportional speed gain (1/s).
+    Ki : float
+        Integral speed gain (1/s²).
+    Kh : float
+        Heading gain.
     """
 
     def __init__(self, path: Callable[[float], FloatVector], d_star: float = 1.0, Kv: float = 1.0, Ki: float = 0.3, Kh: float = 2.0) -> None:
@@ -154,7 +232,17 @@ class PurePursuit:
 
 @dataclass
 class VehicleRun:
-    """A simulated run: t (K,), x (K, 3) states, u (K, 2) inputs applied from t[k] to t[k+1]."""
+    """A simulated run of :func:`run_vehicle`.
+
+    Attributes
+    ----------
+    t : (K,) ndarray
+        Times (s), from 0 in steps of ``dt``.
+    x : (K, 3) ndarray
+        States (x, y, θ) (m, m, rad) at the times t.
+    u : (K, 2) ndarray
+        Inputs (v, γ) (m/s, rad) applied from t[k] to t[k+1] (the last row repeats the one before).
+    """
 
     t: np.ndarray
     x: np.ndarray
@@ -164,7 +252,34 @@ class VehicleRun:
 def run_vehicle(model: BicycleModel, controller: Callable[[float, np.ndarray, float], FloatVector], x0: ArrayLike, T: float, dt: float = 0.05, stop: Callable[[float, np.ndarray], bool] | None = None) -> VehicleRun:
     """Run ``controller`` on ``model`` from ``x0`` for ``T`` s with control period ``dt``.
 
-    ``stop(t, x) -> bool`` may end the run early (e.g. goal reached).
+    Each period the controller's inputs are clipped to the model's limits and held, and the state
+    advances along the exact arc (:meth:`BicycleModel.step`).
+
+    Parameters
+    ----------
+    model : BicycleModel
+        The vehicle.
+    controller : callable
+        ``controller(t, x, dt) -> (v, γ)``, e.g. :class:`MoveToPoint`.
+    x0 : (3,) array_like
+        Initial state (x, y, θ) (m, m, rad).
+    T : float
+        Duration (s, > 0).
+    dt : float
+        Control period (s, > 0).
+    stop : callable, optional
+        ``stop(t, x) -> bool`` ends the run early (e.g. goal reached).
+
+    Returns
+    -------
+    VehicleRun
+        ``.t`` (K,), ``.x`` (K, 3), ``.u`` (K, 2).
+
+    Examples
+    --------
+    >>> run = run_vehicle(BicycleModel(), MoveToPoint((5.0, 5.0)), [0, 0, 0], T=30.0)
+    >>> bool(np.hypot(*(run.x[-1, :2] - 5.0)) < 0.05)     # reached the goal
+    True
     """
     x = as_vector(x0, "x0", 3).copy()
     T = as_scalar(T, "T", positive=True)

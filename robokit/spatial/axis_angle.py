@@ -20,7 +20,27 @@ __all__ = ["matrix_from_axis_angle", "axis_angle_from_matrix", "matrix_from_two_
 
 
 def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
-    """Rotation by ``angle`` (rad) about ``axis`` (3,, normalised here), Rodrigues' formula."""
+    """Rotation by ``angle`` about ``axis``: ``I + sin θ [ω̂] + (1 − cos θ)[ω̂]²`` (Rodrigues, Lecture 2).
+
+    Parameters
+    ----------
+    axis : (3,) array_like
+        Rotation axis (normalised here; not zero).
+    angle : float
+        Rotation angle θ (rad), right-handed about the axis.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+
+    Examples
+    --------
+    120° about (1, 1, 1) permutes the axes: x → y.
+
+    >>> (matrix_from_axis_angle([1, 1, 1], 2 * np.pi / 3) @ [1, 0, 0]).round(4)
+    array([-0.,  1.,  0.])
+    """
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
     if n == 0.0:
@@ -29,7 +49,29 @@ def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
 
 
 def axis_angle_from_matrix(R: ArrayLike) -> tuple[np.ndarray, float]:
-    """``(axis, angle)`` of a rotation, angle ∈ [0, π]; axis (1, 0, 0) when angle = 0."""
+    """``(axis, angle)`` of a rotation, angle ∈ [0, π] (the inverse of :func:`matrix_from_axis_angle`).
+
+    At angle 0 the axis is free and (1, 0, 0) is returned; at angle π the axis sign follows
+    :func:`robokit.matrix_log_3`'s choice.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        A rotation matrix (checked).
+
+    Returns
+    -------
+    axis : (3,) ndarray
+        Unit rotation axis.
+    angle : float
+        Rotation angle (rad), in [0, π].
+
+    Examples
+    --------
+    >>> axis, angle = axis_angle_from_matrix([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
+    >>> axis, round(float(np.degrees(angle)), 4)
+    (array([0., 0., 1.]), 90.0)
+    """
     w = lie.log3(check_rotation(R, "R"))
     th = float(np.linalg.norm(w))
     if th == 0.0:
@@ -38,10 +80,33 @@ def axis_angle_from_matrix(R: ArrayLike) -> tuple[np.ndarray, float]:
 
 
 def matrix_from_two_vectors(o: ArrayLike, a: ArrayLike, tol: float = 1e-6) -> np.ndarray:
-    """``R = [n o a]`` with ``n = o × a`` from the orientation vector o and approach vector a.
+    """``R = [n o a]`` with ``n = o × a`` from the orientation vector o and approach vector a (Lecture 2).
 
-    Both are normalised; they must be orthogonal within ``tol`` (|o·a| after normalising),
-    otherwise ``ValueError`` (the two-vector representation needs o ⊥ a).
+    The two-vector representation of a tool orientation: a is the tool's z (approach), o its y
+    (the direction the gripper opens along).
+
+    Parameters
+    ----------
+    o : (3,) array_like
+        Orientation vector (normalised here).
+    a : (3,) array_like
+        Approach vector (normalised here); must be orthogonal to o within ``tol``.
+    tol : float
+        Largest accepted ``|o·a|`` after normalising (else :class:`~robokit.errors.InputError`).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation with columns n, o, a.
+
+    Examples
+    --------
+    A tool pointing down (a = −z) with its y along the base y:
+
+    >>> matrix_from_two_vectors([0, 1, 0], [0, 0, -1])
+    array([[-1.,  0.,  0.],
+           [ 0.,  1.,  0.],
+           [ 0.,  0., -1.]])
     """
     o = as_vector(o, "o", 3)
     a = as_vector(a, "a", 3)

@@ -13,18 +13,44 @@ __all__ = ["near_zero", "normalize", "unit_vector", "wrap_angle"]
 
 
 def near_zero(z: ArrayLike) -> bool:
-    """True if ``|z| < 1e-6`` (the seed library's zero test).
+    """Whether ``|z| < 1e-6`` (the seed library's zero test, seed 004 §1).
 
-    Example: ``near_zero(-1e-7)`` → ``True``.
+    Parameters
+    ----------
+    z : float or 0-d array_like
+        A scalar.
+
+    Returns
+    -------
+    bool
+        True if ``|z| < 1e-6``.
+
+    Examples
+    --------
+    >>> near_zero(-1e-7), near_zero(1e-5)
+    (True, False)
     """
     return bool(abs(float(as_array(z, "z", ()))) < 1e-6)
 
 
 def normalize(V: ArrayLike) -> np.ndarray:
-    """``V / ‖V‖`` for a vector ``V`` of any length.
+    """``V / ‖V‖`` for a vector ``V`` of any length (seed 004 §1).
 
-    Raises ``ValueError`` for the zero vector (it has no direction).
-    Example: ``normalize([1, 2, 3])`` → ``[0.267, 0.535, 0.802]``.
+    Parameters
+    ----------
+    V : (m,) array_like
+        A non-zero vector (the zero vector has no direction: :class:`~robokit.errors.InputError`,
+        a ``ValueError``).
+
+    Returns
+    -------
+    (m,) ndarray
+        The unit vector along V.
+
+    Examples
+    --------
+    >>> normalize([3, 0, 4])
+    array([0.6, 0. , 0.8])
     """
     V = as_vector(V, "V")
     n = float(np.linalg.norm(V))
@@ -34,10 +60,24 @@ def normalize(V: ArrayLike) -> np.ndarray:
 
 
 def unit_vector(v: ArrayLike, name: str) -> np.ndarray:
-    """The direction ``v / ‖v‖`` of a 3-vector (an axis, a line's direction): ``InputError``
-    naming ``name`` for a (near-)zero vector (‖v‖ < 1e-12).
+    """The direction ``v / ‖v‖`` of a 3-vector (an axis, a line's direction).
 
-    Example: ``unit_vector([0, 0, 2], "axis")`` → ``[0, 0, 1]``.
+    Parameters
+    ----------
+    v : (3,) array_like
+        The vector; ‖v‖ < 1e-12 raises :class:`~robokit.errors.InputError` naming ``name``.
+    name : str
+        The argument's name in the error message.
+
+    Returns
+    -------
+    (3,) ndarray
+        The unit vector.
+
+    Examples
+    --------
+    >>> unit_vector([0, 0, 2], "axis")
+    array([0., 0., 1.])
     """
     w = as_vector(v, name, 3)
     n = float(np.linalg.norm(w))
@@ -47,10 +87,26 @@ def unit_vector(v: ArrayLike, name: str) -> np.ndarray:
 
 
 def wrap_angle(a: ArrayLike) -> float | np.ndarray:
-    """Angles wrapped to (−π, π]: a float for a scalar, an array for an array (no checks).
+    """Angles wrapped to (−π, π] (no checks): the one angle-wrapping function of robokit.
 
-    The one angle-wrapping function of robokit (rotations, IK solutions, vehicle headings).
-    Example: ``wrap_angle(3 * np.pi / 2)`` → ``-π/2``; ``wrap_angle(-np.pi)`` → ``π``.
+    Used for rotations, IK solutions and vehicle headings.
+
+    Parameters
+    ----------
+    a : float or array_like
+        Angle(s) (rad).
+
+    Returns
+    -------
+    float or ndarray
+        ``a`` wrapped to (−π, π]: a float for a scalar, an array of the same shape for an array.
+
+    Examples
+    --------
+    >>> round(wrap_angle(3 * np.pi / 2), 4), round(wrap_angle(-np.pi), 4)   # −π maps to +π
+    (-1.5708, 3.1416)
+    >>> wrap_angle(np.array([0.0, 2 * np.pi + 0.5]))
+    array([0. , 0.5])
     """
     if isinstance(a, (float, int)):
         w = math.fmod(a + math.pi, 2.0 * math.pi)

@@ -42,7 +42,24 @@ EULER_SEQUENCES = tuple(
 
 
 def check_sequence(seq: str) -> str:
-    """The Euler sequence ``seq`` upper-cased (one of the 12 of :data:`EULER_SEQUENCES`); ``ValueError`` otherwise."""
+    """The Euler sequence ``seq`` upper-cased, or :class:`~robokit.errors.InputError` if it is not one
+    of the 12 of :data:`EULER_SEQUENCES`.
+
+    Parameters
+    ----------
+    seq : str
+        Three axis letters, e.g. ``"zyx"`` or ``"ZYZ"``.
+
+    Returns
+    -------
+    str
+        ``seq.upper()``.
+
+    Examples
+    --------
+    >>> check_sequence("zyz")
+    'ZYZ'
+    """
     if not isinstance(seq, str) or seq.upper() not in EULER_SEQUENCES:
         raise InputError(f"seq: expected one of {', '.join(EULER_SEQUENCES)}, got {seq!r}")
     return seq.upper()
@@ -64,11 +81,16 @@ def elementary_rotation(axis: int | str, angle: float) -> np.ndarray:
     Returns
     -------
     (3, 3) ndarray
+        ``Rz = [[c, −s, 0], [s, c, 0], [0, 0, 1]]`` and its x and y analogues.
 
     Examples
     --------
+    Rz(90°) maps x to y; Rx(90°) maps y to z:
+
     >>> elementary_rotation("z", np.pi / 2).round(12) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
+    >>> elementary_rotation(0, np.pi / 2).round(12) @ [0.0, 1.0, 0.0]
+    array([0., 0., 1.])
     """
     k = None if isinstance(axis, bool) else _AXIS_INDEX.get(axis) if isinstance(axis, (int, str, np.integer)) else None
     if k is None:
@@ -86,10 +108,34 @@ def _elementary(axis: int, angle: float) -> np.ndarray:
 
 
 def matrix_from_euler(angles: ArrayLike, seq: str = "ZYX", extrinsic: bool = False) -> np.ndarray:
-    """Rotation matrix of Euler angles ``angles = (a, b, c)`` (rad) about the axes of ``seq``.
+    """Rotation matrix of Euler angles ``angles = (a, b, c)`` (rad) about the axes of ``seq`` (Lecture 2).
 
     Intrinsic: ``R₁(a) R₂(b) R₃(c)``; extrinsic: ``R₃(c) R₂(b) R₁(a)`` (see the module docstring).
-    Example: ``matrix_from_euler([α, β, γ], "ZYX")`` equals the seed's ``euler_to_matrix([α, β, γ])``.
+
+    Parameters
+    ----------
+    angles : (3,) array_like
+        (a, b, c) (rad), in the order of ``seq``.
+    seq : str
+        One of the 12 sequences of :data:`EULER_SEQUENCES` (case-insensitive), default "ZYX".
+    extrinsic : bool
+        False: moving (intrinsic) axes; True: fixed (extrinsic) axes.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+
+    Examples
+    --------
+    Intrinsic ZYX equals the seed's ``euler_to_matrix``; extrinsic XYZ with the angles reversed is
+    the same rotation (roll–pitch–yaw):
+
+    >>> ang = [0.3, -0.2, 0.1]
+    >>> bool(np.allclose(matrix_from_euler(ang, "ZYX"), rk.euler_to_matrix(ang)))
+    True
+    >>> bool(np.allclose(matrix_from_euler(ang[::-1], "XYZ", extrinsic=True), rk.euler_to_matrix(ang)))
+    True
     """
     a, b, c = as_vector(angles, "angles", 3)
     s = check_sequence(seq)
@@ -133,12 +179,38 @@ def _intrinsic_angles(R: np.ndarray, i: int, j: int, k: int) -> tuple[float, flo
 
 
 def euler_from_matrix(R: ArrayLike, seq: str = "ZYX", extrinsic: bool = False, return_gimbal: bool = False) -> np.ndarray | tuple[np.ndarray, bool]:
-    """Euler angles ``(a, b, c)`` of a rotation matrix for the axis sequence ``seq``.
+    """Euler angles ``(a, b, c)`` of a rotation matrix for the axis sequence ``seq`` (Lecture 2).
 
     The inverse of :func:`matrix_from_euler` with the ranges and the gimbal-lock choice of the
-    module docstring. With ``return_gimbal=True`` returns ``(angles, gimbal)`` where ``gimbal``
-    is True if the rotation is at the singular configuration of this sequence.
-    Raises ``ValueError`` if R is not a rotation or ``seq`` is not one of the 12 sequences.
+    module docstring: a, c ∈ (−π, π]; b ∈ [−π/2, π/2] (Tait–Bryan) or [0, π] (proper Euler); at
+    gimbal lock the third angle of the composition order is 0.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        A rotation matrix (checked).
+    seq : str
+        One of the 12 sequences (default "ZYX").
+    extrinsic : bool
+        Fixed axes instead of moving ones.
+    return_gimbal : bool
+        Also return whether R is at this sequence's singular configuration.
+
+    Returns
+    -------
+    angles : (3,) ndarray
+        (a, b, c) (rad).
+    gimbal : bool
+        Only with ``return_gimbal=True``: True at gimbal lock.
+
+    Examples
+    --------
+    >>> R = matrix_from_euler([0.5, 1.0, -0.4], "ZYZ")
+    >>> euler_from_matrix(R, "ZYZ").round(4)
+    array([ 0.5,  1. , -0.4])
+    >>> angles, gimbal = euler_from_matrix(elementary_rotation("z", 0.7), "ZYZ", return_gimbal=True)
+    >>> angles.round(4), gimbal                  # b = 0: the whole angle in a, c = 0
+    (array([0.7, 0. , 0. ]), True)
     """
     R = check_rotation(R, "R")
     s = check_sequence(seq)

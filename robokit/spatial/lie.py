@@ -39,7 +39,25 @@ __all__ = ["hat", "vee", "exp3", "log3", "exp6", "log6", "inv", "adjoint", "ad",
 
 
 def hat(w: np.ndarray) -> np.ndarray:
-    """``[ω]``: (…, 3) → (…, 3, 3) skew-symmetric, ``[ω] x = ω × x``."""
+    """``[ω]``: the skew-symmetric matrix with ``[ω] x = ω × x``, batched and unchecked.
+
+    Parameters
+    ----------
+    w : (..., 3) ndarray
+        Vectors ω.
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        ``[ω]`` for each vector.
+
+    Examples
+    --------
+    >>> hat(np.array([[1.0, 0, 0], [0, 0, 2.0]]))[1]
+    array([[ 0., -2.,  0.],
+           [ 2.,  0., -0.],
+           [-0.,  0.,  0.]])
+    """
     w = np.asarray(w, dtype=float)
     if w.ndim == 1:
         return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
@@ -50,13 +68,48 @@ def hat(w: np.ndarray) -> np.ndarray:
 
 
 def vee(W: np.ndarray) -> np.ndarray:
-    """ω of ``[ω]``: (…, 3, 3) → (…, 3), from the lower-left entries."""
+    """ω of ``[ω]`` (the inverse of :func:`hat`), from the lower-left entries; batched, unchecked.
+
+    Parameters
+    ----------
+    W : (..., 3, 3) ndarray
+        Skew-symmetric matrices.
+
+    Returns
+    -------
+    (..., 3) ndarray
+        ω for each matrix.
+
+    Examples
+    --------
+    >>> vee(hat(np.array([1.0, 2.0, 3.0])))
+    array([1., 2., 3.])
+    """
     W = np.asarray(W, dtype=float)
     return np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
 
 
 def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
-    """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` (Taylor series below θ = 1e-4); scalar or array."""
+    """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` of Rodrigues' formula (Taylor series below θ = 1e-4).
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Rotation angle(s) θ ≥ 0 (rad).
+
+    Returns
+    -------
+    A : float or ndarray
+        ``sin θ / θ`` (1 at θ = 0).
+    B : float or ndarray
+        ``(1 − cos θ) / θ²`` (½ at θ = 0).
+
+    Examples
+    --------
+    >>> A, B = exp3_coefficients(0.0)
+    >>> float(A), float(B)
+    (1.0, 0.5)
+    """
     theta = np.asarray(theta, dtype=float)
     if theta.ndim == 0:
         t = float(theta)
@@ -73,7 +126,25 @@ def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
 
 
 def exp3(w: np.ndarray) -> np.ndarray:
-    """``exp([ωθ])``: exponential coordinates (…, 3) → rotations (…, 3, 3) (Rodrigues)."""
+    """``exp([ωθ])``: exponential coordinates → rotations, ``I + A[ωθ] + B[ωθ]²`` (Rodrigues).
+
+    Batched and unchecked.
+
+    Parameters
+    ----------
+    w : (..., 3) ndarray
+        Exponential coordinates ωθ (rad).
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        Rotation matrices.
+
+    Examples
+    --------
+    >>> (exp3(np.array([0, 0, np.pi / 2])) @ [1, 0, 0]).round(4)
+    array([0., 1., 0.])
+    """
     w = np.asarray(w, dtype=float)
     W = hat(w)
     A, B = exp3_coefficients(np.linalg.norm(w, axis=-1))
@@ -105,11 +176,26 @@ def _log3_one(R: np.ndarray) -> np.ndarray:
 
 
 def log3(R: np.ndarray) -> np.ndarray:
-    """Exponential coordinates ωθ (…, 3), θ ∈ [0, π], of rotations R (…, 3, 3).
+    """Exponential coordinates ωθ, θ ∈ [0, π], of rotations (the inverse of :func:`exp3`); batched, unchecked.
 
     Near θ = 0 a series; beyond θ = π/2 the axis comes from the symmetric part of R (well
     conditioned up to θ = π); at exactly θ = π the axis sign is free and the one whose largest
     component is positive is returned.
+
+    Parameters
+    ----------
+    R : (..., 3, 3) ndarray
+        Rotation matrices (not checked).
+
+    Returns
+    -------
+    (..., 3) ndarray
+        ωθ (rad).
+
+    Examples
+    --------
+    >>> log3(np.diag([-1.0, -1.0, 1.0])).round(4)     # a half turn about z
+    array([0.    , 0.    , 3.1416])
     """
     R = np.asarray(R, dtype=float)
     if R.ndim == 2:
@@ -136,10 +222,25 @@ def _exp6_one(V: np.ndarray) -> np.ndarray:
 
 
 def exp6(V: np.ndarray) -> np.ndarray:
-    """``exp([V])``: twists with the angle folded in, (…, 6) → poses (…, 4, 4).
+    """``exp([V])``: twists with the angle folded in → poses; batched, unchecked (Modern Robotics eq. 3.88).
 
     ``R = I + A[ω] + B[ω]²``, ``p = (I + B[ω] + C[ω]²) v`` with A, B as in :func:`exp3` and
     ``C = (θ − sin θ)/θ³`` (series near 0); a pure translation (ω = 0) gives ``p = v``.
+
+    Parameters
+    ----------
+    V : (..., 6) ndarray
+        Exponential coordinates ``Sθ = (ωθ, vθ)``.
+
+    Returns
+    -------
+    (..., 4, 4) ndarray
+        Poses.
+
+    Examples
+    --------
+    >>> exp6(np.array([0, 0, 0, 1.0, 2.0, 3.0]))[:3, 3]     # pure translation
+    array([1., 2., 3.])
     """
     V = np.asarray(V, dtype=float)
     if V.ndim == 1:
@@ -177,9 +278,25 @@ def _log6_one(T: np.ndarray) -> np.ndarray:
 
 
 def log6(T: np.ndarray) -> np.ndarray:
-    """Exponential coordinates Sθ (…, 6) of poses T (…, 4, 4), rotation angle θ ∈ [0, π].
+    """Exponential coordinates Sθ of poses, rotation angle θ ∈ [0, π] (the inverse of :func:`exp6`); batched.
 
-    ``ω = log3(R)``, ``v = (I − ½[ω] + D[ω]²) p`` with ``D = (1 − (θ/2) cot(θ/2)) / θ²``.
+    ``ω = log3(R)``, ``v = (I − ½[ω] + D[ω]²) p`` with ``D = (1 − (θ/2) cot(θ/2)) / θ²``. Unchecked.
+
+    Parameters
+    ----------
+    T : (..., 4, 4) ndarray
+        Poses.
+
+    Returns
+    -------
+    (..., 6) ndarray
+        ``(ωθ, vθ)``.
+
+    Examples
+    --------
+    >>> V = np.array([0.2, -0.1, 0.4, 0.5, 0.0, -1.0])
+    >>> bool(np.allclose(log6(exp6(V)), V))
+    True
     """
     T = np.asarray(T, dtype=float)
     if T.ndim == 2:
@@ -189,7 +306,24 @@ def log6(T: np.ndarray) -> np.ndarray:
 
 
 def inv(T: np.ndarray) -> np.ndarray:
-    """``T⁻¹ = [[Rᵀ, −Rᵀp], [0, 1]]`` of poses (…, 4, 4)."""
+    """``T⁻¹ = [[Rᵀ, −Rᵀp], [0, 1]]`` of poses; batched, unchecked.
+
+    Parameters
+    ----------
+    T : (..., 4, 4) ndarray
+        Poses ``T_a_b``.
+
+    Returns
+    -------
+    (..., 4, 4) ndarray
+        ``T_b_a``.
+
+    Examples
+    --------
+    >>> T = exp6(np.array([[0, 0, 1.0, 1, 0, 0], [0, 0, 0, 0, 0, 2.0]]))
+    >>> bool(np.allclose(inv(T) @ T, np.eye(4)))
+    True
+    """
     T = np.asarray(T, dtype=float)
     if T.ndim == 2:
         Ti = np.eye(4)
@@ -206,7 +340,25 @@ def inv(T: np.ndarray) -> np.ndarray:
 
 
 def adjoint(T: np.ndarray) -> np.ndarray:
-    """``Ad_T = [[R, 0], [[p]R, R]]`` (…, 6, 6) of poses (…, 4, 4): ``V_a = Ad_{T_ab} V_b``."""
+    """``Ad_T = [[R, 0], [[p]R, R]]`` of poses, so that ``V_a = Ad_{T_ab} V_b``; batched, unchecked.
+
+    Parameters
+    ----------
+    T : (..., 4, 4) ndarray
+        Poses ``T_a_b``.
+
+    Returns
+    -------
+    (..., 6, 6) ndarray
+        Adjoint maps of twists ordered (ω, v).
+
+    Examples
+    --------
+    >>> T = exp6(np.array([0.3, 0.1, -0.2, 1.0, 0.5, 0.0]))
+    >>> V = np.array([1.0, 0, 0, 0, 1.0, 0])
+    >>> bool(np.allclose(adjoint(inv(T)) @ adjoint(T) @ V, V))      # Ad_{T⁻¹} = Ad_T⁻¹
+    True
+    """
     T = np.asarray(T, dtype=float)
     R, p = T[..., :3, :3], T[..., :3, 3]
     A = np.zeros(T.shape[:-2] + (6, 6))
@@ -217,7 +369,24 @@ def adjoint(T: np.ndarray) -> np.ndarray:
 
 
 def ad(V: np.ndarray) -> np.ndarray:
-    """``ad_V = [[[ω], 0], [[v], [ω]]]`` (…, 6, 6) of twists (…, 6): ``ad_V W = [V, W]``."""
+    """``ad_V = [[[ω], 0], [[v], [ω]]]`` of twists, the Lie bracket ``ad_V W = [V, W]``; batched, unchecked.
+
+    Parameters
+    ----------
+    V : (..., 6) ndarray
+        Twists (ω, v).
+
+    Returns
+    -------
+    (..., 6, 6) ndarray
+        ``ad_V``.
+
+    Examples
+    --------
+    >>> V, W = np.array([0, 0, 1.0, 0, 0, 0]), np.array([1.0, 0, 0, 0, 0, 0])
+    >>> ad(V) @ W                         # [ω_V] ω_W = z × x = y
+    array([0., 1., 0., 0., 0., 0.])
+    """
     V = np.asarray(V, dtype=float)
     A = np.zeros(V.shape[:-1] + (6, 6))
     Wm = hat(V[..., :3])

@@ -37,13 +37,22 @@ __all__ = ["CommonNormal", "common_normal"]
 
 @dataclass(frozen=True)
 class CommonNormal:
-    """The common normal of two lines.
+    """The common normal of two lines (Lecture 4), as :func:`common_normal` returns it.
 
-    foot1, foot2 : (3,) its feet on line 1 and line 2; direction : (3,) unit vector from foot1 to
-    foot2 (see the module docstring for intersecting and coincident lines); length : ‖foot2 − foot1‖;
-    kind : "skew", "intersecting", "parallel" or "coincident";
-    alpha : the twist (rad, in (−π, π]) that turns ẑ₁ into ẑ₂ about the normal's direction x̂ — the
-    DH α of the homework, ``α = atan2((ẑ₁ × ẑ₂)·x̂, ẑ₁·ẑ₂)`` (= sgn((ẑ₁ × ẑ₂)·x̂)·cos⁻¹(ẑ₁·ẑ₂)).
+    Attributes
+    ----------
+    foot1, foot2 : (3,) ndarray
+        Its feet on line 1 and line 2 (the lines' length unit).
+    direction : (3,) ndarray
+        Unit vector from foot1 to foot2 (see the module docstring for intersecting and coincident
+        lines): the DH x axis.
+    length : float
+        ``‖foot2 − foot1‖``: the DH link length a.
+    kind : str
+        "skew", "intersecting", "parallel" or "coincident".
+    alpha : float
+        The twist (rad, in (−π, π]) that turns ẑ₁ into ẑ₂ about the normal's direction x̂ — the DH α,
+        ``α = atan2((ẑ₁ × ẑ₂)·x̂, ẑ₁·ẑ₂)`` (= sgn((ẑ₁ × ẑ₂)·x̂)·cos⁻¹(ẑ₁·ẑ₂)).
     """
 
     foot1: np.ndarray
@@ -57,15 +66,36 @@ class CommonNormal:
 
 
 def common_normal(p1: ArrayLike, z1: ArrayLike, p2: ArrayLike, z2: ArrayLike, ref: ArrayLike | None = None, tol: float = 1e-9) -> CommonNormal:
-    """The common normal of line 1 (point p1, direction z1) and line 2 (p2, z2); any length unit.
+    """The common normal of line 1 (point p1, direction z1) and line 2 (p2, z2) (Lecture 4).
 
-    p1, p2 : (3,) points on the lines; z1, z2 : (3,) directions (need not be unit; not zero);
-    ref : (3,) for parallel or coincident lines, the normal is taken through the projection of ref
-    on line 1 (default p1); tol : parallel when ``‖ẑ₁ × ẑ₂‖ ≤ tol``, meeting when the length ≤ tol.
+    The feet minimise ``‖f₁ − f₂‖``; the special cases (intersecting, parallel, coincident lines) are
+    decided as the module docstring says. Any length unit.
 
-    Example: the x and the shifted y axis, ``common_normal([0, 0, 0], [1, 0, 0], [0, 0, 2], [0, 1, 0])``,
-    has feet (0, 0, 0) and (0, 0, 2), direction (0, 0, 1), length 2 and twist α = +π/2 (x turns
-    into y about +z).
+    Parameters
+    ----------
+    p1, p2 : (3,) array_like
+        A point on each line.
+    z1, z2 : (3,) array_like
+        The lines' directions (need not be unit; not zero).
+    ref : (3,) array_like, optional
+        For parallel or coincident lines, the normal is taken through the projection of ref on
+        line 1 (default p1).
+    tol : float
+        Parallel when ``‖ẑ₁ × ẑ₂‖ ≤ tol``, meeting when the length ≤ tol.
+
+    Returns
+    -------
+    CommonNormal
+        ``.foot1``, ``.foot2``, ``.direction``, ``.length``, ``.kind``, ``.alpha``.
+
+    Examples
+    --------
+    The x axis and the y axis lifted to z = 2: the normal runs up the z axis, a = 2, and x turns into
+    y about +z (α = +90°).
+
+    >>> cn = common_normal([0, 0, 0], [1, 0, 0], [0, 0, 2], [0, 1, 0])
+    >>> cn.foot1, cn.foot2, cn.direction, cn.length, cn.kind, round(float(np.degrees(cn.alpha)), 4)
+    (array([0., 0., 0.]), array([0., 0., 2.]), array([0., 0., 1.]), 2.0, 'skew', 90.0)
     """
     p1 = as_vector(p1, "p1", 3)
     p2 = as_vector(p2, "p2", 3)

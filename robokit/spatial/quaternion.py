@@ -29,7 +29,31 @@ __all__ = [
 
 
 def check_quaternion(q: ArrayLike, name: str = "q", tol: float = 1e-6) -> np.ndarray:
-    """``q`` as a (4,) float array of unit norm (within ``tol``), renormalised; else ValueError."""
+    """``q`` as a (4,) float array of unit norm, renormalised; :class:`~robokit.errors.InputError` otherwise.
+
+    Parameters
+    ----------
+    q : (4,) array_like
+        Quaternion (w, x, y, z), scalar first.
+    name : str
+        The argument's name in the error message.
+    tol : float
+        Largest accepted ``|‖q‖ − 1|``.
+
+    Returns
+    -------
+    (4,) ndarray
+        ``q / ‖q‖``.
+
+    Examples
+    --------
+    >>> float(np.linalg.norm(check_quaternion([1.0, 0, 0, 1e-7])))
+    1.0
+    >>> check_quaternion([2.0, 0, 0, 0])
+    Traceback (most recent call last):
+    ...
+    robokit.errors.InputError: q: expected a unit quaternion (w, x, y, z), got norm 2
+    """
     q = as_vector(q, name, 4)
     n = float(np.linalg.norm(q))
     if abs(n - 1.0) > tol:
@@ -38,7 +62,25 @@ def check_quaternion(q: ArrayLike, name: str = "q", tol: float = 1e-6) -> np.nda
 
 
 def quaternion_from_matrix(R: ArrayLike) -> np.ndarray:
-    """Unit quaternion (w, x, y, z), w ≥ 0, of a rotation matrix (Shepperd's method)."""
+    """Unit quaternion (w, x, y, z), w ≥ 0, of a rotation matrix (Shepperd's method, Lecture 2).
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        A rotation matrix (checked).
+
+    Returns
+    -------
+    (4,) ndarray
+        ``(cos(θ/2), sin(θ/2) ω̂)`` with w ≥ 0.
+
+    Examples
+    --------
+    Rz(90°): ``(cos 45°, 0, 0, sin 45°)``.
+
+    >>> quaternion_from_matrix([[0, -1, 0], [1, 0, 0], [0, 0, 1]]).round(4)
+    array([0.7071, 0.    , 0.    , 0.7071])
+    """
     R = check_rotation(R, "R")
     tr = R[0, 0] + R[1, 1] + R[2, 2]
     cands = (tr, R[0, 0], R[1, 1], R[2, 2])
@@ -60,7 +102,23 @@ def quaternion_from_matrix(R: ArrayLike) -> np.ndarray:
 
 
 def matrix_from_quaternion(q: ArrayLike) -> np.ndarray:
-    """Rotation matrix of a unit quaternion (w, x, y, z)."""
+    """Rotation matrix of a unit quaternion (w, x, y, z) (Lecture 2).
+
+    Parameters
+    ----------
+    q : (4,) array_like
+        Unit quaternion, scalar first (checked, renormalised).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+
+    Examples
+    --------
+    >>> (matrix_from_quaternion([np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)]) @ [1, 0, 0]).round(4)
+    array([0., 1., 0.])
+    """
     w, x, y, z = check_quaternion(q)
     return np.array(
         [
@@ -72,7 +130,25 @@ def matrix_from_quaternion(q: ArrayLike) -> np.ndarray:
 
 
 def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
-    """``(cos(θ/2), sin(θ/2) ω̂)`` for a rotation by ``angle`` (rad) about ``axis`` (normalised here)."""
+    """``(cos(θ/2), sin(θ/2) ω̂)`` for a rotation by ``angle`` about ``axis`` (Lecture 2).
+
+    Parameters
+    ----------
+    axis : (3,) array_like
+        Rotation axis (normalised here; not zero).
+    angle : float
+        Rotation angle θ (rad).
+
+    Returns
+    -------
+    (4,) ndarray
+        Unit quaternion (w, x, y, z).
+
+    Examples
+    --------
+    >>> quaternion_from_axis_angle([0, 0, 2], np.pi).round(4)      # half turn about z
+    array([0., 0., 0., 1.])
+    """
     axis = as_vector(axis, "axis", 3)
     n = float(np.linalg.norm(axis))
     if n == 0.0:
@@ -82,7 +158,26 @@ def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
 
 
 def axis_angle_from_quaternion(q: ArrayLike) -> tuple[np.ndarray, float]:
-    """``(axis, angle)`` with angle ∈ [0, π] (q and −q give the same); axis = (1, 0, 0) for the identity."""
+    """``(axis, angle)`` of a unit quaternion, angle ∈ [0, π] (q and −q give the same).
+
+    Parameters
+    ----------
+    q : (4,) array_like
+        Unit quaternion (w, x, y, z).
+
+    Returns
+    -------
+    axis : (3,) ndarray
+        Unit axis; (1, 0, 0) for the identity.
+    angle : float
+        Rotation angle (rad), in [0, π].
+
+    Examples
+    --------
+    >>> axis, angle = axis_angle_from_quaternion([0.0, 0.0, -1.0, 0.0])
+    >>> axis, round(angle, 4)
+    (array([ 0., -1.,  0.]), 3.1416)
+    """
     q = check_quaternion(q)
     if q[0] < 0:
         q = -q
@@ -94,7 +189,26 @@ def axis_angle_from_quaternion(q: ArrayLike) -> tuple[np.ndarray, float]:
 
 
 def quaternion_multiply(q1: ArrayLike, q2: ArrayLike) -> np.ndarray:
-    """Hamilton product ``q1 ⊗ q2`` (the rotation q2 followed, in the fixed frame, by q1: R(q1) R(q2))."""
+    """Hamilton product ``q1 ⊗ q2``: the rotation ``R(q1) R(q2)`` (q2 first, then q1 in the fixed frame).
+
+    Parameters
+    ----------
+    q1, q2 : (4,) array_like
+        Quaternions (w, x, y, z).
+
+    Returns
+    -------
+    (4,) ndarray
+        ``q1 ⊗ q2``.
+
+    Examples
+    --------
+    Two quarter turns about z make a half turn:
+
+    >>> qz90 = quaternion_from_axis_angle([0, 0, 1], np.pi / 2)
+    >>> quaternion_multiply(qz90, qz90).round(4)
+    array([0., 0., 0., 1.])
+    """
     w1, x1, y1, z1 = as_vector(q1, "q1", 4)
     w2, x2, y2, z2 = as_vector(q2, "q2", 4)
     return np.array(
@@ -108,13 +222,48 @@ def quaternion_multiply(q1: ArrayLike, q2: ArrayLike) -> np.ndarray:
 
 
 def quaternion_conjugate(q: ArrayLike) -> np.ndarray:
-    """``(w, −x, −y, −z)``: the inverse rotation of a unit quaternion."""
+    """``q* = (w, −x, −y, −z)``: the inverse rotation of a unit quaternion.
+
+    Parameters
+    ----------
+    q : (4,) array_like
+        Quaternion (w, x, y, z).
+
+    Returns
+    -------
+    (4,) ndarray
+        The conjugate.
+
+    Examples
+    --------
+    >>> q = quaternion_from_axis_angle([1, 2, 3], 0.7)
+    >>> bool(np.allclose(quaternion_multiply(q, quaternion_conjugate(q)), [1, 0, 0, 0]))
+    True
+    """
     q = as_vector(q, "q", 4)
     return np.r_[q[0], -q[1:]]
 
 
 def quaternion_rotate(q: ArrayLike, v: ArrayLike) -> np.ndarray:
-    """The vector ``v`` (3,) rotated by the unit quaternion q: the vector part of ``q ⊗ (0, v) ⊗ q*``."""
+    """The vector ``v`` rotated by the unit quaternion q: the vector part of ``q ⊗ (0, v) ⊗ q*``.
+
+    Parameters
+    ----------
+    q : (4,) array_like
+        Unit quaternion (w, x, y, z).
+    v : (3,) array_like
+        The vector, in the rotated frame's axes.
+
+    Returns
+    -------
+    (3,) ndarray
+        ``R(q) v``.
+
+    Examples
+    --------
+    >>> quaternion_rotate(quaternion_from_axis_angle([0, 0, 1], np.pi / 2), [1, 0, 0]).round(4)
+    array([0., 1., 0.])
+    """
     q = check_quaternion(q)
     v = as_vector(v, "v", 3)
     u, w = q[1:], q[0]
@@ -127,7 +276,27 @@ def quaternion_slerp(q0: ArrayLike, q1: ArrayLike, s: ArrayLike) -> np.ndarray:
 
     ``slerp = sin((1−s)Ω)/sin Ω q0 + sin(sΩ)/sin Ω q1`` with cos Ω = q0·q1 (q1 negated when
     q0·q1 < 0 so the rotation takes the short way); normalised linear interpolation when the
-    quaternions are nearly parallel. ``s`` may be a scalar or an array (then (len(s), 4)).
+    quaternions are nearly parallel.
+
+    Parameters
+    ----------
+    q0, q1 : (4,) array_like
+        Unit quaternions (w, x, y, z) at s = 0 and s = 1.
+    s : float or (K,) array_like
+        Interpolation parameter(s), finite (normally in [0, 1]).
+
+    Returns
+    -------
+    (4,) or (K, 4) ndarray
+        Unit quaternion(s) along the arc.
+
+    Examples
+    --------
+    Half-way between the identity and 90° about z is 45° about z:
+
+    >>> q = quaternion_slerp([1, 0, 0, 0], quaternion_from_axis_angle([0, 0, 1], np.pi / 2), 0.5)
+    >>> bool(np.allclose(q, quaternion_from_axis_angle([0, 0, 1], np.pi / 4)))
+    True
     """
     q0, q1 = check_quaternion(q0, "q0"), check_quaternion(q1, "q1")
     s_arr = np.asarray(s, dtype=float)

@@ -22,6 +22,7 @@ from robokit.trajectory.timescaling import *  # noqa: F401,F403
 from robokit.trajectory.timescaling import __all__ as _ts_all
 from robokit.trajectory.cartesian import *  # noqa: F401,F403
 from robokit.trajectory.cartesian import __all__ as _cart_all
+from robokit.trajectory.cartesian import cartesian_to_joint  # noqa: F401  (deprecated alias, not in __all__)
 from robokit.trajectory.through import *  # noqa: F401,F403
 from robokit.trajectory.through import __all__ as _through_all
 from robokit.trajectory.plot import *  # noqa: F401,F403

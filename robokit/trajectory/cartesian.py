@@ -21,7 +21,7 @@ Time: s = s(t) is any time scaling of :mod:`robokit.trajectory.timescaling`
 (cubic, quintic or LSPB), so velocity and acceleration are ``ṗ = ṡ(p1 − p0)``,
 ``ω = ṡ θ R0 k̂`` (world frame) and likewise for the second derivatives.
 
-Converting to joint space (:func:`cartesian_to_joint`): inverse kinematics at every pose,
+Converting to joint space (:func:`joint_trajectory_from_cartesian`): inverse kinematics at every pose,
 warm-started from the previous solution, with the two problems Lecture 3 lists detected
 and reported — a pose outside the workspace (IK fails: ``ValueError`` naming the samples)
 and joint-rate blow-up near a singularity (joint rates above ``qd_limit``: a
@@ -42,8 +42,9 @@ from robokit.trajectory.core import Trajectory, positive_duration, sample_times
 from robokit.trajectory.timescaling import time_scaling
 from robokit.spatial import lie
 from robokit.errors import InputError, InputTypeError
+from robokit._deprecation import deprecated_alias
 
-__all__ = ["slerp_rotation", "cartesian_line_trajectory", "cartesian_to_joint"]
+__all__ = ["slerp_rotation", "cartesian_line_trajectory", "joint_trajectory_from_cartesian"]
 
 
 def _relative_rotation_vector(R0: np.ndarray, R1: np.ndarray, shortest: bool) -> np.ndarray:
@@ -177,7 +178,7 @@ def _ik_answer(ans: Any, q_prev: np.ndarray | None) -> tuple[np.ndarray | None, 
     )
 
 
-def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, np.ndarray | None], Any] | None = None, q0: ArrayLike | None = None, *, frame: str | None = None, position_only: bool = False, qd_limit: ArrayLike | None = None, tol: float = 1e-6) -> Trajectory:
+def joint_trajectory_from_cartesian(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, np.ndarray | None], Any] | None = None, q0: ArrayLike | None = None, *, frame: str | None = None, position_only: bool = False, qd_limit: ArrayLike | None = None, tol: float = 1e-6) -> Trajectory:
     """Joint-space trajectory following a Cartesian one, by IK at every pose (Lecture 3).
 
     Each pose of ``traj.poses`` is solved with ``ik``, starting from the previous solution
@@ -227,7 +228,7 @@ def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, n
     >>> robot = rk.load("twolink")
     >>> T_a, T_b = robot.frame_pose([0.2, 0.6]), robot.frame_pose([0.6, 0.4])
     >>> line = cartesian_line_trajectory(T_a, T_b, 1.0, t=11)
-    >>> qtraj = cartesian_to_joint(robot, line, q0=[0.2, 0.6], position_only=True)
+    >>> qtraj = joint_trajectory_from_cartesian(robot, line, q0=[0.2, 0.6], position_only=True)
     >>> qtraj.q.shape, qtraj.q[-1].round(6).tolist(), bool(qtraj.info["pose_error"].max() < 1e-6)
     ((11, 2), [0.6, 0.4], True)
     """
@@ -303,11 +304,14 @@ def cartesian_to_joint(robot: Any, traj: Trajectory, ik: Callable[[np.ndarray, n
             k = int(np.argmax(np.max(np.abs(qd) / lim, axis=1)))
             cond_txt = f", Jacobian condition number {info['jacobian_condition'][k]:.3g}" if "jacobian_condition" in info else ""
             warnings.warn(
-                f"cartesian_to_joint: joint rates exceed qd_limit at {int(exceeded.sum())} of {K} samples, worst "
+                f"joint_trajectory_from_cartesian: joint rates exceed qd_limit at {int(exceeded.sum())} of {K} samples, worst "
                 f"{np.abs(qd[k]).max():.3g} at t = {t[k]:.3g} s{cond_txt} — the path passes near a singularity "
                 "(Lecture 3: high joint rates); slow down or move the path",
                 RuntimeWarning,
                 stacklevel=2,
             )
     labels = tuple(robot.joint_names) if hasattr(robot, "joint_names") and len(getattr(robot, "joint_names")) == n else None
-    return Trajectory(t, q, qd, qdd, poses=poses, name="cartesian_to_joint", labels=labels, info=info)
+    return Trajectory(t, q, qd, qdd, poses=poses, name="joint_trajectory_from_cartesian", labels=labels, info=info)
+
+# Former names (before the X_from_Y rule): they warn and call the new function.
+cartesian_to_joint = deprecated_alias(joint_trajectory_from_cartesian, "cartesian_to_joint")

@@ -1,6 +1,6 @@
 r"""MuJoCo as a second, independent reference for robokit's kinematics and dynamics.
 
-A robot is written as MJCF (:func:`robokit.description.mjcf_write.robot_to_mjcf`) — or an MJCF
+A robot is written as MJCF (:func:`robokit.description.mjcf_write.mjcf_from_robot`) — or an MJCF
 file is taken as it is — and compiled by MuJoCo; at random states ``(q, q̇, q̈)`` MuJoCo's
 
 * body and site poses (``mj_kinematics``: ``xpos``/``xmat``, ``site_xpos``/``site_xmat``),
@@ -86,8 +86,8 @@ def mujoco_model(mjcf_text: str) -> tuple[Any, list[str]]:
 
     Examples
     --------
-    >>> from robokit.description.mjcf_write import robot_to_mjcf
-    >>> m, restored = mujoco_model(robot_to_mjcf(rk.load("twolink"))[0])
+    >>> from robokit.description.mjcf_write import mjcf_from_robot
+    >>> m, restored = mujoco_model(mjcf_from_robot(rk.load("twolink"))[0])
     >>> m.nq, restored
     (2, ['link_1', 'link_2'])
     """
@@ -175,7 +175,7 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     robot : Robot or str
         A :class:`robokit.Robot` or anything :func:`robokit.load` reads.
     mjcf : str, optional
-        MJCF text of the same robot (default: written by ``robot_to_mjcf``). Its joints are
+        MJCF text of the same robot (default: written by ``mjcf_from_robot``). Its joints are
         matched to the robot's by name.
     samples : int
         Number of random states ``(q, q̇, q̈)``: q uniform in the limits, q̇ and q̈ standard
@@ -202,7 +202,7 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     True
     """
     mj = _require()
-    from robokit.description.mjcf_write import joint_armature_damping, robot_to_mjcf
+    from robokit.description.mjcf_write import joint_armature_damping, mjcf_from_robot
     from robokit.description.loading import load
     from robokit.description.robot import Robot
     from robokit.dynamics.newton_euler import inverse_dynamics, mass_matrix
@@ -210,7 +210,7 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
     if not isinstance(robot, Robot):
         robot = load(robot)
     rng = np.random.default_rng(rng)
-    text = mjcf if mjcf is not None else robot_to_mjcf(robot)[0]
+    text = mjcf if mjcf is not None else mjcf_from_robot(robot)[0]
     m, restored = mujoco_model(text)
     d = mj.MjData(m)
     n = robot.n

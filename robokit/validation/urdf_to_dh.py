@@ -9,13 +9,13 @@ SAMPLES = 100
 
 
 def checks(rng: np.random.Generator) -> list[CheckRow]:
-    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.description.urdf_to_dh import dh_from_urdf
 
     rows = []
     for name in ARMS:
         r = load(name)
         for convention in ("standard", "modified"):
-            table = urdf_to_dh(r, convention, samples=1).table
+            table = dh_from_urdf(r, convention, samples=1).table
             worst = 0.0
             for _ in range(SAMPLES):
                 q = r.random_configuration(rng)

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import robokit
 from robokit.cli import main
 from robokit.codegen import c_name, generate_c
-from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import ik_analytic, ik_analytic_kind
 
 SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
@@ -220,8 +220,8 @@ def random_table(seed, convention, kinds, structure=None, n=None, oblique=True):
         for i in range(6):
             rows[i]["a"], rows[i]["alpha"] = a[i], al[i]
     base, tool = np.eye(4), np.eye(4)
-    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
-    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
     return DHTable(f"Arm-{seed}", convention, tuple(DHLink(**r) for r in rows), base=base, tool=tool)
 
 
@@ -369,11 +369,11 @@ def test_cli_output_must_be_a_folder(tmp_path, capsys):
 
 
 def test_urdf_file_and_generated_source_is_deterministic(tmp_path, build):
-    from robokit.description.urdf_gen import dh_to_urdf
+    from robokit.description.urdf_gen import urdf_from_dh
 
     table = random_table(8, "modified", "RRPRRR")
     path = tmp_path / "arm.urdf"
-    path.write_text(dh_to_urdf(table))
+    path.write_text(urdf_from_dh(table))
     robot = robokit.load(path)
     assert generate_c(robot).source == generate_c(robokit.load(path)).source
     check_dynamics_and_kinematics(robot, build(robot), samples=3)
@@ -399,11 +399,11 @@ def test_mjcf_with_armature(tmp_path, build):
     """An MJCF file (robokit's own export of the PUMA, whose drives give joint armature): the rotor
     inertia enters Pinocchio's rnea, and the C's."""
     try:
-        from robokit.description.mjcf_write import robot_to_mjcf
+        from robokit.description.mjcf_write import mjcf_from_robot
     except ImportError:  # before the MJCF reader and writer were split
-        from robokit.description.mjcf_write import robot_to_mjcf
+        from robokit.description.mjcf_write import mjcf_from_robot
 
-    text, _ = robot_to_mjcf(robokit.load("puma560"))
+    text, _ = mjcf_from_robot(robokit.load("puma560"))
     path = tmp_path / "puma.xml"
     path.write_text(text)
     robot = robokit.load(path)

@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robokit.control.design import critical_gains, pid_gains_bandwidth, plot_step_response, step_info
-from robokit.control.motor import DCMotor, effective_inertia, reflect_to_joint
+from robokit.control.motor import DCMotor, effective_inertia, joint_from_motor
 
 
 def test_motor_simulation_matches_first_order_analytic_response():
@@ -31,7 +31,7 @@ def test_motor_with_disturbance_and_coulomb_settles_where_torques_balance():
 
 
 def test_gear_reflection_lecture_relations():
-    J, B, tau = reflect_to_joint(-62.6, 2e-4, 1.48e-3, 0.4)
+    J, B, tau = joint_from_motor(-62.6, 2e-4, 1.48e-3, 0.4)
     assert J == pytest.approx(62.6**2 * 2e-4)
     assert B == pytest.approx(62.6**2 * 1.48e-3)
     assert tau == pytest.approx(-62.6 * 0.4)

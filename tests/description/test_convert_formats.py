@@ -60,8 +60,8 @@ def test_urdf_output_of_a_non_dh_robot_says_why(tmp_path):
 @pytest.mark.parametrize("name", ["ur5", "panda"])
 def test_a_urdf_robot_says_where_its_dh_table_is_and_that_table_reproduces_it(name):
     robot = rk.load(name)
-    assert robot.dh is None and "robokit.urdf_to_dh(robot).table" in repr(robot)
-    res = rk.urdf_to_dh(robot)
+    assert robot.dh is None and "robokit.dh_from_urdf(robot).table" in repr(robot)
+    res = rk.dh_from_urdf(robot)
     assert res.exact
     again = rk.load(res.table)
     rng = np.random.default_rng(1)

@@ -13,12 +13,12 @@ import pytest
 import robokit
 from robokit.description.dh import DHTable, dh_transform
 from robokit.description.models import model_path, models_dir
-from robokit.description.urdf_gen import dh_to_urdf
+from robokit.description.urdf_gen import urdf_from_dh
 
 
 
 def pin_model(table):
-    model = pin.buildModelFromXML(dh_to_urdf(table))
+    model = pin.buildModelFromXML(urdf_from_dh(table))
     model.gravity.linear = np.asarray(table.gravity, float)
     return model, model.createData()
 
@@ -132,7 +132,7 @@ def test_twolink_closed_form_lecture7():
 @pytest.mark.parametrize("name", ["twolink", "rrr", "puma560"])
 def test_committed_urdf_is_regenerated_exactly(name):
     table = DHTable.from_yaml(model_path(name))
-    assert (models_dir() / f"{name}.urdf").read_text() == dh_to_urdf(table)
+    assert (models_dir() / f"{name}.urdf").read_text() == urdf_from_dh(table)
 
 
 @pytest.mark.parametrize("name", ["twolink", "rrr", "puma560"])

@@ -5,7 +5,7 @@ import pytest
 
 import robokit as rk
 from robokit.description.dh import DHTable
-from robokit.description.urdf_to_dh import _normal, format_dh_table, urdf_to_dh
+from robokit.description.urdf_to_dh import _normal, format_dh_table, dh_from_urdf
 
 MODELS = ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova"]
 
@@ -19,7 +19,7 @@ def robots():
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_fk_of_extracted_table_equals_pinocchio(name, convention, robots):
     r = robots[name]
-    res = urdf_to_dh(r, convention, samples=10)
+    res = dh_from_urdf(r, convention, samples=10)
     rng = np.random.default_rng(0)
     for _ in range(200):
         q = r.random_configuration(rng)
@@ -30,7 +30,7 @@ def test_fk_of_extracted_table_equals_pinocchio(name, convention, robots):
 @pytest.mark.parametrize("name", ["twolink", "rrr", "puma560"])
 def test_shipped_tables_recovered(name, robots):
     orig = robots[name].dh
-    got = urdf_to_dh(robots[name], "standard", samples=5).table
+    got = dh_from_urdf(robots[name], "standard", samples=5).table
     for a, b in zip(got.links, orig.links):
         assert np.isclose(a.a, b.a, atol=1e-12) and np.isclose(a.alpha, b.alpha, atol=1e-12)
         assert np.isclose(a.d, b.d, atol=1e-12) and np.isclose(np.cos(a.theta - b.theta), 1.0)
@@ -39,7 +39,7 @@ def test_shipped_tables_recovered(name, robots):
 
 
 def test_ur5_matches_manufacturer_table(robots):
-    t = urdf_to_dh(robots["ur5"], "standard", samples=5).table
+    t = dh_from_urdf(robots["ur5"], "standard", samples=5).table
     a = [abs(l.a) for l in t.links]
     d = [abs(l.d) for l in t.links]
     # Universal Robots' published UR5 DH parameters (up to sign conventions)
@@ -52,10 +52,10 @@ def test_ur5_matches_manufacturer_table(robots):
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_round_trip_keeps_dynamics(name, convention, robots, tmp_path):
     r = robots[name]
-    table = urdf_to_dh(r, convention, samples=5).table
+    table = dh_from_urdf(r, convention, samples=5).table
     path = tmp_path / f"{name}.yaml"
     table.save(path)
-    back = rk.load(path)  # YAML → URDF (dh_to_urdf) → Pinocchio
+    back = rk.load(path)  # YAML → URDF (urdf_from_dh) → Pinocchio
     rng = np.random.default_rng(1)
     for _ in range(50):
         q, dq, ddq = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n)
@@ -94,7 +94,7 @@ def test_prismatic_chain_round_trip(tmp_path):
                                               for a, al, d, th, j in rows))
     r = rk.load(t)
     for conv in ("standard", "modified"):
-        res = urdf_to_dh(r, conv, samples=100)
+        res = dh_from_urdf(r, conv, samples=100)
         assert res.exact, res.residual
         assert [l.joint for l in res.table.links] == ["R", "R", "P", "R", "R", "R"]
 

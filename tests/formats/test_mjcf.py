@@ -7,7 +7,7 @@ import pytest
 import robokit
 from robokit.cli import main as cli_main
 from robokit.description.mjcf import first_body_placement
-from robokit.description.mjcf_write import joint_armature_damping, robot_to_mjcf
+from robokit.description.mjcf_write import joint_armature_damping, mjcf_from_robot
 
 mujoco = pytest.importorskip("mujoco", reason="MuJoCo is an optional extra (pip install mujoco)")
 
@@ -172,7 +172,7 @@ def test_mujoco_on_dh_robot_with_prismatic_joint_and_armature(dh_table):
     robot = robokit.load(dh_table(np.random.default_rng(11), 4, "modified", prismatic=(1,), drives=True))
     arm, damp = joint_armature_damping(robot)
     assert np.all(arm > 0) and np.all(damp > 0)
-    text, _ = robot_to_mjcf(robot)
+    text, _ = mjcf_from_robot(robot)
     assert text.count('type="slide"') == 1 and text.count("armature=") == 4
     c = compare_with_mujoco(robot, text, samples=20, rng=2)
     assert _record(c, "random modified-DH RPRR with armature") < TOL, c
@@ -206,7 +206,7 @@ def test_dh_round_trip_with_prismatic_joint(dh_table, tmp_path):
     table = dh_table(np.random.default_rng(4), 5, "standard", prismatic=(2,))
     robot = robokit.load(table)
     path = tmp_path / "rand.xml"
-    path.write_text(robot_to_mjcf(robot)[0])
+    path.write_text(mjcf_from_robot(robot)[0])
     back = robokit.load(path)
     rng = np.random.default_rng(0)
     for _ in range(20):
@@ -226,7 +226,7 @@ def test_view_of_an_mjcf_file(tmp_path, capsys):
 
 
 def test_exported_meshes_are_stl_files_mujoco_reads(tmp_path):
-    text, notes = robot_to_mjcf("ur5")
+    text, notes = mjcf_from_robot("ur5")
     assert "<mesh " in text and ".dae" not in text
     assert any(".dae" in n for n in notes)
     m = mujoco.MjModel.from_xml_string(text)

@@ -114,7 +114,7 @@ def test_value_error_from_a_dependency_is_internal_not_bad_input(monkeypatch, wr
 
     from robokit.description import urdf_gen
 
-    monkeypatch.setattr(urdf_gen, "dh_to_urdf", lambda table: str(np.array([1, 2]).reshape(3)))
+    monkeypatch.setattr(urdf_gen, "urdf_from_dh", lambda table: str(np.array([1, 2]).reshape(3)))
     src = write("pendulum.yaml", PENDULUM_YAML)
     r = main_cli("convert", src, "-o", tmp_path / "out.urdf")
     assert_one_line_error(r, "ValueError", rc=3)

@@ -269,7 +269,7 @@ dh_links = st.builds(lambda j, a, al, d, th: DHLink(j, a, al, d, th, np.array([-
 def test_fuzz_dh_urdf_dh_round_trip_is_exact_or_reports_an_honest_residual(links, convention, back):
     table = DHTable("fuzzarm", convention, tuple(links))
     robot = robokit.load(table)
-    res = robokit.urdf_to_dh(robot, back, samples=40, rng=1)
+    res = robokit.dh_from_urdf(robot, back, samples=40, rng=1)
     t = res.table
     entries = [v for ln in t.links for v in (ln.a, ln.alpha, ln.d, ln.theta)]
     assert np.isfinite(entries).all() and np.isfinite(t.base).all() and np.isfinite(t.tool).all()

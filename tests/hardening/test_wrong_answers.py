@@ -46,7 +46,7 @@ TWISTS = ["1e-8 0 0", "0 1e-8 0", "1e-8 1e-8 0", "0 3.14159264 0", "0 1e-12 0"]
 @pytest.mark.parametrize("rpy", TWISTS)
 def test_urdf_to_dh_on_nearly_parallel_axes_reports_an_honest_residual(rpy, convention, write):
     robot = robokit.load(write("twist.urdf", _two_joint_urdf(rpy)))
-    res = robokit.urdf_to_dh(robot, convention)
+    res = robokit.dh_from_urdf(robot, convention)
     t = res.table
     numbers = [v for ln in t.links for v in (ln.a, ln.alpha, ln.d, ln.theta)]
     assert np.isfinite(numbers).all() and np.isfinite(t.base).all() and np.isfinite(t.tool).all()
@@ -64,7 +64,7 @@ def test_urdf_to_dh_on_nearly_parallel_axes_reports_an_honest_residual(rpy, conv
 def test_convert_urdf_prints_table_and_true_residual_and_refuses_inexact_yaml(rpy, write, tmp_path, main_cli):
     src = write("twist.urdf", _two_joint_urdf(rpy))
     robot = robokit.load(src)
-    err = _independent_error(robot, robokit.urdf_to_dh(robot).table)
+    err = _independent_error(robot, robokit.dh_from_urdf(robot).table)
     r = main_cli("convert", src)
     assert r.rc == 0, r.err
     assert "nan" not in r.out.lower()

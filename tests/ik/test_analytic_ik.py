@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
-from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.errors import InputError
 from robokit.ik import AnalyticIK, ClosedFormSolver, PositionBranch, ik_analytic, ik_analytic_kind
 from robokit.ik import closed_form
@@ -141,7 +141,7 @@ def test_editing_base_in_place_invalidates_the_cached_solver():
     before = ik_analytic(table, table.fk(q))
     assert before
     table.base[:3, 3] += [0.05, -0.02, 0.3]  # the frozen table's array, edited in place
-    table.base[:3, :3] = rpy_to_matrix([0.1, -0.2, 0.3])
+    table.base[:3, :3] = matrix_from_rpy([0.1, -0.2, 0.3])
     table.tool[2, 3] += 0.07
     T = table.fk(q)  # the table's own FK with the new base and tool
     for sols in (ik_analytic(table, T), held.solve(T)):
@@ -194,9 +194,9 @@ def test_any_in_place_edit_of_base_and_tool_is_followed(seed):
     table = _puma_table()
     held = AnalyticIK(table)
     for _ in range(2):
-        table.base[:3, :3] = rpy_to_matrix(rng.uniform(-1, 1, 3))
+        table.base[:3, :3] = matrix_from_rpy(rng.uniform(-1, 1, 3))
         table.base[:3, 3] = rng.uniform(-0.5, 0.5, 3)
-        table.tool[:3, :3] = rpy_to_matrix(rng.uniform(-1, 1, 3))
+        table.tool[:3, :3] = matrix_from_rpy(rng.uniform(-1, 1, 3))
         table.tool[:3, 3] = rng.uniform(-0.2, 0.2, 3)
         q = rng.uniform(-2.5, 2.5, 6)
         T = table.fk(q)

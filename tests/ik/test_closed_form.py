@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
-from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import AnalyticIK, ik_analytic, ik_analytic_kind, ik_puma560
 
 TOL = 1e-9
@@ -202,8 +202,8 @@ def random_arm(seed, convention, kinds="RRR", oblique=True):
         while abs(math.sin(rows[i]["alpha"])) < 0.3:
             rows[i]["alpha"] = rng.uniform(-np.pi, np.pi)
     base, tool = np.eye(4), np.eye(4)
-    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
-    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
     return DHTable(f"arm{seed}", convention, tuple(DHLink(**r) for r in rows), base=base, tool=tool)
 
 
@@ -319,8 +319,8 @@ def random_parallel_arm(seed, convention):
         a, al = np.r_[rng.uniform(-0.2, 0.2), a[:5]], np.r_[rng.uniform(-1, 1), al[:5]]
     links = tuple(DHLink("R", a[i], al[i], d[i], th[i]) for i in range(6))
     base, tool = np.eye(4), np.eye(4)
-    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
-    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
     return DHTable(f"par{seed}", convention, links, base=base, tool=tool)
 
 

@@ -20,7 +20,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
-from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.errors import InputError
 from robokit.ik import AnalyticIK, ik_analytic, ik_analytic_batch
 from robokit.ik.backends import ClosedFormBackend
@@ -65,8 +65,8 @@ def random_q(rng, kinds):
 
 def _base_tool(rng):
     base, tool = np.eye(4), np.eye(4)
-    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
-    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
     return base, tool
 
 

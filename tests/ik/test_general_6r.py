@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit
-from robokit.description.dh import DHLink, DHTable, rpy_to_matrix
+from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import ik_analytic, ik_analytic_kind
 
 TOL = 1e-9
@@ -101,11 +101,11 @@ def test_jaco_every_solution(jaco, seed):
 
 
 def test_jaco_from_its_urdf(tmp_path):
-    """The same arm as a URDF (no DH table on the Robot): solved through urdf_to_dh's table."""
-    from robokit.description.urdf_gen import dh_to_urdf
+    """The same arm as a URDF (no DH table on the Robot): solved through dh_from_urdf's table."""
+    from robokit.description.urdf_gen import urdf_from_dh
 
     path = tmp_path / "jaco2_6n.urdf"
-    path.write_text(dh_to_urdf(jaco2_table()), encoding="utf-8")
+    path.write_text(urdf_from_dh(jaco2_table()), encoding="utf-8")
     robot = robokit.load(str(path))
     assert robot.dh is None
     assert ik_analytic_kind(robot).method == "general 6R"
@@ -141,8 +141,8 @@ def random_general_arm(seed, convention):
     rows = tuple(DHLink("R", a=rng.uniform(-0.5, 0.5), alpha=rng.uniform(-np.pi, np.pi), d=rng.uniform(-0.5, 0.5),
                         theta=rng.uniform(-np.pi, np.pi), qlim=WIDE) for _ in range(6))
     base, tool = np.eye(4), np.eye(4)
-    base[:3, :3], base[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
-    tool[:3, :3], tool[:3, 3] = rpy_to_matrix(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.1, 0.1, 3)
     return DHTable(f"g{seed}", convention, rows, base=base, tool=tool)
 
 
@@ -192,9 +192,9 @@ def test_spherical_wrist_off_by_a_little(eps):
 
 def ur5_with_tilt(angle):
     """The UR5 (three parallel axes) with axis 3 tilted by ``angle`` rad (α₂ += angle)."""
-    from robokit.description.urdf_to_dh import urdf_to_dh
+    from robokit.description.urdf_to_dh import dh_from_urdf
 
-    table = urdf_to_dh(robokit.load("ur5"), "standard").table
+    table = dh_from_urdf(robokit.load("ur5"), "standard").table
     rows = [DHLink("R", r.a, r.alpha + (angle if i == 1 else 0.0), r.d, r.theta, qlim=WIDE)
             for i, r in enumerate(table.links)]
     return DHTable("ur5_tilt", "standard", tuple(rows), base=table.base, tool=table.tool)

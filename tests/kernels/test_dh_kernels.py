@@ -56,7 +56,7 @@ def test_dh_kernels_vs_pinocchio(cases):
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_dh_kernels_on_tables_from_urdf(arm, convention):
     r = rk.load(arm)
-    res = rk.urdf_to_dh(r, convention=convention)
+    res = rk.dh_from_urdf(r, convention=convention)
     assert res.exact
     P, mod, base, tool = kdh.pack_dh(res.table)[:4]
     rng = np.random.default_rng(1)
@@ -105,7 +105,7 @@ def test_seed_dh_functions_use_checks(cases):
     with pytest.raises(ValueError, match="NaN"):
         dh_static_torques(table, np.array([np.nan] + [0.0] * 5), np.zeros(6))
     with pytest.raises(ValueError, match="reference"):
-        dh_jacobian(table, np.zeros(6), reference="world")
+        dh_jacobian(table, np.zeros(6), reference="spatial")  # "world" is accepted now
     with pytest.raises(ValueError, match="dq"):
         dh_inverse_dynamics(table, np.zeros(6), np.zeros(3), np.zeros(6))
     assert dh_jacobian(table, [0, 0, 0, 0, 0, 0]).shape == (6, 6)  # lists are converted

@@ -7,7 +7,7 @@ import pytest
 
 import robokit as rk
 from robokit.kinematics import (
-    analytical_jacobian, dh_jacobian, dh_static_torques, euler_rate_matrix, jacobian_to_frame,
+    analytical_jacobian, dh_jacobian, dh_static_torques, euler_rate_matrix, jacobian_in_frame,
     manipulability, manipulability_at, numerical_jacobian, resolved_rate, singularity, twist_transform,
     velocity_ellipsoid, wrench_transform,
 )
@@ -29,7 +29,7 @@ def test_propagation_jacobian_and_static_forces_vs_pinocchio(name, robots):
         assert np.abs(Jb - r.jacobian(q, reference="local_world_aligned")).max() < 1e-9
         assert np.abs(Jt - r.jacobian(q, reference="local")).max() < 1e-9
         R = r.frame_pose(q)[:3, :3]
-        assert np.abs(jacobian_to_frame(Jb, R.T) - Jt).max() < 1e-12  # the 6×6 change of frame
+        assert np.abs(jacobian_in_frame(Jb, R.T) - Jt).max() < 1e-12  # the 6×6 change of frame
         F = rng.normal(size=6)
         assert np.abs(dh_static_torques(r.dh, q, F) - Jt.T @ F).max() < 1e-9  # τ = Jᵀ F
 

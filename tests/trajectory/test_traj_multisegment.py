@@ -189,3 +189,21 @@ def test_segment_too_short_for_its_blends_is_refused():
     # start that blend from a stale point and jump; we refuse with the argument named
     with pytest.raises(ValueError, match=r"tsegment.*segment 1.*too short"):
         ms_trajectory([[0.0], [1.0], [2.0], [3.0]], dt=0.1, tacc=0.4, tsegment=[1.0, 0.1, 1.0])
+
+
+def test_qdmax_bounds_the_straight_parts_and_the_docs_example_peaks_in_a_blend():
+    """docs/course/trajectories.md's example: the velocity is the slope of the samples (not the
+    function's own qd), on the straight parts within qdmax, and above it inside the first half
+    blend, where the docs say it peaks (1.21 rad/s at t = 0.14 s)."""
+    tr = ms_trajectory([[1.0, 0.5], [2.0, -0.5], [0.0, 0.0]], dt=0.01, tacc=0.5,
+                       qdmax=[1.0, 1.0], q0=[0.0, 0.0])
+    blend = tr.info["in_blend"]
+    q = np.vstack([[0.0, 0.0], tr.q])  # the start is one step before the first sample
+    slope = np.diff(q, axis=0) / 0.01  # secant velocity of step k ends at sample k
+    on_line = ~blend & np.r_[False, ~blend[:-1]]  # both ends of the step on a straight part
+    assert np.all(np.abs(slope[on_line]) <= 1.0 + 1e-9)
+    assert np.all(np.abs(tr.qd[~blend]) <= 1.0 + 1e-9)
+    peak = np.abs(tr.qd[:, 0]).argmax()
+    assert blend[peak] and tr.t[peak] < 0.25  # inside the first half blend
+    assert abs(tr.qd[peak, 0]) > 1.2  # above qdmax, as the docs say
+    assert abs(abs(tr.qd[peak, 0]) - 1.21) < 0.005 and abs(tr.t[peak] - 0.14) < 0.011

@@ -1,4 +1,4 @@
-"""cartesian_to_joint: IK along a Cartesian path; workspace exits and singular joint rates reported.
+"""joint_trajectory_from_cartesian: IK along a Cartesian path; workspace exits and singular joint rates reported.
 
 The robot is a local planar 2R arm (link lengths 1, 1, joints about z) with the Robot
 interface the converter uses (n, qlim, frame_pose, jacobian), written here from its
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from robokit import Rp_to_trans, Trajectory
-from robokit.trajectory import cartesian_line_trajectory, cartesian_to_joint
+from robokit.trajectory import cartesian_line_trajectory, joint_trajectory_from_cartesian
 from robokit.ik.analytic import ik_planar_2link
 
 L1 = L2 = 1.0
@@ -56,7 +56,7 @@ def line(p0, p1, tf=2.0, K=201):
 def test_follows_the_line_and_joint_velocity_maps_to_tool_velocity(ik):
     robot = Planar2R()
     path = line([1.2, 0.3, 0.0], [0.4, 1.1, 0.0])
-    qt = cartesian_to_joint(robot, path, ik=ik, q0=[0.0, 1.0], position_only=True)
+    qt = joint_trajectory_from_cartesian(robot, path, ik=ik, q0=[0.0, 1.0], position_only=True)
     assert isinstance(qt, Trajectory) and qt.q.shape == (201, 2)
     assert qt.labels == ("shoulder", "elbow")
     for k in range(0, 201, 20):
@@ -74,7 +74,7 @@ def test_unreachable_pose_is_reported():
     robot = Planar2R()
     path = line([1.5, 0.0, 0.0], [2.5, 0.0, 0.0], K=21)  # beyond reach 2 after halfway
     with pytest.raises(ValueError, match=r"traj: 10 of 21 poses cannot be reached.*workspace"):
-        cartesian_to_joint(robot, path, ik=analytic_ik, position_only=True)
+        joint_trajectory_from_cartesian(robot, path, ik=analytic_ik, position_only=True)
 
 
 def test_joint_rate_blow_up_near_singularity_is_flagged():
@@ -83,18 +83,18 @@ def test_joint_rate_blow_up_near_singularity_is_flagged():
     # θ1 must swing by about π in a few hundredths of a second
     path = line([-0.5, 0.01, 0.0], [0.5, 0.01, 0.0], tf=2.0, K=401)
     with pytest.warns(RuntimeWarning, match="singularity"):
-        qt = cartesian_to_joint(robot, path, ik=analytic_ik, q0=[np.pi / 2, 2.5], position_only=True, qd_limit=3.0)
+        qt = joint_trajectory_from_cartesian(robot, path, ik=analytic_ik, q0=[np.pi / 2, 2.5], position_only=True, qd_limit=3.0)
     assert qt.info["rate_exceeded"].any()
     assert qt.info["max_joint_rate"].max() > 20.0
     assert qt.info["jacobian_condition"].max() > 50.0
     # a path well inside the workspace stays within the same limit
-    calm = cartesian_to_joint(robot, line([1.2, 0.3, 0.0], [0.4, 1.1, 0.0]), ik=analytic_ik, q0=[0.0, 1.0], position_only=True, qd_limit=3.0)
+    calm = joint_trajectory_from_cartesian(robot, line([1.2, 0.3, 0.0], [0.4, 1.1, 0.0]), ik=analytic_ik, q0=[0.0, 1.0], position_only=True, qd_limit=3.0)
     assert not calm.info["rate_exceeded"].any()
 
 
 def test_bad_input():
     robot = Planar2R()
     with pytest.raises(ValueError, match="traj"):
-        cartesian_to_joint(robot, Trajectory(np.zeros(2), np.zeros((2, 2))))
+        joint_trajectory_from_cartesian(robot, Trajectory(np.zeros(2), np.zeros((2, 2))))
     with pytest.raises(TypeError, match="ik"):
-        cartesian_to_joint(robot, line([1.0, 0.0, 0.0], [1.1, 0.0, 0.0], K=3), ik=lambda T, q: "nonsense", position_only=True)
+        joint_trajectory_from_cartesian(robot, line([1.0, 0.0, 0.0], [1.1, 0.0, 0.0], K=3), ik=lambda T, q: "nonsense", position_only=True)
