@@ -346,8 +346,8 @@ class ClosedFormBackend(IKBackend):
         Returns
         -------
         numpy.ndarray of bool, shape (B,)
-        True where an in-limit solution reproduces the target: every pose entry within
-        ``1e-6 · max(1, ‖p_home‖₁)`` (``p_home`` the tip's position at q = 0, m).
+            True where an in-limit solution reproduces the target: every pose entry within
+            ``1e-6 · max(1, ‖p_home‖₁)`` (``p_home`` the tip's position at q = 0, m).
         """
         ik = analytic_ik(robot)
         tol_fk = 1e-6 * max(1.0, float(np.abs(robot.poe.M[:3, 3]).sum()))
