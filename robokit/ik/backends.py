@@ -329,8 +329,26 @@ class ClosedFormBackend(IKBackend):
         return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
-        """All targets at once: the batched closed form (compiled, parallel over targets), then
-        one batched FK of the in-limit solutions as a check."""
+        """All targets at once: the batched closed form (compiled, parallel over targets), then one
+        batched FK of the in-limit solutions as a check.
+
+        Parameters
+        ----------
+        robot : Robot
+            The robot (it has a closed form).
+        targets : numpy.ndarray, shape (B, 4, 4)
+            Tip poses in the base frame, m.
+        rng : numpy.random.Generator
+            Unused (the closed form needs no initial guess).
+        restarts : int
+            Unused.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (B,)
+            True where an in-limit solution reproduces the target: every pose entry within
+            ``1e-6 · max(1, ‖p_home‖₁)`` (``p_home`` the tip's position at q = 0, m).
+        """
         ik = analytic_ik(robot)
         tol_fk = 1e-6 * max(1.0, float(np.abs(robot.poe.M[:3, 3]).sum()))
         targets = np.asarray(targets, dtype=float)
