@@ -109,8 +109,22 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     return 0
 
 
+def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, describe: bool) -> Any:
+    """The collision world of a command: the scene file's obstacles and padding, meshes or hulls;
+    its description printed on stdout when ``describe`` (``--describe-world``)."""
+    from robokit.collision import World, load_scene
+
+    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
+    world = World(robot, obs, padding, convex=convex)
+    if describe:
+        print(world.describe())
+    return world
+
+
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
-                      scheduler: str | None = None, dashboard: bool = False) -> int:
+                      scheduler: str | None = None, dashboard: bool = False,
+                      obstacles: str | os.PathLike[str] | None = None, convex: bool = False,
+                      describe_world: bool = False) -> int:
     """The ``robokit workspace`` command: compute the map and write ``output`` (``.npz``); return the exit status.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
@@ -120,7 +134,12 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     made, holding only its chunk files, is ever used or removed). ``scheduler``: a Dask scheduler address
     (``tcp://host:port``), or None for a local cluster of one worker process per core
     (TLS with per-run credentials; ``dashboard``: serve its dashboard on 127.0.0.1).
+
+    ``obstacles`` (a scene YAML file), ``convex`` or ``describe_world``: only collision-free
+    solutions count (self-collisions and the scene's obstacles, robot meshes or their convex
+    hulls); ``describe_world`` also prints the world and its self-collision pairs on stdout.
     """
+    from robokit.description.loading import load
     from robokit.workspace.capability import capability_map
     from robokit.workspace.store import remove_store
 
@@ -132,8 +151,13 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     if scheduler is not None and not scheduler.strip():
         raise InputError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
+    world = None
+    if obstacles or convex or describe_world:
+        rob = load(robot)
+        world = _world(rob, obstacles, convex, describe_world)
+        robot = rob  # type: ignore[assignment]
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
-                          dashboard=dashboard)
+                          dashboard=dashboard, world=world)
     cmap.save(out)
     remove_store(store)  # only robokit's own marker and chunk files are ever deleted
     t = cmap.timings
@@ -247,15 +271,19 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
 
 def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
                  obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
-                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None) -> int:
-    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``.
+                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
+                 describe_world: bool = False) -> int:
+    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] [--convex] -o traj.csv``.
+
+    ``convex``: check the convex hulls of the robot's collision meshes (faster, conservative);
+    ``describe_world``: print the world and its self-collision pairs on stdout first.
 
     ``goal`` is n joint values, or 6 numbers x y z roll pitch yaw (m, rad) of the tip pose.
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
     (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
     --fps 1/dt`` plays it in real time.
     """
-    from robokit.collision import World, load_scene, pose_from_xyz_rpy
+    from robokit.collision import pose_from_xyz_rpy
     from robokit.description.loading import load
     from robokit.errors import InputError
     from robokit.motion import plan
@@ -274,8 +302,7 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
         raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
-    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
-    world = World(robot, obs, padding)
+    world = _world(robot, obstacles, convex, describe_world)
     tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
     t = np.arange(0.0, tr.t[-1], dt)
     t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t

@@ -246,7 +246,7 @@ def _backend_for(desc: RobotSpec, restarts: int) -> Any:
 
 
 def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int,
-                  world: tuple | None = None) -> np.ndarray:
+                  world: Any = None) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -265,20 +265,24 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
 _WORLD_CACHE: dict = {}
 
 
-def _world_state(world: Any, robot: Robot) -> tuple | None:
-    """The picklable part of a ``robokit.collision.World`` the workers rebuild it from."""
+def _world_state(world: Any, robot: Robot) -> Any:
+    """The plain data a ``robokit.collision.World`` is rebuilt from in the workers
+    (:meth:`~robokit.collision.World.state`: obstacles, padding, convex, self-collision pairs;
+    no coal object is ever pickled)."""
     if world is None:
         return None
+    from robokit.collision import World
     from robokit.errors import InputError
-    if not hasattr(world, "obstacles") or not hasattr(world, "padding") or not hasattr(world, "in_collision"):
+    if not isinstance(world, World):
         raise InputError(f"world: expected a robokit.collision.World, got {type(world).__name__}")
-    if getattr(world.robot, "name", None) != robot.name:
+    if world.robot.name != robot.name:
         raise InputError(f"world: built for {world.robot.name!r}, not for {robot.name!r}")
-    return (tuple(world.obstacles), float(world.padding))
+    return world.state()
 
 
-def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
-    """Per pose: reached by an IK solution inside the limits that is collision-free in the world."""
+def _collision_free_success(robot: Robot, world: Any, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
+    """Per pose: reached by an IK solution inside the limits that is collision-free in the world
+    (rebuilt once per process from its state ``world``)."""
     from robokit.collision import World
     from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
     from robokit.ik.numeric import solve_ik
@@ -286,7 +290,7 @@ def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts:
     key = (id(robot), hashlib.sha256(pickle.dumps(world)).hexdigest())
     w = _WORLD_CACHE.get(key)
     if w is None:
-        w = _WORLD_CACHE[key] = World(robot, world[0], world[1])
+        w = _WORLD_CACHE[key] = World.from_state(world, robot=robot)
     closed = robot.n == 6 and ik_analytic_kind(robot).method is not None
     out = np.zeros(len(T), dtype=bool)
     for k, Tk in enumerate(T):
@@ -447,7 +451,7 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
             st.close()
 
 
-def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float, world: tuple | None = None) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float, world: Any = None) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -476,7 +480,7 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
 
 def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,
            chunk_size: int, desc: RobotSpec, restarts: int, seed: int, progress: bool | None, params: dict, t0: float,
-           t_pre: float, world: tuple | None = None) -> CapabilityMap:
+           t_pre: float, world: Any = None) -> CapabilityMap:
     """The orientation sweep over the chunks (those not already in the store ``st``)."""
     K, M = len(R), len(centres)
     n_chunks = params["chunks"]
@@ -567,7 +571,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: tuple | None = None) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: Any = None) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 
