@@ -348,8 +348,8 @@ class World:
     >>> from robokit.collision import World, Box
     >>> T = np.eye(4); T[:3, 3] = [0.6, 0, 0.3]
     >>> w = World(robokit.load("puma560"), [Box([0.1, 1.0, 1.0], T, name="wall")])
-    >>> bool(w.in_collision(np.zeros(6)))
-    False
+    >>> w.in_collision(np.zeros(6)), w.in_collision([0, 0, -1.5, 0, 0, 0])
+    (False, True)
     >>> w.geometry
     'capsules'
     """
@@ -521,8 +521,12 @@ class World:
 
         Examples
         --------
-        >>> w.in_collision(np.zeros(6))  # doctest: +SKIP
-        False
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> w.in_collision([[0, 0, 0, 0, 0, 0], [0, 0, -1.5, 0, 0, 0]])
+        array([False,  True])
         """
         qs, batch = self._qs(q)
         out = np.array([self._hit(x) for x in qs], dtype=bool)
@@ -543,8 +547,12 @@ class World:
 
         Examples
         --------
-        >>> w.distance(np.zeros(6))  # doctest: +SKIP
-        0.25
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> round(w.distance(np.zeros(6)), 4)
+        0.0737
         """
         qs, batch = self._qs(q)
         out = np.array([float(self._pairs_state(x)[1].min()) if self._pairs else np.inf for x in qs])
@@ -563,8 +571,12 @@ class World:
 
         Examples
         --------
-        >>> w.colliding_pairs(np.zeros(6))  # doctest: +SKIP
-        []
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> w.colliding_pairs([0, 0, -1.5, 0, 0, 0])
+        [('link_4', 'wall')]
         """
         qs, batch = self._qs(q)
         out = []

@@ -133,18 +133,47 @@ class CapabilityMap:
 
     @property
     def dexterous(self) -> np.ndarray:
-        """(D, 3) centres reachable in every orientation (index 1): the dexterous workspace."""
+        """The dexterous workspace: centres reachable in every orientation of the set.
+
+        Returns
+        -------
+        ndarray, shape (D, 3)
+            The centres (m, base frame) with index 1.
+        """
         return self.centres[self.index >= 1.0]
 
     @property
     def reachable(self) -> np.ndarray:
-        """(R, 3) centres reachable in at least one orientation of the set (index > 0)."""
+        """The reachable workspace as the map resolves it: centres reached in at least one orientation.
+
+        Returns
+        -------
+        ndarray, shape (R, 3)
+            The centres (m, base frame) with index > 0.
+        """
         return self.centres[self.index > 0.0]
 
     def to_bytes(self, include_robot: bool = False) -> bytes:
-        """The ``.npz`` file's bytes: ``centres``, ``index``, ``orientations``, ``resolution``
-        (and, when ``include_robot``, ``robot``, the name, with the robot's ``description``:
-        see :mod:`robokit.workspace.map_robot`)."""
+        """The ``.npz`` file's bytes: ``centres``, ``index``, ``orientations``, ``resolution``.
+
+        Parameters
+        ----------
+        include_robot : bool
+            Also ``robot`` (the name) and the robot's ``description`` members
+            (:mod:`robokit.workspace.map_robot`), so a viewer can draw the arm.
+
+        Returns
+        -------
+        bytes
+            An uncompressed ``.npz`` archive.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> cmap = robokit.capability_map("rrr", 0.2, orientations=4, client="serial")
+        >>> cmap.to_bytes()[:2]
+        b'PK'
+        """
         arrays = dict(centres=self.centres, index=self.index, orientations=self.orientations,
                       resolution=np.float64(self.resolution))
         if include_robot:
@@ -156,7 +185,27 @@ class CapabilityMap:
         return buf.getvalue()
 
     def save(self, path: str | os.PathLike[str], include_robot: bool = False) -> Path:
-        """Write the map to ``path`` (``.npz``) atomically; see :meth:`to_bytes`."""
+        """Write the map to ``path`` (``.npz``) atomically (nothing half-written on failure).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file to write.
+        include_robot : bool
+            Store the robot's name and description too (:meth:`to_bytes`).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+
+        Examples
+        --------
+        >>> import robokit, tempfile, os
+        >>> cmap = robokit.capability_map("rrr", 0.2, orientations=4, client="serial")
+        >>> cmap.save(os.path.join(tempfile.mkdtemp(), "m.npz")).suffix
+        '.npz'
+        """
         return atomic_write(path, self.to_bytes(include_robot))
 
     @classmethod
@@ -384,8 +433,11 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     world : :class:`robokit.collision.World`, optional
         Count only orientations reached by an IK solution inside the limits that is free of
         self- and obstacle collisions (closed form: any such branch; otherwise ``solve_ik``
-        with ``world``). The workers rebuild the world from its obstacles and padding; the
-        store's fingerprint includes them. Slower than the plain map (one IK call per pose).
+        with ``world``). The world travels as plain data (``world.state()``: obstacles,
+        padding, ``convex``, the self-collision pairs), each worker rebuilds it once, and the
+        store's fingerprint includes it; the counts are the same in-process and on Dask.
+        Slower than the plain map (one IK call per pose; ``World(..., convex=True)`` is the
+        faster, conservative choice for mesh robots).
 
     Returns
     -------
@@ -403,8 +455,17 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     --------
     >>> import robokit
     >>> cmap = robokit.capability_map("rrr", 0.1, orientations=8, client="serial")
-    >>> cmap.index.max()
-    1.0
+    >>> float(cmap.index.max()), cmap.orientations.shape
+    (1.0, (8, 3, 3))
+
+    Collision-free counts only (a floor under the PUMA's base):
+
+    >>> from robokit.collision import Box, World, pose_from_xyz_rpy
+    >>> puma = robokit.load("puma560")
+    >>> floor = Box([3, 3, 0.1], pose_from_xyz_rpy([0, 0, -0.1], [0, 0, 0]), name="floor")
+    >>> free = capability_map(puma, 0.4, orientations=4, client="serial", world=World(puma, [floor]))
+    >>> bool(free.index.sum() < capability_map(puma, 0.4, orientations=4, client="serial").index.sum())
+    True
     """
     from robokit.description.loading import load
     from robokit.workspace.reach import DEFAULT_RESTARTS, ik_backend, planar_chain
