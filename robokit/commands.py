@@ -135,9 +135,9 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     (``tcp://host:port``), or None for a local cluster of one worker process per core
     (TLS with per-run credentials; ``dashboard``: serve its dashboard on 127.0.0.1).
 
-    ``obstacles`` (a scene YAML file), ``convex`` or ``describe_world``: only collision-free
-    solutions count (self-collisions and the scene's obstacles, robot meshes or their convex
-    hulls); ``describe_world`` also prints the world and its self-collision pairs on stdout.
+    ``obstacles`` (a scene YAML file) or ``convex``: only collision-free solutions count
+    (self-collisions and the scene's obstacles, robot meshes or their convex hulls);
+    ``describe_world`` prints the world and its self-collision pairs on stdout.
     """
     from robokit.description.loading import load
     from robokit.workspace.capability import capability_map
@@ -156,6 +156,9 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
         rob = load(robot)
         world = _world(rob, obstacles, convex, describe_world)
         robot = rob  # type: ignore[assignment]
+        if not (obstacles or convex):  # --describe-world alone prints, it does not change the map
+            print("(not used for the map: give --obstacles or --convex for collision-free counts)")
+            world = None
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
                           dashboard=dashboard, world=world)
     cmap.save(out)
