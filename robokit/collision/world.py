@@ -8,7 +8,8 @@ Geometry of the robot
       contains its mesh, so the hull world is *conservative*: whenever the meshes touch, the
       hulls do, and every distance is at most the mesh distance. It is faster (GJK on a
       convex set instead of a tree of triangles) but sees concave links (a U-shaped bracket, a
-      base with a recess) as filled. Primitive shapes and obstacle meshes are used as given.
+      base with a recess) as filled. Primitive shapes and obstacle meshes are used as given, and
+      so is a flat mesh (all its vertices in one plane), which Qhull cannot wrap.
     * A robot without it (the DH models, whose generated URDF has only visuals) gets one
       **capsule per link**: the segment from the link's joint origin to the next joint's origin
       (to the tip frame for the last link), radius the thinnest visual cylinder attached to that
@@ -118,13 +119,26 @@ def _capsule_model(robot: Any) -> Any:
     return gm
 
 
+def _solid(points: np.ndarray) -> bool:
+    """Whether the points span 3-D space (Qhull needs that; coal's wrapper crashes on a flat set)."""
+    if len(points) < 4 or not np.isfinite(points).all():
+        return False
+    c = points - points.mean(axis=0)
+    sv = np.linalg.svd(c, compute_uv=False)
+    return bool(sv[2] > 1e-9 * max(sv[0], 1e-300))
+
+
 def _hull(robot: Any, k: int, geometry: Any) -> Any:
-    """The convex hull of the robot's k-th collision mesh (a coal ConvexBase), built once per robot."""
+    """The convex hull of the robot's k-th collision mesh (a coal ConvexBase), built once per
+    robot; None for a flat or degenerate mesh (kept as a mesh: it is its own conservative bound)."""
     hulls = _HULLS.setdefault(robot, {})
     if k not in hulls:
-        mesh = geometry.clone()  # the robot's own geometry is left untouched
-        mesh.buildConvexHull(False, "Qt")
-        hulls[k] = mesh.convex
+        if not _solid(np.asarray(geometry.vertices(), dtype=float)):
+            hulls[k] = None
+        else:
+            mesh = geometry.clone()  # the robot's own geometry is left untouched
+            mesh.buildConvexHull(False, "Qt")
+            hulls[k] = mesh.convex
     return hulls[k]
 
 
@@ -138,8 +152,10 @@ def _robot_geometry(robot: Any, convex: bool = False) -> tuple[Any, list[str], s
         for k, g in enumerate(cm.geometryObjects):
             go = pin.GeometryObject(g)
             if convex and isinstance(g.geometry, coal.BVHModelBase):
-                go.geometry = _hull(robot, k, g.geometry)
-                hulls += 1
+                hull = _hull(robot, k, g.geometry)
+                if hull is not None:
+                    go.geometry = hull
+                    hulls += 1
             gm.addGeometryObject(go)
         names = [str(robot.model.frames[g.parentFrame].name) if g.parentFrame < len(robot.model.frames)
                  else _link_name(robot.model, g.parentJoint) for g in gm.geometryObjects]
@@ -244,10 +260,10 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     data = model.createData()
     rng = np.random.default_rng(SELF_SEED)
     counts = np.zeros(len(cand), dtype=int)
-    for _ in range(SELF_SAMPLES):
+    for _ in range(SELF_SAMPLES if cand else 0):  # no candidate pair (a two-link arm): nothing to sample
         q = robot.q_pin(robot.random_configuration(rng))
         pin.computeCollisions(model, data, gm, gd, q, False)
-        counts += [gd.collisionResults[k].isCollision() for k in range(len(cand))]
+        counts += np.array([gd.collisionResults[k].isCollision() for k in range(len(cand))], dtype=int)
     keep = [c for c, n in zip(cand, counts) if n < SELF_SAMPLES]
     always = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == SELF_SAMPLES]
     never = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == 0]
@@ -610,6 +626,12 @@ class World:
                  f"convex={self.convex}"]
         if self.convex and self.geometry == "capsules":
             lines.append("  (convex=True has no effect: the model has no collision meshes, only capsules)")
+        if self.convex:
+            import coal
+            flat = [g.name for g in list(self.geometry_model.geometryObjects)[:self._n_robot]
+                    if isinstance(g.geometry, coal.BVHModelBase)]
+            if flat:
+                lines.append(f"  kept as meshes (flat, no convex hull): {', '.join(flat)}")
         lines.append(f"  robot geometries: {self._n_robot}; obstacles: {len(self.obstacles)}; pairs checked: "
                      f"{len(self._pairs)} ({len(self.self_pairs.index_pairs)} self, "
                      f"{len(self._pairs) - len(self.self_pairs.index_pairs)} robot–obstacle)")

@@ -164,3 +164,40 @@ def test_bad_convex_and_state(ur5):
     wrong = dataclasses.replace(World(ur5).state(), robot="puma560")
     with pytest.raises(InputError, match="self-collision pairs"):
         World.from_state(wrong, robot=robokit.load("puma560"))
+
+
+URDF = """<robot name="flat2">
+ <link name="base"/>
+ <link name="l1"><collision><origin xyz="0 0 0.2"/><geometry><mesh filename="block.stl"/></geometry></collision>
+  <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+ <link name="l2"><collision><geometry><mesh filename="plate.stl"/></geometry></collision>
+  <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+ <link name="tool"/>
+ <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+  <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+ <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
+  <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+ <joint name="jt" type="fixed"><parent link="l2"/><child link="tool"/><origin xyz="0.3 0 0"/></joint>
+</robot>"""
+
+
+def test_a_flat_mesh_is_kept_and_a_two_link_arm_has_no_self_pairs(tmp_path):
+    """Qhull cannot wrap a flat plate (coal's wrapper would crash): it stays a mesh, and says so.
+    The arm's only two links are adjacent: no self pair to sample."""
+    trimesh = pytest.importorskip("trimesh")
+    import coal
+    trimesh.creation.box([0.1, 0.1, 0.4]).export(tmp_path / "block.stl")
+    plate = trimesh.Trimesh([[0, 0, 0], [0.3, 0, 0], [0, 0.3, 0], [0.3, 0.3, 0]], [[0, 1, 2], [1, 3, 2]], process=False)
+    plate.export(tmp_path / "plate.stl")
+    (tmp_path / "flat2.urdf").write_text(URDF)
+    robot = robokit.load(tmp_path / "flat2.urdf")
+    lid = Box([1.0, 1.0, 0.1], _T([0.4, 0, 0.5]), name="lid")  # 5 cm above the plate at q = 0
+    mesh, hull = World(robot, [lid]), World(robot, [lid], convex=True)
+    assert hull.self_pairs.checked == [] and hull.self_pairs.adjacent == [("l1", "l2")]
+    kinds = [type(g.geometry) for g in hull.geometry_model.geometryObjects][:2]
+    assert issubclass(kinds[0], coal.ConvexBase) and issubclass(kinds[1], coal.BVHModelBase)
+    assert "kept as meshes (flat, no convex hull): l2_0" in hull.describe()
+    qs = np.array([[a, b] for a in np.linspace(-3, 3, 7) for b in np.linspace(-3, 3, 7)])
+    assert mesh.distance(np.zeros(2)) == pytest.approx(0.05, abs=1e-8)  # GJK at tolerance 1e-9: a few 1e-9
+    assert np.all(hull.distance(qs) <= mesh.distance(qs) + 1e-9)
+    assert not np.any(mesh.in_collision(qs) & ~hull.in_collision(qs))

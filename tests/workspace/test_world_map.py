@@ -13,7 +13,7 @@ from robokit.collision import Box, World
 from robokit.workspace import CapabilityMap, capability_map
 
 ROOT = Path(__file__).resolve().parents[2]
-KW = dict(orientations=8, chunk_size=12, samples=20000)
+KW = dict(orientations=8, chunk_size=12)  # the CLI's pre-pass; more chunks than workers
 SCENE = """\
 padding: 0.0
 obstacles:
@@ -90,11 +90,10 @@ def test_cli_workspace_with_obstacles(cluster, maps, tmp_path, capsys):
     assert rc == 0
     printed = capsys.readouterr().out
     assert "World for 'puma560'" in printed and "obstacle floor" in printed and "self-collision pairs" in printed
-    got = CapabilityMap.load(out)
-    want = capability_map(puma, 0.3, orientations=8, client="serial", world=world)  # the CLI's defaults
-    np.testing.assert_array_equal(got.centres, want.centres)
-    np.testing.assert_array_equal(got.index, want.index)
-    assert got.index.sum() < capability_map(puma, 0.3, orientations=8, client="serial").index.sum()
+    got = CapabilityMap.load(out)  # other chunks than KW's; the same counts (closed-form IK, no random numbers)
+    np.testing.assert_array_equal(got.centres, serial.centres)
+    np.testing.assert_array_equal(got.index, serial.index)
+    assert got.index.sum() < free.index.sum()
     assert not out.with_name(out.name + ".chunks").exists()
 
 
