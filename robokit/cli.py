@@ -123,6 +123,11 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--orientations", type=int, default=100, help="number of tool orientations K (default 100)")
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
     cm.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1")
+    cm.add_argument("--obstacles", help="scene YAML file of obstacles: count collision-free solutions only")
+    cm.add_argument("--convex", action="store_true", help="convex hulls of the robot's collision meshes "
+                    "(faster, conservative); implies collision checking")
+    cm.add_argument("--describe-world", action="store_true",
+                    help="print the collision world and its self-collision pairs on stdout")
     cm.add_argument("-o", "--output", required=True, help="output .npz file")
 
     # kinematic calibration (robokit.calibration)
@@ -147,6 +152,10 @@ def _build_parser() -> argparse.ArgumentParser:
     pl.add_argument("--goal", nargs="+", type=float, required=True,
                     help="goal joint values, or x y z roll pitch yaw of the tip (m, rad)")
     pl.add_argument("--obstacles", help="scene YAML file of obstacles")
+    pl.add_argument("--convex", action="store_true",
+                    help="convex hulls of the robot's collision meshes (faster, conservative)")
+    pl.add_argument("--describe-world", action="store_true",
+                    help="print the collision world and its self-collision pairs on stdout")
     pl.add_argument("--vmax", type=float, default=1.0, help="joint velocity limit (rad/s, default 1)")
     pl.add_argument("--amax", type=float, default=2.0, help="joint acceleration limit (rad/s², default 2)")
     pl.add_argument("--dt", type=float, default=1 / 30, help="time step of the CSV rows (s, default 1/30)")
@@ -203,7 +212,8 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import workspace_command
 
         return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler,
-                                 dashboard=args.dashboard)
+                                 dashboard=args.dashboard, obstacles=args.obstacles, convex=args.convex,
+                                 describe_world=args.describe_world)
     if args.command == "calibrate":
         from robokit.commands import calibrate_command
 
@@ -217,7 +227,8 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import plan_command
 
         return plan_command(args.model, args.start, args.goal, args.output, obstacles=args.obstacles,
-                            vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip)
+                            vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip,
+                            convex=args.convex, describe_world=args.describe_world)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

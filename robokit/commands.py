@@ -173,8 +173,22 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     return 0
 
 
+def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, describe: bool) -> Any:
+    """The collision world of a command: the scene file's obstacles and padding, meshes or hulls;
+    its description printed on stdout when ``describe`` (``--describe-world``)."""
+    from robokit.collision import World, load_scene
+
+    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
+    world = World(robot, obs, padding, convex=convex)
+    if describe:
+        print(world.describe())
+    return world
+
+
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
-                      scheduler: str | None = None, dashboard: bool = False) -> int:
+                      scheduler: str | None = None, dashboard: bool = False,
+                      obstacles: str | os.PathLike[str] | None = None, convex: bool = False,
+                      describe_world: bool = False) -> int:
     """``robokit workspace ROBOT --resolution R -o MAP.npz``: compute a capability map and write it.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
@@ -198,12 +212,21 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
         process per core (TLS with per-run credentials).
     dashboard : bool
         Serve the local cluster's dashboard on 127.0.0.1.
+    obstacles : str or path-like, optional
+        A scene YAML file: only collision-free solutions count (self-collisions and the scene's
+        obstacles).
+    convex : bool
+        Check the convex hulls of the robot's collision meshes instead of the meshes (faster,
+        conservative).
+    describe_world : bool
+        Print the world and its self-collision pairs on stdout.
 
     Returns
     -------
     int
         The exit status, 0 (errors raise).
     """
+    from robokit.description.loading import load
     from robokit.workspace.capability import capability_map
     from robokit.workspace.store import remove_store
 
@@ -215,8 +238,16 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     if scheduler is not None and not scheduler.strip():
         raise InputError("--scheduler: empty address")
     store = out.with_name(out.name + ".chunks")
+    world = None
+    if obstacles or convex or describe_world:
+        rob = load(robot)
+        world = _world(rob, obstacles, convex, describe_world)
+        robot = rob  # type: ignore[assignment]
+        if not (obstacles or convex):  # --describe-world alone prints, it does not change the map
+            print("(not used for the map: give --obstacles or --convex for collision-free counts)")
+            world = None
     cmap = capability_map(robot, resolution, orientations=orientations, client=scheduler, store=store,
-                          dashboard=dashboard)
+                          dashboard=dashboard, world=world)
     cmap.save(out)
     remove_store(store)  # only robokit's own marker and chunk files are ever deleted
     t = cmap.timings
@@ -382,8 +413,9 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
 
 def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
                  obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
-                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None) -> int:
-    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] -o traj.csv``: plan a
+                 dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
+                 describe_world: bool = False) -> int:
+    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] [--convex] -o traj.csv``: plan a
     collision-free motion, retime it and write it as a CSV.
 
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
@@ -410,13 +442,17 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         Seed of the sampling planner.
     tip : str, optional
         Tip frame.
+    convex : bool
+        Check the convex hulls of the robot's collision meshes (faster, conservative).
+    describe_world : bool
+        Print the world and its self-collision pairs on stdout first.
 
     Returns
     -------
     int
         The exit status, 0 (errors raise).
     """
-    from robokit.collision import World, load_scene, pose_from_xyz_rpy
+    from robokit.collision import pose_from_xyz_rpy
     from robokit.description.loading import load
     from robokit.errors import InputError
     from robokit.motion import plan
@@ -435,8 +471,7 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
         raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
-    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
-    world = World(robot, obs, padding)
+    world = _world(robot, obstacles, convex, describe_world)
     tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
     t = np.arange(0.0, tr.t[-1], dt)
     t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t

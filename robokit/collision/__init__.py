@@ -7,6 +7,6 @@ with coal through Pinocchio; self-collision pairs computed once per robot), ``sc
 """
 from robokit.collision.shapes import Box, Cylinder, Mesh, Obstacle, Sphere
 from robokit.collision.scene import load_scene, pose_from_xyz_rpy
-from robokit.collision.world import World, self_collision_pairs
+from robokit.collision.world import SelfCollisionPairs, World, WorldState, self_collision_pairs
 
-__all__ = ["World", "Box", "Sphere", "Cylinder", "Mesh", "Obstacle", "self_collision_pairs", "load_scene", "pose_from_xyz_rpy"]
+__all__ = ["World", "WorldState", "SelfCollisionPairs", "Box", "Sphere", "Cylinder", "Mesh", "Obstacle", "self_collision_pairs", "load_scene", "pose_from_xyz_rpy"]

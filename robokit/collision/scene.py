@@ -39,6 +39,18 @@ _KEYS = {"box": {"size"}, "sphere": {"radius"}, "cylinder": {"radius", "length"}
 def pose_from_xyz_rpy(xyz: Any, rpy: Any) -> np.ndarray:
     """4×4 pose from a position (m) and URDF-style roll-pitch-yaw (rad): R = Rz(y) Ry(p) Rx(r).
 
+    Parameters
+    ----------
+    xyz : array_like, shape (3,)
+        Position of the frame's origin (m).
+    rpy : array_like, shape (3,)
+        Roll, pitch, yaw (rad), fixed axes x, y, z applied in that order (as URDF's ``rpy``).
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        The homogeneous transform.
+
     Examples
     --------
     >>> pose_from_xyz_rpy([1, 2, 3], [0, 0, 0])[:3, 3].tolist()
@@ -60,11 +72,16 @@ def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
 
     Parameters
     ----------
-    path : the .yaml file (format in the module docstring).
+    path : str or path-like
+        The .yaml file (format in the module docstring); mesh paths in it are relative to
+        its folder.
 
     Returns
     -------
-    (obstacles, padding) — a list of Box/Sphere/Cylinder/Mesh and the padding in m (0 if absent).
+    obstacles : list of Box, Sphere, Cylinder, Mesh
+        In the file's order, poses in the robot's base frame.
+    padding : float
+        m (0 when the file has none).
 
     Raises
     ------
@@ -73,7 +90,13 @@ def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
 
     Examples
     --------
-    >>> obstacles, padding = load_scene("scene.yaml")  # doctest: +SKIP
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "scene.yaml")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("padding: 0.01\\nobstacles:\\n  - {type: sphere, name: ball, radius: 0.1}\\n")
+    >>> obstacles, padding = load_scene(path)
+    >>> obstacles[0].name, padding
+    ('ball', 0.01)
     """
     path = Path(path)
     doc = load_yaml_file(path)

@@ -32,7 +32,22 @@ def _pose(pose: Any) -> np.ndarray:
 
 
 class Obstacle:
-    """Base of the obstacle shapes (not used directly): ``pose`` (4, 4) and ``name``."""
+    """Base of the obstacle shapes (not used directly); instances are read-only.
+
+    Attributes
+    ----------
+    pose : ndarray, shape (4, 4)
+        Pose of the shape's own frame in the robot's base frame (m).
+    name : str
+        The name :meth:`World.colliding_pairs <robokit.collision.World.colliding_pairs>`
+        reports ("" lets the World call it ``<type>_<k>``).
+
+    Examples
+    --------
+    >>> from robokit.collision import Box, Obstacle
+    >>> isinstance(Box([1, 1, 1]), Obstacle)
+    True
+    """
 
     pose: np.ndarray
     name: str
@@ -46,7 +61,12 @@ class Obstacle:
         return f"{type(self).__name__}({body}, xyz={self.pose[:3, 3].tolist()})"
 
     def geometry(self) -> Any:  # pragma: no cover - overridden
-        """The coal collision geometry of the shape (in its own frame)."""
+        """The coal collision geometry of the shape (in its own frame).
+
+        Returns
+        -------
+        coal.CollisionGeometry
+        """
         raise NotImplementedError
 
 
@@ -61,6 +81,11 @@ class Box(Obstacle):
         Pose of the box centre in the base frame (identity by default).
     name : str, optional
         Name reported by ``colliding_pairs`` (default ``box_<k>`` by the World).
+
+    Attributes
+    ----------
+    size : ndarray, shape (3,)
+        The edge lengths (m); ``pose`` and ``name`` as given.
 
     Examples
     --------
@@ -80,7 +105,12 @@ class Box(Obstacle):
         object.__setattr__(self, "name", str(name))
 
     def geometry(self) -> Any:
-        """coal.Box with the full edge lengths."""
+        """The coal geometry: ``coal.Box`` with the full edge lengths.
+
+        Returns
+        -------
+        coal.Box
+        """
         import coal
         return coal.Box(*self.size)
 
@@ -90,8 +120,12 @@ class Sphere(Obstacle):
 
     Parameters
     ----------
-    radius : float, > 0, m.
-    pose : array_like (4, 4), optional; name : str, optional.
+    radius : float
+        Radius (m), > 0.
+    pose : array_like, shape (4, 4), optional
+        Pose of the centre in the base frame (identity by default).
+    name : str, optional
+        Name reported by ``colliding_pairs`` (default ``sphere_<k>``).
 
     Examples
     --------
@@ -108,7 +142,12 @@ class Sphere(Obstacle):
         object.__setattr__(self, "name", str(name))
 
     def geometry(self) -> Any:
-        """coal.Sphere."""
+        """The coal geometry.
+
+        Returns
+        -------
+        coal.Sphere
+        """
         import coal
         return coal.Sphere(self.radius)
 
@@ -118,8 +157,14 @@ class Cylinder(Obstacle):
 
     Parameters
     ----------
-    radius, length : float, > 0, m.
-    pose : array_like (4, 4), optional; name : str, optional.
+    radius : float
+        Radius (m), > 0.
+    length : float
+        Full length along the frame's z axis (m), > 0.
+    pose : array_like, shape (4, 4), optional
+        Pose of the centre in the base frame (identity by default).
+    name : str, optional
+        Name reported by ``colliding_pairs`` (default ``cylinder_<k>``).
 
     Examples
     --------
@@ -138,7 +183,12 @@ class Cylinder(Obstacle):
         object.__setattr__(self, "name", str(name))
 
     def geometry(self) -> Any:
-        """coal.Cylinder (coal's length is the full length)."""
+        """The coal geometry (coal's length is the full length too).
+
+        Returns
+        -------
+        coal.Cylinder
+        """
         import coal
         return coal.Cylinder(self.radius, self.length)
 
@@ -152,17 +202,30 @@ class Mesh(Obstacle):
 
     Parameters
     ----------
-    path : str or path-like, the mesh file.
-    pose : array_like (4, 4), optional; name : str, optional (default the file's stem).
+    path : str or path-like
+        The mesh file (coordinates in m).
+    pose : array_like, shape (4, 4), optional
+        Pose of the mesh frame in the base frame (identity by default).
+    name : str, optional
+        Name reported by ``colliding_pairs`` (default the file's stem).
 
     Attributes
     ----------
-    vertices : (V, 3) float, m, in the mesh frame; faces : (F, 3) int.
+    vertices : ndarray, shape (V, 3)
+        Vertices (m) in the mesh frame (read once: a pickled Mesh carries them).
+    faces : ndarray of int, shape (F, 3)
+        Triangles as vertex indices.
+    path : pathlib.Path
+        The file read.
 
     Examples
     --------
+    >>> import os, tempfile, trimesh
     >>> from robokit.collision import Mesh
-    >>> m = Mesh("table.stl")  # doctest: +SKIP
+    >>> path = os.path.join(tempfile.mkdtemp(), "block.stl")
+    >>> _ = trimesh.creation.box([0.2, 0.2, 0.2]).export(path)
+    >>> Mesh(path).faces.shape
+    (12, 3)
     """
 
     path: Path
@@ -198,7 +261,12 @@ class Mesh(Obstacle):
         object.__setattr__(self, "name", str(name) or p.stem)
 
     def geometry(self) -> Any:
-        """coal.BVHModelOBBRSS of the triangles."""
+        """The coal geometry: a bounding-volume hierarchy of the triangles.
+
+        Returns
+        -------
+        coal.BVHModelOBBRSS
+        """
         import coal
         bvh = coal.BVHModelOBBRSS()
         bvh.beginModel(len(self.faces), len(self.vertices))

@@ -2,7 +2,14 @@
 
 Geometry of the robot
     * A robot with collision geometry (``robot.collision_model``: URDF/MJCF collision meshes,
-      example-robot-data) uses it as loaded — meshes as triangle BVHs, no convex hulls.
+      example-robot-data) uses it as loaded — meshes as triangle BVHs.
+    * ``World(..., convex=True)`` replaces each of these meshes by its **convex hull** (coal's
+      ``BVHModel.buildConvexHull``, Qhull underneath; built once per robot and cached). A hull
+      contains its mesh, so the hull world is *conservative*: whenever the meshes touch, the
+      hulls do, and every distance is at most the mesh distance. It is faster (GJK on a
+      convex set instead of a tree of triangles) but sees concave links (a U-shaped bracket, a
+      base with a recess) as filled. Primitive shapes and obstacle meshes are used as given, and
+      so is a flat mesh (all its vertices in one plane), which Qhull cannot wrap.
     * A robot without it (the DH models, whose generated URDF has only visuals) gets one
       **capsule per link**: the segment from the link's joint origin to the next joint's origin
       (to the tip frame for the last link), radius the thinnest visual cylinder attached to that
@@ -16,12 +23,25 @@ Pairs checked
     configurations (uniform in the joint limits, ``numpy.random.default_rng(SELF_SEED)``) —
     MoveIt setup assistant's "adjacent" and "always in collision" rules. Pairs that never
     collided in the samples are listed too but are *kept* (a folded arm must still be seen).
-    The result is computed once per robot and cached (:func:`self_collision_pairs`).
+    The result is computed once per robot and cached (:func:`self_collision_pairs`), always on
+    the robot's own geometry (meshes, not hulls): a convex world checks the same pairs, which
+    keeps it conservative. ``print(world.describe())`` shows the table.
 
 Padding
     ``padding`` (m) inflates every robot geometry: a robot–obstacle pair counts as colliding
     when its distance is below ``padding``, a self pair below ``2·padding``, and
     :meth:`World.distance` reports the distance of the inflated geometry.
+
+Accuracy
+    Distances are computed by coal with GJK tolerance :data:`GJK_TOLERANCE` (coal's default,
+    1e-6, left hull and mesh distances up to 1e-8 m apart where both are exact).
+
+Shipping a world
+    A ``World`` holds coal objects, which are not sent between processes. ``world.state()``
+    is its plain data (:class:`WorldState`: the robot's ``RobotSpec``, the obstacles, the
+    padding, ``convex`` and the self-collision pairs); ``World.from_state(state)`` rebuilds it
+    in another process without recomputing the pairs, and ``pickle`` does exactly this (a
+    world pickles as its state), so Dask ships a world to its workers.
 """
 from __future__ import annotations
 
@@ -35,12 +55,16 @@ from robokit._arrays import as_array, as_scalar
 from robokit.collision.shapes import Obstacle
 from robokit.errors import InputError
 
-__all__ = ["World", "SelfCollisionPairs", "self_collision_pairs", "DEFAULT_CAPSULE_RADIUS",
-           "SELF_SAMPLES", "SELF_SEED"]
+__all__ = ["World", "WorldState", "SelfCollisionPairs", "self_collision_pairs", "DEFAULT_CAPSULE_RADIUS",
+           "SELF_SAMPLES", "SELF_SEED", "GJK_TOLERANCE"]
 
 DEFAULT_CAPSULE_RADIUS = 0.04  # m, for a DH link with no visual cylinder
 SELF_SAMPLES = 1000
 SELF_SEED = 0
+#: coal's GJK tolerance for the distance queries (m).
+GJK_TOLERANCE = 1e-9
+
+_HULLS: "weakref.WeakKeyDictionary[Any, dict[int, Any]]" = weakref.WeakKeyDictionary()
 
 _CACHE: "weakref.WeakKeyDictionary[Any, tuple[Any, SelfCollisionPairs]]" = weakref.WeakKeyDictionary()
 
@@ -95,16 +119,47 @@ def _capsule_model(robot: Any) -> Any:
     return gm
 
 
-def _robot_geometry(robot: Any) -> tuple[Any, list[str], str]:
+def _solid(points: np.ndarray) -> bool:
+    """Whether the points span 3-D space (Qhull needs that; coal's wrapper crashes on a flat set)."""
+    if len(points) < 4 or not np.isfinite(points).all():
+        return False
+    c = points - points.mean(axis=0)
+    sv = np.linalg.svd(c, compute_uv=False)
+    return bool(sv[2] > 1e-9 * max(sv[0], 1e-300))
+
+
+def _hull(robot: Any, k: int, geometry: Any) -> Any:
+    """The convex hull of the robot's k-th collision mesh (a coal ConvexBase), built once per
+    robot; None for a flat or degenerate mesh (kept as a mesh: it is its own conservative bound)."""
+    hulls = _HULLS.setdefault(robot, {})
+    if k not in hulls:
+        if not _solid(np.asarray(geometry.vertices(), dtype=float)):
+            hulls[k] = None
+        else:
+            mesh = geometry.clone()  # the robot's own geometry is left untouched
+            mesh.buildConvexHull(False, "Qt")
+            hulls[k] = mesh.convex
+    return hulls[k]
+
+
+def _robot_geometry(robot: Any, convex: bool = False) -> tuple[Any, list[str], str]:
+    import coal
     import pinocchio as pin
     cm = robot.collision_model
     if cm is not None and cm.ngeoms > 0:
         gm = pin.GeometryModel()
-        for g in cm.geometryObjects:
-            gm.addGeometryObject(pin.GeometryObject(g))
+        hulls = 0
+        for k, g in enumerate(cm.geometryObjects):
+            go = pin.GeometryObject(g)
+            if convex and isinstance(g.geometry, coal.BVHModelBase):
+                hull = _hull(robot, k, g.geometry)
+                if hull is not None:
+                    go.geometry = hull
+                    hulls += 1
+            gm.addGeometryObject(go)
         names = [str(robot.model.frames[g.parentFrame].name) if g.parentFrame < len(robot.model.frames)
                  else _link_name(robot.model, g.parentJoint) for g in gm.geometryObjects]
-        return gm, names, "collision meshes"
+        return gm, names, "convex hulls of the collision meshes" if hulls else "collision meshes"
     gm = _capsule_model(robot)
     return gm, [_link_name(robot.model, g.parentJoint) for g in gm.geometryObjects], "capsules"
 
@@ -119,11 +174,27 @@ class SelfCollisionPairs:
 
     Attributes
     ----------
-    checked : list of (link, link) name pairs that are checked.
-    adjacent : pairs skipped as adjacent links (or geometries on the same link).
-    always : pairs skipped because they were in contact in every sample.
-    never : checked pairs that never collided in the samples (kept, listed for information).
-    samples, seed : the sampling used; geometry : "collision meshes" or "capsules".
+    checked : list of (str, str)
+        The (link, link) name pairs that are checked.
+    adjacent : list of (str, str)
+        Pairs skipped as adjacent links (parent and child joint).
+    always : list of (str, str)
+        Pairs skipped because they were in contact in every sample.
+    never : list of (str, str)
+        Checked pairs that never collided in the samples (kept, listed for information).
+    index_pairs : list of (int, int)
+        The checked pairs as indices of the robot's geometries (same order as ``checked``).
+    samples, seed : int
+        The sampling used (:data:`SELF_SAMPLES`, :data:`SELF_SEED`).
+    geometry : str
+        ``"collision meshes"`` or ``"capsules"`` (the geometry the filter was computed on).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> pairs = self_collision_pairs(robokit.load("ur5"))
+    >>> ("upper_arm_link", "forearm_link") in pairs.adjacent
+    True
     """
 
     checked: list[tuple[str, str]]
@@ -141,7 +212,8 @@ class SelfCollisionPairs:
         lines += [f"    {a} – {b}" for a, b in self.checked]
         lines.append(f"  skipped, adjacent ({len(self.adjacent)}): " + ", ".join(f"{a}–{b}" for a, b in self.adjacent))
         lines.append(f"  skipped, always in contact ({len(self.always)}): " + ", ".join(f"{a}–{b}" for a, b in self.always))
-        lines.append(f"  checked but never colliding in the samples ({len(self.never)})")
+        lines.append(f"  checked but never colliding in the samples ({len(self.never)}): "
+                     + ", ".join(f"{a}–{b}" for a, b in self.never))
         return "\n".join(lines)
 
 
@@ -164,7 +236,8 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     --------
     >>> import robokit
     >>> from robokit.collision import self_collision_pairs
-    >>> print(self_collision_pairs(robokit.load("puma560")))  # doctest: +SKIP
+    >>> print(self_collision_pairs(robokit.load("puma560")).geometry)
+    capsules
     """
     hit = _CACHE.get(robot)
     if hit is not None:
@@ -187,10 +260,10 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     data = model.createData()
     rng = np.random.default_rng(SELF_SEED)
     counts = np.zeros(len(cand), dtype=int)
-    for _ in range(SELF_SAMPLES):
+    for _ in range(SELF_SAMPLES if cand else 0):  # no candidate pair (a two-link arm): nothing to sample
         q = robot.q_pin(robot.random_configuration(rng))
         pin.computeCollisions(model, data, gm, gd, q, False)
-        counts += [gd.collisionResults[k].isCollision() for k in range(len(cand))]
+        counts += np.array([gd.collisionResults[k].isCollision() for k in range(len(cand))], dtype=int)
     keep = [c for c, n in zip(cand, counts) if n < SELF_SAMPLES]
     always = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == SELF_SAMPLES]
     never = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == 0]
@@ -198,6 +271,55 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
                              never=never, index_pairs=keep, samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind)
     _CACHE[robot] = (None, res)
     return res
+
+
+@dataclass(frozen=True)
+class WorldState:
+    """A :class:`World` as plain data, to rebuild it in another process (:meth:`World.from_state`).
+
+    Attributes
+    ----------
+    spec : robokit.RobotSpec or None
+        What ``robokit.load`` rebuilds the robot from (None for a robot built by hand).
+    robot : str
+        The robot's name.
+    obstacles : tuple of Box, Sphere, Cylinder, Mesh
+        The obstacles (plain Python objects holding numpy arrays; a Mesh carries its vertices
+        and faces, so its file is not read again).
+    padding : float
+        m.
+    convex : bool
+        Convex hulls instead of the collision meshes.
+    self_pairs : SelfCollisionPairs
+        The self-collision filter, computed once on the driver.
+
+    Examples
+    --------
+    >>> import pickle, robokit
+    >>> from robokit.collision import World
+    >>> state = World(robokit.load("rrr")).state()
+    >>> World.from_state(pickle.loads(pickle.dumps(state))).robot.name
+    'rrr'
+    """
+
+    spec: Any
+    robot: str
+    obstacles: tuple
+    padding: float
+    convex: bool
+    self_pairs: SelfCollisionPairs
+
+
+def _pairs_match(pairs: Any, names: list[str], n_robot: int) -> bool:
+    """Whether shipped self-collision pairs index this robot geometry (same names at the same indices)."""
+    if not isinstance(pairs, SelfCollisionPairs) or len(pairs.index_pairs) != len(pairs.checked):
+        return False
+    return all(0 <= i < j < n_robot and (names[i], names[j]) == tuple(pair)
+               for (i, j), pair in zip(pairs.index_pairs, pairs.checked))
+
+
+def _rebuild(state: WorldState) -> "World":
+    return World.from_state(state)
 
 
 class World:
@@ -211,11 +333,30 @@ class World:
         Placed in the robot's base frame (m). Unnamed ones are called ``<type>_<k>``.
     padding : float, >= 0, m
         Security margin inflating the robot's geometry.
+    convex : bool
+        Replace each of the robot's collision meshes by its convex hull: faster and
+        conservative (never "free" where the meshes touch), but concave links look filled.
+        No effect on capsule models (module docstring).
 
     Attributes
     ----------
-    robot, obstacles, padding; self_pairs : :class:`SelfCollisionPairs`;
-    geometry_model : the ``pinocchio.GeometryModel`` (robot geometries first, then obstacles).
+    robot : robokit.Robot
+        The robot.
+    obstacles : tuple of Obstacle
+        The obstacles, in the order given.
+    obstacle_names : list of str
+        Their names (given or ``<type>_<k>``).
+    padding : float
+        m.
+    convex : bool
+        Whether convex hulls replace the meshes.
+    geometry : str
+        The robot geometry in use: ``"collision meshes"``, ``"convex hulls of the collision
+        meshes"`` or ``"capsules"``.
+    self_pairs : SelfCollisionPairs
+        The self-collision filter (``print(world.describe())`` shows it).
+    geometry_model : pinocchio.GeometryModel
+        Robot geometries first, then obstacles (``obstacle:<name>``).
 
     Examples
     --------
@@ -223,21 +364,94 @@ class World:
     >>> from robokit.collision import World, Box
     >>> T = np.eye(4); T[:3, 3] = [0.6, 0, 0.3]
     >>> w = World(robokit.load("puma560"), [Box([0.1, 1.0, 1.0], T, name="wall")])
-    >>> w.in_collision(np.zeros(6))  # doctest: +SKIP
-    False
+    >>> w.in_collision(np.zeros(6)), w.in_collision([0, 0, -1.5, 0, 0, 0])
+    (False, True)
+    >>> w.geometry
+    'capsules'
     """
 
-    def __init__(self, robot: Any, obstacles: Iterable[Obstacle] = (), padding: float = 0.0) -> None:
+    def __init__(self, robot: Any, obstacles: Iterable[Obstacle] = (), padding: float = 0.0,
+                 convex: bool = False) -> None:
+        self._build(robot, obstacles, padding, convex, None)
+
+    @classmethod
+    def from_state(cls, state: WorldState, robot: Any = None) -> "World":
+        """Rebuild a world from :meth:`state` (in another process, say), without recomputing
+        the self-collision pairs.
+
+        Parameters
+        ----------
+        state : WorldState
+            From :meth:`World.state`.
+        robot : robokit.Robot, optional
+            The robot to use (default ``robokit.load(state.spec)``); it must be the same robot
+            (name and collision geometry).
+
+        Returns
+        -------
+        World
+            Answers as the world ``state`` was taken from.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> w = World(robokit.load("puma560"), padding=0.01)
+        >>> World.from_state(w.state()).padding
+        0.01
+        """
+        if not isinstance(state, WorldState):
+            raise InputError(f"state: expected a WorldState (World.state()), got {type(state).__name__}")
+        if robot is None:
+            if state.spec is None:
+                raise InputError(f"state: the robot {state.robot!r} has no RobotSpec to rebuild it from; pass robot=")
+            from robokit.description.loading import load
+            robot = load(state.spec)
+        if robot.name != state.robot:
+            raise InputError(f"robot: the world was built for {state.robot!r}, not for {robot.name!r}")
+        w = cls.__new__(cls)
+        w._build(robot, state.obstacles, state.padding, state.convex, state.self_pairs)
+        return w
+
+    def state(self) -> WorldState:
+        """The world as plain, picklable data (no coal objects): see :class:`WorldState`.
+
+        Returns
+        -------
+        WorldState
+
+        Examples
+        --------
+        >>> import robokit
+        >>> World(robokit.load("rrr")).state().padding
+        0.0
+        """
+        return WorldState(spec=getattr(self.robot, "spec", None), robot=str(self.robot.name),
+                          obstacles=self.obstacles, padding=self.padding, convex=self.convex,
+                          self_pairs=self.self_pairs)
+
+    def __reduce__(self) -> tuple[Any, tuple[WorldState]]:
+        return (_rebuild, (self.state(),))
+
+    def _build(self, robot: Any, obstacles: Iterable[Obstacle], padding: float, convex: bool,
+               self_pairs: SelfCollisionPairs | None) -> None:
         import pinocchio as pin
+        if not isinstance(convex, (bool, np.bool_)):
+            raise InputError(f"convex: expected True or False, got {convex!r}")
         self.robot = robot
         self.padding = as_scalar(padding, "padding", nonnegative=True)
+        self.convex = bool(convex)
         obs = list(obstacles)
         for k, o in enumerate(obs):
             if not isinstance(o, Obstacle):
                 raise InputError(f"obstacles: item {k} is a {type(o).__name__}, not a Box, Sphere, Cylinder or Mesh")
-        self.self_pairs = self_collision_pairs(robot)
-        gm, names, _ = _robot_geometry(robot)
+        gm, names, self.geometry = _robot_geometry(robot, self.convex)
         self._n_robot = gm.ngeoms
+        if self_pairs is None:
+            self_pairs = self_collision_pairs(robot)
+        elif not _pairs_match(self_pairs, names, self._n_robot):
+            raise InputError(f"state: its self-collision pairs do not match {robot.name!r}'s collision geometry "
+                             f"({self._n_robot} geometries here)")
+        self.self_pairs = self_pairs
         counters: dict[str, int] = {}
         self.obstacle_names: list[str] = []
         for o in obs:
@@ -270,6 +484,8 @@ class World:
             # deep in a box at some joint angles; with contacts enabled coal finds it.
             req.enable_contact = True
             req.num_max_contacts = 1
+        for dreq in self._gd.distanceRequests:
+            dreq.gjk_tolerance = GJK_TOLERANCE
         self._data = robot.model.createData()
         self._pin = pin
 
@@ -321,8 +537,12 @@ class World:
 
         Examples
         --------
-        >>> w.in_collision(np.zeros(6))  # doctest: +SKIP
-        False
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> w.in_collision([[0, 0, 0, 0, 0, 0], [0, 0, -1.5, 0, 0, 0]])
+        array([False,  True])
         """
         qs, batch = self._qs(q)
         out = np.array([self._hit(x) for x in qs], dtype=bool)
@@ -343,8 +563,12 @@ class World:
 
         Examples
         --------
-        >>> w.distance(np.zeros(6))  # doctest: +SKIP
-        0.25
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> round(w.distance(np.zeros(6)), 4)
+        0.0737
         """
         qs, batch = self._qs(q)
         out = np.array([float(self._pairs_state(x)[1].min()) if self._pairs else np.inf for x in qs])
@@ -363,8 +587,12 @@ class World:
 
         Examples
         --------
-        >>> w.colliding_pairs(np.zeros(6))  # doctest: +SKIP
-        []
+        >>> import robokit
+        >>> from robokit.collision import Box, pose_from_xyz_rpy
+        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
+        >>> w = World(robokit.load("puma560"), [wall])
+        >>> w.colliding_pairs([0, 0, -1.5, 0, 0, 0])
+        [('link_4', 'wall')]
         """
         qs, batch = self._qs(q)
         out = []
@@ -379,6 +607,39 @@ class World:
             out.append(got)
         return out if batch else out[0]
 
+    def describe(self) -> str:
+        """A printable account of the world: robot geometry, padding, obstacles, the pairs checked
+        and the self-collision filter (checked and skipped pairs, with the reason).
+
+        Returns
+        -------
+        str
+            Several lines; ``print()`` it.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> print(World(robokit.load("puma560")).describe().splitlines()[0])
+        World for 'puma560': robot geometry capsules, padding 0 m, convex=False
+        """
+        lines = [f"World for {self.robot.name!r}: robot geometry {self.geometry}, padding {self.padding:g} m, "
+                 f"convex={self.convex}"]
+        if self.convex and self.geometry == "capsules":
+            lines.append("  (convex=True has no effect: the model has no collision meshes, only capsules)")
+        if self.convex:
+            import coal
+            flat = [g.name for g in list(self.geometry_model.geometryObjects)[:self._n_robot]
+                    if isinstance(g.geometry, coal.BVHModelBase)]
+            if flat:
+                lines.append(f"  kept as meshes (flat, no convex hull): {', '.join(flat)}")
+        lines.append(f"  robot geometries: {self._n_robot}; obstacles: {len(self.obstacles)}; pairs checked: "
+                     f"{len(self._pairs)} ({len(self.self_pairs.index_pairs)} self, "
+                     f"{len(self._pairs) - len(self.self_pairs.index_pairs)} robot–obstacle)")
+        for nm, o in zip(self.obstacle_names, self.obstacles):
+            lines.append(f"  obstacle {nm}: {o!r}")
+        lines.append(str(self.self_pairs))
+        return "\n".join(lines)
+
     def __repr__(self) -> str:
         return (f"World({self.robot.name!r}, {len(self.obstacles)} obstacles, padding={self.padding}, "
-                f"{len(self._pairs)} pairs, robot geometry: {self.self_pairs.geometry})")
+                f"{len(self._pairs)} pairs, robot geometry: {self.geometry})")

@@ -133,18 +133,47 @@ class CapabilityMap:
 
     @property
     def dexterous(self) -> np.ndarray:
-        """(D, 3) centres reachable in every orientation (index 1): the dexterous workspace."""
+        """The dexterous workspace: centres reachable in every orientation of the set.
+
+        Returns
+        -------
+        ndarray, shape (D, 3)
+            The centres (m, base frame) with index 1.
+        """
         return self.centres[self.index >= 1.0]
 
     @property
     def reachable(self) -> np.ndarray:
-        """(R, 3) centres reachable in at least one orientation of the set (index > 0)."""
+        """The reachable workspace as the map resolves it: centres reached in at least one orientation.
+
+        Returns
+        -------
+        ndarray, shape (R, 3)
+            The centres (m, base frame) with index > 0.
+        """
         return self.centres[self.index > 0.0]
 
     def to_bytes(self, include_robot: bool = False) -> bytes:
-        """The ``.npz`` file's bytes: ``centres``, ``index``, ``orientations``, ``resolution``
-        (and, when ``include_robot``, ``robot``, the name, with the robot's ``description``:
-        see :mod:`robokit.workspace.map_robot`)."""
+        """The ``.npz`` file's bytes: ``centres``, ``index``, ``orientations``, ``resolution``.
+
+        Parameters
+        ----------
+        include_robot : bool
+            Also ``robot`` (the name) and the robot's ``description`` members
+            (:mod:`robokit.workspace.map_robot`), so a viewer can draw the arm.
+
+        Returns
+        -------
+        bytes
+            An uncompressed ``.npz`` archive.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> cmap = robokit.capability_map("rrr", 0.2, orientations=4, client="serial")
+        >>> cmap.to_bytes()[:2]
+        b'PK'
+        """
         arrays = dict(centres=self.centres, index=self.index, orientations=self.orientations,
                       resolution=np.float64(self.resolution))
         if include_robot:
@@ -156,7 +185,27 @@ class CapabilityMap:
         return buf.getvalue()
 
     def save(self, path: str | os.PathLike[str], include_robot: bool = False) -> Path:
-        """Write the map to ``path`` (``.npz``) atomically; see :meth:`to_bytes`."""
+        """Write the map to ``path`` (``.npz``) atomically (nothing half-written on failure).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file to write.
+        include_robot : bool
+            Store the robot's name and description too (:meth:`to_bytes`).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+
+        Examples
+        --------
+        >>> import robokit, tempfile, os
+        >>> cmap = robokit.capability_map("rrr", 0.2, orientations=4, client="serial")
+        >>> cmap.save(os.path.join(tempfile.mkdtemp(), "m.npz")).suffix
+        '.npz'
+        """
         return atomic_write(path, self.to_bytes(include_robot))
 
     @classmethod
@@ -246,7 +295,7 @@ def _backend_for(desc: RobotSpec, restarts: int) -> Any:
 
 
 def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray, restarts: int, seed: int, chunk: int,
-                  world: tuple | None = None) -> np.ndarray:
+                  world: Any = None) -> np.ndarray:
     """The task: for (m, 3) centres, how many of the K orientations IK reaches, (m,) int64."""
     backend = _backend_for(desc, restarts)
     m, K = len(centres), len(orientations)
@@ -265,20 +314,24 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
 _WORLD_CACHE: dict = {}
 
 
-def _world_state(world: Any, robot: Robot) -> tuple | None:
-    """The picklable part of a ``robokit.collision.World`` the workers rebuild it from."""
+def _world_state(world: Any, robot: Robot) -> Any:
+    """The plain data a ``robokit.collision.World`` is rebuilt from in the workers
+    (:meth:`~robokit.collision.World.state`: obstacles, padding, convex, self-collision pairs;
+    no coal object is ever pickled)."""
     if world is None:
         return None
+    from robokit.collision import World
     from robokit.errors import InputError
-    if not hasattr(world, "obstacles") or not hasattr(world, "padding") or not hasattr(world, "in_collision"):
+    if not isinstance(world, World):
         raise InputError(f"world: expected a robokit.collision.World, got {type(world).__name__}")
-    if getattr(world.robot, "name", None) != robot.name:
+    if world.robot.name != robot.name:
         raise InputError(f"world: built for {world.robot.name!r}, not for {robot.name!r}")
-    return (tuple(world.obstacles), float(world.padding))
+    return world.state()
 
 
-def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
-    """Per pose: reached by an IK solution inside the limits that is collision-free in the world."""
+def _collision_free_success(robot: Robot, world: Any, T: np.ndarray, restarts: int, rng: np.random.Generator) -> np.ndarray:
+    """Per pose: reached by an IK solution inside the limits that is collision-free in the world
+    (rebuilt once per process from its state ``world``)."""
     from robokit.collision import World
     from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
     from robokit.ik.numeric import solve_ik
@@ -286,7 +339,7 @@ def _collision_free_success(robot: Robot, world: tuple, T: np.ndarray, restarts:
     key = (id(robot), hashlib.sha256(pickle.dumps(world)).hexdigest())
     w = _WORLD_CACHE.get(key)
     if w is None:
-        w = _WORLD_CACHE[key] = World(robot, world[0], world[1])
+        w = _WORLD_CACHE[key] = World.from_state(world, robot=robot)
     closed = robot.n == 6 and ik_analytic_kind(robot).method is not None
     out = np.zeros(len(T), dtype=bool)
     for k, Tk in enumerate(T):
@@ -380,8 +433,11 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     world : :class:`robokit.collision.World`, optional
         Count only orientations reached by an IK solution inside the limits that is free of
         self- and obstacle collisions (closed form: any such branch; otherwise ``solve_ik``
-        with ``world``). The workers rebuild the world from its obstacles and padding; the
-        store's fingerprint includes them. Slower than the plain map (one IK call per pose).
+        with ``world``). The world travels as plain data (``world.state()``: obstacles,
+        padding, ``convex``, the self-collision pairs), each worker rebuilds it once, and the
+        store's fingerprint includes it; the counts are the same in-process and on Dask.
+        Slower than the plain map (one IK call per pose; ``World(..., convex=True)`` is the
+        faster, conservative choice for mesh robots).
 
     Returns
     -------
@@ -399,8 +455,17 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
     --------
     >>> import robokit
     >>> cmap = robokit.capability_map("rrr", 0.1, orientations=8, client="serial")
-    >>> cmap.index.max()
-    1.0
+    >>> float(cmap.index.max()), cmap.orientations.shape
+    (1.0, (8, 3, 3))
+
+    Collision-free counts only (a floor under the PUMA's base):
+
+    >>> from robokit.collision import Box, World, pose_from_xyz_rpy
+    >>> puma = robokit.load("puma560")
+    >>> floor = Box([3, 3, 0.1], pose_from_xyz_rpy([0, 0, -0.1], [0, 0, 0]), name="floor")
+    >>> free = capability_map(puma, 0.4, orientations=4, client="serial", world=World(puma, [floor]))
+    >>> bool(free.index.sum() < capability_map(puma, 0.4, orientations=4, client="serial").index.sum())
+    True
     """
     from robokit.description.loading import load
     from robokit.workspace.reach import DEFAULT_RESTARTS, ik_backend, planar_chain
@@ -447,7 +512,7 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
             st.close()
 
 
-def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float, world: tuple | None = None) -> CapabilityMap:
+def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.ndarray, res: float, client: Any, st: ChunkStore | None, chunk_size: int, samples: int | None, seed: int, restarts: int, progress: bool | None, t0: float, max_bytes: float, world: Any = None) -> CapabilityMap:
     from robokit.workspace.grid import reachable_voxels
 
     K = len(R)
@@ -476,7 +541,7 @@ def _capability_map(rob: Robot, desc: RobotSpec, kind: str, chain: Any, R: np.nd
 
 def _sweep(rob: Robot, centres: np.ndarray, R: np.ndarray, res: float, client: Any, st: ChunkStore | None,
            chunk_size: int, desc: RobotSpec, restarts: int, seed: int, progress: bool | None, params: dict, t0: float,
-           t_pre: float, world: tuple | None = None) -> CapabilityMap:
+           t_pre: float, world: Any = None) -> CapabilityMap:
     """The orientation sweep over the chunks (those not already in the store ``st``)."""
     K, M = len(R), len(centres)
     n_chunks = params["chunks"]
@@ -567,7 +632,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: tuple | None = None) -> int:
+def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: Any = None) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed
 

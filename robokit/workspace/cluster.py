@@ -61,6 +61,9 @@ def local_cluster(n_workers: int, dashboard: bool = False) -> tuple[Any, Any, An
 
     Examples
     --------
+    Starting worker processes takes seconds (and a ``__main__`` guard in a script), so the
+    example is not run as a doctest:
+
     >>> cluster, client, security = local_cluster(1)  # doctest: +SKIP
     >>> client.scheduler.address.startswith("tls://127.0.0.1:")  # doctest: +SKIP
     True
@@ -116,7 +119,7 @@ def probe_scheduler(address: str, timeout: float | None = None) -> None:
 
     Examples
     --------
-    >>> probe_scheduler("tcp://127.0.0.1:1", timeout=1)  # doctest: +SKIP
+    >>> probe_scheduler("tcp://127.0.0.1:1", timeout=1)
     Traceback (most recent call last):
     robokit.errors.InputError: scheduler: cannot connect to 'tcp://127.0.0.1:1' (Connection refused)
     """
@@ -188,6 +191,12 @@ def connect_scheduler(address: str) -> Any:
     Examples
     --------
     >>> client = connect_scheduler("tcp://127.0.0.1:8786")  # doctest: +SKIP
+
+    Nothing listens on port 1: refused with one line, before ``distributed`` reads anything.
+
+    >>> connect_scheduler("tcp://127.0.0.1:1")
+    Traceback (most recent call last):
+    robokit.errors.InputError: scheduler: cannot connect to 'tcp://127.0.0.1:1' (Connection refused)
     """
     dask = require("dask", "a Dask scheduler")
     Client = require("distributed", "a Dask scheduler").Client

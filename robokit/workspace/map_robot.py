@@ -77,7 +77,20 @@ class MapRobot:
     chain: dict[str, np.ndarray] = field(default_factory=dict, compare=False, repr=False)
 
     def to_arrays(self) -> dict[str, np.ndarray]:
-        """The ``.npz`` entries of this description (``robot``, ``robot_kind``, ...)."""
+        """The ``.npz`` entries of this description.
+
+        Returns
+        -------
+        dict of str to ndarray
+            ``robot``, ``robot_kind`` and the members of that kind (``robot_model``,
+            ``robot_tip``, ``robot_dh`` or the chain's ``robot_joint_*`` arrays).
+
+        Examples
+        --------
+        >>> import robokit
+        >>> sorted(map_robot_of(robokit.load("puma560")).to_arrays())[:2]
+        ['robot', 'robot_kind']
+        """
         out = {"robot": np.str_(self.name), "robot_kind": np.str_(self.kind)}
         if self.kind in ("shipped", "example-robot-data"):
             out["robot_model"] = np.str_(self.model)

@@ -50,9 +50,22 @@ MAX_TEXT = 10_000
 class Member:
     """One array member of an ``.npz`` file: its shape pattern and allowed dtype kinds.
 
-    ``shape``: a tuple of ints or None (any length) per axis, e.g. ``(None, 3)``; ``kinds``:
-    numpy dtype kinds allowed (``"f"`` float, ``"i"``/``"u"`` integers, ``"U"`` text, ``"b"``
-    bool); ``required``: whether the file must have it.
+    Attributes
+    ----------
+    shape : tuple of int or None
+        The length of each axis, None for any length, e.g. ``(None, 3)``.
+    kinds : str
+        The numpy dtype kinds allowed (``"f"`` float, ``"i"``/``"u"`` integers, ``"U"`` text,
+        ``"b"`` bool); default ``"fiu"``.
+    required : bool
+        Whether the file must have it (default True).
+    max_text : int
+        Longest text (characters) of a ``"U"`` member.
+
+    Examples
+    --------
+    >>> Member((None, 3)).kinds
+    'fiu'
     """
 
     shape: tuple[int | None, ...]

@@ -101,7 +101,27 @@ def plot_capability_slice(cmap: CapabilityMap | str | os.PathLike[str], axis: st
 
 def legend_html(cmap: CapabilityMap, cmap_name: str = "viridis") -> str:
     """The colour legend of a map page: a bar from index 0 to 1 in the points' colour map, with
-    what the index means and the map's size (an HTML ``<div>`` fixed in the page's corner)."""
+    what the index means and the map's size.
+
+    Parameters
+    ----------
+    cmap : CapabilityMap
+        The map (its K and voxel count are written in the legend).
+    cmap_name : str
+        A matplotlib colour map name (the one the points use; default ``"viridis"``).
+
+    Returns
+    -------
+    str
+        An HTML ``<div id="robokit-legend">`` fixed in the page's lower-left corner.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> cmap = robokit.capability_map("rrr", 0.2, orientations=4, client="serial")
+    >>> "fraction of the 4 tool orientations" in legend_html(cmap)
+    True
+    """
     stops = ", ".join(f"rgb({r * 255:.0f},{g * 255:.0f},{b * 255:.0f}) {100 * t:.0f}%"
                       for t, (r, g, b) in zip(np.linspace(0, 1, 11), _colours(np.linspace(0, 1, 11), cmap_name)))
     K = len(cmap.orientations)

@@ -45,6 +45,11 @@ def ik_backend(robot: Robot) -> str:
     The first of :data:`robokit.ik.backends.BACKENDS` that supports "the tip at a pose" for
     this robot — the same list and order :func:`robokit.solve_ik` uses.
 
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (its tip frame is the tool).
+
     Returns
     -------
     str

@@ -28,13 +28,31 @@ __all__ = ["Workspace", "sample_workspace", "plot_workspace"]
 
 @dataclass
 class Workspace:
-    """Sampled workspace of one frame.
+    """Sampled workspace of one frame (returned by :func:`sample_workspace`).
 
-    points : (K, 3) frame positions in the base frame (m); q : (K, n) the configurations;
-    lower, upper : (3,) extent (m); reach : (K,) distance of each point from the base origin;
-    planar : True if all points lie in one horizontal plane (z extent below 1e-9 m);
-    measure : occupied volume (m³), or area (m²) when planar, estimated with
-    cells of edge ``cell`` (m).
+    Attributes
+    ----------
+    points : ndarray, shape (K, 3)
+        Frame positions in the base frame (m).
+    q : ndarray, shape (K, n)
+        The configurations sampled.
+    lower, upper : ndarray, shape (3,)
+        Extent of the points (m).
+    reach : ndarray, shape (K,)
+        Distance of each point from the base origin (m).
+    planar : bool
+        True if all points lie in one horizontal plane (z extent below 1e-9 m).
+    measure : float
+        Occupied volume (m³), or area (m²) when planar, counted in cells of edge ``cell``.
+    cell : float
+        The cell edge (m).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> ws = sample_workspace(robokit.load("rrr"), 500, rng=0)
+    >>> ws.points.shape, ws.planar
+    ((500, 3), True)
     """
 
     points: np.ndarray
@@ -49,13 +67,36 @@ class Workspace:
 
 def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = None, cell: float | None = None,
                      rng: int | np.random.Generator | None = None) -> Workspace:
-    """Sample the reachable workspace of ``frame`` (default the tip) of ``robot``.
+    """Sample the reachable workspace of ``frame`` (default the tip) of ``robot`` (Lecture 5).
 
-    robot : a :class:`robokit.Robot`; n_samples : configurations drawn uniformly inside the
-    joint limits (unlimited joints: [−π, π]); cell : voxel edge (m) for the volume estimate
-    (default: 1/40 of the largest extent); rng : Generator or seed.
+    Forward kinematics at ``n_samples`` configurations drawn uniformly inside the joint
+    limits; the volume (area for a planar arm) is the number of occupied cells times the
+    cell's volume (area).
 
-    Example: ``ws = robokit.workspace.sample_workspace(robokit.load("twolink"), 5000); ws.reach.max()`` ≈ l₁ + l₂.
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm.
+    n_samples : int
+        Configurations drawn uniformly inside the joint limits (unlimited joints: [−π, π]).
+    frame : str, optional
+        The frame whose positions are sampled (default the tip).
+    cell : float, optional
+        Cell edge (m) of the volume estimate (default 1/40 of the largest extent).
+    rng : int or numpy.random.Generator, optional
+        Seed or generator.
+
+    Returns
+    -------
+    Workspace
+        ``.points`` (K, 3) m in the base frame, ``.reach``, ``.measure`` (m³ or m²), ...
+
+    Examples
+    --------
+    >>> import robokit
+    >>> ws = sample_workspace(robokit.load("rrr"), 2000, rng=0)
+    >>> bool(1.09 < ws.reach.max() <= 0.5 + 0.4 + 0.2)  # nearly l1 + l2 + l3, never more
+    True
     """
     if int(n_samples) < 1:
         raise InputError(f"n_samples: expected a positive count, got {n_samples!r}")
@@ -82,7 +123,32 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
 
 
 def plot_workspace(ws: Workspace, ax: Any = None, s: float = 1.0, color: str = "tab:blue") -> Any:
-    """Scatter plot of a sampled workspace (2-D for planar arms, 3-D otherwise); returns the Figure."""
+    """Scatter plot of a sampled workspace (2-D for planar arms, 3-D otherwise).
+
+    Parameters
+    ----------
+    ws : Workspace
+        From :func:`sample_workspace`.
+    ax : matplotlib Axes, optional
+        Axes to draw in (a 3-D one for a spatial arm); default a new figure.
+    s : float
+        Marker size (points²).
+    color : str
+        Marker colour.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn in.
+
+    Examples
+    --------
+    >>> import robokit, matplotlib
+    >>> matplotlib.use("Agg")
+    >>> fig = plot_workspace(sample_workspace(robokit.load("rrr"), 500, rng=0))
+    >>> fig.axes[0].get_xlabel()
+    'x [m]'
+    """
     plt = require("matplotlib.pyplot", "plotting")
 
     if ax is None:

@@ -199,8 +199,21 @@ class ChunkStore:
             raise
 
     def begin(self, fingerprint: str, params: dict, K: int) -> None:
-        """Start a run with ``fingerprint`` (its ``params`` written to the marker) and K
-        orientations: chunks of another fingerprint are removed, those of this one kept."""
+        """Start a run: chunks of another fingerprint are removed, those of this one kept.
+
+        Parameters
+        ----------
+        fingerprint : str
+            The run's fingerprint (a digest of everything that determines the counts).
+        params : dict
+            The parameters, written to the marker file for the reader's information.
+        K : int
+            Orientations per voxel (the largest valid count).
+
+        Returns
+        -------
+        None
+        """
         self.fp, self.K = str(fingerprint), int(K)
         old = self._marker_fingerprint()
         for name in os.listdir(self.dir_fd):
@@ -261,10 +274,21 @@ class ChunkStore:
         return f"chunk_{int(chunk):05d}.npz"
 
     def read(self, chunk: int, centres: np.ndarray) -> np.ndarray | None:
-        """The counts of a finished chunk, (m,) int64, or None if it is to be (re)computed.
+        """The counts of a finished chunk, or None if it is to be (re)computed.
 
         A chunk file that exists but fails a check (not an npz, wrong members, dtype or
         shape, other centres or fingerprint, counts outside [0, K]) gives a note naming it.
+
+        Parameters
+        ----------
+        chunk : int
+            The chunk number.
+        centres : ndarray, shape (m, 3)
+            The chunk's voxel centres (m); the file must hold the same.
+
+        Returns
+        -------
+        ndarray of int64, shape (m,), or None
         """
         from robokit.workspace.mapfile import CHUNK_MEMBERS, read_npz_members
 
@@ -304,7 +328,21 @@ class ChunkStore:
         return None
 
     def write(self, chunk: int, centres: np.ndarray, counts: np.ndarray) -> None:
-        """Write a finished chunk atomically inside the open store folder."""
+        """Write a finished chunk atomically inside the open store folder.
+
+        Parameters
+        ----------
+        chunk : int
+            The chunk number.
+        centres : ndarray, shape (m, 3)
+            Its voxel centres (m).
+        counts : ndarray of int, shape (m,)
+            Orientations reached per voxel, in [0, K].
+
+        Returns
+        -------
+        None
+        """
         buf = io.BytesIO()
         np.savez(buf, counts=np.asarray(counts, dtype=np.int64), centres=np.asarray(centres, dtype=float),
                  fingerprint=np.str_(self.fp))
