@@ -49,21 +49,73 @@
       var split = function (path) { return path.split("/").filter(function (s) { return s.length > 0; }); };
       visualNodes = R.visuals.map(function (v) { return viewer.scene_tree.find(split(v.path)); });
       frameNodes = R.frames.map(function (f) { return viewer.scene_tree.find(split(f.path)); });
-      // camera: three.js's orbit controls look at the origin of the world (camera.lookAt
-      // takes a world point), so the content is shifted by -centre and the camera orbits the
-      // origin; the camera sits in a frame rotated so that three.js's y is the base's z: a
-      // base-frame offset (x, y, z) is (x, z, -y) there
-      var t = R.camera.target, c = R.camera.position;
-      var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
-      ["meshcat/robot", "meshcat/frames", "meshcat/floor", "Axes"].forEach(function (p) {
-        viewer.scene_tree.find(split(p)).set_transform(colMajor(shift));
-      });
-      viewer.camera.position.set(c[0] - t[0], c[2] - t[2], -(c[1] - t[1]));
-      viewer.controls.update();
+      frameView();
+      window.addEventListener("resize", function () { frameView(); measureFraming(); });
     } catch (err) {
       viewer = null;
       message("3-D view unavailable (" + err + "); the readouts still work.");
     }
+  }
+
+  // The camera: target and distance fitted (RKMath.fitCamera) so that the robot's reach (the
+  // box R.camera.lo..hi, base frame) fills the canvas inside a margin, below meshcat's
+  // controls bar. three.js's orbit controls look at the origin of the world (camera.lookAt
+  // takes a world point), so the content is shifted by -target and the camera orbits the
+  // origin; the camera sits in a frame rotated so that three.js's y is the base's z: a
+  // base-frame offset (x, y, z) is (x, z, -y) there.
+  var MARGIN = 14;  // px kept free around the robot's reach
+  function overlays() {
+    var pr = el("meshcat-pane").getBoundingClientRect(), out = [];
+    document.querySelectorAll(".dg.main, .dg.ac > .dg").forEach(function (g) {
+      var r = g.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0 && r.bottom > pr.top && r.top < pr.bottom && r.right > pr.left && r.left < pr.right) {
+        out.push([r.left, r.top, r.right, r.bottom]);
+      }
+    });
+    return out;
+  }
+  function frameView() {
+    if (!viewer) { return; }
+    var pane = el("meshcat-pane"), w = pane.clientWidth, h = pane.clientHeight;
+    if (w < 20 || h < 20) { return; }
+    var pr = pane.getBoundingClientRect(), top = MARGIN;
+    overlays().forEach(function (r) { top = Math.max(top, r[3] - pr.top + 6); });
+    top = Math.min(top, 0.4 * h);
+    var win = { xlo: -1 + 2 * MARGIN / w, xhi: 1 - 2 * MARGIN / w, ylo: -1 + 2 * MARGIN / h, yhi: 1 - 2 * top / h };
+    var fit = RKMath.fitCamera(R.camera.lo, R.camera.hi, R.camera.direction, viewer.camera.fov, w / h, win);
+    var t = fit.target, c = fit.position;
+    var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
+    ["meshcat/robot", "meshcat/frames", "meshcat/floor", "meshcat/obstacles", "Axes"].forEach(function (p) {
+      var node = viewer.scene_tree.find(p.split("/"));
+      if (node) { node.set_transform(colMajor(shift)); }
+    });
+    viewer.camera.position.set(c[0] - t[0], c[2] - t[2], -(c[1] - t[1]));
+    viewer.controls.update();
+    viewer.set_dirty();
+    el("rk-framing").dataset.target = t.map(String).join(",");
+  }
+
+  // where the robot is drawn: its bounding box (three.js, at the current joint values)
+  // projected by the camera, in page pixels, next to the canvas and the panels (for tests)
+  function measureFraming() {
+    if (!viewer) { return; }
+    var THREE = MeshCat.THREE, node = viewer.scene_tree.find(["meshcat", "robot"]);
+    viewer.scene.updateMatrixWorld(true);
+    viewer.camera.updateMatrixWorld(true);
+    var box = new THREE.Box3().setFromObject(node.object);
+    if (box.isEmpty()) { return; }
+    var pane = el("meshcat-pane"), pr = pane.getBoundingClientRect();
+    var x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (var k = 0; k < 8; k++) {
+      var v = new THREE.Vector3((k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                (k & 4) ? box.max.z : box.min.z).project(viewer.camera);
+      var px = pr.left + 0.5 * (v.x + 1) * pr.width, py = pr.top + 0.5 * (1 - v.y) * pr.height;
+      x0 = Math.min(x0, px); x1 = Math.max(x1, px); y0 = Math.min(y0, py); y1 = Math.max(y1, py);
+    }
+    var rect = function (id) { var r = el(id).getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom].join(","); };
+    setData("rk-framing", { robot: [x0, y0, x1, y1].join(","), view: [pr.left, pr.top, pr.right, pr.bottom].join(","),
+                            side: rect("rk-side"), readouts: rect("rk-readouts"),
+                            overlays: JSON.stringify(overlays()) });
   }
 
   // column-major (three.js) copy of a row-major 4x4
@@ -108,12 +160,12 @@
       var div = document.createElement("div");
       div.className = "rk-joint";
       div.innerHTML =
-        '<div class="rk-joint-head"><span class="rk-joint-name"></span>' +
-        '<span><input type="number"> <span class="rk-small"></span></span></div>' +
-        '<input type="range"><div class="rk-joint-lim"><span></span><span></span></div>';
+        '<div class="rk-joint-name"></div><input type="range">' +
+        '<span class="rk-joint-val"><input type="number"> <span class="rk-small"></span></span>' +
+        '<div class="rk-joint-lim"><span></span><span></span></div>';
       div.querySelector(".rk-joint-name").textContent = "q" + (i + 1) + " " + j.name;
       div.querySelector(".rk-joint-name").title = j.name + (j.limited ? "" : " (no limits)");
-      div.querySelector(".rk-joint-head .rk-small").textContent = j.type === "R" ? "deg" : "m";
+      div.querySelector(".rk-joint-val .rk-small").textContent = j.type === "R" ? "deg" : "m";
       var r = div.querySelector("input[type=range]"), t = div.querySelector("input[type=number]");
       r.id = "rk-slider-" + i; t.id = "rk-value-" + i;
       [r, t].forEach(function (inp) {
@@ -221,9 +273,14 @@
     var qe = setData("rk-q", { q: q.map(String).join(",") });
     qe.textContent = "q = [" + q.map(function (v) { return v.toFixed(4); }).join(", ") + "] (rad / m)";
     el("rk-scene-poses").dataset.poses = JSON.stringify(scenePoses);
+    measureFraming();
     try { history.replaceState(null, "", "#q=" + q.map(function (v) { return String(v); }).join(",")); } catch (e) { /* file:// in some browsers */ }
   }
 
+  var framing = document.createElement("div");
+  framing.id = "rk-framing";
+  framing.hidden = true;
+  document.body.appendChild(framing);
   var hidden = document.createElement("div");
   hidden.id = "rk-scene-poses";
   hidden.hidden = true;

@@ -231,15 +231,27 @@ def _pack(command: Any) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
-def _camera(points: np.ndarray, fill: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
-    lo, hi = points.min(axis=0), points.max(axis=0)
+#: Direction the teach page looks from (azimuth, elevation in degrees, base frame): a 3/4 view.
+CAMERA_AZIMUTH, CAMERA_ELEVATION = 40.0, 22.0
+
+
+def _camera(points: np.ndarray, pad: float) -> dict:
+    """The teach page's camera data for the reach points ``points`` (K, 3) (base frame, m).
+
+    ``lo``/``hi``: the points' bounding box grown by ``pad`` (m, the links' thickness);
+    ``direction``: unit vector from the target towards the camera (the 3/4 view of
+    :data:`CAMERA_AZIMUTH`, :data:`CAMERA_ELEVATION`). The page fits target and distance to
+    its canvas (``RKMath.fitCamera``); ``target``/``position`` are the fit for a square canvas
+    with a 75° field of view, used until the page has measured its canvas.
+    """
+    lo, hi = points.min(axis=0) - pad, points.max(axis=0) + pad
+    az, el = math.radians(CAMERA_AZIMUTH), math.radians(CAMERA_ELEVATION)
+    d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     centre = 0.5 * (lo + hi)
-    radius = max(0.45 * float(np.linalg.norm(hi - lo)), 0.15)
-    dist = radius / math.tan(0.5 * math.radians(75.0) * fill)  # meshcat's camera: 75° vertical field of view
-    az, el = math.radians(40.0), math.radians(22.0)
-    offset = dist * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
-    return centre, centre + offset
+    radius = 0.5 * float(np.linalg.norm(hi - lo))
+    dist = radius / math.sin(0.5 * math.radians(75.0))  # the bounding sphere inside the view cone
+    return {"lo": lo.tolist(), "hi": hi.tolist(), "direction": d.tolist(),
+            "target": centre.tolist(), "position": (centre + dist * d).tolist()}
 
 
 def teach_parameters(robot: Robot) -> dict:
@@ -331,7 +343,6 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         fid = robot.frame_id(name)
         frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
                        "T": poses0[name].tolist()})
-    target, position = _camera(P)
     params = teach_parameters(robot)
     rows = params["rows"]
     return {
@@ -344,7 +355,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         "q0": q0.tolist(),
         "visuals": visuals,
         "frames": frames,
-        "camera": {"target": target.tolist(), "position": position.tolist()},
+        "camera": _camera(P, max(0.05, 0.06 * size)),
         "scale": scale,
         "_commands": commands,
     }
