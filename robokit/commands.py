@@ -79,11 +79,13 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 
 
 def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
-                  q: ArrayLike | None = None, open_browser: bool = True) -> int:
+                  q: ArrayLike | None = None, open_browser: bool = True,
+                  obstacles: str | os.PathLike[str] | None = None) -> int:
     """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
 
     Without ``output`` the page goes to a new temporary file, which is opened in the web
-    browser (``webbrowser``); its path is returned in the message on stdout.
+    browser (``webbrowser``); its path is returned in the message on stdout. ``obstacles``:
+    a scene YAML file (as ``robokit plan`` reads it); the page then shows the collision state.
     """
     import tempfile
     import webbrowser
@@ -95,7 +97,12 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     if output is not None:
         _output_file(output, (".html", ".htm"))
     robot = load(model)
-    page = teach_html(robot, q=q)
+    obs, padding = None, 0.0
+    if obstacles:
+        from robokit.collision import load_scene
+
+        obs, padding = load_scene(obstacles)
+    page = teach_html(robot, q=q, obstacles=obs, padding=padding)
     if output is not None:
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)

@@ -235,21 +235,11 @@ class Scene:
         >>> scene.obstacles([Box([0.1, 1, 1])])  # doctest: +SKIP
         """
         g = require("meshcat.geometry", "the viewer")
+        from robokit.viz._shapes import obstacle_geometry
+
         mat = g.MeshLambertMaterial(color=color, opacity=opacity, transparent=opacity < 1)
-        Rx = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])  # meshcat's cylinder axis y → z
         for k, o in enumerate(obstacles):
-            kind = type(o).__name__
-            T = np.asarray(o.pose, dtype=float)
-            if kind == "Box":
-                geom = g.Box([float(x) for x in o.size])
-            elif kind == "Sphere":
-                geom = g.Sphere(float(o.radius))
-            elif kind == "Cylinder":
-                geom, T = g.Cylinder(float(o.length), float(o.radius)), T @ Rx
-            elif kind == "Mesh":
-                geom = g.TriangularMeshGeometry(np.asarray(o.vertices, dtype=float), np.asarray(o.faces, dtype=np.int64))
-            else:
-                raise InputError(f"obstacles: item {k} is a {kind}, not a Box, Sphere, Cylinder or Mesh")
+            geom, T = obstacle_geometry(o, k)
             self.vis["obstacles"][str(k)].set_object(geom, mat)
             self.vis["obstacles"][str(k)].set_transform(T)
         return self
@@ -297,7 +287,7 @@ class Scene:
         P = self._points()
         return float(max(np.ptp(P, axis=0).max(), 0.2))
 
-    _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "/Grid", "/Axes")
+    _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "obstacles", "floor", "/Grid", "/Axes")
 
     def frame_camera(self, fill: float = 0.75) -> Scene:
         """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.

@@ -49,8 +49,18 @@
       var split = function (path) { return path.split("/").filter(function (s) { return s.length > 0; }); };
       visualNodes = R.visuals.map(function (v) { return viewer.scene_tree.find(split(v.path)); });
       frameNodes = R.frames.map(function (f) { return viewer.scene_tree.find(split(f.path)); });
+      obstacleNodes = R.collision ? R.collision.obstacle_paths.map(function (p) { return viewer.scene_tree.find(split(p)); }) : [];
       frameView();
-      window.addEventListener("resize", function () { frameView(); measureFraming(); });
+      var size = [pane.clientWidth, pane.clientHeight];
+      var refit = function () {
+        if (pane.clientWidth === size[0] && pane.clientHeight === size[1]) { return; }
+        size = [pane.clientWidth, pane.clientHeight];
+        viewer.set_3d_pane_size();
+        frameView();
+        measureFraming();
+      };
+      window.addEventListener("resize", refit);
+      if (window.ResizeObserver) { new ResizeObserver(refit).observe(pane); }
     } catch (err) {
       viewer = null;
       message("3-D view unavailable (" + err + "); the readouts still work.");
@@ -66,7 +76,8 @@
   var MARGIN = 14;  // px kept free around the robot's reach
   function overlays() {
     var pr = el("meshcat-pane").getBoundingClientRect(), out = [];
-    document.querySelectorAll(".dg.main, .dg.ac > .dg").forEach(function (g) {
+    // meshcat's controls (dat.GUI, top right of the view; closed, only its button shows)
+    document.querySelectorAll(".dg.main, .dg.main .close-button").forEach(function (g) {
       var r = g.getBoundingClientRect();
       if (r.width > 0 && r.height > 0 && r.bottom > pr.top && r.top < pr.bottom && r.right > pr.left && r.left < pr.right) {
         out.push([r.left, r.top, r.right, r.bottom]);
@@ -113,9 +124,75 @@
       x0 = Math.min(x0, px); x1 = Math.max(x1, px); y0 = Math.min(y0, py); y1 = Math.max(y1, py);
     }
     var rect = function (id) { var r = el(id).getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom].join(","); };
+    var cv = viewer.renderer.domElement;
     setData("rk-framing", { robot: [x0, y0, x1, y1].join(","), view: [pr.left, pr.top, pr.right, pr.bottom].join(","),
+                            canvas: [cv.clientWidth, cv.clientHeight].join(","),
                             side: rect("rk-side"), readouts: rect("rk-readouts"),
                             overlays: JSON.stringify(overlays()) });
+  }
+
+  // ------------------------------------------------------------------ collision display
+  // R.collision (robokit.viz.clearance.clearance_page_data): the robot's capsules, the
+  // obstacles and the checked pairs; RKMath.clearance gives the distances. Visuals on a
+  // link in contact and obstacles in contact are painted red (their own colours kept in
+  // the materials' userData and put back when the contact ends).
+  var RED = 0xE0302A, obstacleNodes = [];
+  function materials(node, fn) {
+    if (!node) { return; }
+    node.object.traverse(function (o) {
+      (Array.isArray(o.material) ? o.material : (o.material ? [o.material] : [])).forEach(function (m) {
+        if (m.color) { fn(m); }
+      });
+    });
+  }
+  function paint(node, on) {
+    materials(node, function (m) {
+      if (m.userData.rkColor === undefined) { m.userData.rkColor = m.color.getHex(); }
+      m.color.setHex(on ? RED : m.userData.rkColor);
+    });
+  }
+  function colourOf(node) { var c = null; materials(node, function (m) { if (c === null) { c = m.color.getHex(); } }); return c; }
+  function fmtPair(p) { return p[0] + " \u2013 " + p[1]; }
+  function updateCollision(P) {
+    var C = R.collision, box = el("rk-collision");
+    if (!C) { return; }
+    if (!C.supported) {
+      box.className = "rk-na";
+      box.textContent = C.reason;
+      setData("rk-collision", { supported: "false" });
+      return;
+    }
+    var c = RKMath.clearance(C, P), hitJ = {}, hitN = {}, red = [];
+    c.joints.forEach(function (k) { hitJ[k] = true; });
+    c.pairs.forEach(function (p) { hitN[p[0]] = true; hitN[p[1]] = true; });
+    R.visuals.forEach(function (v, i) {
+      var on = hitJ[v.k] === true;
+      if (viewer) { paint(visualNodes[i], on); }
+      if (on) { red.push(v.path); }
+    });
+    C.obstacles_drawn.forEach(function (name, k) {
+      var on = hitN[name] === true;
+      if (viewer) { paint(obstacleNodes[k], on); }
+      if (on) { red.push(C.obstacle_paths[k]); }
+    });
+    if (c.pairs.length) {
+      box.className = "rk-contact";
+      box.textContent = "In contact: " + c.pairs.map(fmtPair).join(", ") + " (distance " + c.distance.toFixed(4) + " m)";
+    } else if (c.closest) {
+      box.className = "rk-free";
+      box.textContent = "Minimum distance " + c.distance.toFixed(4) + " m (" + fmtPair(c.closest) + ")";
+    } else {
+      box.className = "rk-free";
+      box.textContent = "No pair to check";
+    }
+    var colours = {};
+    if (viewer) {
+      R.visuals.forEach(function (v, i) { colours[v.path] = colourOf(visualNodes[i]); });
+      C.obstacle_paths.forEach(function (p, k) { colours[p] = colourOf(obstacleNodes[k]); });
+    }
+    setData("rk-collision", { supported: "true", distance: String(c.distance), closest: JSON.stringify(c.closest),
+                              pairs: JSON.stringify(c.pairs), links: JSON.stringify(c.links), red: JSON.stringify(red),
+                              colours: JSON.stringify(colours) });
   }
 
   // column-major (three.js) copy of a row-major 4x4
@@ -143,6 +220,7 @@
   var sliders = [], boxes = [], rowsEls = [];
   function buildControls() {
     el("rk-title").textContent = R.name;
+    el("rk-coll-card").hidden = !R.collision;
     el("rk-tip").textContent = "(" + R.tip + " in the base frame)";
     el("rk-rows").textContent = "(task rows J\u209c: " + R.rows.map(function (r) { return R.row_symbols[r]; }).join(", ") + ")";
     var poses = el("rk-poses");
@@ -222,6 +300,7 @@
     }
     var rd = RKMath.readouts(R, q), P = rd.P, T = rd.T, J = rd.J;
     placeObjects(P);
+    updateCollision(P);
 
     // pose
     var xyz = rd.xyz, ang = rd.rpy, quat = rd.quat;

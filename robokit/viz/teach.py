@@ -155,7 +155,7 @@ class _RecordingWindow:
 
 
 def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,
-           mesh_cell: float) -> tuple[list[Any], dict[str, str], dict[str, str]]:
+           mesh_cell: float, obstacles: Sequence[Any] = ()) -> tuple[list[Any], dict[str, str], dict[str, str]]:
     """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
 
     The robot is loaded by Pinocchio's MeshcatVisualizer (meshes or primitives, with the
@@ -222,6 +222,12 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
             node["label"].set_object(g.Box([0.8 * triad_scale, 0.25 * triad_scale, 1e-4 * triad_scale]), mat)
             node["label"].set_transform(T)
         frame_paths[name] = node.path.lower()
+    from robokit.viz._shapes import obstacle_geometry
+
+    for k, o in enumerate(obstacles):
+        geom, T = obstacle_geometry(o, k)
+        vis["obstacles"][str(k)].set_object(geom, g.MeshLambertMaterial(color=0xC08040, opacity=0.6, transparent=True))
+        vis["obstacles"][str(k)].set_transform(T)
     return window.commands, paths, frame_paths
 
 
@@ -292,17 +298,41 @@ def teach_parameters(robot: Robot) -> dict:
     }
 
 
-def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002) -> dict:
+def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002, world: Any = None) -> dict:
     """Everything the teach page needs about ``robot``, as plain JSON-able values.
 
-    Returns a dict with ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type``
-    'R'/'P', ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists
-    of 6: the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
-    :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
-    ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
-    home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (``target``,
-    ``position`` in the base frame); ``scale`` (triad length, m). Mesh files are decimated
-    with cubes of side ``mesh_cell`` (m, see :mod:`robokit.viz._meshes`).
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero).
+    mesh_cell : float
+        Cube side (m) of the mesh decimation (see :mod:`robokit.viz._meshes`).
+    world : robokit.collision.World, optional
+        The robot among obstacles: the obstacles are drawn and the page shows the collision
+        state (:func:`robokit.viz.clearance.clearance_page_data`).
+
+    Returns
+    -------
+    dict
+        ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type`` 'R'/'P',
+        ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists of 6:
+        the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
+        :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
+        ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
+        home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (the reach box
+        ``lo``/``hi`` and view ``direction`` the page fits its camera to, and a first
+        ``target``/``position``, base frame, m); ``scale`` (triad length, m); ``collision``
+        (None without a world, else the page data of the clearance module plus the
+        obstacles' meshcat ``obstacle_paths``).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> d = teach_data(robokit.load("twolink"))
+    >>> d["n"], d["rows"], d["collision"]
+    (2, [3, 4], None)
     """
     import pinocchio as pin
 
@@ -325,8 +355,15 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     P = P[P[:, 2] >= P[: len(pts[0]), 2].min() - 1e-9]  # what goes below the base's level is left out
     size = float(max(np.ptp(P, axis=0).max(), 0.2))
     scale = 0.1 * size
+    obstacles = tuple(world.obstacles) if world is not None else ()
     commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()),
-                                          mesh_cell)
+                                          mesh_cell, obstacles)
+    collision = None
+    if world is not None:
+        from robokit.viz.clearance import clearance_page_data
+
+        collision = clearance_page_data(world)
+        collision["obstacle_paths"] = [f"/meshcat/obstacles/{k}" for k in range(len(obstacles))]
 
     data = robot.model.createData()
     pin.forwardKinematics(robot.model, data, pin.neutral(robot.model))
@@ -357,6 +394,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         "frames": frames,
         "camera": _camera(P, max(0.05, 0.06 * size)),
         "scale": scale,
+        "collision": collision,
         "_commands": commands,
     }
 
@@ -439,22 +477,53 @@ def _script_json(obj: Any) -> str:
     return text
 
 
-def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None) -> str:
-    """The teach page of ``model`` (a :class:`robokit.Robot` or anything ``robokit.load`` accepts).
+def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None,
+               obstacles: Sequence[Any] | None = None, padding: float = 0.0) -> str:
+    """The teach page of ``model``: one self-contained HTML page that works offline from a file.
 
-    One self-contained HTML page (meshcat's three.js bundle, the robot's meshes and the
-    page's script embedded; nothing fetched): sliders, named-pose buttons, the 3-D view and
-    the live readouts described in the module docstring. ``q`` (n,) sets the initial joint
-    values (rad/m; default zero); a URL fragment ``#q=q1,q2,…`` (rad/m) overrides it when the
-    page opens, values outside the slider range being clamped (wrapped for unlimited
-    revolute joints).
+    Meshcat's three.js bundle, the robot's meshes and the page's script are embedded; nothing
+    is fetched. Sliders, named-pose buttons, the 3-D view and the live readouts described in
+    the module docstring; a URL fragment ``#q=q1,q2,…`` (rad/m) overrides ``q`` when the page
+    opens, values outside the slider range being clamped (wrapped for unlimited revolute
+    joints).
 
-    Example: ``Path("puma.html").write_text(teach_html("puma560"))``.
+    Parameters
+    ----------
+    model : robokit.Robot, DHTable, str or path
+        Anything ``robokit.load`` accepts.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero).
+    obstacles : sequence of robokit.collision shapes, optional
+        Obstacles (base frame) to draw. With them (an empty list included) the page shows
+        the collision state of a :class:`robokit.collision.World` of the robot: links in
+        contact turn red and a readout gives the minimum distance (m) and the nearest or
+        colliding pair — computed in the page for capsule models (DH robots) among boxes,
+        spheres and cylinders (:mod:`robokit.viz.clearance`); for a robot with collision
+        meshes, or a mesh obstacle, the readout says that this needs the notebook teach
+        pendant (Python).
+    padding : float
+        The World's padding (m, inflation of the robot's geometry).
+
+    Returns
+    -------
+    str
+        The HTML page.
+
+    Examples
+    --------
+    >>> page = teach_html("twolink")
+    >>> page.startswith("<!DOCTYPE html>")
+    True
     """
     from robokit.description.loading import load
 
     robot = load(model)
-    d = teach_data(robot, q)
+    world = None
+    if obstacles is not None:
+        from robokit.collision import World
+
+        world = World(robot, obstacles, padding=padding)
+    d = teach_data(robot, q, world=world)
     commands = d.pop("_commands")
     scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
