@@ -24,7 +24,10 @@ from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
 from robokit._optional import require
-from robokit.viz._labels import label_png
+from robokit.viz._labels import label_offsets, label_sprite
+
+#: A frame label's height, per unit of triad length.
+LABEL_HEIGHT = 0.45
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -125,6 +128,9 @@ class Scene:
         self.viz.loadViewerModel(rootNodeName="robot")
         self.q = np.zeros(r.n)
         self._extra_points: list[np.ndarray] = []
+        self.grid: dict | None = None
+        self._frames: tuple[list[str], float] = ([], 0.0)
+        self._label_points: list[np.ndarray] = []
 
     # ------------------------------------------------------------------ drawing
     def show(self, q: ArrayLike | None = None) -> Scene:
@@ -155,19 +161,52 @@ class Scene:
                          if r.model.existFrame(n)] + [r.tip]
         poses = r.frame_poses(self.q)
         scale = scale or 0.12 * self._size()
+        names = list(names)
         for name in names:
             if name not in poses:
                 raise InputError(f"frames: no frame {name!r} in {r.name}")
+        for name in names:
             node = self.vis["frames"][name]
             node["triad"].set_object(g.triad(scale))
-            node.set_transform(poses[name])
             if labels:
-                png = g.PngImage(label_png(name))
-                mat = g.MeshBasicMaterial(map=g.ImageTexture(image=png), transparent=True)
+                self.vis["labels"][name].set_object(label_sprite(name, LABEL_HEIGHT * scale))
+        self._frames = (names, LABEL_HEIGHT * scale if labels else 0.0)
+        return self.move_frames(self.q)
+
+    def move_frames(self, q: ArrayLike) -> Scene:
+        """Move the triads (and labels) drawn by :meth:`frames` to joint values ``q``.
+
+        Labels stay upright above their frame's origin (stacked where origins coincide, see
+        :func:`robokit.viz._labels.label_offsets`); they are camera-facing sprites.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad / m).
+
+        Returns
+        -------
+        Scene
+            self.
+
+        Examples
+        --------
+        >>> Scene("puma560").frames().move_frames([0, 0.5, -0.5, 0, 0, 0])   # doctest: +SKIP
+        """
+        names, height = self._frames
+        if not names:
+            return self
+        poses = self.robot.frame_poses(np.asarray(q, dtype=float))
+        for name in names:
+            self.vis["frames"][name].set_transform(poses[name])
+        if height > 0:
+            origins = np.array([poses[nm][:3, 3] for nm in names])
+            offsets = label_offsets(origins, height)
+            self._label_points = list(origins + offsets + [0.0, 0.0, 0.6 * height])  # the labels' tops, for the camera
+            for name, p, off in zip(names, origins, offsets):
                 T = np.eye(4)
-                T[:3, 3] = [0.3 * scale, 0.3 * scale, 0.6 * scale]
-                node["label"].set_object(g.Box([0.8 * scale, 0.25 * scale, 1e-4 * scale]), mat)
-                node["label"].set_transform(T)
+                T[:3, 3] = p + off
+                self.vis["labels"][name].set_transform(T)
         return self
 
     def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
@@ -281,13 +320,63 @@ class Scene:
         P = np.array([T[:3, 3] for T in poses.values()])
         if self._extra_points:
             P = np.vstack([P, np.asarray(self._extra_points)])
+        if self._label_points:
+            P = np.vstack([P, np.asarray(self._label_points)])
         return P
 
     def _size(self) -> float:
         P = self._points()
         return float(max(np.ptp(P, axis=0).max(), 0.2))
 
-    _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "obstacles", "floor", "/Grid", "/Axes")
+    def ground_grid(self, spacing: float | None = None) -> Scene:
+        """Draw a square ground grid under the robot, in the base frame's z = 0 plane.
+
+        The grid is centred on the base and sized to the robot's reach: its half-width is the
+        largest horizontal distance of any frame origin from the base over 32 random
+        configurations (``numpy.random.default_rng(0)``, within the joint limits) and the
+        configuration shown, plus 10 %, rounded up to a whole number of cells. meshcat's
+        default 20 m grid (a thin band at the horizon from a 3/4 view) is hidden.
+
+        Parameters
+        ----------
+        spacing : float, optional
+            Cell size (m); default a round step (0.05, 0.1, 0.2, 0.25, 0.5, 1 m …) giving
+            about eight cells from the base to the edge.
+
+        Returns
+        -------
+        Scene
+            self; ``self.grid`` is ``{"half": half-width (m), "spacing": cell (m), "z": 0.0}``.
+
+        Examples
+        --------
+        >>> Scene("puma560").ground_grid().grid["z"]   # doctest: +SKIP
+        0.0
+        """
+        g = require("meshcat.geometry", "the viewer")
+
+        r = self.robot
+        rng = np.random.default_rng(0)
+        pts = [self.robot.frame_poses(self.q)] + [r.frame_poses(r.random_configuration(rng)) for _ in range(32)]
+        reach = max(0.2, max(float(np.hypot(T[0, 3], T[1, 3])) for d in pts for T in d.values()))
+        if spacing is None:
+            raw = 1.1 * reach / 8
+            mag = 10.0 ** np.floor(np.log10(raw))
+            spacing = float(min((m * mag for m in (1, 2, 2.5, 5, 10) if m * mag >= raw), default=10 * mag))
+        elif not (spacing > 0 and np.isfinite(spacing)):
+            raise InputError(f"spacing: expected a positive cell size (m), got {spacing!r}")
+        half = float(np.ceil(1.1 * reach / spacing - 1e-9) * spacing)
+        ticks = np.arange(-half, half + 0.5 * spacing, spacing)
+        seg = []
+        for t in ticks:
+            seg += [[t, -half, 0.0], [t, half, 0.0], [-half, t, 0.0], [half, t, 0.0]]
+        self.vis["/Grid"].set_property("visible", False)
+        self.vis["floor"].set_object(g.LineSegments(g.PointsGeometry(np.array(seg, dtype=np.float32).T),
+                                                    g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.7)))
+        self.grid = {"half": half, "spacing": spacing, "z": 0.0}
+        return self
+
+    _SHIFTED = ("robot", "frames", "labels", "points", "paths", "poses", "ellipsoid", "obstacles", "floor", "/Grid", "/Axes")
 
     def frame_camera(self, fill: float = 0.75) -> Scene:
         """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
@@ -297,6 +386,8 @@ class Scene:
         and the camera is placed at a 3/4 view (azimuth 45°, elevation 25°) at the distance
         where the box's bounding sphere spans ``fill`` of the vertical field of view.
         """
+        if self.grid is None:
+            self.ground_grid()
         P = self._points()
         lo, hi = P.min(axis=0), P.max(axis=0)
         centre = 0.5 * (lo + hi)
@@ -341,13 +432,35 @@ class Scene:
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
-    def teach(self, q: ArrayLike | None = None, height: int = 420) -> Any:
-        """A teach pendant in the notebook: joint sliders driving this scene's live view, with the
-        tool pose, Jacobian, manipulability, singularity and joint-limit readouts (see
-        :func:`robokit.viz.teach.teach_widget`). Returns the ipywidgets box."""
+    def teach(self, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+        """A teach pendant in the notebook, driving this scene's live view.
+
+        Joint sliders with the tool pose, Jacobian, manipulability, singularity and joint-limit
+        readouts; with a ``world`` also its obstacles, links in contact in red and the
+        minimum distance (see :func:`robokit.viz.teach.teach_widget`).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,), optional
+            Initial joint values (rad / m).
+        height : int
+            Height of the 3-D view (px).
+        world : robokit.collision.World, optional
+            This scene's robot among obstacles (``World(scene.robot, obstacles)``).
+
+        Returns
+        -------
+        ipywidgets.VBox
+            The pendant (``.set_q``, ``.readouts``, ``.collision``).
+
+        Examples
+        --------
+        >>> scene = Scene("puma560")   # doctest: +SKIP
+        >>> scene.teach()   # doctest: +SKIP
+        """
         from robokit.viz.teach import teach_widget
 
-        return teach_widget(self, q=q, height=height)
+        return teach_widget(self, q=q, height=height, world=world)
 
     def close(self) -> None:
         """Stop the meshcat server this scene started (if it started one)."""

@@ -31,7 +31,7 @@
   function message(text) { el("rk-msg").textContent = text || ""; }
 
   // ------------------------------------------------------------------ 3-D view (meshcat)
-  var viewer = null, visualNodes = [], frameNodes = [];
+  var viewer = null, visualNodes = [], frameNodes = [], labelNodes = [];
   function startViewer() {
     try {
       var pane = el("meshcat-pane");
@@ -49,6 +49,7 @@
       var split = function (path) { return path.split("/").filter(function (s) { return s.length > 0; }); };
       visualNodes = R.visuals.map(function (v) { return viewer.scene_tree.find(split(v.path)); });
       frameNodes = R.frames.map(function (f) { return viewer.scene_tree.find(split(f.path)); });
+      labelNodes = R.labels.map(function (l) { return viewer.scene_tree.find(split(l.path)); });
       obstacleNodes = R.collision ? R.collision.obstacle_paths.map(function (p) { return viewer.scene_tree.find(split(p)); }) : [];
       frameView();
       var size = [pane.clientWidth, pane.clientHeight];
@@ -96,7 +97,7 @@
     var fit = RKMath.fitCamera(R.camera.lo, R.camera.hi, R.camera.direction, viewer.camera.fov, w / h, win);
     var t = fit.target, c = fit.position;
     var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
-    ["meshcat/robot", "meshcat/frames", "meshcat/floor", "meshcat/obstacles", "Axes"].forEach(function (p) {
+    ["meshcat/robot", "meshcat/frames", "meshcat/labels", "meshcat/floor", "meshcat/obstacles", "Axes"].forEach(function (p) {
       var node = viewer.scene_tree.find(p.split("/"));
       if (node) { node.set_transform(colMajor(shift)); }
     });
@@ -212,6 +213,11 @@
       var T = mul4(P[f.k], flat4(f.T));
       scenePoses[f.path] = T;
       if (viewer) { frameNodes[i].set_transform(colMajor(T)); }
+    });
+    // labels: upright above their frame's origin (offsets from teach.py, base frame)
+    R.labels.forEach(function (l, i) {
+      var T = scenePoses[R.frames[l.frame].path], o = l.offset;
+      if (viewer) { labelNodes[i].set_transform(colMajor([1, 0, 0, T[3] + o[0], 0, 1, 0, T[7] + o[1], 0, 0, 1, T[11] + o[2], 0, 0, 0, 1])); }
     });
     if (viewer) { viewer.set_dirty(); }
   }

@@ -84,6 +84,9 @@ ROW_NAMES = ("rotation about x", "rotation about y", "rotation about z",
              "translation along x", "translation along y", "translation along z")
 ROW_SYMBOLS = ("ωx", "ωy", "ωz", "vx", "vy", "vz")
 
+#: A frame label's height, per unit of triad length (the page's triads are short: a tenth of the reach).
+LABEL_HEIGHT = 0.8
+
 #: Slider range of joints without limits: ±180° (revolute), ±1 m (prismatic).
 _UNLIMITED = {"R": math.pi, "P": 1.0}
 
@@ -172,7 +175,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     from pinocchio.visualize import MeshcatVisualizer
 
     from robokit.viz._meshes import mesh_parts
-    from robokit.viz._labels import label_png
+    from robokit.viz._labels import label_sprite
 
     window = _RecordingWindow()
     vis = meshcat.Visualizer(window=window)
@@ -215,12 +218,8 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
         node = vis["frames"][name]
         big = name in ("tool", robot.tip)
         node["triad"].set_object(g.triad(triad_scale * (1.4 if big else 1.0)))
-        if robot.dh is not None:
-            mat = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(label_png(name))), transparent=True)
-            T = np.eye(4)
-            T[:3, 3] = [0.3 * triad_scale, 0.3 * triad_scale, 0.6 * triad_scale]
-            node["label"].set_object(g.Box([0.8 * triad_scale, 0.25 * triad_scale, 1e-4 * triad_scale]), mat)
-            node["label"].set_transform(T)
+        if robot.dh is not None:  # camera-facing sprites, drawn over the geometry, placed by the page
+            vis["labels"][name].set_object(label_sprite(name, LABEL_HEIGHT * triad_scale))
         frame_paths[name] = node.path.lower()
     from robokit.viz._shapes import obstacle_geometry
 
@@ -380,6 +379,14 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         fid = robot.frame_id(name)
         frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
                        "T": poses0[name].tolist()})
+    labels = []
+    if robot.dh is not None:
+        from robokit.viz._labels import label_offsets
+
+        at_q0 = robot.frame_poses(q0)
+        offsets = label_offsets(np.array([at_q0[nm][:3, 3] for nm in frame_names]), LABEL_HEIGHT * scale)
+        labels = [{"path": f"/meshcat/labels/{nm}", "frame": i, "offset": off.tolist()}
+                  for i, (nm, off) in enumerate(zip(frame_names, offsets))]
     params = teach_parameters(robot)
     rows = params["rows"]
     return {
@@ -392,6 +399,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         "q0": q0.tolist(),
         "visuals": visuals,
         "frames": frames,
+        "labels": labels,
         "camera": _camera(P, max(0.05, 0.06 * size)),
         "scale": scale,
         "collision": collision,
@@ -572,14 +580,54 @@ def _readouts_html(robot: Robot, r: dict) -> str:
     )
 
 
-def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> Any:
-    """A notebook teach pendant on a :class:`robokit.viz.Scene`: ipywidgets sliders (degrees for
-    revolute joints, metres for prismatic ones), named-pose buttons, the scene's live meshcat
-    view (an iframe of its server) and the readouts of :func:`teach_readouts`.
+def _collision_html(c: dict) -> str:
+    """The collision readout of :func:`robokit.viz.clearance.clearance` as a small HTML block."""
+    def pair(p: Sequence[str]) -> str:
+        return _html.escape(f"{p[0]} – {p[1]}")
 
-    Moving a slider redraws the robot and its frames in the scene and recomputes the readouts.
-    Returns the ``ipywidgets.VBox``; its ``.set_q(q)`` sets all joints at once (rad/m) and
-    ``.readouts`` holds the latest :func:`teach_readouts` dict.
+    if c["pairs"]:
+        return (f"<div style='font:12px monospace;color:#a42a1b'><b>In contact:</b> "
+                f"{', '.join(pair(p) for p in c['pairs'])} (distance {c['distance']:.4f} m)</div>")
+    if c["closest"] is None:
+        return "<div style='font:12px monospace'>collision: no pair to check</div>"
+    return (f"<div style='font:12px monospace;color:#1e7b3c'>minimum distance {c['distance']:.4f} m "
+            f"({pair(c['closest'])})</div>")
+
+
+def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+    """A notebook teach pendant on a :class:`robokit.viz.Scene`.
+
+    ipywidgets sliders (degrees for revolute joints, metres for prismatic ones), named-pose
+    buttons, the scene's live meshcat view (an iframe of its server) and the readouts of
+    :func:`teach_readouts`. Moving a slider redraws the robot and its frames in the scene and
+    recomputes the readouts. With a ``world``, its obstacles are drawn and, on every change,
+    Python computes the collision state with the World (:func:`robokit.viz.clearance.clearance`):
+    the visuals of links in contact turn red and the readout shows the minimum distance (m)
+    and the nearest (or colliding) pair.
+
+    Parameters
+    ----------
+    scene : robokit.viz.Scene
+        The scene (and its robot) to drive.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero; clamped to the slider range).
+    height : int
+        Height of the 3-D view (px).
+    world : robokit.collision.World, optional
+        The scene's robot among obstacles (its ``robot`` must be the scene's).
+
+    Returns
+    -------
+    ipywidgets.VBox
+        With ``.set_q(q)`` (all joints at once, rad/m), ``.readouts`` (the latest
+        :func:`teach_readouts` dict), ``.collision`` (the latest ``clearance`` dict, or
+        None without a world) and ``.painted`` (names of the visuals drawn red).
+
+    Examples
+    --------
+    >>> from robokit.viz import Scene
+    >>> pendant = Scene("puma560").teach()   # doctest: +SKIP
+    >>> pendant.set_q([0, 0.5, -0.5, 0, 0, 0])   # doctest: +SKIP
     """
     W = require("ipywidgets", "the notebook teach pendant")
 
@@ -591,8 +639,12 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> A
     if q.shape != (robot.n,):
         raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     q = np.clip(q, rng[:, 0], rng[:, 1])
+    if world is not None and world.robot is not robot:
+        raise InputError("world: its robot is not the scene's robot (build the World from scene.robot)")
     names = _frame_names(robot)
     scene.show(q).frames(names, labels=robot.dh is not None)
+    if world is not None and world.obstacles:
+        scene.obstacles(world.obstacles)
     sliders = [
         W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
                       step=0.1 if types[i] == "R" else 0.001, description=f"{robot.joint_names[i][:12]}",
@@ -606,13 +658,34 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> A
     box = W.VBox()
     state = {"busy": False}
 
+    box.collision = None
+    box.painted = []
+    visuals = list(robot.visual_model.geometryObjects) if robot.visual_model is not None else []
+    painted: set[int] = set()  # indices of the visuals drawn red
+
+    def paint(c: dict) -> None:
+        import pinocchio as pin
+
+        hit = {i for i, go in enumerate(visuals) if int(go.parentJoint) in c["joints"]}
+        for i in sorted(hit - painted):
+            scene.vis[scene.viz.getViewerNodeName(visuals[i], pin.GeometryType.VISUAL)].set_property(
+                "color", [0.878, 0.188, 0.165, 1.0])
+        for i in sorted(painted - hit):  # back to the model's own colours and materials
+            scene.viz.loadViewerGeometryObject(visuals[i], pin.GeometryType.VISUAL)
+        painted.clear()
+        painted.update(hit)
+        box.painted = sorted(visuals[i].name for i in hit)
+
     def redraw(qv: np.ndarray) -> None:
+        if world is not None:
+            from robokit.viz.clearance import clearance
+
+            box.collision = clearance(world, qv)
+            paint(box.collision)
         scene.show(qv)
-        poses = robot.frame_poses(qv)
-        for name in names:
-            scene.vis["frames"][name].set_transform(poses[name])
+        scene.move_frames(qv)
         box.readouts = teach_readouts(robot, qv)
-        out.value = _readouts_html(robot, box.readouts)
+        out.value = _readouts_html(robot, box.readouts) + (_collision_html(box.collision) if world is not None else "")
 
     def on_change(_change: Any) -> None:
         if not state["busy"]:

@@ -6,6 +6,7 @@ the World's own queries.
 
 Regenerate the golden file after a deliberate change: ``python tests/viz/test_clearance.py``.
 """
+import functools
 import json
 import math
 import shutil
@@ -24,6 +25,7 @@ MATH_JS = Path(str(resources.files("robokit.viz").joinpath("teach_math.js")))
 APART = 1e-4  # m: pairs farther apart than this are compared exactly
 
 
+@functools.lru_cache(maxsize=None)
 def _worlds():
     """PUMA 560 among a rotated box, a sphere and a tilted cylinder (with and without padding),
     and the three-link arm with a floor box: every obstacle within reach."""
@@ -202,6 +204,37 @@ def test_mesh_robot_page_says_it_needs_python():
 
     data = clearance_page_data(World(robokit.load("ur5")))
     assert not data["supported"] and "notebook" in data["reason"]
+
+
+def test_notebook_widget_paints_the_links_in_contact():
+    """The notebook pendant (a live scene): at a configuration in contact the World's pairs are
+    shown and exactly the visuals of the links in contact are painted; moving away restores them."""
+    pytest.importorskip("ipywidgets")
+    from robokit.viz import Scene
+
+    world = _worlds()["puma560"]
+    rng = np.random.default_rng(2)
+    free = hit = None
+    while free is None or hit is None:
+        q = world.robot.random_configuration(rng)
+        if world.colliding_pairs(q):
+            hit = hit if hit is not None else q
+        elif world.distance(q) > 0.05:
+            free = free if free is not None else q
+    with Scene(world.robot) as scene:
+        pendant = scene.teach(q=free, world=world)
+        assert pendant.collision["pairs"] == [] and pendant.painted == []
+        assert "minimum distance" in pendant.children[-1].value
+        pendant.set_q(hit)
+        assert pendant.collision["pairs"] == world.colliding_pairs(hit)
+        joints = set(pendant.collision["joints"])
+        expected = sorted(go.name for go in world.robot.visual_model.geometryObjects if go.parentJoint in joints)
+        assert joints and pendant.painted == expected
+        assert "In contact" in pendant.children[-1].value
+        pendant.set_q(free)
+        assert pendant.painted == []
+        with pytest.raises(ValueError, match="world"):
+            scene.teach(world=_worlds()["rrr"])
 
 
 if __name__ == "__main__":
