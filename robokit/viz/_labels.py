@@ -79,10 +79,13 @@ def label_sprite(text: str, height: float) -> Any:
     """
     g = require("meshcat.geometry", "frame labels in the viewer")
 
-    class SpriteMaterial(g.GenericMaterial):
+    material_base: Any = g.GenericMaterial
+    object_base: Any = g.Object
+
+    class SpriteMaterial(material_base):
         _type = "SpriteMaterial"
 
-    class Sprite(g.Object):
+    class Sprite(object_base):
         _type = "Sprite"
 
         def lower(self) -> dict:

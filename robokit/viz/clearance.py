@@ -99,8 +99,8 @@ def clearance(world: Any, q: ArrayLike) -> dict:
     >>> T = np.eye(4); T[:3, 3] = [2.0, 0, 0]
     >>> w = World(robokit.load("puma560"), [Sphere(0.1, T, name="ball")])
     >>> c = clearance(w, np.zeros(6))
-    >>> c["in_collision"], c["closest"][1]
-    (False, 'ball')
+    >>> c["in_collision"], c["distance"] > 0, c["pairs"]
+    (False, True, [])
     """
     import pinocchio as pin
 

@@ -99,12 +99,36 @@ def stop_server(proc: subprocess.Popen | None) -> None:
 
 
 class Scene:
-    _views = 0  # pages written by notebook(), for unique file names
     """A meshcat scene of one robot.
 
-    robot : a :class:`robokit.Robot` (or anything ``robokit.load`` accepts);
-    vis : an existing ``meshcat.Visualizer`` (default: a new one with its own server on loopback).
+    Parameters
+    ----------
+    robot : robokit.Robot, DHTable, str or path
+        The robot (or anything ``robokit.load`` accepts).
+    vis : meshcat.Visualizer, optional
+        An existing visualizer to draw into (default: a new one with its own server on
+        loopback, stopped by :meth:`close`).
+
+    Attributes
+    ----------
+    robot : robokit.Robot
+        The robot drawn.
+    vis : meshcat.Visualizer
+        The visualizer (``vis.url()`` is the live page).
+    viz : pinocchio.visualize.MeshcatVisualizer
+        Pinocchio's visualizer that loaded the robot's geometry.
+    q : numpy.ndarray, shape (n,)
+        The configuration shown (rad / m).
+    grid : dict or None
+        The ground grid drawn by :meth:`ground_grid` (``half``, ``spacing``, ``z``; m).
+
+    Examples
+    --------
+    >>> with Scene("puma560") as s:   # doctest: +SKIP
+    ...     page = s.show([0, 0.5, -0.5, 0, 0, 0]).frames().frame_camera().html()
     """
+
+    _views = 0  # pages written by notebook(), for unique file names
 
     def __init__(self, robot: Robot | DHTable | str | os.PathLike[str], vis: Any = None) -> None:
         from pinocchio.visualize import MeshcatVisualizer

@@ -115,7 +115,27 @@ def task_rows(robot: Robot, samples: int = 24, seed: int = 0) -> list[int]:
     n ≥ 6: all six rows. Fewer joints: the rows that are not zero at every one of ``samples``
     random configurations (a planar arm in the xy plane moves along ωz, vx, vy) if there are
     at most n of them; otherwise the translational ones among them (vx, vy, vz for a spatial
-    three-joint arm; vx, vy for the planar two-link arm). Returns row indices into (ω; v).
+    three-joint arm; vx, vy for the planar two-link arm).
+
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    samples : int
+        Random configurations (uniform in the slider ranges) the rows are probed at.
+    seed : int
+        Seed of ``numpy.random.default_rng`` for those configurations.
+
+    Returns
+    -------
+    list of int
+        Row indices into the Jacobian's rows (ω; v), i.e. 0..5.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> task_rows(robokit.load("twolink"))
+    [3, 4]
     """
     n = robot.n
     if n >= 6:
@@ -409,15 +429,32 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
 
 # --------------------------------------------------------------------------- readouts (Python)
 def teach_readouts(robot: Robot, q: ArrayLike) -> dict:
-    """The teach pendant's quantities at joint values ``q`` (n,) (rad/m), computed with Pinocchio.
+    """The teach pendant's quantities at joint values ``q``, computed with Pinocchio.
 
-    Returns a dict: ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
-    ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
-    Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
-    ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``, ``level`` ("ok", "near" or
-    "singular"), ``direction`` (the lost direction, task-row components, dominant one
-    positive), ``direction_name``, ``margins`` (n,: distance to the nearer limit, ∞ for
-    unlimited joints), ``margin`` (their minimum) and ``margin_joint`` (its joint's name).
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    q : array_like, shape (n,)
+        Joint values (rad / m).
+
+    Returns
+    -------
+    dict
+        ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
+        ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
+        Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
+        ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``,
+        ``level`` ("ok", "near" or "singular"), ``direction`` (the lost direction, task-row
+        components, dominant one positive), ``direction_name``, ``margins`` (n,: distance to
+        the nearer limit, ∞ for unlimited joints), ``margin`` (their minimum) and
+        ``margin_joint`` (its joint's name).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> teach_readouts(robokit.load("ur5"), np.zeros(6))["level"]
+    'singular'
     """
     import pinocchio as pin
 
