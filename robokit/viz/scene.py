@@ -364,8 +364,8 @@ class Scene:
         Parameters
         ----------
         spacing : float, optional
-            Cell size (m); default a round step (0.05, 0.1, 0.2, 0.25, 0.5, 1 m …) giving
-            about eight cells from the base to the edge.
+            Cell size (m); default a round step giving about eight cells from the base to the
+            edge (:func:`robokit.viz._shapes.ground_grid_segments`).
 
         Returns
         -------
@@ -378,24 +378,15 @@ class Scene:
         0.0
         """
         g = require("meshcat.geometry", "the viewer")
+        from robokit.viz._shapes import ground_grid_segments
 
         r = self.robot
         rng = np.random.default_rng(0)
         pts = [self.robot.frame_poses(self.q)] + [r.frame_poses(r.random_configuration(rng)) for _ in range(32)]
-        reach = max(0.2, max(float(np.hypot(T[0, 3], T[1, 3])) for d in pts for T in d.values()))
-        if spacing is None:
-            raw = 1.1 * reach / 8
-            mag = 10.0 ** np.floor(np.log10(raw))
-            spacing = float(min((m * mag for m in (1, 2, 2.5, 5, 10) if m * mag >= raw), default=10 * mag))
-        elif not (spacing > 0 and np.isfinite(spacing)):
-            raise InputError(f"spacing: expected a positive cell size (m), got {spacing!r}")
-        half = float(np.ceil(1.1 * reach / spacing - 1e-9) * spacing)
-        ticks = np.arange(-half, half + 0.5 * spacing, spacing)
-        seg = []
-        for t in ticks:
-            seg += [[t, -half, 0.0], [t, half, 0.0], [-half, t, 0.0], [half, t, 0.0]]
+        reach = max(float(np.hypot(T[0, 3], T[1, 3])) for d in pts for T in d.values())
+        seg, half, spacing = ground_grid_segments(reach, spacing)
         self.vis["/Grid"].set_property("visible", False)
-        self.vis["floor"].set_object(g.LineSegments(g.PointsGeometry(np.array(seg, dtype=np.float32).T),
+        self.vis["floor"].set_object(g.LineSegments(g.PointsGeometry(seg),
                                                     g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.7)))
         self.grid = {"half": half, "spacing": spacing, "z": 0.0}
         return self

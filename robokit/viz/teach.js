@@ -69,8 +69,8 @@
   }
 
   // The camera: target and distance fitted (RKMath.fitCamera) so that the robot's reach (the
-  // box R.camera.lo..hi, base frame) fills the canvas inside a margin, below meshcat's
-  // controls bar. three.js's orbit controls look at the origin of the world (camera.lookAt
+  // frame origins over many configurations, R.camera.points, grown by R.camera.pad; base
+  // frame) fills the canvas inside a margin, below meshcat's controls bar. three.js's orbit controls look at the origin of the world (camera.lookAt
   // takes a world point), so the content is shifted by -target and the camera orbits the
   // origin; the camera sits in a frame rotated so that three.js's y is the base's z: a
   // base-frame offset (x, y, z) is (x, z, -y) there.
@@ -94,7 +94,7 @@
     overlays().forEach(function (r) { top = Math.max(top, r[3] - pr.top + 6); });
     top = Math.min(top, 0.4 * h);
     var win = { xlo: -1 + 2 * MARGIN / w, xhi: 1 - 2 * MARGIN / w, ylo: -1 + 2 * MARGIN / h, yhi: 1 - 2 * top / h };
-    var fit = RKMath.fitCamera(R.camera.lo, R.camera.hi, R.camera.direction, viewer.camera.fov, w / h, win);
+    var fit = RKMath.fitCamera(R.camera.points, R.camera.pad, R.camera.direction, viewer.camera.fov, w / h, win);
     var t = fit.target, c = fit.position;
     var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
     ["meshcat/robot", "meshcat/frames", "meshcat/labels", "meshcat/floor", "meshcat/obstacles", "Axes"].forEach(function (p) {
@@ -214,10 +214,17 @@
       scenePoses[f.path] = T;
       if (viewer) { frameNodes[i].set_transform(colMajor(T)); }
     });
-    // labels: upright above their frame's origin (offsets from teach.py, base frame)
+    // labels: upright above their frame's origin, by 0.9 label heights plus 1.1 more for each
+    // earlier label whose origin is within one height (a stack where origins coincide; as
+    // robokit.viz._labels.label_offsets does for the view pages)
+    var origins = R.labels.map(function (l) { var T = scenePoses[R.frames[l.frame].path]; return [T[3], T[7], T[11]]; });
     R.labels.forEach(function (l, i) {
-      var T = scenePoses[R.frames[l.frame].path], o = l.offset;
-      if (viewer) { labelNodes[i].set_transform(colMajor([1, 0, 0, T[3] + o[0], 0, 1, 0, T[7] + o[1], 0, 0, 1, T[11] + o[2], 0, 0, 0, 1])); }
+      var o = origins[i], below = 0;
+      for (var j = 0; j < i; j++) {
+        if (Math.hypot(o[0] - origins[j][0], o[1] - origins[j][1], o[2] - origins[j][2]) < l.height) { below++; }
+      }
+      var z = o[2] + (0.9 + 1.1 * below) * l.height;
+      if (viewer) { labelNodes[i].set_transform(colMajor([1, 0, 0, o[0], 0, 1, 0, o[1], 0, 0, 1, z, 0, 0, 0, 1])); }
     });
     if (viewer) { viewer.set_dirty(); }
   }

@@ -85,7 +85,7 @@ ROW_NAMES = ("rotation about x", "rotation about y", "rotation about z",
 ROW_SYMBOLS = ("ωx", "ωy", "ωz", "vx", "vy", "vz")
 
 #: A frame label's height, per unit of triad length (the page's triads are short: a tenth of the reach).
-LABEL_HEIGHT = 0.8
+LABEL_HEIGHT = 0.6
 
 #: Slider range of joints without limits: ±180° (revolute), ±1 m (prismatic).
 _UNLIMITED = {"R": math.pi, "P": 1.0}
@@ -177,7 +177,7 @@ class _RecordingWindow:
         self.commands.append(command.lower())
 
 
-def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,
+def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,  # floor_half: 1.1·reach
            mesh_cell: float, obstacles: Sequence[Any] = ()) -> tuple[list[Any], dict[str, str], dict[str, str]]:
     """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
 
@@ -205,15 +205,13 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
         warnings.simplefilter("ignore")
         viz.initViewer(viewer=vis)
         viz.loadViewerModel(rootNodeName="robot")
-    # a floor grid of our own (meshcat's default 20 m grid is hidden): 0.1 m spacing
-    # under the robot, drawn in the base frame's z = 0 plane
-    half = max(0.5, math.ceil(floor_half * 10) / 10)
-    ticks = np.arange(-half, half + 1e-9, 0.1)
-    seg = []
-    for t in ticks:
-        seg += [[t, -half, 0.0], [t, half, 0.0], [-half, t, 0.0], [half, t, 0.0]]
+    # a floor grid of our own under the robot, sized to its reach, in the base frame's z = 0
+    # plane (meshcat's default 20 m grid is hidden)
+    from robokit.viz._shapes import ground_grid_segments
+
+    seg, _, _ = ground_grid_segments(floor_half / 1.1)
     vis["/Grid"].set_property("visible", False)
-    vis["floor"].set_object(g.LineSegments(g.PointsGeometry(np.array(seg, dtype=np.float32).T),
+    vis["floor"].set_object(g.LineSegments(g.PointsGeometry(seg),
                                            g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.6)))
     paths = {go.name: vis[viz.getViewerNodeName(go, pin.GeometryType.VISUAL)].path.lower()
              for go in visual.geometryObjects}
@@ -263,20 +261,28 @@ CAMERA_AZIMUTH, CAMERA_ELEVATION = 40.0, 22.0
 def _camera(points: np.ndarray, pad: float) -> dict:
     """The teach page's camera data for the reach points ``points`` (K, 3) (base frame, m).
 
-    ``lo``/``hi``: the points' bounding box grown by ``pad`` (m, the links' thickness);
-    ``direction``: unit vector from the target towards the camera (the 3/4 view of
-    :data:`CAMERA_AZIMUTH`, :data:`CAMERA_ELEVATION`). The page fits target and distance to
-    its canvas (``RKMath.fitCamera``); ``target``/``position`` are the fit for a square canvas
-    with a 75° field of view, used until the page has measured its canvas.
+    ``points``: the vertices of the points' convex hull (a perspective view of the hull is
+    the hull of the projected vertices, so they are all the framing needs); ``pad``: how far
+    (m) the links' geometry reaches beyond those frame origins; ``lo``/``hi``: the padded
+    bounding box; ``direction``: unit vector from the target towards the camera (the 3/4 view
+    of :data:`CAMERA_AZIMUTH`, :data:`CAMERA_ELEVATION`). The page fits target and distance to
+    its canvas (``RKMath.fitCamera``); ``target``/``position`` frame the padded bounding sphere
+    in a 75° cone, used until the page has measured its canvas.
     """
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = points[ConvexHull(points).vertices]
+    except (QhullError, ValueError):  # flat (a planar arm) or too few points: keep them all
+        hull = points
     lo, hi = points.min(axis=0) - pad, points.max(axis=0) + pad
     az, el = math.radians(CAMERA_AZIMUTH), math.radians(CAMERA_ELEVATION)
     d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     centre = 0.5 * (lo + hi)
     radius = 0.5 * float(np.linalg.norm(hi - lo))
     dist = radius / math.sin(0.5 * math.radians(75.0))  # the bounding sphere inside the view cone
-    return {"lo": lo.tolist(), "hi": hi.tolist(), "direction": d.tolist(),
-            "target": centre.tolist(), "position": (centre + dist * d).tolist()}
+    return {"points": np.round(hull, 6).tolist(), "pad": pad, "lo": lo.tolist(), "hi": hi.tolist(),
+            "direction": d.tolist(), "target": centre.tolist(), "position": (centre + dist * d).tolist()}
 
 
 def teach_parameters(robot: Robot) -> dict:
@@ -368,14 +374,14 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
 
     # points that frame the camera: the frames' origins at q0, at the named poses and at
     # random configurations, so that the robot stays in view wherever the sliders take it
-    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(32, robot.n))
+    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(64, robot.n))
     pts = [robot.frame_poses(np.clip(p, rng[:, 0], rng[:, 1])) for p in [q0, *poses.values(), *rand]]
     P = np.array([T[:3, 3] for d in pts for T in d.values()])
     P = P[P[:, 2] >= P[: len(pts[0]), 2].min() - 1e-9]  # what goes below the base's level is left out
     size = float(max(np.ptp(P, axis=0).max(), 0.2))
     scale = 0.1 * size
     obstacles = tuple(world.obstacles) if world is not None else ()
-    commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()),
+    commands, paths, frame_paths = _scene(robot, frame_names, scale, 1.1 * float(np.hypot(P[:, 0], P[:, 1]).max()),
                                           mesh_cell, obstacles)
     collision = None
     if world is not None:
@@ -399,14 +405,10 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         fid = robot.frame_id(name)
         frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
                        "T": poses0[name].tolist()})
-    labels = []
-    if robot.dh is not None:
-        from robokit.viz._labels import label_offsets
-
-        at_q0 = robot.frame_poses(q0)
-        offsets = label_offsets(np.array([at_q0[nm][:3, 3] for nm in frame_names]), LABEL_HEIGHT * scale)
-        labels = [{"path": f"/meshcat/labels/{nm}", "frame": i, "offset": off.tolist()}
-                  for i, (nm, off) in enumerate(zip(frame_names, offsets))]
+    # labels: the page puts each above its frame's origin, stacked where origins coincide
+    # (robokit.viz._labels.label_offsets, redone in the page at every configuration)
+    labels = [{"path": f"/meshcat/labels/{nm}", "frame": i, "height": LABEL_HEIGHT * scale}
+              for i, nm in enumerate(frame_names)] if robot.dh is not None else []
     params = teach_parameters(robot)
     rows = params["rows"]
     return {

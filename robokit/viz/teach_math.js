@@ -301,13 +301,14 @@ var RKMath = (function () {
   // A perspective camera looking along -dir at a target t from the distance D sees a point p
   // at  x = (p - t).right,  y = (p - t).up,  depth = D - (p - t).dir,  and draws it at the
   // normalised device coordinates (x / (depth tan(fx/2)), y / (depth tan(fy/2))), fy the
-  // vertical field of view and tan(fx/2) = aspect tan(fy/2). For the 8 corners of the box
-  // lo..hi to land inside the window win = {xlo, xhi, ylo, yhi} (NDC, xlo < 0 < xhi) the
-  // distance must be at least  s + X / (xhi tx)  (X = x - a > 0; X / (xlo tx) when X < 0),
-  // and likewise in y, s = (p - c).dir, c the box centre and t = c + a right + b up. Each
-  // bound is convex in its shift (a or b): ternary searches find the shifts that let the
-  // camera come closest. Returns {target, position, distance} (base frame).
-  function fitCamera(lo, hi, dir, fovYDeg, aspect, win) {
+  // vertical field of view and tan(fx/2) = aspect tan(fy/2). For every point, grown by pad
+  // sideways, to land inside the window win = {xlo, xhi, ylo, yhi} (NDC, xlo < 0 < xhi) the
+  // distance must be at least  s + X / (xhi tx)  (X = x + pad - a > 0; (x - pad - a) / (xlo tx)
+  // on the other side), and likewise in y, s = (p - c).dir + pad, c the points' bounding-box
+  // centre and t = c + a right + b up. Each bound is convex in its shift (a or b): ternary
+  // searches find the shifts that let the camera come closest.
+  // points: [[x, y, z], ...] (base frame, m). Returns {target, position, distance}.
+  function fitCamera(points, pad, dir, fovYDeg, aspect, win) {
     var nd = Math.hypot(dir[0], dir[1], dir[2]);
     var d = [dir[0] / nd, dir[1] / nd, dir[2] / nd];
     var right = [-d[1], d[0], 0];  // (-d) x z
@@ -315,21 +316,24 @@ var RKMath = (function () {
     right = nr > 1e-9 ? [right[0] / nr, right[1] / nr, 0] : [1, 0, 0];
     var up = [d[1] * right[2] - d[2] * right[1], d[2] * right[0] - d[0] * right[2], d[0] * right[1] - d[1] * right[0]];
     var ty = Math.tan(0.5 * fovYDeg * Math.PI / 180), tx = ty * aspect;
+    var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity], i, k;
+    for (i = 0; i < points.length; i++) {
+      for (k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], points[i][k]); hi[k] = Math.max(hi[k], points[i][k]); }
+    }
     var c = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])];
-    var rel = [], R = 0;
-    for (var k = 0; k < 8; k++) {
-      var p = [(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2]];
-      var v = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+    var rel = [], R = pad;
+    for (i = 0; i < points.length; i++) {
+      var v = [points[i][0] - c[0], points[i][1] - c[1], points[i][2] - c[2]];
       rel.push([v[0] * right[0] + v[1] * right[1] + v[2] * right[2], v[0] * up[0] + v[1] * up[1] + v[2] * up[2],
-                v[0] * d[0] + v[1] * d[1] + v[2] * d[2]]);
-      R = Math.max(R, Math.hypot(v[0], v[1], v[2]));
+                v[0] * d[0] + v[1] * d[1] + v[2] * d[2] + pad]);
+      R = Math.max(R, Math.hypot(v[0], v[1], v[2]) + pad);
     }
     // the bound splits: D >= max(Fx(a), Fy(b)), each convex in one shift
     function bound(a, axis, wlo, whi, tn) {
       var D = -Infinity;
-      for (var i = 0; i < 8; i++) {
-        var X = rel[i][axis] - a;
-        D = Math.max(D, rel[i][2] + X / ((X > 0 ? whi : wlo) * tn));
+      for (var j = 0; j < rel.length; j++) {
+        var s = rel[j][2];
+        D = Math.max(D, s + (rel[j][axis] + pad - a) / (whi * tn), s + (rel[j][axis] - pad - a) / (wlo * tn));
       }
       return D;
     }
