@@ -356,7 +356,7 @@ class Scene:
         """Draw a square ground grid under the robot, in the base frame's z = 0 plane.
 
         The grid is centred on the base and sized to the robot's reach: its half-width is the
-        largest horizontal distance of any frame origin from the base over 32 random
+        largest horizontal distance of any frame origin from the base over 256 random
         configurations (``numpy.random.default_rng(0)``, within the joint limits) and the
         configuration shown, plus 10 %, rounded up to a whole number of cells. meshcat's
         default 20 m grid (a thin band at the horizon from a 3/4 view) is hidden.
@@ -382,7 +382,7 @@ class Scene:
 
         r = self.robot
         rng = np.random.default_rng(0)
-        pts = [self.robot.frame_poses(self.q)] + [r.frame_poses(r.random_configuration(rng)) for _ in range(32)]
+        pts = [self.robot.frame_poses(self.q)] + [r.frame_poses(r.random_configuration(rng)) for _ in range(256)]
         reach = max(float(np.hypot(T[0, 3], T[1, 3])) for d in pts for T in d.values())
         seg, half, spacing = ground_grid_segments(reach, spacing)
         self.vis["/Grid"].set_property("visible", False)
