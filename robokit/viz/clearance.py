@@ -38,10 +38,7 @@ from numpy.typing import ArrayLike
 
 from robokit.errors import InputError
 
-__all__ = ["clearance", "clearance_page_data", "CONTACT_TOL"]
-
-#: A pair whose distance (m) is at most this is drawn as in contact by the page.
-CONTACT_TOL = 0.0
+__all__ = ["clearance", "clearance_page_data"]
 
 _CAPSULE_SUFFIX = re.compile(r"_capsule\d+$")
 
