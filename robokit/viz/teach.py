@@ -686,9 +686,10 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         scene.obstacles(world.obstacles)
     sliders = [
         W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
-                      step=0.1 if types[i] == "R" else 0.001, description=f"{robot.joint_names[i][:12]}",
+                      step=0.1 if types[i] == "R" else 0.001, description=f"q{i + 1} {robot.joint_names[i]}",
                       readout_format=".1f" if types[i] == "R" else ".3f", continuous_update=True,
-                      layout=W.Layout(width="420px"))
+                      style={"description_width": "initial"},  # the whole joint name, never cut
+                      layout=W.Layout(width="460px"))
         for i in range(robot.n)
     ]
     out = W.HTML()

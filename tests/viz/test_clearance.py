@@ -233,6 +233,8 @@ def test_notebook_widget_paints_the_links_in_contact():
         assert "In contact" in pendant.children[-1].value
         pendant.set_q(free)
         assert pendant.painted == []
+        sliders = pendant.children[1].children[0].children  # full joint names, not cut
+        assert [s.description for s in sliders] == [f"q{i + 1} {j}" for i, j in enumerate(world.robot.joint_names)]
         with pytest.raises(ValueError, match="world"):
             scene.teach(world=_worlds()["rrr"])
 
