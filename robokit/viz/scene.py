@@ -291,7 +291,22 @@ class Scene:
     def obstacles(self, obstacles: Iterable[Any], color: int = 0xC08040, opacity: float = 0.6) -> Scene:
         """Draw collision obstacles (:mod:`robokit.collision` Box, Sphere, Cylinder, Mesh) at their poses.
 
-        Nodes are ``obstacles/<index>`` (an obstacle's name never becomes a scene path).
+        Nodes are ``obstacles/<index>`` (an obstacle's name never becomes a scene path);
+        :meth:`frame_camera` then frames the obstacles too.
+
+        Parameters
+        ----------
+        obstacles : iterable of Box, Sphere, Cylinder, Mesh
+            Shapes with their ``pose`` (4×4, base frame, m).
+        color : int
+            Colour, 0xRRGGBB.
+        opacity : float
+            In [0, 1]; below 1 the obstacles are see-through.
+
+        Returns
+        -------
+        Scene
+            self.
 
         Examples
         --------
@@ -305,6 +320,16 @@ class Scene:
             geom, T = obstacle_geometry(o, k)
             self.vis["obstacles"][str(k)].set_object(geom, mat)
             self.vis["obstacles"][str(k)].set_transform(T)
+            # the obstacle's bounding sphere, for frame_camera
+            kind = type(o).__name__
+            if kind == "Mesh":
+                V = np.asarray(o.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
+                c, rad = V.mean(axis=0), float(np.linalg.norm(V - V.mean(axis=0), axis=1).max())
+            else:
+                c = T[:3, 3]
+                rad = (0.5 * float(np.linalg.norm(o.size)) if kind == "Box" else float(o.radius) if kind == "Sphere"
+                       else float(np.hypot(o.radius, 0.5 * o.length)))
+            self._extra_points.extend(c + rad * e for e in np.vstack([np.eye(3), -np.eye(3)]))
         return self
 
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
