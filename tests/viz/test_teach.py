@@ -349,7 +349,8 @@ def test_layout_framing_names_and_collision_colours(pages_dir):
     at a stretched pose) lies inside the 3-D canvas (not under the side panel, the readouts or
     meshcat's controls) and fills a fair part of it; every slider label shows its full joint
     name (no clipping). On the PUMA page with obstacles, at a configuration where the World
-    finds contacts, the page lists the same pairs and paints exactly the links in contact red."""
+    finds contacts, the page lists the same pairs and paints exactly the links in contact red; the
+    UR5's page (collision meshes) says that the collision display needs the notebook."""
     layout = [(name, size) for name in LAYOUT_Q for size in SIZES]
     world = _collision_world()
     rng = np.random.default_rng(2)
@@ -360,9 +361,13 @@ def test_layout_framing_names_and_collision_colours(pages_dir):
             break
     coll_page = Path(pages_dir) / "teach_puma_obstacles.html"
     coll_page.write_text(teach_html(world.robot, obstacles=world.obstacles), encoding="utf-8")
+    mesh_page = Path(pages_dir) / "teach_ur5_obstacles.html"  # collision meshes: no fake numbers offline
+    mesh_page.write_text(teach_html(robot("ur5"), obstacles=world.obstacles), encoding="utf-8")
     frames = [(page(name, pages_dir), LAYOUT_Q[name], size) for name, size in layout]
-    frames.append((coll_page, q_hit, (1280, 800)))
+    frames += [(coll_page, q_hit, (1280, 800)), (mesh_page, None, (1280, 800))]
     results = run_frames(frames, pages_dir)
+    mesh = results.pop()
+    assert mesh["collision"]["supported"] == "false" and "notebook" in mesh["collisionText"], mesh["collision"]
 
     for (name, (w, h)), res in zip(layout, results):
         assert "error" not in res, res
