@@ -81,11 +81,33 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
                   q: ArrayLike | None = None, open_browser: bool = True,
                   obstacles: str | os.PathLike[str] | None = None) -> int:
-    """The ``robokit teach`` command: write the page to ``output`` (an .html file) and return 0.
+    """The ``robokit teach`` command: write the teach page (:func:`robokit.viz.teach.teach_html`).
 
-    Without ``output`` the page goes to a new temporary file, which is opened in the web
-    browser (``webbrowser``); its path is returned in the message on stdout. ``obstacles``:
-    a scene YAML file (as ``robokit plan`` reads it); the page then shows the collision state.
+    Parameters
+    ----------
+    model : robokit.Robot, DHTable, str or path
+        Anything ``robokit.load`` accepts.
+    output : str or path, optional
+        The ``.html``/``.htm`` file to write (atomically). Without it the page goes to a new
+        temporary file, which is opened in the web browser (``webbrowser``); its path is in
+        the message on stderr.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m).
+    open_browser : bool
+        Open the temporary page (only without ``output``).
+    obstacles : str or path, optional
+        A scene YAML file (as ``robokit plan`` reads it): the page draws its obstacles and
+        shows the collision state (links in contact red, the minimum distance).
+
+    Returns
+    -------
+    int
+        The exit status, 0 (bad input raises ``InputError``).
+
+    Examples
+    --------
+    >>> teach_command("puma560", "puma.html", obstacles="scene.yaml")   # doctest: +SKIP
+    0
     """
     import tempfile
     import webbrowser
