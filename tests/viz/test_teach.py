@@ -399,3 +399,25 @@ def test_layout_framing_names_and_collision_colours(pages_dir):
     for k, nm in enumerate(world.obstacle_names):
         assert (colours[f"/meshcat/obstacles/{k}"] == RED) == any(nm == b for _, b in pairs)
     assert "In contact" in results[-1]["collisionText"]
+
+
+def test_cli_obstacles_flag(tmp_path, capsys):
+    """``robokit teach MODEL --obstacles scene.yaml``: the page carries the scene's obstacles and the
+    collision data; a bad scene file exits 2 with one line and writes nothing."""
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("padding: 0.01\nobstacles:\n  - type: sphere\n    name: ball\n    radius: 0.1\n"
+                     "    pose: {xyz: [0.3, 0.3, 0.0], rpy: [0, 0, 0]}\n", encoding="utf-8")
+    out = tmp_path / "rrr.html"
+    assert cli_main(["teach", "rrr", "--obstacles", str(scene), "-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    data = json.loads(text.split('<script id="rk-robot" type="application/json">')[1].split("</script>")[0])
+    c = data["collision"]
+    assert c["supported"] and c["padding"] == 0.01 and c["obstacles_drawn"] == ["ball"]
+    assert [g["name"] for g in c["geoms"] if g.get("type")] == ["ball"]
+    capsys.readouterr()
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("obstacles:\n  - type: box\n    colour: red\n", encoding="utf-8")
+    assert cli_main(["teach", "rrr", "--obstacles", str(bad), "-o", str(tmp_path / "x.html")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("robokit: ")
+    assert not (tmp_path / "x.html").exists()
