@@ -114,6 +114,8 @@ def _build_parser() -> argparse.ArgumentParser:
     t.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
     t.add_argument("-o", "--output", help="output .html file (default: a temporary file, opened in the browser)")
     t.add_argument("--tip", help="tip frame of the chain (URDF input)")
+    t.add_argument("--obstacles", help="scene YAML file of obstacles: drawn, with links in contact in red and the "
+                   "minimum distance shown")
     _add_format_options(t)
 
     # capability maps (robokit.workspace)
@@ -207,7 +209,7 @@ def _dispatch(args: argparse.Namespace) -> int:
             from robokit.description.loading import load
 
             model = load(args.model, tip=args.tip, **opts)
-        return teach_command(model, args.output)
+        return teach_command(model, args.output, obstacles=args.obstacles)
     if args.command == "workspace":
         from robokit.commands import workspace_command
 

@@ -127,27 +127,35 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 
 
 def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
-                  q: ArrayLike | None = None, open_browser: bool = True) -> int:
-    """``robokit teach MODEL [-o OUT.html]``: write the teach-pendant page.
-
-    Without ``output`` the page goes to a new temporary file, which is opened in the web
-    browser (``webbrowser``); its path is printed on stderr.
+                  q: ArrayLike | None = None, open_browser: bool = True,
+                  obstacles: str | os.PathLike[str] | None = None) -> int:
+    """The ``robokit teach`` command: write the teach page (:func:`robokit.viz.teach.teach_html`).
 
     Parameters
     ----------
-    model : Robot, DHTable, str or path-like
+    model : robokit.Robot, DHTable, str or path
         Anything ``robokit.load`` accepts.
-    output : str, path-like or None
-        The ``.html`` page to write (atomically), or None for a temporary file.
-    q : (n,) array_like, optional
-        The starting configuration (rad, m).
+    output : str or path, optional
+        The ``.html``/``.htm`` file to write (atomically). Without it the page goes to a new
+        temporary file, which is opened in the web browser (``webbrowser``); its path is in
+        the message on stderr.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m).
     open_browser : bool
-        Open the temporary page in the browser (only without ``output``).
+        Open the temporary page (only without ``output``).
+    obstacles : str or path, optional
+        A scene YAML file (as ``robokit plan`` reads it): the page draws its obstacles and
+        shows the collision state (links in contact red, the minimum distance).
 
     Returns
     -------
     int
-        The exit status, 0 (errors raise).
+        The exit status, 0 (bad input raises ``InputError``).
+
+    Examples
+    --------
+    >>> teach_command("puma560", "puma.html", obstacles="scene.yaml")   # doctest: +SKIP
+    0
     """
     import tempfile
     import webbrowser
@@ -159,7 +167,12 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     if output is not None:
         _output_file(output, (".html", ".htm"))
     robot = load(model)
-    page = teach_html(robot, q=q)
+    obs, padding = None, 0.0
+    if obstacles:
+        from robokit.collision import load_scene
+
+        obs, padding = load_scene(obstacles)
+    page = teach_html(robot, q=q, obstacles=obs, padding=padding)
     if output is not None:
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)

@@ -12,8 +12,27 @@ class LiveViewer:
 
     ``LiveViewer()`` starts a server on 127.0.0.1 (meshcat picks a free port from 7000);
     ``LiveViewer(zmq_url="tcp://127.0.0.1:6000")`` connects to a running one instead.
-    ``url`` is the page to open in a browser; ``vis`` the ``meshcat.Visualizer`` to draw into
-    (e.g. ``Scene(robot, vis=viewer.vis)``); ``close()`` stops a server this object started.
+    ``close()`` stops a server this object started (none outlives the process).
+
+    Parameters
+    ----------
+    zmq_url : str, optional
+        The ZMQ address of a running meshcat server (default: start one).
+
+    Attributes
+    ----------
+    vis : meshcat.Visualizer
+        The visualizer to draw into (e.g. ``Scene(robot, vis=viewer.vis)``).
+    url : str
+        The page to open in a browser.
+    process : subprocess.Popen or None
+        The server process this viewer started.
+
+    Examples
+    --------
+    >>> with LiveViewer() as viewer:   # doctest: +SKIP
+    ...     print(viewer.url)
+    http://127.0.0.1:7000/static/
     """
 
     def __init__(self, zmq_url: str | None = None) -> None:

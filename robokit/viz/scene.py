@@ -24,7 +24,10 @@ from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
 from robokit._optional import require
-from robokit.viz._labels import label_png
+from robokit.viz._labels import label_offsets, label_sprite
+
+#: A frame label's height, per unit of triad length.
+LABEL_HEIGHT = 0.45
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -96,12 +99,36 @@ def stop_server(proc: subprocess.Popen | None) -> None:
 
 
 class Scene:
-    _views = 0  # pages written by notebook(), for unique file names
     """A meshcat scene of one robot.
 
-    robot : a :class:`robokit.Robot` (or anything ``robokit.load`` accepts);
-    vis : an existing ``meshcat.Visualizer`` (default: a new one with its own server on loopback).
+    Parameters
+    ----------
+    robot : robokit.Robot, DHTable, str or path
+        The robot (or anything ``robokit.load`` accepts).
+    vis : meshcat.Visualizer, optional
+        An existing visualizer to draw into (default: a new one with its own server on
+        loopback, stopped by :meth:`close`).
+
+    Attributes
+    ----------
+    robot : robokit.Robot
+        The robot drawn.
+    vis : meshcat.Visualizer
+        The visualizer (``vis.url()`` is the live page).
+    viz : pinocchio.visualize.MeshcatVisualizer
+        Pinocchio's visualizer that loaded the robot's geometry.
+    q : numpy.ndarray, shape (n,)
+        The configuration shown (rad / m).
+    grid : dict or None
+        The ground grid drawn by :meth:`ground_grid` (``half``, ``spacing``, ``z``; m).
+
+    Examples
+    --------
+    >>> with Scene("puma560") as s:   # doctest: +SKIP
+    ...     page = s.show([0, 0.5, -0.5, 0, 0, 0]).frames().frame_camera().html()
     """
+
+    _views = 0  # pages written by notebook(), for unique file names
 
     def __init__(self, robot: Robot | DHTable | str | os.PathLike[str], vis: Any = None) -> None:
         from pinocchio.visualize import MeshcatVisualizer
@@ -125,6 +152,9 @@ class Scene:
         self.viz.loadViewerModel(rootNodeName="robot")
         self.q = np.zeros(r.n)
         self._extra_points: list[np.ndarray] = []
+        self.grid: dict | None = None
+        self._frames: tuple[list[str], float] = ([], 0.0)
+        self._label_points: list[np.ndarray] = []
 
     # ------------------------------------------------------------------ drawing
     def show(self, q: ArrayLike | None = None) -> Scene:
@@ -155,19 +185,52 @@ class Scene:
                          if r.model.existFrame(n)] + [r.tip]
         poses = r.frame_poses(self.q)
         scale = scale or 0.12 * self._size()
+        names = list(names)
         for name in names:
             if name not in poses:
                 raise InputError(f"frames: no frame {name!r} in {r.name}")
+        for name in names:
             node = self.vis["frames"][name]
             node["triad"].set_object(g.triad(scale))
-            node.set_transform(poses[name])
             if labels:
-                png = g.PngImage(label_png(name))
-                mat = g.MeshBasicMaterial(map=g.ImageTexture(image=png), transparent=True)
+                self.vis["labels"][name].set_object(label_sprite(name, LABEL_HEIGHT * scale))
+        self._frames = (names, LABEL_HEIGHT * scale if labels else 0.0)
+        return self.move_frames(self.q)
+
+    def move_frames(self, q: ArrayLike) -> Scene:
+        """Move the triads (and labels) drawn by :meth:`frames` to joint values ``q``.
+
+        Labels stay upright above their frame's origin (stacked where origins coincide, see
+        :func:`robokit.viz._labels.label_offsets`); they are camera-facing sprites.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad / m).
+
+        Returns
+        -------
+        Scene
+            self.
+
+        Examples
+        --------
+        >>> Scene("puma560").frames().move_frames([0, 0.5, -0.5, 0, 0, 0])   # doctest: +SKIP
+        """
+        names, height = self._frames
+        if not names:
+            return self
+        poses = self.robot.frame_poses(np.asarray(q, dtype=float))
+        for name in names:
+            self.vis["frames"][name].set_transform(poses[name])
+        if height > 0:
+            origins = np.array([poses[nm][:3, 3] for nm in names])
+            offsets = label_offsets(origins, height)
+            self._label_points = list(origins + offsets + [0.0, 0.0, 0.6 * height])  # the labels' tops, for the camera
+            for name, p, off in zip(names, origins, offsets):
                 T = np.eye(4)
-                T[:3, 3] = [0.3 * scale, 0.3 * scale, 0.6 * scale]
-                node["label"].set_object(g.Box([0.8 * scale, 0.25 * scale, 1e-4 * scale]), mat)
-                node["label"].set_transform(T)
+                T[:3, 3] = p + off
+                self.vis["labels"][name].set_transform(T)
         return self
 
     def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
@@ -228,30 +291,45 @@ class Scene:
     def obstacles(self, obstacles: Iterable[Any], color: int = 0xC08040, opacity: float = 0.6) -> Scene:
         """Draw collision obstacles (:mod:`robokit.collision` Box, Sphere, Cylinder, Mesh) at their poses.
 
-        Nodes are ``obstacles/<index>`` (an obstacle's name never becomes a scene path).
+        Nodes are ``obstacles/<index>`` (an obstacle's name never becomes a scene path);
+        :meth:`frame_camera` then frames the obstacles too.
+
+        Parameters
+        ----------
+        obstacles : iterable of Box, Sphere, Cylinder, Mesh
+            Shapes with their ``pose`` (4×4, base frame, m).
+        color : int
+            Colour, 0xRRGGBB.
+        opacity : float
+            In [0, 1]; below 1 the obstacles are see-through.
+
+        Returns
+        -------
+        Scene
+            self.
 
         Examples
         --------
         >>> scene.obstacles([Box([0.1, 1, 1])])  # doctest: +SKIP
         """
         g = require("meshcat.geometry", "the viewer")
+        from robokit.viz._shapes import obstacle_geometry
+
         mat = g.MeshLambertMaterial(color=color, opacity=opacity, transparent=opacity < 1)
-        Rx = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])  # meshcat's cylinder axis y → z
         for k, o in enumerate(obstacles):
-            kind = type(o).__name__
-            T = np.asarray(o.pose, dtype=float)
-            if kind == "Box":
-                geom = g.Box([float(x) for x in o.size])
-            elif kind == "Sphere":
-                geom = g.Sphere(float(o.radius))
-            elif kind == "Cylinder":
-                geom, T = g.Cylinder(float(o.length), float(o.radius)), T @ Rx
-            elif kind == "Mesh":
-                geom = g.TriangularMeshGeometry(np.asarray(o.vertices, dtype=float), np.asarray(o.faces, dtype=np.int64))
-            else:
-                raise InputError(f"obstacles: item {k} is a {kind}, not a Box, Sphere, Cylinder or Mesh")
+            geom, T = obstacle_geometry(o, k)
             self.vis["obstacles"][str(k)].set_object(geom, mat)
             self.vis["obstacles"][str(k)].set_transform(T)
+            # the obstacle's bounding sphere, for frame_camera
+            kind = type(o).__name__
+            if kind == "Mesh":
+                V = np.asarray(o.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
+                c, rad = V.mean(axis=0), float(np.linalg.norm(V - V.mean(axis=0), axis=1).max())
+            else:
+                c = T[:3, 3]
+                rad = (0.5 * float(np.linalg.norm(o.size)) if kind == "Box" else float(o.radius) if kind == "Sphere"
+                       else float(np.hypot(o.radius, 0.5 * o.length)))
+            self._extra_points.extend(c + rad * e for e in np.vstack([np.eye(3), -np.eye(3)]))
         return self
 
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
@@ -291,13 +369,54 @@ class Scene:
         P = np.array([T[:3, 3] for T in poses.values()])
         if self._extra_points:
             P = np.vstack([P, np.asarray(self._extra_points)])
+        if self._label_points:
+            P = np.vstack([P, np.asarray(self._label_points)])
         return P
 
     def _size(self) -> float:
         P = self._points()
         return float(max(np.ptp(P, axis=0).max(), 0.2))
 
-    _SHIFTED = ("robot", "frames", "points", "paths", "poses", "ellipsoid", "/Grid", "/Axes")
+    def ground_grid(self, spacing: float | None = None) -> Scene:
+        """Draw a square ground grid under the robot, in the base frame's z = 0 plane.
+
+        The grid is centred on the base and sized to the robot's reach: its half-width is the
+        largest horizontal distance of any frame origin from the base over 256 random
+        configurations (``numpy.random.default_rng(0)``, within the joint limits) and the
+        configuration shown, plus 10 %, rounded up to a whole number of cells. meshcat's
+        default 20 m grid (a thin band at the horizon from a 3/4 view) is hidden.
+
+        Parameters
+        ----------
+        spacing : float, optional
+            Cell size (m); default a round step giving about eight cells from the base to the
+            edge (:func:`robokit.viz._shapes.ground_grid_segments`).
+
+        Returns
+        -------
+        Scene
+            self; ``self.grid`` is ``{"half": half-width (m), "spacing": cell (m), "z": 0.0}``.
+
+        Examples
+        --------
+        >>> Scene("puma560").ground_grid().grid["z"]   # doctest: +SKIP
+        0.0
+        """
+        g = require("meshcat.geometry", "the viewer")
+        from robokit.viz._shapes import ground_grid_segments
+
+        r = self.robot
+        rng = np.random.default_rng(0)
+        pts = [self.robot.frame_poses(self.q)] + [r.frame_poses(r.random_configuration(rng)) for _ in range(256)]
+        reach = max(float(np.hypot(T[0, 3], T[1, 3])) for d in pts for T in d.values())
+        seg, half, spacing = ground_grid_segments(reach, spacing)
+        self.vis["/Grid"].set_property("visible", False)
+        self.vis["floor"].set_object(g.LineSegments(g.PointsGeometry(seg),
+                                                    g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.7)))
+        self.grid = {"half": half, "spacing": spacing, "z": 0.0}
+        return self
+
+    _SHIFTED = ("robot", "frames", "labels", "points", "paths", "poses", "ellipsoid", "obstacles", "floor", "/Grid", "/Axes")
 
     def frame_camera(self, fill: float = 0.75) -> Scene:
         """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
@@ -307,6 +426,8 @@ class Scene:
         and the camera is placed at a 3/4 view (azimuth 45°, elevation 25°) at the distance
         where the box's bounding sphere spans ``fill`` of the vertical field of view.
         """
+        if self.grid is None:
+            self.ground_grid()
         P = self._points()
         lo, hi = P.min(axis=0), P.max(axis=0)
         centre = 0.5 * (lo + hi)
@@ -351,13 +472,35 @@ class Scene:
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
-    def teach(self, q: ArrayLike | None = None, height: int = 420) -> Any:
-        """A teach pendant in the notebook: joint sliders driving this scene's live view, with the
-        tool pose, Jacobian, manipulability, singularity and joint-limit readouts (see
-        :func:`robokit.viz.teach.teach_widget`). Returns the ipywidgets box."""
+    def teach(self, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+        """A teach pendant in the notebook, driving this scene's live view.
+
+        Joint sliders with the tool pose, Jacobian, manipulability, singularity and joint-limit
+        readouts; with a ``world`` also its obstacles, links in contact in red and the
+        minimum distance (see :func:`robokit.viz.teach.teach_widget`).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,), optional
+            Initial joint values (rad / m).
+        height : int
+            Height of the 3-D view (px).
+        world : robokit.collision.World, optional
+            This scene's robot among obstacles (``World(scene.robot, obstacles)``).
+
+        Returns
+        -------
+        ipywidgets.VBox
+            The pendant (``.set_q``, ``.readouts``, ``.collision``).
+
+        Examples
+        --------
+        >>> scene = Scene("puma560")   # doctest: +SKIP
+        >>> scene.teach()   # doctest: +SKIP
+        """
         from robokit.viz.teach import teach_widget
 
-        return teach_widget(self, q=q, height=height)
+        return teach_widget(self, q=q, height=height, world=world)
 
     def close(self) -> None:
         """Stop the meshcat server this scene started (if it started one)."""

@@ -31,7 +31,7 @@
   function message(text) { el("rk-msg").textContent = text || ""; }
 
   // ------------------------------------------------------------------ 3-D view (meshcat)
-  var viewer = null, visualNodes = [], frameNodes = [];
+  var viewer = null, visualNodes = [], frameNodes = [], labelNodes = [];
   function startViewer() {
     try {
       var pane = el("meshcat-pane");
@@ -49,21 +49,151 @@
       var split = function (path) { return path.split("/").filter(function (s) { return s.length > 0; }); };
       visualNodes = R.visuals.map(function (v) { return viewer.scene_tree.find(split(v.path)); });
       frameNodes = R.frames.map(function (f) { return viewer.scene_tree.find(split(f.path)); });
-      // camera: three.js's orbit controls look at the origin of the world (camera.lookAt
-      // takes a world point), so the content is shifted by -centre and the camera orbits the
-      // origin; the camera sits in a frame rotated so that three.js's y is the base's z: a
-      // base-frame offset (x, y, z) is (x, z, -y) there
-      var t = R.camera.target, c = R.camera.position;
-      var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
-      ["meshcat/robot", "meshcat/frames", "meshcat/floor", "Axes"].forEach(function (p) {
-        viewer.scene_tree.find(split(p)).set_transform(colMajor(shift));
-      });
-      viewer.camera.position.set(c[0] - t[0], c[2] - t[2], -(c[1] - t[1]));
-      viewer.controls.update();
+      labelNodes = R.labels.map(function (l) { return viewer.scene_tree.find(split(l.path)); });
+      obstacleNodes = R.collision ? R.collision.obstacle_paths.map(function (p) { return viewer.scene_tree.find(split(p)); }) : [];
+      frameView();
+      var size = [pane.clientWidth, pane.clientHeight];
+      var refit = function () {
+        if (pane.clientWidth === size[0] && pane.clientHeight === size[1]) { return; }
+        size = [pane.clientWidth, pane.clientHeight];
+        viewer.set_3d_pane_size();
+        frameView();
+        measureFraming();
+      };
+      window.addEventListener("resize", refit);
+      if (window.ResizeObserver) { new ResizeObserver(refit).observe(pane); }
     } catch (err) {
       viewer = null;
       message("3-D view unavailable (" + err + "); the readouts still work.");
     }
+  }
+
+  // The camera: target and distance fitted (RKMath.fitCamera) so that the robot's reach (the
+  // frame origins over many configurations, R.camera.points, grown by R.camera.pad; base
+  // frame) fills the canvas inside a margin, below meshcat's controls bar. three.js's orbit controls look at the origin of the world (camera.lookAt
+  // takes a world point), so the content is shifted by -target and the camera orbits the
+  // origin; the camera sits in a frame rotated so that three.js's y is the base's z: a
+  // base-frame offset (x, y, z) is (x, z, -y) there.
+  var MARGIN = 14;  // px kept free around the robot's reach
+  function overlays() {
+    var pr = el("meshcat-pane").getBoundingClientRect(), out = [];
+    // meshcat's controls (dat.GUI, top right of the view; closed, only its button shows)
+    document.querySelectorAll(".dg.main, .dg.main .close-button").forEach(function (g) {
+      var r = g.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0 && r.bottom > pr.top && r.top < pr.bottom && r.right > pr.left && r.left < pr.right) {
+        out.push([r.left, r.top, r.right, r.bottom]);
+      }
+    });
+    return out;
+  }
+  function frameView() {
+    if (!viewer) { return; }
+    var pane = el("meshcat-pane"), w = pane.clientWidth, h = pane.clientHeight;
+    if (w < 20 || h < 20) { return; }
+    var pr = pane.getBoundingClientRect(), top = MARGIN;
+    overlays().forEach(function (r) { top = Math.max(top, r[3] - pr.top + 6); });
+    top = Math.min(top, 0.4 * h);
+    var win = { xlo: -1 + 2 * MARGIN / w, xhi: 1 - 2 * MARGIN / w, ylo: -1 + 2 * MARGIN / h, yhi: 1 - 2 * top / h };
+    var fit = RKMath.fitCamera(R.camera.points, R.camera.pad, R.camera.direction, viewer.camera.fov, w / h, win);
+    var t = fit.target, c = fit.position;
+    var shift = [1, 0, 0, -t[0], 0, 1, 0, -t[1], 0, 0, 1, -t[2], 0, 0, 0, 1];
+    ["meshcat/robot", "meshcat/frames", "meshcat/labels", "meshcat/floor", "meshcat/obstacles", "Axes"].forEach(function (p) {
+      var node = viewer.scene_tree.find(p.split("/"));
+      if (node) { node.set_transform(colMajor(shift)); }
+    });
+    viewer.camera.position.set(c[0] - t[0], c[2] - t[2], -(c[1] - t[1]));
+    viewer.controls.update();
+    viewer.set_dirty();
+    el("rk-framing").dataset.target = t.map(String).join(",");
+  }
+
+  // where the robot is drawn: its bounding box (three.js, at the current joint values)
+  // projected by the camera, in page pixels, next to the canvas and the panels (for tests)
+  function measureFraming() {
+    if (!viewer) { return; }
+    var THREE = MeshCat.THREE, node = viewer.scene_tree.find(["meshcat", "robot"]);
+    viewer.scene.updateMatrixWorld(true);
+    viewer.camera.updateMatrixWorld(true);
+    var box = new THREE.Box3().setFromObject(node.object);
+    if (box.isEmpty()) { return; }
+    var pane = el("meshcat-pane"), pr = pane.getBoundingClientRect();
+    var x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (var k = 0; k < 8; k++) {
+      var v = new THREE.Vector3((k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                (k & 4) ? box.max.z : box.min.z).project(viewer.camera);
+      var px = pr.left + 0.5 * (v.x + 1) * pr.width, py = pr.top + 0.5 * (1 - v.y) * pr.height;
+      x0 = Math.min(x0, px); x1 = Math.max(x1, px); y0 = Math.min(y0, py); y1 = Math.max(y1, py);
+    }
+    var rect = function (id) { var r = el(id).getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom].join(","); };
+    var cv = viewer.renderer.domElement;
+    setData("rk-framing", { robot: [x0, y0, x1, y1].join(","), view: [pr.left, pr.top, pr.right, pr.bottom].join(","),
+                            canvas: [cv.clientWidth, cv.clientHeight].join(","),
+                            side: rect("rk-side"), readouts: rect("rk-readouts"),
+                            overlays: JSON.stringify(overlays()) });
+  }
+
+  // ------------------------------------------------------------------ collision display
+  // R.collision (robokit.viz.clearance.clearance_page_data): the robot's capsules, the
+  // obstacles and the checked pairs; RKMath.clearance gives the distances. Visuals on a
+  // link in contact and obstacles in contact are painted red (their own colours kept in
+  // the materials' userData and put back when the contact ends).
+  var RED = 0xE0302A, obstacleNodes = [];
+  function materials(node, fn) {
+    if (!node) { return; }
+    node.object.traverse(function (o) {
+      (Array.isArray(o.material) ? o.material : (o.material ? [o.material] : [])).forEach(function (m) {
+        if (m.color) { fn(m); }
+      });
+    });
+  }
+  function paint(node, on) {
+    materials(node, function (m) {
+      if (m.userData.rkColor === undefined) { m.userData.rkColor = m.color.getHex(); }
+      m.color.setHex(on ? RED : m.userData.rkColor);
+    });
+  }
+  function colourOf(node) { var c = null; materials(node, function (m) { if (c === null) { c = m.color.getHex(); } }); return c; }
+  function fmtPair(p) { return p[0] + " \u2013 " + p[1]; }
+  function updateCollision(P) {
+    var C = R.collision, box = el("rk-collision");
+    if (!C) { return; }
+    if (!C.supported) {
+      box.className = "rk-na";
+      box.textContent = C.reason;
+      setData("rk-collision", { supported: "false" });
+      return;
+    }
+    var c = RKMath.clearance(C, P), hitJ = {}, hitN = {}, red = [];
+    c.joints.forEach(function (k) { hitJ[k] = true; });
+    c.pairs.forEach(function (p) { hitN[p[0]] = true; hitN[p[1]] = true; });
+    R.visuals.forEach(function (v, i) {
+      var on = hitJ[v.k] === true;
+      if (viewer) { paint(visualNodes[i], on); }
+      if (on) { red.push(v.path); }
+    });
+    C.obstacles_drawn.forEach(function (name, k) {
+      var on = hitN[name] === true;
+      if (viewer) { paint(obstacleNodes[k], on); }
+      if (on) { red.push(C.obstacle_paths[k]); }
+    });
+    if (c.pairs.length) {
+      box.className = "rk-contact";
+      box.textContent = "In contact: " + c.pairs.map(fmtPair).join(", ") + " (distance " + c.distance.toFixed(4) + " m)";
+    } else if (c.closest) {
+      box.className = "rk-free";
+      box.textContent = "Minimum distance " + c.distance.toFixed(4) + " m (" + fmtPair(c.closest) + ")";
+    } else {
+      box.className = "rk-free";
+      box.textContent = "No pair to check";
+    }
+    var colours = {};
+    if (viewer) {
+      R.visuals.forEach(function (v, i) { colours[v.path] = colourOf(visualNodes[i]); });
+      C.obstacle_paths.forEach(function (p, k) { colours[p] = colourOf(obstacleNodes[k]); });
+    }
+    setData("rk-collision", { supported: "true", distance: String(c.distance), closest: JSON.stringify(c.closest),
+                              pairs: JSON.stringify(c.pairs), links: JSON.stringify(c.links), red: JSON.stringify(red),
+                              colours: JSON.stringify(colours) });
   }
 
   // column-major (three.js) copy of a row-major 4x4
@@ -84,6 +214,18 @@
       scenePoses[f.path] = T;
       if (viewer) { frameNodes[i].set_transform(colMajor(T)); }
     });
+    // labels: upright above their frame's origin, by 0.9 label heights plus 1.1 more for each
+    // earlier label whose origin is within one height (a stack where origins coincide; as
+    // robokit.viz._labels.label_offsets does for the view pages)
+    var origins = R.labels.map(function (l) { var T = scenePoses[R.frames[l.frame].path]; return [T[3], T[7], T[11]]; });
+    R.labels.forEach(function (l, i) {
+      var o = origins[i], below = 0;
+      for (var j = 0; j < i; j++) {
+        if (Math.hypot(o[0] - origins[j][0], o[1] - origins[j][1], o[2] - origins[j][2]) < l.height) { below++; }
+      }
+      var z = o[2] + (0.9 + 1.1 * below) * l.height;
+      if (viewer) { labelNodes[i].set_transform(colMajor([1, 0, 0, o[0], 0, 1, 0, o[1], 0, 0, 1, z, 0, 0, 0, 1])); }
+    });
     if (viewer) { viewer.set_dirty(); }
   }
 
@@ -91,6 +233,7 @@
   var sliders = [], boxes = [], rowsEls = [];
   function buildControls() {
     el("rk-title").textContent = R.name;
+    el("rk-coll-card").hidden = !R.collision;
     el("rk-tip").textContent = "(" + R.tip + " in the base frame)";
     el("rk-rows").textContent = "(task rows J\u209c: " + R.rows.map(function (r) { return R.row_symbols[r]; }).join(", ") + ")";
     var poses = el("rk-poses");
@@ -108,12 +251,12 @@
       var div = document.createElement("div");
       div.className = "rk-joint";
       div.innerHTML =
-        '<div class="rk-joint-head"><span class="rk-joint-name"></span>' +
-        '<span><input type="number"> <span class="rk-small"></span></span></div>' +
-        '<input type="range"><div class="rk-joint-lim"><span></span><span></span></div>';
+        '<div class="rk-joint-name"></div><input type="range">' +
+        '<span class="rk-joint-val"><input type="number"> <span class="rk-small"></span></span>' +
+        '<div class="rk-joint-lim"><span></span><span></span></div>';
       div.querySelector(".rk-joint-name").textContent = "q" + (i + 1) + " " + j.name;
       div.querySelector(".rk-joint-name").title = j.name + (j.limited ? "" : " (no limits)");
-      div.querySelector(".rk-joint-head .rk-small").textContent = j.type === "R" ? "deg" : "m";
+      div.querySelector(".rk-joint-val .rk-small").textContent = j.type === "R" ? "deg" : "m";
       var r = div.querySelector("input[type=range]"), t = div.querySelector("input[type=number]");
       r.id = "rk-slider-" + i; t.id = "rk-value-" + i;
       [r, t].forEach(function (inp) {
@@ -170,6 +313,7 @@
     }
     var rd = RKMath.readouts(R, q), P = rd.P, T = rd.T, J = rd.J;
     placeObjects(P);
+    updateCollision(P);
 
     // pose
     var xyz = rd.xyz, ang = rd.rpy, quat = rd.quat;
@@ -221,9 +365,14 @@
     var qe = setData("rk-q", { q: q.map(String).join(",") });
     qe.textContent = "q = [" + q.map(function (v) { return v.toFixed(4); }).join(", ") + "] (rad / m)";
     el("rk-scene-poses").dataset.poses = JSON.stringify(scenePoses);
+    measureFraming();
     try { history.replaceState(null, "", "#q=" + q.map(function (v) { return String(v); }).join(",")); } catch (e) { /* file:// in some browsers */ }
   }
 
+  var framing = document.createElement("div");
+  framing.id = "rk-framing";
+  framing.hidden = true;
+  document.body.appendChild(framing);
   var hidden = document.createElement("div");
   hidden.id = "rk-scene-poses";
   hidden.hidden = true;

@@ -84,6 +84,9 @@ ROW_NAMES = ("rotation about x", "rotation about y", "rotation about z",
              "translation along x", "translation along y", "translation along z")
 ROW_SYMBOLS = ("ωx", "ωy", "ωz", "vx", "vy", "vz")
 
+#: A frame label's height, per unit of triad length (the page's triads are short: a tenth of the reach).
+LABEL_HEIGHT = 0.6
+
 #: Slider range of joints without limits: ±180° (revolute), ±1 m (prismatic).
 _UNLIMITED = {"R": math.pi, "P": 1.0}
 
@@ -112,7 +115,27 @@ def task_rows(robot: Robot, samples: int = 24, seed: int = 0) -> list[int]:
     n ≥ 6: all six rows. Fewer joints: the rows that are not zero at every one of ``samples``
     random configurations (a planar arm in the xy plane moves along ωz, vx, vy) if there are
     at most n of them; otherwise the translational ones among them (vx, vy, vz for a spatial
-    three-joint arm; vx, vy for the planar two-link arm). Returns row indices into (ω; v).
+    three-joint arm; vx, vy for the planar two-link arm).
+
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    samples : int
+        Random configurations (uniform in the slider ranges) the rows are probed at.
+    seed : int
+        Seed of ``numpy.random.default_rng`` for those configurations.
+
+    Returns
+    -------
+    list of int
+        Row indices into the Jacobian's rows (ω; v), i.e. 0..5.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> task_rows(robokit.load("twolink"))
+    [3, 4]
     """
     n = robot.n
     if n >= 6:
@@ -154,8 +177,8 @@ class _RecordingWindow:
         self.commands.append(command.lower())
 
 
-def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,
-           mesh_cell: float) -> tuple[list[Any], dict[str, str], dict[str, str]]:
+def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_half: float,  # floor_half: 1.1·reach
+           mesh_cell: float, obstacles: Sequence[Any] = ()) -> tuple[list[Any], dict[str, str], dict[str, str]]:
     """meshcat commands that build the robot's scene, and its visuals' meshcat paths.
 
     The robot is loaded by Pinocchio's MeshcatVisualizer (meshes or primitives, with the
@@ -172,7 +195,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     from pinocchio.visualize import MeshcatVisualizer
 
     from robokit.viz._meshes import mesh_parts
-    from robokit.viz._labels import label_png
+    from robokit.viz._labels import label_sprite
 
     window = _RecordingWindow()
     vis = meshcat.Visualizer(window=window)
@@ -182,15 +205,13 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
         warnings.simplefilter("ignore")
         viz.initViewer(viewer=vis)
         viz.loadViewerModel(rootNodeName="robot")
-    # a floor grid of our own (meshcat's default 20 m grid is hidden): 0.1 m spacing
-    # under the robot, drawn in the base frame's z = 0 plane
-    half = max(0.5, math.ceil(floor_half * 10) / 10)
-    ticks = np.arange(-half, half + 1e-9, 0.1)
-    seg = []
-    for t in ticks:
-        seg += [[t, -half, 0.0], [t, half, 0.0], [-half, t, 0.0], [half, t, 0.0]]
+    # a floor grid of our own under the robot, sized to its reach, in the base frame's z = 0
+    # plane (meshcat's default 20 m grid is hidden)
+    from robokit.viz._shapes import ground_grid_segments
+
+    seg, _, _ = ground_grid_segments(floor_half / 1.1)
     vis["/Grid"].set_property("visible", False)
-    vis["floor"].set_object(g.LineSegments(g.PointsGeometry(np.array(seg, dtype=np.float32).T),
+    vis["floor"].set_object(g.LineSegments(g.PointsGeometry(seg),
                                            g.LineBasicMaterial(color=0x8090A8, transparent=True, opacity=0.6)))
     paths = {go.name: vis[viz.getViewerNodeName(go, pin.GeometryType.VISUAL)].path.lower()
              for go in visual.geometryObjects}
@@ -215,13 +236,15 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
         node = vis["frames"][name]
         big = name in ("tool", robot.tip)
         node["triad"].set_object(g.triad(triad_scale * (1.4 if big else 1.0)))
-        if robot.dh is not None:
-            mat = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(label_png(name))), transparent=True)
-            T = np.eye(4)
-            T[:3, 3] = [0.3 * triad_scale, 0.3 * triad_scale, 0.6 * triad_scale]
-            node["label"].set_object(g.Box([0.8 * triad_scale, 0.25 * triad_scale, 1e-4 * triad_scale]), mat)
-            node["label"].set_transform(T)
+        if robot.dh is not None:  # camera-facing sprites, drawn over the geometry, placed by the page
+            vis["labels"][name].set_object(label_sprite(name, LABEL_HEIGHT * triad_scale))
         frame_paths[name] = node.path.lower()
+    from robokit.viz._shapes import obstacle_geometry
+
+    for k, o in enumerate(obstacles):
+        geom, T = obstacle_geometry(o, k)
+        vis["obstacles"][str(k)].set_object(geom, g.MeshLambertMaterial(color=0xC08040, opacity=0.6, transparent=True))
+        vis["obstacles"][str(k)].set_transform(T)
     return window.commands, paths, frame_paths
 
 
@@ -231,15 +254,35 @@ def _pack(command: Any) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
-def _camera(points: np.ndarray, fill: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """Orbit target and camera position (base frame) that frame ``points`` (K, 3) at a 3/4 view."""
-    lo, hi = points.min(axis=0), points.max(axis=0)
+#: Direction the teach page looks from (azimuth, elevation in degrees, base frame): a 3/4 view.
+CAMERA_AZIMUTH, CAMERA_ELEVATION = 40.0, 22.0
+
+
+def _camera(points: np.ndarray, pad: float) -> dict:
+    """The teach page's camera data for the reach points ``points`` (K, 3) (base frame, m).
+
+    ``points``: the vertices of the points' convex hull (a perspective view of the hull is
+    the hull of the projected vertices, so they are all the framing needs); ``pad``: how far
+    (m) the links' geometry reaches beyond those frame origins; ``lo``/``hi``: the padded
+    bounding box; ``direction``: unit vector from the target towards the camera (the 3/4 view
+    of :data:`CAMERA_AZIMUTH`, :data:`CAMERA_ELEVATION`). The page fits target and distance to
+    its canvas (``RKMath.fitCamera``); ``target``/``position`` frame the padded bounding sphere
+    in a 75° cone, used until the page has measured its canvas.
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = points[ConvexHull(points).vertices]
+    except (QhullError, ValueError):  # flat (a planar arm) or too few points: keep them all
+        hull = points
+    lo, hi = points.min(axis=0) - pad, points.max(axis=0) + pad
+    az, el = math.radians(CAMERA_AZIMUTH), math.radians(CAMERA_ELEVATION)
+    d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     centre = 0.5 * (lo + hi)
-    radius = max(0.45 * float(np.linalg.norm(hi - lo)), 0.15)
-    dist = radius / math.tan(0.5 * math.radians(75.0) * fill)  # meshcat's camera: 75° vertical field of view
-    az, el = math.radians(40.0), math.radians(22.0)
-    offset = dist * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
-    return centre, centre + offset
+    radius = 0.5 * float(np.linalg.norm(hi - lo))
+    dist = radius / math.sin(0.5 * math.radians(75.0))  # the bounding sphere inside the view cone
+    return {"points": np.round(hull, 6).tolist(), "pad": pad, "lo": lo.tolist(), "hi": hi.tolist(),
+            "direction": d.tolist(), "target": centre.tolist(), "position": (centre + dist * d).tolist()}
 
 
 def teach_parameters(robot: Robot) -> dict:
@@ -280,17 +323,41 @@ def teach_parameters(robot: Robot) -> dict:
     }
 
 
-def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002) -> dict:
+def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.002, world: Any = None) -> dict:
     """Everything the teach page needs about ``robot``, as plain JSON-able values.
 
-    Returns a dict with ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type``
-    'R'/'P', ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists
-    of 6: the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
-    :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
-    ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
-    home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (``target``,
-    ``position`` in the base frame); ``scale`` (triad length, m). Mesh files are decimated
-    with cubes of side ``mesh_cell`` (m, see :mod:`robokit.viz._meshes`).
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero).
+    mesh_cell : float
+        Cube side (m) of the mesh decimation (see :mod:`robokit.viz._meshes`).
+    world : robokit.collision.World, optional
+        The robot among obstacles: the obstacles are drawn and the page shows the collision
+        state (:func:`robokit.viz.clearance.clearance_page_data`).
+
+    Returns
+    -------
+    dict
+        ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type`` 'R'/'P',
+        ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists of 6:
+        the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
+        :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
+        ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
+        home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (the reach box
+        ``lo``/``hi`` and view ``direction`` the page fits its camera to, and a first
+        ``target``/``position``, base frame, m); ``scale`` (triad length, m); ``collision``
+        (None without a world, else the page data of the clearance module plus the
+        obstacles' meshcat ``obstacle_paths``).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> d = teach_data(robokit.load("twolink"))
+    >>> d["n"], d["rows"], d["collision"]
+    (2, [3, 4], None)
     """
     import pinocchio as pin
 
@@ -307,14 +374,21 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
 
     # points that frame the camera: the frames' origins at q0, at the named poses and at
     # random configurations, so that the robot stays in view wherever the sliders take it
-    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(32, robot.n))
+    rand = np.random.default_rng(0).uniform(rng[:, 0], rng[:, 1], size=(64, robot.n))
     pts = [robot.frame_poses(np.clip(p, rng[:, 0], rng[:, 1])) for p in [q0, *poses.values(), *rand]]
     P = np.array([T[:3, 3] for d in pts for T in d.values()])
     P = P[P[:, 2] >= P[: len(pts[0]), 2].min() - 1e-9]  # what goes below the base's level is left out
     size = float(max(np.ptp(P, axis=0).max(), 0.2))
     scale = 0.1 * size
-    commands, paths, frame_paths = _scene(robot, frame_names, scale, 0.6 * size + float(np.abs(P[:, :2]).max()),
-                                          mesh_cell)
+    obstacles = tuple(world.obstacles) if world is not None else ()
+    commands, paths, frame_paths = _scene(robot, frame_names, scale, 1.1 * float(np.hypot(P[:, 0], P[:, 1]).max()),
+                                          mesh_cell, obstacles)
+    collision = None
+    if world is not None:
+        from robokit.viz.clearance import clearance_page_data
+
+        collision = clearance_page_data(world)
+        collision["obstacle_paths"] = [f"/meshcat/obstacles/{k}" for k in range(len(obstacles))]
 
     data = robot.model.createData()
     pin.forwardKinematics(robot.model, data, pin.neutral(robot.model))
@@ -331,7 +405,10 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         fid = robot.frame_id(name)
         frames.append({"name": name, "path": frame_paths[name], "k": int(robot.model.frames[fid].parentJoint),
                        "T": poses0[name].tolist()})
-    target, position = _camera(P)
+    # labels: the page puts each above its frame's origin, stacked where origins coincide
+    # (robokit.viz._labels.label_offsets, redone in the page at every configuration)
+    labels = [{"path": f"/meshcat/labels/{nm}", "frame": i, "height": LABEL_HEIGHT * scale}
+              for i, nm in enumerate(frame_names)] if robot.dh is not None else []
     params = teach_parameters(robot)
     rows = params["rows"]
     return {
@@ -344,23 +421,42 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
         "q0": q0.tolist(),
         "visuals": visuals,
         "frames": frames,
-        "camera": {"target": target.tolist(), "position": position.tolist()},
+        "labels": labels,
+        "camera": _camera(P, max(0.05, 0.06 * size)),
         "scale": scale,
+        "collision": collision,
         "_commands": commands,
     }
 
 
 # --------------------------------------------------------------------------- readouts (Python)
 def teach_readouts(robot: Robot, q: ArrayLike) -> dict:
-    """The teach pendant's quantities at joint values ``q`` (n,) (rad/m), computed with Pinocchio.
+    """The teach pendant's quantities at joint values ``q``, computed with Pinocchio.
 
-    Returns a dict: ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
-    ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
-    Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
-    ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``, ``level`` ("ok", "near" or
-    "singular"), ``direction`` (the lost direction, task-row components, dominant one
-    positive), ``direction_name``, ``margins`` (n,: distance to the nearer limit, ∞ for
-    unlimited joints), ``margin`` (their minimum) and ``margin_joint`` (its joint's name).
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm (n joints).
+    q : array_like, shape (n,)
+        Joint values (rad / m).
+
+    Returns
+    -------
+    dict
+        ``T`` (4×4 tool pose in the base frame), ``xyz`` (m), ``rpy`` (rad,
+        ``R = Rz(y) Ry(p) Rx(r)``), ``quat`` (``(w, x, y, z)``, w ≥ 0), ``J`` (6×n geometric
+        Jacobian, rows ``(ω; v)``, base axes), ``rows`` (the task rows), ``w`` (√det(J_t J_tᵀ)),
+        ``cond`` (σ_max/σ_min, ∞ when singular: σ_min < ``SINGULAR_TOL``), ``sigma_min``,
+        ``level`` ("ok", "near" or "singular"), ``direction`` (the lost direction, task-row
+        components, dominant one positive), ``direction_name``, ``margins`` (n,: distance to
+        the nearer limit, ∞ for unlimited joints), ``margin`` (their minimum) and
+        ``margin_joint`` (its joint's name).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> teach_readouts(robokit.load("ur5"), np.zeros(6))["level"]
+    'singular'
     """
     import pinocchio as pin
 
@@ -428,22 +524,53 @@ def _script_json(obj: Any) -> str:
     return text
 
 
-def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None) -> str:
-    """The teach page of ``model`` (a :class:`robokit.Robot` or anything ``robokit.load`` accepts).
+def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None,
+               obstacles: Sequence[Any] | None = None, padding: float = 0.0) -> str:
+    """The teach page of ``model``: one self-contained HTML page that works offline from a file.
 
-    One self-contained HTML page (meshcat's three.js bundle, the robot's meshes and the
-    page's script embedded; nothing fetched): sliders, named-pose buttons, the 3-D view and
-    the live readouts described in the module docstring. ``q`` (n,) sets the initial joint
-    values (rad/m; default zero); a URL fragment ``#q=q1,q2,…`` (rad/m) overrides it when the
-    page opens, values outside the slider range being clamped (wrapped for unlimited
-    revolute joints).
+    Meshcat's three.js bundle, the robot's meshes and the page's script are embedded; nothing
+    is fetched. Sliders, named-pose buttons, the 3-D view and the live readouts described in
+    the module docstring; a URL fragment ``#q=q1,q2,…`` (rad/m) overrides ``q`` when the page
+    opens, values outside the slider range being clamped (wrapped for unlimited revolute
+    joints).
 
-    Example: ``Path("puma.html").write_text(teach_html("puma560"))``.
+    Parameters
+    ----------
+    model : robokit.Robot, DHTable, str or path
+        Anything ``robokit.load`` accepts.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero).
+    obstacles : sequence of robokit.collision shapes, optional
+        Obstacles (base frame) to draw. With them (an empty list included) the page shows
+        the collision state of a :class:`robokit.collision.World` of the robot: links in
+        contact turn red and a readout gives the minimum distance (m) and the nearest or
+        colliding pair — computed in the page for capsule models (DH robots) among boxes,
+        spheres and cylinders (:mod:`robokit.viz.clearance`); for a robot with collision
+        meshes, or a mesh obstacle, the readout says that this needs the notebook teach
+        pendant (Python).
+    padding : float
+        The World's padding (m, inflation of the robot's geometry).
+
+    Returns
+    -------
+    str
+        The HTML page.
+
+    Examples
+    --------
+    >>> page = teach_html("twolink")
+    >>> page.startswith("<!DOCTYPE html>")
+    True
     """
     from robokit.description.loading import load
 
     robot = load(model)
-    d = teach_data(robot, q)
+    world = None
+    if obstacles is not None:
+        from robokit.collision import World
+
+        world = World(robot, obstacles, padding=padding)
+    d = teach_data(robot, q, world=world)
     commands = d.pop("_commands")
     scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
@@ -492,14 +619,54 @@ def _readouts_html(robot: Robot, r: dict) -> str:
     )
 
 
-def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> Any:
-    """A notebook teach pendant on a :class:`robokit.viz.Scene`: ipywidgets sliders (degrees for
-    revolute joints, metres for prismatic ones), named-pose buttons, the scene's live meshcat
-    view (an iframe of its server) and the readouts of :func:`teach_readouts`.
+def _collision_html(c: dict) -> str:
+    """The collision readout of :func:`robokit.viz.clearance.clearance` as a small HTML block."""
+    def pair(p: Sequence[str]) -> str:
+        return _html.escape(f"{p[0]} – {p[1]}")
 
-    Moving a slider redraws the robot and its frames in the scene and recomputes the readouts.
-    Returns the ``ipywidgets.VBox``; its ``.set_q(q)`` sets all joints at once (rad/m) and
-    ``.readouts`` holds the latest :func:`teach_readouts` dict.
+    if c["pairs"]:
+        return (f"<div style='font:12px monospace;color:#a42a1b'><b>In contact:</b> "
+                f"{', '.join(pair(p) for p in c['pairs'])} (distance {c['distance']:.4f} m)</div>")
+    if c["closest"] is None:
+        return "<div style='font:12px monospace'>collision: no pair to check</div>"
+    return (f"<div style='font:12px monospace;color:#1e7b3c'>minimum distance {c['distance']:.4f} m "
+            f"({pair(c['closest'])})</div>")
+
+
+def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+    """A notebook teach pendant on a :class:`robokit.viz.Scene`.
+
+    ipywidgets sliders (degrees for revolute joints, metres for prismatic ones), named-pose
+    buttons, the scene's live meshcat view (an iframe of its server) and the readouts of
+    :func:`teach_readouts`. Moving a slider redraws the robot and its frames in the scene and
+    recomputes the readouts. With a ``world``, its obstacles are drawn and, on every change,
+    Python computes the collision state with the World (:func:`robokit.viz.clearance.clearance`):
+    the visuals of links in contact turn red and the readout shows the minimum distance (m)
+    and the nearest (or colliding) pair.
+
+    Parameters
+    ----------
+    scene : robokit.viz.Scene
+        The scene (and its robot) to drive.
+    q : array_like, shape (n,), optional
+        Initial joint values (rad / m; default zero; clamped to the slider range).
+    height : int
+        Height of the 3-D view (px).
+    world : robokit.collision.World, optional
+        The scene's robot among obstacles (its ``robot`` must be the scene's).
+
+    Returns
+    -------
+    ipywidgets.VBox
+        With ``.set_q(q)`` (all joints at once, rad/m), ``.readouts`` (the latest
+        :func:`teach_readouts` dict), ``.collision`` (the latest ``clearance`` dict, or
+        None without a world) and ``.painted`` (names of the visuals drawn red).
+
+    Examples
+    --------
+    >>> from robokit.viz import Scene
+    >>> pendant = Scene("puma560").teach()   # doctest: +SKIP
+    >>> pendant.set_q([0, 0.5, -0.5, 0, 0, 0])   # doctest: +SKIP
     """
     W = require("ipywidgets", "the notebook teach pendant")
 
@@ -511,13 +678,18 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> A
     if q.shape != (robot.n,):
         raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
     q = np.clip(q, rng[:, 0], rng[:, 1])
+    if world is not None and world.robot is not robot:
+        raise InputError("world: its robot is not the scene's robot (build the World from scene.robot)")
     names = _frame_names(robot)
     scene.show(q).frames(names, labels=robot.dh is not None)
+    if world is not None and world.obstacles:
+        scene.obstacles(world.obstacles)
     sliders = [
         W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
-                      step=0.1 if types[i] == "R" else 0.001, description=f"{robot.joint_names[i][:12]}",
+                      step=0.1 if types[i] == "R" else 0.001, description=f"q{i + 1} {robot.joint_names[i]}",
                       readout_format=".1f" if types[i] == "R" else ".3f", continuous_update=True,
-                      layout=W.Layout(width="420px"))
+                      style={"description_width": "initial"},  # the whole joint name, never cut
+                      layout=W.Layout(width="460px"))
         for i in range(robot.n)
     ]
     out = W.HTML()
@@ -526,13 +698,34 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420) -> A
     box = W.VBox()
     state = {"busy": False}
 
+    box.collision = None
+    box.painted = []
+    visuals = list(robot.visual_model.geometryObjects) if robot.visual_model is not None else []
+    painted: set[int] = set()  # indices of the visuals drawn red
+
+    def paint(c: dict) -> None:
+        import pinocchio as pin
+
+        hit = {i for i, go in enumerate(visuals) if int(go.parentJoint) in c["joints"]}
+        for i in sorted(hit - painted):
+            scene.vis[scene.viz.getViewerNodeName(visuals[i], pin.GeometryType.VISUAL)].set_property(
+                "color", [0.878, 0.188, 0.165, 1.0])
+        for i in sorted(painted - hit):  # back to the model's own colours and materials
+            scene.viz.loadViewerGeometryObject(visuals[i], pin.GeometryType.VISUAL)
+        painted.clear()
+        painted.update(hit)
+        box.painted = sorted(visuals[i].name for i in hit)
+
     def redraw(qv: np.ndarray) -> None:
+        if world is not None:
+            from robokit.viz.clearance import clearance
+
+            box.collision = clearance(world, qv)
+            paint(box.collision)
         scene.show(qv)
-        poses = robot.frame_poses(qv)
-        for name in names:
-            scene.vis["frames"][name].set_transform(poses[name])
+        scene.move_frames(qv)
         box.readouts = teach_readouts(robot, qv)
-        out.value = _readouts_html(robot, box.readouts)
+        out.value = _readouts_html(robot, box.readouts) + (_collision_html(box.collision) if world is not None else "")
 
     def on_change(_change: Any) -> None:
         if not state["busy"]:

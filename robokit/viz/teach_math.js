@@ -214,7 +214,145 @@ var RKMath = (function () {
     return { q: values, given: true, problem: "" };
   }
 
-  return { mul4: mul4, flat4: flat4, EYE: EYE, expScrew: expScrew, products: products, adjoint: adjoint,
+  // ------------------------------------------------------------------ collision (capsule models)
+  // The robot's links are capsules (segment [a, b], radius r) and the obstacles boxes,
+  // spheres and cylinders, as robokit.viz.clearance.clearance_page_data writes them:
+  //   capsule-capsule   min_s min_t |p1(s) - p2(t)| - r1 - r2
+  //   capsule-shape     min_t sdf(p(t)) - r      (sdf: the shape's exact signed distance)
+  // Inner point-segment distances are closed form; the outer minima are of convex functions
+  // of one parameter on [0, 1] (a distance to a convex set, or a convex set's signed distance,
+  // along a segment), found by ternary search.
+  function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+  function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  function pointSegment(p, a, b) {
+    var ab = sub3(b, a), ap = sub3(p, a), L2 = dot3(ab, ab);
+    var t = L2 > 0 ? Math.max(0, Math.min(1, dot3(ap, ab) / L2)) : 0;
+    return Math.hypot(ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]);
+  }
+  function minOnSegment(f) {
+    var lo = 0, hi = 1;
+    for (var it = 0; it < 100; it++) {
+      var m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      if (f(m1) <= f(m2)) { hi = m2; } else { lo = m1; }
+    }
+    return Math.min(f(0), f(1), f(0.5 * (lo + hi)));
+  }
+  // signed distance of a point x (in the shape's frame) to a box (half sizes h), a sphere
+  // (radius r) or a cylinder (radius r, half-length h, axis z), centred on the origin
+  function sdf(g, x) {
+    if (g.type === "sphere") { return Math.hypot(x[0], x[1], x[2]) - g.radius; }
+    var q;
+    if (g.type === "box") { q = [Math.abs(x[0]) - g.half[0], Math.abs(x[1]) - g.half[1], Math.abs(x[2]) - g.half[2]]; }
+    else { q = [Math.hypot(x[0], x[1]) - g.radius, Math.abs(x[2]) - g.half]; }
+    var out = 0, inside = -Infinity;
+    for (var i = 0; i < q.length; i++) { out += Math.max(q[i], 0) * Math.max(q[i], 0); inside = Math.max(inside, q[i]); }
+    return Math.sqrt(out) + Math.min(inside, 0);
+  }
+  // segment ends (base frame) of a capsule with pose T (row-major 4x4, axis z, half-length h)
+  function segmentOf(T, h) {
+    var c = [T[3], T[7], T[11]], z = [T[2], T[6], T[10]];
+    return [[c[0] - h * z[0], c[1] - h * z[1], c[2] - h * z[2]], [c[0] + h * z[0], c[1] + h * z[1], c[2] + h * z[2]]];
+  }
+  function toLocal(T, p) {
+    var v = [p[0] - T[3], p[1] - T[7], p[2] - T[11]];
+    return [T[0] * v[0] + T[4] * v[1] + T[8] * v[2], T[1] * v[0] + T[5] * v[1] + T[9] * v[2],
+            T[2] * v[0] + T[6] * v[1] + T[10] * v[2]];
+  }
+  function lerp3(a, b, t) { return [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]; }
+
+  // The collision state at the partial products P (of `products`) for the page's data C:
+  // {distance (min over the pairs, m), closest: [name, name], pairs: [[name, name]] in contact
+  // (distance <= 0, each once), links: robot link names in contact, joints: their joint
+  // counts k, d: per-pair distances}. Distances are those of the padded geometry (margins).
+  function clearance(C, P) {
+    var segs = C.geoms.map(function (g) {
+      if (g.type) { return null; }
+      var T = mul4(P[g.k], flat4(g.T));
+      return segmentOf(T, g.half);
+    });
+    var poses = C.geoms.map(function (g) { return g.type ? flat4(g.T) : null; });
+    var d = [], best = Infinity, kbest = -1, pairs = [], seen = {}, links = {}, joints = {};
+    for (var k = 0; k < C.pairs.length; k++) {
+      var i = C.pairs[k][0], j = C.pairs[k][1];
+      if (C.geoms[i].type) { var tmp = i; i = j; j = tmp; }  // the robot's capsule first
+      var gi = C.geoms[i], gj = C.geoms[j], si = segs[i], dist;
+      if (!gj.type) {
+        var sj = segs[j];
+        dist = minOnSegment(function (s) { return pointSegment(lerp3(si[0], si[1], s), sj[0], sj[1]); }) - gi.radius - gj.radius;
+      } else {
+        var Tj = poses[j];
+        dist = minOnSegment(function (t) { return sdf(gj, toLocal(Tj, lerp3(si[0], si[1], t))); }) - gi.radius;
+      }
+      dist -= C.margins[k];
+      d.push(dist);
+      if (dist < best) { best = dist; kbest = k; }
+      if (dist <= 0) {
+        var a = C.geoms[C.pairs[k][0]].name, b = C.geoms[C.pairs[k][1]].name, key = JSON.stringify([a, b]);
+        if (!seen[key]) { seen[key] = true; pairs.push([a, b]); }
+        [gi, gj].forEach(function (g) { if (!g.type) { links[g.name] = true; joints[g.k] = true; } });
+      }
+    }
+    var closest = kbest < 0 ? null : [C.geoms[C.pairs[kbest][0]].name, C.geoms[C.pairs[kbest][1]].name];
+    return { distance: best, closest: closest, pairs: pairs, links: Object.keys(links).sort(),
+             joints: Object.keys(joints).map(Number).sort(function (x, y) { return x - y; }), d: d };
+  }
+
+  // ------------------------------------------------------------------ camera framing
+  // A perspective camera looking along -dir at a target t from the distance D sees a point p
+  // at  x = (p - t).right,  y = (p - t).up,  depth = D - (p - t).dir,  and draws it at the
+  // normalised device coordinates (x / (depth tan(fx/2)), y / (depth tan(fy/2))), fy the
+  // vertical field of view and tan(fx/2) = aspect tan(fy/2). For every point, grown by pad
+  // sideways, to land inside the window win = {xlo, xhi, ylo, yhi} (NDC, xlo < 0 < xhi) the
+  // distance must be at least  s + X / (xhi tx)  (X = x + pad - a > 0; (x - pad - a) / (xlo tx)
+  // on the other side), and likewise in y, s = (p - c).dir + pad, c the points' bounding-box
+  // centre and t = c + a right + b up. Each bound is convex in its shift (a or b): ternary
+  // searches find the shifts that let the camera come closest.
+  // points: [[x, y, z], ...] (base frame, m). Returns {target, position, distance}.
+  function fitCamera(points, pad, dir, fovYDeg, aspect, win) {
+    var nd = Math.hypot(dir[0], dir[1], dir[2]);
+    var d = [dir[0] / nd, dir[1] / nd, dir[2] / nd];
+    var right = [-d[1], d[0], 0];  // (-d) x z
+    var nr = Math.hypot(right[0], right[1]);
+    right = nr > 1e-9 ? [right[0] / nr, right[1] / nr, 0] : [1, 0, 0];
+    var up = [d[1] * right[2] - d[2] * right[1], d[2] * right[0] - d[0] * right[2], d[0] * right[1] - d[1] * right[0]];
+    var ty = Math.tan(0.5 * fovYDeg * Math.PI / 180), tx = ty * aspect;
+    var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity], i, k;
+    for (i = 0; i < points.length; i++) {
+      for (k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], points[i][k]); hi[k] = Math.max(hi[k], points[i][k]); }
+    }
+    var c = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])];
+    var rel = [], R = pad;
+    for (i = 0; i < points.length; i++) {
+      var v = [points[i][0] - c[0], points[i][1] - c[1], points[i][2] - c[2]];
+      rel.push([v[0] * right[0] + v[1] * right[1] + v[2] * right[2], v[0] * up[0] + v[1] * up[1] + v[2] * up[2],
+                v[0] * d[0] + v[1] * d[1] + v[2] * d[2] + pad]);
+      R = Math.max(R, Math.hypot(v[0], v[1], v[2]) + pad);
+    }
+    // the bound splits: D >= max(Fx(a), Fy(b)), each convex in one shift
+    function bound(a, axis, wlo, whi, tn) {
+      var D = -Infinity;
+      for (var j = 0; j < rel.length; j++) {
+        var s = rel[j][2];
+        D = Math.max(D, s + (rel[j][axis] + pad - a) / (whi * tn), s + (rel[j][axis] - pad - a) / (wlo * tn));
+      }
+      return D;
+    }
+    function argmin(f) {
+      var lo1 = -R, hi1 = R;
+      for (var it = 0; it < 100; it++) {
+        var m1 = lo1 + (hi1 - lo1) / 3, m2 = hi1 - (hi1 - lo1) / 3;
+        if (f(m1) <= f(m2)) { hi1 = m2; } else { lo1 = m1; }
+      }
+      return 0.5 * (lo1 + hi1);
+    }
+    var a = argmin(function (x) { return bound(x, 0, win.xlo, win.xhi, tx); });
+    var b = argmin(function (y) { return bound(y, 1, win.ylo, win.yhi, ty); });
+    var D = Math.max(bound(a, 0, win.xlo, win.xhi, tx), bound(b, 1, win.ylo, win.yhi, ty), 1e-3);
+    var t = [c[0] + a * right[0] + b * up[0], c[1] + a * right[1] + b * up[1], c[2] + a * right[2] + b * up[2]];
+    return { target: t, position: [t[0] + D * d[0], t[1] + D * d[1], t[2] + D * d[2]], distance: D };
+  }
+
+  return { fitCamera: fitCamera, clearance: clearance, sdf: sdf, mul4: mul4, flat4: flat4, EYE: EYE, expScrew: expScrew, products: products, adjoint: adjoint,
            jacobian: jacobian, svdLeft: svdLeft, rpy: rpy, quaternion: quaternion, readouts: readouts,
            parseFragment: parseFragment };
 })();

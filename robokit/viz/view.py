@@ -146,9 +146,35 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
 def view_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None, frames: bool = False,
               trajectory: ArrayLike | None = None, fps: float = 30.0,
               tip: str | None = None, obstacles: Any = None) -> str:
-    """The HTML page of ``model`` (anything ``robokit.load`` accepts) at ``q``, with DH frames
-    and/or a (K, n) trajectory animation, and collision ``obstacles`` (robokit.collision
-    shapes) drawn at their poses; the camera framed on the robot."""
+    """The self-contained HTML page of ``robokit view``: the robot, framed, on a ground grid.
+
+    Parameters
+    ----------
+    model : robokit.Robot, DHTable, str or path
+        Anything ``robokit.load`` accepts.
+    q : array_like, shape (n,), optional
+        The configuration shown (rad / m; default zero).
+    frames : bool
+        Draw the DH frames (or the joint frames) and the tool frame as labelled triads (the
+        labels are camera-facing sprites).
+    trajectory : array_like, shape (K, n), optional
+        Joint configurations to animate (rad / m).
+    fps : float
+        Animation frame rate (samples per second).
+    tip : str, optional
+        Tip frame of the chain (URDF input).
+    obstacles : sequence of robokit.collision shapes, optional
+        Box, Sphere, Cylinder, Mesh obstacles drawn at their poses (base frame).
+
+    Returns
+    -------
+    str
+        The HTML page (meshcat's static page, meshes embedded; no server needed).
+
+    Examples
+    --------
+    >>> page = view_html("puma560", frames=True)   # doctest: +SKIP
+    """
     from robokit.description.loading import load
     from robokit.viz.scene import Scene
 

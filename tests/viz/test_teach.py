@@ -271,3 +271,153 @@ def test_cli_without_output_writes_a_temporary_page(monkeypatch, capsys):
         assert 'id="rk-robot"' in path.read_text(encoding="utf-8")
     finally:
         path.unlink(missing_ok=True)
+
+
+# --------------------------------------------------------------------------- layout, in one browser run
+SIZES = [(1280, 800), (1600, 1100), (800, 1000)]
+#: the pose per robot: stretched out (UR5 and PUMA at zero reach sideways; the Panda leaning forward)
+LAYOUT_Q = {"ur5": np.zeros(6), "puma560": np.zeros(6), "panda": np.array([0.0, 1.2, 0.0, -0.4, 0.0, 1.6, 0.8])}
+RED = 0xE0302A
+
+_HARNESS_JS = """
+var got = {};
+function poll() {
+  var fr = document.querySelectorAll("iframe"), done = 0;
+  fr.forEach(function (f, i) {
+    try {
+      var d = f.contentDocument, e = d && d.getElementById("rk-framing"), c = d && d.getElementById("rk-collision");
+      if (e && e.dataset.robot) {
+        var names = Array.prototype.map.call(d.querySelectorAll(".rk-joint-name"), function (n) {
+          return { text: n.textContent, sw: n.scrollWidth, cw: n.clientWidth, sh: n.scrollHeight, ch: n.clientHeight,
+                   overflow: getComputedStyle(n).textOverflow };
+        });
+        got[i] = { framing: Object.assign({}, e.dataset), names: names, collision: Object.assign({}, c.dataset),
+                   collisionText: c.textContent };
+        done++;
+      }
+    } catch (err) { got[i] = { error: String(err) }; done++; }
+  });
+  document.getElementById("out").textContent = JSON.stringify(got);
+  if (done < fr.length) { setTimeout(poll, 200); }
+}
+window.addEventListener("load", function () { setTimeout(poll, 100); });
+"""
+
+
+def run_frames(frames, tmp_dir) -> list:
+    """Open pages in iframes of given sizes ``[(path, q, (w, h)), …]`` in one headless Chromium run
+    (a page's own layout at that viewport) and return each page's framing, joint-name and
+    collision data as the page measured them."""
+    import html as html_mod
+    import re
+
+    tags = []
+    for path, q, (w, h) in frames:
+        frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
+        tags.append(f'<iframe width="{w}" height="{h}" style="border:0;display:block" '
+                    f'src="{path.resolve().as_uri()}{frag}"></iframe>')
+    harness = Path(tmp_dir) / "harness.html"
+    harness.write_text("<!DOCTYPE html><html><body>" + "".join(tags) + f"<pre id=out></pre><script>{_HARNESS_JS}"
+                       "</script></body></html>", encoding="utf-8")
+    with tempfile.TemporaryDirectory() as profile:
+        out = subprocess.run(
+            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
+             "--allow-file-access-from-files", "--virtual-time-budget=40000", "--dump-dom", harness.as_uri()],
+            capture_output=True, text=True, timeout=240)
+    assert out.returncode == 0, out.stderr[-2000:]
+    m = re.search(r'<pre id="out">(.*?)</pre>', out.stdout, re.S)
+    assert m, out.stdout[-2000:]
+    got = json.loads(html_mod.unescape(m.group(1)))
+    assert len(got) == len(frames), f"only {len(got)} of {len(frames)} pages reported"
+    return [got[str(i)] for i in range(len(frames))]
+
+
+def _collision_world():
+    from robokit.collision import Box, Cylinder, Sphere, World, pose_from_xyz_rpy
+
+    obs = [Box([0.3, 0.4, 0.5], pose_from_xyz_rpy([0.6, 0.15, 0.55], [0.3, -0.2, 0.5]), name="crate"),
+           Sphere(0.2, pose_from_xyz_rpy([-0.35, 0.4, 0.9], [0, 0, 0]), name="ball"),
+           Cylinder(0.1, 0.9, pose_from_xyz_rpy([0.0, -0.55, 0.75], [0.4, 0.2, 0]), name="post")]
+    return World(robot("puma560"), obs)
+
+
+@needs_chromium
+def test_layout_framing_names_and_collision_colours(pages_dir):
+    """At 1280×800, 1600×1100 and 800×1000, the projected bounding box of the robot (three.js,
+    at a stretched pose) lies inside the 3-D canvas (not under the side panel, the readouts or
+    meshcat's controls) and fills a fair part of it; every slider label shows its full joint
+    name (no clipping). On the PUMA page with obstacles, at a configuration where the World
+    finds contacts, the page lists the same pairs and paints exactly the links in contact red; the
+    UR5's page (collision meshes) says that the collision display needs the notebook."""
+    layout = [(name, size) for name in LAYOUT_Q for size in SIZES]
+    world = _collision_world()
+    rng = np.random.default_rng(2)
+    while True:
+        q_hit = world.robot.random_configuration(rng)
+        pairs = world.colliding_pairs(q_hit)
+        if pairs and all(b in world.obstacle_names for _, b in pairs):
+            break
+    coll_page = Path(pages_dir) / "teach_puma_obstacles.html"
+    coll_page.write_text(teach_html(world.robot, obstacles=world.obstacles), encoding="utf-8")
+    mesh_page = Path(pages_dir) / "teach_ur5_obstacles.html"  # collision meshes: no fake numbers offline
+    mesh_page.write_text(teach_html(robot("ur5"), obstacles=world.obstacles), encoding="utf-8")
+    frames = [(page(name, pages_dir), LAYOUT_Q[name], size) for name, size in layout]
+    frames += [(coll_page, q_hit, (1280, 800)), (mesh_page, None, (1280, 800))]
+    results = run_frames(frames, pages_dir)
+    mesh = results.pop()
+    assert mesh["collision"]["supported"] == "false" and "notebook" in mesh["collisionText"], mesh["collision"]
+
+    for (name, (w, h)), res in zip(layout, results):
+        assert "error" not in res, res
+        f = res["framing"]
+        x0, y0, x1, y1 = nums(f["robot"])
+        vx0, vy0, vx1, vy1 = nums(f["view"])
+        assert np.allclose(nums(f["canvas"]), [vx1 - vx0, vy1 - vy0], atol=1.0), (name, w, h, f)
+        where = (name, w, h, f["robot"], f["view"])
+        assert vx0 - 0.5 <= x0 and x1 <= vx1 + 0.5 and vy0 - 0.5 <= y0 and y1 <= vy1 + 0.5, where
+        for panel in (nums(f["side"]), nums(f["readouts"]), *map(np.array, json.loads(f["overlays"]))):
+            px0, py0, px1, py1 = panel
+            assert x1 <= px0 + 0.5 or px1 <= x0 + 0.5 or y1 <= py0 + 0.5 or py1 <= y0 + 0.5, (where, panel)
+        assert max((x1 - x0) / (vx1 - vx0), (y1 - y0) / (vy1 - vy0)) > 0.15, where  # not a speck
+        joints = robot(name).joint_names
+        assert [n["text"] for n in res["names"]] == [f"q{i + 1} {j}" for i, j in enumerate(joints)]
+        for n in res["names"]:
+            assert n["sw"] <= n["cw"] and n["sh"] <= n["ch"] and n["overflow"] != "ellipsis", (name, w, n)
+
+    c = results[-1]["collision"]
+    assert c["supported"] == "true"
+    assert sorted(map(tuple, json.loads(c["pairs"]))) == sorted(pairs)
+    assert float(c["distance"]) <= 0 and world.distance(q_hit) <= 0  # in contact (depths: page estimate vs coal's EPA)
+    hit_joints = {int(go.parentJoint) for go in world.geometry_model.geometryObjects
+                  if any(go.name.startswith(a + "_capsule") for a, _ in pairs)}
+    d = teach_data(world.robot, world=world)
+    colours = json.loads(c["colours"])
+    for v in d["visuals"]:
+        assert (colours[v["path"]] == RED) == (v["k"] in hit_joints), (v["path"], v["k"], hit_joints)
+    for k, nm in enumerate(world.obstacle_names):
+        assert (colours[f"/meshcat/obstacles/{k}"] == RED) == any(nm == b for _, b in pairs)
+    assert "In contact" in results[-1]["collisionText"]
+
+
+def test_cli_obstacles_flag(tmp_path, capsys):
+    """``robokit teach MODEL --obstacles scene.yaml``: the page carries the scene's obstacles and the
+    collision data; a bad scene file exits 2 with one line and writes nothing."""
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("padding: 0.01\nobstacles:\n  - type: sphere\n    name: ball\n    radius: 0.1\n"
+                     "    pose: {xyz: [0.3, 0.3, 0.0], rpy: [0, 0, 0]}\n", encoding="utf-8")
+    out = tmp_path / "rrr.html"
+    assert cli_main(["teach", "rrr", "--obstacles", str(scene), "-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    data = json.loads(text.split('<script id="rk-robot" type="application/json">')[1].split("</script>")[0])
+    c = data["collision"]
+    assert c["supported"] and c["padding"] == 0.01 and c["obstacles_drawn"] == ["ball"]
+    assert [g["name"] for g in c["geoms"] if g.get("type")] == ["ball"]
+    capsys.readouterr()
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("obstacles:\n  - type: box\n    colour: red\n", encoding="utf-8")
+    assert cli_main(["teach", "rrr", "--obstacles", str(bad), "-o", str(tmp_path / "x.html")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("robokit: ")
+    assert not (tmp_path / "x.html").exists()

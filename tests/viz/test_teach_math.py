@@ -177,6 +177,52 @@ def test_js_fragment_parser_never_throws_and_says_what_it_ignored():
         assert r == {"q": None, "given": False, "problem": ""}, (f, r)
 
 
+FIT = r"""
+const M = require(process.argv[1]);
+const cases = JSON.parse(process.argv[2]);
+process.stdout.write(JSON.stringify(cases.map(c => M.fitCamera(c.points, c.pad, c.dir, c.fov, c.aspect, c.win))));
+"""
+
+
+@needs_node
+def test_fit_camera_puts_every_point_inside_the_window_and_is_tight():
+    """RKMath.fitCamera, checked by projecting with numpy: every point, grown by ``pad`` along the
+    camera's right and up axes, lands inside the NDC window, in front of the camera, and the fit is
+    tight (some point touches the window's edge in x or y)."""
+    rng = np.random.default_rng(4)
+    cases = []
+    for _ in range(25):
+        az, el = rng.uniform(-np.pi, np.pi), rng.uniform(0.1, 1.2)
+        d = [np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)]
+        xlo, ylo = -rng.uniform(0.6, 0.98), -rng.uniform(0.6, 0.98)
+        cases.append({"points": (rng.normal(size=(int(rng.integers(2, 60)), 3)) * rng.uniform(0.1, 2, 3)).tolist(),
+                      "pad": float(rng.uniform(0, 0.1)), "dir": d, "fov": float(rng.uniform(40, 90)),
+                      "aspect": float(rng.uniform(0.5, 2.5)),
+                      "win": {"xlo": xlo, "xhi": rng.uniform(0.6, 0.98), "ylo": ylo, "yhi": rng.uniform(0.6, 0.98)}})
+    fits = _node(FIT, MATH_JS, json.dumps(cases))
+    for c, f in zip(cases, fits):
+        d = np.array(c["dir"]) / np.linalg.norm(c["dir"])
+        right = np.cross(-d, [0, 0, 1.0])
+        right /= np.linalg.norm(right)
+        up = np.cross(right, -d)
+        ty = math.tan(math.radians(c["fov"]) / 2)
+        tx = ty * c["aspect"]
+        t, pos = np.array(f["target"]), np.array(f["position"])
+        assert np.allclose(pos - t, f["distance"] * d)
+        w, pad = c["win"], c["pad"]
+        worst = 0.0
+        for p in np.array(c["points"]):
+            for sx in (-pad, pad):
+                for sy in (-pad, pad):
+                    q = p + sx * right + sy * up + pad * d  # the nearest corner of the padded point
+                    depth = (pos - q) @ d
+                    assert depth > 0
+                    x, y = (q - t) @ right / (depth * tx), (q - t) @ up / (depth * ty)
+                    assert w["xlo"] - 1e-9 <= x <= w["xhi"] + 1e-9 and w["ylo"] - 1e-9 <= y <= w["yhi"] + 1e-9
+                    worst = max(worst, x / w["xhi"], x / w["xlo"], y / w["yhi"], y / w["ylo"])
+        assert worst > 1 - 1e-6, worst  # no closer camera would do
+
+
 def test_scene_and_teach_do_not_import_each_other():
     import ast
 

@@ -115,3 +115,79 @@ def test_robot_visible_in_headless_chromium(model, tmp_path):
     fraction = changed.mean()
     print(f"{model}: {fraction:.1%} of the pixels differ from the empty scene")
     assert fraction > 0.02, f"only {fraction:.2%} of the pixels show the robot"
+
+
+class _Recorder:
+    """Stands in for meshcat's window: keeps the commands a Scene sends (no server)."""
+
+    def __init__(self):
+        self.commands = []
+
+    def send(self, command):
+        self.commands.append(command.lower())
+
+
+def _recorded_scene(model):
+    import meshcat
+
+    rec = _Recorder()
+    return Scene(model, vis=meshcat.Visualizer(window=rec)), rec
+
+
+def test_frame_labels_face_the_camera_and_stay_readable():
+    """--frames labels are three.js sprites (always turned to the camera: never mirrored), drawn
+    over the geometry (no depth test), upright above their origins, apart from each other where
+    the PUMA's wrist frames coincide, and a few percent of the robot's size."""
+    import robokit
+
+    puma = robokit.load("puma560")
+    scene, rec = _recorded_scene(puma)
+    q = np.array([0, 0.785, -1.571, 0, 0.524, 0])
+    scene.show(q).frames()
+    names = [f"dh_{i}" for i in range(7)] + ["tool"]
+    objs = {c["path"]: c["object"] for c in rec.commands if c["type"] == "set_object"}
+    moves = {c["path"]: np.array(c["matrix"]).reshape(4, 4).T for c in rec.commands if c["type"] == "set_transform"}
+    poses = puma.frame_poses(q)
+    size = np.ptp(np.array([T[:3, 3] for T in poses.values()]), axis=0).max()
+    tops = []
+    for name in names:
+        obj = objs[f"/meshcat/labels/{name}"]
+        assert obj["object"]["type"] == "Sprite"
+        mat = obj["materials"][0]
+        assert mat["type"] == "SpriteMaterial" and mat["depthTest"] is False and "map" in mat
+        height = np.array(obj["object"]["matrix"]).reshape(4, 4)[1, 1]
+        assert 0.02 < height / size < 0.1, (name, height, size)
+        T = moves[f"/meshcat/labels/{name}"]
+        assert np.allclose(T[:3, :3], np.eye(3))  # not turned with the frame
+        lift = T[:3, 3] - poses[name][:3, 3]
+        assert np.allclose(lift[:2], 0) and lift[2] >= 0.8 * height, (name, lift)
+        tops.append(T[:3, 3])
+        assert np.abs(np.array(objs[f"/meshcat/frames/{name}/triad"]["object"]["matrix"]) - np.eye(4).ravel()).max() < 1e-12
+    tops = np.array(tops)
+    gaps = np.linalg.norm(tops[:, None] - tops[None], axis=2) + np.eye(len(tops))
+    assert gaps.min() > 0.9 * height  # dh_4, dh_5, dh_6 and tool share an origin: a column of labels, not a pile
+    assert not any(o["object"]["type"] == "Mesh" for p, o in objs.items() if p.startswith("/meshcat/labels"))
+
+
+@pytest.mark.parametrize("model", ["puma560", "ur5"])
+def test_ground_grid_lies_under_the_robot_sized_to_its_reach(model):
+    """The view's grid: a square in the base's z = 0 plane, centred on the base, as wide as the
+    robot's horizontal reach (checked on 300 other random configurations) plus a margin; meshcat's
+    20 m grid is hidden."""
+    import robokit
+
+    robot = robokit.load(model)
+    scene, rec = _recorded_scene(robot)
+    scene.show().frame_camera()
+    floor = [c for c in rec.commands if c["type"] == "set_object" and c["path"] == "/meshcat/floor"][-1]
+    arr = floor["object"]["geometries"][0]["data"]["attributes"]["position"]["array"]  # msgpack ext: float32 bytes
+    pts = np.frombuffer(arr.data, dtype=np.float32).reshape(-1, 3).astype(float)
+    half, spacing = scene.grid["half"], scene.grid["spacing"]
+    assert np.allclose(pts[:, 2], 0.0)
+    assert np.allclose(pts[:, :2].min(axis=0), -half, atol=1e-6) and np.allclose(pts[:, :2].max(axis=0), half, atol=1e-6)
+    rng = np.random.default_rng(123)
+    reach = max(np.hypot(T[0, 3], T[1, 3]) for _ in range(300) for T in robot.frame_poses(robot.random_configuration(rng)).values())
+    assert 1.0 * reach <= half <= 1.25 * reach + spacing, (half, reach)
+    assert 4 <= half / spacing <= 12
+    hidden = [c for c in rec.commands if c["type"] == "set_property" and c["path"] == "/Grid"]
+    assert hidden and hidden[-1]["property"] == "visible" and hidden[-1]["value"] is False
