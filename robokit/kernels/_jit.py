@@ -30,9 +30,10 @@ module is imported but on their **first call**, which depends on ``$ROBOKIT_COMP
     exactly what ``NUMBA_DISABLE_JIT=1`` runs). Each later call that still finds no machine code
     reads the worker's finished-notices (a non-blocking read of a pipe) and, once its kernel is
     done, loads it from the cache and switches to it for good. Kernels that should not run as
-    Python — the parallel ``*_batch`` twins (a batch of 10⁴ configurations as Python takes
-    longer than compiling) and the simulation loops — are sent to the front of the worker's queue and the call waits
-    for them (:func:`njit`'s ``interpret_while_compiling``). The worker keeps going after its
+    Python — a large call of a parallel ``*_batch`` twin (10⁴ configurations as Python take far
+    longer than compiling; small batches do run as Python) and the simulation loops — are sent
+    to the front of the worker's queue and the call waits for them (:func:`njit`'s
+    ``interpret_while_compiling``). The worker keeps going after its
     parent exits until every kernel it was sent is in the cache, so the next process is warm.
     When no worker can be started, or it fails, the kernel is compiled in the calling process,
     with a one-line note.
@@ -86,7 +87,7 @@ from numba.core import types as _nbtypes
 from robokit.errors import InputError
 
 __all__ = ["njit", "prange", "cache_dir", "jit_disabled", "compile_now", "compile_mode", "interpreted", "MODES",
-           "ENV"]
+           "ENV", "SMALL_BATCH", "FK_BATCH"]
 
 prange = numba.prange
 
@@ -96,6 +97,11 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 ENV = "ROBOKIT_COMPILE"
 #: Its values: ``background`` (the default), ``wait``, ``off``.
 MODES = ("background", "wait", "off")
+#: The largest batch (configurations × joints) a ``parallel`` kernel runs as plain Python while it
+#: compiles (the Newton–Euler batch as Python: about 1 ms per configuration and joint).
+SMALL_BATCH = 400
+#: The same for the kinematics batches (FK and Jacobians as Python: about 35 µs per configuration and joint).
+FK_BATCH = 6000
 
 
 def jit_disabled() -> bool:
@@ -141,11 +147,11 @@ def compile_mode() -> str:
 
 
 @overload
-def njit(signature: _F, *, parallel: bool = False, interpret_while_compiling: bool | None = None) -> _F: ...
+def njit(signature: _F, *, parallel: bool = False, interpret_while_compiling: bool | int | None = None) -> _F: ...
 @overload
 def njit(signature: str | None = None, *, parallel: bool = False,
-         interpret_while_compiling: bool | None = None) -> Callable[[_F], _F]: ...
-def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compiling: bool | None = None) -> Any:
+         interpret_while_compiling: bool | int | None = None) -> Callable[[_F], _F]: ...
+def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compiling: bool | int | None = None) -> Any:
     """``numba.njit`` with this package's settings: on-disk cache, numpy's error model (a division
     by zero gives inf/NaN rather than raising, as numpy does), no fast-math (results must match
     Pinocchio to rounding), and the first-call policy of the module docstring.
@@ -161,12 +167,14 @@ def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compi
         helpers compile as part of the kernel that calls them.
     parallel : bool
         numba's ``parallel=True`` (``prange`` loops over the CPU cores): the ``*_batch`` twins.
-    interpret_while_compiling : bool, optional
-        Whether a first call with a cache miss may run the kernel as plain Python while the
-        background worker compiles it (``ROBOKIT_COMPILE=background``). Default: True, except for
-        ``parallel`` kernels — a batch over 10⁴ configurations as plain Python takes longer than
-        compiling — which wait for their machine code. Kernels whose call is one long loop (the
-        compiled simulation) pass False.
+    interpret_while_compiling : bool or int, optional
+        Whether a call that finds no machine code may run the kernel as plain Python while the
+        background worker compiles it (``ROBOKIT_COMPILE=background``); an int: only while the
+        call's batch — configurations × joints of its ``thetas``/``Q`` argument, or targets of
+        ``Ts`` — is at most that, larger calls wait for the machine code. Default: True, and
+        :data:`SMALL_BATCH` for ``parallel`` kernels (a batch over 10⁴ configurations as plain
+        Python takes far longer than compiling). Kernels whose call is one long loop (the
+        compiled simulation) pass False: they always wait.
 
     Returns
     -------
@@ -185,7 +193,12 @@ def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compi
     6.0
     """
     options: dict[str, Any] = dict(cache=True, error_model="numpy", parallel=parallel)
-    interpret = (not parallel) if interpret_while_compiling is None else bool(interpret_while_compiling)
+    if interpret_while_compiling is None:
+        interpret = SMALL_BATCH if parallel else sys.maxsize
+    elif isinstance(interpret_while_compiling, bool):
+        interpret = sys.maxsize if interpret_while_compiling else -1
+    else:
+        interpret = int(interpret_while_compiling)
 
     def decorate(func: _F, sig: str | None) -> _F:
         dispatcher = numba.njit(**options)(func)
@@ -198,7 +211,7 @@ def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compi
     return lambda func: decorate(func, signature)
 
 
-def _install_first_call(dispatcher: Dispatcher, signature: str | None, interpret: bool) -> None:
+def _install_first_call(dispatcher: Dispatcher, signature: str | None, interpret: int) -> None:
     """Route ``dispatcher``'s calls that find no machine code through :func:`_first_call`.
 
     numba's dispatcher calls its ``_compile_for_args`` when no compiled version matches the
@@ -341,6 +354,8 @@ class _Job:
         self.number, self.dispatcher, self.sig = number, dispatcher, sig
         self.state = "queued"  # → "ready" (in the cache) / "failed" (detail says why) / "loaded"
         self.detail = ""
+        self.urgent = False
+        self.module, self.func_name = dispatcher.py_func.__module__, dispatcher.py_func.__name__
 
     @property
     def name(self) -> str:
@@ -426,6 +441,7 @@ def _first_call(dispatcher: Dispatcher, args: tuple[Any, ...]) -> Any:
         _check_types(dispatcher, signature, args)
     sig = signature if signature is not None else _argtypes(dispatcher, args)
     key = _key(dispatcher, sig)
+    interpret = mode == "off" or _batch_work(dispatcher, args) <= dispatcher._robokit_interpret  # type: ignore[attr-defined]
     with _LOCK:
         if dispatcher._can_compile is False:  # type: ignore[attr-defined]
             return dispatcher  # another thread switched it meanwhile
@@ -438,15 +454,32 @@ def _first_call(dispatcher: Dispatcher, args: tuple[Any, ...]) -> Any:
             return _run_interpreted(dispatcher, args)
         _collect()
         if job is None:
-            job = _submit(dispatcher, sig, urgent=not dispatcher._robokit_interpret)  # type: ignore[attr-defined]
+            job = _submit(dispatcher, sig, urgent=not interpret)
             if job is None:  # no worker: compile here, as ROBOKIT_COMPILE=wait does
                 return _compile_here(dispatcher, sig)
-        if dispatcher._robokit_interpret and job.state == "queued":  # type: ignore[attr-defined]
+        elif job.state == "queued" and not interpret and not job.urgent:
+            job.urgent = True  # a large batch now waits for it: to the front of the worker's queue
+            _BG.worker.submit(job.number, job.module, job.func_name, sig, urgent=True)
+        if interpret and job.state == "queued":
             return _run_interpreted(dispatcher, args)
     if job.state == "queued":
         _wait_for(job)
     with _LOCK:
         return _finish(job)
+
+
+#: The argument names of the batch kernels' leading dimension (configurations, targets).
+_BATCH_ARGS = ("thetas", "Q", "Ts")
+
+
+def _batch_work(dispatcher: Dispatcher, args: tuple[Any, ...]) -> int:
+    """The size of a call, for the interpret-or-wait choice: configurations × joints of the batch
+    argument (targets for (N, 4, 4) poses); 0 for a kernel without one."""
+    code = dispatcher.py_func.__code__
+    for name, value in zip(code.co_varnames[:code.co_argcount], args):
+        if name in _BATCH_ARGS and isinstance(value, np.ndarray) and value.ndim >= 2:
+            return int(value.shape[0]) * (int(value.shape[1]) if value.ndim == 2 else 1)
+    return 0
 
 
 def _run_interpreted(dispatcher: Dispatcher, args: tuple[Any, ...]) -> Callable[..., Any]:
@@ -492,6 +525,7 @@ def _submit(dispatcher: Dispatcher, sig: Any, urgent: bool) -> _Job | None:
                       "compiling kernels in this process")
                 return None
         job = _Job(len(_BG.by_number) + 1, dispatcher, sig)
+        job.urgent = urgent
         if _BG.worker.submit(job.number, func.__module__, func.__name__, sig, urgent=urgent):
             _BG.jobs[_key(dispatcher, sig)] = _BG.by_number[job.number] = job
             _announce(job)
