@@ -156,9 +156,6 @@ def serve(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None, *, expe
     --------
     ``python -c "from robokit.kernels._background import serve; serve()"`` reads jobs from stdin.
     """
-    from robokit.kernels import _jit
-
-    _jit.quiet = True
     if hasattr(signal, "alarm"):
         signal.alarm(LIFETIME_SECONDS)
     inp = (stdin or sys.stdin.buffer).fileno()

@@ -606,8 +606,9 @@ def _at_exit() -> None:
                   f"(pid {worker.pid}); the next run loads them from numba's cache", file=sys.stderr, flush=True)
 
 
-#: True in the worker processes of :mod:`robokit.kernels.warm` (their parent prints the progress).
-quiet = False
+#: True in the worker processes of :mod:`robokit.kernels.warm` and in the background worker
+#: (their parent prints the progress).
+quiet = bool(os.environ.get("ROBOKIT_COMPILE_WORKER"))
 
 
 #: The kernels declared with a signature, by kernel module (``"poe"`` → ``["fkin_space", …]``), in
