@@ -17,9 +17,11 @@ parallel over the CPU cores. The seed functions (:func:`robokit.fkin_space`,
 :func:`robokit.inverse_dynamics`, …) check their arguments and call these kernels; use them
 directly only with C-contiguous float64 arrays of the documented shapes.
 
-Each kernel compiles on its first call in a fresh environment (a notice on stderr names it) and
-its machine code is kept in numba's cache; see :mod:`robokit.kernels._jit` for where the cache
-lives and ``NUMBA_DISABLE_JIT=1`` to run the same source as plain Python.
+In a fresh environment a kernel's first calls run it as plain Python while a background
+worker compiles it into numba's cache (``ROBOKIT_COMPILE=wait`` compiles in the calling process
+instead, ``off`` never compiles; a notice on stderr says what happens); see
+:mod:`robokit.kernels._jit` for the policy, where the cache lives and ``NUMBA_DISABLE_JIT=1`` to
+run the same source as plain Python.
 The submodules are imported on demand, so ``import robokit`` does not load numba.
 """
 from __future__ import annotations

@@ -46,7 +46,7 @@ _PACKAGE = os.path.join(_ROOT, "robokit")
 # the source file) would not be the parent's.
 _BOOT = ("import sys, os; r = sys.argv[1]; sys.path.insert(0, r) if r not in sys.path else None; "
          "import robokit; p = os.path.dirname(os.path.abspath(robokit.__file__)); "
-         "from robokit.kernels._background import serve; sys.exit(serve(expected=sys.argv[2], found=p))")
+         "from robokit.kernels._background import serve; sys.exit(serve(expected=sys.argv[2], found=p, lifetime=int(sys.argv[3])))")
 
 
 def encode(sig: Any) -> str:
@@ -65,7 +65,7 @@ class Worker:
     def __init__(self) -> None:
         env = dict(os.environ, ROBOKIT_COMPILE_WORKER="1")
         self.proc = subprocess.Popen(
-            [sys.executable, "-c", _BOOT, _ROOT, _PACKAGE], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+            [sys.executable, "-c", _BOOT, _ROOT, _PACKAGE, str(LIFETIME_SECONDS)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
             stderr=subprocess.DEVNULL, env=env, close_fds=True, start_new_session=True)
         assert self.proc.stdout is not None and self.proc.stdin is not None
         self._out = self.proc.stdout.fileno()
@@ -132,11 +132,14 @@ def _compile(module: str, name: str, sig: Any) -> None:
     if not module.startswith("robokit.kernels."):
         raise ValueError(f"not a robokit kernel module: {module}")
     kernel = getattr(importlib.import_module(module), name)
-    kernel.compile(sig)
+    from numba.core import sigutils
+
+    if tuple(sigutils.normalize_signature(sig)[0]) not in kernel.overloads:  # else: already compiled here
+        kernel.compile(sig)
 
 
 def serve(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None, *, expected: str | None = None,
-          found: str | None = None) -> int:
+          found: str | None = None, lifetime: int | None = None) -> int:
     """The worker's loop (see the module docstring); returns its exit status.
 
     Parameters
@@ -146,6 +149,9 @@ def serve(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None, *, expe
     expected, found : str, optional
         The robokit package folder the parent uses and the one this process imported; when they
         differ every job fails (its cache would not be the parent's).
+    lifetime : int, optional
+        Seconds after which the process is ended by SIGALRM whatever it is doing (the worker
+        passes :data:`LIFETIME_SECONDS`).
 
     Returns
     -------
@@ -156,8 +162,8 @@ def serve(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None, *, expe
     --------
     ``python -c "from robokit.kernels._background import serve; serve()"`` reads jobs from stdin.
     """
-    if hasattr(signal, "alarm"):
-        signal.alarm(LIFETIME_SECONDS)
+    if lifetime is not None and hasattr(signal, "alarm"):
+        signal.alarm(lifetime)
     inp = (stdin or sys.stdin.buffer).fileno()
     out = stdout or sys.stdout.buffer
     mismatch = (expected is not None and found is not None

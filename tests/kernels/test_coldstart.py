@@ -206,3 +206,24 @@ def test_batch_size_decides_interpret_or_wait():
 
     assert dynamics.mass_matrix_batch._robokit_interpret == _jit.SMALL_BATCH
     assert simulation.simulate_control._robokit_interpret < 0  # a long loop: always waits
+
+
+def test_worker_protocol_urgent_first_and_failures():
+    """The worker's loop on pipes: urgent jobs first, every job answered, a job outside
+    robokit.kernels refused, end of input ends it once the queue is done."""
+    from robokit.kernels import _background, poe
+
+    jobs = [f"1 robokit.kernels.poe fkin_space {_background.encode(poe.fkin_space._robokit_signature)}",
+            f"2 os path {_background.encode('float64()')}",
+            f"3 robokit.kernels.poe jacobian_body {_background.encode(poe.jacobian_body._robokit_signature)} urgent"]
+    r_in, w_in = os.pipe()
+    r_out, w_out = os.pipe()
+    os.write(w_in, ("\n".join(jobs) + "\n").encode())
+    os.close(w_in)
+    with os.fdopen(r_in, "rb") as fin, os.fdopen(w_out, "wb") as fout:
+        assert _background.serve(fin, fout) == 0
+    with os.fdopen(r_out, "rb") as f:
+        replies = f.read().decode().splitlines()
+    assert [line.split()[:2] for line in replies] == [["ok", "3"], ["ok", "1"], ["fail", "2"]]
+    assert "not a robokit kernel module" in replies[2]
+    assert poe.jacobian_body.signatures and poe.fkin_space.signatures  # compiled (or loaded) into the cache
