@@ -383,18 +383,46 @@ def _key(dispatcher: Dispatcher, sig: Any) -> tuple[int, Any]:
     return id(dispatcher), sig
 
 
-def _argtypes(dispatcher: Dispatcher, args: tuple[Any, ...]) -> tuple[Any, ...]:
-    return tuple(_nbtypes.Omitted(a.value) if isinstance(a, OmittedArg) else dispatcher.typeof_pyval(a)
-                 for a in args)
+def _fingerprint(args: tuple[Any, ...]) -> tuple[Any, ...] | None:
+    """A cheap key for the numba types of ``args`` (arrays, Python scalars), or None."""
+    parts: list[Any] = []
+    for a in args:
+        if isinstance(a, np.ndarray):
+            f = a.flags
+            parts.append((a.dtype.num, a.ndim, f.c_contiguous, f.f_contiguous, f.writeable, f.aligned))
+        elif type(a) in (float, int, bool):
+            parts.append(type(a))
+        else:
+            return None
+    return tuple(parts)
 
 
-def _check_types(dispatcher: Dispatcher, signature: str, args: tuple[Any, ...]) -> None:
-    """TypeError, as the compiled kernel would raise, when ``args`` do not fit ``signature``."""
+def _argtypes(dispatcher: Dispatcher, args: tuple[Any, ...], fingerprint: tuple[Any, ...] | None = None) -> tuple[Any, ...]:
+    """numba's types of ``args``, memoised by :func:`_fingerprint` (numba's ``typeof`` of an array
+    costs tens of µs, and an interpreted kernel passes here on every call until it is compiled)."""
+    found = _TYPES.get(fingerprint) if fingerprint is not None else None
+    if found is None:
+        found = tuple(_nbtypes.Omitted(a.value) if isinstance(a, OmittedArg) else dispatcher.typeof_pyval(a)
+                      for a in args)
+        if fingerprint is not None:
+            _TYPES[fingerprint] = found
+    return found
+
+
+_TYPES: dict[tuple[Any, ...], tuple[Any, ...]] = {}
+
+
+def _check_types(dispatcher: Dispatcher, signature: str, actual: tuple[Any, ...]) -> None:
+    """TypeError, as the compiled kernel would raise, when argument types ``actual`` do not fit
+    ``signature``."""
     formal, _ = _sigutils.normalize_signature(signature)
-    actual = _argtypes(dispatcher, args)
     if len(actual) != len(formal) or any(dispatcher.typingctx.can_convert(a, f) is None
                                          for a, f in zip(actual, formal)):
         raise TypeError(f"No matching definition for argument type(s) {', '.join(map(str, actual))}")
+
+
+#: Per kernel, the argument fingerprints already checked against its signature.
+_ACCEPTED: dict[int, set[tuple[Any, ...]]] = {}
 
 
 def _load_cached(dispatcher: Dispatcher, sig: Any) -> bool:
@@ -434,12 +462,23 @@ def _first_call(dispatcher: Dispatcher, args: tuple[Any, ...]) -> Any:
     if mode == "wait":
         with _LOCK:
             if signature is not None:
-                compile_now(dispatcher)
+                compile_now(dispatcher)  # the compile notice comes from numba's event
                 return dispatcher
+            if _load_cached(dispatcher, _argtypes(dispatcher, args, _fingerprint(args))):
+                return dispatcher
+            func = dispatcher.py_func
+            _note(notice(func.__module__.rsplit(".", 1)[-1], func.__name__))  # not announced by the event listener
             return getattr(Dispatcher, "_compile_for_args")(dispatcher, *args)  # numba's own path
+    fingerprint = _fingerprint(args)
     if signature is not None:
-        _check_types(dispatcher, signature, args)
-    sig = signature if signature is not None else _argtypes(dispatcher, args)
+        accepted = _ACCEPTED.setdefault(id(dispatcher), set())
+        if fingerprint is None or fingerprint not in accepted:
+            _check_types(dispatcher, signature, _argtypes(dispatcher, args, fingerprint))
+            if fingerprint is not None:
+                accepted.add(fingerprint)
+        sig = signature
+    else:
+        sig = _argtypes(dispatcher, args, fingerprint)
     key = _key(dispatcher, sig)
     interpret = mode == "off" or _batch_work(dispatcher, args) <= dispatcher._robokit_interpret  # type: ignore[attr-defined]
     with _LOCK:
