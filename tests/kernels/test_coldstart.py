@@ -33,7 +33,7 @@ event.register("numba:compile", Count())
 M = np.eye(4); M[:3, 3] = [0.1, 0.2, 0.3]
 S = np.array([[0, 0, 1, 0, 0, 0], [0, 1, 0, -0.4, 0, 0.1], [1, 0, 0, 0, 0.3, -0.2]], float).T.copy()
 q = np.array([0.3, -0.7, 1.1])
-Q = np.random.default_rng(0).uniform(-3, 3, (3000, 3))  # 9000 joint-configurations > FK_BATCH
+Q = np.random.default_rng(0).uniform(-3, 3, (21000, 3))  # 63,000 joint-configurations > FK_BATCH
 
 def until(pred, what, bound=900):
     t0 = time.monotonic()
