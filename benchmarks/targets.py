@@ -153,7 +153,7 @@ def steady_state() -> None:
             proc = subprocess.run([sys.executable, "-c", _STEADY], env=env, capture_output=True, text=True,
                                   timeout=3600)
             rows.append([mode, "cold" if len(rows) == 0 else "warm",
-                         proc.stdout.strip().splitlines()[-1] + " µs" if proc.stdout.strip() else "n/a"])
+                         f"{float(proc.stdout.strip().splitlines()[-1]):.2f} µs" if proc.stdout.strip() else "n/a"])
     print("\n### Per call after the switch (kernel `poe.fkin_space`, UR5, best of 7 × 20,000 calls)\n")
     print(table(["mode", "cache at start", "per call"], rows))
 
