@@ -99,12 +99,17 @@ J2 = poe.jacobian_body(S, q)  # compiled here and now
 assert len(poe.jacobian_body.signatures) == 1 and Count.n >= 1 and _jit._BG.worker is None
 assert np.abs(J - J2).max() <= 1e-12
 os.environ["ROBOKIT_COMPILE"] = "background"
+_background._PACKAGE = "/nowhere/robokit"  # the worker's robokit is not ours: it refuses every job
+first = poe.fkin_body(M, S, q)  # queued; runs as Python
+until(lambda: poe.fkin_body(M, S, q) is not None and poe.fkin_body.signatures, "no fallback after a failure")
+assert np.abs(poe.fkin_body(M, S, q) - first).max() <= 1e-12
 def no_worker():
     raise OSError("no processes here")
 _background.Worker = no_worker  # a worker that cannot start: compile here with a note
+_jit._BG.worker = None  # as if the first worker had exited
 n = Count.n
-poe.fkin_body(M, S, q)
-assert len(poe.fkin_body.signatures) == 1 and Count.n > n
+poe.jacobian_space(S, q)
+assert len(poe.jacobian_space.signatures) == 1 and Count.n > n
 print("ok")
 """
 
@@ -147,6 +152,7 @@ def test_background_compile_then_warm_cache(tmp_path):
 def test_off_wait_and_no_worker(tmp_path):
     proc = _run(MODES, tmp_path, mode="off")
     assert "robokit: compiling poe kernels" in proc.stderr  # the wait mode's notice
+    assert "background compile of poe.fkin_body failed (RuntimeError: the worker imported robokit from" in proc.stderr
     assert "cannot start the background compile worker (OSError: no processes here)" in proc.stderr
 
 
