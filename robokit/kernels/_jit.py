@@ -84,7 +84,7 @@ from numba.core.compiler_lock import global_compiler_lock as _compiler_lock
 from numba.core.dispatcher import Dispatcher, OmittedArg
 from numba.core import types as _nbtypes
 
-from robokit.errors import InputError
+from robokit.kernels import ENV, MODES, compile_mode
 
 __all__ = ["njit", "prange", "cache_dir", "jit_disabled", "compile_now", "compile_mode", "interpreted", "MODES",
            "ENV", "SMALL_BATCH", "FK_BATCH"]
@@ -93,10 +93,6 @@ prange = numba.prange
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
-#: The environment variable that chooses what a first call does on a cache miss.
-ENV = "ROBOKIT_COMPILE"
-#: Its values: ``background`` (the default), ``wait``, ``off``.
-MODES = ("background", "wait", "off")
 #: The largest batch (configurations × joints, or targets) a ``parallel`` kernel runs as plain
 #: Python while it compiles; larger calls wait for the machine code. Chosen where running as
 #: Python stops being quicker than waiting for the compile (measured on UR5, 2 cores under load:
@@ -120,33 +116,6 @@ def jit_disabled() -> bool:
     True
     """
     return bool(getattr(numba.config, "DISABLE_JIT"))
-
-
-def compile_mode() -> str:
-    """What a kernel's first call does when its machine code is not in numba's cache, from
-    ``$ROBOKIT_COMPILE`` (see the module docstring): ``"background"`` (default), ``"wait"`` or ``"off"``.
-    The background worker itself always compiles (``"wait"``).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    InputError
-        When ``ROBOKIT_COMPILE`` is set to anything else.
-
-    Examples
-    --------
-    >>> compile_mode() in MODES
-    True
-    """
-    if os.environ.get("ROBOKIT_COMPILE_WORKER"):
-        return "wait"
-    mode = os.environ.get(ENV, "").strip().lower() or "background"
-    if mode not in MODES:
-        raise InputError(f"{ENV}: expected one of {', '.join(MODES)}; got {os.environ.get(ENV)!r}")
-    return mode
 
 
 @overload

@@ -233,3 +233,12 @@ def test_worker_protocol_urgent_first_and_failures():
     assert [line.split()[:2] for line in replies] == [["ok", "3"], ["ok", "1"], ["fail", "2"]]
     assert "not a robokit kernel module" in replies[2]
     assert poe.jacobian_body.signatures and poe.fkin_space.signatures  # compiled (or loaded) into the cache
+
+
+def test_cli_refuses_a_bad_mode_in_one_line():
+    env = dict(os.environ, ROBOKIT_COMPILE="soon", PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.run([sys.executable, "-c", "import sys; from robokit.cli import main; sys.exit(main(['validate']))"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.strip().splitlines() == [
+        "robokit: error: ROBOKIT_COMPILE: expected one of background, wait, off; got 'soon'"]
