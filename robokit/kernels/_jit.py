@@ -351,6 +351,17 @@ class _Background:
 _BG = _Background()
 
 
+def _forget_worker_in_child() -> None:
+    """After ``os.fork`` (multiprocessing's fork start method, Dask's forking workers) the child
+    must not share its parent's worker pipes: it starts afresh with a worker of its own."""
+    global _BG, _LOCK
+    _BG, _LOCK = _Background(), threading.RLock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_worker_in_child)
+
+
 def _key(dispatcher: Dispatcher, sig: Any) -> tuple[int, Any]:
     return id(dispatcher), sig
 

@@ -67,6 +67,14 @@ assert len(poe.fkin_space_batch.signatures) == 1
 assert np.abs(big[:5] - small).max() <= 1e-12 and np.abs(big[7] - poe.fkin_space(M, S, Q[7])).max() <= 1e-12
 assert Count.n == 0  # still: the worker compiled, not this process
 poe.jacobian_space(S, q)  # queued, left for the worker to finish after this process exits
+import multiprocessing
+def child(conn):  # a forked child gets a worker of its own, not its parent's pipes
+    J = poe.jacobian_body(S, q)
+    conn.send((J, _jit._BG.worker.pid, poe.jacobian_body.signatures == []))
+a, b = multiprocessing.get_context("fork").Pipe()
+proc = multiprocessing.get_context("fork").Process(target=child, args=(b,)); proc.start()
+J, child_worker, interpreted = a.recv(); proc.join()
+assert proc.exitcode == 0 and interpreted and child_worker != _jit._BG.worker.pid
 print("PID", _jit._BG.worker.pid)
 print("ok")
 """
