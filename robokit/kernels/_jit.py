@@ -372,7 +372,7 @@ def _fingerprint(args: tuple[Any, ...]) -> tuple[Any, ...] | None:
     for a in args:
         if isinstance(a, np.ndarray):
             f = a.flags
-            parts.append((a.dtype.num, a.ndim, f.c_contiguous, f.f_contiguous, f.writeable, f.aligned))
+            parts.append((a.dtype.str, a.ndim, f.c_contiguous, f.f_contiguous, f.writeable, f.aligned))
         elif type(a) in (float, int, bool):
             parts.append(type(a))
         else:
