@@ -284,6 +284,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parser = _build_parser()
         args = parser.parse_args(argv)
+        from robokit.kernels import compile_mode
+
+        compile_mode()  # a bad ROBOKIT_COMPILE is refused before any work starts
         if args.command is None:
             parser.print_help(sys.stderr)
             return EXIT_INPUT

@@ -17,16 +17,54 @@ parallel over the CPU cores. The seed functions (:func:`robokit.fkin_space`,
 :func:`robokit.inverse_dynamics`, …) check their arguments and call these kernels; use them
 directly only with C-contiguous float64 arrays of the documented shapes.
 
-Each kernel compiles on its first call in a fresh environment (a notice on stderr names it) and
-its machine code is kept in numba's cache; see :mod:`robokit.kernels._jit` for where the cache
-lives and ``NUMBA_DISABLE_JIT=1`` to run the same source as plain Python.
+In a fresh environment a kernel's first calls run it as plain Python while a background
+worker compiles it into numba's cache (``ROBOKIT_COMPILE=wait`` compiles in the calling process
+instead, ``off`` never compiles; a notice on stderr says what happens); see
+:mod:`robokit.kernels._jit` for the policy, where the cache lives and ``NUMBA_DISABLE_JIT=1`` to
+run the same source as plain Python.
 The submodules are imported on demand, so ``import robokit`` does not load numba.
 """
 from __future__ import annotations
 
+import os
 from types import ModuleType
 
-__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm"]
+from robokit.errors import InputError
+
+__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm", "compile_mode", "ENV", "MODES"]
+
+#: The environment variable that chooses what a kernel's first call does on a cache miss.
+ENV = "ROBOKIT_COMPILE"
+#: Its values: ``background`` (the default), ``wait``, ``off`` (see :mod:`robokit.kernels._jit`).
+MODES = ("background", "wait", "off")
+
+
+def compile_mode() -> str:
+    """What a kernel's first call does when its machine code is not in numba's cache, from
+    ``$ROBOKIT_COMPILE``: ``"background"`` (default: run as plain Python while a background
+    worker compiles), ``"wait"`` (compile in the calling process) or ``"off"`` (never compile).
+    The background worker itself always compiles (``"wait"``). Does not import numba.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        When ``ROBOKIT_COMPILE`` is set to anything else.
+
+    Examples
+    --------
+    >>> compile_mode() in MODES
+    True
+    """
+    if os.environ.get("ROBOKIT_COMPILE_WORKER"):
+        return "wait"
+    mode = os.environ.get(ENV, "").strip().lower() or "background"
+    if mode not in MODES:
+        raise InputError(f"{ENV}: expected one of {', '.join(MODES)}; got {os.environ.get(ENV)!r}")
+    return mode
 
 
 def __getattr__(name: str) -> ModuleType:

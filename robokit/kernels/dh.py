@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from robokit.kernels._jit import njit, prange
+from robokit.kernels._jit import FK_BATCH, njit, prange
 from robokit.kernels.lie import all_finite, copy44, mul_tt, mul_tt_inplace
 from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
@@ -421,7 +421,7 @@ def rnea_rows(lo: int, hi: int, P: np.ndarray, modified: int, base: np.ndarray, 
                   Ts, w3, Fl, Nl, out[k])
 
 
-@njit(f"{_A3}({_TABLE}, {_A2})", parallel=True)
+@njit(f"{_A3}({_TABLE}, {_A2})", parallel=True, interpret_while_compiling=FK_BATCH)
 def dh_fk_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray) -> np.ndarray:
     """Tool poses (N, 4, 4) for the rows of Q (N, n)."""
     N = Q.shape[0]
@@ -436,7 +436,7 @@ def dh_fk_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray
     return out
 
 
-@njit(f"{_A3}({_TABLE}, {_A2}, int64)", parallel=True)
+@njit(f"{_A3}({_TABLE}, {_A2}, int64)", parallel=True, interpret_while_compiling=FK_BATCH)
 def dh_jacobian_batch(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, Q: np.ndarray, in_tool: int) -> np.ndarray:
     """Jacobians (N, 6, n) for the rows of Q (N, n)."""
     N = Q.shape[0]

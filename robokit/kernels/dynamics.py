@@ -574,7 +574,7 @@ def forward_dynamics_crba_batch(thetas: np.ndarray, dthetas: np.ndarray, taus: n
     return out
 
 
-@njit(f"{_A3}({_A1}, {_A1}, {_A2}, {_A1}, {_A2}, {_MODEL}, float64, int64)")
+@njit(f"{_A3}({_A1}, {_A1}, {_A2}, {_A1}, {_A2}, {_MODEL}, float64, int64)", interpret_while_compiling=False)
 def forward_dynamics_trajectory(thetalist: np.ndarray, dthetalist: np.ndarray, taumat: np.ndarray, g: np.ndarray, Ftipmat: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, dt: float, intRes: int) -> np.ndarray:
     """Euler integration of the forward dynamics under a torque history (Modern Robotics semantics):
     row 0 is the initial state, row k+1 the state after holding ``taumat[k]`` and ``Ftipmat[k]``

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.kernels._jit import njit, prange
+from robokit.kernels._jit import FK_BATCH, njit, prange
 from robokit.kernels.lie import adjoint_screw, all_finite, copy44, exp_screw, mul_tt_inplace, set_identity
 
 __all__ = [
@@ -133,7 +133,7 @@ def fkin_body_rows(lo: int, hi: int, M: np.ndarray, Blist: np.ndarray, thetas: n
         fkin_body_into(M, Blist, thetas[k], out[k], W[0], W[1])
 
 
-@njit(_SIG_FK_BATCH, parallel=True)
+@njit(_SIG_FK_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def fkin_space_batch(M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), space form."""
     N = thetas.shape[0]
@@ -148,7 +148,7 @@ def fkin_space_batch(M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray) -> np
     return out
 
 
-@njit(_SIG_FK_BATCH, parallel=True)
+@njit(_SIG_FK_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def fkin_body_batch(M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), body form."""
     N = thetas.shape[0]
@@ -225,7 +225,7 @@ def jacobian_body_rows(lo: int, hi: int, Blist: np.ndarray, thetas: np.ndarray, 
 
 
 
-@njit(_SIG_J_BATCH, parallel=True)
+@njit(_SIG_J_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Space Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
@@ -240,7 +240,7 @@ def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     return out
 
 
-@njit(_SIG_J_BATCH, parallel=True)
+@njit(_SIG_J_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def jacobian_body_batch(Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Body Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]

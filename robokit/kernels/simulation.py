@@ -56,7 +56,7 @@ def bad_state(q: np.ndarray, dq: np.ndarray) -> bool:
 
 
 @njit(f"Tuple(({_A2}, {_A2}, int64))({_A1}, {_A1}, {_A1}, {_A2}, {_A3}, {_A3}, {_A2}, {_A2}, {_A2}, {_A2}, "
-      f"{_A1}, {_A3}, {_A3}, {_A1}, {_A1}, {_A1}, float64, int64)")
+      f"{_A1}, {_A3}, {_A3}, {_A1}, {_A1}, {_A1}, float64, int64)", interpret_while_compiling=False)
 def simulate_control(thetalist: np.ndarray, dthetalist: np.ndarray, g: np.ndarray, Ftipmat: np.ndarray,
                      Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, thetamatd: np.ndarray,
                      dthetamatd: np.ndarray, ddthetamatd: np.ndarray, gtilde: np.ndarray, Mtildelist: np.ndarray,
@@ -128,7 +128,7 @@ def controller_rnea(q: np.ndarray, dq: np.ndarray, a: np.ndarray, Gc: np.ndarray
 
 @njit(f"Tuple(({_A2}, {_A2}, {_A2}, int64))({_A1}, {_A1}, {_A1}, {_A2}, {_A2}, {_A2}, {_A3}, {_A3}, {_A2}, {_A1}, "
       f"{_A1}, {_A1}, {_A2}, int64, {_A2}, int64, {_A3}, {_A3}, {_A2}, {_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_A1}, "
-      "int64, int64, int64, int64)")
+      "int64, int64, int64, int64)", interpret_while_compiling=False)
 def simulate_robot(q0: np.ndarray, dq0: np.ndarray, t: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
                    ddq_des: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, g: np.ndarray,
                    arm: np.ndarray, B: np.ndarray, Tc: np.ndarray, use_fric: int, F: np.ndarray, kind: int,

@@ -1,7 +1,8 @@
 r"""Compile every course kernel ahead of first use, in parallel: ``python -m robokit.kernels``.
 
-Each kernel is otherwise compiled the first time it is called (about a second each on a laptop,
-then loaded from numba's on-disk cache in later processes). For a machine image, a container or
+Each kernel is otherwise compiled when it is first needed — by default in a background worker
+while its first calls run as plain Python (:mod:`robokit.kernels._jit`), about a second each on a
+laptop, then loaded from numba's on-disk cache in later processes. For a machine image, a container or
 a CI cache, compiling all of them once up front removes every later wait; this runs them in
 ``jobs`` worker processes (default: one per CPU core) that write numba's cache, and prints
 ``compiling course kernels (k/N: module.kernel, t s)`` as each finishes.

@@ -43,6 +43,7 @@ except ValueError as e:
     assert "NaN" in str(e)
 else:
     raise AssertionError("NaN accepted")
+assert _jit._BG.worker is None and not _jit._BG.jobs  # no background compile worker either
 print("ok")
 """
 
