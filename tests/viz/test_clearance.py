@@ -108,7 +108,11 @@ def test_golden_file_is_what_the_world_computes(golden):
         assert fresh[key]["page"] == golden[key]["page"], key
         for new, old in zip(fresh[key]["cases"], golden[key]["cases"]):
             assert np.allclose(new["q"], old["q"], rtol=0, atol=1e-15)
-            assert abs(new["distance"] - old["distance"]) < 1e-12, key
+            # Apart, coal's distance is a converged GJK value: it must repeat to 1e-12. In contact
+            # it is EPA's penetration estimate, warm-started from the previous query, which moves
+            # by up to ~1e-8 with the call history: the file is stale only if it moved by more.
+            tol = 1e-12 if old["distance"] > 0 else 1e-6
+            assert abs(new["distance"] - old["distance"]) < tol, key
             assert sorted(map(tuple, new["pairs"])) == sorted(map(tuple, old["pairs"])), key
     puma = golden["puma560"]
     names = [g["name"] for g in puma["page"]["geoms"]]
