@@ -87,6 +87,20 @@ def _run(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], th
     return kernel(*args, th) if th.ndim == 1 else batch(*args, th)
 
 
+def _run_fk(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], thetalist: ArrayLike,
+            M: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """:func:`_run` for FK with a checked M: the one-configuration kernel refuses an M that is
+    rigid only to check_transform's tolerance (its quick test is stricter), which the batched
+    kernel (no such test) then answers."""
+    th = _theta(thetalist, S.shape[1])
+    if th.ndim == 2:
+        return batch(M, S, th)
+    try:
+        return kernel(M, S, th)
+    except ValueError:  # M within check_transform's tolerance of SE(3) but not the kernel's 1e-9
+        return batch(M, S, th[None])[0]
+
+
 # Vectorised numpy helpers (the screw exponentials of many joints/configurations at once), used by
 # other modules (the Newton–Euler model's link transforms, the numeric IK). The FK and Jacobian
 # themselves are the compiled kernels in robokit.kernels.poe.
@@ -163,15 +177,15 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
 
     Example: ``fkin_space(M, Slist, np.zeros(n))`` is ``M``.
     """
-    Slist = _screws(Slist, "Slist")
-    M = _home(M)
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_space(M, Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
-    return _run(k.fkin_space, k.fkin_space_batch, thetalist, Slist.shape[1], M, Slist)
+    Slist = _screws(Slist, "Slist")
+    M = _home(M)
+    return _run_fk(k.fkin_space, k.fkin_space_batch, thetalist, M, Slist)
 
 
 def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -180,15 +194,15 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
     M : 4×4 home pose; Blist : 6×n body screw axes (in the end-effector frame at home);
     thetalist : (n,) or (N, n). Returns 4×4 (or (N, 4, 4)).
     """
-    Blist = _screws(Blist, "Blist")
-    M = _home(M)
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_body(M, Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
-    return _run(k.fkin_body, k.fkin_body_batch, thetalist, Blist.shape[1], M, Blist)
+    Blist = _screws(Blist, "Blist")
+    M = _home(M)
+    return _run_fk(k.fkin_body, k.fkin_body_batch, thetalist, M, Blist)
 
 
 def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -197,13 +211,13 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     Column i is ``Ad_{e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}} Sᵢ``. Slist : 6×n; thetalist : (n,) or (N, n).
     Returns 6×n (or (N, 6, n)).
     """
-    Slist = _screws(Slist, "Slist")
     k = _kp or _kernels()
     if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_space(Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
+    Slist = _screws(Slist, "Slist")
     return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
 
 
@@ -213,13 +227,13 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     Column i is ``Ad_{e^{−[Bₙ]θₙ}⋯e^{−[B_{i+1}]θ_{i+1}}} Bᵢ``. Blist : 6×n; thetalist : (n,) or (N, n).
     Returns 6×n (or (N, 6, n)).
     """
-    Blist = _screws(Blist, "Blist")
     k = _kp or _kernels()
     if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_body(Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
+    Blist = _screws(Blist, "Blist")
     return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
 
 
