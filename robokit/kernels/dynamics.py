@@ -72,6 +72,32 @@ def check_model(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None
         raise ValueError("Mlist: expected shape (n+1, 4, 4) for the n columns of Slist")
     if Glist.shape[0] != n or Glist.shape[1] != 6 or Glist.shape[2] != 6:
         raise ValueError("Glist: expected shape (n, 6, 6) for the n columns of Slist")
+    # the checks robokit.dynamics makes of a model (finite, homogeneous link frames to 1e-9,
+    # symmetric inertias to 1e-9 of their size), so that a seed function can pass the user's
+    # arrays straight here; a refusal sends it to those checks, which name the problem
+    for i in range(6):
+        for j in range(n):
+            if not math.isfinite(Slist[i, j]):
+                raise ValueError("Slist: contains NaN or infinite values")
+    for k in range(n + 1):
+        for i in range(4):
+            for j in range(4):
+                if not math.isfinite(Mlist[k, i, j]):
+                    raise ValueError("Mlist: contains NaN or infinite values")
+        if (abs(Mlist[k, 3, 0]) > 1e-9 or abs(Mlist[k, 3, 1]) > 1e-9 or abs(Mlist[k, 3, 2]) > 1e-9
+                or abs(Mlist[k, 3, 3] - 1.0) > 1e-9):
+            raise ValueError("Mlist: expected homogeneous transforms (last row [0, 0, 0, 1])")
+    big, asym = 0.0, 0.0
+    for k in range(n):
+        for i in range(6):
+            for j in range(6):
+                v = Glist[k, i, j]
+                if not math.isfinite(v):
+                    raise ValueError("Glist: contains NaN or infinite values")
+                big = max(big, abs(v))
+                asym = max(asym, abs(v - Glist[k, j, i]))
+    if asym > 1e-9 * max(1.0, big):
+        raise ValueError("Glist: expected symmetric 6×6 spatial inertias")
 
 
 @njit
