@@ -319,6 +319,7 @@ class AnalyticIK:
         free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
                               and self._flip[5 - free if self.reversed else free])
+        self._ref_sign = (-1.0 if self._free_flipped else 1.0) * (-1.0 if self.reversed else 1.0)
         self._kernel = self._kernel_args()
 
     def _kernel_args(self) -> tuple | None:
@@ -417,7 +418,7 @@ class AnalyticIK:
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
             out = np.empty(_OUT_SHAPE)  # the solutions' q are views of this one array
-            n = kernel[4](kernel[0], T, self._kernel_ref(wrist_ref), out)
+            n = kernel[4](kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
             if n < 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
                 n = kernel[4](kernel[0], T, self._kernel_ref(wrist_ref), out)
