@@ -10,9 +10,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TypeAlias
 
+from math import isfinite
+
 import numpy as np
 
 from robokit.errors import InputError, InputTypeError
+
+_F64 = np.dtype(np.float64)
 
 #: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
 FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
@@ -91,6 +95,11 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     ...
     robokit.errors.InputTypeError: q: expected real numbers, got complex values (dtype complex128)
     """
+    if type(x) is np.ndarray and x.dtype is _F64 and (shape is None or x.shape == shape):
+        # the fast path (a float64 array of exactly the expected shape): a sum of a short array's
+        # floats tests finiteness (an overflow to inf only sends a finite array to the full checks)
+        if not finite or (x.size <= 64 and isfinite(sum(x.ravel().tolist()))):
+            return x
     arr = _real_array(x, name)
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == d for s, d in zip(shape, arr.shape))
@@ -232,6 +241,8 @@ def as_matrix(x: object, name: str, rows: int | None = None, cols: int | None = 
 
 def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool = False) -> float:
     """A finite float; optionally > 0 or >= 0."""
+    if type(x) is float and isfinite(x) and (x > 0.0 or not positive) and (x >= 0.0 or not nonnegative):
+        return x  # the fast path: a finite Python float within the bounds
     arr = as_array(x, name, ())
     v = float(arr)
     if positive and not v > 0:

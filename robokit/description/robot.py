@@ -144,6 +144,10 @@ class Robot:
         self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
         self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
         self._shape = (self.n,)
+        # the finiteness test of a fast-path q: a Python sum of its floats for short vectors (cheaper
+        # than numpy's dot there); an overflow to inf only sends a finite q to the full checks
+        self._small = self.n <= 16
+        self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
@@ -193,7 +197,8 @@ class Robot:
         """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
         pin = self._pin
-        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
+                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_frame_pose
@@ -222,12 +227,18 @@ class Robot:
         "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
         the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
         """
-        pin = self._pin
         rf = self._ref_frames.get(reference)
+        if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
+                and self._plain and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+            # the fast path (tip frame, finite float64 (n,) q, no continuous joints): one Pinocchio call
+            # and the (v; ω) → (ω; v) row swap, nothing else
+            return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
+        pin = self._pin
         if rf is None:
             canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
             rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
-        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
+                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_jacobian
@@ -261,7 +272,15 @@ class Robot:
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
-        if type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q)):
+        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
+                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+            M = self._pin.crba(self.model, self.data, q)  # the fast path: a new array, its upper triangle filled
+            if M.flags.c_contiguous:
+                flat = M.ravel()  # a view of M
+                flat[self._lower_flat] = flat[self._upper_flat]
+                return M
+        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
+                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_crba
@@ -296,7 +315,8 @@ class Robot:
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
-        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and isfinite(q.dot(q))):
+        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
+                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array

@@ -236,13 +236,13 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     ...                  p.Mlist, p.Glist, p.Slist).round(4)
     array([34.335,  1.2  ])
     """
-    m = _model(Mlist, Glist, Slist)
     k = _kd or _kernels()
     if _ready(thetalist, dthetalist, ddthetalist, g, Ftip):
-        try:
-            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, m.Mlist, m.Glist, m.Slist)
+        try:  # float64 C-contiguous arrays straight to the kernel, which checks them and the model
+            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist)
         except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
             pass
+    m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
         th = as_array(thetalist, "thetalist", (None, m.n))
         N = th.shape[0]
@@ -292,13 +292,13 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
     >>> bool(np.allclose(M, M.T)), bool(np.all(np.linalg.eigvalsh(M) > 0))
     (True, True)
     """
-    m = _model(Mlist, Glist, Slist)
     k = _kd or _kernels()
     if _ready(thetalist):
-        try:
-            return k.mass_matrix(thetalist, m.Mlist, m.Glist, m.Slist)
+        try:  # straight to the kernel, which checks θ and the model (as in inverse_dynamics)
+            return k.mass_matrix(thetalist, Mlist, Glist, Slist)
         except (TypeError, ValueError):
             pass
+    m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
         th = np.ascontiguousarray(as_array(thetalist, "thetalist", (None, m.n)))
         return k.mass_matrix_batch(th, m.Mlist, m.Glist, m.Slist)
@@ -470,15 +470,15 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
     """
     if method not in ("aba", "crba"):
         raise InputError(f"method: expected 'aba' or 'crba', got {method!r}")
-    m = _model(Mlist, Glist, Slist)
     k = _kd or _kernels()
     one, many = ((k.forward_dynamics, k.forward_dynamics_batch) if method == "aba"
                  else (k.forward_dynamics_crba, k.forward_dynamics_crba_batch))
     if _ready(thetalist, dthetalist, taulist, g, Ftip):
-        try:
-            return one(thetalist, dthetalist, taulist, g, Ftip, m.Mlist, m.Glist, m.Slist)
+        try:  # straight to the kernel, which checks the vectors and the model (as in inverse_dynamics)
+            return one(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist)
         except (TypeError, ValueError):
             pass
+    m = _model(Mlist, Glist, Slist)
     c = np.ascontiguousarray
     if np.ndim(thetalist) == 2:
         th = as_array(thetalist, "thetalist", (None, m.n))

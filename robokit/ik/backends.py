@@ -30,6 +30,8 @@ Randomness: every back end draws from the problem's generator, seeded by default
 """
 from __future__ import annotations
 
+import math
+
 import time
 import weakref
 from dataclasses import dataclass, field
@@ -187,6 +189,24 @@ def _nearest(Q: np.ndarray, q0: np.ndarray, revolute: np.ndarray) -> np.ndarray:
     return cast(np.ndarray, Q[int(np.argmin(np.einsum("ij,ij->i", D, D)))].copy())
 
 
+def _nearest_small(rows: list[np.ndarray], q0: np.ndarray, revolute: list[bool]) -> np.ndarray:
+    """:func:`_nearest` for a few rows (the closed form's ≤ 16 solutions of 6 joints), in plain
+    Python: numpy's per-call overhead would be most of the time. A copy of the nearest row."""
+    ref = q0.tolist()
+    two_pi, pi = 2.0 * math.pi, math.pi
+    best, best_d = 0, math.inf
+    for k, row in enumerate(rows):
+        d2 = 0.0
+        for v, r, rev in zip(row.tolist(), ref, revolute):
+            d = v - r
+            if rev:
+                d = (d + pi) % two_pi - pi  # np.mod's sign convention (that of the divisor)
+            d2 += d * d
+        if d2 < best_d:
+            best, best_d = k, d2
+    return np.array(rows[best], dtype=float)
+
+
 class IKBackend:
     """An IK back end: ``name``, :meth:`unsupported` (why not, or None) and :meth:`solve`.
 
@@ -321,11 +341,11 @@ class ClosedFormBackend(IKBackend):
     def solve(self, problem: IKProblem) -> IKResult:
         robot = cast("Robot", problem.robot)
         assert problem.T_target is not None  # a full pose (unsupported() says so)
-        sols = [s for s in analytic_ik(robot).solve(problem.T_target) if s.within_limits]
+        ik = analytic_ik(robot)
+        sols = [s for s in ik.solve(problem.T_target) if s.within_limits]
         if not sols:
             return _failed(robot, problem, self.name, "no closed-form solution inside the joint limits")
-        revolute = np.linalg.norm(robot.poe.Slist[:3], axis=0) > 1e-12
-        best = _nearest(np.array([s.q for s in sols], dtype=float), problem.q0, revolute)
+        best = _nearest_small([s.q for s in sols], problem.q0, ik._revolute)
         return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:

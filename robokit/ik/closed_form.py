@@ -52,7 +52,7 @@ from __future__ import annotations
 import math
 import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable, Sequence, cast
+from typing import TYPE_CHECKING, Any, Callable, Sequence, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -63,7 +63,8 @@ from robokit.ik._dh_chain import DHChain
 from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
-from robokit.ik.solution import CollisionChecker, IKSolution, check_pose, solutions_from_rows, with_collision_flags
+from robokit.ik.solution import (CollisionChecker, IKSolution, _Rows, _RowSolution, check_pose, solutions_from_rows,
+                                 with_collision_flags)
 from robokit.ik.solver import ClosedFormSolver
 from robokit.kernels import closed_form as _kcf
 from robokit.kernels.closed_form import pack_constants as _pack_constants
@@ -137,6 +138,21 @@ def _table_key(table: DHTable, link_limits: bool) -> tuple:
     if link_limits:
         key += tuple(None if l.qlim is None else np.asarray(l.qlim, dtype=float).tobytes() for l in table.links)
     return key
+
+
+_F64 = np.dtype(np.float64)
+_OUT_SHAPE = (_kcf.MAX_ROWS, _kcf.OUT_COLS)
+
+
+def _fast_key(table: DHTable, link_limits: bool = True) -> tuple:
+    """The bytes of a table's arrays that can be edited in place (base, tool, and with
+    ``link_limits`` the links' limits)."""
+    base, tool = table.base, table.tool
+    key: tuple = (base.tobytes() if type(base) is np.ndarray else np.asarray(base, dtype=float).tobytes(),
+                  tool.tobytes() if type(tool) is np.ndarray else np.asarray(tool, dtype=float).tobytes())
+    if not link_limits:
+        return key
+    return key + tuple(None if l.qlim is None else np.asarray(l.qlim, dtype=float).tobytes() for l in table.links)
 
 
 def _sources(robot: Robot | DHTable) -> tuple[tuple, tuple]:
@@ -239,9 +255,18 @@ class AnalyticIK:
         name = getattr(self._robot, "name", type(self._robot).__name__)
         return f"AnalyticIK({name!r}, method={self.kind.method!r})"
 
+    _watch: tuple | None = None
+
     def _build(self) -> None:
         robot = self._robot
         self._key, self._held = _sources(robot)
+        src: Any = robot
+        if _is_table(src):
+            self._watch = (True, src.links, _fast_key(src))
+        else:
+            dh = src.dh
+            self._watch = (False, dh, None if dh is None else _fast_key(dh, False), src.model, src.qlim,
+                           np.asarray(src.qlim, dtype=float).tobytes(), None if dh is None else dh.links)
         override: ClosedFormKind | None = None
         qlim: np.ndarray | None = None
         if _is_table(robot):
@@ -307,6 +332,7 @@ class AnalyticIK:
         free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
                               and self._flip[5 - free if self.reversed else free])
+        self._ref_sign = (-1.0 if self._free_flipped else 1.0) * (-1.0 if self.reversed else 1.0)
         self._kernel = self._kernel_args()
 
     def _kernel_args(self) -> tuple | None:
@@ -344,7 +370,8 @@ class AnalyticIK:
         pieper = int(ci[0]) == _kcf.PIEPER
         return (_pack_constants(ci, cf, C, pre, post, post_q), labels,
                 _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
-                _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch)
+                _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch,
+                _kcf.pieper_solve_into if pieper else _kcf.parallel_axes_solve_into)
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -356,6 +383,24 @@ class AnalyticIK:
         """Rebuild the constants if what they were built from has changed."""
         if _sources(self._robot)[0] != self._key:
             self._build()
+
+    def _unchanged(self) -> bool:
+        """True when nothing the constants were built from has changed: the same objects (ids)
+        and the same bytes of the arrays that can be edited in place — the cheap test of
+        :meth:`_refresh` on every solve (a few hundred ns: one ``tobytes`` per array)."""
+        robot: Any = self._strong if self._weak is None else self._weak()
+        watch = self._watch
+        if watch is None or robot is None:
+            return False
+        if watch[0]:  # a DH table: its links, and base/tool/limits edited in place
+            return robot.links is watch[1] and watch[2] == _fast_key(robot)
+        dh = robot.dh
+        if dh is not watch[1] or robot.model is not watch[3] or robot.qlim is not watch[4]:
+            return False
+        qlim = watch[4]
+        if (qlim.tobytes() if type(qlim) is np.ndarray else np.asarray(qlim, dtype=float).tobytes()) != watch[5]:
+            return False
+        return dh is None or (dh.links is watch[6] and watch[2] == _fast_key(dh, False))
 
     def solve(self, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
         """Every closed-form solution for the tip pose ``T`` — the list :func:`ik_analytic` returns.
@@ -378,19 +423,21 @@ class AnalyticIK:
             If the robot has no closed form (``reason`` is in the message) or T is not a rigid
             transform.
         """
-        self._refresh()
+        if not self._unchanged():
+            self._build()
         wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
         kernel = self._kernel
         if kernel is not None and self.use_kernel:
-            if type(T) is not np.ndarray or T.dtype != np.float64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
-            if out.shape[1] == 0:  # not a clean rigid transform: the full check (raises, or converts)
+            out = np.empty(_OUT_SHAPE)  # the solutions' q are views of this one array
+            n = kernel[4](kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
+            if n < 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-                out = kernel[2](kernel[0], T, self._kernel_ref(wrist_ref))
-                if out.shape[1] == 0:
+                n = kernel[4](kernel[0], T, self._kernel_ref(wrist_ref), out)
+                if n < 0:
                     return self._solve_python(T, wrist_ref)
-            return _solutions(out, kernel[1])
+            return _solutions(out, n, kernel[1])
         return self._solve_python(_check_pose(T), wrist_ref)
 
     def solve_batch(self, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -477,23 +524,10 @@ _ELBOW = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 −, ")
 _WRIST = ("no flip", "flip", "wrist singular")
 
 
-def _solutions(out: np.ndarray, labels: dict) -> list[IKSolution]:
-    """IKSolution objects from the kernel's rows (q, within, code, degenerate); a label that
-    repeats gets " #2", …"""
-    result = []
-    seen: dict[str, int] = {}
-    new = _new_object
-    for q, (_, _, _, _, _, _, inside, code, degen) in zip(out[:, :6], out.tolist()):
-        label = labels[code]
-        if label in seen:
-            seen[label] += 1
-            label = f"{label} #{seen[label]}"
-        else:
-            seen[label] = 1
-        sol = new(IKSolution)
-        sol.__dict__.update(q=q, within_limits=inside == 1.0, label=label, degenerate=degen == 1.0, extra={})
-        result.append(sol)
-    return result
+def _solutions(out: np.ndarray, n: int, labels: dict) -> list[IKSolution]:
+    """IKSolution objects from the kernel's first ``n`` rows (q, within, code, degenerate), read
+    lazily from ``out`` (:class:`robokit.ik.solution._RowSolution`)."""
+    return _RowSolution.from_rows(_Rows(out, n, labels)) if n else []
 
 
 def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
@@ -763,7 +797,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     >>> len(ik_analytic(robot, T))
     8
     """
-    return with_collision_flags(_CACHE.get(robot).solve(T, wrist_ref), world)
+    solutions = _CACHE.get(robot).solve(T, wrist_ref)
+    return solutions if world is None else with_collision_flags(solutions, world)
 
 
 def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:

@@ -220,8 +220,9 @@ def _result(robot: Robot, q: np.ndarray, T_target: np.ndarray, tol: float, itera
     """The IKResult of ``q`` for a tip pose target, errors measured with Pinocchio FK."""
     T = robot.frame_pose(q)
     rot_err = _rotation_error(T[:3, :3], T_target[:3, :3])
-    d = T_target[:3, 3] - T[:3, 3]
-    pos_err = math.sqrt(float(d @ d))
+    (_, _, _, x), (_, _, _, y), (_, _, _, z) = T[:3].tolist()
+    (_, _, _, xt), (_, _, _, yt), (_, _, _, zt) = T_target[:3].tolist()
+    pos_err = math.sqrt((xt - x) ** 2 + (yt - y) ** 2 + (zt - z) ** 2)
     return IKResult(q, bool(rot_err < tol and pos_err < tol), math.hypot(rot_err, pos_err), pos_err, rot_err,
                     iterations, restarts, time.perf_counter() - t_start, method)
 
@@ -229,9 +230,14 @@ def _result(robot: Robot, q: np.ndarray, T_target: np.ndarray, tol: float, itera
 def _rotation_error(R: np.ndarray, R_target: np.ndarray) -> float:
     """The angle (rad) of ``Rᵀ R_target``: atan2 of its skew part's norm and (trace − 1)/2 (accurate
     near 0, unlike an arccos of the trace)."""
-    E = R.T @ R_target
-    s = 0.5 * math.sqrt((E[2, 1] - E[1, 2]) ** 2 + (E[0, 2] - E[2, 0]) ** 2 + (E[1, 0] - E[0, 1]) ** 2)
-    return math.atan2(s, 0.5 * (E[0, 0] + E[1, 1] + E[2, 2] - 1.0))
+    (a, b, c), (d, e, f), (g, h, i) = R.tolist()  # Eᵢⱼ = Σₖ Rₖᵢ R_targetₖⱼ, in plain floats (9 numbers:
+    (A, B, C), (D, E_, F), (G, H, I) = R_target.tolist()  # numpy's per-call overhead would dominate)
+    e00, e11, e22 = a * A + d * D + g * G, b * B + e * E_ + h * H, c * C + f * F + i * I
+    e01, e10 = a * B + d * E_ + g * H, b * A + e * D + h * G
+    e02, e20 = a * C + d * F + g * I, c * A + f * D + i * G
+    e12, e21 = b * C + e * F + h * I, c * B + f * E_ + i * H
+    s = 0.5 * math.sqrt((e21 - e12) ** 2 + (e02 - e20) ** 2 + (e10 - e01) ** 2)
+    return math.atan2(s, 0.5 * (e00 + e11 + e22 - 1.0))
 
 
 def _pinocchio_closures(robot: Robot, frame: str | None, position_only: bool, p_target: np.ndarray | None,

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_matrix, as_scalar, as_vector
 from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
 from robokit.ik.lm import IKResult
-from robokit.ik.solution import CollisionChecker
+from robokit.ik.solution import CollisionChecker, check_pose
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
 from robokit.errors import InputError, InputTypeError
@@ -349,7 +349,7 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)
         w = None if weights is None else as_vector(weights, "weights", 3)
     else:
-        T_target = check_transform(target, "target")
+        T_target = check_pose(target, "target")  # a clean float (4, 4) rigid transform in ~1 µs
         w = None if weights is None else as_vector(weights, "weights", 6)
     if w is not None and np.any(w < 0):
         raise InputError(f"weights: expected non-negative entries, got {w}")

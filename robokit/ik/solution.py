@@ -13,7 +13,7 @@ lands inside limits wider than ±π —; prismatic joint values in m, untouched.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any, Protocol, Sequence, runtime_checkable
 
 import numpy as np
@@ -66,6 +66,113 @@ class IKSolution:
     collision_free: bool | None = None
 
 
+class _Rows:
+    """The rows of one compiled closed-form solve (``out`` (16, 9): q, within, branch code,
+    degenerate per row; ``n`` rows valid), shared by the :class:`_RowSolution` objects made from
+    it; the labels are decoded on first use."""
+
+    __slots__ = ("out", "n", "codes", "names")
+
+    def __init__(self, out: np.ndarray, n: int, codes: dict) -> None:
+        self.out, self.n, self.codes = out, n, codes
+        self.names: list[str] | None = None
+
+    def label(self, k: int) -> str:
+        names = self.names
+        if names is None:  # every row's label, and " #2", … for a label that repeats
+            codes = self.codes
+            names = [codes[c] for c in self.out[:self.n, 7].tolist()]
+            if len(set(names)) < len(names):
+                seen: dict[str, int] = {}
+                for j, label in enumerate(names):
+                    seen[label] = seen.get(label, 0) + 1
+                    if seen[label] > 1:
+                        names[j] = f"{label} #{seen[label]}"
+            self.names = names
+        return names[k]
+
+
+class _RowSolution(IKSolution):
+    """An :class:`IKSolution` read from row ``_k`` of a compiled solve's output (:class:`_Rows`):
+    made with two attribute stores (no ``__init__``, no per-solution arrays or strings), its
+    fields decoded when first read — ``q`` a view of the row (the same object on every read),
+    ``label`` from the branch code. In every other respect an IKSolution: frozen, the same
+    fields, ``repr`` and ``==``; ``dataclasses.replace``, ``copy`` and ``pickle`` give a plain
+    IKSolution."""
+
+    __slots__ = ("_rows", "_k", "_q", "_extra")
+    _rows: _Rows
+    _k: int
+    _q: np.ndarray
+    _extra: dict
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> IKSolution:  # type: ignore[misc]
+        return IKSolution(*args, **kwargs)  # dataclasses.replace(sol, ...) calls type(sol)(...)
+
+    @classmethod
+    def from_rows(cls, rows: _Rows) -> list[IKSolution]:
+        """One solution per valid row of ``rows``."""
+        new, set_rows, set_k = object.__new__, _SET_ROWS, _SET_K  # slots stored past the frozen __setattr__
+        result: list[IKSolution] = []
+        for k in range(rows.n):
+            sol = new(cls)
+            set_rows(sol, rows)
+            set_k(sol, k)
+            result.append(sol)
+        return result
+
+    @property
+    def q(self) -> np.ndarray:  # noqa: D102 - the field of IKSolution
+        try:
+            return self._q
+        except AttributeError:
+            q = self._rows.out[self._k, :6]
+            _SET_Q(self, q)
+            return q
+
+    @property
+    def within_limits(self) -> bool:  # noqa: D102
+        return bool(self._rows.out[self._k, 6] == 1.0)
+
+    @property
+    def label(self) -> str:  # noqa: D102
+        return self._rows.label(self._k)
+
+    @property
+    def degenerate(self) -> bool:  # noqa: D102
+        return bool(self._rows.out[self._k, 8] == 1.0)
+
+    @property
+    def extra(self) -> dict:  # noqa: D102
+        try:
+            return self._extra
+        except AttributeError:
+            extra: dict = {}
+            _SET_EXTRA(self, extra)
+            return extra
+
+    def _plain(self) -> IKSolution:
+        return IKSolution(self.q, self.within_limits, self.label, self.degenerate, self.extra, self.collision_free)
+
+    def __reduce__(self) -> tuple:
+        return (IKSolution, (self.q, self.within_limits, self.label, self.degenerate, self.extra,
+                             self.collision_free))
+
+    def __repr__(self) -> str:
+        return repr(self._plain())
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, _RowSolution):
+            other = other._plain()
+        return self._plain() == other if isinstance(other, IKSolution) else NotImplemented
+
+    __hash__ = IKSolution.__hash__
+
+
+_SET_ROWS, _SET_K = _RowSolution._rows.__set__, _RowSolution._k.__set__  # type: ignore[attr-defined]
+_SET_Q, _SET_EXTRA = _RowSolution._q.__set__, _RowSolution._extra.__set__  # type: ignore[attr-defined]
+
+
 @runtime_checkable
 class CollisionChecker(Protocol):
     """What IK needs of a collision world (:class:`robokit.collision.World` is one)."""
@@ -79,7 +186,8 @@ def with_collision_flags(solutions: Sequence[IKSolution], world: CollisionChecke
     """The solutions with ``.collision_free`` set from ``world`` (unchanged when world is None)."""
     if world is None:
         return list(solutions)
-    return [replace(s, collision_free=not bool(world.in_collision(s.q))) for s in solutions]
+    return [IKSolution(s.q, s.within_limits, s.label, s.degenerate, s.extra, not bool(world.in_collision(s.q)))
+            for s in solutions]
 
 
 def _within(q: np.ndarray, qlim: ArrayLike | None) -> bool:

@@ -46,8 +46,8 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
-           "parallel_axes_batch", "pack_constants", "K_SIZE", "OUT_COLS", "MAX_ROWS", "PIEPER",
-           "PARALLEL_AXES"]
+           "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
+           "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
 #: The most rows one pose can produce before duplicates are dropped.
 MAX_ROWS = 16
@@ -739,6 +739,24 @@ def parallel_axes_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.nd
     out = np.empty((MAX_ROWS, OUT_COLS))
     n = _parallel_axes_packed(K, T, wrist_ref, out)
     return out[:n].copy()
+
+
+@njit
+def pieper_solve_into(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    """:func:`pieper_solve` writing into ``out`` (MAX_ROWS, OUT_COLS) and returning the number of
+    rows (−1 when T fails the quick rigid-transform test): no array crosses back into Python,
+    which saves the boxing of a new array (about 0.8 µs of a 4 µs call)."""
+    if not _rigid(T):
+        return -1
+    return _pieper_packed(K, T, wrist_ref, out)
+
+
+@njit
+def parallel_axes_solve_into(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    """:func:`parallel_axes_solve` writing into ``out``; as :func:`pieper_solve_into`."""
+    if not _rigid(T):
+        return -1
+    return _parallel_axes_packed(K, T, wrist_ref, out)
 
 
 @njit(parallel=True)

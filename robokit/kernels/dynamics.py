@@ -18,7 +18,9 @@ Inverse dynamics (recursive Newton–Euler), with ``V₀ = 0`` and ``V̇₀ = (0
 
 Mass matrix (composite rigid bodies): ``Kₙ = Gₙ``, ``K_{i−1} = G_{i−1} + Ad_{T_{i,i−1}}ᵀ Kᵢ Ad_{T_{i,i−1}}``;
     ``M_{ii} = Aᵢᵀ Kᵢ Aᵢ``; the composite force ``Kᵢ Aᵢ`` carried inward gives
-    ``M_{ji} = A_jᵀ (Ad_{T_{j+1,j}}ᵀ ⋯ Ad_{T_{i,i−1}}ᵀ) Kᵢ Aᵢ`` for j < i.
+    ``M_{ji} = A_jᵀ (Ad_{T_{j+1,j}}ᵀ ⋯ Ad_{T_{i,i−1}}ᵀ) Kᵢ Aᵢ`` for j < i. Computed in the base frame
+    (the same matrix): with ``Pᵢ = T_{i,0}``, ``Kᵢ⁰ = Σ_{j≥i} Ad_{P_j}ᵀ G_j Ad_{P_j}`` and the screws
+    ``Sᵢ⁰ = Ad_{Pᵢ⁻¹} Aᵢ``, ``M_{ji} = S_j⁰ᵀ Kᵢ⁰ Sᵢ⁰`` — one transform per link, six products per entry.
 
 Forward dynamics: ``M(θ) θ̈ = τ − h(θ, θ̇)`` with ``h`` the inverse dynamics at θ̈ = 0, solved by
 a Cholesky factorisation ``M = L Lᵀ`` (M is symmetric positive definite).
@@ -70,6 +72,32 @@ def check_model(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None
         raise ValueError("Mlist: expected shape (n+1, 4, 4) for the n columns of Slist")
     if Glist.shape[0] != n or Glist.shape[1] != 6 or Glist.shape[2] != 6:
         raise ValueError("Glist: expected shape (n, 6, 6) for the n columns of Slist")
+    # the checks robokit.dynamics makes of a model (finite, homogeneous link frames to 1e-9,
+    # symmetric inertias to 1e-9 of their size), so that a seed function can pass the user's
+    # arrays straight here; a refusal sends it to those checks, which name the problem
+    for i in range(6):
+        for j in range(n):
+            if not math.isfinite(Slist[i, j]):
+                raise ValueError("Slist: contains NaN or infinite values")
+    for k in range(n + 1):
+        for i in range(4):
+            for j in range(4):
+                if not math.isfinite(Mlist[k, i, j]):
+                    raise ValueError("Mlist: contains NaN or infinite values")
+        if (abs(Mlist[k, 3, 0]) > 1e-9 or abs(Mlist[k, 3, 1]) > 1e-9 or abs(Mlist[k, 3, 2]) > 1e-9
+                or abs(Mlist[k, 3, 3] - 1.0) > 1e-9):
+            raise ValueError("Mlist: expected homogeneous transforms (last row [0, 0, 0, 1])")
+    big, asym = 0.0, 0.0
+    for k in range(n):
+        for i in range(6):
+            for j in range(6):
+                v = Glist[k, i, j]
+                if not math.isfinite(v):
+                    raise ValueError("Glist: contains NaN or infinite values")
+                big = max(big, abs(v))
+                asym = max(asym, abs(v - Glist[k, j, i]))
+    if asym > 1e-9 * max(1.0, big):
+        raise ValueError("Glist: expected symmetric 6×6 spatial inertias")
 
 
 @njit
@@ -178,48 +206,55 @@ def rnea_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.n
 # ------------------------------------------------------------------ composite-rigid-body mass matrix
 @njit
 def crba_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, K: np.ndarray, X: np.ndarray, v6: np.ndarray, Mout: np.ndarray) -> None:
-    """Mout (n, n) ← M(θ) with the link transforms Tl already at θ (see the module docstring)."""
+    """Mout (n, n) ← M(θ) with the link transforms Tl already at θ, composite rigid bodies in the
+    base frame (see the module docstring): ``Pᵢ = T_{i,0}``, ``Gᵢ⁰ = Ad_{Pᵢ}ᵀ Gᵢ Ad_{Pᵢ}``,
+    ``Sᵢ⁰ = Ad_{Pᵢ⁻¹} Aᵢ``, ``Kᵢ⁰ = Σ_{j ≥ i} G_j⁰`` (sums: no transform per step), and
+    ``M_{ji} = S_j⁰ · (Kᵢ⁰ Sᵢ⁰)`` for j ≤ i, six products per entry — the same matrix as carrying
+    the composite forces inward link by link, with O(n) transforms instead of O(n²)."""
     n = A.shape[1]
     Ad, KAd = X[0], X[1]
-    F, t1 = v6[0], v6[1]
+    F = v6[0]
+    T4 = np.empty((3, 4, 4))
+    P, Pinv, tmp = T4[0], T4[1], T4[2]
+    Sw = np.empty((6, n))
+    set_identity(P)
     for i in range(n):
-        for r in range(6):
-            for c in range(6):
-                K[i, r, c] = Glist[i, r, c]
-    # composite inertias, inward: K_{i−1} += Ad_{T_{i,i−1}}ᵀ Kᵢ Ad_{T_{i,i−1}}
-    for i in range(n - 1, 0, -1):
-        adjoint_matrix(Tl[i], Ad)
+        mul_tt(Tl[i], P, tmp)  # T_{i+1,0} = T_{i+1,i} T_{i,0}
+        copy44(tmp, P)
+        inv_t(P, Pinv)
+        adjoint_screw(Pinv, A, i, Sw, i)  # joint i's screw in base coordinates
+        adjoint_matrix(P, Ad)
+        # KAd = Gᵢ Ad (Ad's upper-right block is zero), then Adᵀ KAd (symmetric: one triangle)
         for r in range(6):
             for c in range(6):
                 acc = 0.0
-                for k in range(6):
-                    acc += K[i, r, k] * Ad[k, c]
+                for k in range(3 if c >= 3 else 0, 6):
+                    acc += Glist[i, r, k] * Ad[k, c]
                 KAd[r, c] = acc
         for r in range(6):
-            for c in range(6):
+            for c in range(r, 6):
                 acc = 0.0
-                for k in range(6):
+                for k in range(3 if r >= 3 else 0, 6):
                     acc += Ad[k, r] * KAd[k, c]
-                K[i - 1, r, c] += acc
-    # columns: Fᵢ = Kᵢ Aᵢ, carried inward joint by joint
+                K[i, r, c] = acc
+                K[i, c, r] = acc
+    # composite inertias: suffix sums, inward
+    for i in range(n - 2, -1, -1):
+        for r in range(6):
+            for c in range(6):
+                K[i, r, c] += K[i + 1, r, c]
     for i in range(n):
         for r in range(6):
             acc = 0.0
             for c in range(6):
-                acc += K[i, r, c] * A[c, i]
+                acc += K[i, r, c] * Sw[c, i]
             F[r] = acc
-        acc = 0.0
-        for r in range(6):
-            acc += F[r] * A[r, i]
-        Mout[i, i] = acc
-        for j in range(i, 0, -1):
-            adjoint_transpose_wrench(Tl[j], F, t1)  # the composite force in frame {j}
+        for j in range(i + 1):
             acc = 0.0
             for r in range(6):
-                F[r] = t1[r]
-                acc += F[r] * A[r, j - 1]
-            Mout[j - 1, i] = acc
-            Mout[i, j - 1] = acc
+                acc += Sw[r, j] * F[r]
+            Mout[j, i] = acc
+            Mout[i, j] = acc
 
 
 # ------------------------------------------------------------------ Cholesky solve

@@ -30,6 +30,8 @@ Example::
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from robokit.kernels._jit import FK_BATCH, njit, prange
@@ -79,6 +81,34 @@ def check_theta(Slist: np.ndarray, thetalist: np.ndarray) -> None:
         raise ValueError("thetalist: contains NaN or infinite values")
 
 
+@njit
+def check_screws(Slist: np.ndarray) -> None:
+    """Raise ``ValueError`` unless the screw list is 6×n and finite (the caller's full checks then
+    name the problem: a kernel called straight on the user's arrays checks its constants itself)."""
+    if Slist.shape[0] != 6:
+        raise ValueError("Slist: expected 6 rows")
+    for i in range(6):
+        for j in range(Slist.shape[1]):
+            if not math.isfinite(Slist[i, j]):
+                raise ValueError("Slist: contains NaN or infinite values")
+
+
+@njit
+def check_home(M: np.ndarray) -> None:
+    """Raise ``ValueError`` unless M is a 4×4 rigid transform by a quick test (RᵀR = I to 1e-9
+    entrywise, det R > 0, last row exactly (0, 0, 0, 1), finite) — stricter than
+    :func:`robokit.spatial.check_transform`, which then decides (and names the problem)."""
+    if M.shape[0] != 4 or M.shape[1] != 4:
+        raise ValueError("M: expected a 4×4 matrix")
+    a, b, c, d, e, f, g, h, i = M[0, 0], M[0, 1], M[0, 2], M[1, 0], M[1, 1], M[1, 2], M[2, 0], M[2, 1], M[2, 2]
+    dev = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0), abs(c * c + f * f + i * i - 1.0),
+              abs(a * b + d * e + g * h), abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    if not (math.isfinite(a + b + c + d + e + f + g + h + i + M[0, 3] + M[1, 3] + M[2, 3]) and dev < 1e-9
+            and det > 0.0 and M[3, 0] == 0.0 and M[3, 1] == 0.0 and M[3, 2] == 0.0 and M[3, 3] == 1.0):
+        raise ValueError("M: not a rigid transform by the quick test")
+
+
 # ------------------------------------------------------------------ forward kinematics
 @njit
 def fkin_space_into(M: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray, T: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
@@ -102,6 +132,8 @@ def fkin_body_into(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray, T: n
 @njit(_SIG_FK)
 def fkin_space(M: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """End-effector pose (4×4) ``e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M``; M (4, 4), Slist (6, n), θ (n,) rad or m."""
+    check_screws(Slist)
+    check_home(M)
     check_theta(Slist, thetalist)
     W = np.empty((3, 4, 4))
     fkin_space_into(M, Slist, thetalist, W[0], W[1], W[2])
@@ -111,6 +143,8 @@ def fkin_space(M: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray) -> np.nd
 @njit(_SIG_FK)
 def fkin_body(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """End-effector pose (4×4) ``M e^{[B₁]θ₁} ⋯ e^{[Bₙ]θₙ}``; M (4, 4), Blist (6, n), θ (n,)."""
+    check_screws(Blist)
+    check_home(M)
     check_theta(Blist, thetalist)
     W = np.empty((3, 4, 4))
     fkin_body_into(M, Blist, thetalist, W[0], W[1], W[2])
@@ -191,6 +225,7 @@ def jacobian_body_into(Blist: np.ndarray, thetalist: np.ndarray, J: np.ndarray, 
 @njit(_SIG_J)
 def jacobian_space(Slist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """Space Jacobian (6, n), rows (ω; v): the end-effector twist in the space frame per unit θ̇."""
+    check_screws(Slist)
     check_theta(Slist, thetalist)
     J = np.empty((6, Slist.shape[1]))
     W = np.empty((3, 4, 4))
@@ -201,6 +236,7 @@ def jacobian_space(Slist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
 @njit(_SIG_J)
 def jacobian_body(Blist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     """Body Jacobian (6, n), rows (ω; v): the end-effector twist in its own frame per unit θ̇."""
+    check_screws(Blist)
     check_theta(Blist, thetalist)
     J = np.empty((6, Blist.shape[1]))
     W = np.empty((3, 4, 4))

@@ -87,6 +87,20 @@ def _run(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], th
     return kernel(*args, th) if th.ndim == 1 else batch(*args, th)
 
 
+def _run_fk(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], thetalist: ArrayLike,
+            M: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """:func:`_run` for FK with a checked M: the one-configuration kernel refuses an M that is
+    rigid only to check_transform's tolerance (its quick test is stricter), which the batched
+    kernel (no such test) then answers."""
+    th = _theta(thetalist, S.shape[1])
+    if th.ndim == 2:
+        return batch(M, S, th)
+    try:
+        return kernel(M, S, th)
+    except ValueError:  # M within check_transform's tolerance of SE(3) but not the kernel's 1e-9
+        return batch(M, S, th[None])[0]
+
+
 # Vectorised numpy helpers (the screw exponentials of many joints/configurations at once), used by
 # other modules (the Newton–Euler model's link transforms, the numeric IK). The FK and Jacobian
 # themselves are the compiled kernels in robokit.kernels.poe.
@@ -198,15 +212,15 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
     >>> rk.fkin_space(M, Slist, np.zeros((5, 2))).shape  # five configurations at once
     (5, 4, 4)
     """
-    Slist = _screws(Slist, "Slist")
-    M = _home(M)
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_space(M, Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
-    return _run(k.fkin_space, k.fkin_space_batch, thetalist, Slist.shape[1], M, Slist)
+    Slist = _screws(Slist, "Slist")
+    M = _home(M)
+    return _run_fk(k.fkin_space, k.fkin_space_batch, thetalist, M, Slist)
 
 
 def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -247,15 +261,15 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
            [ 0.,  0.,  1.,  0.],
            [ 0.,  0.,  0.,  1.]])
     """
-    Blist = _screws(Blist, "Blist")
-    M = _home(M)
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_body(M, Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
-    return _run(k.fkin_body, k.fkin_body_batch, thetalist, Blist.shape[1], M, Blist)
+    Blist = _screws(Blist, "Blist")
+    M = _home(M)
+    return _run_fk(k.fkin_body, k.fkin_body_batch, thetalist, M, Blist)
 
 
 def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -292,13 +306,13 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     array([[ 0.,  0.,  1.,  0.,  0.,  0.],
            [ 0.,  0.,  1.,  0., -1.,  0.]])
     """
-    Slist = _screws(Slist, "Slist")
     k = _kp or _kernels()
     if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_space(Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
+    Slist = _screws(Slist, "Slist")
     return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
 
 
@@ -336,13 +350,13 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     array([[0., 0., 1., 1., 1., 0.],
            [0., 0., 1., 0., 1., 0.]])
     """
-    Blist = _screws(Blist, "Blist")
     k = _kp or _kernels()
     if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
-        try:
+        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_body(Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
             pass
+    Blist = _screws(Blist, "Blist")
     return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
 
 
