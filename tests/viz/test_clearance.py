@@ -108,10 +108,11 @@ def test_golden_file_is_what_the_world_computes(golden):
         assert fresh[key]["page"] == golden[key]["page"], key
         for new, old in zip(fresh[key]["cases"], golden[key]["cases"]):
             assert np.allclose(new["q"], old["q"], rtol=0, atol=1e-15)
-            # Apart, coal's distance is a converged GJK value: it must repeat to 1e-12. In contact
-            # it is EPA's penetration estimate, warm-started from the previous query, which moves
-            # by up to ~1e-8 with the call history: the file is stale only if it moved by more.
-            tol = 1e-12 if old["distance"] > 0 else 1e-6
+            # Apart, coal's distance is GJK converged to the 1e-9 tolerance World sets (its last
+            # digits depend on the warm start left by earlier queries in the process); in contact
+            # it is EPA's penetration estimate, which moves by up to ~1e-8 with that history. The
+            # file is stale only if a value moved by more (a stale file was 1.2e-7 off).
+            tol = 1e-9 if old["distance"] > 0 else 1e-6
             assert abs(new["distance"] - old["distance"]) < tol, key
             assert sorted(map(tuple, new["pairs"])) == sorted(map(tuple, old["pairs"])), key
     puma = golden["puma560"]
