@@ -34,6 +34,7 @@ from typing import Any
 
 
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
+from robokit.codegen import ik_general
 from robokit.codegen._solver_constants import IKConstants, ik_constants
 from robokit.codegen.kinematics import Pose, compose
 
@@ -98,6 +99,10 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
     k = ik_constants(robot)
     if k.method is None:
         return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
+    if k.method == "general 6R":
+        if float32:
+            return IKCode(False, ik_general.FLOAT32_NOTE, 1)
+        return _GeneralEmitter(k, prefix, _Tol(False)).code()
     if k.method not in ("spherical wrist", "three parallel axes"):
         return IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
                              "use robokit.ik_analytic", 1)
@@ -256,7 +261,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 }}
 """
 
-    def finish(self) -> str:
+    def finish(self, max_solutions: int = MAX_SOLUTIONS) -> str:
         """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``)."""
         k, P, n = self.k, self.P, 6
         lines = []
@@ -313,7 +318,7 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
     int count[{len(self.labels)}];
     int r, m, nk = 0;
     memset(count, 0, sizeof count);
-    for (r = 0; r < nr && nk < {MAX_SOLUTIONS}; ++r) {{
+    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
         double qq[6];
         int inside = 1, dup = 0, j;
 {body}
@@ -1042,3 +1047,40 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
     }}
     }}
 """
+
+
+class _GeneralEmitter(_Emitter):
+    """``NAME_ik`` of a general 6R arm (:mod:`robokit.codegen.ik_general`)."""
+
+    def __init__(self, k: IKConstants, prefix: str, tol: _Tol) -> None:
+        self.k, self.P, self.tol = k, prefix, tol
+        self.labels = ik_general.general_6r_labels()
+
+    def declare(self) -> list[str]:
+        return ik_general.declare(self.P)
+
+    def code(self) -> IKCode:
+        k, P = self.k, self.P
+        w = CWriter()
+        T06 = self.target(w)
+        solve = ik_general.emit_general_6r(self, w.text(), T06)
+        n_max = ik_general.MAX_SOLUTIONS_6R
+        src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
+        src.append(f"""
+/* every closed-form solution of the general 6R arm, see {P}.h */
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    double rows[{n_max}][6];
+    int lab[{n_max}], deg[{n_max}];
+    int nr = 0, ir;
+    (void)wrist_ref;  /* no free joint in the general case */
+{solve}    (void)ir;
+    return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+}}
+
+int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
+{{
+    return {P}_ik_ex(T, 0.0, q, 0);
+}}
+""")
+        return IKCode(True, ik_general.note(k), n_max, self.declare(), "\n".join(src), self.labels)
