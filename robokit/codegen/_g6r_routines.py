@@ -110,6 +110,96 @@ static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
     }
 }
 
+/* sigma_min / sigma_max of the m x n row-major matrix a (overwritten), m >= n, n <= 12, without
+   vectors: Householder bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then bisection
+   on the Sturm counts of the Golub-Kahan tridiagonal [[0, B^T], [B, 0]] (zero diagonal,
+   off-diagonals d1, e1, d2, ..., dn; its eigenvalues are +-sigma_i), which finds the
+   extreme singular values to high relative accuracy (Demmel & Kahan 1990). Ratios below 1e-20
+   are reported as 0 (every threshold of the solver is far above). */
+static double @P@_house(int n, const double *x, int stride, double *vv);
+static int @P@_gk_count(const double *c, int len, double mu)
+{
+    /* the number of eigenvalues of the zero-diagonal tridiagonal with off-diagonal c below mu */
+    double q = -mu;
+    int i, count = q < 0.0;
+    for (i = 1; i < len; ++i) {
+        if (q == 0.0) {
+            q = -1e-300;
+        }
+        q = -mu - c[i - 1] * c[i - 1] / q;
+        count += q < 0.0;
+    }
+    return count;
+}
+
+static double @P@_sv_ratio(int m, int n, double *a)
+{
+    double vv[14], c[24], bound = 0.0, lo, hi, smax, smin;
+    int k, i, j, it;
+    for (k = 0; k < n; ++k) {
+        /* left reflection: zero column k below the diagonal */
+        double beta = @P@_house(m - k, a + k * n + k, n, vv), mu;
+        for (j = k; j < n; ++j) {
+            double s = 0.0;
+            for (i = k; i < m; ++i) {
+                s += vv[i - k] * a[i * n + j];
+            }
+            s *= beta;
+            for (i = k; i < m; ++i) {
+                a[i * n + j] -= s * vv[i - k];
+            }
+        }
+        c[2 * k] = a[k * n + k];
+        if (k < n - 2) {
+            /* right reflection: zero row k right of the superdiagonal */
+            beta = @P@_house(n - k - 1, a + k * n + k + 1, 1, vv);
+            for (i = k; i < m; ++i) {
+                double s = 0.0;
+                for (j = k + 1; j < n; ++j) {
+                    s += a[i * n + j] * vv[j - k - 1];
+                }
+                s *= beta;
+                for (j = k + 1; j < n; ++j) {
+                    a[i * n + j] -= s * vv[j - k - 1];
+                }
+            }
+        }
+        if (k < n - 1) {
+            c[2 * k + 1] = a[k * n + k + 1];
+        }
+        mu = fabs(c[2 * k]) + (k < n - 1 ? fabs(c[2 * k + 1]) : 0.0) + (k > 0 ? fabs(c[2 * k - 1]) : 0.0);
+        bound = mu > bound ? mu : bound;  /* Gershgorin */
+    }
+    if (bound == 0.0) {
+        return 0.0;
+    }
+    /* the largest: #{sigma < mu} = count(mu) - n reaches n */
+    lo = 0.0;
+    hi = bound * 1.0000001;
+    for (it = 0; it < 200 && hi - lo > 1e-13 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (@P@_gk_count(c, 2 * n - 1, mid) - n >= n) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    smax = hi;
+    /* the smallest: #{sigma < mu} reaches 1 */
+    lo = 0.0;
+    hi = smax;
+    for (it = 0; it < 400 && hi - lo > 1e-13 * hi && hi > 1e-20 * smax; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (@P@_gk_count(c, 2 * n - 1, mid) - n >= 1) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    smin = hi > 1e-20 * smax ? 0.5 * (lo + hi) : 0.0;
+    return smin / smax;
+}
+
 /* LU factorisation with partial pivoting (Golub & Van Loan 3.4) of the n x n row-major a, in
    place; piv[k] the row swapped with k. A zero pivot is replaced by a tiny one (the caller
    wants a null vector by inverse iteration, or has checked the conditioning). */
@@ -365,36 +455,37 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
             y = h[(lo + 1) * n + lo] * (h[lo * n + lo] + h[(lo + 1) * n + lo + 1] - s);
             z = h[(lo + 1) * n + lo] * h[(lo + 2) * n + lo + 1];
             for (m = lo; m <= hi - 1; ++m) {  /* chase the bulge down the subdiagonal */
-                const int rows = m < hi - 1 ? 3 : 2;
-                double xs[3], v3[3], beta;
-                int c0, r1;
+                const int three = m < hi - 1;
+                const int c0 = m > lo ? m - 1 : lo, r1 = m + 3 < hi ? m + 3 : hi;
+                double xs[3], v3[3], beta, v1, v2;
                 xs[0] = x;
                 xs[1] = y;
                 xs[2] = z;
-                beta = @P@_house(rows, xs, 1, v3);
-                c0 = m > lo ? m - 1 : lo;
-                for (j = c0; j <= hi; ++j) {
-                    double sum = 0.0;
-                    for (i = 0; i < rows; ++i) {
-                        sum += v3[i] * h[(m + i) * n + j];
+                /* the reflection I - beta v v^T, v = (1, v1, v2), taking (x, y, z) to (*, 0, 0) */
+                beta = @P@_house(three ? 3 : 2, xs, 1, v3);
+                v1 = v3[1];
+                v2 = three ? v3[2] : 0.0;
+                if (beta != 0.0) {
+                    for (j = c0; j <= hi; ++j) {  /* from the left: rows m .. m+2 */
+                        double *g = h + m * n + j;
+                        const double sum = beta * (g[0] + v1 * g[n] + (three ? v2 * g[2 * n] : 0.0));
+                        g[0] -= sum;
+                        g[n] -= sum * v1;
+                        if (three) {
+                            g[2 * n] -= sum * v2;
+                        }
                     }
-                    sum *= beta;
-                    for (i = 0; i < rows; ++i) {
-                        h[(m + i) * n + j] -= sum * v3[i];
+                    for (i = lo; i <= r1; ++i) {  /* from the right: columns m .. m+2 */
+                        double *g = h + i * n + m;
+                        const double sum = beta * (g[0] + v1 * g[1] + (three ? v2 * g[2] : 0.0));
+                        g[0] -= sum;
+                        g[1] -= sum * v1;
+                        if (three) {
+                            g[2] -= sum * v2;
+                        }
                     }
                 }
-                r1 = m + 3 < hi ? m + 3 : hi;
-                for (i = lo; i <= r1; ++i) {
-                    double sum = 0.0;
-                    for (j = 0; j < rows; ++j) {
-                        sum += h[i * n + m + j] * v3[j];
-                    }
-                    sum *= beta;
-                    for (j = 0; j < rows; ++j) {
-                        h[i * n + m + j] -= sum * v3[j];
-                    }
-                }
-                if (m < hi - 1) {
+                if (three) {
                     x = h[(m + 1) * n + m];
                     y = h[(m + 2) * n + m];
                     z = m < hi - 2 ? h[(m + 3) * n + m] : 0.0;
@@ -664,13 +755,12 @@ static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], dou
 /* sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c */
 static double @P@_regularity(const double *a, const double *b, const double *c, double x)
 {
-    double L[144], sv[12];
+    double L[144];
     int i;
     for (i = 0; i < 144; ++i) {
         L[i] = a[i] * x * x + b[i] * x + c[i];
     }
-    @P@_svd(12, 12, L, sv, 0, 0);
-    return sv[0] > 0.0 ? sv[11] / sv[0] : 0.0;
+    return @P@_sv_ratio(12, 12, L);
 }
 
 /* kernels.general_6r.companion: M = [[0, I], [-A^-1 C, -A^-1 B]] (24 x 24) when A is regular
@@ -681,10 +771,9 @@ static double @P@_companion(const double abc[3 * 144], double M[576])
     int piv[12], i, j;
     memcpy(lu, abc, sizeof lu);
     {
-        double Acopy[144], sv[12];
+        double Acopy[144];
         memcpy(Acopy, abc, sizeof Acopy);
-        @P@_svd(12, 12, Acopy, sv, 0, 0);
-        cond = sv[0] > 0.0 ? sv[11] / sv[0] : 0.0;
+        cond = @P@_sv_ratio(12, 12, Acopy);
     }
     if (cond <= 1e-10) {
         return cond;
@@ -843,21 +932,34 @@ static double @P@_polish(const double T06s[16], double th[6], int iters)
             break;
         }
         @P@_jacobian6(th, T, J);
-        @P@_svd(6, 6, J, sv, U, V);
-        for (i = 0; i < 6; ++i) {
-            trial[i] = th[i];
-        }
-        for (j = 0; j < 6; ++j) {
-            double ue = 0.0;
-            if (!(sv[j] > 1e-12 * sv[0])) {
-                continue;
-            }
+        memcpy(U, J, sizeof U);
+        if (@P@_sv_ratio(6, 6, U) > 1e-10) {
+            /* well conditioned: the least-squares step is the solution of J dq = e (LU) */
+            int piv[6];
+            double dq[6];
+            memcpy(dq, e, sizeof dq);
+            @P@_lu(6, J, piv);
+            @P@_lu_solve(6, J, piv, dq);
             for (i = 0; i < 6; ++i) {
-                ue += U[i * 6 + j] * e[i];
+                trial[i] = th[i] + dq[i];
             }
-            ue /= sv[j];
+        } else {
+            @P@_svd(6, 6, J, sv, U, V);
             for (i = 0; i < 6; ++i) {
-                trial[i] += V[i * 6 + j] * ue;
+                trial[i] = th[i];
+            }
+            for (j = 0; j < 6; ++j) {
+                double ue = 0.0;
+                if (!(sv[j] > 1e-12 * sv[0])) {
+                    continue;
+                }
+                for (i = 0; i < 6; ++i) {
+                    ue += U[i * 6 + j] * e[i];
+                }
+                ue /= sv[j];
+                for (i = 0; i < 6; ++i) {
+                    trial[i] += V[i * 6 + j] * ue;
+                }
             }
         }
         @P@_fk_pose(trial, T);
@@ -1130,14 +1232,13 @@ static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], in
     for (i = 0; i < m; ++i) {
         int singular = 0;
         if (ratio < @POOR@) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
-            double t6[6], T[16], J[36], sv[6];
+            double t6[6], T[16], J[36];
             for (j = 0; j < 6; ++j) {
                 t6[j] = q[i][j] + @P@_g6_th0[j];
             }
             @P@_fk_pose(t6, T);
             @P@_jacobian6(t6, T, J);
-            @P@_svd(6, 6, J, sv, 0, 0);
-            singular = sv[5] < 1e-8 * sv[0];
+            singular = @P@_sv_ratio(6, 6, J) < 1e-8;
         }
         memcpy(rows[i], q[i], sizeof q[i]);
         lab[i] = ((m - 1) * m / 2 + i) * 2 + singular;  /* "solution i+1 of m" (", singular") */
