@@ -132,13 +132,16 @@ static int @P@_gk_count(const double *c, int len, double mu)
     return count;
 }
 
-static double @P@_sv_ratio(int m, int n, double *a)
+/* Householder bidiagonalisation of the m x n row-major a (overwritten), m >= n: c (2n - 1) the
+   off-diagonal of the Golub-Kahan tridiagonal (d1, e1, d2, e2, ..., dn); returns a Gershgorin
+   bound on sigma_max */
+static double @P@_bidiagonal(int m, int n, double *a, double c[24])
 {
-    double vv[14], c[24], bound = 0.0, lo, hi, smax, smin;
-    int k, i, j, it;
+    double vv[14], bound = 0.0;
+    int k, i, j;
     for (k = 0; k < n; ++k) {
         /* left reflection: zero column k below the diagonal */
-        double beta = @P@_house(m - k, a + k * n + k, n, vv), mu;
+        double beta = @P@_house(m - k, a + k * n + k, n, vv);
         for (j = k; j < n; ++j) {
             double s = 0.0;
             for (i = k; i < m; ++i) {
@@ -167,16 +170,28 @@ static double @P@_sv_ratio(int m, int n, double *a)
         if (k < n - 1) {
             c[2 * k + 1] = a[k * n + k + 1];
         }
-        mu = fabs(c[2 * k]) + (k < n - 1 ? fabs(c[2 * k + 1]) : 0.0) + (k > 0 ? fabs(c[2 * k - 1]) : 0.0);
-        bound = mu > bound ? mu : bound;  /* Gershgorin */
     }
+    for (k = 0; k < 2 * n - 1; ++k) {
+        const double mu = fabs(c[k]) + (k + 1 < 2 * n - 1 ? fabs(c[k + 1]) : 0.0);
+        bound = mu > bound ? mu : bound;
+    }
+    return bound;
+}
+
+static double @P@_sv_ratio(int m, int n, double *a)
+{
+    double c[24], lo = 0.0, hi, smax;
+    const double bound = @P@_bidiagonal(m, n, a, c);
+    int k, it;
     if (bound == 0.0) {
         return 0.0;
     }
-    /* the largest: #{sigma < mu} = count(mu) - n reaches n */
-    lo = 0.0;
-    hi = bound * 1.0000001;
-    for (it = 0; it < 200 && hi - lo > 1e-13 * hi; ++it) {
+    for (k = 0; k < 2 * n - 1; ++k) {  /* sigma_max >= every entry of the bidiagonal */
+        lo = fabs(c[k]) > lo ? fabs(c[k]) : lo;
+    }
+    /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
+    hi = bound;
+    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
         const double mid = 0.5 * (lo + hi);
         if (@P@_gk_count(c, 2 * n - 1, mid) - n >= n) {
             hi = mid;
@@ -185,19 +200,29 @@ static double @P@_sv_ratio(int m, int n, double *a)
         }
     }
     smax = hi;
-    /* the smallest: #{sigma < mu} reaches 1 */
-    lo = 0.0;
+    /* the smallest, to 1e-7 relative, by bisection of its logarithm in [1e-20, 1] sigma_max */
+    if (@P@_gk_count(c, 2 * n - 1, 1e-20 * smax) - n >= 1) {
+        return 0.0;
+    }
+    lo = 1e-20 * smax;
     hi = smax;
-    for (it = 0; it < 400 && hi - lo > 1e-13 * hi && hi > 1e-20 * smax; ++it) {
-        const double mid = 0.5 * (lo + hi);
+    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
+        const double mid = sqrt(lo * hi);
         if (@P@_gk_count(c, 2 * n - 1, mid) - n >= 1) {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    smin = hi > 1e-20 * smax ? 0.5 * (lo + hi) : 0.0;
-    return smin / smax;
+    return 0.5 * (lo + hi) / smax;
+}
+
+/* whether sigma_min > tol * sigma_max holds for sure (one Sturm count; 0 may be a false alarm) */
+static int @P@_well_conditioned(int m, int n, double *a, double tol)
+{
+    double c[24];
+    const double bound = @P@_bidiagonal(m, n, a, c);
+    return bound > 0.0 && @P@_gk_count(c, 2 * n - 1, tol * bound) - n == 0;
 }
 
 /* LU factorisation with partial pivoting (Golub & Van Loan 3.4) of the n x n row-major a, in
@@ -933,7 +958,7 @@ static double @P@_polish(const double T06s[16], double th[6], int iters)
         }
         @P@_jacobian6(th, T, J);
         memcpy(U, J, sizeof U);
-        if (@P@_sv_ratio(6, 6, U) > 1e-10) {
+        if (@P@_well_conditioned(6, 6, U, 1e-10)) {
             /* well conditioned: the least-squares step is the solution of J dq = e (LU) */
             int piv[6];
             double dq[6];
