@@ -119,7 +119,8 @@ static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
 static double @P@_house(int n, const double *x, int stride, double *vv);
 static int @P@_gk_count(const double *c, int len, double mu)
 {
-    /* the number of eigenvalues of the zero-diagonal tridiagonal with off-diagonal c below mu */
+    /* the number of eigenvalues below mu of the len x len tridiagonal with zero diagonal and
+       off-diagonal c (len - 1): the negative pivots of its LDL^T - mu I (Sylvester's law of inertia) */
     double q = -mu;
     int i, count = q < 0.0;
     for (i = 1; i < len; ++i) {
@@ -193,7 +194,7 @@ static double @P@_sv_ratio(int m, int n, double *a)
     hi = bound;
     for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
         const double mid = 0.5 * (lo + hi);
-        if (@P@_gk_count(c, 2 * n - 1, mid) - n >= n) {
+        if (@P@_gk_count(c, 2 * n, mid) - n >= n) {
             hi = mid;
         } else {
             lo = mid;
@@ -201,14 +202,14 @@ static double @P@_sv_ratio(int m, int n, double *a)
     }
     smax = hi;
     /* the smallest, to 1e-7 relative, by bisection of its logarithm in [1e-20, 1] sigma_max */
-    if (@P@_gk_count(c, 2 * n - 1, 1e-20 * smax) - n >= 1) {
+    if (@P@_gk_count(c, 2 * n, 1e-20 * smax) - n >= 1) {
         return 0.0;
     }
     lo = 1e-20 * smax;
     hi = smax;
     for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
         const double mid = sqrt(lo * hi);
-        if (@P@_gk_count(c, 2 * n - 1, mid) - n >= 1) {
+        if (@P@_gk_count(c, 2 * n, mid) - n >= 1) {
             hi = mid;
         } else {
             lo = mid;
@@ -222,7 +223,7 @@ static int @P@_well_conditioned(int m, int n, double *a, double tol)
 {
     double c[24];
     const double bound = @P@_bidiagonal(m, n, a, c);
-    return bound > 0.0 && @P@_gk_count(c, 2 * n - 1, tol * bound) - n == 0;
+    return bound > 0.0 && @P@_gk_count(c, 2 * n, tol * bound) - n == 0;
 }
 
 /* LU factorisation with partial pivoting (Golub & Van Loan 3.4) of the n x n row-major a, in

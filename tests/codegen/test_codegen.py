@@ -20,7 +20,7 @@ from robokit.ik import ik_analytic, ik_analytic_kind
 
 SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "memset", "memcpy"}
+MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "floor", "memset", "memcpy"}
 MATH |= {f + "f" for f in MATH}
 
 
@@ -91,8 +91,10 @@ def check_ik(robot, lib, poses, tol=1e-9):
                 assert _dist(q, s.q, rev) < tol
                 assert base.sub("", label) == base.sub("", s.label)
                 assert (inside, degen) == (s.within_limits, s.degenerate)
-        for q, *_ in c:  # and every C solution reaches T (Pinocchio)
+        for q, *_ in c:  # and every C solution reaches T (Pinocchio, and the generated NAME_fk)
             assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
+            if not lib.float32:
+                assert np.abs(lib.fk(q) - T).max() < 1e-9
 
 
 # ------------------------------------------------------------------ shipped and example arms
@@ -424,3 +426,86 @@ def test_flipped_joints(build):
     poses = random_poses(robot, 4, k=4)
     if all(np.abs(robot.frame_pose(s.q) - T).max() < 1e-9 for T in poses for s in ik_analytic(robot, T)):
         check_ik(robot, lib, poses)
+
+
+# ------------------------------------------------------------------ general 6R (no special structure)
+def jaco2_table():
+    """Kinova JACO² 6-DOF non-spherical (offset wrist), classic DH from Kinova's "JACO² 6 DOF Advanced
+    Specification Guide" (the arm of tests/ik/test_general_6r.py), with masses for the dynamics."""
+    D1, D2, D3, D4, D5, D6, e2 = 0.2755, 0.4100, 0.2073, 0.0741, 0.0741, 0.1600, 0.0098
+    aa = math.radians(30.0)
+    k = math.sin(aa) / math.sin(2 * aa)
+    alpha = [math.pi / 2, math.pi, math.pi / 2, 2 * aa, 2 * aa, math.pi]
+    a = [0.0, D2, 0.0, 0.0, 0.0, 0.0]
+    d = [D1, 0.0, -e2, -(D3 + k * D4), -(k * D4 + k * D5), -(k * D5 + D6)]
+    return DHTable("jaco2_6n", "standard", tuple(
+        DHLink("R", a=a[i], alpha=alpha[i], d=d[i], qlim=np.array([-2 * np.pi, 2 * np.pi]) if i % 2 else None,
+               mass=0.5, com=np.array([0.0, 0.0, 0.05]), inertia=np.array([0.01, 0.01, 0.005, 0, 0, 0]))
+        for i in range(6)))
+
+
+@pytest.fixture(scope="module")
+def jaco():
+    return robokit.load(jaco2_table())
+
+
+def test_general_6r_jaco_matches_ik_analytic(jaco, build):
+    """The offset-wrist Jaco: the same solutions, order, labels and flags as ik_analytic, each
+    reaching the pose through Pinocchio and the generated jaco2_6n_fk; FK/dynamics as Pinocchio."""
+    assert ik_analytic_kind(jaco).method == "general 6R"
+    lib = build(jaco)
+    assert lib.has_ik and lib.max_solutions == 16
+    h = (lib.path.parent / "jaco2_6n.h").read_text()
+    assert "#define jaco2_6n_HAS_IK 1" in h and "#define jaco2_6n_MAX_SOLUTIONS 16" in h
+    assert "Raghavan-Roth" in h
+    rng = np.random.default_rng(4)
+    poses = [jaco.frame_pose(rng.uniform(-np.pi, np.pi, 6)) for _ in range(12)]
+    poses.append(jaco.frame_pose(np.array([np.pi, 0.3, np.pi, -0.4, np.pi, 0.2])))  # angles at pi
+    check_ik(jaco, lib, poses)
+    assert sum(len(lib.ik(T)) for T in poses) >= 4 * len(poses)  # a non-trivial check: several each
+    far = np.eye(4)
+    far[:3, 3] = [3.0, 0.0, 0.0]
+    assert lib.ik(far) == [] and ik_analytic(jaco, far) == []
+    check_dynamics_and_kinematics(jaco, lib, samples=3)
+
+
+@settings(**{**SETTINGS, "max_examples": 3})
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]))
+def test_general_6r_random_arms_match_ik_analytic(build, seed, convention):
+    """Random 6R arms (random twists, lengths, offsets, flipped joints, base and tool) in both DH
+    conventions: the C solves every pose as ik_analytic does."""
+    robot = robokit.load(random_table(seed, convention, "RRRRRR"))
+    assume(ik_analytic_kind(robot).method == "general 6R")
+    check_ik(robot, build(robot), random_poses(robot, seed, k=8))
+
+
+def test_general_6r_root_at_the_half_angle_infinity(jaco, build):
+    """A solution with the eigenvalue joint exactly at the half-angle variable's infinity (θ = γ + π):
+    A is singular, Python takes the generalised eigenproblem (QZ), the C the turned variable; both
+    must find it."""
+    from robokit.ik import analytic_ik
+
+    sv = analytic_ik(jaco).solver.export_constants()
+    th0 = sv["th0"]
+    for reading in (0, 1):
+        pivot = int(sv["arrangements"][reading]["roles"][0])
+        q = np.array([0.4, -0.7, 1.1, 0.5, -0.9, 0.3])
+        q[pivot] = math.remainder(sv["gamma"] + math.pi - th0[pivot], 2 * math.pi)
+        T = jaco.frame_pose(q)
+        lib = build(jaco)
+        check_ik(jaco, lib, [T])
+        if reading == 0:  # the generating configuration is among the C's solutions
+            assert min(_dist(c[0], q, np.ones(6, bool)) for c in lib.ik(T)) < 1e-7
+
+
+def test_general_6r_float32_has_no_ik_and_says_why(jaco, build, nm):
+    lib = build(jaco, float32=True)
+    assert not lib.has_ik
+    h = (lib.path.parent / "jaco2_6n.h").read_text()
+    assert "#define jaco2_6n_HAS_IK 0" in h and "general 6R" in h and "double only" in h
+    check_dynamics_and_kinematics(jaco, lib, samples=2)
+    for f32 in (False, True):  # only math functions, with and without the IK
+        obj = build(jaco, float32=f32).path.with_suffix(".o")
+        out = subprocess.run([nm, "-u", str(obj)], capture_output=True, text=True, check=True).stdout
+        undefined = {line.split()[-1] for line in out.splitlines() if line.strip()}
+        assert undefined <= MATH, undefined - MATH
