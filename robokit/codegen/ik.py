@@ -217,6 +217,111 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
     return x;
 }}
 
+/* Newton steps on the polynomial from t (at most 3, as robokit's Python after its eigenvalues) */
+static double {P}_newton_poly(const double c[5], int deg, double t)
+{{
+    int it, k;
+    for (it = 0; it < 3; ++it) {{
+        double p = c[deg], dp = 0.0, step;
+        for (k = deg - 1; k >= 0; --k) {{
+            dp = dp * t + p;
+            p = p * t + c[k];
+        }}
+        if (dp == 0.0) {{
+            break;
+        }}
+        step = p / dp;
+        t -= step;
+        if (fabs(step) <= {t(1e-15)} * (1.0 + fabs(t))) {{
+            break;
+        }}
+    }}
+    return t;
+}}
+
+/* Lecture 5's quartic in closed form (Ferrari): the real roots of c[0] + ... + c[4] x^4, increasing,
+   each polished by Newton steps. x = y - a/4 gives y^4 + p y^2 + q y + r; with m the largest root
+   of the resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 (trigonometric or Cardano form),
+   y^4 + p y^2 + q y + r = (y^2 + p/2 + m)^2 - 2m (y - q/(4m))^2: two quadratics. As robokit's
+   Python (companion eigenvalues), a complex pair with |imag| <= 1e-6 (1 + |real|) counts as two
+   real roots at its real part. Returns -1 when the closed form is not trustworthy (q ~ 0, or the
+   four roots fail Vieta's sum and product): the caller then isolates the roots numerically. */
+static int {P}_quartic_roots(const double c[5], double out[4])
+{{
+    const double a = c[3] / c[4], b = c[2] / c[4], cc = c[1] / c[4], d = c[0] / c[4];
+    const double p = b - 0.375 * a * a;
+    const double q = cc - 0.5 * a * b + 0.125 * a * a * a;
+    const double r = d - 0.25 * a * cc + 0.0625 * a * a * b - 0.01171875 * a * a * a * a;
+    const double A = p, B = 0.25 * p * p - r, C = -0.125 * q * q;
+    const double P3 = B - A * A / 3.0, Q3 = 2.0 * A * A * A / 27.0 - A * B / 3.0 + C;
+    const double disc = 0.25 * Q3 * Q3 + P3 * P3 * P3 / 27.0;
+    const double size = 1.0 + fabs(a) + sqrt(fabs(b)) + sqrt(sqrt(fabs(d))) + cbrt(fabs(cc));
+    double m, s, re[4], im[4], sum_re = 0.0, prod_re = 1.0, prod_im = 0.0;
+    int i, k, n = 0;
+    /* the largest real root of the resolvent cubic (z = m + A/3: z^3 + P3 z + Q3 = 0) */
+    if (disc > 0.0) {{
+        const double sq = sqrt(disc);
+        m = cbrt(-0.5 * Q3 + sq) + cbrt(-0.5 * Q3 - sq) - A / 3.0;
+    }} else {{
+        const double rr = sqrt(-P3 / 3.0);
+        double arg = rr > 0.0 ? -0.5 * Q3 / (rr * rr * rr) : 0.0;
+        arg = arg > 1.0 ? 1.0 : (arg < -1.0 ? -1.0 : arg);
+        m = 2.0 * rr * cos(acos(arg) / 3.0) - A / 3.0;
+    }}
+    for (k = 0; k < 2; ++k) {{  /* two Newton steps on the cubic */
+        const double f = ((m + A) * m + B) * m + C, df = (3.0 * m + 2.0 * A) * m + B;
+        if (df != 0.0) {{
+            m -= f / df;
+        }}
+    }}
+    if (!(m > {t(1e-10)} * size * size)) {{
+        return -1;  /* q ~ 0 (nearly biquadratic): the split below divides by sqrt(2m) */
+    }}
+    s = sqrt(2.0 * m);
+    for (k = 0; k < 2; ++k) {{  /* y^2 -+ s y + (p/2 + m +- q/(2s)) = 0 */
+        const double sg = k == 0 ? 1.0 : -1.0;
+        const double e = 0.5 * p + m + sg * 0.5 * q / s;
+        const double dq = s * s - 4.0 * e;
+        const double mid = 0.5 * sg * s;
+        if (dq >= 0.0) {{
+            const double sq = sqrt(dq);
+            const double y1 = mid + (sg >= 0.0 ? 0.5 * sq : -0.5 * sq);  /* the larger in size first */
+            re[2 * k] = y1;
+            re[2 * k + 1] = y1 != 0.0 ? e / y1 : mid - (sg >= 0.0 ? 0.5 * sq : -0.5 * sq);
+            im[2 * k] = im[2 * k + 1] = 0.0;
+        }} else {{
+            re[2 * k] = re[2 * k + 1] = mid;
+            im[2 * k] = 0.5 * sqrt(-dq);
+            im[2 * k + 1] = -im[2 * k];
+        }}
+    }}
+    /* Vieta: the four roots' sum is 0 and product r (depressed quartic) */
+    for (i = 0; i < 4; ++i) {{
+        const double pr = prod_re * re[i] - prod_im * im[i];
+        prod_im = prod_re * im[i] + prod_im * re[i];
+        prod_re = pr;
+        sum_re += re[i];
+    }}
+    if (fabs(sum_re) > {t(1e-8)} * size || fabs(prod_re - r) > {t(1e-8)} * size * size * size * size
+        || fabs(prod_im) > {t(1e-8)} * size * size * size * size) {{
+        return -1;
+    }}
+    for (i = 0; i < 4; ++i) {{
+        const double x = re[i] - 0.25 * a;
+        if (fabs(im[i]) <= {t(1e-6)} * (1.0 + fabs(x))) {{
+            double t0 = {P}_newton_poly(c, 4, x);
+            int j = n;
+            while (j > 0 && out[j - 1] > t0) {{  /* insertion: increasing */
+                out[j] = out[j - 1];
+                --j;
+            }}
+            out[j] = t0;
+            ++n;
+        }}
+    }}
+    return n;
+}}
+
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
    root. A root of the derivative where c vanishes (to round-off) is a double root. */
@@ -703,7 +808,10 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
         }}""" if kind3 == "R" else "")
     roots_deg = (f""" else if (dg >= 3) {{
-            nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* the quartic (or cubic): real roots, increasing */
+            nt = dg == 4 ? {P}_quartic_roots(pc, ts) : -1;  /* the quartic in closed form (Ferrari) */
+            if (nt < 0) {{
+                nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* or numerically: real roots, increasing */
+            }}
         }}""" if deg == 4 else "")
     cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
     fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"

@@ -20,7 +20,8 @@ from robokit.ik import ik_analytic, ik_analytic_kind
 
 SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "floor", "memset", "memcpy"}
+MATH = {"sin", "cos", "sincos", "atan", "atan2", "acos", "cbrt", "sqrt", "fabs", "fmod", "remainder", "floor",
+        "memset", "memcpy"}
 MATH |= {f + "f" for f in MATH}
 
 
