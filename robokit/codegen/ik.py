@@ -10,11 +10,15 @@ de-duplication and labels. Only the branches the robot needs are emitted.
   in ``u = tan(θ₃/2)`` (or d₃) whose coefficients are linear in ``(r², r, h², h, 1)``,
   ``h = W_z − d₁``, ``r = ‖W‖² − …`` — degree 2 when ``a₁ = 0`` or ``sin α₁ = 0``, else the
   quartic; θ₂ from ``a cos θ + b sin θ = c``, θ₁ from an atan2; then the wrist angles from
-  ``R₃ᵀR₀₆``. The quartic's real roots are found by isolating them between the roots of
-  its derivative and refining each by safeguarded Newton steps (robokit's Python takes the
-  companion matrix's eigenvalues: the same roots, possibly listed in another order — the
-  C lists them by increasing u); each solution is then checked and polished on the
-  wrist-centre equation as in Python.
+  ``R₃ᵀR₀₆``. The quartic's real roots come from Ferrari's closed form (the resolvent
+  cubic's largest root, two quadratics) followed by the three Newton steps robokit's Python
+  applies to its companion-matrix eigenvalues, listed by increasing u as Python sorts them; a
+  complex pair whose imaginary part is below 1e-6 (1 + |real part|) counts as two real roots,
+  as in Python. Where the closed form is not trustworthy (a nearly biquadratic quartic, or
+  roots whose product does not give the quartic back) the roots are isolated numerically instead,
+  between the roots of the derivative, by safeguarded Newton steps. Each solution is then
+  checked (and if needed polished) on the wrist-centre equation as in Python.
+* **General 6R** (any other arm of six revolute joints): :mod:`robokit.codegen.ik_general`.
 * **Three parallel axes** (UR family): θ₁ from ``a cos θ + b sin θ = c``, θ₅ from the
   direction of the parallel axes seen from the tool, θ₆ from an atan2, θ₂–θ₄ from the
   planar 2-link arm.
@@ -24,7 +28,7 @@ de-duplication and labels. Only the branches the robot needs are emitted.
 Every case of Pieper's positioning equation is generated (joints 1–3 revolute or prismatic:
 ``RR-quartic``, ``RR-a1``, ``RR-s1``, ``PR-quartic``, ``PR-c1``, ``RP-quartic``, ``RP-c1``,
 ``PP``). Not generated (``NAME_HAS_IK 0`` with the reason in the header): arms with no closed
-form in robokit, and closed-form methods other than these two (none yet has a C emitter).
+form in robokit, and the general 6R method with ``--float32`` (double only).
 """
 from __future__ import annotations
 
@@ -217,21 +221,30 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
     return x;
 }}
 
-/* Newton steps on the polynomial from t (at most 3, as robokit's Python after its eigenvalues) */
+/* Newton steps on the polynomial from t (at most 3, as robokit's Python after its eigenvalues);
+   a step that would raise |p| or move t by more than 1e-4 (1 + |t|) is not taken: the start is
+   a root already, and at a double root p / p' is round-off over round-off */
 static double {P}_newton_poly(const double c[5], int deg, double t)
 {{
+    double p = {P}_poly(c, deg, t);
     int it, k;
     for (it = 0; it < 3; ++it) {{
-        double p = c[deg], dp = 0.0, step;
+        double dp = 0.0, q = c[deg], step, next, pn;
         for (k = deg - 1; k >= 0; --k) {{
-            dp = dp * t + p;
-            p = p * t + c[k];
+            dp = dp * t + q;
+            q = q * t + c[k];
         }}
         if (dp == 0.0) {{
             break;
         }}
         step = p / dp;
-        t -= step;
+        next = t - step;
+        pn = {P}_poly(c, deg, next);
+        if (fabs(pn) > fabs(p) || fabs(step) > {t(1e-4)} * (1.0 + fabs(t))) {{
+            break;  /* a polish only: never a jump (to another root) */
+        }}
+        t = next;
+        p = pn;
         if (fabs(step) <= {t(1e-15)} * (1.0 + fabs(t))) {{
             break;
         }}
@@ -245,7 +258,7 @@ static double {P}_newton_poly(const double c[5], int deg, double t)
    y^4 + p y^2 + q y + r = (y^2 + p/2 + m)^2 - 2m (y - q/(4m))^2: two quadratics. As robokit's
    Python (companion eigenvalues), a complex pair with |imag| <= 1e-6 (1 + |real|) counts as two
    real roots at its real part. Returns -1 when the closed form is not trustworthy (q ~ 0, or the
-   four roots fail Vieta's sum and product): the caller then isolates the roots numerically. */
+   four roots do not multiply back to the quartic): the caller then isolates the roots numerically. */
 static int {P}_quartic_roots(const double c[5], double out[4])
 {{
     const double a = c[3] / c[4], b = c[2] / c[4], cc = c[1] / c[4], d = c[0] / c[4];
@@ -256,7 +269,7 @@ static int {P}_quartic_roots(const double c[5], double out[4])
     const double P3 = B - A * A / 3.0, Q3 = 2.0 * A * A * A / 27.0 - A * B / 3.0 + C;
     const double disc = 0.25 * Q3 * Q3 + P3 * P3 * P3 / 27.0;
     const double size = 1.0 + fabs(a) + sqrt(fabs(b)) + sqrt(sqrt(fabs(d))) + cbrt(fabs(cc));
-    double m, s, re[4], im[4], sum_re = 0.0, prod_re = 1.0, prod_im = 0.0;
+    double m, s, re[4], im[4];
     int i, k, n = 0;
     /* the largest real root of the resolvent cubic (z = m + A/3: z^3 + P3 z + Q3 = 0) */
     if (disc > 0.0) {{
@@ -295,16 +308,29 @@ static int {P}_quartic_roots(const double c[5], double out[4])
             im[2 * k + 1] = -im[2 * k];
         }}
     }}
-    /* Vieta: the four roots' sum is 0 and product r (depressed quartic) */
-    for (i = 0; i < 4; ++i) {{
-        const double pr = prod_re * re[i] - prod_im * im[i];
-        prod_im = prod_re * im[i] + prod_im * re[i];
-        prod_re = pr;
-        sum_re += re[i];
-    }}
-    if (fabs(sum_re) > {t(1e-8)} * size || fabs(prod_re - r) > {t(1e-8)} * size * size * size * size
-        || fabs(prod_im) > {t(1e-8)} * size * size * size * size) {{
-        return -1;
+    /* Vieta: the product of (y - y_i) must give back y^4 + p y^2 + q y + r, coefficient by
+       coefficient, to 1e-9 of the same product of (|y| + |y_i|) (an ill-conditioned resolvent
+       root, as at a double root of the quartic, fails this) */
+    {{
+        double pr[5] = {{1.0, 0.0, 0.0, 0.0, 0.0}}, pi[5] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
+        double mg[5] = {{1.0, 0.0, 0.0, 0.0, 0.0}};
+        const double want[4] = {{r, q, p, 0.0}};
+        int deg;
+        for (i = 0; i < 4; ++i) {{  /* multiply by (y - y_i): pr/pi hold the coefficients, high first */
+            const double mag = sqrt(re[i] * re[i] + im[i] * im[i]);
+            for (deg = i + 1; deg >= 1; --deg) {{
+                const double xr = pr[deg] - (re[i] * pr[deg - 1] - im[i] * pi[deg - 1]);
+                const double xi = pi[deg] - (re[i] * pi[deg - 1] + im[i] * pr[deg - 1]);
+                pr[deg] = xr;
+                pi[deg] = xi;
+                mg[deg] += mag * mg[deg - 1];
+            }}
+        }}
+        for (k = 1; k <= 4; ++k) {{  /* pr[k] is the coefficient of y^(4-k) */
+            if (fabs(pr[k] - want[4 - k]) > {t(1e-9)} * mg[k] || fabs(pi[k]) > {t(1e-9)} * mg[k]) {{
+                return -1;
+            }}
+        }}
     }}
     for (i = 0; i < 4; ++i) {{
         const double x = re[i] - 0.25 * a;

@@ -71,27 +71,17 @@ def _dist(a, b, rev):
 
 
 def check_ik(robot, lib, poses, tol=1e-9):
-    """The C returns ik_analytic's solutions: in order with the same labels and flags, or (the
-    quartic, whose roots the two find in different orders) the same set with the same labels."""
+    """The C returns ik_analytic's solutions: in order, with the same labels and flags (the
+    quartic's roots included: both list them by increasing tan(θ₃/2))."""
     rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
-    quartic = getattr(closed_form_solver(robot), "deg", 2) == 4
-    base = re.compile(r" #\d+$")
     for T in poses:
         py = ik_analytic(robot, T)
         c = lib.ik(T)
         assert len(c) == len(py), ([s.label for s in py], [x[1] for x in c])
-        if not quartic:
-            for s, (q, label, inside, degen) in zip(py, c):
-                assert label == s.label
-                assert (inside, degen) == (s.within_limits, s.degenerate)
-                assert _dist(q, s.q, rev) < tol, label
-        else:
-            for s in py:
-                k = min(range(len(c)), key=lambda i: _dist(c[i][0], s.q, rev))
-                q, label, inside, degen = c[k]
-                assert _dist(q, s.q, rev) < tol
-                assert base.sub("", label) == base.sub("", s.label)
-                assert (inside, degen) == (s.within_limits, s.degenerate)
+        for s, (q, label, inside, degen) in zip(py, c):
+            assert label == s.label
+            assert (inside, degen) == (s.within_limits, s.degenerate)
+            assert _dist(q, s.q, rev) < tol, label
         for q, *_ in c:  # and every C solution reaches T (Pinocchio, and the generated NAME_fk)
             assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
             if not lib.float32:
@@ -510,3 +500,40 @@ def test_general_6r_float32_has_no_ik_and_says_why(jaco, build, nm):
         out = subprocess.run([nm, "-u", str(obj)], capture_output=True, text=True, check=True).stdout
         undefined = {line.split()[-1] for line in out.splitlines() if line.strip()}
         assert undefined <= MATH, undefined - MATH
+
+
+def test_quartic_root_finder_against_numpy(cc, tmp_path):
+    """The generated quartic solver (Ferrari's closed form, its numerical fallback for nearly
+    biquadratic quartics) against numpy's companion-matrix roots: random quartics, biquadratics
+    (q = 0 exactly: the fallback), double roots and four close real roots."""
+    import ctypes
+
+    from robokit.codegen.ik import _Emitter, _Tol
+
+    e = _Emitter.__new__(_Emitter)
+    e.P, e.tol = "t", _Tol(False)
+    code = ("#include <math.h>\n#include <string.h>\n" + e.poly_helpers()
+            + "\nint roots4(const double c[5], double out[5])\n{\n    int n = t_quartic_roots(c, out);\n"
+              "    return n >= 0 ? n : t_real_roots(c, 4, out, 1e-15);\n}\n")
+    (tmp_path / "q.c").write_text(code)
+    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(tmp_path / "q.c"),
+                    "-o", str(tmp_path / "q.so"), "-lm"], check=True)
+    lib = ctypes.CDLL(str(tmp_path / "q.so"))
+    P = ctypes.POINTER(ctypes.c_double)
+    rng = np.random.default_rng(5)
+    cases = [rng.normal(size=5) * 10.0 ** rng.uniform(-2, 2) for _ in range(300)]
+    cases += [np.poly([r1, -r1, r2, -r2])[::-1] * s for r1, r2, s in rng.uniform(-3, 3, (40, 3))]  # q = 0
+    cases += [np.poly([r, r, r + 1.5, r - 2.0])[::-1] for r in rng.uniform(-2, 2, 20)]  # a double root
+    cases += [np.poly(r + np.array([0.0, 0.01, 0.02, 0.03]))[::-1] for r in rng.uniform(-2, 2, 20)]
+    for c in cases:
+        c = np.ascontiguousarray(c, dtype=float)
+        out = np.zeros(5)
+        n = lib.roots4(c.ctypes.data_as(P), out.ctypes.data_as(P))
+        ref = np.roots(c[::-1])
+        real = np.sort(ref[np.abs(ref.imag) <= 1e-6 * (1 + np.abs(ref.real))].real)
+        got = out[:n]
+        assert np.all(np.diff(got) >= 0.0)  # increasing
+        for x in got:  # every root found is a root
+            assert abs(np.polyval(c[::-1], x)) <= 1e-9 * np.abs(c).max() * max(1.0, abs(x)) ** 4
+        for x in real:  # and no real root is missed (a double root may come once or twice)
+            assert np.min(np.abs(got - x)) <= 1e-6 * (1 + abs(x)), (c, real, got)
