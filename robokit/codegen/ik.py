@@ -59,6 +59,7 @@ class IKCode:
     header_lines: list[str] = field(default_factory=list)
     source: str = ""
     labels: list[str] = field(default_factory=list)
+    method_line: str = ""  # the header's "Inverse kinematics:" line (which method, or why none)
 
 
 class _Tol:
@@ -102,15 +103,33 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
     """
     k = ik_constants(robot)
     if k.method is None:
-        return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
-    if k.method == "general 6R":
-        if float32:
-            return IKCode(False, ik_general.FLOAT32_NOTE, 1)
-        return _GeneralEmitter(k, prefix, _Tol(False)).code()
-    if k.method not in ("spherical wrist", "three parallel axes"):
-        return IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
+        code = IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
+    elif k.method == "general 6R":
+        code = (IKCode(False, ik_general.FLOAT32_NOTE, 1) if float32
+                else _GeneralEmitter(k, prefix, _Tol(False)).code())
+    elif k.method not in ("spherical wrist", "three parallel axes"):
+        code = IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
                              "use robokit.ik_analytic", 1)
-    return _Emitter(k, prefix, _Tol(float32)).code()
+    else:
+        code = _Emitter(k, prefix, _Tol(float32)).code()
+    code.method_line = _method_line(k, code.has_ik)
+    return code
+
+
+def _method_line(k: IKConstants, has_ik: bool) -> str:
+    """Which method NAME_ik implements, for the header's top comment."""
+    if not has_ik:
+        return "none generated (see NAME_HAS_IK below for the reason)"
+    rev = ", on the chain read from the tool back to the base" if k.reversed else ""
+    if k.method == "general 6R":
+        return ("general 6R (Raghavan-Roth elimination, Manocha-Canny 24 x 24 eigenproblem by Francis QR, Newton "
+                "polish), up to 16 solutions")
+    if k.method == "spherical wrist":
+        deg = int(k.solver["deg"])
+        roots = ("the quartic's roots by Ferrari's closed form" if deg == 4
+                 else f"a polynomial of degree {deg} in closed form")
+        return f"Pieper's method (spherical wrist, Lecture 5), {roots}{rev}, up to 8 solutions"
+    return f"three parallel axes (Lecture 5){rev}, up to 8 solutions"
 
 
 class _Emitter:

@@ -448,7 +448,7 @@ def test_general_6r_jaco_matches_ik_analytic(jaco, build):
     assert lib.has_ik and lib.max_solutions == 16
     h = (lib.path.parent / "jaco2_6n.h").read_text()
     assert "#define jaco2_6n_HAS_IK 1" in h and "#define jaco2_6n_MAX_SOLUTIONS 16" in h
-    assert "Raghavan-Roth" in h
+    assert "Inverse kinematics: general 6R (Raghavan-Roth" in h  # the top comment says which method
     rng = np.random.default_rng(4)
     poses = [jaco.frame_pose(rng.uniform(-np.pi, np.pi, 6)) for _ in range(12)]
     poses.append(jaco.frame_pose(np.array([np.pi, 0.3, np.pi, -0.4, np.pi, 0.2])))  # angles at pi
