@@ -374,8 +374,8 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
                     r += fabs(h[i * n + j]);
                 }
             }
-            if (c == 0.0 || r == 0.0) {
-                continue;
+            if (c == 0.0 || r == 0.0 || !(c + r < HUGE_VAL)) {
+                continue;  /* nothing to balance (or not finite: the QR below fails and says so) */
             }
             g = r / 2.0;
             s = c + r;
@@ -1235,6 +1235,11 @@ static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], in
 {
     double th[@NREAD@ * 24][6], q[@NREAD@ * 24][6], ratio, extra_ratio;
     int n = 0, m, a, i, j;
+    for (i = 0; i < 12; ++i) {
+        if (!(fabs(T06s[i]) < HUGE_VAL)) {
+            return 0;  /* not a pose (inf or NaN) */
+        }
+    }
     n = @P@_candidates(&@P@_g6_readings[0], T06s, (double (*)[6])th, &ratio);
     if (ratio < @POOR@) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
         for (a = 1; a < @NREAD@; ++a) {

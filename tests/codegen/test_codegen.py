@@ -457,6 +457,10 @@ def test_general_6r_jaco_matches_ik_analytic(jaco, build):
     far = np.eye(4)
     far[:3, 3] = [3.0, 0.0, 0.0]
     assert lib.ik(far) == [] and ik_analytic(jaco, far) == []
+    for bad in (np.nan, np.inf, 1e300):  # not a pose (Python raises): the C returns 0, it does not hang
+        T = np.eye(4)
+        T[0, 3] = bad
+        assert lib.ik(T) == []
     check_dynamics_and_kinematics(jaco, lib, samples=3)
 
 
