@@ -541,3 +541,26 @@ def test_quartic_root_finder_against_numpy(cc, tmp_path):
             assert abs(np.polyval(c[::-1], x)) <= 1e-9 * np.abs(c).max() * max(1.0, abs(x)) ** 4
         for x in real:  # and no real root is missed (a double root may come once or twice)
             assert np.min(np.abs(got - x)) <= 1e-6 * (1 + abs(x)), (c, real, got)
+
+
+@pytest.mark.parametrize("arm", ["puma_offset", "ur5_tilt"])
+def test_general_6r_almost_special_arms(build, arm):
+    """Special arms made general by a tiny change — the PUMA's axes 4 and 5 1 µm apart, the UR5's
+    axis 3 tilted by a milliradian —: badly conditioned readings (the next ones are solved too),
+    solutions close together; the C still agrees with ik_analytic."""
+    t = robokit.load("puma560").dh if arm == "puma_offset" else None
+    if arm == "puma_offset":
+        rows = [replace(l, a=l.a + (1e-6 if i == 3 else 0.0)) for i, l in enumerate(t.links)]
+        table = DHTable("puma_eps", t.convention, tuple(rows), base=t.base, tool=t.tool)
+    else:
+        from robokit.description.urdf_to_dh import urdf_to_dh
+
+        u = urdf_to_dh(robokit.load("ur5"), "standard").table
+        rows = [replace(l, alpha=l.alpha + (1e-3 if i == 1 else 0.0)) for i, l in enumerate(u.links)]
+        table = DHTable("ur5_tilt", "standard", tuple(rows), base=u.base, tool=u.tool)
+    robot = robokit.load(table)
+    assert ik_analytic_kind(robot).method == "general 6R"
+    rng = np.random.default_rng(6)
+    poses = [robot.frame_pose(np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5]))]
+    poses += [robot.frame_pose(rng.uniform(-3, 3, 6)) for _ in range(3)]
+    check_ik(robot, build(robot), poses)
