@@ -264,7 +264,7 @@ def main(argv=None) -> None:
                 grows.append([robot.name, fmt_time(c["ik"]), f"{c['solutions']:.2f}", fmt_time(t_py_ik),
                               f"{t_py_ik / c['ik']:.0f}×", t_eaik,
                               f"{c['ir_ik_ex']:,.0f}" if "ir_ik_ex" in c else "—"])
-            if "ir_fk" in c:
+            if any(k.startswith("ir_") for k in c):
                 irows.append([robot.name] + [f"{c[k]:,.0f}" if k in c else "—"
                                              for k in ("ir_fk", "ir_jacobian", "ir_gravity", "ir_rnea", "ir_ik_ex")])
     print("## Generated C (robokit codegen), per call — machine shared with other jobs (under load)")

@@ -665,8 +665,16 @@ static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[
     const double *G3, *G2;
     int i, k, m;
     @P@_f_pose(T06s, !rd->w_inverse, FW);  /* W = T06^-1: its map, or T06's for W^-1 */
-    @P@_mul15(rd->pre, FW, tmp);
-    @P@_mul15(tmp, rd->post, Wmap);
+    if (rd->pre) {  /* pre F(W) post (a null pointer: the identity) */
+        @P@_mul15(rd->pre, FW, tmp);
+    } else {
+        memcpy(tmp, FW, sizeof tmp);
+    }
+    if (rd->post) {
+        @P@_mul15(tmp, rd->post, Wmap);
+    } else {
+        memcpy(Wmap, tmp, sizeof Wmap);
+    }
     for (i = 0; i <= rd->nw; ++i) {
         Ms[i] = i == rd->w_index ? Wmap : rd->Ms + 225 * i;
     }
@@ -1127,9 +1135,8 @@ static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const 
    sigma_min / sigma_max). Returns how many. */
 static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio)
 {
-    double P[3 * 15 * 9], r[15 * 9], abc[3 * 144], abc2[3 * 144], np_[3 * 14 * 9], pinv[8 * 14], M[576];
+    double P[3 * 15 * 9], r[15 * 9], abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14], M[576];
     double wr[24], wi[24], condA, reg, rq;
-    const double *pa = abc;
     int k, count = 0, rotated = 0, i;
     /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
     @P@_matrices(rd, T06s, P, r);
@@ -1143,15 +1150,14 @@ static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double o
            x = (y + t) / (1 - t y) with t = tan(delta / 2), which moves that root to y = -1/t and
            gives the regular leading matrix A' = A - t B + t^2 C (the same roots, as angles) */
         const double t = @ROT_T@;
-        for (i = 0; i < 144; ++i) {
+        for (i = 0; i < 144; ++i) {  /* in place: only the turned polynomial is used from here on */
             const double a = abc[i], b = abc[144 + i], c = abc[288 + i];
-            abc2[i] = a - t * b + t * t * c;
-            abc2[144 + i] = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c;
-            abc2[288 + i] = t * t * a + t * b + c;
+            abc[i] = a - t * b + t * t * c;
+            abc[144 + i] = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c;
+            abc[288 + i] = t * t * a + t * b + c;
         }
-        pa = abc2;
         rotated = 1;
-        if (!(@P@_companion(abc2, M) > 1e-10)) {
+        if (!(@P@_companion(abc, M) > 1e-10)) {
             *ratio = 0.0;
             return 0;  /* singular in both variables: a continuum, no finite solution set */
         }
@@ -1170,7 +1176,7 @@ static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double o
             continue;
         }
         phi = rotated ? 2.0 * atan2(lam + @ROT_T@, 1.0 - @ROT_T@ * lam) : 2.0 * atan(lam);
-        @P@_null_vector(pa, pa + 144, pa + 288, lam, v);
+        @P@_null_vector(abc, abc + 144, abc + 288, lam, v);
         for (i = 0; i < 12; ++i) {
             V[i / 3][i % 3] = v[i];
         }

@@ -104,7 +104,8 @@ def tables(k: IKConstants, P: str) -> str:
            f"    int w_index, w_inverse;\n"
            f"    const double *const_side;  /* (3^(5 - nw) x 15) */\n"
            f"    const double *Ms;  /* (nw + 1) x 15 x 15 */\n"
-           f"    const double *pre, *post, *signs, *f;\n"
+           f"    const double *pre, *post;  /* 15 x 15, or a null pointer for the identity */\n"
+           f"    const double *signs, *f;\n"
            f"    int perm3[27], perm2[9];  /* the rows of P and r in the two sides' tensors */\n"
            f"}} {P}_reading;", ""]
     inits = []
@@ -112,14 +113,17 @@ def tables(k: IKConstants, P: str) -> str:
         Ms = np.array(rd["Ms"], dtype=float)
         Ms[rd["w_index"]] = 0.0  # replaced per pose
         nw = len(rd["signs"])
+        pre_id = bool(np.array_equal(rd["pre"], np.eye(15)))  # the identity: a null pointer, no product
+        post_id = bool(np.array_equal(rd["post"], np.eye(15)))
         out += [f"/* reading {i}: pivot joint {int(rd['roles'][0]) + 1}, eliminated joint {int(rd['roles'][5]) + 1} */",
                 _table(f"{P}_g6_r{i}_const", rd["const"]), _table(f"{P}_g6_r{i}_Ms", Ms),
-                _table(f"{P}_g6_r{i}_pre", rd["pre"]), _table(f"{P}_g6_r{i}_post", rd["post"]),
+                "" if pre_id else _table(f"{P}_g6_r{i}_pre", rd["pre"]),
+                "" if post_id else _table(f"{P}_g6_r{i}_post", rd["post"]),
                 _table(f"{P}_g6_r{i}_signs", rd["signs"]), _table(f"{P}_g6_r{i}_f", rd["f"]), ""]
         inits.append(f"    {{{_ints(rd['roles'])}, {int(bool(rd['three_has_w']))}, {nw}, {int(rd['w_index'])}, "
-                     f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, {P}_g6_r{i}_pre, "
-                     f"{P}_g6_r{i}_post, {P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, "
-                     f"{_ints(rd['perm2'])}}}")
+                     f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
+                     f"{'0' if pre_id else f'{P}_g6_r{i}_pre'}, {'0' if post_id else f'{P}_g6_r{i}_post'}, "
+                     f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, {_ints(rd['perm2'])}}}")
     out.append(f"static const {P}_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
     return "\n".join(out) + "\n"
 
