@@ -553,8 +553,9 @@ def test_general_6r_almost_special_arms(build, arm):
         rows = [replace(l, a=l.a + (1e-6 if i == 3 else 0.0)) for i, l in enumerate(t.links)]
         table = DHTable("puma_eps", t.convention, tuple(rows), base=t.base, tool=t.tool)
     else:
-        import robokit.description.urdf_to_dh as u2d
+        import importlib
 
+        u2d = importlib.import_module("robokit.description.urdf_to_dh")
         extract = getattr(u2d, "dh_from_urdf", None) or u2d.urdf_to_dh  # the newer name where it exists
         u = extract(robokit.load("ur5"), "standard").table
         rows = [replace(l, alpha=l.alpha + (1e-3 if i == 1 else 0.0)) for i, l in enumerate(u.links)]
