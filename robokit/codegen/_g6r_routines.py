@@ -432,12 +432,30 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
     hi = n - 1;
     its = 0;
     while (hi >= 0) {
-        /* deflation: the lowest l with h[l][l-1] negligible */
+        /* deflation: the lowest l with h[l][l-1] negligible beside its neighbours (with zero
+           diagonals, as in a companion matrix, beside the next subdiagonal entries), refined by
+           the criterion of Ahues & Tisseur (1997) that also weighs h[l-1][l] */
         for (lo = hi; lo > 0; --lo) {
-            const double s = fabs(h[(lo - 1) * n + lo - 1]) + fabs(h[lo * n + lo]);
-            if (fabs(h[lo * n + lo - 1]) <= 2.220446049250313e-16 * s) {
+            const double sub = fabs(h[lo * n + lo - 1]);
+            double tst = fabs(h[(lo - 1) * n + lo - 1]) + fabs(h[lo * n + lo]);
+            if (sub <= 1e-300) {
                 h[lo * n + lo - 1] = 0.0;
                 break;
+            }
+            if (tst == 0.0) {
+                tst = (lo - 2 >= 0 ? fabs(h[(lo - 1) * n + lo - 2]) : 0.0) + (lo + 1 < n ? fabs(h[(lo + 1) * n + lo]) : 0.0);
+            }
+            if (sub <= 2.220446049250313e-16 * tst) {
+                const double sup = fabs(h[(lo - 1) * n + lo]);
+                const double dd = fabs(h[(lo - 1) * n + lo - 1] - h[lo * n + lo]), hh = fabs(h[lo * n + lo]);
+                const double ab = sub > sup ? sub : sup, ba = sub > sup ? sup : sub;
+                const double aa = hh > dd ? hh : dd, bb = hh > dd ? dd : hh;
+                const double ss = aa + ab;
+                const double rhs = 2.220446049250313e-16 * (bb * (aa / ss));
+                if (ba * (ab / ss) <= (rhs > 1e-300 ? rhs : 1e-300)) {
+                    h[lo * n + lo - 1] = 0.0;
+                    break;
+                }
             }
         }
         if (lo == hi) {  /* a 1 x 1 block: a real eigenvalue */
@@ -467,9 +485,11 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
             if (++its > 40 * n) {
                 return -1;
             }
-            if (its % 11 == 10) {  /* exceptional shift (an ad hoc one, as in LAPACK's dlahqr) */
-                const double e = fabs(h[hi * n + hi - 1]) + fabs(h[(hi - 1) * n + hi - 2]);
-                const double h11 = 0.75 * e + h[hi * n + hi], h12 = -0.4375 * e;
+            if (its % 10 == 0) {  /* exceptional shifts (ad hoc ones, as in LAPACK's dlahqr): break cycles */
+                const int top = its % 20 == 10;
+                const double e = top ? fabs(h[(lo + 1) * n + lo]) + fabs(h[(lo + 2) * n + lo + 1])
+                                     : fabs(h[hi * n + hi - 1]) + fabs(h[(hi - 1) * n + hi - 2]);
+                const double h11 = 0.75 * e + (top ? h[lo * n + lo] : h[hi * n + hi]), h12 = -0.4375 * e;
                 s = 2.0 * h11;
                 t = h11 * h11 - h12 * e;
             } else {  /* the eigenvalues of the trailing 2 x 2 block as the shifts */
