@@ -566,3 +566,24 @@ def test_general_6r_almost_special_arms(build, arm):
     poses = [robot.frame_pose(np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5]))]
     poses += [robot.frame_pose(rng.uniform(-3, 3, 6)) for _ in range(3)]
     check_ik(robot, build(robot), poses)
+
+
+def test_float32_quartic_arm(build):
+    """--float32 on a spherical-wrist arm whose positioning equation is the quartic (Ferrari's closed
+    form in float: cbrtf, acosf; compiled with -Wdouble-promotion): every float solution is near one
+    of ik_analytic's, and the counts agree on most poses."""
+    rng = np.random.default_rng(11)
+    rows = [DHLink("R", 0.0 if i in (3, 4) else rng.uniform(0.1, 0.5), rng.uniform(0.5, 2.5),
+                   0.0 if i == 4 else rng.uniform(-0.4, 0.4), rng.uniform(-np.pi, np.pi)) for i in range(6)]
+    robot = robokit.load(DHTable("quartic_arm", "standard", tuple(rows)))
+    assert getattr(closed_form_solver(robot), "deg", 2) == 4
+    lib = build(robot, float32=True)
+    rng = np.random.default_rng(2)
+    same = 0
+    for _ in range(20):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        py, c = ik_analytic(robot, T), lib.ik(T)
+        same += len(c) == len(py)
+        for q, *_ in c:
+            assert min(_dist(q, s.q, np.ones(6, bool)) for s in py) < 1e-2
+    assert same >= 18
