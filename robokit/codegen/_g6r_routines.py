@@ -511,24 +511,35 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
                 beta = @P@_house(three ? 3 : 2, xs, 1, v3);
                 v1 = v3[1];
                 v2 = three ? v3[2] : 0.0;
-                if (beta != 0.0) {
+                if (beta != 0.0 && three) {
+                    const double bv1 = beta * v1, bv2 = beta * v2;
                     for (j = c0; j <= hi; ++j) {  /* from the left: rows m .. m+2 */
                         double *g = h + m * n + j;
-                        const double sum = beta * (g[0] + v1 * g[n] + (three ? v2 * g[2 * n] : 0.0));
-                        g[0] -= sum;
-                        g[n] -= sum * v1;
-                        if (three) {
-                            g[2 * n] -= sum * v2;
-                        }
+                        const double sum = g[0] + v1 * g[n] + v2 * g[2 * n];
+                        g[0] -= beta * sum;
+                        g[n] -= bv1 * sum;
+                        g[2 * n] -= bv2 * sum;
                     }
                     for (i = lo; i <= r1; ++i) {  /* from the right: columns m .. m+2 */
                         double *g = h + i * n + m;
-                        const double sum = beta * (g[0] + v1 * g[1] + (three ? v2 * g[2] : 0.0));
-                        g[0] -= sum;
-                        g[1] -= sum * v1;
-                        if (three) {
-                            g[2] -= sum * v2;
-                        }
+                        const double sum = g[0] + v1 * g[1] + v2 * g[2];
+                        g[0] -= beta * sum;
+                        g[1] -= bv1 * sum;
+                        g[2] -= bv2 * sum;
+                    }
+                } else if (beta != 0.0) {  /* the last step: a 2-vector reflection */
+                    const double bv1 = beta * v1;
+                    for (j = c0; j <= hi; ++j) {
+                        double *g = h + m * n + j;
+                        const double sum = g[0] + v1 * g[n];
+                        g[0] -= beta * sum;
+                        g[n] -= bv1 * sum;
+                    }
+                    for (i = lo; i <= r1; ++i) {
+                        double *g = h + i * n + m;
+                        const double sum = g[0] + v1 * g[1];
+                        g[0] -= beta * sum;
+                        g[1] -= bv1 * sum;
                     }
                 }
                 if (three) {
