@@ -65,6 +65,7 @@ volatile double sink;
 int main(int argc, char **argv)
 {
     const long reps = argc > 1 ? atol(argv[1]) : 200;
+    const long reps_ik = argc > 2 ? atol(argv[2]) : reps;
     double J[6 * @NAME@_N], Tb[16], tau[@NAME@_N], t[7], acc = 0.0;
     unsigned long s = 12345;
     int k, j, r, run;
@@ -77,25 +78,25 @@ int main(int argc, char **argv)
         }
         @NAME@_fk(Q[k], T[k]);
     }
-#define TIME(label, body)                                                       \
+#define TIME(label, body, nreps)                                                \
     for (run = 0; run < 7; ++run) {                                             \
         const double t0 = now();                                                \
-        for (r = 0; r < reps; ++r) {                                            \
+        for (r = 0; r < nreps; ++r) {                                           \
             for (k = 0; k < K; ++k) {                                           \
                 body;                                                           \
             }                                                                   \
         }                                                                       \
-        t[run] = (now() - t0) / ((double)reps * K);                             \
+        t[run] = (now() - t0) / ((double)nreps * K);                            \
     }                                                                           \
     qsort(t, 7, sizeof t[0], cmp);                                              \
     printf("%s %.6e\n", label, t[0]);
-    TIME("fk", (@NAME@_fk(Q[k], Tb), acc += Tb[3]))
-    TIME("jacobian", (@NAME@_jacobian(Q[k], J), acc += J[0]))
-    TIME("gravity", (@NAME@_gravity(Q[k], tau), acc += tau[0]))
-    TIME("rnea", (@NAME@_rnea(Q[k], QD[k], QD[k], tau), acc += tau[0]))
+    TIME("fk", (@NAME@_fk(Q[k], Tb), acc += Tb[3]), reps)
+    TIME("jacobian", (@NAME@_jacobian(Q[k], J), acc += J[0]), reps)
+    TIME("gravity", (@NAME@_gravity(Q[k], tau), acc += tau[0]), reps)
+    TIME("rnea", (@NAME@_rnea(Q[k], QD[k], QD[k], tau), acc += tau[0]), reps)
 #if @NAME@_HAS_IK
-    TIME("ik", (total += @NAME@_ik(T[k], SOL), acc += SOL[0]))
-    printf("solutions %.6e\n", (double)total / (7.0 * (double)reps * K));
+    TIME("ik", (total += @NAME@_ik(T[k], SOL), acc += SOL[0]), reps_ik)
+    printf("solutions %.6e\n", (double)total / (7.0 * (double)reps_ik * K));
 #endif
     sink = acc;
     return 0;
@@ -103,7 +104,7 @@ int main(int argc, char **argv)
 """
 
 
-def _c_times(robot, folder: Path, reps: int) -> dict[str, float]:
+def _c_times(robot, folder: Path, reps: int, reps_ik: int) -> dict[str, float]:
     from robokit.codegen import generate_c, write_c
     from robokit.codegen.build import STRICT_FLAGS, find_compiler
 
@@ -118,7 +119,7 @@ def _c_times(robot, folder: Path, reps: int) -> dict[str, float]:
                    check=True)
     subprocess.run([cc, "-std=c99", "-O2", "-I", str(folder), str(folder / "driver.c"), str(folder / "g.o"),
                     "-o", str(exe), "-lm"], check=True)
-    out = subprocess.run([str(exe), str(reps)], capture_output=True, text=True, check=True).stdout
+    out = subprocess.run([str(exe), str(reps), str(reps_ik)], capture_output=True, text=True, check=True).stdout
     times = {line.split()[0]: float(line.split()[1]) for line in out.splitlines()}
     times.update(_instructions(exe, src.name, folder))
     return times
@@ -133,7 +134,7 @@ def _instructions(exe: Path, name: str, folder: Path) -> dict[str, float]:
     if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
         return {}
     out = folder / "callgrind.out"
-    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe), "1"],
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", str(exe), "1", "1"],
                    capture_output=True, check=True)
     text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(out)], capture_output=True, text=True,
                           check=True).stdout
@@ -159,6 +160,52 @@ def _quartic_arm():
     return DHTable("quartic_arm", "standard", tuple(rows))
 
 
+def _jaco_table():
+    """The Kinova JACO² 6-DOF non-spherical (offset wrist), classic DH from Kinova's JACO² 6 DOF
+    Advanced Specification Guide (as in tests/ik/test_general_6r.py)."""
+    import math
+
+    from robokit.description.dh import DHLink, DHTable
+
+    D1, D2, D3, D4, D5, D6, e2 = 0.2755, 0.4100, 0.2073, 0.0741, 0.0741, 0.1600, 0.0098
+    aa = math.radians(30.0)
+    k = math.sin(aa) / math.sin(2 * aa)
+    alpha = [math.pi / 2, math.pi, math.pi / 2, 2 * aa, 2 * aa, math.pi]
+    a = [0.0, D2, 0.0, 0.0, 0.0, 0.0]
+    d = [D1, 0.0, -e2, -(D3 + k * D4), -(k * D4 + k * D5), -(k * D5 + D6)]
+    return DHTable("jaco2_6n", "standard", tuple(DHLink("R", a=a[i], alpha=alpha[i], d=d[i], mass=1.0,
+                                                        com=np.array([0.0, 0.0, 0.05]),
+                                                        inertia=np.array([0.01, 0.01, 0.01, 0, 0, 0]))
+                                                  for i in range(6)))
+
+
+def _general_arm():
+    """A random general 6R arm (standard DH, seed 3): no two axes meet or are parallel."""
+    from robokit.description.dh import DHLink, DHTable
+
+    rng = np.random.default_rng(3)
+    return DHTable("general_6r", "standard", tuple(
+        DHLink("R", a=rng.uniform(-0.5, 0.5), alpha=rng.uniform(-3, 3), d=rng.uniform(-0.5, 0.5),
+               theta=rng.uniform(-np.pi, np.pi), mass=1.0, com=np.array([0.05, 0.0, 0.0]),
+               inertia=np.array([0.01, 0.01, 0.01, 0, 0, 0])) for _ in range(6)))
+
+
+def _eaik_ik(robot):
+    """EAIK's IK of the arm's standard DH table as a callable T -> solutions, or a reason string."""
+    try:
+        from eaik.IK_DH import DhRobot
+    except ImportError:
+        return "EAIK not installed"
+    dh = robot.dh
+    if dh is None or dh.convention != "standard" or any(l.theta != 0.0 for l in dh.links):
+        return "—"
+    L = dh.links
+    arm = DhRobot(np.array([l.alpha for l in L]), np.array([l.a for l in L]), np.array([l.d for l in L]))
+    if not arm.hasKnownDecomposition():
+        return "no decomposition (EAIK has no general 6R solver)"
+    return arm
+
+
 def main(argv=None) -> None:
     import pinocchio as pin
 
@@ -167,17 +214,24 @@ def main(argv=None) -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer repetitions")
+    ap.add_argument("--only", default=None, help="comma-separated robot names (default: all)")
     args = ap.parse_args(argv)
     reps = 20 if args.quick else 200
     warnings.simplefilter("ignore")
-    robots = [robokit.load("puma560"), robokit.load("ur5"), robokit.load(_quartic_arm()), robokit.load("panda")]
-    rows, irows = [], []
+    robots = [robokit.load("puma560"), robokit.load("ur5"), robokit.load(_quartic_arm()), robokit.load("panda"),
+              robokit.load(_jaco_table()), robokit.load(_general_arm())]
+    if args.only:
+        keep = set(args.only.split(","))
+        robots = [r for r in robots if r.name in keep]
+    rows, irows, grows = [], [], []
     rng = np.random.default_rng(0)
     with tempfile.TemporaryDirectory() as tmp:
         for robot in robots:
             folder = Path(tmp) / robot.name
             folder.mkdir()
-            c = _c_times(robot, folder, reps)
+            kind = ik_analytic_kind(robot).method
+            general = kind == "general 6R"
+            c = _c_times(robot, folder, reps, max(1, reps // 50) if general else reps)
             qs = [robot.random_configuration(rng) for _ in range(64)]
             it = iter(qs * 10**6)
             q_pin = [robot.q_pin(q) for q in qs]
@@ -186,10 +240,10 @@ def main(argv=None) -> None:
             t_frame = time_call(lambda: robot.frame_pose(next(it)))
             v = np.zeros(robot.n)
             t_pin_rnea = time_call(lambda: pin.rnea(robot.model, robot.data, next(itp), v, v))
-            kind = ik_analytic_kind(robot).method
             if kind is not None:
                 Ts = iter([robot.frame_pose(q) for q in qs] * 10**6)
-                t_py_ik = time_call(lambda: ik_analytic(robot, next(Ts)), target=0.2)
+                t_py_ik = time_call(lambda: ik_analytic(robot, next(Ts)), repeats=3 if general else 7,
+                                    target=0.5 if general else 0.2)
             else:
                 t_py_ik = float("nan")
             name = f"{robot.name} ({kind or 'no closed form'})"
@@ -200,7 +254,17 @@ def main(argv=None) -> None:
                          f"{c['solutions']:.2f}" if "solutions" in c else "—",
                          fmt_time(t_py_ik) if kind else "—",
                          f"{t_py_ik / c['ik']:.0f}×" if "ik" in c else "—"])
-            if "ir_fk" in c:
+            if general:
+                eaik = _eaik_ik(robot)
+                if isinstance(eaik, str):
+                    t_eaik = eaik
+                else:
+                    Te = iter([np.ascontiguousarray(robot.frame_pose(q)) for q in qs] * 10**6)
+                    t_eaik = fmt_time(time_call(lambda: eaik.IK(next(Te))))
+                grows.append([robot.name, fmt_time(c["ik"]), f"{c['solutions']:.2f}", fmt_time(t_py_ik),
+                              f"{t_py_ik / c['ik']:.0f}×", t_eaik,
+                              f"{c['ir_ik_ex']:,.0f}" if "ir_ik_ex" in c else "—"])
+            if any(k.startswith("ir_") for k in c):
                 irows.append([robot.name] + [f"{c[k]:,.0f}" if k in c else "—"
                                              for k in ("ir_fk", "ir_jacobian", "ir_gravity", "ir_rnea", "ir_ik_ex")])
     print("## Generated C (robokit codegen), per call — machine shared with other jobs (under load)")
@@ -210,6 +274,12 @@ def main(argv=None) -> None:
     print(table(["robot", "C fk", "pin.forwardKinematics (Python)", "ratio", "Robot.frame_pose", "C jacobian",
                  "C gravity", "C rnea", "pin.rnea (Python)", "ratio", "C ik (all)", "solutions/pose",
                  "ik_analytic (Python)", "ratio"], rows))
+    if grows:
+        print()
+        print("General 6R (Raghavan–Roth / Manocha–Canny): every solution of one pose")
+        print()
+        print(table(["robot", "C ik (all)", "solutions/pose", "ik_analytic (Python)", "ratio", "EAIK (C++)",
+                     "C instructions/call"], grows))
     if irows:
         print()
         print("Instructions per call of the generated C (valgrind callgrind, inclusive of libm; independent of "

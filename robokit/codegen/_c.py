@@ -224,7 +224,7 @@ class CWriter:
 
 
 _FLOAT_LIT = re.compile(r"(?<![\w.])((?:\d+\.\d*|\.\d+)(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+)(?![\w.])")
-_MATH = re.compile(r"\b(sin|cos|tan|atan|atan2|sqrt|fabs|hypot|remainder|fmod|fmax|fmin|floor)\(")
+_MATH = re.compile(r"\b(sin|cos|tan|atan|atan2|acos|asin|cbrt|sqrt|fabs|hypot|remainder|fmod|fmax|fmin|floor)\(")
 
 
 def _float_code(code: str) -> str:

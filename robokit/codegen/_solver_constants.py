@@ -14,7 +14,9 @@ q′ = −q), ``solver.chain`` (``kinds``, ``th0``, ``d0``, ``base_inv``, ``tool
 and the solver's constants (Pieper: ``case``, ``deg``, ``C_list``, ``w6_list``, ``w3_list``,
 ``th0_list``, ``d0_list``, ``ca``, ``sa``, ``a1``, ``a2``, ``d1``, ``d2``, ``f``, ``Ka``,
 ``phi``, ``nf2``, ``v``, ``j1``, ``j2``, ``ca4``…``sa5``; three parallel axes: ``ca``, ``sa``,
-``s2``, ``sig``, ``a1``…``a5``, ``d1``, ``d5``, ``d6``, ``KW``, ``w6_list``, ``th0_list``).
+``s2``, ``sig``, ``a1``…``a5``, ``d1``, ``d5``, ``d6``, ``KW``, ``w6_list``, ``th0_list``; general
+6R: the dict of ``GeneralSixR.export_constants()`` — the scaled chain, the tolerances and the
+four best readings' tables).
 The joint limits are the robot's own (``robot.qlim``).
 """
 from __future__ import annotations
@@ -101,6 +103,9 @@ def _read(robot: Any, kind: Any, sv: Any, owner: Any, reversed_: bool) -> IKCons
                       None if sc.tool_inv is None else np.array(sc.tool_inv, dtype=float), float(sc.scale),
                       flip=None if flip is None else [bool(f) for f in flip],
                       free_flipped=bool(getattr(owner, "_free_flipped", False)))
+    if kind.method == "general 6R":  # the elimination's per-arm numbers, through its one export method
+        out.solver.update(sv.export_constants())
+        return out
     names = _PIEPER if kind.method == "spherical wrist" else _PARALLEL
     for name in names:
         out.solver[name] = getattr(sv, name)

@@ -166,8 +166,9 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     -----
     Kinematics from the product of exponentials ``T = e^{[S₁]q₁} ⋯ e^{[Sₙ]qₙ} M`` (Lecture 4),
     dynamics from the recursive Newton–Euler algorithm (Lecture 7), both with the robot's
-    constants folded in; the IK from Pieper's method or the three-parallel-axes method
-    (Lecture 5), see :mod:`robokit.codegen.ik`.
+    constants folded in; the IK from Pieper's method, the three-parallel-axes method
+    (Lecture 5) or the general 6R elimination, see :mod:`robokit.codegen.ik` and
+    :mod:`robokit.codegen.ik_general`.
 
     Examples
     --------
@@ -203,6 +204,7 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     h.append(" * LOCAL_WORLD_ALIGNED). Twists and wrenches are angular first.")
     h.append(f" * Scalar type: {'float (generated with --float32)' if float32 else 'double'}.")
     h.append(" * Every function is reentrant: no globals (only const tables), no allocation, no I/O.")
+    h.append(f" * Inverse kinematics: {ik.method_line.replace('NAME', P)}")
     h.append(" */")
     h.append(f"#ifndef {guard}")
     h.append(f"#define {guard}")

@@ -10,11 +10,15 @@ de-duplication and labels. Only the branches the robot needs are emitted.
   in ``u = tan(θ₃/2)`` (or d₃) whose coefficients are linear in ``(r², r, h², h, 1)``,
   ``h = W_z − d₁``, ``r = ‖W‖² − …`` — degree 2 when ``a₁ = 0`` or ``sin α₁ = 0``, else the
   quartic; θ₂ from ``a cos θ + b sin θ = c``, θ₁ from an atan2; then the wrist angles from
-  ``R₃ᵀR₀₆``. The quartic's real roots are found by isolating them between the roots of
-  its derivative and refining each by safeguarded Newton steps (robokit's Python takes the
-  companion matrix's eigenvalues: the same roots, possibly listed in another order — the
-  C lists them by increasing u); each solution is then checked and polished on the
-  wrist-centre equation as in Python.
+  ``R₃ᵀR₀₆``. The quartic's real roots come from Ferrari's closed form (the resolvent
+  cubic's largest root, two quadratics) followed by the three Newton steps robokit's Python
+  applies to its companion-matrix eigenvalues, listed by increasing u as Python sorts them; a
+  complex pair whose imaginary part is below 1e-6 (1 + |real part|) counts as two real roots,
+  as in Python. Where the closed form is not trustworthy (a nearly biquadratic quartic, or
+  roots whose product does not give the quartic back) the roots are isolated numerically instead,
+  between the roots of the derivative, by safeguarded Newton steps. Each solution is then
+  checked (and if needed polished) on the wrist-centre equation as in Python.
+* **General 6R** (any other arm of six revolute joints): :mod:`robokit.codegen.ik_general`.
 * **Three parallel axes** (UR family): θ₁ from ``a cos θ + b sin θ = c``, θ₅ from the
   direction of the parallel axes seen from the tool, θ₆ from an atan2, θ₂–θ₄ from the
   planar 2-link arm.
@@ -24,7 +28,7 @@ de-duplication and labels. Only the branches the robot needs are emitted.
 Every case of Pieper's positioning equation is generated (joints 1–3 revolute or prismatic:
 ``RR-quartic``, ``RR-a1``, ``RR-s1``, ``PR-quartic``, ``PR-c1``, ``RP-quartic``, ``RP-c1``,
 ``PP``). Not generated (``NAME_HAS_IK 0`` with the reason in the header): arms with no closed
-form in robokit, and closed-form methods other than these two (none yet has a C emitter).
+form in robokit, and the general 6R method with ``--float32`` (double only).
 """
 from __future__ import annotations
 
@@ -34,6 +38,7 @@ from typing import Any
 
 
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
+from robokit.codegen import ik_general
 from robokit.codegen._solver_constants import IKConstants, ik_constants
 from robokit.codegen.kinematics import Pose, compose
 
@@ -76,6 +81,7 @@ class IKCode:
     header_lines: list[str] = field(default_factory=list)
     source: str = ""
     labels: list[str] = field(default_factory=list)
+    method_line: str = ""  # the header's "Inverse kinematics:" line (which method, or why none)
 
 
 class _Tol:
@@ -119,11 +125,33 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
     """
     k = ik_constants(robot)
     if k.method is None:
-        return IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
-    if k.method not in ("spherical wrist", "three parallel axes"):
-        return IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
+        code = IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
+    elif k.method == "general 6R":
+        code = (IKCode(False, ik_general.FLOAT32_NOTE, 1) if float32
+                else _GeneralEmitter(k, prefix, _Tol(False)).code())
+    elif k.method not in ("spherical wrist", "three parallel axes"):
+        code = IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
                              "use robokit.ik_analytic", 1)
-    return _Emitter(k, prefix, _Tol(float32)).code()
+    else:
+        code = _Emitter(k, prefix, _Tol(float32)).code()
+    code.method_line = _method_line(k, code.has_ik)
+    return code
+
+
+def _method_line(k: IKConstants, has_ik: bool) -> str:
+    """Which method NAME_ik implements, for the header's top comment."""
+    if not has_ik:
+        return "none generated (see NAME_HAS_IK below for the reason)"
+    rev = ", on the chain read from the tool back to the base" if k.reversed else ""
+    if k.method == "general 6R":
+        return ("general 6R (Raghavan-Roth elimination, Manocha-Canny 24 x 24 eigenproblem by Francis QR, Newton "
+                "polish), up to 16 solutions")
+    if k.method == "spherical wrist":
+        deg = int(k.solver["deg"])
+        roots = ("the quartic's roots by Ferrari's closed form" if deg == 4
+                 else f"a polynomial of degree {deg} in closed form")
+        return f"Pieper's method (spherical wrist, Lecture 5), {roots}{rev}, up to 8 solutions"
+    return f"three parallel axes (Lecture 5){rev}, up to 8 solutions"
 
 
 class _Emitter:
@@ -234,6 +262,133 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
     return x;
 }}
 
+/* Newton steps on the polynomial from t (at most 3, as robokit's Python after its eigenvalues);
+   a step that would raise |p| or move t by more than 1e-4 (1 + |t|) is not taken: the start is
+   a root already, and at a double root p / p' is round-off over round-off */
+static double {P}_newton_poly(const double c[5], int deg, double t)
+{{
+    double p = {P}_poly(c, deg, t);
+    int it, k;
+    for (it = 0; it < 3; ++it) {{
+        double dp = 0.0, q = c[deg], step, next, pn;
+        for (k = deg - 1; k >= 0; --k) {{
+            dp = dp * t + q;
+            q = q * t + c[k];
+        }}
+        if (dp == 0.0) {{
+            break;
+        }}
+        step = p / dp;
+        next = t - step;
+        pn = {P}_poly(c, deg, next);
+        if (fabs(pn) > fabs(p) || fabs(step) > {t(1e-4)} * (1.0 + fabs(t))) {{
+            break;  /* a polish only: never a jump (to another root) */
+        }}
+        t = next;
+        p = pn;
+        if (fabs(step) <= {t(1e-15)} * (1.0 + fabs(t))) {{
+            break;
+        }}
+    }}
+    return t;
+}}
+
+/* Lecture 5's quartic in closed form (Ferrari): the real roots of c[0] + ... + c[4] x^4, increasing,
+   each polished by Newton steps. x = y - a/4 gives y^4 + p y^2 + q y + r; with m the largest root
+   of the resolvent cubic m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 (trigonometric or Cardano form),
+   y^4 + p y^2 + q y + r = (y^2 + p/2 + m)^2 - 2m (y - q/(4m))^2: two quadratics. As robokit's
+   Python (companion eigenvalues), a complex pair with |imag| <= 1e-6 (1 + |real|) counts as two
+   real roots at its real part. Returns -1 when the closed form is not trustworthy (q ~ 0, or the
+   four roots do not multiply back to the quartic): the caller then isolates the roots numerically. */
+static int {P}_quartic_roots(const double c[5], double out[4])
+{{
+    const double a = c[3] / c[4], b = c[2] / c[4], cc = c[1] / c[4], d = c[0] / c[4];
+    const double p = b - 0.375 * a * a;
+    const double q = cc - 0.5 * a * b + 0.125 * a * a * a;
+    const double r = d - 0.25 * a * cc + 0.0625 * a * a * b - 0.01171875 * a * a * a * a;
+    const double A = p, B = 0.25 * p * p - r, C = -0.125 * q * q;
+    const double P3 = B - A * A / 3.0, Q3 = 2.0 * A * A * A / 27.0 - A * B / 3.0 + C;
+    const double disc = 0.25 * Q3 * Q3 + P3 * P3 * P3 / 27.0;
+    const double size = 1.0 + fabs(a) + sqrt(fabs(b)) + sqrt(sqrt(fabs(d))) + cbrt(fabs(cc));
+    double m, s, re[4], im[4];
+    int i, k, n = 0;
+    /* the largest real root of the resolvent cubic (z = m + A/3: z^3 + P3 z + Q3 = 0) */
+    if (disc > 0.0) {{
+        const double sq = sqrt(disc);
+        m = cbrt(-0.5 * Q3 + sq) + cbrt(-0.5 * Q3 - sq) - A / 3.0;
+    }} else {{
+        const double rr = sqrt(-P3 / 3.0);
+        double arg = rr > 0.0 ? -0.5 * Q3 / (rr * rr * rr) : 0.0;
+        arg = arg > 1.0 ? 1.0 : (arg < -1.0 ? -1.0 : arg);
+        m = 2.0 * rr * cos(acos(arg) / 3.0) - A / 3.0;
+    }}
+    for (k = 0; k < 2; ++k) {{  /* two Newton steps on the cubic */
+        const double f = ((m + A) * m + B) * m + C, df = (3.0 * m + 2.0 * A) * m + B;
+        if (df != 0.0) {{
+            m -= f / df;
+        }}
+    }}
+    if (!(m > {t(1e-10)} * size * size)) {{
+        return -1;  /* q ~ 0 (nearly biquadratic): the split below divides by sqrt(2m) */
+    }}
+    s = sqrt(2.0 * m);
+    for (k = 0; k < 2; ++k) {{  /* y^2 -+ s y + (p/2 + m +- q/(2s)) = 0 */
+        const double sg = k == 0 ? 1.0 : -1.0;
+        const double e = 0.5 * p + m + sg * 0.5 * q / s;
+        const double dq = s * s - 4.0 * e;
+        const double mid = 0.5 * sg * s;
+        if (dq >= 0.0) {{
+            const double sq = sqrt(dq);
+            const double y1 = mid + (sg >= 0.0 ? 0.5 * sq : -0.5 * sq);  /* the larger in size first */
+            re[2 * k] = y1;
+            re[2 * k + 1] = y1 != 0.0 ? e / y1 : mid - (sg >= 0.0 ? 0.5 * sq : -0.5 * sq);
+            im[2 * k] = im[2 * k + 1] = 0.0;
+        }} else {{
+            re[2 * k] = re[2 * k + 1] = mid;
+            im[2 * k] = 0.5 * sqrt(-dq);
+            im[2 * k + 1] = -im[2 * k];
+        }}
+    }}
+    /* Vieta: the product of (y - y_i) must give back y^4 + p y^2 + q y + r, coefficient by
+       coefficient, to 1e-9 of the same product of (|y| + |y_i|) (an ill-conditioned resolvent
+       root, as at a double root of the quartic, fails this) */
+    {{
+        double pr[5] = {{1.0, 0.0, 0.0, 0.0, 0.0}}, pi[5] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
+        double mg[5] = {{1.0, 0.0, 0.0, 0.0, 0.0}};
+        const double want[4] = {{r, q, p, 0.0}};
+        int deg;
+        for (i = 0; i < 4; ++i) {{  /* multiply by (y - y_i): pr/pi hold the coefficients, high first */
+            const double mag = sqrt(re[i] * re[i] + im[i] * im[i]);
+            for (deg = i + 1; deg >= 1; --deg) {{
+                const double xr = pr[deg] - (re[i] * pr[deg - 1] - im[i] * pi[deg - 1]);
+                const double xi = pi[deg] - (re[i] * pi[deg - 1] + im[i] * pr[deg - 1]);
+                pr[deg] = xr;
+                pi[deg] = xi;
+                mg[deg] += mag * mg[deg - 1];
+            }}
+        }}
+        for (k = 1; k <= 4; ++k) {{  /* pr[k] is the coefficient of y^(4-k) */
+            if (fabs(pr[k] - want[4 - k]) > {t(1e-9)} * mg[k] || fabs(pi[k]) > {t(1e-9)} * mg[k]) {{
+                return -1;
+            }}
+        }}
+    }}
+    for (i = 0; i < 4; ++i) {{
+        const double x = re[i] - 0.25 * a;
+        if (fabs(im[i]) <= {t(1e-6)} * (1.0 + fabs(x))) {{
+            double t0 = {P}_newton_poly(c, 4, x);
+            int j = n;
+            while (j > 0 && out[j - 1] > t0) {{  /* insertion: increasing */
+                out[j] = out[j - 1];
+                --j;
+            }}
+            out[j] = t0;
+            ++n;
+        }}
+    }}
+    return n;
+}}
+
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
    root. A root of the derivative where c vanishes (to round-off) is a double root. */
@@ -278,7 +433,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 }}
 """
 
-    def finish(self) -> str:
+    def finish(self, max_solutions: int = MAX_SOLUTIONS) -> str:
         """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``)."""
         k, P, n = self.k, self.P, 6
         lines = []
@@ -335,7 +490,7 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
     int count[{len(self.labels)}];
     int r, m, nk = 0;
     memset(count, 0, sizeof count);
-    for (r = 0; r < nr && nk < {MAX_SOLUTIONS}; ++r) {{
+    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
         double qq[6];
         int inside = 1, dup = 0, j;
 {body}
@@ -383,8 +538,8 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         return [
             f"/* Closed-form inverse kinematics ({safe_comment(self.k.method or '')}; Lecture 5): every solution for",
             f"   the tool pose T, one row of {P}_N values each, {P}_ik returning how many (0: out of reach).",
-            "   The same solutions, in the same order, as robokit's ik_analytic (see the docs for the quartic",
-            "   case). Revolute angles in (-pi, pi] (or shifted by 2 pi into wider limits). */",
+            "   The same solutions, in the same order, with the same labels as robokit's ik_analytic.",
+            "   Revolute angles in (-pi, pi] (or shifted by 2 pi into wider limits). */",
             f"int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N]);",
             "",
             f"/* The same with, per solution k, info[4k..4k+3] = (label index into {P}_ik_label_names, repeat",
@@ -720,7 +875,10 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
         }}""" if kind3 == "R" else "")
     roots_deg = (f""" else if (dg >= 3) {{
-            nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* the quartic (or cubic): real roots, increasing */
+            nt = dg == 4 ? {P}_quartic_roots(pc, ts) : -1;  /* the quartic in closed form (Ferrari) */
+            if (nt < 0) {{
+                nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* or numerically: real roots, increasing */
+            }}
         }}""" if deg == 4 else "")
     cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
     fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
@@ -1064,3 +1222,40 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
     }}
     }}
 """
+
+
+class _GeneralEmitter(_Emitter):
+    """``NAME_ik`` of a general 6R arm (:mod:`robokit.codegen.ik_general`)."""
+
+    def __init__(self, k: IKConstants, prefix: str, tol: _Tol) -> None:
+        self.k, self.P, self.tol = k, prefix, tol
+        self.labels = ik_general.general_6r_labels()
+
+    def declare(self) -> list[str]:
+        return ik_general.declare(self.P)
+
+    def code(self) -> IKCode:
+        k, P = self.k, self.P
+        w = CWriter()
+        T06 = self.target(w)
+        solve = ik_general.emit_general_6r(self, w.text(), T06)
+        n_max = ik_general.MAX_SOLUTIONS_6R
+        src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
+        src.append(f"""
+/* every closed-form solution of the general 6R arm, see {P}.h */
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    double rows[{n_max}][6];
+    int lab[{n_max}], deg[{n_max}];
+    int nr = 0, ir;
+    (void)wrist_ref;  /* no free joint in the general case */
+{solve}    (void)ir;
+    return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+}}
+
+int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
+{{
+    return {P}_ik_ex(T, 0.0, q, 0);
+}}
+""")
+        return IKCode(True, ik_general.note(k), n_max, self.declare(), "\n".join(src), self.labels)

@@ -64,7 +64,7 @@ a spherical wrist nor three parallel axes); :class:`GeneralSixR` is the solver o
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
@@ -416,6 +416,61 @@ class GeneralSixR:
         36
         """
         return cls(chain)
+
+    def export_constants(self) -> dict[str, Any]:
+        """The per-arm numbers of this solver, as plain arrays, for code generators
+        (:mod:`robokit.codegen` writes ``NAME_ik`` from them, step for step as :meth:`solve`).
+
+        Returns
+        -------
+        dict
+            ``alpha`` (5,), ``a`` (5,), ``d`` (6,) of the scaled chain (lengths divided by
+            ``scale``, m), ``th0`` (6,) offsets (rad), ``scale`` (m), the tolerances ``gamma``,
+            ``imag_tol``, ``converged``, ``same``, ``x0``, ``poor``, and ``arrangements``: the
+            ``1 + extra`` best readings, each a dict with ``roles`` (6,) joint indices (pivot, b,
+            c, d, e, eliminated), ``three_has_w`` (the target's map is on the three-joint side),
+            ``const`` ((3**k, 15) the tensor of the side without the target, from
+            :func:`~robokit.kernels.general_6r.side_tensor`), for the side with it ``Ms``
+            ((k + 1, 15, 15), slot ``w_index`` replaced per pose by ``pre @ F(W) @ post`` with
+            ``W = T₀₆⁻¹``, or ``T₀₆`` when ``w_inverse``), ``signs`` (k,), ``f`` (15,), and the row
+            permutations ``perm3`` (27,) and ``perm2`` (9,) that :meth:`_Arrangement.matrices`
+            applies: ``P[i, k, m] = G3[perm3[9 i + m], k]``, ``r[k, m] = G2[perm2[m], k]``.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> c = GeneralSixR(DHChain(robokit.load("puma560").dh)).export_constants()
+        >>> len(c["arrangements"]), c["arrangements"][0]["const"].shape[1]
+        (4, 15)
+        """
+        el = self.elim
+        out: dict[str, Any] = {"alpha": el.alpha.copy(), "a": el.a.copy(), "d": el.d.copy(), "th0": el.th0.copy(),
+                               "scale": self.scale, "gamma": _GAMMA, "imag_tol": _IMAG_TOL, "converged": _CONVERGED,
+                               "same": _SAME, "x0": _X0, "poor": _POOR, "arrangements": []}
+        for arr in el.arrangements[:_EXTRA + 1]:
+            w_side = 0 if arr.w_at[0] is not None else 1
+            c_side = 1 - w_side
+            ops, signs, _ = arr.sides[c_side]
+            const = np.empty((3 ** len(signs), 15))
+            side_tensor(arr.Ms[c_side], signs, arr.fstart[c_side], const)
+            at = arr.w_at[w_side]
+            assert at is not None
+            i, pre, inverse, post = at
+            # the index permutations of matrices(): applied to the row numbers of G3 and G2
+            idx3 = np.repeat(np.arange(27), 15).reshape(27, 15)
+            T3 = idx3.reshape(3, 3, 3, 15)
+            axes = {0: 2, 1: 1, 2: 0}
+            b, c = [k for k in range(3) if k != arr.piv]
+            P3 = T3.transpose(axes[arr.piv], 3, axes[b], axes[c]).reshape(3, 15, 9)
+            idx2 = np.repeat(np.arange(9), 15).reshape(9, 15)
+            R2 = idx2.reshape(3, 3, 15).transpose(2, 1, 0).reshape(15, 9)
+            out["arrangements"].append({
+                "roles": arr.roles.copy(), "three_has_w": w_side == arr.three, "const": const,
+                "Ms": arr.Ms[w_side].copy(), "w_index": int(i), "w_inverse": bool(inverse), "pre": pre.copy(),
+                "post": post.copy(), "signs": arr.sides[w_side][1].copy(), "f": arr.fstart[w_side].copy(),
+                "perm3": P3[:, 0, :].reshape(27).copy(), "perm2": R2[0, :].copy()})
+        return out
 
     def solve(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:
         """Every solution for the pose ``T06`` (4 × 4, m) of ``Z₁X₁ ⋯ Z₆``.

@@ -20,7 +20,8 @@ from robokit.ik import ik_analytic, ik_analytic_kind
 
 SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-MATH = {"sin", "cos", "sincos", "atan", "atan2", "sqrt", "fabs", "fmod", "remainder", "memset", "memcpy"}
+MATH = {"sin", "cos", "sincos", "atan", "atan2", "acos", "cbrt", "sqrt", "fabs", "fmod", "remainder", "floor",
+        "memset", "memcpy"}
 MATH |= {f + "f" for f in MATH}
 
 
@@ -70,29 +71,21 @@ def _dist(a, b, rev):
 
 
 def check_ik(robot, lib, poses, tol=1e-9):
-    """The C returns ik_analytic's solutions: in order with the same labels and flags, or (the
-    quartic, whose roots the two find in different orders) the same set with the same labels."""
+    """The C returns ik_analytic's solutions: in order, with the same labels and flags (the
+    quartic's roots included: both list them by increasing tan(θ₃/2))."""
     rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
-    quartic = getattr(closed_form_solver(robot), "deg", 2) == 4
-    base = re.compile(r" #\d+$")
     for T in poses:
         py = ik_analytic(robot, T)
         c = lib.ik(T)
         assert len(c) == len(py), ([s.label for s in py], [x[1] for x in c])
-        if not quartic:
-            for s, (q, label, inside, degen) in zip(py, c):
-                assert label == s.label
-                assert (inside, degen) == (s.within_limits, s.degenerate)
-                assert _dist(q, s.q, rev) < tol, label
-        else:
-            for s in py:
-                k = min(range(len(c)), key=lambda i: _dist(c[i][0], s.q, rev))
-                q, label, inside, degen = c[k]
-                assert _dist(q, s.q, rev) < tol
-                assert base.sub("", label) == base.sub("", s.label)
-                assert (inside, degen) == (s.within_limits, s.degenerate)
-        for q, *_ in c:  # and every C solution reaches T (Pinocchio)
+        for s, (q, label, inside, degen) in zip(py, c):
+            assert label == s.label
+            assert (inside, degen) == (s.within_limits, s.degenerate)
+            assert _dist(q, s.q, rev) < tol, label
+        for q, *_ in c:  # and every C solution reaches T (Pinocchio, and the generated NAME_fk)
             assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
+            if not lib.float32:
+                assert np.abs(lib.fk(q) - T).max() < 1e-9
 
 
 # ------------------------------------------------------------------ shipped and example arms
@@ -424,3 +417,173 @@ def test_flipped_joints(build):
     poses = random_poses(robot, 4, k=4)
     if all(np.abs(robot.frame_pose(s.q) - T).max() < 1e-9 for T in poses for s in ik_analytic(robot, T)):
         check_ik(robot, lib, poses)
+
+
+# ------------------------------------------------------------------ general 6R (no special structure)
+def jaco2_table():
+    """Kinova JACO² 6-DOF non-spherical (offset wrist), classic DH from Kinova's "JACO² 6 DOF Advanced
+    Specification Guide" (the arm of tests/ik/test_general_6r.py), with masses for the dynamics."""
+    D1, D2, D3, D4, D5, D6, e2 = 0.2755, 0.4100, 0.2073, 0.0741, 0.0741, 0.1600, 0.0098
+    aa = math.radians(30.0)
+    k = math.sin(aa) / math.sin(2 * aa)
+    alpha = [math.pi / 2, math.pi, math.pi / 2, 2 * aa, 2 * aa, math.pi]
+    a = [0.0, D2, 0.0, 0.0, 0.0, 0.0]
+    d = [D1, 0.0, -e2, -(D3 + k * D4), -(k * D4 + k * D5), -(k * D5 + D6)]
+    return DHTable("jaco2_6n", "standard", tuple(
+        DHLink("R", a=a[i], alpha=alpha[i], d=d[i], qlim=np.array([-2 * np.pi, 2 * np.pi]) if i % 2 else None,
+               mass=0.5, com=np.array([0.0, 0.0, 0.05]), inertia=np.array([0.01, 0.01, 0.005, 0, 0, 0]))
+        for i in range(6)))
+
+
+@pytest.fixture(scope="module")
+def jaco():
+    return robokit.load(jaco2_table())
+
+
+def test_general_6r_jaco_matches_ik_analytic(jaco, build):
+    """The offset-wrist Jaco: the same solutions, order, labels and flags as ik_analytic, each
+    reaching the pose through Pinocchio and the generated jaco2_6n_fk; FK/dynamics as Pinocchio."""
+    assert ik_analytic_kind(jaco).method == "general 6R"
+    lib = build(jaco)
+    assert lib.has_ik and lib.max_solutions == 16
+    h = (lib.path.parent / "jaco2_6n.h").read_text()
+    assert "#define jaco2_6n_HAS_IK 1" in h and "#define jaco2_6n_MAX_SOLUTIONS 16" in h
+    assert "Inverse kinematics: general 6R (Raghavan-Roth" in h  # the top comment says which method
+    rng = np.random.default_rng(4)
+    poses = [jaco.frame_pose(rng.uniform(-np.pi, np.pi, 6)) for _ in range(12)]
+    poses.append(jaco.frame_pose(np.array([np.pi, 0.3, np.pi, -0.4, np.pi, 0.2])))  # angles at pi
+    check_ik(jaco, lib, poses)
+    assert sum(len(lib.ik(T)) for T in poses) >= 4 * len(poses)  # a non-trivial check: several each
+    far = np.eye(4)
+    far[:3, 3] = [3.0, 0.0, 0.0]
+    assert lib.ik(far) == [] and ik_analytic(jaco, far) == []
+    for bad in (np.nan, np.inf, 1e300):  # not a pose (Python raises): the C returns 0, it does not hang
+        T = np.eye(4)
+        T[0, 3] = bad
+        assert lib.ik(T) == []
+    check_dynamics_and_kinematics(jaco, lib, samples=3)
+
+
+@settings(**{**SETTINGS, "max_examples": 3})
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]))
+def test_general_6r_random_arms_match_ik_analytic(build, seed, convention):
+    """Random 6R arms (random twists, lengths, offsets, flipped joints, base and tool) in both DH
+    conventions: the C solves every pose as ik_analytic does."""
+    robot = robokit.load(random_table(seed, convention, "RRRRRR"))
+    assume(ik_analytic_kind(robot).method == "general 6R")
+    check_ik(robot, build(robot), random_poses(robot, seed, k=8))
+
+
+def test_general_6r_root_at_the_half_angle_infinity(jaco, build):
+    """A solution with the eigenvalue joint exactly at the half-angle variable's infinity (θ = γ + π):
+    A is singular, Python takes the generalised eigenproblem (QZ), the C the turned variable; both
+    must find it."""
+    from robokit.ik import analytic_ik
+
+    sv = analytic_ik(jaco).solver.export_constants()
+    th0 = sv["th0"]
+    for reading in (0, 1):
+        pivot = int(sv["arrangements"][reading]["roles"][0])
+        q = np.array([0.4, -0.7, 1.1, 0.5, -0.9, 0.3])
+        q[pivot] = math.remainder(sv["gamma"] + math.pi - th0[pivot], 2 * math.pi)
+        T = jaco.frame_pose(q)
+        lib = build(jaco)
+        check_ik(jaco, lib, [T])
+        if reading == 0:  # the generating configuration is among the C's solutions
+            assert min(_dist(c[0], q, np.ones(6, bool)) for c in lib.ik(T)) < 1e-7
+
+
+def test_general_6r_float32_has_no_ik_and_says_why(jaco, build, nm):
+    lib = build(jaco, float32=True)
+    assert not lib.has_ik
+    h = (lib.path.parent / "jaco2_6n.h").read_text()
+    assert "#define jaco2_6n_HAS_IK 0" in h and "general 6R" in h and "double only" in h
+    check_dynamics_and_kinematics(jaco, lib, samples=2)
+    for f32 in (False, True):  # only math functions, with and without the IK
+        obj = build(jaco, float32=f32).path.with_suffix(".o")
+        out = subprocess.run([nm, "-u", str(obj)], capture_output=True, text=True, check=True).stdout
+        undefined = {line.split()[-1] for line in out.splitlines() if line.strip()}
+        assert undefined <= MATH, undefined - MATH
+
+
+def test_quartic_root_finder_against_numpy(cc, tmp_path):
+    """The generated quartic solver (Ferrari's closed form, its numerical fallback for nearly
+    biquadratic quartics) against numpy's companion-matrix roots: random quartics, biquadratics
+    (q = 0 exactly: the fallback), double roots and four close real roots."""
+    import ctypes
+
+    from robokit.codegen.ik import _Emitter, _Tol
+
+    e = _Emitter.__new__(_Emitter)
+    e.P, e.tol = "t", _Tol(False)
+    code = ("#include <math.h>\n#include <string.h>\n" + e.poly_helpers()
+            + "\nint roots4(const double c[5], double out[5])\n{\n    int n = t_quartic_roots(c, out);\n"
+              "    return n >= 0 ? n : t_real_roots(c, 4, out, 1e-15);\n}\n")
+    (tmp_path / "q.c").write_text(code)
+    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(tmp_path / "q.c"),
+                    "-o", str(tmp_path / "q.so"), "-lm"], check=True)
+    lib = ctypes.CDLL(str(tmp_path / "q.so"))
+    P = ctypes.POINTER(ctypes.c_double)
+    rng = np.random.default_rng(5)
+    cases = [rng.normal(size=5) * 10.0 ** rng.uniform(-2, 2) for _ in range(300)]
+    cases += [np.poly([r1, -r1, r2, -r2])[::-1] * s for r1, r2, s in rng.uniform(-3, 3, (40, 3))]  # q = 0
+    cases += [np.poly([r, r, r + 1.5, r - 2.0])[::-1] for r in rng.uniform(-2, 2, 20)]  # a double root
+    cases += [np.poly(r + np.array([0.0, 0.01, 0.02, 0.03]))[::-1] for r in rng.uniform(-2, 2, 20)]
+    for c in cases:
+        c = np.ascontiguousarray(c, dtype=float)
+        out = np.zeros(5)
+        n = lib.roots4(c.ctypes.data_as(P), out.ctypes.data_as(P))
+        ref = np.roots(c[::-1])
+        real = np.sort(ref[np.abs(ref.imag) <= 1e-6 * (1 + np.abs(ref.real))].real)
+        got = out[:n]
+        assert np.all(np.diff(got) >= 0.0)  # increasing
+        for x in got:  # every root found is a root
+            assert abs(np.polyval(c[::-1], x)) <= 1e-9 * np.abs(c).max() * max(1.0, abs(x)) ** 4
+        for x in real:  # and no real root is missed (a double root may come once or twice)
+            assert np.min(np.abs(got - x)) <= 1e-6 * (1 + abs(x)), (c, real, got)
+
+
+@pytest.mark.parametrize("arm", ["puma_offset", "ur5_tilt"])
+def test_general_6r_almost_special_arms(build, arm):
+    """Special arms made general by a tiny change — the PUMA's axes 4 and 5 1 µm apart, the UR5's
+    axis 3 tilted by a milliradian —: badly conditioned readings (the next ones are solved too),
+    solutions close together; the C still agrees with ik_analytic."""
+    t = robokit.load("puma560").dh if arm == "puma_offset" else None
+    if arm == "puma_offset":
+        rows = [replace(l, a=l.a + (1e-6 if i == 3 else 0.0)) for i, l in enumerate(t.links)]
+        table = DHTable("puma_eps", t.convention, tuple(rows), base=t.base, tool=t.tool)
+    else:
+        import importlib
+
+        u2d = importlib.import_module("robokit.description.urdf_to_dh")
+        extract = getattr(u2d, "dh_from_urdf", None) or u2d.urdf_to_dh  # the newer name where it exists
+        u = extract(robokit.load("ur5"), "standard").table
+        rows = [replace(l, alpha=l.alpha + (1e-3 if i == 1 else 0.0)) for i, l in enumerate(u.links)]
+        table = DHTable("ur5_tilt", "standard", tuple(rows), base=u.base, tool=u.tool)
+    robot = robokit.load(table)
+    assert ik_analytic_kind(robot).method == "general 6R"
+    rng = np.random.default_rng(6)
+    poses = [robot.frame_pose(np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5]))]
+    poses += [robot.frame_pose(rng.uniform(-3, 3, 6)) for _ in range(3)]
+    check_ik(robot, build(robot), poses)
+
+
+def test_float32_quartic_arm(build):
+    """--float32 on a spherical-wrist arm whose positioning equation is the quartic (Ferrari's closed
+    form in float: cbrtf, acosf; compiled with -Wdouble-promotion): every float solution is near one
+    of ik_analytic's, and the counts agree on most poses."""
+    rng = np.random.default_rng(11)
+    rows = [DHLink("R", 0.0 if i in (3, 4) else rng.uniform(0.1, 0.5), rng.uniform(0.5, 2.5),
+                   0.0 if i == 4 else rng.uniform(-0.4, 0.4), rng.uniform(-np.pi, np.pi)) for i in range(6)]
+    robot = robokit.load(DHTable("quartic_arm", "standard", tuple(rows)))
+    assert getattr(closed_form_solver(robot), "deg", 2) == 4
+    lib = build(robot, float32=True)
+    rng = np.random.default_rng(2)
+    same = 0
+    for _ in range(20):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        py, c = ik_analytic(robot, T), lib.ik(T)
+        same += len(c) == len(py)
+        for q, *_ in c:
+            assert min(_dist(q, s.q, np.ones(6, bool)) for s in py) < 1e-2
+    assert same >= 18

@@ -1,0 +1,1317 @@
+"""The C text of the general 6R IK's numerical routines (no public names).
+
+Generic for every arm: ``@P@`` is replaced by the C prefix and ``@X@`` tokens by the solver's
+constants; the per-arm tables are written by :mod:`robokit.codegen.ik_general`. Each routine
+is the C of one step of :mod:`robokit.ik.general_6r` / :mod:`robokit.kernels.general_6r`
+(same names, same order), or a small dense linear-algebra routine written from the textbook
+(Golub & Van Loan, *Matrix Computations*, 4th ed.: one-sided Jacobi SVD §8.6.3, Householder QR
+§5.2, LU with partial pivoting §3.4, Hessenberg reduction §7.4.3, Francis double-shift QR
+§7.5.5, balancing §7.5.7).
+"""
+
+ROUTINES = r"""
+/* ======================================================================================
+ * General 6R closed form (Raghavan-Roth elimination, Manocha-Canny eigenproblem).
+ * Step for step as robokit.ik.general_6r.GeneralSixR.solve; lengths in units of the arm's
+ * scale (@SCALE@ m). The per-arm tables above come from GeneralSixR.export_constants().
+ * ====================================================================================== */
+
+/* ---------------------------------------------------------------- dense linear algebra */
+
+/* One-sided Jacobi SVD (Hestenes; Golub & Van Loan 8.6.3) of the m x n row-major matrix a
+   (overwritten): plane rotations make the columns mutually orthogonal; then sv[j] = |column j|,
+   sorted decreasing. With u != 0, u (m x n) receives the left singular vectors (columns); with
+   v != 0, v (n x n) the right ones. n <= 14, m <= 14. */
+static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
+{
+    int sweep, p, q, i, rotated = 1;
+    int order[14];
+    double norms[14];
+    if (v) {
+        for (i = 0; i < n * n; ++i) {
+            v[i] = 0.0;
+        }
+        for (i = 0; i < n; ++i) {
+            v[i * n + i] = 1.0;
+        }
+    }
+    for (sweep = 0; sweep < 60 && rotated; ++sweep) {
+        rotated = 0;
+        for (p = 0; p < n - 1; ++p) {
+            for (q = p + 1; q < n; ++q) {
+                double al = 0.0, be = 0.0, ga = 0.0, zeta, t, c, s;
+                for (i = 0; i < m; ++i) {
+                    const double x = a[i * n + p], y = a[i * n + q];
+                    al += x * x;
+                    be += y * y;
+                    ga += x * y;
+                }
+                if (ga == 0.0 || fabs(ga) <= 1e-15 * sqrt(al * be)) {
+                    continue;
+                }
+                rotated = 1;
+                /* the rotation that zeroes the (p, q) entry of the 2 x 2 Gram matrix */
+                zeta = (be - al) / (2.0 * ga);
+                t = (zeta >= 0.0 ? 1.0 : -1.0) / (fabs(zeta) + sqrt(1.0 + zeta * zeta));
+                c = 1.0 / sqrt(1.0 + t * t);
+                s = c * t;
+                for (i = 0; i < m; ++i) {
+                    const double x = a[i * n + p], y = a[i * n + q];
+                    a[i * n + p] = c * x - s * y;
+                    a[i * n + q] = s * x + c * y;
+                }
+                if (v) {
+                    for (i = 0; i < n; ++i) {
+                        const double x = v[i * n + p], y = v[i * n + q];
+                        v[i * n + p] = c * x - s * y;
+                        v[i * n + q] = s * x + c * y;
+                    }
+                }
+            }
+        }
+    }
+    for (p = 0; p < n; ++p) {
+        double s2 = 0.0;
+        for (i = 0; i < m; ++i) {
+            s2 += a[i * n + p] * a[i * n + p];
+        }
+        norms[p] = sqrt(s2);
+        order[p] = p;
+    }
+    for (p = 1; p < n; ++p) {  /* insertion sort, decreasing */
+        const int o = order[p];
+        q = p - 1;
+        while (q >= 0 && norms[order[q]] < norms[o]) {
+            order[q + 1] = order[q];
+            --q;
+        }
+        order[q + 1] = o;
+    }
+    for (p = 0; p < n; ++p) {
+        sv[p] = norms[order[p]];
+    }
+    if (u) {
+        for (p = 0; p < n; ++p) {
+            const int o = order[p];
+            const double inv = norms[o] > 0.0 ? 1.0 / norms[o] : 0.0;
+            for (i = 0; i < m; ++i) {
+                u[i * n + p] = a[i * n + o] * inv;
+            }
+        }
+    }
+    if (v) {
+        double tmp[14 * 14];
+        memcpy(tmp, v, sizeof(double) * (size_t)(n * n));
+        for (p = 0; p < n; ++p) {
+            for (i = 0; i < n; ++i) {
+                v[i * n + p] = tmp[i * n + order[p]];
+            }
+        }
+    }
+}
+
+/* sigma_min / sigma_max of the m x n row-major matrix a (overwritten), m >= n, n <= 12, without
+   vectors: Householder bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then bisection
+   on the Sturm counts of the Golub-Kahan tridiagonal [[0, B^T], [B, 0]] (zero diagonal,
+   off-diagonals d1, e1, d2, ..., dn; its eigenvalues are +-sigma_i), which finds the
+   extreme singular values to high relative accuracy (Demmel & Kahan 1990). Ratios below 1e-20
+   are reported as 0 (every threshold of the solver is far above). */
+static double @P@_house(int n, const double *x, int stride, double *vv);
+static int @P@_gk_count(const double *c, int len, double mu)
+{
+    /* the number of eigenvalues below mu of the len x len tridiagonal with zero diagonal and
+       off-diagonal c (len - 1): the negative pivots of its LDL^T - mu I (Sylvester's law of inertia) */
+    double q = -mu;
+    int i, count = q < 0.0;
+    for (i = 1; i < len; ++i) {
+        if (q == 0.0) {
+            q = -1e-300;
+        }
+        q = -mu - c[i - 1] * c[i - 1] / q;
+        count += q < 0.0;
+    }
+    return count;
+}
+
+/* Householder bidiagonalisation of the m x n row-major a (overwritten), m >= n: c (2n - 1) the
+   off-diagonal of the Golub-Kahan tridiagonal (d1, e1, d2, e2, ..., dn); returns a Gershgorin
+   bound on sigma_max */
+static double @P@_bidiagonal(int m, int n, double *a, double c[24])
+{
+    double vv[14], bound = 0.0;
+    int k, i, j;
+    for (k = 0; k < n; ++k) {
+        /* left reflection: zero column k below the diagonal */
+        double beta = @P@_house(m - k, a + k * n + k, n, vv);
+        for (j = k; j < n; ++j) {
+            double s = 0.0;
+            for (i = k; i < m; ++i) {
+                s += vv[i - k] * a[i * n + j];
+            }
+            s *= beta;
+            for (i = k; i < m; ++i) {
+                a[i * n + j] -= s * vv[i - k];
+            }
+        }
+        c[2 * k] = a[k * n + k];
+        if (k < n - 2) {
+            /* right reflection: zero row k right of the superdiagonal */
+            beta = @P@_house(n - k - 1, a + k * n + k + 1, 1, vv);
+            for (i = k; i < m; ++i) {
+                double s = 0.0;
+                for (j = k + 1; j < n; ++j) {
+                    s += a[i * n + j] * vv[j - k - 1];
+                }
+                s *= beta;
+                for (j = k + 1; j < n; ++j) {
+                    a[i * n + j] -= s * vv[j - k - 1];
+                }
+            }
+        }
+        if (k < n - 1) {
+            c[2 * k + 1] = a[k * n + k + 1];
+        }
+    }
+    for (k = 0; k < 2 * n - 1; ++k) {
+        const double mu = fabs(c[k]) + (k + 1 < 2 * n - 1 ? fabs(c[k + 1]) : 0.0);
+        bound = mu > bound ? mu : bound;
+    }
+    return bound;
+}
+
+static double @P@_sv_ratio(int m, int n, double *a)
+{
+    double c[24], lo = 0.0, hi, smax;
+    const double bound = @P@_bidiagonal(m, n, a, c);
+    int k, it;
+    if (bound == 0.0) {
+        return 0.0;
+    }
+    for (k = 0; k < 2 * n - 1; ++k) {  /* sigma_max >= every entry of the bidiagonal */
+        lo = fabs(c[k]) > lo ? fabs(c[k]) : lo;
+    }
+    /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
+    hi = bound;
+    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (@P@_gk_count(c, 2 * n, mid) - n >= n) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    smax = hi;
+    /* the smallest, to 1e-7 relative, by bisection of its logarithm in [1e-20, 1] sigma_max */
+    if (@P@_gk_count(c, 2 * n, 1e-20 * smax) - n >= 1) {
+        return 0.0;
+    }
+    lo = 1e-20 * smax;
+    hi = smax;
+    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
+        const double mid = sqrt(lo * hi);
+        if (@P@_gk_count(c, 2 * n, mid) - n >= 1) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    return 0.5 * (lo + hi) / smax;
+}
+
+/* whether sigma_min > tol * sigma_max holds for sure (one Sturm count; 0 may be a false alarm) */
+static int @P@_well_conditioned(int m, int n, double *a, double tol)
+{
+    double c[24];
+    const double bound = @P@_bidiagonal(m, n, a, c);
+    return bound > 0.0 && @P@_gk_count(c, 2 * n, tol * bound) - n == 0;
+}
+
+/* LU factorisation with partial pivoting (Golub & Van Loan 3.4) of the n x n row-major a, in
+   place; piv[k] the row swapped with k. A zero pivot is replaced by a tiny one (the caller
+   wants a null vector by inverse iteration, or has checked the conditioning). */
+static void @P@_lu(int n, double *a, int *piv)
+{
+    int k, i, j;
+    double big = 0.0;
+    for (i = 0; i < n * n; ++i) {
+        big = fabs(a[i]) > big ? fabs(a[i]) : big;
+    }
+    for (k = 0; k < n; ++k) {
+        int p = k;
+        double best = fabs(a[k * n + k]);
+        for (i = k + 1; i < n; ++i) {
+            if (fabs(a[i * n + k]) > best) {
+                best = fabs(a[i * n + k]);
+                p = i;
+            }
+        }
+        piv[k] = p;
+        if (p != k) {
+            for (j = 0; j < n; ++j) {
+                const double t = a[k * n + j];
+                a[k * n + j] = a[p * n + j];
+                a[p * n + j] = t;
+            }
+        }
+        if (a[k * n + k] == 0.0) {
+            a[k * n + k] = 1e-300 + 1e-18 * big;
+        }
+        for (i = k + 1; i < n; ++i) {
+            const double l = a[i * n + k] / a[k * n + k];
+            a[i * n + k] = l;
+            for (j = k + 1; j < n; ++j) {
+                a[i * n + j] -= l * a[k * n + j];
+            }
+        }
+    }
+}
+
+/* solve (LU) x = b in place, LU and piv from @P@_lu */
+static void @P@_lu_solve(int n, const double *lu, const int *piv, double *b)
+{
+    int i, j;
+    for (i = 0; i < n; ++i) {
+        const double t = b[piv[i]];
+        b[piv[i]] = b[i];
+        b[i] = t;
+    }
+    for (i = 0; i < n; ++i) {
+        for (j = 0; j < i; ++j) {
+            b[i] -= lu[i * n + j] * b[j];
+        }
+    }
+    for (i = n - 1; i >= 0; --i) {
+        for (j = i + 1; j < n; ++j) {
+            b[i] -= lu[i * n + j] * b[j];
+        }
+        b[i] /= lu[i * n + i];
+    }
+}
+
+/* A Householder vector (Golub & Van Loan 5.1.3): (I - beta v v^T) x = (+-|x|, 0, ..., 0), v[0] = 1 */
+static double @P@_house(int n, const double *x, int stride, double *vv)
+{
+    double sigma = 0.0, mu, x0 = x[0], v0;
+    int i;
+    for (i = 1; i < n; ++i) {
+        sigma += x[i * stride] * x[i * stride];
+    }
+    vv[0] = 1.0;
+    for (i = 1; i < n; ++i) {
+        vv[i] = x[i * stride];
+    }
+    if (sigma == 0.0) {
+        return 0.0;
+    }
+    mu = sqrt(x0 * x0 + sigma);
+    v0 = x0 <= 0.0 ? x0 - mu : -sigma / (x0 + mu);
+    for (i = 1; i < n; ++i) {
+        vv[i] /= v0;
+    }
+    return 2.0 * v0 * v0 / (sigma + v0 * v0);
+}
+
+/* the left null space of the 14 x 8 matrix q (row-major): the last 6 columns of the orthogonal
+   factor of its Householder QR (Golub & Van Loan 5.2.1), n (14 x 6, row-major) */
+static void @P@_left_null_space(const double q[14 * 8], double n[14 * 6])
+{
+    double r[14 * 8], vs[8][14], betas[8];
+    int j, i, k, e;
+    memcpy(r, q, sizeof r);
+    for (j = 0; j < 8; ++j) {
+        double *vv = vs[j];
+        const double beta = @P@_house(14 - j, r + j * 8 + j, 8, vv);
+        betas[j] = beta;
+        for (k = j; k < 8; ++k) {  /* r <- (I - beta v v^T) r on rows j.. */
+            double s = 0.0;
+            for (i = j; i < 14; ++i) {
+                s += vv[i - j] * r[i * 8 + k];
+            }
+            s *= beta;
+            for (i = j; i < 14; ++i) {
+                r[i * 8 + k] -= s * vv[i - j];
+            }
+        }
+    }
+    /* columns 8..13 of H_0 H_1 ... H_7: apply the reflections to the unit vectors, last first */
+    for (e = 0; e < 6; ++e) {
+        double x[14];
+        memset(x, 0, sizeof x);
+        x[8 + e] = 1.0;
+        for (j = 7; j >= 0; --j) {
+            double s = 0.0;
+            for (i = j; i < 14; ++i) {
+                s += vs[j][i - j] * x[i];
+            }
+            s *= betas[j];
+            for (i = j; i < 14; ++i) {
+                x[i] -= s * vs[j][i - j];
+            }
+        }
+        for (i = 0; i < 14; ++i) {
+            n[i * 6 + e] = x[i];
+        }
+    }
+}
+
+/* Eigenvalues (wr + i wi) of the n x n row-major matrix h (destroyed), n <= 24: balancing by
+   powers of 2 (Parlett-Reinsch; Golub & Van Loan 7.5.7), Householder reduction to upper
+   Hessenberg form (7.4.3), then Francis double-shift QR steps (7.5.5) with deflation at small
+   subdiagonal entries, on the active window only (eigenvalues are all we need). Returns 0, or
+   -1 if the iteration did not converge. */
+static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
+{
+    int i, j, k, lo, hi, its, done = 0;
+    double vv[24];
+    /* balancing: D^-1 H D with D a diagonal of powers of 2 making row and column norms alike */
+    while (!done) {
+        done = 1;
+        for (i = 0; i < n; ++i) {
+            double c = 0.0, r = 0.0, f = 1.0, g, s;
+            for (j = 0; j < n; ++j) {
+                if (j != i) {
+                    c += fabs(h[j * n + i]);
+                    r += fabs(h[i * n + j]);
+                }
+            }
+            if (c == 0.0 || r == 0.0 || !(c + r < HUGE_VAL)) {
+                continue;  /* nothing to balance (or not finite: the QR below fails and says so) */
+            }
+            g = r / 2.0;
+            s = c + r;
+            while (c < g) {
+                f *= 2.0;
+                c *= 4.0;
+            }
+            g = r * 2.0;
+            while (c >= g) {
+                f /= 2.0;
+                c /= 4.0;
+            }
+            if ((c + r) / f < 0.95 * s) {
+                done = 0;
+                for (j = 0; j < n; ++j) {
+                    h[i * n + j] /= f;
+                    h[j * n + i] *= f;
+                }
+            }
+        }
+    }
+    /* Hessenberg form: Householder reflections from the left and the right */
+    for (k = 0; k < n - 2; ++k) {
+        const int len = n - k - 1;
+        const double beta = @P@_house(len, h + (k + 1) * n + k, n, vv);
+        if (beta == 0.0) {
+            continue;
+        }
+        for (j = k; j < n; ++j) {
+            double s = 0.0;
+            for (i = 0; i < len; ++i) {
+                s += vv[i] * h[(k + 1 + i) * n + j];
+            }
+            s *= beta;
+            for (i = 0; i < len; ++i) {
+                h[(k + 1 + i) * n + j] -= s * vv[i];
+            }
+        }
+        for (i = 0; i < n; ++i) {
+            double s = 0.0;
+            for (j = 0; j < len; ++j) {
+                s += h[i * n + k + 1 + j] * vv[j];
+            }
+            s *= beta;
+            for (j = 0; j < len; ++j) {
+                h[i * n + k + 1 + j] -= s * vv[j];
+            }
+        }
+        for (i = k + 2; i < n; ++i) {
+            h[i * n + k] = 0.0;
+        }
+    }
+    /* Francis double-shift QR on the window [lo, hi] */
+    hi = n - 1;
+    its = 0;
+    while (hi >= 0) {
+        /* deflation: the lowest l with h[l][l-1] negligible beside its neighbours (with zero
+           diagonals, as in a companion matrix, beside the next subdiagonal entries), refined by
+           the criterion of Ahues & Tisseur (1997) that also weighs h[l-1][l] */
+        for (lo = hi; lo > 0; --lo) {
+            const double sub = fabs(h[lo * n + lo - 1]);
+            double tst = fabs(h[(lo - 1) * n + lo - 1]) + fabs(h[lo * n + lo]);
+            if (sub <= 1e-300) {
+                h[lo * n + lo - 1] = 0.0;
+                break;
+            }
+            if (tst == 0.0) {
+                tst = (lo - 2 >= 0 ? fabs(h[(lo - 1) * n + lo - 2]) : 0.0) + (lo + 1 < n ? fabs(h[(lo + 1) * n + lo]) : 0.0);
+            }
+            if (sub <= 2.220446049250313e-16 * tst) {
+                const double sup = fabs(h[(lo - 1) * n + lo]);
+                const double dd = fabs(h[(lo - 1) * n + lo - 1] - h[lo * n + lo]), hh = fabs(h[lo * n + lo]);
+                const double ab = sub > sup ? sub : sup, ba = sub > sup ? sup : sub;
+                const double aa = hh > dd ? hh : dd, bb = hh > dd ? dd : hh;
+                const double ss = aa + ab;
+                const double rhs = 2.220446049250313e-16 * (bb * (aa / ss));
+                if (ba * (ab / ss) <= (rhs > 1e-300 ? rhs : 1e-300)) {
+                    h[lo * n + lo - 1] = 0.0;
+                    break;
+                }
+            }
+        }
+        if (lo == hi) {  /* a 1 x 1 block: a real eigenvalue */
+            wr[hi] = h[hi * n + hi];
+            wi[hi] = 0.0;
+            --hi;
+            its = 0;
+        } else if (lo == hi - 1) {  /* a 2 x 2 block: two real or a complex pair */
+            const double a = h[(hi - 1) * n + hi - 1], b = h[(hi - 1) * n + hi];
+            const double c = h[hi * n + hi - 1], d = h[hi * n + hi];
+            const double p = 0.5 * (a - d), disc = p * p + b * c;
+            if (disc >= 0.0) {
+                const double z = p + (p >= 0.0 ? sqrt(disc) : -sqrt(disc));
+                wr[hi - 1] = d + z;
+                wr[hi] = z != 0.0 ? d - b * c / z : d;
+                wi[hi - 1] = wi[hi] = 0.0;
+            } else {
+                wr[hi - 1] = wr[hi] = d + p;
+                wi[hi - 1] = sqrt(-disc);
+                wi[hi] = -sqrt(-disc);
+            }
+            hi -= 2;
+            its = 0;
+        } else {
+            double s, t, x, y, z;
+            int m;
+            if (++its > 40 * n) {
+                return -1;
+            }
+            if (its % 10 == 0) {  /* exceptional shifts (ad hoc ones, as in LAPACK's dlahqr): break cycles */
+                const int top = its % 20 == 10;
+                const double e = top ? fabs(h[(lo + 1) * n + lo]) + fabs(h[(lo + 2) * n + lo + 1])
+                                     : fabs(h[hi * n + hi - 1]) + fabs(h[(hi - 1) * n + hi - 2]);
+                const double h11 = 0.75 * e + (top ? h[lo * n + lo] : h[hi * n + hi]), h12 = -0.4375 * e;
+                s = 2.0 * h11;
+                t = h11 * h11 - h12 * e;
+            } else {  /* the eigenvalues of the trailing 2 x 2 block as the shifts */
+                s = h[(hi - 1) * n + hi - 1] + h[hi * n + hi];
+                t = h[(hi - 1) * n + hi - 1] * h[hi * n + hi] - h[(hi - 1) * n + hi] * h[hi * n + hi - 1];
+            }
+            /* first column of (H - s1)(H - s2): the bulge */
+            x = h[lo * n + lo] * h[lo * n + lo] + h[lo * n + lo + 1] * h[(lo + 1) * n + lo] - s * h[lo * n + lo] + t;
+            y = h[(lo + 1) * n + lo] * (h[lo * n + lo] + h[(lo + 1) * n + lo + 1] - s);
+            z = h[(lo + 1) * n + lo] * h[(lo + 2) * n + lo + 1];
+            for (m = lo; m <= hi - 1; ++m) {  /* chase the bulge down the subdiagonal */
+                const int three = m < hi - 1;
+                const int c0 = m > lo ? m - 1 : lo, r1 = m + 3 < hi ? m + 3 : hi;
+                double xs[3], v3[3], beta, v1, v2;
+                xs[0] = x;
+                xs[1] = y;
+                xs[2] = z;
+                /* the reflection I - beta v v^T, v = (1, v1, v2), taking (x, y, z) to (*, 0, 0) */
+                beta = @P@_house(three ? 3 : 2, xs, 1, v3);
+                v1 = v3[1];
+                v2 = three ? v3[2] : 0.0;
+                if (beta != 0.0 && three) {
+                    const double bv1 = beta * v1, bv2 = beta * v2;
+                    for (j = c0; j <= hi; ++j) {  /* from the left: rows m .. m+2 */
+                        double *g = h + m * n + j;
+                        const double sum = g[0] + v1 * g[n] + v2 * g[2 * n];
+                        g[0] -= beta * sum;
+                        g[n] -= bv1 * sum;
+                        g[2 * n] -= bv2 * sum;
+                    }
+                    for (i = lo; i <= r1; ++i) {  /* from the right: columns m .. m+2 */
+                        double *g = h + i * n + m;
+                        const double sum = g[0] + v1 * g[1] + v2 * g[2];
+                        g[0] -= beta * sum;
+                        g[1] -= bv1 * sum;
+                        g[2] -= bv2 * sum;
+                    }
+                } else if (beta != 0.0) {  /* the last step: a 2-vector reflection */
+                    const double bv1 = beta * v1;
+                    for (j = c0; j <= hi; ++j) {
+                        double *g = h + m * n + j;
+                        const double sum = g[0] + v1 * g[n];
+                        g[0] -= beta * sum;
+                        g[n] -= bv1 * sum;
+                    }
+                    for (i = lo; i <= r1; ++i) {
+                        double *g = h + i * n + m;
+                        const double sum = g[0] + v1 * g[1];
+                        g[0] -= beta * sum;
+                        g[1] -= bv1 * sum;
+                    }
+                }
+                if (three) {
+                    x = h[(m + 1) * n + m];
+                    y = h[(m + 2) * n + m];
+                    z = m < hi - 2 ? h[(m + 3) * n + m] : 0.0;
+                }
+            }
+        }
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the loop equation */
+
+/* (the start vectors f(l, p) = (l, p, p.p, l.p, l x p, (p.p) l - 2 (l.p) p, 1) of both sides are in the tables) */
+
+/* Rz(sign th) v split into its cos th, sin th and constant parts (the four 3-vector blocks turn) */
+static void @P@_rz_parts(const double v[15], double sign, double out[3][15])
+{
+    int k;
+    static const int blocks[4] = {0, 3, 8, 11};
+    for (k = 0; k < 15; ++k) {
+        out[0][k] = 0.0;
+        out[1][k] = 0.0;
+        out[2][k] = v[k];
+    }
+    for (k = 0; k < 4; ++k) {
+        const int b = blocks[k];
+        const double x = v[b], y = v[b + 1];
+        out[0][b] = x;
+        out[0][b + 1] = y;
+        out[1][b] = -sign * y;
+        out[1][b + 1] = sign * x;
+        out[2][b] = 0.0;
+        out[2][b + 1] = 0.0;
+    }
+}
+
+/* one side of the loop equation as a tensor over its joints' (cos, sin, 1):
+   Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f; out (3^k x 15), row i0 + 3 i1 + 9 i2 */
+static void @P@_side_tensor(const double *const Ms[4], const double *signs, int k, const double f[15],
+                            double *out)
+{
+    double cur[27][15], nxt[27][15], parts[3][15];
+    int n = 1, j, t, b, r, m;
+    for (r = 0; r < 15; ++r) {
+        double acc = 0.0;
+        for (m = 0; m < 15; ++m) {
+            acc += Ms[0][r * 15 + m] * f[m];
+        }
+        cur[0][r] = acc;
+    }
+    for (j = 0; j < k; ++j) {
+        for (t = 0; t < n; ++t) {
+            @P@_rz_parts(cur[t], signs[j], parts);
+            for (b = 0; b < 3; ++b) {
+                for (r = 0; r < 15; ++r) {
+                    double acc = 0.0;
+                    for (m = 0; m < 15; ++m) {
+                        acc += Ms[j + 1][r * 15 + m] * parts[b][m];
+                    }
+                    nxt[t + n * b][r] = acc;
+                }
+            }
+        }
+        n *= 3;
+        memcpy(cur, nxt, sizeof(double) * 15 * (size_t)n);
+    }
+    memcpy(out, cur, sizeof(double) * 15 * (size_t)n);
+}
+
+/* the 15 x 15 map of f(l, p) under the rigid motion T (or T^-1): F_translation(p) F_rotation(R) */
+static void @P@_f_pose(const double T[16], int inverse, double out[225])
+{
+    double R[3][3], p[3], Ft[225], tt;
+    int i, k, b, c, m;
+    static const int blocks[4] = {0, 3, 8, 11};
+    for (i = 0; i < 3; ++i) {
+        for (k = 0; k < 3; ++k) {
+            R[i][k] = inverse ? T[4 * k + i] : T[4 * i + k];
+        }
+    }
+    for (i = 0; i < 3; ++i) {
+        const double acc = R[i][0] * T[3] + R[i][1] * T[7] + R[i][2] * T[11];
+        p[i] = inverse ? -acc : T[4 * i + 3];
+    }
+    tt = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    memset(Ft, 0, sizeof Ft);
+    for (i = 0; i < 15; ++i) {
+        Ft[i * 15 + i] = 1.0;
+    }
+    for (i = 0; i < 3; ++i) {
+        Ft[(3 + i) * 15 + 14] = p[i];
+        Ft[6 * 15 + 3 + i] = 2.0 * p[i];
+        Ft[7 * 15 + i] = p[i];
+        Ft[(11 + i) * 15 + 7] = -2.0 * p[i];
+        for (k = 0; k < 3; ++k) {
+            Ft[(11 + i) * 15 + k] = (i == k ? tt : 0.0) - 2.0 * p[i] * p[k];
+        }
+    }
+    Ft[6 * 15 + 14] = tt;
+    /* l x p -> l x p + l x t ; (p.p) l - 2 (l.p) p -> ... + 2 t x (l x p) */
+    Ft[8 * 15 + 1] = p[2];
+    Ft[8 * 15 + 2] = -p[1];
+    Ft[9 * 15 + 0] = -p[2];
+    Ft[9 * 15 + 2] = p[0];
+    Ft[10 * 15 + 0] = p[1];
+    Ft[10 * 15 + 1] = -p[0];
+    Ft[11 * 15 + 9] = -2.0 * p[2];
+    Ft[11 * 15 + 10] = 2.0 * p[1];
+    Ft[12 * 15 + 8] = 2.0 * p[2];
+    Ft[12 * 15 + 10] = -2.0 * p[0];
+    Ft[13 * 15 + 8] = -2.0 * p[1];
+    Ft[13 * 15 + 9] = 2.0 * p[0];
+    memset(out, 0, sizeof(double) * 225);
+    for (i = 0; i < 15; ++i) {
+        out[i * 15 + 6] = Ft[i * 15 + 6];
+        out[i * 15 + 7] = Ft[i * 15 + 7];
+        out[i * 15 + 14] = Ft[i * 15 + 14];
+        for (b = 0; b < 4; ++b) {
+            for (c = 0; c < 3; ++c) {
+                double acc = 0.0;
+                for (m = 0; m < 3; ++m) {
+                    acc += Ft[i * 15 + blocks[b] + m] * R[m][c];
+                }
+                out[i * 15 + blocks[b] + c] = acc;
+            }
+        }
+    }
+}
+
+/* c = a b for 15 x 15 row-major matrices */
+static void @P@_mul15(const double *a, const double *b, double *c)
+{
+    int i, j, k;
+    for (i = 0; i < 15; ++i) {
+        for (j = 0; j < 15; ++j) {
+            double acc = 0.0;
+            for (k = 0; k < 15; ++k) {
+                acc += a[i * 15 + k] * b[k * 15 + j];
+            }
+            c[i * 15 + j] = acc;
+        }
+    }
+}
+
+/* _Arrangement.matrices: P (3 x 15 x 9), the three-joint side with the pivot first, and
+   r (15 x 9), the two-joint side, for the scaled target T06s */
+static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[3 * 15 * 9], double r[15 * 9])
+{
+    double FW[225], tmp[225], Wmap[225], Gw[27 * 15];
+    const double *Ms[4];
+    const double *G3, *G2;
+    int i, k, m;
+    @P@_f_pose(T06s, !rd->w_inverse, FW);  /* W = T06^-1: its map, or T06's for W^-1 */
+    if (rd->pre) {  /* pre F(W) post (a null pointer: the identity) */
+        @P@_mul15(rd->pre, FW, tmp);
+    } else {
+        memcpy(tmp, FW, sizeof tmp);
+    }
+    if (rd->post) {
+        @P@_mul15(tmp, rd->post, Wmap);
+    } else {
+        memcpy(Wmap, tmp, sizeof Wmap);
+    }
+    for (i = 0; i <= rd->nw; ++i) {
+        Ms[i] = i == rd->w_index ? Wmap : rd->Ms + 225 * i;
+    }
+    @P@_side_tensor(Ms, rd->signs, rd->nw, rd->f, Gw);
+    G3 = rd->three_has_w ? Gw : rd->const_side;
+    G2 = rd->three_has_w ? rd->const_side : Gw;
+    for (i = 0; i < 3; ++i) {
+        for (k = 0; k < 15; ++k) {
+            for (m = 0; m < 9; ++m) {
+                P[(i * 15 + k) * 9 + m] = G3[rd->perm3[i * 9 + m] * 15 + k];
+            }
+        }
+    }
+    for (k = 0; k < 15; ++k) {
+        for (m = 0; m < 9; ++m) {
+            r[k * 9 + m] = G2[rd->perm2[m] * 15 + k];
+        }
+    }
+}
+
+/* kernels.general_6r.pencil: A x^2 + B x + C (abc, 3 x 12 x 12) with x = tan(phi/2),
+   th_pivot = phi + gamma; np_ (3 x 14 x 9) the three-joint side with the two-joint side's
+   constant moved over; pinv (8 x 14) the pseudo-inverse of the 14 x 8 matrix Q of the two-joint
+   side. Returns sigma_min / sigma_max of Q. */
+static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], double abc[3 * 144],
+                         double np_[3 * 14 * 9], double pinv[8 * 14])
+{
+    static const double G[3][3] = {{1.0, 0.0, -1.0}, {0.0, 2.0, 0.0}, {1.0, 0.0, 1.0}};
+    double Q[14 * 8], work[14 * 8], U[14 * 8], sv[8], V[64], N[14 * 6], sig[3][6][9], ratio;
+    int i, j, k, m, e, i3;
+    for (k = 0; k < 14; ++k) {
+        for (j = 0; j < 8; ++j) {
+            Q[k * 8 + j] = r[k * 9 + j];
+        }
+    }
+    /* Q = U S V^T: the pseudo-inverse (singular values below 1e-14 s_max dropped) */
+    memcpy(work, Q, sizeof work);
+    @P@_svd(14, 8, work, sv, U, V);
+    ratio = sv[0] > 0.0 ? sv[7] / sv[0] : 0.0;
+    for (i = 0; i < 8; ++i) {
+        for (k = 0; k < 14; ++k) {
+            double acc = 0.0;
+            for (j = 0; j < 8; ++j) {
+                if (sv[j] > 1e-14 * sv[0]) {
+                    acc += V[i * 8 + j] * U[k * 8 + j] / sv[j];
+                }
+            }
+            pinv[i * 14 + k] = acc;
+        }
+    }
+    for (i3 = 0; i3 < 3; ++i3) {
+        for (k = 0; k < 14; ++k) {
+            for (m = 0; m < 9; ++m) {
+                np_[(i3 * 14 + k) * 9 + m] = P[(i3 * 15 + k) * 9 + m];
+            }
+        }
+    }
+    for (k = 0; k < 14; ++k) {
+        np_[(2 * 14 + k) * 9 + 8] -= r[k * 9 + 8];
+    }
+    /* Sigma_i3 = N^T P'_i3 with N the left null space of Q: theta 1, 2 eliminated */
+    @P@_left_null_space(Q, N);
+    for (i3 = 0; i3 < 3; ++i3) {
+        for (e = 0; e < 6; ++e) {
+            for (m = 0; m < 9; ++m) {
+                double s = 0.0;
+                for (k = 0; k < 14; ++k) {
+                    s += N[k * 6 + e] * np_[(i3 * 14 + k) * 9 + m];
+                }
+                sig[i3][e][m] = s;
+            }
+        }
+    }
+    /* th = phi + gamma, x = tan(phi/2), and the half-angle monomials of the other two joints:
+       6 equations and the same times x_b, in the 12 monomials x_b^i x_c^j (i <= 3, j <= 2) */
+    memset(abc, 0, sizeof(double) * 3 * 144);
+    for (e = 0; e < 6; ++e) {
+        for (m = 0; m < 9; ++m) {
+            const double sc = sig[0][e][m] * @GC@ + sig[1][e][m] * @GS@;
+            const double ss = -sig[0][e][m] * @GS@ + sig[1][e][m] * @GC@;
+            const double s1 = sig[2][e][m];
+            const double c2 = s1 - sc, c1 = 2.0 * ss, c0 = s1 + sc;
+            const int i4 = m / 3, i5 = m % 3;
+            int j4, j5;
+            if (c0 == 0.0 && c1 == 0.0 && c2 == 0.0) {
+                continue;
+            }
+            for (j4 = 0; j4 < 3; ++j4) {
+                const double g4 = G[i4][j4];
+                if (g4 == 0.0) {
+                    continue;
+                }
+                for (j5 = 0; j5 < 3; ++j5) {
+                    const double g = g4 * G[i5][j5];
+                    const int col = j4 * 3 + j5;
+                    if (g == 0.0) {
+                        continue;
+                    }
+                    abc[e * 12 + col] += g * c2;
+                    abc[144 + e * 12 + col] += g * c1;
+                    abc[288 + e * 12 + col] += g * c0;
+                    abc[(6 + e) * 12 + col + 3] += g * c2;
+                    abc[144 + (6 + e) * 12 + col + 3] += g * c1;
+                    abc[288 + (6 + e) * 12 + col + 3] += g * c0;
+                }
+            }
+        }
+    }
+    return ratio;
+}
+
+/* sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c */
+static double @P@_regularity(const double *a, const double *b, const double *c, double x)
+{
+    double L[144];
+    int i;
+    for (i = 0; i < 144; ++i) {
+        L[i] = a[i] * x * x + b[i] * x + c[i];
+    }
+    return @P@_sv_ratio(12, 12, L);
+}
+
+/* kernels.general_6r.companion: M = [[0, I], [-A^-1 C, -A^-1 B]] (24 x 24) when A is regular
+   (LU with partial pivoting); returns sigma_min / sigma_max of A */
+static double @P@_companion(const double abc[3 * 144], double M[576])
+{
+    double lu[144], rhs[24][12], cond;
+    int piv[12], i, j;
+    memcpy(lu, abc, sizeof lu);
+    {
+        double Acopy[144];
+        memcpy(Acopy, abc, sizeof Acopy);
+        cond = @P@_sv_ratio(12, 12, Acopy);
+    }
+    if (cond <= 1e-10) {
+        return cond;
+    }
+    @P@_lu(12, lu, piv);
+    for (j = 0; j < 12; ++j) {
+        for (i = 0; i < 12; ++i) {
+            rhs[j][i] = abc[288 + i * 12 + j];       /* column j of C */
+            rhs[12 + j][i] = abc[144 + i * 12 + j];  /* column j of B */
+        }
+        @P@_lu_solve(12, lu, piv, rhs[j]);
+        @P@_lu_solve(12, lu, piv, rhs[12 + j]);
+    }
+    memset(M, 0, sizeof(double) * 576);
+    for (i = 0; i < 12; ++i) {
+        M[i * 24 + 12 + i] = 1.0;
+        for (j = 0; j < 24; ++j) {
+            M[(12 + i) * 24 + j] = -rhs[j][i];
+        }
+    }
+    return cond;
+}
+
+/* the null vector v (12) of the (nearly) singular a y^2 + b y + c at a real eigenvalue y:
+   inverse iteration (two LU solves); for |y| > 1 the matrix divided by y^2 */
+static void @P@_null_vector(const double *a, const double *b, const double *c, double y, double v[12])
+{
+    double L[144], nrm;
+    int piv[12], i, it;
+    const int big = fabs(y) > 1.0;
+    const double y1 = big ? 1.0 / y : y;
+    for (i = 0; i < 144; ++i) {
+        L[i] = big ? a[i] + b[i] * y1 + c[i] * y1 * y1 : a[i] * y * y + b[i] * y + c[i];
+    }
+    @P@_lu(12, L, piv);
+    for (i = 0; i < 12; ++i) {
+        v[i] = 1.0 / (1.0 + 0.1 * i);
+    }
+    for (it = 0; it < 2; ++it) {
+        @P@_lu_solve(12, L, piv, v);
+        nrm = 0.0;
+        for (i = 0; i < 12; ++i) {
+            nrm += v[i] * v[i];
+        }
+        nrm = nrm > 0.0 && nrm < HUGE_VAL ? 1.0 / sqrt(nrm) : 0.0;
+        for (i = 0; i < 12; ++i) {
+            v[i] *= nrm;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- kinematics of Z1 X1 ... Z6 */
+
+/* kernels.general_6r.fk_pose: the pose of Z1 X1 ... X5 Z6 at the rotation angles th (scaled) */
+static void @P@_fk_pose(const double th[6], double T[16])
+{
+    int i, r;
+    memset(T, 0, sizeof(double) * 16);
+    T[0] = T[5] = T[10] = T[15] = 1.0;
+    for (i = 0; i < 6; ++i) {
+        const double c = cos(th[i]), s = sin(th[i]);
+        for (r = 0; r < 3; ++r) {  /* T <- T Rz(th) Tz(d) */
+            const double x = T[4 * r], y = T[4 * r + 1];
+            T[4 * r] = c * x + s * y;
+            T[4 * r + 1] = -s * x + c * y;
+            T[4 * r + 3] += @P@_g6_d[i] * T[4 * r + 2];
+        }
+        if (i < 5) {
+            for (r = 0; r < 3; ++r) {  /* T <- T Tx(a) Rx(alpha) */
+                const double y = T[4 * r + 1], z = T[4 * r + 2];
+                T[4 * r + 3] += @P@_g6_a[i] * T[4 * r];
+                T[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
+                T[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
+            }
+        }
+    }
+}
+
+/* kernels.general_6r.jacobian: geometric Jacobian (rows v; w, space frame, at T's origin) */
+static void @P@_jacobian6(const double th[6], const double T[16], double J[36])
+{
+    double G[16];
+    int i, r;
+    memset(G, 0, sizeof G);
+    G[0] = G[5] = G[10] = G[15] = 1.0;
+    for (i = 0; i < 6; ++i) {
+        const double z0 = G[2], z1 = G[6], z2 = G[10];
+        const double rx = T[3] - G[3], ry = T[7] - G[7], rz = T[11] - G[11];
+        const double c = cos(th[i]), s = sin(th[i]);
+        J[0 * 6 + i] = z1 * rz - z2 * ry;
+        J[1 * 6 + i] = z2 * rx - z0 * rz;
+        J[2 * 6 + i] = z0 * ry - z1 * rx;
+        J[3 * 6 + i] = z0;
+        J[4 * 6 + i] = z1;
+        J[5 * 6 + i] = z2;
+        for (r = 0; r < 3; ++r) {
+            const double x = G[4 * r], y = G[4 * r + 1];
+            G[4 * r] = c * x + s * y;
+            G[4 * r + 1] = -s * x + c * y;
+            G[4 * r + 3] += @P@_g6_d[i] * G[4 * r + 2];
+        }
+        if (i < 5) {
+            for (r = 0; r < 3; ++r) {
+                const double y = G[4 * r + 1], z = G[4 * r + 2];
+                G[4 * r + 3] += @P@_g6_a[i] * G[4 * r];
+                G[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
+                G[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
+            }
+        }
+    }
+}
+
+/* e = (p* - p, w) with exp([w]) = R* R^T; returns |e| */
+static double @P@_pose_error(const double Tt[16], const double T[16], double e[6])
+{
+    double Re[3][3], tr, cth, wx, wy, wz, sth, th, fac;
+    int i, j, k;
+    for (i = 0; i < 3; ++i) {
+        e[i] = Tt[4 * i + 3] - T[4 * i + 3];
+    }
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < 3; ++j) {
+            double s = 0.0;
+            for (k = 0; k < 3; ++k) {
+                s += Tt[4 * i + k] * T[4 * j + k];
+            }
+            Re[i][j] = s;
+        }
+    }
+    tr = Re[0][0] + Re[1][1] + Re[2][2];
+    cth = 0.5 * (tr - 1.0);
+    cth = cth > 1.0 ? 1.0 : (cth < -1.0 ? -1.0 : cth);
+    wx = Re[2][1] - Re[1][2];
+    wy = Re[0][2] - Re[2][0];
+    wz = Re[1][0] - Re[0][1];
+    sth = 0.5 * sqrt(wx * wx + wy * wy + wz * wz);
+    th = atan2(sth, cth);
+    fac = sth >= 1e-12 ? 0.5 * th / sth : 0.5;
+    e[3] = fac * wx;
+    e[4] = fac * wy;
+    e[5] = fac * wz;
+    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
+}
+
+/* kernels.general_6r.polish: Newton-Raphson on the pose error; the step is the least-squares
+   solution J dq = e (SVD, singular values below 1e-12 s_max dropped, as numpy's lstsq with
+   rcond = 1e-12); a step that does not lower the error is not taken. Returns the error. */
+static double @P@_polish(const double T06s[16], double th[6], int iters)
+{
+    double T[16], e[6], J[36], U[36], V[36], sv[6], trial[6], err, nw;
+    int it, i, j;
+    @P@_fk_pose(th, T);
+    err = @P@_pose_error(T06s, T, e);
+    for (it = 0; it < iters; ++it) {
+        if (err < 1e-15) {
+            break;
+        }
+        @P@_jacobian6(th, T, J);
+        memcpy(U, J, sizeof U);
+        if (@P@_well_conditioned(6, 6, U, 1e-10)) {
+            /* well conditioned: the least-squares step is the solution of J dq = e (LU) */
+            int piv[6];
+            double dq[6];
+            memcpy(dq, e, sizeof dq);
+            @P@_lu(6, J, piv);
+            @P@_lu_solve(6, J, piv, dq);
+            for (i = 0; i < 6; ++i) {
+                trial[i] = th[i] + dq[i];
+            }
+        } else {
+            @P@_svd(6, 6, J, sv, U, V);
+            for (i = 0; i < 6; ++i) {
+                trial[i] = th[i];
+            }
+            for (j = 0; j < 6; ++j) {
+                double ue = 0.0;
+                if (!(sv[j] > 1e-12 * sv[0])) {
+                    continue;
+                }
+                for (i = 0; i < 6; ++i) {
+                    ue += U[i * 6 + j] * e[i];
+                }
+                ue /= sv[j];
+                for (i = 0; i < 6; ++i) {
+                    trial[i] += V[i * 6 + j] * ue;
+                }
+            }
+        }
+        @P@_fk_pose(trial, T);
+        nw = @P@_pose_error(T06s, T, e);
+        if (!(nw < err)) {
+            @P@_fk_pose(th, T);
+            @P@_pose_error(T06s, T, e);
+            break;
+        }
+        err = nw;
+        for (i = 0; i < 6; ++i) {
+            th[i] = trial[i];
+        }
+    }
+    return err;
+}
+
+/* kernels.general_6r.fill_joint: th_j from the other five,
+   Rz(th_j) = (Z1 X1 ... X_{j-1})^-1 T06 (X_j Z_{j+1} ... Z6)^-1 Tz(-d_j) */
+static void @P@_fill_joint(const double T06s[16], double th[6], int j)
+{
+    double A[16], B[16], R1[3][3], r00 = 0.0, r10 = 0.0;
+    int i, r, k, m;
+    memset(A, 0, sizeof A);
+    memset(B, 0, sizeof B);
+    A[0] = A[5] = A[10] = A[15] = 1.0;
+    B[0] = B[5] = B[10] = B[15] = 1.0;
+    for (i = 0; i < 6; ++i) {
+        const double c = cos(th[i]), s = sin(th[i]);
+        double *M = i > j ? B : A;
+        if (i != j) {
+            for (r = 0; r < 3; ++r) {
+                const double x = M[4 * r], y = M[4 * r + 1];
+                M[4 * r] = c * x + s * y;
+                M[4 * r + 1] = -s * x + c * y;
+                M[4 * r + 3] += @P@_g6_d[i] * M[4 * r + 2];
+            }
+        }
+        if (i < 5) {
+            M = i >= j ? B : A;
+            for (r = 0; r < 3; ++r) {
+                const double y = M[4 * r + 1], z = M[4 * r + 2];
+                M[4 * r + 3] += @P@_g6_a[i] * M[4 * r];
+                M[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
+                M[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
+            }
+        }
+    }
+    for (i = 0; i < 3; ++i) {  /* R1 = A_R^T R06 */
+        for (k = 0; k < 3; ++k) {
+            double acc = 0.0;
+            for (m = 0; m < 3; ++m) {
+                acc += A[4 * m + i] * T06s[4 * m + k];
+            }
+            R1[i][k] = acc;
+        }
+    }
+    for (m = 0; m < 3; ++m) {  /* first column of R1 B_R^T */
+        r00 += R1[0][m] * B[m];
+        r10 += R1[1][m] * B[m];
+    }
+    th[j] = atan2(r10, r00);
+}
+
+/* kernels.general_6r._candidate: th (6) from the pivot's phi and the monomial vector
+   V (4 x 3) ~ x_b^i x_c^j, then polished; returns the pose error */
+static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const double V[4][3], double phi,
+                            const double np_[3 * 14 * 9], const double pinv[8 * 14], double th[6])
+{
+    double mbc[9], rhs[14], best = -1.0, thb = 0.0, thc = 0.0, cp, sp, cb, sb, cc, scc, m2 = 0.0, m5 = 0.0,
+           m6 = 0.0, m7 = 0.0, tb[3], tc[3];
+    const double thp = phi + @GAMMA@;
+    int i, j, r, m;
+    /* theta_b, theta_c as 2 atan2 of the ratio of neighbouring monomials (the largest pair) */
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < 3; ++j) {
+            const double w = V[i][j] * V[i][j] + V[i + 1][j] * V[i + 1][j];
+            if (w > best) {
+                best = w;
+                thb = 2.0 * atan2(V[i + 1][j], V[i][j]);
+            }
+        }
+    }
+    best = -1.0;
+    for (i = 0; i < 4; ++i) {
+        for (j = 0; j < 2; ++j) {
+            const double w = V[i][j] * V[i][j] + V[i][j + 1] * V[i][j + 1];
+            if (w > best) {
+                best = w;
+                thc = 2.0 * atan2(V[i][j + 1], V[i][j]);
+            }
+        }
+    }
+    cb = cos(thb);
+    sb = sin(thb);
+    cc = cos(thc);
+    scc = sin(thc);
+    tb[0] = cb;
+    tb[1] = sb;
+    tb[2] = 1.0;
+    tc[0] = cc;
+    tc[1] = scc;
+    tc[2] = 1.0;
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < 3; ++j) {
+            mbc[i * 3 + j] = tb[i] * tc[j];
+        }
+    }
+    /* the two-joint side's monomials m12 = Q^+ P(th_p) m_bc (least squares, 14 equations) */
+    cp = cos(thp);
+    sp = sin(thp);
+    for (r = 0; r < 14; ++r) {
+        double acc = 0.0;
+        for (m = 0; m < 9; ++m) {
+            acc += (np_[(0 * 14 + r) * 9 + m] * cp + np_[(1 * 14 + r) * 9 + m] * sp + np_[(2 * 14 + r) * 9 + m])
+                   * mbc[m];
+        }
+        rhs[r] = acc;
+    }
+    for (r = 0; r < 14; ++r) {
+        m2 += pinv[2 * 14 + r] * rhs[r];
+        m5 += pinv[5 * 14 + r] * rhs[r];
+        m6 += pinv[6 * 14 + r] * rhs[r];
+        m7 += pinv[7 * 14 + r] * rhs[r];
+    }
+    th[rd->roles[0]] = thp;
+    th[rd->roles[1]] = thb;
+    th[rd->roles[2]] = thc;
+    th[rd->roles[3]] = atan2(m5, m2);
+    th[rd->roles[4]] = atan2(m7, m6);
+    th[rd->roles[5]] = 0.0;
+    /* the eliminated joint from the other five, then Newton on the pose */
+    @P@_fill_joint(T06s, th, rd->roles[5]);
+    return @P@_polish(T06s, th, 30);
+}
+
+/* GeneralSixR._Elimination.candidates: the polished rotation angles (rows of out, 24 x 6) of
+   the solutions with one reading; *ratio = the conditioning figure min(Q's, A's, the pencil's
+   sigma_min / sigma_max). Returns how many. */
+static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio)
+{
+    double P[3 * 15 * 9], r[15 * 9], abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14], M[576];
+    double wr[24], wi[24], condA, reg, rq;
+    int k, count = 0, rotated = 0, i;
+    /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
+    @P@_matrices(rd, T06s, P, r);
+    rq = @P@_pencil(P, r, abc, np_, pinv);
+    /* 4: the eigenproblem, the companion matrix when A is regular */
+    condA = @P@_companion(abc, M);
+    reg = @P@_regularity(abc, abc + 144, abc + 288, @X0@);
+    if (!(condA > 1e-10)) {
+        /* A near singular (a root near the half-angle's point at infinity): robokit's Python
+           takes the generalised eigenproblem (QZ); the C turns the variable instead,
+           x = (y + t) / (1 - t y) with t = tan(delta / 2), which moves that root to y = -1/t and
+           gives the regular leading matrix A' = A - t B + t^2 C (the same roots, as angles) */
+        const double t = @ROT_T@;
+        for (i = 0; i < 144; ++i) {  /* in place: only the turned polynomial is used from here on */
+            const double a = abc[i], b = abc[144 + i], c = abc[288 + i];
+            abc[i] = a - t * b + t * t * c;
+            abc[144 + i] = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c;
+            abc[288 + i] = t * t * a + t * b + c;
+        }
+        rotated = 1;
+        if (!(@P@_companion(abc, M) > 1e-10)) {
+            *ratio = 0.0;
+            return 0;  /* singular in both variables: a continuum, no finite solution set */
+        }
+    }
+    *ratio = rq < condA ? rq : condA;
+    *ratio = reg < *ratio ? reg : *ratio;
+    if (@P@_eigenvalues(24, M, wr, wi) != 0) {
+        return 0;
+    }
+    /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
+    for (k = 0; k < 24; ++k) {
+        const double lam = wr[k];
+        const double imag = 2.0 * fabs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k]);
+        double v[12], V[4][3], th[6], phi, err;
+        if (imag > @IMAG_TOL@) {
+            continue;
+        }
+        phi = rotated ? 2.0 * atan2(lam + @ROT_T@, 1.0 - @ROT_T@ * lam) : 2.0 * atan(lam);
+        @P@_null_vector(abc, abc + 144, abc + 288, lam, v);
+        for (i = 0; i < 12; ++i) {
+            V[i / 3][i % 3] = v[i];
+        }
+        err = @P@_candidate(rd, T06s, (const double (*)[3])V, phi, np_, pinv, th);
+        if (err < @CONVERGED@) {
+            for (i = 0; i < 6; ++i) {
+                out[count][i] = th[i];
+            }
+            ++count;
+        }
+    }
+    return count;
+}
+
+/* kernels.general_6r.distinct: q = th - th0 wrapped to [-pi, pi), rows closer than the
+   tolerance in every joint (modulo 2 pi) merged; returns how many */
+static int @P@_distinct(const double th[][6], int n, double out[][6])
+{
+    int m = 0, r, o, i;
+    for (r = 0; r < n; ++r) {
+        double q[6];
+        int dup = 0;
+        for (i = 0; i < 6; ++i) {
+            const double v = th[r][i] - @P@_g6_th0[i];
+            q[i] = v - @TWO_PI@ * floor((v + @PI@) / @TWO_PI@);
+        }
+        for (o = 0; o < m && !dup; ++o) {
+            int close = 1;
+            for (i = 0; i < 6 && close; ++i) {
+                double dv = q[i] - out[o][i];
+                dv = dv - @TWO_PI@ * floor((dv + @PI@) / @TWO_PI@);
+                close = fabs(dv) < @SAME@;
+            }
+            dup = close;
+        }
+        if (!dup) {
+            memcpy(out[m], q, sizeof q);
+            ++m;
+        }
+    }
+    return m;
+}
+
+/* the order of GeneralSixR.solve: by q3, then q1, q2, q4, q5, q6 (a stable insertion sort) */
+static int @P@_before(const double a[6], const double b[6])
+{
+    static const int keys[6] = {2, 0, 1, 3, 4, 5};
+    int k;
+    for (k = 0; k < 6; ++k) {
+        if (a[keys[k]] < b[keys[k]]) {
+            return 1;
+        }
+        if (a[keys[k]] > b[keys[k]]) {
+            return 0;
+        }
+    }
+    return 0;
+}
+
+/* GeneralSixR.solve for the scaled target T06s: rows (q, label index, degenerate); returns how many */
+static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], int deg[])
+{
+    double th[@NREAD@ * 24][6], q[@NREAD@ * 24][6], ratio, extra_ratio;
+    int n = 0, m, a, i, j;
+    for (i = 0; i < 12; ++i) {
+        if (!(fabs(T06s[i]) < HUGE_VAL)) {
+            return 0;  /* not a pose (inf or NaN) */
+        }
+    }
+    n = @P@_candidates(&@P@_g6_readings[0], T06s, (double (*)[6])th, &ratio);
+    if (ratio < @POOR@) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
+        for (a = 1; a < @NREAD@; ++a) {
+            n += @P@_candidates(&@P@_g6_readings[a], T06s, (double (*)[6])(th + n), &extra_ratio);
+        }
+    }
+    m = @P@_distinct((const double (*)[6])th, n, q);
+    for (i = 1; i < m; ++i) {  /* ordered by q3, then q1, q2, ... */
+        double tmp[6];
+        memcpy(tmp, q[i], sizeof tmp);
+        j = i - 1;
+        while (j >= 0 && @P@_before(tmp, q[j])) {
+            memcpy(q[j + 1], q[j], sizeof tmp);
+            --j;
+        }
+        memcpy(q[j + 1], tmp, sizeof tmp);
+    }
+    if (m > @MAXSOL@) {
+        m = @MAXSOL@;  /* more than the 16 of a general arm: a near-continuum (see the docs) */
+    }
+    for (i = 0; i < m; ++i) {
+        int singular = 0;
+        if (ratio < @POOR@) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
+            double t6[6], T[16], J[36];
+            for (j = 0; j < 6; ++j) {
+                t6[j] = q[i][j] + @P@_g6_th0[j];
+            }
+            @P@_fk_pose(t6, T);
+            @P@_jacobian6(t6, T, J);
+            singular = @P@_sv_ratio(6, 6, J) < 1e-8;
+        }
+        memcpy(rows[i], q[i], sizeof q[i]);
+        lab[i] = ((m - 1) * m / 2 + i) * 2 + singular;  /* "solution i+1 of m" (", singular") */
+        deg[i] = singular;
+    }
+    return m;
+}
+"""

@@ -1,0 +1,217 @@
+r"""C for the general 6R closed form (``NAME_ik`` of an arm with no special structure).
+
+:func:`robokit.ik_analytic` solves any 6R arm without a spherical wrist or three parallel axes
+(an offset wrist such as the Kinova Jaco's) by the Raghavan–Roth elimination and the
+Manocha–Canny eigenproblem (:mod:`robokit.ik.general_6r`): up to 16 solutions. The C written
+here follows :meth:`robokit.ik.general_6r.GeneralSixR.solve` step for step, one C function
+per Python step (the names are the Python ones):
+
+1. the loop equation's 14 quantities on both sides (``matrices``: the side without the target
+   is a per-arm ``static const`` table, the side with it is built per pose from the per-arm
+   15 × 15 maps and the target's map ``f_pose``);
+2. θ of two joints eliminated with the left null space of the 14 × 8 matrix Q (Householder QR)
+   and its pseudo-inverse (one-sided Jacobi SVD), giving the 12 × 12 quadratic matrix
+   polynomial ``A x² + B x + C`` (``pencil``);
+3. its eigenvalues as those of the 24 × 24 companion matrix ``[[0, I], [−A⁻¹C, −A⁻¹B]]``
+   (LU with partial pivoting, balancing, Hessenberg reduction, Francis double-shift QR);
+   where A is near singular (σ_min/σ_max ≤ 1e-10) Python takes the generalised eigenproblem
+   (QZ) and the C turns the half-angle variable by a fixed angle instead
+   (``x = (y + t)/(1 − t y)``), which gives the same roots with a regular leading matrix —
+   simpler than a QZ in C and as robust, since only the roots (then polished) are used;
+4. per real eigenvalue the null vector of ``A x² + B x + C`` (inverse iteration), the
+   back-substitution, the eliminated joint, Newton polish on the pose (geometric Jacobian,
+   SVD least squares as numpy's ``lstsq``), convergence test;
+5. the next three readings of the loop when the pose is badly conditioned for the best one,
+   duplicates merged, the solutions ordered by q₃ then q₁, q₂, q₄, q₅, q₆ (as Python, so the
+   order does not depend on the order in which the eigenvalues are found), the "singular"
+   flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``).
+
+The per-arm numbers come from ``GeneralSixR.export_constants()`` (the same objects the
+Python solver uses): the scaled DH chain, the tolerances, the four best readings' tables.
+With ``--float32`` no IK is generated (``NAME_HAS_IK 0``): the elimination squares the
+conditioning of the pose (σ_min/σ_max of Q down to 1e-6 on ordinary poses), beyond what
+single precision resolves.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from robokit.codegen._c import CWriter, lit, safe_comment
+from robokit.codegen._g6r_routines import ROUTINES
+from robokit.codegen._solver_constants import IKConstants
+
+__all__ = ["MAX_SOLUTIONS_6R", "FLOAT32_NOTE", "general_6r_labels", "emit_general_6r"]
+
+#: Most solutions of a general 6R arm (the degree of its characteristic polynomial).
+MAX_SOLUTIONS_6R = 16
+
+#: Why ``--float32`` has no general 6R IK (written into the header).
+FLOAT32_NOTE = ("robokit has a closed form (general 6R) but its C is generated in double only: the elimination's "
+                "14 x 8 and 12 x 12 matrices reach condition numbers of 1e6 on ordinary poses, beyond float; "
+                "generate without --float32 or use robokit.ik_analytic")
+
+_ROT_DELTA = 1.1  # rad: the fixed turn of the half-angle variable used when A is near singular
+
+
+def general_6r_labels() -> list[str]:
+    """The label table of the general 6R C: index ``((m − 1) m / 2 + k − 1) · 2 + singular``.
+
+    Returns
+    -------
+    list of str
+        ``"solution k of m"`` and ``"solution k of m, singular"`` for 1 ≤ k ≤ m ≤ 16.
+
+    Examples
+    --------
+    >>> general_6r_labels()[:3]
+    ['solution 1 of 1', 'solution 1 of 1, singular', 'solution 1 of 2']
+    """
+    out = []
+    for m in range(1, MAX_SOLUTIONS_6R + 1):
+        for k in range(1, m + 1):
+            out.append(f"solution {k} of {m}")
+            out.append(f"solution {k} of {m}, singular")
+    return out
+
+
+def _table(name: str, values: Any, per_line: int = 15) -> str:
+    flat = [float(x) for x in np.asarray(values, dtype=float).reshape(-1)]
+    body = ",\n    ".join(", ".join(lit(x) for x in flat[i:i + per_line]) for i in range(0, len(flat), per_line))
+    return f"static const double {name}[{len(flat)}] = {{\n    {body}\n}};"
+
+
+def _ints(values: Any) -> str:
+    return "{" + ", ".join(str(int(x)) for x in np.asarray(values).reshape(-1)) + "}"
+
+
+def tables(k: IKConstants, P: str) -> str:
+    """The per-arm ``static const`` tables and the readings (C text)."""
+    sv = k.solver
+    al = [float(x) for x in sv["alpha"]]
+    out = [f"/* general 6R: the canonical chain Z1 X1 ... Z6 with lengths divided by the scale {lit(sv['scale'])} m */",
+           _table(f"{P}_g6_a", sv["a"]), _table(f"{P}_g6_d", sv["d"]),
+           _table(f"{P}_g6_ca", [math.cos(x) for x in al]), _table(f"{P}_g6_sa", [math.sin(x) for x in al]),
+           _table(f"{P}_g6_th0", sv["th0"]), "",
+           "/* one reading of the loop equation (GeneralSixR's _Arrangement): the side without the target",
+           "   as its constant tensor, the side with it as its maps (slot w_index: pre F(W) post per pose) */",
+           f"typedef struct {{\n    int roles[6];  /* joints: pivot (eigenvalue), b, c (eigenvector), d, e (14 x 8 "
+           f"system), eliminated */\n"
+           f"    int three_has_w;  /* the target is on the three-joint side */\n"
+           f"    int nw;  /* joints on the target's side */\n"
+           f"    int w_index, w_inverse;\n"
+           f"    const double *const_side;  /* (3^(5 - nw) x 15) */\n"
+           f"    const double *Ms;  /* (nw + 1) x 15 x 15 */\n"
+           f"    const double *pre, *post;  /* 15 x 15, or a null pointer for the identity */\n"
+           f"    const double *signs, *f;\n"
+           f"    int perm3[27], perm2[9];  /* the rows of P and r in the two sides' tensors */\n"
+           f"}} {P}_reading;", ""]
+    inits = []
+    for i, rd in enumerate(sv["arrangements"]):
+        Ms = np.array(rd["Ms"], dtype=float)
+        Ms[rd["w_index"]] = 0.0  # replaced per pose
+        nw = len(rd["signs"])
+        pre_id = bool(np.array_equal(rd["pre"], np.eye(15)))  # the identity: a null pointer, no product
+        post_id = bool(np.array_equal(rd["post"], np.eye(15)))
+        out += [f"/* reading {i}: pivot joint {int(rd['roles'][0]) + 1}, eliminated joint {int(rd['roles'][5]) + 1} */",
+                _table(f"{P}_g6_r{i}_const", rd["const"]), _table(f"{P}_g6_r{i}_Ms", Ms),
+                "" if pre_id else _table(f"{P}_g6_r{i}_pre", rd["pre"]),
+                "" if post_id else _table(f"{P}_g6_r{i}_post", rd["post"]),
+                _table(f"{P}_g6_r{i}_signs", rd["signs"]), _table(f"{P}_g6_r{i}_f", rd["f"]), ""]
+        inits.append(f"    {{{_ints(rd['roles'])}, {int(bool(rd['three_has_w']))}, {nw}, {int(rd['w_index'])}, "
+                     f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
+                     f"{'0' if pre_id else f'{P}_g6_r{i}_pre'}, {'0' if post_id else f'{P}_g6_r{i}_post'}, "
+                     f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, {_ints(rd['perm2'])}}}")
+    out.append(f"static const {P}_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
+    return "\n".join(out) + "\n"
+
+
+def routines(k: IKConstants, P: str) -> str:
+    """The numerical routines with the prefix and the solver's constants filled in."""
+    sv = k.solver
+    t = math.tan(0.5 * _ROT_DELTA)
+    subs = {"@P@": P, "@SCALE@": lit(float(sv["scale"])), "@GC@": lit(math.cos(sv["gamma"])),
+            "@GS@": lit(math.sin(sv["gamma"])), "@GAMMA@": lit(float(sv["gamma"])), "@X0@": lit(float(sv["x0"])),
+            "@ROT_T@": lit(t), "@IMAG_TOL@": lit(float(sv["imag_tol"])), "@CONVERGED@": lit(float(sv["converged"])),
+            "@SAME@": lit(float(sv["same"])), "@POOR@": lit(float(sv["poor"])), "@NREAD@": str(len(sv["arrangements"])),
+            "@MAXSOL@": str(MAX_SOLUTIONS_6R), "@TWO_PI@": lit(2 * math.pi), "@PI@": lit(math.pi)}
+    text = ROUTINES
+    for key, val in subs.items():
+        text = text.replace(key, val)
+    assert "@" not in text, "an unfilled token in the general 6R routines"
+    return text
+
+
+def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
+    """The body of ``NAME_ik_ex`` for a general 6R arm: the target, the solve, the flips.
+
+    Parameters
+    ----------
+    e : the IK emitter (:mod:`robokit.codegen.ik`), with ``k`` (IKConstants) and ``P``.
+    T06_code : str
+        C lines computing the canonical target's temporaries.
+    T06 : Pose
+        The canonical target's entries as C expressions.
+
+    Returns
+    -------
+    str
+        C statements (inside ``NAME_ik_ex``) filling ``rows``, ``lab``, ``deg``, ``nr``.
+    """
+    k, P = e.k, e.P
+    scale = float(k.solver["scale"])
+    w = CWriter()
+    R, p = T06.R, T06.p
+    for i in range(3):
+        for j in range(3):
+            v = R[i][j]
+            w.line(f"T06s[{4 * i + j}] = {lit(v) if isinstance(v, float) else v};")
+        v = p[i]
+        w.line(f"T06s[{4 * i + 3}] = ({lit(v) if isinstance(v, float) else v}) / {lit(scale)};")
+    w.line("T06s[12] = T06s[13] = T06s[14] = 0.0;")
+    w.line("T06s[15] = 1.0;")
+    flips = ""
+    if k.flip is not None and any(k.flip):
+        neg = [j for j, f in enumerate(k.flip) if f]
+        flips = ("    /* flipped joints (theta = offset - q) were solved as q' = -q */\n"
+                 "    for (ir = 0; ir < nr; ++ir) {\n"
+                 + "".join(f"        rows[ir][{j}] = -rows[ir][{j}];\n" for j in neg) + "    }\n")
+    return f"""    {{
+    double T06s[16];
+{T06_code}
+    /* the target of Z1 X1 ... Z6, lengths in units of the arm's scale */
+{w.text()}
+    nr = {P}_general_6r(T06s, rows, lab, deg);
+    }}
+{flips}"""
+
+
+def declare(P: str) -> list[str]:
+    """The header lines of the general 6R ``NAME_ik``."""
+    return [
+        f"/* Closed-form inverse kinematics (general 6R: Raghavan-Roth elimination, Manocha-Canny eigenproblem):",
+        f"   every solution for the tool pose T (up to {MAX_SOLUTIONS_6R}), one row of {P}_N values each, {P}_ik",
+        "   returning how many (0: out of reach). The same solutions, in the same order (by q3, then q1, q2,",
+        "   q4, q5, q6), with the same labels as robokit's ik_analytic. Revolute angles in (-pi, pi] (or",
+        "   shifted by 2 pi into wider limits). Cost: tens of microseconds (a 24 x 24 eigenproblem). */",
+        f"int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N]);",
+        "",
+        f"/* The same with, per solution k, info[4k..4k+3] = (label index into {P}_ik_label_names, repeat",
+        "   number (always 1 here), within joint limits (0/1), singular Jacobian at a near-singular pose",
+        "   (0/1)); info may be a null pointer. wrist_ref is unused (no free joint in the general case). */",
+        f"int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
+        f"int info[4 * {P}_MAX_SOLUTIONS]);",
+        "",
+        f"#define {P}_IK_LABEL_COUNT {len(general_6r_labels())}",
+        f"extern const char *const {P}_ik_label_names[{P}_IK_LABEL_COUNT];",
+        f"extern const int {P}_ik_label_count;",
+        f"extern const int {P}_ik_max_solutions;",
+        "",
+    ]
+
+
+def note(k: IKConstants) -> str:
+    """The ``NAME_HAS_IK`` comment."""
+    return "closed form: " + safe_comment(k.reason) + " (C: Raghavan-Roth / Manocha-Canny, up to 16 solutions)"
