@@ -689,12 +689,10 @@ def _write(n: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: 
 
 
 @njit
-def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
-    ci, cf, C, pre, post, post_q = _unpack(K)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
-    m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
+                 m: int, out: np.ndarray) -> int:
+    """The common end of both packed solvers: wrap, limit-check and de-duplicate the m raw rows
+    (:func:`_finish`), write them into ``out`` (:func:`_write`), return how many."""
     Q = np.empty((MAX_ROWS, 6))
     within = np.empty(MAX_ROWS, dtype=np.bool_)
     codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
@@ -705,19 +703,23 @@ def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarr
 
 
 @njit
+def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    ci, cf, C, pre, post, post_q = _unpack(K)
+    rows = np.empty((MAX_ROWS, 6))
+    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
+    return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
+
+
+@njit
 def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, pre, post, post_q = _unpack(K)
     rows = np.empty((MAX_ROWS, 6))
     rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
     rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
     m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
-    Q = np.empty((MAX_ROWS, 6))
-    within = np.empty(MAX_ROWS, dtype=np.bool_)
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
-    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
-    _write(n, Q, within, codes, degen, out)
-    return n
+    return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
 
 
 @njit
