@@ -72,6 +72,18 @@ def _ref_offset(j: MjcfJoint) -> Any:
     return pin.SE3(np.eye(3), -j.ref * np.asarray(j.axis, dtype=float))
 
 
+def _inertia(mass: float, com: np.ndarray, Ic: np.ndarray) -> Any:
+    """A Pinocchio inertia from mass, centre of mass and the inertia about it, also when the
+    latter is not positive (the exact inertials robokit's writer keeps; Pinocchio's
+    constructor refuses those)."""
+    import pinocchio as pin
+
+    Io = Ic + mass * (float(com @ com) * np.eye(3) - np.outer(com, com))
+    mc = mass * com
+    return pin.Inertia.FromDynamicParameters(np.array([mass, mc[0], mc[1], mc[2], Io[0, 0], Io[0, 1], Io[1, 1],
+                                                       Io[0, 2], Io[1, 2], Io[2, 2]]))
+
+
 def _shape(g: MjcfGeom) -> Any:
     import coal
 
@@ -143,7 +155,7 @@ def build_model(c: CompiledMjcf, first: int, armature: bool = True) -> BuiltMode
         joint_of[i] = jid
         in_joint[i] = X
         frame_of[i] = model.addBodyFrame(b.name, jid, X, fid)
-        Ib = pin.Inertia(float(b.mass), np.asarray(b.ipos, dtype=float), b.inertia_matrix)
+        Ib = _inertia(float(b.mass), np.asarray(b.ipos, dtype=float), b.inertia_matrix)
         model.appendBodyToJoint(jid, Ib, X)
         for s in b.sites:
             model.addFrame(pin.Frame(s.name, jid, frame_of[i], X * _se3(s.pos, s.quat), pin.FrameType.OP_FRAME))
