@@ -1,15 +1,13 @@
 r"""The small geometry MuJoCo's compiler does, done the same way (private to the MJCF reader).
 
 MuJoCo's compiler keeps orientations as unit quaternions ``(w, x, y, z)`` and reduces every
-inertia tensor to a principal frame and three principal moments with a Jacobi iteration in
-quaternion form that stops when the largest off-diagonal element falls below 1e-12 or the next
-rotation is smaller than about 1.4e-6 rad. That early stop leaves the principal frame a little
-off, so the tensor MuJoCo simulates, ``R diag(I) Rᵀ``, differs from the exact one by up to about
-1e-6 of the spread of the moments: far above 1e-9. To compute what MuJoCo computes, the same
-iteration is written out here (:func:`principal_axes`), on plain floats in MuJoCo's order of
-operations, as are the quaternion conventions of the compiler (the normalisation that leaves a
-vector alone within 1e-14 of unit length, the minimal rotation taking z to a vector, the frame
-to quaternion conversion). Everything here works on Python floats and short tuples.
+inertia tensor it sums or is given in full to a principal frame and three principal moments
+(decreasing). MuJoCo 4 computes that decomposition to rounding error (robokit's tests measure
+``R diag(I) Rᵀ`` against the tensor at 1e-16); older MuJoCo releases stopped their Jacobi
+iteration about 1e-6 rad short, which moved the simulated tensor by up to ~1e-10 of its
+size. The compiler's quaternion conventions are written out here as MuJoCo writes them (the
+normalisation that leaves a vector alone within 1e-14 of unit length, the minimal rotation
+taking z to a vector, the frame to quaternion conversion), on Python floats and short tuples.
 """
 from __future__ import annotations
 
@@ -163,55 +161,18 @@ def orientation(kind: str, values: Sequence[float], degree: bool, eulerseq: str)
     raise ValueError(kind)
 
 
-def _mat_mul(a: Sequence[float], b: Sequence[float]) -> Mat:
-    return (a[0] * b[0] + a[1] * b[3] + a[2] * b[6], a[0] * b[1] + a[1] * b[4] + a[2] * b[7],
-            a[0] * b[2] + a[1] * b[5] + a[2] * b[8],
-            a[3] * b[0] + a[4] * b[3] + a[5] * b[6], a[3] * b[1] + a[4] * b[4] + a[5] * b[7],
-            a[3] * b[2] + a[4] * b[5] + a[5] * b[8],
-            a[6] * b[0] + a[7] * b[3] + a[8] * b[6], a[6] * b[1] + a[7] * b[4] + a[8] * b[7],
-            a[6] * b[2] + a[7] * b[5] + a[8] * b[8])
-
-
-_EIG_EPS = 1e-12
-
-
 def principal_axes(full: Sequence[float]) -> tuple[Vec, Quat]:
-    """Principal moments (decreasing) and principal frame of a symmetric 3×3 (row-major), by
-    MuJoCo's Jacobi iteration with its stopping rules (see the module docstring)."""
-    quat: Quat = IDENTITY
-    ev = [0.0, 0.0, 0.0]
-    for _ in range(500):
-        v = quat_to_matrix(quat)
-        vt = (v[0], v[3], v[6], v[1], v[4], v[7], v[2], v[5], v[8])
-        d = _mat_mul(_mat_mul(vt, full), v)
-        ev = [d[0], d[4], d[8]]
-        if abs(d[1]) > abs(d[2]) and abs(d[1]) > abs(d[5]):
-            rk, ck, rotk = 0, 1, 2
-        elif abs(d[2]) > abs(d[5]):
-            rk, ck, rotk = 0, 2, 1
-        else:
-            rk, ck, rotk = 1, 2, 0
-        if abs(d[3 * rk + ck]) < _EIG_EPS:
-            break
-        tau = (d[4 * ck] - d[4 * rk]) / (2 * d[3 * rk + ck])
-        t = 1.0 / (tau + math.sqrt(1 + tau * tau)) if tau >= 0 else -1.0 / (-tau + math.sqrt(1 + tau * tau))
-        c = 1.0 / math.sqrt(1 + t * t)
-        if c > 1.0 - _EIG_EPS:
-            break
-        r = [0.0, 0.0, 0.0, 0.0]
-        r[rotk + 1] = -math.sqrt(0.5 - 0.5 * c) if tau >= 0 else math.sqrt(0.5 - 0.5 * c)
-        if rotk == 1:
-            r[rotk + 1] = -r[rotk + 1]
-        r[0] = math.sqrt(1.0 - r[rotk + 1] * r[rotk + 1])
-        quat = unit_quat(quat_mul(quat, unit_quat(r)))
-    for j in range(3):  # bubble sort, decreasing, (0, 1, 0)
-        j1 = j % 2
-        if ev[j1] + _EIG_EPS < ev[j1 + 1]:
-            ev[j1], ev[j1 + 1] = ev[j1 + 1], ev[j1]
-            r = [0.707106781186548, 0.0, 0.0, 0.0]
-            r[(j1 + 2) % 3 + 1] = r[0]
-            quat = unit_quat(quat_mul(quat, r))
-    return (ev[0], ev[1], ev[2]), quat
+    """Principal moments (decreasing) and principal frame (a right-handed rotation, as a unit
+    quaternion) of a symmetric 3×3 given row-major, computed exactly (LAPACK's symmetric
+    eigensolver), as MuJoCo 4 computes them."""
+    import numpy as np
+
+    w, V = np.linalg.eigh(np.array(full, dtype=float).reshape(3, 3))
+    w, V = w[::-1], V[:, ::-1]
+    if np.linalg.det(V) < 0:
+        V[:, 2] = -V[:, 2]
+    q = frame_to_quat(tuple(V[:, 0]), tuple(V[:, 1]), tuple(V[:, 2]))
+    return (float(w[0]), float(w[1]), float(w[2])), q
 
 
 def six_to_matrix(s: Sequence[float]) -> Mat:

@@ -417,16 +417,20 @@ def _attrs(ctx: _Ctx, elem: ET.Element, childclass: str) -> tuple[dict[str, str]
 
 
 def _orientation(ctx: _Ctx, elem: ET.Element, attrs: dict[str, str], dflt: dict[str, str]) -> mm.Quat:
-    """The element's orientation by MuJoCo's rules: its own alternative (axisangle, xyaxes,
-    zaxis, euler) if it has one, else its class's alternative, else ``quat``."""
-    own = [k for k in _ORIENT if k in elem.attrib]
-    if len(own) + ("quat" in elem.attrib) > 1:
+    """The element's orientation: its own ``quat`` or alternative (axisangle, xyaxes, zaxis,
+    euler) if it has one, else its class's, else the identity (MuJoCo 4's rule)."""
+    own = [k for k in _ORIENT + ("quat",) if k in elem.attrib]
+    if len(own) > 1:
         raise InputError(f"{ctx.where(elem, attrs.get('name'))}: multiple orientation specifiers are not allowed")
-    q = _numbers(ctx, attrs, "quat", 4, elem)
-    quat = mm.unit_quat(q) if q is not None else mm.IDENTITY
-    alts = own or [k for k in _ORIENT if k in dflt]  # a class's alternative wins over the element's quat
-    if alts:
-        kind = alts[-1]
+    source = own or [k for k in _ORIENT + ("quat",) if k in dflt][-1:]
+    if not source:
+        return mm.IDENTITY
+    kind = source[0]
+    if kind == "quat":
+        q = _numbers(ctx, attrs, "quat", 4, elem)
+        assert q is not None
+        quat = mm.unit_quat(q)
+    else:
         vals = _numbers(ctx, attrs, kind, _ORIENT_N[kind], elem)
         assert vals is not None
         res = mm.orientation(kind, vals, ctx.degree, ctx.compiler["eulerseq"])
