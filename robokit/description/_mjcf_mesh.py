@@ -25,7 +25,7 @@ import math
 import struct
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -54,7 +54,7 @@ class MeshInertia:
     faces: np.ndarray  # (nf, 3)
 
 
-def _float32(values: Sequence[float] | np.ndarray) -> np.ndarray:
+def _float32(values: Any) -> np.ndarray:
     return np.asarray(values, dtype=np.float64).astype(np.float32).astype(np.float64)
 
 
@@ -117,6 +117,27 @@ def _read_msh(raw: bytes, where: str) -> tuple[np.ndarray, np.ndarray]:
     verts = np.frombuffer(raw, "<f4", 3 * nv, 16).astype(np.float64).reshape(-1, 3)
     faces = np.frombuffer(raw, "<i4", 3 * nf, 16 + 12 * nv + 12 * nn + 8 * nt).astype(np.int64).reshape(-1, 3)
     return verts, faces
+
+
+def read_ascii_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, triangles) of an ASCII STL file — for drawing and collision only: MuJoCo
+    reads no ASCII STL, so no mass comes from one."""
+    from robokit._io import read_input_bytes
+    from robokit.description.meshes import MAX_MESH_BYTES
+
+    text = read_input_bytes(path, MAX_MESH_BYTES, "a mesh file").decode("ascii", errors="replace")
+    pts = []
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[0] == "vertex":
+            try:
+                pts.append([float(x) for x in parts[1:]])
+            except ValueError:
+                raise InputError(f"{path}: bad vertex line {line.strip()!r}") from None
+    if not pts or len(pts) % 3:
+        raise InputError(f"{path}: no triangles in this ASCII STL")
+    v = np.array(pts)
+    return v, np.arange(len(v)).reshape(-1, 3)
 
 
 def read_mesh_file(path: Path) -> tuple[np.ndarray, np.ndarray]:

@@ -475,13 +475,16 @@ def _read_assets(ctx: _Ctx) -> None:
             ctx.meshes[name] = attrs
 
 
-def _mesh(ctx: _Ctx, name: str, elem: ET.Element) -> tuple[Any, dict[str, str]]:
-    from robokit.description._mjcf_mesh import mesh_inertia, read_mesh_file
+def _mesh(ctx: _Ctx, name: str, elem: ET.Element, needed: bool) -> tuple[Any, dict[str, str]]:
+    """(mesh inertia, file, scale, refpos, refquat, vertices, faces) of a mesh asset; the
+    inertia is None when MuJoCo could not compute it and no number needs it (an ASCII STL
+    drawn by a viewer)."""
+    from robokit.description._mjcf_mesh import mesh_inertia, read_ascii_stl, read_mesh_file
 
     if name not in ctx.meshes:
         raise InputError(f"{ctx.where(elem, elem.get('name'))} mesh={name!r}: no such mesh asset")
     a = ctx.meshes[name]
-    if name in ctx.mesh_cache:
+    if name in ctx.mesh_cache and (ctx.mesh_cache[name][0] is not None or not needed):
         return ctx.mesh_cache[name], a
     fake = ET.Element("mesh", {k: v for k, v in a.items() if not k.startswith("__")})
     mode = a.get("inertia", "legacy")
@@ -492,24 +495,33 @@ def _mesh(ctx: _Ctx, name: str, elem: ET.Element) -> tuple[Any, dict[str, str]]:
     refquat = _numbers(ctx, a, "refquat", 4, fake) or [1.0, 0.0, 0.0, 0.0]
     file = a.get("file")
     msh = False
+    path = None
     if file is not None:
         path = _mesh_file(ctx, file)
-        verts, faces = read_mesh_file(path)
-        msh = path.suffix.lower() == ".msh"
         where = f"{ctx.path}: mesh {name!r} ({path})"
+        try:
+            verts, faces = read_mesh_file(path)
+        except InputError:
+            if needed or path.suffix.lower() != ".stl":
+                raise
+            verts, faces = read_ascii_stl(path)
+            ctx.notes.append(f"{where}: an ASCII STL, which MuJoCo does not read; drawn and collided only")
+            out = (None, path, scale, refpos, refquat, verts * np.asarray(scale), faces)
+            ctx.mesh_cache[name] = out
+            return out, a
+        msh = path.suffix.lower() == ".msh"
     else:
         vals = _numbers(ctx, a, "vertex", None, fake)
         if not vals or len(vals) % 3:
             raise InputError(f"{ctx.where(fake, name)}: vertex needs 3 numbers per vertex")
         verts = np.array(vals).reshape(-1, 3)
         fv = _numbers(ctx, a, "face", None, fake)
-        faces = None if not fv else np.array(fv, dtype=np.int64).reshape(-1, 3)
+        faces = np.zeros((0, 3), dtype=np.int64) if not fv else np.array(fv, dtype=np.int64).reshape(-1, 3)
         where = f"{ctx.path}: mesh {name!r}"
-        path = None
-    if int(a.get("maxhullvert", "-1")) > -1 and (mode == "convex" or faces is None or len(faces) == 0):
+    if int(a.get("maxhullvert", "-1")) > -1 and (mode == "convex" or len(faces) == 0):
         raise InputError(f"{where}: maxhullvert (a partial convex hull) is not computed by robokit; remove it")
     info = mesh_inertia(verts, faces, scale=scale, refpos=refpos, refquat=refquat, inertia=mode, where=where, msh=msh)
-    ctx.mesh_cache[name] = (info, path, scale, refpos, refquat)
+    ctx.mesh_cache[name] = (info, path, scale, refpos, refquat, info.vertices, info.faces)
     return ctx.mesh_cache[name], a
 
 
@@ -639,58 +651,64 @@ def _geom(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec,
     vertices = faces = None
     mesh_file, file_pose, mesh_scale = None, None, np.ones(3)
     mvol = None
+    info = None
     if mesh_name is not None and gtype in ("mesh", "sdf", "sphere", "capsule", "cylinder", "ellipsoid", "box"):
         if fromto is not None:
             raise InputError(f"{ctx.where(elem, name)}: fromto cannot be used with a mesh geom")
-        (info, path, scale, refpos, refquat), masset = _mesh(ctx, mesh_name, elem)
-        center = (0.0, 0.0, 0.0)
-        if gtype not in ("mesh", "sdf"):  # a primitive fitted to the mesh
-            fit = float((_numbers(ctx, a, "fitscale", 1, elem) or [1.0])[0])
-            if not ctx.compiler["fitaabb"]:
-                b = info.box
-                if gtype == "sphere":
-                    size[0] = (b[0] + b[1] + b[2]) / 3
-                elif gtype == "capsule":
-                    size[0] = (b[0] + b[1]) / 2
-                    size[1] = max(0.0, b[2] - size[0] / 2)
-                elif gtype == "cylinder":
-                    size[0], size[1] = (b[0] + b[1]) / 2, b[2]
-                else:
-                    size[:3] = list(b)
-            else:
-                lo, hi = info.aamm[:3], info.aamm[3:]
-                center = tuple((lo[k] + hi[k]) / 2 for k in range(3))  # type: ignore[assignment]
-                half = [hi[k] - center[k] for k in range(3)]
-                if gtype == "sphere":
-                    size[0] = max(half)
-                elif gtype in ("capsule", "cylinder"):
-                    size[0], size[1] = max(half[0], half[1]), half[2]
-                    if gtype == "capsule":
-                        size[1] -= size[0]
-                else:
-                    size[:3] = half
-            size = [s * fit for s in size]
+        needed = infer or gtype not in ("mesh", "sdf")
+        (info, path, scale, refpos, refquat, mverts, mfaces), _ = _mesh(ctx, mesh_name, elem, needed)
+        if info is None:  # drawn and collided only, in the geom's own frame (MuJoCo would refuse the file)
+            vertices, faces, mvol = mverts, mfaces, 0.0
+            mesh_file, mesh_scale = str(path), np.asarray(scale, dtype=float)
+            if np.allclose(refpos, 0) and np.allclose(refquat, [1, 0, 0, 0]):
+                file_pose = np.eye(4)
         else:
-            if shell:
-                raise InputError(f"{ctx.where(elem, name)}: for mesh geoms, inertia is set on the mesh asset "
-                                 "(<mesh inertia='shell'>), not with shellinertia")
-            mvol = info.volume
-            lo, hi = info.aamm[:3], info.aamm[3:]
-            size = [max(abs(lo[k]), abs(hi[k])) for k in range(3)]
-        meshpos = mm.rotate(info.quat, center)
-        meshpos = (meshpos[0] + info.pos[0], meshpos[1] + info.pos[1], meshpos[2] + info.pos[2])
-        user_pos, user_quat = pos, quat
-        pos, quat = mm.compose(pos, quat, meshpos, info.quat)
-        if gtype in ("mesh", "sdf"):
-            # vertices in the compiled geom frame: Rᵀ (v - meshpos)
-            R = np.array(mm.quat_to_matrix(info.quat)).reshape(3, 3)
-            vertices = (info.vertices - np.array(meshpos)) @ R
-            faces = info.faces
-            mesh_scale = np.asarray(scale, dtype=float)
-            if path is not None:
-                mesh_file = str(path)
-                file_pose = _file_pose(scale, refpos, refquat, meshpos, info.quat)
-        del user_pos, user_quat
+            center = (0.0, 0.0, 0.0)
+            if gtype not in ("mesh", "sdf"):  # a primitive fitted to the mesh
+                fit = float((_numbers(ctx, a, "fitscale", 1, elem) or [1.0])[0])
+                if not ctx.compiler["fitaabb"]:
+                    b = info.box
+                    if gtype == "sphere":
+                        size[0] = (b[0] + b[1] + b[2]) / 3
+                    elif gtype == "capsule":
+                        size[0] = (b[0] + b[1]) / 2
+                        size[1] = max(0.0, b[2] - size[0] / 2)
+                    elif gtype == "cylinder":
+                        size[0], size[1] = (b[0] + b[1]) / 2, b[2]
+                    else:
+                        size[:3] = list(b)
+                else:
+                    lo, hi = info.aamm[:3], info.aamm[3:]
+                    center = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2)
+                    half = [hi[k] - center[k] for k in range(3)]
+                    if gtype == "sphere":
+                        size[0] = max(half)
+                    elif gtype in ("capsule", "cylinder"):
+                        size[0], size[1] = max(half[0], half[1]), half[2]
+                        if gtype == "capsule":
+                            size[1] -= size[0]
+                    else:
+                        size[:3] = half
+                size = [s * fit for s in size]
+            else:
+                if shell:
+                    raise InputError(f"{ctx.where(elem, name)}: for mesh geoms, inertia is set on the mesh asset "
+                                     "(<mesh inertia='shell'>), not with shellinertia")
+                mvol = info.volume
+                lo, hi = info.aamm[:3], info.aamm[3:]
+                size = [max(abs(lo[k]), abs(hi[k])) for k in range(3)]
+            meshpos = mm.rotate(info.quat, center)
+            meshpos = (meshpos[0] + info.pos[0], meshpos[1] + info.pos[1], meshpos[2] + info.pos[2])
+            pos, quat = mm.compose(pos, quat, meshpos, info.quat)
+            if gtype in ("mesh", "sdf"):
+                # vertices in the compiled geom frame: Rᵀ (v - meshpos)
+                R = np.array(mm.quat_to_matrix(info.quat)).reshape(3, 3)
+                vertices = (info.vertices - np.array(meshpos)) @ R
+                faces = info.faces
+                mesh_scale = np.asarray(scale, dtype=float)
+                if path is not None:
+                    mesh_file = str(path)
+                    file_pose = _file_pose(scale, refpos, refquat, meshpos, info.quat)
     elif gtype in ("mesh", "sdf"):
         raise InputError(f"{ctx.where(elem, name)}: a {gtype} geom needs a mesh attribute")
     if infer and gtype in ("hfield", "sdf"):
@@ -711,6 +729,7 @@ def _geom(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec,
             mass = density * vol if density != 0 else 0.0
         if mass != 0:
             if gtype in ("mesh", "sdf"):
+                assert info is not None
                 b = info.box
                 inertia = (mass * (b[1] * b[1] + b[2] * b[2]) / 3, mass * (b[0] * b[0] + b[2] * b[2]) / 3,
                            mass * (b[0] * b[0] + b[1] * b[1]) / 3)
@@ -912,7 +931,8 @@ def _body(ctx: _Ctx, elem: ET.Element, parent: int, name: str, named: bool, fram
         body.ipos, body.iquat = bpos, bquat
     c = ctx.compiler
     body.mass = max(body.mass, c["boundmass"])
-    body.inertia = tuple(max(x, c["boundinertia"]) for x in body.inertia)  # type: ignore[assignment]
+    body.inertia = (max(body.inertia[0], c["boundinertia"]), max(body.inertia[1], c["boundinertia"]),
+                    max(body.inertia[2], c["boundinertia"]))
     A, B, C = body.inertia
     if body.mass < 0 or min(body.inertia) < 0:
         raise InputError(f"{ctx.where(elem, name)}: mass and inertia cannot be negative")
