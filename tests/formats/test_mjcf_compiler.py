@@ -444,3 +444,21 @@ def test_world_honours_contype_conaffinity(tmp_path):
     world = World(robokit.load(solid))
     assert frozenset(("g1", "ball")) in _mujoco_contacts(solid, q)
     assert ("l1", "l3") in world.colliding_pairs(q) and world.in_collision(q)
+
+
+def test_hostile_meshes_are_refused_in_bounded_time(tmp_path):
+    """A binary STL whose header claims a billion triangles, and a mesh path out of the folder."""
+    import time
+
+    with open(tmp_path / "huge.stl", "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<i", 10 ** 9) + b"\0" * 50)
+    path = _write(tmp_path, "huge.xml", '<mujoco><asset><mesh file="huge.stl"/></asset><worldbody><body name="b">'
+                  '<joint/><geom type="mesh" mesh="huge"/></body></worldbody></mujoco>')
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match="binary STL"):
+        robokit.load(path)
+    assert time.perf_counter() - t0 < 5
+    path = _write(tmp_path, "out.xml", '<mujoco><asset><mesh file="../../etc/passwd.stl"/></asset><worldbody>'
+                  '<body name="b"><joint/><geom type="mesh" mesh="passwd"/></body></worldbody></mujoco>')
+    with pytest.raises(InputError, match="outside"):
+        robokit.load(path)
