@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from robokit.description.builder import build_robot, default_tip
-from robokit.description.mjcf_compile import CompiledMjcf, MjcfBody, compile_mjcf
+from robokit.description.mjcf_compile import CompiledMjcf, compile_mjcf
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
 
