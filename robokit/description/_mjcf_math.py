@@ -158,7 +158,7 @@ def orientation(kind: str, values: Sequence[float], degree: bool, eulerseq: str)
             r["xyz".index(axis_name.lower()) + 1] = math.sin(a / 2)
             q = quat_mul(q, r) if axis_name.islower() else quat_mul(r, q)  # moving axes post-multiply
         return unit_quat(q)
-    raise ValueError(kind)
+    return f"unknown orientation {kind!r}"
 
 
 def principal_axes(full: Sequence[float]) -> tuple[Vec, Quat]:
