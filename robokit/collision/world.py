@@ -21,7 +21,13 @@ Pairs checked
     all pairs of geometries on different links except (a) adjacent links (parent and child
     joint) and (b) pairs in contact in *every* one of :data:`SELF_SAMPLES` random
     configurations (uniform in the joint limits, ``numpy.random.default_rng(SELF_SEED)``) —
-    MoveIt setup assistant's "adjacent" and "always in collision" rules. Pairs that never
+    MoveIt setup assistant's "adjacent" and "always in collision" rules — and, for a robot read
+    from MJCF, (c) every pair MuJoCo would never test (``robot.contact_rules``,
+    :class:`robokit.description.mjcf.ContactRules`): ``(contype₁ & conaffinity₂) |
+    (contype₂ & conaffinity₁)`` zero, geoms of bodies welded together, a body and its parent
+    (MuJoCo's parent filter) and the ``<contact><exclude>`` body pairs; an MJCF geom whose masks
+    share no bit with MuJoCo's default (contype = conaffinity = 1) is not checked against
+    obstacles either. ``describe()`` lists each such pair with its reason. Pairs that never
     collided in the samples are listed too but are *kept* (a folded arm must still be seen).
     The result is computed once per robot and cached (:func:`self_collision_pairs`), always on
     the robot's own geometry (meshes, not hulls): a convex world checks the same pairs, which
@@ -46,7 +52,7 @@ Shipping a world
 from __future__ import annotations
 
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Iterable
 
 import numpy as np
@@ -188,6 +194,9 @@ class SelfCollisionPairs:
         The sampling used (:data:`SELF_SAMPLES`, :data:`SELF_SEED`).
     geometry : str
         ``"collision meshes"`` or ``"capsules"`` (the geometry the filter was computed on).
+    excluded : list of (str, str, str)
+        Pairs skipped because the robot's file says they never collide (MJCF contact rules):
+        (link, link, reason), one per geometry pair.
 
     Examples
     --------
@@ -205,6 +214,7 @@ class SelfCollisionPairs:
     samples: int
     seed: int
     geometry: str
+    excluded: list[tuple[str, str, str]] = field(default_factory=list)
 
     def __str__(self) -> str:
         lines = [f"self-collision pairs ({self.geometry}; {self.samples} samples, seed {self.seed}):",
@@ -214,6 +224,9 @@ class SelfCollisionPairs:
         lines.append(f"  skipped, always in contact ({len(self.always)}): " + ", ".join(f"{a}–{b}" for a, b in self.always))
         lines.append(f"  checked but never colliding in the samples ({len(self.never)}): "
                      + ", ".join(f"{a}–{b}" for a, b in self.never))
+        if self.excluded:
+            lines.append(f"  skipped, never tested by the file's contact rules ({len(self.excluded)}):")
+            lines += [f"    {a} – {b}: {why}" for a, b, why in self.excluded]
         return "\n".join(lines)
 
 
@@ -246,10 +259,14 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     gm, names, kind = _robot_geometry(robot)
     model = robot.model
     objs = list(gm.geometryObjects)
-    adjacent, cand = [], []
+    rules = getattr(robot, "contact_rules", None)
+    adjacent, cand, excluded = [], [], []
     for i in range(len(objs)):
         for j in range(i + 1, len(objs)):
-            if _adjacent(model, objs[i].parentJoint, objs[j].parentJoint):
+            why = rules.why(objs[i].name, objs[j].name) if rules is not None else None
+            if why is not None:
+                excluded.append((names[i], names[j], f"{objs[i].name} and {objs[j].name}: {why}"))
+            elif _adjacent(model, objs[i].parentJoint, objs[j].parentJoint):
                 if names[i] != names[j]:
                     adjacent.append((names[i], names[j]))
             else:
@@ -268,7 +285,8 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     always = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == SELF_SAMPLES]
     never = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == 0]
     res = SelfCollisionPairs(checked=[(names[i], names[j]) for i, j in keep], adjacent=adjacent, always=always,
-                             never=never, index_pairs=keep, samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind)
+                             never=never, index_pairs=keep, samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind,
+                             excluded=excluded)
     _CACHE[robot] = (None, res)
     return res
 
@@ -355,6 +373,9 @@ class World:
         meshes"`` or ``"capsules"``.
     self_pairs : SelfCollisionPairs
         The self-collision filter (``print(world.describe())`` shows it).
+    obstacle_excluded : list of (str, str)
+        Robot geometries not checked against obstacles (MJCF masks that share no bit with
+        MuJoCo's default geom): (link, reason).
     geometry_model : pinocchio.GeometryModel
         Robot geometries first, then obstacles (``obstacle:<name>``).
 
@@ -467,7 +488,14 @@ class World:
         self._names = names
         pairs = list(self.self_pairs.index_pairs)
         margins = [2 * self.padding] * len(pairs)
+        rules = getattr(robot, "contact_rules", None)
+        objs = list(gm.geometryObjects)
+        self.obstacle_excluded: list[tuple[str, str]] = []
         for i in range(self._n_robot):
+            why = rules.why_not_obstacle(objs[i].name) if rules is not None else None
+            if why is not None:
+                self.obstacle_excluded.append((names[i], f"{objs[i].name}: {why}"))
+                continue
             for j in range(self._n_robot, gm.ngeoms):
                 pairs.append((i, j))
                 margins.append(self.padding)
@@ -637,6 +665,8 @@ class World:
                      f"{len(self._pairs) - len(self.self_pairs.index_pairs)} robot–obstacle)")
         for nm, o in zip(self.obstacle_names, self.obstacles):
             lines.append(f"  obstacle {nm}: {o!r}")
+        for link, why in self.obstacle_excluded:
+            lines.append(f"  not checked against obstacles: {link} ({why})")
         lines.append(str(self.self_pairs))
         return "\n".join(lines)
 

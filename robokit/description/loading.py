@@ -48,7 +48,7 @@ FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
     ".yml": (load_dh_file, ()),
     ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes")),
     ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes")),
-    ".xml": (load_mjcf, ("allow_outside_meshes",)),
+    ".xml": (load_mjcf, ("allow_outside_meshes", "armature")),
 }
 
 #: Spec kind → how ``load(spec)`` rebuilds the robot.
@@ -60,7 +60,8 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
                                 allow_outside_meshes=s.allow_outside_meshes),
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                                   xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes),
-    "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes),
+    "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes,
+                                armature=s.armature),
 }
 
 
@@ -73,8 +74,17 @@ def _file_loader(path: Path) -> tuple[str, Callable[..., Robot], tuple[str, ...]
     return (suffix, *FILE_LOADERS[suffix])
 
 
+#: The value of each :func:`load` option that means "not given".
+_UNSET: dict[str, Any] = {"package_dirs": None, "xacro_args": None, "allow_outside_meshes": False, "armature": True}
+
+
+def _given(key: str, value: Any) -> bool:
+    """Whether a :func:`load` option holds a value other than "not given"."""
+    return value is not None and value != () and value != {} and not (key in _UNSET and value == _UNSET[key])
+
+
 def _options_for(what: str, accepted: tuple[str, ...], options: Mapping[str, Any]) -> dict[str, Any]:
-    given = {k: v for k, v in options.items() if v is not None and v is not False and v != () and v != {}}
+    given = {k: v for k, v in options.items() if _given(k, v)}
     for key in given:
         if key not in accepted:
             takes = sorted(s for s, (_, acc) in FILE_LOADERS.items() if key in acc)
@@ -84,7 +94,7 @@ def _options_for(what: str, accepted: tuple[str, ...], options: Mapping[str, Any
 
 def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip: str | None = None, *,
          package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
-         allow_outside_meshes: bool = False) -> Robot:
+         allow_outside_meshes: bool = False, armature: bool = True) -> Robot:
     """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
     an MJCF ``.xml``, an example-robot-data name, a :class:`DHTable` or a :class:`RobotSpec`.
 
@@ -107,6 +117,9 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     allow_outside_meshes : bool
         Read meshes that a URDF names outside its folder, its package and ``package_dirs``
         (absolute paths, ``../`` out of the package); refused by default.
+    armature : bool
+        MJCF files: add each joint's ``armature`` (reflected rotor inertia) to M and inverse
+        dynamics, as MuJoCo does (default); False leaves it out.
 
     Returns
     -------
@@ -129,11 +142,12 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     >>> robokit.load(robot.spec).n
     6
     """
-    options = dict(package_dirs=package_dirs, xacro_args=xacro_args, allow_outside_meshes=allow_outside_meshes)
+    options = dict(package_dirs=package_dirs, xacro_args=xacro_args, allow_outside_meshes=allow_outside_meshes,
+                   armature=armature)
     if isinstance(name_or_path, Robot):
         return name_or_path
     if isinstance(name_or_path, RobotSpec):
-        given = [k for k, v in options.items() if v not in (None, False, (), {})] + (["tip"] if tip else [])
+        given = [k for k, v in options.items() if _given(k, v)] + (["tip"] if tip else [])
         if given:
             raise InputError(f"{', '.join(given)}: a RobotSpec holds its own options; load(spec) takes none")
         return _SPEC_LOADERS[name_or_path.kind](name_or_path)

@@ -65,7 +65,8 @@ def read_mjcf_root(path: str | os.PathLike[str]) -> ET.Element:
 
 
 def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-               allow_outside_meshes: bool = False, copy_to: str | os.PathLike[str] | None = None) -> ET.Element:
+               allow_outside_meshes: bool = False, copy_to: str | os.PathLike[str] | None = None,
+               expand_includes: bool = False) -> ET.Element:
     """Check an MJCF file, its includes and the files it names; return its root element.
 
     Parameters
@@ -111,6 +112,7 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
         compiler.update({k: v for k, v in c.attrib.items() if k in ("meshdir", "texturedir", "assetdir")})
     count = {"joints": 0, "files": 1}
     copies: list[tuple[str, ET.Element]] = [("model.xml", top)]
+    included: dict[int, ET.Element] = {}
     if copy_to is not None:  # the checked copy lives elsewhere: asset folders become absolute
         for c in top.iter("compiler"):
             for key in ("meshdir", "texturedir", "assetdir"):
@@ -134,6 +136,7 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                     raise InputError(f"{path}: more than {MAX_INCLUDES} files included")
                 inc_root = read_mjcf_root(inc)
                 walk(inc_root, inc, depth + 1)
+                included[id(el)] = inc_root
                 if copy_to is not None:
                     name = f"include_{len(copies)}.xml"
                     copies.append((name, inc_root))
@@ -149,7 +152,23 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                 el.set("file", str(asset))
 
     walk(top, path, 0)
+    if expand_includes and included:
+        _expand(top, included)
     if copy_to is not None:
         for name, root in copies:
             (Path(copy_to) / name).write_text(ET.tostring(root, encoding="unicode"), encoding="utf-8")
     return top
+
+
+def _expand(elem: ET.Element, included: dict[int, ET.Element]) -> None:
+    """Replace each ``<include>`` child (recursively) by the children of the file it names."""
+    kids: list[ET.Element] = []
+    for child in list(elem):
+        if child.tag == "include" and id(child) in included:
+            inc = included[id(child)]
+            _expand(inc, included)
+            kids.extend(list(inc))
+        else:
+            _expand(child, included)
+            kids.append(child)
+    elem[:] = kids

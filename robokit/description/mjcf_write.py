@@ -4,7 +4,9 @@ Writing (:func:`mjcf_from_robot`, used by ``robokit convert ROBOT -o OUT.xml``)
     One MJCF body per joint of the robot's chain, placed in its parent body as Pinocchio's
     joint placement; the joint at the body's origin (``hinge``/``slide`` with the axis in the
     body frame, ``range`` from the limits, ``armature`` and ``damping``); the inertial
-    (``mass``, ``pos`` of the centre of mass, ``fullinertia`` about it in body axes); the
+    (``mass``, ``pos`` of the centre of mass, the principal frame ``quat`` and moments
+    ``diaginertia`` — not ``fullinertia``, which MuJoCo's compiler diagonalises only to about
+    1e-6 rad); the
     visual geometry as MuJoCo geoms (primitives, or STL/OBJ meshes referenced by absolute
     path), or a capsule from the joint to the next joint where there is none; the tip frame
     as a ``<site>``; ``<option gravity>``. Lengths in m, angles in rad
@@ -273,9 +275,13 @@ def mjcf_from_robot(robot: Robot) -> tuple[str, list[str]]:
         mass, c, I = float(Y.mass), np.array(Y.lever), np.array(Y.inertia)
         body = body_names[j]
         if _mujoco_accepts(mass, I):
-            xx, yy, zz, xy, xz, yz = I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]
-            inertial = (f'<inertial pos="{_v(c)}" mass="{_f(mass)}" '
-                        f'fullinertia="{_v([xx, yy, zz, xy, xz, yz])}"/>')
+            # principal axes computed here, exactly: MuJoCo's compiler would reduce a fullinertia
+            # with a Jacobi iteration that stops about 1e-6 rad short of the principal frame
+            ev, V = np.linalg.eigh(I)
+            if np.linalg.det(V) < 0:
+                V[:, 0] = -V[:, 0]
+            inertial = (f'<inertial pos="{_v(c)}" quat="{_v(_quat(V))}" mass="{_f(mass)}" '
+                        f'diaginertia="{_v(ev)}"/>')
         else:
             m2, ev, V = _regularized(mass, I)
             inertial = (f'<inertial pos="{_v(c)}" quat="{_v(_quat(V))}" mass="{_f(m2)}" '

@@ -109,6 +109,7 @@ class Robot:
     """
 
     spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)
+    contact_rules: Any = None  # an MJCF robot's contact filter (robokit.description.mjcf.ContactRules)
 
     def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
                  dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
@@ -334,6 +335,7 @@ class Robot:
         return rng.uniform(lo, hi)
 
     def __repr__(self) -> str:
-        kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.dh_from_urdf(robot).table"
+        fmt = {"mjcf": "MJCF", "xacro": "xacro", "sdf": "SDF"}.get(getattr(self.spec, "kind", ""), "URDF")
+        kind = f"DH {self.dh.convention}" if self.dh is not None else f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 

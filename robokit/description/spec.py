@@ -46,6 +46,9 @@ class RobotSpec:
         The xacro argument values, sorted by name (``"xacro"``).
     allow_outside_meshes : bool
         Whether meshes outside the file's package were allowed (``"urdf"``).
+    armature : bool
+        Whether the joints' armature (reflected rotor inertia) is in M and inverse dynamics
+        (``"mjcf"``; default True, as MuJoCo).
     text : str or None
         The DH table as YAML text, angles in rad (``"dh"``): parsed by the strict YAML loader
         when the spec is loaded, so a rebuilt table is the same table even if the file changed.
@@ -68,6 +71,7 @@ class RobotSpec:
     xacro_args: tuple[tuple[str, str], ...] = ()
     allow_outside_meshes: bool = False
     text: str | None = None
+    armature: bool = True
 
     def __post_init__(self) -> None:
         if self.kind not in SPEC_KINDS:
@@ -84,6 +88,8 @@ class RobotSpec:
             raise InputError("spec: xacro_args must be a tuple of (name, value) string pairs")
         if not isinstance(self.allow_outside_meshes, bool):
             raise InputError("spec: allow_outside_meshes must be a bool")
+        if not isinstance(self.armature, bool):
+            raise InputError("spec: armature must be a bool")
         needs = {"shipped": "name", "example-robot-data": "name", "dh": "text",
                  "urdf": "path", "xacro": "path", "mjcf": "path"}[self.kind]
         if getattr(self, needs) is None:
@@ -130,6 +136,8 @@ class RobotSpec:
             shown.append("allow_outside_meshes=True")
         if self.text is not None:
             shown.append(f"text=<{len(self.text)} characters of DH YAML>")
+        if not self.armature:
+            shown.append("armature=False")
         return f"RobotSpec({', '.join(shown)})"
 
 

@@ -175,9 +175,9 @@ def test_teach_mesh_face_cap_refuses_by_count(tmp_path, monkeypatch):
 
 
 def test_pinocchio_reads_the_checked_mjcf_copy(layout, monkeypatch):
-    """Pinocchio is handed robokit's checked copy (includes and asset paths rewritten), never the
-    user's path; relative meshdir and includes still resolve (the mesh geometry is loaded from
-    the package's own file)."""
+    """No parser but robokit's reads an MJCF file: Pinocchio's MJCF parser is never handed a path
+    (robokit compiles the checked tree itself and builds the model from it); relative meshdir
+    and includes still resolve (the mesh geometry is loaded from the package's own file)."""
     import pinocchio as pin
 
     from robokit.description.loading import load
@@ -188,16 +188,15 @@ def test_pinocchio_reads_the_checked_mjcf_copy(layout, monkeypatch):
     src = pkg / "r.xml"
     src.write_text(_mjcf("inside.stl", meshdir="meshes", include="sub/extra.xml"))
     seen = []
-    real = pin.buildModelFromMJCF
 
     def spy(filename, *a):
-        seen.append((filename, open(filename).read()))
-        return real(filename, *a)
+        seen.append(filename)
+        raise AssertionError("Pinocchio's MJCF parser was called")
 
     monkeypatch.setattr(pin, "buildModelFromMJCF", spy)
+    monkeypatch.setattr(pin, "buildGeomFromMJCF", spy)
     robot = load(src)
-    (name, text), = seen
-    assert name != str(src) and not name.startswith(str(pkg))
-    assert str((pkg / "meshes" / "inside.stl").resolve()) in text and 'file="include_1.xml"' in text
+    assert seen == []
     paths = [go.meshPath for go in robot.visual_model.geometryObjects]
+    assert np.allclose(robot.visual_model.geometryObjects[0].meshColor, [1, 0, 0, 1])  # the included default
     assert any(p.endswith("inside.stl") and p.startswith(str(pkg.resolve())) for p in paths), paths

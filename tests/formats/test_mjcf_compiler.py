@@ -1,0 +1,465 @@
+"""MJCF read with MuJoCo's compiler rules, checked against MuJoCo itself.
+
+Every test file below exercises one rule of the compiler (inertia from geoms, bounds, balance,
+total mass, defaults, frames, orientations, meshes, joints). For each, robokit's per-body mass,
+centre of mass and inertia tensor are compared with MuJoCo's ``body_mass``/``body_ipos``/
+``body_inertia``/``body_iquat``, and robokit's mass matrix and inverse dynamics with MuJoCo's
+``mj_fullM`` and ``mj_inverse`` at random states. MuJoCo's ``qfrc_inverse`` holds
+M q̈ + c + g (armature included in M, as in robokit) minus its passive force −b q̇, so the
+comparison adds damping·q̇ to robokit's RNEA; springs and constraints are switched off in MuJoCo.
+"""
+import struct
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit.description.mjcf_compile import compile_mjcf
+from robokit.errors import InputError
+
+mujoco = pytest.importorskip("mujoco", reason="MuJoCo is the reference (pip install mujoco)")
+
+TOL = 1e-9
+
+
+def _mj_model(path):
+    m = mujoco.MjModel.from_xml_path(str(path))
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT) | int(mujoco.mjtDisableBit.mjDSBL_SPRING)
+    return m
+
+
+def _full(inertia, iquat):
+    R = np.zeros(9)
+    mujoco.mju_quat2Mat(R, np.asarray(iquat, dtype=float))
+    R = R.reshape(3, 3)
+    return R @ np.diag(inertia) @ R.T
+
+
+def body_differences(path):
+    """Largest relative difference of mass, centre of mass and inertia tensor over the bodies."""
+    m = _mj_model(path)
+    c = compile_mjcf(path)
+    by_name = {b.name: b for b in c.bodies}
+    worst = 0.0
+    for i in range(1, m.nbody):
+        name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, i)
+        b = by_name[name] if name is not None else c.bodies[i]
+        scale_m = max(1.0, m.body_mass[i])
+        scale_i = max(1e-3, np.abs(m.body_inertia[i]).max())
+        worst = max(worst, abs(b.mass - m.body_mass[i]) / scale_m,
+                    np.abs(b.ipos - m.body_ipos[i]).max(),
+                    np.abs(_full(b.inertia, b.iquat) - _full(m.body_inertia[i], m.body_iquat[i])).max() / scale_i)
+    return worst
+
+
+def dynamics_differences(path, samples=8, seed=0, armature=True, **load):
+    """Largest relative difference of M and inverse dynamics (robokit vs MuJoCo)."""
+    robot = robokit.load(path, armature=armature, **load)
+    m = _mj_model(path)
+    d = mujoco.MjData(m)
+    order = [j.name for b in compile_mjcf(path).bodies for j in b.joints]  # MuJoCo's joint order
+    jids = [order.index(n) for n in robot.joint_names]
+    assert all(mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) in (n, None) for j, n in zip(jids, robot.joint_names))
+    qa, va = [m.jnt_qposadr[j] for j in jids], [m.jnt_dofadr[j] for j in jids]
+    rng = np.random.default_rng(seed)
+    worst = 0.0
+    for _ in range(samples):
+        q = robot.random_configuration(rng)
+        qd, qdd = rng.normal(size=robot.n), rng.normal(size=robot.n)
+        d.qpos[:], d.qvel[:], d.qacc[:] = m.qpos0, 0.0, 0.0
+        d.qpos[qa], d.qvel[va], d.qacc[va] = q, qd, qdd
+        mujoco.mj_inverse(m, d)
+        M = np.zeros((m.nv, m.nv))
+        mujoco.mj_fullM(m, d, M)
+        M_mj = M[np.ix_(va, va)]
+        tau_mj = d.qfrc_inverse[va] - m.dof_damping[va] * qd
+        M_rk, tau_rk = robot.crba(q), robot.rnea(q, qd, qdd)
+        if not armature:  # robokit left the armature out; MuJoCo always has it
+            M_rk, tau_rk = M_rk + np.diag(m.dof_armature[va]), tau_rk + m.dof_armature[va] * qdd
+        worst = max(worst, np.abs(M_rk - M_mj).max() / max(1.0, np.abs(M_mj).max()),
+                    np.abs(tau_rk - tau_mj).max() / max(1.0, np.abs(tau_mj).max()))
+    return worst
+
+
+def _write(tmp_path, name, xml):
+    path = tmp_path / name
+    path.write_text(xml)
+    return path
+
+
+ARM = """<mujoco model="{name}">
+  <compiler {compiler}/>
+  <option gravity="0.3 -1.2 -9.81"/>
+  {defaults}
+  <asset>{assets}</asset>
+  <worldbody>
+    <body name="base" pos="0.1 0 0.2" euler="5 10 15">
+      <geom type="box" size="0.1 0.1 0.05"/>
+      <body name="l1" pos="0 0 0.1">
+        <joint name="j1" axis="0 0 1" range="-90 90" armature="0.02" damping="0.3"/>
+        {l1}
+        <body name="l2" pos="0.05 0 0.2" quat="0.9 0.1 0.3 -0.2">
+          <joint name="j2" axis="0 1 0.2" range="-120 60" armature="0.01"/>
+          {l2}
+          <body name="l3" pos="0.3 0 0" xyaxes="0 1 0 -1 0.1 0">
+            <joint name="j3" type="slide" axis="1 0 0" range="-0.1 0.2" armature="0.5" damping="2"/>
+            {l3}
+            <site name="tool" pos="0.1 0 0"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+PRIMS = """<geom type="capsule" fromto="0 0 0 0.3 0.02 0.01" size="0.04"/>
+<geom type="sphere" pos="0.3 0 0" size="0.05"/>
+<geom type="ellipsoid" size="0.03 0.05 0.07" pos="0.1 0.1 0" euler="10 20 30"/>
+<geom type="cylinder" fromto="0 0 0.05 0 0.1 0.05" size="0.03" density="2700"/>
+<geom type="box" size="0.02 0.03 0.04" pos="0 0 0.1" axisangle="1 1 0 30" mass="0.4"/>"""
+
+RULES = {
+    "from_geoms_true": dict(compiler='inertiafromgeom="true"', l1=PRIMS,
+                            l2='<inertial pos="0 0 0" mass="9" diaginertia="1 1 1"/>' + PRIMS,
+                            l3='<geom type="box" fromto="0 0 0 0.2 0 0.05" size="0.02 0.03"/>'),
+    "from_geoms_auto": dict(compiler='inertiafromgeom="auto"', l1=PRIMS,
+                            l2='<inertial pos="0.1 0 0" mass="2" diaginertia="0.01 0.02 0.025"/>' + PRIMS,
+                            l3='<geom type="ellipsoid" fromto="0 0 0 0.2 0.1 0" size="0.02 0.03"/>'),
+    "from_geoms_false": dict(compiler='inertiafromgeom="false" boundmass="0.1" boundinertia="0.001"', l1=PRIMS,
+                             l2='<inertial pos="0.1 0 0" mass="2" diaginertia="0.01 0.02 0.025"/>',
+                             l3='<geom type="sphere" size="0.05"/>'),
+    "shell": dict(compiler="", l1=PRIMS.replace("<geom ", '<geom shellinertia="true" '),
+                  l2='<geom type="capsule" size="0.03 0.1" shellinertia="true" euler="90 0 0"/>',
+                  l3='<geom type="ellipsoid" size="0.02 0.03 0.04" shellinertia="true"/>'
+                     '<geom type="box" size="0.02 0.03 0.04" pos="0.05 0 0" shellinertia="true"/>'),
+    "groups": dict(compiler='inertiagrouprange="0 2"', l1=PRIMS.replace("<geom ", '<geom group="3" ', 2),
+                   l2=PRIMS, l3='<geom size="0.04" group="5"/><geom size="0.02" pos="0.1 0 0"/>'),
+    "bounds": dict(compiler='boundmass="0.5" boundinertia="0.02"', l1="", l2='<geom size="0.001"/>',
+                   l3='<inertial pos="0 0 0" mass="0.001" diaginertia="1e-6 1e-6 1e-6"/>'),
+    "balance": dict(compiler='balanceinertia="true"', l1=PRIMS,
+                    l2='<inertial pos="0 0.1 0" mass="3" diaginertia="0.01 0.01 0.05" euler="10 0 0"/>',
+                    l3='<inertial pos="0 0 0" mass="1" fullinertia="0.1 0.01 0.01 0.001 0.002 0.003"/>'),
+    "totalmass": dict(compiler='settotalmass="12"', l1=PRIMS, l2=PRIMS,
+                      l3='<inertial pos="0 0 0" mass="1" fullinertia="0.02 0.03 0.04 0.001 0.002 0.003"/>'),
+    "totalmass_fused": dict(compiler='settotalmass="12" fusestatic="true"', l1=PRIMS,
+                            l2=PRIMS + '<body name="static" pos="0.1 0 0" euler="0 30 0">' + PRIMS + "</body>",
+                            l3='<geom size="0.03"/>'),
+    "radian_zyx": dict(compiler='angle="radian" eulerseq="ZYX"',
+                       l1='<geom type="box" size="0.02 0.03 0.04" euler="0.3 0.2 0.1" pos="0.1 0 0"/>'
+                          '<geom type="capsule" size="0.02 0.1" zaxis="1 1 0"/>',
+                       l2=PRIMS.replace('axisangle="1 1 0 30"', 'axisangle="1 1 0 0.5"'),
+                       l3='<inertial pos="0 0 0" mass="1" diaginertia="0.01 0.02 0.025" euler="0.1 0.2 0.3"/>'),
+    "fullinertia": dict(compiler="", l1='<inertial pos="0.01 0 0" mass="1.5" fullinertia="0.05 0.06 0.07 0.001 '
+                                        '-0.002 0.003"/>',
+                        l2='<inertial pos="0 0 0.1" mass="2" fullinertia="0.02 0.05 0.06 0.001 0.002 0.003"/>',
+                        l3=PRIMS),
+}
+
+
+def _rule_file(tmp_path, rule, defaults="", assets=""):
+    r = RULES[rule]
+    return _write(tmp_path, f"{rule}.xml", ARM.format(name=rule, compiler=r["compiler"], defaults=defaults,
+                                                      assets=assets, l1=r["l1"], l2=r["l2"], l3=r["l3"]))
+
+
+@pytest.mark.parametrize("rule", sorted(RULES))
+def test_each_compiler_rule_gives_mujocos_bodies_and_dynamics(rule, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # MuJoCo 4 logs its deprecation of settotalmass to ./MUJOCO_LOG.TXT
+    path = _rule_file(tmp_path, rule)
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path) < TOL
+
+
+def test_geom_masses_are_not_zero_when_mujoco_computes_them(tmp_path):
+    """The defect of issue 38: geoms, no <inertial>, the robot came out massless."""
+    path = _rule_file(tmp_path, "from_geoms_true")
+    robot = robokit.load(path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert all(robot.model.inertias[j].mass > 0.1 for j in range(1, robot.model.njoints))
+    assert abs(sum(robot.model.inertias[j].mass for j in range(robot.model.njoints)) - m.body_mass.sum()) < 1e-12
+
+
+DEFAULTS = """<default>
+    <geom density="500" contype="1" conaffinity="1"/>
+    <joint damping="0.1"/>
+    <default class="heavy"><geom density="7800" size="0.03 0.08"/>
+      <default class="heavier"><geom type="capsule" density="11000"/><joint armature="0.05" damping="0.4"/></default>
+    </default>
+    <default class="turned"><geom euler="0 90 0" type="cylinder"/></default>
+  </default>"""
+
+
+def test_default_classes_childclass_and_frames(tmp_path):
+    xml = f"""<mujoco model="classes"><compiler angle="radian"/>{DEFAULTS}<worldbody>
+      <frame pos="0 0.1 0" euler="0 0 0.3">
+        <body name="a" childclass="heavy">
+          <joint name="ja" axis="0 0 1"/>
+          <geom size="0.05"/>
+          <geom class="turned" size="0.02 0.1" quat="1 0 0 0"/>
+          <frame pos="0.1 0 0" zaxis="0 1 1" childclass="heavier">
+            <geom pos="0 0 0.05"/>
+            <body name="b" pos="0.2 0 0">
+              <joint name="jb" axis="1 0 0" pos="0 0 0.05"/>
+              <geom/>
+              <frame euler="0.2 0.1 0"><site name="s" pos="0.1 0 0"/><geom class="main" size="0.04"/></frame>
+            </body>
+          </frame>
+        </body>
+      </frame></worldbody></mujoco>"""
+    path = _write(tmp_path, "classes.xml", xml)
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path) < TOL
+    robot = robokit.load(path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert robot.tip == "s"
+    assert np.allclose(robot.model.armature, m.dof_armature) and np.allclose(robot.model.damping, m.dof_damping)
+
+
+def test_several_joints_per_body_with_anchors_and_ref(tmp_path):
+    xml = """<mujoco model="multi"><worldbody><body name="a" pos="0 0 0.1">
+      <joint name="x" type="slide" axis="1 0 0" ref="0.05" range="-0.2 0.3"/>
+      <joint name="y" type="slide" axis="0 1 0.3"/>
+      <joint name="rz" axis="0 0 1" pos="0.05 0 0" ref="20"/>
+      <geom type="box" size="0.05 0.04 0.03" pos="0.1 0 0"/>
+      <body name="b" pos="0.2 0 0"><joint name="h1" axis="0 1 0" pos="0 0 0.02" ref="-15" damping="0.5"/>
+        <joint name="h2" axis="1 0 0" pos="0.01 0.02 0" armature="0.1"/>
+        <geom type="capsule" fromto="0 0 0 0.2 0 0" size="0.02"/><site name="tip" pos="0.2 0 0"/></body>
+    </body></worldbody></mujoco>"""
+    path = _write(tmp_path, "multi.xml", xml)
+    robot = robokit.load(path)
+    assert robot.joint_names == ("x", "y", "rz", "h1", "h2")
+    assert dynamics_differences(path) < TOL
+    # poses: at qpos, robokit's tip frame is MuJoCo's site
+    m, rng = _mj_model(path), np.random.default_rng(3)
+    d = mujoco.MjData(m)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        T = robot.frame_pose(q)
+        assert np.abs(T[:3, 3] - d.site_xpos[0]).max() < 1e-12
+        assert np.abs(T[:3, :3] - d.site_xmat[0].reshape(3, 3)).max() < 1e-12
+
+
+def test_autolimits_and_limited(tmp_path):
+    base = """<mujoco><compiler autolimits="{auto}"/><worldbody><body name="a">
+      <joint name="j" axis="0 0 1" range="-30 30" {limited}/><geom size="0.1"/></body></worldbody></mujoco>"""
+    path = _write(tmp_path, "limits.xml", base.format(auto="true", limited=""))
+    assert np.allclose(robokit.load(path).qlim, [[-np.pi / 6, np.pi / 6]])
+    path = _write(tmp_path, "unlimited.xml", base.format(auto="false", limited='limited="false"'))
+    assert np.isinf(robokit.load(path).qlim).all()
+    path = _write(tmp_path, "refused.xml", base.format(auto="false", limited=""))
+    with pytest.raises(ValueError):
+        mujoco.MjModel.from_xml_path(str(path))
+    with pytest.raises(InputError, match="limited"):
+        robokit.load(path)
+
+
+def _binary_stl(path, vertices, triangles):
+    with open(path, "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<i", len(triangles)))
+        for t in triangles:
+            f.write(struct.pack("<3f", 0, 0, 0))
+            for k in t:
+                f.write(struct.pack("<3f", *vertices[k]))
+            f.write(b"\0\0")
+
+
+def _l_prism():
+    """A non-convex L-shaped prism (an L in xy extruded 0.05 m along z), outward triangles."""
+    L = [(0, 0), (0.2, 0), (0.2, 0.05), (0.05, 0.05), (0.05, 0.15), (0, 0.15)]
+    v = [(x, y, 0.0) for x, y in L] + [(x, y, 0.05) for x, y in L]
+    n = len(L)
+    tris = [(0, 2, 1), (0, 3, 2), (0, 5, 3), (3, 5, 4)]
+    tris += [(a + n, b + n, c + n) for a, c, b in tris]
+    for i in range(n):
+        j = (i + 1) % n
+        tris += [(i, j, j + n), (i, j + n, i + n)]
+    return np.array(v), np.array(tris)
+
+
+@pytest.mark.parametrize("mode", ["legacy", "exact", "convex", "shell"])
+def test_mesh_inertia(mode, tmp_path):
+    v, t = _l_prism()
+    _binary_stl(tmp_path / "ell.stl", v, t)
+    (tmp_path / "quad.obj").write_text("v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\nv 0 0 0.1\nv 0.1 0 0.1\n"
+                                       "v 0.1 0.1 0.1\nv 0 0.1 0.1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\n"
+                                       "f 3 4 8 7\nf 4 1 5 8\n")
+    assets = (f'<mesh name="ell" file="ell.stl" inertia="{mode}" scale="1.5 1 0.8" refpos="0.01 0 0"/>'
+              f'<mesh name="cube" file="quad.obj" inertia="{mode}"/>'
+              '<mesh name="tet" vertex="0 0 0 0.1 0 0 0 0.1 0 0 0 0.1"/>')
+    rule = dict(compiler="", l1='<geom type="mesh" mesh="ell" euler="10 0 0"/>',
+                l2='<geom type="mesh" mesh="cube" pos="0.1 0 0"/><geom type="mesh" mesh="tet" mass="0.3"/>',
+                l3='<geom mesh="ell"/><geom type="box" mesh="cube" pos="0.1 0 0"/>')
+    RULES["_mesh"] = rule
+    try:
+        path = _rule_file(tmp_path, "_mesh", assets=assets)
+    finally:
+        del RULES["_mesh"]
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path) < TOL
+
+
+def test_fitted_primitives_with_fitaabb(tmp_path):
+    v, t = _l_prism()
+    _binary_stl(tmp_path / "ell.stl", v, t)
+    xml = """<mujoco><compiler fitaabb="true"/><asset><mesh name="ell" file="ell.stl"/></asset><worldbody>
+      <body name="a"><joint axis="0 0 1"/><geom type="capsule" mesh="ell"/><geom type="box" mesh="ell" fitscale="1.2"/>
+        <body name="b" pos="0.2 0 0"><joint axis="0 1 0"/><geom type="cylinder" mesh="ell"/><geom mesh="ell"/></body>
+      </body></worldbody></mujoco>"""
+    path = _write(tmp_path, "fit.xml", xml)
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path) < TOL
+
+
+def test_ascii_stl_is_refused_like_mujoco(tmp_path):
+    (tmp_path / "a.stl").write_text("solid a\nendsolid a\n")
+    path = _write(tmp_path, "ascii.xml", '<mujoco><asset><mesh file="a.stl"/></asset><worldbody><body name="b">'
+                  '<joint/><geom type="mesh" mesh="a"/></body></worldbody></mujoco>')
+    with pytest.raises(InputError, match="binary STL"):
+        robokit.load(path)
+
+
+def test_unbalanced_inertia_is_refused_without_balanceinertia(tmp_path):
+    path = _write(tmp_path, "bad.xml", '<mujoco><worldbody><body name="b"><joint/><inertial pos="0 0 0" mass="1" '
+                  'diaginertia="0.01 0.01 0.05"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError):
+        mujoco.MjModel.from_xml_path(str(path))
+    with pytest.raises(InputError, match="'b'.*A \\+ B >= C"):
+        robokit.load(path)
+
+
+PYBULLET_ARMS = ["pusher", "striker", "thrower"]
+
+
+@pytest.mark.parametrize("name", PYBULLET_ARMS)
+def test_gym_arms_of_pybullet_data(name):
+    pybullet_data = pytest.importorskip("pybullet_data")
+    from pathlib import Path
+
+    path = Path(pybullet_data.getDataPath()) / "mjcf" / f"{name}.xml"
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path, samples=20) < TOL
+    assert dynamics_differences(path, samples=5, armature=False) < TOL
+    robot = robokit.load(path)
+    assert robot.tip == "fingertip" and "MJCF" in repr(robot)
+    assert sum(robot.model.inertias[j].mass > 1e-3 for j in range(1, 8)) >= (6 if name != "thrower" else 0)
+    names = {f.name for f in robot.model.frames}
+    if name == "thrower":  # unnamed bodies under wrist_roll_link, named from their parent and place
+        assert {"wrist_roll_link/body1", "wrist_roll_link/body4"} <= names
+        assert not any(n.endswith("Bis") for n in names)
+
+
+def test_armature_option_and_note(tmp_path):
+    path = _rule_file(tmp_path, "from_geoms_auto")
+    with pytest.warns(UserWarning, match="armature"):
+        robot = robokit.load(path)
+    bare = robokit.load(path, armature=False)
+    assert bare.spec.armature is False and robokit.load(bare.spec).spec.armature is False
+    q = robot.random_configuration(0)
+    assert np.allclose(robot.crba(q) - bare.crba(q), np.diag([0.02, 0.01, 0.5]), rtol=0, atol=1e-15)
+    with pytest.raises(InputError, match="armature"):
+        robokit.load("rrr", armature=False)
+
+
+try:
+    from hypothesis import given, settings, strategies as st
+except ImportError:  # pragma: no cover
+    given = None
+
+
+if given is not None:
+    _sizes = st.floats(0.01, 0.2)
+    _geom = st.tuples(st.sampled_from(["sphere", "capsule", "cylinder", "box", "ellipsoid"]),
+                      st.tuples(_sizes, _sizes, _sizes), st.tuples(*[st.floats(-0.2, 0.2)] * 3),
+                      st.tuples(*[st.floats(-180, 180)] * 3), st.booleans(), st.floats(100, 8000))
+
+    @settings(max_examples=25, deadline=None)
+    @given(st.lists(_geom, min_size=1, max_size=4))
+    def test_random_geom_bodies_match_mujoco(geoms):
+        import tempfile
+        from pathlib import Path
+
+        text = "".join(f'<geom type="{t}" size="{s[0]} {s[1]} {s[2]}" pos="{p[0]} {p[1]} {p[2]}" '
+                       f'euler="{e[0]} {e[1]} {e[2]}" shellinertia="{str(sh).lower()}" density="{rho}"/>'
+                       for t, s, p, e, sh, rho in geoms)
+        xml = (f'<mujoco><worldbody><body name="a"><joint axis="0 1 0"/>{text}<body name="b" pos="0.3 0 0">'
+               f'<joint axis="1 0 0"/>{text}</body></body></worldbody></mujoco>')
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp, "rand.xml")
+            path.write_text(xml)
+            try:
+                mujoco.MjModel.from_xml_path(str(path))
+            except ValueError:
+                return  # a body MuJoCo itself refuses (e.g. A + B < C from shells)
+            assert body_differences(path) < TOL
+            assert dynamics_differences(path, samples=3) < TOL
+
+
+def _contact_arm(tmp_path, ghost_class):
+    """Three links; links 2 and 3 sit 0.15 m above link 1, a sphere hangs from link 3's end
+    down to link 1's height (class ``ghost_class``: masks 2/2, or the default 1/1)."""
+    xml = f"""<mujoco model="contacts"><compiler angle="radian"/><default><geom contype="1" conaffinity="1"/>
+      <default class="ghost"><geom contype="2" conaffinity="2"/></default></default><worldbody>
+      <body name="l1"><joint name="j1" axis="0 0 1"/><geom name="g1" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+        <body name="l2" pos="0.3 0 0.15"><joint name="j2" axis="0 0 1"/>
+          <geom name="g2" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+          <body name="l3" pos="0.3 0 0"><joint name="j3" axis="0 0 1"/>
+            <geom name="g3" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+            <geom name="ball" class="{ghost_class}" type="sphere" pos="0.3 0 -0.15" size="0.05"/>
+            <site name="tip" pos="0.3 0 0"/></body></body></body></worldbody></mujoco>"""
+    return _write(tmp_path, f"contacts_{ghost_class}.xml", xml)
+
+
+def _mujoco_contacts(path, q):
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    d.qpos[:] = q
+    mujoco.mj_forward(m, d)
+    return {frozenset((mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, c.geom1),
+                       mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, c.geom2))) for c in d.contact[:d.ncon]}
+
+
+def test_world_honours_contype_conaffinity(tmp_path):
+    from robokit.collision import World
+
+    # folded so that link 3's end is above the middle of link 1: the ball overlaps link 1's capsule
+    c3 = (0.15 ** 2 - 0.18) / 0.18
+    q3 = np.arccos(c3)
+    q = np.array([0.0, np.pi - np.arctan2(0.3 * np.sin(q3), 0.3 + 0.3 * c3), q3])
+    ghost, solid = _contact_arm(tmp_path, "ghost"), _contact_arm(tmp_path, "main")
+    rules = robokit.load(ghost).contact_rules
+    assert rules.why("g1", "g3") is None                   # (1 & 1): MuJoCo tests the pair
+    assert "contype/conaffinity" in rules.why("g1", "ball")  # (1 & 2) | (2 & 1) = 0
+    assert "parent" in rules.why("g2", "g3")
+    # the pair MuJoCo never tests is not checked, and says why
+    world = World(robokit.load(ghost))
+    assert frozenset(("l1", "l3")) in {frozenset(p) for p in world.self_pairs.checked}  # g1–g3 is
+    reasons = [why for _, _, why in world.self_pairs.excluded]
+    assert any("g1 and ball" in r and "contype/conaffinity" in r for r in reasons)
+    assert "g1 and ball" in world.describe()
+    assert frozenset(("g1", "ball")) not in _mujoco_contacts(ghost, q)
+    assert world.colliding_pairs(q) == [] and not world.in_collision(q)
+    # the same ball with the default masks: MuJoCo tests it, finds the contact, and so does World
+    world = World(robokit.load(solid))
+    assert frozenset(("g1", "ball")) in _mujoco_contacts(solid, q)
+    assert ("l1", "l3") in world.colliding_pairs(q) and world.in_collision(q)
+
+
+def test_hostile_meshes_are_refused_in_bounded_time(tmp_path):
+    """A binary STL whose header claims a billion triangles, and a mesh path out of the folder."""
+    import time
+
+    with open(tmp_path / "huge.stl", "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<i", 10 ** 9) + b"\0" * 50)
+    path = _write(tmp_path, "huge.xml", '<mujoco><asset><mesh file="huge.stl"/></asset><worldbody><body name="b">'
+                  '<joint/><geom type="mesh" mesh="huge"/></body></worldbody></mujoco>')
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match="binary STL"):
+        robokit.load(path)
+    assert time.perf_counter() - t0 < 5
+    path = _write(tmp_path, "out.xml", '<mujoco><asset><mesh file="../../etc/passwd.stl"/></asset><worldbody>'
+                  '<body name="b"><joint/><geom type="mesh" mesh="passwd"/></body></worldbody></mujoco>')
+    with pytest.raises(InputError, match="outside"):
+        robokit.load(path)
