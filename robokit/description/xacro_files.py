@@ -382,12 +382,11 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
         uri = mesh.get("filename", "")
         try:
             p = _resolve_mesh_uri(uri, top, package_path)
-        except InputError as exc:
-            raise InputError(f"{top}: <mesh filename={uri!r}>: {exc}") from None
+        except InputError:
+            continue  # its package is not there: the URDF reader drops the mesh with a note
         p = confine(p, roots, top, f"<mesh filename={uri!r}>", allow_outside=allow_outside)
-        if not p.is_file():
-            raise InputError(f"{top}: <mesh filename={uri!r}>: file {str(p)!r} not found")
-        mesh.set("filename", str(p.resolve()))
+        if p.is_file():  # a missing mesh keeps its reference: the URDF reader drops it with a note
+            mesh.set("filename", str(p.resolve()))
     return ET.tostring(root, encoding="unicode")
 
 
