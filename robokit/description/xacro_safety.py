@@ -140,6 +140,7 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
             globals_ids.update(id(v) for v in g[nsname].values() if callable(v) or is_table(v))
     state = {"elements": 0, "files": 0, "output": 0, "start": time.monotonic()}
     clone_cost: dict[int, tuple[Any, int]] = {}  # id(macro body) -> (body, cost)
+    duplicates_noted: set[str] = set()
 
     def current(back: int = 1) -> str:
         stack = getattr(xacro, "filestack", None) or []
@@ -268,7 +269,8 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         confine(p, roots(), current(), f"xacro.load_yaml({filename!r})")
         data, duplicates = load_pyyaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
                                             scalar_tags=unit_tags(str(p)))
-        if duplicates:
+        if duplicates and str(p) not in duplicates_noted:  # one note per file, however often it is read
+            duplicates_noted.add(str(p))
             shown = ", ".join(f"{k!r} (lines {first} and {line})" for k, line, first in duplicates[:3])
             more = f" and {len(duplicates) - 3} more" if len(duplicates) > 3 else ""
             note(f"{p}: duplicate key {shown}{more}; the last value is used, as PyYAML (and so the xacro program) "
