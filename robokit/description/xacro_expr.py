@@ -386,7 +386,7 @@ def _len_of(v: Any) -> int:
     return len(v) if isinstance(v, (str, list, tuple, dict, set, frozenset)) else 1
 
 
-def _seq_estimate(it: Any = (), *_: Any, **__: Any) -> int:
+def _seq_estimate(it: Any = (), /, *_: Any, **__: Any) -> int:
     """Size of a list made from ``it`` (a string becomes one item per character)."""
     return 2 * len(it) if isinstance(it, str) else size_of(it)
 
@@ -402,18 +402,18 @@ def _collect(what: str, values: Iterable[Any]) -> list[Any]:
     return out
 
 
-def _map(f: Any, *iterables: Any) -> list[Any]:
+def _map(f: Any, /, *iterables: Any) -> list[Any]:
     g = _as_function(f, "map's first argument")
     assert g is not None
     return _collect("a map() result", (g(*xs) for xs in zip(*map(_items, iterables))))
 
 
-def _filter(f: Any, iterable: Any) -> list[Any]:
+def _filter(f: Any, iterable: Any, /) -> list[Any]:
     g = _as_function(f, "filter's first argument") or bool
     return [x for x in _items(iterable) if g(x)]
 
 
-def _sorted(iterable: Any, *, key: Any = None, reverse: Any = False) -> list[Any]:
+def _sorted(iterable: Any, /, *, key: Any = None, reverse: Any = False) -> list[Any]:
     return sorted(_items(iterable), key=_as_function(key, "sorted's key"), reverse=reverse)
 
 
@@ -444,15 +444,15 @@ def _dict_estimate(*args: Any, **kwargs: Any) -> int:
     return (_seq_estimate(args[0]) if args else 0) + size_of(kwargs)
 
 
-def _bounded_round(x: Any, ndigits: Any = None) -> Any:
+def _bounded_round(number: Any, ndigits: Any = None) -> Any:
     if ndigits is None:
-        return round(x)
+        return round(number)
     if not isinstance(ndigits, int) or abs(ndigits) > MAX_PRECISION:
         raise Refused(f"round() to more than {MAX_PRECISION} digits")
-    return round(x, ndigits)
+    return round(number, ndigits)
 
 
-def _numeric_sum(items: Any, start: Any = 0) -> Any:
+def _numeric_sum(items: Any, /, start: Any = 0) -> Any:
     values = list(_items(items))
     if not all(isinstance(v, (int, float)) for v in values + [start]):
         raise Refused("sum() of values that are not numbers")
@@ -508,35 +508,39 @@ _MATH_FUNCS.update({
 })
 
 
-def _str(*args: Any) -> str:
-    return str(*args)
+def _str(*args: Any, **kwargs: Any) -> str:
+    return str(*args, **kwargs)
 
 
-def _repr(v: Any) -> str:
+def _str_estimate(*args: Any, **kwargs: Any) -> int:
+    return text_bound(args[0] if args else kwargs.get("object", ""))
+
+
+def _repr(v: Any, /) -> str:
     return repr(v)
 
 
 #: The builtins xacro offers that compute on data (the ``python`` namespace).
 _PYTHON_FUNCS: dict[str, Fn] = {f.name: f for f in [
-    Fn("abs", abs), Fn("all", lambda it: all(_items(it))), Fn("any", lambda it: any(_items(it))),
+    Fn("abs", abs), Fn("all", lambda it, /: all(_items(it))), Fn("any", lambda it, /: any(_items(it))),
     Fn("bool", bool), Fn("divmod", divmod), Fn("float", float), Fn("int", int), Fn("len", len), Fn("ord", ord),
     Fn("round", _bounded_round), Fn("sum", _numeric_sum),
     Fn("min", _min_max(min), takes_functions=True), Fn("max", _min_max(max), takes_functions=True),
-    Fn("str", _str, lambda v="", *a: text_bound(v)), Fn("repr", _repr, lambda v: text_bound(v, top=False)),
-    Fn("list", lambda it=(): list(_items(it)), _seq_estimate),
-    Fn("tuple", lambda it=(): tuple(_items(it)), _seq_estimate),
-    Fn("set", lambda it=(): set(_items(it)), _seq_estimate),
-    Fn("frozenset", lambda it=(): frozenset(_items(it)), _seq_estimate),
-    Fn("reversed", lambda it: list(reversed(it if isinstance(it, (list, tuple, str)) else list(_items(it)))),
+    Fn("str", _str, _str_estimate), Fn("repr", _repr, lambda v, /: text_bound(v, top=False)),
+    Fn("list", lambda it=(), /: list(_items(it)), _seq_estimate),
+    Fn("tuple", lambda it=(), /: tuple(_items(it)), _seq_estimate),
+    Fn("set", lambda it=(), /: set(_items(it)), _seq_estimate),
+    Fn("frozenset", lambda it=(), /: frozenset(_items(it)), _seq_estimate),
+    Fn("reversed", lambda it, /: list(reversed(it if isinstance(it, (list, tuple, str)) else list(_items(it)))),
        _seq_estimate),
     Fn("sorted", _sorted, _seq_estimate, takes_functions=True),
     Fn("dict", dict, _dict_estimate),
     Fn("range", _range, _range_estimate),
-    Fn("zip", lambda *its: list(zip(*map(_items, its))), _zip_estimate),
-    Fn("enumerate", lambda it, start=0: list(enumerate(_items(it), start)),
-       lambda it, start=0: 3 * _len_of(it) + _seq_estimate(it)),
-    Fn("map", _map, lambda f, *its: 0, takes_functions=True),
-    Fn("filter", _filter, lambda f, it: _seq_estimate(it), takes_functions=True),
+    Fn("zip", lambda *its, strict=False: list(zip(*map(_items, its), strict=strict)), _zip_estimate),
+    Fn("enumerate", lambda iterable, start=0: list(enumerate(_items(iterable), start)),
+       lambda iterable, start=0: 3 * _len_of(iterable) + _seq_estimate(iterable)),
+    Fn("map", _map, lambda f, /, *its: 0, takes_functions=True),
+    Fn("filter", _filter, lambda f, it, /: _seq_estimate(it), takes_functions=True),
 ]}
 #: Builtins xacro offers that robokit refuses, with the reason.
 _REFUSED_FUNCS = {
@@ -1077,7 +1081,7 @@ def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xac
     ns: dict[str, Mapping[str, Fn]] = {"math": _MATH_FUNCS, "python": _PYTHON_FUNCS}
     for name, table in (namespaces or {}).items():
         ns[name] = {k: (f if isinstance(f, Fn) else Fn(f"{name}.{k}", f)) for k, f in table.items()}
-    consts = dict(_MATH_CONSTS)
+    consts: dict[str, Any] = dict(_MATH_CONSTS)
     consts.update({"True": True, "False": False, "None": None})
     consts.update(constants or {})
     interp = _Interpreter(symbols, funcs, ns, globals_ids or set(), consts)

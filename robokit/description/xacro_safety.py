@@ -271,7 +271,8 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
                                             scalar_tags=unit_tags(str(p)))
         if duplicates and str(p) not in duplicates_noted:  # one note per file, however often it is read
             duplicates_noted.add(str(p))
-            shown = ", ".join(f"{k!r} (lines {first} and {line})" for k, line, first in duplicates[:3])
+            shown = ", ".join(f"{k!r} ({f'twice on line {line}' if line == first else f'lines {first} and {line}'})"
+                              for k, line, first in duplicates[:3])
             more = f" and {len(duplicates) - 3} more" if len(duplicates) > 3 else ""
             note(f"{p}: duplicate key {shown}{more}; the last value is used, as PyYAML (and so the xacro program) "
                  "reads it")
