@@ -143,21 +143,22 @@ def size_of(v: Any, limit: int = MAX_STRING) -> int:
     return total
 
 
-def _repr_str_bound(s: str) -> int:
-    # repr of a string: quotes, and at most 4 characters per ASCII character (\x00), 10 otherwise
-    return 2 + (4 if s.isascii() else 10) * len(s)
+def _repr_str_bound(s: str, limit: int = MAX_STRING) -> int:
+    """``len(repr(s))``: computed for a string within ``limit`` (at most 10 characters each), else
+    a lower bound that already exceeds it."""
+    return len(repr(s)) if len(s) <= limit else len(s) + 2
 
 
 def text_bound(v: Any, limit: int = MAX_STRING, top: bool = True) -> int:
     """An upper bound of ``len(str(v))`` (``top=False``: of ``len(repr(v))``); stops once past ``limit``."""
     if isinstance(v, str):
-        return len(v) if top else _repr_str_bound(v)
+        return len(v) if top else _repr_str_bound(v, limit)
     total = 0
     stack = [v]
     while stack:
         x = stack.pop()
         if isinstance(x, str):
-            total += _repr_str_bound(x)
+            total += _repr_str_bound(x, limit - total)
         elif isinstance(x, bool) or x is None:
             total += 5
         elif isinstance(x, float):
@@ -356,7 +357,7 @@ class Fn:
                 n = self.estimate(*args, **kwargs)
             except TypeError:
                 raise TypeError(f"{self.name}(): wrong arguments") from None
-            _need(f"a {self.name}() result", n)
+            _need(f"the result of {self.name}()", n)
         return check_value(self.fn(*args, **kwargs))
 
 
@@ -430,7 +431,7 @@ def _range(*args: Any) -> list[int]:
 
 
 def _range_estimate(*args: Any) -> int:
-    return len(range(*args))
+    return 2 * len(range(*args))  # the items and the integers
 
 
 def _zip_estimate(*its: Any, **_: Any) -> int:
