@@ -1055,7 +1055,7 @@ def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xac
     >>> evaluate("('a' * 60000).join('b' * 30000)", {})
     Traceback (most recent call last):
     ...
-    robokit.description.xacro_expr.UnsafeXacro: <xacro>: expression ${('a' * 60000).join('b' * 30000)} refused (a str.join() result of more than 100000 characters and items (about 100030000))
+    robokit.description.xacro_expr.UnsafeXacro: <xacro>: expression ${('a' * 60000).join('b' * 30000)} refused (the result of str.join() of more than 100000 characters and items (about 1799970000))
     >>> evaluate("(lambda: 1)()", {})
     Traceback (most recent call last):
     ...
