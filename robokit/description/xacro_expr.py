@@ -260,7 +260,7 @@ def _field_bound(value: Any, width: int, prec: int | None, kind: str) -> int:
         base = text_bound(value)
         if prec is not None:
             base = min(base, prec)
-    elif isinstance(value, (int, float)) and not isinstance(value, bool) or kind in "bcdeEfFgGnoxX%iu":
+    elif isinstance(value, (int, float)) and not isinstance(value, bool) or (kind and kind in "bcdeEfFgGnoxX%iu"):
         bits = value.bit_length() if isinstance(value, int) else 0
         base = (max(bits, 330) + (prec or 0) + 8) * 4 // 3  # binary digits, or a float's 309 digits; grouping
     else:
@@ -306,6 +306,8 @@ def percent_format(fmt: str, args: Any) -> str:
             i += 1
         total += _field_bound(value, width, prec, m["type"])
         _need("a %-formatted string", total)
+    if "%" in _PERCENT.sub("", fmt):  # a conversion the estimate above did not see
+        raise Refused("a %-format conversion robokit does not read (write %s, %d, %5.2f, %(name)s …)")
     return fmt % args
 
 
@@ -405,7 +407,8 @@ def _collect(what: str, values: Iterable[Any]) -> list[Any]:
 
 def _map(f: Any, /, *iterables: Any) -> list[Any]:
     g = _as_function(f, "map's first argument")
-    assert g is not None
+    if g is None or not iterables:
+        raise TypeError("map() takes a function and at least one iterable")
     return _collect("a map() result", (g(*xs) for xs in zip(*map(_items, iterables))))
 
 
@@ -652,7 +655,8 @@ def check_binop(op: ast.operator, a: Any, b: Any) -> None:
         _need_bits("an integer power", b * math.log2(abs(a)))
     elif isinstance(op, ast.LShift) and _is_int(a) and _is_int(b) and a != 0:
         _need_bits("a left shift", _bits(a) + max(b, 0))
-    elif isinstance(op, ast.BitOr) and isinstance(a, (dict, set, frozenset)) and isinstance(b, (dict, set, frozenset)):
+    elif isinstance(op, (ast.BitOr, ast.BitXor)) and isinstance(a, (dict, set, frozenset)) \
+            and isinstance(b, (dict, set, frozenset)):
         _need("a union", size_of(a) + size_of(b))
 
 

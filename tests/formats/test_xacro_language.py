@@ -35,6 +35,8 @@ units: {deg: !degrees 90, mm: !millimeters 2 * 5, rad: !radians pi / 2}
   <xacro:macro name="mark" params="x"><mark from="A" x="${{x}}" p="${{prop}}"/></xacro:macro>
 </robot>""",
     "part.xacro": f'<robot {NS}><part name="$(arg who)" p="${{outer}}"/></robot>',
+    "glob_1.xacro": f'<robot {NS}><g n="1"/></robot>',
+    "glob_2.xacro": f'<robot {NS}><g n="2"/></robot>',
 }
 
 #: name -> (body inside <robot>, xacro arguments)
@@ -80,13 +82,15 @@ DOCS: dict[str, tuple[str, dict[str, str]]] = {
 <xacro:property name="gone" value="1"/><xacro:property name="gone" remove="true"/>
 <r v="${'gone' in python.dir() if False else 1}"/>
 """, {}),
-    "namespaced include": ("""
+    "includes: namespaced, optional, globbed": ("""
 <xacro:property name="prop" value="root"/>
 <xacro:include filename="A.xacro" ns="A"/>
 <root prop="${prop}" a="${A.prop}"/>
 <xacro:A.mark x="${A.prop * 2}"/>
 <xacro:A.set/>
 <after prop="${prop}"/>
+<xacro:include filename="not_there.xacro" optional="true"/>
+<xacro:include filename="glob_*.xacro"/>
 """, {}),
     "yaml as pyyaml reads it": ("""
 <xacro:property name="y" value="${xacro.load_yaml('settings.yaml')}"/>
