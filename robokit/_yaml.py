@@ -137,26 +137,43 @@ def load_yaml_text(text: str, source: str = "<string>",
 
     Raises :class:`robokit.InputError` for anything refused.
     """
+    _check_size(text, source)
+    try:
+        return yaml.load(text, Loader=_with_tags(_StrictLoader, scalar_tags))  # noqa: S506 - a SafeLoader subclass
+    except (_Error, yaml.YAMLError, RecursionError) as exc:
+        raise _input_error(exc, source) from None
+
+
+def _check_size(text: str, source: str) -> None:
     if len(text) > MAX_BYTES:
         raise InputError(f"{source}: file too large ({len(text)} characters; at most {MAX_BYTES})")
-    loader: type = _StrictLoader
-    if scalar_tags:
-        loader = type("_TaggedLoader", (_StrictLoader,), {"yaml_constructors": dict(_StrictLoader.yaml_constructors)})
-        for tag, fn in scalar_tags.items():
-            loader.add_constructor(  # type: ignore[attr-defined]
-                tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
-    try:
-        return yaml.load(text, Loader=loader)  # noqa: S506 - a SafeLoader subclass
-    except _Error as exc:
+
+
+def _with_tags(base: type, scalar_tags: dict[str, Callable[[str], Any]] | None) -> type:
+    """``base``, or a subclass where a scalar ``!tag text`` becomes ``scalar_tags[tag](text)``."""
+    if not scalar_tags:
+        return base
+    constructors = dict(getattr(base, "yaml_constructors"))
+    loader = type(f"_Tagged{base.__name__}", (base,), {"yaml_constructors": constructors})
+    for tag, fn in scalar_tags.items():
+        loader.add_constructor(  # type: ignore[attr-defined]
+            tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
+    return loader
+
+
+def _input_error(exc: BaseException, source: str) -> InputError:
+    """The one-line InputError for what a YAML loader raised, naming ``source`` and the line."""
+    if isinstance(exc, _Error):
         where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
-        raise InputError(f"{source}: {exc}{where}") from None
-    except yaml.YAMLError as exc:
+        return InputError(f"{source}: {exc}{where}")
+    if isinstance(exc, yaml.YAMLError):
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or "syntax error"
-        raise InputError(f"{source}: not valid YAML{where} ({problem})") from None
-    except RecursionError:
-        raise InputError(f"{source}: nested too deeply") from None
+        return InputError(f"{source}: not valid YAML{where} ({problem})")
+    if isinstance(exc, RecursionError):
+        return InputError(f"{source}: nested too deeply")
+    return InputError(f"{source}: not valid YAML ({' '.join(str(exc).split())[:200]})")
 
 
 def load_yaml_file(path: str | os.PathLike[str]) -> Any:
@@ -269,29 +286,12 @@ def load_pyyaml_text(text: str, source: str = "<string>", scalar_tags: dict[str,
         Not YAML, too large, nested too deeply, an alias bomb or a recursive alias, a huge
         integer; the message names ``source`` and the line.
     """
-    if len(text) > MAX_BYTES:
-        raise InputError(f"{source}: file too large ({len(text)} characters; at most {MAX_BYTES})")
-    loader_cls: type = _PyYamlLoader
-    if scalar_tags:
-        loader_cls = type("_TaggedPyYamlLoader", (_PyYamlLoader,),
-                          {"yaml_constructors": dict(_PyYamlLoader.yaml_constructors)})
-        for tag, fn in scalar_tags.items():
-            loader_cls.add_constructor(  # type: ignore[attr-defined]
-                tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
-    loader = loader_cls(text)
+    _check_size(text, source)
+    loader = _with_tags(_PyYamlLoader, scalar_tags)(text)
     try:
         data = loader.get_single_data()
         return data, loader.duplicates
-    except _Error as exc:
-        where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
-        raise InputError(f"{source}: {exc}{where}") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
-        problem = getattr(exc, "problem", None) or "syntax error"
-        raise InputError(f"{source}: not valid YAML{where} ({problem})") from None
-    except (RecursionError, ValueError) as exc:
-        raise InputError(f"{source}: not valid YAML ({' '.join(str(exc).split())[:200] or 'nested too deeply'})"
-                         ) from None
+    except (_Error, yaml.YAMLError, RecursionError, ValueError) as exc:
+        raise _input_error(exc, source) from None
     finally:
         loader.dispose()

@@ -112,35 +112,42 @@ def _int_size(v: int) -> int:
     return 1 if bits <= 64 else int(bits * 0.30103) + 1
 
 
-def size_of(v: Any, limit: int = MAX_STRING) -> int:
-    """Characters and items in ``v`` through every level; counting stops once past ``limit``
-    (so the time is bounded by ``limit``, whatever ``v`` is)."""
+def _measure(v: Any, limit: int, leaf: Callable[[Any, int], int], container: Callable[[Any], int]) -> int:
+    """Sum of ``leaf(x, room left)`` over the non-container values in ``v`` and ``container(c)``
+    over its lists, tuples, sets and dicts (keys and values), through every level, without
+    recursion; stops once past ``limit`` (so the time is bounded by ``limit``, whatever ``v`` is)."""
     total = 0
     stack = [v]
     while stack:
         x = stack.pop()
-        if isinstance(x, str):
-            total += len(x)
-        elif isinstance(x, bool) or x is None or isinstance(x, float):
-            total += 1
-        elif isinstance(x, int):
-            total += _int_size(x)
-        elif isinstance(x, dict):
-            total += len(x)
+        if isinstance(x, (dict, list, tuple, set, frozenset)):
+            total += container(x)
             if total > limit:
                 return total
-            stack.extend(dict.keys(x))
-            stack.extend(dict.values(x))
-        elif isinstance(x, (list, tuple, set, frozenset)):
-            total += len(x)
-            if total > limit:
-                return total
-            stack.extend(list.__iter__(x) if isinstance(x, list) else x)
+            if isinstance(x, dict):
+                stack.extend(dict.keys(x))
+                stack.extend(dict.values(x))
+            else:
+                stack.extend(list.__iter__(x) if isinstance(x, list) else x)
         else:
-            total += 1
+            total += leaf(x, limit - total)
         if total > limit:
             return total
     return total
+
+
+def _leaf_size(x: Any, _room: int) -> int:
+    if isinstance(x, str):
+        return len(x)
+    if isinstance(x, int) and not isinstance(x, bool):
+        return _int_size(x)
+    return 1
+
+
+def size_of(v: Any, limit: int = MAX_STRING) -> int:
+    """Characters and items in ``v`` through every level; counting stops once past ``limit``
+    (so the time is bounded by ``limit``, whatever ``v`` is)."""
+    return _measure(v, limit, _leaf_size, len)
 
 
 def _repr_str_bound(s: str, limit: int = MAX_STRING) -> int:
@@ -149,38 +156,28 @@ def _repr_str_bound(s: str, limit: int = MAX_STRING) -> int:
     return len(repr(s)) if len(s) <= limit else len(s) + 2
 
 
+def _leaf_text(x: Any, room: int) -> int:
+    if isinstance(x, str):
+        return _repr_str_bound(x, room)
+    if isinstance(x, bool) or x is None:
+        return 5
+    if isinstance(x, float):
+        return 24
+    if isinstance(x, int):
+        return int(x.bit_length() * 0.30103) + 2
+    return 64
+
+
+def _container_text(x: Any) -> int:
+    # brackets and separators ("frozenset({…})"); a dict's ": " too
+    return 2 + 4 * len(x) if isinstance(x, dict) else 12 + 2 * len(x)
+
+
 def text_bound(v: Any, limit: int = MAX_STRING, top: bool = True) -> int:
     """An upper bound of ``len(str(v))`` (``top=False``: of ``len(repr(v))``); stops once past ``limit``."""
     if isinstance(v, str):
         return len(v) if top else _repr_str_bound(v, limit)
-    total = 0
-    stack = [v]
-    while stack:
-        x = stack.pop()
-        if isinstance(x, str):
-            total += _repr_str_bound(x, limit - total)
-        elif isinstance(x, bool) or x is None:
-            total += 5
-        elif isinstance(x, float):
-            total += 24
-        elif isinstance(x, int):
-            total += int(x.bit_length() * 0.30103) + 2
-        elif isinstance(x, dict):
-            total += 2 + 4 * len(x)
-            if total > limit:
-                return total
-            stack.extend(dict.keys(x))
-            stack.extend(dict.values(x))
-        elif isinstance(x, (list, tuple, set, frozenset)):
-            total += 12 + 2 * len(x)  # brackets, separators; "frozenset({…})"
-            if total > limit:
-                return total
-            stack.extend(list.__iter__(x) if isinstance(x, list) else x)
-        else:
-            total += 64
-        if total > limit:
-            return total
-    return total
+    return _measure(v, limit, _leaf_text, _container_text)
 
 
 def _refuse_size(what: str, n: int) -> Refused:
@@ -357,8 +354,8 @@ class Fn:
         if self.estimate is not None:
             try:
                 n = self.estimate(*args, **kwargs)
-            except TypeError:
-                raise TypeError(f"{self.name}(): wrong arguments") from None
+            except TypeError:  # arguments the function does not take: nothing to bound, nothing to run
+                raise Refused(f"{self.name}() with arguments it does not take") from None
             _need(f"the result of {self.name}()", n)
         return check_value(self.fn(*args, **kwargs))
 
@@ -380,9 +377,7 @@ def _as_function(f: Any, what: str) -> Callable[..., Any] | None:
 
 def _items(v: Any) -> Iterator[Any]:
     """Iterate a value as Python does (strings by character, dicts by key)."""
-    if isinstance(v, (str, list, tuple, dict, set, frozenset)):
-        return iter(v)
-    raise TypeError(f"'{type(v).__name__}' object is not iterable")
+    return iter(v)  # v is data (checked): Python's own TypeError for a number
 
 
 def _len_of(v: Any) -> int:
@@ -408,7 +403,7 @@ def _collect(what: str, values: Iterable[Any]) -> list[Any]:
 def _map(f: Any, /, *iterables: Any) -> list[Any]:
     g = _as_function(f, "map's first argument")
     if g is None or not iterables:
-        raise TypeError("map() takes a function and at least one iterable")
+        raise Refused("map() takes a function and at least one iterable")
     return _collect("a map() result", (g(*xs) for xs in zip(*map(_items, iterables))))
 
 
@@ -615,8 +610,6 @@ _MUTATORS = {"append", "extend", "insert", "pop", "remove", "clear", "sort", "re
 def _tokenize(s: Any, sep: Any = ",; ", skip_empty: Any = True) -> list[str]:
     """xacro.tokenize: ``s`` split at any character of ``sep`` (a set of characters; the xacro
     program builds a regular expression ``[sep]`` from it, so ``sep`` may not use regex syntax)."""
-    if not isinstance(s, str) or not isinstance(sep, str):
-        raise TypeError("xacro.tokenize(text, sep) takes strings")
     if re.search(r"[\[\]\\^]", sep) or "-" in sep[1:-1] or not sep:
         raise Refused(f"xacro.tokenize with the separator set {sep[:20]!r} (a plain set of characters is accepted)")
     parts = re.split("[" + re.escape(sep) + "]", s)
@@ -791,10 +784,7 @@ class _Interpreter:
         kwargs: dict[str, Any] = {}
         for kw in node.keywords:
             if kw.arg is None:
-                v = self.value(kw.value)
-                if not isinstance(v, dict) or not all(isinstance(k, str) for k in v):
-                    raise TypeError("argument after ** must be a mapping with string keys")
-                kwargs.update(v)
+                kwargs.update(**self.value(kw.value))  # Python's own TypeError for keys that are not names
             else:
                 kwargs[kw.arg] = self.argument(kw.value, fn)
         return fn.call(args, kwargs)
@@ -884,9 +874,7 @@ class _Interpreter:
         total = 0
         for k, v in zip(node.keys, node.values):
             if k is None:  # {**mapping}
-                m = self.value(v)
-                if not isinstance(m, dict):
-                    raise TypeError(f"'{type(m).__name__}' object is not a mapping")
+                m = {**self.value(v)}  # Python's own TypeError for a value that is not a mapping
                 total += size_of(m, MAX_STRING - total)
                 _need("a dict", total)
                 out.update(m)
@@ -923,7 +911,7 @@ class _Interpreter:
         elif isinstance(target, (ast.Tuple, ast.List)):
             items = list(_items(value))
             if len(items) != len(target.elts):
-                raise ValueError(f"cannot unpack {len(items)} values into {len(target.elts)} names")
+                raise Refused(f"{len(items)} values unpacked into {len(target.elts)} names")
             for t, v in zip(target.elts, items):
                 self.bind(t, v, scope)
         else:
