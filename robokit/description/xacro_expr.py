@@ -201,7 +201,8 @@ def check_value(v: Any) -> Any:
     if v is None or isinstance(v, (bool, float)):
         return v
     if isinstance(v, int):
-        _need_bits("an integer", v.bit_length())
+        if v.bit_length() > MAX_INT_BITS:
+            _need_bits("an integer", v.bit_length())
         return v
     if is_table(v):
         return v
@@ -672,11 +673,13 @@ class _Interpreter:
             raise Refused(f"more than {MAX_STEPS} evaluation steps")
 
     def run(self, node: ast.AST) -> Any:
-        self.tick()
-        method = getattr(self, "_" + type(node).__name__, None)
+        self.steps += 1
+        if self.steps > MAX_STEPS:
+            raise Refused(f"more than {MAX_STEPS} evaluation steps")
+        method = _DISPATCH.get(type(node))
         if method is None:
             raise Refused(_NOT_ALLOWED.get(type(node).__name__, f"{type(node).__name__} is not allowed"))
-        v = method(node)
+        v = method(self, node)
         if isinstance(v, (str, list, tuple, dict, set, frozenset)):
             self.work += len(v)  # every value built is also checked: bound the total
             if self.work > MAX_WORK:
@@ -939,7 +942,7 @@ class _Interpreter:
             if all(self.value(c) for c in g.ifs):
                 self._loop(generators, i + 1, scope, emit)
 
-    def _comprehension(self, node: ast.ListComp | ast.SetComp | ast.GeneratorExp, what: str) -> list[Any]:
+    def comprehension(self, node: ast.ListComp | ast.SetComp | ast.GeneratorExp, what: str) -> list[Any]:
         out: list[Any] = []
         total = [0]
 
@@ -953,13 +956,13 @@ class _Interpreter:
         return out
 
     def _ListComp(self, node: ast.ListComp) -> list[Any]:
-        return self._comprehension(node, "a list comprehension")
+        return self.comprehension(node, "a list comprehension")
 
     def _GeneratorExp(self, node: ast.GeneratorExp) -> list[Any]:
-        return self._comprehension(node, "a generator expression")
+        return self.comprehension(node, "a generator expression")
 
     def _SetComp(self, node: ast.SetComp) -> set[Any]:
-        return set(self._comprehension(node, "a set comprehension"))
+        return set(self.comprehension(node, "a set comprehension"))
 
     def _DictComp(self, node: ast.DictComp) -> dict[Any, Any]:
         out: dict[Any, Any] = {}
@@ -975,6 +978,10 @@ class _Interpreter:
         return out
 
 
+#: Syntax-tree node type -> the interpreter's method for it (the node types it evaluates).
+_DISPATCH: dict[type, Callable[[_Interpreter, Any], Any]] = {
+    getattr(ast, name[1:]): method for name, method in vars(_Interpreter).items()
+    if name.startswith("_") and not name.startswith("__") and isinstance(getattr(ast, name[1:], None), type)}
 _NOT_ALLOWED = {
     "Lambda": "Lambda is not allowed: functions are never values (map, filter and sorted take the named functions)",
     "NamedExpr": "an assignment := inside an expression",
