@@ -226,6 +226,9 @@ def test_the_documents_exercise_what_they_say(expansions):
     assert m[0].attrib == {"a": "1", "b": "2", "c": "ooo", "d": "x y", "e": "E", "fwd": "from_caller",
                            "f": "1.5707963267948966", "g": "7"}
     assert ours["macro defaults"].find("n").attrib == {"e": "E", "fwd": "inner", "f": "1.5707963267948966"}
+    # defaults that are xacro's own objects (False, math.pi) are data like any other (they were refused)
+    assert ours["macro defaults"].find("b").attrib == {"t": "True", "f": "False", "p": "3.141592653589793",
+                                                       "u": "True", "z": "0", "ok": "True"}
     assert ours["property scopes"].find("top").attrib == {"p": "global", "g": "parent_set_global", "d": "first"}
     y = ours["yaml as pyyaml reads it"]
     assert y.find("a").get("small") == "1e-3" and y.find("a").get("sexa") == "90" and y.find("a").get("octal") == "15"
