@@ -157,7 +157,10 @@ DOCS: dict[str, tuple[str, dict[str, str]]] = {
 <xacro:macro name="mk" params="v:=$(arg n)"><mk v="${v}"/></xacro:macro>
 <xacro:call macro="$(arg m)"/>
 <xacro:mk v="$(arg who)"/>
-<xacro:include filename="part.xacro"/>
+<xacro:arg name="incfile" default="part"/>
+<xacro:include filename="$(arg incfile).xacro"/>
+<xacro:property name="$(arg tag)_prop" value="pv"/>
+<named v="${made_prop}"/>
 """, {"n": "3", "who": "me"}),
 }
 
