@@ -14,6 +14,7 @@ quantity's scale) at random joint values.
 """
 from __future__ import annotations
 
+import functools
 import json
 import subprocess
 import sys
@@ -83,7 +84,9 @@ def _elements(text: str) -> list[tuple[str, list[tuple[str, str]], str]]:
     return [(e.tag, sorted(e.attrib.items()), (e.text or "").strip()) for e in ET.fromstring(text).iter()]
 
 
+@functools.lru_cache(maxsize=None)
 def _load(name: str) -> robokit.Robot:
+    """The robot of a case (loaded once per session; the tests only read it)."""
     path, args, tip = CASES[name]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", robokit.RobokitWarning)
