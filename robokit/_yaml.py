@@ -11,6 +11,15 @@ names the file and the line:
 * nesting deeper than :data:`MAX_DEPTH` and files larger than :data:`MAX_BYTES` are refused
   (no recursion error, no minutes of parsing);
 * text that is not UTF-8 is refused with the byte offset.
+
+:func:`load_pyyaml_text` reads a file **as PyYAML's** ``safe_load`` **does** — for files that
+another program (the xacro program) reads with PyYAML, whose meaning must be the same here: YAML
+1.1 scalars (``1e-3`` is a string, ``yes`` is true, ``0o17``/``1_000``/``1:30`` are integers),
+anchors, aliases and merge keys (``<<: *base``), and a duplicate key keeps its last value (each
+duplicate is reported back, for one note). It keeps the bounds: nesting, file size, and the size
+of the data *with every alias expanded* (:data:`MAX_EXPANDED_NODES`), computed while the file is
+composed, so an alias bomb is refused before anything is expanded; an alias to a node that
+contains it (a recursive structure) and integers over :data:`MAX_INT_DIGITS` digits are refused.
 """
 from __future__ import annotations
 
@@ -23,12 +32,19 @@ import yaml
 from robokit._io import read_input_text
 from robokit.errors import InputError
 
-__all__ = ["MAX_BYTES", "MAX_DEPTH", "load_yaml_file", "load_yaml_text"]
+__all__ = ["MAX_BYTES", "MAX_DEPTH", "MAX_EXPANDED_NODES", "MAX_INT_DIGITS", "load_pyyaml_text", "load_yaml_file",
+           "load_yaml_text"]
 
 #: Largest YAML file robokit reads (a 100-joint DH table with inertias is about 30 kB).
 MAX_BYTES = 1 << 20
 #: Deepest nesting of lists/mappings accepted (a DH file needs 4).
 MAX_DEPTH = 20
+#: Most nodes (scalars, lists, mappings) a file read by :func:`load_pyyaml_text` may hold with
+#: every alias expanded (a 1 MB file without aliases holds at most about 250,000).
+MAX_EXPANDED_NODES = 200_000
+#: Longest integer :func:`load_pyyaml_text` converts, in characters (PyYAML's sexagesimal
+#: ``1:2:3:…`` integers take quadratic time in their length).
+MAX_INT_DIGITS = 100
 
 # YAML 1.2 core schema floats (and ints written with an exponent).
 _FLOAT_12 = re.compile(
@@ -121,29 +137,161 @@ def load_yaml_text(text: str, source: str = "<string>",
 
     Raises :class:`robokit.InputError` for anything refused.
     """
+    _check_size(text, source)
+    try:
+        return yaml.load(text, Loader=_with_tags(_StrictLoader, scalar_tags))  # noqa: S506 - a SafeLoader subclass
+    except (_Error, yaml.YAMLError, RecursionError) as exc:
+        raise _input_error(exc, source) from None
+
+
+def _check_size(text: str, source: str) -> None:
     if len(text) > MAX_BYTES:
         raise InputError(f"{source}: file too large ({len(text)} characters; at most {MAX_BYTES})")
-    loader: type = _StrictLoader
-    if scalar_tags:
-        loader = type("_TaggedLoader", (_StrictLoader,), {"yaml_constructors": dict(_StrictLoader.yaml_constructors)})
-        for tag, fn in scalar_tags.items():
-            loader.add_constructor(  # type: ignore[attr-defined]
-                tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
-    try:
-        return yaml.load(text, Loader=loader)  # noqa: S506 - a SafeLoader subclass
-    except _Error as exc:
+
+
+def _with_tags(base: type, scalar_tags: dict[str, Callable[[str], Any]] | None) -> type:
+    """``base``, or a subclass where a scalar ``!tag text`` becomes ``scalar_tags[tag](text)``."""
+    if not scalar_tags:
+        return base
+    constructors = dict(getattr(base, "yaml_constructors"))
+    loader = type(f"_Tagged{base.__name__}", (base,), {"yaml_constructors": constructors})
+    for tag, fn in scalar_tags.items():
+        loader.add_constructor(  # type: ignore[attr-defined]
+            tag, lambda ld, node, fn=fn: fn(ld.construct_scalar(node)))
+    return loader
+
+
+def _input_error(exc: BaseException, source: str) -> InputError:
+    """The one-line InputError for what a YAML loader raised, naming ``source`` and the line."""
+    if isinstance(exc, _Error):
         where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
-        raise InputError(f"{source}: {exc}{where}") from None
-    except yaml.YAMLError as exc:
+        return InputError(f"{source}: {exc}{where}")
+    if isinstance(exc, yaml.YAMLError):
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or "syntax error"
-        raise InputError(f"{source}: not valid YAML{where} ({problem})") from None
-    except RecursionError:
-        raise InputError(f"{source}: nested too deeply") from None
+        return InputError(f"{source}: not valid YAML{where} ({problem})")
+    if isinstance(exc, RecursionError):
+        return InputError(f"{source}: nested too deeply")
+    return InputError(f"{source}: not valid YAML ({' '.join(str(exc).split())[:200]})")
 
 
 def load_yaml_file(path: str | os.PathLike[str]) -> Any:
     """Read and parse a YAML file strictly; errors name the file (missing, unreadable, not UTF-8, too large)."""
     text = read_input_text(path, MAX_BYTES, "a YAML file")
     return load_yaml_text(text, source=str(path))
+
+
+class _PyYamlLoader(yaml.SafeLoader):
+    """PyYAML's SafeLoader (YAML 1.1, aliases, merge keys, last duplicate wins) with bounded
+    nesting, bounded alias expansion, no recursive aliases, duplicates recorded."""
+
+    def __init__(self, stream: str) -> None:
+        super().__init__(stream)
+        self._depth = 0
+        self._sizes: dict[int, int] = {}  # id(node) -> its node count with aliases expanded
+        self._done: set[int] = set()  # nodes fully composed
+        self.duplicates: list[tuple[Any, int, int]] = []  # (key, line, first line)
+
+    def compose_node(self, parent: Any, index: Any) -> Any:
+        if self.check_event(yaml.AliasEvent):
+            event = self.peek_event()
+            target = self.anchors.get(event.anchor)
+            if target is not None and id(target) not in self._done:
+                raise _Error(f"the alias *{event.anchor} refers to a node that contains it (a recursive structure)",
+                             event.start_mark)
+            return super().compose_node(parent, index)
+        self._depth += 1
+        try:
+            if self._depth > MAX_DEPTH:
+                raise _Error(f"nested deeper than {MAX_DEPTH} levels", self.peek_event().start_mark)
+            node = super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+        if isinstance(node, yaml.MappingNode):
+            children = [n for pair in node.value for n in pair]
+        elif isinstance(node, yaml.SequenceNode):
+            children = list(node.value)
+        else:
+            children = []
+        size = 1 + sum(self._sizes.get(id(c), 1) for c in children)
+        if size > MAX_EXPANDED_NODES:
+            raise _Error(f"more than {MAX_EXPANDED_NODES} values once its aliases are expanded (an alias bomb?)",
+                         node.start_mark)
+        self._sizes[id(node)] = size
+        self._done.add(id(node))
+        return node
+
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+        if isinstance(node, yaml.MappingNode):
+            seen: dict[Any, int] = {}
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge" or not isinstance(key_node, yaml.ScalarNode):
+                    continue
+                key = self.construct_object(key_node, deep=True)
+                try:
+                    hash(key)
+                except TypeError:
+                    continue
+                if key in seen:
+                    self.duplicates.append((key, key_node.start_mark.line + 1, seen[key] + 1))
+                seen[key] = key_node.start_mark.line
+        return super().construct_mapping(node, deep=deep)
+
+
+def _pyyaml_int(loader: Any, node: Any) -> int:
+    text = loader.construct_scalar(node)
+    if len(text) > MAX_INT_DIGITS:
+        raise _Error(f"an integer written with {len(text)} characters (at most {MAX_INT_DIGITS})", node.start_mark)
+    return int(yaml.SafeLoader.construct_yaml_int(loader, node))
+
+
+def _pyyaml_timestamp(loader: Any, node: Any) -> str:
+    return str(yaml.SafeLoader.construct_yaml_timestamp(loader, node))
+
+
+def _pyyaml_binary(loader: Any, node: Any) -> Any:
+    raise _Error("a !!binary value (bytes are not robot data)", node.start_mark)
+
+
+_PyYamlLoader.yaml_constructors = dict(yaml.SafeLoader.yaml_constructors)
+_PyYamlLoader.add_constructor("tag:yaml.org,2002:int", _pyyaml_int)
+_PyYamlLoader.add_constructor("tag:yaml.org,2002:timestamp", _pyyaml_timestamp)
+_PyYamlLoader.add_constructor("tag:yaml.org,2002:binary", _pyyaml_binary)
+
+
+def load_pyyaml_text(text: str, source: str = "<string>", scalar_tags: dict[str, Callable[[str], Any]] | None = None
+                     ) -> tuple[Any, list[tuple[Any, int, int]]]:
+    """Parse YAML ``text`` as PyYAML's ``safe_load`` does, with bounds (see the module docstring).
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    source : str
+        The file named in errors.
+    scalar_tags : dict, optional
+        ``{"!tag": function}``: a scalar written ``!tag text`` becomes ``function(text)``.
+
+    Returns
+    -------
+    data : object
+        What ``yaml.safe_load`` returns (a timestamp as its text; ``!!binary`` is refused).
+    duplicates : list of (key, line, first_line)
+        Keys given twice in one mapping (the last value is kept, as PyYAML does).
+
+    Raises
+    ------
+    InputError
+        Not YAML, too large, nested too deeply, an alias bomb or a recursive alias, a huge
+        integer; the message names ``source`` and the line.
+    """
+    _check_size(text, source)
+    loader = _with_tags(_PyYamlLoader, scalar_tags)(text)
+    try:
+        data = loader.get_single_data()
+        return data, loader.duplicates
+    except (_Error, yaml.YAMLError, RecursionError, ValueError) as exc:
+        raise _input_error(exc, source) from None
+    finally:
+        loader.dispose()

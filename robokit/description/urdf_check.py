@@ -324,6 +324,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
     pkg_roots = _package_roots(path, package_dirs)
     allowed = _allowed_roots(path, package_dirs)
     notes = []
+    missing: list[str] = []
     mesh_bytes = 0
     for lname, el in links.items():
         for kind in ("visual", "collision"):
@@ -337,7 +338,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                     _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
                                 "package folders given (allow_outside_meshes=True reads it)")
                 if resolved is None or not os.path.exists(resolved):
-                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not found; drawn without it")
+                    missing.append(f"link {lname!r} {kind} {uri!r}")
                     el.remove(geo_el)
                     continue
                 problem = mesh_file_problem(resolved)
@@ -350,6 +351,11 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                     el.remove(geo_el)
                     continue
                 mesh.set("filename", str(resolved))
+    if len(missing) == 1:
+        notes.insert(0, f"mesh not found ({missing[0]}); drawn without it")
+    elif missing:  # a description whose meshes were not shipped: one note, not one per mesh
+        notes.insert(0, f"{len(missing)} mesh files not found ({', '.join(missing[:2])}, ...); the robot is drawn "
+                        "without them (kinematics and dynamics do not need them)")
     for note in notes:
         warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=2)
     xml = ET.tostring(root, encoding="unicode")

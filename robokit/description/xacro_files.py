@@ -17,10 +17,11 @@ taken from the top-level file's folder. ``$(arg name)`` values come from ``xacro
 the ``default`` of its ``<xacro:arg>``.
 
 Errors (a missing file or include, an undefined argument or property, a package not found,
-malformed XML, a mesh that does not exist) raise :class:`robokit.errors.InputError` with one
-line naming the file, and where it can be found the line and element. URDF elements with no
-meaning for the rigid-body model (``<gazebo>``, ``<transmission>``, ``<ros2_control>``) are
-ignored and named in a note on stderr.
+malformed XML) raise :class:`robokit.errors.InputError` with one line naming the file, and
+where it can be found the line and element. A mesh file that is not there (a package shipped
+without its meshes) is dropped with one note for all of them: kinematics and dynamics do not
+need it. URDF elements with no meaning for the rigid-body model (``<gazebo>``,
+``<transmission>``, ``<ros2_control>``) are ignored and named in a note on stderr.
 """
 from __future__ import annotations
 
@@ -256,20 +257,22 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     Returns
     -------
     str
-        URDF text; mesh ``filename`` attributes are absolute paths of existing files.
+        URDF text; mesh ``filename`` attributes of files that exist are absolute paths (the
+        others keep their reference, for the URDF reader to drop with a note).
 
     Raises
     ------
     InputError
         One line naming the file (and line/element where known): file or include not
         found, undefined argument, unknown ``xacro_args`` key, package not found,
-        malformed XML, mesh file missing; an expression, include, environment variable or
-        amount of work :mod:`robokit.description.xacro_safety` refuses.
+        malformed XML, a mesh outside the allowed folders; an expression, include,
+        environment variable or amount of work :mod:`robokit.description.xacro_safety` refuses.
 
     Notes
     -----
-    Expressions are evaluated by robokit's whitelist interpreter, never by Python's ``eval``;
-    files are read bounded and confined; see :mod:`robokit.description.xacro_safety`.
+    Expressions are evaluated by robokit's interpreter (:mod:`robokit.description.xacro_expr`),
+    never by Python's ``eval``; files are read bounded and confined; YAML files are read as
+    PyYAML reads them; see :mod:`robokit.description.xacro_safety`.
 
     Examples
     --------
@@ -382,12 +385,11 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
         uri = mesh.get("filename", "")
         try:
             p = _resolve_mesh_uri(uri, top, package_path)
-        except InputError as exc:
-            raise InputError(f"{top}: <mesh filename={uri!r}>: {exc}") from None
+        except InputError:
+            continue  # its package is not there: the URDF reader drops the mesh with a note
         p = confine(p, roots, top, f"<mesh filename={uri!r}>", allow_outside=allow_outside)
-        if not p.is_file():
-            raise InputError(f"{top}: <mesh filename={uri!r}>: file {str(p)!r} not found")
-        mesh.set("filename", str(p.resolve()))
+        if p.is_file():  # a missing mesh keeps its reference: the URDF reader drops it with a note
+            mesh.set("filename", str(p.resolve()))
     return ET.tostring(root, encoding="unicode")
 
 

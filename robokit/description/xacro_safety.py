@@ -1,41 +1,27 @@
-r"""xacro without code execution: robokit's own evaluator for ``${…}`` and ``$(eval …)``, and
-bounds on what a xacro file may make robokit read and do.
+r"""xacro without code execution: the hooks that make the ``xacro`` package evaluate, read and
+expand only through robokit, and the bounds on what a xacro file may make robokit read and do.
 
-The ``xacro`` package evaluates every ``${expression}`` with Python's ``eval`` behind a thin
-filter (a top-level ``__`` is refused, the same gadget inside a ``lambda`` is not), so a
-robot file could run any code. While robokit expands a file (:func:`guarded`), xacro's
-evaluation functions are replaced by :func:`evaluate`, which parses the expression with
-:mod:`ast` and **interprets** it itself — nothing a file writes ever reaches ``eval``. What a
-robot description needs is accepted:
+While robokit expands a file (:func:`guarded`), the ``xacro`` package's own machinery handles
+the XML (macros and their parameter defaults ``p:=v``, ``p:=^``, ``p:=^|v``, ``*block`` and
+``**block``, properties and their scopes, ``xacro:if``, ``xacro:element``, ``xacro:call``,
+namespaced includes), but every expression is evaluated by robokit's interpreter
+(:func:`robokit.description.xacro_expr.evaluate` — nothing a file writes reaches ``eval``),
+and every file is read by robokit:
 
-* literals: numbers, strings (at most :data:`MAX_STRING` characters), ``True``/``False``/``None``;
-  lists, tuples and dicts of values;
-* arithmetic ``+ - * / // % **`` (integer powers bounded to :data:`MAX_INT_BITS` bits, repeated
-  strings and lists to :data:`MAX_STRING` items), comparisons, ``and``/``or``/``not``,
-  ``a if c else b``, subscripts and slices of values;
-* names that are xacro properties, macro parameters or arguments (their values are data);
-* the ``math`` functions and constants (``pi``, ``sin``, ``radians``, …, also as ``math.sin``),
-  the builtins xacro documents that compute on data (``abs min max round len int float str
-  bool list tuple dict sorted sum any all range zip enumerate reversed divmod ord set``, also
-  as ``python.len``), a few string and dict methods (``upper lower strip split join replace
-  startswith endswith find count get keys values items``);
-* ``xacro.arg``, ``xacro.tokenize``, ``xacro.dotify``, ``xacro.abs_filename``, ``xacro.fatal``,
-  ``xacro.message``/``warning``/``error`` (shown as robokit notes) and ``xacro.load_yaml``
-  (read with robokit's strict, bounded YAML reader, confined like an include);
-* attribute access to keys of a loaded YAML mapping or of an include's namespace.
-
-Everything else — attribute access to anything not listed (``__class__``,
-``__subclasses__``, ``func_globals``…), lambdas, comprehensions, f-strings, starred
-arguments, keyword arguments, calls to anything not listed, walrus — is refused with one line
-naming the file and the expression.
-
-Substitution arguments: ``$(find pkg)`` resolves through robokit's package search only;
-``$(env NAME)`` and ``$(optenv NAME default)`` never read the environment: the value comes
-from ``xacro_args``/``--xacro-arg NAME:=…`` if the user gives it; otherwise ``$(env …)`` is
-refused and ``$(optenv …)`` takes its default with a note.
+* ``${…}`` and ``$(eval …)``: robokit's interpreter, with xacro's helpers ``xacro.load_yaml``,
+  ``xacro.arg``, ``xacro.tokenize``, ``xacro.dotify``, ``xacro.abs_filename``, ``xacro.fatal``
+  and ``xacro.message``/``warning``/``error``/``print_location`` (shown as robokit notes);
+* ``xacro.load_yaml``: read as PyYAML reads it (YAML 1.1 scalars, anchors and aliases, merge
+  keys, the last of duplicate keys wins — with one note naming them) by
+  :func:`robokit._yaml.load_pyyaml_text`, with bounded aliases, confined like an include;
+* ``$(find pkg)`` resolves through robokit's package search only; ``$(env NAME)`` and
+  ``$(optenv NAME default)`` never read the environment: the value comes from
+  ``xacro_args``/``--xacro-arg NAME:=…`` if the user gives it; otherwise ``$(env …)`` is
+  refused and ``$(optenv …)`` takes its default with a note; ``$(dirname)`` is the folder of
+  the file being processed (the xacro program 2.1 cannot expand it).
 
 Reading: the top file and every ``<xacro:include>`` are read with robokit's bounded reader
-(regular files only, :data:`robokit.description.urdf_check.MAX_URDF_BYTES`) and checked by
+(regular files only, at most the caller's byte limit) and checked by
 :func:`robokit._xml.check_xml` (no DTD, bounded depth and size) before xacro parses them; an
 include or a YAML file must lie inside the allowed roots of
 :mod:`robokit.description.meshes` (the file's folder, its package, the package folders given
@@ -43,33 +29,28 @@ and the packages found), at most :data:`MAX_INCLUDES` files are read, nested at 
 :data:`MAX_INCLUDE_DEPTH` deep.
 
 Work: at most :data:`MAX_MACRO_DEPTH` nested macro calls, :data:`MAX_ELEMENTS` elements
-processed in total and :data:`MAX_SECONDS` seconds of expansion (a self-doubling macro fails
-in a fraction of a second with one line).
+processed in total, :data:`MAX_SECONDS` seconds of expansion (a self-doubling macro fails
+in a fraction of a second with one line), at most :data:`MAX_TEXT` characters substituted into
+one attribute or text, and :data:`MAX_OUTPUT` characters of text, attributes, comments and
+cloned macro bodies produced by the whole expansion (``$(arg a)$(arg a)`` doubling an
+argument from one ``<xacro:arg>`` to the next stops there, before it is built).
 """
 from __future__ import annotations
 
-import ast
 import contextlib
-import functools
 import math
-import operator
 import os
 import time
 from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from robokit.description._notes import note
-from robokit.errors import InputError
+from robokit.description.xacro_expr import (MAX_EXPRESSION, MAX_INT_BITS, MAX_STRING, Refused, UnsafeXacro,
+                                            _tokenize, evaluate, is_table, text_bound)
 
-__all__ = ["MAX_ELEMENTS", "MAX_EXPRESSION", "MAX_INCLUDE_DEPTH", "MAX_INCLUDES", "MAX_INT_BITS", "MAX_MACRO_DEPTH", "MAX_SECONDS",
-           "MAX_STRING", "UnsafeXacro", "evaluate", "guarded"]
+__all__ = ["MAX_ELEMENTS", "MAX_EXPRESSION", "MAX_INCLUDE_DEPTH", "MAX_INCLUDES", "MAX_INT_BITS", "MAX_MACRO_DEPTH",
+           "MAX_OUTPUT", "MAX_SECONDS", "MAX_STRING", "MAX_TEXT", "UnsafeXacro", "evaluate", "guarded"]
 
-#: Longest ``${…}`` expression accepted (characters).
-MAX_EXPRESSION = 10_000
-#: Longest string (or list) an expression may produce.
-MAX_STRING = 100_000
-#: Largest integer an expression may produce, in bits.
-MAX_INT_BITS = 4096
 #: Deepest nesting of macro calls.
 MAX_MACRO_DEPTH = 100
 #: Most elements xacro may process while expanding one file (its includes and macros included).
@@ -82,423 +63,28 @@ MAX_INCLUDES = 500
 MAX_INCLUDE_DEPTH = 20
 #: Longest expansion, wall-clock seconds (a safety net: a real description takes < 1 s).
 MAX_SECONDS = 30.0
-
-
-class UnsafeXacro(InputError):
-    """A xacro file asked for something robokit does not do: code, a file outside its roots, the
-    environment, unbounded work. The message names the file and the expression or element.
-
-    A subclass of :class:`~robokit.errors.InputError` (so the CLI exits with status 2).
-
-    Attributes
-    ----------
-    args : tuple
-        ``(message,)``, as for any exception: one line naming the file and what was refused.
-
-    Examples
-    --------
-    >>> issubclass(UnsafeXacro, ValueError)
-    True
-    """
-
-
-class _Fn:
-    """A whitelisted function, usable only as the callee of a call."""
-
-    def __init__(self, name: str, fn: Callable[..., Any]) -> None:
-        self.name, self.fn = name, fn
-
-
-class _Namespace:
-    """``math``, ``python`` or ``xacro``: usable only before a dot."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-
-
-def _bounded_range(*args: Any) -> list[int]:
-    r = range(*args)
-    if len(r) > MAX_STRING:
-        raise _Refused(f"range of {len(r)} items (at most {MAX_STRING})")
-    return list(r)
-
-
-def _bounded_round(x: Any, ndigits: Any = None) -> Any:
-    if ndigits is None:
-        return round(x)
-    if not isinstance(ndigits, int) or abs(ndigits) > 100:
-        raise _Refused("round() with more than 100 digits")
-    return round(x, ndigits)
-
-
-def _numeric_sum(items: Any, start: Any = 0) -> Any:
-    values = list(items)
-    if not all(isinstance(v, (int, float)) for v in values + [start]):
-        raise _Refused("sum() of values that are not numbers")
-    return sum(values, start)
-
-
-def _bounded_replace(s: str, old: str, new: str, count: int = -1) -> str:
-    n = s.count(old) if count < 0 else min(count, s.count(old))
-    if len(s) + n * (len(new) - len(old)) > MAX_STRING:
-        raise _Refused(f"a replace() result of more than {MAX_STRING} characters")
-    return s.replace(old, new, count)
-
-
-_MATH_FUNCS = {k: v for k, v in vars(math).items() if not k.startswith("_") and callable(v)
-               and k not in ("factorial", "comb", "perm", "prod")}
-_MATH_CONSTS = {k: v for k, v in vars(math).items() if isinstance(v, float)}
-_PYTHON_FUNCS: dict[str, Callable[..., Any]] = {
-    "abs": abs, "min": min, "max": max, "round": _bounded_round, "len": len, "int": int, "float": float, "str": str,
-    "bool": bool, "list": list, "tuple": tuple, "dict": dict, "sorted": sorted, "sum": _numeric_sum, "any": any, "all": all,
-    "range": _bounded_range, "zip": lambda *a: list(zip(*a)), "enumerate": lambda a, s=0: list(enumerate(a, s)),
-    "reversed": lambda a: list(reversed(a)), "divmod": divmod, "ord": ord, "set": set,
-}
-_STR_METHODS = {"upper", "lower", "strip", "lstrip", "rstrip", "split", "rsplit", "join", "replace", "startswith",
-                "endswith", "find", "rfind", "count", "index", "capitalize", "title", "isdigit", "isalpha"}
-_DICT_METHODS = {"get", "keys", "values", "items"}
-_LIST_METHODS = {"index", "count"}
-
-_BINOPS: dict[type, Callable[[Any, Any], Any]] = {
-    ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
-    ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod, ast.Pow: operator.pow,
-}
-_CMPOPS: dict[type, Callable[[Any, Any], Any]] = {
-    ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le, ast.Gt: operator.gt,
-    ast.GtE: operator.ge, ast.In: lambda a, b: a in b, ast.NotIn: lambda a, b: a not in b,
-    ast.Is: operator.is_, ast.IsNot: operator.is_not,
-}
-
-
-class _Refused(Exception):
-    pass
-
-
-def _size(v: Any, depth: int = 0) -> int:
-    """The size of a value in items: characters of a string, the sizes of a container's items
-    (at least 1 each) — stops counting past :data:`MAX_STRING`."""
-    if isinstance(v, str):
-        return len(v)
-    if isinstance(v, (list, tuple, set, frozenset, dict)):
-        if depth > 20:
-            raise _Refused("values nested too deeply")
-        total = len(v)
-        for x in (v.items() if isinstance(v, dict) else v):
-            total += _size(x, depth + 1)
-            if total > MAX_STRING:
-                break
-        return total
-    return 1
-
-
-def _check_value(v: Any, depth: int = 0) -> Any:
-    """``v`` if it is plain data (numbers, strings, lists/tuples/dicts of them) of bounded size
-    (at most :data:`MAX_STRING` characters and items in all), else refuse."""
-    if v is None or isinstance(v, (bool, float)):
-        return v
-    if isinstance(v, int):
-        if v.bit_length() > MAX_INT_BITS:
-            raise _Refused(f"an integer of {v.bit_length()} bits (at most {MAX_INT_BITS})")
-        return v
-    if isinstance(v, (str, list, tuple, set, frozenset, dict)):
-        if _size(v) > MAX_STRING:
-            raise _Refused(f"a value of more than {MAX_STRING} characters and items")
-        if not isinstance(v, str):
-            for x in (v.items() if isinstance(v, dict) else v):
-                _check_item(x, depth + 1)
-        return v
-    if _is_namespace_table(v):
-        return v
-    raise _Refused(f"a value of type {type(v).__name__}")
-
-
-def _check_item(x: Any, depth: int) -> None:
-    if isinstance(x, tuple) and depth > 0:
-        for y in x:
-            _check_item(y, depth + 1)
-        return
-    if depth > 20:
-        raise _Refused("values nested too deeply")
-    if x is None or isinstance(x, (bool, int, float, str)):
-        if isinstance(x, int) and not isinstance(x, bool) and x.bit_length() > MAX_INT_BITS:
-            raise _Refused(f"an integer of {x.bit_length()} bits (at most {MAX_INT_BITS})")
-        return
-    if isinstance(x, (list, tuple, set, frozenset, dict)):
-        for y in (x.items() if isinstance(x, dict) else x):
-            _check_item(y, depth + 1)
-        return
-    if not _is_namespace_table(x):
-        raise _Refused(f"a value of type {type(x).__name__}")
-
-
-def _is_namespace_table(v: Any) -> bool:
-    """A xacro include namespace (``<xacro:include ns=...>``) or a dotified YAML dict."""
-    cls = type(v).__name__
-    return cls in ("NameSpace", "Table", "YamlDictWrapper", "YamlListWrapper")
-
-
-class _Interpreter:
-    def __init__(self, symbols: Mapping[str, Any], functions: Mapping[str, Callable[..., Any]],
-                 namespaces: Mapping[str, Mapping[str, Callable[..., Any]]], globals_ids: set[int]) -> None:
-        self.symbols = symbols
-        self.functions = functions
-        self.namespaces = namespaces
-        self.globals_ids = globals_ids  # ids of xacro's own global objects (functions, namespaces)
-        self.steps = 0
-        self.work = 0
-
-    def run(self, node: ast.AST) -> Any:
-        self.steps += 1
-        if self.steps > 100_000:
-            raise _Refused("too much work in one expression")
-        method = getattr(self, "_" + type(node).__name__, None)
-        if method is None:
-            raise _Refused(f"{type(node).__name__} is not allowed")
-        v = method(node)
-        if isinstance(v, (str, list, tuple, dict, set, frozenset)):
-            self.work += len(v)  # every value built is also checked: bound the total
-            if self.work > 100 * MAX_STRING:
-                raise _Refused("too much work in one expression")
-        return v
-
-    def _Expression(self, node: ast.Expression) -> Any:
-        return _check_value(self.value(node.body))
-
-    def value(self, node: ast.AST) -> Any:
-        v = self.run(node)
-        if isinstance(v, (_Fn, _Namespace)):
-            raise _Refused(f"{v.name} is a function, not a value")
-        return v
-
-    def _Constant(self, node: ast.Constant) -> Any:
-        if isinstance(node.value, (bytes, complex)) or node.value is Ellipsis:
-            raise _Refused(f"a {type(node.value).__name__} literal")
-        return _check_value(node.value)
-
-    def _Name(self, node: ast.Name) -> Any:
-        name = node.id
-        if name.startswith("__"):
-            raise _Refused(f"the name {name!r}")
-        try:
-            v = self.symbols[name]
-        except KeyError:
-            v = _MISSING
-        if v is not _MISSING and id(v) not in self.globals_ids and not callable(v):
-            return _check_value(v)  # a property, parameter or argument: data
-        if name in self.namespaces:
-            return _Namespace(name)
-        if name in self.functions:
-            return _Fn(name, self.functions[name])
-        if name in _MATH_CONSTS:
-            return _MATH_CONSTS[name]
-        if name in ("True", "False", "None"):
-            return {"True": True, "False": False, "None": None}[name]
-        if v is not _MISSING:
-            raise _Refused(f"the name {name!r} (not a property, parameter or allowed function)")
-        raise NameError(f"name '{name}' is not defined")
-
-    def _Attribute(self, node: ast.Attribute) -> Any:
-        attr = node.attr
-        if attr.startswith("_"):
-            raise _Refused(f"the attribute {attr!r}")
-        base = self.run(node.value)
-        if isinstance(base, _Namespace):
-            table = self.namespaces[base.name]
-            if attr in table:
-                return _Fn(f"{base.name}.{attr}", table[attr])
-            if base.name == "math" and attr in _MATH_CONSTS:
-                return _MATH_CONSTS[attr]
-            raise _Refused(f"{base.name}.{attr}")
-        if isinstance(base, _Fn):
-            raise _Refused(f"an attribute of the function {base.name}")
-        if isinstance(base, str) and attr == "replace":
-            return _Fn("str.replace", lambda *a: _bounded_replace(base, *a))
-        if isinstance(base, str) and attr in _STR_METHODS:
-            return _Fn(f"str.{attr}", getattr(base, attr))
-        if isinstance(base, (list, tuple)) and attr in _LIST_METHODS:
-            return _Fn(f"list.{attr}", getattr(base, attr))
-        if isinstance(base, dict) and attr in _DICT_METHODS and not _is_namespace_table(base):
-            return _Fn(f"dict.{attr}", lambda *a, _m=getattr(base, attr): _listify(_m(*a)))
-        if _is_namespace_table(base):  # an include's namespace, a YAML mapping: its keys
-            try:
-                return _check_value(base[attr])
-            except (KeyError, AttributeError):
-                raise NameError(f"name '{attr}' is not defined") from None
-        raise _Refused(f"the attribute {attr!r} of a {type(base).__name__}")
-
-    def _Call(self, node: ast.Call) -> Any:
-        if isinstance(node.func, ast.Name) and node.func.id not in self.functions:
-            raise _Refused(f"a call to {node.func.id!r} (not an allowed function)")
-        fn = self.run(node.func)
-        if not isinstance(fn, _Fn):
-            raise _Refused("calling a value that is not an allowed function")
-        if node.keywords:
-            raise _Refused(f"keyword arguments to {fn.name}")
-        args = []
-        for a in node.args:
-            if isinstance(a, ast.Starred):
-                raise _Refused("starred arguments")
-            args.append(self.value(a))
-        return _check_value(fn.fn(*args))
-
-    def _BinOp(self, node: ast.BinOp) -> Any:
-        op = _BINOPS.get(type(node.op))
-        if op is None:
-            raise _Refused(f"the operator {type(node.op).__name__}")
-        a, b = self.value(node.left), self.value(node.right)
-        if isinstance(node.op, ast.Pow) and isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
-            if b > 0 and max(a.bit_length(), 1) * b > MAX_INT_BITS and abs(a) > 1:
-                raise _Refused(f"an integer power of about {a.bit_length() * b} bits (at most {MAX_INT_BITS})")
-        if isinstance(node.op, ast.Mult):
-            for seq, k in ((a, b), (b, a)):
-                if isinstance(seq, (str, list, tuple)) and isinstance(k, int) and max(_size(seq), 1) * k > MAX_STRING:
-                    raise _Refused(f"a repetition of more than {MAX_STRING} characters and items")
-        if isinstance(node.op, ast.Mod) and isinstance(a, str):
-            raise _Refused("%-formatting of strings")
-        return _check_value(op(a, b))
-
-    def _UnaryOp(self, node: ast.UnaryOp) -> Any:
-        v = self.value(node.operand)
-        if isinstance(node.op, ast.USub):
-            return -v
-        if isinstance(node.op, ast.UAdd):
-            return +v
-        if isinstance(node.op, ast.Not):
-            return not v
-        raise _Refused(f"the operator {type(node.op).__name__}")
-
-    def _BoolOp(self, node: ast.BoolOp) -> Any:
-        is_and = isinstance(node.op, ast.And)
-        v: Any = None
-        for sub in node.values:
-            v = self.value(sub)
-            if (not v) if is_and else bool(v):
-                return v
-        return v
-
-    def _Compare(self, node: ast.Compare) -> Any:
-        left = self.value(node.left)
-        for op, right_node in zip(node.ops, node.comparators):
-            right = self.value(right_node)
-            if not _CMPOPS[type(op)](left, right):
-                return False
-            left = right
-        return True
-
-    def _IfExp(self, node: ast.IfExp) -> Any:
-        return self.value(node.body) if self.value(node.test) else self.value(node.orelse)
-
-    def _Subscript(self, node: ast.Subscript) -> Any:
-        base = self.value(node.value)
-        key = self.run(node.slice) if isinstance(node.slice, ast.Slice) else self.value(node.slice)
-        if not isinstance(key, (int, str, slice, float, tuple)):
-            raise _Refused(f"a subscript of type {type(key).__name__}")
-        return _check_value(base[key])
-
-    def _Slice(self, node: ast.Slice) -> slice:
-        parts = [None if p is None else self.value(p) for p in (node.lower, node.upper, node.step)]
-        return slice(*parts)
-
-    def _List(self, node: ast.List) -> list[Any]:
-        return [self.value(e) for e in node.elts]
-
-    def _Tuple(self, node: ast.Tuple) -> tuple[Any, ...]:
-        return tuple(self.value(e) for e in node.elts)
-
-    def _Dict(self, node: ast.Dict) -> dict[Any, Any]:
-        if any(k is None for k in node.keys):
-            raise _Refused("dict unpacking")
-        return {self.value(k): self.value(v) for k, v in zip(node.keys, node.values) if k is not None}
-
-
-_MISSING = object()
-
-
-def _listify(v: Any) -> Any:
-    return list(v) if not isinstance(v, (str, int, float, bool, type(None), list, tuple, dict)) else v
-
-
-@functools.lru_cache(maxsize=4096)
-def _parse(text: str) -> ast.Expression:
-    """The syntax tree of an expression (cached: a macro evaluates the same text many times;
-    the interpreter never modifies a tree). Python's SyntaxWarnings ("invalid escape
-    sequence", "invalid decimal literal") are not shown: the text is data, not code."""
-    import warnings
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SyntaxWarning)
-        return ast.parse(text, mode="eval")
-
-
-def evaluate(expression: str, symbols: Mapping[str, Any], *, source: str = "<xacro>",
-             functions: Mapping[str, Callable[..., Any]] | None = None,
-             namespaces: Mapping[str, Mapping[str, Callable[..., Any]]] | None = None,
-             globals_ids: set[int] | None = None) -> Any:
-    """Evaluate a xacro expression with robokit's whitelist interpreter (see the module docstring).
-
-    Parameters
-    ----------
-    expression : str
-        The text inside ``${…}`` (or ``$(eval …)``).
-    symbols : mapping
-        Property, parameter and argument values by name.
-    source : str
-        The file named in a refusal.
-    functions, namespaces : mapping, optional
-        Callable names and ``ns.name`` tables; default: the ``math`` and builtin functions above.
-    globals_ids : set of int, optional
-        ``id`` of objects in ``symbols`` that are functions/namespaces, not data.
-
-    Returns
-    -------
-    int, float, str, bool, None, list, tuple or dict
-        The value.
-
-    Raises
-    ------
-    UnsafeXacro
-        An expression outside the whitelist, with the file and the expression.
-    NameError, ArithmeticError, TypeError, KeyError, IndexError
-        Ordinary evaluation errors (an undefined name, a division by zero), which xacro reports
-        with their own context.
-
-    Examples
-    --------
-    >>> evaluate("2 * pi * r", {"r": 0.5})
-    3.141592653589793
-    >>> evaluate("(lambda: 1)()", {})
-    Traceback (most recent call last):
-    ...
-    robokit.description.xacro_safety.UnsafeXacro: <xacro>: expression ${(lambda: 1)()} refused (Lambda is not allowed)
-    """
-    shown = expression.strip()
-    shown = shown if len(shown) <= 120 else shown[:117] + "..."
-
-    def refuse(why: str) -> UnsafeXacro:
-        return UnsafeXacro(f"{source}: expression ${{{shown}}} refused ({why})")
-
-    if len(expression) > MAX_EXPRESSION:
-        raise refuse(f"{len(expression)} characters; at most {MAX_EXPRESSION}")
-    try:
-        tree = _parse(expression.strip())
-    except SyntaxError as exc:
-        raise SyntaxError(f"invalid expression: {exc.msg}") from None
-    except (RecursionError, MemoryError, ValueError):
-        raise refuse("nested too deeply") from None
-    funcs = dict(_MATH_FUNCS)
-    funcs.update(_PYTHON_FUNCS)
-    funcs.update(functions or {})
-    ns: dict[str, Mapping[str, Callable[..., Any]]] = {"math": _MATH_FUNCS, "python": _PYTHON_FUNCS}
-    ns.update(namespaces or {})
-    interp = _Interpreter(symbols, funcs, ns, globals_ids or set())
-    try:
-        return interp.run(tree)
-    except _Refused as exc:
-        raise refuse(str(exc)) from None
-    except RecursionError:
-        raise refuse("nested too deeply") from None
-    except OverflowError:
-        raise refuse("a number too large") from None
+#: Most characters the substitutions (``${…}``, ``$(…)``) may put into one attribute or text.
+MAX_TEXT = MAX_STRING
+#: Most characters of evaluated text and attributes, comments and cloned macro bodies one
+#: expansion may produce (real descriptions produce 50 kB to 2 MB).
+MAX_OUTPUT = 20_000_000
+
+
+def _node_cost(node: Any) -> int:
+    """Characters and nodes of a DOM subtree (what cloning it costs), without recursion."""
+    total = 0
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        total += 1
+        data = getattr(n, "data", None)
+        if isinstance(data, str):
+            total += len(data)
+        attrs = getattr(n, "attributes", None)
+        if attrs:
+            total += sum(len(k) + len(v) for k, v in attrs.items())
+        stack.extend(getattr(n, "childNodes", ()) or ())
+    return total
 
 
 # --------------------------------------------------------------------------- hooks into xacro
@@ -533,22 +119,28 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
     >>> with guarded(top, lambda: [top.parent], {}, set(), 1 << 20):   # doctest: +SKIP
     ...     xacro.process_file(str(top))
     """
+    import glob as _glob
+    import types
+    import xml.dom
     import xml.dom.minidom
 
     from robokit._io import decode_utf8, read_input_bytes
     from robokit._optional import require
-
-    xacro = require("xacro", "reading a .xacro file")
-    sargs = require("xacro.substitution_args", "reading a .xacro file")
     from robokit._xml import check_xml
     from robokit.description.meshes import confine, is_inside
 
+    xacro = require("xacro", "reading a .xacro file")
+    sargs = require("xacro.substitution_args", "reading a .xacro file")
+
     g = xacro._global_symbols
-    globals_ids = {id(v) for v in g.values() if callable(v) or _is_namespace_table(v)}
+    # xacro's own functions and namespaces: never data (its True/False/pi are, so only callables count)
+    globals_ids = {id(v) for v in g.values() if callable(v) or is_table(v)}
     for nsname in ("math", "python", "xacro"):
         if nsname in g:
-            globals_ids.update(id(v) for v in g[nsname].values())
-    state = {"elements": 0, "files": 0, "start": time.monotonic()}
+            globals_ids.update(id(v) for v in g[nsname].values() if callable(v) or is_table(v))
+    state = {"elements": 0, "files": 0, "output": 0, "start": time.monotonic()}
+    clone_cost: dict[int, tuple[Any, int]] = {}  # id(macro body) -> (body, cost)
+    duplicates_noted: set[str] = set()
 
     def current(back: int = 1) -> str:
         stack = getattr(xacro, "filestack", None) or []
@@ -557,6 +149,22 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
     def budget() -> None:
         if time.monotonic() - state["start"] > MAX_SECONDS:
             raise UnsafeXacro(f"{current()}: expansion took longer than {MAX_SECONDS:g} s; stopped")
+
+    def produce(n: int, what: str) -> None:
+        state["output"] += n
+        if state["output"] > MAX_OUTPUT:
+            raise UnsafeXacro(f"{current()}: the expansion produced more than {MAX_OUTPUT} characters ({what}); stopped")
+
+    def location() -> str:
+        """Where xacro is: the macros being instantiated, innermost first, and the file stack."""
+        parts = []
+        for m in reversed(getattr(xacro, "macrostack", None) or []):
+            body = getattr(m, "body", None)
+            name = body.getAttribute("name") if body is not None else "?"
+            where = m.history[-1][-1] if getattr(m, "history", None) and m.history[-1] else None
+            parts.append(f"macro {name} ({where or '?'})")
+        files = [str(f) if f else "string" for f in reversed(getattr(xacro, "filestack", None) or [])]
+        return "; ".join(parts + ["file " + " included from ".join(files)]) if files else "; ".join(parts)
 
     def read_file(filename: str, what: str) -> str:
         if len(getattr(xacro, "filestack", None) or []) > MAX_INCLUDE_DEPTH:
@@ -593,19 +201,81 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
                               "stopped")
         if state["elements"] % 1000 == 0:
             budget()
+        # comments and CDATA are carried into the output without passing through eval_text
+        produce(sum(len(c.data) for c in node.childNodes
+                    if c.nodeType in (xml.dom.Node.COMMENT_NODE, xml.dom.Node.CDATA_SECTION_NODE)), "comments")
         return saved["eval_all"](node, macros, symbols)
 
+    def handle_macro_call(node: Any, macros: Any, symbols: Any) -> Any:
+        name = getattr(node, "tagName", "")
+        if name.startswith("xacro:") and name != "xacro:call":
+            try:
+                m = xacro.resolve_macro(name[6:], macros, symbols)[2]
+            except (KeyError, TypeError, AttributeError):
+                m = None
+            body = getattr(m, "body", None)
+            if body is not None:
+                if id(body) not in clone_cost:
+                    clone_cost[id(body)] = (body, _node_cost(body))
+                produce(clone_cost[id(body)][1], f"copies of the macro {name[6:]}")
+        return saved["handle_macro_call"](node, macros, symbols)
+
+    def eval_text(text: Any, symbols: Any) -> Any:
+        """xacro's text evaluation (``${…}``, ``$(…)``, ``$$`` escapes, literal text), each
+        substituted piece's size added up before the pieces are joined."""
+        budget()
+        lex = xacro.QuickLexer(xacro.LEXER)
+        lex.lex(text)
+        results: list[Any] = []
+        substituted = literal = 0
+        while lex.peek():
+            kind, token = lex.next()
+            if kind == lex.EXPR:
+                expr = token[2:-1]
+                try:
+                    value = xacro.safe_eval(eval_text(expr, symbols), symbols)
+                except Exception as exc:
+                    raise xacro.XacroException(exc=exc, suffix=os.linesep + f"when evaluating expression '{expr}'"
+                                               ) from None
+                substituted += text_bound(value)
+            elif kind == lex.EXTENSION:
+                value = xacro.eval_extension(f"$({eval_text(token[2:-1], symbols)})")
+                substituted += text_bound(value)
+            elif kind == lex.DOLLAR_DOLLAR_BRACE:
+                value = token[1:]
+                literal += len(value)
+            else:
+                value = token
+                literal += len(value)
+            if substituted > MAX_TEXT:
+                raise UnsafeXacro(f"{current()}: the substitutions in one attribute or text give more than {MAX_TEXT} "
+                                  f"characters (in {' '.join(str(text).split())[:80]!r}); stopped")
+            results.append(value)
+        produce(substituted + literal, "text and attributes")
+        if len(results) == 1:
+            return results[0]
+        return "".join(map(str, results))
+
     def load_yaml(filename: Any) -> Any:
-        from robokit._yaml import MAX_BYTES, load_yaml_text
+        from robokit._yaml import MAX_BYTES, load_pyyaml_text
 
         if not isinstance(filename, str):
-            raise _Refused("xacro.load_yaml needs a file name")
+            raise Refused("xacro.load_yaml needs a file name")
         spec = xacro.abs_filename_spec(filename)
         state["files"] += 1
+        if state["files"] > MAX_INCLUDES:
+            raise UnsafeXacro(f"{current()}: more than {MAX_INCLUDES} files included; stopped")
         p = Path(spec)
         confine(p, roots(), current(), f"xacro.load_yaml({filename!r})")
-        data = load_yaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
-                              scalar_tags=unit_tags(str(p)))
+        data, duplicates = load_pyyaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
+                                            scalar_tags=unit_tags(str(p)))
+        if duplicates and str(p) not in duplicates_noted:  # one note per file, however often it is read
+            duplicates_noted.add(str(p))
+            shown = ", ".join(f"{k!r} ({f'twice on line {line}' if line == first else f'lines {first} and {line}'})"
+                              for k, line, first in duplicates[:3])
+            more = f" and {len(duplicates) - 3} more" if len(duplicates) > 3 else ""
+            note(f"{p}: duplicate key {shown}{more}; the last value is used, as PyYAML (and so the xacro program) "
+                 "reads it")
         return xacro.YamlListWrapper.wrap(data)
 
     def unit_tags(source: str) -> dict[str, Callable[[str], Any]]:
@@ -616,9 +286,14 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
                  "!foot": 0.3048, "!inches": 0.0254}
         return {tag: make(f) for tag, f in units.items()}
 
-    def message(*args: Any) -> str:
-        note(f"{current()}: xacro: {' '.join(map(str, args))}")
-        return ""
+    def say(kind: str, default_location: bool) -> Callable[..., str]:
+        def run(*args: Any, print_location: Any = default_location, **_: Any) -> str:
+            text = " ".join(map(str, args))
+            if print_location:
+                text += f" (at {location()})"
+            note(f"{current()}: xacro.{kind}: {text}")
+            return ""
+        return run
 
     def fatal(*args: Any) -> Any:
         raise UnsafeXacro(f"{current()}: xacro.fatal: {' '.join(map(str, args))}")
@@ -626,13 +301,16 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
     def arg(name: Any) -> Any:
         return xacro.substitution_args_context["arg"][name]
 
+    def dirname(*_: Any) -> str:
+        return str(Path(os.path.abspath(current())).parent)
+
     xacro_ns: dict[str, Callable[..., Any]] = {
-        "arg": arg, "tokenize": xacro.tokenize, "dotify": lambda d: xacro.YamlDictWrapper(d),
+        "arg": arg, "tokenize": _tokenize, "dotify": lambda d: xacro.YamlDictWrapper(d),
         "abs_filename": xacro.abs_filename_spec, "load_yaml": load_yaml, "fatal": fatal,
-        "message": message, "warning": message, "error": message, "print_location": lambda *a: "",
+        "message": say("message", False), "warning": say("warning", True), "error": say("error", True),
+        "print_location": say("print_location", True),
     }
-    top_level = {"load_yaml": load_yaml, "abs_filename": xacro.abs_filename_spec,
-                 "dotify": xacro_ns["dotify"], "sorted": sorted, "range": _bounded_range}
+    top_level = {"load_yaml": load_yaml, "abs_filename": xacro.abs_filename_spec, "dotify": xacro_ns["dotify"]}
 
     def safe_eval(expr: str, globals: Any, locals: Any = None) -> Any:
         budget()
@@ -669,18 +347,16 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
             def __getitem__(self, key: str) -> Any:
                 return sargs.convert_value(args[key], "auto")
 
-        names = _Args()
         functions: dict[str, Callable[..., Any]] = {
             "arg": lambda name: sargs.convert_value(sargs._eval_arg(name, args=args), "auto"),
-            "dirname": lambda: sargs._eval_dirname(context.get("filename")),
-            "env": eval_env, "optenv": eval_optenv,
+            "dirname": dirname, "env": eval_env, "optenv": eval_optenv,
         }
         if "find" in sargs._eval_dict:
             functions["find"] = sargs._eval_dict["find"]
-        return str(evaluate(s, names, source=current(), functions=functions))
-
-    import glob as _glob
-    import types
+        value = evaluate(s, _Args(), source=current(), functions=functions, constants={"true": True, "false": False})
+        if text_bound(value) > MAX_TEXT:
+            raise UnsafeXacro(f"{current()}: $(eval {s[:60]}) gives more than {MAX_TEXT} characters; stopped")
+        return str(value)
 
     def safe_glob(pattern: str) -> list[str]:
         parts = Path(pattern).parts
@@ -697,22 +373,23 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
             raise UnsafeXacro(f"{current()}: <xacro:include filename={pattern!r}> matches more than {MAX_INCLUDES} files")
         return found
 
-    saved = {"parse": xacro.parse, "eval_all": xacro.eval_all, "safe_eval": xacro.safe_eval,
-             "load_yaml": xacro.load_yaml, "_eval": sargs._eval, "_eval_env": sargs._eval_env,
-             "_eval_optenv": sargs._eval_optenv}
+    names = ("parse", "eval_all", "safe_eval", "load_yaml", "eval_text", "handle_macro_call", "glob")
+    saved: dict[str, Any] = {n: getattr(xacro, n) for n in names}
+    saved_sargs = {n: getattr(sargs, n) for n in ("_eval", "_eval_env", "_eval_optenv", "_eval_dirname")}
+    saved_dict = {k: sargs._eval_dict.get(k) for k in ("env", "optenv")}
     xacro.parse, xacro.eval_all, xacro.safe_eval, xacro.load_yaml = parse, eval_all, safe_eval, load_yaml
-    saved_glob = xacro.glob
+    xacro.eval_text, xacro.handle_macro_call = eval_text, handle_macro_call
     xacro.glob = types.SimpleNamespace(glob=safe_glob)
-    sargs._eval, sargs._eval_env, sargs._eval_optenv = sargs_eval, eval_env, eval_optenv
-    saved_env = sargs._eval_dict.get("env"), sargs._eval_dict.get("optenv")
+    sargs._eval, sargs._eval_env, sargs._eval_optenv, sargs._eval_dirname = sargs_eval, eval_env, eval_optenv, dirname
     sargs._eval_dict["env"], sargs._eval_dict["optenv"] = eval_env, eval_optenv
     try:
         yield
     finally:
-        xacro.parse, xacro.eval_all, xacro.safe_eval, xacro.load_yaml = (
-            saved["parse"], saved["eval_all"], saved["safe_eval"], saved["load_yaml"])
-        xacro.glob = saved_glob
-        sargs._eval, sargs._eval_env, sargs._eval_optenv = saved["_eval"], saved["_eval_env"], saved["_eval_optenv"]
-        for key, val in zip(("env", "optenv"), saved_env):
-            if val is not None:
-                sargs._eval_dict[key] = val
+        for n in names:
+            setattr(xacro, n, saved[n])
+        for n, v in saved_sargs.items():
+            setattr(sargs, n, v)
+        for k, v in saved_dict.items():
+            if v is not None:
+                sargs._eval_dict[k] = v
+
