@@ -168,8 +168,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
         parent = parent_el.get("link", "") if parent_el is not None else ""
         child = child_el.get("link", "") if child_el is not None else ""
         child_of.add(child)
-        axis = _floats(el.find("axis").get("xyz") if el.find("axis") is not None else None, 3, (1.0, 0.0, 0.0),
-                       f"{where} <axis xyz>")
+        axis_el = el.find("axis")
+        axis = _floats(axis_el.get("xyz") if axis_el is not None else None, 3, (1.0, 0.0, 0.0), f"{where} <axis xyz>")
         lim, dyn = el.find("limit"), el.find("dynamics")
         unlimited = kind == "continuous" and lim is None
         joint = Joint(name, kind, parent, child, _origin(el, where), axis=(axis[0], axis[1], axis[2]),
