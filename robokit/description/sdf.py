@@ -409,7 +409,8 @@ def _read_model(rd: _Reader, el: ET.Element, scope: _Scope, depth: int, stack: t
                                    scope.file)
             first = first or nested
         elif t == "include":
-            first = first or _include(rd, c, scope, depth, stack)
+            nested = _include(rd, c, scope, depth, stack)
+            first = first or nested
     node = rd.nodes[scope.model_node]
     canonical = el.get("canonical_link")
     if scope.static:
@@ -563,6 +564,8 @@ def _resolve_names(rd: _Reader) -> None:
 
 def _world_pose(rd: _Reader, name: str) -> np.ndarray:
     """X_W_name at q = 0, following ``rel`` up to the world (iteratively; a loop is refused)."""
+    if name == "world":
+        return np.eye(4)
     path: list[str] = []
     seen: set[str] = set()
     cur = name
