@@ -811,6 +811,11 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
 
 def _describe(rd: _Reader, name: str, reflected_inertia: bool,
               gravity_note: str | None) -> tuple[Description, list[str], dict[str, str]]:
+    from robokit.description.limits import MAX_JOINTS
+
+    if len(rd.links) > MAX_JOINTS + 1 or len(rd.frames) > 8 * MAX_JOINTS:
+        raise InputError(f"{rd.top}: {len(rd.links)} links and {len(rd.frames)} frames; robokit reads robots of at "
+                         f"most {MAX_JOINTS} joints ({MAX_JOINTS + 1} links, {8 * MAX_JOINTS} frames)")
     notes: list[str] = []
     if gravity_note:
         notes.append(gravity_note)

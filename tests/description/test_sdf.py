@@ -416,3 +416,23 @@ def test_world_with_two_models_is_refused(tmp_path):
     (tmp_path / "w.sdf").write_text('<sdf version="1.9"><world name="w"><model name="a"><link name="l"/></model>'
                                     '<model name="b"><link name="l"/></model></world></sdf>')
     _refused(tmp_path / "w.sdf", "2 models", "a, b")
+
+
+def test_too_many_links_are_refused(tmp_path):
+    links = "".join(f'<link name="l{i}"/>' for i in range(300))
+    (tmp_path / "dust.sdf").write_text(f'<sdf version="1.9"><model name="s">{links}</model></sdf>')
+    _refused(tmp_path / "dust.sdf", "300 links")
+
+
+def test_command_line_refuses_with_one_line(tmp_path, capfd):
+    """The CLI prints notes, then exactly one `robokit: error:` line naming the file, and exits 2."""
+    from robokit.cli import main
+
+    for a, b in (("a", "b"), ("b", "a")):
+        (tmp_path / f"{a}.sdf").write_text(f'<sdf version="1.9"><model name="{a}"><link name="l"/>'
+                                           f'<include><uri>{b}.sdf</uri><name>{b}x</name></include></model></sdf>')
+    capfd.readouterr()
+    assert main(["convert", str(tmp_path / "a.sdf"), "-o", str(tmp_path / "a.json")]) == 2
+    err = [ln for ln in capfd.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and err[0].startswith("robokit: error:") and "include cycle" in err[0] and "a.sdf" in err[0]
+    assert not (tmp_path / "a.json").exists()
