@@ -92,6 +92,11 @@ MAX_INCLUDE_DEPTH, MAX_INCLUDES = 20, 200
 MAX_MODEL_DEPTH = 64
 
 _JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed")
+#: The examples' file: a 2 kg bob 1 m below a hinge about x.
+_PENDULUM_SDF = ('<sdf version="1.9"><model name="pendulum"><link name="base"/>'
+                 '<link name="bob"><pose>0 0 -1 0 0 0</pose><inertial><mass>2</mass></inertial></link>'
+                 '<joint name="hinge" type="revolute"><parent>base</parent><child>bob</child>'
+                 '<pose relative_to="base"/><axis><xyz>1 0 0</xyz></axis></joint></model></sdf>')
 _NO_LIMIT = 1e16
 _DRAKE_NS = "http://drake.mit.edu"
 #: Cosmetic elements skipped without a note.
@@ -741,18 +746,15 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
     Raises
     ------
     InputError
-        See the module docstring.
+        One line naming the file and the element: a bound or confinement rule broken, an unknown
+        frame, a ``relative_to`` loop, a joint kind robokit does not build (the module docstring).
 
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> text = ('<sdf version="1.9"><model name="pendulum"><link name="base"/>'
-    ...         '<link name="bob"><pose>0 0 -1 0 0 0</pose><inertial><mass>2</mass></inertial></link>'
-    ...         '<joint name="hinge" type="revolute"><parent>base</parent><child>bob</child>'
-    ...         '<pose relative_to="base"/><axis><xyz>1 0 0</xyz></axis></joint></model></sdf>')
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     p = pathlib.Path(tmp, "pendulum.sdf")
-    ...     _ = p.write_text(text)
+    ...     _ = p.write_text(_PENDULUM_SDF)
     ...     desc, notes, _ = description_from_sdf(p)
     >>> desc.joints[0].placement.translation, desc.joints[0].child_placement.translation
     ((0.0, 0.0, 0.0), (0.0, 0.0, -1.0))
@@ -931,18 +933,15 @@ def load_sdf(path: str | os.PathLike[str], tip: str | None = None, *,
     Raises
     ------
     InputError
-        See the module docstring.
+        A missing file, anything :func:`description_from_sdf` refuses, no moving joint on the chain
+        to the tip.
 
     Examples
     --------
     >>> import pathlib, tempfile, warnings
-    >>> text = ('<sdf version="1.9"><model name="pendulum"><link name="base"/>'
-    ...         '<link name="bob"><pose>0 0 -1 0 0 0</pose><inertial><mass>2</mass></inertial></link>'
-    ...         '<joint name="hinge" type="revolute"><parent>base</parent><child>bob</child>'
-    ...         '<pose relative_to="base"/><axis><xyz>1 0 0</xyz></axis></joint></model></sdf>')
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     p = pathlib.Path(tmp, "pendulum.sdf")
-    ...     _ = p.write_text(text)
+    ...     _ = p.write_text(_PENDULUM_SDF)
     ...     with warnings.catch_warnings():
     ...         warnings.simplefilter("ignore")
     ...         robot = load_sdf(p)
