@@ -212,7 +212,6 @@ class _Reader:
     joints: list[_JointRaw] = field(default_factory=list)
     frames: list[str] = field(default_factory=list)
     unmodelled: dict[str, int] = field(default_factory=dict)
-    notes: list[str] = field(default_factory=list)
     files: int = 1
     total_bytes: int = 0
     joint_count: int = 0
@@ -221,10 +220,6 @@ class _Reader:
     memo: dict[str, np.ndarray] = field(default_factory=dict)
     model_name: str = ""
     missing_meshes: list[str] = field(default_factory=list)
-
-    # ------------------------------------------------------------------ small helpers
-    def fail(self, where: str, msg: str) -> InputError:
-        return InputError(f"{where}: {msg}")
 
     def note_unmodelled(self, el: ET.Element, context: str) -> None:
         known = _KNOWN.get(context, set())
@@ -838,9 +833,10 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
     reflected, ignored_rotor = [], []
     for j in rd.joints:
         where = f"{j.scope.file}: joint {j.name!r}"
-        parent = _attached_link(rd, j.scope.resolve(j.parent_raw, where), where) if j.parent_raw != "world" else None
-        if j.parent_raw != "world" and j.scope.resolve(j.parent_raw, where) not in rd.nodes:
+        parent_name = j.scope.resolve(j.parent_raw, where)
+        if parent_name != "world" and parent_name not in rd.nodes:
             raise InputError(f"{where}: parent {j.parent_raw!r} is no link or frame here")
+        parent = _attached_link(rd, parent_name, where)
         child_name = j.scope.resolve(j.child_raw, where)
         if child_name == "world":
             raise InputError(f"{where}: the child is the world; robokit reads joints whose child is a link")
@@ -900,7 +896,6 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
         shown = ", ".join(rd.missing_meshes[:4]) + (", ..." if len(rd.missing_meshes) > 4 else "")
         notes.append(f"{rd.top}: {len(rd.missing_meshes)} mesh file(s) not found, drawn without them "
                      f"(give their folder with package_dirs / --package-path): {shown}")
-    notes.extend(rd.notes)
     desc = Description(name, tuple(links), tuple(joints), tuple(frames), tuple(geoms),
                        tuple((r, _pose_value(X_W[r])) for r in roots), rd.gravity)
     return desc, notes, mimic

@@ -436,3 +436,21 @@ def test_command_line_refuses_with_one_line(tmp_path, capfd):
     err = [ln for ln in capfd.readouterr().err.splitlines() if ln.strip()]
     assert len(err) == 1 and err[0].startswith("robokit: error:") and "include cycle" in err[0] and "a.sdf" in err[0]
     assert not (tmp_path / "a.json").exists()
+
+
+def test_unknown_parent_is_refused(tmp_path):
+    (tmp_path / "bad.sdf").write_text('<sdf version="1.9"><model name="m"><link name="a"/><joint name="j" '
+                                      'type="revolute"><parent>ghost</parent><child>a</child><axis><xyz>0 0 1</xyz>'
+                                      '</axis></joint></model></sdf>')
+    _refused(tmp_path / "bad.sdf", "joint 'j'", "'ghost'")
+
+
+def test_joint_to_the_world(tmp_path):
+    """A revolute joint whose parent is the world: no base link, no 'fixed to the world' note."""
+    (tmp_path / "w.sdf").write_text('<sdf version="1.9"><model name="m"><pose>0 0 1 0 0 0</pose>'
+                                    '<link name="a"><pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial></link>'
+                                    '<joint name="j" type="revolute"><parent>world</parent><child>a</child>'
+                                    '<pose>-0.5 0 0 0 0 0</pose><axis><xyz>0 0 1</xyz></axis></joint></model></sdf>')
+    robot, notes = load_quiet(tmp_path / "w.sdf")
+    np.testing.assert_allclose(robot.frame_pose([math.pi / 2], "a")[:3, 3], [0, 0.5, 1], atol=1e-12)
+    assert not any("fixed to the world" in n for n in notes)
