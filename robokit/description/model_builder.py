@@ -50,7 +50,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.dh import matrix_from_rpy
-from robokit.description.limits import check_joint_count
+from robokit.description.limits import MAX_JOINTS, check_joint_count
 from robokit.errors import InputError
 
 __all__ = ["Pose", "Inertial", "Link", "Joint", "FrameSpec", "Geometry", "Description", "JOINT_KINDS",
@@ -393,7 +393,11 @@ class Description:
 # --------------------------------------------------------------------------- checks
 def _check(desc: Description) -> tuple[dict[str, Link], dict[str | None, list[Joint]], list[str]]:
     """Links by name, joints by parent link (file order), and the root links; InputError if not a tree."""
-    check_joint_count(len(desc.joints), desc.name, "joints")
+    # moving joints are what Pinocchio's Data grows with; fixed joints are frames (the readers bound their count)
+    check_joint_count(sum(j.kind != "fixed" for j in desc.joints), desc.name, "moving joints")
+    if len(desc.joints) > 4 * MAX_JOINTS:
+        raise InputError(f"{desc.name}: {len(desc.joints)} joints; robokit builds at most {4 * MAX_JOINTS} "
+                         f"(of which {MAX_JOINTS} moving)")
     links: dict[str, Link] = {}
     for link in desc.links:
         if link.name in links:
@@ -524,7 +528,8 @@ def build_model(desc: Description) -> tuple[Any, Any, Any, list[str]]:
     InputError
         Not a tree (a link child of two joints, a loop, a joint naming an unknown link), two
         links or joints with one name, an unknown joint kind, a zero axis, lower > upper, more
-        joints than :data:`robokit.description.limits.MAX_JOINTS`.
+        moving joints than :data:`robokit.description.limits.MAX_JOINTS` (or four times as many
+        joints in all).
 
     Examples
     --------
