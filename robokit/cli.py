@@ -95,8 +95,8 @@ def _build_parser() -> argparse.ArgumentParser:
     v.add_argument("--seed", type=int, default=0, help="random seed for the samples (default 0)")
 
     c = sub.add_parser("convert", help="any robot -> URDF (DH models), PoE JSON, DH YAML or MJCF")
-    c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml/.sdf file, or an "
-                                 "example-robot-data name (ur5, panda, ...)")
+    c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml/.sdf file, "
+                                 "or an example-robot-data name (ur5, panda, ...)")
     c.add_argument("-o", "--output", help="output file: .urdf (a DH model's URDF), .json (PoE parameters), .yaml (DH "
                                           "table) or .xml (MJCF); without it the DH table is printed")
     c.add_argument("--tip", help="tip frame of the chain (default: the arm's end effector, see the docs)")

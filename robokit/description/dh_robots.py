@@ -4,8 +4,8 @@ The table becomes the layout :func:`robokit.description.urdf_gen.urdf_from_dh` w
 (frames ``dh_0`` … ``dh_N`` and ``tool``), built directly by the model builder
 (:func:`robokit.description.urdf_gen.description_from_dh` →
 :func:`robokit.description.model_builder.build_model`, no URDF text in between); the robot's tip
-is ``tool`` and ``robot.dh`` is the table. The robot's :class:`~robokit.description.spec.RobotSpec` carries the table itself as
-YAML text (angles in rad), so ``robokit.load(robot.spec)`` rebuilds the same table without
+is ``tool`` and ``robot.dh`` is the table. The robot's :class:`~robokit.description.spec.RobotSpec`
+carries the table itself as YAML text (angles in rad), so ``robokit.load(robot.spec)`` rebuilds the same table without
 reading the file again; a shipped model is carried by its name.
 """
 from __future__ import annotations

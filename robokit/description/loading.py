@@ -149,7 +149,8 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     if isinstance(name_or_path, Robot):
         return name_or_path
     if isinstance(name_or_path, RobotSpec):
-        given = [k for k, v in options.items() if v not in (None, False, (), {}) or (k == "reflected_inertia" and v is False)]
+        given = [k for k, v in options.items()
+                 if v not in (None, False, (), {}) or (k == "reflected_inertia" and v is False)]
         given += ["tip"] if tip else []
         if given:
             raise InputError(f"{', '.join(given)}: a RobotSpec holds its own options; load(spec) takes none")

@@ -201,8 +201,8 @@ class Inertial:
         I = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
         R = np.asarray(pose.rotation, dtype=float).reshape(3, 3)
         J = R @ I @ R.T
-        return Inertial(float(mass), pose.translation,
-                        (float(J[0, 0]), float(J[0, 1]), float(J[0, 2]), float(J[1, 1]), float(J[1, 2]), float(J[2, 2])))
+        ixx, ixy, ixz, iyy, iyz, izz = (float(J[i, j]) for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
+        return Inertial(float(mass), pose.translation, (ixx, ixy, ixz, iyy, iyz, izz))
 
     def matrix(self) -> np.ndarray:
         """The 3×3 rotational inertia about the centre of mass, link axes, kg·m².

@@ -639,7 +639,7 @@ def _inertial(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np.n
                                                      ("iyz", 0.0), ("izz", 1.0))]
     X, rel = _pose(ine_el, where, scope)
     X_L_I = _in_link(rd, X, rel, scope, X_W_L, where)
-    I = np.array([[values[0], values[1], values[2]], [values[1], values[3], values[4]], [values[2], values[4], values[5]]])
+    I = Inertial(mass, inertia=(values[0], values[1], values[2], values[3], values[4], values[5])).matrix()
     if np.linalg.eigvalsh(I).min() < -1e-9 * max(1.0, float(np.abs(I).max())):
         raise InputError(f"{where}: the inertia tensor is not positive semi-definite")
     return Inertial.from_frame(mass, _pose_value(X_L_I), values)
@@ -864,13 +864,13 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
         if j.mimic:
             mimic[j.name] = j.scope.resolve(j.mimic, where)
         joints.append(Joint(j.name, j.kind, parent, child, _pose_value(np.linalg.inv(X_W_P) @ X_W_J),
-                            _pose_value(np.linalg.inv(X_W_J) @ X_W[child]), (float(axis[0]), float(axis[1]),
-                                                                             float(axis[2])),
+                            _pose_value(np.linalg.inv(X_W_J) @ X_W[child]),
+                            (float(axis[0]), float(axis[1]), float(axis[2])),
                             j.lower, j.upper, j.velocity, j.effort, j.damping, j.friction, armature))
     if reflected:
-        notes.append(f"{rd.top}: reflected rotor inertia drake:rotor_inertia × drake:gear_ratio² added to M and inverse "
-                     f"dynamics as Drake adds it (kg·m²): {', '.join(reflected)}; load with reflected_inertia=False "
-                     "(--no-reflected-inertia) to leave it out")
+        notes.append(f"{rd.top}: reflected rotor inertia drake:rotor_inertia × drake:gear_ratio² added to M and "
+                     f"inverse dynamics as Drake adds it (kg·m²): {', '.join(reflected)}; load with "
+                     "reflected_inertia=False (--no-reflected-inertia) to leave it out")
     elif not reflected_inertia and any(j.rotor is not None for j in rd.joints):
         notes.append(f"{rd.top}: drake:rotor_inertia / drake:gear_ratio read but left out (reflected_inertia=False)")
     if ignored_rotor:

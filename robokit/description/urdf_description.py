@@ -163,7 +163,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
         name, kind = el.get("name", ""), el.get("type", "")
         where = f"{source}: joint {name!r}"
         if kind not in ("revolute", "continuous", "prismatic", "fixed"):
-            raise InputError(f"{where}: a {kind} joint; robokit builds revolute, continuous, prismatic and fixed joints")
+            raise InputError(f"{where}: a {kind} joint; robokit builds revolute, continuous, prismatic and fixed "
+                             "joints")
         parent_el, child_el = el.find("parent"), el.find("child")
         parent = parent_el.get("link", "") if parent_el is not None else ""
         child = child_el.get("link", "") if child_el is not None else ""
@@ -173,7 +174,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
         lim, dyn = el.find("limit"), el.find("dynamics")
         unlimited = kind == "continuous" and lim is None
         joint = Joint(name, kind, parent, child, _origin(el, where), axis=(axis[0], axis[1], axis[2]),
-                      lower=_attr(lim, "lower", 0.0, f"{where} <limit>"), upper=_attr(lim, "upper", 0.0, f"{where} <limit>"),
+                      lower=_attr(lim, "lower", 0.0, f"{where} <limit>"),
+                      upper=_attr(lim, "upper", 0.0, f"{where} <limit>"),
                       effort=math.inf if unlimited else _attr(lim, "effort", 0.0, f"{where} <limit>"),
                       velocity=math.inf if unlimited else _attr(lim, "velocity", 0.0, f"{where} <limit>"),
                       damping=_attr(dyn, "damping", 0.0, f"{where} <dynamics>"),

@@ -185,8 +185,8 @@ def urdf_from_dh(table: DHTable) -> str:
     """
     lay = _layout(table)
     lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(table.name)}>"]
-    lines += [f'  <material name="{m}"><color rgba="{" ".join(_f(c) if c != 1.0 else "1" for c in rgba)}"/></material>'
-              for m, rgba in MATERIALS.items()]
+    lines += [f'  <material name="{m}"><color rgba="{" ".join(_f(c) if c != 1.0 else "1" for c in rgba)}"/>'
+              "</material>" for m, rgba in MATERIALS.items()]
     joints = {j[3]: j for j in lay.joints}  # by child link: each link is followed by the joint to it
     for name, inertial, visuals in lay.links:
         parts = []

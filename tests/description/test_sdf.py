@@ -126,7 +126,8 @@ def test_arm_sdf_equals_its_urdf_twin(arm):
         qp = robot.q_pin(q)
         pin.framesForwardKinematics(ref, data, qp)
         for name in ARM_LINKS:
-            np.testing.assert_allclose(robot.frame_pose(q, name), data.oMf[ref.getFrameId(name)].homogeneous, atol=1e-9)
+            np.testing.assert_allclose(robot.frame_pose(q, name), data.oMf[ref.getFrameId(name)].homogeneous,
+                                       atol=1e-9)
         pin.computeJointJacobians(ref, data, qp)
         J_ref = pin.getFrameJacobian(ref, data, ref.getFrameId("wrist::tool"), pin.LOCAL_WORLD_ALIGNED)
         J = robot.jacobian(q, "wrist::tool", reference="local_world_aligned")
@@ -271,7 +272,8 @@ def test_axis_frame_by_version(tmp_path, version, use_parent, axis_in_model):
     """Link b is turned 90° about x, so its joint frame's z is the model's -y: the axis xyz 0 0 1 means
     the model's z (1.4, use_parent_model_frame) or the joint's z = the model's -y."""
     path = tmp_path / "two.sdf"
-    path.write_text(_two_joint_sdf(version, f"<xyz>0 0 1</xyz>{use_parent}", child_pose="0 0 0.5 1.5707963267948966 0 0"))
+    path.write_text(_two_joint_sdf(version, f"<xyz>0 0 1</xyz>{use_parent}",
+                                   child_pose="0 0 0.5 1.5707963267948966 0 0"))
     robot, _ = load_quiet(path)
     t = 0.6
     R_b0 = rot([1, 0, 0], math.pi / 2)
@@ -447,8 +449,8 @@ def test_unknown_parent_is_refused(tmp_path):
 
 def test_joint_to_the_world(tmp_path):
     """A revolute joint whose parent is the world: no base link, no 'fixed to the world' note."""
-    (tmp_path / "w.sdf").write_text('<sdf version="1.9"><model name="m"><pose>0 0 1 0 0 0</pose>'
-                                    '<link name="a"><pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial></link>'
+    (tmp_path / "w.sdf").write_text('<sdf version="1.9"><model name="m"><pose>0 0 1 0 0 0</pose><link name="a">'
+                                    '<pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial></link>'
                                     '<joint name="j" type="revolute"><parent>world</parent><child>a</child>'
                                     '<pose>-0.5 0 0 0 0 0</pose><axis><xyz>0 0 1</xyz></axis></joint></model></sdf>')
     robot, notes = load_quiet(tmp_path / "w.sdf")
