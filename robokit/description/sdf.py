@@ -98,6 +98,8 @@ _PENDULUM_SDF = ('<sdf version="1.9"><model name="pendulum"><link name="base"/>'
                  '<joint name="hinge" type="revolute"><parent>base</parent><child>bob</child>'
                  '<pose relative_to="base"/><axis><xyz>1 0 0</xyz></axis></joint></model></sdf>')
 _NO_LIMIT = 1e16
+#: The world frame's node name (no SDFormat name holds a NUL: a link may be named "world" before 1.7).
+_WORLD = "\x00world"
 _DRAKE_NS = "http://drake.mit.edu"
 #: Cosmetic elements skipped without a note.
 _COSMETIC = {"material", "cast_shadows", "laser_retro", "transparency", "visibility_flags", "meta",
@@ -139,7 +141,7 @@ def _join(scope: str, name: str) -> str:
 
 @dataclass
 class _Node:
-    """A frame of the pose graph: its pose ``X`` relative to ``rel`` (an absolute frame name, or "world").
+    """A frame of the pose graph: its pose ``X`` relative to ``rel`` (an absolute frame name, or the world).
 
     ``rel_raw`` (as written, resolved in ``scope``) overrides ``default_rel``; ``attached_raw`` (resolved in
     ``inner`` for a model, else ``scope``) overrides ``attached``. A model's ``inner`` is its own scope.
@@ -150,12 +152,12 @@ class _Node:
     rel_raw: str | None
     scope: _Scope
     where: str
-    default_rel: str = "world"
+    default_rel: str = _WORLD
     attached_raw: str | None = None
-    attached: str = "world"
+    attached: str = _WORLD
     inner: _Scope | None = None
     placement_frame: str | None = None
-    rel: str = "world"
+    rel: str = _WORLD
 
 
 @dataclass
@@ -165,6 +167,7 @@ class _Scope:
     version: tuple[int, int]
     file: Path
     static: bool = False
+    world_link: bool = False  # SDFormat < 1.7: a link of this model named "world" is what "world" means
 
     @property
     def legacy(self) -> bool:
@@ -173,7 +176,7 @@ class _Scope:
     def resolve(self, raw: str, where: str) -> str:
         raw = raw.strip()
         if raw == "world":
-            return "world"
+            return _join(self.prefix, "world") if self.world_link else _WORLD
         if raw == "__model__":
             return self.model_node
         if raw.endswith("::__model__"):
@@ -297,10 +300,10 @@ def _pose_value(T: np.ndarray) -> Pose:
     return Pose.from_matrix(T)
 
 
-def _check_name(name: str | None, where: str) -> str:
+def _check_name(name: str | None, where: str, legacy: bool = False) -> str:
     if not name or not name.isprintable() or len(name) > 200:
         raise InputError(f"{where}: expected a printable name (at most 200 characters), got {name!r}")
-    if name == "world" or (name.startswith("__") and name.endswith("__")):
+    if (name == "world" and not legacy) or (name.startswith("__") and name.endswith("__")):
         raise InputError(f"{where}: the name {name!r} is reserved in SDFormat")
     return name
 
@@ -376,10 +379,11 @@ def _read_model(rd: _Reader, el: ET.Element, scope: _Scope, depth: int, stack: t
     where_model = f"{scope.file}: model {scope.model_node!r}"
     rd.note_unmodelled(el, "model")
     first: str | None = None  # the canonical link by default: the first link, else the first nested model's
+    scope.world_link = scope.legacy and any(_tag(c) == "link" and c.get("name") == "world" for c in el)
     for c in el:
         t = _tag(c)
         if t == "link":
-            name = _join(scope.prefix, _check_name(c.get("name"), f"{where_model}: a <link>"))
+            name = _join(scope.prefix, _check_name(c.get("name"), f"{where_model}: a <link>", scope.legacy))
             where = f"{scope.file}: link {name!r}"
             X, rel = _pose(c, where, scope)
             _add_node(rd, name, _Node("link", X, rel, scope, where, default_rel=scope.model_node, attached=name))
@@ -414,7 +418,7 @@ def _read_model(rd: _Reader, el: ET.Element, scope: _Scope, depth: int, stack: t
     node = rd.nodes[scope.model_node]
     canonical = el.get("canonical_link")
     if scope.static:
-        node.attached = "world"
+        node.attached = _WORLD
     elif canonical:
         node.attached_raw = canonical
     elif first is not None:
@@ -557,19 +561,19 @@ def _resolve_names(rd: _Reader) -> None:
         if node.attached_raw:
             node.attached = (node.inner or node.scope).resolve(node.attached_raw, node.where)
         for ref in (node.rel, node.attached):
-            if ref != "world" and ref not in rd.nodes:
+            if ref != _WORLD and ref not in rd.nodes:
                 raise InputError(f"{node.where}: refers to {ref.split('::')[-1]!r}, which is no link, joint, frame or "
                                  "model here")
 
 
 def _world_pose(rd: _Reader, name: str) -> np.ndarray:
     """X_W_name at q = 0, following ``rel`` up to the world (iteratively; a loop is refused)."""
-    if name == "world":
+    if name == _WORLD:
         return np.eye(4)
     path: list[str] = []
     seen: set[str] = set()
     cur = name
-    while cur != "world" and cur not in rd.memo:
+    while cur != _WORLD and cur not in rd.memo:
         if cur in seen:
             loop = " -> ".join([*path[path.index(cur):], cur])
             raise InputError(f"{rd.nodes[name].where}: the poses' relative_to frames form a loop ({loop})")
@@ -580,7 +584,7 @@ def _world_pose(rd: _Reader, name: str) -> np.ndarray:
             break
         path.append(cur)
         cur = node.rel
-    T = np.eye(4) if cur == "world" else rd.memo[cur]
+    T = np.eye(4) if cur == _WORLD else rd.memo[cur]
     for n in reversed(path):
         T = T @ rd.nodes[n].X
         rd.memo[n] = T
@@ -597,7 +601,7 @@ def _placed_model(rd: _Reader, name: str) -> np.ndarray:
     X_M_P, cur, seen = np.eye(4), pf, set()
     chain = []
     while cur != name:
-        if cur == "world" or cur in seen:
+        if cur == _WORLD or cur in seen:
             raise InputError(f"{node.where}: placement_frame {node.placement_frame!r} is not placed inside the model")
         seen.add(cur)
         chain.append(cur)
@@ -611,7 +615,7 @@ def _attached_link(rd: _Reader, name: str, where: str) -> str | None:
     """The link a frame moves with (None: the world)."""
     seen: set[str] = set()
     cur = name
-    while cur != "world":
+    while cur != _WORLD:
         node = rd.nodes[cur]
         if node.kind == "link":
             return cur
@@ -650,9 +654,9 @@ def _in_link(rd: _Reader, X: np.ndarray, rel: str | None, scope: _Scope, X_W_L: 
     if rel is None:
         return X
     target = scope.resolve(rel, where)
-    if target != "world" and target not in rd.nodes:
+    if target != _WORLD and target not in rd.nodes:
         raise InputError(f"{where}: relative_to {rel!r} is no frame here")
-    return np.linalg.inv(X_W_L) @ (_world_pose(rd, target) if target != "world" else np.eye(4)) @ X
+    return np.linalg.inv(X_W_L) @ (_world_pose(rd, target) if target != _WORLD else np.eye(4)) @ X
 
 
 def _geometries(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np.ndarray) -> list[Geometry]:
@@ -787,7 +791,7 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
             inc = models[0]
         else:
             model = models[0]
-    world_scope = _Scope("", "world", version, top)
+    world_scope = _Scope("", _WORLD, version, top)
     stack = (top.resolve(),)
     if inc is not None:
         _include(rd, inc, world_scope, 0, stack, top=True)
@@ -834,11 +838,11 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
     for j in rd.joints:
         where = f"{j.scope.file}: joint {j.name!r}"
         parent_name = j.scope.resolve(j.parent_raw, where)
-        if parent_name != "world" and parent_name not in rd.nodes:
+        if parent_name != _WORLD and parent_name not in rd.nodes:
             raise InputError(f"{where}: parent {j.parent_raw!r} is no link or frame here")
         parent = _attached_link(rd, parent_name, where)
         child_name = j.scope.resolve(j.child_raw, where)
-        if child_name == "world":
+        if child_name == _WORLD:
             raise InputError(f"{where}: the child is the world; robokit reads joints whose child is a link")
         child = _attached_link(rd, child_name, where)
         if child is None:
@@ -850,9 +854,9 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
         axis = np.asarray(j.axis, dtype=float)
         if j.axis_in is not None:
             frame = j.scope.resolve(j.axis_in, where)
-            if frame != "world" and frame not in rd.nodes:
+            if frame != _WORLD and frame not in rd.nodes:
                 raise InputError(f"{where}: <xyz expressed_in={j.axis_in!r}>: no such frame")
-            R_W_E = (_world_pose(rd, frame) if frame != "world" else np.eye(4))[:3, :3]
+            R_W_E = (_world_pose(rd, frame) if frame != _WORLD else np.eye(4))[:3, :3]
             axis = X_W_J[:3, :3].T @ R_W_E @ axis
         armature = 0.0
         if j.rotor is not None or j.gear is not None:

@@ -456,3 +456,17 @@ def test_joint_to_the_world(tmp_path):
     robot, notes = load_quiet(tmp_path / "w.sdf")
     np.testing.assert_allclose(robot.frame_pose([math.pi / 2], "a")[:3, 3], [0, 0.5, 1], atol=1e-12)
     assert not any("fixed to the world" in n for n in notes)
+
+
+def test_a_link_named_world_before_sdformat_1_7(tmp_path):
+    """SDFormat 1.4-1.6: a sibling link named "world" is what <parent>world</parent> means (pybullet_data's wsg50
+    grippers); 1.7 reserves the name."""
+    body = ('<link name="world"><pose>0 0 0.3 0 0 0</pose></link><link name="a"><pose>0 0 0.3 0 0 0</pose>'
+            '<inertial><mass>1</mass></inertial></link><joint name="j" type="prismatic"><parent>world</parent>'
+            '<child>a</child><axis><xyz>1 0 0</xyz></axis></joint>')
+    (tmp_path / "old.sdf").write_text(f'<sdf version="1.6"><model name="m">{body}</model></sdf>')
+    robot, _ = load_quiet(tmp_path / "old.sdf")
+    assert robot.model.existFrame("world")
+    np.testing.assert_allclose(robot.frame_pose([0.2], "a")[:3, 3], [0.2, 0, 0.3], atol=1e-12)
+    (tmp_path / "new.sdf").write_text(f'<sdf version="1.9"><model name="m">{body}</model></sdf>')
+    _refused(tmp_path / "new.sdf", "reserved")
