@@ -456,9 +456,15 @@ def _se3(pose: Pose) -> Any:
 def _inertia(inertial: Inertial | None) -> Any:
     import pinocchio as pin
 
+    Y = pin.Inertia.Zero()
     if inertial is None:
-        return pin.Inertia.Zero()
-    return pin.Inertia(float(inertial.mass), np.asarray(inertial.com, dtype=float), inertial.matrix())
+        return Y
+    # set field by field: the checked constructor refuses a rotated rod whose zero moment came out -1e-22, which
+    # Pinocchio's URDF parser (and so every URDF robokit reads) accepts; the readers check physical validity
+    Y.mass = float(inertial.mass)
+    Y.lever = np.asarray(inertial.com, dtype=float)
+    Y.inertia = inertial.matrix()
+    return Y
 
 
 _AXIS_MODELS = {
