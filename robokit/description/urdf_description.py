@@ -18,6 +18,11 @@ rules, which Pinocchio's URDF parser follows:
 
 ``<mimic>``, ``<transmission>``, ``<gazebo>`` and ``<safety_controller>`` are not read here (the
 URDF loader reports the first and refuses a mimic joint on the chain).
+
+:func:`robokit.description.urdf_files.load_urdf` still builds with Pinocchio's URDF parser; this
+reader is what the tests use to show that the builder lays a model out as that parser does (the
+same frames, joints, inertias, limits and geometry, on the shipped and example-robot-data arms),
+and the path by which URDF can move onto the builder.
 """
 from __future__ import annotations
 
