@@ -7,6 +7,7 @@ same, and forward kinematics, Jacobians, RNEA and the mass matrix agree to 1e-12
 Robots: the shipped models' URDFs and five example-robot-data arms (a continuous-joint arm, kinova, among
 them: its continuous joints must come out as Pinocchio's unbounded revolute joints, nq = 2).
 """
+import dataclasses
 import math
 
 import numpy as np
@@ -33,9 +34,16 @@ def _urdf_paths():
         import example_robot_data as erd
     except ImportError:  # pragma: no cover - the test extra installs it
         return out
+    from os.path import join
+
     for name in ("ur5", "panda", "kinova", "z1", "xarm7"):
-        out.append((name, erd.robots_loader.ROBOTS[name]().df_path))
+        cls = erd.robots_loader.ROBOTS[name]  # the file's path, as the loader finds it, without building the robot
+        rel = join(cls.path, cls.urdf_subpath, cls.urdf_filename)
+        out.append((name, join(erd.robots_loader.getModelPath(rel), rel)))
     return out
+
+
+URDF_PATHS = _urdf_paths()
 
 
 def assert_same_model(mine, ref):
@@ -71,7 +79,7 @@ def assert_same_dynamics(mine, ref, seed=0, samples=5):
         np.testing.assert_allclose(pin.crba(mine, d, q), pin.crba(ref, dr, q), atol=1e-12)
 
 
-@pytest.mark.parametrize("name,path", _urdf_paths(), ids=[n for n, _ in _urdf_paths()])
+@pytest.mark.parametrize("name,path", URDF_PATHS, ids=[n for n, _ in URDF_PATHS])
 def test_builder_equals_pinocchio_urdf_parser(name, path):
     doc = read_urdf(path)
     ref = pin.buildModelFromXML(doc.xml)
@@ -93,10 +101,11 @@ def test_builder_equals_pinocchio_urdf_parser(name, path):
 
 def test_continuous_joints_are_unbounded_revolute():
     """kinova's joints 1, 4, 6 are continuous: nq = 2 each, as the URDF parser makes them."""
-    path = dict(_urdf_paths()).get("kinova")
+    path = dict(URDF_PATHS).get("kinova")
     if path is None:
         pytest.skip("example-robot-data not installed")
-    model = build_model(description_from_urdf(read_urdf(path).xml))[0]
+    desc = dataclasses.replace(description_from_urdf(read_urdf(path).xml), geometries=())  # no meshes to read
+    model = build_model(desc)[0]
     kinds = [model.joints[j].shortname() for j in range(1, model.njoints)]
     assert kinds.count("JointModelRUBZ") == 3
     assert (model.nq, model.nv) == (9, 6)
