@@ -58,7 +58,12 @@ def _add_format_options(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                    help="value of a xacro argument (repeatable)")
     g.add_argument("--package-path", action="append", default=[], metavar="DIR",
-                   help="folder searched for <pkg>/package.xml for $(find pkg) and package:// (repeatable)")
+                   help="folder searched for <pkg>/package.xml for $(find pkg) and package://, and for SDFormat "
+                        "model:// folders (repeatable)")
+    parser.add_argument_group("MJCF and SDFormat files").add_argument(
+        "--no-reflected-inertia", action="store_true",
+        help="leave out the joints' reflected rotor inertia (MJCF armature, Drake's drake:rotor_inertia x "
+             "drake:gear_ratio^2), modelled by default as MuJoCo and Drake do")
 
 
 def _format_options(args: argparse.Namespace) -> dict:
@@ -70,7 +75,10 @@ def _format_options(args: argparse.Namespace) -> dict:
             raise _UsageError(f"robokit: --xacro-arg: expected NAME:=VALUE, got {item!r}")
         xargs[name.strip()] = value
     paths = getattr(args, "package_path", None) or []
-    return {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
+    out = {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
+    if getattr(args, "no_reflected_inertia", False):
+        out["reflected_inertia"] = False
+    return out
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -88,8 +96,8 @@ def _build_parser() -> argparse.ArgumentParser:
     v.add_argument("--seed", type=int, default=0, help="random seed for the samples (default 0)")
 
     c = sub.add_parser("convert", help="any robot -> URDF (DH models), PoE JSON, DH YAML or MJCF")
-    c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml file, or an "
-                                 "example-robot-data name (ur5, panda, ...)")
+    c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml/.sdf file, "
+                                 "or an example-robot-data name (ur5, panda, ...)")
     c.add_argument("-o", "--output", help="output file: .urdf (a DH model's URDF), .json (PoE parameters), .yaml (DH "
                                           "table) or .xml (MJCF); without it the DH table is printed")
     c.add_argument("--tip", help="tip frame of the chain (default: the arm's end effector, see the docs)")

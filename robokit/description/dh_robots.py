@@ -1,9 +1,11 @@
 r"""Robots from DH tables: a shipped model, a DH ``.yaml`` file, a :class:`DHTable` in memory.
 
-The table becomes a URDF (:func:`robokit.description.urdf_gen.urdf_from_dh`: frames ``dh_0`` …
-``dh_N`` and ``tool``), which Pinocchio builds; the robot's tip is ``tool`` and ``robot.dh`` is
-the table. The robot's :class:`~robokit.description.spec.RobotSpec` carries the table itself as
-YAML text (angles in rad), so ``robokit.load(robot.spec)`` rebuilds the same table without
+The table becomes the layout :func:`robokit.description.urdf_gen.urdf_from_dh` writes as URDF
+(frames ``dh_0`` … ``dh_N`` and ``tool``), built directly by the model builder
+(:func:`robokit.description.urdf_gen.description_from_dh` →
+:func:`robokit.description.model_builder.build_model`, no URDF text in between); the robot's tip
+is ``tool`` and ``robot.dh`` is the table. The robot's :class:`~robokit.description.spec.RobotSpec`
+carries the table itself as YAML text (angles in rad), so ``robokit.load(robot.spec)`` rebuilds the same table without
 reading the file again; a shipped model is carried by its name.
 """
 from __future__ import annotations
@@ -49,9 +51,8 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
     >>> robot_from_dh(table).n
     3
     """
-    import pinocchio as pin
-
-    from robokit.description.urdf_gen import urdf_from_dh
+    from robokit.description.model_builder import build_model
+    from robokit.description.urdf_gen import description_from_dh
 
     if not isinstance(table, DHTable):
         raise InputError(f"table: expected a DHTable, got {type(table).__name__}")
@@ -60,14 +61,7 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
     check_joint_count(len(table.links), table.name, "links (joints)")  # before Pinocchio builds anything
     if spec is None:
         spec = RobotSpec("dh", text=table.to_yaml_str(angle_unit="rad"))
-    xml = urdf_from_dh(table)
-    model = pin.buildModelFromXML(xml)
-    model.gravity.linear = np.asarray(table.gravity, dtype=float)
-    try:
-        visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
-        collision = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION)
-    except Exception:  # pragma: no cover - geometry is optional
-        visual = collision = None
+    model, visual, collision, _ = build_model(description_from_dh(table))  # cylinders only: no mesh notes
     robot = Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table,
                   source=spec.describe())
     robot.spec = spec

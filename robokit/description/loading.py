@@ -9,6 +9,9 @@ input                  loader                                                opt
 ``*.xacro``            :func:`~robokit.description.xacro_files.load_xacro`    ``package_dirs``,
                                                                              ``xacro_args``
 ``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            —
+``*.sdf``, ``*.world`` :func:`~robokit.description.sdf.load_sdf`              ``package_dirs``,
+                                                                             ``allow_outside_meshes``,
+                                                                             ``reflected_inertia``
 a shipped model name   :func:`~robokit.description.dh_robots.load_shipped`    —
 an example-robot-data  :func:`~robokit.description.example_robots.load_example_robot`  —
 name
@@ -34,6 +37,7 @@ from robokit.description.example_robots import example_robot_names, load_example
 from robokit.description.mjcf import load_mjcf
 from robokit.description.models import shipped_models
 from robokit.description.robot import Robot
+from robokit.description.sdf import load_sdf
 from robokit.description.spec import RobotSpec
 from robokit.description.urdf_files import load_urdf
 from robokit.description.xacro_files import load_xacro
@@ -48,7 +52,9 @@ FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
     ".yml": (load_dh_file, ()),
     ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes")),
     ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes")),
-    ".xml": (load_mjcf, ("allow_outside_meshes", "armature")),
+    ".xml": (load_mjcf, ("allow_outside_meshes", "reflected_inertia")),
+    ".sdf": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
+    ".world": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
 }
 
 #: Spec kind → how ``load(spec)`` rebuilds the robot.
@@ -61,7 +67,9 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                                   xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes),
     "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes,
-                                armature=s.armature),
+                                reflected_inertia=s.reflected_inertia),
+    "sdf": lambda s: load_sdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
+                              allow_outside_meshes=s.allow_outside_meshes, reflected_inertia=s.reflected_inertia),
 }
 
 
@@ -75,7 +83,7 @@ def _file_loader(path: Path) -> tuple[str, Callable[..., Robot], tuple[str, ...]
 
 
 #: The value of each :func:`load` option that means "not given".
-_UNSET: dict[str, Any] = {"package_dirs": None, "xacro_args": None, "allow_outside_meshes": False, "armature": True}
+_UNSET: dict[str, Any] = {"package_dirs": None, "xacro_args": None, "allow_outside_meshes": False, "reflected_inertia": True}
 
 
 def _given(key: str, value: Any) -> bool:
@@ -94,9 +102,10 @@ def _options_for(what: str, accepted: tuple[str, ...], options: Mapping[str, Any
 
 def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip: str | None = None, *,
          package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
-         allow_outside_meshes: bool = False, armature: bool = True) -> Robot:
+         allow_outside_meshes: bool = False, reflected_inertia: bool = True) -> Robot:
     """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
-    an MJCF ``.xml``, an example-robot-data name, a :class:`DHTable` or a :class:`RobotSpec`.
+    an MJCF ``.xml``, an SDFormat ``.sdf``/``.world``, an example-robot-data name, a :class:`DHTable`
+    or a :class:`RobotSpec`.
 
     Parameters
     ----------
@@ -109,17 +118,19 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
         for example-robot-data arms, else the end of the chain — of the longest chain for a
         tree, see :func:`~robokit.description.builder.choose_tip`).
     package_dirs : sequence of str or Path, optional
-        Folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF or xacro
-        file, and ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``; the
-        file's own folder and the folders above it are always searched).
+        Folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF, xacro or
+        SDFormat file, ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``; the
+        file's own folder and the folders above it are always searched), and the folders of
+        SDFormat ``model://NAME`` includes.
     xacro_args : dict of str to str, optional
         xacro argument values (``{"name": "value"}``), xacro files only.
     allow_outside_meshes : bool
         Read meshes that a URDF names outside its folder, its package and ``package_dirs``
         (absolute paths, ``../`` out of the package); refused by default.
-    armature : bool
-        MJCF files: add each joint's ``armature`` (reflected rotor inertia) to M and inverse
-        dynamics, as MuJoCo does (default); False leaves it out.
+    reflected_inertia : bool
+        Model each joint's reflected rotor inertia in M and inverse dynamics (default True):
+        MJCF's joint ``armature``, as MuJoCo adds it, and SDFormat's Drake
+        ``drake:rotor_inertia · drake:gear_ratio²``, as Drake adds it. False leaves it out.
 
     Returns
     -------
@@ -143,7 +154,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     6
     """
     options = dict(package_dirs=package_dirs, xacro_args=xacro_args, allow_outside_meshes=allow_outside_meshes,
-                   armature=armature)
+                   reflected_inertia=reflected_inertia)
     if isinstance(name_or_path, Robot):
         return name_or_path
     if isinstance(name_or_path, RobotSpec):
@@ -174,7 +185,7 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
         _options_for("example-robot-data models", (), options)
         return load_example_robot(s, tip)
     raise InputError(
-        f"model: unknown robot {s!r}; give a .yaml, .urdf, .xacro or MJCF .xml file, a shipped model "
+        f"model: unknown robot {s!r}; give a .yaml, .urdf, .xacro, MJCF .xml or SDFormat .sdf file, a shipped model "
         f"({', '.join(shipped_models())}) or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
     )
 

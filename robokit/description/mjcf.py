@@ -11,7 +11,7 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     ``body_inertia``, ``mj_fullM``, ``mj_inverse``).
 
     Joint ``armature`` (reflected rotor inertia) is added to the diagonal of M and to inverse
-    dynamics, as MuJoCo adds it, and a note says so; ``armature=False`` leaves it out. Joint
+    dynamics, as MuJoCo adds it, and a note says so; ``reflected_inertia=False`` leaves it out. Joint
     ``damping`` is kept in ``robot.model.damping`` (rigid-body dynamics does not add it; MuJoCo
     adds the passive force −b·q̇, which ``mj_inverse`` counts).
 
@@ -277,7 +277,7 @@ def _default_tip(model: Any) -> str:
 
 
 def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_outside_meshes: bool = False,
-              armature: bool = True) -> Robot:
+              reflected_inertia: bool = True) -> Robot:
     """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
 
     Parameters
@@ -290,8 +290,8 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     allow_outside_meshes : bool
         Read mesh files outside the file's folder and its package (refused by default; see
         :mod:`robokit.description.meshes`). Includes are always confined.
-    armature : bool
-        Add each joint's ``armature`` to M and inverse dynamics, as MuJoCo does (default);
+    reflected_inertia : bool
+        Add each joint's ``armature`` (reflected rotor inertia) to M and inverse dynamics, as MuJoCo does (default);
         False leaves it out (``robot.model.armature`` is then zero).
 
     Returns
@@ -326,8 +326,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     path = Path(path)
     if not path.exists():  # a FIFO or device is refused by the bounded reader
         raise InputError(f"{path}: file not found")
-    if not isinstance(armature, (bool, np.bool_)):
-        raise InputError(f"armature: expected True or False, got {armature!r}")
+    if not isinstance(reflected_inertia, (bool, np.bool_)):
+        raise InputError(f"reflected_inertia: expected True or False, got {reflected_inertia!r}")
+    armature = bool(reflected_inertia)
     root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
@@ -350,9 +351,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     if chain_arm and armature:
         shown = ", ".join(f"{n} {a:g}" for n, a in chain_arm[:8]) + (", ..." if len(chain_arm) > 8 else "")
         notes.append(f"{name}: joint armature (reflected rotor inertia) added to the mass matrix's diagonal and to "
-                     f"inverse dynamics, as MuJoCo adds it ({shown}); load(..., armature=False) leaves it out")
+                     f"inverse dynamics, as MuJoCo adds it ({shown}); load(..., reflected_inertia=False) or --no-reflected-inertia leaves it out")
     spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes,
-                     armature=bool(armature))
+                     reflected_inertia=armature)
     tip = tip or _default_tip(built.model)
     geoms = [built.visual if built.visual.ngeoms else None, built.collision if built.collision.ngeoms else None]
     robot = build_robot(name, built.model, tip, geoms, {}, spec, notes)

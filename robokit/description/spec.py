@@ -20,7 +20,7 @@ from robokit.errors import InputError
 __all__ = ["RobotSpec", "SPEC_KINDS"]
 
 #: The kinds of robot description a spec may name.
-SPEC_KINDS = ("shipped", "dh", "urdf", "xacro", "mjcf", "example-robot-data")
+SPEC_KINDS = ("shipped", "dh", "urdf", "xacro", "mjcf", "sdf", "example-robot-data")
 
 
 @dataclass(frozen=True)
@@ -31,8 +31,8 @@ class RobotSpec:
     ----------
     kind : str
         One of :data:`SPEC_KINDS`: ``"shipped"`` (a model of ``models/``, by name), ``"dh"`` (a
-        DH table, carried as YAML text), ``"urdf"``, ``"xacro"``, ``"mjcf"`` (a file, by
-        absolute path) or ``"example-robot-data"`` (by name).
+        DH table, carried as YAML text), ``"urdf"``, ``"xacro"``, ``"mjcf"``, ``"sdf"`` (a file,
+        by absolute path) or ``"example-robot-data"`` (by name).
     name : str or None
         The model name (``"shipped"``, ``"example-robot-data"``); None otherwise.
     path : str or None
@@ -41,14 +41,14 @@ class RobotSpec:
     tip : str or None
         The tip frame asked for (None: the loader's default).
     package_dirs : tuple of str
-        Absolute folders searched for ROS packages (``"urdf"``, ``"xacro"``).
+        Absolute folders searched for ROS packages (``"urdf"``, ``"xacro"``, ``"sdf"``).
     xacro_args : tuple of (str, str)
         The xacro argument values, sorted by name (``"xacro"``).
     allow_outside_meshes : bool
         Whether meshes outside the file's package were allowed (``"urdf"``).
-    armature : bool
-        Whether the joints' armature (reflected rotor inertia) is in M and inverse dynamics
-        (``"mjcf"``; default True, as MuJoCo).
+    reflected_inertia : bool
+        Whether the joints' reflected rotor inertia is in M and inverse dynamics (``"mjcf"``:
+        MuJoCo's joint ``armature``; ``"sdf"``: Drake's ``rotor_inertia · gear_ratio²``); default True.
     text : str or None
         The DH table as YAML text, angles in rad (``"dh"``): parsed by the strict YAML loader
         when the spec is loaded, so a rebuilt table is the same table even if the file changed.
@@ -71,7 +71,7 @@ class RobotSpec:
     xacro_args: tuple[tuple[str, str], ...] = ()
     allow_outside_meshes: bool = False
     text: str | None = None
-    armature: bool = True
+    reflected_inertia: bool = True
 
     def __post_init__(self) -> None:
         if self.kind not in SPEC_KINDS:
@@ -86,12 +86,11 @@ class RobotSpec:
                 isinstance(kv, tuple) and len(kv) == 2 and all(isinstance(x, str) for x in kv)
                 for kv in self.xacro_args):
             raise InputError("spec: xacro_args must be a tuple of (name, value) string pairs")
-        if not isinstance(self.allow_outside_meshes, bool):
-            raise InputError("spec: allow_outside_meshes must be a bool")
-        if not isinstance(self.armature, bool):
-            raise InputError("spec: armature must be a bool")
+        for flag in ("allow_outside_meshes", "reflected_inertia"):
+            if not isinstance(getattr(self, flag), bool):
+                raise InputError(f"spec: {flag} must be a bool")
         needs = {"shipped": "name", "example-robot-data": "name", "dh": "text",
-                 "urdf": "path", "xacro": "path", "mjcf": "path"}[self.kind]
+                 "urdf": "path", "xacro": "path", "mjcf": "path", "sdf": "path"}[self.kind]
         if getattr(self, needs) is None:
             raise InputError(f"spec: a {self.kind!r} spec needs {needs}")
 
@@ -136,8 +135,8 @@ class RobotSpec:
             shown.append("allow_outside_meshes=True")
         if self.text is not None:
             shown.append(f"text=<{len(self.text)} characters of DH YAML>")
-        if not self.armature:
-            shown.append("armature=False")
+        if not self.reflected_inertia:
+            shown.append("reflected_inertia=False")
         return f"RobotSpec({', '.join(shown)})"
 
 

@@ -23,16 +23,18 @@ next one (and to the tool), sized from the arm's dimensions, so meshcat shows th
 """
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.dh import DHTable, dh_transform, rpy_from_matrix
+from robokit.description.model_builder import Description, Geometry, Inertial, Joint, Link, Pose
 from robokit.errors import InputTypeError
 from robokit._deprecation import deprecated_alias
 
-__all__ = ["urdf_from_dh"]
+__all__ = ["urdf_from_dh", "description_from_dh"]
 
 
 def _f(x: float) -> str:
@@ -52,7 +54,13 @@ def _origin(T: np.ndarray) -> str:
     return f'<origin xyz="{_vec(T[:3, 3])}" rpy="{_vec(rpy_from_matrix(T[:3, :3]))}"/>'
 
 
-def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str) -> str | None:
+#: The colours of the generated robot's visuals (URDF materials).
+MATERIALS = {"robokit_joint": (0.95, 0.55, 0.1, 1.0), "robokit_link": (0.55, 0.6, 0.7, 1.0),
+             "robokit_base": (0.3, 0.3, 0.35, 1.0)}
+
+
+def _cylinder_pose(p0: ArrayLike, p1: ArrayLike) -> tuple[np.ndarray, float] | None:
+    """(pose of a cylinder whose axis runs from p0 to p1, its length); None when they coincide."""
     p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
     d = p1 - p0
     length = float(np.linalg.norm(d))
@@ -66,8 +74,88 @@ def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str
     T = np.eye(4)
     T[:3, :3] = np.column_stack([x, y, z])
     T[:3, 3] = 0.5 * (p0 + p1)
+    return T, length
+
+
+def _visual_text(T: np.ndarray, radius: float, length: float, material: str) -> str:
     return (f"<visual>{_origin(T)}<geometry><cylinder radius=\"{_f(radius)}\" length=\"{_f(length)}\"/>"
             f"</geometry><material name=\"{material}\"/></visual>")
+
+
+def _cylinder_between(p0: ArrayLike, p1: ArrayLike, radius: float, material: str) -> str | None:
+    c = _cylinder_pose(p0, p1)
+    return None if c is None else _visual_text(c[0], radius, c[1], material)
+
+
+@dataclass(frozen=True)
+class _Cylinder:
+    T: np.ndarray
+    radius: float
+    length: float
+    material: str
+
+
+@dataclass
+class _DHLayout:
+    """The generated robot, structured: what :func:`urdf_from_dh` writes and :func:`description_from_dh` builds."""
+
+    links: list[tuple[str, tuple[np.ndarray, float, tuple[float, ...]] | None, list[_Cylinder]]] = field(
+        default_factory=list)  # (name, (T_link_com, mass, (xx, yy, zz, xy, yz, xz)) or None, visuals)
+    joints: list[tuple[str, str, str, str, np.ndarray, float, float, float]] = field(
+        default_factory=list)  # (name, kind, parent, child, origin, axis z sign, lower, upper)
+
+
+def _layout(table: DHTable) -> _DHLayout:
+    if not isinstance(table, DHTable):
+        raise InputTypeError(f"table: expected a DHTable, got {type(table).__name__}")
+    n = table.n
+    scale = max([abs(l.a) for l in table.links] + [abs(l.d) for l in table.links] + [0.1])
+    r_joint = max(0.01, 0.08 * scale)
+    r_link = 0.45 * r_joint
+    I4 = np.eye(4)
+    O, F = [], []
+    for l in table.links:
+        if table.convention == "standard":
+            O.append(I4)
+            F.append(dh_transform(l.a, l.alpha, l.d, l.theta, "standard"))
+        else:
+            O.append(dh_transform(l.a, l.alpha, l.d, l.theta, "modified"))
+            F.append(I4)
+
+    def cyl(p0: ArrayLike, p1: ArrayLike, radius: float, material: str) -> list[_Cylinder]:
+        c = _cylinder_pose(p0, p1)
+        return [] if c is None else [_Cylinder(c[0], radius, c[1], material)]
+
+    qlim = table.qlim
+    out = _DHLayout()
+    out.links.append(("base_link", None, []))
+    # dh_0 carries the base plinth visual: a cylinder on joint 1's axis where it starts
+    base_vis = cyl([0, 0, -0.6 * r_joint], [0, 0, 0.6 * r_joint], 1.6 * r_joint, "robokit_base") \
+        if table.convention == "standard" else []
+    out.links.append(("dh_0", None, base_vis))
+    out.joints.append(("base_to_dh_0", "fixed", "base_link", "dh_0", np.asarray(table.base, float), 1.0, 0.0, 0.0))
+    for i, l in enumerate(table.links, start=1):
+        Fi = F[i - 1]
+        inertial = None
+        if l.mass > 0 or np.any(np.asarray(l.inertia) != 0):
+            Tc = Fi.copy()
+            Tc[:3, 3] = Fi[:3, :3] @ np.asarray(l.com, float) + Fi[:3, 3]
+            inertial = (Tc, float(l.mass), tuple(float(v) for v in l.inertia))
+        # joint i's axis passes through link_i's origin along z
+        visuals = cyl([0, 0, -1.2 * r_joint], [0, 0, 1.2 * r_joint], r_joint, "robokit_joint")
+        # segment(s) to the next joint's origin (or the tool): through the DH frame origin
+        nxt = (F[i - 1] @ O[i])[:3, 3] if i < n else (Fi @ table.tool)[:3, 3]
+        mid = Fi[:3, 3]
+        for a, b in (([0, 0, 0], [0, 0, mid[2]]), ([0, 0, mid[2]], mid), (mid, nxt)):
+            visuals += cyl(a, b, r_link, "robokit_link")
+        out.links.append((f"link_{i}", inertial, visuals))
+        out.joints.append((f"joint_{i}", "revolute" if l.joint == "R" else "prismatic", f"dh_{i - 1}", f"link_{i}",
+                           O[i - 1], -1.0 if l.flip else 1.0, float(qlim[i - 1, 0]), float(qlim[i - 1, 1])))
+        out.links.append((f"dh_{i}", None, []))
+        out.joints.append((f"link_{i}_to_dh_{i}", "fixed", f"link_{i}", f"dh_{i}", Fi, 1.0, 0.0, 0.0))
+    out.links.append(("tool", None, cyl([0, 0, 0], [0, 0, 0.5 * r_joint], 0.7 * r_joint, "robokit_joint")))
+    out.joints.append((f"dh_{n}_to_tool", "fixed", f"dh_{n}", "tool", np.asarray(table.tool, float), 1.0, 0.0, 0.0))
+    return out
 
 
 def urdf_from_dh(table: DHTable) -> str:
@@ -95,71 +183,74 @@ def urdf_from_dh(table: DHTable) -> str:
     >>> urdf.count("<joint name=\"joint_"), "<link name=\"tool\"" in urdf
     (2, True)
     """
-    if not isinstance(table, DHTable):
-        raise InputTypeError(f"table: expected a DHTable, got {type(table).__name__}")
-    n = table.n
-    scale = max([abs(l.a) for l in table.links] + [abs(l.d) for l in table.links] + [0.1])
-    r_joint = max(0.01, 0.08 * scale)
-    r_link = 0.45 * r_joint
-    I4 = np.eye(4)
-    O, F = [], []
-    for l in table.links:
-        if table.convention == "standard":
-            O.append(I4)
-            F.append(dh_transform(l.a, l.alpha, l.d, l.theta, "standard"))
-        else:
-            O.append(dh_transform(l.a, l.alpha, l.d, l.theta, "modified"))
-            F.append(I4)
-    qlim = table.qlim
-    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(table.name)}>",
-             '  <material name="robokit_joint"><color rgba="0.95 0.55 0.1 1"/></material>',
-             '  <material name="robokit_link"><color rgba="0.55 0.6 0.7 1"/></material>',
-             '  <material name="robokit_base"><color rgba="0.3 0.3 0.35 1"/></material>',
-             '  <link name="base_link"/>']
-    # dh_0 carries the base plinth visual: a cylinder on joint 1's axis where it starts
-    base_vis = ""
-    if table.convention == "standard":
-        base_vis = _cylinder_between([0, 0, -0.6 * r_joint], [0, 0, 0.6 * r_joint], 1.6 * r_joint, "robokit_base") or ""
-    lines.append(f'  <link name="dh_0">{base_vis}</link>')
-    lines.append(f'  <joint name="base_to_dh_0" type="fixed"><parent link="base_link"/><child link="dh_0"/>'
-                 f"{_origin(table.base)}</joint>")
-    for i, l in enumerate(table.links, start=1):
-        Fi = F[i - 1]
+    lay = _layout(table)
+    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(table.name)}>"]
+    lines += [f'  <material name="{m}"><color rgba="{" ".join(_f(c) if c != 1.0 else "1" for c in rgba)}"/>'
+              "</material>" for m, rgba in MATERIALS.items()]
+    joints = {j[3]: j for j in lay.joints}  # by child link: each link is followed by the joint to it
+    for name, inertial, visuals in lay.links:
         parts = []
-        if l.mass > 0 or np.any(np.asarray(l.inertia) != 0):
-            Tc = Fi.copy()
-            Tc[:3, 3] = Fi[:3, :3] @ np.asarray(l.com, float) + Fi[:3, 3]
-            xx, yy, zz, xy, yz, xz = (float(v) for v in l.inertia)
-            parts.append(f"<inertial>{_origin(Tc)}<mass value=\"{_f(l.mass)}\"/>"
+        if inertial is not None:
+            Tc, mass, (xx, yy, zz, xy, yz, xz) = inertial
+            parts.append(f"<inertial>{_origin(Tc)}<mass value=\"{_f(mass)}\"/>"
                          f"<inertia ixx=\"{_f(xx)}\" ixy=\"{_f(xy)}\" ixz=\"{_f(xz)}\" iyy=\"{_f(yy)}\" "
                          f"iyz=\"{_f(yz)}\" izz=\"{_f(zz)}\"/></inertial>")
-        # joint i's axis passes through link_i's origin along z
-        v = _cylinder_between([0, 0, -1.2 * r_joint], [0, 0, 1.2 * r_joint], r_joint, "robokit_joint")
-        if v:
-            parts.append(v)
-        # segment(s) to the next joint's origin (or the tool): through the DH frame origin
-        nxt = (F[i - 1] @ O[i])[:3, 3] if i < n else (Fi @ table.tool)[:3, 3]
-        mid = Fi[:3, 3]
-        for a, b in (([0, 0, 0], [0, 0, mid[2]]), ([0, 0, mid[2]], mid), (mid, nxt)):
-            v = _cylinder_between(a, b, r_link, "robokit_link")
-            if v:
-                parts.append(v)
-        lines.append(f'  <link name="link_{i}">{"".join(parts)}</link>')
-        jtype = "revolute" if l.joint == "R" else "prismatic"
-        lines.append(
-            f'  <joint name="joint_{i}" type="{jtype}"><parent link="dh_{i - 1}"/><child link="link_{i}"/>'
-            f'{_origin(O[i - 1])}<axis xyz="0 0 {-1 if l.flip else 1}"/>'
-            f'<limit lower="{_f(qlim[i - 1, 0])}" upper="{_f(qlim[i - 1, 1])}" effort="1000" velocity="10"/></joint>'
-        )
-        lines.append(f'  <link name="dh_{i}"/>')
-        lines.append(f'  <joint name="link_{i}_to_dh_{i}" type="fixed"><parent link="link_{i}"/>'
-                     f'<child link="dh_{i}"/>{_origin(Fi)}</joint>')
-    tip_vis = _cylinder_between([0, 0, 0], [0, 0, 0.5 * r_joint], 0.7 * r_joint, "robokit_joint") or ""
-    lines.append(f'  <link name="tool">{tip_vis}</link>')
-    lines.append(f'  <joint name="dh_{n}_to_tool" type="fixed"><parent link="dh_{n}"/><child link="tool"/>'
-                 f"{_origin(table.tool)}</joint>")
+        parts += [_visual_text(v.T, v.radius, v.length, v.material) for v in visuals]
+        bare = name == "base_link" or (name.startswith("dh_") and name != "dh_0")  # written as <link .../>
+        lines.append(f'  <link name="{name}"/>' if bare else f'  <link name="{name}">{"".join(parts)}</link>')
+        if name in joints:
+            jn, kind, parent, child, origin, sign, lo, hi = joints[name]
+            if kind == "fixed":
+                lines.append(f'  <joint name="{jn}" type="fixed"><parent link="{parent}"/><child link="{child}"/>'
+                             f"{_origin(origin)}</joint>")
+            else:
+                lines.append(
+                    f'  <joint name="{jn}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+                    f'{_origin(origin)}<axis xyz="0 0 {-1 if sign < 0 else 1}"/>'
+                    f'<limit lower="{_f(lo)}" upper="{_f(hi)}" effort="1000" velocity="10"/></joint>')
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+
+def description_from_dh(table: DHTable) -> Description:
+    """The :class:`~robokit.description.model_builder.Description` of a :class:`DHTable`: the layout
+    :func:`urdf_from_dh` writes (the same links, joints, frames, inertials and shapes), for the model
+    builder — poses as matrices, with no rpy angles in between.
+
+    Parameters
+    ----------
+    table : DHTable
+        The arm.
+
+    Returns
+    -------
+    Description
+        Gravity from the table.
+
+    Examples
+    --------
+    >>> desc = description_from_dh(rk.load("rrr").dh)
+    >>> [j.name for j in desc.joints if j.kind == "revolute"]
+    ['joint_1', 'joint_2', 'joint_3']
+    """
+    lay = _layout(table)
+    links, geoms = [], []
+    for name, inertial, visuals in lay.links:
+        ine = None
+        if inertial is not None:
+            Tc, mass, (xx, yy, zz, xy, yz, xz) = inertial
+            ine = Inertial.from_frame(mass, Pose.from_matrix(Tc), (xx, xy, xz, yy, yz, zz))
+        links.append(Link(name, ine))
+        geoms += [Geometry(name, "cylinder", Pose.from_matrix(v.T), (v.radius, v.length), color=MATERIALS[v.material])
+                  for v in visuals]
+    joints = [Joint(jn, kind, parent, child, Pose.from_matrix(origin), axis=(0.0, 0.0, sign), lower=lo, upper=hi,
+                    velocity=10.0, effort=1000.0) if kind != "fixed"
+              else Joint(jn, "fixed", parent, child, Pose.from_matrix(origin))
+              for jn, kind, parent, child, origin, sign, lo, hi in lay.joints]
+    g = np.asarray(table.gravity, dtype=float)
+    return Description(table.name, tuple(links), tuple(joints), geometries=tuple(geoms),
+                       gravity=(float(g[0]), float(g[1]), float(g[2])))
+
 
 # Former names (before the X_from_Y rule): they warn and call the new function.
 dh_to_urdf = deprecated_alias(urdf_from_dh, "dh_to_urdf")

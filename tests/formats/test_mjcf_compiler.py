@@ -54,7 +54,7 @@ def body_differences(path):
 
 def dynamics_differences(path, samples=8, seed=0, armature=True, **load):
     """Largest relative difference of M and inverse dynamics (robokit vs MuJoCo)."""
-    robot = robokit.load(path, armature=armature, **load)
+    robot = robokit.load(path, reflected_inertia=armature, **load)
     m = _mj_model(path)
     d = mujoco.MjData(m)
     order = [j.name for b in compile_mjcf(path).bodies for j in b.joints]  # MuJoCo's joint order
@@ -355,12 +355,12 @@ def test_armature_option_and_note(tmp_path):
     path = _rule_file(tmp_path, "from_geoms_auto")
     with pytest.warns(UserWarning, match="armature"):
         robot = robokit.load(path)
-    bare = robokit.load(path, armature=False)
-    assert bare.spec.armature is False and robokit.load(bare.spec).spec.armature is False
+    bare = robokit.load(path, reflected_inertia=False)
+    assert bare.spec.reflected_inertia is False and robokit.load(bare.spec).spec.reflected_inertia is False
     q = robot.random_configuration(0)
     assert np.allclose(robot.crba(q) - bare.crba(q), np.diag([0.02, 0.01, 0.5]), rtol=0, atol=1e-15)
-    with pytest.raises(InputError, match="armature"):
-        robokit.load("rrr", armature=False)
+    with pytest.raises(InputError, match="reflected_inertia"):
+        robokit.load("rrr", reflected_inertia=False)
 
 
 try:

@@ -1,0 +1,194 @@
+r"""A URDF document as a :class:`~robokit.description.model_builder.Description` (the builder's input).
+
+:func:`description_from_urdf` reads the text :func:`robokit.description.urdf_check.read_urdf`
+has checked (meshes resolved to absolute paths, missing ones already dropped) with urdfdom's
+rules, which Pinocchio's URDF parser follows:
+
+* a link's ``<inertial>``: ``<origin xyz rpy>`` (default zero) places the centre of mass and the
+  inertia axes, ``<mass value>``, ``<inertia ixx … izz>`` (missing entries 0);
+* a joint's ``<origin>`` is its frame in the parent link's frame, and the child link's frame is
+  the joint frame; ``<axis xyz>`` defaults to x; ``<limit lower upper effort velocity>``
+  (a continuous joint without ``<limit>``: unlimited effort and velocity); ``<dynamics damping
+  friction>``;
+* joints are taken in the order urdfdom builds its tree — the children of each link sorted by
+  joint name — so that the model's joints come out in the order Pinocchio's parser gives them;
+* ``<visual>``/``<collision>``: ``<origin>``, box/cylinder/sphere/mesh (``scale``), and for a
+  visual the ``<material>``'s colour (a named material is global: its first definition, at the
+  robot's top level or in an earlier link, wins).
+
+``<mimic>``, ``<transmission>``, ``<gazebo>`` and ``<safety_controller>`` are not read here (the
+URDF loader reports the first and refuses a mimic joint on the chain).
+
+:func:`robokit.description.urdf_files.load_urdf` still builds with Pinocchio's URDF parser; this
+reader is what the tests use to show that the builder lays a model out as that parser does (the
+same frames, joints, inertias, limits and geometry, on the shipped and example-robot-data arms),
+and the path by which URDF can move onto the builder.
+"""
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+
+from robokit.description.model_builder import Description, Geometry, Inertial, Joint, Link, Pose
+from robokit.errors import InputError
+
+__all__ = ["description_from_urdf"]
+
+
+def _floats(text: str | None, n: int, default: tuple[float, ...], where: str) -> tuple[float, ...]:
+    if text is None:
+        return default
+    try:
+        vals = tuple(float(t) for t in text.split())
+    except ValueError:
+        raise InputError(f"{where}: expected {n} numbers, got {text!r}") from None
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise InputError(f"{where}: expected {n} finite numbers, got {text!r}")
+    return vals
+
+
+def _origin(el: ET.Element | None, where: str) -> Pose:
+    if el is None:
+        return Pose()
+    o = el.find("origin")
+    if o is None:
+        return Pose()
+    return Pose.from_xyz_rpy(_floats(o.get("xyz"), 3, (0.0, 0.0, 0.0), f"{where} <origin xyz>"),
+                             _floats(o.get("rpy"), 3, (0.0, 0.0, 0.0), f"{where} <origin rpy>"))
+
+
+def _attr(el: ET.Element | None, key: str, default: float, where: str) -> float:
+    if el is None or el.get(key) is None:
+        return default
+    return _floats(el.get(key), 1, (default,), f"{where} {key}")[0]
+
+
+def _inertial(link: ET.Element, where: str) -> Inertial | None:
+    el = link.find("inertial")
+    if el is None:
+        return None
+    mass = _attr(el.find("mass"), "value", 0.0, f"{where} <mass>")
+    ine = el.find("inertia")
+    values = [_attr(ine, k, 0.0, f"{where} <inertia>") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
+    return Inertial.from_frame(mass, _origin(el, f"{where} <inertial>"), values)
+
+
+def _color(visual: ET.Element, materials: dict[str, tuple[float, float, float, float]],
+           where: str) -> tuple[float, float, float, float] | None:
+    """A visual's colour by urdfdom's rule: a named material is global, its first definition wins."""
+    mat = visual.find("material")
+    if mat is None:
+        return None
+    name = mat.get("name", "")
+    if name and name in materials:
+        return materials[name]
+    c = mat.find("color")
+    if c is None:
+        return (0.0, 0.0, 0.0, 0.0)
+    r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"{where} <color rgba>")
+    if name:
+        materials[name] = (r, g, b, a)
+    return (r, g, b, a)
+
+
+def _geometries(link: ET.Element, name: str, materials: dict[str, tuple[float, float, float, float]]) -> list[Geometry]:
+    out = []
+    for role in ("visual", "collision"):
+        for el in link.findall(role):
+            where = f"link {name!r} <{role}>"
+            g = el.find("geometry")
+            shape = next(iter(g), None) if g is not None else None
+            if shape is None:
+                continue
+            placement = _origin(el, where)
+            color = _color(el, materials, where) if role == "visual" else None
+            common = dict(placement=placement, collision=role == "collision", color=color)
+            if shape.tag == "box":
+                size = _floats(shape.get("size"), 3, (0.0, 0.0, 0.0), f"{where} <box size>")
+                out.append(Geometry(name, "box", size=size, **common))  # type: ignore[arg-type]
+            elif shape.tag == "cylinder":
+                size = (_attr(shape, "radius", 0.0, where), _attr(shape, "length", 0.0, where))
+                out.append(Geometry(name, "cylinder", size=size, **common))  # type: ignore[arg-type]
+            elif shape.tag == "sphere":
+                out.append(Geometry(name, "sphere", size=(_attr(shape, "radius", 0.0, where),),
+                                    **common))  # type: ignore[arg-type]
+            elif shape.tag == "mesh":
+                sx, sy, sz = _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0), f"{where} <mesh scale>")
+                out.append(Geometry(name, "mesh", mesh=shape.get("filename"), scale=(sx, sy, sz),
+                                    **common))  # type: ignore[arg-type]
+    return out
+
+
+def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Description:
+    """The :class:`~robokit.description.model_builder.Description` of a URDF document.
+
+    Parameters
+    ----------
+    text : str or bytes
+        The URDF, as :func:`robokit.description.urdf_check.read_urdf` returns it (checked,
+        meshes resolved).
+    source : str
+        Names the document in messages.
+
+    Returns
+    -------
+    Description
+        Links, joints (in urdfdom's order), geometry; gravity (0, 0, −9.81).
+
+    Raises
+    ------
+    InputError
+        A number that does not parse, a joint of a kind the builder does not make (planar,
+        floating), no single root link.
+
+    Examples
+    --------
+    >>> from robokit.description.models import model_path
+    >>> desc = description_from_urdf(model_path("rrr", ".urdf").read_text())
+    >>> [j.name for j in desc.joints if j.kind == "revolute"]
+    ['joint_1', 'joint_2', 'joint_3']
+    """
+    from robokit._xml import parse_xml
+
+    root = parse_xml(text, source)
+    materials: dict[str, tuple[float, float, float, float]] = {}
+    for mat in root.findall("material"):
+        c = mat.find("color")
+        if c is not None:
+            r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"material {mat.get('name')!r}")
+            materials[mat.get("name", "")] = (r, g, b, a)
+    links, geoms = [], []
+    for el in root.findall("link"):
+        name = el.get("name", "")
+        links.append(Link(name, _inertial(el, f"{source}: link {name!r}")))
+        geoms.extend(_geometries(el, name, materials))
+    by_parent: dict[str, list[Joint]] = {}
+    child_of: set[str] = set()
+    for el in root.findall("joint"):
+        name, kind = el.get("name", ""), el.get("type", "")
+        where = f"{source}: joint {name!r}"
+        if kind not in ("revolute", "continuous", "prismatic", "fixed"):
+            raise InputError(f"{where}: a {kind} joint; robokit builds revolute, continuous, prismatic and fixed "
+                             "joints")
+        parent_el, child_el = el.find("parent"), el.find("child")
+        parent = parent_el.get("link", "") if parent_el is not None else ""
+        child = child_el.get("link", "") if child_el is not None else ""
+        child_of.add(child)
+        axis_el = el.find("axis")
+        axis = _floats(axis_el.get("xyz") if axis_el is not None else None, 3, (1.0, 0.0, 0.0), f"{where} <axis xyz>")
+        lim, dyn = el.find("limit"), el.find("dynamics")
+        unlimited = kind == "continuous" and lim is None
+        joint = Joint(name, kind, parent, child, _origin(el, where), axis=(axis[0], axis[1], axis[2]),
+                      lower=_attr(lim, "lower", 0.0, f"{where} <limit>"),
+                      upper=_attr(lim, "upper", 0.0, f"{where} <limit>"),
+                      effort=math.inf if unlimited else _attr(lim, "effort", 0.0, f"{where} <limit>"),
+                      velocity=math.inf if unlimited else _attr(lim, "velocity", 0.0, f"{where} <limit>"),
+                      damping=_attr(dyn, "damping", 0.0, f"{where} <dynamics>"),
+                      friction=_attr(dyn, "friction", 0.0, f"{where} <dynamics>"))
+        by_parent.setdefault(parent, []).append(joint)
+    roots = [link.name for link in links if link.name not in child_of]
+    if len(roots) != 1:
+        raise InputError(f"{source}: expected one root link, found {len(roots)}: {', '.join(roots[:8])}")
+    # the builder adds each link's children in the order given: by joint name, as urdfdom's std::map
+    joints = sorted((j for js in by_parent.values() for j in js), key=lambda j: j.name)
+    return Description(root.get("name", "robot"), tuple(links), tuple(joints), geometries=tuple(geoms))

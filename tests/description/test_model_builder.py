@@ -1,0 +1,195 @@
+"""The one programmatic model builder (robokit.description.model_builder) against Pinocchio's own URDF parser.
+
+The same URDF is read twice: by ``pinocchio.buildModelFromXML`` / ``buildGeomFromUrdfString``, and by
+``description_from_urdf`` → ``build_model`` (no URDF text reaches Pinocchio). Every frame (name, type,
+parents, placement, inertia), joint (model type, placement, inertia), limit and geometry object must be the
+same, and forward kinematics, Jacobians, RNEA and the mass matrix agree to 1e-12 at random configurations.
+Robots: the shipped models' URDFs and five example-robot-data arms (a continuous-joint arm, kinova, among
+them: its continuous joints must come out as Pinocchio's unbounded revolute joints, nq = 2).
+"""
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from robokit.description.model_builder import (Description, FrameSpec, Geometry, Inertial, Joint, Link, Pose,
+                                               build_model)
+from robokit.description.urdf_check import read_urdf
+from robokit.description.urdf_description import description_from_urdf
+from robokit.errors import InputError
+
+pin = pytest.importorskip("pinocchio")
+
+LIMIT_FIELDS = ("lowerPositionLimit", "upperPositionLimit", "lowerEffortLimit", "upperEffortLimit",
+                "lowerVelocityLimit", "upperVelocityLimit", "damping", "lowerDryFrictionLimit",
+                "upperDryFrictionLimit", "armature", "rotorInertia", "rotorGearRatio", "positionLimitMargin")
+
+
+def _urdf_paths():
+    from robokit.description.models import model_path
+
+    out = [(n, str(model_path(n, ".urdf"))) for n in ("twolink", "rrr", "puma560")]
+    try:
+        import example_robot_data as erd
+    except ImportError:  # pragma: no cover - the test extra installs it
+        return out
+    from os.path import join
+
+    for name in ("ur5", "panda", "kinova", "z1", "xarm7"):
+        cls = erd.robots_loader.ROBOTS[name]  # the file's path, as the loader finds it, without building the robot
+        rel = join(cls.path, cls.urdf_subpath, cls.urdf_filename)
+        out.append((name, join(erd.robots_loader.getModelPath(rel), rel)))
+    return out
+
+
+URDF_PATHS = _urdf_paths()
+
+
+def assert_same_model(mine, ref):
+    assert [f.name for f in mine.frames] == [f.name for f in ref.frames]
+    for a, b in zip(mine.frames, ref.frames):
+        assert (a.type, a.parentJoint, a.parentFrame) == (b.type, b.parentJoint, b.parentFrame), a.name
+        np.testing.assert_allclose(a.placement.homogeneous, b.placement.homogeneous, atol=1e-12, err_msg=a.name)
+        np.testing.assert_allclose(a.inertia.matrix(), b.inertia.matrix(), atol=1e-12, err_msg=a.name)
+    assert list(mine.names) == list(ref.names)
+    for j in range(ref.njoints):
+        assert mine.joints[j].shortname() == ref.joints[j].shortname(), ref.names[j]
+        np.testing.assert_allclose(mine.jointPlacements[j].homogeneous, ref.jointPlacements[j].homogeneous, atol=1e-12)
+        np.testing.assert_allclose(mine.inertias[j].matrix(), ref.inertias[j].matrix(), atol=1e-12)
+    for attr in LIMIT_FIELDS:
+        np.testing.assert_array_equal(np.asarray(getattr(mine, attr)), np.asarray(getattr(ref, attr)), err_msg=attr)
+    np.testing.assert_array_equal(mine.gravity.vector, ref.gravity.vector)
+
+
+def assert_same_dynamics(mine, ref, seed=0, samples=5):
+    rng = np.random.default_rng(seed)
+    d, dr = mine.createData(), ref.createData()
+    lo, hi = np.maximum(ref.lowerPositionLimit, -3.0), np.minimum(ref.upperPositionLimit, 3.0)
+    for _ in range(samples):
+        q = pin.randomConfiguration(ref, lo, hi)
+        v, a = rng.normal(size=ref.nv), rng.normal(size=ref.nv)
+        pin.framesForwardKinematics(mine, d, q)
+        pin.framesForwardKinematics(ref, dr, q)
+        for i in range(ref.nframes):
+            np.testing.assert_allclose(d.oMf[i].homogeneous, dr.oMf[i].homogeneous, atol=1e-12)
+        np.testing.assert_allclose(pin.computeJointJacobians(mine, d, q), pin.computeJointJacobians(ref, dr, q),
+                                   atol=1e-12)
+        np.testing.assert_allclose(pin.rnea(mine, d, q, v, a), pin.rnea(ref, dr, q, v, a), atol=1e-12)
+        np.testing.assert_allclose(pin.crba(mine, d, q), pin.crba(ref, dr, q), atol=1e-12)
+
+
+@pytest.mark.parametrize("name,path", URDF_PATHS, ids=[n for n, _ in URDF_PATHS])
+def test_builder_equals_pinocchio_urdf_parser(name, path):
+    doc = read_urdf(path)
+    ref = pin.buildModelFromXML(doc.xml)
+    model, visual, collision, notes = build_model(description_from_urdf(doc.xml, path))
+    assert notes == []
+    assert_same_model(model, ref)
+    assert_same_dynamics(model, ref)
+    for gtype, mine in ((pin.GeometryType.VISUAL, visual), (pin.GeometryType.COLLISION, collision)):
+        theirs = pin.buildGeomFromUrdfString(ref, doc.xml, gtype, package_dirs=doc.package_dirs)
+        assert [o.name for o in mine.geometryObjects] == [o.name for o in theirs.geometryObjects]
+        for a, b in zip(mine.geometryObjects, theirs.geometryObjects):
+            assert (a.parentJoint, a.parentFrame, a.meshPath, a.overrideMaterial) == \
+                (b.parentJoint, b.parentFrame, b.meshPath, b.overrideMaterial), a.name
+            assert type(a.geometry) is type(b.geometry), a.name
+            np.testing.assert_allclose(a.placement.homogeneous, b.placement.homogeneous, atol=1e-12)
+            np.testing.assert_allclose(a.meshScale, b.meshScale)
+            np.testing.assert_allclose(a.meshColor, b.meshColor)
+
+
+def test_continuous_joints_are_unbounded_revolute():
+    """kinova's joints 1, 4, 6 are continuous: nq = 2 each, as the URDF parser makes them."""
+    path = dict(URDF_PATHS).get("kinova")
+    if path is None:
+        pytest.skip("example-robot-data not installed")
+    desc = dataclasses.replace(description_from_urdf(read_urdf(path).xml), geometries=())  # no meshes to read
+    model = build_model(desc)[0]
+    kinds = [model.joints[j].shortname() for j in range(1, model.njoints)]
+    assert kinds.count("JointModelRUBZ") == 3
+    assert (model.nq, model.nv) == (9, 6)
+
+
+def _arm(**joint2):
+    link = Link("l", Inertial(1.0, (0.5, 0.0, 0.0), (0.01, 0, 0, 0.02, 0, 0.02)))
+    return Description("arm", (Link("base"), link, Link("m", Inertial(2.0, (0.2, 0.1, 0.0)))),
+                       (Joint("j1", "revolute", "base", "l", lower=-2, upper=2),
+                        Joint("j2", joint2.pop("kind", "revolute"), "l", "m", Pose(translation=(1.0, 0, 0)),
+                              lower=-1, upper=1, **joint2)))
+
+
+def test_armature_adds_reflected_inertia_to_m_and_rnea():
+    """Joint.armature lands in model.armature: M gains it on the diagonal, RNEA gains armature·q̈ (crba/rnea)."""
+    plain = build_model(_arm())[0]
+    geared = build_model(_arm(armature=0.35))[0]
+    q, v, a = np.array([0.3, -0.4]), np.array([0.5, 0.1]), np.array([1.5, -2.0])
+    dp, dg = plain.createData(), geared.createData()
+    np.testing.assert_allclose(pin.crba(geared, dg, q) - pin.crba(plain, dp, q), np.diag([0.0, 0.35]), atol=1e-14)
+    np.testing.assert_allclose(pin.rnea(geared, dg, q, v, a) - pin.rnea(plain, dp, q, v, a), [0.0, 0.35 * -2.0],
+                               atol=1e-14)
+
+
+def test_child_placement_and_extra_frames():
+    """A child link off its joint frame (SDFormat) and an OP_FRAME: poses by hand."""
+    off = Pose.from_xyz_rpy([0.0, 0.2, 0.0], [0.0, 0.0, 0.5])
+    desc = Description("arm", (Link("base"), Link("l", Inertial(1.0))),
+                       (Joint("j", "revolute", "base", "l", Pose(translation=(0, 0, 1.0)), child_placement=off),),
+                       frames=(FrameSpec("tcp", "l", Pose(translation=(0.1, 0, 0))), FrameSpec("mark", None)))
+    model = build_model(desc)[0]
+    data = model.createData()
+    q = np.array([0.7])
+    pin.framesForwardKinematics(model, data, q)
+    Rz = np.eye(4)
+    Rz[:2, :2] = [[math.cos(0.7), -math.sin(0.7)], [math.sin(0.7), math.cos(0.7)]]
+    T_l = Pose(translation=(0, 0, 1.0)).matrix @ Rz @ off.matrix
+    np.testing.assert_allclose(data.oMf[model.getFrameId("l")].homogeneous, T_l, atol=1e-14)
+    np.testing.assert_allclose(data.oMf[model.getFrameId("tcp")].homogeneous,
+                               T_l @ Pose(translation=(0.1, 0, 0)).matrix, atol=1e-14)
+    assert model.frames[model.getFrameId("tcp")].type == pin.FrameType.OP_FRAME
+    np.testing.assert_allclose(data.oMf[model.getFrameId("mark")].homogeneous, np.eye(4))
+
+
+def test_geometry_names_and_placement():
+    desc = Description("g", (Link("base"),), geometries=(
+        Geometry("base", "box", Pose(translation=(0, 0, 0.1)), (0.1, 0.2, 0.3), color=(1, 0, 0, 1)),
+        Geometry("base", "capsule", Pose(), (0.05, 0.4), collision=True),
+        Geometry("base", "sphere", Pose(), (0.1,))))
+    _, visual, collision, _ = build_model(desc)
+    assert [o.name for o in visual.geometryObjects] == ["base_0", "base_1"]
+    assert [o.name for o in collision.geometryObjects] == ["base_0"]
+    box = visual.geometryObjects[0]
+    np.testing.assert_allclose(2 * box.geometry.halfSide, [0.1, 0.2, 0.3])
+    assert box.overrideMaterial and box.meshPath == "BOX"
+    assert collision.geometryObjects[0].meshPath == "CAPSULE"
+
+
+def test_missing_mesh_is_left_out_with_a_note(tmp_path):
+    desc = Description("g", (Link("base"),), geometries=(Geometry("base", "mesh", mesh=str(tmp_path / "no.stl")),))
+    _, visual, _, notes = build_model(desc)
+    assert len(visual.geometryObjects) == 0 and len(notes) == 1 and "not found" in notes[0]
+
+
+@pytest.mark.parametrize("desc,message", [
+    (Description("x", (Link("a"), Link("a"))), "defined twice"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "ball", "a", "b"),)), "'ball' joint"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "c"),)), "not defined"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "b", lower=1, upper=0),)), "above"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "prismatic", "a", "b", axis=(0, 0, 0)),)), "zero"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "fixed", "a", "b"), Joint("k", "fixed", "b", "a"))),
+     "loop"),
+    (Description("x", (Link("a"), Link("b"), Link("c")),
+                 (Joint("j", "fixed", "a", "c"), Joint("k", "fixed", "b", "c"))), "child of two joints"),
+])
+def test_refused_descriptions(desc, message):
+    with pytest.raises(InputError, match=message):
+        build_model(desc)
+
+
+def test_joint_cap():
+    links = tuple(Link(f"l{i}") for i in range(200))
+    joints = tuple(Joint(f"j{i}", "revolute", f"l{i}", f"l{i + 1}") for i in range(199))
+    with pytest.raises(InputError, match="199 moving joints; robokit reads robots of at most 128 joints"):
+        build_model(Description("snake", links, joints))
+    fixed = tuple(Joint(f"j{i}", "fixed", f"l{i}", f"l{i + 1}") for i in range(199))
+    assert build_model(Description("rod", links, fixed))[0].nq == 0  # frames only: allowed

@@ -1,0 +1,472 @@
+"""SDFormat files (robokit.description.sdf) against independent engines and hand computations.
+
+* ``pybullet_data/kuka_iiwa/model.sdf`` (a world with one model, SDFormat 1.6) against PyBullet's own
+  ``loadSDF``: link poses, ``calculateMassMatrix``, ``calculateInverseDynamics``, to 1e-9;
+* a test arm written for these tests (tests/data/sdf/arm: ``relative_to`` frames, a ``<frame>``, an
+  axis expressed in the model frame, a nested model, an ``<include>`` of ``model://wrist``) against
+  Pinocchio's URDF parser on the same arm written by hand as URDF, to 1e-9;
+* Drake's iiwa14 SDF (tests/data/sdf/drake_iiwa14) with ``drake:rotor_inertia``/``drake:gear_ratio``
+  against its URDF twin read by Pinocchio plus ``rotor_inertia · gear_ratio²`` computed here from the
+  file's text;
+* SDFormat 1.4–1.6 axis rules and ``placement_frame``, by hand;
+* hostile twins (an include outside the package folders, an include cycle, deep nesting, a huge file,
+  entities, too many joints) refused with one line.
+"""
+import math
+import os
+import pickle
+import subprocess
+import sys
+import warnings
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit.errors import InputError, RobokitWarning
+
+pin = pytest.importorskip("pinocchio")
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "sdf"
+ARM, ARM_MODELS = DATA / "arm" / "arm.sdf", DATA / "arm" / "models"
+IIWA = DATA / "drake_iiwa14" / "iiwa14_no_collision.sdf"
+
+
+def load_quiet(*args, **kw):
+    """robokit.load with the notes collected: (robot, [note text])."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot = robokit.load(*args, **kw)
+    return robot, [str(w.message) for w in caught if issubclass(w.category, RobokitWarning)]
+
+
+def rot(axis, angle):
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+
+# --------------------------------------------------------------------------- PyBullet
+def test_kuka_iiwa_model_sdf_equals_pybullet_loadsdf():
+    """Link poses, M and inverse dynamics of pybullet_data's kuka model.sdf equal PyBullet's, to 1e-9.
+
+    PyBullet's loadSDF recomputes each link's inertia from its collision mesh (it takes no
+    URDF_USE_INERTIA_FROM_FILE flag), so the file's inertia (diagonal, in axes aligned with the link
+    in this file) is set back with changeDynamics, read here from the file's text. Link poses are
+    compared at the centre-of-mass frames (getLinkState's worldLinkFrame goes through a single-precision
+    copy of the inertial offset in PyBullet)."""
+    p = pytest.importorskip("pybullet")
+    import pybullet_data
+
+    path = Path(pybullet_data.getDataPath()) / "kuka_iiwa" / "model.sdf"
+    robot, notes = load_quiet(path)
+    assert robot.n == 7 and robot.joint_names == tuple(f"lbr_iiwa_joint_{i}" for i in range(1, 8))
+    assert any("world gravity is SDFormat's default" in n for n in notes)
+    np.testing.assert_array_equal(robot.gravity, [0.0, 0.0, -9.8])
+    cid = p.connect(p.DIRECT)
+    try:
+        body = p.loadSDF(str(path), physicsClientId=cid)[0]
+        p.setGravity(*robot.gravity, physicsClientId=cid)
+        n = p.getNumJoints(body, physicsClientId=cid)
+        links = [p.getJointInfo(body, i, physicsClientId=cid)[12].decode() for i in range(n)]
+        tree = ET.parse(path)
+        com_local = {}
+        for i, name in enumerate(links):
+            inertial = tree.find(f".//link[@name='{name}']/inertial")
+            xyzrpy = [float(v) for v in inertial.findtext("pose").split()]
+            assert xyzrpy[3:] == [0.0, 0.0, 0.0]  # the inertial frame is aligned with the link here
+            com_local[name] = np.array(xyzrpy[:3])
+            diag = [float(inertial.findtext(f"inertia/{k}")) for k in ("ixx", "iyy", "izz")]
+            p.changeDynamics(body, i, localInertiaDiagonal=diag, physicsClientId=cid)
+        rng = np.random.default_rng(7)
+        for _ in range(5):
+            q = robot.random_configuration(rng)
+            dq, ddq = rng.normal(size=7), rng.normal(size=7)
+            for i in range(n):
+                p.resetJointState(body, i, q[i], dq[i], physicsClientId=cid)
+            for i, name in enumerate(links):
+                state = p.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=cid)
+                T = robot.frame_pose(q, name)
+                np.testing.assert_allclose(T[:3, :3] @ com_local[name] + T[:3, 3], state[0], atol=1e-9)
+                R = np.array(p.getMatrixFromQuaternion(state[1])).reshape(3, 3)
+                np.testing.assert_allclose(T[:3, :3], R, atol=1e-9)
+            M = np.array(p.calculateMassMatrix(body, list(q), physicsClientId=cid))
+            tau = np.array(p.calculateInverseDynamics(body, list(q), list(dq), list(ddq), physicsClientId=cid))
+            np.testing.assert_allclose(robot.crba(q), M, atol=1e-9 * np.abs(M).max())
+            np.testing.assert_allclose(robot.rnea(q, dq, ddq), tau, atol=1e-9 * np.abs(tau).max())
+    finally:
+        p.disconnect(cid)
+
+
+# --------------------------------------------------------------------------- the test arm
+ARM_LINKS = ("base", "link1", "forearm::link2", "forearm::link3", "wrist::link4", "wrist::tool")
+
+
+@pytest.fixture(scope="module")
+def arm():
+    robot, notes = load_quiet(ARM, package_dirs=[ARM_MODELS])
+    return robot, notes
+
+
+def test_arm_sdf_equals_its_urdf_twin(arm):
+    """relative_to frames, a <frame>, an axis in the model frame, a nested model and an include: FK of every
+    link, the Jacobian, M and RNEA equal Pinocchio's on the hand-written URDF twin, to 1e-9."""
+    robot, _ = arm
+    ref = pin.buildModelFromUrdf(str(ARM.with_suffix(".urdf")))
+    data = ref.createData()
+    assert robot.joint_names == ("j1", "j2", "forearm::j3", "j4")
+    assert robot.tip == "wrist::tool"
+    assert robot.model.joints[4].shortname() == "JointModelRUBZ" and robot.model.nq == 5  # j4 is continuous
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        dq, ddq = rng.normal(size=4), rng.normal(size=4)
+        qp = robot.q_pin(q)
+        pin.framesForwardKinematics(ref, data, qp)
+        for name in ARM_LINKS:
+            np.testing.assert_allclose(robot.frame_pose(q, name), data.oMf[ref.getFrameId(name)].homogeneous,
+                                       atol=1e-9)
+        pin.computeJointJacobians(ref, data, qp)
+        J_ref = pin.getFrameJacobian(ref, data, ref.getFrameId("wrist::tool"), pin.LOCAL_WORLD_ALIGNED)
+        J = robot.jacobian(q, "wrist::tool", reference="local_world_aligned")
+        np.testing.assert_allclose(J, np.vstack([J_ref[3:], J_ref[:3]]), atol=1e-9)
+        np.testing.assert_allclose(robot.crba(q), pin.crba(ref, data, qp), atol=1e-9)
+        np.testing.assert_allclose(robot.rnea(q, dq, ddq), pin.rnea(ref, data, qp, dq, ddq), atol=1e-9)
+    for attr in ("lowerPositionLimit", "upperPositionLimit", "effortLimit", "velocityLimit", "damping",
+                 "upperDryFrictionLimit"):
+        np.testing.assert_array_equal(getattr(robot.model, attr), getattr(ref, attr), err_msg=attr)
+
+
+def test_arm_frames_are_where_the_file_puts_them(arm):
+    """<frame> elements are operational frames: elbow_mount is 0.3 m up link1 turned 0.3 rad about z;
+    wrist::tcp is 0.02 m along the tool's z; forearm::wrist_base is where the wrist is included."""
+    robot, _ = arm
+    q = np.array([0.4, -0.7, 0.05, 1.1])
+    T_l1 = robot.frame_pose(q, "link1")
+    T_em = np.eye(4)
+    T_em[:3, :3], T_em[:3, 3] = rot([0, 0, 1], 0.3), [0, 0, 0.3]
+    np.testing.assert_allclose(robot.frame_pose(q, "elbow_mount"), T_l1 @ T_em, atol=1e-12)
+    np.testing.assert_allclose(robot.frame_pose(q, "wrist::tcp"), robot.frame_pose(q, "wrist::tool") @
+                               np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.02], [0, 0, 0, 1.0]]), atol=1e-12)
+    qz = q.copy()
+    qz[3] = 0.0  # j4 at zero: link4 sits at the include's pose
+    np.testing.assert_allclose(robot.frame_pose(qz, "forearm::wrist_base"), robot.frame_pose(qz, "wrist::link4"),
+                               atol=1e-12)
+
+
+def test_arm_notes_and_geometry(arm):
+    robot, notes = arm
+    unmodelled = [n for n in notes if "read but not modelled" in n]
+    assert len(unmodelled) == 1 and "<plugin> in <model>" in unmodelled[0] and "<sensor> in <link>" in unmodelled[0]
+    assert any("base fixed to the world" in n for n in notes)
+    vis = {o.name: o for o in robot.visual_model.geometryObjects}
+    assert set(vis) == {"base_0", "forearm::link3_0", "wrist::link4_0"}
+    np.testing.assert_allclose(vis["base_0"].meshColor, [0.3, 0.3, 0.35, 1.0], atol=1e-7)
+    np.testing.assert_allclose(2 * vis["forearm::link3_0"].geometry.halfSide, [0.1, 0.05, 0.05])
+    col = robot.collision_model.geometryObjects
+    assert [o.name for o in col] == ["link1_0"] and col[0].meshPath == "CYLINDER"
+
+
+def test_arm_spec_rebuilds_in_another_process(arm, tmp_path):
+    """robot.spec (kind 'sdf', with the package folder) rebuilds the same arm in a fresh process."""
+    robot, _ = arm
+    assert robot.spec.kind == "sdf" and robot.spec.package_dirs == (str(ARM_MODELS.resolve()),)
+    spec_file = tmp_path / "spec.pkl"
+    spec_file.write_bytes(pickle.dumps(robot.spec))
+    q = np.array([0.3, 0.2, 0.1, -0.5])
+    code = ("import pickle, sys, warnings, numpy as np, robokit; warnings.simplefilter('ignore'); "
+            "r = robokit.load(pickle.loads(open(sys.argv[1], 'rb').read())); q = np.array(sys.argv[2:], float); "
+            "print(repr(np.r_[r.frame_pose(q).ravel(), r.crba(q).ravel()].tolist()))")
+    out = subprocess.run([sys.executable, "-c", code, str(spec_file), *map(str, q)], capture_output=True, text=True,
+                         check=True, timeout=120, cwd=tmp_path)
+    values = np.array(eval(out.stdout.strip().splitlines()[-1]))
+    np.testing.assert_allclose(values, np.r_[robot.frame_pose(q).ravel(), robot.crba(q).ravel()], atol=1e-14)
+
+
+def test_convert_an_sdf_from_the_command_line(tmp_path):
+    """`robokit convert arm.sdf --package-path models -o arm.json` goes through load."""
+    from robokit.cli import main
+
+    out = tmp_path / "arm.json"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert main(["convert", str(ARM), "--package-path", str(ARM_MODELS), "-o", str(out)]) == 0
+    assert "forearm::j3" in out.read_text()
+
+
+# --------------------------------------------------------------------------- Drake's iiwa14
+def _drake_reflected(path):
+    """rotor_inertia · gear_ratio² per joint, from the file's text."""
+    tree = ET.parse(path)
+    ns = "{http://drake.mit.edu}"
+    return np.array([float(j.findtext(f"{ns}rotor_inertia")) * float(j.findtext(f"{ns}gear_ratio")) ** 2
+                     for j in tree.getroot().iter("joint")])
+
+
+def test_drake_iiwa14_reflected_inertia():
+    """M and RNEA of the SDF = the URDF twin's (Pinocchio) + diag(rotor_inertia · gear_ratio²), as Drake adds it;
+    reflected_inertia=False gives the twin's exactly; one note names the joints and values."""
+    robot, notes = load_quiet(IIWA)
+    plain, plain_notes = load_quiet(IIWA, reflected_inertia=False)
+    ref = pin.buildModelFromUrdf(str(IIWA.with_suffix(".urdf")))
+    ref.gravity.linear = robot.gravity
+    data = ref.createData()
+    extra = _drake_reflected(IIWA)
+    np.testing.assert_allclose(extra, [160 ** 2 * 1.321e-4] * 4 + [100 ** 2 * 1.321e-4] + [160 ** 2 * 4.54e-5] * 2)
+    rng = np.random.default_rng(5)
+    for _ in range(4):
+        q = robot.random_configuration(rng)
+        dq, ddq = rng.normal(size=7), rng.normal(size=7)
+        M_twin, tau_twin = pin.crba(ref, data, q), pin.rnea(ref, data, q, dq, ddq)
+        pin.framesForwardKinematics(ref, data, q)
+        np.testing.assert_allclose(robot.frame_pose(q), data.oMf[ref.getFrameId("iiwa_link_7")].homogeneous,
+                                   atol=1e-9)
+        np.testing.assert_allclose(robot.crba(q), M_twin + np.diag(extra), atol=1e-9)
+        np.testing.assert_allclose(robot.rnea(q, dq, ddq), tau_twin + extra * ddq, atol=1e-9)
+        np.testing.assert_allclose(plain.crba(q), M_twin, atol=1e-9)
+        np.testing.assert_allclose(plain.rnea(q, dq, ddq), tau_twin, atol=1e-9)
+    reflected = [n for n in notes if "reflected rotor inertia" in n]
+    assert len(reflected) == 1 and "iiwa_joint_5 1.321" in reflected[0] and "reflected_inertia=False" in reflected[0]
+    assert any("drake:acceleration" in n for n in notes)  # read, not modelled
+    assert any("left out" in n for n in plain_notes)
+    assert plain.spec.reflected_inertia is False and robot.spec.reflected_inertia is True
+
+
+def test_reflected_inertia_only_on_actuated_joints(tmp_path):
+    """Drake adds no actuator (so no rotor inertia) to a joint with <effort>0: noted, not modelled."""
+    path = tmp_path / "two.sdf"
+    path.write_text(_two_joint_sdf(effort2="0", extra2="<drake:rotor_inertia>0.01</drake:rotor_inertia>"
+                                   "<drake:gear_ratio>10</drake:gear_ratio>"))
+    robot, notes = load_quiet(path)
+    np.testing.assert_array_equal(robot.model.armature, [0.0, 0.0])
+    assert any("Drake does not actuate" in n and "j2" in n for n in notes)
+
+
+def test_reflected_inertia_option_refused_for_other_formats():
+    with pytest.raises(InputError, match="reflected_inertia"):
+        robokit.load("rrr", reflected_inertia=False)
+
+
+# --------------------------------------------------------------------------- SDFormat rules, by hand
+def _two_joint_sdf(version="1.9", axis2="<xyz>0 0 1</xyz>", pose2="", child_pose="0 0 0.5 0 0 0", effort2="10",
+                   extra2=""):
+    return f"""<sdf version="{version}" xmlns:drake="http://drake.mit.edu"><model name="two">
+      <link name="base"/>
+      <link name="a"><pose>0 0 0.2 0 0 0</pose><inertial><mass>1</mass></inertial></link>
+      <link name="b"><pose>{child_pose}</pose><inertial><mass>1</mass></inertial></link>
+      <joint name="j1" type="revolute"><parent>base</parent><child>a</child><axis><xyz>0 0 1</xyz></axis></joint>
+      <joint name="j2" type="revolute"><parent>a</parent><child>b</child>{pose2}
+        <axis>{axis2}<limit><effort>{effort2}</effort></limit></axis>{extra2}</joint>
+    </model></sdf>"""
+
+
+@pytest.mark.parametrize("version,use_parent,axis_in_model", [
+    ("1.4", "", True),          # SDFormat 1.4: the axis is in the model frame
+    ("1.6", "", False),         # 1.5-1.6: in the joint frame ...
+    ("1.6", "<use_parent_model_frame>true</use_parent_model_frame>", True),  # ... unless asked
+    ("1.9", "", False),
+])
+def test_axis_frame_by_version(tmp_path, version, use_parent, axis_in_model):
+    """Link b is turned 90° about x, so its joint frame's z is the model's -y: the axis xyz 0 0 1 means
+    the model's z (1.4, use_parent_model_frame) or the joint's z = the model's -y."""
+    path = tmp_path / "two.sdf"
+    path.write_text(_two_joint_sdf(version, f"<xyz>0 0 1</xyz>{use_parent}",
+                                   child_pose="0 0 0.5 1.5707963267948966 0 0"))
+    robot, _ = load_quiet(path)
+    t = 0.6
+    R_b0 = rot([1, 0, 0], math.pi / 2)
+    axis_world = np.array([0, 0, 1.0]) if axis_in_model else R_b0 @ [0, 0, 1.0]
+    np.testing.assert_allclose(robot.frame_pose([0.0, t], "b")[:3, :3], rot(axis_world, t) @ R_b0, atol=1e-12)
+    np.testing.assert_allclose(robot.frame_pose([0.0, t], "b")[:3, 3], [0, 0, 0.5], atol=1e-12)
+
+
+def test_joint_pose_defaults_to_the_child_frame(tmp_path):
+    """A joint <pose> 0.1 along the child's x (no relative_to): the child swings about that point."""
+    path = tmp_path / "two.sdf"
+    path.write_text(_two_joint_sdf(pose2="<pose>0.1 0 0 0 0 0</pose>"))
+    robot, _ = load_quiet(path)
+    t = 0.8
+    pivot = np.array([0.1, 0, 0.5])
+    expected = pivot + rot([0, 0, 1], t) @ (np.array([0, 0, 0.5]) - pivot)
+    np.testing.assert_allclose(robot.frame_pose([0.0, t], "b")[:3, 3], expected, atol=1e-12)
+
+
+def test_placement_frame_and_world_include(tmp_path):
+    """A world including model://two with <placement_frame>b</placement_frame> and a pose: link b lands at
+    that pose, everything else follows; the world's <gravity> is used."""
+    (tmp_path / "two").mkdir()
+    (tmp_path / "two" / "model.sdf").write_text(_two_joint_sdf())
+    (tmp_path / "w.sdf").write_text("""<sdf version="1.9"><world name="w"><gravity>0 0 -9.5</gravity>
+      <include><uri>model://two</uri><placement_frame>b</placement_frame><pose>1 2 3 0 0 0.5</pose></include>
+      <light name="sun" type="directional"/></world></sdf>""")
+    robot, notes = load_quiet(tmp_path / "w.sdf")
+    np.testing.assert_allclose(robot.gravity, [0, 0, -9.5])
+    T = robot.frame_pose([0.0, 0.0], "b")
+    np.testing.assert_allclose(T[:3, 3], [1, 2, 3], atol=1e-12)
+    np.testing.assert_allclose(T[:3, :3], rot([0, 0, 1], 0.5), atol=1e-12)
+    np.testing.assert_allclose(robot.frame_pose([0.0, 0.0], "base")[:3, 3], [1, 2, 2.5], atol=1e-12)
+    assert any("<light> in <world>" in n for n in notes)
+
+
+def test_merged_include(tmp_path):
+    """<include merge="true">: the included elements join the parent's scope (no ``two::`` prefix)."""
+    (tmp_path / "two").mkdir()
+    (tmp_path / "two" / "model.sdf").write_text(_two_joint_sdf())
+    (tmp_path / "m.sdf").write_text("""<sdf version="1.9"><model name="m">
+      <include merge="true"><uri>model://two</uri></include></model></sdf>""")
+    robot, _ = load_quiet(tmp_path / "m.sdf")
+    assert robot.joint_names == ("j1", "j2")
+
+
+# --------------------------------------------------------------------------- refused, one line each
+def _refused(path, *match, **kw):
+    with pytest.raises(InputError) as info:
+        load_quiet(path, **kw)
+    msg = str(info.value)
+    assert "\n" not in msg and len(msg) < 420, msg
+    for m in match:
+        assert m in msg, msg
+    return msg
+
+
+def test_include_outside_the_package_folders_is_refused(tmp_path):
+    outside = tmp_path / "elsewhere" / "two"
+    outside.mkdir(parents=True)
+    (outside / "model.sdf").write_text(_two_joint_sdf())
+    top = tmp_path / "robot" / "arm.sdf"
+    top.parent.mkdir()
+    for uri in ("../elsewhere/two/model.sdf", f"file://{outside / 'model.sdf'}", "/etc/hostname"):
+        top.write_text(f'<sdf version="1.9"><model name="arm"><include><uri>{uri}</uri></include></model></sdf>')
+        if uri == "/etc/hostname" and not os.path.exists(uri):
+            continue
+        _refused(top, "outside the file's folder, its package and the package folders given")
+    # found through package_dirs, it is read
+    top.write_text('<sdf version="1.9"><model name="arm"><include><uri>model://two</uri></include></model></sdf>')
+    _refused(top, "not found")
+    robot, _ = load_quiet(top, package_dirs=[tmp_path / "elsewhere"])
+    assert robot.joint_names == ("two::j1", "two::j2")
+
+
+def test_mesh_outside_is_refused(tmp_path):
+    top = tmp_path / "m.sdf"
+    top.write_text('<sdf version="1.9"><model name="m"><link name="a"><visual name="v"><geometry><mesh>'
+                   '<uri>/etc/passwd</uri></mesh></geometry></visual></link></model></sdf>')
+    _refused(top, "outside")
+
+
+def test_include_cycle_is_refused(tmp_path):
+    for a, b in (("a", "b"), ("b", "a")):
+        (tmp_path / f"{a}.sdf").write_text(f'<sdf version="1.9"><model name="{a}"><link name="l"/>'
+                                           f'<include><uri>{b}.sdf</uri><name>{b}x</name></include></model></sdf>')
+    _refused(tmp_path / "a.sdf", "include cycle", "a.sdf -> b.sdf -> a.sdf")
+
+
+def test_deep_nesting_is_refused(tmp_path):
+    depth = 100
+    text = "".join(f'<model name="m{i}">' for i in range(depth)) + '<link name="l"/>' + "</model>" * depth
+    (tmp_path / "deep.sdf").write_text(f'<sdf version="1.9">{text}</sdf>')
+    _refused(tmp_path / "deep.sdf", "nested deeper than 64")
+
+
+def test_deep_include_chain_is_refused(tmp_path):
+    for i in range(30):
+        (tmp_path / f"f{i}.sdf").write_text(f'<sdf version="1.9"><model name="m{i}"><link name="l"/>'
+                                            f'<include><uri>f{i + 1}.sdf</uri></include></model></sdf>')
+    _refused(tmp_path / "f0.sdf", "includes nested deeper than 20")
+
+
+def test_huge_file_is_refused(tmp_path):
+    path = tmp_path / "huge.sdf"
+    with open(path, "wb") as f:
+        f.write(b'<sdf version="1.9"><model name="m"><link name="l"/>')
+        f.seek((20 << 20) + 10)
+        f.write(b"</model></sdf>")
+    _refused(path, "huge.sdf")
+
+
+def test_entities_are_refused(tmp_path):
+    path = tmp_path / "lol.sdf"
+    path.write_text('<?xml version="1.0"?><!DOCTYPE sdf [<!ENTITY a "aaaa">]><sdf version="1.9"><model name="&a;">'
+                    '<link name="l"/></model></sdf>')
+    _refused(path, "DOCTYPE")
+
+
+def test_too_many_joints_are_refused(tmp_path):
+    links = "".join(f'<link name="l{i}"/>' for i in range(200))
+    joints = "".join(f'<joint name="j{i}" type="fixed"><parent>l{i}</parent><child>l{i + 1}</child></joint>'
+                     for i in range(199))
+    (tmp_path / "snake.sdf").write_text(f'<sdf version="1.9"><model name="s">{links}{joints}</model></sdf>')
+    _refused(tmp_path / "snake.sdf", "at most 128 joints")
+
+
+@pytest.mark.parametrize("body,message", [
+    ('<link name="a"><pose relative_to="b"/></link><link name="b"><pose relative_to="a"/></link>', "loop"),
+    ('<link name="a"><pose relative_to="nowhere"/></link>', "'nowhere'"),
+    ('<link name="a"/><link name="b"/><joint name="j" type="ball"><parent>a</parent><child>b</child></joint>',
+     "'ball' joint"),
+    ('<static>true</static><link name="a"/>', "static"),
+    ('<link name="a"/><link name="a"/>', "used twice"),
+])
+def test_bad_models_are_refused(tmp_path, body, message):
+    (tmp_path / "bad.sdf").write_text(f'<sdf version="1.9"><model name="m">{body}</model></sdf>')
+    _refused(tmp_path / "bad.sdf", message)
+
+
+def test_world_with_two_models_is_refused(tmp_path):
+    (tmp_path / "w.sdf").write_text('<sdf version="1.9"><world name="w"><model name="a"><link name="l"/></model>'
+                                    '<model name="b"><link name="l"/></model></world></sdf>')
+    _refused(tmp_path / "w.sdf", "2 models", "a, b")
+
+
+def test_too_many_links_are_refused(tmp_path):
+    links = "".join(f'<link name="l{i}"/>' for i in range(300))
+    (tmp_path / "dust.sdf").write_text(f'<sdf version="1.9"><model name="s">{links}</model></sdf>')
+    _refused(tmp_path / "dust.sdf", "300 links")
+
+
+def test_command_line_refuses_with_one_line(tmp_path, capfd):
+    """The CLI prints notes, then exactly one `robokit: error:` line naming the file, and exits 2."""
+    from robokit.cli import main
+
+    for a, b in (("a", "b"), ("b", "a")):
+        (tmp_path / f"{a}.sdf").write_text(f'<sdf version="1.9"><model name="{a}"><link name="l"/>'
+                                           f'<include><uri>{b}.sdf</uri><name>{b}x</name></include></model></sdf>')
+    capfd.readouterr()
+    assert main(["convert", str(tmp_path / "a.sdf"), "-o", str(tmp_path / "a.json")]) == 2
+    err = [ln for ln in capfd.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and err[0].startswith("robokit: error:") and "include cycle" in err[0] and "a.sdf" in err[0]
+    assert not (tmp_path / "a.json").exists()
+
+
+def test_unknown_parent_is_refused(tmp_path):
+    (tmp_path / "bad.sdf").write_text('<sdf version="1.9"><model name="m"><link name="a"/><joint name="j" '
+                                      'type="revolute"><parent>ghost</parent><child>a</child><axis><xyz>0 0 1</xyz>'
+                                      '</axis></joint></model></sdf>')
+    _refused(tmp_path / "bad.sdf", "joint 'j'", "'ghost'")
+
+
+def test_joint_to_the_world(tmp_path):
+    """A revolute joint whose parent is the world: no base link, no 'fixed to the world' note."""
+    (tmp_path / "w.sdf").write_text('<sdf version="1.9"><model name="m"><pose>0 0 1 0 0 0</pose><link name="a">'
+                                    '<pose>0.5 0 0 0 0 0</pose><inertial><mass>1</mass></inertial></link>'
+                                    '<joint name="j" type="revolute"><parent>world</parent><child>a</child>'
+                                    '<pose>-0.5 0 0 0 0 0</pose><axis><xyz>0 0 1</xyz></axis></joint></model></sdf>')
+    robot, notes = load_quiet(tmp_path / "w.sdf")
+    np.testing.assert_allclose(robot.frame_pose([math.pi / 2], "a")[:3, 3], [0, 0.5, 1], atol=1e-12)
+    assert not any("fixed to the world" in n for n in notes)
+
+
+def test_a_link_named_world_before_sdformat_1_7(tmp_path):
+    """SDFormat 1.4-1.6: a sibling link named "world" is what <parent>world</parent> means (pybullet_data's wsg50
+    grippers); 1.7 reserves the name."""
+    body = ('<link name="world"><pose>0 0 0.3 0 0 0</pose></link><link name="a"><pose>0 0 0.3 0 0 0</pose>'
+            '<inertial><mass>1</mass></inertial></link><joint name="j" type="prismatic"><parent>world</parent>'
+            '<child>a</child><axis><xyz>1 0 0</xyz></axis></joint>')
+    (tmp_path / "old.sdf").write_text(f'<sdf version="1.6"><model name="m">{body}</model></sdf>')
+    robot, _ = load_quiet(tmp_path / "old.sdf")
+    assert robot.model.existFrame("world")
+    np.testing.assert_allclose(robot.frame_pose([0.2], "a")[:3, 3], [0.2, 0, 0.3], atol=1e-12)
+    (tmp_path / "new.sdf").write_text(f'<sdf version="1.9"><model name="m">{body}</model></sdf>')
+    _refused(tmp_path / "new.sdf", "reserved")
