@@ -61,14 +61,14 @@ def test_a_failing_step_propagates_without_a_done_line():
 
 
 def test_a_slow_optional_import_says_so():
-    """``require`` of a package whose import takes 1.5 s (a finder delays it, in a fresh interpreter):
+    """``require`` of a package whose import takes 3 s (a finder delays it, in a fresh interpreter):
     the announcement names the package and what needs it, then the total."""
     code = r"""
 import sys, time, importlib.abc
 class Slow(importlib.abc.MetaPathFinder):
     def find_spec(self, name, path, target=None):
         if name == "sympy":
-            time.sleep(1.5)
+            time.sleep(3.0)
         return None
 sys.meta_path.insert(0, Slow())
 from robokit._optional import require
