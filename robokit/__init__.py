@@ -172,4 +172,6 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__) | set(_SUBPACKAGES) | {"__version__"})
+    # not robokit.symbolic: importing it needs sympy (the symbolic extra), and tools that getattr
+    # every name dir() lists (inspect.getmembers, completion) must not fail without it
+    return sorted(set(globals()) | set(__all__) | set(_SUBPACKAGES) - {"symbolic"} | {"__version__"})

@@ -58,7 +58,8 @@ def robokit_all():
 def test_every_public_name_resolves_both_ways():
     """Each name of ``__all__`` (and the documented subpackages) as ``robokit.X`` and as
     ``from robokit import X``, in a fresh interpreter each way; both give the same object, which is
-    defined in robokit; ``dir()`` lists them all; an unknown name is an AttributeError."""
+    defined in robokit; ``dir()`` lists them all (but ``symbolic``, which needs sympy to import, so
+    that ``inspect.getmembers(robokit)`` works without the extra); an unknown name is an AttributeError."""
     code = ("import importlib, json, robokit\n"
             "names = list(robokit.__all__) + ['viz', 'validation', 'symbolic', 'codegen', 'kernels', '__version__']\n"
             "attr = {n: getattr(robokit, n) for n in names}\n"
@@ -66,7 +67,7 @@ def test_every_public_name_resolves_both_ways():
             "for n in names: exec(f'from robokit import {n} as x', ns); assert ns['x'] is attr[n], n\n"
             "bad = [n for n, v in attr.items() if n != '__version__' and not "
             "(getattr(v, '__name__', '').startswith('robokit') or getattr(v, '__module__', '').startswith('robokit'))]\n"
-            "missing = sorted(set(names) - set(dir(robokit)))\n"
+            "missing = sorted(set(names) - set(dir(robokit)) - {'symbolic'})\n"
             "try:\n    robokit.no_such_name\n    err = None\nexcept AttributeError as e:\n    err = str(e)\n"
             "print(json.dumps([len(names), bad, missing, err, robokit.__version__]))")
     count, bad, missing, err, version = json.loads(_fresh(code))
