@@ -4,8 +4,8 @@
 # added next to it, once (.venv/.extra-NAME), without reinstalling robokit. pip's progress shows.
 # Sizes (measured: pip download of the same requirements, Python 3.11, x86-64 Linux): the core
 # install downloads about 325 MB and makes a 1.3 GB environment (most of it Pinocchio and the
-# example-robot-data meshes); `make test` adds every extra: about 600 MB of downloads in all and a
-# 2.4 GB environment.
+# example-robot-data meshes); `make test` adds every extra: about 700 MB of downloads in all and a
+# 2.7 GB environment (pybullet, from the test extra, is 100 MB and 290 MB of these).
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
