@@ -286,9 +286,10 @@ def _nearest_with_base(C: np.ndarray, pi_b: np.ndarray, pi_nom: np.ndarray) -> n
     Only the parameters some base parameter involves (the non-zero columns of C) move: the others
     (e.g. the mass of a first link turning about a fixed vertical axis) keep their nominal values
     exactly. Solving over every column gives those the same answer in exact arithmetic, but in
-    floating point a least-squares solver leaves round-off there (±1e-17, and which value depends on
-    the BLAS code path, i.e. on memory alignment: run-dependent) — enough to turn a nominal mass of
-    0 into −2e-19 kg and a centre of mass into h/m = ±inf.
+    floating point a least-squares solver leaves round-off there (±1e-17; its exact value follows the
+    BLAS code path taken, which can change from one process to the next — e.g. with the alignment of
+    the solver's work buffers — so the result was run-dependent), enough to turn a nominal mass of 0
+    into −2e-19 kg or leave a first moment of 1e-17 over a mass of 0: a centre of mass h/m = ±inf.
     """
     seen = np.any(C != 0.0, axis=0)
     out = np.array(pi_nom, dtype=float)
