@@ -15,7 +15,33 @@ from pathlib import Path
 
 from robokit.errors import InputError
 
-__all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text"]
+__all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text", "check_output_folder",
+           "make_output_folder"]
+
+
+def check_output_folder(folder: str | os.PathLike[str], what: str = "-o") -> Path:
+    """An output folder that exists or can be created: neither it nor an ancestor is a file.
+
+    Checked before any work, so that a bad ``-o`` fails at once; :func:`make_output_folder` creates
+    it (parents too) once there is something to write.
+    """
+    out = Path(folder)
+    for p in (out, *out.parents):
+        if p.exists():
+            if not p.is_dir():
+                raise InputError(f"{what}: {str(p)!r} is a file, not a folder")
+            break
+    return out
+
+
+def make_output_folder(folder: str | os.PathLike[str], what: str = "-o") -> Path:
+    """Create an output folder and its missing parents (nothing when it exists); one-line errors."""
+    out = check_output_folder(folder, what)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise InputError(f"{what}: cannot create folder {str(out)!r}: {e.strerror or e}") from None
+    return out
 
 
 def _umask() -> int:

@@ -5,13 +5,17 @@ robots, Pinocchio, the compiled kernels and the CLI's ``validate``/``convert``. 
 is an extra (``pip install 'robokit[viz]'``, or ``robokit[all]`` for every one). A function that
 needs an extra imports it through :func:`require`; when the package is missing, the call raises
 :class:`~robokit.errors.MissingExtraError` (an ``ImportError`` and an ``InputError``, so the CLI
-prints one line and exits 2) naming the extra.
+prints one line and exits 2) naming the extra. An import still running after two seconds (a first
+use on a new machine: TOPP-RA brings scipy and matplotlib, whose font cache is built once per
+user) says so on stderr, then the elapsed time, then how long it took (:mod:`robokit._progress`).
 """
 from __future__ import annotations
 
 import importlib
+import sys
 from typing import Any
 
+from robokit._progress import Slow
 from robokit.errors import MissingExtraError
 
 # top-level import name -> (distribution, extra that installs it)
@@ -48,7 +52,15 @@ def require(module: str, purpose: str = "") -> Any:
     top = module.split(".")[0]
     dist, extra = EXTRAS[top]
     try:
-        return importlib.import_module(module)
+        loaded = sys.modules.get(module)
+        if loaded is not None:
+            return loaded
+        # a first import can be slow on a new machine (toppra pulls in scipy and matplotlib, whose
+        # font cache is built once per user): after two seconds of silence, say so, then the time
+        with Slow(f"robokit: {purpose or module}: importing {dist} (its first use in this process; the "
+                  "first on a machine can take a while) ...", done=f"robokit: {dist} imported",
+                  still=f"still importing {dist}", after=2.0):
+            return importlib.import_module(module)
     except ModuleNotFoundError as exc:
         missing = (exc.name or "").split(".")[0]
         if missing != top:  # the package is there but one of *its* dependencies is not

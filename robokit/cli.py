@@ -149,7 +149,7 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_format_options(cal)
     g = sub.add_parser("codegen", help="C99 for a controller: FK, Jacobian, closed-form IK, gravity, RNEA")
     g.add_argument("model", help="shipped model name, .yaml, .urdf, .xacro, MJCF .xml or example-robot-data name")
-    g.add_argument("-o", "--output", required=True, help="existing output folder (NAME.h and NAME.c go there)")
+    g.add_argument("-o", "--output", required=True, help="output folder, created if missing (NAME.h and NAME.c go there)")
     g.add_argument("--float32", action="store_true", help="float instead of double everywhere (single-precision FPUs)")
     g.add_argument("--name", help="C prefix of the functions and macros (default: the robot's name)")
     g.add_argument("--tip", help="tip frame of the chain (URDF input)")

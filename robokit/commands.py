@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._io import atomic_write
+from robokit._io import atomic_write, check_output_folder
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -389,7 +389,7 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     model : str or path-like
         Anything ``robokit.load`` accepts.
     output : str or path-like
-        An existing folder.
+        The output folder; created (parents too) once the source is generated.
     float32 : bool
         Emit ``float`` instead of ``double``.
     name : str, optional
@@ -407,13 +407,7 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     from robokit.codegen import c_name, generate_c, write_c
     from robokit.description import load
 
-    from robokit.errors import InputError
-
-    out = Path(output)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"-o: {str(out)!r} is a file, not a folder")
-    if not out.is_dir():
-        raise InputError(f"-o: folder {str(out)!r} does not exist")
+    out = check_output_folder(output)  # created by write_c, once the source is generated
     if name is not None:
         c_name("", name)  # checks the identifier
     robot = load(model, tip=tip, **load_options)

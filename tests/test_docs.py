@@ -1,7 +1,9 @@
 """The documentation site: `mkdocs build --strict` passes with no warning, and no file in the
 repository points readers at a contract file that does not ship with it."""
+import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -66,26 +68,110 @@ def test_every_nav_page_exists():
     assert not missing, f"nav entries without a page: {missing}"
 
 
-def test_mkdocs_build_strict(tmp_path):
+@pytest.fixture(scope="module")
+def built_site(tmp_path_factory):
+    """The site, built once with ``mkdocs build --strict`` (skipped without the docs extra)."""
     pytest.importorskip("mkdocs", reason="mkdocs is not installed (pip install '.[docs]')")
     pytest.importorskip("mkdocstrings", reason="mkdocstrings is not installed (pip install '.[docs]')")
     pytest.importorskip("material", reason="mkdocs-material is not installed (pip install '.[docs]')")
+    site = tmp_path_factory.mktemp("docs") / "site"
     env = dict(os.environ)
     # mkdocstrings must document this checkout's robokit, whatever is installed.
     env["PYTHONPATH"] = str(ROOT) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     env["NO_MKDOCS_2_WARNING"] = "1"
     proc = subprocess.run(
-        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(tmp_path / "site")],
+        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
         cwd=ROOT, env=env, capture_output=True, text=True, timeout=600,
     )
-    log = proc.stdout + proc.stderr
+    return site, proc.returncode, proc.stdout + proc.stderr
+
+
+def test_mkdocs_build_strict(built_site):
+    site, returncode, log = built_site
     warnings = [line for line in log.splitlines() if line.startswith(("WARNING", "ERROR"))]
-    assert proc.returncode == 0 and not warnings, f"mkdocs build --strict failed:\n{log[-4000:]}"
-    assert (tmp_path / "site" / "index.html").is_file()
+    assert returncode == 0 and not warnings, f"mkdocs build --strict failed:\n{log[-4000:]}"
+    assert (site / "index.html").is_file()
     # The API reference really was generated from the code (not an empty page).
-    reference = (tmp_path / "site" / "reference" / "spatial" / "index.html").read_text(encoding="utf-8")
+    reference = (site / "reference" / "spatial" / "index.html").read_text(encoding="utf-8")
     assert "matrix_log_6" in reference
-    _check_formulas_and_assets(tmp_path / "site")
+    _check_formulas_and_assets(site)
+
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+# Added to a copy of a built page: once MathJax has typeset it, the first display formula's box (CSS
+# pixels, the window's top-left origin) and the device pixel ratio go into the title, which --dump-dom
+# shows. The screenshot run loads the same copy at the same window size: the same layout.
+_BOX_SCRIPT = """<script>
+window.addEventListener("load", function () {
+  MathJax.startup.promise.then(function () {
+    var el = document.querySelector(".arithmatex mjx-container[display='true']");
+    var r = el.getBoundingClientRect();
+    document.title = "RKBOX " + JSON.stringify([r.left, r.top, r.width, r.height, window.devicePixelRatio,
+                                                el.getAttribute("jax")]);
+  });
+});
+</script>"""
+
+
+def _chromium(args, profile):
+    return subprocess.run(
+        [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+         "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}", "--window-size=1000,1400",
+         "--hide-scrollbars", "--virtual-time-budget=20000", *args],
+        capture_output=True, text=True, timeout=180)
+
+
+def _dark_pixels(png, box):
+    """How many pixels of the screenshot, inside ``box`` (left, top, width, height in device
+    pixels), are dark (luminance below half): glyphs on the page's white background."""
+    Image = pytest.importorskip("PIL.Image", reason="Pillow is not installed (it comes with matplotlib)")
+    img = Image.open(png).convert("L")
+    left, top, width, height = (int(round(v)) for v in box)
+    region = img.crop((left, top, left + width, top + height))
+    return sum(region.histogram()[:128]), width * height
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Debian's chromium is not installed (.ci/run installs it)")
+def test_formulas_are_drawn_in_chromium(built_site, tmp_path):
+    """Issue 40: MathJax typeset the formulas (``mjx-container`` present) but Chromium drew them
+    blank, from ``file://`` and over HTTP (the CHTML fonts were never fetched). A built page with a
+    display formula, screenshotted in headless Chromium both ways: the formula's box must hold dark
+    pixels — at least 2 % of its area, where a blank box has none."""
+    site, returncode, log = built_site
+    assert returncode == 0, log[-2000:]
+    page = site / "course" / "dynamics" / "index.html"
+    copy = page.with_name("rk-pixels.html")
+    copy.write_text(page.read_text(encoding="utf-8").replace("</body>", _BOX_SCRIPT + "</body>"), encoding="utf-8")
+
+    import functools
+    import http.server
+    import threading
+
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(site)))
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        urls = {"file": copy.as_uri(),
+                "http": f"http://127.0.0.1:{server.server_address[1]}/course/dynamics/rk-pixels.html"}
+        for how, url in urls.items():
+            dom = _chromium(["--dump-dom", url], tmp_path / f"{how}-dom")
+            found = re.search(r"<title>RKBOX (\[.*?\])</title>", dom.stdout)
+            assert found, f"{how}: MathJax did not finish typesetting: {dom.stderr[-1500:]}"
+            left, top, width, height, ratio, jax = json.loads(found.group(1))
+            assert width > 0 and height > 0 and 0 <= top and top + height < 1400, found.group(1)
+            png = tmp_path / f"{how}.png"  # kept in pytest's temporary folder: look at it
+            shot = _chromium([f"--screenshot={png}", url], tmp_path / f"{how}-shot")
+            assert png.is_file(), shot.stderr[-1500:]
+            dark, area = _dark_pixels(png, [v * ratio for v in (left, top, width, height)])
+            assert dark >= 0.02 * area, f"{how}: the {jax} formula's box is blank ({dark} dark pixels of {area})"
+    finally:
+        server.shutdown()
+        server.server_close()
 
 
 class _TextOutsideMath(HTMLParser):
@@ -136,16 +222,14 @@ def _check_formulas_and_assets(site):
         if stray:
             bad.append(f"{page.relative_to(site)}: {len(stray)} formula fragment(s) outside arithmatex, e.g. {stray[0]}")
     assert not bad, "\n".join(bad)
-    assert (site / "javascripts" / "mathjax" / "tex-chtml.js").stat().st_size > 500_000
-    assert list((site / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff"))
+    assert (site / "javascripts" / "mathjax" / "tex-svg.js").stat().st_size > 500_000
 
 
 def test_formula_check_catches_a_stray_formula(tmp_path):
     page = tmp_path / "course" / "x.html"
     page.parent.mkdir(parents=True)
-    (tmp_path / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").mkdir(parents=True)
-    (tmp_path / "javascripts" / "mathjax" / "tex-chtml.js").write_bytes(b"x" * 600_000)
-    (tmp_path / "javascripts" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2" / "a.woff").write_bytes(b"x")
+    (tmp_path / "javascripts" / "mathjax").mkdir(parents=True)
+    (tmp_path / "javascripts" / "mathjax" / "tex-svg.js").write_bytes(b"x" * 600_000)
     page.write_text('<p><span class="arithmatex">\\(x\\)</span> fine</p>')
     _check_formulas_and_assets(tmp_path)
     page.write_text("<p>\\[\nc_2 = \\frac{1}{2}\n\\]</p>")  # a display block MathJax never sees

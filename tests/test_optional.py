@@ -83,3 +83,47 @@ def test_cli_missing_extra_is_one_line_exit_2(tmp_path):
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("robokit: error:") and "robokit[viz]" in lines[0], p.stderr
     assert not (tmp_path / "v.html").exists()
+
+
+def test_no_handler_rewrites_the_missing_extra_message():
+    """The bypasses of issue 40: a handler that catches the ImportError of a ``require`` call (or
+    raises a bare ImportError of its own) replaces robokit's message naming the extra with another
+    one (``pip install xacro``, ``pip install mujoco``). Only ``except MissingExtraError`` (to add
+    the file's name, keeping the extra) may wrap a ``require``."""
+    offenders = []
+    for path in sorted(PKG.rglob("*.py")):
+        if path.name == "_optional.py":
+            continue
+        tree = ast.parse(path.read_text(), str(path))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Raise) and node.exc is not None:
+                call = node.exc.func if isinstance(node.exc, ast.Call) else node.exc
+                if isinstance(call, ast.Name) and call.id in ("ImportError", "ModuleNotFoundError"):
+                    offenders.append(f"{path.relative_to(ROOT)}:{node.lineno} raises a bare {call.id}")
+            if isinstance(node, ast.Try):
+                calls_require = any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "require"
+                                    for stmt in node.body for n in ast.walk(stmt))
+                for h in node.handlers:
+                    caught = ast.unparse(h.type) if h.type is not None else "everything"
+                    if calls_require and "MissingExtraError" not in caught:
+                        offenders.append(f"{path.relative_to(ROOT)}:{h.lineno} catches {caught} around require()")
+    assert not offenders, "\n".join(offenders)
+
+
+@pytest.mark.parametrize("hidden, code, extra", [
+    ("sympy", "import robokit.symbolic", "symbolic"),
+    ("xacro", "import pathlib, robokit; p = pathlib.Path('arm.urdf.xacro'); p.write_text('<robot name=\"a\"/>'); "
+              "robokit.load(p)", "formats"),
+    ("mujoco", "from robokit.validation.mujoco_check import mujoco_model; mujoco_model('<mujoco/>')", "mujoco"),
+    ("toppra", "import robokit; robokit.retime(robokit.load('twolink'), [[0.0, 0.0], [1.0, 0.5]], 1.0, 2.0)", "motion"),
+    ("matplotlib", "import robokit; robokit.trajectory.plot_trajectory(robokit.trajectory.quintic_trajectory("
+                   "0.0, 1.0, 1.0))", "plot"),
+])
+def test_a_missing_extra_is_one_line_naming_it(hidden, code, extra, tmp_path):
+    """In a fresh interpreter with the package hidden (``sys.modules[name] = None``): the error is
+    robokit's ``MissingExtraError`` naming the extra, not a bare ``ModuleNotFoundError``."""
+    p = subprocess.run([sys.executable, "-c", f"import sys; sys.modules[{hidden!r}] = None\n{code}"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    last = p.stderr.strip().splitlines()[-1]
+    assert p.returncode == 1 and last.startswith("robokit.errors.MissingExtraError:"), p.stderr[-2000:]
+    assert f"pip install 'robokit[{extra}]'" in last, last

@@ -230,6 +230,11 @@ class IdentificationResult:
         Returns
         -------
         Robot
+
+        Raises
+        ------
+        InputError
+            A link whose identified set no rigid body can carry (a first moment with zero mass).
         """
         import pinocchio as pin
 
@@ -237,8 +242,9 @@ class IdentificationResult:
 
         n = self.robot.n
         model = pin.Model(self.robot.model)
+        scale = max(float(np.abs(self.standard_parameters[:10 * n]).max()), 1e-300)
         for j in range(n):
-            model.inertias[j + 1] = pin.Inertia.FromDynamicParameters(self.standard_parameters[10 * j:10 * j + 10])
+            model.inertias[j + 1] = _link_inertia(self.standard_parameters[10 * j:10 * j + 10], j + 1, scale)
         return Robot(name or f"{self.robot.name}_identified", model, self.robot.tip,
                      source=f"identified from {self.robot.source or self.robot.name}")
 
@@ -275,9 +281,47 @@ def _samples(a: ArrayLike, name: str, n: int) -> np.ndarray:
 
 
 def _nearest_with_base(C: np.ndarray, pi_b: np.ndarray, pi_nom: np.ndarray) -> np.ndarray:
-    """The π closest to π_nom (Euclidean) with C π = π_b."""
-    d, *_ = np.linalg.lstsq(C, pi_b - C @ pi_nom, rcond=None)
-    return pi_nom + d
+    """The π closest to π_nom (Euclidean) with C π = π_b.
+
+    Only the parameters some base parameter involves (the non-zero columns of C) move: the others
+    (e.g. the mass of a first link turning about a fixed vertical axis) keep their nominal values
+    exactly. Solving over every column gives those the same answer in exact arithmetic, but in
+    floating point a least-squares solver leaves round-off there (±1e-17; its exact value follows the
+    BLAS code path taken, which can change from one process to the next — e.g. with the alignment of
+    the solver's work buffers — so the result was run-dependent), enough to turn a nominal mass of 0
+    into −2e-19 kg or leave a first moment of 1e-17 over a mass of 0: a centre of mass h/m = ±inf.
+    """
+    seen = np.any(C != 0.0, axis=0)
+    out = np.array(pi_nom, dtype=float)
+    if seen.any():
+        d, *_ = np.linalg.lstsq(C[:, seen], pi_b - C @ pi_nom, rcond=None)
+        out[seen] += d
+    return out
+
+
+def _link_inertia(p: np.ndarray, link: int, scale: float) -> Any:
+    """A Pinocchio inertia with one link's ten standard parameters (I about the joint origin).
+
+    Pinocchio stores (m, c, I_C), so ``c = h/m`` and ``I_C = I_O − m([c]ᵀ[c])``: a link with m = 0 and
+    h = 0 (a massless link with a rotational inertia, as in Corke's PUMA 560) is kept as such; a set
+    that (m, c, I_C) cannot carry to 1e-9 of the arm's parameter scale (m = 0 with h ≠ 0, or a mass
+    so small that c is enormous) is refused, naming the link.
+    """
+    import pinocchio as pin
+
+    m, h = float(p[0]), np.asarray(p[1:4], dtype=float)
+    I_O = np.array([[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]], dtype=float)
+    Y = None
+    if m != 0.0 or not h.any():  # set field by field: Pinocchio's constructor refuses a non-physical I_C
+        c = h / m if m != 0.0 else np.zeros(3)
+        Y = pin.Inertia.Zero()
+        Y.mass, Y.lever = m, c
+        Y.inertia = I_O - m * (float(c @ c) * np.eye(3) - np.outer(c, c))
+    if Y is None or not np.all(np.abs(np.asarray(Y.toDynamicParameters()) - p) <= 1e-9 * scale):
+        raise InputError(f"to_robot: link {link}'s identified parameters (mass {m:.3g} kg, first moment "
+                         f"{np.array2string(h, precision=3)} kg·m) are not those of a rigid body a Robot can "
+                         "carry (a first moment without mass); identify with physically_consistent=True")
+    return Y
 
 
 def _consistent_fit(Ww: np.ndarray, tw: np.ndarray, C: np.ndarray, pi0: np.ndarray, pi_nom: np.ndarray,

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from robokit._io import atomic_write
+from robokit._io import atomic_write, check_output_folder, make_output_folder
 from robokit.codegen._c import CWriter, c_string, lit, safe_comment, to_float32
 from robokit.codegen.dynamics import emit_rnea
 from robokit.codegen.ik import emit_ik
@@ -304,7 +304,7 @@ def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
     src : CSource
         From :func:`generate_c`.
     folder : path
-        An existing folder.
+        The output folder; created, with its missing parents, when it does not exist.
 
     Returns
     -------
@@ -314,7 +314,7 @@ def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
     Raises
     ------
     InputError
-        If ``folder`` does not exist or is a file.
+        If ``folder`` (or a folder above it) is a file, or cannot be created.
 
     Examples
     --------
@@ -324,15 +324,12 @@ def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
     ...     print(h.name, c.name, "#include \"twolink.h\"" in c.read_text())
     twolink.h twolink.c True
     """
-    out = Path(folder)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"-o: {str(out)!r} is a file, not a folder")
-    if not out.is_dir():
-        raise InputError(f"-o: folder {str(out)!r} does not exist")
+    out = check_output_folder(folder)
     h_path, c_path = out / f"{src.name}.h", out / f"{src.name}.c"
     for p in (h_path, c_path):
         if p.is_dir():
             raise InputError(f"-o: {str(p)!r} exists and is a folder")
+    make_output_folder(out)
     old_h = h_path.read_bytes() if h_path.is_file() else None
     atomic_write(h_path, src.header)
     try:

@@ -42,7 +42,7 @@ from robokit.description.limits import check_joint_count
 from robokit.description.meshes import allowed_roots, confine, package_name
 from robokit.description.urdf_check import MAX_URDF_BYTES
 from robokit.description.xacro_safety import guarded
-from robokit.errors import InputError
+from robokit.errors import InputError, MissingExtraError
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -294,8 +294,8 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     try:
         xacro = require("xacro", "reading a .xacro file")
         sargs = require("xacro.substitution_args", "reading a .xacro file")
-    except ImportError:  # pragma: no cover - xacro is a dependency
-        raise InputError(f"{path}: reading xacro files needs the 'xacro' package (pip install xacro)") from None
+    except MissingExtraError as exc:  # the same one line, naming the file
+        raise MissingExtraError(f"{path}: {exc}", extra=exc.extra) from None
 
     package_path = _package_dirs(package_dirs, package_path, "expand_xacro")
     path = Path(path)

@@ -60,14 +60,11 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_scalar
 from robokit.errors import InputError, InputTypeError
 from robokit.ik._dh_chain import DHChain
-from robokit.ik.general_6r import GeneralSixR
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import PieperSolver
 from robokit.ik.solution import (CollisionChecker, IKSolution, _Rows, _RowSolution, check_pose, solutions_from_rows,
                                  with_collision_flags)
 from robokit.ik.solver import ClosedFormSolver
-from robokit.kernels import closed_form as _kcf
-from robokit.kernels.closed_form import pack_constants as _pack_constants
 
 _new_object = object.__new__
 
@@ -120,7 +117,15 @@ SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
 
 #: Solvers tried, in order, for a 6-joint chain with none of the structures above (read either
 #: way): the first whose ``refusal()`` is None solves it. A general 6R solver registers here.
-FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = [GeneralSixR]
+def _general_six_r(chain: DHChain) -> ClosedFormSolver:
+    """:class:`robokit.ik.general_6r.GeneralSixR` of the chain; imported here, on the first arm that
+    needs it, because it loads its compiled kernels (numba) when imported."""
+    from robokit.ik.general_6r import GeneralSixR
+
+    return GeneralSixR(chain)
+
+
+FALLBACK: list[Callable[[DHChain], ClosedFormSolver]] = [_general_six_r]
 
 
 def _is_table(robot: object) -> bool:
@@ -141,7 +146,6 @@ def _table_key(table: DHTable, link_limits: bool) -> tuple:
 
 
 _F64 = np.dtype(np.float64)
-_OUT_SHAPE = (_kcf.MAX_ROWS, _kcf.OUT_COLS)
 
 
 def _fast_key(table: DHTable, link_limits: bool = True) -> tuple:
@@ -345,6 +349,8 @@ class AnalyticIK:
         packed = consts()
         if packed is None:
             return None
+        from robokit.kernels import closed_form as _kcf  # numba: imported with the first compiled solve
+
         ci, cf, C = packed
         ci = ci.copy()
         ci[5] = int(self.reversed)
@@ -368,10 +374,11 @@ class AnalyticIK:
                 for w, wrist in enumerate(_WRIST):
                     labels[float(100 * s + 10 * e + w)] = shoulder + elbow + wrist + suffix
         pieper = int(ci[0]) == _kcf.PIEPER
-        return (_pack_constants(ci, cf, C, pre, post, post_q), labels,
+        return (_kcf.pack_constants(ci, cf, C, pre, post, post_q), labels,
                 _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
                 _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch,
-                _kcf.pieper_solve_into if pieper else _kcf.parallel_axes_solve_into)
+                _kcf.pieper_solve_into if pieper else _kcf.parallel_axes_solve_into,
+                (_kcf.MAX_ROWS, _kcf.OUT_COLS))
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -430,7 +437,7 @@ class AnalyticIK:
         if kernel is not None and self.use_kernel:
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            out = np.empty(_OUT_SHAPE)  # the solutions' q are views of this one array
+            out = np.empty(kernel[5])  # the solutions' q are views of this one array
             n = kernel[4](kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
             if n < 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)

@@ -61,7 +61,9 @@ many. A kernel compiled in the calling process (``wait``, or a fallback) prints
 first use, then loaded from numba's cache ...``: which kernel, and how many of its module's
 kernels this process has compiled so far; numba announces every compilation (its
 ``numba:compile`` event, fired only after a cache miss) and a listener installed here prints for
-the kernels of ``robokit.kernels``. A batch kernel that waits for the worker says so.
+the kernels of ``robokit.kernels``. A batch or simulation kernel that waits for the worker says so,
+then how long it has waited (the same line rewritten each second on a terminal, a line every 10 s
+otherwise: a first ``simulate`` on a new machine can wait a minute) and, at the end, how long it took.
 
 Setting ``NUMBA_DISABLE_JIT=1`` runs the very same source as plain Python (slow, but every
 line can be stepped through in a debugger); nothing is compiled, no worker is started and no
@@ -573,20 +575,26 @@ def _collect() -> None:
 
 def _wait_for(job: _Job) -> None:
     """Block until the worker has finished ``job`` (it was sent as urgent), with a notice."""
+    import contextlib
     import select
 
-    if not quiet:
-        print(f"robokit: waiting for {job.name} to compile (a batch or long-loop kernel runs compiled only; "
-              "once per machine, then loaded from numba's cache) ...", file=sys.stderr, flush=True)
-    while True:
-        with _LOCK:
-            _collect()
-            if job.state != "queued" or _BG.worker is None:
-                if job.state == "queued":
-                    job.state, job.detail = "failed", "the worker exited"
-                return
-            fd = _BG.worker.fileno
-        select.select([fd], [], [], 0.5)
+    from robokit._progress import Slow
+
+    line = (f"robokit: waiting for {job.name} to compile (a batch or long-loop kernel runs compiled only; "
+            "once per machine, then loaded from numba's cache) ...")
+    # the line at once, then the elapsed time (rewritten each second on a terminal, a line every 10 s
+    # otherwise), then how long it took
+    with (contextlib.nullcontext() if quiet else Slow(line, after=0.0, done=f"robokit: {job.name} compiled",
+                                                         still=f"still compiling {job.name}")):
+        while True:
+            with _LOCK:
+                _collect()
+                if job.state != "queued" or _BG.worker is None:
+                    if job.state == "queued":
+                        job.state, job.detail = "failed", "the worker exited"
+                    return
+                fd = _BG.worker.fileno
+            select.select([fd], [], [], 0.5)
 
 
 def _announce(job: _Job) -> None:

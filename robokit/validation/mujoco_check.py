@@ -19,8 +19,9 @@ MuJoCo's compiler refuses some inertials (a moving body with no mass, a point ma
 tensor that breaks ``A + B ≥ C``); the MJCF writer stores the exact values in
 ``<custom><numeric>`` and :func:`mujoco_model` puts them into the compiled ``MjModel``
 (``body_mass``, ``body_ipos``, ``body_iquat``, ``body_inertia``) before comparing; the bodies
-concerned are listed in the result. MuJoCo is an optional dependency (``pip install
-mujoco``); :func:`import_mujoco` returns None when it is absent.
+concerned are listed in the result. MuJoCo is an optional dependency (the ``mujoco`` extra,
+``pip install 'robokit[mujoco]'``); :func:`import_mujoco` returns None when it is absent, and the
+comparisons raise robokit's one-line ``MissingExtraError`` naming the extra.
 """
 from __future__ import annotations
 
@@ -56,9 +57,9 @@ def import_mujoco() -> ModuleType | None:
 
 
 def _require() -> ModuleType:
-    mj = import_mujoco()
-    if mj is None:
-        raise ImportError("MuJoCo comparisons need the 'mujoco' package (pip install mujoco)")
+    from robokit._optional import require
+
+    mj: ModuleType = require("mujoco", "MuJoCo comparisons")
     return mj
 
 
@@ -189,8 +190,8 @@ def compare_with_mujoco(robot: Robot | DHTable | str | os.PathLike[str], mjcf: s
 
     Raises
     ------
-    ImportError
-        MuJoCo not installed.
+    MissingExtraError
+        MuJoCo not installed (an ``ImportError`` naming the ``mujoco`` extra).
     ValueError
         The MJCF's joints do not match the robot's.
 

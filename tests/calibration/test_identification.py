@@ -45,6 +45,54 @@ def test_noiseless_identification_predicts_unseen_torques(robots, name):
                                atol=1e-7)
 
 
+def test_parameters_the_data_cannot_see_stay_nominal(robots):
+    """The PUMA 560's link 1 turns about a fixed vertical axis: only its I_zz enters any base
+    parameter. Every standard parameter with a zero column in C (π_b = C π) must come out exactly
+    the nominal value — not the nominal value plus the solver's round-off, whose exact value can
+    change from one process to the next (a mass of −2e-19 kg, or a first moment over a zero mass:
+    a centre of mass at h/m = ±inf, came out of it). Checked on the same data at three memory
+    offsets as well, and the identified robot's dynamics are finite."""
+    robot = robots("puma560")
+    rng = np.random.default_rng(2)
+    true = perturbed_inertias(robot, rng)
+    q, dq, ddq = motions(robot, 200, rng)
+    tau = true_torques(true, 1.0, 0.5, q, dq, ddq)
+    nominal = np.r_[standard_parameters(robot), np.zeros(2 * robot.n)]
+    for shift in range(3):  # the same numbers at another 8-byte offset in memory
+        buf = np.empty(4 * q.size + shift)
+        qs, dqs, ddqs, taus = (buf[shift + k * q.size:shift + (k + 1) * q.size].reshape(q.shape) for k in range(4))
+        qs[:], dqs[:], ddqs[:], taus[:] = q, dq, ddq, tau
+        res = robokit.identify_dynamics(robot, qs, dqs, ddqs, taus)
+        unseen = ~np.any(res.base.matrix != 0, axis=0)
+        assert unseen[:4].all() and res.standard_parameters[0] == 0.0  # m1, m1·c1: no base parameter
+        np.testing.assert_array_equal(res.standard_parameters[unseen], nominal[unseen])
+        assert np.all(np.isfinite(res.to_robot().rnea(q[:5], dq[:5], ddq[:5])))
+
+
+def test_to_robot_refuses_a_first_moment_without_mass(robots):
+    """A standard set with m = 0 and h ≠ 0 is no rigid body (the centre of mass h/m is infinite):
+    to_robot refuses it naming the link, instead of returning a Robot whose dynamics are NaN. A
+    massless link with a rotational inertia (m = 0, h = 0) is kept: its rnea is the prediction."""
+    import dataclasses
+
+    robot = robots("rrr")
+    rng = np.random.default_rng(5)
+    q, dq, ddq = motions(robot, 60, rng)
+    res = robokit.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq))
+    bad = res.standard_parameters.copy()
+    bad[10:14] = [0.0, 0.05, 0.0, 0.0]  # link 2: no mass, a first moment
+    with pytest.raises(InputError, match="link 2.*first moment"):
+        dataclasses.replace(res, standard_parameters=bad).to_robot()
+    massless = res.standard_parameters.copy()
+    massless[10:14] = 0.0
+    massless[14:20] = [0.02, 0.0, 0.03, 0.0, 0.0, 0.04]
+    ident = dataclasses.replace(res, standard_parameters=massless).to_robot()
+    Y = ident.model.inertias[2]
+    assert Y.mass == 0.0 and not np.any(Y.lever)
+    np.testing.assert_allclose(Y.toDynamicParameters(), massless[10:20], rtol=0, atol=1e-15)
+    assert np.all(np.isfinite(ident.rnea(q, dq, ddq)))
+
+
 def test_noisy_identification_reaches_the_noise_floor(robots):
     """Torque noise of σⱼ on joint j: the weighted least-squares residual per joint is
     σⱼ·sqrt((N − r/n)/N) on average; the RMS residual must be within 20 % of it, and the weights

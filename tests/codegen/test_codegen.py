@@ -355,10 +355,23 @@ def test_cli_output_must_be_a_folder(tmp_path, capsys):
     f = tmp_path / "file.txt"
     f.write_text("x")
     assert main(["codegen", "puma560", "-o", str(f)]) == 2
-    assert main(["codegen", "puma560", "-o", str(tmp_path / "missing")]) == 2
+    assert main(["codegen", "puma560", "-o", str(f / "sub")]) == 2  # a folder under a file
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 2 and "is a file" in err[0] and "does not exist" in err[1]
+    assert len(err) == 2 and all(e.startswith("robokit: error: -o:") and "is a file" in e for e in err)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file.txt"]
+
+
+def test_cli_creates_the_output_folder_and_its_parents(tmp_path, monkeypatch, capsys):
+    """The docs' first example, ``robokit codegen puma560 -o out/``, in a folder without ``out``;
+    and a nested folder whose parents do not exist either. A refused model creates no folder."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["codegen", "puma560", "-o", "out/"]) == 0
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["puma560.c", "puma560.h"]
+    assert main(["codegen", "twolink", "-o", "build/firmware/arm"]) == 0
+    assert (tmp_path / "build/firmware/arm/twolink.h").is_file()
+    assert main(["codegen", "nosuch_robot", "-o", "never"]) == 2
+    assert not (tmp_path / "never").exists()
+    assert "wrote" in capsys.readouterr().err
 
 
 def test_urdf_file_and_generated_source_is_deterministic(tmp_path, build):
