@@ -34,7 +34,7 @@ from robokit.dynamics import (
     mass_matrix,
     vel_quadratic_forces,
 )
-from robokit.errors import DivergenceError, InputError, RobokitError, RobokitWarning
+from robokit.errors import DivergenceError, InputError, PhysicalityWarning, RobokitError, RobokitWarning
 from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
 from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
 from robokit.spatial import (
@@ -107,7 +107,7 @@ __all__ = list(SEED_FUNCTIONS) + [
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
     # errors and warnings
-    "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
+    "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "PhysicalityWarning",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
     "calibration", "collision", "motion",
