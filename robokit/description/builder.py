@@ -351,7 +351,7 @@ def physicality_problems(model: Any, tip: str) -> list[tuple[str, str]]:
             j = model.parents[j]
         if j == 0:
             continue
-        problem = physicality_problem(li.mass, li.inertia, atol=li.atol)
+        problem = physicality_problem(li.mass, li.inertia, atol=li.atol, mass_atol=li.mass_atol)
         if problem is not None:
             out.append((li.link, problem))
     return out

@@ -13,8 +13,9 @@ A rigid body of mass :math:`m` has, about its centre of mass, a symmetric inerti
 :func:`physicality_problem` returns what is wrong (the inequality with its numbers) or None.
 The tolerance is relative to the moments (:data:`PHYSICALITY_RTOL` times the largest), so that
 a flat plate or a ring, which sits on the boundary :math:`I_1 + I_2 = I_3`, is not flagged for
-the rounding of its printed digits; ``atol`` adds the rounding of a value that was computed
-(a link's inertia recovered from a merged body, :func:`link_inertias`).
+the rounding of its printed digits; below ``mass · PHYSICALITY_LENGTH²`` a moment is rounding
+(a point mass written with ``1e-35`` entries); ``atol`` adds the rounding of a value that was
+computed (a link's inertia recovered from a merged body, :func:`link_inertias`).
 
 :func:`link_inertias` recovers each link's own inertia from a Pinocchio model (Pinocchio's
 parsers add the inertia of a link fixed to a moving one to that joint's body, and keep it on
@@ -30,13 +31,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["PHYSICALITY_RTOL", "principal_moments", "triangle_margin", "physicality_problem", "LinkInertia",
+__all__ = ["PHYSICALITY_RTOL", "PHYSICALITY_LENGTH", "principal_moments", "triangle_margin", "physicality_problem", "LinkInertia",
            "link_inertias"]
 
 #: Tolerance of :func:`physicality_problem`, relative to the largest principal moment: a
 #: violation smaller than this (the rounding of values printed with 6–7 significant digits)
 #: is not reported.
 PHYSICALITY_RTOL = 1e-6
+
+#: Moments below ``mass · PHYSICALITY_LENGTH²`` (kg·m²) are rounding, whatever their sign: no
+#: body of matter is resolved at that size (a file writing ``ixz="2.4e-35"`` for a 1.3 kg head
+#: means zero).
+PHYSICALITY_LENGTH = 1e-6
 
 #: Relative size of the rounding left by subtracting inertias (float64 sums of a few terms).
 _SUBTRACTION_EPS = 1e-12
@@ -92,7 +98,7 @@ def _g(x: float) -> str:
 
 
 def physicality_problem(mass: float, inertia: ArrayLike, rtol: float = PHYSICALITY_RTOL,
-                        atol: float = 0.0) -> str | None:
+                        atol: float = 0.0, mass_atol: float = 0.0) -> str | None:
     """What makes a body's inertia physically impossible, or None if nothing does.
 
     Parameters
@@ -104,8 +110,10 @@ def physicality_problem(mass: float, inertia: ArrayLike, rtol: float = PHYSICALI
     rtol : float
         Tolerance relative to the largest principal moment (:data:`PHYSICALITY_RTOL`).
     atol : float
-        Absolute tolerance added (kg·m² for moments; a mass below ``atol`` in magnitude
-        counts as zero): the rounding of a computed value.
+        Absolute tolerance on the moments added to the relative one (kg·m²): the rounding of a
+        computed value.
+    mass_atol : float
+        A mass below this in magnitude counts as zero (kg).
 
     Returns
     -------
@@ -125,11 +133,11 @@ def physicality_problem(mass: float, inertia: ArrayLike, rtol: float = PHYSICALI
     m = float(mass)
     lam = principal_moments(inertia)
     big = float(np.abs(lam).max())
-    tol = rtol * big + atol
+    tol = rtol * big + atol + max(m, 0.0) * PHYSICALITY_LENGTH ** 2
     shown = f"({', '.join(_g(x) for x in lam)}) kg·m²"
-    if m < -max(atol, 0.0):
+    if m < -mass_atol:
         return f"mass {_g(m)} kg is negative: not positive definite"
-    if abs(m) <= atol and big > tol:
+    if abs(m) <= mass_atol and big > tol:
         return f"mass 0 kg with a nonzero rotational inertia (principal moments {shown}): not positive definite"
     if lam[0] < -tol:
         return f"principal moment I1 = {_g(lam[0])} kg·m² < 0 (principal moments {shown}): not positive definite"
@@ -153,8 +161,9 @@ class LinkInertia:
         kg.
     inertia : numpy.ndarray, shape (3, 3)
         About the centre of mass, kg·m².
-    atol : float
-        The rounding of a value recovered by subtraction (0 when read as it is), kg and kg·m².
+    atol, mass_atol : float
+        The rounding of the moments (kg·m²) and of the mass (kg) recovered by subtraction (0
+        when read as they are).
     """
 
     link: str
@@ -162,6 +171,7 @@ class LinkInertia:
     mass: float
     inertia: np.ndarray
     atol: float
+    mass_atol: float
 
 
 def _about_com(p: np.ndarray) -> tuple[float, np.ndarray]:
@@ -205,7 +215,7 @@ def link_inertias(model: Any) -> list[LinkInertia]:
 
     fixed, body, joint_type = pin.FrameType.FIXED_JOINT, pin.FrameType.BODY, pin.FrameType.JOINT
     rest = [np.asarray(model.inertias[j].toDynamicParameters(), dtype=float).ravel() for j in range(model.njoints)]
-    scale = [float(np.abs(r).max()) for r in rest]
+    scale = [np.abs(r) for r in rest]  # the magnitudes summed into each joint's body, per parameter
     children: dict[int, list[int]] = {}
     for fid, f in enumerate(model.frames):
         children.setdefault(f.parentFrame, []).append(fid)
@@ -220,15 +230,15 @@ def link_inertias(model: Any) -> list[LinkInertia]:
         if f.type == fixed:  # the link is the body frame that hangs from this fixed joint
             kids = [model.frames[k].name for k in children.get(fid, []) if model.frames[k].type == body and k != fid]
             name = kids[0] if kids else f.name
-        m, I = _about_com(p)
-        out.append(LinkInertia(name, int(f.parentJoint), m, I, 0.0))
+        out.append(LinkInertia(name, int(f.parentJoint), float(f.inertia.mass), np.array(f.inertia.inertia), 0.0, 0.0))
         moved = np.asarray(f.placement.act(f.inertia).toDynamicParameters(), dtype=float).ravel()
         rest[f.parentJoint] = rest[f.parentJoint] - moved
-        scale[f.parentJoint] = max(scale[f.parentJoint], float(np.abs(moved).max()))
+        scale[f.parentJoint] = np.maximum(scale[f.parentJoint], np.abs(moved))
     for j in range(1, model.njoints):
         p = rest[j]
-        atol = _SUBTRACTION_EPS * scale[j]
-        if float(np.abs(p).max()) <= atol:
+        mass_atol = _SUBTRACTION_EPS * float(scale[j][0])
+        atol = _SUBTRACTION_EPS * float(scale[j][4:].max())  # moments about the joint: m c² included
+        if abs(p[0]) <= mass_atol and float(np.abs(p[4:]).max()) <= atol:
             continue
         name = model.names[j]
         if model.existFrame(name, joint_type):
@@ -236,5 +246,5 @@ def link_inertias(model: Any) -> list[LinkInertia]:
             kids = [model.frames[k].name for k in children.get(jf, []) if model.frames[k].type == body]
             name = kids[0] if kids else name
         m, I = _about_com(p)
-        out.append(LinkInertia(name, j, m, I, atol))
+        out.append(LinkInertia(name, j, m, I, atol, mass_atol))
     return out
