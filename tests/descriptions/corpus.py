@@ -43,6 +43,7 @@ import argparse
 import datetime
 import os
 import platform
+import re
 import sys
 import tempfile
 import time
@@ -707,9 +708,13 @@ def table(rows: list[Row], markdown: bool = False) -> str:
                 "<inertial> gets 1 kg and a unit inertia; a link whose principal moments break the triangle "
                 "inequality gets a zero inertia):"] if notes else []
     foot += [f"[{k}] {n}" for k, n in enumerate(notes, 1)]
-    if markdown:
+    if markdown:  # element names in code spans (bare, Markdown would take them for HTML)
+        def md(text: str) -> str:
+            return re.sub(r"(<[a-z_]+>)", r"`\1`", text.replace("|", "\\|"))
+
         lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
-        lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in body]
+        lines += ["| " + " | ".join(md(c) for c in row) + " |" for row in body]
+        foot = [md(f) if not f.startswith("[") else "- " + md(f) for f in foot]
         return "\n".join(lines + foot)
     widths = [max(len(h), *(len(row[i]) for row in body)) if body else len(h) for i, h in enumerate(head)]
     widths[-1] = len(head[-1])
