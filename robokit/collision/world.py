@@ -288,7 +288,7 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     gm, names, kind = _robot_geometry(robot)
     model = robot.model
     objs = list(gm.geometryObjects)
-    first = {}  # link name → index of its first geometry: the order a link pair is written in
+    first: dict[str, int] = {}  # link name → index of its first geometry: the order a link pair is written in
     for k, nm in enumerate(names):
         first.setdefault(nm, k)
 

@@ -121,7 +121,8 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os
 
 
 def _noted_by_xacro() -> frozenset[str]:
-    """The elements the xacro expander already notes as ignored (not listed twice)."""
-    from robokit.description import xacro_files
+    """The elements the xacro expander already noted as ignored (not listed twice): its list,
+    read from the module that called us (no import: xacro_files imports this module)."""
+    import sys
 
-    return frozenset(getattr(xacro_files, "_IGNORED", ()))
+    return frozenset(getattr(sys.modules.get("robokit.description.xacro_files"), "_IGNORED", ()))
