@@ -115,6 +115,13 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
             angles.append(float(np.arctan2(qs[1], qs[0])) if jm.nq == 2 else float(qs[0]))
         if np.any(angles):
             configurations["ready"] = np.array(angles)
+    if chain_names:
+        arm = [(jn, float(model.armature[model.joints[model.getJointId(jn)].idx_v])) for jn in chain_names]
+        arm = [(jn, a) for jn, a in arm if a != 0.0]
+        if arm:  # the SRDF's rotor inertia · gear ratio², which Pinocchio adds to M and RNEA
+            shown = ", ".join(f"{jn} {a:.4g}" for jn, a in arm)
+            notes.append(f"{name}: reflected rotor inertia (example-robot-data's SRDF: rotorInertia · "
+                         f"rotorGearRatio²) is in M and RNEA as armature: {shown} (kg·m²; kg for a prismatic joint)")
     return build_robot(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
                        spec, notes, names=names)
 

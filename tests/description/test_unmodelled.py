@@ -91,3 +91,30 @@ def test_a_plain_file_has_no_such_note(tmp_path):
     path = tmp_path / "plain.urdf"
     path.write_text(arm())
     assert _notes(path)[1] == []
+
+
+def test_example_robot_data_rotor_inertia_is_modelled_and_noted():
+    """example-robot-data gives TALOS's arm rotor inertias and gear ratios (its SRDF); Pinocchio adds
+    rotorInertia · gearRatio² to M as armature. robokit keeps it, and says so once."""
+    import example_robot_data as erd
+    import numpy as np
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot = robokit.load("talos_arm")
+    notes = [str(w.message) for w in caught if "reflected rotor inertia" in str(w.message)]
+    assert len(notes) == 1 and notes[0] in robot.notes
+    model = erd.load("talos_arm").model
+    expected = {model.names[j]: model.rotorInertia[model.joints[j].idx_v] * model.rotorGearRatio[model.joints[j].idx_v] ** 2
+                for j in range(1, model.njoints)}
+    for jn in robot.joint_names:
+        if expected[jn]:
+            assert f"{jn} {expected[jn]:.4g}" in notes[0]
+    import pinocchio as pin
+
+    rigid = pin.Model(robot.model)
+    rigid.armature = np.zeros(rigid.nv)
+    q = robot.random_configuration(0)
+    M_rigid = pin.crba(rigid, rigid.createData(), q)
+    M_rigid = np.triu(M_rigid) + np.triu(M_rigid, 1).T
+    assert np.allclose(robot.crba(q) - M_rigid, np.diag([expected[jn] for jn in robot.joint_names]), atol=1e-12)
