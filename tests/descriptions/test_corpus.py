@@ -3,7 +3,6 @@ example-robot-data robot robokit loads and the arms of pybullet_data, through lo
 M, against the format's own engine, to 1e-9 relative. The table is printed at the end of the run.
 """
 import os
-from pathlib import Path
 
 import pytest
 
@@ -150,10 +149,18 @@ def test_the_sdf_engine_on_a_urdf_twin(tmp_path, ixy):
     assert max(errors.values()) < 1e-12, errors
 
 
-def test_the_script_runs(capsys):
-    """``python -m tests.descriptions.corpus`` prints the header, the table and the count (here on
-    two small robots, to keep it quick)."""
+def test_the_table_and_the_script(capsys):
+    """The table names the engine, marks a PyBullet reading with * and a footnote; the script
+    (``python -m tests.descriptions.corpus``) prints the header, the table and the count — here on
+    one small robot, to keep it quick."""
     only = [c for c in corpus.pybullet_data_cases() if c.source.endswith("TwoJointRobot_wo_fixedJoints.urdf")]
     text = corpus.table(corpus.run(only))
     assert "Pinocchio" in text and "PyBullet*" in text and "[1] pybullet_data/TwoJointRobot" in text
-    assert Path(corpus.__file__).with_name("conftest.py").is_file()
+    markdown = corpus.table(corpus.run(only), markdown=True)
+    assert markdown.startswith("| robot | format |") and "- [1] " in markdown
+    from unittest import mock
+
+    with mock.patch.object(corpus, "all_cases", lambda: only):
+        assert corpus.main([]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("robokit description corpus, ") and "2 rows, 0 failed" in out
