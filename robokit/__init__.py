@@ -39,7 +39,7 @@ for _module, _names in {
     "robokit.dynamics": ("end_effector_forces", "euler_step", "forward_dynamics", "forward_dynamics_trajectory",
                          "gravity_forces", "inverse_dynamics", "inverse_dynamics_trajectory", "mass_matrix",
                          "vel_quadratic_forces"),
-    "robokit.errors": ("DivergenceError", "InputError", "RobokitError", "RobokitWarning"),
+    "robokit.errors": ("DivergenceError", "InputError", "PhysicalityWarning", "RobokitError", "RobokitWarning"),
     "robokit.ik": ("IKResult", "IKSolution", "ik_analytic", "ik_analytic_kind", "ikin_body", "ikin_space",
                    "solve_ik"),
     "robokit.kinematics": ("fkin_body", "fkin_space", "jacobian_body", "jacobian_space"),
@@ -79,7 +79,7 @@ if TYPE_CHECKING:  # what the names above are, for type checkers, IDEs and the d
         mass_matrix,
         vel_quadratic_forces,
     )
-    from robokit.errors import DivergenceError, InputError, RobokitError, RobokitWarning
+    from robokit.errors import DivergenceError, InputError, PhysicalityWarning, RobokitError, RobokitWarning
     from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
     from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
     from robokit.spatial import (
@@ -145,7 +145,7 @@ __all__ = list(SEED_FUNCTIONS) + [
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
     # errors and warnings
-    "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
+    "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "PhysicalityWarning",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
     "calibration", "collision", "motion",

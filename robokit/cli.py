@@ -261,10 +261,11 @@ def _is_input_error(exc: BaseException) -> bool:
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
                   file: TextIO | None = None, line: str | None = None) -> None:
-    """Warnings as one line each: ``robokit: note: ...`` (robokit's own) or ``robokit: warning: ...``."""
-    from robokit.errors import RobokitWarning
+    """Warnings as one line each: ``robokit: note: ...`` (robokit's own) or ``robokit: warning: ...``
+    (others, and a physically impossible inertia)."""
+    from robokit.errors import PhysicalityWarning, RobokitWarning
 
-    kind = "note" if issubclass(category, RobokitWarning) else "warning"
+    kind = "note" if issubclass(category, RobokitWarning) and not issubclass(category, PhysicalityWarning) else "warning"
     text = " ".join(str(message).split())
     if len(text) > MAX_MESSAGE:
         text = text[: MAX_MESSAGE - 3] + "..."

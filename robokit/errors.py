@@ -69,6 +69,25 @@ class RobokitWarning(UserWarning):
     """
 
 
+class PhysicalityWarning(RobokitWarning):
+    """A link's inertia is physically impossible: it is not positive definite (a negative
+    principal moment, or a zero mass with a nonzero rotational inertia) or its principal moments
+    break the triangle inequality ``I1 + I2 ≥ I3``. The robot loads with one such warning per
+    link, naming the link and the inequality with its numbers; ``robokit.load(..., strict=True)``
+    refuses it with an :class:`InputError` instead.
+
+    Attributes
+    ----------
+    args : tuple
+        ``(message,)``: ``"<file>: link 'link2': principal moments ... break the triangle inequality ..."``.
+
+    Examples
+    --------
+    >>> issubclass(PhysicalityWarning, RobokitWarning) and issubclass(PhysicalityWarning, UserWarning)
+    True
+    """
+
+
 class DivergenceError(RobokitError, ArithmeticError):
     """A simulation or iteration blew up (non-finite or runaway values): the model, the gains or
     the step make it unstable — not bad input.

@@ -19,16 +19,26 @@ Geometry of the robot
 Pairs checked
     Every robot geometry against every obstacle, and the robot's **self-collision pairs**:
     all pairs of geometries on different links except (a) adjacent links (parent and child
-    joint) and (b) pairs in contact in *every* one of :data:`SELF_SAMPLES` random
-    configurations (uniform in the joint limits, ``numpy.random.default_rng(SELF_SEED)``) —
-    MoveIt setup assistant's "adjacent" and "always in collision" rules — and, for a robot read
-    from MJCF, (c) every pair MuJoCo would never test (``robot.contact_rules``,
+    joint, or two links fixed to one joint) and (b) pairs in contact in *every* one of
+    :data:`SELF_SAMPLES` random configurations (uniform in the joint limits,
+    ``numpy.random.default_rng(SELF_SEED)``) — MoveIt setup assistant's "adjacent" and "always
+    in collision" rules. Pairs that never collided in the samples are listed too but are
+    *kept* (a folded arm must still be seen). For a robot read from MJCF, (c) every pair MuJoCo
+    would never test is skipped too (``robot.contact_rules``,
     :class:`robokit.description.mjcf.ContactRules`): ``(contype₁ & conaffinity₂) |
     (contype₂ & conaffinity₁)`` zero, geoms of bodies welded together, a body and its parent
     (MuJoCo's parent filter) and the ``<contact><exclude>`` body pairs; an MJCF geom whose masks
     share no bit with MuJoCo's default (contype = conaffinity = 1) is not checked against
-    obstacles either. ``describe()`` lists each such pair with its reason. Pairs that never
-    collided in the samples are listed too but are *kept* (a folded arm must still be seen).
+    obstacles either. ``describe()`` lists each such pair with its reason.
+
+    The filter works on pairs of geometries (shapes); the table reports **link pairs**, each
+    once, in one of three places: *adjacent*; *always in contact* — only when every shape pair
+    of the two links was in contact in every sample (the link pair is then not checked); or
+    *checked* — at least one of its shape pairs is checked, and when some of its shape pairs
+    were in contact in every sample (two shapes of one link, one of them overlapping the other
+    link at every configuration) those alone are skipped and the table says how many
+    (``partly``). A link is named by its body frame in the file (a geometry on a frame the
+    file does not name, e.g. an unnamed MJCF body, counts for the nearest named frame above).
     The result is computed once per robot and cached (:func:`self_collision_pairs`), always on
     the robot's own geometry (meshes, not hulls): a convex world checks the same pairs, which
     keeps it conservative. ``print(world.describe())`` shows the table.
@@ -80,11 +90,29 @@ def _se3(T: np.ndarray) -> Any:
     return pin.SE3(np.asarray(T[:3, :3], dtype=float).copy(), np.asarray(T[:3, 3], dtype=float).copy())
 
 
-def _link_name(model: Any, joint: int) -> str:
+def _reported(robot: Any) -> set[str]:
+    """The frame names the robot reports (``robot.frame_names``; every frame for other objects)."""
+    names = getattr(robot, "frame_names", None)
+    return set(names) if names is not None else {f.name for f in robot.model.frames}
+
+
+def _link_name(model: Any, joint: int, reported: set[str] | None = None) -> str:
     for f in model.frames:
-        if f.parentJoint == joint and str(f.type) == "BODY":
+        if f.parentJoint == joint and str(f.type) == "BODY" and (reported is None or f.name in reported):
             return str(f.name)
     return str(model.names[joint])
+
+
+def _frame_link_name(model: Any, frame: int, reported: set[str]) -> str:
+    """The name of a geometry's frame, or of its nearest ancestor frame the file names."""
+    k, seen = frame, 0
+    while k < len(model.frames) and model.frames[k].name not in reported and seen < len(model.frames):
+        if model.frames[k].parentFrame == k:
+            break
+        k, seen = model.frames[k].parentFrame, seen + 1
+    if k < len(model.frames) and model.frames[k].name in reported:
+        return str(model.frames[k].name)
+    return _link_name(model, model.frames[frame].parentJoint, reported) if frame < len(model.frames) else "?"
 
 
 def _capsule_model(robot: Any) -> Any:
@@ -106,7 +134,7 @@ def _capsule_model(robot: Any) -> Any:
         if not ends:
             ends = [np.asarray(tip_frame.placement.translation) if tip_frame.parentJoint == j else np.zeros(3)]
         r = radius.get(j, DEFAULT_CAPSULE_RADIUS)
-        name = _link_name(model, j)
+        name = _link_name(model, j, _reported(robot))
         for e_i, end in enumerate(ends):
             L = float(np.linalg.norm(end))
             if L < 1e-9:
@@ -163,11 +191,13 @@ def _robot_geometry(robot: Any, convex: bool = False) -> tuple[Any, list[str], s
                     go.geometry = hull
                     hulls += 1
             gm.addGeometryObject(go)
-        names = [str(robot.model.frames[g.parentFrame].name) if g.parentFrame < len(robot.model.frames)
-                 else _link_name(robot.model, g.parentJoint) for g in gm.geometryObjects]
+        reported = _reported(robot)
+        names = [_frame_link_name(robot.model, g.parentFrame, reported) if g.parentFrame < len(robot.model.frames)
+                 else _link_name(robot.model, g.parentJoint, reported) for g in gm.geometryObjects]
         return gm, names, "convex hulls of the collision meshes" if hulls else "collision meshes"
     gm = _capsule_model(robot)
-    return gm, [_link_name(robot.model, g.parentJoint) for g in gm.geometryObjects], "capsules"
+    reported = _reported(robot)
+    return gm, [_link_name(robot.model, g.parentJoint, reported) for g in gm.geometryObjects], "capsules"
 
 
 def _adjacent(model: Any, a: int, b: int) -> bool:
@@ -178,18 +208,23 @@ def _adjacent(model: Any, a: int, b: int) -> bool:
 class SelfCollisionPairs:
     """The self-collision pairs of one robot, computed once (see the module docstring).
 
+    Every link pair appears once, in ``checked``, ``adjacent`` or ``always`` (module docstring).
+
     Attributes
     ----------
     checked : list of (str, str)
-        The (link, link) name pairs that are checked.
+        The (link, link) name pairs that are checked (at least one of their shape pairs).
     adjacent : list of (str, str)
-        Pairs skipped as adjacent links (parent and child joint).
+        Link pairs skipped as adjacent (parent and child joint, or fixed to one joint).
     always : list of (str, str)
-        Pairs skipped because they were in contact in every sample.
+        Link pairs skipped because every one of their shape pairs was in contact in every sample.
     never : list of (str, str)
-        Checked pairs that never collided in the samples (kept, listed for information).
+        Checked link pairs that never collided in the samples (kept, listed for information).
+    partly : list of (str, str, int, int)
+        Checked link pairs some of whose shape pairs were in contact in every sample and are
+        skipped: ``(link, link, skipped, shape pairs)``.
     index_pairs : list of (int, int)
-        The checked pairs as indices of the robot's geometries (same order as ``checked``).
+        The checked shape pairs, as indices of the robot's geometries.
     samples, seed : int
         The sampling used (:data:`SELF_SAMPLES`, :data:`SELF_SEED`).
     geometry : str
@@ -215,13 +250,20 @@ class SelfCollisionPairs:
     seed: int
     geometry: str
     excluded: list[tuple[str, str, str]] = field(default_factory=list)
+    partly: list[tuple[str, str, int, int]] = field(default_factory=list)
 
     def __str__(self) -> str:
-        lines = [f"self-collision pairs ({self.geometry}; {self.samples} samples, seed {self.seed}):",
-                 f"  checked ({len(self.checked)}):"]
-        lines += [f"    {a} – {b}" for a, b in self.checked]
+        part = {(a, b): (k, n) for a, b, k, n in self.partly}
+        lines = [f"self-collision pairs ({self.geometry}; {self.samples} samples, seed {self.seed}), per link pair:",
+                 f"  checked ({len(self.checked)} link pairs, {len(self.index_pairs)} shape pairs):"]
+        for a, b in self.checked:
+            k_n = part.get((a, b))
+            extra = (f"  ({k_n[0]} of its {k_n[1]} shape pairs in contact in every sample: those skipped)"
+                     if k_n else "")
+            lines.append(f"    {a} – {b}{extra}")
         lines.append(f"  skipped, adjacent ({len(self.adjacent)}): " + ", ".join(f"{a}–{b}" for a, b in self.adjacent))
-        lines.append(f"  skipped, always in contact ({len(self.always)}): " + ", ".join(f"{a}–{b}" for a, b in self.always))
+        lines.append(f"  skipped, always in contact ({len(self.always)}; every shape pair in every sample): "
+                     + ", ".join(f"{a}–{b}" for a, b in self.always))
         lines.append(f"  checked but never colliding in the samples ({len(self.never)}): "
                      + ", ".join(f"{a}–{b}" for a, b in self.never))
         if self.excluded:
@@ -259,16 +301,27 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     gm, names, kind = _robot_geometry(robot)
     model = robot.model
     objs = list(gm.geometryObjects)
+    first: dict[str, int] = {}  # link name → index of its first geometry: the order a link pair is written in
+    for k, nm in enumerate(names):
+        first.setdefault(nm, k)
+
+    def key(i: int, j: int) -> tuple[str, str]:
+        a, b = names[i], names[j]
+        return (a, b) if first[a] <= first[b] else (b, a)
+
     rules = getattr(robot, "contact_rules", None)
-    adjacent, cand, excluded = [], [], []
+    adjacent: dict[tuple[str, str], None] = {}
+    cand, excluded = [], []
     for i in range(len(objs)):
         for j in range(i + 1, len(objs)):
             why = rules.why(objs[i].name, objs[j].name) if rules is not None else None
             if why is not None:
                 excluded.append((names[i], names[j], f"{objs[i].name} and {objs[j].name}: {why}"))
-            elif _adjacent(model, objs[i].parentJoint, objs[j].parentJoint):
-                if names[i] != names[j]:
-                    adjacent.append((names[i], names[j]))
+                continue
+            if names[i] == names[j]:
+                continue  # two shapes of one link
+            if _adjacent(model, objs[i].parentJoint, objs[j].parentJoint):
+                adjacent[key(i, j)] = None
             else:
                 cand.append((i, j))
     for i, j in cand:
@@ -281,11 +334,24 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
         q = robot.q_pin(robot.random_configuration(rng))
         pin.computeCollisions(model, data, gm, gd, q, False)
         counts += np.array([gd.collisionResults[k].isCollision() for k in range(len(cand))], dtype=int)
+    # per link pair: its shape pairs and their contact counts, in the order the pairs first appear
+    by_link: dict[tuple[str, str], list[tuple[tuple[int, int], int]]] = {}
+    for c, n in zip(cand, counts):
+        by_link.setdefault(key(*c), []).append((c, int(n)))
     keep = [c for c, n in zip(cand, counts) if n < SELF_SAMPLES]
-    always = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == SELF_SAMPLES]
-    never = [(names[i], names[j]) for (i, j), n in zip(cand, counts) if n == 0]
-    res = SelfCollisionPairs(checked=[(names[i], names[j]) for i, j in keep], adjacent=adjacent, always=always,
-                             never=never, index_pairs=keep, samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind,
+    checked, always, never, partly = [], [], [], []
+    for lp, shapes in by_link.items():
+        skipped = sum(1 for _, n in shapes if n == SELF_SAMPLES)
+        if skipped == len(shapes):
+            always.append(lp)
+            continue
+        checked.append(lp)
+        if skipped:
+            partly.append((lp[0], lp[1], skipped, len(shapes)))
+        if all(n == 0 for _, n in shapes):
+            never.append(lp)
+    res = SelfCollisionPairs(checked=checked, adjacent=list(adjacent), always=always, never=never, index_pairs=keep,
+                             samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind, partly=partly,
                              excluded=excluded)
     _CACHE[robot] = (None, res)
     return res
@@ -329,11 +395,14 @@ class WorldState:
 
 
 def _pairs_match(pairs: Any, names: list[str], n_robot: int) -> bool:
-    """Whether shipped self-collision pairs index this robot geometry (same names at the same indices)."""
-    if not isinstance(pairs, SelfCollisionPairs) or len(pairs.index_pairs) != len(pairs.checked):
+    """Whether shipped self-collision pairs index this robot geometry (each checked shape pair on
+    two links of a checked link pair, and every checked link pair with a shape pair)."""
+    if not isinstance(pairs, SelfCollisionPairs):
         return False
-    return all(0 <= i < j < n_robot and (names[i], names[j]) == tuple(pair)
-               for (i, j), pair in zip(pairs.index_pairs, pairs.checked))
+    links = {frozenset(p) for p in pairs.checked}
+    if not all(0 <= i < j < n_robot and frozenset((names[i], names[j])) in links for i, j in pairs.index_pairs):
+        return False
+    return links == {frozenset((names[i], names[j])) for i, j in pairs.index_pairs}
 
 
 def _rebuild(state: WorldState) -> "World":
@@ -627,10 +696,12 @@ class World:
         for x in qs:
             flags, _ = self._pairs_state(x)
             got: list[tuple[str, str]] = []
+            seen: set[frozenset[str]] = set()
             for k, (i, j) in enumerate(self._pairs):
                 if flags[k]:
                     p = (self._names[i], self._names[j])
-                    if p not in got:
+                    if frozenset(p) not in seen:  # a link pair once, whichever of its shapes touch
+                        seen.add(frozenset(p))
                         got.append(p)
             out.append(got)
         return out if batch else out[0]
@@ -660,8 +731,9 @@ class World:
                     if isinstance(g.geometry, coal.BVHModelBase)]
             if flat:
                 lines.append(f"  kept as meshes (flat, no convex hull): {', '.join(flat)}")
-        lines.append(f"  robot geometries: {self._n_robot}; obstacles: {len(self.obstacles)}; pairs checked: "
-                     f"{len(self._pairs)} ({len(self.self_pairs.index_pairs)} self, "
+        lines.append(f"  robot geometries: {self._n_robot}; obstacles: {len(self.obstacles)}; shape pairs checked: "
+                     f"{len(self._pairs)} ({len(self.self_pairs.index_pairs)} self, over "
+                     f"{len(self.self_pairs.checked)} link pairs; "
                      f"{len(self._pairs) - len(self.self_pairs.index_pairs)} robot–obstacle)")
         for nm, o in zip(self.obstacle_names, self.obstacles):
             lines.append(f"  obstacle {nm}: {o!r}")

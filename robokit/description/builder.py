@@ -5,8 +5,21 @@ r"""Building a :class:`~robokit.description.robot.Robot` from a Pinocchio model:
 * :func:`serial_chain` — the chain root → tip, every other joint locked at its neutral
   value and its bodies merged (``pinocchio.buildReducedModel``);
 * :func:`build_robot` — both of the above, the checks a chain must pass (at least one moving
-  joint, no ``<mimic>`` joint on it) and the :class:`~robokit.description.spec.RobotSpec`
-  the robot carries.
+  joint, no ``<mimic>`` joint on it), the physicality of every link that moves with the chain
+  (:mod:`robokit.description.inertia`: one :class:`~robokit.errors.PhysicalityWarning` per
+  impossible link, an :class:`~robokit.errors.InputError` under ``strict``) and the
+  :class:`~robokit.description.spec.RobotSpec` the robot carries.
+
+Names
+    Every name robokit reports — the default tip, ``robot.frame_names`` (the keys of
+    ``frame_poses``), the joints — is one the description gives. Pinocchio's parsers add
+    names of their own: ``universe`` (the world frame, index 0) for every format, and for MJCF
+    ``<parent>Bis`` (an unnamed body; all unnamed children of one body share it),
+    ``<body>_fixed`` (the fixed joint of a body without a joint) and ``<body>Joint_<k>`` (an
+    unnamed joint). A loader passes the names its file holds (``names=``); the default tip is
+    then chosen among them and only they are reported (a frame Pinocchio named stays in
+    ``robot.model`` for Pinocchio's use); a joint of the chain with an invented name is listed
+    in a note.
 
 The format modules (:mod:`~robokit.description.urdf_files`, :mod:`~robokit.description.xacro_files`,
 :mod:`~robokit.description.mjcf`, :mod:`~robokit.description.example_robots`,
@@ -15,15 +28,51 @@ The format modules (:mod:`~robokit.description.urdf_files`, :mod:`~robokit.descr
 """
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
+from typing import AbstractSet, Any, Iterable, Iterator, Mapping
 
 from numpy.typing import ArrayLike
 
+from robokit.description.frames import frame_index
+from robokit.description.inertia import link_inertias, physicality_problem
 from robokit.description.robot import Robot
 from robokit.description.spec import RobotSpec
-from robokit.errors import InputError, RobokitWarning
+from robokit.errors import InputError, PhysicalityWarning, RobokitWarning
 
-__all__ = ["choose_tip", "default_tip", "serial_chain", "build_robot"]
+__all__ = ["choose_tip", "default_tip", "serial_chain", "build_robot", "strict_loading", "physicality_problems"]
+
+#: Whether :func:`build_robot` refuses a physically impossible link (set by
+#: ``robokit.load(..., strict=True)`` through :func:`strict_loading`, so that every format's
+#: loader obeys it without an argument of its own).
+_STRICT: ContextVar[bool] = ContextVar("robokit_strict_loading", default=False)
+
+
+@contextmanager
+def strict_loading(strict: bool = True) -> Iterator[None]:
+    """Within this block, :func:`build_robot` raises :class:`~robokit.errors.InputError` where it
+    would warn :class:`~robokit.errors.PhysicalityWarning` (``robokit.load(..., strict=True)``).
+
+    Parameters
+    ----------
+    strict : bool
+        Refuse (True) or warn (False).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> with strict_loading():
+    ...     rk.load("ur5").n        # a physical robot loads as ever
+    6
+    """
+    token = _STRICT.set(bool(strict))
+    try:
+        yield
+    finally:
+        _STRICT.reset(token)
 
 _ONE_DOF = {
     "JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned",
@@ -40,17 +89,22 @@ def _frame_depth(model: Any, fid: int) -> int:
     return depth
 
 
-def _deepest_body_frame(model: Any, joint: int) -> str | None:
+def _deepest_body_frame(model: Any, joint: int, names: AbstractSet[str] | None = None) -> str | None:
+    """The deepest body frame on ``joint`` (the last of equally deep ones) — among the frames
+    named in ``names`` when given, else (no named body there) the joint's own frame if named."""
     best, best_depth = None, -1
     for fid, fr in enumerate(model.frames):
-        if fr.parentJoint == joint and fr.type == _body_type():
+        if fr.parentJoint == joint and fr.type == _body_type() and (names is None or fr.name in names):
             d = _frame_depth(model, fid)
             if d >= best_depth:
                 best, best_depth = fr.name, d
+    if best is None and names is not None and model.names[joint] in names and joint != 0:
+        return str(model.names[joint])
     return best
 
 
-def _tip_candidates(model: Any, children: Mapping[int, list[int]]) -> list[tuple[str, int]]:
+def _tip_candidates(model: Any, children: Mapping[int, list[int]],
+                    names: AbstractSet[str] | None = None) -> list[tuple[str, int]]:
     """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
     out = []
     for j in range(1, model.njoints):
@@ -58,13 +112,13 @@ def _tip_candidates(model: Any, children: Mapping[int, list[int]]) -> list[tuple
             depth, k = 0, j
             while k != 0:
                 depth, k = depth + 1, model.parents[k]
-            name = _deepest_body_frame(model, j)
+            name = _deepest_body_frame(model, j, names)
             if name is not None:
                 out.append((name, depth))
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
-def choose_tip(model: Any) -> tuple[str, str]:
+def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, str]:
     """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
 
     From the root, follow the joints while each has exactly one child joint. At a branch:
@@ -74,10 +128,15 @@ def choose_tip(model: Any) -> tuple[str, str]:
     branches tie for longest (two arms, four legs), there is no sensible default and
     :class:`~robokit.errors.InputError` lists the candidate tips with their chain lengths.
 
+    The tip is a body frame of that joint, the deepest one (a tool flange fixed to the last
+    link), chosen among ``names`` when given — never a frame Pinocchio named.
+
     Parameters
     ----------
     model : pinocchio.Model
         The kinematic tree.
+    names : set of str, optional
+        The names the description gives (links, bodies, joints, frames); None: every frame.
 
     Returns
     -------
@@ -107,26 +166,31 @@ def choose_tip(model: Any) -> tuple[str, str]:
         if depths[0][0] <= 1 and j != 0:
             break  # fingers
         if depths[0][0] == depths[1][0]:
-            cands = _tip_candidates(model, children)
+            cands = _tip_candidates(model, children, names)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
             raise InputError(
                 f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "
                 f"with tip= (--tip): {shown}"
             )
         j, chose = depths[0][1], True
-    tip = _deepest_body_frame(model, j)
+    tip = _deepest_body_frame(model, j, names)
+    while tip is None and j != 0 and names is not None:  # nothing named on the last joint: its parent's
+        j = model.parents[j]
+        tip = _deepest_body_frame(model, j, names)
     if tip is None:
         raise InputError("model: no body frame found for the chain's tip")
     note = f"the robot is a tree; chose its longest chain, to {tip!r} (give --tip for another)" if chose else ""
     return tip, note
 
 
-def default_tip(model: Any) -> str:
+def default_tip(model: Any, names: AbstractSet[str] | None = None) -> str:
     """The default tip frame of a model (see :func:`choose_tip`).
 
     Parameters
     ----------
     model : pinocchio.Model
+    names : set of str, optional
+        The names the description gives (the tip is one of them).
 
     Returns
     -------
@@ -138,7 +202,7 @@ def default_tip(model: Any) -> str:
     >>> default_tip(rk.load("rrr").model)
     'tool'
     """
-    return choose_tip(model)[0]
+    return choose_tip(model, names)[0]
 
 
 def _body_type() -> Any:
@@ -147,7 +211,8 @@ def _body_type() -> Any:
     return pin.FrameType.BODY
 
 
-def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> tuple[Any, list[str], list[Any]]:
+def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
+                 names: AbstractSet[str] | None = None) -> tuple[Any, list[str], list[Any]]:
     """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
 
     Parameters
@@ -158,6 +223,8 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
         The tip frame.
     geometry_models : iterable of pinocchio.GeometryModel
         Reduced with the model (their objects re-attached to the chain's joints).
+    names : set of str, optional
+        The names the description gives: the frames an unknown tip's message lists.
 
     Returns
     -------
@@ -185,10 +252,10 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
     import pinocchio as pin
 
     if not model.existFrame(tip):
-        bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY]
+        bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY and (names is None or f.name in names)]
         shown = ", ".join(bodies[-12:])
         raise InputError(f"tip: no frame {tip!r}; frames include: {shown}")
-    fid = model.getFrameId(tip)
+    fid = frame_index(model, tip)
     chain = []
     j = model.frames[fid].parentJoint
     while j != 0:
@@ -206,12 +273,32 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = ()) -> t
     lock = [j for j in range(1, model.njoints) if j not in chain]
     if not lock:
         return model, [], list(geometry_models)
+    locked = [model.names[j] for j in lock]
+    # Pinocchio's buildReducedModel looks frames up by name alone and throws when a joint and a link
+    # share one (a URDF may name a fixed joint after its child link); the link's frame and any other
+    # namesake but the joint's get a temporary unique name for the reduction and have it back after.
+    seen: dict[str, int] = {}
+    for f in model.frames:
+        seen[f.name] = seen.get(f.name, 0) + 1
+    renamed: dict[str, str] = {}
+    if any(count > 1 for count in seen.values()):
+        model = pin.Model(model)
+        joint_types = (pin.FrameType.JOINT, pin.FrameType.FIXED_JOINT)
+        for k, f in enumerate(model.frames):
+            if seen[f.name] > 1 and not (f.type in joint_types and f.name in model.names or
+                                         f.type == pin.FrameType.FIXED_JOINT and k == 0):
+                tmp = f"{f.name}\x00{k}"
+                renamed[tmp] = f.name
+                model.frames[k].name = tmp
     q0 = pin.neutral(model)
     if geometry_models:
         reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
-        return reduced, [model.names[j] for j in lock], list(geoms)
-    reduced = pin.buildReducedModel(model, lock, q0)
-    return reduced, [model.names[j] for j in lock], []
+    else:
+        reduced, geoms = pin.buildReducedModel(model, lock, q0), []
+    for f in reduced.frames:
+        if f.name in renamed:
+            f.name = renamed[f.name]
+    return reduced, locked, list(geoms)
 
 
 def one_line(exc: BaseException) -> str:
@@ -220,8 +307,59 @@ def one_line(exc: BaseException) -> str:
     return text.splitlines()[0][:200] if text else type(exc).__name__
 
 
+def _chain_joints(model: Any, tip: str) -> set[int]:
+    j = model.frames[frame_index(model, tip)].parentJoint
+    out = set()
+    while j != 0:
+        out.add(j)
+        j = model.parents[j]
+    return out
+
+
+def physicality_problems(model: Any, tip: str) -> list[tuple[str, str]]:
+    """The links that move with the chain root → ``tip`` and whose inertia is physically
+    impossible (:func:`~robokit.description.inertia.physicality_problem`).
+
+    A link counts when it moves with the chain: it is carried by a joint of the chain or by a
+    joint locked off it whose nearest chain joint is not the world. A link fixed to the world
+    (the base, or a branch locked to it) enters no quantity robokit computes and is not checked.
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+        The whole tree as the file describes it (before the chain is cut out).
+    tip : str
+        The chain's tip frame.
+
+    Returns
+    -------
+    list of (str, str)
+        ``(link, what is wrong)`` in the model's order.
+
+    Examples
+    --------
+    >>> import pinocchio as pin
+    >>> from robokit.description.models import model_path
+    >>> physicality_problems(pin.buildModelFromUrdf(str(model_path("rrr", ".urdf"))), "tool")
+    []
+    """
+    chain = _chain_joints(model, tip)
+    out = []
+    for li in link_inertias(model):
+        j = li.joint
+        while j != 0 and j not in chain:
+            j = model.parents[j]
+        if j == 0:
+            continue
+        problem = physicality_problem(li.mass, li.inertia, atol=li.atol, mass_atol=li.mass_atol)
+        if problem is not None:
+            out.append((li.link, problem))
+    return out
+
+
 def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
-                spec: RobotSpec, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None) -> Robot:
+                spec: RobotSpec, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None,
+                names: AbstractSet[str] | None = None) -> Robot:
     """The :class:`Robot` of the chain root → ``tip`` of a Pinocchio ``model``.
 
     Parameters
@@ -244,15 +382,22 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         :class:`~robokit.errors.RobokitWarning`.
     mimic : dict, optional
         ``{joint: joint it mimics}`` of the file's ``<mimic>`` joints.
+    names : set of str, optional
+        Every name the file gives (links, bodies, joints, frames, sites). The default tip is
+        chosen among them and ``robot.frame_names`` holds only them (module docstring); None
+        reports every frame of the model but Pinocchio's ``universe``.
 
     Returns
     -------
     Robot
+        Its ``notes`` hold the loader's notes, then one line per physically impossible link
+        (each also warned as :class:`~robokit.errors.PhysicalityWarning`).
 
     Raises
     ------
     InputError
-        The chain has no moving joint, or a mimic joint is on it.
+        The chain has no moving joint, or a mimic joint is on it; a physically impossible link
+        when loading strictly (:func:`strict_loading`, ``robokit.load(..., strict=True)``).
 
     Examples
     --------
@@ -269,11 +414,11 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
     source = spec.describe()
     notes = list(notes)
     if tip is None:
-        tip, note = choose_tip(model)
+        tip, note = choose_tip(model, names)
         if note:
             notes.append(f"{name}: {note}")
     valid = [g for g in geoms if g is not None]
-    chain, locked, new_geoms = serial_chain(model, tip, valid)
+    chain, locked, new_geoms = serial_chain(model, tip, valid, names)
     if chain.nv == 0:
         raise InputError(f"{source}: the chain to {tip!r} has no moving joint; robokit needs at least one")
     for jn, target in (mimic or {}).items():
@@ -284,12 +429,27 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
             )
     if mimic and any(j in locked for j in mimic):
         notes.append(f"{name}: mimic joints off the chain locked: {', '.join(j for j in mimic if j in locked)}")
+    if names is not None:
+        invented = [j for j in list(chain.names)[1:] if j not in names] + [j for j in locked if j not in names]
+        if invented:
+            notes.append(f"{source}: joint names not in the file (given by Pinocchio's parser to unnamed joints): "
+                         f"{', '.join(invented)}")
+    bad = physicality_problems(model, tip)
+    if bad and _STRICT.get():
+        shown = "; ".join(f"link {link!r}: {problem}" for link, problem in bad)
+        raise InputError(f"{source}: physically impossible inertia (strict=True refuses it): {shown}")
+    physical = [f"{source}: link {link!r}: {problem}" for link, problem in bad]
     it = iter(new_geoms)
     geoms = [next(it) if g is not None else None for g in geoms]
     robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
                   configurations=configurations, locked_joints=locked, source=source)
     robot.spec = spec
+    robot.frame_names = tuple(dict.fromkeys(f.name for k, f in enumerate(chain.frames)
+                                            if (f.name in names if names is not None else k != 0)))
     robot.notes.extend(notes)
+    robot.notes.extend(physical)
     for note in notes:
         warnings.warn(note, RobokitWarning, stacklevel=3)
+    for note in physical:
+        warnings.warn(note, PhysicalityWarning, stacklevel=3)
     return robot

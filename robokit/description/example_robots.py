@@ -11,6 +11,7 @@ from typing import Any, Literal
 import numpy as np
 
 from robokit.description.builder import build_robot, choose_tip, one_line
+from robokit.description.frames import frame_index
 from robokit.description.robot import Robot
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
@@ -86,10 +87,13 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
     except Exception as exc:  # a dependency's failure is still one robokit line
         raise InputError(f"model {name!r}: example-robot-data could not load it ({one_line(exc)})") from None
     model = wrapper.model
+    # The URDF's own names: Pinocchio's URDF parser names frames and joints after the file's
+    # links and joints and adds only the world frame 'universe' (frame 0).
+    names = frozenset(f.name for f in list(model.frames)[1:]) | frozenset(list(model.names)[1:])
     tip = tip or EXAMPLE_ROBOT_TIPS.get(name)
     if tip is None:
         try:
-            tip, note = choose_tip(model)
+            tip, note = choose_tip(model, names)
         except ValueError as exc:
             raise InputError(f"model {name!r}: {exc}") from None
         if note:
@@ -98,7 +102,7 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
     q0 = getattr(wrapper, "q0", None)
     chain_names = []
     if model.existFrame(tip):
-        j = model.frames[model.getFrameId(tip)].parentJoint
+        j = model.frames[frame_index(model, tip)].parentJoint
         while j != 0:
             chain_names.append(model.names[j])
             j = model.parents[j]
@@ -111,8 +115,15 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
             angles.append(float(np.arctan2(qs[1], qs[0])) if jm.nq == 2 else float(qs[0]))
         if np.any(angles):
             configurations["ready"] = np.array(angles)
+    if chain_names:
+        arm = [(jn, float(model.armature[model.joints[model.getJointId(jn)].idx_v])) for jn in chain_names]
+        arm = [(jn, a) for jn, a in arm if a != 0.0]
+        if arm:  # the SRDF's rotor inertia · gear ratio², which Pinocchio adds to M and RNEA
+            shown = ", ".join(f"{jn} {a:.4g}" for jn, a in arm)
+            notes.append(f"{name}: reflected rotor inertia (example-robot-data's SRDF: rotorInertia · "
+                         f"rotorGearRatio²) is in M and RNEA as armature: {shown} (kg·m²; kg for a prismatic joint)")
     return build_robot(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
-                       spec, notes)
+                       spec, notes, names=names)
 
 
 class _quiet:

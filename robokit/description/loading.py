@@ -19,7 +19,9 @@ name
 
 ``tip`` goes to every loader (a DH robot's tip is always ``tool``). An option the format does
 not use is refused (``InputError`` naming the option and the formats that take it), so a
-misplaced option is never silently ignored.
+misplaced option is never silently ignored. ``strict`` applies to every format read from a
+file (and to example-robot-data): a link whose inertia is physically impossible, which loads
+with a :class:`~robokit.errors.PhysicalityWarning`, is refused with an ``InputError``.
 
 Every robot carries the :class:`~robokit.description.spec.RobotSpec` it was loaded from
 (``robot.spec``); ``load(spec)`` dispatches on ``spec.kind`` to the same loader with the same
@@ -29,8 +31,11 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+
+import numpy as np
 from typing import Any, Callable, Mapping, Sequence
 
+from robokit.description.builder import strict_loading
 from robokit.description.dh import DHTable
 from robokit.description.dh_robots import load_dh_file, load_dh_text, load_shipped, robot_from_dh
 from robokit.description.example_robots import example_robot_names, load_example_robot
@@ -102,7 +107,7 @@ def _options_for(what: str, accepted: tuple[str, ...], options: Mapping[str, Any
 
 def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip: str | None = None, *,
          package_dirs: Sequence[str | os.PathLike[str]] | None = None, xacro_args: Mapping[str, str] | None = None,
-         allow_outside_meshes: bool = False, reflected_inertia: bool = True) -> Robot:
+         allow_outside_meshes: bool = False, reflected_inertia: bool = True, strict: bool = False) -> Robot:
     """Load a robot: a shipped model name, a DH ``.yaml``, a ``.urdf``, a ``.xacro``/``.urdf.xacro``,
     an MJCF ``.xml``, an SDFormat ``.sdf``/``.world``, an example-robot-data name, a :class:`DHTable`
     or a :class:`RobotSpec`.
@@ -131,6 +136,11 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
         Model each joint's reflected rotor inertia in M and inverse dynamics (default True):
         MJCF's joint ``armature``, as MuJoCo adds it, and SDFormat's Drake
         ``drake:rotor_inertia · drake:gear_ratio²``, as Drake adds it. False leaves it out.
+    strict : bool
+        Refuse a robot with a physically impossible link inertia (not positive definite, or
+        principal moments breaking the triangle inequality) instead of loading it with a
+        :class:`~robokit.errors.PhysicalityWarning` per link. A DH table's inertias are the
+        course's parameter sets and are not checked.
 
     Returns
     -------
@@ -142,7 +152,8 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     ------
     InputError
         An unknown name, a file the format's loader refuses, an option the format does not
-        take, options given together with a RobotSpec (the spec holds its own).
+        take, options given together with a RobotSpec (the spec holds its own); with
+        ``strict=True``, a physically impossible link.
 
     Examples
     --------
@@ -153,6 +164,16 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
     >>> robokit.load(robot.spec).n
     6
     """
+    if not isinstance(strict, (bool, np.bool_)):
+        raise InputError(f"strict: expected True or False, got {strict!r}")
+    with strict_loading(bool(strict)):
+        return _load(name_or_path, tip, package_dirs=package_dirs, xacro_args=xacro_args,
+                     allow_outside_meshes=allow_outside_meshes, reflected_inertia=reflected_inertia)
+
+
+def _load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip: str | None, *,
+          package_dirs: Sequence[str | os.PathLike[str]] | None, xacro_args: Mapping[str, str] | None,
+          allow_outside_meshes: bool, reflected_inertia: bool) -> Robot:
     options = dict(package_dirs=package_dirs, xacro_args=xacro_args, allow_outside_meshes=allow_outside_meshes,
                    reflected_inertia=reflected_inertia)
     if isinstance(name_or_path, Robot):

@@ -32,6 +32,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit.description.inertia import principal_moments, triangle_margin
 from robokit.description.mjcf import CUSTOM_INERTIAL_PREFIX
 from robokit._deprecation import deprecated_alias
 
@@ -76,12 +77,12 @@ def _pose_attrs(T: np.ndarray) -> str:
 
 
 def _mujoco_accepts(mass: float, I: np.ndarray) -> bool:
-    """Would MuJoCo's compiler take this moving body's inertial as written?"""
-    ev = np.linalg.eigvalsh(I)
-    if mass <= _MASS_FLOOR * 1e-3 or ev.min() <= _INERTIA_FLOOR * 1e-3:
+    """Would MuJoCo's compiler take this moving body's inertial as written? (Its floors on mass
+    and moments, and the triangle inequality with a margin that survives MuJoCo's own rounding.)"""
+    ev = principal_moments(I)
+    if mass <= _MASS_FLOOR * 1e-3 or ev[0] <= _INERTIA_FLOOR * 1e-3:
         return False
-    a, b, c = np.sort(ev)
-    return a + b >= c * (1 + 1e-9)
+    return triangle_margin(ev) >= 1e-9 * ev[2]
 
 
 def _regularized(mass: float, I: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
@@ -91,9 +92,8 @@ def _regularized(mass: float, I: np.ndarray) -> tuple[float, np.ndarray, np.ndar
         V[:, 0] = -V[:, 0]
     ev = np.maximum(ev, _INERTIA_FLOOR)
     order = np.argsort(ev)
-    a, b, c = ev[order]
-    if a + b < c:
-        gap = 0.5 * (c - a - b) * (1 + 1e-9)
+    if triangle_margin(ev) < 0:
+        gap = -0.5 * triangle_margin(ev) * (1 + 1e-9)
         ev[order[0]] += gap
         ev[order[1]] += gap
     return max(mass, _MASS_FLOOR), ev, V

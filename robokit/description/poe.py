@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 from robokit.spatial import lie
+from robokit.description.frames import frame_index
 from robokit.errors import InputError
 
 
@@ -154,7 +155,7 @@ def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> Po
     pin.forwardKinematics(model, data, q0)
     pin.computeJointJacobians(model, data, q0)
     pin.updateFramePlacements(model, data)
-    fid = model.getFrameId(tip)
+    fid = frame_index(model, tip)
     M = data.oMf[fid].homogeneous.copy()
     Jw = np.asarray(data.J).reshape(6, -1).copy()  # world-frame joint Jacobian at zero: columns are space screws (v, ω)
     Slist = np.vstack([Jw[3:], Jw[:3]])

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_joints, check_reference, ndim
 from robokit.errors import InputError
 from robokit.description.dh import DHTable
+from robokit.description.frames import frame_index
 from robokit.description.poe import PoEParams, poe_from_model
 
 if TYPE_CHECKING:
@@ -90,6 +91,13 @@ class Robot:
         The joints locked off the chain.
     source : str
         Where it came from.
+    frame_names : tuple of str
+        The frames robokit reports (``frame_poses``' keys, the frames a message lists): for a
+        robot loaded from a file, the frames its file names (Pinocchio's own names, such as
+        ``universe``, left out; they stay in ``model``); for a Robot built by hand, every frame.
+    notes : list of str
+        What the loader did on the user's behalf or found questionable (each was also warned
+        once as a :class:`~robokit.errors.RobokitWarning`).
     spec : RobotSpec or None
         The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
         (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
@@ -123,7 +131,7 @@ class Robot:
         self.visual_model = visual_model
         self.collision_model = collision_model
         self.tip = tip
-        self.tip_id = model.getFrameId(tip)
+        self.tip_id = frame_index(model, tip)
         self.dh = dh
         self.poe: PoEParams = poe_from_model(model, tip)
         self.n = model.nv
@@ -133,6 +141,7 @@ class Robot:
         self.locked_joints = tuple(locked_joints)
         self.source = source
         self.notes: list[str] = []  # what was done on the user's behalf (printed by the CLI)
+        self.frame_names: tuple[str, ...] = tuple(dict.fromkeys(f.name for f in model.frames))  # build_robot narrows
         self._same_coords = model.nq == model.nv
         self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
         self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]
@@ -185,9 +194,9 @@ class Robot:
         fid = self._frame_ids.get(frame)
         if fid is None:
             if not self.model.existFrame(frame):
-                names = [f.name for f in self.model.frames]
-                raise InputError(f"frame: no frame {frame!r} in {self.name}; frames: {', '.join(names[-15:])}")
-            fid = self._frame_ids[frame] = self.model.getFrameId(frame)
+                raise InputError(f"frame: no frame {frame!r} in {self.name}; frames: "
+                                 f"{', '.join(self.frame_names[-15:])}")
+            fid = self._frame_ids[frame] = frame_index(self.model, frame)
         return fid
 
     def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
@@ -213,10 +222,10 @@ class Robot:
         return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
-        """Poses (4×4) of every frame, by name, at θ."""
+        """Poses (4×4, in the root frame) of the frames :attr:`frame_names`, by name, at θ."""
         pin = self._pin
         pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
-        return {f.name: self.data.oMf[i].homogeneous for i, f in enumerate(self.model.frames)}
+        return {name: self.data.oMf[self.frame_id(name)].homogeneous for name in self.frame_names}
 
     _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
 
@@ -334,8 +343,16 @@ class Robot:
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
         return rng.uniform(lo, hi)
 
+    #: ``spec.kind`` → the format the repr names.
+    _FORMATS = {"urdf": "URDF", "xacro": "xacro", "mjcf": "MJCF", "sdf": "SDF", "example-robot-data":
+                "URDF of example-robot-data"}
+
     def __repr__(self) -> str:
-        fmt = {"mjcf": "MJCF", "xacro": "xacro", "sdf": "SDF"}.get(getattr(self.spec, "kind", ""), "URDF")
-        kind = f"DH {self.dh.convention}" if self.dh is not None else f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
+        if self.dh is not None:
+            kind = f"DH {self.dh.convention}"
+        else:
+            spec_kind = self.spec.kind if self.spec is not None else None
+            fmt = self._FORMATS.get(spec_kind or "", spec_kind.upper() if spec_kind else "Pinocchio model")
+            kind = f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 

@@ -18,6 +18,12 @@ joint, and returns the document with every mesh reference resolved:
 
 Mimic joints are reported (``mimic`` in the result) so that the loader can refuse one on
 the chain (robokit's joints are independent) and lock one off it.
+
+Nothing is dropped silently: every element the file holds that robokit's model does not use
+(:data:`MODELLED` lists what it uses) — ``<transmission>``, ``<ros2_control>``, ``<gazebo>``
+(and its plugins), ``<sensor>``, a joint's ``<safety_controller>``, ``<calibration>`` and
+nonzero ``<dynamics damping/friction>``, a link's ``<contact>``, anything unknown — is listed
+in ``unmodelled``, one note per element kind, which the loader shows once.
 """
 from __future__ import annotations
 
@@ -48,6 +54,28 @@ MAX_MAGNITUDE = 1e12
 
 _JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
 
+#: The children of ``<robot>``, ``<link>`` and ``<joint>`` that robokit's model uses (a joint's
+#: ``<mimic>`` is handled by the loader: refused on the chain, locked off it, with a note).
+MODELLED = {
+    "robot": {"link", "joint", "material"},
+    "link": {"inertial", "visual", "collision"},
+    "joint": {"origin", "parent", "child", "axis", "limit", "mimic"},
+}
+
+#: Why an element is not modelled, by tag (others: "not part of robokit's model").
+_WHY = {
+    "transmission": "actuator transmissions are not part of robokit's rigid-body model",
+    "ros2_control": "controller hardware interfaces are not part of robokit's model",
+    "gazebo": "simulator settings and plugins are not part of robokit's model",
+    "sensor": "sensors are not part of robokit's model",
+    "safety_controller": "soft limits are not applied; robot.qlim holds the <limit> values",
+    "calibration": "calibration reference positions are not applied",
+    "dynamics": ("robokit's dynamics (rnea, crba, aba) are rigid-body only; the values stay in "
+                 "robot.model.damping and robot.model.friction"),
+    "joint_properties": "joint damping/friction are not part of robokit's rigid-body dynamics",
+    "contact": "contact and friction parameters are not part of robokit's model",
+}
+
 
 @dataclass
 class UrdfDocument:
@@ -68,13 +96,18 @@ class UrdfDocument:
     warnings : list of str
         One line per remark (e.g. a mesh not found or too large: the link is drawn without it);
         also issued as :class:`~robokit.errors.RobokitWarning`.
+    names : frozenset of str
+        Every link and joint name of the file (the names robokit may report).
+    unmodelled : list of (str, str)
+        ``(tag, note)``: one note per kind of element read but not modelled (not issued here;
+        the loader shows them).
 
     Examples
     --------
     >>> from robokit.description.models import model_path
     >>> doc = read_urdf(model_path("twolink", ".urdf"))
-    >>> doc.name, doc.mimic, doc.warnings
-    ('twolink', {}, [])
+    >>> doc.name, doc.mimic, doc.warnings, doc.unmodelled
+    ('twolink', {}, [], [])
     """
 
     path: Path
@@ -83,6 +116,8 @@ class UrdfDocument:
     mimic: dict = field(default_factory=dict)
     package_dirs: list = field(default_factory=list)
     warnings: list = field(default_factory=list)
+    names: frozenset = frozenset()
+    unmodelled: list = field(default_factory=list)
 
 
 def _fail(path: str | os.PathLike[str], msg: str) -> NoReturn:
@@ -359,7 +394,64 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
     for note in notes:
         warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=2)
     xml = ET.tostring(root, encoding="unicode")
-    return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes)
+    return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes,
+                        frozenset(links) | frozenset(joints), _unmodelled(root, path))
+
+
+def _shown(names: Sequence[str], limit: int = 6) -> str:
+    quoted = [repr(n) for n in names[:limit]]
+    return ", ".join(quoted) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+
+
+def _nonzero(el: ET.Element, keys: Sequence[str]) -> list[str]:
+    out = []
+    for key in keys:
+        try:
+            if float(el.get(key) or 0.0) != 0.0:
+                out.append(f"{key}={el.get(key)}")
+        except ValueError:
+            out.append(f"{key}={el.get(key)!r}")
+    return out
+
+
+def _unmodelled(root: ET.Element, path: Path) -> list[tuple[str, str]]:
+    """One ``(tag, note)`` per kind of element the file holds and robokit's model does not use
+    (a kind: a tag directly under ``<robot>``, or under its links, or under its joints)."""
+    found: dict[tuple[str, str], list[str]] = {}  # (where: "robot"/"link"/"joint", tag) → owners
+    detail: dict[str, set[str]] = {}
+    for el in root:
+        if not isinstance(el.tag, str) or el.tag in MODELLED["robot"]:
+            continue
+        found.setdefault(("robot", el.tag), []).append(el.get("name") or "")
+        if el.tag in ("gazebo", "ros2_control"):
+            for plugin in el.iter("plugin"):
+                text = plugin.get("filename") or plugin.get("name") or (plugin.text or "").strip()
+                detail.setdefault(el.tag, set()).add(text or "plugin")
+        elif el.tag == "sensor":
+            detail.setdefault(el.tag, set()).add(el.get("type") or "sensor")
+    for kind in ("link", "joint"):
+        for el in root.findall(kind):
+            for child in el:
+                if not isinstance(child.tag, str) or child.tag in MODELLED[kind]:
+                    continue
+                if child.tag == "dynamics":
+                    values = _nonzero(child, ("damping", "friction"))
+                    if not values:
+                        continue  # zeros: nothing left out
+                    detail.setdefault("dynamics", set()).update(values)
+                found.setdefault((kind, child.tag), []).append(el.get("name") or "?")
+    out = []
+    for (where, tag), owners in found.items():
+        if where == "robot":
+            what = f"<{tag}>" + (f" ({len(owners)})" if len(owners) > 1 else "")
+        else:
+            what = f"<{tag}> of {where}{'s' if len(owners) > 1 else ''} {_shown(owners)}"
+        extra = sorted(detail.get(tag, ()))
+        if extra:
+            what += f" [{', '.join(extra[:6])}{', …' if len(extra) > 6 else ''}]"
+        why = _WHY.get(tag, "not part of robokit's model")
+        out.append((tag, f"{path}: {what} read but not modelled: {why}"))
+    return out
 
 
 def capture_native_output() -> _NativeCapture:

@@ -181,7 +181,7 @@ class Scene:
             if r.dh is not None:
                 names = [f"dh_{i}" for i in range(r.dh.n + 1)] + ["tool"]
             else:
-                names = [r.model.frames[r.model.getFrameId(n)].name for n in r.joint_names
+                names = [r.model.frames[r.frame_id(n)].name for n in r.joint_names
                          if r.model.existFrame(n)] + [r.tip]
         poses = r.frame_poses(self.q)
         scale = scale or 0.12 * self._size()
