@@ -83,11 +83,6 @@ PYBULLET_DATA = (
 
 #: (source, engine) → why it does not agree yet. An entry that agrees fails the test (remove it).
 KNOWN: dict[tuple[str, str], str] = {
-    ("pybullet_data/mjcf/pusher.xml", "MuJoCo"): "inertiafromgeom: mass from the geoms (issue 38 part 2)",
-    ("pybullet_data/mjcf/striker.xml", "MuJoCo"): "inertiafromgeom: mass from the geoms (issue 38 part 2)",
-    ("pybullet_data/mjcf/thrower.xml", "MuJoCo"): ("inertiafromgeom (issue 38 part 2); its default tip "
-                                                   "'wrist_roll_linkBis' is Pinocchio's name for unnamed bodies: the "
-                                                   "MJCF loader does not pass the file's names to build_robot yet"),
 }
 
 QUANTITIES = ("FK", "J", "RNEA", "M")
