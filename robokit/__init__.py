@@ -34,7 +34,7 @@ from robokit.dynamics import (
     mass_matrix,
     vel_quadratic_forces,
 )
-from robokit.errors import DivergenceError, InputError, RobokitError, RobokitWarning
+from robokit.errors import DegreesWarning, DivergenceError, InputError, RobokitError, RobokitWarning
 from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
 from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
 from robokit.spatial import (
@@ -43,6 +43,7 @@ from robokit.spatial import (
     adjoint,
     axis_ang_3,
     axis_ang_6,
+    deg2rad,
     distance_to_SE3,
     distance_to_SO3,
     euler_to_matrix,
@@ -55,6 +56,7 @@ from robokit.spatial import (
     normalize,
     project_to_SE3,
     project_to_SO3,
+    rad2deg,
     rot_inv,
     se3_to_vec,
     so3_to_vec,
@@ -107,7 +109,9 @@ __all__ = list(SEED_FUNCTIONS) + [
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
     # errors and warnings
-    "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
+    "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "DegreesWarning",
+    # units
+    "deg2rad", "rad2deg",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
     "calibration", "collision", "motion",
