@@ -155,7 +155,7 @@ class Robot:
         self._deg_lo, self._deg_hi = radian_ranges(revolute, self.qlim)
         self._deg_state = radian_ranges(revolute, self.qlim, exempt=continuous)
         # the fast paths' test of q: hypot(*q) <= r (one C call; NaN or inf fail it), or every entry in
-        # [lo1, hi1] with a finite sum, implies that q is finite and passes the degrees check
+        # [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
         self._r1, self._lo1, self._hi1 = fast_bounds(self._deg_lo, self._deg_hi)
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
@@ -245,8 +245,8 @@ class Robot:
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
         pin = self._pin
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_frame_pose
@@ -277,8 +277,8 @@ class Robot:
         """
         rf = self._ref_frames.get(reference)
         if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and self._plain and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and self._plain and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             # the fast path (tip frame, finite float64 (n,) q, no continuous joints): one Pinocchio call
             # and the (v; ω) → (ω; v) row swap, nothing else
             return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
@@ -287,8 +287,8 @@ class Robot:
             canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
             rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_jacobian
@@ -324,16 +324,16 @@ class Robot:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
-                and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             M = self._pin.crba(self.model, self.data, q)  # the fast path: a new array, its upper triangle filled
             if M.flags.c_contiguous:
                 flat = M.ravel()  # a view of M
                 flat[self._lower_flat] = flat[self._upper_flat]
                 return M
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_crba
@@ -370,8 +370,8 @@ class Robot:
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
         if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1
-                     or (isfinite(sum(t)) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
