@@ -23,6 +23,7 @@ from robokit.calibration import (
 )
 from robokit.control import SimResult, computed_torque, simulate, simulate_control
 from robokit.description import DHLink, DHTable, PoEParams, Robot, RobotLike, RobotSpec, dh_from_urdf, load, urdf_to_dh
+from robokit.description.loading import models
 from robokit.dynamics import (
     end_effector_forces,
     euler_step,
@@ -103,7 +104,7 @@ SEED_FUNCTIONS = (
 
 __all__ = list(SEED_FUNCTIONS) + [
     # entry points
-    "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "dh_from_urdf",
+    "load", "models", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "dh_from_urdf",
     "calibrate", "identify_dynamics", "excitation_trajectory", "plan", "retime",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",

@@ -203,9 +203,10 @@ def warn_user(message: str, category: type[Warning]) -> bool:
 
     The check's *owner* is the first function above the check that is not one of its helpers
     (a private ``_x`` function of robokit or one of :data:`CHECK_HELPERS`): the entry point whose
-    argument is checked. It warns only when the owner was called from outside robokit; robokit's
-    own calls with values it computed (an IK iteration, a simulation's state after many turns)
-    stay silent — an entry point that passes a user's values on checks them itself first.
+    argument is checked. It warns only when the owner was called from outside robokit (directly,
+    or through robokit's private wrappers); robokit's own calls from a public function with values
+    it computed (an IK iteration, a simulation's state after many turns) stay silent — an entry
+    point that passes a user's values on to another checks them itself first.
 
     Parameters
     ----------
@@ -230,8 +231,11 @@ def warn_user(message: str, category: type[Warning]) -> bool:
     if frame is None or not _in_robokit(frame):  # a helper called straight from outside: warn there
         warnings.warn(message, category, stacklevel=level)
         return True
-    caller = frame.f_back  # the owner's caller
+    caller = frame.f_back  # the owner's caller, through robokit's private wrappers
+    level += 1
+    while caller is not None and _in_robokit(caller) and caller.f_code.co_name.startswith("_"):
+        caller, level = caller.f_back, level + 1
     if caller is None or _in_robokit(caller):
-        return False  # robokit's own call: its values are its own
-    warnings.warn(message, category, stacklevel=level + 1)
+        return False  # robokit's own call (a public function's computed values): its values are its own
+    warnings.warn(message, category, stacklevel=level)
     return True
