@@ -446,9 +446,53 @@ class Scene:
         return self
 
     # ------------------------------------------------------------------ output
-    def html(self) -> str:
-        """The scene as one self-contained HTML page (no server needed to view it)."""
-        return self.vis.static_html()
+    def html(self, mesh_cell: float | None = 0.002) -> str:
+        """The scene as one self-contained HTML page (no server needed to view it).
+
+        Meshes (visual and collision) go into the page decimated by vertex clustering with cubes of ``mesh_cell`` (m), as
+        in the teach page (:mod:`robokit.viz._meshes`: every kept vertex within ``cell·√3`` of the
+        surface, so at 2 mm the picture is unchanged): the Panda's page is 3.5 MB instead of 15.1 MB
+        with its mesh files as they are, the UR5's 2.1 MB instead of 10.1 MB. The live scene keeps
+        the full meshes.
+
+        Parameters
+        ----------
+        mesh_cell : float or None, optional
+            Cube side (m) of the decimation; None writes the mesh files as they are.
+
+        Returns
+        -------
+        str
+            The HTML page.
+
+        Examples
+        --------
+        >>> with Scene("panda") as s:   # doctest: +SKIP
+        ...     round(len(s.show().html()) / 1e6, 1)   # MB
+        3.5
+        """
+        if mesh_cell is None:
+            return self.vis.static_html()
+        import pinocchio as pin
+
+        from robokit.viz._meshes import decimated_visuals, draw_parts
+
+        kinds = ((self.viz.visual_model, pin.GeometryType.VISUAL), (self.viz.collision_model, pin.GeometryType.COLLISION))
+        swapped = [(go, parts, kind) for model, kind in kinds if model is not None
+                   for go, parts in decimated_visuals(model, mesh_cell)]
+        try:
+            for go, parts, kind in swapped:
+                node = self.vis[self.viz.getViewerNodeName(go, kind)]
+                node.delete()  # the mesh file's object; the parts are drawn at the same node
+                draw_parts(node, parts)
+            self.viz.display(self.robot.q_pin(self.q))  # the nodes' placements, deleted with them
+            return self.vis.static_html()
+        finally:  # the live scene gets its full meshes back
+            for go, _, kind in swapped:
+                self.vis[self.viz.getViewerNodeName(go, kind)].delete()
+                self.viz.loadViewerGeometryObject(go, kind)
+            if swapped:
+                self.viz.display(self.robot.q_pin(self.q))
 
     def notebook(self, height: int = 480, path: str | os.PathLike[str] | None = None) -> Any:
         """Show the scene in a Jupyter notebook: the self-contained page is written to a file

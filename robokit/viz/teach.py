@@ -194,7 +194,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     import pinocchio as pin
     from pinocchio.visualize import MeshcatVisualizer
 
-    from robokit.viz._meshes import mesh_parts
+    from robokit.viz._meshes import decimated_visuals, draw_parts
     from robokit.viz._labels import label_sprite
 
     window = _RecordingWindow()
@@ -217,20 +217,11 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
              for go in visual.geometryObjects}
     # mesh files: replaced by decimated triangle lists (far smaller than the files' text, and
     # placed exactly as Pinocchio reads them), one coloured part per material
-    meshed = {}
-    for go in visual.geometryObjects:
-        ext = Path(go.meshPath).suffix.lower() if go.meshPath else ""
-        if ext in (".dae", ".stl", ".obj") and Path(go.meshPath).is_file():
-            override = np.asarray(go.meshColor, float) if (go.overrideMaterial or ext == ".stl") else None
-            meshed[paths[go.name]] = mesh_parts(go.meshPath, mesh_cell, override)
+    meshed = {paths[go.name]: parts for go, parts in decimated_visuals(visual, mesh_cell)}
     window.commands = [c for c in window.commands
                        if not (c.get("type") == "set_object" and c.get("path") in meshed)]
     for path, parts in meshed.items():
-        node = meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/"))))
-        for i, (V, F, rgba) in enumerate(parts):
-            color = int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
-            node[f"part{i}"].set_object(g.TriangularMeshGeometry(V, F),
-                                        g.MeshPhongMaterial(color=color, opacity=float(rgba[3]), shininess=30))
+        draw_parts(meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/")))), parts)
     frame_paths = {}
     for name in frame_names:
         node = vis["frames"][name]

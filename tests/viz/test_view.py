@@ -191,3 +191,42 @@ def test_ground_grid_lies_under_the_robot_sized_to_its_reach(model):
     assert 4 <= half / spacing <= 12
     hidden = [c for c in rec.commands if c["type"] == "set_property" and c["path"] == "/Grid"]
     assert hidden and hidden[-1]["property"] == "visible" and hidden[-1]["value"] is False
+
+
+def test_pages_carry_decimated_meshes_and_the_live_scene_keeps_the_files():
+    """Scene.html() writes meshes (visual and collision) decimated as the teach page does (the UR5's
+    page was 10 MB with its mesh files as they are): the same cluster_decimate parts, a fraction of the
+    size; the live scene gets its full meshes back."""
+    import base64
+    import re
+
+    import umsgpack
+
+    from robokit.viz._meshes import decimated_visuals
+
+    with Scene("ur5") as s:
+        s.show()
+        full = s.html(None)
+        page = s.html()
+        again = s.html(None)
+        geometry = (s.viz.visual_model, s.viz.collision_model)
+    assert len(page) < 0.4 * len(full), (len(page), len(full))
+    assert len(again) == len(full)  # restored
+    # the page's triangle meshes are the decimated parts; no mesh file is left in it
+    def objects(html):
+        blobs = re.findall(r'fetch\("data:application/octet-binary;base64,([A-Za-z0-9+/=]+)"\)', html)
+        out = []
+        for d in (umsgpack.unpackb(base64.b64decode(b)) for b in blobs):
+            if d.get("type") == "set_object":
+                o = d["object"]
+                out.append((d["path"], o.get("object", {}).get("type"), [g.get("type") for g in o.get("geometries", [])]))
+        return out
+
+    def mesh_files(objs):
+        return [p for p, kind, geoms in objs if kind == "_meshfile_object" or "_meshfile" in geoms]
+
+    assert mesh_files(objects(full))  # the check below can fail
+    in_page = objects(page)
+    assert mesh_files(in_page) == []
+    parts = [p for p, kind, geoms in in_page if "/part" in p and geoms == ["BufferGeometry"]]
+    assert len(parts) == sum(len(p) for model in geometry for _, p in decimated_visuals(model)) > 0
