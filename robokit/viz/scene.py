@@ -155,6 +155,7 @@ class Scene:
         self.grid: dict | None = None
         self._frames: tuple[list[str], float] = ([], 0.0)
         self._label_points: list[np.ndarray] = []
+        self._animated = False  # animate() was called: pages get a visible play/pause control
 
     # ------------------------------------------------------------------ drawing
     def show(self, q: ArrayLike | None = None) -> Scene:
@@ -361,6 +362,7 @@ class Scene:
             self.viz.viewer = viewer
         self.vis.set_animation(anim, play=True, repetitions=0)
         self._extra_points.extend(self.robot.frame_pose(q)[:3, 3] for q in Q[:: max(1, len(Q) // 20)])
+        self._animated = True
         return self
 
     # ------------------------------------------------------------------ camera
@@ -453,7 +455,8 @@ class Scene:
         in the teach page (:mod:`robokit.viz._meshes`: every kept vertex within ``cell·√3`` of the
         surface, so at 2 mm the picture is unchanged): the Panda's page is 3.5 MB instead of 15.1 MB
         with its mesh files as they are, the UR5's 2.1 MB instead of 10.1 MB. The live scene keeps
-        the full meshes.
+        the full meshes. An animated scene's page has a visible play/pause button, a time slider
+        and a clock in its lower-left corner.
 
         Parameters
         ----------
@@ -471,6 +474,20 @@ class Scene:
         ...     round(len(s.show().html()) / 1e6, 1)   # MB
         3.5
         """
+        return self._with_player(self._page(mesh_cell))
+
+    def _with_player(self, page: str) -> str:
+        """The page with a visible play/pause button, time slider and clock when the scene is
+        animated (meshcat's own controls hide behind "Open Controls")."""
+        if not self._animated:
+            return page
+        from importlib import resources
+
+        player = resources.files("robokit.viz").joinpath("player.html").read_text(encoding="utf-8")
+        i = page.rfind("</body>")
+        return page[:i] + player + page[i:] if i >= 0 else page + player
+
+    def _page(self, mesh_cell: float | None) -> str:
         if mesh_cell is None:
             return self.vis.static_html()
         import pinocchio as pin
