@@ -111,7 +111,7 @@ class ModelCatalogue(Sequence[str]):
         self.formats = dict(formats)
         self._names = [r.name for r in self.rows]
 
-    def __getitem__(self, i):  # type: ignore[no-untyped-def,override]
+    def __getitem__(self, i):  # type: ignore[no-untyped-def]
         return self._names[i]
 
     def __len__(self) -> int:

@@ -396,15 +396,15 @@ def ms_lspb_trajectory(viapoint: ArrayLike, dt: float, tacc: float, qdmax: Array
     Vin = np.vstack([np.zeros(n), V])  # velocity before via point k
     Vout = np.vstack([V, np.zeros(n)])  # and after it
     # the segment a sample lies in: its last via point k with τ_k − tacc/2 ≤ t, on the line or in that blend
-    k = np.clip(np.searchsorted(tau - 0.5 * tacc, t, side="right") - 1, 0, M - 1)
-    s = t - tau[k]  # time since the line of segment k (or, before it, of segment k−1) passed P_k
+    seg = np.clip(np.searchsorted(tau - 0.5 * tacc, t, side="right") - 1, 0, M - 1)
+    s = t - tau[seg]  # time since the line of segment k (or, before it, of segment k−1) passed P_k
     in_blend = s < 0.5 * tacc
-    q = P[k] + np.where(in_blend[:, None], Vin[k], Vout[k]) * s[:, None]
-    qd = np.where(in_blend[:, None], Vin[k], Vout[k])
+    q = P[seg] + np.where(in_blend[:, None], Vin[seg], Vout[seg]) * s[:, None]
+    qd = np.where(in_blend[:, None], Vin[seg], Vout[seg])
     qdd = np.zeros_like(q)
     if tacc > 0:
         u = (s + 0.5 * tacc)[in_blend][:, None]  # time into the blend
-        dv = (Vout[k] - Vin[k])[in_blend]
+        dv = (Vout[seg] - Vin[seg])[in_blend]
         frac = u / tacc  # in [0, 1]: no overflow for a tiny tacc
         q[in_blend] += 0.5 * dv * frac * u
         qd[in_blend] += dv * frac

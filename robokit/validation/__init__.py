@@ -197,7 +197,7 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
 
     from robokit.kernels._jit import held_notices
 
-    chosen = AREAS
+    chosen: tuple[tuple[str, str], ...] = AREAS
     if areas:
         known = list(dict.fromkeys(a for a, _ in AREAS))
         unknown = [a for a in areas if a not in known]

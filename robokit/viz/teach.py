@@ -761,18 +761,18 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     types = _joint_types(robot)
     rng = _slider_ranges(robot, types)
     unit = np.array([180.0 / math.pi if t == "R" else 1.0 for t in types])
-    q = ready_pose(robot)[1] if q is None else np.asarray(q, dtype=float)
-    if q.shape != (robot.n,):
-        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
-    q = np.clip(q, rng[:, 0], rng[:, 1])
+    q_open = ready_pose(robot)[1] if q is None else np.asarray(q, dtype=float)
+    if q_open.shape != (robot.n,):
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q_open.shape}")
+    q_start = np.clip(q_open, rng[:, 0], rng[:, 1])
     if world is not None and world.robot is not robot:
         raise InputError("world: its robot is not the scene's robot (build the World from scene.robot)")
     names = _frame_names(robot)
-    scene.show(q).frames(names, labels=robot.dh is not None)
+    scene.show(q_start).frames(names, labels=robot.dh is not None)
     if world is not None and world.obstacles:
         scene.obstacles(world.obstacles)
     sliders = [
-        W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
+        W.FloatSlider(value=float(q_start[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
                       step=0.1 if types[i] == "R" else 0.001, description=f"q{i + 1} {robot.joint_names[i]}",
                       readout_format=".1f" if types[i] == "R" else ".3f", continuous_update=True,
                       style={"description_width": "initial"},  # the whole joint name, never cut
@@ -837,5 +837,5 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         buttons.append(b)
     box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out]
     box.set_q = set_q
-    redraw(q)
+    redraw(q_start)
     return box
