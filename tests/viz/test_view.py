@@ -278,21 +278,17 @@ def test_trajectory_page_has_a_visible_play_pause_control(tmp_path):
     import json
     import re
 
+    from browser_support import dump_dom
+
     Q = np.linspace(np.zeros(6), [1.0, -0.6, 0.8, 0.4, 0.9, 0.3], 300)  # 10 s at 30 fps
     page = view_html("puma560", trajectory=Q, fps=30.0)
     assert page.count('id="rk-play"') == 1 and 'id="rk-play"' not in view_html("puma560")  # only when animated
     i = page.rfind("</body>")
     path = tmp_path / "traj.html"
     path.write_text(page[:i] + _PLAYER_HARNESS + page[i:])
-    with tempfile.TemporaryDirectory() as profile:
-        out = subprocess.run(
-            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}", "--window-size=1000,700",
-             "--virtual-time-budget=30000", "--dump-dom", path.as_uri()],
-            capture_output=True, text=True, timeout=240)
-    m = re.search(r'<pre id="rk-test-out">(.*?)</pre>', out.stdout, re.S)
-    assert m and m.group(1), out.stderr[-2000:]
+    dom = dump_dom(path.as_uri(), budget_ms=30000)
+    m = re.search(r'<pre id="rk-test-out">(.*?)</pre>', dom, re.S)
+    assert m and m.group(1), dom[-2000:]
     log = {s["label"]: s for s in json.loads(html_mod.unescape(m.group(1)))}
     assert len(log) == 5, log
     opened = log["open"]

@@ -3,27 +3,25 @@ camera and matrices) lies inside the canvas and fills a fair part of it, and a p
 seen nearly face-on (from the 3/4 view it was foreshortened to sin 25° ≈ 0.42: almost edge-on)."""
 import html as html_mod
 import json
-import os
 import re
-import shutil
-import subprocess
-import tempfile
 
 import pytest
+from browser_support import CHROMIUM, dump_dom
 
 import robokit
 from robokit.workspace.plot import capability_html
-
-CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if os.path.exists("/usr/bin/chromium") else None)
 
 _HARNESS = """
 <pre id="rk-test-out"></pre>
 <script>
 (function () {
+  // the page applies its commands as their fetch()es resolve, in no fixed order: measure until the
+  // projection has stayed the same for five polls (1.5 s of the page's time)
+  var last = "", same = 0;
   function measure() {
     var node = viewer.scene_tree.find(["meshcat", "points", "capability", "<object>"]);
     var obj = node && node.object, pos = obj && obj.geometry && obj.geometry.attributes && obj.geometry.attributes.position;
-    if (!pos || !pos.count) { setTimeout(measure, 200); return; }
+    if (!pos || !pos.count) { setTimeout(measure, 300); return; }
     viewer.camera.updateMatrixWorld(true);
     obj.updateMatrixWorld(true);
     var V = obj.position.constructor, v = new V(), canvas = viewer.renderer.domElement;
@@ -33,10 +31,13 @@ _HARNESS = """
       var px = (v.x + 1) / 2 * w, py = (1 - v.y) / 2 * h;
       x0 = Math.min(x0, px); x1 = Math.max(x1, px); y0 = Math.min(y0, py); y1 = Math.max(y1, py);
     }
-    document.getElementById("rk-test-out").textContent = JSON.stringify({box: [x0, y0, x1, y1], canvas: [w, h],
-                                                                         points: pos.count});
+    var now = JSON.stringify({box: [x0, y0, x1, y1], canvas: [w, h], points: pos.count});
+    same = now === last ? same + 1 : 0;
+    last = now;
+    if (same < 5) { setTimeout(measure, 300); return; }
+    document.getElementById("rk-test-out").textContent = now;
   }
-  setTimeout(measure, 500);
+  setTimeout(measure, 300);
 })();
 </script>
 """
@@ -46,15 +47,9 @@ def _measure(page: str, tmp_path) -> dict:
     i = page.rfind("</body>")
     path = tmp_path / "map.html"
     path.write_text(page[:i] + _HARNESS + page[i:], encoding="utf-8")
-    with tempfile.TemporaryDirectory() as profile:
-        out = subprocess.run(
-            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}", "--window-size=1000,700",
-             "--virtual-time-budget=20000", "--dump-dom", path.as_uri()],
-            capture_output=True, text=True, timeout=240)
-    m = re.search(r'<pre id="rk-test-out">(.*?)</pre>', out.stdout, re.S)
-    assert m and m.group(1), out.stderr[-2000:]
+    dom = dump_dom(path.as_uri())
+    m = re.search(r'<pre id="rk-test-out">(.*?)</pre>', dom, re.S)
+    assert m and m.group(1), dom[-2000:]
     return json.loads(html_mod.unescape(m.group(1)))
 
 
