@@ -20,11 +20,12 @@ Continuous joints (no limits, Pinocchio's ``nq = 2`` joints) are checked at ``±
 configurations (``frame_pose``, ``jacobian``, the dynamics at one ``q``), where 45 for an
 endless joint is degrees far more often than a wound-up angle, and **exempt** wherever a
 multi-turn value is a legitimate state: batches of configurations (rows of a trajectory or a
-log), trajectories' end and via points, simulations' states, IK seeds and references (the
-current state of an endless wrist that has turned three times). The robot-less seed library
-(``fkin_space(M, Slist, θ)``, ``inverse_dynamics(θ, …)``) knows no joint kinds beyond the screw
-axes: it checks every revolute column (``ω ≠ 0``) at ``±2π``; robot-less joint trajectories
-(``joint_trajectory``) check every value at ``±2π`` (their values are joint angles by name).
+log), trajectories' end and via points, simulations' states, IK seeds (the current state of an
+endless wrist that has turned three times). The robot-less seed library (``fkin_space(M, Slist,
+θ)``, ``inverse_dynamics(θ, …)``) knows no joint kinds beyond the screw axes: it checks every
+revolute column (``ω ≠ 0``) at ``±2π``; robot-less joint values (``joint_trajectory``'s ends,
+``select_solution``'s ``q_ref``, ``ik_analytic``'s ``wrist_ref``) are checked at ``±2π`` (they are
+angles by name). The docs' Conventions page lists every entry point.
 
 Cost: the hot paths (``Robot.frame_pose`` and friends, the seed FK and Jacobians) filter first
 with a test that *implies* the check passes — ``hypot(*q) ≤ r`` (one C call, which also

@@ -226,7 +226,7 @@ class Robot:
         Returns
         -------
         bool
-            True when it warned.
+            True when a value looks like degrees (it warned, unless robokit itself made the call).
 
         Examples
         --------
@@ -416,7 +416,7 @@ def check_robot_radians(robot: Any, q: ArrayLike, name: str, *, state: bool = Tr
     Returns
     -------
     bool
-        True when it warned.
+        True when a value looks like degrees (it warned, unless robokit itself made the call).
 
     Examples
     --------
