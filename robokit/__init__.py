@@ -39,7 +39,9 @@ for _module, _names in {
     "robokit.dynamics": ("end_effector_forces", "euler_step", "forward_dynamics", "forward_dynamics_trajectory",
                          "gravity_forces", "inverse_dynamics", "inverse_dynamics_trajectory", "mass_matrix",
                          "vel_quadratic_forces"),
-    "robokit.errors": ("DivergenceError", "InputError", "PhysicalityWarning", "RobokitError", "RobokitWarning"),
+    "robokit.errors": ("DegreesWarning", "DivergenceError", "InputError", "PhysicalityWarning", "RobokitError",
+                       "RobokitWarning"),
+    "robokit.description.loading": ("models",),
     "robokit.ik": ("IKResult", "IKSolution", "ik_analytic", "ik_analytic_kind", "ikin_body", "ikin_space",
                    "solve_ik"),
     "robokit.kinematics": ("fkin_body", "fkin_space", "jacobian_body", "jacobian_space"),
@@ -47,7 +49,7 @@ for _module, _names in {
                         "distance_to_SO3", "euler_to_matrix", "matrix_exp_3", "matrix_exp_6", "matrix_log_3",
                         "matrix_log_6", "matrix_to_euler", "near_zero", "normalize", "project_to_SE3",
                         "project_to_SO3", "rot_inv", "se3_to_vec", "so3_to_vec", "test_if_SE3", "test_if_SO3",
-                        "trans_inv", "trans_to_Rp", "vec_to_se3", "vec_to_so3"),
+                        "trans_inv", "trans_to_Rp", "vec_to_se3", "vec_to_so3", "deg2rad", "rad2deg"),
     "robokit.trajectory": ("Trajectory", "cartesian_trajectory", "cubic_time_scaling", "joint_trajectory",
                            "ms_trajectory", "quintic_time_scaling", "screw_trajectory"),
     "robokit.workspace": ("CapabilityMap", "capability_map"),
@@ -79,7 +81,8 @@ if TYPE_CHECKING:  # what the names above are, for type checkers, IDEs and the d
         mass_matrix,
         vel_quadratic_forces,
     )
-    from robokit.errors import DivergenceError, InputError, PhysicalityWarning, RobokitError, RobokitWarning
+    from robokit.description.loading import models
+    from robokit.errors import DegreesWarning, DivergenceError, InputError, PhysicalityWarning, RobokitError, RobokitWarning
     from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
     from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
     from robokit.spatial import (
@@ -88,6 +91,7 @@ if TYPE_CHECKING:  # what the names above are, for type checkers, IDEs and the d
         adjoint,
         axis_ang_3,
         axis_ang_6,
+        deg2rad,
         distance_to_SE3,
         distance_to_SO3,
         euler_to_matrix,
@@ -100,6 +104,7 @@ if TYPE_CHECKING:  # what the names above are, for type checkers, IDEs and the d
         normalize,
         project_to_SE3,
         project_to_SO3,
+        rad2deg,
         rot_inv,
         se3_to_vec,
         so3_to_vec,
@@ -139,13 +144,15 @@ SEED_FUNCTIONS = (
 
 __all__ = list(SEED_FUNCTIONS) + [
     # entry points
-    "load", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "dh_from_urdf",
+    "load", "models", "solve_ik", "ik_analytic", "ik_analytic_kind", "capability_map", "simulate", "dh_from_urdf",
     "calibrate", "identify_dynamics", "excitation_trajectory", "plan", "retime",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
     "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
     # errors and warnings
-    "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "PhysicalityWarning",
+    "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "PhysicalityWarning", "DegreesWarning",
+    # units
+    "deg2rad", "rad2deg",
     # the subpackages
     "spatial", "description", "kinematics", "dynamics", "ik", "trajectory", "control", "mobile", "workspace",
     "calibration", "collision", "motion",

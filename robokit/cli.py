@@ -94,6 +94,8 @@ def _build_parser() -> argparse.ArgumentParser:
     v = sub.add_parser("validate", help="course implementations against Pinocchio; exit 0 only if all agree")
     v.add_argument("--json", action="store_true", help="print the table as JSON")
     v.add_argument("--seed", type=int, default=0, help="random seed for the samples (default 0)")
+    v.add_argument("--area", action="append", metavar="AREA",
+                   help="only this area (spatial, description, kinematics, dynamics, ik, trajectory); repeatable")
 
     c = sub.add_parser("convert", help="any robot -> URDF (DH models), PoE JSON, DH YAML or MJCF")
     c.add_argument("input", help="a shipped model (puma560, ...), a .yaml DH file, a .urdf/.xacro/.xml/.sdf file, "
@@ -179,7 +181,7 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "validate":
         from robokit.validation import main as validate_main
 
-        return validate_main(as_json=args.json, seed=args.seed)
+        return validate_main(as_json=args.json, seed=args.seed, areas=args.area)
     if args.command == "convert":
         from robokit.commands import convert_command
 

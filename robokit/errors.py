@@ -88,6 +88,28 @@ class PhysicalityWarning(RobokitWarning):
     """
 
 
+class DegreesWarning(RobokitWarning):
+    """A joint value looks like degrees: a revolute value beyond a full turn (±2π rad) and past
+    its joint's limits. robokit takes radians; ``rk.deg2rad`` converts. Given once per call, by
+    every entry point that takes joint values (see the docs' Conventions page for which joints
+    and arguments are checked).
+
+    Attributes
+    ----------
+    args : tuple
+        ``(message,)``, naming the argument and the joints.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     _ = rk.load("puma560").frame_pose([0, 45, -90, 0, 30, 0])
+    >>> w[0].category.__name__
+    'DegreesWarning'
+    """
+
+
 class DivergenceError(RobokitError, ArithmeticError):
     """A simulation or iteration blew up (non-finite or runaway values): the model, the gains or
     the step make it unstable — not bad input.

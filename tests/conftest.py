@@ -3,6 +3,10 @@ kernels compiled in the calling process on a cache miss (``ROBOKIT_COMPILE=wait`
 test runs the machine code, deterministically; tests/kernels/test_coldstart.py runs the background
 mode in subprocesses of its own."""
 import os
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # browser_support: the page tests' Chromium
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 os.environ.setdefault("ROBOKIT_COMPILE", "wait")

@@ -100,6 +100,7 @@ def track_line(robot: Robot, q0: ArrayLike, p_goal: ArrayLike, duration: float, 
     ((101, 6), True)
     """
     q = as_vector(q0, "q0", robot.n).copy()
+    robot.check_radians(q, "q0", state=True)
     p_goal = as_vector(p_goal, "p_goal", 3)
     duration = as_scalar(duration, "duration", positive=True)
     dt = as_scalar(dt, "dt", positive=True)

@@ -17,7 +17,8 @@ from typing import NoReturn
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_scalar, as_vector
+from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
+from robokit._units import check_radians, radian_ranges, revolute_columns
 from robokit.control.controllers import gains
 from robokit.errors import InputError
 
@@ -32,6 +33,16 @@ def _diverged(i: int, dt: float, taumat: np.ndarray, thetamat: np.ndarray) -> No
         "make it unstable (the result so far is in .partial as (taumat, thetamat))",
         (taumat[:i].copy(), thetamat[:i].copy()),
     )
+
+
+def _radians(Slist: ArrayLike, **values: np.ndarray) -> None:
+    """The degrees check (robokit._units) of joint values for the screw axes ``Slist``: the first
+    argument that looks like degrees is warned of (one warning per call)."""
+    n = next(iter(values.values())).shape[-1]
+    lo, hi = radian_ranges(revolute_columns(as_matrix(Slist, "Slist", 6, n)))
+    for name, v in values.items():
+        if check_radians(v, lo, hi, name):
+            return
 
 
 def computed_torque(thetalist: ArrayLike, dthetalist: ArrayLike, eint: ArrayLike, g: ArrayLike, Mlist: ArrayLike,
@@ -90,7 +101,9 @@ def computed_torque(thetalist: ArrayLike, dthetalist: ArrayLike, eint: ArrayLike
     theta = as_vector(thetalist, "thetalist")
     n = len(theta)
     dtheta = as_vector(dthetalist, "dthetalist", n)
-    e = as_vector(thetalistd, "thetalistd", n) - theta
+    thd = as_vector(thetalistd, "thetalistd", n)
+    _radians(Slist, thetalist=theta, thetalistd=thd)
+    e = thd - theta
     edot = as_vector(dthetalistd, "dthetalistd", n) - dtheta
     a = (as_vector(ddthetalistd, "ddthetalistd", n) + gains(Kp, n, "Kp") * e
          + gains(Ki, n, "Ki") * (as_vector(eint, "eint", n) + e) + gains(Kd, n, "Kd") * edot)
@@ -191,6 +204,7 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
     if intRes < 1:
         raise InputError(f"intRes: expected a positive integer, got {intRes}")
     Kp, Ki, Kd = gains(Kp, n, "Kp"), gains(Ki, n, "Ki"), gains(Kd, n, "Kd")
+    _radians(Slist, thetalist=theta, thetamatd=thetamatd)
     if compiled:
         from robokit.dynamics.newton_euler import checked_model
         from robokit.kernels.simulation import simulate_control as kernel

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
+from robokit.description.robot import check_robot_radians
 from robokit.dynamics.drives import friction_torque, joint_drive_parameters
 from robokit.dynamics.integration import second_order_step
 from robokit.errors import InputError
@@ -189,6 +190,8 @@ def simulate(robot: Robot, controller: Callable[..., ArrayLike], trajectory: Any
     if substeps < 1:
         raise InputError(f"substeps: expected a positive integer, got {substeps}")
     q = q_des[0].copy() if q0 is None else as_vector(q0, "q0", n).copy()
+    if not check_robot_radians(robot, q_des, "trajectory.q") and q0 is not None:  # states: may wind
+        check_robot_radians(robot, q, "q0")
     dq = dq_des[0].copy() if dq0 is None else as_vector(dq0, "dq0", n).copy()
     K = len(t)
     F = None if Ftip is None else as_array(Ftip, "Ftip", (K, 6))

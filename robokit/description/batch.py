@@ -27,7 +27,10 @@ __all__ = ["batch_frame_pose", "batch_jacobian", "batch_crba", "batch_rnea", "ba
 
 
 def _rows(robot: Robot, Q: ArrayLike, name: str) -> np.ndarray:
-    return as_joints(Q, robot.n, name, robot.name, batch=True)
+    rows = as_joints(Q, robot.n, name, robot.name, batch=True)
+    if name == "q":  # rows of a path or a log: continuous joints may wind (robokit._units)
+        robot.check_radians(rows, name, state=True)
+    return rows
 
 
 def _tip_only(robot: Robot, frame: str | None) -> None:

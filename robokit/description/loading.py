@@ -36,9 +36,10 @@ import numpy as np
 from typing import Any, Callable, Mapping, Sequence
 
 from robokit.description.builder import strict_loading
+from robokit.description.catalogue import FORMAT_NAMES, ModelCatalogue, ModelInfo, unknown_model_hint
 from robokit.description.dh import DHTable
 from robokit.description.dh_robots import load_dh_file, load_dh_text, load_shipped, robot_from_dh
-from robokit.description.example_robots import example_robot_names, load_example_robot
+from robokit.description.example_robots import EXAMPLE_ROBOT_TIPS, example_robot_names, load_example_robot
 from robokit.description.mjcf import load_mjcf
 from robokit.description.models import shipped_models
 from robokit.description.robot import Robot
@@ -205,10 +206,50 @@ def _load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, ti
     if s in example_robot_names():
         _options_for("example-robot-data models", (), options)
         return load_example_robot(s, tip)
-    raise InputError(
-        f"model: unknown robot {s!r}; give a .yaml, .urdf, .xacro, MJCF .xml or SDFormat .sdf file, a shipped model "
-        f"({', '.join(shipped_models())}) or an example-robot-data name (e.g. ur5, panda, z1, xarm7, kinova)"
-    )
+    hint = unknown_model_hint(s, shipped_models() + example_robot_names())
+    suffixes = ", ".join(dict.fromkeys(FILE_LOADERS))
+    raise InputError(f"model: unknown robot {s!r}" + (f"; {hint}" if hint else "")
+                     + f"; rk.models() lists the names robokit.load knows, or give a file ({suffixes})")
+
+
+def models() -> ModelCatalogue:
+    """The names :func:`load` knows without a file, and the file formats it reads.
+
+    The shipped DH models (``twolink``, ``rrr``, ``puma560``, …) and every example-robot-data
+    name (an arm's note gives its default tip; a robot example-robot-data gives a floating base is
+    loaded with the base fixed), then the file suffixes ``load`` reads.
+
+    Returns
+    -------
+    ModelCatalogue
+        A sequence of names (``"panda" in rk.models()``) with ``.rows`` (name, source, note) and
+        ``.formats`` (suffix → what it holds); it prints as a table.
+
+    Examples
+    --------
+    >>> cat = models()
+    >>> {"puma560", "panda", "ur5"} <= set(cat), cat.rows[0].source
+    (True, 'shipped DH table')
+    >>> ".urdf" in cat.formats
+    True
+    """
+    rows = [ModelInfo(n, "shipped DH table", "tip 'tool'") for n in shipped_models()]
+    robots = _erd_loaders()
+    for n in example_robot_names():
+        loader = robots.get(n)
+        note = f"arm, tip {EXAMPLE_ROBOT_TIPS[n]!r}" if n in EXAMPLE_ROBOT_TIPS else (
+            "floating base (fixed when loaded)" if getattr(loader, "free_flyer", False) else "")
+        rows.append(ModelInfo(n, "example-robot-data", note))
+    return ModelCatalogue(rows, {suffix: FORMAT_NAMES.get(suffix, suffix) for suffix in FILE_LOADERS})
+
+
+def _erd_loaders() -> dict:
+    try:
+        import example_robot_data as erd
+
+        return dict(getattr(erd, "ROBOTS", {}))
+    except ImportError:  # pragma: no cover - a core dependency
+        return {}
 
 
 def spec_of(robot: str | os.PathLike[str] | Robot | DHTable | RobotSpec) -> RobotSpec:

@@ -17,13 +17,14 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 """
 from __future__ import annotations
 
-from math import isfinite
+from math import hypot, isfinite
 from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_joints, check_reference, ndim
+from robokit._units import check_radians, fast_bounds, radian_ranges, revolute_columns
 from robokit.errors import InputError
 from robokit.description.dh import DHTable
 from robokit.description.frames import frame_index
@@ -34,7 +35,7 @@ if TYPE_CHECKING:
 
 _F64 = np.dtype(np.float64)
 
-__all__ = ["Robot"]
+__all__ = ["Robot", "check_robot_radians"]
 
 
 class Robot:
@@ -154,9 +155,18 @@ class Robot:
         self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
         self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
         self._shape = (self.n,)
-        # the finiteness test of a fast-path q: a Python sum of its floats for short vectors (cheaper
-        # than numpy's dot there); an overflow to inf only sends a finite q to the full checks
-        self._small = self.n <= 16
+        # radians, not degrees (robokit._units): the plausible range of each joint's value in a
+        # one-off configuration, and in a state (batches, trajectories, seeds: continuous joints
+        # exempt, their multi-turn values are legitimate there)
+        revolute = revolute_columns(self.poe.Slist)
+        continuous = np.zeros(self.n, dtype=bool)
+        for _, iv in self._cont:
+            continuous[iv] = True
+        self._deg_lo, self._deg_hi = radian_ranges(revolute, self.qlim)
+        self._deg_state = radian_ranges(revolute, self.qlim, exempt=continuous)
+        # the fast paths' test of q: hypot(*q) <= r (one C call; NaN or inf fail it), or every entry in
+        # [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
+        self._r1, self._lo1, self._hi1 = fast_bounds(self._deg_lo, self._deg_hi)
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
@@ -200,7 +210,44 @@ class Robot:
         return fid
 
     def _check_q(self, q: ArrayLike, name: str = "q") -> np.ndarray:
-        return as_joints(q, self.n, name, self.name)
+        q = as_joints(q, self.n, name, self.name)
+        if name == "q":
+            check_radians(q, self._deg_lo, self._deg_hi, name, self.name)
+        return q
+
+    def check_radians(self, q: ArrayLike, name: str = "q", *, state: bool = False) -> bool:
+        """Warn once (:class:`robokit.errors.DegreesWarning`) when joint values look like degrees.
+
+        A revolute value beyond a full turn (±2π rad) and past its joint's limits, or past the
+        limits by more than a turn (see :mod:`robokit._units`); prismatic joints are never
+        checked. Every method taking a configuration runs this check; functions taking one for
+        this robot (IK seeds, trajectories' end points, simulations) call it.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad / m), finite.
+        name : str
+            The argument's name, for the message.
+        state : bool
+            The values are states that may wind (a seed, a trajectory's points, rows of a log):
+            continuous joints are exempt.
+
+        Returns
+        -------
+        bool
+            True when a value looks like degrees (it warned, unless robokit itself made the call).
+
+        Examples
+        --------
+        >>> import warnings
+        >>> with warnings.catch_warnings():
+        ...     warnings.simplefilter("ignore")
+        ...     rk.load("puma560").check_radians([0, 45, -90, 0, 30, 0])
+        True
+        """
+        lo, hi = self._deg_state if state else (self._deg_lo, self._deg_hi)
+        return check_radians(np.asarray(q, dtype=float), lo, hi, name, self.name)
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -208,7 +255,8 @@ class Robot:
         for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
         pin = self._pin
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_frame_pose
@@ -239,7 +287,8 @@ class Robot:
         """
         rf = self._ref_frames.get(reference)
         if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and self._plain and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and self._plain and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             # the fast path (tip frame, finite float64 (n,) q, no continuous joints): one Pinocchio call
             # and the (v; ω) → (ω; v) row swap, nothing else
             return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
@@ -248,7 +297,8 @@ class Robot:
             canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
             rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_jacobian
@@ -265,7 +315,8 @@ class Robot:
         """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
         inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
         if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
-                and q.shape == dq.shape == ddq.shape == self._shape):
+                and q.shape == dq.shape == ddq.shape == self._shape
+                and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
             # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
             # any input reaches the result, so one test of the result stands for three of the inputs
             tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
@@ -283,14 +334,16 @@ class Robot:
         """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
         compiled composite-rigid-body kernel."""
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
-                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             M = self._pin.crba(self.model, self.data, q)  # the fast path: a new array, its upper triangle filled
             if M.flags.c_contiguous:
                 flat = M.ravel()  # a view of M
                 flat[self._lower_flat] = flat[self._upper_flat]
                 return M
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
         elif ndim(q, "q") == 2:
             from robokit.description.batch import batch_crba
@@ -310,7 +363,8 @@ class Robot:
         """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
         through ``abaInParallel`` on ``threads`` threads."""
         if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
-                and q.shape == dq.shape == tau.shape == self._shape):
+                and q.shape == dq.shape == tau.shape == self._shape
+                and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
             # as in rnea: one test of the (new) result stands for the inputs' finiteness
             ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
             if isfinite(ddq.dot(ddq)):
@@ -326,7 +380,8 @@ class Robot:
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(θ) (n,)."""
         if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
+                and ((h := hypot(*(t := q.tolist()))) <= self._r1
+                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
@@ -356,3 +411,39 @@ class Robot:
             kind = f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
+
+
+def check_robot_radians(robot: Any, q: ArrayLike, name: str, *, state: bool = True) -> bool:
+    """The degrees check (:mod:`robokit._units`) of joint values given for ``robot``.
+
+    For a :class:`Robot`, :meth:`Robot.check_radians`; for another RobotLike (which says nothing
+    of its joint kinds) every joint is checked as revolute against its ``qlim`` — a value beyond a
+    full turn and past its limits.
+
+    Parameters
+    ----------
+    robot : Robot or RobotLike
+        The robot the values are for.
+    q : array_like, shape (n,) or (N, n)
+        Finite joint values (rad / m).
+    name : str
+        The argument's name, for the message.
+    state : bool
+        A state that may wind (IK seeds, trajectories' points, simulations' states; the default):
+        continuous joints are exempt.
+
+    Returns
+    -------
+    bool
+        True when a value looks like degrees (it warned, unless robokit itself made the call).
+
+    Examples
+    --------
+    >>> check_robot_radians(rk.load("ur5"), np.zeros(6), "q0")
+    False
+    """
+    if isinstance(robot, Robot):
+        return robot.check_radians(q, name, state=state)
+    qlim = np.asarray(getattr(robot, "qlim", np.full((int(robot.n), 2), [-np.inf, np.inf])), dtype=float)
+    lo, hi = radian_ranges(np.ones(len(qlim), dtype=bool), qlim)
+    return check_radians(np.asarray(q, dtype=float), lo, hi, name, str(getattr(robot, "name", "")))

@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector
-from robokit.dynamics.newton_euler import _Model, _model, inverse_dynamics
+from robokit.dynamics.newton_euler import _Model, _model, _radians, inverse_dynamics
 from robokit.spatial import lie
 from robokit.errors import InputError
 
@@ -95,7 +95,7 @@ def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLik
     if method not in ("christoffel", "lecture"):
         raise InputError(f"method: expected 'christoffel' or 'lecture', got {method!r}")
     m = _model(Mlist, Glist, Slist)
-    th = as_vector(thetalist, "thetalist", m.n)
+    th = _radians(m, as_vector(thetalist, "thetalist", m.n))
     dth = as_vector(dthetalist, "dthetalist", m.n)
     n = m.n
     if method == "lecture":

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
-from robokit.dynamics.newton_euler import _model
+from robokit.dynamics.newton_euler import _model, _radians
 from robokit.spatial import lie
 
 __all__ = ["add_payload", "base_wrench"]
@@ -110,7 +110,7 @@ def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayL
     """
     m = _model(Mlist, Glist, Slist)
     n = m.n
-    th = as_vector(thetalist, "thetalist", n)
+    th = _radians(m, as_vector(thetalist, "thetalist", n))
     dth = as_vector(dthetalist, "dthetalist", n)
     ddth = as_vector(ddthetalist, "ddthetalist", n)
     g = as_vector(g, "g", 3)

@@ -24,6 +24,7 @@ once and remembering them (by their bytes).
 """
 from __future__ import annotations
 
+from math import hypot
 from types import ModuleType
 from typing import Any
 
@@ -31,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar, as_vector
+from robokit._units import TURN, check_radians, radian_ranges, revolute_columns
 from robokit.errors import InputError
 from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
@@ -72,11 +74,19 @@ def _zeros(n: int) -> np.ndarray:
 
 
 def _ready(*xs: object) -> bool:
-    """True when every argument is a 1-D ndarray (the kernel then checks dtype, length, finiteness)."""
+    """True when every argument is a 1-D ndarray (the kernel then checks dtype, length, finiteness)
+    and the first, θ, is radians for sure (every |θᵢ| ≤ 2π: robokit._units)."""
     for x in xs:
         if type(x) is not np.ndarray or x.ndim != 1:
             return False
-    return True
+    t = xs[0].tolist()  # type: ignore[attr-defined]
+    return hypot(*t) <= TURN or (-TURN <= min(t) and max(t) <= TURN)
+
+
+def _radians(m: _Model, th: np.ndarray, name: str = "thetalist") -> np.ndarray:
+    """The degrees check of the seed library (robokit._units) on checked joint values; returns them."""
+    check_radians(th, m.deg_lo, m.deg_hi, name)
+    return th
 
 
 
@@ -100,6 +110,7 @@ class _Model:
         self.A = A
         self.AT = np.ascontiguousarray(A.T)  # rows Aᵢ
         self.Ad_tip = lie.adjoint(self.Minv[n][None])[0]  # Ad_{T_{n+1,n}}
+        self.deg_lo, self.deg_hi = radian_ranges(revolute_columns(Slist))  # every revolute column at ±2π
 
     def transforms(self, theta: np.ndarray) -> np.ndarray:
         """Ad_{T_{i,i−1}} for i = 1..n: (n, 6, 6)."""
@@ -183,7 +194,7 @@ def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthet
         except (TypeError, ValueError):
             pass
     c = np.ascontiguousarray
-    return k.inverse_dynamics(c(_vec(thetalist, "thetalist", m.n)), c(_vec(dthetalist, "dthetalist", m.n)),
+    return k.inverse_dynamics(c(_radians(m, _vec(thetalist, "thetalist", m.n))), c(_vec(dthetalist, "dthetalist", m.n)),
                               c(_vec(ddthetalist, "ddthetalist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
                               m.Mlist, m.Glist, m.Slist)
 
@@ -244,7 +255,7 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
             pass
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
-        th = as_array(thetalist, "thetalist", (None, m.n))
+        th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
         N = th.shape[0]
         dth = as_array(dthetalist, "dthetalist", (N, m.n))
         ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
@@ -300,9 +311,10 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
             pass
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
-        th = np.ascontiguousarray(as_array(thetalist, "thetalist", (None, m.n)))
+        th = np.ascontiguousarray(_radians(m, as_array(thetalist, "thetalist", (None, m.n))))
         return k.mass_matrix_batch(th, m.Mlist, m.Glist, m.Slist)
-    return k.mass_matrix(np.ascontiguousarray(_vec(thetalist, "thetalist", m.n)), m.Mlist, m.Glist, m.Slist)
+    th = _radians(m, _vec(thetalist, "thetalist", m.n))
+    return k.mass_matrix(np.ascontiguousarray(th), m.Mlist, m.Glist, m.Slist)
 
 
 def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
@@ -481,7 +493,7 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
     m = _model(Mlist, Glist, Slist)
     c = np.ascontiguousarray
     if np.ndim(thetalist) == 2:
-        th = as_array(thetalist, "thetalist", (None, m.n))
+        th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
         N = th.shape[0]
         dth = as_array(dthetalist, "dthetalist", (N, m.n))
         tau = as_array(taulist, "taulist", (N, m.n))
@@ -491,7 +503,7 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
             raise InputError("Glist: the mass matrix is not positive definite at some configuration "
                              "(a joint drives no inertia)")
         return out
-    return one(c(_vec(thetalist, "thetalist", m.n)), c(_vec(dthetalist, "dthetalist", m.n)),
+    return one(c(_radians(m, _vec(thetalist, "thetalist", m.n))), c(_vec(dthetalist, "dthetalist", m.n)),
                c(_vec(taulist, "taulist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
                m.Mlist, m.Glist, m.Slist)
 
@@ -569,7 +581,7 @@ def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthe
            [46.107, 11.772]])
     """
     m = _model(Mlist, Glist, Slist)
-    Q = as_array(thetamat, "thetamat", (None, m.n))
+    Q = _radians(m, as_array(thetamat, "thetamat", (None, m.n)), "thetamat")
     N = Q.shape[0]
     dQ = as_array(dthetamat, "dthetamat", (N, m.n))
     ddQ = as_array(ddthetamat, "ddthetamat", (N, m.n))
@@ -634,7 +646,7 @@ def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, tau
            [-1.93  ,  1.853 ]]))
     """
     m = _model(Mlist, Glist, Slist)
-    th = _vec(thetalist, "thetalist", m.n)
+    th = _radians(m, _vec(thetalist, "thetalist", m.n))
     dth = _vec(dthetalist, "dthetalist", m.n)
     tau = as_array(taumat, "taumat", (None, m.n))
     N = tau.shape[0]

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
+from robokit._units import TURN, check_radians
 from robokit.errors import InputError
 from robokit.ik.closed_form import analytic_ik
 from robokit.ik.solution import IKSolution, _qlim_or_none, _within, check_pose
@@ -387,6 +388,7 @@ def select_solution(solutions: Iterable[IKSolution], q_ref: ArrayLike, weights: 
         return None
     n = len(sols[0].q)
     q_ref = as_vector(q_ref, "q_ref", n)
+    check_radians(q_ref, -TURN, TURN, "q_ref")  # the solutions' angles are wrapped: |q_ref| > 2π is degrees
     if weights is None:
         w = np.arange(n, 0, -1, dtype=float) if proximal_first else np.ones(n)
     else:

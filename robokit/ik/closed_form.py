@@ -58,6 +58,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
+from robokit._units import TURN, check_radians
 from robokit.errors import InputError, InputTypeError
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.parallel_axes import ParallelAxesSolver
@@ -173,6 +174,13 @@ def _sources(robot: Robot | DHTable) -> tuple[tuple, tuple]:
     if dh is not None:
         key += _table_key(dh, False)
     return key, (dh, rob.model, qlim, None if dh is None else dh.links)
+
+
+def _wrist_ref(wrist_ref: object) -> float:
+    """The checked ``wrist_ref`` (rad): a real number, warned of when it looks like degrees."""
+    ref = as_scalar(wrist_ref, "wrist_ref")
+    check_radians(ref, -TURN, TURN, "wrist_ref")
+    return ref
 
 
 class AnalyticIK:
@@ -432,7 +440,7 @@ class AnalyticIK:
         """
         if not self._unchanged():
             self._build()
-        wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        wrist_ref = wrist_ref if type(wrist_ref) is float and -TURN <= wrist_ref <= TURN else _wrist_ref(wrist_ref)
         kernel = self._kernel
         if kernel is not None and self.use_kernel:
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
@@ -484,7 +492,7 @@ class AnalyticIK:
         ((3, 8, 6), [8, 8, 8])
         """
         self._refresh()
-        wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
+        wrist_ref = wrist_ref if type(wrist_ref) is float and -TURN <= wrist_ref <= TURN else _wrist_ref(wrist_ref)
         if self.solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
         Ts = _check_poses(Ts)
@@ -804,6 +812,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     >>> len(ik_analytic(robot, T))
     8
     """
+    if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
+        wrist_ref = _wrist_ref(wrist_ref)  # checked here: the solver's own check is silent when robokit calls it
     solutions = _CACHE.get(robot).solve(T, wrist_ref)
     return solutions if world is None else with_collision_flags(solutions, world)
 
@@ -852,5 +862,7 @@ def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 
     >>> Q.shape, counts.tolist()
     ((2, 8, 6), [8, 4])
     """
+    if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
+        wrist_ref = _wrist_ref(wrist_ref)
     Q, _, counts = _CACHE.get(robot).solve_batch(Ts, wrist_ref)
     return Q, counts

@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit._units import check_radians, radian_ranges, revolute_columns
 from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
 from robokit.ik.lm import IKResult
 from robokit.ik.solution import CollisionChecker, check_pose
@@ -63,6 +64,7 @@ def _newton_args(screws: ArrayLike, name: str, M: ArrayLike, T: ArrayLike, theta
     """The checked arguments of ikin_body/ikin_space: (screws, M, T, θ₀ copy, eomg, ev)."""
     screws = _check_screws(screws, name)
     theta = as_vector(thetalist0, "thetalist0", screws.shape[1]).copy()
+    check_radians(theta, *radian_ranges(revolute_columns(screws)), "thetalist0")
     return (screws, check_transform(M, "M"), check_transform(T, "T"), theta,
             as_scalar(eomg, "eomg", nonnegative=True), as_scalar(ev, "ev", nonnegative=True))
 
@@ -327,13 +329,17 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     """
     t_start = time.perf_counter()
     if world is not None:
+        if q0 is not None:  # checked here: the attempts' solve_ik calls are robokit's own (silent)
+            from robokit.description.robot import check_robot_radians
+
+            check_robot_radians(robot, as_vector(q0, "q0", int(robot.n)), "q0")
         return _collision_free(robot, target, frame, q0, world, max_restarts, rng,
                                dict(position_only=position_only, weights=weights, tol=tol,
                                     max_iterations=max_iterations, max_restarts=max_restarts,
                                     time_budget=time_budget, damping=damping, min_damping=min_damping,
                                     rng=rng, method=method))
     from robokit.description.protocol import RobotLike
-    from robokit.description.robot import Robot
+    from robokit.description.robot import Robot, check_robot_radians
 
     if not isinstance(robot, Robot) and not isinstance(robot, RobotLike):
         raise InputTypeError(f"robot: expected a robokit.Robot or an object with n, qlim, frame_pose and jacobian "
@@ -353,7 +359,12 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         w = None if weights is None else as_vector(weights, "weights", 6)
     if w is not None and np.any(w < 0):
         raise InputError(f"weights: expected non-negative entries, got {w}")
-    q = np.clip(np.zeros(n) if q0 is None else as_vector(q0, "q0", n), qlim[:, 0], qlim[:, 1])
+    if q0 is None:
+        q = np.zeros(n)
+    else:
+        q = as_vector(q0, "q0", n)
+        check_robot_radians(robot, q, "q0")  # a seed in degrees would be clipped to the limits unnoticed
+    q = np.clip(q, qlim[:, 0], qlim[:, 1])
     tol = as_scalar(tol, "tol", positive=True)
     _count(max_restarts, "max_restarts", 0)
     if max_iterations is not None:

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.description.robot import check_robot_radians
 from robokit.ik.numeric import IKResult
 from robokit.spatial.se3 import check_transform
 from robokit.spatial import lie
@@ -82,6 +83,8 @@ def ik_jacobian_transpose(robot: Robot, T_target: ArrayLike, q0: ArrayLike | Non
     t0 = time.perf_counter()
     T = check_transform(T_target, "T_target")
     q = np.zeros(robot.n) if q0 is None else as_vector(q0, "q0", robot.n).copy()
+    if q0 is not None:
+        check_robot_radians(robot, q, "q0")
     step = as_scalar(alpha, "alpha", positive=True) * as_scalar(gain, "gain", positive=True) \
         / as_scalar(damper, "damper", positive=True)
     tol = as_scalar(tol, "tol", positive=True)

@@ -89,7 +89,7 @@ from numba.core import types as _nbtypes
 from robokit.kernels import ENV, MODES, compile_mode
 
 __all__ = ["njit", "prange", "cache_dir", "jit_disabled", "compile_now", "compile_mode", "interpreted", "MODES",
-           "ENV", "SMALL_BATCH", "FK_BATCH"]
+           "ENV", "SMALL_BATCH", "FK_BATCH", "held_notices"]
 
 prange = numba.prange
 
@@ -583,9 +583,14 @@ def _wait_for(job: _Job) -> None:
     line = (f"robokit: waiting for {job.name} to compile (a batch or long-loop kernel runs compiled only; "
             "once per machine, then loaded from numba's cache) ...")
     # the line at once, then the elapsed time (rewritten each second on a terminal, a line every 10 s
-    # otherwise), then how long it took
-    with (contextlib.nullcontext() if quiet else Slow(line, after=0.0, done=f"robokit: {job.name} compiled",
-                                                         still=f"still compiling {job.name}")):
+    # otherwise), then how long it took; while notices are held (validate's table) the line alone
+    # goes to the holder, and no progress is printed into the table
+    progress: Any = contextlib.nullcontext()
+    if not quiet and _SINK is not None:
+        _emit(line)
+    elif not quiet:
+        progress = Slow(line, after=0.0, done=f"robokit: {job.name} compiled", still=f"still compiling {job.name}")
+    with progress:
         while True:
             with _LOCK:
                 _collect()
@@ -602,25 +607,83 @@ def _announce(job: _Job) -> None:
         return
     if not _BG.announced:
         _BG.announced = True
-        print(f"robokit: compiling course kernels in the background (pid {_BG.worker.pid}; first {job.name}) - "
-              "running them as plain Python until each is ready; later runs load them from numba's cache",
-              file=sys.stderr, flush=True)
+        _emit(f"robokit: compiling course kernels in the background (pid {_BG.worker.pid}; first {job.name}) - "
+              "running them as plain Python until each is ready; later runs load them from numba's cache")
     if not _BG.exit_hook:
         _BG.exit_hook = True
         atexit.register(_at_exit)
 
 
 def _progress(job: _Job) -> None:
-    if quiet or not sys.stderr.isatty():
+    if quiet or (_SINK is None and not sys.stderr.isatty()):
         return
     done = sum(j.state == "loaded" for j in _BG.by_number.values())
-    print(f"robokit: {job.name} ready ({done}/{len(_BG.by_number)} background compiles in use)", file=sys.stderr,
-          flush=True)
+    _emit(f"robokit: {job.name} ready ({done}/{len(_BG.by_number)} background compiles in use)", progress=True)
 
 
 def _note(line: str) -> None:
     if not quiet:
+        _emit(line)
+
+
+#: Where notices go while :func:`held_notices` is active (else stderr).
+_SINK: Callable[[str, bool], None] | None = None
+
+
+def _emit(line: str, progress: bool = False) -> None:
+    """One notice line: to stderr, or to the sink of :func:`held_notices` (``progress``: a line that
+    only reports progress, which a sink may drop)."""
+    sink = _SINK
+    if sink is None:
         print(line, file=sys.stderr, flush=True)
+    else:
+        sink(line, progress)
+
+
+class held_notices:
+    """Hold the compile notices while output must not be interleaved (``robokit validate``'s table).
+
+    While active, every notice this module prints — the background compile's first line, a batch
+    kernel waiting, a kernel compiled in the process, a fallback — is kept instead of printed, and
+    ``on_line(line)`` (optional) is called with it (the table's status line shows it on a
+    terminal). On exit the kept lines are printed to stderr, in order, without the progress lines
+    ("X ready"). The exit notice (kernels still compiling) is printed at the process's exit as
+    always, after everything.
+
+    Parameters
+    ----------
+    on_line : callable, optional
+        Called with each notice as it happens.
+
+    Examples
+    --------
+    >>> with held_notices() as held:   # doctest: +SKIP
+    ...     print_the_table()          # a compile notice now waits in held.lines
+    >>> held.lines   # doctest: +SKIP
+    ['robokit: compiling course kernels in the background (pid 1234; first poe.fkin_space) - ...']
+    """
+
+    def __init__(self, on_line: Callable[[str], None] | None = None) -> None:
+        self.on_line = on_line
+        self.lines: list[str] = []
+        self._previous: Callable[[str, bool], None] | None = None
+
+    def _keep(self, line: str, progress: bool) -> None:
+        if not progress:
+            self.lines.append(line)
+        if self.on_line is not None:
+            self.on_line(line)
+
+    def __enter__(self) -> held_notices:
+        global _SINK
+        self._previous, _SINK = _SINK, self._keep
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        global _SINK
+        _SINK = self._previous
+        for line in self.lines:
+            print(line, file=sys.stderr, flush=True)
 
 
 def _at_exit() -> None:
@@ -671,7 +734,7 @@ class _CompileNotice(_event.Listener):
         module = module.rsplit(".", 1)[-1]
         name = getattr(func, "__name__", "?")
         if not quiet and name in _KERNELS.get(module, ()) and name not in _COMPILED.get(module, ()):
-            print(notice(module, name), file=sys.stderr, flush=True)
+            _emit(notice(module, name))
 
     def on_end(self, ev: _event.Event) -> None:
         pass

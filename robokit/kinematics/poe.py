@@ -14,6 +14,7 @@ accept a leading dimension of configurations (N, n); every function runs the com
 """
 from __future__ import annotations
 
+from math import hypot
 from types import ModuleType
 from typing import Any, Callable
 
@@ -21,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_matrix
+from robokit._units import TURN, check_radians, radian_ranges, revolute_columns
 from robokit.spatial.se3 import check_transform
 from robokit.errors import InputError
 
@@ -80,10 +82,18 @@ def _theta(thetalist: ArrayLike, n: int, name: str = "thetalist") -> np.ndarray:
     return np.ascontiguousarray(th)
 
 
+def _radians(th: np.ndarray, S: np.ndarray) -> None:
+    """The degrees check of the seed library (robokit._units): every revolute column at ±2π."""
+    lo, hi = radian_ranges(revolute_columns(S))
+    check_radians(th, lo, hi, "thetalist")
+
+
 def _run(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], thetalist: ArrayLike, n: int,
          *args: Any) -> np.ndarray:
-    """Checked θ (n,) or (N, n) → the one-configuration or the batched kernel (the slow path)."""
+    """Checked θ (n,) or (N, n) → the one-configuration or the batched kernel (the slow path);
+    ``args[0]`` is the screw list."""
     th = _theta(thetalist, n)
+    _radians(th, args[0])
     return kernel(*args, th) if th.ndim == 1 else batch(*args, th)
 
 
@@ -93,6 +103,7 @@ def _run_fk(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray],
     rigid only to check_transform's tolerance (its quick test is stricter), which the batched
     kernel (no such test) then answers."""
     th = _theta(thetalist, S.shape[1])
+    _radians(th, S)
     if th.ndim == 2:
         return batch(M, S, th)
     try:
@@ -213,7 +224,8 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
     (5, 4, 4)
     """
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
+            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ,
         try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_space(M, Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
@@ -262,7 +274,8 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
            [ 0.,  0.,  0.,  1.]])
     """
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ,
+    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
+            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ,
         try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
             return k.fkin_body(M, Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
@@ -307,7 +320,8 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
+            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ
         try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_space(Slist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
@@ -351,7 +365,8 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [0., 0., 1., 0., 1., 0.]])
     """
     k = _kp or _kernels()
-    if type(thetalist) is np.ndarray and thetalist.ndim == 1:  # the fast path: the kernel checks θ
+    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
+            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ
         try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
             return k.jacobian_body(Blist, thetalist)
         except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks

@@ -6,8 +6,9 @@ base frame unless said otherwise (Pinocchio's LOCAL_WORLD_ALIGNED), as the cours
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -32,6 +33,7 @@ __all__ = [
     "jacobian_in_frame",
     "manipulability",
     "velocity_ellipsoid",
+    "force_ellipsoid",
     "singularity",
     "resolved_rate",
     "joint_limit_gradient",
@@ -93,6 +95,41 @@ def numerical_jacobian(fk: Callable[[np.ndarray], ArrayLike] | RobotLike, q: Arr
     return J
 
 
+_Fn = TypeVar("_Fn", bound=Callable[..., Any])
+
+
+def _is_robot(x: object) -> bool:
+    """A robot (anything with ``n`` and ``jacobian``, a :class:`~robokit.description.protocol.RobotLike`)."""
+    return not isinstance(x, (np.ndarray, list, tuple, str, bytes)) and hasattr(x, "jacobian") and hasattr(x, "n")
+
+
+def _robot_jacobian(robot: Any, args: tuple, kwargs: dict, frame: str | None, name: str) -> tuple[np.ndarray, Any, tuple]:
+    """(J, q, the other positional arguments) of a call ``name(robot, q, ...)``: J the robot's
+    geometric Jacobian at q (base axes, rows (ω; v), v of the frame origin)."""
+    if args:
+        q, args = args[0], args[1:]
+    elif "q" in kwargs:
+        q = kwargs.pop("q")
+    else:
+        raise InputError(f"q: {name}(robot, q, ...) takes the joint values after the robot")
+    return robot.jacobian(q, frame, reference="local_world_aligned"), q, args
+
+
+def _jacobian_or_robot(fn: _Fn) -> _Fn:
+    """Let ``fn(J, ...)`` also be called ``fn(robot, q, ..., frame=None)``: J is then the robot's
+    geometric Jacobian at q, ``robot.jacobian(q, frame, reference="local_world_aligned")``."""
+    @functools.wraps(fn)
+    def _call(J: Any, *args: Any, frame: str | None = None, **kwargs: Any) -> Any:
+        if _is_robot(J):
+            J, _, args = _robot_jacobian(J, args, kwargs, frame, fn.__name__)
+        elif frame is not None:
+            raise InputError(f"frame: {fn.__name__} takes frame= with a robot (as {fn.__name__}(robot, q, frame=...)), "
+                             "not with a Jacobian")
+        return fn(J, *args, **kwargs)
+
+    return cast(_Fn, _call)
+
+
 def euler_rate_matrix(angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9, extrinsic: bool = False) -> np.ndarray:
     """The matrix E(φ) with ``ω = E(φ) φ̇``: Euler-angle rates to the angular velocity in base axes.
 
@@ -148,8 +185,8 @@ def euler_rate_matrix(angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9, ex
     return np.column_stack([e[i], Ri @ e[j], Ri @ elementary_rotation(j, b) @ e[k]])
 
 
-def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9,
-                        extrinsic: bool = False) -> np.ndarray:
+def analytical_jacobian(J: ArrayLike | RobotLike, angles: ArrayLike, seq: str = "ZYX", tol: float = 1e-9,
+                        extrinsic: bool = False, *, frame: str | None = None) -> np.ndarray:
     """Analytical Jacobian ``J_a = blockdiag(E(φ)⁻¹, I) J`` (Lecture 6): rows (φ̇; ṗ).
 
     (The lecture writes the same with the rows in the order (v; ω): ``J_a = blockdiag(I, B(Γ)⁻¹) J``;
@@ -158,16 +195,21 @@ def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: 
 
     Parameters
     ----------
-    J : (6, n) array_like
-        Geometric Jacobian ``(ω; v)`` in the base frame (:func:`geometric_jacobian`).
+    J : (6, n) array_like, or a robot
+        Geometric Jacobian ``(ω; v)`` in the base frame (:func:`geometric_jacobian`) — or a robot
+        followed by its joint values: ``analytical_jacobian(robot, q, seq)`` takes the robot's
+        geometric Jacobian at q and the Euler angles of its tool (``frame``) orientation there.
     angles : (3,) array_like
-        The current Euler angles (rad) of the tool orientation in the sequence ``seq``.
+        The current Euler angles (rad) of the tool orientation in the sequence ``seq`` (with a
+        robot: its joint values q, rad / m).
     seq : str, optional
         Any of the 12 Euler sequences; default "ZYX" (see :func:`euler_rate_matrix`).
     tol : float, optional
         Threshold on ``|det E|`` below which the angles are a representation singularity.
     extrinsic : bool, optional
         Fixed axes instead of moving axes; default False.
+    frame : str, optional
+        With a robot: the frame (default its tip).
 
     Returns
     -------
@@ -189,7 +231,23 @@ def analytical_jacobian(J: ArrayLike, angles: ArrayLike, seq: str = "ZYX", tol: 
     array([[1., 1.],
            [0., 0.],
            [0., 0.]])
+
+    The same from the robot and its joint values (the tool's yaw there is π/2):
+
+    >>> analytical_jacobian(rk.load("twolink"), [0, np.pi / 2], "ZYX")[:3] + 0.0   # (+ 0.0: no −0)
+    array([[1., 1.],
+           [0., 0.],
+           [0., 0.]])
     """
+    if _is_robot(J):
+        robot = cast("RobotLike", J)
+        J = robot.jacobian(angles, frame, reference="local_world_aligned")
+        from robokit.spatial.euler import euler_from_matrix
+
+        angles = cast(np.ndarray, euler_from_matrix(robot.frame_pose(angles, frame)[:3, :3], seq, extrinsic=extrinsic))
+    elif frame is not None:
+        raise InputError("frame: analytical_jacobian takes frame= with a robot (analytical_jacobian(robot, q, ...)), "
+                         "not with a Jacobian")
     J = as_matrix(J, "J", 6, None)
     E = euler_rate_matrix(angles, seq, extrinsic=extrinsic)
     d = float(np.linalg.det(E))
@@ -295,6 +353,7 @@ def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
     return lie.adjoint(lie.inv(check_transform(T_a_b, "T_a_b"))).T
 
 
+@_jacobian_or_robot
 def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     """Re-express a geometric Jacobian ``(ω; v)`` in rotated axes: ``blockdiag(R, R) J``.
 
@@ -303,8 +362,9 @@ def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
 
     Parameters
     ----------
-    J : (6, n) array_like
-        Jacobian with rows ``(ω; v)``.
+    J : (6, n) array_like, or a robot
+        Jacobian with rows ``(ω; v)``; or a robot followed by q: ``jacobian_in_frame(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
     R : (3, 3) array_like
         Rotation from J's axes to the new axes (``R_new_old``).
 
@@ -322,6 +382,8 @@ def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     >>> J = geometric_jacobian(robot, [0, np.pi / 2])
     >>> R_tool_base = robot.frame_pose([0, np.pi / 2])[:3, :3].T
     >>> bool(np.allclose(jacobian_in_frame(J, R_tool_base)[3:5], [[1, 0], [0.8, 0.8]]))
+    True
+    >>> bool(np.allclose(jacobian_in_frame(robot, [0, np.pi / 2], R_tool_base), jacobian_in_frame(J, R_tool_base)))
     True
     """
     J = as_matrix(J, "J", 6, None)
@@ -342,13 +404,16 @@ def _rows(J: ArrayLike, part: str) -> np.ndarray:
     raise InputError(f"part: expected 'full', 'translation' or 'rotation', got {part!r}")
 
 
+@_jacobian_or_robot
 def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") -> float:
     """A manipulability measure of a Jacobian, or of its translation or rotation rows (Lecture 6).
 
     Parameters
     ----------
-    J : (m, n) array_like
-        A Jacobian; a 6-row one ``(ω; v)`` when ``part`` is not "full".
+    J : (m, n) array_like, or a robot
+        A Jacobian; a 6-row one ``(ω; v)`` when ``part`` is not "full". Or a robot followed by q:
+        ``manipulability(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
     kind : {"yoshikawa", "condition", "inverse_condition", "min_singular"}, optional
         ``"yoshikawa"`` (default) — ``w = √det(J Jᵀ)``, the product of the singular values (0 at a
         singularity); ``"condition"`` — ``σ_max / σ_min`` (∞ at a singularity);
@@ -376,6 +441,14 @@ def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") ->
     >>> J = geometric_jacobian(rk.load("twolink"), [0, np.pi / 2])
     >>> round(manipulability(J[3:5]), 4)
     0.8
+
+    From a robot and its joint values (here the Panda's ready pose, all six rows):
+
+    >>> panda = rk.load("panda")
+    >>> round(manipulability(panda, panda.configurations["ready"]), 4)
+    0.0802
+    >>> round(manipulability(panda, panda.configurations["ready"], kind="condition"), 2)
+    8.18
     """
     A = _rows(J, part)
     s = np.linalg.svd(A, compute_uv=False)
@@ -393,13 +466,16 @@ def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") ->
     raise InputError(f"kind: expected 'yoshikawa', 'condition', 'inverse_condition' or 'min_singular', got {kind!r}")
 
 
+@_jacobian_or_robot
 def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray, np.ndarray]:
     """Axes and radii of the velocity ellipsoid ``{J q̇ : ‖q̇‖ ≤ 1}`` of the chosen rows (Lecture 6).
 
     Parameters
     ----------
-    J : (m, n) array_like
-        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``.
+    J : (m, n) array_like, or a robot
+        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q:
+        ``velocity_ellipsoid(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
     part : {"translation", "rotation", "full"}, optional
         Which rows (default the translation rows v).
 
@@ -419,12 +495,54 @@ def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndar
     >>> radii, axes = velocity_ellipsoid(J[3:5], part="full")
     >>> radii.round(4), round(float(np.prod(radii)), 4)
     (array([1.3972, 0.5726]), 0.8)
+    >>> velocity_ellipsoid(rk.load("twolink"), [0, np.pi / 2])[0].round(4)   # its (v_x, v_y, v_z) rows
+    array([1.3972, 0.5726, 0.    ])
     """
     A = _rows(J, part)
     U, s, _ = np.linalg.svd(A)
     radii = np.zeros(A.shape[0])
     radii[: len(s)] = s
     return radii, U
+
+
+@_jacobian_or_robot
+def force_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray, np.ndarray]:
+    """Axes and radii of the force ellipsoid ``{F : ‖Jᵀ F‖ ≤ 1}`` of the chosen rows (Lecture 6).
+
+    The wrenches the tool can exert (or resist) with unit joint-torque norm: by the duality
+    ``τ = Jᵀ F`` its axes are the velocity ellipsoid's and its radii the inverse singular values
+    ``1/σᵢ`` — long where the velocity ellipsoid is short. Along a lost direction (σ = 0) the arm
+    resists any force without torque: the radius is ∞.
+
+    Parameters
+    ----------
+    J : (m, n) array_like, or a robot
+        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q:
+        ``force_ellipsoid(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+    part : {"translation", "rotation", "full"}, optional
+        Which rows (default the translation rows v: forces; "rotation": moments).
+
+    Returns
+    -------
+    radii : (k,) ndarray
+        ``1/σᵢ`` in the order of :func:`velocity_ellipsoid`'s axes (ascending), N (or N·m) per
+        unit joint-torque norm; ∞ along lost directions.
+    axes : (k, k) ndarray
+        The axes as columns (the left singular vectors of J's rows), in J's (base) axes.
+
+    Examples
+    --------
+    The planar arm at q = (0, π/2): radii 1/1.3972 and 1/0.5726, and ∞ along z (a planar arm
+    holds any vertical force without torque):
+
+    >>> radii, axes = force_ellipsoid(rk.load("twolink"), [0, np.pi / 2])
+    >>> radii.round(4)
+    array([0.7157, 1.7465,    inf])
+    """
+    radii, axes = velocity_ellipsoid(J, part)
+    with np.errstate(divide="ignore"):
+        return np.where(radii > 0, 1.0 / np.where(radii > 0, radii, 1.0), np.inf), axes
 
 
 _NAMES = ("rotation about x", "rotation about y", "rotation about z",
@@ -457,6 +575,7 @@ class SingularityReport:
     description: str
 
 
+@_jacobian_or_robot
 def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     """Rank test of a Jacobian and the Cartesian direction it cannot produce (Lecture 6).
 
@@ -465,8 +584,10 @@ def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
 
     Parameters
     ----------
-    J : (m, n) array_like
-        A Jacobian, usually 6×n with rows ``(ω; v)`` (other row counts: directions by index).
+    J : (m, n) array_like, or a robot
+        A Jacobian, usually 6×n with rows ``(ω; v)`` (other row counts: directions by index). Or a
+        robot followed by q: ``singularity(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
     tol : float, optional
         Singular values below this count as zero; default 1e-9.
 
@@ -486,6 +607,8 @@ def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     (5, True, 'rotation about x (1.00)')
     >>> singularity(puma.jacobian([0, 0.5, -0.3, 0, 0.7, 0], reference="local_world_aligned")).rank
     6
+    >>> singularity(puma, np.zeros(6)).description   # the same from the robot and q
+    'rotation about x (1.00)'
     """
     A = as_array(J, "J", (None, None))
     U, s, _ = np.linalg.svd(A)
@@ -501,14 +624,17 @@ def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     return SingularityReport(rank, float(sig[-1]), bool(sig[-1] < tol), d, f"{name} ({d[k]:.2f})")
 
 
+@_jacobian_or_robot
 def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: float = 0.05, adaptive: bool = False,
                   epsilon: float = 0.05, z: ArrayLike | None = None, rcond: float = 1e-12) -> np.ndarray:
     """Joint velocities for a desired Cartesian twist (Lecture 6): ``q̇ = J⁺V + (I − J⁺J) z``.
 
     Parameters
     ----------
-    J : (m, n) array_like
+    J : (m, n) array_like, or a robot
         Jacobian (m ≤ 6 rows; use the rows that matter, e.g. the 2 planar rows of the 2-link arm).
+        Or a robot followed by q, then V (6,): ``resolved_rate(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
+        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
     V : (m,) array_like
         Desired twist in J's rows and axes (rad/s, m/s).
     method : {"pinv", "dls", "damped_inverse"}, optional
@@ -547,6 +673,8 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
     >>> dq = resolved_rate(J[3:5], [0, 1])
     >>> dq.round(4), (J[3:5] @ dq).round(4)
     (array([ 1., -1.]), array([0., 1.]))
+    >>> resolved_rate(rk.load("twolink"), [0, np.pi / 2], [0, 0, 0, 0, 1, 0]).round(4)   # (robot, q, V)
+    array([ 1., -1.])
     """
     J = as_array(J, "J", (None, None))
     m, n = J.shape

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from robokit._arrays import as_array, as_scalar
+from robokit.description.robot import check_robot_radians
 from robokit._optional import require
 from robokit.errors import InputError
 from robokit.motion.retime import path_spline, retime
@@ -103,6 +104,8 @@ def goal_configurations(robot: Any, T: Any, world: Any = None, q_start: Any = No
     from robokit.ik.numeric import solve_ik
     T = as_array(T, "goal", (4, 4))
     q0 = np.zeros(robot.n) if q_start is None else as_array(q_start, "q_start", (robot.n,))
+    if q_start is not None:
+        check_robot_radians(robot, q0, "q_start")
     cands: list[np.ndarray] = []
     try:
         cands = [s.q for s in ik_analytic(robot, T) if s.within_limits]
@@ -245,6 +248,7 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     """
     n = robot.n
     q0 = as_array(q_start, "q_start", (n,))
+    warned = check_robot_radians(robot, q0, "q_start")
     res = as_scalar(resolution, "resolution", positive=True)
     timeout = as_scalar(timeout, "timeout", positive=True)
     spacing = as_scalar(spacing, "spacing", positive=True)
@@ -260,6 +264,8 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
         qg = goals[0]
     elif g.shape == (n,):
         qg = g
+        if not warned:
+            check_robot_radians(robot, qg, "goal")
         if not chk.valid(qg):
             raise InputError("goal: in collision or outside the joint limits")
     else:

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from robokit._arrays import as_array
+from robokit.description.robot import check_robot_radians
 from robokit._optional import require
 from robokit.errors import InputError
 from robokit.trajectory.core import Trajectory
@@ -133,6 +134,7 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
     if not isinstance(grid, (int, np.integer)) or grid < 2:
         raise InputError(f"grid: expected an integer >= 2, got {grid!r}")
     spline, ss = path_spline(path, n)
+    check_robot_radians(robot, spline(ss), "path")  # the waypoints (a path's rows may wind: states)
     tpath = ta.SplineInterpolator(ss, spline(ss), bc_type="not-a-knot")
     cons: list[Any] = [constraint.JointVelocityConstraint(np.column_stack([-vm, vm])),
                        constraint.JointAccelerationConstraint(np.column_stack([-am, am]))]

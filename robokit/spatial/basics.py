@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_array, as_vector
 from robokit.errors import InputError
 
-__all__ = ["near_zero", "normalize", "unit_vector", "wrap_angle"]
+__all__ = ["near_zero", "normalize", "unit_vector", "wrap_angle", "deg2rad", "rad2deg"]
 
 
 def near_zero(z: ArrayLike) -> bool:
@@ -117,3 +117,59 @@ def wrap_angle(a: ArrayLike) -> float | np.ndarray:
     w = np.mod(a + np.pi, 2.0 * np.pi) - np.pi
     w = np.where(w <= -np.pi, w + 2.0 * np.pi, w)
     return float(w) if w.ndim == 0 else w
+
+
+def deg2rad(x: ArrayLike) -> float | np.ndarray:
+    """Degrees to radians, ``x·π/180`` (robokit takes every angle in radians).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Angle(s) in degrees (a joint vector, a trajectory's rows, ...).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float for a scalar, a float64 array of the same shape for an array.
+
+    Raises
+    ------
+    InputError
+        Non-numeric input (strings, booleans, complex values).
+
+    Examples
+    --------
+    >>> rk.deg2rad([0, 45, -90, 0, 30, 0]).round(4)
+    array([ 0.    ,  0.7854, -1.5708,  0.    ,  0.5236,  0.    ])
+    >>> rk.deg2rad(180)
+    3.141592653589793
+    """
+    a = as_array(x, "x", finite=False) * (math.pi / 180.0)
+    return float(a) if a.ndim == 0 else a
+
+
+def rad2deg(x: ArrayLike) -> float | np.ndarray:
+    """Radians to degrees, ``x·180/π`` (for printing; robokit itself takes radians).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Angle(s) in radians.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float for a scalar, a float64 array of the same shape for an array.
+
+    Raises
+    ------
+    InputError
+        Non-numeric input (strings, booleans, complex values).
+
+    Examples
+    --------
+    >>> rk.rad2deg(np.pi / 2)
+    90.0
+    """
+    a = as_array(x, "x", finite=False) * (180.0 / math.pi)
+    return float(a) if a.ndim == 0 else a

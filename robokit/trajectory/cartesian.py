@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
+from robokit.description.robot import check_robot_radians
 from robokit.spatial.se3 import check_transform
 from robokit.spatial.so3 import check_rotation
 from robokit.trajectory.core import Trajectory, positive_duration, sample_times
@@ -239,6 +240,8 @@ def joint_trajectory_from_cartesian(robot: Any, traj: Trajectory, ik: Callable[[
     K = poses.shape[0]
     tol = float(tol)
     guess = None if q0 is None else as_vector(q0, "q0", n)
+    if guess is not None:
+        check_robot_radians(robot, guess, "q0")
     if ik is None:
         from robokit.ik.numeric import solve_ik
 

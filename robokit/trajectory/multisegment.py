@@ -31,10 +31,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
-from robokit.trajectory.core import Trajectory, as_axes
+from robokit.trajectory.core import Trajectory, as_axes, viapoint_matrix
 from robokit.errors import InputError, InputTypeError
 
-__all__ = ["ms_trajectory"]
+__all__ = ["ms_trajectory", "ms_lspb_trajectory"]
 
 
 def _quintic_blend(p0: np.ndarray, p1: np.ndarray, v0: np.ndarray, v1: np.ndarray, T: float, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -292,3 +292,134 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
         "in_blend": np.concatenate(blend_flags),
     }
     return Trajectory(t, q, qdv, qddv, name="ms_trajectory", info=info)
+
+
+def ms_lspb_trajectory(viapoint: ArrayLike, dt: float, tacc: float, qdmax: ArrayLike | None = None,
+                       tsegment: ArrayLike | None = None) -> Trajectory:
+    r"""The plain multi-segment trajectory a student expects from :func:`ms_trajectory`'s arguments.
+
+    Straight lines at constant speed between consecutive via points (all axes arrive together),
+    joined around each via point by a **parabolic** blend of duration ``tacc`` (constant
+    acceleration), starting and ending at rest — the lecture's linear segments with parabolic
+    blends (LSPB) through via points, with the blend time given instead of the acceleration. It
+    differs from Corke's ``mstraj`` (:func:`ms_trajectory`, kept as it is) in the three places
+    that surprise a reader of ``mstraj``'s output:
+
+    * the first sample is the start point at ``t = 0`` (``mstraj`` begins one step later, and its
+      time axis then puts the start at ``t = −dt``);
+    * no axis is ever faster than ``qdmax``: with a parabolic blend the velocity goes linearly
+      from one line's to the next, so it stays between them (``mstraj``'s quintic blends, and its
+      first half blend that must meet the line on time from rest, go above ``qdmax``);
+    * each segment lasts ``max(tacc, max_j |Δq_j| / qdmax_j)``: its slowest axis at exactly
+      ``qdmax`` (``mstraj`` counts the blend into the segment time, so its lines run slower).
+
+    With via points :math:`P_0, …, P_{M-1}`, segment times :math:`T_k` and line velocities
+    :math:`V_k = (P_{k+1} - P_k)/T_k`, the line of segment k passes :math:`P_k` at
+    :math:`\tau_k = t_{acc}/2 + \sum_{i<k} T_i`; the blend around :math:`P_k` lasts
+    :math:`[\tau_k - t_{acc}/2, \tau_k + t_{acc}/2]` with acceleration
+    :math:`(V_k - V_{k-1})/t_{acc}` (:math:`V_{-1} = V_{M-1} = 0`): it starts exactly at
+    :math:`P_0` at :math:`t = 0` and ends exactly at :math:`P_{M-1}` at rest at
+    :math:`\tau_{M-1} + t_{acc}/2`. Interior via points are approached, not passed (the blend
+    cuts the corner by :math:`|V_k - V_{k-1}|\, t_{acc}/8`).
+
+    Parameters
+    ----------
+    viapoint : array (M, n), M ≥ 2
+        Start, via points and goal, one row per point (rad or m); a 1-D list is one axis.
+    dt : float
+        Sample step, s (> 0); the samples are ``0, dt, 2dt, …`` and the end time.
+    tacc : float
+        Blend time, s (≥ 0; 0 gives straight lines with corners).
+    qdmax : float or array (n,), optional
+        Speed limit per axis (> 0): each segment as fast as its slowest axis allows.
+    tsegment : array (M−1,), optional
+        Segment durations :math:`T_k`, s (each ≥ ``tacc``). Exactly one of ``qdmax``/``tsegment``.
+
+    Returns
+    -------
+    Trajectory
+        ``t`` from 0 to the end time, ``q``, ``qd``, ``qdd`` (exact). ``info``:
+        ``"segment_times"`` :math:`T_k`, ``"line_times"`` :math:`\tau_k`, ``"velocities"``
+        :math:`V_k` (M−1, n), ``"via_points"``, ``"via_times"`` (0, the interior
+        :math:`\tau_k`, the end time), ``"tacc"``, ``"in_blend"`` (K,) bool.
+
+    Raises
+    ------
+    InputError
+        Both or neither of ``qdmax``/``tsegment``; a non-positive speed, ``dt`` or segment time;
+        ``tacc < 0``; a segment shorter than ``tacc`` (its two blends would overlap).
+
+    Examples
+    --------
+    The README's ``mstraj`` sample, plainly: the start at t = 0, never faster than 0.5:
+
+    >>> tr = ms_lspb_trajectory([[0, 0], [1, 0], [1, 1]], dt=0.05, tacc=0.5, qdmax=0.5)
+    >>> float(tr.t[0]), tr.q[0].tolist(), tr.q[-1].tolist(), float(abs(tr.qd).max())
+    (0.0, [0.0, 0.0], [1.0, 1.0], 0.5)
+    >>> tr.info["segment_times"].tolist(), tr.info["via_times"].tolist()
+    ([2.0, 2.0], [0.0, 2.25, 4.5])
+    """
+    P = viapoint_matrix(viapoint, "viapoint")
+    M, n = P.shape
+    dt = as_scalar(dt, "dt", positive=True)
+    tacc = as_scalar(tacc, "tacc", nonnegative=True)
+    qdmax = None if _empty(qdmax) else qdmax
+    tsegment = None if _empty(tsegment) else tsegment
+    if (qdmax is None) == (tsegment is None):
+        raise InputError("qdmax/tsegment: give exactly one of them (qdmax = speed limit per axis, or tsegment = "
+                         f"duration of each segment); got {'both' if qdmax is not None else 'neither'}")
+    D = np.diff(P, axis=0)
+    if qdmax is not None:
+        speed = _per_axis(qdmax, "qdmax", n)
+        if np.any(speed <= 0):
+            raise InputError(f"qdmax: speeds must be positive, got {speed.tolist()}")
+        T = np.maximum(tacc, (np.abs(D) / speed).max(axis=1))
+    else:
+        T = as_array(tsegment, "tsegment", (M - 1,))
+        if np.any(T <= 0):
+            k = int(np.argmin(T))
+            raise InputError(f"tsegment: segment times must be positive, got tsegment[{k}] = {T[k]!r}")
+        if np.any(T < tacc * (1 - 1e-12)):
+            k = int(np.argmin(T - tacc))
+            raise InputError(f"tsegment: segment {k} lasts {T[k]:g} s, less than the blend time tacc = {tacc:g} s "
+                             "(its blends would overlap)")
+    V = np.divide(D, T[:, None], out=np.zeros_like(D), where=T[:, None] > 0)
+    tau = 0.5 * tacc + np.concatenate([[0.0], np.cumsum(T)])  # when the lines pass the via points
+    end = float(tau[-1] + 0.5 * tacc)
+    if not end > 0:
+        raise InputError("viapoint: the motion has no duration (every segment has zero length and tacc = 0)")
+    K = int(math.floor(end / dt * (1 + 1e-12))) + 1
+    t = dt * np.arange(K)
+    if end - t[-1] > 1e-9 * end:
+        t = np.append(t, end)
+    t[-1] = end
+    Vin = np.vstack([np.zeros(n), V])  # velocity before via point k
+    Vout = np.vstack([V, np.zeros(n)])  # and after it
+    # the segment a sample lies in: its last via point k with τ_k − tacc/2 ≤ t, on the line or in that blend
+    seg = np.clip(np.searchsorted(tau - 0.5 * tacc, t, side="right") - 1, 0, M - 1)
+    s = t - tau[seg]  # time since the line of segment k (or, before it, of segment k−1) passed P_k
+    in_blend = s < 0.5 * tacc
+    q = P[seg] + np.where(in_blend[:, None], Vin[seg], Vout[seg]) * s[:, None]
+    qd = np.where(in_blend[:, None], Vin[seg], Vout[seg])
+    qdd = np.zeros_like(q)
+    if tacc > 0:
+        u = (s + 0.5 * tacc)[in_blend][:, None]  # time into the blend
+        dv = (Vout[seg] - Vin[seg])[in_blend]
+        frac = u / tacc  # in [0, 1]: no overflow for a tiny tacc
+        q[in_blend] += 0.5 * dv * frac * u
+        qd[in_blend] += dv * frac
+        with np.errstate(over="ignore"):
+            qdd[in_blend] = dv / tacc
+    q[0], q[-1] = P[0], P[-1]  # exactly
+    if tacc > 0:
+        qd[[0, -1]] = 0.0  # from rest, to rest (exactly, whatever the rounding of the end time)
+    info = {
+        "segment_times": T,
+        "line_times": tau,
+        "velocities": V,
+        "via_points": P,
+        "via_times": np.concatenate([[0.0], tau[1:-1], [end]]),
+        "tacc": tacc,
+        "in_blend": in_blend,
+    }
+    return Trajectory(t, q, qd, qdd, name="ms_lspb", info=info)

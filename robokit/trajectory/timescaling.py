@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_vector
+from robokit._units import TURN, check_radians
 from robokit.spatial.se3 import check_transform
 from robokit.trajectory.core import positive_duration
 from robokit.spatial import lie
@@ -193,6 +194,9 @@ def joint_trajectory(thetastart: ArrayLike, thetaend: ArrayLike, Tf: float, N: i
     """
     a = as_vector(thetastart, "thetastart")
     b = as_vector(thetaend, "thetaend", a.shape[0])
+    # joint values by name, kinds unknown: every value at ±2π (robokit._units), one warning per call
+    if not check_radians(a, -TURN, TURN, "thetastart"):
+        check_radians(b, -TURN, TURN, "thetaend")
     s = _grid(Tf, N, method)
     return a + s[:, None] * (b - a)
 

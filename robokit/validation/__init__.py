@@ -164,11 +164,14 @@ def _line(cells: Sequence[str]) -> str:
     return "\n".join([*lead, row])
 
 
-def main(as_json: bool = False, seed: int = 0) -> int:
+def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = None) -> int:
     """What ``robokit validate`` runs: every check, printed as a table or as JSON.
 
     Without ``as_json`` the rows are streamed as each area finishes; on a terminal a progress
-    line on stderr says which area is running (piped, the output is plain lines only).
+    line on stderr says which area is running (piped, the output is plain lines only). robokit's
+    compile notices (the kernels compiling in the background on a new machine) are held while the
+    table prints and come after it, never between its lines; on a terminal the progress line
+    shows them as they happen.
 
     Parameters
     ----------
@@ -176,14 +179,33 @@ def main(as_json: bool = False, seed: int = 0) -> int:
         Print one JSON document at the end instead of the table (default False).
     seed : int, optional
         Seed of the random samples (default 0).
+    areas : sequence of str, optional
+        Only these areas (names of :data:`AREAS`: ``spatial``, ``description``, ``kinematics``,
+        ``dynamics``, ``ik``, ``trajectory``); default all.
 
     Returns
     -------
     int
         The exit status: 0 if every row passes, else 1.
+
+    Raises
+    ------
+    InputError
+        An unknown area name.
     """
     import sys
 
+    from robokit.kernels._jit import held_notices
+
+    chosen: tuple[tuple[str, str], ...] = AREAS
+    if areas:
+        known = list(dict.fromkeys(a for a, _ in AREAS))
+        unknown = [a for a in areas if a not in known]
+        if unknown:
+            from robokit.errors import InputError
+
+            raise InputError(f"--area: unknown area {unknown[0]!r}; the areas are {', '.join(known)}")
+        chosen = tuple(x for x in AREAS if x[0] in areas)
     t0 = time.perf_counter()
     rows: list[CheckRow] = []
     progress = None
@@ -192,29 +214,42 @@ def main(as_json: bool = False, seed: int = 0) -> int:
 
         progress = Console(stderr=True).status("validating ...")
         progress.start()
+    state = {"area": "", "notice": ""}
+
+    def show_notice(line: str) -> None:  # a compile notice, held until the table is done
+        if progress is not None:
+            state["notice"] = line.removeprefix("robokit: ")[:90]
+            progress.update(f"validating ... {state['area']} ({state['notice']})")
+
+    held = held_notices(show_notice)
+    held.__enter__()
     try:
         if not as_json:
             head = ("quantity", "model", "cases", "max error", "tol", "metric", "pass")
             print(_line(head))
             print(_line(tuple("-" * w for w in _WIDTHS)), flush=True)
-        for modname, new in iter_rows(seed=seed):
+        for modname, new in iter_rows(seed=seed, areas=chosen):
             rows.extend(new)
+            state["area"] = f"{modname} done ({len(rows)} rows)"
             if progress is not None:
-                progress.update(f"validating ... {modname} done ({len(rows)} rows)")
+                progress.update(f"validating ... {state['area']}")
             if not as_json:
                 for r in new:
                     print(_line(_row_cells(r)))
                     if r.error:
                         print(f"  error in {r.quantity} [{r.model}]: {r.error}")
                 sys.stdout.flush()
+        elapsed = time.perf_counter() - t0
+        ok = bool(rows) and all(r.passed for r in rows)
+        if as_json:
+            print(json.dumps({"passed": ok, "seconds": round(elapsed, 3), "rows": [r.as_dict() for r in rows]},
+                             indent=1))
+        else:
+            n_fail = sum(not r.passed for r in rows)
+            print(f"\n{len(rows) - n_fail} passed, {n_fail} failed  ({elapsed:.1f} s)")
+        sys.stdout.flush()
     finally:
         if progress is not None:
             progress.stop()
-    elapsed = time.perf_counter() - t0
-    ok = bool(rows) and all(r.passed for r in rows)
-    if as_json:
-        print(json.dumps({"passed": ok, "seconds": round(elapsed, 3), "rows": [r.as_dict() for r in rows]}, indent=1))
-    else:
-        n_fail = sum(not r.passed for r in rows)
-        print(f"\n{len(rows) - n_fail} passed, {n_fail} failed  ({elapsed:.1f} s)")
+        held.__exit__(None, None, None)  # the compile notices, after the table
     return 0 if ok else 1

@@ -13,6 +13,7 @@ so at ``cell`` = 1–3 mm the picture is unchanged while the page shrinks severa
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -21,7 +22,10 @@ from robokit.errors import InputError
 
 from robokit._optional import require
 
-__all__ = ["mesh_parts", "cluster_decimate"]
+__all__ = ["mesh_parts", "cluster_decimate", "decimated_visuals", "draw_parts", "PAGE_MESH_CELL"]
+
+#: Cube side (m) of the vertex clustering of meshes written into pages (teach, view, Scene.html).
+PAGE_MESH_CELL = 0.002
 
 
 def cluster_decimate(vertices: ArrayLike, faces: ArrayLike, cell: float) -> tuple[np.ndarray, np.ndarray]:
@@ -144,3 +148,47 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
         warnings.warn(f"{path}: {total} triangles decimated to {kept} for the page (cube side {c:g} instead of "
                       f"{cell:g}; at most {MAX_PAGE_FACES} per mesh)", RobokitWarning, stacklevel=2)
     return parts
+
+
+def decimated_visuals(visual_model: Any, cell: float = PAGE_MESH_CELL) -> list[tuple[Any, list]]:
+    """``(geometry object, parts)`` for every visual of a Pinocchio ``GeometryModel`` drawn from a
+    mesh file (``.dae``, ``.stl``, ``.obj``), its parts from :func:`mesh_parts` (the URDF's colour
+    when it overrides the file's, and always for STL files, which have none).
+
+    Parameters
+    ----------
+    visual_model : pinocchio.GeometryModel
+        The robot's visuals.
+    cell : float
+        Cube side of the decimation (m, in the meshes' own unit).
+
+    Returns
+    -------
+    list of (pinocchio.GeometryObject, list)
+        Only the mesh-file visuals (primitives are drawn as they are).
+    """
+    out = []
+    for go in visual_model.geometryObjects:
+        ext = Path(go.meshPath).suffix.lower() if go.meshPath else ""
+        if ext in (".dae", ".stl", ".obj") and Path(go.meshPath).is_file():
+            override = np.asarray(go.meshColor, float) if (go.overrideMaterial or ext == ".stl") else None
+            out.append((go, mesh_parts(go.meshPath, cell, override)))
+    return out
+
+
+def draw_parts(node: Any, parts: list) -> None:
+    """Draw decimated parts as the children ``part0``, ``part1``, … of a meshcat node (a Phong
+    material of each part's colour and opacity); the node's own transform places them.
+
+    Parameters
+    ----------
+    node : meshcat.Visualizer
+        The node (``vis[path]``) the mesh file was drawn at.
+    parts : list
+        From :func:`mesh_parts`.
+    """
+    g = require("meshcat.geometry", "drawing meshes")
+    for i, (V, F, rgba) in enumerate(parts):
+        color = int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
+        node[f"part{i}"].set_object(g.TriangularMeshGeometry(V, F),
+                                    g.MeshPhongMaterial(color=color, opacity=float(rgba[3]), shininess=30))

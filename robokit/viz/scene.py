@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["Scene"]
+__all__ = ["Scene", "camera_offset", "MESHCAT_FOV"]
 
 
 def start_server() -> tuple[subprocess.Popen, str, str]:
@@ -98,6 +98,60 @@ def stop_server(proc: subprocess.Popen | None) -> None:
         proc.wait()
 
 
+#: meshcat's default camera: vertical field of view, degrees.
+MESHCAT_FOV = 75.0
+
+
+def camera_offset(points: ArrayLike, fill: float = 0.75, azimuth: float = 45.0,
+                  elevation: float = 25.0) -> tuple[np.ndarray, np.ndarray]:
+    """Where a meshcat camera looking at ``points`` frames them: the target and the camera's offset.
+
+    The target c is the centre of the points' bounding box; the camera looks at it from the
+    direction ``d`` (``azimuth`` about z from x, ``elevation`` above the xy plane) with z up, at
+    the smallest distance D at which every point's perspective projection lies within ``fill``
+    of the half-height of meshcat's 75° view — and of its half-width, taken as equal (a window
+    at least as wide as tall): ``D = max_p (|p·r| or |p·u|)/(fill·tan 37.5°) − p·f`` over the
+    points p (relative to c), f = −d the viewing direction, r and u the camera's right and up axes.
+
+    Parameters
+    ----------
+    points : array_like, shape (K, 3)
+        What must be in view (base frame, m).
+    fill : float
+        Fraction of the half-view the farthest point reaches, in (0, 1].
+    azimuth, elevation : float
+        View direction, degrees (elevation clamped to ±85°: the camera keeps z up).
+
+    Returns
+    -------
+    centre : numpy.ndarray, shape (3,)
+        The target (m).
+    offset : numpy.ndarray, shape (3,)
+        Camera position minus target (m), ``D·d``.
+
+    Examples
+    --------
+    >>> c, off = camera_offset([[0, 0, 0], [1, 0, 0]], elevation=90)
+    >>> c.tolist(), bool(off[2] > 0)
+    ([0.5, 0.0, 0.0], True)
+    """
+    P = np.asarray(points, dtype=float).reshape(-1, 3)
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    el = np.deg2rad(float(np.clip(elevation, -85.0, 85.0)))
+    az = np.deg2rad(float(azimuth))
+    d = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    f = -d
+    r = np.cross(f, [0.0, 0.0, 1.0])
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    X = P - centre
+    k = float(fill) * np.tan(0.5 * np.deg2rad(MESHCAT_FOV))
+    need = np.maximum(np.abs(X @ r), np.abs(X @ u)) / k - X @ f
+    dist = max(float(need.max()), 0.2)
+    return centre, dist * d
+
+
 class Scene:
     """A meshcat scene of one robot.
 
@@ -155,6 +209,7 @@ class Scene:
         self.grid: dict | None = None
         self._frames: tuple[list[str], float] = ([], 0.0)
         self._label_points: list[np.ndarray] = []
+        self._animated = False  # animate() was called: pages get a visible play/pause control
 
     # ------------------------------------------------------------------ drawing
     def show(self, q: ArrayLike | None = None) -> Scene:
@@ -361,6 +416,7 @@ class Scene:
             self.viz.viewer = viewer
         self.vis.set_animation(anim, play=True, repetitions=0)
         self._extra_points.extend(self.robot.frame_pose(q)[:3, 3] for q in Q[:: max(1, len(Q) // 20)])
+        self._animated = True
         return self
 
     # ------------------------------------------------------------------ camera
@@ -418,24 +474,31 @@ class Scene:
 
     _SHIFTED = ("robot", "frames", "labels", "points", "paths", "poses", "ellipsoid", "obstacles", "floor", "/Grid", "/Axes")
 
-    def frame_camera(self, fill: float = 0.75) -> Scene:
-        """Aim the camera at the robot so that its bounding box fills about ``fill`` of the view.
+    def frame_camera(self, fill: float = 0.75, azimuth: float = 45.0, elevation: float = 25.0) -> Scene:
+        """Aim the camera at the robot (and everything drawn) so that it fills about ``fill`` of the view.
 
         meshcat 0.3's orbit controls always look at the world origin, so the scene content
-        (robot, drawings, grid) is shifted by −c, c the centre of the robot's bounding box,
-        and the camera is placed at a 3/4 view (azimuth 45°, elevation 25°) at the distance
-        where the box's bounding sphere spans ``fill`` of the vertical field of view.
+        (robot, drawings, grid) is shifted by −c, c the centre of the points' bounding box, and
+        the camera is placed in the direction (``azimuth``, ``elevation``; default a 3/4 view) at
+        the distance where every point projects within ``fill`` of the view's half-height and
+        half-width (:func:`camera_offset`).
+
+        Parameters
+        ----------
+        fill : float
+            Fraction of the view (0–1].
+        azimuth, elevation : float
+            View direction, degrees (base frame; elevation ≤ 85°).
+
+        Returns
+        -------
+        Scene
+            self.
         """
         if self.grid is None:
             self.ground_grid()
         P = self._points()
-        lo, hi = P.min(axis=0), P.max(axis=0)
-        centre = 0.5 * (lo + hi)
-        radius = max(0.5 * float(np.linalg.norm(hi - lo)), 0.1)
-        fov = np.deg2rad(75.0)  # meshcat's default camera
-        dist = radius / np.tan(0.5 * fov * fill)
-        az, el = np.deg2rad(45.0), np.deg2rad(25.0)
-        offset = dist * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        centre, offset = camera_offset(P, fill, azimuth, elevation)
         T = np.eye(4)
         T[:3, 3] = -centre
         for name in self._SHIFTED:
@@ -446,9 +509,68 @@ class Scene:
         return self
 
     # ------------------------------------------------------------------ output
-    def html(self) -> str:
-        """The scene as one self-contained HTML page (no server needed to view it)."""
-        return self.vis.static_html()
+    def html(self, mesh_cell: float | None = 0.002) -> str:
+        """The scene as one self-contained HTML page (no server needed to view it).
+
+        Meshes (visual and collision) go into the page decimated by vertex clustering with cubes of ``mesh_cell`` (m), as
+        in the teach page (:mod:`robokit.viz._meshes`: every kept vertex within ``cell·√3`` of the
+        surface, so at 2 mm the picture is unchanged): the Panda's page is 3.5 MB instead of 15.1 MB
+        with its mesh files as they are, the UR5's 2.1 MB instead of 10.1 MB. The live scene keeps
+        the full meshes. An animated scene's page has a visible play/pause button, a time slider
+        and a clock in its lower-left corner.
+
+        Parameters
+        ----------
+        mesh_cell : float or None, optional
+            Cube side (m) of the decimation; None writes the mesh files as they are.
+
+        Returns
+        -------
+        str
+            The HTML page.
+
+        Examples
+        --------
+        >>> with Scene("panda") as s:   # doctest: +SKIP
+        ...     round(len(s.show().html()) / 1e6, 1)   # MB
+        3.5
+        """
+        return self._with_player(self._page(mesh_cell))
+
+    def _with_player(self, page: str) -> str:
+        """The page with a visible play/pause button, time slider and clock when the scene is
+        animated (meshcat's own controls hide behind "Open Controls")."""
+        if not self._animated:
+            return page
+        from importlib import resources
+
+        player = resources.files("robokit.viz").joinpath("player.html").read_text(encoding="utf-8")
+        i = page.rfind("</body>")
+        return page[:i] + player + page[i:] if i >= 0 else page + player
+
+    def _page(self, mesh_cell: float | None) -> str:
+        if mesh_cell is None:
+            return self.vis.static_html()
+        import pinocchio as pin
+
+        from robokit.viz._meshes import decimated_visuals, draw_parts
+
+        kinds = ((self.viz.visual_model, pin.GeometryType.VISUAL), (self.viz.collision_model, pin.GeometryType.COLLISION))
+        swapped = [(go, parts, kind) for model, kind in kinds if model is not None
+                   for go, parts in decimated_visuals(model, mesh_cell)]
+        try:
+            for go, parts, kind in swapped:
+                node = self.vis[self.viz.getViewerNodeName(go, kind)]
+                node.delete()  # the mesh file's object; the parts are drawn at the same node
+                draw_parts(node, parts)
+            self.viz.display(self.robot.q_pin(self.q))  # the nodes' placements, deleted with them
+            return self.vis.static_html()
+        finally:  # the live scene gets its full meshes back
+            for go, _, kind in swapped:
+                self.vis[self.viz.getViewerNodeName(go, kind)].delete()
+                self.viz.loadViewerGeometryObject(go, kind)
+            if swapped:
+                self.viz.display(self.robot.q_pin(self.q))
 
     def notebook(self, height: int = 480, path: str | os.PathLike[str] | None = None) -> Any:
         """Show the scene in a Jupyter notebook: the self-contained page is written to a file

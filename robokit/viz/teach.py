@@ -56,6 +56,7 @@ __all__ = [
     "NAMED_POSES",
     "SINGULAR_RATIO",
     "task_rows",
+    "ready_pose",
     "teach_parameters",
     "teach_data",
     "teach_readouts",
@@ -160,6 +161,95 @@ def _named_poses(robot: Robot) -> dict:
     return {k: v for k, v in poses.items() if v.shape == (robot.n,)}
 
 
+#: The inverse condition number σ_min/σ_max (task rows) a searched opening pose reaches: three times
+#: the page's near-singularity threshold, so the pendant opens clear of any warning.
+READY_RATIO = 3 * SINGULAR_RATIO
+
+
+def _conditioning(robot: Robot, q: np.ndarray, rows: list[int]) -> tuple[float, float]:
+    """(σ_min/σ_max, Σ log(σᵢ/σ_max + 1e-6)) of the task Jacobian at q: the page's measure, and a
+    smooth one that also rises when one of several lost directions comes back."""
+    J = robot.jacobian(q, reference="local_world_aligned")[rows]
+    s = np.linalg.svd(J, compute_uv=False)
+    if s[0] <= 0:
+        return 0.0, -np.inf
+    r = np.zeros(J.shape[0])
+    r[: len(s)] = s / s[0]
+    return float(r[-1]), float(np.log(r + 1e-6).sum())
+
+
+def ready_pose(robot: Robot) -> tuple[str, np.ndarray]:
+    """The configuration the teach pages open at: a named pose of the model that is clear of any
+    singularity, else a well-conditioned pose found near the model's ready pose, deterministically.
+
+    The named poses (:data:`NAMED_POSES`, then the robot's ``configurations``; ``"ready"`` first) are
+    tried in order: the first inside the joint limits whose task Jacobian has
+    ``σ_min/σ_max ≥`` :data:`SINGULAR_RATIO` (the page shows no singularity warning there) is the
+    answer. Otherwise a coordinate search starts from the model's ready pose (``"ready"``, else the
+    first non-zero named pose, else zero; kept in the middle 80 % of each slider range, clear of
+    the limits): one joint at a time, the
+    step of 0.4 rad (then 0.2, 0.1; for a prismatic joint the same fraction of a turn of its slider
+    range) that raises ``Σ log(σᵢ/σ_max + 10⁻⁶)`` most is taken — a measure that grows as any lost
+    direction comes back, where ``σ_min/σ_max`` alone stays 0 at a double singularity — until
+    ``σ_min/σ_max`` reaches :data:`READY_RATIO`: a pose near the ready pose, the same on every run.
+
+    Parameters
+    ----------
+    robot : robokit.Robot
+        The arm.
+
+    Returns
+    -------
+    name : str
+        The named pose's name, or ``"start"`` for a searched pose.
+    q : numpy.ndarray, shape (n,)
+        Joint values (rad / m).
+
+    Examples
+    --------
+    The UR5 at zero and the PUMA's "qr" are singular; the Panda's ready pose is not:
+
+    >>> import robokit
+    >>> ready_pose(robokit.load("panda"))[0]
+    'ready'
+    >>> name, q = ready_pose(robokit.load("ur5"))
+    >>> name, teach_readouts(robokit.load("ur5"), q)["level"]
+    ('start', 'ok')
+    """
+    rows = task_rows(robot)
+    types = _joint_types(robot)
+    rng = _slider_ranges(robot, types)
+    poses = _named_poses(robot)
+    order = (["ready"] if "ready" in poses else []) + [k for k in poses if k != "ready"]
+    lo, hi = robot.qlim[:, 0], robot.qlim[:, 1]
+    for name in order:
+        q = poses[name]
+        if np.all(q >= lo) and np.all(q <= hi) and _conditioning(robot, q, rows)[0] >= SINGULAR_RATIO:
+            return name, q.copy()
+    start = next((poses[k] for k in order if np.any(poses[k] != 0)), np.zeros(robot.n))
+    span = rng[:, 1] - rng[:, 0]
+    rng = np.column_stack([rng[:, 0] + 0.1 * span, rng[:, 1] - 0.1 * span])  # clear of the limits
+    q = np.clip(start, rng[:, 0], rng[:, 1])
+    ratio, score = _conditioning(robot, q, rows)
+    unit = np.array([1.0 if t == "R" else float(sp) / (2 * math.pi) for t, sp in zip(types, span)])
+    for step in (0.4, 0.2, 0.1):
+        while ratio < READY_RATIO:
+            best = (ratio, score, q)
+            for j in range(robot.n):
+                for sign in (1.0, -1.0):
+                    cand = q.copy()
+                    cand[j] = min(max(cand[j] + sign * step * unit[j], rng[j, 0]), rng[j, 1])
+                    r, sc = _conditioning(robot, cand, rows)
+                    if sc > best[1] + 1e-9:
+                        best = (r, sc, cand)
+            if best[2] is q:
+                break  # no step of this size helps: a smaller one
+            ratio, score, q = best
+        if ratio >= READY_RATIO:
+            break
+    return "start", q
+
+
 def _frame_names(robot: Robot) -> list[str]:
     if robot.dh is not None:
         return [f"dh_{i}" for i in range(robot.dh.n + 1)] + ["tool"]
@@ -194,7 +284,7 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
     import pinocchio as pin
     from pinocchio.visualize import MeshcatVisualizer
 
-    from robokit.viz._meshes import mesh_parts
+    from robokit.viz._meshes import decimated_visuals, draw_parts
     from robokit.viz._labels import label_sprite
 
     window = _RecordingWindow()
@@ -217,20 +307,11 @@ def _scene(robot: Robot, frame_names: Sequence[str], triad_scale: float, floor_h
              for go in visual.geometryObjects}
     # mesh files: replaced by decimated triangle lists (far smaller than the files' text, and
     # placed exactly as Pinocchio reads them), one coloured part per material
-    meshed = {}
-    for go in visual.geometryObjects:
-        ext = Path(go.meshPath).suffix.lower() if go.meshPath else ""
-        if ext in (".dae", ".stl", ".obj") and Path(go.meshPath).is_file():
-            override = np.asarray(go.meshColor, float) if (go.overrideMaterial or ext == ".stl") else None
-            meshed[paths[go.name]] = mesh_parts(go.meshPath, mesh_cell, override)
+    meshed = {paths[go.name]: parts for go, parts in decimated_visuals(visual, mesh_cell)}
     window.commands = [c for c in window.commands
                        if not (c.get("type") == "set_object" and c.get("path") in meshed)]
     for path, parts in meshed.items():
-        node = meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/"))))
-        for i, (V, F, rgba) in enumerate(parts):
-            color = int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
-            node[f"part{i}"].set_object(g.TriangularMeshGeometry(V, F),
-                                        g.MeshPhongMaterial(color=color, opacity=float(rgba[3]), shininess=30))
+        draw_parts(meshcat.Visualizer.view_into(window, meshcat.path.Path(tuple(path.strip("/").split("/")))), parts)
     frame_paths = {}
     for name in frame_names:
         node = vis["frames"][name]
@@ -331,7 +412,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     robot : robokit.Robot
         The arm (n joints).
     q : array_like, shape (n,), optional
-        Initial joint values (rad / m; default zero).
+        Initial joint values (rad / m; default the opening pose of :func:`ready_pose`).
     mesh_cell : float
         Cube side (m) of the mesh decimation (see :mod:`robokit.viz._meshes`).
     world : robokit.collision.World, optional
@@ -364,12 +445,18 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     types = _joint_types(robot)
     rng = _slider_ranges(robot, types)
     zero = np.zeros(robot.n)
-    q0 = zero if q is None else np.asarray(q, dtype=float)
-    if q0.shape != (robot.n,):
-        raise InputError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
-    if not np.isfinite(q0).all():
-        raise InputError("q: contains NaN or infinite values")
     poses = _named_poses(robot)
+    if q is None:
+        name0, q0 = ready_pose(robot)
+        if name0 not in poses:
+            poses = {name0: q0, **poses}  # a button to come back to it
+    else:
+        q0 = np.asarray(q, dtype=float)
+        if q0.shape != (robot.n,):
+            raise InputError(f"q: {robot.name} has {robot.n} joints, got {q0.size} values")
+        if not np.isfinite(q0).all():
+            raise InputError("q: contains NaN or infinite values")
+        robot.check_radians(q0, "q")
     frame_names = _frame_names(robot)
 
     # points that frame the camera: the frames' origins at q0, at the named poses and at
@@ -539,7 +626,7 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
     model : robokit.Robot, DHTable, str or path
         Anything ``robokit.load`` accepts.
     q : array_like, shape (n,), optional
-        Initial joint values (rad / m; default zero).
+        Initial joint values (rad / m; default the opening pose of :func:`ready_pose`, clear of any singularity).
     obstacles : sequence of robokit.collision shapes, optional
         Obstacles (base frame) to draw. With them (an empty list included) the page shows
         the collision state of a :class:`robokit.collision.World` of the robot: links in
@@ -649,7 +736,7 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     scene : robokit.viz.Scene
         The scene (and its robot) to drive.
     q : array_like, shape (n,), optional
-        Initial joint values (rad / m; default zero; clamped to the slider range).
+        Initial joint values (rad / m; default the opening pose of :func:`ready_pose`; clamped to the slider range).
     height : int
         Height of the 3-D view (px).
     world : robokit.collision.World, optional
@@ -674,18 +761,18 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     types = _joint_types(robot)
     rng = _slider_ranges(robot, types)
     unit = np.array([180.0 / math.pi if t == "R" else 1.0 for t in types])
-    q = np.zeros(robot.n) if q is None else np.asarray(q, dtype=float)
-    if q.shape != (robot.n,):
-        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q.shape}")
-    q = np.clip(q, rng[:, 0], rng[:, 1])
+    q_open = ready_pose(robot)[1] if q is None else np.asarray(q, dtype=float)
+    if q_open.shape != (robot.n,):
+        raise InputError(f"q: expected {robot.n} joint values for {robot.name}, got shape {q_open.shape}")
+    q_start = np.clip(q_open, rng[:, 0], rng[:, 1])
     if world is not None and world.robot is not robot:
         raise InputError("world: its robot is not the scene's robot (build the World from scene.robot)")
     names = _frame_names(robot)
-    scene.show(q).frames(names, labels=robot.dh is not None)
+    scene.show(q_start).frames(names, labels=robot.dh is not None)
     if world is not None and world.obstacles:
         scene.obstacles(world.obstacles)
     sliders = [
-        W.FloatSlider(value=float(q[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
+        W.FloatSlider(value=float(q_start[i] * unit[i]), min=float(rng[i, 0] * unit[i]), max=float(rng[i, 1] * unit[i]),
                       step=0.1 if types[i] == "R" else 0.001, description=f"q{i + 1} {robot.joint_names[i]}",
                       readout_format=".1f" if types[i] == "R" else ".3f", continuous_update=True,
                       style={"description_width": "initial"},  # the whole joint name, never cut
@@ -750,5 +837,5 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         buttons.append(b)
     box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out]
     box.set_q = set_q
-    redraw(q)
+    redraw(q_start)
     return box

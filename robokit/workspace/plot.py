@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from robokit.description.robot import Robot
     from robokit.workspace.capability import CapabilityMap
 
-__all__ = ["plot_capability_slice", "capability_html", "legend_html"]
+__all__ = ["plot_capability_slice", "capability_html", "legend_html", "map_view_direction"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -146,6 +146,64 @@ def _colours(index: ArrayLike, cmap_name: str = "viridis") -> np.ndarray:
     return colormaps[cmap_name](np.clip(index, 0.0, 1.0))[:, :3]
 
 
+def _outline(centres: np.ndarray) -> np.ndarray:
+    """The points that frame a map: the vertices of its centres' convex hull (a perspective view of
+    the hull is the hull of the projected vertices), or all of them when the hull is flat."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    P = np.asarray(centres, dtype=float).reshape(-1, 3)
+    try:
+        return P[ConvexHull(P).vertices]
+    except (QhullError, ValueError):  # flat (a planar arm's map) or too few points
+        return P
+
+
+def map_view_direction(centres: ArrayLike) -> tuple[float, float]:
+    """The direction (azimuth, elevation in degrees) a map page looks from.
+
+    A map that fills a volume is seen from the usual 3/4 view (45°, 25°). A flat map — a planar
+    arm's, whose voxel centres span a plane: the smallest of their principal extents is below
+    0.15 of the largest — is seen 25° off its normal (towards the 3/4 view), nearly face-on: from
+    the 3/4 view a horizontal map would be foreshortened to sin 25° = 0.42 of its depth,
+    almost edge-on.
+
+    Parameters
+    ----------
+    centres : array_like, shape (M, 3)
+        The voxel centres (m).
+
+    Returns
+    -------
+    azimuth, elevation : float
+        Degrees.
+
+    Examples
+    --------
+    >>> disk = [[np.cos(a), np.sin(a), 0.0] for a in np.linspace(0, 6, 40)]
+    >>> [round(v, 1) for v in map_view_direction(disk)]
+    [45.0, 65.0]
+    """
+    P = np.asarray(centres, dtype=float).reshape(-1, 3)
+    az0, el0 = np.deg2rad(45.0), np.deg2rad(25.0)
+    d0 = np.array([np.cos(el0) * np.cos(az0), np.cos(el0) * np.sin(az0), np.sin(el0)])
+    if len(P) < 3:
+        return 45.0, 25.0
+    _, s, Vt = np.linalg.svd(P - P.mean(axis=0), full_matrices=False)
+    if not (s[0] > 0 and s[-1] < 0.15 * s[0]):
+        return 45.0, 25.0
+    n = Vt[-1]
+    if abs(n[2]) > 1e-9:
+        n = n if n[2] > 0 else -n  # from above
+    elif n @ d0 < 0:
+        n = -n
+    t = d0 - (d0 @ n) * n
+    if np.linalg.norm(t) < 1e-9:  # the normal is the 3/4 direction itself
+        t = np.cross(n, [0.0, 0.0, 1.0]) if abs(n[2]) < 0.9 else np.cross(n, [1.0, 0.0, 0.0])
+    t = t / np.linalg.norm(t)
+    d = np.cos(np.deg2rad(25.0)) * n + np.sin(np.deg2rad(25.0)) * t
+    return float(np.degrees(np.arctan2(d[1], d[0]))), float(np.degrees(np.arcsin(np.clip(d[2], -1.0, 1.0))))
+
+
 def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot | str | None = None, point_size: float | None = None) -> str:
     """A self-contained meshcat page of a capability map: one coloured point per voxel.
 
@@ -172,7 +230,7 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
     """
     g = require("meshcat.geometry", "viewing a capability map")
 
-    from robokit.viz.scene import Scene, new_visualizer, stop_server
+    from robokit.viz.scene import Scene, camera_offset, new_visualizer, stop_server
 
     m = _as_map(cmap)
     if robot is None and m.description is not None:
@@ -181,23 +239,19 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
     C = _colours(m.index).T.astype(np.float32)
     size = float(point_size) if point_size is not None else 0.6 * m.resolution
     cloud = g.PointCloud(position=P, color=C, size=size)
+    azimuth, elevation = map_view_direction(m.centres)
     if robot is not None:
         with Scene(robot) as scene:
             scene.show(None)
             scene.vis["points/capability"].set_object(cloud)
-            if len(m.centres):
-                scene._extra_points.extend([m.centres.min(axis=0), m.centres.max(axis=0)])
-            scene.frame_camera()
+            scene._extra_points.extend(_outline(m.centres))  # the map is what the view frames
+            scene.frame_camera(0.7, azimuth, elevation)
             return _with_legend(scene.html(), m)
     vis = new_visualizer()
     try:
         vis["points/capability"].set_object(cloud)
-        lo, hi = (m.centres.min(axis=0), m.centres.max(axis=0)) if len(m.centres) else (np.zeros(3), np.zeros(3))
-        centre = 0.5 * (lo + hi)
-        radius = max(0.5 * float(np.linalg.norm(hi - lo)), 0.1)
-        dist = radius / np.tan(0.5 * np.deg2rad(75.0) * 0.75)
-        az, el = np.deg2rad(45.0), np.deg2rad(25.0)
-        off = dist * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        outline = _outline(m.centres) if len(m.centres) else np.zeros((1, 3))
+        centre, off = camera_offset(outline, 0.7, azimuth, elevation)
         T = np.eye(4)
         T[:3, 3] = -centre
         for name in ("points", "/Grid", "/Axes"):

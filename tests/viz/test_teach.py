@@ -421,3 +421,39 @@ def test_cli_obstacles_flag(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("robokit: ")
     assert not (tmp_path / "x.html").exists()
+
+
+@needs_chromium
+def test_pages_open_at_a_ready_pose_clear_of_singularities(pages_dir):
+    """Both teach pages opened at q = 0, singular for the UR5 and the PUMA: a red "Singular" banner
+    was the first thing a student saw. Now the page (no #q) opens at ready_pose, where the page says
+    "no singularity nearby" and Pinocchio's Jacobian agrees (σmin/σmax above the page's threshold)."""
+    import pinocchio as pin
+
+    from robokit.viz.teach import SINGULAR_RATIO, ready_pose, task_rows
+
+    for name in ("ur5", "puma560"):
+        r = robot(name)
+        label, q = ready_pose(r)
+        el = run_page(page(name, pages_dir))  # no fragment: the page's own opening pose
+        assert np.array_equal(nums(el["rk-q"]["data-q"]), q), name
+        assert el["rk-sing"]["data-level"] == "ok" and el["rk-sing"]["class"] == "rk-ok", (name, el["rk-sing"])
+        assert el["rk-sing"]["data-singular"] == "false"
+        data = r.model.createData()
+        J = pin.computeFrameJacobian(r.model, data, q, r.tip_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        s = np.linalg.svd(np.vstack([J[3:], J[:3]])[task_rows(r)], compute_uv=False)
+        assert s[-1] / s[0] >= SINGULAR_RATIO, (name, s)
+        assert label in teach_data(r)["poses"]  # a button to come back to it
+        assert np.all(q >= r.qlim[:, 0]) and np.all(q <= r.qlim[:, 1])
+    assert ready_pose(robot("panda"))[0] == "ready"  # a model's own ready pose, when it is clear, is kept
+
+
+def test_notebook_pendant_opens_at_the_ready_pose():
+    pytest.importorskip("ipywidgets")
+    from robokit.viz import Scene
+    from robokit.viz.teach import ready_pose
+
+    with Scene(robot("ur5")) as scene:
+        pendant = scene.teach()
+        assert np.allclose(scene.q, ready_pose(robot("ur5"))[1])
+        assert pendant.readouts["level"] == "ok"

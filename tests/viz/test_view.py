@@ -191,3 +191,113 @@ def test_ground_grid_lies_under_the_robot_sized_to_its_reach(model):
     assert 4 <= half / spacing <= 12
     hidden = [c for c in rec.commands if c["type"] == "set_property" and c["path"] == "/Grid"]
     assert hidden and hidden[-1]["property"] == "visible" and hidden[-1]["value"] is False
+
+
+def test_pages_carry_decimated_meshes_and_the_live_scene_keeps_the_files():
+    """Scene.html() writes meshes (visual and collision) decimated as the teach page does (the UR5's
+    page was 10 MB with its mesh files as they are): the same cluster_decimate parts, a fraction of the
+    size; the live scene gets its full meshes back."""
+    import base64
+    import re
+
+    import umsgpack
+
+    from robokit.viz._meshes import decimated_visuals
+
+    with Scene("ur5") as s:
+        s.show()
+        full = s.html(None)
+        page = s.html()
+        again = s.html(None)
+        geometry = (s.viz.visual_model, s.viz.collision_model)
+    assert len(page) < 0.4 * len(full), (len(page), len(full))
+    assert len(again) == len(full)  # restored
+    # the page's triangle meshes are the decimated parts; no mesh file is left in it
+    def objects(html):
+        blobs = re.findall(r'fetch\("data:application/octet-binary;base64,([A-Za-z0-9+/=]+)"\)', html)
+        out = []
+        for d in (umsgpack.unpackb(base64.b64decode(b)) for b in blobs):
+            if d.get("type") == "set_object":
+                o = d["object"]
+                out.append((d["path"], o.get("object", {}).get("type"), [g.get("type") for g in o.get("geometries", [])]))
+        return out
+
+    def mesh_files(objs):
+        return [p for p, kind, geoms in objs if kind == "_meshfile_object" or "_meshfile" in geoms]
+
+    assert mesh_files(objects(full))  # the check below can fail
+    in_page = objects(page)
+    assert mesh_files(in_page) == []
+    parts = [p for p, kind, geoms in in_page if "/part" in p and geoms == ["BufferGeometry"]]
+    assert len(parts) == sum(len(p) for model in geometry for _, p in decimated_visuals(model)) > 0
+
+
+_PLAYER_HARNESS = """
+<pre id="rk-test-out"></pre>
+<script>
+(function () {
+  var log = [], box = document.getElementById("rk-player"), button = document.getElementById("rk-play");
+  function state(label) {
+    // one frame of meshcat's loop by hand (a headless browser draws frames when it likes): advances the
+    // animation by the time since the last one when it plays, nothing when it is paused
+    var a = viewer.animator;
+    a.update();
+    var t = a.actions.reduce(function (m, x) { return Math.max(m, x.time); }, 0);
+    var r = button.getBoundingClientRect(), s = getComputedStyle(box);
+    log.push({label: label, playing: box.dataset.playing, time: t,
+              duration: Number(box.dataset.duration), text: button.textContent,
+              rect: [r.left, r.top, r.right, r.bottom], view: [innerWidth, innerHeight],
+              visible: s.display !== "none" && s.visibility !== "hidden" && Number(s.opacity) > 0});
+    document.getElementById("rk-test-out").textContent = JSON.stringify(log);
+  }
+  // steps 0.7 s apart (the first once the animation is loaded)
+  var steps = [
+    [function () { return Number(box.dataset.duration) > 0; }, function () { state("open"); }],
+    [function () { return true; }, function () { state("later"); button.click(); }],
+    [function () { return true; }, function () { state("paused"); }],
+    [function () { return true; }, function () { state("still paused"); button.click(); }],
+    [function () { return true; }, function () { state("playing again"); }],
+  ];
+  function run(i, waited) {
+    if (i >= steps.length) { return; }
+    if (!steps[i][0]() && waited < 8000) { setTimeout(function () { run(i, waited + 100); }, 100); return; }
+    steps[i][1]();
+    setTimeout(function () { run(i + 1, 0); }, 700);
+  }
+  run(0, 0);
+})();
+</script>
+"""
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Debian's chromium is not installed (.ci/run installs it)")
+def test_trajectory_page_has_a_visible_play_pause_control(tmp_path):
+    """The trajectory page had no visible play control (only meshcat's "Open Controls"): now a button
+    in the viewport plays it (time advances), pauses it (time stands still) and plays it again."""
+    import html as html_mod
+    import json
+    import re
+
+    from browser_support import dump_dom
+
+    Q = np.linspace(np.zeros(6), [1.0, -0.6, 0.8, 0.4, 0.9, 0.3], 300)  # 10 s at 30 fps
+    page = view_html("puma560", trajectory=Q, fps=30.0)
+    assert page.count('id="rk-play"') == 1 and 'id="rk-play"' not in view_html("puma560")  # only when animated
+    i = page.rfind("</body>")
+    path = tmp_path / "traj.html"
+    path.write_text(page[:i] + _PLAYER_HARNESS + page[i:])
+    dom = dump_dom(path.as_uri(), budget_ms=30000)
+    m = re.search(r'<pre id="rk-test-out">(.*?)</pre>', dom, re.S)
+    assert m and m.group(1), dom[-2000:]
+    log = {s["label"]: s for s in json.loads(html_mod.unescape(m.group(1)))}
+    assert len(log) == 5, log
+    opened = log["open"]
+    x0, y0, x1, y1 = opened["rect"]
+    w, h = opened["view"]
+    assert opened["visible"] and 0 <= x0 < x1 <= w and 0 <= y0 < y1 <= h, opened  # on screen, not folded away
+    assert opened["duration"] == pytest.approx(299 / 30.0, abs=0.05)
+    assert opened["playing"] == "true" and "Pause" in opened["text"]
+    assert log["later"]["time"] > opened["time"]  # it plays
+    assert log["paused"]["playing"] == "false" and "Play" in log["paused"]["text"]
+    assert log["still paused"]["time"] == log["paused"]["time"]  # paused: time stands still
+    assert log["playing again"]["playing"] == "true" and log["playing again"]["time"] > log["still paused"]["time"]
