@@ -613,11 +613,12 @@ def compare(robot: Any, engine: Any, samples: int = SAMPLES, seed: int = SEED) -
 
 def _moving_changes(robot: Any, reading: tuple[Path, list[str]] | None) -> list[str]:
     """The importer's changes to links that move with the chain (a link fixed to the world
-    enters no result)."""
+    enters no result). A change reads ``"<link>: <what>"``; a link name may itself hold colons
+    (SDFormat's scoped ``forearm::link2``), so the name ends at the last ``": "``."""
     if not reading:
         return []
     moving = {f.name for f in robot.model.frames if f.parentJoint != 0}
-    return [c for c in reading[1] if c.split(":")[0] in moving]
+    return [c for c in reading[1] if c.rsplit(": ", 1)[0] in moving]
 
 
 def run_case(case: Case, samples: int = SAMPLES) -> list[Row]:

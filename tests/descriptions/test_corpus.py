@@ -41,7 +41,7 @@ def test_pybullet_zeroes_exactly_the_links_robokit_warns_about(rows):
     the file's numbers and warns (PhysicalityWarning) — on the same links, when they move."""
     seen = 0
     for r in rows:
-        zeroed = {c.split(":")[0] for c in r.note.split("; ") if "triangle" in c}
+        zeroed = {c.rsplit(": ", 1)[0] for c in r.note.split("; ") if "triangle" in c}
         if zeroed:
             assert zeroed <= set(r.warned), (r.source, zeroed, r.warned)
             seen += 1
