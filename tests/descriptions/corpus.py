@@ -28,7 +28,9 @@ The engines (each independent of robokit; locked joints at zero, the chain's joi
       URDF link frame's origin (its guide says the centre of mass; 2e-16 agreement with Pinocchio
       at the origin, 2e-2 off at the centre of mass). For example-robot-data, PyBullet reads the
       URDF alone: the SRDF's armature (``rotorInertia · rotorGearRatio²``) is added to its M and
-      ``armature · q̈`` to its torques;
+      ``armature · q̈`` to its torques. Everything is compared in the world frame, where robokit
+      reports: an SDF model's ``<pose>`` places the robot for both (pybullet_data's kuka
+      ``model.sdf`` stands at 0 −2.3 0.7; FK relative to the base link would be off by that);
     * **MuJoCo** (MJCF): ``mj_fullM`` and ``mj_inverse`` (armature included) with contacts,
       constraints and passive forces (damping, springs) disabled — robokit's dynamics are
       rigid-body plus armature — ``mj_jacBody``/``mj_jacSite`` and ``xpos``/``xmat``.
@@ -197,8 +199,13 @@ class PyBulletEngine:
     name = "PyBullet"
 
     def __init__(self, path: Path, robot: Any, sdf: bool = False, armature: np.ndarray | None = None,
-                 reading: tuple[Path, list[str]] | None = None) -> None:
+                 reading: tuple[Path, list[str]] | None = None, in_base: bool = False) -> None:
         import pybullet as p
+
+        #: Results in PyBullet's world frame (the default), where robokit reports too: both place the
+        #: model where the file does (an SDF model's <pose>; a URDF's base at the origin). ``in_base``:
+        #: relative to the base link instead, to hold an SDF with a model pose against a URDF twin.
+        self.in_base = in_base
 
         #: (the file as PyBullet reads it, what its importer changed) when that is not the file
         self.reading = reading if reading and reading[1] else None
@@ -211,7 +218,7 @@ class PyBulletEngine:
             else:
                 self.body = p.loadURDF(str(path), useFixedBase=True, flags=p.URDF_USE_INERTIA_FROM_FILE,
                                        physicsClientId=self.cid)
-        self.gravity = np.asarray(robot.gravity, dtype=float)  # in robokit's base frame
+        self.gravity = np.asarray(robot.gravity, dtype=float)  # in robokit's world frame
         movable, names, links = [], {}, {}
         for i in range(p.getNumJoints(self.body, physicsClientId=self.cid)):
             info = p.getJointInfo(self.body, i, physicsClientId=self.cid)
@@ -263,7 +270,7 @@ class PyBulletEngine:
         pos[self.dofs], vel[self.dofs], acc[self.dofs] = q, dq, ddq
         for k, i in enumerate(self.movable):
             p.resetJointState(self.body, i, float(pos[k]), physicsClientId=cid)
-        base = self._link_frame(-1)
+        base = self._link_frame(-1) if self.in_base else np.eye(4)
         Rb = base[:3, :3]
         Rc = _pose(p, *p.getBasePositionAndOrientation(self.body, physicsClientId=cid))[:3, :3]
         T = np.linalg.inv(base) @ self._link_frame(self.tip)
