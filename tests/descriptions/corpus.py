@@ -469,60 +469,155 @@ def _has_loader(suffix: str) -> bool:
     return suffix in FILE_LOADERS
 
 
-def _xacro_arg_sets(path: Path) -> list[dict[str, str]] | None:
-    side = path.with_name(path.name + ".corpus.yaml")
-    if side.is_file():
-        import yaml
+@dataclass
+class Sidecar:
+    """What ``<file>.corpus.yaml`` beside a description says about it (module docstring)."""
 
-        sets = yaml.safe_load(side.read_text()) or [{}]
-        return [{str(k): str(v) for k, v in (s or {}).items()} for s in sets]
-    return [{}] if path.name.endswith(".urdf.xacro") else None
+    args: list[dict[str, str]] = field(default_factory=lambda: [{}])  # xacro arguments, one row each
+    tips: list[str | None] = field(default_factory=lambda: [None])  # one row each; None: robokit's default
+    package_dirs: list[Path] = field(default_factory=list)  # for <include>/package:// (relative to the file)
+    skip: str = ""  # why the file is not a robot to compare (an included part, no moving joint)
+    twin: Path | None = None  # an SDF's URDF twin: Pinocchio on it is the SDF's engine
+    no_pybullet: str = ""  # why PyBullet cannot be the SDF's engine (a row says so)
+
+
+def sidecar(path: Path) -> Sidecar | None:
+    """The sidecar ``<file>.corpus.yaml`` of ``path``, or None. Either a list of xacro argument
+    mappings, or a mapping with any of ``args`` (that list), ``tip`` (a name or a list of names),
+    ``package_dirs`` (folders relative to the file), ``skip`` (the reason, shown in the table) and,
+    for an SDF, ``twin`` (its URDF twin, beside it) and ``no_pybullet`` (why ``loadSDF`` cannot
+    read it)."""
+    side = path.with_name(path.name + ".corpus.yaml")
+    if not side.is_file():
+        return None
+    import yaml
+
+    doc = yaml.safe_load(side.read_text())
+    doc = {"args": doc} if isinstance(doc, list) or doc is None else doc
+    keys = ("args", "tip", "package_dirs", "skip", "twin", "no_pybullet")
+    unknown = set(doc) - set(keys)
+    if unknown:
+        raise ValueError(f"{side}: unknown keys {sorted(unknown)} ({', '.join(keys)})")
+    tips = doc.get("tip")
+    return Sidecar(args=[{str(k): str(v) for k, v in (a or {}).items()} for a in doc.get("args") or [{}]],
+                   tips=[str(t) for t in tips] if isinstance(tips, list) else [tips if tips is None else str(tips)],
+                   package_dirs=[path.parent / d for d in doc.get("package_dirs") or []],
+                   skip=str(doc.get("skip") or ""), twin=path.parent / doc["twin"] if doc.get("twin") else None,
+                   no_pybullet=str(doc.get("no_pybullet") or ""))
+
+
+def _labelled(label: str, tip: str | None, tips: list[str | None]) -> str:
+    return f"{label} → {tip}" if len(tips) > 1 and tip else label
 
 
 def vendored_cases(data: Path = DATA) -> list[Case]:
-    """Every description under ``data``, by suffix (module docstring)."""
+    """Every description under ``data``, by suffix (module docstring). A file that is not a robot
+    on its own is skipped only when its sidecar says why; anything else that fails to load fails."""
     cases: list[Case] = []
     for path in sorted(data.rglob("*")) if data.is_dir() else []:
         name = path.name.lower()
         if not path.is_file():
             continue
         src = _rel(path)
-        if name.endswith(".urdf"):
-            cases.append(Case(path.stem, "URDF", src, lambda p=path: _quiet_load(p),
-                              _urdf_engines(lambda p=path: p.read_text())))
-        elif name.endswith(".xacro"):
-            sets = _xacro_arg_sets(path)
-            if sets is None:
-                continue  # a macro file, included by the robots
-            if not _has_loader(".xacro"):
-                cases.append(Case(path.stem, "xacro", src, lambda: None, skip="robokit has no xacro loader"))
-                continue
-            for args in sets:
-                shown = " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
-                label = f"{path.name.split('.')[0]} {shown}".strip()
+        fmt = ("URDF" if name.endswith(".urdf") else "xacro" if name.endswith(".xacro") else
+               "SDF" if name.endswith(".sdf") else "MJCF" if name.endswith(".xml") and _is_mjcf(path) else "")
+        side = sidecar(path) if fmt else None
+        if not fmt or (fmt == "xacro" and side is None and not name.endswith(".urdf.xacro")):
+            continue  # not a description (a xacro without a sidecar nor .urdf.xacro: a macro file)
+        side = side or Sidecar()
+        stem = path.name.split(".")[0] if fmt == "xacro" else path.stem
+        if side.skip:
+            cases.append(Case(stem, fmt, src, lambda: None, skip=side.skip))
+            continue
+        if fmt in ("xacro", "SDF") and not _has_loader("." + name.rsplit(".", 1)[1]):
+            cases.append(Case(stem, fmt, src, lambda: None,
+                              skip=f"robokit has no {fmt} loader (.{name.rsplit('.', 1)[1]} not in FILE_LOADERS)"))
+            continue
+        dirs = side.package_dirs or None
+        for tip in side.tips:
+            label = _labelled(stem, tip, side.tips)
+            if fmt == "URDF":
+                cases.append(Case(label, fmt, src, lambda p=path, t=tip: _quiet_load(p, t, package_dirs=dirs),
+                                  _urdf_engines(lambda p=path: p.read_text())))
+            elif fmt == "MJCF":
+                cases.append(Case(label, fmt, src, lambda p=path, t=tip: _quiet_load(p, t), _mjcf_engines(path)))
+            elif fmt == "SDF":
+                cases.append(_sdf_case(path, src, tip, dirs, label, side))
+            else:
+                for args in side.args:
+                    shown = " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
 
-                def text_of(p: Path = path, a: dict[str, str] = args) -> str:
-                    return xacro_program(p, a)
+                    def text_of(p: Path = path, a: dict[str, str] = args) -> str:
+                        return xacro_program(p, a)
 
-                cases.append(Case(label, "xacro", src, lambda p=path, a=args: _quiet_load(p, xacro_args=a or None),
-                                  _urdf_engines(text_of)))
-        elif name.endswith(".xml"):
-            try:
-                is_mjcf = ET.parse(path).getroot().tag == "mujoco"
-            except ET.ParseError:
-                continue
-            if is_mjcf:
-                cases.append(Case(path.stem, "MJCF", src, lambda p=path: _quiet_load(p), _mjcf_engines(path)))
-        elif name.endswith(".sdf"):
-            cases.append(_sdf_case(path, src))
+                    cases.append(Case(f"{label} {shown}".strip(), fmt, src,
+                                      lambda p=path, a=args, t=tip: _quiet_load(p, t, xacro_args=a or None),
+                                      _urdf_engines(text_of)))
     return cases
 
 
-def _sdf_case(path: Path, src: str) -> Case:
+def _is_mjcf(path: Path) -> bool:
+    try:
+        return ET.parse(path).getroot().tag == "mujoco"
+    except ET.ParseError:
+        return False
+
+
+def _sdf_case(path: Path, src: str, tip: str | None = None, package_dirs: list[Path] | None = None,
+              label: str | None = None, side: Sidecar | None = None) -> Case:
+    """An SDF against PyBullet's ``loadSDF`` and, when it has a URDF twin, Pinocchio on the twin with
+    Drake's reflected inertia (:func:`drake_reflected_inertia`) as the joints' armature."""
+    label, side = label or path.stem, side or Sidecar()
     if not _has_loader(".sdf"):
-        return Case(path.stem, "SDF", src, lambda: None, skip="robokit has no SDF loader (.sdf not in FILE_LOADERS)")
-    return Case(path.stem, "SDF", src, lambda p=path: _quiet_load(p),
-                [_named("PyBullet", lambda robot, tmp, p=path: PyBulletEngine(p, robot, sdf=True))])
+        return Case(label, "SDF", src, lambda: None, skip="robokit has no SDF loader (.sdf not in FILE_LOADERS)")
+    engines = []
+    if side.twin is not None:
+        twin = side.twin
+
+        def pin_engine(robot: Any, tmp: Path) -> Any:
+            import pinocchio as pin
+
+            model = pin.buildModelFromUrdf(str(twin))
+            for jn, value in drake_reflected_inertia(path).items():
+                model.armature[model.joints[model.getJointId(jn)].idx_v] = value
+            engine = PinocchioEngine(model, robot)
+            engine.name = "Pinocchio (URDF twin)"
+            return engine
+
+        engines.append(_named("Pinocchio (URDF twin)", pin_engine))
+    if side.no_pybullet:
+        engines.append(_unavailable("PyBullet", side.no_pybullet))
+    else:
+        engines.append(_named("PyBullet", lambda robot, tmp: PyBulletEngine(path, robot, sdf=True)))
+    return Case(label, "SDF", src, lambda: _quiet_load(path, tip, package_dirs=package_dirs), engines)
+
+
+def drake_reflected_inertia(path: Path) -> dict[str, float]:
+    """Joint name → ``drake:rotor_inertia · drake:gear_ratio²``, read from the SDF's text, as Drake's
+    parser makes it the reflected inertia of the joint's actuator (none for a joint whose
+    ``<limit><effort>`` is 0: Drake adds no actuator there). Joints of nested models are not scoped
+    here: the twins in tests/data have none with rotor data."""
+    ns = "{http://drake.mit.edu}"
+    out = {}
+    for joint in ET.parse(path).getroot().iter("joint"):
+        rotor, gear = joint.findtext(f"{ns}rotor_inertia"), joint.findtext(f"{ns}gear_ratio")
+        effort = joint.findtext("axis/limit/effort")
+        if rotor is None or (effort is not None and float(effort) == 0.0):
+            continue
+        out[joint.get("name", "")] = float(rotor) * float(gear if gear is not None else 1.0) ** 2
+    return out
+
+
+def _unavailable(name: str, reason: str) -> Callable[[Any, Path], Any]:
+    """An engine that cannot read the file: its row is skipped with ``reason``."""
+    def make(robot: Any, tmp: Path) -> Any:
+        raise _Unavailable(reason)
+
+    return _named(name, make)
+
+
+class _Unavailable(Exception):
+    """An engine cannot read this file (the sidecar's reason): the row is skipped, not failed."""
 
 
 def erd_cases(names: tuple[str, ...] = ERD_ROBOTS) -> list[Case]:
@@ -660,6 +755,9 @@ def run_case(case: Case, samples: int = SAMPLES) -> list[Row]:
                     row.note = ("PyBullet's loadSDF ignores inertia tensors and a product of inertia cannot be set "
                                 "back: FK and J only")
                 row.errors = compare(subject, engine, samples)
+            except _Unavailable as exc:
+                row.engine = getattr(make, "engine_name", "?")
+                row.problem = f"skipped: {exc}"
             except Exception as exc:
                 row.engine = getattr(engine, "name", getattr(make, "engine_name", "?"))
                 row.problem = f"{type(exc).__name__}: {exc}"[:300]
