@@ -6,9 +6,13 @@ Run ``python -m tests.descriptions.corpus`` (``--markdown`` for the table of doc
 
 What is in it
     * every description vendored under ``tests/data/`` (found by suffix, so files added later join:
-      ``.urdf``; ``.xacro`` — a ``*.urdf.xacro`` with its default arguments, or any ``.xacro`` with
-      a sidecar ``<file>.corpus.yaml``, a list of argument mappings, one row each; ``.xml`` with a
-      ``<mujoco>`` root; ``.sdf``). A format robokit has no loader for is skipped with the reason;
+      ``.urdf``; ``.xacro`` — a ``*.urdf.xacro``, or any ``.xacro`` with a sidecar; ``.xml`` with a
+      ``<mujoco>`` root; ``.sdf``). A format robokit has no loader for is skipped with the reason.
+      A sidecar ``<file>.corpus.yaml`` (:func:`sidecar`) says what the file needs: xacro argument
+      sets (one row each), the tip(s) of a tree, ``package_dirs``, an SDF's URDF twin and why
+      PyBullet cannot read it — or ``skip:`` with the reason a file is not a robot on its own (an
+      included part, an end effector without a moving joint). A file without a sidecar that does
+      not load is a failure: discovery never drops a robot silently;
     * the example-robot-data robots robokit loads with its default tip (:data:`ERD_ROBOTS`;
       ``--discover-erd`` re-derives the list);
     * the fixed-base serial arms of ``pybullet_data`` (:data:`PYBULLET_DATA`).
@@ -31,6 +35,9 @@ The engines (each independent of robokit; locked joints at zero, the chain's joi
       ``armature · q̈`` to its torques. Everything is compared in the world frame, where robokit
       reports: an SDF model's ``<pose>`` places the robot for both (pybullet_data's kuka
       ``model.sdf`` stands at 0 −2.3 0.7; FK relative to the base link would be off by that);
+    * **Pinocchio on an SDF's URDF twin** (the sidecar's ``twin``), the joints' armature set to
+      Drake's ``drake:rotor_inertia · drake:gear_ratio²`` read from the SDF's text, as Drake adds
+      it (:func:`drake_reflected_inertia`);
     * **MuJoCo** (MJCF): ``mj_fullM`` and ``mj_inverse`` (armature included) with contacts,
       constraints and passive forces (damping, springs) disabled — robokit's dynamics are
       rigid-body plus armature — ``mj_jacBody``/``mj_jacSite`` and ``xpos``/``xmat``.
@@ -43,6 +50,7 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import functools
 import os
 import platform
 import re
@@ -369,7 +377,13 @@ def _package_folder(name: str) -> str:
 def xacro_program(path: Path, args: dict[str, str]) -> str:
     """The URDF the xacro program (PyPI's ``xacro``) expands ``path`` to, ROS 2's package lookup
     answered from the packages under ``tests/data`` (a stub ``ament_index_python``, for this
-    process only)."""
+    process only). Each file and argument set is expanded once (both engines of a row read it)."""
+    return _xacro_program(path, tuple(sorted(args.items())), tuple(PACKAGE_ROOTS))
+
+
+@functools.lru_cache(maxsize=64)
+def _xacro_program(path: Path, items: tuple[tuple[str, str], ...], roots: tuple[Path, ...]) -> str:
+    # ``roots`` (PACKAGE_ROOTS) is only part of the cache key: a test points the lookup elsewhere
     if "ament_index_python" not in sys.modules:
         pkg, sub = types.ModuleType("ament_index_python"), types.ModuleType("ament_index_python.packages")
         sub.get_package_share_directory = _package_folder  # type: ignore[attr-defined]
@@ -377,7 +391,7 @@ def xacro_program(path: Path, args: dict[str, str]) -> str:
         sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = pkg, sub
     import xacro
 
-    doc = xacro.process_file(str(path), mappings=dict(args))
+    doc = xacro.process_file(str(path), mappings=dict(items))
     return doc.toxml()
 
 
@@ -506,8 +520,8 @@ def sidecar(path: Path) -> Sidecar | None:
                    no_pybullet=str(doc.get("no_pybullet") or ""))
 
 
-def _labelled(label: str, tip: str | None, tips: list[str | None]) -> str:
-    return f"{label} → {tip}" if len(tips) > 1 and tip else label
+def _labelled(label: str, tip: str | None) -> str:
+    return f"{label} → {tip}" if tip else label
 
 
 def vendored_cases(data: Path = DATA) -> list[Case]:
@@ -535,7 +549,7 @@ def vendored_cases(data: Path = DATA) -> list[Case]:
             continue
         dirs = side.package_dirs or None
         for tip in side.tips:
-            label = _labelled(stem, tip, side.tips)
+            label = _labelled(stem, tip)
             if fmt == "URDF":
                 cases.append(Case(label, fmt, src, lambda p=path, t=tip: _quiet_load(p, t, package_dirs=dirs),
                                   _urdf_engines(lambda p=path: p.read_text())))
