@@ -825,11 +825,12 @@ def table(rows: list[Row], markdown: bool = False) -> str:
     foot += [f"[{k}] {n}" for k, n in enumerate(notes, 1)]
     if markdown:  # element names in code spans (bare, Markdown would take them for HTML)
         def md(text: str) -> str:
-            return re.sub(r"(<[a-z_]+>)", r"`\1`", text.replace("|", "\\|"))
+            return re.sub(r"(<[a-z_]+(?:\s[^<>`]*?)?/?>)", r"`\1`", text.replace("|", "\\|"))
 
         lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
         lines += ["| " + " | ".join(md(c) for c in row) + " |" for row in body]
         foot = [md(f) if not f.startswith("[") else "- " + md(f) for f in foot]
+        foot[2:2] = [""] if foot else []  # a blank line before the list, or Markdown joins it to the paragraph
         return "\n".join(lines + foot)
     widths = [max(len(h), *(len(row[i]) for row in body)) if body else len(h) for i, h in enumerate(head)]
     widths[-1] = len(head[-1])
