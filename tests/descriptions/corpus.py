@@ -6,9 +6,13 @@ Run ``python -m tests.descriptions.corpus`` (``--markdown`` for the table of doc
 
 What is in it
     * every description vendored under ``tests/data/`` (found by suffix, so files added later join:
-      ``.urdf``; ``.xacro`` — a ``*.urdf.xacro`` with its default arguments, or any ``.xacro`` with
-      a sidecar ``<file>.corpus.yaml``, a list of argument mappings, one row each; ``.xml`` with a
-      ``<mujoco>`` root; ``.sdf``). A format robokit has no loader for is skipped with the reason;
+      ``.urdf``; ``.xacro`` — a ``*.urdf.xacro``, or any ``.xacro`` with a sidecar; ``.xml`` with a
+      ``<mujoco>`` root; ``.sdf``). A format robokit has no loader for is skipped with the reason.
+      A sidecar ``<file>.corpus.yaml`` (:func:`sidecar`) says what the file needs: xacro argument
+      sets (one row each), the tip(s) of a tree, ``package_dirs``, an SDF's URDF twin and why
+      PyBullet cannot read it — or ``skip:`` with the reason a file is not a robot on its own (an
+      included part, an end effector without a moving joint). A file without a sidecar that does
+      not load is a failure: discovery never drops a robot silently;
     * the example-robot-data robots robokit loads with its default tip (:data:`ERD_ROBOTS`;
       ``--discover-erd`` re-derives the list);
     * the fixed-base serial arms of ``pybullet_data`` (:data:`PYBULLET_DATA`).
@@ -28,7 +32,12 @@ The engines (each independent of robokit; locked joints at zero, the chain's joi
       URDF link frame's origin (its guide says the centre of mass; 2e-16 agreement with Pinocchio
       at the origin, 2e-2 off at the centre of mass). For example-robot-data, PyBullet reads the
       URDF alone: the SRDF's armature (``rotorInertia · rotorGearRatio²``) is added to its M and
-      ``armature · q̈`` to its torques;
+      ``armature · q̈`` to its torques. Everything is compared in the world frame, where robokit
+      reports: an SDF model's ``<pose>`` places the robot for both (pybullet_data's kuka
+      ``model.sdf`` stands at 0 −2.3 0.7; FK relative to the base link would be off by that);
+    * **Pinocchio on an SDF's URDF twin** (the sidecar's ``twin``), the joints' armature set to
+      Drake's ``drake:rotor_inertia · drake:gear_ratio²`` read from the SDF's text, as Drake adds
+      it (:func:`drake_reflected_inertia`);
     * **MuJoCo** (MJCF): ``mj_fullM`` and ``mj_inverse`` (armature included) with contacts,
       constraints and passive forces (damping, springs) disabled — robokit's dynamics are
       rigid-body plus armature — ``mj_jacBody``/``mj_jacSite`` and ``xpos``/``xmat``.
@@ -41,6 +50,7 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import functools
 import os
 import platform
 import re
@@ -197,8 +207,13 @@ class PyBulletEngine:
     name = "PyBullet"
 
     def __init__(self, path: Path, robot: Any, sdf: bool = False, armature: np.ndarray | None = None,
-                 reading: tuple[Path, list[str]] | None = None) -> None:
+                 reading: tuple[Path, list[str]] | None = None, in_base: bool = False) -> None:
         import pybullet as p
+
+        #: Results in PyBullet's world frame (the default), where robokit reports too: both place the
+        #: model where the file does (an SDF model's <pose>; a URDF's base at the origin). ``in_base``:
+        #: relative to the base link instead, to hold an SDF with a model pose against a URDF twin.
+        self.in_base = in_base
 
         #: (the file as PyBullet reads it, what its importer changed) when that is not the file
         self.reading = reading if reading and reading[1] else None
@@ -211,7 +226,7 @@ class PyBulletEngine:
             else:
                 self.body = p.loadURDF(str(path), useFixedBase=True, flags=p.URDF_USE_INERTIA_FROM_FILE,
                                        physicsClientId=self.cid)
-        self.gravity = np.asarray(robot.gravity, dtype=float)  # in robokit's base frame
+        self.gravity = np.asarray(robot.gravity, dtype=float)  # in robokit's world frame
         movable, names, links = [], {}, {}
         for i in range(p.getNumJoints(self.body, physicsClientId=self.cid)):
             info = p.getJointInfo(self.body, i, physicsClientId=self.cid)
@@ -263,7 +278,7 @@ class PyBulletEngine:
         pos[self.dofs], vel[self.dofs], acc[self.dofs] = q, dq, ddq
         for k, i in enumerate(self.movable):
             p.resetJointState(self.body, i, float(pos[k]), physicsClientId=cid)
-        base = self._link_frame(-1)
+        base = self._link_frame(-1) if self.in_base else np.eye(4)
         Rb = base[:3, :3]
         Rc = _pose(p, *p.getBasePositionAndOrientation(self.body, physicsClientId=cid))[:3, :3]
         T = np.linalg.inv(base) @ self._link_frame(self.tip)
@@ -362,7 +377,13 @@ def _package_folder(name: str) -> str:
 def xacro_program(path: Path, args: dict[str, str]) -> str:
     """The URDF the xacro program (PyPI's ``xacro``) expands ``path`` to, ROS 2's package lookup
     answered from the packages under ``tests/data`` (a stub ``ament_index_python``, for this
-    process only)."""
+    process only). Each file and argument set is expanded once (both engines of a row read it)."""
+    return _xacro_program(path, tuple(sorted(args.items())), tuple(PACKAGE_ROOTS))
+
+
+@functools.lru_cache(maxsize=64)
+def _xacro_program(path: Path, items: tuple[tuple[str, str], ...], roots: tuple[Path, ...]) -> str:
+    # ``roots`` (PACKAGE_ROOTS) is only part of the cache key: a test points the lookup elsewhere
     if "ament_index_python" not in sys.modules:
         pkg, sub = types.ModuleType("ament_index_python"), types.ModuleType("ament_index_python.packages")
         sub.get_package_share_directory = _package_folder  # type: ignore[attr-defined]
@@ -370,7 +391,7 @@ def xacro_program(path: Path, args: dict[str, str]) -> str:
         sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = pkg, sub
     import xacro
 
-    doc = xacro.process_file(str(path), mappings=dict(args))
+    doc = xacro.process_file(str(path), mappings=dict(items))
     return doc.toxml()
 
 
@@ -462,60 +483,155 @@ def _has_loader(suffix: str) -> bool:
     return suffix in FILE_LOADERS
 
 
-def _xacro_arg_sets(path: Path) -> list[dict[str, str]] | None:
-    side = path.with_name(path.name + ".corpus.yaml")
-    if side.is_file():
-        import yaml
+@dataclass
+class Sidecar:
+    """What ``<file>.corpus.yaml`` beside a description says about it (module docstring)."""
 
-        sets = yaml.safe_load(side.read_text()) or [{}]
-        return [{str(k): str(v) for k, v in (s or {}).items()} for s in sets]
-    return [{}] if path.name.endswith(".urdf.xacro") else None
+    args: list[dict[str, str]] = field(default_factory=lambda: [{}])  # xacro arguments, one row each
+    tips: list[str | None] = field(default_factory=lambda: [None])  # one row each; None: robokit's default
+    package_dirs: list[Path] = field(default_factory=list)  # for <include>/package:// (relative to the file)
+    skip: str = ""  # why the file is not a robot to compare (an included part, no moving joint)
+    twin: Path | None = None  # an SDF's URDF twin: Pinocchio on it is the SDF's engine
+    no_pybullet: str = ""  # why PyBullet cannot be the SDF's engine (a row says so)
+
+
+def sidecar(path: Path) -> Sidecar | None:
+    """The sidecar ``<file>.corpus.yaml`` of ``path``, or None. Either a list of xacro argument
+    mappings, or a mapping with any of ``args`` (that list), ``tip`` (a name or a list of names),
+    ``package_dirs`` (folders relative to the file), ``skip`` (the reason, shown in the table) and,
+    for an SDF, ``twin`` (its URDF twin, beside it) and ``no_pybullet`` (why ``loadSDF`` cannot
+    read it)."""
+    side = path.with_name(path.name + ".corpus.yaml")
+    if not side.is_file():
+        return None
+    import yaml
+
+    doc = yaml.safe_load(side.read_text())
+    doc = {"args": doc} if isinstance(doc, list) or doc is None else doc
+    keys = ("args", "tip", "package_dirs", "skip", "twin", "no_pybullet")
+    unknown = set(doc) - set(keys)
+    if unknown:
+        raise ValueError(f"{side}: unknown keys {sorted(unknown)} ({', '.join(keys)})")
+    tips = doc.get("tip")
+    return Sidecar(args=[{str(k): str(v) for k, v in (a or {}).items()} for a in doc.get("args") or [{}]],
+                   tips=[str(t) for t in tips] if isinstance(tips, list) else [tips if tips is None else str(tips)],
+                   package_dirs=[path.parent / d for d in doc.get("package_dirs") or []],
+                   skip=str(doc.get("skip") or ""), twin=path.parent / doc["twin"] if doc.get("twin") else None,
+                   no_pybullet=str(doc.get("no_pybullet") or ""))
+
+
+def _labelled(label: str, tip: str | None) -> str:
+    return f"{label} → {tip}" if tip else label
 
 
 def vendored_cases(data: Path = DATA) -> list[Case]:
-    """Every description under ``data``, by suffix (module docstring)."""
+    """Every description under ``data``, by suffix (module docstring). A file that is not a robot
+    on its own is skipped only when its sidecar says why; anything else that fails to load fails."""
     cases: list[Case] = []
     for path in sorted(data.rglob("*")) if data.is_dir() else []:
         name = path.name.lower()
         if not path.is_file():
             continue
         src = _rel(path)
-        if name.endswith(".urdf"):
-            cases.append(Case(path.stem, "URDF", src, lambda p=path: _quiet_load(p),
-                              _urdf_engines(lambda p=path: p.read_text())))
-        elif name.endswith(".xacro"):
-            sets = _xacro_arg_sets(path)
-            if sets is None:
-                continue  # a macro file, included by the robots
-            if not _has_loader(".xacro"):
-                cases.append(Case(path.stem, "xacro", src, lambda: None, skip="robokit has no xacro loader"))
-                continue
-            for args in sets:
-                shown = " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
-                label = f"{path.name.split('.')[0]} {shown}".strip()
+        fmt = ("URDF" if name.endswith(".urdf") else "xacro" if name.endswith(".xacro") else
+               "SDF" if name.endswith(".sdf") else "MJCF" if name.endswith(".xml") and _is_mjcf(path) else "")
+        side = sidecar(path) if fmt else None
+        if not fmt or (fmt == "xacro" and side is None and not name.endswith(".urdf.xacro")):
+            continue  # not a description (a xacro without a sidecar nor .urdf.xacro: a macro file)
+        side = side or Sidecar()
+        stem = path.name.split(".")[0] if fmt == "xacro" else path.stem
+        if side.skip:
+            cases.append(Case(stem, fmt, src, lambda: None, skip=side.skip))
+            continue
+        if fmt in ("xacro", "SDF") and not _has_loader("." + name.rsplit(".", 1)[1]):
+            cases.append(Case(stem, fmt, src, lambda: None,
+                              skip=f"robokit has no {fmt} loader (.{name.rsplit('.', 1)[1]} not in FILE_LOADERS)"))
+            continue
+        dirs = side.package_dirs or None
+        for tip in side.tips:
+            label = _labelled(stem, tip)
+            if fmt == "URDF":
+                cases.append(Case(label, fmt, src, lambda p=path, t=tip: _quiet_load(p, t, package_dirs=dirs),
+                                  _urdf_engines(lambda p=path: p.read_text())))
+            elif fmt == "MJCF":
+                cases.append(Case(label, fmt, src, lambda p=path, t=tip: _quiet_load(p, t), _mjcf_engines(path)))
+            elif fmt == "SDF":
+                cases.append(_sdf_case(path, src, tip, dirs, label, side))
+            else:
+                for args in side.args:
+                    shown = " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
 
-                def text_of(p: Path = path, a: dict[str, str] = args) -> str:
-                    return xacro_program(p, a)
+                    def text_of(p: Path = path, a: dict[str, str] = args) -> str:
+                        return xacro_program(p, a)
 
-                cases.append(Case(label, "xacro", src, lambda p=path, a=args: _quiet_load(p, xacro_args=a or None),
-                                  _urdf_engines(text_of)))
-        elif name.endswith(".xml"):
-            try:
-                is_mjcf = ET.parse(path).getroot().tag == "mujoco"
-            except ET.ParseError:
-                continue
-            if is_mjcf:
-                cases.append(Case(path.stem, "MJCF", src, lambda p=path: _quiet_load(p), _mjcf_engines(path)))
-        elif name.endswith(".sdf"):
-            cases.append(_sdf_case(path, src))
+                    cases.append(Case(f"{label} {shown}".strip(), fmt, src,
+                                      lambda p=path, a=args, t=tip: _quiet_load(p, t, xacro_args=a or None),
+                                      _urdf_engines(text_of)))
     return cases
 
 
-def _sdf_case(path: Path, src: str) -> Case:
+def _is_mjcf(path: Path) -> bool:
+    try:
+        return ET.parse(path).getroot().tag == "mujoco"
+    except ET.ParseError:
+        return False
+
+
+def _sdf_case(path: Path, src: str, tip: str | None = None, package_dirs: list[Path] | None = None,
+              label: str | None = None, side: Sidecar | None = None) -> Case:
+    """An SDF against PyBullet's ``loadSDF`` and, when it has a URDF twin, Pinocchio on the twin with
+    Drake's reflected inertia (:func:`drake_reflected_inertia`) as the joints' armature."""
+    label, side = label or path.stem, side or Sidecar()
     if not _has_loader(".sdf"):
-        return Case(path.stem, "SDF", src, lambda: None, skip="robokit has no SDF loader (.sdf not in FILE_LOADERS)")
-    return Case(path.stem, "SDF", src, lambda p=path: _quiet_load(p),
-                [_named("PyBullet", lambda robot, tmp, p=path: PyBulletEngine(p, robot, sdf=True))])
+        return Case(label, "SDF", src, lambda: None, skip="robokit has no SDF loader (.sdf not in FILE_LOADERS)")
+    engines = []
+    if side.twin is not None:
+        twin = side.twin
+
+        def pin_engine(robot: Any, tmp: Path) -> Any:
+            import pinocchio as pin
+
+            model = pin.buildModelFromUrdf(str(twin))
+            for jn, value in drake_reflected_inertia(path).items():
+                model.armature[model.joints[model.getJointId(jn)].idx_v] = value
+            engine = PinocchioEngine(model, robot)
+            engine.name = "Pinocchio (URDF twin)"
+            return engine
+
+        engines.append(_named("Pinocchio (URDF twin)", pin_engine))
+    if side.no_pybullet:
+        engines.append(_unavailable("PyBullet", side.no_pybullet))
+    else:
+        engines.append(_named("PyBullet", lambda robot, tmp: PyBulletEngine(path, robot, sdf=True)))
+    return Case(label, "SDF", src, lambda: _quiet_load(path, tip, package_dirs=package_dirs), engines)
+
+
+def drake_reflected_inertia(path: Path) -> dict[str, float]:
+    """Joint name → ``drake:rotor_inertia · drake:gear_ratio²``, read from the SDF's text, as Drake's
+    parser makes it the reflected inertia of the joint's actuator (none for a joint whose
+    ``<limit><effort>`` is 0: Drake adds no actuator there). Joints of nested models are not scoped
+    here: the twins in tests/data have none with rotor data."""
+    ns = "{http://drake.mit.edu}"
+    out = {}
+    for joint in ET.parse(path).getroot().iter("joint"):
+        rotor, gear = joint.findtext(f"{ns}rotor_inertia"), joint.findtext(f"{ns}gear_ratio")
+        effort = joint.findtext("axis/limit/effort")
+        if rotor is None or (effort is not None and float(effort) == 0.0):
+            continue
+        out[joint.get("name", "")] = float(rotor) * float(gear if gear is not None else 1.0) ** 2
+    return out
+
+
+def _unavailable(name: str, reason: str) -> Callable[[Any, Path], Any]:
+    """An engine that cannot read the file: its row is skipped with ``reason``."""
+    def make(robot: Any, tmp: Path) -> Any:
+        raise _Unavailable(reason)
+
+    return _named(name, make)
+
+
+class _Unavailable(Exception):
+    """An engine cannot read this file (the sidecar's reason): the row is skipped, not failed."""
 
 
 def erd_cases(names: tuple[str, ...] = ERD_ROBOTS) -> list[Case]:
@@ -613,11 +729,12 @@ def compare(robot: Any, engine: Any, samples: int = SAMPLES, seed: int = SEED) -
 
 def _moving_changes(robot: Any, reading: tuple[Path, list[str]] | None) -> list[str]:
     """The importer's changes to links that move with the chain (a link fixed to the world
-    enters no result)."""
+    enters no result). A change reads ``"<link>: <what>"``; a link name may itself hold colons
+    (SDFormat's scoped ``forearm::link2``), so the name ends at the last ``": "``."""
     if not reading:
         return []
     moving = {f.name for f in robot.model.frames if f.parentJoint != 0}
-    return [c for c in reading[1] if c.split(":")[0] in moving]
+    return [c for c in reading[1] if c.rsplit(": ", 1)[0] in moving]
 
 
 def run_case(case: Case, samples: int = SAMPLES) -> list[Row]:
@@ -652,6 +769,9 @@ def run_case(case: Case, samples: int = SAMPLES) -> list[Row]:
                     row.note = ("PyBullet's loadSDF ignores inertia tensors and a product of inertia cannot be set "
                                 "back: FK and J only")
                 row.errors = compare(subject, engine, samples)
+            except _Unavailable as exc:
+                row.engine = getattr(make, "engine_name", "?")
+                row.problem = f"skipped: {exc}"
             except Exception as exc:
                 row.engine = getattr(engine, "name", getattr(make, "engine_name", "?"))
                 row.problem = f"{type(exc).__name__}: {exc}"[:300]
@@ -705,11 +825,12 @@ def table(rows: list[Row], markdown: bool = False) -> str:
     foot += [f"[{k}] {n}" for k, n in enumerate(notes, 1)]
     if markdown:  # element names in code spans (bare, Markdown would take them for HTML)
         def md(text: str) -> str:
-            return re.sub(r"(<[a-z_]+>)", r"`\1`", text.replace("|", "\\|"))
+            return re.sub(r"(<[a-z_]+(?:\s[^<>`]*?)?/?>)", r"`\1`", text.replace("|", "\\|"))
 
         lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
         lines += ["| " + " | ".join(md(c) for c in row) + " |" for row in body]
         foot = [md(f) if not f.startswith("[") else "- " + md(f) for f in foot]
+        foot[2:2] = [""] if foot else []  # a blank line before the list, or Markdown joins it to the paragraph
         return "\n".join(lines + foot)
     widths = [max(len(h), *(len(row[i]) for row in body)) if body else len(h) for i, h in enumerate(head)]
     widths[-1] = len(head[-1])

@@ -41,7 +41,7 @@ def test_pybullet_zeroes_exactly_the_links_robokit_warns_about(rows):
     the file's numbers and warns (PhysicalityWarning) — on the same links, when they move."""
     seen = 0
     for r in rows:
-        zeroed = {c.split(":")[0] for c in r.note.split("; ") if "triangle" in c}
+        zeroed = {c.rsplit(": ", 1)[0] for c in r.note.split("; ") if "triangle" in c}
         if zeroed:
             assert zeroed <= set(r.warned), (r.source, zeroed, r.warned)
             seen += 1
@@ -140,7 +140,7 @@ def test_the_sdf_engine_on_a_urdf_twin(tmp_path, ixy):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         robot = robokit.load(tmp_path / "arm.urdf", "l2")
-    engine = corpus.PyBulletEngine(tmp_path / "arm.sdf", robot, sdf=True)
+    engine = corpus.PyBulletEngine(tmp_path / "arm.sdf", robot, sdf=True, in_base=True)  # the twin has no model pose
     try:
         errors = corpus.compare(robot, engine)
     finally:
@@ -164,3 +164,71 @@ def test_the_table_and_the_script(capsys):
         assert corpus.main([]) == 0
     out = capsys.readouterr().out
     assert out.startswith("robokit description corpus, ") and "2 rows, 0 failed" in out
+
+
+TREE = """<robot name="tree"><link name="base"/>
+<link name="a"><inertial><origin xyz="0.1 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0"
+izz="0.02"/></inertial></link>
+<link name="b"><inertial><origin xyz="0 0.1 0"/><mass value="2"/><inertia ixx="0.02" ixy="0" ixz="0" iyy="0.01" iyz="0"
+izz="0.02"/></inertial></link>
+<joint name="ja" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+<joint name="jb" type="revolute"><parent link="base"/><child link="b"/><origin xyz="0 0 0.2"/><axis xyz="1 0 0"/>
+<limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
+
+
+def test_sidecars_choose_tips_and_skip_with_a_reason(tmp_path):
+    """A tree without a sidecar fails (discovery drops no robot silently); a sidecar's tips make one row
+    each; ``skip:`` shows its reason; an unknown key is refused."""
+    for name in ("bare", "tipped", "part"):
+        (tmp_path / f"{name}.urdf").write_text(TREE)
+    (tmp_path / "tipped.urdf.corpus.yaml").write_text("tip: [a, b]\n")
+    (tmp_path / "part.urdf.corpus.yaml").write_text("skip: a part of another robot\n")
+    cases = corpus.vendored_cases(tmp_path)
+    assert [c.label for c in cases] == ["bare", "part", "tipped → a", "tipped → b"]
+    rows = corpus.run(cases, samples=2)
+    bare = [r for r in rows if r.label == "bare"]
+    assert len(bare) == 1 and "no single longest chain" in bare[0].problem and not bare[0].ok
+    assert [r.problem for r in rows if r.label == "part"] == ["skipped: a part of another robot"]
+    tipped = [r for r in rows if r.label.startswith("tipped")]
+    assert [r.engine for r in tipped] == ["Pinocchio", "PyBullet"] * 2 and all(r.ok for r in tipped)
+    (tmp_path / "part.urdf.corpus.yaml").write_text("skipp: typo\n")
+    with pytest.raises(ValueError, match="unknown keys"):
+        corpus.vendored_cases(tmp_path)
+
+
+DRAKE_SDF = """<sdf version='1.9' xmlns:drake='http://drake.mit.edu'><model name='arm'>
+<link name='base'/>
+<link name='l1'><pose relative_to='j1'/><inertial><pose>0.1 0.02 0.05 0.1 0.2 0.3</pose><mass>2</mass>
+<inertia><ixx>0.02</ixx><ixy>0.001</ixy><ixz>0</ixz><iyy>0.03</iyy><iyz>0</iyz><izz>0.025</izz></inertia></inertial></link>
+<joint name='j1' type='revolute'><pose relative_to='base'>0 0 0.3 0 0 0</pose><parent>base</parent><child>l1</child>
+<axis><xyz>0 0 1</xyz><limit><lower>-3</lower><upper>3</upper><effort>10</effort></limit></axis>
+<drake:rotor_inertia>0.0002</drake:rotor_inertia><drake:gear_ratio>50</drake:gear_ratio></joint>
+<link name='l2'><pose relative_to='j2'/><inertial><pose>0.15 0 0 0 0 0</pose><mass>1</mass>
+<inertia><ixx>0.004</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial></link>
+<joint name='j2' type='revolute'><pose relative_to='l1'>0.4 0 0 0 0 0</pose><parent>l1</parent><child>l2</child>
+<axis><xyz>0 1 0</xyz><limit><lower>-3</lower><upper>3</upper><effort>EFFORT</effort></limit></axis>
+<drake:rotor_inertia>0.0001</drake:rotor_inertia><drake:gear_ratio>100</drake:gear_ratio></joint>
+</model></sdf>"""
+
+
+@pytest.mark.parametrize("effort", ["5", "0"])
+def test_an_sdf_against_its_urdf_twin_with_drakes_reflected_inertia(tmp_path, effort):
+    """An SDF whose sidecar names a URDF twin: Pinocchio on the twin, plus rotor_inertia · gear_ratio² on
+    each joint Drake gives an actuator (none where <effort> is 0), agrees with robokit on the SDF; without
+    that armature it would not (the comparison sees it). PyBullet is skipped with the sidecar's reason."""
+    (tmp_path / "arm.sdf").write_text(DRAKE_SDF.replace("EFFORT", effort))
+    (tmp_path / "arm.urdf").write_text(URDF_TWIN.replace("IXY", "0.001"))
+    (tmp_path / "arm.sdf.corpus.yaml").write_text("twin: arm.urdf\nno_pybullet: not this one\n")
+    assert corpus.drake_reflected_inertia(tmp_path / "arm.sdf") == pytest.approx(
+        {"j1": 0.0002 * 50 ** 2, **({"j2": 0.0001 * 100 ** 2} if effort != "0" else {})})
+    cases = [c for c in corpus.vendored_cases(tmp_path) if c.fmt == "SDF"]
+    rows = corpus.run(cases, samples=2)
+    assert [(r.engine, r.problem) for r in rows] == [("Pinocchio (URDF twin)", ""),
+                                                     ("PyBullet", "skipped: not this one")]
+    assert rows[0].ok, rows[0].errors
+    robot = cases[0].load()
+    import pinocchio as pin
+
+    bare = corpus.PinocchioEngine(pin.buildModelFromUrdf(str(tmp_path / "arm.urdf")), robot)
+    assert corpus.compare(robot, bare, samples=2)["M"] > 1e-2  # the armature is what makes them agree
