@@ -34,10 +34,10 @@ MAX_DEPTH = 20
 _FLOAT_12 = re.compile(
     r"""^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?
         |[-+]?\.(?:inf|Inf|INF)
-        |\.(?:nan|NaN|NAN))$""",
+        |\.(?:nan|NaN|NAN))\Z""",
     re.X,
 )
-_INT_12 = re.compile(r"^[-+]?[0-9]+$")
+_INT_12 = re.compile(r"^[-+]?[0-9]+\Z")
 
 
 class _Error(Exception):

@@ -24,8 +24,9 @@ Val = Union[float, str]
 #: carry round-off of 1e-17; folding changes results by less than 1e-14 (relative).
 SNAP = 1e-14
 
-_IDENT = re.compile(r"^[A-Za-z_][A-Za-z_0-9]*(\[[0-9]+\])?$")
-_PRODUCT = re.compile(r"^[A-Za-z_0-9.\[\]]+( \* [A-Za-z_0-9.\[\]]+)*$")
+# used with fullmatch (``$`` would accept a trailing newline)
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z_0-9]*(\[[0-9]+\])?")
+_PRODUCT = re.compile(r"[A-Za-z_0-9.\[\]]+( \* [A-Za-z_0-9.\[\]]+)*")
 
 
 def snap(x: float) -> float:
@@ -76,7 +77,7 @@ def atom(v: Val) -> str:
     """v as a C operand that can be multiplied without parentheses."""
     if isinstance(v, float):
         return lit(v) if v >= 0.0 else f"({lit(v)})"
-    if _PRODUCT.match(v) or _one_group(v):
+    if _PRODUCT.fullmatch(v) or _one_group(v):
         return v
     return f"({v})"
 
@@ -106,7 +107,7 @@ def lin(terms: Iterable[tuple[float, Val]], const: float = 0.0) -> Val:
         if isinstance(v, float):
             const += c * v
             continue
-        if v.startswith("-") and _IDENT.match(v[1:]):
+        if v.startswith("-") and _IDENT.fullmatch(v[1:]):
             c, v = -c, v[1:]
         parts.append((c, v))
     if not parts:
@@ -189,7 +190,7 @@ class CWriter:
         value itself is returned and nothing is emitted)."""
         if isinstance(value, float):
             return value
-        if _IDENT.match(value):
+        if _IDENT.fullmatch(value):
             return value
         if name in self.names:
             raise AssertionError(f"codegen: temporary {name} emitted twice")

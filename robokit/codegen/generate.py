@@ -24,7 +24,7 @@ from robokit.codegen.ik import emit_ik
 from robokit.codegen.kinematics import emit_fk, emit_jacobian
 from robokit.errors import InputError
 
-__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS"]
+__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS", "STANDARD_HEADERS"]
 
 #: Reserved words of C99 (and C11's, which a C99 name should avoid too).
 C_KEYWORDS = frozenset("""
@@ -33,7 +33,26 @@ register restrict return short signed sizeof static struct switch typedef union 
 _Bool _Complex _Imaginary _Alignas _Alignof _Atomic _Generic _Noreturn _Static_assert _Thread_local
 """.split())
 
-_C_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+#: A C identifier; always used with ``fullmatch`` (``$`` would accept a trailing newline).
+_C_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+#: Every standard header of C (C89 to C23) and POSIX (POSIX.1-2024 and the headers earlier
+#: issues had) that sits at the top of the include path, without ``.h``, and the top-level headers
+#: those include in glibc, newlib and GCC's and Clang's own headers (``features.h``,
+#: ``alloca.h``, ``newlib.h``, …; found with ``cc -M``). ``NAME.h`` written into
+#: a folder given to the compiler with ``-I`` would shadow the system header of the same name for
+#: the whole build (``#include <math.h>`` would find ``DIR/math.h``), and on a case-insensitive
+#: file system ``Math.h`` does too: the generated file names never equal one of these, compared
+#: case-insensitively (:func:`c_name`).
+STANDARD_HEADERS = frozenset("""
+assert complex ctype errno fenv float inttypes iso646 limits locale math setjmp signal stdalign stdarg
+stdatomic stdbit stdbool stdckdint stddef stdint stdio stdlib stdnoreturn string tgmath threads time uchar
+wchar wctype
+aio cpio devctl dirent dlfcn endian fcntl fmtmsg fnmatch ftw glob grp iconv langinfo libgen libintl monetary
+mqueue ndbm netdb nl_types poll pthread pwd regex sched search semaphore spawn strings stropts syslog tar
+termios trace ucontext ulimit unistd utime utmpx wordexp
+features alloca syslimits __stddef_max_align_t _ansi _newlib_version newlib malloc
+""".split())
 
 
 @dataclass(frozen=True)
@@ -87,24 +106,32 @@ def c_name(robot_name: str, name: str | None = None) -> str:
     Raises
     ------
     InputError
-        If ``name`` is not a C identifier or is a keyword.
+        If ``name`` is not a C identifier (the whole string: a trailing newline is not part of
+        one), is a keyword, or is the name of a standard C or POSIX header
+        (:data:`STANDARD_HEADERS`, any case: ``NAME.h`` would shadow ``<NAME.h>``). A robot's own
+        name that is a keyword or a header name gets ``_robot`` appended instead.
 
     Examples
     --------
     >>> c_name("PUMA-560")
     'puma_560'
+    >>> c_name("math")   # math.h would shadow <math.h>
+    'math_robot'
     """
     if name is not None:
-        if not _C_IDENT.match(name):
-            raise InputError(f"--name: {name!r} is not a C identifier (letters, digits and _, not starting "
+        if not isinstance(name, str) or not _C_IDENT.fullmatch(name):
+            raise InputError(f"--name: {name!r:.80} is not a C identifier (letters, digits and _, not starting "
                              "with a digit)")
         if name in C_KEYWORDS:
             raise InputError(f"--name: {name!r} is a C keyword")
+        if name.lower() in STANDARD_HEADERS:
+            raise InputError(f"--name: {name!r} would write {name}.h, which shadows the standard header "
+                             f"<{name.lower()}.h> for every file compiled with -I on its folder; choose another name")
         return name
     out = re.sub(r"[^a-z0-9_]", "_", robot_name.lower())
     if not out or out[0].isdigit():
         out = "r" + out
-    if out in C_KEYWORDS:
+    if out in C_KEYWORDS or out in STANDARD_HEADERS:
         out += "_robot"
     return out
 
