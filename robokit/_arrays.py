@@ -18,6 +18,12 @@ from robokit.errors import InputError, InputTypeError
 
 _F64 = np.dtype(np.float64)
 
+#: Largest magnitude of a number robokit reads from a file or takes as a measurement (SI units):
+#: robot files (lengths, masses, inertias), scene files (sizes, poses), calibration and
+#: identification data. Beyond it FK, dynamics and collision checks overflow to inf or NaN
+#: (1e12 m is seven times the Earth–Sun distance; 1e12² still fits a double with room to spare).
+MAX_MAGNITUDE = 1e12
+
 #: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
 FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
 

@@ -137,3 +137,127 @@ def test_cli_header_names_exit_2_and_the_default_name_compiles_with_minus_I(tmp_
     subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-I", str(out), str(main_c), str(out / "math_robot.c"),
                     "-lm", "-o", str(tmp_path / "a.out")], check=True)
     assert subprocess.run([str(tmp_path / "a.out")], check=False).returncode == 0
+
+
+# ------------------------------------------------------------------ class 5: an existing NAME.h
+def _sparse(path, size):
+    with open(path, "wb") as f:
+        f.truncate(size)  # a sparse file: 6 GB of zeros that occupy no disk
+
+
+@pytest.mark.parametrize("kind", ["symlink", "file"])
+def test_cli_keeps_a_huge_existing_header_without_reading_it(tmp_path, kind):
+    """A 6 GB twolink.h (sparse) in the output folder, itself or behind a symbolic link: codegen
+    writes the pair under a 3 GB address-space limit (was: the old header read whole, MemoryError,
+    exit 3), never writes through the link, and leaves nothing else behind."""
+    out = tmp_path / "out"
+    out.mkdir()
+    big = (tmp_path / "elsewhere.h") if kind == "symlink" else (out / "twolink.h")
+    _sparse(big, 6 << 30)
+    if kind == "symlink":
+        (out / "twolink.h").symlink_to(big)
+    run = r2.run_limited("codegen", "twolink", "-o", out)
+    assert run.rc == 0, run.err
+    h = out / "twolink.h"
+    assert not h.is_symlink() and "twolink_fk" in h.read_text()
+    assert sorted(p.name for p in out.iterdir()) == ["twolink.c", "twolink.h"]
+    if kind == "symlink":
+        assert big.stat().st_size == 6 << 30  # the link's target is untouched
+
+
+@pytest.mark.parametrize("kind", ["symlink", "file"])
+def test_failed_source_write_puts_the_old_header_back_as_it_was(tmp_path, monkeypatch, kind):
+    """The pair is all or nothing: when NAME.c cannot be written the old NAME.h comes back, a
+    symbolic link as the same link (not the file it points to)."""
+    import robokit.codegen.generate as gen
+
+    target = tmp_path / "target.h"
+    target.write_text("/* the user's own */\n")
+    h = tmp_path / "twolink.h"
+    if kind == "symlink":
+        h.symlink_to(target)
+    else:
+        h.write_text("/* old */\n")
+    real = gen.atomic_write
+
+    def failing(path, data):
+        if str(path).endswith(".c"):
+            raise OSError(28, "No space left on device", str(path))
+        return real(path, data)
+
+    monkeypatch.setattr(gen, "atomic_write", failing)
+    with pytest.raises(OSError):
+        write_c(generate_c(robokit.load("twolink")), tmp_path)
+    if kind == "symlink":
+        assert h.is_symlink() and os.readlink(h) == str(target)
+    else:
+        assert h.read_text() == "/* old */\n"
+    assert target.read_text() == "/* the user's own */\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["target.h", "twolink.h"])
+
+
+def test_without_hard_links_a_huge_old_header_is_not_read(tmp_path, monkeypatch):
+    """Where hard links fail, the old header is copied only when small, read with O_NOFOLLOW."""
+    import robokit.codegen.generate as gen
+
+    def no_link(*a, **k):
+        raise OSError(1, "Operation not permitted")
+
+    monkeypatch.setattr(gen.os, "link", no_link)
+    h = tmp_path / "twolink.h"
+    _sparse(h, gen.MAX_KEPT_BYTES + 1)
+    assert gen._keep_aside(h) is None
+    h.unlink()
+    h.write_text("/* old */\n")
+    aside = gen._keep_aside(h)
+    assert aside is not None and aside.read_text() == "/* old */\n"
+
+
+# ------------------------------------------------------------------ class 4: representable constants
+@pytest.mark.parametrize("float32", [True, False])
+@pytest.mark.parametrize("field, value, named", [
+    ("xyz", "0.5 4.9e-324 0", "tool frame 'tip'"),        # the fixed tip offset: a double subnormal
+    ("xyz", "0.5 1e-40 0", "tool frame 'tip'"),           # a float subnormal (a normal double)
+    ("mass", "1e-40", "the link of joint 'shoulder': mass"),
+    ("lower", "-1e-300", "joint 'shoulder': limits"),
+])
+def test_constants_outside_the_target_type_are_refused_naming_the_key(tmp_path, float32, field, value, named):
+    """Every constant written must be 0 or a normal number of the target type (was: `1e-40f` kept as
+    a subnormal, `4.9e-324f` truncated to zero — an error under -Werror)."""
+    robot = robokit.load(_urdf(tmp_path, **{field: value}))
+    small = abs(float(value.split()[1] if field == "xyz" else value))
+    if not float32 and small > 2.3e-308:  # a normal double: double C is fine
+        generate_c(robot, float32=False)
+        return
+    with pytest.raises(robokit.InputError, match=re.escape(named)):
+        generate_c(robot, float32=float32)
+
+
+def test_every_written_literal_is_checked_naming_where_it_is():
+    """The catch-all behind the named checks: a folded constant beyond float's range (1e+39) or
+    below it (4.9e-324) in any function, table or macro is refused naming it."""
+    from robokit.codegen._c import check_literals
+
+    check_literals("void a_fk(const float q[1], float T[16])\n{\n    T[0] = 3.0e38f * q[0];\n}\n", True, "a.c")
+    with pytest.raises(robokit.InputError, match=r"a_rnea holds the constant 1e\+39"):
+        check_literals("void a_rnea(const float q[1], float tau[1])\n{\n    tau[0] = 1e+39f * q[0];  /* 1e99 */\n}\n",
+                       True, "a.c")
+    with pytest.raises(robokit.InputError, match=r"a_JOINT0_LOWER holds the constant 4.9e-324"):
+        check_literals("#define a_JOINT0_LOWER 4.9e-324\n", False, "a.h")
+    check_literals('/* 1e999 */ const char *const a_names[1] = {"1e999"};\n', True, "a.c")  # comments, strings
+
+
+def test_cli_float32_constants_exit_2_naming_the_link_and_nothing_is_written(tmp_path, cc):
+    out = tmp_path / "out"
+    out.mkdir()
+    tiny_inertia = _urdf(tmp_path, name="tiny", mass="1e-40")
+    tiny_offset = _urdf(tmp_path, name="offset", xyz="0.5 1e-40 0")
+    runs = r2.run_many([["codegen", tiny_inertia, "-o", out, "--float32"],
+                        ["codegen", tiny_offset, "-o", out, "--float32"],
+                        ["codegen", tiny_offset, "-o", out]])
+    hs.assert_one_line_error(runs[0], "shoulder", "mass")
+    hs.assert_one_line_error(runs[1], "tool frame 'tip'")
+    assert sorted(p.name for p in out.iterdir()) == ["offset.c", "offset.h"]  # from the third run only
+    assert runs[2].rc == 0  # double C holds 1e-40
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-c", str(out / "offset.c"),
+                    "-o", str(tmp_path / "offset.o")], check=True)
