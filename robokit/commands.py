@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._arrays import MAX_MAGNITUDE
 from robokit._io import atomic_write
 from robokit.errors import InputError
 
@@ -424,6 +425,18 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     return 0
 
 
+def _check_rows(duration: float, dt: float, bound: str = "") -> None:
+    """Refuse a ``robokit plan`` output of more rows than a trajectory file may hold
+    (:data:`robokit.viz.view.MAX_TRAJECTORY_ROWS`), from the duration, before any row is made."""
+    from robokit.viz.view import MAX_TRAJECTORY_ROWS
+
+    rows = duration / dt + 2.0
+    if not rows <= MAX_TRAJECTORY_ROWS:
+        raise InputError(f"--dt/--vmax/--amax: the trajectory would last {bound}{duration:.4g} s, {bound}{rows:.4g} rows of "
+                         f"{dt:g} s; robokit writes at most {MAX_TRAJECTORY_ROWS} (what robokit view --trajectory "
+                         "reads): raise --dt, --vmax or --amax")
+
+
 def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
                  obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
                  dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
@@ -433,7 +446,10 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
 
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
     (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
-    --fps 1/dt`` plays it in real time.
+    --fps 1/dt`` plays it in real time. It has at most
+    :data:`robokit.viz.view.MAX_TRAJECTORY_ROWS` rows: the count is estimated before planning
+    (a joint goal: ``max |Δq| / vmax / dt``) and computed from the duration before any row is
+    made, and a larger one is refused.
 
     Parameters
     ----------
@@ -471,8 +487,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
     from robokit.motion import plan
 
     out = _output_file(output, (".csv",))
-    if not (dt > 0 and np.isfinite(dt)):
-        raise InputError(f"--dt: expected a positive time step, got {dt:g}")
+    for flag, v, unit in (("--dt", dt, "s"), ("--vmax", vmax, "rad/s"), ("--amax", amax, "rad/s²")):
+        if not (np.isfinite(v) and 0 < v <= MAX_MAGNITUDE):
+            raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
     robot = load(model, tip=tip)
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
@@ -484,8 +501,11 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
         raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
+    if target.shape == (robot.n,):  # a joint goal: no motion is shorter than max |Δq| / vmax
+        _check_rows(float(np.max(np.abs(target - q0))) / vmax, dt, "at least ")
     world = _world(robot, obstacles, convex, describe_world)
     tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    _check_rows(float(tr.t[-1]), dt)
     t = np.arange(0.0, tr.t[-1], dt)
     t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t
     Q = np.column_stack([np.interp(t, tr.t, tr.q[:, j]) for j in range(robot.n)])

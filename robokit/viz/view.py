@@ -22,10 +22,6 @@ if TYPE_CHECKING:
 
 __all__ = ["view_html", "load_trajectory", "MAX_TRAJECTORY_ROWS"]
 
-#: Most configurations a ``--trajectory`` file may hold (an hour at 30 frames per second is 108 000).
-MAX_TRAJECTORY_ROWS = 200_000
-
-
 def _npy_shape(path: Path) -> tuple[int, ...]:
     """The shape a ``.npy`` file declares, checked from its header before anything is loaded:
     a real-number dtype and header plus data exactly the file's size (ValueError otherwise)."""
@@ -48,8 +44,8 @@ def _npy_shape(path: Path) -> tuple[int, ...]:
     return tuple(shape)
 
 
-#: Most samples (rows) a trajectory file may hold: 10⁵ frames are an hour at 30 fps, and the page
-#: stays below about 100 MB for a 6-joint arm.
+#: Most samples (rows) a trajectory file may hold — and ``robokit plan`` writes: 10⁵ frames are 55
+#: minutes at 30 fps, and the page stays below about 100 MB for a 6-joint arm.
 MAX_TRAJECTORY_ROWS = 100_000
 #: Largest trajectory file read (bytes).
 MAX_TRAJECTORY_BYTES = 64 << 20
