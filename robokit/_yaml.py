@@ -114,7 +114,8 @@ _StrictLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 
 def load_yaml_text(text: str, source: str = "<string>",
                    scalar_tags: dict[str, Callable[[str], Any]] | None = None) -> Any:
-    """Parse YAML ``text`` strictly (see the module docstring); errors name ``source`` and the line.
+    """Parse YAML ``text`` strictly (see the module docstring); errors name ``source``, the line and
+    the column.
 
     scalar_tags : optional ``{"!tag": function}``; a scalar written ``!tag text`` becomes
     ``function(text)`` (e.g. xacro's unit tags ``!degrees 90``). Other tags stay refused.
@@ -132,11 +133,11 @@ def load_yaml_text(text: str, source: str = "<string>",
     try:
         return yaml.load(text, Loader=loader)  # noqa: S506 - a SafeLoader subclass
     except _Error as exc:
-        where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
+        where = f" at line {exc.mark.line + 1}, column {exc.mark.column + 1}" if exc.mark is not None else ""
         raise InputError(f"{source}: {exc}{where}") from None
     except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
+        mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or "syntax error"
         raise InputError(f"{source}: not valid YAML{where} ({problem})") from None
     except RecursionError:
