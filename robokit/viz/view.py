@@ -92,8 +92,6 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
         raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
     except InputError as exc:
         raise InputError(f"--trajectory: {exc}") from None
-    too_many = (f"--trajectory: {str(p)!r} has more than {MAX_TRAJECTORY_ROWS} rows (samples); "
-                f"at most {MAX_TRAJECTORY_ROWS} are read")
     try:
         if p.suffix.lower() == ".npy":
             f = io.BytesIO(raw)
@@ -115,7 +113,7 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
                 if k == 0 and not all(NUMBER.fullmatch(c) for c in cells):
                     continue  # a header
                 if len(rows) >= MAX_TRAJECTORY_ROWS:
-                    raise InputError(too_many)
+                    raise InputError(f"has more than {MAX_TRAJECTORY_ROWS} rows; at most {MAX_TRAJECTORY_ROWS}")
                 if len(cells) != n:
                     raise InputError(f"{source}: line {line}: {len(cells)} values; expected (K, {n}) joint values")
                 rows.append(number_row(cells, source, line))
