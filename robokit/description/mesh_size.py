@@ -19,7 +19,8 @@ glTF (``.gltf``, ``.glb``)  per primitive, its index (or vertex) count, times th
 Other formats are counted as one triangle per byte (no uncompressed format packs more) and read
 only when that bound is within the limits; compressed containers (``.3mf``, ``.zae``, ``.fbx``,
 ``.blend``, ``.ifczip``) are refused. A file of more than :data:`MAX_MESH_TRIANGLES` triangles or
-:data:`MAX_MESH_VERTICES` vertices is refused with its count, before it is parsed; once parsed,
+:data:`MAX_MESH_VERTICES` vertices is refused with its count, before it is parsed, and so is a
+text file (or binary STL) holding a number beyond 1e12 in magnitude; once parsed,
 :func:`check_mesh_arrays` checks the arrays themselves (counts, finite coordinates of at most
 1e12) before anything is built from them.
 """
@@ -118,6 +119,10 @@ def check_mesh_bytes(raw: bytes, ext: str, source: str | os.PathLike[str]) -> tu
     except InputError as exc:
         raise InputError(f"{source}: {exc}") from None
     counted = ext.lower().lstrip(".") in COUNTED_FORMATS
+    big = _largest_number(raw, ext.lower().lstrip("."))
+    if big > MAX_MAGNITUDE:
+        raise InputError(f"{source}: a vertex coordinate of {big:g} is out of range (at most {MAX_MAGNITUDE:g} in "
+                         "magnitude, like every number of a robot file)")
     for what, count, limit in (("triangles", t, MAX_MESH_TRIANGLES), ("vertices", v, MAX_MESH_VERTICES)):
         if count > limit:
             size = (f"{count} {what}" if counted else
@@ -173,6 +178,36 @@ def check_mesh_arrays(vertices: Any, faces: Any, source: str | os.PathLike[str])
     if F.min() < 0 or F.max() >= len(V):
         raise InputError(f"{source}: a triangle names a vertex the mesh does not have")
     return V, F
+
+
+# ----------------------------------------------------------------------------- magnitudes
+#: A number of a text mesh that may exceed 1e12: an exponent of 12 or more, or 13 digits in a row.
+_HUGE = re.compile(rb"(?<![\w.])[+-]?(?:[0-9]{13,}\.?[0-9]*|[0-9]*\.?[0-9]+[eE]\+?0*(?:[0-9]{3,}|1[2-9]|[2-9][0-9]))"
+                   rb"(?![\w.])")
+
+
+def _largest_number(raw: bytes, ext: str) -> float:
+    """The largest magnitude among a mesh file's numbers that could exceed 1e12, found without
+    parsing (0 when there is none): every number of a text format (OBJ, OFF, COLLADA, ASCII PLY and
+    STL), the coordinates of a binary STL. Other binary formats are checked once parsed
+    (:func:`check_mesh_arrays`)."""
+    if ext == "stl" and len(raw) >= 84 and 84 + 50 * struct.unpack_from("<I", raw, 80)[0] == len(raw):
+        n = (len(raw) - 84) // 50
+        rec = np.frombuffer(raw, dtype=np.dtype([("f", "<f4", (12,)), ("a", "<u2")]), count=n, offset=84)
+        with np.errstate(all="ignore"):
+            xyz = np.abs(rec["f"][:, 3:].astype(float))
+        return float(np.nan_to_num(xyz, nan=np.inf).max()) if n else 0.0
+    if ext == "ply" and b"binary" in raw[:200]:
+        return 0.0
+    if ext not in ("obj", "off", "dae", "ply", "stl"):
+        return 0.0
+    big = 0.0
+    for m in _HUGE.finditer(raw):
+        try:
+            big = max(big, abs(float(m.group(0))))
+        except ValueError:  # "e13" alone, "1.2.3e20": not a number a parser reads
+            continue
+    return big
 
 
 # ----------------------------------------------------------------------------- counters

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
 from robokit._optional import require
-from robokit.description.mesh_size import MAX_MESH_TRIANGLES, check_mesh_bytes
+from robokit.description.mesh_size import MAX_MESH_TRIANGLES, check_mesh_arrays, check_mesh_bytes
 
 __all__ = ["mesh_parts", "cluster_decimate"]
 
@@ -112,7 +112,9 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
     ext = os.path.splitext(str(path))[1].lower().lstrip(".")
     check_mesh_bytes(raw, ext, path)  # triangles counted before trimesh parses anything
     resolver = trimesh.resolvers.FilePathResolver(str(path))  # an OBJ's .mtl, a COLLADA's textures
-    scene: Any = trimesh.load(io.BytesIO(raw), file_type=ext, force="scene", resolver=resolver)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # numbers are judged once parsed
+        warnings.simplefilter("ignore")
+        scene: Any = trimesh.load(io.BytesIO(raw), file_type=ext, force="scene", resolver=resolver)
     groups: dict[tuple, list[tuple[np.ndarray, np.ndarray]]] = {}
     total = 0
     for node in scene.graph.nodes_geometry:
@@ -124,8 +126,7 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
         if total > MAX_MESH_FACES:
             raise InputError(f"{path}: mesh of more than {MAX_MESH_FACES} triangles; robokit draws meshes of at most "
                              f"{MAX_MESH_FACES} (decimate it first)")
-        V = np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
-        F = np.asarray(geom.faces, dtype=np.int64)
+        V, F = check_mesh_arrays(np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3], geom.faces, path)
         rgba = tuple(np.round(np.asarray(override_rgba, float), 3)) if override_rgba is not None else _color_of(geom)
         groups.setdefault(rgba, []).append((V, F))
     merged = []
