@@ -377,8 +377,11 @@ def _scaled_qr(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
 
     norms = np.linalg.norm(J, axis=0)
     scale = np.where(norms > 1e-12 * max(norms.max(), 1e-300), norms, np.inf)
-    Js = J / scale
-    _, R, piv = scipy.linalg.qr(Js, mode="economic", pivoting=True)
+    # J is tall (K·m rows, 6(n+1) columns): its R without Q first (LAPACK geqrf, no Q formed),
+    # then the pivoted QR of that small R — the same pivots and R, since orthogonal factors from
+    # the left change no column norm — instead of a pivoted QR that forms the tall Q
+    R0 = np.linalg.qr(J / scale, mode="r")
+    _, R, piv = scipy.linalg.qr(R0, pivoting=True)
     d = np.abs(np.diag(R))
     rank = int(np.sum(d > RANK_TOL * d[0])) if d.size and d[0] > 0 else 0
     return scale, piv, R, rank
@@ -399,15 +402,16 @@ def _structural_rank(chain: JointChain, robot: Robot, positions_only: bool, rng:
 def _describe_unidentified(J: np.ndarray, scale: np.ndarray, piv: np.ndarray, rank: int,
                            names: list[str]) -> list[str]:
     active = piv[:rank]
-    A = J[:, active]
     out = []
     colnorm = np.linalg.norm(J, axis=0)
     big = colnorm.max() if colnorm.size else 1.0
+    rest = [j for j in sorted(piv[rank:]) if colnorm[j] > 1e-9 * big]
+    betas = np.linalg.lstsq(J[:, active], J[:, rest], rcond=None)[0] if rest else np.zeros((rank, 0))
     for j in sorted(piv[rank:]):
         if colnorm[j] <= 1e-9 * big:
             out.append(f"{names[j]}: has no effect on these measurements")
             continue
-        beta, *_ = np.linalg.lstsq(A, J[:, j], rcond=None)
+        beta = betas[:, rest.index(j)]
         order = np.argsort(-np.abs(beta * colnorm[active]))
         terms = [f"{beta[k]:+.3g}·{names[active[k]]}" for k in order[:4]
                  if abs(beta[k]) * colnorm[active[k]] > 1e-2 * colnorm[j]]
@@ -537,10 +541,13 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
             converged = True
             break
     Jf = weighted_jacobian(chain)
-    scale, piv, _, rank = _scaled_qr(Jf)
+    scale, piv, R, rank = _scaled_qr(Jf)
     active = np.sort(piv[:rank])
-    sv = np.linalg.svd(Jf / scale, compute_uv=False)
-    svs = np.linalg.svd(Jf[:, active] / scale[active], compute_uv=False)
+    # the singular values of the scaled J are those of its R (J/scale·Π = Q·R, Q orthonormal),
+    # and those of its identified columns those of R's first `rank` columns
+    sv = np.linalg.svd(R, compute_uv=False)
+    sv = np.r_[sv, np.zeros(P - sv.size)]  # fewer rows than parameters: the rest are zero
+    svs = np.linalg.svd(R[:, :rank], compute_uv=False)
     cond = float(svs[0] / svs[-1]) if svs.size and svs[-1] > 0 else float("inf")
     ident = Identifiability(P, rank, r_struct, cond, tuple(names[j] for j in active),
                             tuple(_describe_unidentified(Jf, scale, piv, rank, names)), sv)
