@@ -157,9 +157,9 @@ def sample_times(t: ArrayLike | None, t_start: float, t_end: float, name: str = 
     if isinstance(t, Integral):
         if t < 2:
             raise InputError(f"{name}: a number of samples must be at least 2, got {t}")
-        if t > MAX_SAMPLES:
-            raise InputError(f"{name}: {t} samples; robokit makes at most {MAX_SAMPLES} (give fewer, or an array of "
-                             "times)")
+        if int(t) > MAX_SAMPLES:
+            raise InputError(f"{name}: {int(t)} samples; robokit makes at most {MAX_SAMPLES} (give fewer, or an array "
+                             "of times)")
         return np.linspace(t_start, t_end, int(t))
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size == 0:

@@ -108,7 +108,7 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
             Q = np.load(f, allow_pickle=False)
         elif p.suffix.lower() == ".csv":
             source = f"--trajectory: cannot read {str(p)!r}"
-            rows = []
+            rows: list[list[float]] = []
             for k, (line, cells) in enumerate(table_lines(decode_utf8(raw, p), source)):
                 if k == 0 and not all(NUMBER.fullmatch(c) for c in cells):
                     continue  # a header
