@@ -18,6 +18,12 @@ from robokit.errors import InputError, InputTypeError
 
 _F64 = np.dtype(np.float64)
 
+#: Largest magnitude of a number robokit reads from a file or takes as a measurement (SI units):
+#: robot files (lengths, masses, inertias), scene files (sizes, poses), calibration and
+#: identification data. Beyond it FK, dynamics and collision checks overflow to inf or NaN
+#: (1e12 m is seven times the Earth–Sun distance; 1e12² still fits a double with room to spare).
+MAX_MAGNITUDE = 1e12
+
 #: A vector argument whose entries the code reads directly (``x[0]``): a sequence of floats or an array.
 FloatVector: TypeAlias = "Sequence[float] | np.ndarray"
 
@@ -60,7 +66,8 @@ def _real_array(x: object, name: str) -> np.ndarray:
     raise InputTypeError(f"{name}: expected an array of numbers, got dtype {arr.dtype}")
 
 
-def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, *, finite: bool = True) -> np.ndarray:
+def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, *, finite: bool = True,
+             bounded: bool = False) -> np.ndarray:
     """Return ``x`` as a float64 array, checking its shape (``None`` in ``shape`` = any size).
 
     Parameters
@@ -73,6 +80,9 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
         Expected shape; ``None`` entries match any size.
     finite : bool
         Refuse NaN and ±inf.
+    bounded : bool
+        Refuse an entry beyond :data:`MAX_MAGNITUDE` (1e12) in magnitude: measurements and sizes
+        are bounded like every number of a robot file.
 
     Returns
     -------
@@ -82,7 +92,8 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     Raises
     ------
     InputError
-        Naming ``name``: the shape differs, or (with ``finite``) an entry is NaN or infinite.
+        Naming ``name``: the shape differs, (with ``finite``) an entry is NaN or infinite, or (with
+        ``bounded``) an entry is out of range.
     InputTypeError
         Complex values, strings, booleans or other objects (never cast silently).
 
@@ -95,7 +106,7 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     ...
     robokit.errors.InputTypeError: q: expected real numbers, got complex values (dtype complex128)
     """
-    if type(x) is np.ndarray and x.dtype is _F64 and (shape is None or x.shape == shape):
+    if type(x) is np.ndarray and x.dtype is _F64 and (shape is None or x.shape == shape) and not bounded:
         # the fast path (a float64 array of exactly the expected shape): a sum of a short array's
         # floats tests finiteness (an overflow to inf only sends a finite array to the full checks)
         if not finite or (x.size <= 64 and isfinite(sum(x.ravel().tolist()))):
@@ -108,6 +119,13 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
             raise InputError(f"{name}: expected shape {want}, got {_describe(arr)}")
     if finite and not np.isfinite(arr).all():
         raise InputError(f"{name}: contains NaN or infinite values")
+    if bounded and arr.size:
+        big = float(np.nanmax(np.abs(arr))) if np.isfinite(arr).any() else 0.0
+        if big > MAX_MAGNITUDE:
+            k = np.unravel_index(int(np.nanargmax(np.abs(arr))), arr.shape)
+            at = f"[{', '.join(map(str, k))}]" if arr.ndim else ""
+            raise InputError(f"{name}{at}: {float(arr[k]):g} is out of range (at most {MAX_MAGNITUDE:g} in magnitude; "
+                             "SI units)")
     return arr
 
 
@@ -239,17 +257,54 @@ def as_matrix(x: object, name: str, rows: int | None = None, cols: int | None = 
     return as_array(x, name, (rows, cols))
 
 
-def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool = False) -> float:
-    """A finite float; optionally > 0 or >= 0."""
-    if type(x) is float and isfinite(x) and (x > 0.0 or not positive) and (x >= 0.0 or not nonnegative):
+def as_scalar(x: object, name: str, *, positive: bool = False, nonnegative: bool = False,
+              bounded: bool = False) -> float:
+    """A finite float; optionally > 0 or >= 0, and (``bounded``) at most :data:`MAX_MAGNITUDE`
+    in magnitude."""
+    if (type(x) is float and isfinite(x) and (x > 0.0 or not positive) and (x >= 0.0 or not nonnegative)
+            and (not bounded or abs(x) <= MAX_MAGNITUDE)):
         return x  # the fast path: a finite Python float within the bounds
-    arr = as_array(x, name, ())
+    arr = as_array(x, name, (), bounded=bounded)
     v = float(arr)
     if positive and not v > 0:
         raise InputError(f"{name}: expected a positive number, got {v!r}")
     if nonnegative and not v >= 0:
         raise InputError(f"{name}: expected a non-negative number, got {v!r}")
     return v
+
+
+def as_count(x: object, name: str, low: int, high: int) -> int:
+    """An integer count (a number of samples, iterations, evaluations) in ``[low, high]``, checked
+    before anything of that size is allocated or run.
+
+    Parameters
+    ----------
+    x : int
+        The count (a Python or numpy integer; ``True``, floats and strings are refused).
+    name : str
+        The argument's name, for the message.
+    low, high : int
+        Smallest and largest count accepted.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InputError
+        ``samples: expected an integer in 3..1000000, got 10000000000``.
+
+    Examples
+    --------
+    >>> as_count(501, "samples", 3, 10**6)
+    501
+    """
+    import numbers
+
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, numbers.Integral) or not low <= int(x) <= high:
+        raise InputError(f"{name}: expected an integer in {low}..{high}, got {x!r:.40}")
+    return int(x)
 
 
 #: The ``reference=`` vocabulary of every Jacobian (and tip-wrench) function: accepted name → the

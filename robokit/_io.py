@@ -4,8 +4,12 @@ The data are written to an unnamed file in the target's folder (Linux ``O_TMPFIL
 process is killed, even by SIGKILL, the kernel discards it), then linked under a hidden
 temporary name and renamed over the target in one step. Where ``O_TMPFILE`` is not
 available a named temporary file is used and removed on any exception (SIGINT/SIGTERM
-included: the command line turns both into exceptions). The file gets the permissions of
-any file opened for writing: ``0666`` less the user's umask.
+included: the command line turns both into exceptions). A new file gets the permissions of
+any file opened for writing: ``0666`` less the user's umask. A file that replaces an existing
+regular file keeps that file's permission bits (``0600`` stays ``0600``; set-user-ID and
+set-group-ID bits are not carried over) and, where the system permits it, its owner and group;
+a symbolic link at the path is replaced, never written through, and the new file follows the
+umask.
 """
 from __future__ import annotations
 
@@ -70,6 +74,7 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
         raise InputError(f"output: {str(path)!r} is a folder")
     raw = data if isinstance(data, bytes) else data.encode("utf-8")
     mode = 0o666 & ~_umask()
+    keep = _existing_file(path)
     tmp = folder / f".{path.name}.{secrets.token_hex(4)}.tmp"
     o_tmpfile = getattr(os, "O_TMPFILE", None)
     fd = None
@@ -81,6 +86,7 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
     if fd is not None:
         try:
             _write_all(fd, raw)
+            _keep_mode(fd, keep)
             os.fsync(fd)
             linked = _link_fd(fd, tmp)
         finally:
@@ -92,6 +98,7 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
         try:
             try:
                 _write_all(fd, raw)
+                _keep_mode(fd, keep)
                 os.fsync(fd)
             finally:
                 os.close(fd)
@@ -104,6 +111,35 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
         _unlink(tmp)
         raise
     return path
+
+
+def _existing_file(path: Path) -> os.stat_result | None:
+    """The status of the regular file ``path`` replaces (not following a symbolic link), or None."""
+    import stat
+
+    try:
+        st = os.lstat(path)
+    except OSError:
+        return None
+    return st if stat.S_ISREG(st.st_mode) else None
+
+
+def _keep_mode(fd: int, old: os.stat_result | None) -> None:
+    """Give the new file ``fd`` the permission bits of the file it replaces, and its owner and group
+    where permitted (an unprivileged user can only keep a group they belong to)."""
+    if old is None:
+        return
+    os.fchmod(fd, old.st_mode & 0o777)
+    st = os.fstat(fd)
+    if (st.st_uid, st.st_gid) != (old.st_uid, old.st_gid):
+        try:
+            os.fchown(fd, old.st_uid, old.st_gid)
+        except OSError:
+            try:
+                os.fchown(fd, -1, old.st_gid)
+            except OSError:
+                pass
+        os.fchmod(fd, old.st_mode & 0o777)  # chown clears set-ID bits only; the mode stays the old one
 
 
 def _link_fd(fd: int, target: str | os.PathLike[str]) -> bool:

@@ -50,10 +50,10 @@ MAX_INT_DIGITS = 100
 _FLOAT_12 = re.compile(
     r"""^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?
         |[-+]?\.(?:inf|Inf|INF)
-        |\.(?:nan|NaN|NAN))$""",
+        |\.(?:nan|NaN|NAN))\Z""",
     re.X,
 )
-_INT_12 = re.compile(r"^[-+]?[0-9]+$")
+_INT_12 = re.compile(r"^[-+]?[0-9]+\Z")
 
 
 class _Error(Exception):
@@ -130,7 +130,8 @@ _StrictLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 
 def load_yaml_text(text: str, source: str = "<string>",
                    scalar_tags: dict[str, Callable[[str], Any]] | None = None) -> Any:
-    """Parse YAML ``text`` strictly (see the module docstring); errors name ``source`` and the line.
+    """Parse YAML ``text`` strictly (see the module docstring); errors name ``source``, the line and
+    the column.
 
     scalar_tags : optional ``{"!tag": function}``; a scalar written ``!tag text`` becomes
     ``function(text)`` (e.g. xacro's unit tags ``!degrees 90``). Other tags stay refused.
@@ -162,13 +163,13 @@ def _with_tags(base: type, scalar_tags: dict[str, Callable[[str], Any]] | None) 
 
 
 def _input_error(exc: BaseException, source: str) -> InputError:
-    """The one-line InputError for what a YAML loader raised, naming ``source`` and the line."""
+    """The one-line InputError for what a YAML loader raised, naming ``source``, the line and the column."""
     if isinstance(exc, _Error):
-        where = f" at line {exc.mark.line + 1}" if exc.mark is not None else ""
+        where = f" at line {exc.mark.line + 1}, column {exc.mark.column + 1}" if exc.mark is not None else ""
         return InputError(f"{source}: {exc}{where}")
     if isinstance(exc, yaml.YAMLError):
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
+        mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or "syntax error"
         return InputError(f"{source}: not valid YAML{where} ({problem})")
     if isinstance(exc, RecursionError):

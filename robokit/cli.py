@@ -66,6 +66,13 @@ def _add_format_options(parser: argparse.ArgumentParser) -> None:
              "drake:gear_ratio^2), modelled by default as MuJoCo and Drake do")
 
 
+def _add_outside_meshes(parser: argparse.ArgumentParser) -> None:
+    """``--allow-outside-meshes`` of the commands that read a scene file (robokit.collision.load_scene)."""
+    parser.add_argument("--allow-outside-meshes", action="store_true",
+                        help="read the scene's mesh files wherever it says (default: only inside the scene file's "
+                             "folder, its package and the --package-path folders)")
+
+
 def _format_options(args: argparse.Namespace) -> dict:
     """``load`` keyword arguments from --xacro-arg/--package-path (empty when neither is given)."""
     xargs = {}
@@ -116,6 +123,7 @@ def _build_parser() -> argparse.ArgumentParser:
     w.add_argument("--trajectory", help="a .csv/.npy file of joint configurations (one row per sample) to animate")
     w.add_argument("--fps", type=float, default=30.0, help="animation frame rate for --trajectory")
     w.add_argument("--obstacles", help="scene YAML file of obstacles to draw")
+    _add_outside_meshes(w)
     w.add_argument("--robot", metavar="MODEL", help="the robot to draw with a capability map (MAP.npz); default: "
                    "the robot the map describes (a path stored in a map is never opened)")
     _add_format_options(w)
@@ -126,6 +134,7 @@ def _build_parser() -> argparse.ArgumentParser:
     t.add_argument("--tip", help="tip frame of the chain (URDF input)")
     t.add_argument("--obstacles", help="scene YAML file of obstacles: drawn, with links in contact in red and the "
                    "minimum distance shown")
+    _add_outside_meshes(t)
     _add_format_options(t)
 
     # capability maps (robokit.workspace)
@@ -136,6 +145,7 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
     cm.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1")
     cm.add_argument("--obstacles", help="scene YAML file of obstacles: count collision-free solutions only")
+    _add_outside_meshes(cm)
     cm.add_argument("--convex", action="store_true", help="convex hulls of the robot's collision meshes "
                     "(faster, conservative); implies collision checking")
     cm.add_argument("--describe-world", action="store_true",
@@ -164,6 +174,7 @@ def _build_parser() -> argparse.ArgumentParser:
     pl.add_argument("--goal", nargs="+", type=float, required=True,
                     help="goal joint values, or x y z roll pitch yaw of the tip (m, rad)")
     pl.add_argument("--obstacles", help="scene YAML file of obstacles")
+    _add_outside_meshes(pl)
     pl.add_argument("--convex", action="store_true",
                     help="convex hulls of the robot's collision meshes (faster, conservative)")
     pl.add_argument("--describe-world", action="store_true",
@@ -209,7 +220,8 @@ def _dispatch(args: argparse.Namespace) -> int:
 
             args.model = load(args.model, tip=args.tip, **opts)
         return view_command(args.model, args.output, q=args.q, frames=args.frames,
-                        trajectory=args.trajectory, fps=args.fps, tip=args.tip, obstacles=args.obstacles)
+                            trajectory=args.trajectory, fps=args.fps, tip=args.tip, obstacles=args.obstacles,
+                            allow_outside_meshes=args.allow_outside_meshes, package_dirs=args.package_path or None)
     if args.command == "teach":
         from robokit.commands import teach_command
 
@@ -219,13 +231,14 @@ def _dispatch(args: argparse.Namespace) -> int:
             from robokit.description.loading import load
 
             model = load(args.model, tip=args.tip, **opts)
-        return teach_command(model, args.output, obstacles=args.obstacles)
+        return teach_command(model, args.output, obstacles=args.obstacles,
+                             allow_outside_meshes=args.allow_outside_meshes, package_dirs=args.package_path or None)
     if args.command == "workspace":
         from robokit.commands import workspace_command
 
         return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler,
                                  dashboard=args.dashboard, obstacles=args.obstacles, convex=args.convex,
-                                 describe_world=args.describe_world)
+                                 describe_world=args.describe_world, allow_outside_meshes=args.allow_outside_meshes)
     if args.command == "calibrate":
         from robokit.commands import calibrate_command
 
@@ -240,7 +253,8 @@ def _dispatch(args: argparse.Namespace) -> int:
 
         return plan_command(args.model, args.start, args.goal, args.output, obstacles=args.obstacles,
                             vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip,
-                            convex=args.convex, describe_world=args.describe_world)
+                            convex=args.convex, describe_world=args.describe_world,
+                            allow_outside_meshes=args.allow_outside_meshes)
     raise _UsageError(f"robokit: unknown command {args.command!r}")
 
 

@@ -8,11 +8,12 @@ from __future__ import annotations
 import os
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robokit._arrays import MAX_MAGNITUDE
 from robokit._io import atomic_write, check_output_folder
 from robokit.errors import InputError
 
@@ -78,7 +79,9 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
 
 def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str],
                  q: ArrayLike | None = None, frames: bool = False, trajectory: str | os.PathLike[str] | None = None,
-                 fps: float = 30.0, tip: str | None = None, obstacles: str | os.PathLike[str] | None = None) -> int:
+                 fps: float = 30.0, tip: str | None = None, obstacles: str | os.PathLike[str] | None = None,
+                 allow_outside_meshes: bool = False,
+                 package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> int:
     """``robokit view MODEL -o OUT.html``: write a self-contained meshcat page of the model.
 
     Parameters
@@ -99,6 +102,10 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
         Tip frame.
     obstacles : str or path-like, optional
         A scene YAML file whose obstacles are drawn.
+    allow_outside_meshes : bool
+        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
+    package_dirs : sequence of str or path-like, optional
+        More folders the scene's mesh files may be in (``--package-path``).
 
     Returns
     -------
@@ -119,7 +126,7 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
     if obstacles:
         from robokit.collision import load_scene
 
-        obs = load_scene(obstacles)[0]
+        obs = load_scene(obstacles, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)[0]
     page = view_html(robot, q=q, frames=frames, trajectory=Q, fps=fps, obstacles=obs)
     atomic_write(out, page)
     print(f"wrote {out} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
@@ -128,7 +135,8 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
 
 def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str | os.PathLike[str] | None = None,
                   q: ArrayLike | None = None, open_browser: bool = True,
-                  obstacles: str | os.PathLike[str] | None = None) -> int:
+                  obstacles: str | os.PathLike[str] | None = None, allow_outside_meshes: bool = False,
+                  package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> int:
     """The ``robokit teach`` command: write the teach page (:func:`robokit.viz.teach.teach_html`).
 
     Parameters
@@ -146,6 +154,11 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     obstacles : str or path, optional
         A scene YAML file (as ``robokit plan`` reads it): the page draws its obstacles and
         shows the collision state (links in contact red, the minimum distance).
+    allow_outside_meshes : bool
+        Read the scene's mesh files wherever it says (``--allow-outside-meshes``); by default
+        they must be in the scene file's folder or ``package_dirs`` (the page embeds them).
+    package_dirs : sequence of str or path-like, optional
+        More folders the scene's mesh files may be in (``--package-path``).
 
     Returns
     -------
@@ -171,7 +184,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     if obstacles:
         from robokit.collision import load_scene
 
-        obs, padding = load_scene(obstacles)
+        obs, padding = load_scene(obstacles, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
     page = teach_html(robot, q=q, obstacles=obs, padding=padding)
     if output is not None:
         atomic_write(output, page)
@@ -186,12 +199,13 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     return 0
 
 
-def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, describe: bool) -> Any:
+def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, describe: bool,
+           allow_outside_meshes: bool = False) -> Any:
     """The collision world of a command: the scene file's obstacles and padding, meshes or hulls;
     its description printed on stdout when ``describe`` (``--describe-world``)."""
     from robokit.collision import World, load_scene
 
-    obs, padding = load_scene(obstacles) if obstacles else ([], 0.0)
+    obs, padding = load_scene(obstacles, allow_outside_meshes=allow_outside_meshes) if obstacles else ([], 0.0)
     world = World(robot, obs, padding, convex=convex)
     if describe:
         print(world.describe())
@@ -201,7 +215,7 @@ def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, d
 def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
                       scheduler: str | None = None, dashboard: bool = False,
                       obstacles: str | os.PathLike[str] | None = None, convex: bool = False,
-                      describe_world: bool = False) -> int:
+                      describe_world: bool = False, allow_outside_meshes: bool = False) -> int:
     """``robokit workspace ROBOT --resolution R -o MAP.npz``: compute a capability map and write it.
 
     The four arrays ``centres``, ``index``, ``orientations``, ``resolution`` are written
@@ -233,6 +247,8 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
         conservative).
     describe_world : bool
         Print the world and its self-collision pairs on stdout.
+    allow_outside_meshes : bool
+        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
 
     Returns
     -------
@@ -254,7 +270,7 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     world = None
     if obstacles or convex or describe_world:
         rob = load(robot)
-        world = _world(rob, obstacles, convex, describe_world)
+        world = _world(rob, obstacles, convex, describe_world, allow_outside_meshes)
         robot = rob  # type: ignore[assignment]
         if not (obstacles or convex):  # --describe-world alone prints, it does not change the map
             print("(not used for the map: give --obstacles or --convex for collision-free counts)")
@@ -418,16 +434,31 @@ def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str
     return 0
 
 
+def _check_rows(duration: float, dt: float, bound: str = "") -> None:
+    """Refuse a ``robokit plan`` output of more rows than a trajectory file may hold
+    (:data:`robokit.viz.view.MAX_TRAJECTORY_ROWS`), from the duration, before any row is made."""
+    from robokit.viz.view import MAX_TRAJECTORY_ROWS
+
+    rows = duration / dt + 2.0
+    if not rows <= MAX_TRAJECTORY_ROWS:
+        raise InputError(f"--dt/--vmax/--amax: the trajectory would last {bound}{duration:.4g} s, {bound}{rows:.4g} rows of "
+                         f"{dt:g} s; robokit writes at most {MAX_TRAJECTORY_ROWS} (what robokit view --trajectory "
+                         "reads): raise --dt, --vmax or --amax")
+
+
 def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
                  obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
                  dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
-                 describe_world: bool = False) -> int:
+                 describe_world: bool = False, allow_outside_meshes: bool = False) -> int:
     """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] [--convex] -o traj.csv``: plan a
     collision-free motion, retime it and write it as a CSV.
 
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
     (comment lines give the duration and dt), so ``robokit view MODEL --trajectory traj.csv
-    --fps 1/dt`` plays it in real time.
+    --fps 1/dt`` plays it in real time. It has at most
+    :data:`robokit.viz.view.MAX_TRAJECTORY_ROWS` rows: the count is estimated before planning
+    (a joint goal: ``max |Δq| / vmax / dt``) and computed from the duration before any row is
+    made, and a larger one is refused.
 
     Parameters
     ----------
@@ -453,6 +484,8 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         Check the convex hulls of the robot's collision meshes (faster, conservative).
     describe_world : bool
         Print the world and its self-collision pairs on stdout first.
+    allow_outside_meshes : bool
+        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
 
     Returns
     -------
@@ -465,8 +498,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
     from robokit.motion import plan
 
     out = _output_file(output, (".csv",))
-    if not (dt > 0 and np.isfinite(dt)):
-        raise InputError(f"--dt: expected a positive time step, got {dt:g}")
+    for flag, v, unit in (("--dt", dt, "s"), ("--vmax", vmax, "rad/s"), ("--amax", amax, "rad/s²")):
+        if not (np.isfinite(v) and 0 < v <= MAX_MAGNITUDE):
+            raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
     robot = load(model, tip=tip)
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
@@ -478,8 +512,11 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
         raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
-    world = _world(robot, obstacles, convex, describe_world)
+    if target.shape == (robot.n,):  # a joint goal: no motion is shorter than max |Δq| / vmax
+        _check_rows(float(np.max(np.abs(target - q0))) / vmax, dt, "at least ")
+    world = _world(robot, obstacles, convex, describe_world, allow_outside_meshes)
     tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    _check_rows(float(tr.t[-1]), dt)
     t = np.arange(0.0, tr.t[-1], dt)
     t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t
     Q = np.column_stack([np.interp(t, tr.t, tr.q[:, j]) for j in range(robot.n)])

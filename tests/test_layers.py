@@ -14,7 +14,7 @@ Cycles are checked on the graph of modules, two ways:
 ``pkg`` itself (its ``__init__``); importing a submodule's parent package first is Python's
 doing, not an edge.
 
-Layers, bottom to top: the helpers (``_arrays``, ``_units``, ``_io``, ``_yaml``, ``_optional``, ``errors``); ``spatial``
+Layers, bottom to top: the helpers (``_arrays``, ``_units``, ``_io``, ``_yaml``, ``_table``, ``_optional``, ``errors``); ``spatial``
 (no robot in it); ``kernels`` (the compiled recursions); ``description`` (DH tables, files,
 the Robot); ``kinematics``; ``dynamics``; ``ik``; ``trajectory``; ``control``, ``mobile``,
 ``symbolic`` and ``calibration``; ``viz``; ``workspace``; ``validation`` and ``codegen``; ``commands``
@@ -28,7 +28,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1] / "robokit"
 
 LAYER = {
-    "_arrays": 0, "_units": 0, "_io": 0, "_progress": 0, "_xml": 0, "_yaml": 0, "_optional": 0, "_names": 0, "_deprecation": 0, "errors": 0,
+    "_arrays": 0, "_units": 0, "_io": 0, "_progress": 0, "_xml": 0, "_yaml": 0, "_optional": 0, "_names": 0,
+    "_deprecation": 0, "_table": 0, "errors": 0,
     "spatial": 1,
     "kernels": 2,
     "description": 3, "models": 3,

@@ -4,16 +4,16 @@ Format: a header row, then one row per measurement, comma-separated, with the co
 
 ``q1, …, qn, x, y, z`` (tool positions, m) or ``q1, …, qn, x, y, z, qw, qx, qy, qz`` (tool poses:
 position and unit quaternion, scalar first), all in the robot's base frame; joint values in rad (m
-for prismatic joints). Blank lines are skipped. The file is bounded (:data:`MAX_BYTES`,
-:data:`MAX_ROWS`) and must be a regular file. Any bad cell is refused with the line and the column
-named; joint values outside the model's limits only give a note (a real arm may have wider limits
-than its model).
+for prismatic joints). Blank lines and lines starting with ``#`` are skipped; a cell may be quoted
+(``"q1"``). A number is what :mod:`robokit._table` reads (``-0.5``, ``12``, ``1.5e-3``; no ``1_0``,
+no digits of other scripts, no ``inf``/``nan``), at most 1e12 in magnitude like every number of a
+robot file. The file is bounded (:data:`MAX_BYTES`, :data:`MAX_ROWS`, lines of at most 16,384
+characters) and must be a regular file. Any bad cell is refused with the file, the line and the
+column named; joint values outside the model's limits only give a note (a real arm may have wider
+limits than its model).
 """
 from __future__ import annotations
 
-import csv
-import io
-import math
 import os
 import stat
 import warnings
@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from robokit._io import read_input_text
+from robokit._table import number_row, table_lines
 from robokit.errors import InputError, RobokitWarning
 from robokit.spatial.quaternion import matrix_from_quaternion
 
@@ -87,17 +88,13 @@ def read_calibration_csv(path: str | os.PathLike[str], n: int,
     if not stat.S_ISREG(st.st_mode):
         raise InputError(f"{p}: not a regular file (a calibration CSV is expected)")
     text = read_input_text(p, MAX_BYTES, "a CSV file").removeprefix("\ufeff")  # a spreadsheet's byte-order mark
-    reader = csv.reader(io.StringIO(text))
     header: list[str] | None = None
     header_line = 0
     rows: list[list[float]] = []
     lines: list[int] = []
-    for row in reader:
-        line = reader.line_num
-        if not row or all(not c.strip() for c in row):
-            continue
+    for line, row in table_lines(text, str(p)):
         if header is None:
-            header = [c.strip().lower() for c in row]
+            header = [c.lower() for c in row]
             header_line = line
             want3, want7 = _header(n, False), _header(n, True)
             if header not in (want3, want7):
@@ -107,22 +104,14 @@ def read_calibration_csv(path: str | os.PathLike[str], n: int,
                                      f"{n}-joint robot, got {len(header)}")
                 want = want3 if len(header) == len(want3) else want7
                 k = next(i for i, (a, b) in enumerate(zip(header, want)) if a != b)
-                raise InputError(f"{p}: line {line} (header), column {k + 1}: expected {want[k]!r}, got {row[k]!r}")
+                raise InputError(f"{p}: line {line} (header), column {k + 1}: expected {want[k]!r}, "
+                                 f"got {row[k][:40]!r}")
             continue
         if len(rows) >= MAX_ROWS:
             raise InputError(f"{p}: more than {MAX_ROWS} measurement rows")
         if len(row) != len(header):
             raise InputError(f"{p}: line {line}: expected {len(header)} columns, got {len(row)}")
-        vals = []
-        for name, cell in zip(header, row):
-            try:
-                v = float(cell)
-            except ValueError:
-                raise InputError(f"{p}: line {line}, column {name!r}: not a number ({cell.strip()[:40]!r})") from None
-            if not math.isfinite(v):
-                raise InputError(f"{p}: line {line}, column {name!r}: not a finite number ({cell.strip()[:40]!r})")
-            vals.append(v)
-        rows.append(vals)
+        rows.append(number_row(row, str(p), line, header))
         lines.append(line)
     if header is None:
         raise InputError(f"{p}: empty file (expected a header row {', '.join(_header(n, False))}, …)")

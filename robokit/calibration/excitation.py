@@ -29,11 +29,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array
+from robokit._arrays import as_array, as_count, as_scalar
 from robokit.calibration.chain import chain_from_robot
+from robokit.calibration.identification import MAX_EVALUATIONS
 from robokit.calibration.regressor import base_parameters, full_regressor
 from robokit.errors import InputError
-from robokit.trajectory.core import Trajectory
+from robokit.trajectory.core import MAX_SAMPLES, Trajectory
 
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
@@ -107,6 +108,14 @@ def _fit_limits(a: np.ndarray, b: np.ndarray, period: float, lo: np.ndarray, hi:
     return a * s[:, None], b * s[:, None], q0
 
 
+def _per_joint(x: ArrayLike, name: str, n: int) -> np.ndarray:
+    """A scalar or (n,) limit, bounded like every number (1e12)."""
+    arr = as_array(x, name, bounded=True)
+    if arr.shape not in ((), (1,), (n,)):
+        raise InputError(f"{name}: expected a number or {n} numbers, got shape {arr.shape}")
+    return np.broadcast_to(arr, (n,)).astype(float)
+
+
 def excitation_trajectory(robot: Robot | str, duration: float, harmonics: int = 5, *, qlim: ArrayLike | None = None,
                           qd_max: ArrayLike | None = None, qdd_max: ArrayLike | None = None, samples: int = 501,
                           margin: float = 0.05, friction: bool = True, max_evaluations: int = 400,
@@ -131,13 +140,15 @@ def excitation_trajectory(robot: Robot | str, duration: float, harmonics: int = 
         Speed and acceleration limits (rad/s, rad/s²; m/s, m/s²); default the model's velocity
         limits (1 rad/s where it has none) and three times those per second.
     samples : int
-        Number of samples of the returned trajectory over [0, T] (both ends included).
+        Number of samples of the returned trajectory over [0, T] (both ends included), 3 to
+        :data:`robokit.trajectory.core.MAX_SAMPLES` (checked before anything is allocated).
     margin : float
         Fraction of each joint range left free at each end, in [0, 0.5).
     friction : bool
         Condition the regressor that includes the friction columns.
     max_evaluations : int
-        Evaluations of the condition number at most (bounds the optimisation time; deterministic).
+        Evaluations of the condition number at most (bounds the optimisation time; deterministic),
+        1 to 100,000.
     rng : int or numpy.random.Generator or None
         Seed of the starting coefficients.
 
@@ -161,18 +172,17 @@ def excitation_trajectory(robot: Robot | str, duration: float, harmonics: int = 
 
     robot = load(robot)
     n = robot.n
-    T = float(duration)
-    if not (math.isfinite(T) and T > 0):
-        raise InputError(f"duration: expected a positive period in s, got {duration!r}")
-    if not (isinstance(harmonics, int) and 2 <= harmonics <= 50):
-        raise InputError(f"harmonics: expected an integer in 2..50, got {harmonics!r}")
-    if not (isinstance(samples, int) and samples >= 3):
-        raise InputError(f"samples: expected an integer ≥ 3, got {samples!r}")
-    if not (0 <= margin < 0.5):
+    T = as_scalar(duration, "duration", positive=True, bounded=True)
+    harmonics = as_count(harmonics, "harmonics", 2, 50)
+    samples = as_count(samples, "samples", 3, MAX_SAMPLES)
+    max_evaluations = as_count(max_evaluations, "max_evaluations", 1, MAX_EVALUATIONS)
+    margin = as_scalar(margin, "margin", nonnegative=True)
+    if not margin < 0.5:
         raise InputError(f"margin: expected a fraction in [0, 0.5), got {margin!r}")
-    if not (isinstance(max_evaluations, int) and max_evaluations >= 1):
-        raise InputError(f"max_evaluations: expected a positive integer, got {max_evaluations!r}")
-    lim = np.array(robot.qlim, dtype=float) if qlim is None else as_array(qlim, "qlim", (n, 2))
+    lim = np.array(robot.qlim, dtype=float) if qlim is None else as_array(qlim, "qlim", (n, 2), finite=False,
+                                                                           bounded=True)
+    if np.isnan(lim).any():
+        raise InputError("qlim: contains NaN values")
     lim = np.where(np.isfinite(lim), lim, np.array([-math.pi, math.pi]))
     if np.any(lim[:, 1] <= lim[:, 0]):
         raise InputError(f"qlim: expected lower < upper for every joint, got {lim.tolist()}")
@@ -180,8 +190,8 @@ def excitation_trajectory(robot: Robot | str, duration: float, harmonics: int = 
     lo, hi = lim[:, 0] + margin * rng_, lim[:, 1] - margin * rng_
     vmodel = np.asarray(robot.model.velocityLimit, dtype=float)[:n]
     vdef = np.where(np.isfinite(vmodel) & (vmodel > 0), vmodel, 1.0)
-    vmax = vdef if qd_max is None else np.broadcast_to(as_array(qd_max, "qd_max"), (n,)).astype(float)
-    amax = 3.0 * vdef if qdd_max is None else np.broadcast_to(as_array(qdd_max, "qdd_max"), (n,)).astype(float)
+    vmax = vdef if qd_max is None else _per_joint(qd_max, "qd_max", n)
+    amax = 3.0 * vdef if qdd_max is None else _per_joint(qdd_max, "qdd_max", n)
     for name, v in (("qd_max", vmax), ("qdd_max", amax)):
         if np.any(v <= 0):
             raise InputError(f"{name}: expected positive limits, got {v.tolist()}")

@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array
+from robokit._arrays import as_array, as_count
 from robokit.calibration.chain import JointChain, chain_from_robot
 from robokit.calibration.regressor import BaseParameters, base_parameters, full_regressor, standard_parameters
 from robokit.errors import InputError, RobokitWarning
@@ -49,6 +49,12 @@ if TYPE_CHECKING:
 __all__ = ["identify_dynamics", "IdentificationResult", "check_physical_consistency", "joint_derivatives",
            "pseudo_inertia"]
 
+
+#: Most function evaluations of the physically consistent fit (``max_evaluations``).
+MAX_EVALUATIONS = 100_000
+#: Largest regressor ``identify_dynamics`` builds (bytes): 2 GiB is 500,000 samples of a 6-joint arm
+#: without friction, 400,000 with.
+MAX_REGRESSOR_BYTES = 2 << 30
 
 def pseudo_inertia(pi_link: ArrayLike) -> np.ndarray:
     """The 4×4 pseudo-inertia ``[[½tr(I)1 − I, m c], [(m c)ᵀ, m]]`` of one link's ten parameters.
@@ -272,7 +278,7 @@ class IdentificationResult:
 
 
 def _samples(a: ArrayLike, name: str, n: int) -> np.ndarray:
-    arr = as_array(a, name)
+    arr = as_array(a, name, bounded=True)
     if arr.ndim == 1:
         arr = arr[None, :]
     if arr.ndim != 2 or arr.shape[1] != n:
@@ -411,7 +417,7 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     nominal : array_like, shape (10n,) or (12n,), optional
         Nominal standard parameters (default: the robot's, friction zero).
     max_evaluations : int
-        Function evaluations at most of the consistent fit.
+        Function evaluations at most of the consistent fit (1 to :data:`MAX_EVALUATIONS`).
 
     Returns
     -------
@@ -422,7 +428,9 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     Raises
     ------
     InputError
-        Wrong shapes, NaN, or fewer torque equations than base parameters.
+        Wrong shapes, NaN, a value beyond 1e12 in magnitude (bounded like every number of a robot
+        file), fewer torque equations than base parameters, a regressor larger than
+        :data:`MAX_REGRESSOR_BYTES`, ``max_evaluations`` not a count in 1..100,000.
 
     Examples
     --------
@@ -439,11 +447,16 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
 
     robot = load(robot)
     n = robot.n
+    max_evaluations = as_count(max_evaluations, "max_evaluations", 1, MAX_EVALUATIONS)
     Q, dQ, ddQ, T = (_samples(a, name, n) for a, name in ((q, "q"), (dq, "dq"), (ddq, "ddq"), (tau, "tau")))
     N = Q.shape[0]
     if any(a.shape[0] != N for a in (dQ, ddQ, T)):
         raise InputError(f"q, dq, ddq, tau: expected the same number of rows, got "
                          f"{[a.shape[0] for a in (Q, dQ, ddQ, T)]}")
+    need = 8 * N * n * (12 * n if friction else 10 * n)  # the regressor W (N, n, p), float64
+    if need > MAX_REGRESSOR_BYTES:
+        raise InputError(f"q: {N} samples make a regressor of {need / 2**30:.1f} GiB for {robot.name}; robokit builds "
+                         f"at most {MAX_REGRESSOR_BYTES / 2**30:.0f} GiB (use every k-th sample)")
     base = base_parameters(robot, friction=friction)
     r = base.count
     if N * n < r + n:
@@ -454,7 +467,7 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     pi_nom = np.zeros(p)
     pi_nom[:10 * n] = standard_parameters(robot)
     if nominal is not None:
-        nom = as_array(nominal, "nominal")
+        nom = as_array(nominal, "nominal", bounded=True)
         if nom.shape not in ((10 * n,), (p,)):
             raise InputError(f"nominal: expected shape ({10 * n},) or ({p},), got {nom.shape}")
         pi_nom[:nom.size] = nom
@@ -549,8 +562,8 @@ def joint_derivatives(t: ArrayLike, q: ArrayLike, cutoff: float, order: int = 4)
     """
     from scipy.signal import butter, filtfilt
 
-    tt = as_array(t, "t", (None,))
-    Q = as_array(q, "q")
+    tt = as_array(t, "t", (None,), bounded=True)
+    Q = as_array(q, "q", bounded=True)
     if Q.ndim == 1:
         Q = Q[:, None]
     if Q.ndim != 2 or Q.shape[0] != tt.size:
@@ -562,7 +575,8 @@ def joint_derivatives(t: ArrayLike, q: ArrayLike, cutoff: float, order: int = 4)
         raise InputError("t: expected uniformly spaced, increasing times")
     h = float(dt.mean())
     nyq = 0.5 / h
-    if not (0 < cutoff < nyq):
+    if not (isinstance(cutoff, (int, float, np.floating, np.integer)) and not isinstance(cutoff, bool)
+            and 0 < cutoff < nyq):
         raise InputError(f"cutoff: expected a frequency in (0, {nyq:g}) Hz (the Nyquist frequency), got {cutoff!r}")
     if not (isinstance(order, int) and 1 <= order <= 10):
         raise InputError(f"order: expected an integer in 1..10, got {order!r}")

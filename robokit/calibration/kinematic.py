@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._optional import require
-from robokit._arrays import as_array
+from robokit._arrays import as_array, as_count, as_scalar
 from robokit.calibration.chain import JointChain, chain_from_robot, robot_from_chain
 from robokit.errors import InputError, RobokitWarning
 from robokit.spatial import lie
@@ -102,6 +102,10 @@ class RMS(float):
             return f"{float(self):.3g} m"
         return f"{float(self):.3g} m, {self.orientation:.3g} rad"
 
+
+#: Largest identification Jacobian ``calibrate`` builds (bytes; float64 (K·m, 6(n+1))): 1 GiB is
+#: about 530,000 poses of a 6R arm. The CSV reader's 200,000 rows stay well below it.
+MAX_JACOBIAN_BYTES = 1 << 30
 
 def parameter_names(robot: Robot) -> list[str]:
     """Names of the 6(n+1) error parameters: ``"<joint>.rx"`` … ``"<joint>.tz"`` for the placement
@@ -352,7 +356,7 @@ class CalibrationResult:
 
 
 def _check_measured(measured: ArrayLike, K: int) -> np.ndarray:
-    m = as_array(measured, "measured")
+    m = as_array(measured, "measured", bounded=True)
     if m.shape == (K, 3):
         return m
     if m.shape == (K, 4, 4):
@@ -373,8 +377,11 @@ def _scaled_qr(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
 
     norms = np.linalg.norm(J, axis=0)
     scale = np.where(norms > 1e-12 * max(norms.max(), 1e-300), norms, np.inf)
-    Js = J / scale
-    _, R, piv = scipy.linalg.qr(Js, mode="economic", pivoting=True)
+    # J is tall (K·m rows, 6(n+1) columns): its R without Q first (LAPACK geqrf, no Q formed),
+    # then the pivoted QR of that small R — the same pivots and R, since orthogonal factors from
+    # the left change no column norm — instead of a pivoted QR that forms the tall Q
+    R0 = np.linalg.qr(J / scale, mode="r")
+    _, R, piv = scipy.linalg.qr(R0, pivoting=True)
     d = np.abs(np.diag(R))
     rank = int(np.sum(d > RANK_TOL * d[0])) if d.size and d[0] > 0 else 0
     return scale, piv, R, rank
@@ -395,15 +402,16 @@ def _structural_rank(chain: JointChain, robot: Robot, positions_only: bool, rng:
 def _describe_unidentified(J: np.ndarray, scale: np.ndarray, piv: np.ndarray, rank: int,
                            names: list[str]) -> list[str]:
     active = piv[:rank]
-    A = J[:, active]
     out = []
     colnorm = np.linalg.norm(J, axis=0)
     big = colnorm.max() if colnorm.size else 1.0
+    rest = [j for j in sorted(piv[rank:]) if colnorm[j] > 1e-9 * big]
+    betas = np.linalg.lstsq(J[:, active], J[:, rest], rcond=None)[0] if rest else np.zeros((rank, 0))
     for j in sorted(piv[rank:]):
         if colnorm[j] <= 1e-9 * big:
             out.append(f"{names[j]}: has no effect on these measurements")
             continue
-        beta, *_ = np.linalg.lstsq(A, J[:, j], rcond=None)
+        beta = betas[:, rest.index(j)]
         order = np.argsort(-np.abs(beta * colnorm[active]))
         terms = [f"{beta[k]:+.3g}·{names[active[k]]}" for k in order[:4]
                  if abs(beta[k]) * colnorm[active[k]] > 1e-2 * colnorm[j]]
@@ -450,8 +458,10 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
     Raises
     ------
     InputError
-        Wrong shapes, NaN, a measured pose that is not a rigid transform, or fewer equations
-        (3 per position, 6 per pose) than identifiable parameters.
+        Wrong shapes, NaN, a value beyond 1e12 in magnitude (bounded like every number of a robot
+        file), a measured pose that is not a rigid transform, fewer equations (3 per position, 6
+        per pose) than identifiable parameters, or an identification Jacobian larger than
+        :data:`MAX_JACOBIAN_BYTES` — each naming the argument.
 
     Examples
     --------
@@ -466,17 +476,20 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
 
     robot = load(robot)
     n = robot.n
-    Q = as_array(q, "q")
+    Q = as_array(q, "q", bounded=True)
     if Q.ndim != 2 or Q.shape[1] != n:
         raise InputError(f"q: expected shape (K, {n}) for {robot.name}, got {Q.shape}")
     K = Q.shape[0]
     meas = _check_measured(measured, K)
     positions_only = meas.ndim == 2
     m = 3 if positions_only else 6
-    if max_iterations < 1:
-        raise InputError(f"max_iterations: expected a positive count, got {max_iterations}")
-    if not (math.isfinite(orientation_weight) and orientation_weight > 0):
-        raise InputError(f"orientation_weight: expected a positive number (m/rad), got {orientation_weight!r}")
+    max_iterations = as_count(max_iterations, "max_iterations", 1, 100_000)
+    orientation_weight = as_scalar(orientation_weight, "orientation_weight", positive=True, bounded=True)
+    tolerance = as_scalar(tolerance, "tolerance", nonnegative=True, bounded=True)
+    if K * m * 6 * (n + 1) * 8 > MAX_JACOBIAN_BYTES:
+        raise InputError(f"q: {K} samples make an identification Jacobian of "
+                         f"{K * m * 6 * (n + 1) * 8 / 2**30:.1f} GiB for {robot.name}; robokit builds at most "
+                         f"{MAX_JACOBIAN_BYTES / 2**30:.0f} GiB (use fewer samples)")
     row_w = np.ones(m) if positions_only else np.r_[[orientation_weight] * 3, [1.0] * 3]
 
     def weighted_jacobian(chain: JointChain) -> np.ndarray:
@@ -528,10 +541,13 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
             converged = True
             break
     Jf = weighted_jacobian(chain)
-    scale, piv, _, rank = _scaled_qr(Jf)
+    scale, piv, R, rank = _scaled_qr(Jf)
     active = np.sort(piv[:rank])
-    sv = np.linalg.svd(Jf / scale, compute_uv=False)
-    svs = np.linalg.svd(Jf[:, active] / scale[active], compute_uv=False)
+    # the singular values of the scaled J are those of its R (J/scale·Π = Q·R, Q orthonormal),
+    # and those of its identified columns those of R's first `rank` columns
+    sv = np.linalg.svd(R, compute_uv=False)
+    sv = np.r_[sv, np.zeros(P - sv.size)]  # fewer rows than parameters: the rest are zero
+    svs = np.linalg.svd(R[:, :rank], compute_uv=False)
     cond = float(svs[0] / svs[-1]) if svs.size and svs[-1] > 0 else float("inf")
     ident = Identifiability(P, rank, r_struct, cond, tuple(names[j] for j in active),
                             tuple(_describe_unidentified(Jf, scale, piv, rank, names)), sv)

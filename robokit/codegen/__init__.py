@@ -19,6 +19,6 @@ Example::
     >>> src.name, src.has_ik
     ('puma560', True)
 """
-from robokit.codegen.generate import C_KEYWORDS, CSource, c_name, generate_c, write_c
+from robokit.codegen.generate import C_KEYWORDS, STANDARD_HEADERS, CSource, c_name, generate_c, write_c
 
-__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS"]
+__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS", "STANDARD_HEADERS"]

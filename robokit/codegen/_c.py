@@ -18,14 +18,17 @@ import re
 from collections import Counter
 from typing import Iterable, Sequence, Union
 
+from robokit.errors import InputError
+
 Val = Union[float, str]
 
 #: Constants closer than this to 0 (or ±1) are folded to exactly 0 (±1): Pinocchio's axes
 #: carry round-off of 1e-17; folding changes results by less than 1e-14 (relative).
 SNAP = 1e-14
 
-_IDENT = re.compile(r"^[A-Za-z_][A-Za-z_0-9]*(\[[0-9]+\])?$")
-_PRODUCT = re.compile(r"^[A-Za-z_0-9.\[\]]+( \* [A-Za-z_0-9.\[\]]+)*$")
+# used with fullmatch (``$`` would accept a trailing newline)
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z_0-9]*(\[[0-9]+\])?")
+_PRODUCT = re.compile(r"[A-Za-z_0-9.\[\]]+( \* [A-Za-z_0-9.\[\]]+)*")
 
 
 def snap(x: float) -> float:
@@ -62,10 +65,12 @@ def c_string(text: str) -> str:
 
 
 def lit(x: float) -> str:
-    """A C double literal that reads back as exactly ``x`` (``repr`` round-trips)."""
+    """A C double literal that reads back as exactly ``x`` (``repr`` round-trips); a constant that
+    is not finite (an overflow while folding) is refused, never written as ``HUGE_VAL``."""
     x = float(x)
     if not math.isfinite(x):
-        return "HUGE_VAL" if x > 0 else "-HUGE_VAL"
+        raise InputError(f"codegen: a constant of the generated code is {x!r} (the robot's numbers overflow a "
+                         "double when combined)")
     s = repr(x)
     if "e" not in s and "." not in s:
         s += ".0"
@@ -76,7 +81,7 @@ def atom(v: Val) -> str:
     """v as a C operand that can be multiplied without parentheses."""
     if isinstance(v, float):
         return lit(v) if v >= 0.0 else f"({lit(v)})"
-    if _PRODUCT.match(v) or _one_group(v):
+    if _PRODUCT.fullmatch(v) or _one_group(v):
         return v
     return f"({v})"
 
@@ -106,7 +111,7 @@ def lin(terms: Iterable[tuple[float, Val]], const: float = 0.0) -> Val:
         if isinstance(v, float):
             const += c * v
             continue
-        if v.startswith("-") and _IDENT.match(v[1:]):
+        if v.startswith("-") and _IDENT.fullmatch(v[1:]):
             c, v = -c, v[1:]
         parts.append((c, v))
     if not parts:
@@ -189,7 +194,7 @@ class CWriter:
         value itself is returned and nothing is emitted)."""
         if isinstance(value, float):
             return value
-        if _IDENT.match(value):
+        if _IDENT.fullmatch(value):
             return value
         if name in self.names:
             raise AssertionError(f"codegen: temporary {name} emitted twice")
@@ -270,3 +275,50 @@ def to_float32(text: str) -> str:
                 in_comment = True
         out.append(res)
     return "\n".join(out)
+
+
+#: The normal range of each target type: a constant written into the C must be 0 or have a
+#: magnitude in [smallest normal, largest finite] (a larger one does not compile under
+#: ``-Werror``, a smaller one is truncated to zero or kept as a subnormal that single-precision
+#: FPUs flush to zero).
+RANGES = {False: (2.2250738585072014e-308, 1.7976931348623157e308),  # DBL_MIN, DBL_MAX
+          True: (1.1754943508222875e-38, 3.4028234663852886e38)}     # FLT_MIN, FLT_MAX
+
+_COMMENT_OR_STRING = re.compile(r'/\*.*?\*/|//[^\n]*|"(?:\\.|[^"\\\n])*"', re.S)
+_ANY_LIT = re.compile(r"(?<![\w.])((?:\d+\.\d*|\.\d+)(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+)f?(?![\w.])")
+_DEFINITION = re.compile(r"^(?:#define (\w+)|[A-Za-z_][\w ]*?\b(\w+)\s*(?:\(|\[|=))")
+
+
+def out_of_range(x: float, float32: bool) -> bool:
+    """Whether the constant ``x`` cannot be written as a normal number of the target type
+    (see :data:`RANGES`)."""
+    tiny, huge = RANGES[float32]
+    a = abs(float(x))
+    return not (a == 0.0 or tiny <= a <= huge)
+
+
+def check_literals(text: str, float32: bool, file: str) -> None:
+    """Refuse generated C with a floating constant outside the target type's normal range
+    (:data:`RANGES`), naming the function, table or macro that holds it (comments and strings
+    are skipped).
+
+    Raises
+    ------
+    InputError
+        ``codegen --float32: FILE: NAME_rnea holds the constant 1e+39, outside float's range …``.
+    """
+    code = _COMMENT_OR_STRING.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+    where = "the file"
+    for line in code.split("\n"):
+        d = _DEFINITION.match(line)
+        if d:
+            where = d.group(1) or d.group(2)
+        for m in _ANY_LIT.finditer(line):
+            x = float(m.group(1))
+            if out_of_range(x, float32):
+                kind = "float" if float32 else "double"
+                tiny, huge = RANGES[float32]
+                raise InputError(f"codegen{' --float32' if float32 else ''}: {file}: {where} holds the constant "
+                                 f"{m.group(1)}, outside {kind}'s normal range ({tiny:.3g} to {huge:.3g} in "
+                                 "magnitude), computed from the robot's numbers; a robot of such sizes cannot be "
+                                 f"written as {kind} C")

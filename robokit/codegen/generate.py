@@ -18,13 +18,13 @@ from typing import Any
 import numpy as np
 
 from robokit._io import atomic_write, check_output_folder, make_output_folder
-from robokit.codegen._c import CWriter, c_string, lit, safe_comment, to_float32
+from robokit.codegen._c import RANGES, CWriter, c_string, check_literals, lit, out_of_range, safe_comment, to_float32
 from robokit.codegen.dynamics import emit_rnea
 from robokit.codegen.ik import emit_ik
 from robokit.codegen.kinematics import emit_fk, emit_jacobian
 from robokit.errors import InputError
 
-__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS"]
+__all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS", "STANDARD_HEADERS"]
 
 #: Reserved words of C99 (and C11's, which a C99 name should avoid too).
 C_KEYWORDS = frozenset("""
@@ -33,7 +33,26 @@ register restrict return short signed sizeof static struct switch typedef union 
 _Bool _Complex _Imaginary _Alignas _Alignof _Atomic _Generic _Noreturn _Static_assert _Thread_local
 """.split())
 
-_C_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+#: A C identifier; always used with ``fullmatch`` (``$`` would accept a trailing newline).
+_C_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+#: Every standard header of C (C89 to C23) and POSIX (POSIX.1-2024 and the headers earlier
+#: issues had) that sits at the top of the include path, without ``.h``, and the top-level headers
+#: those include in glibc, newlib and GCC's and Clang's own headers (``features.h``,
+#: ``alloca.h``, ``newlib.h``, …; found with ``cc -M``). ``NAME.h`` written into
+#: a folder given to the compiler with ``-I`` would shadow the system header of the same name for
+#: the whole build (``#include <math.h>`` would find ``DIR/math.h``), and on a case-insensitive
+#: file system ``Math.h`` does too: the generated file names never equal one of these, compared
+#: case-insensitively (:func:`c_name`).
+STANDARD_HEADERS = frozenset("""
+assert complex ctype errno fenv float inttypes iso646 limits locale math setjmp signal stdalign stdarg
+stdatomic stdbit stdbool stdckdint stddef stdint stdio stdlib stdnoreturn string tgmath threads time uchar
+wchar wctype
+aio cpio devctl dirent dlfcn endian fcntl fmtmsg fnmatch ftw glob grp iconv langinfo libgen libintl monetary
+mqueue ndbm netdb nl_types poll pthread pwd regex sched search semaphore spawn strings stropts syslog tar
+termios trace ucontext ulimit unistd utime utmpx wordexp
+features alloca syslimits __stddef_max_align_t _ansi _newlib_version newlib malloc
+""".split())
 
 
 @dataclass(frozen=True)
@@ -87,24 +106,32 @@ def c_name(robot_name: str, name: str | None = None) -> str:
     Raises
     ------
     InputError
-        If ``name`` is not a C identifier or is a keyword.
+        If ``name`` is not a C identifier (the whole string: a trailing newline is not part of
+        one), is a keyword, or is the name of a standard C or POSIX header
+        (:data:`STANDARD_HEADERS`, any case: ``NAME.h`` would shadow ``<NAME.h>``). A robot's own
+        name that is a keyword or a header name gets ``_robot`` appended instead.
 
     Examples
     --------
     >>> c_name("PUMA-560")
     'puma_560'
+    >>> c_name("math")   # math.h would shadow <math.h>
+    'math_robot'
     """
     if name is not None:
-        if not _C_IDENT.match(name):
-            raise InputError(f"--name: {name!r} is not a C identifier (letters, digits and _, not starting "
+        if not isinstance(name, str) or not _C_IDENT.fullmatch(name):
+            raise InputError(f"--name: {name!r:.80} is not a C identifier (letters, digits and _, not starting "
                              "with a digit)")
         if name in C_KEYWORDS:
             raise InputError(f"--name: {name!r} is a C keyword")
+        if name.lower() in STANDARD_HEADERS:
+            raise InputError(f"--name: {name!r} would write {name}.h, which shadows the standard header "
+                             f"<{name.lower()}.h> for every file compiled with -I on its folder; choose another name")
         return name
     out = re.sub(r"[^a-z0-9_]", "_", robot_name.lower())
     if not out or out[0].isdigit():
         out = "r" + out
-    if out in C_KEYWORDS:
+    if out in C_KEYWORDS or out in STANDARD_HEADERS:
         out += "_robot"
     return out
 
@@ -184,6 +211,7 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     names = [str(x) for x in poe.joint_names]
     qlim = np.asarray(poe.qlim, dtype=float)
     P = prefix
+    _check_parameters(robot, float32)
     ik = emit_ik(robot, P, float32)
 
     # ------------------------------------------------------------------ header
@@ -287,7 +315,52 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     source = "\n".join(s)
     if float32:
         header, source = to_float32(header), to_float32(source)
+    check_literals(header, float32, f"{P}.h")
+    check_literals(source, float32, f"{P}.c")
     return CSource(P, header, source, ik.has_ik, ik.note)
+
+
+def _check_parameters(robot: Any, float32: bool) -> None:
+    """Refuse a robot whose own numbers the target type cannot hold as normal numbers
+    (:data:`~robokit.codegen._c.RANGES`: beyond it the C does not compile under ``-Werror``; a
+    nonzero value below it becomes 0, or a subnormal that single-precision FPUs flush to zero),
+    naming the joint or link and the key. The numbers are the model's as loaded: each joint's
+    placement, finite limits and armature, each link's mass, centre of mass and inertia, the tool
+    frame's placement, gravity. Rotation entries within 1e-14 of 0 are round-off the emitters write
+    as 0 (:func:`~robokit.codegen._c.snap`). :func:`~robokit.codegen._c.check_literals` then checks
+    every constant written, the folded ones included."""
+    model = robot.model
+    qlim = np.asarray(robot.poe.qlim, dtype=float)
+    arm = _armature(robot)
+    tip = model.frames[robot.tip_id]
+    items: list[tuple[str, Any]] = [
+        (f"the tool frame {tip.name!r}: position", tip.placement.translation),
+        (f"the tool frame {tip.name!r}: rotation", _unsnapped(tip.placement.rotation)),
+        ("gravity", model.gravity.linear)]
+    for i in range(robot.n):
+        jn = str(model.names[i + 1])
+        Y, X = model.inertias[i + 1], model.jointPlacements[i + 1]
+        items += [(f"joint {jn!r}: origin xyz", X.translation),
+                  (f"joint {jn!r}: origin rotation", _unsnapped(X.rotation)),
+                  (f"joint {jn!r}: limits", qlim[i][np.isfinite(qlim[i])]),
+                  (f"joint {jn!r}: armature", arm[i]),
+                  (f"the link of joint {jn!r}: mass", Y.mass),
+                  (f"the link of joint {jn!r}: centre of mass", Y.lever),
+                  (f"the link of joint {jn!r}: inertia", Y.inertia)]
+    for what, values in items:
+        for x in np.asarray(values, dtype=float).reshape(-1):
+            if out_of_range(x, float32):
+                kind = "float" if float32 else "double"
+                tiny, huge = RANGES[float32]
+                raise InputError(f"codegen{' --float32' if float32 else ''}: {robot.name}: {what} holds {x:.6g}, "
+                                 f"outside {kind}'s normal range ({tiny:.3g} to {huge:.3g} in magnitude); write 0 "
+                                 "for a negligible value" + (" or generate double C" if float32 else ""))
+
+
+def _unsnapped(R: Any) -> np.ndarray:
+    """The entries of a rotation the emitters keep (round-off within 1e-14 of 0 is written as 0)."""
+    R = np.asarray(R, dtype=float).reshape(-1)
+    return R[np.abs(R) >= 1e-14]
 
 
 def _limit(x: float) -> str:
@@ -296,8 +369,18 @@ def _limit(x: float) -> str:
     return f"({lit(x)})" if x < 0 else lit(x)
 
 
+#: Largest old ``NAME.h`` copied to be put back if writing ``NAME.c`` fails, where the file system
+#: has no hard links (with hard links nothing is copied or read, whatever the size).
+MAX_KEPT_BYTES = 16 << 20
+
+
 def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
     r"""Write ``NAME.h`` and ``NAME.c`` into ``folder``: both or neither.
+
+    Each file is written atomically (:func:`robokit._io.atomic_write`: a symbolic link at either
+    name is replaced, never written through; a replaced file keeps its mode). An existing
+    ``NAME.h`` is kept aside under a second name (a hard link: nothing is read, whatever its size,
+    and a symbolic link is kept as the link) until ``NAME.c`` is written, and put back if that fails.
 
     Parameters
     ----------
@@ -330,14 +413,55 @@ def write_c(src: CSource, folder: str | os.PathLike[str]) -> tuple[Path, Path]:
         if p.is_dir():
             raise InputError(f"-o: {str(p)!r} exists and is a folder")
     make_output_folder(out)
-    old_h = h_path.read_bytes() if h_path.is_file() else None
-    atomic_write(h_path, src.header)
+    saved = _keep_aside(h_path)
     try:
-        atomic_write(c_path, src.source)
-    except BaseException:  # the pair is all or nothing: put the header back as it was
-        if old_h is None:
-            h_path.unlink(missing_ok=True)
-        else:
-            atomic_write(h_path, old_h)
-        raise
+        atomic_write(h_path, src.header)
+        try:
+            atomic_write(c_path, src.source)
+        except BaseException:  # the pair is all or nothing: put the header back as it was
+            if saved is None:
+                h_path.unlink(missing_ok=True)
+            else:
+                os.replace(saved, h_path)
+                saved = None
+            raise
+    finally:
+        if saved is not None:
+            saved.unlink(missing_ok=True)
     return h_path, c_path
+
+
+def _keep_aside(path: Path) -> Path | None:
+    """A second name for whatever is at ``path`` (a hard link to the file itself, or to the
+    symbolic link itself — never to what it points to), so that it can be put back with one
+    rename; None when nothing is there. Nothing is read: keeping a 6 GB file costs what keeping a
+    small one costs. On a file system without hard links the old entry is copied instead: a
+    symbolic link as a link, a regular file of at most :data:`MAX_KEPT_BYTES` read with
+    ``O_NOFOLLOW``; anything else is not kept (it is replaced like any output)."""
+    import secrets
+    import stat
+
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return None
+    aside = path.with_name(f".{path.name}.{secrets.token_hex(4)}.old")
+    try:
+        os.link(path, aside, follow_symlinks=False)
+        return aside
+    except OSError:
+        pass
+    if stat.S_ISLNK(st.st_mode):
+        os.symlink(os.readlink(path), aside)
+        return aside
+    if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_KEPT_BYTES:
+        return None
+    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        data = os.read(fd, MAX_KEPT_BYTES + 1)
+    finally:
+        os.close(fd)
+    if len(data) > MAX_KEPT_BYTES:
+        return None
+    atomic_write(aside, data)
+    return aside

@@ -14,7 +14,7 @@ Format (documented for users in the scene YAML page of the documentation)::
         radius: 0.05
         length: 0.6          # full length along the pose's z axis
       - type: mesh
-        path: table.stl      # relative to the scene file's folder
+        path: table.stl      # relative to the scene file's folder, and inside it (or a package folder)
 
 Unknown keys are refused (naming the key and the obstacle).
 """
@@ -22,13 +22,14 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 
-from robokit._arrays import as_array
+from robokit._arrays import MAX_MAGNITUDE, as_array
 from robokit._yaml import load_yaml_file
 from robokit.collision.shapes import Box, Cylinder, Mesh, Obstacle, Sphere
+from robokit.description.meshes import allowed_roots, is_inside
 from robokit.errors import InputError
 
 __all__ = ["load_scene", "pose_from_xyz_rpy"]
@@ -56,8 +57,8 @@ def pose_from_xyz_rpy(xyz: Any, rpy: Any) -> np.ndarray:
     >>> pose_from_xyz_rpy([1, 2, 3], [0, 0, 0])[:3, 3].tolist()
     [1.0, 2.0, 3.0]
     """
-    p = as_array(xyz, "xyz", (3,))
-    r, pi, y = as_array(rpy, "rpy", (3,))
+    p = as_array(xyz, "xyz", (3,), bounded=True)
+    r, pi, y = as_array(rpy, "rpy", (3,), bounded=True)
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(pi), np.sin(pi), np.cos(y), np.sin(y)
     T = np.eye(4)
     T[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -67,14 +68,26 @@ def pose_from_xyz_rpy(xyz: Any, rpy: Any) -> np.ndarray:
     return T
 
 
-def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
+def load_scene(path: str | os.PathLike[str], *, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+               allow_outside_meshes: bool = False) -> tuple[list[Obstacle], float]:
     """Read a scene YAML file: its obstacles and padding.
+
+    A mesh path is confined exactly like a robot file's meshes
+    (:func:`robokit.description.meshes.is_inside`): after resolving symbolic links it must lie in
+    the scene file's folder, the ROS package holding it or one of ``package_dirs``. Anything else
+    (``/etc/passwd``, ``../secret.stl``, a symlink out) is refused before it is opened, with one
+    message whether or not the file exists, unless ``allow_outside_meshes``.
 
     Parameters
     ----------
     path : str or path-like
         The .yaml file (format in the module docstring); mesh paths in it are relative to
         its folder.
+    package_dirs : sequence of str or path-like, optional
+        More folders mesh files may be read from.
+    allow_outside_meshes : bool
+        Read mesh files wherever the scene says (the user's explicit choice,
+        ``--allow-outside-meshes``).
 
     Returns
     -------
@@ -86,7 +99,9 @@ def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
     Raises
     ------
     InputError
-        Naming the file, the obstacle (index) and the key that is wrong.
+        Naming the file, the obstacle (index) and the key that is wrong; a mesh path outside the
+        allowed folders (``… is outside the file's folder, its package and the package folders
+        given``).
 
     Examples
     --------
@@ -107,8 +122,9 @@ def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
     if extra:
         raise InputError(f"{src}: unknown key {sorted(extra)[0]!r} (expected 'obstacles', 'padding')")
     padding = doc.get("padding", 0.0)
-    if isinstance(padding, bool) or not isinstance(padding, (int, float)) or not padding >= 0:
-        raise InputError(f"{src}: padding: expected a number >= 0 (m), got {padding!r}")
+    if (isinstance(padding, bool) or not isinstance(padding, (int, float)) or not 0 <= padding <= MAX_MAGNITUDE):
+        raise InputError(f"{src}: padding: expected a number in [0, {MAX_MAGNITUDE:g}] (m), got {padding!r}")
+    roots = allowed_roots(path, package_dirs)
     items = doc.get("obstacles", [])
     if not isinstance(items, list):
         raise InputError(f"{src}: obstacles: expected a list")
@@ -142,9 +158,13 @@ def load_scene(path: str | os.PathLike[str]) -> tuple[list[Obstacle], float]:
             elif kind == "cylinder":
                 out.append(Cylinder(it["radius"], it["length"], T, name))
             else:
-                if not isinstance(it["path"], str):
-                    raise InputError("path: expected a string")
-                out.append(Mesh(path.parent / it["path"], T, name))
+                if not isinstance(it["path"], str) or not it["path"] or "\x00" in it["path"]:
+                    raise InputError("path: expected a file name")
+                mesh = path.parent / it["path"]
+                if not (allow_outside_meshes or is_inside(mesh, roots)):  # checked before anything is opened
+                    raise InputError(f"path: {it['path'][:100]!r} is outside the scene file's folder, its package "
+                                     "and the package folders given (--allow-outside-meshes reads it)")
+                out.append(Mesh(mesh, T, name))
         except InputError as exc:
             raise InputError(f"{where}: {exc}") from None
     return out, float(padding)

@@ -3,6 +3,11 @@
 Every obstacle has a ``pose`` (4×4 homogeneous transform of the shape's own frame in the
 base frame, metres) and a ``name`` (used by :meth:`World.colliding_pairs`). Shapes are
 centred on their frame's origin; a cylinder's axis is its frame's z axis.
+
+Every number of an obstacle — sizes, radii, lengths, the pose, a mesh's vertices — is bounded
+like every number of a robot file (at most :data:`robokit._arrays.MAX_MAGNITUDE` = 1e12 in
+magnitude, SI units), checked before anything reaches coal (whose eigen solver loops and
+prints on 1e300 coordinates).
 """
 from __future__ import annotations
 
@@ -24,7 +29,7 @@ MAX_MESH_BYTES = 64 * 2**20  # a user's obstacle mesh file may be at most 64 MiB
 def _pose(pose: Any) -> np.ndarray:
     if pose is None:
         return np.eye(4)
-    T = as_array(pose, "pose", (4, 4))
+    T = as_array(pose, "pose", (4, 4), bounded=True)
     R = T[:3, :3]
     if not np.allclose(R @ R.T, np.eye(3), atol=1e-6) or np.linalg.det(R) < 0 or not np.allclose(T[3], [0, 0, 0, 1]):
         raise InputError("pose: not a homogeneous transform (rotation part must be orthonormal, last row 0 0 0 1)")
@@ -97,7 +102,7 @@ class Box(Obstacle):
     size: np.ndarray
 
     def __init__(self, size: Any, pose: Any = None, name: str = "") -> None:
-        s = as_array(size, "size", (3,))
+        s = as_array(size, "size", (3,), bounded=True)
         if (s <= 0).any():
             raise InputError(f"size: every edge length must be > 0, got {s.tolist()}")
         object.__setattr__(self, "size", s)
@@ -137,7 +142,7 @@ class Sphere(Obstacle):
     radius: float
 
     def __init__(self, radius: Any, pose: Any = None, name: str = "") -> None:
-        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True))
+        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True, bounded=True))
         object.__setattr__(self, "pose", _pose(pose))
         object.__setattr__(self, "name", str(name))
 
@@ -177,8 +182,8 @@ class Cylinder(Obstacle):
     length: float
 
     def __init__(self, radius: Any, length: Any, pose: Any = None, name: str = "") -> None:
-        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True))
-        object.__setattr__(self, "length", as_scalar(length, "length", positive=True))
+        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True, bounded=True))
+        object.__setattr__(self, "length", as_scalar(length, "length", positive=True, bounded=True))
         object.__setattr__(self, "pose", _pose(pose))
         object.__setattr__(self, "name", str(name))
 
@@ -196,9 +201,12 @@ class Cylinder(Obstacle):
 class Mesh(Obstacle):
     """A triangle mesh read from ``path`` (STL, OBJ, PLY, … — what trimesh reads), in m.
 
-    The file must be a regular file of at most :data:`MAX_MESH_BYTES` bytes; it is read with
-    trimesh (the ``viz`` extra). The mesh is used as given (a triangle soup for coal's
-    BVH, no convex hull): collisions are with its surface.
+    The file must be a regular file of at most :data:`MAX_MESH_BYTES` bytes; its triangles and
+    vertices are counted from its bytes before it is parsed, and the parsed arrays checked
+    before anything is built from them (at most 2,000,000 of each, coordinates of at most 1e12:
+    :mod:`robokit.description.mesh_size`). It is read with trimesh (the ``viz`` extra). The mesh
+    is used as given (a triangle soup for coal's BVH, no convex hull): collisions are with its
+    surface.
 
     Parameters
     ----------
@@ -233,27 +241,31 @@ class Mesh(Obstacle):
     faces: np.ndarray
 
     def __init__(self, path: str | os.PathLike[str], pose: Any = None, name: str = "") -> None:
+        import io
+        import warnings
+
+        from robokit._io import read_input_bytes
+        from robokit.description.mesh_size import check_mesh_arrays, check_mesh_bytes
+
         p = Path(path)
         try:
-            st = p.stat()
-        except FileNotFoundError:
-            raise InputError(f"path: mesh file {p} not found") from None
-        except OSError as exc:
-            raise InputError(f"path: cannot read {p} ({exc.strerror})") from None
-        import stat
-        if not stat.S_ISREG(st.st_mode):
-            raise InputError(f"path: {p} is not a regular file")
-        if st.st_size > MAX_MESH_BYTES:
-            raise InputError(f"path: {p} is too large ({st.st_size} bytes; at most {MAX_MESH_BYTES})")
+            raw = read_input_bytes(p, MAX_MESH_BYTES, "a mesh file")  # a regular file, bounded
+        except InputError as exc:
+            raise InputError(f"path: {exc}") from None
+        ext = p.suffix.lower().lstrip(".")
+        check_mesh_bytes(raw, ext, f"path: {p}")  # triangles counted before any parser runs
         trimesh = require("trimesh", "a Mesh obstacle")
         try:
-            tm = trimesh.load(str(p), force="mesh")
+            # numbers are judged once parsed (check_mesh_arrays): the parser's own overflow warnings
+            # on absurd coordinates are not printed
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                tm = trimesh.load(io.BytesIO(raw), file_type=ext, force="mesh",
+                                  resolver=trimesh.resolvers.FilePathResolver(str(p)))
         except Exception as exc:  # trimesh raises many types for bad files
-            raise InputError(f"path: cannot read mesh {p} ({exc})") from None
-        V = np.asarray(getattr(tm, "vertices", np.zeros((0, 3))), dtype=float)
-        F = np.asarray(getattr(tm, "faces", np.zeros((0, 3))), dtype=np.int64)
-        if V.ndim != 2 or V.shape[1:] != (3,) or len(F) == 0 or not np.isfinite(V).all():
-            raise InputError(f"path: {p} holds no triangles")
+            raise InputError(f"path: cannot read mesh {p} ({str(exc)[:200]})") from None
+        V, F = check_mesh_arrays(getattr(tm, "vertices", np.zeros((0, 3))), getattr(tm, "faces", np.zeros((0, 3))),
+                                 f"path: {p}")
         object.__setattr__(self, "path", p)
         object.__setattr__(self, "vertices", V)
         object.__setattr__(self, "faces", F)

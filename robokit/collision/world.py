@@ -528,7 +528,7 @@ class World:
         if not isinstance(convex, (bool, np.bool_)):
             raise InputError(f"convex: expected True or False, got {convex!r}")
         self.robot = robot
-        self.padding = as_scalar(padding, "padding", nonnegative=True)
+        self.padding = as_scalar(padding, "padding", nonnegative=True, bounded=True)
         self.convex = bool(convex)
         obs = list(obstacles)
         for k, o in enumerate(obs):

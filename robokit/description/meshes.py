@@ -192,7 +192,10 @@ def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
     -------
     str or None
         ``"not found"``, ``"not a regular file"`` (a FIFO, a device such as ``/dev/zero``), the
-        size when it is larger than :data:`MAX_MESH_BYTES`, or None when the file may be read.
+        size when it is larger than :data:`MAX_MESH_BYTES`, the triangle or vertex count when it
+        makes more than :data:`robokit.description.mesh_size.MAX_MESH_TRIANGLES` (counted from
+        the bytes, :func:`robokit.description.mesh_size.check_mesh_bytes`), or None when the file
+        may be read.
 
     Examples
     --------
@@ -200,6 +203,9 @@ def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
     'not a regular file'
     """
     import stat
+
+    from robokit._io import read_input_bytes
+    from robokit.description.mesh_size import check_mesh_bytes
 
     try:
         st = os.stat(path)
@@ -209,4 +215,8 @@ def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
         return "not a regular file"
     if st.st_size > MAX_MESH_BYTES:
         return f"{st.st_size / 1e6:.1f} MB; robokit reads mesh files of at most {MAX_MESH_BYTES / 1e6:.1f} MB"
+    try:  # triangles and vertices counted from the bytes, before Pinocchio's loader parses anything
+        check_mesh_bytes(read_input_bytes(path, MAX_MESH_BYTES, "a mesh file"), Path(path).suffix, "")
+    except InputError as exc:
+        return str(exc).removeprefix(": ")
     return None

@@ -28,6 +28,7 @@ from robokit._units import check_radians, fast_bounds, radian_ranges, revolute_c
 from robokit.errors import InputError
 from robokit.description.dh import DHTable
 from robokit.description.frames import frame_index
+from robokit.description.limits import unbounded_limits
 from robokit.description.poe import PoEParams, poe_from_model
 
 if TYPE_CHECKING:
@@ -83,7 +84,8 @@ class Robot:
     joint_names : tuple of str
         The n joint names, root to tip.
     qlim : numpy.ndarray, shape (n, 2)
-        Joint limits, rad or m (±inf for continuous joints).
+        Joint limits, rad or m (±inf for continuous joints, and on a side whose limit in the
+        file is beyond ±1e12: :func:`~robokit.description.limits.unbounded_limits`).
     gravity : numpy.ndarray, shape (3,)
         Gravity in the base frame, m/s².
     configurations : dict of str to numpy.ndarray
@@ -134,6 +136,7 @@ class Robot:
         self.tip = tip
         self.tip_id = frame_index(model, tip)
         self.dh = dh
+        limit_notes = unbounded_limits(model, source or name)  # ±1e16, ±1e308 ... mean no limit
         self.poe: PoEParams = poe_from_model(model, tip)
         self.n = model.nv
         self.joint_names = self.poe.joint_names
@@ -141,8 +144,15 @@ class Robot:
         self.gravity = np.array(model.gravity.linear)
         self.locked_joints = tuple(locked_joints)
         self.source = source
-        self.notes: list[str] = []  # what was done on the user's behalf (printed by the CLI)
+        self.notes: list[str] = list(limit_notes)  # what was done on the user's behalf (printed by the CLI)
         self.frame_names: tuple[str, ...] = tuple(dict.fromkeys(f.name for f in model.frames))  # build_robot narrows
+        if limit_notes:
+            import warnings
+
+            from robokit.errors import RobokitWarning
+
+            for note in limit_notes:
+                warnings.warn(note, RobokitWarning, stacklevel=2)
         self._same_coords = model.nq == model.nv
         self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
         self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]

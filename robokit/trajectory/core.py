@@ -29,6 +29,10 @@ __all__ = ["Trajectory"]
 
 #: Number of samples used when a generator is called with ``t=None``.
 DEFAULT_SAMPLES = 101
+#: Most samples a trajectory generator makes from an integer count (``t=N``, ``samples=N``): a
+#: million is 1000 s at 1 kHz, and q, q̇, q̈ of a 6-joint arm take 144 MB. Checked before anything
+#: is allocated (``t=10**10`` would ask for 80 GB per array).
+MAX_SAMPLES = 1_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -153,6 +157,9 @@ def sample_times(t: ArrayLike | None, t_start: float, t_end: float, name: str = 
     if isinstance(t, Integral):
         if t < 2:
             raise InputError(f"{name}: a number of samples must be at least 2, got {t}")
+        if int(t) > MAX_SAMPLES:
+            raise InputError(f"{name}: {int(t)} samples; robokit makes at most {MAX_SAMPLES} (give fewer, or an array "
+                             "of times)")
         return np.linspace(t_start, t_end, int(t))
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size == 0:

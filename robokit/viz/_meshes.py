@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
 from robokit._optional import require
+from robokit.description.mesh_size import MAX_MESH_TRIANGLES, check_mesh_arrays, check_mesh_bytes
 
 __all__ = ["mesh_parts", "cluster_decimate", "decimated_visuals", "draw_parts", "PAGE_MESH_CELL"]
 
@@ -80,8 +81,9 @@ def _color_of(geom: Any) -> tuple:
     return tuple(np.round(c[:4] / 255.0, 3))
 
 
-#: Most triangles a mesh file may hold to be drawn (the file is refused beyond, with its count).
-MAX_MESH_FACES = 2_000_000
+#: Most triangles a mesh file may hold to be drawn (the file is refused beyond, with its count):
+#: robokit's one bound for every mesh file (:mod:`robokit.description.mesh_size`).
+MAX_MESH_FACES = MAX_MESH_TRIANGLES
 #: Most triangles one mesh file may put on a page after decimation; beyond, the cube side is
 #: doubled until it fits (a note gives the sizes).
 MAX_PAGE_FACES = 200_000
@@ -96,7 +98,9 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
 
     The file is read bounded (a regular file of at most
     :data:`robokit.description.meshes.MAX_MESH_BYTES`); a mesh of more than
-    :data:`MAX_MESH_FACES` triangles is refused with its count; the decimated result keeps at
+    :data:`MAX_MESH_FACES` triangles is refused with its count, counted from the file's bytes
+    before it is parsed (:func:`robokit.description.mesh_size.check_mesh_bytes`) and again once
+    parsed; the decimated result keeps at
     most :data:`MAX_PAGE_FACES` triangles (``cell`` is doubled until it does, with a note).
     """
     import io
@@ -110,8 +114,11 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
 
     raw = read_input_bytes(path, MAX_MESH_BYTES, "a mesh file")
     ext = os.path.splitext(str(path))[1].lower().lstrip(".")
+    check_mesh_bytes(raw, ext, path)  # triangles counted before trimesh parses anything
     resolver = trimesh.resolvers.FilePathResolver(str(path))  # an OBJ's .mtl, a COLLADA's textures
-    scene: Any = trimesh.load(io.BytesIO(raw), file_type=ext, force="scene", resolver=resolver)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # numbers are judged once parsed
+        warnings.simplefilter("ignore")
+        scene: Any = trimesh.load(io.BytesIO(raw), file_type=ext, force="scene", resolver=resolver)
     groups: dict[tuple, list[tuple[np.ndarray, np.ndarray]]] = {}
     total = 0
     for node in scene.graph.nodes_geometry:
@@ -123,8 +130,7 @@ def mesh_parts(path: str | os.PathLike[str], cell: float, override_rgba: ArrayLi
         if total > MAX_MESH_FACES:
             raise InputError(f"{path}: mesh of more than {MAX_MESH_FACES} triangles; robokit draws meshes of at most "
                              f"{MAX_MESH_FACES} (decimate it first)")
-        V = np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3]
-        F = np.asarray(geom.faces, dtype=np.int64)
+        V, F = check_mesh_arrays(np.asarray(geom.vertices, dtype=float) @ T[:3, :3].T + T[:3, 3], geom.faces, path)
         rgba = tuple(np.round(np.asarray(override_rgba, float), 3)) if override_rgba is not None else _color_of(geom)
         groups.setdefault(rgba, []).append((V, F))
     merged = []

@@ -40,7 +40,7 @@ from robokit.errors import InputError
 
 __all__ = ["clearance", "clearance_page_data"]
 
-_CAPSULE_SUFFIX = re.compile(r"_capsule\d+$")
+_CAPSULE_SUFFIX = re.compile(r"_capsule\d+\Z")
 
 
 def _geometry(world: Any) -> tuple[Any, int, list[str]]:

@@ -3,7 +3,8 @@
 Nothing is written unless everything succeeded (the page is written atomically).
 Trajectory files: ``.npy`` (a (K, n) array) or ``.csv`` (K rows of n joint values, comma
 separated; lines starting with ``#`` are comments; a first row that is not numeric is taken
-as a header and skipped).
+as a header and skipped; numbers as :mod:`robokit._table` reads them, every bad cell named by
+line and column).
 """
 from __future__ import annotations
 
@@ -21,10 +22,6 @@ if TYPE_CHECKING:
 
 
 __all__ = ["view_html", "load_trajectory", "MAX_TRAJECTORY_ROWS"]
-
-#: Most configurations a ``--trajectory`` file may hold (an hour at 30 frames per second is 108 000).
-MAX_TRAJECTORY_ROWS = 200_000
-
 
 def _npy_shape(path: Path) -> tuple[int, ...]:
     """The shape a ``.npy`` file declares, checked from its header before anything is loaded:
@@ -48,8 +45,8 @@ def _npy_shape(path: Path) -> tuple[int, ...]:
     return tuple(shape)
 
 
-#: Most samples (rows) a trajectory file may hold: 10⁵ frames are an hour at 30 fps, and the page
-#: stays below about 100 MB for a 6-joint arm.
+#: Most samples (rows) a trajectory file may hold — and ``robokit plan`` writes: 10⁵ frames are 55
+#: minutes at 30 fps, and the page stays below about 100 MB for a 6-joint arm.
 MAX_TRAJECTORY_ROWS = 100_000
 #: Largest trajectory file read (bytes).
 MAX_TRAJECTORY_BYTES = 64 << 20
@@ -84,7 +81,9 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
     """
     import io
 
+    from robokit._arrays import MAX_MAGNITUDE
     from robokit._io import decode_utf8, read_input_bytes
+    from robokit._table import NUMBER, number_row, table_lines
 
     p = Path(path)
     if not os.path.lexists(p):
@@ -93,8 +92,6 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
         raw = read_input_bytes(p, MAX_TRAJECTORY_BYTES, "a trajectory file")
     except InputError as exc:
         raise InputError(f"--trajectory: {exc}") from None
-    too_many = (f"--trajectory: {str(p)!r} has more than {MAX_TRAJECTORY_ROWS} rows (samples); "
-                f"at most {MAX_TRAJECTORY_ROWS} are read")
     try:
         if p.suffix.lower() == ".npy":
             f = io.BytesIO(raw)
@@ -110,23 +107,17 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
             f.seek(0)
             Q = np.load(f, allow_pickle=False)
         elif p.suffix.lower() == ".csv":
-            lines = [ln for ln in decode_utf8(raw, p).splitlines() if ln.strip() and not ln.startswith("#")]
-            if len(lines) > MAX_TRAJECTORY_ROWS + 1:  # + a header
-                raise InputError(f"has {len(lines)} rows; at most {MAX_TRAJECTORY_ROWS}")
-            rows = []
-            for k, ln in enumerate(lines):
-                try:
-                    rows.append([float(x) for x in ln.split(",")])
-                except ValueError:
-                    if k == 0:
-                        continue  # header
-                    raise InputError(f"line {k + 1} is not numbers") from None
-            if len(rows) > MAX_TRAJECTORY_ROWS:
-                raise InputError(too_many)
-            try:
-                Q = np.array(rows, dtype=float)
-            except ValueError:
-                raise InputError("rows of different lengths") from None
+            source = f"--trajectory: cannot read {str(p)!r}"
+            rows: list[list[float]] = []
+            for k, (line, cells) in enumerate(table_lines(decode_utf8(raw, p), source)):
+                if k == 0 and not all(NUMBER.fullmatch(c) for c in cells):
+                    continue  # a header
+                if len(rows) >= MAX_TRAJECTORY_ROWS:
+                    raise InputError(f"has more than {MAX_TRAJECTORY_ROWS} rows; at most {MAX_TRAJECTORY_ROWS}")
+                if len(cells) != n:
+                    raise InputError(f"{source}: line {line}: {len(cells)} values; expected (K, {n}) joint values")
+                rows.append(number_row(cells, source, line))
+            Q = np.array(rows, dtype=float).reshape(len(rows), n)
         else:
             raise InputError("expected a .npy or .csv file")
     except InputError as exc:
@@ -140,6 +131,9 @@ def load_trajectory(path: str | os.PathLike[str], n: int) -> np.ndarray:
         raise InputError(f"--trajectory: {str(p)!r} has shape {Q.shape}; expected (K, {n}) joint values")
     if not np.all(np.isfinite(Q)):
         raise InputError(f"--trajectory: {str(p)!r} contains NaN or infinite values")
+    if np.abs(Q).max() > MAX_MAGNITUDE:
+        raise InputError(f"--trajectory: {str(p)!r} holds {np.abs(Q).max():g}, out of range (at most "
+                         f"{MAX_MAGNITUDE:g} in magnitude; rad, m)")
     return Q
 
 

@@ -63,6 +63,63 @@ def test_cli_output_follows_the_umask(write, tmp_path):
         assert out.stat().st_mode & 0o777 == mode
 
 
+@pytest.mark.parametrize("old_mode", [0o600, 0o640, 0o750, 0o444])
+@pytest.mark.parametrize("mask", [0o022, 0o002])
+def test_replacing_a_file_keeps_its_mode(old_mode, mask, tmp_path):
+    """Issue 39, class 13: replacing an existing file keeps its permission bits whatever the umask
+    (was: ``0666 & ~umask``, so a private 0600 output became world-readable 0644)."""
+    out = tmp_path / "a.txt"
+    out.write_text("old")
+    out.chmod(old_mode)
+    _with_umask(mask, lambda: atomic_write(out, "new"))
+    assert out.read_text() == "new"
+    assert out.stat().st_mode & 0o7777 == old_mode
+    assert tmp_leftovers(tmp_path) == []
+
+
+def test_replacing_keeps_the_owner_and_group_where_permitted(tmp_path):
+    out = tmp_path / "a.txt"
+    out.write_text("old")
+    groups = [g for g in os.getgroups() if g != out.stat().st_gid]
+    if groups:  # a group of ours other than the file's: an unprivileged user may keep it
+        os.chown(out, -1, groups[0])
+    before = out.stat()
+    atomic_write(out, "new")
+    after = out.stat()
+    assert (after.st_uid, after.st_gid) == (before.st_uid, before.st_gid)
+    assert after.st_ino != before.st_ino  # a new file (atomic replace), not the old one rewritten
+
+
+def test_a_symlink_at_the_output_is_replaced_not_followed(tmp_path):
+    """A new file follows the umask, also where a symbolic link stood; the link's target is untouched."""
+    target = tmp_path / "target.txt"
+    target.write_text("precious")
+    target.chmod(0o600)
+    out = tmp_path / "a.txt"
+    out.symlink_to(target)
+    _with_umask(0o022, lambda: atomic_write(out, "new"))
+    assert not out.is_symlink() and out.read_text() == "new" and out.stat().st_mode & 0o777 == 0o644
+    assert target.read_text() == "precious" and target.stat().st_mode & 0o777 == 0o600
+
+
+def test_cli_outputs_replacing_private_files_stay_private(write, tmp_path):
+    """Two writers of the command line (convert's file, codegen's pair) replacing 0600 files under
+    umask 022: still 0600."""
+    src = write("pendulum.yaml", PENDULUM_YAML)
+    urdf = tmp_path / "out.urdf"
+    folder = tmp_path / "c"
+    folder.mkdir()
+    for p in (urdf, folder / "pendulum.h", folder / "pendulum.c"):
+        p.write_text("old")
+        p.chmod(0o600)
+    for args in (["convert", src, "-o", urdf], ["codegen", src, "-o", folder]):
+        p = subprocess.run([sys.executable, "-m", "robokit.cli", *map(str, args)], capture_output=True, check=False,
+                           text=True, env=subprocess_env(), timeout=HANG_GUARD, preexec_fn=lambda: os.umask(0o022))
+        assert p.returncode == 0, p.stderr
+    for p in (urdf, folder / "pendulum.h", folder / "pendulum.c"):
+        assert p.read_text() != "old" and p.stat().st_mode & 0o777 == 0o600, p
+
+
 def test_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
     out = tmp_path / "a.txt"
     out.write_text("old")
