@@ -35,6 +35,7 @@ from robokit.dynamics import (
     vel_quadratic_forces,
 )
 from robokit.errors import DivergenceError, InputError, RobokitError, RobokitWarning
+from robokit.frames import Frame
 from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
 from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
 from robokit.spatial import (
@@ -105,7 +106,7 @@ __all__ = list(SEED_FUNCTIONS) + [
     "calibrate", "identify_dynamics", "excitation_trajectory", "plan", "retime",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
-    "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
+    "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult", "Frame",
     # errors and warnings
     "RobokitError", "InputError", "DivergenceError", "RobokitWarning",
     # the subpackages

@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 from robokit._arrays import check_reference
+from robokit.frames import DEFAULT_FRAME, Frame
 
 from robokit._optional import require
 
@@ -279,17 +280,17 @@ class SymbolicArm:
             axes.append((F[:3, 2], F[:3, 3]))
         return axes
 
-    def jacobian(self, reference: str = "base", simplify: bool | str = "auto") -> sp.Matrix:
+    def jacobian(self, reference: Frame | str = DEFAULT_FRAME, simplify: bool | str = "auto") -> sp.Matrix:
         """The 6×n Jacobian of the tool, angular rows first (Lecture 6).
 
         Parameters
         ----------
-        reference : str, default "base"
-            robokit's one ``reference=`` vocabulary (the *Conventions* page): "base" =
-            "local_world_aligned" — twist (ω, v) of the tool origin in base coordinates, columns
-            ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic); "tool" = "local" =
-            "body" — the same twist in tool-frame axes (``blockdiag(Rᵀ, Rᵀ) J_base``, the body Jacobian);
-            "world" = "space" — the space Jacobian, columns ``[zᵢ; pᵢ × zᵢ]``.
+        reference : Frame or str, default Frame.LOCAL_WORLD_ALIGNED
+            A :class:`robokit.Frame` (the *Conventions* page): ``LOCAL_WORLD_ALIGNED`` (the lecture's
+            ⁰J, formerly "base") — twist (ω, v) of the tool origin in base coordinates, columns
+            ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic); ``LOCAL`` (formerly
+            "tool"/"body") — the same twist in tool-frame axes (``blockdiag(Rᵀ, Rᵀ) J_base``, the body
+            Jacobian); ``WORLD`` (formerly "space") — the space Jacobian, columns ``[zᵢ; pᵢ × zᵢ]``.
         simplify : bool or "auto"
             True, False or "auto" (full up to 3 joints; beyond, trigsimp for the base frame and no
             simplification for the tool frame, which would take minutes).

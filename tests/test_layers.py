@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[1] / "robokit"
 
 LAYER = {
     "_arrays": 0, "_io": 0, "_xml": 0, "_yaml": 0, "_optional": 0, "_names": 0, "_deprecation": 0, "errors": 0,
+    "frames": 0,
     "spatial": 1,
     "kernels": 2,
     "description": 3, "models": 3,

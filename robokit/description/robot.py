@@ -23,8 +23,9 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_joints, check_reference, ndim
+from robokit._arrays import as_joints, ndim
 from robokit.errors import InputError
+from robokit.frames import Frame, reference_or_default
 from robokit.description.dh import DHTable
 from robokit.description.poe import PoEParams, poe_from_model
 
@@ -149,7 +150,7 @@ class Robot:
         # than numpy's dot there); an overflow to inf only sends a finite q to the full checks
         self._small = self.n <= 16
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
-        self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
+        self._ref_frames: dict[object, Any] = {}  # Frame.WORLD / "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
@@ -218,15 +219,35 @@ class Robot:
         pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
         return {f.name: self.data.oMf[i].homogeneous for i, f in enumerate(self.model.frames)}
 
-    _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
-
-    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: Frame | str | None = None) -> np.ndarray:
         """6×n Jacobian of ``frame`` at θ, **angular rows first** (ω; v).
 
-        reference : "world" — the space Jacobian (twist of the frame expressed at the root
-        origin, root axes); "local" — the body Jacobian (frame's own axes, at its origin);
-        "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
-        the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many configurations (tip only).
+        frame : str or None, optional
+            The frame whose motion is described (None: the tip).
+        reference : Frame or str, optional
+            Where the twist is expressed (:class:`robokit.Frame`, the *Conventions* page):
+            ``Frame.WORLD`` — the space Jacobian (twist of the frame taken at the root origin, root
+            axes); ``Frame.LOCAL`` — the body Jacobian (frame's own axes, at its origin);
+            ``Frame.LOCAL_WORLD_ALIGNED`` — the course's geometric Jacobian (ω and the velocity of
+            the frame origin, root axes), the one default of robokit. Omitted, this method still
+            returns the WORLD Jacobian (its former default) with a ``FutureWarning`` until robokit
+            0.4.0: pass ``reference=`` to choose.
+
+        Returns
+        -------
+        numpy.ndarray, shape (6, n) or (N, 6, n)
+            Rows (ω; v): rad/s and m/s per unit joint rate.
+
+        Examples
+        --------
+        >>> import robokit as rk
+        >>> robot = rk.load("twolink")
+        >>> robot.jacobian([0.0, 0.0], reference=rk.Frame.LOCAL_WORLD_ALIGNED)[3:5].round(4).tolist()
+        [[0.0, 0.0], [1.8, 0.8]]
         """
         rf = self._ref_frames.get(reference)
         if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
@@ -236,8 +257,12 @@ class Robot:
             return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
         pin = self._pin
         if rf is None:
-            canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
-            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
+            # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's; omitted = WORLD (deprecated default)
+            canonical = reference_or_default(reference, "Robot.jacobian", Frame.WORLD)
+            rf = canonical.pinocchio
+            if reference is not None:
+                self._ref_frames[reference] = rf
+            reference = canonical
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             pass  # finite float64 (n,) arrays: straight to Pinocchio
