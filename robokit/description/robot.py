@@ -155,8 +155,27 @@ class Robot:
 
     # --------------------------------------------------------------- coordinates
     def q_pin(self, q: ArrayLike) -> np.ndarray:
-        """Pinocchio configuration (nq,) of joint values q (n,) (a continuous joint's angle θ
-        becomes (cos θ, sin θ))."""
+        """Pinocchio's configuration vector (nq,) for joint values q (n,).
+
+        A continuous (unbounded revolute) joint is two numbers in Pinocchio, (cos θ, sin θ); every
+        other joint is its value. Without continuous joints the two vectors are the same.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        numpy.ndarray, shape (model.nq,)
+            The configuration Pinocchio's algorithms take.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.q_pin([0.1, 0.2]).tolist()
+        [0.1, 0.2]
+        """
         if self._same_coords:
             return np.asarray(q, dtype=float)
         q = np.asarray(q, dtype=float)
@@ -168,7 +187,24 @@ class Robot:
         return q_pin
 
     def q_from_pin(self, q_pin: ArrayLike) -> np.ndarray:
-        """Joint values q (n,) of a Pinocchio configuration (nq,)."""
+        """Joint values q (n,) of a Pinocchio configuration (nq,): the inverse of :meth:`q_pin`.
+
+        Parameters
+        ----------
+        q_pin : array_like, shape (model.nq,)
+            A Pinocchio configuration ((cos θ, sin θ) for each continuous joint).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Joint values, rad or m (continuous joints as atan2(sin, cos), in (−π, π]).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.q_from_pin(robot.q_pin([0.1, 0.2])).tolist()
+        [0.1, 0.2]
+        """
         q_pin = np.asarray(q_pin, dtype=float)
         if self._same_coords:
             return q_pin.copy()
@@ -180,7 +216,24 @@ class Robot:
         return q
 
     def frame_id(self, frame: str | None) -> int:
-        """Frame id of ``frame`` (None: the tip); ValueError listing frames if unknown."""
+        """Pinocchio's frame id of ``frame``.
+
+        Parameters
+        ----------
+        frame : str or None
+            A frame name of the model (None: the tip).
+
+        Returns
+        -------
+        int
+            The index into ``model.frames``; :class:`~robokit.errors.InputError` listing frames if unknown.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.frame_id(None) == robot.frame_id("tool") == robot.tip_id
+        True
+        """
         if frame is None:
             return self.tip_id
         fid = self._frame_ids.get(frame)
@@ -196,8 +249,31 @@ class Robot:
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
-        """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
-        for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
+        """Pose of ``frame`` in the root frame at joint values q (forward kinematics, Pinocchio).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many configurations (tip only; see
+            :mod:`robokit.description.batch`).
+        frame : str or None, optional
+            A frame name (None: the tip).
+
+        Returns
+        -------
+        numpy.ndarray, shape (4, 4) or (N, 4, 4)
+            ``T_base_frame``: rotation and position (m) of the frame in the root frame.
+
+        Examples
+        --------
+        The planar arm (link lengths 1 and 0.8) stretched along x, then with the elbow at 90°:
+
+        >>> robot = rk.load("twolink")
+        >>> robot.frame_pose([0.0, 0.0])[:3, 3].round(4).tolist()
+        [1.8, 0.0, 0.0]
+        >>> robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
+        [1.0, 0.8, 0.0]
+        """
         pin = self._pin
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
@@ -214,7 +290,24 @@ class Robot:
         return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
-        """Poses (4×4) of every frame, by name, at θ."""
+        """Poses of every frame of the model at joint values q, by name.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, shape (4, 4)
+            Frame name → its pose in the root frame (m).
+
+        Examples
+        --------
+        >>> poses = rk.load("twolink").frame_poses([0.0, 0.0])
+        >>> poses["dh_1"][:3, 3].round(4).tolist(), poses["tool"][:3, 3].round(4).tolist()
+        ([1.0, 0.0, 0.0], [1.8, 0.0, 0.0])
+        """
         pin = self._pin
         pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
         return {f.name: self.data.oMf[i].homogeneous for i, f in enumerate(self.model.frames)}
@@ -278,8 +371,29 @@ class Robot:
         return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
-        """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
-        inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
+        """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q), Pinocchio's RNEA.
+
+        Parameters
+        ----------
+        q, dq, ddq : array_like, shape (n,) or (N, n)
+            Joint values, rates and accelerations (rad, rad/s, rad/s²; m, m/s, m/s² for prismatic
+            joints); (N, n) for many at once.
+        threads : int, optional
+            Threads of ``rneaInParallel`` for (N, n) inputs.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,) or (N, n)
+            Joint torques (N·m) or forces (N).
+
+        Examples
+        --------
+        Held still and horizontal, the arm needs its gravity torques:
+
+        >>> robot = rk.load("twolink")
+        >>> robot.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
                 and q.shape == dq.shape == ddq.shape == self._shape):
             # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
@@ -296,8 +410,24 @@ class Robot:
         return self._pin.rnea(self.model, self.data, q, dq, ddq)
 
     def crba(self, q: ArrayLike) -> np.ndarray:
-        """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
-        compiled composite-rigid-body kernel."""
+        """Mass matrix M(q), Pinocchio's CRBA (both triangles filled).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many (the compiled composite-rigid-body kernel).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, n) or (N, n, n)
+            The symmetric positive-definite joint-space inertia (kg·m², kg).
+
+        Examples
+        --------
+        >>> rk.load("twolink").crba([0.0, 0.0]).round(4)
+        array([[6.86, 2.16],
+               [2.16, 0.96]])
+        """
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
                 and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             M = self._pin.crba(self.model, self.data, q)  # the fast path: a new array, its upper triangle filled
@@ -323,8 +453,28 @@ class Robot:
         return M
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
-        """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
-        through ``abaInParallel`` on ``threads`` threads."""
+        """Forward dynamics q̈ = M⁻¹(τ − c − g), Pinocchio's ABA.
+
+        Parameters
+        ----------
+        q, dq, tau : array_like, shape (n,) or (N, n)
+            Joint values (rad, m), rates (rad/s, m/s) and torques (N·m, N); (N, n) for many at once.
+        threads : int, optional
+            Threads of ``abaInParallel`` for (N, n) inputs.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,) or (N, n)
+            Joint accelerations (rad/s², m/s²).
+
+        Examples
+        --------
+        Torques equal to gravity's hold the arm still:
+
+        >>> robot = rk.load("twolink")
+        >>> bool(abs(robot.aba([0.0, 0.0], [0.0, 0.0], robot.gravity_torques([0.0, 0.0]))).max() < 1e-9)
+        True
+        """
         if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
                 and q.shape == dq.shape == tau.shape == self._shape):
             # as in rnea: one test of the (new) result stands for the inputs' finiteness
@@ -340,7 +490,23 @@ class Robot:
         return self._pin.aba(self.model, self.data, q, dq, tau)
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
-        """Gravity torques g(θ) (n,)."""
+        """Gravity torques g(q): what the joints must apply to hold the arm still at q.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Torques (N·m) or forces (N).
+
+        Examples
+        --------
+        >>> rk.load("twolink").gravity_torques([0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and isfinite(sum(q.tolist()) if self._small else q.dot(q))):
             q = self._check_q(q)
@@ -348,12 +514,48 @@ class Robot:
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
-        """c(θ, θ̇) + g(θ) (n,)."""
+        """Coriolis, centrifugal and gravity torques c(q, q̇) + g(q) (Pinocchio's nonLinearEffects).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+        dq : array_like, shape (n,)
+            Joint rates (rad/s, m/s).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Torques (N·m) or forces (N): τ for q̈ = 0.
+
+        Examples
+        --------
+        >>> rk.load("twolink").nonlinear_effects([0.0, 0.0], [0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         q = self.q_pin(self._check_q(q))
         return self._pin.nonLinearEffects(self.model, self.data, q, self._check_q(dq, "dq")).copy()
 
     def random_configuration(self, rng: int | np.random.Generator | None = None) -> np.ndarray:
-        """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""
+        """Joint values drawn uniformly inside the limits ([−π, π] for unlimited joints).
+
+        Parameters
+        ----------
+        rng : int, numpy.random.Generator or None, optional
+            A seed or a generator (None: fresh entropy).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Joint values (rad or m), each within ``qlim``.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> q = robot.random_configuration(0)
+        >>> q.shape, bool(((robot.qlim[:, 0] <= q) & (q <= robot.qlim[:, 1])).all())
+        ((2,), True)
+        """
         rng = np.random.default_rng(rng)
         lo = np.where(np.isfinite(self.qlim[:, 0]), self.qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
