@@ -453,6 +453,32 @@ class Scene:
             self._extra_points.extend(c + rad * e for e in np.vstack([np.eye(3), -np.eye(3)]))
         return self
 
+    def include(self, points: ArrayLike) -> Scene:
+        """Make :meth:`frame_camera` frame these points too, drawing nothing.
+
+        For content drawn straight into ``vis`` (a point cloud, say) that the camera should see.
+
+        Parameters
+        ----------
+        points : array_like, shape (K, 3)
+            Positions (m, base frame).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.include([[2.0, 2.0, 0.0], [-2.0, -2.0, 0.5]]) is s
+        True
+        """
+        P = np.asarray(points, dtype=float)
+        if P.ndim != 2 or P.shape[1] != 3 or not np.all(np.isfinite(P)):
+            raise InputError(f"points: expected finite positions of shape (K, 3), got shape {P.shape}")
+        self._extra_points.extend(P)
+        return self
+
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
         """Animate joint configurations, playable in the page.
 

@@ -186,7 +186,7 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
             scene.show(None)
             scene.vis["points/capability"].set_object(cloud)
             if len(m.centres):
-                scene._extra_points.extend([m.centres.min(axis=0), m.centres.max(axis=0)])
+                scene.include([m.centres.min(axis=0), m.centres.max(axis=0)])
             scene.frame_camera()
             return _with_legend(scene.html(), m)
     vis = new_visualizer()
