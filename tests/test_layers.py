@@ -108,9 +108,8 @@ HELPERS = {u for u, layer in LAYER.items() if layer == 0}
 #: Reads of another subpackage's private state that remain, each with its reason; an entry
 #: that no longer matches anything fails too (delete it when its fix lands).
 JUSTIFIED_PRIVATE: dict[tuple[str, str], str] = {
-    ("robokit.codegen._solver_constants", "_closed_form"):
+    ("robokit.codegen._solver_constants", "_flip"):
         "codegen reads the closed-form solver's state; issue 41 point 4 (a typed ik → codegen contract) removes it",
-    ("robokit.codegen._solver_constants", "_flip"): "the same (issue 41 point 4)",
     ("robokit.codegen._solver_constants", "_free_flipped"): "the same (issue 41 point 4)",
     ("robokit.kernels._jit", "_cache"): "numba's Dispatcher._cache (its on-disk cache), not ik's _cache: a name clash",
 }
