@@ -23,7 +23,7 @@ import warnings
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-__all__ = ["DEPRECATIONS", "FRAME_SYNONYMS", "REMOVAL", "deprecated_alias", "renamed_argument", "warn_once"]
+__all__ = ["DEPRECATIONS", "FRAME_SYNONYMS", "REMOVAL", "deprecated_alias", "renamed_argument", "warn", "warn_once"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -54,7 +54,7 @@ DEPRECATIONS: dict[str, tuple[str, str]] = {
     "base_wrench(Ftip=)": ("F_tip=", REMOVAL),
     "ik_spherical_wrist(theta4_ref=)": ("wrist_ref=", REMOVAL),
     "ik_puma560(theta4_ref=)": ("wrist_ref=", REMOVAL),
-    "load_xacro(package_path=)": ("package_dirs=", REMOVAL),
+    "package_path=": ("package_dirs= (the name robokit.load uses)", REMOVAL),
 }
 
 #: The former frame words and the canonical (lower-case Pinocchio) name each one means.
@@ -110,6 +110,37 @@ def warn_once(key: str, replacement: str | None = None, *, category: type[Warnin
     if key in _WARNED:
         return
     _WARNED.add(key)
+    warn(key, replacement, category=category, stacklevel=stacklevel + 1 if stacklevel else None)
+
+
+def warn(key: str, replacement: str | None = None, *, category: type[Warning] = DeprecationWarning,
+         stacklevel: int | None = None) -> None:
+    """Warn about the deprecation ``key`` of :data:`DEPRECATIONS` (every time; see :func:`warn_once`).
+
+    Parameters
+    ----------
+    key : str
+        A key of :data:`DEPRECATIONS`.
+    replacement : str, optional
+        What to write instead (default: the registry's entry).
+    category : type, optional
+        ``DeprecationWarning`` or ``FutureWarning``.
+    stacklevel : int, optional
+        As :func:`warnings.warn`; default: the first caller outside robokit.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     warn("package_path=", category=FutureWarning); warn("package_path=", category=FutureWarning)
+    >>> len(w), w[0].category.__name__
+    (2, 'FutureWarning')
+    """
     new, removal = DEPRECATIONS[key]
     if key.endswith("(reference omitted)"):
         message = (f"{key}: the default frame becomes robokit.Frame.LOCAL_WORLD_ALIGNED (robokit's one default) "
@@ -117,6 +148,7 @@ def warn_once(key: str, replacement: str | None = None, *, category: type[Warnin
     else:
         message = f"{key} is deprecated and will be removed in robokit {removal}: use {replacement or new}"
     warnings.warn(message, category, stacklevel=stacklevel or _outside_stacklevel())
+
 
 
 def renamed_argument(key: str, new_value: Any, old_value: Any, unset: Any, where: str, default: Any = None) -> Any:
