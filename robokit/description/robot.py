@@ -141,7 +141,6 @@ class Robot:
         for k, v in (configurations or {}).items():
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids: dict[str, int] = {}
-        self._lower = np.tril_indices(self.n, -1)
         lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
         self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
         self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))

@@ -229,8 +229,3 @@ class ParallelAxesSolver:
                 q = (t1 - th0[0], t2 - th0[1], t3 - th0[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
                 out.append((q, shoulder + elbow + wrist, degenerate))
         return out
-
-
-def _z4(theta: float, d: float) -> np.ndarray:
-    c, s = math.cos(theta), math.sin(theta)
-    return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]])
