@@ -245,6 +245,9 @@ class IdentificationResult:
 
         Examples
         --------
+        >>> robot = rk.load("rrr")
+        >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
         >>> twin = res.to_robot()
         >>> twin.name, bool(np.allclose(twin.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0], robot.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0]))
         ('rrr_identified', True)
@@ -271,6 +274,9 @@ class IdentificationResult:
 
         Examples
         --------
+        >>> robot = rk.load("rrr")
+        >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
         >>> print(res.table().splitlines()[1])
                 0.85   ...  m1·c1x + 0.5·m2 + 0.5·m3
         """

@@ -315,6 +315,9 @@ class CalibrationResult:
 
         Examples
         --------
+        >>> robot = rk.load("rrr")
+        >>> Q = np.random.default_rng(0).uniform(-1.5, 1.5, (20, 3))
+        >>> res = rk.calibrate(robot, Q, robot.frame_pose(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
         >>> res.summary().splitlines()[0]
         'calibrated rrr: 20 samples; RMS before 0.001 m, after ... m'
         """
@@ -342,6 +345,9 @@ class CalibrationResult:
         --------
         >>> import matplotlib
         >>> matplotlib.use("Agg")
+        >>> robot = rk.load("rrr")
+        >>> Q = np.random.default_rng(0).uniform(-1.5, 1.5, (20, 3))
+        >>> res = rk.calibrate(robot, Q, robot.frame_pose(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
         >>> type(res.plot()).__name__
         'Figure'
         """
