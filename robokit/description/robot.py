@@ -351,9 +351,7 @@ class Robot:
         if rf is None:
             # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's; omitted = WORLD (deprecated default)
             canonical = reference_or_default(reference, "Robot.jacobian", Frame.WORLD)
-            rf = canonical.pinocchio
-            if reference is not None:
-                self._ref_frames[reference] = rf
+            rf = self._ref_frames[reference] = canonical.pinocchio  # None too: its warning is once per process
             reference = canonical
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and isfinite(sum(q.tolist()) if self._small else q.dot(q))):

@@ -115,7 +115,7 @@ def test_one_default_and_the_former_defaults_keep_their_result(robots, monkeypat
     import robokit._deprecation as deprecation
 
     monkeypatch.setattr(deprecation, "_WARNED", set())  # once per process: start this test afresh
-    robot = robots["puma560"]
+    robot = rk.load("puma560")  # a fresh Robot (one that answered the default before needs no second warning)
     q = _configurations(robot)[0]
     J_world, J_lwa, J_local = (_pin_jacobian(robot, q, c) for c in ("world", "local_world_aligned", "local"))
     with pytest.warns(FutureWarning, match=r"Robot.jacobian\(reference omitted\): the default frame becomes .*0\.4\.0"):
