@@ -3,7 +3,7 @@
 only builtin exceptions), adding the ``from robokit.errors import ...`` line where needed.
 
 Run from the repository root: ``python .ci/convert_plain_raises.py`` (for code merged in after
-``tests/hardening/test_round2_errors.py`` started banning plain raises). Idempotent.
+``tests/hardening/test_error_types.py`` started banning plain raises). Idempotent.
 """
 import ast
 import pathlib

@@ -42,6 +42,7 @@ for _module, _names in {
     "robokit.errors": ("DegreesWarning", "DivergenceError", "InputError", "PhysicalityWarning", "RobokitError",
                        "RobokitWarning"),
     "robokit.description.loading": ("models",),
+    "robokit.frames": ("Frame",),
     "robokit.ik": ("IKResult", "IKSolution", "ik_analytic", "ik_analytic_kind", "ikin_body", "ikin_space",
                    "solve_ik"),
     "robokit.kinematics": ("fkin_body", "fkin_space", "jacobian_body", "jacobian_space"),
@@ -82,6 +83,7 @@ if TYPE_CHECKING:  # what the names above are, for type checkers, IDEs and the d
         vel_quadratic_forces,
     )
     from robokit.description.loading import models
+    from robokit.frames import Frame
     from robokit.errors import DegreesWarning, DivergenceError, InputError, PhysicalityWarning, RobokitError, RobokitWarning
     from robokit.ik import IKResult, IKSolution, ik_analytic, ik_analytic_kind, ikin_body, ikin_space, solve_ik
     from robokit.kinematics import fkin_body, fkin_space, jacobian_body, jacobian_space
@@ -148,7 +150,7 @@ __all__ = list(SEED_FUNCTIONS) + [
     "calibrate", "identify_dynamics", "excitation_trajectory", "plan", "retime",
     # main types
     "Robot", "RobotLike", "RobotSpec", "DHTable", "DHLink", "PoEParams", "Trajectory", "IKSolution", "IKResult",
-    "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult",
+    "SimResult", "CapabilityMap", "CalibrationResult", "IdentificationResult", "Frame",
     # errors and warnings
     "RobokitError", "InputError", "DivergenceError", "RobokitWarning", "PhysicalityWarning", "DegreesWarning",
     # units

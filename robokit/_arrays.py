@@ -14,7 +14,9 @@ from math import isfinite
 
 import numpy as np
 
+from robokit._deprecation import FRAME_SYNONYMS
 from robokit.errors import InputError, InputTypeError
+from robokit.frames import Frame, as_frame
 
 _F64 = np.dtype(np.float64)
 
@@ -307,28 +309,15 @@ def as_count(x: object, name: str, low: int, high: int) -> int:
     return int(x)
 
 
-#: The ``reference=`` vocabulary of every Jacobian (and tip-wrench) function: accepted name → the
-#: canonical name, which is Pinocchio's ``ReferenceFrame`` lower-cased. For a frame F at position p:
-#:
-#: * ``"world"`` (synonym ``"space"``): the twist of F expressed at the root origin, root axes —
-#:   Modern Robotics' space Jacobian J_s, Pinocchio's WORLD;
-#: * ``"local"`` (synonyms ``"body"``, ``"tool"``): the twist of F at its origin, in F's own axes —
-#:   the body Jacobian J_b, Pinocchio's LOCAL;
-#: * ``"local_world_aligned"`` (synonym ``"base"``): ω and the velocity of F's origin, in root axes —
-#:   the lecture's geometric Jacobian ⁰J, Pinocchio's LOCAL_WORLD_ALIGNED.
-REFERENCES: dict[str, str] = {
-    "world": "world", "space": "world",
-    "local": "local", "body": "local", "tool": "local",
-    "local_world_aligned": "local_world_aligned", "base": "local_world_aligned",
-}
+#: The ``reference=`` vocabulary of every Jacobian (and tip-wrench) function: accepted string →
+#: the canonical name, the value of :class:`robokit.frames.Frame` (Pinocchio's ``ReferenceFrame``
+#: lower-cased). ``"space"``, ``"body"``, ``"tool"`` and ``"base"`` are the deprecated words.
+REFERENCES: dict[str, str] = {**{f.value: f.value for f in Frame}, **FRAME_SYNONYMS}
 
 
-def check_reference(reference: object, name: str = "reference") -> str:
-    """The canonical name (``"world"``, ``"local"`` or ``"local_world_aligned"``) of a Jacobian
-    reference frame given in the shared vocabulary (:data:`REFERENCES`), or :class:`InputError`
-    listing every accepted name."""
-    canonical = REFERENCES.get(reference) if isinstance(reference, str) else None
-    if canonical is None:
-        accepted = ", ".join(repr(k) for k in REFERENCES)
-        raise InputError(f"{name}: expected one of {accepted}, got {reference!r}")
-    return canonical
+def check_reference(reference: object, name: str = "reference") -> Frame:
+    """The :class:`~robokit.frames.Frame` named by ``reference`` (see :func:`robokit.frames.as_frame`):
+    a ``Frame``, its lower-case value, a ``pinocchio.ReferenceFrame`` or a deprecated word (which
+    warns once), else :class:`InputError` listing every accepted name. A ``Frame`` compares equal
+    to its lower-case value, so ``check_reference("base") == "local_world_aligned"``."""
+    return as_frame(reference, name)

@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 from robokit._arrays import check_reference
+from robokit.frames import DEFAULT_FRAME, Frame
 
 from robokit._optional import require
 
@@ -150,7 +151,28 @@ class SymbolicDynamics:
     Ccf: sp.Matrix
 
     def tau(self, ddq: sp.Matrix | None = None) -> sp.Matrix:
-        """The joint torques ``M q̈ + V + G`` with symbols ``ddq1..ddqn`` unless given."""
+        """The joint torques ``M q̈ + V + G``.
+
+        Parameters
+        ----------
+        ddq : sympy.Matrix, (n, 1), optional
+            The joint accelerations (default the symbols ``ddq1..ddqn``).
+
+        Returns
+        -------
+        sympy.Matrix, (n, 1)
+            τ (N·m for revolute, N for prismatic joints once numbers are substituted).
+
+        Examples
+        --------
+        A pendulum: a point mass m at the end of a link of length l, gravity −g along y:
+
+        >>> import sympy as sp
+        >>> l, m, g = sp.symbols("l m g", positive=True)
+        >>> dyn = SymbolicArm([(l, 0, 0, 0)]).dynamics([m], [(0, 0, 0)], gravity=(0, -g, 0))
+        >>> dyn.tau()
+        Matrix([[ddq1*l**2*m + g*l*m*cos(q1)]])
+        """
         if ddq is None:
             ddq = sp.Matrix(sp.symbols(f"ddq1:{len(self.q) + 1}", real=True))
         return self.M * ddq + self.V + self.G
@@ -170,6 +192,16 @@ class SymbolicArm:
     convention : "standard" or "modified"
     base, tool : 4×4 (numbers or sympy), optional
         Frame {0} in the base, and the tool in frame {N}.
+
+    Examples
+    --------
+    The planar two-link arm with symbolic lengths (rows ``(a, α, d, θ)``):
+
+    >>> import sympy as sp
+    >>> l1, l2 = sp.symbols("l1 l2", positive=True)
+    >>> arm = SymbolicArm([(l1, 0, 0, 0), (l2, 0, 0, 0)])
+    >>> arm
+    SymbolicArm(2 joints RR, standard DH, rows=[(l1, 0, 0, 0), (l2, 0, 0, 0)])
     """
 
     def __init__(self, rows: Sequence[Sequence], joint_types: Sequence[str] | str | None = None,
@@ -202,8 +234,27 @@ class SymbolicArm:
 
     @classmethod
     def from_dh_table(cls, table: DHTable, symbolic_lengths: bool = False) -> "SymbolicArm":
-        """Build from a :class:`robokit.DHTable` (numbers; angles are taken as exact
-        multiples of π/2 where they are, so the forms stay readable)."""
+        """Build from a :class:`robokit.DHTable`.
+
+        Angles are taken as exact multiples of π/2 where they are, so the forms stay readable.
+
+        Parameters
+        ----------
+        table : DHTable
+            The table (numbers), with its convention, joint types, base and tool.
+        symbolic_lengths : bool, optional
+            Reserved; the lengths are the table's numbers.
+
+        Returns
+        -------
+        SymbolicArm
+            The same arm with exact entries.
+
+        Examples
+        --------
+        >>> SymbolicArm.from_dh_table(rk.load("twolink").dh).n
+        2
+        """
         def nice_angle(x: float) -> Any:
             k = float(x) / (np.pi / 2)
             if abs(k - round(k)) < 1e-12:
@@ -233,7 +284,23 @@ class SymbolicArm:
 
     # ---------------------------------------------------------------- kinematics
     def link_transform(self, i: int) -> sp.Matrix:
-        """``ⁱ⁻¹Tᵢ`` for joint i (1-based), with the joint variable ``qᵢ`` substituted."""
+        """The link transform ``ⁱ⁻¹Tᵢ`` with the joint variable ``qᵢ`` added to θ (or d).
+
+        Parameters
+        ----------
+        i : int
+            The joint, 1..n.
+
+        Returns
+        -------
+        sympy.Matrix, (4, 4)
+            ``Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ)`` (standard) or ``Rx(αᵢ₋₁) Tx(aᵢ₋₁) Rz(θᵢ) Tz(dᵢ)`` (modified).
+
+        Examples
+        --------
+        >>> arm.link_transform(1)[:2, 3].T
+        Matrix([[l1*cos(q1), l1*sin(q1)]])
+        """
         if not 1 <= i <= self.n:
             raise InputError(f"i: expected 1..{self.n}, got {i}")
         a, alpha, d, theta = self.rows[i - 1]
@@ -247,7 +314,23 @@ class SymbolicArm:
         return _rot_x(alpha) * _trans(a, 0, 0) * _rot_z(theta) * _trans(0, 0, d)
 
     def link_transforms(self, simplify: bool = True) -> list[sp.Matrix]:
-        """All ``ⁱ⁻¹Tᵢ``, i = 1..n."""
+        """All link transforms ``ⁱ⁻¹Tᵢ``, i = 1..n.
+
+        Parameters
+        ----------
+        simplify : bool, optional
+            Simplify each one (default True).
+
+        Returns
+        -------
+        list of sympy.Matrix, (4, 4)
+            One per joint.
+
+        Examples
+        --------
+        >>> [T[0, 3] for T in arm.link_transforms()]
+        [l1*cos(q1), l2*cos(q2)]
+        """
         level = "full" if simplify else "none"
         return [_simplify_matrix(self.link_transform(i), level) for i in range(1, self.n + 1)]
 
@@ -261,10 +344,25 @@ class SymbolicArm:
         return self._frames_cache
 
     def fk(self, simplify: bool | str = "auto", tool: bool = True) -> sp.Matrix:
-        """``⁰Tₙ`` (with base, and the tool unless ``tool=False``), trigonometrically simplified.
+        """Forward kinematics ``⁰Tₙ`` (with the base, and the tool unless ``tool=False``).
 
-        ``simplify``: True, False or "auto" (full up to 3 joints, trigsimp beyond: ~10 s for a
-        6-joint arm with symbolic lengths).
+        Parameters
+        ----------
+        simplify : bool or "auto", optional
+            True, False or "auto" (full up to 3 joints, trigsimp beyond: ~10 s for a 6-joint arm
+            with symbolic lengths).
+        tool : bool, optional
+            Include the tool transform (default True).
+
+        Returns
+        -------
+        sympy.Matrix, (4, 4)
+            The pose of the tool (or frame {n}) in the base, trigonometrically simplified.
+
+        Examples
+        --------
+        >>> arm.fk()[:2, 3].T
+        Matrix([[l1*cos(q1) + l2*cos(q1 + q2), l1*sin(q1) + l2*sin(q1 + q2)]])
         """
         T = self._frames()[-1] * (self.tool if tool else sp.eye(4))
         return _simplify_matrix(T, self._level(simplify))
@@ -279,17 +377,17 @@ class SymbolicArm:
             axes.append((F[:3, 2], F[:3, 3]))
         return axes
 
-    def jacobian(self, reference: str = "base", simplify: bool | str = "auto") -> sp.Matrix:
+    def jacobian(self, reference: Frame | str = DEFAULT_FRAME, simplify: bool | str = "auto") -> sp.Matrix:
         """The 6×n Jacobian of the tool, angular rows first (Lecture 6).
 
         Parameters
         ----------
-        reference : str, default "base"
-            robokit's one ``reference=`` vocabulary (the *Conventions* page): "base" =
-            "local_world_aligned" — twist (ω, v) of the tool origin in base coordinates, columns
-            ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic); "tool" = "local" =
-            "body" — the same twist in tool-frame axes (``blockdiag(Rᵀ, Rᵀ) J_base``, the body Jacobian);
-            "world" = "space" — the space Jacobian, columns ``[zᵢ; pᵢ × zᵢ]``.
+        reference : Frame or str, default Frame.LOCAL_WORLD_ALIGNED
+            A :class:`robokit.Frame` (the *Conventions* page): ``LOCAL_WORLD_ALIGNED`` (the lecture's
+            ⁰J, formerly "base") — twist (ω, v) of the tool origin in base coordinates, columns
+            ``[zᵢ; zᵢ × (p_tool − pᵢ)]`` (revolute) or ``[0; zᵢ]`` (prismatic); ``LOCAL`` (formerly
+            "tool"/"body") — the same twist in tool-frame axes (``blockdiag(Rᵀ, Rᵀ) J_base``, the body
+            Jacobian); ``WORLD`` (formerly "space") — the space Jacobian, columns ``[zᵢ; pᵢ × zᵢ]``.
         simplify : bool or "auto"
             True, False or "auto" (full up to 3 joints; beyond, trigsimp for the base frame and no
             simplification for the tool frame, which would take minutes).
@@ -298,6 +396,15 @@ class SymbolicArm:
         -------
         sympy.Matrix, (6, n)
             Rows ω (rad/s per unit joint rate) then v (m/s).
+
+        Examples
+        --------
+        The lecture's v rows of the planar arm:
+
+        >>> arm.jacobian()[3:5, :]
+        Matrix([
+        [-l1*sin(q1) - l2*sin(q1 + q2), -l2*sin(q1 + q2)],
+        [ l1*cos(q1) + l2*cos(q1 + q2),  l2*cos(q1 + q2)]])
         """
         ref = check_reference(reference)
         cols = []
@@ -338,15 +445,40 @@ class SymbolicArm:
     def dynamics(self, masses: Sequence[Any], coms: Sequence[Any], inertias: Sequence[Any] | None = None,
                  gravity: Sequence[Any] = (0, 0, -9.81), allow_slow: bool = False,
                  simplify: bool | str = "auto") -> SymbolicDynamics:
-        """Lagrangian dynamics for link masses, centres of mass and inertias.
-
-        masses : n numbers/symbols; coms : n 3-vectors in DH frame {i}; inertias : n 3×3
-        (about the centre of mass, frame-{i} axes) or None for point masses; gravity : the
-        gravity acceleration vector in the base frame (numbers or symbols).
+        """Lagrangian dynamics for link masses, centres of mass and inertias (Lecture 7).
 
         ``M = Σ mᵢ Jᵥᵢᵀ Jᵥᵢ + J_ωᵢᵀ Rᵢ Iᵢ Rᵢᵀ J_ωᵢ``; ``Cₖⱼ = Σᵢ Γᵢⱼₖ q̇ᵢ`` with the Christoffel
         symbols ``Γᵢⱼₖ = ½(∂Mₖⱼ/∂qᵢ + ∂Mₖᵢ/∂qⱼ − ∂Mᵢⱼ/∂qₖ)``; ``G = ∂P/∂q`` with
         ``P = −Σ mᵢ gᵀ p_cᵢ``.
+
+        Parameters
+        ----------
+        masses : sequence of n numbers or symbols
+            Link masses (kg).
+        coms : sequence of n 3-vectors
+            Centres of mass in DH frame {i} (m).
+        inertias : sequence of n 3×3, optional
+            About the centre of mass, frame-{i} axes (kg·m²); None for point masses.
+        gravity : 3-vector, optional
+            The gravity acceleration in the base frame (m/s²; numbers or symbols).
+        allow_slow : bool, optional
+            Allow more than ``MAX_SYMBOLIC_DYNAMICS_JOINTS`` joints (minutes of simplification).
+        simplify : bool or "auto", optional
+            As for :meth:`fk`.
+
+        Returns
+        -------
+        SymbolicDynamics
+            ``M``, ``C``, ``V``, ``G``, ``B``, ``Ccf`` and :meth:`SymbolicDynamics.tau`.
+
+        Examples
+        --------
+        Point masses at the ends of the links (frame {i}'s origin), gravity −g along y:
+
+        >>> m1, m2, g = sp.symbols("m1 m2 g", positive=True)
+        >>> dyn = arm.dynamics([m1, m2], [(0, 0, 0), (0, 0, 0)], gravity=(0, -g, 0))
+        >>> dyn.G[1], dyn.M[1, 1]
+        (g*l2*m2*cos(q1 + q2), l2**2*m2)
         """
         n = self.n
         if n > MAX_SYMBOLIC_DYNAMICS_JOINTS and not allow_slow:
@@ -409,9 +541,25 @@ class SymbolicArm:
     def lambdify(self, expr: Any, extra_symbols: Sequence[sp.Symbol] = ()) -> Callable[..., np.ndarray]:
         """A numpy function of ``(q, *extra)`` (and ``dq`` if the expression uses it).
 
-        The returned function takes ``q`` (n,), then ``dq`` (n,) if ``expr`` contains joint
-        rates, then the values of ``extra_symbols`` in order, and returns a float array of
-        the expression's shape.
+        Parameters
+        ----------
+        expr : sympy expression or matrix
+            In the joint symbols (and rates), plus ``extra_symbols``.
+        extra_symbols : sequence of sympy.Symbol, optional
+            Symbols whose values are passed after q (and dq), in order.
+
+        Returns
+        -------
+        callable
+            ``f(q, [dq,] *extra) -> numpy.ndarray`` of the expression's shape (floats).
+
+        Examples
+        --------
+        The tool position at q = (0, 90°) for l₁ = 1, l₂ = 0.8:
+
+        >>> p = arm.lambdify(arm.fk()[:2, 3], [l1, l2])
+        >>> p([0.0, np.pi / 2], 1.0, 0.8).round(4).ravel().tolist()
+        [1.0, 0.8]
         """
         expr = sp.Matrix(expr) if not isinstance(expr, sp.MatrixBase) else expr
         uses_dq = bool(expr.free_symbols & set(self.dq))

@@ -208,6 +208,17 @@ class IdentificationResult:
         Returns
         -------
         ndarray, shape (N, n) (or (n,))
+            Joint torques (N·m, N).
+
+        Examples
+        --------
+        Continuing :func:`identify_dynamics`'s example (``rrr`` with viscous friction 0.1):
+
+        >>> robot = rk.load("rrr")
+        >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> bool(np.allclose(res.predict(q[0], dq[0], ddq[0]), robot.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0]))
+        True
         """
         n = self.robot.n
         one = np.ndim(q) == 1
@@ -236,11 +247,21 @@ class IdentificationResult:
         Returns
         -------
         Robot
+            The same geometry with the identified inertias.
 
         Raises
         ------
         InputError
             A link whose identified set no rigid body can carry (a first moment with zero mass).
+
+        Examples
+        --------
+        >>> robot = rk.load("rrr")
+        >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> twin = res.to_robot()
+        >>> twin.name, bool(np.allclose(twin.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0], robot.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0]))
+        ('rrr_identified', True)
         """
         import pinocchio as pin
 
@@ -262,6 +283,14 @@ class IdentificationResult:
         str
             A header line, then one line per base parameter (value in SI units, σ in % of it, the
             combination of standard parameters it stands for).
+
+        Examples
+        --------
+        >>> robot = rk.load("rrr")
+        >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> print(res.table().splitlines()[1])
+                0.85   ...  m1·c1x + 0.5·m2 + 0.5·m3
         """
         lines = [f"{'value':>12} {'σ %':>7}  base parameter (standard parameters in joint frames, about the "
                  "joint origin)"]

@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from robokit.calibration.chain import JointChain, chain_from_robot
+from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
 
 if TYPE_CHECKING:
@@ -109,9 +110,10 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
     V = np.zeros((N, 6))
     dV = np.zeros((N, 6))
     dV[:, 3:] = -np.asarray(gravity, dtype=float)
+    E = screw_exponentials(np.ascontiguousarray(chain.axes.T), q)  # (N, n, 4, 4): e^{[A_i]q_i}, the kernel's
     for i in range(n):
         A = chain.axes[i]
-        T = chain.placements[i] @ lie.exp6(A[None, :] * q[:, i:i + 1])  # T_{i-1,i}
+        T = chain.placements[i] @ E[:, i]  # T_{i-1,i}
         Ti = lie.inv(T)
         T_back[i] = Ti
         Ad = lie.adjoint(Ti)

@@ -1095,10 +1095,6 @@ def _c(v: Val) -> str:
     return lit(v) if isinstance(v, float) else v
 
 
-def _indent(text: str, n: int) -> str:
-    return "\n".join((" " * n + line) if line.strip() else line for line in text.split("\n"))
-
-
 def _parallel(e: _Emitter, T06: Pose) -> str:
     """Body of the three-parallel-axes solve (UR family)."""
     k, P, t = e.k, e.P, e.tol

@@ -50,6 +50,16 @@ class SimResult:
         Commanded torques (N·m), held over ``[t_k, t_k+1)``.
     q_des, dq_des : (K, n) ndarray
         The desired trajectory.
+
+    Examples
+    --------
+    A hand-made result (two joints, three instants) whose second joint lags 0.1 rad:
+
+    >>> t = np.array([0.0, 0.1, 0.2])
+    >>> q_des = np.zeros((3, 2))
+    >>> res = SimResult(t, q_des - [0.0, 0.1], np.zeros((3, 2)), np.zeros((3, 2)), q_des, np.zeros((3, 2)))
+    >>> res
+    SimResult(3 samples × 2 joints, t = 0 … 0.2 s, max |error| 0.1 rad)
     """
 
     t: np.ndarray
@@ -64,12 +74,45 @@ class SimResult:
         return self.q_des - self.q
 
     def rms_error(self) -> np.ndarray:
-        """(n,) RMS tracking error per joint."""
+        """RMS tracking error per joint, ``sqrt(mean_k (q_des − q)²)``.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            rad (m for prismatic joints).
+
+        Examples
+        --------
+        >>> res.rms_error().round(4)
+        array([0. , 0.1])
+        """
         return np.sqrt(np.mean(self.error**2, axis=0))
 
     def plot(self, joints: Iterable[int] | None = None, title: str | None = None) -> Any:
-        """Desired and actual joint angles, the tracking error and the torques, stacked: see
-        :func:`robokit.control.plot_tracking` (needs the ``plot`` extra). Returns the Figure."""
+        """Desired and actual joint angles, the tracking error and the torques, stacked.
+
+        See :func:`robokit.control.plot_tracking` (needs the ``plot`` extra, matplotlib).
+
+        Parameters
+        ----------
+        joints : iterable of int, optional
+            The joints drawn (default all).
+        title : str, optional
+            The figure's title.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure (three rows of axes).
+
+        Examples
+        --------
+        >>> import matplotlib
+        >>> matplotlib.use("Agg")
+        >>> fig = res.plot(title="two joints")
+        >>> type(fig).__name__
+        'Figure'
+        """
         from robokit.control.plot import plot_tracking
 
         return plot_tracking(self, joints=joints, title=title)

@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from robokit._arrays import as_joints, check_reference
+from robokit._arrays import as_joints
+from robokit.frames import Frame, reference_or_default
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -71,7 +72,8 @@ def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np
     return fkin_space_batch(np.ascontiguousarray(p.M), np.ascontiguousarray(p.Slist), Q)
 
 
-def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
+def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
+                   reference: Frame | str | None = None) -> np.ndarray:
     """Tip Jacobians for many configurations (compiled PoE kernel), angular rows first.
 
     Parameters
@@ -82,11 +84,13 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, referen
         Joint values, one configuration per row (rad or m).
     frame : str or None, optional
         Must be None or the robot's tip: batched calls answer for the tip only.
-    reference : {"world", "local", "local_world_aligned"}, optional
-        ``"world"`` (default): the space Jacobian ``J_s`` (twist of the tip in the base frame);
-        ``"local"``: the body Jacobian ``Ad_{T⁻¹} J_s`` (tip axes); ``"local_world_aligned"``:
-        ``[[I, 0], [−[p], I]] J_s`` — ω and the velocity of the tip origin in base axes (the
-        course's geometric Jacobian).
+    reference : Frame or str, optional
+        :class:`robokit.Frame` (the *Conventions* page): ``Frame.WORLD``: the space Jacobian ``J_s``
+        (twist of the tip in the base frame); ``Frame.LOCAL``: the body Jacobian ``Ad_{T⁻¹} J_s``
+        (tip axes); ``Frame.LOCAL_WORLD_ALIGNED``: ``[[I, 0], [−[p], I]] J_s`` — ω and the velocity
+        of the tip origin in base axes (the course's geometric Jacobian, robokit's one default).
+        Omitted, this function still returns WORLD (its former default) with a ``FutureWarning``
+        until robokit 0.4.0: pass ``reference=`` to choose.
 
     Returns
     -------
@@ -105,7 +109,7 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None, referen
     from robokit.spatial import lie
 
     _tip_only(robot, frame)
-    reference = check_reference(reference)
+    reference = reference_or_default(reference, "batch_jacobian", Frame.WORLD)
     Q = _rows(robot, Q, "q")
     p = robot.poe
     Slist = np.ascontiguousarray(p.Slist)

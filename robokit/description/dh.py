@@ -79,27 +79,12 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
     >>> T[:3, 3].round(4).tolist()
     [0.0, 1.0, 0.0]
     """
-    ct, st = math.cos(theta), math.sin(theta)
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    if convention == "standard":
-        return np.array(
-            [
-                [ct, -st * ca, st * sa, a * ct],
-                [st, ct * ca, -ct * sa, a * st],
-                [0.0, sa, ca, d],
-                [0.0, 0.0, 0.0, 1.0],
-            ]
-        )
-    if convention == "modified":
-        return np.array(
-            [
-                [ct, -st, 0.0, a],
-                [st * ca, ct * ca, -sa, -sa * d],
-                [st * sa, ct * sa, ca, ca * d],
-                [0.0, 0.0, 0.0, 1.0],
-            ]
-        )
-    raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+    if convention not in ("standard", "modified"):
+        raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+    from robokit.kernels.dh import dh_frames  # the one DH transform: the compiled kernel's link_transform
+
+    row = np.array([[a, alpha, d, theta, 0.0]], dtype=float)
+    return dh_frames(row, 1 if convention == "modified" else 0, np.eye(4), np.zeros(1))[1]
 
 
 def matrix_from_rpy(rpy: ArrayLike) -> np.ndarray:
@@ -340,14 +325,17 @@ class DHTable:
         >>> rk.load("twolink").dh.frames([np.pi / 2, 0.0])[:, :2, 3].round(4).tolist()
         [[0.0, 0.0], [0.0, 1.0], [0.0, 1.8]]
         """
+        from robokit.kernels.dh import dh_frames, pack_dh  # the one DH FK: the compiled kernel
+
+        P, modified, base = pack_dh(self)[:3]
+        return dh_frames(P, modified, base, self._kernel_q(q))
+
+    def _kernel_q(self, q: ArrayLike) -> np.ndarray:
+        """Checked q as the kernels take it: C-contiguous, −qᵢ for a flipped joint."""
         q = self._q(q)
-        out = np.empty((self.n + 1, 4, 4))
-        T = np.asarray(self.base, dtype=float)
-        out[0] = T
-        for i in range(self.n):
-            T = T @ self.link_transform(i, q[i])
-            out[i + 1] = T
-        return out
+        if any(l.flip for l in self.links):
+            q = q * np.array([-1.0 if l.flip else 1.0 for l in self.links])
+        return np.ascontiguousarray(q)
 
     def fk(self, q: ArrayLike) -> np.ndarray:
         """Pose of the tool in base_link: ``base · ⁰T₁(q₁) ⋯ ᴺ⁻¹T_N(q_N) · tool``.
@@ -369,7 +357,10 @@ class DHTable:
         >>> np.allclose(table.fk(q), rk.load("puma560").frame_pose(q))
         True
         """
-        return self.frames(q)[-1] @ self.tool
+        from robokit.kernels.dh import dh_fk, pack_dh  # the one DH FK: the compiled kernel
+
+        P, modified, base, tool = pack_dh(self)[:4]
+        return dh_fk(P, modified, base, tool, self._kernel_q(q))
 
     # ------------------------------------------------------------------ YAML I/O
     @classmethod

@@ -14,7 +14,7 @@ the velocity of the frame origin, base axes).
 """
 from __future__ import annotations
 
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,8 +39,8 @@ class RobotLike(Protocol):
         ``frame_pose(q, frame=None) -> (4, 4)``: pose of ``frame`` (default the tip) in the base
         frame at q (n,), m.
     jacobian : callable
-        ``jacobian(q, frame=None, reference="world") -> (6, n)``: rows ``(ω; v)``, expressed as
-        ``reference`` says (``"world"``, ``"local"`` or ``"local_world_aligned"``).
+        ``jacobian(q, frame=None, reference=None) -> (6, n)``: rows ``(ω; v)``, expressed as
+        ``reference`` (a :class:`robokit.Frame` or its lower-case name) says.
 
     Examples
     --------
@@ -70,7 +70,7 @@ class RobotLike(Protocol):
         """
         ...
 
-    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: Any = None) -> np.ndarray:
         """Jacobian of ``frame`` at q, angular rows first.
 
         Parameters
@@ -79,8 +79,10 @@ class RobotLike(Protocol):
             Joint values, rad or m.
         frame : str or None, optional
             The frame (None: the tip).
-        reference : {"world", "local", "local_world_aligned"}, optional
-            Where it is expressed (module docstring; default ``"world"``, the space Jacobian).
+        reference : robokit.Frame or str, optional
+            Where it is expressed (``Frame.WORLD``, ``Frame.LOCAL`` or ``Frame.LOCAL_WORLD_ALIGNED``;
+            the *Conventions* page). ``Robot.jacobian`` still returns WORLD when it is omitted
+            (with a ``FutureWarning``); pass it explicitly.
 
         Returns
         -------

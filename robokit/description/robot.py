@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from robokit._arrays import as_joints, check_reference, ndim
 from robokit._units import check_radians, fast_bounds, radian_ranges, revolute_columns
 from robokit.errors import InputError
+from robokit.frames import Frame, reference_or_default
 from robokit.description.dh import DHTable
 from robokit.description.frames import frame_index
 from robokit.description.limits import unbounded_limits
@@ -160,7 +161,6 @@ class Robot:
         for k, v in (configurations or {}).items():
             self.configurations[k] = np.asarray(v, dtype=float)
         self._frame_ids: dict[str, int] = {}
-        self._lower = np.tril_indices(self.n, -1)
         lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
         self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
         self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
@@ -178,13 +178,32 @@ class Robot:
         # [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
         self._r1, self._lo1, self._hi1 = fast_bounds(self._deg_lo, self._deg_hi)
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
-        self._ref_frames: dict[str, Any] = {}  # "world" → pin.ReferenceFrame.WORLD, … (looked up once)
+        self._ref_frames: dict[object, Any] = {}  # Frame.WORLD / "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
 
     # --------------------------------------------------------------- coordinates
     def q_pin(self, q: ArrayLike) -> np.ndarray:
-        """Pinocchio configuration (nq,) of joint values q (n,) (a continuous joint's angle θ
-        becomes (cos θ, sin θ))."""
+        """Pinocchio's configuration vector (nq,) for joint values q (n,).
+
+        A continuous (unbounded revolute) joint is two numbers in Pinocchio, (cos θ, sin θ); every
+        other joint is its value. Without continuous joints the two vectors are the same.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        numpy.ndarray, shape (model.nq,)
+            The configuration Pinocchio's algorithms take.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.q_pin([0.1, 0.2]).tolist()
+        [0.1, 0.2]
+        """
         if self._same_coords:
             return np.asarray(q, dtype=float)
         q = np.asarray(q, dtype=float)
@@ -196,7 +215,24 @@ class Robot:
         return q_pin
 
     def q_from_pin(self, q_pin: ArrayLike) -> np.ndarray:
-        """Joint values q (n,) of a Pinocchio configuration (nq,)."""
+        """Joint values q (n,) of a Pinocchio configuration (nq,): the inverse of :meth:`q_pin`.
+
+        Parameters
+        ----------
+        q_pin : array_like, shape (model.nq,)
+            A Pinocchio configuration ((cos θ, sin θ) for each continuous joint).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Joint values, rad or m (continuous joints as atan2(sin, cos), in (−π, π]).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.q_from_pin(robot.q_pin([0.1, 0.2])).tolist()
+        [0.1, 0.2]
+        """
         q_pin = np.asarray(q_pin, dtype=float)
         if self._same_coords:
             return q_pin.copy()
@@ -208,7 +244,24 @@ class Robot:
         return q
 
     def frame_id(self, frame: str | None) -> int:
-        """Frame id of ``frame`` (None: the tip); ValueError listing frames if unknown."""
+        """Pinocchio's frame id of ``frame``.
+
+        Parameters
+        ----------
+        frame : str or None
+            A frame name of the model (None: the tip).
+
+        Returns
+        -------
+        int
+            The index into ``model.frames``; :class:`~robokit.errors.InputError` listing frames if unknown.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.frame_id(None) == robot.frame_id("tool") == robot.tip_id
+        True
+        """
         if frame is None:
             return self.tip_id
         fid = self._frame_ids.get(frame)
@@ -261,8 +314,31 @@ class Robot:
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
-        """4×4 pose of ``frame`` (default the tip) in the root frame at joint values q (n,);
-        for q of shape (N, n) (tip only), the (N, 4, 4) poses (see :mod:`robokit.description.batch`)."""
+        """Pose of ``frame`` in the root frame at joint values q (forward kinematics, Pinocchio).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many configurations (tip only; see
+            :mod:`robokit.description.batch`).
+        frame : str or None, optional
+            A frame name (None: the tip).
+
+        Returns
+        -------
+        numpy.ndarray, shape (4, 4) or (N, 4, 4)
+            ``T_base_frame``: rotation and position (m) of the frame in the root frame.
+
+        Examples
+        --------
+        The planar arm (link lengths 1 and 0.8) stretched along x, then with the elbow at 90°:
+
+        >>> robot = rk.load("twolink")
+        >>> robot.frame_pose([0.0, 0.0])[:3, 3].round(4).tolist()
+        [1.8, 0.0, 0.0]
+        >>> robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
+        [1.0, 0.8, 0.0]
+        """
         pin = self._pin
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and ((h := hypot(*(t := q.tolist()))) <= self._r1
@@ -280,20 +356,57 @@ class Robot:
         return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
-        """Poses (4×4, in the root frame) of the frames :attr:`frame_names`, by name, at θ."""
+        """Poses (4×4, in the root frame) of the frames :attr:`frame_names`, by name, at θ.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, shape (4, 4)
+            Frame name → its pose in the root frame (m).
+
+        Examples
+        --------
+        >>> poses = rk.load("twolink").frame_poses([0.0, 0.0])
+        >>> poses["dh_1"][:3, 3].round(4).tolist(), poses["tool"][:3, 3].round(4).tolist()
+        ([1.0, 0.0, 0.0], [1.8, 0.0, 0.0])
+        """
         pin = self._pin
         pin.framesForwardKinematics(self.model, self.data, self.q_pin(self._check_q(q)))
         return {name: self.data.oMf[self.frame_id(name)].homogeneous for name in self.frame_names}
 
-    _REFS = {"world": "WORLD", "local": "LOCAL", "local_world_aligned": "LOCAL_WORLD_ALIGNED"}
-
-    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: str = "world") -> np.ndarray:
+    def jacobian(self, q: ArrayLike, frame: str | None = None, reference: Frame | str | None = None) -> np.ndarray:
         """6×n Jacobian of ``frame`` at θ, **angular rows first** (ω; v).
 
-        reference : "world" — the space Jacobian (twist of the frame expressed at the root
-        origin, root axes); "local" — the body Jacobian (frame's own axes, at its origin);
-        "local_world_aligned" — the geometric Jacobian of the course (ω and the velocity of
-        the frame origin, root axes). For q of shape (N, n) (tip only), (N, 6, n).
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many configurations (tip only).
+        frame : str or None, optional
+            The frame whose motion is described (None: the tip).
+        reference : Frame or str, optional
+            Where the twist is expressed (:class:`robokit.Frame`, the *Conventions* page):
+            ``Frame.WORLD`` — the space Jacobian (twist of the frame taken at the root origin, root
+            axes); ``Frame.LOCAL`` — the body Jacobian (frame's own axes, at its origin);
+            ``Frame.LOCAL_WORLD_ALIGNED`` — the course's geometric Jacobian (ω and the velocity of
+            the frame origin, root axes), the one default of robokit. Omitted, this method still
+            returns the WORLD Jacobian (its former default) with a ``FutureWarning`` until robokit
+            0.4.0: pass ``reference=`` to choose.
+
+        Returns
+        -------
+        numpy.ndarray, shape (6, n) or (N, 6, n)
+            Rows (ω; v): rad/s and m/s per unit joint rate.
+
+        Examples
+        --------
+        >>> import robokit as rk
+        >>> robot = rk.load("twolink")
+        >>> robot.jacobian([0.0, 0.0], reference=rk.Frame.LOCAL_WORLD_ALIGNED)[3:5].round(4).tolist()
+        [[0.0, 0.0], [1.8, 0.8]]
         """
         rf = self._ref_frames.get(reference)
         if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
@@ -304,8 +417,10 @@ class Robot:
             return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
         pin = self._pin
         if rf is None:
-            canonical = check_reference(reference)  # the shared vocabulary, mapped onto Pinocchio's names
-            rf = self._ref_frames[reference] = getattr(pin.ReferenceFrame, self._REFS[canonical])
+            # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's; omitted = WORLD (deprecated default)
+            canonical = reference_or_default(reference, "Robot.jacobian", Frame.WORLD)
+            rf = self._ref_frames[reference] = canonical.pinocchio  # None too: its warning is once per process
+            reference = canonical
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and ((h := hypot(*(t := q.tolist()))) <= self._r1
                      or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
@@ -322,8 +437,29 @@ class Robot:
         return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
-        """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q) (n,), Pinocchio's RNEA; for (N, n)
-        inputs, (N, n) through ``rneaInParallel`` on ``threads`` threads."""
+        """Inverse dynamics τ = M(q)q̈ + c(q, q̇) + g(q), Pinocchio's RNEA.
+
+        Parameters
+        ----------
+        q, dq, ddq : array_like, shape (n,) or (N, n)
+            Joint values, rates and accelerations (rad, rad/s, rad/s²; m, m/s, m/s² for prismatic
+            joints); (N, n) for many at once.
+        threads : int, optional
+            Threads of ``rneaInParallel`` for (N, n) inputs.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,) or (N, n)
+            Joint torques (N·m) or forces (N).
+
+        Examples
+        --------
+        Held still and horizontal, the arm needs its gravity torques:
+
+        >>> robot = rk.load("twolink")
+        >>> robot.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
                 and q.shape == dq.shape == ddq.shape == self._shape
                 and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
@@ -341,8 +477,24 @@ class Robot:
         return self._pin.rnea(self.model, self.data, q, dq, ddq)
 
     def crba(self, q: ArrayLike) -> np.ndarray:
-        """Mass matrix M(q) (n×n, symmetric), Pinocchio's CRBA; for q (N, n), (N, n, n) from the
-        compiled composite-rigid-body kernel."""
+        """Mass matrix M(q), Pinocchio's CRBA (both triangles filled).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            Joint values (rad or m); (N, n) for many (the compiled composite-rigid-body kernel).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, n) or (N, n, n)
+            The symmetric positive-definite joint-space inertia (kg·m², kg).
+
+        Examples
+        --------
+        >>> rk.load("twolink").crba([0.0, 0.0]).round(4)
+        array([[6.86, 2.16],
+               [2.16, 0.96]])
+        """
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
                 and ((h := hypot(*(t := q.tolist()))) <= self._r1
                      or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
@@ -370,8 +522,28 @@ class Robot:
         return M
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
-        """Forward dynamics q̈ = M⁻¹(τ − c − g) (n,), Pinocchio's ABA; for (N, n) inputs, (N, n)
-        through ``abaInParallel`` on ``threads`` threads."""
+        """Forward dynamics q̈ = M⁻¹(τ − c − g), Pinocchio's ABA.
+
+        Parameters
+        ----------
+        q, dq, tau : array_like, shape (n,) or (N, n)
+            Joint values (rad, m), rates (rad/s, m/s) and torques (N·m, N); (N, n) for many at once.
+        threads : int, optional
+            Threads of ``abaInParallel`` for (N, n) inputs.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,) or (N, n)
+            Joint accelerations (rad/s², m/s²).
+
+        Examples
+        --------
+        Torques equal to gravity's hold the arm still:
+
+        >>> robot = rk.load("twolink")
+        >>> bool(abs(robot.aba([0.0, 0.0], [0.0, 0.0], robot.gravity_torques([0.0, 0.0]))).max() < 1e-9)
+        True
+        """
         if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
                 and q.shape == dq.shape == tau.shape == self._shape
                 and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
@@ -388,7 +560,23 @@ class Robot:
         return self._pin.aba(self.model, self.data, q, dq, tau)
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
-        """Gravity torques g(θ) (n,)."""
+        """Gravity torques g(q): what the joints must apply to hold the arm still at q.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Torques (N·m) or forces (N).
+
+        Examples
+        --------
+        >>> rk.load("twolink").gravity_torques([0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
                 and ((h := hypot(*(t := q.tolist()))) <= self._r1
                      or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
@@ -397,12 +585,48 @@ class Robot:
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
-        """c(θ, θ̇) + g(θ) (n,)."""
+        """Coriolis, centrifugal and gravity torques c(q, q̇) + g(q) (Pinocchio's nonLinearEffects).
+
+        Parameters
+        ----------
+        q : array_like, shape (n,)
+            Joint values (rad for revolute, m for prismatic joints).
+        dq : array_like, shape (n,)
+            Joint rates (rad/s, m/s).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Torques (N·m) or forces (N): τ for q̈ = 0.
+
+        Examples
+        --------
+        >>> rk.load("twolink").nonlinear_effects([0.0, 0.0], [0.0, 0.0]).round(4)
+        array([46.107, 11.772])
+        """
         q = self.q_pin(self._check_q(q))
         return self._pin.nonLinearEffects(self.model, self.data, q, self._check_q(dq, "dq")).copy()
 
     def random_configuration(self, rng: int | np.random.Generator | None = None) -> np.ndarray:
-        """Joint angles drawn uniformly inside the limits ([−π, π] for unlimited joints)."""
+        """Joint values drawn uniformly inside the limits ([−π, π] for unlimited joints).
+
+        Parameters
+        ----------
+        rng : int, numpy.random.Generator or None, optional
+            A seed or a generator (None: fresh entropy).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            Joint values (rad or m), each within ``qlim``.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> q = robot.random_configuration(0)
+        >>> q.shape, bool(((robot.qlim[:, 0] <= q) & (q <= robot.qlim[:, 1])).all())
+        ((2,), True)
+        """
         rng = np.random.default_rng(rng)
         lo = np.where(np.isfinite(self.qlim[:, 0]), self.qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)

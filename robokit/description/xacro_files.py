@@ -42,6 +42,7 @@ from robokit.description.limits import check_joint_count
 from robokit.description.meshes import allowed_roots, confine, package_name
 from robokit.description.urdf_check import MAX_URDF_BYTES
 from robokit.description.xacro_safety import guarded
+from robokit._deprecation import warn
 from robokit.errors import InputError, MissingExtraError
 
 if TYPE_CHECKING:
@@ -58,12 +59,9 @@ def _package_dirs(package_dirs: Any, package_path: Any, where: str) -> Any:
     """``package_dirs``, or the value of its old name ``package_path`` (with a deprecation warning)."""
     if package_path is _UNSET:
         return package_dirs
-    import warnings
-
     if package_dirs is not None and package_dirs != ():
         raise InputError(f"{where}: give package_dirs only (package_path is its old name)")
-    warnings.warn(f"{where}: package_path= is now package_dirs= (the name robokit.load uses); "
-                  "package_path will be removed", FutureWarning, stacklevel=3)
+    warn("package_path=", category=FutureWarning)  # the name robokit.load uses is package_dirs=
     return package_path
 
 

@@ -9,11 +9,17 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from typing import Any
+
 from robokit._arrays import as_array, as_scalar, as_vector
+from robokit._deprecation import renamed_argument
+from robokit.errors import InputError
 from robokit.dynamics.newton_euler import _model, _radians
 from robokit.spatial import lie
 
 __all__ = ["add_payload", "base_wrench"]
+
+_UNSET: Any = object()  # "not given" (base_wrench's former keyword Ftip=)
 
 
 def add_payload(Mlist: ArrayLike, Glist: ArrayLike, mass: float, com: ArrayLike = (0.0, 0.0, 0.0),
@@ -71,8 +77,9 @@ def add_payload(Mlist: ArrayLike, Glist: ArrayLike, mass: float, com: ArrayLike 
     return Glist
 
 
-def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike, Ftip: ArrayLike,
-                Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
+def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
+                F_tip: ArrayLike = _UNSET, Mlist: ArrayLike = _UNSET, Glist: ArrayLike = _UNSET,
+                Slist: ArrayLike = _UNSET, *, Ftip: ArrayLike = _UNSET) -> np.ndarray:
     """The wrench the base must apply to the arm, in the base frame {0} at its origin (Lecture 7).
 
     From the backward Newton–Euler pass: the wrench transmitted through joint 1, ``F₁``, carried to
@@ -84,8 +91,9 @@ def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayL
         Joint values, rates and accelerations (rad, rad/s, rad/s²).
     g : (3,) array_like
         Gravity in the base frame (m/s²).
-    Ftip : (6,) array_like
+    F_tip : (6,) array_like
         Wrench ``(m, f)`` the end-effector applies to the environment, in its frame (N·m, N).
+        (Formerly ``Ftip=``, deprecated.)
     Mlist : (n+1, 4, 4) array_like
         Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
     Glist : (n, 6, 6) array_like
@@ -108,13 +116,16 @@ def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayL
     >>> base_wrench([0, 0], [0, 0], [0, 0], [0, -9.81, 0], np.zeros(6), p.Mlist, p.Glist, p.Slist).round(4)
     array([ 0.   ,  0.   , 46.107,  0.   , 34.335,  0.   ])
     """
+    F_tip = renamed_argument("base_wrench(Ftip=)", F_tip, Ftip, _UNSET, "base_wrench")
+    if any(x is _UNSET for x in (F_tip, Mlist, Glist, Slist)):
+        raise InputError("base_wrench: F_tip, Mlist, Glist and Slist are required")
     m = _model(Mlist, Glist, Slist)
     n = m.n
     th = _radians(m, as_vector(thetalist, "thetalist", n))
     dth = as_vector(dthetalist, "dthetalist", n)
     ddth = as_vector(ddthetalist, "ddthetalist", n)
     g = as_vector(g, "g", 3)
-    Ftip = as_vector(Ftip, "Ftip", 6)
+    Ftip = as_vector(F_tip, "F_tip", 6)
     Ad = m.transforms(th)
     A, G = m.AT, m.G
     V = np.zeros(6)

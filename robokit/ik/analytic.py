@@ -23,12 +23,13 @@ from __future__ import annotations
 
 import math
 import weakref
-from typing import TYPE_CHECKING, Iterable, cast
+from typing import TYPE_CHECKING, Any, Iterable, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
+from robokit._deprecation import renamed_argument
 from robokit._units import TURN, check_radians
 from robokit.errors import InputError
 from robokit.ik.closed_form import analytic_ik
@@ -52,6 +53,8 @@ _TWO_PI = 2.0 * np.pi
 
 
 
+
+_UNSET: Any = object()  # "not given" for the former keyword names
 
 def _two_link_core(x: float, y: float, l1: float, l2: float) -> list[tuple[float, float, str]]:
     """Both (θ₁, θ₂) of a planar 2-link arm reaching (x, y); [] if out of reach."""
@@ -161,7 +164,7 @@ def ik_planar_rrr(x: float, y: float, phi: float, l1: float, l2: float, l3: floa
     return sols
 
 
-def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSolution]:
+def ik_spherical_wrist(R36: ArrayLike, wrist_ref: float = 0.0, *, theta4_ref: Any = _UNSET) -> list[IKSolution]:
     """Both ZYZ solutions (θ₄, θ₅, θ₆) of a spherical wrist, ³R₆ = Rz(θ₄) Ry(θ₅) Rz(θ₆).
 
     Seed 003, eqs. 15–17, with ³R₆ = [n s a]:
@@ -169,7 +172,7 @@ def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSoluti
     θ₅ ∈ (−π, 0): θ₄ = atan2(−a_y, −a_x), θ₅ = atan2(−√(a_x² + a_y²), a_z), θ₆ = atan2(−s_z, n_z).
 
     Degenerate case (θ₅ = 0 or π, the axes of joints 4 and 6 aligned): only θ₄ ± θ₆ is
-    determined. The documented choice: θ₄ = ``theta4_ref`` (default 0, or pass the current
+    determined. The documented choice: θ₄ = ``wrist_ref`` (default 0, or pass the current
     θ₄ to avoid a jump) and θ₆ takes the rest; one solution is returned, flagged
     ``degenerate``.
 
@@ -177,8 +180,8 @@ def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSoluti
     ----------
     R36 : array_like, shape (3, 3)
         Orientation of the wrist's last frame in the frame before it (a rotation matrix).
-    theta4_ref : float, optional
-        θ₄ taken at the degenerate case, rad (default 0).
+    wrist_ref : float, optional
+        θ₄ taken at the degenerate case, rad (default 0). (Formerly ``theta4_ref=``, deprecated.)
 
     Returns
     -------
@@ -196,7 +199,9 @@ def ik_spherical_wrist(R36: ArrayLike, theta4_ref: float = 0.0) -> list[IKSoluti
     [('wrist singular', True)]
     """
     R = check_rotation(R36, "R36")
-    t4_ref = as_scalar(theta4_ref, "theta4_ref")
+    wrist_ref = renamed_argument("ik_spherical_wrist(theta4_ref=)", wrist_ref, theta4_ref, _UNSET,
+                                 "ik_spherical_wrist", default=0.0)
+    t4_ref = as_scalar(wrist_ref, "wrist_ref")
     return [IKSolution(cast(np.ndarray, wrap_angle(np.array(q))), True, label, degenerate)
             for q, label, degenerate in _wrist(R, t4_ref)]
 
@@ -287,7 +292,7 @@ def _puma_params(table: DHTable) -> tuple[float, float, float, float, float, flo
     return d[0], a[1], a[2], d[1] + d[2], d[3], d[5], offsets
 
 
-def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IKSolution]:
+def ik_puma560(table: DHTable, T: ArrayLike, wrist_ref: float = 0.0, *, theta4_ref: Any = _UNSET) -> list[IKSolution]:
     """All 8 configurations of a PUMA 560-type arm reaching the tool pose T (Pieper's method).
 
     Method. With ⁰T₆ = base⁻¹ T tool⁻¹, the wrist centre p = ⁰p₆ − d₆ ⁰z₆ satisfies
@@ -309,8 +314,8 @@ def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IK
         transforms); anything else raises :class:`~robokit.errors.InputError`.
     T : array_like, shape (4, 4)
         Target pose of the tool frame in base_link, m (as ``table.fk`` returns it).
-    theta4_ref : float, optional
-        θ₄ taken at a wrist singularity, rad (default 0).
+    wrist_ref : float, optional
+        θ₄ taken at a wrist singularity, rad (default 0). (Formerly ``theta4_ref=``, deprecated.)
 
     Returns
     -------
@@ -340,7 +345,9 @@ def ik_puma560(table: DHTable, T: ArrayLike, theta4_ref: float = 0.0) -> list[IK
             _PUMA_CHECKED[id(table)] = (weakref.ref(table, drop), table.links)
         except TypeError:  # pragma: no cover - a table without weak references: check every call
             pass
-    ref = theta4_ref if type(theta4_ref) is float else as_scalar(theta4_ref, "theta4_ref")
+    if theta4_ref is not _UNSET:
+        wrist_ref = renamed_argument("ik_puma560(theta4_ref=)", wrist_ref, theta4_ref, _UNSET, "ik_puma560", default=0.0)
+    ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
     return analytic_ik(table).solve(check_pose(T), ref)
 
 

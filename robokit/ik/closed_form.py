@@ -437,6 +437,14 @@ class AnalyticIK:
         InputError
             If the robot has no closed form (``reason`` is in the message) or T is not a rigid
             transform.
+
+        Examples
+        --------
+        >>> robot = rk.load("puma560")
+        >>> q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+        >>> sols = analytic_ik(robot).solve(robot.frame_pose(q))
+        >>> len(sols), any(np.allclose(s.q, q) for s in sols)
+        (8, True)
         """
         if not self._unchanged():
             self._build()

@@ -45,12 +45,9 @@ def _check_screws(S: ArrayLike, name: str) -> np.ndarray:
 
 
 def _fk_body(M: np.ndarray, Blist: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    from robokit.kinematics.poe import screw_exponentials
+    from robokit.kinematics.poe import fkin_body  # the compiled PoE kernel, robokit's one PoE FK
 
-    T = M
-    for E in screw_exponentials(Blist, theta):
-        T = T @ E
-    return T
+    return fkin_body(M, Blist, theta)
 
 
 def _jac_body(Blist: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -209,18 +206,13 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
     False
     """
     Slist, M, T, theta, eomg, ev = _newton_args(Slist, "Slist", M, T, thetalist0, eomg, ev)
-    n = Slist.shape[1]
-    from robokit.kinematics.poe import prefix_products, screw_exponentials
+    from robokit.kinematics.poe import fkin_space, jacobian_space  # the compiled PoE kernels
 
     Slist = np.ascontiguousarray(Slist)
     best = _Best(Slist)
     for _ in range(max_iterations + 1):
-        # forward kinematics and space Jacobian from one set of exponentials
-        P = prefix_products(screw_exponentials(Slist, theta))  # prefix products e^{[S1]θ1}⋯e^{[Si]θi}
-        Tsb = P[-1] @ M
-        Js = Slist.copy()
-        if n > 1:
-            Js[:, 1:] = np.einsum("kij,jk->ik", lie.adjoint(P[:-1]), Slist[:, 1:])
+        Tsb = fkin_space(M, Slist, theta)
+        Js = jacobian_space(Slist, theta)
         Vs = lie.adjoint(Tsb) @ lie.log6(lie.inv(Tsb) @ T)
         if np.linalg.norm(Vs[:3]) <= eomg and np.linalg.norm(Vs[3:]) <= ev:
             return theta, True

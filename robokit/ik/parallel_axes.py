@@ -101,7 +101,7 @@ class ParallelAxesSolver:
         cf[34], cf[35] = self.s2, self.sig
         return ci, cf, np.zeros((5, 5))
 
-    def solve(self, T06: np.ndarray, q6_ref: float) -> list[tuple[Sequence[float], str, bool]]:
+    def solve(self, T06: np.ndarray, wrist_ref: float) -> list[tuple[Sequence[float], str, bool]]:
         """Rows (q (6,), label, degenerate) of every solution for the pose T06 (frame 0′).
 
         Plain float arithmetic (no per-solution numpy): the poses of step 4 are composed
@@ -110,7 +110,7 @@ class ParallelAxesSolver:
         T = T06.tolist()
         rows: list[Row] = []
         for branch in self._branches(T):
-            rows.extend(self._complete(T, branch, q6_ref))
+            rows.extend(self._complete(T, branch, wrist_ref))
         return rows
 
     def position(self, T06: np.ndarray) -> list[PositionBranch]:
@@ -162,7 +162,7 @@ class ParallelAxesSolver:
             out.append(PositionBranch((t1 - th0[0],), shoulder, False, t1))
         return out
 
-    def _complete(self, T: list[list[float]], branch: PositionBranch, q6_ref: float) -> list[Row]:
+    def _complete(self, T: list[list[float]], branch: PositionBranch, wrist_ref: float) -> list[Row]:
         (r00, r01, r02, px), (r10, r11, r12, py), (r20, r21, r22, pz) = T[:3]
         ca, sa = self.ca, self.sa
         ca1, sa1, ca4, sa4, ca5, sa5 = ca[0], sa[0], ca[3], sa[3], ca[4], sa[4]
@@ -191,7 +191,7 @@ class ParallelAxesSolver:
             c5, s5 = math.cos(t5), math.sin(t5)
             vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
             if rho <= 1e-10:
-                t6, degenerate = th0[5] + q6_ref, True
+                t6, degenerate = th0[5] + wrist_ref, True
             else:
                 t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
             c6, s6 = math.cos(t6), math.sin(t6)
@@ -229,8 +229,3 @@ class ParallelAxesSolver:
                 q = (t1 - th0[0], t2 - th0[1], t3 - th0[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
                 out.append((q, shoulder + elbow + wrist, degenerate))
         return out
-
-
-def _z4(theta: float, d: float) -> np.ndarray:
-    c, s = math.cos(theta), math.sin(theta)
-    return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]])

@@ -43,7 +43,7 @@ from robokit.kernels.lie import all_finite, copy44, mul_tt, mul_tt_inplace
 from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
 __all__ = [
-    "pack_dh", "dh_fk", "dh_jacobian", "dh_static_torques", "dh_inverse_dynamics",
+    "pack_dh", "dh_fk", "dh_frames", "dh_jacobian", "dh_static_torques", "dh_inverse_dynamics",
     "dh_fk_batch", "dh_jacobian_batch", "dh_static_torques_batch", "dh_inverse_dynamics_batch",
 ]
 
@@ -338,6 +338,20 @@ def dh_fk(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, q: n
     W = np.empty((3, 4, 4))
     fk_into(P, modified, base, tool, q, W[0], W[1], W[2])
     return W[0].copy()
+
+
+@njit(f"{_A3}({_A2}, int64, {_A2}, {_A1})")
+def dh_frames(P: np.ndarray, modified: int, base: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Poses (n + 1, 4, 4) of DH frames {0..n} in base_link: ``base · ⁰T₁ ⋯ ⁱ⁻¹Tᵢ`` (row 0 is base)."""
+    check_q(P, q)
+    n = P.shape[0]
+    out = np.empty((n + 1, 4, 4))
+    L = np.empty((4, 4))
+    copy44(base, out[0])
+    for i in range(n):
+        link_transform(P, i, modified, q[i], L)
+        mul_tt(out[i], L, out[i + 1])
+    return out
 
 
 @njit(f"{_A2}({_TABLE}, {_A1}, int64)")

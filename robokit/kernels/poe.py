@@ -40,13 +40,14 @@ from robokit.kernels.lie import adjoint_screw, all_finite, copy44, exp_screw, mu
 __all__ = [
     "fkin_space", "fkin_body", "jacobian_space", "jacobian_body",
     "fkin_space_batch", "fkin_body_batch", "jacobian_space_batch", "jacobian_body_batch",
-    "block_range", "n_blocks", "MAX_BLOCKS", "SERIAL_BELOW",
+    "block_range", "n_blocks", "MAX_BLOCKS", "SERIAL_BELOW", "screw_exponentials",
 ]
 
 _SIG_FK = "float64[:, ::1](float64[:, ::1], float64[:, ::1], float64[::1])"
 _SIG_FK_BATCH = "float64[:, :, ::1](float64[:, ::1], float64[:, ::1], float64[:, ::1])"
 _SIG_J = "float64[:, ::1](float64[:, ::1], float64[::1])"
 _SIG_J_BATCH = "float64[:, :, ::1](float64[:, ::1], float64[:, ::1])"
+_SIG_EXP = "float64[:, :, :, ::1](float64[:, ::1], float64[:, ::1])"
 
 
 # ------------------------------------------------------------------ blocks for the batched kernels
@@ -127,6 +128,21 @@ def fkin_body_into(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray, T: n
     for i in range(Blist.shape[1]):
         exp_screw(Blist, i, thetalist[i], E)
         mul_tt_inplace(T, E, tmp)
+
+
+@njit(_SIG_EXP)
+def screw_exponentials(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
+    """Every joint's exponential ``e^{[Sⱼ]θₖⱼ}`` (N, n, 4, 4) for screws ``Slist`` (6, n) at the N
+    configurations ``thetas`` (N, n): :func:`robokit.kernels.lie.exp_screw` for each, the one
+    screw exponential of robokit (the factors of the PoE product, for callers that need them
+    one by one: the Newton–Euler link transforms, the numeric IK, the calibration chain). The
+    caller checks that ``thetas`` has n columns."""
+    N, n = thetas.shape
+    out = np.empty((N, n, 4, 4))
+    for k in range(N):
+        for j in range(n):
+            exp_screw(Slist, j, thetas[k, j], out[k, j])
+    return out
 
 
 @njit(_SIG_FK)

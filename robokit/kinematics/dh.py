@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_vector, check_reference
+from robokit.frames import DEFAULT_FRAME, Frame, reference_or_default
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -79,7 +80,7 @@ def _tool_pose(k: ModuleType, table: DHTable, q: ArrayLike) -> np.ndarray:
     return np.asarray(k.dh_fk(P, modified, base, tool, qv * signs if signs is not None else qv))
 
 
-def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.ndarray:
+def dh_jacobian(table: DHTable, q: ArrayLike, reference: Frame | str = DEFAULT_FRAME) -> np.ndarray:
     """Jacobian (6×n, rows (ω; v)) of the tool of a :class:`DHTable`, by outward velocity propagation.
 
     Parameters
@@ -88,12 +89,12 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
         Standard or modified convention, revolute and prismatic joints, with its base and tool.
     q : (n,) array_like
         Joint values (rad for revolute, m for prismatic joints).
-    reference : str, default "base"
-        Where the twist is expressed, in robokit's one vocabulary (the *Conventions* page):
-        "base" = "local_world_aligned" — ω and the velocity of the tool origin in base_link axes
-        (the lecture's geometric Jacobian ⁰J, Pinocchio's LOCAL_WORLD_ALIGNED); "tool" = "local" =
-        "body" — the same twist in the tool frame's axes (body Jacobian, LOCAL); "world" = "space" —
-        the twist taken at the base origin, ``v₀ = v_tool + p × ω`` (space Jacobian, WORLD).
+    reference : Frame or str, default Frame.LOCAL_WORLD_ALIGNED
+        Where the twist is expressed, a :class:`robokit.Frame` (the *Conventions* page):
+        ``LOCAL_WORLD_ALIGNED`` (formerly "base") — ω and the velocity of the tool origin in
+        base_link axes (the lecture's geometric Jacobian ⁰J); ``LOCAL`` (formerly "tool"/"body") —
+        the same twist in the tool frame's axes (body Jacobian); ``WORLD`` (formerly "space") — the
+        twist taken at the base origin, ``v₀ = v_tool + p × ω`` (space Jacobian).
 
     Returns
     -------
@@ -117,7 +118,7 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     if ref == "world":  # the space Jacobian: the same twist with v taken at the base origin, v₀ = v_p + p × ω
-        J = dh_jacobian(table, q, "local_world_aligned")
+        J = dh_jacobian(table, q, Frame.LOCAL_WORLD_ALIGNED)
         p = _tool_pose(k, table, q)[:3, 3]
         J[3:] += np.cross(p, J[:3], axis=0)
         return J
@@ -133,7 +134,7 @@ def dh_jacobian(table: DHTable, q: ArrayLike, reference: str = "base") -> np.nda
     return k.dh_jacobian(P, modified, base, tool, _q(q, table.n), in_tool)
 
 
-def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference: str = "tool") -> np.ndarray:
+def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference: Frame | str | None = None) -> np.ndarray:
     """Joint torques that balance a static tip wrench, by inward force propagation (Lecture 7).
 
     ``f_i = f_{i+1}``, ``n_i = n_{i+1} + (o_{i+1} − o_i) × f_{i+1}``, ``τ_i = ẑ_iᵀ n_i`` (revolute) or
@@ -148,11 +149,13 @@ def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference:
     F_tip : (6,) array_like
         ``(n, f)``: moment (N·m) and force (N) the tool exerts on the environment, angular first
         as Modern Robotics' F_tip, in the frame ``reference`` names.
-    reference : str, default "tool"
-        The frame F_tip is given in, in the same vocabulary as :func:`dh_jacobian`: "tool" = "local"
-        — tool axes, moment about the tool origin; "base" = "local_world_aligned" — base_link axes,
-        moment about the tool origin (a force sensor's reading moved to the tool); "world" = "space"
-        — base_link axes, moment about the base origin.
+    reference : Frame or str, optional
+        The frame F_tip is given in, a :class:`robokit.Frame` as for :func:`dh_jacobian`:
+        ``LOCAL_WORLD_ALIGNED`` (robokit's one default) — base_link axes, moment about the tool
+        origin (a force sensor's reading moved to the tool); ``LOCAL`` — tool axes, moment about
+        the tool origin; ``WORLD`` — base_link axes, moment about the base origin. Omitted, this
+        function still reads F_tip in LOCAL (its former default) with a ``FutureWarning`` until
+        robokit 0.4.0: pass ``reference=`` to choose.
 
     Returns
     -------
@@ -167,10 +170,11 @@ def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference:
 
     >>> from robokit.description import DHTable, DHLink
     >>> arm = DHTable("planar2", "standard", (DHLink("R", a=1.0), DHLink("R", a=1.0)))
-    >>> dh_static_torques(arm, [0.0, 0.0], [0, 0, 0, 0, -10, 0], reference="base").round(4)
+    >>> from robokit.frames import Frame
+    >>> dh_static_torques(arm, [0.0, 0.0], [0, 0, 0, 0, -10, 0], reference=Frame.LOCAL_WORLD_ALIGNED).round(4)
     array([-20., -10.])
     """
-    ref = check_reference(reference)
+    ref = reference_or_default(reference, "dh_static_torques", Frame.LOCAL)
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     signs = flip_signs(table)

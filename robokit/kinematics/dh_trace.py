@@ -64,12 +64,9 @@ def dh_link_transform(a: float, alpha: float, d: float, theta: float, modified: 
     >>> dh_link_transform(1.0, 0.0, 0.0, np.pi / 2, False)[:3, 3].round(4)
     array([0., 1., 0.])
     """
-    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
-    if modified:
-        return np.array([[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, -sa * d],
-                         [st * sa, ct * sa, ca, ca * d], [0.0, 0.0, 0.0, 1.0]])
-    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
-                     [0.0, sa, ca, d], [0.0, 0.0, 0.0, 1.0]])
+    from robokit.description.dh import dh_transform  # the compiled kernel's link transform
+
+    return dh_transform(float(a), float(alpha), float(d), float(theta), "modified" if modified else "standard")
 
 
 def link_transforms(table: DHTable, q: np.ndarray) -> list[np.ndarray]:

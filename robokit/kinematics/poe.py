@@ -112,42 +112,9 @@ def _run_fk(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray],
         return batch(M, S, th[None])[0]
 
 
-# Vectorised numpy helpers (the screw exponentials of many joints/configurations at once), used by
-# other modules (the Newton–Euler model's link transforms, the numeric IK). The FK and Jacobian
-# themselves are the compiled kernels in robokit.kernels.poe.
-_CACHE: dict = {}
-
-
-def _screw_data(S: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Per-screw constants, cached by the screws' bytes: for each column, the unit-axis
-    skew matrix W and W², the scaled v, Wv, W²v and the scale ‖ω‖ (1 for prismatic)."""
-    key = (S.shape, S.tobytes())
-    hit = _CACHE.get(key)
-    if hit is not None:
-        return hit
-    n = S.shape[1]
-    W = np.zeros((n, 3, 3))
-    v = np.zeros((n, 3))
-    scale = np.ones(n)
-    rev = np.zeros(n, dtype=bool)
-    for i in range(n):
-        w, vi = S[:3, i], S[3:, i]
-        wn = float(np.linalg.norm(w))
-        if wn > 1e-12:
-            rev[i] = True
-            scale[i] = wn
-            w = w / wn
-            vi = vi / wn
-            W[i] = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]]
-        v[i] = vi
-    W2 = W @ W
-    Wv = np.einsum("nij,nj->ni", W, v)
-    W2v = np.einsum("nij,nj->ni", W2, v)
-    data = (W, W2, v, Wv, W2v, scale, rev)
-    if len(_CACHE) > 64:
-        _CACHE.clear()
-    _CACHE[key] = data
-    return data
+# The screw exponentials of many joints/configurations at once, for the modules that need the factors
+# one by one (the Newton–Euler model's link transforms, the numeric IK, the calibration chain). Like the
+# FK and the Jacobians, they are the compiled kernels of robokit.kernels (the one screw exponential).
 
 
 def screw_exponentials(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -155,28 +122,36 @@ def screw_exponentials(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
 
     Closed form for a screw with ‖ω‖ ≠ 0 (scaled to a unit axis, θ' = ‖ω‖θ):
     R = I + sin θ' W + (1 − cos θ') W², p = θ' v + (1 − cos θ') W v + (θ' − sin θ') W² v;
-    for ω = 0 (prismatic): R = I, p = θ v.
+    for ω = 0 (prismatic): R = I, p = θ v — computed by :func:`robokit.kernels.lie.exp_screw`
+    (through :func:`robokit.kernels.poe.screw_exponentials`).
+
+    Parameters
+    ----------
+    S : numpy.ndarray, shape (6, n)
+        Screw axes, one column per joint, ``(ω; v)``.
+    theta : numpy.ndarray, shape (..., n)
+        Joint values (rad, m), any leading dimensions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n, 4, 4)
+        The exponentials.
+
+    Examples
+    --------
+    >>> S = np.array([[0.0], [0.0], [1.0], [0.0], [0.0], [0.0]])  # about z through the origin
+    >>> screw_exponentials(S, np.array([np.pi / 2]))[0][:2, :2].round(4).tolist()
+    [[0.0, -1.0], [1.0, 0.0]]
     """
-    W, W2, v, Wv, W2v, scale, rev = _screw_data(S)
-    th = theta * scale
-    st, ct = np.sin(th), np.cos(th)
-    st = np.where(rev, st, 0.0)
-    omc = np.where(rev, 1.0 - ct, 0.0)
-    tms = np.where(rev, th - st, 0.0)
-    out = np.zeros(theta.shape + (4, 4))
-    out[..., :3, :3] = np.eye(3) + st[..., None, None] * W + omc[..., None, None] * W2
-    out[..., :3, 3] = th[..., None] * v + omc[..., None] * Wv + tms[..., None] * W2v
-    out[..., 3, 3] = 1.0
-    return out
+    from robokit.kernels.poe import screw_exponentials as kernel
 
-
-def prefix_products(E: np.ndarray) -> np.ndarray:
-    """Running products along the joint axis: E (..., n, 4, 4) → P (..., n, 4, 4), Pᵢ = E₀⋯Eᵢ."""
-    P = np.empty_like(E)
-    P[..., 0, :, :] = E[..., 0, :, :]
-    for i in range(1, E.shape[-3]):
-        P[..., i, :, :] = P[..., i - 1, :, :] @ E[..., i, :, :]
-    return P
+    S = np.ascontiguousarray(S, dtype=float)
+    theta = np.asarray(theta, dtype=float)
+    n = S.shape[1] if S.ndim == 2 and S.shape[0] == 6 else -1
+    if n < 0 or theta.ndim < 1 or theta.shape[-1] != n:
+        raise InputError(f"screw_exponentials: expected S (6, n) and theta (..., n), got {S.shape} and {theta.shape}")
+    flat = np.ascontiguousarray(theta.reshape(-1, n))
+    return kernel(S, flat).reshape(theta.shape + (4, 4))
 
 
 def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:

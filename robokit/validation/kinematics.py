@@ -39,11 +39,11 @@ def checks(rng: np.random.Generator) -> list[CheckRow]:
         e_b = e_t = e_f = 0.0
         for _ in range(SAMPLES):
             q = r.random_configuration(rng)
-            e_b = max(e_b, np.abs(dh_jacobian(r.dh, q, "base") - r.jacobian(q, reference="local_world_aligned")).max())
+            e_b = max(e_b, np.abs(dh_jacobian(r.dh, q, "local_world_aligned") - r.jacobian(q, reference="local_world_aligned")).max())
             Jt = r.jacobian(q, reference="local")
-            e_t = max(e_t, np.abs(dh_jacobian(r.dh, q, "tool") - Jt).max())
+            e_t = max(e_t, np.abs(dh_jacobian(r.dh, q, "local") - Jt).max())
             F = rng.normal(size=6)
-            e_f = max(e_f, np.abs(dh_static_torques(r.dh, q, F) - Jt.T @ F).max())
+            e_f = max(e_f, np.abs(dh_static_torques(r.dh, q, F, reference="local") - Jt.T @ F).max())
         rows += [
             CheckRow("DH propagation Jacobian (base) vs computeFrameJacobian (LOCAL_WORLD_ALIGNED)", name, SAMPLES,
                      e_b, 1e-9, "abs, max entry"),

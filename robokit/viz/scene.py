@@ -178,8 +178,12 @@ class Scene:
 
     Examples
     --------
-    >>> with Scene("puma560") as s:   # doctest: +SKIP
-    ...     page = s.show([0, 0.5, -0.5, 0, 0, 0]).frames().frame_camera().html()
+    A scene starts a meshcat server on loopback (``close()`` or a ``with`` block stops it); the
+    methods' examples below continue with this one:
+
+    >>> s = Scene("twolink")
+    >>> s.robot.name, s.q.tolist()
+    ('twolink', [0.0, 0.0])
     """
 
     _views = 0  # pages written by notebook(), for unique file names
@@ -213,7 +217,23 @@ class Scene:
 
     # ------------------------------------------------------------------ drawing
     def show(self, q: ArrayLike | None = None) -> Scene:
-        """Draw the robot at joint angles ``q`` (default zero). Returns self."""
+        """Draw the robot at joint values ``q``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,), optional
+            Joint values (rad / m; default zero).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.show([0.3, -0.6]).q.tolist()
+        [0.3, -0.6]
+        """
         q = np.zeros(self.robot.n) if q is None else np.asarray(q, dtype=float)
         if q.shape != (self.robot.n,):
             raise InputError(f"q: expected {self.robot.n} joint values for {self.robot.name}, got shape {q.shape}")
@@ -226,8 +246,25 @@ class Scene:
     def frames(self, names: Iterable[str] | None = None, scale: float | None = None, labels: bool = True) -> Scene:
         """Draw triads (x red, y green, z blue) for frames of the robot at the current configuration.
 
-        names : frame names (default: ``dh_0..dh_N`` and ``tool`` for DH robots, else the
-        joint frames and the tip). scale : triad length (m; default from the robot's size).
+        Parameters
+        ----------
+        names : iterable of str, optional
+            Frame names (default: ``dh_0..dh_N`` and ``tool`` for DH robots, else the joint frames
+            and the tip).
+        scale : float, optional
+            Triad length (m; default from the robot's size).
+        labels : bool, optional
+            Draw each frame's name above it (default True).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.frames(["dh_0", "tool"], scale=0.2) is s
+        True
         """
         g = require("meshcat.geometry", "the viewer")
 
@@ -270,7 +307,8 @@ class Scene:
 
         Examples
         --------
-        >>> Scene("puma560").frames().move_frames([0, 0.5, -0.5, 0, 0, 0])   # doctest: +SKIP
+        >>> s.move_frames([0.3, -0.6]) is s
+        True
         """
         names, height = self._frames
         if not names:
@@ -289,7 +327,29 @@ class Scene:
         return self
 
     def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
-        """A sphere at position ``p`` (3,) in the base frame."""
+        """A sphere at position ``p`` in the base frame.
+
+        Parameters
+        ----------
+        name : str
+            Its node name (``points/<name>``; the same name replaces it).
+        p : array_like, shape (3,)
+            Centre (m, base frame).
+        radius : float, optional
+            Radius (m).
+        color : int, optional
+            0xRRGGBB.
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.point("target", [1.0, 0.5, 0.0]) is s
+        True
+        """
         g = require("meshcat.geometry", "the viewer")
 
         p = np.asarray(p, dtype=float).reshape(3)
@@ -301,7 +361,27 @@ class Scene:
         return self
 
     def frame(self, name: str, T: ArrayLike, scale: float = 0.1) -> Scene:
-        """A triad at the pose ``T`` (4×4) in the base frame."""
+        """A triad at the pose ``T`` in the base frame.
+
+        Parameters
+        ----------
+        name : str
+            Its node name (``poses/<name>``).
+        T : array_like, shape (4, 4)
+            The pose (m, base frame).
+        scale : float, optional
+            Triad length (m).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.frame("goal", np.eye(4), scale=0.2) is s
+        True
+        """
         g = require("meshcat.geometry", "the viewer")
 
         self.vis["poses"][name].set_object(g.triad(scale))
@@ -309,7 +389,29 @@ class Scene:
         return self
 
     def path(self, name: str, points: ArrayLike, color: int = 0x2060E0, linewidth: float = 3.0) -> Scene:
-        """A polyline through ``points`` (K, 3) in the base frame."""
+        """A polyline through ``points`` in the base frame.
+
+        Parameters
+        ----------
+        name : str
+            Its node name (``paths/<name>``).
+        points : array_like, shape (K, 3)
+            The vertices (m, base frame), K ≥ 2.
+        color : int, optional
+            0xRRGGBB.
+        linewidth : float, optional
+            Line width (px, where the browser honours it).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.path("reach", [[1.8, 0, 0], [1.0, 0.8, 0], [0.2, 0.0, 0.0]]) is s
+        True
+        """
         g = require("meshcat.geometry", "the viewer")
 
         P = np.asarray(points, dtype=float)
@@ -325,6 +427,25 @@ class Scene:
 
         Axes and radii from :func:`robokit.kinematics.velocity_ellipsoid_at` (the singular values
         and left singular vectors of J_v), radii times ``scale`` (m per m/s) so it fits the picture.
+
+        Parameters
+        ----------
+        frame : str, optional
+            The frame (default the tip).
+        scale : float, optional
+            m drawn per m/s of tool speed.
+        color : int, optional
+            0xRRGGBB.
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.velocity_ellipsoid(scale=0.1) is s
+        True
         """
         g = require("meshcat.geometry", "the viewer")
 
@@ -387,8 +508,54 @@ class Scene:
             self._extra_points.extend(c + rad * e for e in np.vstack([np.eye(3), -np.eye(3)]))
         return self
 
+    def include(self, points: ArrayLike) -> Scene:
+        """Make :meth:`frame_camera` frame these points too, drawing nothing.
+
+        For content drawn straight into ``vis`` (a point cloud, say) that the camera should see.
+
+        Parameters
+        ----------
+        points : array_like, shape (K, 3)
+            Positions (m, base frame).
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.include([[2.0, 2.0, 0.0], [-2.0, -2.0, 0.5]]) is s
+        True
+        """
+        P = np.asarray(points, dtype=float)
+        if P.ndim != 2 or P.shape[1] != 3 or not np.all(np.isfinite(P)):
+            raise InputError(f"points: expected finite positions of shape (K, 3), got shape {P.shape}")
+        self._extra_points.extend(P)
+        return self
+
     def animate(self, Q: ArrayLike, t: ArrayLike | None = None, fps: float = 30.0) -> Scene:
-        """Animate joint configurations ``Q`` (K, n) (at times ``t`` (K,), or ``fps``), playable in the page."""
+        """Animate joint configurations, playable in the page.
+
+        Parameters
+        ----------
+        Q : array_like, shape (K, n)
+            The configurations (rad / m), one per frame.
+        t : array_like, shape (K,), optional
+            Their times (s, increasing); default one frame each at ``fps``.
+        fps : float, optional
+            Frames per second.
+
+        Returns
+        -------
+        Scene
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.animate(np.linspace([0.0, 0.0], [0.5, -1.0], 10), fps=10) is s
+        True
+        """
         Animation = require("meshcat.animation", "the viewer").Animation
 
         Q = np.asarray(Q, dtype=float)
@@ -455,7 +622,7 @@ class Scene:
 
         Examples
         --------
-        >>> Scene("puma560").ground_grid().grid["z"]   # doctest: +SKIP
+        >>> s.ground_grid().grid["z"]
         0.0
         """
         g = require("meshcat.geometry", "the viewer")
@@ -493,7 +660,12 @@ class Scene:
         Returns
         -------
         Scene
-            self.
+            self (the calls chain).
+
+        Examples
+        --------
+        >>> s.frame_camera(0.8) is s
+        True
         """
         if self.grid is None:
             self.ground_grid()
@@ -578,7 +750,24 @@ class Scene:
         made a plain file name by :func:`robokit._names.safe_stem`) and displayed in an
         ``IFrame``, so the executed notebook stays small (a meshed robot's page is 5–25 MB).
 
-        Returns the ``IPython.display.IFrame``.
+        Parameters
+        ----------
+        height : int, optional
+            Height of the frame (px).
+        path : str or path, optional
+            Where to write the page (default as above).
+
+        Returns
+        -------
+        IPython.display.IFrame
+            The frame showing the written page.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> view = s.notebook(height=300, path=pathlib.Path(tempfile.mkdtemp()) / "twolink.html")
+        >>> view.height, view.src.endswith("twolink.html")
+        (300, True)
         """
         IFrame = require("IPython.display", "showing a scene in a notebook").IFrame
 
@@ -625,7 +814,19 @@ class Scene:
         return teach_widget(self, q=q, height=height, world=world)
 
     def close(self) -> None:
-        """Stop the meshcat server this scene started (if it started one)."""
+        """Stop the meshcat server this scene started (if it started one).
+
+        Returns
+        -------
+        None
+            ``vis`` is None afterwards.
+
+        Examples
+        --------
+        >>> s.close()
+        >>> s.vis is None
+        True
+        """
         if self._own and self.vis is not None:
             stop_server(getattr(self.vis.window, "server_proc", None))
             self.vis = None

@@ -23,28 +23,6 @@ if TYPE_CHECKING:
 
 __all__ = ["view_html", "load_trajectory", "MAX_TRAJECTORY_ROWS"]
 
-def _npy_shape(path: Path) -> tuple[int, ...]:
-    """The shape a ``.npy`` file declares, checked from its header before anything is loaded:
-    a real-number dtype and header plus data exactly the file's size (ValueError otherwise)."""
-    import stat
-
-    st = os.stat(path)
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError("not a regular file")
-    with open(path, "rb") as f:
-        version = np.lib.format.read_magic(f)
-        if version == (1, 0):
-            shape, _, dtype = np.lib.format.read_array_header_1_0(f, max_header_size=10_000)
-        else:
-            shape, _, dtype = np.lib.format.read_array_header_2_0(f, max_header_size=10_000)
-        start = f.tell()
-    if dtype.hasobject or dtype.kind not in "fiu" or dtype.fields is not None:
-        raise InputError(f"dtype {dtype.str!r}: expected real numbers")
-    if start + int(np.prod(shape, dtype=object)) * dtype.itemsize != st.st_size:
-        raise InputError(f"its header declares shape {tuple(shape)}, which does not match the file's size")
-    return tuple(shape)
-
-
 #: Most samples (rows) a trajectory file may hold — and ``robokit plan`` writes: 10⁵ frames are 55
 #: minutes at 30 fps, and the page stays below about 100 MB for a 6-joint arm.
 MAX_TRAJECTORY_ROWS = 100_000

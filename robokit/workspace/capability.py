@@ -627,11 +627,6 @@ class _Cluster:
             self.cluster.close()
 
 
-def _first_line(exc: BaseException) -> str:
-    text = str(exc).strip()
-    return text.splitlines()[0] if text else type(exc).__name__
-
-
 def _run_dask(client: Any, todo: list[int], centres_of: Callable[[int], np.ndarray], desc: RobotSpec, R: np.ndarray, restarts: int, seed: int, finish: Callable[[int, np.ndarray], None], advance: Callable[[], None], fingerprint: str, world: Any = None) -> int:
     """Run the chunks ``todo`` on Dask, at most two tasks per worker in flight; returns the worker count."""
     as_completed = require("distributed", "a capability map on a Dask cluster").as_completed

@@ -36,32 +36,14 @@ GRID_BYTES_PER_VOXEL = 56
 _MAX_BOX_VOXELS = 200_000_000
 
 
-def _exp_batch(S: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """(B, 4, 4) exponentials exp([S] θ) of one screw S (6,) (angular first) at angles θ (B,)."""
-    w, v = S[:3], S[3:]
-    B = len(theta)
-    E = np.zeros((B, 4, 4))
-    E[:, 3, 3] = 1.0
-    if np.linalg.norm(w) < 1e-12:  # prismatic: pure translation along v
-        E[:, :3, :3] = np.eye(3)
-        E[:, :3, 3] = theta[:, None] * v
-        return E
-    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
-    W2 = W @ W
-    s, c = np.sin(theta)[:, None, None], np.cos(theta)[:, None, None]
-    E[:, :3, :3] = np.eye(3) + s * W + (1 - c) * W2
-    G = theta[:, None, None] * np.eye(3) + (1 - c) * W + (theta[:, None, None] - s) * W2
-    E[:, :3, 3] = G @ v
-    return E
-
-
 def tool_positions(poe: PoEParams, Q: np.ndarray) -> np.ndarray:
-    """(B, 3) tool positions in the base frame at joint angles Q (B, n): ``e^{[S₁]θ₁}⋯e^{[Sₙ]θₙ} M``."""
-    S = np.asarray(poe.Slist, dtype=float)
-    T = np.broadcast_to(np.asarray(poe.M, dtype=float), (len(Q), 4, 4))
-    for i in range(S.shape[1] - 1, -1, -1):
-        T = _exp_batch(S[:, i], Q[:, i]) @ T
-    return T[:, :3, 3]
+    """(B, 3) tool positions in the base frame at joint angles Q (B, n): ``e^{[S₁]θ₁}⋯e^{[Sₙ]θₙ} M``,
+    by the compiled PoE kernel (:func:`robokit.kernels.poe.fkin_space_batch`, robokit's one PoE FK)."""
+    from robokit.kernels.poe import fkin_space_batch
+
+    M = np.ascontiguousarray(poe.M, dtype=float)
+    S = np.ascontiguousarray(poe.Slist, dtype=float)
+    return fkin_space_batch(M, S, np.ascontiguousarray(Q, dtype=float))[:, :3, 3]
 
 
 def _ranges(qlim: ArrayLike) -> tuple[np.ndarray, np.ndarray]:

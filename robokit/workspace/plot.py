@@ -244,7 +244,7 @@ def capability_html(cmap: CapabilityMap | str | os.PathLike[str], robot: Robot |
         with Scene(robot) as scene:
             scene.show(None)
             scene.vis["points/capability"].set_object(cloud)
-            scene._extra_points.extend(_outline(m.centres))  # the map is what the view frames
+            scene.include(_outline(m.centres))  # the map is what the view frames
             scene.frame_camera(0.7, azimuth, elevation)
             return _with_legend(scene.html(), m)
     vis = new_visualizer()

@@ -1,11 +1,10 @@
-"""Fixtures of the calibration tests: robots loaded once; the helpers in calibration_support.py and
-the hardening suite's CLI helpers (tests/hardening/hardening_support.py) put on sys.path."""
+"""Fixtures of the calibration tests: robots loaded once; the helpers in calibration_support.py put
+on sys.path (the CLI helpers of tests/support/hardening_support.py are put there by tests/conftest.py)."""
 import sys
 from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hardening"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import calibration_support as cs  # noqa: E402

@@ -1,9 +1,14 @@
-"""One ``reference=`` vocabulary for every Jacobian: each accepted name gives, in every function
-that takes it, the matrix Pinocchio's ``computeFrameJacobian`` gives with the matching
-``ReferenceFrame`` (world = space Jacobian, local = body Jacobian, local_world_aligned = the
-lecture's geometric Jacobian), and tip-wrench torques equal ``Jᵀ F`` with that Jacobian.
+"""One frame vocabulary for every Jacobian: each :class:`robokit.Frame` (and each accepted
+synonym) gives, in every function that takes it, the matrix Pinocchio's ``computeFrameJacobian``
+gives with the matching ``ReferenceFrame`` (WORLD = space Jacobian, LOCAL = body Jacobian,
+LOCAL_WORLD_ALIGNED = the lecture's geometric Jacobian), and tip-wrench torques equal ``Jᵀ F`` with
+that Jacobian. The former words warn once per process; every function has the one default.
 """
 from __future__ import annotations
+
+import inspect
+import subprocess
+import sys
 
 import numpy as np
 import pinocchio as pin
@@ -13,7 +18,14 @@ import robokit as rk
 from robokit._arrays import REFERENCES, check_reference
 from robokit.description.batch import batch_jacobian
 from robokit.errors import InputError
+from robokit.frames import DEFAULT_FRAME, Frame, as_frame
 from robokit.kinematics import dh_jacobian, dh_static_torques
+
+#: Every accepted spelling: the enum members, their values, Pinocchio's own members, the former words.
+SPELLINGS = ([(f, f.value) for f in Frame] + [(f.value, f.value) for f in Frame]
+             + [(getattr(pin.ReferenceFrame, f.name), f.value) for f in Frame]
+             + [(w, c) for w, c in REFERENCES.items() if w not in {f.value for f in Frame}])
+IDS = [repr(s) if isinstance(s, str) else f"{type(s).__name__}.{s.name}" for s, _ in SPELLINGS]
 
 PIN = {"world": pin.ReferenceFrame.WORLD, "local": pin.ReferenceFrame.LOCAL,
        "local_world_aligned": pin.ReferenceFrame.LOCAL_WORLD_ALIGNED}
@@ -51,6 +63,7 @@ def _configurations(robot, k=3, seed=0):
     return rng.uniform(-1.5, 1.5, size=(k, robot.n))
 
 
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
 def test_every_name_maps_onto_one_pinocchio_frame():
     assert set(REFERENCES.values()) == set(PIN)
     assert {check_reference(c) for c in PIN} == set(PIN)  # the canonical names map to themselves
@@ -59,7 +72,7 @@ def test_every_name_maps_onto_one_pinocchio_frame():
         assert check_reference(lecture) == canonical
 
 
-@pytest.mark.parametrize("bad", ["World", "spatial", "", None, 0])
+@pytest.mark.parametrize("bad", ["World", "spatial", "", 0, 1.5])
 def test_unknown_reference_lists_the_accepted_names(robots, bad):
     table = robots["rrr"].dh
     calls = (lambda: dh_jacobian(table, np.zeros(3), bad),
@@ -67,15 +80,15 @@ def test_unknown_reference_lists_the_accepted_names(robots, bad):
              lambda: dh_static_torques(table, np.zeros(3), np.ones(6), reference=bad),
              lambda: batch_jacobian(robots["rrr"], np.zeros((2, 3)), reference=bad))
     for call in calls:
-        with pytest.raises(InputError, match=r"reference: expected one of 'world', .*'base'"):
+        with pytest.raises(InputError, match=r"reference: expected a robokit.Frame .* 'world', .*'base'"):
             call()
 
 
-@pytest.mark.parametrize("name", sorted(REFERENCES))
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.parametrize("name,canonical", SPELLINGS, ids=IDS)
 @pytest.mark.parametrize("model", ["puma560", "rrr", "craig_rpr"])
-def test_every_function_equals_pinocchio(robots, model, name):
+def test_every_function_equals_pinocchio(robots, model, name, canonical):
     robot = robots[model]
-    canonical = REFERENCES[name]
     Q = _configurations(robot)
     F = np.array([0.3, -0.2, 0.5, 2.0, -1.0, 4.0])  # (n, f): moment, force
     for q in Q:
@@ -88,23 +101,71 @@ def test_every_function_equals_pinocchio(robots, model, name):
     np.testing.assert_allclose(batch_jacobian(robot, Q, reference=name), J_batch, atol=1e-9)
 
 
-def test_defaults_are_unchanged(robots):
-    robot = robots["puma560"]
+def test_one_default_and_the_former_defaults_keep_their_result(robots, monkeypatch):
+    """The declared default is DEFAULT_FRAME (LOCAL_WORLD_ALIGNED) or None; None keeps the former
+    default's result (WORLD for Robot.jacobian/batch_jacobian, LOCAL for dh_static_torques) with a
+    FutureWarning, until the removal release."""
+    from robokit.symbolic import SymbolicArm
+
+    assert DEFAULT_FRAME is Frame.LOCAL_WORLD_ALIGNED
+    for fn in (dh_jacobian, SymbolicArm.jacobian):
+        assert inspect.signature(fn).parameters["reference"].default is DEFAULT_FRAME, fn
+    for fn in (rk.Robot.jacobian, batch_jacobian, dh_static_torques):
+        assert inspect.signature(fn).parameters["reference"].default is None, fn
+    import robokit._deprecation as deprecation
+
+    monkeypatch.setattr(deprecation, "_WARNED", set())  # once per process: start this test afresh
+    robot = rk.load("puma560")  # a fresh Robot (one that answered the default before needs no second warning)
     q = _configurations(robot)[0]
     J_world, J_lwa, J_local = (_pin_jacobian(robot, q, c) for c in ("world", "local_world_aligned", "local"))
-    np.testing.assert_allclose(robot.jacobian(q), J_world, atol=1e-9)
+    with pytest.warns(FutureWarning, match=r"Robot.jacobian\(reference omitted\): the default frame becomes .*0\.4\.0"):
+        np.testing.assert_allclose(robot.jacobian(q), J_world, atol=1e-9)
+    with pytest.warns(FutureWarning, match="batch_jacobian"):
+        np.testing.assert_allclose(batch_jacobian(robot, q[None]), J_world[None], atol=1e-9)
     np.testing.assert_allclose(dh_jacobian(robot.dh, q), J_lwa, atol=1e-9)
     F = np.arange(1.0, 7.0)
-    np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), J_local.T @ F, atol=1e-9)
+    with pytest.warns(FutureWarning, match="dh_static_torques"):
+        np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), J_local.T @ F, atol=1e-9)
 
 
-@pytest.mark.parametrize("name", sorted(REFERENCES))
-def test_symbolic_jacobian_equals_pinocchio(robots, name):
+def test_former_words_warn_once_per_word_per_process():
+    """A fresh interpreter: "base" warns once however often it is used (and on the caller's line),
+    "tool" warns once more, the canonical names and Frame members never warn."""
+    code = """
+import warnings, numpy as np
+warnings.simplefilter("always")
+import robokit as rk
+from robokit.kinematics import dh_jacobian
+r = rk.load("rrr"); q = np.zeros(3)
+with warnings.catch_warnings(record=True) as w:
+    warnings.simplefilter("always")
+    for _ in range(3):
+        dh_jacobian(r.dh, q, "base"); r.jacobian(q, reference="base"); dh_jacobian(r.dh, q, "tool")
+    for f in rk.Frame:
+        dh_jacobian(r.dh, q, f); r.jacobian(q, reference=f.value)
+print(len(w), sorted(str(x.message).split(" ")[0] for x in w), {x.category.__name__ for x in w},
+      {x.filename for x in w})
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "2 [\"reference='base'\", \"reference='tool'\"] {'DeprecationWarning'} {'<string>'}", out
+
+
+def test_frame_mirrors_pinocchio():
+    assert [f.name for f in Frame] == ["WORLD", "LOCAL", "LOCAL_WORLD_ALIGNED"]
+    for f in Frame:
+        assert f.pinocchio == getattr(pin.ReferenceFrame, f.name)
+        assert as_frame(f.pinocchio) is f and as_frame(f.value) is f and f == f.value
+    assert rk.Frame is Frame
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.parametrize("name,canonical", SPELLINGS, ids=IDS)
+def test_symbolic_jacobian_equals_pinocchio(robots, name, canonical):
     from robokit.symbolic import SymbolicArm
 
     robot = robots["craig_rpr"]
     arm = SymbolicArm.from_dh_table(robot.dh)
     J = arm.lambdify(arm.jacobian(name, simplify=False))
     for q in _configurations(robot, k=2, seed=1):
-        J_pin = _pin_jacobian(robot, q, REFERENCES[name])
+        J_pin = _pin_jacobian(robot, q, canonical)
         np.testing.assert_allclose(np.asarray(J(q), dtype=float), J_pin, atol=1e-9)

@@ -1,4 +1,4 @@
-"""Hardening round 2, capability maps: robokit's cluster is locked, the chunk store is robokit's
+"""Capability maps under hostile input: robokit's cluster is locked, the chunk store is robokit's
 own, allocations are bounded up front, map files are checked before loading, and a scheduler
 address cannot hang or blow up the client."""
 import io

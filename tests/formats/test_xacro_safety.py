@@ -1,4 +1,4 @@
-"""Round 2: a xacro file is data. No expression in it ever runs code, the environment is never
+"""A xacro file is data. No expression in it ever runs code, the environment is never
 copied into an output, includes and YAML files are confined, and expansion work is bounded.
 
 Each payload would create a marker file if it ran; the first test shows that the same
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import hardening_support as hs
-import round2_support as r2
+import limited_cli as r2
 
 # A sandbox escape that gets through xacro's own filter (the dunders sit inside a lambda body).
 GADGET = ("(lambda: [c for c in ().__class__.__base__.__subclasses__() if c.__name__ == 'catch_warnings'][0]()"

@@ -1,4 +1,4 @@
-"""Round 2: errors by type. Every deliberate check raises InputError; the CLI maps InputError
+"""Errors by type. Every deliberate check raises InputError; the CLI maps InputError
 (and OSError on a user's file) to exit 2 and everything else to 3, whatever file raised it;
 array arguments are never cast silently (complex, strings, booleans, objects refused by name)."""
 import ast

@@ -1,4 +1,4 @@
-"""Helpers of the second hardening round: the CLI in a subprocess under resource limits (a
+"""The CLI in a subprocess under resource limits (a
 safety net so that a regression fails instead of swapping or hanging the machine — never a
 timed assertion), and small hostile files."""
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Helpers of the hardening suite: run the CLI (in a subprocess or in-process), write small
 robot files, and check the one-line error contract of ``robokit`` (docs/hardening.md).
-Imported by the tests as ``hardening_support`` (conftest.py puts this folder on sys.path)."""
+Imported by the tests as ``hardening_support`` (tests/conftest.py puts tests/support on sys.path)."""
 from __future__ import annotations
 
 import math
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-#: The repository root (this file is tests/hardening/conftest.py): subprocesses import robokit from here.
+#: The repository root (this file is tests/support/hardening_support.py): subprocesses import robokit from here.
 REPO = Path(__file__).resolve().parents[2]
 
 #: A generous hang guard for a subprocess (never a timing assertion).
