@@ -277,3 +277,98 @@ def check_reference(reference: object, name: str = "reference") -> str:
         accepted = ", ".join(repr(k) for k in REFERENCES)
         raise InputError(f"{name}: expected one of {accepted}, got {reference!r}")
     return canonical
+
+
+# ---------------------------------------------------------------------------------------------
+# arguments as the compiled kernels take them (the seed functions' fast paths)
+
+#: numpy's flag bits for C-contiguous, aligned and writeable: what a kernel signature's
+#: ``float64[::1]`` arrays must be (numba refuses a read-only or strided array for them).
+_KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
+#: Packed stacks of float64 arrays given as lists/tuples (the book's ``Mlist``/``Glist``), by their
+#: element shapes and bytes: the contents themselves are the key, so a list changed in place, an
+#: element replaced or an element array written to gives a different key (never ``id()``).
+_STACKS: dict[tuple[tuple[tuple[int, ...], ...], bytes], np.ndarray] = {}
+
+
+def _stack(x: list[object] | tuple[object, ...]) -> np.ndarray | None:
+    """A list/tuple of float64 arrays as one C-contiguous array, from :data:`_STACKS` when the same
+    contents were packed before (reading the elements' bytes costs a fraction of the conversion)."""
+    shapes = []
+    parts = []
+    for m in x:
+        if type(m) is not np.ndarray or m.dtype is not _F64:
+            return None
+        shapes.append(m.shape)
+        parts.append(m.tobytes())
+    key = (tuple(shapes), b"".join(parts))
+    hit = _STACKS.get(key)
+    if hit is None:
+        try:
+            hit = np.array(x, dtype=np.float64)  # ragged shapes: ValueError
+        except ValueError:
+            return None
+        if len(_STACKS) > 64:
+            _STACKS.clear()
+        _STACKS[key] = hit
+    return hit
+
+
+def kernel_arrays(args: tuple[object, ...], ndims: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+    """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable
+    arrays of the given numbers of dimensions — after at most one conversion each; None when one of
+    them is not plainly an array of real numbers of that dimension (the caller's full checks then name it).
+
+    Arrays that already fit are passed through as they are (no copy); other arrays (read-only,
+    strided, transposed, integer) are copied once; lists and tuples are converted with
+    ``np.asarray`` — a list or tuple of float64 arrays (``Mlist``, ``Glist`` as the Modern Robotics
+    book writes them) once per distinct contents (:data:`_STACKS`). Nothing is cast that
+    :func:`as_array` would refuse (booleans, complex values, strings, objects). Values (finiteness)
+    and sizes are left to the kernel, which checks them.
+
+    Parameters
+    ----------
+    args : tuple
+        The arguments, in the kernel's order.
+    ndims : tuple of int
+        The number of dimensions the kernel's signature gives each argument.
+
+    Returns
+    -------
+    tuple of numpy.ndarray, or None
+
+    Examples
+    --------
+    >>> a = np.zeros(3)
+    >>> M, q = kernel_arrays(([np.eye(2), np.eye(2)], a), (3, 1))
+    >>> M.shape, M.flags.c_contiguous, q is a
+    ((2, 2, 2), True, True)
+    >>> kernel_arrays(([True, False],), (1,)) is None  # booleans are refused, not cast
+    True
+    """
+    out = []
+    for x, nd in zip(args, ndims):
+        if type(x) is np.ndarray:
+            if x.dtype is _F64 and x.flags.num & _KERNEL_FLAGS == _KERNEL_FLAGS:
+                arr = x
+            elif x.dtype.kind in "fiu":
+                arr = np.array(x, dtype=np.float64, order="C")  # a fresh copy: contiguous, writeable
+            else:
+                return None
+        elif type(x) is list or type(x) is tuple:
+            arr_or_none = _stack(x) if x and type(x[0]) is np.ndarray else None
+            if arr_or_none is None:
+                try:
+                    a = np.asarray(x)
+                except (TypeError, ValueError):  # ragged
+                    return None
+                if a.dtype.kind not in "fiu":
+                    return None
+                arr_or_none = np.ascontiguousarray(a, dtype=np.float64)
+            arr = arr_or_none
+        else:
+            return None
+        if arr.ndim != nd:
+            return None
+        out.append(arr)
+    return tuple(out)
