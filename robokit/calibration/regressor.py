@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from robokit._arrays import kernel_arrays
 from robokit.calibration.chain import JointChain, chain_from_robot
 from robokit.spatial import lie
 
@@ -91,6 +92,7 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
     ndarray, shape (N, n, 10n)
         Columns per link as in the module docstring (joint-frame parameters about the joint
         origin, Pinocchio's order); equal to ``pinocchio.computeJointTorqueRegressor``.
+        Computed by the compiled kernel :func:`robokit.kernels.regressor.inertial_regressor`.
 
     Examples
     --------
@@ -102,6 +104,22 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
     >>> bool(np.allclose(Y[0] @ standard_parameters(robot), robot.rnea(q[0], q[0], q[0])))
     True
     """
+    args = kernel_arrays((chain.placements, chain.axes, q, dq, ddq, gravity), (3, 2, 2, 2, 2, 1))
+    if args is not None:
+        X, A, Q, dQ, ddQ, g = args
+        n = A.shape[0]
+        if (A.shape[1] == 6 and X.shape == (n + 1, 4, 4) and Q.shape[1] == n and dQ.shape == Q.shape
+                and ddQ.shape == Q.shape and g.shape == (3,)):
+            from robokit.kernels import regressor as kr
+
+            return kr.inertial_regressor(X, A, Q, dQ, ddQ, g)
+    return _inertial_regressor_numpy(chain, q, dq, ddq, gravity)
+
+
+def _inertial_regressor_numpy(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray,
+                              gravity: np.ndarray) -> np.ndarray:
+    """:func:`inertial_regressor` in numpy over the batch (the same recursion; what the kernel replaced,
+    kept as its reference and for arguments the kernel does not take)."""
     q, dq, ddq = (np.asarray(a, dtype=float) for a in (q, dq, ddq))
     N, n = q.shape
     T_back = np.empty((n, N, 4, 4))  # T_{i,i-1}
