@@ -8,7 +8,7 @@ cast silently: complex values, strings, booleans and other objects are refused
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 from math import isfinite
 
@@ -314,7 +314,8 @@ def _stack(x: list[object] | tuple[object, ...]) -> np.ndarray | None:
     return hit
 
 
-def kernel_arrays(args: tuple[object, ...], ndims: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
+                  _k: int = _KERNEL_FLAGS) -> tuple[np.ndarray, ...] | None:
     """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable
     arrays of the given numbers of dimensions — after at most one conversion each; None when one of
     them is not plainly an array of real numbers of that dimension (the caller's full checks then name it).
@@ -332,6 +333,9 @@ def kernel_arrays(args: tuple[object, ...], ndims: tuple[int, ...]) -> tuple[np.
         The arguments, in the kernel's order.
     ndims : tuple of int
         The number of dimensions the kernel's signature gives each argument.
+    _nd, _f, _k
+        Not arguments: numpy's array type, float64 and the flag bits, bound as locals (the check
+        runs on every seed-function call).
 
     Returns
     -------
@@ -346,6 +350,16 @@ def kernel_arrays(args: tuple[object, ...], ndims: tuple[int, ...]) -> tuple[np.
     >>> kernel_arrays(([True, False],), (1,)) is None  # booleans are refused, not cast
     True
     """
+    i = 0
+    for x in args:  # the common case first: every argument already fits, passed on as it is
+        if type(x) is not _nd or x.dtype is not _f or x.ndim != ndims[i] or x.flags.num & _k != _k:
+            return _converted(args, ndims)
+        i += 1
+    return args
+
+
+def _converted(args: tuple[Any, ...], ndims: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+    """:func:`kernel_arrays` when some argument needs converting."""
     out = []
     for x, nd in zip(args, ndims):
         if type(x) is np.ndarray:
