@@ -285,35 +285,6 @@ def check_reference(reference: object, name: str = "reference") -> str:
 #: numpy's flag bits for C-contiguous, aligned and writeable: what a kernel signature's
 #: ``float64[::1]`` arrays must be (numba refuses a read-only or strided array for them).
 _KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
-#: Packed stacks of float64 arrays given as lists/tuples (the book's ``Mlist``/``Glist``), by their
-#: element shapes and bytes: the contents themselves are the key, so a list changed in place, an
-#: element replaced or an element array written to gives a different key (never ``id()``).
-_STACKS: dict[tuple[tuple[tuple[int, ...], ...], bytes], np.ndarray] = {}
-
-
-def _stack(x: list[object] | tuple[object, ...]) -> np.ndarray | None:
-    """A list/tuple of float64 arrays as one C-contiguous array, from :data:`_STACKS` when the same
-    contents were packed before (reading the elements' bytes costs a fraction of the conversion)."""
-    shapes = []
-    parts = []
-    for m in x:
-        if type(m) is not np.ndarray or m.dtype is not _F64:
-            return None
-        shapes.append(m.shape)
-        parts.append(m.tobytes())
-    key = (tuple(shapes), b"".join(parts))
-    hit = _STACKS.get(key)
-    if hit is None:
-        try:
-            hit = np.array(x, dtype=np.float64)  # ragged shapes: ValueError
-        except ValueError:
-            return None
-        if len(_STACKS) > 64:
-            _STACKS.clear()
-        _STACKS[key] = hit
-    return hit
-
-
 def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
                   _k: int = _KERNEL_FLAGS) -> tuple[np.ndarray, ...] | None:
     """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable
@@ -321,11 +292,12 @@ def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.n
     them is not plainly an array of real numbers of that dimension (the caller's full checks then name it).
 
     Arrays that already fit are passed through as they are (no copy); other arrays (read-only,
-    strided, transposed, integer) are copied once; lists and tuples are converted with
-    ``np.asarray`` — a list or tuple of float64 arrays (``Mlist``, ``Glist`` as the Modern Robotics
-    book writes them) once per distinct contents (:data:`_STACKS`). Nothing is cast that
-    :func:`as_array` would refuse (booleans, complex values, strings, objects). Values (finiteness)
-    and sizes are left to the kernel, which checks them.
+    strided, transposed, integer) are copied once; lists and tuples (``Mlist``, ``Glist`` as the
+    Modern Robotics book writes them: lists of arrays) are converted once with ``np.asarray`` —
+    about 1 µs for a UR5's ``Mlist``, less than reading its elements' bytes to look a packed copy
+    up would cost, so nothing is remembered between calls. Nothing is cast that :func:`as_array`
+    would refuse (booleans, complex values, strings, objects). Values (finiteness) and sizes are
+    left to the kernel, which checks them.
 
     Parameters
     ----------
@@ -370,16 +342,13 @@ def _converted(args: tuple[Any, ...], ndims: tuple[int, ...]) -> tuple[np.ndarra
             else:
                 return None
         elif type(x) is list or type(x) is tuple:
-            arr_or_none = _stack(x) if x and type(x[0]) is np.ndarray else None
-            if arr_or_none is None:
-                try:
-                    a = np.asarray(x)
-                except (TypeError, ValueError):  # ragged
-                    return None
-                if a.dtype.kind not in "fiu":
-                    return None
-                arr_or_none = np.ascontiguousarray(a, dtype=np.float64)
-            arr = arr_or_none
+            try:
+                a = np.asarray(x)  # a new array (C order, writeable), even of read-only elements
+            except (TypeError, ValueError):  # ragged
+                return None
+            if a.dtype.kind not in "fiu":
+                return None
+            arr = a if a.dtype is _F64 else a.astype(np.float64)
         else:
             return None
         if arr.ndim != nd:

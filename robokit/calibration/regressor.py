@@ -112,7 +112,13 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
                 and ddQ.shape == Q.shape and g.shape == (3,)):
             from robokit.kernels import regressor as kr
 
-            return kr.inertial_regressor(X, A, Q, dQ, ddQ, g)
+            kernel = kr.inertial_regressor
+            if not getattr(kernel, "signatures", None) and hasattr(kernel, "signatures") and Q.shape[0]:
+                # no machine code yet (a new process): one sample loads it from numba's cache or hands it
+                # to the background compile; meanwhile a large batch runs in numpy, not as plain Python
+                kernel(X, A, Q[:1], dQ[:1], ddQ[:1], g)
+            if getattr(kernel, "signatures", None):  # (none under NUMBA_DISABLE_JIT: numpy below)
+                return kernel(X, A, Q, dQ, ddQ, g)
     return _inertial_regressor_numpy(chain, q, dq, ddq, gravity)
 
 

@@ -100,8 +100,8 @@ def test_argument_types_reach_the_kernel_packed_and_give_the_packed_result(ur5, 
 
 
 def test_lists_of_arrays_changed_in_place_are_seen(ur5, spy):
-    """The packed model of a list of arrays is remembered by its contents, never by the list's
-    identity: an element written to, or replaced, gives the new answer."""
+    """A list of arrays is read afresh on every call (nothing is remembered by the list's identity):
+    an element written to, or replaced, gives the new answer."""
     p = ur5.poe
     q = np.full(6, 0.3)
     Ml, Gl = [m.copy() for m in p.Mlist], [G.copy() for G in p.Glist]
