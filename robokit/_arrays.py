@@ -285,6 +285,8 @@ def check_reference(reference: object, name: str = "reference") -> str:
 #: numpy's flag bits for C-contiguous, aligned and writeable: what a kernel signature's
 #: ``float64[::1]`` arrays must be (numba refuses a read-only or strided array for them).
 _KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
+
+
 def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
                   _k: int = _KERNEL_FLAGS) -> tuple[np.ndarray, ...] | None:
     """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable
