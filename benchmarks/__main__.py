@@ -7,7 +7,7 @@ import sys
 
 MODULES = ["benchmarks.startup", "benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
            "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.motion",
-           "benchmarks.input_checks", "benchmarks.degrees"]
+           "benchmarks.input_checks", "benchmarks.degrees", "benchmarks.seed_args"]
 
 
 def main(argv=None):

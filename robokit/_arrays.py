@@ -8,7 +8,7 @@ cast silently: complex values, strings, booleans and other objects are refused
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 from math import isfinite
 
@@ -321,3 +321,83 @@ def check_reference(reference: object, name: str = "reference") -> Frame:
     warns once), else :class:`InputError` listing every accepted name. A ``Frame`` compares equal
     to its lower-case value, so ``check_reference("base") == "local_world_aligned"``."""
     return as_frame(reference, name)
+
+
+# ---------------------------------------------------------------------------------------------
+# arguments as the compiled kernels take them (the seed functions' fast paths)
+
+#: numpy's flag bits for C-contiguous, aligned and writeable: what a kernel signature's
+#: ``float64[::1]`` arrays must be (numba refuses a read-only or strided array for them).
+_KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
+
+
+def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
+                  _k: int = _KERNEL_FLAGS) -> tuple[np.ndarray, ...] | None:
+    """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable
+    arrays of the given numbers of dimensions — after at most one conversion each; None when one of
+    them is not plainly an array of real numbers of that dimension (the caller's full checks then name it).
+
+    Arrays that already fit are passed through as they are (no copy); other arrays (read-only,
+    strided, transposed, integer) are copied once; lists and tuples (``Mlist``, ``Glist`` as the
+    Modern Robotics book writes them: lists of arrays) are converted once with ``np.asarray`` —
+    about 1 µs for a UR5's ``Mlist``, less than reading its elements' bytes to look a packed copy
+    up would cost, so nothing is remembered between calls. Nothing is cast that :func:`as_array`
+    would refuse (booleans, complex values, strings, objects). Values (finiteness) and sizes are
+    left to the kernel, which checks them.
+
+    Parameters
+    ----------
+    args : tuple
+        The arguments, in the kernel's order.
+    ndims : tuple of int
+        The number of dimensions the kernel's signature gives each argument.
+    _nd, _f, _k
+        Not arguments: numpy's array type, float64 and the flag bits, bound as locals (the check
+        runs on every seed-function call).
+
+    Returns
+    -------
+    tuple of numpy.ndarray, or None
+
+    Examples
+    --------
+    >>> a = np.zeros(3)
+    >>> M, q = kernel_arrays(([np.eye(2), np.eye(2)], a), (3, 1))
+    >>> M.shape, M.flags.c_contiguous, q is a
+    ((2, 2, 2), True, True)
+    >>> kernel_arrays(([True, False],), (1,)) is None  # booleans are refused, not cast
+    True
+    """
+    i = 0
+    for x in args:  # the common case first: every argument already fits, passed on as it is
+        if type(x) is not _nd or x.dtype is not _f or x.ndim != ndims[i] or x.flags.num & _k != _k:
+            return _converted(args, ndims)
+        i += 1
+    return args
+
+
+def _converted(args: tuple[Any, ...], ndims: tuple[int, ...]) -> tuple[np.ndarray, ...] | None:
+    """:func:`kernel_arrays` when some argument needs converting."""
+    out = []
+    for x, nd in zip(args, ndims):
+        if type(x) is np.ndarray:
+            if x.dtype is _F64 and x.flags.num & _KERNEL_FLAGS == _KERNEL_FLAGS:
+                arr = x
+            elif x.dtype.kind in "fiu":
+                arr = np.array(x, dtype=np.float64, order="C")  # a fresh copy: contiguous, writeable
+            else:
+                return None
+        elif type(x) is list or type(x) is tuple:
+            try:
+                a = np.asarray(x)  # a new array (C order, writeable), even of read-only elements
+            except (TypeError, ValueError):  # ragged
+                return None
+            if a.dtype.kind not in "fiu":
+                return None
+            arr = a if a.dtype is _F64 else a.astype(np.float64)
+        else:
+            return None
+        if arr.ndim != nd:
+            return None
+        out.append(arr)
+    return tuple(out)

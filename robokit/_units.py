@@ -240,3 +240,26 @@ def warn_user(message: str, category: type[Warning]) -> bool:
         return False  # robokit's own call (a public function's computed values): its values are its own
     warnings.warn(message, category, stacklevel=level)
     return True
+
+
+def surely_radians(th: np.ndarray) -> bool:
+    """True when joint values need no degrees check because every ``|θᵢ| ≤ 2π`` is implied (the
+    seed functions' fast paths, on the 1-D float64 array the kernel will get): ``hypot(*θ) ≤ 2π``
+    or every entry in ``[-2π, 2π]``. False sends the call to the checked path, which warns.
+
+    Parameters
+    ----------
+    th : numpy.ndarray, shape (n,)
+        Joint values (rad).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> surely_radians(np.array([0.1, -2.0, 3.0])), surely_radians(np.array([0.0, 45.0]))
+    (True, False)
+    """
+    t = th.tolist()
+    return math.hypot(*t) <= TURN or (-TURN <= min(t) and max(t) <= TURN)

@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from robokit._arrays import kernel_arrays
 from robokit.calibration.chain import JointChain, chain_from_robot
 from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
@@ -92,6 +93,7 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
     ndarray, shape (N, n, 10n)
         Columns per link as in the module docstring (joint-frame parameters about the joint
         origin, Pinocchio's order); equal to ``pinocchio.computeJointTorqueRegressor``.
+        Computed by the compiled kernel :func:`robokit.kernels.regressor.inertial_regressor`.
 
     Examples
     --------
@@ -103,6 +105,28 @@ def inertial_regressor(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np
     >>> bool(np.allclose(Y[0] @ standard_parameters(robot), robot.rnea(q[0], q[0], q[0])))
     True
     """
+    args = kernel_arrays((chain.placements, chain.axes, q, dq, ddq, gravity), (3, 2, 2, 2, 2, 1))
+    if args is not None:
+        X, A, Q, dQ, ddQ, g = args
+        n = A.shape[0]
+        if (A.shape[1] == 6 and X.shape == (n + 1, 4, 4) and Q.shape[1] == n and dQ.shape == Q.shape
+                and ddQ.shape == Q.shape and g.shape == (3,)):
+            from robokit.kernels import regressor as kr
+
+            kernel = kr.inertial_regressor
+            if not getattr(kernel, "signatures", None) and hasattr(kernel, "signatures") and Q.shape[0]:
+                # no machine code yet (a new process): one sample loads it from numba's cache or hands it
+                # to the background compile; meanwhile a large batch runs in numpy, not as plain Python
+                kernel(X, A, Q[:1], dQ[:1], ddQ[:1], g)
+            if getattr(kernel, "signatures", None):  # (none under NUMBA_DISABLE_JIT: numpy below)
+                return kernel(X, A, Q, dQ, ddQ, g)
+    return _inertial_regressor_numpy(chain, q, dq, ddq, gravity)
+
+
+def _inertial_regressor_numpy(chain: JointChain, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray,
+                              gravity: np.ndarray) -> np.ndarray:
+    """:func:`inertial_regressor` in numpy over the batch (the same recursion; what the kernel replaced,
+    kept as its reference and for arguments the kernel does not take)."""
     q, dq, ddq = (np.asarray(a, dtype=float) for a in (q, dq, ddq))
     N, n = q.shape
     T_back = np.empty((n, N, 4, 4))  # T_{i,i-1}

@@ -31,8 +31,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_scalar, as_vector
-from robokit._units import TURN, check_radians, radian_ranges, revolute_columns
+from robokit._arrays import as_array, as_scalar, as_vector, kernel_arrays
+from robokit._units import TURN, check_radians, radian_ranges, revolute_columns, surely_radians
 from robokit.errors import InputError
 from robokit.kinematics.poe import screw_exponentials
 from robokit.spatial import lie
@@ -73,20 +73,45 @@ def _zeros(n: int) -> np.ndarray:
     return z
 
 
-def _ready(*xs: object) -> bool:
-    """True when every argument is a 1-D ndarray (the kernel then checks dtype, length, finiteness)
-    and the first, θ, is radians for sure (every |θᵢ| ≤ 2π: robokit._units)."""
-    for x in xs:
-        if type(x) is not np.ndarray or x.ndim != 1:
-            return False
-    t = xs[0].tolist()  # type: ignore[attr-defined]
-    return hypot(*t) <= TURN or (-TURN <= min(t) and max(t) <= TURN)
-
-
 def _radians(m: _Model, th: np.ndarray, name: str = "thetalist") -> np.ndarray:
     """The degrees check of the seed library (robokit._units) on checked joint values; returns them."""
     check_radians(th, m.deg_lo, m.deg_hi, name)
     return th
+
+
+def _c(a: np.ndarray) -> np.ndarray:
+    """``a`` C-contiguous and writeable, as the kernels' signatures take it (a copy only when needed)."""
+    a = np.ascontiguousarray(a)
+    return a if a.flags.writeable else a.copy()
+
+
+#: Dimensions of the one-configuration kernels' arguments: five vectors and the model
+#: (θ, θ̇, θ̈ or τ, g, F_tip, Mlist, Glist, Slist); and of the mass matrix's (θ and the model).
+_NDIMS_8 = (1, 1, 1, 1, 1, 3, 3, 2)
+_NDIMS_MM = (1, 3, 3, 2)
+_NDIMS_5 = (1, 1, 3, 3, 2)
+
+
+def _rnea_special(which: str, thetalist: ArrayLike, x: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                  Slist: ArrayLike) -> np.ndarray | None:
+    """The fast path of :func:`vel_quadratic_forces` (``which`` "c": x is θ̇), :func:`gravity_forces`
+    ("g": x is g) and :func:`end_effector_forces` ("F": x is F_tip): the Newton–Euler kernel with the
+    other vectors zero, after at most one conversion of each argument; None when an argument is
+    refused (the caller's full checks then name it)."""
+    args = kernel_arrays((thetalist, x, Mlist, Glist, Slist), _NDIMS_5)
+    if args is None or not surely_radians(args[0]):  # degrees? the checked path warns
+        return None
+    th, v, Ml, Gl, Sl = args
+    z = _zeros(Sl.shape[1])
+    k = _kd or _kernels()
+    try:
+        if which == "c":
+            return k.inverse_dynamics(th, v, z, _zeros(3), _zeros(6), Ml, Gl, Sl)
+        if which == "g":
+            return k.inverse_dynamics(th, z, z, v, _zeros(6), Ml, Gl, Sl)
+        return k.inverse_dynamics(th, z, z, _zeros(3), v, Ml, Gl, Sl)
+    except ValueError:  # a bad value or size
+        return None
 
 
 
@@ -97,9 +122,9 @@ class _Model:
     def __init__(self, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None:
         n = Slist.shape[1]
         self.n = n
-        self.Mlist = np.ascontiguousarray(Mlist)  # the validated constants, as the kernels take them
-        self.Glist = np.ascontiguousarray(Glist)
-        self.Slist = np.ascontiguousarray(Slist)
+        self.Mlist = _c(Mlist)  # the validated constants, as the kernels take them
+        self.Glist = _c(Glist)
+        self.Slist = _c(Slist)
         self.Minv = np.array([lie.inv(M) for M in Mlist])  # (n+1, 4, 4)
         self.G = np.array(Glist)  # (n, 6, 6)
         M0i = np.eye(4)
@@ -184,16 +209,10 @@ def _vec(x: ArrayLike, name: str, n: int) -> np.ndarray:
 
 
 def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
-                  Ftip: ArrayLike, fast: bool = True) -> np.ndarray:
-    """Newton–Euler for one configuration: the kernel straight away on ready vectors, else after
-    the full checks (which name the offending argument)."""
+                  Ftip: ArrayLike) -> np.ndarray:
+    """Newton–Euler for one configuration after the full checks (which name the offending argument)."""
     k = _kd or _kernels()
-    if fast and _ready(thetalist, dthetalist, ddthetalist, g, Ftip):
-        try:
-            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, m.Mlist, m.Glist, m.Slist)
-        except (TypeError, ValueError):
-            pass
-    c = np.ascontiguousarray
+    c = _c
     return k.inverse_dynamics(c(_radians(m, _vec(thetalist, "thetalist", m.n))), c(_vec(dthetalist, "dthetalist", m.n)),
                               c(_vec(ddthetalist, "ddthetalist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
                               m.Mlist, m.Glist, m.Slist)
@@ -248,10 +267,12 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     array([34.335,  1.2  ])
     """
     k = _kd or _kernels()
-    if _ready(thetalist, dthetalist, ddthetalist, g, Ftip):
-        try:  # float64 C-contiguous arrays straight to the kernel, which checks them and the model
-            return k.inverse_dynamics(thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist)
-        except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
+    args = kernel_arrays((thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
+    if args is not None and surely_radians(args[0]):  # the fast path (lists, tuples, read-only or strided
+        # arrays converted once; joint values radians for sure, else the checked path warns):
+        try:  # the kernel checks the vectors and the model itself
+            return k.inverse_dynamics(*args)
+        except ValueError:  # a bad value or size: the full checks below name it
             pass
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
@@ -261,9 +282,9 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
         ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
         F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
         g = _vec(g, "g", 3)
-        c = np.ascontiguousarray
+        c = _c
         return k.inverse_dynamics_batch(c(th), c(dth), c(ddth), c(g), c(F.reshape(-1, 6)), m.Mlist, m.Glist, m.Slist)
-    return _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip, fast=False)
+    return _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip)
 
 
 def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
@@ -304,17 +325,17 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
     (True, True)
     """
     k = _kd or _kernels()
-    if _ready(thetalist):
-        try:  # straight to the kernel, which checks θ and the model (as in inverse_dynamics)
-            return k.mass_matrix(thetalist, Mlist, Glist, Slist)
-        except (TypeError, ValueError):
+    args = kernel_arrays((thetalist, Mlist, Glist, Slist), _NDIMS_MM)
+    if args is not None and surely_radians(args[0]):  # the fast path, as in inverse_dynamics
+        try:
+            return k.mass_matrix(*args)
+        except ValueError:
             pass
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
-        th = np.ascontiguousarray(_radians(m, as_array(thetalist, "thetalist", (None, m.n))))
+        th = _c(_radians(m, as_array(thetalist, "thetalist", (None, m.n))))
         return k.mass_matrix_batch(th, m.Mlist, m.Glist, m.Slist)
-    th = _radians(m, _vec(thetalist, "thetalist", m.n))
-    return k.mass_matrix(np.ascontiguousarray(th), m.Mlist, m.Glist, m.Slist)
+    return k.mass_matrix(_c(_radians(m, _vec(thetalist, "thetalist", m.n))), m.Mlist, m.Glist, m.Slist)
 
 
 def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
@@ -347,6 +368,9 @@ def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: Arr
     >>> vel_quadratic_forces([0, np.pi / 2], [1, 1], p.Mlist, p.Glist, p.Slist).round(4)
     array([-3.6,  1.2])
     """
+    tau = _rnea_special("c", thetalist, dthetalist, Mlist, Glist, Slist)
+    if tau is not None:
+        return tau
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, dthetalist, z, _zeros(3), _zeros(6))
@@ -384,6 +408,9 @@ def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: 
     >>> gravity_forces([0, 0], [0, -9.81, 0], p.Mlist, p.Glist, p.Slist).round(4)
     array([46.107, 11.772])
     """
+    tau = _rnea_special("g", thetalist, g, Mlist, Glist, Slist)
+    if tau is not None:
+        return tau
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, g, _zeros(6))
@@ -422,6 +449,9 @@ def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike,
     >>> end_effector_forces([0, 0], [0, 0, 0, 0, 10, 0], p.Mlist, p.Glist, p.Slist).round(4)
     array([18.,  8.])
     """
+    tau = _rnea_special("F", thetalist, Ftip, Mlist, Glist, Slist)
+    if tau is not None:
+        return tau
     m = _model(Mlist, Glist, Slist)
     z = _zeros(m.n)
     return _rnea_checked(m, thetalist, z, z, _zeros(3), Ftip)
@@ -485,13 +515,14 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
     k = _kd or _kernels()
     one, many = ((k.forward_dynamics, k.forward_dynamics_batch) if method == "aba"
                  else (k.forward_dynamics_crba, k.forward_dynamics_crba_batch))
-    if _ready(thetalist, dthetalist, taulist, g, Ftip):
-        try:  # straight to the kernel, which checks the vectors and the model (as in inverse_dynamics)
-            return one(thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist)
-        except (TypeError, ValueError):
+    args = kernel_arrays((thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
+    if args is not None and surely_radians(args[0]):  # the fast path, as in inverse_dynamics
+        try:
+            return one(*args)
+        except ValueError:
             pass
     m = _model(Mlist, Glist, Slist)
-    c = np.ascontiguousarray
+    c = _c
     if np.ndim(thetalist) == 2:
         th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
         N = th.shape[0]
@@ -589,7 +620,7 @@ def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthe
     g = _vec(g, "g", 3)
     if N == 0:
         return np.empty((0, m.n))
-    c = np.ascontiguousarray
+    c = _c
     k = _kd or _kernels()
     return k.inverse_dynamics_batch(c(Q), c(dQ), c(ddQ), c(g), c(F), m.Mlist, m.Glist, m.Slist)
 
@@ -658,7 +689,7 @@ def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, tau
         raise InputError(f"intRes: expected a positive integer, got {intRes}")
     if N == 0:
         return np.empty((0, m.n)), np.empty((0, m.n))
-    c = np.ascontiguousarray
+    c = _c
     k = _kd or _kernels()
     out = k.forward_dynamics_trajectory(c(th), c(dth), c(tau), c(g), c(F), m.Mlist, m.Glist, m.Slist, dt, intRes)
     return out[0], out[1]

@@ -21,8 +21,8 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_matrix
-from robokit._units import TURN, check_radians, radian_ranges, revolute_columns
+from robokit._arrays import as_array, as_matrix, kernel_arrays
+from robokit._units import TURN, check_radians, radian_ranges, revolute_columns, surely_radians
 from robokit.spatial.se3 import check_transform
 from robokit.errors import InputError
 
@@ -43,6 +43,8 @@ def _kernels() -> ModuleType:
 
 
 _F64 = np.dtype(np.float64)
+_FK_NDIMS = (2, 2, 1)  # (M, Slist, thetalist) as the one-configuration FK kernels take them
+_J_NDIMS = (2, 1)  # (Slist, thetalist) for the Jacobian kernels
 
 
 def _screws(S: ArrayLike, name: str) -> np.ndarray:
@@ -52,7 +54,7 @@ def _screws(S: ArrayLike, name: str) -> np.ndarray:
         hit = _SCREWS.get(S.tobytes())
         if hit is not None and hit.shape == S.shape:
             return hit
-    S = np.ascontiguousarray(as_matrix(S, name, 6, None))
+    S = np.array(as_matrix(S, name, 6, None), order="C")  # a writeable copy, as the kernels take it
     if len(_SCREWS) > 256:
         _SCREWS.clear()
     _SCREWS[S.tobytes()] = S
@@ -65,7 +67,7 @@ def _home(M: ArrayLike) -> np.ndarray:
         hit = _HOMES.get(M.tobytes())
         if hit is not None and M.shape == (4, 4):
             return hit
-    M = np.ascontiguousarray(check_transform(M, "M"))
+    M = np.array(check_transform(M, "M"), order="C")  # a writeable copy, as the kernels take it
     if len(_HOMES) > 256:
         _HOMES.clear()
     _HOMES[M.tobytes()] = M
@@ -79,7 +81,8 @@ def _theta(thetalist: ArrayLike, n: int, name: str = "thetalist") -> np.ndarray:
         raise InputError(f"{name}: expected shape ({n},) or (N, {n}) for {n} screw axes, got shape {th.shape}")
     if not np.isfinite(th).all():
         raise InputError(f"{name}: contains NaN or infinite values")
-    return np.ascontiguousarray(th)
+    th = np.ascontiguousarray(th)
+    return th if th.flags.writeable else th.copy()  # the kernels' signatures take writeable arrays
 
 
 def _radians(th: np.ndarray, S: np.ndarray) -> None:
@@ -199,11 +202,11 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
     (5, 4, 4)
     """
     k = _kp or _kernels()
-    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
-            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ,
-        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
-            return k.fkin_space(M, Slist, thetalist)
-        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+    args = kernel_arrays((M, Slist, thetalist), _FK_NDIMS)  # the fast path: lists, read-only or strided
+    if args is not None and surely_radians(args[-1]):  # arrays converted once; the kernel checks θ, the screws and M's rigidity itself
+        try:
+            return k.fkin_space(*args)
+        except ValueError:  # a bad value: the full checks below name it
             pass
     Slist = _screws(Slist, "Slist")
     M = _home(M)
@@ -249,11 +252,11 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
            [ 0.,  0.,  0.,  1.]])
     """
     k = _kp or _kernels()
-    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
-            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ,
-        try:  # the screws' finiteness and M's rigidity itself (float64 C-contiguous arrays only)
-            return k.fkin_body(M, Blist, thetalist)
-        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+    args = kernel_arrays((M, Blist, thetalist), _FK_NDIMS)  # the fast path: lists, read-only or strided
+    if args is not None and surely_radians(args[-1]):  # arrays converted once; the kernel checks θ, the screws and M's rigidity itself
+        try:
+            return k.fkin_body(*args)
+        except ValueError:  # a bad value: the full checks below name it
             pass
     Blist = _screws(Blist, "Blist")
     M = _home(M)
@@ -295,11 +298,11 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     k = _kp or _kernels()
-    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
-            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ
-        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
-            return k.jacobian_space(Slist, thetalist)
-        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+    args = kernel_arrays((Slist, thetalist), _J_NDIMS)  # the fast path (arrays converted once at most):
+    if args is not None and surely_radians(args[-1]):  # the kernel checks θ and the screws' shape and finiteness itself
+        try:
+            return k.jacobian_space(*args)
+        except ValueError:  # a bad value: the full checks below name it
             pass
     Slist = _screws(Slist, "Slist")
     return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
@@ -340,11 +343,11 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [0., 0., 1., 0., 1., 0.]])
     """
     k = _kp or _kernels()
-    if (type(thetalist) is np.ndarray and thetalist.ndim == 1  # radians for sure: |θ| ≤ 2π
-            and (hypot(*(t := thetalist.tolist())) <= TURN or (-TURN <= min(t) and max(t) <= TURN))):  # the fast path: the kernel checks θ
-        try:  # and the screws' shape and finiteness itself (float64 C-contiguous arrays only)
-            return k.jacobian_body(Blist, thetalist)
-        except (TypeError, ValueError):  # another dtype or layout, or a bad value: full checks
+    args = kernel_arrays((Blist, thetalist), _J_NDIMS)  # the fast path (arrays converted once at most):
+    if args is not None and surely_radians(args[-1]):  # the kernel checks θ and the screws' shape and finiteness itself
+        try:
+            return k.jacobian_body(*args)
+        except ValueError:  # a bad value: the full checks below name it
             pass
     Blist = _screws(Blist, "Blist")
     return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
