@@ -1,0 +1,298 @@
+r"""Exact IK of a calibrated (or nearly special) arm in compiled code: the closed form of the
+nearest arm of the nominal structure gives one start per branch, Newton's method on the arm's own
+product of exponentials finishes each one.
+
+The arm's kinematics is its PoE, ``T(q) = e^{[S₁]q₁} ⋯ e^{[S₆]q₆} M``. Its nominal structure (a
+spherical wrist, or three parallel axes) is broken by small errors, so the closed forms of
+:mod:`robokit.kernels.closed_form` do not apply to it; they do apply to the *projected* arm, the
+same arm with the structure restored (:mod:`robokit.ik.calibrated` builds it and packs its
+constants ``Kn``). Per pose:
+
+1. every closed-form solution of the projected arm (:func:`robokit.kernels.closed_form.pieper_solve_into`
+   or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag;
+2. each start is polished by :func:`polish` — Levenberg–Marquardt with a vanishing damping, i.e.
+   Newton's method on the body-frame pose error ``V_b = log(T(q)⁻¹ T_d)`` with the body Jacobian
+   (:func:`robokit.kernels.ik.fk_and_body_jacobian` and :func:`robokit.kernels.ik.pose_error`, the
+   FK and Jacobian of the compiled numerical IK), until the orientation error (rad) and the
+   position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept`` has
+   no solution nearby;
+3. a start that reached a solution already found (two branches converging to one root), or none,
+   is tried once more from its start mirrored through the point the polish reached
+   (``2 q₀ − q``): near a fold, where two roots of the arm approach each other, the second root
+   lies on the other side of the start;
+4. the outcome of every branch is written to ``branches``: a distinct solution, merged into an
+   earlier solution (that solution is flagged degenerate), or vanished (no exact solution of the
+   arm near that branch: the two roots of a fold became complex);
+5. the solutions are wrapped, shifted into wide limits, flagged and written as the closed-form
+   kernels write theirs (:func:`robokit.kernels.closed_form._finish_into`).
+
+Solutions are distinct to ``SAME`` (rad or m, angles modulo 2π): two polished roots closer than
+that are one root (near a fold Newton's method converges to a double root only to about the
+square root of the precision).
+
+Example (``AnalyticIK`` builds the arguments; ``ik_analytic`` calls these kernels)::
+
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> arm = AnalyticIK(calibrated_robot)._calibrated   # doctest: +SKIP
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from robokit.kernels._jit import njit, prange
+from robokit.kernels import closed_form as _cf
+from robokit.kernels.dynamics import cholesky_solve
+from robokit.kernels.ik import fk_and_body_jacobian
+
+__all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANCH_COLS", "SOLUTION", "MERGED",
+           "VANISHED"]
+
+#: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
+SAME = 1e-7
+#: Per-branch outcome codes written to ``branches[:, 1]``.
+SOLUTION, MERGED, VANISHED = 0, 1, 2
+#: Columns of ``branches``: branch code, outcome, index of the solution (−1 if vanished),
+#: orientation error (rad), position error (m) at the end of the polish.
+BRANCH_COLS = 5
+
+
+@njit
+def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
+    """F ← (ω, Δp), the body-frame pose error of T against Td to first order: with
+    ``T⁻¹T_d = (R_e, p_e)``, ``ω = vee(R_e − R_eᵀ)/2`` (sin θ times the axis) and ``Δp = p_e``; zero
+    exactly when T = Td (for an orientation error below π/2), and its derivative there is the body
+    Jacobian's, so Newton's method with J_b converges quadratically. Returns (½‖F‖², ‖ω‖, ‖Δp‖)."""
+    # R_e = Rᵀ R_d, p_e = Rᵀ (p_d − p)
+    dx, dy, dz = Td[0, 3] - T[0, 3], Td[1, 3] - T[1, 3], Td[2, 3] - T[2, 3]
+    for r in range(3):
+        F[3 + r] = T[0, r] * dx + T[1, r] * dy + T[2, r] * dz
+    e01 = T[0, 0] * Td[0, 1] + T[1, 0] * Td[1, 1] + T[2, 0] * Td[2, 1]
+    e10 = T[0, 1] * Td[0, 0] + T[1, 1] * Td[1, 0] + T[2, 1] * Td[2, 0]
+    e02 = T[0, 0] * Td[0, 2] + T[1, 0] * Td[1, 2] + T[2, 0] * Td[2, 2]
+    e20 = T[0, 2] * Td[0, 0] + T[1, 2] * Td[1, 0] + T[2, 2] * Td[2, 0]
+    e12 = T[0, 1] * Td[0, 2] + T[1, 1] * Td[1, 2] + T[2, 1] * Td[2, 2]
+    e21 = T[0, 2] * Td[0, 1] + T[1, 2] * Td[1, 1] + T[2, 2] * Td[2, 1]
+    F[0] = 0.5 * (e21 - e12)
+    F[1] = 0.5 * (e02 - e20)
+    F[2] = 0.5 * (e10 - e01)
+    # an orientation error beyond π/2 (R_e's trace below 1) counts as large: ‖ω‖ is then ≥ 1
+    tr = T[0, 0] * Td[0, 0] + T[1, 0] * Td[1, 0] + T[2, 0] * Td[2, 0] + T[0, 1] * Td[0, 1] + T[1, 1] * Td[1, 1] \
+        + T[2, 1] * Td[2, 1] + T[0, 2] * Td[0, 2] + T[1, 2] * Td[1, 2] + T[2, 2] * Td[2, 2]
+    rot = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
+    if tr < 1.0:
+        rot = 2.0 - rot
+    pos = math.sqrt(F[3] * F[3] + F[4] * F[4] + F[5] * F[5])
+    return 0.5 * (rot * rot + pos * pos), rot, pos
+
+
+@njit
+def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> bool:
+    """x ← J⁻¹ F (6 × 6) by Gaussian elimination with partial pivoting on the copy A; False when a
+    pivot is below 1e-12 of the largest entry (J singular for this purpose)."""
+    big = 0.0
+    for r in range(6):
+        for c in range(6):
+            A[r, c] = J[r, c]
+            big = max(big, abs(J[r, c]))
+        x[r] = F[r]
+    if not big > 0.0:
+        return False
+    for c in range(6):
+        p = c
+        for r in range(c + 1, 6):
+            if abs(A[r, c]) > abs(A[p, c]):
+                p = r
+        if abs(A[p, c]) <= 1e-12 * big:
+            return False
+        if p != c:
+            for k in range(6):
+                A[c, k], A[p, k] = A[p, k], A[c, k]
+            x[c], x[p] = x[p], x[c]
+        for r in range(c + 1, 6):
+            f = A[r, c] / A[c, c]
+            for k in range(c, 6):
+                A[r, k] -= f * A[c, k]
+            x[r] -= f * x[c]
+    for r in range(5, -1, -1):
+        acc = x[r]
+        for k in range(r + 1, 6):
+            acc -= A[r, k] * x[k]
+        x[r] = acc / A[r, r]
+    return True
+
+
+@njit
+def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_stop: float, max_steps: int,
+           W: np.ndarray, J: np.ndarray, V: np.ndarray) -> tuple[float, float, int]:
+    """Newton's method on the pose error :func:`_error` of the PoE ``(M, Slist)`` with its body
+    Jacobian (:func:`robokit.kernels.ik.fk_and_body_jacobian`), q (6,) updated in place; a step
+    that does not lower the error, or a singular Jacobian, switches to Levenberg–Marquardt
+    (damping λ, ×100 on failure, ÷100 on success, back to Newton below 1e-14). Stops when the
+    orientation error (rad) and the position error (m) are below ``tol_stop``. Returns (orientation
+    error, position error, FK evaluations). Scratch: W (8, 4, 4), J (6, 6, 6), V (5, 6)."""
+    n = Slist.shape[1]
+    T, P, E, tmp, Tinv = W[0], W[1], W[2], W[3], W[4]
+    Jb, Js, H, L, Jt = J[0], J[1], J[2], J[3], J[4]
+    F, Ft, g, step = V[0], V[1], V[3], V[4]
+    trial = np.empty(6)
+    fk_and_body_jacobian(M, Slist, q, T, Jb, Js, P, E, tmp, Tinv)
+    err, rot, pos = _error(T, Td, F)
+    lam = 0.0
+    evals = 1
+    for _ in range(max_steps):
+        if rot < tol_stop and pos < tol_stop:
+            break
+        solved = lam == 0.0 and _newton_step(Jb, F, H, step)
+        if not solved:
+            if lam == 0.0:
+                lam = 1e-12
+            for i in range(n):  # (Jbᵀ Jb + λ I) Δq = Jbᵀ F
+                acc = 0.0
+                for r in range(6):
+                    acc += Jb[r, i] * F[r]
+                g[i] = acc
+                for j in range(i, n):
+                    acc = 0.0
+                    for r in range(6):
+                        acc += Jb[r, i] * Jb[r, j]
+                    H[i, j] = acc
+                    H[j, i] = acc
+                H[i, i] += lam
+            if not cholesky_solve(H, g, L, step):
+                lam *= 100.0
+                if lam > 1e6:
+                    break
+                continue
+        for i in range(n):
+            trial[i] = q[i] + step[i]
+        fk_and_body_jacobian(M, Slist, trial, W[6], Jt, Js, P, E, tmp, W[7])
+        evals += 1
+        e2, r2, p2 = _error(W[6], Td, Ft)
+        if e2 < err:
+            for i in range(n):
+                q[i] = trial[i]
+            for r in range(6):
+                F[r] = Ft[r]
+                for c in range(n):
+                    Jb[r, c] = Jt[r, c]
+            err, rot, pos = e2, r2, p2
+            if lam > 0.0:
+                lam = lam * 0.01 if lam > 1e-12 else 0.0
+        else:
+            lam = 1e-12 if lam == 0.0 else lam * 100.0
+            if lam > 1e6:
+                break
+    return rot, pos, evals
+
+
+@njit
+def _same(a: np.ndarray, b: np.ndarray, rev: np.ndarray) -> bool:
+    for j in range(6):
+        d = a[j] - b[j]
+        if rev[j] != 0.0:
+            d = _cf._rem(d)
+        if d >= SAME or d <= -SAME:
+            return False
+    return True
+
+
+@njit
+def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
+    for k in range(n):
+        if _same(q, Q[k], rev):
+            return k
+    return -1
+
+
+@njit
+def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
+                          T: np.ndarray, wrist_ref: float, tol_stop: float, tol_accept: float, max_steps: int,
+                          out: np.ndarray, branches: np.ndarray) -> int:
+    """Every solution of the arm ``(M, Slist)`` for the tip pose T (module docstring).
+
+    Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
+    ``PARALLEL_AXES``; post_q (5, 6): the arm's revolute flags and limits as in
+    :func:`robokit.kernels.closed_form.pack_constants` (row 0, the signs, is not used);
+    wrist_ref: the free joint's value at a singularity, in the sign of the projected arm's
+    solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the closed-form kernels do
+    and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS); returns the number of
+    solutions, −1 when T fails the quick rigid-transform test, and −2 − m when the m branches
+    could not all be written (never: at most MAX_ROWS branches)."""
+    nom = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
+    if method == _cf.PIEPER:
+        m = _cf.pieper_solve_into(Kn, T, wrist_ref, nom)
+    else:
+        m = _cf.parallel_axes_solve_into(Kn, T, wrist_ref, nom)
+    if m < 0:
+        return m
+    rev = post_q[1]
+    W = np.empty((8, 4, 4))
+    J = np.empty((6, 6, 6))
+    V = np.empty((5, 6))
+    Td = np.ascontiguousarray(T)
+    rows = np.empty((_cf.MAX_ROWS, 6))
+    rcodes = np.empty((_cf.MAX_ROWS, 3), dtype=np.int64)
+    rdegen = np.zeros(_cf.MAX_ROWS, dtype=np.bool_)
+    q = np.empty(6)
+    q2 = np.empty(6)
+    ns = 0
+    for r in range(m):
+        for j in range(6):
+            q[j] = nom[r, j]
+        rot, pos, _ = polish(M, Slist, Td, q, tol_stop, max_steps, W, J, V)
+        ok = rot < tol_accept and pos < tol_accept
+        k = _find(q, rows, ns, rev) if ok else -1
+        degen = nom[r, 8] == 1.0
+        if not ok or k >= 0:  # a root found already, or none: once more from the mirrored start
+            for j in range(6):
+                q2[j] = 2.0 * nom[r, j] - q[j]
+            rot2, pos2, _ = polish(M, Slist, Td, q2, tol_stop, max_steps, W, J, V)
+            if rot2 < tol_accept and pos2 < tol_accept and _find(q2, rows, ns, rev) < 0:
+                for j in range(6):
+                    q[j] = q2[j]
+                rot, pos, ok, k, degen = rot2, pos2, True, -1, True
+            elif not ok and rot2 < tol_accept and pos2 < tol_accept:
+                k = _find(q2, rows, ns, rev)
+                rot, pos, ok = rot2, pos2, True
+        code = int(nom[r, 7])
+        branches[r, 0] = code
+        branches[r, 3] = rot
+        branches[r, 4] = pos
+        if ok and k < 0:
+            for j in range(6):
+                rows[ns, j] = q[j]
+            rcodes[ns, 0] = code // 100
+            rcodes[ns, 1] = (code // 10) % 10
+            rcodes[ns, 2] = code % 10
+            rdegen[ns] = degen
+            branches[r, 1] = SOLUTION
+            branches[r, 2] = ns
+            ns += 1
+        elif ok:  # two branches reach one root: the branches merge here
+            rdegen[k] = True
+            branches[r, 1] = MERGED
+            branches[r, 2] = k
+        else:
+            branches[r, 1] = VANISHED
+            branches[r, 2] = -1
+    ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
+    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out)
+
+
+@njit(parallel=True)
+def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
+                     Ts: np.ndarray, wrist_ref: float, tol_stop: float, tol_accept: float,
+                     max_steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`calibrated_solve_into` over (N, 4, 4) poses, in parallel over the poses: (out (N,
+    MAX_ROWS, OUT_COLS) with NaN rows past each count, counts (N,))."""
+    N = Ts.shape[0]
+    out = np.full((N, _cf.MAX_ROWS, _cf.OUT_COLS), np.nan)
+    counts = np.zeros(N, dtype=np.int64)
+    for i in prange(N):
+        branches = np.empty((_cf.MAX_ROWS, BRANCH_COLS))
+        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, tol_stop, tol_accept,
+                                          max_steps, out[i], branches)
+    return out, counts
