@@ -35,7 +35,7 @@ from robokit.description.mjcf import load_mjcf
 from robokit.description.models import shipped_models
 from robokit.description.robot import Robot
 from robokit.description.spec import RobotSpec
-from robokit.description.urdf_files import load_urdf
+from robokit.description.urdf_files import load_urdf, load_urdf_text
 from robokit.description.xacro_files import load_xacro
 from robokit.errors import InputError
 
@@ -61,6 +61,7 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                                   xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes),
     "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes),
+    "calibrated": lambda s: load_urdf_text(s.text or "", s, s.tip or "tool", s.gravity or None),
 }
 
 

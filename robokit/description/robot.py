@@ -17,7 +17,9 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 """
 from __future__ import annotations
 
+import os
 from math import isfinite
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 import numpy as np
@@ -93,6 +95,8 @@ class Robot:
     spec : RobotSpec or None
         The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
         (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
+    nominal : Robot or RobotSpec or None
+        For a calibrated robot (:func:`robokit.calibrate`), the arm the calibration started from.
 
     Examples
     --------
@@ -109,6 +113,9 @@ class Robot:
     """
 
     spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)
+    #: The nominal arm of a calibrated robot (a Robot, or the RobotSpec that loads it), else None:
+    #: its structure gives the calibrated arm's exact IK (:mod:`robokit.ik.calibrated`).
+    nominal: Robot | RobotSpec | None = None
 
     def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
                  dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
@@ -332,6 +339,33 @@ class Robot:
         lo = np.where(np.isfinite(self.qlim[:, 0]), self.qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
         return rng.uniform(lo, hi)
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write the robot as ``.urdf`` (or ``.yaml`` when a DH table reproduces it exactly), atomically.
+
+        See :mod:`robokit.description.save`: a calibrated robot writes its own URDF (calibrated joint
+        placements, nominal inertias), a DH robot the URDF of its table, a URDF robot its file.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file; its folder must exist.
+
+        Returns
+        -------
+        Path
+            The file written.
+
+        Examples
+        --------
+        >>> import tempfile, os
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     rk.load(rk.load("puma560").save(os.path.join(tmp, "arm.urdf"))).n
+        6
+        """
+        from robokit.description.save import save_robot
+
+        return save_robot(self, path)
 
     def __repr__(self) -> str:
         kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.dh_from_urdf(robot).table"

@@ -28,7 +28,8 @@ Which structure. In this order:
 1. the one the caller names: ``nominal=`` a robot (its closed form's structure) or a method name
    (``"spherical wrist"``, ``"three parallel axes"``);
 2. the nominal arm recorded on the robot (``robot.nominal``: :func:`robokit.calibrate` records the
-   arm it started from, and the calibrated robot's spec carries it to other processes);
+   arm it started from, and the calibrated robot's spec carries it to other processes), when the
+   arm is within :data:`RECORDED` (10) times the tolerances below of its structure;
 3. detected: a structure whose axes are off by at most :data:`NEAR_ANGLE` (rad, between axes that
    must be parallel) and :data:`NEAR_DISTANCE` times the arm's reach (m, of axes that must meet),
    the reach being the largest distance from joint 1's origin to another joint's or the tool.
@@ -63,6 +64,9 @@ NEAR_ANGLE = 1e-2
 #: Detected structures: the largest distance of an axis from the point where its group must meet,
 #: as a fraction of the arm's reach.
 NEAR_DISTANCE = 1e-2
+#: A nominal recorded on the robot (not named by the caller) is used when the arm is within this many
+#: times the detection tolerances of its structure (a calibration's errors are far smaller).
+RECORDED = 10.0
 #: Newton stops below this orientation (rad) and position (m) error; a start whose polish ends
 #: above ``TOL_ACCEPT`` has no solution near it.
 TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 40
@@ -467,7 +471,8 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
     from robokit.ik.closed_form import AnalyticIK
 
     source = "named by the caller"
-    if nominal is None:
+    recorded = nominal is None
+    if recorded:
         nominal = getattr(robot, "nominal", None)
         source = "the nominal arm it was calibrated from"
     if nominal is not None and not isinstance(nominal, str):
@@ -486,7 +491,12 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
         else:
             source = f"{source} ({getattr(nominal, 'name', 'a DH table')})"
         candidates = sorted(tried, key=lambda s: max(deviation(geo, s)[0], deviation(geo, s)[1] / geo.reach))
-    else:
+        if recorded:  # a recorded nominal far from this arm (not a calibration of it) is not used
+            candidates = [s for s in candidates if deviation(geo, s)[0] <= RECORDED * NEAR_ANGLE
+                          and deviation(geo, s)[1] <= RECORDED * NEAR_DISTANCE * geo.reach]
+            if not candidates:
+                nominal = None
+    if nominal is None:
         source = "detected"
         scored = []
         for s in STRUCTURES:
@@ -501,6 +511,9 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
                   f"structure)")
     if nominal is not None and not isinstance(nominal, str):
         ngeo = _geometry_of(nominal)
+        if [k for _, _, k in ngeo.lines] != [k for _, _, k in geo.lines]:
+            return None, (f"the nominal arm's joints ({''.join(k for _, _, k in ngeo.lines)}) are not this arm's "
+                          f"({''.join(k for _, _, k in geo.lines)})")
         extra = _relations(ngeo, 1e-9, 1e-9 * max(1.0, ngeo.reach))  # the nominal's exact relations
     else:
         extra = _relations(geo, NEAR_ANGLE, NEAR_DISTANCE * geo.reach)

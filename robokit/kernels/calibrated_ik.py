@@ -10,12 +10,12 @@ constants ``Kn``). Per pose:
 
 1. every closed-form solution of the projected arm (:func:`robokit.kernels.closed_form.pieper_solve_into`
    or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag;
-2. each start is polished by :func:`polish` — Levenberg–Marquardt with a vanishing damping, i.e.
-   Newton's method on the body-frame pose error ``V_b = log(T(q)⁻¹ T_d)`` with the body Jacobian
-   (:func:`robokit.kernels.ik.fk_and_body_jacobian` and :func:`robokit.kernels.ik.pose_error`, the
-   FK and Jacobian of the compiled numerical IK), until the orientation error (rad) and the
-   position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept`` has
-   no solution nearby;
+2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
+   (:func:`_error`) with the space Jacobian, both from
+   :func:`robokit.kernels.ik.fk_and_space_jacobian` (the FK and Jacobian of the compiled numerical
+   IK), Levenberg–Marquardt steps where a Newton step fails, until the orientation error (rad) and
+   the position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept``
+   has no solution near it;
 3. a start that reached a solution already found (two branches converging to one root), or none,
    is tried once more from its start mirrored through the point the polish reached
    (``2 q₀ − q``): near a fold, where two roots of the arm approach each other, the second root
@@ -45,7 +45,7 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
-from robokit.kernels.ik import fk_and_body_jacobian
+from robokit.kernels.ik import fk_and_space_jacobian
 
 __all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANCH_COLS", "SOLUTION", "MERGED",
            "VANISHED"]
@@ -61,30 +61,32 @@ BRANCH_COLS = 5
 
 @njit
 def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
-    """F ← (ω, Δp), the body-frame pose error of T against Td to first order: with
-    ``T⁻¹T_d = (R_e, p_e)``, ``ω = vee(R_e − R_eᵀ)/2`` (sin θ times the axis) and ``Δp = p_e``; zero
-    exactly when T = Td (for an orientation error below π/2), and its derivative there is the body
-    Jacobian's, so Newton's method with J_b converges quadratically. Returns (½‖F‖², ‖ω‖, ‖Δp‖)."""
-    # R_e = Rᵀ R_d, p_e = Rᵀ (p_d − p)
-    dx, dy, dz = Td[0, 3] - T[0, 3], Td[1, 3] - T[1, 3], Td[2, 3] - T[2, 3]
+    """F ← (ω, v), the spatial twist that moves T to Td, to first order: ``ω = vee(A − Aᵀ)/2`` with
+    ``A = R_d Rᵀ`` (sin θ times the axis), ``v = Δp − ω × p`` with ``Δp = p_d − p`` (p moves with
+    ``v + ω × p``). F is zero exactly when T = Td (for an orientation error below π/2) and its
+    derivative there is the space Jacobian's, so Newton's method with J_s converges quadratically.
+    Returns (½(‖ω‖² + ‖Δp‖²), ‖ω‖ (rad, or 2 − ‖ω‖ beyond π/2), ‖Δp‖ (m))."""
+    a01 = Td[0, 0] * T[1, 0] + Td[0, 1] * T[1, 1] + Td[0, 2] * T[1, 2]
+    a10 = Td[1, 0] * T[0, 0] + Td[1, 1] * T[0, 1] + Td[1, 2] * T[0, 2]
+    a02 = Td[0, 0] * T[2, 0] + Td[0, 1] * T[2, 1] + Td[0, 2] * T[2, 2]
+    a20 = Td[2, 0] * T[0, 0] + Td[2, 1] * T[0, 1] + Td[2, 2] * T[0, 2]
+    a12 = Td[1, 0] * T[2, 0] + Td[1, 1] * T[2, 1] + Td[1, 2] * T[2, 2]
+    a21 = Td[2, 0] * T[1, 0] + Td[2, 1] * T[1, 1] + Td[2, 2] * T[1, 2]
+    wx, wy, wz = 0.5 * (a21 - a12), 0.5 * (a02 - a20), 0.5 * (a10 - a01)
+    px, py, pz = T[0, 3], T[1, 3], T[2, 3]
+    dx, dy, dz = Td[0, 3] - px, Td[1, 3] - py, Td[2, 3] - pz
+    F[0], F[1], F[2] = wx, wy, wz
+    F[3] = dx - (wy * pz - wz * py)
+    F[4] = dy - (wz * px - wx * pz)
+    F[5] = dz - (wx * py - wy * px)
+    tr = 0.0  # trace of A = Σ R_d ∘ R: below 1 beyond π/2, where ‖ω‖ = sin θ falls again
     for r in range(3):
-        F[3 + r] = T[0, r] * dx + T[1, r] * dy + T[2, r] * dz
-    e01 = T[0, 0] * Td[0, 1] + T[1, 0] * Td[1, 1] + T[2, 0] * Td[2, 1]
-    e10 = T[0, 1] * Td[0, 0] + T[1, 1] * Td[1, 0] + T[2, 1] * Td[2, 0]
-    e02 = T[0, 0] * Td[0, 2] + T[1, 0] * Td[1, 2] + T[2, 0] * Td[2, 2]
-    e20 = T[0, 2] * Td[0, 0] + T[1, 2] * Td[1, 0] + T[2, 2] * Td[2, 0]
-    e12 = T[0, 1] * Td[0, 2] + T[1, 1] * Td[1, 2] + T[2, 1] * Td[2, 2]
-    e21 = T[0, 2] * Td[0, 1] + T[1, 2] * Td[1, 1] + T[2, 2] * Td[2, 1]
-    F[0] = 0.5 * (e21 - e12)
-    F[1] = 0.5 * (e02 - e20)
-    F[2] = 0.5 * (e10 - e01)
-    # an orientation error beyond π/2 (R_e's trace below 1) counts as large: ‖ω‖ is then ≥ 1
-    tr = T[0, 0] * Td[0, 0] + T[1, 0] * Td[1, 0] + T[2, 0] * Td[2, 0] + T[0, 1] * Td[0, 1] + T[1, 1] * Td[1, 1] \
-        + T[2, 1] * Td[2, 1] + T[0, 2] * Td[0, 2] + T[1, 2] * Td[1, 2] + T[2, 2] * Td[2, 2]
-    rot = math.sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2])
+        for c in range(3):
+            tr += Td[r, c] * T[r, c]
+    rot = math.sqrt(wx * wx + wy * wy + wz * wz)
     if tr < 1.0:
         rot = 2.0 - rot
-    pos = math.sqrt(F[3] * F[3] + F[4] * F[4] + F[5] * F[5])
+    pos = math.sqrt(dx * dx + dy * dy + dz * dz)
     return 0.5 * (rot * rot + pos * pos), rot, pos
 
 
@@ -127,37 +129,39 @@ def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> 
 @njit
 def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_stop: float, max_steps: int,
            W: np.ndarray, J: np.ndarray, V: np.ndarray) -> tuple[float, float, int]:
-    """Newton's method on the pose error :func:`_error` of the PoE ``(M, Slist)`` with its body
-    Jacobian (:func:`robokit.kernels.ik.fk_and_body_jacobian`), q (6,) updated in place; a step
+    """Newton's method on the pose error :func:`_error` of the PoE ``(M, Slist)`` with its space
+    Jacobian (:func:`robokit.kernels.ik.fk_and_space_jacobian`), q (6,) updated in place; a step
     that does not lower the error, or a singular Jacobian, switches to Levenberg–Marquardt
-    (damping λ, ×100 on failure, ÷100 on success, back to Newton below 1e-14). Stops when the
+    (damping λ, ×100 on failure, ÷100 on success, back to Newton below 1e-12). Stops when the
     orientation error (rad) and the position error (m) are below ``tol_stop``. Returns (orientation
-    error, position error, FK evaluations). Scratch: W (8, 4, 4), J (6, 6, 6), V (5, 6)."""
+    error, position error, FK evaluations). Scratch: W (5, 4, 4), J (5, 6, 6), V (4, 6)."""
     n = Slist.shape[1]
-    T, P, E, tmp, Tinv = W[0], W[1], W[2], W[3], W[4]
-    Jb, Js, H, L, Jt = J[0], J[1], J[2], J[3], J[4]
-    F, Ft, g, step = V[0], V[1], V[3], V[4]
+    P, E, tmp = W[2], W[3], W[4]
+    H, L = J[2], J[3]
+    g, step = V[2], V[3]
     trial = np.empty(6)
-    fk_and_body_jacobian(M, Slist, q, T, Jb, Js, P, E, tmp, Tinv)
-    err, rot, pos = _error(T, Td, F)
+    cur = 0  # W[cur], J[cur], V[cur]: the current iterate's pose, Jacobian and error; 1 − cur: the trial's
+    fk_and_space_jacobian(M, Slist, q, W[0], J[0], P, E, tmp)
+    err, rot, pos = _error(W[0], Td, V[0])
     lam = 0.0
     evals = 1
     for _ in range(max_steps):
         if rot < tol_stop and pos < tol_stop:
             break
-        solved = lam == 0.0 and _newton_step(Jb, F, H, step)
+        Jc, F = J[cur], V[cur]
+        solved = lam == 0.0 and _newton_step(Jc, F, J[4], step)
         if not solved:
             if lam == 0.0:
                 lam = 1e-12
-            for i in range(n):  # (Jbᵀ Jb + λ I) Δq = Jbᵀ F
+            for i in range(n):  # (Jᵀ J + λ I) Δq = Jᵀ F
                 acc = 0.0
                 for r in range(6):
-                    acc += Jb[r, i] * F[r]
+                    acc += Jc[r, i] * F[r]
                 g[i] = acc
                 for j in range(i, n):
                     acc = 0.0
                     for r in range(6):
-                        acc += Jb[r, i] * Jb[r, j]
+                        acc += Jc[r, i] * Jc[r, j]
                     H[i, j] = acc
                     H[j, i] = acc
                 H[i, i] += lam
@@ -168,16 +172,14 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
                 continue
         for i in range(n):
             trial[i] = q[i] + step[i]
-        fk_and_body_jacobian(M, Slist, trial, W[6], Jt, Js, P, E, tmp, W[7])
+        nxt = 1 - cur
+        fk_and_space_jacobian(M, Slist, trial, W[nxt], J[nxt], P, E, tmp)
         evals += 1
-        e2, r2, p2 = _error(W[6], Td, Ft)
+        e2, r2, p2 = _error(W[nxt], Td, V[nxt])
         if e2 < err:
             for i in range(n):
                 q[i] = trial[i]
-            for r in range(6):
-                F[r] = Ft[r]
-                for c in range(n):
-                    Jb[r, c] = Jt[r, c]
+            cur = nxt
             err, rot, pos = e2, r2, p2
             if lam > 0.0:
                 lam = lam * 0.01 if lam > 1e-12 else 0.0
@@ -229,9 +231,9 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
     if m < 0:
         return m
     rev = post_q[1]
-    W = np.empty((8, 4, 4))
-    J = np.empty((6, 6, 6))
-    V = np.empty((5, 6))
+    W = np.empty((5, 4, 4))
+    J = np.empty((5, 6, 6))
+    V = np.empty((4, 6))
     Td = np.ascontiguousarray(T)
     rows = np.empty((_cf.MAX_ROWS, 6))
     rcodes = np.empty((_cf.MAX_ROWS, 3), dtype=np.int64)

@@ -43,9 +43,9 @@ __all__ = ["solve_poe_ik", "solve_poe_ik_kernel"]
 
 
 @njit
-def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Jb: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray, Tinv: np.ndarray) -> None:
-    """T ← T_sb(θ) and Jb ← J_b(θ) in one pass: the prefix products of the space Jacobian
-    ``P = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}`` also build the FK; then ``J_b = Ad_{T⁻¹} J_s``."""
+def fk_and_space_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
+    """T ← T_sb(θ) and Js ← J_s(θ) in one pass: the prefix products of the space Jacobian
+    ``P = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}`` (column i is ``Ad_P Sᵢ``) also build the FK."""
     n = Slist.shape[1]
     set_identity(P)
     for i in range(n):
@@ -53,6 +53,13 @@ def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T:
         exp_screw(Slist, i, theta[i], E)
         mul_tt_inplace(P, E, tmp)
     mul_tt(P, M, T)
+
+
+@njit
+def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Jb: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray, Tinv: np.ndarray) -> None:
+    """T ← T_sb(θ) and Jb ← J_b(θ): :func:`fk_and_space_jacobian`, then ``J_b = Ad_{T⁻¹} J_s``."""
+    n = Slist.shape[1]
+    fk_and_space_jacobian(M, Slist, theta, T, Js, P, E, tmp)
     inv_t(T, Tinv)
     for i in range(n):
         adjoint_screw(Tinv, Js, i, Jb, i)
