@@ -468,7 +468,7 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
         The arm's exact IK, or None and the reason no nominal structure applies.
     """
     from robokit.description.urdf_to_dh import dh_from_lines
-    from robokit.ik.closed_form import AnalyticIK
+    from robokit.ik.closed_form import _EXACT_ONLY, AnalyticIK
 
     source = "named by the caller"
     recorded = nominal is None
@@ -521,7 +521,7 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
     for s in candidates:
         lines = _project(geo.lines, s, extra)
         table = dh_from_lines(lines, geo.M, f"{getattr(robot, 'name', 'arm')}_nominal", geo.qlim)
-        ik = AnalyticIK(table)
+        ik = AnalyticIK(table, _EXACT_ONLY)
         if ik.method != s[0] or ik._kernel is None:
             why = f"the arm with its {s[0]} restored is not solved by that closed form ({ik.reason})"
             continue

@@ -79,6 +79,8 @@ if TYPE_CHECKING:
 __all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_batch", "ik_analytic_kind"]
 
 _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
+#: ``AnalyticIK(table, _EXACT_ONLY)``: the exact closed forms only (the projected arm of a calibrated one).
+_EXACT_ONLY: Any = object()
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
 
 
@@ -225,6 +227,11 @@ class AnalyticIK:
         self._strong: Robot | DHTable | None = robot
         self._weak: weakref.ref | None = None
         self._nominal = nominal
+        # False for the projected arm of a calibrated one (its own closed form only, no recursion)
+        # and for nominal=False (the arm as it is: no nominal structure named, recorded or detected)
+        self._try_calibrated = nominal is not _EXACT_ONLY and nominal is not False
+        if not self._try_calibrated:
+            self._nominal = None
         self._build()
 
     @classmethod
@@ -315,7 +322,7 @@ class AnalyticIK:
         # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
         self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
         self.calibrated = None
-        if self.kind.method is None and self.chain.n == 6:
+        if self.kind.method is None and self.chain.n == 6 and self._try_calibrated:
             # a calibrated or nearly special arm: the nominal structure's closed form, then Newton on
             # the arm's own kinematics (robokit.ik.calibrated); its PoE, not the DH table, is solved
             from robokit.ik.calibrated import calibrated_arm
@@ -747,8 +754,9 @@ def ik_analytic_kind(robot: Robot | DHTable, nominal: Any = None) -> ClosedFormK
     Parameters
     ----------
     robot : :class:`robokit.Robot` (from a DH file or a URDF) or a :class:`robokit.DHTable`.
-    nominal : Robot, DHTable, RobotSpec or str, optional
-        The nominal structure of a calibrated or nearly special arm (see :func:`ik_analytic`).
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
+        The nominal structure of a calibrated or nearly special arm, or False for none (see
+        :func:`ik_analytic`).
 
     Returns
     -------
@@ -800,13 +808,14 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     world : :class:`robokit.collision.World`, optional
         When given, each solution's ``.collision_free`` says whether the arm is free of self-
         and obstacle collisions there (None without a world). All solutions are returned.
-    nominal : Robot, DHTable, RobotSpec or str, optional
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
         For an arm whose URDF or DH table is nearly but not exactly special: the nominal arm, or
         its structure's name (``"spherical wrist"``, ``"three parallel axes"``). Its closed form
         gives one start per branch and Newton's method on ``robot``'s own kinematics finishes each
         (:mod:`robokit.ik.calibrated`). Not needed for a robot from :func:`robokit.calibrate`
         (it records its nominal) nor for axes within 0.01 rad and 0.01 × the reach of the
-        structure (detected).
+        structure (detected). ``False``: none — an arm that is not exactly special is solved by the
+        general 6R method.
 
     Returns
     -------
