@@ -182,13 +182,49 @@ def deviation(geo: _Geometry, structure: tuple[str, bool]) -> tuple[float, float
     return ang, dist
 
 
-def _project(lines: list[Line], structure: tuple[str, bool],
-             extra: tuple[list[tuple[int, ...]], list[tuple[int, int]]] = ([], [])) -> list[Line]:
-    """The lines with ``structure`` restored (module docstring), and with it the ``extra`` relations
-    of the nominal arm: runs of consecutive parallel axes (their directions averaged) and pairs of
-    consecutive axes that meet (the line not placed yet moved, parallel to itself, onto the other)."""
-    par, meet = STRUCTURES[structure]
+def _signed_angle(d1: np.ndarray, d2: np.ndarray) -> float:
+    """Angle in [0, π] between two directions (signs kept: the DH twist up to its sign)."""
+    return math.atan2(float(np.linalg.norm(np.cross(d1, d2))), float(d1 @ d2))
+
+
+def _rotate(v: np.ndarray, axis: np.ndarray, angle: float) -> np.ndarray:
+    """v turned by ``angle`` about the unit ``axis`` (Rodrigues)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return v * c + np.cross(axis, v) * s + axis * float(axis @ v) * (1.0 - c)
+
+
+def _set_twists(lines: list[Line], twists: Sequence[float | None]) -> list[Line]:
+    """The lines with the angle between consecutive directions i, i+1 set to ``twists[i]`` (None:
+    kept): each correction turns direction i+1 and every later one together (their own angles
+    kept), about the common normal of directions i and i+1; the points stay."""
     out = [(p.copy(), d.copy(), k) for p, d, k in lines]
+    for i, target in enumerate(twists):
+        if target is None:
+            continue
+        di, dj = out[i][1], out[i + 1][1]
+        delta = target - _signed_angle(di, dj)
+        if delta == 0.0:
+            continue
+        axis = np.cross(di, dj)
+        if float(np.linalg.norm(axis)) < 1e-12:  # parallel or opposite: any normal of di
+            axis = np.cross(di, [1.0, 0.0, 0.0] if abs(di[0]) < 0.9 else [0.0, 1.0, 0.0])
+        axis = axis / np.linalg.norm(axis)
+        for k in range(i + 1, len(out)):
+            p, d, kind = out[k]
+            d = _rotate(d, axis, delta)
+            out[k] = (p, d / np.linalg.norm(d), kind)
+    return out
+
+
+def _project(lines: list[Line], structure: tuple[str, bool],
+             extra: tuple[list[tuple[int, ...]], list[tuple[int, int]]] = ([], []),
+             twists: Sequence[float | None] | None = None) -> list[Line]:
+    """The lines with ``structure`` restored (module docstring), and with it the nominal arm's
+    ``twists`` (the angles between consecutive axes, :func:`_set_twists`) and ``extra`` relations:
+    runs of consecutive parallel axes (their directions averaged) and pairs of consecutive axes
+    that meet (the line not placed yet moved, parallel to itself, onto the other)."""
+    par, meet = STRUCTURES[structure]
+    out = _set_twists(lines, twists) if twists is not None else [(p.copy(), d.copy(), k) for p, d, k in lines]
     groups = [g for g in extra[0] if not set(g) & set(par)] + ([par] if par else [])
     for group in groups:
         ref = out[group[0]][1]
@@ -301,7 +337,7 @@ class CalibratedArm:
         self.deviation = deviation
         self.nominal = nominal
         self.projected = projected
-        self.M, self.Slist = geo.M, geo.Slist
+        self.M, self.Slist, self.reach = geo.M, geo.Slist, geo.reach
         kn = nominal._kernel
         self._Kn, self._labels = kn[0], kn[1]
         self._kind = _kcf.PIEPER if structure[0] == "spherical wrist" else _kcf.PARALLEL_AXES
@@ -336,8 +372,8 @@ class CalibratedArm:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = np.full((_kcf.MAX_ROWS, _kci.BRANCH_COLS), -1.0)  # code −1: no branch
         n = _kci.calibrated_solve_into(self._Kn, self._kind, self.M, self.Slist, self._post_q, T,
-                                       self.nominal._kernel_ref(wrist_ref), TOL_STOP, TOL_ACCEPT, MAX_STEPS, out,
-                                       branches)
+                                       self.nominal._kernel_ref(wrist_ref), self.reach, TOL_STOP, TOL_ACCEPT,
+                                       MAX_STEPS, out, branches)
         return out, n, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -399,7 +435,8 @@ class CalibratedArm:
     def solve_batch(self, Ts: np.ndarray, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """(out (N, 16, 9), counts (N,)) of :func:`robokit.kernels.calibrated_ik.calibrated_batch`."""
         return _kci.calibrated_batch(self._Kn, self._kind, self.M, self.Slist, self._post_q, Ts,
-                                     self.nominal._kernel_ref(wrist_ref), TOL_STOP, TOL_ACCEPT, MAX_STEPS)
+                                     self.nominal._kernel_ref(wrist_ref), self.reach, TOL_STOP, TOL_ACCEPT,
+                                     MAX_STEPS)
 
     def _warn_vanished(self, branches: np.ndarray, m: int) -> None:
         if self._warned:
@@ -509,17 +546,24 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
         candidates = [s for _, s in sorted(scored)]
         source = (f"detected (axes within {NEAR_ANGLE:g} rad and {NEAR_DISTANCE:g} × the reach of the "
                   f"structure)")
+    twists: list[float | None]
     if nominal is not None and not isinstance(nominal, str):
         ngeo = _geometry_of(nominal)
         if [k for _, _, k in ngeo.lines] != [k for _, _, k in geo.lines]:
             return None, (f"the nominal arm's joints ({''.join(k for _, _, k in ngeo.lines)}) are not this arm's "
                           f"({''.join(k for _, _, k in geo.lines)})")
         extra = _relations(ngeo, 1e-9, 1e-9 * max(1.0, ngeo.reach))  # the nominal's exact relations
+        twists = [_signed_angle(ngeo.lines[i][1], ngeo.lines[i + 1][1]) for i in range(len(geo.lines) - 1)]
     else:
         extra = _relations(geo, NEAR_ANGLE, NEAR_DISTANCE * geo.reach)
+        twists = []  # right angles and parallels within NEAR_ANGLE made exact
+        for i in range(len(geo.lines) - 1):
+            a = _signed_angle(geo.lines[i][1], geo.lines[i + 1][1])
+            near = min((0.0, 0.5 * math.pi, math.pi), key=lambda t: abs(a - t))
+            twists.append(near if abs(a - near) <= NEAR_ANGLE else None)
     why = "the projected arm has no closed form"
     for s in candidates:
-        lines = _project(geo.lines, s, extra)
+        lines = _project(geo.lines, s, extra, twists)
         table = dh_from_lines(lines, geo.M, f"{getattr(robot, 'name', 'arm')}_nominal", geo.qlim)
         ik = AnalyticIK(table, _EXACT_ONLY)
         if ik.method != s[0] or ik._kernel is None:

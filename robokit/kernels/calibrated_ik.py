@@ -54,6 +54,12 @@ __all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANC
 SAME = 1e-7
 #: Per-branch outcome codes written to ``branches[:, 1]``.
 SOLUTION, MERGED, VANISHED = 0, 1, 2
+#: A polish that moved a joint farther than this (rad or m) from its start was near a singular pose:
+#: the roots along the arm's near-singular direction there are searched too.
+EXPLORE = 0.1
+#: The starts of that search: the point plus these multiples of π/4 (in the largest joint) along
+#: the near-singular direction.
+EXPLORE_STEPS = (1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0)
 #: Columns of ``branches``: branch code, outcome, index of the solution (−1 if vanished),
 #: orientation error (rad), position error (m) at the end of the polish.
 BRANCH_COLS = 5
@@ -210,9 +216,42 @@ def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
 
 
 @njit
+def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: float, W: np.ndarray, J: np.ndarray,
+                    V: np.ndarray, v: np.ndarray) -> None:
+    """v ← the unit joint direction along which the arm's Jacobian at q is closest to singular:
+    inverse iteration (4 steps from (1, …, 1)) on ``J̃ᵀJ̃ + 1e-12 I``, J̃ the space Jacobian with its
+    velocity rows divided by the reach (m), so both halves are rad-like."""
+    n = Slist.shape[1]
+    Jc, H, L = J[0], J[2], J[3]
+    fk_and_space_jacobian(M, Slist, q, W[0], Jc, W[2], W[3], W[4])
+    for r in range(3, 6):
+        for c in range(n):
+            Jc[r, c] /= reach
+    for i in range(n):
+        for j in range(i, n):
+            acc = 0.0
+            for r in range(6):
+                acc += Jc[r, i] * Jc[r, j]
+            H[i, j] = acc
+            H[j, i] = acc
+        H[i, i] += 1e-12
+        v[i] = 1.0
+    x = V[2]
+    for _ in range(4):
+        if not cholesky_solve(H, v, L, x):
+            return
+        norm = 0.0
+        for i in range(n):
+            norm += x[i] * x[i]
+        norm = math.sqrt(norm)
+        for i in range(n):
+            v[i] = x[i] / norm
+
+
+@njit
 def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                          T: np.ndarray, wrist_ref: float, tol_stop: float, tol_accept: float, max_steps: int,
-                          out: np.ndarray, branches: np.ndarray) -> int:
+                          T: np.ndarray, wrist_ref: float, reach: float, tol_stop: float, tol_accept: float,
+                          max_steps: int, out: np.ndarray, branches: np.ndarray) -> int:
     """Every solution of the arm ``(M, Slist)`` for the tip pose T (module docstring).
 
     Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
@@ -241,10 +280,18 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
     q = np.empty(6)
     q2 = np.empty(6)
     ns = 0
+    # the points to explore around (near a singular pose): a solution the polish moved far from its
+    # start, a branch that vanished (the point its polish reached), a singular choice of the nominal
+    seeds = np.empty((_cf.MAX_ROWS, 6))
+    seed_code = np.empty(_cf.MAX_ROWS, dtype=np.int64)
+    nseed = 0
     for r in range(m):
         for j in range(6):
             q[j] = nom[r, j]
         rot, pos, _ = polish(M, Slist, Td, q, tol_stop, max_steps, W, J, V)
+        moved = 0.0
+        for j in range(6):
+            moved = max(moved, abs(q[j] - nom[r, j]))
         ok = rot < tol_accept and pos < tol_accept
         k = _find(q, rows, ns, rev) if ok else -1
         degen = nom[r, 8] == 1.0
@@ -260,6 +307,11 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 k = _find(q2, rows, ns, rev)
                 rot, pos, ok = rot2, pos2, True
         code = int(nom[r, 7])
+        if moved > EXPLORE or not ok or degen:
+            for j in range(6):
+                seeds[nseed, j] = q[j]
+            seed_code[nseed] = code
+            nseed += 1
         branches[r, 0] = code
         branches[r, 3] = rot
         branches[r, 4] = pos
@@ -280,13 +332,34 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
         else:
             branches[r, 1] = VANISHED
             branches[r, 2] = -1
+    v = np.empty(6)
+    for k in range(nseed):  # every root along the arm's near-singular direction there
+        _null_direction(M, Slist, seeds[k], reach, W, J, V, v)
+        big = 0.0
+        for j in range(6):
+            big = max(big, abs(v[j]))
+        for step in EXPLORE_STEPS:
+            if ns == _cf.MAX_ROWS:
+                break
+            for j in range(6):
+                q[j] = seeds[k, j] + step * (0.25 * math.pi / big) * v[j]
+            rot, pos, _ = polish(M, Slist, Td, q, tol_stop, max_steps, W, J, V)
+            if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
+                for j in range(6):
+                    rows[ns, j] = q[j]
+                code = seed_code[k]
+                rcodes[ns, 0] = code // 100
+                rcodes[ns, 1] = (code // 10) % 10
+                rcodes[ns, 2] = code % 10
+                rdegen[ns] = True
+                ns += 1
     ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
     return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out)
 
 
 @njit(parallel=True)
 def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                     Ts: np.ndarray, wrist_ref: float, tol_stop: float, tol_accept: float,
+                     Ts: np.ndarray, wrist_ref: float, reach: float, tol_stop: float, tol_accept: float,
                      max_steps: int) -> tuple[np.ndarray, np.ndarray]:
     """:func:`calibrated_solve_into` over (N, 4, 4) poses, in parallel over the poses: (out (N,
     MAX_ROWS, OUT_COLS) with NaN rows past each count, counts (N,))."""
@@ -295,6 +368,6 @@ def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarr
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
         branches = np.empty((_cf.MAX_ROWS, BRANCH_COLS))
-        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, tol_stop, tol_accept,
-                                          max_steps, out[i], branches)
+        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, reach, tol_stop,
+                                          tol_accept, max_steps, out[i], branches)
     return out, counts
