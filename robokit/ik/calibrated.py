@@ -69,7 +69,7 @@ NEAR_DISTANCE = 1e-2
 RECORDED = 10.0
 #: Newton stops below this orientation (rad) and position (m) error; a start whose polish ends
 #: above ``TOL_ACCEPT`` has no solution near it.
-TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 40
+TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 60
 
 #: (method, counted from the tool) → (joints that must be parallel, joints that must meet), 0-based.
 STRUCTURES: dict[tuple[str, bool], tuple[tuple[int, ...], tuple[int, ...]]] = {
@@ -338,6 +338,8 @@ class CalibratedArm:
         self.nominal = nominal
         self.projected = projected
         self.M, self.Slist, self.reach = geo.M, geo.Slist, geo.reach
+        # the point poses are scaled about when a branch is missing (the kernel's RELAX): axes 1 and 2
+        self.shoulder = np.ascontiguousarray(_meet(geo.lines[:2])[0])
         kn = nominal._kernel
         self._Kn, self._labels = kn[0], kn[1]
         self._kind = _kcf.PIEPER if structure[0] == "spherical wrist" else _kcf.PARALLEL_AXES
@@ -372,8 +374,8 @@ class CalibratedArm:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = np.full((_kcf.MAX_ROWS, _kci.BRANCH_COLS), -1.0)  # code −1: no branch
         n = _kci.calibrated_solve_into(self._Kn, self._kind, self.M, self.Slist, self._post_q, T,
-                                       self.nominal._kernel_ref(wrist_ref), self.reach, TOL_STOP, TOL_ACCEPT,
-                                       MAX_STEPS, out, branches)
+                                       self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP,
+                                       TOL_ACCEPT, MAX_STEPS, out, branches)
         return out, n, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -435,8 +437,8 @@ class CalibratedArm:
     def solve_batch(self, Ts: np.ndarray, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """(out (N, 16, 9), counts (N,)) of :func:`robokit.kernels.calibrated_ik.calibrated_batch`."""
         return _kci.calibrated_batch(self._Kn, self._kind, self.M, self.Slist, self._post_q, Ts,
-                                     self.nominal._kernel_ref(wrist_ref), self.reach, TOL_STOP, TOL_ACCEPT,
-                                     MAX_STEPS)
+                                     self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP,
+                                     TOL_ACCEPT, MAX_STEPS)
 
     def _warn_vanished(self, branches: np.ndarray, m: int) -> None:
         if self._warned:

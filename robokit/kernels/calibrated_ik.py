@@ -54,12 +54,20 @@ __all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANC
 SAME = 1e-7
 #: Per-branch outcome codes written to ``branches[:, 1]``.
 SOLUTION, MERGED, VANISHED = 0, 1, 2
+#: Branches of the nominal structure in general position (both structures: 4 positions × 2 wrists).
+GENERIC_ROWS = 8
+#: When the projected arm's closed form gives fewer branches, it is also solved for the pose moved
+#: away from (f < 0) or toward (f > 0) the shoulder by these fractions: the starts of branches that
+#: the projected arm just cannot reach but the arm itself can (near the workspace boundary).
+RELAX = (-2e-3, 2e-3, -6e-3, 6e-3, -2e-2, 2e-2)
+#: No Newton step moves a joint more than this (rad, m): far from a root the linear model is not trusted.
+MAX_STEP = 0.5
 #: A polish that moved a joint farther than this (rad or m) from its start was near a singular pose:
 #: the roots along the arm's near-singular direction there are searched too.
 EXPLORE = 0.1
 #: The starts of that search: the point plus these multiples of π/4 (in the largest joint) along
 #: the near-singular direction.
-EXPLORE_STEPS = (1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0)
+EXPLORE_STEPS = (0.1, -0.1, 0.3, -0.3, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0)
 #: Columns of ``branches``: branch code, outcome, index of the solution (−1 if vanished),
 #: orientation error (rad), position error (m) at the end of the polish.
 BRANCH_COLS = 5
@@ -138,7 +146,8 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
     """Newton's method on the pose error :func:`_error` of the PoE ``(M, Slist)`` with its space
     Jacobian (:func:`robokit.kernels.ik.fk_and_space_jacobian`), q (6,) updated in place; a step
     that does not lower the error, or a singular Jacobian, switches to Levenberg–Marquardt
-    (damping λ, ×100 on failure, ÷100 on success, back to Newton below 1e-12). Stops when the
+    (damping λ times the largest diagonal entry of JᵀJ, λ from 1e-9, ×10 on failure, ÷10 on
+    success, back to Newton below 1e-9); no step moves a joint more than ``MAX_STEP``. Stops when the
     orientation error (rad) and the position error (m) are below ``tol_stop``. Returns (orientation
     error, position error, FK evaluations). Scratch: W (5, 4, 4), J (5, 6, 6), V (4, 6)."""
     n = Slist.shape[1]
@@ -149,7 +158,7 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
     cur = 0  # W[cur], J[cur], V[cur]: the current iterate's pose, Jacobian and error; 1 − cur: the trial's
     fk_and_space_jacobian(M, Slist, q, W[0], J[0], P, E, tmp)
     err, rot, pos = _error(W[0], Td, V[0])
-    lam = 0.0
+    lam = 0.0  # 0: Newton; else the damping, relative to the largest diagonal entry of Jᵀ J
     evals = 1
     for _ in range(max_steps):
         if rot < tol_stop and pos < tol_stop:
@@ -158,8 +167,9 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
         solved = lam == 0.0 and _newton_step(Jc, F, J[4], step)
         if not solved:
             if lam == 0.0:
-                lam = 1e-12
-            for i in range(n):  # (Jᵀ J + λ I) Δq = Jᵀ F
+                lam = 1e-9
+            big = 0.0
+            for i in range(n):  # (Jᵀ J + λ d I) Δq = Jᵀ F,  d = max diag(Jᵀ J)
                 acc = 0.0
                 for r in range(6):
                     acc += Jc[r, i] * F[r]
@@ -170,14 +180,20 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
                         acc += Jc[r, i] * Jc[r, j]
                     H[i, j] = acc
                     H[j, i] = acc
-                H[i, i] += lam
+                big = max(big, H[i, i])
+            for i in range(n):
+                H[i, i] += lam * big
             if not cholesky_solve(H, g, L, step):
-                lam *= 100.0
-                if lam > 1e6:
+                lam *= 10.0
+                if lam > 1e3:
                     break
                 continue
+        longest = 0.0  # a step longer than MAX_STEP (rad, m) is shortened: Newton's model is local
         for i in range(n):
-            trial[i] = q[i] + step[i]
+            longest = max(longest, abs(step[i]))
+        shrink = MAX_STEP / longest if longest > MAX_STEP else 1.0
+        for i in range(n):
+            trial[i] = q[i] + shrink * step[i]
         nxt = 1 - cur
         fk_and_space_jacobian(M, Slist, trial, W[nxt], J[nxt], P, E, tmp)
         evals += 1
@@ -188,10 +204,10 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
             cur = nxt
             err, rot, pos = e2, r2, p2
             if lam > 0.0:
-                lam = lam * 0.01 if lam > 1e-12 else 0.0
+                lam = lam * 0.1 if lam > 1e-9 else 0.0
         else:
-            lam = 1e-12 if lam == 0.0 else lam * 100.0
-            if lam > 1e6:
+            lam = 1e-9 if lam == 0.0 else lam * 10.0
+            if lam > 1e3:
                 break
     return rot, pos, evals
 
@@ -249,9 +265,16 @@ def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: floa
 
 
 @njit
+def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
+    if method == _cf.PIEPER:
+        return _cf.pieper_solve_into(Kn, T, wrist_ref, out)
+    return _cf.parallel_axes_solve_into(Kn, T, wrist_ref, out)
+
+
+@njit
 def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                          T: np.ndarray, wrist_ref: float, reach: float, tol_stop: float, tol_accept: float,
-                          max_steps: int, out: np.ndarray, branches: np.ndarray) -> int:
+                          T: np.ndarray, wrist_ref: float, shoulder: np.ndarray, reach: float, tol_stop: float,
+                          tol_accept: float, max_steps: int, out: np.ndarray, branches: np.ndarray) -> int:
     """Every solution of the arm ``(M, Slist)`` for the tip pose T (module docstring).
 
     Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
@@ -263,12 +286,30 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
     solutions, −1 when T fails the quick rigid-transform test, and −2 − m when the m branches
     could not all be written (never: at most MAX_ROWS branches)."""
     nom = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
-    if method == _cf.PIEPER:
-        m = _cf.pieper_solve_into(Kn, T, wrist_ref, nom)
-    else:
-        m = _cf.parallel_axes_solve_into(Kn, T, wrist_ref, nom)
+    m = _nominal_rows(Kn, method, T, wrist_ref, nom)
     if m < 0:
         return m
+    if m < GENERIC_ROWS:  # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
+        Tr = np.empty((4, 4))
+        extra = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
+        for f in RELAX:
+            for r in range(4):
+                for c in range(4):
+                    Tr[r, c] = T[r, c]
+            for r in range(3):
+                Tr[r, 3] = shoulder[r] + (1.0 + f) * (T[r, 3] - shoulder[r])
+            me = _nominal_rows(Kn, method, Tr, wrist_ref, extra)
+            for k in range(me):
+                have = False
+                for r in range(m):
+                    if nom[r, 7] == extra[k, 7]:
+                        have = True
+                        break
+                if not have and m < _cf.MAX_ROWS:
+                    for c in range(_cf.OUT_COLS):
+                        nom[m, c] = extra[k, c]
+                    nom[m, 8] = 1.0  # a start from a relaxed pose: flagged, and searched around
+                    m += 1
     rev = post_q[1]
     W = np.empty((5, 4, 4))
     J = np.empty((5, 6, 6))
@@ -307,7 +348,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 k = _find(q2, rows, ns, rev)
                 rot, pos, ok = rot2, pos2, True
         code = int(nom[r, 7])
-        if moved > EXPLORE or not ok or degen:
+        if moved > EXPLORE or not ok or k >= 0 or degen:
             for j in range(6):
                 seeds[nseed, j] = q[j]
             seed_code[nseed] = code
@@ -359,7 +400,8 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
 
 @njit(parallel=True)
 def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                     Ts: np.ndarray, wrist_ref: float, reach: float, tol_stop: float, tol_accept: float,
+                     Ts: np.ndarray, wrist_ref: float, shoulder: np.ndarray, reach: float, tol_stop: float,
+                     tol_accept: float,
                      max_steps: int) -> tuple[np.ndarray, np.ndarray]:
     """:func:`calibrated_solve_into` over (N, 4, 4) poses, in parallel over the poses: (out (N,
     MAX_ROWS, OUT_COLS) with NaN rows past each count, counts (N,))."""
@@ -368,6 +410,6 @@ def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarr
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
         branches = np.empty((_cf.MAX_ROWS, BRANCH_COLS))
-        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, reach, tol_stop,
-                                          tol_accept, max_steps, out[i], branches)
+        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, shoulder, reach,
+                                          tol_stop, tol_accept, max_steps, out[i], branches)
     return out, counts
