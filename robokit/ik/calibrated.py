@@ -366,6 +366,20 @@ class CalibratedArm:
     def __repr__(self) -> str:
         return f"CalibratedArm({self.method!r}, deviation=({self.deviation[0]:.2g} rad, {self.deviation[1]:.2g} m))"
 
+    def export_constants(self) -> dict[str, Any]:
+        """The numbers the generated C's polish needs (:mod:`robokit.codegen.ik`): method, reason,
+        shoulder (3,), reach, and the kernel's tolerances and search constants.
+
+        Returns
+        -------
+        dict
+        """
+        return {"method": self.method, "reason": self.reason, "shoulder": self.shoulder.copy(), "reach": self.reach,
+                "tol_stop": TOL_STOP, "tol_accept": TOL_ACCEPT, "max_steps": MAX_STEPS, "same": _kci.SAME,
+                "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
+                "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
+                "labels": [self._labels[c] for c in sorted(self._labels)]}
+
     def refusal(self) -> str | None:
         """None: the method applies (it was built for this arm)."""
         return None

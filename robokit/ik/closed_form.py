@@ -726,12 +726,14 @@ def _detect(chain: DHChain) -> ClosedFormKind:
 
 
 # ---------------------------------------------------------------------- public API
-def analytic_ik(robot: Robot | DHTable) -> AnalyticIK:
+def analytic_ik(robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
     """The shared :class:`AnalyticIK` of ``robot`` (built on first use, kept while ``robot`` lives).
 
     Parameters
     ----------
     robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
+        The nominal structure of a calibrated or nearly special arm (see :func:`ik_analytic`).
 
     Returns
     -------
@@ -745,7 +747,7 @@ def analytic_ik(robot: Robot | DHTable) -> AnalyticIK:
     >>> analytic_ik(robokit.load("puma560")).method
     'spherical wrist'
     """
-    return _CACHE.get(robot)
+    return _CACHE.get(robot, nominal)
 
 
 def ik_analytic_kind(robot: Robot | DHTable, nominal: Any = None) -> ClosedFormKind:
