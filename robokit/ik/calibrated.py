@@ -285,13 +285,6 @@ def _label_of(structure: tuple[str, bool]) -> str:
     return what
 
 
-class _Labels(dict):
-    """Branch code → label, with the codes of merged solutions added per solve."""
-
-    def __missing__(self, key: float) -> str:  # pragma: no cover - every code written is in the dict
-        return f"branch {int(key)}"
-
-
 class CalibratedArm:
     """The exact IK of one calibrated or nearly special 6-joint arm (module docstring).
 
@@ -413,18 +406,19 @@ class CalibratedArm:
         if n <= 0:
             self._warn_vanished(branches, m)
             return []
-        labels = self._labels
+        self._warn_vanished(branches, m)
+        sols = _RowSolution.from_rows(_Rows(out, n, self._labels))
         merged = [(int(branches[r, 2]), self._labels[float(branches[r, 0])]) for r in range(m)
                   if branches[r, 1] == _kci.MERGED]
-        if merged or any(branches[r, 1] == _kci.VANISHED for r in range(m)):
-            labels = _Labels(labels)
-            for k in sorted({k for k, _ in merged}):
-                names = ", ".join(name for kk, name in merged if kk == k)
-                code = 1000.0 + k
-                labels[code] = f"{labels[float(out[k, 7])]} (merged with {names})"
-                out[k, 7] = code
-            self._warn_vanished(branches, m)
-        return _RowSolution.from_rows(_Rows(out, n, labels))
+        if not merged:
+            return sols
+        # a solution reached by several branches names them all (after its own label and repeat number)
+        plain = [IKSolution(s.q, s.within_limits, s.label, s.degenerate) for s in sols]
+        for k in sorted({k for k, _ in merged}):
+            names = ", ".join(name for kk, name in merged if kk == k)
+            s = plain[k]
+            plain[k] = IKSolution(s.q, s.within_limits, f"{s.label} (merged with {names})", s.degenerate)
+        return plain
 
     def branches(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[Branch]:
         """What became of each branch of the nominal structure at the pose T.
