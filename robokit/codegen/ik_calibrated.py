@@ -229,7 +229,7 @@ static int {P}_cal_cholesky(const double H[36], const double b[6], double x[6])
 }}
 
 /* Newton's method (Levenberg-Marquardt where a Newton step fails) on the pose error, q updated in place */
-static void {P}_cal_polish(const double Td[16], double q[6], double *rot, double *pos)
+static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
 {{
     double T[16], Tt[16], J[36], F[6], Ft[6], step[6], trial[6], p[3];
     double err, lam = 0.0, rt, pt;
@@ -240,7 +240,7 @@ static void {P}_cal_polish(const double Td[16], double q[6], double *rot, double
     p[1] = T[7];
     p[2] = T[11];
     {P}_cal_jacobian(q, p, J);
-    for (it = 0; it < {int(c["max_steps"])}; ++it) {{
+    for (it = 0; it < max_steps; ++it) {{
         double longest = 0.0, shrink = 1.0, e2;
         int solved = 0;
         if (*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])}) {{
@@ -320,7 +320,7 @@ static void {P}_cal_polish(const double Td[16], double q[6], double *rot, double
 
 /* the joint direction along which the Jacobian at q is closest to singular: inverse iteration on
    Jt^T Jt + 1e-12 I, Jt the space Jacobian with its velocity rows divided by the reach */
-static void {P}_cal_null_direction(const double q[6], double v[6])
+static double {P}_cal_null_direction(const double q[6], double v[6])
 {{
     double T[16], J[36], H[36], x[6], p[3];
     int i, j, r, it;
@@ -347,7 +347,7 @@ static void {P}_cal_null_direction(const double q[6], double v[6])
     for (it = 0; it < 4; ++it) {{
         double norm = 0.0;
         if (!{P}_cal_cholesky(H, v, x)) {{
-            return;
+            return 0.0;
         }}
         for (i = 0; i < 6; ++i) {{
             norm += x[i] * x[i];
@@ -356,6 +356,15 @@ static void {P}_cal_null_direction(const double q[6], double v[6])
         for (i = 0; i < 6; ++i) {{
             v[i] = x[i] / norm;
         }}
+    }}
+    {{
+        double rq = 0.0;
+        for (i = 0; i < 6; ++i) {{
+            for (j = 0; j < 6; ++j) {{
+                rq += v[i] * H[6 * i + j] * v[j];
+            }}
+        }}
+        return sqrt(rq > 0.0 ? rq : 0.0);
     }}
 }}
 
@@ -398,12 +407,17 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
             double Tr[16];
+            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))}, uz = T[11] - {lit(float(sh[2]))};
+            const double dist = sqrt(ux * ux + uy * uy + uz * uz);
+            if (dist == 0.0) {{
+                continue;
+            }}
             for (j = 0; j < 16; ++j) {{
                 Tr[j] = T[j];
             }}
-            Tr[3] = {lit(float(sh[0]))} + (1.0 + relax[f]) * (T[3] - {lit(float(sh[0]))});
-            Tr[7] = {lit(float(sh[1]))} + (1.0 + relax[f]) * (T[7] - {lit(float(sh[1]))});
-            Tr[11] = {lit(float(sh[2]))} + (1.0 + relax[f]) * (T[11] - {lit(float(sh[2]))});
+            Tr[3] = T[3] + relax[f] * {R} * ux / dist;
+            Tr[7] = T[7] + relax[f] * {R} * uy / dist;
+            Tr[11] = T[11] + relax[f] * {R} * uz / dist;
             me = {P}_nominal_ik_ex(Tr, wrist_ref, qn, ninfo);
             for (kk = 0; kk < me; ++kk) {{
                 int have = 0;
@@ -415,7 +429,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                         nq[m][j] = qn[6 * kk + j];
                     }}
                     nlab[m] = ninfo[4 * kk];
-                    ndeg[m] = 1;
+                    ndeg[m] = 2;  /* a start from a relaxed pose */
                     ++m;
                 }}
             }}
@@ -423,11 +437,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     }}
     for (r = 0; r < m; ++r) {{
         double rot, pos, moved = 0.0;
-        int ok, hit = -1, dg = ndeg[r];
+        int ok, hit = -1, dg = ndeg[r] != 0;
+        const int relaxed = ndeg[r] == 2;
         for (j = 0; j < 6; ++j) {{
             qq[j] = nq[r][j];
         }}
-        {P}_cal_polish(T, qq, &rot, &pos);
+        {P}_cal_polish(T, qq, {int(c["max_steps"])}, &rot, &pos);
         for (j = 0; j < 6; ++j) {{
             moved = fabs(qq[j] - nq[r][j]) > moved ? fabs(qq[j] - nq[r][j]) : moved;
         }}
@@ -440,7 +455,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             for (j = 0; j < 6; ++j) {{
                 q2[j] = 2.0 * nq[r][j] - qq[j];
             }}
-            {P}_cal_polish(T, q2, &rot2, &pos2);
+            {P}_cal_polish(T, q2, {int(c["max_steps"])}, &rot2, &pos2);
             if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
                 && {P}_cal_find(q2, (const double (*)[6])rows, ns) < 0) {{
                 for (j = 0; j < 6; ++j) {{
@@ -454,7 +469,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 ok = 1;
             }}
         }}
-        if (moved > {lit(float(c["explore"]))} || !ok || hit >= 0 || dg) {{
+        if (moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed)) {{
             for (j = 0; j < 6; ++j) {{
                 seeds[nseed][j] = qq[j];
             }}
@@ -475,7 +490,9 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
         double big = 0.0;
         int st;
-        {P}_cal_null_direction(seeds[kk], v);
+        if ({P}_cal_null_direction(seeds[kk], v) > {lit(float(c["sigma_explore"]))}) {{
+            continue;  /* not near a singular configuration */
+        }}
         for (j = 0; j < 6; ++j) {{
             big = fabs(v[j]) > big ? fabs(v[j]) : big;
         }}
@@ -484,7 +501,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             for (j = 0; j < 6; ++j) {{
                 qq[j] = seeds[kk][j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
             }}
-            {P}_cal_polish(T, qq, &rot, &pos);
+            {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rot, &pos);
             if (rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])}
                 && {P}_cal_find(qq, (const double (*)[6])rows, ns) < 0) {{
                 for (j = 0; j < 6; ++j) {{

@@ -370,6 +370,7 @@ class CalibratedArm:
         return {"method": self.method, "reason": self.reason, "shoulder": self.shoulder.copy(), "reach": self.reach,
                 "tol_stop": TOL_STOP, "tol_accept": TOL_ACCEPT, "max_steps": MAX_STEPS, "same": _kci.SAME,
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
+                "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 

@@ -57,14 +57,19 @@ SOLUTION, MERGED, VANISHED = 0, 1, 2
 #: Branches of the nominal structure in general position (both structures: 4 positions × 2 wrists).
 GENERIC_ROWS = 8
 #: When the projected arm's closed form gives fewer branches, it is also solved for the pose moved
-#: away from (f < 0) or toward (f > 0) the shoulder by these fractions: the starts of branches that
-#: the projected arm just cannot reach but the arm itself can (near the workspace boundary).
+#: toward (f < 0) or away from (f > 0) the shoulder by these fractions of the reach: the starts of
+#: branches that the projected arm just cannot reach but the arm itself can (near the workspace's
+#: outer or inner boundary).
 RELAX = (-2e-3, 2e-3, -6e-3, 6e-3, -2e-2, 2e-2)
 #: No Newton step moves a joint more than this (rad, m): far from a root the linear model is not trusted.
 MAX_STEP = 0.5
 #: A polish that moved a joint farther than this (rad or m) from its start was near a singular pose:
 #: the roots along the arm's near-singular direction there are searched too.
 EXPLORE = 0.1
+#: ... when the arm's Jacobian there (velocity rows divided by the reach) has a singular value below this.
+SIGMA_EXPLORE = 0.02
+#: Newton steps at most from each start of that search.
+EXPLORE_MAX_STEPS = 25
 #: The starts of that search: the point plus these multiples of π/4 (in the largest joint) along
 #: the near-singular direction.
 EXPLORE_STEPS = (0.1, -0.1, 0.3, -0.3, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0)
@@ -233,10 +238,11 @@ def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
 
 @njit
 def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: float, W: np.ndarray, J: np.ndarray,
-                    V: np.ndarray, v: np.ndarray) -> None:
+                    V: np.ndarray, v: np.ndarray) -> float:
     """v ← the unit joint direction along which the arm's Jacobian at q is closest to singular:
-    inverse iteration (4 steps from (1, …, 1)) on ``J̃ᵀJ̃ + 1e-12 I``, J̃ the space Jacobian with its
-    velocity rows divided by the reach (m), so both halves are rad-like."""
+    inverse iteration (4 steps from (1, …, 1)) on ``H = J̃ᵀJ̃ + 1e-12 I``, J̃ the space Jacobian with its
+    velocity rows divided by the reach (m), so both halves are rad-like. Returns the estimate
+    ``√(vᵀHv)`` of J̃'s smallest singular value (0 when H is not positive definite)."""
     n = Slist.shape[1]
     Jc, H, L = J[0], J[2], J[3]
     fk_and_space_jacobian(M, Slist, q, W[0], Jc, W[2], W[3], W[4])
@@ -255,13 +261,18 @@ def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: floa
     x = V[2]
     for _ in range(4):
         if not cholesky_solve(H, v, L, x):
-            return
+            return 0.0
         norm = 0.0
         for i in range(n):
             norm += x[i] * x[i]
         norm = math.sqrt(norm)
         for i in range(n):
             v[i] = x[i] / norm
+    rq = 0.0
+    for i in range(n):
+        for j in range(n):
+            rq += v[i] * H[i, j] * v[j]
+    return math.sqrt(max(rq, 0.0))
 
 
 @njit
@@ -296,8 +307,11 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
             for r in range(4):
                 for c in range(4):
                     Tr[r, c] = T[r, c]
+            dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
+            if dist == 0.0:
+                continue
             for r in range(3):
-                Tr[r, 3] = shoulder[r] + (1.0 + f) * (T[r, 3] - shoulder[r])
+                Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             me = _nominal_rows(Kn, method, Tr, wrist_ref, extra)
             for k in range(me):
                 have = False
@@ -308,7 +322,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 if not have and m < _cf.MAX_ROWS:
                     for c in range(_cf.OUT_COLS):
                         nom[m, c] = extra[k, c]
-                    nom[m, 8] = 1.0  # a start from a relaxed pose: flagged, and searched around
+                    nom[m, 8] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
                     m += 1
     rev = post_q[1]
     W = np.empty((5, 4, 4))
@@ -335,7 +349,8 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
             moved = max(moved, abs(q[j] - nom[r, j]))
         ok = rot < tol_accept and pos < tol_accept
         k = _find(q, rows, ns, rev) if ok else -1
-        degen = nom[r, 8] == 1.0
+        degen = nom[r, 8] != 0.0
+        relaxed = nom[r, 8] == 2.0
         if not ok or k >= 0:  # a root found already, or none: once more from the mirrored start
             for j in range(6):
                 q2[j] = 2.0 * nom[r, j] - q[j]
@@ -348,7 +363,9 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 k = _find(q2, rows, ns, rev)
                 rot, pos, ok = rot2, pos2, True
         code = int(nom[r, 7])
-        if moved > EXPLORE or not ok or k >= 0 or degen:
+        # searched around: a solution the polish moved far, merging branches, a singular choice of the
+        # nominal, a branch that vanished (not one from a relaxed pose: that pose may be out of reach)
+        if moved > EXPLORE or k >= 0 or (degen and not relaxed) or (not ok and not relaxed):
             for j in range(6):
                 seeds[nseed, j] = q[j]
             seed_code[nseed] = code
@@ -375,7 +392,8 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
             branches[r, 2] = -1
     v = np.empty(6)
     for k in range(nseed):  # every root along the arm's near-singular direction there
-        _null_direction(M, Slist, seeds[k], reach, W, J, V, v)
+        if _null_direction(M, Slist, seeds[k], reach, W, J, V, v) > SIGMA_EXPLORE:
+            continue  # not near a singular configuration: no other root nearby to look for
         big = 0.0
         for j in range(6):
             big = max(big, abs(v[j]))
@@ -384,7 +402,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 break
             for j in range(6):
                 q[j] = seeds[k, j] + step * (0.25 * math.pi / big) * v[j]
-            rot, pos, _ = polish(M, Slist, Td, q, tol_stop, max_steps, W, J, V)
+            rot, pos, _ = polish(M, Slist, Td, q, tol_stop, EXPLORE_MAX_STEPS, W, J, V)
             if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
                 for j in range(6):
                     rows[ns, j] = q[j]
