@@ -442,7 +442,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         for (j = 0; j < 6; ++j) {{
             qq[j] = nq[r][j];
         }}
-        {P}_cal_polish(T, qq, {int(c["max_steps"])}, &rot, &pos);
+        {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot, &pos);
         for (j = 0; j < 6; ++j) {{
             moved = fabs(qq[j] - nq[r][j]) > moved ? fabs(qq[j] - nq[r][j]) : moved;
         }}
@@ -455,7 +455,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             for (j = 0; j < 6; ++j) {{
                 q2[j] = 2.0 * nq[r][j] - qq[j];
             }}
-            {P}_cal_polish(T, q2, {int(c["max_steps"])}, &rot2, &pos2);
+            {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot2, &pos2);
             if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
                 && {P}_cal_find(q2, (const double (*)[6])rows, ns) < 0) {{
                 for (j = 0; j < 6; ++j) {{

@@ -69,7 +69,7 @@ NEAR_DISTANCE = 1e-2
 RECORDED = 10.0
 #: Newton stops below this orientation (rad) and position (m) error; a start whose polish ends
 #: above ``TOL_ACCEPT`` has no solution near it.
-TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 60
+TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 30
 
 #: (method, counted from the tool) → (joints that must be parallel, joints that must meet), 0-based.
 STRUCTURES: dict[tuple[str, bool], tuple[tuple[int, ...], tuple[int, ...]]] = {

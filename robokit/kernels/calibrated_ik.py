@@ -341,20 +341,20 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
     seed_code = np.empty(_cf.MAX_ROWS, dtype=np.int64)
     nseed = 0
     for r in range(m):
+        relaxed = nom[r, 8] == 2.0
         for j in range(6):
             q[j] = nom[r, j]
-        rot, pos, _ = polish(M, Slist, Td, q, tol_stop, max_steps, W, J, V)
+        rot, pos, _ = polish(M, Slist, Td, q, tol_stop, EXPLORE_MAX_STEPS if relaxed else max_steps, W, J, V)
         moved = 0.0
         for j in range(6):
             moved = max(moved, abs(q[j] - nom[r, j]))
         ok = rot < tol_accept and pos < tol_accept
         k = _find(q, rows, ns, rev) if ok else -1
         degen = nom[r, 8] != 0.0
-        relaxed = nom[r, 8] == 2.0
         if not ok or k >= 0:  # a root found already, or none: once more from the mirrored start
             for j in range(6):
                 q2[j] = 2.0 * nom[r, j] - q[j]
-            rot2, pos2, _ = polish(M, Slist, Td, q2, tol_stop, max_steps, W, J, V)
+            rot2, pos2, _ = polish(M, Slist, Td, q2, tol_stop, EXPLORE_MAX_STEPS if relaxed else max_steps, W, J, V)
             if rot2 < tol_accept and pos2 < tol_accept and _find(q2, rows, ns, rev) < 0:
                 for j in range(6):
                     q[j] = q2[j]
