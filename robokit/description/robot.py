@@ -20,7 +20,7 @@ from __future__ import annotations
 import os
 from math import isfinite
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -36,6 +36,10 @@ if TYPE_CHECKING:
 _F64 = np.dtype(np.float64)
 
 __all__ = ["Robot"]
+
+#: The writer behind :meth:`Robot.save`, :func:`robokit.description.save.save_robot`: registered by that
+#: module, which ``robokit.description`` imports (it needs the loaders, and they need the Robot).
+_WRITER: list[Callable[[Robot, str | os.PathLike[str]], Path]] = []
 
 
 class Robot:
@@ -363,9 +367,7 @@ class Robot:
         ...     rk.load(rk.load("puma560").save(os.path.join(tmp, "arm.urdf"))).n
         6
         """
-        from robokit.description.save import save_robot
-
-        return save_robot(self, path)
+        return _WRITER[0](self, path)
 
     def __repr__(self) -> str:
         kind = f"DH {self.dh.convention}" if self.dh is not None else "URDF; its DH table: robokit.dh_from_urdf(robot).table"

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from robokit._io import atomic_write
+from robokit.description import robot as _robot_module
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -157,3 +158,6 @@ def save_robot(robot: Robot, path: str | os.PathLike[str]) -> Path:
     if out.is_dir():
         raise InputError(f"path: {str(out)!r} is a folder")
     return atomic_write(out, robot_text(robot, out.suffix))
+
+
+_robot_module._WRITER[:] = [save_robot]  # Robot.save

@@ -42,7 +42,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -470,16 +470,15 @@ def _geometry_of(robot: Any) -> _Geometry:
     return _geometry(robot, None, None)
 
 
-def _structure_of(nominal: Any) -> list[tuple[str, bool]] | str:
-    """The structures to try for ``nominal`` (a robot, a DH table, a spec or a method name), or why none."""
+def _structure_of(nominal: Any, closed_form: Callable[[Any], Any]) -> list[tuple[str, bool]] | str:
+    """The structures to try for ``nominal`` (a robot, a DH table, a spec or a method name), or why none
+    (``closed_form`` builds the exact closed form of a robot: ``AnalyticIK``)."""
     if isinstance(nominal, str):
         if nominal not in ("spherical wrist", "three parallel axes"):
             raise InputError(f"nominal: expected a robot or 'spherical wrist' / 'three parallel axes', got {nominal!r}")
         return [(nominal, False), (nominal, True)]
-    from robokit.ik.closed_form import AnalyticIK
-
     try:
-        ik = AnalyticIK(nominal)
+        ik = closed_form(nominal)
     except InputError:
         raise
     except Exception as exc:  # pragma: no cover - a nominal robokit cannot read
@@ -490,7 +489,8 @@ def _structure_of(nominal: Any) -> list[tuple[str, bool]] | str:
 
 
 def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | None, revolute: Sequence[bool],
-                   limits: Sequence[tuple[float, float]] | None, nominal: Any = None) -> tuple[CalibratedArm | None, str]:
+                   limits: Sequence[tuple[float, float]] | None, nominal: Any,
+                   closed_form: Callable[[Any], Any]) -> tuple[CalibratedArm | None, str]:
     """The :class:`CalibratedArm` of a 6-joint ``robot`` (a Robot; or a DH table with ``chain`` its
     canonical chain and ``flip`` its flipped joints), or (None, why not).
 
@@ -509,6 +509,10 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
     nominal : Robot, DHTable, RobotSpec, str or None
         The nominal structure named by the caller (module docstring); None: the robot's recorded
         ``nominal``, else detection.
+    closed_form : callable
+        ``closed_form(robot_or_table)``: the exact closed form of an arm (an
+        :class:`~robokit.ik.closed_form.AnalyticIK` without this calibrated step), for the nominal arm
+        and the projected one.
 
     Returns
     -------
@@ -516,7 +520,6 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
         The arm's exact IK, or None and the reason no nominal structure applies.
     """
     from robokit.description.urdf_to_dh import dh_from_lines
-    from robokit.ik.closed_form import _EXACT_ONLY, AnalyticIK
 
     source = "named by the caller"
     recorded = nominal is None
@@ -531,7 +534,7 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
             nominal = load(nominal)
     geo = _geometry(robot, chain, flip)
     if nominal is not None:
-        tried = _structure_of(nominal)
+        tried = _structure_of(nominal, closed_form)
         if isinstance(tried, str):
             return None, tried
         if isinstance(nominal, str):
@@ -576,7 +579,7 @@ def calibrated_arm(robot: Any, chain: DHChain | None, flip: Sequence[bool] | Non
     for s in candidates:
         lines = _project(geo.lines, s, extra, twists)
         table = dh_from_lines(lines, geo.M, f"{getattr(robot, 'name', 'arm')}_nominal", geo.qlim)
-        ik = AnalyticIK(table, _EXACT_ONLY)
+        ik = closed_form(table)
         if ik.method != s[0] or ik._kernel is None:
             why = f"the arm with its {s[0]} restored is not solved by that closed form ({ik.reason})"
             continue

@@ -329,7 +329,8 @@ class AnalyticIK:
 
             is_table = _is_table(robot)
             cal, why = calibrated_arm(robot, self.chain if is_table else None, self._flip if is_table else None,
-                                      self._revolute, self._limits, self._nominal)
+                                      self._revolute, self._limits, self._nominal,
+                                      lambda arm: AnalyticIK(arm, _EXACT_ONLY))
             if cal is not None:
                 self.kind, self.calibrated, override = ClosedFormKind(cal.method, cal.reason), cal, None
             elif self._nominal is not None:
