@@ -45,7 +45,7 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
-from robokit.kernels.ik import fk_and_space_jacobian
+from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
 
 __all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANCH_COLS", "SOLUTION", "MERGED",
            "VANISHED"]
@@ -173,18 +173,9 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
         if not solved:
             if lam == 0.0:
                 lam = 1e-9
+            normal_equations(Jc, F, H, g)  # (Jᵀ J + λ d I) Δq = Jᵀ F,  d = max diag(Jᵀ J)
             big = 0.0
-            for i in range(n):  # (Jᵀ J + λ d I) Δq = Jᵀ F,  d = max diag(Jᵀ J)
-                acc = 0.0
-                for r in range(6):
-                    acc += Jc[r, i] * F[r]
-                g[i] = acc
-                for j in range(i, n):
-                    acc = 0.0
-                    for r in range(6):
-                        acc += Jc[r, i] * Jc[r, j]
-                    H[i, j] = acc
-                    H[j, i] = acc
+            for i in range(n):
                 big = max(big, H[i, i])
             for i in range(n):
                 H[i, i] += lam * big
@@ -249,16 +240,12 @@ def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: floa
     for r in range(3, 6):
         for c in range(n):
             Jc[r, c] /= reach
-    for i in range(n):
-        for j in range(i, n):
-            acc = 0.0
-            for r in range(6):
-                acc += Jc[r, i] * Jc[r, j]
-            H[i, j] = acc
-            H[j, i] = acc
-        H[i, i] += 1e-12
-        v[i] = 1.0
     x = V[2]
+    for i in range(n):
+        v[i] = 1.0
+    normal_equations(Jc, v, H, x)  # H = J̃ᵀJ̃ (x is overwritten below)
+    for i in range(n):
+        H[i, i] += 1e-12
     for _ in range(4):
         if not cholesky_solve(H, v, L, x):
             return 0.0
