@@ -48,7 +48,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.errors import InputError, RobokitWarning
-from robokit.ik.solution import IKSolution, _Rows, _RowSolution
+from robokit.ik.solution import IKSolution, _Rows, _RowSolution, check_pose
 from robokit.kernels import calibrated_ik as _kci
 from robokit.kernels import closed_form as _kcf
 
@@ -381,9 +381,16 @@ class CalibratedArm:
     def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = np.full((_kcf.MAX_ROWS, _kci.BRANCH_COLS), -1.0)  # code −1: no branch
-        n = _kci.calibrated_solve_into(self._Kn, self._kind, self.M, self.Slist, self._post_q, T,
-                                       self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP,
-                                       TOL_ACCEPT, MAX_STEPS, out, branches)
+        args = (self._Kn, self._kind, self.M, self.Slist, self._post_q)
+        rest = (self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT, MAX_STEPS,
+                out, branches)
+        n = _kci.calibrated_solve_into(*args, T, *rest)
+        if n == -1:  # T failed the kernel's quick rigid-transform test: check it fully (raises), then use
+            T = check_pose(T)  # the nearest rigid transform (R's polar factor)
+            U, _, Vt = np.linalg.svd(T[:3, :3])
+            Tc = np.eye(4)
+            Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
+            n = _kci.calibrated_solve_into(*args, Tc, *rest)
         return out, n, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -437,8 +444,6 @@ class CalibratedArm:
             One per branch of the projected arm's closed form, in its order.
         """
         _, n, branches = self._solve(T, wrist_ref)
-        if n < 0:
-            raise InputError("T: not a rigid transform")
         return [Branch(self._labels[float(branches[r, 0])], ("solution", "merged", "vanished")[int(branches[r, 1])],
                        None if branches[r, 2] < 0 else int(branches[r, 2]), float(branches[r, 3]),
                        float(branches[r, 4])) for r in range(int(np.count_nonzero(branches[:, 0] >= 0.0)))]

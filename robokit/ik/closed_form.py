@@ -452,10 +452,8 @@ class AnalyticIK:
             self._build()
         wrist_ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
         kernel = self._kernel
-        if self.calibrated is not None:
+        if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
-                T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            elif not _kcf._rigid(T):
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
             return self.calibrated.solve(T, wrist_ref)
         if kernel is not None and self.use_kernel:
