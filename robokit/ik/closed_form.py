@@ -227,6 +227,7 @@ class AnalyticIK:
         self._strong: Robot | DHTable | None = robot
         self._weak: weakref.ref | None = None
         self._nominal = nominal
+        self._nominal_arg = nominal  # as given (the per-robot cache compares it)
         # False for the projected arm of a calibrated one (its own closed form only, no recursion)
         # and for nominal=False (the arm as it is: no nominal structure named, recorded or detected)
         self._try_calibrated = nominal is not _EXACT_ONLY and nominal is not False
@@ -594,8 +595,8 @@ class _Cache:
     def get(self, robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
         key: Any = id(robot) if nominal is None else (id(robot), nominal if isinstance(nominal, str) else id(nominal))
         hit = self._entries.get(key)
-        if hit is not None and hit[0]() is robot and (nominal is None or hit[1]._nominal is nominal
-                                                      or hit[1]._nominal == nominal):
+        if hit is not None and hit[0]() is robot and (nominal is None or hit[1]._nominal_arg is nominal
+                                                      or (isinstance(nominal, str) and hit[1]._nominal_arg == nominal)):
             return hit[1]
         entries = self._entries
 
