@@ -12,16 +12,27 @@ arm on the bench. They apply to its **projection**: the same arm with the struct
   line turned about its joint's origin; then the two axes that must meet (5 and 6, or 1 and 2)
   moved, parallel to themselves, through the midpoint of their common normal;
 
-every other axis, the tool pose at q = 0 and the joint zeros kept. The projected arm's closed form
-(compiled, :mod:`robokit.kernels.closed_form`) gives up to 8 solutions, one per branch, each within
-the size of the structure's errors of a solution of the real arm; Newton's method on the real arm's
-product of exponentials (:mod:`robokit.kernels.calibrated_ik`) converges each to 1e-12 in a few
-steps. Away from singular poses each branch of the nominal structure has exactly one solution of the
-real arm near it (the implicit function theorem), so the count is the nominal's; near a singular
-pose two branches can reach the same root (**merged**: one solution, ``degenerate`` set, its label
-naming both branches) or have no exact root any more (**vanished**: the two roots of a fold became
-complex; :meth:`CalibratedArm.branches` lists them and a :class:`robokit.errors.RobokitWarning`
-says so once per arm).
+and with it the nominal arm's other relations: the angle between consecutive axes set to the
+nominal's (detected arms: right angles and parallels within :data:`NEAR_ANGLE` made exact; each
+correction turns the later axes together, about the common normal), runs of parallel axes averaged,
+consecutive axes that meet moved onto each other. The tool pose at q = 0 and the joint zeros are
+kept. The projected arm's closed form (compiled, :mod:`robokit.kernels.closed_form`) gives up to 8
+solutions, one per branch, each within the size of the errors of a solution of the real arm;
+Newton's method on the real arm's product of exponentials (:mod:`robokit.kernels.calibrated_ik`)
+converges each to 1e-12 in 3–4 steps. Away from singular poses each branch of the nominal structure
+has exactly one solution of the real arm near it (the implicit function theorem), so the count is
+the nominal's and so are the labels. Near a singular pose (within about the size of the errors):
+
+* a branch the projected arm just misses (near the workspace's boundary) gets its start from the
+  pose moved about the shoulder (the kernel's ``RELAX``);
+* two branches can reach the same root (**merged**: one solution, ``degenerate`` set, its label
+  naming both branches) or have no exact root any more (**vanished**: the roots of a fold became
+  complex; :meth:`CalibratedArm.branches` lists every branch's outcome and a
+  :class:`robokit.errors.RobokitWarning` says so once per arm);
+* the roots the real arm has there beyond the nominal's are searched along the Jacobian's
+  near-null direction from the points involved (flagged ``degenerate``). This search is not
+  exhaustive: within a few milliradians of a singular configuration a root can be missed (every
+  returned one is exact); ``nominal=False`` gives the general 6R method there.
 
 Which structure. In this order:
 
@@ -45,7 +56,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from robokit.errors import InputError, RobokitWarning
 from robokit.ik.solution import IKSolution, _Rows, _RowSolution, check_pose
@@ -54,7 +64,6 @@ from robokit.kernels import closed_form as _kcf
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
-    from robokit.description.robot import Robot
     from robokit.ik._dh_chain import DHChain
 
 __all__ = ["CalibratedArm", "Branch", "NEAR_ANGLE", "NEAR_DISTANCE", "STRUCTURES", "calibrated_arm"]
@@ -381,16 +390,19 @@ class CalibratedArm:
     def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = np.full((_kcf.MAX_ROWS, _kci.BRANCH_COLS), -1.0)  # code −1: no branch
-        args = (self._Kn, self._kind, self.M, self.Slist, self._post_q)
-        rest = (self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT, MAX_STEPS,
-                out, branches)
-        n = _kci.calibrated_solve_into(*args, T, *rest)
-        if n == -1:  # T failed the kernel's quick rigid-transform test: check it fully (raises), then use
-            T = check_pose(T)  # the nearest rigid transform (R's polar factor)
+        ref = self.nominal._kernel_ref(wrist_ref)
+        for attempt in range(2):
+            n = _kci.calibrated_solve_into(self._Kn, self._kind, self.M, self.Slist, self._post_q, T, ref,
+                                           self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT, MAX_STEPS, out, branches)
+            if n != -1 or attempt:
+                break
+            # T failed the kernel's quick rigid-transform test: check it fully (raises), then use the
+            # nearest rigid transform (R's polar factor)
+            T = check_pose(T)
             U, _, Vt = np.linalg.svd(T[:3, :3])
             Tc = np.eye(4)
             Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
-            n = _kci.calibrated_solve_into(*args, Tc, *rest)
+            T = Tc
         return out, n, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
