@@ -9,7 +9,10 @@ same arm with the structure restored (:mod:`robokit.ik.calibrated` builds it and
 constants ``Kn``). Per pose:
 
 1. every closed-form solution of the projected arm (:func:`robokit.kernels.closed_form.pieper_solve_into`
-   or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag;
+   or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag; when
+   it gives fewer than ``GENERIC_ROWS``, also those of the pose moved toward and away from the
+   shoulder by the ``RELAX`` fractions of the reach, for the branches it lacks (the projected arm's
+   workspace boundary is not quite the arm's);
 2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
    (:func:`_error`) with the space Jacobian, both from
    :func:`robokit.kernels.ik.fk_and_space_jacobian` (the FK and Jacobian of the compiled numerical
@@ -20,10 +23,14 @@ constants ``Kn``). Per pose:
    is tried once more from its start mirrored through the point the polish reached
    (``2 q₀ − q``): near a fold, where two roots of the arm approach each other, the second root
    lies on the other side of the start;
-4. the outcome of every branch is written to ``branches``: a distinct solution, merged into an
+4. around a solution the polish moved farther than ``EXPLORE``, a merged or vanished branch and a
+   singular choice of the nominal, where the arm's Jacobian has a singular value below
+   ``SIGMA_EXPLORE`` (:func:`_null_direction`), the roots along the near-null direction are searched
+   from the ``EXPLORE_STEPS`` (the real arm can have more roots there than the nominal structure);
+5. the outcome of every branch is written to ``branches``: a distinct solution, merged into an
    earlier solution (that solution is flagged degenerate), or vanished (no exact solution of the
    arm near that branch: the two roots of a fold became complex);
-5. the solutions are wrapped, shifted into wide limits, flagged and written as the closed-form
+6. the solutions are wrapped, shifted into wide limits, flagged and written as the closed-form
    kernels write theirs (:func:`robokit.kernels.closed_form._finish_into`).
 
 Solutions are distinct to ``SAME`` (rad or m, angles modulo 2π): two polished roots closer than
@@ -34,7 +41,9 @@ Example (``AnalyticIK`` builds the arguments; ``ik_analytic`` calls these kernel
 
     >>> import numpy as np, robokit
     >>> from robokit.ik.closed_form import AnalyticIK
-    >>> arm = AnalyticIK(calibrated_robot)._calibrated   # doctest: +SKIP
+    >>> arm = AnalyticIK(calibrated_robot).calibrated   # doctest: +SKIP
+    >>> n = calibrated_solve_into(arm._Kn, arm._kind, arm.M, arm.Slist, arm._post_q, T, 0.0,
+    ...                           arm.shoulder, arm.reach, 1e-12, 1e-10, 30, out, branches)  # doctest: +SKIP
 """
 from __future__ import annotations
 
@@ -281,8 +290,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
     wrist_ref: the free joint's value at a singularity, in the sign of the projected arm's
     solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the closed-form kernels do
     and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS); returns the number of
-    solutions, −1 when T fails the quick rigid-transform test, and −2 − m when the m branches
-    could not all be written (never: at most MAX_ROWS branches)."""
+    solutions, −1 when T fails the quick rigid-transform test."""
     nom = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
     m = _nominal_rows(Kn, method, T, wrist_ref, nom)
     if m < 0:
