@@ -341,17 +341,15 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     int
         The exit status, 0 (errors raise).
     """
-    from robokit.calibration import calibrate, chain_urdf, read_calibration_csv
+    from robokit.calibration import calibrate, read_calibration_csv
     from robokit.description import load
+    from robokit.description.save import robot_text
 
     out = _output_file(output, (".urdf", ".yaml", ".yml"))
     robot = load(model, tip=tip, **load_options)
     q, measured = read_calibration_csv(data, robot.n, robot.qlim)
     res = calibrate(robot, q, measured)
-    if out.suffix.lower() == ".urdf":
-        text = chain_urdf(robot, res.chain, res.robot.name)
-    else:
-        text = _calibrated_dh_yaml(res.robot, robot)
+    text = robot_text(res.robot, out.suffix, "-o")
     kind = "positions" if measured.ndim == 2 else "poses"
     print(f"calibrated {robot.name} from {len(q)} measured {kind}")
     for label, rms in (("before:", res.rms_before), ("after: ", res.rms_after)):
@@ -363,36 +361,6 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     return 0
 
 
-def _calibrated_dh_yaml(robot: Robot, nominal: Robot) -> str:
-    """The DH YAML of a calibrated robot, refused unless it reproduces the robot to 1e-9 with offsets
-    of the arm's size (at most ten times the farthest joint origin or tool from the base, and 1 m):
-    nearly parallel axes need offsets far beyond the arm (the DH discontinuity)."""
-    import yaml
-
-    from robokit.description.dh import DHTable
-    from robokit.description.urdf_to_dh import dh_from_urdf
-    from robokit.errors import InputError
-
-    res = dh_from_urdf(robot, "standard")
-    frames = nominal.frame_poses(np.zeros(nominal.n))
-    size = 10.0 * max([1.0] + [float(np.linalg.norm(T[:3, 3])) for T in frames.values()])
-    big = max((abs(v), f"{k}{i + 1}") for i, l in enumerate(res.table.links) for k, v in (("a", l.a), ("d", l.d)))
-    if big[0] > size:
-        raise InputError(f"-o: the calibrated {nominal.name} has nearly parallel joint axes that a DH table describes "
-                         f"only with {big[1]} = {big[0]:.3g} m (the DH discontinuity); write a URDF instead "
-                         "(-o OUT.urdf)")
-    text = res.table.to_yaml_str("deg")
-    back = DHTable.from_dict(yaml.safe_load(text), source="<calibrated>")
-    rng = np.random.default_rng(0)
-    worst = 0.0
-    for _ in range(100):
-        qs = robot.random_configuration(rng)
-        worst = max(worst, float(np.abs(back.fk(qs) - robot.frame_pose(qs)).max()))
-    if not (res.exact and worst <= 1e-9):
-        raise InputError(f"-o: the calibrated {nominal.name} is not exactly a DH arm (a DH table reproduces it only "
-                         f"to {max(worst, res.residual):.2e}); write a URDF instead (-o OUT.urdf)")
-    return (f"# {robot.name}: calibrated by robokit; this DH table reproduces the calibrated geometry to "
-            f"{worst:.1e}\n") + text
 def codegen_command(model: str | os.PathLike[str], output: str | os.PathLike[str], float32: bool = False,
                     name: str | None = None, tip: str | None = None, **load_options: Any) -> int:
     """``robokit codegen MODEL -o DIR``: write ``NAME.h`` and ``NAME.c`` into the folder ``output``.

@@ -351,7 +351,11 @@ def robot_from_chain(robot: Robot, chain: JointChain, name: str | None = None) -
     -------
     Robot
         Built by Pinocchio from :func:`chain_urdf` (tip frame ``tool``), so its ``frame_pose``,
-        Jacobians and dynamics are Pinocchio's on the calibrated geometry.
+        Jacobians and dynamics are Pinocchio's on the calibrated geometry. ``robot.nominal`` is the
+        nominal robot (its structure gives the exact IK, :mod:`robokit.ik.calibrated`);
+        ``robot.spec`` is a ``"calibrated"`` :class:`~robokit.description.spec.RobotSpec` carrying the
+        URDF, the gravity and the nominal's spec, so ``robokit.load(robot.spec)`` rebuilds it in any
+        process; ``robot.save(path)`` writes it.
 
     Examples
     --------
@@ -362,13 +366,13 @@ def robot_from_chain(robot: Robot, chain: JointChain, name: str | None = None) -
     >>> bool(np.allclose(same.frame_pose([0.1, 0.2, 0.3]), robot.frame_pose([0.1, 0.2, 0.3])))
     True
     """
-    import pinocchio as pin
-
-    from robokit.description.robot import Robot
+    from robokit.description.spec import RobotSpec
+    from robokit.description.urdf_files import load_urdf_text
 
     name = name or f"{robot.name}_calibrated"
     xml = chain_urdf(robot, chain, name)
-    model: Any = pin.buildModelFromXML(xml)
-    model.gravity.linear = np.asarray(robot.gravity, dtype=float)
-    visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
-    return Robot(name, model, "tool", visual_model=visual, source=f"calibrated from {robot.source or robot.name}")
+    gravity = tuple(float(g) for g in np.asarray(robot.gravity, dtype=float))
+    spec = RobotSpec("calibrated", name=name, tip="tool", text=xml, nominal=robot.spec, gravity=gravity)
+    out = load_urdf_text(xml, spec, "tool", gravity)
+    out.nominal = robot
+    return out

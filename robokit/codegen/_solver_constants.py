@@ -45,6 +45,10 @@ class IKConstants:
     solver: dict[str, Any] = field(default_factory=dict)
     flip: list[bool] | None = None  # joints solved as q' = -q (in the robot's order)
     free_flipped: bool = False  # wrist_ref's joint is flipped: the solver gets -wrist_ref
+    #: A calibrated or nearly special arm (robokit.ik.calibrated): the fields above are then the
+    #: closed form of its projected arm (the starts), and this dict holds the polish's numbers
+    #: (method, reason, shoulder, reach and the kernel's tolerances); None otherwise.
+    calibrated: dict[str, Any] | None = None
 
 
 _PIEPER = ("case", "deg", "C_list", "w6_list", "w3_list", "th0_list", "d0_list", "ca", "sa", "a1", "a2", "d1",
@@ -52,13 +56,13 @@ _PIEPER = ("case", "deg", "C_list", "w6_list", "w3_list", "th0_list", "d0_list",
 _PARALLEL = ("ca", "sa", "s2", "sig", "a1", "a2", "a3", "a4", "a5", "d1", "d5", "d6", "KW", "w6_list", "th0_list")
 
 
-def _closed_form(robot: Any) -> tuple[Any, Any, Any, bool]:
+def _closed_form(robot: Any, nominal: Any = None) -> tuple[Any, Any, Any, bool]:
     """(kind, solver, chain of the robot, reversed) from robokit's closed-form IK object."""
     import robokit.ik as rik
 
     maker = getattr(rik, "analytic_ik", None)
     if maker is not None:  # the AnalyticIK object
-        ik = maker(robot)
+        ik = maker(robot, nominal) if nominal is not None else maker(robot)
         return ik.kind, ik.solver, ik, bool(ik.reversed)
     kind = rik.ik_analytic_kind(robot)  # builds and caches the closed-form model on the robot
     model = getattr(robot, "_closed_form", None)
@@ -67,21 +71,35 @@ def _closed_form(robot: Any) -> tuple[Any, Any, Any, bool]:
     return kind, model.solver, model, bool(model.reversed)
 
 
-def ik_constants(robot: Any) -> IKConstants:
+def ik_constants(robot: Any, nominal: Any = None) -> IKConstants:
     """The closed-form IK constants of ``robot`` (method None with the reason when it has none).
 
     Parameters
     ----------
     robot : :class:`robokit.Robot`
+    nominal : optional
+        The nominal structure of a calibrated or nearly special arm (``robokit.ik_analytic``'s).
 
     Returns
     -------
     IKConstants
+        For a calibrated arm: the constants of its projected arm's closed form, with
+        ``calibrated`` holding the polish's numbers.
     """
     try:
-        kind, solver, owner, rev = _closed_form(robot)
+        kind, solver, owner, rev = _closed_form(robot, nominal)
     except ValueError as exc:  # e.g. a robot whose DH table cannot be extracted
         return IKConstants(None, str(exc))
+    cal = getattr(owner, "calibrated", None)
+    if kind and cal is not None:
+        try:
+            nom = cal.nominal
+            out = _read(robot, nom.kind, nom.solver, nom, bool(nom.reversed))
+            out.calibrated = cal.export_constants()
+            return out
+        except (AttributeError, KeyError, TypeError) as exc:
+            return IKConstants(None, f"robokit's calibrated IK ({kind.method}) does not expose the constants the "
+                                     f"C emitter reads ({type(exc).__name__}: {exc}); please report")
     if not kind or solver is None:
         return IKConstants(None, kind.reason)
     try:

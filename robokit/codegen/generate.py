@@ -164,7 +164,7 @@ def _function(signature: str, body: CWriter, doc: str) -> str:
     return f"/* {doc} */\n{signature}\n{{\n{voids}{text}\n}}\n"
 
 
-def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CSource:
+def generate_c(robot: Any, name: str | None = None, float32: bool = False, nominal: Any = None) -> CSource:
     r"""Generate the C99 files of a robot's controller functions.
 
     Parameters
@@ -177,6 +177,9 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     float32 : bool
         Write ``float`` instead of ``double`` everywhere (literals with ``f``, ``sinf`` …), for
         microcontrollers whose FPU is single precision.
+    nominal : optional
+        For a calibrated or nearly special arm, its nominal structure as :func:`robokit.ik_analytic`
+        takes it (default: recorded on the robot, or detected; ``False``: none, the general 6R method).
 
     Returns
     -------
@@ -212,7 +215,7 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False) -> CS
     qlim = np.asarray(poe.qlim, dtype=float)
     P = prefix
     _check_parameters(robot, float32)
-    ik = emit_ik(robot, P, float32)
+    ik = emit_ik(robot, P, float32, nominal)
 
     # ------------------------------------------------------------------ header
     h: list[str] = []

@@ -38,7 +38,7 @@ from typing import Any
 
 
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
-from robokit.codegen import ik_general
+from robokit.codegen import ik_calibrated, ik_general
 from robokit.codegen._solver_constants import IKConstants, ik_constants
 from robokit.codegen.kinematics import Pose, compose
 
@@ -99,7 +99,7 @@ class _Tol:
         return lit(math.sqrt(x)) if x < 1e-3 else lit(x)
 
 
-def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
+def emit_ik(robot: Any, prefix: str, float32: bool = False, nominal: Any = None) -> IKCode:
     """The closed-form IK part of the generated files (see the module docstring).
 
     Parameters
@@ -110,6 +110,9 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
         The C prefix NAME.
     float32 : bool
         Tolerances for ``float`` code (the square roots of robokit's double ones).
+    nominal : optional
+        The nominal structure of a calibrated or nearly special arm (``robokit.ik_analytic``'s
+        ``nominal``; default: recorded or detected).
 
     Returns
     -------
@@ -123,7 +126,13 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False) -> IKCode:
     >>> emit_ik(robokit.load("puma560"), "puma560").labels[0]
     'right, elbow down, no flip'
     """
-    k = ik_constants(robot)
+    k = ik_constants(robot, nominal)
+    if k.calibrated is not None:  # a calibrated arm: the projected arm's closed form + Newton on NAME_fk
+        code = ik_calibrated.calibrated_code(k, prefix, _Tol(float32), _Emitter, IKCode)
+        code.method_line = (f"{safe_comment(k.calibrated['method'])}: the closed form of the nominal structure "
+                            f"({_method_line(k, True)}) gives the starts, Newton's method on NAME_fk finishes "
+                            f"them, up to {code.max_solutions} solutions")
+        return code
     if k.method is None:
         code = IKCode(False, "no closed form: " + safe_comment(k.reason), 1)
     elif k.method == "general 6R":

@@ -25,6 +25,7 @@ from robokit.description.protocol import *  # noqa: F401,F403
 from robokit.description.protocol import __all__ as _protocol_all
 from robokit.description.robot import *  # noqa: F401,F403
 from robokit.description.robot import __all__ as _robot_all
+from robokit.description import save as _save  # noqa: F401  (registers Robot.save's writer)
 from robokit.description.spec import *  # noqa: F401,F403
 from robokit.description.spec import __all__ as _spec_all
 from robokit.description.urdf_gen import *  # noqa: F401,F403

@@ -45,7 +45,7 @@ from robokit.description.models import shipped_models
 from robokit.description.robot import Robot
 from robokit.description.sdf import load_sdf
 from robokit.description.spec import RobotSpec
-from robokit.description.urdf_files import load_urdf
+from robokit.description.urdf_files import load_urdf, load_urdf_text
 from robokit.description.xacro_files import load_xacro
 from robokit.errors import InputError
 
@@ -76,6 +76,7 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
                                 reflected_inertia=s.reflected_inertia),
     "sdf": lambda s: load_sdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                               allow_outside_meshes=s.allow_outside_meshes, reflected_inertia=s.reflected_inertia),
+    "calibrated": lambda s: load_urdf_text(s.text or "", s, s.tip or "tool", s.gravity or None),
 }
 
 

@@ -17,8 +17,10 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 """
 from __future__ import annotations
 
+import os
 from math import hypot, isfinite
-from typing import TYPE_CHECKING, Any, Iterable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -38,6 +40,10 @@ if TYPE_CHECKING:
 _F64 = np.dtype(np.float64)
 
 __all__ = ["Robot", "check_robot_radians"]
+
+#: The writer behind :meth:`Robot.save`, :func:`robokit.description.save.save_robot`: registered by that
+#: module, which ``robokit.description`` imports (it needs the loaders, and they need the Robot).
+_WRITER: list[Callable[[Robot, str | os.PathLike[str]], Path]] = []
 
 
 class Robot:
@@ -105,6 +111,8 @@ class Robot:
     spec : RobotSpec or None
         The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
         (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
+    nominal : Robot or RobotSpec or None
+        For a calibrated robot (:func:`robokit.calibrate`), the arm the calibration started from.
 
     Examples
     --------
@@ -122,6 +130,9 @@ class Robot:
 
     spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)
     contact_rules: Any = None  # an MJCF robot's contact filter (robokit.description.mjcf.ContactRules)
+    #: The nominal arm of a calibrated robot (a Robot, or the RobotSpec that loads it), else None:
+    #: its structure gives the calibrated arm's exact IK (:mod:`robokit.ik.calibrated`).
+    nominal: Robot | RobotSpec | None = None
 
     def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
                  dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
@@ -632,8 +643,33 @@ class Robot:
         hi = np.where(np.isfinite(self.qlim[:, 1]), self.qlim[:, 1], np.pi)
         return rng.uniform(lo, hi)
 
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write the robot as ``.urdf`` (or ``.yaml`` when a DH table reproduces it exactly), atomically.
+
+        See :mod:`robokit.description.save`: a calibrated robot writes its own URDF (calibrated joint
+        placements, nominal inertias), a DH robot the URDF of its table, a URDF robot its file.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file; its folder must exist.
+
+        Returns
+        -------
+        Path
+            The file written.
+
+        Examples
+        --------
+        >>> import tempfile, os
+        >>> with tempfile.TemporaryDirectory() as tmp:
+        ...     rk.load(rk.load("puma560").save(os.path.join(tmp, "arm.urdf"))).n
+        6
+        """
+        return _WRITER[0](self, path)
+
     #: ``spec.kind`` → the format the repr names.
-    _FORMATS = {"urdf": "URDF", "xacro": "xacro", "mjcf": "MJCF", "sdf": "SDF", "example-robot-data":
+    _FORMATS = {"urdf": "URDF", "xacro": "xacro", "mjcf": "MJCF", "sdf": "SDF", "calibrated": "calibrated URDF", "example-robot-data":
                 "URDF of example-robot-data"}
 
     def __repr__(self) -> str:

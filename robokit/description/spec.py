@@ -20,7 +20,7 @@ from robokit.errors import InputError
 __all__ = ["RobotSpec", "SPEC_KINDS"]
 
 #: The kinds of robot description a spec may name.
-SPEC_KINDS = ("shipped", "dh", "urdf", "xacro", "mjcf", "sdf", "example-robot-data")
+SPEC_KINDS = ("shipped", "dh", "urdf", "xacro", "mjcf", "sdf", "example-robot-data", "calibrated")
 
 
 @dataclass(frozen=True)
@@ -32,9 +32,12 @@ class RobotSpec:
     kind : str
         One of :data:`SPEC_KINDS`: ``"shipped"`` (a model of ``models/``, by name), ``"dh"`` (a
         DH table, carried as YAML text), ``"urdf"``, ``"xacro"``, ``"mjcf"``, ``"sdf"`` (a file,
-        by absolute path) or ``"example-robot-data"`` (by name).
+        by absolute path), ``"example-robot-data"`` (by name) or ``"calibrated"`` (a robot whose
+        geometry :func:`robokit.calibrate` fitted: its URDF carried as text, with the nominal arm's
+        spec and the gravity).
     name : str or None
-        The model name (``"shipped"``, ``"example-robot-data"``); None otherwise.
+        The model name (``"shipped"``, ``"example-robot-data"``; the robot's name for
+        ``"calibrated"``); None otherwise.
     path : str or None
         Absolute path of the file (``"urdf"``, ``"xacro"``, ``"mjcf"``, and ``"dh"`` when the
         table was read from a file — for the human-readable form only: the table is ``text``).
@@ -51,7 +54,13 @@ class RobotSpec:
         MuJoCo's joint ``armature``; ``"sdf"``: Drake's ``rotor_inertia · gear_ratio²``); default True.
     text : str or None
         The DH table as YAML text, angles in rad (``"dh"``): parsed by the strict YAML loader
-        when the spec is loaded, so a rebuilt table is the same table even if the file changed.
+        when the spec is loaded, so a rebuilt table is the same table even if the file changed;
+        the URDF text (``"calibrated"``), read under the same checks as a URDF file.
+    nominal : RobotSpec or None
+        ``"calibrated"``: the spec of the arm the calibration started from (its structure gives
+        the calibrated arm's exact IK, :mod:`robokit.ik.calibrated`); None when unknown.
+    gravity : tuple of float
+        ``"calibrated"``: the gravity vector (3 values, m/s², base frame), which a URDF cannot hold.
 
     Examples
     --------
@@ -72,6 +81,8 @@ class RobotSpec:
     allow_outside_meshes: bool = False
     text: str | None = None
     reflected_inertia: bool = True
+    nominal: RobotSpec | None = None
+    gravity: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in SPEC_KINDS:
@@ -89,8 +100,13 @@ class RobotSpec:
         for flag in ("allow_outside_meshes", "reflected_inertia"):
             if not isinstance(getattr(self, flag), bool):
                 raise InputError(f"spec: {flag} must be a bool")
+        if self.nominal is not None and not isinstance(self.nominal, RobotSpec):
+            raise InputError(f"spec: nominal must be a RobotSpec or None, got {type(self.nominal).__name__}")
+        if not isinstance(self.gravity, tuple) or len(self.gravity) not in (0, 3) or not all(
+                isinstance(g, float) for g in self.gravity):
+            raise InputError("spec: gravity must be () or a tuple of 3 floats")
         needs = {"shipped": "name", "example-robot-data": "name", "dh": "text",
-                 "urdf": "path", "xacro": "path", "mjcf": "path", "sdf": "path"}[self.kind]
+                 "urdf": "path", "xacro": "path", "mjcf": "path", "sdf": "path", "calibrated": "text"}[self.kind]
         if getattr(self, needs) is None:
             raise InputError(f"spec: a {self.kind!r} spec needs {needs}")
 
@@ -117,6 +133,8 @@ class RobotSpec:
             return f"models/{self.name}.yaml"
         if self.kind == "example-robot-data":
             return f"example-robot-data:{self.name}"
+        if self.kind == "calibrated":
+            return f"calibrated from {self.nominal.describe()}" if self.nominal is not None else "<calibrated robot>"
         if self.path is not None:
             return self.path
         return "<DHTable>"
@@ -134,9 +152,12 @@ class RobotSpec:
         if self.allow_outside_meshes:
             shown.append("allow_outside_meshes=True")
         if self.text is not None:
-            shown.append(f"text=<{len(self.text)} characters of DH YAML>")
+            what = "URDF" if self.kind == "calibrated" else "DH YAML"
+            shown.append(f"text=<{len(self.text)} characters of {what}>")
         if not self.reflected_inertia:
             shown.append("reflected_inertia=False")
+        if self.nominal is not None:
+            shown.append(f"nominal={self.nominal!r}")
         return f"RobotSpec({', '.join(shown)})"
 
 

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+
+import numpy as np
 from typing import Sequence
 
 from robokit.description.builder import build_robot, one_line
@@ -17,7 +19,7 @@ from robokit.description.robot import Robot
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
 
-__all__ = ["load_urdf", "absolute_dirs"]
+__all__ = ["load_urdf", "load_urdf_text", "absolute_dirs"]
 
 
 def absolute_dirs(folders: Sequence[str | os.PathLike[str]] | None) -> tuple[str, ...]:
@@ -81,9 +83,40 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
     return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
 
 
+def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: object = None) -> Robot:
+    """A Robot from URDF text held in memory (a calibrated robot's spec), read under the checks of
+    a URDF file; ``robot.nominal`` is the spec's nominal (loaded when first needed).
+
+    Parameters
+    ----------
+    text : str
+        The URDF (no meshes outside the robot: it has no folder).
+    spec : RobotSpec
+        What the robot is recorded as (``robot.spec``).
+    tip : str, optional
+        The tip frame.
+    gravity : array_like, shape (3,), optional
+        Gravity in the base frame, m/s² (a URDF cannot hold it; default Pinocchio's (0, 0, −9.81)).
+
+    Returns
+    -------
+    Robot
+
+    Examples
+    --------
+    >>> from robokit.description.models import model_path
+    >>> text = model_path("rrr", ".urdf").read_text()
+    >>> load_urdf_text(text, RobotSpec("calibrated", name="rrr", text=text), tip="tool").n
+    3
+    """
+    robot = _from_urdf_file(Path(f"<{spec.name or 'robot'}>.urdf"), tip, text=text, spec=spec, gravity=gravity)
+    robot.nominal = spec.nominal
+    return robot
+
+
 def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
                     allow_outside_meshes: bool = False, text: str | None = None,
-                    spec: RobotSpec | None = None) -> Robot:
+                    spec: RobotSpec | None = None, gravity: object = None) -> Robot:
     """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``,
     with that file's ``spec``)."""
     import pinocchio as pin
@@ -101,6 +134,8 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os
     if failed is not None:
         why = cap.first_error() or one_line(failed)
         raise InputError(f"{path}: Pinocchio cannot read this URDF ({why})") from None
+    if gravity is not None:
+        model.gravity.linear = np.asarray(gravity, dtype=float)
     geoms, notes = [], []
     for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
         with capture_native_output() as cap:

@@ -49,7 +49,7 @@ from robokit._deprecation import deprecated_alias
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
-__all__ = ["dh_from_urdf", "URDFToDH", "format_dh_table", "joint_axes"]
+__all__ = ["dh_from_urdf", "dh_from_lines", "URDFToDH", "format_dh_table", "joint_axes"]
 
 _EPS = 1e-9
 
@@ -172,50 +172,10 @@ class URDFToDH:
         return self.residual <= 1e-9
 
 
-def dh_from_urdf(robot: Robot, convention: str = "standard", samples: int = 200,
-               rng: int | np.random.Generator | None = 0) -> URDFToDH:
-    """DH table (either convention) of a Robot's chain root → tip, with base and tool transforms.
-
-    Frames are placed on the common normals of consecutive joint axes at q = 0 (Lecture 4; the
-    choices for parallel, intersecting and coincident axes are in the module docstring). The table
-    is checked by DH forward kinematics against Pinocchio at ``samples`` random configurations.
-
-    Parameters
-    ----------
-    robot : Robot or str
-        A :class:`robokit.Robot`, or anything ``robokit.load`` accepts (a URDF path or an
-        example-robot-data name).
-    convention : {"standard", "modified"}, optional
-        Standard (Spong/Corke, default) or modified (Craig) DH.
-    samples : int, optional
-        Number of random configurations for the check (default 200).
-    rng : int, numpy.random.Generator or None, optional
-        Seed or generator for those configurations (default 0: reproducible).
-
-    Returns
-    -------
-    URDFToDH
-        ``.table`` (a :class:`DHTable`, lengths in m, angles in rad), ``.residual`` (the largest
-        pose error found) and ``.exact`` (residual ≤ 1e-9).
-
-    Examples
-    --------
-    The two parallel axes of the planar arm give a = 1 m and 0.8 m, α = 0:
-
-    >>> res = dh_from_urdf(rk.load("twolink"), samples=20)
-    >>> [(l.a, l.alpha) for l in res.table.links], res.exact
-    ([(1.0, 0.0), (0.8, 0.0)], True)
-    """
-    from robokit.description.loading import load
-    from robokit.description.robot import Robot
-
-    if convention not in ("standard", "modified"):
-        raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
-    robot = robot if isinstance(robot, Robot) else load(robot)
-    axes = joint_axes(robot)
+def _dh_frames(axes: list[tuple[np.ndarray, np.ndarray, str]], tip_o: np.ndarray, convention: str) -> list[np.ndarray]:
+    """The DH frames {0} … {N} (4×4 poses in the root frame at q = 0) of the joint axes ``axes``
+    (lines) and the tip origin ``tip_o``, placed as the module docstring says."""
     n = len(axes)
-    T_tip = robot.frame_pose(np.zeros(n))
-    tip_o = T_tip[:3, 3]
     frames = []
     if convention == "standard":
         # frames {1..N−1}: normals between axes i and i+1; frame {0} on axis 1
@@ -266,6 +226,101 @@ def dh_from_urdf(robot: Robot, convention: str = "standard", samples: int = 200,
                     origin = p + ((meet - p) @ z) * z
                 frames.append(_frame(origin, x, z))
         frames.insert(0, frames[0].copy())  # frame {0} = frame {1} at zero
+    return frames
+
+
+def dh_from_lines(axes: list[tuple[np.ndarray, np.ndarray, str]], T_tip: np.ndarray, name: str = "arm",
+                  qlim: np.ndarray | None = None) -> DHTable:
+    """The standard DH table (kinematics only) of a chain given by its joint axes at q = 0.
+
+    The same frames as :func:`dh_from_urdf` (module docstring), from the lines alone: for an arm
+    built from geometry rather than loaded (e.g. an arm with its structure restored,
+    :mod:`robokit.ik.calibrated`). Masses and inertias are zero.
+
+    Parameters
+    ----------
+    axes : list of (numpy.ndarray, numpy.ndarray, str)
+        Per joint ``(point (3,), unit direction (3,), kind "R"/"P")`` in the root frame at q = 0, m
+        (as :func:`joint_axes` returns them; a revolute joint turns about the line by the right-hand
+        rule, a prismatic one slides along the direction).
+    T_tip : numpy.ndarray, shape (4, 4)
+        The tip pose at q = 0 in the root frame, m.
+    name : str
+        The table's name.
+    qlim : numpy.ndarray, shape (n, 2), optional
+        Joint limits (rad, m); rows with an infinite bound give no limit.
+
+    Returns
+    -------
+    DHTable
+        Standard convention; its FK at q equals the chain's (joint i moving about axis i by q_i).
+
+    Examples
+    --------
+    >>> robot = rk.load("puma560")
+    >>> table = dh_from_lines(joint_axes(robot), robot.frame_pose(np.zeros(6)))
+    >>> q = np.array([0.1, -0.4, 0.3, 0.5, -0.2, 0.7])
+    >>> bool(np.allclose(table.fk(q), robot.frame_pose(q), atol=1e-12))
+    True
+    """
+    n = len(axes)
+    T_tip = np.asarray(T_tip, dtype=float)
+    frames = _dh_frames(axes, T_tip[:3, 3], "standard")
+    links = []
+    for i in range(n):
+        a, al, d, th = _params(np.linalg.inv(frames[i]) @ frames[i + 1], "standard")
+        lim = None
+        if qlim is not None and np.isfinite(qlim[i]).all():
+            lim = np.array(qlim[i], dtype=float)
+        links.append(DHLink(axes[i][2], _clean(a), _clean(al), _clean(d), _clean(th), lim))
+    tool = np.linalg.inv(frames[-1]) @ T_tip
+    return DHTable(name, "standard", tuple(links), np.array([0.0, 0.0, -9.81]), frames[0], tool)
+
+
+def dh_from_urdf(robot: Robot, convention: str = "standard", samples: int = 200,
+               rng: int | np.random.Generator | None = 0) -> URDFToDH:
+    """DH table (either convention) of a Robot's chain root → tip, with base and tool transforms.
+
+    Frames are placed on the common normals of consecutive joint axes at q = 0 (Lecture 4; the
+    choices for parallel, intersecting and coincident axes are in the module docstring). The table
+    is checked by DH forward kinematics against Pinocchio at ``samples`` random configurations.
+
+    Parameters
+    ----------
+    robot : Robot or str
+        A :class:`robokit.Robot`, or anything ``robokit.load`` accepts (a URDF path or an
+        example-robot-data name).
+    convention : {"standard", "modified"}, optional
+        Standard (Spong/Corke, default) or modified (Craig) DH.
+    samples : int, optional
+        Number of random configurations for the check (default 200).
+    rng : int, numpy.random.Generator or None, optional
+        Seed or generator for those configurations (default 0: reproducible).
+
+    Returns
+    -------
+    URDFToDH
+        ``.table`` (a :class:`DHTable`, lengths in m, angles in rad), ``.residual`` (the largest
+        pose error found) and ``.exact`` (residual ≤ 1e-9).
+
+    Examples
+    --------
+    The two parallel axes of the planar arm give a = 1 m and 0.8 m, α = 0:
+
+    >>> res = dh_from_urdf(rk.load("twolink"), samples=20)
+    >>> [(l.a, l.alpha) for l in res.table.links], res.exact
+    ([(1.0, 0.0), (0.8, 0.0)], True)
+    """
+    from robokit.description.loading import load
+    from robokit.description.robot import Robot
+
+    if convention not in ("standard", "modified"):
+        raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
+    robot = robot if isinstance(robot, Robot) else load(robot)
+    axes = joint_axes(robot)
+    n = len(axes)
+    T_tip = robot.frame_pose(np.zeros(n))
+    frames = _dh_frames(axes, T_tip[:3, 3], convention)
     base = frames[0]
     links = _links(robot, axes, frames, convention)
     tool = np.linalg.inv(frames[-1]) @ T_tip

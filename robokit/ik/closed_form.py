@@ -72,10 +72,13 @@ _new_object = object.__new__
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
+    from robokit.ik.calibrated import CalibratedArm
 
 __all__ = ["AnalyticIK", "ClosedFormKind", "analytic_ik", "ik_analytic", "ik_analytic_batch", "ik_analytic_kind"]
 
 _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
+#: ``AnalyticIK(table, _EXACT_ONLY)``: the exact closed forms only (the projected arm of a calibrated one).
+_EXACT_ONLY: Any = object()
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
 
 
@@ -224,22 +227,31 @@ class AnalyticIK:
     kind: ClosedFormKind
     solver: ClosedFormSolver | None
     reversed: bool
+    #: The exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.calibrated`), else None.
+    calibrated: CalibratedArm | None = None
     #: Use the compiled kernel (:mod:`robokit.kernels.closed_form`) when it covers the chain;
     #: False runs the Python solver (the reference the kernel is tested against).
     use_kernel: bool = True
 
-    def __init__(self, robot: Robot | DHTable) -> None:
+    def __init__(self, robot: Robot | DHTable, nominal: Any = None) -> None:
         if not (_is_table(robot) or _is_robot(robot)):
             raise InputTypeError(f"robot: expected a robokit Robot (robokit.load) or a DHTable, got {type(robot).__name__}")
         self._strong: Robot | DHTable | None = robot
         self._weak: weakref.ref | None = None
+        self._nominal = nominal
+        self._nominal_arg = nominal  # as given (the per-robot cache compares it)
+        # False for the projected arm of a calibrated one (its own closed form only, no recursion)
+        # and for nominal=False (the arm as it is: no nominal structure named, recorded or detected)
+        self._try_calibrated = nominal is not _EXACT_ONLY and nominal is not False
+        if not self._try_calibrated:
+            self._nominal = None
         self._build()
 
     @classmethod
-    def _shared(cls, robot: Robot | DHTable) -> AnalyticIK:
+    def _shared(cls, robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
         """An AnalyticIK that refers to ``robot`` only weakly (for the per-robot cache: it must
         not keep its robot alive). Raises TypeError if ``robot`` has no weak references."""
-        ik = cls(robot)
+        ik = cls(robot, nominal)
         ik._weak, ik._strong = weakref.ref(robot), None
         return ik
 
@@ -319,6 +331,23 @@ class AnalyticIK:
                 self.kind = ClosedFormKind(kind.method, f"{where}: the {kind.method} method on the chain read "
                                                         f"from the tool back to the base")
                 self.solver, self.reversed = solver, True
+        self._revolute = [k == "R" for k in self.chain.kinds]
+        # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
+        self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
+        self.calibrated = None
+        if self.kind.method is None and self.chain.n == 6 and self._try_calibrated:
+            # a calibrated or nearly special arm: the nominal structure's closed form, then Newton on
+            # the arm's own kinematics (robokit.ik.calibrated); its PoE, not the DH table, is solved
+            from robokit.ik.calibrated import calibrated_arm
+
+            is_table = _is_table(robot)
+            cal, why = calibrated_arm(robot, self.chain if is_table else None, self._flip if is_table else None,
+                                      self._revolute, self._limits, self._nominal,
+                                      lambda arm: AnalyticIK(arm, _EXACT_ONLY))
+            if cal is not None:
+                self.kind, self.calibrated, override = ClosedFormKind(cal.method, cal.reason), cal, None
+            elif self._nominal is not None:
+                raise InputError(f"nominal: {why}")
         if self.kind.method is None and self.chain.n == 6:
             # solvers for arms with no special structure (e.g. a general 6R elimination): each
             # says by refusal() whether it takes the chain; the first that does solves it
@@ -337,9 +366,6 @@ class AnalyticIK:
                     self.kind = ClosedFormKind(None, f"{self.kind.reason}; {'; '.join(reasons)}")
         if override is not None:
             self.kind, self.solver = override, None
-        self._revolute = [k == "R" for k in self.chain.kinds]
-        # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
-        self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
         # the joint a singular pose leaves free (wrist_ref's joint), in the order of self.chain
         free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
@@ -450,6 +476,10 @@ class AnalyticIK:
             self._build()
         wrist_ref = wrist_ref if type(wrist_ref) is float and -TURN <= wrist_ref <= TURN else _wrist_ref(wrist_ref)
         kernel = self._kernel
+        if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
+            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+            return self.calibrated.solve(T, wrist_ref)
         if kernel is not None and self.use_kernel:
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
@@ -501,10 +531,14 @@ class AnalyticIK:
         """
         self._refresh()
         wrist_ref = wrist_ref if type(wrist_ref) is float and -TURN <= wrist_ref <= TURN else _wrist_ref(wrist_ref)
-        if self.solver is None:
+        if self.solver is None and self.calibrated is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
         Ts = _check_poses(Ts)
         N = Ts.shape[0]
+        if self.calibrated is not None:
+            out, counts = self.calibrated.solve_batch(Ts, wrist_ref)
+            m = int(counts.max()) if N else 0
+            return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
         kernel = self._kernel
         if kernel is None or not self.use_kernel:  # the Python solver, pose by pose
             sols = [self._solve_python(T, wrist_ref) for T in Ts]
@@ -522,6 +556,8 @@ class AnalyticIK:
 
     def _solve_python(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
         """The Python solver (the reference of the compiled path)."""
+        if self.calibrated is not None:  # one implementation (plain Python under NUMBA_DISABLE_JIT)
+            return self.calibrated.solve(np.ascontiguousarray(T, dtype=float), wrist_ref)
         solver = self.solver
         if solver is None:
             raise InputError(f"robot: no closed-form inverse kinematics: {self.kind.reason}")
@@ -577,23 +613,24 @@ class _Cache:
     """
 
     def __init__(self) -> None:
-        self._entries: dict[int, tuple[weakref.ref, AnalyticIK]] = {}
+        self._entries: dict[Any, tuple[weakref.ref, AnalyticIK]] = {}
 
-    def get(self, robot: Robot | DHTable) -> AnalyticIK:
-        key = id(robot)
+    def get(self, robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
+        key: Any = id(robot) if nominal is None else (id(robot), nominal if isinstance(nominal, str) else id(nominal))
         hit = self._entries.get(key)
-        if hit is not None and hit[0]() is robot:
+        if hit is not None and hit[0]() is robot and (nominal is None or hit[1]._nominal_arg is nominal
+                                                      or (isinstance(nominal, str) and hit[1]._nominal_arg == nominal)):
             return hit[1]
         entries = self._entries
 
-        def drop(_ref: weakref.ref, key: int = key) -> None:
+        def drop(_ref: weakref.ref, key: Any = key) -> None:
             entries.pop(key, None)
 
         try:
             ref = weakref.ref(robot, drop)
         except TypeError:  # pragma: no cover - objects without weak references
-            return AnalyticIK(robot)
-        ik = AnalyticIK._shared(robot)
+            return AnalyticIK(robot, nominal)
+        ik = AnalyticIK._shared(robot, nominal)
         entries[key] = (ref, ik)
         return ik
 
@@ -712,12 +749,14 @@ def _detect(chain: DHChain) -> ClosedFormKind:
 
 
 # ---------------------------------------------------------------------- public API
-def analytic_ik(robot: Robot | DHTable) -> AnalyticIK:
+def analytic_ik(robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
     """The shared :class:`AnalyticIK` of ``robot`` (built on first use, kept while ``robot`` lives).
 
     Parameters
     ----------
     robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
+        The nominal structure of a calibrated or nearly special arm (see :func:`ik_analytic`).
 
     Returns
     -------
@@ -731,28 +770,36 @@ def analytic_ik(robot: Robot | DHTable) -> AnalyticIK:
     >>> analytic_ik(robokit.load("puma560")).method
     'spherical wrist'
     """
-    return _CACHE.get(robot)
+    return _CACHE.get(robot, nominal)
 
 
-def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
+def ik_analytic_kind(robot: Robot | DHTable, nominal: Any = None) -> ClosedFormKind:
     """Which closed-form IK applies to ``robot``, decided from its joint axes.
 
     Parameters
     ----------
     robot : :class:`robokit.Robot` (from a DH file or a URDF) or a :class:`robokit.DHTable`.
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
+        The nominal structure of a calibrated or nearly special arm, or False for none (see
+        :func:`ik_analytic`).
 
     Returns
     -------
     ClosedFormKind
         ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family),
-        ``"general 6R"`` (any other 6R arm) or None; ``.reason`` says why, in the arm's terms
-        (e.g. ``"axes 4–6 do not intersect: closest distance 0.0946 m; …"``).
+        ``"calibrated spherical wrist"`` / ``"calibrated three parallel axes"`` (a calibrated or
+        nearly special arm: the nominal structure's closed form polished by Newton's method on the
+        arm's own kinematics, :mod:`robokit.ik.calibrated`), ``"general 6R"`` (any other 6R arm)
+        or None; ``.reason`` says why, in the arm's terms (e.g. ``"axes 4–6 do not intersect:
+        closest distance 0.0946 m; …"``).
 
     Notes
     -----
     The axes are the joint axes at q = 0 (lines in the base frame, from the DH table).
     Distances below 1e-9 m (times the arm's size in m when larger than 1) count as zero,
-    angles below 1e-9 rad as parallel.
+    angles below 1e-9 rad as parallel. An arm that misses a structure by at most
+    :data:`robokit.ik.calibrated.NEAR_ANGLE` (0.01 rad) and ``NEAR_DISTANCE`` (0.01 × its reach), or
+    whose nominal structure is named or recorded (``robot.nominal``), is a calibrated one.
 
     Examples
     --------
@@ -760,13 +807,13 @@ def ik_analytic_kind(robot: Robot | DHTable) -> ClosedFormKind:
     >>> ik_analytic_kind(robokit.load("puma560")).method
     'spherical wrist'
     """
-    ik = _CACHE.get(robot)
+    ik = _CACHE.get(robot, nominal)
     ik._refresh()
     return ik.kind
 
 
 def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
-                world: CollisionChecker | None = None) -> list[IKSolution]:
+                world: CollisionChecker | None = None, nominal: Any = None) -> list[IKSolution]:
     r"""Every closed-form IK solution of ``robot`` for the tip pose ``T``.
 
     The one-call form of :class:`AnalyticIK`: ``ik_analytic(robot, T)`` is
@@ -786,6 +833,14 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     world : :class:`robokit.collision.World`, optional
         When given, each solution's ``.collision_free`` says whether the arm is free of self-
         and obstacle collisions there (None without a world). All solutions are returned.
+    nominal : Robot, DHTable, RobotSpec, str or False, optional
+        For an arm whose URDF or DH table is nearly but not exactly special: the nominal arm, or
+        its structure's name (``"spherical wrist"``, ``"three parallel axes"``). Its closed form
+        gives one start per branch and Newton's method on ``robot``'s own kinematics finishes each
+        (:mod:`robokit.ik.calibrated`). Not needed for a robot from :func:`robokit.calibrate`
+        (it records its nominal) nor for axes within 0.01 rad and 0.01 × the reach of the
+        structure (detected). ``False``: none — an arm that is not exactly special is solved by the
+        general 6R method.
 
     Returns
     -------
@@ -822,7 +877,7 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     """
     if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
         wrist_ref = _wrist_ref(wrist_ref)  # checked here: the solver's own check is silent when robokit calls it
-    solutions = _CACHE.get(robot).solve(T, wrist_ref)
+    solutions = _CACHE.get(robot, nominal).solve(T, wrist_ref)
     return solutions if world is None else with_collision_flags(solutions, world)
 
 

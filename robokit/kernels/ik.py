@@ -43,9 +43,27 @@ __all__ = ["solve_poe_ik", "solve_poe_ik_kernel"]
 
 
 @njit
-def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Jb: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray, Tinv: np.ndarray) -> None:
-    """T ← T_sb(θ) and Jb ← J_b(θ) in one pass: the prefix products of the space Jacobian
-    ``P = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}`` also build the FK; then ``J_b = Ad_{T⁻¹} J_s``."""
+def normal_equations(J: np.ndarray, F: np.ndarray, H: np.ndarray, g: np.ndarray) -> None:
+    """H ← JᵀJ (n × n) and g ← JᵀF (n,) for a 6 × n Jacobian J and a 6-vector F: the normal
+    equations of the least-squares step ``J Δq ≈ F`` (damped by the caller)."""
+    n = J.shape[1]
+    for i in range(n):
+        acc = 0.0
+        for r in range(6):
+            acc += J[r, i] * F[r]
+        g[i] = acc
+        for j in range(i, n):
+            acc = 0.0
+            for r in range(6):
+                acc += J[r, i] * J[r, j]
+            H[i, j] = acc
+            H[j, i] = acc
+
+
+@njit
+def fk_and_space_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray) -> None:
+    """T ← T_sb(θ) and Js ← J_s(θ) in one pass: the prefix products of the space Jacobian
+    ``P = e^{[S₁]θ₁}⋯e^{[S_{i−1}]θ_{i−1}}`` (column i is ``Ad_P Sᵢ``) also build the FK."""
     n = Slist.shape[1]
     set_identity(P)
     for i in range(n):
@@ -53,6 +71,13 @@ def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T:
         exp_screw(Slist, i, theta[i], E)
         mul_tt_inplace(P, E, tmp)
     mul_tt(P, M, T)
+
+
+@njit
+def fk_and_body_jacobian(M: np.ndarray, Slist: np.ndarray, theta: np.ndarray, T: np.ndarray, Jb: np.ndarray, Js: np.ndarray, P: np.ndarray, E: np.ndarray, tmp: np.ndarray, Tinv: np.ndarray) -> None:
+    """T ← T_sb(θ) and Jb ← J_b(θ): :func:`fk_and_space_jacobian`, then ``J_b = Ad_{T⁻¹} J_s``."""
+    n = Slist.shape[1]
+    fk_and_space_jacobian(M, Slist, theta, T, Js, P, E, tmp)
     inv_t(T, Tinv)
     for i in range(n):
         adjoint_screw(Tinv, Js, i, Jb, i)
@@ -125,17 +150,8 @@ def solve_poe_ik_kernel(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q0: np
                 return theta, True, iterations, attempt
             iterations += 1
             # damped normal equations (J_bᵀ J_b + λ I) Δθ = J_bᵀ V_b
+            normal_equations(Jb, V, H, g)
             for i in range(n):
-                acc = 0.0
-                for r in range(6):
-                    acc += Jb[r, i] * V[r]
-                g[i] = acc
-                for j in range(i, n):
-                    acc = 0.0
-                    for r in range(6):
-                        acc += Jb[r, i] * Jb[r, j]
-                    H[i, j] = acc
-                    H[j, i] = acc
                 H[i, i] += lam
             if not cholesky_solve(H, g, L, step):
                 lam *= 10.0

@@ -105,9 +105,17 @@ def mul_tt(A: np.ndarray, B: np.ndarray, out: np.ndarray) -> None:
 
 @njit
 def mul_tt_inplace(A: np.ndarray, B: np.ndarray, tmp: np.ndarray) -> None:
-    """A ← A B using the 4×4 scratch ``tmp``."""
-    mul_tt(A, B, tmp)
-    copy44(tmp, A)
+    """A ← A B (row by row through locals: the same sums, in the same order, as :func:`mul_tt`;
+    ``tmp`` is not needed and kept for the callers' signature). B may not alias A."""
+    b00, b01, b02, b03 = B[0, 0], B[0, 1], B[0, 2], B[0, 3]
+    b10, b11, b12, b13 = B[1, 0], B[1, 1], B[1, 2], B[1, 3]
+    b20, b21, b22, b23 = B[2, 0], B[2, 1], B[2, 2], B[2, 3]
+    for r in range(3):
+        a0, a1, a2, a3 = A[r, 0], A[r, 1], A[r, 2], A[r, 3]
+        A[r, 0] = a0 * b00 + a1 * b10 + a2 * b20
+        A[r, 1] = a0 * b01 + a1 * b11 + a2 * b21
+        A[r, 2] = a0 * b02 + a1 * b12 + a2 * b22
+        A[r, 3] = a0 * b03 + a1 * b13 + a2 * b23 + a3
 
 
 @njit

@@ -6,6 +6,7 @@ import math
 import re
 from dataclasses import replace
 import subprocess
+import warnings
 
 import numpy as np
 import pytest
@@ -70,16 +71,17 @@ def _dist(a, b, rev):
     return float(np.abs(d).max())
 
 
-def check_ik(robot, lib, poses, tol=1e-9):
+def check_ik(robot, lib, poses, tol=1e-9, nominal=None):
     """The C returns ik_analytic's solutions: in order, with the same labels and flags (the
-    quartic's roots included: both list them by increasing tan(θ₃/2))."""
+    quartic's roots included: both list them by increasing tan(θ₃/2)); a calibrated arm's merged
+    solution is labelled in C by its first branch only."""
     rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
     for T in poses:
-        py = ik_analytic(robot, T)
+        py = ik_analytic(robot, T, nominal=nominal)
         c = lib.ik(T)
         assert len(c) == len(py), ([s.label for s in py], [x[1] for x in c])
         for s, (q, label, inside, degen) in zip(py, c):
-            assert label == s.label
+            assert label == s.label or (s.label.startswith(label + " (merged with ") and degen)
             assert (inside, degen) == (s.within_limits, s.degenerate)
             assert _dist(q, s.q, rev) < tol, label
         for q, *_ in c:  # and every C solution reaches T (Pinocchio, and the generated NAME_fk)
@@ -557,10 +559,10 @@ def test_quartic_root_finder_against_numpy(cc, tmp_path):
 
 
 @pytest.mark.parametrize("arm", ["puma_offset", "ur5_tilt"])
-def test_general_6r_almost_special_arms(build, arm):
+def test_general_6r_almost_special_arms(build, arm, tmp_path, cc):
     """Special arms made general by a tiny change — the PUMA's axes 4 and 5 1 µm apart, the UR5's
     axis 3 tilted by a milliradian —: badly conditioned readings (the next ones are solved too),
-    solutions close together; the C still agrees with ik_analytic."""
+    solutions close together; the C still agrees with ik_analytic (general 6R with nominal=False)."""
     t = robokit.load("puma560").dh if arm == "puma_offset" else None
     if arm == "puma_offset":
         rows = [replace(l, a=l.a + (1e-6 if i == 3 else 0.0)) for i, l in enumerate(t.links)]
@@ -574,10 +576,16 @@ def test_general_6r_almost_special_arms(build, arm):
         rows = [replace(l, alpha=l.alpha + (1e-3 if i == 1 else 0.0)) for i, l in enumerate(u.links)]
         table = DHTable("ur5_tilt", "standard", tuple(rows), base=u.base, tool=u.tool)
     robot = robokit.load(table)
-    assert ik_analytic_kind(robot).method == "general 6R"
+    assert ik_analytic_kind(robot, nominal=False).method == "general 6R"
     rng = np.random.default_rng(6)
     poses = [robot.frame_pose(np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5]))]
     poses += [robot.frame_pose(rng.uniform(-3, 3, 6)) for _ in range(3)]
+    from robokit.codegen.build import compile_library
+
+    lib = compile_library(generate_c(robot, nominal=False), tmp_path, robot.n, flags=("-O1",), compiler=cc)
+    check_ik(robot, lib, poses, nominal=False)
+    # by default the structure is detected: the polished closed form, in C as in Python
+    assert ik_analytic_kind(robot).method.startswith("calibrated")
     check_ik(robot, build(robot), poses)
 
 
@@ -600,3 +608,84 @@ def test_float32_quartic_arm(build):
         for q, *_ in c:
             assert min(_dist(q, s.q, np.ones(6, bool)) for s in py) < 1e-2
     assert same >= 18
+
+
+# ------------------------------------------------------------------ calibrated arms (robokit.ik.calibrated)
+def calibrated_arm(name_or_table, seed):
+    """The nominal arm with every joint placement, the base and the tool off by up to 2 mrad / 2 mm, built
+    the way robokit.calibrate builds its result (robot_from_chain: the nominal recorded on it)."""
+    from robokit.calibration import chain_from_robot, robot_from_chain
+
+    nominal = robokit.load(name_or_table)
+    delta = np.random.default_rng(seed).uniform(-2e-3, 2e-3, (nominal.n + 1, 6))
+    return robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))
+
+
+@pytest.fixture(scope="module")
+def calibrated_arms():
+    pieper = random_table(7, "standard", "RRRRRR", structure="wrist")
+    return {"puma560": calibrated_arm("puma560", 1), "ur5": calibrated_arm("ur5", 2),
+            "pieper": calibrated_arm(pieper, 3)}
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "pieper"])
+def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
+    """NAME_ik of a calibrated arm: the projected arm's closed form and Newton's method on NAME_fk give
+    ik_analytic's solutions, in its order, to 1e-9 — near-singular poses (θ₅ within 2 mrad) included."""
+    robot = calibrated_arms[name]
+    assert ik_analytic_kind(robot).method.startswith("calibrated")
+    lib = build(robot)
+    assert lib.has_ik and lib.max_solutions == 16
+    rng = np.random.default_rng(4)
+    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(20)]
+    for _ in range(4):
+        q = robot.random_configuration(rng)
+        q[4] = rng.uniform(-2e-3, 2e-3)
+        poses.append(robot.frame_pose(q))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        check_ik(robot, lib, poses)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_calibrated_arm_float32_ik(calibrated_arms, build, name):
+    """--float32: every C solution is within 1e-3 rad of ik_analytic's solution of the same branch and
+    reaches the pose to 1e-5 (relative to the reach); the counts agree on most poses."""
+    robot = calibrated_arms[name]
+    lib = build(robot, float32=True)
+    rng = np.random.default_rng(5)
+    full = 0
+    for _ in range(20):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        py, c = ik_analytic(robot, T), lib.ik(T)
+        full += len(c) == len(py)
+        for q, label, *_ in c:
+            ref = [s for s in py if s.label.startswith(label)]
+            assert ref and min(_dist(q, s.q, np.ones(robot.n, bool)) for s in ref) < 1e-3
+            assert np.abs(robot.frame_pose(q) - T).max() < 1e-5 * max(1.0, float(np.abs(T[:3, 3]).max()))
+    assert full >= 18
+
+
+def test_cli_codegen_and_teach_of_a_calibrated_urdf(calibrated_arms, tmp_path, cc):
+    """robokit codegen arm_calibrated.urdf: NAME_HAS_IK 1 and, compiled with the strict flags, the
+    solutions of ik_analytic for the robot loaded from that file; robokit teach loads it."""
+    from robokit.codegen.build import CLibrary
+
+    robot = calibrated_arms["puma560"]
+    urdf = robot.save(tmp_path / "arm_calibrated.urdf")
+    (tmp_path / "c").mkdir()
+    assert main(["codegen", str(urdf), "-o", str(tmp_path / "c")]) == 0
+    name = c_name(robokit.load(str(urdf)).name)
+    header = (tmp_path / "c" / f"{name}.h").read_text()
+    assert f"#define {name}_HAS_IK 1" in header and "calibrated spherical wrist" in header
+    so = tmp_path / "c" / f"{name}.so"
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow", "-O1", "-fPIC",
+                    "-shared", str(tmp_path / "c" / f"{name}.c"), "-o", str(so), "-lm"], check=True)
+    loaded = robokit.load(str(urdf))
+    src = generate_c(loaded)
+    lib = CLibrary(so, src, loaded.n, False)
+    rng = np.random.default_rng(8)
+    check_ik(loaded, lib, [loaded.frame_pose(loaded.random_configuration(rng)) for _ in range(8)])
+    page = tmp_path / "teach.html"
+    assert main(["teach", str(urdf), "-o", str(page)]) == 0
+    assert page.stat().st_size > 1000

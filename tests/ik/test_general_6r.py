@@ -179,12 +179,16 @@ def puma_with_offset(eps):
 
 
 @pytest.mark.parametrize("eps", [1e-6, 1e-4, 1e-2])
-def test_spherical_wrist_off_by_a_little(eps):
+@pytest.mark.parametrize("nominal", [False, None])
+def test_spherical_wrist_off_by_a_little(eps, nominal):
+    """nominal=False: the general 6R method; by default the spherical wrist is detected and its
+    closed form polished (robokit.ik.calibrated): both find every solution."""
     robot = robokit.load(puma_with_offset(eps))
-    assert ik_analytic_kind(robot).method == "general 6R"
+    method = ik_analytic_kind(robot, nominal=nominal).method
+    assert method == ("general 6R" if nominal is False else "calibrated spherical wrist")
     q = np.array([0.3, -0.6, 0.4, 0.8, 0.7, -0.5])
     T = robot.frame_pose(q)
-    sols = ik_analytic(robot, T)
+    sols = ik_analytic(robot, T, nominal=nominal)
     check(robot, q, T, sols)
     assert len(sols) >= 8  # the 8 of the exact PUMA survive a small offset
     assert_none_missed(robot, T, sols)
@@ -200,12 +204,14 @@ def ur5_with_tilt(angle):
     return DHTable("ur5_tilt", "standard", tuple(rows), base=table.base, tool=table.tool)
 
 
-def test_ur5_with_axes_off_by_a_milliradian():
+@pytest.mark.parametrize("nominal", [False, None])
+def test_ur5_with_axes_off_by_a_milliradian(nominal):
     robot = robokit.load(ur5_with_tilt(1e-3))
-    assert ik_analytic_kind(robot).method == "general 6R"
+    method = ik_analytic_kind(robot, nominal=nominal).method
+    assert method == ("general 6R" if nominal is False else "calibrated three parallel axes")
     q = np.array([0.4, -1.3, 1.2, -0.6, 1.1, 0.3])
     T = robot.frame_pose(q)
-    sols = ik_analytic(robot, T)
+    sols = ik_analytic(robot, T, nominal=nominal)
     check(robot, q, T, sols)
     assert len(sols) >= 8
     assert_none_missed(robot, T, sols)

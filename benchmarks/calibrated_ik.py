@@ -1,0 +1,131 @@
+"""Exact IK of calibrated arms (issue 43): the polished closed form against the nominal closed form and
+the general 6R method, in Python and in the generated C, measured in the same run.
+
+Arms: the PUMA 560, the UR5 and a random Pieper arm, each with every joint placement, the base and the
+tool off by up to 2 mrad / 2 mm (built as ``robokit.calibrate`` builds its result). Per arm, on the same
+random poses (reachable by construction), time per pose of
+
+* ``ik_analytic`` of the nominal arm (its closed form) on the nominal's poses — the reference;
+* ``ik_analytic`` of the calibrated arm (``"calibrated …"``: the projected arm's closed form, then Newton
+  on the arm's own product of exponentials);
+* ``ik_analytic(..., nominal=False)`` of the calibrated arm (the general 6R method) on fewer poses;
+* the generated C (``-O2``) of the nominal and of the calibrated arm (``NAME_ik``), through ctypes.
+
+Per pose: the least CPU time of a few batches; the table gives the median over the poses (the common
+pose: one start per branch, each finished in 3–4 Newton steps) and the mean (near-singular poses, where
+the polish searches for the roots that merge or appear, weigh in). The ratio columns are time / nominal
+closed form (Python rows against the Python reference, C rows against the nominal's C). The load average is printed: numbers taken on a shared machine are only
+comparable within one run. Prints Markdown; asserts nothing.
+
+Run: ``.venv/bin/python -m benchmarks.calibrated_ik [--quick]``
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+import time
+import warnings
+
+import numpy as np
+
+from benchmarks._harness import fmt_time, machine, table
+
+
+def _arms():
+    import robokit as rk
+    from robokit.calibration import chain_from_robot, robot_from_chain
+    from robokit.description.dh import DHLink, DHTable
+
+    rng = np.random.default_rng(0)
+    rows = [DHLink("R", a=0.2, alpha=1.1, d=0.4), DHLink("R", a=0.5, alpha=-0.6, d=0.1),
+            DHLink("R", a=0.1, alpha=1.9, d=-0.05), DHLink("R", a=0.0, alpha=-1.3, d=0.35),
+            DHLink("R", a=0.0, alpha=0.9, d=0.0), DHLink("R", a=0.02, alpha=0.0, d=0.12)]
+    out = []
+    for label, model in (("PUMA 560", "puma560"), ("UR5", "ur5"), ("random Pieper arm", DHTable("pieper", "standard",
+                                                                                               tuple(rows)))):
+        nominal = rk.load(model)
+        delta = rng.uniform(-2e-3, 2e-3, (nominal.n + 1, 6))
+        out.append((label, nominal, robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))))
+    return out
+
+
+def _per_pose(fn, poses, rounds):
+    """(median, mean) over the poses of each pose's time per call (the least of ``rounds`` batches of
+    calls, CPU time: less sensitive to other processes on a shared machine than wall time). The median
+    is the common pose; the mean includes the poses near a singular one, where the polish searches."""
+    for T in poses[:3]:
+        fn(T)
+    each = []
+    for T in poses:
+        best = np.inf
+        for _ in range(rounds):
+            t0 = time.process_time()
+            for _ in range(5):
+                fn(T)
+            best = min(best, (time.process_time() - t0) / 5)
+        each.append(best)
+    return float(np.median(each)), float(np.mean(each))
+
+
+def _c_loop(lib, poses, rounds, float32=False):
+    """:func:`_per_pose` of NAME_ik through ctypes."""
+    import ctypes
+
+    t = np.float32 if float32 else np.float64
+    ct = ctypes.POINTER(ctypes.c_float if float32 else ctypes.c_double)
+    f = getattr(lib.lib, f"{lib.name}_ik")
+    q = np.zeros(lib.max_solutions * lib.n, t)
+    qp = q.ctypes.data_as(ct)
+    keep = [np.ascontiguousarray(T.reshape(-1), dtype=t) for T in poses]
+    ptrs = [T.ctypes.data_as(ct) for T in keep]
+    return _per_pose(lambda p: f(p, qp), ptrs, rounds)
+
+
+def main(argv=None):
+    import robokit as rk
+    from robokit.codegen import generate_c
+    from robokit.codegen.build import compile_library, find_compiler
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="fewer poses and rounds")
+    args = ap.parse_args(argv)
+    n_poses, rounds, n_g6r = (40, 2, 3) if args.quick else (200, 5, 10)
+    print(f"# Calibrated arms: exact IK (issue 43)\n\nmachine: {machine()}; load average "
+          f"{os.getloadavg()[0]:.2f} (2 cores shared: compare ratios within this run)\n")
+    cc = find_compiler()
+    rows = []
+    warnings.simplefilter("ignore", rk.RobokitWarning)
+    for label, nominal, cal in _arms():
+        rng = np.random.default_rng(1)
+        Q = [cal.random_configuration(rng) for _ in range(n_poses)]
+        Tn = [nominal.frame_pose(q) for q in Q]
+        Tc = [cal.frame_pose(q) for q in Q]
+        t_nom = _per_pose(lambda T: rk.ik_analytic(nominal, T), Tn, rounds)
+        t_cal = _per_pose(lambda T: rk.ik_analytic(cal, T), Tc, rounds)
+        t_g6r = _per_pose(lambda T: rk.ik_analytic(cal, T, nominal=False), Tc[:n_g6r], 1)
+        counts = np.mean([len(rk.ik_analytic(cal, T)) for T in Tc])
+        kind = rk.ik_analytic_kind(cal).method
+
+        def row(method, note, t, ref):
+            rows.append([label, method, note, fmt_time(t[0]), f"{t[0] / ref[0]:.2f}×", fmt_time(t[1]),
+                         f"{t[1] / ref[1]:.2f}×"])
+
+        row("Python: nominal closed form", "spherical wrist" if "spherical" in kind else "three parallel axes",
+            t_nom, t_nom)
+        row(f"Python: {kind}", f"{counts:.2f} solutions/pose", t_cal, t_nom)
+        row("Python: general 6R (nominal=False)", f"{n_g6r} poses", t_g6r, t_nom)
+        if cc is not None:
+            with tempfile.TemporaryDirectory() as tmp:
+                ln = compile_library(generate_c(nominal, name="nom"), os.path.join(tmp), nominal.n, compiler=cc)
+                os.mkdir(os.path.join(tmp, "cal"))
+                lc = compile_library(generate_c(cal, name="cal"), os.path.join(tmp, "cal"), cal.n, compiler=cc)
+                c_nom = _c_loop(ln, Tn, rounds)
+                c_cal = _c_loop(lc, Tc, rounds)
+            row("C -O2: nominal NAME_ik", "", c_nom, c_nom)
+            row("C -O2: calibrated NAME_ik", "", c_cal, c_nom)
+    print(table(["arm", "method", "", "median per pose", "ratio", "mean per pose", "ratio"], rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,525 @@
+r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.calibrated` written out).
+
+``NAME_ik`` of such an arm is the algorithm of :mod:`robokit.kernels.calibrated_ik`, step for step:
+
+1. ``NAME_nominal_ik_ex``: the closed form of the *projected* arm (the arm with its nominal structure
+   restored, built by :mod:`robokit.ik.calibrated`), emitted by :mod:`robokit.codegen.ik` from that
+   arm's constants — one start per branch, its label and degenerate flag; when it gives fewer than
+   8, also for the pose moved about the shoulder by the kernel's ``RELAX`` fractions (starts of the
+   branches the projected arm just misses);
+2. each start polished by Newton's method on the arm's own kinematics — the generated ``NAME_fk`` and
+   ``NAME_jacobian`` (the robot's product of exponentials) — with the first-order spatial pose
+   error, Levenberg–Marquardt steps where Newton fails, steps no longer than ``MAX_STEP``;
+3. a start that reaches a solution found already, or none, tried again from the mirrored start;
+   merged branches flag their solution degenerate;
+4. around solutions the polish moved far, vanished branches and singular choices: the roots along
+   the near-singular direction (inverse iteration on ``J̃ᵀJ̃``) from the kernel's ``EXPLORE_STEPS``;
+5. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
+
+Same solutions, in the same order, as :func:`robokit.ik_analytic` (to the polish's tolerance); the
+label of a merged solution is its first branch's (Python adds " (merged with …)"). In float32 the
+tolerances are the square roots of the double ones (the polish stops near float's precision).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from robokit.codegen._c import lit, safe_comment
+
+__all__ = ["calibrated_code"]
+
+
+def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) -> Any:
+    """The IK part of the generated files for a calibrated arm.
+
+    Parameters
+    ----------
+    k : IKConstants
+        Constants of the projected arm's closed form, ``k.calibrated`` the polish's numbers.
+    prefix : str
+        The C prefix NAME.
+    tol : callable
+        Tolerance literals (robokit's in double, their square roots in float).
+    emitter : type
+        The closed-form emitter class of :mod:`robokit.codegen.ik`.
+    ikcode : type
+        :class:`robokit.codegen.ik.IKCode`.
+
+    Returns
+    -------
+    IKCode
+    """
+    c = k.calibrated
+    P = prefix
+    nom = emitter(k, f"{P}_nominal", tol)
+    nom_code = nom.code()
+    fin = emitter(k, P, tol)
+    labels = nom.labels
+    max_rows = int(c["max_rows"])
+    sh = c["shoulder"]
+    relax = ", ".join(lit(float(f)) for f in c["relax"])
+    steps = ", ".join(lit(float(f)) for f in c["explore_steps"])
+    header = [f"#define {P}_nominal_N {P}_N  /* the projected arm's closed form: the starts of {P}_ik */",
+              f"#define {P}_nominal_MAX_SOLUTIONS 8", ""] + nom_code.header_lines + [
+        f"/* Inverse kinematics of this calibrated arm ({safe_comment(c['method'])}): every solution for the",
+        f"   tool pose T, one row of {P}_N values each, {P}_ik returning how many (0: out of reach). The",
+        f"   closed form of the nominal structure ({P}_nominal_ik) gives one start per branch; Newton's",
+        f"   method on {P}_fk / {P}_jacobian finishes each. The same solutions, in the same order, as",
+        "   robokit's ik_analytic. Revolute angles in (-pi, pi] (or shifted by 2 pi into wider limits). */",
+        f"int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N]);",
+        "",
+        f"/* The same with, per solution k, info[4k..4k+3] = (label index into {P}_ik_label_names (the",
+        "   branch of the nominal structure), repeat number (2 or more: the label ends in \" #repeat\"),",
+        "   within joint limits (0/1), degenerate: near a singularity — branches merged, or a root found",
+        "   by the search there (0/1)); info may be a null pointer. wrist_ref: the free joint's value at",
+        "   a singularity of the nominal structure (ik_analytic's wrist_ref). */",
+        f"int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
+        f"int info[4 * {P}_MAX_SOLUTIONS]);",
+        "",
+        f"#define {P}_IK_LABEL_COUNT {len(labels)}",
+        f"extern const char *const {P}_ik_label_names[{P}_IK_LABEL_COUNT];",
+        f"extern const int {P}_ik_label_count;",
+        f"extern const int {P}_ik_max_solutions;",
+        "",
+    ]
+    t = tol
+    R = lit(float(c["reach"]))
+    src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
+/* the first-order spatial pose error of T against Td: w = vee(A - A^T)/2 with A = Rd R^T, v = dp - w x p;
+   *rot = |w| (2 - |w| beyond pi/2), *pos = |dp|; returns (rot^2 + pos^2)/2 */
+static double {P}_cal_error(const double T[16], const double Td[16], double F[6], double *rot, double *pos)
+{{
+    const double a01 = Td[0] * T[4] + Td[1] * T[5] + Td[2] * T[6];
+    const double a10 = Td[4] * T[0] + Td[5] * T[1] + Td[6] * T[2];
+    const double a02 = Td[0] * T[8] + Td[1] * T[9] + Td[2] * T[10];
+    const double a20 = Td[8] * T[0] + Td[9] * T[1] + Td[10] * T[2];
+    const double a12 = Td[4] * T[8] + Td[5] * T[9] + Td[6] * T[10];
+    const double a21 = Td[8] * T[4] + Td[9] * T[5] + Td[10] * T[6];
+    const double wx = 0.5 * (a21 - a12), wy = 0.5 * (a02 - a20), wz = 0.5 * (a10 - a01);
+    const double px = T[3], py = T[7], pz = T[11];
+    const double dx = Td[3] - px, dy = Td[7] - py, dz = Td[11] - pz;
+    double tr = 0.0;
+    int r, cc;
+    F[0] = wx;
+    F[1] = wy;
+    F[2] = wz;
+    F[3] = dx - (wy * pz - wz * py);
+    F[4] = dy - (wz * px - wx * pz);
+    F[5] = dz - (wx * py - wy * px);
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            tr += Td[4 * r + cc] * T[4 * r + cc];
+        }}
+    }}
+    *rot = sqrt(wx * wx + wy * wy + wz * wz);
+    if (tr < 1.0) {{
+        *rot = 2.0 - *rot;
+    }}
+    *pos = sqrt(dx * dx + dy * dy + dz * dz);
+    return 0.5 * (*rot * *rot + *pos * *pos);
+}}
+
+/* the space Jacobian (v of the point at the base origin) from {P}_jacobian's (v of the tool origin p) */
+static void {P}_cal_jacobian(const double q[{P}_N], const double p[3], double J[36])
+{{
+    int j;
+    {P}_jacobian(q, J);
+    for (j = 0; j < 6; ++j) {{
+        const double wx = J[j], wy = J[6 + j], wz = J[12 + j];
+        J[18 + j] -= wy * p[2] - wz * p[1];
+        J[24 + j] -= wz * p[0] - wx * p[2];
+        J[30 + j] -= wx * p[1] - wy * p[0];
+    }}
+}}
+
+/* x = J^-1 F (6 x 6) by Gaussian elimination with partial pivoting; 0 when a pivot is below 1e-12 of
+   the largest entry */
+static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6])
+{{
+    double A[36], big = 0.0;
+    int r, cc, kk, p;
+    for (r = 0; r < 36; ++r) {{
+        A[r] = J[r];
+        big = fabs(J[r]) > big ? fabs(J[r]) : big;
+    }}
+    for (r = 0; r < 6; ++r) {{
+        x[r] = F[r];
+    }}
+    if (!(big > 0.0)) {{
+        return 0;
+    }}
+    for (cc = 0; cc < 6; ++cc) {{
+        p = cc;
+        for (r = cc + 1; r < 6; ++r) {{
+            if (fabs(A[6 * r + cc]) > fabs(A[6 * p + cc])) {{
+                p = r;
+            }}
+        }}
+        if (fabs(A[6 * p + cc]) <= {t(1e-12)} * big) {{
+            return 0;
+        }}
+        if (p != cc) {{
+            double tmp;
+            for (kk = 0; kk < 6; ++kk) {{
+                tmp = A[6 * cc + kk];
+                A[6 * cc + kk] = A[6 * p + kk];
+                A[6 * p + kk] = tmp;
+            }}
+            tmp = x[cc];
+            x[cc] = x[p];
+            x[p] = tmp;
+        }}
+        for (r = cc + 1; r < 6; ++r) {{
+            const double f = A[6 * r + cc] / A[6 * cc + cc];
+            for (kk = cc; kk < 6; ++kk) {{
+                A[6 * r + kk] -= f * A[6 * cc + kk];
+            }}
+            x[r] -= f * x[cc];
+        }}
+    }}
+    for (r = 5; r >= 0; --r) {{
+        double acc = x[r];
+        for (kk = r + 1; kk < 6; ++kk) {{
+            acc -= A[6 * r + kk] * x[kk];
+        }}
+        x[r] = acc / A[6 * r + r];
+    }}
+    return 1;
+}}
+
+/* x = H^-1 b by Cholesky (H symmetric 6 x 6); 0 when H is not positive definite */
+static int {P}_cal_cholesky(const double H[36], const double b[6], double x[6])
+{{
+    double L[36];
+    int i, j, kk;
+    for (j = 0; j < 6; ++j) {{
+        double s = H[6 * j + j], d;
+        for (kk = 0; kk < j; ++kk) {{
+            s -= L[6 * j + kk] * L[6 * j + kk];
+        }}
+        if (!(s > 0.0)) {{
+            return 0;
+        }}
+        d = sqrt(s);
+        L[6 * j + j] = d;
+        for (i = j + 1; i < 6; ++i) {{
+            s = H[6 * i + j];
+            for (kk = 0; kk < j; ++kk) {{
+                s -= L[6 * i + kk] * L[6 * j + kk];
+            }}
+            L[6 * i + j] = s / d;
+        }}
+    }}
+    for (i = 0; i < 6; ++i) {{
+        double s = b[i];
+        for (kk = 0; kk < i; ++kk) {{
+            s -= L[6 * i + kk] * x[kk];
+        }}
+        x[i] = s / L[6 * i + i];
+    }}
+    for (i = 5; i >= 0; --i) {{
+        double s = x[i];
+        for (kk = i + 1; kk < 6; ++kk) {{
+            s -= L[6 * kk + i] * x[kk];
+        }}
+        x[i] = s / L[6 * i + i];
+    }}
+    return 1;
+}}
+
+/* Newton's method (Levenberg-Marquardt where a Newton step fails) on the pose error, q updated in place */
+static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
+{{
+    double T[16], Tt[16], J[36], F[6], Ft[6], step[6], trial[6], p[3];
+    double err, lam = 0.0, rt, pt;
+    int it, i, j, r;
+    {P}_fk(q, T);
+    err = {P}_cal_error(T, Td, F, rot, pos);
+    p[0] = T[3];
+    p[1] = T[7];
+    p[2] = T[11];
+    {P}_cal_jacobian(q, p, J);
+    for (it = 0; it < max_steps; ++it) {{
+        double longest = 0.0, shrink = 1.0, e2;
+        int solved = 0;
+        if (*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])}) {{
+            break;
+        }}
+        if (lam == 0.0) {{
+            solved = {P}_cal_newton_step(J, F, step);
+        }}
+        if (!solved) {{
+            double H[36], g[6], big = 0.0;
+            if (lam == 0.0) {{
+                lam = 1e-9;
+            }}
+            for (i = 0; i < 6; ++i) {{
+                double acc = 0.0;
+                for (r = 0; r < 6; ++r) {{
+                    acc += J[6 * r + i] * F[r];
+                }}
+                g[i] = acc;
+                for (j = i; j < 6; ++j) {{
+                    acc = 0.0;
+                    for (r = 0; r < 6; ++r) {{
+                        acc += J[6 * r + i] * J[6 * r + j];
+                    }}
+                    H[6 * i + j] = acc;
+                    H[6 * j + i] = acc;
+                }}
+                big = H[6 * i + i] > big ? H[6 * i + i] : big;
+            }}
+            for (i = 0; i < 6; ++i) {{
+                H[6 * i + i] += lam * big;
+            }}
+            if (!{P}_cal_cholesky(H, g, step)) {{
+                lam *= 10.0;
+                if (lam > 1e3) {{
+                    break;
+                }}
+                continue;
+            }}
+        }}
+        for (i = 0; i < 6; ++i) {{
+            longest = fabs(step[i]) > longest ? fabs(step[i]) : longest;
+        }}
+        if (longest > {lit(float(c["max_step"]))}) {{
+            shrink = {lit(float(c["max_step"]))} / longest;
+        }}
+        for (i = 0; i < 6; ++i) {{
+            trial[i] = q[i] + shrink * step[i];
+        }}
+        {P}_fk(trial, Tt);
+        e2 = {P}_cal_error(Tt, Td, Ft, &rt, &pt);
+        if (e2 < err) {{
+            for (i = 0; i < 6; ++i) {{
+                q[i] = trial[i];
+                F[i] = Ft[i];
+            }}
+            err = e2;
+            *rot = rt;
+            *pos = pt;
+            p[0] = Tt[3];
+            p[1] = Tt[7];
+            p[2] = Tt[11];
+            if (lam > 0.0) {{
+                lam = lam > 1e-9 ? lam * 0.1 : 0.0;
+            }}
+            if (!(*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])})) {{
+                {P}_cal_jacobian(q, p, J);
+            }}
+        }} else {{
+            lam = lam == 0.0 ? 1e-9 : lam * 10.0;
+            if (lam > 1e3) {{
+                break;
+            }}
+        }}
+    }}
+}}
+
+/* the joint direction along which the Jacobian at q is closest to singular: inverse iteration on
+   Jt^T Jt + 1e-12 I, Jt the space Jacobian with its velocity rows divided by the reach */
+static double {P}_cal_null_direction(const double q[6], double v[6])
+{{
+    double T[16], J[36], H[36], x[6], p[3];
+    int i, j, r, it;
+    {P}_fk(q, T);
+    p[0] = T[3];
+    p[1] = T[7];
+    p[2] = T[11];
+    {P}_cal_jacobian(q, p, J);
+    for (r = 18; r < 36; ++r) {{
+        J[r] /= {R};
+    }}
+    for (i = 0; i < 6; ++i) {{
+        for (j = i; j < 6; ++j) {{
+            double acc = 0.0;
+            for (r = 0; r < 6; ++r) {{
+                acc += J[6 * r + i] * J[6 * r + j];
+            }}
+            H[6 * i + j] = acc;
+            H[6 * j + i] = acc;
+        }}
+        H[6 * i + i] += 1e-12;
+        v[i] = 1.0;
+    }}
+    for (it = 0; it < 4; ++it) {{
+        double norm = 0.0;
+        if (!{P}_cal_cholesky(H, v, x)) {{
+            return 0.0;
+        }}
+        for (i = 0; i < 6; ++i) {{
+            norm += x[i] * x[i];
+        }}
+        norm = sqrt(norm);
+        for (i = 0; i < 6; ++i) {{
+            v[i] = x[i] / norm;
+        }}
+    }}
+    {{
+        double rq = 0.0;
+        for (i = 0; i < 6; ++i) {{
+            for (j = 0; j < 6; ++j) {{
+                rq += v[i] * H[6 * i + j] * v[j];
+            }}
+        }}
+        return sqrt(rq > 0.0 ? rq : 0.0);
+    }}
+}}
+
+/* two joint vectors within {c["same"]:g} (rad or m; revolute angles modulo 2 pi): one solution */
+static int {P}_cal_find(const double q[6], const double rows[][6], int n)
+{{
+    int kk, j;
+    for (kk = 0; kk < n; ++kk) {{
+        int same = 1;
+        for (j = 0; j < 6 && same; ++j) {{
+            double d = q[j] - rows[kk][j];
+            if ({P}_joint_type[j] == 0) {{
+                d = remainder(d, {lit(2 * math.pi)});
+            }}
+            same = d < {t(c["same"])} && d > -{t(c["same"])};
+        }}
+        if (same) {{
+            return kk;
+        }}
+    }}
+    return -1;
+}}
+
+/* every solution (see {P}.h) */
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    static const double relax[] = {{{relax}}};
+    static const double steps[] = {{{steps}}};
+    double nq[{max_rows}][6], rows[{max_rows}][6], seeds[{max_rows}][6], qn[8 * 6], qq[6], q2[6], v[6];
+    int nlab[{max_rows}], ndeg[{max_rows}], lab[{max_rows}], deg[{max_rows}], seed_lab[{max_rows}], ninfo[4 * 8];
+    int m, me, r, j, kk, f, ns = 0, nseed = 0;
+    m = {P}_nominal_ik_ex(T, wrist_ref, qn, ninfo);
+    for (r = 0; r < m; ++r) {{
+        for (j = 0; j < 6; ++j) {{
+            nq[r][j] = qn[6 * r + j];
+        }}
+        nlab[r] = ninfo[4 * r];
+        ndeg[r] = ninfo[4 * r + 3];
+    }}
+    if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
+        for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
+            double Tr[16];
+            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))}, uz = T[11] - {lit(float(sh[2]))};
+            const double dist = sqrt(ux * ux + uy * uy + uz * uz);
+            if (dist == 0.0) {{
+                continue;
+            }}
+            for (j = 0; j < 16; ++j) {{
+                Tr[j] = T[j];
+            }}
+            Tr[3] = T[3] + relax[f] * {R} * ux / dist;
+            Tr[7] = T[7] + relax[f] * {R} * uy / dist;
+            Tr[11] = T[11] + relax[f] * {R} * uz / dist;
+            me = {P}_nominal_ik_ex(Tr, wrist_ref, qn, ninfo);
+            for (kk = 0; kk < me; ++kk) {{
+                int have = 0;
+                for (r = 0; r < m; ++r) {{
+                    have = have || nlab[r] == ninfo[4 * kk];
+                }}
+                if (!have && m < {max_rows}) {{
+                    for (j = 0; j < 6; ++j) {{
+                        nq[m][j] = qn[6 * kk + j];
+                    }}
+                    nlab[m] = ninfo[4 * kk];
+                    ndeg[m] = 2;  /* a start from a relaxed pose */
+                    ++m;
+                }}
+            }}
+        }}
+    }}
+    for (r = 0; r < m; ++r) {{
+        double rot, pos, moved = 0.0;
+        int ok, hit = -1, dg = ndeg[r] != 0;
+        const int relaxed = ndeg[r] == 2;
+        for (j = 0; j < 6; ++j) {{
+            qq[j] = nq[r][j];
+        }}
+        {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot, &pos);
+        for (j = 0; j < 6; ++j) {{
+            moved = fabs(qq[j] - nq[r][j]) > moved ? fabs(qq[j] - nq[r][j]) : moved;
+        }}
+        ok = rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])};
+        if (ok) {{
+            hit = {P}_cal_find(qq, (const double (*)[6])rows, ns);
+        }}
+        if (!ok || hit >= 0) {{  /* a root found already, or none: once more from the mirrored start */
+            double rot2, pos2;
+            for (j = 0; j < 6; ++j) {{
+                q2[j] = 2.0 * nq[r][j] - qq[j];
+            }}
+            {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot2, &pos2);
+            if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
+                && {P}_cal_find(q2, (const double (*)[6])rows, ns) < 0) {{
+                for (j = 0; j < 6; ++j) {{
+                    qq[j] = q2[j];
+                }}
+                ok = 1;
+                hit = -1;
+                dg = 1;
+            }} else if (!ok && rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}) {{
+                hit = {P}_cal_find(q2, (const double (*)[6])rows, ns);
+                ok = 1;
+            }}
+        }}
+        if (moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed)) {{
+            for (j = 0; j < 6; ++j) {{
+                seeds[nseed][j] = qq[j];
+            }}
+            seed_lab[nseed] = nlab[r];
+            ++nseed;
+        }}
+        if (ok && hit < 0) {{
+            for (j = 0; j < 6; ++j) {{
+                rows[ns][j] = qq[j];
+            }}
+            lab[ns] = nlab[r];
+            deg[ns] = dg;
+            ++ns;
+        }} else if (ok) {{  /* two branches reach one root: they merge here */
+            deg[hit] = 1;
+        }}
+    }}
+    for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
+        double big = 0.0;
+        int st;
+        if ({P}_cal_null_direction(seeds[kk], v) > {lit(float(c["sigma_explore"]))}) {{
+            continue;  /* not near a singular configuration */
+        }}
+        for (j = 0; j < 6; ++j) {{
+            big = fabs(v[j]) > big ? fabs(v[j]) : big;
+        }}
+        for (st = 0; st < (int)(sizeof steps / sizeof steps[0]) && ns < {max_rows}; ++st) {{
+            double rot, pos;
+            for (j = 0; j < 6; ++j) {{
+                qq[j] = seeds[kk][j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
+            }}
+            {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rot, &pos);
+            if (rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])}
+                && {P}_cal_find(qq, (const double (*)[6])rows, ns) < 0) {{
+                for (j = 0; j < 6; ++j) {{
+                    rows[ns][j] = qq[j];
+                }}
+                lab[ns] = seed_lab[kk];
+                deg[ns] = 1;
+                ++ns;
+            }}
+        }}
+    }}
+    return {P}_finish((const double (*)[6])rows, lab, deg, ns, q, info);
+}}
+
+int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
+{{
+    return {P}_ik_ex(T, 0.0, q, 0);
+}}
+"""]
+    note = f"closed form: {safe_comment(c['reason'])}"
+    return ikcode(True, note, max_rows, header, "\n".join(src), labels)

@@ -1,0 +1,163 @@
+r"""``Robot.save(path)``: a robot written back as a description file robokit (and other tools) can read.
+
+* ``.urdf`` — the robot's URDF: a calibrated robot's own (the URDF its spec carries: joint
+  placements and axes as calibrated, the nominal inertias), a URDF file's text, or for a DH robot
+  the URDF of its table (:func:`robokit.description.urdf_gen.urdf_from_dh`);
+* ``.yaml`` / ``.yml`` — a DH table, only when one reproduces the robot exactly: the robot's own
+  table, or the one :func:`robokit.dh_from_urdf` extracts when its forward kinematics equals the
+  robot's to 1e-9 (checked after writing it to text and reading it back) with offsets of the arm's
+  size (at most ten times the farthest joint origin or tool from the base, and 1 m — nearly
+  parallel axes need offsets far beyond the arm, the DH discontinuity).
+
+Anything else raises :class:`robokit.errors.InputError` saying what robokit can write for that robot.
+The file is written atomically (:func:`robokit._io.atomic_write`): never half-written.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from robokit._io import atomic_write
+from robokit.description import robot as _robot_module
+from robokit.errors import InputError
+
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
+
+__all__ = ["robot_text", "save_robot", "dh_yaml_text"]
+
+
+def dh_yaml_text(robot: Robot, arg: str = "path") -> str:
+    """The DH YAML of ``robot`` when a DH table reproduces it exactly (module docstring).
+
+    Parameters
+    ----------
+    robot : Robot
+    arg : str
+        The argument named in an error message (``-o`` for the command line).
+
+    Returns
+    -------
+    str
+        YAML text (angles in degrees), with a comment line saying how well it reproduces the robot.
+
+    Raises
+    ------
+    InputError
+        When no DH table reproduces the robot to 1e-9 with offsets of the arm's size.
+
+    Examples
+    --------
+    >>> dh_yaml_text(rk.load("rrr")).count("joint:")
+    3
+    """
+    import yaml
+
+    from robokit.description.dh import DHTable
+    from robokit.description.urdf_to_dh import dh_from_urdf
+
+    if robot.dh is not None:
+        return robot.dh.to_yaml_str("deg")
+    res = dh_from_urdf(robot, "standard")
+    frames = robot.frame_poses(np.zeros(robot.n))
+    size = 10.0 * max([1.0] + [float(np.linalg.norm(T[:3, 3])) for T in frames.values()])
+    big = max((abs(v), f"{k}{i + 1}") for i, l in enumerate(res.table.links) for k, v in (("a", l.a), ("d", l.d)))
+    if big[0] > size:
+        raise InputError(f"{arg}: {robot.name} has nearly parallel joint axes that a DH table describes only with "
+                         f"{big[1]} = {big[0]:.3g} m (the DH discontinuity); write a URDF instead (.urdf)")
+    text = res.table.to_yaml_str("deg")
+    back = DHTable.from_dict(yaml.safe_load(text), source="<saved>")
+    rng = np.random.default_rng(0)
+    worst = 0.0
+    for _ in range(100):
+        qs = robot.random_configuration(rng)
+        worst = max(worst, float(np.abs(back.fk(qs) - robot.frame_pose(qs)).max()))
+    if not (res.exact and worst <= 1e-9):
+        raise InputError(f"{arg}: {robot.name} is not exactly a DH arm (a DH table reproduces it only to "
+                         f"{max(worst, res.residual):.2e}); write a URDF instead (.urdf)")
+    return f"# {robot.name}: this DH table reproduces the robot to {worst:.1e}\n" + text
+
+
+def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
+    """The text :func:`save_robot` writes for a file ending in ``suffix`` (``.urdf``, ``.yaml``, ``.yml``).
+
+    Parameters
+    ----------
+    robot : Robot
+    suffix : str
+        The file suffix, with its dot.
+    arg : str
+        The argument named in an error message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    InputError
+        Another suffix, or a robot robokit cannot write in that format (module docstring).
+
+    Examples
+    --------
+    >>> robot_text(rk.load("twolink"), ".urdf").count('<joint name="joint_')
+    2
+    """
+    suffix = suffix.lower()
+    if suffix in (".yaml", ".yml"):
+        return dh_yaml_text(robot, arg)
+    if suffix != ".urdf":
+        raise InputError(f"{arg}: robokit writes a robot as .urdf or .yaml (DH), got {suffix or 'no suffix'!r}")
+    spec = robot.spec
+    if spec is not None and spec.kind == "calibrated" and spec.text is not None:
+        return spec.text
+    if robot.dh is not None:
+        from robokit.description.urdf_gen import urdf_from_dh
+
+        return urdf_from_dh(robot.dh)
+    if spec is not None and spec.kind == "urdf" and spec.path is not None:
+        from robokit._io import read_input_text
+        from robokit.description.urdf_check import MAX_URDF_BYTES
+
+        return read_input_text(Path(spec.path), MAX_URDF_BYTES, "a URDF file")
+    raise InputError(f"{arg}: robokit has no URDF text for {robot.name} (loaded from {robot.source or 'a model'}); "
+                     "it writes URDF for calibrated robots, DH robots and URDF files")
+
+
+def save_robot(robot: Robot, path: str | os.PathLike[str]) -> Path:
+    """Write ``robot`` to ``path`` (``.urdf``, or ``.yaml``/``.yml`` when a DH table reproduces it), atomically.
+
+    Parameters
+    ----------
+    robot : Robot
+    path : str or path-like
+        The file to write; its folder must exist.
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    InputError
+        See :func:`robot_text`; a folder that does not exist.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     p = save_robot(rk.load("rrr"), os.path.join(tmp, "rrr.urdf"))
+    ...     rk.load(p).n
+    3
+    """
+    out = Path(path)
+    if out.is_dir():
+        raise InputError(f"path: {str(out)!r} is a folder")
+    return atomic_write(out, robot_text(robot, out.suffix))
+
+
+_robot_module._WRITER[:] = [save_robot]  # Robot.save

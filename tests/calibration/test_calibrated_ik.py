@@ -1,0 +1,354 @@
+"""Exact IK of calibrated arms (robokit.ik.calibrated), checked against Pinocchio and a numerical sweep.
+
+Arms: the PUMA 560 and the UR5 calibrated by ``robokit.calibrate`` from noise-free tool poses of a
+"true" arm whose every joint placement, base and tool carry errors up to 2 mrad / 2 mm, and a random
+Pieper arm (spherical wrist, random twists and lengths) with such errors built the way calibrate
+builds its result (``robot_from_chain``). For each:
+
+* every returned solution reaches the pose through the calibrated robot's Pinocchio model to 1e-9,
+  the generating configuration is among them, and they are distinct;
+* every distinct solution that robokit's compiled Levenberg–Marquardt solver finds from 500 seeds
+  (deterministic) is among them — so none is missed;
+* away from singular poses the count is the nominal arm's;
+* near a wrist singularity the branches that merge or vanish are reported (``degenerate``,
+  ``branches()``), and still no solution of the sweep is missed.
+
+Also: the calibrated robot's spec rebuilds it in another process, ``save`` writes a URDF (and a DH
+YAML only when one is exact), the nominal structure can be named for nearly special arms from any
+source, and the batch form equals the single one.
+"""
+import json
+import math
+import pickle
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit.calibration import chain_from_robot, robot_from_chain
+from robokit.description.dh import DHLink, DHTable
+from robokit.errors import InputError, RobokitWarning
+from robokit.ik import ik_analytic, ik_analytic_kind
+from robokit.ik.closed_form import AnalyticIK, analytic_ik
+
+TOL = 1e-9
+SEEDS = 500
+
+
+def angle_dist(a, b):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    return float(np.abs(np.angle(np.exp(1j * d))).max())
+
+
+def true_errors(n, rng, size=2e-3):
+    """Per-placement SE(3) errors (rad, m), each component uniform in ±size."""
+    return rng.uniform(-size, size, (n + 1, 6))
+
+
+def calibrated(name, seed):
+    """``robokit.calibrate`` of the nominal ``name`` on 40 noise-free poses of a true arm with errors."""
+    nominal = robokit.load(name)
+    rng = np.random.default_rng(seed)
+    true = chain_from_robot(nominal).perturbed(true_errors(nominal.n, rng))
+    Q = np.array([nominal.random_configuration(rng) for _ in range(40)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)
+        res = robokit.calibrate(nominal, Q, true.fk(Q))
+    assert res.rms_after < 1e-9  # the true arm is representable: calibration recovers it
+    return nominal, res.robot
+
+
+def random_pieper_table(seed):
+    """A random 6R arm with a spherical wrist (standard DH: a₄ = a₅ = d₅ = 0), random twists and lengths."""
+    rng = np.random.default_rng(seed)
+
+    def twist():
+        return float(rng.choice([-1.0, 1.0]) * rng.uniform(0.4, 2.7))
+
+    rows = [DHLink("R", a=rng.uniform(0.05, 0.4), alpha=twist(), d=rng.uniform(0.1, 0.5)),
+            DHLink("R", a=rng.uniform(0.2, 0.6), alpha=twist(), d=rng.uniform(-0.2, 0.2)),
+            DHLink("R", a=rng.uniform(0.02, 0.2), alpha=twist(), d=rng.uniform(-0.1, 0.1)),
+            DHLink("R", a=0.0, alpha=twist(), d=rng.uniform(0.2, 0.5)),
+            DHLink("R", a=0.0, alpha=twist(), d=0.0),
+            DHLink("R", a=rng.uniform(0.0, 0.05), alpha=0.0, d=rng.uniform(0.05, 0.2))]
+    return DHTable(f"pieper{seed}", "standard", tuple(rows))
+
+
+@pytest.fixture(scope="module")
+def arms():
+    out = {"puma560": calibrated("puma560", 1), "ur5": calibrated("ur5", 2)}
+    nominal = robokit.load(random_pieper_table(5))
+    assert ik_analytic_kind(nominal).method == "spherical wrist"
+    rng = np.random.default_rng(6)
+    out["pieper"] = (nominal, robot_from_chain(nominal, chain_from_robot(nominal).perturbed(true_errors(6, rng))))
+    return out
+
+
+def sweep(robot, T, seeds=SEEDS, rng=0):
+    """Distinct solutions robokit's compiled Levenberg–Marquardt (on the robot's PoE, joint limits
+    ignored so that every solution can be reached) finds from ``seeds`` uniform starts in [−π, π]⁶."""
+    from robokit.kernels.ik import solve_poe_ik
+
+    rng = np.random.default_rng(rng)
+    wide = np.tile([-4 * np.pi, 4 * np.pi], (robot.n, 1))
+    found = []
+    for k in range(seeds):
+        q, ok, _, _ = solve_poe_ik(robot.poe.M, robot.poe.Slist, T, rng.uniform(-np.pi, np.pi, robot.n), wide,
+                                   tol=1e-11, max_iterations=60, max_restarts=0, seed=k)
+        if ok and np.abs(robot.frame_pose(q) - T).max() < 1e-9 and not any(angle_dist(q, f) < 1e-6 for f in found):
+            found.append(q)
+    return found
+
+
+def check(robot, q_true, T, sols):
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL, s.label
+        inside = bool(np.all(s.q >= robot.qlim[:, 0] - 1e-12) and np.all(s.q <= robot.qlim[:, 1] + 1e-12))
+        assert s.within_limits == inside
+    for i in range(len(sols)):
+        for j in range(i):
+            assert angle_dist(sols[i].q, sols[j].q) > 1e-9
+    assert len({s.label for s in sols}) == len(sols)
+    assert min(angle_dist(s.q, q_true) for s in sols) < 1e-7, "the generating configuration is missing"
+
+
+def assert_none_missed(robot, T, sols):
+    found = sweep(robot, T)
+    assert found, "the numerical sweep found nothing: the check would be empty"
+    for f in found:
+        assert min(angle_dist(f, s.q) for s in sols) < 1e-6, f"numerical solution {f} not returned"
+    return found
+
+
+def sigma_min(robot, q):
+    """Smallest singular value of the Jacobian, velocity rows divided by the reach (≈ 1 m)."""
+    J = robot.jacobian(q, reference="local_world_aligned")
+    J[3:] /= max(1.0, float(np.linalg.norm(robot.frame_pose(np.zeros(robot.n))[:3, 3])))
+    return float(np.linalg.svd(J, compute_uv=False)[-1])
+
+
+def regular_configuration(nominal, robot, rng):
+    """A configuration whose pose, on both arms, is far from singular at every solution."""
+    for _ in range(200):
+        q = robot.random_configuration(rng)
+        sols_n = ik_analytic(nominal, nominal.frame_pose(q))
+        sols_c = ik_analytic(robot, robot.frame_pose(q))
+        if (sols_n and all(sigma_min(nominal, s.q) > 0.03 for s in sols_n)
+                and all(sigma_min(robot, s.q) > 0.03 for s in sols_c)):
+            return q
+    raise AssertionError("no regular configuration found")
+
+
+@pytest.mark.parametrize("name, method", [("puma560", "calibrated spherical wrist"),
+                                          ("ur5", "calibrated three parallel axes"),
+                                          ("pieper", "calibrated spherical wrist")])
+def test_kind_names_the_nominal_structure(arms, name, method):
+    nominal, robot = arms[name]
+    kind = ik_analytic_kind(robot)
+    assert kind.method == method
+    assert "calibrated from" in kind.reason and nominal.name in kind.reason
+    assert ik_analytic_kind(robot, nominal=False).method == "general 6R"
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "pieper"])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_every_solution_and_none_missed(arms, name, seed):
+    nominal, robot = arms[name]
+    rng = np.random.default_rng(100 + seed)
+    q = regular_configuration(nominal, robot, rng)
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    assert len(sols) == len(ik_analytic(nominal, nominal.frame_pose(q)))  # the nominal's count
+    assert not any(s.degenerate for s in sols)
+    assert all(b.outcome == "solution" for b in analytic_ik(robot).calibrated.branches(T))
+    assert_none_missed(robot, T, sols)
+
+
+def test_labels_are_the_nominal_branches(arms):
+    """Each solution carries the label of the nominal solution it continues (nearest in joint space)."""
+    nominal, robot = arms["puma560"]
+    q = np.array([0.3, -0.7, 0.9, 0.4, 0.6, -0.2])
+    sols_n = ik_analytic(nominal, nominal.frame_pose(q))
+    sols_c = ik_analytic(robot, robot.frame_pose(q))
+    for s in sols_c:
+        near = min(sols_n, key=lambda n: angle_dist(n.q, s.q))
+        assert near.label == s.label
+
+
+def test_near_a_wrist_singularity_extra_roots_are_found_and_flagged(arms):
+    """θ₅ = −1 mrad on the calibrated PUMA: the wrist axes 4 and 6 are within the calibration's errors of
+    lining up, and the arm has more solutions than the nominal's 8. Every one the sweep finds is
+    returned; those beyond the nominal branches are flagged degenerate."""
+    nominal, robot = arms["puma560"]
+    q = np.array([0.3, -0.7, 0.9, 0.4, -1e-3, -0.2])
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    found = assert_none_missed(robot, T, sols)
+    assert len(sols) > 8 and len(found) == len(sols)
+    assert sum(s.degenerate for s in sols) >= len(sols) - 8
+
+
+def test_at_the_workspace_boundary_vanished_branches_are_reported(arms):
+    """The calibrated PUMA with its elbow stretched: the nominal structure's elbow-up/down pairs meet
+    there, and for this arm two branches have no exact solution. They are listed by branches() and
+    said once (RobokitWarning); what is returned is exact and complete (the sweep finds nothing else)."""
+    nominal, robot = arms["puma560"]
+    q = np.array([0.3, -0.7, math.atan2(-0.43307, 0.0203), 0.4, 0.6, -0.2])
+    T = robot.frame_pose(q)
+    cal = AnalyticIK(robot)  # a fresh object: it has not warned yet
+    with pytest.warns(RobokitWarning, match="no exact solution"):
+        sols = cal.solve(T)
+    check(robot, q, T, sols)
+    branches = cal.calibrated.branches(T)
+    assert [b.outcome for b in branches].count("vanished") >= 1
+    for b in branches:
+        if b.outcome == "solution":
+            assert b.orientation_error < 1e-10 and b.position_error < 1e-10 and b.index is not None
+        else:
+            assert max(b.orientation_error, b.position_error) > 1e-10 or b.outcome == "merged"
+    assert_none_missed(robot, T, sols)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RobokitWarning)
+        cal.solve(T)  # said once per arm
+
+
+def test_branches_that_merge_keep_both_labels_and_are_degenerate(arms):
+    """Near-singular poses (θ₅ or the elbow within 3 mrad of singular): where two branches of the
+    nominal structure reach one solution of the arm, that solution names both and is degenerate."""
+    for name in ("puma560", "ur5"):
+        nominal, robot = arms[name]
+        cal = analytic_ik(robot).calibrated
+        rng = np.random.default_rng(0)
+        for _ in range(3000):
+            q = robot.random_configuration(rng)
+            q[4] = rng.uniform(-3e-3, 3e-3)
+            T = robot.frame_pose(q)
+            merged = [b for b in cal.branches(T) if b.outcome == "merged"]
+            if merged:
+                break
+        else:
+            pytest.fail(f"no merging branches found for {name}")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RobokitWarning)
+            sols = ik_analytic(robot, T)
+        check(robot, q, T, sols)
+        for b in merged:
+            s = sols[b.index]
+            assert s.degenerate and f"(merged with {b.label}" in s.label or f", {b.label}" in s.label
+
+
+def test_batch_equals_single(arms):
+    nominal, robot = arms["ur5"]
+    rng = np.random.default_rng(7)
+    Ts = np.stack([robot.frame_pose(robot.random_configuration(rng)) for _ in range(5)])
+    Q, within, counts = analytic_ik(robot).solve_batch(Ts)
+    for i, T in enumerate(Ts):
+        sols = ik_analytic(robot, T)
+        assert counts[i] == len(sols)
+        for k, s in enumerate(sols):
+            np.testing.assert_allclose(Q[i, k], s.q, atol=1e-12)
+            assert within[i, k] == s.within_limits
+
+
+def test_spec_rebuilds_the_robot_in_another_process(arms):
+    nominal, robot = arms["puma560"]
+    assert robot.spec.kind == "calibrated" and robot.spec.nominal == nominal.spec
+    q = np.array([0.3, -0.7, 0.9, 0.4, 0.6, -0.2])
+    T = robot.frame_pose(q)
+    code = ("import pickle, sys, json, numpy as np, robokit\n"
+            "spec = pickle.loads(sys.stdin.buffer.read())\n"
+            "r = robokit.load(spec)\n"
+            "T = r.frame_pose(np.array([0.3, -0.7, 0.9, 0.4, 0.6, -0.2]))\n"
+            "s = robokit.ik_analytic(r, T)\n"
+            "print(json.dumps({'T': T.tolist(), 'kind': robokit.ik_analytic_kind(r).method, "
+            "'q': [x.q.tolist() for x in s], 'g': r.gravity.tolist()}))\n")
+    run = subprocess.run([sys.executable, "-c", code], input=pickle.dumps(robot.spec), capture_output=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr.decode()
+    got = json.loads(run.stdout.decode().strip().splitlines()[-1])
+    np.testing.assert_allclose(got["T"], T, atol=1e-15)
+    assert got["kind"] == "calibrated spherical wrist"
+    np.testing.assert_allclose(got["g"], robot.gravity)
+    mine = [s.q for s in ik_analytic(robot, T)]
+    assert len(got["q"]) == len(mine)
+    for a, b in zip(got["q"], mine):
+        assert angle_dist(a, b) < 1e-12
+
+
+def test_save_urdf_and_the_yaml_only_when_exact(arms, tmp_path):
+    nominal, robot = arms["puma560"]
+    path = robot.save(tmp_path / "arm.urdf")
+    back = robokit.load(str(path))
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q = back.random_configuration(rng)
+        np.testing.assert_allclose(back.frame_pose(q), robot.frame_pose(q), atol=1e-12)
+    kind = ik_analytic_kind(back)  # no nominal in a URDF: the structure is detected
+    assert kind.method == "calibrated spherical wrist" and "detected" in kind.reason
+    q = np.array([0.3, -0.7, 0.9, 0.4, 0.6, -0.2])
+    T = robot.frame_pose(q)
+    for a, b in zip(ik_analytic(back, T), ik_analytic(robot, T)):
+        assert angle_dist(a.q, b.q) < 1e-9
+    # joints 2 and 3 of the PUMA are nearly parallel after calibration: no honest DH table
+    with pytest.raises(InputError, match="DH discontinuity"):
+        robot.save(tmp_path / "arm.yaml")
+    assert not (tmp_path / "arm.yaml").exists()
+    # an arm whose errors a DH table does represent exactly (base and tool only): the YAML is written
+    delta = np.zeros((7, 6))
+    delta[0] = [1e-3, -2e-3, 1e-3, 2e-3, 1e-3, -1e-3]
+    delta[6] = [-1e-3, 1e-3, 2e-3, 1e-3, -2e-3, 1e-3]
+    exact = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))
+    back = robokit.load(str(exact.save(tmp_path / "exact.yaml")))
+    for _ in range(5):
+        q = exact.random_configuration(rng)
+        np.testing.assert_allclose(back.frame_pose(q), exact.frame_pose(q), atol=1e-9)
+
+
+def tilted_ur5(angle):
+    """The UR5 as a DH table with axis 3 tilted by ``angle`` rad (α₂ += angle): nearly special, from a file."""
+    from robokit.description.urdf_to_dh import dh_from_urdf
+
+    table = dh_from_urdf(robokit.load("ur5"), "standard").table
+    rows = [DHLink("R", r.a, r.alpha + (angle if i == 1 else 0.0), r.d, r.theta, qlim=np.array([-2 * np.pi, 2 * np.pi]))
+            for i, r in enumerate(table.links)]
+    return DHTable("ur5_tilt", "standard", tuple(rows), base=table.base, tool=table.tool)
+
+
+@pytest.mark.parametrize("angle", [1e-6, 1e-3])
+def test_nearly_special_from_any_source_is_detected(angle):
+    robot = robokit.load(tilted_ur5(angle))
+    assert ik_analytic_kind(robot).method == "calibrated three parallel axes"
+    table = tilted_ur5(angle)  # a DH table itself (no Robot) takes the same path
+    assert ik_analytic_kind(table).method == "calibrated three parallel axes"
+    q = np.array([0.4, -1.3, 1.2, -0.6, 1.1, 0.3])
+    T = robot.frame_pose(q)
+    sols = ik_analytic(robot, T)
+    check(robot, q, T, sols)
+    sols_t = ik_analytic(table, table.fk(q))
+    assert len(sols_t) == len(sols)
+    for a, b in zip(sols, sols_t):
+        assert angle_dist(a.q, b.q) < 1e-9 and a.label == b.label
+
+
+def test_naming_the_nominal_structure_beyond_the_detection_tolerance():
+    """Axis 3 tilted 0.02 rad: beyond the detected tolerance (0.01 rad) the general 6R method solves the
+    arm; named (by structure or by the nominal robot) the polished closed form does — the same set."""
+    robot = robokit.load(tilted_ur5(0.02))
+    assert ik_analytic_kind(robot).method == "general 6R"
+    q = np.array([0.4, -1.3, 1.2, -0.6, 1.1, 0.3])
+    T = robot.frame_pose(q)
+    general = ik_analytic(robot, T)
+    for nominal in ("three parallel axes", robokit.load("ur5")):
+        assert ik_analytic_kind(robot, nominal=nominal).method == "calibrated three parallel axes"
+        sols = ik_analytic(robot, T, nominal=nominal)
+        check(robot, q, T, sols)
+        assert len(sols) == len(general)
+        for s in sols:
+            assert min(angle_dist(s.q, g.q) for g in general) < 1e-7
+    with pytest.raises(InputError, match="nominal"):
+        ik_analytic(robot, T, nominal="four parallel axes")
