@@ -47,6 +47,9 @@ ALLOWED = {
         "exponentials (equal to rounding), the calibrated robot's inertia placement "
         "changed by ~1e-2 N·m in rnea between two calibrations of the same data (tests/calibration/test_cli.py): "
         "a conditioning question of the calibration to settle first, so it stays for now",
+    ("robokit/description/dh.py", "dh_transform"):
+        "one link's DH matrix, used while a DH robot is loaded: loading stays free of numba "
+        "(tests/test_lazy_import.py); test_dh_transform_is_the_kernels_link_transform holds it equal to the kernel",
     ("robokit/collision/scene.py", "pose_from_xyz_rpy"): "a scene file's xyz/rpy pose, no joint",
     ("robokit/viz/scene.py", "frame_camera"): "the camera's azimuth and elevation, no joint",
     ("robokit/workspace/plot.py", "capability_html"): "the camera's azimuth and elevation, no joint",
@@ -163,3 +166,20 @@ def test_the_entry_points_are_the_kernels():
     E = screw_exponentials(S, Q)
     T = E[:, 0] @ E[:, 1] @ E[:, 2] @ E[:, 3] @ E[:, 4] @ E[:, 5] @ M
     np.testing.assert_allclose(T, robot.frame_pose(Q), atol=1e-12)
+
+
+def test_dh_transform_is_the_kernels_link_transform():
+    """The one DH link matrix written outside the kernels (description.dh.dh_transform, numba-free for
+    loading) equals the kernel's on random rows of both conventions."""
+    import numpy as np
+
+    from robokit.description.dh import dh_transform
+    from robokit.kernels.dh import dh_frames
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        a, alpha, d, theta = rng.uniform(-3, 3, 4)
+        for k, conv in enumerate(("standard", "modified")):
+            row = np.array([[a, alpha, d, theta, 0.0]])
+            K = dh_frames(row, k, np.eye(4), np.zeros(1))[1]
+            assert np.allclose(dh_transform(a, alpha, d, theta, conv), K, rtol=0, atol=1e-15)

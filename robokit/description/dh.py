@@ -81,10 +81,20 @@ def dh_transform(a: float, alpha: float, d: float, theta: float, convention: str
     """
     if convention not in ("standard", "modified"):
         raise InputError(f"convention: expected 'standard' or 'modified', got {convention!r}")
-    from robokit.kernels.dh import dh_frames  # the one DH transform: the compiled kernel's link_transform
-
-    row = np.array([[a, alpha, d, theta, 0.0]], dtype=float)
-    return dh_frames(row, 1 if convention == "modified" else 0, np.eye(4), np.zeros(1))[1]
+    # One link's matrix, written out (the lecture's formula) rather than through the DH kernel: this
+    # runs while a DH robot is loaded, and loading stays free of numba (tests/test_lazy_import.py).
+    # The kernel (robokit.kernels.dh.link_transform) is compared with it in tests/kinematics.
+    ct, st = math.cos(theta), math.sin(theta)
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    if convention == "standard":
+        return np.array([[ct, -st * ca, st * sa, a * ct],
+                         [st, ct * ca, -ct * sa, a * st],
+                         [0.0, sa, ca, d],
+                         [0.0, 0.0, 0.0, 1.0]])
+    return np.array([[ct, -st, 0.0, a],
+                     [st * ca, ct * ca, -sa, -sa * d],
+                     [st * sa, ct * sa, ca, ca * d],
+                     [0.0, 0.0, 0.0, 1.0]])
 
 
 def matrix_from_rpy(rpy: ArrayLike) -> np.ndarray:
