@@ -51,8 +51,6 @@ ALLOWED = {
         "one link's DH matrix, used while a DH robot is loaded: loading stays free of numba "
         "(tests/test_lazy_import.py); test_dh_transform_is_the_kernels_link_transform holds it equal to the kernel",
     ("robokit/collision/scene.py", "pose_from_xyz_rpy"): "a scene file's xyz/rpy pose, no joint",
-    ("robokit/viz/scene.py", "frame_camera"): "the camera's azimuth and elevation, no joint",
-    ("robokit/workspace/plot.py", "capability_html"): "the camera's azimuth and elevation, no joint",
     ("robokit/validation/spatial.py", "checks"):
         "robokit validate's table: matrix_exp_6 against Pinocchio's exp6 over sampled twists (a loop over "
         "samples, not joints)",

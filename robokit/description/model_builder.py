@@ -194,7 +194,7 @@ class Inertial:
         A rod along the inertial frame's x, turned a quarter about z, lies along the link's y:
 
         >>> pose = Pose.from_xyz_rpy([0, 0, 0], [0, 0, np.pi / 2])
-        >>> np.round(Inertial.from_frame(1.0, pose, (0.0, 0, 0, 1.0, 0, 1.0)).inertia, 12).tolist()
+        >>> (np.round(Inertial.from_frame(1.0, pose, (0.0, 0, 0, 1.0, 0, 1.0)).inertia, 12) + 0.0).tolist()
         [1.0, 0.0, 0.0, 0.0, 0.0, 1.0]
         """
         ixx, ixy, ixz, iyy, iyz, izz = (float(v) for v in inertia_in_frame)

@@ -384,7 +384,12 @@ class CalibratedArm:
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 
     def refusal(self) -> str | None:
-        """None: the method applies (it was built for this arm)."""
+        """Why this method does not apply to the arm, or None (it always applies: it was built for this arm).
+
+        Returns
+        -------
+        None
+        """
         return None
 
     def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
@@ -461,7 +466,21 @@ class CalibratedArm:
                        float(branches[r, 4])) for r in range(int(np.count_nonzero(branches[:, 0] >= 0.0)))]
 
     def solve_batch(self, Ts: np.ndarray, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """(out (N, 16, 9), counts (N,)) of :func:`robokit.kernels.calibrated_ik.calibrated_batch`."""
+        """Every solution of N poses at once, in the compiled kernel.
+
+        Parameters
+        ----------
+        Ts : numpy.ndarray, shape (N, 4, 4)
+            Tool poses in the base frame (m).
+        wrist_ref : float, optional
+            The wrist reference angle (rad) of the nominal closed form.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(out, counts)``: out (N, 16, 9) rows as :func:`robokit.kernels.calibrated_ik.calibrated_batch`
+            writes them, counts (N,) the number of solutions of each pose.
+        """
         return _kci.calibrated_batch(self._Kn, self._kind, self.M, self.Slist, self._post_q, Ts,
                                      self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP,
                                      TOL_ACCEPT, MAX_STEPS)

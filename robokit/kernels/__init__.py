@@ -28,11 +28,10 @@ from __future__ import annotations
 
 import os
 from types import ModuleType
-from typing import Any
 
 from robokit.errors import InputError
 
-__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm", "compile_mode", "held_notices", "ENV", "MODES"]
+__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm", "compile_mode", "ENV", "MODES"]
 
 #: The environment variable that chooses what a kernel's first call does on a cache miss.
 ENV = "ROBOKIT_COMPILE"
@@ -66,31 +65,6 @@ def compile_mode() -> str:
     if mode not in MODES:
         raise InputError(f"{ENV}: expected one of {', '.join(MODES)}; got {os.environ.get(ENV)!r}")
     return mode
-
-
-def held_notices(on_line: Any = None) -> Any:
-    """A context manager that holds the compile notices while output must not be interleaved (a
-    table being printed), then prints them when it exits; ``on_line(line)`` is called with each held
-    notice as it comes. Imports numba (the compile machinery) when called.
-
-    Parameters
-    ----------
-    on_line : callable, optional
-        Called with each notice line while they are held.
-
-    Returns
-    -------
-    context manager
-        :class:`robokit.kernels._jit.held_notices`.
-
-    Examples
-    --------
-    >>> with held_notices():
-    ...     pass
-    """
-    from robokit.kernels._jit import held_notices as _held
-
-    return _held(on_line)
 
 
 def __getattr__(name: str) -> ModuleType:

@@ -195,7 +195,7 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
     """
     import sys
 
-    from robokit.kernels import held_notices
+    from robokit.kernels._jit import held_notices
 
     chosen: tuple[tuple[str, str], ...] = AREAS
     if areas:
