@@ -235,7 +235,7 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
     double plo = {P}_poly(c, deg, lo);
     int i, it;
     for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = i * c[i];
+        d[i - 1] = (double)i * c[i];
     }}
     for (it = 0; it < 200; ++it) {{
         const double p = {P}_poly(c, deg, x);
@@ -408,7 +408,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
     scale = fabs(c[deg]) > scale ? fabs(c[deg]) : scale;
     bound += 1.0;  /* Cauchy's bound on the roots */
     for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = i * c[i];
+        d[i - 1] = (double)i * c[i];
     }}
     nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
     lo = -bound;
@@ -423,7 +423,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
             }}
             out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
         }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
-            if (nr == 0 || out[nr - 1] != hi) {{
+            if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
                 out[nr++] = hi;  /* a double root at a critical point */
             }}
         }}
@@ -443,7 +443,8 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
                 lines.append(f"        if (qq[{j}] > {lit(math.pi)} || qq[{j}] <= -{lit(math.pi)}) {{\n"
                              f"            qq[{j}] = remainder(qq[{j}], {lit(2 * math.pi)});  /* exact: same as "
                              f"remainder on (-pi, pi] */\n"
-                             f"            if (qq[{j}] == -{lit(math.pi)}) {{\n                qq[{j}] = {lit(math.pi)};\n"
+                             f"            if (qq[{j}] <= -{lit(math.pi)}) {{  /* remainder's result is >= -pi: "
+                             f"this is == -pi */\n                qq[{j}] = {lit(math.pi)};\n"
                              f"            }}\n        }}")
             else:
                 lines.append(f"        qq[{j}] = rows[r][{j}];")
