@@ -1233,7 +1233,7 @@ class _GeneralEmitter(_Emitter):
         self.labels = ik_general.general_6r_labels()
 
     def declare(self) -> list[str]:
-        return ik_general.declare(self.P)
+        return ik_general.declare(self.P, len(self.k.solver["arrangements"]))
 
     def code(self) -> IKCode:
         k, P = self.k, self.P
@@ -1244,7 +1244,8 @@ class _GeneralEmitter(_Emitter):
         src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
-int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],
+              {P}_ik_workspace *ws)
 {{
     double rows[{n_max}][6];
     int lab[{n_max}], deg[{n_max}];
@@ -1252,6 +1253,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     (void)wrist_ref;  /* no free joint in the general case */
 {solve}    (void)ir;
     return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+}}
+
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    {P}_ik_workspace ws;  /* on the stack: {P}_ik_ws takes the caller's */
+    return {P}_ik_ws(T, wrist_ref, q, info, &ws);
 }}
 
 int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
