@@ -108,3 +108,214 @@ def stack_paths(ci_text: str, self_recursion: int = 4) -> dict[str, tuple[int, i
         old = out.get(name, (0, 0))
         out[name] = (max(old[0], size[f]), max(old[1], worst(f, ())))
     return out
+
+
+DRIVER = r"""
+#include <stdint.h>
+#include <stdio.h>
+#include "@P@.h"
+
+#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
+#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
+#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
+#define PAINT_WORDS (72 * 1024 / 4)
+
+@INPUTS@
+static @T@ out[@OUT@];
+static int info[4 * 16];
+@WS@
+static int which;
+static volatile @T@ sink;
+
+static void call(void)
+{
+    int i = which;
+    switch (i >> 8) {
+    case 0: @P@_fk(&Q[@N@ * (i & 255)], out); break;
+    case 1: @P@_jacobian(&Q[@N@ * (i & 255)], out); break;
+    case 2: @P@_gravity(&Q[@N@ * (i & 255)], out); break;
+    case 3: @P@_rnea(&Q[@N@ * (i & 255)], &QD[@N@ * (i & 255)], &QDD[@N@ * (i & 255)], out); break;
+    default: @IKCALL@ break;
+    }
+    sink = out[0];
+}
+
+/* two instructions per iteration: the calibration of SysTick ticks against executed instructions */
+static void spin(uint32_t n)
+{
+    __asm__ volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
+}
+
+static uint32_t ticks(void (*f)(uint32_t), uint32_t arg)
+{
+    uint32_t t0, t1;
+    SYST_CVR = 0u;
+    t0 = SYST_CVR;
+    f(arg);
+    t1 = SYST_CVR;
+    return (t0 - t1) & 0xFFFFFFu;
+}
+
+static void run(uint32_t reps)
+{
+    uint32_t r;
+    int k;
+    for (r = 0; r < reps; ++r) {
+        for (k = 0; k < @K@; ++k) {
+            which = (which & ~255) | k;
+            call();
+        }
+    }
+}
+
+/* the deepest stack word one call overwrites, in bytes below this function's frame */
+static uint32_t __attribute__((noinline)) stack_used(void)
+{
+    volatile uint32_t *top, *p;
+    __asm__ volatile("mov %0, sp" : "=r"(top));
+    top -= 16;  /* below this frame; volatile: no memset call (it would paint its own frame) */
+    for (p = top - PAINT_WORDS; p < top; ++p) {
+        *p = 0xA5A5A5A5u;
+    }
+    call();
+    for (p = top - PAINT_WORDS; p < top && *p == 0xA5A5A5A5u; ++p) {
+    }
+    return (uint32_t)(top - p) * 4u + 64u;
+}
+
+int main(void)
+{
+    const char *names[5] = {"fk", "jacobian", "gravity", "rnea", "ik"};
+    uint32_t cal, f, reps, t, s, smax;
+    int k;
+    SYST_RVR = 0xFFFFFFu;
+    SYST_CSR = 5u;  /* enabled, processor clock, no interrupt */
+    cal = ticks(spin, 1000000u);
+    printf("calibration %lu ticks for 2000000 instructions\n", (unsigned long)cal);
+    for (f = 0; f < (@HAS_IK@ ? 5u : 4u); ++f) {
+        which = (int)(f << 8);
+        smax = 0u;
+        for (k = 0; k < @K@; ++k) {
+            which = (int)(f << 8) | k;
+            s = stack_used();
+            smax = s > smax ? s : smax;
+        }
+        which = (int)(f << 8);
+        reps = f == 4u ? @IKREPS@ : 200u;
+        t = ticks(run, reps);
+        printf("%s %lu %lu %lu\n", names[f], (unsigned long)t, (unsigned long)(reps * @K@), (unsigned long)smax);
+    }
+    return 0;
+}
+"""
+
+
+def _c_array(name: str, values, ctype: str) -> str:
+    import numpy as np
+
+    suffix = "f" if ctype == "float" else ""
+    body = ", ".join(repr(float(v)) + suffix for v in np.ravel(values))
+    return f"static const {ctype} {name}[{np.size(values)}] = {{{body}}};"
+
+
+def measure(robot, folder: Path, float32: bool = False) -> dict:
+    """Code size, static and measured stack and instructions per call of each generated function."""
+    import numpy as np
+
+    from robokit.codegen import generate_c, write_c
+
+    src = generate_c(robot, float32=float32)
+    P, n = src.name, robot.n
+    write_c(src, folder)
+    ctype = "float" if float32 else "double"
+    rng = np.random.default_rng(0)
+    q = np.array([robot.random_configuration(rng) for _ in range(4)])
+    qd, qdd = rng.normal(size=q.shape), rng.normal(size=q.shape)
+    poses = np.array([robot.frame_pose(x) for x in q])
+    general = f"{P}_ik_ws" in src.header
+    ws = f"static {P}_ik_workspace ws;" if general else ""
+    ikcall = (f"(void){P}_ik_ws(&POSES[16 * (i & 255)], 0.0, sols, info, &ws);" if general else
+              f"(void){P}_ik_ex(&POSES[16 * (i & 255)], 0.0{'f' if float32 else ''}, sols, info);")
+    inputs = "\n".join([_c_array("Q", q, ctype), _c_array("QD", qd, ctype), _c_array("QDD", qdd, ctype),
+                        _c_array("POSES", poses, ctype), f"static {ctype} sols[16 * {n}];"])
+    subs = {"@P@": P, "@N@": str(n), "@T@": ctype, "@OUT@": str(6 * n), "@K@": str(len(q)), "@INPUTS@": inputs,
+            "@WS@": ws, "@IKCALL@": ikcall if src.has_ik else "", "@HAS_IK@": "1" if src.has_ik else "0",
+            "@IKREPS@": "2u" if general else "50u"}
+    text = DRIVER
+    for key, val in subs.items():
+        text = text.replace(key, val)
+    (folder / "bench.c").write_text(text)
+    flags = ("-Wno-double-promotion",) if float32 else ()  # the driver's printf; the robot's file is checked
+    elf = cross_compile([folder / "bench.c", folder / f"{P}.c"], folder / "bench.elf", float32, flags, [folder])
+    out = run_qemu(elf, icount=True, timeout=900)
+    lines = [ln.split() for ln in out.splitlines()]
+    cal = int(lines[0][1]) / 2000000.0  # ticks per instruction
+    calls = {ln[0]: (int(ln[1]) / cal / int(ln[2]), int(ln[3])) for ln in lines[1:]}
+    # static figures from the robot's object alone
+    subprocess.run(["arm-none-eabi-gcc", *CPU, "-std=c99", "-O2", "-fstack-usage", "-fcallgraph-info=su", "-c",
+                    f"{P}.c", "-o", f"{P}.o"], cwd=folder, check=True, capture_output=True)
+    stack = stack_paths((folder / f"{P}.ci").read_text())
+    nm = subprocess.run(["arm-none-eabi-nm", "--size-sort", "-S", f"{P}.o"], cwd=folder, check=True,
+                        capture_output=True, text=True).stdout
+    sizes = {ln.split()[3]: int(ln.split()[1], 16) for ln in nm.splitlines() if len(ln.split()) == 4}
+    size = subprocess.run(["arm-none-eabi-size", f"{P}.o"], cwd=folder, check=True, capture_output=True,
+                          text=True).stdout.splitlines()[1].split()
+    four = [f"{P}_{f}" for f in ("fk", "jacobian", "gravity", "rnea")]
+    tables = [f"{P}_{t}" for t in ("qlim", "joint_type", "joint_names")]
+    ik_bytes = sum(v for k, v in sizes.items() if k not in four and k not in tables)
+    rows = []
+    for f in ("fk", "jacobian", "gravity", "rnea", "ik"):
+        if f not in calls:
+            continue
+        fn = f"{P}_ik_ws" if (f == "ik" and general) else (f"{P}_ik_ex" if f == "ik" else f"{P}_{f}")
+        code = sizes.get(fn, 0) if f != "ik" else ik_bytes
+        frame, path = stack.get(fn, (0, 0))
+        rows.append((fn, code, frame, path, calls[f][1], calls[f][0]))
+    return dict(name=P, rows=rows, total=(int(size[0]), int(size[1]), int(size[2])),
+                workspace=(ws and _sizeof_ws(folder, P)))
+
+
+def _sizeof_ws(folder: Path, P: str) -> int:
+    (folder / "ws.c").write_text(f'#include "{P}.h"\nconst unsigned ws_size = (unsigned){P}_IK_WORKSPACE_SIZE;\n')
+    subprocess.run(["arm-none-eabi-gcc", *CPU, "-std=c99", "-O2", "-c", "ws.c", "-o", "ws.o"], cwd=folder,
+                   check=True)
+    nm = subprocess.run(["arm-none-eabi-objdump", "-s", "-j", ".rodata", "ws.o"], cwd=folder, check=True,
+                        capture_output=True, text=True).stdout
+    word = re.search(r"^ 0000 ([0-9a-f]{8})", nm, re.M).group(1)
+    return int.from_bytes(bytes.fromhex(word), "little")
+
+
+def main() -> None:
+    import robokit
+    from benchmarks._harness import machine, table
+    from benchmarks.codegen import _jaco_table
+
+    why = missing_tools()
+    if why:
+        print(f"skipped: {why}")
+        return
+    cases = [("PUMA 560 (spherical wrist)", robokit.load("puma560"), False),
+             ("UR5 (three parallel axes)", robokit.load("ur5"), False),
+             ("Kinova Jaco² (general 6R)", robokit.load(_jaco_table()), False),
+             ("PUMA 560, --float32", robokit.load("puma560"), True),
+             ("UR5, --float32", robokit.load("ur5"), True)]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for label, robot, f32 in cases:
+            folder = Path(tmp) / f"{robot.name}_{int(f32)}"
+            folder.mkdir()
+            r = measure(robot, folder, f32)
+            note = f" (+ workspace {r['workspace']} B)" if r["workspace"] else ""
+            for fn, code, frame, path, measured, instr in r["rows"]:
+                rows.append((label, f"`{fn}`", code, frame, f"{path}{note if fn.endswith('_ik_ws') else ''}",
+                             measured, f"{instr:,.0f}"))
+            rows.append((label, f"whole `{r['name']}.o` (text/data/bss)", "/".join(map(str, r["total"])), "", "",
+                         "", ""))
+    print(f"{date.today().isoformat()}, {machine()}; arm-none-eabi-gcc -O2, Cortex-M4F hard float, QEMU mps2-an386 "
+          "-icount shift=0\n")
+    print(table(["robot", "function", "code (B)", "stack frame (B)", "stack, call path (B)",
+                 "stack measured (B)", "instructions / call"], rows))
+
+
+if __name__ == "__main__":
+    main()
