@@ -6,25 +6,15 @@ labels, each reaching the pose through Pinocchio). Double to 1e-12 relative, flo
 
 Skips, saying why, only where the cross toolchain or QEMU is missing (.ci/run installs Debian's
 gcc-arm-none-eabi, libnewlib-arm-none-eabi and qemu-system-arm)."""
-import math
-import shutil
-import subprocess
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 import robokit
+from benchmarks.board import cross_compile, missing_tools, run_qemu
 from robokit.codegen import generate_c, write_c
 from robokit.ik import ik_analytic
 
 from .test_codegen import _dist, jaco2_table
-
-ROOT = Path(__file__).resolve().parents[2]
-BOARD = ROOT / "examples" / "cortex-m4"
-CPU = ("-mcpu=cortex-m4", "-mfpu=fpv4-sp-d16", "-mfloat-abi=hard", "-mthumb")
-STRICT = ("-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Werror")
-QEMU = ("-M", "mps2-an386", "-nographic", "-semihosting-config", "enable=on,target=native")
 
 # Fixed configurations (rad or m), the same for every arm (cut to its joint count).
 CONFIGS = np.array([[0.1, -0.5, 0.3, 0.4, 0.6, -0.2, 0.7],
@@ -34,15 +24,9 @@ CONFIGS = np.array([[0.1, -0.5, 0.3, 0.4, 0.6, -0.2, 0.7],
 
 @pytest.fixture(scope="session")
 def arm_tools():
-    missing = [t for t in ("arm-none-eabi-gcc", "qemu-system-arm") if shutil.which(t) is None]
-    if missing:
-        pytest.skip(f"{' and '.join(missing)} not installed (Debian: gcc-arm-none-eabi, libnewlib-arm-none-eabi, "
-                    "qemu-system-arm; .ci/run installs them)")
-    probe = subprocess.run(["arm-none-eabi-gcc", *CPU, "--specs=rdimon.specs", "-print-file-name=librdimon.a"],
-                           capture_output=True, text=True)
-    if probe.returncode != 0 or not Path(probe.stdout.strip()).is_file():
-        pytest.skip("newlib's librdimon for arm-none-eabi not installed (Debian: libnewlib-arm-none-eabi)")
-    return shutil.which("arm-none-eabi-gcc"), shutil.which("qemu-system-arm")
+    why = missing_tools()
+    if why:
+        pytest.skip(why)
 
 
 def _c_array(name, values, ctype):
@@ -51,7 +35,7 @@ def _c_array(name, values, ctype):
     return f"static const {ctype} {name}[{np.size(values)}] = {{{body}}};"
 
 
-def driver(robot, P, has_ik, ctype, q, qd, qdd, poses):
+def driver(robot, P, has_ik, ctype, q, qd, qdd, poses, workspace=False):
     """main.c: every function at the fixed inputs, each output printed with %.17g, one line per call."""
     n, k, m = robot.n, len(q), len(poses)
     lines = ["#include <stdio.h>", f'#include "{P}.h"',
@@ -64,6 +48,8 @@ def driver(robot, P, has_ik, ctype, q, qd, qdd, poses):
              f"    {ctype} T[16], J[6 * {n}], tau[{n}];"]
     if has_ik:
         lines += [f"    static {ctype} sols[{P}_MAX_SOLUTIONS * {n}];", f"    static int info[4 * {P}_MAX_SOLUTIONS];"]
+    if workspace:  # the general 6R's NAME_ik_ws with a static workspace: the same output as NAME_ik_ex
+        lines += [f"    static {P}_ik_workspace ws;"]
     lines += [f"    for (i = 0; i < {k}; ++i) {{",
               f"        {P}_fk(&Q[{n} * i], T); put(\"fk\", i, T, 16);",
               f"        {P}_jacobian(&Q[{n} * i], J); put(\"jacobian\", i, J, {6 * n});",
@@ -79,13 +65,19 @@ def driver(robot, P, has_ik, ctype, q, qd, qdd, poses):
                   "info[4 * s + 2], info[4 * s + 3]);",
                   f"            put(\"\", s, &sols[{n} * s], {n});",
                   "        }", "    }"]
+    if workspace:
+        lines += [f"    for (i = 0; i < {m}; ++i) {{",
+                  f"        int s, c = {P}_ik_ws(&POSES[16 * i], 0.0, sols, info, &ws);",
+                  '        printf("ikws %d %d\\n", i, c);',
+                  "        for (s = 0; s < c; ++s) {",
+                  f"            put(\"ikws_sol\", i, &sols[{n} * s], {n});",
+                  "        }", "    }"]
     lines += ['    printf("done\\n");', "    return 0;", "}", ""]
     return "\n".join(lines)
 
 
-def run_on_board(tools, robot, folder, float32):
+def run_on_board(robot, folder, float32):
     """Generate, cross-compile (-O2, strict flags), run under QEMU; the inputs and the parsed output."""
-    gcc, qemu = tools
     src = generate_c(robot, float32=float32)
     P, n = src.name, robot.n
     write_c(src, folder)
@@ -95,19 +87,13 @@ def run_on_board(tools, robot, folder, float32):
     rng = np.random.default_rng(3)
     qd, qdd = cast(rng.normal(size=q.shape)), cast(rng.normal(size=q.shape))
     poses = cast([robot.frame_pose(x) for x in q]) if src.has_ik else np.zeros((0, 4, 4))
-    (folder / "main.c").write_text(driver(robot, P, src.has_ik, ctype, q, qd, qdd, poses))
-    warn = STRICT + (("-Wdouble-promotion",) if float32 else ())
-    elf = folder / "app.elf"
-    cmd = [gcc, *CPU, *warn, "-O2", "-nostartfiles", "--specs=rdimon.specs", "-T", str(BOARD / "mps2_an386.ld"),
-           "-I", str(folder), str(BOARD / "startup.c"), str(folder / "main.c"), str(folder / f"{P}.c"), "-lm",
-           "-o", str(elf)]
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    assert res.returncode == 0, res.stderr
-    res = subprocess.run([qemu, *QEMU, "-kernel", str(elf)], capture_output=True, text=True, timeout=120)
-    assert res.returncode == 0 and res.stdout.rstrip().endswith("done"), (res.returncode, res.stdout[-2000:],
-                                                                           res.stderr)
-    out, ik = {}, {}
-    for line in res.stdout.splitlines():
+    workspace = f"{P}_ik_ws(" in src.header
+    (folder / "main.c").write_text(driver(robot, P, src.has_ik, ctype, q, qd, qdd, poses, workspace))
+    elf = cross_compile([folder / "main.c", folder / f"{P}.c"], folder / "app.elf", float32, include=[folder])
+    stdout = run_qemu(elf, timeout=120)
+    assert stdout.rstrip().endswith("done"), stdout[-2000:]
+    out, ik, ikws = {}, {}, {}
+    for line in stdout.splitlines():
         head, _, rest = line.partition(" ")
         if head == "ik":
             i, c = map(int, rest.split())
@@ -119,10 +105,15 @@ def run_on_board(tools, robot, folder, float32):
             degen, s, *vals = nums.split()
             text = label + (f" #{rep}" if int(rep) > 1 else "")
             ik[int(i)].append((np.array(vals, float), text, inside == "1", degen == "1"))
+        elif head == "ikws":
+            ikws[int(rest.split()[0])] = []
+        elif head == "ikws_sol":
+            i, *vals = rest.split()
+            ikws[int(i)].append(np.array(vals, float))
         elif head in ("fk", "jacobian", "gravity", "rnea"):
             i, *vals = rest.split()
             out[head, int(i)] = np.array(vals, float)
-    return dict(q=q, qd=qd, qdd=qdd, poses=poses, out=out, ik=ik, has_ik=src.has_ik)
+    return dict(q=q, qd=qd, qdd=qdd, poses=poses, out=out, ik=ik, ikws=ikws, has_ik=src.has_ik)
 
 
 ARMS = {"puma560": lambda: robokit.load("puma560"), "ur5": lambda: robokit.load("ur5"),
@@ -140,7 +131,7 @@ def board_runs(arm_tools, tmp_path_factory):
         if (name, float32) not in cache:
             robot = ARMS[name]()
             folder = tmp_path_factory.mktemp(f"board_{name}_{'f' if float32 else 'd'}")
-            cache[name, float32] = (robot, run_on_board(arm_tools, robot, folder, float32))
+            cache[name, float32] = (robot, run_on_board(robot, folder, float32))
         return cache[name, float32]
 
     return get
@@ -182,3 +173,5 @@ def test_board_ik_matches_ik_analytic(board_runs, name, float32):
             assert _dist(q, s.q, rev) <= 1e-9, label
             assert np.abs(robot.frame_pose(q) - T).max() <= 1e-12 * scale, label
         assert any(_dist(q, run["q"][i], rev) <= 1e-9 for q, *_ in c)  # the configuration T came from
+        if name == "jaco2_6n":  # NAME_ik_ws with a caller's workspace: bit for bit NAME_ik_ex
+            assert len(run["ikws"][i]) == len(c) and all(np.array_equal(a, b[0]) for a, b in zip(run["ikws"][i], c))
