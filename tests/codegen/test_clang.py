@@ -1,7 +1,6 @@
 """clang's strictest warnings on the generated files: `clang -std=c99 -Weverything -Werror` with the
 one `-Wno-` flag docs/codegen.md justifies (C99 declarations after statements, the generated code's
 `const` intermediates), on the files of several arms and methods, double and float32."""
-import shutil
 import subprocess
 
 import numpy as np
@@ -34,14 +33,6 @@ def prismatic_arm():
 
 
 ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford"]
-
-
-@pytest.fixture(scope="module")
-def clang():
-    found = shutil.which("clang")
-    if found is None:
-        pytest.skip("clang not installed (Debian: clang; .ci/run installs it)")
-    return found
 
 
 def _load(name):
