@@ -1273,7 +1273,7 @@ static int @P@_before(const double a[6], const double b[6])
 /* GeneralSixR.solve for the scaled target T06s: rows (q, label index, degenerate); returns how many */
 static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], int deg[], @P@_ik_workspace *ws)
 {
-    double (*th)[6] = ws->th, (*q)[6] = ws->q, ratio, extra_ratio;
+    double (*th)[6] = ws->th, (*q)[6] = ws->th, ratio, extra_ratio;  /* distinct rows in place */
     int n = 0, m, a, i, j;
     for (i = 0; i < 12; ++i) {
         if (!(fabs(T06s[i]) < HUGE_VAL)) {
@@ -1286,7 +1286,7 @@ static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], in
             n += @P@_candidates(&@P@_g6_readings[a], T06s, th + n, &extra_ratio, ws);
         }
     }
-    m = @P@_distinct((const double (*)[6])th, n, q);
+    m = @P@_distinct((const double (*)[6])th, n, q);  /* in place: row m is written after row r >= m is read */
     for (i = 1; i < m; ++i) {  /* ordered by q3, then q1, q2, ... */
         double tmp[6];
         memcpy(tmp, q[i], sizeof tmp);
