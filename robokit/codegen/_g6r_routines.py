@@ -1169,7 +1169,10 @@ static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const 
 static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio,
                           @P@_ik_workspace *ws)
 {
-    double *P = ws->P, *r = ws->r, *abc = ws->abc, *np_ = ws->np_, *pinv = ws->pinv, *M = ws->M;
+    /* P and r live in the part of the scratch that matrices uses only inside side_tensor and that
+       pencil and companion do not touch (they use its first 600 doubles) */
+    double *P = ws->scratch + 3 * 225 + 27 * 15, *r = P + 3 * 15 * 9;
+    double *abc = ws->abc, *np_ = ws->np_, *pinv = ws->pinv, *M = ws->M;
     double *wr = ws->wr, *wi = ws->wi, condA, reg, rq;
     int k, count = 0, rotated = 0, i;
     /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */

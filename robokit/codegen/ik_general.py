@@ -210,7 +210,7 @@ def declare(P: str, readings: int) -> list[str]:
         "   state in it between calls, so any workspace not in use by another call at the same time will do). */",
         "typedef struct {",
         f"    double th[{readings} * 24][6];  /* the candidate solutions, then the distinct ones */",
-        "    double P[3 * 15 * 9], r[15 * 9], abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14];  /* the elimination */",
+        "    double abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14];  /* the elimination */",
         "    double M[576], wr[24], wi[24];  /* the 24 x 24 companion matrix and its eigenvalues */",
         "    double scratch[3 * 225 + 3 * 27 * 15];  /* per step: the loop equation's sides, the SVD, the LU */",
         f"}} {P}_ik_workspace;",
