@@ -285,7 +285,8 @@ def _sizeof_ws(folder: Path, P: str) -> int:
     return int.from_bytes(bytes.fromhex(word), "little")
 
 
-def main() -> None:
+def main(argv=None) -> None:
+    """Print the table (``argv`` is accepted for ``python -m benchmarks``; there are no options)."""
     import robokit
     from benchmarks._harness import machine, table
     from benchmarks.codegen import _jaco_table
