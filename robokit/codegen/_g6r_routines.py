@@ -580,11 +580,13 @@ static void @P@_rz_parts(const double v[15], double sign, double out[3][15])
 }
 
 /* one side of the loop equation as a tensor over its joints' (cos, sin, 1):
-   Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f; out (3^k x 15), row i0 + 3 i1 + 9 i2 */
+   Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f; out (3^k x 15), row i0 + 3 i1 + 9 i2;
+   scratch: 2 x 27 x 15 doubles */
 static void @P@_side_tensor(const double *const Ms[4], const double *signs, int k, const double f[15],
-                            double *out)
+                            double *out, double *scratch)
 {
-    double cur[27][15], nxt[27][15], parts[3][15];
+    double (*cur)[15] = (double (*)[15])scratch, (*nxt)[15] = (double (*)[15])(scratch + 27 * 15);
+    double parts[3][15];
     int n = 1, j, t, b, r, m;
     for (r = 0; r < 15; ++r) {
         double acc = 0.0;
@@ -688,10 +690,11 @@ static void @P@_mul15(const double *a, const double *b, double *c)
 }
 
 /* _Arrangement.matrices: P (3 x 15 x 9), the three-joint side with the pivot first, and
-   r (15 x 9), the two-joint side, for the scaled target T06s */
-static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[3 * 15 * 9], double r[15 * 9])
+   r (15 x 9), the two-joint side, for the scaled target T06s; scratch: 3 x 225 + 3 x 27 x 15 doubles */
+static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[3 * 15 * 9], double r[15 * 9],
+                         double *scratch)
 {
-    double FW[225], tmp[225], Wmap[225], Gw[27 * 15];
+    double *FW = scratch, *tmp = scratch + 225, *Wmap = scratch + 450, *Gw = scratch + 675;
     const double *Ms[4];
     const double *G3, *G2;
     int i, k, m;
@@ -699,17 +702,17 @@ static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[
     if (rd->pre) {  /* pre F(W) post (a null pointer: the identity) */
         @P@_mul15(rd->pre, FW, tmp);
     } else {
-        memcpy(tmp, FW, sizeof tmp);
+        memcpy(tmp, FW, sizeof(double) * 225);
     }
     if (rd->post) {
         @P@_mul15(tmp, rd->post, Wmap);
     } else {
-        memcpy(Wmap, tmp, sizeof Wmap);
+        memcpy(Wmap, tmp, sizeof(double) * 225);
     }
     for (i = 0; i <= rd->nw; ++i) {
         Ms[i] = i == rd->w_index ? Wmap : rd->Ms + 225 * i;
     }
-    @P@_side_tensor(Ms, rd->signs, rd->nw, rd->f, Gw);
+    @P@_side_tensor(Ms, rd->signs, rd->nw, rd->f, Gw, scratch + 675 + 27 * 15);
     G3 = rd->three_has_w ? Gw : rd->const_side;
     G2 = rd->three_has_w ? rd->const_side : Gw;
     for (i = 0; i < 3; ++i) {
@@ -729,12 +732,14 @@ static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[
 /* kernels.general_6r.pencil: A x^2 + B x + C (abc, 3 x 12 x 12) with x = tan(phi/2),
    th_pivot = phi + gamma; np_ (3 x 14 x 9) the three-joint side with the two-joint side's
    constant moved over; pinv (8 x 14) the pseudo-inverse of the 14 x 8 matrix Q of the two-joint
-   side. Returns sigma_min / sigma_max of Q. */
+   side. Returns sigma_min / sigma_max of Q. scratch: 3 x 14 x 8 + 14 x 6 + 3 x 6 x 9 doubles. */
 static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], double abc[3 * 144],
-                         double np_[3 * 14 * 9], double pinv[8 * 14])
+                         double np_[3 * 14 * 9], double pinv[8 * 14], double *scratch)
 {
     static const double G[3][3] = {{1.0, 0.0, -1.0}, {0.0, 2.0, 0.0}, {1.0, 0.0, 1.0}};
-    double Q[14 * 8], work[14 * 8], U[14 * 8], sv[8], V[64], N[14 * 6], sig[3][6][9], ratio;
+    double *Q = scratch, *work = scratch + 112, *U = scratch + 224, *N = scratch + 336;
+    double (*sig)[6][9] = (double (*)[6][9])(scratch + 420);
+    double sv[8], V[64], ratio;
     int i, j, k, m, e, i3;
     for (k = 0; k < 14; ++k) {
         for (j = 0; j < 8; ++j) {
@@ -742,7 +747,7 @@ static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], dou
         }
     }
     /* Q = U S V^T: the pseudo-inverse (singular values below 1e-14 s_max dropped) */
-    memcpy(work, Q, sizeof work);
+    memcpy(work, Q, sizeof(double) * 14 * 8);
     @P@_svd(14, 8, work, sv, U, V);
     ratio = sv[0] > 0.0 ? sv[7] / sv[0] : 0.0;
     for (i = 0; i < 8; ++i) {
@@ -829,17 +834,14 @@ static double @P@_regularity(const double *a, const double *b, const double *c, 
 }
 
 /* kernels.general_6r.companion: M = [[0, I], [-A^-1 C, -A^-1 B]] (24 x 24) when A is regular
-   (LU with partial pivoting); returns sigma_min / sigma_max of A */
-static double @P@_companion(const double abc[3 * 144], double M[576])
+   (LU with partial pivoting); returns sigma_min / sigma_max of A. scratch: 144 + 24 x 12 + 144 doubles */
+static double @P@_companion(const double abc[3 * 144], double M[576], double *scratch)
 {
-    double lu[144], rhs[24][12], cond;
+    double *lu = scratch, (*rhs)[12] = (double (*)[12])(scratch + 144), *Acopy = scratch + 432, cond;
     int piv[12], i, j;
-    memcpy(lu, abc, sizeof lu);
-    {
-        double Acopy[144];
-        memcpy(Acopy, abc, sizeof Acopy);
-        cond = @P@_sv_ratio(12, 12, Acopy);
-    }
+    memcpy(lu, abc, sizeof(double) * 144);
+    memcpy(Acopy, abc, sizeof(double) * 144);
+    cond = @P@_sv_ratio(12, 12, Acopy);
     if (cond <= 1e-10) {
         return cond;
     }
@@ -1164,16 +1166,20 @@ static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const 
 /* GeneralSixR._Elimination.candidates: the polished rotation angles (rows of out, 24 x 6) of
    the solutions with one reading; *ratio = the conditioning figure min(Q's, A's, the pencil's
    sigma_min / sigma_max). Returns how many. */
-static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio)
+static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio,
+                          @P@_ik_workspace *ws)
 {
-    double P[3 * 15 * 9], r[15 * 9], abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14], M[576];
-    double wr[24], wi[24], condA, reg, rq;
+    /* P and r live in the part of the scratch that matrices uses only inside side_tensor and that
+       pencil and companion do not touch (they use its first 600 doubles) */
+    double *P = ws->scratch + 3 * 225 + 27 * 15, *r = P + 3 * 15 * 9;
+    double *abc = ws->abc, *np_ = ws->np_, *pinv = ws->pinv, *M = ws->M;
+    double *wr = ws->wr, *wi = ws->wi, condA, reg, rq;
     int k, count = 0, rotated = 0, i;
     /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
-    @P@_matrices(rd, T06s, P, r);
-    rq = @P@_pencil(P, r, abc, np_, pinv);
+    @P@_matrices(rd, T06s, P, r, ws->scratch);
+    rq = @P@_pencil(P, r, abc, np_, pinv, ws->scratch);
     /* 4: the eigenproblem, the companion matrix when A is regular */
-    condA = @P@_companion(abc, M);
+    condA = @P@_companion(abc, M, ws->scratch);
     reg = @P@_regularity(abc, abc + 144, abc + 288, @X0@);
     if (!(condA > 1e-10)) {
         /* A near singular (a root near the half-angle's point at infinity): robokit's Python
@@ -1188,7 +1194,7 @@ static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double o
             abc[288 + i] = t * t * a + t * b + c;
         }
         rotated = 1;
-        if (!(@P@_companion(abc, M) > 1e-10)) {
+        if (!(@P@_companion(abc, M, ws->scratch) > 1e-10)) {
             *ratio = 0.0;
             return 0;  /* singular in both variables: a continuum, no finite solution set */
         }
@@ -1268,22 +1274,22 @@ static int @P@_before(const double a[6], const double b[6])
 }
 
 /* GeneralSixR.solve for the scaled target T06s: rows (q, label index, degenerate); returns how many */
-static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], int deg[])
+static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], int deg[], @P@_ik_workspace *ws)
 {
-    double th[@NREAD@ * 24][6], q[@NREAD@ * 24][6], ratio, extra_ratio;
+    double (*th)[6] = ws->th, (*q)[6] = ws->th, ratio, extra_ratio;  /* distinct rows in place */
     int n = 0, m, a, i, j;
     for (i = 0; i < 12; ++i) {
         if (!(fabs(T06s[i]) < HUGE_VAL)) {
             return 0;  /* not a pose (inf or NaN) */
         }
     }
-    n = @P@_candidates(&@P@_g6_readings[0], T06s, (double (*)[6])th, &ratio);
+    n = @P@_candidates(&@P@_g6_readings[0], T06s, th, &ratio, ws);
     if (ratio < @POOR@) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
         for (a = 1; a < @NREAD@; ++a) {
-            n += @P@_candidates(&@P@_g6_readings[a], T06s, (double (*)[6])(th + n), &extra_ratio);
+            n += @P@_candidates(&@P@_g6_readings[a], T06s, th + n, &extra_ratio, ws);
         }
     }
-    m = @P@_distinct((const double (*)[6])th, n, q);
+    m = @P@_distinct((const double (*)[6])th, n, q);  /* in place: row m is written after row r >= m is read */
     for (i = 1; i < m; ++i) {  /* ordered by q3, then q1, q2, ... */
         double tmp[6];
         memcpy(tmp, q[i], sizeof tmp);

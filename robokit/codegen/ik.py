@@ -244,7 +244,7 @@ static double {P}_refine(const double c[5], int deg, double lo, double hi, doubl
     double plo = {P}_poly(c, deg, lo);
     int i, it;
     for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = i * c[i];
+        d[i - 1] = (double)i * c[i];
     }}
     for (it = 0; it < 200; ++it) {{
         const double p = {P}_poly(c, deg, x);
@@ -417,7 +417,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
     scale = fabs(c[deg]) > scale ? fabs(c[deg]) : scale;
     bound += 1.0;  /* Cauchy's bound on the roots */
     for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = i * c[i];
+        d[i - 1] = (double)i * c[i];
     }}
     nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
     lo = -bound;
@@ -432,7 +432,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
             }}
             out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
         }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
-            if (nr == 0 || out[nr - 1] != hi) {{
+            if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
                 out[nr++] = hi;  /* a double root at a critical point */
             }}
         }}
@@ -452,7 +452,8 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
                 lines.append(f"        if (qq[{j}] > {lit(math.pi)} || qq[{j}] <= -{lit(math.pi)}) {{\n"
                              f"            qq[{j}] = remainder(qq[{j}], {lit(2 * math.pi)});  /* exact: same as "
                              f"remainder on (-pi, pi] */\n"
-                             f"            if (qq[{j}] == -{lit(math.pi)}) {{\n                qq[{j}] = {lit(math.pi)};\n"
+                             f"            if (qq[{j}] <= -{lit(math.pi)}) {{  /* remainder's result is >= -pi: "
+                             f"this is == -pi */\n                qq[{j}] = {lit(math.pi)};\n"
                              f"            }}\n        }}")
             else:
                 lines.append(f"        qq[{j}] = rows[r][{j}];")
@@ -1237,7 +1238,7 @@ class _GeneralEmitter(_Emitter):
         self.labels = ik_general.general_6r_labels()
 
     def declare(self) -> list[str]:
-        return ik_general.declare(self.P)
+        return ik_general.declare(self.P, len(self.k.solver["arrangements"]))
 
     def code(self) -> IKCode:
         k, P = self.k, self.P
@@ -1248,7 +1249,8 @@ class _GeneralEmitter(_Emitter):
         src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
-int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],
+              {P}_ik_workspace *ws)
 {{
     double rows[{n_max}][6];
     int lab[{n_max}], deg[{n_max}];
@@ -1256,6 +1258,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     (void)wrist_ref;  /* no free joint in the general case */
 {solve}    (void)ir;
     return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+}}
+
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{
+    {P}_ik_workspace ws;  /* on the stack: {P}_ik_ws takes the caller's */
+    return {P}_ik_ws(T, wrist_ref, q, info, &ws);
 }}
 
 int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])

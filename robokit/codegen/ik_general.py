@@ -183,13 +183,13 @@ def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
 {T06_code}
     /* the target of Z1 X1 ... Z6, lengths in units of the arm's scale */
 {w.text()}
-    nr = {P}_general_6r(T06s, rows, lab, deg);
+    nr = {P}_general_6r(T06s, rows, lab, deg, ws);
     }}
 {flips}"""
 
 
-def declare(P: str) -> list[str]:
-    """The header lines of the general 6R ``NAME_ik``."""
+def declare(P: str, readings: int) -> list[str]:
+    """The header lines of the general 6R ``NAME_ik`` (``readings``: how many readings the solver may try)."""
     return [
         f"/* Closed-form inverse kinematics (general 6R: Raghavan-Roth elimination, Manocha-Canny eigenproblem):",
         f"   every solution for the tool pose T (up to {MAX_SOLUTIONS_6R}), one row of {P}_N values each, {P}_ik",
@@ -203,6 +203,22 @@ def declare(P: str) -> list[str]:
         "   (0/1)); info may be a null pointer. wrist_ref is unused (no free joint in the general case). */",
         f"int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
         f"int info[4 * {P}_MAX_SOLUTIONS]);",
+        "",
+        f"/* The scratch memory of {P}_ik_ws: every matrix of the elimination and the eigenproblem. {P}_ik and",
+        f"   {P}_ik_ex keep one on their stack ({P}_IK_WORKSPACE_SIZE bytes more than {P}_ik_ws needs); in an",
+        f"   RTOS task call {P}_ik_ws with a workspace you own (a static one per task: the functions keep no",
+        "   state in it between calls, so any workspace not in use by another call at the same time will do). */",
+        "typedef struct {",
+        f"    double th[{readings} * 24][6];  /* the candidate solutions, then the distinct ones */",
+        "    double abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14];  /* the elimination */",
+        "    double M[576], wr[24], wi[24];  /* the 24 x 24 companion matrix and its eigenvalues */",
+        "    double scratch[3 * 225 + 3 * 27 * 15];  /* per step: the loop equation's sides, the SVD, the LU */",
+        f"}} {P}_ik_workspace;",
+        f"#define {P}_IK_WORKSPACE_SIZE (sizeof({P}_ik_workspace))",
+        "",
+        f"/* {P}_ik_ex with the caller's workspace: the same results; needs a few KB of stack (see the docs). */",
+        f"int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
+        f"int info[4 * {P}_MAX_SOLUTIONS], {P}_ik_workspace *ws);",
         "",
         f"#define {P}_IK_LABEL_COUNT {len(general_6r_labels())}",
         f"extern const char *const {P}_ik_label_names[{P}_IK_LABEL_COUNT];",

@@ -32,9 +32,19 @@ def build(cc, tmp_path_factory):
     return _build
 
 
+def which_or_skip(tool, why):
+    """The path of ``tool``, or skip the test saying ``why``."""
+    found = shutil.which(tool)
+    if found is None:
+        pytest.skip(why)
+    return found
+
+
 @pytest.fixture(scope="session")
 def nm():
-    found = shutil.which("nm")
-    if found is None:
-        pytest.skip("no nm on this machine")
-    return found
+    return which_or_skip("nm", "no nm on this machine")
+
+
+@pytest.fixture(scope="session")
+def clang():
+    return which_or_skip("clang", "clang not installed (Debian: clang; .ci/run installs it)")

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import robokit
 from robokit.cli import main
-from robokit.codegen import c_name, generate_c
+from robokit.codegen import c_name, generate_c, write_c
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import ik_analytic, ik_analytic_kind
 
@@ -387,11 +387,24 @@ def test_urdf_file_and_generated_source_is_deterministic(tmp_path, build):
     check_dynamics_and_kinematics(robot, build(robot), samples=3)
 
 
+def test_the_documented_workspace_task_compiles(tmp_path, cc):
+    """The RTOS-task example of docs/codegen.md (NAME_ik_ws with a static workspace) compiles with the
+    strict flags against the general-6R Jaco's files."""
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "codegen.md").read_text(encoding="utf-8")
+    task = re.search(r"```c\n(static jaco2_6n_ik_workspace.*?)```", doc, flags=re.S).group(1)
+    write_c(generate_c(robokit.load(jaco2_table())), tmp_path)
+    (tmp_path / "task.c").write_text('#include "jaco2_6n.h"\n' + task)
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow",
+                    "-c", str(tmp_path / "task.c"), "-o", str(tmp_path / "task.o")], check=True)
+
+
 def test_the_documented_main_c_compiles_and_runs(tmp_path, cc):
     from pathlib import Path
 
     doc = (Path(__file__).resolve().parents[2] / "docs" / "codegen.md").read_text(encoding="utf-8")
-    main_c = re.search(r"```c\n(.*?)```", doc, flags=re.S).group(1)
+    main_c = re.search(r"```c\n(/\* main\.c.*?)```", doc, flags=re.S).group(1)
     assert main(["codegen", "puma560", "-o", str(tmp_path)]) == 0
     (tmp_path / "main.c").write_text(main_c)
     exe = tmp_path / "main"
