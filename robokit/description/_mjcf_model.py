@@ -74,14 +74,17 @@ def _ref_offset(j: MjcfJoint) -> Any:
 
 def _inertia(mass: float, com: np.ndarray, Ic: np.ndarray) -> Any:
     """A Pinocchio inertia from mass, centre of mass and the inertia about it, also when the
-    latter is not positive (the exact inertials robokit's writer keeps; Pinocchio's
-    constructor refuses those)."""
+    latter is not positive (the exact inertials robokit's writer keeps; Pinocchio's checked
+    constructor refuses those) and when the mass is zero (a massless link with a rotational
+    inertia, PUMA 560's link 1: going through dynamic parameters would divide by the mass and give
+    NaN). Set field by field, as the shared model builder does."""
     import pinocchio as pin
 
-    Io = Ic + mass * (float(com @ com) * np.eye(3) - np.outer(com, com))
-    mc = mass * com
-    return pin.Inertia.FromDynamicParameters(np.array([mass, mc[0], mc[1], mc[2], Io[0, 0], Io[0, 1], Io[1, 1],
-                                                       Io[0, 2], Io[1, 2], Io[2, 2]]))
+    Y = pin.Inertia.Zero()
+    Y.mass = float(mass)
+    Y.lever = np.asarray(com, dtype=float)
+    Y.inertia = 0.5 * (np.asarray(Ic, dtype=float) + np.asarray(Ic, dtype=float).T)
+    return Y
 
 
 def _shape(g: MjcfGeom) -> Any:

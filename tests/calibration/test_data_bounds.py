@@ -6,7 +6,7 @@ the argument. The CLI cases run in a subprocess under a 3 GB address-space limit
 never a timing) and must give exit 2 and one ``robokit: error:`` line."""
 import numpy as np
 import pytest
-import round2_support as r2
+import limited_cli as r2
 from calibration_support import configurations, motions
 from hardening_support import assert_one_line_error
 

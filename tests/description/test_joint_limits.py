@@ -12,10 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hardening"))
 
 import hardening_support as hs  # noqa: E402
-import round2_support as r2  # noqa: E402
+import limited_cli as r2  # noqa: E402
 
 import robokit  # noqa: E402
 from robokit.errors import RobokitWarning  # noqa: E402

@@ -7,10 +7,9 @@ from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hardening"))
 
 import hardening_support as hs  # noqa: E402
-import round2_support as r2  # noqa: E402
+import limited_cli as r2  # noqa: E402
 
 from robokit.viz.view import MAX_TRAJECTORY_ROWS, load_trajectory  # noqa: E402
 
