@@ -1,0 +1,113 @@
+"""The robot's generated C compiled to WebAssembly (robokit.viz.wasm), run in Node: its FK,
+Jacobian and gravity against Pinocchio, every closed-form IK solution against
+``robokit.ik_analytic`` (same order, labels, limit flags), at random configurations."""
+import json
+import shutil
+import subprocess
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit._optional import available
+
+NODE = shutil.which("node")
+needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
+needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
+WASM_JS = Path(str(resources.files("robokit.viz").joinpath("teach_wasm.js")))
+ROBOTS = ["puma560", "ur5"]
+TOL = 1e-9
+
+_modules: dict = {}
+
+
+def module(name):
+    from robokit.viz.wasm import wasm_module
+
+    if name not in _modules:
+        _modules[name] = (robokit.load(name), wasm_module(robokit.load(name)))
+    return _modules[name]
+
+
+# reads {"wasm": base64, "qs": [...], "Ts": [...]} on stdin, prints what the module computes
+_RUNNER = """
+var RKWasm = require(process.argv[1]);
+var input = JSON.parse(require("fs").readFileSync(0, "utf8"));
+var k = RKWasm.load(RKWasm.decode(input.wasm));
+process.stdout.write(JSON.stringify({
+  n: k.n, hasIk: k.hasIk, labels: k.labels,
+  fk: input.qs.map(k.fk), jacobian: input.qs.map(k.jacobian), gravity: input.qs.map(k.gravity),
+  ik: input.Ts.map(function (T) { return k.ik(T, 0); })
+}));
+"""
+
+
+def run_node(wasm_b64, qs, Ts):
+    res = subprocess.run([NODE, "-e", _RUNNER, str(WASM_JS)], input=json.dumps(
+        {"wasm": wasm_b64, "qs": [list(map(float, q)) for q in qs], "Ts": [np.ravel(T).tolist() for T in Ts]}),
+        capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr[-2000:]
+    return json.loads(res.stdout)
+
+
+def random_qs(robot, count, seed):
+    lo, hi = np.array(robot.qlim, dtype=float).T
+    lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
+    return np.random.default_rng(seed).uniform(lo, hi, size=(count, robot.n))
+
+
+def test_module_imports_nothing_and_is_small():
+    """A page instantiates it with an empty import object; it stays far below the page's budget."""
+    if NODE is None or not available("ziglang"):
+        pytest.skip("needs node and ziglang")
+    _, m = module("puma560")
+    assert m.wasm[:4] == b"\0asm"
+    out = subprocess.run([NODE, "-e", "var m = new WebAssembly.Module(require('fs').readFileSync(0));"
+                          "process.stdout.write(JSON.stringify(WebAssembly.Module.imports(m)))"],
+                         input=m.wasm, capture_output=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout) == []
+    assert len(m.wasm) < 100_000
+
+
+@needs_node
+@needs_zig
+@pytest.mark.parametrize("name", ROBOTS)
+def test_fk_jacobian_gravity_against_pinocchio(name):
+    import pinocchio as pin
+
+    robot, m = module(name)
+    qs = random_qs(robot, 20, seed=7)
+    out = run_node(m.base64(), qs, [])
+    assert out["n"] == robot.n and out["hasIk"] is True
+    data = robot.model.createData()
+    for q, T, J, tau in zip(qs, out["fk"], out["jacobian"], out["gravity"]):
+        np.testing.assert_allclose(np.reshape(T, (4, 4)), robot.frame_pose(q), rtol=0, atol=TOL)
+        np.testing.assert_allclose(np.array(J), robot.jacobian(q, reference="local_world_aligned"), rtol=0, atol=TOL)
+        g = pin.computeGeneralizedGravity(robot.model, data, q)
+        np.testing.assert_allclose(tau, g, rtol=0, atol=TOL * max(1.0, float(np.abs(g).max())))
+
+
+@needs_node
+@needs_zig
+@pytest.mark.parametrize("name", ROBOTS)
+def test_every_ik_solution_equals_ik_analytic(name):
+    robot, m = module(name)
+    qs = random_qs(robot, 20, seed=11)
+    Ts = [robot.frame_pose(q) for q in qs]
+    out = run_node(m.base64(), [], Ts)
+    for q, T, sols in zip(qs, Ts, out["ik"]):
+        ref = robokit.ik_analytic(robot, T)
+        assert len(sols) == len(ref) > 0
+        for s, r in zip(sols, ref):
+            assert s["label"] == r.label
+            assert s["withinLimits"] == r.within_limits and s["degenerate"] == r.degenerate
+            np.testing.assert_allclose(s["q"], r.q, rtol=0, atol=TOL)
+        # the configuration the target came from is one of them (up to whole turns)
+        d = [np.abs(np.angle(np.exp(1j * (np.array(s["q"]) - q)))).max() for s in sols]
+        assert min(d) < 1e-7
+        # and each solution reaches the target (Pinocchio's FK)
+        for s in sols:
+            np.testing.assert_allclose(robot.frame_pose(s["q"]), T, rtol=0, atol=1e-8)
