@@ -1,4 +1,4 @@
-"""The robot's generated C compiled to WebAssembly (robokit.viz.wasm), run in Node: its FK,
+"""The robot's generated C compiled to WebAssembly (robokit.codegen.wasm), run in Node: its FK,
 Jacobian and gravity against Pinocchio, every closed-form IK solution against
 ``robokit.ik_analytic`` (same order, labels, limit flags), at random configurations."""
 import json
@@ -24,7 +24,7 @@ _modules: dict = {}
 
 
 def module(name):
-    from robokit.viz.wasm import wasm_module
+    from robokit.codegen.wasm import wasm_module
 
     if name not in _modules:
         _modules[name] = (robokit.load(name), wasm_module(robokit.load(name)))

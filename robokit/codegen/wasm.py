@@ -20,7 +20,8 @@ working on static buffers in the module's memory:
   of ``T`` into ``sol`` (one row of n per solution), ``info`` 4 ints per solution (label
   index, repeat number, within limits, degenerate; see ``NAME_ik_ex``), returns the count.
 
-``teach_wasm.js`` is the JavaScript side (the page's and Node's).
+``robokit/viz/teach_wasm.js`` is the JavaScript side (the teach page's and Node's); ``robokit
+teach`` compiles the module and :func:`robokit.viz.teach.teach_html` embeds it.
 """
 from __future__ import annotations
 
@@ -33,6 +34,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from robokit._optional import require
+from robokit._progress import Slow
 
 if TYPE_CHECKING:
     from robokit.codegen.generate import CSource
@@ -195,7 +197,10 @@ def compile_wasm(src: CSource, n: int) -> WasmModule:
         out = folder / f"{P}.wasm"
         cmd = [str(zig), "cc", *WASM_FLAGS, f"-Wl,-z,stack-size={STACK_BYTES}",
                *(f"-Wl,--export={e}" for e in exports), "-o", str(out), str(c_path), str(glue)]
-        res = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp)
+        with Slow(f"robokit: compiling {P}.c to WebAssembly (the first time on a machine, zig also builds its "
+                  "libc for WebAssembly, once) ...", after=2.0, done=f"robokit: {P}.wasm compiled",
+                  still="still compiling"):
+            res = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp)
         if res.returncode != 0:
             raise RuntimeError(f"compiling {P}.c to WebAssembly failed ({' '.join(cmd)}):\n{res.stderr}")
         data = out.read_bytes()
