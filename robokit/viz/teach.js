@@ -11,6 +11,21 @@
 
   var mul4 = RKMath.mul4, flat4 = RKMath.flat4;
 
+  // the robot's generated C compiled to WebAssembly (#rk-wasm, embedded by robokit teach;
+  // teach_wasm.js): when present, the tool pose, the Jacobian and the closed-form IK come from it
+  var KIN = null, kinProblem = "";
+  (function () {
+    var src = document.getElementById("rk-wasm");
+    if (!src || typeof RKWasm === "undefined") { return; }
+    try {
+      KIN = RKWasm.load(RKWasm.decode(src.textContent.trim()));
+      if (KIN.n !== n) { throw new Error("the module has " + KIN.n + " joints, the robot " + n); }
+    } catch (err) {
+      KIN = null;
+      kinProblem = "WebAssembly module unavailable (" + err + "); computing in JavaScript";
+    }
+  })();
+
   // ------------------------------------------------------------------ state and input
   var unit = R.joints.map(function (j) { return j.type === "R" ? DEG : 1; });  // display units per joint
   var q = R.q0.slice();
@@ -294,12 +309,46 @@
     update(clamped.length ? why + ": " + clamped.join(", ") + " clamped to the slider range" : "");
   }
 
-  // the #q= fragment: applied when valid; otherwise the page says what it ignored and keeps saying it
+  // the #q= and #T= fragments (#q=...&T=...: start at q, then go to T): applied when valid;
+  // otherwise the page says what it ignored and keeps saying it
   function readHash() {
-    var f = RKMath.parseFragment(location.hash, n);
-    if (f.q) { setQ(f.q, "URL"); return true; }
-    if (f.given) { update(f.problem); return true; }
-    return false;
+    var f = RKMath.parseFragment(location.hash, n), t = RKMath.parseTarget(location.hash), done = false;
+    if (f.q) { setQ(f.q, "URL"); done = true; } else if (f.given) { update(f.problem); done = true; }
+    if (t.T) { goToTarget(t.T, "URL #T="); done = true; } else if (t.given) { update(t.problem); done = true; }
+    return done;
+  }
+
+  // ------------------------------------------------------------------ inverse kinematics (module)
+  // Every closed-form solution of the tool pose T (16 numbers, row-major, base frame), from the
+  // module, in ik_analytic's order; the arm moves to the one nearest the current q (joint-space
+  // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so.
+  function goToTarget(T, why) {
+    var box = el("rk-ik");
+    if (!KIN || !KIN.hasIk) {
+      var reason = KIN ? R.name + " has no closed-form IK" : (kinProblem || "this page has no WebAssembly module (write it with robokit teach)");
+      setData("rk-ik", { status: "unavailable", count: "0", solutions: "[]", labels: "[]", within: "[]", chosen: "-1" });
+      box.textContent = "";
+      update(why + ": " + reason + "; ignored");
+      return -1;
+    }
+    var sols = KIN.ik(T, 0), k = RKWasm.nearest(sols, q);
+    setData("rk-ik", { status: sols.length ? "ok" : "unreachable", count: String(sols.length),
+                       solutions: JSON.stringify(sols.map(function (s) { return s.q; })),
+                       labels: JSON.stringify(sols.map(function (s) { return s.label; })),
+                       within: JSON.stringify(sols.map(function (s) { return s.withinLimits; })), chosen: String(k),
+                       target: T.map(String).join(",") });
+    if (k < 0) {
+      box.className = "rk-small rk-unreachable";
+      box.textContent = "IK: the target is out of reach (no solution); the arm stays";
+      update(null);
+      return -1;
+    }
+    var s = sols[k];
+    box.className = "rk-small";
+    box.textContent = "IK: " + sols.length + " solution" + (sols.length === 1 ? "" : "s") + "; showing the nearest, " +
+      (k + 1) + " \u201c" + s.label + "\u201d" + (s.withinLimits ? "" : " (outside the joint limits)");
+    setQ(s.q, why + " (IK)");
+    return k;
   }
 
   function setData(id, attrs) { var e = el(id); Object.keys(attrs).forEach(function (k) { e.dataset[k] = attrs[k]; }); return e; }
@@ -311,7 +360,7 @@
       if (i !== skipSlider) { sliders[i].value = String(q[i] * unit[i]); }
       boxes[i].value = (q[i] * unit[i]).toFixed(R.joints[i].type === "R" ? 2 : 4);
     }
-    var rd = RKMath.readouts(R, q), P = rd.P, T = rd.T, J = rd.J;
+    var rd = RKMath.readouts(R, q, KIN), P = rd.P, T = rd.T, J = rd.J;
     placeObjects(P);
     updateCollision(P);
 
@@ -320,7 +369,7 @@
     el("rk-xyz").textContent = xyz.map(function (v) { return fmt(v, 4); }).join(" ");
     el("rk-rpy").textContent = ang.map(function (v) { return fmt(v * DEG, 2); }).join(" ");
     el("rk-quat").textContent = quat.map(function (v) { return fmt(v, 4); }).join(" ");
-    setData("rk-pose", { t: T.map(String).join(","), xyz: xyz.map(String).join(","),
+    setData("rk-pose", { source: KIN ? "wasm" : "js", t: T.map(String).join(","), xyz: xyz.map(String).join(","),
                          rpy: ang.map(String).join(","), quat: quat.map(String).join(",") });
 
     // Jacobian
@@ -369,6 +418,12 @@
     try { history.replaceState(null, "", "#q=" + q.map(function (v) { return String(v); }).join(",")); } catch (e) { /* file:// in some browsers */ }
   }
 
+  var ikBox = document.createElement("div");
+  ikBox.id = "rk-ik";
+  ikBox.className = "rk-small";
+  el("rk-msg").insertAdjacentElement("afterend", ikBox);
+  window.RKTeach = { goToTarget: goToTarget };  // the entry point of #T= (and of a drag)
+
   var framing = document.createElement("div");
   framing.id = "rk-framing";
   framing.hidden = true;
@@ -380,6 +435,6 @@
 
   buildControls();
   startViewer();
-  if (!readHash()) { update(); }
+  if (!readHash()) { update(kinProblem || undefined); }
   window.addEventListener("hashchange", function () { readHash(); });
 })();

@@ -60,9 +60,12 @@ class _Data(HTMLParser):
             self.by_id[a["id"]] = a
 
 
-def run_page(path: Path, q=None) -> dict:
-    """Open the page in headless Chromium (with ``#q=...``) and return its elements' attributes."""
-    frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
+def run_page(path: Path, q=None, fragment: str = "") -> dict:
+    """Open the page in headless Chromium (with ``#q=...``, then ``fragment``'s further parts,
+    e.g. ``"&T=..."``) and return its elements' attributes."""
+    frag = ("" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)) + fragment
+    if frag and not frag.startswith("#"):
+        frag = "#" + frag.lstrip("&")
     with tempfile.TemporaryDirectory() as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",

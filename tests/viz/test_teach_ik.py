@@ -1,0 +1,81 @@
+"""The teach page's closed-form IK: ``#q=...&T=...`` solved by the robot's generated C compiled to
+WebAssembly (robokit.codegen.wasm) in headless Chromium, against ``robokit.ik_analytic``; its tool
+pose and Jacobian (from the module) against Pinocchio."""
+import json
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit._optional import available
+from robokit.viz.teach import teach_html
+from tests.viz.test_teach import needs_chromium, nums, run_page
+
+needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
+TOL = 1e-9
+
+
+def _fmt(x):
+    return ",".join(repr(float(v)) for v in np.ravel(x))
+
+
+@pytest.fixture(scope="module")
+def pages(tmp_path_factory):
+    from robokit.codegen.wasm import wasm_module
+
+    out = {}
+    for name in ("puma560", "ur5"):
+        robot = robokit.load(name)
+        path = tmp_path_factory.mktemp("teach-ik") / f"{name}.html"
+        path.write_text(teach_html(robot, wasm=wasm_module(robot).wasm), encoding="utf-8")
+        out[name] = (robot, path)
+    return out
+
+
+@needs_chromium
+@needs_zig
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_fragment_target_solves_every_branch_and_moves_to_the_nearest(pages, name):
+    robot, path = pages[name]
+    lo, hi = np.array(robot.qlim, dtype=float).T
+    lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
+    rng = np.random.default_rng({"puma560": 3, "ur5": 4}[name])
+    for _ in range(3):
+        q_gen, q_start = rng.uniform(lo, hi), rng.uniform(lo, hi)
+        T = robot.frame_pose(q_gen)
+        d = run_page(path, q_start, "&T=" + _fmt(T))
+        assert d["rk-pose"]["data-source"] == "wasm"
+        ik = d["rk-ik"]
+        ref = robokit.ik_analytic(robot, T)
+        assert ik["data-status"] == "ok" and int(ik["data-count"]) == len(ref) > 0
+        sols = np.array(json.loads(ik["data-solutions"]))
+        np.testing.assert_allclose(sols, np.array([r.q for r in ref]), rtol=0, atol=TOL)
+        assert json.loads(ik["data-labels"]) == [r.label for r in ref]
+        assert json.loads(ik["data-within"]) == [r.within_limits for r in ref]
+        # the generating q is among them (up to whole turns)
+        wrapped = np.abs(np.angle(np.exp(1j * (sols - q_gen)))).max(axis=1)
+        assert wrapped.min() < 1e-7
+        chosen = int(ik["data-chosen"])
+        assert chosen == int(np.argmin(np.linalg.norm(np.array([r.q for r in ref]) - q_start, axis=1)))
+        # the page moved there (clamped into the sliders' range if that solution is outside the limits)
+        q_page = nums(d["rk-q"]["data-q"])
+        np.testing.assert_allclose(q_page, np.clip(ref[chosen].q, lo, hi), rtol=0, atol=TOL)
+        # and its readouts, from the module, are Pinocchio's there
+        np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), robot.frame_pose(q_page),
+                                   rtol=0, atol=TOL)
+        J = nums(d["rk-jacobian"]["data-j"]).reshape(6, robot.n)
+        np.testing.assert_allclose(J, robot.jacobian(q_page, reference="local_world_aligned"), rtol=0, atol=TOL)
+
+
+@needs_chromium
+@needs_zig
+def test_out_of_reach_target_leaves_the_arm(pages):
+    robot, path = pages["ur5"]
+    q0 = np.array([0.1, -1.0, 1.2, -0.5, 0.3, 0.2])
+    T = robot.frame_pose(q0)
+    T[:3, 3] += [5.0, 0.0, 0.0]  # far beyond the UR5's reach (0.85 m)
+    assert robokit.ik_analytic(robot, T) == []
+    d = run_page(path, q0, "&T=" + _fmt(T))
+    ik = d["rk-ik"]
+    assert ik["data-status"] == "unreachable" and ik["data-count"] == "0" and ik["data-chosen"] == "-1"
+    np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
