@@ -79,3 +79,29 @@ def test_out_of_reach_target_leaves_the_arm(pages):
     ik = d["rk-ik"]
     assert ik["data-status"] == "unreachable" and ik["data-count"] == "0" and ik["data-chosen"] == "-1"
     np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
+
+
+@needs_chromium
+def test_page_without_module_computes_in_javascript_and_says_ik_is_unavailable(tmp_path):
+    robot = robokit.load("puma560")
+    path = tmp_path / "puma_js.html"
+    path.write_text(teach_html(robot), encoding="utf-8")
+    q0 = np.array([0.2, 0.3, -0.4, 0.5, 0.6, 0.7])
+    d = run_page(path, q0, "&T=" + _fmt(robot.frame_pose([0.1] * 6)))
+    assert d["rk-pose"]["data-source"] == "js"
+    assert d["rk-ik"]["data-status"] == "unavailable" and d["rk-ik"]["data-count"] == "0"
+    np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
+    np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), robot.frame_pose(q0), rtol=0, atol=TOL)
+
+
+@needs_zig
+def test_cli_embeds_the_module(tmp_path):
+    from robokit.cli import main as cli_main
+
+    out = tmp_path / "puma.html"
+    assert cli_main(["teach", "puma560", "-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    module = text.split('<script id="rk-wasm" type="application/octet-stream">')[1].split("</script>")[0]
+    assert 0 < len(module) < 64_000  # the robot's C as WebAssembly, base64: a few tens of kB
+    assert "RKWasm" in text
+    assert "http://" not in text.split('id="rk-robot"')[1] and "https://" not in text.split('id="rk-robot"')[1]
