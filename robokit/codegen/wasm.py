@@ -18,7 +18,11 @@ working on static buffers in the module's memory:
 * ``rk_fk()``: ``T ← NAME_fk(q)``; ``rk_jacobian()``: ``J ← NAME_jacobian(q)`` (6×n, row-major);
   ``rk_gravity()``: ``tau ← NAME_gravity(q)``; ``rk_ik(wrist_ref)``: every closed-form solution
   of ``T`` into ``sol`` (one row of n per solution), ``info`` 4 ints per solution (label
-  index, repeat number, within limits, degenerate; see ``NAME_ik_ex``), returns the count.
+  index, repeat number, within limits, degenerate; see ``NAME_ik_ex``), returns the count;
+  ``rk_dls(lambda, iters, tol)``: damped-least-squares steps ``dq = Jᵀ(JJᵀ + λ²I)⁻¹e`` from ``q``
+  toward ``T`` (any arm, redundant ones included: the step has no null-space part), ``q``
+  updated in place; returns the steps taken, −1 if the pose error (rad and m together) is
+  still above ``tol``.
 
 ``robokit/viz/teach_wasm.js`` is the JavaScript side (the teach page's and Node's); ``robokit
 teach`` compiles the module and :func:`robokit.viz.teach.teach_html` embeds it.
@@ -137,6 +141,7 @@ const char *rk_label(int i) { (void)i; return ""; }
 int rk_ik(double wrist_ref) { (void)wrist_ref; return -1; }
 """
     return f"""/* robokit teach page: robot-independent entry points over {P}.h (generated) */
+#include <math.h>
 #include "{P}.h"
 static double rk_q_buf[{P}_N];
 static double rk_T_buf[16];
@@ -150,11 +155,103 @@ double *rk_tau(void) {{ return rk_tau_buf; }}
 void rk_fk(void) {{ {P}_fk(rk_q_buf, rk_T_buf); }}
 void rk_jacobian(void) {{ {P}_jacobian(rk_q_buf, rk_J_buf); }}
 void rk_gravity(void) {{ {P}_gravity(rk_q_buf, rk_tau_buf); }}
+{_DLS.replace("NAME", P)}
 {ik}"""
 
 
+#: Damped least squares toward the pose in rk_T from the joint values in rk_q (written back):
+#: the course's resolved-rate rule dq = Jᵀ (J Jᵀ + λ² I)⁻¹ e, e = (ω, v) the rotation vector of
+#: R_T R(q)ᵀ and p_T − p(q) (base axes, as the Jacobian's rows), so the step has no null-space
+#: part. Returns the iterations used, or −1 if |e| is still above ``tol`` after ``iters``.
+_DLS = r"""
+static void rk_rotvec(const double A[16], const double B[16], double w[3])
+{  /* rotation vector of R = R_A R_B^T */
+    double R[9], c, th, s, k;
+    int i, j;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++)
+            R[3 * i + j] = A[4 * i] * B[4 * j] + A[4 * i + 1] * B[4 * j + 1] + A[4 * i + 2] * B[4 * j + 2];
+    c = 0.5 * (R[0] + R[4] + R[8] - 1.0);
+    c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
+    th = acos(c);
+    s = sin(th);
+    w[0] = R[7] - R[5]; w[1] = R[2] - R[6]; w[2] = R[3] - R[1];
+    if (s > 1e-6) {
+        k = 0.5 * th / s;
+    } else if (th < 1.0) {
+        k = 0.5 + th * th / 12.0;  /* th / (2 sin th) near 0 */
+    } else {  /* near pi: the axis from the diagonal, its sign from the antisymmetric part */
+        double d[3] = {R[0], R[4], R[8]}, a[3];
+        int m = (d[1] > d[0]) ? ((d[2] > d[1]) ? 2 : 1) : ((d[2] > d[0]) ? 2 : 0);
+        a[m] = sqrt(0.5 * (d[m] + 1.0));
+        a[(m + 1) % 3] = (R[3 * m + (m + 1) % 3] + R[3 * ((m + 1) % 3) + m]) / (4.0 * a[m]);
+        a[(m + 2) % 3] = (R[3 * m + (m + 2) % 3] + R[3 * ((m + 2) % 3) + m]) / (4.0 * a[m]);
+        if (a[0] * w[0] + a[1] * w[1] + a[2] * w[2] < 0.0) { a[0] = -a[0]; a[1] = -a[1]; a[2] = -a[2]; }
+        w[0] = th * a[0]; w[1] = th * a[1]; w[2] = th * a[2];
+        return;
+    }
+    w[0] *= k; w[1] *= k; w[2] *= k;
+}
+
+int rk_dls(double lambda, int iters, double tol)
+{
+    double Tq[16], J[6 * NAME_N], A[36], e[6], y[6];
+    int it, i, j, k;
+    for (it = 0; it <= iters; it++) {
+        NAME_fk(rk_q_buf, Tq);
+        rk_rotvec(rk_T_buf, Tq, e);
+        e[3] = rk_T_buf[3] - Tq[3]; e[4] = rk_T_buf[7] - Tq[7]; e[5] = rk_T_buf[11] - Tq[11];
+        if (sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5]) <= tol)
+            return it;
+        if (it == iters)
+            break;
+        NAME_jacobian(rk_q_buf, J);
+        for (i = 0; i < 6; i++)
+            for (j = 0; j < 6; j++) {
+                double sum = (i == j) ? lambda * lambda : 0.0;
+                for (k = 0; k < NAME_N; k++)
+                    sum += J[i * NAME_N + k] * J[j * NAME_N + k];
+                A[6 * i + j] = sum;
+            }
+        for (i = 0; i < 6; i++) {  /* Cholesky A = L L^T in place (A is symmetric positive definite) */
+            for (j = 0; j <= i; j++) {
+                double sum = A[6 * i + j];
+                for (k = 0; k < j; k++)
+                    sum -= A[6 * i + k] * A[6 * j + k];
+                if (i == j) {
+                    if (sum <= 0.0)
+                        return -1;
+                    A[6 * i + i] = sqrt(sum);
+                } else {
+                    A[6 * i + j] = sum / A[6 * j + j];
+                }
+            }
+        }
+        for (i = 0; i < 6; i++) {  /* L z = e, then L^T y = z */
+            double sum = e[i];
+            for (k = 0; k < i; k++)
+                sum -= A[6 * i + k] * y[k];
+            y[i] = sum / A[6 * i + i];
+        }
+        for (i = 5; i >= 0; i--) {
+            double sum = y[i];
+            for (k = i + 1; k < 6; k++)
+                sum -= A[6 * k + i] * y[k];
+            y[i] = sum / A[6 * i + i];
+        }
+        for (k = 0; k < NAME_N; k++) {
+            double dq = 0.0;
+            for (i = 0; i < 6; i++)
+                dq += J[i * NAME_N + k] * y[i];
+            rk_q_buf[k] += dq;
+        }
+    }
+    return -1;
+}
+"""
+
 _GLUE_EXPORTS = ("rk_n", "rk_q", "rk_T", "rk_J", "rk_tau", "rk_sol", "rk_info", "rk_has_ik", "rk_max_solutions",
-                 "rk_label_count", "rk_label", "rk_fk", "rk_jacobian", "rk_gravity", "rk_ik")
+                 "rk_label_count", "rk_label", "rk_fk", "rk_jacobian", "rk_gravity", "rk_ik", "rk_dls")
 
 
 def compile_wasm(src: CSource, n: int) -> WasmModule:

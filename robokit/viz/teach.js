@@ -319,13 +319,30 @@
   }
 
   // ------------------------------------------------------------------ inverse kinematics (module)
+  // An arm without a closed form (a redundant one): damped-least-squares steps in the module from
+  // the current q (the course's resolved-rate rule; the steps leave the null space as it is).
+  var DLS = { lambda: 0.01, iters: 200, tol: 1e-12 };
+  function followByDls(T, why) {
+    var r = KIN.dls(T, q, DLS.lambda, DLS.iters, DLS.tol), ok = r.steps >= 0, box = el("rk-ik");
+    setData("rk-ik", { status: ok ? "dls" : "dls-not-converged", count: "1", solutions: JSON.stringify([r.q]),
+                       labels: JSON.stringify(["damped least squares"]), within: "[]", chosen: "0",
+                       steps: String(r.steps), target: T.map(String).join(",") });
+    box.className = ok ? "rk-small" : "rk-small rk-unreachable";
+    box.textContent = R.name + " has no closed-form IK: damped least squares (\u03bb = " + DLS.lambda + ") " +
+      (ok ? "reached the target in " + r.steps + " steps" : "did not reach the target in " + DLS.iters + " steps (out of reach or singular)") +
+      "; the null space is kept";
+    setQ(r.q, why + " (damped least squares)");
+    return 0;
+  }
+
   // Every closed-form solution of the tool pose T (16 numbers, row-major, base frame), from the
   // module, in ik_analytic's order; the arm moves to the one nearest the current q (joint-space
   // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so.
   function goToTarget(T, why) {
     var box = el("rk-ik");
-    if (!KIN || !KIN.hasIk) {
-      var reason = KIN ? R.name + " has no closed-form IK" : (kinProblem || "this page has no WebAssembly module (write it with robokit teach)");
+    if (KIN && !KIN.hasIk) { return followByDls(T, why); }
+    if (!KIN) {
+      var reason = kinProblem || "this page has no WebAssembly module (write it with robokit teach)";
       setData("rk-ik", { status: "unavailable", count: "0", solutions: "[]", labels: "[]", within: "[]", chosen: "-1" });
       box.textContent = "";
       update(why + ": " + reason + "; ignored");

@@ -8,6 +8,8 @@
 //   gravity(q)   -> tau (n numbers, N m or N)
 //   ik(T, ref)   -> [{q, label, withinLimits, degenerate}] every closed-form solution, in
 //                   ik_analytic's order and wording (null when the robot has no closed form)
+//   dls(T, q, lambda, iters, tol) -> {q, steps}: damped-least-squares steps from q toward T
+//                   (steps -1: the pose error is still above tol)
 // The module imports nothing (wasm32-wasi reactor without system calls); a reactor's
 // _initialize (static constructors) is called once.
 var RKWasm = (function () {
@@ -52,6 +54,14 @@ var RKWasm = (function () {
         return J;
       },
       gravity: function (q) { setQ(q); x.rk_gravity(); return Array.prototype.slice.call(f64(x.rk_tau(), n)); },
+      // damped least squares from q toward T: {q, steps (-1: not converged)}
+      dls: function (T, q, lambda, iters, tol) {
+        setQ(q);
+        var t = f64(x.rk_T(), 16);
+        for (var i = 0; i < 16; i++) { t[i] = T[i]; }
+        var steps = x.rk_dls(lambda, iters, tol);
+        return { q: Array.prototype.slice.call(f64(x.rk_q(), n)), steps: steps };
+      },
       ik: function (T, wristRef) {
         if (!hasIk) { return null; }
         var t = f64(x.rk_T(), 16);

@@ -105,3 +105,22 @@ def test_cli_embeds_the_module(tmp_path):
     assert 0 < len(module) < 64_000  # the robot's C as WebAssembly, base64: a few tens of kB
     assert "RKWasm" in text
     assert "http://" not in text.split('id="rk-robot"')[1] and "https://" not in text.split('id="rk-robot"')[1]
+
+
+@needs_chromium
+@needs_zig
+def test_arm_without_closed_form_follows_by_damped_least_squares(tmp_path):
+    from robokit.codegen.wasm import wasm_module
+
+    robot = robokit.load("panda")
+    path = tmp_path / "panda.html"
+    path.write_text(teach_html(robot, wasm=wasm_module(robot).wasm), encoding="utf-8")
+    q0 = np.array([0.1, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5])
+    T = robot.frame_pose(q0 + np.array([0.03, -0.02, 0.04, 0.02, -0.03, 0.01, 0.02]))
+    d = run_page(path, q0, "&T=" + _fmt(T))
+    ik = d["rk-ik"]
+    assert ik["data-status"] == "dls" and int(ik["data-steps"]) > 0 and ik["data-chosen"] == "0"
+    q_page = nums(d["rk-q"]["data-q"])
+    np.testing.assert_allclose(q_page, json.loads(ik["data-solutions"])[0], rtol=0, atol=0)
+    np.testing.assert_allclose(robot.frame_pose(q_page), T, rtol=0, atol=TOL)
+    np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), T, rtol=0, atol=TOL)

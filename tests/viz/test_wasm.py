@@ -111,3 +111,33 @@ def test_every_ik_solution_equals_ik_analytic(name):
         # and each solution reaches the target (Pinocchio's FK)
         for s in sols:
             np.testing.assert_allclose(robot.frame_pose(s["q"]), T, rtol=0, atol=1e-8)
+
+
+@needs_node
+@needs_zig
+def test_dls_follows_a_small_step_of_a_redundant_arm():
+    """Panda (7 joints, no closed form): damped least squares in the module reaches a target a
+    small step away (Pinocchio's FK of the result) and moves only in the row space of J."""
+    from robokit.codegen.wasm import wasm_module
+
+    robot = robokit.load("panda")
+    m = wasm_module(robot)
+    q0 = np.array([0.1, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5])
+    T = robot.frame_pose(q0 + np.array([0.03, -0.02, 0.04, 0.02, -0.03, 0.01, 0.02]))
+    script = ("var RKWasm = require(process.argv[1]); var i = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
+              "var k = RKWasm.load(RKWasm.decode(i.wasm));"
+              "process.stdout.write(JSON.stringify([k.hasIk, k.ik(i.T, 0), k.dls(i.T, i.q, 0.01, 200, 1e-12)]))")
+    res = subprocess.run([NODE, "-e", script, str(WASM_JS)], capture_output=True, text=True, timeout=120,
+                         input=json.dumps({"wasm": m.base64(), "T": T.ravel().tolist(), "q": q0.tolist()}))
+    assert res.returncode == 0, res.stderr[-2000:]
+    has_ik, ik, dls = json.loads(res.stdout)
+    assert has_ik is False and ik is None
+    assert dls["steps"] > 0
+    q = np.array(dls["q"])
+    np.testing.assert_allclose(robot.frame_pose(q), T, rtol=0, atol=TOL)
+    # no null-space motion: q − q0 stays (to first order) in the row space of J(q0)
+    J = robot.jacobian(q0, reference="local_world_aligned")
+    dq = q - q0
+    null = np.linalg.svd(J)[2][-1]
+    # (the step that generated T has 14 % of its length along J's null space; DLS's has 0.2 %)
+    assert abs(null @ dq) < 0.02 * np.linalg.norm(dq)
