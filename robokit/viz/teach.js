@@ -244,6 +244,69 @@
     if (viewer) { viewer.set_dirty(); }
   }
 
+  // ------------------------------------------------------------------ drag the tool
+  // A handle (orange ball) at the tool origin, with the module: dragging it moves the target's
+  // position in the plane through the tool facing the camera (the orientation kept) and calls the
+  // same entry point as #T= (goToTarget), so the arm follows on the nearest IK branch. It turns
+  // red when the target is out of reach. #rk-gizmo holds its position on the page (px, for tests).
+  var gizmo = null, lastT = null, GIZMO_COLOUR = 0xF39C12;
+  function startGizmo() {
+    if (!viewer || !KIN) { return; }
+    var THREE = MeshCat.THREE, node = viewer.scene_tree.find(["meshcat", "frames"]);
+    if (!node) { return; }
+    var mat = new THREE.MeshBasicMaterial({ color: GIZMO_COLOUR, transparent: true, opacity: 0.8, depthTest: false });
+    var mesh = new THREE.Mesh(new THREE.SphereGeometry(0.3 * R.scale, 24, 16), mat);
+    mesh.renderOrder = 1000;
+    node.object.add(mesh);  // that node's coordinates are the base frame's (frameView shifts the node)
+    gizmo = { mesh: mesh, parent: node.object, drag: null };
+    var canvas = viewer.renderer.domElement, ray = new THREE.Raycaster();
+    function pick(ev) {
+      var rc = canvas.getBoundingClientRect();
+      ray.setFromCamera(new THREE.Vector2(2 * (ev.clientX - rc.left) / rc.width - 1, 1 - 2 * (ev.clientY - rc.top) / rc.height),
+                        viewer.camera);
+      return ray;
+    }
+    canvas.addEventListener("pointerdown", function (ev) {
+      viewer.scene.updateMatrixWorld(true);
+      if (!lastT || !pick(ev).intersectObject(mesh).length) { return; }
+      var p = new THREE.Vector3(), nrm = new THREE.Vector3();
+      mesh.getWorldPosition(p);
+      viewer.camera.getWorldDirection(nrm);
+      gizmo.drag = { plane: new THREE.Plane().setFromNormalAndCoplanarPoint(nrm, p), T0: lastT.slice() };
+      viewer.controls.enabled = false;  // the drag moves the tool, not the camera
+      try { canvas.setPointerCapture(ev.pointerId); } catch (e) { /* a synthetic pointer */ }
+      ev.stopImmediatePropagation();
+      ev.preventDefault();
+    }, true);
+    canvas.addEventListener("pointermove", function (ev) {
+      if (!gizmo.drag) { return; }
+      var hit = new THREE.Vector3();
+      if (!pick(ev).ray.intersectPlane(gizmo.drag.plane, hit)) { return; }
+      gizmo.parent.worldToLocal(hit);
+      var T = gizmo.drag.T0.slice();
+      T[3] = hit.x; T[7] = hit.y; T[11] = hit.z;
+      goToTarget(T, "drag");
+      ev.stopImmediatePropagation();
+    }, true);
+    var end = function () { if (gizmo.drag) { gizmo.drag = null; viewer.controls.enabled = true; } };
+    canvas.addEventListener("pointerup", end, true);
+    canvas.addEventListener("pointercancel", end, true);
+  }
+  function placeGizmo(T, reachable) {
+    lastT = T;
+    if (!gizmo) { return; }
+    gizmo.mesh.position.set(T[3], T[7], T[11]);
+    if (reachable !== undefined) { gizmo.mesh.material.color.setHex(reachable ? GIZMO_COLOUR : RED); }
+    viewer.scene.updateMatrixWorld(true);
+    var v = new MeshCat.THREE.Vector3();
+    gizmo.mesh.getWorldPosition(v);
+    v.project(viewer.camera);
+    var rc = viewer.renderer.domElement.getBoundingClientRect();
+    setData("rk-gizmo", { x: String(rc.left + 0.5 * (v.x + 1) * rc.width), y: String(rc.top + 0.5 * (1 - v.y) * rc.height),
+                          reachable: String(gizmo.mesh.material.color.getHex() !== RED) });
+    viewer.set_dirty();
+  }
+
   // ------------------------------------------------------------------ page
   var sliders = [], boxes = [], rowsEls = [];
   function buildControls() {
@@ -358,9 +421,11 @@
       box.className = "rk-small rk-unreachable";
       box.textContent = "IK: the target is out of reach (no solution); the arm stays";
       update(null);
+      placeGizmo(T, false);  // the handle stays under the pointer, red; the arm stays
       return -1;
     }
     var s = sols[k];
+    if (gizmo) { gizmo.mesh.material.color.setHex(GIZMO_COLOUR); }
     box.className = "rk-small";
     box.textContent = "IK: " + sols.length + " solution" + (sols.length === 1 ? "" : "s") + "; showing the nearest, " +
       (k + 1) + " \u201c" + s.label + "\u201d" + (s.withinLimits ? "" : " (outside the joint limits)");
@@ -380,6 +445,7 @@
     var rd = RKMath.readouts(R, q, KIN), P = rd.P, T = rd.T, J = rd.J;
     placeObjects(P);
     updateCollision(P);
+    placeGizmo(T);
 
     // pose
     var xyz = rd.xyz, ang = rd.rpy, quat = rd.quat;
@@ -441,6 +507,11 @@
   el("rk-msg").insertAdjacentElement("afterend", ikBox);
   window.RKTeach = { goToTarget: goToTarget };  // the entry point of #T= (and of a drag)
 
+  var gizmoData = document.createElement("div");
+  gizmoData.id = "rk-gizmo";
+  gizmoData.hidden = true;
+  document.body.appendChild(gizmoData);
+
   var framing = document.createElement("div");
   framing.id = "rk-framing";
   framing.hidden = true;
@@ -452,6 +523,7 @@
 
   buildControls();
   startViewer();
+  startGizmo();
   if (!readHash()) { update(kinProblem || undefined); }
   window.addEventListener("hashchange", function () { readHash(); });
 })();

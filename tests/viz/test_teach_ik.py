@@ -124,3 +124,80 @@ def test_arm_without_closed_form_follows_by_damped_least_squares(tmp_path):
     np.testing.assert_allclose(q_page, json.loads(ik["data-solutions"])[0], rtol=0, atol=0)
     np.testing.assert_allclose(robot.frame_pose(q_page), T, rtol=0, atol=TOL)
     np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), T, rtol=0, atol=TOL)
+
+
+# Drives the page in an iframe: 100 targets through RKTeach.goToTarget (the entry point of #T=
+# and of the drag handle), then a drag of the handle with pointer events; writes what it saw.
+_PATH_JS = """
+function run() {
+  var f = document.getElementById("page"), w = f.contentWindow, d = w.document;
+  if (!w.RKTeach || !d.getElementById("rk-q") || !d.getElementById("rk-q").dataset.q ||
+      !d.getElementById("rk-gizmo").dataset.x) { setTimeout(run, 100); return; }
+  var qs = [], chosen = [];
+  PATH.forEach(function (T) {
+    w.RKTeach.goToTarget(T, "path");
+    qs.push(d.getElementById("rk-q").dataset.q);
+    chosen.push(d.getElementById("rk-ik").dataset.chosen);
+  });
+  var g = d.getElementById("rk-gizmo").dataset, cv = d.querySelector("#meshcat-pane canvas");
+  var before = d.getElementById("rk-pose").dataset.t, x = Number(g.x), y = Number(g.y);
+  var ev = function (type, X, Y) {
+    cv.dispatchEvent(new w.PointerEvent(type, { clientX: X, clientY: Y, bubbles: true, cancelable: true,
+                                                 pointerId: 1, isPrimary: true, button: 0, buttons: 1 }));
+  };
+  ev("pointerdown", x, y); ev("pointermove", x + 15, y - 5); ev("pointermove", x + 30, y - 10); ev("pointerup", x + 30, y - 10);
+  var ik = d.getElementById("rk-ik").dataset;
+  document.getElementById("out").textContent = JSON.stringify({
+    qs: qs, chosen: chosen, before: before, after: d.getElementById("rk-pose").dataset.t,
+    status: ik.status, target: ik.target || "", handle: [x, y] });
+}
+window.addEventListener("load", function () { setTimeout(run, 100); });
+"""
+
+
+@needs_chromium
+@needs_zig
+def test_smooth_path_and_drag_follow_one_branch(pages, tmp_path):
+    """UR5 along a smooth path of 100 poses (FK of a joint-space segment away from singularities):
+    the page's q follows the path's own branch, every step as small as the path's; then dragging
+    the handle moves the tool's position and keeps its orientation (Pinocchio's FK of the page's q)."""
+    import html as html_mod
+    import re
+    import subprocess
+    import tempfile
+
+    from tests.viz.test_teach import CHROMIUM
+
+    robot, path = pages["ur5"]
+    q0 = np.array([0.3, -1.2, 1.5, -1.9, -1.2, 0.4])
+    q1 = q0 + np.array([0.6, 0.3, -0.4, 0.5, 0.4, -0.6])
+    s = np.linspace(0.0, 1.0, 100)
+    qpath = q0 + np.outer(0.5 - 0.5 * np.cos(np.pi * s), q1 - q0)  # smooth start and stop
+    Ts = [robot.frame_pose(q).ravel().tolist() for q in qpath]
+    harness = tmp_path / "path.html"
+    harness.write_text(
+        '<!DOCTYPE html><html><body><iframe id="page" width="1200" height="800" src="'
+        + path.resolve().as_uri() + "#q=" + _fmt(q0) + '"></iframe><pre id="out"></pre><script>var PATH = '
+        + json.dumps(Ts) + ";" + _PATH_JS + "</script></body></html>", encoding="utf-8")
+    with tempfile.TemporaryDirectory() as profile:
+        out = subprocess.run(
+            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
+             "--allow-file-access-from-files", "--virtual-time-budget=40000", "--dump-dom", harness.as_uri()],
+            capture_output=True, text=True, timeout=240)
+    assert out.returncode == 0, out.stderr[-2000:]
+    m = re.search(r'<pre id="out">(.*?)</pre>', out.stdout, re.S)
+    assert m and m.group(1), out.stdout[-2000:]
+    got = json.loads(html_mod.unescape(m.group(1)))
+    qs = np.array([nums(x) for x in got["qs"]])
+    np.testing.assert_allclose(qs, qpath, rtol=0, atol=TOL)  # the path's own branch, all along
+    step = np.abs(np.diff(qpath, axis=0)).max()
+    assert np.abs(np.diff(qs, axis=0)).max() <= step + TOL
+    # the drag: a new position, the same orientation, the arm there
+    before, after = nums(got["before"]).reshape(4, 4), nums(got["after"]).reshape(4, 4)
+    assert got["status"] == "ok"
+    assert np.linalg.norm(after[:3, 3] - before[:3, 3]) > 1e-3
+    np.testing.assert_allclose(after[:3, :3], before[:3, :3], rtol=0, atol=TOL)
+    np.testing.assert_allclose(after, nums(got["target"]).reshape(4, 4), rtol=0, atol=TOL)
+    np.testing.assert_allclose(robot.frame_pose(qs[-1]), before, rtol=0, atol=TOL)
