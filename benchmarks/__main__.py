@@ -7,7 +7,7 @@ import sys
 
 MODULES = ["benchmarks.startup", "benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
            "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.motion",
-           "benchmarks.input_checks"]
+           "benchmarks.input_checks", "benchmarks.teach_wasm"]
 
 
 def main(argv=None):

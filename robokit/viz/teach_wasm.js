@@ -35,6 +35,11 @@ var RKWasm = (function () {
       for (var i = ptr; mem[i] !== 0; i++) { s += String.fromCharCode(mem[i]); }
       try { return decodeURIComponent(escape(s)); } catch (e) { return s; }  // UTF-8
     }
+    function copy(view, from, to) {  // a plain array (Array.prototype.slice on a typed array is slow)
+      var out = new Array(to - from);
+      for (var i = from; i < to; i++) { out[i - from] = view[i]; }
+      return out;
+    }
     function setQ(q) {
       var b = f64(x.rk_q(), n);
       for (var i = 0; i < n; i++) { b[i] = q[i]; }
@@ -46,21 +51,21 @@ var RKWasm = (function () {
       hasIk: hasIk,
       labels: labels,
       maxSolutions: x.rk_max_solutions(),
-      fk: function (q) { setQ(q); x.rk_fk(); return Array.prototype.slice.call(f64(x.rk_T(), 16)); },
+      fk: function (q) { setQ(q); x.rk_fk(); return copy(f64(x.rk_T(), 16), 0, 16); },
       jacobian: function (q) {
         setQ(q); x.rk_jacobian();
         var flat = f64(x.rk_J(), 6 * n), J = [];
-        for (var r = 0; r < 6; r++) { J.push(Array.prototype.slice.call(flat, r * n, (r + 1) * n)); }
+        for (var r = 0; r < 6; r++) { J.push(copy(flat, r * n, (r + 1) * n)); }
         return J;
       },
-      gravity: function (q) { setQ(q); x.rk_gravity(); return Array.prototype.slice.call(f64(x.rk_tau(), n)); },
+      gravity: function (q) { setQ(q); x.rk_gravity(); return copy(f64(x.rk_tau(), n), 0, n); },
       // damped least squares from q toward T: {q, steps (-1: not converged)}
       dls: function (T, q, lambda, iters, tol) {
         setQ(q);
         var t = f64(x.rk_T(), 16);
         for (var i = 0; i < 16; i++) { t[i] = T[i]; }
         var steps = x.rk_dls(lambda, iters, tol);
-        return { q: Array.prototype.slice.call(f64(x.rk_q(), n)), steps: steps };
+        return { q: copy(f64(x.rk_q(), n), 0, n), steps: steps };
       },
       ik: function (T, wristRef) {
         if (!hasIk) { return null; }
@@ -70,7 +75,7 @@ var RKWasm = (function () {
         var info = new Int32Array(x.memory.buffer, x.rk_info(), 4 * count), out = [];
         for (var s = 0; s < count; s++) {
           var rep = info[4 * s + 1];
-          out.push({ q: Array.prototype.slice.call(sol, s * n, (s + 1) * n),
+          out.push({ q: copy(sol, s * n, (s + 1) * n),
                      label: labels[info[4 * s]] + (rep > 1 ? " #" + rep : ""),
                      withinLimits: info[4 * s + 2] === 1, degenerate: info[4 * s + 3] === 1 });
         }
