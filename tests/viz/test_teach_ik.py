@@ -9,7 +9,7 @@ import pytest
 import robokit
 from robokit._optional import available
 from robokit.viz.teach import teach_html
-from tests.viz.test_teach import needs_chromium, nums, run_page
+from tests.viz.test_teach import needs_chromium, nums, run_harness, run_page
 
 needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
 TOL = 1e-9
@@ -161,13 +161,6 @@ def test_smooth_path_and_drag_follow_one_branch(pages, tmp_path):
     """UR5 along a smooth path of 100 poses (FK of a joint-space segment away from singularities):
     the page's q follows the path's own branch, every step as small as the path's; then dragging
     the handle moves the tool's position and keeps its orientation (Pinocchio's FK of the page's q)."""
-    import html as html_mod
-    import re
-    import subprocess
-    import tempfile
-
-    from tests.viz.test_teach import CHROMIUM
-
     robot, path = pages["ur5"]
     q0 = np.array([0.3, -1.2, 1.5, -1.9, -1.2, 0.4])
     q1 = q0 + np.array([0.6, 0.3, -0.4, 0.5, 0.4, -0.6])
@@ -179,17 +172,7 @@ def test_smooth_path_and_drag_follow_one_branch(pages, tmp_path):
         '<!DOCTYPE html><html><body><iframe id="page" width="1200" height="800" src="'
         + path.resolve().as_uri() + "#q=" + _fmt(q0) + '"></iframe><pre id="out"></pre><script>var PATH = '
         + json.dumps(Ts) + ";" + _PATH_JS + "</script></body></html>", encoding="utf-8")
-    with tempfile.TemporaryDirectory() as profile:
-        out = subprocess.run(
-            [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-             "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-             "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
-             "--allow-file-access-from-files", "--virtual-time-budget=40000", "--dump-dom", harness.as_uri()],
-            capture_output=True, text=True, timeout=240)
-    assert out.returncode == 0, out.stderr[-2000:]
-    m = re.search(r'<pre id="out">(.*?)</pre>', out.stdout, re.S)
-    assert m and m.group(1), out.stdout[-2000:]
-    got = json.loads(html_mod.unescape(m.group(1)))
+    got = run_harness(harness)
     qs = np.array([nums(x) for x in got["qs"]])
     np.testing.assert_allclose(qs, qpath, rtol=0, atol=TOL)  # the path's own branch, all along
     step = np.abs(np.diff(qpath, axis=0)).max()
