@@ -161,6 +161,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     import webbrowser
 
     from robokit._names import safe_stem
+    from robokit._optional import require
     from robokit.description.loading import load
     from robokit.viz.teach import teach_html
 
@@ -172,6 +173,7 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
         from robokit.collision import load_scene
 
         obs, padding = load_scene(obstacles)
+    require("meshcat", "the teach pendant")  # the page's own extra first: one line when it is missing
     page = teach_html(robot, q=q, obstacles=obs, padding=padding, wasm=_teach_wasm(robot))
     if output is not None:
         atomic_write(output, page)
