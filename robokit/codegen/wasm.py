@@ -43,7 +43,7 @@ from robokit._progress import Slow
 if TYPE_CHECKING:
     from robokit.codegen.generate import CSource
 
-__all__ = ["WasmModule", "wasm_module", "zig_path"]
+__all__ = ["WasmModule", "wasm_module", "compile_wasm", "zig_path"]
 
 #: Flags of every compile: C99 as ``robokit codegen`` writes it, optimised, stripped, a reactor.
 WASM_FLAGS = ("--target=wasm32-wasi", "-std=c99", "-O2", "-s", "-mexec-model=reactor")
@@ -69,8 +69,8 @@ class WasmModule:
 
     Examples
     --------
-    >>> m = wasm_module(rk.load("puma560"))  # doctest: +SKIP
-    >>> m.wasm[:4], m.has_ik  # doctest: +SKIP
+    >>> m = wasm_module(rk.load("puma560"))
+    >>> m.wasm[:4], m.has_ik
     (b'\\x00asm', True)
     """
 
@@ -110,7 +110,7 @@ def zig_path() -> Path:
 
     Examples
     --------
-    >>> zig_path().name  # doctest: +SKIP
+    >>> zig_path().name
     'zig'
     """
     zig = require("ziglang", "compiling the teach page's WebAssembly")
@@ -276,9 +276,9 @@ def compile_wasm(src: CSource, n: int) -> WasmModule:
     Examples
     --------
     >>> from robokit.codegen.generate import generate_c
-    >>> m = compile_wasm(generate_c(rk.load("twolink")), 2)  # doctest: +SKIP
-    >>> m.has_ik  # doctest: +SKIP
-    False
+    >>> m = compile_wasm(generate_c(rk.load("twolink")), 2)
+    >>> m.wasm[:4], m.has_ik
+    (b'\\x00asm', False)
     """
     from robokit.codegen.generate import write_c
 
@@ -331,8 +331,8 @@ def wasm_module(robot: Any, name: str | None = None) -> WasmModule:
 
     Examples
     --------
-    >>> m = wasm_module(rk.load("ur5"))  # doctest: +SKIP
-    >>> m.name, m.n, m.has_ik  # doctest: +SKIP
+    >>> m = wasm_module(rk.load("ur5"))
+    >>> m.name, m.n, m.has_ik
     ('ur5', 6, True)
     """
     from robokit.codegen.generate import generate_c
