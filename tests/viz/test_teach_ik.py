@@ -23,9 +23,11 @@ def _fmt(x):
 def pages(tmp_path_factory):
     from robokit.codegen.wasm import wasm_module
 
+    from tests.viz.test_wasm import _load
+
     out = {}
-    for name in ("puma560", "ur5"):
-        robot = robokit.load(name)
+    for name in ("puma560", "ur5", "jaco2_6n"):
+        robot = _load(name)
         path = tmp_path_factory.mktemp("teach-ik") / f"{name}.html"
         path.write_text(teach_html(robot, wasm=wasm_module(robot).wasm), encoding="utf-8")
         out[name] = (robot, path)
@@ -34,12 +36,12 @@ def pages(tmp_path_factory):
 
 @needs_chromium
 @needs_zig
-@pytest.mark.parametrize("name", ["puma560", "ur5"])
+@pytest.mark.parametrize("name", ["puma560", "ur5", "jaco2_6n"])
 def test_fragment_target_solves_every_branch_and_moves_to_the_nearest(pages, name):
     robot, path = pages[name]
     lo, hi = np.array(robot.qlim, dtype=float).T
     lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
-    rng = np.random.default_rng({"puma560": 3, "ur5": 4}[name])
+    rng = np.random.default_rng({"puma560": 3, "ur5": 4, "jaco2_6n": 5}[name])
     for _ in range(3):
         q_gen, q_start = rng.uniform(lo, hi), rng.uniform(lo, hi)
         T = robot.frame_pose(q_gen)

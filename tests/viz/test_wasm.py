@@ -17,17 +17,26 @@ NODE = shutil.which("node")
 needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
 needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
 WASM_JS = Path(str(resources.files("robokit.viz").joinpath("teach_wasm.js")))
-ROBOTS = ["puma560", "ur5"]
+ROBOTS = ["puma560", "ur5", "jaco2_6n"]
 TOL = 1e-9
 
 _modules: dict = {}
+
+
+def _load(name):
+    if name == "jaco2_6n":  # a general 6R arm (offset wrist): the IK by elimination
+        from tests.ik.test_general_6r import jaco2_table
+
+        return robokit.load(jaco2_table())
+    return robokit.load(name)
 
 
 def module(name):
     from robokit.codegen.wasm import wasm_module
 
     if name not in _modules:
-        _modules[name] = (robokit.load(name), wasm_module(robokit.load(name)))
+        robot = _load(name)
+        _modules[name] = (robot, wasm_module(robot))
     return _modules[name]
 
 
