@@ -17,7 +17,7 @@ NODE = shutil.which("node")
 needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
 needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
 WASM_JS = Path(str(resources.files("robokit.viz").joinpath("teach_wasm.js")))
-ROBOTS = ["puma560", "ur5", "jaco2_6n"]
+ROBOTS = ["puma560", "ur5", "jaco2_6n", "puma_craig"]
 TOL = 1e-9
 
 _modules: dict = {}
@@ -28,6 +28,13 @@ def _load(name):
         from tests.ik.test_general_6r import jaco2_table
 
         return robokit.load(jaco2_table())
+    if name == "puma_craig":  # the PUMA 560 in modified DH (Craig's table), no joint limits
+        from robokit.description.dh import DHLink, DHTable
+
+        h = np.pi / 2
+        a, alpha, d = [0, 0, 0.4318, 0.0203, 0, 0], [0, -h, 0, -h, h, -h], [0, 0, 0.15005, 0.4318, 0, 0]
+        return robokit.load(DHTable("puma_craig", "modified", tuple(
+            DHLink("R", a=a[i], alpha=alpha[i], d=d[i]) for i in range(6))))
     return robokit.load(name)
 
 
