@@ -8,7 +8,7 @@ import sys
 MODULES = ["benchmarks.startup", "benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
            "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.calibrated_ik", "benchmarks.motion",
            "benchmarks.input_checks", "benchmarks.degrees", "benchmarks.seed_args",
-           "benchmarks.board"]
+           "benchmarks.board", "benchmarks.teach_wasm"]
 
 
 def main(argv=None):

@@ -23,6 +23,7 @@ EXTRAS: dict[str, tuple[str, str]] = {
     "meshcat": ("meshcat", "viz"),
     "trimesh": ("trimesh", "viz"),
     "collada": ("pycollada", "viz"),
+    "ziglang": ("ziglang", "viz"),
     "IPython": ("ipython", "notebooks"),
     "ipywidgets": ("ipywidgets", "notebooks"),
     "matplotlib": ("matplotlib", "plot"),

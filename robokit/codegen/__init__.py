@@ -9,7 +9,8 @@ and calls them through ``ctypes``.
 
 Modules: :mod:`~robokit.codegen.generate` (files, names, header), :mod:`~robokit.codegen.kinematics`
 (product of exponentials, Jacobian), :mod:`~robokit.codegen.dynamics` (Newton–Euler),
-:mod:`~robokit.codegen.ik` (Pieper, three parallel axes), :mod:`~robokit.codegen.build`.
+:mod:`~robokit.codegen.ik` (Pieper, three parallel axes), :mod:`~robokit.codegen.build`,
+:mod:`~robokit.codegen.wasm` (the same C as WebAssembly, for the teach page).
 
 Example::
 

@@ -11,6 +11,21 @@
 
   var mul4 = RKMath.mul4, flat4 = RKMath.flat4;
 
+  // the robot's generated C compiled to WebAssembly (#rk-wasm, embedded by robokit teach;
+  // teach_wasm.js): when present, the tool pose, the Jacobian and the closed-form IK come from it
+  var KIN = null, kinProblem = "";
+  (function () {
+    var src = document.getElementById("rk-wasm");
+    if (!src || typeof RKWasm === "undefined") { return; }
+    try {
+      KIN = RKWasm.load(RKWasm.decode(src.textContent.trim()));
+      if (KIN.n !== n) { throw new Error("the module has " + KIN.n + " joints, the robot " + n); }
+    } catch (err) {
+      KIN = null;
+      kinProblem = "WebAssembly module unavailable (" + err + "); computing in JavaScript";
+    }
+  })();
+
   // ------------------------------------------------------------------ state and input
   var unit = R.joints.map(function (j) { return j.type === "R" ? DEG : 1; });  // display units per joint
   var q = R.q0.slice();
@@ -229,6 +244,69 @@
     if (viewer) { viewer.set_dirty(); }
   }
 
+  // ------------------------------------------------------------------ drag the tool
+  // A handle (orange ball) at the tool origin, with the module: dragging it moves the target's
+  // position in the plane through the tool facing the camera (the orientation kept) and calls the
+  // same entry point as #T= (goToTarget), so the arm follows on the nearest IK branch. It turns
+  // red when the target is out of reach. #rk-gizmo holds its position on the page (px, for tests).
+  var gizmo = null, lastT = null, GIZMO_COLOUR = 0xF39C12;
+  function startGizmo() {
+    if (!viewer || !KIN) { return; }
+    var THREE = MeshCat.THREE, node = viewer.scene_tree.find(["meshcat", "frames"]);
+    if (!node) { return; }
+    var mat = new THREE.MeshBasicMaterial({ color: GIZMO_COLOUR, transparent: true, opacity: 0.8, depthTest: false });
+    var mesh = new THREE.Mesh(new THREE.SphereGeometry(0.3 * R.scale, 24, 16), mat);
+    mesh.renderOrder = 1000;
+    node.object.add(mesh);  // that node's coordinates are the base frame's (frameView shifts the node)
+    gizmo = { mesh: mesh, parent: node.object, drag: null };
+    var canvas = viewer.renderer.domElement, ray = new THREE.Raycaster();
+    function pick(ev) {
+      var rc = canvas.getBoundingClientRect();
+      ray.setFromCamera(new THREE.Vector2(2 * (ev.clientX - rc.left) / rc.width - 1, 1 - 2 * (ev.clientY - rc.top) / rc.height),
+                        viewer.camera);
+      return ray;
+    }
+    canvas.addEventListener("pointerdown", function (ev) {
+      viewer.scene.updateMatrixWorld(true);
+      if (!lastT || !pick(ev).intersectObject(mesh).length) { return; }
+      var p = new THREE.Vector3(), nrm = new THREE.Vector3();
+      mesh.getWorldPosition(p);
+      viewer.camera.getWorldDirection(nrm);
+      gizmo.drag = { plane: new THREE.Plane().setFromNormalAndCoplanarPoint(nrm, p), T0: lastT.slice() };
+      viewer.controls.enabled = false;  // the drag moves the tool, not the camera
+      try { canvas.setPointerCapture(ev.pointerId); } catch (e) { /* a synthetic pointer */ }
+      ev.stopImmediatePropagation();
+      ev.preventDefault();
+    }, true);
+    canvas.addEventListener("pointermove", function (ev) {
+      if (!gizmo.drag) { return; }
+      var hit = new THREE.Vector3();
+      if (!pick(ev).ray.intersectPlane(gizmo.drag.plane, hit)) { return; }
+      gizmo.parent.worldToLocal(hit);
+      var T = gizmo.drag.T0.slice();
+      T[3] = hit.x; T[7] = hit.y; T[11] = hit.z;
+      goToTarget(T, "drag");
+      ev.stopImmediatePropagation();
+    }, true);
+    var end = function () { if (gizmo.drag) { gizmo.drag = null; viewer.controls.enabled = true; } };
+    canvas.addEventListener("pointerup", end, true);
+    canvas.addEventListener("pointercancel", end, true);
+  }
+  function placeGizmo(T, reachable) {
+    lastT = T;
+    if (!gizmo) { return; }
+    gizmo.mesh.position.set(T[3], T[7], T[11]);
+    if (reachable !== undefined) { gizmo.mesh.material.color.setHex(reachable ? GIZMO_COLOUR : RED); }
+    viewer.scene.updateMatrixWorld(true);
+    var v = new MeshCat.THREE.Vector3();
+    gizmo.mesh.getWorldPosition(v);
+    v.project(viewer.camera);
+    var rc = viewer.renderer.domElement.getBoundingClientRect();
+    setData("rk-gizmo", { x: String(rc.left + 0.5 * (v.x + 1) * rc.width), y: String(rc.top + 0.5 * (1 - v.y) * rc.height),
+                          reachable: String(gizmo.mesh.material.color.getHex() !== RED) });
+    viewer.set_dirty();
+  }
+
   // ------------------------------------------------------------------ page
   var sliders = [], boxes = [], rowsEls = [];
   function buildControls() {
@@ -294,12 +372,65 @@
     update(clamped.length ? why + ": " + clamped.join(", ") + " clamped to the slider range" : "");
   }
 
-  // the #q= fragment: applied when valid; otherwise the page says what it ignored and keeps saying it
+  // the #q= and #T= fragments (#q=...&T=...: start at q, then go to T): applied when valid;
+  // otherwise the page says what it ignored and keeps saying it
   function readHash() {
-    var f = RKMath.parseFragment(location.hash, n);
-    if (f.q) { setQ(f.q, "URL"); return true; }
-    if (f.given) { update(f.problem); return true; }
-    return false;
+    var f = RKMath.parseFragment(location.hash, n), t = RKMath.parseTarget(location.hash), done = false;
+    if (f.q) { setQ(f.q, "URL"); done = true; } else if (f.given) { update(f.problem); done = true; }
+    if (t.T) { goToTarget(t.T, "URL #T="); done = true; } else if (t.given) { update(t.problem); done = true; }
+    return done;
+  }
+
+  // ------------------------------------------------------------------ inverse kinematics (module)
+  // An arm without a closed form (a redundant one): damped-least-squares steps in the module from
+  // the current q (the course's resolved-rate rule; the steps leave the null space as it is).
+  var DLS = { lambda: 0.01, iters: 200, tol: 1e-12 };
+  function followByDls(T, why) {
+    var r = KIN.dls(T, q, DLS.lambda, DLS.iters, DLS.tol), ok = r.steps >= 0, box = el("rk-ik");
+    setData("rk-ik", { status: ok ? "dls" : "dls-not-converged", count: "1", solutions: JSON.stringify([r.q]),
+                       labels: JSON.stringify(["damped least squares"]), within: "[]", chosen: "0",
+                       steps: String(r.steps), target: T.map(String).join(",") });
+    box.className = ok ? "rk-small" : "rk-small rk-unreachable";
+    box.textContent = R.name + " has no closed-form IK: damped least squares (\u03bb = " + DLS.lambda + ") " +
+      (ok ? "reached the target in " + r.steps + " steps" : "did not reach the target in " + DLS.iters + " steps (out of reach or singular)") +
+      "; the null space is kept";
+    setQ(r.q, why + " (damped least squares)");
+    return 0;
+  }
+
+  // Every closed-form solution of the tool pose T (16 numbers, row-major, base frame), from the
+  // module, in ik_analytic's order; the arm moves to the one nearest the current q (joint-space
+  // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so.
+  function goToTarget(T, why) {
+    var box = el("rk-ik");
+    if (KIN && !KIN.hasIk) { return followByDls(T, why); }
+    if (!KIN) {
+      var reason = kinProblem || "this page has no WebAssembly module (write it with robokit teach)";
+      setData("rk-ik", { status: "unavailable", count: "0", solutions: "[]", labels: "[]", within: "[]", chosen: "-1" });
+      box.textContent = "";
+      update(why + ": " + reason + "; ignored");
+      return -1;
+    }
+    var sols = KIN.ik(T, 0), k = RKWasm.nearest(sols, q);
+    setData("rk-ik", { status: sols.length ? "ok" : "unreachable", count: String(sols.length),
+                       solutions: JSON.stringify(sols.map(function (s) { return s.q; })),
+                       labels: JSON.stringify(sols.map(function (s) { return s.label; })),
+                       within: JSON.stringify(sols.map(function (s) { return s.withinLimits; })), chosen: String(k),
+                       target: T.map(String).join(",") });
+    if (k < 0) {
+      box.className = "rk-small rk-unreachable";
+      box.textContent = "IK: the target is out of reach (no solution); the arm stays";
+      update(null);
+      placeGizmo(T, false);  // the handle stays under the pointer, red; the arm stays
+      return -1;
+    }
+    var s = sols[k];
+    if (gizmo) { gizmo.mesh.material.color.setHex(GIZMO_COLOUR); }
+    box.className = "rk-small";
+    box.textContent = "IK: " + sols.length + " solution" + (sols.length === 1 ? "" : "s") + "; showing the nearest, " +
+      (k + 1) + " \u201c" + s.label + "\u201d" + (s.withinLimits ? "" : " (outside the joint limits)");
+    setQ(s.q, why + " (IK)");
+    return k;
   }
 
   function setData(id, attrs) { var e = el(id); Object.keys(attrs).forEach(function (k) { e.dataset[k] = attrs[k]; }); return e; }
@@ -311,16 +442,17 @@
       if (i !== skipSlider) { sliders[i].value = String(q[i] * unit[i]); }
       boxes[i].value = (q[i] * unit[i]).toFixed(R.joints[i].type === "R" ? 2 : 4);
     }
-    var rd = RKMath.readouts(R, q), P = rd.P, T = rd.T, J = rd.J;
+    var rd = RKMath.readouts(R, q, KIN), P = rd.P, T = rd.T, J = rd.J;
     placeObjects(P);
     updateCollision(P);
+    placeGizmo(T);
 
     // pose
     var xyz = rd.xyz, ang = rd.rpy, quat = rd.quat;
     el("rk-xyz").textContent = xyz.map(function (v) { return fmt(v, 4); }).join(" ");
     el("rk-rpy").textContent = ang.map(function (v) { return fmt(v * DEG, 2); }).join(" ");
     el("rk-quat").textContent = quat.map(function (v) { return fmt(v, 4); }).join(" ");
-    setData("rk-pose", { t: T.map(String).join(","), xyz: xyz.map(String).join(","),
+    setData("rk-pose", { source: KIN ? "wasm" : "js", t: T.map(String).join(","), xyz: xyz.map(String).join(","),
                          rpy: ang.map(String).join(","), quat: quat.map(String).join(",") });
 
     // Jacobian
@@ -369,6 +501,17 @@
     try { history.replaceState(null, "", "#q=" + q.map(function (v) { return String(v); }).join(",")); } catch (e) { /* file:// in some browsers */ }
   }
 
+  var ikBox = document.createElement("div");
+  ikBox.id = "rk-ik";
+  ikBox.className = "rk-small";
+  el("rk-msg").insertAdjacentElement("afterend", ikBox);
+  window.RKTeach = { goToTarget: goToTarget };  // the entry point of #T= (and of a drag)
+
+  var gizmoData = document.createElement("div");
+  gizmoData.id = "rk-gizmo";
+  gizmoData.hidden = true;
+  document.body.appendChild(gizmoData);
+
   var framing = document.createElement("div");
   framing.id = "rk-framing";
   framing.hidden = true;
@@ -380,6 +523,7 @@
 
   buildControls();
   startViewer();
-  if (!readHash()) { update(); }
+  startGizmo();
+  if (!readHash()) { update(kinProblem || undefined); }
   window.addEventListener("hashchange", function () { readHash(); });
 })();

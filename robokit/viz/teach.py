@@ -612,7 +612,7 @@ def _script_json(obj: Any) -> str:
 
 
 def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | None = None,
-               obstacles: Sequence[Any] | None = None, padding: float = 0.0) -> str:
+               obstacles: Sequence[Any] | None = None, padding: float = 0.0, wasm: bytes | None = None) -> str:
     """The teach page of ``model``: one self-contained HTML page that works offline from a file.
 
     Meshcat's three.js bundle, the robot's meshes and the page's script are embedded; nothing
@@ -637,6 +637,16 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         pendant (Python).
     padding : float
         The World's padding (m, inflation of the robot's geometry).
+    wasm : bytes, optional
+        The robot's generated C compiled to WebAssembly
+        (:func:`robokit.codegen.wasm.wasm_module`'s ``.wasm``; ``robokit teach`` passes it),
+        embedded as base64. With it the page's tool pose and Jacobian come from the module
+        (the controller's own C) and the fragment ``#T=t11,t12,…,t44`` (16 numbers, row-major,
+        the tool pose in the base frame; ``#q=…&T=…``: start at q, then go to T) solves the
+        closed-form IK in the module and moves to the solution nearest the current joint
+        values; the element ``rk-ik`` gets ``data-count``, ``data-solutions`` (every solution,
+        in ``ik_analytic``'s order), ``data-labels``, ``data-within`` and ``data-chosen`` (the
+        index shown, -1 when out of reach). Without it the page computes in JavaScript.
 
     Returns
     -------
@@ -661,6 +671,9 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
     commands = d.pop("_commands")
     scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
+    module = "" if wasm is None else (  # base64 holds no character that could end the element
+        f"<script id=\"rk-wasm\" type=\"application/octet-stream\">{base64.b64encode(bytes(wasm)).decode('ascii')}"
+        f"</script>\n<script>\n{_asset('teach_wasm.js')}\n</script>\n")
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<title>{title}</title>\n<style>\n{_asset('teach.css')}\n</style>\n</head>\n<body>\n"
@@ -669,6 +682,7 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         f"<script id=\"rk-robot\" type=\"application/json\">{_script_json(d)}</script>\n"
         f"<script>var RK_SCENE = {scene};</script>\n"
         f"<script>\n{_asset('teach_math.js')}\n</script>\n"
+        f"{module}"
         f"<script>\n{_asset('teach.js')}\n</script>\n"
         "</body>\n</html>\n"
     )

@@ -163,10 +163,12 @@ var RKMath = (function () {
   // singular_tol, singular_ratio} (the page's data): tool pose, RPY, quaternion, Jacobian,
   // manipulability w = sqrt(det(Jt Jt^T)) = prod sigma_i, condition number, singularity level
   // and lost direction (task-row components, dominant one positive), joint-limit margins.
-  function readouts(R, q) {
+  // kin (optional): the robot's generated C as WebAssembly (teach_wasm.js); when given, the tool
+  // pose T and the Jacobian J come from it (P, the visuals' placements, from the screws here).
+  function readouts(R, q, kin) {
     var n = R.n;
-    var P = products(R.S, q), T = mul4(P[n], flat4(R.M));
-    var J = jacobian(R.S, P, T);
+    var P = products(R.S, q), T = kin ? kin.fk(q) : mul4(P[n], flat4(R.M));
+    var J = kin ? kin.jacobian(q) : jacobian(R.S, P, T);
     var Jt = R.rows.map(function (r) { return J[r]; });
     var m = Jt.length, sv = svdLeft(Jt);
     var smax = sv[0].s, smin = sv[m - 1].s;
@@ -195,23 +197,36 @@ var RKMath = (function () {
   // was ignored or ""}. Never throws: bad percent-encoding, a wrong count, NaN, inf, empty
   // entries and non-numbers are reported, not applied.
   function parseFragment(hash, n) {
+    var f = parseList(hash, "q", n, n + " finite numbers (rad / m)");
+    return { q: f.values, given: f.given, problem: f.problem };
+  }
+
+  // The target pose of a URL fragment "#T=t11,t12,...,t44" (16 numbers, row-major, the tool
+  // pose in the base frame): {T: 16 finite numbers or null, given, problem}, as parseFragment.
+  function parseTarget(hash) {
+    var f = parseList(hash, "T", 16, "16 finite numbers (a 4x4 pose, row-major, m)");
+    return { T: f.values, given: f.given, problem: f.problem };
+  }
+
+  // "key=v1,v2,..." of a fragment: {values: count finite numbers or null, given, problem}
+  function parseList(hash, key, count, expected) {
     var text = String(hash === undefined || hash === null ? "" : hash);
-    var m = /(?:^#|&)q=([^&]*)/.exec(text);
-    if (!m) { return { q: null, given: false, problem: "" }; }
+    var m = new RegExp("(?:^#|&)" + key + "=([^&]*)").exec(text);
+    if (!m) { return { values: null, given: false, problem: "" }; }
     var raw = m[1], decoded;
     var shown = raw.length > 60 ? raw.slice(0, 57) + "..." : raw;
     try {
       decoded = decodeURIComponent(raw);
     } catch (e) {
-      return { q: null, given: true, problem: "URL #q=: \u201c" + shown + "\u201d is not valid percent-encoding; ignored" };
+      return { values: null, given: true, problem: "URL #" + key + "=: \u201c" + shown + "\u201d is not valid percent-encoding; ignored" };
     }
     var parts = decoded.split(",");
     var values = parts.map(function (s) { return /^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$/.test(s) ? Number(s) : NaN; });
-    if (parts.length !== n || values.some(function (x) { return !isFinite(x); })) {
-      return { q: null, given: true,
-               problem: "URL #q=: expected " + n + " finite numbers (rad / m), got \u201c" + shown + "\u201d; ignored" };
+    if (parts.length !== count || values.some(function (x) { return !isFinite(x); })) {
+      return { values: null, given: true,
+               problem: "URL #" + key + "=: expected " + expected + ", got \u201c" + shown + "\u201d; ignored" };
     }
-    return { q: values, given: true, problem: "" };
+    return { values: values, given: true, problem: "" };
   }
 
   // ------------------------------------------------------------------ collision (capsule models)
@@ -354,6 +369,6 @@ var RKMath = (function () {
 
   return { fitCamera: fitCamera, clearance: clearance, sdf: sdf, mul4: mul4, flat4: flat4, EYE: EYE, expScrew: expScrew, products: products, adjoint: adjoint,
            jacobian: jacobian, svdLeft: svdLeft, rpy: rpy, quaternion: quaternion, readouts: readouts,
-           parseFragment: parseFragment };
+           parseFragment: parseFragment, parseTarget: parseTarget };
 })();
 if (typeof module !== "undefined" && module.exports) { module.exports = RKMath; }

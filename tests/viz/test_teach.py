@@ -60,9 +60,12 @@ class _Data(HTMLParser):
             self.by_id[a["id"]] = a
 
 
-def run_page(path: Path, q=None) -> dict:
-    """Open the page in headless Chromium (with ``#q=...``) and return its elements' attributes."""
-    frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
+def run_page(path: Path, q=None, fragment: str = "") -> dict:
+    """Open the page in headless Chromium (with ``#q=...``, then ``fragment``'s further parts,
+    e.g. ``"&T=..."``) and return its elements' attributes."""
+    frag = ("" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)) + fragment
+    if frag and not frag.startswith("#"):
+        frag = "#" + frag.lstrip("&")
     with tempfile.TemporaryDirectory() as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
@@ -304,21 +307,12 @@ window.addEventListener("load", function () { setTimeout(poll, 100); });
 """
 
 
-def run_frames(frames, tmp_dir) -> list:
-    """Open pages in iframes of given sizes ``[(path, q, (w, h)), …]`` in one headless Chromium run
-    (a page's own layout at that viewport) and return each page's framing, joint-name and
-    collision data as the page measured them."""
+def run_harness(harness: Path):
+    """Open a harness page (pages in iframes, file access allowed) in headless Chromium and return
+    the JSON its script wrote into ``<pre id="out">``."""
     import html as html_mod
     import re
 
-    tags = []
-    for path, q, (w, h) in frames:
-        frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
-        tags.append(f'<iframe width="{w}" height="{h}" style="border:0;display:block" '
-                    f'src="{path.resolve().as_uri()}{frag}"></iframe>')
-    harness = Path(tmp_dir) / "harness.html"
-    harness.write_text("<!DOCTYPE html><html><body>" + "".join(tags) + f"<pre id=out></pre><script>{_HARNESS_JS}"
-                       "</script></body></html>", encoding="utf-8")
     with tempfile.TemporaryDirectory() as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
@@ -328,8 +322,23 @@ def run_frames(frames, tmp_dir) -> list:
             capture_output=True, text=True, timeout=240)
     assert out.returncode == 0, out.stderr[-2000:]
     m = re.search(r'<pre id="out">(.*?)</pre>', out.stdout, re.S)
-    assert m, out.stdout[-2000:]
-    got = json.loads(html_mod.unescape(m.group(1)))
+    assert m and m.group(1), out.stdout[-2000:]
+    return json.loads(html_mod.unescape(m.group(1)))
+
+
+def run_frames(frames, tmp_dir) -> list:
+    """Open pages in iframes of given sizes ``[(path, q, (w, h)), …]`` in one headless Chromium run
+    (a page's own layout at that viewport) and return each page's framing, joint-name and
+    collision data as the page measured them."""
+    tags = []
+    for path, q, (w, h) in frames:
+        frag = "" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)
+        tags.append(f'<iframe width="{w}" height="{h}" style="border:0;display:block" '
+                    f'src="{path.resolve().as_uri()}{frag}"></iframe>')
+    harness = Path(tmp_dir) / "harness.html"
+    harness.write_text("<!DOCTYPE html><html><body>" + "".join(tags) + f"<pre id=out></pre><script>{_HARNESS_JS}"
+                       "</script></body></html>", encoding="utf-8")
+    got = run_harness(harness)
     assert len(got) == len(frames), f"only {len(got)} of {len(frames)} pages reported"
     return [got[str(i)] for i in range(len(frames))]
 

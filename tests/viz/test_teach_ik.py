@@ -1,0 +1,188 @@
+"""The teach page's closed-form IK: ``#q=...&T=...`` solved by the robot's generated C compiled to
+WebAssembly (robokit.codegen.wasm) in headless Chromium, against ``robokit.ik_analytic``; its tool
+pose and Jacobian (from the module) against Pinocchio."""
+import json
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit._optional import available
+from robokit.viz.teach import teach_html
+from tests.viz.test_teach import needs_chromium, nums, run_harness, run_page
+
+needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
+TOL = 1e-9
+
+
+def _fmt(x):
+    return ",".join(repr(float(v)) for v in np.ravel(x))
+
+
+@pytest.fixture(scope="module")
+def pages(tmp_path_factory):
+    from robokit.codegen.wasm import wasm_module
+
+    from tests.viz.test_wasm import _load
+
+    out = {}
+    for name in ("puma560", "ur5", "jaco2_6n"):
+        robot = _load(name)
+        path = tmp_path_factory.mktemp("teach-ik") / f"{name}.html"
+        path.write_text(teach_html(robot, wasm=wasm_module(robot).wasm), encoding="utf-8")
+        out[name] = (robot, path)
+    return out
+
+
+@needs_chromium
+@needs_zig
+@pytest.mark.parametrize("name", ["puma560", "ur5", "jaco2_6n"])
+def test_fragment_target_solves_every_branch_and_moves_to_the_nearest(pages, name):
+    robot, path = pages[name]
+    lo, hi = np.array(robot.qlim, dtype=float).T
+    lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
+    rng = np.random.default_rng({"puma560": 3, "ur5": 4, "jaco2_6n": 5}[name])
+    for _ in range(3):
+        q_gen, q_start = rng.uniform(lo, hi), rng.uniform(lo, hi)
+        T = robot.frame_pose(q_gen)
+        d = run_page(path, q_start, "&T=" + _fmt(T))
+        assert d["rk-pose"]["data-source"] == "wasm"
+        ik = d["rk-ik"]
+        ref = robokit.ik_analytic(robot, T)
+        assert ik["data-status"] == "ok" and int(ik["data-count"]) == len(ref) > 0
+        sols = np.array(json.loads(ik["data-solutions"]))
+        np.testing.assert_allclose(sols, np.array([r.q for r in ref]), rtol=0, atol=TOL)
+        assert json.loads(ik["data-labels"]) == [r.label for r in ref]
+        assert json.loads(ik["data-within"]) == [r.within_limits for r in ref]
+        # the generating q is among them (up to whole turns)
+        wrapped = np.abs(np.angle(np.exp(1j * (sols - q_gen)))).max(axis=1)
+        assert wrapped.min() < 1e-7
+        chosen = int(ik["data-chosen"])
+        assert chosen == int(np.argmin(np.linalg.norm(np.array([r.q for r in ref]) - q_start, axis=1)))
+        # the page moved there (clamped into the sliders' range if that solution is outside the limits)
+        q_page = nums(d["rk-q"]["data-q"])
+        np.testing.assert_allclose(q_page, np.clip(ref[chosen].q, lo, hi), rtol=0, atol=TOL)
+        # and its readouts, from the module, are Pinocchio's there
+        np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), robot.frame_pose(q_page),
+                                   rtol=0, atol=TOL)
+        J = nums(d["rk-jacobian"]["data-j"]).reshape(6, robot.n)
+        np.testing.assert_allclose(J, robot.jacobian(q_page, reference="local_world_aligned"), rtol=0, atol=TOL)
+
+
+@needs_chromium
+@needs_zig
+def test_out_of_reach_target_leaves_the_arm(pages):
+    robot, path = pages["ur5"]
+    q0 = np.array([0.1, -1.0, 1.2, -0.5, 0.3, 0.2])
+    T = robot.frame_pose(q0)
+    T[:3, 3] += [5.0, 0.0, 0.0]  # far beyond the UR5's reach (0.85 m)
+    assert robokit.ik_analytic(robot, T) == []
+    d = run_page(path, q0, "&T=" + _fmt(T))
+    ik = d["rk-ik"]
+    assert ik["data-status"] == "unreachable" and ik["data-count"] == "0" and ik["data-chosen"] == "-1"
+    np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
+
+
+@needs_chromium
+def test_page_without_module_computes_in_javascript_and_says_ik_is_unavailable(tmp_path):
+    robot = robokit.load("puma560")
+    path = tmp_path / "puma_js.html"
+    path.write_text(teach_html(robot), encoding="utf-8")
+    q0 = np.array([0.2, 0.3, -0.4, 0.5, 0.6, 0.7])
+    d = run_page(path, q0, "&T=" + _fmt(robot.frame_pose([0.1] * 6)))
+    assert d["rk-pose"]["data-source"] == "js"
+    assert d["rk-ik"]["data-status"] == "unavailable" and d["rk-ik"]["data-count"] == "0"
+    np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
+    np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), robot.frame_pose(q0), rtol=0, atol=TOL)
+
+
+@needs_zig
+def test_cli_embeds_the_module(tmp_path):
+    from robokit.cli import main as cli_main
+
+    out = tmp_path / "puma.html"
+    assert cli_main(["teach", "puma560", "-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    module = text.split('<script id="rk-wasm" type="application/octet-stream">')[1].split("</script>")[0]
+    assert 0 < len(module) < 64_000  # the robot's C as WebAssembly, base64: a few tens of kB
+    assert "RKWasm" in text
+    assert "http://" not in text.split('id="rk-robot"')[1] and "https://" not in text.split('id="rk-robot"')[1]
+
+
+@needs_chromium
+@needs_zig
+def test_arm_without_closed_form_follows_by_damped_least_squares(tmp_path):
+    from robokit.codegen.wasm import wasm_module
+
+    robot = robokit.load("panda")
+    path = tmp_path / "panda.html"
+    path.write_text(teach_html(robot, wasm=wasm_module(robot).wasm), encoding="utf-8")
+    q0 = np.array([0.1, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5])
+    T = robot.frame_pose(q0 + np.array([0.03, -0.02, 0.04, 0.02, -0.03, 0.01, 0.02]))
+    d = run_page(path, q0, "&T=" + _fmt(T))
+    ik = d["rk-ik"]
+    assert ik["data-status"] == "dls" and int(ik["data-steps"]) > 0 and ik["data-chosen"] == "0"
+    q_page = nums(d["rk-q"]["data-q"])
+    np.testing.assert_allclose(q_page, json.loads(ik["data-solutions"])[0], rtol=0, atol=0)
+    np.testing.assert_allclose(robot.frame_pose(q_page), T, rtol=0, atol=TOL)
+    np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), T, rtol=0, atol=TOL)
+
+
+# Drives the page in an iframe: 100 targets through RKTeach.goToTarget (the entry point of #T=
+# and of the drag handle), then a drag of the handle with pointer events; writes what it saw.
+_PATH_JS = """
+function run() {
+  var f = document.getElementById("page"), w = f.contentWindow, d = w.document;
+  if (!w.RKTeach || !d.getElementById("rk-q") || !d.getElementById("rk-q").dataset.q ||
+      !d.getElementById("rk-gizmo").dataset.x) { setTimeout(run, 100); return; }
+  var qs = [], chosen = [];
+  PATH.forEach(function (T) {
+    w.RKTeach.goToTarget(T, "path");
+    qs.push(d.getElementById("rk-q").dataset.q);
+    chosen.push(d.getElementById("rk-ik").dataset.chosen);
+  });
+  var g = d.getElementById("rk-gizmo").dataset, cv = d.querySelector("#meshcat-pane canvas");
+  var before = d.getElementById("rk-pose").dataset.t, x = Number(g.x), y = Number(g.y);
+  var ev = function (type, X, Y) {
+    cv.dispatchEvent(new w.PointerEvent(type, { clientX: X, clientY: Y, bubbles: true, cancelable: true,
+                                                 pointerId: 1, isPrimary: true, button: 0, buttons: 1 }));
+  };
+  ev("pointerdown", x, y); ev("pointermove", x + 15, y - 5); ev("pointermove", x + 30, y - 10); ev("pointerup", x + 30, y - 10);
+  var ik = d.getElementById("rk-ik").dataset;
+  document.getElementById("out").textContent = JSON.stringify({
+    qs: qs, chosen: chosen, before: before, after: d.getElementById("rk-pose").dataset.t,
+    status: ik.status, target: ik.target || "", handle: [x, y] });
+}
+window.addEventListener("load", function () { setTimeout(run, 100); });
+"""
+
+
+@needs_chromium
+@needs_zig
+def test_smooth_path_and_drag_follow_one_branch(pages, tmp_path):
+    """UR5 along a smooth path of 100 poses (FK of a joint-space segment away from singularities):
+    the page's q follows the path's own branch, every step as small as the path's; then dragging
+    the handle moves the tool's position and keeps its orientation (Pinocchio's FK of the page's q)."""
+    robot, path = pages["ur5"]
+    q0 = np.array([0.3, -1.2, 1.5, -1.9, -1.2, 0.4])
+    q1 = q0 + np.array([0.6, 0.3, -0.4, 0.5, 0.4, -0.6])
+    s = np.linspace(0.0, 1.0, 100)
+    qpath = q0 + np.outer(0.5 - 0.5 * np.cos(np.pi * s), q1 - q0)  # smooth start and stop
+    Ts = [robot.frame_pose(q).ravel().tolist() for q in qpath]
+    harness = tmp_path / "path.html"
+    harness.write_text(
+        '<!DOCTYPE html><html><body><iframe id="page" width="1200" height="800" src="'
+        + path.resolve().as_uri() + "#q=" + _fmt(q0) + '"></iframe><pre id="out"></pre><script>var PATH = '
+        + json.dumps(Ts) + ";" + _PATH_JS + "</script></body></html>", encoding="utf-8")
+    got = run_harness(harness)
+    qs = np.array([nums(x) for x in got["qs"]])
+    np.testing.assert_allclose(qs, qpath, rtol=0, atol=TOL)  # the path's own branch, all along
+    step = np.abs(np.diff(qpath, axis=0)).max()
+    assert np.abs(np.diff(qs, axis=0)).max() <= step + TOL
+    # the drag: a new position, the same orientation, the arm there
+    before, after = nums(got["before"]).reshape(4, 4), nums(got["after"]).reshape(4, 4)
+    assert got["status"] == "ok"
+    assert np.linalg.norm(after[:3, 3] - before[:3, 3]) > 1e-3
+    np.testing.assert_allclose(after[:3, :3], before[:3, :3], rtol=0, atol=TOL)
+    np.testing.assert_allclose(after, nums(got["target"]).reshape(4, 4), rtol=0, atol=TOL)
+    np.testing.assert_allclose(robot.frame_pose(qs[-1]), before, rtol=0, atol=TOL)
