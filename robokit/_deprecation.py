@@ -47,9 +47,6 @@ DEPRECATIONS: dict[str, tuple[str, str]] = {
     "reference='tool'": ("Frame.LOCAL", REMOVAL),
     "reference='base'": ("Frame.LOCAL_WORLD_ALIGNED", REMOVAL),
     # defaults that become robokit.frames.DEFAULT_FRAME (omitting reference= warns once per function)
-    "Robot.jacobian(reference omitted)": ("reference=Frame.WORLD to keep today's result", REMOVAL),
-    "batch_jacobian(reference omitted)": ("reference=Frame.WORLD to keep today's result", REMOVAL),
-    "dh_static_torques(reference omitted)": ("reference=Frame.LOCAL to keep today's result", REMOVAL),
     # renamed keyword arguments (renamed_argument: once per name per process)
     "base_wrench(Ftip=)": ("F_tip=", REMOVAL),
     "ik_spherical_wrist(theta4_ref=)": ("wrist_ref=", REMOVAL),

@@ -89,8 +89,7 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
         (twist of the tip in the base frame); ``Frame.LOCAL``: the body Jacobian ``Ad_{T⁻¹} J_s``
         (tip axes); ``Frame.LOCAL_WORLD_ALIGNED``: ``[[I, 0], [−[p], I]] J_s`` — ω and the velocity
         of the tip origin in base axes (the course's geometric Jacobian, robokit's one default).
-        Omitted, this function still returns WORLD (its former default) with a ``FutureWarning``
-        until robokit 0.4.0: pass ``reference=`` to choose.
+        Omitted: LOCAL_WORLD_ALIGNED (before 0.3 this function defaulted to WORLD).
 
     Returns
     -------
@@ -109,7 +108,7 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
     from robokit.spatial import lie
 
     _tip_only(robot, frame)
-    reference = reference_or_default(reference, "batch_jacobian", Frame.WORLD)
+    reference = reference_or_default(reference, "batch_jacobian")
     Q = _rows(robot, Q, "q")
     p = robot.poe
     Slist = np.ascontiguousarray(p.Slist)

@@ -81,8 +81,7 @@ class RobotLike(Protocol):
             The frame (None: the tip).
         reference : robokit.Frame or str, optional
             Where it is expressed (``Frame.WORLD``, ``Frame.LOCAL`` or ``Frame.LOCAL_WORLD_ALIGNED``;
-            the *Conventions* page). ``Robot.jacobian`` still returns WORLD when it is omitted
-            (with a ``FutureWarning``); pass it explicitly.
+            the *Conventions* page); omitted: ``Frame.LOCAL_WORLD_ALIGNED``, robokit's one default.
 
         Returns
         -------

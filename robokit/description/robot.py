@@ -403,9 +403,8 @@ class Robot:
             ``Frame.WORLD`` — the space Jacobian (twist of the frame taken at the root origin, root
             axes); ``Frame.LOCAL`` — the body Jacobian (frame's own axes, at its origin);
             ``Frame.LOCAL_WORLD_ALIGNED`` — the course's geometric Jacobian (ω and the velocity of
-            the frame origin, root axes), the one default of robokit. Omitted, this method still
-            returns the WORLD Jacobian (its former default) with a ``FutureWarning`` until robokit
-            0.4.0: pass ``reference=`` to choose.
+            the frame origin, root axes), the one default of robokit (used when omitted; before
+            0.3 this method defaulted to WORLD: pass ``reference=Frame.WORLD`` for that result).
 
         Returns
         -------
@@ -429,7 +428,7 @@ class Robot:
         pin = self._pin
         if rf is None:
             # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's; omitted = WORLD (deprecated default)
-            canonical = reference_or_default(reference, "Robot.jacobian", Frame.WORLD)
+            canonical = reference_or_default(reference, "Robot.jacobian")
             rf = self._ref_frames[reference] = canonical.pinocchio  # None too: its warning is once per process
             reference = canonical
         if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape

@@ -153,9 +153,8 @@ def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference:
         The frame F_tip is given in, a :class:`robokit.Frame` as for :func:`dh_jacobian`:
         ``LOCAL_WORLD_ALIGNED`` (robokit's one default) — base_link axes, moment about the tool
         origin (a force sensor's reading moved to the tool); ``LOCAL`` — tool axes, moment about
-        the tool origin; ``WORLD`` — base_link axes, moment about the base origin. Omitted, this
-        function still reads F_tip in LOCAL (its former default) with a ``FutureWarning`` until
-        robokit 0.4.0: pass ``reference=`` to choose.
+        the tool origin; ``WORLD`` — base_link axes, moment about the base origin. Omitted:
+        LOCAL_WORLD_ALIGNED (before 0.3 this function read F_tip in LOCAL, tool axes).
 
     Returns
     -------
@@ -174,7 +173,7 @@ def dh_static_torques(table: DHTable, q: ArrayLike, F_tip: ArrayLike, reference:
     >>> dh_static_torques(arm, [0.0, 0.0], [0, 0, 0, 0, -10, 0], reference=Frame.LOCAL_WORLD_ALIGNED).round(4)
     array([-20., -10.])
     """
-    ref = reference_or_default(reference, "dh_static_torques", Frame.LOCAL)
+    ref = reference_or_default(reference, "dh_static_torques")
     k = _kdh or _kernels()
     P, modified, base, tool = k.pack_dh(table)[:4]
     signs = flip_signs(table)

@@ -15,7 +15,7 @@ def test_static_torques_take_the_wrench_in_base_axes():
         J = r.jacobian(q, reference="local_world_aligned")  # Pinocchio: (ω; v) of the tool, base axes
         assert np.abs(dh_static_torques(r.dh, q, F, reference="base") - J.T @ F).max() < 1e-10
         Jl = r.jacobian(q, reference="local")
-        assert np.abs(dh_static_torques(r.dh, q, F) - Jl.T @ F).max() < 1e-10
+        assert np.abs(dh_static_torques(r.dh, q, F, reference="local") - Jl.T @ F).max() < 1e-10
     # "world" is part of the shared vocabulary (test_reference_vocabulary.py); unknown names fail
     with pytest.raises(ValueError, match="reference"):
         dh_static_torques(r.dh, q, F, reference="spatial")

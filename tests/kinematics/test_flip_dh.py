@@ -31,5 +31,5 @@ def test_flipped_joints_match_pinocchio():
             assert np.abs(J - robot.jacobian(q, reference="local_world_aligned")).max() < 1e-9
             Jt = robot.jacobian(q, reference="local")
             F = rng.normal(size=6)
-            assert np.abs(dh_static_torques(table, q, F) - Jt.T @ F).max() < 1e-9
+            assert np.abs(dh_static_torques(table, q, F, reference="local") - Jt.T @ F).max() < 1e-9
             assert np.abs(dh_inverse_dynamics(table, q, dq, ddq) - robot.rnea(q, dq, ddq)).max() < 1e-9

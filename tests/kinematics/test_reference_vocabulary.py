@@ -101,31 +101,27 @@ def test_every_function_equals_pinocchio(robots, model, name, canonical):
     np.testing.assert_allclose(batch_jacobian(robot, Q, reference=name), J_batch, atol=1e-9)
 
 
-def test_one_default_and_the_former_defaults_keep_their_result(robots, monkeypatch):
-    """The declared default is DEFAULT_FRAME (LOCAL_WORLD_ALIGNED) or None; None keeps the former
-    default's result (WORLD for Robot.jacobian/batch_jacobian, LOCAL for dh_static_torques) with a
-    FutureWarning, until the removal release."""
+def test_every_frame_taking_function_has_one_default(robots):
+    """The Jacobian functions share one default (the contract): DEFAULT_FRAME, LOCAL_WORLD_ALIGNED —
+    the lecture's geometric Jacobian, the generated C's. A reference left out gives that frame's
+    result, compared with Pinocchio, and no warning."""
+    import warnings
+
     from robokit.symbolic import SymbolicArm
 
     assert DEFAULT_FRAME is Frame.LOCAL_WORLD_ALIGNED
     for fn in (dh_jacobian, SymbolicArm.jacobian):
         assert inspect.signature(fn).parameters["reference"].default is DEFAULT_FRAME, fn
-    for fn in (rk.Robot.jacobian, batch_jacobian, dh_static_torques):
-        assert inspect.signature(fn).parameters["reference"].default is None, fn
-    import robokit._deprecation as deprecation
-
-    monkeypatch.setattr(deprecation, "_WARNED", set())  # once per process: start this test afresh
-    robot = rk.load("puma560")  # a fresh Robot (one that answered the default before needs no second warning)
+    robot = rk.load("puma560")
     q = _configurations(robot)[0]
-    J_world, J_lwa, J_local = (_pin_jacobian(robot, q, c) for c in ("world", "local_world_aligned", "local"))
-    with pytest.warns(FutureWarning, match=r"Robot.jacobian\(reference omitted\): the default frame becomes .*0\.4\.0"):
-        np.testing.assert_allclose(robot.jacobian(q), J_world, atol=1e-9)
-    with pytest.warns(FutureWarning, match="batch_jacobian"):
-        np.testing.assert_allclose(batch_jacobian(robot, q[None]), J_world[None], atol=1e-9)
-    np.testing.assert_allclose(dh_jacobian(robot.dh, q), J_lwa, atol=1e-9)
+    J_lwa = _pin_jacobian(robot, q, "local_world_aligned")
     F = np.arange(1.0, 7.0)
-    with pytest.warns(FutureWarning, match="dh_static_torques"):
-        np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), J_local.T @ F, atol=1e-9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        np.testing.assert_allclose(robot.jacobian(q), J_lwa, atol=1e-9)
+        np.testing.assert_allclose(batch_jacobian(robot, q[None]), J_lwa[None], atol=1e-9)
+        np.testing.assert_allclose(dh_jacobian(robot.dh, q), J_lwa, atol=1e-9)
+        np.testing.assert_allclose(dh_static_torques(robot.dh, q, F), J_lwa.T @ F, atol=1e-9)
 
 
 def test_former_words_warn_once_per_word_per_process():

@@ -31,7 +31,7 @@ def test_propagation_jacobian_and_static_forces_vs_pinocchio(name, robots):
         R = r.frame_pose(q)[:3, :3]
         assert np.abs(jacobian_in_frame(Jb, R.T) - Jt).max() < 1e-12  # the 6×6 change of frame
         F = rng.normal(size=6)
-        assert np.abs(dh_static_torques(r.dh, q, F) - Jt.T @ F).max() < 1e-9  # τ = Jᵀ F
+        assert np.abs(dh_static_torques(r.dh, q, F, reference="local") - Jt.T @ F).max() < 1e-9  # τ = Jᵀ F
 
 
 @pytest.mark.parametrize("convention", ["standard", "modified"])
@@ -43,7 +43,7 @@ def test_propagation_random_tables_with_prismatic(convention, random_dh_table_fa
         q = r.random_configuration(rng)
         assert np.abs(dh_jacobian(table, q) - r.jacobian(q, reference="local_world_aligned")).max() < 1e-9
         F = rng.normal(size=6)
-        assert np.abs(dh_static_torques(table, q, F) - r.jacobian(q, reference="local").T @ F).max() < 1e-9
+        assert np.abs(dh_static_torques(table, q, F, reference="local") - r.jacobian(q, reference="local").T @ F).max() < 1e-9
 
 
 @pytest.fixture(scope="session")
