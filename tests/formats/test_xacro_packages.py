@@ -124,7 +124,7 @@ def test_robokit_expands_and_loads_what_the_xacro_program_expands(name, referenc
             assert np.abs(robot.frame_pose(q, link) - want).max() < 1e-12 * scale, link
         J = pin.computeFrameJacobian(model, data, q_ref, tip, pin.WORLD)[:, iv]
         J = np.vstack([J[3:], J[:3]])  # robokit: angular rows first
-        assert np.abs(robot.jacobian(q) - J).max() < 1e-12 * max(1.0, np.abs(J).max())
+        assert np.abs(robot.jacobian(q, reference="world") - J).max() < 1e-12 * max(1.0, np.abs(J).max())
         tau = pin.rnea(model, data, q_ref, v_ref, a_ref)[iv]
         assert np.abs(robot.rnea(q, dq, ddq) - tau).max() < 1e-12 * max(1.0, np.abs(tau).max())
 
