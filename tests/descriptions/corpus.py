@@ -390,8 +390,16 @@ def _xacro_program(path: Path, items: tuple[tuple[str, str], ...], roots: tuple[
         pkg.packages = sub  # type: ignore[attr-defined]
         sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = pkg, sub
     import xacro
+    from xacro import substitution_args
 
-    doc = xacro.process_file(str(path), mappings=dict(items))
+    # xacrodoc (pulled in by roboticstoolbox) replaces xacro's $(find) at import; whichever test ran
+    # before in this process, $(find) here is the program's own lookup through the stub above
+    saved = substitution_args._eval_find
+    substitution_args._eval_find = _package_folder
+    try:
+        doc = xacro.process_file(str(path), mappings=dict(items))
+    finally:
+        substitution_args._eval_find = saved
     return doc.toxml()
 
 
