@@ -34,7 +34,8 @@ inertia :attr:`Joint.armature` in ``model.armature``, which Pinocchio's ``crba``
 ``aba`` add on the joint's diagonal of the mass matrix (τ += armature · q̈).
 
 Geometry (:class:`Geometry`) becomes ``GeometryObject``\ s named ``<link>_<k>`` (k counting the
-link's visual or collision shapes from 0, the URDF parser's names) on the link's joint and body
+link's visual or collision shapes from 0, the URDF parser's names), link by link in the model's
+order (depth first, as the URDF parser walks the tree) on the link's joint and body
 frame; box, cylinder, sphere and capsule are coal primitives, a mesh is loaded by coal's mesh
 loader (a file that cannot be read is left out, with a note).
 
@@ -660,6 +661,8 @@ def _geometry_models(model: Any, geometries: Iterable[Geometry], body_fid: dict[
     out = {False: pin.GeometryModel(), True: pin.GeometryModel()}
     counts: dict[tuple[str, bool], int] = {}
     notes: list[str] = []
+    # in the model's link order (depth first, as the URDF parser walks the tree), each link's shapes as given
+    geometries = sorted(geometries, key=lambda g: body_fid.get(g.link, -1))
     for geom in geometries:
         role = "collision" if geom.collision else "visual"
         where = f"{name}: link {geom.link!r}, {role} {geom.kind}"

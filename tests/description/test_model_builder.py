@@ -240,3 +240,22 @@ def test_loading_a_urdf_never_calls_pinocchios_urdf_parser(monkeypatch):
     robot = rk.load(str(path))
     assert_same_model(robot.model, ref)
     assert_same_dynamics(robot.model, ref)
+
+
+@pytest.mark.parametrize("name", ["ur5", "panda", "talos_arm", "kinova"])
+def test_example_robot_data_urdf_robots_equal_its_own_loader(name):
+    """example-robot-data's URDF robots are built by the one builder; what its loader adds from the SRDF (reference
+    posture, rotor inertia as armature — talos_arm has it —, the collision pairs the SRDF leaves) comes out as
+    the package's own loader (Pinocchio's URDF parser + its SRDF reader) makes it."""
+    erd = pytest.importorskip("example_robot_data")
+    from robokit.description.example_robots import _built_from_urdf
+
+    ref = erd.load(name)
+    model, visual, collision, q0 = _built_from_urdf(erd.ROBOTS[name])
+    assert_same_model(model, ref.model)
+    assert_same_dynamics(model, ref.model)
+    np.testing.assert_array_equal(q0, ref.q0)
+    assert [o.name for o in collision.geometryObjects] == [o.name for o in ref.collision_model.geometryObjects]
+    pairs = [(p.first, p.second) for p in collision.collisionPairs]
+    assert pairs == [(p.first, p.second) for p in ref.collision_model.collisionPairs]
+    assert [o.name for o in visual.geometryObjects] == [o.name for o in ref.visual_model.geometryObjects]
