@@ -74,19 +74,22 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
 
     loader = erd.ROBOTS[name]
     notes = []
+    if getattr(loader, "free_flyer", False):
+        # Loaded with its base fixed to the world: a fixed-base arm (so100) is then what its
+        # URDF describes; a mobile or legged robot's limbs are then chains like any other.
+        notes.append(f"{name}: example-robot-data gives it a floating base; loaded with the base fixed "
+                     "to the world")
     try:
         with _quiet():
-            if getattr(loader, "free_flyer", False):
-                # Loaded with its base fixed to the world: a fixed-base arm (so100) is then what its
-                # URDF describes; a mobile or legged robot's limbs are then chains like any other.
+            built = _built_from_urdf(loader) if getattr(loader, "urdf_filename", "") else None
+            if built is None:  # an SDFormat robot: example-robot-data's loader (Pinocchio's SDF parser)
                 wrapper = type(loader.__name__, (loader,), {"free_flyer": False})().robot
-                notes.append(f"{name}: example-robot-data gives it a floating base; loaded with the base fixed "
-                             "to the world")
-            else:
-                wrapper = erd.load(name)
+                built = (wrapper.model, wrapper.visual_model, wrapper.collision_model, getattr(wrapper, "q0", None))
+    except InputError:
+        raise
     except Exception as exc:  # a dependency's failure is still one robokit line
         raise InputError(f"model {name!r}: example-robot-data could not load it ({one_line(exc)})") from None
-    model = wrapper.model
+    model, visual_model, collision_model, q0 = built
     # The URDF's own names: Pinocchio's URDF parser names frames and joints after the file's
     # links and joints and adds only the world frame 'universe' (frame 0).
     names = frozenset(f.name for f in list(model.frames)[1:]) | frozenset(list(model.names)[1:])
@@ -99,7 +102,6 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
         if note:
             notes.append(f"{name}: {note}")
     configurations = {}
-    q0 = getattr(wrapper, "q0", None)
     chain_names = []
     if model.existFrame(tip):
         j = model.frames[frame_index(model, tip)].parentJoint
@@ -122,8 +124,38 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
             shown = ", ".join(f"{jn} {a:.4g}" for jn, a in arm)
             notes.append(f"{name}: reflected rotor inertia (example-robot-data's SRDF: rotorInertia · "
                          f"rotorGearRatio²) is in M and RNEA as armature: {shown} (kg·m²; kg for a prismatic joint)")
-    return build_robot(name, model, tip, [wrapper.visual_model, wrapper.collision_model], configurations,
+    return build_robot(name, model, tip, [visual_model, collision_model], configurations,
                        spec, notes, names=names)
+
+
+def _built_from_urdf(loader: Any) -> tuple[Any, Any, Any, Any]:
+    """An example-robot-data URDF robot built as every URDF robot is (read and checked by
+    :func:`~robokit.description.urdf_check.read_urdf`, built by the one model builder), with what
+    example-robot-data's loader adds from the robot's SRDF: the reference posture ``q0``, the
+    rotor parameters (``armature`` = rotor inertia · gear ratio²) and the collision pairs the SRDF
+    does not disable. Returns (model, visual, collision, q0 or None)."""
+    from os.path import join
+
+    import example_robot_data as erd
+    import pinocchio as pin
+
+    from robokit.description.model_builder import build_model
+    from robokit.description.urdf_check import read_urdf
+    from robokit.description.urdf_description import description_from_urdf
+
+    rel = join(loader.path, loader.urdf_subpath, loader.urdf_filename)
+    root = loader.model_path or erd.robots_loader.getModelPath(rel)
+    path = join(root, rel)
+    doc = read_urdf(path, package_dirs=[join(root, "../..")])
+    model, visual, collision, _ = build_model(description_from_urdf(doc.xml, path))
+    q0 = None
+    if loader.srdf_filename:
+        srdf = join(root, loader.path, loader.srdf_subpath, loader.srdf_filename)
+        q0 = erd.robots_loader.readParamsFromSrdf(model, srdf, False, loader.has_rotor_parameters,
+                                                  loader.ref_posture)
+        collision.addAllCollisionPairs()
+        pin.removeCollisionPairs(model, collision, srdf, False)
+    return model, visual, collision, q0
 
 
 class _quiet:

@@ -21,7 +21,9 @@ Pinocchio's URDF parser lays a model out:
 
 Joint models, as the URDF parser picks them: an axis along +x, +y or +z (after normalising) is
 ``JointModelRX``/``RY``/``RZ`` (``PX``/``PY``/``PZ``), any other axis ``RevoluteUnaligned``
-(``PrismaticUnaligned``). A **continuous** joint is Pinocchio's unbounded revolute joint
+(``PrismaticUnaligned``); a **floating** joint is ``JointModelFreeFlyer`` and a **planar** one
+``JointModelPlanar`` (motion in the joint frame's xy plane, whatever the axis, as urdfdom's parser
+makes them), unlimited but for the unit quaternion / (cos, sin) part, bounded by ±1.01. A **continuous** joint is Pinocchio's unbounded revolute joint
 (``JointModelRUBX``/``RUBY``/``RUBZ``/``RevoluteUnboundedUnaligned``), with nq = 2 — its
 configuration is (cos θ, sin θ), bounded by ±1.01 as the URDF parser bounds it — and nv = 1.
 
@@ -32,7 +34,8 @@ inertia :attr:`Joint.armature` in ``model.armature``, which Pinocchio's ``crba``
 ``aba`` add on the joint's diagonal of the mass matrix (τ += armature · q̈).
 
 Geometry (:class:`Geometry`) becomes ``GeometryObject``\ s named ``<link>_<k>`` (k counting the
-link's visual or collision shapes from 0, the URDF parser's names) on the link's joint and body
+link's visual or collision shapes from 0, the URDF parser's names), link by link in the model's
+order (depth first, as the URDF parser walks the tree) on the link's joint and body
 frame; box, cylinder, sphere and capsule are coal primitives, a mesh is loaded by coal's mesh
 loader (a file that cannot be read is left out, with a note).
 
@@ -57,7 +60,7 @@ __all__ = ["Pose", "Inertial", "Link", "Joint", "FrameSpec", "Geometry", "Descri
            "GEOMETRY_KINDS", "build_model"]
 
 #: The joint kinds a :class:`Joint` may have.
-JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed")
+JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 #: The shapes a :class:`Geometry` may have, and the sizes each takes.
 GEOMETRY_KINDS = {"box": 3, "cylinder": 2, "sphere": 1, "capsule": 2, "mesh": 0}
 
@@ -419,7 +422,7 @@ def _check(desc: Description) -> tuple[dict[str, Link], dict[str | None, list[Jo
         if j.child in parent_of:
             raise InputError(f"{desc.name}: link {j.child!r} is the child of two joints")
         parent_of[j.child] = j.parent
-        if j.kind != "fixed" and np.linalg.norm(j.axis) < 1e-12:
+        if j.kind in _AXIS_MODELS and np.linalg.norm(j.axis) < 1e-12:
             raise InputError(f"{desc.name}: joint {j.name!r}: the axis is zero")
         if j.kind in ("revolute", "prismatic") and j.lower > j.upper:
             raise InputError(f"{desc.name}: joint {j.name!r}: lower limit {j.lower:g} is above the upper limit "
@@ -489,20 +492,33 @@ def _joint_model(joint: Joint) -> Any:
 
 def _add_moving(model: Any, joint: Joint, parent_fid: int, inertia: Any) -> None:
     """addJoint + addJointFrame + the child body, as the URDF parser's addJointAndBody does."""
+    import pinocchio as pin
+
     frame = model.frames[parent_fid]
-    jm = _joint_model(joint)
-    if joint.kind == "continuous":
-        lo, hi = np.array([-1.01, -1.01]), np.array([1.01, 1.01])
+    if joint.kind in _AXIS_MODELS:
+        jm = _joint_model(joint)
+        effort, velocity = np.array([joint.effort]), np.array([joint.velocity])
+        if joint.kind == "continuous":
+            lo, hi = np.array([-1.01, -1.01]), np.array([1.01, 1.01])
+        else:
+            lo, hi = np.array([joint.lower]), np.array([joint.upper])
     else:
-        lo, hi = np.array([joint.lower]), np.array([joint.upper])
+        # a floating or planar joint, as the URDF parser makes it: unlimited but for the unit
+        # (co)sine/quaternion part of the configuration (±1.01); no damping, friction, armature
+        jm, nv, nq, unit = ((pin.JointModelFreeFlyer(), 6, 7, 4) if joint.kind == "floating"
+                            else (pin.JointModelPlanar(), 3, 4, 2))
+        effort, velocity = np.full(nv, np.inf), np.full(nv, np.inf)
+        lo, hi = np.full(nq, -np.inf), np.full(nq, np.inf)
+        lo[nq - unit:], hi[nq - unit:] = -1.01, 1.01
     jid = model.addJoint(frame.parentJoint, jm, frame.placement * _se3(joint.placement), joint.name,
-                         np.array([joint.effort]), np.array([joint.velocity]), lo, hi)
-    iv = model.joints[jid].idx_v
-    for attr, value in (("damping", joint.damping), ("upperDryFrictionLimit", joint.friction),
-                        ("lowerDryFrictionLimit", -joint.friction), ("armature", joint.armature)):
-        arr = np.array(getattr(model, attr), dtype=float)
-        arr[iv] = value
-        setattr(model, attr, arr)
+                         effort, velocity, lo, hi)
+    if joint.kind in _AXIS_MODELS:
+        iv = model.joints[jid].idx_v
+        for attr, value in (("damping", joint.damping), ("upperDryFrictionLimit", joint.friction),
+                            ("lowerDryFrictionLimit", -joint.friction), ("armature", joint.armature)):
+            arr = np.array(getattr(model, attr), dtype=float)
+            arr[iv] = value
+            setattr(model, attr, arr)
     jfid = model.addJointFrame(jid, parent_fid)
     placement = model.frames[jfid].placement * _se3(joint.child_placement)
     if not inertia.isZero(0.0):
@@ -645,6 +661,8 @@ def _geometry_models(model: Any, geometries: Iterable[Geometry], body_fid: dict[
     out = {False: pin.GeometryModel(), True: pin.GeometryModel()}
     counts: dict[tuple[str, bool], int] = {}
     notes: list[str] = []
+    # in the model's link order (depth first, as the URDF parser walks the tree), each link's shapes as given
+    geometries = sorted(geometries, key=lambda g: body_fid.get(g.link, -1))
     for geom in geometries:
         role = "collision" if geom.collision else "visual"
         where = f"{name}: link {geom.link!r}, {role} {geom.kind}"

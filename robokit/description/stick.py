@@ -8,21 +8,20 @@ in its own frame, and the tip frame's placement in the last joint's frame:
            \qquad \hat S_i = (a_i, 0) \text{ (revolute) or } (0, a_i) \text{ (prismatic)}
 
 (Lecture 3's product of joint placements and joint motions; Pinocchio's ``jointPlacements``).
-:func:`stick_robot` builds a Robot back from those arrays alone: a cylinder on each joint
-axis and a segment from each joint to the next, so a picture needs no file. A capability map
+:func:`stick_robot` builds a Robot back from those arrays alone, through the one model builder (no
+URDF text): a cylinder on each joint axis and a segment from each joint to the next, so a
+picture needs no file. A capability map
 stores these arrays for robots that have no shipped or example-robot-data name and no DH
 table, so ``robokit view MAP.npz`` draws the arm without opening any path.
 """
 from __future__ import annotations
-
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit.description.mjcf_write import _joint_axis
 from robokit.description.robot import Robot
-from robokit.description.urdf_gen import _cylinder_between, _f, _origin, _vec
+from robokit.description.urdf_gen import MATERIALS, _cylinder_pose
 from robokit.errors import InputError
 
 __all__ = ["chain_geometry", "stick_robot", "MAX_STICK_JOINTS"]
@@ -149,7 +148,7 @@ def stick_robot(name: str, joint_types: ArrayLike, joint_placements: ArrayLike, 
     >>> bool(np.allclose(stick.frame_pose([0.1, 0.2, 0.3]), arm.frame_pose([0.1, 0.2, 0.3])))
     True
     """
-    import pinocchio as pin
+    from robokit.description.model_builder import Description, Geometry, Joint, Link, Pose, build_model
 
     types, X, A, X_tip = _checked(joint_types, joint_placements, joint_axes, tip_placement)
     if not isinstance(name, str) or not isinstance(tip, str):
@@ -160,29 +159,25 @@ def stick_robot(name: str, joint_types: ArrayLike, joint_placements: ArrayLike, 
     scale = max(float(np.abs(X[:, :3, 3]).max(initial=0.0)), float(np.abs(X_tip[:3, 3]).max()), 0.1)
     r_joint = max(0.01, 0.08 * scale)
     r_link = 0.45 * r_joint
-    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name or 'robot')}>",
-             '  <material name="robokit_joint"><color rgba="0.95 0.55 0.1 1"/></material>',
-             '  <material name="robokit_link"><color rgba="0.55 0.6 0.7 1"/></material>',
-             '  <link name="base_link"/>']
+    links, joints, geoms = [Link("base_link")], [], []
     for i in range(1, n + 1):
         a = A[i - 1]
         nxt = (X[i] if i < n else X_tip)[:3, 3]
-        parts = [v for v in (_cylinder_between(-1.2 * r_joint * a, 1.2 * r_joint * a, r_joint, "robokit_joint"),
-                             _cylinder_between([0, 0, 0], nxt, r_link, "robokit_link")) if v]
-        lines.append(f'  <link name="link_{i}">{"".join(parts)}</link>')
-        jtype = "revolute" if types[i - 1] == "R" else "prismatic"
-        limit = 1e3 if jtype == "prismatic" else 2 * np.pi
-        parent = "base_link" if i == 1 else f"link_{i - 1}"
-        lines.append(f'  <joint name="joint_{i}" type="{jtype}"><parent link="{parent}"/><child link="link_{i}"/>'
-                     f'{_origin(X[i - 1])}<axis xyz="{_vec(a)}"/>'
-                     f'<limit lower="{_f(-limit)}" upper="{_f(limit)}" effort="1000" velocity="10"/></joint>')
-    lines.append(f"  <link name={quoteattr(safe_tip)}/>")
-    lines.append(f'  <joint name="link_{n}_to_tip" type="fixed"><parent link="link_{n}"/>'
-                 f"<child link={quoteattr(safe_tip)}/>{_origin(X_tip)}</joint>")
-    lines.append("</robot>")
-    xml = "\n".join(lines) + "\n"
-    model = pin.buildModelFromXML(xml)
-    visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL)
-    robot = Robot(name or "robot", model, safe_tip, visual_model=visual, collision_model=None,
-                  source=f"stick model of {name or 'robot'} (joint placements and axes)")
-    return robot
+        for p0, p1, radius, material in ((-1.2 * r_joint * a, 1.2 * r_joint * a, r_joint, "robokit_joint"),
+                                         (np.zeros(3), nxt, r_link, "robokit_link")):
+            c = _cylinder_pose(p0, p1)
+            if c is not None:
+                geoms.append(Geometry(f"link_{i}", "cylinder", Pose.from_matrix(c[0]), (radius, c[1]),
+                                      color=MATERIALS[material]))
+        links.append(Link(f"link_{i}"))
+        kind = "revolute" if types[i - 1] == "R" else "prismatic"
+        limit = 1e3 if kind == "prismatic" else 2 * np.pi
+        joints.append(Joint(f"joint_{i}", kind, "base_link" if i == 1 else f"link_{i - 1}", f"link_{i}",
+                            Pose.from_matrix(X[i - 1]), axis=(float(a[0]), float(a[1]), float(a[2])),
+                            lower=-limit, upper=limit, effort=1000.0, velocity=10.0))
+    links.append(Link(safe_tip))
+    joints.append(Joint(f"link_{n}_to_tip", "fixed", f"link_{n}", safe_tip, Pose.from_matrix(X_tip)))
+    model, visual, _, _ = build_model(Description(name or "robot", tuple(links), tuple(joints),
+                                                  geometries=tuple(geoms)))
+    return Robot(name or "robot", model, safe_tip, visual_model=visual, collision_model=None,
+                 source=f"stick model of {name or 'robot'} (joint placements and axes)")

@@ -19,17 +19,17 @@ rules, which Pinocchio's URDF parser follows:
 ``<mimic>``, ``<transmission>``, ``<gazebo>`` and ``<safety_controller>`` are not read here (the
 URDF loader reports the first and refuses a mimic joint on the chain).
 
-:func:`robokit.description.urdf_files.load_urdf` still builds with Pinocchio's URDF parser; this
-reader is what the tests use to show that the builder lays a model out as that parser does (the
-same frames, joints, inertias, limits and geometry, on the shipped and example-robot-data arms),
-and the path by which URDF can move onto the builder.
+:func:`robokit.description.urdf_files.load_urdf` (and so xacro, whose expansion is URDF) builds
+every URDF robot this way; the tests hold the result equal to Pinocchio's own URDF parser
+(``pinocchio.buildModelFromXML``/``buildGeomFromUrdfString``) on the shipped, example-robot-data
+and maker-published arms: the same frames, joints, inertias, limits and geometry.
 """
 from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
 
-from robokit.description.model_builder import Description, Geometry, Inertial, Joint, Link, Pose
+from robokit.description.model_builder import JOINT_KINDS, Description, Geometry, Inertial, Joint, Link, Pose
 from robokit.errors import InputError
 
 __all__ = ["description_from_urdf"]
@@ -138,8 +138,7 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
     Raises
     ------
     InputError
-        A number that does not parse, a joint of a kind the builder does not make (planar,
-        floating), no single root link.
+        A number that does not parse, a joint of an unknown kind, no single root link.
 
     Examples
     --------
@@ -167,9 +166,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
     for el in root.findall("joint"):
         name, kind = el.get("name", ""), el.get("type", "")
         where = f"{source}: joint {name!r}"
-        if kind not in ("revolute", "continuous", "prismatic", "fixed"):
-            raise InputError(f"{where}: a {kind} joint; robokit builds revolute, continuous, prismatic and fixed "
-                             "joints")
+        if kind not in JOINT_KINDS:
+            raise InputError(f"{where}: a {kind!r} joint; a URDF joint is one of {', '.join(JOINT_KINDS)}")
         parent_el, child_el = el.find("parent"), el.find("child")
         parent = parent_el.get("link", "") if parent_el is not None else ""
         child = child_el.get("link", "") if child_el is not None else ""

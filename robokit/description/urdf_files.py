@@ -1,10 +1,12 @@
 r"""URDF files: :func:`load_urdf` (``robokit.load("arm.urdf")``).
 
 The file is read and checked by :mod:`robokit.description.urdf_check` (bounded size, names,
-joint and link structure, meshes inside the file's package or ``package_dirs``), the model
-built by Pinocchio (``pinocchio.buildModelFromXML``) and the visual and collision geometry by
-``pinocchio.buildGeomFromUrdfString``; a geometry Pinocchio cannot read is left out with a
-note. The robot is the chain root → tip (:func:`robokit.description.builder.build_robot`).
+joint and link structure, meshes inside the file's package or ``package_dirs``), read into
+a :class:`~robokit.description.model_builder.Description`
+(:func:`~robokit.description.urdf_description.description_from_urdf`, urdfdom's rules) and built
+by the one model builder (:func:`~robokit.description.model_builder.build_model`), as every format
+is; the result equals Pinocchio's own URDF parser's model and geometry (the tests hold it so); a
+mesh that cannot be read is left out with a note. The robot is the chain root → tip (:func:`robokit.description.builder.build_robot`).
 """
 from __future__ import annotations
 
@@ -14,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from typing import Sequence
 
-from robokit.description.builder import build_robot, one_line
+from robokit.description.builder import build_robot
 from robokit.description.robot import Robot
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
@@ -119,34 +121,15 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os
                     spec: RobotSpec | None = None, gravity: object = None) -> Robot:
     """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``,
     with that file's ``spec``)."""
-    import pinocchio as pin
-
-    from robokit.description.urdf_check import capture_native_output, read_urdf
+    from robokit.description.model_builder import build_model
+    from robokit.description.urdf_check import read_urdf
+    from robokit.description.urdf_description import description_from_urdf
 
     doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, text=text)
-    with capture_native_output() as cap:
-        try:
-            model = pin.buildModelFromXML(doc.xml)
-        except Exception as exc:
-            failed: Exception | None = exc
-        else:
-            failed = None
-    if failed is not None:
-        why = cap.first_error() or one_line(failed)
-        raise InputError(f"{path}: Pinocchio cannot read this URDF ({why})") from None
+    model, visual, collision, notes = build_model(description_from_urdf(doc.xml, str(path)))
     if gravity is not None:
         model.gravity.linear = np.asarray(gravity, dtype=float)
-    geoms, notes = [], []
-    for gtype in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION):
-        with capture_native_output() as cap:
-            try:
-                geoms.append(pin.buildGeomFromUrdfString(model, doc.xml, gtype, package_dirs=doc.package_dirs))
-                err = None
-            except Exception as exc:
-                geoms.append(None)
-                err = cap.first_error() or one_line(exc)
-        if err:
-            notes.append(f"{path}: {gtype.name.lower()} geometry not loaded ({err}); drawn without it")
+    geoms = [visual, collision]
     if spec is None:
         spec = RobotSpec("urdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
                          allow_outside_meshes=bool(allow_outside_meshes))

@@ -193,3 +193,69 @@ def test_joint_cap():
         build_model(Description("snake", links, joints))
     fixed = tuple(Joint(f"j{i}", "fixed", f"l{i}", f"l{i + 1}") for i in range(199))
     assert build_model(Description("rod", links, fixed))[0].nq == 0  # frames only: allowed
+
+
+FLOATING_PLANAR_URDF = """<robot name="bases">
+  <link name="world"/>
+  <link name="cart"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/>
+  </inertial></link>
+  <link name="puck"><inertial><origin xyz="0.1 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.02" izz="0.03" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><origin xyz="0 0 0.2"/><mass value="0.5"/>
+    <inertia ixx="0.004" iyy="0.004" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="free" type="floating"><parent link="world"/><child link="cart"/><origin xyz="0 0 1" rpy="0 0 0.3"/>
+  </joint>
+  <joint name="slide" type="planar"><parent link="cart"/><child link="puck"/><origin xyz="0.2 0 0" rpy="0.1 0 0"/>
+    <axis xyz="0 1 0"/></joint>
+  <joint name="j1" type="revolute"><parent link="puck"/><child link="arm"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="3"/></joint>
+</robot>"""
+
+
+def test_floating_and_planar_joints_as_the_urdf_parser_makes_them():
+    """A free-flyer and a planar joint (whatever its axis: urdfdom's planar joint moves in its frame's xy plane)
+    come out as Pinocchio's parser makes them: joint models, limits (unbounded but the unit part at ±1.01)."""
+    ref = pin.buildModelFromXML(FLOATING_PLANAR_URDF)
+    model, _, _, notes = build_model(description_from_urdf(FLOATING_PLANAR_URDF))
+    assert notes == []
+    assert [model.joints[j].shortname() for j in (1, 2)] == ["JointModelFreeFlyer", "JointModelPlanar"]
+    assert_same_model(model, ref)
+    assert_same_dynamics(model, ref)
+
+
+def test_loading_a_urdf_never_calls_pinocchios_urdf_parser(monkeypatch):
+    """Every URDF robot (and so every xacro one) is built by build_model: with Pinocchio's URDF parser made to
+    fail, the shipped PUMA still loads, and its model equals the parser's (built before the patch)."""
+    import robokit as rk
+    from robokit.description.models import model_path
+
+    path = model_path("puma560", ".urdf")
+    ref = pin.buildModelFromXML(read_urdf(path).xml)
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("Pinocchio's URDF parser was called")
+
+    for name in ("buildModelFromXML", "buildModelFromUrdf", "buildGeomFromUrdfString", "buildGeomFromUrdf"):
+        monkeypatch.setattr(pin, name, refuse)
+    robot = rk.load(str(path))
+    assert_same_model(robot.model, ref)
+    assert_same_dynamics(robot.model, ref)
+
+
+@pytest.mark.parametrize("name", ["ur5", "panda", "talos_arm", "kinova"])
+def test_example_robot_data_urdf_robots_equal_its_own_loader(name):
+    """example-robot-data's URDF robots are built by the one builder; what its loader adds from the SRDF (reference
+    posture, rotor inertia as armature — talos_arm has it —, the collision pairs the SRDF leaves) comes out as
+    the package's own loader (Pinocchio's URDF parser + its SRDF reader) makes it."""
+    erd = pytest.importorskip("example_robot_data")
+    from robokit.description.example_robots import _built_from_urdf
+
+    ref = erd.load(name)
+    model, visual, collision, q0 = _built_from_urdf(erd.ROBOTS[name])
+    assert_same_model(model, ref.model)
+    assert_same_dynamics(model, ref.model)
+    np.testing.assert_array_equal(q0, ref.q0)
+    assert [o.name for o in collision.geometryObjects] == [o.name for o in ref.collision_model.geometryObjects]
+    pairs = [(p.first, p.second) for p in collision.collisionPairs]
+    assert pairs == [(p.first, p.second) for p in ref.collision_model.collisionPairs]
+    assert [o.name for o in visual.geometryObjects] == [o.name for o in ref.visual_model.geometryObjects]
