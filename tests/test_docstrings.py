@@ -111,26 +111,7 @@ MAIN_TYPES = {
 }
 
 #: Public methods of the other classes still without Parameters/Returns (remove an entry when it is written).
-KNOWN_GAPS = {
-    "robokit.codegen.kinematics.Pose.const", "robokit.codegen.kinematics.Pose.identity",
-    "robokit.control.controllers.ComputedTorque.update", "robokit.control.controllers.IndependentJoint.update",
-    "robokit.control.motor.DCMotor.current", "robokit.control.motor.DCMotor.torque",
-    "robokit.control.motor.DCMotor.transfer_function", "robokit.control.motor.DCMotor.step_response",
-    "robokit.control.motor.DCMotor.acceleration", "robokit.control.motor.DCMotor.simulate",
-    "robokit.mobile.estimation.EKFLocalization.predict", "robokit.mobile.estimation.EKFLocalization.update",
-    "robokit.mobile.estimation.EKFSLAM.predict", "robokit.mobile.estimation.EKFSLAM.landmark",
-    "robokit.mobile.estimation.EKFSLAM.update", "robokit.mobile.estimation.LandmarkMap.random",
-    "robokit.mobile.estimation.Odometry.measure", "robokit.mobile.estimation.RangeBearingSensor.h",
-    "robokit.mobile.estimation.RangeBearingSensor.jacobians", "robokit.mobile.estimation.RangeBearingSensor.visible",
-    "robokit.mobile.estimation.RangeBearingSensor.measure", "robokit.mobile.particle.ParticleFilter.predict",
-    "robokit.mobile.particle.ParticleFilter.update", "robokit.mobile.unicycle.DifferentialDrive.body_velocity",
-    "robokit.mobile.unicycle.DifferentialDrive.wheel_speeds", "robokit.mobile.unicycle.DifferentialDrive.limit",
-    "robokit.mobile.unicycle.UnicycleModel.limit", "robokit.mobile.unicycle.UnicycleModel.deriv",
-    "robokit.mobile.unicycle.UnicycleModel.step", "robokit.mobile.vehicle.BicycleModel.limit",
-    "robokit.mobile.vehicle.BicycleModel.deriv", "robokit.mobile.vehicle.BicycleModel.step",
-    "robokit.mobile.vehicle.BicycleModel.sideways_velocity", "robokit.mobile.vehicle.FollowLine.distance",
-    "robokit.mobile.vehicle.PurePursuit.error",
-}
+KNOWN_GAPS: set[str] = set()
 
 
 def _methods(cls: Any) -> list[tuple[str, Any]]:

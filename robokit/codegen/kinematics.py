@@ -45,12 +45,29 @@ class Pose:
 
     @staticmethod
     def const(T: np.ndarray) -> "Pose":
-        """The constant pose of a 4×4 array T (round-off near 0 and ±1 folded, see ``SNAP``)."""
+        """The constant pose of a 4×4 array T (round-off near 0 and ±1 folded, see ``SNAP``).
+
+        Parameters
+        ----------
+        T : ndarray, shape (4, 4)
+            A rigid transform.
+
+        Returns
+        -------
+        Pose
+            Its rotation entries (snapped) and translation, all constants.
+        """
         return Pose([[snap(T[i, j]) for j in range(3)] for i in range(3)], [float(T[i, 3]) for i in range(3)])
 
     @staticmethod
     def identity() -> "Pose":
-        """The identity pose (all constants)."""
+        """The identity pose (all constants).
+
+        Returns
+        -------
+        Pose
+            Rotation I, translation 0.
+        """
         return Pose.const(np.eye(4))
 
 

@@ -139,6 +139,22 @@ class IndependentJoint(_Controller):
         return dq_ref - dq
 
     def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
+        """Advance the integral of the controller's velocity error by one step (rectangle rule).
+
+        Parameters
+        ----------
+        dt : float
+            The time step, s.
+        q, dq : ndarray, shape (n,)
+            Measured joint positions (rad / m) and velocities.
+        q_des, dq_des : ndarray, shape (n,)
+            Desired positions and velocities.
+
+        Returns
+        -------
+        None
+            ``self.integral`` is updated.
+        """
         self.integral = self.integral + dt * self._vel_error(q, dq, q_des, dq_des)
 
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
@@ -261,6 +277,22 @@ class ComputedTorque(_Controller):
         self.integral = np.zeros(self.n)
 
     def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
+        """Advance the integral of the position error ∫(q_d − q) dt by one step (rectangle rule).
+
+        Parameters
+        ----------
+        dt : float
+            The time step, s.
+        q, dq : ndarray, shape (n,)
+            Measured joint positions (rad / m) and velocities.
+        q_des, dq_des : ndarray, shape (n,)
+            Desired positions and velocities (``dq`` and ``dq_des`` are not used by this law's integral).
+
+        Returns
+        -------
+        None
+            ``self.integral`` is updated.
+        """
         self.integral = self.integral + dt * (q_des - q)
 
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,

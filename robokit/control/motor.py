@@ -84,15 +84,43 @@ class DCMotor:
         as_vector(self.Tc, "Tc", 2)
 
     def current(self, u: ArrayLike) -> np.ndarray:
-        """Motor current ``i = K_a u`` (A) for control voltage u (V)."""
+        """Motor current ``i = K_a u`` (A) for control voltage u (V).
+
+        Parameters
+        ----------
+        u : float or array_like
+            Control voltage(s), V.
+
+        Returns
+        -------
+        ndarray
+            Current(s), A, the shape of ``u``.
+        """
         return self.Ka * np.asarray(u, dtype=float)
 
     def torque(self, u: ArrayLike) -> np.ndarray:
-        """Motor torque ``τ = K_m K_a u`` (N·m) for control voltage u (V)."""
+        """Motor torque ``τ = K_m K_a u`` (N·m) for control voltage u (V).
+
+        Parameters
+        ----------
+        u : float or array_like
+            Control voltage(s), V.
+
+        Returns
+        -------
+        ndarray
+            Torque(s), N·m (motor side), the shape of ``u``.
+        """
         return self.Km * self.Ka * np.asarray(u, dtype=float)
 
     def transfer_function(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(num, den)`` of ``Ω(s)/U(s) = K_m K_a / (J s + B)``: polynomial coefficients, highest power first."""
+        """The speed-from-voltage transfer function ``Ω(s)/U(s) = K_m K_a / (J s + B)``.
+
+        Returns
+        -------
+        num, den : ndarray
+            Polynomial coefficients in s, highest power first.
+        """
         return np.array([self.Km * self.Ka]), np.array([self.J, self.B])
 
     @property
@@ -109,7 +137,19 @@ class DCMotor:
         """Closed-form speed (rad/s) after a voltage step u at t = 0, no Coulomb friction:
         ``ω(t) = ω_∞ + (ω₀ − ω_∞) e^{−B t / J}``, ``ω_∞ = K_m K_a u / B`` (``ω₀ + K_m K_a u t / J`` when B = 0).
 
-        t : (K,) times (s, ≥ 0).
+        Parameters
+        ----------
+        t : array_like, shape (K,)
+            Times, s (≥ 0).
+        u : float
+            The step's voltage, V.
+        omega0 : float
+            The speed at t = 0, rad/s.
+
+        Returns
+        -------
+        ndarray, shape (K,)
+            The speed at each time, rad/s.
         """
         t = np.asarray(t, dtype=float)
         u = as_scalar(u, "u")
@@ -120,16 +160,51 @@ class DCMotor:
         return w_inf + (omega0 - w_inf) * np.exp(-self.B * t / self.J)
 
     def acceleration(self, omega: float, u: float, tau_d: float = 0.0) -> float:
-        """``ω̇ = (K_m K_a u − B ω − τ_c(ω) − τ_d) / J`` (rad/s²)."""
+        """The motor equation ``ω̇ = (K_m K_a u − B ω − τ_c(ω) − τ_d) / J`` (rad/s²).
+
+        Parameters
+        ----------
+        omega : float
+            Speed, rad/s (its sign picks the Coulomb friction τ_c; none at rest).
+        u : float
+            Control voltage, V.
+        tau_d : float
+            Disturbance torque, N·m (motor side).
+
+        Returns
+        -------
+        float
+            The angular acceleration, rad/s².
+        """
         tc = self.Tc[0] if omega > 0 else (self.Tc[1] if omega < 0 else 0.0)
         return (self.Km * self.Ka * u - self.B * omega - tc - tau_d) / self.J
 
     def simulate(self, t: ArrayLike, u: ArrayLike, omega0: float = 0.0, tau_d: ArrayLike | None = None,
                  substeps: int = 10) -> np.ndarray:
-        """Speed ω (K,) by numerical integration (RK4) of the motor equation, Coulomb friction included.
+        """Speed ω by numerical integration (RK4) of the motor equation, Coulomb friction included.
 
-        t : (K,) increasing times (s); u : (K,) voltages (held over each interval) or a scalar;
-        tau_d : (K,) disturbance torques (N·m, motor side) or None; substeps : RK4 steps per interval.
+        Parameters
+        ----------
+        t : array_like, shape (K,)
+            Strictly increasing times, s.
+        u : float or array_like, shape (K,)
+            Voltages, V, each held over the interval that starts at its time.
+        omega0 : float
+            The speed at ``t[0]``, rad/s.
+        tau_d : array_like, shape (K,), optional
+            Disturbance torques, N·m (motor side), held like ``u``; None: none.
+        substeps : int
+            RK4 steps per interval.
+
+        Returns
+        -------
+        ndarray, shape (K,)
+            The speed at each time, rad/s.
+
+        Raises
+        ------
+        InputError
+            Times that do not increase strictly.
         """
         t = as_vector(t, "t")
         if np.any(np.diff(t) <= 0):

@@ -149,7 +149,18 @@ class Odometry:
         self.rng = np.random.default_rng(rng)
 
     def measure(self, delta: ArrayLike) -> np.ndarray:
-        """The measured increment: ``δ + v``, ``v ~ N(0, V)``."""
+        """The measured increment: ``δ + v``, ``v ~ N(0, V)``.
+
+        Parameters
+        ----------
+        delta : array_like, shape (2,)
+            The true increment (distance m, heading change rad).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            The noisy increment.
+        """
         return np.asarray(delta, float) + self.rng.multivariate_normal(np.zeros(2), self.V)
 
 
@@ -167,7 +178,21 @@ class LandmarkMap:
 
     @classmethod
     def random(cls, n: int, size: float = 10.0, rng: int | np.random.Generator | None = None) -> "LandmarkMap":
-        """``n`` landmarks uniform in the square [−size, size]²."""
+        """``n`` landmarks uniform in the square [−size, size]².
+
+        Parameters
+        ----------
+        n : int
+            How many.
+        size : float
+            Half the square's side, m.
+        rng : int or numpy.random.Generator, optional
+            Seed or generator.
+
+        Returns
+        -------
+        LandmarkMap
+        """
         return cls(np.random.default_rng(rng).uniform(-size, size, (int(n), 2)))
 
     def __len__(self) -> int:
@@ -210,13 +235,39 @@ class RangeBearingSensor:
 
     @staticmethod
     def h(x: FloatVector, p: FloatVector) -> np.ndarray:
-        """Noise-free measurement of the landmark at p (2,) from pose x (3,)."""
+        """Noise-free measurement of the landmark at p from pose x.
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            Vehicle pose (x, y, θ), m and rad.
+        p : array_like, shape (2,)
+            Landmark position, m.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Range (m) and bearing relative to the heading (rad, wrapped).
+        """
         dx, dy = p[0] - x[0], p[1] - x[1]
         return np.array([math.hypot(dx, dy), angdiff(math.atan2(dy, dx), x[2])])
 
     @staticmethod
     def jacobians(x: FloatVector, p: FloatVector) -> tuple[np.ndarray, np.ndarray]:
-        """``(H_x, H_p)``: ∂h/∂x (2×3) and ∂h/∂p (2×2); ``H_w`` is the identity."""
+        """``(H_x, H_p)``: ∂h/∂x (2×3) and ∂h/∂p (2×2); ``H_w`` is the identity.
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            Vehicle pose (x, y, θ).
+        p : array_like, shape (2,)
+            Landmark position.
+
+        Returns
+        -------
+        H_x : ndarray, shape (2, 3)
+        H_p : ndarray, shape (2, 2)
+        """
         dx, dy = p[0] - x[0], p[1] - x[1]
         r2 = dx * dx + dy * dy
         r = math.sqrt(r2)
@@ -225,7 +276,17 @@ class RangeBearingSensor:
         return Hx, Hp
 
     def visible(self, x: FloatVector) -> list[int]:
-        """Indices of the landmarks within range and field of view of pose x."""
+        """Indices of the landmarks within range and field of view of pose x.
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            Vehicle pose.
+
+        Returns
+        -------
+        list of int
+        """
         out = []
         for i, p in enumerate(self.map.points):
             r, b = self.h(x, p)
@@ -237,7 +298,20 @@ class RangeBearingSensor:
         return out
 
     def measure(self, x: FloatVector, i: int) -> np.ndarray:
-        """A noisy measurement of landmark i from the true pose x."""
+        """A noisy measurement of landmark i from the true pose x.
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            The true vehicle pose.
+        i : int
+            The landmark's index in the map.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Range (m) and bearing (rad, wrapped), with noise drawn from N(0, W).
+        """
         z = self.h(x, self.map.points[i]) + self.rng.multivariate_normal(np.zeros(2), self.W)
         z[1] = angdiff(z[1])
         return z
@@ -280,13 +354,37 @@ class EKFLocalization:
         self.order = _check_order(order)
 
     def predict(self, delta: FloatVector) -> None:
-        """Prediction with the odometry increment δ = (δ_d, δ_θ)."""
+        """Prediction with the odometry increment δ = (δ_d, δ_θ): x ← f(x, δ), P ← F_x P F_xᵀ + F_v V F_vᵀ.
+
+        Parameters
+        ----------
+        delta : array_like, shape (2,)
+            Distance (m) and heading change (rad) measured by odometry.
+
+        Returns
+        -------
+        None
+            ``self.x`` and ``self.P`` are updated.
+        """
         Fx, Fv = odometry_jacobians(self.x, delta, self.order)
         self.x = odometry_model(self.x, delta, order=self.order)
         self.P = Fx @ self.P @ Fx.T + Fv @ self.V @ Fv.T
 
     def update(self, z: ArrayLike, i: int) -> np.ndarray:
-        """Update with the measurement z = (r, β) of landmark i; returns the innovation ν."""
+        """Update with the measurement z = (r, β) of landmark i (Joseph form of the covariance update).
+
+        Parameters
+        ----------
+        z : array_like, shape (2,)
+            Range (m) and bearing (rad) of the landmark.
+        i : int
+            The landmark's index in the map.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            The innovation ν = z − h(x, p_i), bearing wrapped to (−π, π].
+        """
         p = self.map.points[i]
         nu = np.asarray(z, float) - RangeBearingSensor.h(self.x, p)
         nu[1] = angdiff(nu[1])
@@ -328,6 +426,19 @@ class EKFSLAM:
         self.landmark_index: dict[int, int] = {}
 
     def predict(self, delta: FloatVector) -> None:
+        """Prediction with the odometry increment δ = (δ_d, δ_θ): the vehicle part of the state moves, the
+        landmarks stay; the covariance grows by the odometry noise.
+
+        Parameters
+        ----------
+        delta : array_like, shape (2,)
+            Distance (m) and heading change (rad) measured by odometry.
+
+        Returns
+        -------
+        None
+            ``self.x`` and ``self.P`` are updated.
+        """
         Fx, Fv = odometry_jacobians(self.x[:3], delta, self.order)
         self.x[:3] = odometry_model(self.x[:3], delta, order=self.order)
         n = len(self.x)
@@ -337,12 +448,36 @@ class EKFSLAM:
         self.P[:3, :3] += Fv @ self.V @ Fv.T
 
     def landmark(self, i: int) -> np.ndarray:
-        """Estimated position (2,) of landmark i."""
+        """Estimated position of landmark i.
+
+        Parameters
+        ----------
+        i : int
+            The landmark's identifier (as passed to :meth:`update`).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Its (x, y) in the world, m.
+        """
         k = self.landmark_index[i]
         return self.x[k:k + 2].copy()
 
     def update(self, z: ArrayLike, i: int) -> np.ndarray:
-        """Update with the measurement z = (r, β) of landmark i (inserting it if new)."""
+        """Update with the measurement z = (r, β) of landmark i (inserting it into the state if new).
+
+        Parameters
+        ----------
+        z : array_like, shape (2,)
+            Range (m) and bearing (rad) of the landmark.
+        i : int
+            The landmark's identifier.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            The innovation (zeros when the landmark was just inserted).
+        """
         z = np.asarray(z, float)
         if i not in self.landmark_index:
             th = self.x[2] + z[1]

@@ -170,7 +170,18 @@ class ParticleFilter:
         self.weights = np.full(self.N, 1.0 / self.N)
 
     def predict(self, delta: ArrayLike) -> None:
-        """Move every particle by the odometry increment δ = (δ_d, δ_θ) with its own noise sample."""
+        """Move every particle by the odometry increment δ = (δ_d, δ_θ) with its own noise sample.
+
+        Parameters
+        ----------
+        delta : array_like, shape (2,)
+            Distance (m) and heading change (rad).
+
+        Returns
+        -------
+        None
+            ``self.particles`` are moved.
+        """
         d0, t0 = as_vector(delta, "delta", 2)
         v = self.rng.multivariate_normal(np.zeros(2), self.V, self.N)
         x = self.particles
@@ -181,7 +192,20 @@ class ParticleFilter:
 
     def update(self, z: ArrayLike, i: int) -> float:
         """Weight the particles by the likelihood of the measurement z = (r, β) of landmark i; resample
-        when the effective sample size is low. Returns N_eff before resampling."""
+        when the effective sample size is below ``threshold · N``.
+
+        Parameters
+        ----------
+        z : array_like, shape (2,)
+            Range (m) and bearing (rad).
+        i : int
+            The landmark's index in the map.
+
+        Returns
+        -------
+        float
+            N_eff = 1 / Σ wᵢ² before resampling.
+        """
         z = as_vector(z, "z", 2)
         p = self.map.points[i]
         dx, dy = p[0] - self.particles[:, 0], p[1] - self.particles[:, 1]

@@ -57,18 +57,54 @@ class UnicycleModel:
         self.omega_max = as_scalar(omega_max, "omega_max", positive=True)
 
     def limit(self, u: ArrayLike) -> np.ndarray:
-        """Inputs (v, ω) clipped to the limits."""
+        """Inputs (v, ω) clipped to the limits.
+
+        Parameters
+        ----------
+        u : array_like, shape (2,)
+
+        Returns
+        -------
+        ndarray, shape (2,)
+        """
         v, w = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max), np.clip(w, -self.omega_max, self.omega_max)])
 
     def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
-        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x (3,) and inputs u = (v, ω) (limits applied)."""
+        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x and inputs u = (v, ω) (limits applied).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Inputs (v, ω).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+        """
         x = as_vector(x, "x", 3)
         v, w = self.limit(u)
         return np.array([v * math.cos(x[2]), v * math.sin(x[2]), w])
 
     def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
-        """The state after ``dt`` s at constant (v, ω): the exact arc of radius v/ω (a line when ω = 0)."""
+        """The state after ``dt`` s at constant (v, ω): the exact arc of radius v/ω (a line when ω = 0).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Inputs (v, ω), limits applied.
+        dt : float
+            Duration, s (> 0).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            The new state, θ wrapped.
+        """
         x = as_vector(x, "x", 3)
         v, w = self.limit(u)
         dt = as_scalar(dt, "dt", positive=True)
@@ -113,17 +149,50 @@ class DifferentialDrive(UnicycleModel):
         super().__init__(speed_max=self.r * self.wheel_max, omega_max=2 * self.r * self.wheel_max / self.W)
 
     def body_velocity(self, wheels: ArrayLike) -> np.ndarray:
-        """(v, ω) from the wheel speeds ``(ω_L, ω_R)`` (rad/s): ``v = r(ω_R + ω_L)/2``, ``ω = r(ω_R − ω_L)/W``."""
+        """(v, ω) from the wheel speeds ``(ω_L, ω_R)`` (rad/s): ``v = r(ω_R + ω_L)/2``, ``ω = r(ω_R − ω_L)/W``.
+
+        Parameters
+        ----------
+        wheels : array_like, shape (2,)
+            Left and right wheel speeds, rad/s.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Forward speed v (m/s) and turn rate ω (rad/s).
+        """
         wl, wr = as_vector(wheels, "wheels", 2)
         return np.array([self.r * (wr + wl) / 2.0, self.r * (wr - wl) / self.W])
 
     def wheel_speeds(self, u: ArrayLike) -> np.ndarray:
-        """``(ω_L, ω_R)`` (rad/s) for the body velocity u = (v, ω): ``(v ∓ ωW/2)/r``."""
+        """``(ω_L, ω_R)`` (rad/s) for the body velocity u = (v, ω): ``(v ∓ ωW/2)/r``.
+
+        Parameters
+        ----------
+        u : array_like, shape (2,)
+            Forward speed (m/s) and turn rate (rad/s).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Left and right wheel speeds, rad/s.
+        """
         v, w = as_vector(u, "u", 2)
         return np.array([(v - w * self.W / 2.0) / self.r, (v + w * self.W / 2.0) / self.r])
 
     def limit(self, u: ArrayLike) -> np.ndarray:
-        """(v, ω) scaled down together so that neither wheel exceeds ``wheel_max`` (the path's curvature is kept)."""
+        """(v, ω) scaled down together so that neither wheel exceeds ``wheel_max`` (the path's curvature is kept).
+
+        Parameters
+        ----------
+        u : array_like, shape (2,)
+            Demanded (v, ω).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            The achievable (v, ω).
+        """
         v, w = as_vector(u, "u", 2)
         wheels = self.wheel_speeds([v, w])
         k = max(1.0, float(np.abs(wheels).max()) / self.wheel_max)

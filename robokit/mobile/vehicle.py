@@ -92,19 +92,56 @@ class BicycleModel:
 
     def limit(self, u: ArrayLike) -> np.ndarray:
         """Inputs clipped to the speed and steering limits (``steer_max`` < π/2, so a demanded
-        γ = ±π/2, where the model is undefined, is clipped like any other angle beyond the limit)."""
+        γ = ±π/2, where the model is undefined, is clipped like any other angle beyond the limit).
+
+        Parameters
+        ----------
+        u : array_like, shape (2,)
+            Demanded (v, γ).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+        """
         v, gamma = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max),
                          np.clip(gamma, -self.steer_max, self.steer_max)])
 
     def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
-        """``(ẋ, ẏ, θ̇)`` at state x (3,) and inputs u = (v, γ) (limits applied)."""
+        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, v tan γ / L)`` at state x and inputs u = (v, γ) (limits applied).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Speed v (m/s) and steering angle γ (rad).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+        """
         x = as_vector(x, "x", 3)
         v, g = self.limit(u)
         return np.array([v * math.cos(x[2]), v * math.sin(x[2]), v / self.L * math.tan(g)])
 
     def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
-        """The state after ``dt`` s at constant inputs: the exact arc (or a straight line when γ = 0)."""
+        """The state after ``dt`` s at constant inputs: the exact arc (or a straight line when γ = 0).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Inputs (v, γ), limits applied.
+        dt : float
+            Duration, s (> 0).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            The new state, θ wrapped.
+        """
         x = as_vector(x, "x", 3)
         v, g = self.limit(u)
         dt = as_scalar(dt, "dt", positive=True)
@@ -119,7 +156,20 @@ class BicycleModel:
 
     @staticmethod
     def sideways_velocity(x: FloatVector, xdot: FloatVector) -> float:
-        """``ẏ cos θ − ẋ sin θ``: zero for every motion the model allows (the non-holonomic constraint)."""
+        """``ẏ cos θ − ẋ sin θ``: zero for every motion the model allows (the non-holonomic constraint).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        xdot : array_like, shape (3,)
+            Its time derivative.
+
+        Returns
+        -------
+        float
+            The velocity across the vehicle's heading, m/s.
+        """
         return float(xdot[1] * math.cos(x[2]) - xdot[0] * math.sin(x[2]))
 
 
@@ -185,7 +235,18 @@ class FollowLine:
         self.Kh = as_scalar(self.Kh, "Kh", nonnegative=True)
 
     def distance(self, x: FloatVector) -> float:
-        """Signed normal distance of the vehicle from the line (m)."""
+        """Signed normal distance of the vehicle from the line ax + by + c = 0.
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            Vehicle pose (x, y, θ).
+
+        Returns
+        -------
+        float
+            The distance, m (positive on the side the line's normal (a, b) points to).
+        """
         a, b, c = self.line
         return (a * x[0] + b * x[1] + c) / math.hypot(a, b)
 
@@ -220,6 +281,21 @@ class PurePursuit:
         self.integral = 0.0
 
     def error(self, t: float, x: FloatVector) -> float:
+        """How far the vehicle is from where it should be: its distance to the path's point at time t,
+        minus the following distance d*.
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        x : array_like, shape (3,)
+            Vehicle pose (x, y, θ).
+
+        Returns
+        -------
+        float
+            The distance error, m (positive: lagging behind).
+        """
         px, py = self.path(t)
         return math.hypot(px - x[0], py - x[1]) - self.d_star
 
