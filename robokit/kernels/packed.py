@@ -624,6 +624,8 @@ def pack_model(Mlist: object, Glist: object, Slist: object, gravity: object, *, 
         Ml, Gl, Sl = _f64(Mlist, "Mlist", 3), _f64(Glist, "Glist", 3), _f64(Slist, "Slist", 2)
         n = Sl.shape[1]
         g = _f64(gravity, "gravity", 1)
+        if g.shape != (3,):
+            raise ValueError(f"gravity: expected 3 values (m/s², base frame), got shape {g.shape}")
         arm = np.zeros(n) if armature is None else _f64(armature, "armature", 1)
         Mh = np.zeros((0, 0)) if M is None else _f64(M, "M", 2)
         return PackedModel(pack(Ml, Gl, Sl, g, arm, Mh))
