@@ -34,15 +34,17 @@ Example::
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from robokit.kernels._jit import njit, prange
 from robokit.kernels.dynamics import (
     aba_into, check_model, check_vector, crba_into, forward_dynamics_into, link_transforms, rnea_into,
 )
-from robokit.kernels.lie import adjoint_screw, copy44, inv_t, mul_tt_inplace, set_identity
+from robokit.kernels.lie import PRISMATIC_TOL, adjoint_screw, copy44, inv_t, mul_tt, mul_tt_inplace, set_identity
 from robokit.kernels.poe import (
-    SERIAL_BELOW, block_range, fkin_body_into, fkin_space_into, jacobian_body_into, jacobian_space_into, n_blocks,
+    SERIAL_BELOW, block_range, fkin_body_into, jacobian_body_into, n_blocks,
 )
 
 __all__ = [
@@ -64,7 +66,7 @@ _A3 = "float64[:, :, ::1]"
 @njit
 def packed_size(n: int) -> int:
     """Length of the packed array of an n-joint model."""
-    return _HEAD + 18 * n + 16 + 16 * (n + 1) + 36 * n + n
+    return _HEAD + 18 * n + 16 + 16 * (n + 1) + 36 * n + n + 3 * n + 16 * (n + 1)
 
 
 @njit
@@ -130,16 +132,62 @@ def pack(Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray, g: np.ndarray,
         raise ValueError("armature: expected one finite value per joint")
     out = np.empty(packed_size(n))
     pack_into(Mlist, Glist, Slist, g, armature, out)
+    Mh = home(out, n)
     if M.shape[0] == 4 and M.shape[1] == 4:
-        o = _HEAD + 18 * n
-        Mh = out[o:o + 16].reshape((4, 4))
         copy44(M, Mh)
         Minv = np.empty((4, 4))
         inv_t(Mh, Minv)
-        B = out[_HEAD + 6 * n:_HEAD + 12 * n].reshape((6, n))
+        B = body_screws(out, n)
         for i in range(n):
             adjoint_screw(Minv, Slist, i, B, i)
+    o = _HEAD + 18 * n + 16 + 16 * (n + 1) + 37 * n
+    joint_frames_into(Slist, Mh, out[o:o + 3 * n].reshape((n, 3)),
+                      out[o + 3 * n:o + 3 * n + 16 * (n + 1)].reshape((n + 1, 4, 4)))
     return out
+
+
+@njit
+def joint_frames_into(S: np.ndarray, M: np.ndarray, Z: np.ndarray, C: np.ndarray) -> None:
+    """The joint frames of the fast FK and Jacobian: for joint i a frame Fᵢ (home pose, space
+    coordinates) with its origin on the joint's axis and z along it, so that
+    ``e^{[Sᵢ]θ} = Fᵢ Zᵢ(θ) Fᵢ⁻¹`` with ``Zᵢ(θ)`` a rotation about z by ``kᵢθ`` and a translation
+    along z by ``hᵢkᵢθ`` (revolute, pitch hᵢ, ``kᵢ = ‖ωᵢ‖``) or a translation along z by ``kᵢθ``
+    (prismatic, ``kᵢ = ‖vᵢ‖``). Then ``e^{[S₁]θ₁} ⋯ e^{[Sₙ]θₙ} M = C₀ Z₁ C₁ Z₂ ⋯ Zₙ Cₙ`` with
+    ``C₀ = F₁``, ``Cᵢ = Fᵢ⁻¹ Fᵢ₊₁``, ``Cₙ = Fₙ⁻¹ M``: one cheap factor and one rigid product per
+    joint, no screw exponential. Z (n, 3) ← (kind: 0 revolute / 1 prismatic, k, h); C (n+1, 4, 4)."""
+    n = S.shape[1]
+    W = np.empty((2, 4, 4))
+    F, prev_inv = W[0], W[1]
+    set_identity(prev_inv)
+    for i in range(n):
+        wx, wy, wz = S[0, i], S[1, i], S[2, i]
+        vx, vy, vz = S[3, i], S[4, i], S[5, i]
+        nw = math.sqrt(wx * wx + wy * wy + wz * wz)
+        qx = qy = qz = 0.0
+        if nw >= PRISMATIC_TOL:
+            zx, zy, zz = wx / nw, wy / nw, wz / nw
+            ux, uy, uz = vx / nw, vy / nw, vz / nw
+            Z[i, 0], Z[i, 1], Z[i, 2] = 0.0, nw, zx * ux + zy * uy + zz * uz
+            qx, qy, qz = zy * uz - zz * uy, zz * ux - zx * uz, zx * uy - zy * ux  # ω̂ × v̂: on the axis
+        else:
+            nv = math.sqrt(vx * vx + vy * vy + vz * vz)
+            zx, zy, zz = (vx / nv, vy / nv, vz / nv) if nv > 0.0 else (0.0, 0.0, 1.0)
+            Z[i, 0], Z[i, 1], Z[i, 2] = 1.0, nv, 0.0
+        # x: the coordinate axis least along z, made perpendicular to it; y = z × x
+        ax, ay, az = abs(zx), abs(zy), abs(zz)
+        ex, ey, ez = (1.0, 0.0, 0.0) if ax <= ay and ax <= az else ((0.0, 1.0, 0.0) if ay <= az else (0.0, 0.0, 1.0))
+        d = ex * zx + ey * zy + ez * zz
+        xx, xy, xz = ex - d * zx, ey - d * zy, ez - d * zz
+        nx = math.sqrt(xx * xx + xy * xy + xz * xz)
+        xx, xy, xz = xx / nx, xy / nx, xz / nx
+        yx, yy, yz = zy * xz - zz * xy, zz * xx - zx * xz, zx * xy - zy * xx
+        F[0, 0], F[0, 1], F[0, 2], F[0, 3] = xx, yx, zx, qx
+        F[1, 0], F[1, 1], F[1, 2], F[1, 3] = xy, yy, zy, qy
+        F[2, 0], F[2, 1], F[2, 2], F[2, 3] = xz, yz, zz, qz
+        F[3, 0], F[3, 1], F[3, 2], F[3, 3] = 0.0, 0.0, 0.0, 1.0
+        mul_tt(prev_inv, F, C[i])
+        inv_t(F, prev_inv)
+    mul_tt(prev_inv, M, C[n])
 
 
 # ------------------------------------------------------------------ views of a packed array
@@ -188,9 +236,65 @@ def home(P: np.ndarray, n: int) -> np.ndarray:
 
 
 @njit
-def space_screws(P: np.ndarray, n: int) -> np.ndarray:
-    """View S (6, n) of a packed array."""
-    return P[_HEAD:_HEAD + 6 * n].reshape((6, n))
+def joint_factors(P: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Views Z (n, 3) and C (n+1, 4, 4) of a packed array (:func:`joint_frames_into`)."""
+    o = _HEAD + 18 * n + 16 + 16 * (n + 1) + 37 * n
+    return P[o:o + 3 * n].reshape((n, 3)), P[o + 3 * n:o + 3 * n + 16 * (n + 1)].reshape((n + 1, 4, 4))
+
+
+@njit
+def chain_into(Z: np.ndarray, C: np.ndarray, q: np.ndarray, T: np.ndarray, J: np.ndarray, jacobian: bool) -> None:
+    """T (4, 4) ← ``C₀ Z₁(q₁) C₁ ⋯ Zₙ(qₙ) Cₙ``, the end-effector pose (:func:`joint_frames_into`), and
+    with ``jacobian`` J (6, n) ← the space Jacobian, rows (ω; v): column i is joint i's screw carried
+    by ``P = C₀ Z₁ C₁ ⋯ Cᵢ₋₁`` (the frame Fᵢ moved by the joints before it) — with z P's z axis and
+    p its origin, ``(kz, p × kz + hkz)`` (revolute) or ``(0, kz)`` (prismatic).
+
+    ``Zᵢ(q)`` rotates the pose's x and y columns about z by kᵢq and shifts its origin along z by
+    hᵢkᵢq (revolute), or by kᵢq (prismatic). The pose's top three rows are kept in twelve locals
+    (registers) through the loop: half the time of the same products through a 4×4 array."""
+    a0, a1, a2, a3 = C[0, 0, 0], C[0, 0, 1], C[0, 0, 2], C[0, 0, 3]
+    b0, b1, b2, b3 = C[0, 1, 0], C[0, 1, 1], C[0, 1, 2], C[0, 1, 3]
+    c0, c1, c2, c3 = C[0, 2, 0], C[0, 2, 1], C[0, 2, 2], C[0, 2, 3]
+    for i in range(Z.shape[0]):
+        k = Z[i, 1]
+        revolute = Z[i, 0] == 0.0
+        if jacobian:
+            zx, zy, zz = k * a2, k * b2, k * c2
+            if revolute:
+                h = Z[i, 2]
+                J[0, i], J[1, i], J[2, i] = zx, zy, zz
+                J[3, i] = b3 * zz - c3 * zy + h * zx
+                J[4, i] = c3 * zx - a3 * zz + h * zy
+                J[5, i] = a3 * zy - b3 * zx + h * zz
+            else:
+                J[0, i], J[1, i], J[2, i] = 0.0, 0.0, 0.0
+                J[3, i], J[4, i], J[5, i] = zx, zy, zz
+        th = k * q[i]
+        if revolute:
+            s, c = math.sin(th), math.cos(th)
+            d = Z[i, 2] * th
+            a0, a1 = c * a0 + s * a1, c * a1 - s * a0
+            b0, b1 = c * b0 + s * b1, c * b1 - s * b0
+            c0, c1 = c * c0 + s * c1, c * c1 - s * c0
+        else:
+            d = th
+        a3 += d * a2
+        b3 += d * b2
+        c3 += d * c2
+        K = C[i + 1]
+        k00, k01, k02, k03 = K[0, 0], K[0, 1], K[0, 2], K[0, 3]
+        k10, k11, k12, k13 = K[1, 0], K[1, 1], K[1, 2], K[1, 3]
+        k20, k21, k22, k23 = K[2, 0], K[2, 1], K[2, 2], K[2, 3]
+        a0, a1, a2, a3 = (a0 * k00 + a1 * k10 + a2 * k20, a0 * k01 + a1 * k11 + a2 * k21,
+                          a0 * k02 + a1 * k12 + a2 * k22, a0 * k03 + a1 * k13 + a2 * k23 + a3)
+        b0, b1, b2, b3 = (b0 * k00 + b1 * k10 + b2 * k20, b0 * k01 + b1 * k11 + b2 * k21,
+                          b0 * k02 + b1 * k12 + b2 * k22, b0 * k03 + b1 * k13 + b2 * k23 + b3)
+        c0, c1, c2, c3 = (c0 * k00 + c1 * k10 + c2 * k20, c0 * k01 + c1 * k11 + c2 * k21,
+                          c0 * k02 + c1 * k12 + c2 * k22, c0 * k03 + c1 * k13 + c2 * k23 + c3)
+    T[0, 0], T[0, 1], T[0, 2], T[0, 3] = a0, a1, a2, a3
+    T[1, 0], T[1, 1], T[1, 2], T[1, 3] = b0, b1, b2, b3
+    T[2, 0], T[2, 1], T[2, 2], T[2, 3] = c0, c1, c2, c3
+    T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
 
 
 @njit
@@ -315,8 +419,8 @@ def fk_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     check_vector(q, n, np.int64(0))
     if out.shape[0] != 4 or out.shape[1] != 4:
         raise ValueError("out: expected shape (4, 4)")
-    E = np.empty((4, 4))
-    fkin_space_into(home(P, n), space_screws(P, n), q, out, E, E)
+    Z, C = joint_factors(P, n)
+    chain_into(Z, C, q, out, out, False)
 
 
 @njit(f"void({_P}, {_A1}, {_A2})")
@@ -337,8 +441,8 @@ def jacobian_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     check_vector(q, n, np.int64(0))
     if out.shape[0] != 6 or out.shape[1] != n:
         raise ValueError("out: expected shape (6, n)")
-    W = np.empty((2, 4, 4))
-    jacobian_space_into(space_screws(P, n), q, out, W[0], W[1], W[1])
+    Z, C = joint_factors(P, n)
+    chain_into(Z, C, q, np.empty((4, 4)), out, True)
 
 
 @njit(f"void({_P}, {_A1}, {_A2})")
@@ -395,20 +499,19 @@ def aba_rows(lo: int, hi: int, P: np.ndarray, Q: np.ndarray, D: np.ndarray, T: n
 def fk_space_rows(lo: int, hi: int, P: np.ndarray, Q: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← the end-effector pose of row k, for lo ≤ k < hi."""
     n = Q.shape[1]
-    S, M = space_screws(P, n), home(P, n)
-    E = np.empty((4, 4))
+    Z, C = joint_factors(P, n)
     for k in range(lo, hi):
-        fkin_space_into(M, S, Q[k], out[k], E, E)
+        chain_into(Z, C, Q[k], out[k], out[k], False)
 
 
 @njit
 def jacobian_space_rows(lo: int, hi: int, P: np.ndarray, Q: np.ndarray, out: np.ndarray) -> None:
     """out[k] ← the space Jacobian of row k, for lo ≤ k < hi."""
     n = Q.shape[1]
-    S = space_screws(P, n)
-    W = np.empty((2, 4, 4))
+    Z, C = joint_factors(P, n)
+    T = np.empty((4, 4))
     for k in range(lo, hi):
-        jacobian_space_into(S, Q[k], out[k], W[0], W[1], W[1])
+        chain_into(Z, C, Q[k], T, out[k], True)
 
 
 @njit
