@@ -338,8 +338,7 @@ def batched(ns: list[int], N: int, reps: int) -> None:
         pool = pin.ModelPool(model, threads)
         from robokit.kernels import packed as kpk
 
-        P = kpk.pack_model(p.Mlist, p.Glist, p.Slist, g, M=p.M).data
-        o1, o4, oJ, oM = np.empty((N, n)), np.empty((N, 4, 4)), np.empty((N, 6, n)), np.empty((N, n, n))
+        pm = kpk.pack_model(p.Mlist, p.Glist, p.Slist, g, M=p.M)
 
         def loop(f):
             def run():
@@ -363,11 +362,11 @@ def batched(ns: list[int], N: int, reps: int) -> None:
              lambda: pin.abaInParallel(threads, pool, QT, DT, AT)),
         ]
         cases += [
-            ("FK, packed model", lambda: kpk.fk_space_batch(P, Q, o4), cases[0][2], None),
-            ("Jacobian, packed model", lambda: kpk.jacobian_space_batch(P, Q, oJ), cases[1][2], None),
-            ("RNEA, packed model", lambda: kpk.rnea_batch(P, Q, D, A, o1), cases[2][2], cases[2][3]),
-            ("CRBA, packed model", lambda: kpk.crba_batch(P, Q, oM), cases[3][2], None),
-            ("FD (ABA), packed model", lambda: kpk.aba_batch(P, Q, D, A, o1), cases[4][2], cases[4][3]),
+            ("FK, packed model", lambda: pm.fk_many(Q), cases[0][2], None),
+            ("Jacobian, packed model", lambda: pm.jacobian_many(Q), cases[1][2], None),
+            ("RNEA, packed model", lambda: pm.rnea_many(Q, D, A), cases[2][2], cases[2][3]),
+            ("CRBA, packed model", lambda: pm.crba_many(Q), cases[3][2], None),
+            ("FD (ABA), packed model", lambda: pm.aba_many(Q, D, A), cases[4][2], cases[4][3]),
         ]
         for name, ours, pin_loop, par in cases:
             t_loop = time_best(pin_loop, batches=max(10, reps // 4)) / N

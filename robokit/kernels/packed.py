@@ -7,9 +7,11 @@ allocate about ten scratch arrays; numba's dispatch of their eight array argumen
 of a new result array come on top. For a robot whose model does not change, :func:`pack_model`
 does the checks and the constants **once**, into one float64 array, and the kernels here take
 that array, the joint vectors and the output array to write: four or five arguments per
-dispatch, one scratch allocation per call, no result boxed by numba (the caller allocates it,
-a third of the dispatch cost of returning one). Results are those of the seed kernels: the
-same recursions (:func:`robokit.kernels.dynamics.rnea_into` and friends) on the same constants.
+dispatch, a few small scratch arrays per call, no result boxed by numba (the caller allocates it:
+numba's boxing of a returned array costs more than that, measured). The dynamics results are
+those of the seed kernels bit for bit: the same recursions (:func:`robokit.kernels.dynamics.rnea_into`
+and friends) on the same constants. FK and the space Jacobian use the chain factored once into
+joint frames (:func:`joint_frames_into`, :func:`chain_into`): the same pose to rounding.
 
 Layout of the packed array (float64, read-only), n joints::
 
@@ -17,11 +19,13 @@ Layout of the packed array (float64, read-only), n joints::
     S (6, n)   space screws           B (6, n)   body screws (B = Ad_{M⁻¹} S)
     A (6, n)   link-frame screws      M (4, 4)   home pose of the end-effector (space form)
     Minv (n+1, 4, 4)  Mlist[i]⁻¹      G (n, 6, 6)  spatial inertias     armature (n,)
+    Z (n, 3)  per joint (kind, k, h)  C (n+1, 4, 4)  the factored chain's constant factors
 
 A packed array is read-only: no kernel writes it, and several threads may share it (the
 kernels allocate their scratch per call). The per-configuration kernels check the lengths and
-finiteness of their vectors (``ValueError``); the ``*_batch`` kernels check nothing (their
-caller does), like the seed kernels' batches.
+finiteness of their vectors (``ValueError``); the two batch kernels (:func:`dynamics_batch`,
+:func:`matrix_batch`) check the shapes but not the values (their caller does), like the seed
+kernels' batches.
 
 Example::
 
@@ -50,7 +54,7 @@ from robokit.kernels.poe import (
 __all__ = [
     "PackedModel", "pack_model", "MAGIC", "packed_size", "pack_into",
     "rnea", "gravity", "crba", "aba", "forward_dynamics_crba", "fk_space", "fk_body", "jacobian_space",
-    "jacobian_body", "rnea_batch", "crba_batch", "aba_batch", "fk_space_batch", "jacobian_space_batch",
+    "jacobian_body", "dynamics_batch", "matrix_batch", "RNEA", "ABA", "FK", "JACOBIAN", "CRBA",
 ]
 
 #: The first entry of every packed array (a check that an array is one).
@@ -523,70 +527,68 @@ def check_batch(P: np.ndarray, Q: np.ndarray) -> int:
     return Q.shape[0]
 
 
-@njit(f"void({_P}, {_A2}, {_A2}, {_A2}, {_A2})", parallel=True)
-def rnea_batch(P: np.ndarray, thetas: np.ndarray, dthetas: np.ndarray, ddthetas: np.ndarray, out: np.ndarray) -> None:
-    """out (N, n) ← τ for the rows of thetas, dthetas, ddthetas (N, n), in parallel over blocks of rows."""
+#: ``which`` of :func:`dynamics_batch` and :func:`matrix_batch`.
+RNEA, ABA = 0, 1
+FK, JACOBIAN, CRBA = 0, 1, 2
+
+
+@njit
+def dynamics_rows(which: int, lo: int, hi: int, P: np.ndarray, Q: np.ndarray, D: np.ndarray, X: np.ndarray,
+                  out: np.ndarray) -> None:
+    """Rows lo ≤ k < hi of :func:`dynamics_batch`."""
+    if which == RNEA:
+        rnea_rows(lo, hi, P, Q, D, X, out)
+    else:
+        aba_rows(lo, hi, P, Q, D, X, out)
+
+
+@njit
+def matrix_rows(which: int, lo: int, hi: int, P: np.ndarray, Q: np.ndarray, out: np.ndarray) -> None:
+    """Rows lo ≤ k < hi of :func:`matrix_batch`."""
+    if which == FK:
+        fk_space_rows(lo, hi, P, Q, out)
+    elif which == JACOBIAN:
+        jacobian_space_rows(lo, hi, P, Q, out)
+    else:
+        crba_rows(lo, hi, P, Q, out)
+
+
+@njit(f"void({_P}, int64, {_A2}, {_A2}, {_A2}, {_A2})", parallel=True)
+def dynamics_batch(P: np.ndarray, which: int, thetas: np.ndarray, dthetas: np.ndarray, xs: np.ndarray,
+                   out: np.ndarray) -> None:
+    """out (N, n) ← for the rows of thetas, dthetas, xs (N, n): τ by Newton–Euler (``which`` =
+    :data:`RNEA`, xs the accelerations) or q̈ by the articulated-body algorithm (:data:`ABA`, xs the
+    torques; a row whose mass matrix is not positive definite comes back NaN), in parallel over
+    blocks of rows."""
     N = check_batch(P, thetas)
+    if dthetas.shape != thetas.shape or xs.shape != thetas.shape or out.shape != thetas.shape:
+        raise ValueError("dthetas, xs, out: expected the shape (N, n) of thetas")
     if N < SERIAL_BELOW:
-        rnea_rows(np.int64(0), N, P, thetas, dthetas, ddthetas, out)
+        dynamics_rows(which, np.int64(0), N, P, thetas, dthetas, xs, out)
         return
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        rnea_rows(lo, hi, P, thetas, dthetas, ddthetas, out)
+        dynamics_rows(which, lo, hi, P, thetas, dthetas, xs, out)
 
 
-@njit(f"void({_P}, {_A2}, {_A3})", parallel=True)
-def crba_batch(P: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
-    """out (N, n, n) ← M(θ) for the rows of thetas (N, n)."""
+@njit(f"void({_P}, int64, {_A2}, {_A3})", parallel=True)
+def matrix_batch(P: np.ndarray, which: int, thetas: np.ndarray, out: np.ndarray) -> None:
+    """out ← for the rows of thetas (N, n): the end-effector poses (``which`` = :data:`FK`, out
+    (N, 4, 4)), the space Jacobians (:data:`JACOBIAN`, (N, 6, n)) or the mass matrices (:data:`CRBA`,
+    (N, n, n)), in parallel over blocks of rows."""
     N = check_batch(P, thetas)
+    n = thetas.shape[1]
+    rows, cols = (4, 4) if which == FK else ((6, n) if which == JACOBIAN else (n, n))
+    if out.shape[0] != N or out.shape[1] != rows or out.shape[2] != cols:
+        raise ValueError("out: expected (N, 4, 4) poses, (N, 6, n) Jacobians or (N, n, n) mass matrices")
     if N < SERIAL_BELOW:
-        crba_rows(np.int64(0), N, P, thetas, out)
+        matrix_rows(which, np.int64(0), N, P, thetas, out)
         return
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        crba_rows(lo, hi, P, thetas, out)
-
-
-@njit(f"void({_P}, {_A2}, {_A2}, {_A2}, {_A2})", parallel=True)
-def aba_batch(P: np.ndarray, thetas: np.ndarray, dthetas: np.ndarray, taus: np.ndarray, out: np.ndarray) -> None:
-    """out (N, n) ← q̈ by the articulated-body algorithm for the rows of thetas, dthetas, taus (N, n);
-    a row whose mass matrix is not positive definite comes back NaN."""
-    N = check_batch(P, thetas)
-    if N < SERIAL_BELOW:
-        aba_rows(np.int64(0), N, P, thetas, dthetas, taus, out)
-        return
-    nb = n_blocks(N)
-    for b in prange(nb):
-        lo, hi = block_range(b, nb, N)
-        aba_rows(lo, hi, P, thetas, dthetas, taus, out)
-
-
-@njit(f"void({_P}, {_A2}, {_A3})", parallel=True)
-def fk_space_batch(P: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
-    """out (N, 4, 4) ← the end-effector poses of the rows of thetas (N, n)."""
-    N = check_batch(P, thetas)
-    if N < SERIAL_BELOW:
-        fk_space_rows(np.int64(0), N, P, thetas, out)
-        return
-    nb = n_blocks(N)
-    for b in prange(nb):
-        lo, hi = block_range(b, nb, N)
-        fk_space_rows(lo, hi, P, thetas, out)
-
-
-@njit(f"void({_P}, {_A2}, {_A3})", parallel=True)
-def jacobian_space_batch(P: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
-    """out (N, 6, n) ← the space Jacobians of the rows of thetas (N, n)."""
-    N = check_batch(P, thetas)
-    if N < SERIAL_BELOW:
-        jacobian_space_rows(np.int64(0), N, P, thetas, out)
-        return
-    nb = n_blocks(N)
-    for b in prange(nb):
-        lo, hi = block_range(b, nb, N)
-        jacobian_space_rows(lo, hi, P, thetas, out)
+        matrix_rows(which, lo, hi, P, thetas, out)
 
 
 # ------------------------------------------------------------------ the Python object
@@ -667,6 +669,37 @@ class PackedModel:
         """Space Jacobian (6, n), rows (ω; v) (:func:`jacobian_space`)."""
         out = np.empty((6, self.n))
         jacobian_space(self.data, q, out)
+        return out
+
+    def rnea_many(self, Q: np.ndarray, dQ: np.ndarray, ddQ: np.ndarray) -> np.ndarray:
+        """Joint torques (N, n) for the rows of Q, dQ, ddQ (N, n), in parallel (:func:`dynamics_batch`)."""
+        out = np.empty(Q.shape)
+        dynamics_batch(self.data, RNEA, Q, dQ, ddQ, out)
+        return out
+
+    def aba_many(self, Q: np.ndarray, dQ: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        """Joint accelerations (N, n) for the rows of Q, dQ, tau (N, n), in parallel; NaN rows where
+        the mass matrix is not positive definite (:func:`dynamics_batch`)."""
+        out = np.empty(Q.shape)
+        dynamics_batch(self.data, ABA, Q, dQ, tau, out)
+        return out
+
+    def fk_many(self, Q: np.ndarray) -> np.ndarray:
+        """End-effector poses (N, 4, 4) for the rows of Q (N, n), in parallel (:func:`matrix_batch`)."""
+        out = np.empty((Q.shape[0], 4, 4))
+        matrix_batch(self.data, FK, Q, out)
+        return out
+
+    def jacobian_many(self, Q: np.ndarray) -> np.ndarray:
+        """Space Jacobians (N, 6, n) for the rows of Q (N, n), in parallel (:func:`matrix_batch`)."""
+        out = np.empty((Q.shape[0], 6, self.n))
+        matrix_batch(self.data, JACOBIAN, Q, out)
+        return out
+
+    def crba_many(self, Q: np.ndarray) -> np.ndarray:
+        """Mass matrices (N, n, n) for the rows of Q (N, n), in parallel (:func:`matrix_batch`)."""
+        out = np.empty((Q.shape[0], self.n, self.n))
+        matrix_batch(self.data, CRBA, Q, out)
         return out
 
     def jacobian_body(self, q: np.ndarray) -> np.ndarray:

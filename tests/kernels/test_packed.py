@@ -84,20 +84,15 @@ def test_packed_batches_equal_the_per_call_kernels(N):
     p, pm = _packed(model, armature=np.full(n, 0.1))
     rng = np.random.default_rng(N)
     Q, D, A = (rng.uniform(-2, 2, (N, n)) for _ in range(3))
-    out = np.empty((N, n))
-    kpk.rnea_batch(pm.data, Q, D, A, out)
-    assert np.array_equal(out, [pm.rnea(Q[k], D[k], A[k]) for k in range(N)])
-    kpk.aba_batch(pm.data, Q, D, A, out)
-    assert np.array_equal(out, [pm.aba(Q[k], D[k], A[k]) for k in range(N)])
-    out3 = np.empty((N, n, n))
-    kpk.crba_batch(pm.data, Q, out3)
-    assert np.array_equal(out3, [pm.crba(Q[k]) for k in range(N)])
-    out3 = np.empty((N, 4, 4))
-    kpk.fk_space_batch(pm.data, Q, out3)
-    assert np.array_equal(out3, [pm.fk(Q[k]) for k in range(N)])
-    out3 = np.empty((N, 6, n))
-    kpk.jacobian_space_batch(pm.data, Q, out3)
-    assert np.array_equal(out3, [pm.jacobian(Q[k]) for k in range(N)])
+    assert np.array_equal(pm.rnea_many(Q, D, A), [pm.rnea(Q[k], D[k], A[k]) for k in range(N)])
+    assert np.array_equal(pm.aba_many(Q, D, A), [pm.aba(Q[k], D[k], A[k]) for k in range(N)])
+    assert np.array_equal(pm.crba_many(Q), [pm.crba(Q[k]) for k in range(N)])
+    assert np.array_equal(pm.fk_many(Q), [pm.fk(Q[k]) for k in range(N)])
+    assert np.array_equal(pm.jacobian_many(Q), [pm.jacobian(Q[k]) for k in range(N)])
+    with pytest.raises(ValueError, match="out"):
+        kpk.matrix_batch(pm.data, kpk.CRBA, Q, np.empty((N, 6, n)))
+    with pytest.raises(ValueError, match="shape"):
+        pm.rnea_many(Q, D[:-1], A)
 
 
 def test_packed_model_is_immutable_and_refuses_bad_input():
