@@ -310,6 +310,28 @@ def body_screws(P: np.ndarray, n: int) -> np.ndarray:
 # Scratch: separate small arrays (numba allocates one in ~15 ns, less than a reshaped view of a
 # larger one costs, measured), only those each kernel needs.
 @njit
+def check_matrix_call(P: np.ndarray, q: np.ndarray, out: np.ndarray, rows: int, cols: int) -> int:
+    """n, after checking P, q (n finite values) and out's shape (rows, cols), −1 standing for n."""
+    n = joints(P)
+    check_vector(q, n, np.int64(0))
+    if out.shape[0] != (n if rows < 0 else rows) or out.shape[1] != (n if cols < 0 else cols):
+        raise ValueError("out: expected shape (4, 4), (6, n) or (n, n), as the kernel returns")
+    return n
+
+
+@njit
+def check_vectors_call(P: np.ndarray, q: np.ndarray, dq: np.ndarray, x: np.ndarray, which: int,
+                       out: np.ndarray) -> int:
+    """n, after checking P, q, q̇ and x (q̈: ``which`` 2, τ: 5; n finite values each) and out (n,)."""
+    n = joints(P)
+    check_vector(q, n, np.int64(0))
+    check_vector(dq, n, np.int64(1))
+    check_vector(x, n, which)
+    check_out(out, n)
+    return n
+
+
+@njit
 def check_out(out: np.ndarray, n: int) -> None:
     if out.shape[0] != n:
         raise ValueError("out: expected one entry per joint")
@@ -322,11 +344,12 @@ def check_out(out: np.ndarray, n: int) -> None:
 @njit(f"void({_P}, {_A1}, {_A1}, {_A1}, {_A1})")
 def rnea(P: np.ndarray, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, out: np.ndarray) -> None:
     """out (n,) ← τ = M(q) q̈ + c(q, q̇) + g(q) by recursive Newton–Euler (gravity: the model's)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    check_vector(dq, n, np.int64(1))
-    check_vector(ddq, n, np.int64(2))
-    check_out(out, n)
+    rnea_at(P, check_vectors_call(P, q, dq, ddq, np.int64(2), out), q, dq, ddq, out)
+
+
+@njit
+def rnea_at(P: np.ndarray, n: int, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, out: np.ndarray) -> None:
+    """out ← τ(q, q̇, q̈) on checked vectors: its scratch, the link transforms, the recursion."""
     A = link_screws_of(P, n)
     Tl = np.empty((n + 1, 4, 4))
     V = np.empty((2 * n, 6))
@@ -341,22 +364,14 @@ def gravity(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     n = joints(P)
     check_vector(q, n, np.int64(0))
     check_out(out, n)
-    A = link_screws_of(P, n)
-    Tl = np.empty((n + 1, 4, 4))
-    V = np.empty((2 * n, 6))
-    v6 = np.zeros((7, 6))
     z = np.zeros(n)
-    link_transforms(A, inverse_links(P, n), q, Tl, Tl[n])
-    rnea_into(A, Tl, inertias(P, n), z, z, P[2:5], v6[6], V[:n], V[n:], v6[:6], out)
+    rnea_at(P, n, q, z, z, out)
 
 
 @njit(f"void({_P}, {_A1}, {_A2})")
 def crba(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """out (n, n) ← M(q) by the composite-rigid-body algorithm (both triangles)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    if out.shape[0] != n or out.shape[1] != n:
-        raise ValueError("out: expected shape (n, n)")
+    n = check_matrix_call(P, q, out, -1, -1)
     A = link_screws_of(P, n)
     Tl = np.empty((n + 1, 4, 4))
     K = np.empty((n + 2, 6, 6))  # composite inertias, then crba's two 6×6 temporaries
@@ -379,11 +394,7 @@ def aba_scratch(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 def aba(P: np.ndarray, q: np.ndarray, dq: np.ndarray, tau: np.ndarray, out: np.ndarray) -> None:
     """out (n,) ← q̈ by the articulated-body algorithm (the model's armature added to each joint);
     ``ValueError`` when the mass matrix is not positive definite."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    check_vector(dq, n, np.int64(1))
-    check_vector(tau, n, np.int64(5))
-    check_out(out, n)
+    n = check_vectors_call(P, q, dq, tau, np.int64(5), out)
     A = link_screws_of(P, n)
     Tl, K, R, du = aba_scratch(n)
     link_transforms(A, inverse_links(P, n), q, Tl, Tl[n])
@@ -397,11 +408,7 @@ def aba(P: np.ndarray, q: np.ndarray, dq: np.ndarray, tau: np.ndarray, out: np.n
 def forward_dynamics_crba(P: np.ndarray, q: np.ndarray, dq: np.ndarray, tau: np.ndarray, out: np.ndarray) -> None:
     """out (n,) ← q̈ = M(q)⁻¹ (τ − h(q, q̇)) by CRBA + Cholesky (the lecture's form; the armature is
     not used here: :func:`aba` adds it)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    check_vector(dq, n, np.int64(1))
-    check_vector(tau, n, np.int64(5))
-    check_out(out, n)
+    n = check_vectors_call(P, q, dq, tau, np.int64(5), out)
     A = link_screws_of(P, n)
     Tl = np.empty((n + 1, 4, 4))
     K = np.empty((n + 2, 6, 6))
@@ -419,10 +426,7 @@ def forward_dynamics_crba(P: np.ndarray, q: np.ndarray, dq: np.ndarray, tau: np.
 @njit(f"void({_P}, {_A1}, {_A2})")
 def fk_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """out (4, 4) ← e^{[S₁]q₁} ⋯ e^{[Sₙ]qₙ} M, the end-effector pose."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    if out.shape[0] != 4 or out.shape[1] != 4:
-        raise ValueError("out: expected shape (4, 4)")
+    n = check_matrix_call(P, q, out, 4, 4)
     Z, C = joint_factors(P, n)
     chain_into(Z, C, q, out, out, False)
 
@@ -430,10 +434,7 @@ def fk_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
 @njit(f"void({_P}, {_A1}, {_A2})")
 def fk_body(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """out (4, 4) ← M e^{[B₁]q₁} ⋯ e^{[Bₙ]qₙ}, the end-effector pose (body form)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    if out.shape[0] != 4 or out.shape[1] != 4:
-        raise ValueError("out: expected shape (4, 4)")
+    n = check_matrix_call(P, q, out, 4, 4)
     E = np.empty((4, 4))
     fkin_body_into(home(P, n), body_screws(P, n), q, out, E, E)
 
@@ -441,10 +442,7 @@ def fk_body(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
 @njit(f"void({_P}, {_A1}, {_A2})")
 def jacobian_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """out (6, n) ← the space Jacobian, rows (ω; v)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    if out.shape[0] != 6 or out.shape[1] != n:
-        raise ValueError("out: expected shape (6, n)")
+    n = check_matrix_call(P, q, out, 6, -1)
     Z, C = joint_factors(P, n)
     chain_into(Z, C, q, np.empty((4, 4)), out, True)
 
@@ -452,10 +450,7 @@ def jacobian_space(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
 @njit(f"void({_P}, {_A1}, {_A2})")
 def jacobian_body(P: np.ndarray, q: np.ndarray, out: np.ndarray) -> None:
     """out (6, n) ← the body Jacobian, rows (ω; v)."""
-    n = joints(P)
-    check_vector(q, n, np.int64(0))
-    if out.shape[0] != 6 or out.shape[1] != n:
-        raise ValueError("out: expected shape (6, n)")
+    n = check_matrix_call(P, q, out, 6, -1)
     W = np.empty((2, 4, 4))
     jacobian_body_into(body_screws(P, n), q, out, W[0], W[1], W[1])
 
