@@ -9,9 +9,11 @@ Tables (Markdown, printed; nothing is asserted):
    EAIK (C++) and ``ur-analytic-ik`` (C++), and ``solve_ik`` on the UR5 against roboticstoolbox's
    C++ ``ik_LM`` on the same targets;
 3. per call against Pinocchio for n = 3 … 100 joints (random chains): FK, Jacobian, RNEA, CRBA and
-   forward dynamics (ABA, and the lecture's CRBA + Cholesky);
-4. batched over N configurations, per configuration: the five against a Python loop over Pinocchio,
-   and RNEA / forward dynamics against ``rneaInParallel`` / ``abaInParallel`` on the same threads;
+   forward dynamics (ABA, and the lecture's CRBA + Cholesky) — the seed function, its kernel alone
+   and the packed model's method (``robokit.kernels.packed.pack_model``, built once);
+4. batched over N configurations, per configuration: the five (seed functions, then the packed
+   model's ``*_many``) against a Python loop over Pinocchio, and RNEA / forward dynamics against
+   ``rneaInParallel`` / ``abaInParallel`` on the same threads;
 5. ``Robot`` methods against the raw Pinocchio call each wraps (UR5);
 6. simulation — ``robokit.simulate`` (PUMA 560, computed torque, RK4, 1 kHz) against the same loop
    written by hand over Pinocchio, and the seed's ``simulate_control`` compiled against its Python loop.
