@@ -462,5 +462,8 @@ def _remember(x: Any, arr: np.ndarray) -> None:
     if snap is None:
         return
     if len(_SEEN) >= _SEEN_MAX:
-        del _SEEN[next(iter(_SEEN))]  # the oldest
+        try:  # the oldest (another thread may have taken it already)
+            _SEEN.pop(next(iter(_SEEN)), None)
+        except (StopIteration, RuntimeError):
+            pass
     _SEEN[id(x)] = (snap, arr)
