@@ -9,9 +9,11 @@ Tables (Markdown, printed; nothing is asserted):
    EAIK (C++) and ``ur-analytic-ik`` (C++), and ``solve_ik`` on the UR5 against roboticstoolbox's
    C++ ``ik_LM`` on the same targets;
 3. per call against Pinocchio for n = 3 … 100 joints (random chains): FK, Jacobian, RNEA, CRBA and
-   forward dynamics (ABA, and the lecture's CRBA + Cholesky);
-4. batched over N configurations, per configuration: the five against a Python loop over Pinocchio,
-   and RNEA / forward dynamics against ``rneaInParallel`` / ``abaInParallel`` on the same threads;
+   forward dynamics (ABA, and the lecture's CRBA + Cholesky) — the seed function, its kernel alone
+   and the packed model's method (``robokit.kernels.packed.pack_model``, built once);
+4. batched over N configurations, per configuration: the five (seed functions, then the packed
+   model's ``*_many``) against a Python loop over Pinocchio, and RNEA / forward dynamics against
+   ``rneaInParallel`` / ``abaInParallel`` on the same threads;
 5. ``Robot`` methods against the raw Pinocchio call each wraps (UR5);
 6. simulation — ``robokit.simulate`` (PUMA 560, computed torque, RK4, 1 kHz) against the same loop
    written by hand over Pinocchio, and the seed's ``simulate_control`` compiled against its Python loop.
@@ -263,30 +265,37 @@ def closed_form(quick: bool) -> None:
 
 # ------------------------------------------------------------------ 3. per call, growth with n
 def _cases(model, data, fid, p, q, dq, a):
-    """(name, robokit seed function, Pinocchio peer, the compiled kernel alone) per row of table 3."""
+    """(name, robokit seed function, Pinocchio peer, the seed's compiled kernel alone, the packed
+    model's method) per row of table 3."""
     import pinocchio as pin
 
     import robokit as rk
 
     from robokit.kernels import dynamics as kd
     from robokit.kernels import poe as kp
+    from robokit.kernels.packed import pack_model
 
     g, z6 = np.array(model.gravity.linear), np.zeros(6)
     M, S, Ml, Gl = p.M, p.Slist, p.Mlist, p.Glist
+    pm = pack_model(Ml, Gl, S, g, M=M)
     return [
         ("FK (fkin_space)", lambda: rk.fkin_space(M, S, q),
          lambda: (pin.forwardKinematics(model, data, q), pin.updateFramePlacement(model, data, fid)),
-         lambda: kp.fkin_space(M, S, q)),
+         lambda: kp.fkin_space(M, S, q), lambda: pm.fk(q)),
         ("Jacobian (jacobian_space)", lambda: rk.jacobian_space(S, q),
-         lambda: pin.computeFrameJacobian(model, data, q, fid, pin.WORLD), lambda: kp.jacobian_space(S, q)),
+         lambda: pin.computeFrameJacobian(model, data, q, fid, pin.WORLD), lambda: kp.jacobian_space(S, q),
+         lambda: pm.jacobian(q)),
         ("RNEA (inverse_dynamics)", lambda: rk.inverse_dynamics(q, dq, a, g, z6, Ml, Gl, S),
-         lambda: pin.rnea(model, data, q, dq, a), lambda: kd.inverse_dynamics(q, dq, a, g, z6, Ml, Gl, S)),
+         lambda: pin.rnea(model, data, q, dq, a), lambda: kd.inverse_dynamics(q, dq, a, g, z6, Ml, Gl, S),
+         lambda: pm.rnea(q, dq, a)),
         ("CRBA (mass_matrix)", lambda: rk.mass_matrix(q, Ml, Gl, S),
-         lambda: pin.crba(model, data, q), lambda: kd.mass_matrix(q, Ml, Gl, S)),
+         lambda: pin.crba(model, data, q), lambda: kd.mass_matrix(q, Ml, Gl, S), lambda: pm.crba(q)),
         ("FD (forward_dynamics, ABA)", lambda: rk.forward_dynamics(q, dq, a, g, z6, Ml, Gl, S),
-         lambda: pin.aba(model, data, q, dq, a), lambda: kd.forward_dynamics(q, dq, a, g, z6, Ml, Gl, S)),
+         lambda: pin.aba(model, data, q, dq, a), lambda: kd.forward_dynamics(q, dq, a, g, z6, Ml, Gl, S),
+         lambda: pm.aba(q, dq, a)),
         ("FD (method='crba')", lambda: rk.forward_dynamics(q, dq, a, g, z6, Ml, Gl, S, method="crba"),
-         lambda: pin.aba(model, data, q, dq, a), lambda: kd.forward_dynamics_crba(q, dq, a, g, z6, Ml, Gl, S)),
+         lambda: pin.aba(model, data, q, dq, a), lambda: kd.forward_dynamics_crba(q, dq, a, g, z6, Ml, Gl, S),
+         lambda: pm.forward_dynamics_crba(q, dq, a)),
     ]
 
 
@@ -296,16 +305,21 @@ def per_call(ns: list[int], reps: int) -> None:
         model, data, fid, p = random_chain(n, seed=n)
         rng = np.random.default_rng(n)
         q, dq, a = rng.uniform(-2, 2, n), rng.normal(size=n), rng.normal(size=n)
-        for name, ours, peer, kernel in _cases(model, data, fid, p, q, dq, a):
+        for name, ours, peer, kernel, packed in _cases(model, data, fid, p, q, dq, a):
             t_p = time_best(peer, batches=reps)
             t_o = time_best(ours, batches=reps)
             t_k = time_best(kernel, batches=reps)
-            rows.append([n, name, fmt_time(t_o), fmt_time(t_k), fmt_time(t_p), _ratio(t_o, t_p), _ratio(t_k, t_p)])
+            t_m = time_best(packed, batches=reps)
+            rows.append([n, name, fmt_time(t_o), fmt_time(t_k), fmt_time(t_m), fmt_time(t_p), _ratio(t_o, t_p),
+                         _ratio(t_k, t_p), _ratio(t_m, t_p)])
     print("\n## 3. Per call against Pinocchio, growth with n (random chains; target ≤ 3×)\n")
-    print(table(["n", "function", "robokit (seed function)", "compiled kernel alone", "Pinocchio",
-                 "robokit / Pinocchio", "kernel alone / Pinocchio"], rows))
-    print("\n(FD rows compare with Pinocchio's `aba`. robokit's time includes the argument checks and the call into "
-          "the compiled kernel; the kernel alone is numba's dispatch of its array arguments plus the recursion.)")
+    print(table(["n", "function", "robokit (seed function)", "seed kernel alone", "packed model (PackedModel)",
+                 "Pinocchio", "seed function / Pinocchio", "seed kernel / Pinocchio",
+                 "packed / Pinocchio (target ≤ 3×)"], rows))
+    print("\n(FD rows compare with Pinocchio's `aba`. The seed function's time includes the argument checks and "
+          "the call into its kernel, which checks the model and derives its constants on every call; the packed "
+          "model (`robokit.kernels.packed.pack_model`, built once like Pinocchio's Model) is what an object "
+          "holding a fixed model calls: one read-only array, the joint vectors and the output per dispatch.)")
 
 
 # ------------------------------------------------------------------ 4. batched
@@ -324,6 +338,9 @@ def batched(ns: list[int], N: int, reps: int) -> None:
         g, z6 = np.array(model.gravity.linear), np.zeros(6)
         QT, DT, AT = (np.asfortranarray(X.T) for X in (Q, D, A))
         pool = pin.ModelPool(model, threads)
+        from robokit.kernels import packed as kpk
+
+        pm = kpk.pack_model(p.Mlist, p.Glist, p.Slist, g, M=p.M)
 
         def loop(f):
             def run():
@@ -345,6 +362,13 @@ def batched(ns: list[int], N: int, reps: int) -> None:
             ("FD (ABA)", lambda: rk.forward_dynamics(Q, D, A, g, z6, p.Mlist, p.Glist, p.Slist),
              loop(lambda k: pin.aba(model, data, Q[k], D[k], A[k])),
              lambda: pin.abaInParallel(threads, pool, QT, DT, AT)),
+        ]
+        cases += [
+            ("FK, packed model", lambda: pm.fk_many(Q), cases[0][2], None),
+            ("Jacobian, packed model", lambda: pm.jacobian_many(Q), cases[1][2], None),
+            ("RNEA, packed model", lambda: pm.rnea_many(Q, D, A), cases[2][2], cases[2][3]),
+            ("CRBA, packed model", lambda: pm.crba_many(Q), cases[3][2], None),
+            ("FD (ABA), packed model", lambda: pm.aba_many(Q, D, A), cases[4][2], cases[4][3]),
         ]
         for name, ours, pin_loop, par in cases:
             t_loop = time_best(pin_loop, batches=max(10, reps // 4)) / N

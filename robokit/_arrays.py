@@ -388,16 +388,82 @@ def _converted(args: tuple[Any, ...], ndims: tuple[int, ...]) -> tuple[np.ndarra
             else:
                 return None
         elif type(x) is list or type(x) is tuple:
-            try:
-                a = np.asarray(x)  # a new array (C order, writeable), even of read-only elements
-            except (TypeError, ValueError):  # ragged
-                return None
-            if a.dtype.kind not in "fiu":
-                return None
-            arr = a if a.dtype is _F64 else a.astype(np.float64)
+            found = _seen(x) if nd >= 2 else None
+            if found is not None:
+                arr = found
+            else:
+                try:
+                    a = np.asarray(x)  # a new array (C order, writeable), even of read-only elements
+                except (TypeError, ValueError):  # ragged
+                    return None
+                if a.dtype.kind not in "fiu":
+                    return None
+                arr = a if a.dtype is _F64 else a.astype(np.float64)
+                if arr.ndim == nd >= 2:
+                    _remember(x, arr)
         else:
             return None
         if arr.ndim != nd:
             return None
         out.append(arr)
     return tuple(out)
+
+
+# Nested lists of numbers (``Mlist``, ``Glist``, ``Slist`` written out as Python lists, as a course
+# notebook may): numpy's conversion costs 1–6 µs per argument (a UR5's Glist: 216 floats), more
+# than the compiled call itself. The model's lists are usually the same objects call after call,
+# so the last few conversions are remembered by the list's id() together with a snapshot of its
+# structure (new lists holding the very same number objects); a later call reuses a conversion only
+# when the argument still compares equal (==) to that snapshot: a list changed in place, or a new
+# list that reuses a freed id(), compares unequal and is converted afresh. The comparison is done in
+# C and mostly on identical objects: about 0.3 µs for a UR5's Mlist. Only lists nested two or more
+# deep whose leaves are all Python ints and floats are remembered (never arrays: an element compared
+# with an array has no single truth value; never booleans, which as_array refuses). Results are
+# those of the fresh conversion: equal lists of numbers convert to equal float64 arrays (up to the
+# sign of a zero: 0.0 == -0.0; and a remembered list changed in place to values that still compare
+# equal — 1 to True, 1.0 to 1+0j — reuses its earlier conversion instead of being refused). The
+# kernels never write their inputs, so one array serves every call.
+_SEEN: dict[int, tuple[Any, np.ndarray]] = {}
+_SEEN_MAX = 32
+
+
+def _seen(x: Any) -> np.ndarray | None:
+    """The remembered conversion of the nested list x, if x still equals its snapshot."""
+    entry = _SEEN.get(id(x))
+    if entry is None:
+        return None
+    try:
+        same = entry[0] == x
+    except (TypeError, ValueError):  # e.g. an element that is an array now
+        return None
+    return entry[1] if same is True else None
+
+
+def _snapshot(x: Any) -> Any:
+    """A structural copy of nested lists/tuples holding the same leaf objects, or None when a leaf
+    is not a Python int or float (bool excluded)."""
+    out = []
+    for e in x:
+        t = type(e)
+        if t is float or t is int:
+            out.append(e)
+        elif t is list or t is tuple:
+            sub = _snapshot(e)
+            if sub is None:
+                return None
+            out.append(sub)
+        else:
+            return None
+    return out if type(x) is list else tuple(out)
+
+
+def _remember(x: Any, arr: np.ndarray) -> None:
+    snap = _snapshot(x)
+    if snap is None:
+        return
+    if len(_SEEN) >= _SEEN_MAX:
+        try:  # the oldest (another thread may have taken it already)
+            _SEEN.pop(next(iter(_SEEN)), None)
+        except (StopIteration, RuntimeError):
+            pass
+    _SEEN[id(x)] = (snap, arr)

@@ -5,6 +5,9 @@ with numba (``@njit(cache=True)``).
 * :mod:`robokit.kernels.poe` — product-of-exponentials FK and Jacobians (space and body);
 * :mod:`robokit.kernels.dynamics` — Newton–Euler inverse dynamics, CRBA mass matrix,
   forward dynamics by the articulated-body algorithm and by CRBA + Cholesky (Modern Robotics form);
+* :mod:`robokit.kernels.packed` — a PoE model packed once into one read-only array (:func:`~robokit.kernels.packed.pack_model`)
+  and the per-call and batched FK, Jacobian, RNEA, CRBA and ABA kernels that take it (the least
+  dispatch per call: for objects that hold a fixed model, such as ``Robot``);
 * :mod:`robokit.kernels.dh` — DH forward kinematics, the Jacobian by outward propagation,
   inward static forces, Craig's recursive Newton–Euler (both conventions, R and P joints);
 * :mod:`robokit.kernels.ik` — damped least-squares / Levenberg–Marquardt IK for a PoE chain,
@@ -31,7 +34,7 @@ from types import ModuleType
 
 from robokit.errors import InputError
 
-__all__ = ["lie", "poe", "dynamics", "dh", "ik", "simulation", "warm", "compile_mode", "ENV", "MODES"]
+__all__ = ["lie", "poe", "dynamics", "packed", "dh", "ik", "simulation", "warm", "compile_mode", "ENV", "MODES"]
 
 #: The environment variable that chooses what a kernel's first call does on a cache miss.
 ENV = "ROBOKIT_COMPILE"

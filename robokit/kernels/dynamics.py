@@ -305,17 +305,19 @@ def forward_dynamics_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthe
 # ------------------------------------------------------------------ articulated-body forward dynamics
 @njit
 def congruence_add(Ad: np.ndarray, Ia: np.ndarray, tmp: np.ndarray, out: np.ndarray) -> None:
-    """out ← out + Adᵀ Ia Ad for 6×6 matrices (an inertia carried into the parent frame)."""
+    """out ← out + Adᵀ Ia Ad for 6×6 matrices (an inertia carried into the parent frame). Ad is an
+    adjoint map ``[[R, 0], [[p] R, R]]``: the products skip its zero upper-right block (terms that
+    add an exact zero: the same sums, a quarter fewer operations)."""
     for r in range(6):
         for c in range(6):
             acc = 0.0
-            for k in range(6):
+            for k in range(3 if c >= 3 else 0, 6):
                 acc += Ia[r, k] * Ad[k, c]
             tmp[r, c] = acc
     for r in range(6):
         for c in range(6):
             acc = 0.0
-            for k in range(6):
+            for k in range(3 if r >= 3 else 0, 6):
                 acc += Ad[k, r] * tmp[k, c]
             out[r, c] += acc
 

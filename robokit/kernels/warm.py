@@ -26,7 +26,7 @@ from typing import Sequence, TextIO
 __all__ = ["MODULES", "kernels", "warm", "main"]
 
 #: The kernel modules, in the order their kernels are listed.
-MODULES = ("poe", "dynamics", "dh", "ik", "simulation", "regressor")
+MODULES = ("poe", "dynamics", "packed", "dh", "ik", "simulation", "regressor")
 
 
 def kernels(modules: Sequence[str] = MODULES) -> list[tuple[str, str]]:

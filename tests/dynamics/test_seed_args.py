@@ -157,3 +157,32 @@ def test_read_only_batches(ur5):
     Q = _readonly(np.random.default_rng(1).normal(size=(4, 6)))
     assert np.array_equal(rk.fkin_space(p.M, p.Slist, Q), rk.fkin_space(p.M, p.Slist, np.array(Q)))
     assert np.array_equal(rk.mass_matrix(Q, _readonly(p.Mlist), p.Glist, p.Slist), rk.mass_matrix(np.array(Q), p.Mlist, p.Glist, p.Slist))
+
+
+def test_nested_lists_are_remembered_until_they_change(ur5):
+    """A nested-list model is converted once and reused while it compares equal to what was converted;
+    changed in place (a link's mass doubled) the next call converts it afresh and gives the new model's
+    matrix, the same as the call on packed arrays of the changed model."""
+    from robokit import _arrays
+
+    p = ur5.poe
+    Ml, Gl, Sl = p.Mlist.tolist(), p.Glist.tolist(), p.Slist.tolist()
+    q = np.full(6, 0.3)
+    first = rk.mass_matrix(q, Ml, Gl, Sl)
+    assert np.array_equal(first, rk.mass_matrix(q, p.Mlist, p.Glist, p.Slist))
+    assert id(Gl) in _arrays._SEEN
+    assert np.array_equal(rk.mass_matrix(q, Ml, Gl, Sl), first)
+    for i in (3, 4, 5):
+        Gl[2][i][i] *= 2.0
+    G2 = np.array(p.Glist)
+    G2[2, 3:, 3:] *= 2.0
+    changed = rk.mass_matrix(q, Ml, Gl, Sl)
+    assert np.array_equal(changed, rk.mass_matrix(q, p.Mlist, G2, p.Slist))
+    assert not np.allclose(changed, first)
+    # a list of arrays at an id() remembered for a nested list (a freed list's id reused): the comparison
+    # has no single truth value, the list is converted afresh
+    arrays = [m.copy() for m in p.Mlist]
+    _arrays._SEEN[id(arrays)] = _arrays._SEEN[id(Ml)]
+    assert np.array_equal(rk.mass_matrix(q, arrays, Gl, Sl), changed)
+    # lists holding booleans or numpy scalars are not remembered
+    assert _arrays._snapshot([[1.0, True]]) is None and _arrays._snapshot([[1.0, np.float64(2)]]) is None
