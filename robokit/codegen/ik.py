@@ -1238,7 +1238,7 @@ class _GeneralEmitter(_Emitter):
         self.labels = ik_general.general_6r_labels()
 
     def declare(self) -> list[str]:
-        return ik_general.declare(self.P, len(self.k.solver["arrangements"]))
+        return ik_general.declare(self.P)
 
     def code(self) -> IKCode:
         k, P = self.k, self.P
@@ -1246,13 +1246,13 @@ class _GeneralEmitter(_Emitter):
         T06 = self.target(w)
         solve = ik_general.emit_general_6r(self, w.text(), T06)
         n_max = ik_general.MAX_SOLUTIONS_6R
-        src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
+        src = [self.tables(), ik_general.routines(), ik_general.tables(k, P), self.finish(n_max)]
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
 int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],
               {P}_ik_workspace *ws)
 {{
-    double rows[{n_max}][6];
+    double (*rows)[6] = (double (*)[6])q;  /* in place: {P}_finish reads row r before it writes row <= r */
     int lab[{n_max}], deg[{n_max}];
     int nr = 0, ir;
     (void)wrist_ref;  /* no free joint in the general case */
