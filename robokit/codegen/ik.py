@@ -442,8 +442,9 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 }}
 """
 
-    def finish(self, max_solutions: int = MAX_SOLUTIONS) -> str:
-        """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``)."""
+    def finish(self, max_solutions: int = MAX_SOLUTIONS, repeats: bool = True) -> str:
+        """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``); ``repeats``
+        False when no label can occur twice (the repeat number is then always 1, no counter table)."""
         k, P, n = self.k, self.P, 6
         lines = []
         for j in range(n):
@@ -483,6 +484,10 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
                 same.append(f"fabs(qq[{j}] - q[6 * m + {j}]) < {self.tol(1e-9)}")
         same_c = "\n                && ".join(same)
         body = "\n".join(lines)
+        count_decl = f"    int count[{len(self.labels)}];\n" if repeats else ""
+        count_init = "    memset(count, 0, sizeof count);\n" if repeats else ""
+        count_add = "        count[lab[r]] += 1;\n" if repeats else ""
+        count_of = "count[lab[r]]" if repeats else "1  /* every label is unique */"
         return f"""
 /* |remainder(a - b, 2 pi)| < tol, for a, b within (-3 pi, 3 pi) (wrapped or shifted by 2 pi) */
 static int {P}_same_angle(double a, double b, double tol)
@@ -497,10 +502,8 @@ static int {P}_same_angle(double a, double b, double tol)
    repeat number of a label that occurs twice (" #2"). */
 static int {P}_finish(const double rows[][6], const int lab[], const int deg[], int nr, double q[], int info[])
 {{
-    int count[{len(self.labels)}];
-    int r, m, nk = 0;
-    memset(count, 0, sizeof count);
-    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
+{count_decl}    int r, m, nk = 0;
+{count_init}    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
         double qq[6];
         int inside = 1, dup = 0, j;
 {body}
@@ -513,10 +516,9 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         for (j = 0; j < 6; ++j) {{
             q[6 * nk + j] = qq[j];
         }}
-        count[lab[r]] += 1;
-        if (info) {{
+{count_add}        if (info) {{
             info[4 * nk] = lab[r];
-            info[4 * nk + 1] = count[lab[r]];
+            info[4 * nk + 1] = {count_of};
             info[4 * nk + 2] = inside;
             info[4 * nk + 3] = deg[r];
         }}
@@ -1246,7 +1248,7 @@ class _GeneralEmitter(_Emitter):
         T06 = self.target(w)
         solve = ik_general.emit_general_6r(self, w.text(), T06)
         n_max = ik_general.MAX_SOLUTIONS_6R
-        src = [self.tables(), ik_general.routines(), ik_general.tables(k, P), self.finish(n_max)]
+        src = [self.tables(), ik_general.routines(), ik_general.tables(k, P), self.finish(n_max, repeats=False)]
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
 int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],

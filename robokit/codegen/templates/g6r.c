@@ -11,13 +11,15 @@
 #include "g6r.h"
 
 /* The workspace. u is reused phase by phase (offsets in doubles):
-   matrices: P u[0..405) r u[405..540) the target's map u[540..765) (its factors in u[0..450) first);
+   matrices: P u[0..405) r u[405..540) the target's map u[540..765) (its factors in u[0..450) first),
+             the side tensor's levels u[765..840);
    pencil:   P, r; Q u[540..652) its Householder factors u[652..764) + u[764..772) N u[772..856);
              then Q's SVD in place, V u[652..716), 4 rows of Q's pseudo-inverse u[716..772);
              then Sigma u[540..702);
    companion: A's LU u[0..144), the 24 x 24 companion matrix u[144..720);
-   eigenvalues: the matrix, wr u[720..744), wi u[744..768);
-   per eigenvalue: L(y) u[0..144), the polish's Jacobians u[144..252). */
+   eigenvalues: the matrix, wr u[720..744), wi u[744..768), a Householder vector u[768..792);
+   per eigenvalue: L(y) u[0..144), the polish's Jacobians and vectors u[144..300),
+             fill_joint's u[300..332). */
 typedef struct {
     double abc[3][6][9]; /* A, B, C of the 12 x 12 pencil: rows e and 6 + e (the same, times x_b) */
     double K[4][3][9];   /* rows 2, 5, 6, 7 of Q's pseudo-inverse times the three-joint side */
@@ -342,10 +344,9 @@ static void g6r_left_null_space(double r[14 * 8], double n[14 * 6], double vs[8 
    Hessenberg form (7.4.3), then Francis double-shift QR steps (7.5.5) with deflation at small
    subdiagonal entries, on the active window only (eigenvalues are all we need). Returns 0, or
    -1 if the iteration did not converge. */
-static int g6r_eigenvalues(int n, double *h, double *wr, double *wi)
+static int g6r_eigenvalues(int n, double *h, double *wr, double *wi, double vv[24])
 {
     int i, j, k, lo, hi, its, done = 0;
-    double vv[24];
     /* balancing: D^-1 H D with D a diagonal of powers of 2 making row and column norms alike */
     while (!done) {
         done = 1;
@@ -540,25 +541,28 @@ static int g6r_eigenvalues(int n, double *h, double *wr, double *wi)
 
 /* (the start vectors f(l, p) = (l, p, p.p, l.p, l x p, (p.p) l - 2 (l.p) p, 1) of both sides are in the tables) */
 
-/* Rz(sign th) v split into its cos th, sin th and constant parts (the four 3-vector blocks turn) */
-static void g6r_rz_parts(const double v[15], double sign, double out[3][15])
+/* Rz(sign th) v split into its cos th (which = 0), sin th (1) and constant (2) parts: out, one of
+   them (the four 3-vector blocks turn) */
+static void g6r_rz_part(const double v[15], double sign, int which, double out[15])
 {
     int k;
     static const int blocks[4] = {0, 3, 8, 11};
     for (k = 0; k < 15; ++k) {
-        out[0][k] = 0.0;
-        out[1][k] = 0.0;
-        out[2][k] = v[k];
+        out[k] = which == 2 ? v[k] : 0.0;
     }
     for (k = 0; k < 4; ++k) {
         const int b = blocks[k];
         const double x = v[b], y = v[b + 1];
-        out[0][b] = x;
-        out[0][b + 1] = y;
-        out[1][b] = -sign * y;
-        out[1][b + 1] = sign * x;
-        out[2][b] = 0.0;
-        out[2][b + 1] = 0.0;
+        if (which == 0) {
+            out[b] = x;
+            out[b + 1] = y;
+        } else if (which == 1) {
+            out[b] = -sign * y;
+            out[b + 1] = sign * x;
+        } else {
+            out[b] = 0.0;
+            out[b + 1] = 0.0;
+        }
     }
 }
 
@@ -591,11 +595,12 @@ static void g6r_scatter(const double row[15], int t, const int *perm, int count,
 
 /* one side of the loop equation as a tensor over its joints' (cos, sin, 1):
    Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f, row i0 + 3 i1 + 9 i2 (3^k rows of 15), each
-   row scattered into dst by perm as it is made (depth first: one vector per level, no tensor) */
+   row scattered into dst by perm as it is made (depth first: one vector per level, no tensor);
+   scratch: 75 doubles */
 static void g6r_side_tensor(const double *const Ms[4], const double *signs, int k, const double f[15],
-                            const int *perm, int count, double *dst)
+                            const int *perm, int count, double *dst, double *scratch)
 {
-    double lev[4][15], parts[3][15];
+    double (*lev)[15] = (double (*)[15])scratch, *part = scratch + 60;
     int dig[3] = {0, 0, 0}, total = 1, t, j;
     g6r_mv15(Ms[0], f, lev[0]);
     for (j = 0; j < k; ++j) {
@@ -613,8 +618,8 @@ static void g6r_side_tensor(const double *const Ms[4], const double *signs, int 
             rem /= 3;
         }
         for (j = from; j < k; ++j) {
-            g6r_rz_parts(lev[j], signs[j], parts);
-            g6r_mv15(Ms[j + 1], parts[dig[j]], lev[j + 1]);
+            g6r_rz_part(lev[j], signs[j], dig[j], part);
+            g6r_mv15(Ms[j + 1], part, lev[j + 1]);
         }
         for (j = 0; j < k; ++j) {
             idx += dig[j] * w;
@@ -723,12 +728,12 @@ static void g6r_matrices(const g6r_reading *rd, const double T06s[16], double *u
     }
     /* the side with the target, made row by row into P or r; the constant side copied */
     if (rd->three_has_w) {
-        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm3, 27, P);
+        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm3, 27, P, u + 765);
         for (i = 0; i < 9; ++i) {
             g6r_scatter(rd->const_side + 15 * i, i, rd->perm2, 9, r);
         }
     } else {
-        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm2, 9, r);
+        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm2, 9, r, u + 765);
         for (i = 0; i < 27; ++i) {
             g6r_scatter(rd->const_side + 15 * i, i, rd->perm3, 27, P);
         }
@@ -1025,11 +1030,11 @@ static double g6r_pose_error(const double Tt[16], const double T[16], double e[6
 /* kernels.general_6r.polish: Newton-Raphson on the pose error; the step is the least-squares
    solution J dq = e (SVD, singular values below 1e-12 s_max dropped, as numpy's lstsq with
    rcond = 1e-12); a step that does not lower the error is not taken. Returns the error.
-   scratch: 108 doubles. */
+   scratch: 156 doubles. */
 static double g6r_polish(const g6r_arm *arm, const double T06s[16], double th[6], int iters, double *scratch)
 {
-    double T[16], e[6], trial[6], err, nw, norms[14];
-    double *J = scratch, *U = scratch + 36, *V = scratch + 72;
+    double *J = scratch, *U = scratch + 36, *V = scratch + 72, *T = scratch + 108, *e = scratch + 124;
+    double *trial = scratch + 130, *dq = scratch + 136, *norms = scratch + 142, err, nw;
     int it, i, j, order[14];
     g6r_fk_pose(arm, th, T);
     err = g6r_pose_error(T06s, T, e);
@@ -1042,8 +1047,7 @@ static double g6r_polish(const g6r_arm *arm, const double T06s[16], double th[6]
         if (g6r_well_conditioned(6, 6, U, 1e-10)) {
             /* well conditioned: the least-squares step is the solution of J dq = e (LU) */
             int piv[6];
-            double dq[6];
-            memcpy(dq, e, sizeof dq);
+            memcpy(dq, e, sizeof(double) * 6);
             g6r_lu(6, J, piv);
             g6r_lu_solve(6, J, piv, dq);
             for (i = 0; i < 6; ++i) {
@@ -1087,12 +1091,12 @@ static double g6r_polish(const g6r_arm *arm, const double T06s[16], double th[6]
 
 /* kernels.general_6r.fill_joint: th_j from the other five,
    Rz(th_j) = (Z1 X1 ... X_{j-1})^-1 T06 (X_j Z_{j+1} ... Z6)^-1 Tz(-d_j) */
-static void g6r_fill_joint(const g6r_arm *arm, const double T06s[16], double th[6], int j)
+static void g6r_fill_joint(const g6r_arm *arm, const double T06s[16], double th[6], int j, double *scratch)
 {
-    double A[16], B[16], R1[3][3], r00 = 0.0, r10 = 0.0;
+    double *A = scratch, *B = scratch + 16, R1[3][3], r00 = 0.0, r10 = 0.0;
     int i, r, k, m;
-    memset(A, 0, sizeof A);
-    memset(B, 0, sizeof B);
+    memset(A, 0, sizeof(double) * 16);
+    memset(B, 0, sizeof(double) * 16);
     A[0] = A[5] = A[10] = A[15] = 1.0;
     B[0] = B[5] = B[10] = B[15] = 1.0;
     for (i = 0; i < 6; ++i) {
@@ -1193,7 +1197,7 @@ static double g6r_candidate(const g6r_arm *arm, const g6r_reading *rd, const dou
     th[rd->roles[4]] = atan2(m7, m6);
     th[rd->roles[5]] = 0.0;
     /* the eliminated joint from the other five, then Newton on the pose */
-    g6r_fill_joint(arm, T06s, th, rd->roles[5]);
+    g6r_fill_joint(arm, T06s, th, rd->roles[5], wk->u + 300);
     return g6r_polish(arm, T06s, th, 30, wk->u + 144);
 }
 
@@ -1285,22 +1289,19 @@ static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const doub
     }
     *ratio = rq < condA ? rq : condA;
     *ratio = reg < *ratio ? reg : *ratio;
-    if (g6r_eigenvalues(24, M, wr, wi) != 0) {
+    if (g6r_eigenvalues(24, M, wr, wi, w->u + 768) != 0) {
         return;
     }
     /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
     for (k = 0; k < 24; ++k) {
         const double lam = wr[k];
         const double imag = 2.0 * fabs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k]);
-        double v[12], V[4][3], th[6], phi, err;
+        double V[12], th[6], phi, err;  /* the null vector: the monomials x_b^i x_c^j at 3 i + j */
         if (imag > arm->imag_tol) {
             continue;
         }
         phi = rotated ? 2.0 * atan2(lam + t, 1.0 - t * lam) : 2.0 * atan(lam);
-        g6r_null_vector((const double (*)[6][9])w->abc, lam, v, w->u);
-        for (i = 0; i < 12; ++i) {
-            V[i / 3][i % 3] = v[i];
-        }
+        g6r_null_vector((const double (*)[6][9])w->abc, lam, V, w->u);
         err = g6r_candidate(arm, rd, T06s, (const double (*)[3])V, phi, w, th);
         if (err < arm->converged) {
             *m = g6r_add(arm, rows, *m, th);
