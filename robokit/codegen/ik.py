@@ -400,43 +400,57 @@ static int {P}_quartic_roots(const double c[5], double out[4])
 
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
-   root. A root of the derivative where c vanishes (to round-off) is a double root. */
+   root. A root of the derivative where c vanishes (to round-off) is a double root. Bottom up (no
+   recursion, for a small stack): the linear derivative's root, then each derivative's roots from
+   the next one's, up to c's. */
 static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 {{
-    double d[5], crit[5], bound = 0.0, lo, scale = 0.0;
-    int i, nc, nr = 0;
-    if (deg == 1) {{
-        out[0] = -c[0] / c[1];
-        return 1;
-    }}
-    for (i = 0; i < deg; ++i) {{
-        const double r = fabs(c[i] / c[deg]);
-        bound = r > bound ? r : bound;
-        scale = fabs(c[i]) > scale ? fabs(c[i]) : scale;
-    }}
-    scale = fabs(c[deg]) > scale ? fabs(c[deg]) : scale;
-    bound += 1.0;  /* Cauchy's bound on the roots */
-    for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = (double)i * c[i];
-    }}
-    nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
-    lo = -bound;
-    for (i = 0; i <= nc; ++i) {{
-        const double hi = i < nc ? crit[i] : bound;
-        const double plo = {P}_poly(c, deg, lo), phi = {P}_poly(c, deg, hi);
-        if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
-            /* start an outer piece next to its critical point, an inner one in its middle */
-            double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
-            if (!(x0 > lo && x0 < hi)) {{
-                x0 = 0.5 * (lo + hi);
-            }}
-            out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
-        }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
-            if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
-                out[nr++] = hi;  /* a double root at a critical point */
+    double cur[5], crit[5];
+    int i, j, k, nc, nr = 1;
+    for (k = 1; k <= deg; ++k) {{
+        double bound = 0.0, lo, scale = 0.0;
+        for (i = 0; i <= deg; ++i) {{  /* cur: the (deg - k)-th derivative of c (degree k) */
+            cur[i] = c[i];
+        }}
+        for (j = deg; j > k; --j) {{
+            for (i = 1; i <= j; ++i) {{
+                cur[i - 1] = (double)i * cur[i];
             }}
         }}
-        lo = hi > lo ? hi : lo;
+        if (k == 1) {{
+            out[0] = -cur[0] / cur[1];
+            continue;
+        }}
+        nc = nr;  /* the critical points (the derivative's roots) only bound the pieces */
+        for (i = 0; i < nc; ++i) {{
+            crit[i] = out[i];
+        }}
+        nr = 0;
+        for (i = 0; i < k; ++i) {{
+            const double r = fabs(cur[i] / cur[k]);
+            bound = r > bound ? r : bound;
+            scale = fabs(cur[i]) > scale ? fabs(cur[i]) : scale;
+        }}
+        scale = fabs(cur[k]) > scale ? fabs(cur[k]) : scale;
+        bound += 1.0;  /* Cauchy's bound on the roots */
+        lo = -bound;
+        for (i = 0; i <= nc; ++i) {{
+            const double hi = i < nc ? crit[i] : bound;
+            const double plo = {P}_poly(cur, k, lo), phi = {P}_poly(cur, k, hi);
+            if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
+                /* start an outer piece next to its critical point, an inner one in its middle */
+                double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
+                if (!(x0 > lo && x0 < hi)) {{
+                    x0 = 0.5 * (lo + hi);
+                }}
+                out[nr++] = {P}_refine(cur, k, lo, hi, x0, k == deg ? tol : {t(1e-9)});
+            }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
+                if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
+                    out[nr++] = hi;  /* a double root at a critical point */
+                }}
+            }}
+            lo = hi > lo ? hi : lo;
+        }}
     }}
     return nr;
 }}
