@@ -17,7 +17,7 @@
              then Q's SVD in place, V u[652..716), 4 rows of Q's pseudo-inverse u[716..772);
              then Sigma u[540..702);
    companion: A's LU u[0..144), the 24 x 24 companion matrix u[144..720);
-   eigenvalues: the matrix, wr u[720..744), wi u[744..768), a Householder vector u[768..792);
+   eigenvalues: the matrix, wr u[720..744), wi u[744..768), Householder vectors u[768..816);
    per eigenvalue: L(y) u[0..144), the polish's Jacobians and vectors u[144..300),
              fill_joint's u[300..332). */
 typedef struct {
@@ -96,12 +96,12 @@ static void g6r_svd(int m, int n, double *a, double *v, double norms[14], int or
     }
 }
 
-/* sigma_min / sigma_max of the m x n row-major matrix a (overwritten), m >= n, n <= 12, without
-   vectors: Householder bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then bisection
-   on the Sturm counts of the Golub-Kahan tridiagonal [[0, B^T], [B, 0]] (zero diagonal,
-   off-diagonals d1, e1, d2, ..., dn; its eigenvalues are +-sigma_i), which finds the
-   extreme singular values to high relative accuracy (Demmel & Kahan 1990). Ratios below 1e-20
-   are reported as 0 (every threshold of the solver is far above). */
+/* The conditioning tests (sigma_min / sigma_max against a threshold) without vectors: Householder
+   bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then Sturm counts of the Golub-Kahan
+   tridiagonal [[0, B^T], [B, 0]] (zero diagonal, off-diagonals d1, e1, d2, ..., dn; its
+   eigenvalues are +-sigma_i), which place the singular values to high relative accuracy (Demmel
+   & Kahan 1990). The solver only compares the ratios with thresholds, so these routines answer
+   the comparison (one or two counts) instead of computing the ratio. */
 static double g6r_house(int n, const double *x, int stride, double *vv);
 static int g6r_gk_count(const double *c, int len, double mu)
 {
@@ -165,43 +165,49 @@ static double g6r_bidiagonal(int m, int n, double *a, double c[24])
     return bound;
 }
 
-static double g6r_sv_ratio(int m, int n, double *a)
+/* whether sigma_min < tol * sigma_max for the m x n row-major matrix a (overwritten), m >= n,
+   n <= 12, for two thresholds t1 <= t2: bit 0 of the result for t1, bit 1 for t2. sigma_max lies
+   between the bidiagonal's largest entry and the Gershgorin bound: a Sturm count at t times either
+   end decides, except when sigma_min lies between the two; then sigma_max is found by bisection to
+   1e-7 relative and counted at. */
+static int g6r_sv_below(int m, int n, double *a, double t1, double t2)
 {
-    double c[24], lo = 0.0, hi, smax;
+    double c[24], lo = 0.0, hi, smax = 0.0;
     const double bound = g6r_bidiagonal(m, n, a, c);
-    int k, it;
+    const double ts[2] = {t1, t2};
+    int k, it, out = 0;
     if (bound == 0.0) {
-        return 0.0;
+        return 3;
     }
     for (k = 0; k < 2 * n - 1; ++k) {  /* sigma_max >= every entry of the bidiagonal */
         lo = fabs(c[k]) > lo ? fabs(c[k]) : lo;
     }
-    /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
-    hi = bound;
-    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (g6r_gk_count(c, 2 * n, mid) - n >= n) {
-            hi = mid;
-        } else {
-            lo = mid;
+    for (k = 0; k < 2; ++k) {
+        if (g6r_gk_count(c, 2 * n, ts[k] * lo) - n >= 1) {
+            out |= 1 << k;  /* sigma_min < t lo <= t sigma_max */
+            continue;
+        }
+        if (g6r_gk_count(c, 2 * n, ts[k] * bound) - n == 0) {
+            continue;  /* sigma_min >= t bound >= t sigma_max */
+        }
+        if (!(smax > 0.0)) {  /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
+            double l = lo;
+            hi = bound;
+            for (it = 0; it < 100 && hi - l > 1e-7 * hi; ++it) {
+                const double mid = 0.5 * (l + hi);
+                if (g6r_gk_count(c, 2 * n, mid) - n >= n) {
+                    hi = mid;
+                } else {
+                    l = mid;
+                }
+            }
+            smax = hi;
+        }
+        if (g6r_gk_count(c, 2 * n, ts[k] * smax) - n >= 1) {
+            out |= 1 << k;
         }
     }
-    smax = hi;
-    /* the smallest, to 1e-7 relative, by bisection of its logarithm in [1e-20, 1] sigma_max */
-    if (g6r_gk_count(c, 2 * n, 1e-20 * smax) - n >= 1) {
-        return 0.0;
-    }
-    lo = 1e-20 * smax;
-    hi = smax;
-    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
-        const double mid = sqrt(lo * hi);
-        if (g6r_gk_count(c, 2 * n, mid) - n >= 1) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    return 0.5 * (lo + hi) / smax;
+    return out;
 }
 
 /* whether sigma_min > tol * sigma_max holds for sure (one Sturm count; 0 may be a false alarm) */
@@ -344,8 +350,9 @@ static void g6r_left_null_space(double r[14 * 8], double n[14 * 6], double vs[8 
    Hessenberg form (7.4.3), then Francis double-shift QR steps (7.5.5) with deflation at small
    subdiagonal entries, on the active window only (eigenvalues are all we need). Returns 0, or
    -1 if the iteration did not converge. */
-static int g6r_eigenvalues(int n, double *h, double *wr, double *wi, double vv[24])
+static int g6r_eigenvalues(int n, double *h, double *wr, double *wi, double scratch[48])
 {
+    double *vv = scratch, *sv = scratch + 24;
     int i, j, k, lo, hi, its, done = 0;
     /* balancing: D^-1 H D with D a diagonal of powers of 2 making row and column norms alike */
     while (!done) {
@@ -388,14 +395,22 @@ static int g6r_eigenvalues(int n, double *h, double *wr, double *wi, double vv[2
         if (beta == 0.0) {
             continue;
         }
-        for (j = k; j < n; ++j) {
-            double s = 0.0;
-            for (i = 0; i < len; ++i) {
-                s += vv[i] * h[(k + 1 + i) * n + j];
+        for (j = k; j < n; ++j) {  /* from the left, row by row (contiguous): s = beta v^T H */
+            sv[j] = 0.0;
+        }
+        for (i = 0; i < len; ++i) {
+            const double *row = h + (k + 1 + i) * n;
+            for (j = k; j < n; ++j) {
+                sv[j] += vv[i] * row[j];
             }
-            s *= beta;
-            for (i = 0; i < len; ++i) {
-                h[(k + 1 + i) * n + j] -= s * vv[i];
+        }
+        for (j = k; j < n; ++j) {
+            sv[j] *= beta;
+        }
+        for (i = 0; i < len; ++i) {
+            double *row = h + (k + 1 + i) * n;
+            for (j = k; j < n; ++j) {
+                row[j] -= sv[j] * vv[i];
             }
         }
         for (i = 0; i < n; ++i) {
@@ -852,8 +867,8 @@ static double g6r_entry(const double abc[3][6][9], int kk, int i, int j)
     return j >= 3 ? abc[kk][i - 6][j - 3] : 0.0;
 }
 
-/* sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c (L: 144 doubles of scratch) */
-static double g6r_regularity(const double abc[3][6][9], double x, double L[144])
+/* whether sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c is below tol (L: 144 doubles of scratch) */
+static int g6r_irregular(const double abc[3][6][9], double x, double tol, double L[144])
 {
     int i, j;
     for (i = 0; i < 12; ++i) {
@@ -861,21 +876,23 @@ static double g6r_regularity(const double abc[3][6][9], double x, double L[144])
             L[i * 12 + j] = g6r_entry(abc, 0, i, j) * x * x + g6r_entry(abc, 1, i, j) * x + g6r_entry(abc, 2, i, j);
         }
     }
-    return g6r_sv_ratio(12, 12, L);
+    return g6r_sv_below(12, 12, L, tol, tol) & 1;
 }
 
 /* kernels.general_6r.companion: M = [[0, I], [-A^-1 C, -A^-1 B]] (24 x 24) when A is regular
-   (LU with partial pivoting, in lu: 144 doubles); returns sigma_min / sigma_max of A */
-static double g6r_companion(const double abc[3][6][9], double M[576], double lu[144])
+   (LU with partial pivoting, in lu: 144 doubles) unless sigma_min / sigma_max of A is below t1
+   (bit 0 of the result; bit 1: below t2 >= t1) */
+static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144], double t1, double t2)
 {
-    double cond, x[12];
+    int below;
+    double x[12];
     int piv[12], i, j;
     for (i = 0; i < 144; ++i) {  /* M's storage as scratch for A's singular values */
         M[i] = g6r_entry(abc, 0, i / 12, i % 12);
     }
-    cond = g6r_sv_ratio(12, 12, M);
-    if (cond <= 1e-10) {
-        return cond;
+    below = g6r_sv_below(12, 12, M, t1, t2);
+    if (below & 1) {
+        return below;
     }
     for (i = 0; i < 144; ++i) {
         lu[i] = g6r_entry(abc, 0, i / 12, i % 12);
@@ -901,7 +918,7 @@ static double g6r_companion(const double abc[3][6][9], double M[576], double lu[
     for (i = 0; i < 12; ++i) {
         M[i * 24 + 12 + i] = 1.0;
     }
-    return cond;
+    return below;
 }
 
 /* the null vector v (12) of the (nearly) singular a y^2 + b y + c at a real eigenvalue y:
@@ -912,10 +929,13 @@ static void g6r_null_vector(const double abc[3][6][9], double y, double v[12], d
     int piv[12], i, it;
     const int big = fabs(y) > 1.0;
     const double y1 = big ? 1.0 / y : y;
-    for (i = 0; i < 144; ++i) {
-        const double a = g6r_entry(abc, 0, i / 12, i % 12), b = g6r_entry(abc, 1, i / 12, i % 12);
-        const double c = g6r_entry(abc, 2, i / 12, i % 12);
-        L[i] = big ? a + b * y1 + c * y1 * y1 : a * y * y + b * y + c;
+    memset(L, 0, sizeof(double) * 144);
+    for (i = 0; i < 6; ++i) {  /* rows i and 6 + i: the same entries, 3 columns apart */
+        int j;
+        for (j = 0; j < 9; ++j) {
+            const double a = abc[0][i][j], b = abc[1][i][j], c = abc[2][i][j];
+            L[i * 12 + j] = L[(6 + i) * 12 + 3 + j] = big ? a + b * y1 + c * y1 * y1 : a * y * y + b * y + c;
+        }
     }
     g6r_lu(12, L, piv);
     for (i = 0; i < 12; ++i) {
@@ -1254,22 +1274,22 @@ static int g6r_add(const g6r_arm *arm, double rows[][6], int m, const double th[
 }
 
 /* GeneralSixR._Elimination.candidates: the polished rotation angles of the solutions with one
-   reading, added to rows (g6r_add; *m how many); *ratio = the conditioning figure min(Q's, A's,
-   the pencil's sigma_min / sigma_max). */
+   reading, added to rows (g6r_add; *m how many); *poor: whether the conditioning figure
+   min(Q's, A's, the pencil's sigma_min / sigma_max) is below arm->poor. */
 static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const double T06s[16], double rows[][6],
-                           int *m, double *ratio, g6r_work *w)
+                           int *m, int *poor, g6r_work *w)
 {
     /* the half-angle turn used when A is near singular: t = tan(1.1 / 2) (robokit.codegen.ik_general) */
     const double t = 0.6131052132881357;
-    double *M = w->u + 144, *wr = w->u + 720, *wi = w->u + 744, condA, reg, rq;
-    int k, rotated = 0, i;
+    double *M = w->u + 144, *wr = w->u + 720, *wi = w->u + 744;
+    int k, rotated = 0, i, singularA;
     /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
     g6r_matrices(rd, T06s, w->u);
-    rq = g6r_pencil(arm, w);
+    *poor = g6r_pencil(arm, w) < arm->poor;
     /* 4: the eigenproblem, the companion matrix when A is regular */
-    condA = g6r_companion((const double (*)[6][9])w->abc, M, w->u);
-    reg = g6r_regularity((const double (*)[6][9])w->abc, arm->x0, w->u);
-    if (!(condA > 1e-10)) {
+    singularA = g6r_companion((const double (*)[6][9])w->abc, M, w->u, 1e-10, arm->poor);
+    *poor = *poor || (singularA & 2) || g6r_irregular((const double (*)[6][9])w->abc, arm->x0, arm->poor, w->u);
+    if (singularA & 1) {
         /* A near singular (a root near the half-angle's point at infinity): robokit's Python
            takes the generalised eigenproblem (QZ); the C turns the variable instead,
            x = (y + t) / (1 - t y), which moves that root to y = -1/t and gives the regular
@@ -1282,13 +1302,10 @@ static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const doub
             *pc = t * t * a + t * b + c;
         }
         rotated = 1;
-        if (!(g6r_companion((const double (*)[6][9])w->abc, M, w->u) > 1e-10)) {
-            *ratio = 0.0;
+        if (g6r_companion((const double (*)[6][9])w->abc, M, w->u, 1e-10, 1e-10) & 1) {
             return;  /* singular in both variables: a continuum, no finite solution set */
         }
     }
-    *ratio = rq < condA ? rq : condA;
-    *ratio = reg < *ratio ? reg : *ratio;
     if (g6r_eigenvalues(24, M, wr, wi, w->u + 768) != 0) {
         return;
     }
@@ -1314,29 +1331,28 @@ G6R_API int g6r_solve(const g6r_arm *arm, const double T06s[16], double rows[G6R
                       int deg[], double *ws)
 {
     g6r_work *w = (g6r_work *)(void *)ws;
-    double ratio, extra_ratio;
-    int m = 0, a, i, j;
+    int m = 0, a, i, j, poor, extra_poor;
     for (i = 0; i < 12; ++i) {
         if (!(fabs(T06s[i]) < HUGE_VAL)) {
             return 0;  /* not a pose (inf or NaN) */
         }
     }
-    g6r_candidates(arm, &arm->readings[0], T06s, rows, &m, &ratio, w);
-    if (ratio < arm->poor) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
+    g6r_candidates(arm, &arm->readings[0], T06s, rows, &m, &poor, w);
+    if (poor) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
         for (a = 1; a < arm->nread; ++a) {
-            g6r_candidates(arm, &arm->readings[a], T06s, rows, &m, &extra_ratio, w);
+            g6r_candidates(arm, &arm->readings[a], T06s, rows, &m, &extra_poor, w);
         }
     }
     for (i = 0; i < m; ++i) {
         int singular = 0;
-        if (ratio < arm->poor) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
+        if (poor) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
             double t6[6], T[16], *J = w->u;
             for (j = 0; j < 6; ++j) {
                 t6[j] = rows[i][j] + arm->th0[j];
             }
             g6r_fk_pose(arm, t6, T);
             g6r_jacobian6(arm, t6, T, J);
-            singular = g6r_sv_ratio(6, 6, J) < 1e-8;
+            singular = g6r_sv_below(6, 6, J, 1e-8, 1e-8) & 1;
         }
         lab[i] = ((m - 1) * m / 2 + i) * 2 + singular;  /* "solution i+1 of m" (", singular") */
         deg[i] = singular;
