@@ -885,8 +885,8 @@ static int g6r_irregular(const double abc[3][6][9], double x, double tol, double
 static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144], double t1, double t2)
 {
     int below;
-    double x[12];
-    int piv[12], i, j;
+    double *X;
+    int piv[12], i, j, k;
     for (i = 0; i < 144; ++i) {  /* M's storage as scratch for A's singular values */
         M[i] = g6r_entry(abc, 0, i / 12, i % 12);
     }
@@ -898,25 +898,47 @@ static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144
         lu[i] = g6r_entry(abc, 0, i / 12, i % 12);
     }
     g6r_lu(12, lu, piv);
-    memset(M, 0, sizeof(double) * 576);
-    for (j = 0; j < 12; ++j) {
-        for (i = 0; i < 12; ++i) {
-            x[i] = g6r_entry(abc, 2, i, j);  /* column j of C */
+    /* -A^-1 [C B] in M's lower half: the 24 right-hand sides solved together, row by row (the same
+       operations on each column as g6r_lu_solve) */
+    memset(M, 0, sizeof(double) * 288);
+    for (i = 0; i < 12; ++i) {
+        for (j = 0; j < 12; ++j) {
+            M[(12 + i) * 24 + j] = g6r_entry(abc, 2, i, j);
+            M[(12 + i) * 24 + 12 + j] = g6r_entry(abc, 1, i, j);
         }
-        g6r_lu_solve(12, lu, piv, x);
-        for (i = 0; i < 12; ++i) {
-            M[(12 + i) * 24 + j] = -x[i];
-        }
-        for (i = 0; i < 12; ++i) {
-            x[i] = g6r_entry(abc, 1, i, j);  /* column j of B */
-        }
-        g6r_lu_solve(12, lu, piv, x);
-        for (i = 0; i < 12; ++i) {
-            M[(12 + i) * 24 + 12 + j] = -x[i];
+        M[i * 24 + 12 + i] = 1.0;
+    }
+    X = M + 288;
+    for (i = 0; i < 12; ++i) {
+        if (piv[i] != i) {
+            for (j = 0; j < 24; ++j) {
+                const double tmp = X[piv[i] * 24 + j];
+                X[piv[i] * 24 + j] = X[i * 24 + j];
+                X[i * 24 + j] = tmp;
+            }
         }
     }
     for (i = 0; i < 12; ++i) {
-        M[i * 24 + 12 + i] = 1.0;
+        for (k = 0; k < i; ++k) {
+            const double l = lu[i * 12 + k];
+            for (j = 0; j < 24; ++j) {
+                X[i * 24 + j] -= l * X[k * 24 + j];
+            }
+        }
+    }
+    for (i = 11; i >= 0; --i) {
+        for (k = i + 1; k < 12; ++k) {
+            const double l = lu[i * 12 + k];
+            for (j = 0; j < 24; ++j) {
+                X[i * 24 + j] -= l * X[k * 24 + j];
+            }
+        }
+        for (j = 0; j < 24; ++j) {
+            X[i * 24 + j] /= lu[i * 12 + i];
+        }
+    }
+    for (i = 0; i < 288; ++i) {
+        X[i] = -X[i];
     }
     return below;
 }
