@@ -96,7 +96,7 @@ def template(name: str) -> str:
 
 @lru_cache(maxsize=None)
 def _template(name: str) -> str:
-    return resources.files("robokit.codegen").joinpath("templates", name).read_text(encoding="utf-8")
+    return resources.files("robokit.codegen").joinpath("templates").joinpath(name).read_text(encoding="utf-8")
 
 
 def workspace_doubles() -> int:

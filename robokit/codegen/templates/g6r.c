@@ -755,6 +755,23 @@ static void g6r_matrices(const g6r_reading *rd, const double T06s[16], double *u
     }
 }
 
+/* out[i * orow + i3 * oi3 + m] = sum_k W[i * wr + k * wk] P[i3][k][m] (i < nrow, k < 14; P: 3 x 15 x 9) */
+static void g6r_project(const double *W, int nrow, int wr, int wk, const double *P, double *out, int orow, int oi3)
+{
+    int i, i3, m, k;
+    for (i = 0; i < nrow; ++i) {
+        for (i3 = 0; i3 < 3; ++i3) {
+            for (m = 0; m < 9; ++m) {
+                double acc = 0.0;
+                for (k = 0; k < 14; ++k) {
+                    acc += W[i * wr + k * wk] * P[(i3 * 15 + k) * 9 + m];
+                }
+                out[i * orow + i3 * oi3 + m] = acc;
+            }
+        }
+    }
+}
+
 /* kernels.general_6r.pencil: A x^2 + B x + C (w->abc: rows e and 6 + e of each 12 x 12 matrix,
    g6r_entry) with x = tan(phi/2), th_pivot = phi + gamma; the three-joint side with the two-joint
    side's constant moved over (in P, in place) times rows 2, 5, 6, 7 of the pseudo-inverse of the
@@ -767,7 +784,7 @@ static double g6r_pencil(const g6r_arm *arm, g6r_work *w)
     double *V = u + 652, *pinv = u + 716;
     double (*sig)[6][9] = (double (*)[6][9])(u + 540);
     double norms[14], ratio;
-    int order[14], i, j, k, m, e, i3;
+    int order[14], i, j, k, m, e;
     for (k = 0; k < 14; ++k) {  /* the two-joint side's constant moved over */
         P[(2 * 15 + k) * 9 + 8] -= r[k * 9 + 8];
     }
@@ -800,29 +817,9 @@ static double g6r_pencil(const g6r_arm *arm, g6r_work *w)
             pinv[i * 14 + k] = acc;
         }
     }
-    for (i = 0; i < 4; ++i) {
-        for (i3 = 0; i3 < 3; ++i3) {
-            for (m = 0; m < 9; ++m) {
-                double acc = 0.0;
-                for (k = 0; k < 14; ++k) {
-                    acc += pinv[i * 14 + k] * P[(i3 * 15 + k) * 9 + m];
-                }
-                w->K[i][i3][m] = acc;
-            }
-        }
-    }
+    g6r_project(pinv, 4, 14, 1, P, &w->K[0][0][0], 27, 9);
     /* Sigma_i3 = N^T P'_i3 with N the left null space of Q: theta 1, 2 eliminated */
-    for (i3 = 0; i3 < 3; ++i3) {
-        for (e = 0; e < 6; ++e) {
-            for (m = 0; m < 9; ++m) {
-                double acc = 0.0;
-                for (k = 0; k < 14; ++k) {
-                    acc += N[k * 6 + e] * P[(i3 * 15 + k) * 9 + m];
-                }
-                sig[i3][e][m] = acc;
-            }
-        }
-    }
+    g6r_project(N, 6, 1, 6, P, &sig[0][0][0], 9, 54);
     /* th = phi + gamma, x = tan(phi/2), and the half-angle monomials of the other two joints:
        6 equations and the same times x_b, in the 12 monomials x_b^i x_c^j (i <= 3, j <= 2) */
     memset(w->abc, 0, sizeof w->abc);
@@ -978,27 +975,40 @@ static void g6r_null_vector(const double abc[3][6][9], double y, double v[12], d
 
 /* ---------------------------------------------------------------- kinematics of Z1 X1 ... Z6 */
 
+/* T <- T Rz(th) Tz(d_i) for the 4 x 4 row-major T (its top three rows), c = cos th, s = sin th */
+static void g6r_turn(const g6r_arm *arm, int i, double c, double s, double *T)
+{
+    int r;
+    for (r = 0; r < 3; ++r) {
+        const double x = T[4 * r], y = T[4 * r + 1];
+        T[4 * r] = c * x + s * y;
+        T[4 * r + 1] = -s * x + c * y;
+        T[4 * r + 3] += arm->d[i] * T[4 * r + 2];
+    }
+}
+
+/* T <- T Tx(a_i) Rx(alpha_i) */
+static void g6r_twist(const g6r_arm *arm, int i, double *T)
+{
+    int r;
+    for (r = 0; r < 3; ++r) {
+        const double y = T[4 * r + 1], z = T[4 * r + 2];
+        T[4 * r + 3] += arm->a[i] * T[4 * r];
+        T[4 * r + 1] = arm->ca[i] * y + arm->sa[i] * z;
+        T[4 * r + 2] = -arm->sa[i] * y + arm->ca[i] * z;
+    }
+}
+
 /* kernels.general_6r.fk_pose: the pose of Z1 X1 ... X5 Z6 at the rotation angles th (scaled) */
 static void g6r_fk_pose(const g6r_arm *arm, const double th[6], double T[16])
 {
-    int i, r;
+    int i;
     memset(T, 0, sizeof(double) * 16);
     T[0] = T[5] = T[10] = T[15] = 1.0;
     for (i = 0; i < 6; ++i) {
-        const double c = cos(th[i]), s = sin(th[i]);
-        for (r = 0; r < 3; ++r) {  /* T <- T Rz(th) Tz(d) */
-            const double x = T[4 * r], y = T[4 * r + 1];
-            T[4 * r] = c * x + s * y;
-            T[4 * r + 1] = -s * x + c * y;
-            T[4 * r + 3] += arm->d[i] * T[4 * r + 2];
-        }
+        g6r_turn(arm, i, cos(th[i]), sin(th[i]), T);
         if (i < 5) {
-            for (r = 0; r < 3; ++r) {  /* T <- T Tx(a) Rx(alpha) */
-                const double y = T[4 * r + 1], z = T[4 * r + 2];
-                T[4 * r + 3] += arm->a[i] * T[4 * r];
-                T[4 * r + 1] = arm->ca[i] * y + arm->sa[i] * z;
-                T[4 * r + 2] = -arm->sa[i] * y + arm->ca[i] * z;
-            }
+            g6r_twist(arm, i, T);
         }
     }
 }
@@ -1007,7 +1017,7 @@ static void g6r_fk_pose(const g6r_arm *arm, const double th[6], double T[16])
 static void g6r_jacobian6(const g6r_arm *arm, const double th[6], const double T[16], double J[36])
 {
     double G[16];
-    int i, r;
+    int i;
     memset(G, 0, sizeof G);
     G[0] = G[5] = G[10] = G[15] = 1.0;
     for (i = 0; i < 6; ++i) {
@@ -1020,19 +1030,9 @@ static void g6r_jacobian6(const g6r_arm *arm, const double th[6], const double T
         J[3 * 6 + i] = z0;
         J[4 * 6 + i] = z1;
         J[5 * 6 + i] = z2;
-        for (r = 0; r < 3; ++r) {
-            const double x = G[4 * r], y = G[4 * r + 1];
-            G[4 * r] = c * x + s * y;
-            G[4 * r + 1] = -s * x + c * y;
-            G[4 * r + 3] += arm->d[i] * G[4 * r + 2];
-        }
+        g6r_turn(arm, i, c, s, G);
         if (i < 5) {
-            for (r = 0; r < 3; ++r) {
-                const double y = G[4 * r + 1], z = G[4 * r + 2];
-                G[4 * r + 3] += arm->a[i] * G[4 * r];
-                G[4 * r + 1] = arm->ca[i] * y + arm->sa[i] * z;
-                G[4 * r + 2] = -arm->sa[i] * y + arm->ca[i] * z;
-            }
+            g6r_twist(arm, i, G);
         }
     }
 }
@@ -1136,30 +1136,18 @@ static double g6r_polish(const g6r_arm *arm, const double T06s[16], double th[6]
 static void g6r_fill_joint(const g6r_arm *arm, const double T06s[16], double th[6], int j, double *scratch)
 {
     double *A = scratch, *B = scratch + 16, R1[3][3], r00 = 0.0, r10 = 0.0;
-    int i, r, k, m;
+    int i, k, m;
     memset(A, 0, sizeof(double) * 16);
     memset(B, 0, sizeof(double) * 16);
     A[0] = A[5] = A[10] = A[15] = 1.0;
     B[0] = B[5] = B[10] = B[15] = 1.0;
     for (i = 0; i < 6; ++i) {
         const double c = cos(th[i]), s = sin(th[i]);
-        double *M = i > j ? B : A;
         if (i != j) {
-            for (r = 0; r < 3; ++r) {
-                const double x = M[4 * r], y = M[4 * r + 1];
-                M[4 * r] = c * x + s * y;
-                M[4 * r + 1] = -s * x + c * y;
-                M[4 * r + 3] += arm->d[i] * M[4 * r + 2];
-            }
+            g6r_turn(arm, i, c, s, i > j ? B : A);
         }
         if (i < 5) {
-            M = i >= j ? B : A;
-            for (r = 0; r < 3; ++r) {
-                const double y = M[4 * r + 1], z = M[4 * r + 2];
-                M[4 * r + 3] += arm->a[i] * M[4 * r];
-                M[4 * r + 1] = arm->ca[i] * y + arm->sa[i] * z;
-                M[4 * r + 2] = -arm->sa[i] * y + arm->ca[i] * z;
-            }
+            g6r_twist(arm, i, i >= j ? B : A);
         }
     }
     for (i = 0; i < 3; ++i) {  /* R1 = A_R^T R06 */
