@@ -2,9 +2,13 @@ r"""C for the general 6R closed form (``NAME_ik`` of an arm with no special stru
 
 :func:`robokit.ik_analytic` solves any 6R arm without a spherical wrist or three parallel axes
 (an offset wrist such as the Kinova Jaco's) by the Raghavan–Roth elimination and the
-Manocha–Canny eigenproblem (:mod:`robokit.ik.general_6r`): up to 16 solutions. The C written
-here follows :meth:`robokit.ik.general_6r.GeneralSixR.solve` step for step, one C function
-per Python step (the names are the Python ones):
+Manocha–Canny eigenproblem (:mod:`robokit.ik.general_6r`): up to 16 solutions. The C follows
+:meth:`robokit.ik.general_6r.GeneralSixR.solve` step for step, one C function per Python step
+(the names are the Python ones). The algorithm does not depend on the arm and is a real C file,
+``robokit/codegen/templates/g6r.c`` with its header ``g6r.h`` (compiled on their own by the
+tests), which :func:`routines` copies verbatim into ``NAME.c``; this module writes only the
+arm's numbers, as ``static const`` tables and one ``const g6r_arm`` (:func:`tables`), and the
+per-robot entry points. The steps:
 
 1. the loop equation's 14 quantities on both sides (``matrices``: the side without the target
    is a per-arm ``static const`` table, the side with it is built per pose from the per-arm
@@ -55,7 +59,7 @@ FLOAT32_NOTE = ("robokit has a closed form (general 6R) but its C is generated i
                 "14 x 8 and 12 x 12 matrices reach condition numbers of 1e6 on ordinary poses, beyond float; "
                 "generate without --float32 or use robokit.ik_analytic")
 
-_ROT_DELTA = 1.1  # rad: the fixed turn of the half-angle variable used when A is near singular
+_ROT_DELTA = 1.1  # rad: the fixed turn of the half-angle variable used when A is near singular (g6r.c: tan(delta/2))
 
 
 def general_6r_labels() -> list[str]:
