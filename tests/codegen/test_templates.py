@@ -83,3 +83,84 @@ def test_the_turned_variable_is_the_documented_angle():
     m = re.search(r"const double t = ([0-9.e+-]+);", ik_general.template("g6r.c"))
     assert m is not None
     assert float(m.group(1)) == math.tan(0.5 * ik_general._ROT_DELTA)
+
+
+ASAN_DRIVER = r"""
+#include <stdio.h>
+#include <stdlib.h>
+#include "@P@.h"
+static const double POSES[][16] = {
+@POSES@
+};
+int main(void)
+{
+    const int n = (int)(sizeof POSES / sizeof POSES[0]);
+    double q1[@P@_MAX_SOLUTIONS * @P@_N], q2[@P@_MAX_SOLUTIONS * @P@_N];
+    int info[4 * @P@_MAX_SOLUTIONS], k, total = 0;
+    /* exactly NAME_IK_WORKSPACE_SIZE bytes on the heap: AddressSanitizer flags any access past it */
+    @P@_ik_workspace *ws = (@P@_ik_workspace *)malloc(@P@_IK_WORKSPACE_SIZE);
+    if (!ws) {
+        return 2;
+    }
+    for (k = 0; k < n; ++k) {
+        const int a = @P@_ik(POSES[k], q1), b = @P@_ik_ws(POSES[k], 0.0, q2, info, ws);
+        if (a != b) {
+            return 3;
+        }
+        total += a;
+    }
+    free(ws);
+    printf("%d\n", total);
+    return 0;
+}
+"""
+
+
+@pytest.mark.parametrize("arm", ["jaco", "puma_offset"])
+def test_general_6r_c_stays_in_its_workspace(cc, tmp_path, arm):
+    """The generated general-6R IK under AddressSanitizer and UBSan, with NAME_ik_ws given a heap
+    workspace of exactly NAME_IK_WORKSPACE_SIZE bytes: no access outside it or outside the stack
+    buffers, on random poses, a pose with the eigenvalue joint at the half-angle's infinity (the
+    turned variable) and an arm a hair from a spherical wrist (badly conditioned readings: all four
+    readings solved); NAME_ik (workspace on its stack) returns as many solutions."""
+    import numpy as np
+    from dataclasses import replace
+
+    from robokit.description.dh import DHTable
+    from robokit.ik import analytic_ik, ik_analytic
+
+    probe = subprocess.run([cc, "-fsanitize=address,undefined", "-x", "c", "-", "-o", str(tmp_path / "probe")],
+                           input="int main(void) { return 0; }\n", capture_output=True, text=True)
+    if probe.returncode != 0:
+        pytest.skip(f"{cc} cannot build with -fsanitize=address,undefined here")
+    if arm == "jaco":
+        robot = robokit.load(jaco2_table())
+        nominal = None
+    else:
+        t = robokit.load("puma560").dh
+        rows = [replace(link, a=link.a + (1e-6 if i == 3 else 0.0)) for i, link in enumerate(t.links)]
+        robot = robokit.load(DHTable("puma_eps", t.convention, tuple(rows), base=t.base, tool=t.tool))
+        nominal = False
+    rng = np.random.default_rng(8)
+    qs = [rng.uniform(-np.pi, np.pi, 6) for _ in range(6)]
+    if arm == "jaco":
+        sv = analytic_ik(robot).solver.export_constants()
+        pivot = int(sv["arrangements"][0]["roles"][0])
+        q = np.array([0.4, -0.7, 1.1, 0.5, -0.9, 0.3])
+        q[pivot] = math.remainder(sv["gamma"] + math.pi - sv["th0"][pivot], 2 * math.pi)
+        qs.append(q)
+    poses = [robot.frame_pose(q) for q in qs]
+    src = generate_c(robot, nominal=nominal)
+    P = src.name
+    write_c(src, tmp_path)
+    text = ",\n".join("    {" + ", ".join(repr(float(x)) for x in T.reshape(-1)) + "}" for T in poses)
+    (tmp_path / "drv.c").write_text(ASAN_DRIVER.replace("@P@", P).replace("@POSES@", text))
+    exe = tmp_path / "drv"
+    subprocess.run([cc, "-std=c99", "-g", "-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
+                    f"-I{tmp_path}", str(tmp_path / "drv.c"), str(tmp_path / f"{P}.c"), "-o", str(exe), "-lm"],
+                   check=True)
+    res = subprocess.run([str(exe)], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr[-3000:]
+    expected = sum(len(ik_analytic(robot, T, nominal=nominal)) if nominal is not None else len(ik_analytic(robot, T))
+                   for T in poses)
+    assert int(res.stdout) == expected
