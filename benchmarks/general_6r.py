@@ -11,6 +11,9 @@ Peers in the same run:
   same standard-DH arm (all solutions of one pose; the one-off symbolic derivation is timed
   separately). Only for the arms given by ``--rtb`` (default: the Jaco), the derivation
   taking minutes per arm.
+* the generated C (``robokit codegen``'s ``NAME_ik``, gcc ``-O2``, ``benchmarks.codegen``'s driver:
+  256 poses from FK of random configurations, fastest of 7 batches) and its instructions per pose
+  (valgrind's callgrind, when installed: a count the machine's load does not change).
 * robokit's compiled Levenberg–Marquardt ``solve_ik(method="compiled", max_restarts=0)`` from
   200 random seeds, de-duplicated (1e-6 rad): the time for the 200 runs and how many distinct
   solutions they find.
@@ -87,6 +90,17 @@ def _dist(a, b):
     return float(np.abs(np.angle(np.exp(1j * (np.asarray(a) - np.asarray(b))))).max())
 
 
+def _c_ik(robot) -> dict:
+    """The generated C's NAME_ik per pose (s) and, with valgrind, its instructions per pose (``ir_ik_ex``)."""
+    import tempfile
+    from pathlib import Path
+
+    from benchmarks.codegen import _c_times
+
+    with tempfile.TemporaryDirectory() as tmp:
+        return _c_times(robot, Path(tmp), 1, 1)
+
+
 def main(argv=None):
     import robokit
     from robokit.ik import ik_analytic, solve_ik
@@ -107,6 +121,7 @@ def main(argv=None):
     rows = []
     for k, (name, tab) in enumerate(arms):
         robot = robokit.load(tab)
+        c = _c_ik(robot)
         t0 = time.perf_counter()
         robokit.ik_analytic_kind(robot)  # builds the solver (scores the 36 readings)
         build = time.perf_counter() - t0
@@ -149,14 +164,17 @@ def main(argv=None):
         m_rk = statistics.median(t_rk)
         m_rtb = statistics.median(t_rtb) if t_rtb else float("nan")
         m_num = statistics.median(t_num)
-        rows.append([name, fmt_time(build), fmt_time(m_rk), f"{statistics.mean(n_rk):.1f} ({min(n_rk)}–{max(n_rk)})",
+        rows.append([name, fmt_time(build), fmt_time(m_rk), fmt_time(c["ik"]),
+                     f"{c['ir_ik_ex']:,.0f}" if "ir_ik_ex" in c else "no valgrind", f"{m_rk / c['ik']:.0f}×",
+                     f"{statistics.mean(n_rk):.1f} ({min(n_rk)}–{max(n_rk)})",
                      f"{worst:.1e}", fmt_time(rtb_build) if use_rtb else "not run",
                      fmt_time(m_rtb) if use_rtb else "not run",
                      f"{statistics.mean(n_rtb):.1f}, same set {agree}/{n_poses}" if use_rtb else "",
                      f"{m_rtb / m_rk:.1f}×" if use_rtb else "",
                      fmt_time(m_num), f"{statistics.mean(n_num):.1f}, missed by closed form: {missed}",
                      f"{m_num / m_rk:.0f}×"])
-    print(table(["arm", "robokit build", "robokit all solutions", "# solutions (min–max)", "max FK error",
+    print(table(["arm", "robokit build", "robokit all solutions", "C NAME_ik (-O2)", "C instructions / pose",
+                 "Python / C", "# solutions (min–max)", "max FK error",
                  "rtb derivation", "rtb solve", "# rtb", "rtb / robokit", "numerical IK ×200 seeds",
                  "# distinct numerical", "numerical / robokit"], rows))
     print(f"\nFor scale, in the same run: numpy.linalg.eig of one 24 × 24 matrix (the eigenproblem each "

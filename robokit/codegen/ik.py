@@ -400,50 +400,65 @@ static int {P}_quartic_roots(const double c[5], double out[4])
 
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
-   root. A root of the derivative where c vanishes (to round-off) is a double root. */
+   root. A root of the derivative where c vanishes (to round-off) is a double root. Bottom up (no
+   recursion, for a small stack): the linear derivative's root, then each derivative's roots from
+   the next one's, up to c's. */
 static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
 {{
-    double d[5], crit[5], bound = 0.0, lo, scale = 0.0;
-    int i, nc, nr = 0;
-    if (deg == 1) {{
-        out[0] = -c[0] / c[1];
-        return 1;
-    }}
-    for (i = 0; i < deg; ++i) {{
-        const double r = fabs(c[i] / c[deg]);
-        bound = r > bound ? r : bound;
-        scale = fabs(c[i]) > scale ? fabs(c[i]) : scale;
-    }}
-    scale = fabs(c[deg]) > scale ? fabs(c[deg]) : scale;
-    bound += 1.0;  /* Cauchy's bound on the roots */
-    for (i = 1; i <= deg; ++i) {{
-        d[i - 1] = (double)i * c[i];
-    }}
-    nc = {P}_real_roots(d, deg - 1, crit, {t(1e-9)});  /* the critical points only bound the pieces */
-    lo = -bound;
-    for (i = 0; i <= nc; ++i) {{
-        const double hi = i < nc ? crit[i] : bound;
-        const double plo = {P}_poly(c, deg, lo), phi = {P}_poly(c, deg, hi);
-        if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
-            /* start an outer piece next to its critical point, an inner one in its middle */
-            double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
-            if (!(x0 > lo && x0 < hi)) {{
-                x0 = 0.5 * (lo + hi);
-            }}
-            out[nr++] = {P}_refine(c, deg, lo, hi, x0, tol);
-        }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
-            if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
-                out[nr++] = hi;  /* a double root at a critical point */
+    double cur[5], crit[5];
+    int i, j, k, nc, nr = 1;
+    for (k = 1; k <= deg; ++k) {{
+        double bound = 0.0, lo, scale = 0.0;
+        for (i = 0; i <= deg; ++i) {{  /* cur: the (deg - k)-th derivative of c (degree k) */
+            cur[i] = c[i];
+        }}
+        for (j = deg; j > k; --j) {{
+            for (i = 1; i <= j; ++i) {{
+                cur[i - 1] = (double)i * cur[i];
             }}
         }}
-        lo = hi > lo ? hi : lo;
+        if (k == 1) {{
+            out[0] = -cur[0] / cur[1];
+            continue;
+        }}
+        nc = nr;  /* the critical points (the derivative's roots) only bound the pieces */
+        for (i = 0; i < nc; ++i) {{
+            crit[i] = out[i];
+        }}
+        nr = 0;
+        for (i = 0; i < k; ++i) {{
+            const double r = fabs(cur[i] / cur[k]);
+            bound = r > bound ? r : bound;
+            scale = fabs(cur[i]) > scale ? fabs(cur[i]) : scale;
+        }}
+        scale = fabs(cur[k]) > scale ? fabs(cur[k]) : scale;
+        bound += 1.0;  /* Cauchy's bound on the roots */
+        lo = -bound;
+        for (i = 0; i <= nc; ++i) {{
+            const double hi = i < nc ? crit[i] : bound;
+            const double plo = {P}_poly(cur, k, lo), phi = {P}_poly(cur, k, hi);
+            if (hi > lo && ((plo < 0.0 && phi > 0.0) || (plo > 0.0 && phi < 0.0))) {{
+                /* start an outer piece next to its critical point, an inner one in its middle */
+                double x0 = i == 0 && nc > 0 ? hi - 1.0 : (i == nc && nc > 0 ? lo + 1.0 : 0.5 * (lo + hi));
+                if (!(x0 > lo && x0 < hi)) {{
+                    x0 = 0.5 * (lo + hi);
+                }}
+                out[nr++] = {P}_refine(cur, k, lo, hi, x0, k == deg ? tol : {t(1e-9)});
+            }} else if (i < nc && fabs(phi) <= {t(1e-14)} * scale * (1.0 + fabs(hi)) * (1.0 + fabs(hi))) {{
+                if (nr == 0 || out[nr - 1] < hi) {{  /* the roots so far are <= lo <= hi: "not equal" */
+                    out[nr++] = hi;  /* a double root at a critical point */
+                }}
+            }}
+            lo = hi > lo ? hi : lo;
+        }}
     }}
     return nr;
 }}
 """
 
-    def finish(self, max_solutions: int = MAX_SOLUTIONS) -> str:
-        """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``)."""
+    def finish(self, max_solutions: int = MAX_SOLUTIONS, repeats: bool = True) -> str:
+        """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``); ``repeats``
+        False when no label can occur twice (the repeat number is then always 1, no counter table)."""
         k, P, n = self.k, self.P, 6
         lines = []
         for j in range(n):
@@ -483,6 +498,10 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
                 same.append(f"fabs(qq[{j}] - q[6 * m + {j}]) < {self.tol(1e-9)}")
         same_c = "\n                && ".join(same)
         body = "\n".join(lines)
+        count_decl = f"    int count[{len(self.labels)}];\n" if repeats else ""
+        count_init = "    memset(count, 0, sizeof count);\n" if repeats else ""
+        count_add = "        count[lab[r]] += 1;\n" if repeats else ""
+        count_of = "count[lab[r]]" if repeats else "1  /* every label is unique */"
         return f"""
 /* |remainder(a - b, 2 pi)| < tol, for a, b within (-3 pi, 3 pi) (wrapped or shifted by 2 pi) */
 static int {P}_same_angle(double a, double b, double tol)
@@ -497,10 +516,8 @@ static int {P}_same_angle(double a, double b, double tol)
    repeat number of a label that occurs twice (" #2"). */
 static int {P}_finish(const double rows[][6], const int lab[], const int deg[], int nr, double q[], int info[])
 {{
-    int count[{len(self.labels)}];
-    int r, m, nk = 0;
-    memset(count, 0, sizeof count);
-    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
+{count_decl}    int r, m, nk = 0;
+{count_init}    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
         double qq[6];
         int inside = 1, dup = 0, j;
 {body}
@@ -513,10 +530,9 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         for (j = 0; j < 6; ++j) {{
             q[6 * nk + j] = qq[j];
         }}
-        count[lab[r]] += 1;
-        if (info) {{
+{count_add}        if (info) {{
             info[4 * nk] = lab[r];
-            info[4 * nk + 1] = count[lab[r]];
+            info[4 * nk + 1] = {count_of};
             info[4 * nk + 2] = inside;
             info[4 * nk + 3] = deg[r];
         }}
@@ -1238,7 +1254,7 @@ class _GeneralEmitter(_Emitter):
         self.labels = ik_general.general_6r_labels()
 
     def declare(self) -> list[str]:
-        return ik_general.declare(self.P, len(self.k.solver["arrangements"]))
+        return ik_general.declare(self.P)
 
     def code(self) -> IKCode:
         k, P = self.k, self.P
@@ -1246,13 +1262,13 @@ class _GeneralEmitter(_Emitter):
         T06 = self.target(w)
         solve = ik_general.emit_general_6r(self, w.text(), T06)
         n_max = ik_general.MAX_SOLUTIONS_6R
-        src = [self.tables(), ik_general.tables(k, P), ik_general.routines(k, P), self.finish(n_max)]
+        src = [self.tables(), ik_general.routines(), ik_general.tables(k, P), self.finish(n_max, repeats=False)]
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
 int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],
               {P}_ik_workspace *ws)
 {{
-    double rows[{n_max}][6];
+    double (*rows)[6] = (double (*)[6])q;  /* in place: {P}_finish reads row r before it writes row <= r */
     int lab[{n_max}], deg[{n_max}];
     int nr = 0, ir;
     (void)wrist_ref;  /* no free joint in the general case */

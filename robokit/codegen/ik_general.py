@@ -2,9 +2,13 @@ r"""C for the general 6R closed form (``NAME_ik`` of an arm with no special stru
 
 :func:`robokit.ik_analytic` solves any 6R arm without a spherical wrist or three parallel axes
 (an offset wrist such as the Kinova Jaco's) by the Raghavan–Roth elimination and the
-Manocha–Canny eigenproblem (:mod:`robokit.ik.general_6r`): up to 16 solutions. The C written
-here follows :meth:`robokit.ik.general_6r.GeneralSixR.solve` step for step, one C function
-per Python step (the names are the Python ones):
+Manocha–Canny eigenproblem (:mod:`robokit.ik.general_6r`): up to 16 solutions. The C follows
+:meth:`robokit.ik.general_6r.GeneralSixR.solve` step for step, one C function per Python step
+(the names are the Python ones). The algorithm does not depend on the arm and is a real C file,
+``robokit/codegen/templates/g6r.c`` with its header ``g6r.h`` (compiled on their own by the
+tests), which :func:`routines` copies verbatim into ``NAME.c``; this module writes only the
+arm's numbers, as ``static const`` tables and one ``const g6r_arm`` (:func:`tables`), and the
+per-robot entry points. The steps:
 
 1. the loop equation's 14 quantities on both sides (``matrices``: the side without the target
    is a per-arm ``static const`` table, the side with it is built per pose from the per-arm
@@ -35,12 +39,14 @@ single precision resolves.
 from __future__ import annotations
 
 import math
+import re
+from functools import lru_cache
+from importlib import resources
 from typing import Any
 
 import numpy as np
 
 from robokit.codegen._c import CWriter, lit, safe_comment
-from robokit.codegen._g6r_routines import ROUTINES
 from robokit.codegen._solver_constants import IKConstants
 
 __all__ = ["MAX_SOLUTIONS_6R", "FLOAT32_NOTE", "general_6r_labels", "emit_general_6r"]
@@ -53,7 +59,7 @@ FLOAT32_NOTE = ("robokit has a closed form (general 6R) but its C is generated i
                 "14 x 8 and 12 x 12 matrices reach condition numbers of 1e6 on ordinary poses, beyond float; "
                 "generate without --float32 or use robokit.ik_analytic")
 
-_ROT_DELTA = 1.1  # rad: the fixed turn of the half-angle variable used when A is near singular
+_ROT_DELTA = 1.1  # rad: the fixed turn of the half-angle variable used when A is near singular (g6r.c: tan(delta/2))
 
 
 def general_6r_labels() -> list[str]:
@@ -87,28 +93,30 @@ def _ints(values: Any) -> str:
     return "{" + ", ".join(str(int(x)) for x in np.asarray(values).reshape(-1)) + "}"
 
 
+def template(name: str) -> str:
+    """The text of a C template shipped in ``robokit/codegen/templates`` (``g6r.h``, ``g6r.c``)."""
+    return _template(name)
+
+
+@lru_cache(maxsize=None)
+def _template(name: str) -> str:
+    return resources.files("robokit.codegen").joinpath("templates").joinpath(name).read_text(encoding="utf-8")
+
+
+def workspace_doubles() -> int:
+    """``G6R_WORKSPACE_DOUBLES`` of ``templates/g6r.h``: the size of ``NAME_ik_workspace`` in doubles."""
+    m = re.search(r"G6R_WORKSPACE_DOUBLES = (\d+)", template("g6r.h"))
+    assert m is not None, "templates/g6r.h defines G6R_WORKSPACE_DOUBLES"
+    return int(m.group(1))
+
+
 def tables(k: IKConstants, P: str) -> str:
-    """The per-arm ``static const`` tables and the readings (C text)."""
+    """The per-arm constants: the readings' tables and the ``const g6r_arm`` (C text, after the template)."""
     sv = k.solver
     al = [float(x) for x in sv["alpha"]]
-    out = [f"/* general 6R: the canonical chain Z1 X1 ... Z6 with lengths divided by the scale {lit(sv['scale'])} m */",
-           _table(f"{P}_g6_a", sv["a"]), _table(f"{P}_g6_d", sv["d"]),
-           _table(f"{P}_g6_ca", [math.cos(x) for x in al]), _table(f"{P}_g6_sa", [math.sin(x) for x in al]),
-           _table(f"{P}_g6_th0", sv["th0"]), "",
-           "/* one reading of the loop equation (GeneralSixR's _Arrangement): the side without the target",
-           "   as its constant tensor, the side with it as its maps (slot w_index: pre F(W) post per pose) */",
-           f"typedef struct {{\n    int roles[6];  /* joints: pivot (eigenvalue), b, c (eigenvector), d, e (14 x 8 "
-           f"system), eliminated */\n"
-           f"    int three_has_w;  /* the target is on the three-joint side */\n"
-           f"    int nw;  /* joints on the target's side */\n"
-           f"    int w_index, w_inverse;\n"
-           f"    const double *const_side;  /* (3^(5 - nw) x 15) */\n"
-           f"    const double *Ms;  /* (nw + 1) x 15 x 15 */\n"
-           f"    const double *pre, *post;  /* 15 x 15, or a null pointer for the identity */\n"
-           f"    const double *signs, *f;\n"
-           f"    int perm3[27], perm2[9];  /* the rows of P and r in the two sides' tensors */\n"
-           f"}} {P}_reading;", ""]
     inits = []
+    out = [f"/* general 6R: the canonical chain Z1 X1 ... Z6 with lengths divided by the scale {lit(sv['scale'])} m; "
+           "the readings of the loop equation, the best first (GeneralSixR.export_constants()) */"]
     for i, rd in enumerate(sv["arrangements"]):
         Ms = np.array(rd["Ms"], dtype=float)
         Ms[rd["w_index"]] = 0.0  # replaced per pose
@@ -124,24 +132,30 @@ def tables(k: IKConstants, P: str) -> str:
                      f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
                      f"{'0' if pre_id else f'{P}_g6_r{i}_pre'}, {'0' if post_id else f'{P}_g6_r{i}_post'}, "
                      f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, {_ints(rd['perm2'])}}}")
-    out.append(f"static const {P}_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
+    out.append(f"static const g6r_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
+
+    def row(values: Any) -> str:
+        return "{" + ", ".join(lit(float(x)) for x in values) + "}"
+
+    out.append(f"""static const g6r_arm {P}_g6_arm = {{
+    {row(sv["a"])},
+    {row(sv["d"])},
+    {row(math.cos(x) for x in al)},
+    {row(math.sin(x) for x in al)},
+    {row(sv["th0"])},
+    {lit(math.cos(sv["gamma"]))}, {lit(math.sin(sv["gamma"]))}, {lit(float(sv["gamma"]))},
+    {lit(float(sv["x0"]))},
+    {lit(float(sv["imag_tol"]))}, {lit(float(sv["converged"]))}, {lit(float(sv["same"]))}, {lit(float(sv["poor"]))},
+    {P}_g6_readings, {len(inits)}, 0
+}};""")
     return "\n".join(out) + "\n"
 
 
-def routines(k: IKConstants, P: str) -> str:
-    """The numerical routines with the prefix and the solver's constants filled in."""
-    sv = k.solver
-    t = math.tan(0.5 * _ROT_DELTA)
-    subs = {"@P@": P, "@SCALE@": lit(float(sv["scale"])), "@GC@": lit(math.cos(sv["gamma"])),
-            "@GS@": lit(math.sin(sv["gamma"])), "@GAMMA@": lit(float(sv["gamma"])), "@X0@": lit(float(sv["x0"])),
-            "@ROT_T@": lit(t), "@IMAG_TOL@": lit(float(sv["imag_tol"])), "@CONVERGED@": lit(float(sv["converged"])),
-            "@SAME@": lit(float(sv["same"])), "@POOR@": lit(float(sv["poor"])), "@NREAD@": str(len(sv["arrangements"])),
-            "@MAXSOL@": str(MAX_SOLUTIONS_6R), "@TWO_PI@": lit(2 * math.pi), "@PI@": lit(math.pi)}
-    text = ROUTINES
-    for key, val in subs.items():
-        text = text.replace(key, val)
-    assert "@" not in text, "an unfilled token in the general 6R routines"
-    return text
+def routines() -> str:
+    """The robot-independent C (``templates/g6r.h`` and ``g6r.c``, verbatim, ``g6r_solve`` static)."""
+    body = template("g6r.c").replace('#include "g6r.h"\n', template("g6r.h"), 1)
+    return ("/* ---- robokit/codegen/templates/g6r.h and g6r.c (the general 6R IK, robot-independent) ---- */\n"
+            "#define G6R_API static\n" + body)
 
 
 def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
@@ -183,13 +197,13 @@ def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
 {T06_code}
     /* the target of Z1 X1 ... Z6, lengths in units of the arm's scale */
 {w.text()}
-    nr = {P}_general_6r(T06s, rows, lab, deg, ws);
+    nr = g6r_solve(&{P}_g6_arm, T06s, rows, lab, deg, ws->d);
     }}
 {flips}"""
 
 
-def declare(P: str, readings: int) -> list[str]:
-    """The header lines of the general 6R ``NAME_ik`` (``readings``: how many readings the solver may try)."""
+def declare(P: str) -> list[str]:
+    """The header lines of the general 6R ``NAME_ik``."""
     return [
         f"/* Closed-form inverse kinematics (general 6R: Raghavan-Roth elimination, Manocha-Canny eigenproblem):",
         f"   every solution for the tool pose T (up to {MAX_SOLUTIONS_6R}), one row of {P}_N values each, {P}_ik",
@@ -204,19 +218,14 @@ def declare(P: str, readings: int) -> list[str]:
         f"int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
         f"int info[4 * {P}_MAX_SOLUTIONS]);",
         "",
-        f"/* The scratch memory of {P}_ik_ws: every matrix of the elimination and the eigenproblem. {P}_ik and",
-        f"   {P}_ik_ex keep one on their stack ({P}_IK_WORKSPACE_SIZE bytes more than {P}_ik_ws needs); in an",
-        f"   RTOS task call {P}_ik_ws with a workspace you own (a static one per task: the functions keep no",
-        "   state in it between calls, so any workspace not in use by another call at the same time will do). */",
-        "typedef struct {",
-        f"    double th[{readings} * 24][6];  /* the candidate solutions, then the distinct ones */",
-        "    double abc[3 * 144], np_[3 * 14 * 9], pinv[8 * 14];  /* the elimination */",
-        "    double M[576], wr[24], wi[24];  /* the 24 x 24 companion matrix and its eigenvalues */",
-        "    double scratch[3 * 225 + 3 * 27 * 15];  /* per step: the loop equation's sides, the SVD, the LU */",
-        f"}} {P}_ik_workspace;",
+        f"/* The scratch memory of {P}_ik_ws: every matrix of the elimination and the eigenproblem,",
+        f"   {P}_IK_WORKSPACE_SIZE bytes. {P}_ik and {P}_ik_ex keep one on their stack (about 10 KB of stack in",
+        f"   all); {P}_ik_ws takes one the caller owns (the functions keep no state in it between calls, so",
+        "   any workspace not in use by another call at the same time will do). */",
+        f"typedef struct {{\n    double d[{workspace_doubles()}];\n}} {P}_ik_workspace;",
         f"#define {P}_IK_WORKSPACE_SIZE (sizeof({P}_ik_workspace))",
         "",
-        f"/* {P}_ik_ex with the caller's workspace: the same results; needs a few KB of stack (see the docs). */",
+        f"/* {P}_ik_ex with the caller's workspace: the same results; about 1 KB of stack (see the docs). */",
         f"int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], "
         f"int info[4 * {P}_MAX_SOLUTIONS], {P}_ik_workspace *ws);",
         "",

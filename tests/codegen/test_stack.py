@@ -1,8 +1,9 @@
-"""Stack on the Cortex-M4 (an RTOS task's budget): every generated function's frame is at most 2 KB in
-double (gcc -fstack-usage, arm-none-eabi-gcc -O2; FK, Jacobian, gravity and RNEA call nothing else
-in the file, so that is their whole call path), except the general-6R IK, whose NAME_ik_ws needs at
-most 12 KB for its whole call path through the generated file (-fcallgraph-info=su); NAME_ik /
-NAME_ik_ex add the NAME_ik_workspace they keep on their stack. Library calls (libm, soft-float) are not in the static figure;
+"""Stack on the Cortex-M4 (an RTOS task's budget), summed along the call graph of the generated file
+(gcc -fstack-usage -fcallgraph-info=su, arm-none-eabi-gcc -O2): every generated function's whole
+call path is at most 2 KB in double, except the general-6R IK, whose whole call path is at most
+12 KB for NAME_ik_ws and for NAME_ik / NAME_ik_ex alike (those two hold the NAME_ik_workspace on
+their own stack). Not yet met: the quartic closed form's NAME_ik_ex (2.2 KB, docs/codegen.md), a
+strict xfail. Library calls (libm, soft-float) are not in the static figure;
 tests/codegen/test_board.py measures the run-time high-water mark of NAME_ik_ws under QEMU."""
 import subprocess
 
@@ -18,6 +19,7 @@ from .test_codegen import jaco2_table
 ARMS = {"twolink": lambda: "twolink", "rrr": lambda: "rrr", "puma560": lambda: "puma560", "ur5": lambda: "ur5",
         "panda": lambda: "panda", "jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}
 FRAME, G6R_PATH = 2048, 12 * 1024
+IK_WORKSPACE = 8 * 1130  # NAME_IK_WORKSPACE_SIZE (templates/g6r.h: G6R_WORKSPACE_DOUBLES doubles)
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +29,9 @@ def arm_gcc():
         pytest.skip(why)
 
 
-@pytest.mark.parametrize("name", list(ARMS))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(
+    strict=True, reason="the quartic closed form's NAME_ik_ex needs 2.2 KB (its straight-line body and 16 raw "
+                        "rows); not yet under 2 KB")) if n == "quartic" else n for n in ARMS])
 def test_stack_fits_an_rtos_task(arm_gcc, tmp_path, name):
     robot = robokit.load(ARMS[name]())
     src = generate_c(robot)
@@ -42,8 +46,13 @@ def test_stack_fits_an_rtos_task(arm_gcc, tmp_path, name):
     assert general == (name == "jaco2")
     for fn in (f"{P}_fk", f"{P}_jacobian", f"{P}_gravity", f"{P}_rnea"):  # leaves: the frame is the path
         assert stack[fn][1] <= FRAME, (fn, stack[fn])
-    if general:  # the IK's helpers are covered by the call path of NAME_ik_ws
-        assert stack[f"{P}_ik_ws"][1] <= G6R_PATH, stack[f"{P}_ik_ws"]
-    else:  # every function's own frame (the closed form's call path: docs/codegen.md's table)
-        for fn, (frame, _) in stack.items():
-            assert frame <= FRAME, (fn, frame)
+    ik = (f"{P}_ik", f"{P}_ik_ex", f"{P}_ik_ws") if general else ()
+    for fn in ik:  # the whole path, with the workspace on the stack for NAME_ik and NAME_ik_ex
+        assert stack[fn][1] <= G6R_PATH, (fn, stack[fn])
+    if general:
+        assert stack[f"{P}_ik_ex"][0] > IK_WORKSPACE  # the workspace is on that stack (the path counts it)
+    for fn, (frame, path) in stack.items():
+        if fn in ik or fn.startswith("g6r_"):  # the general IK's helpers: inside its 12 KB path
+            continue
+        assert frame <= FRAME, (fn, frame)
+        assert path <= FRAME, (fn, path)

@@ -1,39 +1,48 @@
-"""The C text of the general 6R IK's numerical routines (no public names).
+/* robokit: the general 6R closed-form IK, robot-independent part (see g6r.h). Each routine is
+   the C of one step of robokit.ik.general_6r / robokit.kernels.general_6r (same names, same
+   order), or a small dense linear-algebra routine written from the textbook (Golub & Van Loan,
+   Matrix Computations, 4th ed.: one-sided Jacobi SVD 8.6.3, Householder QR 5.2, LU with partial
+   pivoting 3.4, Hessenberg reduction 7.4.3, Francis double-shift QR 7.5.5, balancing 7.5.7).
+   Lengths are in units of the arm's scale. No allocation, no static state: the matrices live in
+   the caller's workspace (g6r_work below, G6R_WORKSPACE_DOUBLES doubles), reused phase by phase,
+   so that the whole call path fits a 12 KB RTOS stack with the workspace on it. */
+#include <math.h>
+#include <string.h>
+#include "g6r.h"
 
-Generic for every arm: ``@P@`` is replaced by the C prefix and ``@X@`` tokens by the solver's
-constants; the per-arm tables are written by :mod:`robokit.codegen.ik_general`. Each routine
-is the C of one step of :mod:`robokit.ik.general_6r` / :mod:`robokit.kernels.general_6r`
-(same names, same order), or a small dense linear-algebra routine written from the textbook
-(Golub & Van Loan, *Matrix Computations*, 4th ed.: one-sided Jacobi SVD §8.6.3, Householder QR
-§5.2, LU with partial pivoting §3.4, Hessenberg reduction §7.4.3, Francis double-shift QR
-§7.5.5, balancing §7.5.7).
-"""
+/* The workspace. u is reused phase by phase (offsets in doubles):
+   matrices: P u[0..405) r u[405..540) the target's map u[540..765) (its factors in u[0..450) first),
+             the side tensor's levels u[765..840);
+   pencil:   P, r; Q u[540..652) its Householder factors u[652..764) + u[764..772) N u[772..856);
+             then Q's SVD in place, V u[652..716), 4 rows of Q's pseudo-inverse u[716..772);
+             then Sigma u[540..702);
+   companion: A's LU u[0..144), the 24 x 24 companion matrix u[144..720);
+   eigenvalues: the matrix, wr u[720..744), wi u[744..768), Householder vectors u[768..816);
+   per eigenvalue: L(y) u[0..144), the polish's Jacobians and vectors u[144..300),
+             fill_joint's u[300..332). */
+typedef struct {
+    double abc[3][6][9]; /* A, B, C of the 12 x 12 pencil: rows e and 6 + e (the same, times x_b) */
+    double K[4][3][9];   /* rows 2, 5, 6, 7 of Q's pseudo-inverse times the three-joint side */
+    double u[860];
+} g6r_work;
 
-ROUTINES = r"""
-/* ======================================================================================
- * General 6R closed form (Raghavan-Roth elimination, Manocha-Canny eigenproblem).
- * Step for step as robokit.ik.general_6r.GeneralSixR.solve; lengths in units of the arm's
- * scale (@SCALE@ m). The per-arm tables above come from GeneralSixR.export_constants().
- * ====================================================================================== */
+enum { g6r_size_check = 1 / (int)(sizeof(g6r_work) == sizeof(double) * G6R_WORKSPACE_DOUBLES) };
 
 /* ---------------------------------------------------------------- dense linear algebra */
 
 /* One-sided Jacobi SVD (Hestenes; Golub & Van Loan 8.6.3) of the m x n row-major matrix a
-   (overwritten): plane rotations make the columns mutually orthogonal; then sv[j] = |column j|,
-   sorted decreasing. With u != 0, u (m x n) receives the left singular vectors (columns); with
-   v != 0, v (n x n) the right ones. n <= 14, m <= 14. */
-static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
+   (overwritten): plane rotations make the columns mutually orthogonal, accumulated in v (n x n,
+   row-major). Then the singular values are the column norms: the p-th largest is
+   norms[order[p]], its left singular vector column order[p] of a divided by it, its right one
+   column order[p] of v (nothing is moved). n <= 14. */
+static void g6r_svd(int m, int n, double *a, double *v, double norms[14], int order[14])
 {
     int sweep, p, q, i, rotated = 1;
-    int order[14];
-    double norms[14];
-    if (v) {
-        for (i = 0; i < n * n; ++i) {
-            v[i] = 0.0;
-        }
-        for (i = 0; i < n; ++i) {
-            v[i * n + i] = 1.0;
-        }
+    for (i = 0; i < n * n; ++i) {
+        v[i] = 0.0;
+    }
+    for (i = 0; i < n; ++i) {
+        v[i * n + i] = 1.0;
     }
     for (sweep = 0; sweep < 60 && rotated; ++sweep) {
         rotated = 0;
@@ -60,12 +69,10 @@ static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
                     a[i * n + p] = c * x - s * y;
                     a[i * n + q] = s * x + c * y;
                 }
-                if (v) {
-                    for (i = 0; i < n; ++i) {
-                        const double x = v[i * n + p], y = v[i * n + q];
-                        v[i * n + p] = c * x - s * y;
-                        v[i * n + q] = s * x + c * y;
-                    }
+                for (i = 0; i < n; ++i) {
+                    const double x = v[i * n + p], y = v[i * n + q];
+                    v[i * n + p] = c * x - s * y;
+                    v[i * n + q] = s * x + c * y;
                 }
             }
         }
@@ -87,37 +94,16 @@ static void @P@_svd(int m, int n, double *a, double *sv, double *u, double *v)
         }
         order[q + 1] = o;
     }
-    for (p = 0; p < n; ++p) {
-        sv[p] = norms[order[p]];
-    }
-    if (u) {
-        for (p = 0; p < n; ++p) {
-            const int o = order[p];
-            const double inv = norms[o] > 0.0 ? 1.0 / norms[o] : 0.0;
-            for (i = 0; i < m; ++i) {
-                u[i * n + p] = a[i * n + o] * inv;
-            }
-        }
-    }
-    if (v) {
-        double tmp[14 * 14];
-        memcpy(tmp, v, sizeof(double) * (size_t)(n * n));
-        for (p = 0; p < n; ++p) {
-            for (i = 0; i < n; ++i) {
-                v[i * n + p] = tmp[i * n + order[p]];
-            }
-        }
-    }
 }
 
-/* sigma_min / sigma_max of the m x n row-major matrix a (overwritten), m >= n, n <= 12, without
-   vectors: Householder bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then bisection
-   on the Sturm counts of the Golub-Kahan tridiagonal [[0, B^T], [B, 0]] (zero diagonal,
-   off-diagonals d1, e1, d2, ..., dn; its eigenvalues are +-sigma_i), which finds the
-   extreme singular values to high relative accuracy (Demmel & Kahan 1990). Ratios below 1e-20
-   are reported as 0 (every threshold of the solver is far above). */
-static double @P@_house(int n, const double *x, int stride, double *vv);
-static int @P@_gk_count(const double *c, int len, double mu)
+/* The conditioning tests (sigma_min / sigma_max against a threshold) without vectors: Householder
+   bidiagonalisation (Golub-Kahan; Golub & Van Loan 5.4.8), then Sturm counts of the Golub-Kahan
+   tridiagonal [[0, B^T], [B, 0]] (zero diagonal, off-diagonals d1, e1, d2, ..., dn; its
+   eigenvalues are +-sigma_i), which place the singular values to high relative accuracy (Demmel
+   & Kahan 1990). The solver only compares the ratios with thresholds, so these routines answer
+   the comparison (one or two counts) instead of computing the ratio. */
+static double g6r_house(int n, const double *x, int stride, double *vv);
+static int g6r_gk_count(const double *c, int len, double mu)
 {
     /* the number of eigenvalues below mu of the len x len tridiagonal with zero diagonal and
        off-diagonal c (len - 1): the negative pivots of its LDL^T - mu I (Sylvester's law of inertia) */
@@ -136,13 +122,13 @@ static int @P@_gk_count(const double *c, int len, double mu)
 /* Householder bidiagonalisation of the m x n row-major a (overwritten), m >= n: c (2n - 1) the
    off-diagonal of the Golub-Kahan tridiagonal (d1, e1, d2, e2, ..., dn); returns a Gershgorin
    bound on sigma_max */
-static double @P@_bidiagonal(int m, int n, double *a, double c[24])
+static double g6r_bidiagonal(int m, int n, double *a, double c[24])
 {
     double vv[14], bound = 0.0;
     int k, i, j;
     for (k = 0; k < n; ++k) {
         /* left reflection: zero column k below the diagonal */
-        double beta = @P@_house(m - k, a + k * n + k, n, vv);
+        double beta = g6r_house(m - k, a + k * n + k, n, vv);
         for (j = k; j < n; ++j) {
             double s = 0.0;
             for (i = k; i < m; ++i) {
@@ -156,7 +142,7 @@ static double @P@_bidiagonal(int m, int n, double *a, double c[24])
         c[2 * k] = a[k * n + k];
         if (k < n - 2) {
             /* right reflection: zero row k right of the superdiagonal */
-            beta = @P@_house(n - k - 1, a + k * n + k + 1, 1, vv);
+            beta = g6r_house(n - k - 1, a + k * n + k + 1, 1, vv);
             for (i = k; i < m; ++i) {
                 double s = 0.0;
                 for (j = k + 1; j < n; ++j) {
@@ -179,57 +165,63 @@ static double @P@_bidiagonal(int m, int n, double *a, double c[24])
     return bound;
 }
 
-static double @P@_sv_ratio(int m, int n, double *a)
+/* whether sigma_min < tol * sigma_max for the m x n row-major matrix a (overwritten), m >= n,
+   n <= 12, for two thresholds t1 <= t2: bit 0 of the result for t1, bit 1 for t2. sigma_max lies
+   between the bidiagonal's largest entry and the Gershgorin bound: a Sturm count at t times either
+   end decides, except when sigma_min lies between the two; then sigma_max is found by bisection to
+   1e-7 relative and counted at. */
+static int g6r_sv_below(int m, int n, double *a, double t1, double t2)
 {
-    double c[24], lo = 0.0, hi, smax;
-    const double bound = @P@_bidiagonal(m, n, a, c);
-    int k, it;
+    double c[24], lo = 0.0, hi, smax = 0.0;
+    const double bound = g6r_bidiagonal(m, n, a, c);
+    const double ts[2] = {t1, t2};
+    int k, it, out = 0;
     if (bound == 0.0) {
-        return 0.0;
+        return 3;
     }
     for (k = 0; k < 2 * n - 1; ++k) {  /* sigma_max >= every entry of the bidiagonal */
         lo = fabs(c[k]) > lo ? fabs(c[k]) : lo;
     }
-    /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
-    hi = bound;
-    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (@P@_gk_count(c, 2 * n, mid) - n >= n) {
-            hi = mid;
-        } else {
-            lo = mid;
+    for (k = 0; k < 2; ++k) {
+        if (g6r_gk_count(c, 2 * n, ts[k] * lo) - n >= 1) {
+            out |= 1 << k;  /* sigma_min < t lo <= t sigma_max */
+            continue;
+        }
+        if (g6r_gk_count(c, 2 * n, ts[k] * bound) - n == 0) {
+            continue;  /* sigma_min >= t bound >= t sigma_max */
+        }
+        if (!(smax > 0.0)) {  /* the largest, to 1e-7 relative: #{sigma < mu} = count(mu) - n reaches n */
+            double l = lo;
+            hi = bound;
+            for (it = 0; it < 100 && hi - l > 1e-7 * hi; ++it) {
+                const double mid = 0.5 * (l + hi);
+                if (g6r_gk_count(c, 2 * n, mid) - n >= n) {
+                    hi = mid;
+                } else {
+                    l = mid;
+                }
+            }
+            smax = hi;
+        }
+        if (g6r_gk_count(c, 2 * n, ts[k] * smax) - n >= 1) {
+            out |= 1 << k;
         }
     }
-    smax = hi;
-    /* the smallest, to 1e-7 relative, by bisection of its logarithm in [1e-20, 1] sigma_max */
-    if (@P@_gk_count(c, 2 * n, 1e-20 * smax) - n >= 1) {
-        return 0.0;
-    }
-    lo = 1e-20 * smax;
-    hi = smax;
-    for (it = 0; it < 100 && hi - lo > 1e-7 * hi; ++it) {
-        const double mid = sqrt(lo * hi);
-        if (@P@_gk_count(c, 2 * n, mid) - n >= 1) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    return 0.5 * (lo + hi) / smax;
+    return out;
 }
 
 /* whether sigma_min > tol * sigma_max holds for sure (one Sturm count; 0 may be a false alarm) */
-static int @P@_well_conditioned(int m, int n, double *a, double tol)
+static int g6r_well_conditioned(int m, int n, double *a, double tol)
 {
     double c[24];
-    const double bound = @P@_bidiagonal(m, n, a, c);
-    return bound > 0.0 && @P@_gk_count(c, 2 * n, tol * bound) - n == 0;
+    const double bound = g6r_bidiagonal(m, n, a, c);
+    return bound > 0.0 && g6r_gk_count(c, 2 * n, tol * bound) - n == 0;
 }
 
 /* LU factorisation with partial pivoting (Golub & Van Loan 3.4) of the n x n row-major a, in
    place; piv[k] the row swapped with k. A zero pivot is replaced by a tiny one (the caller
    wants a null vector by inverse iteration, or has checked the conditioning). */
-static void @P@_lu(int n, double *a, int *piv)
+static void g6r_lu(int n, double *a, int *piv)
 {
     int k, i, j;
     double big = 0.0;
@@ -266,8 +258,8 @@ static void @P@_lu(int n, double *a, int *piv)
     }
 }
 
-/* solve (LU) x = b in place, LU and piv from @P@_lu */
-static void @P@_lu_solve(int n, const double *lu, const int *piv, double *b)
+/* solve (LU) x = b in place, LU and piv from g6r_lu */
+static void g6r_lu_solve(int n, const double *lu, const int *piv, double *b)
 {
     int i, j;
     for (i = 0; i < n; ++i) {
@@ -289,7 +281,7 @@ static void @P@_lu_solve(int n, const double *lu, const int *piv, double *b)
 }
 
 /* A Householder vector (Golub & Van Loan 5.1.3): (I - beta v v^T) x = (+-|x|, 0, ..., 0), v[0] = 1 */
-static double @P@_house(int n, const double *x, int stride, double *vv)
+static double g6r_house(int n, const double *x, int stride, double *vv)
 {
     double sigma = 0.0, mu, x0 = x[0], v0;
     int i;
@@ -311,16 +303,15 @@ static double @P@_house(int n, const double *x, int stride, double *vv)
     return 2.0 * v0 * v0 / (sigma + v0 * v0);
 }
 
-/* the left null space of the 14 x 8 matrix q (row-major): the last 6 columns of the orthogonal
-   factor of its Householder QR (Golub & Van Loan 5.2.1), n (14 x 6, row-major) */
-static void @P@_left_null_space(const double q[14 * 8], double n[14 * 6])
+/* the left null space of the 14 x 8 matrix q (row-major, overwritten): the last 6 columns of the
+   orthogonal factor of its Householder QR (Golub & Van Loan 5.2.1), n (14 x 6, row-major);
+   vs (8 x 14) and betas (8) hold the reflections */
+static void g6r_left_null_space(double r[14 * 8], double n[14 * 6], double vs[8 * 14], double betas[8])
 {
-    double r[14 * 8], vs[8][14], betas[8];
     int j, i, k, e;
-    memcpy(r, q, sizeof r);
     for (j = 0; j < 8; ++j) {
-        double *vv = vs[j];
-        const double beta = @P@_house(14 - j, r + j * 8 + j, 8, vv);
+        double *vv = vs + 14 * j;
+        const double beta = g6r_house(14 - j, r + j * 8 + j, 8, vv);
         betas[j] = beta;
         for (k = j; k < 8; ++k) {  /* r <- (I - beta v v^T) r on rows j.. */
             double s = 0.0;
@@ -341,11 +332,11 @@ static void @P@_left_null_space(const double q[14 * 8], double n[14 * 6])
         for (j = 7; j >= 0; --j) {
             double s = 0.0;
             for (i = j; i < 14; ++i) {
-                s += vs[j][i - j] * x[i];
+                s += vs[14 * j + i - j] * x[i];
             }
             s *= betas[j];
             for (i = j; i < 14; ++i) {
-                x[i] -= s * vs[j][i - j];
+                x[i] -= s * vs[14 * j + i - j];
             }
         }
         for (i = 0; i < 14; ++i) {
@@ -359,10 +350,10 @@ static void @P@_left_null_space(const double q[14 * 8], double n[14 * 6])
    Hessenberg form (7.4.3), then Francis double-shift QR steps (7.5.5) with deflation at small
    subdiagonal entries, on the active window only (eigenvalues are all we need). Returns 0, or
    -1 if the iteration did not converge. */
-static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
+static int g6r_eigenvalues(int n, double *h, double *wr, double *wi, double scratch[48])
 {
+    double *vv = scratch, *sv = scratch + 24;
     int i, j, k, lo, hi, its, done = 0;
-    double vv[24];
     /* balancing: D^-1 H D with D a diagonal of powers of 2 making row and column norms alike */
     while (!done) {
         done = 1;
@@ -400,18 +391,26 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
     /* Hessenberg form: Householder reflections from the left and the right */
     for (k = 0; k < n - 2; ++k) {
         const int len = n - k - 1;
-        const double beta = @P@_house(len, h + (k + 1) * n + k, n, vv);
+        const double beta = g6r_house(len, h + (k + 1) * n + k, n, vv);
         if (beta == 0.0) {
             continue;
         }
-        for (j = k; j < n; ++j) {
-            double s = 0.0;
-            for (i = 0; i < len; ++i) {
-                s += vv[i] * h[(k + 1 + i) * n + j];
+        for (j = k; j < n; ++j) {  /* from the left, row by row (contiguous): s = beta v^T H */
+            sv[j] = 0.0;
+        }
+        for (i = 0; i < len; ++i) {
+            const double *row = h + (k + 1 + i) * n;
+            for (j = k; j < n; ++j) {
+                sv[j] += vv[i] * row[j];
             }
-            s *= beta;
-            for (i = 0; i < len; ++i) {
-                h[(k + 1 + i) * n + j] -= s * vv[i];
+        }
+        for (j = k; j < n; ++j) {
+            sv[j] *= beta;
+        }
+        for (i = 0; i < len; ++i) {
+            double *row = h + (k + 1 + i) * n;
+            for (j = k; j < n; ++j) {
+                row[j] -= sv[j] * vv[i];
             }
         }
         for (i = 0; i < n; ++i) {
@@ -508,7 +507,7 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
                 xs[1] = y;
                 xs[2] = z;
                 /* the reflection I - beta v v^T, v = (1, v1, v2), taking (x, y, z) to (*, 0, 0) */
-                beta = @P@_house(three ? 3 : 2, xs, 1, v3);
+                beta = g6r_house(three ? 3 : 2, xs, 1, v3);
                 v1 = v3[1];
                 v2 = three ? v3[2] : 0.0;
                 if (beta != 0.0 && three) {
@@ -557,67 +556,98 @@ static int @P@_eigenvalues(int n, double *h, double *wr, double *wi)
 
 /* (the start vectors f(l, p) = (l, p, p.p, l.p, l x p, (p.p) l - 2 (l.p) p, 1) of both sides are in the tables) */
 
-/* Rz(sign th) v split into its cos th, sin th and constant parts (the four 3-vector blocks turn) */
-static void @P@_rz_parts(const double v[15], double sign, double out[3][15])
+/* Rz(sign th) v split into its cos th (which = 0), sin th (1) and constant (2) parts: out, one of
+   them (the four 3-vector blocks turn) */
+static void g6r_rz_part(const double v[15], double sign, int which, double out[15])
 {
     int k;
     static const int blocks[4] = {0, 3, 8, 11};
     for (k = 0; k < 15; ++k) {
-        out[0][k] = 0.0;
-        out[1][k] = 0.0;
-        out[2][k] = v[k];
+        out[k] = which == 2 ? v[k] : 0.0;
     }
     for (k = 0; k < 4; ++k) {
         const int b = blocks[k];
         const double x = v[b], y = v[b + 1];
-        out[0][b] = x;
-        out[0][b + 1] = y;
-        out[1][b] = -sign * y;
-        out[1][b + 1] = sign * x;
-        out[2][b] = 0.0;
-        out[2][b + 1] = 0.0;
+        if (which == 0) {
+            out[b] = x;
+            out[b + 1] = y;
+        } else if (which == 1) {
+            out[b] = -sign * y;
+            out[b + 1] = sign * x;
+        } else {
+            out[b] = 0.0;
+            out[b + 1] = 0.0;
+        }
+    }
+}
+
+/* v <- M x for a 15 x 15 row-major M */
+static void g6r_mv15(const double *M, const double x[15], double v[15])
+{
+    int r, m;
+    for (r = 0; r < 15; ++r) {
+        double acc = 0.0;
+        for (m = 0; m < 15; ++m) {
+            acc += M[r * 15 + m] * x[m];
+        }
+        v[r] = acc;
+    }
+}
+
+/* row t (15) of a side's tensor to the rows of P (3 x 15 x 9) or r (15 x 9) that perm (count
+   entries, entry i * 9 + m for column m of block i) takes from it */
+static void g6r_scatter(const double row[15], int t, const int *perm, int count, double *dst)
+{
+    int j, k;
+    for (j = 0; j < count; ++j) {
+        if (perm[j] == t) {
+            for (k = 0; k < 15; ++k) {
+                dst[((j / 9) * 15 + k) * 9 + j % 9] = row[k];
+            }
+        }
     }
 }
 
 /* one side of the loop equation as a tensor over its joints' (cos, sin, 1):
-   Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f; out (3^k x 15), row i0 + 3 i1 + 9 i2;
-   scratch: 2 x 27 x 15 doubles */
-static void @P@_side_tensor(const double *const Ms[4], const double *signs, int k, const double f[15],
-                            double *out, double *scratch)
+   Ms[k] Rz(+-th_{k-1}) ... Ms[1] Rz(+-th_0) Ms[0] f, row i0 + 3 i1 + 9 i2 (3^k rows of 15), each
+   row scattered into dst by perm as it is made (depth first: one vector per level, no tensor);
+   scratch: 75 doubles */
+static void g6r_side_tensor(const double *const Ms[4], const double *signs, int k, const double f[15],
+                            const int *perm, int count, double *dst, double *scratch)
 {
-    double (*cur)[15] = (double (*)[15])scratch, (*nxt)[15] = (double (*)[15])(scratch + 27 * 15);
-    double parts[3][15];
-    int n = 1, j, t, b, r, m;
-    for (r = 0; r < 15; ++r) {
-        double acc = 0.0;
-        for (m = 0; m < 15; ++m) {
-            acc += Ms[0][r * 15 + m] * f[m];
-        }
-        cur[0][r] = acc;
-    }
+    double (*lev)[15] = (double (*)[15])scratch, *part = scratch + 60;
+    int dig[3] = {0, 0, 0}, total = 1, t, j;
+    g6r_mv15(Ms[0], f, lev[0]);
     for (j = 0; j < k; ++j) {
-        for (t = 0; t < n; ++t) {
-            @P@_rz_parts(cur[t], signs[j], parts);
-            for (b = 0; b < 3; ++b) {
-                for (r = 0; r < 15; ++r) {
-                    double acc = 0.0;
-                    for (m = 0; m < 15; ++m) {
-                        acc += Ms[j + 1][r * 15 + m] * parts[b][m];
-                    }
-                    nxt[t + n * b][r] = acc;
-                }
-            }
-        }
-        n *= 3;
-        memcpy(cur, nxt, sizeof(double) * 15 * (size_t)n);
+        total *= 3;
     }
-    memcpy(out, cur, sizeof(double) * 15 * (size_t)n);
+    for (t = 0; t < total; ++t) {
+        /* the digits of t, the first joint's the most significant; levels from the first that changed */
+        int rem = t, from = 0, idx = 0, w = 1;
+        for (j = k - 1; j >= 0; --j) {
+            const int dj = rem % 3;
+            if (t > 0 && dj != dig[j]) {
+                from = j;
+            }
+            dig[j] = dj;
+            rem /= 3;
+        }
+        for (j = from; j < k; ++j) {
+            g6r_rz_part(lev[j], signs[j], dig[j], part);
+            g6r_mv15(Ms[j + 1], part, lev[j + 1]);
+        }
+        for (j = 0; j < k; ++j) {
+            idx += dig[j] * w;
+            w *= 3;
+        }
+        g6r_scatter(lev[k], idx, perm, count, dst);
+    }
 }
 
 /* the 15 x 15 map of f(l, p) under the rigid motion T (or T^-1): F_translation(p) F_rotation(R) */
-static void @P@_f_pose(const double T[16], int inverse, double out[225])
+static void g6r_f_pose(const double T[16], int inverse, double out[225], double Ft[225])
 {
-    double R[3][3], p[3], Ft[225], tt;
+    double R[3][3], p[3], tt;
     int i, k, b, c, m;
     static const int blocks[4] = {0, 3, 8, 11};
     for (i = 0; i < 3; ++i) {
@@ -630,7 +660,7 @@ static void @P@_f_pose(const double T[16], int inverse, double out[225])
         p[i] = inverse ? -acc : T[4 * i + 3];
     }
     tt = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-    memset(Ft, 0, sizeof Ft);
+    memset(Ft, 0, sizeof(double) * 225);
     for (i = 0; i < 15; ++i) {
         Ft[i * 15 + i] = 1.0;
     }
@@ -675,7 +705,7 @@ static void @P@_f_pose(const double T[16], int inverse, double out[225])
 }
 
 /* c = a b for 15 x 15 row-major matrices */
-static void @P@_mul15(const double *a, const double *b, double *c)
+static void g6r_mul15(const double *a, const double *b, double *c)
 {
     int i, j, k;
     for (i = 0; i < 15; ++i) {
@@ -690,107 +720,113 @@ static void @P@_mul15(const double *a, const double *b, double *c)
 }
 
 /* _Arrangement.matrices: P (3 x 15 x 9), the three-joint side with the pivot first, and
-   r (15 x 9), the two-joint side, for the scaled target T06s; scratch: 3 x 225 + 3 x 27 x 15 doubles */
-static void @P@_matrices(const @P@_reading *rd, const double T06s[16], double P[3 * 15 * 9], double r[15 * 9],
-                         double *scratch)
+   r (15 x 9), the two-joint side, for the scaled target T06s. u: the workspace's u (P, r and the
+   target's map at the offsets of g6r_work's comment) */
+static void g6r_matrices(const g6r_reading *rd, const double T06s[16], double *u)
 {
-    double *FW = scratch, *tmp = scratch + 225, *Wmap = scratch + 450, *Gw = scratch + 675;
+    double *P = u, *r = u + 405, *Wmap = u + 540, *tmp = u + 225;
     const double *Ms[4];
-    const double *G3, *G2;
-    int i, k, m;
-    @P@_f_pose(T06s, !rd->w_inverse, FW);  /* W = T06^-1: its map, or T06's for W^-1 */
+    int i;
+    g6r_f_pose(T06s, !rd->w_inverse, Wmap, u);  /* W = T06^-1: its map, or T06's for W^-1 */
     if (rd->pre) {  /* pre F(W) post (a null pointer: the identity) */
-        @P@_mul15(rd->pre, FW, tmp);
+        g6r_mul15(rd->pre, Wmap, tmp);
     } else {
-        memcpy(tmp, FW, sizeof(double) * 225);
+        memcpy(tmp, Wmap, sizeof(double) * 225);
     }
     if (rd->post) {
-        @P@_mul15(tmp, rd->post, Wmap);
+        g6r_mul15(tmp, rd->post, Wmap);
     } else {
         memcpy(Wmap, tmp, sizeof(double) * 225);
     }
     for (i = 0; i <= rd->nw; ++i) {
         Ms[i] = i == rd->w_index ? Wmap : rd->Ms + 225 * i;
     }
-    @P@_side_tensor(Ms, rd->signs, rd->nw, rd->f, Gw, scratch + 675 + 27 * 15);
-    G3 = rd->three_has_w ? Gw : rd->const_side;
-    G2 = rd->three_has_w ? rd->const_side : Gw;
-    for (i = 0; i < 3; ++i) {
-        for (k = 0; k < 15; ++k) {
-            for (m = 0; m < 9; ++m) {
-                P[(i * 15 + k) * 9 + m] = G3[rd->perm3[i * 9 + m] * 15 + k];
-            }
+    /* the side with the target, made row by row into P or r; the constant side copied */
+    if (rd->three_has_w) {
+        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm3, 27, P, u + 765);
+        for (i = 0; i < 9; ++i) {
+            g6r_scatter(rd->const_side + 15 * i, i, rd->perm2, 9, r);
         }
-    }
-    for (k = 0; k < 15; ++k) {
-        for (m = 0; m < 9; ++m) {
-            r[k * 9 + m] = G2[rd->perm2[m] * 15 + k];
+    } else {
+        g6r_side_tensor(Ms, rd->signs, rd->nw, rd->f, rd->perm2, 9, r, u + 765);
+        for (i = 0; i < 27; ++i) {
+            g6r_scatter(rd->const_side + 15 * i, i, rd->perm3, 27, P);
         }
     }
 }
 
-/* kernels.general_6r.pencil: A x^2 + B x + C (abc, 3 x 12 x 12) with x = tan(phi/2),
-   th_pivot = phi + gamma; np_ (3 x 14 x 9) the three-joint side with the two-joint side's
-   constant moved over; pinv (8 x 14) the pseudo-inverse of the 14 x 8 matrix Q of the two-joint
-   side. Returns sigma_min / sigma_max of Q. scratch: 3 x 14 x 8 + 14 x 6 + 3 x 6 x 9 doubles. */
-static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], double abc[3 * 144],
-                         double np_[3 * 14 * 9], double pinv[8 * 14], double *scratch)
+/* out[i * orow + i3 * oi3 + m] = sum_k W[i * wr + k * wk] P[i3][k][m] (i < nrow, k < 14; P: 3 x 15 x 9) */
+static void g6r_project(const double *W, int nrow, int wr, int wk, const double *P, double *out, int orow, int oi3)
+{
+    int i, i3, m, k;
+    for (i = 0; i < nrow; ++i) {
+        for (i3 = 0; i3 < 3; ++i3) {
+            for (m = 0; m < 9; ++m) {
+                double acc = 0.0;
+                for (k = 0; k < 14; ++k) {
+                    acc += W[i * wr + k * wk] * P[(i3 * 15 + k) * 9 + m];
+                }
+                out[i * orow + i3 * oi3 + m] = acc;
+            }
+        }
+    }
+}
+
+/* kernels.general_6r.pencil: A x^2 + B x + C (w->abc: rows e and 6 + e of each 12 x 12 matrix,
+   g6r_entry) with x = tan(phi/2), th_pivot = phi + gamma; the three-joint side with the two-joint
+   side's constant moved over (in P, in place) times rows 2, 5, 6, 7 of the pseudo-inverse of the
+   14 x 8 matrix Q of the two-joint side (w->K). Returns sigma_min / sigma_max of Q. */
+static double g6r_pencil(const g6r_arm *arm, g6r_work *w)
 {
     static const double G[3][3] = {{1.0, 0.0, -1.0}, {0.0, 2.0, 0.0}, {1.0, 0.0, 1.0}};
-    double *Q = scratch, *work = scratch + 112, *U = scratch + 224, *N = scratch + 336;
-    double (*sig)[6][9] = (double (*)[6][9])(scratch + 420);
-    double sv[8], V[64], ratio;
-    int i, j, k, m, e, i3;
+    static const int rows4[4] = {2, 5, 6, 7};
+    double *u = w->u, *P = u, *r = u + 405, *Q = u + 540, *vs = u + 652, *betas = u + 764, *N = u + 772;
+    double *V = u + 652, *pinv = u + 716;
+    double (*sig)[6][9] = (double (*)[6][9])(u + 540);
+    double norms[14], ratio;
+    int order[14], i, j, k, m, e;
+    for (k = 0; k < 14; ++k) {  /* the two-joint side's constant moved over */
+        P[(2 * 15 + k) * 9 + 8] -= r[k * 9 + 8];
+    }
+    /* N: the left null space of Q (Householder QR, Q overwritten) */
     for (k = 0; k < 14; ++k) {
         for (j = 0; j < 8; ++j) {
             Q[k * 8 + j] = r[k * 9 + j];
         }
     }
-    /* Q = U S V^T: the pseudo-inverse (singular values below 1e-14 s_max dropped) */
-    memcpy(work, Q, sizeof(double) * 14 * 8);
-    @P@_svd(14, 8, work, sv, U, V);
-    ratio = sv[0] > 0.0 ? sv[7] / sv[0] : 0.0;
-    for (i = 0; i < 8; ++i) {
+    g6r_left_null_space(Q, N, vs, betas);
+    /* Q = U S V^T (Q again, overwritten): the pseudo-inverse (singular values below 1e-14 s_max
+       dropped); of it only rows 2, 5, 6, 7 are used (the back substitution's four monomials) */
+    for (k = 0; k < 14; ++k) {
+        for (j = 0; j < 8; ++j) {
+            Q[k * 8 + j] = r[k * 9 + j];
+        }
+    }
+    g6r_svd(14, 8, Q, V, norms, order);
+    ratio = norms[order[0]] > 0.0 ? norms[order[7]] / norms[order[0]] : 0.0;
+    for (i = 0; i < 4; ++i) {
         for (k = 0; k < 14; ++k) {
             double acc = 0.0;
             for (j = 0; j < 8; ++j) {
-                if (sv[j] > 1e-14 * sv[0]) {
-                    acc += V[i * 8 + j] * U[k * 8 + j] / sv[j];
+                const int o = order[j];
+                if (norms[o] > 1e-14 * norms[order[0]]) {
+                    const double uk = Q[k * 8 + o] * (norms[o] > 0.0 ? 1.0 / norms[o] : 0.0);
+                    acc += V[rows4[i] * 8 + o] * uk / norms[o];
                 }
             }
             pinv[i * 14 + k] = acc;
         }
     }
-    for (i3 = 0; i3 < 3; ++i3) {
-        for (k = 0; k < 14; ++k) {
-            for (m = 0; m < 9; ++m) {
-                np_[(i3 * 14 + k) * 9 + m] = P[(i3 * 15 + k) * 9 + m];
-            }
-        }
-    }
-    for (k = 0; k < 14; ++k) {
-        np_[(2 * 14 + k) * 9 + 8] -= r[k * 9 + 8];
-    }
+    g6r_project(pinv, 4, 14, 1, P, &w->K[0][0][0], 27, 9);
     /* Sigma_i3 = N^T P'_i3 with N the left null space of Q: theta 1, 2 eliminated */
-    @P@_left_null_space(Q, N);
-    for (i3 = 0; i3 < 3; ++i3) {
-        for (e = 0; e < 6; ++e) {
-            for (m = 0; m < 9; ++m) {
-                double s = 0.0;
-                for (k = 0; k < 14; ++k) {
-                    s += N[k * 6 + e] * np_[(i3 * 14 + k) * 9 + m];
-                }
-                sig[i3][e][m] = s;
-            }
-        }
-    }
+    g6r_project(N, 6, 1, 6, P, &sig[0][0][0], 9, 54);
     /* th = phi + gamma, x = tan(phi/2), and the half-angle monomials of the other two joints:
        6 equations and the same times x_b, in the 12 monomials x_b^i x_c^j (i <= 3, j <= 2) */
-    memset(abc, 0, sizeof(double) * 3 * 144);
+    memset(w->abc, 0, sizeof w->abc);
     for (e = 0; e < 6; ++e) {
         for (m = 0; m < 9; ++m) {
-            const double sc = sig[0][e][m] * @GC@ + sig[1][e][m] * @GS@;
-            const double ss = -sig[0][e][m] * @GS@ + sig[1][e][m] * @GC@;
+            const double sc = sig[0][e][m] * arm->gc + sig[1][e][m] * arm->gs;
+            const double ss = -sig[0][e][m] * arm->gs + sig[1][e][m] * arm->gc;
             const double s1 = sig[2][e][m];
             const double c2 = s1 - sc, c1 = 2.0 * ss, c0 = s1 + sc;
             const int i4 = m / 3, i5 = m % 3;
@@ -805,16 +841,12 @@ static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], dou
                 }
                 for (j5 = 0; j5 < 3; ++j5) {
                     const double g = g4 * G[i5][j5];
-                    const int col = j4 * 3 + j5;
                     if (g == 0.0) {
                         continue;
                     }
-                    abc[e * 12 + col] += g * c2;
-                    abc[144 + e * 12 + col] += g * c1;
-                    abc[288 + e * 12 + col] += g * c0;
-                    abc[(6 + e) * 12 + col + 3] += g * c2;
-                    abc[144 + (6 + e) * 12 + col + 3] += g * c1;
-                    abc[288 + (6 + e) * 12 + col + 3] += g * c0;
+                    w->abc[0][e][j4 * 3 + j5] += g * c2;
+                    w->abc[1][e][j4 * 3 + j5] += g * c1;
+                    w->abc[2][e][j4 * 3 + j5] += g * c0;
                 }
             }
         }
@@ -822,65 +854,114 @@ static double @P@_pencil(const double P[3 * 15 * 9], const double r[15 * 9], dou
     return ratio;
 }
 
-/* sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c */
-static double @P@_regularity(const double *a, const double *b, const double *c, double x)
+/* entry (i, j) of the 12 x 12 matrix kk (0: A, 1: B, 2: C): row e < 6 is the equation e on the
+   columns 0..8, row 6 + e the same times x_b (columns 3..11) */
+static double g6r_entry(const double abc[3][6][9], int kk, int i, int j)
 {
-    double L[144];
-    int i;
-    for (i = 0; i < 144; ++i) {
-        L[i] = a[i] * x * x + b[i] * x + c[i];
+    if (i < 6) {
+        return j < 9 ? abc[kk][i][j] : 0.0;
     }
-    return @P@_sv_ratio(12, 12, L);
+    return j >= 3 ? abc[kk][i - 6][j - 3] : 0.0;
+}
+
+/* whether sigma_min / sigma_max of the 12 x 12 matrix a x^2 + b x + c is below tol (L: 144 doubles of scratch) */
+static int g6r_irregular(const double abc[3][6][9], double x, double tol, double L[144])
+{
+    int i, j;
+    for (i = 0; i < 12; ++i) {
+        for (j = 0; j < 12; ++j) {
+            L[i * 12 + j] = g6r_entry(abc, 0, i, j) * x * x + g6r_entry(abc, 1, i, j) * x + g6r_entry(abc, 2, i, j);
+        }
+    }
+    return g6r_sv_below(12, 12, L, tol, tol) & 1;
 }
 
 /* kernels.general_6r.companion: M = [[0, I], [-A^-1 C, -A^-1 B]] (24 x 24) when A is regular
-   (LU with partial pivoting); returns sigma_min / sigma_max of A. scratch: 144 + 24 x 12 + 144 doubles */
-static double @P@_companion(const double abc[3 * 144], double M[576], double *scratch)
+   (LU with partial pivoting, in lu: 144 doubles) unless sigma_min / sigma_max of A is below t1
+   (bit 0 of the result; bit 1: below t2 >= t1) */
+static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144], double t1, double t2)
 {
-    double *lu = scratch, (*rhs)[12] = (double (*)[12])(scratch + 144), *Acopy = scratch + 432, cond;
-    int piv[12], i, j;
-    memcpy(lu, abc, sizeof(double) * 144);
-    memcpy(Acopy, abc, sizeof(double) * 144);
-    cond = @P@_sv_ratio(12, 12, Acopy);
-    if (cond <= 1e-10) {
-        return cond;
+    int below;
+    double *X;
+    int piv[12], i, j, k;
+    for (i = 0; i < 144; ++i) {  /* M's storage as scratch for A's singular values */
+        M[i] = g6r_entry(abc, 0, i / 12, i % 12);
     }
-    @P@_lu(12, lu, piv);
-    for (j = 0; j < 12; ++j) {
-        for (i = 0; i < 12; ++i) {
-            rhs[j][i] = abc[288 + i * 12 + j];       /* column j of C */
-            rhs[12 + j][i] = abc[144 + i * 12 + j];  /* column j of B */
-        }
-        @P@_lu_solve(12, lu, piv, rhs[j]);
-        @P@_lu_solve(12, lu, piv, rhs[12 + j]);
+    below = g6r_sv_below(12, 12, M, t1, t2);
+    if (below & 1) {
+        return below;
     }
-    memset(M, 0, sizeof(double) * 576);
+    for (i = 0; i < 144; ++i) {
+        lu[i] = g6r_entry(abc, 0, i / 12, i % 12);
+    }
+    g6r_lu(12, lu, piv);
+    /* -A^-1 [C B] in M's lower half: the 24 right-hand sides solved together, row by row (the same
+       operations on each column as g6r_lu_solve) */
+    memset(M, 0, sizeof(double) * 288);
     for (i = 0; i < 12; ++i) {
+        for (j = 0; j < 12; ++j) {
+            M[(12 + i) * 24 + j] = g6r_entry(abc, 2, i, j);
+            M[(12 + i) * 24 + 12 + j] = g6r_entry(abc, 1, i, j);
+        }
         M[i * 24 + 12 + i] = 1.0;
-        for (j = 0; j < 24; ++j) {
-            M[(12 + i) * 24 + j] = -rhs[j][i];
+    }
+    X = M + 288;
+    for (i = 0; i < 12; ++i) {
+        if (piv[i] != i) {
+            for (j = 0; j < 24; ++j) {
+                const double tmp = X[piv[i] * 24 + j];
+                X[piv[i] * 24 + j] = X[i * 24 + j];
+                X[i * 24 + j] = tmp;
+            }
         }
     }
-    return cond;
+    for (i = 0; i < 12; ++i) {
+        for (k = 0; k < i; ++k) {
+            const double l = lu[i * 12 + k];
+            for (j = 0; j < 24; ++j) {
+                X[i * 24 + j] -= l * X[k * 24 + j];
+            }
+        }
+    }
+    for (i = 11; i >= 0; --i) {
+        for (k = i + 1; k < 12; ++k) {
+            const double l = lu[i * 12 + k];
+            for (j = 0; j < 24; ++j) {
+                X[i * 24 + j] -= l * X[k * 24 + j];
+            }
+        }
+        for (j = 0; j < 24; ++j) {
+            X[i * 24 + j] /= lu[i * 12 + i];
+        }
+    }
+    for (i = 0; i < 288; ++i) {
+        X[i] = -X[i];
+    }
+    return below;
 }
 
 /* the null vector v (12) of the (nearly) singular a y^2 + b y + c at a real eigenvalue y:
-   inverse iteration (two LU solves); for |y| > 1 the matrix divided by y^2 */
-static void @P@_null_vector(const double *a, const double *b, const double *c, double y, double v[12])
+   inverse iteration (two LU solves; L: 144 doubles of scratch); for |y| > 1 the matrix divided by y^2 */
+static void g6r_null_vector(const double abc[3][6][9], double y, double v[12], double L[144])
 {
-    double L[144], nrm;
+    double nrm;
     int piv[12], i, it;
     const int big = fabs(y) > 1.0;
     const double y1 = big ? 1.0 / y : y;
-    for (i = 0; i < 144; ++i) {
-        L[i] = big ? a[i] + b[i] * y1 + c[i] * y1 * y1 : a[i] * y * y + b[i] * y + c[i];
+    memset(L, 0, sizeof(double) * 144);
+    for (i = 0; i < 6; ++i) {  /* rows i and 6 + i: the same entries, 3 columns apart */
+        int j;
+        for (j = 0; j < 9; ++j) {
+            const double a = abc[0][i][j], b = abc[1][i][j], c = abc[2][i][j];
+            L[i * 12 + j] = L[(6 + i) * 12 + 3 + j] = big ? a + b * y1 + c * y1 * y1 : a * y * y + b * y + c;
+        }
     }
-    @P@_lu(12, L, piv);
+    g6r_lu(12, L, piv);
     for (i = 0; i < 12; ++i) {
         v[i] = 1.0 / (1.0 + 0.1 * i);
     }
     for (it = 0; it < 2; ++it) {
-        @P@_lu_solve(12, L, piv, v);
+        g6r_lu_solve(12, L, piv, v);
         nrm = 0.0;
         for (i = 0; i < 12; ++i) {
             nrm += v[i] * v[i];
@@ -894,36 +975,49 @@ static void @P@_null_vector(const double *a, const double *b, const double *c, d
 
 /* ---------------------------------------------------------------- kinematics of Z1 X1 ... Z6 */
 
-/* kernels.general_6r.fk_pose: the pose of Z1 X1 ... X5 Z6 at the rotation angles th (scaled) */
-static void @P@_fk_pose(const double th[6], double T[16])
+/* T <- T Rz(th) Tz(d_i) for the 4 x 4 row-major T (its top three rows), c = cos th, s = sin th */
+static void g6r_turn(const g6r_arm *arm, int i, double c, double s, double *T)
 {
-    int i, r;
+    int r;
+    for (r = 0; r < 3; ++r) {
+        const double x = T[4 * r], y = T[4 * r + 1];
+        T[4 * r] = c * x + s * y;
+        T[4 * r + 1] = -s * x + c * y;
+        T[4 * r + 3] += arm->d[i] * T[4 * r + 2];
+    }
+}
+
+/* T <- T Tx(a_i) Rx(alpha_i) */
+static void g6r_twist(const g6r_arm *arm, int i, double *T)
+{
+    int r;
+    for (r = 0; r < 3; ++r) {
+        const double y = T[4 * r + 1], z = T[4 * r + 2];
+        T[4 * r + 3] += arm->a[i] * T[4 * r];
+        T[4 * r + 1] = arm->ca[i] * y + arm->sa[i] * z;
+        T[4 * r + 2] = -arm->sa[i] * y + arm->ca[i] * z;
+    }
+}
+
+/* kernels.general_6r.fk_pose: the pose of Z1 X1 ... X5 Z6 at the rotation angles th (scaled) */
+static void g6r_fk_pose(const g6r_arm *arm, const double th[6], double T[16])
+{
+    int i;
     memset(T, 0, sizeof(double) * 16);
     T[0] = T[5] = T[10] = T[15] = 1.0;
     for (i = 0; i < 6; ++i) {
-        const double c = cos(th[i]), s = sin(th[i]);
-        for (r = 0; r < 3; ++r) {  /* T <- T Rz(th) Tz(d) */
-            const double x = T[4 * r], y = T[4 * r + 1];
-            T[4 * r] = c * x + s * y;
-            T[4 * r + 1] = -s * x + c * y;
-            T[4 * r + 3] += @P@_g6_d[i] * T[4 * r + 2];
-        }
+        g6r_turn(arm, i, cos(th[i]), sin(th[i]), T);
         if (i < 5) {
-            for (r = 0; r < 3; ++r) {  /* T <- T Tx(a) Rx(alpha) */
-                const double y = T[4 * r + 1], z = T[4 * r + 2];
-                T[4 * r + 3] += @P@_g6_a[i] * T[4 * r];
-                T[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
-                T[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
-            }
+            g6r_twist(arm, i, T);
         }
     }
 }
 
 /* kernels.general_6r.jacobian: geometric Jacobian (rows v; w, space frame, at T's origin) */
-static void @P@_jacobian6(const double th[6], const double T[16], double J[36])
+static void g6r_jacobian6(const g6r_arm *arm, const double th[6], const double T[16], double J[36])
 {
     double G[16];
-    int i, r;
+    int i;
     memset(G, 0, sizeof G);
     G[0] = G[5] = G[10] = G[15] = 1.0;
     for (i = 0; i < 6; ++i) {
@@ -936,25 +1030,15 @@ static void @P@_jacobian6(const double th[6], const double T[16], double J[36])
         J[3 * 6 + i] = z0;
         J[4 * 6 + i] = z1;
         J[5 * 6 + i] = z2;
-        for (r = 0; r < 3; ++r) {
-            const double x = G[4 * r], y = G[4 * r + 1];
-            G[4 * r] = c * x + s * y;
-            G[4 * r + 1] = -s * x + c * y;
-            G[4 * r + 3] += @P@_g6_d[i] * G[4 * r + 2];
-        }
+        g6r_turn(arm, i, c, s, G);
         if (i < 5) {
-            for (r = 0; r < 3; ++r) {
-                const double y = G[4 * r + 1], z = G[4 * r + 2];
-                G[4 * r + 3] += @P@_g6_a[i] * G[4 * r];
-                G[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
-                G[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
-            }
+            g6r_twist(arm, i, G);
         }
     }
 }
 
 /* e = (p* - p, w) with exp([w]) = R* R^T; returns |e| */
-static double @P@_pose_error(const double Tt[16], const double T[16], double e[6])
+static double g6r_pose_error(const double Tt[16], const double T[16], double e[6])
 {
     double Re[3][3], tr, cth, wx, wy, wz, sth, th, fac;
     int i, j, k;
@@ -987,53 +1071,56 @@ static double @P@_pose_error(const double Tt[16], const double T[16], double e[6
 
 /* kernels.general_6r.polish: Newton-Raphson on the pose error; the step is the least-squares
    solution J dq = e (SVD, singular values below 1e-12 s_max dropped, as numpy's lstsq with
-   rcond = 1e-12); a step that does not lower the error is not taken. Returns the error. */
-static double @P@_polish(const double T06s[16], double th[6], int iters)
+   rcond = 1e-12); a step that does not lower the error is not taken. Returns the error.
+   scratch: 156 doubles. */
+static double g6r_polish(const g6r_arm *arm, const double T06s[16], double th[6], int iters, double *scratch)
 {
-    double T[16], e[6], J[36], U[36], V[36], sv[6], trial[6], err, nw;
-    int it, i, j;
-    @P@_fk_pose(th, T);
-    err = @P@_pose_error(T06s, T, e);
+    double *J = scratch, *U = scratch + 36, *V = scratch + 72, *T = scratch + 108, *e = scratch + 124;
+    double *trial = scratch + 130, *dq = scratch + 136, *norms = scratch + 142, err, nw;
+    int it, i, j, order[14];
+    g6r_fk_pose(arm, th, T);
+    err = g6r_pose_error(T06s, T, e);
     for (it = 0; it < iters; ++it) {
         if (err < 1e-15) {
             break;
         }
-        @P@_jacobian6(th, T, J);
-        memcpy(U, J, sizeof U);
-        if (@P@_well_conditioned(6, 6, U, 1e-10)) {
+        g6r_jacobian6(arm, th, T, J);
+        memcpy(U, J, sizeof(double) * 36);
+        if (g6r_well_conditioned(6, 6, U, 1e-10)) {
             /* well conditioned: the least-squares step is the solution of J dq = e (LU) */
             int piv[6];
-            double dq[6];
-            memcpy(dq, e, sizeof dq);
-            @P@_lu(6, J, piv);
-            @P@_lu_solve(6, J, piv, dq);
+            memcpy(dq, e, sizeof(double) * 6);
+            g6r_lu(6, J, piv);
+            g6r_lu_solve(6, J, piv, dq);
             for (i = 0; i < 6; ++i) {
                 trial[i] = th[i] + dq[i];
             }
         } else {
-            @P@_svd(6, 6, J, sv, U, V);
+            g6r_svd(6, 6, J, V, norms, order);
             for (i = 0; i < 6; ++i) {
                 trial[i] = th[i];
             }
             for (j = 0; j < 6; ++j) {
+                const int o = order[j];
+                const double inv = norms[o] > 0.0 ? 1.0 / norms[o] : 0.0;
                 double ue = 0.0;
-                if (!(sv[j] > 1e-12 * sv[0])) {
+                if (!(norms[o] > 1e-12 * norms[order[0]])) {
                     continue;
                 }
                 for (i = 0; i < 6; ++i) {
-                    ue += U[i * 6 + j] * e[i];
+                    ue += J[i * 6 + o] * inv * e[i];
                 }
-                ue /= sv[j];
+                ue /= norms[o];
                 for (i = 0; i < 6; ++i) {
-                    trial[i] += V[i * 6 + j] * ue;
+                    trial[i] += V[i * 6 + o] * ue;
                 }
             }
         }
-        @P@_fk_pose(trial, T);
-        nw = @P@_pose_error(T06s, T, e);
+        g6r_fk_pose(arm, trial, T);
+        nw = g6r_pose_error(T06s, T, e);
         if (!(nw < err)) {
-            @P@_fk_pose(th, T);
-            @P@_pose_error(T06s, T, e);
+            g6r_fk_pose(arm, th, T);
+            g6r_pose_error(T06s, T, e);
             break;
         }
         err = nw;
@@ -1046,33 +1133,21 @@ static double @P@_polish(const double T06s[16], double th[6], int iters)
 
 /* kernels.general_6r.fill_joint: th_j from the other five,
    Rz(th_j) = (Z1 X1 ... X_{j-1})^-1 T06 (X_j Z_{j+1} ... Z6)^-1 Tz(-d_j) */
-static void @P@_fill_joint(const double T06s[16], double th[6], int j)
+static void g6r_fill_joint(const g6r_arm *arm, const double T06s[16], double th[6], int j, double *scratch)
 {
-    double A[16], B[16], R1[3][3], r00 = 0.0, r10 = 0.0;
-    int i, r, k, m;
-    memset(A, 0, sizeof A);
-    memset(B, 0, sizeof B);
+    double *A = scratch, *B = scratch + 16, R1[3][3], r00 = 0.0, r10 = 0.0;
+    int i, k, m;
+    memset(A, 0, sizeof(double) * 16);
+    memset(B, 0, sizeof(double) * 16);
     A[0] = A[5] = A[10] = A[15] = 1.0;
     B[0] = B[5] = B[10] = B[15] = 1.0;
     for (i = 0; i < 6; ++i) {
         const double c = cos(th[i]), s = sin(th[i]);
-        double *M = i > j ? B : A;
         if (i != j) {
-            for (r = 0; r < 3; ++r) {
-                const double x = M[4 * r], y = M[4 * r + 1];
-                M[4 * r] = c * x + s * y;
-                M[4 * r + 1] = -s * x + c * y;
-                M[4 * r + 3] += @P@_g6_d[i] * M[4 * r + 2];
-            }
+            g6r_turn(arm, i, c, s, i > j ? B : A);
         }
         if (i < 5) {
-            M = i >= j ? B : A;
-            for (r = 0; r < 3; ++r) {
-                const double y = M[4 * r + 1], z = M[4 * r + 2];
-                M[4 * r + 3] += @P@_g6_a[i] * M[4 * r];
-                M[4 * r + 1] = @P@_g6_ca[i] * y + @P@_g6_sa[i] * z;
-                M[4 * r + 2] = -@P@_g6_sa[i] * y + @P@_g6_ca[i] * z;
-            }
+            g6r_twist(arm, i, i >= j ? B : A);
         }
     }
     for (i = 0; i < 3; ++i) {  /* R1 = A_R^T R06 */
@@ -1093,13 +1168,13 @@ static void @P@_fill_joint(const double T06s[16], double th[6], int j)
 
 /* kernels.general_6r._candidate: th (6) from the pivot's phi and the monomial vector
    V (4 x 3) ~ x_b^i x_c^j, then polished; returns the pose error */
-static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const double V[4][3], double phi,
-                            const double np_[3 * 14 * 9], const double pinv[8 * 14], double th[6])
+static double g6r_candidate(const g6r_arm *arm, const g6r_reading *rd, const double T06s[16], const double V[4][3],
+                            double phi, g6r_work *wk, double th[6])
 {
-    double mbc[9], rhs[14], best = -1.0, thb = 0.0, thc = 0.0, cp, sp, cb, sb, cc, scc, m2 = 0.0, m5 = 0.0,
+    double mbc[9], best = -1.0, thb = 0.0, thc = 0.0, cp, sp, cb, sb, cc, scc, m2 = 0.0, m5 = 0.0,
            m6 = 0.0, m7 = 0.0, tb[3], tc[3];
-    const double thp = phi + @GAMMA@;
-    int i, j, r, m;
+    const double thp = phi + arm->gamma;
+    int i, j, m;
     /* theta_b, theta_c as 2 atan2 of the ratio of neighbouring monomials (the largest pair) */
     for (i = 0; i < 3; ++i) {
         for (j = 0; j < 3; ++j) {
@@ -1135,22 +1210,15 @@ static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const 
             mbc[i * 3 + j] = tb[i] * tc[j];
         }
     }
-    /* the two-joint side's monomials m12 = Q^+ P(th_p) m_bc (least squares, 14 equations) */
+    /* the two-joint side's monomials m12 = Q^+ P(th_p) m_bc (least squares, 14 equations): of it
+       the four used, through K = (rows 2, 5, 6, 7 of Q^+) P */
     cp = cos(thp);
     sp = sin(thp);
-    for (r = 0; r < 14; ++r) {
-        double acc = 0.0;
-        for (m = 0; m < 9; ++m) {
-            acc += (np_[(0 * 14 + r) * 9 + m] * cp + np_[(1 * 14 + r) * 9 + m] * sp + np_[(2 * 14 + r) * 9 + m])
-                   * mbc[m];
-        }
-        rhs[r] = acc;
-    }
-    for (r = 0; r < 14; ++r) {
-        m2 += pinv[2 * 14 + r] * rhs[r];
-        m5 += pinv[5 * 14 + r] * rhs[r];
-        m6 += pinv[6 * 14 + r] * rhs[r];
-        m7 += pinv[7 * 14 + r] * rhs[r];
+    for (m = 0; m < 9; ++m) {
+        m2 += (wk->K[0][0][m] * cp + wk->K[0][1][m] * sp + wk->K[0][2][m]) * mbc[m];
+        m5 += (wk->K[1][0][m] * cp + wk->K[1][1][m] * sp + wk->K[1][2][m]) * mbc[m];
+        m6 += (wk->K[2][0][m] * cp + wk->K[2][1][m] * sp + wk->K[2][2][m]) * mbc[m];
+        m7 += (wk->K[3][0][m] * cp + wk->K[3][1][m] * sp + wk->K[3][2][m]) * mbc[m];
     }
     th[rd->roles[0]] = thp;
     th[rd->roles[1]] = thb;
@@ -1159,106 +1227,12 @@ static double @P@_candidate(const @P@_reading *rd, const double T06s[16], const 
     th[rd->roles[4]] = atan2(m7, m6);
     th[rd->roles[5]] = 0.0;
     /* the eliminated joint from the other five, then Newton on the pose */
-    @P@_fill_joint(T06s, th, rd->roles[5]);
-    return @P@_polish(T06s, th, 30);
+    g6r_fill_joint(arm, T06s, th, rd->roles[5], wk->u + 300);
+    return g6r_polish(arm, T06s, th, 30, wk->u + 144);
 }
 
-/* GeneralSixR._Elimination.candidates: the polished rotation angles (rows of out, 24 x 6) of
-   the solutions with one reading; *ratio = the conditioning figure min(Q's, A's, the pencil's
-   sigma_min / sigma_max). Returns how many. */
-static int @P@_candidates(const @P@_reading *rd, const double T06s[16], double out[24][6], double *ratio,
-                          @P@_ik_workspace *ws)
-{
-    /* P and r live in the part of the scratch that matrices uses only inside side_tensor and that
-       pencil and companion do not touch (they use its first 600 doubles) */
-    double *P = ws->scratch + 3 * 225 + 27 * 15, *r = P + 3 * 15 * 9;
-    double *abc = ws->abc, *np_ = ws->np_, *pinv = ws->pinv, *M = ws->M;
-    double *wr = ws->wr, *wi = ws->wi, condA, reg, rq;
-    int k, count = 0, rotated = 0, i;
-    /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
-    @P@_matrices(rd, T06s, P, r, ws->scratch);
-    rq = @P@_pencil(P, r, abc, np_, pinv, ws->scratch);
-    /* 4: the eigenproblem, the companion matrix when A is regular */
-    condA = @P@_companion(abc, M, ws->scratch);
-    reg = @P@_regularity(abc, abc + 144, abc + 288, @X0@);
-    if (!(condA > 1e-10)) {
-        /* A near singular (a root near the half-angle's point at infinity): robokit's Python
-           takes the generalised eigenproblem (QZ); the C turns the variable instead,
-           x = (y + t) / (1 - t y) with t = tan(delta / 2), which moves that root to y = -1/t and
-           gives the regular leading matrix A' = A - t B + t^2 C (the same roots, as angles) */
-        const double t = @ROT_T@;
-        for (i = 0; i < 144; ++i) {  /* in place: only the turned polynomial is used from here on */
-            const double a = abc[i], b = abc[144 + i], c = abc[288 + i];
-            abc[i] = a - t * b + t * t * c;
-            abc[144 + i] = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c;
-            abc[288 + i] = t * t * a + t * b + c;
-        }
-        rotated = 1;
-        if (!(@P@_companion(abc, M, ws->scratch) > 1e-10)) {
-            *ratio = 0.0;
-            return 0;  /* singular in both variables: a continuum, no finite solution set */
-        }
-    }
-    *ratio = rq < condA ? rq : condA;
-    *ratio = reg < *ratio ? reg : *ratio;
-    if (@P@_eigenvalues(24, M, wr, wi) != 0) {
-        return 0;
-    }
-    /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
-    for (k = 0; k < 24; ++k) {
-        const double lam = wr[k];
-        const double imag = 2.0 * fabs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k]);
-        double v[12], V[4][3], th[6], phi, err;
-        if (imag > @IMAG_TOL@) {
-            continue;
-        }
-        phi = rotated ? 2.0 * atan2(lam + @ROT_T@, 1.0 - @ROT_T@ * lam) : 2.0 * atan(lam);
-        @P@_null_vector(abc, abc + 144, abc + 288, lam, v);
-        for (i = 0; i < 12; ++i) {
-            V[i / 3][i % 3] = v[i];
-        }
-        err = @P@_candidate(rd, T06s, (const double (*)[3])V, phi, np_, pinv, th);
-        if (err < @CONVERGED@) {
-            for (i = 0; i < 6; ++i) {
-                out[count][i] = th[i];
-            }
-            ++count;
-        }
-    }
-    return count;
-}
-
-/* kernels.general_6r.distinct: q = th - th0 wrapped to [-pi, pi), rows closer than the
-   tolerance in every joint (modulo 2 pi) merged; returns how many */
-static int @P@_distinct(const double th[][6], int n, double out[][6])
-{
-    int m = 0, r, o, i;
-    for (r = 0; r < n; ++r) {
-        double q[6];
-        int dup = 0;
-        for (i = 0; i < 6; ++i) {
-            const double v = th[r][i] - @P@_g6_th0[i];
-            q[i] = v - @TWO_PI@ * floor((v + @PI@) / @TWO_PI@);
-        }
-        for (o = 0; o < m && !dup; ++o) {
-            int close = 1;
-            for (i = 0; i < 6 && close; ++i) {
-                double dv = q[i] - out[o][i];
-                dv = dv - @TWO_PI@ * floor((dv + @PI@) / @TWO_PI@);
-                close = fabs(dv) < @SAME@;
-            }
-            dup = close;
-        }
-        if (!dup) {
-            memcpy(out[m], q, sizeof q);
-            ++m;
-        }
-    }
-    return m;
-}
-
-/* the order of GeneralSixR.solve: by q3, then q1, q2, q4, q5, q6 (a stable insertion sort) */
-static int @P@_before(const double a[6], const double b[6])
+/* the order of GeneralSixR.solve: by q3, then q1, q2, q4, q5, q6 */
+static int g6r_before(const double a[6], const double b[6])
 {
     static const int keys[6] = {2, 0, 1, 3, 4, 5};
     int k;
@@ -1273,51 +1247,125 @@ static int @P@_before(const double a[6], const double b[6])
     return 0;
 }
 
-/* GeneralSixR.solve for the scaled target T06s: rows (q, label index, degenerate); returns how many */
-static int @P@_general_6r(const double T06s[16], double rows[][6], int lab[], int deg[], @P@_ik_workspace *ws)
+/* kernels.general_6r.distinct and the sort of GeneralSixR.solve, one candidate at a time: q =
+   th - th0 wrapped to [-pi, pi) is dropped if it is within the tolerance of a kept row in every
+   joint (modulo 2 pi), else inserted in order after the rows not after it (the order of a stable
+   sort of the distinct rows in the order found). rows holds at most G6R_MAX_SOLUTIONS: beyond
+   that (a near-continuum, see the docs) the last in order is dropped. Returns how many rows. */
+static int g6r_add(const g6r_arm *arm, double rows[][6], int m, const double th[6])
 {
-    double (*th)[6] = ws->th, (*q)[6] = ws->th, ratio, extra_ratio;  /* distinct rows in place */
-    int n = 0, m, a, i, j;
+    double q[6];
+    int o, i, j;
+    for (i = 0; i < 6; ++i) {
+        const double v = th[i] - arm->th0[i];
+        q[i] = v - 6.283185307179586 * floor((v + 3.141592653589793) / 6.283185307179586);
+    }
+    for (o = 0; o < m; ++o) {
+        int close = 1;
+        for (i = 0; i < 6 && close; ++i) {
+            double dv = q[i] - rows[o][i];
+            dv = dv - 6.283185307179586 * floor((dv + 3.141592653589793) / 6.283185307179586);
+            close = fabs(dv) < arm->same;
+        }
+        if (close) {
+            return m;
+        }
+    }
+    if (m == G6R_MAX_SOLUTIONS && !g6r_before(q, rows[m - 1])) {
+        return m;
+    }
+    j = m < G6R_MAX_SOLUTIONS ? m : m - 1;
+    while (j > 0 && g6r_before(q, rows[j - 1])) {
+        memcpy(rows[j], rows[j - 1], sizeof q);
+        --j;
+    }
+    memcpy(rows[j], q, sizeof q);
+    return m < G6R_MAX_SOLUTIONS ? m + 1 : m;
+}
+
+/* GeneralSixR._Elimination.candidates: the polished rotation angles of the solutions with one
+   reading, added to rows (g6r_add; *m how many); *poor: whether the conditioning figure
+   min(Q's, A's, the pencil's sigma_min / sigma_max) is below arm->poor. */
+static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const double T06s[16], double rows[][6],
+                           int *m, int *poor, g6r_work *w)
+{
+    /* the half-angle turn used when A is near singular: t = tan(1.1 / 2) (robokit.codegen.ik_general) */
+    const double t = 0.6131052132881357;
+    double *M = w->u + 144, *wr = w->u + 720, *wi = w->u + 744;
+    int k, rotated = 0, i, singularA;
+    /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
+    g6r_matrices(rd, T06s, w->u);
+    *poor = g6r_pencil(arm, w) < arm->poor;
+    /* 4: the eigenproblem, the companion matrix when A is regular */
+    singularA = g6r_companion((const double (*)[6][9])w->abc, M, w->u, 1e-10, arm->poor);
+    *poor = *poor || (singularA & 2) || g6r_irregular((const double (*)[6][9])w->abc, arm->x0, arm->poor, w->u);
+    if (singularA & 1) {
+        /* A near singular (a root near the half-angle's point at infinity): robokit's Python
+           takes the generalised eigenproblem (QZ); the C turns the variable instead,
+           x = (y + t) / (1 - t y), which moves that root to y = -1/t and gives the regular
+           leading matrix A' = A - t B + t^2 C (the same roots, as angles) */
+        for (i = 0; i < 54; ++i) {  /* in place: only the turned polynomial is used from here on */
+            double *pa = &w->abc[0][0][0] + i, *pb = &w->abc[1][0][0] + i, *pc = &w->abc[2][0][0] + i;
+            const double a = *pa, b = *pb, c = *pc;
+            *pa = a - t * b + t * t * c;
+            *pb = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c;
+            *pc = t * t * a + t * b + c;
+        }
+        rotated = 1;
+        if (g6r_companion((const double (*)[6][9])w->abc, M, w->u, 1e-10, 1e-10) & 1) {
+            return;  /* singular in both variables: a continuum, no finite solution set */
+        }
+    }
+    if (g6r_eigenvalues(24, M, wr, wi, w->u + 768) != 0) {
+        return;
+    }
+    /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
+    for (k = 0; k < 24; ++k) {
+        const double lam = wr[k];
+        const double imag = 2.0 * fabs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k]);
+        double V[12], th[6], phi, err;  /* the null vector: the monomials x_b^i x_c^j at 3 i + j */
+        if (imag > arm->imag_tol) {
+            continue;
+        }
+        phi = rotated ? 2.0 * atan2(lam + t, 1.0 - t * lam) : 2.0 * atan(lam);
+        g6r_null_vector((const double (*)[6][9])w->abc, lam, V, w->u);
+        err = g6r_candidate(arm, rd, T06s, (const double (*)[3])V, phi, w, th);
+        if (err < arm->converged) {
+            *m = g6r_add(arm, rows, *m, th);
+        }
+    }
+}
+
+/* GeneralSixR.solve for the scaled target T06s (see g6r.h) */
+G6R_API int g6r_solve(const g6r_arm *arm, const double T06s[16], double rows[G6R_MAX_SOLUTIONS][6], int lab[],
+                      int deg[], double *ws)
+{
+    g6r_work *w = (g6r_work *)(void *)ws;
+    int m = 0, a, i, j, poor, extra_poor;
     for (i = 0; i < 12; ++i) {
         if (!(fabs(T06s[i]) < HUGE_VAL)) {
             return 0;  /* not a pose (inf or NaN) */
         }
     }
-    n = @P@_candidates(&@P@_g6_readings[0], T06s, th, &ratio, ws);
-    if (ratio < @POOR@) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
-        for (a = 1; a < @NREAD@; ++a) {
-            n += @P@_candidates(&@P@_g6_readings[a], T06s, th + n, &extra_ratio, ws);
+    g6r_candidates(arm, &arm->readings[0], T06s, rows, &m, &poor, w);
+    if (poor) {  /* badly conditioned for the best reading (near a singular pose): add the next ones */
+        for (a = 1; a < arm->nread; ++a) {
+            g6r_candidates(arm, &arm->readings[a], T06s, rows, &m, &extra_poor, w);
         }
-    }
-    m = @P@_distinct((const double (*)[6])th, n, q);  /* in place: row m is written after row r >= m is read */
-    for (i = 1; i < m; ++i) {  /* ordered by q3, then q1, q2, ... */
-        double tmp[6];
-        memcpy(tmp, q[i], sizeof tmp);
-        j = i - 1;
-        while (j >= 0 && @P@_before(tmp, q[j])) {
-            memcpy(q[j + 1], q[j], sizeof tmp);
-            --j;
-        }
-        memcpy(q[j + 1], tmp, sizeof tmp);
-    }
-    if (m > @MAXSOL@) {
-        m = @MAXSOL@;  /* more than the 16 of a general arm: a near-continuum (see the docs) */
     }
     for (i = 0; i < m; ++i) {
         int singular = 0;
-        if (ratio < @POOR@) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
-            double t6[6], T[16], J[36];
+        if (poor) {  /* near a singular pose: flag the solutions where the Jacobian is singular */
+            double t6[6], T[16], *J = w->u;
             for (j = 0; j < 6; ++j) {
-                t6[j] = q[i][j] + @P@_g6_th0[j];
+                t6[j] = rows[i][j] + arm->th0[j];
             }
-            @P@_fk_pose(t6, T);
-            @P@_jacobian6(t6, T, J);
-            singular = @P@_sv_ratio(6, 6, J) < 1e-8;
+            g6r_fk_pose(arm, t6, T);
+            g6r_jacobian6(arm, t6, T, J);
+            singular = g6r_sv_below(6, 6, J, 1e-8, 1e-8) & 1;
         }
-        memcpy(rows[i], q[i], sizeof q[i]);
         lab[i] = ((m - 1) * m / 2 + i) * 2 + singular;  /* "solution i+1 of m" (", singular") */
         deg[i] = singular;
     }
     return m;
 }
-"""
