@@ -105,7 +105,7 @@ def test_scene_placement_formula_matches_pinocchio(name):
     r = robot(name)
     d = teach_data(r)
     q = r.random_configuration(1)
-    S = np.array(d["S"]).T
+    S = r.poe.Slist  # the screw axes: P_k(q) = e^[S1]q1 ... e^[Sk]qk (what KIN.placements gives)
     data = r.model.createData()
     pin.forwardKinematics(r.model, data, r.q_pin(q))
     gdata = r.visual_model.createData()
