@@ -67,10 +67,12 @@ var RKMath = (function () {
     return out;
   }
 
-  // R = Rz(yaw) Ry(pitch) Rx(roll) -> (roll, pitch, yaw)
+  // R = Rz(yaw) Ry(pitch) Rx(roll) -> (roll, pitch, yaw): yaw first, then pitch and roll from
+  // Rz(yaw)^T R, so that near the gimbal lock (pitch -> +-90 deg, where yaw and roll are no longer
+  // separate) the three angles still rebuild R to round-off
   function rpy(T) {
-    var r20 = Math.max(-1, Math.min(1, T[8]));
-    return [Math.atan2(T[9], T[10]), Math.atan2(-r20, Math.hypot(T[0], T[4])), Math.atan2(T[4], T[0])];
+    var y = Math.atan2(T[4], T[0]), c = Math.cos(y), s = Math.sin(y);
+    return [Math.atan2(s * T[2] - c * T[6], c * T[5] - s * T[1]), Math.atan2(-T[8], c * T[0] + s * T[4]), y];
   }
 
   // unit quaternion (w, x, y, z) of R, w >= 0 (Shepperd's method: the largest of 4 candidates)
