@@ -47,8 +47,9 @@ if TYPE_CHECKING:
 
 __all__ = ["WasmModule", "wasm_module", "compile_wasm", "zig_path"]
 
-#: Flags of every compile: C99 as ``robokit codegen`` writes it, optimised, stripped, a reactor.
-WASM_FLAGS = ("--target=wasm32-wasi", "-std=c99", "-O2", "-s", "-mexec-model=reactor")
+#: Flags of every compile: C99 as ``robokit codegen`` writes it, optimised for size (-Os: a fifth
+#: smaller than -O2, see benchmarks/teach_wasm.py for the speed), stripped, a reactor.
+WASM_FLAGS = ("--target=wasm32-wasi", "-std=c99", "-Os", "-s", "-mexec-model=reactor")
 
 #: Bytes of shadow stack the module gets (the general-6R solver's eliminant needs a few kB).
 STACK_BYTES = 256 * 1024

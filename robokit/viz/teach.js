@@ -64,7 +64,8 @@
         own(w === undefined ? pane.clientWidth : w, h === undefined ? pane.clientHeight : h);
       };
       viewer.set_3d_pane_size();
-      RK_SCENE.forEach(function (b64) {
+      RK_SCENE.forEach(function (b64) {  // base64 msgpack, or the command itself (robokit.viz.teach._scene_entry)
+        if (typeof b64 !== "string") { viewer.handle_command(b64); return; }
         var bin = atob(b64), bytes = new Uint8Array(bin.length);
         for (var i = 0; i < bin.length; i++) { bytes[i] = bin.charCodeAt(i); }
         viewer.handle_command_bytearray(bytes);

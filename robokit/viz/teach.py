@@ -339,6 +339,19 @@ def _pack(command: Any) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
+def _scene_entry(command: Any) -> str:
+    """One meshcat command as the page's ``RK_SCENE`` holds it (JavaScript text): base64 msgpack (a
+    string; binary mesh data stays binary), or the command itself as JSON when it holds no binary data
+    and that is shorter — a frame label's PNG is already base64 text inside its data URL, which a
+    second base64 would grow by a third."""
+    packed = f'"{_pack(command)}"'
+    try:
+        plain = _script_json(command)
+    except (TypeError, ValueError):  # bytes, arrays: msgpack only
+        return packed
+    return plain if len(plain) < len(packed) else packed
+
+
 #: Direction the teach page looks from (azimuth, elevation in degrees, base frame): a 3/4 view.
 CAMERA_AZIMUTH, CAMERA_ELEVATION = 40.0, 22.0
 
@@ -589,6 +602,15 @@ def _asset(name: str) -> str:
     return resources.files("robokit.viz").joinpath(name).read_text(encoding="utf-8")
 
 
+def _script(name: str) -> str:
+    """One of robokit's own scripts as the page inlines it: without its whole-line ``//`` comments
+    and indentation (a quarter of the text; the files in ``robokit/viz`` are the readable source).
+    Lines are kept as they are otherwise (no joining: JavaScript's line breaks keep their meaning);
+    the scripts hold no multi-line string."""
+    lines = (line.strip() for line in _asset(name).splitlines())
+    return "\n".join(line for line in lines if line and not line.startswith("//"))
+
+
 def _meshcat_bundle() -> str:
     meshcat = require("meshcat", "the teach pendant")
 
@@ -678,11 +700,11 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         world = World(robot, obstacles, padding=padding)
     d = teach_data(robot, q, world=world)
     commands = d.pop("_commands")
-    scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
+    scene = "[" + ",".join(_scene_entry(c) for c in commands) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
     module = (  # base64 holds no character that could end the element
         f"<script id=\"rk-wasm\" type=\"application/octet-stream\">{base64.b64encode(bytes(wasm)).decode('ascii')}"
-        f"</script>\n<script>\n{_asset('teach_wasm.js')}\n</script>\n")
+        f"</script>\n<script>\n{_script('teach_wasm.js')}\n</script>\n")
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<title>{title}</title>\n<style>\n{_asset('teach.css')}\n</style>\n</head>\n<body>\n"
@@ -690,9 +712,9 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         f"<script>\n{_meshcat_bundle()}\n</script>\n"
         f"<script id=\"rk-robot\" type=\"application/json\">{_script_json(d)}</script>\n"
         f"<script>var RK_SCENE = {scene};</script>\n"
-        f"<script>\n{_asset('teach_math.js')}\n</script>\n"
+        f"<script>\n{_script('teach_math.js')}\n</script>\n"
         f"{module}"
-        f"<script>\n{_asset('teach.js')}\n</script>\n"
+        f"<script>\n{_script('teach.js')}\n</script>\n"
         "</body>\n</html>\n"
     )
 
