@@ -187,8 +187,10 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
 
         obs, padding = load_scene(obstacles, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
     require("meshcat", "the teach pendant")  # the page's own extra first: one line when it is missing
-    require("ziglang", "compiling the teach page's WebAssembly")  # the page computes with the module
-    page = teach_html(robot, q=q, obstacles=obs, padding=padding)
+    from robokit.codegen.wasm import wasm_module
+
+    wasm = wasm_module(robot).wasm  # the page computes with the module: without ziglang, one line naming the extra
+    page = teach_html(robot, q=q, obstacles=obs, padding=padding, wasm=wasm)
     if output is not None:
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)

@@ -252,13 +252,17 @@ def emit_fk(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], name
     """
     chain = fk_chain(w, Slist, kinds, names)
     w.comment("the home pose M of the tool (pose at q = 0)")
-    T = compose(w, chain[-1], Pose.const(M), "Tt")
+    _store(w, compose(w, chain[-1], Pose.const(M), "Tt"), 0)
+
+
+def _store(w: CWriter, T: Pose, offset: int) -> None:
+    """Write the pose T into ``T[offset … offset + 15]``, row-major (the last row 0 0 0 1)."""
     for i in range(3):
         for j in range(3):
-            w.assign(f"T[{4 * i + j}]", T.R[i][j])
-        w.assign(f"T[{4 * i + 3}]", T.p[i])
+            w.assign(f"T[{offset + 4 * i + j}]", T.R[i][j])
+        w.assign(f"T[{offset + 4 * i + 3}]", T.p[i])
     for j, x in enumerate((0.0, 0.0, 0.0, 1.0)):
-        w.assign(f"T[{12 + j}]", x)
+        w.assign(f"T[{offset + 12 + j}]", x)
 
 
 def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], names: list[str]) -> None:
@@ -345,11 +349,4 @@ def emit_joint_poses(w: CWriter, Slist: np.ndarray, homes: np.ndarray, kinds: li
     chain = fk_chain(w, Slist, kinds, names)
     w.comment("joint k's frame: T_0,k(q) = e^[S1]q1 ... e^[Sk]qk H_k, H_k its pose at q = 0 (Pinocchio's oMi[k])")
     for k in range(1, n + 1):
-        Tk = compose(w, chain[k], Pose.const(np.asarray(homes[k - 1], dtype=float)), f"H{k}")
-        o = 16 * (k - 1)
-        for i in range(3):
-            for j in range(3):
-                w.assign(f"T[{o + 4 * i + j}]", Tk.R[i][j])
-            w.assign(f"T[{o + 4 * i + 3}]", Tk.p[i])
-        for j, x in enumerate((0.0, 0.0, 0.0, 1.0)):
-            w.assign(f"T[{o + 12 + j}]", x)
+        _store(w, compose(w, chain[k], Pose.const(np.asarray(homes[k - 1], dtype=float)), f"H{k}"), 16 * (k - 1))

@@ -658,10 +658,11 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         pendant (Python).
     padding : float
         The World's padding (m, inflation of the robot's geometry).
-    wasm : bytes, optional
+    wasm : bytes
         The robot's generated C compiled to WebAssembly
-        (:func:`robokit.codegen.wasm.wasm_module`'s ``.wasm``; default: compiled here), embedded
-        as base64. The page's tool pose, Jacobian and placements come from the module (the
+        (:func:`robokit.codegen.wasm.wasm_module`'s ``.wasm``; ``robokit teach`` compiles it), embedded
+        as base64. Required (the default None is refused): the page has no other implementation of
+        the kinematics. The page's tool pose, Jacobian and placements come from the module (the
         controller's own C), and the fragment ``#T=t11,t12,…,t44`` (16 numbers, row-major,
         the tool pose in the base frame; ``#q=…&T=…``: start at q, then go to T) solves the
         closed-form IK in the module and moves to the solution nearest the current joint
@@ -676,13 +677,13 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
 
     Raises
     ------
-    robokit.errors.MissingExtraError
-        Without ``wasm`` and without the ``viz`` extra's compiler (``ziglang``): the page needs
-        the module (it has no second implementation of the kinematics).
+    robokit.errors.InputError
+        Without ``wasm``.
 
     Examples
     --------
-    >>> page = teach_html("twolink")
+    >>> from robokit.codegen.wasm import wasm_module
+    >>> page = teach_html("twolink", wasm=wasm_module(rk.load("twolink")).wasm)
     >>> page.startswith("<!DOCTYPE html>")
     True
     """
@@ -690,9 +691,8 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
 
     robot = load(model)
     if wasm is None:
-        from robokit.codegen.wasm import wasm_module
-
-        wasm = wasm_module(robot).wasm
+        raise InputError("wasm: the teach page computes with the robot's generated C compiled to WebAssembly; pass "
+                         "wasm=robokit.codegen.wasm.wasm_module(robot).wasm (robokit teach does)")
     world = None
     if obstacles is not None:
         from robokit.collision import World

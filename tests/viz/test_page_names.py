@@ -109,10 +109,10 @@ def test_teach_page_json_survives_any_name():
     """The embedded JSON block holds no '<', '>' or '&' and parses back to the exact names."""
     import robokit
     from robokit.description.dh import DHLink, DHTable
-    from robokit.viz.teach import teach_html
+    from tests.viz.test_teach import teach_page
 
     name = NAME + "\u2028\u2029 -->"
-    page = teach_html(robokit.load(DHTable(name, "standard", (DHLink(a=0.3), DHLink(a=0.2)))))
+    page = teach_page(robokit.load(DHTable(name, "standard", (DHLink(a=0.3), DHLink(a=0.2)))))
     p = _Page()
     p.feed(page)
     # meshcat, the robot's data, the scene, teach_math.js, the module (base64), teach_wasm.js, teach.js

@@ -24,10 +24,11 @@ def _sections(page):
 def test_page_is_at_most_a_megabyte_besides_the_meshes(name):
     import umsgpack
 
-    from robokit.viz.teach import teach_data, teach_html
+    from robokit.viz.teach import teach_data
+    from tests.viz.test_teach import teach_page
 
     robot = robokit.load(name)
-    page = teach_html(robot)
+    page = teach_page(robot)
     size = len(page.encode("utf-8"))
     # the mesh files' triangles, as the page embeds them: the scene commands that draw a visual read
     # from a mesh file, its coloured parts included (not a primitive: the PUMA's DH links count)

@@ -9,7 +9,7 @@ import pytest
 import robokit
 from robokit._optional import available
 from robokit.viz.teach import teach_html
-from tests.viz.test_teach import needs_chromium, nums, run_harness, run_page
+from tests.viz.test_teach import needs_chromium, nums, run_harness, run_page, teach_page
 
 needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
 TOL = 1e-9
@@ -26,7 +26,7 @@ ARMS = ["puma560", "ur5", "jaco2_6n", "puma_craig", "puma_calibrated"]
 
 @pytest.fixture(scope="module")
 def pages(tmp_path_factory):
-    """One page per arm, written on first use (teach_html compiles the module; zig caches it)."""
+    """One page per arm, written on first use (with its module; zig caches the compile)."""
     from tests.viz.test_wasm import _load
 
     out = {}
@@ -36,7 +36,7 @@ def pages(tmp_path_factory):
         if name not in out:
             robot = _load(name)
             path = folder / f"{name}.html"
-            path.write_text(teach_html(robot), encoding="utf-8")
+            path.write_text(teach_page(robot), encoding="utf-8")
             out[name] = (robot, path)
         return out[name]
 
@@ -141,9 +141,12 @@ def test_teach_without_the_compiler_fails_with_one_line_naming_the_extra(tmp_pat
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("robokit: ") and "robokit[viz]" in err[0], err
     assert not out.exists()
-    from robokit.errors import MissingExtraError
+    from robokit.errors import InputError, MissingExtraError
+    from robokit.codegen.wasm import wasm_module
 
-    with pytest.raises(MissingExtraError):
+    with pytest.raises(MissingExtraError, match="robokit\\[viz\\]"):
+        wasm_module(robokit.load("twolink"))
+    with pytest.raises(InputError, match="wasm"):  # and the page is never written without its module
         teach_html(robokit.load("twolink"))
 
 
@@ -165,7 +168,7 @@ def test_cli_embeds_the_module(tmp_path):
 def test_arm_without_closed_form_follows_by_damped_least_squares(tmp_path):
     robot = robokit.load("panda")
     path = tmp_path / "panda.html"
-    path.write_text(teach_html(robot), encoding="utf-8")
+    path.write_text(teach_page(robot), encoding="utf-8")
     q0 = np.array([0.1, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5])
     T = robot.frame_pose(q0 + np.array([0.03, -0.02, 0.04, 0.02, -0.03, 0.01, 0.02]))
     d = run_page(path, q0, "&T=" + _fmt(T))
