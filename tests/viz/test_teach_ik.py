@@ -238,3 +238,20 @@ def test_smooth_path_and_drag_follow_one_branch(pages, tmp_path):
     np.testing.assert_allclose(after[:3, :3], before[:3, :3], rtol=0, atol=TOL)
     np.testing.assert_allclose(after, nums(got["target"]).reshape(4, 4), rtol=0, atol=TOL)
     np.testing.assert_allclose(robot.frame_pose(qs[-1]), before, rtol=0, atol=TOL)
+
+
+@needs_chromium
+@needs_zig
+def test_page_whose_module_does_not_load_says_so_and_shows_no_numbers(tmp_path):
+    """A page whose module cannot be instantiated (here: its bytes corrupted) computes nothing in
+    another implementation: it says why under the sliders and writes no pose."""
+    from tests.viz.test_page_names import run_page as run_text
+
+    text = teach_page(robokit.load("puma560"))
+    head, rest = text.split('<script id="rk-wasm" type="application/octet-stream">', 1)
+    path = tmp_path / "broken.html"
+    path.write_text(head + '<script id="rk-wasm" type="application/octet-stream">AGFzbQEAAAAB' + rest.split("</script>", 1)[1],
+                    encoding="utf-8")
+    p = run_text(path, "#q=0.1,0.2,0.3,0.4,0.5,0.6")
+    assert "cannot compute" in p.text.get("rk-msg", ""), p.text.get("rk-msg")
+    assert "data-t" not in p.attrs.get("rk-pose", {})
