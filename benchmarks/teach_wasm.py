@@ -3,9 +3,11 @@
 For each robot the module is built (``robokit.codegen.wasm.wasm_module``) and timed in Node
 (``performance.now`` around loops over 256 poses, the fastest of 7 runs) through the page's own
 loader, ``teach_wasm.js``: ``ik`` (every closed-form solution, copies in and out of the module
-included), the nearest solution's choice, ``fk`` and ``jacobian``; and, for comparison in the
-same run, the page's JavaScript FK + Jacobian (``teach_math.js``'s ``readouts`` without the
-module, SVD and all) and robokit's Python ``ik_analytic``. Prints a Markdown table; asserts nothing.
+included), the IK update (``ik`` and the nearest solution's choice: what a drag frame costs before
+drawing), ``fk``, ``jacobian``, ``placements`` (every body's placement, from ``NAME_joint_poses``)
+and the page's whole numeric update at a configuration (``teach_math.js``'s ``readouts`` over the
+module, SVD and all, plus the placements); and, for comparison in the same run, robokit's Python
+``ik_analytic``. Prints a Markdown table; asserts nothing.
 
 Run: ``.venv/bin/python -m benchmarks.teach_wasm [--quick]``
 """
@@ -40,8 +42,8 @@ var out = {
   update: best(function (i) { var s = k.ik(I.Ts[i], 0); sink += RKWasm.nearest(s, I.qs[i]); }),
   fk: best(function (i) { sink += k.fk(I.qs[i])[3]; }),
   jacobian: best(function (i) { sink += k.jacobian(I.qs[i])[0][0]; }),
-  js_readouts: best(function (i) { sink += RKMath.readouts(I.R, I.qs[i]).T[3]; }),
-  wasm_readouts: best(function (i) { sink += RKMath.readouts(I.R, I.qs[i], k).T[3]; }),
+  placements: best(function (i) { sink += k.placements(I.qs[i])[1][3]; }),
+  readouts: best(function (i) { sink += RKMath.readouts(I.R, I.qs[i], k).T[3] + k.placements(I.qs[i])[1][3]; }),
   solutions: I.Ts.reduce(function (a, T) { return a + k.ik(T, 0).length; }, 0) / I.Ts.length
 };
 process.stdout.write(JSON.stringify(out));
@@ -63,8 +65,10 @@ def main(argv=None):
     wasm_js = str(resources.files("robokit.viz").joinpath("teach_wasm.js"))
     math_js = str(resources.files("robokit.viz").joinpath("teach_math.js"))
     rows = []
-    for name in ("puma560", "ur5"):
-        robot = robokit.load(name)
+    from benchmarks.general_6r import jaco2_table
+
+    for name in ("puma560", "ur5", "jaco2_6n"):
+        robot = robokit.load(jaco2_table()) if name == "jaco2_6n" else robokit.load(name)
         m = wasm_module(robot)
         lo, hi = np.array(robot.qlim, dtype=float).T
         lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
@@ -78,14 +82,14 @@ def main(argv=None):
         py = time_best(lambda: [robokit.ik_analytic(robot, T) for T in Ts[:16]], batches=20 if args.quick else 100) / 16
         rows.append([name, f"{len(m.wasm) / 1000:.1f} kB", f"{t['solutions']:.2f}", fmt_time(t["ik"]),
                      fmt_time(t["update"]), fmt_time(py), f"{py / t['update']:.1f}×",
-                     fmt_time(t["fk"]), fmt_time(t["jacobian"]), fmt_time(t["wasm_readouts"]),
-                     fmt_time(t["js_readouts"])])
+                     fmt_time(t["fk"]), fmt_time(t["jacobian"]), fmt_time(t["placements"]),
+                     fmt_time(t["readouts"])])
     print(machine() + "; Node " + subprocess.run([node, "--version"], capture_output=True, text=True).stdout.strip()
           + "; fastest of 7 loops over 256 poses (Python: fastest of short batches)")
     print()
     print(table(["robot", "module", "solutions/pose", "wasm ik (all)", "IK update (ik + nearest)",
-                 "ik_analytic (Python)", "ratio", "wasm fk", "wasm jacobian", "page readouts (wasm)",
-                 "page readouts (JS)"], rows))
+                 "ik_analytic (Python)", "ratio", "wasm fk", "wasm jacobian", "wasm placements",
+                 "page numbers at q (readouts + placements)"], rows))
 
 
 if __name__ == "__main__":

@@ -187,7 +187,10 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
 
         obs, padding = load_scene(obstacles, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
     require("meshcat", "the teach pendant")  # the page's own extra first: one line when it is missing
-    page = teach_html(robot, q=q, obstacles=obs, padding=padding, wasm=_teach_wasm(robot))
+    from robokit.codegen.wasm import wasm_module
+
+    wasm = wasm_module(robot).wasm  # the page computes with the module: without ziglang, one line naming the extra
+    page = teach_html(robot, q=q, obstacles=obs, padding=padding, wasm=wasm)
     if output is not None:
         atomic_write(output, page)
         print(f"wrote {output} ({len(page.encode('utf-8')) / 1e6:.1f} MB)", file=sys.stderr)
@@ -199,19 +202,6 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
     if open_browser:
         webbrowser.open(Path(tmp).resolve().as_uri())
     return 0
-
-
-def _teach_wasm(robot: Any) -> bytes | None:
-    """The robot's generated C as WebAssembly for the teach page, or None (said on stderr)."""
-    from robokit.codegen.wasm import wasm_module
-    from robokit.errors import MissingExtraError
-
-    try:
-        return wasm_module(robot).wasm
-    except (MissingExtraError, RuntimeError) as exc:
-        print(f"robokit: teach: no WebAssembly module ({str(exc).splitlines()[0]}); the page computes its pose and "
-              "Jacobian in JavaScript and has no inverse kinematics (#T=)", file=sys.stderr)
-        return None
 
 
 def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, describe: bool,

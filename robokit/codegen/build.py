@@ -51,7 +51,7 @@ def find_compiler() -> str | None:
 
 
 class CLibrary:
-    """A compiled generated library: ``fk``, ``jacobian``, ``ik``, ``gravity``, ``rnea`` on numpy arrays.
+    """A compiled generated library: ``fk``, ``joint_poses``, ``jacobian``, ``ik``, ``gravity``, ``rnea`` on numpy arrays.
 
     Made by :func:`compile_library`; the methods call the C functions through :mod:`ctypes`.
 
@@ -111,7 +111,7 @@ class CLibrary:
         ct = ctypes.c_float if float32 else ctypes.c_double
         P = ctypes.POINTER(ct)
         self._ptr = P
-        for fn, nargs in (("fk", 2), ("jacobian", 2), ("gravity", 2), ("rnea", 4)):
+        for fn, nargs in (("fk", 2), ("joint_poses", 2), ("jacobian", 2), ("gravity", 2), ("rnea", 4)):
             f = getattr(self.lib, f"{self.name}_{fn}")
             f.argtypes = [P] * nargs
             f.restype = None
@@ -158,6 +158,28 @@ class CLibrary:
         qa, out = self._arr(q, self.n), np.zeros(16, self._t)
         getattr(self.lib, f"{self.name}_fk")(self._p(qa), self._p(out))
         return out.reshape(4, 4).astype(float)
+
+    def joint_poses(self, q: ArrayLike) -> np.ndarray:
+        """``NAME_joint_poses``: every joint frame's pose in the base frame.
+
+        Parameters
+        ----------
+        q : (n,) array
+            Joint values (rad, m).
+
+        Returns
+        -------
+        (n, 4, 4) array
+            Entry k − 1 is joint k's frame pose (Pinocchio's ``data.oMi[k]``), m.
+
+        Examples
+        --------
+        >>> lib.joint_poses(np.zeros(lib.n)).shape  # doctest: +SKIP
+        (6, 4, 4)
+        """
+        qa, out = self._arr(q, self.n), np.zeros(16 * self.n, self._t)
+        getattr(self.lib, f"{self.name}_joint_poses")(self._p(qa), self._p(out))
+        return out.reshape(self.n, 4, 4).astype(float)
 
     def jacobian(self, q: ArrayLike) -> np.ndarray:
         """``NAME_jacobian``: the geometric Jacobian.

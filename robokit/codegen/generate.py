@@ -21,7 +21,7 @@ from robokit._io import atomic_write, check_output_folder, make_output_folder
 from robokit.codegen._c import RANGES, CWriter, c_string, check_literals, lit, out_of_range, safe_comment, to_float32
 from robokit.codegen.dynamics import emit_rnea
 from robokit.codegen.ik import emit_ik
-from robokit.codegen.kinematics import emit_fk, emit_jacobian
+from robokit.codegen.kinematics import emit_fk, emit_jacobian, emit_joint_poses
 from robokit.errors import InputError
 
 __all__ = ["CSource", "generate_c", "write_c", "c_name", "C_KEYWORDS", "STANDARD_HEADERS"]
@@ -186,7 +186,9 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False, nomin
     CSource
         ``.header`` (NAME.h) and ``.source`` (NAME.c). The header declares, arrays row-major:
         ``NAME_fk(q, T[16])`` (the tip pose in the base frame, as ``Robot.frame_pose``),
-        ``NAME_jacobian(q, J[6*NAME_N])`` (rows (ω; v), base axes, v of the tool origin),
+        ``NAME_joint_poses(q, T[16*NAME_N])`` (joint k's frame pose in the base frame, Pinocchio's
+        ``data.oMi[k]``, k = 1..n), ``NAME_jacobian(q, J[6*NAME_N])`` (rows (ω; v), base axes, v of
+        the tool origin),
         ``NAME_ik(T, q[NAME_MAX_SOLUTIONS*NAME_N])`` when ``NAME_HAS_IK`` (every closed-form
         solution, as ``ik_analytic``), ``NAME_gravity(q, tau)``, ``NAME_rnea(q, qd, qdd, tau)``
         (Pinocchio's rnea), and the macros ``NAME_N``, ``NAME_HAS_IK``, ``NAME_MAX_SOLUTIONS``,
@@ -263,6 +265,11 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False, nomin
     h.append(f"/* Forward kinematics: T = pose of the tool frame in the base frame at joint values q. */")
     h.append(f"void {P}_fk(const double q[{P}_N], double T[16]);")
     h.append("")
+    h.append(f"/* Joint frames: T[16*(k-1) .. 16*k-1] = pose of joint k's frame in the base frame at q,")
+    h.append(f" * k = 1..N (Pinocchio's data.oMi[k]: the frame the joint's axis, its child link's inertia")
+    h.append(f" * and geometry are attached to). */")
+    h.append(f"void {P}_joint_poses(const double q[{P}_N], double T[16 * {P}_N]);")
+    h.append("")
     h.append(f"/* Geometric Jacobian (6 x N, rows (w; v)) at q. */")
     h.append(f"void {P}_jacobian(const double q[{P}_N], double J[6 * {P}_N]);")
     h.append("")
@@ -298,6 +305,10 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False, nomin
     s.append(_function(f"void {P}_fk(const double q[{P}_N], double T[16])", w,
                        "forward kinematics (Lecture 4, product of exponentials)"))
     w = CWriter()
+    emit_joint_poses(w, poe.Slist, _joint_homes(robot), kinds, names)
+    s.append(_function(f"void {P}_joint_poses(const double q[{P}_N], double T[16 * {P}_N])", w,
+                       "every joint frame's pose in the base frame (Pinocchio's oMi[1..N])"))
+    w = CWriter()
     emit_jacobian(w, poe.Slist, poe.M, kinds, names)
     s.append(_function(f"void {P}_jacobian(const double q[{P}_N], double J[6 * {P}_N])", w,
                        "geometric Jacobian, rows (w; v), v of the tool origin, base axes"))
@@ -321,6 +332,15 @@ def generate_c(robot: Any, name: str | None = None, float32: bool = False, nomin
     check_literals(header, float32, f"{P}.h")
     check_literals(source, float32, f"{P}.c")
     return CSource(P, header, source, ik.has_ik, ik.note)
+
+
+def _joint_homes(robot: Any) -> np.ndarray:
+    """(n, 4, 4): each joint frame's pose in the base frame at q = 0 (Pinocchio's ``oMi[1..n]``)."""
+    import pinocchio as pin
+
+    data = robot.model.createData()
+    pin.forwardKinematics(robot.model, data, pin.neutral(robot.model))
+    return np.array([data.oMi[k].homogeneous for k in range(1, robot.n + 1)])
 
 
 def _check_parameters(robot: Any, float32: bool) -> None:

@@ -11,6 +11,10 @@ The Jacobian is the geometric one of the course (Pinocchio's LOCAL_WORLD_ALIGNED
 ``(ω; v)`` in base axes, v the velocity of the tool origin: with ``T₀,ᵢ₋₁ = (R, p)`` the
 product of the first i − 1 exponentials, column i is ``ωᵢ = R ωᵢ⁰``,
 ``vᵢ = R vᵢ⁰ + ωᵢ × (p_tool − p)`` (revolute) or ``(0, R vᵢ⁰)`` (prismatic).
+
+The joint frames' poses (``NAME_joint_poses``) are the partial products carried to each joint's
+own frame: ``T₀,ₖ(q) = e^{[S₁]q₁} ⋯ e^{[Sₖ]qₖ} Hₖ``, ``Hₖ`` the pose of joint k's frame at q = 0 —
+Pinocchio's ``data.oMi[k]``.
 """
 from __future__ import annotations
 
@@ -20,7 +24,7 @@ import numpy as np
 
 from robokit.codegen._c import CWriter, Val, cross, dot, lin, snap, sub
 
-__all__ = ["emit_fk", "emit_jacobian", "Pose"]
+__all__ = ["emit_fk", "emit_jacobian", "emit_joint_poses", "Pose"]
 
 
 @dataclass
@@ -265,13 +269,17 @@ def emit_fk(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], name
     """
     chain = fk_chain(w, Slist, kinds, names)
     w.comment("the home pose M of the tool (pose at q = 0)")
-    T = compose(w, chain[-1], Pose.const(M), "Tt")
+    _store(w, compose(w, chain[-1], Pose.const(M), "Tt"), 0)
+
+
+def _store(w: CWriter, T: Pose, offset: int) -> None:
+    """Write the pose T into ``T[offset … offset + 15]``, row-major (the last row 0 0 0 1)."""
     for i in range(3):
         for j in range(3):
-            w.assign(f"T[{4 * i + j}]", T.R[i][j])
-        w.assign(f"T[{4 * i + 3}]", T.p[i])
+            w.assign(f"T[{offset + 4 * i + j}]", T.R[i][j])
+        w.assign(f"T[{offset + 4 * i + 3}]", T.p[i])
     for j, x in enumerate((0.0, 0.0, 0.0, 1.0)):
-        w.assign(f"T[{12 + j}]", x)
+        w.assign(f"T[{offset + 12 + j}]", x)
 
 
 def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str], names: list[str]) -> None:
@@ -324,3 +332,38 @@ def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str]
         for a in range(3):
             w.assign(f"J[{a * n + i}]", om[a])
             w.assign(f"J[{(a + 3) * n + i}]", lin_v[a])
+
+
+def emit_joint_poses(w: CWriter, Slist: np.ndarray, homes: np.ndarray, kinds: list[str], names: list[str]) -> None:
+    """Emit the body of ``NAME_joint_poses(q, T)``: every joint frame's pose in the base frame.
+
+    Parameters
+    ----------
+    w : CWriter
+        Where the body goes.
+    Slist : (6, n) array
+        Space screw axes (``robot.poe.Slist``), base frame.
+    homes : (n, 4, 4) array
+        ``homes[k - 1]``: the pose of joint k's frame in the base frame at q = 0 (Pinocchio's
+        ``data.oMi[k]`` at the neutral configuration, m).
+    kinds, names : lists of n str
+        Joint types ("R"/"P") and names.
+
+    Returns
+    -------
+    None
+        The body writes ``T[16 * n]``: ``T[16 (k − 1) … 16 k − 1]`` is joint k's frame pose,
+        ``e^{[S₁]q₁} ⋯ e^{[Sₖ]qₖ} homes[k − 1]``, row-major — Pinocchio's ``data.oMi[k]``.
+
+    Examples
+    --------
+    >>> w = CWriter()
+    >>> emit_joint_poses(w, np.array([[0, 0, 1.0, 0, 0, 0]]).T, np.eye(4)[None], ["R"], ["j1"])
+    >>> "T[15] = 1.0;" in w.text()
+    True
+    """
+    n = Slist.shape[1]
+    chain = fk_chain(w, Slist, kinds, names)
+    w.comment("joint k's frame: T_0,k(q) = e^[S1]q1 ... e^[Sk]qk H_k, H_k its pose at q = 0 (Pinocchio's oMi[k])")
+    for k in range(1, n + 1):
+        _store(w, compose(w, chain[k], Pose.const(np.asarray(homes[k - 1], dtype=float)), f"H{k}"), 16 * (k - 1))

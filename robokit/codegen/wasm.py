@@ -7,15 +7,17 @@ Zig toolchain from PyPI (``ziglang``, in the ``viz`` extra) for ``wasm32-wasi`` 
 compiler's libm (wasi-libc, i.e. musl's); the module imports nothing (no WASI system call
 is linked in), so a browser or Node instantiates it with an empty import object.
 
-Besides ``NAME_fk``, ``NAME_jacobian``, ``NAME_gravity`` and ``NAME_ik_ex`` the module exports
-a few robot-independent entry points (a small C file written next to the generated one),
-working on static buffers in the module's memory:
+Besides ``NAME_fk``, ``NAME_joint_poses``, ``NAME_jacobian``, ``NAME_gravity`` and ``NAME_ik_ex`` the
+module exports a few robot-independent entry points (a small C file written next to the generated
+one), working on static buffers in the module's memory:
 
 * ``rk_n()``, ``rk_has_ik()``, ``rk_max_solutions()``, ``rk_label_count()``,
   ``rk_label(i)`` (address of a NUL-terminated label, ``ik_analytic``'s wording);
-* ``rk_q()``, ``rk_T()``, ``rk_J()``, ``rk_tau()``, ``rk_sol()``, ``rk_info()``: addresses of
-  the buffers (doubles; ``rk_info`` ints);
-* ``rk_fk()``: ``T ← NAME_fk(q)``; ``rk_jacobian()``: ``J ← NAME_jacobian(q)`` (6×n, row-major);
+* ``rk_q()``, ``rk_T()``, ``rk_P()``, ``rk_J()``, ``rk_tau()``, ``rk_sol()``, ``rk_info()``: addresses
+  of the buffers (doubles; ``rk_info`` ints);
+* ``rk_fk()``: ``T ← NAME_fk(q)``; ``rk_joint_poses()``: ``P ← NAME_joint_poses(q)`` (n row-major
+  4×4: joint k's frame pose, Pinocchio's ``oMi[k]``); ``rk_jacobian()``: ``J ← NAME_jacobian(q)``
+  (6×n, row-major);
   ``rk_gravity()``: ``tau ← NAME_gravity(q)``; ``rk_ik(wrist_ref)``: every closed-form solution
   of ``T`` into ``sol`` (one row of n per solution), ``info`` 4 ints per solution (label
   index, repeat number, within limits, degenerate; see ``NAME_ik_ex``), returns the count;
@@ -45,8 +47,9 @@ if TYPE_CHECKING:
 
 __all__ = ["WasmModule", "wasm_module", "compile_wasm", "zig_path"]
 
-#: Flags of every compile: C99 as ``robokit codegen`` writes it, optimised, stripped, a reactor.
-WASM_FLAGS = ("--target=wasm32-wasi", "-std=c99", "-O2", "-s", "-mexec-model=reactor")
+#: Flags of every compile: C99 as ``robokit codegen`` writes it, optimised for size (-Os: a fifth
+#: smaller than -O2, see benchmarks/teach_wasm.py for the speed), stripped, a reactor.
+WASM_FLAGS = ("--target=wasm32-wasi", "-std=c99", "-Os", "-s", "-mexec-model=reactor")
 
 #: Bytes of shadow stack the module gets (the general-6R solver's eliminant needs a few kB).
 STACK_BYTES = 256 * 1024
@@ -147,7 +150,10 @@ static double rk_q_buf[{P}_N];
 static double rk_T_buf[16];
 static double rk_J_buf[6 * {P}_N];
 static double rk_tau_buf[{P}_N];
+static double rk_P_buf[16 * {P}_N];
 int rk_n(void) {{ return {P}_N; }}
+double *rk_P(void) {{ return rk_P_buf; }}
+void rk_joint_poses(void) {{ {P}_joint_poses(rk_q_buf, rk_P_buf); }}
 double *rk_q(void) {{ return rk_q_buf; }}
 double *rk_T(void) {{ return rk_T_buf; }}
 double *rk_J(void) {{ return rk_J_buf; }}
@@ -250,8 +256,9 @@ int rk_dls(double lambda, int iters, double tol)
 }
 """
 
-_GLUE_EXPORTS = ("rk_n", "rk_q", "rk_T", "rk_J", "rk_tau", "rk_sol", "rk_info", "rk_has_ik", "rk_max_solutions",
-                 "rk_label_count", "rk_label", "rk_fk", "rk_jacobian", "rk_gravity", "rk_ik", "rk_dls")
+_GLUE_EXPORTS = ("rk_n", "rk_q", "rk_T", "rk_P", "rk_J", "rk_tau", "rk_sol", "rk_info", "rk_has_ik",
+                 "rk_max_solutions", "rk_label_count", "rk_label", "rk_fk", "rk_joint_poses", "rk_jacobian",
+                 "rk_gravity", "rk_ik", "rk_dls")
 
 
 def compile_wasm(src: CSource, n: int) -> WasmModule:
@@ -284,7 +291,7 @@ def compile_wasm(src: CSource, n: int) -> WasmModule:
 
     zig = zig_path()
     P = src.name
-    exports = [f"{P}_fk", f"{P}_jacobian", f"{P}_gravity"] + ([f"{P}_ik_ex"] if src.has_ik else [])
+    exports = [f"{P}_fk", f"{P}_joint_poses", f"{P}_jacobian", f"{P}_gravity"] + ([f"{P}_ik_ex"] if src.has_ik else [])
     exports += list(_GLUE_EXPORTS)
     with tempfile.TemporaryDirectory(prefix="robokit-wasm-") as tmp:
         folder = Path(tmp)

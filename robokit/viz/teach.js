@@ -1,8 +1,10 @@
-// robokit teach page: sliders -> product of exponentials -> 3-D view and readouts.
+// robokit teach page: sliders -> the robot's generated C (WebAssembly) -> 3-D view and readouts.
 //
-// The page's UI; the math (PoE, Jacobian, SVD, RPY, quaternion, the readouts and the URL
-// fragment's parsing) is RKMath, in teach_math.js, inlined before this script. The robot's
-// data is the JSON block #rk-robot written by robokit/viz/teach.py.
+// The page's UI. The kinematics (tool pose, Jacobian, the bodies' placements, IK) come from the
+// robot's generated C compiled to WebAssembly (#rk-wasm, loaded by teach_wasm.js: KIN); the
+// presentation math (SVD, RPY, quaternion, the readouts, the URL fragment's parsing) is RKMath,
+// in teach_math.js. Both are inlined before this script. The robot's data is the JSON block
+// #rk-robot written by robokit/viz/teach.py.
 (function () {
   "use strict";
   var R = JSON.parse(document.getElementById("rk-robot").textContent);
@@ -12,19 +14,25 @@
   var mul4 = RKMath.mul4, flat4 = RKMath.flat4;
 
   // the robot's generated C compiled to WebAssembly (#rk-wasm, embedded by robokit teach;
-  // teach_wasm.js): when present, the tool pose, the Jacobian and the closed-form IK come from it
+  // teach_wasm.js): the tool pose, the Jacobian, the placements and the IK all come from it
   var KIN = null, kinProblem = "";
   (function () {
     var src = document.getElementById("rk-wasm");
-    if (!src || typeof RKWasm === "undefined") { return; }
     try {
+      if (!src || typeof RKWasm === "undefined") { throw new Error("the page has no module (write it with robokit teach)"); }
       KIN = RKWasm.load(RKWasm.decode(src.textContent.trim()));
       if (KIN.n !== n) { throw new Error("the module has " + KIN.n + " joints, the robot " + n); }
     } catch (err) {
       KIN = null;
-      kinProblem = "WebAssembly module unavailable (" + err + "); computing in JavaScript";
+      kinProblem = "This page cannot compute: the robot's WebAssembly module did not load (" + err + ")";
     }
   })();
+
+  // The placements of the bodies at joint values qv: n + 1 row-major 4x4, P[0] = I and P[k]
+  // the motion of body k from q = 0 (the module's joint poses times their inverse at q = 0), so
+  // that anything fixed to body k with pose T(0) at q = 0 is at P[k] T(0). Everything that
+  // draws the arm (the arm itself, ghost arms) goes through this one function.
+  function placementsAt(qv) { return KIN.placements(qv); }
 
   // ------------------------------------------------------------------ state and input
   var unit = R.joints.map(function (j) { return j.type === "R" ? DEG : 1; });  // display units per joint
@@ -56,7 +64,8 @@
         own(w === undefined ? pane.clientWidth : w, h === undefined ? pane.clientHeight : h);
       };
       viewer.set_3d_pane_size();
-      RK_SCENE.forEach(function (b64) {
+      RK_SCENE.forEach(function (b64) {  // base64 msgpack, or the command itself (robokit.viz.teach._scene_entry)
+        if (typeof b64 !== "string") { viewer.handle_command(b64); return; }
         var bin = atob(b64), bytes = new Uint8Array(bin.length);
         for (var i = 0; i < bin.length; i++) { bytes[i] = bin.charCodeAt(i); }
         viewer.handle_command_bytearray(bytes);
@@ -403,14 +412,7 @@
   // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so.
   function goToTarget(T, why) {
     var box = el("rk-ik");
-    if (KIN && !KIN.hasIk) { return followByDls(T, why); }
-    if (!KIN) {
-      var reason = kinProblem || "this page has no WebAssembly module (write it with robokit teach)";
-      setData("rk-ik", { status: "unavailable", count: "0", solutions: "[]", labels: "[]", within: "[]", chosen: "-1" });
-      box.textContent = "";
-      update(why + ": " + reason + "; ignored");
-      return -1;
-    }
+    if (!KIN.hasIk) { return followByDls(T, why); }
     var sols = KIN.ik(T, 0), k = RKWasm.nearest(sols, q);
     setData("rk-ik", { status: sols.length ? "ok" : "unreachable", count: String(sols.length),
                        solutions: JSON.stringify(sols.map(function (s) { return s.q; })),
@@ -442,7 +444,7 @@
       if (i !== skipSlider) { sliders[i].value = String(q[i] * unit[i]); }
       boxes[i].value = (q[i] * unit[i]).toFixed(R.joints[i].type === "R" ? 2 : 4);
     }
-    var rd = RKMath.readouts(R, q, KIN), P = rd.P, T = rd.T, J = rd.J;
+    var rd = RKMath.readouts(R, q, KIN), P = placementsAt(q), T = rd.T, J = rd.J;
     placeObjects(P);
     updateCollision(P);
     placeGizmo(T);
@@ -452,7 +454,7 @@
     el("rk-xyz").textContent = xyz.map(function (v) { return fmt(v, 4); }).join(" ");
     el("rk-rpy").textContent = ang.map(function (v) { return fmt(v * DEG, 2); }).join(" ");
     el("rk-quat").textContent = quat.map(function (v) { return fmt(v, 4); }).join(" ");
-    setData("rk-pose", { source: KIN ? "wasm" : "js", t: T.map(String).join(","), xyz: xyz.map(String).join(","),
+    setData("rk-pose", { source: "wasm", t: T.map(String).join(","), xyz: xyz.map(String).join(","),
                          rpy: ang.map(String).join(","), quat: quat.map(String).join(",") });
 
     // Jacobian
@@ -522,8 +524,9 @@
   document.body.appendChild(hidden);
 
   buildControls();
+  if (!KIN) { message(kinProblem); return; }  // no numbers rather than numbers of another implementation
   startViewer();
   startGizmo();
-  if (!readHash()) { update(kinProblem || undefined); }
+  if (!readHash()) { update(); }
   window.addEventListener("hashchange", function () { readHash(); });
 })();

@@ -5,9 +5,11 @@ Two front ends share one set of definitions:
 * :func:`teach_html` — one self-contained HTML page (no server, works offline from a file):
   a slider per joint, buttons for the robot's named poses, the robot in meshcat's 3-D view
   (its meshes, or the simple links of a DH model) with its DH/joint frames and the tool
-  triad, and readouts computed **in the page** (JavaScript, ``teach.js``) from the robot's
-  product-of-exponentials parameters ``M``, ``Slist``. ``robokit teach MODEL`` writes it
-  (:func:`robokit.commands.teach_command`).
+  triad, and readouts computed **in the page** by the robot's own generated C
+  (:func:`robokit.codegen.generate_c`, the controller's code) compiled to WebAssembly
+  (:mod:`robokit.codegen.wasm`): tool pose, Jacobian, the bodies' placements and the IK come
+  from the module, JavaScript (``teach.js``, ``teach_math.js``) turns them into the display.
+  ``robokit teach MODEL`` writes it (:func:`robokit.commands.teach_command`).
 * :func:`teach_widget` — the same in a Jupyter notebook: ipywidgets sliders driving a live
   meshcat scene, the readouts computed in Python by :func:`teach_readouts`
   (``Scene(robot).teach()``).
@@ -28,7 +30,9 @@ The quantities, at joint values q (rad for revolute joints, m for prismatic ones
 * the joint-limit margin ``min_i min(q_i − lo_i, hi_i − q_i)`` over the limited joints.
 
 Each visual of the robot is placed like the frame of its parent joint k:
-``T_g(q) = e^{[S_1]q_1} ⋯ e^{[S_k]q_k} T_g(0)``, ``T_g(0)`` its pose at q = 0 (from Pinocchio).
+``T_g(q) = P_k(q) T_g(0)``, ``T_g(0)`` its pose at q = 0 (from Pinocchio) and
+``P_k(q) = ᵒMᵢ[k](q) ᵒMᵢ[k](0)⁻¹ = e^{[S_1]q_1} ⋯ e^{[S_k]q_k}``, the joint frame poses
+``ᵒMᵢ[k]`` coming from the module's ``NAME_joint_poses``.
 """
 from __future__ import annotations
 
@@ -335,6 +339,19 @@ def _pack(command: Any) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
+def _scene_entry(command: Any) -> str:
+    """One meshcat command as the page's ``RK_SCENE`` holds it (JavaScript text): base64 msgpack (a
+    string; binary mesh data stays binary), or the command itself as JSON when it holds no binary data
+    and that is shorter — a frame label's PNG is already base64 text inside its data URL, which a
+    second base64 would grow by a third."""
+    packed = f'"{_pack(command)}"'
+    try:
+        plain = _script_json(command)
+    except (TypeError, ValueError):  # bytes, arrays: msgpack only
+        return packed
+    return plain if len(plain) < len(packed) else packed
+
+
 #: Direction the teach page looks from (azimuth, elevation in degrees, base frame): a 3/4 view.
 CAMERA_AZIMUTH, CAMERA_ELEVATION = 40.0, 22.0
 
@@ -367,7 +384,7 @@ def _camera(points: np.ndarray, pad: float) -> dict:
 
 
 def teach_parameters(robot: Robot) -> dict:
-    """The robot's data the teach pendant's math needs (``teach_math.js``'s ``readouts``).
+    """The robot's data the teach pendant's readouts need (``teach_math.js``'s ``readouts``).
 
     Parameters
     ----------
@@ -377,9 +394,7 @@ def teach_parameters(robot: Robot) -> dict:
     Returns
     -------
     dict
-        Plain JSON-able values: ``n``; ``M`` (4×4 home pose of the tip in the base frame, m);
-        ``S`` (n lists of 6: the space screw axes ``(ω, v)`` of Lecture 4, base frame);
-        ``rows`` (task rows of the Jacobian, :func:`task_rows`); ``joints`` (per joint:
+        Plain JSON-able values: ``n``; ``rows`` (task rows of the Jacobian, :func:`task_rows`); ``joints`` (per joint:
         ``name``, ``type`` 'R'/'P', slider range ``lo``/``hi`` in rad/m — the joint limits, or
         ±180° / ±1 m without limits — and ``limited``); ``singular_ratio`` and
         ``singular_tol`` (:data:`SINGULAR_RATIO`, :data:`SINGULAR_TOL`).
@@ -394,8 +409,6 @@ def teach_parameters(robot: Robot) -> dict:
     rng = _slider_ranges(robot, types)
     return {
         "n": robot.n,
-        "M": robot.poe.M.tolist(),
-        "S": robot.poe.Slist.T.tolist(),
         "rows": task_rows(robot),
         "joints": [{"name": robot.joint_names[i], "type": types[i], "lo": float(rng[i, 0]), "hi": float(rng[i, 1]),
                     "limited": bool(np.isfinite(robot.qlim[i]).all())} for i in range(robot.n)],
@@ -423,8 +436,7 @@ def teach_data(robot: Robot, q: ArrayLike | None = None, mesh_cell: float = 0.00
     -------
     dict
         ``name``, ``n``, ``tip``; ``joints`` (per joint: ``name``, ``type`` 'R'/'P',
-        ``lo``/``hi`` slider range in rad/m, ``limited``); ``M`` (4×4) and ``S`` (n lists of 6:
-        the screw axes ``(ω, v)`` in the base frame); ``rows`` (task rows of the Jacobian,
+        ``lo``/``hi`` slider range in rad/m, ``limited``); ``rows`` (task rows of the Jacobian,
         :func:`task_rows`); ``poses`` (named poses, rad/m); ``q0`` (initial joint values);
         ``visuals`` and ``frames`` (per object: meshcat ``path``, parent joint count ``k`` and
         home pose ``T`` (4×4, at q = 0, mesh scale included)); ``camera`` (the reach box
@@ -590,6 +602,15 @@ def _asset(name: str) -> str:
     return resources.files("robokit.viz").joinpath(name).read_text(encoding="utf-8")
 
 
+def _script(name: str) -> str:
+    """One of robokit's own scripts as the page inlines it: without its whole-line ``//`` comments
+    and indentation (a quarter of the text; the files in ``robokit/viz`` are the readable source).
+    Lines are kept as they are otherwise (no joining: JavaScript's line breaks keep their meaning);
+    the scripts hold no multi-line string."""
+    lines = (line.strip() for line in _asset(name).splitlines())
+    return "\n".join(line for line in lines if line and not line.startswith("//"))
+
+
 def _meshcat_bundle() -> str:
     meshcat = require("meshcat", "the teach pendant")
 
@@ -637,31 +658,41 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         pendant (Python).
     padding : float
         The World's padding (m, inflation of the robot's geometry).
-    wasm : bytes, optional
+    wasm : bytes
         The robot's generated C compiled to WebAssembly
-        (:func:`robokit.codegen.wasm.wasm_module`'s ``.wasm``; ``robokit teach`` passes it),
-        embedded as base64. With it the page's tool pose and Jacobian come from the module
-        (the controller's own C) and the fragment ``#T=t11,t12,…,t44`` (16 numbers, row-major,
+        (:func:`robokit.codegen.wasm.wasm_module`'s ``.wasm``; ``robokit teach`` compiles it), embedded
+        as base64. Required (the default None is refused): the page has no other implementation of
+        the kinematics. The page's tool pose, Jacobian and placements come from the module (the
+        controller's own C), and the fragment ``#T=t11,t12,…,t44`` (16 numbers, row-major,
         the tool pose in the base frame; ``#q=…&T=…``: start at q, then go to T) solves the
         closed-form IK in the module and moves to the solution nearest the current joint
         values; the element ``rk-ik`` gets ``data-count``, ``data-solutions`` (every solution,
         in ``ik_analytic``'s order), ``data-labels``, ``data-within`` and ``data-chosen`` (the
-        index shown, -1 when out of reach). Without it the page computes in JavaScript.
+        index shown, -1 when out of reach).
 
     Returns
     -------
     str
         The HTML page.
 
+    Raises
+    ------
+    robokit.errors.InputError
+        Without ``wasm``.
+
     Examples
     --------
-    >>> page = teach_html("twolink")
+    >>> from robokit.codegen.wasm import wasm_module
+    >>> page = teach_html("twolink", wasm=wasm_module(rk.load("twolink")).wasm)
     >>> page.startswith("<!DOCTYPE html>")
     True
     """
     from robokit.description.loading import load
 
     robot = load(model)
+    if wasm is None:
+        raise InputError("wasm: the teach page computes with the robot's generated C compiled to WebAssembly; pass "
+                         "wasm=robokit.codegen.wasm.wasm_module(robot).wasm (robokit teach does)")
     world = None
     if obstacles is not None:
         from robokit.collision import World
@@ -669,11 +700,11 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         world = World(robot, obstacles, padding=padding)
     d = teach_data(robot, q, world=world)
     commands = d.pop("_commands")
-    scene = "[" + ",".join(f'"{_pack(c)}"' for c in commands) + "]"
+    scene = "[" + ",".join(_scene_entry(c) for c in commands) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
-    module = "" if wasm is None else (  # base64 holds no character that could end the element
+    module = (  # base64 holds no character that could end the element
         f"<script id=\"rk-wasm\" type=\"application/octet-stream\">{base64.b64encode(bytes(wasm)).decode('ascii')}"
-        f"</script>\n<script>\n{_asset('teach_wasm.js')}\n</script>\n")
+        f"</script>\n<script>\n{_script('teach_wasm.js')}\n</script>\n")
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<title>{title}</title>\n<style>\n{_asset('teach.css')}\n</style>\n</head>\n<body>\n"
@@ -681,9 +712,9 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         f"<script>\n{_meshcat_bundle()}\n</script>\n"
         f"<script id=\"rk-robot\" type=\"application/json\">{_script_json(d)}</script>\n"
         f"<script>var RK_SCENE = {scene};</script>\n"
-        f"<script>\n{_asset('teach_math.js')}\n</script>\n"
+        f"<script>\n{_script('teach_math.js')}\n</script>\n"
         f"{module}"
-        f"<script>\n{_asset('teach.js')}\n</script>\n"
+        f"<script>\n{_script('teach.js')}\n</script>\n"
         "</body>\n</html>\n"
     )
 

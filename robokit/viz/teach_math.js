@@ -1,15 +1,12 @@
-// robokit teach pendant: the math, with no DOM (usable from the page and from Node).
+// robokit teach pendant: the page's presentation math, with no DOM (usable from the page and from Node).
 //
-// Everything is computed in double precision from the robot's product-of-exponentials
-// parameters (M, the screw axes S_i = (w_i, v_i) in the base frame), written by
-// robokit/viz/teach.py:
-//   T(q)   = e^[S1]q1 ... e^[Sn]qn M                      (tool pose, Lecture 4)
-//   J_s,i  = Ad(e^[S1]q1 ... e^[S(i-1)]q(i-1)) S_i         (space Jacobian column)
-//   J      = (w; v + w x p_tool)                            (geometric Jacobian, base axes)
-//   object g on joint k: T_g(q) = e^[S1]q1 ... e^[Sk]qk T_g(0)
-// 4x4 matrices are row-major arrays of 16 numbers. The Python twin of `readouts` is
-// robokit.viz.teach.teach_readouts (Pinocchio); tests/viz/test_teach_math.py checks this file
-// against golden values written from it.
+// The kinematics (tool pose, Jacobian, the placements of the bodies, IK) are not here: they come
+// from the robot's generated C compiled to WebAssembly (teach_wasm.js, the `kin` argument). What
+// is here turns them into readouts: singular values (manipulability, condition number, the lost
+// direction), roll-pitch-yaw, the quaternion, joint-limit margins; plus the URL fragment's
+// parsing, the collision distances of the capsule models and the camera framing. 4x4 matrices
+// are row-major arrays of 16 numbers. tests/viz/test_teach_math.py checks each function against
+// numpy / Pinocchio (robokit.viz.teach.teach_readouts is the Python twin of `readouts`).
 var RKMath = (function () {
   "use strict";
 
@@ -23,71 +20,6 @@ var RKMath = (function () {
     return C;
   }
   function flat4(M) { return [].concat(M[0], M[1], M[2], M[3]); }
-  var EYE = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
-
-  // e^{[S] t} for a screw S = (w, v): Rodrigues' formula when |w| = 1, a translation when w = 0
-  function expScrew(S, t) {
-    var w = [S[0], S[1], S[2]], v = [S[3], S[4], S[5]];
-    var nw = Math.hypot(w[0], w[1], w[2]);
-    if (nw < 1e-12) {
-      return [1, 0, 0, v[0] * t, 0, 1, 0, v[1] * t, 0, 0, 1, v[2] * t, 0, 0, 0, 1];
-    }
-    var s = Math.sin(t), c = 1 - Math.cos(t);
-    var K = [0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0];  // [w]
-    var K2 = new Array(9);                                      // [w]^2
-    for (var i = 0; i < 3; i++) {
-      for (var j = 0; j < 3; j++) {
-        K2[3 * i + j] = K[3 * i] * K[j] + K[3 * i + 1] * K[3 + j] + K[3 * i + 2] * K[6 + j];
-      }
-    }
-    var Rm = new Array(9), G = new Array(9);
-    for (var k = 0; k < 9; k++) {
-      var I = (k % 4 === 0) ? 1 : 0;
-      Rm[k] = I + s * K[k] + c * K2[k];
-      G[k] = I * t + c * K[k] + (t - s) * K2[k];  // (I t + (1 - cos t)[w] + (t - sin t)[w]^2)
-    }
-    var p = [0, 0, 0];
-    for (var r = 0; r < 3; r++) { p[r] = G[3 * r] * v[0] + G[3 * r + 1] * v[1] + G[3 * r + 2] * v[2]; }
-    return [Rm[0], Rm[1], Rm[2], p[0], Rm[3], Rm[4], Rm[5], p[1], Rm[6], Rm[7], Rm[8], p[2], 0, 0, 0, 1];
-  }
-
-  // partial products P[k] = e^[S1]q1 ... e^[Sk]qk, k = 0..n (P[0] = I); Slist: n screws (6 each)
-  function products(Slist, q) {
-    var P = [EYE];
-    for (var i = 0; i < Slist.length; i++) { P.push(mul4(P[i], expScrew(Slist[i], q[i]))); }
-    return P;
-  }
-
-  // Ad_T S = (R w, p x (R w) + R v)
-  function adjoint(T, S) {
-    var w = [0, 0, 0], v = [0, 0, 0];
-    for (var r = 0; r < 3; r++) {
-      w[r] = T[4 * r] * S[0] + T[4 * r + 1] * S[1] + T[4 * r + 2] * S[2];
-      v[r] = T[4 * r] * S[3] + T[4 * r + 1] * S[4] + T[4 * r + 2] * S[5];
-    }
-    var p = [T[3], T[7], T[11]];
-    return [w[0], w[1], w[2],
-            p[1] * w[2] - p[2] * w[1] + v[0],
-            p[2] * w[0] - p[0] * w[2] + v[1],
-            p[0] * w[1] - p[1] * w[0] + v[2]];
-  }
-
-  // geometric Jacobian (6 rows (w; v), n columns), v the velocity of the tool origin p = T's
-  // translation; P the partial products of `products`
-  function jacobian(Slist, P, T) {
-    var J = [[], [], [], [], [], []];
-    var p = [T[3], T[7], T[11]];
-    for (var i = 0; i < Slist.length; i++) {
-      var c = adjoint(P[i], Slist[i]);
-      var w = [c[0], c[1], c[2]];
-      var col = [w[0], w[1], w[2],
-                 c[3] + w[1] * p[2] - w[2] * p[1],
-                 c[4] + w[2] * p[0] - w[0] * p[2],
-                 c[5] + w[0] * p[1] - w[1] * p[0]];
-      for (var r = 0; r < 6; r++) { J[r].push(col[r]); }
-    }
-    return J;
-  }
 
   // Singular values and left singular vectors of A (m x n) by one-sided Jacobi on the
   // columns of B = A^T: rotations V make B V's columns orthogonal; then sigma_i = |(B V)_i|
@@ -135,10 +67,12 @@ var RKMath = (function () {
     return out;
   }
 
-  // R = Rz(yaw) Ry(pitch) Rx(roll) -> (roll, pitch, yaw)
+  // R = Rz(yaw) Ry(pitch) Rx(roll) -> (roll, pitch, yaw): yaw first, then pitch and roll from
+  // Rz(yaw)^T R, so that near the gimbal lock (pitch -> +-90 deg, where yaw and roll are no longer
+  // separate) the three angles still rebuild R to round-off
   function rpy(T) {
-    var r20 = Math.max(-1, Math.min(1, T[8]));
-    return [Math.atan2(T[9], T[10]), Math.atan2(-r20, Math.hypot(T[0], T[4])), Math.atan2(T[4], T[0])];
+    var y = Math.atan2(T[4], T[0]), c = Math.cos(y), s = Math.sin(y);
+    return [Math.atan2(s * T[2] - c * T[6], c * T[5] - s * T[1]), Math.atan2(-T[8], c * T[0] + s * T[4]), y];
   }
 
   // unit quaternion (w, x, y, z) of R, w >= 0 (Shepperd's method: the largest of 4 candidates)
@@ -159,16 +93,14 @@ var RKMath = (function () {
     return [sign * w / nq, sign * x / nq, sign * y / nq, sign * z / nq];
   }
 
-  // All readouts at q for a robot R = {n, M, S, rows, joints: [{lo, hi, limited}],
-  // singular_tol, singular_ratio} (the page's data): tool pose, RPY, quaternion, Jacobian,
-  // manipulability w = sqrt(det(Jt Jt^T)) = prod sigma_i, condition number, singularity level
-  // and lost direction (task-row components, dominant one positive), joint-limit margins.
-  // kin (optional): the robot's generated C as WebAssembly (teach_wasm.js); when given, the tool
-  // pose T and the Jacobian J come from it (P, the visuals' placements, from the screws here).
+  // All readouts at q for a robot R = {n, rows, joints: [{lo, hi, limited}], singular_tol,
+  // singular_ratio} (the page's data), with kin the robot's module (teach_wasm.js: fk, jacobian):
+  // tool pose, RPY, quaternion, Jacobian, manipulability w = sqrt(det(Jt Jt^T)) = prod sigma_i,
+  // condition number, singularity level and lost direction (task-row components, dominant one
+  // positive), joint-limit margins.
   function readouts(R, q, kin) {
     var n = R.n;
-    var P = products(R.S, q), T = kin ? kin.fk(q) : mul4(P[n], flat4(R.M));
-    var J = kin ? kin.jacobian(q) : jacobian(R.S, P, T);
+    var T = kin.fk(q), J = kin.jacobian(q);
     var Jt = R.rows.map(function (r) { return J[r]; });
     var m = Jt.length, sv = svdLeft(Jt);
     var smax = sv[0].s, smin = sv[m - 1].s;
@@ -187,7 +119,7 @@ var RKMath = (function () {
       margins.push(mg);
       if (j.limited && (jmin < 0 || mg < margins[jmin])) { jmin = i; }
     }
-    return { P: P, T: T, xyz: [T[3], T[7], T[11]], rpy: rpy(T), quat: quaternion(T), J: J,
+    return { T: T, xyz: [T[3], T[7], T[11]], rpy: rpy(T), quat: quaternion(T), J: J,
              w: w, cond: cond, sigmaMin: smin, sigmaMax: smax, ratio: ratio, level: level,
              direction: u, directionRow: kmax, margins: margins, marginJoint: jmin };
   }
@@ -275,7 +207,7 @@ var RKMath = (function () {
   }
   function lerp3(a, b, t) { return [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]; }
 
-  // The collision state at the partial products P (of `products`) for the page's data C:
+  // The collision state at the placements P (KIN.placements: P[k] carries body k from q = 0) for the page's data C:
   // {distance (min over the pairs, m), closest: [name, name], pairs: [[name, name]] in contact
   // (distance <= 0, each once), links: robot link names in contact, joints: their joint
   // counts k, d: per-pair distances}. Distances are those of the padded geometry (margins).
@@ -367,8 +299,7 @@ var RKMath = (function () {
     return { target: t, position: [t[0] + D * d[0], t[1] + D * d[1], t[2] + D * d[2]], distance: D };
   }
 
-  return { fitCamera: fitCamera, clearance: clearance, sdf: sdf, mul4: mul4, flat4: flat4, EYE: EYE, expScrew: expScrew, products: products, adjoint: adjoint,
-           jacobian: jacobian, svdLeft: svdLeft, rpy: rpy, quaternion: quaternion, readouts: readouts,
-           parseFragment: parseFragment, parseTarget: parseTarget };
+  return { fitCamera: fitCamera, clearance: clearance, sdf: sdf, mul4: mul4, flat4: flat4, svdLeft: svdLeft, rpy: rpy,
+           quaternion: quaternion, readouts: readouts, parseFragment: parseFragment, parseTarget: parseTarget };
 })();
 if (typeof module !== "undefined" && module.exports) { module.exports = RKMath; }

@@ -2,8 +2,11 @@
 // robokit/viz/wasm.py, called from JavaScript. No DOM: usable from the page and from Node.
 //
 // RKWasm.load(bytes) -> a kinematics object over the module's robot-independent entry points
-// (rk_fk, rk_jacobian, rk_gravity, rk_ik on static buffers in the module's memory):
+// (rk_fk, rk_joint_poses, rk_jacobian, rk_gravity, rk_ik on static buffers in the module's memory):
 //   fk(q)        -> T, the tool pose in the base frame (16 numbers, row-major)
+//   jointPoses(q) -> n poses (16 numbers each): joint k's frame in the base frame (Pinocchio's oMi[k])
+//   placements(q) -> n + 1 poses P[0] = I, P[k] = oMi[k](q) oMi[k](0)^-1 = e^[S1]q1 ... e^[Sk]qk:
+//                   what carries anything fixed to body k from its pose at q = 0 to its pose at q
 //   jacobian(q)  -> J, 6 rows (w; v) of n numbers, v of the tool origin, base axes
 //   gravity(q)   -> tau (n numbers, N m or N)
 //   ik(T, ref)   -> [{q, label, withinLimits, degenerate}] every closed-form solution, in
@@ -44,6 +47,34 @@ var RKWasm = (function () {
       var b = f64(x.rk_q(), n);
       for (var i = 0; i < n; i++) { b[i] = q[i]; }
     }
+    function jointPoses(q) {
+      setQ(q); x.rk_joint_poses();
+      var flat = f64(x.rk_P(), 16 * n), out = [];
+      for (var k = 0; k < n; k++) { out.push(copy(flat, 16 * k, 16 * k + 16)); }
+      return out;
+    }
+    // oMi[k](0)^-1 = [R^T | -R^T p], once: the constant that turns a joint pose into a placement
+    var homeInv = jointPoses(new Array(n).fill(0)).map(function (H) {
+      var Ri = [H[0], H[4], H[8], H[1], H[5], H[9], H[2], H[6], H[10]], p = [H[3], H[7], H[11]], out = [];
+      for (var r = 0; r < 3; r++) {
+        out.push(Ri[3 * r], Ri[3 * r + 1], Ri[3 * r + 2], -(Ri[3 * r] * p[0] + Ri[3 * r + 1] * p[1] + Ri[3 * r + 2] * p[2]));
+      }
+      return out.concat([0, 0, 0, 1]);
+    });
+    function placements(q) {
+      var P = [[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]], O = jointPoses(q);
+      for (var k = 0; k < n; k++) {
+        var A = O[k], B = homeInv[k], C = new Array(16);
+        for (var i = 0; i < 3; i++) {
+          for (var j = 0; j < 4; j++) {
+            C[4 * i + j] = A[4 * i] * B[j] + A[4 * i + 1] * B[4 + j] + A[4 * i + 2] * B[8 + j] + (j === 3 ? A[4 * i + 3] : 0);
+          }
+        }
+        C[12] = 0; C[13] = 0; C[14] = 0; C[15] = 1;
+        P.push(C);
+      }
+      return P;
+    }
     var hasIk = x.rk_has_ik() === 1, labels = [];
     for (var k = 0; k < x.rk_label_count(); k++) { labels.push(cstr(x.rk_label(k))); }
     return {
@@ -52,6 +83,8 @@ var RKWasm = (function () {
       labels: labels,
       maxSolutions: x.rk_max_solutions(),
       fk: function (q) { setQ(q); x.rk_fk(); return copy(f64(x.rk_T(), 16), 0, 16); },
+      jointPoses: jointPoses,
+      placements: placements,
       jacobian: function (q) {
         setQ(q); x.rk_jacobian();
         var flat = f64(x.rk_J(), 6 * n), J = [];

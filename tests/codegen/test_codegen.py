@@ -50,9 +50,20 @@ def check_dynamics_and_kinematics(robot, lib, samples=6, seed=0):
         else:
             tol = lambda ref: 1e-12 * max(1.0, float(np.abs(ref).max()))  # noqa: E731
         assert np.abs(lib.fk(q) - T).max() <= tol(T)
+        oMi = joint_frames(robot, q32 if f32 else q)
+        assert np.abs(lib.joint_poses(q) - oMi).max() <= tol(oMi)
         assert np.abs(lib.jacobian(q) - J).max() <= tol(J)
         assert np.abs(lib.gravity(q) - g).max() <= tol(g)
         assert np.abs(lib.rnea(q, qd, qdd) - tau).max() <= tol(tau)
+
+
+def joint_frames(robot, q):
+    """(n, 4, 4): Pinocchio's data.oMi[1..n] at q (each joint frame's pose in the base frame)."""
+    import pinocchio as pin
+
+    data = robot.model.createData()
+    pin.forwardKinematics(robot.model, data, robot.q_pin(q))
+    return np.array([data.oMi[k].homogeneous for k in range(1, robot.n + 1)])
 
 
 def closed_form_solver(robot):

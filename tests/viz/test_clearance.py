@@ -18,10 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from robokit._optional import available
+
 GOLDEN = Path(__file__).with_name("clearance_golden.json")
 NODE = shutil.which("node")
 needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
 MATH_JS = Path(str(resources.files("robokit.viz").joinpath("teach_math.js")))
+WASM_JS = Path(str(resources.files("robokit.viz").joinpath("teach_wasm.js")))
 APART = 1e-4  # m: pairs farther apart than this are compared exactly
 
 
@@ -65,7 +68,6 @@ def golden_cases() -> dict:
     """Per world: the page's data, and at 40 random configurations (seeded; for the PUMA also three
     self-contacts) the World's distance, colliding pairs and per-pair distances."""
     from robokit.viz.clearance import clearance_page_data
-    from robokit.viz.teach import teach_parameters
 
     out = {}
     for key, world in _worlds().items():
@@ -86,7 +88,7 @@ def golden_cases() -> dict:
                 extra += 1
                 if extra == 3:
                     break
-        out[key] = {"page": clearance_page_data(world), "S": teach_parameters(world.robot)["S"], "cases": cases}
+        out[key] = {"page": clearance_page_data(world), "cases": cases}
     return out
 
 
@@ -125,13 +127,14 @@ def test_golden_file_is_what_the_world_computes(golden):
 
 
 NODE_CHECK = r"""
-const M = require(process.argv[1]);
-const G = JSON.parse(require("fs").readFileSync(process.argv[2], "utf8"));
+const M = require(process.argv[1]), K = require(process.argv[2]);
+const G = JSON.parse(require("fs").readFileSync(process.argv[3], "utf8"));
+const mods = JSON.parse(require("fs").readFileSync(process.argv[4], "utf8"));
 const out = {};
 for (const key of Object.keys(G)) {
-  const W = G[key];
+  const W = G[key], kin = K.load(K.decode(mods[key]));  // the placements come from the robot's module
   out[key] = W.cases.map(function (c) {
-    const r = M.clearance(W.page, M.products(W.S, c.q));
+    const r = M.clearance(W.page, kin.placements(c.q));
     return { distance: r.distance, pairs: r.pairs, d: r.d, closest: r.closest, links: r.links };
   });
 }
@@ -146,12 +149,17 @@ GJK_TOL = 2e-6
 
 
 @needs_node
-def test_page_distances_match_the_world(golden):
+@pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
+def test_page_distances_match_the_world(golden, tmp_path):
     """RKMath.clearance: every pair farther apart than 0.1 mm at coal's distance (1e-9 m; capsule–
     cylinder pairs to coal's GJK accuracy), the same pairs in contact (negative distances on both
     sides), and the minimum of World.distance."""
-    p = subprocess.run([NODE, "-e", NODE_CHECK, "--", str(MATH_JS), str(GOLDEN)], capture_output=True, text=True,
-                       timeout=60)
+    from robokit.codegen.wasm import wasm_module
+
+    mods = tmp_path / "modules.json"
+    mods.write_text(json.dumps({key: wasm_module(w.robot).base64() for key, w in _worlds().items()}), encoding="utf-8")
+    p = subprocess.run([NODE, "-e", NODE_CHECK, "--", str(MATH_JS), str(WASM_JS), str(GOLDEN), str(mods)],
+                       capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr[-2000:]
     results = json.loads(p.stdout)
     compared = {"exact": 0, "gjk": 0}

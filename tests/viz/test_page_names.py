@@ -109,17 +109,19 @@ def test_teach_page_json_survives_any_name():
     """The embedded JSON block holds no '<', '>' or '&' and parses back to the exact names."""
     import robokit
     from robokit.description.dh import DHLink, DHTable
-    from robokit.viz.teach import teach_html
+    from tests.viz.test_teach import teach_page
 
     name = NAME + "\u2028\u2029 -->"
-    page = teach_html(robokit.load(DHTable(name, "standard", (DHLink(a=0.3), DHLink(a=0.2)))))
+    page = teach_page(robokit.load(DHTable(name, "standard", (DHLink(a=0.3), DHLink(a=0.2)))))
     p = _Page()
     p.feed(page)
-    assert [t for t, _ in p.scripts] == [None, "application/json", None, None, None]
+    # meshcat, the robot's data, the scene, teach_math.js, the module (base64), teach_wasm.js, teach.js
+    assert [t for t, _ in p.scripts] == [None, "application/json", None, None, "application/octet-stream", None, None]
     block = p.scripts[1][1]
     assert not set("<>&\u2028\u2029") & set(block)
     assert json.loads(block)["name"] == name
-    assert page.count("</script>") == 5  # no element ended early, none injected
+    assert not set("<>&\u2028\u2029") & set(p.scripts[2][1])  # the scene: base64, or JSON commands escaped alike
+    assert page.count("</script>") == 7  # no element ended early, none injected
 
 
 def run_page(path: Path, fragment: str) -> _Page:

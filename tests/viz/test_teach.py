@@ -31,10 +31,18 @@ def robot(name):
     return _robots[name]
 
 
+def teach_page(model, **kw):
+    """teach_html of a robot with its module (robokit.codegen.wasm, as robokit teach compiles it)."""
+    from robokit.codegen.wasm import wasm_module
+
+    r = robokit.load(model)
+    return teach_html(r, wasm=wasm_module(r).wasm, **kw)
+
+
 def page(name, tmp_dir):
     if name not in _pages:
         p = Path(tmp_dir) / f"teach_{name}.html"
-        p.write_text(teach_html(robot(name)), encoding="utf-8")
+        p.write_text(teach_page(robot(name)), encoding="utf-8")
         _pages[name] = p
     return _pages[name]
 
@@ -105,7 +113,7 @@ def test_scene_placement_formula_matches_pinocchio(name):
     r = robot(name)
     d = teach_data(r)
     q = r.random_configuration(1)
-    S = np.array(d["S"]).T
+    S = r.poe.Slist  # the screw axes: P_k(q) = e^[S1]q1 ... e^[Sk]qk (what KIN.placements gives)
     data = r.model.createData()
     pin.forwardKinematics(r.model, data, r.q_pin(q))
     gdata = r.visual_model.createData()
@@ -369,9 +377,9 @@ def test_layout_framing_names_and_collision_colours(pages_dir):
         if pairs and all(b in world.obstacle_names for _, b in pairs):
             break
     coll_page = Path(pages_dir) / "teach_puma_obstacles.html"
-    coll_page.write_text(teach_html(world.robot, obstacles=world.obstacles), encoding="utf-8")
+    coll_page.write_text(teach_page(world.robot, obstacles=world.obstacles), encoding="utf-8")
     mesh_page = Path(pages_dir) / "teach_ur5_obstacles.html"  # collision meshes: no fake numbers offline
-    mesh_page.write_text(teach_html(robot("ur5"), obstacles=world.obstacles), encoding="utf-8")
+    mesh_page.write_text(teach_page(robot("ur5"), obstacles=world.obstacles), encoding="utf-8")
     frames = [(page(name, pages_dir), LAYOUT_Q[name], size) for name, size in layout]
     frames += [(coll_page, q_hit, (1280, 800)), (mesh_page, None, (1280, 800))]
     results = run_frames(frames, pages_dir)

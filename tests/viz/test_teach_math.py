@@ -1,25 +1,24 @@
-"""The teach pendant's math exists once per language: Python (``teach_readouts``, via Pinocchio)
-and JavaScript (``teach_math.js``, DOM-free). Golden values written from the Python readouts
-(``teach_golden.json``) are checked against Python here and against the JS module with Node.
-
-Regenerate the golden file after a deliberate change of the readouts:
-``python tests/viz/test_teach_math.py``.
-"""
+"""The teach page's presentation math (``teach_math.js``, DOM-free, run with Node) checked directly
+against Pinocchio and numpy: its readouts over the robot's own module (pose, RPY, quaternion, Jacobian,
+w, cond, σ_min, level, lost direction, margins) against ``teach_readouts`` (Pinocchio), its SVD, RPY and
+quaternion on random inputs against numpy / Pinocchio, the fragment parser, the camera fit."""
 import json
 import math
 import shutil
 import subprocess
-import sys
 from importlib import resources
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-GOLDEN = Path(__file__).with_name("teach_golden.json")
+from robokit._optional import available
+
 NODE = shutil.which("node")
 needs_node = pytest.mark.skipif(NODE is None, reason="node not installed (CI installs it)")
 MATH_JS = Path(str(resources.files("robokit.viz").joinpath("teach_math.js")))
+WASM_JS = Path(str(resources.files("robokit.viz").joinpath("teach_wasm.js")))
+needs_zig = pytest.mark.skipif(not available("ziglang"), reason="ziglang (the viz extra) not installed")
 
 
 def _stanford():
@@ -44,8 +43,8 @@ def _inf_to_none(x):
     return [None if not math.isfinite(v) else float(v) for v in np.ravel(x)]
 
 
-def golden_case(robot, q) -> dict:
-    """Inputs (the page's data) and outputs (``teach_readouts``) at q, JSON-able (∞ → null)."""
+def reference_case(robot, q) -> dict:
+    """The page's data and ``teach_readouts`` (Pinocchio) at q, JSON-able (∞ → null)."""
     from robokit.viz.teach import teach_parameters, teach_readouts
 
     r = teach_readouts(robot, q)
@@ -59,32 +58,27 @@ def golden_case(robot, q) -> dict:
             "margin_joint": r["margin_joint"] if math.isfinite(r["margin"]) else None}
 
 
-def golden_cases() -> list:
-    """Zero (singular for several arms), a named pose, and random configurations away from the
-    RPY gimbal lock, for every robot of :func:`_robots`."""
-    cases = []
-    for name, robot in _robots().items():
-        qs = [np.zeros(robot.n)]
-        rng = np.random.default_rng([7, len(name)])
-        lo, hi = np.clip(robot.qlim[:, 0], -3, 3), np.clip(robot.qlim[:, 1], -3, 3)
-        while len(qs) < 4:
-            q = rng.uniform(lo, hi)
-            T = robot.frame_pose(q)
-            if abs(T[2, 0]) < 0.99:  # |pitch| well below 90°
-                qs.append(q)
-        if name == "puma560":
-            qs.append(np.array([0.0, math.pi / 2, -math.pi / 2, 0.0, 0.0, 0.0]))
-        cases += [golden_case(robot, q) for q in qs]
-    return cases
-
-
-def write_golden() -> None:
-    GOLDEN.write_text(json.dumps(golden_cases(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
+def reference_cases(robot) -> list:
+    """Zero (singular for several arms), the PUMA's "qr", and random configurations away from the
+    RPY gimbal lock."""
+    qs = [np.zeros(robot.n)]
+    rng = np.random.default_rng([7, len(robot.name)])
+    lo, hi = np.clip(robot.qlim[:, 0], -3, 3), np.clip(robot.qlim[:, 1], -3, 3)
+    while len(qs) < 4:
+        q = rng.uniform(lo, hi)
+        if abs(robot.frame_pose(q)[2, 0]) < 0.99:  # |pitch| well below 90°
+            qs.append(q)
+    if robot.name == "puma560":
+        qs.append(np.array([0.0, math.pi / 2, -math.pi / 2, 0.0, 0.0, 0.0]))
+    return [reference_case(robot, q) for q in qs]
 
 
 @pytest.fixture(scope="module")
-def golden():
-    return json.loads(GOLDEN.read_text(encoding="utf-8"))
+def cases():
+    """Per robot: its module (base64) and its reference cases."""
+    from robokit.codegen.wasm import wasm_module
+
+    return [(wasm_module(robot).base64(), reference_cases(robot)) for robot in _robots().values()]
 
 
 def _close(a, b, tol):
@@ -115,23 +109,11 @@ def scales(case: dict) -> dict:
             "margins": big(case["margins"]), "cond": 1.0 if cond is None else cond * (1.0 + cond)}
 
 
-def test_golden_file_is_the_python_readouts(golden):
-    """The golden file still says what Python computes (so it is not a copy of stale numbers), to
-    1e-12 of each quantity's scale (:func:`scales`): e.g. the panda's cond of 780 recomputed by another
-    BLAS path differs by 1e-14 relative, which an absolute 1e-12 took for a change."""
-    fresh = golden_cases()
-    assert [c["robot"] for c in fresh] == [c["robot"] for c in golden]
-    for new, old in zip(fresh, golden):
-        assert new["params"]["rows"] == old["params"]["rows"] and new["level"] == old["level"], new["robot"]
-        scale = scales(old)
-        for key in ("q", "T", "rpy", "quat", "J", "w", "cond", "margins", "sigma_min"):
-            assert _close(new[key], old[key], 1e-12 * scale[key]), (new["robot"], key, new[key], old[key])
 
-
-def test_golden_comparison_scales_with_the_quantity(golden):
-    """The comparison above is relative: a change of 1e-10 of a quantity's scale is caught whatever
+def test_tolerance_scales_with_the_quantity(cases):
+    """The comparison below is relative: a change of 1e-10 of a quantity's scale is caught whatever
     its size, a round-off change of 1e-14 of it is not."""
-    case = next(c for c in golden if c["robot"] == "panda" and c["cond"] and c["cond"] > 100)
+    case = next(c for _, cs in cases for c in cs if c["robot"] == "panda" and c["cond"] and c["cond"] > 100)
     scale = scales(case)
     for key in ("cond", "T", "w"):
         x = np.array([np.nan if v is None else v for v in np.ravel(case[key])], dtype=float)
@@ -140,25 +122,29 @@ def test_golden_comparison_scales_with_the_quantity(golden):
 
 
 NODE_CHECK = r"""
-const M = require(process.argv[1]);
-const cases = JSON.parse(require("fs").readFileSync(process.argv[2], "utf8"));
+const M = require(process.argv[1]), W = require(process.argv[2]);
+const input = JSON.parse(require("fs").readFileSync(process.argv[3], "utf8"));
 const inf = (x) => (x === null ? Infinity : x);
-const out = cases.map(function (c) {
+const out = [].concat.apply([], input.map(function (robot) {
+ const kin = W.load(W.decode(robot[0]));
+ return robot[1].map(function (c) {
   const P = c.params;
-  const R = { n: P.n, M: P.M, S: P.S, rows: P.rows, joints: P.joints,
-              singular_tol: P.singular_tol, singular_ratio: P.singular_ratio };
-  const r = M.readouts(R, c.q);
+  const R = { n: P.n, rows: P.rows, joints: P.joints, singular_tol: P.singular_tol, singular_ratio: P.singular_ratio };
+  const r = M.readouts(R, c.q, kin);
+  // angles: the same mod 2 pi (a roll of +pi and one of -pi are one rotation; round-off picks either)
+  const dAngle = (a, b) => Math.max.apply(null, a.map((v, i) => Math.abs(Math.atan2(Math.sin(v - b[i]), Math.cos(v - b[i])))));
   const d = (a, b) => Math.max.apply(null, a.map((v, i) => (v === inf(b[i]) ? 0 : Math.abs(v - inf(b[i])))).concat([0]));
   const J = [].concat.apply([], r.J), Jg = [].concat.apply([], c.J);
   // the lost direction is defined when the smallest singular value is simple
   const s = c.sigma, simple = s.length < 2 || s[s.length - 2] - s[s.length - 1] > 1e-6;
-  return { robot: c.robot, T: d(r.T, c.T), rpy: d(r.rpy, c.rpy), quat: d(r.quat, c.quat), J: d(J, Jg),
+  return { robot: c.robot, T: d(r.T, c.T), rpy: dAngle(r.rpy, c.rpy), quat: d(r.quat, c.quat), J: d(J, Jg),
            w: Math.abs(r.w - c.w), cond: (c.cond === null ? (r.cond === Infinity ? 0 : 1) : Math.abs(r.cond - c.cond) / c.cond),
            sigma_min: Math.abs(r.sigmaMin - c.sigma_min),
            direction: simple ? d(r.direction, c.direction) : 0,
            margins: d(r.margins, c.margins), level: r.level === c.level,
            margin_joint: (r.marginJoint < 0 ? null : P.joints[r.marginJoint].name) === c.margin_joint };
-});
+ });
+}));
 process.stdout.write(JSON.stringify(out));
 """
 
@@ -170,20 +156,83 @@ def _node(script: str, *args) -> object:
 
 
 @needs_node
-def test_js_math_module_matches_the_golden_values(golden):
-    """teach_math.js's readouts (pose, RPY, quaternion, Jacobian, w, cond, σ_min, level, lost
-    direction, margins) equal the Python readouts to 1e-9 of each quantity's scale on every golden case."""
-    results = _node(NODE_CHECK, MATH_JS, GOLDEN)
-    assert len(results) == len(golden) >= 15
-    levels = {c["level"] for c in golden}
+@needs_zig
+def test_page_readouts_over_the_module_equal_pinocchio(cases, tmp_path):
+    """teach_math.js's readouts over the robot's module (pose, RPY, quaternion, Jacobian, w, cond,
+    σ_min, level, lost direction, margins) equal teach_readouts (Pinocchio, numpy's SVD) to 1e-9 of
+    each quantity's scale, on five arms (a prismatic joint, a planar arm, a redundant one)."""
+    path = tmp_path / "cases.json"
+    path.write_text(json.dumps(cases), encoding="utf-8")
+    results = _node(NODE_CHECK, MATH_JS, WASM_JS, path)
+    flat = [c for _, cs in cases for c in cs]
+    assert len(results) == len(flat) >= 15
+    levels = {c["level"] for c in flat}
     assert {"ok", "singular"} <= levels  # both branches are exercised
-    for r, case in zip(results, golden):
+    for r, case in zip(results, flat):
         scale = scales(case)
         for key in ("T", "rpy", "quat", "J", "w", "sigma_min", "direction", "margins"):
             assert r[key] <= 1e-9 * scale[key], (r["robot"], key, r[key])
         # the script's cond entry is already relative: |Δcond| / cond
         assert r["cond"] <= 1e-9 * (1.0 if case["cond"] is None else 1.0 + case["cond"]), (r["robot"], "cond", r["cond"])
         assert r["level"] and r["margin_joint"], r
+
+
+PRESENTATION = r"""
+const M = require(process.argv[1]);
+const I = JSON.parse(require("fs").readFileSync(process.argv[2], "utf8"));
+process.stdout.write(JSON.stringify({
+  svd: I.matrices.map(function (A) { return M.svdLeft(A); }),
+  rpy: I.poses.map(M.rpy), quat: I.poses.map(M.quaternion)
+}));
+"""
+
+
+@needs_node
+def test_svd_rpy_and_quaternion_against_numpy_and_pinocchio(tmp_path):
+    """RKMath.svdLeft on random 6×n and 3×n matrices (rank-deficient ones included) against
+    numpy's SVD (singular values; each left singular vector of a simple singular value up to
+    sign); RKMath.rpy against pinocchio.rpy.matrixToRpy and RKMath.quaternion against
+    pinocchio.Quaternion (w ≥ 0) on random rotations, near the gimbal lock and near w = 0 included."""
+    import pinocchio as pin
+
+    rng = np.random.default_rng(12)
+    mats = []
+    for m, n in [(6, 6), (6, 7), (6, 3), (3, 2), (2, 2), (6, 6)]:
+        A = rng.normal(size=(m, n)) * rng.uniform(0.1, 2.0)
+        mats.append(A)
+    low = rng.normal(size=(6, 3)) @ rng.normal(size=(3, 6))  # rank 3
+    mats += [low, np.diag([3.0, 2.0, 1.0, 1e-12, 0.5, 0.0])]
+    Rs = [pin.exp3(rng.normal(size=3) * rng.uniform(0.1, 3.0)) for _ in range(20)]
+    Rs += [pin.rpy.rpyToMatrix(0.3, math.pi / 2 - 1e-7, -0.4), pin.exp3(np.array([math.pi - 1e-9, 0.0, 0.0]))]
+    poses = []
+    for R in Rs:
+        T = np.eye(4)
+        T[:3, :3] = R
+        poses.append(T.ravel().tolist())
+    path = tmp_path / "in.json"
+    path.write_text(json.dumps({"matrices": [A.tolist() for A in mats], "poses": poses}), encoding="utf-8")
+    out = _node(PRESENTATION, MATH_JS, path)
+    for A, sv in zip(mats, out["svd"]):
+        U, s, _ = np.linalg.svd(A)
+        m = A.shape[0]
+        s_full = np.zeros(m)
+        s_full[: len(s)] = s
+        got = np.array([x["s"] for x in sv])
+        np.testing.assert_allclose(got, s_full, rtol=0, atol=1e-12 * max(1.0, s[0]))
+        for i in range(m):
+            others = np.delete(s_full, i)
+            if np.min(np.abs(others - s_full[i])) > 1e-6 * max(1.0, s[0]):  # a simple singular value
+                assert abs(abs(np.dot(sv[i]["u"], U[:, i])) - 1.0) < 1e-9, (i, s_full)
+    for R, rpy, quat in zip(Rs, out["rpy"], out["quat"]):
+        np.testing.assert_allclose(pin.rpy.rpyToMatrix(*rpy), R, rtol=0, atol=1e-9)
+        if abs(R[2, 0]) < 0.999:  # away from the gimbal lock the angles themselves are unique
+            np.testing.assert_allclose(rpy, pin.rpy.matrixToRpy(R), rtol=0, atol=1e-9)
+        ref = pin.Quaternion(R).normalized()
+        ref = np.array([ref.w, ref.x, ref.y, ref.z])
+        ref = ref if ref[0] >= 0 else -ref
+        if ref[0] > 1e-6:  # w = 0: q and -q both have w >= 0
+            np.testing.assert_allclose(quat, ref, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(pin.Quaternion(quat[0], *quat[1:]).toRotationMatrix(), R, rtol=0, atol=1e-12)
 
 
 FRAGMENTS = r"""
@@ -269,8 +318,3 @@ def test_scene_and_teach_do_not_import_each_other():
 
     assert "robokit.viz.scene" not in imported(teach_mod)
     assert "robokit.viz.teach" in imported(scene_mod)  # one direction only
-
-
-if __name__ == "__main__":
-    write_golden()
-    print(f"wrote {GOLDEN}", file=sys.stderr)
