@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from typing import Sequence
 
 from robokit.description.model_builder import JOINT_KINDS, Description, Geometry, Inertial, Joint, Link, Pose
 from robokit.errors import InputError
@@ -47,14 +48,44 @@ def _floats(text: str | None, n: int, default: tuple[float, ...], where: str) ->
     return vals
 
 
+def _rotation_from_rpy(roll: float, pitch: float, yaw: float) -> tuple[float, ...]:
+    """The rotation ``Rz(yaw) Ry(pitch) Rx(roll)`` computed the way urdfdom and Pinocchio compute it, to the
+    last bit: urdfdom's ``Rotation::setFromRPY`` (the half-angle quaternion, normalised), then Eigen's
+    quaternion-to-matrix. A model built from these numbers equals Pinocchio's URDF parser's exactly, so
+    what is an exact zero there (an axis offset, a product of inertia) is one here too; the generated
+    C's constants depend on it."""
+    phi, the, psi = roll / 2.0, pitch / 2.0, yaw / 2.0
+    sp, cp, st, ct, ss, cs = (math.sin(phi), math.cos(phi), math.sin(the), math.cos(the), math.sin(psi),
+                              math.cos(psi))
+    x = sp * ct * cs - cp * st * ss
+    y = cp * st * cs + sp * ct * ss
+    z = cp * ct * ss - sp * st * cs
+    w = cp * ct * cs + sp * st * ss
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = (0.0, 0.0, 0.0, 1.0) if n == 0.0 else (x / n, y / n, z / n, w / n)
+    tx, ty, tz = 2.0 * x, 2.0 * y, 2.0 * z
+    twx, twy, twz = tx * w, ty * w, tz * w
+    txx, txy, txz = tx * x, ty * x, tz * x
+    tyy, tyz, tzz = ty * y, tz * y, tz * z
+    return (1.0 - (tyy + tzz), txy - twz, txz + twy,
+            txy + twz, 1.0 - (txx + tzz), tyz - twx,
+            txz - twy, tyz + twx, 1.0 - (txx + tyy))
+
+
 def _origin(el: ET.Element | None, where: str) -> Pose:
     if el is None:
         return Pose()
     o = el.find("origin")
     if o is None:
         return Pose()
-    return Pose.from_xyz_rpy(_floats(o.get("xyz"), 3, (0.0, 0.0, 0.0), f"{where} <origin xyz>"),
-                             _floats(o.get("rpy"), 3, (0.0, 0.0, 0.0), f"{where} <origin rpy>"))
+    xyz = _floats(o.get("xyz"), 3, (0.0, 0.0, 0.0), f"{where} <origin xyz>")
+    roll, pitch, yaw = _floats(o.get("rpy"), 3, (0.0, 0.0, 0.0), f"{where} <origin rpy>")
+    return Pose(_rotation_from_rpy(roll, pitch, yaw), (xyz[0], xyz[1], xyz[2]))
+
+
+def _product(A: Sequence[float], B: Sequence[float]) -> list[float]:
+    """A·B of two row-major 3×3 matrices, each entry summed left to right (as Eigen's 3×3 product does)."""
+    return [A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j] for i in range(3) for j in range(3)]
 
 
 def _attr(el: ET.Element | None, key: str, default: float, where: str) -> float:
@@ -69,8 +100,14 @@ def _inertial(link: ET.Element, where: str) -> Inertial | None:
         return None
     mass = _attr(el.find("mass"), "value", 0.0, f"{where} <mass>")
     ine = el.find("inertia")
-    values = [_attr(ine, k, 0.0, f"{where} <inertia>") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
-    return Inertial.from_frame(mass, _origin(el, f"{where} <inertial>"), values)
+    ixx, ixy, ixz, iyy, iyz, izz = (_attr(ine, k, 0.0, f"{where} <inertia>")
+                                    for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+    frame = _origin(el, f"{where} <inertial>")
+    # R I Rᵀ in Pinocchio's URDF parser's order, its lower triangle kept (Pinocchio's Symmetric3 reads that)
+    R = frame.rotation
+    Rt = (R[0], R[3], R[6], R[1], R[4], R[7], R[2], R[5], R[8])
+    J = _product(_product(R, (ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz)), Rt)
+    return Inertial(mass, frame.translation, (J[0], J[3], J[6], J[4], J[7], J[8]))
 
 
 def _color(visual: ET.Element, materials: dict[str, tuple[float, float, float, float]],

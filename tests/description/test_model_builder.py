@@ -3,7 +3,8 @@
 The same URDF is read twice: by ``pinocchio.buildModelFromXML`` / ``buildGeomFromUrdfString``, and by
 ``description_from_urdf`` → ``build_model`` (no URDF text reaches Pinocchio). Every frame (name, type,
 parents, placement, inertia), joint (model type, placement, inertia), limit and geometry object must be the
-same, and forward kinematics, Jacobians, RNEA and the mass matrix agree to 1e-12 at random configurations.
+same, the numbers to the last bit; forward kinematics, Jacobians, RNEA and the mass matrix agree to 1e-12
+at random configurations.
 Robots: the shipped models' URDFs and five example-robot-data arms (a continuous-joint arm, kinova, among
 them: its continuous joints must come out as Pinocchio's unbounded revolute joints, nq = 2).
 """
@@ -47,16 +48,19 @@ URDF_PATHS = _urdf_paths()
 
 
 def assert_same_model(mine, ref):
+    """The same frames, joints, inertias and limits, to the last bit (a URDF is read as Pinocchio's parser reads
+    it: urdfdom's rpy quaternion, Eigen's products): an exact zero there is an exact zero here."""
+    same = np.testing.assert_array_equal
     assert [f.name for f in mine.frames] == [f.name for f in ref.frames]
     for a, b in zip(mine.frames, ref.frames):
         assert (a.type, a.parentJoint, a.parentFrame) == (b.type, b.parentJoint, b.parentFrame), a.name
-        np.testing.assert_allclose(a.placement.homogeneous, b.placement.homogeneous, atol=1e-12, err_msg=a.name)
-        np.testing.assert_allclose(a.inertia.matrix(), b.inertia.matrix(), atol=1e-12, err_msg=a.name)
+        same(a.placement.homogeneous, b.placement.homogeneous, err_msg=a.name)
+        same(a.inertia.matrix(), b.inertia.matrix(), err_msg=a.name)
     assert list(mine.names) == list(ref.names)
     for j in range(ref.njoints):
         assert mine.joints[j].shortname() == ref.joints[j].shortname(), ref.names[j]
-        np.testing.assert_allclose(mine.jointPlacements[j].homogeneous, ref.jointPlacements[j].homogeneous, atol=1e-12)
-        np.testing.assert_allclose(mine.inertias[j].matrix(), ref.inertias[j].matrix(), atol=1e-12)
+        same(mine.jointPlacements[j].homogeneous, ref.jointPlacements[j].homogeneous, err_msg=ref.names[j])
+        same(mine.inertias[j].matrix(), ref.inertias[j].matrix(), err_msg=ref.names[j])
     for attr in LIMIT_FIELDS:
         np.testing.assert_array_equal(np.asarray(getattr(mine, attr)), np.asarray(getattr(ref, attr)), err_msg=attr)
     np.testing.assert_array_equal(mine.gravity.vector, ref.gravity.vector)
