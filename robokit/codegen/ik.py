@@ -156,7 +156,8 @@ def _method_line(k: IKConstants, has_ik: bool) -> str:
         return ("general 6R (Raghavan-Roth elimination, Manocha-Canny 24 x 24 eigenproblem by Francis QR, Newton "
                 "polish), up to 16 solutions")
     if k.method == "spherical wrist":
-        deg = int(k.solver["deg"])
+        assert k.pieper is not None  # the spherical wrist's constants
+        deg = k.pieper.deg
         roots = ("the quartic's roots by Ferrari's closed form" if deg == 4
                  else f"a polynomial of degree {deg} in closed form")
         return f"Pieper's method (spherical wrist, Lecture 5), {roots}{rev}, up to 8 solutions"
@@ -602,9 +603,8 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         sign = (-1 if k.reversed else 1) * (-1 if k.free_flipped else 1)
         wref = "-wrist_ref" if sign < 0 else "wrist_ref"
         src = [self.tables()]
-        quartic = k.method == "spherical wrist" and int(k.solver["deg"]) == 4
-        if not (k.method == "spherical wrist" and k.solver["case"] in ("RR-quartic", "PR-quartic", "RP-quartic",
-                                                                        "RP-c1", "PP")):
+        quartic = k.pieper is not None and k.pieper.deg == 4
+        if not (k.pieper is not None and k.pieper.case in ("RR-quartic", "PR-quartic", "RP-quartic", "RP-c1", "PP")):
             src.append(self.helpers())  # a cos t + b sin t = c
         if k.method == "spherical wrist":
             if quartic:
@@ -646,10 +646,11 @@ def _val(coef: Any, kind: str, x: str, c: str, s: str) -> Val:
 
 def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
-    w3 = [float(x) for x in sv["w3_list"]]
-    a1, a2 = float(sv["a1"]), float(sv["a2"])
+    sv = k.pieper
+    assert sv is not None  # the spherical wrist's constants
+    ca, sa = list(sv.ca), list(sv.sa)
+    w3 = list(sv.w3)
+    a1, a2 = sv.a1, sv.a2
     th0, d0 = k.th0, k.d0
     ang = []
     for i in range(3):
@@ -658,7 +659,7 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         else:
             ang.append(f"    th[{i}] = {lit(th0[i])};\n    dd[{i}] = {lit(d0[i])} + q[{i}];")
     angles = "\n".join(ang)
-    ca4, sa4, ca5, sa5 = (float(sv[x]) for x in ("ca4", "sa4", "ca5", "sa5"))
+    ca4, sa4, ca5, sa5 = ca[3], sa[3], ca[4], sa[4]
     kk = sa4 * sa5
     right = ca4 == 0.0 and ca5 == 0.0
     if right:
@@ -838,16 +839,17 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
 def _pieper(e: _Emitter, T06: Pose) -> str:
     """Body of the Pieper solve (``PieperSolver.position`` then the wrist): rows[], lab[], deg[], nr."""
     k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    case = str(sv["case"])
-    deg = int(sv["deg"])
-    C = [[float(x) for x in row] for row in sv["C_list"]]
-    w6 = [snap(float(x)) for x in sv["w6_list"]]
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    sv = k.pieper
+    assert sv is not None  # the spherical wrist's constants
+    case = sv.case
+    deg = sv.deg
+    C = [list(row) for row in sv.C]
+    w6 = [snap(x) for x in sv.w6]
+    ca, sa = list(sv.ca), list(sv.sa)
     ca1, sa1 = ca[0], sa[0]
-    a1, a2, d1, d2 = (float(sv[x]) for x in ("a1", "a2", "d1", "d2"))
-    f1c, f2c, f3c = sv["f"]
-    vv = [float(x) for x in sv["v"]]
+    a1, a2, d1, d2 = sv.a1, sv.a2, sv.d1, sv.d2
+    f1c, f2c, f3c = sv.f
+    vv = list(sv.v)
     th0, d0 = k.th0, k.d0
     j1, j2, kind3 = k.kinds[0], k.kinds[1], k.kinds[2]
     scale = k.scale
@@ -897,7 +899,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     if j2 == "R":
         if j1 == "R":
             ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
-        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
+        const double ra = r - ({_c(_val(sv.Ka, kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
             sa_, sb_ = 2.0 * a1, sa1
         else:
             ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
@@ -937,7 +939,8 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             ++nc;
         }}"""
     else:
-        pc1, pc2 = sv["phi"]
+        assert sv.phi is not None  # prismatic joint 2
+        pc1, pc2 = sv.phi
         pv = (f"""        const double p1 = {_c(_val(pc1, kind3, "x3", *cs3))};
         const double p2 = {_c(_val(pc2, kind3, "x3", *cs3))};
         double Ds[2];
@@ -946,7 +949,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             dcode = f"        Ds[nD++] = (h - {lit(sa1)} * p2) / {lit(ca1)} - f3;"
         elif case == "RP-c1":  # D^2 + 2 f3 D + (a1^2 + |f|^2 + 2 a1 p1 - r) = 0
             dcode = f"""        {{
-            const double nf2 = {_c(_val(sv["nf2"], kind3, "x3", *cs3))};
+            const double nf2 = {_c(_val(sv.nf2, kind3, "x3", *cs3))};
             const double B = 2.0 * f3, C0 = {lit(a1 * a1)} + nf2 + {lit(2.0 * a1)} * p1 - r;
             const double disc = B * B - 4.0 * C0;
             const double big = B * B > fabs(4.0 * C0) ? B * B : fabs(4.0 * C0);
@@ -1108,14 +1111,15 @@ def _c(v: Val) -> str:
 def _parallel(e: _Emitter, T06: Pose) -> str:
     """Body of the three-parallel-axes solve (UR family)."""
     k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    sv = k.parallel
+    assert sv is not None  # the three-parallel-axes constants
+    ca, sa = list(sv.ca), list(sv.sa)
     ca1, sa1, ca4, sa4, ca5, sa5 = ca[0], sa[0], ca[3], sa[3], ca[4], sa[4]
-    s2, sig = float(sv["s2"]), float(sv["sig"])
-    a1, a2, a3, a4, a5 = (float(sv[x]) for x in ("a1", "a2", "a3", "a4", "a5"))
-    d1, d5, d6, KW = (float(sv[x]) for x in ("d1", "d5", "d6", "KW"))
-    w6 = [snap(float(x)) for x in sv["w6_list"]]
-    th0 = [float(x) for x in sv["th0_list"]]
+    s2, sig = sv.s2, sv.sig
+    a1, a2, a3, a4, a5 = sv.a1, sv.a2, sv.a3, sv.a4, sv.a5
+    d1, d5, d6, KW = sv.d1, sv.d5, sv.d6, sv.KW
+    w6 = [snap(x) for x in sv.w6]
+    th0 = list(sv.th0)
     right = ca4 == 0.0 and ca5 == 0.0
     w = CWriter()
     R, p = T06.R, T06.p

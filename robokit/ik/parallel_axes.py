@@ -24,7 +24,7 @@ In general position 2 × 2 × 2 = 8 solutions.
 from __future__ import annotations
 
 import math
-
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
@@ -35,6 +35,59 @@ from robokit.ik.solver import PositionBranch
 
 if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
+
+
+@dataclass(frozen=True)
+class ParallelAxesConstants:
+    r"""The numbers of the three-parallel-axes method for one canonical chain (module docstring).
+
+    What :class:`ParallelAxesSolver` exports (:meth:`ParallelAxesSolver.constants`) for the
+    compiled kernel (:mod:`robokit.kernels.closed_form`) and the C emitter
+    (:mod:`robokit.codegen.ik`). Lengths in m, angles in rad.
+
+    Attributes
+    ----------
+    th0, d0 : tuple of float
+        The chain's six joint offsets θ₀ (rad) and d₀ (m).
+    ca, sa : tuple of float
+        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    s2, sig : float
+        ±1: the sign of cos α₂ (α₂ = 0 or π) and of cos α₂ · cos α₃.
+    a1, a2, a3, a4, a5 : float
+        Link lengths (m).
+    d1, d5, d6 : float
+        Joint offsets d₁, d₅, d₆ (m).
+    KW : float
+        W's coordinate along the parallel axes in the frame after X₁ (m; step 1).
+    w6 : tuple of float
+        W (where axes 5 and 6 meet) in the frame after Z₆ (m).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> from robokit.description.urdf_to_dh import dh_from_urdf
+    >>> c = ParallelAxesSolver(DHChain(dh_from_urdf(robokit.load("ur5"), "standard").table)).constants()
+    >>> c.s2, c.sig
+    (1.0, 1.0)
+    """
+
+    th0: tuple[float, ...]
+    d0: tuple[float, ...]
+    ca: tuple[float, ...]
+    sa: tuple[float, ...]
+    s2: float
+    sig: float
+    a1: float
+    a2: float
+    a3: float
+    a4: float
+    a5: float
+    d1: float
+    d5: float
+    d6: float
+    KW: float
+    w6: tuple[float, float, float]
 
 
 class ParallelAxesSolver:
@@ -90,15 +143,38 @@ class ParallelAxesSolver:
         self.w6_list = [float(v) for v in self.w6]
         self.a4, self.a5 = float(a[3]), float(a[4])
 
+    def constants(self) -> ParallelAxesConstants:
+        """The solver's constants as an immutable record (what the kernel and the C emitter read).
+
+        Returns
+        -------
+        ParallelAxesConstants
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> from robokit.description.urdf_to_dh import dh_from_urdf
+        >>> round(ParallelAxesSolver(DHChain(dh_from_urdf(robokit.load("ur5"), "standard").table)).constants().a2, 3)
+        0.425
+        """
+        w6 = self.w6_list
+        return ParallelAxesConstants(
+            th0=tuple(self.th0_list), d0=tuple(float(v) for v in self.chain.d0), ca=tuple(self.ca),
+            sa=tuple(self.sa), s2=self.s2, sig=self.sig, a1=self.a1, a2=self.a2, a3=self.a3, a4=self.a4, a5=self.a5,
+            d1=self.d1, d5=self.d5, d6=self.d6, KW=self.KW, w6=(w6[0], w6[1], w6[2]))
+
     def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve`."""
+        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve`: :meth:`constants`
+        packed into flat arrays."""
+        k = self.constants()
         ci = np.array([1, 0, 1, 0, 0, 0], dtype=np.int64)
         cf = np.zeros(64)
-        cf[0:6], cf[6:12] = self.th0_list, [float(v) for v in self.chain.d0]
-        cf[12:17], cf[17:22] = self.ca, self.sa
-        cf[22:31] = self.a1, self.a2, self.a3, self.a4, self.a5, self.d1, self.d5, self.d6, self.KW
-        cf[31:34] = self.w6_list
-        cf[34], cf[35] = self.s2, self.sig
+        cf[0:6], cf[6:12] = k.th0, k.d0
+        cf[12:17], cf[17:22] = k.ca, k.sa
+        cf[22:31] = k.a1, k.a2, k.a3, k.a4, k.a5, k.d1, k.d5, k.d6, k.KW
+        cf[31:34] = k.w6
+        cf[34], cf[35] = k.s2, k.sig
         return ci, cf, np.zeros((5, 5))
 
     def solve(self, T06: np.ndarray, wrist_ref: float) -> list[tuple[Sequence[float], str, bool]]:

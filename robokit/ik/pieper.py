@@ -40,7 +40,7 @@ third column and θ₆ from the third row (two atan2's). When axes 4 and 6 line 
 from __future__ import annotations
 
 import math
-
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
@@ -86,6 +86,88 @@ def _rz_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
 
 def _rx_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
     return (v[0], c * v[1] - s * v[2], s * v[1] + c * v[2])
+
+
+Triple = tuple[float, float, float]
+
+
+def _triple(x: Sequence[float] | np.ndarray) -> Triple:
+    return (float(x[0]), float(x[1]), float(x[2]))
+
+
+@dataclass(frozen=True)
+class PieperConstants:
+    r"""The numbers Pieper's method needs for one canonical chain, computed once (module docstring).
+
+    What :class:`PieperSolver` exports (:meth:`PieperSolver.constants`) for the compiled kernel
+    (:mod:`robokit.kernels.closed_form`) and the C emitter (:mod:`robokit.codegen.ik`). Lengths
+    in m, angles in rad; a "triple" is a quantity ``k₀ + k₁ cos θ₃ + k₂ sin θ₃`` of a revolute
+    joint 3 (or ``k₀ + k₁ d₃ + k₂ d₃²`` of a prismatic one).
+
+    Attributes
+    ----------
+    case : str
+        Which position equations apply: ``"RR-quartic"``, ``"RR-a1"`` (a₁ = 0), ``"RR-s1"``
+        (sin α₁ = 0), ``"PR-quartic"``, ``"PR-c1"``, ``"RP-quartic"``, ``"RP-c1"`` or ``"PP"``
+        (the kinds of joints 1 and 2, then the special case).
+    deg : int
+        Nominal degree of the joint-3 polynomial (4 for the quartic cases, else 2).
+    kinds : tuple of str
+        ``"R"``/``"P"`` of joints 1–3.
+    C : tuple of tuple of float
+        The polynomial's coefficients (low → high) are ``Σₖ mₖ C[k]`` for the monomials m of
+        the wrist centre of ``case`` (e.g. ``(r², r, h², h, 1)`` for ``"RR-quartic"``).
+    th0, d0 : tuple of float
+        The chain's six joint offsets θ₀ (rad) and d₀ (m).
+    ca, sa : tuple of float
+        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    a1, a2, d1, d2 : float
+        Lengths of links 1, 2 and offsets d₁, d₂ (m).
+    w3, w6 : tuple of float
+        The wrist centre in the frame after Z₃ (``³W``) and after Z₆ (``⁶W``), m.
+    f : tuple of three triples
+        ``f = X₂Z₃ · ³W`` rotated by α₂ (Lecture 5's f₁, f₂, f₃).
+    v : tuple of float
+        ``³W + d₃e₃`` (revolute joint 3) or its rotation by θ₃'s offset (prismatic): the elbow label's vector.
+    Ka, Kb : triple or None
+        ``‖F‖² + a₁²`` and ``cα₁F₃`` (revolute joints 1 and 2), else None.
+    phi : pair of triples or None
+        ``(φ₁, φ₂)`` = f turned by θ₂'s offset (prismatic joint 2), else None.
+    nf2 : triple
+        ``‖f‖²``.
+    scale : float
+        The chain's size (m): tolerances are relative to it.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> c = PieperSolver(DHChain(robokit.load("puma560").dh)).constants()
+    >>> c.case, c.deg, c.kinds
+    ('RR-a1', 2, ('R', 'R', 'R'))
+    """
+
+    case: str
+    deg: int
+    kinds: tuple[str, str, str]
+    C: tuple[tuple[float, ...], ...]
+    th0: tuple[float, ...]
+    d0: tuple[float, ...]
+    ca: tuple[float, ...]
+    sa: tuple[float, ...]
+    a1: float
+    a2: float
+    d1: float
+    d2: float
+    w3: Triple
+    w6: Triple
+    f: tuple[Triple, Triple, Triple]
+    v: Triple
+    Ka: Triple | None
+    Kb: Triple | None
+    phi: tuple[Triple, Triple] | None
+    nf2: Triple
+    scale: float
 
 
 class PieperSolver:
@@ -223,24 +305,51 @@ class PieperSolver:
         self.ca4, self.sa4, self.ca5, self.sa5 = self.ca[3], self.sa[3], self.ca[4], self.sa[4]
         self.rot_kinds = k[:3]
 
+    def constants(self) -> PieperConstants:
+        """The solver's constants as an immutable record (what the kernel and the C emitter read).
+
+        Returns
+        -------
+        PieperConstants
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> PieperSolver(DHChain(robokit.load("puma560").dh)).constants().w6
+        (0.0, 0.0, 0.0)
+        """
+        assert self.case is not None  # set in __init__
+        rr = self.j1 == "R" and self.j2 == "R"
+        return PieperConstants(
+            case=self.case, deg=self.deg, kinds=(self.j1, self.j2, self.j3),
+            C=tuple(tuple(float(x) for x in row) for row in self.C_list),
+            th0=tuple(self.th0_list), d0=tuple(self.d0_list), ca=tuple(self.ca), sa=tuple(self.sa),
+            a1=self.a1, a2=self.a2, d1=self.d1, d2=self.d2, w3=_triple(self.w3_list), w6=_triple(self.w6_list),
+            f=(_triple(self.f[0]), _triple(self.f[1]), _triple(self.f[2])), v=_triple(self.v),
+            Ka=_triple(self.Ka) if rr else None, Kb=_triple(self.Kb) if rr else None,
+            phi=(_triple(self.phi[0]), _triple(self.phi[1])) if self.j2 == "P" else None,
+            nf2=_triple(self.nf2), scale=float(self.chain.scale))
+
     def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve` (revolute
         joints 1 and 2; joint 3 revolute or prismatic), or None when only this Python solver
-        covers the chain (a prismatic joint 1 or 2)."""
-        if self.j1 != "R" or self.j2 != "R" or self.case is None:
+        covers the chain (a prismatic joint 1 or 2): :meth:`constants` packed into flat arrays."""
+        k = self.constants()
+        if k.Ka is None or k.Kb is None:
             return None
-        ci = np.array([0, {"RR-quartic": 0, "RR-a1": 1, "RR-s1": 2}[self.case], int(self.j3 == "R"), self.deg,
-                       self.C.shape[0], 0], dtype=np.int64)
+        ci = np.array([0, {"RR-quartic": 0, "RR-a1": 1, "RR-s1": 2}[k.case], int(k.kinds[2] == "R"), k.deg,
+                       len(k.C), 0], dtype=np.int64)
         cf = np.zeros(64)
-        cf[0:6], cf[6:12] = self.th0_list, self.d0_list
-        cf[12:17], cf[17:22] = self.ca, self.sa
-        cf[22:26] = self.a1, self.a2, self.d1, self.d2
-        cf[26:29], cf[29:32] = self.w3_list, self.w6_list
-        cf[32:41] = np.concatenate([np.asarray(f, dtype=float) for f in self.f])
-        cf[41:44], cf[44:47], cf[47:50] = self.Ka, self.Kb, self.v[:3]
-        cf[50] = self.chain.scale
+        cf[0:6], cf[6:12] = k.th0, k.d0
+        cf[12:17], cf[17:22] = k.ca, k.sa
+        cf[22:26] = k.a1, k.a2, k.d1, k.d2
+        cf[26:29], cf[29:32] = k.w3, k.w6
+        cf[32:41] = k.f[0] + k.f[1] + k.f[2]
+        cf[41:44], cf[44:47], cf[47:50] = k.Ka, k.Kb, k.v
+        cf[50] = k.scale
         C = np.zeros((5, 5))
-        C[: self.C.shape[0], : self.C.shape[1]] = self.C
+        C[: len(k.C), : k.deg + 1] = k.C
         return ci, cf, C
 
     # ------------------------------------------------------------------ position
