@@ -46,6 +46,7 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
+           "pieper_position", "pieper_wrist", "pieper_rows", "pieper_wrist_centre",
            "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
@@ -61,6 +62,7 @@ _TWO_PI = 2.0 * math.pi
 _TH0, _D0, _CA, _SA = 0, 6, 12, 17
 _A1, _A2, _D1, _D2 = 22, 23, 24, 25
 _W3, _W6, _F, _KA, _KB, _V, _SCALE = 26, 29, 32, 41, 44, 47, 50
+_PHI, _NF2, _KIND = 51, 57, 60  # φ₁, φ₂ (prismatic joint 2), ‖f‖², joints 1–3 revolute (1/0)
 # layout of the float constants (parallel axes), after th0, d0, ca, sa as above
 _PA_A1, _PA_A2, _PA_A3, _PA_A4, _PA_A5, _PA_D1, _PA_D5, _PA_D6, _PA_KW, _PA_W6, _PA_S2, _PA_SIG = (
     22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 34, 35)
@@ -186,14 +188,13 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
 
 
 @njit
-def _angles(cf: np.ndarray, rev3: bool, q: np.ndarray, th: np.ndarray, dd: np.ndarray) -> None:
-    """Rotation angles and offsets of joints 1–3 (joints 1, 2 revolute) at joint values q."""
-    th[0], dd[0] = cf[_TH0] + q[0], cf[_D0]
-    th[1], dd[1] = cf[_TH0 + 1] + q[1], cf[_D0 + 1]
-    if rev3:
-        th[2], dd[2] = cf[_TH0 + 2] + q[2], cf[_D0 + 2]
-    else:
-        th[2], dd[2] = cf[_TH0 + 2], cf[_D0 + 2] + q[2]
+def _angles(cf: np.ndarray, q: np.ndarray, th: np.ndarray, dd: np.ndarray) -> None:
+    """Rotation angles and offsets of joints 1–3 at joint values q (kinds: ``cf[_KIND:_KIND + 3]``)."""
+    for i in range(3):
+        if cf[_KIND + i] != 0.0:
+            th[i], dd[i] = cf[_TH0 + i] + q[i], cf[_D0 + i]
+        else:
+            th[i], dd[i] = cf[_TH0 + i], cf[_D0 + i] + q[i]
 
 
 @njit
@@ -217,7 +218,7 @@ def _wrist_point(cf: np.ndarray, th: np.ndarray, dd: np.ndarray, W: np.ndarray) 
 
 
 @njit
-def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
+def _polish(cf: np.ndarray, q: np.ndarray, W: np.ndarray) -> float:
     """Newton steps (central-difference Jacobian, least squares) on ⁰W(q₁..q₃) = W; q in place."""
     th, dd, p = np.empty(3), np.empty(3), np.empty(3)
     p2, p3, qq = np.empty(3), np.empty(3), np.empty(3)
@@ -226,7 +227,7 @@ def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
     err = np.inf
     scale = cf[_SCALE]
     for it in range(4):
-        _angles(cf, rev3, q, th, dd)
+        _angles(cf, q, th, dd)
         _wrist_point(cf, th, dd, p)
         for k in range(3):
             e[k, 0] = W[k] - p[k]
@@ -237,10 +238,10 @@ def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
         for j in range(3):
             qq[:] = q
             qq[j] += h
-            _angles(cf, rev3, qq, th, dd)
+            _angles(cf, qq, th, dd)
             _wrist_point(cf, th, dd, p2)
             qq[j] -= 2 * h
-            _angles(cf, rev3, qq, th, dd)
+            _angles(cf, qq, th, dd)
             _wrist_point(cf, th, dd, p3)
             for k in range(3):
                 J[k, j] = (p2[k] - p3[k]) / (2 * h)
@@ -324,11 +325,35 @@ def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, 
 
 
 @njit
-def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray) -> int:
-    """Pieper's method with revolute joints 1 and 2 (cases quartic / a₁ = 0 / sin α₁ = 0), joint 3
-    revolute or prismatic: raw rows into Q, codes, degen; their count."""
+def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
+    """Real roots of A x² + B x + C (A ≠ 0) into ``out`` (the cancellation-free pair); their count."""
+    disc = B * B - 4.0 * A * C
+    if disc < -1e-12 * max(B * B, abs(4.0 * A * C), 1e-300):
+        return 0
+    sq = math.sqrt(max(disc, 0.0))
+    qv = -0.5 * (B + (sq if B >= 0.0 else -sq))
+    if qv == 0.0:
+        out[0] = 0.0
+        return 1
+    out[0] = qv / A
+    if sq > 0.0:
+        out[1] = C / qv
+        return 2
+    return 1
+
+
+@njit
+def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, Q3: np.ndarray,
+                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray) -> int:
+    """Pieper's position sub-problem: every (q₁, q₂, q₃) placing the wrist centre ⁰W = T·⁶W.
+
+    Writes per branch the joint values into ``Q3`` (rows of 3), the shoulder and elbow codes into
+    ``codes`` (rows of 2), the degenerate flag into ``degen`` and the rotation angles θ₁–θ₃ the
+    wrist step needs into ``TH``; returns the number of branches. Cases (``ci[1]``): 0 RR-quartic,
+    1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1, 5 RP-quartic, 6 RP-c1, 7 PP (the kinds of joints 1, 2;
+    ``PieperConstants.case``)."""
     case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
+    rev1, rev2 = case <= 2 or case == 5 or case == 6, case <= 4
     scale = cf[_SCALE]
     w6x, w6y, w6z = cf[_W6], cf[_W6 + 1], cf[_W6 + 2]
     W = np.empty(3)
@@ -337,15 +362,29 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
     W[2] = T[2, 0] * w6x + T[2, 1] * w6y + T[2, 2] * w6z + T[2, 3]
     Wx, Wy, Wz = W[0], W[1], W[2]
     ca1, sa1, a1 = cf[_CA], cf[_SA], cf[_A1]
-    h = Wz - cf[_D1]
-    r = Wx * Wx + Wy * Wy + h * h
     m = np.zeros(5)
+    h, r, X, yp = 0.0, 0.0, 0.0, 0.0
+    if rev1:  # rotating about axis 1 keeps h and r
+        h = Wz - cf[_D1]
+        r = Wx * Wx + Wy * Wy + h * h
+    else:  # prismatic joint 1: W in frame 0′ turned by θ₁'s offset
+        c0, s0 = math.cos(cf[_TH0]), math.sin(cf[_TH0])
+        yp = -s0 * Wx + c0 * Wy
+        X = c0 * Wx + s0 * Wy - a1
     if case == 0:
         m[0], m[1], m[2], m[3], m[4] = r * r, r, h * h, h, 1.0
     elif case == 1:
         m[0], m[1] = r, 1.0
-    else:
+    elif case == 2 or case == 6:
         m[0], m[1] = h, 1.0
+    elif case == 3:
+        m[0], m[1], m[2], m[3] = X * X, yp * yp, yp, 1.0
+    elif case == 4:
+        m[0], m[1] = yp, 1.0
+    elif case == 5:
+        m[0], m[1], m[2], m[3] = r, h * h, h, 1.0
+    else:
+        m[0], m[1] = X, 1.0
     coeffs = np.zeros(5)
     for j in range(deg + 1):
         acc = 0.0
@@ -354,17 +393,16 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
         coeffs[j] = acc
     roots3 = np.empty(6)
     nr = _roots(coeffs, deg, rev3, roots3)
-    check = deg == 4
+    check = deg == 4  # roots from the companion matrix: verify (and polish) each triple
     degenerate = False
-    if nr < 0:
+    if nr < 0:  # the equation holds for every joint-3 value: the documented choice q₃ = 0
         roots3[0] = cf[_TH0 + 2] if rev3 else 0.0
         nr = 1
         degenerate = True
     th2s = np.empty(2)
+    cand = np.empty((2, 4))  # (q₂, g₁, g₂, g₃) per candidate
     q = np.empty(3)
     th, dd, p = np.empty(3), np.empty(3), np.empty(3)
-    wa = np.empty((2, 3))
-    flips = np.empty(2, dtype=np.int64)
     n = 0
     for ir in range(nr):
         x3 = roots3[ir]
@@ -373,71 +411,171 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
         f2 = _val(cf, _F + 3, x3, rev3, c3, s3)
         f3 = _val(cf, _F + 6, x3, rev3, c3, s3)
         q3 = x3 - cf[_TH0 + 2] if rev3 else x3
-        F3 = f3 + cf[_D2]
-        Ka = _val(cf, _KA, x3, rev3, c3, s3)
-        sa_, ra = 2.0 * a1, r - Ka
-        sb_, rb = sa1, h - ca1 * F3
-        if case == 0:
-            n2 = f1 * f1 + f2 * f2
-            if n2 > 1e-24 * scale * scale:
-                A, B = ra / sa_, rb / sb_
-                th2s[0] = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+        nc = 0
+        if rev2:
+            F3 = f3 + cf[_D2]
+            if rev1:
+                sa_, ra = 2.0 * a1, r - _val(cf, _KA, x3, rev3, c3, s3)
+                sb_, rb = sa1, h - ca1 * F3
             else:
+                sa_, ra = 1.0, X
+                sb_, rb = ca1, yp + sa1 * F3
+            if case == 0 or case == 3:
+                n2 = f1 * f1 + f2 * f2
+                if n2 > 1e-24 * scale * scale:
+                    A, B = ra / sa_, rb / sb_
+                    th2s[0] = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+                else:
+                    th2s[0] = cf[_TH0 + 1]
+                    degenerate = True
+                n2s = 1
+            elif case == 1:  # θ₂ from eq. b: sb(F₂c₂ + F₁s₂) = rb
+                n2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10, th2s)
+            else:  # RR-s1, PR-c1: θ₂ from eq. a: sa(F₁c₂ − F₂s₂) = ra
+                n2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10, th2s)
+            if n2s < 0:
                 th2s[0] = cf[_TH0 + 1]
+                n2s = 1
                 degenerate = True
-            n2s = 1
-        elif case == 1:
-            n2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10, th2s)
-        else:
-            n2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10, th2s)
-        if n2s < 0:
-            th2s[0] = cf[_TH0 + 1]
-            n2s = 1
-            degenerate = True
-        for i2 in range(n2s):
-            t2 = th2s[i2]
-            c2, s2 = math.cos(t2), math.sin(t2)
-            g1 = a1 + c2 * f1 - s2 * f2
-            u = s2 * f1 + c2 * f2
-            g2 = ca1 * u - sa1 * F3
-            if math.hypot(g1, g2) <= 1e-12 * scale:
-                t1, singular1 = cf[_TH0], True
+            for i2 in range(n2s):
+                t2 = th2s[i2]
+                c2, s2 = math.cos(t2), math.sin(t2)
+                u = s2 * f1 + c2 * f2
+                cand[nc, 0], cand[nc, 1] = t2 - cf[_TH0 + 1], a1 + c2 * f1 - s2 * f2
+                cand[nc, 2], cand[nc, 3] = ca1 * u - sa1 * F3, sa1 * u + ca1 * F3
+                nc += 1
+        else:  # prismatic joint 2: its offset D enters h linearly and r quadratically
+            p1 = _val(cf, _PHI, x3, rev3, c3, s3)
+            p2 = _val(cf, _PHI + 3, x3, rev3, c3, s3)
+            Ds = np.empty(2)
+            if case == 5:
+                Ds[0] = (h - sa1 * p2) / ca1 - f3
+                nD = 1
+            elif case == 6:
+                nf2 = _val(cf, _NF2, x3, rev3, c3, s3)
+                nD = _quad_roots(1.0, 2.0 * f3, a1 * a1 + nf2 + 2.0 * a1 * p1 - r, Ds)
             else:
-                t1, singular1 = math.atan2(Wy, Wx) - math.atan2(g2, g1), False
-            q[0], q[1], q[2] = t1 - cf[_TH0], t2 - cf[_TH0 + 1], q3
+                Ds[0] = (ca1 * p2 - yp) / sa1 - f3
+                nD = 1
+            for iD in range(nD):
+                D = Ds[iD]
+                cand[nc, 0], cand[nc, 1] = D - cf[_D0 + 1], a1 + p1
+                cand[nc, 2], cand[nc, 3] = ca1 * p2 - sa1 * (f3 + D), sa1 * p2 + ca1 * (f3 + D)
+                nc += 1
+        for ic in range(nc):
+            g1, g2, g3 = cand[ic, 1], cand[ic, 2], cand[ic, 3]
+            singular1 = False
+            if rev1:
+                if math.hypot(g1, g2) <= 1e-12 * scale:
+                    t1, singular1 = cf[_TH0], True
+                else:
+                    t1 = math.atan2(Wy, Wx) - math.atan2(g2, g1)
+                q[0] = t1 - cf[_TH0]
+            else:
+                q[0] = Wz - cf[_D0] - g3
+            q[1], q[2] = cand[ic, 0], q3
             if check:
-                _angles(cf, rev3, q, th, dd)
+                _angles(cf, q, th, dd)
                 _wrist_point(cf, th, dd, p)
                 err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
                 if err > 1e-12 * scale:
                     if err > 1e-5 * scale:
-                        continue
-                    err = _polish(cf, rev3, q, W)
+                        continue  # a spurious root (a complex pair taken as real)
+                    err = _polish(cf, q, W)
                     if err > 1e-11 * scale:
                         continue
-            _angles(cf, rev3, q, th, dd)
+            if n >= Q3.shape[0]:
+                break
+            _angles(cf, q, th, dd)
             # labels: shoulder from frame 1's x axis, elbow from the sign of the normal's cross product
-            if singular1:
-                shoulder = 2
+            if not rev1:
+                codes[n, 0] = 3
+            elif singular1:
+                codes[n, 0] = 2
             else:
-                shoulder = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
+                codes[n, 0] = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
             if not rev3:
-                elbow = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
+                codes[n, 1] = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
             else:
                 e = (math.sin(th[2]) * cf[_V] + math.cos(th[2]) * cf[_V + 1]) * (cf[_A2] if cf[_A2] != 0.0 else 1.0)
-                elbow = 0 if e > 0.0 else 1
-            nw = _wrist_angles(cf, th, T, q4_ref, wa, flips)
-            for k in range(nw):
-                if n >= Q.shape[0]:
-                    break
-                Q[n, 0], Q[n, 1], Q[n, 2] = q[0], q[1], q[2]
-                Q[n, 3] = wa[k, 0] - cf[_TH0 + 3]
-                Q[n, 4] = wa[k, 1] - cf[_TH0 + 4]
-                Q[n, 5] = wa[k, 2] - cf[_TH0 + 5]
-                codes[n, 0], codes[n, 1], codes[n, 2] = shoulder, elbow, flips[k]
-                degen[n] = degenerate or singular1 or flips[k] == 2
-                n += 1
+                codes[n, 1] = 0 if e > 0.0 else 1
+            for j in range(3):
+                Q3[n, j] = q[j]
+                TH[n, j] = th[j]
+            degen[n] = degenerate or singular1
+            n += 1
     return n
+
+
+@njit
+def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
+            codes: np.ndarray, degen: np.ndarray) -> int:
+    """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
+    of each position): raw rows into Q, codes, degen; their count."""
+    Q3 = np.empty((MAX_ROWS, 3))
+    pcodes = np.empty((MAX_ROWS, 2), dtype=np.int64)
+    pdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    TH = np.empty((MAX_ROWS, 3))
+    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH)
+    wa = np.empty((2, 3))
+    flips = np.empty(2, dtype=np.int64)
+    n = 0
+    for b in range(npos):
+        nw = _wrist_angles(cf, TH[b], T, q4_ref, wa, flips)
+        for k in range(nw):
+            if n >= Q.shape[0]:
+                break
+            Q[n, 0], Q[n, 1], Q[n, 2] = Q3[b, 0], Q3[b, 1], Q3[b, 2]
+            Q[n, 3] = wa[k, 0] - cf[_TH0 + 3]
+            Q[n, 4] = wa[k, 1] - cf[_TH0 + 4]
+            Q[n, 5] = wa[k, 2] - cf[_TH0 + 5]
+            codes[n, 0], codes[n, 1], codes[n, 2] = pcodes[b, 0], pcodes[b, 1], flips[k]
+            degen[n] = pdegen[b] or flips[k] == 2
+            n += 1
+    return n
+
+
+@njit
+def pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray,
+                    T06: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Pieper's position sub-problem for the canonical chain's target T06 (no base′/tool′, no
+    reversal): ``(q (m, 3), codes (m, 2) shoulder/elbow, degenerate (m,), θ₁–θ₃ (m, 3))``."""
+    Q3 = np.empty((MAX_ROWS, 3))
+    codes = np.empty((MAX_ROWS, 2), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    TH = np.empty((MAX_ROWS, 3))
+    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH)
+    return Q3[:n].copy(), codes[:n].copy(), degen[:n].copy(), TH[:n].copy()
+
+
+@njit
+def pieper_wrist(cf: np.ndarray, th: np.ndarray, T06: np.ndarray, q4_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pieper's wrist sub-problem for the rotation angles θ₁–θ₃ ``th``: ``(θ₄, θ₅, θ₆ (m, 3), wrist codes (m,))``."""
+    out = np.empty((2, 3))
+    flips = np.empty(2, dtype=np.int64)
+    n = _wrist_angles(cf, th, T06, q4_ref, out, flips)
+    return out[:n].copy(), flips[:n].copy()
+
+
+@njit
+def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
+                q4_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
+    limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q = np.empty((MAX_ROWS, 6))
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen)
+    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+
+
+@njit
+def pieper_wrist_centre(cf: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """⁰W (3,) at the joint values q (3,) of joints 1–3 (the position sub-problem's forward map)."""
+    th, dd, W = np.empty(3), np.empty(3), np.empty(3)
+    _angles(cf, q, th, dd)
+    _wrist_point(cf, th, dd, W)
+    return W
 
 
 @njit
