@@ -46,7 +46,8 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
-           "pieper_position", "pieper_wrist", "pieper_rows", "pieper_wrist_centre",
+           "pieper_position", "pieper_wrist", "pieper_rows", "pieper_wrist_centre", "parallel_axes_position",
+           "parallel_axes_wrist", "parallel_axes_rows",
            "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
@@ -579,9 +580,9 @@ def pieper_wrist_centre(cf: np.ndarray, q: np.ndarray) -> np.ndarray:
 
 
 @njit
-def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
-                   degen: np.ndarray) -> int:
-    """The three-parallel-axes method (as ``ParallelAxesSolver.solve``): raw rows; their count."""
+def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulders: np.ndarray) -> int:
+    """Step 1 of the three-parallel-axes method: every θ₁ (rotation angle) into ``t1s`` and its
+    shoulder code into ``shoulders``; their count."""
     r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
     r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
     r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
@@ -590,83 +591,136 @@ def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, 
     Wy = r10 * w6x + r11 * w6y + r12 * w6z + py
     Wz = r20 * w6x + r21 * w6y + r22 * w6z + pz
     ca1, sa1 = cf[_CA], cf[_SA]
+    n1 = max(_trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1]), 1e-10, t1s), 0)
+    for i1 in range(n1):
+        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
+        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+    return n1
+
+
+@njit
+def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
+                       codes: np.ndarray, degen: np.ndarray, n: int) -> int:
+    """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
+    from row n; the new row count."""
+    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
+    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
+    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
+    ca1, sa1 = cf[_CA], cf[_SA]
     ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
     a1, a2, a3, a4, a5 = cf[_PA_A1], cf[_PA_A2], cf[_PA_A3], cf[_PA_A4], cf[_PA_A5]
     d1, d5, d6, sig, sgn2 = cf[_PA_D1], cf[_PA_D5], cf[_PA_D6], cf[_PA_SIG], cf[_PA_S2]
     right_angles = ca4 == 0.0 and ca5 == 0.0
-    t1s = np.empty(2)
-    n1 = _trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - d1), 1e-10, t1s)
     t5s = np.empty(2)
-    n = 0
-    for i1 in range(max(n1, 0)):
-        t1 = t1s[i1]
-        c1, s1 = math.cos(t1), math.sin(t1)
-        shoulder = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
-        ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
-        utx = sig * (r00 * ux + r10 * uy + r20 * uz)
-        uty = sig * (r01 * ux + r11 * uy + r21 * uz)
-        utz = sig * (r02 * ux + r12 * uy + r22 * uz)
-        rho = math.hypot(utx, uty)
-        if right_angles:
-            c5r = -utz / (sa4 * sa5)
-            if rho > 1e-10:
-                t5s[0], t5s[1] = math.atan2(rho, c5r), math.atan2(-rho, c5r)
-                n5 = 2
-            else:
-                t5s[0] = math.atan2(0.0, c5r)
-                n5 = 1
+    c1, s1 = math.cos(t1), math.sin(t1)
+    ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
+    utx = sig * (r00 * ux + r10 * uy + r20 * uz)
+    uty = sig * (r01 * ux + r11 * uy + r21 * uz)
+    utz = sig * (r02 * ux + r12 * uy + r22 * uz)
+    rho = math.hypot(utx, uty)
+    if right_angles:
+        c5r = -utz / (sa4 * sa5)
+        if rho > 1e-10:
+            t5s[0], t5s[1] = math.atan2(rho, c5r), math.atan2(-rho, c5r)
+            n5 = 2
         else:
-            n5 = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10, t5s)
-        for i5 in range(max(n5, 0)):
-            t5 = t5s[i5]
-            c5, s5 = math.cos(t5), math.sin(t5)
-            vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
-            if rho <= 1e-10:
-                t6, degenerate = cf[_TH0 + 5] + q6_ref, True
-            else:
-                t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
-            c6, s6 = math.cos(t6), math.sin(t6)
-            gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
-            gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
-            ox, oy, oz = -a4, 0.0, 0.0
-            ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
-            ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
-            ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
-            X0 = r00 * gxa + r01 * gxb + r02 * gxc
-            X1 = r10 * gxa + r11 * gxb + r12 * gxc
-            X2 = r20 * gxa + r21 * gxb + r22 * gxc
-            O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
-            O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
-            O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
-            phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
-            x = c1 * O0 + s1 * O1
-            y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
-            c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
-            if abs(c3) > 1.0 + 1e-10:
-                continue
-            c3 = max(-1.0, min(1.0, c3))
-            s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
-            wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
-            base = math.atan2(y, x)
-            for k3 in range(2 if s3a > 0.0 else 1):
-                s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
-                psi = math.atan2(s3, c3)
-                t2 = base - math.atan2(a3 * s3, a2 + a3 * c3)
-                t3, t4 = sgn2 * psi, sig * (phi - t2 - psi)
-                if n >= Q.shape[0]:
-                    break
-                Q[n, 0] = t1 - cf[_TH0]
-                Q[n, 1] = t2 - cf[_TH0 + 1]
-                Q[n, 2] = t3 - cf[_TH0 + 2]
-                Q[n, 3] = t4 - cf[_TH0 + 3]
-                Q[n, 4] = t5 - cf[_TH0 + 4]
-                Q[n, 5] = t6 - cf[_TH0 + 5]
-                codes[n, 0] = shoulder
-                codes[n, 1] = 0 if a2 * a3 * s3 > 0.0 else 1
-                codes[n, 2] = wrist
-                degen[n] = degenerate
-                n += 1
+            t5s[0] = math.atan2(0.0, c5r)
+            n5 = 1
+    else:
+        n5 = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10, t5s)
+    for i5 in range(max(n5, 0)):
+        t5 = t5s[i5]
+        c5, s5 = math.cos(t5), math.sin(t5)
+        vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
+        if rho <= 1e-10:
+            t6, degenerate = cf[_TH0 + 5] + q6_ref, True
+        else:
+            t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
+        c6, s6 = math.cos(t6), math.sin(t6)
+        gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
+        gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
+        ox, oy, oz = -a4, 0.0, 0.0
+        ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
+        ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
+        ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
+        X0 = r00 * gxa + r01 * gxb + r02 * gxc
+        X1 = r10 * gxa + r11 * gxb + r12 * gxc
+        X2 = r20 * gxa + r21 * gxb + r22 * gxc
+        O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
+        O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
+        O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
+        phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
+        x = c1 * O0 + s1 * O1
+        y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
+        c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+        if abs(c3) > 1.0 + 1e-10:
+            continue
+        c3 = max(-1.0, min(1.0, c3))
+        s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
+        wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
+        base = math.atan2(y, x)
+        for k3 in range(2 if s3a > 0.0 else 1):
+            s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
+            psi = math.atan2(s3, c3)
+            t2 = base - math.atan2(a3 * s3, a2 + a3 * c3)
+            t3, t4 = sgn2 * psi, sig * (phi - t2 - psi)
+            if n >= Q.shape[0]:
+                break
+            Q[n, 0] = t1 - cf[_TH0]
+            Q[n, 1] = t2 - cf[_TH0 + 1]
+            Q[n, 2] = t3 - cf[_TH0 + 2]
+            Q[n, 3] = t4 - cf[_TH0 + 3]
+            Q[n, 4] = t5 - cf[_TH0 + 4]
+            Q[n, 5] = t6 - cf[_TH0 + 5]
+            codes[n, 0] = shoulder
+            codes[n, 1] = 0 if a2 * a3 * s3 > 0.0 else 1
+            codes[n, 2] = wrist
+            degen[n] = degenerate
+            n += 1
     return n
+
+
+@njit
+def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
+                   degen: np.ndarray) -> int:
+    """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count."""
+    t1s = np.empty(2)
+    shoulders = np.empty(2, dtype=np.int64)
+    n1 = _parallel_shoulders(cf, T, t1s, shoulders)
+    n = 0
+    for i1 in range(n1):
+        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n)
+    return n
+
+
+@njit
+def parallel_axes_position(cf: np.ndarray, T06: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Step 1 for the canonical chain's target T06: ``(θ₁ rotation angles (m,), shoulder codes (m,))``."""
+    t1s = np.empty(2)
+    shoulders = np.empty(2, dtype=np.int64)
+    n1 = _parallel_shoulders(cf, T06, t1s, shoulders)
+    return t1s[:n1].copy(), shoulders[:n1].copy()
+
+
+@njit
+def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: int,
+                        q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Steps 2–4 for one θ₁: raw rows ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q = np.empty((MAX_ROWS, 6))
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _parallel_complete(cf, T06, t1, shoulder, q6_ref, Q, codes, degen, 0)
+    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+
+
+@njit
+def parallel_axes_rows(cf: np.ndarray, T06: np.ndarray, q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every raw row of the three-parallel-axes method: ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q = np.empty((MAX_ROWS, 6))
+    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen)
+    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
 
 
 @njit
