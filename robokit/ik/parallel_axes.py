@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS
+from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, pack_offsets_and_twists
 from robokit.ik.solution import Row
 from robokit.ik.solver import PositionBranch
 
@@ -151,20 +151,7 @@ class ParallelAxesSolver:
         self._cf: np.ndarray | None = None
 
     def constants(self) -> ParallelAxesConstants:
-        """The solver's constants as an immutable record (what the kernel and the C emitter read).
-
-        Returns
-        -------
-        ParallelAxesConstants
-
-        Examples
-        --------
-        >>> import robokit
-        >>> from robokit.ik._dh_chain import DHChain
-        >>> from robokit.description.urdf_to_dh import dh_from_urdf
-        >>> round(ParallelAxesSolver(DHChain(dh_from_urdf(robokit.load("ur5"), "standard").table)).constants().a2, 3)
-        0.425
-        """
+        """This solver's :class:`ParallelAxesConstants` (what the kernel and the C emitter read)."""
         w6 = self.w6_list
         return ParallelAxesConstants(
             th0=tuple(self.th0_list), d0=tuple(float(v) for v in self.chain.d0), ca=tuple(self.ca),
@@ -176,9 +163,7 @@ class ParallelAxesSolver:
         packed into flat arrays."""
         k = self.constants()
         ci = np.array([1, 0, 1, 0, 0, 0], dtype=np.int64)
-        cf = np.zeros(64)
-        cf[0:6], cf[6:12] = k.th0, k.d0
-        cf[12:17], cf[17:22] = k.ca, k.sa
+        cf = pack_offsets_and_twists(k.th0, k.d0, k.ca, k.sa)
         cf[22:31] = k.a1, k.a2, k.a3, k.a4, k.a5, k.d1, k.d5, k.d6, k.KW
         cf[31:34] = k.w6
         cf[34], cf[35] = k.s2, k.sig
@@ -189,27 +174,6 @@ class ParallelAxesSolver:
         if self._cf is None:
             self._cf = self.kernel_constants()[1]
         return self._cf
-
-    def solve(self, T06: np.ndarray, wrist_ref: float) -> list[Row]:
-        """Rows (q (6,), label, degenerate) of every solution for the pose T06 (frame 0′).
-
-        Runs :func:`robokit.kernels.closed_form.parallel_axes_rows` (the one implementation).
-
-        Parameters
-        ----------
-        T06 : (4, 4) ndarray
-            Target of ``Z₁X₁ ⋯ Z₆`` in frame 0′ (m).
-        wrist_ref : float
-            q₆ at the singularity (rad).
-
-        Returns
-        -------
-        list of Row
-        """
-        from robokit.kernels.closed_form import parallel_axes_rows
-
-        Q, codes, degen = parallel_axes_rows(self._packed(), np.ascontiguousarray(T06, dtype=float), float(wrist_ref))
-        return _rows(Q, codes, degen)
 
     def position(self, T06: np.ndarray) -> list[PositionBranch]:
         """θ₁ from W's coordinate along the parallel axes (step 1): the shoulder branches.
@@ -263,6 +227,8 @@ class ParallelAxesSolver:
     def joint_angles(self, T06: np.ndarray, wrist_ref: float) -> list[Row]:
         """Every row ``(q (6,), label, degenerate)`` reaching ``T06`` (2 × 2 × 2 in general).
 
+        Runs :func:`robokit.kernels.closed_form.parallel_axes_rows` (the one implementation).
+
         Parameters
         ----------
         T06 : (4, 4) ndarray
@@ -274,7 +240,13 @@ class ParallelAxesSolver:
         -------
         list of Row
         """
-        return self.solve(T06, wrist_ref)
+        from robokit.kernels.closed_form import parallel_axes_rows
+
+        Q, codes, degen = parallel_axes_rows(self._packed(), np.ascontiguousarray(T06, dtype=float), float(wrist_ref))
+        return _rows(Q, codes, degen)
+
+    #: The same as :meth:`joint_angles`.
+    solve = joint_angles
 
     def refusal(self) -> str | None:
         """None: the detection of three parallel axes is all this method needs.

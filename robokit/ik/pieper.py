@@ -86,6 +86,15 @@ def _rz_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
 
 
 
+def pack_offsets_and_twists(th0: Sequence[float], d0: Sequence[float], ca: Sequence[float],
+                            sa: Sequence[float]) -> np.ndarray:
+    """The kernel's float constants (64,) with the layout both closed-form kernels share filled in:
+    θ₀ (6), d₀ (6), cos α (5), sin α (5) (:mod:`robokit.kernels.closed_form`)."""
+    cf = np.zeros(64)
+    cf[0:6], cf[6:12], cf[12:17], cf[17:22] = th0, d0, ca, sa
+    return cf
+
+
 Triple = tuple[float, float, float]
 
 
@@ -303,19 +312,7 @@ class PieperSolver:
         self._kernel_args: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def constants(self) -> PieperConstants:
-        """The solver's constants as an immutable record (what the kernel and the C emitter read).
-
-        Returns
-        -------
-        PieperConstants
-
-        Examples
-        --------
-        >>> import robokit
-        >>> from robokit.ik._dh_chain import DHChain
-        >>> PieperSolver(DHChain(robokit.load("puma560").dh)).constants().w6
-        (0.0, 0.0, 0.0)
-        """
+        """This solver's :class:`PieperConstants` (what the kernel and the C emitter read)."""
         assert self.case is not None  # set in __init__
         rr = self.j1 == "R" and self.j2 == "R"
         return PieperConstants(
@@ -333,9 +330,7 @@ class PieperSolver:
         packed into flat arrays (the layout of :mod:`robokit.kernels.closed_form`)."""
         k = self.constants()
         ci = np.array([0, _CASES.index(k.case), int(k.kinds[2] == "R"), k.deg, len(k.C), 0], dtype=np.int64)
-        cf = np.zeros(64)
-        cf[0:6], cf[6:12] = k.th0, k.d0
-        cf[12:17], cf[17:22] = k.ca, k.sa
+        cf = pack_offsets_and_twists(k.th0, k.d0, k.ca, k.sa)
         cf[22:26] = k.a1, k.a2, k.d1, k.d2
         cf[26:29], cf[29:32] = k.w3, k.w6
         cf[32:41] = k.f[0] + k.f[1] + k.f[2]

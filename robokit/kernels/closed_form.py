@@ -46,7 +46,7 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
-           "pieper_position", "pieper_wrist", "pieper_rows", "pieper_wrist_centre", "parallel_axes_position",
+           "pieper_position", "pieper_wrist", "pieper_rows", "parallel_axes_position",
            "parallel_axes_wrist", "parallel_axes_rows",
            "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
@@ -326,6 +326,18 @@ def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, 
 
 
 @njit
+def _raw_rows() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Buffers for a solver's raw rows: q (MAX_ROWS, 6), branch codes (MAX_ROWS, 3), degenerate (MAX_ROWS,)."""
+    return (np.empty((MAX_ROWS, 6)), np.empty((MAX_ROWS, 3), dtype=np.int64), np.empty(MAX_ROWS, dtype=np.bool_))
+
+
+@njit
+def _first(n: int, Q: np.ndarray, codes: np.ndarray, degen: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Copies of the first n raw rows (what the raw-row kernels return to Python)."""
+    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+
+
+@njit
 def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
     """Real roots of A x² + B x + C (A ≠ 0) into ``out`` (the cancellation-free pair); their count."""
     disc = B * B - 4.0 * A * C
@@ -563,20 +575,9 @@ def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
                 q4_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
     limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
-    Q = np.empty((MAX_ROWS, 6))
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    Q, codes, degen = _raw_rows()
     n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen)
-    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
-
-
-@njit
-def pieper_wrist_centre(cf: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """⁰W (3,) at the joint values q (3,) of joints 1–3 (the position sub-problem's forward map)."""
-    th, dd, W = np.empty(3), np.empty(3), np.empty(3)
-    _angles(cf, q, th, dd)
-    _wrist_point(cf, th, dd, W)
-    return W
+    return _first(n, Q, codes, degen)
 
 
 @njit
@@ -706,21 +707,17 @@ def parallel_axes_position(cf: np.ndarray, T06: np.ndarray) -> tuple[np.ndarray,
 def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: int,
                         q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Steps 2–4 for one θ₁: raw rows ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
-    Q = np.empty((MAX_ROWS, 6))
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    Q, codes, degen = _raw_rows()
     n = _parallel_complete(cf, T06, t1, shoulder, q6_ref, Q, codes, degen, 0)
-    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+    return _first(n, Q, codes, degen)
 
 
 @njit
 def parallel_axes_rows(cf: np.ndarray, T06: np.ndarray, q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every raw row of the three-parallel-axes method: ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
-    Q = np.empty((MAX_ROWS, 6))
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    Q, codes, degen = _raw_rows()
     n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen)
-    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+    return _first(n, Q, codes, degen)
 
 
 @njit
@@ -897,9 +894,7 @@ def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: n
 @njit
 def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, pre, post, post_q = _unpack(K)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    rows, rcodes, rdegen = _raw_rows()
     m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
     return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
 
@@ -907,9 +902,7 @@ def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarr
 @njit
 def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, pre, post, post_q = _unpack(K)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    rows, rcodes, rdegen = _raw_rows()
     m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
     return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
 
