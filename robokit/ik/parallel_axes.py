@@ -47,10 +47,8 @@ class ParallelAxesConstants:
 
     Attributes
     ----------
-    th0, d0 : tuple of float
-        The chain's six joint offsets θ₀ (rad) and d₀ (m).
-    ca, sa : tuple of float
-        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    th0, d0, ca, sa : tuple of float
+        Joint offsets and twists, as :class:`robokit.ik.pieper.PieperConstants`'s.
     s2, sig : float
         ±1: the sign of cos α₂ (α₂ = 0 or π) and of cos α₂ · cos α₃.
     a1, a2, a3, a4, a5 : float
