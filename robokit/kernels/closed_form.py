@@ -1,9 +1,16 @@
 r"""The closed-form inverse kinematics of Lecture 5 in compiled code: Pieper's spherical wrist
 and the three-parallel-axes (UR) method, per pose and batched over (N, 4, 4) targets.
 
-These kernels are the same algorithms as :mod:`robokit.ik.pieper` and
-:mod:`robokit.ik.parallel_axes` (which stay the readable reference; a test checks that both
-give the same solutions, in the same order, to 1e-9), written over flat arrays:
+This module **is** the algorithm — the one implementation of both methods, in Python and
+compiled alike (``NUMBA_DISABLE_JIT=1`` runs this very source as plain Python; the tests check
+every solution against Pinocchio). :mod:`robokit.ik.pieper` and :mod:`robokit.ik.parallel_axes`
+only build the constants (:class:`robokit.ik.pieper.PieperConstants`,
+:class:`robokit.ik.parallel_axes.ParallelAxesConstants`) and call the raw-row kernels here
+(``pieper_position``/``pieper_wrist``/``pieper_rows``, ``parallel_axes_position``/
+``parallel_axes_wrist``/``parallel_axes_rows``: the position and wrist sub-problems of
+:class:`robokit.ik.solver.ClosedFormSolver`). Pieper's method covers every case: revolute or
+prismatic joints 1–3 (``ci[1]``: 0 RR-quartic, 1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1,
+5 RP-quartic, 6 RP-c1, 7 PP). Over flat arrays:
 
 * the solver's constants are computed once per robot by the solver objects
   (``PieperSolver.kernel_constants()``, ``ParallelAxesSolver.kernel_constants()``: an int
