@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, pack_offsets_and_twists
+from robokit.ik.pieper import ChainNumbers, ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, pack_offsets_and_twists
 from robokit.ik.solution import Row
 from robokit.ik.solver import PositionBranch
 
@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
-class ParallelAxesConstants:
+class ParallelAxesConstants(ChainNumbers):
     r"""The numbers of the three-parallel-axes method for one canonical chain (module docstring).
 
     What :class:`ParallelAxesSolver` exports (:meth:`ParallelAxesSolver.constants`) for the
@@ -48,7 +48,7 @@ class ParallelAxesConstants:
     Attributes
     ----------
     th0, d0, ca, sa : tuple of float
-        Joint offsets and twists, as :class:`robokit.ik.pieper.PieperConstants`'s.
+        Joint offsets and twists (:class:`robokit.ik.pieper.ChainNumbers`).
     s2, sig : float
         ±1: the sign of cos α₂ (α₂ = 0 or π) and of cos α₂ · cos α₃.
     a1, a2, a3, a4, a5 : float
@@ -70,10 +70,6 @@ class ParallelAxesConstants:
     (1.0, 1.0)
     """
 
-    th0: tuple[float, ...]
-    d0: tuple[float, ...]
-    ca: tuple[float, ...]
-    sa: tuple[float, ...]
     s2: float
     sig: float
     a1: float
@@ -200,20 +196,8 @@ class ParallelAxesSolver:
         """θ₅, θ₆ and the planar θ₂–θ₄ (steps 2–4) for one θ₁: rows ``(q (6,), label, degenerate)``.
 
         At the singularity (axis 6 parallel to the parallel axes) ``q₆ = wrist_ref``. Runs
-        :func:`robokit.kernels.closed_form.parallel_axes_wrist`.
-
-        Parameters
-        ----------
-        T06 : (4, 4) ndarray
-            The target of :meth:`position`.
-        branch : PositionBranch
-            One of its branches.
-        wrist_ref : float
-            q₆ at the singularity (rad).
-
-        Returns
-        -------
-        list of Row
+        :func:`robokit.kernels.closed_form.parallel_axes_wrist`. Parameters
+        and result as :meth:`robokit.ik.solver.ClosedFormSolver.wrist`.
         """
         from robokit.kernels.closed_form import parallel_axes_wrist
 

@@ -103,7 +103,26 @@ def _triple(x: Sequence[float] | np.ndarray) -> Triple:
 
 
 @dataclass(frozen=True)
-class PieperConstants:
+class ChainNumbers:
+    """The joint offsets and twists of a canonical chain ``Z₁X₁ ⋯ Z₆`` that every closed-form
+    method's constants start with.
+
+    Attributes
+    ----------
+    th0, d0 : tuple of float
+        The chain's six joint offsets θ₀ (rad) and d₀ (m).
+    ca, sa : tuple of float
+        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    """
+
+    th0: tuple[float, ...]
+    d0: tuple[float, ...]
+    ca: tuple[float, ...]
+    sa: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class PieperConstants(ChainNumbers):
     r"""The numbers Pieper's method needs for one canonical chain, computed once (module docstring).
 
     What :class:`PieperSolver` exports (:meth:`PieperSolver.constants`) for the compiled kernel
@@ -124,10 +143,8 @@ class PieperConstants:
     C : tuple of tuple of float
         The polynomial's coefficients (low → high) are ``Σₖ mₖ C[k]`` for the monomials m of
         the wrist centre of ``case`` (e.g. ``(r², r, h², h, 1)`` for ``"RR-quartic"``).
-    th0, d0 : tuple of float
-        The chain's six joint offsets θ₀ (rad) and d₀ (m).
-    ca, sa : tuple of float
-        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    th0, d0, ca, sa : tuple of float
+        Joint offsets and twists (:class:`ChainNumbers`).
     a1, a2, d1, d2 : float
         Lengths of links 1, 2 and offsets d₁, d₂ (m).
     w3, w6 : tuple of float
@@ -158,10 +175,6 @@ class PieperConstants:
     deg: int
     kinds: tuple[str, str, str]
     C: tuple[tuple[float, ...], ...]
-    th0: tuple[float, ...]
-    d0: tuple[float, ...]
-    ca: tuple[float, ...]
-    sa: tuple[float, ...]
     a1: float
     a2: float
     d1: float
@@ -414,21 +427,8 @@ class PieperSolver:
     def wrist(self, T06: np.ndarray, branch: PositionBranch, wrist_ref: float) -> list[Row]:
         """The wrist's (q₄, q₅, q₆) for one position branch: ``M = R₃ᵀR₀₆`` (flip/no flip).
 
-        Runs :func:`robokit.kernels.closed_form.pieper_wrist`.
-
-        Parameters
-        ----------
-        T06 : (4, 4) ndarray
-            The target of :meth:`position`.
-        branch : PositionBranch
-            One of its branches.
-        wrist_ref : float
-            q₄ at a wrist singularity (rad).
-
-        Returns
-        -------
-        list of Row
-            Rows ``(q (6,), label, degenerate)``.
+        Runs :func:`robokit.kernels.closed_form.pieper_wrist`. Parameters
+        and result as :meth:`robokit.ik.solver.ClosedFormSolver.wrist`.
         """
         from robokit.kernels.closed_form import pieper_wrist
 
