@@ -180,7 +180,7 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
     Returns
     -------
     thetalist : (n,) ndarray
-        The joint values (rad / m; revolute angles wrapped to (−π, π]).
+        As :func:`ikin_body`'s (rad / m; revolute angles wrapped to (−π, π]).
     success : bool
         False (no exception) when the iteration does not converge (e.g. an unreachable target);
         ``thetalist`` is then the best iterate seen.

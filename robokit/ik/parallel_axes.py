@@ -177,7 +177,7 @@ class ParallelAxesSolver:
         Parameters
         ----------
         T06 : (4, 4) ndarray
-            Target of ``Z₁X₁ ⋯ Z₆`` in frame 0′ (m).
+            Target of the canonical chain (m, frame 0′).
 
         Returns
         -------

@@ -413,7 +413,7 @@ class PieperSolver:
 
         Returns
         -------
-        list of PositionBranch
+        branches : list of PositionBranch
             ``q`` (3,) joint variables 1–3, ``label`` e.g. ``"right, elbow up, "``,
             ``data`` the rotation angles θ₁–θ₃ (offsets included).
         """
