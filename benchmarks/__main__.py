@@ -5,7 +5,7 @@ Each benchmark module has ``main(argv)``; they are run in turn in this process.
 import importlib
 import sys
 
-MODULES = ["benchmarks.startup", "benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
+MODULES = ["benchmarks.startup", "benchmarks.targets", "benchmarks.kernels", "benchmarks.ik", "benchmarks.lm_damping", "benchmarks.ik_analytic", "benchmarks.ik_closed_form",
            "benchmarks.speed", "benchmarks.control", "benchmarks.calibration", "benchmarks.calibrated_ik", "benchmarks.motion",
            "benchmarks.input_checks", "benchmarks.degrees", "benchmarks.seed_args",
            "benchmarks.board", "benchmarks.teach_wasm"]

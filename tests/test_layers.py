@@ -109,9 +109,6 @@ HELPERS = {u for u, layer in LAYER.items() if layer == 0}
 #: Reads of another subpackage's private state that remain, each with its reason; an entry
 #: that no longer matches anything fails too (delete it when its fix lands).
 JUSTIFIED_PRIVATE: dict[tuple[str, str], str] = {
-    ("robokit.codegen._solver_constants", "_flip"):
-        "codegen reads the closed-form solver's state; issue 41 point 4 (a typed ik → codegen contract) removes it",
-    ("robokit.codegen._solver_constants", "_free_flipped"): "the same (issue 41 point 4)",
     ("robokit.validation", "_jit"):
         "validate holds the compile notices while its table prints (held_notices lives beside the notices it holds; "
         "a public wrapper in robokit.kernels would close an import cycle kernels -> _jit -> kernels)",

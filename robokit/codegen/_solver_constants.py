@@ -1,30 +1,23 @@
 """The closed-form IK constants the C emitter reads, gathered in one place (no public names).
 
-This is the only module of :mod:`robokit.codegen` that knows how :mod:`robokit.ik` holds a
-robot's closed-form solver. It asks robokit's public interface for the solver — the
-:class:`robokit.ik.AnalyticIK` object of ``robokit.ik.analytic_ik(robot)`` where robokit has it,
-else the model ``robokit.ik_analytic_kind`` caches on the robot — and copies the solver's
-numbers into a plain :class:`IKConstants`. If the solvers' internals change, this is the one
-place to follow them; if a number is missing, the generated files say ``NAME_HAS_IK 0`` and
-why (kinematics and dynamics are generated regardless).
-
-Read from the closed-form object: ``kind`` (method, reason), ``reversed``, ``chain.kinds``,
-the flipped joints (``_flip``, ``_free_flipped``: DH joints with ``flip: true``, solved as
-q′ = −q), ``solver.chain`` (``kinds``, ``th0``, ``d0``, ``base_inv``, ``tool_inv``, ``scale``)
-and the solver's constants (Pieper: ``case``, ``deg``, ``C_list``, ``w6_list``, ``w3_list``,
-``th0_list``, ``d0_list``, ``ca``, ``sa``, ``a1``, ``a2``, ``d1``, ``d2``, ``f``, ``Ka``,
-``phi``, ``nf2``, ``v``, ``j1``, ``j2``, ``ca4``…``sa5``; three parallel axes: ``ca``, ``sa``,
-``s2``, ``sig``, ``a1``…``a5``, ``d1``, ``d5``, ``d6``, ``KW``, ``w6_list``, ``th0_list``; general
-6R: the dict of ``GeneralSixR.export_constants()`` — the scaled chain, the tolerances and the
-four best readings' tables).
-The joint limits are the robot's own (``robot.qlim``).
+Everything comes through robokit's typed contract, :func:`robokit.ik.closed_form_constants`
+(a frozen :class:`robokit.ik.ClosedFormConstants` with the method's own frozen dataclass:
+:class:`robokit.ik.pieper.PieperConstants`, :class:`robokit.ik.parallel_axes.ParallelAxesConstants`),
+re-shaped into the plain :class:`IKConstants` the emitters use (the joint limits are the
+robot's own, ``robot.qlim``). If a robot has no closed form, or its DH table cannot be
+extracted, the generated files say ``NAME_HAS_IK 0`` and why (kinematics and dynamics are
+generated regardless).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Mapping
 
 import numpy as np
+
+from robokit.ik import ClosedFormConstants, closed_form_constants
+from robokit.ik.parallel_axes import ParallelAxesConstants
+from robokit.ik.pieper import PieperConstants
 
 
 @dataclass
@@ -42,33 +35,18 @@ class IKConstants:
     base_inv: np.ndarray | None = None
     tool_inv: np.ndarray | None = None
     scale: float = 1.0
-    solver: dict[str, Any] = field(default_factory=dict)
+    #: Pieper's constants (method "spherical wrist"), else None.
+    pieper: PieperConstants | None = None
+    #: The three-parallel-axes constants (method "three parallel axes"), else None.
+    parallel: ParallelAxesConstants | None = None
+    #: The general 6R solver's export (method "general 6R": ``GeneralSixR.export_constants()``, read-only).
+    solver: Mapping[str, Any] = field(default_factory=dict)
     flip: list[bool] | None = None  # joints solved as q' = -q (in the robot's order)
     free_flipped: bool = False  # wrist_ref's joint is flipped: the solver gets -wrist_ref
     #: A calibrated or nearly special arm (robokit.ik.calibrated): the fields above are then the
-    #: closed form of its projected arm (the starts), and this dict holds the polish's numbers
+    #: closed form of its projected arm (the starts), and this mapping holds the polish's numbers
     #: (method, reason, shoulder, reach and the kernel's tolerances); None otherwise.
-    calibrated: dict[str, Any] | None = None
-
-
-_PIEPER = ("case", "deg", "C_list", "w6_list", "w3_list", "th0_list", "d0_list", "ca", "sa", "a1", "a2", "d1",
-           "d2", "f", "v", "ca4", "sa4", "ca5", "sa5", "j1", "j2")
-_PARALLEL = ("ca", "sa", "s2", "sig", "a1", "a2", "a3", "a4", "a5", "d1", "d5", "d6", "KW", "w6_list", "th0_list")
-
-
-def _closed_form(robot: Any, nominal: Any = None) -> tuple[Any, Any, Any, bool]:
-    """(kind, solver, chain of the robot, reversed) from robokit's closed-form IK object."""
-    import robokit.ik as rik
-
-    maker = getattr(rik, "analytic_ik", None)
-    if maker is not None:  # the AnalyticIK object
-        ik = maker(robot, nominal) if nominal is not None else maker(robot)
-        return ik.kind, ik.solver, ik, bool(ik.reversed)
-    kind = rik.ik_analytic_kind(robot)  # builds and caches the closed-form model on the robot
-    model = getattr(robot, "_closed_form", None)
-    if model is None:
-        return kind, None, None, False
-    return kind, model.solver, model, bool(model.reversed)
+    calibrated: Mapping[str, Any] | None = None
 
 
 def ik_constants(robot: Any, nominal: Any = None) -> IKConstants:
@@ -87,50 +65,23 @@ def ik_constants(robot: Any, nominal: Any = None) -> IKConstants:
         ``calibrated`` holding the polish's numbers.
     """
     try:
-        kind, solver, owner, rev = _closed_form(robot, nominal)
+        c = closed_form_constants(robot, nominal)
     except ValueError as exc:  # e.g. a robot whose DH table cannot be extracted
         return IKConstants(None, str(exc))
-    cal = getattr(owner, "calibrated", None)
-    if kind and cal is not None:
-        try:
-            nom = cal.nominal
-            out = _read(robot, nom.kind, nom.solver, nom, bool(nom.reversed))
-            out.calibrated = cal.export_constants()
-            return out
-        except (AttributeError, KeyError, TypeError) as exc:
-            return IKConstants(None, f"robokit's calibrated IK ({kind.method}) does not expose the constants the "
-                                     f"C emitter reads ({type(exc).__name__}: {exc}); please report")
-    if not kind or solver is None:
-        return IKConstants(None, kind.reason)
-    try:
-        return _read(robot, kind, solver, owner, rev)
-    except (AttributeError, KeyError, TypeError) as exc:  # the solver's internals moved: say so, keep FK etc.
-        return IKConstants(None, f"robokit's closed-form solver ({kind.method}) does not expose the constants "
-                                 f"the C emitter reads ({type(exc).__name__}: {exc}); please report")
+    if c.method is None or (c.solver is None and c.general_6r is None):
+        return IKConstants(None, c.reason)
+    return _read(robot, c)
 
 
-def _read(robot: Any, kind: Any, sv: Any, owner: Any, reversed_: bool) -> IKConstants:
-    sc = sv.chain  # the chain the solver solves (read backwards when reversed)
-    kinds = [str(k) for k in (sc.kinds[::-1] if reversed_ else sc.kinds)]  # the robot's own order
+def _read(robot: Any, c: ClosedFormConstants) -> IKConstants:
+    kinds = list(c.kinds[::-1] if c.reversed else c.kinds)  # the robot's own order
     qlim = np.asarray(robot.qlim, dtype=float)
     lims = [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]  # the within_limits tolerance
-    flip = getattr(owner, "_flip", None)
-    out = IKConstants(kind.method, kind.reason, reversed_, [k == "R" for k in kinds], lims,
-                      [str(k) for k in sc.kinds], [float(x) for x in sc.th0], [float(x) for x in sc.d0],
-                      None if sc.base_inv is None else np.array(sc.base_inv, dtype=float),
-                      None if sc.tool_inv is None else np.array(sc.tool_inv, dtype=float), float(sc.scale),
-                      flip=None if flip is None else [bool(f) for f in flip],
-                      free_flipped=bool(getattr(owner, "_free_flipped", False)))
-    if kind.method == "general 6R":  # the elimination's per-arm numbers, through its one export method
-        out.solver.update(sv.export_constants())
-        return out
-    names = _PIEPER if kind.method == "spherical wrist" else _PARALLEL
-    for name in names:
-        out.solver[name] = getattr(sv, name)
-    if kind.method == "spherical wrist":
-        if sv.j2 == "R" and sv.j1 == "R":
-            out.solver["Ka"] = np.asarray(sv.Ka, dtype=float)
-        if sv.j2 == "P":
-            out.solver["phi"] = tuple(np.asarray(x, dtype=float) for x in sv.phi)
-            out.solver["nf2"] = np.asarray(sv.nf2, dtype=float)
-    return out
+    return IKConstants(
+        c.method, c.reason, c.reversed, [k == "R" for k in kinds], lims, list(c.kinds), list(c.th0), list(c.d0),
+        None if c.base_inv is None else np.array(c.base_inv, dtype=float),
+        None if c.tool_inv is None else np.array(c.tool_inv, dtype=float), c.scale,
+        pieper=c.solver if isinstance(c.solver, PieperConstants) else None,
+        parallel=c.solver if isinstance(c.solver, ParallelAxesConstants) else None,
+        solver=c.general_6r if c.general_6r is not None else {},
+        flip=None if c.flip is None else list(c.flip), free_flipped=c.free_flipped, calibrated=c.calibrated)

@@ -40,6 +40,7 @@ from typing import Any
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
 from robokit.codegen import ik_calibrated, ik_general
 from robokit.codegen._solver_constants import IKConstants, ik_constants
+from robokit.ik.pieper import PieperConstants
 from robokit.codegen.kinematics import Pose, compose
 
 __all__ = ["IKCode", "emit_ik", "MAX_SOLUTIONS"]
@@ -156,7 +157,8 @@ def _method_line(k: IKConstants, has_ik: bool) -> str:
         return ("general 6R (Raghavan-Roth elimination, Manocha-Canny 24 x 24 eigenproblem by Francis QR, Newton "
                 "polish), up to 16 solutions")
     if k.method == "spherical wrist":
-        deg = int(k.solver["deg"])
+        assert k.pieper is not None  # the spherical wrist's constants
+        deg = k.pieper.deg
         roots = ("the quartic's roots by Ferrari's closed form" if deg == 4
                  else f"a polynomial of degree {deg} in closed form")
         return f"Pieper's method (spherical wrist, Lecture 5), {roots}{rev}, up to 8 solutions"
@@ -618,9 +620,8 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         sign = (-1 if k.reversed else 1) * (-1 if k.free_flipped else 1)
         wref = "-wrist_ref" if sign < 0 else "wrist_ref"
         src = [self.tables()]
-        quartic = k.method == "spherical wrist" and int(k.solver["deg"]) == 4
-        if not (k.method == "spherical wrist" and k.solver["case"] in ("RR-quartic", "PR-quartic", "RP-quartic",
-                                                                        "RP-c1", "PP")):
+        quartic = k.pieper is not None and k.pieper.deg == 4
+        if not (k.pieper is not None and k.pieper.case in ("RR-quartic", "PR-quartic", "RP-quartic", "RP-c1", "PP")):
             src.append(self.helpers())  # a cos t + b sin t = c
         if k.method == "spherical wrist":
             if quartic:
@@ -662,10 +663,11 @@ def _val(coef: Any, kind: str, x: str, c: str, s: str) -> Val:
 
 def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
-    w3 = [float(x) for x in sv["w3_list"]]
-    a1, a2 = float(sv["a1"]), float(sv["a2"])
+    sv = k.pieper
+    assert sv is not None  # the spherical wrist's constants
+    ca, sa = list(sv.ca), list(sv.sa)
+    w3 = list(sv.w3)
+    a1, a2 = sv.a1, sv.a2
     th0, d0 = k.th0, k.d0
     ang = []
     for i in range(3):
@@ -674,7 +676,7 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         else:
             ang.append(f"    th[{i}] = {lit(th0[i])};\n    dd[{i}] = {lit(d0[i])} + q[{i}];")
     angles = "\n".join(ang)
-    ca4, sa4, ca5, sa5 = (float(sv[x]) for x in ("ca4", "sa4", "ca5", "sa5"))
+    ca4, sa4, ca5, sa5 = ca[3], sa[3], ca[4], sa[4]
     kk = sa4 * sa5
     right = ca4 == 0.0 and ca5 == 0.0
     if right:
@@ -851,22 +853,18 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
     return a + mid + b
 
 
-def _pieper(e: _Emitter, T06: Pose) -> str:
-    """Body of the Pieper solve (``PieperSolver.position`` then the wrist): rows[], lab[], deg[], nr."""
-    k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    case = str(sv["case"])
-    deg = int(sv["deg"])
-    C = [[float(x) for x in row] for row in sv["C_list"]]
-    w6 = [snap(float(x)) for x in sv["w6_list"]]
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
-    ca1, sa1 = ca[0], sa[0]
-    a1, a2, d1, d2 = (float(sv[x]) for x in ("a1", "a2", "d1", "d2"))
-    f1c, f2c, f3c = sv["f"]
-    vv = [float(x) for x in sv["v"]]
-    th0, d0 = k.th0, k.d0
-    j1, j2, kind3 = k.kinds[0], k.kinds[1], k.kinds[2]
-    scale = k.scale
+_MONOMIALS: dict[str, list[Val]] = {
+    "RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0], "RR-s1": ["h", 1.0],
+    "RP-quartic": ["r", "h * h", "h", 1.0], "RP-c1": ["h", 1.0],
+    "PR-quartic": ["X * X", "yp * yp", "yp", 1.0], "PR-c1": ["yp", 1.0], "PP": ["X", 1.0]}
+
+
+def _pieper_polynomial(e: _Emitter, sv: PieperConstants, T06: Pose) -> tuple[str, list[Val]]:
+    """C of the wrist centre W, its invariants (h, r; or x′, y′, X for a prismatic joint 1) and the
+    joint-3 polynomial's coefficients pc[]; returns the C and W's three entries."""
+    C = [list(row) for row in sv.C]
+    w6 = [snap(x) for x in sv.w6]
+    case, deg, kind3 = sv.case, sv.deg, sv.kinds[2]
     w = CWriter()
     R = T06.R
     W = [w.let(f"W{i}", lin([(w6[0], R[i][0]), (w6[1], R[i][1]), (w6[2], R[i][2]), (1.0, T06.p[i])]))
@@ -875,27 +873,28 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         w.line(f"W[{i}] = {_c(W[i])};")
         for j in range(3):
             w.line(f"R06[{3 * i + j}] = {_c(R[i][j])};")
-    if j1 == "R":
+    if sv.kinds[0] == "R":
         w.comment("wrist centre W = T06 6W; Lecture 5: h = Wz - d1, r = Wx^2 + Wy^2 + h^2 (invariant under joint 1)")
-        w.line(f"const double h = {_c(lin([(1.0, W[2])], -d1))};")
+        w.line(f"const double h = {_c(lin([(1.0, W[2])], -sv.d1))};")
         w.line(f"const double r = {_c(W[0])} * {_c(W[0])} + {_c(W[1])} * {_c(W[1])} + h * h;")
     else:
-        c0, s0 = math.cos(th0[0]), math.sin(th0[0])
+        c0, s0 = math.cos(sv.th0[0]), math.sin(sv.th0[0])
         w.comment("wrist centre W = T06 6W; prismatic joint 1: (x', y') = W in frame 0' turned by th1's offset")
         w.line(f"const double xp = {_c(lin([(c0, W[0]), (s0, W[1])]))};")
         w.line(f"const double yp = {_c(lin([(-s0, W[0]), (c0, W[1])]))};")
-        w.line(f"const double X = xp - {lit(a1)};")
-    monomials: dict[str, list[Val]] = {
-        "RR-quartic": ["r * r", "r", "h * h", "h", 1.0], "RR-a1": ["r", 1.0], "RR-s1": ["h", 1.0],
-        "RP-quartic": ["r", "h * h", "h", 1.0], "RP-c1": ["h", 1.0],
-        "PR-quartic": ["X * X", "yp * yp", "yp", 1.0], "PR-c1": ["yp", 1.0], "PP": ["X", 1.0]}
-    m_names = monomials[case]
+        w.line(f"const double X = xp - {lit(sv.a1)};")
     w.comment(f"joint 3 from a polynomial of degree {deg} in {'u = tan(th3/2)' if kind3 == 'R' else 'd3'} "
               f"({case}): its coefficients are linear in these monomials of W")
     for j in range(deg + 1):
-        terms: list[tuple[float, Val]] = [(C[m][j], mk) for m, mk in enumerate(m_names)]
+        terms: list[tuple[float, Val]] = [(C[m][j], mk) for m, mk in enumerate(_MONOMIALS[case])]
         w.line(f"pc[{j}] = {_c(lin(terms))};")
-    body = w.text()
+    return w.text(), W
+
+
+def _pieper_joint3_roots(e: _Emitter, sv: PieperConstants) -> str:
+    """C of the polynomial's real roots as joint-3 values x3s[] (the kernel's ``_roots``)."""
+    P, t = e.P, e.tol
+    deg, kind3 = sv.deg, sv.kinds[2]
     ang = "2.0 * atan(ts[i])" if kind3 == "R" else "ts[i]"
     extra = (f"""        if (dg < {deg}) {{
             x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
@@ -906,132 +905,8 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
                 nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* or numerically: real roots, increasing */
             }}
         }}""" if deg == 4 else "")
-    cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
-    fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
-             for name, coef in (("f1", f1c), ("f2", f2c), ("f3", f3c))]
-    # candidates (q2, g1, g2, g3) for this joint-3 value
-    if j2 == "R":
-        if j1 == "R":
-            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
-        const double ra = r - ({_c(_val(sv["Ka"], kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
-            sa_, sb_ = 2.0 * a1, sa1
-        else:
-            ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
-        const double ra = X, rb = {_f([(1.0, "yp"), (sa1, "F3")])};""")
-            sa_, sb_ = 1.0, ca1
-        if case in ("RR-quartic", "PR-quartic"):
-            th2 = f"""        if (f1 * f1 + f2 * f2 > {t(1e-24)} * {lit(scale * scale)}) {{
-            const double A = ra / {lit(sa_)}, B = rb / {lit(sb_)};
-            t2s[0] = atan2(f1 * B - f2 * A, f1 * A + f2 * B);
-        }} else {{
-            t2s[0] = {lit(th0[1])};
-            degenerate = 1;
-        }}
-        nt2 = 1;"""
-        elif case == "RR-a1":  # sb (F2 c2 + F1 s2) = rb
-            th2 = f"        nt2 = {P}_trig_roots({_f([(sb_, 'f2')])}, {_f([(sb_, 'f1')])}, rb, {t(1e-10)}, t2s);"
-        else:  # RR-s1, PR-c1: sa (F1 c2 - F2 s2) = ra
-            th2 = f"        nt2 = {P}_trig_roots({_f([(sa_, 'f1')])}, {_f([(-sa_, 'f2')])}, ra, {t(1e-10)}, t2s);"
-        cands = f"""{ab}
-        double t2s[2];
-        int nt2, i2;
-        (void)ra;
-        (void)rb;
-{th2}
-        if (nt2 < 0) {{
-            t2s[0] = {lit(th0[1])};
-            nt2 = 1;
-            degenerate = 1;
-        }}
-        for (i2 = 0; i2 < nt2; ++i2) {{
-            const double cc2 = cos(t2s[i2]), ss2 = sin(t2s[i2]);
-            const double uu = ss2 * f1 + cc2 * f2;
-            cq2[nc] = {_f([(1.0, "t2s[i2]")], -th0[1])};
-            cg1[nc] = {_f([(1.0, "cc2 * f1"), (-1.0, "ss2 * f2")], a1)};
-            cg2[nc] = {_f([(ca1, "uu"), (-sa1, "F3")])};
-            cg3[nc] = {_f([(sa1, "uu"), (ca1, "F3")])};
-            ++nc;
-        }}"""
-    else:
-        pc1, pc2 = sv["phi"]
-        pv = (f"""        const double p1 = {_c(_val(pc1, kind3, "x3", *cs3))};
-        const double p2 = {_c(_val(pc2, kind3, "x3", *cs3))};
-        double Ds[2];
-        int nD = 0, iD;""")
-        if case == "RP-quartic":
-            dcode = f"        Ds[nD++] = (h - {lit(sa1)} * p2) / {lit(ca1)} - f3;"
-        elif case == "RP-c1":  # D^2 + 2 f3 D + (a1^2 + |f|^2 + 2 a1 p1 - r) = 0
-            dcode = f"""        {{
-            const double nf2 = {_c(_val(sv["nf2"], kind3, "x3", *cs3))};
-            const double B = 2.0 * f3, C0 = {lit(a1 * a1)} + nf2 + {lit(2.0 * a1)} * p1 - r;
-            const double disc = B * B - 4.0 * C0;
-            const double big = B * B > fabs(4.0 * C0) ? B * B : fabs(4.0 * C0);
-            if (!(disc < -{t(1e-12)} * (big > {t(1e-300)} ? big : {t(1e-300)}))) {{
-                const double sq = sqrt(disc > 0.0 ? disc : 0.0);
-                const double qv = -0.5 * (B + (B >= 0.0 ? sq : -sq));
-                if (qv == 0.0) {{
-                    Ds[nD++] = 0.0;
-                }} else {{
-                    Ds[nD++] = qv;
-                    if (sq > 0.0) {{
-                        Ds[nD++] = C0 / qv;
-                    }}
-                }}
-            }}
-        }}"""
-        else:  # PP
-            dcode = f"        Ds[nD++] = ({lit(ca1)} * p2 - yp) / {lit(sa1)} - f3;"
-        cands = f"""{pv}
-{dcode}
-        for (iD = 0; iD < nD; ++iD) {{
-            const double D = Ds[iD];
-            cq2[nc] = {_f([(1.0, "D")], -d0[1])};
-            cg1[nc] = {_f([(1.0, "p1")], a1)};
-            cg2[nc] = {_f([(ca1, "p2"), (-sa1, "(f3 + D)")])};
-            cg3[nc] = {_f([(sa1, "p2"), (ca1, "(f3 + D)")])};
-            ++nc;
-        }}"""
-    if j1 == "R":
-        q1 = f"""            if (sqrt(cg1[ic] * cg1[ic] + cg2[ic] * cg2[ic]) <= {t(1e-12)} * {lit(scale)}) {{
-                q123[0] = 0.0;
-                singular1 = 1;
-            }} else {{
-                q123[0] = {_f([(1.0, "atan2(W[1], W[0])"), (-1.0, "atan2(cg2[ic], cg1[ic])")], -th0[0])};
-            }}"""
-    else:
-        q1 = f"            q123[0] = {_f([(1.0, _c(W[2])), (-1.0, 'cg3[ic]')], -d0[0])};"
-    if deg == 4:
-        accept = f"""            err = {P}_wrist_error(q123, W);
-            if (err > {t(1e-12)} * {lit(scale)}) {{
-                if (err > {t(1e-5)} * {lit(scale)}) {{
-                    continue;  /* a spurious root */
-                }}
-                err = {P}_polish(q123, W);
-                if (err > {t(1e-11)} * {lit(scale)}) {{
-                    continue;
-                }}
-            }}"""
-    else:
-        accept = "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
-    if j1 == "R":
-        shoulder = "            si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
-    else:
-        shoulder = "            si = 0;"
-    if kind3 == "P":
-        elbow = f"            ei = {_f([(1.0, 'q123[2]')], d0[2])} >= 0.0 ? 0 : 1;"
-    else:
-        a2f = a2 if a2 != 0.0 else 1.0
-        elbow = (f"            ei = {_f([(vv[0] * a2f, 'sin(th[2])'), (vv[1] * a2f, 'cos(th[2])')])} > 0.0 ? 0 : 1;"
-                 "  /* elbow down / up */")
-    q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
-    free3 = lit(th0[2]) if kind3 == "R" else "0.0"
-    return f"""    {{
-    double pc[5], ts[5], x3s[6], W[3], R06[9];
-    double scale = 0.0;
-    int dg = {deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;
-{body}
-    (void)W;
-    /* its real roots (robokit's _roots: trailing coefficients below 1e-11 of the largest dropped) */
+    free3 = lit(sv.th0[2]) if kind3 == "R" else "0.0"
+    return f"""    /* its real roots (robokit's _roots: trailing coefficients below 1e-11 of the largest dropped) */
     for (i = 0; i <= {deg}; ++i) {{
         scale = fabs(pc[i]) > scale ? fabs(pc[i]) : scale;
     }}
@@ -1065,7 +940,172 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
             x3s[nx3++] = {ang};
         }}
 {extra}
-    }}
+    }}"""
+
+
+def _pieper_joint2_revolute(e: _Emitter, sv: PieperConstants, cs3: tuple[str, str]) -> str:
+    """C of the candidates (q2, g1, g2, g3) for one joint-3 value when joint 2 is revolute: θ₂ from
+    the r and h equations (RR-quartic, PR-quartic), from eq. b (RR-a1) or from eq. a (RR-s1, PR-c1)."""
+    P, t = e.P, e.tol
+    case, kind3, th0 = sv.case, sv.kinds[2], sv.th0
+    ca1, sa1, a1, d2 = sv.ca[0], sv.sa[0], sv.a1, sv.d2
+    if sv.kinds[0] == "R":
+        assert sv.Ka is not None  # revolute joints 1 and 2
+        ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = r - ({_c(_val(sv.Ka, kind3, "x3", *cs3))}), rb = {_f([(1.0, "h"), (-ca1, "F3")])};""")
+        sa_, sb_ = 2.0 * a1, sa1
+    else:
+        ab = (f"""        const double F3 = {_f([(1.0, "f3")], d2)};
+        const double ra = X, rb = {_f([(1.0, "yp"), (sa1, "F3")])};""")
+        sa_, sb_ = 1.0, ca1
+    if case in ("RR-quartic", "PR-quartic"):
+        th2 = f"""        if (f1 * f1 + f2 * f2 > {t(1e-24)} * {lit(sv.scale * sv.scale)}) {{
+            const double A = ra / {lit(sa_)}, B = rb / {lit(sb_)};
+            t2s[0] = atan2(f1 * B - f2 * A, f1 * A + f2 * B);
+        }} else {{
+            t2s[0] = {lit(th0[1])};
+            degenerate = 1;
+        }}
+        nt2 = 1;"""
+    elif case == "RR-a1":  # sb (F2 c2 + F1 s2) = rb
+        th2 = f"        nt2 = {P}_trig_roots({_f([(sb_, 'f2')])}, {_f([(sb_, 'f1')])}, rb, {t(1e-10)}, t2s);"
+    else:  # RR-s1, PR-c1: sa (F1 c2 - F2 s2) = ra
+        th2 = f"        nt2 = {P}_trig_roots({_f([(sa_, 'f1')])}, {_f([(-sa_, 'f2')])}, ra, {t(1e-10)}, t2s);"
+    return f"""{ab}
+        double t2s[2];
+        int nt2, i2;
+        (void)ra;
+        (void)rb;
+{th2}
+        if (nt2 < 0) {{
+            t2s[0] = {lit(th0[1])};
+            nt2 = 1;
+            degenerate = 1;
+        }}
+        for (i2 = 0; i2 < nt2; ++i2) {{
+            const double cc2 = cos(t2s[i2]), ss2 = sin(t2s[i2]);
+            const double uu = ss2 * f1 + cc2 * f2;
+            cq2[nc] = {_f([(1.0, "t2s[i2]")], -th0[1])};
+            cg1[nc] = {_f([(1.0, "cc2 * f1"), (-1.0, "ss2 * f2")], a1)};
+            cg2[nc] = {_f([(ca1, "uu"), (-sa1, "F3")])};
+            cg3[nc] = {_f([(sa1, "uu"), (ca1, "F3")])};
+            ++nc;
+        }}"""
+
+
+def _pieper_joint2_prismatic(e: _Emitter, sv: PieperConstants, cs3: tuple[str, str]) -> str:
+    """C of the candidates (q2, g1, g2, g3) for one joint-3 value when joint 2 is prismatic: its
+    offset D from the h equation (RP-quartic), from the r equation's quadratic (RP-c1) or from y′ (PP)."""
+    t = e.tol
+    case, kind3, d0 = sv.case, sv.kinds[2], sv.d0
+    ca1, sa1, a1 = sv.ca[0], sv.sa[0], sv.a1
+    assert sv.phi is not None  # prismatic joint 2
+    pc1, pc2 = sv.phi
+    pv = (f"""        const double p1 = {_c(_val(pc1, kind3, "x3", *cs3))};
+        const double p2 = {_c(_val(pc2, kind3, "x3", *cs3))};
+        double Ds[2];
+        int nD = 0, iD;""")
+    if case == "RP-quartic":
+        dcode = f"        Ds[nD++] = (h - {lit(sa1)} * p2) / {lit(ca1)} - f3;"
+    elif case == "RP-c1":  # D^2 + 2 f3 D + (a1^2 + |f|^2 + 2 a1 p1 - r) = 0
+        dcode = f"""        {{
+            const double nf2 = {_c(_val(sv.nf2, kind3, "x3", *cs3))};
+            const double B = 2.0 * f3, C0 = {lit(a1 * a1)} + nf2 + {lit(2.0 * a1)} * p1 - r;
+            const double disc = B * B - 4.0 * C0;
+            const double big = B * B > fabs(4.0 * C0) ? B * B : fabs(4.0 * C0);
+            if (!(disc < -{t(1e-12)} * (big > {t(1e-300)} ? big : {t(1e-300)}))) {{
+                const double sq = sqrt(disc > 0.0 ? disc : 0.0);
+                const double qv = -0.5 * (B + (B >= 0.0 ? sq : -sq));
+                if (qv == 0.0) {{
+                    Ds[nD++] = 0.0;
+                }} else {{
+                    Ds[nD++] = qv;
+                    if (sq > 0.0) {{
+                        Ds[nD++] = C0 / qv;
+                    }}
+                }}
+            }}
+        }}"""
+    else:  # PP
+        dcode = f"        Ds[nD++] = ({lit(ca1)} * p2 - yp) / {lit(sa1)} - f3;"
+    return f"""{pv}
+{dcode}
+        for (iD = 0; iD < nD; ++iD) {{
+            const double D = Ds[iD];
+            cq2[nc] = {_f([(1.0, "D")], -d0[1])};
+            cg1[nc] = {_f([(1.0, "p1")], a1)};
+            cg2[nc] = {_f([(ca1, "p2"), (-sa1, "(f3 + D)")])};
+            cg3[nc] = {_f([(sa1, "p2"), (ca1, "(f3 + D)")])};
+            ++nc;
+        }}"""
+
+
+def _pieper_joint1(e: _Emitter, sv: PieperConstants, W: list[Val]) -> str:
+    """C of q1: θ₁ by atan2 (a shoulder singularity when W is on axis 1), or d₁ for a prismatic joint 1."""
+    t, th0, d0 = e.tol, sv.th0, sv.d0
+    if sv.kinds[0] == "R":
+        return f"""            if (sqrt(cg1[ic] * cg1[ic] + cg2[ic] * cg2[ic]) <= {t(1e-12)} * {lit(sv.scale)}) {{
+                q123[0] = 0.0;
+                singular1 = 1;
+            }} else {{
+                q123[0] = {_f([(1.0, "atan2(W[1], W[0])"), (-1.0, "atan2(cg2[ic], cg1[ic])")], -th0[0])};
+            }}"""
+    return f"            q123[0] = {_f([(1.0, _c(W[2])), (-1.0, 'cg3[ic]')], -d0[0])};"
+
+
+def _pieper_accept(e: _Emitter, sv: PieperConstants) -> str:
+    """C that checks a root of the quartic (a spurious one dropped, a close one polished); the
+    closed-form roots of degree ≤ 2 need no check."""
+    P, t = e.P, e.tol
+    if sv.deg != 4:
+        return "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
+    return f"""            err = {P}_wrist_error(q123, W);
+            if (err > {t(1e-12)} * {lit(sv.scale)}) {{
+                if (err > {t(1e-5)} * {lit(sv.scale)}) {{
+                    continue;  /* a spurious root */
+                }}
+                err = {P}_polish(q123, W);
+                if (err > {t(1e-11)} * {lit(sv.scale)}) {{
+                    continue;
+                }}
+            }}"""
+
+
+def _pieper_labels(sv: PieperConstants) -> tuple[str, str]:
+    """C of the shoulder and elbow label indices si, ei of one position branch."""
+    if sv.kinds[0] == "R":
+        shoulder = "            si = singular1 ? 2 : (cos(th[0]) * W[0] + sin(th[0]) * W[1] >= 0.0 ? 0 : 1);"
+    else:
+        shoulder = "            si = 0;"
+    if sv.kinds[2] == "P":
+        elbow = f"            ei = {_f([(1.0, 'q123[2]')], sv.d0[2])} >= 0.0 ? 0 : 1;"
+    else:
+        a2f = sv.a2 if sv.a2 != 0.0 else 1.0
+        elbow = (f"            ei = {_f([(sv.v[0] * a2f, 'sin(th[2])'), (sv.v[1] * a2f, 'cos(th[2])')])} > 0.0 ? 0 : 1;"
+                 "  /* elbow down / up */")
+    return shoulder, elbow
+
+
+def _pieper(e: _Emitter, T06: Pose) -> str:
+    """Body of the Pieper solve (the kernel's ``pieper_position`` then the wrist): rows[], lab[], deg[], nr."""
+    P = e.P
+    sv = e.k.pieper
+    assert sv is not None  # the spherical wrist's constants
+    th0, kind3 = sv.th0, sv.kinds[2]
+    body, W = _pieper_polynomial(e, sv, T06)
+    cs3 = ("c3", "s3") if kind3 == "R" else ("", "")
+    fvals = [f"        const double {name} = {_c(_val(coef, kind3, 'x3', *cs3))};"
+             for name, coef in (("f1", sv.f[0]), ("f2", sv.f[1]), ("f3", sv.f[2]))]
+    cands = _pieper_joint2_revolute(e, sv, cs3) if sv.kinds[1] == "R" else _pieper_joint2_prismatic(e, sv, cs3)
+    shoulder, elbow = _pieper_labels(sv)
+    q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
+    return f"""    {{
+    double pc[5], ts[5], x3s[6], W[3], R06[9];
+    double scale = 0.0;
+    int dg = {sv.deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;
+{body}
+    (void)W;
+{_pieper_joint3_roots(e, sv)}
     /* every joint-3 value: joints 2 and 1 by back-substitution, then the wrist's two branches */
     for (i3 = 0; i3 < nx3; ++i3) {{
         const double x3 = x3s[i3];
@@ -1085,11 +1125,11 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         for (ic = 0; ic < nc; ++ic) {{
             double q123[3], err = 0.0, th[3], dd[3], wr[2][3];
             int singular1 = 0, fl[2], nw, iw, si, ei;
-{q1}
+{_pieper_joint1(e, sv, W)}
             q123[1] = cq2[ic];
             q123[2] = {q3};
             (void)err;
-{accept}
+{_pieper_accept(e, sv)}
             {P}_angles(q123, th, dd);
 {shoulder}
 {elbow}
@@ -1124,14 +1164,15 @@ def _c(v: Val) -> str:
 def _parallel(e: _Emitter, T06: Pose) -> str:
     """Body of the three-parallel-axes solve (UR family)."""
     k, P, t = e.k, e.P, e.tol
-    sv = k.solver
-    ca, sa = [float(x) for x in sv["ca"]], [float(x) for x in sv["sa"]]
+    sv = k.parallel
+    assert sv is not None  # the three-parallel-axes constants
+    ca, sa = list(sv.ca), list(sv.sa)
     ca1, sa1, ca4, sa4, ca5, sa5 = ca[0], sa[0], ca[3], sa[3], ca[4], sa[4]
-    s2, sig = float(sv["s2"]), float(sv["sig"])
-    a1, a2, a3, a4, a5 = (float(sv[x]) for x in ("a1", "a2", "a3", "a4", "a5"))
-    d1, d5, d6, KW = (float(sv[x]) for x in ("d1", "d5", "d6", "KW"))
-    w6 = [snap(float(x)) for x in sv["w6_list"]]
-    th0 = [float(x) for x in sv["th0_list"]]
+    s2, sig = sv.s2, sv.sig
+    a1, a2, a3, a4, a5 = sv.a1, sv.a2, sv.a3, sv.a4, sv.a5
+    d1, d5, d6, KW = sv.d1, sv.d5, sv.d6, sv.KW
+    w6 = [snap(x) for x in sv.w6]
+    th0 = list(sv.th0)
     right = ca4 == 0.0 and ca5 == 0.0
     w = CWriter()
     R, p = T06.R, T06.p

@@ -287,14 +287,9 @@ def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str]
 
     Parameters
     ----------
-    w : CWriter
-        Where the body goes.
-    Slist : (6, n) array
-        Space screw axes (``robot.poe.Slist``), base frame.
-    M : (4, 4) array
-        Tool pose at q = 0 (``robot.poe.M``).
-    kinds, names : lists of n str
-        Joint types ("R"/"P") and names.
+    w, Slist, M, kinds, names
+        As in :func:`emit_fk`: the writer, the space screw axes (6, n), the tool pose at q = 0
+        (4, 4), the joint types and names.
 
     Returns
     -------

@@ -7,7 +7,9 @@ PUMA 560). ``closed_form``: ``ik_analytic`` for any arm whose geometry has a clo
 axes — ``parallel_axes``, and every other 6R arm — ``general_6r``, Raghavan–Roth /
 Manocha–Canny, through ``closed_form.FALLBACK``), ``ik_analytic_kind`` to ask which applies, and
 :class:`AnalyticIK`, the same solver as an object to hold. ``solver``: the interface
-(``ClosedFormSolver``) every closed-form solver implements. ``paden_kahan``: the Lecture 5
+(``ClosedFormSolver``) every closed-form solver implements. ``constants``: the typed contract
+with the code generators (``closed_form_constants``: each method's constants as a frozen
+dataclass). ``paden_kahan``: the Lecture 5
 building blocks (``solve_trig``, Paden–Kahan subproblems 1–3). ``rrr_pose``: the homework
 RRR arm with a full pose. ``planar``: the vectorised closed form of planar 2R/3R arms.
 ``backends``: the IK back ends ``solve_ik`` tries in order (closed form, planar, compiled
@@ -22,6 +24,8 @@ from robokit.ik.analytic import *  # noqa: F401,F403
 from robokit.ik.analytic import __all__ as _analytic_all
 from robokit.ik.closed_form import *  # noqa: F401,F403
 from robokit.ik.closed_form import __all__ as _closed_form_all
+from robokit.ik.constants import *  # noqa: F401,F403
+from robokit.ik.constants import __all__ as _constants_all
 from robokit.ik.solver import *  # noqa: F401,F403
 from robokit.ik.solver import __all__ as _solver_all
 from robokit.ik.paden_kahan import *  # noqa: F401,F403
@@ -37,6 +41,6 @@ from robokit.ik.backends import __all__ as _backends_all
 from robokit.ik.transpose import *  # noqa: F401,F403
 from robokit.ik.transpose import __all__ as _transpose_all
 
-__all__ = (list(_solution_all) + list(_analytic_all) + list(_closed_form_all) + list(_solver_all)
+__all__ = (list(_solution_all) + list(_analytic_all) + list(_closed_form_all) + list(_constants_all) + list(_solver_all)
            + list(_paden_kahan_all) + list(_rrr_pose_all) + list(_planar_all) + list(_numeric_all)
            + list(_backends_all) + list(_transpose_all))

@@ -62,7 +62,7 @@ from robokit._units import TURN, check_radians
 from robokit.errors import InputError, InputTypeError
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.parallel_axes import ParallelAxesSolver
-from robokit.ik.pieper import PieperSolver
+from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, PieperSolver
 from robokit.ik.solution import (CollisionChecker, IKSolution, _Rows, _RowSolution, check_pose, solutions_from_rows,
                                  with_collision_flags)
 from robokit.ik.solver import ClosedFormSolver
@@ -229,8 +229,9 @@ class AnalyticIK:
     reversed: bool
     #: The exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.calibrated`), else None.
     calibrated: CalibratedArm | None = None
-    #: Use the compiled kernel (:mod:`robokit.kernels.closed_form`) when it covers the chain;
-    #: False runs the Python solver (the reference the kernel is tested against).
+    #: Use the packed kernel (:mod:`robokit.kernels.closed_form`: solve and post-process in one
+    #: call) when it covers the chain; False runs the solver's ``joint_angles`` (the same kernel's
+    #: rows for Pieper and UR) and the Python post-processing (``solutions_from_rows``).
     use_kernel: bool = True
 
     def __init__(self, robot: Robot | DHTable, nominal: Any = None) -> None:
@@ -578,9 +579,7 @@ class AnalyticIK:
         return solutions_from_rows(rows, self._revolute, self._limits)
 
 
-_SHOULDER = ("right, ", "left, ", "shoulder singular, ", "")
-_ELBOW = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 −, ")
-_WRIST = ("no flip", "flip", "wrist singular")
+_SHOULDER, _ELBOW, _WRIST = SHOULDER_LABELS, ELBOW_LABELS, WRIST_LABELS
 
 
 def _solutions(out: np.ndarray, n: int, labels: dict) -> list[IKSolution]:
@@ -862,10 +861,11 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     -----
     Lecture 5: Pieper's wrist-centre decoupling (θ₁–θ₃ from a polynomial in tan(θ₃/2) of
     degree 2 or 4, the wrist from Euler-type angles), or for the UR family θ₁, θ₅, θ₆ from
-    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm. Both run as compiled code
-    (:mod:`robokit.kernels.closed_form`) when the arm's joints 1 and 2 are revolute; the
-    Python solvers are the reference (``AnalyticIK.use_kernel = False``). Many poses at once:
-    :func:`ik_analytic_batch`.
+    ``a cos θ + b sin θ = c`` and θ₂–θ₄ from a planar arm. Both are one implementation each,
+    :mod:`robokit.kernels.closed_form`, run as compiled code (or as plain Python under
+    ``NUMBA_DISABLE_JIT=1``); ``AnalyticIK.use_kernel = False`` runs the solver's rows through
+    the Python post-processing (:func:`robokit.ik.solution.solutions_from_rows`) instead of the
+    kernel's. Many poses at once: :func:`ik_analytic_batch`.
 
     Examples
     --------

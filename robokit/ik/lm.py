@@ -1,8 +1,9 @@
 r"""Levenberg–Marquardt inverse kinematics with limits and restarts, and :class:`IKResult`.
 
 The ``"lm"`` back end of :func:`robokit.solve_ik` (:mod:`robokit.ik.backends`): damped least
-squares with the damping ``λ = λ₀ ‖e‖² + λ_min`` growing with the error (after Sugihara
-2011), joint limits enforced by projection after every step, full-pose or position-only
+squares with the damping ``λ = λ₀ ‖e‖² + λ_min`` growing with the error (Sugihara 2011; the
+one law of :mod:`robokit.kernels.lm_damping`, which the compiled kernel uses too), joint
+limits enforced by projection after every step, full-pose or position-only
 mode, a weighted error, and random restarts inside the limits until an iteration, restart or
 time budget runs out. For a :class:`robokit.Robot` it evaluates FK and Jacobians with
 Pinocchio directly; any other RobotLike through its ``frame_pose``/``jacobian``.
@@ -20,6 +21,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from robokit.kernels.lm_damping import EARLY_ERROR, EARLY_ITERATION, STALL_LIMIT, lm_damping, lm_retry_damping
 from robokit.spatial import lie
 
 if TYPE_CHECKING:
@@ -29,9 +31,6 @@ if TYPE_CHECKING:
 _Closures = tuple[Callable[[np.ndarray], tuple[np.ndarray, float]], Callable[[np.ndarray], np.ndarray], np.ndarray]
 
 __all__ = ["IKResult", "lm_loop"]
-
-# an attempt that is still this far off after this many iterations is abandoned for a fresh seed
-_EARLY_IT, _EARLY_ERR = 15, 1e-2
 
 
 def _spd_solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -178,7 +177,7 @@ def lm_loop(robot: Robot | RobotLike, frame: str | None, q: np.ndarray, *, posit
             JW = J.T * w_pin
             A = JW @ J
             g = JW @ e
-            lam = damping * err * err + min_damping
+            lam = lm_damping(err, damping, min_damping)
             q_new = np.clip(q + _spd_solve(A + lam * eye, g), lo, hi)
             e_new, err_new = error(q_new)
             iterations += 1
@@ -187,14 +186,14 @@ def lm_loop(robot: Robot | RobotLike, frame: str | None, q: np.ndarray, *, posit
                 stall = 0
             else:
                 # a worse step: retry once with heavier damping (shorter, more gradient-like step)
-                q_try = np.clip(q + _spd_solve(A + 10.0 * (lam + 1e-6) * eye, g), lo, hi)
+                q_try = np.clip(q + _spd_solve(A + lm_retry_damping(lam) * eye, g), lo, hi)
                 e_try, err_try = error(q_try)
                 if err_try < err:
                     q, e, err = q_try, e_try, err_try
                 stall += 1
-                if stall >= 3:
+                if stall >= STALL_LIMIT:
                     break
-            if it == _EARLY_IT and err > _EARLY_ERR:
+            if it == EARLY_ITERATION and err > EARLY_ERROR:
                 break  # far from converging from this seed: a fresh restart is cheaper
         if err < best_err:
             best_q, best_err = q.copy(), err

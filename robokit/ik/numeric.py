@@ -168,23 +168,19 @@ def ikin_space(Slist: ArrayLike, M: ArrayLike, T: ArrayLike, thetalist0: ArrayLi
     ----------
     Slist : (6, n) array_like
         Space screw axes (columns, ``(ω; v)``).
-    M : (4, 4) array_like
-        End-effector pose at θ = 0 in the space frame (metres).
-    T : (4, 4) array_like
-        Target end-effector pose in the space frame (metres).
+    M, T : (4, 4) array_like
+        End-effector pose at θ = 0 and the target pose, both in the space frame (metres).
     thetalist0 : (n,) array_like
         Initial guess (rad / m).
-    eomg : float
-        Tolerance on the angular part of the error twist (rad).
-    ev : float
-        Tolerance on the linear part of the error twist (m).
+    eomg, ev : float
+        Tolerances on the angular (rad) and linear (m) parts of the error twist.
     max_iterations : int, optional
         Newton steps before giving up; default 100.
 
     Returns
     -------
     thetalist : (n,) ndarray
-        The joint values (rad / m; revolute angles wrapped to (−π, π]).
+        As :func:`ikin_body`'s (rad / m; revolute angles wrapped to (−π, π]).
     success : bool
         False (no exception) when the iteration does not converge (e.g. an unreachable target);
         ``thetalist`` is then the best iterate seen.

@@ -228,10 +228,8 @@ def pk_subproblem3(omega: ArrayLike, r: ArrayLike, p: ArrayLike, q: ArrayLike, d
 
     Parameters
     ----------
-    omega : array_like, shape (3,)
-        Axis direction (normalised here).
-    r : array_like, shape (3,)
-        A point on the axis, m.
+    omega, r : array_like, shape (3,)
+        The axis: its direction (normalised here) and a point on it, m.
     p, q : array_like, shape (3,)
         The rotated point and the fixed point, m (all vectors in one frame).
     delta : float

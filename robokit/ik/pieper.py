@@ -25,10 +25,14 @@ quadratically; a prismatic joint 1 keeps W_x, W_y (in frame 0′ turned by θ₁
 gives d₁ last. The polynomial's coefficients are linear in a few monomials of the target
 (r², r, h², h, 1); their matrix is computed once per robot.
 
-Roots come from ``numpy.roots`` (the eigenvalues of the companion matrix), are polished by
-Newton steps on the polynomial, taken in ascending order (so the solutions come in an order
-that does not depend on the eigen-solver), and each (θ₁, θ₂, θ₃) is checked — and, if needed,
-polished by Newton steps on the wrist-centre equation ``⁰W(q₁, q₂, q₃) = ⁰W`` itself.
+This module builds those constants once per chain (:class:`PieperConstants`); the algorithm
+itself — the one implementation, in Python and compiled alike — is
+:mod:`robokit.kernels.closed_form` (``pieper_position``, ``pieper_wrist``, ``pieper_rows``; run
+``NUMBA_DISABLE_JIT=1`` to step through it as plain Python). Roots come from the eigenvalues
+of the companion matrix, are polished by Newton steps on the polynomial, taken in ascending
+order (so the solutions come in an order that does not depend on the eigen-solver), and each
+(θ₁, θ₂, θ₃) is checked — and, if needed, polished by Newton steps on the wrist-centre
+equation ``⁰W(q₁, q₂, q₃) = ⁰W`` itself.
 
 **Orientation.** With ``R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃)`` the wrist must give
 ``M = R₃ᵀ·R₀₆ = Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆)`` — the ZYZ Euler problem of seed 003 when
@@ -40,12 +44,11 @@ third column and θ₆ from the third row (two atan2's). When axes 4 and 6 line 
 from __future__ import annotations
 
 import math
-
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from robokit.ik.paden_kahan import _trig_roots
 from robokit.ik.solution import Row
 from robokit.ik.solver import PositionBranch
 
@@ -53,6 +56,12 @@ if TYPE_CHECKING:
     from robokit.ik._dh_chain import DHChain
 
 _PI = math.pi
+#: Branch labels by the kernels' codes (:mod:`robokit.kernels.closed_form`): shoulder, elbow, wrist.
+SHOULDER_LABELS = ("right, ", "left, ", "shoulder singular, ", "")
+ELBOW_LABELS = ("elbow down, ", "elbow up, ", "d3 +, ", "d3 \u2212, ")
+WRIST_LABELS = ("no flip", "flip", "wrist singular")
+#: The position cases, in the order of their codes in the kernel (``ci[1]``).
+_CASES = ("RR-quartic", "RR-a1", "RR-s1", "PR-quartic", "PR-c1", "RP-quartic", "RP-c1", "PP")
 _U_R = np.array([1.0, 0.0, 1.0])  # 1 + u² (revolute: u = tan(θ/2))
 _U_P = np.array([1.0, 0.0, 0.0])  # 1 (prismatic: the variable itself)
 
@@ -71,21 +80,114 @@ def _num(coef: Sequence[float] | np.ndarray, kind: str) -> np.ndarray:
     return np.array([k0, k1, k2])
 
 
-def _val(coef: Sequence[float] | np.ndarray, x: float, kind: str, cs: tuple[float, float] | None = None) -> float:
-    """Value of a coefficient triple at θ (revolute; ``cs`` = (cos θ, sin θ)) or q (prismatic)."""
-    if kind == "R":
-        assert cs is not None  # a revolute joint's value needs (cos θ, sin θ)
-        c, s = cs
-        return coef[0] + coef[1] * c + coef[2] * s
-    return coef[0] + (coef[1] + coef[2] * x) * x
-
-
 def _rz_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
     return (c * v[0] - s * v[1], s * v[0] + c * v[1], v[2])
 
 
-def _rx_v(c: float, s: float, v: Sequence[float]) -> tuple[float, float, float]:
-    return (v[0], c * v[1] - s * v[2], s * v[1] + c * v[2])
+
+
+def pack_offsets_and_twists(th0: Sequence[float], d0: Sequence[float], ca: Sequence[float],
+                            sa: Sequence[float]) -> np.ndarray:
+    """The kernel's float constants (64,) with the layout both closed-form kernels share filled in:
+    θ₀ (6), d₀ (6), cos α (5), sin α (5) (:mod:`robokit.kernels.closed_form`)."""
+    cf = np.zeros(64)
+    cf[0:6], cf[6:12], cf[12:17], cf[17:22] = th0, d0, ca, sa
+    return cf
+
+
+Triple = tuple[float, float, float]
+
+
+def _triple(x: Sequence[float] | np.ndarray) -> Triple:
+    return (float(x[0]), float(x[1]), float(x[2]))
+
+
+@dataclass(frozen=True)
+class ChainNumbers:
+    """The joint offsets and twists of a canonical chain ``Z₁X₁ ⋯ Z₆`` that every closed-form
+    method's constants start with.
+
+    Attributes
+    ----------
+    th0, d0 : tuple of float
+        The chain's six joint offsets θ₀ (rad) and d₀ (m).
+    ca, sa : tuple of float
+        cos αᵢ, sin αᵢ of the five twists (exact zeros for right angles).
+    """
+
+    th0: tuple[float, ...]
+    d0: tuple[float, ...]
+    ca: tuple[float, ...]
+    sa: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class PieperConstants(ChainNumbers):
+    r"""The numbers Pieper's method needs for one canonical chain, computed once (module docstring).
+
+    What :class:`PieperSolver` exports (:meth:`PieperSolver.constants`) for the compiled kernel
+    (:mod:`robokit.kernels.closed_form`) and the C emitter (:mod:`robokit.codegen.ik`). Lengths
+    in m, angles in rad; a "triple" is a quantity ``k₀ + k₁ cos θ₃ + k₂ sin θ₃`` of a revolute
+    joint 3 (or ``k₀ + k₁ d₃ + k₂ d₃²`` of a prismatic one).
+
+    Attributes
+    ----------
+    case : str
+        Which position equations apply: ``"RR-quartic"``, ``"RR-a1"`` (a₁ = 0), ``"RR-s1"``
+        (sin α₁ = 0), ``"PR-quartic"``, ``"PR-c1"``, ``"RP-quartic"``, ``"RP-c1"`` or ``"PP"``
+        (the kinds of joints 1 and 2, then the special case).
+    deg : int
+        Nominal degree of the joint-3 polynomial (4 for the quartic cases, else 2).
+    kinds : tuple of str
+        ``"R"``/``"P"`` of joints 1–3.
+    C : tuple of tuple of float
+        The polynomial's coefficients (low → high) are ``Σₖ mₖ C[k]`` for the monomials m of
+        the wrist centre of ``case`` (e.g. ``(r², r, h², h, 1)`` for ``"RR-quartic"``).
+    th0, d0, ca, sa : tuple of float
+        Joint offsets and twists (:class:`ChainNumbers`).
+    a1, a2, d1, d2 : float
+        Lengths of links 1, 2 and offsets d₁, d₂ (m).
+    w3, w6 : tuple of float
+        The wrist centre in the frame after Z₃ (``³W``) and after Z₆ (``⁶W``), m.
+    f : tuple of three triples
+        ``f = X₂Z₃ · ³W`` rotated by α₂ (Lecture 5's f₁, f₂, f₃).
+    v : tuple of float
+        ``³W + d₃e₃`` (revolute joint 3) or its rotation by θ₃'s offset (prismatic): the elbow label's vector.
+    Ka, Kb : triple or None
+        ``‖F‖² + a₁²`` and ``cα₁F₃`` (revolute joints 1 and 2), else None.
+    phi : pair of triples or None
+        ``(φ₁, φ₂)`` = f turned by θ₂'s offset (prismatic joint 2), else None.
+    nf2 : triple
+        ``‖f‖²``.
+    scale : float
+        The chain's size (m): tolerances are relative to it.
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> c = PieperSolver(DHChain(robokit.load("puma560").dh)).constants()
+    >>> c.case, c.deg, c.kinds
+    ('RR-a1', 2, ('R', 'R', 'R'))
+    """
+
+    case: str
+    deg: int
+    kinds: tuple[str, str, str]
+    C: tuple[tuple[float, ...], ...]
+    a1: float
+    a2: float
+    d1: float
+    d2: float
+    w3: Triple
+    w6: Triple
+    f: tuple[Triple, Triple, Triple]
+    v: Triple
+    Ka: Triple | None
+    Kb: Triple | None
+    phi: tuple[Triple, Triple] | None
+    nf2: Triple
+    scale: float
 
 
 class PieperSolver:
@@ -198,7 +300,6 @@ class PieperSolver:
             c2, s2 = math.cos(th0[1]), math.sin(th0[1])
             phi1, phi2 = c2 * f1 - s2 * f2, s2 * f1 + c2 * f2
             self.phi = (phi1, phi2)
-            self.c2s2 = (c2, s2)
             if self.j1 == "R":
                 if ca1 != 0.0:
                     self.case = "RP-quartic"  # m = (r, h², h, 1)
@@ -221,362 +322,89 @@ class PieperSolver:
         self.C_list = R.tolist()
         # wrist
         self.ca4, self.sa4, self.ca5, self.sa5 = self.ca[3], self.sa[3], self.ca[4], self.sa[4]
-        self.rot_kinds = k[:3]
+        self._kernel_args: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
-    def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve` (revolute
-        joints 1 and 2; joint 3 revolute or prismatic), or None when only this Python solver
-        covers the chain (a prismatic joint 1 or 2)."""
-        if self.j1 != "R" or self.j2 != "R" or self.case is None:
-            return None
-        ci = np.array([0, {"RR-quartic": 0, "RR-a1": 1, "RR-s1": 2}[self.case], int(self.j3 == "R"), self.deg,
-                       self.C.shape[0], 0], dtype=np.int64)
-        cf = np.zeros(64)
-        cf[0:6], cf[6:12] = self.th0_list, self.d0_list
-        cf[12:17], cf[17:22] = self.ca, self.sa
-        cf[22:26] = self.a1, self.a2, self.d1, self.d2
-        cf[26:29], cf[29:32] = self.w3_list, self.w6_list
-        cf[32:41] = np.concatenate([np.asarray(f, dtype=float) for f in self.f])
-        cf[41:44], cf[44:47], cf[47:50] = self.Ka, self.Kb, self.v[:3]
-        cf[50] = self.chain.scale
+    def constants(self) -> PieperConstants:
+        """This solver's :class:`PieperConstants` (what the kernel and the C emitter read)."""
+        assert self.case is not None  # set in __init__
+        rr = self.j1 == "R" and self.j2 == "R"
+        return PieperConstants(
+            case=self.case, deg=self.deg, kinds=(self.j1, self.j2, self.j3),
+            C=tuple(tuple(float(x) for x in row) for row in self.C_list),
+            th0=tuple(self.th0_list), d0=tuple(self.d0_list), ca=tuple(self.ca), sa=tuple(self.sa),
+            a1=self.a1, a2=self.a2, d1=self.d1, d2=self.d2, w3=_triple(self.w3_list), w6=_triple(self.w6_list),
+            f=(_triple(self.f[0]), _triple(self.f[1]), _triple(self.f[2])), v=_triple(self.v),
+            Ka=_triple(self.Ka) if rr else None, Kb=_triple(self.Kb) if rr else None,
+            phi=(_triple(self.phi[0]), _triple(self.phi[1])) if self.j2 == "P" else None,
+            nf2=_triple(self.nf2), scale=float(self.chain.scale))
+
+    def kernel_constants(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(ci, cf, C)`` for :func:`robokit.kernels.closed_form.closed_form_solve`: :meth:`constants`
+        packed into flat arrays (the layout of :mod:`robokit.kernels.closed_form`)."""
+        k = self.constants()
+        ci = np.array([0, _CASES.index(k.case), int(k.kinds[2] == "R"), k.deg, len(k.C), 0], dtype=np.int64)
+        cf = pack_offsets_and_twists(k.th0, k.d0, k.ca, k.sa)
+        cf[22:26] = k.a1, k.a2, k.d1, k.d2
+        cf[26:29], cf[29:32] = k.w3, k.w6
+        cf[32:41] = k.f[0] + k.f[1] + k.f[2]
+        if k.Ka is not None and k.Kb is not None:
+            cf[41:44], cf[44:47] = k.Ka, k.Kb
+        cf[47:50] = k.v
+        cf[50] = k.scale
+        if k.phi is not None:
+            cf[51:57] = k.phi[0] + k.phi[1]
+        cf[57:60] = k.nf2
+        cf[60:63] = [1.0 if kind == "R" else 0.0 for kind in k.kinds]
         C = np.zeros((5, 5))
-        C[: self.C.shape[0], : self.C.shape[1]] = self.C
+        C[: len(k.C), : k.deg + 1] = k.C
         return ci, cf, C
 
-    # ------------------------------------------------------------------ position
-    def _roots(self, coeffs: Sequence[float]) -> list[float] | None:
-        """Real roots of Σ cₖ tᵏ as joint-3 values (θ₃ total angle or d₃ variable)."""
-        scale = max(abs(x) for x in coeffs)
-        if scale == 0.0:
-            return None  # identically satisfied: θ₃ free
-        c = coeffs
-        deg = len(c) - 1
-        extra = []
-        while deg > 0 and abs(c[deg]) <= 1e-11 * scale:
-            deg -= 1
-        if self.j3 == "R" and deg < len(c) - 1:
-            extra.append(_PI)  # the root u = ∞ (θ₃ = π) of the degree-deficient polynomial
-        if deg == 0:
-            ts = []
-        elif deg == 1:
-            ts = [-c[0] / c[1]]
-        elif deg == 2:
-            A, B, C0 = c[2], c[1], c[0]
-            disc = B * B - 4.0 * A * C0
-            if disc < -1e-12 * max(B * B, abs(4.0 * A * C0), 1e-300):
-                ts = []
-            else:
-                sq = math.sqrt(max(disc, 0.0))
-                q = -0.5 * (B + (sq if B >= 0.0 else -sq))
-                ts = [q / A, C0 / q] if q != 0.0 else [0.0]
-        else:
-            # the companion matrix of the monic polynomial; its eigenvalues are the roots
-            comp = np.zeros((deg, deg))
-            comp[0, :] = [-c[deg - 1 - j] / c[deg] for j in range(deg)]
-            comp[np.arange(1, deg), np.arange(deg - 1)] = 1.0
-            rts = np.linalg.eigvals(comp).tolist()
-            ts = [float(z.real) for z in rts if abs(z.imag) <= 1e-6 * (1.0 + abs(z.real))]
-            ts = sorted(self._newton_poly(c[: deg + 1], t) for t in ts)  # ascending: an order that does not depend on LAPACK
-        if self.j3 == "R":
-            return [2.0 * math.atan(t) for t in ts] + extra
-        return ts
-
-    @staticmethod
-    def _newton_poly(c: Sequence[float], t: float) -> float:
-        for _ in range(3):
-            p, dp = 0.0, 0.0
-            for ck in c[::-1]:
-                dp = dp * t + p
-                p = p * t + ck
-            if dp == 0.0:
-                break
-            step = p / dp
-            t -= step
-            if abs(step) <= 1e-15 * (1.0 + abs(t)):
-                break
-        return t
-
-    def _wrist_point(self, th: Sequence[float], dd: Sequence[float]) -> tuple[float, float, float]:
-        """⁰W of joint values given as rotation angles th (3,) and offsets dd (3,) — a check."""
-        c3, s3 = math.cos(th[2]), math.sin(th[2])
-        w3 = self.w3_list
-        p = _rz_v(c3, s3, (w3[0], w3[1], w3[2] + dd[2]))
-        p = _rx_v(self.ca[1], self.sa[1], (p[0] + self.a2, p[1], p[2]))
-        c2, s2 = math.cos(th[1]), math.sin(th[1])
-        p = _rz_v(c2, s2, (p[0], p[1], p[2] + dd[1]))
-        p = _rx_v(self.ca[0], self.sa[0], (p[0] + self.a1, p[1], p[2]))
-        c1, s1 = math.cos(th[0]), math.sin(th[0])
-        return _rz_v(c1, s1, (p[0], p[1], p[2] + dd[0]))
-
-    def _angles(self, q: Sequence[float]) -> tuple[list[float], list[float]]:
-        """(rotation angles, offsets) of joints 1–3 at joint values q."""
-        kinds, th0, d0 = self.chain.kinds, self.th0_list, self.d0_list
-        th, dd = [], []
-        for i in range(3):
-            if kinds[i] == "R":
-                th.append(th0[i] + q[i])
-                dd.append(d0[i])
-            else:
-                th.append(th0[i])
-                dd.append(d0[i] + q[i])
-        return th, dd
-
-    def _polish(self, q: Sequence[float], W: Sequence[float]) -> tuple[list[float], float]:
-        """Newton steps on ⁰W(q₁, q₂, q₃) = W (the wrist-centre equation); returns (q, error)."""
-        q = list(q)
-        err = math.inf
-        for it in range(4):
-            th, dd = self._angles(q)
-            p = self._wrist_point(th, dd)
-            e = np.array([W[0] - p[0], W[1] - p[1], W[2] - p[2]])
-            err = float(np.abs(e).max())
-            if err <= 1e-13 * self.chain.scale or it == 3:
-                break
-            J = np.empty((3, 3))
-            h = 1e-7
-            for j in range(3):
-                qq = list(q)
-                qq[j] += h
-                t2, d2 = self._angles(qq)
-                p2 = self._wrist_point(t2, d2)
-                qq[j] -= 2 * h
-                t3, d3 = self._angles(qq)
-                p3 = self._wrist_point(t3, d3)
-                J[:, j] = [(p2[k] - p3[k]) / (2 * h) for k in range(3)]
-            try:
-                dq = np.linalg.lstsq(J, e, rcond=1e-12)[0]
-            except np.linalg.LinAlgError:  # pragma: no cover
-                break
-            q = [q[k] + float(dq[k]) for k in range(3)]
-        return q, err
-
-    def wrist_centre_joints(self, W: Sequence[float]) -> list[tuple[list[float], bool, bool]]:
-        """Every (q₁, q₂, q₃, label parts, degenerate) placing the wrist centre at W (frame 0′)."""
-        th0, d0 = self.th0_list, self.d0_list
-        ca1, sa1 = self.ca[0], self.sa[0]
-        a1 = self.a1
-        f1c, f2c, f3c = self.f
-        kind = self.j3
-        Wx, Wy, Wz = W
-        if self.j1 == "R":
-            h = Wz - self.d1
-            r = Wx * Wx + Wy * Wy + h * h
-            case = self.case
-            assert case is not None  # set in __init__
-            m = {"RR-quartic": (r * r, r, h * h, h, 1.0), "RR-a1": (r, 1.0), "RR-s1": (h, 1.0),
-                 "RP-quartic": (r, h * h, h, 1.0), "RP-c1": (h, 1.0)}[case]
-        else:
-            c0, s0 = math.cos(th0[0]), math.sin(th0[0])
-            xp, yp = c0 * Wx + s0 * Wy, -s0 * Wx + c0 * Wy
-            zp = Wz
-            X = xp - a1
-            case = self.case
-            assert case is not None  # set in __init__
-            m = {"PR-quartic": (X * X, yp * yp, yp, 1.0), "PR-c1": (yp, 1.0), "PP": (X, 1.0)}[case]
-        C = self.C_list
-        coeffs = [sum(mk * row[j] for mk, row in zip(m, C)) for j in range(self.deg + 1)]
-        roots3 = self._roots(coeffs)
-        check = self.deg == 4  # roots from the companion matrix: verify (and polish) each triple
-        degenerate = False
-        if roots3 is None:  # the equation holds for every joint-3 value: documented choice q₃ = 0
-            roots3 = [th0[2] if kind == "R" else 0.0]
-            degenerate = True
-        out = []
-        for x3 in roots3:
-            cs = (math.cos(x3), math.sin(x3)) if kind == "R" else None
-            f1, f2, f3 = _val(f1c, x3, kind, cs), _val(f2c, x3, kind, cs), _val(f3c, x3, kind, cs)
-            q3 = x3 - th0[2] if kind == "R" else x3
-            cand = []  # (rotation angle θ₂ or offset d₂, g₁, g₂, g₃)
-            if self.j2 == "R":
-                F3 = f3 + self.d2
-                if self.j1 == "R":
-                    Ka = _val(self.Ka, x3, kind, cs)
-                    sa_, ra = 2.0 * a1, r - Ka
-                    sb_, rb = sa1, h - ca1 * F3
-                else:
-                    sa_, ra = 1.0, X
-                    sb_, rb = ca1, yp + sa1 * F3
-                th2s: list[float] | None = []
-                if case in ("RR-quartic", "PR-quartic"):
-                    n2 = f1 * f1 + f2 * f2
-                    if n2 > 1e-24 * self.chain.scale ** 2:
-                        A, B = ra / sa_, rb / sb_
-                        th2s = [math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)]
-                    else:
-                        th2s = [th0[1]]
-                        degenerate = True
-                elif case == "RR-a1":  # θ₂ from eq. b: sb(F₂c₂ + F₁s₂) = rb
-                    th2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10)
-                else:  # RR-s1, PR-c1: θ₂ from eq. a: sa(F₁c₂ − F₂s₂) = ra
-                    th2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10)
-                if th2s is None:
-                    th2s, degenerate = [th0[1]], True
-                for t2 in th2s:
-                    c2, s2 = math.cos(t2), math.sin(t2)
-                    g1 = a1 + c2 * f1 - s2 * f2
-                    u = s2 * f1 + c2 * f2
-                    cand.append((t2 - th0[1], g1, ca1 * u - sa1 * F3, sa1 * u + ca1 * F3))
-            else:
-                pc1, pc2 = self.phi
-                p1, p2 = _val(pc1, x3, kind, cs), _val(pc2, x3, kind, cs)
-                if self.j1 == "R":
-                    if case == "RP-quartic":
-                        Ds = [(h - sa1 * p2) / ca1 - f3]
-                    else:
-                        nf2 = _val(self.nf2, x3, kind, cs)
-                        Ds = self._quad_roots(1.0, 2.0 * f3, a1 * a1 + nf2 + 2.0 * a1 * p1 - r)
-                else:
-                    Ds = [(ca1 * p2 - yp) / sa1 - f3]
-                for D in Ds:
-                    cand.append((D - d0[1], a1 + p1, ca1 * p2 - sa1 * (f3 + D), sa1 * p2 + ca1 * (f3 + D)))
-            for q2, g1, g2, g3 in cand:
-                if self.j1 == "R":
-                    if math.hypot(g1, g2) <= 1e-12 * self.chain.scale:
-                        t1, singular1 = th0[0], True
-                    else:
-                        t1, singular1 = math.atan2(Wy, Wx) - math.atan2(g2, g1), False
-                    q1 = t1 - th0[0]
-                else:
-                    q1, singular1 = zp - d0[0] - g3, False
-                q = [q1, q2, q3]
-                if not check:  # closed-form roots (degree ≤ 2): the back-substitution is exact
-                    out.append((q, singular1, degenerate))
-                    continue
-                th, dd = self._angles(q)
-                p = self._wrist_point(th, dd)
-                err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
-                if err > 1e-12 * self.chain.scale:
-                    if err > 1e-5 * self.chain.scale:
-                        continue  # a spurious root (a complex pair taken as real)
-                    q, err = self._polish(q, W)
-                    if err > 1e-11 * self.chain.scale:
-                        continue
-                out.append((q, singular1, degenerate))
-        return out
-
-    @staticmethod
-    def _quad_roots(A: float, B: float, C: float) -> list[float]:
-        disc = B * B - 4.0 * A * C
-        if disc < -1e-12 * max(B * B, abs(4.0 * A * C), 1e-300):
-            return []
-        sq = math.sqrt(max(disc, 0.0))
-        qv = -0.5 * (B + (sq if B >= 0.0 else -sq))
-        if qv == 0.0:
-            return [0.0]
-        return [qv / A, C / qv] if sq > 0.0 else [qv / A]
-
-    # ------------------------------------------------------------------ orientation
-    def wrist_angles(self, th: Sequence[float], R06: Sequence[Sequence[float]],
-                     q4_ref: float) -> list[tuple[float, float, float, str, bool]]:
-        """Every (θ₄, θ₅, θ₆ rotation angles, flip, degenerate) with
-        Rz(θ₄)Rx(α₄)Rz(θ₅)Rx(α₅)Rz(θ₆) = R₃ᵀR₀₆, R₃ = Rz(θ₁)Rx(α₁)Rz(θ₂)Rx(α₂)Rz(θ₃)Rx(α₃).
-
-        ``R06`` is a nested list (3×3, rows); plain float arithmetic, no numpy.
-        """
-        ca, sa = self.ca, self.sa
-        cs = [(math.cos(t), math.sin(t)) for t in th]
-        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R06
-        # m = R₃ᵀ z₆ (M e₃) and, for the singular case, R₃ᵀ x₆ (M e₁): apply Rz(−θ₁), Rx(−α₁), …
-        mx, my, mz = r02, r12, r22
-        ex, ey, ez = r00, r10, r20
-        for i in range(3):
-            c, s_ = cs[i]
-            mx, my = c * mx + s_ * my, c * my - s_ * mx
-            ex, ey = c * ex + s_ * ey, c * ey - s_ * ex
-            c, s_ = ca[i], sa[i]
-            my, mz = c * my + s_ * mz, c * mz - s_ * my
-            ey, ez = c * ey + s_ * ez, c * ez - s_ * ey
-        # n₄ = R₃ e₃ (axis 4 in frame 0′): apply Rx(α₃), Rz(θ₃), …, Rz(θ₁) to e₃
-        nx, ny, nz = 0.0, 0.0, 1.0
-        for i in (2, 1, 0):
-            c, s_ = ca[i], sa[i]
-            ny, nz = c * ny - s_ * nz, s_ * ny + c * nz
-            c, s_ = cs[i]
-            nx, ny = c * nx - s_ * ny, s_ * nx + c * ny
-        row0 = r00 * nx + r10 * ny + r20 * nz  # e₃ᵀM = (R₀₆ᵀ n₄)ᵀ
-        row1 = r01 * nx + r11 * ny + r21 * nz
-        ca4, sa4, ca5, sa5 = self.ca4, self.sa4, self.ca5, self.sa5
-        k = sa4 * sa5
-        rho = math.hypot(mx, my)  # |sin| of the angle between axes 4 and 6
-        if ca4 == 0.0 and ca5 == 0.0:  # right-angled wrist (ZYZ type): |s₅| = ρ, c₅ = −M₂₂/(sα₄sα₅)
-            c5, s5 = -mz / k, rho
-        else:
-            c5 = (ca4 * ca5 - mz) / k
-            if abs(c5) > 1.0 + 1e-10:
-                return []  # this orientation is out of reach of an oblique wrist
-            c5 = max(-1.0, min(1.0, c5))
-            s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
-        if rho <= 1e-10:  # axes 4 and 6 aligned: only θ₄ + θ₆ or θ₄ − θ₆ is fixed
-            th4_ref = q4_ref + self.th0_list[3]
-            gamma = math.atan2(ca4 * s5, c5)
-            sk = 1.0 if mz > 0.0 else -1.0
-            t6 = sk * (math.atan2(ey, ex) - th4_ref - gamma)
-            return [(th4_ref, math.atan2(s5, c5), t6, "wrist singular", True)]
-        am = math.atan2(my, mx)
-        ar = math.atan2(row1, row0)
-        yp = -ca4 * sa5 * c5 - sa4 * ca5
-        b_ = sa4 * c5 * ca5 + ca4 * sa5
-        out = []
-        for s in (s5, -s5):
-            t4 = am - math.atan2(yp, sa5 * s)
-            t6 = math.atan2(b_, sa4 * s) - ar
-            out.append((t4, math.atan2(s, c5), t6, "no flip" if s * k > 0.0 else "flip", False))
-            if s5 == 0.0:
-                break
-        return out
-
     # ------------------------------------------------------------------ the solver interface
+    def _packed(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`kernel_constants`, computed on first use."""
+        if self._kernel_args is None:
+            self._kernel_args = self.kernel_constants()
+        return self._kernel_args
+
     def refusal(self) -> str | None:
         """None if joints 1–3 move the wrist centre in 3 independent directions, else the reason.
 
-        The 3×3 Jacobian of the wrist centre (central differences) is checked at a few fixed
-        pseudo-random configurations; a positioning structure that is rank-deficient at all
-        of them (e.g. a prismatic joint perpendicular to a revolute one in a plane) has a
-        continuum of solutions, not a finite set.
+        The 3×3 Jacobian of the wrist centre ``⁰W = Z₁X₁Z₂X₂Z₃ · ³W`` (central differences of the
+        chain's own transforms) is checked at a few fixed pseudo-random configurations; a
+        positioning structure that is rank-deficient at all of them (e.g. a prismatic joint
+        perpendicular to a revolute one in a plane) has a continuum of solutions, not a finite set.
+
+        Returns
+        -------
+        str or None
         """
+        chain = self.chain
+        w3 = np.array([*self.w3_list, 1.0])
+        X1, X2 = chain.x(0), chain.x(1)
+
+        def wrist_centre(q: np.ndarray) -> np.ndarray:
+            return (chain.z(0, q[0]) @ X1 @ chain.z(1, q[1]) @ X2 @ chain.z(2, q[2]) @ w3)[:3]
+
         rng = np.random.default_rng(12345)
-        scale = self.chain.scale
+        scale = chain.scale
         for _ in range(4):
-            q = list(rng.uniform(-2.0, 2.0, 3))
+            q = rng.uniform(-2.0, 2.0, 3)
             J = np.empty((3, 3))
             h = 1e-6
             for j in range(3):
-                qp, qm = list(q), list(q)
-                qp[j] += h
-                qm[j] -= h
-                pp = self._wrist_point(*self._angles(qp))
-                pm = self._wrist_point(*self._angles(qm))
-                J[:, j] = [(pp[k] - pm[k]) / (2.0 * h) for k in range(3)]
-            J[:, [self.chain.kinds[j] == "R" for j in range(3)]] /= scale  # revolute columns in m/rad → unitless
+                dq = np.zeros(3)
+                dq[j] = h
+                J[:, j] = (wrist_centre(q + dq) - wrist_centre(q - dq)) / (2.0 * h)
+            J[:, [chain.kinds[j] == "R" for j in range(3)]] /= scale  # revolute columns in m/rad → unitless
             if np.linalg.svd(J, compute_uv=False)[-1] > 1e-6:
                 return None
         return ("axes 4–6 meet in one point, but joints 1–3 cannot move the wrist centre in three "
                 "independent directions (their axes confine it to a surface)")
 
-    def _branches(self, T: list[list[float]]) -> list[PositionBranch]:
-        (r00, r01, r02, p0), (r10, r11, r12, p1), (r20, r21, r22, p2) = T[:3]
-        w6x, w6y, w6z = self.w6_list
-        W = (r00 * w6x + r01 * w6y + r02 * w6z + p0, r10 * w6x + r11 * w6y + r12 * w6z + p1,
-             r20 * w6x + r21 * w6y + r22 * w6z + p2)
-        out = []
-        for q123, singular1, degen_pos in self.wrist_centre_joints(W):
-            th, _ = self._angles(q123)
-            head = self._shoulder(th, W, singular1) + self._elbow(q123, th)
-            out.append(PositionBranch(q123, head, bool(degen_pos or singular1), th))
-        return out
-
-    def _complete(self, T: list[list[float]], branch: PositionBranch, wrist_ref: float) -> list[Row]:
-        th0 = self.th0_list
-        q123, head, degen_pos, th = branch
-        R06 = (T[0][:3], T[1][:3], T[2][:3])
-        rows: list[Row] = []
-        for t4, t5, t6, flip, degen in self.wrist_angles(th, R06, wrist_ref):
-            q = (q123[0], q123[1], q123[2], t4 - th0[3], t5 - th0[4], t6 - th0[5])
-            rows.append((q, head + flip, degen or degen_pos))
-        return rows
-
     def position(self, T06: np.ndarray) -> list[PositionBranch]:
         """θ₁–θ₃ placing the wrist centre ``⁰W = T06·⁶W``: one branch per (right/left, elbow up/down).
+
+        Runs :func:`robokit.kernels.closed_form.pieper_position` (the one implementation).
 
         Parameters
         ----------
@@ -585,39 +413,52 @@ class PieperSolver:
 
         Returns
         -------
-        list of PositionBranch
+        branches : list of PositionBranch
             ``q`` (3,) joint variables 1–3, ``label`` e.g. ``"right, elbow up, "``,
             ``data`` the rotation angles θ₁–θ₃ (offsets included).
         """
-        return self._branches(T06.tolist())
+        from robokit.kernels.closed_form import pieper_position
+
+        ci, cf, C = self._packed()
+        Q3, codes, degen, TH = pieper_position(ci, cf, C, np.ascontiguousarray(T06, dtype=float))
+        return [PositionBranch(tuple(q), SHOULDER_LABELS[s] + ELBOW_LABELS[e], bool(d), th)
+                for q, (s, e), d, th in zip(Q3.tolist(), codes.tolist(), degen.tolist(), TH)]
 
     def wrist(self, T06: np.ndarray, branch: PositionBranch, wrist_ref: float) -> list[Row]:
         """The wrist's (q₄, q₅, q₆) for one position branch: ``M = R₃ᵀR₀₆`` (flip/no flip).
 
-        Returns rows ``(q (6,), label, degenerate)``; at a wrist singularity ``q₄ = wrist_ref``.
+        Runs :func:`robokit.kernels.closed_form.pieper_wrist`. Parameters
+        and result as :meth:`robokit.ik.solver.ClosedFormSolver.wrist`.
         """
-        return self._complete(T06.tolist(), branch, wrist_ref)
+        from robokit.kernels.closed_form import pieper_wrist
+
+        _, cf, _ = self._packed()
+        th0 = self.th0_list
+        q1, q2, q3 = branch.q
+        angles, flips = pieper_wrist(cf, np.asarray(branch.data, dtype=float),
+                                     np.ascontiguousarray(T06, dtype=float), float(wrist_ref))
+        return [((q1, q2, q3, t4 - th0[3], t5 - th0[4], t6 - th0[5]), branch.label + WRIST_LABELS[f],
+                 bool(f == 2 or branch.degenerate)) for (t4, t5, t6), f in zip(angles.tolist(), flips.tolist())]
 
     def joint_angles(self, T06: np.ndarray, wrist_ref: float) -> list[Row]:
-        """Every row ``(q (6,), label, degenerate)`` reaching ``T06`` (up to 4 positions × 2 wrists)."""
-        T = T06.tolist()
-        rows: list[Row] = []
-        for branch in self._branches(T):
-            rows.extend(self._complete(T, branch, wrist_ref))
-        return rows
+        """Every row ``(q (6,), label, degenerate)`` reaching ``T06`` (up to 4 positions × 2 wrists).
 
-    def _shoulder(self, th: Sequence[float], W: Sequence[float], singular: bool) -> str:
-        if self.chain.kinds[0] != "R":
-            return ""
-        if singular:
-            return "shoulder singular, "
-        x1 = math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1]
-        return "right, " if x1 >= 0.0 else "left, "
+        Runs :func:`robokit.kernels.closed_form.pieper_rows`.
 
-    def _elbow(self, q: Sequence[float], th: Sequence[float]) -> str:
-        if self.chain.kinds[2] == "P":
-            d = self.chain.d0[2] + q[2]
-            return "d3 +, " if d >= 0.0 else "d3 −, "
-        c3, s3 = math.cos(th[2]), math.sin(th[2])
-        e = (s3 * self.v[0] + c3 * self.v[1]) * (self.a2 if self.a2 != 0.0 else 1.0)
-        return "elbow down, " if e > 0.0 else "elbow up, "
+        Parameters
+        ----------
+        T06 : (4, 4) ndarray
+            Target of ``Z₁X₁ ⋯ Z₆`` in frame 0′ (m).
+        wrist_ref : float
+            q₄ at a wrist singularity (rad).
+
+        Returns
+        -------
+        list of Row
+        """
+        from robokit.kernels.closed_form import pieper_rows
+
+        ci, cf, C = self._packed()
+        Q, codes, degen = pieper_rows(ci, cf, C, np.ascontiguousarray(T06, dtype=float), float(wrist_ref))
+        return [(tuple(q), SHOULDER_LABELS[s] + ELBOW_LABELS[e] + WRIST_LABELS[w], bool(d))
+                for q, (s, e, w), d in zip(Q.tolist(), codes.tolist(), degen.tolist())]

@@ -180,9 +180,9 @@ class ClosedFormSolver(Protocol):
 
         Examples
         --------
-        >>> import robokit
-        >>> from robokit.ik.closed_form import AnalyticIK
-        >>> solver = AnalyticIK(robokit.load("puma560")).solver
+        >>> from robokit import load
+        >>> from robokit.ik.closed_form import analytic_ik
+        >>> solver = analytic_ik(load("ur5")).solver
         >>> T06 = solver.chain.fk6(np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
         >>> rows = solver.joint_angles(T06, 0.0)
         >>> len(rows), all(np.allclose(solver.chain.fk6(np.asarray(q)), T06) for q, _, _ in rows)

@@ -1,9 +1,16 @@
 r"""The closed-form inverse kinematics of Lecture 5 in compiled code: Pieper's spherical wrist
 and the three-parallel-axes (UR) method, per pose and batched over (N, 4, 4) targets.
 
-These kernels are the same algorithms as :mod:`robokit.ik.pieper` and
-:mod:`robokit.ik.parallel_axes` (which stay the readable reference; a test checks that both
-give the same solutions, in the same order, to 1e-9), written over flat arrays:
+This module **is** the algorithm — the one implementation of both methods, in Python and
+compiled alike (``NUMBA_DISABLE_JIT=1`` runs this very source as plain Python; the tests check
+every solution against Pinocchio). :mod:`robokit.ik.pieper` and :mod:`robokit.ik.parallel_axes`
+only build the constants (:class:`robokit.ik.pieper.PieperConstants`,
+:class:`robokit.ik.parallel_axes.ParallelAxesConstants`) and call the raw-row kernels here
+(``pieper_position``/``pieper_wrist``/``pieper_rows``, ``parallel_axes_position``/
+``parallel_axes_wrist``/``parallel_axes_rows``: the position and wrist sub-problems of
+:class:`robokit.ik.solver.ClosedFormSolver`). Pieper's method covers every case: revolute or
+prismatic joints 1–3 (``ci[1]``: 0 RR-quartic, 1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1,
+5 RP-quartic, 6 RP-c1, 7 PP). Over flat arrays:
 
 * the solver's constants are computed once per robot by the solver objects
   (``PieperSolver.kernel_constants()``, ``ParallelAxesSolver.kernel_constants()``: an int
@@ -46,6 +53,8 @@ import numpy as np
 from robokit.kernels._jit import njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
+           "pieper_position", "pieper_wrist", "pieper_rows", "parallel_axes_position",
+           "parallel_axes_wrist", "parallel_axes_rows",
            "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
@@ -61,6 +70,7 @@ _TWO_PI = 2.0 * math.pi
 _TH0, _D0, _CA, _SA = 0, 6, 12, 17
 _A1, _A2, _D1, _D2 = 22, 23, 24, 25
 _W3, _W6, _F, _KA, _KB, _V, _SCALE = 26, 29, 32, 41, 44, 47, 50
+_PHI, _NF2, _KIND = 51, 57, 60  # φ₁, φ₂ (prismatic joint 2), ‖f‖², joints 1–3 revolute (1/0)
 # layout of the float constants (parallel axes), after th0, d0, ca, sa as above
 _PA_A1, _PA_A2, _PA_A3, _PA_A4, _PA_A5, _PA_D1, _PA_D5, _PA_D6, _PA_KW, _PA_W6, _PA_S2, _PA_SIG = (
     22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 34, 35)
@@ -186,14 +196,13 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
 
 
 @njit
-def _angles(cf: np.ndarray, rev3: bool, q: np.ndarray, th: np.ndarray, dd: np.ndarray) -> None:
-    """Rotation angles and offsets of joints 1–3 (joints 1, 2 revolute) at joint values q."""
-    th[0], dd[0] = cf[_TH0] + q[0], cf[_D0]
-    th[1], dd[1] = cf[_TH0 + 1] + q[1], cf[_D0 + 1]
-    if rev3:
-        th[2], dd[2] = cf[_TH0 + 2] + q[2], cf[_D0 + 2]
-    else:
-        th[2], dd[2] = cf[_TH0 + 2], cf[_D0 + 2] + q[2]
+def _angles(cf: np.ndarray, q: np.ndarray, th: np.ndarray, dd: np.ndarray) -> None:
+    """Rotation angles and offsets of joints 1–3 at joint values q (kinds: ``cf[_KIND:_KIND + 3]``)."""
+    for i in range(3):
+        if cf[_KIND + i] != 0.0:
+            th[i], dd[i] = cf[_TH0 + i] + q[i], cf[_D0 + i]
+        else:
+            th[i], dd[i] = cf[_TH0 + i], cf[_D0 + i] + q[i]
 
 
 @njit
@@ -217,7 +226,7 @@ def _wrist_point(cf: np.ndarray, th: np.ndarray, dd: np.ndarray, W: np.ndarray) 
 
 
 @njit
-def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
+def _polish(cf: np.ndarray, q: np.ndarray, W: np.ndarray) -> float:
     """Newton steps (central-difference Jacobian, least squares) on ⁰W(q₁..q₃) = W; q in place."""
     th, dd, p = np.empty(3), np.empty(3), np.empty(3)
     p2, p3, qq = np.empty(3), np.empty(3), np.empty(3)
@@ -226,7 +235,7 @@ def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
     err = np.inf
     scale = cf[_SCALE]
     for it in range(4):
-        _angles(cf, rev3, q, th, dd)
+        _angles(cf, q, th, dd)
         _wrist_point(cf, th, dd, p)
         for k in range(3):
             e[k, 0] = W[k] - p[k]
@@ -237,10 +246,10 @@ def _polish(cf: np.ndarray, rev3: bool, q: np.ndarray, W: np.ndarray) -> float:
         for j in range(3):
             qq[:] = q
             qq[j] += h
-            _angles(cf, rev3, qq, th, dd)
+            _angles(cf, qq, th, dd)
             _wrist_point(cf, th, dd, p2)
             qq[j] -= 2 * h
-            _angles(cf, rev3, qq, th, dd)
+            _angles(cf, qq, th, dd)
             _wrist_point(cf, th, dd, p3)
             for k in range(3):
                 J[k, j] = (p2[k] - p3[k]) / (2 * h)
@@ -324,11 +333,47 @@ def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, 
 
 
 @njit
-def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray) -> int:
-    """Pieper's method with revolute joints 1 and 2 (cases quartic / a₁ = 0 / sin α₁ = 0), joint 3
-    revolute or prismatic: raw rows into Q, codes, degen; their count."""
+def _raw_rows() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Buffers for a solver's raw rows: q (MAX_ROWS, 6), branch codes (MAX_ROWS, 3), degenerate (MAX_ROWS,)."""
+    return (np.empty((MAX_ROWS, 6)), np.empty((MAX_ROWS, 3), dtype=np.int64), np.empty(MAX_ROWS, dtype=np.bool_))
+
+
+@njit
+def _first(n: int, Q: np.ndarray, codes: np.ndarray, degen: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Copies of the first n raw rows (what the raw-row kernels return to Python)."""
+    return Q[:n].copy(), codes[:n].copy(), degen[:n].copy()
+
+
+@njit
+def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
+    """Real roots of A x² + B x + C (A ≠ 0) into ``out`` (the cancellation-free pair); their count."""
+    disc = B * B - 4.0 * A * C
+    if disc < -1e-12 * max(B * B, abs(4.0 * A * C), 1e-300):
+        return 0
+    sq = math.sqrt(max(disc, 0.0))
+    qv = -0.5 * (B + (sq if B >= 0.0 else -sq))
+    if qv == 0.0:
+        out[0] = 0.0
+        return 1
+    out[0] = qv / A
+    if sq > 0.0:
+        out[1] = C / qv
+        return 2
+    return 1
+
+
+@njit
+def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, Q3: np.ndarray,
+                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray) -> int:
+    """Pieper's position sub-problem: every (q₁, q₂, q₃) placing the wrist centre ⁰W = T·⁶W.
+
+    Writes per branch the joint values into ``Q3`` (rows of 3), the shoulder and elbow codes into
+    ``codes`` (rows of 2), the degenerate flag into ``degen`` and the rotation angles θ₁–θ₃ the
+    wrist step needs into ``TH``; returns the number of branches. Cases (``ci[1]``): 0 RR-quartic,
+    1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1, 5 RP-quartic, 6 RP-c1, 7 PP (the kinds of joints 1, 2;
+    ``PieperConstants.case``)."""
     case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
+    rev1, rev2 = case <= 2 or case == 5 or case == 6, case <= 4
     scale = cf[_SCALE]
     w6x, w6y, w6z = cf[_W6], cf[_W6 + 1], cf[_W6 + 2]
     W = np.empty(3)
@@ -337,15 +382,29 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
     W[2] = T[2, 0] * w6x + T[2, 1] * w6y + T[2, 2] * w6z + T[2, 3]
     Wx, Wy, Wz = W[0], W[1], W[2]
     ca1, sa1, a1 = cf[_CA], cf[_SA], cf[_A1]
-    h = Wz - cf[_D1]
-    r = Wx * Wx + Wy * Wy + h * h
     m = np.zeros(5)
+    h, r, X, yp = 0.0, 0.0, 0.0, 0.0
+    if rev1:  # rotating about axis 1 keeps h and r
+        h = Wz - cf[_D1]
+        r = Wx * Wx + Wy * Wy + h * h
+    else:  # prismatic joint 1: W in frame 0′ turned by θ₁'s offset
+        c0, s0 = math.cos(cf[_TH0]), math.sin(cf[_TH0])
+        yp = -s0 * Wx + c0 * Wy
+        X = c0 * Wx + s0 * Wy - a1
     if case == 0:
         m[0], m[1], m[2], m[3], m[4] = r * r, r, h * h, h, 1.0
     elif case == 1:
         m[0], m[1] = r, 1.0
-    else:
+    elif case == 2 or case == 6:
         m[0], m[1] = h, 1.0
+    elif case == 3:
+        m[0], m[1], m[2], m[3] = X * X, yp * yp, yp, 1.0
+    elif case == 4:
+        m[0], m[1] = yp, 1.0
+    elif case == 5:
+        m[0], m[1], m[2], m[3] = r, h * h, h, 1.0
+    else:
+        m[0], m[1] = X, 1.0
     coeffs = np.zeros(5)
     for j in range(deg + 1):
         acc = 0.0
@@ -354,17 +413,16 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
         coeffs[j] = acc
     roots3 = np.empty(6)
     nr = _roots(coeffs, deg, rev3, roots3)
-    check = deg == 4
+    check = deg == 4  # roots from the companion matrix: verify (and polish) each triple
     degenerate = False
-    if nr < 0:
+    if nr < 0:  # the equation holds for every joint-3 value: the documented choice q₃ = 0
         roots3[0] = cf[_TH0 + 2] if rev3 else 0.0
         nr = 1
         degenerate = True
     th2s = np.empty(2)
+    cand = np.empty((2, 4))  # (q₂, g₁, g₂, g₃) per candidate
     q = np.empty(3)
     th, dd, p = np.empty(3), np.empty(3), np.empty(3)
-    wa = np.empty((2, 3))
-    flips = np.empty(2, dtype=np.int64)
     n = 0
     for ir in range(nr):
         x3 = roots3[ir]
@@ -373,77 +431,166 @@ def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref
         f2 = _val(cf, _F + 3, x3, rev3, c3, s3)
         f3 = _val(cf, _F + 6, x3, rev3, c3, s3)
         q3 = x3 - cf[_TH0 + 2] if rev3 else x3
-        F3 = f3 + cf[_D2]
-        Ka = _val(cf, _KA, x3, rev3, c3, s3)
-        sa_, ra = 2.0 * a1, r - Ka
-        sb_, rb = sa1, h - ca1 * F3
-        if case == 0:
-            n2 = f1 * f1 + f2 * f2
-            if n2 > 1e-24 * scale * scale:
-                A, B = ra / sa_, rb / sb_
-                th2s[0] = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+        nc = 0
+        if rev2:
+            F3 = f3 + cf[_D2]
+            if rev1:
+                sa_, ra = 2.0 * a1, r - _val(cf, _KA, x3, rev3, c3, s3)
+                sb_, rb = sa1, h - ca1 * F3
             else:
+                sa_, ra = 1.0, X
+                sb_, rb = ca1, yp + sa1 * F3
+            if case == 0 or case == 3:
+                n2 = f1 * f1 + f2 * f2
+                if n2 > 1e-24 * scale * scale:
+                    A, B = ra / sa_, rb / sb_
+                    th2s[0] = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+                else:
+                    th2s[0] = cf[_TH0 + 1]
+                    degenerate = True
+                n2s = 1
+            elif case == 1:  # θ₂ from eq. b: sb(F₂c₂ + F₁s₂) = rb
+                n2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10, th2s)
+            else:  # RR-s1, PR-c1: θ₂ from eq. a: sa(F₁c₂ − F₂s₂) = ra
+                n2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10, th2s)
+            if n2s < 0:
                 th2s[0] = cf[_TH0 + 1]
+                n2s = 1
                 degenerate = True
-            n2s = 1
-        elif case == 1:
-            n2s = _trig_roots(sb_ * f2, sb_ * f1, rb, 1e-10, th2s)
-        else:
-            n2s = _trig_roots(sa_ * f1, -sa_ * f2, ra, 1e-10, th2s)
-        if n2s < 0:
-            th2s[0] = cf[_TH0 + 1]
-            n2s = 1
-            degenerate = True
-        for i2 in range(n2s):
-            t2 = th2s[i2]
-            c2, s2 = math.cos(t2), math.sin(t2)
-            g1 = a1 + c2 * f1 - s2 * f2
-            u = s2 * f1 + c2 * f2
-            g2 = ca1 * u - sa1 * F3
-            if math.hypot(g1, g2) <= 1e-12 * scale:
-                t1, singular1 = cf[_TH0], True
+            for i2 in range(n2s):
+                t2 = th2s[i2]
+                c2, s2 = math.cos(t2), math.sin(t2)
+                u = s2 * f1 + c2 * f2
+                cand[nc, 0], cand[nc, 1] = t2 - cf[_TH0 + 1], a1 + c2 * f1 - s2 * f2
+                cand[nc, 2], cand[nc, 3] = ca1 * u - sa1 * F3, sa1 * u + ca1 * F3
+                nc += 1
+        else:  # prismatic joint 2: its offset D enters h linearly and r quadratically
+            p1 = _val(cf, _PHI, x3, rev3, c3, s3)
+            p2 = _val(cf, _PHI + 3, x3, rev3, c3, s3)
+            Ds = np.empty(2)
+            if case == 5:
+                Ds[0] = (h - sa1 * p2) / ca1 - f3
+                nD = 1
+            elif case == 6:
+                nf2 = _val(cf, _NF2, x3, rev3, c3, s3)
+                nD = _quad_roots(1.0, 2.0 * f3, a1 * a1 + nf2 + 2.0 * a1 * p1 - r, Ds)
             else:
-                t1, singular1 = math.atan2(Wy, Wx) - math.atan2(g2, g1), False
-            q[0], q[1], q[2] = t1 - cf[_TH0], t2 - cf[_TH0 + 1], q3
+                Ds[0] = (ca1 * p2 - yp) / sa1 - f3
+                nD = 1
+            for iD in range(nD):
+                D = Ds[iD]
+                cand[nc, 0], cand[nc, 1] = D - cf[_D0 + 1], a1 + p1
+                cand[nc, 2], cand[nc, 3] = ca1 * p2 - sa1 * (f3 + D), sa1 * p2 + ca1 * (f3 + D)
+                nc += 1
+        for ic in range(nc):
+            g1, g2, g3 = cand[ic, 1], cand[ic, 2], cand[ic, 3]
+            singular1 = False
+            if rev1:
+                if math.hypot(g1, g2) <= 1e-12 * scale:
+                    t1, singular1 = cf[_TH0], True
+                else:
+                    t1 = math.atan2(Wy, Wx) - math.atan2(g2, g1)
+                q[0] = t1 - cf[_TH0]
+            else:
+                q[0] = Wz - cf[_D0] - g3
+            q[1], q[2] = cand[ic, 0], q3
             if check:
-                _angles(cf, rev3, q, th, dd)
+                _angles(cf, q, th, dd)
                 _wrist_point(cf, th, dd, p)
                 err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
                 if err > 1e-12 * scale:
                     if err > 1e-5 * scale:
-                        continue
-                    err = _polish(cf, rev3, q, W)
+                        continue  # a spurious root (a complex pair taken as real)
+                    err = _polish(cf, q, W)
                     if err > 1e-11 * scale:
                         continue
-            _angles(cf, rev3, q, th, dd)
+            if n >= Q3.shape[0]:
+                break
+            _angles(cf, q, th, dd)
             # labels: shoulder from frame 1's x axis, elbow from the sign of the normal's cross product
-            if singular1:
-                shoulder = 2
+            if not rev1:
+                codes[n, 0] = 3
+            elif singular1:
+                codes[n, 0] = 2
             else:
-                shoulder = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
+                codes[n, 0] = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
             if not rev3:
-                elbow = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
+                codes[n, 1] = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
             else:
                 e = (math.sin(th[2]) * cf[_V] + math.cos(th[2]) * cf[_V + 1]) * (cf[_A2] if cf[_A2] != 0.0 else 1.0)
-                elbow = 0 if e > 0.0 else 1
-            nw = _wrist_angles(cf, th, T, q4_ref, wa, flips)
-            for k in range(nw):
-                if n >= Q.shape[0]:
-                    break
-                Q[n, 0], Q[n, 1], Q[n, 2] = q[0], q[1], q[2]
-                Q[n, 3] = wa[k, 0] - cf[_TH0 + 3]
-                Q[n, 4] = wa[k, 1] - cf[_TH0 + 4]
-                Q[n, 5] = wa[k, 2] - cf[_TH0 + 5]
-                codes[n, 0], codes[n, 1], codes[n, 2] = shoulder, elbow, flips[k]
-                degen[n] = degenerate or singular1 or flips[k] == 2
-                n += 1
+                codes[n, 1] = 0 if e > 0.0 else 1
+            for j in range(3):
+                Q3[n, j] = q[j]
+                TH[n, j] = th[j]
+            degen[n] = degenerate or singular1
+            n += 1
     return n
 
 
 @njit
-def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
-                   degen: np.ndarray) -> int:
-    """The three-parallel-axes method (as ``ParallelAxesSolver.solve``): raw rows; their count."""
+def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
+            codes: np.ndarray, degen: np.ndarray) -> int:
+    """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
+    of each position): raw rows into Q, codes, degen; their count."""
+    Q3 = np.empty((MAX_ROWS, 3))
+    pcodes = np.empty((MAX_ROWS, 2), dtype=np.int64)
+    pdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    TH = np.empty((MAX_ROWS, 3))
+    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH)
+    wa = np.empty((2, 3))
+    flips = np.empty(2, dtype=np.int64)
+    n = 0
+    for b in range(npos):
+        nw = _wrist_angles(cf, TH[b], T, q4_ref, wa, flips)
+        for k in range(nw):
+            if n >= Q.shape[0]:
+                break
+            Q[n, 0], Q[n, 1], Q[n, 2] = Q3[b, 0], Q3[b, 1], Q3[b, 2]
+            Q[n, 3] = wa[k, 0] - cf[_TH0 + 3]
+            Q[n, 4] = wa[k, 1] - cf[_TH0 + 4]
+            Q[n, 5] = wa[k, 2] - cf[_TH0 + 5]
+            codes[n, 0], codes[n, 1], codes[n, 2] = pcodes[b, 0], pcodes[b, 1], flips[k]
+            degen[n] = pdegen[b] or flips[k] == 2
+            n += 1
+    return n
+
+
+@njit
+def pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray,
+                    T06: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Pieper's position sub-problem for the canonical chain's target T06 (no base′/tool′, no
+    reversal): ``(q (m, 3), codes (m, 2) shoulder/elbow, degenerate (m,), θ₁–θ₃ (m, 3))``."""
+    Q3 = np.empty((MAX_ROWS, 3))
+    codes = np.empty((MAX_ROWS, 2), dtype=np.int64)
+    degen = np.empty(MAX_ROWS, dtype=np.bool_)
+    TH = np.empty((MAX_ROWS, 3))
+    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH)
+    return Q3[:n].copy(), codes[:n].copy(), degen[:n].copy(), TH[:n].copy()
+
+
+@njit
+def pieper_wrist(cf: np.ndarray, th: np.ndarray, T06: np.ndarray, q4_ref: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pieper's wrist sub-problem for the rotation angles θ₁–θ₃ ``th``: ``(θ₄, θ₅, θ₆ (m, 3), wrist codes (m,))``."""
+    out = np.empty((2, 3))
+    flips = np.empty(2, dtype=np.int64)
+    n = _wrist_angles(cf, th, T06, q4_ref, out, flips)
+    return out[:n].copy(), flips[:n].copy()
+
+
+@njit
+def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
+                q4_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
+    limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q, codes, degen = _raw_rows()
+    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen)
+    return _first(n, Q, codes, degen)
+
+
+@njit
+def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulders: np.ndarray) -> int:
+    """Step 1 of the three-parallel-axes method: every θ₁ (rotation angle) into ``t1s`` and its
+    shoulder code into ``shoulders``; their count."""
     r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
     r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
     r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
@@ -452,83 +599,132 @@ def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, 
     Wy = r10 * w6x + r11 * w6y + r12 * w6z + py
     Wz = r20 * w6x + r21 * w6y + r22 * w6z + pz
     ca1, sa1 = cf[_CA], cf[_SA]
+    n1 = max(_trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1]), 1e-10, t1s), 0)
+    for i1 in range(n1):
+        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
+        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+    return n1
+
+
+@njit
+def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
+                       codes: np.ndarray, degen: np.ndarray, n: int) -> int:
+    """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
+    from row n; the new row count."""
+    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
+    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
+    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
+    ca1, sa1 = cf[_CA], cf[_SA]
     ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
     a1, a2, a3, a4, a5 = cf[_PA_A1], cf[_PA_A2], cf[_PA_A3], cf[_PA_A4], cf[_PA_A5]
     d1, d5, d6, sig, sgn2 = cf[_PA_D1], cf[_PA_D5], cf[_PA_D6], cf[_PA_SIG], cf[_PA_S2]
     right_angles = ca4 == 0.0 and ca5 == 0.0
-    t1s = np.empty(2)
-    n1 = _trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - d1), 1e-10, t1s)
     t5s = np.empty(2)
-    n = 0
-    for i1 in range(max(n1, 0)):
-        t1 = t1s[i1]
-        c1, s1 = math.cos(t1), math.sin(t1)
-        shoulder = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
-        ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
-        utx = sig * (r00 * ux + r10 * uy + r20 * uz)
-        uty = sig * (r01 * ux + r11 * uy + r21 * uz)
-        utz = sig * (r02 * ux + r12 * uy + r22 * uz)
-        rho = math.hypot(utx, uty)
-        if right_angles:
-            c5r = -utz / (sa4 * sa5)
-            if rho > 1e-10:
-                t5s[0], t5s[1] = math.atan2(rho, c5r), math.atan2(-rho, c5r)
-                n5 = 2
-            else:
-                t5s[0] = math.atan2(0.0, c5r)
-                n5 = 1
+    c1, s1 = math.cos(t1), math.sin(t1)
+    ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
+    utx = sig * (r00 * ux + r10 * uy + r20 * uz)
+    uty = sig * (r01 * ux + r11 * uy + r21 * uz)
+    utz = sig * (r02 * ux + r12 * uy + r22 * uz)
+    rho = math.hypot(utx, uty)
+    if right_angles:
+        c5r = -utz / (sa4 * sa5)
+        if rho > 1e-10:
+            t5s[0], t5s[1] = math.atan2(rho, c5r), math.atan2(-rho, c5r)
+            n5 = 2
         else:
-            n5 = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10, t5s)
-        for i5 in range(max(n5, 0)):
-            t5 = t5s[i5]
-            c5, s5 = math.cos(t5), math.sin(t5)
-            vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
-            if rho <= 1e-10:
-                t6, degenerate = cf[_TH0 + 5] + q6_ref, True
-            else:
-                t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
-            c6, s6 = math.cos(t6), math.sin(t6)
-            gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
-            gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
-            ox, oy, oz = -a4, 0.0, 0.0
-            ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
-            ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
-            ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
-            X0 = r00 * gxa + r01 * gxb + r02 * gxc
-            X1 = r10 * gxa + r11 * gxb + r12 * gxc
-            X2 = r20 * gxa + r21 * gxb + r22 * gxc
-            O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
-            O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
-            O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
-            phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
-            x = c1 * O0 + s1 * O1
-            y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
-            c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
-            if abs(c3) > 1.0 + 1e-10:
-                continue
-            c3 = max(-1.0, min(1.0, c3))
-            s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
-            wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
-            base = math.atan2(y, x)
-            for k3 in range(2 if s3a > 0.0 else 1):
-                s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
-                psi = math.atan2(s3, c3)
-                t2 = base - math.atan2(a3 * s3, a2 + a3 * c3)
-                t3, t4 = sgn2 * psi, sig * (phi - t2 - psi)
-                if n >= Q.shape[0]:
-                    break
-                Q[n, 0] = t1 - cf[_TH0]
-                Q[n, 1] = t2 - cf[_TH0 + 1]
-                Q[n, 2] = t3 - cf[_TH0 + 2]
-                Q[n, 3] = t4 - cf[_TH0 + 3]
-                Q[n, 4] = t5 - cf[_TH0 + 4]
-                Q[n, 5] = t6 - cf[_TH0 + 5]
-                codes[n, 0] = shoulder
-                codes[n, 1] = 0 if a2 * a3 * s3 > 0.0 else 1
-                codes[n, 2] = wrist
-                degen[n] = degenerate
-                n += 1
+            t5s[0] = math.atan2(0.0, c5r)
+            n5 = 1
+    else:
+        n5 = _trig_roots(-sa4 * sa5, 0.0, utz - ca4 * ca5, 1e-10, t5s)
+    for i5 in range(max(n5, 0)):
+        t5 = t5s[i5]
+        c5, s5 = math.cos(t5), math.sin(t5)
+        vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
+        if rho <= 1e-10:
+            t6, degenerate = cf[_TH0 + 5] + q6_ref, True
+        else:
+            t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
+        c6, s6 = math.cos(t6), math.sin(t6)
+        gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
+        gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
+        ox, oy, oz = -a4, 0.0, 0.0
+        ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
+        ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
+        ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
+        X0 = r00 * gxa + r01 * gxb + r02 * gxc
+        X1 = r10 * gxa + r11 * gxb + r12 * gxc
+        X2 = r20 * gxa + r21 * gxb + r22 * gxc
+        O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
+        O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
+        O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
+        phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
+        x = c1 * O0 + s1 * O1
+        y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
+        c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+        if abs(c3) > 1.0 + 1e-10:
+            continue
+        c3 = max(-1.0, min(1.0, c3))
+        s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
+        wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
+        base = math.atan2(y, x)
+        for k3 in range(2 if s3a > 0.0 else 1):
+            s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
+            psi = math.atan2(s3, c3)
+            t2 = base - math.atan2(a3 * s3, a2 + a3 * c3)
+            t3, t4 = sgn2 * psi, sig * (phi - t2 - psi)
+            if n >= Q.shape[0]:
+                break
+            Q[n, 0] = t1 - cf[_TH0]
+            Q[n, 1] = t2 - cf[_TH0 + 1]
+            Q[n, 2] = t3 - cf[_TH0 + 2]
+            Q[n, 3] = t4 - cf[_TH0 + 3]
+            Q[n, 4] = t5 - cf[_TH0 + 4]
+            Q[n, 5] = t6 - cf[_TH0 + 5]
+            codes[n, 0] = shoulder
+            codes[n, 1] = 0 if a2 * a3 * s3 > 0.0 else 1
+            codes[n, 2] = wrist
+            degen[n] = degenerate
+            n += 1
     return n
+
+
+@njit
+def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
+                   degen: np.ndarray) -> int:
+    """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count."""
+    t1s = np.empty(2)
+    shoulders = np.empty(2, dtype=np.int64)
+    n1 = _parallel_shoulders(cf, T, t1s, shoulders)
+    n = 0
+    for i1 in range(n1):
+        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n)
+    return n
+
+
+@njit
+def parallel_axes_position(cf: np.ndarray, T06: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Step 1 for the canonical chain's target T06: ``(θ₁ rotation angles (m,), shoulder codes (m,))``."""
+    t1s = np.empty(2)
+    shoulders = np.empty(2, dtype=np.int64)
+    n1 = _parallel_shoulders(cf, T06, t1s, shoulders)
+    return t1s[:n1].copy(), shoulders[:n1].copy()
+
+
+@njit
+def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: int,
+                        q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Steps 2–4 for one θ₁: raw rows ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q, codes, degen = _raw_rows()
+    n = _parallel_complete(cf, T06, t1, shoulder, q6_ref, Q, codes, degen, 0)
+    return _first(n, Q, codes, degen)
+
+
+@njit
+def parallel_axes_rows(cf: np.ndarray, T06: np.ndarray, q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every raw row of the three-parallel-axes method: ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
+    Q, codes, degen = _raw_rows()
+    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen)
+    return _first(n, Q, codes, degen)
 
 
 @njit
@@ -705,9 +901,7 @@ def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: n
 @njit
 def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, pre, post, post_q = _unpack(K)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    rows, rcodes, rdegen = _raw_rows()
     m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
     return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
 
@@ -715,9 +909,7 @@ def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarr
 @njit
 def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, pre, post, post_q = _unpack(K)
-    rows = np.empty((MAX_ROWS, 6))
-    rcodes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.empty(MAX_ROWS, dtype=np.bool_)
+    rows, rcodes, rdegen = _raw_rows()
     m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
     return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
 

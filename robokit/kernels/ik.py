@@ -8,11 +8,14 @@ Iteration (damped least squares / Levenberg–Marquardt on the body-frame pose e
 * error twist in the end-effector frame: ``V_b = log(T_sb(θ)⁻¹ T_sd)`` (6,), ``E = ½ ‖V_b‖²``;
 * body Jacobian ``J_b = Ad_{T_sb⁻¹} J_s`` (computed in the same pass as the FK);
 * step ``Δθ = (J_bᵀ J_b + λ I)⁻¹ J_bᵀ V_b`` (a Cholesky solve of the damped normal equations);
+* the damping is robokit's one law (:mod:`robokit.kernels.lm_damping`, Sugihara 2011):
+  ``λ = λ₀‖V_b‖² + λ_min`` (λ₀ = 1e-2, λ_min = 1e-9), the same as :func:`robokit.ik.lm.lm_loop`'s;
 * the step is projected onto the joint limits (``θ ← clamp(θ + Δθ, θ_min, θ_max)``) and kept
-  only if it lowers E; then ``λ ← λ/3`` (towards Gauss–Newton), else ``λ ← 10 λ`` (towards a
-  short gradient step). A run that cannot improve (λ > 1e8) or uses up ``max_iterations`` is
-  restarted from a uniformly random configuration inside the limits (``[−π, π]`` for an
-  unlimited joint), at most ``max_restarts`` times, from numba's generator seeded with ``seed``.
+  only if it lowers E; otherwise it is retried once with ``10(λ + 10⁻⁶)`` (a shorter, more
+  gradient-like step). A run that is rejected 3 times, is still farther than 1e-2 after 15
+  iterations, or uses up ``max_iterations`` is restarted from a uniformly random configuration
+  inside the limits (``[−π, π]`` for an unlimited joint), at most ``max_restarts`` times, from
+  numba's generator seeded with ``seed``.
 
 Success: orientation error ``‖log(R_sbᵀ R_sd)‖ < tol`` (rad) and position error
 ``‖p_sb − p_sd‖ < tol`` (m), with θ inside the limits (guaranteed by the projection).
@@ -38,8 +41,14 @@ from robokit.kernels._jit import njit
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.poe import fkin_space_into
 from robokit.kernels.lie import adjoint_screw, exp_screw, inv_t, log_se3, log_so3, mul_tt, mul_tt_inplace, set_identity
+from robokit.kernels.lm_damping import (DAMPING, EARLY_ERROR, EARLY_ITERATION, MIN_DAMPING, STALL_LIMIT, lm_damping,
+                                        lm_retry_damping)
 
 __all__ = ["solve_poe_ik", "solve_poe_ik_kernel"]
+
+# the one damping law (robokit.kernels.lm_damping), compiled into the loop below
+_damping = njit(lm_damping)
+_retry_damping = njit(lm_retry_damping)
 
 
 @njit
@@ -144,35 +153,49 @@ def solve_poe_ik_kernel(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q0: np
             random_configuration(qlim, theta)
         fk_and_body_jacobian(M, Slist, theta, T, Jb, Js, W[0], W[1], W[2], W[3])
         E, rot_err, pos_err = pose_error(T, Td, W[3], W[4], V, w3)
-        lam = 1e-3
-        for _ in range(max_iterations):
+        stall = 0
+        for it in range(max_iterations):
             if rot_err < tol and pos_err < tol:
                 return theta, True, iterations, attempt
             iterations += 1
-            # damped normal equations (J_bᵀ J_b + λ I) Δθ = J_bᵀ V_b
+            # damped normal equations (J_bᵀ J_b + λ I) Δθ = J_bᵀ V_b, λ by the one law; a step
+            # that does not lower E is retried once with heavier damping
             normal_equations(Jb, V, H, g)
-            for i in range(n):
-                H[i, i] += lam
-            if not cholesky_solve(H, g, L, step):
-                lam *= 10.0
-                continue
-            for i in range(n):
-                trial[i] = theta[i] + step[i]
-            clamp(trial, qlim)
-            fkin_space_into(M, Slist, trial, W[5], W[1], W[2])
-            E_new, rot_new, pos_new = pose_error(W[5], Td, W[3], W[4], V_trial, w3)
-            if E_new < E:  # accept: keep the step, trust the linear model more
+            err = math.sqrt(2.0 * E)
+            lam = _damping(err, DAMPING, MIN_DAMPING)
+            accepted = False
+            for retry in range(2):
+                if retry == 1:
+                    lam = _retry_damping(lam)
                 for i in range(n):
-                    theta[i] = trial[i]
-                fk_and_body_jacobian(M, Slist, theta, T, Jb, Js, W[0], W[1], W[2], W[3])
-                for r in range(6):
-                    V[r] = V_trial[r]
-                E, rot_err, pos_err = E_new, rot_new, pos_new
-                lam = max(lam / 3.0, 1e-12)
-            else:  # reject: damp more (a shorter step, closer to the gradient direction)
-                lam *= 10.0
-                if lam > 1e8:
+                    H[i, i] += lam
+                solved = cholesky_solve(H, g, L, step)
+                for i in range(n):
+                    H[i, i] -= lam
+                if not solved:
+                    continue
+                for i in range(n):
+                    trial[i] = theta[i] + step[i]
+                clamp(trial, qlim)
+                fkin_space_into(M, Slist, trial, W[5], W[1], W[2])
+                E_new, rot_new, pos_new = pose_error(W[5], Td, W[3], W[4], V_trial, w3)
+                if E_new < E:  # accept
+                    for i in range(n):
+                        theta[i] = trial[i]
+                    fk_and_body_jacobian(M, Slist, theta, T, Jb, Js, W[0], W[1], W[2], W[3])
+                    for r in range(6):
+                        V[r] = V_trial[r]
+                    E, rot_err, pos_err = E_new, rot_new, pos_new
+                    accepted = True
                     break
+            if accepted and retry == 0:
+                stall = 0
+            else:
+                stall += 1
+                if stall >= STALL_LIMIT:
+                    break
+            if it == EARLY_ITERATION and math.sqrt(2.0 * E) > EARLY_ERROR:
+                break  # far from converging from this start: a fresh restart is cheaper
         if rot_err < tol and pos_err < tol:
             return theta, True, iterations, attempt
     return theta, False, iterations, max_restarts

@@ -1,10 +1,12 @@
-"""The compiled closed-form IK (robokit.kernels.closed_form) against the Python solvers it ports.
+"""The compiled closed-form IK (robokit.kernels.closed_form, the one implementation of Pieper's
+and the three-parallel-axes methods) checked against Pinocchio.
 
-For each arm and pose the compiled path (``AnalyticIK.solve`` with ``use_kernel``) must give the
-same solutions as the Python reference (``use_kernel = False``: ``PieperSolver`` /
-``ParallelAxesSolver`` + ``solutions_from_rows``) — same count, order, labels, limit flags,
-degenerate flags, joint values to 1e-9 — and every solution must reach the pose to 1e-9 through
-the robot's Pinocchio model (``robot.frame_pose``), which does not go through either solver.
+Every solution must reach the pose to 1e-9 through the robot's Pinocchio model
+(``robot.frame_pose``), which does not go through the solver, and the solver's original pose
+must be among them. The packed path (``AnalyticIK.solve`` with ``use_kernel``: solve and
+post-process in the kernel) must give the same solutions as the solver's rows post-processed
+in Python (``use_kernel = False``: ``solutions_from_rows``) — same count, order, labels, limit
+flags, degenerate flags, joint values to 1e-9.
 The batched form must equal the per-pose one, and ``NUMBA_DISABLE_JIT=1`` must run the same
 source to the same answers.
 """
@@ -167,15 +169,34 @@ def test_random_three_parallel_axes_arms(seed, convention):
         assert min(wrapped_diff(s.q, q, np.ones(6, bool)) for s in sols) < 1e-7
 
 
-def test_prismatic_joint_1_or_2_stays_on_the_python_solver():
-    for kinds in ("PRR", "RPR"):
-        table = spherical_arm(5, "standard", kinds, True)
-        ik = AnalyticIK(table)
-        assert ik.method == "spherical wrist" and ik._kernel is None
-        q = random_q(np.random.default_rng(2), kinds)
-        T = table.fk(q)
-        sols = ik.solve(T)
-        assert sols and all(np.abs(table.fk(s.q) - T).max() < TOL for s in sols)
+@pytest.mark.parametrize("oblique", [True, False])
+@pytest.mark.parametrize("kinds", ["PRR", "RPR", "PPR", "PRP", "RPP"])
+def test_prismatic_joint_1_or_2_compiled(kinds, oblique):
+    """Every position case of Pieper's method runs in the kernel: PR- and RP- quartic (oblique
+    twists) and their cos α₁ = 0 cases (right-angled twists), PP."""
+    for seed in range(4):
+        table = spherical_arm(5 + seed, "standard", kinds, oblique)
+        robot = robokit.load(table)
+        ik = AnalyticIK(robot)
+        if ik.method != "spherical wrist":
+            continue
+        rng = np.random.default_rng(2 + seed)
+        for _ in range(3):
+            q = random_q(rng, kinds)
+            sols = compare(robot, ik, robot.frame_pose(q))
+            assert min(wrapped_diff(s.q, q, np.array(ik._revolute)) for s in sols) < 1e-7
+
+
+def test_the_prismatic_arms_cover_every_position_case():
+    """The arms of test_prismatic_joint_1_or_2_compiled reach every case with a prismatic joint 1 or 2."""
+    cases = set()
+    for kinds in ("PRR", "RPR", "PPR", "PRP", "RPP"):
+        for oblique in (True, False):
+            for seed in range(4):
+                ik = AnalyticIK(spherical_arm(5 + seed, "standard", kinds, oblique))
+                if ik.method == "spherical wrist":
+                    cases.add(ik.solver.constants().case)
+    assert {"PR-quartic", "PR-c1", "RP-quartic", "RP-c1", "PP"} <= cases, cases
 
 
 def test_limits_wider_than_pi_and_flags_match():
