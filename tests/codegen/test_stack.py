@@ -13,10 +13,11 @@ from benchmarks.board import CPU, STRICT, missing_tools, stack_paths
 from robokit.codegen import generate_c, write_c
 
 from .test_clang import prismatic_arm, quartic_arm
-from .test_codegen import jaco2_table
+from .test_codegen import calibrated_arm, jaco2_table
 
 ARMS = {"twolink": lambda: "twolink", "rrr": lambda: "rrr", "puma560": lambda: "puma560", "ur5": lambda: "ur5",
-        "panda": lambda: "panda", "jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}
+        "panda": lambda: "panda", "jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm,
+        "calibrated_puma560": lambda: calibrated_arm("puma560", 1), "calibrated_ur5": lambda: calibrated_arm("ur5", 2)}
 FRAME, G6R_PATH = 2048, 12 * 1024
 
 
@@ -29,7 +30,8 @@ def arm_gcc():
 
 @pytest.mark.parametrize("name", list(ARMS))
 def test_stack_fits_an_rtos_task(arm_gcc, tmp_path, name):
-    robot = robokit.load(ARMS[name]())
+    arm = ARMS[name]()
+    robot = arm if isinstance(arm, robokit.Robot) else robokit.load(arm)
     src = generate_c(robot)
     _, c_path = write_c(src, tmp_path)
     res = subprocess.run(["arm-none-eabi-gcc", *CPU, *STRICT, "-O2", "-fstack-usage", "-fcallgraph-info=su", "-c",
