@@ -32,7 +32,11 @@ the nominal's and so are the labels. Near a singular pose (within about the size
 * the roots the real arm has there beyond the nominal's are searched along the Jacobian's
   near-null direction from the points involved (flagged ``degenerate``). This search is not
   exhaustive: within a few milliradians of a singular configuration a root can be missed (every
-  returned one is exact); ``nominal=False`` gives the general 6R method there.
+  returned one is exact) — for example a calibrated UR5 at θ₅ = −0.34 mrad, where the arm's roots
+  lie close to a curve (θ₄, θ₆ nearly free) and a 500-seed sweep finds one more. Never silently:
+  whenever the search runs (a point whose scaled Jacobian has a singular value below
+  :data:`robokit.kernels.calibrated_ik.SIGMA_EXPLORE`, 0.02), a :class:`robokit.errors.RobokitWarning`
+  names that singular value; ``nominal=False`` gives the general 6R method there.
 
 Which structure. In this order:
 
@@ -401,13 +405,13 @@ class CalibratedArm:
         """
         return None
 
-    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, int, int, np.ndarray]:
+    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, int, int, float, np.ndarray]:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = self._branches
         ref = self.nominal._kernel_ref(wrist_ref)
         for attempt in range(2):
-            n, merged, vanished = _kci.calibrated_solve_into(self._Kn, self._kind, self._C, T, ref, out, branches,
-                                                             self._work)
+            n, merged, vanished, sigma = _kci.calibrated_solve_into(self._Kn, self._kind, self._C, T, ref, out,
+                                                                    branches, self._work)
             if n != -1 or attempt:
                 break
             # T failed the kernel's quick rigid-transform test: check it fully (raises), then use the
@@ -417,7 +421,7 @@ class CalibratedArm:
             Tc = np.eye(4)
             Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
             T = Tc
-        return out, n, merged, vanished, branches
+        return out, n, merged, vanished, sigma, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         """Every solution for the tip pose T (a checked, C-contiguous float64 (4, 4) rigid transform).
@@ -435,9 +439,16 @@ class CalibratedArm:
             As :func:`robokit.ik_analytic`; a solution reached by several branches is labelled
             ``"A (merged with B)"`` and flagged ``degenerate``.
         """
-        out, n, merged, vanished, branches = self._solve(T, wrist_ref)
+        out, n, merged, vanished, sigma, branches = self._solve(T, wrist_ref)
         if vanished:
             self._warn_vanished(branches)
+        if sigma <= _kci.SIGMA_EXPLORE:
+            warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
+                          f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
+                          f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
+                          f"branches, and the search for them along the near-singular direction is not exhaustive: "
+                          f"a solution may be missing (each returned one is exact; nominal=False gives the general "
+                          f"6R method)", RobokitWarning, stacklevel=4)
         if n <= 0:
             return []
         sols = _RowSolution.from_rows(_Rows(out, n, self._labels))
@@ -469,7 +480,7 @@ class CalibratedArm:
         list of Branch
             One per branch of the projected arm's closed form, in its order.
         """
-        branches = self._solve(T, wrist_ref)[4].copy()
+        branches = self._solve(T, wrist_ref)[5].copy()
         return [Branch(self._labels[float(branches[r, 0])], ("solution", "merged", "vanished")[int(branches[r, 1])],
                        None if branches[r, 2] < 0 else int(branches[r, 2]), float(branches[r, 3]),
                        float(branches[r, 4])) for r in range(int(np.count_nonzero(branches[:, 0] >= 0.0)))]

@@ -462,7 +462,7 @@ def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, 
 
 @njit
 def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndarray, wrist_ref: float,
-                          out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int]:
+                          out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int, float]:
     """Every solution of the packed arm ``C`` (:func:`pack_arm`) for the tip pose T (module docstring).
 
     Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
@@ -470,7 +470,9 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the
     closed-form kernels do and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS; code
     −1 past the last branch); work: :func:`scratch`. Returns (number of solutions, merged branches,
-    vanished branches); (−1, 0, 0) when T fails the quick rigid-transform test."""
+    vanished branches, σ): σ the smallest singular value of the scaled Jacobian (:func:`_null_direction`)
+    at the points the near-singular search started from, ``inf`` when it did not run (no point needed
+    it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
     R = _cf.MAX_ROWS
     # work rows: 0–47 polish's scratch, 48–63 the starts (then the search points), 64–79 the
     # solutions, 80–82 q, q2, v, 83–88 the starts' branch codes and degenerate flags (16 each)
@@ -483,7 +485,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     for r in range(R):
         branches[r, 0] = -1.0
     if m < 0:
-        return m, 0, 0
+        return m, 0, 0, math.inf
     for r in range(m):
         for j in range(6):
             nom[r, j] = first[r, j]
@@ -583,11 +585,14 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
             branches[r, 1] = VANISHED
             branches[r, 2] = -1
             vanished += 1
+    sigma = math.inf
     for k in range(nseed):  # every root along the arm's near-singular direction there
         for j in range(6):
             q2[j] = nom[k, j]
-        if _null_direction(C, q2, work, v) > SIGMA_EXPLORE:
+        sk = _null_direction(C, q2, work, v)
+        if sk > SIGMA_EXPLORE:
             continue  # not near a singular configuration: no other root nearby to look for
+        sigma = min(sigma, sk)
         big = 0.0
         for j in range(6):
             big = max(big, abs(v[j]))
@@ -607,7 +612,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
                 rdegen[ns] = True
                 ns += 1
     ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
-    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished
+    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
 
 
 @njit(parallel=True)
