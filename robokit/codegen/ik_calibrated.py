@@ -405,7 +405,8 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
             double Tr[16];
-            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))}, uz = T[11] - {lit(float(sh[2]))};
+            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
+                         uz = T[11] - {lit(float(sh[2]))};
             const double dist = sqrt(ux * ux + uy * uy + uz * uz);
             if (!(dist > 0.0)) {{
                 continue;

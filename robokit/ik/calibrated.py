@@ -392,8 +392,8 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
-                "frames": self._C[:84].reshape(7, 3, 4).copy(), "kinds": self._C[84:90].astype(int).tolist(),
-                "pitches": self._C[90:96].tolist(),
+                "frames": self._C[_kci.FRAMES].reshape(7, 3, 4).copy(),
+                "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 
     def refusal(self) -> str | None:

@@ -56,8 +56,8 @@ from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
 
-__all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANCH_COLS", "SOLUTION", "MERGED",
-           "VANISHED"]
+__all__ = ["pack_arm", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "calibrated_batch", "SAME",
+           "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -166,6 +166,8 @@ def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> 
 #: (3,), the reach (m), tol_stop, tol_accept and max_steps.
 _L, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _LEN = (
     0, 84, 90, 96, 126, 129, 130, 131, 132, 133)
+#: Where ``C`` keeps the local transforms (7 × 3 × 4, row-major), the joint kinds and the pitches.
+FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
 #: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6).
 _WORK_ROWS = 96
 
@@ -286,9 +288,12 @@ def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: 
             a20, a21, a22, a23 = C[o + 8], C[o + 9], C[o + 10], C[o + 11]
             px, py, pz = (r00 * a03 + r01 * a13 + r02 * a23 + px, r10 * a03 + r11 * a13 + r12 * a23 + py,
                           r20 * a03 + r21 * a13 + r22 * a23 + pz)
-            r00, r01, r02 = r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21, r00 * a02 + r01 * a12 + r02 * a22
-            r10, r11, r12 = r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21, r10 * a02 + r11 * a12 + r12 * a22
-            r20, r21, r22 = r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21, r20 * a02 + r21 * a12 + r22 * a22
+            r00, r01, r02 = (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21,
+                                r00 * a02 + r01 * a12 + r02 * a22)
+            r10, r11, r12 = (r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21,
+                                r10 * a02 + r11 * a12 + r12 * a22)
+            r20, r21, r22 = (r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21,
+                                r20 * a02 + r21 * a12 + r22 * a22)
         if i == 6:
             break
         if C[_KIND + i] == 0.0:
