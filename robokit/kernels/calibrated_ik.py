@@ -494,7 +494,6 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     for r in range(m):
         for j in range(6):
             nom[r, j] = first[r, j]
-    for r in range(m):
         codes[r] = first[r, 7]
         degens[r] = first[r, 8]
     shoulder = C[_SHOULDER:_REACH]
