@@ -223,8 +223,8 @@ def test_at_the_workspace_boundary_vanished_branches_are_reported(arms):
 def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
     """A calibrated UR5 (errors up to 2 mrad / 2 mm) at θ₅ = −0.34 mrad: near the wrist singularity the arm's
     roots lie close to a curve (θ₄ and θ₆ nearly free), and the search along the near-singular direction
-    finds only some of them — here the 500-seed sweep finds a solution that is not returned. That is never
-    silent: ik_analytic warns, naming how close the pose is to the singularity (the smallest singular
+    finds only some of them (when this test was written, the 500-seed sweep found a solution there that is
+    not returned: the search is not exhaustive). That is never silent: ik_analytic warns, naming how close the pose is to the singularity (the smallest singular
     value of the scaled Jacobian where the search started, below the 0.02 that starts it); every returned
     solution is exact."""
     from robokit.kernels.calibrated_ik import SIGMA_EXPLORE
@@ -243,6 +243,7 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
     assert 0.0 <= sigma <= SIGMA_EXPLORE
     # the singular value is the arm's own: Pinocchio's Jacobian at some returned solution is that close
     reach = analytic_ik(robot).calibrated.reach
+
     def scaled_sigma(x):
         J = robot.jacobian(x, reference="local_world_aligned")  # (v of the tip; ω)
         v0 = J[:3] + np.cross(robot.frame_pose(x)[:3, 3], J[3:].T).T  # v of the point at the base origin
