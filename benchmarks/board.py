@@ -285,6 +285,18 @@ def _sizeof_ws(folder: Path, P: str) -> int:
     return int.from_bytes(bytes.fromhex(word), "little")
 
 
+def _calibrated_puma():
+    """A PUMA 560 with every joint placement, the base and the tool off by up to 2 mrad / 2 mm, built as
+    ``robokit.calibrate`` builds its result (its IK: the polished closed form, ``robokit.ik.calibrated``)."""
+    import numpy as np
+    import robokit
+    from robokit.calibration import chain_from_robot, robot_from_chain
+
+    nominal = robokit.load("puma560")
+    delta = np.random.default_rng(1).uniform(-2e-3, 2e-3, (nominal.n + 1, 6))
+    return robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))
+
+
 def main(argv=None) -> None:
     """Print the table (``argv`` is accepted for ``python -m benchmarks``; there are no options)."""
     import robokit
@@ -298,6 +310,7 @@ def main(argv=None) -> None:
     cases = [("PUMA 560 (spherical wrist)", robokit.load("puma560"), False),
              ("UR5 (three parallel axes)", robokit.load("ur5"), False),
              ("Kinova Jaco² (general 6R)", robokit.load(_jaco_table()), False),
+             ("PUMA 560 calibrated (errors ≤ 2 mrad / 2 mm)", _calibrated_puma(), False),
              ("PUMA 560, --float32", robokit.load("puma560"), True),
              ("UR5, --float32", robokit.load("ur5"), True)]
     rows = []

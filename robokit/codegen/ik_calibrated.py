@@ -85,6 +85,7 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     ]
     t = tol
     R = lit(float(c["reach"]))
+    fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
     src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
 /* the first-order spatial pose error of T against Td: w = vee(A - A^T)/2 with A = Rd R^T, v = dp - w x p;
    *rot = |w| (2 - |w| beyond pi/2), *pos = |dp|; returns (rot^2 + pos^2)/2 */
@@ -120,24 +121,12 @@ static double {P}_cal_error(const double T[16], const double Td[16], double F[6]
     return 0.5 * (*rot * *rot + *pos * *pos);
 }}
 
-/* the space Jacobian (v of the point at the base origin) from {P}_jacobian's (v of the tool origin p) */
-static void {P}_cal_jacobian(const double q[{P}_N], const double p[3], double J[36])
-{{
-    int j;
-    {P}_jacobian(q, J);
-    for (j = 0; j < 6; ++j) {{
-        const double wx = J[j], wy = J[6 + j], wz = J[12 + j];
-        J[18 + j] -= wy * p[2] - wz * p[1];
-        J[24 + j] -= wz * p[0] - wx * p[2];
-        J[30 + j] -= wx * p[1] - wy * p[0];
-    }}
-}}
-
+{fkj}
 /* x = J^-1 F (6 x 6) by Gaussian elimination with partial pivoting; 0 when a pivot is below 1e-12 of
    the largest entry */
 static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6])
 {{
-    double A[36], big = 0.0;
+    double A[36], big = 0.0, small;
     int r, cc, kk, p;
     for (r = 0; r < 36; ++r) {{
         A[r] = J[r];
@@ -149,19 +138,22 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
     if (!(big > 0.0)) {{
         return 0;
     }}
+    small = {t(1e-12)} * big;
     for (cc = 0; cc < 6; ++cc) {{
+        double best = fabs(A[6 * cc + cc]), inv;
         p = cc;
         for (r = cc + 1; r < 6; ++r) {{
-            if (fabs(A[6 * r + cc]) > fabs(A[6 * p + cc])) {{
+            if (fabs(A[6 * r + cc]) > best) {{
                 p = r;
+                best = fabs(A[6 * r + cc]);
             }}
         }}
-        if (fabs(A[6 * p + cc]) <= {t(1e-12)} * big) {{
+        if (best <= small) {{
             return 0;
         }}
         if (p != cc) {{
             double tmp;
-            for (kk = 0; kk < 6; ++kk) {{
+            for (kk = cc; kk < 6; ++kk) {{
                 tmp = A[6 * cc + kk];
                 A[6 * cc + kk] = A[6 * p + kk];
                 A[6 * p + kk] = tmp;
@@ -170,9 +162,11 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
             x[cc] = x[p];
             x[p] = tmp;
         }}
+        inv = 1.0 / A[6 * cc + cc];
+        A[6 * cc + cc] = inv;
         for (r = cc + 1; r < 6; ++r) {{
-            const double f = A[6 * r + cc] / A[6 * cc + cc];
-            for (kk = cc; kk < 6; ++kk) {{
+            const double f = A[6 * r + cc] * inv;
+            for (kk = cc + 1; kk < 6; ++kk) {{
                 A[6 * r + kk] -= f * A[6 * cc + kk];
             }}
             x[r] -= f * x[cc];
@@ -183,7 +177,7 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
         for (kk = r + 1; kk < 6; ++kk) {{
             acc -= A[6 * r + kk] * x[kk];
         }}
-        x[r] = acc / A[6 * r + r];
+        x[r] = acc * A[6 * r + r];
     }}
     return 1;
 }}
@@ -228,20 +222,21 @@ static int {P}_cal_cholesky(const double H[36], const double b[6], double x[6])
     return 1;
 }}
 
-/* Newton's method (Levenberg-Marquardt where a Newton step fails) on the pose error, q updated in place */
+/* Newton's method (Levenberg-Marquardt where a Newton step fails) on the pose error, q updated in place;
+   the sines and cosines computed once, then carried through the steps ({P}_cal_advance) */
 static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
 {{
-    double T[16], Tt[16], J[36], F[6], Ft[6], step[6], trial[6], p[3];
+    double T[16], J[36], F[6], sc[12], Tt[16], Jt[36], Ft[6], sct[12], step[6], trial[6];
     double err, lam = 0.0, rt, pt;
     int it, i, j, r;
-    {P}_fk(q, T);
+    for (i = 0; i < 6; ++i) {{
+        sc[i] = sin(q[i]);
+        sc[6 + i] = cos(q[i]);
+    }}
+    {P}_cal_fkj(q, sc, T, J);
     err = {P}_cal_error(T, Td, F, rot, pos);
-    p[0] = T[3];
-    p[1] = T[7];
-    p[2] = T[11];
-    {P}_cal_jacobian(q, p, J);
     for (it = 0; it < max_steps; ++it) {{
-        double longest = 0.0, shrink = 1.0, e2;
+        double longest = 0.0, e2;
         int solved = 0;
         if (*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])}) {{
             break;
@@ -285,29 +280,29 @@ static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, doub
             longest = fabs(step[i]) > longest ? fabs(step[i]) : longest;
         }}
         if (longest > {lit(float(c["max_step"]))}) {{
-            shrink = {lit(float(c["max_step"]))} / longest;
+            const double shrink = {lit(float(c["max_step"]))} / longest;
+            for (i = 0; i < 6; ++i) {{
+                step[i] *= shrink;
+            }}
         }}
         for (i = 0; i < 6; ++i) {{
-            trial[i] = q[i] + shrink * step[i];
+            trial[i] = q[i] + step[i];
         }}
-        {P}_fk(trial, Tt);
+        {P}_cal_advance(sc, step, sct);
+        {P}_cal_fkj(trial, sct, Tt, Jt);
         e2 = {P}_cal_error(Tt, Td, Ft, &rt, &pt);
         if (e2 < err) {{
             for (i = 0; i < 6; ++i) {{
                 q[i] = trial[i];
                 F[i] = Ft[i];
             }}
+            memcpy(sc, sct, sizeof sc);
+            memcpy(J, Jt, sizeof J);
             err = e2;
             *rot = rt;
             *pos = pt;
-            p[0] = Tt[3];
-            p[1] = Tt[7];
-            p[2] = Tt[11];
             if (lam > 0.0) {{
                 lam = lam > 1e-9 ? lam * 0.1 : 0.0;
-            }}
-            if (!(*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])})) {{
-                {P}_cal_jacobian(q, p, J);
             }}
         }} else {{
             lam = lam == 0.0 ? 1e-9 : lam * 10.0;
@@ -322,13 +317,14 @@ static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, doub
    Jt^T Jt + 1e-12 I, Jt the space Jacobian with its velocity rows divided by the reach */
 static double {P}_cal_null_direction(const double q[6], double v[6])
 {{
-    double T[16], J[36], H[36], x[6], p[3];
+    double J[36], H[36], x[6];
+    double *const T = H, *const sc = H + 16;  /* scratch in H until it is built */
     int i, j, r, it;
-    {P}_fk(q, T);
-    p[0] = T[3];
-    p[1] = T[7];
-    p[2] = T[11];
-    {P}_cal_jacobian(q, p, J);
+    for (i = 0; i < 6; ++i) {{
+        sc[i] = sin(q[i]);
+        sc[6 + i] = cos(q[i]);
+    }}
+    {P}_cal_fkj(q, sc, T, J);
     for (r = 18; r < 36; ++r) {{
         J[r] /= {R};
     }}
@@ -388,28 +384,31 @@ static int {P}_cal_find(const double q[6], const double rows[][6], int n)
     return -1;
 }}
 
-/* every solution (see {P}.h) */
+/* every solution (see {P}.h). Stack: the starts (later the search points, stored over the starts
+   already polished) and, in the caller's q, the solutions (NAME_finish works in place) */
 int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
 {{
     static const double relax[] = {{{relax}}};
     static const double steps[] = {{{steps}}};
-    double nq[{max_rows}][6], rows[{max_rows}][6], seeds[{max_rows}][6], qn[8 * 6], qq[6], q2[6], v[6];
-    int nlab[{max_rows}], ndeg[{max_rows}], lab[{max_rows}], deg[{max_rows}], seed_lab[{max_rows}], ninfo[4 * 8];
-    int m, me, r, j, kk, f, ns = 0, nseed = 0;
-    m = {P}_nominal_ik_ex(T, wrist_ref, qn, ninfo);
+    /* called through a volatile pointer: not inlined, so its frame is not added to this function's */
+    double (*volatile null_direction)(const double *, double *) = {P}_cal_null_direction;
+    double nq[{max_rows} * 6], qq[6], q2[6], v[6];
+    double (*rows)[6] = (double (*)[6])q;
+    int lab[{max_rows}], deg[{max_rows}], ninfo[4 * 8];
+    signed char nlab[{max_rows}], ndeg[{max_rows}], seed_lab[{max_rows}];
+    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0;
+    m = {P}_nominal_ik_ex(T, wrist_ref, nq, ninfo);
     for (r = 0; r < m; ++r) {{
-        for (j = 0; j < 6; ++j) {{
-            nq[r][j] = qn[6 * r + j];
-        }}
-        nlab[r] = ninfo[4 * r];
-        ndeg[r] = ninfo[4 * r + 3];
+        nlab[r] = (signed char)ninfo[4 * r];
+        ndeg[r] = (signed char)ninfo[4 * r + 3];
     }}
     if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
             double Tr[16];
-            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))}, uz = T[11] - {lit(float(sh[2]))};
+            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
+                         uz = T[11] - {lit(float(sh[2]))};
             const double dist = sqrt(ux * ux + uy * uy + uz * uz);
-            if (dist == 0.0) {{
+            if (!(dist > 0.0)) {{
                 continue;
             }}
             for (j = 0; j < 16; ++j) {{
@@ -418,7 +417,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             Tr[3] = T[3] + relax[f] * {R} * ux / dist;
             Tr[7] = T[7] + relax[f] * {R} * uy / dist;
             Tr[11] = T[11] + relax[f] * {R} * uz / dist;
-            me = {P}_nominal_ik_ex(Tr, wrist_ref, qn, ninfo);
+            /* the (at most 8) rows written from row m0 on fit in nq; the new branches move up to row m */
+            m0 = m;
+            if (m0 > {max_rows} - 8) {{
+                break;
+            }}
+            me = {P}_nominal_ik_ex(Tr, wrist_ref, &nq[6 * m0], ninfo);
             for (kk = 0; kk < me; ++kk) {{
                 int have = 0;
                 for (r = 0; r < m; ++r) {{
@@ -426,9 +430,9 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 }}
                 if (!have && m < {max_rows}) {{
                     for (j = 0; j < 6; ++j) {{
-                        nq[m][j] = qn[6 * kk + j];
+                        nq[6 * m + j] = nq[6 * (m0 + kk) + j];
                     }}
-                    nlab[m] = ninfo[4 * kk];
+                    nlab[m] = (signed char)ninfo[4 * kk];
                     ndeg[m] = 2;  /* a start from a relaxed pose */
                     ++m;
                 }}
@@ -440,11 +444,11 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         int ok, hit = -1, dg = ndeg[r] != 0;
         const int relaxed = ndeg[r] == 2;
         for (j = 0; j < 6; ++j) {{
-            qq[j] = nq[r][j];
+            qq[j] = nq[6 * r + j];
         }}
         {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot, &pos);
         for (j = 0; j < 6; ++j) {{
-            moved = fabs(qq[j] - nq[r][j]) > moved ? fabs(qq[j] - nq[r][j]) : moved;
+            moved = fabs(qq[j] - nq[6 * r + j]) > moved ? fabs(qq[j] - nq[6 * r + j]) : moved;
         }}
         ok = rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])};
         if (ok) {{
@@ -453,7 +457,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         if (!ok || hit >= 0) {{  /* a root found already, or none: once more from the mirrored start */
             double rot2, pos2;
             for (j = 0; j < 6; ++j) {{
-                q2[j] = 2.0 * nq[r][j] - qq[j];
+                q2[j] = 2.0 * nq[6 * r + j] - qq[j];
             }}
             {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot2, &pos2);
             if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
@@ -470,8 +474,8 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             }}
         }}
         if (moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed)) {{
-            for (j = 0; j < 6; ++j) {{
-                seeds[nseed][j] = qq[j];
+            for (j = 0; j < 6; ++j) {{  /* a search point, over a start already polished (nseed <= r) */
+                nq[6 * nseed + j] = qq[j];
             }}
             seed_lab[nseed] = nlab[r];
             ++nseed;
@@ -490,7 +494,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
         double big = 0.0;
         int st;
-        if ({P}_cal_null_direction(seeds[kk], v) > {lit(float(c["sigma_explore"]))}) {{
+        if (null_direction(&nq[6 * kk], v) > {lit(float(c["sigma_explore"]))}) {{
             continue;  /* not near a singular configuration */
         }}
         for (j = 0; j < 6; ++j) {{
@@ -499,7 +503,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         for (st = 0; st < (int)(sizeof steps / sizeof steps[0]) && ns < {max_rows}; ++st) {{
             double rot, pos;
             for (j = 0; j < 6; ++j) {{
-                qq[j] = seeds[kk][j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
+                qq[j] = nq[6 * kk + j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
             }}
             {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rot, &pos);
             if (rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])}
@@ -523,3 +527,100 @@ int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
 """]
     note = f"closed form: {safe_comment(c['reason'])}"
     return ikcode(True, note, max_rows, header, "\n".join(src), labels)
+
+
+def _fkj_code(P: str, frames: Any, kinds: Any, pitches: Any) -> str:
+    """C of ``NAME_cal_fkj`` and ``NAME_cal_advance``: :func:`robokit.kernels.calibrated_ik.fk_jacobian`
+    and ``_advance`` written out for this arm, the local transforms as literals (terms with a zero
+    factor left out)."""
+    def prod(terms: list[tuple[str, float]], add: str | None = None) -> str:
+        parts = []
+        for name, a in terms:
+            if a == 0.0:
+                continue
+            parts.append(name if a == 1.0 else f"-{name}" if a == -1.0 else f"{name} * {lit(a)}")
+        if add is not None:
+            parts.append(add)
+        if not parts:
+            return "0.0"
+        return " + ".join(parts).replace("+ -", "- ")
+
+    R = [["r00", "r01", "r02", "px"], ["r10", "r11", "r12", "py"], ["r20", "r21", "r22", "pz"]]
+    L0 = frames[0]
+    body = [f"    double {R[r][c]} = {lit(float(L0[r, c]))};" for r in range(3) for c in range(4)]
+    body.append("    double a, b, cq;")
+    for i in range(7):
+        if i > 0:
+            A = frames[i]
+            body.append("    {")
+            for r in range(3):
+                new = [prod([(R[r][k], float(A[k, c])) for k in range(3)], R[r][3] if c == 3 else None)
+                       for c in range(4)]
+                body.append(f"        const double n{r}0 = {new[0]}, n{r}1 = {new[1]}, n{r}2 = {new[2]}, "
+                            f"n{r}3 = {new[3]};")
+            for r in range(3):
+                body.append(f"        {R[r][0]} = n{r}0; {R[r][1]} = n{r}1; {R[r][2]} = n{r}2; {R[r][3]} = n{r}3;")
+            body.append("    }")
+        if i == 6:
+            break
+        h = float(pitches[i])
+        hz = (lambda k: f" + {lit(h)} * r{k}2") if h != 0.0 else (lambda k: "")
+        if int(kinds[i]) == 0:
+            body += [f"    J[{i}] = r02;", f"    J[{6 + i}] = r12;", f"    J[{12 + i}] = r22;",
+                     f"    J[{18 + i}] = py * r22 - pz * r12{hz(0)};", f"    J[{24 + i}] = pz * r02 - px * r22{hz(1)};",
+                     f"    J[{30 + i}] = px * r12 - py * r02{hz(2)};",
+                     f"    a = sc[{i}];", f"    cq = sc[{6 + i}];"]
+            for r in range(3):
+                body.append(f"    b = cq * r{r}0 + a * r{r}1;")
+                body.append(f"    r{r}1 = cq * r{r}1 - a * r{r}0;")
+                body.append(f"    r{r}0 = b;")
+            if h != 0.0:
+                body += [f"    px += {lit(h)} * q[{i}] * r02;", f"    py += {lit(h)} * q[{i}] * r12;",
+                         f"    pz += {lit(h)} * q[{i}] * r22;"]
+        else:
+            body += [f"    J[{i}] = 0.0;", f"    J[{6 + i}] = 0.0;", f"    J[{12 + i}] = 0.0;",
+                     f"    J[{18 + i}] = r02;", f"    J[{24 + i}] = r12;", f"    J[{30 + i}] = r22;",
+                     f"    px += q[{i}] * r02;", f"    py += q[{i}] * r12;", f"    pz += q[{i}] * r22;"]
+    body += [f"    T[{4 * r + c}] = {R[r][c]};" for r in range(3) for c in range(4)]
+    body += ["    T[12] = 0.0;", "    T[13] = 0.0;", "    T[14] = 0.0;", "    T[15] = 1.0;"]
+    uses_q = any(int(k) != 0 for k in kinds) or any(float(h) != 0.0 for h in pitches)
+    rev = [i for i in range(6) if int(kinds[i]) == 0]
+    adv = []
+    for i in range(6):
+        if i in rev:
+            adv.append(f"    {P}_cal_rotate(sc[{i}], sc[{6 + i}], step[{i}], &out[{i}], &out[{6 + i}]);")
+        else:
+            adv += [f"    out[{i}] = sc[{i}];", f"    out[{6 + i}] = sc[{6 + i}];"]
+    nl = "\n"
+    return f"""/* the tip pose T and the space Jacobian J (w rows first, v of the point at the base origin) of this
+   arm at q, the revolute joints' sines in sc[0..5] and cosines in sc[6..11]: its product of
+   exponentials rewritten with one frame per joint axis, T = L0 Z1(q1) L1 ... Z6(q6) L6 (Zi a turn
+   about z or a slide along it), the Jacobian's columns read off the running product */
+static void {P}_cal_fkj(const double q[6], const double sc[12], double T[16], double J[36])
+{{
+{nl.join(body)}
+{"" if uses_q else "    (void)q;"}
+}}
+
+/* sin and cos of (x + d) from s = sin x, c = cos x; a step below 0.02 rad by Taylor series */
+static void {P}_cal_rotate(double s, double c, double d, double *so, double *co)
+{{
+    double sd, cd;
+    if (d > -0.02 && d < 0.02) {{
+        const double d2 = d * d;
+        sd = d * (1.0 - d2 * ({lit(1 / 6)} - d2 * ({lit(1 / 120)} - d2 * {lit(1 / 5040)})));
+        cd = 1.0 - d2 * (0.5 - d2 * ({lit(1 / 24)} - d2 * ({lit(1 / 720)} - d2 * {lit(1 / 40320)})));
+    }} else {{
+        sd = sin(d);
+        cd = cos(d);
+    }}
+    *so = s * cd + c * sd;
+    *co = c * cd - s * sd;
+}}
+
+/* the sines and cosines of q + step from those of q */
+static void {P}_cal_advance(const double sc[12], const double step[6], double out[12])
+{{
+{nl.join(adv)}
+}}
+"""

@@ -32,7 +32,11 @@ the nominal's and so are the labels. Near a singular pose (within about the size
 * the roots the real arm has there beyond the nominal's are searched along the Jacobian's
   near-null direction from the points involved (flagged ``degenerate``). This search is not
   exhaustive: within a few milliradians of a singular configuration a root can be missed (every
-  returned one is exact); ``nominal=False`` gives the general 6R method there.
+  returned one is exact) — for example a calibrated UR5 at θ₅ = −0.34 mrad, where the arm's roots
+  lie close to a curve (θ₄, θ₆ nearly free) and a 500-seed sweep finds one more. Never silently:
+  whenever the search runs (a point whose scaled Jacobian has a singular value below
+  :data:`robokit.kernels.calibrated_ik.SIGMA_EXPLORE`, 0.02), a :class:`robokit.errors.RobokitWarning`
+  names that singular value; ``nominal=False`` gives the general 6R method there.
 
 Which structure. In this order:
 
@@ -355,6 +359,11 @@ class CalibratedArm:
         else:
             post_q[2], post_q[3] = -np.inf, np.inf
         self._post_q = post_q
+        # everything the kernel reads of this arm, in one array (one argument to dispatch)
+        self._C = _kci.pack_arm(self.M, self.Slist, post_q, self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT,
+                                MAX_STEPS)
+        self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
+        self._branches = np.empty((_kcf.MAX_ROWS, _kci.BRANCH_COLS))
         self._warned = False
         ang, dist = deviation
         off = []
@@ -370,7 +379,9 @@ class CalibratedArm:
 
     def export_constants(self) -> dict[str, Any]:
         """The numbers the generated C's polish needs (:mod:`robokit.codegen.ik`): method, reason,
-        shoulder (3,), reach, and the kernel's tolerances and search constants.
+        shoulder (3,), reach, the kernel's tolerances and search constants, and the arm's local
+        transforms (``frames`` (7, 3, 4), ``kinds`` 0/1 revolute/prismatic, ``pitches``:
+        :func:`robokit.kernels.calibrated_ik.pack_arm`).
 
         Returns
         -------
@@ -381,6 +392,8 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
+                "frames": self._C[_kci.FRAMES].reshape(7, 3, 4).copy(),
+                "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 
     def refusal(self) -> str | None:
@@ -392,13 +405,13 @@ class CalibratedArm:
         """
         return None
 
-    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
+    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, int, int, float, np.ndarray]:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
-        branches = np.full((_kcf.MAX_ROWS, _kci.BRANCH_COLS), -1.0)  # code −1: no branch
+        branches = self._branches
         ref = self.nominal._kernel_ref(wrist_ref)
         for attempt in range(2):
-            n = _kci.calibrated_solve_into(self._Kn, self._kind, self.M, self.Slist, self._post_q, T, ref,
-                                           self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT, MAX_STEPS, out, branches)
+            n, merged, vanished, sigma = _kci.calibrated_solve_into(self._Kn, self._kind, self._C, T, ref, out,
+                                                                    branches, self._work)
             if n != -1 or attempt:
                 break
             # T failed the kernel's quick rigid-transform test: check it fully (raises), then use the
@@ -408,7 +421,7 @@ class CalibratedArm:
             Tc = np.eye(4)
             Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
             T = Tc
-        return out, n, branches
+        return out, n, merged, vanished, sigma, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         """Every solution for the tip pose T (a checked, C-contiguous float64 (4, 4) rigid transform).
@@ -426,21 +439,28 @@ class CalibratedArm:
             As :func:`robokit.ik_analytic`; a solution reached by several branches is labelled
             ``"A (merged with B)"`` and flagged ``degenerate``.
         """
-        out, n, branches = self._solve(T, wrist_ref)
-        m = int(np.count_nonzero(branches[:, 0] >= 0.0))
+        out, n, merged, vanished, sigma, branches = self._solve(T, wrist_ref)
+        if vanished:
+            self._warn_vanished(branches)
+        if sigma <= _kci.SIGMA_EXPLORE:
+            warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
+                          f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
+                          f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
+                          f"branches, and the search for them along the near-singular direction is not exhaustive: "
+                          f"a solution may be missing (each returned one is exact; nominal=False gives the general "
+                          f"6R method)", RobokitWarning, stacklevel=4)
         if n <= 0:
-            self._warn_vanished(branches, m)
             return []
-        self._warn_vanished(branches, m)
         sols = _RowSolution.from_rows(_Rows(out, n, self._labels))
-        merged = [(int(branches[r, 2]), self._labels[float(branches[r, 0])]) for r in range(m)
-                  if branches[r, 1] == _kci.MERGED]
         if not merged:
             return sols
+        m = int(np.count_nonzero(branches[:, 0] >= 0.0))
+        merged_rows = [(int(branches[r, 2]), self._labels[float(branches[r, 0])]) for r in range(m)
+                       if branches[r, 1] == _kci.MERGED]
         # a solution reached by several branches names them all (after its own label and repeat number)
         plain = [IKSolution(s.q, s.within_limits, s.label, s.degenerate) for s in sols]
-        for k in sorted({k for k, _ in merged}):
-            names = ", ".join(name for kk, name in merged if kk == k)
+        for k in sorted({k for k, _ in merged_rows}):
+            names = ", ".join(name for kk, name in merged_rows if kk == k)
             s = plain[k]
             plain[k] = IKSolution(s.q, s.within_limits, f"{s.label} (merged with {names})", s.degenerate)
         return plain
@@ -460,7 +480,7 @@ class CalibratedArm:
         list of Branch
             One per branch of the projected arm's closed form, in its order.
         """
-        _, n, branches = self._solve(T, wrist_ref)
+        branches = self._solve(T, wrist_ref)[5].copy()
         return [Branch(self._labels[float(branches[r, 0])], ("solution", "merged", "vanished")[int(branches[r, 1])],
                        None if branches[r, 2] < 0 else int(branches[r, 2]), float(branches[r, 3]),
                        float(branches[r, 4])) for r in range(int(np.count_nonzero(branches[:, 0] >= 0.0)))]
@@ -481,13 +501,12 @@ class CalibratedArm:
             ``(out, counts)``: out (N, 16, 9) rows as :func:`robokit.kernels.calibrated_ik.calibrated_batch`
             writes them, counts (N,) the number of solutions of each pose.
         """
-        return _kci.calibrated_batch(self._Kn, self._kind, self.M, self.Slist, self._post_q, Ts,
-                                     self.nominal._kernel_ref(wrist_ref), self.shoulder, self.reach, TOL_STOP,
-                                     TOL_ACCEPT, MAX_STEPS)
+        return _kci.calibrated_batch(self._Kn, self._kind, self._C, Ts, self.nominal._kernel_ref(wrist_ref))
 
-    def _warn_vanished(self, branches: np.ndarray, m: int) -> None:
+    def _warn_vanished(self, branches: np.ndarray) -> None:
         if self._warned:
             return
+        m = int(np.count_nonzero(branches[:, 0] >= 0.0))
         gone = [self._labels[float(branches[r, 0])] for r in range(m) if branches[r, 1] == _kci.VANISHED]
         if gone:
             self._warned = True

@@ -56,8 +56,8 @@ from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
 
-__all__ = ["polish", "calibrated_solve_into", "calibrated_batch", "SAME", "BRANCH_COLS", "SOLUTION", "MERGED",
-           "VANISHED"]
+__all__ = ["pack_arm", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "calibrated_batch", "SAME",
+           "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -121,68 +121,232 @@ def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, 
 @njit
 def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> bool:
     """x ← J⁻¹ F (6 × 6) by Gaussian elimination with partial pivoting on the copy A; False when a
-    pivot is below 1e-12 of the largest entry (J singular for this purpose)."""
+    pivot is below 1e-12 of the largest entry (J singular for this purpose). One division per
+    column (the pivot's reciprocal)."""
     big = 0.0
     for r in range(6):
         for c in range(6):
-            A[r, c] = J[r, c]
-            big = max(big, abs(J[r, c]))
+            a = J[r, c]
+            A[r, c] = a
+            if abs(a) > big:
+                big = abs(a)
         x[r] = F[r]
     if not big > 0.0:
         return False
+    small = 1e-12 * big
     for c in range(6):
         p = c
+        best = abs(A[c, c])
         for r in range(c + 1, 6):
-            if abs(A[r, c]) > abs(A[p, c]):
-                p = r
-        if abs(A[p, c]) <= 1e-12 * big:
+            if abs(A[r, c]) > best:
+                p, best = r, abs(A[r, c])
+        if best <= small:
             return False
         if p != c:
-            for k in range(6):
+            for k in range(c, 6):
                 A[c, k], A[p, k] = A[p, k], A[c, k]
             x[c], x[p] = x[p], x[c]
+        inv = 1.0 / A[c, c]
+        A[c, c] = inv
         for r in range(c + 1, 6):
-            f = A[r, c] / A[c, c]
-            for k in range(c, 6):
+            f = A[r, c] * inv
+            for k in range(c + 1, 6):
                 A[r, k] -= f * A[c, k]
             x[r] -= f * x[c]
     for r in range(5, -1, -1):
         acc = x[r]
         for k in range(r + 1, 6):
             acc -= A[r, k] * x[k]
-        x[r] = acc / A[r, r]
+        x[r] = acc * A[r, r]
     return True
 
 
-@njit
-def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_stop: float, max_steps: int,
-           W: np.ndarray, J: np.ndarray, V: np.ndarray) -> tuple[float, float, int]:
-    """Newton's method on the pose error :func:`_error` of the PoE ``(M, Slist)`` with its space
-    Jacobian (:func:`robokit.kernels.ik.fk_and_space_jacobian`), q (6,) updated in place; a step
-    that does not lower the error, or a singular Jacobian, switches to Levenberg–Marquardt
-    (damping λ times the largest diagonal entry of JᵀJ, λ from 1e-9, ×10 on failure, ÷10 on
-    success, back to Newton below 1e-9); no step moves a joint more than ``MAX_STEP``. Stops when the
-    orientation error (rad) and the position error (m) are below ``tol_stop``. Returns (orientation
-    error, position error, FK evaluations). Scratch: W (5, 4, 4), J (5, 6, 6), V (4, 6)."""
+#: Layout of the packed constants ``C`` (:func:`pack_arm`): the seven 3 × 4 local transforms, the
+#: joint kinds (0 revolute, 1 prismatic), the screw pitches, ``post_q`` (5, 6), the shoulder point
+#: (3,), the reach (m), tol_stop, tol_accept and max_steps.
+_L, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _LEN = (
+    0, 84, 90, 96, 126, 129, 130, 131, 132, 133)
+#: Where ``C`` keeps the local transforms (7 × 3 × 4, row-major), the joint kinds and the pitches.
+FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
+#: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6).
+_WORK_ROWS = 96
+
+
+def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
+             tol_stop: float, tol_accept: float, max_steps: int) -> np.ndarray:
+    """The arm's constants in one float64 array ``C`` (the kernels' layout above).
+
+    The product of exponentials ``T(q) = e^{[S₁]q₁} ⋯ e^{[S₆]q₆} M`` is rewritten with one frame per
+    joint axis: a frame ``Fᵢ`` whose z axis is the joint's axis (through the point of the axis
+    nearest the base origin; any point for a prismatic joint) gives ``e^{[Sᵢ]qᵢ} = Fᵢ Zᵢ(qᵢ) Fᵢ⁻¹``
+    with ``Zᵢ`` a rotation about z (and ``hᵢ qᵢ`` along it, h the pitch) or a translation along z, so
+    ``T(q) = L₀ Z₁(q₁) L₁ ⋯ Z₆(q₆) L₆`` with ``L₀ = F₁``, ``Lᵢ = Fᵢ⁻¹ Fᵢ₊₁``, ``L₆ = F₆⁻¹ M``: per joint
+    one fixed 3 × 4 product and a rotation that mixes two columns (no exponential, no 4 × 4
+    product). Plain numpy (called once per arm).
+
+    Parameters
+    ----------
+    M : (4, 4) ndarray
+        Tip pose at q = 0 in the base frame (m).
+    Slist : (6, 6) ndarray
+        Space screw axes (ω; v) as columns.
+    post_q : (5, 6) ndarray
+        As :func:`robokit.kernels.closed_form.pack_constants` (revolute flags, limits).
+    shoulder : (3,) ndarray
+        The point the relaxed poses are moved about (m).
+    reach, tol_stop, tol_accept : float
+        m; rad or m.
+    max_steps : int
+        Newton steps at most per start.
+
+    Returns
+    -------
+    (133,) ndarray
+
+    Examples
+    --------
+    >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
+    ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
+    >>> C.shape
+    (133,)
+    """
     n = Slist.shape[1]
-    P, E, tmp = W[2], W[3], W[4]
-    H, L = J[2], J[3]
-    g, step = V[2], V[3]
-    trial = np.empty(6)
-    cur = 0  # W[cur], J[cur], V[cur]: the current iterate's pose, Jacobian and error; 1 − cur: the trial's
-    fk_and_space_jacobian(M, Slist, q, W[0], J[0], P, E, tmp)
-    err, rot, pos = _error(W[0], Td, V[0])
+    frames = []
+    kind = np.zeros(6)
+    pitch = np.zeros(6)
+    for i in range(n):
+        w, v = Slist[:3, i], Slist[3:, i]
+        F = np.eye(4)
+        if np.linalg.norm(w) > 0.5:  # revolute (unit ω): the axis point nearest the origin, the pitch
+            z = w / np.linalg.norm(w)
+            F[:3, 3] = np.cross(z, v)
+            pitch[i] = float(z @ v)
+        else:
+            z = v / np.linalg.norm(v)
+            kind[i] = 1.0
+        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+        x /= np.linalg.norm(x)
+        F[:3, 0], F[:3, 1], F[:3, 2] = x, np.cross(z, x), z
+        frames.append(F)
+    inv = [np.linalg.inv(F) for F in frames]
+    Ls = [frames[0]] + [inv[i] @ frames[i + 1] for i in range(n - 1)] + [inv[n - 1] @ M]
+    C = np.zeros(_LEN)
+    C[_L:_KIND] = np.concatenate([Lk[:3, :].ravel() for Lk in Ls])
+    C[_KIND:_PITCH], C[_PITCH:_POST] = kind, pitch
+    C[_POST:_SHOULDER] = np.asarray(post_q, dtype=float).ravel()
+    C[_SHOULDER:_REACH] = shoulder
+    C[_REACH], C[_TOL_STOP], C[_TOL_ACCEPT], C[_MAX_STEPS] = reach, tol_stop, tol_accept, max_steps
+    return C
+
+
+@njit
+def _trig(C: np.ndarray, q: np.ndarray, sc: np.ndarray) -> None:
+    """sc[0] ← sin q, sc[1] ← cos q of the revolute joints."""
+    for i in range(6):
+        if C[_KIND + i] == 0.0:
+            sc[0, i] = math.sin(q[i])
+            sc[1, i] = math.cos(q[i])
+
+
+@njit
+def _advance(C: np.ndarray, sc: np.ndarray, step: np.ndarray, out: np.ndarray) -> None:
+    """out ← sin, cos of (q + step) from sc = sin, cos of q by the angle-addition formulas; sin and
+    cos of a step below 0.02 rad by their Taylor series (sin to δ⁷, cos to δ⁸: the next terms are
+    below 1e-20 of the step) — multiplications only (a Newton step is ~1e-3 … 1e-10 rad)."""
+    for i in range(6):
+        if C[_KIND + i] != 0.0:
+            continue
+        d = step[i]
+        if -0.02 < d < 0.02:
+            d2 = d * d
+            sd = d * (1.0 - d2 * (_I6 - d2 * (_I120 - d2 * _I5040)))
+            cd = 1.0 - d2 * (0.5 - d2 * (_I24 - d2 * (_I720 - d2 * _I40320)))
+        else:
+            sd, cd = math.sin(d), math.cos(d)
+        s, c = sc[0, i], sc[1, i]
+        out[0, i] = s * cd + c * sd
+        out[1, i] = c * cd - s * sd
+
+
+_I6, _I24, _I120, _I720, _I5040, _I40320 = 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, 1.0 / 5040.0, 1.0 / 40320.0
+
+
+@njit
+def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray) -> None:
+    """T ← the tip pose (4, 4) and J ← the space Jacobian (6, 6; ω rows first, v of the point at the
+    base origin) of the packed arm ``C`` (:func:`pack_arm`) at q, the revolute joints' sin and cos
+    given in sc (2, 6): one pass through the local transforms, the Jacobian's columns read off the
+    running product (joint i's axis z and point p: ω = z, v = p × z + h z; prismatic: v = z)."""
+    r00, r01, r02, px = C[0], C[1], C[2], C[3]
+    r10, r11, r12, py = C[4], C[5], C[6], C[7]
+    r20, r21, r22, pz = C[8], C[9], C[10], C[11]
+    for i in range(7):
+        if i > 0:
+            o = _L + 12 * i
+            a00, a01, a02, a03 = C[o], C[o + 1], C[o + 2], C[o + 3]
+            a10, a11, a12, a13 = C[o + 4], C[o + 5], C[o + 6], C[o + 7]
+            a20, a21, a22, a23 = C[o + 8], C[o + 9], C[o + 10], C[o + 11]
+            px, py, pz = (r00 * a03 + r01 * a13 + r02 * a23 + px, r10 * a03 + r11 * a13 + r12 * a23 + py,
+                          r20 * a03 + r21 * a13 + r22 * a23 + pz)
+            r00, r01, r02 = (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21,
+                                r00 * a02 + r01 * a12 + r02 * a22)
+            r10, r11, r12 = (r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21,
+                                r10 * a02 + r11 * a12 + r12 * a22)
+            r20, r21, r22 = (r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21,
+                                r20 * a02 + r21 * a12 + r22 * a22)
+        if i == 6:
+            break
+        if C[_KIND + i] == 0.0:
+            h = C[_PITCH + i]
+            J[0, i], J[1, i], J[2, i] = r02, r12, r22
+            J[3, i] = py * r22 - pz * r12 + h * r02
+            J[4, i] = pz * r02 - px * r22 + h * r12
+            J[5, i] = px * r12 - py * r02 + h * r22
+            s, c = sc[0, i], sc[1, i]
+            r00, r01 = c * r00 + s * r01, c * r01 - s * r00
+            r10, r11 = c * r10 + s * r11, c * r11 - s * r10
+            r20, r21 = c * r20 + s * r21, c * r21 - s * r20
+            if h != 0.0:
+                px, py, pz = px + h * q[i] * r02, py + h * q[i] * r12, pz + h * q[i] * r22
+        else:
+            J[0, i], J[1, i], J[2, i] = 0.0, 0.0, 0.0
+            J[3, i], J[4, i], J[5, i] = r02, r12, r22
+            px, py, pz = px + q[i] * r02, py + q[i] * r12, pz + q[i] * r22
+    T[0, 0], T[0, 1], T[0, 2], T[0, 3] = r00, r01, r02, px
+    T[1, 0], T[1, 1], T[1, 2], T[1, 3] = r10, r11, r12, py
+    T[2, 0], T[2, 1], T[2, 2], T[2, 3] = r20, r21, r22, pz
+    T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
+
+
+@njit
+def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: np.ndarray) -> tuple[float, float, int]:
+    """Newton's method on the pose error :func:`_error` of the packed arm ``C`` with its space
+    Jacobian (:func:`fk_jacobian`), q (6,) updated in place; a step that does not lower the error,
+    or a singular Jacobian, switches to Levenberg–Marquardt (damping λ times the largest diagonal
+    entry of JᵀJ, λ from 1e-9, ×10 on failure, ÷10 on success, back to Newton below 1e-9); no step
+    moves a joint more than ``MAX_STEP``. The sines and cosines are computed once at the start and
+    carried through the steps by the angle-addition formulas (:func:`_advance`). Stops when the
+    orientation error (rad) and the position error (m) are below ``C``'s tol_stop. Returns
+    (orientation error, position error, FK evaluations). Scratch: work (:func:`scratch`)."""
+    n = 6
+    tol_stop = C[_TOL_STOP]
+    T0, T1 = work[0:4, 0:4], work[4:8, 0:4]
+    J0, J1, A, H, L = work[8:14], work[14:20], work[20:26], work[26:32], work[32:38]
+    F0, F1, g, step, trial = work[38], work[39], work[40], work[41], work[42]
+    sc0, sc1 = work[43:45], work[45:47]
+    _trig(C, q, sc0)
+    fk_jacobian(C, q, sc0, T0, J0)
+    err, rot, pos = _error(T0, Td, F0)  # (T0, J0, F0, sc0): the current iterate; (T1, J1, F1, sc1): a trial
     lam = 0.0  # 0: Newton; else the damping, relative to the largest diagonal entry of Jᵀ J
     evals = 1
     for _ in range(max_steps):
         if rot < tol_stop and pos < tol_stop:
             break
-        Jc, F = J[cur], V[cur]
-        solved = lam == 0.0 and _newton_step(Jc, F, J[4], step)
+        solved = lam == 0.0 and _newton_step(J0, F0, A, step)
         if not solved:
             if lam == 0.0:
                 lam = 1e-9
-            normal_equations(Jc, F, H, g)  # (Jᵀ J + λ d I) Δq = Jᵀ F,  d = max diag(Jᵀ J)
+            normal_equations(J0, F0, H, g)  # (Jᵀ J + λ d I) Δq = Jᵀ F,  d = max diag(Jᵀ J)
             big = 0.0
             for i in range(n):
                 big = max(big, H[i, i])
@@ -196,17 +360,24 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
         longest = 0.0  # a step longer than MAX_STEP (rad, m) is shortened: Newton's model is local
         for i in range(n):
             longest = max(longest, abs(step[i]))
-        shrink = MAX_STEP / longest if longest > MAX_STEP else 1.0
+        if longest > MAX_STEP:
+            shrink = MAX_STEP / longest
+            for i in range(n):
+                step[i] *= shrink
         for i in range(n):
-            trial[i] = q[i] + shrink * step[i]
-        nxt = 1 - cur
-        fk_and_space_jacobian(M, Slist, trial, W[nxt], J[nxt], P, E, tmp)
+            trial[i] = q[i] + step[i]
+        _advance(C, sc0, step, sc1)
+        fk_jacobian(C, trial, sc1, T1, J1)
         evals += 1
-        e2, r2, p2 = _error(W[nxt], Td, V[nxt])
+        e2, r2, p2 = _error(T1, Td, F1)
         if e2 < err:
             for i in range(n):
                 q[i] = trial[i]
-            cur = nxt
+                F0[i] = F1[i]
+                sc0[0, i] = sc1[0, i]
+                sc0[1, i] = sc1[1, i]
+                for r in range(6):
+                    J0[r, i] = J1[r, i]
             err, rot, pos = e2, r2, p2
             if lam > 0.0:
                 lam = lam * 0.1 if lam > 1e-9 else 0.0
@@ -215,6 +386,21 @@ def polish(M: np.ndarray, Slist: np.ndarray, Td: np.ndarray, q: np.ndarray, tol_
             if lam > 1e3:
                 break
     return rot, pos, evals
+
+
+def scratch() -> np.ndarray:
+    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((96, 6) float64).
+
+    Returns
+    -------
+    (96, 6) ndarray
+
+    Examples
+    --------
+    >>> scratch().shape
+    (96, 6)
+    """
+    return np.empty((_WORK_ROWS, 6))
 
 
 @njit
@@ -237,19 +423,20 @@ def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
 
 
 @njit
-def _null_direction(M: np.ndarray, Slist: np.ndarray, q: np.ndarray, reach: float, W: np.ndarray, J: np.ndarray,
-                    V: np.ndarray, v: np.ndarray) -> float:
+def _null_direction(C: np.ndarray, q: np.ndarray, work: np.ndarray, v: np.ndarray) -> float:
     """v ← the unit joint direction along which the arm's Jacobian at q is closest to singular:
     inverse iteration (4 steps from (1, …, 1)) on ``H = J̃ᵀJ̃ + 1e-12 I``, J̃ the space Jacobian with its
     velocity rows divided by the reach (m), so both halves are rad-like. Returns the estimate
     ``√(vᵀHv)`` of J̃'s smallest singular value (0 when H is not positive definite)."""
-    n = Slist.shape[1]
-    Jc, H, L = J[0], J[2], J[3]
-    fk_and_space_jacobian(M, Slist, q, W[0], Jc, W[2], W[3], W[4])
+    n = 6
+    reach = C[_REACH]
+    T, Jc, H, L = work[0:4, 0:4], work[8:14], work[26:32], work[32:38]
+    x, sc = work[40], work[43:45]
+    _trig(C, q, sc)
+    fk_jacobian(C, q, sc, T, Jc)
     for r in range(3, 6):
         for c in range(n):
             Jc[r, c] /= reach
-    x = V[2]
     for i in range(n):
         v[i] = 1.0
     normal_equations(Jc, v, H, x)  # H = J̃ᵀJ̃ (x is overwritten below)
@@ -279,25 +466,40 @@ def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, 
 
 
 @njit
-def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                          T: np.ndarray, wrist_ref: float, shoulder: np.ndarray, reach: float, tol_stop: float,
-                          tol_accept: float, max_steps: int, out: np.ndarray, branches: np.ndarray) -> int:
-    """Every solution of the arm ``(M, Slist)`` for the tip pose T (module docstring).
+def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndarray, wrist_ref: float,
+                          out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int, float]:
+    """Every solution of the packed arm ``C`` (:func:`pack_arm`) for the tip pose T (module docstring).
 
     Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
-    ``PARALLEL_AXES``; post_q (5, 6): the arm's revolute flags and limits as in
-    :func:`robokit.kernels.closed_form.pack_constants` (row 0, the signs, is not used);
-    wrist_ref: the free joint's value at a singularity, in the sign of the projected arm's
-    solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the closed-form kernels do
-    and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS); returns the number of
-    solutions, −1 when T fails the quick rigid-transform test."""
-    nom = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
-    m = _nominal_rows(Kn, method, T, wrist_ref, nom)
+    ``PARALLEL_AXES``; wrist_ref: the free joint's value at a singularity, in the sign of the
+    projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the
+    closed-form kernels do and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS; code
+    −1 past the last branch); work: :func:`scratch`. Returns (number of solutions, merged branches,
+    vanished branches, σ): σ the smallest singular value of the scaled Jacobian (:func:`_null_direction`)
+    at the points the near-singular search started from, ``inf`` when it did not run (no point needed
+    it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
+    R = _cf.MAX_ROWS
+    # work rows: 0–47 polish's scratch, 48–63 the starts (then the search points), 64–79 the
+    # solutions, 80–82 q, q2, v, 83–88 the starts' branch codes and degenerate flags (16 each)
+    nom = work[48:64]
+    rows = work[64:80]
+    q, q2, v = work[80], work[81], work[82]
+    codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
+    first = np.empty((R, _cf.OUT_COLS))
+    m = _nominal_rows(Kn, method, T, wrist_ref, first)
+    for r in range(R):
+        branches[r, 0] = -1.0
     if m < 0:
-        return m
+        return m, 0, 0, math.inf
+    for r in range(m):
+        for j in range(6):
+            nom[r, j] = first[r, j]
+        codes[r] = first[r, 7]
+        degens[r] = first[r, 8]
+    shoulder = C[_SHOULDER:_REACH]
+    reach = C[_REACH]
     if m < GENERIC_ROWS:  # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
         Tr = np.empty((4, 4))
-        extra = np.empty((_cf.MAX_ROWS, _cf.OUT_COLS))
         for f in RELAX:
             for r in range(4):
                 for c in range(4):
@@ -307,49 +509,49 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 continue
             for r in range(3):
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
-            me = _nominal_rows(Kn, method, Tr, wrist_ref, extra)
+            me = _nominal_rows(Kn, method, Tr, wrist_ref, first)
             for k in range(me):
                 have = False
                 for r in range(m):
-                    if nom[r, 7] == extra[k, 7]:
+                    if codes[r] == first[k, 7]:
                         have = True
                         break
-                if not have and m < _cf.MAX_ROWS:
-                    for c in range(_cf.OUT_COLS):
-                        nom[m, c] = extra[k, c]
-                    nom[m, 8] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
+                if not have and m < R:
+                    for j in range(6):
+                        nom[m, j] = first[k, j]
+                    codes[m] = first[k, 7]
+                    degens[m] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
                     m += 1
+    post_q = C[_POST:_SHOULDER].reshape((5, 6))
     rev = post_q[1]
-    W = np.empty((5, 4, 4))
-    J = np.empty((5, 6, 6))
-    V = np.empty((4, 6))
-    Td = np.ascontiguousarray(T)
-    rows = np.empty((_cf.MAX_ROWS, 6))
-    rcodes = np.empty((_cf.MAX_ROWS, 3), dtype=np.int64)
-    rdegen = np.zeros(_cf.MAX_ROWS, dtype=np.bool_)
-    q = np.empty(6)
-    q2 = np.empty(6)
+    tol_accept = C[_TOL_ACCEPT]
+    max_steps = int(C[_MAX_STEPS])
+    rcodes = np.empty((R, 3), dtype=np.int64)
+    rdegen = np.zeros(R, dtype=np.bool_)
+    seed_code = np.empty(R, dtype=np.int64)
     ns = 0
     # the points to explore around (near a singular pose): a solution the polish moved far from its
-    # start, a branch that vanished (the point its polish reached), a singular choice of the nominal
-    seeds = np.empty((_cf.MAX_ROWS, 6))
-    seed_code = np.empty(_cf.MAX_ROWS, dtype=np.int64)
+    # start, a branch that vanished (the point its polish reached), a singular choice of the nominal;
+    # stored over the starts already polished (seed k ≤ start r)
     nseed = 0
+    merged = 0
+    vanished = 0
     for r in range(m):
-        relaxed = nom[r, 8] == 2.0
+        relaxed = degens[r] == 2.0
         for j in range(6):
             q[j] = nom[r, j]
-        rot, pos, _ = polish(M, Slist, Td, q, tol_stop, EXPLORE_MAX_STEPS if relaxed else max_steps, W, J, V)
+        steps = EXPLORE_MAX_STEPS if relaxed else max_steps
+        rot, pos, _ = polish(C, T, q, steps, work)
         moved = 0.0
         for j in range(6):
             moved = max(moved, abs(q[j] - nom[r, j]))
         ok = rot < tol_accept and pos < tol_accept
         k = _find(q, rows, ns, rev) if ok else -1
-        degen = nom[r, 8] != 0.0
+        degen = degens[r] != 0.0
         if not ok or k >= 0:  # a root found already, or none: once more from the mirrored start
             for j in range(6):
                 q2[j] = 2.0 * nom[r, j] - q[j]
-            rot2, pos2, _ = polish(M, Slist, Td, q2, tol_stop, EXPLORE_MAX_STEPS if relaxed else max_steps, W, J, V)
+            rot2, pos2, _ = polish(C, T, q2, steps, work)
             if rot2 < tol_accept and pos2 < tol_accept and _find(q2, rows, ns, rev) < 0:
                 for j in range(6):
                     q[j] = q2[j]
@@ -357,12 +559,12 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
             elif not ok and rot2 < tol_accept and pos2 < tol_accept:
                 k = _find(q2, rows, ns, rev)
                 rot, pos, ok = rot2, pos2, True
-        code = int(nom[r, 7])
+        code = int(codes[r])
         # searched around: a solution the polish moved far, merging branches, a singular choice of the
         # nominal, a branch that vanished (not one from a relaxed pose: that pose may be out of reach)
         if moved > EXPLORE or k >= 0 or (degen and not relaxed) or (not ok and not relaxed):
             for j in range(6):
-                seeds[nseed, j] = q[j]
+                nom[nseed, j] = q[j]
             seed_code[nseed] = code
             nseed += 1
         branches[r, 0] = code
@@ -382,22 +584,28 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
             rdegen[k] = True
             branches[r, 1] = MERGED
             branches[r, 2] = k
+            merged += 1
         else:
             branches[r, 1] = VANISHED
             branches[r, 2] = -1
-    v = np.empty(6)
+            vanished += 1
+    sigma = math.inf
     for k in range(nseed):  # every root along the arm's near-singular direction there
-        if _null_direction(M, Slist, seeds[k], reach, W, J, V, v) > SIGMA_EXPLORE:
+        for j in range(6):
+            q2[j] = nom[k, j]
+        sk = _null_direction(C, q2, work, v)
+        if sk > SIGMA_EXPLORE:
             continue  # not near a singular configuration: no other root nearby to look for
+        sigma = min(sigma, sk)
         big = 0.0
         for j in range(6):
             big = max(big, abs(v[j]))
         for step in EXPLORE_STEPS:
-            if ns == _cf.MAX_ROWS:
+            if ns == R:
                 break
             for j in range(6):
-                q[j] = seeds[k, j] + step * (0.25 * math.pi / big) * v[j]
-            rot, pos, _ = polish(M, Slist, Td, q, tol_stop, EXPLORE_MAX_STEPS, W, J, V)
+                q[j] = nom[k, j] + step * (0.25 * math.pi / big) * v[j]
+            rot, pos, _ = polish(C, T, q, EXPLORE_MAX_STEPS, work)
             if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
                 for j in range(6):
                     rows[ns, j] = q[j]
@@ -408,14 +616,12 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.
                 rdegen[ns] = True
                 ns += 1
     ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
-    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out)
+    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
 
 
 @njit(parallel=True)
-def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray,
-                     Ts: np.ndarray, wrist_ref: float, shoulder: np.ndarray, reach: float, tol_stop: float,
-                     tol_accept: float,
-                     max_steps: int) -> tuple[np.ndarray, np.ndarray]:
+def calibrated_batch(Kn: np.ndarray, method: int, C: np.ndarray, Ts: np.ndarray,
+                     wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`calibrated_solve_into` over (N, 4, 4) poses, in parallel over the poses: (out (N,
     MAX_ROWS, OUT_COLS) with NaN rows past each count, counts (N,))."""
     N = Ts.shape[0]
@@ -423,6 +629,6 @@ def calibrated_batch(Kn: np.ndarray, method: int, M: np.ndarray, Slist: np.ndarr
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
         branches = np.empty((_cf.MAX_ROWS, BRANCH_COLS))
-        counts[i] = calibrated_solve_into(Kn, method, M, Slist, post_q, Ts[i], wrist_ref, shoulder, reach,
-                                          tol_stop, tol_accept, max_steps, out[i], branches)
+        work = np.empty((_WORK_ROWS, 6))
+        counts[i] = calibrated_solve_into(Kn, method, C, Ts[i], wrist_ref, out[i], branches, work)[0]
     return out, counts

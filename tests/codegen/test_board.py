@@ -14,7 +14,7 @@ from benchmarks.board import cross_compile, missing_tools, run_qemu
 from robokit.codegen import generate_c, write_c
 from robokit.ik import ik_analytic
 
-from .test_codegen import _dist, jaco2_table
+from .test_codegen import _dist, calibrated_arm, jaco2_table
 
 # Fixed configurations (rad or m), the same for every arm (cut to its joint count).
 CONFIGS = np.array([[0.1, -0.5, 0.3, 0.4, 0.6, -0.2, 0.7],
@@ -118,9 +118,12 @@ def run_on_board(robot, folder, float32):
 
 ARMS = {"puma560": lambda: robokit.load("puma560"), "ur5": lambda: robokit.load("ur5"),
         "rrr": lambda: robokit.load("rrr"), "twolink": lambda: robokit.load("twolink"),
-        "jaco2_6n": lambda: robokit.load(jaco2_table())}
+        "jaco2_6n": lambda: robokit.load(jaco2_table()),
+        # a PUMA 560 with every joint placement, the base and the tool off by up to 2 mrad / 2 mm, as
+        # robokit.calibrate builds its result: the polished closed form (robokit.ik.calibrated) on the M4
+        "calibrated_puma560": lambda: calibrated_arm("puma560", 1)}
 CASES = [("puma560", False), ("ur5", False), ("rrr", False), ("twolink", False), ("jaco2_6n", False),
-         ("puma560", True), ("ur5", True), ("rrr", True)]
+         ("calibrated_puma560", False), ("puma560", True), ("ur5", True), ("rrr", True), ("calibrated_puma560", True)]
 
 
 @pytest.fixture(scope="module")
@@ -153,7 +156,8 @@ def test_board_matches_pinocchio(board_runs, name, float32):
             assert err <= rel * max(1.0, np.abs(ref).max()), (what, i, err)
 
 
-@pytest.mark.parametrize("name,float32", [c for c in CASES if c[0] in ("puma560", "ur5", "jaco2_6n")],
+@pytest.mark.parametrize("name,float32", [c for c in CASES if c[0] in ("puma560", "ur5", "jaco2_6n",
+                                                                      "calibrated_puma560")],
                          ids=lambda v: v if isinstance(v, str) else ("float" if v else "double"))
 def test_board_ik_matches_ik_analytic(board_runs, name, float32):
     robot, run = board_runs(name, float32)

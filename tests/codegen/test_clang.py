@@ -10,7 +10,7 @@ import robokit
 from robokit.codegen import generate_c, write_c
 from robokit.description.dh import DHLink, DHTable
 
-from .test_codegen import jaco2_table
+from .test_codegen import calibrated_arm, jaco2_table
 
 #: The flags docs/codegen.md ("Warnings") documents; at most three -Wno- flags, each justified there.
 CLANG_FLAGS = ("-std=c99", "-Weverything", "-Werror", "-Wno-declaration-after-statement")
@@ -32,10 +32,12 @@ def prismatic_arm():
         for i in range(6)))
 
 
-ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford"]
+ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford", "calibrated_puma560"]
 
 
 def _load(name):
+    if name == "calibrated_puma560":  # the polished closed form of robokit.ik.calibrated
+        return calibrated_arm("puma560", 1)
     return robokit.load({"jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}.get(
         name, lambda: name)())
 
