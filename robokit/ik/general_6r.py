@@ -271,7 +271,8 @@ class _Elimination:
         self.ktol[[T_GAMMA, T_TURN, T_IMAG, T_CONVERGED, T_SAME, T_X0, T_POOR, T_READINGS]] = [
             _GAMMA, math.tan(0.5 * _TURN), _IMAG_TOL, _CONVERGED, _SAME, _X0, _POOR, _EXTRA + 1]
         used = [arr._packed for arr in self.arrangements[:_EXTRA + 1]]
-        self.kreadings = tuple(np.ascontiguousarray(np.stack([u[k] for u in used])) for k in range(4))
+        ri, mats, const, vec = (np.ascontiguousarray(np.stack([u[k] for u in used])) for k in range(4))
+        self.kreadings = (ri, mats, const, vec)
 
 
 class GeneralSixR:

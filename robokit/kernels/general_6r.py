@@ -93,31 +93,18 @@ def side_tensor(Ms: np.ndarray, signs: np.ndarray, f: np.ndarray, out: np.ndarra
     """
     k = signs.shape[0]
     cur = np.empty((27, 15))
-    nxt = np.empty((27, 15))
-    for r in range(15):
-        acc = 0.0
-        for m in range(15):
-            acc += Ms[0, r, m] * f[m]
-        cur[0, r] = acc
+    cur[0] = np.ascontiguousarray(Ms[0]) @ np.ascontiguousarray(f)
     n = 1
     parts = np.empty((3, 15))
+    split = np.empty((27, 15))
     for j in range(k):
-        for t in range(n):
+        for t in range(n):  # every row split into its cos, sin and constant parts …
             _rz_parts(cur[t], signs[j], parts)
             for b in range(3):
-                row = t + n * b
-                for r in range(15):
-                    acc = 0.0
-                    for m in range(15):
-                        acc += Ms[j + 1, r, m] * parts[b, m]
-                    nxt[row, r] = acc
+                split[t + n * b] = parts[b]
         n *= 3
-        for t in range(n):
-            for r in range(15):
-                cur[t, r] = nxt[t, r]
-    for t in range(n):
-        for r in range(15):
-            out[t, r] = cur[t, r]
+        cur[:n] = split[:n] @ np.ascontiguousarray(Ms[j + 1]).T  # … then the next constant map
+    out[:n] = cur[:n]
 
 
 @njit
@@ -881,14 +868,10 @@ def pencil(P: np.ndarray, r: np.ndarray, gc: float, gs: float, out: np.ndarray, 
     # Σ_i3 = Nᵀ P′_i3, N the left null space of Q (14 × 6): θ of the two-joint side eliminated
     N = np.empty((14, 6))
     _left_null_space(Q, N)
-    sig = np.zeros((3, 6, 9))
+    sig = np.empty((3, 6, 9))
+    Nt = np.ascontiguousarray(N.T)
     for i3 in range(3):
-        for e in range(6):
-            for m in range(9):
-                s = 0.0
-                for k in range(14):
-                    s += N[k, e] * Np[i3, k, m]
-                sig[i3, e, m] = s
+        sig[i3] = Nt @ Np[i3]
     # θ₃ = φ + γ: (cos, sin) of θ₃ in terms of φ; then x = tan(φ/2): A x² + B x + C
     G = np.array([[1.0, 0.0, -1.0], [0.0, 2.0, 0.0], [1.0, 0.0, 1.0]])
     for c in range(3):
@@ -1099,20 +1082,7 @@ def reading_matrices(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: 
     FW = np.empty((15, 15))
     f_pose(T06s, ri[9] == 0, FW)  # W = T₀₆⁻¹: its map, or T₀₆'s for W⁻¹
     Ms = mats[:nw + 1].copy()
-    tmp = np.empty((15, 15))
-    for i in range(15):
-        for j in range(15):
-            acc = 0.0
-            for k in range(15):
-                acc += mats[4, i, k] * FW[k, j]
-            tmp[i, j] = acc
-    w = ri[8]
-    for i in range(15):
-        for j in range(15):
-            acc = 0.0
-            for k in range(15):
-                acc += tmp[i, k] * mats[5, k, j]
-            Ms[w, i, j] = acc
+    Ms[ri[8]] = (mats[4] @ FW) @ mats[5]  # pre F(W) post
     Gw = np.empty((3 ** nw, 15))
     side_tensor(Ms, vec[:nw].copy(), vec[3:18].copy(), Gw)
     three_has_w = ri[6] != 0
