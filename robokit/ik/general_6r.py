@@ -35,11 +35,16 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm.
 4. **Eigenproblem** (Manocha & Canny 1994). Instead of expanding the determinant, the
    quadratic matrix polynomial is linearised: ``[[0, I], [−C, −B]] z = x [[I, 0], [0, A]] z``
-   with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions and each
-   eigenvector holds v, the monomials of x₄ and x₅. When A is close to singular (a solution
-   near the half-angle's point at infinity) the generalised eigenproblem (QZ) is used; the
+   with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions. The
    variable is turned by a fixed angle γ first (``θ₃ = 2 atan x + γ``) so that θ₃ = π is an
-   ordinary point.
+   ordinary point. With A regular this is the eigenproblem of the companion matrix
+   ``[[0, I], [−A⁻¹C, −A⁻¹B]]``, solved by balancing, Hessenberg reduction and Francis
+   double-shift QR steps (Golub & Van Loan §7.4–7.5; eigenvalues only); v at each real
+   eigenvalue is the null vector of ``A x² + B x + C`` (inverse iteration). When A is close to
+   singular (a solution near the half-angle's point at infinity) the variable is turned once
+   more, ``x = (y + t)/(1 − t y)``: the same roots as angles, a regular leading matrix. When the
+   pencil is singular for every x (a pose with a continuum of solutions for this reading), a
+   tiny fixed perturbation of A makes it regular and its eigenvalues serve as candidates.
 5. **Back-substitution.** θ₄, θ₅ from ratios of v's entries (as ``2 atan2(vᵢ₊₁, vᵢ)``, so
    that x = ∞ is θ = π), θ₁, θ₂ from ``m₁₂ = Q⁺ P(θ₃) m₄₅`` (least squares, 14 equations),
    θ₆ from ``Rz(θ₆) = (Z₁X₁⋯X₅ Tz(d₆))⁻¹ T₀₆``.
@@ -55,8 +60,11 @@ and any of its joints as the eigenvalue (:class:`_Arrangement`). Special neighbo
 readings degenerate — on the Kinova Jaco every consecutive pair of axes meets or is parallel,
 and with θ₃ as the eigenvalue ``det(A x² + B x + C)`` vanishes identically —, so all 36 are
 scored once per arm (the conditioning of Q and of the pencil at random poses) and the best
-solves; a pose badly conditioned for it (σ_min/σ_max of Q or A below 1e-6) is also solved
-with the second best and the solutions merged.
+solves; a pose badly conditioned for it (σ_min/σ_max of Q, of A or of the pencil at a fixed x
+below 1e-4) is also solved with the next three and the solutions merged. The ranking is done
+once, in the solver's constructor, and the best readings' tables are kept on it, packed for the
+compiled solve: each pose is one call of :func:`robokit.kernels.general_6r.solve_pose` (matrix
+build, elimination, eigenvalues, back-substitution, polish, merging and ordering).
 
 Use through :func:`robokit.ik_analytic` (it picks this solver for a 6R arm that has neither
 a spherical wrist nor three parallel axes); :class:`GeneralSixR` is the solver object.

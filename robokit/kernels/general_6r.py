@@ -8,14 +8,25 @@ that a translation acts on them linearly:
 
 Kernels
 -------
-``pencil(P, K1, Tz2, d6, T06, gc, gs, out)``
+``solve_pose(chain, tol, ri, mats, const, vec, T06s, out)``
+    the whole solve of one pose in one call: for the best reading of the loop equation (and the
+    next ones on a badly conditioned pose) ``reading_candidates``, then the solutions merged and
+    ordered; the per-arm tables come from :class:`robokit.ik.general_6r.GeneralSixR`.
+``reading_matrices``, ``score_reading``, ``reading_candidates``
+    one reading: its two sides for a pose; its conditioning figure (to rank the readings once
+    per arm); its polished candidates.
+``pencil(P, r, gc, gs, out, Np, Pinv)``
     the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
     θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
-``companion(work, M)``
-    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned).
-``recover(…)``, ``distinct(…)``
-    back-substitution and polish of the real eigenvalues; solutions without repeats.
+``companion(work, M)``, ``turn(work, t)``, ``eigenvalues(h, wr, wi)``, ``null_vector(work, y, v)``
+    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned), the turned
+    variable (when it is not), the eigenvalues of a real matrix (balancing, Hessenberg
+    reduction, Francis double-shift QR), the null vector at a real root (inverse iteration).
+``sv_ratio(a)``
+    σ_min/σ_max of a small matrix (Golub–Kahan bidiagonalisation, Sturm-count bisection).
+``distinct(…)``
+    solutions without repeats.
 ``f_pose(T, inverse, out)``
     the 15 × 15 map of the 14 quantities under a rigid motion (the target's W = T₀₆⁻¹).
 ``fill_joint(alpha, a, d, T06, theta, j)``
@@ -27,6 +38,12 @@ Kernels
 ``polish(alpha, a, d, T06, theta, iters)``
     Newton–Raphson on the pose error ``(p* − p, log(R* Rᵀ))`` with the geometric Jacobian;
     updates θ in place and returns the final error norm.
+
+The small dense linear algebra (Householder vectors, one-sided Jacobi SVD, LU with partial
+pivoting, the eigenvalue iteration) is written here from Golub & Van Loan, *Matrix
+Computations*, so that the whole pipeline compiles into one call without LAPACK round trips
+(numba's ``np.linalg.svd`` of a 12 × 12 matrix costs about as much as this module's whole
+eigenvalue solve). The generated C (:mod:`robokit.codegen`) takes the same steps.
 """
 from __future__ import annotations
 
@@ -36,8 +53,9 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "companion", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian",
-           "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "companion", "turn", "eigenvalues", "null_vector", "sv_ratio", "regularity",
+           "reading_matrices", "score_reading", "reading_candidates", "solve_pose", "distinct", "f_pose", "fill_joint",
+           "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
