@@ -260,13 +260,12 @@ class _Elimination:
             T = np.empty((4, 4))
             fk_pose(self.alpha, self.a, self.d, rng.uniform(-math.pi, math.pi, 6), T)
             poses.append(T)
-        gc, gs = math.cos(_GAMMA), math.sin(_GAMMA)
         scored = []
         for j in range(6):
             for n1 in (2, 3):
                 for piv in range(3):
                     arr = _Arrangement(self, j, n1, piv)
-                    score = min(score_reading(T, *arr._packed, gc, gs, _X0) for T in poses)
+                    score = min(score_reading(T, *arr._packed, _GAMMA, _X0) for T in poses)
                     scored.append((score, j, n1, piv, arr))
         scored.sort(key=lambda t: -t[0])
         self.arrangements = [t[4] for t in scored]

@@ -401,6 +401,24 @@ def _house(x: np.ndarray, n: int, v: np.ndarray) -> float:
 
 
 @njit
+def _reflect_column(a: np.ndarray, k: int, x: np.ndarray, vv: np.ndarray) -> float:
+    """The Householder reflection that zeroes column k of the m × n matrix a below row k, applied
+    to a from the left (columns k …); its vector in vv[:m − k] (x is scratch); returns β."""
+    m, n = a.shape
+    for i in range(k, m):
+        x[i - k] = a[i, k]
+    beta = _house(x, m - k, vv)
+    for j in range(k, n):
+        s = 0.0
+        for i in range(k, m):
+            s += vv[i - k] * a[i, j]
+        s *= beta
+        for i in range(k, m):
+            a[i, j] -= s * vv[i - k]
+    return beta
+
+
+@njit
 def _svd_jacobi(a: np.ndarray, sv: np.ndarray, u: np.ndarray, v: np.ndarray) -> None:
     """One-sided Jacobi SVD (Hestenes) of the m × n matrix a (overwritten), m ≥ n: plane rotations
     make the columns orthogonal; sv (n,) the singular values, decreasing; u (m, n) the left
@@ -490,16 +508,7 @@ def _bidiagonal(a: np.ndarray, c: np.ndarray) -> float:
     x = np.empty(m)
     vv = np.empty(m)
     for k in range(n):
-        for i in range(k, m):  # left reflection: column k below the diagonal
-            x[i - k] = a[i, k]
-        beta = _house(x, m - k, vv)
-        for j in range(k, n):
-            s = 0.0
-            for i in range(k, m):
-                s += vv[i - k] * a[i, j]
-            s *= beta
-            for i in range(k, m):
-                a[i, j] -= s * vv[i - k]
+        _reflect_column(a, k, x, vv)  # left reflection: column k below the diagonal
         c[2 * k] = a[k, k]
         if k < n - 2:  # right reflection: row k right of the superdiagonal
             for j in range(k + 1, n):
@@ -819,19 +828,9 @@ def _left_null_space(q: np.ndarray, out: np.ndarray) -> None:
     x = np.empty(m)
     vv = np.empty(m)
     for j in range(n):
-        for i in range(j, m):
-            x[i - j] = r[i, j]
-        beta = _house(x, m - j, vv)
-        betas[j] = beta
+        betas[j] = _reflect_column(r, j, x, vv)
         for i in range(m - j):
             vs[j, i] = vv[i]
-        for k in range(j, n):
-            s = 0.0
-            for i in range(j, m):
-                s += vv[i - j] * r[i, k]
-            s *= beta
-            for i in range(j, m):
-                r[i, k] -= s * vv[i - j]
     for e in range(m - n):  # columns n … m−1 of H₀H₁⋯H_{n−1}: the reflections applied to eₙ₊ₑ, last first
         for i in range(m):
             x[i] = 0.0
@@ -1116,17 +1115,22 @@ def reading_matrices(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: 
 
 
 @njit
-def score_reading(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
-                  gc: float, gs: float, x0: float) -> float:
-    """How well one reading solves the pose T06s: the smaller of σ_min/σ_max of its 14 × 8
-    matrix Q and of its pencil at x0 (used once per arm to rank the 36 readings)."""
+def _reading_pencil(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
+                    gamma: float, work: np.ndarray, Np: np.ndarray, Pinv: np.ndarray) -> float:
+    """:func:`pencil` of one reading for the pose T06s (both sides built by :func:`reading_matrices`)."""
     P = np.empty((3, 15, 9))
     r = np.empty((15, 9))
     reading_matrices(T06s, ri, mats, const, vec, P, r)
+    return pencil(P, r, math.cos(gamma), math.sin(gamma), work, Np, Pinv)
+
+
+@njit
+def score_reading(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
+                  gamma: float, x0: float) -> float:
+    """How well one reading solves the pose T06s: the smaller of σ_min/σ_max of its 14 × 8
+    matrix Q and of its pencil at x0 (used once per arm to rank the 36 readings)."""
     work = np.empty((3, 12, 12))
-    Np = np.empty((3, 14, 9))
-    Pinv = np.empty((8, 14))
-    ratio = pencil(P, r, gc, gs, work, Np, Pinv)
+    ratio = _reading_pencil(T06s, ri, mats, const, vec, gamma, work, np.empty((3, 14, 9)), np.empty((8, 14)))
     return min(ratio, regularity(work, x0))
 
 
@@ -1138,13 +1142,10 @@ def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri:
     smallest σ_min/σ_max of Q, of A and of the pencil at x0)."""
     alpha, a, d = chain[0, :5], chain[1, :5], chain[2]
     gamma, t = tol[T_GAMMA], tol[T_TURN]
-    P = np.empty((3, 15, 9))
-    r = np.empty((15, 9))
-    reading_matrices(T06s, ri, mats, const, vec, P, r)
     work = np.empty((3, 12, 12))
     Np = np.empty((3, 14, 9))
     Pinv = np.empty((8, 14))
-    rq = pencil(P, r, math.cos(gamma), math.sin(gamma), work, Np, Pinv)
+    rq = _reading_pencil(T06s, ri, mats, const, vec, gamma, work, Np, Pinv)
     M = np.empty((24, 24))
     condA = companion(work, M)
     reg = regularity(work, tol[T_X0])
