@@ -1204,12 +1204,16 @@ def solve_pose(chain: np.ndarray, tol: np.ndarray, ri: np.ndarray, mats: np.ndar
                 return 0
     nread = int(tol[T_READINGS])
     TH = np.empty((24 * nread, 6))
-    n, ratio = reading_candidates(chain, tol, T06s, ri[0], mats[0], const[0], vec[0], TH, 0)
+    n = 0
+    ratio = 1.0
+    for k in range(nread):  # the best reading; on a badly conditioned pose (near a singular one) the next ones too
+        if k > 0 and not ratio < tol[T_POOR]:
+            break
+        more, figure = reading_candidates(chain, tol, T06s, ri[k], mats[k], const[k], vec[k], TH, n)
+        if k == 0:
+            ratio = figure
+        n += more
     poor = ratio < tol[T_POOR]
-    if poor:  # badly conditioned for the best reading (near a singular pose): add the next ones
-        for k in range(1, nread):
-            more, _ = reading_candidates(chain, tol, T06s, ri[k], mats[k], const[k], vec[k], TH, n)
-            n += more
     th0 = chain[3]
     Q = np.empty((max(n, 1), 6))
     m = distinct(TH, n, th0, tol[T_SAME], Q)
