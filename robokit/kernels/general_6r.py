@@ -866,15 +866,15 @@ def pencil(P: np.ndarray, r: np.ndarray, gc: float, gs: float, out: np.ndarray, 
     work = Q.copy()
     U = np.empty((14, 8))
     sv = np.empty(8)
-    Vt = np.empty((8, 8))  # V (columns: right singular vectors)
-    _svd_jacobi(work, sv, U, Vt)
+    V = np.empty((8, 8))  # columns: the right singular vectors
+    _svd_jacobi(work, sv, U, V)
     ratio = sv[7] / sv[0] if sv[0] > 0.0 else 0.0
     for i in range(8):
         for k in range(14):
             acc = 0.0
             for j in range(8):
                 if sv[j] > 1e-14 * sv[0]:
-                    acc += Vt[i, j] * U[k, j] / sv[j]
+                    acc += V[i, j] * U[k, j] / sv[j]
             Pinv[i, k] = acc
     for i3 in range(3):
         for k in range(14):
@@ -1175,7 +1175,7 @@ def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri:
     for k in range(24):
         lam = wr[k]
         imag = 2.0 * abs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k])
-        if imag > tol[T_IMAG]:  # a candidate: real to the tolerance, as an angle
+        if imag > tol[T_IMAG]:  # not real to the tolerance (as an angle): no candidate
             continue
         phi = 2.0 * math.atan2(lam + t, 1.0 - t * lam) if turned else 2.0 * math.atan(lam)
         null_vector(work, lam, v)
