@@ -18,7 +18,11 @@ Peers in the same run:
   200 random seeds, de-duplicated (1e-6 rad): the time for the 200 runs and how many distinct
   solutions they find.
 
-Also printed: solution counts, how many numerical solutions the closed form misses (should
+* the generated C of the same arm (``robokit.codegen``, gcc ``-O2``, ``NAME_ik`` called through
+  ctypes: every solution of one pose, the C's own Hessenberg/Francis QR), per pose.
+
+Also printed: robokit's compiled kernel alone (``kernels.general_6r.solve_pose``, the one call
+``ik_analytic`` makes, without building the solution objects), solution counts, how many numerical solutions the closed form misses (should
 be 0), and the largest Pinocchio FK error of a returned solution. The machine is shared (2
 cores, other jobs running): the load average is printed with the table. Asserts nothing.
 
@@ -74,6 +78,60 @@ def puma_offset_table(eps=1e-3):
     return DHTable("puma560_offset_1mm", t.convention, tuple(rows), base=t.base, tool=t.tool)
 
 
+def many_solutions_table():
+    """A random general 6R arm (seed 1128 of a search over 30 000 random arm/pose pairs) and a pose of
+    it with 14 real solutions — the most that search found (16, the bound, is rare for random arms)."""
+    from robokit.description.dh import DHLink, DHTable
+
+    rows = [(0.923235, -0.491836, -0.705859), (0.218669, 1.384281, -0.725224), (0.736298, -1.35968, -0.59417),
+            (0.21131, -1.454559, -0.11714), (0.602698, -0.394998, -0.867023), (0.94085, -1.74476, 0.303884)]
+    q = np.array([-2.6497734133136186, 2.3612831206549263, -1.0045810158041708, -0.22591212383724724,
+                  3.0838287806256934, 2.3318126860362476])
+    return DHTable("many_6r", "standard", tuple(DHLink("R", a=a, alpha=al, d=d, qlim=WIDE) for a, al, d in rows)), q
+
+
+def kernel_call(robot, nominal=None):
+    """The one compiled call ``ik_analytic`` makes per pose on a general 6R arm, as ``f(T)``: the
+    target made canonical and scaled, then ``kernels.general_6r.solve_pose`` (no solution objects)."""
+    from robokit.ik.closed_form import analytic_ik
+    from robokit.kernels.general_6r import solve_pose
+
+    model = analytic_ik(robot, nominal)
+    solver, el = model.solver, model.solver.elim
+    out = np.empty((96, 7))
+
+    def f(T):
+        T06s = np.array(model.chain.target_06(T), dtype=float)  # (a copy: target_06 may return T itself)
+        T06s[:3, 3] /= solver.scale
+        return solve_pose(el.kchain, el.ktol, *el.kreadings, T06s, out)
+    return f
+
+
+def c_ik(robot, folder):
+    """The generated C's ``NAME_ik`` (gcc -O2) of ``robot`` as ``f(T)`` through ctypes, or a string
+    saying why not (no compiler, no IK in the C)."""
+    import ctypes
+
+    from robokit.codegen import generate_c
+    from robokit.codegen.build import compile_library, find_compiler
+
+    cc = find_compiler()
+    if cc is None:
+        return "no C compiler"
+    lib = compile_library(generate_c(robot, name="g6r"), folder, robot.n, compiler=cc)
+    fn = getattr(lib.lib, f"{lib.name}_ik", None)
+    if fn is None:
+        return "no IK in the C"
+    ct = ctypes.POINTER(ctypes.c_double)
+    sol = np.zeros(lib.max_solutions * lib.n)
+    sp = sol.ctypes.data_as(ct)
+
+    def f(T):
+        Tc = np.ascontiguousarray(T, dtype=float).reshape(-1)
+        return fn(Tc.ctypes.data_as(ct), sp)
+    return f
+
+
 def _rtb_robot(tab):
     import roboticstoolbox as rtb
     from spatialmath import SE3
@@ -111,11 +169,15 @@ def main(argv=None):
     ap.add_argument("--rtb", default="jaco", choices=["jaco", "all", "none"])
     args, _ = ap.parse_known_args(argv)
     n_poses = args.poses or (3 if args.quick else 10)
+    many, q_many = many_solutions_table()
     arms = [("Kinova JACO² 6-DOF (offset wrist)", jaco2_table()), ("random general 6R", random_general_table()),
-            ("PUMA 560, axes 4–5 1 mm apart", puma_offset_table())]
+            ("PUMA 560, axes 4–5 1 mm apart", puma_offset_table()), ("a 14-solution pose of a random arm", many)]
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     print(f"## General 6R closed-form IK, all solutions of one pose ({machine()}; load average {load}, "
           f"shared machine: times are under load)\n")
+    import tempfile
+
+    tmp = tempfile.TemporaryDirectory()
     M = np.random.default_rng(1).standard_normal((24, 24))
     t_eig = time_call(np.linalg.eig, M, repeats=5, target=0.02)
     rows = []
@@ -123,7 +185,10 @@ def main(argv=None):
         robot = robokit.load(tab)
         c = _c_ik(robot)
         t0 = time.perf_counter()
-        robokit.ik_analytic_kind(robot)  # builds the solver (scores the 36 readings)
+        # the general 6R method on every arm (the nearly special PUMA defaults to its calibrated
+        # spherical-wrist solver: nominal=False asks for the arm as it is, by elimination)
+        nominal = None if robokit.ik_analytic_kind(robot).method == "general 6R" else False
+        robokit.ik_analytic_kind(robot, nominal=nominal)  # builds the solver (scores the 36 readings)
         build = time.perf_counter() - t0
         use_rtb = args.rtb == "all" or (args.rtb == "jaco" and k == 0)
         ik_rtb, rtb_build = None, float("nan")
@@ -137,12 +202,15 @@ def main(argv=None):
                 print(f"roboticstoolbox analytic_ik not available: {exc}")
                 use_rtb = False
         rng = np.random.default_rng(0)
+        kern = kernel_call(robot, nominal)
+        t_k = []
         t_rk, t_rtb, t_num, n_rk, n_rtb, n_num, missed, worst, agree = [], [], [], [], [], [], 0, 0.0, 0
-        for _ in range(n_poses):
-            q = rng.uniform(-np.pi, np.pi, 6)
+        for _ in range(1 if tab is many else n_poses):
+            q = q_many if tab is many else rng.uniform(-np.pi, np.pi, 6)
             T = robot.frame_pose(q)
-            sols = ik_analytic(robot, T)
-            t_rk.append(time_call(ik_analytic, robot, T, repeats=5, target=0.02))
+            sols = ik_analytic(robot, T, nominal=nominal)
+            t_rk.append(time_call(ik_analytic, robot, T, nominal=nominal, repeats=5, target=0.02))
+            t_k.append(time_call(kern, T, repeats=5, target=0.02))
             n_rk.append(len(sols))
             worst = max([worst] + [float(np.abs(robot.frame_pose(s.q) - T).max()) for s in sols])
             if ik_rtb is not None:
@@ -164,22 +232,24 @@ def main(argv=None):
         m_rk = statistics.median(t_rk)
         m_rtb = statistics.median(t_rtb) if t_rtb else float("nan")
         m_num = statistics.median(t_num)
-        rows.append([name, fmt_time(build), fmt_time(m_rk), fmt_time(c["ik"]),
-                     f"{c['ir_ik_ex']:,.0f}" if "ir_ik_ex" in c else "no valgrind", f"{m_rk / c['ik']:.0f}×",
+        m_k = statistics.median(t_k)
+        rows.append([name, fmt_time(build), fmt_time(m_rk), fmt_time(m_k), fmt_time(c["ik"]),
+                     f"{c['ir_ik_ex']:,.0f}" if "ir_ik_ex" in c else "no valgrind", f"{m_rk / c['ik']:.1f}×",
                      f"{statistics.mean(n_rk):.1f} ({min(n_rk)}–{max(n_rk)})",
                      f"{worst:.1e}", fmt_time(rtb_build) if use_rtb else "not run",
                      fmt_time(m_rtb) if use_rtb else "not run",
-                     f"{statistics.mean(n_rtb):.1f}, same set {agree}/{n_poses}" if use_rtb else "",
+                     f"{statistics.mean(n_rtb):.1f}, same set {agree}/{len(t_rk)}" if use_rtb else "",
                      f"{m_rtb / m_rk:.1f}×" if use_rtb else "",
                      fmt_time(m_num), f"{statistics.mean(n_num):.1f}, missed by closed form: {missed}",
                      f"{m_num / m_rk:.0f}×"])
-    print(table(["arm", "robokit build", "robokit all solutions", "C NAME_ik (-O2)", "C instructions / pose",
-                 "Python / C", "# solutions (min–max)", "max FK error",
+    print(table(["arm", "robokit build", "robokit all solutions", "its compiled kernel alone", "C NAME_ik (-O2)",
+                 "C instructions / pose", "Python / C", "# solutions (min–max)", "max FK error",
                  "rtb derivation", "rtb solve", "# rtb", "rtb / robokit", "numerical IK ×200 seeds",
                  "# distinct numerical", "numerical / robokit"], rows))
-    print(f"\nFor scale, in the same run: numpy.linalg.eig of one 24 × 24 matrix (the eigenproblem each "
-          f"pose needs) {fmt_time(t_eig)}.")
-    print(f"\n{n_poses} poses per arm. robokit: `ik_analytic` (general 6R method); rtb: roboticstoolbox "
+    print(f"\nFor scale, in the same run: numpy.linalg.eig of one 24 × 24 matrix (the size of the eigenproblem "
+          f"each pose needs; robokit solves it with its own compiled routine) {fmt_time(t_eig)}.")
+    tmp.cleanup()
+    print(f"\n{n_poses} poses per arm (one for the 14-solution pose). robokit: `ik_analytic` (general 6R method); rtb: roboticstoolbox "
           "`DHRobot.analytic_ik().solve` (1.5.0, SymPy derivation once per arm); numerical: robokit's "
           "compiled LM from 200 random seeds, de-duplicated.")
 

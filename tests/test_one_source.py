@@ -40,8 +40,6 @@ ALLOWED = {
         "copy the DH kernel could replace (ik/ is another session's area today)",
     ("robokit/ik/_dh_chain.py", "_rx4"): "an elementary rotation about x (the DH chain's fixed twists), no joint",
     ("robokit/ik/_dh_chain.py", "_rz4"): "an elementary rotation about z (the DH chain's fixed offsets), no joint",
-    ("robokit/ik/general_6r.py", "__init__"):
-        "the general-6R elimination's constant link matrices (α, a of each row), built once, no joint value",
     ("robokit/calibration/chain.py", "frames"):
         "the calibration chain X₁ e^{[A₁]q₁} X₂ ⋯ through the spatial library's exp6. Moved onto the kernel's "
         "exponentials (equal to rounding), the calibrated robot's inertia placement "

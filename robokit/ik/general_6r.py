@@ -35,11 +35,16 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm.
 4. **Eigenproblem** (Manocha & Canny 1994). Instead of expanding the determinant, the
    quadratic matrix polynomial is linearised: ``[[0, I], [−C, −B]] z = x [[I, 0], [0, A]] z``
-   with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions and each
-   eigenvector holds v, the monomials of x₄ and x₅. When A is close to singular (a solution
-   near the half-angle's point at infinity) the generalised eigenproblem (QZ) is used; the
+   with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions. The
    variable is turned by a fixed angle γ first (``θ₃ = 2 atan x + γ``) so that θ₃ = π is an
-   ordinary point.
+   ordinary point. With A regular this is the eigenproblem of the companion matrix
+   ``[[0, I], [−A⁻¹C, −A⁻¹B]]``, solved by balancing, Hessenberg reduction and Francis
+   double-shift QR steps (Golub & Van Loan §7.4–7.5; eigenvalues only); v at each real
+   eigenvalue is the null vector of ``A x² + B x + C`` (inverse iteration). When A is close to
+   singular (a solution near the half-angle's point at infinity) the variable is turned once
+   more, ``x = (y + t)/(1 − t y)``: the same roots as angles, a regular leading matrix. When the
+   pencil is singular for every x (a pose with a continuum of solutions for this reading), a
+   tiny fixed perturbation of A makes it regular and its eigenvalues serve as candidates.
 5. **Back-substitution.** θ₄, θ₅ from ratios of v's entries (as ``2 atan2(vᵢ₊₁, vᵢ)``, so
    that x = ∞ is θ = π), θ₁, θ₂ from ``m₁₂ = Q⁺ P(θ₃) m₄₅`` (least squares, 14 equations),
    θ₆ from ``Rz(θ₆) = (Z₁X₁⋯X₅ Tz(d₆))⁻¹ T₀₆``.
@@ -55,8 +60,11 @@ and any of its joints as the eigenvalue (:class:`_Arrangement`). Special neighbo
 readings degenerate — on the Kinova Jaco every consecutive pair of axes meets or is parallel,
 and with θ₃ as the eigenvalue ``det(A x² + B x + C)`` vanishes identically —, so all 36 are
 scored once per arm (the conditioning of Q and of the pencil at random poses) and the best
-solves; a pose badly conditioned for it (σ_min/σ_max of Q or A below 1e-6) is also solved
-with the second best and the solutions merged.
+solves; a pose badly conditioned for it (σ_min/σ_max of Q, of A or of the pencil at a fixed x
+below 1e-4) is also solved with the next three and the solutions merged. The ranking is done
+once, in the solver's constructor, and the best readings' tables are kept on it, packed for the
+compiled solve: each pose is one call of :func:`robokit.kernels.general_6r.solve_pose` (matrix
+build, elimination, eigenvalues, back-substitution, polish, merging and ordering).
 
 Use through :func:`robokit.ik_analytic` (it picks this solver for a 6R arm that has neither
 a spherical wrist nor three parallel axes); :class:`GeneralSixR` is the solver object.
@@ -69,8 +77,9 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from robokit.ik.solver import PositionBranch
-from robokit.kernels.general_6r import (companion, distinct, f_pose, fk_pose, fvec, jacobian, pencil, recover,
-                                        side_tensor)
+from robokit.kernels.general_6r import (RI_SIZE, T_CONVERGED, T_GAMMA, T_IMAG, T_POOR, T_READINGS, T_SAME,
+                                        T_TURN, T_X0, fk_pose, fvec, jacobian, reading_matrices, score_reading,
+                                        side_tensor, solve_pose)
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -85,6 +94,7 @@ _SAME = 1e-7  # rad: solutions this close in every joint are one
 _X0 = 0.37  # where the pencil's regularity is measured (σ_min/σ_max of A x² + B x + C)
 _POOR = 1e-4  # below this conditioning figure a pose is also solved with the next readings …
 _EXTRA = 3  # … this many of them
+_TURN = 1.1  # rad: the fixed turn of the half-angle variable where A is near singular (x = (y + t)/(1 − t y))
 
 
 def _f_translate(t: np.ndarray) -> np.ndarray:
@@ -175,8 +185,6 @@ class _Arrangement:
         self.pivot = o[piv]
         self.others = [o[k] for k in range(3) if k != piv]
         self.pair = list(self.sides[self.two][2])
-        self.t3 = np.empty((27, 15))
-        self.t2 = np.empty((9, 15))
         self.roles = np.array([self.pivot, *self.others, *self.pair, j], dtype=np.int64)
         # per side: the stacked maps, and where the target's W sits (index, pre, inverse?, post)
         self.Ms: list[np.ndarray] = []
@@ -185,26 +193,55 @@ class _Arrangement:
             self.Ms.append(np.ascontiguousarray(np.stack([pre for pre, _, _ in ops])))
             at = [(i, pre, w < 0, post) for i, (pre, w, post) in enumerate(ops) if w != 0]
             self.w_at.append(at[0] if at else None)
-        self.FW = np.empty((15, 15))
+        self._packed = self.packed()
+
+    def tables(self) -> dict[str, Any]:
+        """This reading's per-arm tables (the items of ``export_constants()["arrangements"]``)."""
+        w_side = 0 if self.w_at[0] is not None else 1
+        c_side = 1 - w_side
+        const = np.empty((3 ** len(self.sides[c_side][1]), 15))
+        side_tensor(self.Ms[c_side], self.sides[c_side][1], self.fstart[c_side], const)
+        at = self.w_at[w_side]
+        assert at is not None
+        i, pre, inverse, post = at
+        # the row of the three-joint side's tensor G3 (rows i₀ + 3 i₁ + 9 i₂ over the group's joints
+        # in order) behind P[i, :, m] (pivot basis i, then the other two joints' monomial m), and of
+        # the two-joint side's G2 behind r[:, m] (m = 3 i_d + i_e, rows of G2 i_e + 3 i_d)
+        weight = (1, 3, 9)
+        b, c = [k for k in range(3) if k != self.piv]
+        perm3 = [ip * weight[self.piv] + ib * weight[b] + ic * weight[c]
+                 for ip in range(3) for ib in range(3) for ic in range(3)]
+        perm2 = [i_d + 3 * i_e for i_d in range(3) for i_e in range(3)]
+        return {"roles": self.roles.copy(), "three_has_w": w_side == self.three, "const": const,
+                "Ms": self.Ms[w_side].copy(), "w_index": int(i), "w_inverse": bool(inverse), "pre": pre.copy(),
+                "post": post.copy(), "signs": self.sides[w_side][1].copy(), "f": self.fstart[w_side].copy(),
+                "perm3": np.array(perm3, dtype=np.int64), "perm2": np.array(perm2, dtype=np.int64)}
+
+    def packed(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The tables as the compiled kernels take them (:mod:`robokit.kernels.general_6r`):
+        ri (46,) int, mats (6, 15, 15), const (27, 15), vec (18,)."""
+        t = self.tables()
+        nw = len(t["signs"])
+        ri = np.zeros(RI_SIZE, dtype=np.int64)
+        ri[:6] = t["roles"]
+        ri[6:10] = [int(t["three_has_w"]), nw, t["w_index"], int(t["w_inverse"])]
+        ri[10:37] = t["perm3"]
+        ri[37:46] = t["perm2"]
+        mats = np.zeros((6, 15, 15))
+        mats[:nw + 1] = t["Ms"]
+        mats[4], mats[5] = t["pre"], t["post"]
+        const = np.zeros((27, 15))
+        const[:len(t["const"])] = t["const"]
+        vec = np.zeros(18)
+        vec[:nw] = t["signs"]
+        vec[3:] = t["f"]
+        return ri, mats, const, vec
 
     def matrices(self, T06s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(P (3, 15, 9), r (15, 9)) of the pose: the three-joint side with the pivot first
-        and the two-joint side (see :func:`robokit.kernels.general_6r.pencil`)."""
-        outs = []
-        for side, f, buf in zip(range(2), self.fstart, (self.t3, self.t2) if self.three == 0 else (self.t2, self.t3)):
-            Ms, at = self.Ms[side], self.w_at[side]
-            if at is not None:
-                i, pre, inverse, post = at
-                f_pose(T06s, not inverse, self.FW)  # W = T₀₆⁻¹; W⁻¹ = T₀₆
-                Ms[i] = pre @ self.FW @ post
-            side_tensor(Ms, self.sides[side][1], f, buf)
-            outs.append(buf)
-        G3, G2 = outs[self.three], outs[self.two]
-        T3 = G3.reshape(3, 3, 3, 15)  # axes (t2, t1, t0, k)
-        axes = {0: 2, 1: 1, 2: 0}  # joint position in the group → axis of T3
-        b, c = [k for k in range(3) if k != self.piv]
-        P = np.ascontiguousarray(T3.transpose(axes[self.piv], 3, axes[b], axes[c]).reshape(3, 15, 9))
-        r = np.ascontiguousarray(G2.reshape(3, 3, 15).transpose(2, 1, 0).reshape(15, 9))
+        and the two-joint side (:func:`robokit.kernels.general_6r.reading_matrices`)."""
+        P, r = np.empty((3, 15, 9)), np.empty((15, 9))
+        reading_matrices(np.ascontiguousarray(T06s, dtype=float), *self._packed, P, r)
         return P, r
 
 
@@ -216,12 +253,6 @@ class _Elimination:
         self.a = np.ascontiguousarray(chain.a, dtype=float) / scale
         self.d = np.ascontiguousarray(chain.d0, dtype=float) / scale
         self.th0 = np.asarray(chain.th0, dtype=float)
-        self.gc, self.gs = math.cos(_GAMMA), math.sin(_GAMMA)
-        self.work = np.empty((3, 12, 12))
-        self.Np = np.empty((3, 14, 9))
-        self.Pinv = np.empty((8, 14))
-        self.found = np.empty((24, 6))
-        self.M24 = np.empty((24, 24))
         # score every arrangement on a few poses; keep them best first
         rng = np.random.default_rng(2024)
         poses = []
@@ -234,48 +265,21 @@ class _Elimination:
             for n1 in (2, 3):
                 for piv in range(3):
                     arr = _Arrangement(self, j, n1, piv)
-                    scored.append((min(self._score(arr, T) for T in poses), j, n1, piv, arr))
+                    score = min(score_reading(T, *arr._packed, _GAMMA, _X0) for T in poses)
+                    scored.append((score, j, n1, piv, arr))
         scored.sort(key=lambda t: -t[0])
         self.arrangements = [t[4] for t in scored]
         self.scores = [t[0] for t in scored]
-
-    def _score(self, arr: _Arrangement, T06s: np.ndarray) -> float:
-        P, r = arr.matrices(T06s)
-        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
-        A, B, C = self.work
-        Lx = A * 0.37 ** 2 + B * 0.37 + C
-        sv = np.linalg.svd(Lx, compute_uv=False)
-        return min(ratio, sv[-1] / sv[0] if sv[0] > 0 else 0.0)
-
-    def candidates(self, T06s: np.ndarray, arr: _Arrangement) -> tuple[list[np.ndarray], float]:
-        """Polished rotation angles θ (6,) of the solutions for the scaled target with one
-        arrangement, and a conditioning figure (the smaller of Q's and A's singular value ratios)."""
-        P, r = arr.matrices(T06s)
-        ratio = pencil(P, r, self.gc, self.gs, self.work, self.Np, self.Pinv)
-        n = 12
-        condA = companion(self.work, self.M24)
-        A, B, C = self.work
-        sv = np.linalg.svd(A * _X0 * _X0 + B * _X0 + C, compute_uv=False)  # ~0 everywhere: a near-continuum
-        reg = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
-        if condA > 1e-10:
-            num, Z = np.linalg.eig(self.M24)
-            num = num.astype(np.complex128)
-            den = np.ones(2 * n, dtype=np.complex128)
-        else:
-            import scipy.linalg
-
-            L0 = np.zeros((2 * n, 2 * n))
-            L0[:n, n:] = np.eye(n)
-            L0[n:, :n] = -C
-            L0[n:, n:] = -B
-            L1 = np.eye(2 * n)
-            L1[n:, n:] = A
-            w, Z = scipy.linalg.eig(L0, L1, homogeneous_eigvals=True)
-            num, den = np.ascontiguousarray(w[0], dtype=np.complex128), np.ascontiguousarray(w[1], dtype=np.complex128)
-        Z = Z.astype(np.complex128)
-        count = recover(self.alpha, self.a, self.d, T06s, num, den, np.ascontiguousarray(Z), self.Np, self.Pinv,
-                        arr.roles, _GAMMA, _IMAG_TOL, _CONVERGED, self.found)
-        return [self.found[i].copy() for i in range(count)], min(ratio, condA, reg)
+        # what the compiled solve takes (robokit.kernels.general_6r.solve_pose): the chain, the
+        # tolerances and the tables of the readings it may use, best first
+        self.kchain = np.zeros((4, 6))
+        self.kchain[0, :5], self.kchain[1, :5], self.kchain[2], self.kchain[3] = self.alpha, self.a, self.d, self.th0
+        self.ktol = np.zeros(8)
+        self.ktol[[T_GAMMA, T_TURN, T_IMAG, T_CONVERGED, T_SAME, T_X0, T_POOR, T_READINGS]] = [
+            _GAMMA, math.tan(0.5 * _TURN), _IMAG_TOL, _CONVERGED, _SAME, _X0, _POOR, _EXTRA + 1]
+        used = [arr._packed for arr in self.arrangements[:_EXTRA + 1]]
+        ri, mats, const, vec = (np.ascontiguousarray(np.stack([u[k] for u in used])) for k in range(4))
+        self.kreadings = (ri, mats, const, vec)
 
 
 class GeneralSixR:
@@ -316,20 +320,20 @@ class GeneralSixR:
     method = "general 6R"
 
     def __init__(self, chain: DHChain) -> None:
-        """Any 6-joint chain is accepted; :meth:`refusal` says whether the method applies (the
-        elimination's constants are then built, which scores the 36 readings: ~0.1 s)."""
+        """Any 6-joint chain is accepted; :meth:`refusal` says whether the method applies. When it
+        does, the elimination's per-arm constants are built here, once: the 36 readings of the
+        loop equation are scored and the best ones kept with the solver (:attr:`elim`)."""
         self.chain = chain
         self.scale = float(chain.scale)
         self._why = self.refusal_of(chain)
-        self._elim: _Elimination | None = None
+        self._elim = None if self._why is not None else _Elimination(chain, self.scale)
 
     @property
     def elim(self) -> "_Elimination":
-        """The per-arm constants of the elimination (built on first use)."""
+        """The per-arm constants of the elimination (the readings ranked best first); raises
+        :class:`~robokit.errors.InputError` when the method does not apply to the chain."""
         if self._elim is None:
-            if self._why is not None:
-                raise InputError(f"robot: {self._why}")
-            self._elim = _Elimination(self.chain, self.scale)
+            raise InputError(f"robot: {self._why}")
         return self._elim
 
     def refusal(self) -> str | None:
@@ -445,32 +449,10 @@ class GeneralSixR:
         (4, 15)
         """
         el = self.elim
-        out: dict[str, Any] = {"alpha": el.alpha.copy(), "a": el.a.copy(), "d": el.d.copy(), "th0": el.th0.copy(),
-                               "scale": self.scale, "gamma": _GAMMA, "imag_tol": _IMAG_TOL, "converged": _CONVERGED,
-                               "same": _SAME, "x0": _X0, "poor": _POOR, "arrangements": []}
-        for arr in el.arrangements[:_EXTRA + 1]:
-            w_side = 0 if arr.w_at[0] is not None else 1
-            c_side = 1 - w_side
-            ops, signs, _ = arr.sides[c_side]
-            const = np.empty((3 ** len(signs), 15))
-            side_tensor(arr.Ms[c_side], signs, arr.fstart[c_side], const)
-            at = arr.w_at[w_side]
-            assert at is not None
-            i, pre, inverse, post = at
-            # the index permutations of matrices(): applied to the row numbers of G3 and G2
-            idx3 = np.repeat(np.arange(27), 15).reshape(27, 15)
-            T3 = idx3.reshape(3, 3, 3, 15)
-            axes = {0: 2, 1: 1, 2: 0}
-            b, c = [k for k in range(3) if k != arr.piv]
-            P3 = T3.transpose(axes[arr.piv], 3, axes[b], axes[c]).reshape(3, 15, 9)
-            idx2 = np.repeat(np.arange(9), 15).reshape(9, 15)
-            R2 = idx2.reshape(3, 3, 15).transpose(2, 1, 0).reshape(15, 9)
-            out["arrangements"].append({
-                "roles": arr.roles.copy(), "three_has_w": w_side == arr.three, "const": const,
-                "Ms": arr.Ms[w_side].copy(), "w_index": int(i), "w_inverse": bool(inverse), "pre": pre.copy(),
-                "post": post.copy(), "signs": arr.sides[w_side][1].copy(), "f": arr.fstart[w_side].copy(),
-                "perm3": P3[:, 0, :].reshape(27).copy(), "perm2": R2[0, :].copy()})
-        return out
+        return {"alpha": el.alpha.copy(), "a": el.a.copy(), "d": el.d.copy(), "th0": el.th0.copy(),
+                "scale": self.scale, "gamma": _GAMMA, "imag_tol": _IMAG_TOL, "converged": _CONVERGED, "same": _SAME,
+                "x0": _X0, "poor": _POOR, "turn": _TURN,
+                "arrangements": [arr.tables() for arr in el.arrangements[:_EXTRA + 1]]}
 
     def solve(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:
         """Every solution for the pose ``T06`` (4 × 4, m) of ``Z₁X₁ ⋯ Z₆``.
@@ -513,28 +495,13 @@ class GeneralSixR:
         T06s = np.array(T06, dtype=float)
         T06s[:3, 3] /= self.scale
         el = self.elim
-        sols, ratio = el.candidates(T06s, el.arrangements[0])
-        if ratio < _POOR:  # this pose is badly conditioned for the best reading (near a singular pose):
-            for arr in el.arrangements[1:_EXTRA + 1]:  # add the next readings' solutions
-                more, _ = el.candidates(T06s, arr)
-                sols = sols + more
-        TH = np.array(sols, dtype=float).reshape(len(sols), 6)
-        Q = np.empty((max(1, len(sols)), 6))
-        m = distinct(TH, len(sols), el.th0, _SAME, Q)
-        Q = Q[:m][np.lexsort(Q[:m, [5, 4, 3, 1, 0, 2]].T)]  # ordered by q₃, then q₁, q₂, …
-        q_list = list(Q)
+        out = np.empty((24 * (_EXTRA + 1), 7))
+        m = solve_pose(el.kchain, el.ktol, *el.kreadings, T06s, out)
         rows: list[tuple[Sequence[float], str, bool]] = []
-        T, J = np.empty((4, 4)), np.empty((6, 6))
-        for k, q in enumerate(q_list):
-            singular = False
-            if ratio < _POOR:  # near a singular pose: flag the solutions where the Jacobian is singular
-                th = q + el.th0
-                fk_pose(el.alpha, el.a, el.d, th, T)
-                jacobian(el.alpha, el.a, el.d, th, T, J)
-                sv = np.linalg.svd(J, compute_uv=False)
-                singular = bool(sv[-1] < 1e-8 * sv[0])
+        for k in range(m):
+            singular = bool(out[k, 6])
             label = f"solution {k + 1} of {m}" + (", singular" if singular else "")
-            rows.append((q.tolist(), label, singular))
+            rows.append((out[k, :6].tolist(), label, singular))
         return rows
 
     def joint_angles(self, T06: np.ndarray, wrist_ref: float = 0.0) -> list[tuple[Sequence[float], str, bool]]:

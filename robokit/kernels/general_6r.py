@@ -8,14 +8,25 @@ that a translation acts on them linearly:
 
 Kernels
 -------
-``pencil(P, K1, Tz2, d6, T06, gc, gs, out)``
+``solve_pose(chain, tol, ri, mats, const, vec, T06s, out)``
+    the whole solve of one pose in one call: for the best reading of the loop equation (and the
+    next ones on a badly conditioned pose) ``reading_candidates``, then the solutions merged and
+    ordered; the per-arm tables come from :class:`robokit.ik.general_6r.GeneralSixR`.
+``reading_matrices``, ``score_reading``, ``reading_candidates``
+    one reading: its two sides for a pose; its conditioning figure (to rank the readings once
+    per arm); its polished candidates.
+``pencil(P, r, gc, gs, out, Np, Pinv)``
     the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
     θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
-``companion(work, M)``
-    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned).
-``recover(…)``, ``distinct(…)``
-    back-substitution and polish of the real eigenvalues; solutions without repeats.
+``companion(work, M)``, ``turn(work, t)``, ``eigenvalues(h, wr, wi)``, ``null_vector(work, y, v)``
+    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned), the turned
+    variable (when it is not), the eigenvalues of a real matrix (balancing, Hessenberg
+    reduction, Francis double-shift QR), the null vector at a real root (inverse iteration).
+``sv_ratio(a)``
+    σ_min/σ_max of a small matrix (Golub–Kahan bidiagonalisation, Sturm-count bisection).
+``distinct(…)``
+    solutions without repeats.
 ``f_pose(T, inverse, out)``
     the 15 × 15 map of the 14 quantities under a rigid motion (the target's W = T₀₆⁻¹).
 ``fill_joint(alpha, a, d, T06, theta, j)``
@@ -27,6 +38,12 @@ Kernels
 ``polish(alpha, a, d, T06, theta, iters)``
     Newton–Raphson on the pose error ``(p* − p, log(R* Rᵀ))`` with the geometric Jacobian;
     updates θ in place and returns the final error norm.
+
+The small dense linear algebra (Householder vectors, one-sided Jacobi SVD, LU with partial
+pivoting, the eigenvalue iteration) is written here from Golub & Van Loan, *Matrix
+Computations*, so that the whole pipeline compiles into one call without LAPACK round trips
+(numba's ``np.linalg.svd`` of a 12 × 12 matrix costs about as much as this module's whole
+eigenvalue solve). The generated C (:mod:`robokit.codegen`) takes the same steps.
 """
 from __future__ import annotations
 
@@ -36,8 +53,9 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "companion", "recover", "distinct", "f_pose", "fill_joint", "fk_pose", "jacobian",
-           "polish", "fvec"]
+__all__ = ["side_tensor", "pencil", "companion", "turn", "eigenvalues", "null_vector", "sv_ratio", "regularity",
+           "reading_matrices", "score_reading", "reading_candidates", "solve_pose", "distinct", "f_pose", "fill_joint",
+           "fk_pose", "jacobian", "polish", "fvec"]
 
 
 @njit
@@ -93,103 +111,18 @@ def side_tensor(Ms: np.ndarray, signs: np.ndarray, f: np.ndarray, out: np.ndarra
     """
     k = signs.shape[0]
     cur = np.empty((27, 15))
-    nxt = np.empty((27, 15))
-    for r in range(15):
-        acc = 0.0
-        for m in range(15):
-            acc += Ms[0, r, m] * f[m]
-        cur[0, r] = acc
+    cur[0] = np.ascontiguousarray(Ms[0]) @ np.ascontiguousarray(f)
     n = 1
     parts = np.empty((3, 15))
+    split = np.empty((27, 15))
     for j in range(k):
-        for t in range(n):
+        for t in range(n):  # every row split into its cos, sin and constant parts …
             _rz_parts(cur[t], signs[j], parts)
             for b in range(3):
-                row = t + n * b
-                for r in range(15):
-                    acc = 0.0
-                    for m in range(15):
-                        acc += Ms[j + 1, r, m] * parts[b, m]
-                    nxt[row, r] = acc
+                split[t + n * b] = parts[b]
         n *= 3
-        for t in range(n):
-            for r in range(15):
-                cur[t, r] = nxt[t, r]
-    for t in range(n):
-        for r in range(15):
-            out[t, r] = cur[t, r]
-
-
-@njit
-def pencil(P: np.ndarray, r: np.ndarray, gc: float, gs: float, out: np.ndarray, Np: np.ndarray,
-           Pinv: np.ndarray) -> float:
-    """The quadratic matrix polynomial of one pose.
-
-    P : (3, 15, 9) the three-joint side (pivot basis (cos, sin, 1); rows f; columns the
-    monomials ``b(θ_b) ⊗ b(θ_c)`` of the other two joints); r : (15, 9) the two-joint side
-    (columns ``b(θ_d) ⊗ b(θ_e)``, the last one the constant); (gc, gs): cos γ, sin γ of the
-    pivot's shift. Writes out : (3, 12, 12) = (A, B, C); Np : (3, 14, 9) ``P`` with the
-    constant of the two-joint side moved over (for the back-substitution); Pinv : (8, 14)
-    the pseudo-inverse of the 14 × 8 matrix Q of the two-joint side. Returns σ_min/σ_max of Q.
-    """
-    Q = np.ascontiguousarray(r[:14, :8])
-    U, sv, Vt = np.linalg.svd(Q)
-    ratio = sv[7] / sv[0] if sv[0] > 0.0 else 0.0
-    for i in range(8):
-        for k in range(14):
-            acc = 0.0
-            for j in range(8):
-                if sv[j] > 1e-14 * sv[0]:
-                    acc += Vt[j, i] * U[k, j] / sv[j]
-            Pinv[i, k] = acc
-    for i3 in range(3):
-        for k in range(14):
-            for m in range(9):
-                Np[i3, k, m] = P[i3, k, m]
-    for k in range(14):
-        Np[2, k, 8] -= r[k, 8]
-    # Σ_i3 = N P′_i3, N the left null space of Q (6 × 14)
-    sig = np.zeros((3, 6, 9))
-    for i3 in range(3):
-        for e in range(6):
-            for m in range(9):
-                s = 0.0
-                for k in range(14):
-                    s += U[k, 8 + e] * Np[i3, k, m]
-                sig[i3, e, m] = s
-    # θ₃ = φ + γ: (cos, sin) of θ₃ in terms of φ; then x = tan(φ/2): A x² + B x + C
-    G = np.array([[1.0, 0.0, -1.0], [0.0, 2.0, 0.0], [1.0, 0.0, 1.0]])
-    for c in range(3):
-        for i in range(12):
-            for j in range(12):
-                out[c, i, j] = 0.0
-    for e in range(6):
-        for m in range(9):
-            sc = sig[0, e, m] * gc + sig[1, e, m] * gs
-            ss = -sig[0, e, m] * gs + sig[1, e, m] * gc
-            s1 = sig[2, e, m]
-            coef2 = s1 - sc  # x²
-            coef1 = 2.0 * ss  # x
-            coef0 = s1 + sc  # 1
-            if coef0 == 0.0 and coef1 == 0.0 and coef2 == 0.0:
-                continue
-            i4, i5 = m // 3, m % 3
-            for j4 in range(3):
-                g4 = G[i4, j4]
-                if g4 == 0.0:
-                    continue
-                for j5 in range(3):
-                    g = g4 * G[i5, j5]
-                    if g == 0.0:
-                        continue
-                    col = j4 * 3 + j5
-                    out[0, e, col] += g * coef2
-                    out[1, e, col] += g * coef1
-                    out[2, e, col] += g * coef0
-                    out[0, 6 + e, col + 3] += g * coef2
-                    out[1, 6 + e, col + 3] += g * coef1
-                    out[2, 6 + e, col + 3] += g * coef0
-    return ratio
+        cur[:n] = split[:n] @ np.ascontiguousarray(Ms[j + 1]).T  # … then the next constant map
+    out[:n] = cur[:n]
 
 
 @njit
@@ -314,39 +247,6 @@ def jacobian(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray,
 
 
 @njit
-def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, theta: np.ndarray,
-           iters: int) -> float:
-    """Newton–Raphson on the pose error (geometric Jacobian of ``Z₁X₁ ⋯ Z₆``, space frame).
-
-    Updates theta (6,) in place; returns the final ‖(Δp, Δω)‖ (a step that does not lower
-    the error is not taken).
-    """
-    T = np.empty((4, 4))
-    e = np.empty(6)
-    J = np.empty((6, 6))
-    fk_pose(alpha, a, d, theta, T)
-    err = _pose_error(T06, T, e)
-    trial = np.empty(6)
-    for _ in range(iters):
-        if err < 1e-15:
-            break
-        jacobian(alpha, a, d, theta, T, J)
-        dq = np.linalg.lstsq(J, e, rcond=1e-12)[0]
-        for i in range(6):
-            trial[i] = theta[i] + dq[i]
-        fk_pose(alpha, a, d, trial, T)
-        new = _pose_error(T06, T, e)
-        if not new < err:
-            fk_pose(alpha, a, d, theta, T)
-            _pose_error(T06, T, e)
-            break
-        err = new
-        for i in range(6):
-            theta[i] = trial[i]
-    return err
-
-
-@njit
 def f_pose(T: np.ndarray, inverse: bool, out: np.ndarray) -> None:
     """15 × 15 map of f(l, p) under the rigid motion T (or T⁻¹): ``F_tr(p) F_rot(R)``."""
     R = np.empty((3, 3))
@@ -443,47 +343,6 @@ def _candidate(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray,
 
 
 @njit
-def recover(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, num: np.ndarray, den: np.ndarray,
-            Z: np.ndarray, Np: np.ndarray, Pinv: np.ndarray, roles: np.ndarray, gamma: float, imag_tol: float,
-            conv_tol: float, out: np.ndarray) -> int:
-    """Back-substitution and polish of every eigenvalue ``num/den`` that is real to ``imag_tol``
-    (as an angle): roles = (pivot, b, c, d, e, j) joint indices (the eigenvalue's joint, the
-    two of the eigenvector's monomials ``x_bⁱx_cʲ``, the two of the 14 × 8 system, the
-    eliminated one); Z (24, 24) complex eigenvectors. Writes the converged θ (6,) into the
-    rows of out (24, 6); returns how many."""
-    count = 0
-    V = np.empty((4, 3))
-    th = np.empty(6)
-    for k in range(num.shape[0]):
-        nu, de = num[k], den[k]
-        if abs(de) > 1e-300:
-            lam = nu / de
-            imag = 2.0 * abs(lam.imag) / (1.0 + abs(lam) ** 2)
-            if imag > imag_tol:
-                continue
-            phi = 2.0 * math.atan(lam.real)
-        else:
-            phi = math.pi
-        off = 0 if abs(math.tan(0.5 * phi)) <= 1.0 else 12
-        jm, big = 0, -1.0
-        for i in range(12):
-            w = abs(Z[off + i, k])
-            if w > big:
-                big, jm = w, i
-        if big <= 0.0:
-            continue
-        ph = Z[off + jm, k].conjugate() / big
-        for i in range(12):
-            V[i // 3, i % 3] = (Z[off + i, k] * ph).real
-        err = _candidate(alpha, a, d, T06, V, phi, Np, Pinv, roles, gamma, th)
-        if err < conv_tol:
-            for i in range(6):
-                out[count, i] = th[i]
-            count += 1
-    return count
-
-
-@njit
 def distinct(TH: np.ndarray, n: int, th0: np.ndarray, same: float, out: np.ndarray) -> int:
     """Rows 0..n−1 of TH as joint values ``q = θ − θ₀`` wrapped to [−π, π), without repeats
     (two rows closer than ``same`` rad in every joint, modulo 2π, are one) into out; returns
@@ -514,29 +373,884 @@ def distinct(TH: np.ndarray, n: int, th0: np.ndarray, same: float, out: np.ndarr
     return m
 
 
+# ---------------------------------------------------------------- small dense linear algebra
+# Written from Golub & Van Loan, *Matrix Computations* (4th ed.): Householder vectors §5.1.3,
+# one-sided Jacobi SVD §8.6.3, Golub–Kahan bidiagonalisation §5.4.8 with Sturm-count bisection
+# (Demmel & Kahan 1990), LU with partial pivoting §3.4, balancing §7.5.7, Hessenberg reduction
+# §7.4.3, Francis double-shift QR §7.5.5. The same steps as the generated C (robokit.codegen).
+
+
+@njit
+def _house(x: np.ndarray, n: int, v: np.ndarray) -> float:
+    """Householder vector of x[:n]: ``(I − β v vᵀ) x = (±‖x‖, 0, …, 0)`` with v[0] = 1 written
+    into v[:n]; returns β (0 when x is already a multiple of e₁)."""
+    sigma = 0.0
+    for i in range(1, n):
+        sigma += x[i] * x[i]
+    v[0] = 1.0
+    for i in range(1, n):
+        v[i] = x[i]
+    if sigma == 0.0:
+        return 0.0
+    x0 = x[0]
+    mu = math.sqrt(x0 * x0 + sigma)
+    v0 = x0 - mu if x0 <= 0.0 else -sigma / (x0 + mu)
+    for i in range(1, n):
+        v[i] /= v0
+    return 2.0 * v0 * v0 / (sigma + v0 * v0)
+
+
+@njit
+def _reflect_column(a: np.ndarray, k: int, x: np.ndarray, vv: np.ndarray) -> float:
+    """The Householder reflection that zeroes column k of the m × n matrix a below row k, applied
+    to a from the left (columns k …); its vector in vv[:m − k] (x is scratch); returns β."""
+    m, n = a.shape
+    for i in range(k, m):
+        x[i - k] = a[i, k]
+    beta = _house(x, m - k, vv)
+    for j in range(k, n):
+        s = 0.0
+        for i in range(k, m):
+            s += vv[i - k] * a[i, j]
+        s *= beta
+        for i in range(k, m):
+            a[i, j] -= s * vv[i - k]
+    return beta
+
+
+@njit
+def _svd_jacobi(a: np.ndarray, sv: np.ndarray, u: np.ndarray, v: np.ndarray) -> None:
+    """One-sided Jacobi SVD (Hestenes) of the m × n matrix a (overwritten), m ≥ n: plane rotations
+    make the columns orthogonal; sv (n,) the singular values, decreasing; u (m, n) the left
+    singular vectors (columns), v (n, n) the right ones: ``a = u diag(sv) vᵀ``."""
+    m, n = a.shape
+    for i in range(n):
+        for j in range(n):
+            v[i, j] = 1.0 if i == j else 0.0
+    rotated = True
+    sweep = 0
+    while rotated and sweep < 60:
+        rotated = False
+        sweep += 1
+        for p in range(n - 1):
+            for q in range(p + 1, n):
+                al = 0.0
+                be = 0.0
+                ga = 0.0
+                for i in range(m):
+                    x, y = a[i, p], a[i, q]
+                    al += x * x
+                    be += y * y
+                    ga += x * y
+                if ga == 0.0 or abs(ga) <= 1e-15 * math.sqrt(al * be):
+                    continue
+                rotated = True
+                # the rotation that zeroes the (p, q) entry of the 2 × 2 Gram matrix
+                zeta = (be - al) / (2.0 * ga)
+                t = (1.0 if zeta >= 0.0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
+                c = 1.0 / math.sqrt(1.0 + t * t)
+                s = c * t
+                for i in range(m):
+                    x, y = a[i, p], a[i, q]
+                    a[i, p] = c * x - s * y
+                    a[i, q] = s * x + c * y
+                for i in range(n):
+                    x, y = v[i, p], v[i, q]
+                    v[i, p] = c * x - s * y
+                    v[i, q] = s * x + c * y
+    norms = np.empty(n)
+    order = np.empty(n, dtype=np.int64)
+    for p in range(n):
+        s2 = 0.0
+        for i in range(m):
+            s2 += a[i, p] * a[i, p]
+        norms[p] = math.sqrt(s2)
+        order[p] = p
+    for p in range(1, n):  # insertion sort, decreasing
+        o = order[p]
+        q = p - 1
+        while q >= 0 and norms[order[q]] < norms[o]:
+            order[q + 1] = order[q]
+            q -= 1
+        order[q + 1] = o
+    tmp = v.copy()
+    for p in range(n):
+        o = order[p]
+        sv[p] = norms[o]
+        inv = 1.0 / norms[o] if norms[o] > 0.0 else 0.0
+        for i in range(m):
+            u[i, p] = a[i, o] * inv
+        for i in range(n):
+            v[i, p] = tmp[i, o]
+
+
+@njit
+def _gk_count(c: np.ndarray, length: int, mu: float) -> int:
+    """How many eigenvalues of the length × length tridiagonal with zero diagonal and
+    off-diagonal c are below mu: the negative pivots of its LDLᵀ − μI (Sylvester's inertia)."""
+    q = -mu
+    count = 1 if q < 0.0 else 0
+    for i in range(1, length):
+        if q == 0.0:
+            q = -1e-300
+        q = -mu - c[i - 1] * c[i - 1] / q
+        if q < 0.0:
+            count += 1
+    return count
+
+
+@njit
+def _bidiagonal(a: np.ndarray, c: np.ndarray) -> float:
+    """Householder bidiagonalisation of the m × n matrix a (overwritten), m ≥ n: c (2n − 1) the
+    off-diagonal ``(d₁, e₁, d₂, …, dₙ)`` of the Golub–Kahan tridiagonal ``[[0, Bᵀ], [B, 0]]``,
+    whose eigenvalues are ±σᵢ; returns a Gershgorin bound on σ_max."""
+    m, n = a.shape
+    x = np.empty(m)
+    vv = np.empty(m)
+    for k in range(n):
+        _reflect_column(a, k, x, vv)  # left reflection: column k below the diagonal
+        c[2 * k] = a[k, k]
+        if k < n - 2:  # right reflection: row k right of the superdiagonal
+            for j in range(k + 1, n):
+                x[j - k - 1] = a[k, j]
+            beta = _house(x, n - k - 1, vv)
+            for i in range(k, m):
+                s = 0.0
+                for j in range(k + 1, n):
+                    s += a[i, j] * vv[j - k - 1]
+                s *= beta
+                for j in range(k + 1, n):
+                    a[i, j] -= s * vv[j - k - 1]
+        if k < n - 1:
+            c[2 * k + 1] = a[k, k + 1]
+    bound = 0.0
+    for k in range(2 * n - 1):
+        mu = abs(c[k]) + (abs(c[k + 1]) if k + 1 < 2 * n - 1 else 0.0)
+        bound = max(bound, mu)
+    return bound
+
+
+@njit
+def sv_ratio(a: np.ndarray) -> float:
+    """σ_min/σ_max of the m × n matrix a (m ≥ n; a is overwritten), each to 1e-7 relative, by
+    bisection on the Sturm counts of the Golub–Kahan tridiagonal; ratios below 1e-20 give 0."""
+    n = a.shape[1]
+    c = np.empty(2 * n)
+    bound = _bidiagonal(a, c)
+    if bound == 0.0 or not bound < np.inf:
+        return 0.0
+    lo = 0.0
+    for k in range(2 * n - 1):  # σ_max is at least every entry of the bidiagonal
+        lo = max(lo, abs(c[k]))
+    hi = bound
+    it = 0
+    while it < 100 and hi - lo > 1e-7 * hi:  # σ_max: #{σ < μ} = count(μ) − n reaches n
+        mid = 0.5 * (lo + hi)
+        if _gk_count(c, 2 * n, mid) - n >= n:
+            hi = mid
+        else:
+            lo = mid
+        it += 1
+    smax = hi
+    if _gk_count(c, 2 * n, 1e-20 * smax) - n >= 1:
+        return 0.0
+    lo, hi = 1e-20 * smax, smax
+    it = 0
+    while it < 100 and hi - lo > 1e-7 * hi:  # σ_min, bisecting its logarithm
+        mid = math.sqrt(lo * hi)
+        if _gk_count(c, 2 * n, mid) - n >= 1:
+            hi = mid
+        else:
+            lo = mid
+        it += 1
+    return 0.5 * (lo + hi) / smax
+
+
+@njit
+def _well_conditioned(a: np.ndarray, tol: float) -> bool:
+    """Whether σ_min > tol · σ_max holds for sure (one Sturm count on a's bidiagonal; False
+    may be a false alarm). a is overwritten."""
+    n = a.shape[1]
+    c = np.empty(2 * n)
+    bound = _bidiagonal(a, c)
+    return bound > 0.0 and _gk_count(c, 2 * n, tol * bound) - n == 0
+
+
+@njit
+def _lu(a: np.ndarray, piv: np.ndarray) -> None:
+    """LU factorisation with partial pivoting of the n × n matrix a, in place; piv[k] the row
+    swapped with k. A zero pivot is replaced by a tiny one (the callers want a null vector by
+    inverse iteration, or have checked the conditioning)."""
+    n = a.shape[0]
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(a[i, j]))
+    for k in range(n):
+        p = k
+        best = abs(a[k, k])
+        for i in range(k + 1, n):
+            if abs(a[i, k]) > best:
+                best = abs(a[i, k])
+                p = i
+        piv[k] = p
+        if p != k:
+            for j in range(n):
+                t = a[k, j]
+                a[k, j] = a[p, j]
+                a[p, j] = t
+        if a[k, k] == 0.0:
+            a[k, k] = 1e-300 + 1e-18 * big
+        for i in range(k + 1, n):
+            l = a[i, k] / a[k, k]
+            a[i, k] = l
+            for j in range(k + 1, n):
+                a[i, j] -= l * a[k, j]
+
+
+@njit
+def _lu_solve(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
+    """Solve ``(LU) x = b`` in place (lu, piv from :func:`_lu`)."""
+    n = lu.shape[0]
+    for i in range(n):
+        t = b[piv[i]]
+        b[piv[i]] = b[i]
+        b[i] = t
+    for i in range(n):
+        for j in range(i):
+            b[i] -= lu[i, j] * b[j]
+    for i in range(n - 1, -1, -1):
+        for j in range(i + 1, n):
+            b[i] -= lu[i, j] * b[j]
+        b[i] /= lu[i, i]
+
+
+@njit
+def _balance(h: np.ndarray) -> None:
+    """Parlett–Reinsch balancing of the n × n matrix h in place: ``D⁻¹ h D`` with D a diagonal
+    of powers of 2 that makes each row's and column's off-diagonal norms alike (same eigenvalues)."""
+    n = h.shape[0]
+    done = False
+    while not done:
+        done = True
+        for i in range(n):
+            c = 0.0
+            r = 0.0
+            for j in range(n):
+                if j != i:
+                    c += abs(h[j, i])
+                    r += abs(h[i, j])
+            if c == 0.0 or r == 0.0 or not c + r < np.inf:
+                continue  # nothing to balance (or not finite: the QR iteration fails and says so)
+            f = 1.0
+            s = c + r
+            g = r / 2.0
+            while c < g:
+                f *= 2.0
+                c *= 4.0
+            g = r * 2.0
+            while c >= g:
+                f /= 2.0
+                c /= 4.0
+            if (c + r) / f < 0.95 * s:
+                done = False
+                for j in range(n):
+                    h[i, j] /= f
+                    h[j, i] *= f
+
+
+@njit
+def _hessenberg(h: np.ndarray) -> None:
+    """Reduce the n × n matrix h in place to upper Hessenberg form by Householder reflections
+    from both sides (a similarity: the eigenvalues are kept)."""
+    n = h.shape[0]
+    x = np.empty(n)
+    vv = np.empty(n)
+    for k in range(n - 2):
+        ln = n - k - 1
+        for i in range(ln):
+            x[i] = h[k + 1 + i, k]
+        beta = _house(x, ln, vv)
+        if beta == 0.0:
+            continue
+        for j in range(k, n):
+            s = 0.0
+            for i in range(ln):
+                s += vv[i] * h[k + 1 + i, j]
+            s *= beta
+            for i in range(ln):
+                h[k + 1 + i, j] -= s * vv[i]
+        for i in range(n):
+            s = 0.0
+            for j in range(ln):
+                s += h[i, k + 1 + j] * vv[j]
+            s *= beta
+            for j in range(ln):
+                h[i, k + 1 + j] -= s * vv[j]
+        for i in range(k + 2, n):
+            h[i, k] = 0.0
+
+
+@njit
+def _reflect3(x: float, y: float, z: float, three: bool) -> tuple[float, float, float]:
+    """The Householder reflection ``I − β v vᵀ``, v = (1, v₁, v₂), taking (x, y, z) — or (x, y)
+    when not ``three`` — to (∗, 0, 0): (β, v₁, v₂)."""
+    sigma = y * y + (z * z if three else 0.0)
+    if sigma == 0.0:
+        return 0.0, 0.0, 0.0
+    mu = math.sqrt(x * x + sigma)
+    v0 = x - mu if x <= 0.0 else -sigma / (x + mu)
+    return 2.0 * v0 * v0 / (sigma + v0 * v0), y / v0, (z / v0 if three else 0.0)
+
+
+_EPS = 2.220446049250313e-16
+
+
+@njit
+def eigenvalues(h: np.ndarray, wr: np.ndarray, wi: np.ndarray) -> int:
+    """Eigenvalues ``wr + i wi`` of the n × n real matrix h (destroyed): balancing, Hessenberg
+    reduction, then Francis double-shift QR steps with deflation at negligible subdiagonal
+    entries (the criterion of Ahues & Tisseur 1997) on the active window only — no vectors.
+    Returns 0, or −1 when the iteration did not converge (40 n steps without a deflation)."""
+    n = h.shape[0]
+    _balance(h)
+    _hessenberg(h)
+    hi = n - 1
+    its = 0
+    while hi >= 0:
+        # the lowest lo with h[lo, lo−1] negligible beside its neighbours (with zero diagonals, as
+        # in a companion matrix, beside the next subdiagonal entries)
+        lo = hi
+        while lo > 0:
+            sub = abs(h[lo, lo - 1])
+            if sub <= 1e-300:
+                h[lo, lo - 1] = 0.0
+                break
+            tst = abs(h[lo - 1, lo - 1]) + abs(h[lo, lo])
+            if tst == 0.0:
+                tst = (abs(h[lo - 1, lo - 2]) if lo >= 2 else 0.0) + (abs(h[lo + 1, lo]) if lo + 1 < n else 0.0)
+            if sub <= _EPS * tst:
+                sup = abs(h[lo - 1, lo])
+                dd = abs(h[lo - 1, lo - 1] - h[lo, lo])
+                hh = abs(h[lo, lo])
+                ab, ba = max(sub, sup), min(sub, sup)
+                aa, bb = max(hh, dd), min(hh, dd)
+                ss = aa + ab
+                if ba * (ab / ss) <= max(_EPS * (bb * (aa / ss)), 1e-300):
+                    h[lo, lo - 1] = 0.0
+                    break
+            lo -= 1
+        if lo == hi:  # a 1 × 1 block: a real eigenvalue
+            wr[hi] = h[hi, hi]
+            wi[hi] = 0.0
+            hi -= 1
+            its = 0
+        elif lo == hi - 1:  # a 2 × 2 block: two real eigenvalues or a complex pair
+            a, b, c, d = h[hi - 1, hi - 1], h[hi - 1, hi], h[hi, hi - 1], h[hi, hi]
+            p = 0.5 * (a - d)
+            disc = p * p + b * c
+            if disc >= 0.0:
+                z = p + (math.sqrt(disc) if p >= 0.0 else -math.sqrt(disc))
+                wr[hi - 1] = d + z
+                wr[hi] = d - b * c / z if z != 0.0 else d
+                wi[hi - 1] = 0.0
+                wi[hi] = 0.0
+            else:
+                wr[hi - 1] = d + p
+                wr[hi] = d + p
+                wi[hi - 1] = math.sqrt(-disc)
+                wi[hi] = -math.sqrt(-disc)
+            hi -= 2
+            its = 0
+        else:
+            its += 1
+            if its > 40 * n:
+                return -1
+            if its % 10 == 0:  # exceptional shifts (ad hoc, as in LAPACK's dlahqr) break cycles
+                top = its % 20 == 10
+                if top:
+                    e = abs(h[lo + 1, lo]) + abs(h[lo + 2, lo + 1])
+                    h11 = 0.75 * e + h[lo, lo]
+                else:
+                    e = abs(h[hi, hi - 1]) + abs(h[hi - 1, hi - 2])
+                    h11 = 0.75 * e + h[hi, hi]
+                s = 2.0 * h11
+                t = h11 * h11 + 0.4375 * e * e
+            else:  # the eigenvalues of the trailing 2 × 2 block as the shifts
+                s = h[hi - 1, hi - 1] + h[hi, hi]
+                t = h[hi - 1, hi - 1] * h[hi, hi] - h[hi - 1, hi] * h[hi, hi - 1]
+            # first column of (H − s₁)(H − s₂): the bulge, chased down the subdiagonal
+            x = h[lo, lo] * h[lo, lo] + h[lo, lo + 1] * h[lo + 1, lo] - s * h[lo, lo] + t
+            y = h[lo + 1, lo] * (h[lo, lo] + h[lo + 1, lo + 1] - s)
+            z = h[lo + 1, lo] * h[lo + 2, lo + 1]
+            for m in range(lo, hi):
+                three = m < hi - 1
+                c0 = m - 1 if m > lo else lo
+                r1 = min(m + 3, hi)
+                beta, v1, v2 = _reflect3(x, y, z, three)
+                if beta != 0.0:
+                    bv1, bv2 = beta * v1, beta * v2
+                    if three:
+                        for j in range(c0, hi + 1):  # from the left: rows m … m+2
+                            sm = h[m, j] + v1 * h[m + 1, j] + v2 * h[m + 2, j]
+                            h[m, j] -= beta * sm
+                            h[m + 1, j] -= bv1 * sm
+                            h[m + 2, j] -= bv2 * sm
+                        for i in range(lo, r1 + 1):  # from the right: columns m … m+2
+                            sm = h[i, m] + v1 * h[i, m + 1] + v2 * h[i, m + 2]
+                            h[i, m] -= beta * sm
+                            h[i, m + 1] -= bv1 * sm
+                            h[i, m + 2] -= bv2 * sm
+                    else:  # the last step: a 2-vector reflection
+                        for j in range(c0, hi + 1):
+                            sm = h[m, j] + v1 * h[m + 1, j]
+                            h[m, j] -= beta * sm
+                            h[m + 1, j] -= bv1 * sm
+                        for i in range(lo, r1 + 1):
+                            sm = h[i, m] + v1 * h[i, m + 1]
+                            h[i, m] -= beta * sm
+                            h[i, m + 1] -= bv1 * sm
+                if three:
+                    x = h[m + 1, m]
+                    y = h[m + 2, m]
+                    z = h[m + 3, m] if m < hi - 2 else 0.0
+    return 0
+
+
+@njit
+def _left_null_space(q: np.ndarray, out: np.ndarray) -> None:
+    """The left null space of the 14 × 8 matrix q: the last 6 columns of the orthogonal factor of
+    its Householder QR, into out (14, 6) (orthonormal columns, ``outᵀ q = 0`` when q has rank 8)."""
+    m, n = q.shape
+    r = q.copy()
+    vs = np.zeros((n, m))
+    betas = np.empty(n)
+    x = np.empty(m)
+    vv = np.empty(m)
+    for j in range(n):
+        betas[j] = _reflect_column(r, j, x, vv)
+        for i in range(m - j):
+            vs[j, i] = vv[i]
+    for e in range(m - n):  # columns n … m−1 of H₀H₁⋯H_{n−1}: the reflections applied to eₙ₊ₑ, last first
+        for i in range(m):
+            x[i] = 0.0
+        x[n + e] = 1.0
+        for j in range(n - 1, -1, -1):
+            s = 0.0
+            for i in range(j, m):
+                s += vs[j, i - j] * x[i]
+            s *= betas[j]
+            for i in range(j, m):
+                x[i] -= s * vs[j, i - j]
+        for i in range(m):
+            out[i, e] = x[i]
+
+
+@njit
+def pencil(P: np.ndarray, r: np.ndarray, gc: float, gs: float, out: np.ndarray, Np: np.ndarray,
+           Pinv: np.ndarray) -> float:
+    """The quadratic matrix polynomial of one pose.
+
+    P : (3, 15, 9) the three-joint side (pivot basis (cos, sin, 1); rows f; columns the
+    monomials ``b(θ_b) ⊗ b(θ_c)`` of the other two joints); r : (15, 9) the two-joint side
+    (columns ``b(θ_d) ⊗ b(θ_e)``, the last one the constant); (gc, gs): cos γ, sin γ of the
+    pivot's shift. Writes out : (3, 12, 12) = (A, B, C); Np : (3, 14, 9) ``P`` with the
+    constant of the two-joint side moved over (for the back-substitution); Pinv : (8, 14)
+    the pseudo-inverse of the 14 × 8 matrix Q of the two-joint side (singular values below
+    1e-14 σ_max dropped). Returns σ_min/σ_max of Q.
+    """
+    Q = np.empty((14, 8))
+    for k in range(14):
+        for j in range(8):
+            Q[k, j] = r[k, j]
+    work = Q.copy()
+    U = np.empty((14, 8))
+    sv = np.empty(8)
+    V = np.empty((8, 8))  # columns: the right singular vectors
+    _svd_jacobi(work, sv, U, V)
+    ratio = sv[7] / sv[0] if sv[0] > 0.0 else 0.0
+    for i in range(8):
+        for k in range(14):
+            acc = 0.0
+            for j in range(8):
+                if sv[j] > 1e-14 * sv[0]:
+                    acc += V[i, j] * U[k, j] / sv[j]
+            Pinv[i, k] = acc
+    for i3 in range(3):
+        for k in range(14):
+            for m in range(9):
+                Np[i3, k, m] = P[i3, k, m]
+    for k in range(14):
+        Np[2, k, 8] -= r[k, 8]
+    # Σ_i3 = Nᵀ P′_i3, N the left null space of Q (14 × 6): θ of the two-joint side eliminated
+    N = np.empty((14, 6))
+    _left_null_space(Q, N)
+    sig = np.empty((3, 6, 9))
+    Nt = np.ascontiguousarray(N.T)
+    for i3 in range(3):
+        sig[i3] = Nt @ Np[i3]
+    # θ₃ = φ + γ: (cos, sin) of θ₃ in terms of φ; then x = tan(φ/2): A x² + B x + C
+    G = np.array([[1.0, 0.0, -1.0], [0.0, 2.0, 0.0], [1.0, 0.0, 1.0]])
+    for c in range(3):
+        for i in range(12):
+            for j in range(12):
+                out[c, i, j] = 0.0
+    for e in range(6):
+        for m in range(9):
+            sc = sig[0, e, m] * gc + sig[1, e, m] * gs
+            ss = -sig[0, e, m] * gs + sig[1, e, m] * gc
+            s1 = sig[2, e, m]
+            coef2 = s1 - sc  # x²
+            coef1 = 2.0 * ss  # x
+            coef0 = s1 + sc  # 1
+            if coef0 == 0.0 and coef1 == 0.0 and coef2 == 0.0:
+                continue
+            i4, i5 = m // 3, m % 3
+            for j4 in range(3):
+                g4 = G[i4, j4]
+                if g4 == 0.0:
+                    continue
+                for j5 in range(3):
+                    g = g4 * G[i5, j5]
+                    if g == 0.0:
+                        continue
+                    col = j4 * 3 + j5
+                    out[0, e, col] += g * coef2
+                    out[1, e, col] += g * coef1
+                    out[2, e, col] += g * coef0
+                    out[0, 6 + e, col + 3] += g * coef2
+                    out[1, 6 + e, col + 3] += g * coef1
+                    out[2, 6 + e, col + 3] += g * coef0
+    return ratio
+
+
+@njit
+def regularity(work: np.ndarray, x: float) -> float:
+    """σ_min/σ_max of the 12 × 12 matrix ``A x² + B x + C`` ((A, B, C) = work (3, 12, 12)):
+    about 0 at every x when the pencil is singular (a near-continuum of solutions)."""
+    L = np.empty((12, 12))
+    for i in range(12):
+        for j in range(12):
+            L[i, j] = work[0, i, j] * x * x + work[1, i, j] * x + work[2, i, j]
+    return sv_ratio(L)
+
+
 @njit
 def companion(work: np.ndarray, M: np.ndarray) -> float:
     """From (A, B, C) = work (3, 12, 12): the 24 × 24 companion matrix
-    ``[[0, I], [−A⁻¹C, −A⁻¹B]]`` into M when A is well conditioned; returns σ_min/σ_max of A
-    (the caller uses the generalised eigenproblem instead when it is below 1e-10, and M is
-    then left unset)."""
-    A = np.ascontiguousarray(work[0])
-    sv = np.linalg.svd(A)[1]
-    cond = sv[11] / sv[0] if sv[0] > 0.0 else 0.0
-    if cond <= 1e-10:
+    ``[[0, I], [−A⁻¹C, −A⁻¹B]]`` into M when A is well conditioned (LU with partial pivoting);
+    returns σ_min/σ_max of A (the caller turns the variable instead when it is at most 1e-10,
+    and M is then left unset)."""
+    A = work[0].copy()
+    cond = sv_ratio(A)
+    if not cond > 1e-10:
         return cond
-    rhs = np.empty((12, 24))
-    for i in range(12):
-        for j in range(12):
-            rhs[i, j] = work[2, i, j]
-            rhs[i, 12 + j] = work[1, i, j]
-    X = np.linalg.solve(A, rhs)
+    lu = work[0].copy()
+    piv = np.empty(12, dtype=np.int64)
+    _lu(lu, piv)
+    col = np.empty(12)
     for i in range(24):
         for j in range(24):
             M[i, j] = 0.0
     for i in range(12):
         M[i, 12 + i] = 1.0
-        for j in range(24):
-            M[12 + i, j] = -X[i, j]
+    for j in range(24):  # column j of [C, B], solved
+        for i in range(12):
+            col[i] = work[2, i, j] if j < 12 else work[1, i, j - 12]
+        _lu_solve(lu, piv, col)
+        for i in range(12):
+            M[12 + i, j] = -col[i]
     return cond
 
+
+@njit
+def turn(work: np.ndarray, t: float) -> None:
+    """Turn the half-angle variable in place: ``x = (y + t)/(1 − t y)`` and the polynomial times
+    ``(1 − t y)²`` give ``A′ y² + B′ y + C′`` with ``A′ = A − t B + t² C``,
+    ``B′ = 2t A + (1 − t²) B − 2t C``, ``C′ = t² A + t B + C`` — the same roots, as angles, with
+    the root at x = ∞ moved to y = −1/t."""
+    for i in range(12):
+        for j in range(12):
+            a, b, c = work[0, i, j], work[1, i, j], work[2, i, j]
+            work[0, i, j] = a - t * b + t * t * c
+            work[1, i, j] = 2.0 * t * a + (1.0 - t * t) * b - 2.0 * t * c
+            work[2, i, j] = t * t * a + t * b + c
+
+
+@njit
+def _perturb(A: np.ndarray) -> None:
+    """Add a fixed, deterministic, well-conditioned matrix of norm ~1e-6 max|A| to A (12 × 12)."""
+    big = 0.0
+    for i in range(12):
+        for j in range(12):
+            big = max(big, abs(A[i, j]))
+    if big == 0.0:
+        big = 1.0
+    for i in range(12):
+        for j in range(12):
+            A[i, j] += 1e-6 * big * ((1.0 if i == j else 0.0) + 0.3 * math.sin(1.0 + 12 * i + 7.0 * j))
+
+
+@njit
+def null_vector(work: np.ndarray, y: float, v: np.ndarray) -> None:
+    """The null vector v (12,) of the (nearly) singular ``A y² + B y + C`` at a real eigenvalue
+    y: inverse iteration (two LU solves); for |y| > 1 the matrix divided by y²."""
+    L = np.empty((12, 12))
+    big = abs(y) > 1.0
+    y1 = 1.0 / y if big else y
+    for i in range(12):
+        for j in range(12):
+            if big:
+                L[i, j] = work[0, i, j] + work[1, i, j] * y1 + work[2, i, j] * y1 * y1
+            else:
+                L[i, j] = work[0, i, j] * y * y + work[1, i, j] * y + work[2, i, j]
+    piv = np.empty(12, dtype=np.int64)
+    _lu(L, piv)
+    for i in range(12):
+        v[i] = 1.0 / (1.0 + 0.1 * i)
+    for _ in range(2):
+        _lu_solve(L, piv, v)
+        nrm = 0.0
+        for i in range(12):
+            nrm += v[i] * v[i]
+        nrm = 1.0 / math.sqrt(nrm) if nrm > 0.0 and nrm < np.inf else 0.0
+        for i in range(12):
+            v[i] *= nrm
+
+
+@njit
+def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, theta: np.ndarray,
+           iters: int) -> float:
+    """Newton–Raphson on the pose error (geometric Jacobian of ``Z₁X₁ ⋯ Z₆``, space frame).
+
+    The step is the least-squares solution of ``J Δθ = e``: by LU when J is well conditioned
+    (σ_min > 1e-10 σ_max for sure), else by the SVD with singular values below 1e-12 σ_max
+    dropped (numpy's ``lstsq`` with ``rcond=1e-12``). Updates theta (6,) in place; returns the
+    final ‖(Δp, Δω)‖ (a step that does not lower the error is not taken).
+    """
+    T = np.empty((4, 4))
+    e = np.empty(6)
+    J = np.empty((6, 6))
+    W = np.empty((6, 6))
+    U = np.empty((6, 6))
+    V = np.empty((6, 6))
+    sv = np.empty(6)
+    dq = np.empty(6)
+    piv = np.empty(6, dtype=np.int64)
+    fk_pose(alpha, a, d, theta, T)
+    err = _pose_error(T06, T, e)
+    trial = np.empty(6)
+    for _ in range(iters):
+        if err < 1e-15:
+            break
+        jacobian(alpha, a, d, theta, T, J)
+        W[:, :] = J
+        if _well_conditioned(W, 1e-10):
+            for i in range(6):
+                dq[i] = e[i]
+            _lu(J, piv)
+            _lu_solve(J, piv, dq)
+        else:
+            _svd_jacobi(J, sv, U, V)
+            for i in range(6):
+                dq[i] = 0.0
+            for j in range(6):
+                if not sv[j] > 1e-12 * sv[0]:
+                    continue
+                ue = 0.0
+                for i in range(6):
+                    ue += U[i, j] * e[i]
+                ue /= sv[j]
+                for i in range(6):
+                    dq[i] += V[i, j] * ue
+        for i in range(6):
+            trial[i] = theta[i] + dq[i]
+        fk_pose(alpha, a, d, trial, T)
+        new = _pose_error(T06, T, e)
+        if not new < err:
+            fk_pose(alpha, a, d, theta, T)
+            _pose_error(T06, T, e)
+            break
+        err = new
+        for i in range(6):
+            theta[i] = trial[i]
+    return err
+
+
+# ---------------------------------------------------------------- one reading, one pose, one call
+# The per-arm tables of one reading of the loop equation (robokit.ik.general_6r._Arrangement):
+# ri (46,) int: roles (6: pivot, b, c, d, e, eliminated joint), three_has_w, nw (joints on the
+#   target's side), w_index, w_inverse, perm3 (27), perm2 (9);
+# mats (6, 15, 15): the target side's maps Ms[0 … nw] (slot w_index replaced per pose), pre, post;
+# const (27, 15): the side without the target as its tensor (3**(5 − nw) rows used);
+# vec (18,): signs (3; nw used), f (15) the target side's start vector.
+# The solver's numbers, tol (8,): gamma, t (the turn of the variable, tan(δ/2)), imag_tol,
+# converged, same, x0, poor, and the number of readings; chain (4, 6): α (5), a (5), d, θ₀.
+RI_SIZE = 46
+T_GAMMA, T_TURN, T_IMAG, T_CONVERGED, T_SAME, T_X0, T_POOR, T_READINGS = 0, 1, 2, 3, 4, 5, 6, 7
+
+
+@njit
+def reading_matrices(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
+                     P: np.ndarray, r: np.ndarray) -> None:
+    """P (3, 15, 9), the three-joint side with the pivot first, and r (15, 9), the two-joint side,
+    of one reading for the scaled target T06s (see :func:`pencil` and the tables above)."""
+    nw = ri[7]
+    FW = np.empty((15, 15))
+    f_pose(T06s, ri[9] == 0, FW)  # W = T₀₆⁻¹: its map, or T₀₆'s for W⁻¹
+    Ms = mats[:nw + 1].copy()
+    Ms[ri[8]] = (mats[4] @ FW) @ mats[5]  # pre F(W) post
+    Gw = np.empty((3 ** nw, 15))
+    side_tensor(Ms, vec[:nw].copy(), vec[3:18].copy(), Gw)
+    three_has_w = ri[6] != 0
+    for i in range(3):
+        for k in range(15):
+            for m in range(9):
+                row = ri[10 + i * 9 + m]
+                P[i, k, m] = Gw[row, k] if three_has_w else const[row, k]
+    for k in range(15):
+        for m in range(9):
+            row = ri[37 + m]
+            r[k, m] = const[row, k] if three_has_w else Gw[row, k]
+
+
+@njit
+def _reading_pencil(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
+                    gamma: float, work: np.ndarray, Np: np.ndarray, Pinv: np.ndarray) -> float:
+    """:func:`pencil` of one reading for the pose T06s (both sides built by :func:`reading_matrices`)."""
+    P = np.empty((3, 15, 9))
+    r = np.empty((15, 9))
+    reading_matrices(T06s, ri, mats, const, vec, P, r)
+    return pencil(P, r, math.cos(gamma), math.sin(gamma), work, Np, Pinv)
+
+
+@njit
+def score_reading(T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray, vec: np.ndarray,
+                  gamma: float, x0: float) -> float:
+    """How well one reading solves the pose T06s: the smaller of σ_min/σ_max of its 14 × 8
+    matrix Q and of its pencil at x0 (used once per arm to rank the 36 readings)."""
+    work = np.empty((3, 12, 12))
+    ratio = _reading_pencil(T06s, ri, mats, const, vec, gamma, work, np.empty((3, 14, 9)), np.empty((8, 14)))
+    return min(ratio, regularity(work, x0))
+
+
+@njit
+def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri: np.ndarray, mats: np.ndarray,
+                       const: np.ndarray, vec: np.ndarray, out: np.ndarray, start: int) -> tuple[int, float]:
+    """The polished rotation angles θ (6,) of the solutions for the scaled target T06s with one
+    reading, into the rows start, start + 1, … of out: (how many, the conditioning figure — the
+    smallest σ_min/σ_max of Q, of A and of the pencil at x0)."""
+    alpha, a, d = chain[0, :5], chain[1, :5], chain[2]
+    gamma, t = tol[T_GAMMA], tol[T_TURN]
+    work = np.empty((3, 12, 12))
+    Np = np.empty((3, 14, 9))
+    Pinv = np.empty((8, 14))
+    rq = _reading_pencil(T06s, ri, mats, const, vec, gamma, work, Np, Pinv)
+    M = np.empty((24, 24))
+    condA = companion(work, M)
+    reg = regularity(work, tol[T_X0])
+    turned = False
+    if not condA > 1e-10:
+        # A near singular (a root near the half-angle's point at infinity): the variable is turned
+        # by a fixed angle, which gives the same roots with a regular leading matrix
+        turn(work, t)
+        turned = True
+        if not companion(work, M) > 1e-10:
+            # singular in both variables: det(A x² + B x + C) vanishes identically (the pose has a
+            # continuum of solutions for this reading). The eigenvalues of a slightly perturbed
+            # pencil are then used as candidates: its regular part's roots (moved by the
+            # perturbation, polished back) and points where the continuum meets the perturbation
+            _perturb(work[0])
+            if not companion(work, M) > 1e-10:
+                return 0, 0.0
+    ratio = min(rq, condA, reg)
+    wr = np.empty(24)
+    wi = np.empty(24)
+    if eigenvalues(M, wr, wi) != 0:
+        return 0, ratio
+    roles = ri[:6]
+    v = np.empty(12)
+    th = np.empty(6)
+    count = 0
+    for k in range(24):
+        lam = wr[k]
+        imag = 2.0 * abs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k])
+        if imag > tol[T_IMAG]:  # not real to the tolerance (as an angle): no candidate
+            continue
+        phi = 2.0 * math.atan2(lam + t, 1.0 - t * lam) if turned else 2.0 * math.atan(lam)
+        null_vector(work, lam, v)
+        err = _candidate(alpha, a, d, T06s, v.reshape((4, 3)), phi, Np, Pinv, roles, gamma, th)
+        if err < tol[T_CONVERGED]:
+            for i in range(6):
+                out[start + count, i] = th[i]
+            count += 1
+    return count, ratio
+
+
+@njit
+def solve_pose(chain: np.ndarray, tol: np.ndarray, ri: np.ndarray, mats: np.ndarray, const: np.ndarray,
+               vec: np.ndarray, T06s: np.ndarray, out: np.ndarray) -> int:
+    """Every solution of the general 6R arm for the scaled target T06s (4, 4) in one call: the best
+    reading, and when the pose is badly conditioned for it (figure below ``poor``) the next ones
+    too; duplicates merged; ordered by q₃, then q₁, q₂, q₄, q₅, q₆. Writes rows
+    ``(q (6) = θ − θ₀ wrapped to [−π, π), singular)`` into out (24 × readings, 7) and returns
+    how many (0 for a target that is not finite). ``singular``: near a badly conditioned pose,
+    1.0 where the 6 × 6 Jacobian is singular (σ_min < 1e-8 σ_max).
+
+    ri, mats, const, vec: the readings' tables, best first (leading axis; see above)."""
+    for i in range(3):
+        for j in range(4):
+            if not abs(T06s[i, j]) < np.inf:
+                return 0
+    nread = int(tol[T_READINGS])
+    TH = np.empty((24 * nread, 6))
+    n = 0
+    ratio = 1.0
+    for k in range(nread):  # the best reading; on a badly conditioned pose (near a singular one) the next ones too
+        if k > 0 and not ratio < tol[T_POOR]:
+            break
+        more, figure = reading_candidates(chain, tol, T06s, ri[k], mats[k], const[k], vec[k], TH, n)
+        if k == 0:
+            ratio = figure
+        n += more
+    poor = ratio < tol[T_POOR]
+    th0 = chain[3]
+    Q = np.empty((max(n, 1), 6))
+    m = distinct(TH, n, th0, tol[T_SAME], Q)
+    tmp = np.empty(6)
+    for i in range(1, m):  # ordered by q₃, then q₁, q₂, q₄, q₅, q₆ (a stable insertion sort)
+        for c in range(6):
+            tmp[c] = Q[i, c]
+        j = i - 1
+        while j >= 0 and _before(tmp, Q[j]):
+            for c in range(6):
+                Q[j + 1, c] = Q[j, c]
+            j -= 1
+        for c in range(6):
+            Q[j + 1, c] = tmp[c]
+    T = np.empty((4, 4))
+    J = np.empty((6, 6))
+    t6 = np.empty(6)
+    for i in range(m):
+        singular = False
+        if poor:  # near a singular pose: flag the solutions where the Jacobian is singular
+            for c in range(6):
+                t6[c] = Q[i, c] + th0[c]
+            fk_pose(chain[0, :5], chain[1, :5], chain[2], t6, T)
+            jacobian(chain[0, :5], chain[1, :5], chain[2], t6, T, J)
+            singular = sv_ratio(J) < 1e-8
+        for c in range(6):
+            out[i, c] = Q[i, c]
+        out[i, 6] = 1.0 if singular else 0.0
+    return m
+
+
+@njit
+def _before(x: np.ndarray, y: np.ndarray) -> bool:
+    """Whether row x comes before row y: by q₃, then q₁, q₂, q₄, q₅, q₆."""
+    for c in (2, 0, 1, 3, 4, 5):
+        if x[c] < y[c]:
+            return True
+        if x[c] > y[c]:
+            return False
+    return False

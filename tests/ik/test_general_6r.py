@@ -241,8 +241,8 @@ def test_arm_with_coinciding_axes_is_refused():
 
 def test_pivot_at_the_shifted_point_at_infinity(jaco):
     """A joint at π + γ (γ the half-angle variable's shift) makes the leading coefficient A
-    singular for the reading that uses it as the eigenvalue: the generalised eigenproblem
-    (QZ) takes over and the solutions are still all there."""
+    singular for the reading that uses it as the eigenvalue: the half-angle variable is turned
+    and the solutions are still all there."""
     from robokit.ik.general_6r import _GAMMA
 
     for j in range(6):
@@ -327,3 +327,112 @@ def test_singular_poses_of_the_jaco(jaco):
             assert sv[-1] < 1e-8 * sv[0], q  # only a singular generator may be missed
     assert missed < 5
 
+
+
+# ---------------------------------------------------------------- the compiled pipeline's linear algebra
+# (robokit.kernels.general_6r has its own eigenvalues, SVD, singular value ratios, LU: each
+# checked against numpy's LAPACK, an independent implementation)
+@settings(max_examples=30, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31), st.sampled_from(["dense", "companion", "clustered"]))
+def test_eigenvalues_match_lapack(seed, kind):
+    """Balancing + Hessenberg + Francis double-shift QR against numpy.linalg.eigvals: dense
+    matrices, the 24 × 24 companion shape of the solver (zero and identity blocks) and matrices
+    with clustered eigenvalues (a double root split by 1e-8, as on nearly special arms)."""
+    from robokit.kernels.general_6r import eigenvalues
+
+    rng = np.random.default_rng(seed)
+    n = 24
+    if kind == "dense":
+        M = rng.standard_normal((n, n)) * 10.0 ** rng.uniform(-3, 3)
+    elif kind == "companion":
+        M = np.zeros((n, n))
+        M[:12, 12:] = np.eye(12)
+        M[12:] = rng.standard_normal((12, n))
+    else:
+        lam = rng.standard_normal(n)
+        lam[1] = lam[0] + 1e-8
+        S = rng.standard_normal((n, n)) + 3 * np.eye(n)
+        M = S @ np.diag(lam) @ np.linalg.inv(S)
+    wr, wi = np.empty(n), np.empty(n)
+    assert eigenvalues(M.copy(), wr, wi) == 0
+    ours = np.sort_complex(wr + 1j * wi)
+    ref = np.linalg.eigvals(M)
+    scale = np.abs(ref).max()
+    # every eigenvalue has its partner in the other set: to 1e-9 of the spectrum's size, and to
+    # 1e-6 for the clustered pair (a perturbation ε moves a double root by about √ε)
+    tol = (1e-6 if kind == "clustered" else 1e-9) * scale
+    for z in ref:
+        assert np.abs(ours - z).min() < tol, (z, ours)
+    for z in ours:
+        assert np.abs(ref - z).min() < tol, (z, ref)
+
+
+@settings(max_examples=30, deadline=None, derandomize=True)
+@given(st.integers(0, 2**31), st.sampled_from([(12, 12), (14, 8), (6, 6)]), st.floats(-12, 0))
+def test_singular_values_match_lapack(seed, shape, log_cond):
+    """sv_ratio (Sturm bisection on the Golub–Kahan form) and the one-sided Jacobi SVD against
+    numpy.linalg.svd, down to condition numbers of 1e12."""
+    from robokit.kernels.general_6r import _svd_jacobi, sv_ratio
+
+    rng = np.random.default_rng(seed)
+    m, n = shape
+    U, _ = np.linalg.qr(rng.standard_normal((m, m)))
+    V, _ = np.linalg.qr(rng.standard_normal((n, n)))
+    s = np.sort(10.0 ** rng.uniform(log_cond, 0.0, n))[::-1]
+    s[0], s[-1] = 1.0, 10.0 ** log_cond
+    A = U[:, :n] @ np.diag(s) @ V.T * 3.7
+    ref = np.linalg.svd(A, compute_uv=False)
+    # the bisection's 1e-7 relative, plus rounding: σ_min is known to about ε σ_max either way
+    assert abs(sv_ratio(A.copy()) - ref[-1] / ref[0]) < 1e-6 * ref[-1] / ref[0] + 1e-14
+    sv, Uo, Vo = np.empty(n), np.empty((m, n)), np.empty((n, n))
+    _svd_jacobi(A.copy(), sv, Uo, Vo)
+    assert np.abs(sv - ref).max() < 1e-13 * ref[0] * n
+    assert np.abs(Uo @ np.diag(sv) @ Vo.T - A).max() < 1e-13 * ref[0] * n
+    assert np.abs(Vo.T @ Vo - np.eye(n)).max() < 1e-12
+
+
+def test_left_null_space_and_null_vector():
+    """The Householder left null space of a 14 × 8 matrix is orthonormal and annihilates it; the
+    inverse-iteration null vector of A y² + B y + C at a root of its determinant is one."""
+    from robokit.kernels.general_6r import _left_null_space, null_vector
+
+    rng = np.random.default_rng(4)
+    Q = rng.standard_normal((14, 8))
+    N = np.empty((14, 6))
+    _left_null_space(Q, N)
+    assert np.abs(N.T @ Q).max() < 1e-13 * np.abs(Q).max()
+    assert np.abs(N.T @ N - np.eye(6)).max() < 1e-13
+    full = np.linalg.svd(Q)[0][:, 8:]  # LAPACK's basis of the same space
+    assert np.abs(full @ (full.T @ N) - N).max() < 1e-12
+    work = rng.standard_normal((3, 12, 12))
+    for y in (0.3, -2.5):  # a root at y: shift C so that A y² + B y + C has a null vector
+        v0 = rng.standard_normal(12)
+        L = work[0] * y * y + work[1] * y + work[2]
+        work[2] -= np.outer(L @ v0, v0) / (v0 @ v0)
+        v = np.empty(12)
+        null_vector(work, y, v)
+        L = work[0] * y * y + work[1] * y + work[2]
+        assert np.linalg.norm(L @ v) < 1e-10 * np.linalg.norm(L)
+        assert abs(abs(v @ v0) / np.linalg.norm(v0) - 1.0) < 1e-10
+
+
+def test_the_solve_is_one_kernel_that_also_runs_as_plain_python(jaco):
+    """One compiled call per pose (robokit.kernels.general_6r.solve_pose) with the per-arm
+    tables kept on the solver; the same kernel run as plain Python (what NUMBA_DISABLE_JIT
+    runs) gives the same rows."""
+    from robokit.ik.closed_form import analytic_ik
+    from robokit.kernels._jit import interpreted
+    from robokit.kernels.general_6r import solve_pose
+
+    model = analytic_ik(jaco)
+    el = model.solver.elim
+    assert len(el.kreadings[0]) == 4 and el.kreadings[0].shape[1] == 46  # the 4 best readings, packed once
+    q = np.array([0.4, 1.9, 1.1, -0.6, 2.2, 0.3])
+    T06s = model.chain.target_06(jaco.frame_pose(q))
+    T06s[:3, 3] /= model.solver.scale
+    out_c, out_p = np.empty((96, 7)), np.empty((96, 7))
+    m = solve_pose(el.kchain, el.ktol, *el.kreadings, T06s, out_c)
+    assert interpreted(solve_pose)(el.kchain, el.ktol, *el.kreadings, T06s, out_p) == m > 0
+    assert np.abs(out_c[:m] - out_p[:m]).max() < 1e-9
+    T = np.full((4, 4), np.nan)
+    assert solve_pose(el.kchain, el.ktol, *el.kreadings, T, out_c) == 0  # not a pose: no solution
