@@ -110,8 +110,7 @@ def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: 
     3
     """
     robot = _from_urdf_file(Path(f"<{spec.name or 'robot'}>.urdf"), tip, text=text, spec=spec, gravity=gravity)
-    robot.nominal = spec.nominal
-    return robot
+    return robot._amend(nominal=spec.nominal)
 
 
 def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
