@@ -316,7 +316,10 @@ def _simulate_compiled(robot: Robot, controller: Any, kind: int, t: np.ndarray, 
     """:func:`simulate` for a built-in controller, stepped by :func:`robokit.kernels.simulation.simulate_robot`."""
     from robokit.kernels.simulation import simulate_robot
 
-    c = np.ascontiguousarray
+    def c(x: Any, dtype: Any = None) -> np.ndarray:  # C-contiguous and writeable, as the kernel's signature takes it
+        a = np.ascontiguousarray(x, dtype)
+        return a if a.flags.writeable else a.copy()
+
     n, K = robot.n, len(t)
     p = robot.poe
     model_robot = controller.gravity if kind == 3 else controller.robot

@@ -538,7 +538,7 @@ class Robot:
                 q = self.q_pin(q)
         elif ndim(q, "q") == 2:
             warn_once("Robot.frame_pose((N, n) q)")
-            return self.frame_pose_batch(q, frame)
+            return _batch("frame_pose", self, q, frame)
         else:
             q = self.q_pin(self._check_q(q))
         pin = self._pin
@@ -608,7 +608,7 @@ class Robot:
         if not self._fast(q):
             if ndim(q, "q") == 2:
                 warn_once("Robot.jacobian((N, n) q)")
-                return self.jacobian_batch(q, frame, reference)
+                return _batch("jacobian", self, q, frame, reference_or_default(reference, "Robot.jacobian"))
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         fid = self.tip_id if frame is None else self.frame_id(frame)
@@ -648,7 +648,7 @@ class Robot:
                 return tau
         elif ndim(q, "q") == 2:
             warn_once("Robot.rnea((N, n) q)")
-            return self.rnea_batch(q, dq, ddq, threads)
+            return _batch("rnea", self, q, dq, ddq, threads)
         q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.rnea(self.model, self.data, q, dq, ddq)
@@ -676,7 +676,7 @@ class Robot:
             M = self._pin.crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
         elif ndim(q, "q") == 2:
             warn_once("Robot.crba((N, n) q)")
-            return self.crba_batch(q)
+            return _batch("crba", self, q)
         else:
             M = self._pin.crba(self.model, self.data, self.q_pin(self._check_q(q)))
         # a new array; Pinocchio fills its upper triangle: mirror it into the lower one
@@ -718,7 +718,7 @@ class Robot:
                 return ddq
         elif ndim(q, "q") == 2:
             warn_once("Robot.aba((N, n) q)")
-            return self.aba_batch(q, dq, tau, threads)
+            return _batch("aba", self, q, dq, tau, threads)
         q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.aba(self.model, self.data, q, dq, tau)
@@ -958,6 +958,15 @@ class Robot:
             kind = f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
+
+
+def _batch(method: str, robot: Robot, *args: Any) -> np.ndarray:
+    """The deprecated (N, n) path of ``Robot.<method>``: :mod:`robokit.description.batch`'s function,
+    called through this private frame so that the degrees check names the user's call."""
+    from robokit.description import batch
+
+    fn: Callable[..., np.ndarray] = getattr(batch, f"batch_{method}")
+    return fn(robot, *args)
 
 
 def _read_only(a: ArrayLike) -> np.ndarray:

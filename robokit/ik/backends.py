@@ -150,7 +150,7 @@ class IKProblem:
         >>> p.q0.tolist(), p.position_only, p.T_target.shape
         ([0.0, 0.0], False, (4, 4))
         """
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         q0 = np.clip(np.zeros(robot.n), qlim[:, 0], qlim[:, 1])
         return cls(robot, None, q0, T_target=np.asarray(T, dtype=float))
 
@@ -291,7 +291,7 @@ class IKBackend:
         >>> backend("planar").reaches(robot, targets, np.random.default_rng(0), 0).tolist()
         [True, False]
         """
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
         out = np.zeros(len(targets), dtype=bool)
@@ -421,7 +421,7 @@ class PlanarBackend(IKBackend):
         pose or limits change (the geometry costs ~50 µs; the check, well under one)."""
         poe = robot.poe
         key = (np.asarray(poe.Slist, dtype=float).tobytes() + np.asarray(poe.M, dtype=float).tobytes()
-               + np.asarray(robot.qlim, dtype=float).tobytes())
+               + np.array(robot.qlim, dtype=float).tobytes())
         hit = self._cache.get(id(robot))
         if hit is not None and hit[0]() is robot and hit[1] == key:
             return hit[2], hit[3]
@@ -502,7 +502,7 @@ class CompiledLMBackend(IKBackend):
         p = robot.poe
         its = 30 if problem.max_iterations is None else problem.max_iterations
         q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, problem.T_target, problem.q0,
-                                                   np.asarray(robot.qlim, float), tol=problem.tol,
+                                                   np.array(robot.qlim, dtype=float), tol=problem.tol,
                                                    max_iterations=int(its), max_restarts=int(problem.max_restarts),
                                                    seed=int(problem.seed))
         return _result(robot, np.asarray(q, float), problem.T_target, problem.tol, int(iterations), int(restarts),
@@ -512,7 +512,7 @@ class CompiledLMBackend(IKBackend):
         from robokit.kernels.ik import solve_poe_ik
 
         poe = robot.poe
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
         out = np.zeros(len(targets), dtype=bool)
