@@ -281,9 +281,9 @@ class Robot:
         """
         from dataclasses import replace
 
-        from robokit._arrays import as_matrix
+        from robokit._arrays import as_array
 
-        lim = np.array(as_matrix(qlim, "qlim", self.n, 2), dtype=float)
+        lim = np.array(as_array(qlim, "qlim", (self.n, 2), finite=False), dtype=float)
         if np.isnan(lim).any():
             raise InputError("qlim: NaN in the limits")
         for i in range(self.n):
