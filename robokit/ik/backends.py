@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 
 import time
-import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, cast
 
@@ -413,30 +412,15 @@ class PlanarBackend(IKBackend):
         reason = self._planar(cast("Robot", problem.robot))[1]
         return None if reason is None else f"not a planar arm: {reason}"
 
-    def __init__(self) -> None:
-        self._cache: dict[int, tuple[weakref.ref, bytes, PlanarChain | None, str | None]] = {}
-
     def _planar(self, robot: Robot) -> tuple[PlanarChain | None, str | None]:
-        """(chain, reason) of ``robot``, cached per live robot and rebuilt when its screws, home
-        pose or limits change (the geometry costs ~50 µs; the check, well under one)."""
-        poe = robot.poe
-        key = (np.asarray(poe.Slist, dtype=float).tobytes() + np.asarray(poe.M, dtype=float).tobytes()
-               + np.array(robot.qlim, dtype=float).tobytes())
-        hit = self._cache.get(id(robot))
-        if hit is not None and hit[0]() is robot and hit[1] == key:
-            return hit[2], hit[3]
-        reason = planar_reason(robot)
-        chain = planar_chain(robot) if reason is None else None
-        cache = self._cache
+        """(chain, reason) of ``robot``, computed once per robot and kept with it (a Robot never
+        changes: :meth:`robokit.Robot.derived`)."""
+        def build() -> tuple[PlanarChain | None, str | None]:
+            reason = planar_reason(robot)
+            return (planar_chain(robot) if reason is None else None), reason
 
-        def drop(_ref: weakref.ref, k: int = id(robot)) -> None:
-            cache.pop(k, None)
-
-        try:
-            cache[id(robot)] = (weakref.ref(robot, drop), key, chain, reason)
-        except TypeError:  # pragma: no cover - a robot without weak references
-            pass
-        return chain, reason
+        derived = getattr(robot, "derived", None)
+        return cast("tuple[PlanarChain | None, str | None]", build() if derived is None else derived("planar_chain", build))
 
     def solve(self, problem: IKProblem) -> IKResult:
         robot = cast("Robot", problem.robot)
