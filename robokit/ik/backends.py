@@ -377,7 +377,7 @@ class ClosedFormBackend(IKBackend):
         Q, within, _ = ik.solve_batch(targets)
         b, k = np.nonzero(within)
         if len(b):
-            err = np.abs(robot.frame_pose(Q[b, k]) - targets[b]).max(axis=(1, 2))
+            err = np.abs(robot.frame_pose_batch(Q[b, k]) - targets[b]).max(axis=(1, 2))
             out[b[err < tol_fk]] = True
         return out
 
