@@ -18,7 +18,7 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 from __future__ import annotations
 
 import os
-from math import isfinite
+from math import hypot, isfinite
 from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Callable, Hashable, Iterable, Mapping
@@ -179,9 +179,6 @@ class Robot:
         self.configurations: Mapping[str, np.ndarray] = MappingProxyType(
             {k: _read_only(v) for k, v in configs.items()})
         self._frame_ids: dict[str, int] = {}
-        lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
-        self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
-        self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
         self._shape = (self.n,)
         # radians, not degrees (robokit._units): the plausible range of each joint's value in a
         # one-off configuration, and in a state (batches, trajectories, seeds: continuous joints
@@ -192,11 +189,9 @@ class Robot:
             continuous[iv] = True
         self._deg_lo, self._deg_hi = radian_ranges(revolute, self.qlim)
         self._deg_state = radian_ranges(revolute, self.qlim, exempt=continuous)
-        # the fast paths' test of q (_fast): q·q <= r² (one C call; NaN or inf fail it), or every entry in
-        # [lo1, hi1] (q·q finite), implies that q is finite and passes the degrees check
+        # the fast paths' test of q (_fast): hypot(*q) <= r (one C call; NaN or inf fail it), or every entry
+        # in [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
         self._r1, self._lo1, self._hi1 = fast_bounds(self._deg_lo, self._deg_hi)
-        r = self._r1 * (1.0 - 1e-12)  # q·q ≤ r² rounds within a few ulps: keep clear of the bound
-        self._r1sq = r * r if isfinite(r * r) else float(np.finfo(float).max)
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[object, Any] = {}  # Frame.WORLD / "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
@@ -493,18 +488,15 @@ class Robot:
 
     def _fast(self, q: object) -> bool:
         """The fast paths' one test: ``q`` is a float64 (n,) ndarray, finite, that passes the degrees
-        check (:meth:`check_radians`) without computing it — ``q·q ≤ r²`` (one C call; NaN and inf
-        fail it), or every entry within ``[lo₁, hi₁]`` (see :func:`robokit._units.fast_bounds`).
-        False sends the caller to the checked path, which gives the same answer or the error."""
+        check (:meth:`check_radians`) without computing it — ``hypot(*q) ≤ r`` (one C call; NaN and
+        inf fail it), or every entry within ``[lo₁, hi₁]`` with ``hypot`` finite (see
+        :func:`robokit._units.fast_bounds`). False sends the caller to the checked path, which gives
+        the same answer or the error."""
         if type(q) is not np.ndarray or q.dtype is not _F64 or q.shape != self._shape:
             return False
-        s = q.dot(q)  # type: ignore[attr-defined]
-        if s <= self._r1sq:
-            return True
-        if not isfinite(s):
-            return False
         t = q.tolist()  # type: ignore[attr-defined]
-        return bool(self._lo1 <= min(t) and max(t) <= self._hi1)
+        h = hypot(*t)
+        return h <= self._r1 or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1)
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -672,19 +664,14 @@ class Robot:
         array([[6.86, 2.16],
                [2.16, 0.96]])
         """
+        # Pinocchio's Python crba returns a new, symmetric array: its binding mirrors the upper triangle
+        # the algorithm computes into the lower one (make_symmetric in bindings/python/algorithm/expose-crba.cpp)
         if self._fast(q):
-            M = self._pin.crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
-        elif ndim(q, "q") == 2:
+            return self._pin.crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
+        if ndim(q, "q") == 2:
             warn_once("Robot.crba((N, n) q)")
             return _batch("crba", self, q)
-        else:
-            M = self._pin.crba(self.model, self.data, self.q_pin(self._check_q(q)))
-        # a new array; Pinocchio fills its upper triangle: mirror it into the lower one
-        if not M.flags.c_contiguous:
-            M = np.ascontiguousarray(M)
-        flat = M.ravel()  # a view of M
-        flat[self._lower_flat] = flat[self._upper_flat]
-        return M
+        return self._pin.crba(self.model, self.data, self.q_pin(self._check_q(q)))
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g), Pinocchio's ABA.

@@ -168,3 +168,21 @@ def test_every_robot_round_trips_through_its_spec_in_a_fresh_process(kind, round
         assert np.abs(np.array(T) - T0).max() <= 1e-12 * max(1.0, np.abs(T0).max())
         assert np.abs(np.array(J) - J0).max() <= 1e-12 * max(1.0, np.abs(J0).max())
         assert np.abs(np.array(tau) - tau0).max() <= 1e-12 * max(1.0, np.abs(tau0).max())
+
+
+@pytest.mark.parametrize("name", ["ur5", "kinova"])
+def test_crba_is_the_full_symmetric_matrix(name):
+    """Robot.crba returns Pinocchio's array as is (its binding fills both triangles); checked against
+    the upper triangle CRBA computes, mirrored here, and against the composite-rigid-body kernel."""
+    import pinocchio as pin
+
+    robot = robokit.load(name)
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        M = robot.crba(q)
+        data = robot.model.createData()
+        pin.crba(robot.model, data, robot.q_pin(q))
+        upper = np.triu(data.M)
+        assert np.array_equal(M, upper + np.triu(upper, 1).T)
+        assert np.abs(M - robot.crba_batch(q[None])[0]).max() <= 1e-12 * np.abs(M).max()
