@@ -494,7 +494,7 @@ class Robot:
         the same answer or the error."""
         if type(q) is not np.ndarray or q.dtype is not _F64 or q.shape != self._shape:
             return False
-        t = q.tolist()  # type: ignore[attr-defined]
+        t = q.tolist()
         h = hypot(*t)
         return h <= self._r1 or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1)
 
