@@ -54,6 +54,14 @@ class Robot:
     Made by :func:`robokit.load`; the constructor takes a chain model built by
     :func:`robokit.description.builder.serial_chain`.
 
+    A Robot is **immutable**: assigning any attribute raises ``AttributeError``, and ``qlim``,
+    ``gravity`` and the ``configurations`` are read-only arrays. A changed robot is a new one
+    (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
+    robot is computed once and kept with it (:meth:`derived`). The one mutable part is ``data``,
+    Pinocchio's workspace, which every call reuses: a Robot is not thread-safe (give each thread
+    its own, ``robokit.load(robot.spec)``, or use the ``*_batch`` methods). Its ``model`` is
+    Pinocchio's object: do not edit it in place.
+
     Parameters
     ----------
     name : str
@@ -72,6 +80,8 @@ class Robot:
         Joints locked off the chain.
     source : str, optional
         Where the robot came from (shown in messages).
+    spec : RobotSpec, optional
+        The spec that rebuilds it (the loaders give it).
 
     Attributes
     ----------
@@ -94,11 +104,12 @@ class Robot:
         The n joint names, root to tip.
     qlim : numpy.ndarray, shape (n, 2)
         Joint limits, rad or m (±inf for continuous joints, and on a side whose limit in the
-        file is beyond ±1e12: :func:`~robokit.description.limits.unbounded_limits`).
+        file is beyond ±1e12: :func:`~robokit.description.limits.unbounded_limits`); read-only
+        (other limits: :meth:`with_limits`).
     gravity : numpy.ndarray, shape (3,)
-        Gravity in the base frame, m/s².
-    configurations : dict of str to numpy.ndarray
-        Named configurations (joint angles), ``"zero"`` always.
+        Gravity in the base frame, m/s²; read-only.
+    configurations : mapping of str to numpy.ndarray
+        Named configurations (joint angles, read-only), ``"zero"`` always.
     locked_joints : tuple of str
         The joints locked off the chain.
     source : str
@@ -107,12 +118,13 @@ class Robot:
         The frames robokit reports (``frame_poses``' keys, the frames a message lists): for a
         robot loaded from a file, the frames its file names (Pinocchio's own names, such as
         ``universe``, left out; they stay in ``model``); for a Robot built by hand, every frame.
-    notes : list of str
+    notes : tuple of str
         What the loader did on the user's behalf or found questionable (each was also warned
         once as a :class:`~robokit.errors.RobokitWarning`).
     spec : RobotSpec or None
         The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
-        (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
+        (``robokit.load(robot.spec)``), for loaded, calibrated and changed (``with_limits``,
+        ``with_tool``) robots alike; None for a Robot built by hand from a model.
     nominal : Robot or RobotSpec or None
         For a calibrated robot (:func:`robokit.calibrate`), the arm the calibration started from.
 
