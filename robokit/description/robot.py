@@ -778,9 +778,9 @@ class Robot:
         Parameters
         ----------
         Q : array_like, shape (N, n)
-            Joint values, one configuration per row (rad or m).
+            Configurations as rows of joint values (rad or m).
         frame : str or None, optional
-            None or the tip: batches answer for the tip only.
+            Must be None or the tip's name (a batch answers for the tip only).
         reference : Frame or str, optional
             As :meth:`jacobian` (default ``Frame.LOCAL_WORLD_ALIGNED``).
 
