@@ -390,7 +390,8 @@ def robot_methods(reps: int) -> None:
     print("\n## 5. Robot methods against the raw Pinocchio call they wrap (target ≤ 1.5×)\n")
     print(table(["robot", "method", "Robot method", "raw Pinocchio", "ratio"], rows))
     print("\n(The methods test q once (Robot._fast: float64 (n,), finite, not degrees), convert angles to "
-          "Pinocchio's configuration, swap the Jacobian's rows to (ω; v) and fill the mass matrix's lower triangle.)")
+          "Pinocchio's configuration and swap the Jacobian's rows to (ω; v); crba returns Pinocchio's symmetric "
+          "array as is. Timings taken under load are for ratios only.)")
 
 
 # ------------------------------------------------------------------ 6. simulation
