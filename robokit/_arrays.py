@@ -331,6 +331,31 @@ def check_reference(reference: object, name: str = "reference") -> Frame:
 _KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
 
 
+def kernel_array(x: object, dtype: Any = None) -> np.ndarray:
+    """``x`` as a compiled kernel takes an array: C-contiguous and writeable (a copy only when it is
+    not — a Robot's read-only ``qlim``/``gravity`` included).
+
+    Parameters
+    ----------
+    x : array_like
+        The values (already checked).
+    dtype : dtype, optional
+        As :func:`numpy.ascontiguousarray`.
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Examples
+    --------
+    >>> a = np.zeros(3); a.setflags(write=False)
+    >>> kernel_array(a).flags.writeable, kernel_array(np.ones(2)).flags.c_contiguous
+    (True, True)
+    """
+    a = np.ascontiguousarray(x, dtype)
+    return a if a.flags.writeable else a.copy()
+
+
 def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
                   _k: int = _KERNEL_FLAGS) -> tuple[np.ndarray, ...] | None:
     """The arguments as a compiled kernel's signature takes them — float64, C-contiguous, writeable

@@ -52,6 +52,12 @@ DEPRECATIONS: dict[str, tuple[str, str]] = {
     "ik_spherical_wrist(theta4_ref=)": ("wrist_ref=", REMOVAL),
     "ik_puma560(theta4_ref=)": ("wrist_ref=", REMOVAL),
     "package_path=": ("package_dirs= (the name robokit.load uses)", REMOVAL),
+    # a batch of configurations given to a one-configuration Robot method (once per method per process)
+    "Robot.frame_pose((N, n) q)": ("Robot.frame_pose_batch(Q)", REMOVAL),
+    "Robot.jacobian((N, n) q)": ("Robot.jacobian_batch(Q)", REMOVAL),
+    "Robot.rnea((N, n) q)": ("Robot.rnea_batch(Q, dQ, ddQ)", REMOVAL),
+    "Robot.crba((N, n) q)": ("Robot.crba_batch(Q)", REMOVAL),
+    "Robot.aba((N, n) q)": ("Robot.aba_batch(Q, dQ, tau)", REMOVAL),
 }
 
 #: The former frame words and the canonical (lower-case Pinocchio) name each one means.

@@ -112,7 +112,6 @@ JUSTIFIED_PRIVATE: dict[tuple[str, str], str] = {
     ("robokit.validation", "_jit"):
         "validate holds the compile notices while its table prints (held_notices lives beside the notices it holds; "
         "a public wrapper in robokit.kernels would close an import cycle kernels -> _jit -> kernels)",
-    ("robokit.kernels._jit", "_cache"): "numba's Dispatcher._cache (its on-disk cache), not ik's _cache: a name clash",
 }
 
 

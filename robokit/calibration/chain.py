@@ -373,6 +373,4 @@ def robot_from_chain(robot: Robot, chain: JointChain, name: str | None = None) -
     xml = chain_urdf(robot, chain, name)
     gravity = tuple(float(g) for g in np.asarray(robot.gravity, dtype=float))
     spec = RobotSpec("calibrated", name=name, tip="tool", text=xml, nominal=robot.spec, gravity=gravity)
-    out = load_urdf_text(xml, spec, "tool", gravity)
-    out.nominal = robot
-    return out
+    return load_urdf_text(xml, spec, "tool", gravity, nominal=robot)

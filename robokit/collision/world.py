@@ -61,9 +61,8 @@ Shipping a world
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import Any, Callable, Iterable, cast
 
 import numpy as np
 
@@ -80,9 +79,6 @@ SELF_SEED = 0
 #: coal's GJK tolerance for the distance queries (m).
 GJK_TOLERANCE = 1e-9
 
-_HULLS: "weakref.WeakKeyDictionary[Any, dict[int, Any]]" = weakref.WeakKeyDictionary()
-
-_CACHE: "weakref.WeakKeyDictionary[Any, tuple[Any, SelfCollisionPairs]]" = weakref.WeakKeyDictionary()
 
 
 def _se3(T: np.ndarray) -> Any:
@@ -162,10 +158,17 @@ def _solid(points: np.ndarray) -> bool:
     return bool(sv[2] > 1e-9 * max(sv[0], 1e-300))
 
 
+def _once(robot: Any, key: str, build: Callable[[], Any]) -> Any:
+    """``robot.derived(key, build)`` (computed once, kept with the robot); ``build()`` for a
+    robot-like object without that store."""
+    derived = getattr(robot, "derived", None)
+    return build() if derived is None else derived(key, build)
+
+
 def _hull(robot: Any, k: int, geometry: Any) -> Any:
     """The convex hull of the robot's k-th collision mesh (a coal ConvexBase), built once per
     robot; None for a flat or degenerate mesh (kept as a mesh: it is its own conservative bound)."""
-    hulls = _HULLS.setdefault(robot, {})
+    hulls: dict[int, Any] = _once(robot, "convex_hulls", dict)  # one per geometry index, built once per robot
     if k not in hulls:
         if not _solid(np.asarray(geometry.vertices(), dtype=float)):
             hulls[k] = None
@@ -294,9 +297,11 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     >>> print(self_collision_pairs(robokit.load("puma560")).geometry)
     capsules
     """
-    hit = _CACHE.get(robot)
-    if hit is not None:
-        return hit[1]
+    # computed once per robot and kept with it (Robot.derived: a robot never changes)
+    return cast("SelfCollisionPairs", _once(robot, "self_collision_pairs", lambda: _self_collision_pairs(robot)))
+
+
+def _self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     import pinocchio as pin
     gm, names, kind = _robot_geometry(robot)
     model = robot.model
@@ -353,7 +358,6 @@ def self_collision_pairs(robot: Any) -> SelfCollisionPairs:
     res = SelfCollisionPairs(checked=checked, adjacent=list(adjacent), always=always, never=never, index_pairs=keep,
                              samples=SELF_SAMPLES, seed=SELF_SEED, geometry=kind, partly=partly,
                              excluded=excluded)
-    _CACHE[robot] = (None, res)
     return res
 
 

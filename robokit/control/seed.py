@@ -17,7 +17,7 @@ from typing import NoReturn
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_matrix, as_scalar, as_vector
+from robokit._arrays import as_array, as_matrix, as_scalar, as_vector, kernel_array
 from robokit._units import check_radians, radian_ranges, revolute_columns
 from robokit.control.controllers import gains
 from robokit.errors import InputError
@@ -211,7 +211,7 @@ def simulate_control(thetalist: ArrayLike, dthetalist: ArrayLike, g: ArrayLike, 
 
         Ml, Gl, Sl = checked_model(Mlist, Glist, Slist)
         Mt, Gt, _ = checked_model(Mtildelist, Gtildelist, Slist)
-        c = np.ascontiguousarray
+        c = kernel_array  # writeable too: a robot's gravity is read-only
         taumat, thetamat, status = kernel(c(theta), c(dtheta), c(as_vector(g, "g", 3)), c(Ftipmat), Ml, Gl, Sl,
                                           c(thetamatd), c(dthetamatd), c(ddthetamatd),
                                           c(as_vector(gtilde, "gtilde", 3)), Mt, Gt, c(Kp), c(Ki), c(Kd), dt, intRes)

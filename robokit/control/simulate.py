@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_vector
+from robokit._arrays import as_array, as_vector, kernel_array
 from robokit.description.robot import check_robot_radians
 from robokit.dynamics.drives import friction_torque, joint_drive_parameters
 from robokit.dynamics.integration import second_order_step
@@ -316,7 +316,7 @@ def _simulate_compiled(robot: Robot, controller: Any, kind: int, t: np.ndarray, 
     """:func:`simulate` for a built-in controller, stepped by :func:`robokit.kernels.simulation.simulate_robot`."""
     from robokit.kernels.simulation import simulate_robot
 
-    c = np.ascontiguousarray
+    c = kernel_array  # C-contiguous and writeable, as the kernel's signature takes it
     n, K = robot.n, len(t)
     p = robot.poe
     model_robot = controller.gravity if kind == 3 else controller.robot

@@ -166,10 +166,9 @@ def _pool(robot: Robot, threads: int) -> tuple[Any, int]:
     threads = int(threads)
     if threads < 1:
         raise InputError(f"threads: expected a positive integer, got {threads}")
-    cache = robot.__dict__.setdefault("_pools", {})
-    if threads not in cache:
-        cache[threads] = robot._pin.ModelPool(robot.model, threads)
-    return cache[threads], threads
+    import pinocchio as pin
+
+    return robot.derived(("model_pool", threads), lambda: pin.ModelPool(robot.model, threads)), threads
 
 
 def _q_pin_columns(robot: Robot, Q: np.ndarray) -> np.ndarray:

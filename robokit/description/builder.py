@@ -447,11 +447,9 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
     geoms = [next(it) if g is not None else None for g in geoms]
     robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],
                   configurations=configurations, locked_joints=locked, source=source)
-    robot.spec = spec
-    robot.frame_names = tuple(dict.fromkeys(f.name for k, f in enumerate(chain.frames)
-                                            if (f.name in names if names is not None else k != 0)))
-    robot.notes.extend(notes)
-    robot.notes.extend(physical)
+    robot._amend(spec=spec, frame_names=dict.fromkeys(f.name for k, f in enumerate(chain.frames)
+                                                      if (f.name in names if names is not None else k != 0)),
+                 notes=(*robot.notes, *notes, *physical))
     for note in notes:
         warnings.warn(note, RobokitWarning, stacklevel=3)
     for note in physical:

@@ -63,8 +63,7 @@ def robot_from_dh(table: DHTable, spec: RobotSpec | None = None) -> Robot:
         spec = RobotSpec("dh", text=table.to_yaml_str(angle_unit="rad"))
     model, visual, collision, _ = build_model(description_from_dh(table))  # cylinders only: no mesh notes
     robot = Robot(table.name, model, "tool", visual_model=visual, collision_model=collision, dh=table,
-                  source=spec.describe())
-    robot.spec = spec
+                  source=spec.describe(), spec=spec)
     return robot
 
 

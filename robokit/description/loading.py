@@ -80,6 +80,18 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
 }
 
 
+def _from_spec(spec: RobotSpec) -> Robot:
+    """The robot ``spec`` describes: its description loaded, then its tools and limits added."""
+    robot = _SPEC_LOADERS[spec.kind](spec.base)
+    for name, values in spec.tools:
+        robot = robot.with_tool(np.array(values, dtype=float).reshape(4, 4), name)
+    if spec.limits:
+        if len(spec.limits) != robot.n:
+            raise InputError(f"spec: limits for {len(spec.limits)} joints, but {robot.name} has {robot.n}")
+        robot = robot.with_limits(np.array(spec.limits, dtype=float))
+    return robot
+
+
 def _file_loader(path: Path) -> tuple[str, Callable[..., Robot], tuple[str, ...]] | None:
     name = path.name.lower()
     hits = [suffix for suffix in FILE_LOADERS if name.endswith(suffix)]
@@ -184,7 +196,7 @@ def _load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, ti
         given = [k for k, v in options.items() if _given(k, v)] + (["tip"] if tip else [])
         if given:
             raise InputError(f"{', '.join(given)}: a RobotSpec holds its own options; load(spec) takes none")
-        return _SPEC_LOADERS[name_or_path.kind](name_or_path)
+        return _from_spec(name_or_path)
     if isinstance(name_or_path, DHTable):
         _options_for("a DHTable", (), options)
         if tip not in (None, "tool"):

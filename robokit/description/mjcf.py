@@ -357,5 +357,5 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     tip = tip or _default_tip(built.model)
     geoms = [built.visual if built.visual.ngeoms else None, built.collision if built.collision.ngeoms else None]
     robot = build_robot(name, built.model, tip, geoms, {}, spec, notes)
-    robot.contact_rules = _contact_rules(c, root, built.masks)
+    robot._amend(contact_rules=_contact_rules(c, root, built.masks))
     return robot

@@ -20,12 +20,14 @@ from __future__ import annotations
 import os
 from math import hypot, isfinite
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, Callable, Hashable, Iterable, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_joints, check_reference, ndim
+from robokit._arrays import as_joints, ndim
+from robokit._deprecation import warn_once
 from robokit._units import check_radians, fast_bounds, radian_ranges, revolute_columns
 from robokit.errors import InputError
 from robokit.frames import Frame, reference_or_default
@@ -52,6 +54,14 @@ class Robot:
     Made by :func:`robokit.load`; the constructor takes a chain model built by
     :func:`robokit.description.builder.serial_chain`.
 
+    A Robot is **immutable**: assigning any attribute raises ``AttributeError``, and ``qlim``,
+    ``gravity`` and the ``configurations`` are read-only arrays. A changed robot is a new one
+    (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
+    robot is computed once and kept with it (:meth:`derived`). The one mutable part is ``data``,
+    Pinocchio's workspace, which every call reuses: a Robot is not thread-safe (give each thread
+    its own, ``robokit.load(robot.spec)``, or use the ``*_batch`` methods). Its ``model`` is
+    Pinocchio's object: do not edit it in place.
+
     Parameters
     ----------
     name : str
@@ -70,6 +80,8 @@ class Robot:
         Joints locked off the chain.
     source : str, optional
         Where the robot came from (shown in messages).
+    spec : RobotSpec, optional
+        The spec that rebuilds it (the loaders give it).
 
     Attributes
     ----------
@@ -92,11 +104,12 @@ class Robot:
         The n joint names, root to tip.
     qlim : numpy.ndarray, shape (n, 2)
         Joint limits, rad or m (±inf for continuous joints, and on a side whose limit in the
-        file is beyond ±1e12: :func:`~robokit.description.limits.unbounded_limits`).
+        file is beyond ±1e12: :func:`~robokit.description.limits.unbounded_limits`); read-only
+        (other limits: :meth:`with_limits`).
     gravity : numpy.ndarray, shape (3,)
-        Gravity in the base frame, m/s².
-    configurations : dict of str to numpy.ndarray
-        Named configurations (joint angles), ``"zero"`` always.
+        Gravity in the base frame, m/s²; read-only.
+    configurations : mapping of str to numpy.ndarray
+        Named configurations (joint angles, read-only), ``"zero"`` always.
     locked_joints : tuple of str
         The joints locked off the chain.
     source : str
@@ -105,12 +118,13 @@ class Robot:
         The frames robokit reports (``frame_poses``' keys, the frames a message lists): for a
         robot loaded from a file, the frames its file names (Pinocchio's own names, such as
         ``universe``, left out; they stay in ``model``); for a Robot built by hand, every frame.
-    notes : list of str
+    notes : tuple of str
         What the loader did on the user's behalf or found questionable (each was also warned
         once as a :class:`~robokit.errors.RobokitWarning`).
     spec : RobotSpec or None
         The :class:`~robokit.description.spec.RobotSpec` that rebuilds it
-        (``robokit.load(robot.spec)``); None for a Robot built by hand from a model.
+        (``robokit.load(robot.spec)``), for loaded, calibrated and changed (``with_limits``,
+        ``with_tool``) robots alike; None for a Robot built by hand from a model.
     nominal : Robot or RobotSpec or None
         For a calibrated robot (:func:`robokit.calibrate`), the arm the calibration started from.
 
@@ -128,7 +142,7 @@ class Robot:
     [46.107, 11.772]
     """
 
-    spec: RobotSpec | None = None  # set by the loaders (robokit.description.builder.build_robot)
+    spec: RobotSpec | None = None  # given by the loaders (robokit.description.builder.build_robot)
     contact_rules: Any = None  # an MJCF robot's contact filter (robokit.description.mjcf.ContactRules)
     #: The nominal arm of a calibrated robot (a Robot, or the RobotSpec that loads it), else None:
     #: its structure gives the calibrated arm's exact IK (:mod:`robokit.ik.calibrated`).
@@ -136,10 +150,11 @@ class Robot:
 
     def __init__(self, name: str, model: Any, tip: str, *, visual_model: Any = None, collision_model: Any = None,
                  dh: DHTable | None = None, configurations: Mapping[str, ArrayLike] | None = None,
-                 locked_joints: Iterable[str] = (), source: str = "") -> None:
+                 locked_joints: Iterable[str] = (), source: str = "", spec: RobotSpec | None = None) -> None:
         import pinocchio as pin
 
         self._pin = pin
+        self._derived: dict[Any, Any] = {}  # what derived() computed once from this frozen robot
         self.name = name
         self.model = model
         self.data = model.createData()
@@ -148,15 +163,17 @@ class Robot:
         self.tip = tip
         self.tip_id = frame_index(model, tip)
         self.dh = dh
+        if spec is not None:
+            self.spec = spec
         limit_notes = unbounded_limits(model, source or name)  # ±1e16, ±1e308 ... mean no limit
         self.poe: PoEParams = poe_from_model(model, tip)
         self.n = model.nv
         self.joint_names = self.poe.joint_names
-        self.qlim = self.poe.qlim
-        self.gravity = np.array(model.gravity.linear)
+        self.qlim = _read_only(self.poe.qlim)  # a read-only copy (the kernels take poe's writeable arrays)
+        self.gravity = _read_only(model.gravity.linear)
         self.locked_joints = tuple(locked_joints)
         self.source = source
-        self.notes: list[str] = list(limit_notes)  # what was done on the user's behalf (printed by the CLI)
+        self.notes: tuple[str, ...] = tuple(limit_notes)  # what was done on the user's behalf (printed by the CLI)
         self.frame_names: tuple[str, ...] = tuple(dict.fromkeys(f.name for f in model.frames))  # build_robot narrows
         if limit_notes:
             import warnings
@@ -168,13 +185,12 @@ class Robot:
         self._same_coords = model.nq == model.nv
         self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
         self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]
-        self.configurations = {"zero": np.zeros(self.n)}
+        configs = {"zero": np.zeros(self.n)}
         for k, v in (configurations or {}).items():
-            self.configurations[k] = np.asarray(v, dtype=float)
+            configs[k] = np.asarray(v, dtype=float)
+        self.configurations: Mapping[str, np.ndarray] = MappingProxyType(
+            {k: _read_only(v) for k, v in configs.items()})
         self._frame_ids: dict[str, int] = {}
-        lower = np.tril_indices(self.n, -1)  # crba: flat indices of the strict lower triangle and its mirror
-        self._lower_flat = np.ravel_multi_index(lower, (self.n, self.n))
-        self._upper_flat = np.ravel_multi_index(lower[::-1], (self.n, self.n))
         self._shape = (self.n,)
         # radians, not degrees (robokit._units): the plausible range of each joint's value in a
         # one-off configuration, and in a state (batches, trajectories, seeds: continuous joints
@@ -185,12 +201,171 @@ class Robot:
             continuous[iv] = True
         self._deg_lo, self._deg_hi = radian_ranges(revolute, self.qlim)
         self._deg_state = radian_ranges(revolute, self.qlim, exempt=continuous)
-        # the fast paths' test of q: hypot(*q) <= r (one C call; NaN or inf fail it), or every entry in
-        # [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
+        # the fast paths' test of q (_fast): hypot(*q) <= r (one C call; NaN or inf fail it), or every entry
+        # in [lo1, hi1] (hypot finite), implies that q is finite and passes the degrees check
         self._r1, self._lo1, self._hi1 = fast_bounds(self._deg_lo, self._deg_hi)
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[object, Any] = {}  # Frame.WORLD / "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
+        object.__setattr__(self, "_sealed", True)
+
+    # ------------------------------------------------------------ immutability
+    def __setattr__(self, name: str, value: Any) -> None:
+        if "_sealed" in self.__dict__:
+            raise AttributeError(_frozen_message(name))
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(_frozen_message(name))
+
+    def _amend(self, **attrs: Any) -> Robot:
+        """Set the attributes a loader fills in after construction (``spec``, ``frame_names``,
+        ``notes``, ``nominal``, ``contact_rules``) before the robot leaves the loader; returns it.
+        Nothing else may call this: a robot handed out never changes."""
+        allowed = {"spec", "frame_names", "notes", "nominal", "contact_rules"}
+        bad = sorted(set(attrs) - allowed)
+        if bad:
+            raise AttributeError(_frozen_message(bad[0]))
+        for key, value in attrs.items():
+            object.__setattr__(self, key, tuple(value) if key in ("frame_names", "notes") else value)
+        return self
+
+    def derived(self, key: Hashable, build: Callable[[], Any]) -> Any:
+        """A value computed once from this robot (its frozen model) and kept with it.
+
+        A Robot never changes, so what is computed from it never goes stale: the closed-form
+        solver's constants, the collision pairs, thread pools … are built on first use by
+        ``build()`` and returned by every later call with the same ``key``. They live as long as
+        the robot (no module-level cache keyed by the robot's identity).
+
+        Parameters
+        ----------
+        key : hashable
+            Names the value (a string, or a tuple of the builder's name and its hashable options).
+        build : callable
+            Computes it (no arguments); called once per key.
+
+        Returns
+        -------
+        object
+            ``build()``'s result, the same object on every call.
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> a = robot.derived("home", lambda: robot.frame_pose(np.zeros(2)))
+        >>> a is robot.derived("home", lambda: None)
+        True
+        """
+        try:
+            return self._derived[key]
+        except KeyError:
+            value = self._derived[key] = build()
+            return value
+
+    # ------------------------------------------------------------ changed copies
+    def with_limits(self, qlim: ArrayLike) -> Robot:
+        """A copy of the robot with other joint limits (the robot itself never changes).
+
+        Parameters
+        ----------
+        qlim : array_like, shape (n, 2)
+            Lower and upper limit of each joint, rad or m (±inf: unlimited; a continuous joint
+            takes only (−inf, inf)).
+
+        Returns
+        -------
+        Robot
+            A new robot: the same model but for the limits (its DH table's too), and a
+            ``spec`` that rebuilds it (``robokit.load(copy.spec)``; None when this robot has none).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> tight = robot.with_limits([[-0.5, 0.5], [-1.0, 1.0]])
+        >>> tight.qlim.tolist(), robot.qlim.tolist() == tight.qlim.tolist()
+        ([[-0.5, 0.5], [-1.0, 1.0]], False)
+        """
+        from dataclasses import replace
+
+        from robokit._arrays import as_array
+
+        lim = np.array(as_array(qlim, "qlim", (self.n, 2), finite=False), dtype=float)
+        if np.isnan(lim).any():
+            raise InputError("qlim: NaN in the limits")
+        for i in range(self.n):
+            lo, hi = lim[i]
+            if not lo <= hi:
+                raise InputError(f"qlim: joint {self.joint_names[i]!r}: lower limit {lo:g} above upper limit {hi:g}")
+        model = self._pin.Model(self.model)
+        lower, upper = model.lowerPositionLimit.copy(), model.upperPositionLimit.copy()
+        for jm in list(model.joints)[1:]:
+            lo, hi = lim[jm.idx_v]
+            if jm.nq == 2:
+                if np.isfinite(lo) or np.isfinite(hi):
+                    raise InputError(f"qlim: joint {self.joint_names[jm.idx_v]!r} is continuous; its limits "
+                                     "can only be (-inf, inf)")
+                continue
+            lower[jm.idx_q], upper[jm.idx_q] = lo, hi
+        model.lowerPositionLimit, model.upperPositionLimit = lower, upper
+        dh = self.dh
+        if dh is not None:
+            dh = replace(dh, links=tuple(replace(link, qlim=lim[i].copy()) for i, link in enumerate(dh.links)))
+        spec = None if self.spec is None else replace(self.spec, limits=tuple(
+            (float(lo), float(hi)) for lo, hi in lim))
+        return self._copy(model, self.tip, dh, spec, self.frame_names)
+
+    def with_tool(self, T_tip_tool: ArrayLike, name: str = "tcp") -> Robot:
+        """A copy of the robot whose tip is a new frame ``name`` fixed to the current tip.
+
+        Parameters
+        ----------
+        T_tip_tool : array_like, shape (4, 4)
+            Pose of the new tool frame in the current tip frame (rotation, translation in m).
+        name : str, optional
+            The new frame's name (default ``"tcp"``); it must not name a frame of the robot.
+
+        Returns
+        -------
+        Robot
+            A new robot with ``tip == name`` (its DH table's ``tool`` composed with the
+            offset), and a ``spec`` that rebuilds it (None when this robot has none).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> T = np.eye(4); T[0, 3] = 0.1  # 10 cm further along the last link
+        >>> longer = robot.with_tool(T)
+        >>> longer.tip, longer.frame_pose([0.0, 0.0])[:3, 3].round(4).tolist()
+        ('tcp', [1.9, 0.0, 0.0])
+        """
+        from dataclasses import replace
+
+        from robokit.spatial.se3 import check_transform
+
+        T = np.array(check_transform(T_tip_tool, "T_tip_tool"), dtype=float)
+        if not isinstance(name, str) or not name:
+            raise InputError(f"name: expected a non-empty frame name, got {name!r}")
+        if self.model.existFrame(name):
+            raise InputError(f"name: {self.name} already has a frame {name!r}; give another name")
+        pin = self._pin
+        model = pin.Model(self.model)
+        tip = model.frames[self.tip_id]
+        placement = tip.placement * pin.SE3(T[:3, :3].copy(), T[:3, 3].copy())
+        model.addFrame(pin.Frame(name, tip.parentJoint, self.tip_id, placement, pin.FrameType.OP_FRAME))
+        dh = None if self.dh is None else replace(self.dh, tool=np.asarray(self.dh.tool, dtype=float) @ T)
+        spec = None if self.spec is None else replace(self.spec, tools=(
+            *self.spec.tools, (name, tuple(float(x) for x in T.ravel()))))
+        return self._copy(model, name, dh, spec, (*self.frame_names, name))
+
+    def _copy(self, model: Any, tip: str, dh: DHTable | None, spec: RobotSpec | None,
+              frame_names: tuple[str, ...]) -> Robot:
+        """A new Robot on ``model`` with this one's geometry, names, notes and origin."""
+        out = Robot(self.name, model, tip, visual_model=self.visual_model, collision_model=self.collision_model,
+                    dh=dh, configurations=dict(self.configurations), locked_joints=self.locked_joints,
+                    source=self.source if spec is None else spec.describe(), spec=spec)
+        return out._amend(frame_names=frame_names, notes=self.notes, nominal=self.nominal,
+                          contact_rules=self.contact_rules)
 
     # --------------------------------------------------------------- coordinates
     def q_pin(self, q: ArrayLike) -> np.ndarray:
@@ -323,21 +498,33 @@ class Robot:
         lo, hi = self._deg_state if state else (self._deg_lo, self._deg_hi)
         return check_radians(np.asarray(q, dtype=float), lo, hi, name, self.name)
 
+    def _fast(self, q: object) -> bool:
+        """The fast paths' one test: ``q`` is a float64 (n,) ndarray, finite, that passes the degrees
+        check (:meth:`check_radians`) without computing it — ``hypot(*q) ≤ r`` (one C call; NaN and
+        inf fail it), or every entry within ``[lo₁, hi₁]`` with ``hypot`` finite (see
+        :func:`robokit._units.fast_bounds`). False sends the caller to the checked path, which gives
+        the same answer or the error."""
+        if type(q) is not np.ndarray or q.dtype is not _F64 or q.shape != self._shape:
+            return False
+        t = q.tolist()
+        h = hypot(*t)
+        return h <= self._r1 or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1)
+
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
         """Pose of ``frame`` in the root frame at joint values q (forward kinematics, Pinocchio).
 
         Parameters
         ----------
-        q : array_like, shape (n,) or (N, n)
-            Joint values (rad or m); (N, n) for many configurations (tip only; see
-            :mod:`robokit.description.batch`).
+        q : array_like, shape (n,)
+            Joint values (rad or m). For many configurations call :meth:`frame_pose_batch` (an
+            (N, n) ``q`` still goes there, with a ``DeprecationWarning``, until robokit 0.4.0).
         frame : str or None, optional
             A frame name (None: the tip).
 
         Returns
         -------
-        numpy.ndarray, shape (4, 4) or (N, 4, 4)
+        numpy.ndarray, shape (4, 4)
             ``T_base_frame``: rotation and position (m) of the frame in the root frame.
 
         Examples
@@ -350,21 +537,17 @@ class Robot:
         >>> robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
         [1.0, 0.8, 0.0]
         """
-        pin = self._pin
-        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
-            pass  # finite float64 (n,) arrays: straight to Pinocchio
+        if self._fast(q):
+            if not self._same_coords:
+                q = self.q_pin(q)
         elif ndim(q, "q") == 2:
-            from robokit.description.batch import batch_frame_pose
-
-            return batch_frame_pose(self, q, frame)
+            warn_once("Robot.frame_pose((N, n) q)")
+            return _batch("frame_pose", self, q, frame)
         else:
-            q = self._check_q(q)
-        q = q if self._same_coords else self.q_pin(q)
+            q = self.q_pin(self._check_q(q))
+        pin = self._pin
         pin.forwardKinematics(self.model, self.data, q)
-        fid = self.tip_id if frame is None else self.frame_id(frame)
-        return pin.updateFramePlacement(self.model, self.data, fid).homogeneous
+        return pin.updateFramePlacement(self.model, self.data, self.tip_id if frame is None else self.frame_id(frame)).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
         """Poses (4×4, in the root frame) of the frames :attr:`frame_names`, by name, at θ.
@@ -394,8 +577,8 @@ class Robot:
 
         Parameters
         ----------
-        q : array_like, shape (n,) or (N, n)
-            Joint values (rad or m); (N, n) for many configurations (tip only).
+        q : array_like, shape (n,)
+            Joint values (rad or m); for many configurations :meth:`jacobian_batch`.
         frame : str or None, optional
             The frame whose motion is described (None: the tip).
         reference : Frame or str, optional
@@ -408,7 +591,7 @@ class Robot:
 
         Returns
         -------
-        numpy.ndarray, shape (6, n) or (N, 6, n)
+        numpy.ndarray, shape (6, n)
             Rows (ω; v): rad/s and m/s per unit joint rate.
 
         Examples
@@ -419,31 +602,21 @@ class Robot:
         [[0.0, 0.0], [1.8, 0.8]]
         """
         rf = self._ref_frames.get(reference)
-        if (rf is not None and frame is None and type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and self._plain and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+        if rf is not None and frame is None and self._plain and self._fast(q):
             # the fast path (tip frame, finite float64 (n,) q, no continuous joints): one Pinocchio call
             # and the (v; ω) → (ω; v) row swap, nothing else
             return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
-        pin = self._pin
         if rf is None:
-            # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's; omitted = WORLD (deprecated default)
-            canonical = reference_or_default(reference, "Robot.jacobian")
-            rf = self._ref_frames[reference] = canonical.pinocchio  # None too: its warning is once per process
-            reference = canonical
-        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
-            pass  # finite float64 (n,) arrays: straight to Pinocchio
-        elif ndim(q, "q") == 2:
-            from robokit.description.batch import batch_jacobian
-
-            return batch_jacobian(self, q, frame, reference)
-        else:
+            # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's, looked up once per spelling
+            rf = self._ref_frames[reference] = reference_or_default(reference, "Robot.jacobian").pinocchio
+        if not self._fast(q):
+            if ndim(q, "q") == 2:
+                warn_once("Robot.jacobian((N, n) q)")
+                return _batch("jacobian", self, q, frame, reference_or_default(reference, "Robot.jacobian"))
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         fid = self.tip_id if frame is None else self.frame_id(frame)
-        J = pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
+        J = self._pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
         return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
@@ -451,15 +624,15 @@ class Robot:
 
         Parameters
         ----------
-        q, dq, ddq : array_like, shape (n,) or (N, n)
+        q, dq, ddq : array_like, shape (n,)
             Joint values, rates and accelerations (rad, rad/s, rad/s²; m, m/s, m/s² for prismatic
-            joints); (N, n) for many at once.
+            joints); for many states :meth:`rnea_batch`.
         threads : int, optional
-            Threads of ``rneaInParallel`` for (N, n) inputs.
+            Deprecated with (N, n) inputs (:meth:`rnea_batch` takes it).
 
         Returns
         -------
-        numpy.ndarray, shape (n,) or (N, n)
+        numpy.ndarray, shape (n,)
             Joint torques (N·m) or forces (N).
 
         Examples
@@ -470,18 +643,16 @@ class Robot:
         >>> robot.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(4)
         array([46.107, 11.772])
         """
-        if (type(q) is type(dq) is type(ddq) is np.ndarray and q.dtype is dq.dtype is ddq.dtype is _F64
-                and q.shape == dq.shape == ddq.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
+        if (type(dq) is type(ddq) is np.ndarray and dq.dtype is ddq.dtype is _F64
+                and dq.shape == ddq.shape == self._shape and self._fast(q)):
             # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
-            # any input reaches the result, so one test of the result stands for three of the inputs
+            # dq or ddq reaches the result, so one test of the result stands for theirs
             tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
             if isfinite(tau.dot(tau)):
                 return tau
         elif ndim(q, "q") == 2:
-            from robokit.description.batch import batch_rnea
-
-            return batch_rnea(self, q, dq, ddq, threads)
+            warn_once("Robot.rnea((N, n) q)")
+            return _batch("rnea", self, q, dq, ddq, threads)
         q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.rnea(self.model, self.data, q, dq, ddq)
@@ -491,12 +662,12 @@ class Robot:
 
         Parameters
         ----------
-        q : array_like, shape (n,) or (N, n)
-            Joint values (rad or m); (N, n) for many (the compiled composite-rigid-body kernel).
+        q : array_like, shape (n,)
+            Joint values (rad or m); for many configurations :meth:`crba_batch`.
 
         Returns
         -------
-        numpy.ndarray, shape (n, n) or (N, n, n)
+        numpy.ndarray, shape (n, n)
             The symmetric positive-definite joint-space inertia (kg·m², kg).
 
         Examples
@@ -505,45 +676,29 @@ class Robot:
         array([[6.86, 2.16],
                [2.16, 0.96]])
         """
-        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape and self._plain
-                and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
-            M = self._pin.crba(self.model, self.data, q)  # the fast path: a new array, its upper triangle filled
-            if M.flags.c_contiguous:
-                flat = M.ravel()  # a view of M
-                flat[self._lower_flat] = flat[self._upper_flat]
-                return M
-        if (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
-            pass  # finite float64 (n,) arrays: straight to Pinocchio
-        elif ndim(q, "q") == 2:
-            from robokit.description.batch import batch_crba
-
-            return batch_crba(self, q)
-        else:
-            q = self._check_q(q)
-        q = q if self._same_coords else self.q_pin(q)
-        M = self._pin.crba(self.model, self.data, q)  # a new array; Pinocchio fills its upper triangle
-        if not M.flags.c_contiguous:
-            M = np.ascontiguousarray(M)
-        flat = M.ravel()  # a view of M
-        flat[self._lower_flat] = flat[self._upper_flat]
-        return M
+        # Pinocchio's Python crba returns a new, symmetric array: its binding mirrors the upper triangle
+        # the algorithm computes into the lower one (make_symmetric in bindings/python/algorithm/expose-crba.cpp)
+        if self._fast(q):
+            return self._pin.crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
+        if ndim(q, "q") == 2:
+            warn_once("Robot.crba((N, n) q)")
+            return _batch("crba", self, q)
+        return self._pin.crba(self.model, self.data, self.q_pin(self._check_q(q)))
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g), Pinocchio's ABA.
 
         Parameters
         ----------
-        q, dq, tau : array_like, shape (n,) or (N, n)
-            Joint values (rad, m), rates (rad/s, m/s) and torques (N·m, N); (N, n) for many at once.
+        q, dq, tau : array_like, shape (n,)
+            Joint values (rad, m), rates (rad/s, m/s) and torques (N·m, N); for many states
+            :meth:`aba_batch`.
         threads : int, optional
-            Threads of ``abaInParallel`` for (N, n) inputs.
+            Deprecated with (N, n) inputs (:meth:`aba_batch` takes it).
 
         Returns
         -------
-        numpy.ndarray, shape (n,) or (N, n)
+        numpy.ndarray, shape (n,)
             Joint accelerations (rad/s², m/s²).
 
         Examples
@@ -554,17 +709,15 @@ class Robot:
         >>> bool(abs(robot.aba([0.0, 0.0], [0.0, 0.0], robot.gravity_torques([0.0, 0.0]))).max() < 1e-9)
         True
         """
-        if (type(q) is type(dq) is type(tau) is np.ndarray and q.dtype is dq.dtype is tau.dtype is _F64
-                and q.shape == dq.shape == tau.shape == self._shape
-                and (hypot(*(t := q.tolist())) <= self._r1 or (self._lo1 <= min(t) and max(t) <= self._hi1))):
+        if (type(dq) is type(tau) is np.ndarray and dq.dtype is tau.dtype is _F64
+                and dq.shape == tau.shape == self._shape and self._fast(q)):
             # as in rnea: one test of the (new) result stands for the inputs' finiteness
             ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
             if isfinite(ddq.dot(ddq)):
                 return ddq
         elif ndim(q, "q") == 2:
-            from robokit.description.batch import batch_aba
-
-            return batch_aba(self, q, dq, tau, threads)
+            warn_once("Robot.aba((N, n) q)")
+            return _batch("aba", self, q, dq, tau, threads)
         q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.aba(self.model, self.data, q, dq, tau)
@@ -587,12 +740,136 @@ class Robot:
         >>> rk.load("twolink").gravity_torques([0.0, 0.0]).round(4)
         array([46.107, 11.772])
         """
-        if not (type(q) is np.ndarray and q.dtype is _F64 and q.shape == self._shape
-                and ((h := hypot(*(t := q.tolist()))) <= self._r1
-                     or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1))):
+        if not self._fast(q):
             q = self._check_q(q)
         q = q if self._same_coords else self.q_pin(q)
         return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
+
+    # ------------------------------------------------------------ batches
+    def frame_pose_batch(self, Q: ArrayLike, frame: str | None = None) -> np.ndarray:
+        """Tip poses for many configurations at once (compiled PoE kernel).
+
+        Parameters
+        ----------
+        Q : array_like, shape (N, n)
+            Joint values, one configuration per row (rad or m).
+        frame : str or None, optional
+            None or the tip: batches answer for the tip only.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, 4, 4)
+            ``T_base_tip`` for each row, as :meth:`frame_pose` (m).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> robot.frame_pose_batch([[0.0, 0.0], [0.0, np.pi / 2]])[:, :2, 3].round(4).tolist()
+        [[1.8, 0.0], [1.0, 0.8]]
+        """
+        from robokit.description.batch import batch_frame_pose
+
+        return batch_frame_pose(self, Q, frame)
+
+    def jacobian_batch(self, Q: ArrayLike, frame: str | None = None,
+                       reference: Frame | str | None = None) -> np.ndarray:
+        """Tip Jacobians for many configurations at once, angular rows first (compiled PoE kernel).
+
+        Parameters
+        ----------
+        Q : array_like, shape (N, n)
+            Configurations as rows of joint values (rad or m).
+        frame : str or None, optional
+            Must be None or the tip's name (a batch answers for the tip only).
+        reference : Frame or str, optional
+            As :meth:`jacobian` (default ``Frame.LOCAL_WORLD_ALIGNED``).
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, 6, n)
+            One Jacobian per row, rows (ω; v).
+
+        Examples
+        --------
+        >>> rk.load("twolink").jacobian_batch([[0.0, 0.0]])[0, 3:5].round(4).tolist()
+        [[0.0, 0.0], [1.8, 0.8]]
+        """
+        from robokit.description.batch import batch_jacobian
+
+        return batch_jacobian(self, Q, frame, reference_or_default(reference, "Robot.jacobian"))
+
+    def rnea_batch(self, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, threads: int = 1) -> np.ndarray:
+        """Inverse dynamics for many states at once (Pinocchio's ``rneaInParallel``).
+
+        Parameters
+        ----------
+        Q, dQ, ddQ : array_like, shape (N, n)
+            Joint values, rates and accelerations, one state per row (rad, rad/s, rad/s²; m for prismatic).
+        threads : int, optional
+            Threads of ``rneaInParallel``.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, n)
+            Joint torques (N·m) or forces (N), as :meth:`rnea` per row.
+
+        Examples
+        --------
+        >>> z = np.zeros((2, 2))
+        >>> rk.load("twolink").rnea_batch(z, z, z).round(4).tolist()
+        [[46.107, 11.772], [46.107, 11.772]]
+        """
+        from robokit.description.batch import batch_rnea
+
+        return batch_rnea(self, Q, dQ, ddQ, threads)
+
+    def crba_batch(self, Q: ArrayLike) -> np.ndarray:
+        """Mass matrices for many configurations at once (compiled composite-rigid-body kernel).
+
+        Parameters
+        ----------
+        Q : array_like, shape (N, n)
+            Joint values, one configuration per row (rad or m).
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, n, n)
+            M(q) for each row, as :meth:`crba` (kg·m², kg).
+
+        Examples
+        --------
+        >>> rk.load("twolink").crba_batch([[0.0, 0.0]])[0].round(4).tolist()
+        [[6.86, 2.16], [2.16, 0.96]]
+        """
+        from robokit.description.batch import batch_crba
+
+        return batch_crba(self, Q)
+
+    def aba_batch(self, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
+        """Forward dynamics for many states at once (Pinocchio's ``abaInParallel``).
+
+        Parameters
+        ----------
+        Q, dQ, tau : array_like, shape (N, n)
+            Joint values, rates and torques, one state per row (rad, rad/s, N·m; m, m/s, N).
+        threads : int, optional
+            Threads of ``abaInParallel``.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N, n)
+            Joint accelerations, as :meth:`aba` per row (rad/s², m/s²).
+
+        Examples
+        --------
+        >>> robot = rk.load("twolink")
+        >>> z = np.zeros((1, 2))
+        >>> bool(abs(robot.aba_batch(z, z, robot.gravity_torques([0.0, 0.0])[None])).max() < 1e-9)
+        True
+        """
+        from robokit.description.batch import batch_aba
+
+        return batch_aba(self, Q, dQ, tau, threads)
 
     def nonlinear_effects(self, q: ArrayLike, dq: ArrayLike) -> np.ndarray:
         """Coriolis, centrifugal and gravity torques c(q, q̇) + g(q) (Pinocchio's nonLinearEffects).
@@ -680,6 +957,28 @@ class Robot:
             kind = f"{fmt}; its DH table: robokit.dh_from_urdf(robot).table"
         return f"Robot({self.name!r}, {self.n} joints, tip={self.tip!r}, {kind})"
 
+
+
+def _batch(method: str, robot: Robot, *args: Any) -> np.ndarray:
+    """The deprecated (N, n) path of ``Robot.<method>``: :mod:`robokit.description.batch`'s function,
+    called through this private frame so that the degrees check names the user's call."""
+    from robokit.description import batch
+
+    fn: Callable[..., np.ndarray] = getattr(batch, f"batch_{method}")
+    return fn(robot, *args)
+
+
+def _read_only(a: ArrayLike) -> np.ndarray:
+    """A read-only float64 copy of ``a``."""
+    out = np.array(a, dtype=float)
+    out.setflags(write=False)
+    return out
+
+
+def _frozen_message(name: str) -> str:
+    return (f"Robot is immutable: cannot set or delete {name!r}; make a changed copy with "
+            "robot.with_limits(qlim) (joint limits) or robot.with_tool(T_tip_tool) (a tool frame), "
+            "or load another robot")
 
 
 def check_robot_radians(robot: Any, q: ArrayLike, name: str, *, state: bool = True) -> bool:

@@ -61,6 +61,12 @@ class RobotSpec:
         the calibrated arm's exact IK, :mod:`robokit.ik.calibrated`); None when unknown.
     gravity : tuple of float
         ``"calibrated"``: the gravity vector (3 values, m/s², base frame), which a URDF cannot hold.
+    tools : tuple of (str, tuple of float)
+        Tool frames added by :meth:`robokit.Robot.with_tool`, in order: the frame's name and its pose
+        in the tip before it (16 numbers, row-major; m). ``load`` adds them to the robot it builds.
+    limits : tuple of (float, float)
+        Joint limits given by :meth:`robokit.Robot.with_limits` (one pair per joint, rad or m; ±inf
+        unlimited), applied after the tools; ``()`` keeps the description's limits.
 
     Examples
     --------
@@ -83,6 +89,8 @@ class RobotSpec:
     reflected_inertia: bool = True
     nominal: RobotSpec | None = None
     gravity: tuple[float, ...] = ()
+    tools: tuple[tuple[str, tuple[float, ...]], ...] = ()
+    limits: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in SPEC_KINDS:
@@ -105,6 +113,14 @@ class RobotSpec:
         if not isinstance(self.gravity, tuple) or len(self.gravity) not in (0, 3) or not all(
                 isinstance(g, float) for g in self.gravity):
             raise InputError("spec: gravity must be () or a tuple of 3 floats")
+        if not isinstance(self.tools, tuple) or not all(
+                isinstance(t, tuple) and len(t) == 2 and isinstance(t[0], str) and isinstance(t[1], tuple)
+                and len(t[1]) == 16 and all(isinstance(x, float) for x in t[1]) for t in self.tools):
+            raise InputError("spec: tools must be a tuple of (name, 16 floats) pairs")
+        if not isinstance(self.limits, tuple) or not all(
+                isinstance(lim, tuple) and len(lim) == 2 and all(isinstance(x, float) for x in lim)
+                for lim in self.limits):
+            raise InputError("spec: limits must be a tuple of (lower, upper) float pairs")
         needs = {"shipped": "name", "example-robot-data": "name", "dh": "text",
                  "urdf": "path", "xacro": "path", "mjcf": "path", "sdf": "path", "calibrated": "text"}[self.kind]
         if getattr(self, needs) is None:
@@ -114,6 +130,15 @@ class RobotSpec:
     def xacro_mapping(self) -> dict[str, str]:
         """The xacro arguments as a dict (``{}`` for other kinds)."""
         return dict(self.xacro_args)
+
+    @property
+    def base(self) -> RobotSpec:
+        """The spec without the tools and limits added by ``with_tool``/``with_limits`` (itself when none)."""
+        if not self.tools and not self.limits:
+            return self
+        from dataclasses import replace
+
+        return replace(self, tools=(), limits=())
 
     def describe(self) -> str:
         """Human-readable origin (this is ``robot.source``).
@@ -129,6 +154,9 @@ class RobotSpec:
         >>> RobotSpec("example-robot-data", name="ur5").describe()
         'example-robot-data:ur5'
         """
+        if self.tools or self.limits:
+            changes = [f"tool {name!r}" for name, _ in self.tools] + (["other joint limits"] if self.limits else [])
+            return f"{self.base.describe()} with {', '.join(changes)}"
         if self.kind == "shipped":
             return f"models/{self.name}.yaml"
         if self.kind == "example-robot-data":
@@ -158,6 +186,10 @@ class RobotSpec:
             shown.append("reflected_inertia=False")
         if self.nominal is not None:
             shown.append(f"nominal={self.nominal!r}")
+        if self.tools:
+            shown.append(f"tools=<{', '.join(repr(name) for name, _ in self.tools)}>")
+        if self.limits:
+            shown.append(f"limits=<{len(self.limits)} joints>")
         return f"RobotSpec({', '.join(shown)})"
 
 

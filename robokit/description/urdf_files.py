@@ -85,9 +85,10 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
     return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
 
 
-def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: object = None) -> Robot:
+def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: object = None,
+                   nominal: Robot | RobotSpec | None = None) -> Robot:
     """A Robot from URDF text held in memory (a calibrated robot's spec), read under the checks of
-    a URDF file; ``robot.nominal`` is the spec's nominal (loaded when first needed).
+    a URDF file; ``robot.nominal`` is ``nominal``, else the spec's nominal (loaded when first needed).
 
     Parameters
     ----------
@@ -99,6 +100,8 @@ def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: 
         The tip frame.
     gravity : array_like, shape (3,), optional
         Gravity in the base frame, m/s² (a URDF cannot hold it; default Pinocchio's (0, 0, −9.81)).
+    nominal : Robot or RobotSpec, optional
+        The arm the calibration started from (default ``spec.nominal``).
 
     Returns
     -------
@@ -112,8 +115,7 @@ def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: 
     3
     """
     robot = _from_urdf_file(Path(f"<{spec.name or 'robot'}>.urdf"), tip, text=text, spec=spec, gravity=gravity)
-    robot.nominal = spec.nominal
-    return robot
+    return robot._amend(nominal=spec.nominal if nominal is None else nominal)
 
 
 def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,

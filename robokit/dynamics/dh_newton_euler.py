@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_vector
+from robokit._arrays import as_vector, kernel_array
 from robokit.dynamics.dh_trace import DHDynamicsTrace, dh_newton_euler_trace
 from robokit.kinematics.dh import flip_signs
 
@@ -115,7 +115,7 @@ def dh_inverse_dynamics(table: DHTable, q: ArrayLike, dq: ArrayLike, ddq: ArrayL
             return k.dh_inverse_dynamics(*packed, q, dq, ddq, g, F)
         except (TypeError, ValueError):  # another dtype/layout or a bad value: the full checks below
             pass
-    c = np.ascontiguousarray
+    c = kernel_array  # writeable too: a robot's gravity is read-only
     q = c(as_vector(q, "q", n))
     dq = c(as_vector(dq, "dq", n))
     ddq = c(as_vector(ddq, "ddq", n))

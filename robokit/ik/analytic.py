@@ -22,7 +22,6 @@ Solvers
 from __future__ import annotations
 
 import math
-import weakref
 from typing import TYPE_CHECKING, Any, Iterable, cast
 
 import numpy as np
@@ -335,24 +334,16 @@ def ik_puma560(table: DHTable, T: ArrayLike, wrist_ref: float = 0.0, *, theta4_r
     >>> all(np.allclose(table.fk(s.q), table.fk(q)) for s in sols)
     True
     """
-    hit = _PUMA_CHECKED.get(id(table))
-    if hit is None or hit[0]() is not table or hit[1] is not table.links:
+    store = getattr(table, "__dict__", {})
+    if store.get("_puma_checked") is not table.links:
         _puma_params(table)  # the PUMA structure, checked once per table (its links are immutable)
-        def drop(_ref: weakref.ref, key: int = id(table)) -> None:
-            _PUMA_CHECKED.pop(key, None)
-
-        try:
-            _PUMA_CHECKED[id(table)] = (weakref.ref(table, drop), table.links)
-        except TypeError:  # pragma: no cover - a table without weak references: check every call
-            pass
+        store["_puma_checked"] = table.links  # kept on the table: no module-level cache keyed by its id
     if theta4_ref is not _UNSET:
         wrist_ref = renamed_argument("ik_puma560(theta4_ref=)", wrist_ref, theta4_ref, _UNSET, "ik_puma560", default=0.0)
     ref = wrist_ref if type(wrist_ref) is float else as_scalar(wrist_ref, "wrist_ref")
     return analytic_ik(table).solve(check_pose(T), ref)
 
 
-#: id(table) → (weak reference, links) of the tables whose PUMA structure was checked.
-_PUMA_CHECKED: dict[int, tuple[weakref.ref, tuple]] = {}
 
 
 

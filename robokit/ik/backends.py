@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 
 import time
-import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, cast
 
@@ -150,7 +149,7 @@ class IKProblem:
         >>> p.q0.tolist(), p.position_only, p.T_target.shape
         ([0.0, 0.0], False, (4, 4))
         """
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         q0 = np.clip(np.zeros(robot.n), qlim[:, 0], qlim[:, 1])
         return cls(robot, None, q0, T_target=np.asarray(T, dtype=float))
 
@@ -291,7 +290,7 @@ class IKBackend:
         >>> backend("planar").reaches(robot, targets, np.random.default_rng(0), 0).tolist()
         [True, False]
         """
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
         out = np.zeros(len(targets), dtype=bool)
@@ -378,7 +377,7 @@ class ClosedFormBackend(IKBackend):
         Q, within, _ = ik.solve_batch(targets)
         b, k = np.nonzero(within)
         if len(b):
-            err = np.abs(robot.frame_pose(Q[b, k]) - targets[b]).max(axis=(1, 2))
+            err = np.abs(robot.frame_pose_batch(Q[b, k]) - targets[b]).max(axis=(1, 2))
             out[b[err < tol_fk]] = True
         return out
 
@@ -413,30 +412,15 @@ class PlanarBackend(IKBackend):
         reason = self._planar(cast("Robot", problem.robot))[1]
         return None if reason is None else f"not a planar arm: {reason}"
 
-    def __init__(self) -> None:
-        self._cache: dict[int, tuple[weakref.ref, bytes, PlanarChain | None, str | None]] = {}
-
     def _planar(self, robot: Robot) -> tuple[PlanarChain | None, str | None]:
-        """(chain, reason) of ``robot``, cached per live robot and rebuilt when its screws, home
-        pose or limits change (the geometry costs ~50 µs; the check, well under one)."""
-        poe = robot.poe
-        key = (np.asarray(poe.Slist, dtype=float).tobytes() + np.asarray(poe.M, dtype=float).tobytes()
-               + np.asarray(robot.qlim, dtype=float).tobytes())
-        hit = self._cache.get(id(robot))
-        if hit is not None and hit[0]() is robot and hit[1] == key:
-            return hit[2], hit[3]
-        reason = planar_reason(robot)
-        chain = planar_chain(robot) if reason is None else None
-        cache = self._cache
+        """(chain, reason) of ``robot``, computed once per robot and kept with it (a Robot never
+        changes: :meth:`robokit.Robot.derived`)."""
+        def build() -> tuple[PlanarChain | None, str | None]:
+            reason = planar_reason(robot)
+            return (planar_chain(robot) if reason is None else None), reason
 
-        def drop(_ref: weakref.ref, k: int = id(robot)) -> None:
-            cache.pop(k, None)
-
-        try:
-            cache[id(robot)] = (weakref.ref(robot, drop), key, chain, reason)
-        except TypeError:  # pragma: no cover - a robot without weak references
-            pass
-        return chain, reason
+        derived = getattr(robot, "derived", None)
+        return cast("tuple[PlanarChain | None, str | None]", build() if derived is None else derived("planar_chain", build))
 
     def solve(self, problem: IKProblem) -> IKResult:
         robot = cast("Robot", problem.robot)
@@ -502,7 +486,7 @@ class CompiledLMBackend(IKBackend):
         p = robot.poe
         its = 30 if problem.max_iterations is None else problem.max_iterations
         q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, problem.T_target, problem.q0,
-                                                   np.asarray(robot.qlim, float), tol=problem.tol,
+                                                   np.array(robot.qlim, dtype=float), tol=problem.tol,
                                                    max_iterations=int(its), max_restarts=int(problem.max_restarts),
                                                    seed=int(problem.seed))
         return _result(robot, np.asarray(q, float), problem.T_target, problem.tol, int(iterations), int(restarts),
@@ -512,7 +496,7 @@ class CompiledLMBackend(IKBackend):
         from robokit.kernels.ik import solve_poe_ik
 
         poe = robot.poe
-        qlim = np.asarray(robot.qlim, dtype=float)
+        qlim = np.array(robot.qlim, dtype=float)
         lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
         hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
         out = np.zeros(len(targets), dtype=bool)

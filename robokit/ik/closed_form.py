@@ -65,6 +65,7 @@ from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, PieperSolver
 from robokit.ik.solution import (CollisionChecker, IKSolution, _Rows, _RowSolution, check_pose, solutions_from_rows,
                                  with_collision_flags)
+from robokit.description.spec import RobotSpec
 from robokit.ik.solver import ClosedFormSolver
 
 _new_object = object.__new__
@@ -604,34 +605,40 @@ def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
 
 
 class _Cache:
-    """One :class:`AnalyticIK` per live robot or table, for the one-call :func:`ik_analytic`.
-
-    Keyed by the object's id and dropped when the object is collected (a weak reference);
-    each AnalyticIK checks its own sources on every solve, so an entry is never stale.
-    Objects that cannot be weakly referenced get a fresh AnalyticIK per call.
+    """One :class:`AnalyticIK` per robot or table, for the one-call :func:`ik_analytic`: built on
+    first use and kept *with* the object (a Robot's :meth:`~robokit.Robot.derived` store, a
+    DHTable's instance dictionary), so it lives exactly as long as its robot — no module-level
+    table keyed by identity. The AnalyticIK refers to its robot weakly (no cycle keeps it alive).
+    Objects with neither store, or without weak references, get a fresh AnalyticIK per call.
     """
 
-    def __init__(self) -> None:
-        self._entries: dict[Any, tuple[weakref.ref, AnalyticIK]] = {}
-
     def get(self, robot: Robot | DHTable, nominal: Any = None) -> AnalyticIK:
-        key: Any = id(robot) if nominal is None else (id(robot), nominal if isinstance(nominal, str) else id(nominal))
-        hit = self._entries.get(key)
-        if hit is not None and hit[0]() is robot and (nominal is None or hit[1]._nominal_arg is nominal
-                                                      or (isinstance(nominal, str) and hit[1]._nominal_arg == nominal)):
-            return hit[1]
-        entries = self._entries
+        if nominal is None or isinstance(nominal, (str, bool, RobotSpec)):
+            key: Any = ("analytic_ik", nominal)  # by value
+        else:  # a nominal Robot/DHTable object: held in the entry, so its id stays its own
+            key = ("analytic_ik", id(nominal))
+        derived = getattr(robot, "derived", None)
+        if derived is not None:
+            store = None
+        else:
+            store = getattr(robot, "__dict__", None)
+            if store is None:
+                return AnalyticIK(robot, nominal)
+            store = store.setdefault("_analytic_ik", {})
+            hit = store.get(key)
+            if hit is not None:
+                return cast(AnalyticIK, hit[1])
 
-        def drop(_ref: weakref.ref, key: Any = key) -> None:
-            entries.pop(key, None)
+        def build() -> tuple[Any, AnalyticIK]:
+            try:
+                return nominal, AnalyticIK._shared(robot, nominal)
+            except TypeError:  # pragma: no cover - objects without weak references
+                return nominal, AnalyticIK(robot, nominal)
 
-        try:
-            ref = weakref.ref(robot, drop)
-        except TypeError:  # pragma: no cover - objects without weak references
-            return AnalyticIK(robot, nominal)
-        ik = AnalyticIK._shared(robot, nominal)
-        entries[key] = (ref, ik)
-        return ik
+        if store is None:
+            return cast(AnalyticIK, derived(key, build)[1])  # type: ignore[misc]
+        store[key] = entry = build()
+        return entry[1]
 
 
 _CACHE = _Cache()

@@ -154,7 +154,7 @@ def lm_loop(robot: Robot | RobotLike, frame: str | None, q: np.ndarray, *, posit
     from robokit.description.robot import Robot
 
     n = robot.n
-    qlim = np.asarray(robot.qlim, dtype=float)
+    qlim = np.array(robot.qlim, dtype=float)
     lo, hi = qlim[:, 0], qlim[:, 1]
     sample_lo = np.where(np.isfinite(lo), lo, -np.pi)
     sample_hi = np.where(np.isfinite(hi), hi, np.pi)

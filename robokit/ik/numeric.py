@@ -223,7 +223,7 @@ def _collision_free(robot: Robot | RobotLike, target: ArrayLike, frame: str | No
                     kw: dict) -> IKResult:
     """solve_ik's answer when it is collision-free in ``world``, else retried from new seeds."""
     g = np.random.default_rng(DEFAULT_SEED if rng is None else rng)
-    qlim = np.asarray(robot.qlim, dtype=float)
+    qlim = np.array(robot.qlim, dtype=float)
     lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
     hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
     res = None
@@ -337,7 +337,7 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     if method != "auto":
         backend(method)  # an unknown name fails before any work
     n = robot.n
-    qlim = np.asarray(robot.qlim, dtype=float)
+    qlim = np.array(robot.qlim, dtype=float)
     p_target = T_target = None
     if position_only:
         p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)

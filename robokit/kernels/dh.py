@@ -53,17 +53,14 @@ _A3 = "float64[:, :, ::1]"
 _TABLE = f"{_A2}, int64, {_A2}, {_A2}"  # P, modified, base, tool
 _INERTIA = f"{_A1}, {_A2}, {_A3}"  # mass, com, inertia
 
-_PACKED: dict = {}
-
-
 # ``table`` is typed Any: kernels sit below robokit.description (tests/test_layers.py).
 def pack_dh(table: Any) -> tuple[np.ndarray, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The arrays of a :class:`robokit.DHTable` in the kernels' layout (see the module docstring):
-    ``(P, modified, base, tool, mass, com, inertia)``. Remembered per table object (a DHTable is
-    frozen)."""
-    hit = _PACKED.get(id(table))
-    if hit is not None and hit[0] is table:
-        return hit[1]
+    ``(P, modified, base, tool, mass, com, inertia)``. Packed once per table and kept on it (a
+    DHTable is frozen: no module-level cache keyed by its identity)."""
+    hit = table.__dict__.get("_packed")
+    if hit is not None:
+        return hit
     n = table.n
     P = np.empty((n, 5))
     mass = np.empty(n)
@@ -76,9 +73,7 @@ def pack_dh(table: Any) -> tuple[np.ndarray, int, np.ndarray, np.ndarray, np.nda
         inertia[i] = link.inertia_matrix
     packed = (P, 1 if table.convention == "modified" else 0, np.ascontiguousarray(table.base, dtype=float),
               np.ascontiguousarray(table.tool, dtype=float), mass, com, inertia)
-    if len(_PACKED) > 64:
-        _PACKED.clear()
-    _PACKED[id(table)] = (table, packed)
+    table.__dict__["_packed"] = packed  # beside the frozen dataclass's fields, as kinematics/dh.py's flip signs
     return packed
 
 

@@ -29,8 +29,11 @@ from robokit.errors import InputError
 __all__ = ["fkin_body", "fkin_space", "jacobian_body", "jacobian_space"]
 
 
-_SCREWS: dict = {}  # bytes of validated screw lists -> the validated, C-contiguous array
-_HOMES: dict = {}  # bytes of validated home poses -> the validated array
+#: One of robokit's two module-level caches (docs/caches.md): the seed library's constant arguments
+#: (screw lists, home poses) given as bare arrays — no Robot to keep them — validated once and
+#: remembered by *value* (``(kind, shape, bytes)``; an array changed in place is validated again),
+#: at most 256 entries.
+_VALIDATED: dict = {}
 _kp = None  # robokit.kernels.poe, imported on first use (so `import robokit` does not load numba)
 
 
@@ -51,26 +54,26 @@ def _screws(S: ArrayLike, name: str) -> np.ndarray:
     """A C-contiguous 6×n float array of screw axes; constants are validated once and remembered
     (by their bytes, so an array changed in place is validated again)."""
     if type(S) is np.ndarray and S.dtype is _F64:
-        hit = _SCREWS.get(S.tobytes())
-        if hit is not None and hit.shape == S.shape:
+        hit = _VALIDATED.get(("S", S.shape, S.tobytes()))
+        if hit is not None:
             return hit
     S = np.array(as_matrix(S, name, 6, None), order="C")  # a writeable copy, as the kernels take it
-    if len(_SCREWS) > 256:
-        _SCREWS.clear()
-    _SCREWS[S.tobytes()] = S
+    if len(_VALIDATED) > 256:
+        _VALIDATED.clear()
+    _VALIDATED["S", S.shape, S.tobytes()] = S
     return S
 
 
 def _home(M: ArrayLike) -> np.ndarray:
     """A validated 4×4 home pose (remembered once validated, by its bytes)."""
     if type(M) is np.ndarray and M.dtype is _F64:
-        hit = _HOMES.get(M.tobytes())
-        if hit is not None and M.shape == (4, 4):
+        hit = _VALIDATED.get(("M", M.shape, M.tobytes()))
+        if hit is not None:
             return hit
     M = np.array(check_transform(M, "M"), order="C")  # a writeable copy, as the kernels take it
-    if len(_HOMES) > 256:
-        _HOMES.clear()
-    _HOMES[M.tobytes()] = M
+    if len(_VALIDATED) > 256:
+        _VALIDATED.clear()
+    _VALIDATED["M", M.shape, M.tobytes()] = M
     return M
 
 

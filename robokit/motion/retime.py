@@ -142,7 +142,7 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
         tm = _limit(tau_max, "tau_max", n)
         from robokit.dynamics.newton_euler import inverse_dynamics
         p = robot.poe
-        g, F0 = np.asarray(robot.gravity, dtype=float), np.zeros(6)
+        g, F0 = np.array(robot.gravity, dtype=float), np.zeros(6)
 
         def inv_dyn(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
             return np.asarray(inverse_dynamics(q, qd, qdd, g, F0, p.Mlist, p.Glist, p.Slist))

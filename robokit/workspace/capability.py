@@ -278,6 +278,9 @@ def _description_digest(desc: RobotSpec) -> str:
     return h.hexdigest()
 
 
+#: One of robokit's two module-level caches (docs/caches.md): a Dask worker process's robot and IK
+#: back end per (description digest, restarts). A task ships only the RobotSpec; without this each
+#: task would load and analyse the robot again. Keyed by value (the description's bytes), never by id.
 _WORKER_CACHE: dict = {}
 
 
@@ -311,9 +314,6 @@ def _chunk_counts(desc: RobotSpec, centres: np.ndarray, orientations: np.ndarray
     return ok.reshape(m, K).sum(axis=1).astype(np.int64)
 
 
-_WORLD_CACHE: dict = {}
-
-
 def _world_state(world: Any, robot: Robot) -> Any:
     """The plain data a ``robokit.collision.World`` is rebuilt from in the workers
     (:meth:`~robokit.collision.World.state`: obstacles, padding, convex, self-collision pairs;
@@ -336,10 +336,9 @@ def _collision_free_success(robot: Robot, world: Any, T: np.ndarray, restarts: i
     from robokit.ik.closed_form import ik_analytic, ik_analytic_kind
     from robokit.ik.numeric import solve_ik
 
-    key = (id(robot), hashlib.sha256(pickle.dumps(world)).hexdigest())
-    w = _WORLD_CACHE.get(key)
-    if w is None:
-        w = _WORLD_CACHE[key] = World.from_state(world, robot=robot)
+    # rebuilt once per robot (the worker's, by its spec) and world state, and kept with the robot
+    key = ("collision world", hashlib.sha256(pickle.dumps(world)).hexdigest())
+    w = robot.derived(key, lambda: World.from_state(world, robot=robot))
     closed = robot.n == 6 and ik_analytic_kind(robot).method is not None
     out = np.zeros(len(T), dtype=bool)
     for k, Tk in enumerate(T):

@@ -101,7 +101,7 @@ def sample_workspace(robot: Robot, n_samples: int = 20000, frame: str | None = N
     if int(n_samples) < 1:
         raise InputError(f"n_samples: expected a positive count, got {n_samples!r}")
     rng = np.random.default_rng(rng)
-    qlim = np.asarray(robot.qlim, dtype=float)
+    qlim = np.array(robot.qlim, dtype=float)
     lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
     hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
     Q = rng.uniform(lo, hi, size=(int(n_samples), robot.n))

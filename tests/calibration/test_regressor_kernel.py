@@ -38,7 +38,7 @@ def test_kernel_equals_pinocchio_regressor_and_rnea(robots, name, seed, scale):
     dq, ddq = dq * scale, ddq * scale
     chain = chain_from_robot(robot)
     Y = kr.inertial_regressor(np.ascontiguousarray(chain.placements), np.ascontiguousarray(chain.axes), q,
-                              np.ascontiguousarray(dq), np.ascontiguousarray(ddq), np.asarray(robot.gravity, float))
+                              np.ascontiguousarray(dq), np.ascontiguousarray(ddq), np.array(robot.gravity, float))  # a writeable copy, as the kernel takes it
     pi = standard_parameters(robot)
     for k in range(len(q)):
         qp = robot.q_pin(q[k])

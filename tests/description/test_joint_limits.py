@@ -65,7 +65,7 @@ def test_huge_limits_mean_no_limit_with_one_note(tmp_path, lower, upper, expecte
 
 def test_limits_within_the_bound_are_kept(tmp_path):
     robot = robokit.load(_pendulum(tmp_path, "-1e12", "1e11"))
-    assert tuple(robot.qlim[0]) == (-1e12, 1e11) and robot.notes == []
+    assert tuple(robot.qlim[0]) == (-1e12, 1e11) and robot.notes == ()
 
 
 def test_mjcf_huge_range_follows_the_same_rule(tmp_path):

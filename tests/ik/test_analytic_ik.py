@@ -151,38 +151,41 @@ def test_editing_base_in_place_invalidates_the_cached_solver():
         assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in sols) < 1e-7
 
 
-def test_replacing_or_editing_a_robots_limits_invalidates_the_flags():
+def test_a_robot_with_other_limits_flags_its_solutions_by_them():
+    """A Robot never changes (its limits are read-only); with_limits gives the copy whose closed
+    form flags solutions by the new limits, and the original keeps its own."""
     robot = rk.load("puma560")
     q = np.array([0.2, -0.6, 0.4, 0.3, 0.7, 0.1])
     T = robot.frame_pose(q)
     assert sum(s.within_limits for s in ik_analytic(robot, T)) >= 2
-    held = AnalyticIK(robot)
+    with pytest.raises(ValueError, match="read-only"):
+        robot.qlim[0] = [q[0] - 1e-3, q[0] + 1e-3]
+    with pytest.raises(AttributeError, match="with_limits"):
+        robot.qlim = np.tile([-0.01, 0.01], (6, 1))
     qlim = robot.qlim.copy()
-    robot.qlim[0] = [q[0] - 1e-3, q[0] + 1e-3]  # in place: joint 1 pinned near q₁
-    for sols in (held.solve(T), ik_analytic(robot, T)):
+    qlim[0] = [q[0] - 1e-3, q[0] + 1e-3]  # joint 1 pinned near q₁
+    pinned = robot.with_limits(qlim)
+    for sols in (AnalyticIK(pinned).solve(T), ik_analytic(pinned, T)):
         inside = [s for s in sols if s.within_limits]
         assert inside and all(abs(s.q[0] - q[0]) <= 1e-3 for s in inside)
         assert any(abs(s.q[0] - q[0]) > 0.1 for s in sols)  # the other shoulder: flagged outside
-    robot.qlim = np.tile([-0.01, 0.01], (6, 1))  # replaced: nothing of T's solutions is inside
-    assert not any(s.within_limits for s in ik_analytic(robot, T))
-    robot.qlim = qlim
-    assert sum(s.within_limits for s in ik_analytic(robot, T)) >= 2
+    assert not any(s.within_limits for s in ik_analytic(robot.with_limits(np.tile([-0.01, 0.01], (6, 1))), T))
+    assert sum(s.within_limits for s in ik_analytic(robot, T)) >= 2  # the original is unchanged
 
 
-def test_the_cache_keeps_one_object_per_live_robot_and_drops_it_with_the_robot():
+def test_the_solver_is_kept_with_its_robot_and_goes_with_it():
     import gc
+    import weakref
 
     table = _puma_table()
     assert closed_form.analytic_ik(table) is closed_form.analytic_ik(table)
-    key = id(table)
-    assert key in closed_form._CACHE._entries
     robot = rk.load("ur5")
-    rk.ik_analytic(robot, robot.frame_pose(np.zeros(6)))
-    rkey = id(robot)
-    assert rkey in closed_form._CACHE._entries
-    del table, robot
+    ik = closed_form.analytic_ik(robot)
+    assert ik is closed_form.analytic_ik(robot) and robot.derived(("analytic_ik", None), lambda: None)[1] is ik
+    refs = [weakref.ref(table), weakref.ref(robot), weakref.ref(ik)]
+    del table, robot, ik
     gc.collect()
-    assert key not in closed_form._CACHE._entries and rkey not in closed_form._CACHE._entries
+    assert all(r() is None for r in refs)  # nothing module-level keeps a robot, a table or its solver alive
 
 
 @settings(max_examples=10, deadline=None, derandomize=True)

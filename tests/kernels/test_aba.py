@@ -77,7 +77,7 @@ def test_forward_dynamics_methods_match_pinocchio_with_tip_wrench(name):
 def test_batched_aba_equals_per_call():
     r = rk.load("panda")
     Ml, Gl, Sl = _c(r.poe.Mlist, r.poe.Glist, r.poe.Slist)
-    g = np.ascontiguousarray(r.gravity)
+    g = r.gravity.copy()  # writeable, as the kernels take it
     rng = np.random.default_rng(5)
     N = 300  # above the serial threshold: the parallel path
     Q = np.array([r.random_configuration(rng) for _ in range(N)])

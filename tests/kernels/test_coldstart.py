@@ -176,7 +176,7 @@ def test_interpreted_twins_match_the_compiled_kernels():
     r = rk.load("puma560")
     p = r.poe
     c = np.ascontiguousarray
-    M, S, B, Ml, Gl, g = c(p.M), c(p.Slist), c(p.Blist), c(p.Mlist), c(p.Glist), c(r.gravity)
+    M, S, B, Ml, Gl, g = c(p.M), c(p.Slist), c(p.Blist), c(p.Mlist), c(p.Glist), r.gravity.copy()  # writeable
     rng = np.random.default_rng(3)
     q, dq, ddq = (c(rng.uniform(-2, 2, 6)) for _ in range(3))
     F = np.zeros(6)
@@ -187,7 +187,7 @@ def test_interpreted_twins_match_the_compiled_kernels():
     for kernel, args in cases:
         assert np.abs(_jit.interpreted(kernel)(*args) - kernel(*args)).max() <= 1e-12, kernel.__name__
     T = c(r.frame_pose(c(rng.uniform(-2, 2, 6))))
-    qlim = c(np.asarray(r.qlim, float))
+    qlim = r.qlim.copy()  # a writeable copy of the read-only limits, as the kernel takes it
     args = (M, S, T, c(np.zeros(6)), qlim, 1e-10, 30, 50, 7)
     np.random.seed(123)
     before = np.random.random()

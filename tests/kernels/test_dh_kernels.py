@@ -37,7 +37,7 @@ def test_dh_kernels_vs_pinocchio(cases):
     for name, r in cases:
         packed = kdh.pack_dh(r.dh)
         P, mod, base, tool = packed[:4]
-        g = np.ascontiguousarray(r.gravity, dtype=float)
+        g = r.gravity.copy()  # writeable, as the kernels take it
         for _ in range(30):
             q = r.random_configuration(rng)
             dq, ddq, F = rng.normal(size=r.n), rng.normal(size=r.n), rng.normal(size=6)
@@ -76,7 +76,7 @@ def test_dh_batched_equal_per_call(cases):
     for name, r in cases:
         packed = kdh.pack_dh(r.dh)
         P, mod, base, tool = packed[:4]
-        g = np.ascontiguousarray(r.gravity, dtype=float)
+        g = r.gravity.copy()  # writeable, as the kernels take it
         N = 150
         Q = np.ascontiguousarray([r.random_configuration(rng) for _ in range(N)])
         D, A, F = rng.normal(size=(N, r.n)), rng.normal(size=(N, r.n)), rng.normal(size=(N, 6))

@@ -18,7 +18,7 @@ def test_ik_reachable_targets(name, capsys):
     for k in range(N):
         T = r.frame_pose(r.random_configuration(rng))  # reachable: the pose of a random configuration
         q0 = r.random_configuration(rng)
-        q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, T, q0, r.qlim, 1e-10, 30, 200, k)
+        q, ok, iterations, restarts = solve_poe_ik(p.M, p.Slist, T, q0, r.qlim.copy(), 1e-10, 30, 200, k)
         assert iterations >= 0 and 0 <= restarts <= 200
         if ok:
             successes += 1
@@ -34,11 +34,11 @@ def test_ik_unreachable_and_deterministic():
     p = r.poe
     T = np.eye(4)
     T[:3, 3] = [5.0, 0.0, 0.0]  # far outside the UR5's reach (about 1 m)
-    q, ok, it, rs = solve_poe_ik(p.M, p.Slist, T, np.zeros(6), r.qlim, 1e-10, 20, 3, 0)
+    q, ok, it, rs = solve_poe_ik(p.M, p.Slist, T, np.zeros(6), r.qlim.copy(), 1e-10, 20, 3, 0)
     assert not ok and rs == 3 and q.shape == (6,)
     T = r.frame_pose(np.array([0.3, -1.0, 1.2, -0.5, 0.4, 0.2]))
-    a = solve_poe_ik(p.M, p.Slist, T, np.ones(6), r.qlim, 1e-10, 30, 50, 5)
-    b = solve_poe_ik(p.M, p.Slist, T, np.ones(6), r.qlim, 1e-10, 30, 50, 5)
+    a = solve_poe_ik(p.M, p.Slist, T, np.ones(6), r.qlim.copy(), 1e-10, 30, 50, 5)
+    b = solve_poe_ik(p.M, p.Slist, T, np.ones(6), r.qlim.copy(), 1e-10, 30, 50, 5)
     assert a[1] and np.array_equal(a[0], b[0]) and a[2:] == b[2:]  # same seed, same answer
 
 

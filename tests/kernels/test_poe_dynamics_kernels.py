@@ -42,7 +42,7 @@ def test_poe_kernels_vs_pinocchio(name, robots):
 def test_dynamics_kernels_vs_pinocchio(name, robots):
     r = robots[name]
     Ml, Gl, Sl = _c(r.poe.Mlist, r.poe.Glist, r.poe.Slist)
-    g = np.ascontiguousarray(r.gravity, dtype=float)
+    g = r.gravity.copy()  # writeable, as the kernels take it
     rng = np.random.default_rng(1)
     for _ in range(50):
         q, dq, ddq = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n)
@@ -61,7 +61,7 @@ def test_dynamics_kernels_vs_pinocchio(name, robots):
 def test_batched_kernels_equal_per_call(name, robots):
     r = robots[name]
     M, S, B, Ml, Gl, Sl = _c(r.poe.M, r.poe.Slist, r.poe.Blist, r.poe.Mlist, r.poe.Glist, r.poe.Slist)
-    g = np.ascontiguousarray(r.gravity, dtype=float)
+    g = r.gravity.copy()  # writeable, as the kernels take it
     rng = np.random.default_rng(2)
     N = 300  # more rows than blocks, so blocks hold several rows
     Q = np.ascontiguousarray([r.random_configuration(rng) for _ in range(N)])

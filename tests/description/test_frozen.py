@@ -1,0 +1,188 @@
+"""An immutable Robot: assignment raises, public arrays are read-only, changed copies come from
+``with_limits``/``with_tool`` with their own RobotSpec — and every robot, of every format, calibrated
+or changed, is rebuilt by ``robokit.load(robot.spec)`` in a fresh process with the same kinematics and
+dynamics (compared with the original's Pinocchio answers in this process)."""
+import json
+import pickle
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import robokit
+from robokit.calibration.chain import chain_from_robot
+from robokit.description import models_dir
+from robokit.errors import InputError, RobokitWarning
+
+from tests.description.test_spec import write_mjcf, write_xacro_package
+
+DATA = __import__("pathlib").Path(__file__).resolve().parents[1] / "data"
+T_TOOL = np.array([[0.0, -1.0, 0.0, 0.01], [1.0, 0.0, 0.0, 0.02], [0.0, 0.0, 1.0, 0.15], [0.0, 0.0, 0.0, 1.0]])
+
+PUBLIC = ["name", "model", "data", "visual_model", "collision_model", "tip", "tip_id", "dh", "poe", "n",
+          "joint_names", "qlim", "gravity", "configurations", "locked_joints", "source", "frame_names", "notes",
+          "spec", "nominal", "contact_rules", "brand_new_attribute"]
+
+
+def test_assignment_raises_naming_the_attribute_and_the_copies():
+    robot = robokit.load("puma560")
+    for name in PUBLIC:
+        with pytest.raises(AttributeError, match=f"'{name}'.*with_limits.*with_tool"):
+            setattr(robot, name, None)
+    with pytest.raises(AttributeError, match="'qlim'"):
+        del robot.qlim
+    for arr in (robot.qlim, robot.gravity, *robot.configurations.values()):
+        assert not arr.flags.writeable
+        with pytest.raises(ValueError, match="read-only"):
+            arr[0] = 0.0
+    with pytest.raises(TypeError):
+        robot.configurations["x"] = np.zeros(robot.n)  # a read-only mapping
+    assert isinstance(robot.notes, tuple) and isinstance(robot.frame_names, tuple)
+
+
+def test_with_limits_gives_a_new_robot_and_leaves_the_original():
+    robot = robokit.load("ur5")
+    before = robot.qlim.copy()
+    lim = np.tile([-1.0, 1.0], (robot.n, 1))
+    lim[2] = [-0.5, np.inf]
+    tight = robot.with_limits(lim)
+    assert tight is not robot and np.array_equal(tight.qlim, lim) and np.array_equal(robot.qlim, before)
+    # Pinocchio's own model of the copy carries the limits (its random configurations respect them)
+    assert np.array_equal(tight.model.lowerPositionLimit, lim[:, 0])
+    assert np.array_equal(tight.model.upperPositionLimit, lim[:, 1])
+    assert tight.spec.limits == tuple(map(tuple, lim.tolist())) and robot.spec.limits == ()
+    q = tight.random_configuration(0)
+    assert np.array_equal(tight.frame_pose(q), robot.frame_pose(q))
+    with pytest.raises(InputError, match="qlim"):
+        robot.with_limits(np.zeros((robot.n - 1, 2)))
+    with pytest.raises(InputError, match="lower limit"):
+        robot.with_limits(np.tile([1.0, -1.0], (robot.n, 1)))
+    dh = robokit.load("puma560")
+    dh_tight = dh.with_limits(np.tile([-0.3, 0.3], (6, 1)))
+    assert np.array_equal(dh_tight.dh.qlim, np.tile([-0.3, 0.3], (6, 1))) and not np.array_equal(dh.dh.qlim, dh_tight.dh.qlim)
+    T = dh.frame_pose(np.full(6, 0.9))  # reachable only outside the new limits
+    assert any(s.within_limits for s in robokit.ik_analytic(dh, T))
+    assert not any(s.within_limits for s in robokit.ik_analytic(dh_tight, T))
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5"])
+def test_with_tool_moves_the_tip_by_the_offset(name):
+    """Against properties of rigid bodies, with Pinocchio's answers for the original tip:
+    T_tool = T_tip · T_offset, ω the same, v_tool = v_tip + ω × (p_tool − p_tip)."""
+    robot = robokit.load(name)
+    tool = robot.with_tool(T_TOOL)
+    assert tool.tip == "tcp" and "tcp" in tool.frame_names and robot.tip != "tcp"
+    assert tool.spec.tools == (("tcp", tuple(T_TOOL.ravel().tolist())),)
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        T0, T1 = robot.frame_pose(q), tool.frame_pose(q)
+        assert np.abs(T1 - T0 @ T_TOOL).max() < 1e-12
+        J0, J1 = robot.jacobian(q), tool.jacobian(q)
+        r = T1[:3, 3] - T0[:3, 3]
+        assert np.abs(J1[:3] - J0[:3]).max() < 1e-12
+        assert np.abs(J1[3:] - (J0[3:] + np.cross(J0[:3].T, r).T)).max() < 1e-12
+        tau = robot.rnea(q, q, q)
+        assert np.abs(tool.rnea(q, q, q) - tau).max() <= 1e-12 * np.abs(tau).max()  # a frame carries no mass
+    with pytest.raises(InputError, match="already has a frame 'tcp'"):
+        tool.with_tool(np.eye(4))
+    if robot.dh is not None:  # the DH table's tool follows, so the closed form solves for the new tip
+        q = np.array([0.1, -0.4, 0.3, 0.5, 0.6, -0.2])
+        sols = robokit.ik_analytic(tool, tool.frame_pose(q))
+        assert any(np.allclose(s.q, q, atol=1e-9) for s in sols)
+
+
+# ------------------------------------------------------------------ round trip in a fresh process
+_CHILD = r"""
+import json, pickle, sys, warnings
+import numpy as np
+import robokit
+warnings.simplefilter("ignore")
+specs, qs = pickle.loads(sys.stdin.buffer.read())
+out = {}
+for kind, spec in specs.items():
+    r = robokit.load(spec)
+    rows = []
+    for q in qs[kind]:
+        q = np.asarray(q)
+        rows.append([r.frame_pose(q).tolist(), r.jacobian(q).tolist(), r.rnea(q, 0.5 * q, -q).tolist()])
+    out[kind] = {"spec_equal": r.spec == spec, "n": r.n, "tip": r.tip, "rows": rows}
+print(json.dumps(out))
+"""
+
+
+def _calibrated():
+    nominal = robokit.load("puma560")
+    rng = np.random.default_rng(11)
+    true = chain_from_robot(nominal).perturbed(rng.normal(scale=1e-3, size=(nominal.n + 1, 6)))
+    Q = np.array([nominal.random_configuration(rng) for _ in range(30)])
+    return robokit.calibrate(nominal, Q, true.fk(Q)).robot
+
+
+def _robots(tmp):
+    return {
+        "urdf": lambda: robokit.load(models_dir() / "puma560.urdf"),
+        "xacro": lambda: robokit.load(write_xacro_package(tmp), package_dirs=[tmp / "ws"], xacro_args={"l1": "0.55"}),
+        "mjcf": lambda: robokit.load(write_mjcf(tmp)),
+        "sdf": lambda: robokit.load(DATA / "sdf" / "drake_iiwa14" / "iiwa14_no_collision.sdf"),
+        "dh yaml": lambda: robokit.load(models_dir() / "puma560.yaml"),
+        "example-robot-data": lambda: robokit.load("panda"),
+        "calibrated": _calibrated,
+        "with_limits": lambda: robokit.load("ur5").with_limits(np.tile([-2.0, 2.0], (6, 1))),
+        "with_tool": lambda: robokit.load("ur5").with_tool(T_TOOL).with_limits(np.tile([-3.0, 3.0], (6, 1))),
+        "calibrated with_tool": lambda: _calibrated().with_tool(T_TOOL, "probe"),
+    }
+
+
+KINDS = ["urdf", "xacro", "mjcf", "sdf", "dh yaml", "example-robot-data", "calibrated", "with_limits", "with_tool",
+         "calibrated with_tool"]
+
+
+@pytest.fixture(scope="module")
+def round_trip(tmp_path_factory):
+    """The robots here, and what a fresh Python process computes from their specs alone."""
+    tmp = tmp_path_factory.mktemp("frozen")
+    rng = np.random.default_rng(7)
+    robots, qs = {}, {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)
+        for kind, make in _robots(tmp).items():
+            robots[kind] = make()
+            qs[kind] = [robots[kind].random_configuration(rng) for _ in range(3)]
+    specs = {k: r.spec for k, r in robots.items()}
+    proc = subprocess.run([sys.executable, "-c", _CHILD], input=pickle.dumps((specs, qs)), capture_output=True,
+                          timeout=300, cwd=tmp)
+    assert proc.returncode == 0, proc.stderr.decode()[-3000:]
+    return robots, qs, json.loads(proc.stdout.decode().strip().splitlines()[-1])
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_robot_round_trips_through_its_spec_in_a_fresh_process(kind, round_trip):
+    robots, qs, child = round_trip
+    robot, got = robots[kind], child[kind]
+    assert robot.spec is not None and got["spec_equal"] and (got["n"], got["tip"]) == (robot.n, robot.tip)
+    for q, (T, J, tau) in zip(qs[kind], got["rows"]):
+        T0, J0, tau0 = robot.frame_pose(q), robot.jacobian(q), robot.rnea(q, 0.5 * q, -q)
+        assert np.abs(np.array(T) - T0).max() <= 1e-12 * max(1.0, np.abs(T0).max())
+        assert np.abs(np.array(J) - J0).max() <= 1e-12 * max(1.0, np.abs(J0).max())
+        assert np.abs(np.array(tau) - tau0).max() <= 1e-12 * max(1.0, np.abs(tau0).max())
+
+
+@pytest.mark.parametrize("name", ["ur5", "kinova"])
+def test_crba_is_the_full_symmetric_matrix(name):
+    """Robot.crba returns Pinocchio's array as is (its binding fills both triangles); checked against
+    the upper triangle CRBA computes, mirrored here, and against the composite-rigid-body kernel."""
+    import pinocchio as pin
+
+    robot = robokit.load(name)
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        M = robot.crba(q)
+        data = robot.model.createData()
+        pin.crba(robot.model, data, robot.q_pin(q))
+        upper = np.triu(data.M)
+        assert np.array_equal(M, upper + np.triu(upper, 1).T)
+        assert np.abs(M - robot.crba_batch(q[None])[0]).max() <= 1e-12 * np.abs(M).max()
