@@ -382,8 +382,8 @@
   // the gizmo handle under the page pixel (x, y): {mode, axis} or null
   function gizmoPick(x, y) {
     if (!gizmo) { return null; }
-    var hits = baseRay(x, y).caster.intersectObjects(gizmo.picks, false);
-    return hits.length ? hits[0].object.userData : null;
+    var hits = baseRay(x, y).caster.intersectObjects(gizmo.picks, false), ball = hits.filter(function (h) { return h.object.userData.mode === "free"; });
+    return ball.length ? ball[0].object.userData : (hits.length ? hits[0].object.userData : null);  // the ball before what crosses it
   }
   function gizmoPaint(reachable) {
     if (!gizmo) { return; }
@@ -408,7 +408,7 @@
     for (var a = 0; a < 3; a++) {
       var u = [T[a], T[4 + a], T[8 + a]], e1 = [T[(a + 1) % 3], T[4 + (a + 1) % 3], T[8 + (a + 1) % 3]];
       var e2 = [T[(a + 2) % 3], T[4 + (a + 2) % 3], T[8 + (a + 2) % 3]];
-      [1.0, 0.8, 1.2].some(function (f) {
+      [1.0, 1.3, 0.7, 1.45, 0.5, 0.4].some(function (f) {
         var xy = toPage(v3add(p, u, f * s)), m = gizmoPick(xy[0], xy[1]);
         if (m && m.mode === "move-" + AXES[a]) { handles[m.mode] = xy; return true; }
         return false;
