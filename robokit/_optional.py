@@ -26,6 +26,7 @@ EXTRAS: dict[str, tuple[str, str]] = {
     "ziglang": ("ziglang", "viz"),
     "IPython": ("ipython", "notebooks"),
     "ipywidgets": ("ipywidgets", "notebooks"),
+    "anywidget": ("anywidget", "notebooks"),
     "matplotlib": ("matplotlib", "plot"),
     "sympy": ("sympy", "symbolic"),
     "distributed": ("distributed", "workspace"),

@@ -661,6 +661,19 @@
           (change === "true" ? "  \u2014 changed from " + d.branchFrom + " (branches meet)" : ""), change === "true");
   }
 
+  // ------------------------------------------------------------------ embedded (notebook pendant)
+  // In a frame (the notebook pendant's drag view, robokit.viz.teach.teach_widget): every new q is
+  // posted to the parent window as {rk: "teach-q", q}; {rk: "teach-set-q", q} from it moves the arm.
+  function postQ() {
+    if (window.parent === window) { return; }
+    try { window.parent.postMessage({ rk: "teach-q", q: q.slice() }, "*"); } catch (e) { /* a closed parent */ }
+  }
+  window.addEventListener("message", function (ev) {
+    if (ev.source !== window.parent || !ev.data || ev.data.rk !== "teach-set-q" || !Array.isArray(ev.data.q) ||
+        ev.data.q.length !== n) { return; }
+    setQ(ev.data.q.map(Number), "notebook");
+  });
+
   // ------------------------------------------------------------------ page
   var sliders = [], boxes = [], rowsEls = [];
   function buildControls() {
@@ -861,6 +874,7 @@
     qe.textContent = "q = [" + q.map(function (v) { return v.toFixed(4); }).join(", ") + "] (rad / m)";
     el("rk-scene-poses").dataset.poses = JSON.stringify(scenePoses);
     measureFraming();
+    postQ();
     try { history.replaceState(null, "", "#q=" + q.map(function (v) { return String(v); }).join(",")); } catch (e) { /* file:// in some browsers */ }
   }
 

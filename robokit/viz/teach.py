@@ -45,7 +45,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
-from robokit._optional import require
+from robokit._optional import available, require
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -734,7 +734,59 @@ def _collision_html(c: dict) -> str:
             f"({pair(c['closest'])})</div>")
 
 
-def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+#: The notebook pendant's drag view (an anywidget front end): the teach page, with the robot's
+#: module, in a frame; the q it posts ({rk: "teach-q"}) goes to the widget's ``q`` and from there
+#: to Python, and a ``q`` set in Python is posted into the page ({rk: "teach-set-q"}).
+_DRAG_ESM = """
+export default {
+  render({ model, el }) {
+    const frame = document.createElement("iframe");
+    frame.style.cssText = "width:100%;border:0;height:" + model.get("height") + "px";
+    frame.srcdoc = model.get("page");
+    let last = JSON.stringify(model.get("q"));
+    const fromPage = (ev) => {
+      if (ev.source !== frame.contentWindow || !ev.data || ev.data.rk !== "teach-q") { return; }
+      const text = JSON.stringify(ev.data.q);
+      if (text === last) { return; }
+      last = text;
+      model.set("q", ev.data.q);
+      model.save_changes();
+    };
+    const fromPython = () => {
+      const text = JSON.stringify(model.get("q"));
+      if (text === last || !frame.contentWindow) { return; }
+      last = text;
+      frame.contentWindow.postMessage({ rk: "teach-set-q", q: model.get("q") }, "*");
+    };
+    window.addEventListener("message", fromPage);
+    model.on("change:q", fromPython);
+    el.appendChild(frame);
+    return () => { window.removeEventListener("message", fromPage); model.off("change:q", fromPython); };
+  }
+};
+"""
+_DRAG_VIEW: Any = None
+
+
+def _drag_view(page: str, q: list[float], height: int) -> Any:
+    """The drag view widget (anywidget) showing ``page`` at joint values ``q``."""
+    global _DRAG_VIEW
+    if _DRAG_VIEW is None:
+        anywidget = require("anywidget", "dragging the tool in the notebook pendant")
+        import traitlets
+
+        class DragView(anywidget.AnyWidget):  # type: ignore[misc,name-defined]
+            _esm = _DRAG_ESM
+            page = traitlets.Unicode("").tag(sync=True)
+            q = traitlets.List(traitlets.Float()).tag(sync=True)
+            height = traitlets.Int(560).tag(sync=True)
+
+        _DRAG_VIEW = DragView
+    return _DRAG_VIEW(page=page, q=q, height=height)
+
+
+def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None,
+                 wasm: bytes | None = None) -> Any:
     """A notebook teach pendant on a :class:`robokit.viz.Scene`.
 
     ipywidgets sliders (degrees for revolute joints, metres for prismatic ones), named-pose
@@ -744,6 +796,13 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     Python computes the collision state with the World (:func:`robokit.viz.clearance.clearance`):
     the visuals of links in contact turn red and the readout shows the minimum distance (m)
     and the nearest (or colliding) pair.
+
+    Dragging the tool needs the robot's module (``wasm``) and anywidget (the ``notebooks``
+    extra): the pendant then shows the teach page of :func:`teach_html` under the sliders, its
+    gizmo, ghost arms and IK running in the browser on the module, and every q the page reaches
+    moves the sliders, the live scene and the Python readouts (and ``set_q`` moves the page).
+    Without them the pendant says once, under the readouts, what to pass or install: the live
+    view above is drawn by the Python meshcat server, which sends no pointer events back.
 
     Parameters
     ----------
@@ -755,13 +814,19 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         Height of the 3-D view (px).
     world : robokit.collision.World, optional
         The scene's robot among obstacles (its ``robot`` must be the scene's).
+    wasm : bytes, optional
+        The robot's generated C compiled to WebAssembly
+        (``robokit.codegen.wasm.wasm_module(scene.robot).wasm``): with it, and anywidget
+        installed, the pendant gets the teach page's drag.
 
     Returns
     -------
     ipywidgets.VBox
         With ``.set_q(q)`` (all joints at once, rad/m), ``.readouts`` (the latest
         :func:`teach_readouts` dict), ``.collision`` (the latest ``clearance`` dict, or
-        None without a world) and ``.painted`` (names of the visuals drawn red).
+        None without a world), ``.painted`` (names of the visuals drawn red), ``.drag`` (the
+        drag view, an anywidget with the page's ``q``, or None) and ``.drag_note`` (the
+        sentence shown when there is no drag view, else "").
 
     Examples
     --------
@@ -817,7 +882,30 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         painted.update(hit)
         box.painted = sorted(visuals[i].name for i in hit)
 
+    # the drag view: the teach page with the module, in the browser (see the docstring)
+    drag = None
+    box.drag_note = ""
+    if wasm is None:
+        box.drag_note = ("Dragging the tool: the view above is drawn by Python's meshcat server, which sends no "
+                         "pointer events back; the drag runs in the teach page, on the robot's C compiled to "
+                         "WebAssembly. Pass wasm=robokit.codegen.wasm.wasm_module(scene.robot).wasm to "
+                         "scene.teach() to have it here, or write the page with robokit teach MODEL.")
+    elif not available("anywidget"):
+        box.drag_note = ("Dragging the tool needs anywidget to run the teach page here: "
+                         "pip install 'robokit[notebooks]'. Or write the page with robokit teach MODEL.")
+    else:
+        page = teach_html(robot, q_start, obstacles=None if world is None else list(world.obstacles),
+                          padding=0.0 if world is None else float(world.padding), wasm=wasm)
+        drag = _drag_view(page, [float(v) for v in q_start], int(height) + 240)
+    box.drag = drag
+
     def redraw(qv: np.ndarray) -> None:
+        if drag is not None:  # the page follows the pendant (not an event back to it)
+            busy, state["busy"] = state["busy"], True
+            try:
+                drag.q = [float(v) for v in qv]
+            finally:
+                state["busy"] = busy
         if world is not None:
             from robokit.viz.clearance import clearance
 
@@ -842,6 +930,13 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
             state["busy"] = False
         redraw(qc)
 
+    def on_drag(change: Any) -> None:  # a q from the page (a drag, a ghost clicked, its sliders)
+        qv = np.asarray(change["new"], dtype=float)
+        if not state["busy"] and qv.shape == (robot.n,) and np.isfinite(qv).all():
+            set_q(qv)
+
+    if drag is not None:
+        drag.observe(on_drag, names="q")
     for s in sliders:
         s.observe(on_change, names="value")
     buttons = []
@@ -849,7 +944,9 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         b = W.Button(description=name, layout=W.Layout(width="auto"))
         b.on_click(lambda _b, p=pose: set_q(p))
         buttons.append(b)
-    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out]
+    extra = [drag] if drag is not None else [W.HTML(f"<div style='font:12px sans-serif;color:#667'>"
+                                                     f"{_html.escape(box.drag_note)}</div>")]
+    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out, *extra]
     box.set_q = set_q
     redraw(q_start)
     return box

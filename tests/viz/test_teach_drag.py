@@ -285,3 +285,34 @@ def test_ghosts_marked_by_limits_and_collisions_like_the_world(tmp_path):
         expect.append("+".join(marks) or "ok")
     assert json.loads(g["data-status"]) == expect
     assert json.loads(g["data-labels"]) == [r.label for r in ref]
+
+
+def test_notebook_pendant_follows_its_drag_view_and_says_once_when_it_has_none():
+    """Python's half: a q arriving from the drag view (as anywidget's comm sets it) moves the
+    sliders, the live scene and the readouts (Pinocchio's, through teach_readouts); set_q moves
+    the view. Without the module the pendant has no drag view and says why, in one line."""
+    pytest.importorskip("ipywidgets")
+    pytest.importorskip("anywidget")
+    if not available("ziglang"):
+        pytest.skip("ziglang (the viz extra) not installed")
+    from robokit.codegen.wasm import wasm_module
+    from robokit.viz import Scene
+    from robokit.viz.teach import teach_readouts
+
+    robot = robokit.load("puma560")
+    with Scene(robot) as scene:
+        pendant = scene.teach(wasm=wasm_module(robot).wasm)
+        assert pendant.drag is not None and pendant.drag_note == "" and pendant.drag in pendant.children
+        assert "rk-wasm" in pendant.drag.page
+        q = np.array([0.2, 0.4, -0.3, 0.5, 0.6, -0.2])
+        pendant.drag.q = q.tolist()
+        np.testing.assert_allclose(scene.q, q, rtol=0, atol=0)
+        ref = teach_readouts(robot, q)
+        np.testing.assert_allclose(pendant.readouts["xyz"], ref["xyz"], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(pendant.readouts["J"], ref["J"], rtol=0, atol=1e-12)
+        pendant.set_q([0.1] * 6)
+        assert pendant.drag.q == [0.1] * 6
+        plain = scene.teach()
+        assert plain.drag is None and "wasm=" in plain.drag_note
+        notes = [c for c in plain.children if getattr(c, "value", None) is not None and "Dragging the tool" in c.value]
+        assert len(notes) == 1
