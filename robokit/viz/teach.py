@@ -775,7 +775,7 @@ def _drag_view(page: str, q: list[float], height: int) -> Any:
         anywidget = require("anywidget", "dragging the tool in the notebook pendant")
         import traitlets
 
-        class DragView(anywidget.AnyWidget):  # type: ignore[misc,name-defined]
+        class DragView(anywidget.AnyWidget):  # type: ignore[name-defined]
             _esm = _DRAG_ESM
             page = traitlets.Unicode("").tag(sync=True)
             q = traitlets.List(traitlets.Float()).tag(sync=True)
