@@ -247,7 +247,8 @@
   // ------------------------------------------------------------------ placements
   // q -> the n+1 placements P[k] = e^[S1]q1 ... e^[Sk]qk (flat row-major 4x4, P[0] = I): an object
   // on joint k with home pose T0 sits at P[k] T0. The ghost arms are drawn through this function.
-  function placementsAt(qv) { return RKMath.products(R.S, qv); }
+  // (The module's placements when it has them: the same function as the module-only page's.)
+  function placementsAt(qv) { return KIN && KIN.placements ? KIN.placements(qv) : RKMath.products(R.S, qv); }
 
   // small 3-vector helpers (arrays) for the gizmo's drags, in the base frame
   function v3sub(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
@@ -480,13 +481,13 @@
   function setPose(obj, T) { new MeshCat.THREE.Matrix4().fromArray(colMajor(T)).decompose(obj.position, obj.quaternion, obj.scale); }
   function showGhosts(sols, chosen) {
     ghosts.sols = sols; ghosts.chosen = chosen;
-    var status = [], origins = [], M = flat4(R.M);
+    var status = [], origins = [];
     sols.forEach(function (sol, k) {
       var P = placementsAt(sol.q), st = [];
       if (!sol.withinLimits) { st.push("limits"); }
       if (R.collision && R.collision.supported && RKMath.clearance(R.collision, P).pairs.length) { st.push("collision"); }
       status.push(st.length ? st.join("+") : "ok");
-      origins.push((R.frames.length ? R.frames.map(function (f) { return mul4(P[f.k], flat4(f.T)); }) : [mul4(P[n], M)])
+      origins.push((R.frames.length ? R.frames.map(function (f) { return mul4(P[f.k], flat4(f.T)); }) : [KIN.fk(sol.q)])
         .map(function (T) { return [T[3], T[7], T[11]]; }));
       if (!ghosts.group) { return; }
       var arm = ghostArm(k), colour = GHOST_COLOURS[st.length ? st[st.length - 1] : "ok"];

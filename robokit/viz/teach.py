@@ -798,10 +798,10 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     and the nearest (or colliding) pair.
 
     Dragging the tool needs the robot's module (``wasm``) and anywidget (the ``notebooks``
-    extra): the pendant then shows the teach page of :func:`teach_html` under the sliders, its
+    extra): the pendant then shows the teach page of :func:`teach_html` above the readouts, its
     gizmo, ghost arms and IK running in the browser on the module, and every q the page reaches
     moves the sliders, the live scene and the Python readouts (and ``set_q`` moves the page).
-    Without them the pendant says once, under the readouts, what to pass or install: the live
+    Without them the pendant says once, above the readouts, what to pass or install: the live
     view above is drawn by the Python meshcat server, which sends no pointer events back.
 
     Parameters
@@ -946,7 +946,7 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         buttons.append(b)
     extra = [drag] if drag is not None else [W.HTML(f"<div style='font:12px sans-serif;color:#667'>"
                                                      f"{_html.escape(box.drag_note)}</div>")]
-    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out, *extra]
+    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), *extra, out]  # the readouts stay last
     box.set_q = set_q
     redraw(q_start)
     return box
