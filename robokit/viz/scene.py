@@ -783,7 +783,7 @@ class Scene:
         atomic_write(path, self.html())
         return IFrame(src=str(path.as_posix()), width="100%", height=int(height))
 
-    def teach(self, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+    def teach(self, q: ArrayLike | None = None, height: int = 420, world: Any = None, wasm: bytes | None = None) -> Any:
         """A teach pendant in the notebook, driving this scene's live view.
 
         Joint sliders with the tool pose, Jacobian, manipulability, singularity and joint-limit
@@ -798,11 +798,14 @@ class Scene:
             Height of the 3-D view (px).
         world : robokit.collision.World, optional
             This scene's robot among obstacles (``World(scene.robot, obstacles)``).
+        wasm : bytes, optional
+            The robot's C as WebAssembly (``robokit.codegen.wasm.wasm_module(scene.robot).wasm``):
+            with it (and anywidget) the pendant shows the teach page, whose tool you can drag.
 
         Returns
         -------
         ipywidgets.VBox
-            The pendant (``.set_q``, ``.readouts``, ``.collision``).
+            The pendant (``.set_q``, ``.readouts``, ``.collision``, ``.drag``).
 
         Examples
         --------
@@ -811,7 +814,7 @@ class Scene:
         """
         from robokit.viz.teach import teach_widget
 
-        return teach_widget(self, q=q, height=height, world=world)
+        return teach_widget(self, q=q, height=height, world=world, wasm=wasm)
 
     def close(self) -> None:
         """Stop the meshcat server this scene started (if it started one).

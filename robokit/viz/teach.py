@@ -42,6 +42,7 @@ import json
 import math
 from importlib import resources
 import os
+import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Sequence
 
@@ -49,7 +50,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
-from robokit._optional import require
+from robokit._optional import available, require
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -339,6 +340,27 @@ def _pack(command: Any) -> str:
     return base64.b64encode(umsgpack.packb(command)).decode("ascii")
 
 
+_UUID = re.compile(r"[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}", re.I)
+
+
+def _short_uuids(commands: Sequence[Any]) -> list[Any]:
+    """The commands with every UUID string (three.js names each geometry, material, texture and image
+    of an object by one, 36 characters, and links them by it) replaced by a short id unique in the
+    page (``u0``, ``u1``, …): the same links, a few kilobytes fewer."""
+    ids: dict[str, str] = {}
+
+    def walk(x: Any) -> Any:
+        if isinstance(x, str) and _UUID.fullmatch(x):
+            return ids.setdefault(x.lower(), f"u{len(ids)}")
+        if isinstance(x, dict):
+            return {k: walk(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [walk(v) for v in x]
+        return x
+
+    return [walk(c) for c in commands]
+
+
 def _scene_entry(command: Any) -> str:
     """One meshcat command as the page's ``RK_SCENE`` holds it (JavaScript text): base64 msgpack (a
     string; binary mesh data stays binary), or the command itself as JSON when it holds no binary data
@@ -603,12 +625,11 @@ def _asset(name: str) -> str:
 
 
 def _script(name: str) -> str:
-    """One of robokit's own scripts as the page inlines it: without its whole-line ``//`` comments
-    and indentation (a quarter of the text; the files in ``robokit/viz`` are the readable source).
-    Lines are kept as they are otherwise (no joining: JavaScript's line breaks keep their meaning);
-    the scripts hold no multi-line string."""
-    lines = (line.strip() for line in _asset(name).splitlines())
-    return "\n".join(line for line in lines if line and not line.startswith("//"))
+    """One of robokit's own scripts as the page inlines it, minified by ``rjsmin`` (comments and
+    layout removed; strings, regular expressions and the meaning of line breaks kept); the files in
+    ``robokit/viz`` are the readable source."""
+    rjsmin = require("rjsmin", "the teach pendant")
+    return str(rjsmin.jsmin(_asset(name)))
 
 
 def _meshcat_bundle() -> str:
@@ -700,7 +721,7 @@ def teach_html(model: Robot | DHTable | str | os.PathLike[str], q: ArrayLike | N
         world = World(robot, obstacles, padding=padding)
     d = teach_data(robot, q, world=world)
     commands = d.pop("_commands")
-    scene = "[" + ",".join(_scene_entry(c) for c in commands) + "]"
+    scene = "[" + ",".join(_scene_entry(c) for c in _short_uuids(commands)) + "]"
     title = _html.escape(f"robokit teach — {robot.name}")
     module = (  # base64 holds no character that could end the element
         f"<script id=\"rk-wasm\" type=\"application/octet-stream\">{base64.b64encode(bytes(wasm)).decode('ascii')}"
@@ -765,7 +786,59 @@ def _collision_html(c: dict) -> str:
             f"({pair(c['closest'])})</div>")
 
 
-def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None) -> Any:
+#: The notebook pendant's drag view (an anywidget front end): the teach page, with the robot's
+#: module, in a frame; the q it posts ({rk: "teach-q"}) goes to the widget's ``q`` and from there
+#: to Python, and a ``q`` set in Python is posted into the page ({rk: "teach-set-q"}).
+_DRAG_ESM = """
+export default {
+  render({ model, el }) {
+    const frame = document.createElement("iframe");
+    frame.style.cssText = "width:100%;border:0;height:" + model.get("height") + "px";
+    frame.srcdoc = model.get("page");
+    let last = JSON.stringify(model.get("q"));
+    const fromPage = (ev) => {
+      if (ev.source !== frame.contentWindow || !ev.data || ev.data.rk !== "teach-q") { return; }
+      const text = JSON.stringify(ev.data.q);
+      if (text === last) { return; }
+      last = text;
+      model.set("q", ev.data.q);
+      model.save_changes();
+    };
+    const fromPython = () => {
+      const text = JSON.stringify(model.get("q"));
+      if (text === last || !frame.contentWindow) { return; }
+      last = text;
+      frame.contentWindow.postMessage({ rk: "teach-set-q", q: model.get("q") }, "*");
+    };
+    window.addEventListener("message", fromPage);
+    model.on("change:q", fromPython);
+    el.appendChild(frame);
+    return () => { window.removeEventListener("message", fromPage); model.off("change:q", fromPython); };
+  }
+};
+"""
+_DRAG_VIEW: Any = None
+
+
+def _drag_view(page: str, q: list[float], height: int) -> Any:
+    """The drag view widget (anywidget) showing ``page`` at joint values ``q``."""
+    global _DRAG_VIEW
+    if _DRAG_VIEW is None:
+        anywidget = require("anywidget", "dragging the tool in the notebook pendant")
+        import traitlets
+
+        class DragView(anywidget.AnyWidget):  # type: ignore[name-defined]
+            _esm = _DRAG_ESM
+            page = traitlets.Unicode("").tag(sync=True)
+            q = traitlets.List(traitlets.Float()).tag(sync=True)
+            height = traitlets.Int(560).tag(sync=True)
+
+        _DRAG_VIEW = DragView
+    return _DRAG_VIEW(page=page, q=q, height=height)
+
+
+def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, world: Any = None,
+                 wasm: bytes | None = None) -> Any:
     """A notebook teach pendant on a :class:`robokit.viz.Scene`.
 
     ipywidgets sliders (degrees for revolute joints, metres for prismatic ones), named-pose
@@ -775,6 +848,13 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
     Python computes the collision state with the World (:func:`robokit.viz.clearance.clearance`):
     the visuals of links in contact turn red and the readout shows the minimum distance (m)
     and the nearest (or colliding) pair.
+
+    Dragging the tool needs the robot's module (``wasm``) and anywidget (the ``notebooks``
+    extra): the pendant then shows the teach page of :func:`teach_html` above the readouts, its
+    gizmo, ghost arms and IK running in the browser on the module, and every q the page reaches
+    moves the sliders, the live scene and the Python readouts (and ``set_q`` moves the page).
+    Without them the pendant says once, above the readouts, what to pass or install: the live
+    view above is drawn by the Python meshcat server, which sends no pointer events back.
 
     Parameters
     ----------
@@ -786,13 +866,19 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         Height of the 3-D view (px).
     world : robokit.collision.World, optional
         The scene's robot among obstacles (its ``robot`` must be the scene's).
+    wasm : bytes, optional
+        The robot's generated C compiled to WebAssembly
+        (``robokit.codegen.wasm.wasm_module(scene.robot).wasm``): with it, and anywidget
+        installed, the pendant gets the teach page's drag.
 
     Returns
     -------
     ipywidgets.VBox
         With ``.set_q(q)`` (all joints at once, rad/m), ``.readouts`` (the latest
         :func:`teach_readouts` dict), ``.collision`` (the latest ``clearance`` dict, or
-        None without a world) and ``.painted`` (names of the visuals drawn red).
+        None without a world), ``.painted`` (names of the visuals drawn red), ``.drag`` (the
+        drag view, an anywidget with the page's ``q``, or None) and ``.drag_note`` (the
+        sentence shown when there is no drag view, else "").
 
     Examples
     --------
@@ -848,7 +934,30 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         painted.update(hit)
         box.painted = sorted(visuals[i].name for i in hit)
 
+    # the drag view: the teach page with the module, in the browser (see the docstring)
+    drag = None
+    box.drag_note = ""
+    if wasm is None:
+        box.drag_note = ("Dragging the tool: the view above is drawn by Python's meshcat server, which sends no "
+                         "pointer events back; the drag runs in the teach page, on the robot's C compiled to "
+                         "WebAssembly. Pass wasm=robokit.codegen.wasm.wasm_module(scene.robot).wasm to "
+                         "scene.teach() to have it here, or write the page with robokit teach MODEL.")
+    elif not available("anywidget"):
+        box.drag_note = ("Dragging the tool needs anywidget to run the teach page here: "
+                         "pip install 'robokit[notebooks]'. Or write the page with robokit teach MODEL.")
+    else:
+        page = teach_html(robot, q_start, obstacles=None if world is None else list(world.obstacles),
+                          padding=0.0 if world is None else float(world.padding), wasm=wasm)
+        drag = _drag_view(page, [float(v) for v in q_start], int(height) + 240)
+    box.drag = drag
+
     def redraw(qv: np.ndarray) -> None:
+        if drag is not None:  # the page follows the pendant (not an event back to it)
+            busy, state["busy"] = state["busy"], True
+            try:
+                drag.q = [float(v) for v in qv]
+            finally:
+                state["busy"] = busy
         if world is not None:
             from robokit.viz.clearance import clearance
 
@@ -873,6 +982,13 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
             state["busy"] = False
         redraw(qc)
 
+    def on_drag(change: Any) -> None:  # a q from the page (a drag, a ghost clicked, its sliders)
+        qv = np.asarray(change["new"], dtype=float)
+        if not state["busy"] and qv.shape == (robot.n,) and np.isfinite(qv).all():
+            set_q(qv)
+
+    if drag is not None:
+        drag.observe(on_drag, names="q")
     for s in sliders:
         s.observe(on_change, names="value")
     buttons = []
@@ -880,7 +996,9 @@ def teach_widget(scene: Any, q: ArrayLike | None = None, height: int = 420, worl
         b = W.Button(description=name, layout=W.Layout(width="auto"))
         b.on_click(lambda _b, p=pose: set_q(p))
         buttons.append(b)
-    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), out]
+    extra = [drag] if drag is not None else [W.HTML(f"<div style='font:12px sans-serif;color:#667'>"
+                                                     f"{_html.escape(box.drag_note)}</div>")]
+    box.children = [W.HBox(buttons), W.HBox([W.VBox(sliders), view]), *extra, out]  # the readouts stay last
     box.set_q = set_q
     redraw(q_start)
     return box
