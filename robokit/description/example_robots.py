@@ -81,7 +81,7 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
                      "to the world")
     try:
         with _quiet():
-            built = _built_from_urdf(loader) if getattr(loader, "urdf_filename", "") else None
+            built = _built_from_urdf(loader, notes) if getattr(loader, "urdf_filename", "") else None
             if built is None:  # an SDFormat robot: example-robot-data's loader (Pinocchio's SDF parser)
                 wrapper = type(loader.__name__, (loader,), {"free_flyer": False})().robot
                 built = (wrapper.model, wrapper.visual_model, wrapper.collision_model, getattr(wrapper, "q0", None))
@@ -128,12 +128,15 @@ def load_example_robot(name: str, tip: str | None = None) -> Robot:
                        spec, notes, names=names)
 
 
-def _built_from_urdf(loader: Any) -> tuple[Any, Any, Any, Any]:
+def _built_from_urdf(loader: Any, notes: list[str] | None = None) -> tuple[Any, Any, Any, Any]:
     """An example-robot-data URDF robot built as every URDF robot is (read and checked by
     :func:`~robokit.description.urdf_check.read_urdf`, built by the one model builder), with what
     example-robot-data's loader adds from the robot's SRDF: the reference posture ``q0``, the
     rotor parameters (``armature`` = rotor inertia · gear ratio²) and the collision pairs the SRDF
-    does not disable. Returns (model, visual, collision, q0 or None)."""
+    does not disable. An inertia tensor that is not positive semi-definite (example-robot-data's
+    TIAGo antenna links), which a URDF file robokit is given is refused for, is built as the
+    package's own loader builds it and said in ``notes``. Returns (model, visual, collision, q0 or
+    None)."""
     from os.path import join
 
     import example_robot_data as erd
@@ -146,7 +149,10 @@ def _built_from_urdf(loader: Any) -> tuple[Any, Any, Any, Any]:
     rel = join(loader.path, loader.urdf_subpath, loader.urdf_filename)
     root = loader.model_path or erd.robots_loader.getModelPath(rel)
     path = join(root, rel)
-    doc = read_urdf(path, package_dirs=[join(root, "../..")])
+    unphysical: list[str] = []
+    doc = read_urdf(path, package_dirs=[join(root, "../..")], unphysical_inertias=unphysical)
+    if notes is not None:
+        notes.extend(unphysical)
     model, visual, collision, _ = build_model(description_from_urdf(doc.xml, path))
     q0 = None
     if loader.srdf_filename:

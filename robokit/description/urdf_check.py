@@ -213,7 +213,8 @@ def _is_package(root: Path, pkg: str) -> bool:
 
 
 def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-              allow_outside_meshes: bool = False, text: str | None = None) -> UrdfDocument:
+              allow_outside_meshes: bool = False, text: str | None = None,
+              unphysical_inertias: list[str] | None = None) -> UrdfDocument:
     """Read and check a URDF file (see the module docstring for what is checked).
 
     Parameters
@@ -227,6 +228,10 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
     text : str or None, optional
         The URDF's text when it does not come from ``path`` itself (a xacro expansion);
         ``path`` then only names it and anchors relative mesh paths.
+    unphysical_inertias : list of str, optional
+        When given, an inertia tensor that is not positive semi-definite is described in this list
+        (one line each) instead of refused: for curated collections robokit loads by name, whose
+        files Pinocchio's parser has always accepted (example-robot-data's TIAGo antenna links).
 
     Returns
     -------
@@ -247,11 +252,11 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
             raise InputError(f"{path}: expanded URDF too large ({len(raw)} bytes; at most {MAX_URDF_BYTES})")
     else:
         raw = read_input_text(path, MAX_URDF_BYTES, "a URDF file").encode("utf-8")
-    return _check(path, raw, package_dirs, allow_outside_meshes)
+    return _check(path, raw, package_dirs, allow_outside_meshes, unphysical_inertias)
 
 
 def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
-           allow_outside_meshes: bool) -> UrdfDocument:
+           allow_outside_meshes: bool, unphysical_inertias: list[str] | None = None) -> UrdfDocument:
     root = parse_xml(raw, path)  # bounded: no DTD/entities, depth and element count capped
     if root.tag != "robot":
         _fail(path, f"expected a <robot> root element, got <{root.tag}>")
@@ -286,8 +291,11 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
             I = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
             ev = np.linalg.eigvalsh(I)
             if ev.min() < -1e-9 * max(1.0, float(abs(ev).max())):
-                _fail(path, f"{where}: inertia tensor is not positive semi-definite "
-                            f"(eigenvalues {', '.join(f'{v:.3g}' for v in ev)})")
+                problem = (f"{where}: inertia tensor is not positive semi-definite "
+                           f"(eigenvalues {', '.join(f'{v:.3g}' for v in ev)})")
+                if unphysical_inertias is None:
+                    _fail(path, problem)
+                unphysical_inertias.append(f"{path}: {problem}")
         origin = inertial.find("origin")
         if origin is not None:
             for key in ("xyz", "rpy"):
