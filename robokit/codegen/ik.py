@@ -47,7 +47,12 @@ __all__ = ["IKCode", "emit_ik", "MAX_SOLUTIONS"]
 
 #: Most distinct solutions any of the closed forms returns (4 positions × 2 wrists).
 MAX_SOLUTIONS = 8
-_RAW = 16  # rows before de-duplication (bounded by 8; twice that for safety)
+#: Rows before de-duplication: at most 8 in every case, kept in the caller's ``q`` (8 rows). Pieper:
+#: at most 4 joint-3 values (the quartic's roots; or, degree-deficient, its roots and θ₃ = π), 1
+#: joint-2 candidate each for a quartic case, at most 2 joint-3 values × 2 candidates for a
+#: quadratic case; 2 wrists each. Three parallel axes: 2 × 2 × 2. (The guard ``nr < _RAW`` only
+#: keeps the writes inside ``q``.)
+_RAW = MAX_SOLUTIONS
 
 
 @dataclass
@@ -632,7 +637,7 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
 /* every closed-form solution (Lecture 5), see {P}.h */
 int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
 {{
-    double rows[{_RAW}][6];
+    double (*rows)[6] = (double (*)[6])q;  /* in place: {P}_finish reads row r before it writes row <= r */
     int lab[{_RAW}], deg[{_RAW}];
     int nr = 0, ir, jr;
     const double ref = {wref};

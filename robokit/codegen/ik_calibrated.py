@@ -87,6 +87,12 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     R = lit(float(c["reach"]))
     fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
     src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
+/* not inlined (gcc, clang): the frames of the search's helpers do not add up along {P}_ik_ex's call path */
+#if defined(__GNUC__)
+#define {P}_CAL_NOINLINE __attribute__((noinline))
+#else
+#define {P}_CAL_NOINLINE
+#endif
 /* the first-order spatial pose error of T against Td: w = vee(A - A^T)/2 with A = Rd R^T, v = dp - w x p;
    *rot = |w| (2 - |w| beyond pi/2), *pos = |dp|; returns (rot^2 + pos^2)/2 */
 static double {P}_cal_error(const double T[16], const double Td[16], double F[6], double *rot, double *pos)
@@ -122,11 +128,11 @@ static double {P}_cal_error(const double T[16], const double Td[16], double F[6]
 }}
 
 {fkj}
-/* x = J^-1 F (6 x 6) by Gaussian elimination with partial pivoting; 0 when a pivot is below 1e-12 of
-   the largest entry */
-static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6])
+/* x = J^-1 F (6 x 6) by Gaussian elimination with partial pivoting, on A (the caller's scratch, J
+   copied); 0 when a pivot is below 1e-12 of the largest entry */
+static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6], double A[36])
 {{
-    double A[36], big = 0.0, small;
+    double big = 0.0, small;
     int r, cc, kk, p;
     for (r = 0; r < 36; ++r) {{
         A[r] = J[r];
@@ -182,10 +188,11 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
     return 1;
 }}
 
-/* x = H^-1 b by Cholesky (H symmetric 6 x 6); 0 when H is not positive definite */
-static int {P}_cal_cholesky(const double H[36], const double b[6], double x[6])
+/* x = H^-1 b by Cholesky (H symmetric 6 x 6), in place: H's lower triangle becomes L (its upper
+   triangle is not read); x may be b; 0 when H is not positive definite */
+static int {P}_cal_cholesky(double H[36], const double b[6], double x[6])
 {{
-    double L[36];
+    double *const L = H;
     int i, j, kk;
     for (j = 0; j < 6; ++j) {{
         double s = H[6 * j + j], d;
@@ -224,9 +231,14 @@ static int {P}_cal_cholesky(const double H[36], const double b[6], double x[6])
 
 /* Newton's method (Levenberg-Marquardt where a Newton step fails) on the pose error, q updated in place;
    the sines and cosines computed once, then carried through the steps ({P}_cal_advance) */
-static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
+static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
 {{
-    double T[16], J[36], F[6], sc[12], Tt[16], Jt[36], Ft[6], sct[12], step[6], trial[6];
+    /* for a small stack, one scratch buffer: while a step is computed, the eliminated copy of J or the
+       normal matrix H; while it is tried, the trial pose T, its sines and cosines sct, its error Ft and
+       the trial point. The trial's Jacobian is written over J, which is recomputed from (q, sc), the
+       same numbers, when the step is refused. */
+    double J[36], F[6], sc[12], step[6], buf[40];
+    double *const T = buf, *const sct = buf + 16, *const Ft = buf + 28, *const trial = buf + 34, *const H = buf;
     double err, lam = 0.0, rt, pt;
     int it, i, j, r;
     for (i = 0; i < 6; ++i) {{
@@ -242,10 +254,10 @@ static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, doub
             break;
         }}
         if (lam == 0.0) {{
-            solved = {P}_cal_newton_step(J, F, step);
+            solved = {P}_cal_newton_step(J, F, step, buf);
         }}
         if (!solved) {{
-            double H[36], g[6], big = 0.0;
+            double *const g = step, big = 0.0;  /* the Cholesky solve overwrites g with the step */
             if (lam == 0.0) {{
                 lam = 1e-9;
             }}
@@ -289,15 +301,16 @@ static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, doub
             trial[i] = q[i] + step[i];
         }}
         {P}_cal_advance(sc, step, sct);
-        {P}_cal_fkj(trial, sct, Tt, Jt);
-        e2 = {P}_cal_error(Tt, Td, Ft, &rt, &pt);
+        {P}_cal_fkj(trial, sct, T, J);
+        e2 = {P}_cal_error(T, Td, Ft, &rt, &pt);
         if (e2 < err) {{
             for (i = 0; i < 6; ++i) {{
                 q[i] = trial[i];
                 F[i] = Ft[i];
             }}
-            memcpy(sc, sct, sizeof sc);
-            memcpy(J, Jt, sizeof J);
+            for (i = 0; i < 12; ++i) {{
+                sc[i] = sct[i];
+            }}
             err = e2;
             *rot = rt;
             *pos = pt;
@@ -309,13 +322,14 @@ static void {P}_cal_polish(const double Td[16], double q[6], int max_steps, doub
             if (lam > 1e3) {{
                 break;
             }}
+            {P}_cal_fkj(q, sc, T, J);  /* J at q again */
         }}
     }}
 }}
 
 /* the joint direction along which the Jacobian at q is closest to singular: inverse iteration on
    Jt^T Jt + 1e-12 I, Jt the space Jacobian with its velocity rows divided by the reach */
-static double {P}_cal_null_direction(const double q[6], double v[6])
+static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double v[6])
 {{
     double J[36], H[36], x[6];
     double *const T = H, *const sc = H + 16;  /* scratch in H until it is built */
@@ -342,7 +356,10 @@ static double {P}_cal_null_direction(const double q[6], double v[6])
     }}
     for (it = 0; it < 4; ++it) {{
         double norm = 0.0;
-        if (!{P}_cal_cholesky(H, v, x)) {{
+        for (i = 0; i < 36; ++i) {{
+            J[i] = H[i];  /* J is free now: the factor of H, in place */
+        }}
+        if (!{P}_cal_cholesky(J, v, x)) {{
             return 0.0;
         }}
         for (i = 0; i < 6; ++i) {{
@@ -390,11 +407,11 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
 {{
     static const double relax[] = {{{relax}}};
     static const double steps[] = {{{steps}}};
-    /* called through a volatile pointer: not inlined, so its frame is not added to this function's */
-    double (*volatile null_direction)(const double *, double *) = {P}_cal_null_direction;
-    double nq[{max_rows} * 6], qq[6], q2[6], v[6];
+    double nq[{max_rows} * 6], qq[6], q2[6];
     double (*rows)[6] = (double (*)[6])q;
-    int lab[{max_rows}], deg[{max_rows}], ninfo[4 * 8];
+    double *const v = q2;  /* the near-singular direction, once q2 is no longer needed */
+    int labdeg[2 * {max_rows}];  /* first the closed form's info (4 per row), then lab and deg */
+    int *const lab = labdeg, *const deg = labdeg + {max_rows}, *const ninfo = labdeg;
     signed char nlab[{max_rows}], ndeg[{max_rows}], seed_lab[{max_rows}];
     int m, m0, me, r, j, kk, f, ns = 0, nseed = 0;
     m = {P}_nominal_ik_ex(T, wrist_ref, nq, ninfo);
@@ -404,7 +421,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     }}
     if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
-            double Tr[16];
+            double *const Tr = q;  /* q holds no solution yet: the relaxed pose */
             const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
                          uz = T[11] - {lit(float(sh[2]))};
             const double dist = sqrt(ux * ux + uy * uy + uz * uz);
@@ -494,7 +511,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
         double big = 0.0;
         int st;
-        if (null_direction(&nq[6 * kk], v) > {lit(float(c["sigma_explore"]))}) {{
+        if ({P}_cal_null_direction(&nq[6 * kk], v) > {lit(float(c["sigma_explore"]))}) {{
             continue;  /* not near a singular configuration */
         }}
         for (j = 0; j < 6; ++j) {{
