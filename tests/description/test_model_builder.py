@@ -172,7 +172,7 @@ def test_missing_mesh_is_left_out_with_a_note(tmp_path):
 
 @pytest.mark.parametrize("desc,message", [
     (Description("x", (Link("a"), Link("a"))), "defined twice"),
-    (Description("x", (Link("a"), Link("b")), (Joint("j", "ball", "a", "b"),)), "'ball' joint"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "screw", "a", "b"),)), "'screw' joint"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "c"),)), "not defined"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "b", lower=1, upper=0),)), "above"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "prismatic", "a", "b", axis=(0, 0, 0)),)), "zero"),

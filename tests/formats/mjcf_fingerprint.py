@@ -88,7 +88,7 @@ def _geoms(gm: Any) -> list:
         return []
     return [{"name": go.name, "joint": int(go.parentJoint), "frame": int(go.parentFrame),
              "placement": _r(go.placement.homogeneous[:3]), "shape": _shape(go.geometry),
-             "meshPath": Path(go.meshPath).name if go.meshPath not in ("", "BOX", "SPHERE", "CYLINDER", "CAPSULE")
+             "meshPath": Path(go.meshPath).name if go.meshPath not in ("", "BOX", "SPHERE", "CYLINDER", "CAPSULE", "ELLIPSOID")
              else "", "meshScale": _r(go.meshScale), "meshColor": _r(go.meshColor),
              "overrideMaterial": bool(go.overrideMaterial)} for go in gm.geometryObjects]
 
