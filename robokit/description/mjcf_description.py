@@ -10,7 +10,9 @@ as MuJoCo lays the model out:
   so the model has no ``FIXED_JOINT`` frame for it), the top body, if jointless, a root link at
   its pose in the world;
 * each joint is a Pinocchio joint (``hinge`` revolute, ``slide`` prismatic, ``ball`` spherical,
-  ``free`` floating) with a ``JOINT`` frame, composed as MuJoCo composes a body's joints
+  ``free`` floating, whose value is the body's pose in the world, as in MuJoCo: the body's
+  ``pos``/``quat`` are only MuJoCo's initial ``qpos``) with a ``JOINT`` frame, composed as MuJoCo
+  composes a body's joints
   j₁ … jₖ placed at ``pos``/``quat`` in its parent,
 
       body(q) = parent · X_body · ∏ₖ T(pₖ) · Mₖ(qₖ − refₖ) · T(−pₖ)
@@ -89,6 +91,8 @@ def _joints(b: MjcfBody, parent: str | None, armature: bool) -> tuple[list[Link]
 
     links: list[Link] = []
     joints: list[Joint] = []
+    if b.joints[0].type == "free":  # MuJoCo sets a free body's pose to its qpos: pos, quat and anchor unused
+        return [], [Joint(b.joints[0].name, "floating", parent, b.name)]
     place = _se3(b.pos, b.quat) * _shift(b.joints[0].pos)
     for k, j in enumerate(b.joints):
         last = k + 1 == len(b.joints)

@@ -78,7 +78,7 @@ def _shape(g: Any) -> dict:
             out[attr] = _r(getattr(g, attr))
     if hasattr(g, "num_vertices"):
         out["num_vertices"], out["num_tris"] = int(g.num_vertices), int(g.num_tris)
-        v = np.array([np.asarray(g.vertices(i)) for i in range(g.num_vertices)])
+        v = np.asarray(g.vertices())
         out["vertex_sum"] = _r(v.sum(axis=0)) if len(v) else [0.0, 0.0, 0.0]
     return out
 
