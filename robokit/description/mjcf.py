@@ -320,7 +320,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     >>> robot.n, robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
     (2, [1.0, 0.8, 0.0])
     """
-    from robokit.description.mjcf_description import mjcf_parts
+    from robokit.description.mjcf_description import _mjcf_parts
     from robokit.description.mjcf_safety import check_mjcf
     from robokit.description.model_builder import build_model
 
@@ -344,7 +344,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     exact = _custom_inertials(root, path)
     if exact:
         c = _with_exact_inertials(c, exact, path)
-    desc, masks, skipped = mjcf_parts(c, first, armature=armature)
+    desc, masks, skipped = _mjcf_parts(c, first, armature=armature)
     model, visual, collision, _ = build_model(desc)  # no mesh files read: the compiler read them
     name = c.name
     if skipped:

@@ -154,7 +154,7 @@ def _geometries(g: MjcfGeom, body: str) -> list[Geometry]:
     return out
 
 
-def mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True) -> tuple[Description, GeomMasks, list[str]]:
+def _mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True) -> tuple[Description, GeomMasks, list[str]]:
     """:func:`description_from_mjcf`, the collision masks and the geoms left out (``"name (type)"``)."""
     links: list[Link] = []
     joints: list[Joint] = []
@@ -224,4 +224,4 @@ def description_from_mjcf(c: CompiledMjcf, first: int, armature: bool = True) ->
     >>> [f.name for f in build_model(desc)[0].frames]
     ['universe', 'j1', 'j2', 'a', 'tip']
     """
-    return mjcf_parts(c, first, armature)[0]
+    return _mjcf_parts(c, first, armature)[0]
