@@ -784,7 +784,8 @@ def _geometry_models(model: Any, geometries: Iterable[Geometry], body_fid: dict[
         frame = model.frames[fid]
         color = _DEFAULT_COLOR if geom.color is None else np.asarray(geom.color, dtype=float)
         scale = np.asarray(geom.scale if geom.kind in ("mesh", "trimesh") else (1.0, 1.0, 1.0), dtype=float)
-        go = pin.GeometryObject(geom.name or f"{geom.link}_{k}", frame.parentJoint, fid, frame.placement * _se3(geom.placement),
-                                shape, mesh_path, scale, geom.color is not None, color)
+        go = pin.GeometryObject(geom.name or f"{geom.link}_{k}", frame.parentJoint, fid,
+                                frame.placement * _se3(geom.placement), shape, mesh_path, scale, geom.color is not None,
+                                color)
         out[geom.collision].addGeometryObject(go)
     return out[False], out[True], notes

@@ -83,13 +83,16 @@ def _shape(g: Any) -> dict:
     return out
 
 
+#: Pinocchio's meshPath of a primitive (no file), fingerprinted as ""
+_PRIMITIVES = ("", "BOX", "SPHERE", "CYLINDER", "CAPSULE", "ELLIPSOID")
+
+
 def _geoms(gm: Any) -> list:
     if gm is None:
         return []
     return [{"name": go.name, "joint": int(go.parentJoint), "frame": int(go.parentFrame),
              "placement": _r(go.placement.homogeneous[:3]), "shape": _shape(go.geometry),
-             "meshPath": Path(go.meshPath).name if go.meshPath not in ("", "BOX", "SPHERE", "CYLINDER", "CAPSULE", "ELLIPSOID")
-             else "", "meshScale": _r(go.meshScale), "meshColor": _r(go.meshColor),
+             "meshPath": "" if go.meshPath in _PRIMITIVES else Path(go.meshPath).name, "meshScale": _r(go.meshScale), "meshColor": _r(go.meshColor),
              "overrideMaterial": bool(go.overrideMaterial)} for go in gm.geometryObjects]
 
 

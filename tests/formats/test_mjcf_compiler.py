@@ -217,15 +217,9 @@ def test_default_classes_childclass_and_frames(tmp_path):
 
 
 def test_several_joints_per_body_with_anchors_and_ref(tmp_path):
-    xml = """<mujoco model="multi"><worldbody><body name="a" pos="0 0 0.1">
-      <joint name="x" type="slide" axis="1 0 0" ref="0.05" range="-0.2 0.3"/>
-      <joint name="y" type="slide" axis="0 1 0.3"/>
-      <joint name="rz" axis="0 0 1" pos="0.05 0 0" ref="20"/>
-      <geom type="box" size="0.05 0.04 0.03" pos="0.1 0 0"/>
-      <body name="b" pos="0.2 0 0"><joint name="h1" axis="0 1 0" pos="0 0 0.02" ref="-15" damping="0.5"/>
-        <joint name="h2" axis="1 0 0" pos="0.01 0.02 0" armature="0.1"/>
-        <geom type="capsule" fromto="0 0 0 0.2 0 0" size="0.02"/><site name="tip" pos="0.2 0 0"/></body>
-    </body></worldbody></mujoco>"""
+    from tests.formats.mjcf_fingerprint import INLINE
+
+    xml = INLINE["multi"]  # also in the builder's fingerprint corpus
     path = _write(tmp_path, "multi.xml", xml)
     robot = robokit.load(path)
     assert robot.joint_names == ("x", "y", "rz", "h1", "h2")
