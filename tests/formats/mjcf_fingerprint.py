@@ -22,6 +22,18 @@ import numpy as np
 
 OUT = Path(__file__).resolve().parents[1] / "data" / "mjcf_fingerprints.json"
 
+#: Three links; links 2 and 3 sit 0.15 m above link 1, a sphere hangs from link 3's end down to link 1's
+#: height (class ``ghost_class``: masks 2/2, or the default 1/1).
+CONTACT_ARM = """<mujoco model="contacts"><compiler angle="radian"/><default><geom contype="1" conaffinity="1"/>
+  <default class="ghost"><geom contype="2" conaffinity="2"/></default></default><worldbody>
+  <body name="l1"><joint name="j1" axis="0 0 1"/><geom name="g1" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+    <body name="l2" pos="0.3 0 0.15"><joint name="j2" axis="0 0 1"/>
+      <geom name="g2" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+      <body name="l3" pos="0.3 0 0"><joint name="j3" axis="0 0 1"/>
+        <geom name="g3" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+        <geom name="ball" class="{ghost_class}" type="sphere" pos="0.3 0 -0.15" size="0.05"/>
+        <site name="tip" pos="0.3 0 0"/></body></body></body></worldbody></mujoco>"""
+
 #: Inline MJCF robots: each exercises a part of the construction (several joints per body with
 #: anchors and ref, jointless bodies, sites, frames, primitives, meshes, contact masks, groups).
 INLINE = {
@@ -48,15 +60,7 @@ INLINE = {
                   <geom type="box" size="0.02 0.03 0.04" mass="0.4"/><site name="tool" pos="0.1 0 0"/>
                 </body></body></body></body></body></body>
       <body name="other" pos="1 0 0"><geom type="sphere" size="0.1"/></body></worldbody></mujoco>""",
-    "contacts": """<mujoco model="contacts"><compiler angle="radian"/><default><geom contype="1" conaffinity="1"/>
-      <default class="ghost"><geom contype="2" conaffinity="2"/></default></default><worldbody>
-      <body name="l1"><joint name="j1" axis="0 0 1"/><geom name="g1" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-        <body name="l2" pos="0.3 0 0.15"><joint name="j2" axis="0 0 1"/>
-          <geom name="g2" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-          <body name="l3" pos="0.3 0 0"><joint name="j3" axis="0 0 1"/>
-            <geom name="g3" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-            <geom name="ball" class="ghost" type="sphere" pos="0.3 0 -0.15" size="0.05"/>
-            <site name="tip" pos="0.3 0 0"/></body></body></body></worldbody></mujoco>""",
+    "contacts": CONTACT_ARM.format(ghost_class="ghost"),
 }
 
 #: The fixed-base MJCF arms of pybullet_data.
