@@ -245,9 +245,9 @@ class Link:
         Its mass properties; None: massless.
     frame : bool
         Whether it is a ``BODY`` frame of the model (default). False: an intermediate link between
-        two joints of one body (MJCF's several joints per body), massless, with no frame, no
-        geometry and no :class:`FrameSpec` of its own; the next joint hangs on the previous one's
-        ``JOINT`` frame.
+        two joints of one body (MJCF's several joints per body), with no frame, no geometry and no
+        :class:`FrameSpec` of its own (an inertial, if given, is appended to its joint); the next
+        joint hangs on the previous one's ``JOINT`` frame.
 
     Examples
     --------
@@ -595,11 +595,9 @@ def _add_fixed(model: Any, joint: Joint, parent: _Where, inertia: Any, body: boo
     if joint.frame:
         fid = model.addFrame(pin.Frame(joint.name, parent.joint, parent.frame, placement, pin.FrameType.FIXED_JOINT,
                                        inertia))
-        placement = placement * _se3(joint.child_placement)
-    else:
-        placement = placement * _se3(joint.child_placement)
-        if not inertia.isZero(0.0):
-            model.appendBodyToJoint(parent.joint, inertia, placement)
+    placement = placement * _se3(joint.child_placement)
+    if not joint.frame and not inertia.isZero(0.0):
+        model.appendBodyToJoint(parent.joint, inertia, placement)
     if body:
         fid = model.addBodyFrame(joint.child, parent.joint, placement, fid)
     return _Where(parent.joint, placement, fid)
