@@ -320,8 +320,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     >>> robot.n, robot.frame_pose([0.0, np.pi / 2])[:3, 3].round(4).tolist()
     (2, [1.0, 0.8, 0.0])
     """
-    from robokit.description._mjcf_model import build_model
+    from robokit.description.mjcf_description import _mjcf_parts
     from robokit.description.mjcf_safety import check_mjcf
+    from robokit.description.model_builder import build_model
 
     path = Path(path)
     if not path.exists():  # a FIFO or device is refused by the bounded reader
@@ -343,10 +344,11 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     exact = _custom_inertials(root, path)
     if exact:
         c = _with_exact_inertials(c, exact, path)
-    built = build_model(c, first, armature=bool(armature))
+    desc, masks, skipped = _mjcf_parts(c, first, armature=armature)
+    model, visual, collision, _ = build_model(desc)  # no mesh files read: the compiler read them
     name = c.name
-    if built.skipped:
-        notes.append(f"{path}: geoms without a shape robokit draws or collides ignored: {', '.join(built.skipped)}")
+    if skipped:
+        notes.append(f"{path}: geoms without a shape robokit draws or collides ignored: {', '.join(skipped)}")
     chain_arm = [(j.name, j.armature) for k in c.subtree(first) for j in c.bodies[k].joints if j.armature]
     if chain_arm and armature:
         shown = ", ".join(f"{n} {a:g}" for n, a in chain_arm[:8]) + (", ..." if len(chain_arm) > 8 else "")
@@ -354,8 +356,8 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
                      f"inverse dynamics, as MuJoCo adds it ({shown}); load(..., reflected_inertia=False) or --no-reflected-inertia leaves it out")
     spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes,
                      reflected_inertia=armature)
-    tip = tip or _default_tip(built.model)
-    geoms = [built.visual if built.visual.ngeoms else None, built.collision if built.collision.ngeoms else None]
-    robot = build_robot(name, built.model, tip, geoms, {}, spec, notes)
-    robot._amend(contact_rules=_contact_rules(c, root, built.masks))
+    tip = tip or _default_tip(model)
+    geoms = [visual if visual.ngeoms else None, collision if collision.ngeoms else None]
+    robot = build_robot(name, model, tip, geoms, {}, spec, notes)
+    robot._amend(contact_rules=_contact_rules(c, root, masks))
     return robot

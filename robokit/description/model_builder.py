@@ -16,8 +16,17 @@ Pinocchio's URDF parser lays a model out:
   link's inertia added to the joint's when it is not zero);
 * a **fixed joint** is a ``FIXED_JOINT`` frame of its name (carrying the child's inertia, which
   Pinocchio adds to the parent joint's) and a ``BODY`` frame of the child link;
-* **extra frames** (:class:`FrameSpec`: an SDFormat ``<frame>``) are ``OP_FRAME`` frames;
+* **extra frames** (:class:`FrameSpec`: an SDFormat ``<frame>``, an MJCF ``<site>``) are ``OP_FRAME``
+  frames, after the whole tree or (:attr:`Description.frames_with_links`) each after its link's
+  ``BODY`` frame;
 * children are added depth first, in the order the joints are given.
+
+MJCF's layout, where MuJoCo gives a body several joints or none, is two options of the same calls:
+a **frame-less link** (:attr:`Link.frame` False) between two joints of one body has no ``BODY``
+frame (the next joint's ``JOINT`` frame hangs on the previous one's), and a **frame-less fixed
+joint** (:attr:`Joint.frame` False, a welded body) has no ``FIXED_JOINT`` frame (the child's
+``BODY`` frame hangs on the parent's, its inertia appended to the parent joint). A **ball** joint
+is ``JointModelSpherical`` (its quaternion bounded by ±1.01, otherwise unlimited).
 
 Joint models, as the URDF parser picks them: an axis along +x, +y or +z (after normalising) is
 ``JointModelRX``/``RY``/``RZ`` (``PX``/``PY``/``PZ``), any other axis ``RevoluteUnaligned``
@@ -36,8 +45,9 @@ inertia :attr:`Joint.armature` in ``model.armature``, which Pinocchio's ``crba``
 Geometry (:class:`Geometry`) becomes ``GeometryObject``\ s named ``<link>_<k>`` (k counting the
 link's visual or collision shapes from 0, the URDF parser's names), link by link in the model's
 order (depth first, as the URDF parser walks the tree) on the link's joint and body
-frame; box, cylinder, sphere and capsule are coal primitives, a mesh is loaded by coal's mesh
-loader (a file that cannot be read is left out, with a note).
+frame (or named :attr:`Geometry.name`); box, cylinder, sphere, capsule and ellipsoid are coal
+primitives, a mesh is loaded by coal's mesh loader (a file that cannot be read is left out, with a
+note), a trimesh (triangles in memory, e.g. MJCF's compiled meshes) is coal's BVH of them.
 
 The result is checked by the tests against ``pinocchio.buildModelFromXML`` on the same robot
 written as URDF: the same frames (names, types, parents, placements), joints, inertias and limits,
@@ -60,9 +70,9 @@ __all__ = ["Pose", "Inertial", "Link", "Joint", "FrameSpec", "Geometry", "Descri
            "GEOMETRY_KINDS", "build_model"]
 
 #: The joint kinds a :class:`Joint` may have.
-JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+JOINT_KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar", "ball")
 #: The shapes a :class:`Geometry` may have, and the sizes each takes.
-GEOMETRY_KINDS = {"box": 3, "cylinder": 2, "sphere": 1, "capsule": 2, "mesh": 0}
+GEOMETRY_KINDS = {"box": 3, "cylinder": 2, "sphere": 1, "capsule": 2, "ellipsoid": 3, "mesh": 0, "trimesh": 0}
 
 Vec3 = tuple[float, float, float]
 
@@ -233,6 +243,11 @@ class Link:
         Its name (a ``BODY`` frame of the model).
     inertial : Inertial or None
         Its mass properties; None: massless.
+    frame : bool
+        Whether it is a ``BODY`` frame of the model (default). False: an intermediate link between
+        two joints of one body (MJCF's several joints per body), with no frame, no geometry and no
+        :class:`FrameSpec` of its own (an inertial, if given, is appended to its joint); the next
+        joint hangs on the previous one's ``JOINT`` frame.
 
     Examples
     --------
@@ -242,6 +257,7 @@ class Link:
 
     name: str
     inertial: Inertial | None = None
+    frame: bool = True
 
 
 @dataclass(frozen=True)
@@ -261,7 +277,8 @@ class Joint:
     placement : Pose
         The joint frame in the parent link's frame (in the world for ``parent=None``), at q = 0.
     child_placement : Pose
-        The child link's frame in the joint frame (identity in URDF, where they coincide).
+        The child link's frame in the joint frame (identity in URDF, where they coincide; MJCF
+        puts here the constant part of a joint's ``ref`` offset and the way back from its anchor).
     axis : tuple of 3 float
         The motion axis in the joint frame (normalised by the builder); unused for ``"fixed"``.
     lower, upper : float
@@ -272,6 +289,11 @@ class Joint:
         Viscous damping (N·m·s/rad or N·s/m) and dry friction (N·m or N), stored in the model.
     armature : float
         Reflected rotor inertia (kg·m² or kg), added on the joint's diagonal of M and in RNEA.
+    frame : bool
+        Whether the joint is a frame of the model (default): a ``JOINT`` frame, or for a fixed
+        joint a ``FIXED_JOINT`` frame carrying the child's inertia. False (fixed joints only: an
+        MJCF body welded to its parent, which MuJoCo gives no joint): the child's ``BODY`` frame
+        hangs directly on the parent link's frame and its inertia is appended to the parent joint.
 
     Examples
     --------
@@ -293,6 +315,7 @@ class Joint:
     damping: float = 0.0
     friction: float = 0.0
     armature: float = 0.0
+    frame: bool = True
 
 
 @dataclass(frozen=True)
@@ -327,20 +350,30 @@ class Geometry:
     link : str
         The link it belongs to.
     kind : str
-        ``"box"``, ``"cylinder"``, ``"sphere"``, ``"capsule"`` or ``"mesh"``.
+        ``"box"``, ``"cylinder"``, ``"sphere"``, ``"capsule"``, ``"ellipsoid"``, ``"mesh"`` (a
+        file coal loads) or ``"trimesh"`` (triangles given as :attr:`vertices` and :attr:`faces`).
     placement : Pose
         The shape's frame in the link frame (a cylinder's and capsule's axis is its z).
     size : tuple of float
         box: the three full edge lengths; cylinder and capsule: (radius, length); sphere:
-        (radius,); mesh: ().
+        (radius,); ellipsoid: its three semi-axes; mesh and trimesh: ().
     collision : bool
         True: a collision shape; False: a visual one.
     mesh : str or None
-        The mesh file (an absolute path the reader has already confined).
+        The mesh file (an absolute path the reader has already confined). For a trimesh: the file
+        the triangles came from, kept as the geometry's ``meshPath`` for viewers that redraw it
+        (None: none).
     scale : tuple of 3 float
-        The mesh's scale per axis.
+        The mesh's scale per axis (for a trimesh only recorded, as ``meshScale``: its vertices
+        are already scaled).
     color : tuple of 4 float or None
         RGBA in [0, 1]; None: the viewer's default.
+    name : str or None
+        The geometry object's name; None: ``<link>_<k>`` (the URDF parser's names).
+    vertices : numpy.ndarray or None, shape (n, 3)
+        A trimesh's vertices in the shape's frame, m.
+    faces : numpy.ndarray or None, shape (m, 3)
+        A trimesh's triangles, as indices into :attr:`vertices`.
 
     Examples
     --------
@@ -356,6 +389,9 @@ class Geometry:
     mesh: str | None = None
     scale: Vec3 = (1.0, 1.0, 1.0)
     color: tuple[float, float, float, float] | None = None
+    name: str | None = None
+    vertices: np.ndarray | None = field(default=None, compare=False, repr=False)
+    faces: np.ndarray | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -375,6 +411,10 @@ class Description:
         The world pose of links that are no joint's child (default: identity).
     gravity : tuple of 3 float
         m/s², in the world frame.
+    frames_with_links : bool
+        False (default): the :attr:`frames` are added after the whole tree, in the order given
+        (SDFormat's ``<frame>`` elements); True: each right after its link's ``BODY`` frame (MJCF's
+        sites, which MuJoCo numbers body by body).
 
     Examples
     --------
@@ -391,6 +431,7 @@ class Description:
     geometries: tuple[Geometry, ...] = ()
     root_poses: tuple[tuple[str, Pose], ...] = ()
     gravity: Vec3 = (0.0, 0.0, -9.81)
+    frames_with_links: bool = False
 
 
 # --------------------------------------------------------------------------- checks
@@ -429,8 +470,13 @@ def _check(desc: Description) -> tuple[dict[str, Link], dict[str | None, list[Jo
                              f"{j.upper:g}")
         if j.armature < 0 or not math.isfinite(j.armature):
             raise InputError(f"{desc.name}: joint {j.name!r}: the reflected inertia must be finite and >= 0")
+        if not j.frame and j.kind != "fixed":
+            raise InputError(f"{desc.name}: joint {j.name!r}: a {j.kind} joint is always a frame of the model")
         children.setdefault(j.parent, []).append(j)
     roots = [name for name in links if name not in parent_of]
+    for name in roots:
+        if not links[name].frame:
+            raise InputError(f"{desc.name}: link {name!r} has no frame but is no joint's child")
     # every link must reach the world: walk up from each (a cycle never does)
     for name in links:
         seen, k = set(), name
@@ -490,11 +536,21 @@ def _joint_model(joint: Joint) -> Any:
     return getattr(pin, names[3])(axis)
 
 
-def _add_moving(model: Any, joint: Joint, parent_fid: int, inertia: Any) -> None:
-    """addJoint + addJointFrame + the child body, as the URDF parser's addJointAndBody does."""
+@dataclass(frozen=True)
+class _Where:
+    """Where a link sits in the model being built: its joint, its placement in that joint, and the
+    frame its children's frames hang on (its BODY frame; a frame-less link's JOINT frame)."""
+
+    joint: int
+    placement: Any
+    frame: int
+
+
+def _add_moving(model: Any, joint: Joint, parent: _Where, inertia: Any, body: bool) -> _Where:
+    """addJoint + addJointFrame + the child body, as the URDF parser's addJointAndBody does
+    (``body=False``: no BODY frame for the child, a frame-less intermediate link)."""
     import pinocchio as pin
 
-    frame = model.frames[parent_fid]
     if joint.kind in _AXIS_MODELS:
         jm = _joint_model(joint)
         effort, velocity = np.array([joint.effort]), np.array([joint.velocity])
@@ -503,14 +559,15 @@ def _add_moving(model: Any, joint: Joint, parent_fid: int, inertia: Any) -> None
         else:
             lo, hi = np.array([joint.lower]), np.array([joint.upper])
     else:
-        # a floating or planar joint, as the URDF parser makes it: unlimited but for the unit
-        # (co)sine/quaternion part of the configuration (±1.01); no damping, friction, armature
-        jm, nv, nq, unit = ((pin.JointModelFreeFlyer(), 6, 7, 4) if joint.kind == "floating"
-                            else (pin.JointModelPlanar(), 3, 4, 2))
+        # a floating, planar or ball joint, as the URDF parser makes the first two: unlimited but for the
+        # unit (co)sine/quaternion part of the configuration (±1.01); no damping, friction, armature
+        jm, nv, nq, unit = {"floating": (pin.JointModelFreeFlyer(), 6, 7, 4),
+                            "planar": (pin.JointModelPlanar(), 3, 4, 2),
+                            "ball": (pin.JointModelSpherical(), 3, 4, 4)}[joint.kind]
         effort, velocity = np.full(nv, np.inf), np.full(nv, np.inf)
         lo, hi = np.full(nq, -np.inf), np.full(nq, np.inf)
         lo[nq - unit:], hi[nq - unit:] = -1.01, 1.01
-    jid = model.addJoint(frame.parentJoint, jm, frame.placement * _se3(joint.placement), joint.name,
+    jid = model.addJoint(parent.joint, jm, parent.placement * _se3(joint.placement), joint.name,
                          effort, velocity, lo, hi)
     if joint.kind in _AXIS_MODELS:
         iv = model.joints[jid].idx_v
@@ -519,11 +576,31 @@ def _add_moving(model: Any, joint: Joint, parent_fid: int, inertia: Any) -> None
             arr = np.array(getattr(model, attr), dtype=float)
             arr[iv] = value
             setattr(model, attr, arr)
-    jfid = model.addJointFrame(jid, parent_fid)
+    jfid = model.addJointFrame(jid, parent.frame)
     placement = model.frames[jfid].placement * _se3(joint.child_placement)
     if not inertia.isZero(0.0):
         model.appendBodyToJoint(jid, inertia, placement)
-    model.addBodyFrame(joint.child, jid, placement, jfid)
+    if not body:
+        return _Where(jid, placement, jfid)
+    return _Where(jid, placement, model.addBodyFrame(joint.child, jid, placement, jfid))
+
+
+def _add_fixed(model: Any, joint: Joint, parent: _Where, inertia: Any, body: bool) -> _Where:
+    """A fixed joint: a FIXED_JOINT frame carrying the child's inertia and the child's BODY frame, or
+    (``joint.frame`` False) the BODY frame alone, hung on the parent's frame, the inertia appended."""
+    import pinocchio as pin
+
+    placement = parent.placement * _se3(joint.placement)
+    fid = parent.frame
+    if joint.frame:
+        fid = model.addFrame(pin.Frame(joint.name, parent.joint, parent.frame, placement, pin.FrameType.FIXED_JOINT,
+                                       inertia))
+    placement = placement * _se3(joint.child_placement)
+    if not joint.frame and not inertia.isZero(0.0):
+        model.appendBodyToJoint(parent.joint, inertia, placement)
+    if body:
+        fid = model.addBodyFrame(joint.child, parent.joint, placement, fid)
+    return _Where(parent.joint, placement, fid)
 
 
 def build_model(desc: Description) -> tuple[Any, Any, Any, list[str]]:
@@ -551,7 +628,7 @@ def build_model(desc: Description) -> tuple[Any, Any, Any, list[str]]:
         Not a tree (a link child of two joints, a loop, a joint naming an unknown link), two
         links or joints with one name, an unknown joint kind, a zero axis, lower > upper, more
         moving joints than :data:`robokit.description.limits.MAX_JOINTS` (or four times as many
-        joints in all).
+        joints in all), a frame-less link that is a root or carries a frame or a geometry.
 
     Examples
     --------
@@ -573,43 +650,45 @@ def build_model(desc: Description) -> tuple[Any, Any, Any, list[str]]:
     model.name = desc.name
     model.gravity = pin.Motion(np.asarray(_vec3(desc.gravity, "gravity")), np.zeros(3))
     root_pose = dict(desc.root_poses)
+    where: dict[str, _Where] = {}
     body_fid: dict[str, int] = {}
+    attached: dict[str | None, list[FrameSpec]] = {}
+    for fs in desc.frames:
+        if fs.parent is not None and (fs.parent not in links or not links[fs.parent].frame):
+            raise InputError(f"{desc.name}: frame {fs.name!r} is attached to {fs.parent!r}, which is not a link"
+                             + (" with a frame" if fs.parent in links else ""))
+        attached.setdefault(fs.parent if desc.frames_with_links else None, []).append(fs)
+
+    def add_frames(link_name: str | None) -> None:
+        for fs in attached.get(link_name, []):
+            if fs.parent is None:
+                parent = _Where(0, model.frames[0].placement, 0)
+            else:
+                parent = where[fs.parent]
+            model.addFrame(pin.Frame(fs.name, parent.joint, parent.frame, parent.placement * _se3(fs.placement),
+                                     pin.FrameType.OP_FRAME), False)
 
     def add_subtree(link_name: str) -> None:
+        if links[link_name].frame:
+            body_fid[link_name] = where[link_name].frame
+            add_frames(link_name)
         for joint in children.get(link_name, []):
-            add_joint(joint, body_fid[link_name])
+            add_joint(joint, where[link_name])
 
-    def add_joint(joint: Joint, parent_fid: int) -> None:
-        inertia = _inertia(links[joint.child].inertial)
-        if joint.kind == "fixed":
-            frame = model.frames[parent_fid]
-            placement = frame.placement * _se3(joint.placement)
-            fid = model.addFrame(pin.Frame(joint.name, frame.parentJoint, parent_fid, placement,
-                                           pin.FrameType.FIXED_JOINT, inertia))
-            body_fid[joint.child] = model.addBodyFrame(joint.child, frame.parentJoint,
-                                                       placement * _se3(joint.child_placement), fid)
-        else:
-            _add_moving(model, joint, parent_fid, inertia)
-            body_fid[joint.child] = model.getFrameId(joint.child, pin.FrameType.BODY)
+    def add_joint(joint: Joint, parent: _Where) -> None:
+        child = links[joint.child]
+        add = _add_fixed if joint.kind == "fixed" else _add_moving
+        where[joint.child] = add(model, joint, parent, _inertia(child.inertial), child.frame)
         add_subtree(joint.child)
 
     for name in roots:
-        body_fid[name] = model.addFrame(pin.Frame(name, 0, 0, _se3(root_pose.get(name, Pose())), pin.FrameType.BODY,
-                                                  _inertia(links[name].inertial)))
+        placement = _se3(root_pose.get(name, Pose()))
+        where[name] = _Where(0, placement, model.addFrame(pin.Frame(name, 0, 0, placement, pin.FrameType.BODY,
+                                                                    _inertia(links[name].inertial))))
         add_subtree(name)
     for joint in children.get(None, []):
-        add_joint(joint, 0)
-
-    for fs in desc.frames:
-        if fs.parent is None:
-            parent_fid = 0
-        elif fs.parent in body_fid:
-            parent_fid = body_fid[fs.parent]
-        else:
-            raise InputError(f"{desc.name}: frame {fs.name!r} is attached to {fs.parent!r}, which is not a link")
-        frame = model.frames[parent_fid]
-        model.addFrame(pin.Frame(fs.name, frame.parentJoint, parent_fid, frame.placement * _se3(fs.placement),
-                                 pin.FrameType.OP_FRAME), False)
+        add_joint(joint, _Where(0, model.frames[0].placement, 0))
+    add_frames(None)
     visual, collision, notes = _geometry_models(model, desc.geometries, body_fid, desc.name)
     return model, visual, collision, notes
 
@@ -635,6 +714,10 @@ def _shape(geom: Geometry, where: str) -> tuple[Any, str]:
         return coal.Capsule(*geom.size), "CAPSULE"
     if geom.kind == "sphere":
         return coal.Sphere(geom.size[0]), "SPHERE"
+    if geom.kind == "ellipsoid":
+        return coal.Ellipsoid(*geom.size), "ELLIPSOID"
+    if geom.kind == "trimesh":
+        return _bvh(geom, where), geom.mesh or ""
     from robokit.description.meshes import mesh_file_problem
 
     if not geom.mesh:
@@ -648,6 +731,25 @@ def _shape(geom: Geometry, where: str) -> tuple[Any, str]:
         from robokit.description.builder import one_line
 
         raise _MeshSkipped(f"{where}: mesh {geom.mesh!r} not read ({one_line(exc)}); drawn without it") from None
+
+
+def _bvh(geom: Geometry, where: str) -> Any:
+    """coal's bounding-volume hierarchy of a trimesh's triangles."""
+    import coal
+
+    v = np.asarray(geom.vertices if geom.vertices is not None else np.zeros((0, 3)), dtype=float)
+    f = np.asarray(geom.faces if geom.faces is not None else np.zeros((0, 3)))
+    if v.ndim != 2 or v.shape[1] != 3 or not np.all(np.isfinite(v)) or len(v) == 0:
+        raise InputError(f"{where}: a trimesh takes an (n, 3) array of finite vertices, got shape {v.shape}")
+    if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0 or f.dtype.kind not in "iu" or f.min() < 0 or f.max() >= len(v):
+        raise InputError(f"{where}: a trimesh takes an (m, 3) array of vertex indices in [0, {len(v)}), "
+                         f"got shape {f.shape}")
+    m = coal.BVHModelOBBRSS()
+    m.beginModel(len(f), len(v))
+    m.addVertices(np.ascontiguousarray(v))
+    m.addTriangles(np.ascontiguousarray(f, dtype=np.int64))
+    m.endModel()
+    return m
 
 
 class _MeshSkipped(Exception):
@@ -667,7 +769,7 @@ def _geometry_models(model: Any, geometries: Iterable[Geometry], body_fid: dict[
         role = "collision" if geom.collision else "visual"
         where = f"{name}: link {geom.link!r}, {role} {geom.kind}"
         if geom.link not in body_fid:
-            raise InputError(f"{where}: no such link")
+            raise InputError(f"{where}: no such link with a frame")
         key = (geom.link, geom.collision)
         k = counts.get(key, 0)
         counts[key] = k + 1
@@ -679,8 +781,9 @@ def _geometry_models(model: Any, geometries: Iterable[Geometry], body_fid: dict[
         fid = body_fid[geom.link]
         frame = model.frames[fid]
         color = _DEFAULT_COLOR if geom.color is None else np.asarray(geom.color, dtype=float)
-        scale = np.asarray(geom.scale if geom.kind == "mesh" else (1.0, 1.0, 1.0), dtype=float)
-        go = pin.GeometryObject(f"{geom.link}_{k}", frame.parentJoint, fid, frame.placement * _se3(geom.placement),
-                                shape, mesh_path, scale, geom.color is not None, color)
+        scale = np.asarray(geom.scale if geom.kind in ("mesh", "trimesh") else (1.0, 1.0, 1.0), dtype=float)
+        go = pin.GeometryObject(geom.name or f"{geom.link}_{k}", frame.parentJoint, fid,
+                                frame.placement * _se3(geom.placement), shape, mesh_path, scale, geom.color is not None,
+                                color)
         out[geom.collision].addGeometryObject(go)
     return out[False], out[True], notes

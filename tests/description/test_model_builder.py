@@ -176,7 +176,7 @@ def test_missing_mesh_is_left_out_with_a_note(tmp_path):
 
 @pytest.mark.parametrize("desc,message", [
     (Description("x", (Link("a"), Link("a"))), "defined twice"),
-    (Description("x", (Link("a"), Link("b")), (Joint("j", "ball", "a", "b"),)), "'ball' joint"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "screw", "a", "b"),)), "'screw' joint"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "c"),)), "not defined"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "b", lower=1, upper=0),)), "above"),
     (Description("x", (Link("a"), Link("b")), (Joint("j", "prismatic", "a", "b", axis=(0, 0, 0)),)), "zero"),
@@ -184,6 +184,16 @@ def test_missing_mesh_is_left_out_with_a_note(tmp_path):
      "loop"),
     (Description("x", (Link("a"), Link("b"), Link("c")),
                  (Joint("j", "fixed", "a", "c"), Joint("k", "fixed", "b", "c"))), "child of two joints"),
+    (Description("x", (Link("a"), Link("b")), (Joint("j", "revolute", "a", "b", frame=False),)), "always a frame"),
+    (Description("x", (Link("a", frame=False),)), "has no frame"),
+    (Description("x", (Link("a"), Link("b", frame=False), Link("c")),
+                 (Joint("j", "revolute", "a", "b"), Joint("k", "revolute", "b", "c")),
+                 (FrameSpec("f", "b"),)), "not a link with a frame"),
+    (Description("x", (Link("a"), Link("b", frame=False), Link("c")),
+                 (Joint("j", "revolute", "a", "b"), Joint("k", "revolute", "b", "c")),
+                 geometries=(Geometry("b", "sphere", size=(0.1,)),)), "no such link with a frame"),
+    (Description("x", (Link("a"),), geometries=(Geometry("a", "trimesh", vertices=np.eye(3),
+                                                         faces=np.array([[0, 1, 3]])),)), "vertex indices"),
 ])
 def test_refused_descriptions(desc, message):
     with pytest.raises(InputError, match=message):
@@ -263,3 +273,76 @@ def test_example_robot_data_urdf_robots_equal_its_own_loader(name):
     pairs = [(p.first, p.second) for p in collision.collisionPairs]
     assert pairs == [(p.first, p.second) for p in ref.collision_model.collisionPairs]
     assert [o.name for o in visual.geometryObjects] == [o.name for o in ref.visual_model.geometryObjects]
+
+
+def _frame_less_pair():
+    """One arm twice: with every link a BODY frame and every fixed joint a FIXED_JOINT frame, and with
+    link ``mid`` frame-less (two joints of one MJCF body) and the weld ``w`` frame-less."""
+    turn = Pose.from_xyz_rpy([0.1, 0.2, 0.3], [0.3, -0.2, 0.1])
+    links = (Link("base", Inertial(2.0, (0.0, 0.0, 0.1), (0.1, 0.0, 0.0, 0.1, 0.0, 0.1))), Link("mid"),
+             Link("l1", Inertial(1.0, (0.2, 0.0, 0.0), (0.01, 0.001, 0.0, 0.02, 0.0, 0.03))),
+             Link("tool", Inertial(0.5, (0.0, 0.05, 0.0), (0.001, 0.0, 0.0, 0.001, 0.0, 0.001))))
+    joints = (Joint("j1", "revolute", "base", "mid", turn, Pose.from_xyz_rpy([0, 0, 0], [0.0, 0.0, -0.4]),
+                    axis=(0.0, 0.0, 1.0), lower=-2, upper=2),
+              Joint("j2", "prismatic", "mid", "l1", Pose(translation=(0.0, 0.1, 0.0)),
+                    Pose(translation=(0.0, -0.1, 0.05)), axis=(1.0, 1.0, 0.0), lower=-0.1, upper=0.3),
+              Joint("w", "fixed", "l1", "tool", turn))
+    frames = (FrameSpec("tip", "tool", Pose(translation=(0.0, 0.0, 0.1))), FrameSpec("s", "l1"))
+    ordinary = Description("arm", links, joints, frames)
+    lean = Description("arm", tuple(dataclasses.replace(k, frame=k.name != "mid") for k in links),
+                       tuple(dataclasses.replace(j, frame=j.name != "w") for j in joints), frames,
+                       frames_with_links=True)
+    return ordinary, lean
+
+
+def test_frame_less_links_and_welds_change_frames_only():
+    """The frame-less options drop the BODY frame of ``mid`` and the FIXED_JOINT frame of ``w``, hang the
+    frames on the frames that remain, add each FrameSpec after its link; joints, inertias, kinematics and
+    dynamics stay those of the ordinary layout (itself checked against Pinocchio's URDF parser above)."""
+    ordinary, lean = (build_model(d)[0] for d in _frame_less_pair())
+    names = [f.name for f in lean.frames]
+    assert names == ["universe", "base", "j1", "j2", "l1", "s", "tool", "tip"]
+    assert [f.name for f in ordinary.frames] == ["universe", "base", "j1", "mid", "j2", "l1", "w", "tool", "tip", "s"]
+    parent = {f.name: lean.frames[f.parentFrame].name for f in lean.frames}
+    assert parent["j2"] == "j1" and parent["tool"] == "l1" and parent["s"] == "l1" and parent["tip"] == "tool"
+    for i in range(ordinary.njoints):
+        assert lean.jointPlacements[i].isApprox(ordinary.jointPlacements[i], 1e-14)
+        assert lean.inertias[i].isApprox(ordinary.inertias[i], 1e-14)
+    d1, d2 = ordinary.createData(), lean.createData()
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        q, v, a = rng.uniform(-0.1, 0.1, 2), rng.normal(size=2), rng.normal(size=2)
+        pin.framesForwardKinematics(ordinary, d1, q)
+        pin.framesForwardKinematics(lean, d2, q)
+        for name in ("l1", "tool", "tip", "s"):
+            assert np.allclose(d1.oMf[ordinary.getFrameId(name)].homogeneous,
+                               d2.oMf[lean.getFrameId(name)].homogeneous, atol=1e-12)
+        assert np.allclose(pin.crba(ordinary, d1, q), pin.crba(lean, d2, q), atol=1e-12)
+        assert np.allclose(pin.rnea(ordinary, d1, q, v, a), pin.rnea(lean, d2, q, v, a), atol=1e-12)
+
+
+def test_ball_joint_ellipsoid_and_trimesh():
+    import coal
+
+    box = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    faces = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                      [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    desc = Description("ball", (Link("a"), Link("b", Inertial(1.0, (0.1, 0.0, 0.0), (0.1, 0, 0, 0.1, 0, 0.1)))),
+                       (Joint("shoulder", "ball", "a", "b", Pose(translation=(0.0, 0.0, 0.5))),),
+                       geometries=(Geometry("b", "ellipsoid", size=(0.1, 0.2, 0.3), name="egg"),
+                                   Geometry("b", "trimesh", collision=True, mesh="/x/box.stl", scale=(2.0, 2.0, 2.0),
+                                            vertices=box, faces=faces)))
+    model, visual, collision, _ = build_model(desc)
+    assert model.joints[1].shortname() == "JointModelSpherical" and (model.nq, model.nv) == (4, 3)
+    assert model.upperPositionLimit.tolist() == [1.01] * 4
+    egg = visual.geometryObjects[0]
+    assert egg.name == "egg" and np.allclose(egg.geometry.radii, [0.1, 0.2, 0.3])
+    mesh = collision.geometryObjects[0]
+    assert (mesh.name, mesh.meshPath, mesh.meshScale.tolist()) == ("b_0", "/x/box.stl", [2.0, 2.0, 2.0])
+    assert mesh.geometry.num_tris == 12 and np.allclose(np.asarray(mesh.geometry.vertices()), box)
+    # the unit cube's triangles: a sphere of radius 1e-9 centred 0.5 outside a face is 0.5 - 1e-9 away (coal's
+    # distance, independent of the builder)
+    request, result = coal.DistanceRequest(), coal.DistanceResult()
+    d = coal.distance(mesh.geometry, coal.Transform3s(), coal.Sphere(1e-9),
+                      coal.Transform3s(np.eye(3), np.array([0.5, 0.5, 1.5])), request, result)
+    assert abs(d - (0.5 - 1e-9)) < 1e-10

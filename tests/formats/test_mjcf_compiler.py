@@ -217,15 +217,9 @@ def test_default_classes_childclass_and_frames(tmp_path):
 
 
 def test_several_joints_per_body_with_anchors_and_ref(tmp_path):
-    xml = """<mujoco model="multi"><worldbody><body name="a" pos="0 0 0.1">
-      <joint name="x" type="slide" axis="1 0 0" ref="0.05" range="-0.2 0.3"/>
-      <joint name="y" type="slide" axis="0 1 0.3"/>
-      <joint name="rz" axis="0 0 1" pos="0.05 0 0" ref="20"/>
-      <geom type="box" size="0.05 0.04 0.03" pos="0.1 0 0"/>
-      <body name="b" pos="0.2 0 0"><joint name="h1" axis="0 1 0" pos="0 0 0.02" ref="-15" damping="0.5"/>
-        <joint name="h2" axis="1 0 0" pos="0.01 0.02 0" armature="0.1"/>
-        <geom type="capsule" fromto="0 0 0 0.2 0 0" size="0.02"/><site name="tip" pos="0.2 0 0"/></body>
-    </body></worldbody></mujoco>"""
+    from tests.formats.mjcf_fingerprint import INLINE
+
+    xml = INLINE["multi"]  # also in the builder's fingerprint corpus
     path = _write(tmp_path, "multi.xml", xml)
     robot = robokit.load(path)
     assert robot.joint_names == ("x", "y", "rz", "h1", "h2")
@@ -400,15 +394,9 @@ if given is not None:
 def _contact_arm(tmp_path, ghost_class):
     """Three links; links 2 and 3 sit 0.15 m above link 1, a sphere hangs from link 3's end
     down to link 1's height (class ``ghost_class``: masks 2/2, or the default 1/1)."""
-    xml = f"""<mujoco model="contacts"><compiler angle="radian"/><default><geom contype="1" conaffinity="1"/>
-      <default class="ghost"><geom contype="2" conaffinity="2"/></default></default><worldbody>
-      <body name="l1"><joint name="j1" axis="0 0 1"/><geom name="g1" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-        <body name="l2" pos="0.3 0 0.15"><joint name="j2" axis="0 0 1"/>
-          <geom name="g2" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-          <body name="l3" pos="0.3 0 0"><joint name="j3" axis="0 0 1"/>
-            <geom name="g3" type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
-            <geom name="ball" class="{ghost_class}" type="sphere" pos="0.3 0 -0.15" size="0.05"/>
-            <site name="tip" pos="0.3 0 0"/></body></body></body></worldbody></mujoco>"""
+    from tests.formats.mjcf_fingerprint import CONTACT_ARM
+
+    xml = CONTACT_ARM.format(ghost_class=ghost_class)  # the "ghost" one is in the builder's fingerprint corpus
     return _write(tmp_path, f"contacts_{ghost_class}.xml", xml)
 
 
