@@ -26,9 +26,11 @@ INVENTORY: dict[str, tuple[str, str]] = {
     "dynamics/newton_euler.py:_MODELS": ("cache", "seed arguments"),
     "dynamics/newton_euler.py:_SEEN": ("cache", "seed arguments"),
     "dynamics/newton_euler.py:_ZEROS": ("cache", "seed arguments"),
+    "_arrays.py:_SEEN": ("cache", "seed arguments"),
     "workspace/capability.py:_WORKER_CACHE": ("cache", "a Dask worker's robots"),
     # not robot data
     "description/xacro_expr.py:_parse": ("memo", "syntax trees of xacro expressions, by their text"),
+    "codegen/ik_general.py:_template": ("memo", "the shipped C templates' text, by file name"),
     "validation/core.py:robot": ("memo", "the shipped models by name, for one `robokit validate` run"),
     "kernels/_jit.py:_TWINS": ("registry", "compiled kernels"),
     "kernels/_jit.py:_TWIN_GLOBALS": ("registry", "compiled kernels"),
@@ -98,9 +100,11 @@ def test_at_most_two_caches_each_documented():
 
 def test_no_module_keeps_robots_by_identity():
     """No module-level table is indexed by ``id(...)`` (of a robot, a table, an array) but the
-    compiled-kernel registry's (dispatchers are module constants: their ids are never reused) and the
-    seed library's last-arrays check (it holds the arrays and compares their bytes)."""
-    allowed = {"kernels/_jit.py", "dynamics/newton_euler.py"}
+    compiled-kernel registry's (dispatchers are module constants: their ids are never reused), the
+    seed library's last-arrays check (it holds the arrays and compares their bytes) and the nested-list
+    conversions of the seed arguments (each kept with a snapshot of the list it came from, reused only
+    while the argument still compares equal to it)."""
+    allowed = {"kernels/_jit.py", "dynamics/newton_euler.py", "_arrays.py"}
     bad = []
     for path in sorted(ROOT.rglob("*.py")):
         rel = path.relative_to(ROOT).as_posix()

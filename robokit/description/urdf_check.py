@@ -291,11 +291,11 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
             I = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
             ev = np.linalg.eigvalsh(I)
             if ev.min() < -1e-9 * max(1.0, float(abs(ev).max())):
-                problem = (f"{where}: inertia tensor is not positive semi-definite "
-                           f"(eigenvalues {', '.join(f'{v:.3g}' for v in ev)})")
+                why = (f"{where}: inertia tensor is not positive semi-definite "
+                       f"(eigenvalues {', '.join(f'{v:.3g}' for v in ev)})")
                 if unphysical_inertias is None:
-                    _fail(path, problem)
-                unphysical_inertias.append(f"{path}: {problem}")
+                    _fail(path, why)
+                unphysical_inertias.append(f"{path}: {why}")
         origin = inertial.find("origin")
         if origin is not None:
             for key in ("xyz", "rpy"):

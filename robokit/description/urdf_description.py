@@ -39,12 +39,13 @@ __all__ = ["description_from_urdf"]
 def _floats(text: str | None, n: int, default: tuple[float, ...], where: str) -> tuple[float, ...]:
     if text is None:
         return default
+    what = "a finite number" if n == 1 else f"{n} finite numbers"
     try:
         vals = tuple(float(t) for t in text.split())
     except ValueError:
-        raise InputError(f"{where}: expected {n} numbers, got {text!r}") from None
+        raise InputError(f"{where}: expected {what}, got {text!r}") from None
     if len(vals) != n or not all(math.isfinite(v) for v in vals):
-        raise InputError(f"{where}: expected {n} finite numbers, got {text!r}")
+        raise InputError(f"{where}: expected {what}, got {text!r}")
     return vals
 
 

@@ -47,10 +47,15 @@ def _urdf_paths():
 URDF_PATHS = _urdf_paths()
 
 
-def assert_same_model(mine, ref):
-    """The same frames, joints, inertias and limits, to the last bit (a URDF is read as Pinocchio's parser reads
-    it: urdfdom's rpy quaternion, Eigen's products): an exact zero there is an exact zero here."""
-    same = np.testing.assert_array_equal
+def assert_same_model(mine, ref, atol=0.0):
+    """The same frames, joints, inertias and limits; by default to the last bit (a URDF is read as Pinocchio's
+    parser reads it: urdfdom's rpy quaternion, Eigen's products — an exact zero there is an exact zero here),
+    else to ``atol`` (a model built from exact matrices against one parsed from the same robot's rpy text)."""
+    def same(a, b, err_msg=""):
+        if atol:
+            np.testing.assert_allclose(a, b, rtol=0, atol=atol, err_msg=err_msg)
+        else:
+            np.testing.assert_array_equal(a, b, err_msg=err_msg)
     assert [f.name for f in mine.frames] == [f.name for f in ref.frames]
     for a, b in zip(mine.frames, ref.frames):
         assert (a.type, a.parentJoint, a.parentFrame) == (b.type, b.parentJoint, b.parentFrame), a.name

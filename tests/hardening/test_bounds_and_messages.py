@@ -125,10 +125,11 @@ MALFORMED_URDF = {
     "missing_parent": (lambda t: t.replace('<parent link="base"/>', '<parent link="nowhere"/>'), ["'nowhere'"]),
     "bad_xml": (lambda t: t.replace("</robot>", ""), ["XML"]),
     "unknown_joint_type": (lambda t: t.replace('type="revolute"', 'type="hinge"'), ["'shoulder'", "'hinge'"]),
-    # these pass robokit's checks and fail inside urdfdom: its stderr must be captured
+    # these once passed robokit's checks and failed inside urdfdom; robokit's URDF reader names them now
     "bad_effort_on_continuous": (lambda t: t.replace('type="revolute"', 'type="continuous"').replace(
-        'lower="-3" upper="3" effort="10"', 'effort="abc"'), ["Pinocchio cannot read"]),
-    "bad_damping": (lambda t: t.replace("</joint>", '<dynamics damping="xyz"/></joint>', 1), ["Pinocchio cannot read"]),
+        'lower="-3" upper="3" effort="10"', 'effort="abc"'), ["'shoulder'", "effort", "expected a finite number"]),
+    "bad_damping": (lambda t: t.replace("</joint>", '<dynamics damping="xyz"/></joint>', 1),
+                    ["'shoulder'", "damping", "expected a finite number"]),
     "not_a_robot": (lambda t: "<sdf><model/></sdf>", ["<robot>"]),
     "empty_file": (lambda t: "", ["XML"]),
 }
