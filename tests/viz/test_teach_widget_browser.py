@@ -65,6 +65,9 @@ _STEPS = """
   const frame = document.querySelector("#widget iframe");
   const page = () => frame.contentWindow, el = (id) => page().document.getElementById(id);
   await until(() => page() && page().rkDrag && el("rk-q") && el("rk-q").dataset.q, "the framed page");
+  const same = (text, q) => text.split(",").every((v, i) => Number(v) === q[i]);
+  await until(() => same(el("rk-q").dataset.q, RKHost.model.get("q")), "the page at the model's q");
+  await new Promise((r) => setTimeout(r, 300));  // any message the page's opening would (wrongly) send
   const out = { height: frame.style.height, q0: el("rk-q").dataset.q, savedAtStart: RKHost.saved.length };
   page().rkDrag(__TARGET__);
   await until(() => RKHost.saved.length > out.savedAtStart, "a q from the page in the host's model");
@@ -177,7 +180,10 @@ def _nums(s: str) -> np.ndarray:
 @pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
 def test_drag_view_front_end_links_page_and_model_both_ways(tmp_path):
     """The widget's ES module, rendered by a host that plays anywidget, with the state of a real
-    ``Scene.teach(wasm=...)`` (the PUMA page with its module, q, height):
+    ``Scene.teach(wasm=...)`` (the PUMA page with its module, q, height), whose q was set after
+    the page was written (``set_q`` before the pendant is shown): the page opens at the model's q
+    and sends Python nothing back; then
+
 
     1. a target set in the framed page (``rkDrag(T)``, the gizmo's entry point) reaches the host
        model's q, saved once (what Python receives), equal to ``ik_analytic``'s solution nearest the
@@ -193,12 +199,14 @@ def test_drag_view_front_end_links_page_and_model_both_ways(tmp_path):
     from robokit.viz import Scene
 
     robot = robokit.load("puma560")
+    q_page = np.array([0.1, 0.6, -0.5, 0.3, 0.4, 0.1])
     q_start = np.array([0.2, 0.4, -0.3, 0.5, 0.6, -0.2])
     q_goal = q_start + np.array([0.05, -0.04, 0.03, -0.06, 0.05, 0.04])  # T's own branch: the nearest
     q_set = [0.1, 0.3, -0.2, 0.4, 0.5, -0.1]
     T = robot.frame_pose(q_goal)
     with Scene(robot) as scene:
-        pendant = scene.teach(q_start, wasm=wasm_module(robot).wasm)
+        pendant = scene.teach(q_page, wasm=wasm_module(robot).wasm)
+        pendant.set_q(q_start)  # before the view is shown: the page (written at q_page) must open at q_start
         view = pendant.drag
         state = {k: getattr(view, k) for k in ("page", "q", "height")}  # the synced state anywidget sends
         host = tmp_path / "host.html"
@@ -208,8 +216,9 @@ def test_drag_view_front_end_links_page_and_model_both_ways(tmp_path):
         got = _run_host(host)
 
         assert got["height"] == f"{state['height']}px"
-        np.testing.assert_array_equal(_nums(got["q0"]), q_start)  # the page opened at the model's q
-        assert got["savedAtStart"] == 0  # the page's first q is the model's: nothing sent
+        # the page, written at q_page, opened at the model's q (set since) and sent Python nothing
+        np.testing.assert_array_equal(_nums(got["q0"]), q_start)
+        assert got["savedAtStart"] == 0
 
         # (1) page -> host model -> Python
         ref = robokit.ik_analytic(robot, T)
