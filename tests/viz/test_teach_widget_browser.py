@@ -46,6 +46,7 @@ const model = {
 const url = URL.createObjectURL(new Blob([ESM], { type: "text/javascript" }));
 const widget = (await import(url)).default;
 window.RKHost = { model, saved, cleanup: widget.render({ model, el: document.getElementById("widget") }) };
+model.set("q", __EARLY_Q__);  // a q from Python while the framed page is still loading
 </script><script>__STEPS__</script></body></html>
 """
 
@@ -181,8 +182,8 @@ def _nums(s: str) -> np.ndarray:
 def test_drag_view_front_end_links_page_and_model_both_ways(tmp_path):
     """The widget's ES module, rendered by a host that plays anywidget, with the state of a real
     ``Scene.teach(wasm=...)`` (the PUMA page with its module, q, height), whose q was set after
-    the page was written (``set_q`` before the pendant is shown): the page opens at the model's q
-    and sends Python nothing back; then
+    the page was written (``set_q`` before the pendant is shown) and again while the framed page
+    loads: the page opens at the model's latest q and sends Python nothing back; then
 
 
     1. a target set in the framed page (``rkDrag(T)``, the gizmo's entry point) reaches the host
@@ -206,17 +207,17 @@ def test_drag_view_front_end_links_page_and_model_both_ways(tmp_path):
     T = robot.frame_pose(q_goal)
     with Scene(robot) as scene:
         pendant = scene.teach(q_page, wasm=wasm_module(robot).wasm)
-        pendant.set_q(q_start)  # before the view is shown: the page (written at q_page) must open at q_start
+        pendant.set_q(q_page + 0.1)  # before the view is shown (the page was written at q_page)
         view = pendant.drag
         state = {k: getattr(view, k) for k in ("page", "q", "height")}  # the synced state anywidget sends
         host = tmp_path / "host.html"
         steps = _STEPS.replace("__TARGET__", json.dumps(T.ravel().tolist())).replace("__SET_Q__", json.dumps(q_set))
-        host.write_text(_HOST.replace("__STEPS__", steps).replace("__STATE__", _js(state))
-                        .replace("__ESM__", _js(view._esm)), encoding="utf-8")
+        host.write_text(_HOST.replace("__EARLY_Q__", json.dumps(q_start.tolist())).replace("__STEPS__", steps)
+                        .replace("__STATE__", _js(state)).replace("__ESM__", _js(view._esm)), encoding="utf-8")
         got = _run_host(host)
 
         assert got["height"] == f"{state['height']}px"
-        # the page, written at q_page, opened at the model's q (set since) and sent Python nothing
+        # the page, written at q_page, opened at the model's latest q and sent Python nothing
         np.testing.assert_array_equal(_nums(got["q0"]), q_start)
         assert got["savedAtStart"] == 0
 
