@@ -788,27 +788,37 @@ def _collision_html(c: dict) -> str:
 
 #: The notebook pendant's drag view (an anywidget front end): the teach page, with the robot's
 #: module, in a frame; the q it posts ({rk: "teach-q"}) goes to the widget's ``q`` and from there
-#: to Python, and a ``q`` set in Python is posted into the page ({rk: "teach-set-q"}).
+#: to Python, and a ``q`` set in Python is posted into the page ({rk: "teach-set-q"}). The page's
+#: first message is its opening q (the q it was written at, possibly older than the model's: a
+#: ``set_q`` before the view was shown, a view shown again): it is answered with the model's q and
+#: never sent to Python; until then a q from Python waits in the model (a message would be lost on
+#: a page still loading).
 _DRAG_ESM = """
 export default {
   render({ model, el }) {
     const frame = document.createElement("iframe");
     frame.style.cssText = "width:100%;border:0;height:" + model.get("height") + "px";
     frame.srcdoc = model.get("page");
-    let last = JSON.stringify(model.get("q"));
+    let last = null;  // the q the page and the model agree on; null until the page has opened
+    const toPage = () => {
+      last = JSON.stringify(model.get("q"));
+      frame.contentWindow.postMessage({ rk: "teach-set-q", q: model.get("q") }, "*");
+    };
     const fromPage = (ev) => {
       if (ev.source !== frame.contentWindow || !ev.data || ev.data.rk !== "teach-q") { return; }
       const text = JSON.stringify(ev.data.q);
+      if (last === null) {  // the page's opening q: the model's wins
+        if (text === JSON.stringify(model.get("q"))) { last = text; } else { toPage(); }
+        return;
+      }
       if (text === last) { return; }
       last = text;
       model.set("q", ev.data.q);
       model.save_changes();
     };
     const fromPython = () => {
-      const text = JSON.stringify(model.get("q"));
-      if (text === last || !frame.contentWindow) { return; }
-      last = text;
-      frame.contentWindow.postMessage({ rk: "teach-set-q", q: model.get("q") }, "*");
+      if (last === null || JSON.stringify(model.get("q")) === last || !frame.contentWindow) { return; }
+      toPage();
     };
     window.addEventListener("message", fromPage);
     model.on("change:q", fromPython);
