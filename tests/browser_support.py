@@ -11,7 +11,7 @@ CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if os.path.exists("/
 def dump_dom(url: str, window: tuple[int, int] = (1000, 700), budget_ms: int = 20000, timeout: float = 240) -> str:
     """The DOM of ``url`` after ``budget_ms`` of the page's (virtual) time, in a ``window``-sized
     headless Chromium with a fresh profile and software WebGL."""
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
              "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",

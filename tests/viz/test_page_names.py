@@ -125,7 +125,7 @@ def test_teach_page_json_survives_any_name():
 
 
 def run_page(path: Path, fragment: str) -> _Page:
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
              "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",

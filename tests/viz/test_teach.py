@@ -74,7 +74,7 @@ def run_page(path: Path, q=None, fragment: str = "") -> dict:
     frag = ("" if q is None else "#q=" + ",".join(repr(float(v)) for v in q)) + fragment
     if frag and not frag.startswith("#"):
         frag = "#" + frag.lstrip("&")
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
              "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
@@ -321,7 +321,7 @@ def run_harness(harness: Path):
     import html as html_mod
     import re
 
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         out = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
              "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",

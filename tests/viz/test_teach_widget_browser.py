@@ -10,6 +10,7 @@ and its framed page made the run time grow with the budget. Every wait has a har
 import json
 import os
 import select
+import signal
 import subprocess
 import tempfile
 import time
@@ -101,7 +102,7 @@ class _Pipe:
              "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
              "--window-size=1200,900", "--allow-file-access-from-files", "--remote-debugging-pipe", url],
             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-            pass_fds=(3, 4), preexec_fn=self._fds)
+            pass_fds=(3, 4), preexec_fn=self._fds, start_new_session=True)
         os.close(self.to_r)
         os.close(self.from_w)
         self.buf, self.n = b"", 0
@@ -133,7 +134,21 @@ class _Pipe:
                 return reply["result"]
 
     def close(self) -> None:
-        self.proc.kill()
+        # Browser.close lets Chromium flush and leave its profile; its helper processes (renderer,
+        # GPU, crashpad) are in its own session and are killed with it if it does not exit in time,
+        # so that none of them still writes into the profile while the directory is removed.
+        try:
+            self.call("Browser.close", time.monotonic() + 5)
+        except (TimeoutError, RuntimeError, OSError):
+            pass
+        try:
+            self.proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            pass
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
         self.proc.wait(timeout=10)
         os.close(self.to_w)
         os.close(self.from_r)
@@ -141,7 +156,7 @@ class _Pipe:
 
 def _run_host(host_path) -> dict:
     deadline = time.monotonic() + DEADLINE
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         cdp = _Pipe(host_path.resolve().as_uri(), profile)
         try:
             while True:  # the page target of the URL given on the command line

@@ -84,7 +84,7 @@ def test_scene_drawings_and_bad_input():
 
 
 def _screenshot(page: Path, png: Path):
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
              "--use-angle=swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
