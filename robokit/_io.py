@@ -19,8 +19,50 @@ from pathlib import Path
 
 from robokit.errors import InputError
 
-__all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text", "check_output_folder",
-           "make_output_folder"]
+__all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text", "check_output_file",
+           "check_output_folder", "make_output_folder"]
+
+
+def _folder_of(path: Path) -> Path:
+    """The folder a file ``path`` lives in (``.`` for a bare name)."""
+    return path.parent if str(path.parent) else Path(".")
+
+
+def check_output_file(path: str | os.PathLike[str], what: str = "output") -> Path:
+    """An output file that can be written: its folder exists and the path is not a folder.
+
+    Checked before any work (so that a bad output path fails at once) and again by
+    :func:`atomic_write` when it writes.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to write.
+    what : str
+        The argument named in the messages (``output``, ``-o``).
+
+    Returns
+    -------
+    Path
+        ``path`` as a :class:`~pathlib.Path`.
+
+    Raises
+    ------
+    InputError
+        ``WHAT: folder 'FOLDER' does not exist`` or ``WHAT: 'PATH' is a folder``.
+
+    Examples
+    --------
+    >>> check_output_file("arm.urdf").name
+    'arm.urdf'
+    """
+    out = Path(path)
+    folder = _folder_of(out)
+    if not folder.is_dir():
+        raise InputError(f"{what}: folder {str(folder)!r} does not exist")
+    if out.is_dir():
+        raise InputError(f"{what}: {str(out)!r} is a folder")
+    return out
 
 
 def check_output_folder(folder: str | os.PathLike[str], what: str = "-o") -> Path:
@@ -66,12 +108,8 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
 
     Raises :class:`robokit.InputError` naming the folder if it does not exist.
     """
-    path = Path(path)
-    folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise InputError(f"output: folder {str(folder)!r} does not exist")
-    if path.is_dir():
-        raise InputError(f"output: {str(path)!r} is a folder")
+    path = check_output_file(path)
+    folder = _folder_of(path)
     raw = data if isinstance(data, bytes) else data.encode("utf-8")
     mode = 0o666 & ~_umask()
     keep = _existing_file(path)

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import MAX_MAGNITUDE
-from robokit._io import atomic_write, check_output_folder
+from robokit._io import atomic_write, check_output_file, check_output_folder
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -30,11 +30,7 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
     out = Path(output)
     if out.suffix.lower() not in suffixes:
         raise InputError(f"-o: expected a {' or '.join(suffixes)} file, got {str(out)!r}")
-    if not (out.parent if str(out.parent) else Path(".")).is_dir():
-        raise InputError(f"-o: folder {str(out.parent)!r} does not exist")
-    if out.is_dir():
-        raise InputError(f"-o: {str(out)!r} is a folder")
-    return out
+    return check_output_file(out, "-o")
 
 
 def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str] | None, tip: str | None = None,

@@ -11,19 +11,9 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from robokit.errors import InputError
-from robokit._io import atomic_write
+from robokit._io import atomic_write, check_output_file
 
 __all__ = ["convert"]
-
-
-def _check_output(output: str | os.PathLike[str]) -> Path:
-    out = Path(output)
-    parent = out.parent if str(out.parent) else Path(".")
-    if not parent.is_dir():
-        raise InputError(f"output: folder {str(parent)!r} does not exist")
-    if out.is_dir():
-        raise InputError(f"output: {str(out)!r} is a folder")
-    return out
 
 
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
@@ -81,7 +71,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
 
     src = str(input)
     in_suffix = Path(src).suffix.lower()
-    out = _check_output(output) if output is not None else None
+    out = check_output_file(output) if output is not None else None
     out_suffix = out.suffix.lower() if out is not None else None
     notes: list[str] = []
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
