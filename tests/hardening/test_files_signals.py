@@ -135,6 +135,45 @@ def test_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkey
     assert tmp_leftovers(tmp_path) == []
 
 
+# ----------------------------------------------------------------------------- output paths
+def _writers(tmp_path, main_cli):
+    """Each writer that checks its output path before any work: (argument named in the message,
+    suffix of its output, write(path) -> the error message without the CLI's ``robokit: error:``)."""
+    from robokit.description.convert import convert
+
+    def library(fn):
+        def write(path):
+            with pytest.raises(robokit.InputError) as info:
+                fn(path)
+            return str(info.value)
+        return write
+
+    pend = tmp_path / "pend.yaml"
+    pend.write_text(PENDULUM_YAML)
+
+    def cli(path):
+        return assert_one_line_error(main_cli("view", pend, "-o", path), "-o").removeprefix("robokit: error: ")
+
+    return [("output", ".txt", library(lambda p: atomic_write(p, "x"))),
+            ("output", ".urdf", library(lambda p: convert(pend, p))),
+            ("-o", ".html", cli)]
+
+
+@pytest.mark.parametrize("k", range(3))
+def test_output_in_a_missing_folder_or_onto_a_folder_is_refused_before_writing(k, tmp_path, main_cli):
+    what, suffix, write = _writers(tmp_path, main_cli)[k]
+    before = sorted(p.name for p in tmp_path.iterdir())
+    missing = tmp_path / "no_such_folder" / f"out{suffix}"
+    message = write(missing)
+    assert message == f"{what}: folder {str(missing.parent)!r} does not exist", message
+    folder = tmp_path / f"taken{suffix}"
+    folder.mkdir()
+    message = write(folder)
+    assert message == f"{what}: {str(folder)!r} is a folder", message
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(before + [folder.name])
+    assert list(folder.iterdir()) == [] and tmp_leftovers(tmp_path) == []
+
+
 # ----------------------------------------------------------------------------- signals
 def _servers_of(proc: psutil.Process) -> list[psutil.Process]:
     out = []
