@@ -207,8 +207,7 @@ def matrix_exp_3(so3mat: ArrayLike) -> np.ndarray:
     >>> R @ [1, 0, 0]
     array([0., 1., 0.])
     """
-    m = as_matrix(so3mat, "so3mat", 3, 3)
-    return exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
+    return exp3(so3_to_vec(so3mat))
 
 
 def matrix_log_3(R: ArrayLike) -> np.ndarray:
