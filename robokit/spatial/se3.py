@@ -15,7 +15,7 @@ import numpy as np
 
 from robokit._arrays import as_matrix, as_vector
 from robokit.spatial import lie
-from robokit.spatial.so3 import SO3_TOLERANCE, _distance_so3, project_to_SO3
+from robokit.spatial.so3 import SO3_TOLERANCE, _check_group, _distance_so3, project_to_SO3
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
@@ -61,11 +61,7 @@ def check_transform(T: ArrayLike, name: str = "T", tol: float = SO3_TOLERANCE) -
     >>> check_transform(np.eye(4)).shape
     (4, 4)
     """
-    T = as_matrix(T, name, 4, 4)
-    d = _distance_se3(T)
-    if d > tol:
-        raise InputError(f"{name}: not a homogeneous transform (distance to SE(3) {d:.3g} > {tol:g})")
-    return T
+    return _check_group(T, name, 4, _distance_se3, "a homogeneous transform", "SE(3)", tol)
 
 
 def Rp_to_trans(R: ArrayLike, p: ArrayLike) -> np.ndarray:
