@@ -88,7 +88,50 @@ class _Controller:
         """Advance internal state by one control period ``dt`` (s)."""
 
 
-class IndependentJoint(_Controller):
+class _IntegralController(_Controller):
+    """A controller with an integral term ``self.integral`` = ∫ε dt of an error ε of the law
+    (``_integrand``): the position error for computed torque, the velocity-loop error for
+    independent joint control."""
+
+    def _integrand(self, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> np.ndarray:
+        raise NotImplementedError  # pragma: no cover - every subclass defines it
+
+    def reset(self) -> None:
+        """Clear the integral term (``self.integral`` = 0)."""
+        self.integral = np.zeros(self.n)
+
+    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
+        """Advance the integral of the law's error ε by one step (rectangle rule): ``∫ε += ε dt``.
+
+        ε is the velocity-loop error ``q̇_ref − q̇`` for :class:`IndependentJoint` and the position
+        error ``q_d − q`` for :class:`ComputedTorque` (which does not use ``dq``, ``dq_des`` here).
+
+        Parameters
+        ----------
+        dt : float
+            The time step, s.
+        q, dq : ndarray, shape (n,)
+            Measured joint positions (rad / m) and velocities.
+        q_des, dq_des : ndarray, shape (n,)
+            Desired positions and velocities.
+
+        Returns
+        -------
+        None
+            ``self.integral`` is updated.
+        """
+        self.integral = self.integral + dt * self._integrand(q, dq, q_des, dq_des)
+
+
+class _PDController(_Controller):
+    """A PD law on a model ``robot`` with gains ``Kp``, ``Kv`` (n,) and no internal state."""
+
+    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike) -> None:
+        self.robot, self.n = robot, robot.n
+        self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
+
+
+class IndependentJoint(_IntegralController):
     """Independent joint control (Lecture 8): position P around a velocity P/PI loop.
 
     ``τ = J_nom ⊙ (K_v (q̇_ref − q̇) + K_i ∫(q̇_ref − q̇) dt) [+ g(q)]`` with
@@ -131,42 +174,21 @@ class IndependentJoint(_Controller):
         self.gravity = gravity
         self.reset()
 
-    def reset(self) -> None:
-        self.integral = np.zeros(self.n)
-
-    def _vel_error(self, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> np.ndarray:
+    def _integrand(self, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> np.ndarray:
+        # the velocity-loop error q̇_ref − q̇, q̇_ref = K_p e [+ q̇_d]
         dq_ref = self.Kp * (q_des - q) + (dq_des if self.velocity_ff else 0.0)
         return dq_ref - dq
 
-    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
-        """Advance the integral of the controller's velocity error by one step (rectangle rule).
-
-        Parameters
-        ----------
-        dt : float
-            The time step, s.
-        q, dq : ndarray, shape (n,)
-            Measured joint positions (rad / m) and velocities.
-        q_des, dq_des : ndarray, shape (n,)
-            Desired positions and velocities.
-
-        Returns
-        -------
-        None
-            ``self.integral`` is updated.
-        """
-        self.integral = self.integral + dt * self._vel_error(q, dq, q_des, dq_des)
-
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
                  ddq_des: np.ndarray) -> np.ndarray:
-        ev = self._vel_error(q, dq, q_des, dq_des)
+        ev = self._integrand(q, dq, q_des, dq_des)
         tau = self.J_nom * (self.Kv * ev + self.Ki * self.integral)
         if self.gravity is not None:
             tau = tau + self.gravity.gravity_torques(q)
         return tau
 
 
-class GravityPD(_Controller):
+class GravityPD(_PDController):
     """PD with gravity compensation (Lecture 8): ``τ = K_p e + K_v ė + g(q)``.
 
     Call as ``tau = ctrl(t, q, dq, q_des, dq_des, ddq_des)``.
@@ -191,16 +213,12 @@ class GravityPD(_Controller):
     array([51.107, 11.772])
     """
 
-    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike) -> None:
-        self.robot, self.n = robot, robot.n
-        self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
-
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
                  ddq_des: np.ndarray) -> np.ndarray:
         return self.Kp * (q_des - q) + self.Kv * (dq_des - dq) + self.robot.gravity_torques(q)
 
 
-class ModelFeedforward(_Controller):
+class ModelFeedforward(_PDController):
     """Model-based feedforward plus PD (Lecture 8): ``τ = ID(q_d, q̇_d, q̈_d) + K_p e + K_v ė``.
 
     Call as ``tau = ctrl(t, q, dq, q_des, dq_des, ddq_des)``.
@@ -225,16 +243,12 @@ class ModelFeedforward(_Controller):
     array([52.967, 13.932])
     """
 
-    def __init__(self, robot: Robot, Kp: ArrayLike, Kv: ArrayLike) -> None:
-        self.robot, self.n = robot, robot.n
-        self.Kp, self.Kv = gains(Kp, self.n, "Kp"), gains(Kv, self.n, "Kv")
-
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
                  ddq_des: np.ndarray) -> np.ndarray:
         return self.robot.rnea(q_des, dq_des, ddq_des) + self.Kp * (q_des - q) + self.Kv * (dq_des - dq)
 
 
-class ComputedTorque(_Controller):
+class ComputedTorque(_IntegralController):
     """Computed torque (inverse dynamics control, Lecture 8), optionally with an integral term.
 
     ``τ = M(q)(q̈_d + K_v ė + K_p e + K_i ∫e dt) + c(q, q̇) + g(q)`` with M, c, g of ``robot``
@@ -273,27 +287,8 @@ class ComputedTorque(_Controller):
         self.Ki = gains(Ki, self.n, "Ki")
         self.reset()
 
-    def reset(self) -> None:
-        self.integral = np.zeros(self.n)
-
-    def update(self, dt: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> None:
-        """Advance the integral of the position error ∫(q_d − q) dt by one step (rectangle rule).
-
-        Parameters
-        ----------
-        dt : float
-            The time step, s.
-        q, dq : ndarray, shape (n,)
-            Measured joint positions (rad / m) and velocities.
-        q_des, dq_des : ndarray, shape (n,)
-            Desired positions and velocities (``dq`` and ``dq_des`` are not used by this law's integral).
-
-        Returns
-        -------
-        None
-            ``self.integral`` is updated.
-        """
-        self.integral = self.integral + dt * (q_des - q)
+    def _integrand(self, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray) -> np.ndarray:
+        return q_des - q  # the position error e, integrated to ∫e dt
 
     def __call__(self, t: float, q: np.ndarray, dq: np.ndarray, q_des: np.ndarray, dq_des: np.ndarray,
                  ddq_des: np.ndarray) -> np.ndarray:

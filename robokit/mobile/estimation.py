@@ -324,7 +324,59 @@ def _joseph(P: np.ndarray, K: np.ndarray, H: np.ndarray, W: np.ndarray) -> np.nd
     return 0.5 * (P + P.T)
 
 
-class EKFLocalization:
+def _innovation(z: np.ndarray, x: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """ν = z − h(x, p) of a range–bearing measurement z of the landmark p, bearing wrapped."""
+    nu = z - RangeBearingSensor.h(x, p)
+    nu[1] = angdiff(nu[1])
+    return nu
+
+
+class _EKF:
+    """The pose filter shared by :class:`EKFLocalization` and :class:`EKFSLAM` (Lecture 9).
+
+    The state ``.x`` starts with the pose (x, y, θ); anything after it (SLAM's landmarks) does
+    not move with the vehicle. ``.P`` is its covariance.
+    """
+
+    def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, order: str) -> None:
+        self.x = as_vector(x0, "x0", 3).copy()
+        self.P = as_matrix(P0, "P0", 3, 3).copy()
+        self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
+        self.order = _check_order(order)
+
+    def predict(self, delta: FloatVector) -> None:
+        """Prediction with the odometry increment δ = (δ_d, δ_θ): the pose moves, x ← f(x, δ), any
+        landmarks in the state stay; ``P ← F P Fᵀ + F_v V F_vᵀ`` with ``F = diag(F_x, I)`` (the
+        odometry noise enters the pose block only).
+
+        Parameters
+        ----------
+        delta : array_like, shape (2,)
+            Distance (m) and heading change (rad) measured by odometry.
+
+        Returns
+        -------
+        None
+            ``self.x`` and ``self.P`` are updated.
+        """
+        Fx, Fv = odometry_jacobians(self.x[:3], delta, self.order)
+        self.x = np.r_[odometry_model(self.x[:3], delta, order=self.order), self.x[3:]]
+        n = len(self.x)
+        F = np.eye(n)
+        F[:3, :3] = Fx
+        self.P = F @ self.P @ F.T
+        self.P[:3, :3] += Fv @ self.V @ Fv.T
+
+    def _correct(self, nu: np.ndarray, H: np.ndarray) -> None:
+        # Kalman gain K = P Hᵀ S⁻¹, S = H P Hᵀ + W; x ← x + K ν (heading wrapped); Joseph-form P
+        S = H @ self.P @ H.T + self.W
+        K = self.P @ H.T @ np.linalg.inv(S)
+        self.x = self.x + K @ nu
+        self.x[2] = angdiff(self.x[2])
+        self.P = _joseph(self.P, K, H, self.W)
+
+
+class EKFLocalization(_EKF):
     """EKF localisation with a known landmark map (Lecture 9).
 
     Prediction with odometry (:meth:`predict`), update with range–bearing measurements of known
@@ -348,27 +400,8 @@ class EKFLocalization:
     """
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, landmarks: LandmarkMap, order: str = "turn-move") -> None:
-        self.x = as_vector(x0, "x0", 3).copy()
-        self.P = as_matrix(P0, "P0", 3, 3).copy()
-        self.V, self.W, self.map = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2), landmarks
-        self.order = _check_order(order)
-
-    def predict(self, delta: FloatVector) -> None:
-        """Prediction with the odometry increment δ = (δ_d, δ_θ): x ← f(x, δ), P ← F_x P F_xᵀ + F_v V F_vᵀ.
-
-        Parameters
-        ----------
-        delta : array_like, shape (2,)
-            Distance (m) and heading change (rad) measured by odometry.
-
-        Returns
-        -------
-        None
-            ``self.x`` and ``self.P`` are updated.
-        """
-        Fx, Fv = odometry_jacobians(self.x, delta, self.order)
-        self.x = odometry_model(self.x, delta, order=self.order)
-        self.P = Fx @ self.P @ Fx.T + Fv @ self.V @ Fv.T
+        super().__init__(x0, P0, V, W, order)
+        self.map = landmarks
 
     def update(self, z: ArrayLike, i: int) -> np.ndarray:
         """Update with the measurement z = (r, β) of landmark i (Joseph form of the covariance update).
@@ -386,18 +419,13 @@ class EKFLocalization:
             The innovation ν = z − h(x, p_i), bearing wrapped to (−π, π].
         """
         p = self.map.points[i]
-        nu = np.asarray(z, float) - RangeBearingSensor.h(self.x, p)
-        nu[1] = angdiff(nu[1])
+        nu = _innovation(np.asarray(z, float), self.x, p)
         Hx, _ = RangeBearingSensor.jacobians(self.x, p)
-        S = Hx @ self.P @ Hx.T + self.W
-        K = self.P @ Hx.T @ np.linalg.inv(S)
-        self.x = self.x + K @ nu
-        self.x[2] = angdiff(self.x[2])
-        self.P = _joseph(self.P, K, Hx, self.W)
+        self._correct(nu, Hx)
         return nu
 
 
-class EKFSLAM:
+class EKFSLAM(_EKF):
     """EKF SLAM: the vehicle pose and the landmark positions estimated together (Lecture 9).
 
     The state ``.x`` is ``(x, y, θ, x₁, y₁, x₂, y₂, …)`` with covariance ``.P``; a landmark is added
@@ -419,33 +447,8 @@ class EKFSLAM:
     """
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, V: ArrayLike, W: ArrayLike, order: str = "turn-move") -> None:
-        self.x = as_vector(x0, "x0", 3).copy()
-        self.P = as_matrix(P0, "P0", 3, 3).copy()
-        self.V, self.W = as_matrix(V, "V", 2, 2), as_matrix(W, "W", 2, 2)
-        self.order = _check_order(order)
+        super().__init__(x0, P0, V, W, order)
         self.landmark_index: dict[int, int] = {}
-
-    def predict(self, delta: FloatVector) -> None:
-        """Prediction with the odometry increment δ = (δ_d, δ_θ): the vehicle part of the state moves, the
-        landmarks stay; the covariance grows by the odometry noise.
-
-        Parameters
-        ----------
-        delta : array_like, shape (2,)
-            Distance (m) and heading change (rad) measured by odometry.
-
-        Returns
-        -------
-        None
-            ``self.x`` and ``self.P`` are updated.
-        """
-        Fx, Fv = odometry_jacobians(self.x[:3], delta, self.order)
-        self.x[:3] = odometry_model(self.x[:3], delta, order=self.order)
-        n = len(self.x)
-        F = np.eye(n)
-        F[:3, :3] = Fx
-        self.P = F @ self.P @ F.T
-        self.P[:3, :3] += Fv @ self.V @ Fv.T
 
     def landmark(self, i: int) -> np.ndarray:
         """Estimated position of landmark i.
@@ -498,17 +501,12 @@ class EKFSLAM:
             return np.zeros(2)
         k = self.landmark_index[i]
         p = self.x[k:k + 2]
-        nu = z - RangeBearingSensor.h(self.x[:3], p)
-        nu[1] = angdiff(nu[1])
+        nu = _innovation(z, self.x[:3], p)
         Hx, Hp = RangeBearingSensor.jacobians(self.x[:3], p)
         H = np.zeros((2, len(self.x)))
         H[:, :3] = Hx
         H[:, k:k + 2] = Hp
-        S = H @ self.P @ H.T + self.W
-        K = self.P @ H.T @ np.linalg.inv(S)
-        self.x = self.x + K @ nu
-        self.x[2] = angdiff(self.x[2])
-        self.P = _joseph(self.P, K, H, self.W)
+        self._correct(nu, H)
         return nu
 
 

@@ -23,18 +23,17 @@ returns (v, ω).
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
-from robokit.mobile.vehicle import angdiff
+from robokit.mobile.vehicle import _HeadingModel
 
 __all__ = ["UnicycleModel", "DifferentialDrive"]
 
 
-class UnicycleModel:
+class UnicycleModel(_HeadingModel):
     """Unicycle: ``ẋ = v cos θ, ẏ = v sin θ, θ̇ = ω``, inputs u = (v, ω) (Lecture 9).
 
     Parameters
@@ -70,51 +69,8 @@ class UnicycleModel:
         v, w = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max), np.clip(w, -self.omega_max, self.omega_max)])
 
-    def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
-        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x and inputs u = (v, ω) (limits applied).
-
-        Parameters
-        ----------
-        x : array_like, shape (3,)
-            State (x, y, θ).
-        u : array_like, shape (2,)
-            Inputs (v, ω).
-
-        Returns
-        -------
-        ndarray, shape (3,)
-        """
-        x = as_vector(x, "x", 3)
-        v, w = self.limit(u)
-        return np.array([v * math.cos(x[2]), v * math.sin(x[2]), w])
-
-    def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
-        """The state after ``dt`` s at constant (v, ω): the exact arc of radius v/ω (a line when ω = 0).
-
-        Parameters
-        ----------
-        x : array_like, shape (3,)
-            State (x, y, θ).
-        u : array_like, shape (2,)
-            Inputs (v, ω), limits applied.
-        dt : float
-            Duration, s (> 0).
-
-        Returns
-        -------
-        ndarray, shape (3,)
-            The new state, θ wrapped.
-        """
-        x = as_vector(x, "x", 3)
-        v, w = self.limit(u)
-        dt = as_scalar(dt, "dt", positive=True)
-        th = x[2]
-        if abs(w) < 1e-12:
-            return np.array([x[0] + v * dt * math.cos(th), x[1] + v * dt * math.sin(th), th])
-        th1 = th + w * dt
-        R = v / w
-        return np.array([x[0] + R * (math.sin(th1) - math.sin(th)), x[1] - R * (math.cos(th1) - math.cos(th)),
-                         angdiff(th1)])
+    def _turn_rate(self, v: float, w: float) -> float:
+        return w  # the unicycle's second input is its turn rate
 
 
 class DifferentialDrive(UnicycleModel):

@@ -61,7 +61,72 @@ def angdiff(a: float | np.ndarray, b: float | np.ndarray = 0.0) -> float | np.nd
     return wrap_angle(np.asarray(a, dtype=float) - b) if np.ndim(a) else wrap_angle(float(a) - float(b))
 
 
-class BicycleModel:
+class _HeadingModel:
+    """What the bicycle and the unicycle share: ``ẋ = v cos θ, ẏ = v sin θ, θ̇ = ω`` (Lecture 9).
+
+    A subclass gives ``limit(u) -> (v, u₂)`` and ``_turn_rate(v, u₂) -> ω``; for the unicycle
+    u₂ is ω itself, for the bicycle the steering angle γ with ``ω = (v / L) tan γ``.
+    """
+
+    def limit(self, u: ArrayLike) -> np.ndarray:  # pragma: no cover - every model defines it
+        raise NotImplementedError
+
+    def _turn_rate(self, v: float, u2: float) -> float:  # pragma: no cover - every model defines it
+        raise NotImplementedError
+
+    def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
+        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, ω)`` at state x and inputs u (limits applied).
+
+        ω is the model's turn rate: ``v tan γ / L`` for the bicycle's u = (v, γ), ω itself for
+        the unicycle's u = (v, ω).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Speed v (m/s) and the second input: steering angle γ (rad) or turn rate ω (rad/s).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+        """
+        x = as_vector(x, "x", 3)
+        v, u2 = self.limit(u)
+        return np.array([v * math.cos(x[2]), v * math.sin(x[2]), self._turn_rate(v, u2)])
+
+    def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
+        """The state after ``dt`` s at constant inputs: the exact arc of radius v/ω (a straight line
+        when ω = 0: γ = 0 for the bicycle).
+
+        Parameters
+        ----------
+        x : array_like, shape (3,)
+            State (x, y, θ).
+        u : array_like, shape (2,)
+            Inputs (v, γ) or (v, ω), limits applied.
+        dt : float
+            Duration, s (> 0).
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            The new state, θ wrapped.
+        """
+        x = as_vector(x, "x", 3)
+        v, u2 = self.limit(u)
+        dt = as_scalar(dt, "dt", positive=True)
+        w = self._turn_rate(v, u2)
+        th = x[2]
+        if abs(w) < 1e-12:
+            return np.array([x[0] + v * dt * math.cos(th), x[1] + v * dt * math.sin(th), th])
+        th1 = th + w * dt
+        Rr = v / w  # signed radius (L / tan γ for the bicycle)
+        return np.array([x[0] + Rr * (math.sin(th1) - math.sin(th)), x[1] - Rr * (math.cos(th1) - math.cos(th)),
+                         angdiff(th1)])
+
+
+class BicycleModel(_HeadingModel):
     """Kinematic bicycle: ``ẋ = v cos θ, ẏ = v sin θ, θ̇ = (v / L) tan γ`` (Lecture 9).
 
     Parameters
@@ -107,52 +172,9 @@ class BicycleModel:
         return np.array([np.clip(v, -self.speed_max, self.speed_max),
                          np.clip(gamma, -self.steer_max, self.steer_max)])
 
-    def deriv(self, x: ArrayLike, u: ArrayLike) -> np.ndarray:
-        """``(ẋ, ẏ, θ̇) = (v cos θ, v sin θ, v tan γ / L)`` at state x and inputs u = (v, γ) (limits applied).
-
-        Parameters
-        ----------
-        x : array_like, shape (3,)
-            State (x, y, θ).
-        u : array_like, shape (2,)
-            Speed v (m/s) and steering angle γ (rad).
-
-        Returns
-        -------
-        ndarray, shape (3,)
-        """
-        x = as_vector(x, "x", 3)
-        v, g = self.limit(u)
-        return np.array([v * math.cos(x[2]), v * math.sin(x[2]), v / self.L * math.tan(g)])
-
-    def step(self, x: ArrayLike, u: ArrayLike, dt: float) -> np.ndarray:
-        """The state after ``dt`` s at constant inputs: the exact arc (or a straight line when γ = 0).
-
-        Parameters
-        ----------
-        x : array_like, shape (3,)
-            State (x, y, θ).
-        u : array_like, shape (2,)
-            Inputs (v, γ), limits applied.
-        dt : float
-            Duration, s (> 0).
-
-        Returns
-        -------
-        ndarray, shape (3,)
-            The new state, θ wrapped.
-        """
-        x = as_vector(x, "x", 3)
-        v, g = self.limit(u)
-        dt = as_scalar(dt, "dt", positive=True)
-        w = v / self.L * math.tan(g)
-        th = x[2]
-        if abs(w) < 1e-12:
-            return np.array([x[0] + v * dt * math.cos(th), x[1] + v * dt * math.sin(th), th])
-        th1 = th + w * dt
-        Rr = v / w  # signed radius L / tan γ
-        return np.array([x[0] + Rr * (math.sin(th1) - math.sin(th)), x[1] - Rr * (math.cos(th1) - math.cos(th)),
-                         angdiff(th1)])
+    def _turn_rate(self, v: float, gamma: float) -> float:
+        # θ̇ = ω = (v / L) tan γ
+        return v / self.L * math.tan(gamma)
 
     @staticmethod
     def sideways_velocity(x: FloatVector, xdot: FloatVector) -> float:

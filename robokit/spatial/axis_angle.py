@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.basics import _axis_and_norm
 from robokit.spatial.so3 import check_rotation
 from robokit.spatial import lie
 from numpy.typing import ArrayLike
@@ -41,10 +42,7 @@ def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     >>> (matrix_from_axis_angle([1, 1, 1], 2 * np.pi / 3) @ [1, 0, 0]).round(4)
     array([-0.,  1.,  0.])
     """
-    axis = as_vector(axis, "axis", 3)
-    n = float(np.linalg.norm(axis))
-    if n == 0.0:
-        raise InputError("axis: the zero vector has no direction")
+    axis, n = _axis_and_norm(axis)
     return lie.exp3(axis / n * as_scalar(angle, "angle"))
 
 

@@ -86,6 +86,15 @@ def unit_vector(v: ArrayLike, name: str) -> np.ndarray:
     return w / n
 
 
+def _axis_and_norm(axis: ArrayLike) -> tuple[np.ndarray, float]:
+    # a rotation axis as a float (3,) array and its norm ‖axis‖ > 0 (the zero vector has no direction)
+    axis = as_vector(axis, "axis", 3)
+    n = float(np.linalg.norm(axis))
+    if n == 0.0:
+        raise InputError("axis: the zero vector has no direction")
+    return axis, n
+
+
 def wrap_angle(a: ArrayLike) -> float | np.ndarray:
     """Angles wrapped to (−π, π] (no checks): the one angle-wrapping function of robokit.
 

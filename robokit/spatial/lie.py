@@ -30,7 +30,7 @@ Twists are angular first, ``(ω, v)``. Example::
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -152,6 +152,15 @@ def exp3(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + A * W + B * (W @ W)
 
 
+def _each_matrix(one: Callable[[np.ndarray], np.ndarray], M: np.ndarray, size: int) -> np.ndarray:
+    # ``one`` (a matrix -> a (size,) vector) applied to every matrix of a (..., k, k) batch
+    M = np.asarray(M, dtype=float)
+    if M.ndim == 2:
+        return one(M)
+    flat = M.reshape((-1,) + M.shape[-2:])
+    return np.array([one(m) for m in flat]).reshape(M.shape[:-2] + (size,))
+
+
 def _log3_one(R: np.ndarray) -> np.ndarray:
     s_vec = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])  # sin θ · ω̂
     s = float(np.linalg.norm(s_vec))
@@ -197,11 +206,7 @@ def log3(R: np.ndarray) -> np.ndarray:
     >>> log3(np.diag([-1.0, -1.0, 1.0])).round(4)     # a half turn about z
     array([0.    , 0.    , 3.1416])
     """
-    R = np.asarray(R, dtype=float)
-    if R.ndim == 2:
-        return _log3_one(R)
-    flat = R.reshape(-1, 3, 3)
-    return np.array([_log3_one(r) for r in flat]).reshape(R.shape[:-2] + (3,))
+    return _each_matrix(_log3_one, R, 3)
 
 
 def _exp6_one(V: np.ndarray) -> np.ndarray:
@@ -298,11 +303,7 @@ def log6(T: np.ndarray) -> np.ndarray:
     >>> bool(np.allclose(log6(exp6(V)), V))
     True
     """
-    T = np.asarray(T, dtype=float)
-    if T.ndim == 2:
-        return _log6_one(T)
-    flat = T.reshape(-1, 4, 4)
-    return np.array([_log6_one(t) for t in flat]).reshape(T.shape[:-2] + (6,))
+    return _each_matrix(_log6_one, T, 6)
 
 
 def inv(T: np.ndarray) -> np.ndarray:

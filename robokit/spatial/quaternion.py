@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from robokit._arrays import as_scalar, as_vector
+from robokit.spatial.basics import _axis_and_norm
 from robokit.spatial.so3 import check_rotation
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
@@ -149,10 +150,7 @@ def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     >>> quaternion_from_axis_angle([0, 0, 2], np.pi).round(4)      # half turn about z
     array([0., 0., 0., 1.])
     """
-    axis = as_vector(axis, "axis", 3)
-    n = float(np.linalg.norm(axis))
-    if n == 0.0:
-        raise InputError("axis: the zero vector has no direction")
+    axis, n = _axis_and_norm(axis)
     th = as_scalar(angle, "angle")
     return np.r_[math.cos(0.5 * th), math.sin(0.5 * th) * axis / n]
 

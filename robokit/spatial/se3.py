@@ -15,7 +15,7 @@ import numpy as np
 
 from robokit._arrays import as_matrix, as_vector
 from robokit.spatial import lie
-from robokit.spatial.so3 import SO3_TOLERANCE, _distance_so3, project_to_SO3
+from robokit.spatial.so3 import SO3_TOLERANCE, _check_group, _distance_so3, project_to_SO3
 from numpy.typing import ArrayLike
 from robokit.errors import InputError
 
@@ -61,11 +61,7 @@ def check_transform(T: ArrayLike, name: str = "T", tol: float = SO3_TOLERANCE) -
     >>> check_transform(np.eye(4)).shape
     (4, 4)
     """
-    T = as_matrix(T, name, 4, 4)
-    d = _distance_se3(T)
-    if d > tol:
-        raise InputError(f"{name}: not a homogeneous transform (distance to SE(3) {d:.3g} > {tol:g})")
-    return T
+    return _check_group(T, name, 4, _distance_se3, "a homogeneous transform", "SE(3)", tol)
 
 
 def Rp_to_trans(R: ArrayLike, p: ArrayLike) -> np.ndarray:
@@ -172,7 +168,11 @@ def vec_to_se3(V: ArrayLike) -> np.ndarray:
            [-0.,  0.,  0.,  3.],
            [ 0.,  0.,  0.,  0.]])
     """
-    V = as_vector(V, "V", 6)
+    return _se3_matrix(as_vector(V, "V", 6))
+
+
+def _se3_matrix(V: np.ndarray) -> np.ndarray:
+    # [V] = [[[ω], v], [0, 0]] of a checked (6,) twist
     m = np.zeros((4, 4))
     m[:3, :3] = lie.hat(V[:3])
     m[:3, 3] = V[3:]
@@ -259,8 +259,7 @@ def matrix_exp_6(se3mat: ArrayLike) -> np.ndarray:
     >>> matrix_exp_6(vec_to_se3(np.pi * np.array(S)))[:3, 3].round(4)
     array([2., 0., 0.])
     """
-    m = as_matrix(se3mat, "se3mat", 4, 4)
-    return lie.exp6(np.array([m[2, 1], m[0, 2], m[1, 0], m[0, 3], m[1, 3], m[2, 3]]))
+    return lie.exp6(se3_to_vec(se3mat))
 
 
 def matrix_log_6(T: ArrayLike) -> np.ndarray:
@@ -288,12 +287,7 @@ def matrix_log_6(T: ArrayLike) -> np.ndarray:
     >>> bool(np.allclose(se3_to_vec(matrix_log_6(matrix_exp_6(vec_to_se3(V)))), V))
     True
     """
-    T = check_transform(T, "T")
-    V = lie.log6(T)
-    m = np.zeros((4, 4))
-    m[:3, :3] = lie.hat(V[:3])
-    m[:3, 3] = V[3:]
-    return m
+    return _se3_matrix(lie.log6(check_transform(T, "T")))
 
 
 def adjoint(T: ArrayLike) -> np.ndarray:

@@ -19,6 +19,7 @@ from robokit._arrays import as_matrix, as_vector
 from robokit.spatial.lie import exp3, hat, log3
 from robokit.spatial.basics import wrap_angle
 from numpy.typing import ArrayLike
+from typing import Callable
 
 __all__ = [
     "rot_inv",
@@ -68,11 +69,17 @@ def check_rotation(R: ArrayLike, name: str = "R", tol: float = SO3_TOLERANCE) ->
     ...
     robokit.errors.InputError: R: not a rotation matrix (distance to SO(3) 5.2 > 1e-06)
     """
-    R = as_matrix(R, name, 3, 3)
-    d = _distance_so3(R)
+    return _check_group(R, name, 3, _distance_so3, "a rotation matrix", "SO(3)", tol)
+
+
+def _check_group(M: ArrayLike, name: str, size: int, distance: Callable[[np.ndarray], float], what: str, group: str,
+                 tol: float) -> np.ndarray:
+    # M as a (size, size) float array if ``distance(M)`` to the group is at most tol, else InputError
+    M = as_matrix(M, name, size, size)
+    d = distance(M)
     if d > tol:
-        raise InputError(f"{name}: not a rotation matrix (distance to SO(3) {d:.3g} > {tol:g})")
-    return R
+        raise InputError(f"{name}: not {what} (distance to {group} {d:.3g} > {tol:g})")
+    return M
 
 
 def rot_inv(R: ArrayLike) -> np.ndarray:
@@ -207,8 +214,7 @@ def matrix_exp_3(so3mat: ArrayLike) -> np.ndarray:
     >>> R @ [1, 0, 0]
     array([0., 1., 0.])
     """
-    m = as_matrix(so3mat, "so3mat", 3, 3)
-    return exp3(np.array([m[2, 1], m[0, 2], m[1, 0]]))
+    return exp3(so3_to_vec(so3mat))
 
 
 def matrix_log_3(R: ArrayLike) -> np.ndarray:

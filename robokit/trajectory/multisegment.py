@@ -55,6 +55,30 @@ def _quintic_blend(p0: np.ndarray, p1: np.ndarray, v0: np.ndarray, v1: np.ndarra
     return q, qd, qdd
 
 
+def _blend(blend_from: np.ndarray, last: np.ndarray, p1: np.ndarray, v0: np.ndarray, v1: np.ndarray, nb: int,
+           dt: float, segment: str, k: int, tseg: float, tacc: float, before: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nb samples (at dt, 2dt, …, nb·dt) of the quintic blend from ``blend_from`` (velocity v0)
+    to (p1, v1).
+
+    The blend must start at the newest sample ``last``: when it does not, the segment before it
+    (``segment``, tsegment[k] = tseg, blend time tacc) had no linear part and InputError says so.
+    """
+    if nb > 1 and not np.array_equal(blend_from, last):
+        raise InputError(
+            f"tsegment: {segment} (tsegment[{k}] = {tseg:g} s) is too short for its blends "
+            f"(tacc = {tacc:g} s at dt = {dt:g} s): it has no linear part before the {before} blend"
+        )
+    tau: np.ndarray = np.arange(1, nb + 1) * dt
+    return _quintic_blend(blend_from, p1, v0, v1, nb * dt, tau)
+
+
+def _emit(chunks: tuple[list, list, list, list], q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, in_blend: bool) -> int:
+    """Append one run of samples to ``chunks`` = (q, q̇, q̈, in-blend flag) lists; return its length."""
+    for chunk, x in zip(chunks, (q, qd, qdd, np.full(q.shape[0], in_blend))):
+        chunk.append(x)
+    return q.shape[0]
+
+
 def _per_axis(x: ArrayLike, name: str, n: int, *, allow_scalar: bool = True) -> np.ndarray:
     arr = as_array(x, name)
     if arr.ndim == 0 and allow_scalar:
@@ -185,7 +209,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
     v_start = np.zeros(n) if qd0 is None else _per_axis(qd0, "qd0", n, allow_scalar=False)
     v_end = np.zeros(n) if qdf is None else _per_axis(qdf, "qdf", n, allow_scalar=False)
 
-    chunks_q, chunks_qd, chunks_qdd, blend_flags = [], [], [], []
+    chunks: tuple[list, list, list, list] = ([], [], [], [])  # q, q̇, q̈, in-blend flags, one run of samples each
     count = 0  # samples emitted so far; sample i is at construction time (i+1)·dt
     seg_times, slowest_axes, arrive, via_idx = [], [], [], []
     q_prev = start
@@ -221,20 +245,11 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
 
         nb = round(taccx / dt) if taccx > 0 else 0
         if nb > 0:
-            if nb > 1 and not np.array_equal(blend_from, last):
-                raise InputError(
-                    f"tsegment: segment {seg - 1} (tsegment[{seg - 1}] = {seg_times[-2]:g} s) is too short for its blends "
-                    f"(tacc = {tacc_arr[seg - 1]:g} s at dt = {dt:g} s): it has no linear part before the next blend"
-                )
-            T_b = nb * dt
-            tau: np.ndarray = np.arange(1, nb + 1) * dt
-            qb, qdb, qddb = _quintic_blend(blend_from, q_prev + tacc2 * qd, qd_prev, qd, T_b, tau)
-            chunks_q.append(qb)
-            chunks_qd.append(qdb)
-            chunks_qdd.append(qddb)
-            blend_flags.append(np.ones(nb, dtype=bool))
-            count += nb
-            last = qb[-1]
+            # (seg ≥ 1 here whenever the check can fail: at seg 0 the blend starts at the start)
+            blend = _blend(blend_from, last, q_prev + tacc2 * qd, qd_prev, qd, nb, dt,
+                           f"segment {seg - 1}", seg - 1, seg_times[seg - 1], tacc_arr[seg - 1], "next")
+            count += _emit(chunks, *blend, True)
+            last = blend[0][-1]
         clock += taccx
         # segment-local time 0 (the line through q_prev) is round(tacc2/dt) samples before
         # the end of this blend
@@ -246,11 +261,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
             tl_s = np.arange(i0, i1 + 1) * dt
             s = tl_s / tseg
             ql = (1.0 - s)[:, None] * q_prev + s[:, None] * q_next
-            chunks_q.append(ql)
-            chunks_qd.append(np.tile(qd, (ql.shape[0], 1)))
-            chunks_qdd.append(np.zeros_like(ql))
-            blend_flags.append(np.zeros(ql.shape[0], dtype=bool))
-            count += ql.shape[0]
+            count += _emit(chunks, ql, np.tile(qd, (ql.shape[0], 1)), np.zeros_like(ql), False)
             clock += ql.shape[0] * dt
             blend_from = ql[-1]
             last = ql[-1]
@@ -259,23 +270,11 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
 
     nb = round(tacc2 / dt) if tacc2 > 0 else 0
     if nb > 0:
-        if nb > 1 and not np.array_equal(blend_from, last):
-            raise InputError(
-                f"tsegment: the last segment (tsegment[{ns - 1}] = {seg_times[-1]:g} s) is too short for its blends "
-                f"(tacc = {tacc_arr[-1]:g} s at dt = {dt:g} s): it has no linear part before the final blend"
-            )
-        tau = np.arange(1, nb + 1) * dt
-        qb, qdb, qddb = _quintic_blend(blend_from, q_prev, qd_prev, v_end, nb * dt, tau)
-        chunks_q.append(qb)
-        chunks_qd.append(qdb)
-        chunks_qdd.append(qddb)
-        blend_flags.append(np.ones(nb, dtype=bool))
-        count += nb
+        count += _emit(chunks, *_blend(blend_from, last, q_prev, qd_prev, v_end, nb, dt,
+                                       "the last segment", ns - 1, seg_times[-1], tacc_arr[-1], "final"), True)
     if count == 0:
         raise InputError("viapoint: the motion has no samples (every segment has zero length and tacc = 0)")
-    q = np.vstack(chunks_q)
-    qdv = np.vstack(chunks_qd)
-    qddv = np.vstack(chunks_qdd)
+    q, qdv, qddv = (np.vstack(c) for c in chunks[:3])
     t = dt * np.arange(q.shape[0])
     # via-point times on the t axis: sample i is at construction time (i+1)·dt, i.e. t = i·dt
     origin = [(k - 1) * dt for k in via_idx]  # t of the line's q_prev (segment-local time 0)
@@ -289,7 +288,7 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
         "via_times": via_times,
         "tacc": np.array([math.ceil(x / dt) * dt for x in tacc_arr]),
         "dt": dt,
-        "in_blend": np.concatenate(blend_flags),
+        "in_blend": np.concatenate(chunks[3]),
     }
     return Trajectory(t, q, qdv, qddv, name="ms_trajectory", info=info)
 

@@ -18,6 +18,7 @@ both ends included):
 from __future__ import annotations
 
 from numbers import Integral
+from typing import Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,9 +40,22 @@ __all__ = [
 ]
 
 
-def _times(t: ArrayLike) -> tuple[np.ndarray, bool]:
-    arr = as_array(t, "t")
-    return arr, arr.ndim == 0
+def _cubic(r: np.ndarray) -> np.ndarray:
+    # s(r) = 3r² − 2r³, r = t/T
+    return 3.0 * r**2 - 2.0 * r**3
+
+
+def _quintic(r: np.ndarray) -> np.ndarray:
+    # s(r) = 10r³ − 15r⁴ + 6r⁵, r = t/T
+    return r**3 * (10.0 - 15.0 * r + 6.0 * r**2)
+
+
+def _scaling(s_of_r: Callable[[np.ndarray], np.ndarray], Tf: float, t: ArrayLike) -> float | np.ndarray:
+    # s(t/Tf) at the time(s) t: a float for a scalar t, else an array shaped like t
+    T = positive_duration(Tf, "Tf")
+    x = as_array(t, "t")
+    s = s_of_r(x / T)
+    return float(s) if x.ndim == 0 else s
 
 
 def cubic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
@@ -63,11 +77,7 @@ def cubic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
     >>> round(cubic_time_scaling(2, 0.6), 12)
     0.216
     """
-    T = positive_duration(Tf, "Tf")
-    x, scalar = _times(t)
-    r = x / T
-    s = 3.0 * r**2 - 2.0 * r**3
-    return float(s) if scalar else s
+    return _scaling(_cubic, Tf, t)
 
 
 def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
@@ -92,11 +102,7 @@ def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
     >>> round(quintic_time_scaling(2, 0.6), 12), quintic_time_scaling(2, 1.0)
     (0.16308, 0.5)
     """
-    T = positive_duration(Tf, "Tf")
-    x, scalar = _times(t)
-    r = x / T
-    s = r**3 * (10.0 - 15.0 * r + 6.0 * r**2)
-    return float(s) if scalar else s
+    return _scaling(_quintic, Tf, t)
 
 
 def _method_name(method: int | str) -> str:
@@ -139,10 +145,10 @@ def time_scaling(method: int | str, Tf: float, t: ArrayLike) -> tuple[np.ndarray
     x = np.clip(as_array(t, "t"), 0.0, T)
     r = x / T
     if kind == "cubic":
-        return 3 * r**2 - 2 * r**3, (6 * r - 6 * r**2) / T, (6 - 12 * r) / T**2
+        return _cubic(r), (6 * r - 6 * r**2) / T, (6 - 12 * r) / T**2
     if kind == "quintic":
         return (
-            r**3 * (10 - 15 * r + 6 * r**2),
+            _quintic(r),
             r**2 * (30 - 60 * r + 30 * r**2) / T,
             r * (60 - 180 * r + 120 * r**2) / T**2,
         )
