@@ -138,6 +138,12 @@ class CLibrary:
     def _p(self, a: np.ndarray) -> object:
         return a.ctypes.data_as(self._ptr)
 
+    def _of_q(self, fn: str, q: ArrayLike, size: int) -> np.ndarray:
+        """Call ``NAME_<fn>(q, out)`` (one joint vector in, ``size`` values out), as float64."""
+        qa, out = self._arr(q, self.n), np.zeros(size, self._t)
+        getattr(self.lib, f"{self.name}_{fn}")(self._p(qa), self._p(out))
+        return out.astype(float)
+
     def fk(self, q: ArrayLike) -> np.ndarray:
         """``NAME_fk``: the tool pose in the base frame.
 
@@ -155,9 +161,7 @@ class CLibrary:
         --------
         >>> lib.fk(np.zeros(lib.n))  # doctest: +SKIP
         """
-        qa, out = self._arr(q, self.n), np.zeros(16, self._t)
-        getattr(self.lib, f"{self.name}_fk")(self._p(qa), self._p(out))
-        return out.reshape(4, 4).astype(float)
+        return self._of_q("fk", q, 16).reshape(4, 4)
 
     def joint_poses(self, q: ArrayLike) -> np.ndarray:
         """``NAME_joint_poses``: every joint frame's pose in the base frame.
@@ -177,9 +181,7 @@ class CLibrary:
         >>> lib.joint_poses(np.zeros(lib.n)).shape  # doctest: +SKIP
         (6, 4, 4)
         """
-        qa, out = self._arr(q, self.n), np.zeros(16 * self.n, self._t)
-        getattr(self.lib, f"{self.name}_joint_poses")(self._p(qa), self._p(out))
-        return out.reshape(self.n, 4, 4).astype(float)
+        return self._of_q("joint_poses", q, 16 * self.n).reshape(self.n, 4, 4)
 
     def jacobian(self, q: ArrayLike) -> np.ndarray:
         """``NAME_jacobian``: the geometric Jacobian.
@@ -199,9 +201,7 @@ class CLibrary:
         >>> lib.jacobian(np.zeros(lib.n)).shape  # doctest: +SKIP
         (6, 6)
         """
-        qa, out = self._arr(q, self.n), np.zeros(6 * self.n, self._t)
-        getattr(self.lib, f"{self.name}_jacobian")(self._p(qa), self._p(out))
-        return out.reshape(6, self.n).astype(float)
+        return self._of_q("jacobian", q, 6 * self.n).reshape(6, self.n)
 
     def gravity(self, q: ArrayLike) -> np.ndarray:
         """``NAME_gravity``: the gravity torques.
@@ -220,9 +220,7 @@ class CLibrary:
         --------
         >>> lib.gravity(np.zeros(lib.n))  # doctest: +SKIP
         """
-        qa, out = self._arr(q, self.n), np.zeros(self.n, self._t)
-        getattr(self.lib, f"{self.name}_gravity")(self._p(qa), self._p(out))
-        return out.astype(float)
+        return self._of_q("gravity", q, self.n)
 
     def rnea(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> np.ndarray:
         """``NAME_rnea``: inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q).

@@ -334,15 +334,11 @@ def emit_joint_poses(w: CWriter, Slist: np.ndarray, homes: np.ndarray, kinds: li
 
     Parameters
     ----------
-    w : CWriter
-        Where the body goes.
-    Slist : (6, n) array
-        Space screw axes (``robot.poe.Slist``), base frame.
+    w, Slist, kinds, names
+        As in :func:`emit_fk`: the writer, the space screw axes (6, n), the joint types and names.
     homes : (n, 4, 4) array
         ``homes[k - 1]``: the pose of joint k's frame in the base frame at q = 0 (Pinocchio's
         ``data.oMi[k]`` at the neutral configuration, m).
-    kinds, names : lists of n str
-        Joint types ("R"/"P") and names.
 
     Returns
     -------

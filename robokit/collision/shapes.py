@@ -60,6 +60,14 @@ class Obstacle:
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError(f"{type(self).__name__} is read-only")
 
+    def _set(self, pose: Any, name: str, **fields: Any) -> None:
+        """Set the shape's own (already checked) fields, then the checked ``pose`` and ``name``
+        (the only writes a read-only obstacle gets, in this order: ``repr`` lists them so)."""
+        for key, value in fields.items():
+            object.__setattr__(self, key, value)
+        object.__setattr__(self, "pose", _pose(pose))
+        object.__setattr__(self, "name", name)
+
     def __repr__(self) -> str:
         fields = {k: v for k, v in vars(self).items() if k not in ("pose", "vertices", "faces")}
         body = ", ".join(f"{k}={v.tolist() if isinstance(v, np.ndarray) else v!r}" for k, v in fields.items())
@@ -105,9 +113,7 @@ class Box(Obstacle):
         s = as_array(size, "size", (3,), bounded=True)
         if (s <= 0).any():
             raise InputError(f"size: every edge length must be > 0, got {s.tolist()}")
-        object.__setattr__(self, "size", s)
-        object.__setattr__(self, "pose", _pose(pose))
-        object.__setattr__(self, "name", str(name))
+        self._set(pose, str(name), size=s)
 
     def geometry(self) -> Any:
         """The coal geometry: ``coal.Box`` with the full edge lengths.
@@ -142,9 +148,7 @@ class Sphere(Obstacle):
     radius: float
 
     def __init__(self, radius: Any, pose: Any = None, name: str = "") -> None:
-        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True, bounded=True))
-        object.__setattr__(self, "pose", _pose(pose))
-        object.__setattr__(self, "name", str(name))
+        self._set(pose, str(name), radius=as_scalar(radius, "radius", positive=True, bounded=True))
 
     def geometry(self) -> Any:
         """The coal geometry.
@@ -182,10 +186,8 @@ class Cylinder(Obstacle):
     length: float
 
     def __init__(self, radius: Any, length: Any, pose: Any = None, name: str = "") -> None:
-        object.__setattr__(self, "radius", as_scalar(radius, "radius", positive=True, bounded=True))
-        object.__setattr__(self, "length", as_scalar(length, "length", positive=True, bounded=True))
-        object.__setattr__(self, "pose", _pose(pose))
-        object.__setattr__(self, "name", str(name))
+        self._set(pose, str(name), radius=as_scalar(radius, "radius", positive=True, bounded=True),
+                  length=as_scalar(length, "length", positive=True, bounded=True))
 
     def geometry(self) -> Any:
         """The coal geometry (coal's length is the full length too).
@@ -266,11 +268,7 @@ class Mesh(Obstacle):
             raise InputError(f"path: cannot read mesh {p} ({str(exc)[:200]})") from None
         V, F = check_mesh_arrays(getattr(tm, "vertices", np.zeros((0, 3))), getattr(tm, "faces", np.zeros((0, 3))),
                                  f"path: {p}")
-        object.__setattr__(self, "path", p)
-        object.__setattr__(self, "vertices", V)
-        object.__setattr__(self, "faces", F)
-        object.__setattr__(self, "pose", _pose(pose))
-        object.__setattr__(self, "name", str(name) or p.stem)
+        self._set(pose, str(name) or p.stem, path=p, vertices=V, faces=F)
 
     def geometry(self) -> Any:
         """The coal geometry: a bounding-volume hierarchy of the triangles.

@@ -664,10 +664,8 @@ class World:
 
         Examples
         --------
-        >>> import robokit
-        >>> from robokit.collision import Box, pose_from_xyz_rpy
-        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
-        >>> w = World(robokit.load("puma560"), [wall])
+        The world ``w`` of :meth:`in_collision` (the PUMA 560 and a wall 0.6 m ahead of it):
+
         >>> round(w.distance(np.zeros(6)), 4)
         0.0737
         """
@@ -688,10 +686,8 @@ class World:
 
         Examples
         --------
-        >>> import robokit
-        >>> from robokit.collision import Box, pose_from_xyz_rpy
-        >>> wall = Box([0.1, 1.0, 1.0], pose_from_xyz_rpy([0.6, 0, 0.3], [0, 0, 0]), name="wall")
-        >>> w = World(robokit.load("puma560"), [wall])
+        The world ``w`` of :meth:`in_collision`:
+
         >>> w.colliding_pairs([0, 0, -1.5, 0, 0, 0])
         [('link_4', 'wall')]
         """

@@ -34,7 +34,7 @@ import math
 
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Callable, cast
 
 import numpy as np
 
@@ -206,6 +206,21 @@ def _nearest_small(rows: list[np.ndarray], q0: np.ndarray, revolute: list[bool])
     return np.array(rows[best], dtype=float)
 
 
+def _from_random_starts(robot: Robot, targets: np.ndarray, rng: np.random.Generator,
+                        reach: Callable[[np.ndarray, np.ndarray, int], bool]) -> np.ndarray:
+    """``reach(T, q0, seed)`` for each target T, from a random initial guess q0 uniform inside the
+    limits (±π where a limit is infinite) and a seed, both drawn from ``rng`` in that order:
+    the iterative back ends' :meth:`IKBackend.reaches`. A (B,) bool array."""
+    qlim = np.array(robot.qlim, dtype=float)
+    lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
+    hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
+    out = np.zeros(len(targets), dtype=bool)
+    for b, T in enumerate(targets):
+        q0 = rng.uniform(lo, hi)
+        out[b] = reach(T, q0, int(rng.integers(2**31 - 1)))
+    return out
+
+
 class IKBackend:
     """An IK back end: ``name``, :meth:`unsupported` (why not, or None) and :meth:`solve`.
 
@@ -290,23 +305,47 @@ class IKBackend:
         >>> backend("planar").reaches(robot, targets, np.random.default_rng(0), 0).tolist()
         [True, False]
         """
-        qlim = np.array(robot.qlim, dtype=float)
-        lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
-        hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
-        out = np.zeros(len(targets), dtype=bool)
-        for b, T in enumerate(targets):
-            q0 = rng.uniform(lo, hi)
-            seed = int(rng.integers(2**31 - 1))
+        def reach(T: np.ndarray, q0: np.ndarray, seed: int) -> bool:
             p = IKProblem(robot, None, q0, T_target=T, q0_given=True, max_restarts=restarts, seed=seed,
                           max_iterations=60)
-            out[b] = self.solve(p).success
-        return out
+            return self.solve(p).success
+
+        return _from_random_starts(robot, targets, rng, reach)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
 
 
-class ClosedFormBackend(IKBackend):
+class _ExactBackend(IKBackend):
+    """What the two closed-form back ends share: a full tip pose (:func:`_exact_reason`), then
+    the arm's own test (:meth:`_why_not`); a solve is the in-limit exact solution nearest ``q0``
+    (:meth:`_nearest_solution`), no iterations, or an unsuccessful result at ``q0``."""
+
+    _what = ""  #: the method as the reasons name it ("the closed form")
+    _none = ""  #: the reason of a pose with no solution inside the limits
+
+    def _why_not(self, robot: Robot) -> str | None:  # pragma: no cover - overridden
+        """None when the arm has this closed form, else why not."""
+        raise NotImplementedError
+
+    def _nearest_solution(self, robot: Robot, T: np.ndarray, q0: np.ndarray) -> np.ndarray | None:  # pragma: no cover
+        """The in-limit solution for the tip pose T nearest q0, or None when there is none."""
+        raise NotImplementedError
+
+    def unsupported(self, problem: IKProblem) -> str | None:
+        why = _exact_reason(problem, self._what)
+        return why if why is not None else self._why_not(cast("Robot", problem.robot))
+
+    def solve(self, problem: IKProblem) -> IKResult:
+        robot = cast("Robot", problem.robot)
+        assert problem.T_target is not None  # a full pose (unsupported() says so)
+        best = self._nearest_solution(robot, problem.T_target, problem.q0)
+        if best is None:
+            return _failed(robot, problem, self.name, self._none)
+        return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
+
+
+class ClosedFormBackend(_ExactBackend):
     """``"analytic"``: every closed-form solution (:func:`robokit.ik_analytic`), the in-limit one
     nearest ``q0``; no iterations (see the module docstring).
 
@@ -329,23 +368,17 @@ class ClosedFormBackend(IKBackend):
     """
 
     name = "analytic"
+    _what = "the closed form"
+    _none = "no closed-form solution inside the joint limits"
 
-    def unsupported(self, problem: IKProblem) -> str | None:
-        why = _exact_reason(problem, "the closed form")
-        if why is not None:
-            return why
-        ik = analytic_ik(cast("Robot", problem.robot))
+    def _why_not(self, robot: Robot) -> str | None:
+        ik = analytic_ik(robot)
         return None if ik.method else f"no closed form: {ik.reason}"
 
-    def solve(self, problem: IKProblem) -> IKResult:
-        robot = cast("Robot", problem.robot)
-        assert problem.T_target is not None  # a full pose (unsupported() says so)
+    def _nearest_solution(self, robot: Robot, T: np.ndarray, q0: np.ndarray) -> np.ndarray | None:
         ik = analytic_ik(robot)
-        sols = [s for s in ik.solve(problem.T_target) if s.within_limits]
-        if not sols:
-            return _failed(robot, problem, self.name, "no closed-form solution inside the joint limits")
-        best = _nearest_small([s.q for s in sols], problem.q0, ik._revolute)
-        return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
+        sols = [s for s in ik.solve(T) if s.within_limits]
+        return _nearest_small([s.q for s in sols], q0, ik._revolute) if sols else None
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
         """All targets at once: the batched closed form (compiled, parallel over targets), then one
@@ -382,7 +415,7 @@ class ClosedFormBackend(IKBackend):
         return out
 
 
-class PlanarBackend(IKBackend):
+class PlanarBackend(_ExactBackend):
     """``"planar"``: the closed form of planar 2R/3R arms (:mod:`robokit.ik.planar`), the in-limit
     solution nearest ``q0``.
 
@@ -404,12 +437,11 @@ class PlanarBackend(IKBackend):
     """
 
     name = "planar"
+    _what = "the planar closed form"
+    _none = "no planar solution inside the joint limits"
 
-    def unsupported(self, problem: IKProblem) -> str | None:
-        why = _exact_reason(problem, "the planar closed form")
-        if why is not None:
-            return why
-        reason = self._planar(cast("Robot", problem.robot))[1]
+    def _why_not(self, robot: Robot) -> str | None:
+        reason = self._planar(robot)[1]
         return None if reason is None else f"not a planar arm: {reason}"
 
     def _planar(self, robot: Robot) -> tuple[PlanarChain | None, str | None]:
@@ -422,16 +454,11 @@ class PlanarBackend(IKBackend):
         derived = getattr(robot, "derived", None)
         return cast("tuple[PlanarChain | None, str | None]", build() if derived is None else derived("planar_chain", build))
 
-    def solve(self, problem: IKProblem) -> IKResult:
-        robot = cast("Robot", problem.robot)
-        assert problem.T_target is not None  # a full pose (unsupported() says so)
+    def _nearest_solution(self, robot: Robot, T: np.ndarray, q0: np.ndarray) -> np.ndarray | None:
         chain = self._planar(robot)[0]
         assert chain is not None  # unsupported() checked it
-        sols = chain.solutions(problem.T_target)
-        if not sols:
-            return _failed(robot, problem, self.name, "no planar solution inside the joint limits")
-        best = _nearest(np.array(sols), problem.q0, np.ones(robot.n, dtype=bool))
-        return _result(robot, best, problem.T_target, problem.tol, 0, 0, problem.t_start, self.name)
+        sols = chain.solutions(T)
+        return _nearest(np.array(sols), q0, np.ones(robot.n, dtype=bool)) if sols else None
 
     def reaches(self, robot: Robot, targets: np.ndarray, rng: np.random.Generator, restarts: int) -> np.ndarray:
         chain = self._planar(robot)[0]
@@ -497,14 +524,11 @@ class CompiledLMBackend(IKBackend):
 
         poe = robot.poe
         qlim = np.array(robot.qlim, dtype=float)
-        lo = np.where(np.isfinite(qlim[:, 0]), qlim[:, 0], -np.pi)
-        hi = np.where(np.isfinite(qlim[:, 1]), qlim[:, 1], np.pi)
-        out = np.zeros(len(targets), dtype=bool)
-        for b, T in enumerate(targets):
-            q0 = rng.uniform(lo, hi)
-            _, ok, _, _ = solve_poe_ik(poe.M, poe.Slist, T, q0, qlim, 1e-10, 60, restarts, int(rng.integers(2**31 - 1)))
-            out[b] = bool(ok)
-        return out
+
+        def reach(T: np.ndarray, q0: np.ndarray, seed: int) -> bool:
+            return bool(solve_poe_ik(poe.M, poe.Slist, T, q0, qlim, 1e-10, 60, restarts, seed)[1])
+
+        return _from_random_starts(robot, targets, rng, reach)
 
 
 class PinocchioLMBackend(IKBackend):

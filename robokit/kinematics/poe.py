@@ -118,6 +118,25 @@ def _run_fk(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray],
         return batch(M, S, th[None])[0]
 
 
+def _poe(kernel: Callable[..., np.ndarray], batch: Callable[..., np.ndarray], args: tuple, name: str) -> np.ndarray:
+    """The one body of the four PoE functions: ``args`` is ``(M, S, θ)`` for an FK form or
+    ``(S, θ)`` for a Jacobian, ``name`` the screw list's name in messages.
+
+    The fast path first: lists, read-only or strided arrays converted once at most; the kernel checks
+    θ, the screws' shape and finiteness (and M's rigidity) itself. On a bad value, the full checks
+    (the slow path, :func:`_run` / :func:`_run_fk`) name it."""
+    fast = kernel_arrays(args, _FK_NDIMS if len(args) == 3 else _J_NDIMS)
+    if fast is not None and surely_radians(fast[-1]):
+        try:
+            return kernel(*fast)
+        except ValueError:  # a bad value: the full checks below name it
+            pass
+    S, thetalist = _screws(args[-2], name), args[-1]
+    if len(args) == 2:
+        return _run(kernel, batch, thetalist, S.shape[1], S)
+    return _run_fk(kernel, batch, thetalist, _home(args[0]), S)
+
+
 # The screw exponentials of many joints/configurations at once, for the modules that need the factors
 # one by one (the Newton–Euler model's link transforms, the numeric IK, the calibration chain). Like the
 # FK and the Jacobians, they are the compiled kernels of robokit.kernels (the one screw exponential).
@@ -205,15 +224,7 @@ def fkin_space(M: ArrayLike, Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarr
     (5, 4, 4)
     """
     k = _kp or _kernels()
-    args = kernel_arrays((M, Slist, thetalist), _FK_NDIMS)  # the fast path: lists, read-only or strided
-    if args is not None and surely_radians(args[-1]):  # arrays converted once; the kernel checks θ, the screws and M's rigidity itself
-        try:
-            return k.fkin_space(*args)
-        except ValueError:  # a bad value: the full checks below name it
-            pass
-    Slist = _screws(Slist, "Slist")
-    M = _home(M)
-    return _run_fk(k.fkin_space, k.fkin_space_batch, thetalist, M, Slist)
+    return _poe(k.fkin_space, k.fkin_space_batch, (M, Slist, thetalist), "Slist")
 
 
 def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -255,15 +266,7 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
            [ 0.,  0.,  0.,  1.]])
     """
     k = _kp or _kernels()
-    args = kernel_arrays((M, Blist, thetalist), _FK_NDIMS)  # the fast path: lists, read-only or strided
-    if args is not None and surely_radians(args[-1]):  # arrays converted once; the kernel checks θ, the screws and M's rigidity itself
-        try:
-            return k.fkin_body(*args)
-        except ValueError:  # a bad value: the full checks below name it
-            pass
-    Blist = _screws(Blist, "Blist")
-    M = _home(M)
-    return _run_fk(k.fkin_body, k.fkin_body_batch, thetalist, M, Blist)
+    return _poe(k.fkin_body, k.fkin_body_batch, (M, Blist, thetalist), "Blist")
 
 
 def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -301,14 +304,7 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     k = _kp or _kernels()
-    args = kernel_arrays((Slist, thetalist), _J_NDIMS)  # the fast path (arrays converted once at most):
-    if args is not None and surely_radians(args[-1]):  # the kernel checks θ and the screws' shape and finiteness itself
-        try:
-            return k.jacobian_space(*args)
-        except ValueError:  # a bad value: the full checks below name it
-            pass
-    Slist = _screws(Slist, "Slist")
-    return _run(k.jacobian_space, k.jacobian_space_batch, thetalist, Slist.shape[1], Slist)
+    return _poe(k.jacobian_space, k.jacobian_space_batch, (Slist, thetalist), "Slist")
 
 
 def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
@@ -346,13 +342,6 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
            [0., 0., 1., 0., 1., 0.]])
     """
     k = _kp or _kernels()
-    args = kernel_arrays((Blist, thetalist), _J_NDIMS)  # the fast path (arrays converted once at most):
-    if args is not None and surely_radians(args[-1]):  # the kernel checks θ and the screws' shape and finiteness itself
-        try:
-            return k.jacobian_body(*args)
-        except ValueError:  # a bad value: the full checks below name it
-            pass
-    Blist = _screws(Blist, "Blist")
-    return _run(k.jacobian_body, k.jacobian_body_batch, thetalist, Blist.shape[1], Blist)
+    return _poe(k.jacobian_body, k.jacobian_body_batch, (Blist, thetalist), "Blist")
 
 

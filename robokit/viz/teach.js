@@ -886,28 +886,14 @@
   var branchesBox = document.createElement("div");
   branchesBox.id = "rk-branches";
   ikBox.insertAdjacentElement("afterend", branchesBox);
-  var branchBadge = document.createElement("div");
-  branchBadge.id = "rk-branch";
-  branchBadge.hidden = true;
-  el("rk-view").appendChild(branchBadge);
-  var ghostData = document.createElement("div");
-  ghostData.id = "rk-ghosts";
-  ghostData.hidden = true;
-  document.body.appendChild(ghostData);
-
-  var gizmoData = document.createElement("div");
-  gizmoData.id = "rk-gizmo";
-  gizmoData.hidden = true;
-  document.body.appendChild(gizmoData);
-
-  var framing = document.createElement("div");
-  framing.id = "rk-framing";
-  framing.hidden = true;
-  document.body.appendChild(framing);
-  var hidden = document.createElement("div");
-  hidden.id = "rk-scene-poses";
-  hidden.hidden = true;
-  document.body.appendChild(hidden);
+  // hidden until used: the branch badge over the view; the data the tests read (ghosts, gizmo, framing, poses)
+  [["rk-branch", el("rk-view")], ["rk-ghosts", document.body], ["rk-gizmo", document.body],
+   ["rk-framing", document.body], ["rk-scene-poses", document.body]].forEach(function (idParent) {
+    var div = document.createElement("div");
+    div.id = idParent[0];
+    div.hidden = true;
+    idParent[1].appendChild(div);
+  });
 
   buildControls();
   if (!KIN) { message(kinProblem); return; }  // no numbers rather than numbers of another implementation
