@@ -465,6 +465,217 @@ def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, 
     return _cf.parallel_axes_solve_into(Kn, T, wrist_ref, out)
 
 
+
+#: The relaxed poses are solved only where they can add a branch (:func:`_relax_needed`). Where a
+#: decision is within these margins (relative) it is unsure and the relaxed poses are solved: a
+#: critical value of the position quartic near zero (a double root: the closed form takes a complex
+#: pair as real when its imaginary part is below 1e-6, where that value is about 1e-12 of the
+#: quartic's size), and a branch label's defining quantity near zero.
+RELAX_UNSURE, LABEL_UNSURE = 1e-8, 1e-6
+
+
+@njit
+def _quartic_roots(c: np.ndarray, roots: np.ndarray) -> int:
+    """Real roots of Σ c_k t^k (k ≤ 4) into ``roots``, ascending; their count, or −1 when unsure:
+    a leading coefficient near zero (a root near t = ∞), two critical points (nearly) coinciding,
+    or a critical value within ``RELAX_UNSURE`` of zero (a double root). The quartic is monotone
+    between its critical points (the roots of its derivative, a cubic: trigonometric or Cardano
+    formula, then Newton), so each sign change of the values there brackets one root, found by
+    Newton's method kept inside the bracket (bisection when it leaves)."""
+    c0, c1, c2, c3, c4 = c[0], c[1], c[2], c[3], c[4]
+    scale = max(abs(c0), abs(c1), abs(c2), abs(c3), abs(c4))
+    if scale == 0.0 or abs(c4) <= 1e-6 * scale:
+        return -1
+    A, B, C = 0.75 * c3 / c4, 0.5 * c2 / c4, 0.25 * c1 / c4  # P'/(4 c4) = t³ + A t² + B t + C
+    Q = (A * A - 3.0 * B) / 9.0
+    R = (2.0 * A * A * A - 9.0 * A * B + 27.0 * C) / 54.0
+    Q3 = Q * Q * Q
+    if abs(R * R - Q3) <= 1e-9 * (R * R + abs(Q3)):
+        return -1
+    pts = np.empty(5)  # −bound, the critical points ascending, +bound
+    nc = 0
+    if R * R < Q3:
+        th = math.acos(max(-1.0, min(1.0, R / math.sqrt(Q3))))
+        sq = -2.0 * math.sqrt(Q)
+        pts[1] = sq * math.cos(th / 3.0) - A / 3.0
+        pts[2] = sq * math.cos((th + 2.0 * math.pi) / 3.0) - A / 3.0
+        pts[3] = sq * math.cos((th - 2.0 * math.pi) / 3.0) - A / 3.0
+        nc = 3
+    else:
+        S = -math.copysign(1.0, R) * (abs(R) + math.sqrt(R * R - Q3)) ** (1.0 / 3.0)
+        pts[1] = S + (Q / S if S != 0.0 else 0.0) - A / 3.0
+        nc = 1
+    for i in range(2, nc + 1):  # ascending
+        x = pts[i]
+        k = i
+        while k > 1 and pts[k - 1] > x:
+            pts[k] = pts[k - 1]
+            k -= 1
+        pts[k] = x
+    bound = 1.0 + max(abs(c0), abs(c1), abs(c2), abs(c3)) / abs(c4)  # Cauchy: every root inside
+    vals = np.empty(5)
+    for i in range(1, nc + 1):
+        t = pts[i]
+        for _ in range(2):  # Newton on the cubic: the formula's rounding
+            d1 = ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
+            d2 = (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
+            if d2 == 0.0:
+                break
+            t -= d1 / d2
+        pts[i] = t
+        a = abs(t)
+        p = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+        if abs(p) <= RELAX_UNSURE * ((((abs(c4) * a + abs(c3)) * a + abs(c2)) * a + abs(c1)) * a + abs(c0)):
+            return -1
+        vals[i] = p
+    pts[0], pts[nc + 1] = -bound - 1.0, bound + 1.0
+    for i in (0, nc + 1):
+        t = pts[i]
+        vals[i] = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+    n = 0
+    for i in range(nc + 1):
+        lo, hi, flo = pts[i], pts[i + 1], vals[i]
+        if (flo > 0.0) == (vals[i + 1] > 0.0):
+            continue
+        t = 0.5 * (lo + hi)
+        for _ in range(100):
+            p = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+            if p == 0.0:
+                break
+            if (p > 0.0) == (flo > 0.0):
+                lo = t
+            else:
+                hi = t
+            dp = ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
+            tn = t - p / dp if dp != 0.0 else 0.5 * (lo + hi)
+            if not lo < tn < hi:
+                tn = 0.5 * (lo + hi)
+            if abs(tn - t) <= 1e-14 * (1.0 + abs(t)):
+                t = tn
+                break
+            t = tn
+        roots[n] = t
+        n += 1
+    return n
+
+
+@njit
+def _position_codes(Kn: np.ndarray, Tt: np.ndarray, codes: np.ndarray) -> int:
+    """The (shoulder, elbow) codes ``10 s + e`` of the positions of the projected arm's Pieper
+    solution (its general case: joints 1, 2 revolute, a quartic in joint 3) for the canonical target
+    Tt, as ``closed_form._pieper_position`` labels them, into ``codes``; their count, or −1 when
+    unsure (:func:`_quartic_roots`; a label's quantity within ``LABEL_UNSURE`` of zero; a
+    degenerate position)."""
+    cf = Kn[_cf._K_CF:_cf._K_C]
+    Cm = Kn[_cf._K_C:_cf._K_PRE]
+    nrows = int(Kn[_cf._K_CI + 4])
+    rev3 = int(Kn[_cf._K_CI + 2]) == 1
+    scale = cf[_cf._SCALE]
+    w6x, w6y, w6z = cf[_cf._W6], cf[_cf._W6 + 1], cf[_cf._W6 + 2]
+    Wx = Tt[0, 0] * w6x + Tt[0, 1] * w6y + Tt[0, 2] * w6z + Tt[0, 3]
+    Wy = Tt[1, 0] * w6x + Tt[1, 1] * w6y + Tt[1, 2] * w6z + Tt[1, 3]
+    Wz = Tt[2, 0] * w6x + Tt[2, 1] * w6y + Tt[2, 2] * w6z + Tt[2, 3]
+    h = Wz - cf[_cf._D1]
+    r = Wx * Wx + Wy * Wy + h * h
+    m = np.empty(5)
+    m[0], m[1], m[2], m[3], m[4] = r * r, r, h * h, h, 1.0
+    coeffs = np.zeros(5)
+    for j in range(5):
+        acc = 0.0
+        for k in range(nrows):
+            acc += m[k] * Cm[5 * k + j]
+        coeffs[j] = acc
+    ts = np.empty(4)
+    nr = _quartic_roots(coeffs, ts)
+    if nr < 0:
+        return -1
+    ca1, sa1, a1 = cf[_cf._CA], cf[_cf._SA], cf[_cf._A1]
+    sa_, sb_ = 2.0 * a1, sa1
+    if sa_ == 0.0 or sb_ == 0.0:
+        return -1
+    rxy = math.hypot(Wx, Wy)
+    vsize = abs(cf[_cf._V]) + abs(cf[_cf._V + 1])
+    for i in range(nr):
+        x3 = 2.0 * math.atan(ts[i]) if rev3 else ts[i]
+        c3, s3 = (math.cos(x3), math.sin(x3)) if rev3 else (0.0, 0.0)
+        f1 = _cf._val(cf, _cf._F, x3, rev3, c3, s3)
+        f2 = _cf._val(cf, _cf._F + 3, x3, rev3, c3, s3)
+        f3 = _cf._val(cf, _cf._F + 6, x3, rev3, c3, s3)
+        F3 = f3 + cf[_cf._D2]
+        ra = r - _cf._val(cf, _cf._KA, x3, rev3, c3, s3)
+        rb = h - ca1 * F3
+        if f1 * f1 + f2 * f2 <= 1e-12 * scale * scale:
+            return -1
+        A, B = ra / sa_, rb / sb_
+        t2 = math.atan2(f1 * B - f2 * A, f1 * A + f2 * B)
+        c2, s2 = math.cos(t2), math.sin(t2)
+        u = s2 * f1 + c2 * f2
+        g1, g2 = a1 + c2 * f1 - s2 * f2, ca1 * u - sa1 * F3
+        if math.hypot(g1, g2) <= LABEL_UNSURE * scale:
+            return -1
+        t1 = math.atan2(Wy, Wx) - math.atan2(g2, g1)
+        sh = math.cos(t1) * Wx + math.sin(t1) * Wy
+        if abs(sh) <= LABEL_UNSURE * max(rxy, scale):
+            return -1
+        if rev3:
+            e = math.sin(x3) * cf[_cf._V] + math.cos(x3) * cf[_cf._V + 1]
+            if abs(e) <= LABEL_UNSURE * vsize:
+                return -1
+            e *= cf[_cf._A2] if cf[_cf._A2] != 0.0 else 1.0
+            elbow = 0 if e > 0.0 else 1
+        else:
+            d = cf[_cf._D0 + 2] + x3
+            if abs(d) <= LABEL_UNSURE * scale:
+                return -1
+            elbow = 2 if d >= 0.0 else 3
+        codes[i] = 10 * (0 if sh >= 0.0 else 1) + elbow
+    return nr
+
+
+@njit
+def _relax_needed(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
+                  codes: np.ndarray, degens: np.ndarray) -> bool:
+    """Whether the closed form at the relaxed poses (``RELAX``) can give a branch the pose's own m
+    rows (branch ``codes``, degenerate flags ``degens``) lack. Always, except for Pieper's general
+    case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate and every position
+    at every relaxed pose (:func:`_position_codes`, each label sure) has a shoulder and elbow label
+    that the rows have already: then the relaxed solves would add nothing (their wrist rows are the
+    two regular flips). A random Pieper arm has two of its four positions at about half of its
+    poses, far from any boundary: there the six relaxed solves were most of the time."""
+    if method != _cf.PIEPER or int(Kn[_cf._K_CI + 1]) != 0 or int(Kn[_cf._K_CI + 3]) != 4:
+        return True
+    for r in range(m):
+        if degens[r] != 0.0:
+            return True
+    ci = np.empty(6, dtype=np.int64)
+    for j in range(6):
+        ci[j] = int(Kn[_cf._K_CI + j])
+    pre = Kn[_cf._K_PRE:_cf._K_POST].reshape((4, 4))
+    post = Kn[_cf._K_POST:_cf._K_PQ].reshape((4, 4))
+    dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
+    if dist == 0.0:
+        return True
+    Tr = np.empty((4, 4))
+    pc = np.empty(4, dtype=np.int64)
+    for f in RELAX:
+        for r in range(4):
+            for c in range(4):
+                Tr[r, c] = T[r, c]
+        for r in range(3):
+            Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
+        n = _position_codes(Kn, _cf._target(ci, pre, post, Tr), pc)
+        if n < 0:
+            return True
+        for i in range(n):
+            have = False
+            for r in range(m):
+                if int(codes[r]) // 10 == pc[i]:
+                    have = True
+                    break
+            if not have:
+                return True
+    return False
+
 @njit
 def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndarray, wrist_ref: float,
                           out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int, float]:
@@ -498,7 +709,8 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
         degens[r] = first[r, 8]
     shoulder = C[_SHOULDER:_REACH]
     reach = C[_REACH]
-    if m < GENERIC_ROWS:  # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
+    # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
+    if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens):
         Tr = np.empty((4, 4))
         for f in RELAX:
             for r in range(4):
