@@ -6,7 +6,8 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
    restored, built by :mod:`robokit.ik.calibrated`), emitted by :mod:`robokit.codegen.ik` from that
    arm's constants — one start per branch, its label and degenerate flag; when it gives fewer than
    8, also for the pose moved about the shoulder by the kernel's ``RELAX`` fractions (starts of the
-   branches the projected arm just misses);
+   branches the projected arm just misses; the Python kernel skips those solves where it can show
+   they add no branch, the C always solves them: the same starts either way);
 2. each start polished by Newton's method on the arm's own kinematics — the generated ``NAME_fk`` and
    ``NAME_jacobian`` (the robot's product of exponentials) — with the first-order spatial pose
    error, Levenberg–Marquardt steps where Newton fails, steps no longer than ``MAX_STEP``;
@@ -15,6 +16,11 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
 4. around solutions the polish moved far, vanished branches and singular choices: the roots along
    the near-singular direction (inverse iteration on ``J̃ᵀJ̃``) from the kernel's ``EXPLORE_STEPS``;
 5. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
+
+For a small stack (an RTOS task's 2 KB on a Cortex-M4) the starts, the search points and the
+solutions all live in the caller's ``q`` (16 rows): each row holds in turn a start and what it gave;
+in the rare case where every row holds a solution or a search point still to come, the search stops
+where Python's would go on.
 
 Same solutions, in the same order, as :func:`robokit.ik_analytic` (to the polish's tolerance); the
 label of a merged solution is its first branch's (Python adds " (merged with …)"). In float32 the

@@ -12,7 +12,9 @@ constants ``Kn``). Per pose:
    or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag; when
    it gives fewer than ``GENERIC_ROWS``, also those of the pose moved toward and away from the
    shoulder by the ``RELAX`` fractions of the reach, for the branches it lacks (the projected arm's
-   workspace boundary is not quite the arm's);
+   workspace boundary is not quite the arm's) — except where :func:`_relax_needed` shows they
+   cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
+   position quartic's real roots, are all sure and present already);
 2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
    (:func:`_error`) with the space Jacobian, both from
    :func:`robokit.kernels.ik.fk_and_space_jacobian` (the FK and Jacobian of the compiled numerical
