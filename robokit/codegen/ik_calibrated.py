@@ -6,7 +6,8 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
    restored, built by :mod:`robokit.ik.calibrated`), emitted by :mod:`robokit.codegen.ik` from that
    arm's constants — one start per branch, its label and degenerate flag; when it gives fewer than
    8, also for the pose moved about the shoulder by the kernel's ``RELAX`` fractions (starts of the
-   branches the projected arm just misses);
+   branches the projected arm just misses; the Python kernel skips those solves where it can show
+   they add no branch, the C always solves them: the same starts either way);
 2. each start polished by Newton's method on the arm's own kinematics — the generated ``NAME_fk`` and
    ``NAME_jacobian`` (the robot's product of exponentials) — with the first-order spatial pose
    error, Levenberg–Marquardt steps where Newton fails, steps no longer than ``MAX_STEP``;
@@ -15,6 +16,11 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
 4. around solutions the polish moved far, vanished branches and singular choices: the roots along
    the near-singular direction (inverse iteration on ``J̃ᵀJ̃``) from the kernel's ``EXPLORE_STEPS``;
 5. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
+
+For a small stack (an RTOS task's 2 KB on a Cortex-M4) the starts, the search points and the
+solutions all live in the caller's ``q`` (16 rows): each row holds in turn a start and what it gave;
+in the rare case where every row holds a solution or a search point still to come, the search stops
+where Python's would go on.
 
 Same solutions, in the same order, as :func:`robokit.ik_analytic` (to the polish's tolerance); the
 label of a merged solution is its first branch's (Python adds " (merged with …)"). In float32 the
@@ -381,14 +387,15 @@ static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double 
     }}
 }}
 
-/* two joint vectors within {c["same"]:g} (rad or m; revolute angles modulo 2 pi): one solution */
-static int {P}_cal_find(const double q[6], const double rows[][6], int n)
+/* two joint vectors within {c["same"]:g} (rad or m; revolute angles modulo 2 pi): one solution; the
+   solutions are the rows rows[sol[0]], ..., rows[sol[n - 1]] */
+static int {P}_cal_find(const double q[6], const double rows[][6], const signed char sol[], int n)
 {{
     int kk, j;
     for (kk = 0; kk < n; ++kk) {{
         int same = 1;
         for (j = 0; j < 6 && same; ++j) {{
-            double d = q[j] - rows[kk][j];
+            double d = q[j] - rows[sol[kk]][j];
             if ({P}_joint_type[j] == 0) {{
                 d = remainder(d, {lit(2 * math.pi)});
             }}
@@ -401,27 +408,39 @@ static int {P}_cal_find(const double q[6], const double rows[][6], int n)
     return -1;
 }}
 
-/* every solution (see {P}.h). Stack: the starts (later the search points, stored over the starts
-   already polished) and, in the caller's q, the solutions (NAME_finish works in place) */
+/* NAME_finish in a frame of its own (not live together with the polish's) */
+static {P}_CAL_NOINLINE int {P}_cal_finish(const double rows[][6], const int lab[], const int deg[], int n,
+                                          double q[], int info[])
+{{
+    return {P}_finish(rows, lab, deg, n, q, info);
+}}
+
+/* every solution (see {P}.h). For a small stack (an RTOS task's) everything per row lives in the
+   caller's q: the closed form's starts, each row then reused for what its start gave (a solution, a
+   point the search starts from, or nothing: free), the search's solutions in free rows; at the end
+   the solutions are put in order (sol) and NAME_finish works in place. On the stack: per row its
+   label, flags and state, the row numbers of the solutions (sol) and of the search points (seed). */
 int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
 {{
     static const double relax[] = {{{relax}}};
     static const double steps[] = {{{steps}}};
-    double nq[{max_rows} * 6], qq[6], q2[6];
+    double tmp[18];  /* the relaxed pose (16); then a point qq, the mirrored point q2, the start s0 */
+    double *const qq = tmp, *const q2 = tmp + 6, *const s0 = tmp + 12;
     double (*rows)[6] = (double (*)[6])q;
     double *const v = q2;  /* the near-singular direction, once q2 is no longer needed */
     int labdeg[2 * {max_rows}];  /* first the closed form's info (4 per row), then lab and deg */
     int *const lab = labdeg, *const deg = labdeg + {max_rows}, *const ninfo = labdeg;
     signed char nlab[{max_rows}], ndeg[{max_rows}], seed_lab[{max_rows}];
+    signed char sol[{max_rows}], seed[{max_rows}], state[{max_rows}];  /* state: 0 free, 1 a solution, 2 a search point */
     int m, m0, me, r, j, kk, f, ns = 0, nseed = 0;
-    m = {P}_nominal_ik_ex(T, wrist_ref, nq, ninfo);
+    m = {P}_nominal_ik_ex(T, wrist_ref, q, ninfo);
     for (r = 0; r < m; ++r) {{
         nlab[r] = (signed char)ninfo[4 * r];
         ndeg[r] = (signed char)ninfo[4 * r + 3];
     }}
     if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
-            double *const Tr = q;  /* q holds no solution yet: the relaxed pose */
+            double *const Tr = tmp;
             const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
                          uz = T[11] - {lit(float(sh[2]))};
             const double dist = sqrt(ux * ux + uy * uy + uz * uz);
@@ -434,12 +453,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             Tr[3] = T[3] + relax[f] * {R} * ux / dist;
             Tr[7] = T[7] + relax[f] * {R} * uy / dist;
             Tr[11] = T[11] + relax[f] * {R} * uz / dist;
-            /* the (at most 8) rows written from row m0 on fit in nq; the new branches move up to row m */
+            /* the (at most 8) rows written from row m0 on fit in q; the new branches move up to row m */
             m0 = m;
             if (m0 > {max_rows} - 8) {{
                 break;
             }}
-            me = {P}_nominal_ik_ex(Tr, wrist_ref, &nq[6 * m0], ninfo);
+            me = {P}_nominal_ik_ex(Tr, wrist_ref, &q[6 * m0], ninfo);
             for (kk = 0; kk < me; ++kk) {{
                 int have = 0;
                 for (r = 0; r < m; ++r) {{
@@ -447,7 +466,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 }}
                 if (!have && m < {max_rows}) {{
                     for (j = 0; j < 6; ++j) {{
-                        nq[6 * m + j] = nq[6 * (m0 + kk) + j];
+                        q[6 * m + j] = q[6 * (m0 + kk) + j];
                     }}
                     nlab[m] = (signed char)ninfo[4 * kk];
                     ndeg[m] = 2;  /* a start from a relaxed pose */
@@ -456,29 +475,33 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             }}
         }}
     }}
+    for (r = 0; r < {max_rows}; ++r) {{
+        state[r] = 0;
+    }}
     for (r = 0; r < m; ++r) {{
         double rot, pos, moved = 0.0;
-        int ok, hit = -1, dg = ndeg[r] != 0;
+        int ok, hit = -1, dg = ndeg[r] != 0, point;
         const int relaxed = ndeg[r] == 2;
         for (j = 0; j < 6; ++j) {{
-            qq[j] = nq[6 * r + j];
+            s0[j] = rows[r][j];
+            qq[j] = s0[j];
         }}
         {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot, &pos);
         for (j = 0; j < 6; ++j) {{
-            moved = fabs(qq[j] - nq[6 * r + j]) > moved ? fabs(qq[j] - nq[6 * r + j]) : moved;
+            moved = fabs(qq[j] - s0[j]) > moved ? fabs(qq[j] - s0[j]) : moved;
         }}
         ok = rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])};
         if (ok) {{
-            hit = {P}_cal_find(qq, (const double (*)[6])rows, ns);
+            hit = {P}_cal_find(qq, (const double (*)[6])rows, sol, ns);
         }}
         if (!ok || hit >= 0) {{  /* a root found already, or none: once more from the mirrored start */
             double rot2, pos2;
             for (j = 0; j < 6; ++j) {{
-                q2[j] = 2.0 * nq[6 * r + j] - qq[j];
+                q2[j] = 2.0 * s0[j] - qq[j];
             }}
             {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot2, &pos2);
             if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
-                && {P}_cal_find(q2, (const double (*)[6])rows, ns) < 0) {{
+                && {P}_cal_find(q2, (const double (*)[6])rows, sol, ns) < 0) {{
                 for (j = 0; j < 6; ++j) {{
                     qq[j] = q2[j];
                 }}
@@ -486,24 +509,29 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 hit = -1;
                 dg = 1;
             }} else if (!ok && rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}) {{
-                hit = {P}_cal_find(q2, (const double (*)[6])rows, ns);
+                hit = {P}_cal_find(q2, (const double (*)[6])rows, sol, ns);
                 ok = 1;
             }}
         }}
-        if (moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed)) {{
-            for (j = 0; j < 6; ++j) {{  /* a search point, over a start already polished (nseed <= r) */
-                nq[6 * nseed + j] = qq[j];
+        /* a search point: the point reached, in this row (its start is used up) */
+        point = moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed);
+        if (point || (ok && hit < 0)) {{
+            for (j = 0; j < 6; ++j) {{
+                rows[r][j] = qq[j];
             }}
+        }}
+        if (point) {{
+            seed[nseed] = (signed char)r;
             seed_lab[nseed] = nlab[r];
             ++nseed;
+            state[r] = 2;
         }}
         if (ok && hit < 0) {{
-            for (j = 0; j < 6; ++j) {{
-                rows[ns][j] = qq[j];
-            }}
+            sol[ns] = (signed char)r;
             lab[ns] = nlab[r];
             deg[ns] = dg;
             ++ns;
+            state[r] = 1;
         }} else if (ok) {{  /* two branches reach one root: they merge here */
             deg[hit] = 1;
         }}
@@ -511,7 +539,13 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
         double big = 0.0;
         int st;
-        if ({P}_cal_null_direction(&nq[6 * kk], v) > {lit(float(c["sigma_explore"]))}) {{
+        for (j = 0; j < 6; ++j) {{
+            s0[j] = rows[seed[kk]][j];
+        }}
+        if (state[seed[kk]] == 2) {{
+            state[seed[kk]] = 0;  /* its row is free now */
+        }}
+        if ({P}_cal_null_direction(s0, v) > {lit(float(c["sigma_explore"]))}) {{
             continue;  /* not near a singular configuration */
         }}
         for (j = 0; j < 6; ++j) {{
@@ -520,21 +554,45 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         for (st = 0; st < (int)(sizeof steps / sizeof steps[0]) && ns < {max_rows}; ++st) {{
             double rot, pos;
             for (j = 0; j < 6; ++j) {{
-                qq[j] = nq[6 * kk + j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
+                qq[j] = s0[j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
             }}
             {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rot, &pos);
             if (rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])}
-                && {P}_cal_find(qq, (const double (*)[6])rows, ns) < 0) {{
-                for (j = 0; j < 6; ++j) {{
-                    rows[ns][j] = qq[j];
+                && {P}_cal_find(qq, (const double (*)[6])rows, sol, ns) < 0) {{
+                int fr = 0;
+                while (fr < {max_rows} && state[fr] != 0) {{
+                    ++fr;
                 }}
+                if (fr == {max_rows}) {{  /* every row holds a solution or a search point still to come */
+                    break;
+                }}
+                for (j = 0; j < 6; ++j) {{
+                    rows[fr][j] = qq[j];
+                }}
+                state[fr] = 1;
+                sol[ns] = (signed char)fr;
                 lab[ns] = seed_lab[kk];
                 deg[ns] = 1;
                 ++ns;
             }}
         }}
     }}
-    return {P}_finish((const double (*)[6])rows, lab, deg, ns, q, info);
+    for (kk = 0; kk < ns; ++kk) {{  /* the solutions in order: solution kk into row kk */
+        const int from = sol[kk];
+        if (from != kk) {{
+            for (j = 0; j < 6; ++j) {{
+                const double x = rows[kk][j];
+                rows[kk][j] = rows[from][j];
+                rows[from][j] = x;
+            }}
+            for (r = kk + 1; r < ns; ++r) {{
+                if (sol[r] == kk) {{
+                    sol[r] = (signed char)from;
+                }}
+            }}
+        }}
+    }}
+    return {P}_cal_finish((const double (*)[6])rows, lab, deg, ns, q, info);
 }}
 
 int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])

@@ -466,14 +466,13 @@ class CalibratedArm:
         return plain
 
     def branches(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[Branch]:
-        """What became of each branch of the nominal structure at the pose T.
+        """What became of each branch of the nominal structure at the pose T: a solution of its own,
+        merged into an earlier branch's, or vanished (its errors at the end of Newton's method).
 
         Parameters
         ----------
-        T : numpy.ndarray, shape (4, 4)
-            Target pose of the tip in the base frame, m.
-        wrist_ref : float
-            As in :meth:`solve`.
+        T, wrist_ref
+            The tip pose and the free joint's value at a singularity, exactly as :meth:`solve` takes them.
 
         Returns
         -------

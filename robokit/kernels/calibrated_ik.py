@@ -12,7 +12,9 @@ constants ``Kn``). Per pose:
    or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag; when
    it gives fewer than ``GENERIC_ROWS``, also those of the pose moved toward and away from the
    shoulder by the ``RELAX`` fractions of the reach, for the branches it lacks (the projected arm's
-   workspace boundary is not quite the arm's);
+   workspace boundary is not quite the arm's) — except where :func:`_relax_needed` shows they
+   cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
+   position quartic's real roots, are all sure and present already);
 2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
    (:func:`_error`) with the space Jacobian, both from
    :func:`robokit.kernels.ik.fk_and_space_jacobian` (the FK and Jacobian of the compiled numerical
@@ -465,6 +467,244 @@ def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, 
     return _cf.parallel_axes_solve_into(Kn, T, wrist_ref, out)
 
 
+
+#: The relaxed poses are solved only where they can add a branch (:func:`_relax_needed`). Where a
+#: decision is within these margins (relative) it is unsure and the relaxed poses are solved: a
+#: critical value of the position quartic near zero (a double root: the closed form takes a complex
+#: pair as real when its imaginary part is below 1e-6, where that value is about 1e-12 of the
+#: quartic's size), and a branch label's defining quantity near zero.
+RELAX_UNSURE, LABEL_UNSURE = 1e-8, 1e-6
+
+
+@njit
+def _quartic_roots(c: np.ndarray, roots: np.ndarray, guesses: int, pts: np.ndarray, vals: np.ndarray) -> int:
+    """Real roots of Σ c_k t^k (k ≤ 4) into ``roots``, ascending; their count, or −1 when unsure:
+    a leading coefficient near zero (a root near t = ∞), two critical points (nearly) coinciding,
+    or a critical value within ``RELAX_UNSURE`` of zero (a double root). The quartic is monotone
+    between its critical points (the roots of its derivative, a cubic: trigonometric or Cardano
+    formula, then Newton), so each sign change of the values there brackets one root, found by
+    Newton's method kept inside the bracket (the bracket's secant or middle when it leaves), from the
+    bracket's middle or, for the first ``guesses`` roots, from the value in ``roots`` when it is inside
+    (the roots of a nearby quartic). Scratch: pts, vals (5,)."""
+    c0, c1, c2, c3, c4 = c[0], c[1], c[2], c[3], c[4]
+    scale = max(abs(c0), abs(c1), abs(c2), abs(c3), abs(c4))
+    if scale == 0.0 or abs(c4) <= 1e-6 * scale:
+        return -1
+    A, B, C = 0.75 * c3 / c4, 0.5 * c2 / c4, 0.25 * c1 / c4  # P'/(4 c4) = t³ + A t² + B t + C
+    Q = (A * A - 3.0 * B) / 9.0
+    R = (2.0 * A * A * A - 9.0 * A * B + 27.0 * C) / 54.0
+    Q3 = Q * Q * Q
+    if abs(R * R - Q3) <= 1e-9 * (R * R + abs(Q3)):
+        return -1
+    # pts: −bound, the critical points ascending, +bound
+    nc = 0
+    if R * R < Q3:
+        th = math.acos(max(-1.0, min(1.0, R / math.sqrt(Q3))))
+        sq = -2.0 * math.sqrt(Q)
+        pts[1] = sq * math.cos(th / 3.0) - A / 3.0
+        pts[2] = sq * math.cos((th + 2.0 * math.pi) / 3.0) - A / 3.0
+        pts[3] = sq * math.cos((th - 2.0 * math.pi) / 3.0) - A / 3.0
+        nc = 3
+    else:
+        S = -math.copysign(1.0, R) * (abs(R) + math.sqrt(R * R - Q3)) ** (1.0 / 3.0)
+        pts[1] = S + (Q / S if S != 0.0 else 0.0) - A / 3.0
+        nc = 1
+    for i in range(2, nc + 1):  # ascending
+        x = pts[i]
+        k = i
+        while k > 1 and pts[k - 1] > x:
+            pts[k] = pts[k - 1]
+            k -= 1
+        pts[k] = x
+    # Fujiwara's bound: every root within 2 max |c_{4-k}/c₄|^{1/k}
+    bound = 2.0 * max(abs(c3 / c4), math.sqrt(abs(c2 / c4)), abs(c1 / c4) ** (1.0 / 3.0), (0.5 * abs(c0 / c4)) ** 0.25)
+    for i in range(1, nc + 1):
+        t = pts[i]
+        for _ in range(2):  # Newton on the cubic: the formula's rounding
+            d1 = ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
+            d2 = (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
+            if d2 == 0.0:
+                break
+            t -= d1 / d2
+        pts[i] = t
+        a = abs(t)
+        p = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+        if abs(p) <= RELAX_UNSURE * ((((abs(c4) * a + abs(c3)) * a + abs(c2)) * a + abs(c1)) * a + abs(c0)):
+            return -1
+        vals[i] = p
+    pts[0], pts[nc + 1] = -bound - 1.0, bound + 1.0
+    for i in (0, nc + 1):
+        t = pts[i]
+        vals[i] = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+    n = 0
+    for i in range(nc + 1):
+        lo, hi, flo = pts[i], pts[i + 1], vals[i]
+        if (flo > 0.0) == (vals[i + 1] > 0.0):
+            continue
+        fhi = vals[i + 1]
+        t = roots[n] if n < guesses and lo < roots[n] < hi else 0.5 * (lo + hi)
+        for _ in range(100):
+            p = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+            a = abs(t)
+            if abs(p) <= 1e-15 * ((((abs(c4) * a + abs(c3)) * a + abs(c2)) * a + abs(c1)) * a + abs(c0)):
+                break  # at the rounding of the quartic: far below the labels' margins
+            if (p > 0.0) == (flo > 0.0):
+                lo, flo = t, p
+            else:
+                hi, fhi = t, p
+            dp = ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
+            tn = t - p / dp if dp != 0.0 else lo
+            if not lo < tn < hi:  # Newton left the bracket: the secant of the bracket, else its middle
+                tn = lo - flo * (hi - lo) / (fhi - flo)
+                if not lo < tn < hi:
+                    tn = 0.5 * (lo + hi)
+            if hi - lo <= 1e-13 * (1.0 + a):
+                break
+            t = tn
+        roots[n] = t
+        n += 1
+    return n
+
+
+@njit
+def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, codes: np.ndarray, sc: np.ndarray,
+                    guesses: int) -> int:
+    """The (shoulder, elbow) codes ``10 s + e`` of the positions of the projected arm's Pieper
+    solution (its general case: joints 1, 2 revolute, a quartic in joint 3) for the wrist centre W
+    in the canonical chain's frame, as ``closed_form._pieper_position`` labels them, into ``codes``;
+    their count, or −1 when unsure (:func:`_quartic_roots`; a label's quantity within
+    ``LABEL_UNSURE`` of zero; a degenerate position). Scratch: sc rows 0–3 (≥ 5 columns; row 1 the
+    roots, its first ``guesses`` those of a nearby pose on entry)."""
+    cf = Kn[_cf._K_CF:_cf._K_C]
+    Cm = Kn[_cf._K_C:_cf._K_PRE]
+    nrows = int(Kn[_cf._K_CI + 4])
+    rev3 = int(Kn[_cf._K_CI + 2]) == 1
+    scale = cf[_cf._SCALE]
+    h = Wz - cf[_cf._D1]
+    r = Wx * Wx + Wy * Wy + h * h
+    coeffs, ts = sc[0], sc[1]
+    for j in range(5):
+        acc = 0.0
+        for k in range(nrows):
+            mk = r * r if k == 0 else r if k == 1 else h * h if k == 2 else h if k == 3 else 1.0
+            acc += mk * Cm[5 * k + j]
+        coeffs[j] = acc
+    nr = _quartic_roots(coeffs, ts, guesses, sc[2], sc[3])
+    if nr < 0:
+        return -1
+    ca1, sa1, a1 = cf[_cf._CA], cf[_cf._SA], cf[_cf._A1]
+    sa_, sb_ = 2.0 * a1, sa1
+    if sa_ == 0.0 or sb_ == 0.0:
+        return -1
+    rxy = math.hypot(Wx, Wy)
+    vsize = abs(cf[_cf._V]) + abs(cf[_cf._V + 1])
+    for i in range(nr):
+        # the closed form's angles by their sines and cosines (no transcendental function): joint 3 from
+        # t = tan(x₃/2); θ₂ = atan2(y, x) gives (cos, sin) = (x, y)/‖(x, y)‖; θ₁ = atan2(W_y, W_x) − atan2(g₂, g₁)
+        # gives cos θ₁ W_x + sin θ₁ W_y = ‖W_xy‖ g₁/‖g‖: the shoulder label is the sign of g₁
+        t = ts[i]
+        if rev3:
+            den = 1.0 / (1.0 + t * t)
+            c3, s3 = (1.0 - t * t) * den, 2.0 * t * den
+            x3 = 0.0
+        else:
+            c3, s3, x3 = 0.0, 0.0, t
+        f1 = _cf._val(cf, _cf._F, x3, rev3, c3, s3)
+        f2 = _cf._val(cf, _cf._F + 3, x3, rev3, c3, s3)
+        f3 = _cf._val(cf, _cf._F + 6, x3, rev3, c3, s3)
+        F3 = f3 + cf[_cf._D2]
+        ra = r - _cf._val(cf, _cf._KA, x3, rev3, c3, s3)
+        rb = h - ca1 * F3
+        if f1 * f1 + f2 * f2 <= 1e-12 * scale * scale:
+            return -1
+        A, B = ra / sa_, rb / sb_
+        y2, x2 = f1 * B - f2 * A, f1 * A + f2 * B
+        n2 = math.sqrt(x2 * x2 + y2 * y2)
+        if n2 <= LABEL_UNSURE * scale * scale:
+            return -1
+        c2, s2 = x2 / n2, y2 / n2
+        u = s2 * f1 + c2 * f2
+        g1, g2 = a1 + c2 * f1 - s2 * f2, ca1 * u - sa1 * F3
+        g = math.sqrt(g1 * g1 + g2 * g2)
+        if g <= LABEL_UNSURE * scale or rxy <= LABEL_UNSURE * scale or abs(g1) <= LABEL_UNSURE * g:
+            return -1
+        if rev3:
+            e = s3 * cf[_cf._V] + c3 * cf[_cf._V + 1]
+            if abs(e) <= LABEL_UNSURE * vsize:
+                return -1
+            e *= cf[_cf._A2] if cf[_cf._A2] != 0.0 else 1.0
+            elbow = 0 if e > 0.0 else 1
+        else:
+            d = cf[_cf._D0 + 2] + x3
+            if abs(d) <= LABEL_UNSURE * scale:
+                return -1
+            elbow = 2 if d >= 0.0 else 3
+        sh = g1
+        codes[i] = 10 * (0 if sh >= 0.0 else 1) + elbow
+    return nr
+
+
+@njit
+def _relax_needed(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
+                  codes: np.ndarray, degens: np.ndarray, sc: np.ndarray) -> bool:
+    """Whether the closed form at the relaxed poses (``RELAX``) can give a branch the pose's own m
+    rows (branch ``codes``, degenerate flags ``degens``) lack. Always, except for Pieper's general
+    case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate and every position
+    at every relaxed pose (:func:`_position_codes`, each label sure) has a shoulder and elbow label
+    that the rows have already: then the relaxed solves would add nothing (their wrist rows are the
+    two regular flips). A random Pieper arm has two of its four positions at about half of its
+    poses, far from any boundary: there the six relaxed solves were most of the time. Scratch: sc
+    (7, 6)."""
+    if method != _cf.PIEPER or int(Kn[_cf._K_CI + 1]) != 0 or int(Kn[_cf._K_CI + 3]) != 4:
+        return True
+    for r in range(m):
+        if degens[r] != 0.0:
+            return True
+    dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
+    if dist == 0.0:
+        return True
+    # the wrist centre in the canonical chain's frame: W = pre · T · post · w6 (T⁻¹ when the chain is
+    # reversed, as closed_form._target); a relaxed pose moves T's position by f·reach·u, so W by
+    # f·reach·du with du = pre R u (reversed: −pre Rᵀ u)
+    pre = Kn[_cf._K_PRE:_cf._K_POST]
+    post = Kn[_cf._K_POST:_cf._K_PQ]
+    cf = Kn[_cf._K_CF:_cf._K_C]
+    rev = int(Kn[_cf._K_CI + 5]) == 1
+    x, v = sc[4, 0:3], sc[5, 0:3]
+    v0 = post[0] * cf[_cf._W6] + post[1] * cf[_cf._W6 + 1] + post[2] * cf[_cf._W6 + 2] + post[3]
+    v1 = post[4] * cf[_cf._W6] + post[5] * cf[_cf._W6 + 1] + post[6] * cf[_cf._W6 + 2] + post[7]
+    v2 = post[8] * cf[_cf._W6] + post[9] * cf[_cf._W6 + 1] + post[10] * cf[_cf._W6 + 2] + post[11]
+    ux, uy, uz = (T[0, 3] - shoulder[0]) / dist, (T[1, 3] - shoulder[1]) / dist, (T[2, 3] - shoulder[2]) / dist
+    for r in range(3):
+        if rev:  # T⁻¹ v = Rᵀ (v − p); the move: −Rᵀ u
+            x[r] = T[0, r] * (v0 - T[0, 3]) + T[1, r] * (v1 - T[1, 3]) + T[2, r] * (v2 - T[2, 3])
+            v[r] = -(T[0, r] * ux + T[1, r] * uy + T[2, r] * uz)
+        else:
+            x[r] = T[r, 0] * v0 + T[r, 1] * v1 + T[r, 2] * v2 + T[r, 3]
+            v[r] = ux if r == 0 else uy if r == 1 else uz
+    W0x = pre[0] * x[0] + pre[1] * x[1] + pre[2] * x[2] + pre[3]
+    W0y = pre[4] * x[0] + pre[5] * x[1] + pre[6] * x[2] + pre[7]
+    W0z = pre[8] * x[0] + pre[9] * x[1] + pre[10] * x[2] + pre[11]
+    dx = pre[0] * v[0] + pre[1] * v[1] + pre[2] * v[2]
+    dy = pre[4] * v[0] + pre[5] * v[1] + pre[6] * v[2]
+    dz = pre[8] * v[0] + pre[9] * v[1] + pre[10] * v[2]
+    pc = sc[6]
+    n = 0
+    for f in RELAX:
+        s = f * reach
+        n = _position_codes(Kn, W0x + s * dx, W0y + s * dy, W0z + s * dz, pc, sc, n)  # from the last roots
+        if n < 0:
+            return True
+        for i in range(n):
+            have = False
+            for r in range(m):
+                if int(codes[r]) // 10 == int(pc[i]):
+                    have = True
+                    break
+            if not have:
+                return True
+    return False
+
 @njit
 def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndarray, wrist_ref: float,
                           out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int, float]:
@@ -498,7 +738,8 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
         degens[r] = first[r, 8]
     shoulder = C[_SHOULDER:_REACH]
     reach = C[_REACH]
-    if m < GENERIC_ROWS:  # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
+    # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
+    if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens, work[89:96]):
         Tr = np.empty((4, 4))
         for f in RELAX:
             for r in range(4):

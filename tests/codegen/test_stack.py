@@ -2,7 +2,8 @@
 (gcc -fstack-usage -fcallgraph-info=su, arm-none-eabi-gcc -O2): every generated function's whole
 call path is at most 2 KB in double, except the general-6R IK, whose whole call path is at most
 12 KB for NAME_ik_ws and for NAME_ik / NAME_ik_ex alike (those two hold the NAME_ik_workspace on
-their own stack). Not yet met: the calibrated arms' NAME_ik_ex paths, strict xfails. Library calls (libm, soft-float) are not in the static figure;
+their own stack), the calibrated arms' NAME_ik_ex included (their starts live in the caller's q). Library
+calls (libm, soft-float) are not in the static figure;
 tests/codegen/test_board.py measures the run-time high-water mark of NAME_ik_ws under QEMU."""
 import subprocess
 
@@ -29,15 +30,7 @@ def arm_gcc():
         pytest.skip(why)
 
 
-NOT_YET = {"calibrated_puma560": "a calibrated arm's NAME_ik_ex path (closed form, then Newton per branch) needs "
-                                 "2.7 KB: its 16 starts (768 B) and the polish's Jacobian and scratch are live "
-                                 "together; every frame is under 2 KB, the path not yet",
-           "calibrated_ur5": "a calibrated arm's NAME_ik_ex path needs 2.7 KB; every frame is under 2 KB, "
-                             "the path not yet"}
-
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=NOT_YET[n]))
-                                  if n in NOT_YET else n for n in ARMS])
+@pytest.mark.parametrize("name", list(ARMS))
 def test_stack_fits_an_rtos_task(arm_gcc, tmp_path, name):
     arm = ARMS[name]()
     robot = arm if isinstance(arm, robokit.Robot) else robokit.load(arm)
