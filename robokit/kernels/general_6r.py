@@ -170,21 +170,28 @@ def fk_pose(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, 
         for j in range(4):
             out[i, j] = 1.0 if i == j else 0.0
     for i in range(6):
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        # out ← out · Rz(θ)Tz(d)
+        link_step(alpha, a, d, i, theta[i], out)
+
+
+@njit
+def link_step(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, i: int, theta_i: float, G: np.ndarray) -> None:
+    """G ← G · Rz(θᵢ)Tz(dᵢ) · Tx(aᵢ)Rx(αᵢ), the last factor only for i < 5 (joint i's link of
+    ``Z₁X₁ ⋯ X₅Z₆``, 0-based): one step of :func:`fk_pose` and :func:`jacobian`."""
+    c, s = math.cos(theta_i), math.sin(theta_i)
+    # G ← G · Rz(θ)Tz(d)
+    for r in range(3):
+        x, y = G[r, 0], G[r, 1]
+        G[r, 0] = c * x + s * y
+        G[r, 1] = -s * x + c * y
+        G[r, 3] += d[i] * G[r, 2]
+    if i < 5:
+        ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
+        # G ← G · Tx(a)Rx(α)
         for r in range(3):
-            x, y = out[r, 0], out[r, 1]
-            out[r, 0] = c * x + s * y
-            out[r, 1] = -s * x + c * y
-            out[r, 3] += d[i] * out[r, 2]
-        if i < 5:
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            # out ← out · Tx(a)Rx(α)
-            for r in range(3):
-                out[r, 3] += a[i] * out[r, 0]
-                y, z = out[r, 1], out[r, 2]
-                out[r, 1] = ca * y + sa * z
-                out[r, 2] = -sa * y + ca * z
+            G[r, 3] += a[i] * G[r, 0]
+            y, z = G[r, 1], G[r, 2]
+            G[r, 1] = ca * y + sa * z
+            G[r, 2] = -sa * y + ca * z
 
 
 @njit
@@ -231,19 +238,7 @@ def jacobian(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray,
         J[3, i] = z0
         J[4, i] = z1
         J[5, i] = z2
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        for r in range(3):
-            x, y = G[r, 0], G[r, 1]
-            G[r, 0] = c * x + s * y
-            G[r, 1] = -s * x + c * y
-            G[r, 3] += d[i] * G[r, 2]
-        if i < 5:
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            for r in range(3):
-                G[r, 3] += a[i] * G[r, 0]
-                y, z = G[r, 1], G[r, 2]
-                G[r, 1] = ca * y + sa * z
-                G[r, 2] = -sa * y + ca * z
+        link_step(alpha, a, d, i, theta[i], G)
 
 
 @njit
