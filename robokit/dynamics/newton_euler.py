@@ -215,13 +215,13 @@ def _vec(x: ArrayLike, name: str, n: int) -> np.ndarray:
     return as_vector(x, name, n)
 
 
-def _checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, x: ArrayLike, x_name: str, g: ArrayLike,
-             Ftip: ArrayLike) -> tuple:
+def _checked(m: _Model, batch: bool, thetalist: ArrayLike, dthetalist: ArrayLike, x: ArrayLike, x_name: str,
+             g: ArrayLike, Ftip: ArrayLike) -> tuple:
     """The full checks (which name the offending argument) of a state (θ, θ̇, x, g, F_tip) — x is
-    θ̈ or τ, called ``x_name`` — for one configuration or, when θ is (N, n), N of them (F_tip (6,)
-    or (N, 6)): the arguments of a Newton–Euler kernel, model included."""
+    θ̈ or τ, called ``x_name`` — for one configuration or, with ``batch``, N of them (θ (N, n),
+    F_tip (6,) or (N, 6)): the arguments of a Newton–Euler kernel, model included."""
     c = _c
-    if np.ndim(thetalist) == 2:
+    if batch:
         th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
         N = th.shape[0]
         dth = as_array(dthetalist, "dthetalist", (N, m.n))
@@ -240,7 +240,8 @@ def _checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, x: ArrayLik
 def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
                   Ftip: ArrayLike) -> np.ndarray:
     """Newton–Euler for one configuration after the full checks (which name the offending argument)."""
-    return (_kd or _kernels()).inverse_dynamics(*_checked(m, thetalist, dthetalist, ddthetalist, "ddthetalist", g, Ftip))
+    return (_kd or _kernels()).inverse_dynamics(*_checked(m, False, thetalist, dthetalist, ddthetalist, "ddthetalist", g,
+                                                                  Ftip))
 
 
 def _rnea_one_term(which: str, thetalist: ArrayLike, x: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
@@ -307,8 +308,9 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     if tau is not None:
         return tau
     m = _model(Mlist, Glist, Slist)
-    args = _checked(m, thetalist, dthetalist, ddthetalist, "ddthetalist", g, Ftip)
-    return (k.inverse_dynamics_batch if np.ndim(thetalist) == 2 else k.inverse_dynamics)(*args)
+    batch = np.ndim(thetalist) == 2
+    args = _checked(m, batch, thetalist, dthetalist, ddthetalist, "ddthetalist", g, Ftip)
+    return (k.inverse_dynamics_batch if batch else k.inverse_dynamics)(*args)
 
 
 def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
@@ -500,8 +502,9 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
     if ddq is not None:
         return ddq
     m = _model(Mlist, Glist, Slist)
-    args = _checked(m, thetalist, dthetalist, taulist, "taulist", g, Ftip)
-    if np.ndim(thetalist) == 2:
+    batch = np.ndim(thetalist) == 2
+    args = _checked(m, batch, thetalist, dthetalist, taulist, "taulist", g, Ftip)
+    if batch:
         out = many(*args)
         if np.isnan(out).any():
             raise InputError("Glist: the mass matrix is not positive definite at some configuration "
