@@ -131,22 +131,10 @@ def fill_joint(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray,
     A = np.eye(4)
     B = np.eye(4)
     for i in range(6):
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        M = B if i > j else A
         if i != j:
-            for r in range(3):
-                x, y = M[r, 0], M[r, 1]
-                M[r, 0] = c * x + s * y
-                M[r, 1] = -s * x + c * y
-                M[r, 3] += d[i] * M[r, 2]
+            z_step(B if i > j else A, theta[i], d[i])
         if i < 5:
-            M = B if i >= j else A
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            for r in range(3):
-                M[r, 3] += a[i] * M[r, 0]
-                y, z = M[r, 1], M[r, 2]
-                M[r, 1] = ca * y + sa * z
-                M[r, 2] = -sa * y + ca * z
+            x_step(B if i >= j else A, alpha[i], a[i])
     # R = A_Rᵀ R₀₆ B_Rᵀ (rotation part of A⁻¹ T B⁻¹)
     R1 = np.empty((3, 3))
     for i in range(3):
@@ -174,24 +162,33 @@ def fk_pose(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, 
 
 
 @njit
-def link_step(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, i: int, theta_i: float, G: np.ndarray) -> None:
-    """G ← G · Rz(θᵢ)Tz(dᵢ) · Tx(aᵢ)Rx(αᵢ), the last factor only for i < 5 (joint i's link of
-    ``Z₁X₁ ⋯ X₅Z₆``, 0-based): one step of :func:`fk_pose` and :func:`jacobian`."""
+def z_step(G: np.ndarray, theta_i: float, d_i: float) -> None:
+    """G ← G · Rz(θᵢ)Tz(dᵢ): the joint factor Zᵢ of ``Z₁X₁ ⋯ X₅Z₆``."""
     c, s = math.cos(theta_i), math.sin(theta_i)
-    # G ← G · Rz(θ)Tz(d)
     for r in range(3):
         x, y = G[r, 0], G[r, 1]
         G[r, 0] = c * x + s * y
         G[r, 1] = -s * x + c * y
-        G[r, 3] += d[i] * G[r, 2]
+        G[r, 3] += d_i * G[r, 2]
+
+
+@njit
+def x_step(G: np.ndarray, alpha_i: float, a_i: float) -> None:
+    """G ← G · Tx(aᵢ)Rx(αᵢ): the link factor Xᵢ of ``Z₁X₁ ⋯ X₅Z₆``."""
+    ca, sa = math.cos(alpha_i), math.sin(alpha_i)
+    for r in range(3):
+        G[r, 3] += a_i * G[r, 0]
+        y, z = G[r, 1], G[r, 2]
+        G[r, 1] = ca * y + sa * z
+        G[r, 2] = -sa * y + ca * z
+
+
+@njit
+def link_step(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, i: int, theta_i: float, G: np.ndarray) -> None:
+    """G ← G · Zᵢ Xᵢ (the Xᵢ only for i < 5; 0-based): one step of :func:`fk_pose` and :func:`jacobian`."""
+    z_step(G, theta_i, d[i])
     if i < 5:
-        ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-        # G ← G · Tx(a)Rx(α)
-        for r in range(3):
-            G[r, 3] += a[i] * G[r, 0]
-            y, z = G[r, 1], G[r, 2]
-            G[r, 1] = ca * y + sa * z
-            G[r, 2] = -sa * y + ca * z
+        x_step(G, alpha[i], a[i])
 
 
 @njit
