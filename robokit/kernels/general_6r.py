@@ -157,8 +157,10 @@ def fk_pose(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, 
     for i in range(4):
         for j in range(4):
             out[i, j] = 1.0 if i == j else 0.0
-    for i in range(6):
-        link_step(alpha, a, d, i, theta[i], out)
+    for i in range(6):  # out ← out · Zᵢ Xᵢ (no X after the last joint)
+        z_step(out, theta[i], d[i])
+        if i < 5:
+            x_step(out, alpha[i], a[i])
 
 
 @njit
@@ -181,14 +183,6 @@ def x_step(G: np.ndarray, alpha_i: float, a_i: float) -> None:
         y, z = G[r, 1], G[r, 2]
         G[r, 1] = ca * y + sa * z
         G[r, 2] = -sa * y + ca * z
-
-
-@njit
-def link_step(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, i: int, theta_i: float, G: np.ndarray) -> None:
-    """G ← G · Zᵢ Xᵢ (the Xᵢ only for i < 5; 0-based): one step of :func:`fk_pose` and :func:`jacobian`."""
-    z_step(G, theta_i, d[i])
-    if i < 5:
-        x_step(G, alpha[i], a[i])
 
 
 @njit
@@ -235,7 +229,9 @@ def jacobian(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray,
         J[3, i] = z0
         J[4, i] = z1
         J[5, i] = z2
-        link_step(alpha, a, d, i, theta[i], G)
+        z_step(G, theta[i], d[i])  # G ← G · Zᵢ Xᵢ, as in fk_pose
+        if i < 5:
+            x_step(G, alpha[i], a[i])
 
 
 @njit
