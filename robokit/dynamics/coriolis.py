@@ -53,12 +53,8 @@ def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLik
     ----------
     thetalist, dthetalist : (n,) array_like
         Joint values and rates (rad, rad/s).
-    Mlist : (n+1, 4, 4) array_like
-        Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
-    Glist : (n, 6, 6) array_like
-        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (:mod:`robokit.dynamics.newton_euler`).
     method : {"christoffel", "lecture"}, optional
         ``"christoffel"`` (default) — the Christoffel-symbol matrix ``Cₖⱼ = Σᵢ Γᵢⱼₖ θ̇ᵢ`` of the mass
         matrix, the one with ``Ṁ − 2C`` skew-symmetric (computed from the link body Jacobians, see

@@ -121,12 +121,8 @@ def integrate(thetalist: ArrayLike, dthetalist: ArrayLike, taufun: Callable[[flo
         ``taufun(t, θ, θ̇) -> τ (n,)`` (N·m), e.g. ``lambda t, q, dq: np.zeros(n)`` for a free fall.
     g : (3,) array_like
         Gravity in the base frame (m/s²).
-    Mlist : (n+1, 4, 4) array_like
-        Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
-    Glist : (n, 6, 6) array_like
-        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (:mod:`robokit.dynamics.newton_euler`).
     dt : float
         Step (s), positive.
     steps : int

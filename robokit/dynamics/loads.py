@@ -94,12 +94,8 @@ def base_wrench(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayL
     F_tip : (6,) array_like
         Wrench ``(m, f)`` the end-effector applies to the environment, in its frame (N·m, N).
         (Formerly ``Ftip=``, deprecated.)
-    Mlist : (n+1, 4, 4) array_like
-        Link frames at the centres of mass, each in the previous one (Modern Robotics form, metres).
-    Glist : (n, 6, 6) array_like
-        Spatial inertias of the links in their centre-of-mass frames (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes, one column per joint, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (:mod:`robokit.dynamics.newton_euler`).
 
     Returns
     -------

@@ -1,10 +1,12 @@
 r"""Newton–Euler dynamics in product-of-exponentials form (Lecture 7, seed 004 §4, Modern Robotics ch. 8).
 
-Model (Modern Robotics): ``Mlist[i]`` is the pose of link frame {i+1} (at the centre of
-mass) in frame {i}, ``Mlist[n]`` the end-effector frame in {n}; ``Glist[i]`` the 6×6
-spatial inertia of link i+1 in its frame, angular first ``[[I, 0], [0, m 1]]``; ``Slist``
-the space screw axes (6×n). Wrenches ``(m, f)`` are angular first; ``Ftip`` is the wrench
-the end-effector applies *to the environment*, expressed in the end-effector frame.
+Model (Modern Robotics), the ``Mlist, Glist, Slist`` of every function here: ``Mlist`` (n+1, 4, 4),
+``Mlist[i]`` the pose of link frame {i+1} (at the centre of mass) in frame {i}, metres, and
+``Mlist[n]`` the end-effector frame in {n}; ``Glist`` (n, 6, 6), ``Glist[i]`` the spatial inertia
+of link i+1 in its centre-of-mass frame, angular first ``[[I, 0], [0, m 1]]`` (kg·m², kg);
+``Slist`` (6, n) the space-frame screw axes of the joints, one column ``(ω; v)`` each. Wrenches
+``(m, f)`` are angular first; ``Ftip`` is the wrench the end-effector applies *to the
+environment*, expressed in the end-effector frame.
 
 With ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ`` (joint i's screw in frame {i}, ``M₀ᵢ = Mlist[0]⋯Mlist[i−1]``) and
 ``T_{i,i−1} = e^{−[Aᵢ]θᵢ} Mlist[i−1]⁻¹``:
@@ -92,28 +94,33 @@ _NDIMS_MM = (1, 3, 3, 2)
 _NDIMS_5 = (1, 1, 3, 3, 2)
 
 
-def _rnea_special(which: str, thetalist: ArrayLike, x: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
-                  Slist: ArrayLike) -> np.ndarray | None:
-    """The fast path of :func:`vel_quadratic_forces` (``which`` "c": x is θ̇), :func:`gravity_forces`
-    ("g": x is g) and :func:`end_effector_forces` ("F": x is F_tip): the Newton–Euler kernel with the
-    other vectors zero, after at most one conversion of each argument; None when an argument is
-    refused (the caller's full checks then name it)."""
-    args = kernel_arrays((thetalist, x, Mlist, Glist, Slist), _NDIMS_5)
-    if args is None or not surely_radians(args[0]):  # degrees? the checked path warns
+def _fast(kernel: Any, arguments: tuple, ndims: tuple, *before: Any) -> Any:
+    """The fast path of the seed functions: ``kernel(*before, *arguments)`` after at most one
+    conversion of each argument (lists, tuples, read-only or strided arrays; ``ndims`` their
+    dimensions), the kernel checking the vectors and the model itself; None when an argument is
+    refused or the joint values may be degrees (the caller's full checks then name the problem,
+    or warn)."""
+    args = kernel_arrays(arguments, ndims)
+    if args is None or not surely_radians(args[0]):
         return None
-    th, v, Ml, Gl, Sl = args
-    z = _zeros(Sl.shape[1])
-    k = _kd or _kernels()
     try:
-        if which == "c":
-            return k.inverse_dynamics(th, v, z, _zeros(3), _zeros(6), Ml, Gl, Sl)
-        if which == "g":
-            return k.inverse_dynamics(th, z, z, v, _zeros(6), Ml, Gl, Sl)
-        return k.inverse_dynamics(th, z, z, _zeros(3), v, Ml, Gl, Sl)
+        return kernel(*before, *args)
     except ValueError:  # a bad value or size
         return None
 
 
+def _rnea_special(which: str, th: np.ndarray, x: np.ndarray, Ml: np.ndarray, Gl: np.ndarray,
+                  Sl: np.ndarray) -> np.ndarray:
+    """The Newton–Euler kernel with all but one of θ̇, g, F_tip zero, and θ̈ zero:
+    :func:`vel_quadratic_forces` (``which`` "c": x is θ̇), :func:`gravity_forces` ("g": x is g)
+    and :func:`end_effector_forces` ("F": x is F_tip)."""
+    z = _zeros(Sl.shape[1])
+    k = _kd or _kernels()
+    if which == "c":
+        return k.inverse_dynamics(th, x, z, _zeros(3), _zeros(6), Ml, Gl, Sl)
+    if which == "g":
+        return k.inverse_dynamics(th, z, z, x, _zeros(6), Ml, Gl, Sl)
+    return k.inverse_dynamics(th, z, z, _zeros(3), x, Ml, Gl, Sl)
 
 
 class _Model:
@@ -208,14 +215,49 @@ def _vec(x: ArrayLike, name: str, n: int) -> np.ndarray:
     return as_vector(x, name, n)
 
 
+def _checked(m: _Model, batch: bool, thetalist: ArrayLike, dthetalist: ArrayLike, x: ArrayLike, x_name: str,
+             g: ArrayLike, Ftip: ArrayLike) -> tuple:
+    """The full checks (which name the offending argument) of a state (θ, θ̇, x, g, F_tip) — x is
+    θ̈ or τ, called ``x_name`` — for one configuration or, with ``batch``, N of them (θ (N, n),
+    F_tip (6,) or (N, 6)): the arguments of a Newton–Euler kernel, model included."""
+    c = _c
+    if batch:
+        th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
+        N = th.shape[0]
+        dth = as_array(dthetalist, "dthetalist", (N, m.n))
+        xs = as_array(x, x_name, (N, m.n))
+        F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,)).reshape(-1, 6)
+        g = _vec(g, "g", 3)
+    else:  # the same checks, in the order of the arguments
+        th = _radians(m, _vec(thetalist, "thetalist", m.n))
+        dth = _vec(dthetalist, "dthetalist", m.n)
+        xs = _vec(x, x_name, m.n)
+        g = _vec(g, "g", 3)
+        F = _vec(Ftip, "Ftip", 6)
+    return c(th), c(dth), c(xs), c(g), c(F), m.Mlist, m.Glist, m.Slist
+
+
 def _rnea_checked(m: _Model, thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
                   Ftip: ArrayLike) -> np.ndarray:
     """Newton–Euler for one configuration after the full checks (which name the offending argument)."""
-    k = _kd or _kernels()
-    c = _c
-    return k.inverse_dynamics(c(_radians(m, _vec(thetalist, "thetalist", m.n))), c(_vec(dthetalist, "dthetalist", m.n)),
-                              c(_vec(ddthetalist, "ddthetalist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
-                              m.Mlist, m.Glist, m.Slist)
+    return (_kd or _kernels()).inverse_dynamics(*_checked(m, False, thetalist, dthetalist, ddthetalist, "ddthetalist", g,
+                                                                  Ftip))
+
+
+def _rnea_one_term(which: str, thetalist: ArrayLike, x: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
+                   Slist: ArrayLike) -> np.ndarray:
+    """One term of the inverse dynamics — c(θ, θ̇) (``which`` "c", x is θ̇), g(θ) ("g", x is g) or
+    Jᵀ(θ) F_tip ("F", x is F_tip) — by the fast path, else after the full checks."""
+    tau = _fast(_rnea_special, (thetalist, x, Mlist, Glist, Slist), _NDIMS_5, which)
+    if tau is not None:
+        return tau
+    m = _model(Mlist, Glist, Slist)
+    z = _zeros(m.n)
+    if which == "c":
+        return _rnea_checked(m, thetalist, x, z, _zeros(3), _zeros(6))
+    if which == "g":
+        return _rnea_checked(m, thetalist, z, z, x, _zeros(6))
+    return _rnea_checked(m, thetalist, z, z, _zeros(3), x)
 
 
 def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike, g: ArrayLike,
@@ -236,13 +278,8 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     Ftip : (6,) or (N, 6) array_like
         Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
         end-effector frame.
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -267,24 +304,13 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     array([34.335,  1.2  ])
     """
     k = _kd or _kernels()
-    args = kernel_arrays((thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
-    if args is not None and surely_radians(args[0]):  # the fast path (lists, tuples, read-only or strided
-        # arrays converted once; joint values radians for sure, else the checked path warns):
-        try:  # the kernel checks the vectors and the model itself
-            return k.inverse_dynamics(*args)
-        except ValueError:  # a bad value or size: the full checks below name it
-            pass
+    tau = _fast(k.inverse_dynamics, (thetalist, dthetalist, ddthetalist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
+    if tau is not None:
+        return tau
     m = _model(Mlist, Glist, Slist)
-    if np.ndim(thetalist) == 2:
-        th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
-        N = th.shape[0]
-        dth = as_array(dthetalist, "dthetalist", (N, m.n))
-        ddth = as_array(ddthetalist, "ddthetalist", (N, m.n))
-        F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
-        g = _vec(g, "g", 3)
-        c = _c
-        return k.inverse_dynamics_batch(c(th), c(dth), c(ddth), c(g), c(F.reshape(-1, 6)), m.Mlist, m.Glist, m.Slist)
-    return _rnea_checked(m, thetalist, dthetalist, ddthetalist, g, Ftip)
+    batch = np.ndim(thetalist) == 2
+    args = _checked(m, batch, thetalist, dthetalist, ddthetalist, "ddthetalist", g, Ftip)
+    return (k.inverse_dynamics_batch if batch else k.inverse_dynamics)(*args)
 
 
 def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist: ArrayLike) -> np.ndarray:
@@ -297,13 +323,8 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
     ----------
     thetalist : (n,) or (N, n) array_like
         Joint values (rad / m), or N configurations at once.
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -325,12 +346,9 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
     (True, True)
     """
     k = _kd or _kernels()
-    args = kernel_arrays((thetalist, Mlist, Glist, Slist), _NDIMS_MM)
-    if args is not None and surely_radians(args[0]):  # the fast path, as in inverse_dynamics
-        try:
-            return k.mass_matrix(*args)
-        except ValueError:
-            pass
+    M = _fast(k.mass_matrix, (thetalist, Mlist, Glist, Slist), _NDIMS_MM)
+    if M is not None:
+        return M
     m = _model(Mlist, Glist, Slist)
     if np.ndim(thetalist) == 2:
         th = _c(_radians(m, as_array(thetalist, "thetalist", (None, m.n))))
@@ -346,13 +364,8 @@ def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: Arr
     ----------
     thetalist, dthetalist : (n,) array_like
         Joint values and rates (rad, rad/s; m, m/s).
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -368,12 +381,7 @@ def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: Arr
     >>> vel_quadratic_forces([0, np.pi / 2], [1, 1], p.Mlist, p.Glist, p.Slist).round(4)
     array([-3.6,  1.2])
     """
-    tau = _rnea_special("c", thetalist, dthetalist, Mlist, Glist, Slist)
-    if tau is not None:
-        return tau
-    m = _model(Mlist, Glist, Slist)
-    z = _zeros(m.n)
-    return _rnea_checked(m, thetalist, dthetalist, z, _zeros(3), _zeros(6))
+    return _rnea_one_term("c", thetalist, dthetalist, Mlist, Glist, Slist)
 
 
 def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
@@ -386,13 +394,8 @@ def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: 
         Joint values (rad / m).
     g : (3,) array_like
         Gravity in the space (base) frame, m/s², e.g. ``[0, 0, -9.81]``.
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -408,12 +411,7 @@ def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: 
     >>> gravity_forces([0, 0], [0, -9.81, 0], p.Mlist, p.Glist, p.Slist).round(4)
     array([46.107, 11.772])
     """
-    tau = _rnea_special("g", thetalist, g, Mlist, Glist, Slist)
-    if tau is not None:
-        return tau
-    m = _model(Mlist, Glist, Slist)
-    z = _zeros(m.n)
-    return _rnea_checked(m, thetalist, z, z, g, _zeros(6))
+    return _rnea_one_term("g", thetalist, g, Mlist, Glist, Slist)
 
 
 def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike,
@@ -427,13 +425,8 @@ def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike,
     Ftip : (6,) array_like
         Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
         end-effector frame.
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -449,12 +442,7 @@ def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike,
     >>> end_effector_forces([0, 0], [0, 0, 0, 0, 10, 0], p.Mlist, p.Glist, p.Slist).round(4)
     array([18.,  8.])
     """
-    tau = _rnea_special("F", thetalist, Ftip, Mlist, Glist, Slist)
-    if tau is not None:
-        return tau
-    m = _model(Mlist, Glist, Slist)
-    z = _zeros(m.n)
-    return _rnea_checked(m, thetalist, z, z, _zeros(3), Ftip)
+    return _rnea_one_term("F", thetalist, Ftip, Mlist, Glist, Slist)
 
 
 def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: ArrayLike, g: ArrayLike, Ftip: ArrayLike,
@@ -470,13 +458,8 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
         Gravity in the base frame (m/s²), e.g. ``[0, 0, -9.81]``.
     Ftip : (6,) or (N, 6) array_like
         Wrench ``(m, f)`` the end-effector applies to the environment, in its frame (N·m, N).
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
     method : {"aba", "crba"}, optional
         ``"aba"`` (default) — Featherstone's articulated-body algorithm, O(n): an outward pass for
         the link twists, an inward pass for the articulated inertias
@@ -515,28 +498,19 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
     k = _kd or _kernels()
     one, many = ((k.forward_dynamics, k.forward_dynamics_batch) if method == "aba"
                  else (k.forward_dynamics_crba, k.forward_dynamics_crba_batch))
-    args = kernel_arrays((thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
-    if args is not None and surely_radians(args[0]):  # the fast path, as in inverse_dynamics
-        try:
-            return one(*args)
-        except ValueError:
-            pass
+    ddq = _fast(one, (thetalist, dthetalist, taulist, g, Ftip, Mlist, Glist, Slist), _NDIMS_8)
+    if ddq is not None:
+        return ddq
     m = _model(Mlist, Glist, Slist)
-    c = _c
-    if np.ndim(thetalist) == 2:
-        th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
-        N = th.shape[0]
-        dth = as_array(dthetalist, "dthetalist", (N, m.n))
-        tau = as_array(taulist, "taulist", (N, m.n))
-        F = as_array(Ftip, "Ftip", (N, 6) if np.ndim(Ftip) == 2 else (6,))
-        out = many(c(th), c(dth), c(tau), c(_vec(g, "g", 3)), c(F.reshape(-1, 6)), m.Mlist, m.Glist, m.Slist)
+    batch = np.ndim(thetalist) == 2
+    args = _checked(m, batch, thetalist, dthetalist, taulist, "taulist", g, Ftip)
+    if batch:
+        out = many(*args)
         if np.isnan(out).any():
             raise InputError("Glist: the mass matrix is not positive definite at some configuration "
                              "(a joint drives no inertia)")
         return out
-    return one(c(_radians(m, _vec(thetalist, "thetalist", m.n))), c(_vec(dthetalist, "dthetalist", m.n)),
-               c(_vec(taulist, "taulist", m.n)), c(_vec(g, "g", 3)), c(_vec(Ftip, "Ftip", 6)),
-               m.Mlist, m.Glist, m.Slist)
+    return one(*args)
 
 
 def euler_step(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: ArrayLike,
@@ -586,13 +560,8 @@ def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthe
         Gravity in the base frame (m/s²).
     Ftipmat : (N, 6) array_like
         Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
 
     Returns
     -------
@@ -643,13 +612,8 @@ def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, tau
         Gravity in the base frame (m/s²).
     Ftipmat : (N, 6) array_like
         Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
-    Mlist : (n+1, 4, 4) array_like
-        ``Mlist[i]`` is the pose of link frame {i+1} (at its centre of mass) in frame {i}, metres;
-        ``Mlist[n]`` the end-effector frame in {n}.
-    Glist : (n, 6, 6) array_like
-        Spatial inertia of each link in its centre-of-mass frame, ``[[I, 0], [0, m 1]]`` (kg·m², kg).
-    Slist : (6, n) array_like
-        Space-frame screw axes of the joints, one column each, ``(ω; v)``.
+    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
+        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
     dt : float
         Time step between rows (s), positive.
     intRes : int

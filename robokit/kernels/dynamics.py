@@ -164,6 +164,27 @@ def workspace(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, n
     return A, Minv, Tl, E, V, Vd, v6, K, X
 
 
+@njit
+def at_configuration(Mlist: np.ndarray, Slist: np.ndarray, thetalist: np.ndarray, A: np.ndarray, Minv: np.ndarray, Tl: np.ndarray, E: np.ndarray) -> None:
+    """The model constants (``Aᵢ``, ``Mlist[i]⁻¹``) and the link transforms at θ into a
+    :func:`workspace`: the start of every one-configuration kernel."""
+    link_screws(Mlist, Slist, A, Minv)
+    link_transforms(A, Minv, thetalist, Tl, E)
+
+
+@njit
+def check_state(thetalist: np.ndarray, dthetalist: np.ndarray, x: np.ndarray, x_which: int, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> None:
+    """Check the model and the state (θ, θ̇, x, g, Ftip) of a dynamics kernel, in that order — x is
+    θ̈ (``x_which`` 2) or τ (5), as :func:`check_vector` numbers them."""
+    check_model(Mlist, Glist, Slist)
+    n = Slist.shape[1]
+    check_vector(thetalist, n, np.int64(0))
+    check_vector(dthetalist, n, np.int64(1))
+    check_vector(x, n, x_which)
+    check_vector(g, np.int64(3), np.int64(3))
+    check_vector(Ftip, np.int64(6), np.int64(4))
+
+
 # ------------------------------------------------------------------ recursive Newton–Euler
 @njit
 def rnea_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.ndarray, ddthetalist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, V: np.ndarray, Vd: np.ndarray, v6: np.ndarray, tau: np.ndarray) -> None:
@@ -421,16 +442,10 @@ def aba_into(A: np.ndarray, Tl: np.ndarray, Glist: np.ndarray, dthetalist: np.nd
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
 def inverse_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, ddthetalist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint torques τ (n,) = M θ̈ + c + g(θ) + Jᵀ Ftip by recursive Newton–Euler."""
-    check_model(Mlist, Glist, Slist)
+    check_state(thetalist, dthetalist, ddthetalist, np.int64(2), g, Ftip, Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, np.int64(0))
-    check_vector(dthetalist, n, np.int64(1))
-    check_vector(ddthetalist, n, np.int64(2))
-    check_vector(g, np.int64(3), np.int64(3))
-    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
-    link_screws(Mlist, Slist, A, Minv)
-    link_transforms(A, Minv, thetalist, Tl, E)
+    at_configuration(Mlist, Slist, thetalist, A, Minv, Tl, E)
     tau = np.empty(n)
     rnea_into(A, Tl, Glist, dthetalist, ddthetalist, g, Ftip, V, Vd, v6, tau)
     return tau
@@ -443,8 +458,7 @@ def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Sli
     n = Slist.shape[1]
     check_vector(thetalist, n, np.int64(0))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
-    link_screws(Mlist, Slist, A, Minv)
-    link_transforms(A, Minv, thetalist, Tl, E)
+    at_configuration(Mlist, Slist, thetalist, A, Minv, Tl, E)
     Mm = np.empty((n, n))
     crba_into(A, Tl, Glist, K, X, v6, Mm)
     return Mm
@@ -453,16 +467,10 @@ def mass_matrix(thetalist: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Sli
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
 def forward_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip) by the articulated-body algorithm, O(n)."""
-    check_model(Mlist, Glist, Slist)
+    check_state(thetalist, dthetalist, taulist, np.int64(5), g, Ftip, Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, np.int64(0))
-    check_vector(dthetalist, n, np.int64(1))
-    check_vector(taulist, n, np.int64(5))
-    check_vector(g, np.int64(3), np.int64(3))
-    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
-    link_screws(Mlist, Slist, A, Minv)
-    link_transforms(A, Minv, thetalist, Tl, E)
+    at_configuration(Mlist, Slist, thetalist, A, Minv, Tl, E)
     Ia, P, C, U, du, X3 = aba_workspace(n)
     ddq = np.empty(n)
     if not aba_into(A, Tl, Glist, dthetalist, taulist, g, Ftip, np.zeros(n), V, v6, Ia, P, C, U, du, X3, ddq):
@@ -474,16 +482,10 @@ def forward_dynamics(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.
 @njit(f"{_A1}({_A1}, {_A1}, {_A1}, {_A1}, {_A1}, {_MODEL})")
 def forward_dynamics_crba(thetalist: np.ndarray, dthetalist: np.ndarray, taulist: np.ndarray, g: np.ndarray, Ftip: np.ndarray, Mlist: np.ndarray, Glist: np.ndarray, Slist: np.ndarray) -> np.ndarray:
     """Joint accelerations θ̈ (n,) = M(θ)⁻¹ (τ − c − g(θ) − Jᵀ Ftip): the lecture's form, CRBA + Cholesky, O(n²)."""
-    check_model(Mlist, Glist, Slist)
+    check_state(thetalist, dthetalist, taulist, np.int64(5), g, Ftip, Mlist, Glist, Slist)
     n = Slist.shape[1]
-    check_vector(thetalist, n, np.int64(0))
-    check_vector(dthetalist, n, np.int64(1))
-    check_vector(taulist, n, np.int64(5))
-    check_vector(g, np.int64(3), np.int64(3))
-    check_vector(Ftip, np.int64(6), np.int64(4))
     A, Minv, Tl, E, V, Vd, v6, K, X = workspace(n)
-    link_screws(Mlist, Slist, A, Minv)
-    link_transforms(A, Minv, thetalist, Tl, E)
+    at_configuration(Mlist, Slist, thetalist, A, Minv, Tl, E)
     Mm = np.empty((n, n))
     L = np.zeros((n, n))
     h = np.empty(n)

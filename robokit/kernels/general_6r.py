@@ -131,22 +131,10 @@ def fill_joint(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray,
     A = np.eye(4)
     B = np.eye(4)
     for i in range(6):
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        M = B if i > j else A
         if i != j:
-            for r in range(3):
-                x, y = M[r, 0], M[r, 1]
-                M[r, 0] = c * x + s * y
-                M[r, 1] = -s * x + c * y
-                M[r, 3] += d[i] * M[r, 2]
+            z_step(B if i > j else A, theta[i], d[i])
         if i < 5:
-            M = B if i >= j else A
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            for r in range(3):
-                M[r, 3] += a[i] * M[r, 0]
-                y, z = M[r, 1], M[r, 2]
-                M[r, 1] = ca * y + sa * z
-                M[r, 2] = -sa * y + ca * z
+            x_step(B if i >= j else A, alpha[i], a[i])
     # R = A_Rᵀ R₀₆ B_Rᵀ (rotation part of A⁻¹ T B⁻¹)
     R1 = np.empty((3, 3))
     for i in range(3):
@@ -169,22 +157,32 @@ def fk_pose(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray, 
     for i in range(4):
         for j in range(4):
             out[i, j] = 1.0 if i == j else 0.0
-    for i in range(6):
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        # out ← out · Rz(θ)Tz(d)
-        for r in range(3):
-            x, y = out[r, 0], out[r, 1]
-            out[r, 0] = c * x + s * y
-            out[r, 1] = -s * x + c * y
-            out[r, 3] += d[i] * out[r, 2]
+    for i in range(6):  # out ← out · Zᵢ Xᵢ (no X after the last joint)
+        z_step(out, theta[i], d[i])
         if i < 5:
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            # out ← out · Tx(a)Rx(α)
-            for r in range(3):
-                out[r, 3] += a[i] * out[r, 0]
-                y, z = out[r, 1], out[r, 2]
-                out[r, 1] = ca * y + sa * z
-                out[r, 2] = -sa * y + ca * z
+            x_step(out, alpha[i], a[i])
+
+
+@njit
+def z_step(G: np.ndarray, theta_i: float, d_i: float) -> None:
+    """G ← G · Rz(θᵢ)Tz(dᵢ): the joint factor Zᵢ of ``Z₁X₁ ⋯ X₅Z₆``."""
+    c, s = math.cos(theta_i), math.sin(theta_i)
+    for r in range(3):
+        x, y = G[r, 0], G[r, 1]
+        G[r, 0] = c * x + s * y
+        G[r, 1] = -s * x + c * y
+        G[r, 3] += d_i * G[r, 2]
+
+
+@njit
+def x_step(G: np.ndarray, alpha_i: float, a_i: float) -> None:
+    """G ← G · Tx(aᵢ)Rx(αᵢ): the link factor Xᵢ of ``Z₁X₁ ⋯ X₅Z₆``."""
+    ca, sa = math.cos(alpha_i), math.sin(alpha_i)
+    for r in range(3):
+        G[r, 3] += a_i * G[r, 0]
+        y, z = G[r, 1], G[r, 2]
+        G[r, 1] = ca * y + sa * z
+        G[r, 2] = -sa * y + ca * z
 
 
 @njit
@@ -231,19 +229,9 @@ def jacobian(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, theta: np.ndarray,
         J[3, i] = z0
         J[4, i] = z1
         J[5, i] = z2
-        c, s = math.cos(theta[i]), math.sin(theta[i])
-        for r in range(3):
-            x, y = G[r, 0], G[r, 1]
-            G[r, 0] = c * x + s * y
-            G[r, 1] = -s * x + c * y
-            G[r, 3] += d[i] * G[r, 2]
+        z_step(G, theta[i], d[i])  # G ← G · Zᵢ Xᵢ, as in fk_pose
         if i < 5:
-            ca, sa = math.cos(alpha[i]), math.sin(alpha[i])
-            for r in range(3):
-                G[r, 3] += a[i] * G[r, 0]
-                y, z = G[r, 1], G[r, 2]
-                G[r, 1] = ca * y + sa * z
-                G[r, 2] = -sa * y + ca * z
+            x_step(G, alpha[i], a[i])
 
 
 @njit

@@ -46,16 +46,22 @@ def copy44(A: np.ndarray, out: np.ndarray) -> None:
 
 
 @njit
+def set_bottom_row(T: np.ndarray) -> None:
+    """T's last row ← (0, 0, 0, 1): the row every homogeneous transform ends with."""
+    T[3, 0] = 0.0
+    T[3, 1] = 0.0
+    T[3, 2] = 0.0
+    T[3, 3] = 1.0
+
+
+@njit
 def exp_screw(S: np.ndarray, j: int, theta: float, T: np.ndarray) -> None:
     """T ← exp([S_j] θ): the pose reached by moving ``theta`` along column ``j`` of the screw
     list ``S`` (6, n). Closed form (Rodrigues and the G(θ) matrix), exact for any ‖ω‖."""
     wx, wy, wz = S[0, j], S[1, j], S[2, j]
     vx, vy, vz = S[3, j], S[4, j], S[5, j]
     nw = math.sqrt(wx * wx + wy * wy + wz * wz)
-    T[3, 0] = 0.0
-    T[3, 1] = 0.0
-    T[3, 2] = 0.0
-    T[3, 3] = 1.0
+    set_bottom_row(T)
     if nw < PRISMATIC_TOL:  # prismatic: a pure translation along v
         for r in range(3):
             for c in range(3):
@@ -97,10 +103,7 @@ def mul_tt(A: np.ndarray, B: np.ndarray, out: np.ndarray) -> None:
         for c in range(3):
             out[r, c] = a0 * B[0, c] + a1 * B[1, c] + a2 * B[2, c]
         out[r, 3] = a0 * B[0, 3] + a1 * B[1, 3] + a2 * B[2, 3] + A[r, 3]
-    out[3, 0] = 0.0
-    out[3, 1] = 0.0
-    out[3, 2] = 0.0
-    out[3, 3] = 1.0
+    set_bottom_row(out)
 
 
 @njit
@@ -126,10 +129,7 @@ def inv_t(T: np.ndarray, out: np.ndarray) -> None:
             out[r, c] = T[c, r]
     for r in range(3):
         out[r, 3] = -(T[0, r] * T[0, 3] + T[1, r] * T[1, 3] + T[2, r] * T[2, 3])
-    out[3, 0] = 0.0
-    out[3, 1] = 0.0
-    out[3, 2] = 0.0
-    out[3, 3] = 1.0
+    set_bottom_row(out)
 
 
 @njit

@@ -151,6 +151,24 @@ def test_bad_values_in_lists_are_still_named(ur5):
         rk.gravity_forces([0, 0, 0], [0, 0, -9.81], list(p.Mlist), list(p.Glist), p.Slist)
 
 
+
+def test_bad_arguments_are_named_in_argument_order(ur5):
+    """The full checks name the first bad argument in the order of the signature, one state or N of
+    them; the single terms take one state only (an (N, n) θ is refused by its name)."""
+    p = ur5.poe
+    q, Q = np.zeros(6), np.zeros((4, 6))
+    model = (p.Mlist, p.Glist, p.Slist)
+    with pytest.raises(InputError, match="^g:"):  # g comes before Ftip, both bad
+        rk.inverse_dynamics(q, q, q, [1, 2], [1], *model)
+    with pytest.raises(InputError, match="^Ftip:"):  # in a batch Ftip is checked against N first
+        rk.inverse_dynamics(Q, Q, Q, [1], np.zeros((2, 6)), *model)
+    with pytest.raises(InputError, match="^taulist:"):
+        rk.forward_dynamics(Q, Q, Q[:3], [0, 0, -9.81], np.zeros(6), *model, method="crba")
+    for term, x in ((rk.vel_quadratic_forces, q), (rk.gravity_forces, [0, 0, -9.81]),
+                    (rk.end_effector_forces, np.zeros(6))):
+        with pytest.raises(InputError, match="^thetalist:"):
+            term(Q, x, *model)
+
 def test_read_only_batches(ur5):
     """(N, n) joint values that are read-only (e.g. ``np.load(mmap_mode='r')``) run the batched kernels."""
     p = ur5.poe
