@@ -17,7 +17,9 @@ per-robot entry points. The steps:
    and its pseudo-inverse (one-sided Jacobi SVD), giving the 12 × 12 quadratic matrix
    polynomial ``A x² + B x + C`` (``pencil``);
 3. its eigenvalues as those of the 24 × 24 companion matrix ``[[0, I], [−A⁻¹C, −A⁻¹B]]``
-   (LU with partial pivoting, balancing, Hessenberg reduction, Francis double-shift QR);
+   (LU with partial pivoting, balancing, Hessenberg reduction, Francis double-shift QR), less
+   the pairs x = ±i first where the reading has them (``deflate``: four pairs when the pivot is
+   the joint of its group farthest from the eliminated one, a 16 × 16 iteration);
    where A is near singular (σ_min/σ_max ≤ 1e-10) Python takes the generalised eigenproblem
    (QZ) and the C turns the half-angle variable by a fixed angle instead
    (``x = (y + t)/(1 − t y)``), which gives the same roots with a regular leading matrix —
@@ -129,7 +131,7 @@ def tables(k: IKConstants, P: str) -> str:
                 "" if post_id else _table(f"{P}_g6_r{i}_post", rd["post"]),
                 _table(f"{P}_g6_r{i}_signs", rd["signs"]), _table(f"{P}_g6_r{i}_f", rd["f"]), ""]
         inits.append(f"    {{{_ints(rd['roles'])}, {int(bool(rd['three_has_w']))}, {nw}, {int(rd['w_index'])}, "
-                     f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
+                     f"{int(bool(rd['w_inverse']))}, {int(rd['deflate'])}, 0, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
                      f"{'0' if pre_id else f'{P}_g6_r{i}_pre'}, {'0' if post_id else f'{P}_g6_r{i}_post'}, "
                      f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, {_ints(rd['perm2'])}}}")
     out.append(f"static const g6r_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
