@@ -32,7 +32,11 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    (i, j ≤ 2); with the same 6 multiplied by x₄ these are 12 equations in the 12 monomials
    ``x₄ⁱx₅ʲ`` (i ≤ 3, j ≤ 2): ``(A x₃² + B x₃ + C) v = 0`` (12 × 12, entries quadratic in x₃).
    A solution needs ``det(A x² + B x + C) = 0``: a polynomial of degree 24 with the factor
-   ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm.
+   ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm. (The
+   factor comes from θ₃'s rotation being the outermost map of its side — in the other readings
+   below it is there when the eigenvalue joint is the farthest of its group from the eliminated
+   joint, and absent otherwise; where present it is removed before the eigenvalue iteration,
+   :func:`robokit.kernels.general_6r.deflate`.)
 4. **Eigenproblem** (Manocha & Canny 1994). Instead of expanding the determinant, the
    quadratic matrix polynomial is linearised: ``[[0, I], [−C, −B]] z = x [[I, 0], [0, A]] z``
    with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions. The
