@@ -2,7 +2,8 @@
 
 Everything comes through robokit's typed contract, :func:`robokit.ik.closed_form_constants`
 (a frozen :class:`robokit.ik.ClosedFormConstants` with the method's own frozen dataclass:
-:class:`robokit.ik.pieper.PieperConstants`, :class:`robokit.ik.parallel_axes.ParallelAxesConstants`),
+:class:`robokit.ik.pieper.PieperConstants`, :class:`robokit.ik.parallel_axes.ParallelAxesConstants`,
+:class:`robokit.ik.GeneralSixRConstants`),
 re-shaped into the plain :class:`IKConstants` the emitters use (the joint limits are the
 robot's own, ``robot.qlim``). If a robot has no closed form, or its DH table cannot be
 extracted, the generated files say ``NAME_HAS_IK 0`` and why (kinematics and dynamics are
@@ -15,7 +16,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from robokit.ik import ClosedFormConstants, closed_form_constants
+from robokit.ik import ClosedFormConstants, GeneralSixRConstants, closed_form_constants
 from robokit.ik.parallel_axes import ParallelAxesConstants
 from robokit.ik.pieper import PieperConstants
 
@@ -39,8 +40,8 @@ class IKConstants:
     pieper: PieperConstants | None = None
     #: The three-parallel-axes constants (method "three parallel axes"), else None.
     parallel: ParallelAxesConstants | None = None
-    #: The general 6R solver's export (method "general 6R": ``GeneralSixR.export_constants()``, read-only).
-    solver: Mapping[str, Any] = field(default_factory=dict)
+    #: The general 6R method's constants (method "general 6R"), else None.
+    general: GeneralSixRConstants | None = None
     flip: list[bool] | None = None  # joints solved as q' = -q (in the robot's order)
     free_flipped: bool = False  # wrist_ref's joint is flipped: the solver gets -wrist_ref
     #: A calibrated or nearly special arm (robokit.ik.calibrated): the fields above are then the
@@ -68,7 +69,7 @@ def ik_constants(robot: Any, nominal: Any = None) -> IKConstants:
         c = closed_form_constants(robot, nominal)
     except ValueError as exc:  # e.g. a robot whose DH table cannot be extracted
         return IKConstants(None, str(exc))
-    if c.method is None or (c.solver is None and c.general_6r is None):
+    if c.method is None or c.solver is None:
         return IKConstants(None, c.reason)
     return _read(robot, c)
 
@@ -83,5 +84,5 @@ def _read(robot: Any, c: ClosedFormConstants) -> IKConstants:
         None if c.tool_inv is None else np.array(c.tool_inv, dtype=float), c.scale,
         pieper=c.solver if isinstance(c.solver, PieperConstants) else None,
         parallel=c.solver if isinstance(c.solver, ParallelAxesConstants) else None,
-        solver=c.general_6r if c.general_6r is not None else {},
+        general=c.solver if isinstance(c.solver, GeneralSixRConstants) else None,
         flip=None if c.flip is None else list(c.flip), free_flipped=c.free_flipped, calibrated=c.calibrated)

@@ -17,7 +17,9 @@ per-robot entry points. The steps:
    and its pseudo-inverse (one-sided Jacobi SVD), giving the 12 × 12 quadratic matrix
    polynomial ``A x² + B x + C`` (``pencil``);
 3. its eigenvalues as those of the 24 × 24 companion matrix ``[[0, I], [−A⁻¹C, −A⁻¹B]]``
-   (LU with partial pivoting, balancing, Hessenberg reduction, Francis double-shift QR);
+   (LU with partial pivoting, balancing, Hessenberg reduction, Francis double-shift QR), less
+   the pairs x = ±i first where the reading has them (``deflate``: four pairs when the pivot is
+   the joint of its group farthest from the eliminated one, a 16 × 16 iteration);
    where A is near singular (σ_min/σ_max ≤ 1e-10) Python takes the generalised eigenproblem
    (QZ) and the C turns the half-angle variable by a fixed angle instead
    (``x = (y + t)/(1 − t y)``), which gives the same roots with a regular leading matrix —
@@ -30,8 +32,9 @@ per-robot entry points. The steps:
    order does not depend on the order in which the eigenvalues are found), the "singular"
    flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``).
 
-The per-arm numbers come from ``GeneralSixR.export_constants()`` (the same objects the
-Python solver uses): the scaled DH chain, the tolerances, the four best readings' tables.
+The per-arm numbers come from :class:`robokit.ik.GeneralSixRConstants` (the frozen record of
+``GeneralSixR.export_constants()``, the same numbers the Python solver uses): the scaled DH
+chain, the tolerances, the four best readings' tables.
 With ``--float32`` no IK is generated (``NAME_HAS_IK 0``): the elimination squares the
 conditioning of the pose (σ_min/σ_max of Q down to 1e-6 on ordinary poses), beyond what
 single precision resolves.
@@ -112,40 +115,40 @@ def workspace_doubles() -> int:
 
 def tables(k: IKConstants, P: str) -> str:
     """The per-arm constants: the readings' tables and the ``const g6r_arm`` (C text, after the template)."""
-    sv = k.solver
-    al = [float(x) for x in sv["alpha"]]
+    sv = k.general
+    assert sv is not None, "the general 6R method's constants"
     inits = []
-    out = [f"/* general 6R: the canonical chain Z1 X1 ... Z6 with lengths divided by the scale {lit(sv['scale'])} m; "
+    out = [f"/* general 6R: the canonical chain Z1 X1 ... Z6 with lengths divided by the scale {lit(sv.scale)} m; "
            "the readings of the loop equation, the best first (GeneralSixR.export_constants()) */"]
-    for i, rd in enumerate(sv["arrangements"]):
-        Ms = np.array(rd["Ms"], dtype=float)
-        Ms[rd["w_index"]] = 0.0  # replaced per pose
-        nw = len(rd["signs"])
-        pre_id = bool(np.array_equal(rd["pre"], np.eye(15)))  # the identity: a null pointer, no product
-        post_id = bool(np.array_equal(rd["post"], np.eye(15)))
-        out += [f"/* reading {i}: pivot joint {int(rd['roles'][0]) + 1}, eliminated joint {int(rd['roles'][5]) + 1} */",
-                _table(f"{P}_g6_r{i}_const", rd["const"]), _table(f"{P}_g6_r{i}_Ms", Ms),
-                "" if pre_id else _table(f"{P}_g6_r{i}_pre", rd["pre"]),
-                "" if post_id else _table(f"{P}_g6_r{i}_post", rd["post"]),
-                _table(f"{P}_g6_r{i}_signs", rd["signs"]), _table(f"{P}_g6_r{i}_f", rd["f"]), ""]
-        inits.append(f"    {{{_ints(rd['roles'])}, {int(bool(rd['three_has_w']))}, {nw}, {int(rd['w_index'])}, "
-                     f"{int(bool(rd['w_inverse']))}, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
+    for i, rd in enumerate(sv.readings):
+        Ms = np.array(rd.Ms, dtype=float)
+        Ms[rd.w_index] = 0.0  # replaced per pose
+        nw = len(rd.signs)
+        pre_id = bool(np.array_equal(rd.pre, np.eye(15)))  # the identity: a null pointer, no product
+        post_id = bool(np.array_equal(rd.post, np.eye(15)))
+        out += [f"/* reading {i}: pivot joint {rd.roles[0] + 1}, eliminated joint {rd.roles[5] + 1} */",
+                _table(f"{P}_g6_r{i}_const", rd.const), _table(f"{P}_g6_r{i}_Ms", Ms),
+                "" if pre_id else _table(f"{P}_g6_r{i}_pre", rd.pre),
+                "" if post_id else _table(f"{P}_g6_r{i}_post", rd.post),
+                _table(f"{P}_g6_r{i}_signs", rd.signs), _table(f"{P}_g6_r{i}_f", rd.f), ""]
+        inits.append(f"    {{{_ints(rd.roles)}, {int(rd.three_has_w)}, {nw}, {rd.w_index}, "
+                     f"{int(rd.w_inverse)}, {rd.deflate}, 0, {P}_g6_r{i}_const, {P}_g6_r{i}_Ms, "
                      f"{'0' if pre_id else f'{P}_g6_r{i}_pre'}, {'0' if post_id else f'{P}_g6_r{i}_post'}, "
-                     f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd['perm3'])}, {_ints(rd['perm2'])}}}")
+                     f"{P}_g6_r{i}_signs, {P}_g6_r{i}_f, {_ints(rd.perm3)}, {_ints(rd.perm2)}}}")
     out.append(f"static const g6r_reading {P}_g6_readings[{len(inits)}] = {{\n" + ",\n".join(inits) + "\n};")
 
     def row(values: Any) -> str:
         return "{" + ", ".join(lit(float(x)) for x in values) + "}"
 
     out.append(f"""static const g6r_arm {P}_g6_arm = {{
-    {row(sv["a"])},
-    {row(sv["d"])},
-    {row(math.cos(x) for x in al)},
-    {row(math.sin(x) for x in al)},
-    {row(sv["th0"])},
-    {lit(math.cos(sv["gamma"]))}, {lit(math.sin(sv["gamma"]))}, {lit(float(sv["gamma"]))},
-    {lit(float(sv["x0"]))},
-    {lit(float(sv["imag_tol"]))}, {lit(float(sv["converged"]))}, {lit(float(sv["same"]))}, {lit(float(sv["poor"]))},
+    {row(sv.a)},
+    {row(sv.d)},
+    {row(math.cos(x) for x in sv.alpha)},
+    {row(math.sin(x) for x in sv.alpha)},
+    {row(sv.th0)},
+    {lit(math.cos(sv.gamma))}, {lit(math.sin(sv.gamma))}, {lit(sv.gamma)},
+    {lit(sv.x0)},
+    {lit(sv.imag_tol)}, {lit(sv.converged)}, {lit(sv.same)}, {lit(sv.poor)},
     {P}_g6_readings, {len(inits)}, 0
 }};""")
     return "\n".join(out) + "\n"
@@ -175,7 +178,8 @@ def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
         C statements (inside ``NAME_ik_ex``) filling ``rows``, ``lab``, ``deg``, ``nr``.
     """
     k, P = e.k, e.P
-    scale = float(k.solver["scale"])
+    assert k.general is not None, "the general 6R method's constants"
+    scale = k.general.scale
     w = CWriter()
     R, p = T06.R, T06.p
     for i in range(3):

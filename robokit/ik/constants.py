@@ -11,8 +11,10 @@ numbers, one frozen dataclass per method:
 ================================  ===========================================================
 ``"spherical wrist"``             :class:`robokit.ik.pieper.PieperConstants`
 ``"three parallel axes"``         :class:`robokit.ik.parallel_axes.ParallelAxesConstants`
-``"general 6R"``                  ``general_6r``: the read-only mapping of
+``"general 6R"``                  :class:`GeneralSixRConstants` (its readings
+                                  :class:`GeneralSixRReading`), built from
                                   :meth:`robokit.ik.general_6r.GeneralSixR.export_constants`
+                                  (also kept as that read-only mapping, ``general_6r``)
 ================================  ===========================================================
 
 A calibrated or nearly special arm (:mod:`robokit.ik.calibrated`) exports the constants of its
@@ -35,9 +37,164 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.description.robot import Robot
 
-__all__ = ["ClosedFormConstants", "closed_form_constants"]
+__all__ = ["ClosedFormConstants", "GeneralSixRConstants", "GeneralSixRReading", "closed_form_constants"]
 
 Matrix4 = tuple[tuple[float, float, float, float], ...]
+Table = tuple[tuple[float, ...], ...]
+
+
+def _floats(x: Any) -> tuple[float, ...]:
+    return tuple(float(v) for v in np.asarray(x, dtype=float).reshape(-1))
+
+
+def _rows(x: Any) -> Table:
+    return tuple(_floats(r) for r in np.asarray(x, dtype=float))
+
+
+def _ints(x: Any) -> tuple[int, ...]:
+    return tuple(int(v) for v in np.asarray(x).reshape(-1))
+
+
+@dataclass(frozen=True)
+class GeneralSixRReading:
+    r"""One reading of the loop equation of the general 6R method, as numbers (one item of
+    :attr:`GeneralSixRConstants.readings`; ``export_constants()["arrangements"]``).
+
+    Attributes
+    ----------
+    roles : tuple of int
+        Joint indices (0-based): the pivot (the eigenvalue), the other two of its group, the
+        two of the 14 × 8 system, the eliminated joint.
+    three_has_w : bool
+        The target's map is on the three-joint side.
+    w_index : int
+        The slot of ``Ms`` replaced per pose by ``pre · F(W) · post``.
+    w_inverse : bool
+        W is T₀₆ (not T₀₆⁻¹).
+    deflate : int
+        How many eigenvalue pairs x = ±i the solve removes before its eigenvalue iteration
+        (0: none tried).
+    const : tuple of tuple of float
+        The side without the target as its tensor, 3ᵏ rows of 15.
+    Ms : tuple of tables
+        The target side's k + 1 maps, 15 × 15 each.
+    pre, post : tuple of tuple of float
+        15 × 15 each.
+    signs : tuple of float
+        The signs of the target side's k joint rotations.
+    f : tuple of float
+        The target side's start vector (15).
+    perm3, perm2 : tuple of int
+        The rows of the two sides' tensors behind P (27) and r (9).
+
+    Examples
+    --------
+    >>> import robokit
+    >>> from robokit.ik.general_6r import GeneralSixR
+    >>> from robokit.ik._dh_chain import DHChain
+    >>> c = GeneralSixRConstants.from_export(GeneralSixR(DHChain(robokit.load("puma560").dh)).export_constants())
+    >>> r = c.readings[0]
+    >>> len(r.perm3), len(r.perm2), len(r.Ms) == len(r.signs) + 1, len(r.pre), len(r.pre[0])
+    (27, 9, True, 15, 15)
+    """
+
+    roles: tuple[int, ...]
+    three_has_w: bool
+    w_index: int
+    w_inverse: bool
+    deflate: int
+    const: Table
+    Ms: tuple[Table, ...]
+    pre: Table
+    post: Table
+    signs: tuple[float, ...]
+    f: tuple[float, ...]
+    perm3: tuple[int, ...]
+    perm2: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class GeneralSixRConstants:
+    r"""The numbers of the general 6R method (Raghavan–Roth elimination) for one arm, as the C
+    emitter reads them (:mod:`robokit.codegen.ik_general`).
+
+    Attributes
+    ----------
+    alpha : tuple of float
+        Twists α₁ … α₅ of the canonical chain (rad).
+    a : tuple of float
+        Lengths a₁ … a₅, divided by ``scale``.
+    d : tuple of float
+        Offsets d₁ … d₆, divided by ``scale``.
+    th0 : tuple of float
+        Joint offsets θ₀ (rad).
+    scale : float
+        The chain's size (m).
+    gamma : float
+        The pivot's turn γ (rad): ``θ = 2 atan x + γ``.
+    imag_tol, converged, same, x0, poor, turn : float
+        The solver's tolerances: an eigenvalue's imaginary part as an angle, the converged pose
+        error, the same solution (rad), where the pencil's regularity is measured, the badly
+        conditioned reading, the fixed turn of the variable when A is near singular (rad).
+    readings : tuple of GeneralSixRReading
+        The readings solved, the best first (the next ones on a badly conditioned pose).
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.description.dh import DHLink, DHTable
+    >>> rng = np.random.default_rng(3)
+    >>> table = DHTable("g", "standard", tuple(DHLink("R", a=rng.uniform(-.5, .5), alpha=rng.uniform(-3, 3),
+    ...                                               d=rng.uniform(-.5, .5)) for _ in range(6)))
+    >>> c = closed_form_constants(robokit.load(table))
+    >>> c.method, type(c.solver).__name__, len(c.solver.readings)
+    ('general 6R', 'GeneralSixRConstants', 4)
+    """
+
+    alpha: tuple[float, ...]
+    a: tuple[float, ...]
+    d: tuple[float, ...]
+    th0: tuple[float, ...]
+    scale: float
+    gamma: float
+    imag_tol: float
+    converged: float
+    same: float
+    x0: float
+    poor: float
+    turn: float
+    readings: tuple[GeneralSixRReading, ...]
+
+    @classmethod
+    def from_export(cls, e: Mapping[str, Any]) -> "GeneralSixRConstants":
+        """The record of ``GeneralSixR.export_constants()``.
+
+        Parameters
+        ----------
+        e : mapping
+            The export (keys as documented there).
+
+        Returns
+        -------
+        GeneralSixRConstants
+
+        Examples
+        --------
+        >>> import robokit
+        >>> from robokit.ik.general_6r import GeneralSixR
+        >>> from robokit.ik._dh_chain import DHChain
+        >>> chain = DHChain(robokit.load("puma560").dh)
+        >>> GeneralSixRConstants.from_export(GeneralSixR(chain).export_constants()).readings[0].roles[5] >= 0
+        True
+        """
+        readings = tuple(GeneralSixRReading(
+            _ints(r["roles"]), bool(r["three_has_w"]), int(r["w_index"]), bool(r["w_inverse"]), int(r["deflate"]),
+            _rows(r["const"]), tuple(_rows(M) for M in np.asarray(r["Ms"], dtype=float)), _rows(r["pre"]),
+            _rows(r["post"]), _floats(r["signs"]), _floats(r["f"]), _ints(r["perm3"]), _ints(r["perm2"]))
+            for r in e["arrangements"])
+        return cls(_floats(e["alpha"]), _floats(e["a"]), _floats(e["d"]), _floats(e["th0"]), float(e["scale"]),
+                   float(e["gamma"]), float(e["imag_tol"]), float(e["converged"]), float(e["same"]), float(e["x0"]),
+                   float(e["poor"]), float(e["turn"]), readings)
 
 
 def _matrix(T: Any) -> Matrix4 | None:
@@ -74,8 +231,9 @@ class ClosedFormConstants:
         q′ = −q. None when there are none.
     free_flipped : bool
         The joint a singular pose leaves free (``wrist_ref``'s) is flipped: the solver gets −wrist_ref.
-    solver : PieperConstants, ParallelAxesConstants or None
-        The method's own numbers (None for ``"general 6R"`` and without a closed form).
+    solver : PieperConstants, ParallelAxesConstants, GeneralSixRConstants or None
+        The method's own numbers (None without a closed form, or for a registered solver that
+        exports none).
     general_6r : mapping or None
         For ``"general 6R"``: ``GeneralSixR.export_constants()``, read-only.
     calibrated : mapping or None
@@ -101,7 +259,7 @@ class ClosedFormConstants:
     scale: float = 1.0
     flip: tuple[bool, ...] | None = None
     free_flipped: bool = False
-    solver: PieperConstants | ParallelAxesConstants | None = None
+    solver: PieperConstants | ParallelAxesConstants | GeneralSixRConstants | None = None
     general_6r: Mapping[str, Any] | None = None
     calibrated: Mapping[str, Any] | None = None
 
@@ -112,7 +270,7 @@ def _export(ik: AnalyticIK) -> ClosedFormConstants:
     if not ik.kind or sv is None:
         return ClosedFormConstants(ik.kind.method, ik.kind.reason)
     sc = sv.chain  # the chain the solver solves (the robot's read backwards when reversed)
-    solver: PieperConstants | ParallelAxesConstants | None = None
+    solver: PieperConstants | ParallelAxesConstants | GeneralSixRConstants | None = None
     general: Mapping[str, Any] | None = None
     if isinstance(sv, (PieperSolver, ParallelAxesSolver)):
         solver = sv.constants()
@@ -120,6 +278,8 @@ def _export(ik: AnalyticIK) -> ClosedFormConstants:
         export = getattr(sv, "export_constants", None)  # a registered solver's own export (general 6R)
         if export is not None:
             general = MappingProxyType(dict(export()))
+            if ik.kind.method == "general 6R":
+                solver = GeneralSixRConstants.from_export(general)
     flip = ik._flip
     return ClosedFormConstants(
         ik.kind.method, ik.kind.reason, bool(ik.reversed), tuple(str(k) for k in sc.kinds),

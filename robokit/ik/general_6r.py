@@ -32,7 +32,11 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    (i, j ≤ 2); with the same 6 multiplied by x₄ these are 12 equations in the 12 monomials
    ``x₄ⁱx₅ʲ`` (i ≤ 3, j ≤ 2): ``(A x₃² + B x₃ + C) v = 0`` (12 × 12, entries quadratic in x₃).
    A solution needs ``det(A x² + B x + C) = 0``: a polynomial of degree 24 with the factor
-   ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm.
+   ``(1 + x²)⁴`` (the half-angle substitution's ±i), leaving the 16 of a general 6R arm. (The
+   factor comes from θ₃'s rotation being the outermost map of its side — in the other readings
+   below it is there when the eigenvalue joint is the farthest of its group from the eliminated
+   joint, and absent otherwise; where present it is removed before the eigenvalue iteration,
+   :func:`robokit.kernels.general_6r.deflate`.)
 4. **Eigenproblem** (Manocha & Canny 1994). Instead of expanding the determinant, the
    quadratic matrix polynomial is linearised: ``[[0, I], [−C, −B]] z = x [[I, 0], [0, A]] z``
    with ``z = (v, x v)`` (24 × 24); the real eigenvalues are the x₃ of the solutions. The
@@ -77,9 +81,9 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from robokit.ik.solver import PositionBranch
-from robokit.kernels.general_6r import (RI_SIZE, T_CONVERGED, T_GAMMA, T_IMAG, T_POOR, T_READINGS, T_SAME,
-                                        T_TURN, T_X0, fk_pose, fvec, jacobian, reading_matrices, score_reading,
-                                        side_tensor, solve_pose)
+from robokit.kernels.general_6r import (DEFLATE_MAX, RI_SIZE, T_CONVERGED, T_GAMMA, T_IMAG, T_POOR, T_READINGS,
+                                        T_SAME, T_TURN, T_X0, fk_pose, fvec, jacobian, nullity_at_i, pencil,
+                                        reading_matrices, score_reading, side_tensor, solve_pose)
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -193,7 +197,20 @@ class _Arrangement:
             self.Ms.append(np.ascontiguousarray(np.stack([pre for pre, _, _ in ops])))
             at = [(i, pre, w < 0, post) for i, (pre, w, post) in enumerate(ops) if w != 0]
             self.w_at.append(at[0] if at else None)
+        #: how many eigenvalue pairs x = ±i the solve removes before its eigenvalue iteration (the
+        #: null space of A x² + B x + C at x = i at ordinary poses; set by _Elimination for the
+        #: readings it keeps, 0 until then: no deflation tried)
+        self.deflate = 0
         self._packed = self.packed()
+
+    def nullity_at_i(self, T06s: np.ndarray) -> int:
+        """The dimension of the null space of ``A x² + B x + C`` at x = i for the scaled pose
+        T06s: 4 when the pivot is the joint of its group farthest from the eliminated one (the
+        ``(1 + x²)⁴`` of the determinant), else 0 — or more on special arms and poses."""
+        P, r = self.matrices(T06s)
+        work = np.empty((3, 12, 12))
+        pencil(P, r, math.cos(_GAMMA), math.sin(_GAMMA), work, np.empty((3, 14, 9)), np.empty((8, 14)))
+        return int(nullity_at_i(work))
 
     def tables(self) -> dict[str, Any]:
         """This reading's per-arm tables (the items of ``export_constants()["arrangements"]``)."""
@@ -215,7 +232,8 @@ class _Arrangement:
         return {"roles": self.roles.copy(), "three_has_w": w_side == self.three, "const": const,
                 "Ms": self.Ms[w_side].copy(), "w_index": int(i), "w_inverse": bool(inverse), "pre": pre.copy(),
                 "post": post.copy(), "signs": self.sides[w_side][1].copy(), "f": self.fstart[w_side].copy(),
-                "perm3": np.array(perm3, dtype=np.int64), "perm2": np.array(perm2, dtype=np.int64)}
+                "perm3": np.array(perm3, dtype=np.int64), "perm2": np.array(perm2, dtype=np.int64),
+                "deflate": int(self.deflate)}
 
     def packed(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The tables as the compiled kernels take them (:mod:`robokit.kernels.general_6r`):
@@ -227,6 +245,7 @@ class _Arrangement:
         ri[6:10] = [int(t["three_has_w"]), nw, t["w_index"], int(t["w_inverse"])]
         ri[10:37] = t["perm3"]
         ri[37:46] = t["perm2"]
+        ri[46] = t["deflate"]
         mats = np.zeros((6, 15, 15))
         mats[:nw + 1] = t["Ms"]
         mats[4], mats[5] = t["pre"], t["post"]
@@ -270,6 +289,11 @@ class _Elimination:
         scored.sort(key=lambda t: -t[0])
         self.arrangements = [t[4] for t in scored]
         self.scores = [t[0] for t in scored]
+        # the readings used: the eigenvalue pairs x = ±i that each pose's solve may remove (the
+        # null space at x = i has the same dimension at every ordinary pose: the smallest seen)
+        for arr in self.arrangements[:_EXTRA + 1]:
+            arr.deflate = min(DEFLATE_MAX, min(arr.nullity_at_i(T) for T in poses))
+            arr._packed = arr.packed()
         # what the compiled solve takes (robokit.kernels.general_6r.solve_pose): the chain, the
         # tolerances and the tables of the readings it may use, best first
         self.kchain = np.zeros((4, 6))
@@ -438,7 +462,9 @@ class GeneralSixR:
             ((k + 1, 15, 15), slot ``w_index`` replaced per pose by ``pre @ F(W) @ post`` with
             ``W = T₀₆⁻¹``, or ``T₀₆`` when ``w_inverse``), ``signs`` (k,), ``f`` (15,), and the row
             permutations ``perm3`` (27,) and ``perm2`` (9,) that :meth:`_Arrangement.matrices`
-            applies: ``P[i, k, m] = G3[perm3[9 i + m], k]``, ``r[k, m] = G2[perm2[m], k]``.
+            applies: ``P[i, k, m] = G3[perm3[9 i + m], k]``, ``r[k, m] = G2[perm2[m], k]``;
+            ``deflate``, how many eigenvalue pairs x = ±i the solve removes before its eigenvalue
+            iteration (0: none tried; see :func:`robokit.kernels.general_6r.deflate`).
 
         Examples
         --------

@@ -19,9 +19,11 @@ Kernels
     the 12×12 quadratic matrix polynomial ``A x² + B x + C`` of one pose (x = tan(φ/2),
     θ₃ = φ + γ) and, for the back-substitution, the pseudo-inverse pieces of the 14×8
     matrix of joints 1–2; returns the smallest / largest singular value ratio of that matrix.
-``companion(work, M)``, ``turn(work, t)``, ``eigenvalues(h, wr, wi)``, ``null_vector(work, y, v)``
-    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned), the turned
-    variable (when it is not), the eigenvalues of a real matrix (balancing, Hessenberg
+``companion(work, M)``, ``deflate(work, M)``, ``turn(work, t)``, ``eigenvalues(h, wr, wi)``,
+``null_vector(work, y, v)``
+    the 24 × 24 linearisation of ``A x² + B x + C`` (when A is well conditioned), the same
+    without its eigenvalues ±i (when ``A x² + B x + C`` is singular there), the turned
+    variable (when A is not), the eigenvalues of a real matrix (balancing, Hessenberg
     reduction, Francis double-shift QR), the null vector at a real root (inverse iteration).
 ``sv_ratio(a)``
     σ_min/σ_max of a small matrix (Golub–Kahan bidiagonalisation, Sturm-count bisection).
@@ -53,7 +55,8 @@ import numpy as np
 
 from robokit.kernels._jit import njit
 
-__all__ = ["side_tensor", "pencil", "companion", "turn", "eigenvalues", "null_vector", "sv_ratio", "regularity",
+__all__ = ["side_tensor", "pencil", "companion", "deflate", "nullity_at_i", "turn", "eigenvalues", "null_vector",
+           "sv_ratio", "regularity",
            "reading_matrices", "score_reading", "reading_candidates", "solve_pose", "distinct", "f_pose", "fill_joint",
            "fk_pose", "jacobian", "polish", "fvec"]
 
@@ -951,6 +954,186 @@ def companion(work: np.ndarray, M: np.ndarray) -> float:
     return cond
 
 
+#: Largest number of eigenvalue pairs ±i that :func:`deflate` removes (the C's workspace holds 4).
+DEFLATE_MAX = 4
+
+
+@njit
+def _eliminate_i(work: np.ndarray, Kr: np.ndarray, Ki: np.ndarray, perm: np.ndarray) -> int:
+    """Gaussian elimination with complete pivoting of ``L(i) = C − A + iB`` ((A, B, C) = work)
+    into (Kr, Ki) (12 × 12: real and imaginary parts) with the column order perm; pivots below
+    1e-11 of the largest entry end it. Returns the rank (the null space's dimension is 12 − rank)."""
+    n = 12
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            Kr[i, j] = work[2, i, j] - work[0, i, j]
+            Ki[i, j] = work[1, i, j]
+            big = max(big, Kr[i, j] * Kr[i, j] + Ki[i, j] * Ki[i, j])
+        perm[i] = i
+    for k in range(n):
+        best, p, q = -1.0, k, k
+        for i in range(k, n):
+            for j in range(k, n):
+                m2 = Kr[i, j] * Kr[i, j] + Ki[i, j] * Ki[i, j]
+                if m2 > best:
+                    best, p, q = m2, i, j
+        if not best > 1e-22 * big:
+            return k
+        for j in range(n):  # rows k, p
+            Kr[k, j], Kr[p, j] = Kr[p, j], Kr[k, j]
+            Ki[k, j], Ki[p, j] = Ki[p, j], Ki[k, j]
+        for i in range(n):  # columns k, q
+            Kr[i, k], Kr[i, q] = Kr[i, q], Kr[i, k]
+            Ki[i, k], Ki[i, q] = Ki[i, q], Ki[i, k]
+        perm[k], perm[q] = perm[q], perm[k]
+        pr, pi = Kr[k, k] / best, -Ki[k, k] / best  # 1 / pivot
+        for i in range(k + 1, n):
+            lr = Kr[i, k] * pr - Ki[i, k] * pi
+            li = Kr[i, k] * pi + Ki[i, k] * pr
+            for j in range(k + 1, n):
+                Kr[i, j] -= lr * Kr[k, j] - li * Ki[k, j]
+                Ki[i, j] -= lr * Ki[k, j] + li * Kr[k, j]
+    return n
+
+
+@njit
+def nullity_at_i(work: np.ndarray) -> int:
+    """How many independent null vectors ``A x² + B x + C`` ((A, B, C) = work) has at x = i
+    (:func:`deflate`; the solver records it per reading once per arm, and only the readings
+    where it is positive try the deflation)."""
+    Kr = np.empty((12, 12))
+    Ki = np.empty((12, 12))
+    perm = np.empty(12, dtype=np.int64)
+    return 12 - _eliminate_i(work, Kr, Ki, perm)
+
+
+@njit
+def deflate(work: np.ndarray, M: np.ndarray) -> int:
+    """Remove the eigenvalues x = ±i from the companion matrix M (24 × 24) of
+    ``A x² + B x + C`` ((A, B, C) = work): returns n, with M[:n, :n] holding the other eigenvalues.
+
+    When the pivot is the joint of its group farthest from the eliminated one, its rotation is
+    the outermost map of its side: the ``e^{iθ}`` part of the side has rank 4, and
+    ``L(i) = C − A + iB`` is singular with four null vectors (the half-angle substitution's
+    points at infinity, ``(1 + x²)⁴`` in the determinant); other readings have none, or fewer on
+    special arms. Each null vector v = a + ib gives the eigenvectors ``(v, ±i v)`` of M, whose
+    real span Z = ``[a, b; −b, a]`` is invariant (checked: ``M Z = Z Λ`` to 1e-12 of M's
+    largest entry, with v of unit length). With p the rows of Z picked by Gauss–Jordan
+    elimination with row pivoting, q the others and ``G = Z_q Z_p⁻¹`` (entries at most 1e4), the
+    similarity ``S = [[I, 0], [G, I]]`` (in the order p, q) makes M block triangular:
+    ``S⁻¹ M S = [[∗, ∗], [0, M_qq − G M_pq]]``, and that trailing block keeps the other
+    eigenvalues (cost ∝ n³: 16 × 16 instead of 24 × 24 for four pairs; the similarity itself
+    costs a few thousand operations). The null vectors come from :func:`_eliminate_i` (at most
+    :data:`DEFLATE_MAX` used). Returns 24 with M untouched when L(i) is regular or a check
+    fails."""
+    n = 12
+    Kr = np.empty((n, n))
+    Ki = np.empty((n, n))
+    perm = np.empty(n, dtype=np.int64)
+    rank = _eliminate_i(work, Kr, Ki, perm)
+    r = min(n - rank, DEFLATE_MAX)
+    if r == 0:
+        return 24
+    # the null vectors (free unknown rank + t = 1, the others 0) by back-substitution, scaled to
+    # |v| = 1, into Z (24 × 2r): the columns (a; −b) and (b; a) of each
+    r2 = 2 * r
+    Z = np.empty((24, r2))
+    yr = np.empty(n)
+    yi = np.empty(n)
+    for t in range(r):
+        f = rank + t
+        for i in range(rank - 1, -1, -1):
+            sr, si = -Kr[i, f], -Ki[i, f]
+            for j in range(i + 1, rank):
+                sr -= Kr[i, j] * yr[j] - Ki[i, j] * yi[j]
+                si -= Kr[i, j] * yi[j] + Ki[i, j] * yr[j]
+            dd = Kr[i, i] * Kr[i, i] + Ki[i, i] * Ki[i, i]
+            yr[i] = (sr * Kr[i, i] + si * Ki[i, i]) / dd
+            yi[i] = (si * Kr[i, i] - sr * Ki[i, i]) / dd
+        for j in range(rank, n):
+            yr[j] = 1.0 if j == f else 0.0
+            yi[j] = 0.0
+        nrm = 0.0
+        for j in range(n):
+            nrm += yr[j] * yr[j] + yi[j] * yi[j]
+        nrm = 1.0 / math.sqrt(nrm)
+        for j in range(n):  # v[perm[j]] = y[j]
+            Z[perm[j], 2 * t] = Z[12 + perm[j], 2 * t + 1] = yr[j] * nrm
+            Z[perm[j], 2 * t + 1] = yi[j] * nrm
+            Z[12 + perm[j], 2 * t] = -yi[j] * nrm
+    top = 1.0  # M's largest entry (its first rows: 0 and 1)
+    for i in range(12, 24):
+        for j in range(24):
+            top = max(top, abs(M[i, j]))
+    # the invariance check: M z = −z′ and M z′ = z for each pair (z, z′) (rows 0…11 hold exactly)
+    worst = 0.0
+    for i in range(12, 24):
+        for c in range(r2):
+            acc = -Z[i, c - 1] if c & 1 else Z[i, c + 1]
+            for j in range(24):
+                acc += M[i, j] * Z[j, c]
+            worst = max(worst, abs(acc))
+    if not worst <= 1e-12 * top:
+        return 24
+    # Gauss–Jordan on Z's columns with row pivoting: Z ← Z Z_p⁻¹, the identity on the pivot rows p
+    # (used[i] = 1 + the column), G = Z_q Z_p⁻¹ on the others q
+    used = np.zeros(24, dtype=np.int64)
+    for c in range(r2):
+        best, p = 0.0, -1
+        for i in range(24):
+            if used[i] == 0 and abs(Z[i, c]) > best:
+                best, p = abs(Z[i, c]), i
+        if p < 0:
+            return 24
+        used[p] = 1 + c
+        inv = 1.0 / Z[p, c]
+        for i in range(24):
+            Z[i, c] *= inv
+        for j in range(r2):
+            fj = Z[p, j]
+            if j == c or fj == 0.0:
+                continue
+            for i in range(24):
+                Z[i, j] -= fj * Z[i, c]
+    g = 0.0  # the similarity's size: G's largest entry
+    for i in range(24):
+        if used[i] == 0:
+            for c in range(r2):
+                g = max(g, abs(Z[i, c]))
+    if not g <= 1e4:
+        return 24
+    # with S = [[I, 0], [G, I]] in the order (p, q): S⁻¹ M S = [[∗, ∗], [0, M_qq − G M_pq]]
+    m = 24 - r2
+    Mpq = np.empty((r2, m))
+    for i in range(24):
+        if used[i] != 0:
+            b = 0
+            for j in range(24):
+                if used[j] == 0:
+                    Mpq[used[i] - 1, b] = M[i, j]
+                    b += 1
+    H = np.empty((m, m))
+    k = 0
+    for i in range(24):
+        if used[i] != 0:
+            continue
+        b = 0
+        for j in range(24):
+            if used[j] != 0:
+                continue
+            x = M[i, j]
+            for c in range(r2):
+                x -= Z[i, c] * Mpq[c, b]
+            H[k, b] = x
+            b += 1
+        k += 1
+    for i in range(m):
+        for j in range(m):
+            M[i, j] = H[i, j]
+    return m
+
+
 @njit
 def turn(work: np.ndarray, t: float) -> None:
     """Turn the half-angle variable in place: ``x = (y + t)/(1 − t y)`` and the polynomial times
@@ -1067,14 +1250,15 @@ def polish(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray, the
 
 # ---------------------------------------------------------------- one reading, one pose, one call
 # The per-arm tables of one reading of the loop equation (robokit.ik.general_6r._Arrangement):
-# ri (46,) int: roles (6: pivot, b, c, d, e, eliminated joint), three_has_w, nw (joints on the
-#   target's side), w_index, w_inverse, perm3 (27), perm2 (9);
+# ri (47,) int: roles (6: pivot, b, c, d, e, eliminated joint), three_has_w, nw (joints on the
+#   target's side), w_index, w_inverse, perm3 (27), perm2 (9), deflate (the null space of
+#   A x² + B x + C at x = i, its dimension at ordinary poses: 0 means no deflation is tried);
 # mats (6, 15, 15): the target side's maps Ms[0 … nw] (slot w_index replaced per pose), pre, post;
 # const (27, 15): the side without the target as its tensor (3**(5 − nw) rows used);
 # vec (18,): signs (3; nw used), f (15) the target side's start vector.
 # The solver's numbers, tol (8,): gamma, t (the turn of the variable, tan(δ/2)), imag_tol,
 # converged, same, x0, poor, and the number of readings; chain (4, 6): α (5), a (5), d, θ₀.
-RI_SIZE = 46
+RI_SIZE = 47
 T_GAMMA, T_TURN, T_IMAG, T_CONVERGED, T_SAME, T_X0, T_POOR, T_READINGS = 0, 1, 2, 3, 4, 5, 6, 7
 
 
@@ -1152,15 +1336,18 @@ def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri:
             if not companion(work, M) > 1e-10:
                 return 0, 0.0
     ratio = min(rq, condA, reg)
-    wr = np.empty(24)
-    wi = np.empty(24)
-    if eigenvalues(M, wr, wi) != 0:
+    # the roots x = ±i of the half-angle substitution (pivot outermost: four pairs) removed first
+    n = deflate(work, M) if ri[46] > 0 else 24
+    H = np.ascontiguousarray(M[:n, :n]) if n < 24 else M
+    wr = np.empty(n)
+    wi = np.empty(n)
+    if eigenvalues(H, wr, wi) != 0:
         return 0, ratio
     roles = ri[:6]
     v = np.empty(12)
     th = np.empty(6)
     count = 0
-    for k in range(24):
+    for k in range(n):
         lam = wr[k]
         imag = 2.0 * abs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k])
         if imag > tol[T_IMAG]:  # not real to the tolerance (as an angle): no candidate

@@ -513,6 +513,26 @@ def test_general_6r_random_arms_match_ik_analytic(build, seed, convention):
     check_ik(robot, build(robot), random_poses(robot, seed, k=8))
 
 
+@pytest.mark.parametrize("seed", [6, 7])
+def test_general_6r_deflated_eigenproblem_matches_ik_analytic(build, seed):
+    """Arms whose best reading has the four root pairs x = ±i (pivot farthest from the eliminated
+    joint: the C's eigenvalue iteration runs on 16 × 16), and the Jaco's two pairs: the C solves
+    every pose as ik_analytic does (both deflate; tests/ik checks the deflation against LAPACK)."""
+    from robokit.ik import analytic_ik
+
+    rng = np.random.default_rng(seed)
+    robot = robokit.load(DHTable(f"d{seed}", "standard", tuple(
+        DHLink("R", a=rng.uniform(-0.5, 0.5), alpha=rng.uniform(-np.pi, np.pi), d=rng.uniform(-0.5, 0.5),
+               theta=rng.uniform(-np.pi, np.pi), qlim=(-2 * np.pi, 2 * np.pi)) for _ in range(6))))
+    assert ik_analytic_kind(robot).method == "general 6R"
+    best = analytic_ik(robot).solver.elim.arrangements[0]
+    assert (best.piv, best.deflate) == (2, 4)
+    lib = build(robot)
+    text = (lib.path.parent / f"{lib.name}.c").read_text()  # the C's first reading deflates four pairs
+    assert re.search(r"_g6_readings\[\d\] = \{\n    \{\{[\d, ]+\}, \d, \d, \d, \d, 4, 0, ", text)
+    check_ik(robot, lib, [robot.frame_pose(rng.uniform(-np.pi, np.pi, 6)) for _ in range(12)])
+
+
 def test_general_6r_root_at_the_half_angle_infinity(jaco, build):
     """A solution with the eigenvalue joint exactly at the half-angle variable's infinity (θ = γ + π):
     A is singular, Python takes the generalised eigenproblem (QZ), the C the turned variable; both

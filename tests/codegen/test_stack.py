@@ -20,7 +20,7 @@ ARMS = {"twolink": lambda: "twolink", "rrr": lambda: "rrr", "puma560": lambda: "
         "panda": lambda: "panda", "jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm,
         "calibrated_puma560": lambda: calibrated_arm("puma560", 1), "calibrated_ur5": lambda: calibrated_arm("ur5", 2)}
 FRAME, G6R_PATH = 2048, 12 * 1024
-IK_WORKSPACE = 8 * 1130  # NAME_IK_WORKSPACE_SIZE (templates/g6r.h: G6R_WORKSPACE_DOUBLES doubles)
+IK_WORKSPACE = 8 * 1182  # NAME_IK_WORKSPACE_SIZE (templates/g6r.h: G6R_WORKSPACE_DOUBLES doubles)
 
 
 @pytest.fixture(scope="module")

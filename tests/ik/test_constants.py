@@ -53,3 +53,48 @@ def test_kernel_packing_reads_the_record():
     ci, cf, C = ik.solver.kernel_constants()
     assert cf[0:6].tolist() == list(c.th0) and cf[29:32].tolist() == list(c.w6)
     assert C[: len(c.C), : c.deg + 1].tolist() == [list(r) for r in c.C]
+
+
+def test_general_6r_record_is_typed_frozen_and_means_what_it_says():
+    """The general 6R method's constants are a frozen record (no mapping): its chain, rebuilt here
+    from the DH formula Z(θ, d) X(a, α), reaches Pinocchio's pose; codegen reads that record."""
+    import math
+
+    from robokit.codegen._solver_constants import ik_constants
+    from robokit.ik import GeneralSixRConstants, GeneralSixRReading
+
+    rng = np.random.default_rng(3)
+    table = robokit.DHTable("g", "standard", tuple(robokit.DHLink(
+        "R", a=rng.uniform(-0.5, 0.5), alpha=rng.uniform(-3, 3), d=rng.uniform(-0.5, 0.5)) for _ in range(6)))
+    robot = robokit.load(table)
+    c = closed_form_constants(robot)
+    g = c.solver
+    assert c.method == "general 6R" and isinstance(g, GeneralSixRConstants)
+    assert len(g.readings) == 4 and all(isinstance(r, GeneralSixRReading) for r in g.readings)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        g.scale = 2.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        g.readings[0].deflate = 0
+    hash(g)  # immutable all the way down (tuples)
+    assert ik_constants(robot).general == g  # what the C emitter reads
+
+    def Z(t, d):
+        return np.array([[math.cos(t), -math.sin(t), 0, 0], [math.sin(t), math.cos(t), 0, 0], [0, 0, 1, d],
+                         [0, 0, 0, 1]])
+
+    def X(a, al):
+        return np.array([[1, 0, 0, a], [0, math.cos(al), -math.sin(al), 0], [0, math.sin(al), math.cos(al), 0],
+                         [0, 0, 0, 1]])
+
+    base_inv = np.eye(4) if c.base_inv is None else np.array(c.base_inv)
+    tool_inv = np.eye(4) if c.tool_inv is None else np.array(c.tool_inv)
+    sign = [-1.0 if f else 1.0 for f in (c.flip or [False] * 6)]
+    assert not c.reversed
+    for _ in range(5):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        T = np.eye(4)
+        for i in range(6):
+            T = T @ Z(g.th0[i] + sign[i] * q[i], g.d[i] * g.scale)
+            if i < 5:
+                T = T @ X(g.a[i] * g.scale, g.alpha[i])
+        assert np.abs(T - base_inv @ robot.frame_pose(q) @ tool_inv).max() < 1e-12

@@ -426,7 +426,7 @@ def test_the_solve_is_one_kernel_that_also_runs_as_plain_python(jaco):
 
     model = analytic_ik(jaco)
     el = model.solver.elim
-    assert len(el.kreadings[0]) == 4 and el.kreadings[0].shape[1] == 46  # the 4 best readings, packed once
+    assert len(el.kreadings[0]) == 4 and el.kreadings[0].shape[1] == 47  # the 4 best readings, packed once
     q = np.array([0.4, 1.9, 1.1, -0.6, 2.2, 0.3])
     T06s = model.chain.target_06(jaco.frame_pose(q))
     T06s[:3, 3] /= model.solver.scale
@@ -436,3 +436,83 @@ def test_the_solve_is_one_kernel_that_also_runs_as_plain_python(jaco):
     assert np.abs(out_c[:m] - out_p[:m]).max() < 1e-9
     T = np.full((4, 4), np.nan)
     assert solve_pose(el.kchain, el.ktol, *el.kreadings, T, out_c) == 0  # not a pose: no solution
+
+
+def _reading_pencil_and_companion(arr, T06s):
+    """(A, B, C) of one reading at the scaled pose, and its 24 × 24 companion matrix (A regular)."""
+    from robokit.kernels.general_6r import companion, pencil
+
+    P, r = arr.matrices(T06s)
+    work = np.empty((3, 12, 12))
+    pencil(P, r, math.cos(0.6180339887498949), math.sin(0.6180339887498949), work, np.empty((3, 14, 9)),
+           np.empty((8, 14)))
+    M = np.empty((24, 24))
+    assert companion(work, M) > 1e-10
+    return work, M
+
+
+@pytest.mark.parametrize("seed", [6, 7, 11])
+def test_the_roots_at_plus_minus_i_and_their_deflation(seed):
+    """det(A x² + B x + C) has the factor (1 + x²)⁴ exactly for the readings whose pivot is the
+    joint of its group farthest from the eliminated one (numpy's SVD of L(i), independent of the
+    kernel's elimination); the deflated matrix keeps every other eigenvalue of the 24 × 24
+    companion matrix (numpy's eig), and a reading without the roots is left alone."""
+    from robokit.ik.closed_form import analytic_ik as _model
+    from robokit.kernels.general_6r import deflate, nullity_at_i
+
+    robot = robokit.load(random_general_arm(seed, "standard"))
+    model = _model(robot)
+    solver = model.solver
+    rng = np.random.default_rng(seed)
+    T06s = model.chain.target_06(robot.frame_pose(rng.uniform(-np.pi, np.pi, 6)))
+    T06s[:3, 3] /= solver.scale
+    kinds = set()
+    for arr in solver.elim.arrangements[:12]:
+        work, M = _reading_pencil_and_companion(arr, T06s)
+        A, B, C = work
+        sv = np.linalg.svd(-A + 1j * B + C, compute_uv=False)
+        null = int((sv < 1e-10 * sv[0]).sum())
+        assert null == (4 if arr.piv == 2 else 0), (arr.j, arr.n1, arr.piv, sv[-5:] / sv[0])
+        assert nullity_at_i(work) == null
+        # a clear gap (the count is not a threshold's accident): null ones at rounding, the others far above
+        assert sv[12 - null - 1] > 1e-9 * sv[0] and (null == 0 or sv[-1] < 1e-13 * sv[0])
+        full = np.linalg.eigvals(M)
+        M0 = M.copy()
+        n = deflate(work, M)
+        assert n == 24 - 2 * null
+        if null == 0:
+            assert np.array_equal(M, M0)  # untouched
+            kinds.add("kept")
+            continue
+        kinds.add("deflated")
+        rest = np.linalg.eigvals(M[:n, :n])
+        expected = np.concatenate([rest, [1j] * null, [-1j] * null])
+        # the same 24 eigenvalues (as a multiset: match each one to its nearest, without reuse)
+        left = list(full)
+        for lam in expected:
+            k = int(np.argmin([abs(lam - x) for x in left]))
+            assert abs(lam - left[k]) < 1e-6 * (1 + abs(lam)), (lam, left[k])
+            left.pop(k)
+        # and the real ones (the candidates) to far better than the polish needs
+        for lam in full[np.abs(full.imag) < 1e-9]:
+            assert np.min(np.abs(rest - lam)) < 1e-9 * (1 + abs(lam))
+    assert kinds == {"kept", "deflated"}
+
+
+def test_the_solver_deflates_where_the_roots_are(jaco):
+    """Each kept reading's deflate count is the null space of L(i) at a fresh pose (numpy's SVD):
+    the Jaco's best readings have two pairs (its special geometry), the farthest pivots four."""
+    from robokit.ik.closed_form import analytic_ik as _model
+
+    model = _model(jaco)
+    solver = model.solver
+    rng = np.random.default_rng(5)
+    for arr in solver.elim.arrangements[:4]:
+        T06s = model.chain.target_06(jaco.frame_pose(rng.uniform(-np.pi, np.pi, 6)))
+        T06s[:3, 3] /= solver.scale
+        work, _ = _reading_pencil_and_companion(arr, T06s)
+        A, B, C = work
+        sv = np.linalg.svd(-A + 1j * B + C, compute_uv=False)
+        assert arr.deflate == int((sv < 1e-10 * sv[0]).sum()) > 0
+        assert arr.deflate == (4 if arr.piv == 2 else 2)
+        assert arr.packed()[0][46] == arr.deflate

@@ -17,13 +17,15 @@
              then Q's SVD in place, V u[652..716), 4 rows of Q's pseudo-inverse u[716..772);
              then Sigma u[540..702);
    companion: A's LU u[0..144), the 24 x 24 companion matrix u[144..720);
+   deflation: L(i) in the companion matrix's first 12 rows, its null vectors u[0..96) (then
+             rows of M u[0..128)), the invariant subspace's basis u[720..912);
    eigenvalues: the matrix, wr u[720..744), wi u[744..768), Householder vectors u[768..816);
    per eigenvalue: L(y) u[0..144), the polish's Jacobians and vectors u[144..300),
              fill_joint's u[300..332). */
 typedef struct {
     double abc[3][6][9]; /* A, B, C of the 12 x 12 pencil: rows e and 6 + e (the same, times x_b) */
     double K[4][3][9];   /* rows 2, 5, 6, 7 of Q's pseudo-inverse times the three-joint side */
-    double u[860];
+    double u[912];
 } g6r_work;
 
 enum { g6r_size_check = 1 / (int)(sizeof(g6r_work) == sizeof(double) * G6R_WORKSPACE_DOUBLES) };
@@ -940,6 +942,227 @@ static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144
     return below;
 }
 
+/* kernels.general_6r.deflate: the eigenvalues x = +-i removed from the companion matrix M (24 x 24,
+   row-major) of a x^2 + b x + c; returns the new size n, M's first n * n entries then holding the
+   n x n matrix of the other eigenvalues (row-major). When the pivot is the joint of its group
+   farthest from the eliminated one, L(i) = c - a + i b is singular with four null vectors (the
+   half-angle substitution's points at infinity); other readings have none, or fewer on special
+   arms. Each null vector v = p + i q (|v| = 1) gives the eigenvectors (v, +-i v) of M, whose
+   real span Z = [p, q; -q, p] is invariant (checked: M Z = Z Lambda to 1e-12 of M's largest
+   entry). With p the rows of Z picked by Gauss-Jordan elimination with row pivoting, q the
+   others and G = Z_q Z_p^-1 (entries at most 1e4), the similarity S = [[I, 0], [G, I]] (in the
+   order p, q) makes M block triangular, S^-1 M S = [[*, *], [0, M_qq - G M_pq]], and that
+   trailing block keeps the other eigenvalues. The null vectors by Gaussian elimination of L(i)
+   with complete pivoting (pivots below 1e-11 of the largest entry end it; at most
+   G6R_DEFLATE_MAX of them used). L(i) is kept in M's first 12 rows, [0 I] (rebuilt after), the
+   null vectors in u[0..96) (then M_pq in u[0..128)), Z in u[720..912). Returns 24 with M as
+   built when L(i) is regular or a check fails. */
+static int g6r_deflate(const double abc[3][6][9], double *M, double *u)
+{
+    double *kr = M, *ki = M + 144, *vr = u, *vi = u + 48, *sv = u, *Z = u + 720;
+    double big = 0.0, top = 1.0, below = 0.0;
+    int perm[12], used[24], rank = 12, r, r2, m, i, j, k, t, c;
+    memset(M, 0, sizeof(double) * 288);
+    for (i = 0; i < 6; ++i) {  /* rows i and 6 + i (g6r_entry): the same entries, 3 columns apart */
+        for (j = 0; j < 9; ++j) {
+            const double x = abc[2][i][j] - abc[0][i][j], y = abc[1][i][j];
+            kr[i * 12 + j] = kr[(6 + i) * 12 + 3 + j] = x;
+            ki[i * 12 + j] = ki[(6 + i) * 12 + 3 + j] = y;
+            big = x * x + y * y > big ? x * x + y * y : big;
+        }
+    }
+    for (i = 0; i < 12; ++i) {
+        perm[i] = i;
+    }
+    for (k = 0; k < 12; ++k) {
+        double best = -1.0, pr, pi;
+        int p = k, q = k;
+        for (i = k; i < 12; ++i) {
+            for (j = k; j < 12; ++j) {
+                const double m2 = kr[i * 12 + j] * kr[i * 12 + j] + ki[i * 12 + j] * ki[i * 12 + j];
+                if (m2 > best) {
+                    best = m2;
+                    p = i;
+                    q = j;
+                }
+            }
+        }
+        if (!(best > 1e-22 * big)) {
+            rank = k;
+            break;
+        }
+        for (j = 0; j < 12; ++j) {  /* rows k, p */
+            double x = kr[k * 12 + j];
+            kr[k * 12 + j] = kr[p * 12 + j];
+            kr[p * 12 + j] = x;
+            x = ki[k * 12 + j];
+            ki[k * 12 + j] = ki[p * 12 + j];
+            ki[p * 12 + j] = x;
+        }
+        for (i = 0; i < 12; ++i) {  /* columns k, q */
+            double x = kr[i * 12 + k];
+            kr[i * 12 + k] = kr[i * 12 + q];
+            kr[i * 12 + q] = x;
+            x = ki[i * 12 + k];
+            ki[i * 12 + k] = ki[i * 12 + q];
+            ki[i * 12 + q] = x;
+        }
+        t = perm[k];
+        perm[k] = perm[q];
+        perm[q] = t;
+        pr = kr[k * 12 + k] / best;  /* 1 / pivot */
+        pi = -ki[k * 12 + k] / best;
+        for (i = k + 1; i < 12; ++i) {
+            const double lr = kr[i * 12 + k] * pr - ki[i * 12 + k] * pi;
+            const double li = kr[i * 12 + k] * pi + ki[i * 12 + k] * pr;
+            for (j = k + 1; j < 12; ++j) {
+                kr[i * 12 + j] -= lr * kr[k * 12 + j] - li * ki[k * 12 + j];
+                ki[i * 12 + j] -= lr * ki[k * 12 + j] + li * kr[k * 12 + j];
+            }
+        }
+    }
+    r = 12 - rank < G6R_DEFLATE_MAX ? 12 - rank : G6R_DEFLATE_MAX;
+    if (r == 0) {
+        memset(M, 0, sizeof(double) * 288);  /* M's first rows again */
+        for (i = 0; i < 12; ++i) {
+            M[i * 24 + 12 + i] = 1.0;
+        }
+        return 24;
+    }
+    /* the null vectors (free unknown rank + t = 1, the others 0) by back-substitution */
+    for (t = 0; t < r; ++t) {
+        double yr[12], yi[12];
+        const int f = rank + t;
+        for (i = rank - 1; i >= 0; --i) {
+            double sr = -kr[i * 12 + f], si = -ki[i * 12 + f], dd;
+            for (j = i + 1; j < rank; ++j) {
+                sr -= kr[i * 12 + j] * yr[j] - ki[i * 12 + j] * yi[j];
+                si -= kr[i * 12 + j] * yi[j] + ki[i * 12 + j] * yr[j];
+            }
+            dd = kr[i * 12 + i] * kr[i * 12 + i] + ki[i * 12 + i] * ki[i * 12 + i];
+            yr[i] = (sr * kr[i * 12 + i] + si * ki[i * 12 + i]) / dd;
+            yi[i] = (si * kr[i * 12 + i] - sr * ki[i * 12 + i]) / dd;
+        }
+        for (j = rank; j < 12; ++j) {
+            yr[j] = j == f ? 1.0 : 0.0;
+            yi[j] = 0.0;
+        }
+        for (j = 0; j < 12; ++j) {  /* v[perm[j]] = y[j] */
+            vr[t * 12 + perm[j]] = yr[j];
+            vi[t * 12 + perm[j]] = yi[j];
+        }
+    }
+    memset(M, 0, sizeof(double) * 288);
+    for (i = 0; i < 12; ++i) {
+        M[i * 24 + 12 + i] = 1.0;
+    }
+    for (i = 288; i < 576; ++i) {  /* M's largest entry (its first rows: 0 and 1) */
+        top = fabs(M[i]) > top ? fabs(M[i]) : top;
+    }
+    /* Z (24 x 2r, row-major): the columns (p; -q) and (q; p) of each null vector, v scaled to |v| = 1 */
+    r2 = 2 * r;
+    for (t = 0; t < r; ++t) {
+        double nrm = 0.0;
+        for (i = 0; i < 12; ++i) {
+            nrm += vr[t * 12 + i] * vr[t * 12 + i] + vi[t * 12 + i] * vi[t * 12 + i];
+        }
+        nrm = 1.0 / sqrt(nrm);
+        for (i = 0; i < 12; ++i) {
+            Z[i * r2 + 2 * t] = Z[(12 + i) * r2 + 2 * t + 1] = vr[t * 12 + i] * nrm;
+            Z[i * r2 + 2 * t + 1] = vi[t * 12 + i] * nrm;
+            Z[(12 + i) * r2 + 2 * t] = -vi[t * 12 + i] * nrm;
+        }
+    }
+    /* the invariance check: M z = -z' and M z' = z for each pair (z, z') (rows 0..11 hold exactly) */
+    for (i = 12; i < 24; ++i) {
+        for (c = 0; c < r2; ++c) {
+            double s = (c & 1) ? -Z[i * r2 + c - 1] : Z[i * r2 + c + 1];
+            for (j = 0; j < 24; ++j) {
+                s += M[i * 24 + j] * Z[j * r2 + c];
+            }
+            below = fabs(s) > below ? fabs(s) : below;
+        }
+    }
+    if (!(below <= 1e-12 * top)) {
+        return 24;
+    }
+    /* Gauss-Jordan on Z's columns with row pivoting: Z <- Z Z_p^-1, identity on the pivot rows
+       p (used[i] = 1 + the column), G = Z_q Z_p^-1 on the others q */
+    for (i = 0; i < 24; ++i) {
+        used[i] = 0;
+    }
+    for (c = 0; c < r2; ++c) {
+        double best = 0.0, inv;
+        int p = -1;
+        for (i = 0; i < 24; ++i) {
+            if (!used[i] && fabs(Z[i * r2 + c]) > best) {
+                best = fabs(Z[i * r2 + c]);
+                p = i;
+            }
+        }
+        if (p < 0) {
+            return 24;
+        }
+        used[p] = 1 + c;
+        inv = 1.0 / Z[p * r2 + c];
+        for (i = 0; i < 24; ++i) {
+            Z[i * r2 + c] *= inv;
+        }
+        for (j = 0; j < r2; ++j) {
+            const double f = Z[p * r2 + j];
+            if (j == c || f == 0.0) {
+                continue;
+            }
+            for (i = 0; i < 24; ++i) {
+                Z[i * r2 + j] -= f * Z[i * r2 + c];
+            }
+        }
+    }
+    below = 0.0;  /* the similarity's size: G's largest entry */
+    for (i = 0; i < 24; ++i) {
+        for (c = 0; c < r2 && !used[i]; ++c) {
+            below = fabs(Z[i * r2 + c]) > below ? fabs(Z[i * r2 + c]) : below;
+        }
+    }
+    if (!(below <= 1e4)) {
+        return 24;
+    }
+    /* with S = [[I, 0], [G, I]] in the order (p, q): S^-1 M S = [[*, *], [0, M_qq - G M_pq]];
+       M_pq (rows p, columns q) into u[0..128) first, then M_qq - G M_pq to the front of M, row
+       by row (each entry is written at or before where it was read from) */
+    m = 24 - r2;
+    for (i = 0; i < 24; ++i) {
+        if (used[i]) {
+            int b = 0;
+            for (j = 0; j < 24; ++j) {
+                if (!used[j]) {
+                    sv[(used[i] - 1) * m + b++] = M[i * 24 + j];
+                }
+            }
+        }
+    }
+    k = 0;
+    for (i = 0; i < 24; ++i) {
+        int b = 0;
+        if (used[i]) {
+            continue;
+        }
+        for (j = 0; j < 24; ++j) {
+            double x;
+            if (used[j]) {
+                continue;
+            }
+            x = M[i * 24 + j];
+            for (c = 0; c < r2; ++c) {
+                x -= Z[i * r2 + c] * sv[c * m + b];
+            }
+            M[k * m + b++] = x;
+        }
+        ++k;
+    }
+    return m;
+}
+
 /* the null vector v (12) of the (nearly) singular a y^2 + b y + c at a real eigenvalue y:
    inverse iteration (two LU solves; L: 144 doubles of scratch); for |y| > 1 the matrix divided by y^2 */
 static void g6r_null_vector(const double abc[3][6][9], double y, double v[12], double L[144])
@@ -1292,7 +1515,7 @@ static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const doub
     /* the half-angle turn used when A is near singular: t = tan(1.1 / 2) (robokit.codegen.ik_general) */
     const double t = 0.6131052132881357;
     double *M = w->u + 144, *wr = w->u + 720, *wi = w->u + 744;
-    int k, rotated = 0, i, singularA;
+    int k, rotated = 0, i, singularA, n;
     /* 1-3: the 14 equations, theta 1, 2 eliminated, the 12 x 12 quadratic matrix polynomial */
     g6r_matrices(rd, T06s, w->u);
     *poor = g6r_pencil(arm, w) < arm->poor;
@@ -1316,11 +1539,13 @@ static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const doub
             return;  /* singular in both variables: a continuum, no finite solution set */
         }
     }
-    if (g6r_eigenvalues(24, M, wr, wi, w->u + 768) != 0) {
+    /* the roots x = +-i of the half-angle substitution (pivot outermost: four pairs) removed first */
+    n = rd->deflate > 0 ? g6r_deflate((const double (*)[6][9])w->abc, M, w->u) : 24;
+    if (g6r_eigenvalues(n, M, wr, wi, w->u + 768) != 0) {
         return;
     }
     /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
-    for (k = 0; k < 24; ++k) {
+    for (k = 0; k < n; ++k) {
         const double lam = wr[k];
         const double imag = 2.0 * fabs(wi[k]) / (1.0 + lam * lam + wi[k] * wi[k]);
         double V[12], th[6], phi, err;  /* the null vector: the monomials x_b^i x_c^j at 3 i + j */

@@ -14,6 +14,7 @@ typedef struct {
     int three_has_w; /* the target is on the three-joint side */
     int nw;          /* joints on the target's side (2 or 3) */
     int w_index, w_inverse;
+    int deflate, pad_;        /* the eigenvalue pairs x = +-i removed (0: none tried; g6r_deflate); padding */
     const double *const_side; /* (3^(5 - nw) x 15) */
     const double *Ms;         /* (nw + 1) x 15 x 15 (slot w_index unused) */
     const double *pre, *post; /* 15 x 15, or a null pointer for the identity */
@@ -34,8 +35,9 @@ typedef struct {
 } g6r_arm;
 
 /* Scratch: every matrix of the elimination and the eigenproblem, G6R_WORKSPACE_DOUBLES doubles
-   (8.8 KB); no state is kept in it between calls. */
-enum { G6R_WORKSPACE_DOUBLES = 1130, G6R_MAX_SOLUTIONS = 16 };
+   (9.2 KB); no state is kept in it between calls. G6R_DEFLATE_MAX: the most eigenvalue pairs
+   x = +-i removed before the eigenvalue iteration (kernels.general_6r.DEFLATE_MAX). */
+enum { G6R_WORKSPACE_DOUBLES = 1182, G6R_MAX_SOLUTIONS = 16, G6R_DEFLATE_MAX = 4 };
 
 /* Every solution of the arm for the scaled target T06s (Z1 X1 ... Z6, lengths / scale): rows
    (q = theta - th0 wrapped to [-pi, pi), ordered by q3, then q1, q2, q4, q5, q6, at most
