@@ -90,7 +90,8 @@ def vee(W: np.ndarray) -> np.ndarray:
 
 
 def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
-    """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` of Rodrigues' formula (Taylor series below θ = 1e-4).
+    """``A = sin θ / θ`` and ``B = (1 − cos θ) / θ²`` of Rodrigues' formula (Taylor series below θ = 1e-4;
+    above, ``B = 2 sin²(θ/2) / θ²``, which keeps its relative accuracy where ``1 − cos θ`` cancels).
 
     Parameters
     ----------
@@ -116,12 +117,14 @@ def exp3_coefficients(theta: ArrayLike) -> tuple[Any, Any]:
         if t < 1e-4:
             t2 = t * t
             return 1.0 - t2 / 6.0 + t2 * t2 / 120.0, 0.5 - t2 / 24.0 + t2 * t2 / 720.0
-        return np.sin(t) / t, (1.0 - np.cos(t)) / (t * t)
+        h = np.sin(0.5 * t) / t  # 1 − cos θ = 2 sin²(θ/2): no cancellation for small θ
+        return np.sin(t) / t, 2.0 * h * h
     small = theta < 1e-4
     safe = np.where(small, 1.0, theta)
     t2 = theta * theta
     A = np.where(small, 1.0 - t2 / 6.0 + t2 * t2 / 120.0, np.sin(safe) / safe)
-    B = np.where(small, 0.5 - t2 / 24.0 + t2 * t2 / 720.0, (1.0 - np.cos(safe)) / (safe * safe))
+    h = np.sin(0.5 * safe) / safe  # 1 − cos θ = 2 sin²(θ/2): no cancellation for small θ
+    B = np.where(small, 0.5 - t2 / 24.0 + t2 * t2 / 720.0, 2.0 * h * h)
     return A, B
 
 
