@@ -66,8 +66,7 @@ PARALLEL_AXES = 1
 _PI = math.pi
 _TWO_PI = 2.0 * math.pi
 #: Scratch sizes (floats, ints) of the position step and of Pieper's method (:func:`_pieper_position`, :func:`_pieper`).
-_POS_WORK = 43
-_PIEPER_WORK, _PIEPER_IWORK = 12 * MAX_ROWS + 6 + _POS_WORK, 2 * MAX_ROWS + 2
+_POS_WORK = 35
 
 # layout of the float constants (Pieper)
 _TH0, _D0, _CA, _SA = 0, 6, 12, 17
@@ -324,10 +323,11 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
     yp = -ca4 * sa5 * c5 - sa4 * ca5
     b_ = sa4 * c5 * ca5 + ca4 * sa5
     n = 0
+    t5 = math.atan2(s5, c5)
     for j in range(2):
         s = s5 if j == 0 else -s5
         out[n, 0] = am - math.atan2(yp, sa5 * s)
-        out[n, 1] = math.atan2(s, c5)
+        out[n, 1] = t5 if j == 0 else -t5  # atan2(−s, c) = −atan2(s, c) exactly (IEEE atan2 is odd in y)
         out[n, 2] = math.atan2(b_, sa4 * s) - ar
         flips[n] = 0 if s * k > 0.0 else 1
         n += 1
@@ -341,6 +341,19 @@ def _cos_sin(th: np.ndarray, cs: np.ndarray) -> None:
     """cos θ₁, sin θ₁, cos θ₂, sin θ₂, cos θ₃, sin θ₃ into ``cs`` (6,)."""
     for i in range(3):
         cs[2 * i], cs[2 * i + 1] = math.cos(th[i]), math.sin(th[i])
+
+
+@njit
+def _scratch() -> tuple:
+    """Every scratch array of one solve, from seven allocations, 2D ones sliced by rows (a numba
+    ``reshape`` costs as much as an allocation): ``F6`` (2·MAX_ROWS, 6) raw rows | cos/sin of
+    θ₁–θ₃; ``F4`` (10, 4) target | product | position candidates; ``F3`` (2·MAX_ROWS + 2, 3)
+    q₁–q₃ | θ₁–θ₃ | wrist angles; ``I3`` (2·MAX_ROWS, 3) raw codes | position codes; ``iw`` (8,)
+    ci | wrist codes or θ₁ shoulders; ``bw`` (2·MAX_ROWS,) raw | position degenerate flags; ``fw``
+    the position step's floats (:data:`_POS_WORK`), qq (6), θ₁ and θ₅ roots (4)."""
+    return (np.empty((2 * MAX_ROWS, 6)), np.empty((10, 4)), np.empty((2 * MAX_ROWS + 2, 3)),
+            np.empty((2 * MAX_ROWS, 3), dtype=np.int64), np.empty(8, dtype=np.int64),
+            np.empty(2 * MAX_ROWS, dtype=np.bool_), np.empty(_POS_WORK + 10))
 
 
 @njit
@@ -375,13 +388,15 @@ def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
 
 @njit
 def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, Q3: np.ndarray,
-                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray, CS: np.ndarray, fw: np.ndarray) -> int:
+                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray, CS: np.ndarray, fw: np.ndarray,
+                     cand: np.ndarray) -> int:
     """Pieper's position sub-problem: every (q₁, q₂, q₃) placing the wrist centre ⁰W = T·⁶W.
 
     Writes per branch the joint values into ``Q3`` (rows of 3), the shoulder and elbow codes into
     ``codes`` (rows of 2), the degenerate flag into ``degen``, the rotation angles θ₁–θ₃ into
     ``TH`` and their cosines and sines (:func:`_cos_sin`, what the wrist step needs) into ``CS``
-    (rows of 6); ``fw`` is scratch (at least ``_POS_WORK`` floats); returns the number of branches. Cases (``ci[1]``): 0 RR-quartic,
+    (rows of 6); ``fw`` (at least ``_POS_WORK`` floats) and ``cand`` (2, 4) are scratch; returns
+    the number of branches. Cases (``ci[1]``): 0 RR-quartic,
     1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1, 5 RP-quartic, 6 RP-c1, 7 PP (the kinds of joints 1, 2;
     ``PieperConstants.case``)."""
     case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
@@ -390,8 +405,8 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
     w6x, w6y, w6z = cf[_W6], cf[_W6 + 1], cf[_W6 + 2]
     # scratch, carved from fw (no allocation per call)
     W, m, coeffs, roots3 = fw[0:3], fw[3:8], fw[8:13], fw[13:19]
-    th2s, cand, q = fw[19:21], fw[21:29].reshape((2, 4)), fw[29:32]
-    th, dd, p, Ds = fw[32:35], fw[35:38], fw[38:41], fw[41:43]
+    th2s, q = fw[19:21], fw[21:24]
+    th, dd, p, Ds = fw[24:27], fw[27:30], fw[30:33], fw[33:35]
     W[0] = T[0, 0] * w6x + T[0, 1] * w6y + T[0, 2] * w6z + T[0, 3]
     W[1] = T[1, 0] * w6x + T[1, 1] * w6y + T[1, 2] * w6z + T[1, 3]
     W[2] = T[2, 0] * w6x + T[2, 1] * w6y + T[2, 2] * w6z + T[2, 3]
@@ -541,16 +556,14 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
 
 @njit
 def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray, fw: np.ndarray, iw: np.ndarray, bw: np.ndarray) -> int:
+            codes: np.ndarray, degen: np.ndarray, s: tuple) -> int:
     """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
-    of each position): raw rows into Q, codes, degen; their count. ``fw``, ``iw``, ``bw``: float,
-    int and bool scratch of at least ``_PIEPER_WORK``, ``_PIEPER_IWORK``, ``MAX_ROWS`` entries."""
-    Q3, TH = fw[0:3 * MAX_ROWS].reshape((MAX_ROWS, 3)), fw[3 * MAX_ROWS:6 * MAX_ROWS].reshape((MAX_ROWS, 3))
-    CS = fw[6 * MAX_ROWS:12 * MAX_ROWS].reshape((MAX_ROWS, 6))
-    wa = fw[12 * MAX_ROWS:12 * MAX_ROWS + 6].reshape((2, 3))
-    pcodes, flips = iw[0:2 * MAX_ROWS].reshape((MAX_ROWS, 2)), iw[2 * MAX_ROWS:2 * MAX_ROWS + 2]
-    pdegen = bw[0:MAX_ROWS]
-    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw[12 * MAX_ROWS + 6:])
+    of each position): raw rows into Q, codes, degen; their count. ``s``: the scratch of
+    :func:`_scratch`."""
+    F6, F4, F3, I3, iw, bw, fw = s
+    Q3, TH, wa = F3[0:MAX_ROWS], F3[MAX_ROWS:2 * MAX_ROWS], F3[2 * MAX_ROWS:2 * MAX_ROWS + 2]
+    CS, pcodes, flips, pdegen = F6[MAX_ROWS:], I3[MAX_ROWS:], iw[6:8], bw[MAX_ROWS:]
+    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw, F4[8:10])
     n = 0
     for b in range(npos):
         nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips)
@@ -576,7 +589,8 @@ def pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray,
     codes = np.empty((MAX_ROWS, 2), dtype=np.int64)
     degen = np.empty(MAX_ROWS, dtype=np.bool_)
     TH = np.empty((MAX_ROWS, 3))
-    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH, np.empty((MAX_ROWS, 6)), np.empty(_POS_WORK))
+    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH, np.empty((MAX_ROWS, 6)), np.empty(_POS_WORK),
+                         np.empty((2, 4)))
     return Q3[:n].copy(), codes[:n].copy(), degen[:n].copy(), TH[:n].copy()
 
 
@@ -597,8 +611,7 @@ def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
     """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
     limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen, np.empty(_PIEPER_WORK), np.empty(_PIEPER_IWORK, dtype=np.int64),
-                np.empty(MAX_ROWS, dtype=np.bool_))
+    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen, _scratch())
     return _first(n, Q, codes, degen)
 
 
@@ -704,10 +717,11 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
 
 @njit
 def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
-                   degen: np.ndarray, fw: np.ndarray, iw: np.ndarray) -> int:
+                   degen: np.ndarray, s: tuple) -> int:
     """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count.
-    ``fw``, ``iw``: float and int scratch (at least 4 and 2 entries)."""
-    t1s, t5s, shoulders = fw[0:2], fw[2:4], iw[0:2]
+    ``s``: the scratch of :func:`_scratch`."""
+    fw, iw = s[6], s[4]
+    t1s, t5s, shoulders = fw[_POS_WORK + 6:_POS_WORK + 8], fw[_POS_WORK + 8:_POS_WORK + 10], iw[6:8]
     n1 = _parallel_shoulders(cf, T, t1s, shoulders)
     n = 0
     for i1 in range(n1):
@@ -737,7 +751,7 @@ def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: in
 def parallel_axes_rows(cf: np.ndarray, T06: np.ndarray, q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every raw row of the three-parallel-axes method: ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen, np.empty(4), np.empty(2, dtype=np.int64))
+    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen, _scratch())
     return _first(n, Q, codes, degen)
 
 
@@ -883,13 +897,6 @@ def _rigid(T: np.ndarray) -> bool:
             and T[3, 3] == 1.0)
 
 
-#: Scratch of one packed solve (floats, ints, bools): raw rows (MAX_ROWS × 6), the target and a
-#: 4×4 product, qq (6), then the method's own (:data:`_PIEPER_WORK`); ci (6), raw codes
-#: (MAX_ROWS × 3), then the method's ints; raw and position degenerate flags.
-_FW_METHOD = 6 * MAX_ROWS + 32 + 6
-_PACKED_WORK, _PACKED_IWORK, _PACKED_BWORK = _FW_METHOD + _PIEPER_WORK, 6 + 3 * MAX_ROWS + _PIEPER_IWORK, 2 * MAX_ROWS
-
-
 @njit
 def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
                  m: int, out: np.ndarray) -> int:
@@ -901,35 +908,31 @@ def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: n
 @njit
 def _unpack(K: np.ndarray, T: np.ndarray) -> tuple:
     """The start of one packed solve (:func:`pieper_solve_into`, :func:`parallel_axes_solve_into`,
-    after the rigid-transform test): the constants read from ``K`` as views and every scratch
-    array carved from three allocations. Returns ``(ci, cf, C, post_q, T06, rows, rcodes, rdegen,
-    qq, fw, iw, bw)``: T06 the canonical chain's target (:func:`_target`), rows/rcodes/rdegen the
-    raw rows' buffers, qq :func:`_finish`'s scratch, fw/iw/bw the method's scratch."""
-    fw = np.empty(_PACKED_WORK)
-    iw = np.empty(_PACKED_IWORK, dtype=np.int64)
-    bw = np.empty(_PACKED_BWORK, dtype=np.bool_)
+    after the rigid-transform test): the constants read from ``K`` as views and the scratch of
+    :func:`_scratch`. Returns ``(ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, s)``: T06 the
+    canonical chain's target (:func:`_target`), rows/rcodes/rdegen the raw rows' buffers, qq
+    :func:`_finish`'s scratch, ``s`` the scratch tuple (the method's own parts)."""
+    s = _scratch()
+    F6, F4, _, I3, iw, bw, fw = s
     ci = iw[0:6]
     for j in range(6):
         ci[j] = int(K[_K_CI + j])
-    T06 = _target(ci, K[_K_PRE:_K_POST].reshape((4, 4)), K[_K_POST:_K_PQ].reshape((4, 4)), T,
-                  fw[6 * MAX_ROWS:6 * MAX_ROWS + 16].reshape((4, 4)),
-                  fw[6 * MAX_ROWS + 16:6 * MAX_ROWS + 32].reshape((4, 4)))
+    T06 = _target(ci, K[_K_PRE:_K_POST].reshape((4, 4)), K[_K_POST:_K_PQ].reshape((4, 4)), T, F4[0:4], F4[4:8])
     return (ci, K[_K_CF:_K_C], K[_K_C:_K_PRE].reshape((5, 5)), K[_K_PQ:_K_CI].reshape((5, 6)), T06,
-            fw[0:6 * MAX_ROWS].reshape((MAX_ROWS, 6)), iw[6:6 + 3 * MAX_ROWS].reshape((MAX_ROWS, 3)),
-            bw[0:MAX_ROWS], fw[6 * MAX_ROWS + 32:_FW_METHOD], fw[_FW_METHOD:], iw[6 + 3 * MAX_ROWS:], bw[MAX_ROWS:])
+            F6[0:MAX_ROWS], I3[0:MAX_ROWS], bw[0:MAX_ROWS], fw[_POS_WORK:_POS_WORK + 6], s)
 
 
 @njit
 def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
-    ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, fw, iw, bw = _unpack(K, T)
-    m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen, fw, iw, bw)
+    ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, s = _unpack(K, T)
+    m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen, s)
     return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
 
 
 @njit
 def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
-    ci, cf, _, post_q, T06, rows, rcodes, rdegen, qq, fw, iw, _ = _unpack(K, T)
-    m = _parallel_axes(cf, T06, wrist_ref, rows, rcodes, rdegen, fw, iw)
+    ci, cf, _, post_q, T06, rows, rcodes, rdegen, qq, s = _unpack(K, T)
+    m = _parallel_axes(cf, T06, wrist_ref, rows, rcodes, rdegen, s)
     return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
 
 
