@@ -936,25 +936,38 @@ def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: n
     return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
 
 
+# Each method has its own kernels (only the structure a robot uses is compiled); what they share
+# is in the helpers _solved and _batch_buffers.
+
+
+@njit
+def _solved(out: np.ndarray, n: int) -> np.ndarray:
+    """The result of a ``*_solve`` kernel from its ``*_solve_into``'s: the first n rows of ``out``,
+    or shape (0, 0) when n < 0 (T failed the rigid-transform test)."""
+    if n < 0:
+        return np.empty((0, 0))
+    return out[:n].copy()
+
+
+@njit
+def _batch_buffers(N: int) -> tuple[np.ndarray, np.ndarray]:
+    """A batch's output (N, MAX_ROWS, OUT_COLS), NaN, and its counts (N,), zero."""
+    return np.full((N, MAX_ROWS, OUT_COLS), np.nan), np.zeros(N, dtype=np.int64)
+
+
 @njit
 def pieper_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
     """:func:`closed_form_solve` for a spherical wrist (its own kernel: only the structure a
     robot uses is compiled)."""
-    if not _rigid(T):
-        return np.empty((0, 0))
     out = np.empty((MAX_ROWS, OUT_COLS))
-    n = _pieper_packed(K, T, wrist_ref, out)
-    return out[:n].copy()
+    return _solved(out, pieper_solve_into(K, T, wrist_ref, out))
 
 
 @njit
 def parallel_axes_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
     """:func:`closed_form_solve` for three parallel axes (its own kernel)."""
-    if not _rigid(T):
-        return np.empty((0, 0))
     out = np.empty((MAX_ROWS, OUT_COLS))
-    n = _parallel_axes_packed(K, T, wrist_ref, out)
-    return out[:n].copy()
+    return _solved(out, parallel_axes_solve_into(K, T, wrist_ref, out))
 
 
 @njit
@@ -978,10 +991,8 @@ def parallel_axes_solve_into(K: np.ndarray, T: np.ndarray, wrist_ref: float, out
 @njit(parallel=True)
 def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`closed_form_batch` for a spherical wrist."""
-    N = Ts.shape[0]
-    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
-    counts = np.zeros(N, dtype=np.int64)
-    for i in prange(N):
+    out, counts = _batch_buffers(Ts.shape[0])
+    for i in prange(Ts.shape[0]):
         counts[i] = _pieper_packed(K, Ts[i], wrist_ref, out[i])
     return out, counts
 
@@ -989,10 +1000,8 @@ def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.nd
 @njit(parallel=True)
 def parallel_axes_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`closed_form_batch` for three parallel axes."""
-    N = Ts.shape[0]
-    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
-    counts = np.zeros(N, dtype=np.int64)
-    for i in prange(N):
+    out, counts = _batch_buffers(Ts.shape[0])
+    for i in prange(Ts.shape[0]):
         counts[i] = _parallel_axes_packed(K, Ts[i], wrist_ref, out[i])
     return out, counts
 
