@@ -376,6 +376,7 @@ class AnalyticIK:
                               and self._flip[5 - free if self.reversed else free])
         self._ref_sign = (-1.0 if self._free_flipped else 1.0) * (-1.0 if self.reversed else 1.0)
         self._kernel = self._kernel_args()
+        self._into: Any = None  # kernel[4]'s entry point (solve_into_entry), found on a solve
 
     def _kernel_args(self) -> tuple | None:
         """The compiled path's arguments (:mod:`robokit.kernels.closed_form`), or None when the
@@ -417,7 +418,7 @@ class AnalyticIK:
                 _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
                 _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch,
                 _kcf.pieper_solve_into if pieper else _kcf.parallel_axes_solve_into,
-                (_kcf.MAX_ROWS, _kcf.OUT_COLS))
+                (_kcf.MAX_ROWS, _kcf.OUT_COLS), _kcf.solve_into_entry)
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -488,6 +489,11 @@ class AnalyticIK:
             self._build()
         if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
             wrist_ref = _wrist_ref(wrist_ref)
+        if self.calibrated is not None:  # called from this frame, as ik_analytic's _solve does: the
+            # calibrated solver's warnings count their stacklevel from here
+            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+            return self.calibrated.solve(T, wrist_ref)
         return self._solve(T, wrist_ref)
 
     def _solve(self, T: ArrayLike, wrist_ref: float) -> list[IKSolution]:
@@ -502,7 +508,12 @@ class AnalyticIK:
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != _SHAPE44 or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
             out = np.empty(_OUT_SHAPE)  # the solutions' q are views of this one array
-            n = kernel[4](kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
+            into = self._into
+            if into is None:  # the kernel's machine code without numba's type dispatch, once it has some
+                into = self._into = kernel[6](kernel[4])
+                if into is None:
+                    into = kernel[4]
+            n = into(kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
             if n < 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
                 n = kernel[4](kernel[0], T, self._kernel_ref(wrist_ref), out)

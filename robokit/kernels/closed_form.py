@@ -47,6 +47,7 @@ these kernels)::
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -55,7 +56,8 @@ from robokit.kernels._jit import njit, prange
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
            "pieper_position", "pieper_wrist", "pieper_rows", "parallel_axes_position",
            "parallel_axes_wrist", "parallel_axes_rows",
-           "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
+           "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "solve_into_entry", "pack_constants",
+           "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
 #: The most rows one pose can produce before duplicates are dropped.
@@ -1004,6 +1006,48 @@ def parallel_axes_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tupl
     for i in prange(Ts.shape[0]):
         counts[i] = _parallel_axes_packed(K, Ts[i], wrist_ref, out[i])
     return out, counts
+
+
+def solve_into_entry(kernel: Any) -> Any:
+    """The machine code of a ``*_solve_into`` kernel for the one set of argument types robokit
+    calls it with — K (n,) float64, T (4, 4) float64, wrist_ref float, out (MAX_ROWS, OUT_COLS)
+    float64, arrays in C order — as a callable that skips numba's type dispatch (about 0.1 µs of a
+    call), or None while the kernel has no machine code for them (not compiled yet, or running as
+    plain Python: then call the kernel itself).
+
+    The caller must pass exactly those types (the entry point converts without checking): C-order
+    float64 arrays of those shapes and a Python float.
+
+    Parameters
+    ----------
+    kernel : numba Dispatcher or function
+        :func:`pieper_solve_into` or :func:`parallel_axes_solve_into`.
+
+    Returns
+    -------
+    callable or None
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("puma560")
+    >>> K, out = AnalyticIK(robot)._kernel[0], np.empty((MAX_ROWS, OUT_COLS))
+    >>> T = robot.frame_pose(np.full(6, 0.3))
+    >>> n = pieper_solve_into(K, T, 0.0, out)
+    >>> entry = solve_into_entry(pieper_solve_into)
+    >>> entry is None or entry(K, T, 0.0, out) == n
+    True
+    """
+    overloads = getattr(kernel, "overloads", None)
+    if not overloads:
+        return None
+    from numba.core import types as nbt
+
+    f64 = nbt.float64
+    sig = (nbt.Array(f64, 1, "C"), nbt.Array(f64, 2, "C"), f64, nbt.Array(f64, 2, "C"))
+    cres = overloads.get(sig)
+    return None if cres is None else cres.entry_point
 
 
 def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
