@@ -63,8 +63,8 @@ from robokit.errors import InputError, InputTypeError
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, PieperSolver
-from robokit.ik.solution import (CollisionChecker, IKSolution, _Rows, _RowSolution, check_pose, solutions_from_rows,
-                                 with_collision_flags)
+from robokit.ik.solution import (CollisionChecker, IKSolution, _solutions_from_kernel, check_pose,
+                                 solutions_from_rows, with_collision_flags)
 from robokit.description.spec import RobotSpec
 from robokit.ik.solver import ClosedFormSolver
 
@@ -151,6 +151,8 @@ def _table_key(table: DHTable, link_limits: bool) -> tuple:
 
 
 _F64 = np.dtype(np.float64)
+_SHAPE44 = (4, 4)
+_OUT_SHAPE = (16, 9)  # (MAX_ROWS, OUT_COLS) of robokit.kernels.closed_form (checked when the kernel is first packed)
 
 
 def _fast_key(table: DHTable, link_limits: bool = True) -> tuple:
@@ -374,6 +376,7 @@ class AnalyticIK:
                               and self._flip[5 - free if self.reversed else free])
         self._ref_sign = (-1.0 if self._free_flipped else 1.0) * (-1.0 if self.reversed else 1.0)
         self._kernel = self._kernel_args()
+        self._into: Any = None  # kernel[4]'s entry point (solve_into_entry), found on a solve
 
     def _kernel_args(self) -> tuple | None:
         """The compiled path's arguments (:mod:`robokit.kernels.closed_form`), or None when the
@@ -410,11 +413,12 @@ class AnalyticIK:
                 for w, wrist in enumerate(_WRIST):
                     labels[float(100 * s + 10 * e + w)] = shoulder + elbow + wrist + suffix
         pieper = int(ci[0]) == _kcf.PIEPER
+        assert (_kcf.MAX_ROWS, _kcf.OUT_COLS) == _OUT_SHAPE  # the output array solve() allocates
         return (_kcf.pack_constants(ci, cf, C, pre, post, post_q), labels,
                 _kcf.pieper_solve if pieper else _kcf.parallel_axes_solve,
                 _kcf.pieper_batch if pieper else _kcf.parallel_axes_batch,
                 _kcf.pieper_solve_into if pieper else _kcf.parallel_axes_solve_into,
-                (_kcf.MAX_ROWS, _kcf.OUT_COLS))
+                (_kcf.MAX_ROWS, _kcf.OUT_COLS), _kcf.solve_into_entry)
 
     def _kernel_ref(self, wrist_ref: float) -> float:
         """wrist_ref in the sign of the solver's chain (flipped free joint, reversed chain)."""
@@ -443,7 +447,14 @@ class AnalyticIK:
         qlim = watch[4]
         if (qlim.tobytes() if type(qlim) is np.ndarray else np.asarray(qlim, dtype=float).tobytes()) != watch[5]:
             return False
-        return dh is None or (dh.links is watch[6] and watch[2] == _fast_key(dh, False))
+        if dh is None:
+            return True
+        if dh.links is not watch[6]:
+            return False
+        base, tool, key = dh.base, dh.tool, watch[2]
+        if type(base) is np.ndarray and type(tool) is np.ndarray:  # _fast_key(dh, False), inline
+            return base.tobytes() == key[0] and tool.tobytes() == key[1]
+        return key == _fast_key(dh, False)
 
     def solve(self, T: ArrayLike, wrist_ref: float = 0.0) -> list[IKSolution]:
         """Every closed-form solution for the tip pose ``T`` — the list :func:`ik_analytic` returns.
@@ -476,23 +487,39 @@ class AnalyticIK:
         """
         if not self._unchanged():
             self._build()
-        wrist_ref = wrist_ref if type(wrist_ref) is float and -TURN <= wrist_ref <= TURN else _wrist_ref(wrist_ref)
-        kernel = self._kernel
+        if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
+            wrist_ref = _wrist_ref(wrist_ref)
+        if self.calibrated is not None:  # called from this frame, as ik_analytic's _solve does: the
+            # calibrated solver's warnings count their stacklevel from here
+            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+                T = np.ascontiguousarray(_check_pose(T), dtype=float)
+            return self.calibrated.solve(T, wrist_ref)
+        return self._solve(T, wrist_ref)
+
+    def _solve(self, T: ArrayLike, wrist_ref: float) -> list[IKSolution]:
+        """:meth:`solve` once the constants are current and ``wrist_ref`` is a checked float."""
         if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
             return self.calibrated.solve(T, wrist_ref)
+        kernel = self._kernel
         if kernel is not None and self.use_kernel:
-            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+            # the kernel's one signature (float64, C order, 4×4); its rigid-transform test is compiled
+            if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != _SHAPE44 or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            out = np.empty(kernel[5])  # the solutions' q are views of this one array
-            n = kernel[4](kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
+            out = np.empty(_OUT_SHAPE)  # the solutions' q are views of this one array
+            into = self._into
+            if into is None:  # the kernel's machine code without numba's type dispatch, once it has some
+                into = self._into = kernel[6](kernel[4])
+                if into is None:
+                    into = kernel[4]
+            n = into(kernel[0], T, wrist_ref * self._ref_sign, out)  # = self._kernel_ref(wrist_ref)
             if n < 0:  # not a clean rigid transform: the full check (raises, or converts)
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
                 n = kernel[4](kernel[0], T, self._kernel_ref(wrist_ref), out)
                 if n < 0:
                     return self._solve_python(T, wrist_ref)
-            return _solutions(out, n, kernel[1])
+            return _solutions_from_kernel(out, n, kernel[1]) if n else []
         return self._solve_python(_check_pose(T), wrist_ref)
 
     def solve_batch(self, Ts: ArrayLike, wrist_ref: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -583,12 +610,6 @@ class AnalyticIK:
 _SHOULDER, _ELBOW, _WRIST = SHOULDER_LABELS, ELBOW_LABELS, WRIST_LABELS
 
 
-def _solutions(out: np.ndarray, n: int, labels: dict) -> list[IKSolution]:
-    """IKSolution objects from the kernel's first ``n`` rows (q, within, code, degenerate), read
-    lazily from ``out`` (:class:`robokit.ik.solution._RowSolution`)."""
-    return _RowSolution.from_rows(_Rows(out, n, labels)) if n else []
-
-
 def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
     """(kind, solver) for one reading of the chain."""
     kind = _detect(chain)
@@ -602,6 +623,17 @@ def _method(chain: DHChain) -> tuple[ClosedFormKind, ClosedFormSolver | None]:
     if why_not is not None:
         return ClosedFormKind(None, why_not), None
     return kind, solver
+
+
+class _NotBuilt(Exception):
+    """Raised by :func:`_not_built`: the robot has no AnalyticIK yet (``Robot.derived`` stores nothing)."""
+
+
+def _not_built() -> Any:
+    raise _NotBuilt
+
+
+_KEY_NONE = ("analytic_ik", None)  # the per-robot key of _Cache.get without a nominal arm
 
 
 class _Cache:
@@ -884,7 +916,19 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     """
     if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
         wrist_ref = _wrist_ref(wrist_ref)  # checked here: the solver's own check is silent when robokit calls it
-    solutions = _CACHE.get(robot, nominal).solve(T, wrist_ref)
+    ik = None
+    if nominal is None:  # a Robot's object, kept by Robot.derived: one dictionary lookup
+        derived = getattr(robot, "derived", None)
+        if derived is not None:
+            try:
+                ik = derived(_KEY_NONE, _not_built)[1]
+            except _NotBuilt:
+                pass
+    if ik is None:
+        ik = _CACHE.get(robot, nominal)
+    if not ik._unchanged():
+        ik._build()
+    solutions = ik._solve(T, wrist_ref)
     return solutions if world is None else with_collision_flags(solutions, world)
 
 

@@ -66,30 +66,45 @@ class IKSolution:
     collision_free: bool | None = None
 
 
-class _Rows:
-    """The rows of one compiled closed-form solve (``out`` (16, 9): q, within, branch code,
-    degenerate per row; ``n`` rows valid), shared by the :class:`_RowSolution` objects made from
-    it; the labels are decoded on first use."""
+def _row_label(rows: list, k: int) -> str:
+    """The label of row k of ``rows`` = ``[out, n, codes, names]`` (a :class:`_Rows` or the plain
+    list :func:`_solutions_from_kernel` builds): every row's label is decoded on first use, with
+    " #2", … for a label that repeats, and kept in ``rows[3]``."""
+    names = rows[3]
+    if names is None:
+        codes = rows[2]
+        names = [codes[c] for c in rows[0][:rows[1], 7].tolist()]
+        if len(set(names)) < len(names):
+            seen: dict[str, int] = {}
+            for j, label in enumerate(names):
+                seen[label] = seen.get(label, 0) + 1
+                if seen[label] > 1:
+                    names[j] = f"{label} #{seen[label]}"
+        rows[3] = names
+    return names[k]
 
-    __slots__ = ("out", "n", "codes", "names")
+
+class _Rows(list):
+    """The rows of one compiled closed-form solve, ``[out, n, codes, names]`` (``out`` (16, 9): q,
+    within, branch code, degenerate per row; ``n`` rows valid; ``codes`` branch code → label;
+    ``names`` the decoded labels, None until first used), shared by the :class:`_RowSolution`
+    objects made from it. A list, so that the compiled path builds it with one list display."""
+
+    __slots__ = ()
 
     def __init__(self, out: np.ndarray, n: int, codes: dict) -> None:
-        self.out, self.n, self.codes = out, n, codes
-        self.names: list[str] | None = None
+        super().__init__((out, n, codes, None))
+
+    @property
+    def out(self) -> np.ndarray:
+        return self[0]
+
+    @property
+    def n(self) -> int:
+        return self[1]
 
     def label(self, k: int) -> str:
-        names = self.names
-        if names is None:  # every row's label, and " #2", … for a label that repeats
-            codes = self.codes
-            names = [codes[c] for c in self.out[:self.n, 7].tolist()]
-            if len(set(names)) < len(names):
-                seen: dict[str, int] = {}
-                for j, label in enumerate(names):
-                    seen[label] = seen.get(label, 0) + 1
-                    if seen[label] > 1:
-                        names[j] = f"{label} #{seen[label]}"
-            self.names = names
-        return names[k]
+        return _row_label(self, k)
 
 
 class _RowSolution(IKSolution):
@@ -110,37 +125,30 @@ class _RowSolution(IKSolution):
         return IKSolution(*args, **kwargs)  # dataclasses.replace(sol, ...) calls type(sol)(...)
 
     @classmethod
-    def from_rows(cls, rows: _Rows) -> list[IKSolution]:
-        """One solution per valid row of ``rows``."""
-        new, set_rows, set_k = object.__new__, _SET_ROWS, _SET_K  # slots stored past the frozen __setattr__
-        result: list[IKSolution] = []
-        for k in range(rows.n):
-            sol = new(cls)
-            set_rows(sol, rows)
-            set_k(sol, k)
-            result.append(sol)
-        return result
+    def from_rows(cls, rows: list) -> list[IKSolution]:
+        """One solution per valid row of ``rows`` (a :class:`_Rows`, or ``[out, n, codes, None]``)."""
+        return _from_rows(rows, cls)
 
     @property
     def q(self) -> np.ndarray:  # noqa: D102 - the field of IKSolution
         try:
             return self._q
         except AttributeError:
-            q = self._rows.out[self._k, :6]
+            q = self._rows[0][self._k, :6]
             _SET_Q(self, q)
             return q
 
     @property
     def within_limits(self) -> bool:  # noqa: D102
-        return bool(self._rows.out[self._k, 6] == 1.0)
+        return bool(self._rows[0][self._k, 6] == 1.0)
 
     @property
     def label(self) -> str:  # noqa: D102
-        return self._rows.label(self._k)
+        return _row_label(self._rows, self._k)
 
     @property
     def degenerate(self) -> bool:  # noqa: D102
-        return bool(self._rows.out[self._k, 8] == 1.0)
+        return bool(self._rows[0][self._k, 8] == 1.0)
 
     @property
     def extra(self) -> dict:  # noqa: D102
@@ -171,6 +179,26 @@ class _RowSolution(IKSolution):
 
 _SET_ROWS, _SET_K = _RowSolution._rows.__set__, _RowSolution._k.__set__  # type: ignore[attr-defined]
 _SET_Q, _SET_EXTRA = _RowSolution._q.__set__, _RowSolution._extra.__set__  # type: ignore[attr-defined]
+
+
+def _from_rows(rows: list, cls: type = _RowSolution, new: Any = object.__new__, set_rows: Any = _SET_ROWS,
+               set_k: Any = _SET_K) -> list[IKSolution]:
+    """One :class:`_RowSolution` per valid row of ``rows`` (``[out, n, codes, names]``): two slot
+    stores each, past the frozen ``__setattr__`` (the defaults bind the names once)."""
+    result: list[IKSolution] = []
+    append = result.append
+    for k in range(rows[1]):
+        sol = new(cls)
+        set_rows(sol, rows)
+        set_k(sol, k)
+        append(sol)
+    return result
+
+
+def _solutions_from_kernel(out: np.ndarray, n: int, codes: dict) -> list[IKSolution]:
+    """The solutions of a compiled closed-form solve's first ``n`` rows of ``out`` (q, within,
+    branch code, degenerate; ``codes`` maps a branch code to its label), read lazily from ``out``."""
+    return _from_rows([out, n, codes, None]) if n else []
 
 
 @runtime_checkable

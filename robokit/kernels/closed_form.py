@@ -47,6 +47,7 @@ these kernels)::
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -55,7 +56,8 @@ from robokit.kernels._jit import njit, prange
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
            "pieper_position", "pieper_wrist", "pieper_rows", "parallel_axes_position",
            "parallel_axes_wrist", "parallel_axes_rows",
-           "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "pack_constants", "K_SIZE",
+           "parallel_axes_batch", "pieper_solve_into", "parallel_axes_solve_into", "solve_into_entry", "pack_constants",
+           "K_SIZE",
            "OUT_COLS", "MAX_ROWS", "PIEPER", "PARALLEL_AXES"]
 
 #: The most rows one pose can produce before duplicates are dropped.
@@ -65,6 +67,8 @@ PARALLEL_AXES = 1
 
 _PI = math.pi
 _TWO_PI = 2.0 * math.pi
+#: Scratch sizes (floats, ints) of the position step and of Pieper's method (:func:`_pieper_position`, :func:`_pieper`).
+_POS_WORK = 35
 
 # layout of the float constants (Pieper)
 _TH0, _D0, _CA, _SA = 0, 6, 12, 17
@@ -155,7 +159,7 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
         deg -= 1
     extra = rev and deg < ndeg
     n = 0
-    ts = np.empty(4)
+    ts = out  # the roots t are sorted in place, then turned into joint values entry by entry
     if deg == 1:
         ts[0] = -c[0] / c[1]
         n = 1
@@ -274,14 +278,15 @@ def _polish(cf: np.ndarray, q: np.ndarray, W: np.ndarray) -> float:
 
 
 @njit
-def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, out: np.ndarray,
+def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, out: np.ndarray,
                   flips: np.ndarray) -> int:
     """(θ₄, θ₅, θ₆) rows into ``out`` (2, 3) and wrist codes into ``flips``; their count
-    (as ``PieperSolver.wrist_angles``)."""
+    (as ``PieperSolver.wrist_angles``). ``cs``: cos θ₁, sin θ₁, cos θ₂, sin θ₂, cos θ₃, sin θ₃
+    (:func:`_cos_sin`, computed once per position)."""
     mx, my, mz = T[0, 2], T[1, 2], T[2, 2]
     ex, ey, ez = T[0, 0], T[1, 0], T[2, 0]
     for i in range(3):
-        c, s_ = math.cos(th[i]), math.sin(th[i])
+        c, s_ = cs[2 * i], cs[2 * i + 1]
         mx, my = c * mx + s_ * my, c * my - s_ * mx
         ex, ey = c * ex + s_ * ey, c * ey - s_ * ex
         c, s_ = cf[_CA + i], cf[_SA + i]
@@ -291,7 +296,7 @@ def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, 
     for i in range(2, -1, -1):
         c, s_ = cf[_CA + i], cf[_SA + i]
         ny, nz = c * ny - s_ * nz, s_ * ny + c * nz
-        c, s_ = math.cos(th[i]), math.sin(th[i])
+        c, s_ = cs[2 * i], cs[2 * i + 1]
         nx, ny = c * nx - s_ * ny, s_ * nx + c * ny
     row0 = T[0, 0] * nx + T[1, 0] * ny + T[2, 0] * nz
     row1 = T[0, 1] * nx + T[1, 1] * ny + T[2, 1] * nz
@@ -320,16 +325,37 @@ def _wrist_angles(cf: np.ndarray, th: np.ndarray, T: np.ndarray, q4_ref: float, 
     yp = -ca4 * sa5 * c5 - sa4 * ca5
     b_ = sa4 * c5 * ca5 + ca4 * sa5
     n = 0
+    t5 = math.atan2(s5, c5)
     for j in range(2):
         s = s5 if j == 0 else -s5
         out[n, 0] = am - math.atan2(yp, sa5 * s)
-        out[n, 1] = math.atan2(s, c5)
+        out[n, 1] = t5 if j == 0 else -t5  # atan2(−s, c) = −atan2(s, c) exactly (IEEE atan2 is odd in y)
         out[n, 2] = math.atan2(b_, sa4 * s) - ar
         flips[n] = 0 if s * k > 0.0 else 1
         n += 1
         if s5 == 0.0:
             break
     return n
+
+
+@njit
+def _cos_sin(th: np.ndarray, cs: np.ndarray) -> None:
+    """cos θ₁, sin θ₁, cos θ₂, sin θ₂, cos θ₃, sin θ₃ into ``cs`` (6,)."""
+    for i in range(3):
+        cs[2 * i], cs[2 * i + 1] = math.cos(th[i]), math.sin(th[i])
+
+
+@njit
+def _scratch() -> tuple:
+    """Every scratch array of one solve, from seven allocations, 2D ones sliced by rows (a numba
+    ``reshape`` costs as much as an allocation): ``F6`` (2·MAX_ROWS, 6) raw rows | cos/sin of
+    θ₁–θ₃; ``F4`` (10, 4) target | product | position candidates; ``F3`` (2·MAX_ROWS + 2, 3)
+    q₁–q₃ | θ₁–θ₃ | wrist angles; ``I3`` (2·MAX_ROWS, 3) raw codes | position codes; ``iw`` (8,)
+    ci | wrist codes or θ₁ shoulders; ``bw`` (2·MAX_ROWS,) raw | position degenerate flags; ``fw``
+    the position step's floats (:data:`_POS_WORK`), qq (6), θ₁ and θ₅ roots (4)."""
+    return (np.empty((2 * MAX_ROWS, 6)), np.empty((10, 4)), np.empty((2 * MAX_ROWS + 2, 3)),
+            np.empty((2 * MAX_ROWS, 3), dtype=np.int64), np.empty(8, dtype=np.int64),
+            np.empty(2 * MAX_ROWS, dtype=np.bool_), np.empty(_POS_WORK + 10))
 
 
 @njit
@@ -364,25 +390,31 @@ def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
 
 @njit
 def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, Q3: np.ndarray,
-                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray) -> int:
+                     codes: np.ndarray, degen: np.ndarray, TH: np.ndarray, CS: np.ndarray, fw: np.ndarray,
+                     cand: np.ndarray) -> int:
     """Pieper's position sub-problem: every (q₁, q₂, q₃) placing the wrist centre ⁰W = T·⁶W.
 
     Writes per branch the joint values into ``Q3`` (rows of 3), the shoulder and elbow codes into
-    ``codes`` (rows of 2), the degenerate flag into ``degen`` and the rotation angles θ₁–θ₃ the
-    wrist step needs into ``TH``; returns the number of branches. Cases (``ci[1]``): 0 RR-quartic,
+    ``codes`` (rows of 2), the degenerate flag into ``degen``, the rotation angles θ₁–θ₃ into
+    ``TH`` and their cosines and sines (:func:`_cos_sin`, what the wrist step needs) into ``CS``
+    (rows of 6); ``fw`` (at least ``_POS_WORK`` floats) and ``cand`` (2, 4) are scratch; returns
+    the number of branches. Cases (``ci[1]``): 0 RR-quartic,
     1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1, 5 RP-quartic, 6 RP-c1, 7 PP (the kinds of joints 1, 2;
     ``PieperConstants.case``)."""
     case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
     rev1, rev2 = case <= 2 or case == 5 or case == 6, case <= 4
     scale = cf[_SCALE]
     w6x, w6y, w6z = cf[_W6], cf[_W6 + 1], cf[_W6 + 2]
-    W = np.empty(3)
+    # scratch, carved from fw (no allocation per call)
+    W, m, coeffs, roots3 = fw[0:3], fw[3:8], fw[8:13], fw[13:19]
+    th2s, q = fw[19:21], fw[21:24]
+    th, dd, p, Ds = fw[24:27], fw[27:30], fw[30:33], fw[33:35]
     W[0] = T[0, 0] * w6x + T[0, 1] * w6y + T[0, 2] * w6z + T[0, 3]
     W[1] = T[1, 0] * w6x + T[1, 1] * w6y + T[1, 2] * w6z + T[1, 3]
     W[2] = T[2, 0] * w6x + T[2, 1] * w6y + T[2, 2] * w6z + T[2, 3]
     Wx, Wy, Wz = W[0], W[1], W[2]
     ca1, sa1, a1 = cf[_CA], cf[_SA], cf[_A1]
-    m = np.zeros(5)
+    m[:] = 0.0
     h, r, X, yp = 0.0, 0.0, 0.0, 0.0
     if rev1:  # rotating about axis 1 keeps h and r
         h = Wz - cf[_D1]
@@ -405,13 +437,12 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
         m[0], m[1], m[2], m[3] = r, h * h, h, 1.0
     else:
         m[0], m[1] = X, 1.0
-    coeffs = np.zeros(5)
+    coeffs[:] = 0.0
     for j in range(deg + 1):
         acc = 0.0
         for k in range(nrows):
             acc += m[k] * C[k, j]
         coeffs[j] = acc
-    roots3 = np.empty(6)
     nr = _roots(coeffs, deg, rev3, roots3)
     check = deg == 4  # roots from the companion matrix: verify (and polish) each triple
     degenerate = False
@@ -419,10 +450,7 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
         roots3[0] = cf[_TH0 + 2] if rev3 else 0.0
         nr = 1
         degenerate = True
-    th2s = np.empty(2)
-    cand = np.empty((2, 4))  # (q₂, g₁, g₂, g₃) per candidate
-    q = np.empty(3)
-    th, dd, p = np.empty(3), np.empty(3), np.empty(3)
+    # cand: (q₂, g₁, g₂, g₃) per candidate
     n = 0
     for ir in range(nr):
         x3 = roots3[ir]
@@ -467,7 +495,6 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
         else:  # prismatic joint 2: its offset D enters h linearly and r quadratically
             p1 = _val(cf, _PHI, x3, rev3, c3, s3)
             p2 = _val(cf, _PHI + 3, x3, rev3, c3, s3)
-            Ds = np.empty(2)
             if case == 5:
                 Ds[0] = (h - sa1 * p2) / ca1 - f3
                 nD = 1
@@ -507,17 +534,19 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
             if n >= Q3.shape[0]:
                 break
             _angles(cf, q, th, dd)
+            cs = CS[n]
+            _cos_sin(th, cs)
             # labels: shoulder from frame 1's x axis, elbow from the sign of the normal's cross product
             if not rev1:
                 codes[n, 0] = 3
             elif singular1:
                 codes[n, 0] = 2
             else:
-                codes[n, 0] = 0 if math.cos(th[0]) * W[0] + math.sin(th[0]) * W[1] >= 0.0 else 1
+                codes[n, 0] = 0 if cs[0] * W[0] + cs[1] * W[1] >= 0.0 else 1
             if not rev3:
                 codes[n, 1] = 2 if cf[_D0 + 2] + q[2] >= 0.0 else 3
             else:
-                e = (math.sin(th[2]) * cf[_V] + math.cos(th[2]) * cf[_V + 1]) * (cf[_A2] if cf[_A2] != 0.0 else 1.0)
+                e = (cs[5] * cf[_V] + cs[4] * cf[_V + 1]) * (cf[_A2] if cf[_A2] != 0.0 else 1.0)
                 codes[n, 1] = 0 if e > 0.0 else 1
             for j in range(3):
                 Q3[n, j] = q[j]
@@ -529,19 +558,17 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
 
 @njit
 def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray) -> int:
+            codes: np.ndarray, degen: np.ndarray, s: tuple) -> int:
     """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
-    of each position): raw rows into Q, codes, degen; their count."""
-    Q3 = np.empty((MAX_ROWS, 3))
-    pcodes = np.empty((MAX_ROWS, 2), dtype=np.int64)
-    pdegen = np.empty(MAX_ROWS, dtype=np.bool_)
-    TH = np.empty((MAX_ROWS, 3))
-    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH)
-    wa = np.empty((2, 3))
-    flips = np.empty(2, dtype=np.int64)
+    of each position): raw rows into Q, codes, degen; their count. ``s``: the scratch of
+    :func:`_scratch`."""
+    F6, F4, F3, I3, iw, bw, fw = s
+    Q3, TH, wa = F3[0:MAX_ROWS], F3[MAX_ROWS:2 * MAX_ROWS], F3[2 * MAX_ROWS:2 * MAX_ROWS + 2]
+    CS, pcodes, flips, pdegen = F6[MAX_ROWS:], I3[MAX_ROWS:], iw[6:8], bw[MAX_ROWS:]
+    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw, F4[8:10])
     n = 0
     for b in range(npos):
-        nw = _wrist_angles(cf, TH[b], T, q4_ref, wa, flips)
+        nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips)
         for k in range(nw):
             if n >= Q.shape[0]:
                 break
@@ -564,7 +591,8 @@ def pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray,
     codes = np.empty((MAX_ROWS, 2), dtype=np.int64)
     degen = np.empty(MAX_ROWS, dtype=np.bool_)
     TH = np.empty((MAX_ROWS, 3))
-    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH)
+    n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH, np.empty((MAX_ROWS, 6)), np.empty(_POS_WORK),
+                         np.empty((2, 4)))
     return Q3[:n].copy(), codes[:n].copy(), degen[:n].copy(), TH[:n].copy()
 
 
@@ -573,7 +601,9 @@ def pieper_wrist(cf: np.ndarray, th: np.ndarray, T06: np.ndarray, q4_ref: float)
     """Pieper's wrist sub-problem for the rotation angles θ₁–θ₃ ``th``: ``(θ₄, θ₅, θ₆ (m, 3), wrist codes (m,))``."""
     out = np.empty((2, 3))
     flips = np.empty(2, dtype=np.int64)
-    n = _wrist_angles(cf, th, T06, q4_ref, out, flips)
+    cs = np.empty(6)
+    _cos_sin(th, cs)
+    n = _wrist_angles(cf, cs, T06, q4_ref, out, flips)
     return out[:n].copy(), flips[:n].copy()
 
 
@@ -583,7 +613,7 @@ def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
     """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
     limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen)
+    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen, _scratch())
     return _first(n, Q, codes, degen)
 
 
@@ -608,9 +638,9 @@ def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulder
 
 @njit
 def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
-                       codes: np.ndarray, degen: np.ndarray, n: int) -> int:
+                       codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray) -> int:
     """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
-    from row n; the new row count."""
+    from row n; the new row count. ``t5s``: scratch for the θ₅ roots (2,)."""
     r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
     r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
     r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
@@ -619,7 +649,6 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
     a1, a2, a3, a4, a5 = cf[_PA_A1], cf[_PA_A2], cf[_PA_A3], cf[_PA_A4], cf[_PA_A5]
     d1, d5, d6, sig, sgn2 = cf[_PA_D1], cf[_PA_D5], cf[_PA_D6], cf[_PA_SIG], cf[_PA_S2]
     right_angles = ca4 == 0.0 and ca5 == 0.0
-    t5s = np.empty(2)
     c1, s1 = math.cos(t1), math.sin(t1)
     ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
     utx = sig * (r00 * ux + r10 * uy + r20 * uz)
@@ -690,14 +719,15 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
 
 @njit
 def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
-                   degen: np.ndarray) -> int:
-    """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count."""
-    t1s = np.empty(2)
-    shoulders = np.empty(2, dtype=np.int64)
+                   degen: np.ndarray, s: tuple) -> int:
+    """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count.
+    ``s``: the scratch of :func:`_scratch`."""
+    fw, iw = s[6], s[4]
+    t1s, t5s, shoulders = fw[_POS_WORK + 6:_POS_WORK + 8], fw[_POS_WORK + 8:_POS_WORK + 10], iw[6:8]
     n1 = _parallel_shoulders(cf, T, t1s, shoulders)
     n = 0
     for i1 in range(n1):
-        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n)
+        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n, t5s)
     return n
 
 
@@ -715,7 +745,7 @@ def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: in
                         q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Steps 2–4 for one θ₁: raw rows ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _parallel_complete(cf, T06, t1, shoulder, q6_ref, Q, codes, degen, 0)
+    n = _parallel_complete(cf, T06, t1, shoulder, q6_ref, Q, codes, degen, 0, np.empty(2))
     return _first(n, Q, codes, degen)
 
 
@@ -723,23 +753,23 @@ def parallel_axes_wrist(cf: np.ndarray, T06: np.ndarray, t1: float, shoulder: in
 def parallel_axes_rows(cf: np.ndarray, T06: np.ndarray, q6_ref: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every raw row of the three-parallel-axes method: ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen)
+    n = _parallel_axes(cf, T06, q6_ref, Q, codes, degen, _scratch())
     return _first(n, Q, codes, degen)
 
 
 @njit
-def _mul44(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    out = np.empty((4, 4))
+def _mul44(A: np.ndarray, B: np.ndarray, out: np.ndarray) -> None:
+    """``out = A · B`` (4×4; out distinct from A and B)."""
     for i in range(4):
         for j in range(4):
             out[i, j] = A[i, 0] * B[0, j] + A[i, 1] * B[1, j] + A[i, 2] * B[2, j] + A[i, 3] * B[3, j]
-    return out
 
 
 @njit
-def _target(ci: np.ndarray, pre: np.ndarray, post: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """The canonical chain's target ``pre · T · post`` (T⁻¹ when the chain is reversed)."""
-    Tin = np.empty((4, 4))
+def _target(ci: np.ndarray, pre: np.ndarray, post: np.ndarray, T: np.ndarray, Tin: np.ndarray,
+            tmp: np.ndarray) -> np.ndarray:
+    """The canonical chain's target ``pre · T · post`` (T⁻¹ when the chain is reversed), written
+    into (and returned as) the 4×4 scratch ``Tin``; ``tmp`` is 4×4 scratch too."""
     if ci[5] == 1:  # T⁻¹
         for i in range(3):
             for j in range(3):
@@ -749,20 +779,23 @@ def _target(ci: np.ndarray, pre: np.ndarray, post: np.ndarray, T: np.ndarray) ->
         Tin[3, 3] = 1.0
     else:
         Tin[:, :] = T
-    return _mul44(_mul44(pre, Tin), post)
+    _mul44(pre, Tin, tmp)
+    _mul44(tmp, post, Tin)
+    return Tin
 
 
 @njit
 def _finish(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
-            m: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray) -> int:
-    """The raw rows' post-processing (as :func:`robokit.ik.solution.solutions_from_rows`); the
-    number of distinct solutions written."""
+            m: int, out: np.ndarray, qq: np.ndarray) -> int:
+    """The raw rows' post-processing (as :func:`robokit.ik.solution.solutions_from_rows`), written
+    into ``out`` (rows of q (6), within, branch code, degenerate: ``OUT_COLS``); the number of
+    distinct solutions written. ``qq``: scratch (6,). Rows of ``out`` past that number are not
+    touched (the batch's stay NaN)."""
     reverse = ci[5] == 1
     # post_q: row 0 the sign of each joint (−1: flipped or reversed), row 1 revolute (1/0),
     # rows 2, 3 the limits with their tolerance (±inf without), row 4 [has limits]
     has_lim = post_q[4, 0] != 0.0
     n = 0
-    qq = np.empty(6)
     for k in range(m):
         for j in range(6):
             src = 5 - j if reverse else j
@@ -788,7 +821,7 @@ def _finish(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.nda
         for o in range(n):
             same = True
             for j in range(6):
-                d = qq[j] - Q[o, j]
+                d = qq[j] - out[o, j]
                 if post_q[1, j] != 0.0:
                     d = _rem(d)
                 if d >= 1e-9 or d <= -1e-9:
@@ -799,10 +832,11 @@ def _finish(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.nda
                 break
         if dup:
             continue
-        Q[n, :] = qq
-        within[n] = inside
-        codes[n, :] = rcodes[k, :]
-        degen[n] = rdegen[k]
+        for j in range(6):
+            out[n, j] = qq[j]
+        out[n, 6] = 1.0 if inside else 0.0
+        out[n, 7] = rcodes[k, 0] * 100 + rcodes[k, 1] * 10 + rcodes[k, 2]
+        out[n, 8] = 1.0 if rdegen[k] else 0.0
         n += 1
     return n
 
@@ -866,73 +900,76 @@ def _rigid(T: np.ndarray) -> bool:
 
 
 @njit
-def _unpack(K: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    ci = np.empty(6, dtype=np.int64)
-    for j in range(6):
-        ci[j] = int(K[_K_CI + j])
-    return (ci, K[_K_CF:_K_C], K[_K_C:_K_PRE].reshape((5, 5)), K[_K_PRE:_K_POST].reshape((4, 4)),
-            K[_K_POST:_K_PQ].reshape((4, 4)), K[_K_PQ:_K_CI].reshape((5, 6)))
-
-
-@njit
-def _write(n: int, Q: np.ndarray, within: np.ndarray, codes: np.ndarray, degen: np.ndarray, out: np.ndarray) -> None:
-    for k in range(n):
-        for j in range(6):
-            out[k, j] = Q[k, j]
-        out[k, 6] = 1.0 if within[k] else 0.0
-        out[k, 7] = codes[k, 0] * 100 + codes[k, 1] * 10 + codes[k, 2]
-        out[k, 8] = 1.0 if degen[k] else 0.0
-
-
-@njit
 def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
                  m: int, out: np.ndarray) -> int:
     """The common end of both packed solvers: wrap, limit-check and de-duplicate the m raw rows
-    (:func:`_finish`), write them into ``out`` (:func:`_write`), return how many."""
-    Q = np.empty((MAX_ROWS, 6))
-    within = np.empty(MAX_ROWS, dtype=np.bool_)
-    codes = np.empty((MAX_ROWS, 3), dtype=np.int64)
-    degen = np.empty(MAX_ROWS, dtype=np.bool_)
-    n = _finish(ci, post_q, rows, rcodes, rdegen, m, Q, within, codes, degen)
-    _write(n, Q, within, codes, degen, out)
-    return n
+    into ``out`` (:func:`_finish`), return how many."""
+    return _finish(ci, post_q, rows, rcodes, rdegen, m, out, np.empty(6))
+
+
+@njit
+def _unpack(K: np.ndarray, T: np.ndarray) -> tuple:
+    """The start of one packed solve (:func:`pieper_solve_into`, :func:`parallel_axes_solve_into`,
+    after the rigid-transform test): the constants read from ``K`` as views and the scratch of
+    :func:`_scratch`. Returns ``(ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, s)``: T06 the
+    canonical chain's target (:func:`_target`), rows/rcodes/rdegen the raw rows' buffers, qq
+    :func:`_finish`'s scratch, ``s`` the scratch tuple (the method's own parts)."""
+    s = _scratch()
+    F6, F4, _, I3, iw, bw, fw = s
+    ci = iw[0:6]
+    for j in range(6):
+        ci[j] = int(K[_K_CI + j])
+    T06 = _target(ci, K[_K_PRE:_K_POST].reshape((4, 4)), K[_K_POST:_K_PQ].reshape((4, 4)), T, F4[0:4], F4[4:8])
+    return (ci, K[_K_CF:_K_C], K[_K_C:_K_PRE].reshape((5, 5)), K[_K_PQ:_K_CI].reshape((5, 6)), T06,
+            F6[0:MAX_ROWS], I3[0:MAX_ROWS], bw[0:MAX_ROWS], fw[_POS_WORK:_POS_WORK + 6], s)
 
 
 @njit
 def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
-    ci, cf, C, pre, post, post_q = _unpack(K)
-    rows, rcodes, rdegen = _raw_rows()
-    m = _pieper(ci, cf, C, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
-    return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
+    ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, s = _unpack(K, T)
+    m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen, s)
+    return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
 
 
 @njit
 def _parallel_axes_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
-    ci, cf, C, pre, post, post_q = _unpack(K)
-    rows, rcodes, rdegen = _raw_rows()
-    m = _parallel_axes(cf, _target(ci, pre, post, T), wrist_ref, rows, rcodes, rdegen)
-    return _finish_into(ci, post_q, rows, rcodes, rdegen, m, out)
+    ci, cf, _, post_q, T06, rows, rcodes, rdegen, qq, s = _unpack(K, T)
+    m = _parallel_axes(cf, T06, wrist_ref, rows, rcodes, rdegen, s)
+    return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
+
+
+# Each method has its own kernels (only the structure a robot uses is compiled); what they share
+# is in the helpers _solved and _batch_buffers.
+
+
+@njit
+def _solved(out: np.ndarray, n: int) -> np.ndarray:
+    """The result of a ``*_solve`` kernel from its ``*_solve_into``'s: the first n rows of ``out``,
+    or shape (0, 0) when n < 0 (T failed the rigid-transform test)."""
+    if n < 0:
+        return np.empty((0, 0))
+    return out[:n].copy()
+
+
+@njit
+def _batch_buffers(N: int) -> tuple[np.ndarray, np.ndarray]:
+    """A batch's output (N, MAX_ROWS, OUT_COLS), NaN, and its counts (N,), zero."""
+    return np.full((N, MAX_ROWS, OUT_COLS), np.nan), np.zeros(N, dtype=np.int64)
 
 
 @njit
 def pieper_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
     """:func:`closed_form_solve` for a spherical wrist (its own kernel: only the structure a
     robot uses is compiled)."""
-    if not _rigid(T):
-        return np.empty((0, 0))
     out = np.empty((MAX_ROWS, OUT_COLS))
-    n = _pieper_packed(K, T, wrist_ref, out)
-    return out[:n].copy()
+    return _solved(out, pieper_solve_into(K, T, wrist_ref, out))
 
 
 @njit
 def parallel_axes_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
     """:func:`closed_form_solve` for three parallel axes (its own kernel)."""
-    if not _rigid(T):
-        return np.empty((0, 0))
     out = np.empty((MAX_ROWS, OUT_COLS))
-    n = _parallel_axes_packed(K, T, wrist_ref, out)
-    return out[:n].copy()
+    return _solved(out, parallel_axes_solve_into(K, T, wrist_ref, out))
 
 
 @njit
@@ -956,10 +993,8 @@ def parallel_axes_solve_into(K: np.ndarray, T: np.ndarray, wrist_ref: float, out
 @njit(parallel=True)
 def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`closed_form_batch` for a spherical wrist."""
-    N = Ts.shape[0]
-    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
-    counts = np.zeros(N, dtype=np.int64)
-    for i in prange(N):
+    out, counts = _batch_buffers(Ts.shape[0])
+    for i in prange(Ts.shape[0]):
         counts[i] = _pieper_packed(K, Ts[i], wrist_ref, out[i])
     return out, counts
 
@@ -967,12 +1002,52 @@ def pieper_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.nd
 @njit(parallel=True)
 def parallel_axes_batch(K: np.ndarray, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`closed_form_batch` for three parallel axes."""
-    N = Ts.shape[0]
-    out = np.full((N, MAX_ROWS, OUT_COLS), np.nan)
-    counts = np.zeros(N, dtype=np.int64)
-    for i in prange(N):
+    out, counts = _batch_buffers(Ts.shape[0])
+    for i in prange(Ts.shape[0]):
         counts[i] = _parallel_axes_packed(K, Ts[i], wrist_ref, out[i])
     return out, counts
+
+
+def solve_into_entry(kernel: Any) -> Any:
+    """The machine code of a ``*_solve_into`` kernel for the one set of argument types robokit
+    calls it with — K (n,) float64, T (4, 4) float64, wrist_ref float, out (MAX_ROWS, OUT_COLS)
+    float64, arrays in C order — as a callable that skips numba's type dispatch (about 0.1 µs of a
+    call), or None while the kernel has no machine code for them (not compiled yet, or running as
+    plain Python: then call the kernel itself).
+
+    The caller must pass exactly those types (the entry point converts without checking): C-order
+    float64 arrays of those shapes and a Python float.
+
+    Parameters
+    ----------
+    kernel : numba Dispatcher or function
+        :func:`pieper_solve_into` or :func:`parallel_axes_solve_into`.
+
+    Returns
+    -------
+    callable or None
+
+    Examples
+    --------
+    >>> import numpy as np, robokit
+    >>> from robokit.ik.closed_form import AnalyticIK
+    >>> robot = robokit.load("puma560")
+    >>> K, out = AnalyticIK(robot)._kernel[0], np.empty((MAX_ROWS, OUT_COLS))
+    >>> T = robot.frame_pose(np.full(6, 0.3))
+    >>> n = pieper_solve_into(K, T, 0.0, out)
+    >>> entry = solve_into_entry(pieper_solve_into)
+    >>> entry is None or entry(K, T, 0.0, out) == n
+    True
+    """
+    overloads = getattr(kernel, "overloads", None)
+    if not overloads:
+        return None
+    from numba.core import types as nbt
+
+    f64 = nbt.float64
+    sig = (nbt.Array(f64, 1, "C"), nbt.Array(f64, 2, "C"), f64, nbt.Array(f64, 2, "C"))
+    cres = overloads.get(sig)
+    return None if cres is None else cres.entry_point
 
 
 def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
