@@ -55,8 +55,8 @@ class Robot:
     :func:`robokit.description.builder.serial_chain`.
 
     A Robot is **immutable**: assigning any attribute raises ``AttributeError``, and ``qlim``,
-    ``gravity`` and the ``configurations`` are read-only arrays. A changed robot is a new one
-    (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
+    ``gravity``, the ``configurations`` and the arrays of ``poe`` are read-only. A changed robot is
+    a new one (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
     robot is computed once and kept with it (:meth:`derived`). The one mutable part is ``data``,
     Pinocchio's workspace, which every call reuses: a Robot is not thread-safe (give each thread
     its own, ``robokit.load(robot.spec)``, or use the ``*_batch`` methods). Its ``model`` is
@@ -97,7 +97,7 @@ class Robot:
         The DH table for robots loaded from one.
     poe : PoEParams
         Product-of-exponentials parameters of the chain (``M``, ``Slist``, ``Blist``, ``Mlist``,
-        ``Glist``).
+        ``Glist``), read-only arrays.
     n : int
         Number of joint angles (a continuous joint counts as one).
     joint_names : tuple of str
@@ -166,10 +166,13 @@ class Robot:
         if spec is not None:
             self.spec = spec
         limit_notes = unbounded_limits(model, source or name)  # ±1e16, ±1e308 ... mean no limit
-        self.poe: PoEParams = poe_from_model(model, tip)
+        # the PoE parameters are shown read-only: views of the arrays poe_from_model built, which only the
+        # compiled kernels are given (robokit._arrays.kernel_array/kernel_arrays pass a read-only view's
+        # writeable base, as their signatures take it: no copy per call)
+        self.poe: PoEParams = _frozen_poe(poe_from_model(model, tip))
         self.n = model.nv
         self.joint_names = self.poe.joint_names
-        self.qlim = _read_only(self.poe.qlim)  # a read-only copy (the kernels take poe's writeable arrays)
+        self.qlim = _read_only(self.poe.qlim)  # a read-only copy
         self.gravity = _read_only(model.gravity.linear)
         self.locked_joints = tuple(locked_joints)
         self.source = source
@@ -973,6 +976,21 @@ def _read_only(a: ArrayLike) -> np.ndarray:
     out = np.array(a, dtype=float)
     out.setflags(write=False)
     return out
+
+
+def _frozen_poe(poe: PoEParams) -> PoEParams:
+    """``poe`` with every array replaced by a read-only view of it (the arrays themselves stay
+    writeable, for the kernels: :func:`robokit._arrays.writeable_base`)."""
+    from dataclasses import fields, replace
+
+    views = {}
+    for f in fields(poe):
+        a = getattr(poe, f.name)
+        if isinstance(a, np.ndarray):
+            v = a.view()
+            v.flags.writeable = False
+            views[f.name] = v
+    return replace(poe, **views)
 
 
 def _frozen_message(name: str) -> str:
