@@ -329,6 +329,7 @@ def check_reference(reference: object, name: str = "reference") -> Frame:
 #: numpy's flag bits for C-contiguous, aligned and writeable: what a kernel signature's
 #: ``float64[::1]`` arrays must be (numba refuses a read-only or strided array for them).
 _KERNEL_FLAGS = 0x0001 | 0x0100 | 0x0400
+_WRITEABLE = 0x0400
 
 
 def kernel_array(x: object, dtype: Any = None) -> np.ndarray:
@@ -353,7 +354,44 @@ def kernel_array(x: object, dtype: Any = None) -> np.ndarray:
     (True, True)
     """
     a = np.ascontiguousarray(x, dtype)
-    return a if a.flags.writeable else a.copy()
+    if a.flags.writeable:
+        return a
+    base = writeable_base(a)
+    return a.copy() if base is None else base
+
+
+def writeable_base(x: np.ndarray) -> np.ndarray | None:
+    """The writeable array a read-only float64 array is a plain view of, else None.
+
+    A :class:`~robokit.description.robot.Robot` shows its PoE parameters (``robot.poe``) as read-only
+    views of private arrays built once; the compiled kernels, whose signatures take writeable arrays
+    and which only read their model arguments, are given those arrays (no copy per call). A view
+    qualifies when it is float64 with its base's shape and strides and its base is a writeable,
+    C-contiguous, aligned float64 array: then it is the whole of its base, read the same way (a view
+    addresses memory within its base's extent — numpy's ``base`` is the array that holds the memory —
+    and the same shape and strides span that whole extent).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        A read-only array.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        ``x.base`` when it qualifies.
+
+    Examples
+    --------
+    >>> a = np.zeros((2, 3)); v = a.view(); v.flags.writeable = False
+    >>> writeable_base(v) is a, writeable_base(a[:, :2].copy()) is None
+    (True, True)
+    """
+    b = x.base
+    if (type(b) is np.ndarray and b.shape == x.shape and b.strides == x.strides and b.dtype is _F64
+            and x.dtype is _F64 and b.flags.num & _KERNEL_FLAGS == _KERNEL_FLAGS):
+        return b
+    return None
 
 
 def kernel_arrays(args: tuple[Any, ...], ndims: tuple[int, ...], _nd: Any = np.ndarray, _f: np.dtype = _F64,
@@ -406,8 +444,11 @@ def _converted(args: tuple[Any, ...], ndims: tuple[int, ...]) -> tuple[np.ndarra
     out = []
     for x, nd in zip(args, ndims):
         if type(x) is np.ndarray:
-            if x.dtype is _F64 and x.flags.num & _KERNEL_FLAGS == _KERNEL_FLAGS:
+            flags = x.flags.num
+            if x.dtype is _F64 and flags & _KERNEL_FLAGS == _KERNEL_FLAGS:
                 arr = x
+            elif not flags & _WRITEABLE and (base := writeable_base(x)) is not None:
+                arr = base  # a read-only view (a Robot's poe) of a writeable array: the kernels only read it
             elif x.dtype.kind in "fiu":
                 arr = np.array(x, dtype=np.float64, order="C")  # a fresh copy: contiguous, writeable
             else:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from robokit._arrays import as_joints
+from robokit._arrays import as_joints, kernel_array
 from robokit.frames import Frame, reference_or_default
 from robokit.errors import InputError
 
@@ -68,8 +68,8 @@ def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np
 
     _tip_only(robot, frame)
     Q = _rows(robot, Q, "q")
-    p = robot.poe
-    return fkin_space_batch(np.ascontiguousarray(p.M), np.ascontiguousarray(p.Slist), Q)
+    p = robot.poe  # read-only views; kernel_array gives the kernel their writeable arrays (no copy)
+    return fkin_space_batch(kernel_array(p.M), kernel_array(p.Slist), Q)
 
 
 def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
@@ -111,11 +111,11 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
     reference = reference_or_default(reference, "batch_jacobian")
     Q = _rows(robot, Q, "q")
     p = robot.poe
-    Slist = np.ascontiguousarray(p.Slist)
+    Slist = kernel_array(p.Slist)
     Js = jacobian_space_batch(Slist, Q)
     if reference == "world":
         return Js
-    T = fkin_space_batch(np.ascontiguousarray(p.M), Slist, Q)
+    T = fkin_space_batch(kernel_array(p.M), Slist, Q)
     if reference == "local":
         return lie.adjoint(lie.inv(T)) @ Js
     out = Js.copy()  # v of the tip origin: v_s − p × ω = v_s + [ω] p ... i.e. v_o = v_s + ω × p
@@ -154,8 +154,7 @@ def batch_crba(robot: Robot, Q: ArrayLike) -> np.ndarray:
 
     Q = _rows(robot, Q, "q")
     p = robot.poe
-    M = mass_matrix_batch(Q, np.ascontiguousarray(p.Mlist), np.ascontiguousarray(p.Glist),
-                          np.ascontiguousarray(p.Slist))
+    M = mass_matrix_batch(Q, kernel_array(p.Mlist), kernel_array(p.Glist), kernel_array(p.Slist))
     arm = np.asarray(robot.model.armature, dtype=float)[: robot.n]
     if np.any(arm):
         M = M + np.diag(arm)

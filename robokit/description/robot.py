@@ -18,7 +18,7 @@ example-robot-data name, and records a :class:`~robokit.description.spec.RobotSp
 from __future__ import annotations
 
 import os
-from math import hypot, isfinite
+from math import hypot
 from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Callable, Hashable, Iterable, Mapping
@@ -40,6 +40,8 @@ if TYPE_CHECKING:
     from robokit.description.spec import RobotSpec
 
 _F64 = np.dtype(np.float64)
+_ND = np.ndarray
+_INF = float("inf")
 
 __all__ = ["Robot", "check_robot_radians"]
 
@@ -55,8 +57,8 @@ class Robot:
     :func:`robokit.description.builder.serial_chain`.
 
     A Robot is **immutable**: assigning any attribute raises ``AttributeError``, and ``qlim``,
-    ``gravity`` and the ``configurations`` are read-only arrays. A changed robot is a new one
-    (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
+    ``gravity``, the ``configurations`` and the arrays of ``poe`` are read-only. A changed robot is
+    a new one (:meth:`with_limits`, :meth:`with_tool`, each with its own ``spec``); what is computed from a
     robot is computed once and kept with it (:meth:`derived`). The one mutable part is ``data``,
     Pinocchio's workspace, which every call reuses: a Robot is not thread-safe (give each thread
     its own, ``robokit.load(robot.spec)``, or use the ``*_batch`` methods). Its ``model`` is
@@ -97,7 +99,7 @@ class Robot:
         The DH table for robots loaded from one.
     poe : PoEParams
         Product-of-exponentials parameters of the chain (``M``, ``Slist``, ``Blist``, ``Mlist``,
-        ``Glist``).
+        ``Glist``), read-only arrays.
     n : int
         Number of joint angles (a continuous joint counts as one).
     joint_names : tuple of str
@@ -166,10 +168,13 @@ class Robot:
         if spec is not None:
             self.spec = spec
         limit_notes = unbounded_limits(model, source or name)  # ±1e16, ±1e308 ... mean no limit
-        self.poe: PoEParams = poe_from_model(model, tip)
+        # the PoE parameters are shown read-only: views of the arrays poe_from_model built, which only the
+        # compiled kernels are given (robokit._arrays.kernel_array/kernel_arrays pass a read-only view's
+        # writeable base, as their signatures take it: no copy per call)
+        self.poe: PoEParams = _frozen_poe(poe_from_model(model, tip))
         self.n = model.nv
         self.joint_names = self.poe.joint_names
-        self.qlim = _read_only(self.poe.qlim)  # a read-only copy (the kernels take poe's writeable arrays)
+        self.qlim = _read_only(self.poe.qlim)  # a read-only copy
         self.gravity = _read_only(model.gravity.linear)
         self.locked_joints = tuple(locked_joints)
         self.source = source
@@ -207,6 +212,10 @@ class Robot:
         self._plain = self._same_coords and self.n > 1  # Pinocchio's q is θ and its Jacobian is 6×n
         self._ref_frames: dict[object, Any] = {}  # Frame.WORLD / "world" → pin.ReferenceFrame.WORLD, … (looked up once)
         self._swap = np.r_[3:6, 0:3]  # Pinocchio's (v, ω) rows → robokit's (ω, v)
+        # Pinocchio's functions the fast paths call, looked up once (one attribute read per call instead of two)
+        self._fk, self._frame_placement, self._frame_jacobian = (
+            pin.forwardKinematics, pin.updateFramePlacement, pin.computeFrameJacobian)
+        self._rnea, self._crba, self._aba, self._gravity = pin.rnea, pin.crba, pin.aba, pin.computeGeneralizedGravity
         object.__setattr__(self, "_sealed", True)
 
     # ------------------------------------------------------------ immutability
@@ -504,11 +513,23 @@ class Robot:
         inf fail it), or every entry within ``[lo₁, hi₁]`` with ``hypot`` finite (see
         :func:`robokit._units.fast_bounds`). False sends the caller to the checked path, which gives
         the same answer or the error."""
-        if type(q) is not np.ndarray or q.dtype is not _F64 or q.shape != self._shape:
+        if type(q) is not _ND or q.dtype is not _F64 or q.shape != self._shape:
             return False
         t = q.tolist()
         h = hypot(*t)
-        return h <= self._r1 or (isfinite(h) and self._lo1 <= min(t) and max(t) <= self._hi1)
+        if h <= self._r1:
+            return True
+        if h < _INF:  # finite (NaN fails the comparison): the extremes of the sorted list, both in [lo₁, hi₁]
+            t.sort()  # one C call on the list tolist made (min and max are two slower ones)
+            return self._lo1 <= t[0] and t[-1] <= self._hi1
+        return False
+
+    def _dynamics_checked(self, fn: Callable[..., np.ndarray], q: ArrayLike, dq: ArrayLike, x: ArrayLike,
+                          x_name: str) -> np.ndarray:
+        """The checked path of :meth:`rnea` (``fn`` Pinocchio's rnea, x = q̈) and :meth:`aba` (aba, x = τ):
+        the three vectors checked in turn, then Pinocchio's answer."""
+        q, dq, x = self._check_q(q), self._check_q(dq, "dq"), self._check_q(x, x_name)
+        return fn(self.model, self.data, self.q_pin(q), dq, x)
 
     # ------------------------------------------------------------ fast answers
     def frame_pose(self, q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -538,16 +559,15 @@ class Robot:
         [1.0, 0.8, 0.0]
         """
         if self._fast(q):
-            if not self._same_coords:
-                q = self.q_pin(q)
+            qp = q if self._same_coords else self.q_pin(q)
         elif ndim(q, "q") == 2:
             warn_once("Robot.frame_pose((N, n) q)")
             return _batch("frame_pose", self, q, frame)
         else:
-            q = self.q_pin(self._check_q(q))
-        pin = self._pin
-        pin.forwardKinematics(self.model, self.data, q)
-        return pin.updateFramePlacement(self.model, self.data, self.tip_id if frame is None else self.frame_id(frame)).homogeneous
+            qp = self.q_pin(self._check_q(q))
+        model, data = self.model, self.data
+        self._fk(model, data, qp)
+        return self._frame_placement(model, data, self.tip_id if frame is None else self.frame_id(frame)).homogeneous
 
     def frame_poses(self, q: ArrayLike) -> dict[str, np.ndarray]:
         """Poses (4×4, in the root frame) of the frames :attr:`frame_names`, by name, at θ.
@@ -604,19 +624,20 @@ class Robot:
         rf = self._ref_frames.get(reference)
         if rf is not None and frame is None and self._plain and self._fast(q):
             # the fast path (tip frame, finite float64 (n,) q, no continuous joints): one Pinocchio call
-            # and the (v; ω) → (ω; v) row swap, nothing else
-            return self._pin.computeFrameJacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
+            # and the (v; ω) → (ω; v) row swap into a new array, nothing else
+            return self._frame_jacobian(self.model, self.data, q, self.tip_id, rf).take(self._swap, 0)
         if rf is None:
             # the shared vocabulary (robokit.Frame) mapped onto Pinocchio's, looked up once per spelling
             rf = self._ref_frames[reference] = reference_or_default(reference, "Robot.jacobian").pinocchio
-        if not self._fast(q):
-            if ndim(q, "q") == 2:
-                warn_once("Robot.jacobian((N, n) q)")
-                return _batch("jacobian", self, q, frame, reference_or_default(reference, "Robot.jacobian"))
-            q = self._check_q(q)
-        q = q if self._same_coords else self.q_pin(q)
+        if self._fast(q):
+            qp = q if self._same_coords else self.q_pin(q)
+        elif ndim(q, "q") == 2:
+            warn_once("Robot.jacobian((N, n) q)")
+            return _batch("jacobian", self, q, frame, reference_or_default(reference, "Robot.jacobian"))
+        else:
+            qp = self.q_pin(self._check_q(q))
         fid = self.tip_id if frame is None else self.frame_id(frame)
-        J = self._pin.computeFrameJacobian(self.model, self.data, q, fid, rf)
+        J = self._frame_jacobian(self.model, self.data, qp, fid, rf)
         return J.reshape(6, self.n).take(self._swap, axis=0)  # (a one-joint chain's 6×1 comes back as (6,))
 
     def rnea(self, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, threads: int = 1) -> np.ndarray:
@@ -643,19 +664,18 @@ class Robot:
         >>> robot.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(4)
         array([46.107, 11.772])
         """
-        if (type(dq) is type(ddq) is np.ndarray and dq.dtype is ddq.dtype is _F64
+        if (type(dq) is type(ddq) is _ND and dq.dtype is ddq.dtype is _F64
                 and dq.shape == ddq.shape == self._shape and self._fast(q)):
             # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
-            # dq or ddq reaches the result, so one test of the result stands for theirs
-            tau = self._pin.rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
-            if isfinite(tau.dot(tau)):
+            # dq or ddq reaches the result, so one test of the result stands for theirs (hypot: inf
+            # or NaN for a non-finite entry, never an overflow)
+            tau = self._rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
+            if hypot(*tau.tolist()) < _INF:
                 return tau
         elif ndim(q, "q") == 2:
             warn_once("Robot.rnea((N, n) q)")
             return _batch("rnea", self, q, dq, ddq, threads)
-        q, dq, ddq = self._check_q(q), self._check_q(dq, "dq"), self._check_q(ddq, "ddq")
-        q = q if self._same_coords else self.q_pin(q)
-        return self._pin.rnea(self.model, self.data, q, dq, ddq)
+        return self._dynamics_checked(self._rnea, q, dq, ddq, "ddq")
 
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q), Pinocchio's CRBA (both triangles filled).
@@ -679,11 +699,11 @@ class Robot:
         # Pinocchio's Python crba returns a new, symmetric array: its binding mirrors the upper triangle
         # the algorithm computes into the lower one (make_symmetric in bindings/python/algorithm/expose-crba.cpp)
         if self._fast(q):
-            return self._pin.crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
+            return self._crba(self.model, self.data, q if self._same_coords else self.q_pin(q))
         if ndim(q, "q") == 2:
             warn_once("Robot.crba((N, n) q)")
             return _batch("crba", self, q)
-        return self._pin.crba(self.model, self.data, self.q_pin(self._check_q(q)))
+        return self._crba(self.model, self.data, self.q_pin(self._check_q(q)))
 
     def aba(self, q: ArrayLike, dq: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
         """Forward dynamics q̈ = M⁻¹(τ − c − g), Pinocchio's ABA.
@@ -709,18 +729,16 @@ class Robot:
         >>> bool(abs(robot.aba([0.0, 0.0], [0.0, 0.0], robot.gravity_torques([0.0, 0.0]))).max() < 1e-9)
         True
         """
-        if (type(dq) is type(tau) is np.ndarray and dq.dtype is tau.dtype is _F64
+        if (type(dq) is type(tau) is _ND and dq.dtype is tau.dtype is _F64
                 and dq.shape == tau.shape == self._shape and self._fast(q)):
             # as in rnea: one test of the (new) result stands for the inputs' finiteness
-            ddq = self._pin.aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
-            if isfinite(ddq.dot(ddq)):
+            ddq = self._aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
+            if hypot(*ddq.tolist()) < _INF:
                 return ddq
         elif ndim(q, "q") == 2:
             warn_once("Robot.aba((N, n) q)")
             return _batch("aba", self, q, dq, tau, threads)
-        q, dq, tau = self._check_q(q), self._check_q(dq, "dq"), self._check_q(tau, "tau")
-        q = q if self._same_coords else self.q_pin(q)
-        return self._pin.aba(self.model, self.data, q, dq, tau)
+        return self._dynamics_checked(self._aba, q, dq, tau, "tau")
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(q): what the joints must apply to hold the arm still at q.
@@ -740,10 +758,9 @@ class Robot:
         >>> rk.load("twolink").gravity_torques([0.0, 0.0]).round(4)
         array([46.107, 11.772])
         """
-        if not self._fast(q):
-            q = self._check_q(q)
-        q = q if self._same_coords else self.q_pin(q)
-        return self._pin.computeGeneralizedGravity(self.model, self.data, q)  # a new array
+        if self._fast(q):
+            return self._gravity(self.model, self.data, q if self._same_coords else self.q_pin(q))  # a new array
+        return self._gravity(self.model, self.data, self.q_pin(self._check_q(q)))
 
     # ------------------------------------------------------------ batches
     def frame_pose_batch(self, Q: ArrayLike, frame: str | None = None) -> np.ndarray:
@@ -973,6 +990,21 @@ def _read_only(a: ArrayLike) -> np.ndarray:
     out = np.array(a, dtype=float)
     out.setflags(write=False)
     return out
+
+
+def _frozen_poe(poe: PoEParams) -> PoEParams:
+    """``poe`` with every array replaced by a read-only view of it (the arrays themselves stay
+    writeable, for the kernels: :func:`robokit._arrays.writeable_base`)."""
+    from dataclasses import fields, replace
+
+    views = {}
+    for f in fields(poe):
+        a = getattr(poe, f.name)
+        if isinstance(a, np.ndarray):
+            v = a.view()
+            v.flags.writeable = False
+            views[f.name] = v
+    return replace(poe, **views)
 
 
 def _frozen_message(name: str) -> str:

@@ -61,6 +61,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
+from robokit._arrays import kernel_array
 from robokit.errors import InputError, RobokitWarning
 from robokit.ik.solution import IKSolution, _Rows, _RowSolution, check_pose
 from robokit.kernels import calibrated_ik as _kci
@@ -142,8 +143,8 @@ def _geometry(robot: Any, chain: DHChain | None, flip: Sequence[bool] | None) ->
         from robokit.description.urdf_to_dh import joint_axes
 
         lines = [(p, d, k) for p, d, k in joint_axes(robot)]
-        M = np.ascontiguousarray(robot.poe.M, dtype=float)
-        S = np.ascontiguousarray(robot.poe.Slist, dtype=float)
+        M = kernel_array(robot.poe.M, float)  # writeable, as the kernels take them (no copy of a Robot's)
+        S = kernel_array(robot.poe.Slist, float)
         qlim = np.asarray(robot.qlim, dtype=float)
     else:
         R, t = chain.base[:3, :3], chain.base[:3, 3]

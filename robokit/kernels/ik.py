@@ -35,7 +35,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit._arrays import as_array, as_int, as_scalar
+from robokit._arrays import as_array, as_int, as_scalar, kernel_array
 from robokit.errors import InputError
 from robokit.kernels._jit import njit
 from robokit.kernels.dynamics import cholesky_solve
@@ -214,12 +214,14 @@ def solve_poe_ik(M: ArrayLike, Slist: ArrayLike, T: ArrayLike, q0: ArrayLike, ql
     success a bool, iterations the total number of damped steps, restarts how many random
     restarts were used.
     """
-    Slist = np.ascontiguousarray(as_array(Slist, "Slist", (6, None)))
+    # C-contiguous and writeable, as the kernel's signature takes them (a Robot's read-only poe arrays:
+    # their writeable base, robokit._arrays.writeable_base; other read-only arrays: a copy)
+    Slist = kernel_array(as_array(Slist, "Slist", (6, None)))
     n = Slist.shape[1]
-    M = np.ascontiguousarray(as_array(M, "M", (4, 4)))
-    T = np.ascontiguousarray(as_array(T, "T", (4, 4)))
-    q0 = np.ascontiguousarray(as_array(q0, "q0", (n,)))
-    qlim = np.ascontiguousarray(as_array(qlim, "qlim", (n, 2), finite=False))
+    M = kernel_array(as_array(M, "M", (4, 4)))
+    T = kernel_array(as_array(T, "T", (4, 4)))
+    q0 = kernel_array(as_array(q0, "q0", (n,)))
+    qlim = kernel_array(as_array(qlim, "qlim", (n, 2), finite=False))
     if np.isnan(qlim).any() or (qlim[:, 0] > qlim[:, 1]).any():
         raise InputError("qlim: expected rows [lower, upper] with lower <= upper and no NaN")
     tol = as_scalar(tol, "tol", positive=True)

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from robokit._arrays import as_array
+from robokit._arrays import as_array, kernel_array
 from robokit.description.robot import check_robot_radians
 from robokit._optional import require
 from robokit.errors import InputError
@@ -143,9 +143,11 @@ def retime(robot: Any, path: Any, vmax: Any, amax: Any, tau_max: Any = None, *, 
         from robokit.dynamics.newton_euler import inverse_dynamics
         p = robot.poe
         g, F0 = np.array(robot.gravity, dtype=float), np.zeros(6)
+        # the arrays behind robot.poe's read-only views, as the kernel takes them (once, not per call)
+        Ml, Gl, Sl = kernel_array(p.Mlist), kernel_array(p.Glist), kernel_array(p.Slist)
 
         def inv_dyn(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
-            return np.asarray(inverse_dynamics(q, qd, qdd, g, F0, p.Mlist, p.Glist, p.Slist))
+            return np.asarray(inverse_dynamics(q, qd, qdd, g, F0, Ml, Gl, Sl))
 
         cons.append(constraint.JointTorqueConstraint(inv_dyn, np.column_stack([-tm, tm]), np.zeros(n)))
     s = np.linspace(0.0, 1.0, int(grid) + 1)

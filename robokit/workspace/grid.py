@@ -20,6 +20,7 @@ from typing import Any, Callable, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robokit._arrays import kernel_array
 from robokit.errors import InputError
 
 
@@ -41,9 +42,10 @@ def tool_positions(poe: PoEParams, Q: np.ndarray) -> np.ndarray:
     by the compiled PoE kernel (:func:`robokit.kernels.poe.fkin_space_batch`, robokit's one PoE FK)."""
     from robokit.kernels.poe import fkin_space_batch
 
-    M = np.ascontiguousarray(poe.M, dtype=float)
-    S = np.ascontiguousarray(poe.Slist, dtype=float)
-    return fkin_space_batch(M, S, np.ascontiguousarray(Q, dtype=float))[:, :3, 3]
+    # writeable, as the kernel takes them (a Robot's read-only poe: the arrays behind its views, no copy)
+    M = kernel_array(poe.M, float)
+    S = kernel_array(poe.Slist, float)
+    return fkin_space_batch(M, S, kernel_array(Q, float))[:, :3, 3]
 
 
 def _ranges(qlim: ArrayLike) -> tuple[np.ndarray, np.ndarray]:

@@ -42,6 +42,95 @@ def test_assignment_raises_naming_the_attribute_and_the_copies():
     assert isinstance(robot.notes, tuple) and isinstance(robot.frame_names, tuple)
 
 
+POE_ARRAYS = ["M", "Slist", "Blist", "Mlist", "Glist", "qlim", "gravity"]
+
+
+def _pinocchio(robot, q, dq, ddq):
+    """Pinocchio's own answers on a fresh Data: tip pose, Jacobian (rows ω; v, LOCAL_WORLD_ALIGNED),
+    τ by RNEA, the mass matrix."""
+    import pinocchio as pin
+
+    m = robot.model
+    d = m.createData()
+    pin.forwardKinematics(m, d, q)
+    T = pin.updateFramePlacement(m, d, robot.tip_id).homogeneous
+    J = pin.computeFrameJacobian(m, d, q, robot.tip_id, pin.LOCAL_WORLD_ALIGNED)
+    return T, np.vstack([J[3:], J[:3]]), pin.rnea(m, d, q, dq, ddq), pin.crba(m, d, q)
+
+
+@pytest.mark.parametrize("name", ["ur5", "puma560", "panda"])
+def test_poe_arrays_are_read_only_and_the_kernels_answer_as_pinocchio(name):
+    """robot.poe's arrays refuse in-place edits; the compiled kernels that take them (the batch
+    methods, the seed functions, the compiled IK, the workspace's FK) answer as Pinocchio does, and as
+    they do on writeable copies of the same arrays, bit for bit."""
+    from robokit._arrays import kernel_array
+    from robokit.workspace.grid import tool_positions
+
+    robot = robokit.load(name)
+    p = robot.poe
+    for field in POE_ARRAYS:
+        arr = getattr(p, field)
+        assert not arr.flags.writeable, field
+        before = arr.copy()
+        with pytest.raises(ValueError, match="read-only"):
+            arr[(0,) * arr.ndim] = 1.0
+        with pytest.raises(ValueError, match="read-only"):
+            arr += 1.0
+        assert np.array_equal(arr, before)
+        base = kernel_array(arr)  # what the kernels are given: the writeable array behind the view, no copy
+        assert base.flags.writeable and base is kernel_array(arr) and np.array_equal(base, arr)
+    copies = {f: getattr(p, f).copy() for f in POE_ARRAYS}
+    rng = np.random.default_rng(3)
+    Q = np.array([robot.random_configuration(rng) for _ in range(4)])
+    dQ, ddQ = rng.normal(size=Q.shape), rng.normal(size=Q.shape)
+    Tb, Jb, Mb = robot.frame_pose_batch(Q), robot.jacobian_batch(Q), robot.crba_batch(Q)
+    P = tool_positions(p, Q)
+    z6 = np.zeros(6)
+    for k, (q, dq, ddq) in enumerate(zip(Q, dQ, ddQ)):
+        T, J, tau, M = _pinocchio(robot, q, dq, ddq)
+        assert np.abs(Tb[k] - T).max() <= 1e-12 * max(1.0, np.abs(T).max())
+        assert np.abs(P[k] - T[:3, 3]).max() <= 1e-12 * max(1.0, np.abs(T).max())
+        assert np.abs(Jb[k] - J).max() <= 1e-12 * max(1.0, np.abs(J).max())
+        assert np.abs(Mb[k] - M).max() <= 1e-12 * np.abs(M).max()
+        T_seed = robokit.fkin_space(p.M, p.Slist, q)
+        tau_seed = robokit.inverse_dynamics(q, dq, ddq, robot.gravity, z6, p.Mlist, p.Glist, p.Slist)
+        M_seed = robokit.mass_matrix(q, p.Mlist, p.Glist, p.Slist)
+        assert np.abs(T_seed - T).max() <= 1e-12 * max(1.0, np.abs(T).max())
+        assert np.abs(tau_seed - tau).max() <= 1e-9 * max(1.0, np.abs(tau).max())
+        assert np.abs(M_seed - M).max() <= 1e-9 * np.abs(M).max()
+        # the same numbers as from writeable copies (the path robot.poe took before it was read-only)
+        assert np.array_equal(T_seed, robokit.fkin_space(copies["M"], copies["Slist"], q))
+        assert np.array_equal(tau_seed, robokit.inverse_dynamics(q, dq, ddq, np.array(robot.gravity), z6,
+                                                                 copies["Mlist"], copies["Glist"], copies["Slist"]))
+        assert np.array_equal(M_seed, robokit.mass_matrix(q, copies["Mlist"], copies["Glist"], copies["Slist"]))
+    T = robot.frame_pose(Q[0])
+    sol = robokit.solve_ik(robot, T, q0=Q[0] + 0.05, method="compiled")
+    assert sol.success and np.abs(robot.frame_pose(sol.q) - T).max() < 1e-9
+    for field in POE_ARRAYS:  # nothing wrote into them
+        assert np.array_equal(getattr(p, field), copies[field]), field
+
+
+def test_kernel_array_passes_only_a_whole_view_of_a_writeable_array():
+    """A read-only view with its base's shape and strides is the base read the same way: passed as is;
+    any other read-only array (a slice, a transposed view, a read-only array of its own) is copied."""
+    from robokit._arrays import kernel_array, kernel_arrays, writeable_base
+
+    a = np.arange(12.0).reshape(3, 4).copy()  # owns its memory (a reshape is a view of the arange)
+    whole = a.view()
+    whole.flags.writeable = False
+    assert writeable_base(whole) is a and kernel_array(whole) is a
+    assert kernel_arrays((whole, np.zeros(2)), (2, 1))[0] is a
+    owned = a.copy()
+    owned.flags.writeable = False  # read-only memory of its own: its views have no writeable base
+    for ro in (a[:, 1:], a[1:], a.T, a[::-1], owned):
+        ro = ro.view()
+        ro.flags.writeable = False
+        assert writeable_base(ro) is None
+        out = kernel_array(ro)
+        assert out.flags.writeable and out.flags.c_contiguous and np.array_equal(out, ro)
+        assert not np.shares_memory(out, a) and not np.shares_memory(out, owned)
+
+
 def test_with_limits_gives_a_new_robot_and_leaves_the_original():
     robot = robokit.load("ur5")
     before = robot.qlim.copy()
@@ -186,3 +275,46 @@ def test_crba_is_the_full_symmetric_matrix(name):
         upper = np.triu(data.M)
         assert np.array_equal(M, upper + np.triu(upper, 1).T)
         assert np.abs(M - robot.crba_batch(q[None])[0]).max() <= 1e-12 * np.abs(M).max()
+
+
+@pytest.mark.parametrize("name", ["ur5", "panda"])
+def test_fast_paths_answer_as_pinocchio_in_new_arrays(name):
+    """The one-configuration methods on float64 (n,) arrays (the fast paths: q inside the ball
+    ``hypot(q) ≤ r``, or outside it with every entry in ``[lo₁, hi₁]``) and on lists (the checked
+    path) give Pinocchio's numbers bit for bit, each call a new array; NaN and inf in q, dq or q̈
+    take the checked path (its error)."""
+    import pinocchio as pin
+
+    robot = robokit.load(name)
+    rng = np.random.default_rng(9)
+    r1, lo1, hi1 = robot._r1, robot._lo1, robot._hi1
+    inside = rng.uniform(-1, 1, robot.n)
+    inside *= 0.5 * r1 / np.linalg.norm(inside)
+    outside = np.full(robot.n, 0.9 * hi1)  # hypot > r, every entry within [lo₁, hi₁]: the sorted test
+    outside[::2] = 0.9 * lo1
+    assert np.hypot.reduce(outside) > r1
+    for q in (inside, outside, robot.random_configuration(rng)):
+        dq, ddq = rng.normal(size=robot.n), rng.normal(size=robot.n)
+        T, J, tau, M = _pinocchio(robot, q, dq, ddq)
+        d = robot.model.createData()
+        ddq_pin = pin.aba(robot.model, d, q, dq, tau)
+        g = pin.computeGeneralizedGravity(robot.model, d, q)
+        for arg in (q, q.tolist()):
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")  # no degrees warning on these radians
+                got = [robot.frame_pose(arg), robot.jacobian(arg), robot.rnea(arg, dq, ddq), robot.crba(arg),
+                       robot.aba(arg, dq, tau), robot.gravity_torques(arg)]
+            again = [robot.frame_pose(arg), robot.jacobian(arg), robot.rnea(arg, dq, ddq), robot.crba(arg),
+                     robot.aba(arg, dq, tau), robot.gravity_torques(arg)]
+            for a, b, want in zip(got, again, (T, J, tau, M, ddq_pin, g)):
+                assert np.array_equal(a, want) and np.array_equal(b, want)
+                assert a is not b and not np.shares_memory(a, b)  # a new array each call, not a reused buffer
+    for bad in (np.nan, np.inf):
+        q = np.zeros(robot.n)
+        q[1] = bad
+        for call in (lambda: robot.frame_pose(q), lambda: robot.jacobian(q), lambda: robot.crba(q),
+                     lambda: robot.gravity_torques(q), lambda: robot.rnea(q, np.zeros(robot.n), np.zeros(robot.n)),
+                     lambda: robot.rnea(np.zeros(robot.n), np.zeros(robot.n), q),
+                     lambda: robot.aba(np.zeros(robot.n), q, np.zeros(robot.n))):
+            with pytest.raises(InputError, match="NaN or infinite"):
+                call()
