@@ -164,6 +164,10 @@ class Robot:
         self.collision_model = collision_model
         self.tip = tip
         self.tip_id = frame_index(model, tip)
+        if dh is not None:  # the robot's own copy of the table, its arrays read-only like the robot's
+            from dataclasses import replace
+
+            dh = replace(dh, base=_read_only(dh.base), tool=_read_only(dh.tool), gravity=_read_only(dh.gravity))
         self.dh = dh
         if spec is not None:
             self.spec = spec

@@ -318,3 +318,28 @@ def test_fast_paths_answer_as_pinocchio_in_new_arrays(name):
                      lambda: robot.aba(np.zeros(robot.n), q, np.zeros(robot.n))):
             with pytest.raises(InputError, match="NaN or infinite"):
                 call()
+
+
+def test_a_dh_robots_table_is_read_only_and_its_ik_follows_pinocchio():
+    """The DH table a robot holds is its own copy with read-only base, tool and gravity: an in-place
+    edit raises (before, it changed the closed-form IK's frames while Pinocchio's FK stayed), and the
+    table given to the robot is left as it was."""
+    import dataclasses
+
+    from robokit.description.robot import Robot
+
+    robot = robokit.load("puma560")
+    for name in ("base", "tool", "gravity"):
+        with pytest.raises(ValueError, match="read-only"):
+            getattr(robot.dh, name)[..., 0] = 1.0
+    # a robot built from a user's writeable table copies it: the user's arrays stay writeable
+    table = dataclasses.replace(robot.dh, base=np.array(robot.dh.base), tool=np.array(robot.dh.tool))
+    again = Robot(robot.name, robot.model, robot.tip, dh=table)
+    assert table.base.flags.writeable and not again.dh.base.flags.writeable
+    table.base[0, 3] += 0.1  # the user's edit does not reach the robot
+    q = np.linspace(-0.8, 0.9, 6)
+    T = again.frame_pose(q)
+    sols = robokit.ik_analytic(again, T)
+    assert any(np.abs(np.asarray(s.q) - q).max() < 1e-9 for s in sols)
+    for s in sols:
+        assert np.abs(again.frame_pose(np.asarray(s.q)) - T).max() < 1e-9
