@@ -156,7 +156,7 @@ def test_the_entry_points_are_the_kernels():
     P, modified, base, tool = pack_dh(robot.dh)[:4]
     for q in Q:
         np.testing.assert_array_equal(robot.dh.fk(q), dh_fk(P, modified, base, tool, q))
-    M, S = np.ascontiguousarray(robot.poe.M), np.ascontiguousarray(robot.poe.Slist)
+    M, S = np.array(robot.poe.M), np.array(robot.poe.Slist)  # writeable copies, as the kernels take them
     np.testing.assert_array_equal(tool_positions(robot.poe, Q), fkin_space_batch(M, S, Q)[:, :3, 3])
     # and against Pinocchio (independent): the PoE product of the kernel's factors
     E = screw_exponentials(S, Q)

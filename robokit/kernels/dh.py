@@ -54,6 +54,11 @@ _TABLE = f"{_A2}, int64, {_A2}, {_A2}"  # P, modified, base, tool
 _INERTIA = f"{_A1}, {_A2}, {_A3}"  # mass, com, inertia
 
 # ``table`` is typed Any: kernels sit below robokit.description (tests/test_layers.py).
+def _kernel_matrix(a: Any) -> np.ndarray:
+    a = np.ascontiguousarray(a, dtype=float)
+    return a if a.flags.writeable else np.array(a)
+
+
 def pack_dh(table: Any) -> tuple[np.ndarray, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The arrays of a :class:`robokit.DHTable` in the kernels' layout (see the module docstring):
     ``(P, modified, base, tool, mass, com, inertia)``. Packed once per table and kept on it (a
@@ -71,8 +76,11 @@ def pack_dh(table: Any) -> tuple[np.ndarray, int, np.ndarray, np.ndarray, np.nda
         mass[i] = link.mass
         com[i] = np.asarray(link.com, dtype=float)
         inertia[i] = link.inertia_matrix
-    packed = (P, 1 if table.convention == "modified" else 0, np.ascontiguousarray(table.base, dtype=float),
-              np.ascontiguousarray(table.tool, dtype=float), mass, com, inertia)
+    # the table's own arrays when the kernels' signatures take them (writeable C-contiguous float64:
+    # an in-place edit of a table of one's own is then seen, and followed by the closed-form IK),
+    # else a private copy (a robot's table holds read-only base and tool: they cannot change)
+    packed = (P, 1 if table.convention == "modified" else 0, _kernel_matrix(table.base),
+              _kernel_matrix(table.tool), mass, com, inertia)
     table.__dict__["_packed"] = packed  # beside the frozen dataclass's fields, as kinematics/dh.py's flip signs
     return packed
 

@@ -167,19 +167,49 @@ def fkin_body(M: np.ndarray, Blist: np.ndarray, thetalist: np.ndarray) -> np.nda
     return W[0].copy()
 
 
-@njit(_SIG_FK_BATCH, interpret_while_compiling=FK_BATCH)
+@njit
+def fkin_space_rows(lo: int, hi: int, M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
+    """out[k] ← space-form FK of row k, for lo ≤ k < hi (one block of a batched call)."""
+    W = np.empty((2, 4, 4))
+    for k in range(lo, hi):
+        fkin_space_into(M, Slist, thetas[k], out[k], W[0], W[1])
+
+
+@njit
+def fkin_body_rows(lo: int, hi: int, M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
+    """out[k] ← body-form FK of row k, for lo ≤ k < hi."""
+    W = np.empty((2, 4, 4))
+    for k in range(lo, hi):
+        fkin_body_into(M, Blist, thetas[k], out[k], W[0], W[1])
+
+
+@njit(_SIG_FK_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def fkin_space_batch(M: np.ndarray, Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), space form."""
-    out = np.empty((thetas.shape[0], 4, 4))
-    batch_into(np.int64(FK_SPACE), M, Slist, thetas, out)
+    N = thetas.shape[0]
+    out = np.empty((N, 4, 4))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        fkin_space_rows(np.int64(0), N, M, Slist, thetas, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        fkin_space_rows(lo, hi, M, Slist, thetas, out)
     return out
 
 
-@njit(_SIG_FK_BATCH, interpret_while_compiling=FK_BATCH)
+@njit(_SIG_FK_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
 def fkin_body_batch(M: np.ndarray, Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
     """Poses (N, 4, 4) for the N configurations in the rows of ``thetas`` (N, n), body form."""
-    out = np.empty((thetas.shape[0], 4, 4))
-    batch_into(np.int64(FK_BODY), M, Blist, thetas, out)
+    N = thetas.shape[0]
+    out = np.empty((N, 4, 4))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        fkin_body_rows(np.int64(0), N, M, Blist, thetas, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        fkin_body_rows(lo, hi, M, Blist, thetas, out)
     return out
 
 
@@ -230,53 +260,49 @@ def jacobian_body(Blist: np.ndarray, thetalist: np.ndarray) -> np.ndarray:
     return J
 
 
-@njit(_SIG_J_BATCH, interpret_while_compiling=FK_BATCH)
-def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
-    """Space Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
-    out = np.empty((thetas.shape[0], 6, Slist.shape[1]))
-    batch_into(np.int64(J_SPACE), Slist, Slist, thetas, out)  # (no M: the screws stand in, unused)
-    return out
-
-
-@njit(_SIG_J_BATCH, interpret_while_compiling=FK_BATCH)
-def jacobian_body_batch(Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
-    """Body Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
-    out = np.empty((thetas.shape[0], 6, Blist.shape[1]))
-    batch_into(np.int64(J_BODY), Blist, Blist, thetas, out)
-    return out
-
-
-# ------------------------------------------------------------------ the batched kernels' one loop
-#: What :func:`rows_into` computes for each configuration.
-FK_SPACE, FK_BODY, J_SPACE, J_BODY = 0, 1, 2, 3
+@njit
+def jacobian_space_rows(lo: int, hi: int, Slist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
+    """out[k] ← space Jacobian of row k, for lo ≤ k < hi."""
+    W = np.empty((3, 4, 4))
+    for k in range(lo, hi):
+        jacobian_space_into(Slist, thetas[k], out[k], W[0], W[1], W[2])
 
 
 @njit
-def rows_into(lo: int, hi: int, what: int, M: np.ndarray, screws: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
-    """out[k] ← for lo ≤ k < hi the pose (``what`` FK_SPACE, FK_BODY: space or body form, home
-    pose M) or the Jacobian (J_SPACE, J_BODY; M unused) at row k of ``thetas`` (one block of a
-    batched call; the scratch space allocated once)."""
+def jacobian_body_rows(lo: int, hi: int, Blist: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
+    """out[k] ← body Jacobian of row k, for lo ≤ k < hi."""
     W = np.empty((3, 4, 4))
     for k in range(lo, hi):
-        if what == FK_SPACE:
-            fkin_space_into(M, screws, thetas[k], out[k], W[0], W[1])
-        elif what == FK_BODY:
-            fkin_body_into(M, screws, thetas[k], out[k], W[0], W[1])
-        elif what == J_SPACE:
-            jacobian_space_into(screws, thetas[k], out[k], W[0], W[1], W[2])
-        else:
-            jacobian_body_into(screws, thetas[k], out[k], W[0], W[1], W[2])
+        jacobian_body_into(Blist, thetas[k], out[k], W[0], W[1], W[2])
 
 
-@njit(parallel=True)
-def batch_into(what: int, M: np.ndarray, screws: np.ndarray, thetas: np.ndarray, out: np.ndarray) -> None:
-    """:func:`rows_into` over all N rows of ``thetas``: serially below :data:`SERIAL_BELOW` rows,
-    else in :func:`n_blocks` blocks spread over the cores."""
+
+@njit(_SIG_J_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
+def jacobian_space_batch(Slist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
+    """Space Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
     N = thetas.shape[0]
+    out = np.empty((N, 6, Slist.shape[1]))
     if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
-        rows_into(np.int64(0), N, what, M, screws, thetas, out)
-        return
+        jacobian_space_rows(np.int64(0), N, Slist, thetas, out)
+        return out
     nb = n_blocks(N)
     for b in prange(nb):
         lo, hi = block_range(b, nb, N)
-        rows_into(lo, hi, what, M, screws, thetas, out)
+        jacobian_space_rows(lo, hi, Slist, thetas, out)
+    return out
+
+
+@njit(_SIG_J_BATCH, parallel=True, interpret_while_compiling=FK_BATCH)
+def jacobian_body_batch(Blist: np.ndarray, thetas: np.ndarray) -> np.ndarray:
+    """Body Jacobians (N, 6, n) for the rows of ``thetas`` (N, n)."""
+    N = thetas.shape[0]
+    out = np.empty((N, 6, Blist.shape[1]))
+    if N < SERIAL_BELOW:  # too few rows to pay for waking the threads
+        jacobian_body_rows(np.int64(0), N, Blist, thetas, out)
+        return out
+    nb = n_blocks(N)
+    for b in prange(nb):
+        lo, hi = block_range(b, nb, N)
+        jacobian_body_rows(lo, hi, Blist, thetas, out)
+    return out
+

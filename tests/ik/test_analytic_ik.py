@@ -131,7 +131,11 @@ def test_analytic_ik_object_matches_ik_analytic_and_gives_a_reason():
 
 # ---------------------------------------------------------------------------- cache ownership
 def _puma_table():
-    return rk.load("puma560").dh
+    """The PUMA's DH table as a table of one's own (a robot's table has read-only base and tool)."""
+    import dataclasses
+
+    dh = rk.load("puma560").dh
+    return dataclasses.replace(dh, base=np.array(dh.base), tool=np.array(dh.tool))
 
 
 def test_editing_base_in_place_invalidates_the_cached_solver():

@@ -37,7 +37,7 @@ def random_chain(seed, n):
 
 
 def _c(*arrays):
-    return [np.ascontiguousarray(a, dtype=float) for a in arrays]
+    return [np.array(a, dtype=float, order="C") for a in arrays]  # writeable copies, as the kernels take them
 
 
 def _rel(a, b):

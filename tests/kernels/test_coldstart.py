@@ -176,7 +176,7 @@ def test_interpreted_twins_match_the_compiled_kernels():
     r = rk.load("puma560")
     p = r.poe
     c = np.ascontiguousarray
-    M, S, B, Ml, Gl, g = c(p.M), c(p.Slist), c(p.Blist), c(p.Mlist), c(p.Glist), r.gravity.copy()  # writeable
+    M, S, B, Ml, Gl, g = (np.array(a) for a in (p.M, p.Slist, p.Blist, p.Mlist, p.Glist, r.gravity))  # writeable copies, as the kernels take them
     rng = np.random.default_rng(3)
     q, dq, ddq = (c(rng.uniform(-2, 2, 6)) for _ in range(3))
     F = np.zeros(6)

@@ -17,7 +17,8 @@ def robots():
 
 
 def _c(*arrays):
-    return [np.ascontiguousarray(a, dtype=float) for a in arrays]
+    # the kernels take writeable C-contiguous float64 arrays (their contract); robot.poe's are read-only
+    return [np.array(a, dtype=float, order="C") for a in arrays]
 
 
 def rel(a, b):
