@@ -108,7 +108,7 @@ def _cases(name: str, count: int, near_singular: bool, rng: np.random.Generator)
             q[wrist] = float(np.clip(rng.uniform(-1e-3, 1e-3), lo[wrist], hi[wrist]))
         out.append((robot.frame_pose(q), rng.uniform(lo, hi)))
     p = robot.poe
-    return np.ascontiguousarray(p.M), np.ascontiguousarray(p.Slist), qlim, out
+    return np.array(p.M), np.array(p.Slist), qlim, out  # writeable copies, as the kernels take them
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -129,7 +129,7 @@ _STEADY = r"""
 import time, numpy as np, robokit as rk
 from robokit.kernels import poe
 r = rk.load('ur5'); p = r.poe
-M, S, q = np.ascontiguousarray(p.M), np.ascontiguousarray(p.Slist), np.zeros(r.n)
+M, S, q = np.array(p.M), np.array(p.Slist), np.zeros(r.n)  # writeable copies, as the kernel takes them
 t0 = time.monotonic()
 while not poe.fkin_space.signatures:  # background: runs as Python until the worker is done
     poe.fkin_space(M, S, q); time.sleep(0.05)
