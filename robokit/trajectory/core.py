@@ -12,6 +12,16 @@ each degree of freedom. Here it is sampled on a time grid:
 Piecewise polynomials are stored per segment in *local* time ``τ = t − t_i`` with
 ascending coefficients ``c0 + c1 τ + c2 τ² + …``; :func:`eval_piecewise` evaluates
 position, velocity and acceleration of such a spline on any time grid.
+
+The single-segment generators (:mod:`robokit.trajectory.polynomial` and
+:func:`robokit.trajectory.lspb.lspb_trajectory`) share these parameters, defined here once:
+
+* ``q0, qf`` — float or array_like (n,): start and end positions, one entry per axis (rad or m);
+* ``tf`` — float: the duration, s (> 0); the move runs on ``[0, tf]``;
+* ``t`` — None, int or array_like (K,): the sample grid on ``[0, tf]``: None (101 samples), a
+  number of samples (ends included), or increasing times (:func:`sample_times`);
+* ``qd0, qdf`` and ``qdd0, qddf`` — float or array_like (n,), optional: end velocities
+  (rad/s or m/s) and end accelerations (rad/s² or m/s²), default 0.
 """
 from __future__ import annotations
 

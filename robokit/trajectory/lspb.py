@@ -78,12 +78,8 @@ def lspb_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | None
 
     Parameters
     ----------
-    q0, qf : float or array (n,)
-        Start and end positions (rad or m).
-    tf : float
-        Duration t_f > 0, s.
-    t : None, int or array (K,)
-        Sample grid on ``[0, tf]`` (None: 101 samples; int: number of samples).
+    q0, qf, tf, t
+        End positions θ0, θf, duration t_f and sample grid (see :mod:`robokit.trajectory.core`).
     blend_time : float, optional
         Blend duration t_b, the same for all axes, with 0 < t_b ≤ t_f/2.
     acceleration : float or array (n,), optional

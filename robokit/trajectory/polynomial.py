@@ -70,12 +70,8 @@ def cubic_coefficients(q0: ArrayLike, qf: ArrayLike, tf: float, qd0: ArrayLike |
 
     Parameters
     ----------
-    q0, qf : float or array, shape (n,)
-        Start and end positions (rad or m), one entry per axis.
-    tf : float
-        Duration T > 0, s.
-    qd0, qdf : float or array (n,), optional
-        Start and end velocities (default 0), rad/s or m/s.
+    q0, qf, tf, qd0, qdf
+        End positions, duration T and end velocities (see :mod:`robokit.trajectory.core`).
 
     Returns
     -------
@@ -101,12 +97,9 @@ def quintic_coefficients(q0: ArrayLike, qf: ArrayLike, tf: float, qd0: ArrayLike
 
     Parameters
     ----------
-    q0, qf : float or array (n,)
-        Start and end positions (rad or m).
-    tf : float
-        Duration T > 0, s.
-    qd0, qdf, qdd0, qddf : float or array (n,), optional
-        End velocities and accelerations (default 0).
+    q0, qf, tf, qd0, qdf, qdd0, qddf
+        End positions, duration T, end velocities and accelerations (see
+        :mod:`robokit.trajectory.core`).
 
     Returns
     -------
@@ -150,15 +143,9 @@ def cubic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | Non
 
     Parameters
     ----------
-    q0, qf : float or array (n,)
-        Start and end positions.
-    tf : float
-        Duration, s (> 0).
-    t : None, int or array (K,)
-        Sample grid on ``[0, tf]``: None (101 samples), a number of samples (ends
-        included), or increasing times.
-    qd0, qdf : float or array (n,), optional
-        End velocities (default 0).
+    q0, qf, tf, t, qd0, qdf
+        The cubic's ends, duration, sample grid and end velocities (see
+        :mod:`robokit.trajectory.core`).
 
     Returns
     -------
@@ -184,17 +171,9 @@ def quintic_trajectory(q0: ArrayLike, qf: ArrayLike, tf: float, t: ArrayLike | N
 
     Parameters
     ----------
-    q0, qf : float or array_like, shape (n,)
-        Start and end positions (rad or m).
-    tf : float
-        Duration, s (> 0).
-    t : None, int or array_like, shape (K,), optional
-        Sample grid on ``[0, tf]``: None (101 samples), a number of samples (ends included), or
-        increasing times.
-    qd0, qdf : float or array_like, shape (n,), optional
-        End velocities (default 0).
-    qdd0, qddf : float or array_like, shape (n,), optional
-        End accelerations (default 0).
+    q0, qf, tf, t, qd0, qdf, qdd0, qddf
+        The quintic's ends, duration, sample grid, end velocities and accelerations (see
+        :mod:`robokit.trajectory.core`).
 
     Returns
     -------

@@ -85,15 +85,13 @@ def quintic_time_scaling(Tf: float, t: ArrayLike) -> float | np.ndarray:
 
     Parameters
     ----------
-    Tf : float
-        Total time, s (> 0).
-    t : float or array_like
-        Current time(s), s (usually in [0, Tf]; the polynomial is evaluated as is outside).
+    Tf, t : float, float or array_like
+        Total time and current time(s), as for :func:`cubic_time_scaling`.
 
     Returns
     -------
     float or numpy.ndarray
-        The path parameter s ∈ [0, 1] for t ∈ [0, Tf], same shape as ``t``.
+        The quintic's s, shaped like ``t`` (as for :func:`cubic_time_scaling`).
 
     Examples
     --------
@@ -175,6 +173,11 @@ def _grid(Tf: float, N: int, method: int | str) -> np.ndarray:
     return s
 
 
+def _pose_grid(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, method: int | str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    # the checked end poses and the N values of s, for the two pose trajectories
+    return check_transform(Xstart, "Xstart"), check_transform(Xend, "Xend"), _grid(Tf, N, method)
+
+
 def joint_trajectory(thetastart: ArrayLike, thetaend: ArrayLike, Tf: float, N: int, method: int | str) -> np.ndarray:
     """Straight-line joint-space trajectory with cubic or quintic time scaling (seed 004 §5).
 
@@ -234,9 +237,7 @@ def screw_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, meth
     >>> [float(X[0, 3]) for X in screw_trajectory(np.eye(4), X1, 1, 3, 3)]
     [0.0, 0.5, 1.0]
     """
-    X0 = check_transform(Xstart, "Xstart")
-    X1 = check_transform(Xend, "Xend")
-    s = _grid(Tf, N, method)
+    X0, X1, s = _pose_grid(Xstart, Xend, Tf, N, method)
     V = lie.log6(lie.inv(X0) @ X1)
     out = [X0 @ lie.exp6(V * si) for si in s]
     out[0] = X0.copy()
@@ -252,14 +253,8 @@ def cartesian_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, 
 
     Parameters
     ----------
-    Xstart, Xend : array_like, shape (4, 4)
-        Start and end poses in SE(3) (``T_world_tool``, m).
-    Tf : float
-        Total time, s (> 0).
-    N : int
-        Number of points (≥ 2), evenly spaced in time.
-    method : {3, 5}
-        Cubic or quintic time scaling (``"cubic"``, ``"quintic"`` also accepted).
+    Xstart, Xend, Tf, N, method
+        As for :func:`screw_trajectory` (poses in m).
 
     Returns
     -------
@@ -268,14 +263,14 @@ def cartesian_trajectory(Xstart: ArrayLike, Xend: ArrayLike, Tf: float, N: int, 
 
     Examples
     --------
-    >>> import numpy as np
-    >>> X1 = np.eye(4); X1[:3, 3] = [0, 2, 0]
-    >>> [float(X[1, 3]) for X in cartesian_trajectory(np.eye(4), X1, 1, 3, 5)]
-    [0.0, 1.0, 2.0]
+    A quarter turn about z on the way to x = 1 m: the midpoint stays on the straight line, where
+    the constant screw of :func:`screw_trajectory` swings out to y = −0.2071 m:
+
+    >>> X1 = rk.Rp_to_trans(rk.euler_to_matrix([np.pi / 2, 0, 0]), [1, 0, 0])
+    >>> cartesian_trajectory(np.eye(4), X1, 1, 3, 5)[1][:3, 3], screw_trajectory(np.eye(4), X1, 1, 3, 5)[1][:3, 3]
+    (array([0.5, 0. , 0. ]), array([ 0.5   , -0.2071,  0.    ]))
     """
-    X0 = check_transform(Xstart, "Xstart")
-    X1 = check_transform(Xend, "Xend")
-    s = _grid(Tf, N, method)
+    X0, X1, s = _pose_grid(Xstart, Xend, Tf, N, method)
     R0, p0 = X0[:3, :3], X0[:3, 3]
     R1, p1 = X1[:3, :3], X1[:3, 3]
     w = lie.log3(R0.T @ R1)
