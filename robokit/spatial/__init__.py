@@ -4,6 +4,12 @@ Modules: ``basics`` (near_zero, normalize), ``so3`` (SO(3)/so(3), ZYX Euler of t
 library), ``se3`` (SE(3)/se(3), adjoints), ``euler`` (all 12 sequences, intrinsic and
 extrinsic), ``quaternion`` (scalar first), ``axis_angle`` (Rodrigues, two-vector), ``se2``
 (planar poses), ``lines`` (the common normal of two lines). Twists are ``(ω, v)``, angular first; quaternions ``(w, x, y, z)``.
+
+A parameter ``R`` of these modules is a 3×3 rotation matrix and ``T`` a 4×4 homogeneous
+transform, checked on entry by :func:`~robokit.spatial.so3.check_rotation` and
+:func:`~robokit.spatial.se3.check_transform` (distance to SO(3) ≤ 1e-6, last row
+``[0, 0, 0, 1]``; :class:`~robokit.errors.InputError` otherwise); each function's docstring
+says only what its ``R`` or ``T`` is to it.
 """
 from robokit.spatial.basics import *  # noqa: F401,F403
 from robokit.spatial.basics import __all__ as _basics_all

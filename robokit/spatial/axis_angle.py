@@ -33,7 +33,7 @@ def matrix_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
     Returns
     -------
     (3, 3) ndarray
-        The rotation matrix.
+        ``R = exp([ω̂]θ)``, ω̂ the normalised axis.
 
     Examples
     --------
@@ -55,7 +55,7 @@ def axis_angle_from_matrix(R: ArrayLike) -> tuple[np.ndarray, float]:
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked).
+        The rotation whose axis and angle are returned (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------

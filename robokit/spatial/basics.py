@@ -168,12 +168,12 @@ def rad2deg(x: ArrayLike) -> float | np.ndarray:
     Returns
     -------
     float or numpy.ndarray
-        A float for a scalar, a float64 array of the same shape for an array.
+        ``x`` in degrees, a float or an array as for :func:`deg2rad`.
 
     Raises
     ------
     InputError
-        Non-numeric input (strings, booleans, complex values).
+        As for :func:`deg2rad`.
 
     Examples
     --------

@@ -124,7 +124,7 @@ def matrix_from_euler(angles: ArrayLike, seq: str = "ZYX", extrinsic: bool = Fal
     Returns
     -------
     (3, 3) ndarray
-        The rotation matrix.
+        ``R₁(a) R₂(b) R₃(c)`` (intrinsic) or ``R₃(c) R₂(b) R₁(a)`` (extrinsic).
 
     Examples
     --------
@@ -188,7 +188,7 @@ def euler_from_matrix(R: ArrayLike, seq: str = "ZYX", extrinsic: bool = False, r
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked).
+        The rotation to write as angles about the axes of ``seq`` (checked: see :mod:`robokit.spatial`).
     seq : str
         One of the 12 sequences (default "ZYX").
     extrinsic : bool

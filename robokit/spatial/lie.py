@@ -349,7 +349,7 @@ def adjoint(T: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     T : (..., 4, 4) ndarray
-        Poses ``T_a_b``.
+        Poses, as for :func:`inv`.
 
     Returns
     -------

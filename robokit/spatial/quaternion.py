@@ -68,7 +68,7 @@ def quaternion_from_matrix(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked).
+        The rotation to convert (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------
@@ -113,7 +113,7 @@ def matrix_from_quaternion(q: ArrayLike) -> np.ndarray:
     Returns
     -------
     (3, 3) ndarray
-        The rotation matrix.
+        ``R(q)``, the same for q and −q.
 
     Examples
     --------
@@ -135,10 +135,8 @@ def quaternion_from_axis_angle(axis: ArrayLike, angle: float) -> np.ndarray:
 
     Parameters
     ----------
-    axis : (3,) array_like
-        Rotation axis (normalised here; not zero).
-    angle : float
-        Rotation angle θ (rad).
+    axis, angle
+        As for :func:`robokit.spatial.axis_angle.matrix_from_axis_angle`.
 
     Returns
     -------

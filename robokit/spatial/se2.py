@@ -84,7 +84,7 @@ def se2_compose(*poses: ArrayLike) -> np.ndarray:
     Returns
     -------
     (3,) ndarray
-        The composed pose, θ ∈ (−π, π].
+        The last frame's pose in the first one's reference frame (θ wrapped as the module docstring says).
 
     Examples
     --------
@@ -107,12 +107,12 @@ def se2_inverse(pose: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     pose : (3,) array_like
-        (x, y, θ) (m, m, rad).
+        A planar pose, as for :func:`se2_from_pose`.
 
     Returns
     -------
     (3,) ndarray
-        The inverse pose, θ ∈ (−π, π].
+        ``⊖p``: the reference frame's pose seen from the frame ``pose`` places.
 
     Examples
     --------

@@ -103,7 +103,7 @@ def trans_to_Rp(T: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     T : (4, 4) array_like
-        A homogeneous transform (checked).
+        The pose to split (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------
@@ -407,8 +407,8 @@ def test_if_SE3(mat: ArrayLike) -> bool:
 
     Parameters
     ----------
-    mat : (4, 4) array_like
-        Any real 4×4 matrix.
+    mat
+        As for :func:`distance_to_SE3`.
 
     Returns
     -------

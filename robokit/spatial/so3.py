@@ -91,7 +91,7 @@ def rot_inv(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked: distance to SO(3) ≤ 1e-6).
+        The rotation to invert (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------
@@ -227,7 +227,7 @@ def matrix_log_3(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked: :class:`~robokit.errors.InputError` otherwise).
+        The rotation whose logarithm is returned (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------
@@ -322,8 +322,8 @@ def test_if_SO3(mat: ArrayLike) -> bool:
 
     Parameters
     ----------
-    mat : (3, 3) array_like
-        Any real 3×3 matrix.
+    mat
+        As for :func:`distance_to_SO3`.
 
     Returns
     -------
@@ -354,7 +354,7 @@ def euler_to_matrix(euler: ArrayLike) -> np.ndarray:
     Returns
     -------
     (3, 3) ndarray
-        The rotation matrix.
+        ``R = Rz(α)·Ry(β)·Rx(γ)``.
 
     Examples
     --------
@@ -383,7 +383,7 @@ def matrix_to_euler(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : (3, 3) array_like
-        A rotation matrix (checked: :class:`~robokit.errors.InputError` otherwise).
+        The rotation to write as ZYX Euler angles (checked: see :mod:`robokit.spatial`).
 
     Returns
     -------
