@@ -227,10 +227,8 @@ class ModelFeedforward(_PDController):
     ----------
     robot : Robot
         The (estimated) model whose inverse dynamics ``robot.rnea`` gives the feedforward.
-    Kp : float or (n,) array_like
-        Position gain (N·m/rad).
-    Kv : float or (n,) array_like
-        Velocity gain (N·m·s/rad).
+    Kp, Kv : float or (n,) array_like
+        As for :class:`GravityPD`.
 
     Examples
     --------

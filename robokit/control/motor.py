@@ -104,7 +104,7 @@ class DCMotor:
         Parameters
         ----------
         u : float or array_like
-            Control voltage(s), V.
+            As for :meth:`current`.
 
         Returns
         -------
@@ -226,6 +226,14 @@ class DCMotor:
         return w
 
 
+def _gear_ratios(G: ArrayLike) -> np.ndarray:
+    # G as a float array, InputError when a ratio is 0 (the gearbox checks of the two functions below)
+    G = np.asarray(G, dtype=float)
+    if np.any(G == 0):
+        raise InputError(f"G: a gear ratio cannot be 0, got {G}")
+    return G
+
+
 def joint_from_motor(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
                      tau_c: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Motor-side inertia, viscous friction and a torque seen from the joint through a gearbox G.
@@ -258,9 +266,7 @@ def joint_from_motor(G: ArrayLike, Jm: ArrayLike = 0.0, Bm: ArrayLike = 0.0,
     >>> [float(x) for x in joint_from_motor(100, 2e-4, 1e-3, 0.1)]
     [2.0, 10.0, 10.0]
     """
-    G = np.asarray(G, dtype=float)
-    if np.any(G == 0):
-        raise InputError(f"G: a gear ratio cannot be 0, got {G}")
+    G = _gear_ratios(G)
     return G * G * np.asarray(Jm, float), G * G * np.asarray(Bm, float), G * np.asarray(tau_c, float)
 
 
@@ -276,7 +282,7 @@ def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarra
     M_jj : float or array_like
         The arm's inertia about joint j (diagonal of M(q), kg·m²).
     G : float or array_like
-        Gear ratio, non-zero.
+        Gear ratio, as for :func:`joint_from_motor`.
 
     Returns
     -------
@@ -286,7 +292,7 @@ def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarra
     Raises
     ------
     InputError
-        When a gear ratio is 0.
+        As for :func:`joint_from_motor`.
 
     Examples
     --------
@@ -295,9 +301,7 @@ def effective_inertia(Jm: ArrayLike, M_jj: ArrayLike, G: ArrayLike) -> np.ndarra
     >>> float(effective_inertia(2e-4, 2.0, 100))
     0.0004
     """
-    G = np.asarray(G, dtype=float)
-    if np.any(G == 0):
-        raise InputError(f"G: a gear ratio cannot be 0, got {G}")
+    G = _gear_ratios(G)
     return np.asarray(Jm, float) + np.asarray(M_jj, float) / (G * G)
 
 # Former names (before the X_from_Y rule): they warn and call the new function.
