@@ -90,10 +90,8 @@ class Box(Obstacle):
     ----------
     size : array_like, shape (3,)
         Full edge lengths along the box frame's x, y, z axes (m), each > 0.
-    pose : array_like, shape (4, 4), optional
-        Pose of the box centre in the base frame (identity by default).
-    name : str, optional
-        Name reported by ``colliding_pairs`` (default ``box_<k>`` by the World).
+    pose, name : optional
+        As for :class:`Obstacle`; the pose is the box centre's (identity by default).
 
     Attributes
     ----------
@@ -133,10 +131,8 @@ class Sphere(Obstacle):
     ----------
     radius : float
         Radius (m), > 0.
-    pose : array_like, shape (4, 4), optional
-        Pose of the centre in the base frame (identity by default).
-    name : str, optional
-        Name reported by ``colliding_pairs`` (default ``sphere_<k>``).
+    pose, name : optional
+        As for :class:`Obstacle`; the pose is the centre's (identity by default).
 
     Examples
     --------
@@ -166,14 +162,10 @@ class Cylinder(Obstacle):
 
     Parameters
     ----------
-    radius : float
-        Radius (m), > 0.
-    length : float
-        Full length along the frame's z axis (m), > 0.
-    pose : array_like, shape (4, 4), optional
-        Pose of the centre in the base frame (identity by default).
-    name : str, optional
-        Name reported by ``colliding_pairs`` (default ``cylinder_<k>``).
+    radius, length : float
+        Radius and full length along the frame's z axis (m), > 0.
+    pose, name : optional
+        As for :class:`Obstacle`; the pose is the centre's (identity by default), the axis its z.
 
     Examples
     --------
@@ -214,10 +206,9 @@ class Mesh(Obstacle):
     ----------
     path : str or path-like
         The mesh file (coordinates in m).
-    pose : array_like, shape (4, 4), optional
-        Pose of the mesh frame in the base frame (identity by default).
-    name : str, optional
-        Name reported by ``colliding_pairs`` (default the file's stem).
+    pose, name : optional
+        As for :class:`Obstacle`; the pose is the mesh frame's (identity by default), the
+        default name the file's stem.
 
     Attributes
     ----------

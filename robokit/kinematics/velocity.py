@@ -3,6 +3,14 @@ transforms, manipulability and singularities, resolved-rate motion control.
 
 Jacobians here are geometric, rows ``(ω; v)`` with v the velocity of the frame's origin, in the
 base frame unless said otherwise (Pinocchio's LOCAL_WORLD_ALIGNED), as the course writes them.
+
+The functions that take a Jacobian ``J`` first (:func:`jacobian_in_frame`, :func:`manipulability`,
+:func:`velocity_ellipsoid`, :func:`force_ellipsoid`, :func:`singularity`, :func:`resolved_rate`)
+also take a robot followed by its joint values q in its place: ``f(robot, q, ...)`` (and
+``frame=``, default the tip) uses the robot's geometric Jacobian at q,
+``robot.jacobian(q, frame, reference="local_world_aligned")``. :func:`manipulability_at`,
+:func:`velocity_ellipsoid_at` and :func:`resolved_rate_at` do the same with ``robot``, ``q`` and
+``frame`` named in their signatures.
 """
 from __future__ import annotations
 
@@ -334,7 +342,7 @@ def wrench_transform(T_a_b: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     T_a_b : (4, 4) array_like
-        Pose of frame b in frame a (metres).
+        As for :func:`twist_transform`.
 
     Returns
     -------
@@ -363,8 +371,7 @@ def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     J : (6, n) array_like, or a robot
-        Jacobian with rows ``(ω; v)``; or a robot followed by q: ``jacobian_in_frame(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        Jacobian with rows ``(ω; v)``; or a robot followed by q (see the module docstring).
     R : (3, 3) array_like
         Rotation from J's axes to the new axes (``R_new_old``).
 
@@ -411,9 +418,7 @@ def manipulability(J: ArrayLike, kind: str = "yoshikawa", part: str = "full") ->
     Parameters
     ----------
     J : (m, n) array_like, or a robot
-        A Jacobian; a 6-row one ``(ω; v)`` when ``part`` is not "full". Or a robot followed by q:
-        ``manipulability(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        A Jacobian; a 6-row one ``(ω; v)`` when ``part`` is not "full". Or a robot followed by q (see the module docstring).
     kind : {"yoshikawa", "condition", "inverse_condition", "min_singular"}, optional
         ``"yoshikawa"`` (default) — ``w = √det(J Jᵀ)``, the product of the singular values (0 at a
         singularity); ``"condition"`` — ``σ_max / σ_min`` (∞ at a singularity);
@@ -473,9 +478,7 @@ def velocity_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndar
     Parameters
     ----------
     J : (m, n) array_like, or a robot
-        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q:
-        ``velocity_ellipsoid(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q (see the module docstring).
     part : {"translation", "rotation", "full"}, optional
         Which rows (default the translation rows v).
 
@@ -517,9 +520,7 @@ def force_ellipsoid(J: ArrayLike, part: str = "translation") -> tuple[np.ndarray
     Parameters
     ----------
     J : (m, n) array_like, or a robot
-        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q:
-        ``force_ellipsoid(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        A Jacobian; a 6-row one ``(ω; v)`` unless ``part="full"``. Or a robot followed by q (see the module docstring).
     part : {"translation", "rotation", "full"}, optional
         Which rows (default the translation rows v: forces; "rotation": moments).
 
@@ -585,9 +586,7 @@ def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     Parameters
     ----------
     J : (m, n) array_like, or a robot
-        A Jacobian, usually 6×n with rows ``(ω; v)`` (other row counts: directions by index). Or a
-        robot followed by q: ``singularity(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        A Jacobian, usually 6×n with rows ``(ω; v)`` (other row counts: directions by index). Or a robot followed by q (see the module docstring).
     tol : float, optional
         Singular values below this count as zero; default 1e-9.
 
@@ -633,8 +632,7 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
     ----------
     J : (m, n) array_like, or a robot
         Jacobian (m ≤ 6 rows; use the rows that matter, e.g. the 2 planar rows of the 2-link arm).
-        Or a robot followed by q, then V (6,): ``resolved_rate(robot, q, ...)`` (and ``frame=``, default the tip) uses the robot's geometric Jacobian at its
-        joint values q, ``robot.jacobian(q, frame, reference="local_world_aligned")``.
+        Or a robot followed by q, then V (6,) (see the module docstring).
     V : (m,) array_like
         Desired twist in J's rows and axes (rad/s, m/s).
     method : {"pinv", "dls", "damped_inverse"}, optional
@@ -742,19 +740,17 @@ def manipulability_at(robot: RobotLike, q: ArrayLike, kind: str = "yoshikawa", p
 
     Parameters
     ----------
-    robot : RobotLike
-        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
-    q : (n,) array_like
-        Joint values (rad / m).
+    robot, q : RobotLike, (n,) array_like
+        The robot and its joint values (rad / m) (see the module docstring).
     kind, part : str, optional
         As :func:`manipulability`.
     frame : str, optional
-        Frame name; default the robot's tip.
+        See the module docstring (default the robot's tip).
 
     Returns
     -------
     float
-        The measure.
+        ``manipulability(J, kind, part)`` of that Jacobian J at q.
 
     Examples
     --------
@@ -774,14 +770,12 @@ def velocity_ellipsoid_at(robot: RobotLike, q: ArrayLike, part: str = "translati
 
     Parameters
     ----------
-    robot : RobotLike
-        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
-    q : (n,) array_like
-        Joint values (rad / m).
+    robot, q : RobotLike, (n,) array_like
+        The robot and its joint values (rad / m) (see the module docstring).
     part : {"translation", "rotation", "full"}, optional
         Which rows (default translation).
     frame : str, optional
-        Frame name; default the robot's tip.
+        See the module docstring (default the robot's tip).
 
     Returns
     -------
@@ -807,14 +801,12 @@ def resolved_rate_at(robot: RobotLike, q: ArrayLike, V: ArrayLike, frame: str | 
 
     Parameters
     ----------
-    robot : RobotLike
-        A robot (its ``jacobian`` with ``reference="local_world_aligned"``).
-    q : (n,) array_like
-        Joint values (rad / m).
+    robot, q : RobotLike, (n,) array_like
+        The robot and its joint values (rad / m) (see the module docstring).
     V : (6,) array_like
         Desired twist ``(ω; v)`` of the frame origin, base axes (rad/s, m/s).
     frame : str, optional
-        Frame name; default the robot's tip.
+        See the module docstring (default the robot's tip).
     **kwargs
         ``method``, ``damping``, ``adaptive``, ``epsilon``, ``z``, ``rcond`` as :func:`resolved_rate`.
 

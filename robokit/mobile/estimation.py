@@ -472,7 +472,7 @@ class EKFSLAM(_EKF):
         Parameters
         ----------
         z : array_like, shape (2,)
-            Range (m) and bearing (rad) of the landmark.
+            As for :meth:`EKFLocalization.update`.
         i : int
             The landmark's identifier.
 

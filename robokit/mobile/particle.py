@@ -83,7 +83,7 @@ def uncertainty(P: ArrayLike, kind: str = "det") -> float:
     Returns
     -------
     float
-        The measure.
+        ``det P`` or the ellipse's area (m²), as ``kind`` says.
 
     Examples
     --------

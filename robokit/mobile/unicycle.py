@@ -142,7 +142,7 @@ class DifferentialDrive(UnicycleModel):
         Parameters
         ----------
         u : array_like, shape (2,)
-            Demanded (v, ω).
+            The demanded body velocity (v, ω), as for :meth:`wheel_speeds`.
 
         Returns
         -------

@@ -162,11 +162,12 @@ class BicycleModel(_HeadingModel):
         Parameters
         ----------
         u : array_like, shape (2,)
-            Demanded (v, γ).
+            Demanded u = (v, γ) (see the module docstring).
 
         Returns
         -------
         ndarray, shape (2,)
+            u with v clipped to ±``speed_max`` and γ to ±``steer_max``.
         """
         v, gamma = as_vector(u, "u", 2)
         return np.array([np.clip(v, -self.speed_max, self.speed_max),

@@ -155,6 +155,9 @@ def camera_offset(points: ArrayLike, fill: float = 0.75, azimuth: float = 45.0,
 class Scene:
     """A meshcat scene of one robot.
 
+    The drawing methods return the scene itself, so calls chain; their ``color`` arguments are
+    0xRRGGBB integers.
+
     Parameters
     ----------
     robot : robokit.Robot, DHTable, str or path
@@ -303,7 +306,8 @@ class Scene:
         Returns
         -------
         Scene
-            self.
+            self; the robot's drawing and ``q`` stay as they are (:meth:`show` moves those, not
+            the triads).
 
         Examples
         --------
@@ -338,7 +342,7 @@ class Scene:
         radius : float, optional
             Radius (m).
         color : int, optional
-            0xRRGGBB.
+            The sphere's colour (see :class:`Scene`).
 
         Returns
         -------
@@ -398,7 +402,7 @@ class Scene:
         points : array_like, shape (K, 3)
             The vertices (m, base frame), K ≥ 2.
         color : int, optional
-            0xRRGGBB.
+            The line's colour (see :class:`Scene`).
         linewidth : float, optional
             Line width (px, where the browser honours it).
 
@@ -435,7 +439,7 @@ class Scene:
         scale : float, optional
             m drawn per m/s of tool speed.
         color : int, optional
-            0xRRGGBB.
+            The ellipsoid's colour (see :class:`Scene`).
 
         Returns
         -------
@@ -475,7 +479,7 @@ class Scene:
         obstacles : iterable of Box, Sphere, Cylinder, Mesh
             Shapes with their ``pose`` (4×4, base frame, m).
         color : int
-            Colour, 0xRRGGBB.
+            The shapes' colour (see :class:`Scene`).
         opacity : float
             In [0, 1]; below 1 the obstacles are see-through.
 
