@@ -161,8 +161,8 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
         A scene YAML file (as ``robokit plan`` reads it): the page draws its obstacles and
         shows the collision state (links in contact red, the minimum distance).
     allow_outside_meshes : bool
-        Read the scene's mesh files wherever it says (``--allow-outside-meshes``); by default
-        they must be in the scene file's folder or ``package_dirs`` (the page embeds them).
+        As in the module docstring (``package_dirs`` are the folders given; the page embeds the
+        meshes).
     package_dirs : sequence of str or path-like, optional
         More folders the scene's mesh files may be in (``--package-path``).
 
