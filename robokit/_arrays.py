@@ -144,6 +144,7 @@ def ndim(x: object, name: str) -> int:
     Returns
     -------
     int
+        ``np.ndim(x)``: 0 for a scalar, 1 for a flat list, 2 for a list of rows…
 
     Raises
     ------
@@ -220,6 +221,7 @@ def as_int(x: object, name: str, *, minimum: int | None = None, maximum: int | N
     Returns
     -------
     int
+        ``x`` as a Python ``int`` (a numpy integer converted).
 
     Raises
     ------
@@ -291,6 +293,7 @@ def as_count(x: object, name: str, low: int, high: int) -> int:
     Returns
     -------
     int
+        The count as a Python ``int``.
 
     Raises
     ------

@@ -295,6 +295,7 @@ def decode_utf8(raw: bytes, source: str | os.PathLike[str]) -> str:
     Returns
     -------
     str
+        The decoded text (a byte-order mark, if any, kept as ``"\\ufeff"``).
 
     Raises
     ------
@@ -328,6 +329,7 @@ def read_input_text(path: str | os.PathLike[str], max_bytes: int, kind: str) -> 
     Returns
     -------
     str
+        The whole file's text, as :func:`decode_utf8` decodes it.
 
     Raises
     ------

@@ -2,6 +2,16 @@
 file and says on stderr what it wrote. Argument parsing is in :mod:`robokit.cli`; the work is
 in the modules these functions call. Errors propagate as exceptions (the CLI turns them into
 one line and an exit status).
+
+The parameters of the commands that read a scene file (``obstacles``, ``--obstacles``):
+
+* ``convex`` (``--convex``) — check the convex hulls of the robot's collision meshes instead of
+  the meshes (faster, conservative);
+* ``describe_world`` (``--describe-world``) — print the world and its self-collision pairs on
+  stdout before the work starts;
+* ``allow_outside_meshes`` (``--allow-outside-meshes``) — read the scene's mesh files wherever
+  it says; by default they must be in the scene file's folder (or in a folder given with
+  ``--package-path``, for the commands that take it).
 """
 from __future__ import annotations
 
@@ -99,7 +109,7 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
     obstacles : str or path-like, optional
         A scene YAML file whose obstacles are drawn.
     allow_outside_meshes : bool
-        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
+        As in the module docstring.
     package_dirs : sequence of str or path-like, optional
         More folders the scene's mesh files may be in (``--package-path``).
 
@@ -151,8 +161,8 @@ def teach_command(model: Robot | DHTable | str | os.PathLike[str], output: str |
         A scene YAML file (as ``robokit plan`` reads it): the page draws its obstacles and
         shows the collision state (links in contact red, the minimum distance).
     allow_outside_meshes : bool
-        Read the scene's mesh files wherever it says (``--allow-outside-meshes``); by default
-        they must be in the scene file's folder or ``package_dirs`` (the page embeds them).
+        As in the module docstring (``package_dirs`` are the folders given; the page embeds the
+        meshes).
     package_dirs : sequence of str or path-like, optional
         More folders the scene's mesh files may be in (``--package-path``).
 
@@ -243,18 +253,13 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     obstacles : str or path-like, optional
         A scene YAML file: only collision-free solutions count (self-collisions and the scene's
         obstacles).
-    convex : bool
-        Check the convex hulls of the robot's collision meshes instead of the meshes (faster,
-        conservative).
-    describe_world : bool
-        Print the world and its self-collision pairs on stdout.
-    allow_outside_meshes : bool
-        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
+    convex, describe_world, allow_outside_meshes : bool
+        As in the module docstring.
 
     Returns
     -------
     int
-        The exit status, 0 (errors raise).
+        The exit status, 0 once the map is written and its chunk folder removed (errors raise).
     """
     from robokit.description.loading import load
     from robokit.workspace.capability import capability_map
@@ -449,17 +454,13 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         Seed of the sampling planner.
     tip : str, optional
         Tip frame.
-    convex : bool
-        Check the convex hulls of the robot's collision meshes (faster, conservative).
-    describe_world : bool
-        Print the world and its self-collision pairs on stdout first.
-    allow_outside_meshes : bool
-        Read the scene's mesh files wherever it says (``--allow-outside-meshes``).
+    convex, describe_world, allow_outside_meshes : bool
+        As in the module docstring.
 
     Returns
     -------
     int
-        The exit status, 0 (errors raise).
+        The exit status, 0 once the CSV is written (errors raise).
     """
     from robokit.collision import pose_from_xyz_rpy
     from robokit.description.loading import load

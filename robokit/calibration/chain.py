@@ -77,7 +77,7 @@ class JointChain:
         Parameters
         ----------
         q : numpy.ndarray, shape (K, n)
-            Joint values, one configuration per row (rad, m).
+            As for :meth:`frames`: ``fk(q)`` is the last row of ``frames(q)``.
 
         Returns
         -------

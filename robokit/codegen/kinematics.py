@@ -300,10 +300,15 @@ def emit_jacobian(w: CWriter, Slist: np.ndarray, M: np.ndarray, kinds: list[str]
 
     Examples
     --------
+    One revolute joint about z with the tool 1 m along x: ω = (0, 0, 1) and the tool origin's
+    velocity ω × p = (−sin q₁, cos q₁, 0) per unit joint rate:
+
+    >>> M = np.eye(4)
+    >>> M[0, 3] = 1.0
     >>> w = CWriter()
-    >>> emit_jacobian(w, np.array([[0, 0, 1.0, 0, 0, 0]]).T, np.eye(4), ["R"], ["j1"])
-    >>> "J[2] = 1.0;" in w.text()
-    True
+    >>> emit_jacobian(w, np.array([[0, 0, 1.0, 0, 0, 0]]).T, M, ["R"], ["j1"])
+    >>> [line.strip() for line in w.text().splitlines() if line.strip().startswith("J[")]
+    ['J[0] = 0.0;', 'J[3] = -s1;', 'J[1] = 0.0;', 'J[4] = c1;', 'J[2] = 1.0;', 'J[5] = 0.0;']
     """
     n = Slist.shape[1]
     chain = fk_chain(w, Slist, kinds, names)

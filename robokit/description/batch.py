@@ -10,6 +10,14 @@ Which engine answers each (measured in ``benchmarks/kernels.py``; see the docs' 
   ``threads`` OpenMP threads (about 1 µs per UR5 configuration on one thread).
 
 Every result equals the per-configuration method to 1e-12 (tests/description/test_batch.py).
+
+Parameters shared by this module's functions:
+
+* ``robot`` (Robot) — the robot; each function names the parameters of it that it uses.
+* ``Q`` (array_like, shape (N, n)) — joint values, one configuration per row (rad or m).
+* ``frame`` (str or None) — must be None or the robot's tip: batched calls answer for the tip only.
+* ``threads`` (int) — OpenMP threads of Pinocchio's ``rneaInParallel``/``abaInParallel``
+  (default 1; must be positive).
 """
 from __future__ import annotations
 
@@ -44,12 +52,8 @@ def batch_frame_pose(robot: Robot, Q: ArrayLike, frame: str | None = None) -> np
 
     Parameters
     ----------
-    robot : Robot
-        The robot (its PoE parameters are used).
-    Q : array_like, shape (N, n)
-        Joint values, one configuration per row (rad or m).
-    frame : str or None, optional
-        Must be None or the robot's tip: batched calls answer for the tip only.
+    robot, Q, frame
+        As in the module docstring (the robot's PoE ``M`` and ``Slist`` are used).
 
     Returns
     -------
@@ -78,12 +82,9 @@ def batch_jacobian(robot: Robot, Q: ArrayLike, frame: str | None = None,
 
     Parameters
     ----------
-    robot : Robot
-        The robot (its PoE parameters are used).
-    Q : array_like, shape (N, n)
-        Joint values, one configuration per row (rad or m).
-    frame : str or None, optional
-        Must be None or the robot's tip: batched calls answer for the tip only.
+    robot, Q, frame
+        As in the module docstring (the robot's PoE ``Slist``, and ``M`` unless ``reference`` is
+        ``Frame.WORLD``, are used).
     reference : Frame or str, optional
         :class:`robokit.Frame` (the *Conventions* page): ``Frame.WORLD``: the space Jacobian ``J_s``
         (twist of the tip in the base frame); ``Frame.LOCAL``: the body Jacobian ``Ad_{T⁻¹} J_s``
@@ -130,10 +131,9 @@ def batch_crba(robot: Robot, Q: ArrayLike) -> np.ndarray:
 
     Parameters
     ----------
-    robot : Robot
-        The robot (its PoE ``Mlist``/``Glist``/``Slist`` are used).
-    Q : array_like, shape (N, n)
-        Joint values, one configuration per row (rad or m).
+    robot, Q
+        As in the module docstring (the robot's PoE ``Mlist``/``Glist``/``Slist`` and its Pinocchio
+        model's armature are used).
 
     Returns
     -------
@@ -176,18 +176,31 @@ def _q_pin_columns(robot: Robot, Q: np.ndarray) -> np.ndarray:
     return np.asfortranarray(np.stack([robot.q_pin(q) for q in Q], axis=1))
 
 
+def _in_parallel(robot: Robot, algorithm: str, Q: ArrayLike, dQ: ArrayLike, X: ArrayLike, x_name: str,
+                 threads: int) -> np.ndarray:
+    """Pinocchio's ``algorithm`` (``rneaInParallel`` or ``abaInParallel``) on rows of (q, q̇, x),
+    x = q̈ or τ named ``x_name`` in messages: the rows checked, then one (N, n) result."""
+    Q, dQ, X = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, X, x_name)
+    if not (Q.shape == dQ.shape == X.shape):
+        raise InputError(f"q, dq, {x_name}: expected equal shapes, got {Q.shape}, {dQ.shape}, {X.shape}")
+    pool, threads = _pool(robot, threads)
+    out = getattr(robot._pin, algorithm)(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
+                                         np.asfortranarray(X.T))
+    return np.ascontiguousarray(np.asarray(out).reshape(robot.n, -1).T)  # N = 1 comes back as (n,)
+
+
 def batch_rnea(robot: Robot, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, threads: int = 1) -> np.ndarray:
     """Inverse dynamics for many configurations: Pinocchio's ``rneaInParallel`` on ``threads`` threads.
 
     Parameters
     ----------
     robot : Robot
-        The robot.
+        As in the module docstring (its Pinocchio model is used).
     Q, dQ, ddQ : array_like, shape (N, n)
-        Joint positions (rad or m), velocities (rad/s or m/s) and accelerations (rad/s² or m/s²),
-        one configuration per row.
+        Rows of joint values (``Q``, module docstring), velocities (rad/s or m/s) and
+        accelerations (rad/s² or m/s²).
     threads : int, optional
-        OpenMP threads (default 1; must be positive).
+        As in the module docstring.
 
     Returns
     -------
@@ -203,13 +216,7 @@ def batch_rnea(robot: Robot, Q: ArrayLike, dQ: ArrayLike, ddQ: ArrayLike, thread
     >>> batch_rnea(rk.load("twolink"), Z, Z, Z).round(4).tolist()
     [[46.107, 11.772]]
     """
-    Q, dQ, ddQ = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, ddQ, "ddq")
-    if not (Q.shape == dQ.shape == ddQ.shape):
-        raise InputError(f"q, dq, ddq: expected equal shapes, got {Q.shape}, {dQ.shape}, {ddQ.shape}")
-    pool, threads = _pool(robot, threads)
-    tau = robot._pin.rneaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
-                                    np.asfortranarray(ddQ.T))
-    return np.ascontiguousarray(np.asarray(tau).reshape(robot.n, -1).T)  # N = 1 comes back as (n,)
+    return _in_parallel(robot, "rneaInParallel", Q, dQ, ddQ, "ddq", threads)
 
 
 def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads: int = 1) -> np.ndarray:
@@ -218,12 +225,12 @@ def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads
     Parameters
     ----------
     robot : Robot
-        The robot.
+        As in the module docstring (its Pinocchio model is used).
     Q, dQ, tau : array_like, shape (N, n)
-        Joint positions (rad or m), velocities (rad/s or m/s) and torques (N·m) or forces (N),
-        one configuration per row.
+        Rows of joint values (``Q``, module docstring), velocities (rad/s or m/s) and torques
+        (N·m) or forces (N).
     threads : int, optional
-        OpenMP threads (default 1; must be positive).
+        As in the module docstring.
 
     Returns
     -------
@@ -239,10 +246,4 @@ def batch_aba(robot: Robot, Q: ArrayLike, dQ: ArrayLike, tau: ArrayLike, threads
     >>> np.allclose(batch_aba(robot, Z, Z, [[46.107, 11.772]]), 0.0)
     True
     """
-    Q, dQ, tau = _rows(robot, Q, "q"), _rows(robot, dQ, "dq"), _rows(robot, tau, "tau")
-    if not (Q.shape == dQ.shape == tau.shape):
-        raise InputError(f"q, dq, tau: expected equal shapes, got {Q.shape}, {dQ.shape}, {tau.shape}")
-    pool, threads = _pool(robot, threads)
-    ddq = robot._pin.abaInParallel(threads, pool, _q_pin_columns(robot, Q), np.asfortranarray(dQ.T),
-                                   np.asfortranarray(tau.T))
-    return np.ascontiguousarray(np.asarray(ddq).reshape(robot.n, -1).T)  # N = 1 comes back as (n,)
+    return _in_parallel(robot, "abaInParallel", Q, dQ, tau, "tau", threads)

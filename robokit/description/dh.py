@@ -323,7 +323,8 @@ class DHTable:
         Parameters
         ----------
         q : array_like, shape (n,)
-            Joint values (rad or m).
+            Joint values (rad or m), finite, each added to its row's θ or d as
+            :meth:`link_transform` adds ``q_i``.
 
         Returns
         -------
@@ -353,7 +354,7 @@ class DHTable:
         Parameters
         ----------
         q : array_like, shape (n,)
-            Joint values (rad or m).
+            As in :meth:`frames`.
 
         Returns
         -------
@@ -614,7 +615,7 @@ class DHTable:
         Parameters
         ----------
         angle_unit : {"deg", "rad"}, optional
-            Unit of the angles written (default ``"deg"``).
+            As in :meth:`to_dict`.
 
         Returns
         -------
@@ -638,12 +639,12 @@ class DHTable:
         path : str or os.PathLike
             The file to write.
         angle_unit : {"deg", "rad"}, optional
-            Unit of the angles written (default ``"deg"``).
+            As in :meth:`to_dict`.
 
         Returns
         -------
         pathlib.Path
-            The path written.
+            ``path``: the YAML file, which :meth:`from_yaml` reads back.
 
         Examples
         --------

@@ -82,6 +82,8 @@ def load_dh_text(text: str, source: str = "<DH YAML>", spec: RobotSpec | None = 
     Returns
     -------
     Robot
+        Built by :func:`robot_from_dh` from the parsed table; ``robot.spec`` is ``spec``
+        (default ``RobotSpec("dh", text=text)``).
 
     Raises
     ------

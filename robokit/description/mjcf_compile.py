@@ -844,17 +844,23 @@ def _joint(ctx: _Ctx, elem: ET.Element, cls: str, name: str, named: bool,
                      stiffness=num("stiffness"), frictionloss=num("frictionloss"), named=named)
 
 
+def _placed(ctx: _Ctx, elem: ET.Element, a: dict[str, str], name: str | None, cls: str
+            ) -> tuple[str, mm.Vec, mm.Quat]:
+    """A ``<frame>``'s or ``<body>``'s childclass (``cls`` when it names none; checked), position and
+    orientation in its parent, from its attributes ``a``."""
+    cls = a.get("childclass", cls)
+    if cls not in ctx.defaults:
+        raise InputError(f"{ctx.where(elem, name)} childclass={cls!r}: no such default class")
+    return cls, _vec3(_numbers(ctx, a, "pos", 3, elem)), _orientation(ctx, elem, a, {})
+
+
 def _children(elem: ET.Element, frame: tuple[mm.Vec, mm.Quat] | None, cls: str, ctx: _Ctx
               ) -> Iterator[tuple[ET.Element, tuple[mm.Vec, mm.Quat] | None, str]]:
     """The element's children with the frame (accumulated ``<frame>`` pose) and childclass they sit in."""
     for child in elem:
         if child.tag == "frame":
             fa = dict(child.attrib)
-            fcls = fa.get("childclass", cls)
-            if fcls not in ctx.defaults:
-                raise InputError(f"{ctx.where(child, fa.get('name'))} childclass={fcls!r}: no such default class")
-            fpos = _vec3(_numbers(ctx, fa, "pos", 3, child))
-            fquat = _orientation(ctx, child, fa, {})
+            fcls, fpos, fquat = _placed(ctx, child, fa, fa.get("name"), cls)
             if frame is not None:
                 fpos, fquat = mm.compose(frame[0], frame[1], fpos, fquat)
             yield from _children(child, (fpos, mm.unit_quat(fquat)), fcls, ctx)
@@ -865,11 +871,7 @@ def _children(elem: ET.Element, frame: tuple[mm.Vec, mm.Quat] | None, cls: str, 
 def _body(ctx: _Ctx, elem: ET.Element, parent: int, name: str, named: bool, frame: tuple[mm.Vec, mm.Quat] | None,
           cls: str, out: list[_Body]) -> None:
     a = dict(elem.attrib)
-    cls = a.get("childclass", cls)
-    if cls not in ctx.defaults:
-        raise InputError(f"{ctx.where(elem, name)} childclass={cls!r}: no such default class")
-    bpos = _vec3(_numbers(ctx, a, "pos", 3, elem))
-    bquat = _orientation(ctx, elem, a, {})
+    cls, bpos, bquat = _placed(ctx, elem, a, name, cls)
     me = len(out)
     body = _Body(name, parent, bpos, bquat, [], 0.0, (_NAN, 0.0, 0.0), mm.IDENTITY, (0.0, 0.0, 0.0), [], [], named,
                  _flag(ctx, a, "mocap", False, elem), elem)

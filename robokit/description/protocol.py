@@ -75,10 +75,8 @@ class RobotLike(Protocol):
 
         Parameters
         ----------
-        q : array_like, shape (n,)
-            Joint values, rad or m.
-        frame : str or None, optional
-            The frame (None: the tip).
+        q, frame
+            As in :meth:`frame_pose`.
         reference : robokit.Frame or str, optional
             Where it is expressed (``Frame.WORLD``, ``Frame.LOCAL`` or ``Frame.LOCAL_WORLD_ALIGNED``;
             the *Conventions* page); omitted: ``Frame.LOCAL_WORLD_ALIGNED``, robokit's one default.

@@ -390,7 +390,8 @@ class Robot:
         Parameters
         ----------
         q : array_like, shape (n,)
-            Joint values (rad for revolute, m for prismatic joints).
+            Joint values (rad for revolute, m for prismatic joints), taken as they are: no shape,
+            finiteness or degrees check (the other methods check theirs).
 
         Returns
         -------
@@ -528,10 +529,22 @@ class Robot:
             return self._lo1 <= t[0] and t[-1] <= self._hi1
         return False
 
-    def _dynamics_checked(self, fn: Callable[..., np.ndarray], q: ArrayLike, dq: ArrayLike, x: ArrayLike,
-                          x_name: str) -> np.ndarray:
-        """The checked path of :meth:`rnea` (``fn`` Pinocchio's rnea, x = q̈) and :meth:`aba` (aba, x = τ):
-        the three vectors checked in turn, then Pinocchio's answer."""
+    def _dynamics(self, fn: Callable[..., np.ndarray], method: str, q: ArrayLike, dq: ArrayLike, x: ArrayLike,
+                  x_name: str, threads: int) -> np.ndarray:
+        """:meth:`rnea` (``fn`` Pinocchio's rnea, x = q̈ named ``"ddq"``) and :meth:`aba` (aba, x = τ,
+        ``"tau"``). The fast path: float64 (n,) arrays straight to Pinocchio (which returns a new
+        array); a NaN or inf in dq or x reaches the result, so one test of the result stands for
+        theirs (hypot: inf or NaN for a non-finite entry, never an overflow). Else an (N, n) q goes
+        to the batch (deprecated), and anything else is checked vector by vector before Pinocchio's
+        answer."""
+        if (type(dq) is type(x) is _ND and dq.dtype is x.dtype is _F64
+                and dq.shape == x.shape == self._shape and self._fast(q)):
+            out = fn(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, x)
+            if hypot(*out.tolist()) < _INF:
+                return out
+        elif ndim(q, "q") == 2:
+            warn_once(f"Robot.{method}((N, n) q)")
+            return _batch(method, self, q, dq, x, threads)
         q, dq, x = self._check_q(q), self._check_q(dq, "dq"), self._check_q(x, x_name)
         return fn(self.model, self.data, self.q_pin(q), dq, x)
 
@@ -668,18 +681,7 @@ class Robot:
         >>> robot.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(4)
         array([46.107, 11.772])
         """
-        if (type(dq) is type(ddq) is _ND and dq.dtype is ddq.dtype is _F64
-                and dq.shape == ddq.shape == self._shape and self._fast(q)):
-            # float64 (n,) arrays straight to Pinocchio (which returns a new array); a NaN or inf in
-            # dq or ddq reaches the result, so one test of the result stands for theirs (hypot: inf
-            # or NaN for a non-finite entry, never an overflow)
-            tau = self._rnea(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, ddq)
-            if hypot(*tau.tolist()) < _INF:
-                return tau
-        elif ndim(q, "q") == 2:
-            warn_once("Robot.rnea((N, n) q)")
-            return _batch("rnea", self, q, dq, ddq, threads)
-        return self._dynamics_checked(self._rnea, q, dq, ddq, "ddq")
+        return self._dynamics(self._rnea, "rnea", q, dq, ddq, "ddq", threads)
 
     def crba(self, q: ArrayLike) -> np.ndarray:
         """Mass matrix M(q), Pinocchio's CRBA (both triangles filled).
@@ -733,16 +735,7 @@ class Robot:
         >>> bool(abs(robot.aba([0.0, 0.0], [0.0, 0.0], robot.gravity_torques([0.0, 0.0]))).max() < 1e-9)
         True
         """
-        if (type(dq) is type(tau) is _ND and dq.dtype is tau.dtype is _F64
-                and dq.shape == tau.shape == self._shape and self._fast(q)):
-            # as in rnea: one test of the (new) result stands for the inputs' finiteness
-            ddq = self._aba(self.model, self.data, q if self._same_coords else self.q_pin(q), dq, tau)
-            if hypot(*ddq.tolist()) < _INF:
-                return ddq
-        elif ndim(q, "q") == 2:
-            warn_once("Robot.aba((N, n) q)")
-            return _batch("aba", self, q, dq, tau, threads)
-        return self._dynamics_checked(self._aba, q, dq, tau, "tau")
+        return self._dynamics(self._aba, "aba", q, dq, tau, "tau", threads)
 
     def gravity_torques(self, q: ArrayLike) -> np.ndarray:
         """Gravity torques g(q): what the joints must apply to hold the arm still at q.
@@ -750,7 +743,8 @@ class Robot:
         Parameters
         ----------
         q : array_like, shape (n,)
-            Joint values (rad for revolute, m for prismatic joints).
+            Joint values (rad for revolute, m for prismatic joints); for many configurations
+            :meth:`rnea_batch` with zero rates and accelerations.
 
         Returns
         -------
@@ -1028,18 +1022,16 @@ def check_robot_radians(robot: Any, q: ArrayLike, name: str, *, state: bool = Tr
     ----------
     robot : Robot or RobotLike
         The robot the values are for.
-    q : array_like, shape (n,) or (N, n)
-        Finite joint values (rad / m).
-    name : str
-        The argument's name, for the message.
+    q, name
+        As in :meth:`Robot.check_radians`.
     state : bool
-        A state that may wind (IK seeds, trajectories' points, simulations' states; the default):
-        continuous joints are exempt.
+        As in :meth:`Robot.check_radians`, but True by default: the callers pass IK seeds,
+        trajectories' points and simulations' states.
 
     Returns
     -------
     bool
-        True when a value looks like degrees (it warned, unless robokit itself made the call).
+        As :meth:`Robot.check_radians` returns it.
 
     Examples
     --------

@@ -95,6 +95,8 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
     Returns
     -------
     str
+        The file's text: :func:`dh_yaml_text` for ``.yaml``/``.yml``; for ``.urdf``, a calibrated
+        robot's URDF, the URDF generated from a DH table, or a URDF file's own text.
 
     Raises
     ------

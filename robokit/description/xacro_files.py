@@ -286,8 +286,11 @@ def expand_xacro(path: str | os.PathLike[str], xacro_args: Mapping[str, str] | N
     ...     path = pathlib.Path(tmp, "arm.urdf.xacro")
     ...     _ = path.write_text(XACRO)
     ...     urdf = expand_xacro(path, {"l1": "0.5"})
+    ...     robot = load_xacro(path, xacro_args={"l1": "0.5"})   # the same file as a Robot
     >>> 'xyz="0.5 0 0"' in urdf
     True
+    >>> robot.n, robot.frame_pose([0.0, 0.0])[:3, 3].tolist()
+    (2, [0.5, 0.0, 0.0])
     """
     try:
         xacro = require("xacro", "reading a .xacro file")
@@ -424,20 +427,7 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
 
     Examples
     --------
-    >>> import pathlib, tempfile
-    >>> XACRO = ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">'
-    ...          '<xacro:arg name="l1" default="0.4"/>'
-    ...          '<link name="base_link"/><link name="link1"/><link name="tool"/>'
-    ...          '<joint name="j1" type="continuous"><parent link="base_link"/><child link="link1"/>'
-    ...          '<axis xyz="0 0 1"/></joint>'
-    ...          '<joint name="j2" type="continuous"><parent link="link1"/><child link="tool"/>'
-    ...          '<origin xyz="$(arg l1) 0 0"/><axis xyz="0 0 1"/></joint></robot>')
-    >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     path = pathlib.Path(tmp, "arm.urdf.xacro")
-    ...     _ = path.write_text(XACRO)
-    ...     robot = load_xacro(path, xacro_args={"l1": "0.5"})
-    >>> robot.n, robot.frame_pose([0.0, 0.0])[:3, 3].tolist()
-    (2, [0.5, 0.0, 0.0])
+    :func:`expand_xacro`'s example loads its two-joint arm with ``load_xacro`` too.
     """
     package_path = _package_dirs(package_dirs, package_path, "load_xacro")
     path = Path(path)

@@ -72,7 +72,8 @@ def coriolis_matrix(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: ArrayLik
     Raises
     ------
     InputError
-        On an unknown ``method`` or bad arguments.
+        On a ``method`` other than ``"christoffel"`` and ``"lecture"``, or joint values or a
+        model of the wrong shape, NaN or infinite.
 
     Examples
     --------

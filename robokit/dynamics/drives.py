@@ -16,7 +16,10 @@ The inertia one motor sees (Lecture 7–8) is ``ᵐJⱼ = Jmⱼ + Mⱼⱼ(q) / G
 
 * :func:`drive_parameters` — the (n,) arrays Jm, G, B and the (n, 2) array Tc of a robot.
 * :func:`rne_with_drives`, :func:`inertia_with_drives`, :func:`forward_dynamics_with_drives` — the
-  equation above, its mass matrix, and ``q̈ = (M + G²Jm)⁻¹(τ − c − g − τ_f)``.
+  equation above, its mass matrix, and ``q̈ = (M + G²Jm)⁻¹(τ − c − g − τ_f)``. Their flags
+  ``friction`` and ``coulomb`` (both True by default) keep the friction ``τ_f = G² B q̇ + |G|
+  T_c(sign q̇)`` (:func:`friction_torque` referred to the joint): ``friction=False`` drops both
+  terms, ``coulomb=False`` the Coulomb term alone.
 * :func:`reflected_inertia` — the motor-side inertia of every joint.
 * :func:`dynamic_manipulability` — Asada's and Yoshikawa's measures with the drives' inertia.
 
@@ -212,10 +215,8 @@ def rne_with_drives(robot: Robot, q: ArrayLike, dq: ArrayLike, ddq: ArrayLike, *
         Joint angles (rad), rates (rad/s), accelerations (rad/s²).
     motor_inertia : bool, optional
         Include the reflected motor inertia ``G² Jm q̈``; default True.
-    friction : bool, optional
-        Include the viscous friction; default True.
-    coulomb : bool, optional
-        Include the Coulomb friction (when ``friction``); default True.
+    friction, coulomb : bool, optional
+        Which terms of τ_f to add to τ (module docstring).
 
     Returns
     -------
@@ -288,10 +289,8 @@ def forward_dynamics_with_drives(robot: Robot, q: ArrayLike, dq: ArrayLike, tau:
         A :class:`robokit.Robot` loaded from a DH file.
     q, dq, tau : (n,) array_like
         Joint angles (rad), rates (rad/s) and torques (N·m).
-    friction : bool, optional
-        Subtract the viscous friction; default True.
-    coulomb : bool, optional
-        Subtract the Coulomb friction (when ``friction``); default True.
+    friction, coulomb : bool, optional
+        Which terms of τ_f to subtract from τ (module docstring).
 
     Returns
     -------

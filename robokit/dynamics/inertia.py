@@ -49,6 +49,12 @@ def _axis(axis: str) -> int:
     return _AXES[axis.lower()]
 
 
+def _sizes(**sizes: float) -> list[float]:
+    """The mass and dimensions of a primitive body, each a finite non-negative float (else
+    :class:`InputError` naming the argument), in the order given."""
+    return [as_scalar(v, name, nonnegative=True) for name, v in sizes.items()]
+
+
 def inertia_box(mass: float, lx: float, ly: float, lz: float) -> np.ndarray:
     """Inertia of a uniform solid box about its centre, axes along its edges (Lecture 7).
 
@@ -77,10 +83,7 @@ def inertia_box(mass: float, lx: float, ly: float, lz: float) -> np.ndarray:
            [0., 2., 0.],
            [0., 0., 2.]])
     """
-    m = as_scalar(mass, "mass", nonnegative=True)
-    a = as_scalar(lx, "lx", nonnegative=True)
-    b = as_scalar(ly, "ly", nonnegative=True)
-    c = as_scalar(lz, "lz", nonnegative=True)
+    m, a, b, c = _sizes(mass=mass, lx=lx, ly=ly, lz=lz)
     return m / 12.0 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
 
 
@@ -117,9 +120,7 @@ def inertia_cylinder(mass: float, radius: float, length: float, axis: str = "z")
            [0.   , 0.005, 0.   ],
            [0.   , 0.   , 0.01 ]])
     """
-    m = as_scalar(mass, "mass", nonnegative=True)
-    r = as_scalar(radius, "radius", nonnegative=True)
-    L = as_scalar(length, "length", nonnegative=True)
+    m, r, L = _sizes(mass=mass, radius=radius, length=length)
     k = _axis(axis)
     d = np.full(3, m * (3.0 * r * r + L * L) / 12.0)
     d[k] = 0.5 * m * r * r
@@ -148,8 +149,7 @@ def inertia_sphere(mass: float, radius: float, hollow: bool = False) -> np.ndarr
     >>> float(inertia_sphere(5.0, 1.0)[0, 0]), float(inertia_sphere(3.0, 1.0, hollow=True)[0, 0])
     (2.0, 2.0)
     """
-    m = as_scalar(mass, "mass", nonnegative=True)
-    r = as_scalar(radius, "radius", nonnegative=True)
+    m, r = _sizes(mass=mass, radius=radius)
     return (2.0 / 3.0 if hollow else 0.4) * m * r * r * np.eye(3)
 
 
@@ -185,8 +185,7 @@ def inertia_rod(mass: float, length: float, axis: str = "z") -> np.ndarray:
     >>> float(parallel_axis(inertia_rod(3.0, 2.0, "x"), 3.0, [1, 0, 0])[2, 2])
     4.0
     """
-    m = as_scalar(mass, "mass", nonnegative=True)
-    L = as_scalar(length, "length", nonnegative=True)
+    m, L = _sizes(mass=mass, length=length)
     d = np.full(3, m * L * L / 12.0)
     d[_axis(axis)] = 0.0
     return np.diag(d)

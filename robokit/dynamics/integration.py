@@ -142,7 +142,8 @@ def integrate(thetalist: ArrayLike, dthetalist: ArrayLike, taufun: Callable[[flo
     Raises
     ------
     InputError
-        On an unknown ``method`` or bad arguments.
+        On an unknown ``method``, a ``dt`` that is not positive, or joint values or a model of the
+        wrong shape, NaN or infinite.
 
     Examples
     --------

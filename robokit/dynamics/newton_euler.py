@@ -6,7 +6,10 @@ Model (Modern Robotics), the ``Mlist, Glist, Slist`` of every function here: ``M
 of link i+1 in its centre-of-mass frame, angular first ``[[I, 0], [0, m 1]]`` (kg·m², kg);
 ``Slist`` (6, n) the space-frame screw axes of the joints, one column ``(ω; v)`` each. Wrenches
 ``(m, f)`` are angular first; ``Ftip`` is the wrench the end-effector applies *to the
-environment*, expressed in the end-effector frame.
+environment*, expressed in the end-effector frame (N·m, N). ``g`` (3,) is gravity in the base
+(space) frame, m/s², e.g. ``[0, 0, -9.81]``. Joint values are in rad (m for a prismatic joint),
+rates in rad/s (m/s), accelerations in rad/s² (m/s²), torques in N·m (N). The functions'
+docstrings refer to these definitions as "the module docstring".
 
 With ``Aᵢ = Ad_{M₀ᵢ⁻¹} Sᵢ`` (joint i's screw in frame {i}, ``M₀ᵢ = Mlist[0]⋯Mlist[i−1]``) and
 ``T_{i,i−1} = e^{−[Aᵢ]θᵢ} Mlist[i−1]⁻¹``:
@@ -278,8 +281,8 @@ def inverse_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, ddthetalist: A
     Ftip : (6,) or (N, 6) array_like
         Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
         end-effector frame.
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
 
     Returns
     -------
@@ -323,8 +326,8 @@ def mass_matrix(thetalist: ArrayLike, Mlist: ArrayLike, Glist: ArrayLike, Slist:
     ----------
     thetalist : (n,) or (N, n) array_like
         Joint values (rad / m), or N configurations at once.
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
 
     Returns
     -------
@@ -364,8 +367,8 @@ def vel_quadratic_forces(thetalist: ArrayLike, dthetalist: ArrayLike, Mlist: Arr
     ----------
     thetalist, dthetalist : (n,) array_like
         Joint values and rates (rad, rad/s; m, m/s).
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
 
     Returns
     -------
@@ -390,12 +393,11 @@ def gravity_forces(thetalist: ArrayLike, g: ArrayLike, Mlist: ArrayLike, Glist: 
 
     Parameters
     ----------
-    thetalist : (n,) array_like
-        Joint values (rad / m).
-    g : (3,) array_like
-        Gravity in the space (base) frame, m/s², e.g. ``[0, 0, -9.81]``.
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    thetalist, g : (n,), (3,) array_like
+        Joint values and gravity (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring); of ``Glist`` only the link masses act here (the frames
+        of ``Mlist`` sit at the centres of mass).
 
     Returns
     -------
@@ -420,13 +422,10 @@ def end_effector_forces(thetalist: ArrayLike, Ftip: ArrayLike, Mlist: ArrayLike,
 
     Parameters
     ----------
-    thetalist : (n,) array_like
-        Joint values (rad / m).
-    Ftip : (6,) array_like
-        Wrench ``(m, f)`` (N·m, N) the end-effector applies to the environment, in the
-        end-effector frame.
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    thetalist, Ftip : (n,), (6,) array_like
+        Joint values and the tip wrench (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring); ``Glist`` does not act here (no motion, no gravity).
 
     Returns
     -------
@@ -458,8 +457,8 @@ def forward_dynamics(thetalist: ArrayLike, dthetalist: ArrayLike, taulist: Array
         Gravity in the base frame (m/s²), e.g. ``[0, 0, -9.81]``.
     Ftip : (6,) or (N, 6) array_like
         Wrench ``(m, f)`` the end-effector applies to the environment, in its frame (N·m, N).
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
     method : {"aba", "crba"}, optional
         ``"aba"`` (default) — Featherstone's articulated-body algorithm, O(n): an outward pass for
         the link twists, an inward pass for the articulated inertias
@@ -560,8 +559,8 @@ def inverse_dynamics_trajectory(thetamat: ArrayLike, dthetamat: ArrayLike, ddthe
         Gravity in the base frame (m/s²).
     Ftipmat : (N, 6) array_like
         Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
 
     Returns
     -------
@@ -612,8 +611,8 @@ def forward_dynamics_trajectory(thetalist: ArrayLike, dthetalist: ArrayLike, tau
         Gravity in the base frame (m/s²).
     Ftipmat : (N, 6) array_like
         Tip wrench ``(m, f)`` at each step, end-effector frame (N·m, N).
-    Mlist, Glist, Slist : (n+1, 4, 4), (n, 6, 6), (6, n) array_like
-        The model: link frames (m), spatial inertias (kg·m², kg), screw axes (the module docstring).
+    Mlist, Glist, Slist : array_like
+        The model (the module docstring).
     dt : float
         Time step between rows (s), positive.
     intRes : int

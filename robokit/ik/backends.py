@@ -241,6 +241,9 @@ class IKBackend:
 
     name = ""
 
+    def __init__(self) -> None:
+        """No arguments: a back end keeps no settings (a problem's own fields steer it)."""
+
     def unsupported(self, problem: IKProblem) -> str | None:
         """Whether this back end can solve ``problem``.
 
@@ -351,11 +354,6 @@ class ClosedFormBackend(_ExactBackend):
 
     Supports a full tip pose of a :class:`robokit.Robot` that has a closed form.
 
-    Attributes
-    ----------
-    name : str
-        ``"analytic"``.
-
     Examples
     --------
     >>> robot = rk.load("puma560")
@@ -423,11 +421,6 @@ class PlanarBackend(_ExactBackend):
     in one plane. The arm's planar geometry is cached per robot and rebuilt when its screws,
     home pose or limits change.
 
-    Attributes
-    ----------
-    name : str
-        ``"planar"``.
-
     Examples
     --------
     >>> robot = rk.load("twolink")
@@ -480,11 +473,6 @@ class CompiledLMBackend(IKBackend):
 
     Supports a full tip pose of a :class:`robokit.Robot`, without error weights or a time budget.
 
-    Attributes
-    ----------
-    name : str
-        ``"compiled"``.
-
     Examples
     --------
     >>> import dataclasses
@@ -536,11 +524,6 @@ class PinocchioLMBackend(IKBackend):
     Robot (Pinocchio) or RobotLike and any frame (:func:`robokit.ik.lm.lm_loop`; 60 iterations
     per attempt by default). It supports every problem: the last back end tried.
 
-    Attributes
-    ----------
-    name : str
-        ``"lm"``.
-
     Examples
     --------
     The planar arm (1 m and 0.8 m) reaching (0, 1.8, 0), position only:
@@ -589,10 +572,12 @@ def backend(name: str) -> IKBackend:
     Parameters
     ----------
     name : str
+        The back end's :attr:`IKBackend.name`.
 
     Returns
     -------
     IKBackend
+        The instance :data:`BACKENDS` holds (one per name, shared).
 
     Raises
     ------

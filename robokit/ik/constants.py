@@ -177,6 +177,7 @@ class GeneralSixRConstants:
         Returns
         -------
         GeneralSixRConstants
+            The same numbers as a typed record, one :class:`GeneralSixRReading` per reading.
 
         Examples
         --------

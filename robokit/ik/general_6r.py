@@ -367,6 +367,7 @@ class GeneralSixR:
         Returns
         -------
         str or None
+            The answer :meth:`refusal_of` gave for this chain when the solver was built.
 
         Examples
         --------
@@ -394,6 +395,8 @@ class GeneralSixR:
         Returns
         -------
         str or None
+            None when the chain has six joints, all revolute, with axes independent somewhere;
+            else one sentence naming the first of these conditions that fails.
 
         Examples
         --------
@@ -435,6 +438,8 @@ class GeneralSixR:
         Returns
         -------
         GeneralSixR
+            ``cls(chain)``: the elimination's constants are computed here, once per arm (none when
+            :meth:`refusal_of` refuses the chain).
 
         Examples
         --------
@@ -547,10 +552,8 @@ class GeneralSixR:
 
         Examples
         --------
-        >>> import numpy as np, robokit
-        >>> from robokit.ik._dh_chain import DHChain
-        >>> chain = DHChain(robokit.load("puma560").dh)
-        >>> chain.a[3] = 0.001
+        The chain of :meth:`solve`'s example (the PUMA without a spherical wrist):
+
         >>> len(GeneralSixR(chain).joint_angles(chain.fk6(np.array([0.1, -0.5, 0.3, 0.4, 0.6, -0.2]))))
         8
         """
@@ -571,10 +574,8 @@ class GeneralSixR:
 
         Examples
         --------
-        >>> import numpy as np, robokit
-        >>> from robokit.ik._dh_chain import DHChain
-        >>> chain = DHChain(robokit.load("puma560").dh)
-        >>> chain.a[3] = 0.001
+        The chain of :meth:`solve`'s example:
+
         >>> len(GeneralSixR(chain).position(chain.fk6(np.zeros(6)))) > 0
         True
         """

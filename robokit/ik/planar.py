@@ -292,10 +292,13 @@ def planar_chain(robot: Robot) -> PlanarChain | None:
     Parameters
     ----------
     robot : :class:`robokit.Robot`
+        The arm; its POE screw axes, home pose and joint limits are read.
 
     Returns
     -------
     PlanarChain or None
+        The arm's plane, axis points, link vectors and limits; None when a joint is prismatic
+        or the axes are not parallel.
 
     Examples
     --------
@@ -323,10 +326,13 @@ def planar_reason(robot: Robot) -> str | None:
     Parameters
     ----------
     robot : :class:`robokit.Robot`
+        The arm to check (through :func:`planar_chain`).
 
     Returns
     -------
     str or None
+        None when the planar closed form applies; else the first condition that fails, in one
+        sentence.
 
     Examples
     --------

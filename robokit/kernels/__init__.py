@@ -51,6 +51,7 @@ def compile_mode() -> str:
     Returns
     -------
     str
+        One of :data:`MODES`.
 
     Raises
     ------

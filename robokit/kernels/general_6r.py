@@ -54,6 +54,7 @@ import math
 import numpy as np
 
 from robokit.kernels._jit import njit
+from robokit.kernels.lie import inv_t, mul_tt, mul_tt_inplace
 
 __all__ = ["side_tensor", "pencil", "companion", "deflate", "nullity_at_i", "turn", "eigenvalues", "null_vector",
            "sv_ratio", "regularity",
@@ -139,13 +140,9 @@ def fill_joint(alpha: np.ndarray, a: np.ndarray, d: np.ndarray, T06: np.ndarray,
         if i < 5:
             x_step(B if i >= j else A, alpha[i], a[i])
     # R = A_Rᵀ R₀₆ B_Rᵀ (rotation part of A⁻¹ T B⁻¹)
-    R1 = np.empty((3, 3))
-    for i in range(3):
-        for k in range(3):
-            acc = 0.0
-            for m in range(3):
-                acc += A[m, i] * T06[m, k]
-            R1[i, k] = acc
+    R1 = np.empty((4, 4))
+    inv_t(A, R1)
+    mul_tt_inplace(R1, T06, R1)
     r00 = 0.0
     r10 = 0.0
     for m in range(3):
@@ -193,14 +190,11 @@ def _pose_error(Tt: np.ndarray, T: np.ndarray, e: np.ndarray) -> float:
     """e = (p* − p, ω) with exp([ω]) = R* Rᵀ (space frame); returns ‖e‖."""
     for r in range(3):
         e[r] = Tt[r, 3] - T[r, 3]
-    # R_err = R* Rᵀ
-    Re = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            s = 0.0
-            for k in range(3):
-                s += Tt[i, k] * T[j, k]
-            Re[i, j] = s
+    # R_err = R* Rᵀ (rotation part of T* T⁻¹)
+    Tinv = np.empty((4, 4))
+    inv_t(T, Tinv)
+    Re = np.empty((4, 4))
+    mul_tt(Tt, Tinv, Re)
     tr = Re[0, 0] + Re[1, 1] + Re[2, 2]
     cth = 0.5 * (tr - 1.0)
     cth = 1.0 if cth > 1.0 else (-1.0 if cth < -1.0 else cth)

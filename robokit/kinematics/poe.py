@@ -11,6 +11,11 @@ Each exponential of a unit screw uses the closed form (Rodrigues for the rotatio
 ``G(θ)v`` for the translation), so these are exact to rounding. The batched variants
 accept a leading dimension of configurations (N, n); every function runs the compiled kernel of
 :mod:`robokit.kernels.poe` (one configuration, or the parallel batched kernel for (N, n)).
+
+``thetalist``, the argument every function takes: joint values (rad for revolute, m for
+prismatic joints), (n,) for one configuration or (N, n) for N at once (the result then gains a
+leading N axis). Every function raises :class:`~robokit.errors.InputError` when a shape does not
+match, a value is NaN or infinite, or (``fkin_*``) ``M`` is not a rigid transform.
 """
 from __future__ import annotations
 
@@ -239,17 +244,12 @@ def fkin_body(M: ArrayLike, Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarra
     Blist : (6, n) array_like
         Screw axes of the joints in the end-effector frame at home, one column each, ``(ω; v)``.
     thetalist : (n,) or (N, n) array_like
-        Joint values (rad / m), or N configurations at once.
+        Joint values (the module docstring).
 
     Returns
     -------
     (4, 4) ndarray, or (N, 4, 4) for N configurations
         Pose of the end-effector in the space frame (metres), the same as :func:`fkin_space`.
-
-    Raises
-    ------
-    InputError
-        On a shape mismatch, a non-rigid ``M`` or NaN/infinite values.
 
     Examples
     --------
@@ -281,17 +281,12 @@ def jacobian_space(Slist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     Slist : (6, n) array_like
         Space-frame screw axes, one column per joint, ``(ω; v)``.
     thetalist : (n,) or (N, n) array_like
-        Joint values (rad / m), or N configurations at once.
+        Joint values (the module docstring); the last one does not enter ``J_s``.
 
     Returns
     -------
     (6, n) ndarray, or (N, 6, n) for N configurations
         Rows ``(ω; v)`` (rad/s and m/s per unit joint rate), space-frame axes.
-
-    Raises
-    ------
-    InputError
-        On a shape mismatch or NaN/infinite values.
 
     Examples
     --------
@@ -318,18 +313,13 @@ def jacobian_body(Blist: ArrayLike, thetalist: ArrayLike) -> np.ndarray:
     Blist : (6, n) array_like
         Body-frame screw axes (end-effector frame at home), one column per joint, ``(ω; v)``.
     thetalist : (n,) or (N, n) array_like
-        Joint values (rad / m), or N configurations at once.
+        Joint values (the module docstring); ``J_b`` does not depend on the first.
 
     Returns
     -------
     (6, n) ndarray, or (N, 6, n) for N configurations
         Rows ``(ω; v)``: angular velocity and velocity of the end-effector origin, both in
         end-effector axes, per unit joint rate.
-
-    Raises
-    ------
-    InputError
-        On a shape mismatch or NaN/infinite values.
 
     Examples
     --------

@@ -197,7 +197,7 @@ class CapabilityMap:
         Returns
         -------
         pathlib.Path
-            The path written.
+            ``path``: the ``.npz`` file, which :meth:`load` reads back.
 
         Examples
         --------

@@ -173,6 +173,9 @@ class MapRobot:
         Returns
         -------
         Robot
+            Built anew on each call: the shipped or example-robot-data model loaded by name, the
+            DH table by :func:`~robokit.description.dh_robots.load_dh_text`, the chain by
+            :func:`~robokit.description.stick.stick_robot`.
 
         Raises
         ------

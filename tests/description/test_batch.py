@@ -37,6 +37,11 @@ def test_batched_methods_refuse_bad_input():
         r.rnea_batch(np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((2, 6)), threads=0)
     with pytest.raises(ValueError, match="NaN"):
         r.crba_batch(np.full((2, 6), np.nan))
+    two, three = np.zeros((2, 6)), np.zeros((3, 6))
+    with pytest.raises(ValueError, match=r"q, dq, ddq: expected equal shapes, got \(2, 6\), \(3, 6\), \(2, 6\)"):
+        r.rnea_batch(two, three, two)
+    with pytest.raises(ValueError, match=r"q, dq, tau: expected equal shapes, got \(2, 6\), \(2, 6\), \(3, 6\)"):
+        r.aba_batch(two, two, three)
 
 
 def test_a_batch_given_to_a_one_configuration_method_warns_once_and_still_works():

@@ -451,3 +451,13 @@ def test_hostile_meshes_are_refused_in_bounded_time(tmp_path):
                   '<body name="b"><joint/><geom type="mesh" mesh="passwd"/></body></worldbody></mujoco>')
     with pytest.raises(InputError, match="outside"):
         robokit.load(path)
+
+
+@pytest.mark.parametrize("tree", ['<body name="a" childclass="nope"><geom size="0.1"/></body>',
+                                  '<frame childclass="nope"><body name="a"><geom size="0.1"/></body></frame>'])
+def test_an_unknown_childclass_is_refused_on_a_body_and_on_a_frame(tree, tmp_path):
+    path = _write(tmp_path, "unknown_class.xml", f"<mujoco><worldbody>{tree}</worldbody></mujoco>")
+    with pytest.raises(Exception):  # MuJoCo refuses the file too
+        mujoco.MjModel.from_xml_path(str(path))
+    with pytest.raises(InputError, match="childclass='nope': no such default class"):
+        compile_mjcf(path)
