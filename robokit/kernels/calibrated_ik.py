@@ -428,8 +428,13 @@ def scratch() -> np.ndarray:
 
 @njit
 def _same(a: np.ndarray, b: np.ndarray, rev: np.ndarray) -> bool:
+    """Whether a and b are one solution (within ``SAME``, angles modulo 2π). A difference between
+    SAME and 6 in magnitude is decided without the remainder (the same answer: up to π the
+    remainder is the difference itself, beyond it is at least 2π − 6 in magnitude)."""
     for j in range(6):
         d = a[j] - b[j]
+        if SAME <= abs(d) <= 6.0:
+            return False
         if rev[j] != 0.0:
             d = _cf._rem(d)
         if d >= SAME or d <= -SAME:
