@@ -63,7 +63,7 @@ import numpy as np
 
 from robokit._arrays import kernel_array
 from robokit.errors import InputError, RobokitWarning
-from robokit.ik.solution import IKSolution, _Rows, _RowSolution, check_pose
+from robokit.ik.solution import IKSolution, _from_rows, check_pose
 from robokit.kernels import calibrated_ik as _kci
 from robokit.kernels import closed_form as _kcf
 
@@ -365,6 +365,8 @@ class CalibratedArm:
                                 MAX_STEPS)
         self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
         self._branches = np.empty((_kcf.MAX_ROWS, _kci.BRANCH_COLS))
+        self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
+        self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kernel_entry)
         self._warned = False
         ang, dist = deviation
         off = []
@@ -409,19 +411,13 @@ class CalibratedArm:
     def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, int, int, float, np.ndarray]:
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
         branches = self._branches
-        ref = self.nominal._kernel_ref(wrist_ref)
+        ref = wrist_ref * self._ref_sign
         for attempt in range(2):
             n, merged, vanished, sigma = _kci.calibrated_solve_into(self._Kn, self._kind, self._C, T, ref, out,
                                                                     branches, self._work)
             if n != -1 or attempt:
                 break
-            # T failed the kernel's quick rigid-transform test: check it fully (raises), then use the
-            # nearest rigid transform (R's polar factor)
-            T = check_pose(T)
-            U, _, Vt = np.linalg.svd(T[:3, :3])
-            Tc = np.eye(4)
-            Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
-            T = Tc
+            T = _nearest_rigid(T)
         return out, n, merged, vanished, sigma, branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
@@ -440,19 +436,38 @@ class CalibratedArm:
             As :func:`robokit.ik_analytic`; a solution reached by several branches is labelled
             ``"A (merged with B)"`` and flagged ``degenerate``.
         """
-        out, n, merged, vanished, sigma, branches = self._solve(T, wrist_ref)
+        if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
+            T = np.ascontiguousarray(check_pose(T), dtype=float)
+        return self._solve_checked(T, wrist_ref, 5)
+
+    def _solve_checked(self, T: np.ndarray, wrist_ref: float, level: int = 4) -> list[IKSolution]:
+        """:meth:`solve` of a T known to be a C-contiguous float64 (4, 4) array (the kernel's machine
+        code is called without numba's type dispatch); its warnings name the caller ``level`` frames up."""
+        out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
+        branches = self._branches
+        into = self._into
+        if into is None:
+            into = _kernel_entry()
+            if into is None:  # not compiled for these types yet (or plain Python): numba's dispatch
+                into = _kci.calibrated_solve_into
+            else:
+                self._into = into
+        n, merged, vanished, sigma = into(self._Kn, self._kind, self._C, T, wrist_ref * self._ref_sign, out,
+                                          branches, self._work)
+        if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
+            out, n, merged, vanished, sigma, branches = self._solve(_nearest_rigid(T), wrist_ref)
         if vanished:
-            self._warn_vanished(branches)
+            self._warn_vanished(branches, level)
         if sigma <= _kci.SIGMA_EXPLORE:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
                           f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
                           f"branches, and the search for them along the near-singular direction is not exhaustive: "
                           f"a solution may be missing (each returned one is exact; nominal=False gives the general "
-                          f"6R method)", RobokitWarning, stacklevel=4)
+                          f"6R method)", RobokitWarning, stacklevel=level)
         if n <= 0:
             return []
-        sols = _RowSolution.from_rows(_Rows(out, n, self._labels))
+        sols = _from_rows([out, n, self._labels, None])
         if not merged:
             return sols
         m = int(np.count_nonzero(branches[:, 0] >= 0.0))
@@ -503,7 +518,7 @@ class CalibratedArm:
         """
         return _kci.calibrated_batch(self._Kn, self._kind, self._C, Ts, self.nominal._kernel_ref(wrist_ref))
 
-    def _warn_vanished(self, branches: np.ndarray) -> None:
+    def _warn_vanished(self, branches: np.ndarray, level: int = 4) -> None:
         if self._warned:
             return
         m = int(np.count_nonzero(branches[:, 0] >= 0.0))
@@ -513,7 +528,35 @@ class CalibratedArm:
             warnings.warn(f"ik_analytic: near a singular pose, the branch(es) {', '.join(gone)} of the nominal "
                           f"structure have no exact solution on this arm (two roots met and left); "
                           f"AnalyticIK(robot).calibrated.branches(T) lists every branch (said once per arm)",
-                          RobokitWarning, stacklevel=4)
+                          RobokitWarning, stacklevel=level)
+
+
+_F64 = np.dtype(np.float64)
+
+
+def _nearest_rigid(T: np.ndarray) -> np.ndarray:
+    """T after the full rigid-transform check (raises), as the nearest rigid transform: R's polar
+    factor (for a T that failed the kernel's quick test)."""
+    T = check_pose(T)
+    U, _, Vt = np.linalg.svd(T[:3, :3])
+    Tc = np.eye(4)
+    Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
+    return Tc
+
+
+def _kernel_entry() -> Any:
+    """The machine code of :func:`robokit.kernels.calibrated_ik.calibrated_solve_into` for the one
+    set of argument types :class:`CalibratedArm` passes (float64 arrays in C order, an int, a
+    float), without numba's type dispatch (as :func:`robokit.kernels.closed_form.solve_into_entry`);
+    None while there is none (not compiled yet, or plain Python)."""
+    overloads = getattr(_kci.calibrated_solve_into, "overloads", None)
+    if not overloads:
+        return None
+    from numba.core import types as nbt
+
+    a1, a2 = nbt.Array(nbt.float64, 1, "C"), nbt.Array(nbt.float64, 2, "C")
+    cres = overloads.get((a1, nbt.int64, a1, a2, nbt.float64, a2, a2, a2))
+    return None if cres is None else cres.entry_point
 
 
 def _geometry_of(robot: Any) -> _Geometry:

@@ -493,7 +493,7 @@ class AnalyticIK:
             # calibrated solver's warnings count their stacklevel from here
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            return self.calibrated.solve(T, wrist_ref)
+            return self.calibrated._solve_checked(T, wrist_ref)
         return self._solve(T, wrist_ref)
 
     def _solve(self, T: ArrayLike, wrist_ref: float) -> list[IKSolution]:
@@ -501,7 +501,7 @@ class AnalyticIK:
         if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            return self.calibrated.solve(T, wrist_ref)
+            return self.calibrated._solve_checked(T, wrist_ref)
         kernel = self._kernel
         if kernel is not None and self.use_kernel:
             # the kernel's one signature (float64, C order, 4×4); its rigid-transform test is compiled
