@@ -543,7 +543,11 @@ class Robot:
             if hypot(*out.tolist()) < _INF:
                 return out
         elif ndim(q, "q") == 2:
-            warn_once(f"Robot.{method}((N, n) q)")
+            # the registry keys written out (tests/test_deprecations.py reads them from the source)
+            if method == "rnea":
+                warn_once("Robot.rnea((N, n) q)")
+            else:
+                warn_once("Robot.aba((N, n) q)")
             return _batch(method, self, q, dq, x, threads)
         q, dq, x = self._check_q(q), self._check_q(dq, "dq"), self._check_q(x, x_name)
         return fn(self.model, self.data, self.q_pin(q), dq, x)
