@@ -366,7 +366,7 @@ class CalibratedArm:
         self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
         self._branches = np.empty((_kcf.MAX_ROWS, _kci.BRANCH_COLS))
         self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
-        self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kernel_entry)
+        self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
         ang, dist = deviation
         off = []
@@ -447,7 +447,7 @@ class CalibratedArm:
         branches = self._branches
         into = self._into
         if into is None:
-            into = _kernel_entry()
+            into = _kci.solve_into_entry()
             if into is None:  # not compiled for these types yet (or plain Python): numba's dispatch
                 into = _kci.calibrated_solve_into
             else:
@@ -542,21 +542,6 @@ def _nearest_rigid(T: np.ndarray) -> np.ndarray:
     Tc = np.eye(4)
     Tc[:3, :3], Tc[:3, 3] = U @ Vt, T[:3, 3]
     return Tc
-
-
-def _kernel_entry() -> Any:
-    """The machine code of :func:`robokit.kernels.calibrated_ik.calibrated_solve_into` for the one
-    set of argument types :class:`CalibratedArm` passes (float64 arrays in C order, an int, a
-    float), without numba's type dispatch (as :func:`robokit.kernels.closed_form.solve_into_entry`);
-    None while there is none (not compiled yet, or plain Python)."""
-    overloads = getattr(_kci.calibrated_solve_into, "overloads", None)
-    if not overloads:
-        return None
-    from numba.core import types as nbt
-
-    a1, a2 = nbt.Array(nbt.float64, 1, "C"), nbt.Array(nbt.float64, 2, "C")
-    cres = overloads.get((a1, nbt.int64, a1, a2, nbt.float64, a2, a2, a2))
-    return None if cres is None else cres.entry_point
 
 
 def _geometry_of(robot: Any) -> _Geometry:

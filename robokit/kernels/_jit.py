@@ -745,6 +745,26 @@ if not getattr(sys.modules[__name__], "_LISTENING", False):
     _LISTENING = True
 
 
+def machine_code(kernel: Any, spec: str) -> Any:
+    """A compiled kernel's machine code for one set of argument types, as a callable that skips
+    numba's type dispatch (about 0.1 µs of a call); None while the kernel has no machine code for
+    them (not compiled yet, or running as plain Python: call the kernel itself then). The caller
+    must pass exactly those types: the entry point converts without checking.
+
+    ``spec`` names the argument types, one letter each: ``v`` a float64 1-D array in C order,
+    ``m`` a float64 2-D array in C order, ``f`` a float64 (a Python float), ``i`` an int64 (a
+    Python int)."""
+    overloads = getattr(kernel, "overloads", None)
+    if not overloads:
+        return None
+    from numba.core import types as nbt
+
+    code = {"v": nbt.Array(nbt.float64, 1, "C"), "m": nbt.Array(nbt.float64, 2, "C"), "f": nbt.float64,
+            "i": nbt.int64}
+    cres = overloads.get(tuple(code[c] for c in spec))
+    return None if cres is None else cres.entry_point
+
+
 def cache_dir(kernel: object) -> str | None:
     """The folder where numba keeps ``kernel``'s compiled code (see the module docstring for the
     order numba tries), or None when the kernel is not cached (``NUMBA_DISABLE_JIT=1``).

@@ -50,15 +50,16 @@ Example (``AnalyticIK`` builds the arguments; ``ik_analytic`` calls these kernel
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from robokit.kernels._jit import njit, prange
+from robokit.kernels._jit import machine_code, njit, prange
 from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
 
-__all__ = ["pack_arm", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "calibrated_batch", "SAME",
+__all__ = ["pack_arm", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
            "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
@@ -884,6 +885,26 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
                 ns += 1
     ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
     return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
+
+
+def solve_into_entry() -> Any:
+    """The machine code of :func:`calibrated_solve_into` for the one set of argument types
+    :class:`robokit.ik.calibrated.CalibratedArm` passes — Kn (n,), C (n,), T (4, 4), out, branches and
+    work 2-D, all float64 in C order, ``method`` a Python int, ``wrist_ref`` a Python float — as a
+    callable without numba's type dispatch, or None while there is none (not compiled yet, or plain
+    Python: then call the kernel itself). As :func:`robokit.kernels.closed_form.solve_into_entry`.
+
+    Returns
+    -------
+    callable or None
+
+    Examples
+    --------
+    >>> entry = solve_into_entry()
+    >>> entry is None or callable(entry)
+    True
+    """
+    return machine_code(calibrated_solve_into, "vivmfmmm")
 
 
 @njit(parallel=True)

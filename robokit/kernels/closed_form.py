@@ -51,7 +51,7 @@ from typing import Any
 
 import numpy as np
 
-from robokit.kernels._jit import njit, prange
+from robokit.kernels._jit import machine_code, njit, prange
 
 __all__ = ["closed_form_solve", "closed_form_batch", "pieper_solve", "parallel_axes_solve", "pieper_batch",
            "pieper_position", "pieper_wrist", "pieper_rows", "parallel_axes_position",
@@ -1039,15 +1039,7 @@ def solve_into_entry(kernel: Any) -> Any:
     >>> entry is None or entry(K, T, 0.0, out) == n
     True
     """
-    overloads = getattr(kernel, "overloads", None)
-    if not overloads:
-        return None
-    from numba.core import types as nbt
-
-    f64 = nbt.float64
-    sig = (nbt.Array(f64, 1, "C"), nbt.Array(f64, 2, "C"), f64, nbt.Array(f64, 2, "C"))
-    cres = overloads.get(sig)
-    return None if cres is None else cres.entry_point
+    return machine_code(kernel, "vmfm")
 
 
 def closed_form_solve(K: np.ndarray, T: np.ndarray, wrist_ref: float) -> np.ndarray:
