@@ -90,7 +90,7 @@ EXPLORE_STEPS = (0.1, -0.1, 0.3, -0.3, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0)
 BRANCH_COLS = 5
 
 
-@njit
+@njit(inline=True)
 def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
     """F ← (ω, v), the spatial twist that moves T to Td, to first order: ``ω = vee(A − Aᵀ)/2`` with
     ``A = R_d Rᵀ`` (sin θ times the axis), ``v = Δp − ω × p`` with ``Δp = p_d − p`` (p moves with
@@ -121,7 +121,7 @@ def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, 
     return 0.5 * (rot * rot + pos * pos), rot, pos
 
 
-@njit
+@njit(inline=True)
 def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> bool:
     """x ← J⁻¹ F (6 × 6) by Gaussian elimination with partial pivoting on the copy A; False when a
     pivot is below 1e-12 of the largest entry (J singular for this purpose). One division per
@@ -242,7 +242,7 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     return C
 
 
-@njit
+@njit(inline=True)
 def _trig(C: np.ndarray, q: np.ndarray, sc: np.ndarray) -> None:
     """sc[0] ← sin q, sc[1] ← cos q of the revolute joints."""
     for i in range(6):
@@ -251,7 +251,7 @@ def _trig(C: np.ndarray, q: np.ndarray, sc: np.ndarray) -> None:
             sc[1, i] = math.cos(q[i])
 
 
-@njit
+@njit(inline=True)
 def _advance(C: np.ndarray, sc: np.ndarray, step: np.ndarray, out: np.ndarray) -> None:
     """out ← sin, cos of (q + step) from sc = sin, cos of q by the angle-addition formulas; sin and
     cos of a step below 0.02 rad by their Taylor series (sin to δ⁷, cos to δ⁸: the next terms are
@@ -274,7 +274,7 @@ def _advance(C: np.ndarray, sc: np.ndarray, step: np.ndarray, out: np.ndarray) -
 _I6, _I24, _I120, _I720, _I5040, _I40320 = 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, 1.0 / 5040.0, 1.0 / 40320.0
 
 
-@njit
+@njit(inline=True)
 def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray) -> None:
     """T ← the tip pose (4, 4) and J ← the space Jacobian (6, 6; ω rows first, v of the point at the
     base origin) of the packed arm ``C`` (:func:`pack_arm`) at q, the revolute joints' sin and cos
@@ -283,7 +283,7 @@ def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: 
     _chain(C, q, sc, T, J, True)
 
 
-@njit
+@njit(inline=True)
 def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray, jac: bool) -> None:
     """:func:`fk_jacobian`; J is written only when ``jac`` (the pose alone: the same arithmetic, so
     the same T to the last bit)."""
@@ -427,7 +427,7 @@ def scratch() -> np.ndarray:
     return np.empty((_WORK_ROWS, 6))
 
 
-@njit
+@njit(inline=True)
 def _same(a: np.ndarray, b: np.ndarray, rev: np.ndarray) -> bool:
     """Whether a and b are one solution (within ``SAME``, angles modulo 2π). A difference between
     SAME and 6 in magnitude is decided without the remainder (the same answer: up to π the
@@ -443,7 +443,7 @@ def _same(a: np.ndarray, b: np.ndarray, rev: np.ndarray) -> bool:
     return True
 
 
-@njit
+@njit(inline=True)
 def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
     for k in range(n):
         if _same(q, Q[k], rev):

@@ -89,9 +89,12 @@ def _wrap(a: float) -> float:
     return w - _PI
 
 
-@njit
+@njit(inline=True)
 def _rem(v: float) -> float:
-    """IEEE remainder of v by 2π (``math.remainder``)."""
+    """IEEE remainder of v by 2π (``math.remainder``). Inside (−π, π) that is v itself (the quotient
+    rounds to 0), returned without the division: most joint values and differences are there."""
+    if -_PI < v < _PI:
+        return v
     n = v / _TWO_PI
     k = float(math.floor(n + 0.5))
     if k - n == 0.5 and k % 2.0 != 0.0:  # a tie: round half to even
