@@ -97,19 +97,11 @@ def cross3(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> None:
 
 @njit
 def rot(T: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
-    """out ← R x with R the rotation block of T (out may alias x)."""
+    """out ← R x with R the rotation block of T (out may alias x). For Rᵀ x pass ``T.T``: a view
+    with swapped strides (no copy), the same products summed in the same order."""
     a = T[0, 0] * x[0] + T[0, 1] * x[1] + T[0, 2] * x[2]
     b = T[1, 0] * x[0] + T[1, 1] * x[1] + T[1, 2] * x[2]
     c = T[2, 0] * x[0] + T[2, 1] * x[1] + T[2, 2] * x[2]
-    out[0], out[1], out[2] = a, b, c
-
-
-@njit
-def rot_t(T: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
-    """out ← Rᵀ x with R the rotation block of T (out may alias x)."""
-    a = T[0, 0] * x[0] + T[1, 0] * x[1] + T[2, 0] * x[2]
-    b = T[0, 1] * x[0] + T[1, 1] * x[1] + T[2, 1] * x[2]
-    c = T[0, 2] * x[0] + T[1, 2] * x[1] + T[2, 2] * x[2]
     out[0], out[1], out[2] = a, b, c
 
 
@@ -233,7 +225,7 @@ def rnea_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, 
         w[r] = 0.0
         wd[r] = 0.0
         vd[r] = -g[r]
-    rot_t(base, vd, vd)  # v̇₀ = −g (the base accelerates upward), in frame {0}
+    rot(base.T, vd, vd)  # v̇₀ = −g (the base accelerates upward), in frame {0}
     for i in range(n):
         link_transform(P, i, modified, q[i], Ts[i])
         T = Ts[i]  # ⁱT_{i+1} (0-based): R = its rotation, p = its translation; ⁱ⁺¹R_i = Rᵀ
@@ -258,18 +250,18 @@ def rnea_into(P: np.ndarray, modified: int, base: np.ndarray, tool: np.ndarray, 
                 a[0] += 2.0 * w1[1] * qd
                 a[1] -= 2.0 * w1[0] * qd
                 a[2] += qdd
-            rot_t(T, w1, w)
-            rot_t(T, wd1, wd)
-            rot_t(T, a, vd)
+            rot(T.T, w1, w)
+            rot(T.T, wd1, wd)
+            rot(T.T, a, vd)
         else:  # the joint acts about z of frame {i+1}
             cross3(wd, p, a)  # a = Rᵀ(ω̇ × p + ω × (ω × p) + v̇)
             cross3(w, p, t)
             cross3(w, t, u)
             for r in range(3):
                 a[r] += u[r] + vd[r]
-            rot_t(T, a, a)
-            rot_t(T, w, t)  # t = Rᵀ ω
-            rot_t(T, wd, wd)
+            rot(T.T, a, a)
+            rot(T.T, w, t)  # t = Rᵀ ω
+            rot(T.T, wd, wd)
             for r in range(3):
                 w[r] = t[r]
             if rev:

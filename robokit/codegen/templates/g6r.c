@@ -942,6 +942,22 @@ static int g6r_companion(const double abc[3][6][9], double M[576], double lu[144
     return below;
 }
 
+/* swaps lines a and b (rows: step 12, stride 1; columns: step 1, stride 12) of the 12 x 12 row-major
+   matrices re and im alike: entry t of line l is at l * step + t * stride */
+static void g6r_swap_lines(double *re, double *im, int a, int b, int step, int stride)
+{
+    int t;
+    for (t = 0; t < 12; ++t) {
+        const int x = a * step + t * stride, y = b * step + t * stride;
+        double s = re[x];
+        re[x] = re[y];
+        re[y] = s;
+        s = im[x];
+        im[x] = im[y];
+        im[y] = s;
+    }
+}
+
 /* kernels.general_6r.deflate: the eigenvalues x = +-i removed from the companion matrix M (24 x 24,
    row-major) of a x^2 + b x + c; returns the new size n, M's first n * n entries then holding the
    n x n matrix of the other eigenvalues (row-major). When the pivot is the joint of its group
@@ -991,22 +1007,8 @@ static int g6r_deflate(const double abc[3][6][9], double *M, double *u)
             rank = k;
             break;
         }
-        for (j = 0; j < 12; ++j) {  /* rows k, p */
-            double x = kr[k * 12 + j];
-            kr[k * 12 + j] = kr[p * 12 + j];
-            kr[p * 12 + j] = x;
-            x = ki[k * 12 + j];
-            ki[k * 12 + j] = ki[p * 12 + j];
-            ki[p * 12 + j] = x;
-        }
-        for (i = 0; i < 12; ++i) {  /* columns k, q */
-            double x = kr[i * 12 + k];
-            kr[i * 12 + k] = kr[i * 12 + q];
-            kr[i * 12 + q] = x;
-            x = ki[i * 12 + k];
-            ki[i * 12 + k] = ki[i * 12 + q];
-            ki[i * 12 + q] = x;
-        }
+        g6r_swap_lines(kr, ki, k, p, 12, 1);  /* rows k, p */
+        g6r_swap_lines(kr, ki, k, q, 1, 12);  /* columns k, q */
         t = perm[k];
         perm[k] = perm[q];
         perm[q] = t;
