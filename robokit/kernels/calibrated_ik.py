@@ -164,12 +164,14 @@ def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> 
     return True
 
 
-#: Layout of the packed constants ``C`` (:func:`pack_arm`): the seven 3 × 4 local transforms, the
-#: joint kinds (0 revolute, 1 prismatic), the screw pitches, ``post_q`` (5, 6), the shoulder point
-#: (3,), the reach (m), tol_stop, tol_accept and max_steps.
-_L, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _LEN = (
-    0, 84, 90, 96, 126, 129, 130, 131, 132, 133)
-#: Where ``C`` keeps the local transforms (7 × 3 × 4, row-major), the joint kinds and the pitches.
+#: Layout of the packed constants ``C`` (:func:`pack_arm`): the base's and the tip's 3 × 4 transforms
+#: (``L₀``, ``L₆``), per joint the seven numbers of its factors (θ, b, cos α, sin α, a, cos θ, sin θ), the
+#: joint kinds (0 revolute, 1 prismatic), the screw pitches, ``post_q`` (5, 6), the shoulder point (3,),
+#: the reach (m), tol_stop, tol_accept and max_steps.
+_L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _LEN = (
+    0, 24, 66, 72, 78, 108, 111, 112, 113, 114, 115)
+#: Where ``C`` keeps the chain: ``L₀`` and ``L₆`` (3 × 4 each, row-major) and the per-joint
+#: numbers; the joint kinds; the pitches.
 FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
 #: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6).
 _WORK_ROWS = 96
@@ -179,13 +181,21 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
              tol_stop: float, tol_accept: float, max_steps: int) -> np.ndarray:
     """The arm's constants in one float64 array ``C`` (the kernels' layout above).
 
-    The product of exponentials ``T(q) = e^{[S₁]q₁} ⋯ e^{[S₆]q₆} M`` is rewritten with one frame per
-    joint axis: a frame ``Fᵢ`` whose z axis is the joint's axis (through the point of the axis
-    nearest the base origin; any point for a prismatic joint) gives ``e^{[Sᵢ]qᵢ} = Fᵢ Zᵢ(qᵢ) Fᵢ⁻¹``
-    with ``Zᵢ`` a rotation about z (and ``hᵢ qᵢ`` along it, h the pitch) or a translation along z, so
-    ``T(q) = L₀ Z₁(q₁) L₁ ⋯ Z₆(q₆) L₆`` with ``L₀ = F₁``, ``Lᵢ = Fᵢ⁻¹ Fᵢ₊₁``, ``L₆ = F₆⁻¹ M``: per joint
-    one fixed 3 × 4 product and a rotation that mixes two columns (no exponential, no 4 × 4
-    product). Plain numpy (called once per arm).
+    The product of exponentials ``T(q) = e^{[S₁]q₁} ⋯ e^{[S₆]q₆} M`` is rewritten with one frame
+    ``Fᵢ`` per joint axis: its z axis the joint's axis, its x axis perpendicular to this axis and the
+    next one (any direction perpendicular to it where they are parallel, and for the last axis),
+    its origin the point of the axis nearest the previous frame's origin (the first: nearest the
+    base origin; a prismatic joint's axis runs through the previous origin). Then
+    ``e^{[Sᵢ]qᵢ} = Fᵢ Zᵢ(qᵢ) Fᵢ⁻¹`` with ``Zᵢ`` a rotation about z (and ``hᵢ qᵢ`` along it, h the pitch)
+    or a translation along z, and consecutive frames are ``Fᵢ⁻¹ Fᵢ₊₁ = Rx(αᵢ) Tr(aᵢ, bᵢ, 0) Rz(θᵢ₊₁)``
+    (the next origin seen from this one is perpendicular to the next axis, so it has no component
+    along it), hence ``T(q) = L₀ Z₁′ X₁ Z₂′ X₂ ⋯ X₅ Z₆′ L₆`` with ``L₀ = F₁``, ``L₆ = F₆⁻¹ M``,
+    ``Xᵢ = Rx(αᵢ) Tr(aᵢ, bᵢ, 0)`` and ``Zᵢ′ = Rz(θᵢ + qᵢ) Tz(hᵢqᵢ)`` (a prismatic joint:
+    ``Rz(θᵢ) Tz(qᵢ)``; θ₁ = 0). Per joint the running product mixes two columns twice and moves along
+    two of them (no exponential, no 3 × 3 product): about two thirds of the arithmetic of a general
+    3 × 4 factor per joint, and no parameter grows where axes are nearly parallel (as Denavit and
+    Hartenberg's d does). Plain numpy (called once per arm); each ``Fᵢ⁻¹ Fᵢ₊₁`` is checked against
+    its factors (to 1e-12).
 
     Parameters
     ----------
@@ -204,37 +214,64 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
 
     Returns
     -------
-    (133,) ndarray
+    (115,) ndarray
 
     Examples
     --------
     >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
     ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
     >>> C.shape
-    (133,)
+    (115,)
     """
     n = Slist.shape[1]
-    frames = []
     kind = np.zeros(6)
     pitch = np.zeros(6)
-    for i in range(n):
+    z, point = [], []
+    for i in range(n):  # each axis as a line: unit direction z and (revolute) a point of it
         w, v = Slist[:3, i], Slist[3:, i]
-        F = np.eye(4)
-        if np.linalg.norm(w) > 0.5:  # revolute (unit ω): the axis point nearest the origin, the pitch
-            z = w / np.linalg.norm(w)
-            F[:3, 3] = np.cross(z, v)
-            pitch[i] = float(z @ v)
-        else:
-            z = v / np.linalg.norm(v)
+        if np.linalg.norm(w) > 0.5:  # revolute (unit ω): the point nearest the base origin, the pitch
+            zi = w / np.linalg.norm(w)
+            point.append(np.cross(zi, v))
+            pitch[i] = float(zi @ v)
+        else:  # prismatic: the direction alone matters
+            zi = v / np.linalg.norm(v)
+            point.append(None)
             kind[i] = 1.0
-        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
-        x /= np.linalg.norm(x)
-        F[:3, 0], F[:3, 1], F[:3, 2] = x, np.cross(z, x), z
+        z.append(zi)
+    origins = []
+    for i in range(n):  # each origin: the point of its axis nearest the previous origin
+        prev = origins[-1] if origins else np.zeros(3)
+        if point[i] is None:
+            origins.append(prev.copy())
+        else:
+            origins.append(point[i] + float((prev - point[i]) @ z[i]) * z[i])
+    frames = []
+    for i in range(n):
+        zi = z[i]
+        x = np.cross(zi, z[i + 1]) if i + 1 < n else np.zeros(3)
+        if np.linalg.norm(x) < 1e-12:  # parallel to the next axis, or the last one: any direction ⟂ z
+            x = np.cross(zi, [1.0, 0.0, 0.0] if abs(zi[0]) < 0.9 else [0.0, 1.0, 0.0])
+        x = x / np.linalg.norm(x)
+        F = np.eye(4)
+        F[:3, 0], F[:3, 1], F[:3, 2], F[:3, 3] = x, np.cross(zi, x), zi, origins[i]
         frames.append(F)
-    inv = [np.linalg.inv(F) for F in frames]
-    Ls = [frames[0]] + [inv[i] @ frames[i + 1] for i in range(n - 1)] + [inv[n - 1] @ M]
+    dh = np.zeros((6, 7))
+    dh[:, 2], dh[:, 5] = 1.0, 1.0  # cos α = 1 after the last joint, cos θ = 1 at the first
+    for i in range(n - 1):
+        L = np.linalg.inv(frames[i]) @ frames[i + 1]
+        alpha, theta = math.atan2(-L[1, 2], L[2, 2]), math.atan2(-L[0, 1], L[0, 0])
+        ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+        a, b = L[0, 3], ca * L[1, 3] + sa * L[2, 3]
+        rebuilt = np.array([[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, b * ca], [st * sa, ct * sa, ca, b * sa]])
+        if not np.abs(rebuilt - L[:3]).max() < 1e-12 * max(1.0, np.abs(L[:3, 3]).max()):
+            raise AssertionError("pack_arm: consecutive joint frames are not related by Rx Tr Rz")
+        dh[i, 1:5] = b, ca, sa, a  # Rx(α) Tr(a, b, 0) after joint i
+        dh[i + 1, 0] = theta  # Rz(θ) at joint i + 1
+        dh[i + 1, 5:7] = ct, st
     C = np.zeros(_LEN)
-    C[_L:_KIND] = np.concatenate([Lk[:3, :].ravel() for Lk in Ls])
+    C[_L:_L + 12] = frames[0][:3, :].ravel()
+    C[_L + 12:_DH] = (np.linalg.inv(frames[n - 1]) @ M)[:3, :].ravel()
+    C[_DH:_KIND] = dh.ravel()
     C[_KIND:_PITCH], C[_PITCH:_POST] = kind, pitch
     C[_POST:_SHOULDER] = np.asarray(post_q, dtype=float).ravel()
     C[_SHOULDER:_REACH] = shoulder
@@ -244,11 +281,13 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
 
 @njit(inline=True)
 def _trig(C: np.ndarray, q: np.ndarray, sc: np.ndarray) -> None:
-    """sc[0] ← sin q, sc[1] ← cos q of the revolute joints."""
+    """sc[0] ← sin, sc[1] ← cos of ``θᵢ + qᵢ`` of the revolute joints (their angle in the DH form of
+    :func:`pack_arm`)."""
     for i in range(6):
         if C[_KIND + i] == 0.0:
-            sc[0, i] = math.sin(q[i])
-            sc[1, i] = math.cos(q[i])
+            angle = C[_DH + 7 * i] + q[i]
+            sc[0, i] = math.sin(angle)
+            sc[1, i] = math.cos(angle)
 
 
 @njit(inline=True)
@@ -277,35 +316,24 @@ _I6, _I24, _I120, _I720, _I5040, _I40320 = 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1
 @njit(inline=True)
 def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray) -> None:
     """T ← the tip pose (4, 4) and J ← the space Jacobian (6, 6; ω rows first, v of the point at the
-    base origin) of the packed arm ``C`` (:func:`pack_arm`) at q, the revolute joints' sin and cos
-    given in sc (2, 6): one pass through the local transforms, the Jacobian's columns read off the
-    running product (joint i's axis z and point p: ω = z, v = p × z + h z; prismatic: v = z)."""
+    base origin) of the packed arm ``C`` (:func:`pack_arm`) at q, the sin and cos of the revolute
+    joints' DH angles θᵢ + qᵢ given in sc (2, 6, :func:`_trig`): one pass through the DH factors,
+    the Jacobian's columns read off the running product (joint i's axis z and point p: ω = z,
+    v = p × z + h z; prismatic: v = z)."""
     _chain(C, q, sc, T, J, True)
 
 
 @njit(inline=True)
 def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray, jac: bool) -> None:
     """:func:`fk_jacobian`; J is written only when ``jac`` (the pose alone: the same arithmetic, so
-    the same T to the last bit)."""
+    the same T to the last bit). The running product starts at ``L₀``; at joint i its z column is
+    the joint's axis and its origin a point of it (the Jacobian's column), then ``Zᵢ′`` and ``Xᵢ``
+    (:func:`pack_arm`) mix two columns each and move the origin along them; ``L₆`` ends it."""
     r00, r01, r02, px = C[0], C[1], C[2], C[3]
     r10, r11, r12, py = C[4], C[5], C[6], C[7]
     r20, r21, r22, pz = C[8], C[9], C[10], C[11]
-    for i in range(7):
-        if i > 0:
-            o = _L + 12 * i
-            a00, a01, a02, a03 = C[o], C[o + 1], C[o + 2], C[o + 3]
-            a10, a11, a12, a13 = C[o + 4], C[o + 5], C[o + 6], C[o + 7]
-            a20, a21, a22, a23 = C[o + 8], C[o + 9], C[o + 10], C[o + 11]
-            px, py, pz = (r00 * a03 + r01 * a13 + r02 * a23 + px, r10 * a03 + r11 * a13 + r12 * a23 + py,
-                          r20 * a03 + r21 * a13 + r22 * a23 + pz)
-            r00, r01, r02 = (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21,
-                                r00 * a02 + r01 * a12 + r02 * a22)
-            r10, r11, r12 = (r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21,
-                                r10 * a02 + r11 * a12 + r12 * a22)
-            r20, r21, r22 = (r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21,
-                                r20 * a02 + r21 * a12 + r22 * a22)
-        if i == 6:
-            break
+    for i in range(6):
+        o = _DH + 7 * i
         if C[_KIND + i] == 0.0:
             h = C[_PITCH + i]
             if jac:
@@ -314,19 +342,39 @@ def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.nd
                 J[4, i] = pz * r02 - px * r22 + h * r12
                 J[5, i] = px * r12 - py * r02 + h * r22
             s, c = sc[0, i], sc[1, i]
-            r00, r01 = c * r00 + s * r01, c * r01 - s * r00
-            r10, r11 = c * r10 + s * r11, c * r11 - s * r10
-            r20, r21 = c * r20 + s * r21, c * r21 - s * r20
-            if h != 0.0:
-                px, py, pz = px + h * q[i] * r02, py + h * q[i] * r12, pz + h * q[i] * r22
+            t = h * q[i]
         else:
             if jac:
                 J[0, i], J[1, i], J[2, i] = 0.0, 0.0, 0.0
                 J[3, i], J[4, i], J[5, i] = r02, r12, r22
-            px, py, pz = px + q[i] * r02, py + q[i] * r12, pz + q[i] * r22
-    T[0, 0], T[0, 1], T[0, 2], T[0, 3] = r00, r01, r02, px
-    T[1, 0], T[1, 1], T[1, 2], T[1, 3] = r10, r11, r12, py
-    T[2, 0], T[2, 1], T[2, 2], T[2, 3] = r20, r21, r22, pz
+            s, c = C[o + 6], C[o + 5]
+            t = q[i]
+        # Zᵢ′: Rz(θᵢ + qᵢ) mixes columns 0 and 1; Tz moves the origin along column 2 (a screw's pitch,
+        # a prismatic joint)
+        r00, r01 = c * r00 + s * r01, c * r01 - s * r00
+        r10, r11 = c * r10 + s * r11, c * r11 - s * r10
+        r20, r21 = c * r20 + s * r21, c * r21 - s * r20
+        if t != 0.0:
+            px, py, pz = px + t * r02, py + t * r12, pz + t * r22
+        if i < 5:  # Xᵢ: Rx(αᵢ) mixes columns 1 and 2, then Tr(aᵢ, bᵢ, 0) moves along columns 0 and 1
+            b, ca, sa, a = C[o + 1], C[o + 2], C[o + 3], C[o + 4]
+            r01, r02 = ca * r01 + sa * r02, ca * r02 - sa * r01
+            r11, r12 = ca * r11 + sa * r12, ca * r12 - sa * r11
+            r21, r22 = ca * r21 + sa * r22, ca * r22 - sa * r21
+            px, py, pz = px + a * r00 + b * r01, py + a * r10 + b * r11, pz + a * r20 + b * r21
+    o = _L + 12
+    a00, a01, a02, a03 = C[o], C[o + 1], C[o + 2], C[o + 3]
+    a10, a11, a12, a13 = C[o + 4], C[o + 5], C[o + 6], C[o + 7]
+    a20, a21, a22, a23 = C[o + 8], C[o + 9], C[o + 10], C[o + 11]
+    T[0, 3] = r00 * a03 + r01 * a13 + r02 * a23 + px
+    T[1, 3] = r10 * a03 + r11 * a13 + r12 * a23 + py
+    T[2, 3] = r20 * a03 + r21 * a13 + r22 * a23 + pz
+    T[0, 0], T[0, 1], T[0, 2] = (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21,
+                                 r00 * a02 + r01 * a12 + r02 * a22)
+    T[1, 0], T[1, 1], T[1, 2] = (r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21,
+                                 r10 * a02 + r11 * a12 + r12 * a22)
+    T[2, 0], T[2, 1], T[2, 2] = (r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21,
+                                 r20 * a02 + r21 * a12 + r22 * a22)
     T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
 
 
