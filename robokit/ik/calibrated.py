@@ -383,8 +383,8 @@ class CalibratedArm:
     def export_constants(self) -> dict[str, Any]:
         """The numbers the generated C's polish needs (:mod:`robokit.codegen.ik`): method, reason,
         shoulder (3,), reach, the kernel's tolerances and search constants, and the arm's local
-        transforms (``frames`` (7, 3, 4), ``kinds`` 0/1 revolute/prismatic, ``pitches``:
-        :func:`robokit.kernels.calibrated_ik.pack_arm`).
+        transforms (``frames`` (7, 3, 4): :func:`robokit.kernels.calibrated_ik.local_transforms`,
+        ``kinds`` 0/1 revolute/prismatic, ``pitches``: :func:`robokit.kernels.calibrated_ik.pack_arm`).
 
         Returns
         -------
@@ -395,7 +395,7 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
-                "frames": self._C[_kci.FRAMES].reshape(7, 3, 4).copy(),
+                "frames": _kci.local_transforms(self._C),
                 "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 

@@ -59,7 +59,7 @@ from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
 
-__all__ = ["pack_arm", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
+__all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
            "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
@@ -277,6 +277,38 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     C[_SHOULDER:_REACH] = shoulder
     C[_REACH], C[_TOL_STOP], C[_TOL_ACCEPT], C[_MAX_STEPS] = reach, tol_stop, tol_accept, max_steps
     return C
+
+
+def local_transforms(C: np.ndarray) -> np.ndarray:
+    """The packed arm ``C`` as seven 3 × 4 local transforms ``T(q) = L₀ Z₁(q₁) L₁ ⋯ Z₆(q₆) L₆`` with
+    ``Zᵢ`` the bare joint motion (a rotation about z with ``hᵢ qᵢ`` along it, or a translation along
+    z): ``L₀`` and ``L₆`` as packed, ``Lᵢ = Xᵢ Rz(θᵢ₊₁)`` between joints (:func:`pack_arm`). The form
+    the generated C composes (:mod:`robokit.codegen.ik_calibrated`). Plain numpy.
+
+    Parameters
+    ----------
+    C : (115,) ndarray
+        From :func:`pack_arm`.
+
+    Returns
+    -------
+    (7, 3, 4) ndarray
+
+    Examples
+    --------
+    >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
+    ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
+    >>> local_transforms(C).shape
+    (7, 3, 4)
+    """
+    dh = C[_DH:_KIND].reshape(6, 7)
+    out = np.empty((7, 3, 4))
+    out[0], out[6] = C[_L:_L + 12].reshape(3, 4), C[_L + 12:_DH].reshape(3, 4)
+    for i in range(5):
+        b, ca, sa, a = dh[i, 1:5]
+        ct, st = dh[i + 1, 5], dh[i + 1, 6]
+        out[i + 1] = [[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, b * ca], [st * sa, ct * sa, ca, b * sa]]
+    return out
 
 
 @njit(inline=True)
