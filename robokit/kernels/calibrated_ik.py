@@ -248,8 +248,9 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     frames = []
     for i in range(n):
         zi = z[i]
-        x = np.cross(zi, z[i + 1]) if i + 1 < n else np.zeros(3)
-        if np.linalg.norm(x) < 1e-12:  # parallel to the next axis, or the last one: any direction ⟂ z
+        # zᵢ × (zᵢ₊₁ − zᵢ) = zᵢ × zᵢ₊₁, without the cancellation of nearly parallel axes (⟂ zᵢ₊₁ to rounding)
+        x = np.cross(zi, z[i + 1] - zi) if i + 1 < n else np.zeros(3)
+        if not np.linalg.norm(x) > 1e-200:  # parallel to the next axis, or the last one: any direction ⟂ z
             x = np.cross(zi, [1.0, 0.0, 0.0] if abs(zi[0]) < 0.9 else [0.0, 1.0, 0.0])
         x = x / np.linalg.norm(x)
         F = np.eye(4)
@@ -264,7 +265,7 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
         a, b = L[0, 3], ca * L[1, 3] + sa * L[2, 3]
         rebuilt = np.array([[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, b * ca], [st * sa, ct * sa, ca, b * sa]])
         if not np.abs(rebuilt - L[:3]).max() < 1e-12 * max(1.0, np.abs(L[:3, 3]).max()):
-            raise AssertionError("pack_arm: consecutive joint frames are not related by Rx Tr Rz")
+            raise AssertionError(f"pack_arm: consecutive joint frames are not related by Rx Tr Rz (link {i}: {np.abs(rebuilt - L[:3]).max():.3g})")
         dh[i, 1:5] = b, ca, sa, a  # Rx(α) Tr(a, b, 0) after joint i
         dh[i + 1, 0] = theta  # Rz(θ) at joint i + 1
         dh[i + 1, 5:7] = ct, st
