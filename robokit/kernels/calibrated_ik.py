@@ -16,9 +16,9 @@ constants ``Kn``). Per pose:
    cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
    position quartic's real roots, are all sure and present already);
 2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
-   (:func:`_error`) with the space Jacobian, both from
-   :func:`robokit.kernels.ik.fk_and_space_jacobian` (the FK and Jacobian of the compiled numerical
-   IK), Levenberg–Marquardt steps where a Newton step fails, until the orientation error (rad) and
+   (:func:`_error`) with the space Jacobian, both from :func:`fk_jacobian` (one pass through the
+   packed chain of :func:`pack_arm`), Levenberg–Marquardt steps where a Newton step fails (the
+   normal equations of :mod:`robokit.kernels.ik`), until the orientation error (rad) and
    the position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept``
    has no solution near it;
 3. a start that reached a solution already found (two branches converging to one root), or none,
@@ -57,7 +57,7 @@ import numpy as np
 from robokit.kernels._jit import machine_code, njit, prange
 from robokit.kernels import closed_form as _cf
 from robokit.kernels.dynamics import cholesky_solve
-from robokit.kernels.ik import fk_and_space_jacobian, normal_equations
+from robokit.kernels.ik import normal_equations
 
 __all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
            "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
