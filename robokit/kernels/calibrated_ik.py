@@ -226,7 +226,8 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     n = Slist.shape[1]
     kind = np.zeros(6)
     pitch = np.zeros(6)
-    z, point = [], []
+    z: list[np.ndarray] = []
+    point: list[np.ndarray | None] = []
     for i in range(n):  # each axis as a line: unit direction z and (revolute) a point of it
         w, v = Slist[:3, i], Slist[3:, i]
         if np.linalg.norm(w) > 0.5:  # revolute (unit ω): the point nearest the base origin, the pitch
@@ -238,13 +239,14 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
             point.append(None)
             kind[i] = 1.0
         z.append(zi)
-    origins = []
+    origins: list[np.ndarray] = []
     for i in range(n):  # each origin: the point of its axis nearest the previous origin
         prev = origins[-1] if origins else np.zeros(3)
-        if point[i] is None:
+        on_axis = point[i]
+        if on_axis is None:
             origins.append(prev.copy())
         else:
-            origins.append(point[i] + float((prev - point[i]) @ z[i]) * z[i])
+            origins.append(on_axis + float((prev - on_axis) @ z[i]) * z[i])
     frames = []
     for i in range(n):
         zi = z[i]
