@@ -260,15 +260,11 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
         frames.append(F)
     dh = np.zeros((6, 7))
     dh[:, 2], dh[:, 5] = 1.0, 1.0  # cos α = 1 after the last joint, cos θ = 1 at the first
-    for i in range(n - 1):
-        L = np.linalg.inv(frames[i]) @ frames[i + 1]
+    between = [np.linalg.inv(frames[i]) @ frames[i + 1] for i in range(n - 1)]
+    for i, L in enumerate(between):
         alpha, theta = math.atan2(-L[1, 2], L[2, 2]), math.atan2(-L[0, 1], L[0, 0])
         ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
-        a, b = L[0, 3], ca * L[1, 3] + sa * L[2, 3]
-        rebuilt = np.array([[ct, -st, 0.0, a], [st * ca, ct * ca, -sa, b * ca], [st * sa, ct * sa, ca, b * sa]])
-        if not np.abs(rebuilt - L[:3]).max() < 1e-12 * max(1.0, np.abs(L[:3, 3]).max()):
-            raise AssertionError(f"pack_arm: consecutive joint frames are not related by Rx Tr Rz (link {i}: {np.abs(rebuilt - L[:3]).max():.3g})")
-        dh[i, 1:5] = b, ca, sa, a  # Rx(α) Tr(a, b, 0) after joint i
+        dh[i, 1:5] = ca * L[1, 3] + sa * L[2, 3], ca, sa, L[0, 3]  # Rx(α) Tr(a, b, 0) after joint i: b, cos α, sin α, a
         dh[i + 1, 0] = theta  # Rz(θ) at joint i + 1
         dh[i + 1, 5:7] = ct, st
     C = np.zeros(_LEN)
@@ -279,6 +275,12 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     C[_POST:_SHOULDER] = np.asarray(post_q, dtype=float).ravel()
     C[_SHOULDER:_REACH] = shoulder
     C[_REACH], C[_TOL_STOP], C[_TOL_ACCEPT], C[_MAX_STEPS] = reach, tol_stop, tol_accept, max_steps
+    # the factors read back (local_transforms) must be the frames' relations, to rounding
+    factors = local_transforms(C)[1:n]
+    for i, L in enumerate(between):
+        miss = float(np.abs(factors[i] - L[:3]).max())
+        if not miss < 1e-12 * max(1.0, float(np.abs(L[:3, 3]).max())):
+            raise AssertionError(f"pack_arm: joint frames {i} and {i + 1} are not related by Rx Tr Rz (off by {miss:.3g})")
     return C
 
 
