@@ -17,7 +17,10 @@ the polish searches for the roots that merge or appear, weigh in). The ratio col
 closed form (Python rows against the Python reference, C rows against the nominal's C). The load average is printed: numbers taken on a shared machine are only
 comparable within one run. Prints Markdown; asserts nothing.
 
-Run: ``.venv/bin/python -m benchmarks.calibrated_ik [--quick]``
+Run: ``.venv/bin/python -m benchmarks.calibrated_ik [--quick] [--steady]``; ``--quick --steady`` (40
+poses, 5 batches of 100 calls each) measures as docs/performance.md's fifth-session table was measured
+(the default's batches of 5 calls are noisier; the machine's own speed can drift between runs, so
+compare the ratios of one run).
 """
 from __future__ import annotations
 
@@ -50,9 +53,9 @@ def _arms():
     return out
 
 
-def _per_pose(fn, poses, rounds):
+def _per_pose(fn, poses, rounds, calls=5):
     """(median, mean) over the poses of each pose's time per call (the least of ``rounds`` batches of
-    calls, CPU time: less sensitive to other processes on a shared machine than wall time). The median
+    ``calls`` calls, CPU time: less sensitive to other processes on a shared machine than wall time). The median
     is the common pose; the mean includes the poses near a singular one, where the polish searches."""
     for T in poses[:3]:
         fn(T)
@@ -61,9 +64,9 @@ def _per_pose(fn, poses, rounds):
         best = np.inf
         for _ in range(rounds):
             t0 = time.process_time()
-            for _ in range(5):
+            for _ in range(calls):
                 fn(T)
-            best = min(best, (time.process_time() - t0) / 5)
+            best = min(best, (time.process_time() - t0) / calls)
         each.append(best)
     return float(np.median(each)), float(np.mean(each))
 
@@ -89,8 +92,13 @@ def main(argv=None):
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer poses and rounds")
+    ap.add_argument("--steady", action="store_true",
+                    help="5 batches of 100 calls per pose (steadier medians on a noisy machine; slower)")
     args = ap.parse_args(argv)
     n_poses, rounds, n_g6r = (40, 2, 3) if args.quick else (200, 5, 10)
+    calls = 5
+    if args.steady:
+        rounds, calls = 5, 100
     print(f"# Calibrated arms: exact IK (issue 43)\n\nmachine: {machine()}; load average "
           f"{os.getloadavg()[0]:.2f} (2 cores shared: compare ratios within this run)\n")
     cc = find_compiler()
@@ -101,8 +109,8 @@ def main(argv=None):
         Q = [cal.random_configuration(rng) for _ in range(n_poses)]
         Tn = [nominal.frame_pose(q) for q in Q]
         Tc = [cal.frame_pose(q) for q in Q]
-        t_nom = _per_pose(lambda T: rk.ik_analytic(nominal, T), Tn, rounds)
-        t_cal = _per_pose(lambda T: rk.ik_analytic(cal, T), Tc, rounds)
+        t_nom = _per_pose(lambda T: rk.ik_analytic(nominal, T), Tn, rounds, calls)
+        t_cal = _per_pose(lambda T: rk.ik_analytic(cal, T), Tc, rounds, calls)
         t_g6r = _per_pose(lambda T: rk.ik_analytic(cal, T, nominal=False), Tc[:n_g6r], 1)
         counts = np.mean([len(rk.ik_analytic(cal, T)) for T in Tc])
         kind = rk.ik_analytic_kind(cal).method
