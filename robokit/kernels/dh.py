@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from robokit.kernels._jit import FK_BATCH, njit, prange
-from robokit.kernels.lie import all_finite, copy44, mul_tt, mul_tt_inplace
+from robokit.kernels.lie import all_finite, check_joint_values, copy44, mul_tt, mul_tt_inplace
 from robokit.kernels.poe import SERIAL_BELOW, block_range, n_blocks
 
 __all__ = [
@@ -129,10 +129,8 @@ def link_transform(P: np.ndarray, i: int, modified: int, q_i: float, T: np.ndarr
 
 @njit
 def check_q(P: np.ndarray, q: np.ndarray) -> None:
-    if q.shape[0] != P.shape[0]:
-        raise ValueError("q: expected one joint value per row of the DH table")
-    if not all_finite(q):
-        raise ValueError("q: contains NaN or infinite values")
+    """Raise ``ValueError`` unless q has one finite value per row of the DH table."""
+    check_joint_values(q, P.shape[0], "q", "row of the DH table")
 
 
 @njit

@@ -326,8 +326,20 @@ def all_finite(x: np.ndarray) -> bool:
     return True
 
 
+@njit
+def check_joint_values(q: np.ndarray, n: int, name: str, per: str) -> None:
+    """Raise ``ValueError`` unless the 1-D array q holds n joint values, all finite: the one check
+    of a joint vector for the kinematics kernels, whose messages name the argument (``name``) and
+    what each value belongs to (``per``, e.g. ``"row of the DH table"``)."""
+    if q.shape[0] != n:
+        raise ValueError(name + ": expected one joint value per " + per)
+    if not all_finite(q):
+        raise ValueError(name + ": contains NaN or infinite values")
+
+
 __all__ = [
     "PRISMATIC_TOL", "set_identity", "copy44", "exp_screw", "mul_tt", "mul_tt_inplace", "inv_t",
     "adjoint_twist", "adjoint_screw", "adjoint_transpose_wrench", "adjoint_matrix", "ad_twist",
     "ad_transpose_wrench", "mat6_vec", "dot6", "log_so3", "log_se3", "all_finite",
+    "check_joint_values",
 ]

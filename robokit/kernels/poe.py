@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from robokit.kernels._jit import FK_BATCH, njit, prange
-from robokit.kernels.lie import adjoint_screw, all_finite, copy44, exp_screw, mul_tt_inplace, set_identity
+from robokit.kernels.lie import adjoint_screw, check_joint_values, copy44, exp_screw, mul_tt_inplace, set_identity
 
 __all__ = [
     "fkin_space", "fkin_body", "jacobian_space", "jacobian_body",
@@ -76,10 +76,7 @@ def block_range(b: int, nb: int, N: int) -> tuple[int, int]:
 @njit
 def check_theta(Slist: np.ndarray, thetalist: np.ndarray) -> None:
     """Raise ``ValueError`` unless θ has one finite value per screw axis."""
-    if thetalist.shape[0] != Slist.shape[1]:
-        raise ValueError("thetalist: expected one joint value per screw axis (column of the screw list)")
-    if not all_finite(thetalist):
-        raise ValueError("thetalist: contains NaN or infinite values")
+    check_joint_values(thetalist, Slist.shape[1], "thetalist", "screw axis (column of the screw list)")
 
 
 @njit
