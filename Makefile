@@ -40,9 +40,13 @@ setup: $(VENV)/.installed
 demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-# not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
-# pytest its closing count ("N passed, M skipped in T s")
+# First every course kernel is compiled into numba's on-disk cache (or, when it is there already,
+# loaded: seconds), one process per core, each compiling different kernels; otherwise, on a cold
+# cache, both pytest workers compile the same kernels at the same time, twice the CPU for nothing.
+# Not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
+# pytest its closing count ("N passed, M skipped in T s").
 test: $(VENV)/.extra-all $(VENV)/.extra-test $(VENV)/.extra-docs $(VENV)/.extra-bench
+	$(BIN)/python -m robokit.kernels
 	$(BIN)/python -m pytest -n 2 $(PYTEST_ARGS)
 
 bench: $(VENV)/.extra-all $(VENV)/.extra-bench
