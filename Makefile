@@ -15,7 +15,7 @@ LOCK   := $(shell command -v flock >/dev/null 2>&1 && echo flock $(VENV)/.pip-lo
 # `make test PYTEST_ARGS=tests/ik` runs part of the suite
 PYTEST_ARGS ?=
 
-.PHONY: demo test bench docs notebooks setup clean
+.PHONY: demo test test-env bench docs notebooks setup clean
 .PRECIOUS: $(VENV)/.extra-%
 
 $(BIN)/python:
@@ -37,12 +37,19 @@ $(VENV)/.extra-%: $(VENV)/.installed .ci/extra_requirements.py
 
 setup: $(VENV)/.installed
 
+# what `make test` needs installed (.ci/run times it apart from the tests)
+test-env: $(VENV)/.extra-all $(VENV)/.extra-test $(VENV)/.extra-docs $(VENV)/.extra-bench
+
 demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-# not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
-# pytest its closing count ("N passed, M skipped in T s")
-test: $(VENV)/.extra-all $(VENV)/.extra-test $(VENV)/.extra-docs $(VENV)/.extra-bench
+# First every course kernel is compiled into numba's on-disk cache (or, when it is there already,
+# loaded: seconds), one process per core, each compiling different kernels; otherwise, on a cold
+# cache, both pytest workers compile the same kernels at the same time, twice the CPU for nothing.
+# Not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
+# pytest its closing count ("N passed, M skipped in T s").
+test: test-env
+	$(BIN)/python -m robokit.kernels
 	$(BIN)/python -m pytest -n 2 $(PYTEST_ARGS)
 
 bench: $(VENV)/.extra-all $(VENV)/.extra-bench
