@@ -109,3 +109,21 @@ def test_seed_dh_functions_use_checks(cases):
     with pytest.raises(ValueError, match="dq"):
         dh_inverse_dynamics(table, np.zeros(6), np.zeros(3), np.zeros(6))
     assert dh_jacobian(table, [0, 0, 0, 0, 0, 0]).shape == (6, 6)  # lists are converted
+
+
+def test_kernels_name_a_bad_joint_vector(cases):
+    """The DH and PoE kernels' own checks (one shared check since the one-source work): the message
+    names the argument and what each value belongs to, compiled or not."""
+    from robokit.kernels import poe as kp
+
+    r = dict(cases)["puma560"]
+    P, mod, base, tool = (np.array(a) if isinstance(a, np.ndarray) else a for a in kdh.pack_dh(r.dh)[:4])
+    with pytest.raises(ValueError, match=r"^q: expected one joint value per row of the DH table$"):
+        kdh.dh_fk(P, mod, base, tool, np.zeros(5))
+    with pytest.raises(ValueError, match=r"^q: contains NaN or infinite values$"):
+        kdh.dh_frames(P, mod, base, np.array([0.0, np.inf, 0.0, 0.0, 0.0, 0.0]))
+    M, S = np.array(r.poe.M), np.array(r.poe.Slist)
+    with pytest.raises(ValueError, match=r"^thetalist: expected one joint value per screw axis \(column of the screw list\)$"):
+        kp.fkin_space(M, S, np.zeros(7))
+    with pytest.raises(ValueError, match=r"^thetalist: contains NaN or infinite values$"):
+        kp.fkin_body(M, S, np.full(6, np.nan))
