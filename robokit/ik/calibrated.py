@@ -396,7 +396,8 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
-                "frames": _kci.local_transforms(self._C),
+                "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
+                "block_schur": _kci.BLOCK_SCHUR, "frames": _kci.local_transforms(self._C),
                 "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 

@@ -15,12 +15,15 @@ constants ``Kn``). Per pose:
    workspace boundary is not quite the arm's) — except where :func:`_relax_needed` shows they
    cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
    position quartic's real roots, are all sure and present already);
-2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
-   (:func:`_error`) with the space Jacobian, both from :func:`fk_jacobian` (one pass through the
-   packed chain of :func:`pack_arm`), Levenberg–Marquardt steps where a Newton step fails (the
-   normal equations of :mod:`robokit.kernels.ik`), until the orientation error (rad) and
-   the position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept``
-   has no solution near it;
+2. each start is polished by :func:`polish`: Newton's method with a second-order correction
+   (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
+   form's starts, about 5e-3 off, reach 1e-15 in two steps rather than three) on the spatial pose
+   error (:func:`_error`, the logarithm of the error transform to second order near the target)
+   with the space Jacobian, both from :func:`fk_jacobian` (one pass through the packed chain of
+   :func:`pack_arm`), the Jacobian factored by 3 × 3 blocks (:func:`_block_factor`, else 6 × 6
+   with pivoting), Levenberg–Marquardt steps where a step fails (the normal equations of
+   :mod:`robokit.kernels.ik`), until the orientation error (rad) and the position error (m) are
+   below ``tol_stop``; a start whose polish ends above ``tol_accept`` has no solution near it;
 3. a start that reached a solution already found (two branches converging to one root), or none,
    is tried once more from its start mirrored through the point the polish reached
    (``2 q₀ − q``): near a fold, where two roots of the arm approach each other, the second root
