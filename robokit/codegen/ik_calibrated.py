@@ -252,8 +252,8 @@ static int {P}_cal_block_factor(const double J[36], double B[36], int *pp)
     return 1;
 }}
 
-/* x = J^-1 e from {P}_cal_block_factor's B and p */
-static void {P}_cal_block_solve(const double J[36], const double B[36], int p, const double e[6], double x[6])
+/* x = J^-1 e from {P}_cal_block_factor's B and p (x may be e: e is read before x is written) */
+static void {P}_cal_block_solve(const double J[36], const double B[36], int p, const double *e, double *x)
 {{
     const int o = 3 - p;
     const double y0 = B[0] * e[0] + B[1] * e[1] + B[2] * e[2];
@@ -320,8 +320,8 @@ static int {P}_cal_lu_factor(const double J[36], double A[36], int piv[6])
     return 1;
 }}
 
-/* x = J^-1 e from {P}_cal_lu_factor */
-static void {P}_cal_lu_solve(const double A[36], const int piv[6], const double e[6], double x[6])
+/* x = J^-1 e from {P}_cal_lu_factor (x may be e) */
+static void {P}_cal_lu_solve(const double A[36], const int piv[6], const double *e, double *x)
 {{
     int r, cc, kk;
     for (r = 0; r < 6; ++r) {{
@@ -352,7 +352,7 @@ static void {P}_cal_lu_solve(const double A[36], const int piv[6], const double 
    scratch); 0 when J is singular for this purpose */
 static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6], double A[36])
 {{
-    double d[6], b[6], big = 0.0;
+    double d[6], big = 0.0;  /* x also holds F - B(d, d)/2: both solves may work in place */
     int piv[6], p = 0, i;
     const int blocked = {P}_cal_block_factor(J, A, &p);
     if (!blocked && !{P}_cal_lu_factor(J, A, piv)) {{
@@ -368,14 +368,14 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
     }}
     if ({lit(float(c["second_order"][0]))} < big && big <= {lit(float(c["second_order"][1]))}) {{
         double change = 0.0;
-        {P}_cal_second_order(J, d, b);
+        {P}_cal_second_order(J, d, x);
         for (i = 0; i < 6; ++i) {{
-            b[i] = F[i] - b[i];
+            x[i] = F[i] - x[i];
         }}
         if (blocked) {{
-            {P}_cal_block_solve(J, A, p, b, x);
+            {P}_cal_block_solve(J, A, p, x, x);
         }} else {{
-            {P}_cal_lu_solve(A, piv, b, x);
+            {P}_cal_lu_solve(A, piv, x, x);
         }}
         for (i = 0; i < 6; ++i) {{
             change = fabs(x[i] - d[i]) > change ? fabs(x[i] - d[i]) : change;

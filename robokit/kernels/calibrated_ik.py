@@ -1034,8 +1034,8 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     in the sign of the projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS,
     OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
     ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
-    Returns (number of solutions, merged branches, vanished branches, σ): σ the smallest singular
-    value of the scaled Jacobian (:func:`_null_direction`) at the points the near-singular search
+    The rows of ``out`` past the number of solutions are scratch. Returns (number of solutions,
+    merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian (:func:`_null_direction`) at the points the near-singular search
     started from, ``inf`` when it did not run (no point needed it); (−1, 0, 0, inf) when T fails
     the quick rigid-transform test."""
     C, Kn = KC[:_LEN], KC[_LEN:]
@@ -1047,7 +1047,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     rows = work[64:80]
     q, q2, v = work[80], work[81], work[82]
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
-    first = np.empty((R, _cf.OUT_COLS))
+    first = out  # the projected arm's rows, copied out below: out is written only at the end
     m = _nominal_rows(Kn, method, T, wrist_ref, first)
     for r in range(R):
         branches[r, 0] = -1.0
@@ -1153,6 +1153,9 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
             branches[r, 2] = -1
             vanished += 1
     sigma = math.inf
+    # an int64 like max_steps: the global constant itself would be typed Literal[int](25) and compile
+    # a second polish for it
+    explore_steps = EXPLORE_MAX_STEPS + 0 * max_steps
     for k in range(nseed):  # every root along the arm's near-singular direction there
         for j in range(6):
             q2[j] = nom[k, j]
@@ -1168,7 +1171,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 break
             for j in range(6):
                 q[j] = nom[k, j] + step * (0.25 * math.pi / big) * v[j]
-            rot, pos, _ = polish(C, T, q, EXPLORE_MAX_STEPS, work)
+            rot, pos, _ = polish(C, T, q, explore_steps, work)
             if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
                 for j in range(6):
                     rows[ns, j] = q[j]
@@ -1211,5 +1214,9 @@ def calibrated_batch(KC: np.ndarray, method: int, Ts: np.ndarray, wrist_ref: flo
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
         work = np.empty((_WORK_ROWS, 6))
-        counts[i] = calibrated_solve_into(KC, method, Ts[i], wrist_ref, out[i], work)[0]
+        n = calibrated_solve_into(KC, method, Ts[i], wrist_ref, out[i], work)[0]
+        counts[i] = n
+        for r in range(max(n, 0), _cf.MAX_ROWS):  # out[i] was the kernel's scratch before its rows
+            for c in range(_cf.OUT_COLS):
+                out[i, r, c] = np.nan
     return out, counts
