@@ -18,8 +18,8 @@ correction turns the later axes together, about the common normal), runs of para
 consecutive axes that meet moved onto each other. The tool pose at q = 0 and the joint zeros are
 kept. The projected arm's closed form (compiled, :mod:`robokit.kernels.closed_form`) gives up to 8
 solutions, one per branch, each within the size of the errors of a solution of the real arm;
-Newton's method on the real arm's product of exponentials (:mod:`robokit.kernels.calibrated_ik`)
-converges each to 1e-12 in 3–4 steps. Away from singular poses each branch of the nominal structure
+Newton's method with a second-order correction on the real arm's product of exponentials
+(:mod:`robokit.kernels.calibrated_ik`) converges each to 1e-12 in 2–3 steps. Away from singular poses each branch of the nominal structure
 has exactly one solution of the real arm near it (the implicit function theorem), so the count is
 the nominal's and so are the labels. Near a singular pose (within about the size of the errors):
 

@@ -319,6 +319,17 @@ def _lu_solve(A: np.ndarray, piv: np.ndarray, e: np.ndarray, x: np.ndarray) -> N
 
 
 @njit(inline=True)
+def _factored_solve(J: np.ndarray, B: np.ndarray, A: np.ndarray, piv: np.ndarray, blocked: bool, e: np.ndarray,
+                    x: np.ndarray) -> None:
+    """x ← J⁻¹ e from :func:`_block_factor`'s B when ``blocked``, else from :func:`_lu_factor`'s A
+    and piv; x may be e."""
+    if blocked:
+        _block_solve(J, B, e, x)
+    else:
+        _lu_solve(A, piv, e, x)
+
+
+@njit(inline=True)
 def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) -> bool:
     """x ← the step that zeroes the pose error F (:func:`_error`) to second order: ``d = J⁻¹ F``,
     then, for ``SECOND_ORDER[0] < max|d| ≤ SECOND_ORDER[1]``, ``x = J⁻¹ (F − ½ B(d, d))`` with
@@ -326,28 +337,22 @@ def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) 
     from the closed form's starts, about 5e-3 off, two steps reach 1e-15 where Newton's method needs
     three); the correction is dropped when it is not small against d (far from a root). J is
     factored once for both solves, by blocks (:func:`_block_factor`) or else with pivoting
-    (:func:`_lu_factor`). False when J is singular for this purpose. Scratch: ``work`` rows 20–33 and
+    (:func:`_lu_factor`). False when J is singular for this purpose. Scratch: ``work`` rows 20–32 and
     47 (:func:`polish`'s A, H and L)."""
     B, A = work[26:32], work[20:26]
-    piv, d, b = work[47], work[32], work[33]
+    piv, d = work[47], work[32]
     blocked = _block_factor(J, B)
     if not blocked and not _lu_factor(J, A, piv):
         return False
-    if blocked:
-        _block_solve(J, B, F, d)
-    else:
-        _lu_solve(A, piv, F, d)
+    _factored_solve(J, B, A, piv, blocked, F, d)
     big = 0.0
     for i in range(6):
         big = max(big, abs(d[i]))
     if SECOND_ORDER[0] < big <= SECOND_ORDER[1]:
-        _second_order(J, d, b)
+        _second_order(J, d, x)
         for i in range(6):
-            b[i] = F[i] - b[i]
-        if blocked:
-            _block_solve(J, B, b, x)
-        else:
-            _lu_solve(A, piv, b, x)
+            x[i] = F[i] - x[i]
+        _factored_solve(J, B, A, piv, blocked, x, x)  # in place: both solves read e before writing x
         change = 0.0
         for i in range(6):
             change = max(change, abs(x[i] - d[i]))
@@ -1035,9 +1040,22 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
     ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
     The rows of ``out`` past the number of solutions are scratch. Returns (number of solutions,
-    merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian (:func:`_null_direction`) at the points the near-singular search
-    started from, ``inf`` when it did not run (no point needed it); (−1, 0, 0, inf) when T fails
-    the quick rigid-transform test."""
+    merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
+    (:func:`_null_direction`) at the points the near-singular search started from, ``inf`` when it
+    did not run (no point needed it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
+    R = _cf.MAX_ROWS
+    # the small integer arrays the core needs (it creates no array: no reference counting there)
+    return _solve_core(KC, method, T, wrist_ref, out, work, np.empty((R, 3), dtype=np.int64), np.zeros(R, dtype=np.bool_),
+                       np.empty(R, dtype=np.int64), np.zeros(6, dtype=np.int64), np.empty((4, 4)))
+
+
+@njit(refcount=False)
+def _solve_core(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray, work: np.ndarray,
+                rcodes: np.ndarray, rdegen: np.ndarray, seed_code: np.ndarray, ci: np.ndarray,
+                Tr: np.ndarray) -> tuple[int, int, int, float]:
+    """:func:`calibrated_solve_into` without reference counting (its views of ``work`` and ``KC`` cost
+    nothing): rcodes (MAX_ROWS, 3), rdegen (MAX_ROWS,) False, seed_code (MAX_ROWS,) int64 scratch,
+    ci (6,) zeros (the starts are in the robot's own joints: not reversed), Tr (4, 4) scratch."""
     C, Kn = KC[:_LEN], KC[_LEN:]
     branches = work[BRANCH_ROWS]
     R = _cf.MAX_ROWS
@@ -1062,7 +1080,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
     if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens, work[89:96]):
-        Tr = np.empty((4, 4))
         for f in RELAX:
             for r in range(4):
                 for c in range(4):
@@ -1089,9 +1106,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     rev = post_q[1]
     tol_accept = C[_TOL_ACCEPT]
     max_steps = int(C[_MAX_STEPS])
-    rcodes = np.empty((R, 3), dtype=np.int64)
-    rdegen = np.zeros(R, dtype=np.bool_)
-    seed_code = np.empty(R, dtype=np.int64)
     ns = 0
     # the points to explore around (near a singular pose): a solution the polish moved far from its
     # start, a branch that vanished (the point its polish reached), a singular choice of the nominal;
@@ -1181,7 +1195,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 rcodes[ns, 2] = code % 10
                 rdegen[ns] = True
                 ns += 1
-    ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
     return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
 
 
