@@ -12,7 +12,7 @@ random poses (reachable by construction), time per pose of
 * the generated C (``-O2``) of the nominal and of the calibrated arm (``NAME_ik``), through ctypes.
 
 Per pose: the least CPU time of a few batches; the table gives the median over the poses (the common
-pose: one start per branch, each finished in 3–4 Newton steps) and the mean (near-singular poses, where
+pose: one start per branch, each finished in 2–3 second-order Newton steps) and the mean (near-singular poses, where
 the polish searches for the roots that merge or appear, weigh in). The ratio columns are time / nominal
 closed form (Python rows against the Python reference, C rows against the nominal's C). The load average is printed: numbers taken on a shared machine are only
 comparable within one run. Prints Markdown; asserts nothing.

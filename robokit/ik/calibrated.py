@@ -18,8 +18,8 @@ correction turns the later axes together, about the common normal), runs of para
 consecutive axes that meet moved onto each other. The tool pose at q = 0 and the joint zeros are
 kept. The projected arm's closed form (compiled, :mod:`robokit.kernels.closed_form`) gives up to 8
 solutions, one per branch, each within the size of the errors of a solution of the real arm;
-Newton's method on the real arm's product of exponentials (:mod:`robokit.kernels.calibrated_ik`)
-converges each to 1e-12 in 3–4 steps. Away from singular poses each branch of the nominal structure
+Newton's method with a second-order correction on the real arm's product of exponentials
+(:mod:`robokit.kernels.calibrated_ik`) converges each to 1e-12 in 2–3 steps. Away from singular poses each branch of the nominal structure
 has exactly one solution of the real arm near it (the implicit function theorem), so the count is
 the nominal's and so are the labels. Near a singular pose (within about the size of the errors):
 
@@ -363,8 +363,9 @@ class CalibratedArm:
         # everything the kernel reads of this arm, in one array (one argument to dispatch)
         self._C = _kci.pack_arm(self.M, self.Slist, post_q, self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT,
                                 MAX_STEPS)
+        self._KC = np.concatenate([self._C, self._Kn])  # both, as the kernel takes them
         self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
-        self._branches = np.empty((_kcf.MAX_ROWS, _kci.BRANCH_COLS))
+        self._branches = self._work[_kci.BRANCH_ROWS]  # where the kernel writes each branch's outcome
         self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
@@ -395,7 +396,8 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
-                "frames": _kci.local_transforms(self._C),
+                "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
+                "block_schur": _kci.BLOCK_SCHUR, "frames": _kci.local_transforms(self._C),
                 "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
                 "labels": [self._labels[c] for c in sorted(self._labels)]}
 
@@ -413,8 +415,7 @@ class CalibratedArm:
         branches = self._branches
         ref = wrist_ref * self._ref_sign
         for attempt in range(2):
-            n, merged, vanished, sigma = _kci.calibrated_solve_into(self._Kn, self._kind, self._C, T, ref, out,
-                                                                    branches, self._work)
+            n, merged, vanished, sigma = _kci.calibrated_solve_into(self._KC, self._kind, T, ref, out, self._work)
             if n != -1 or attempt:
                 break
             T = _nearest_rigid(T)
@@ -452,8 +453,7 @@ class CalibratedArm:
                 into = _kci.calibrated_solve_into
             else:
                 self._into = into
-        n, merged, vanished, sigma = into(self._Kn, self._kind, self._C, T, wrist_ref * self._ref_sign, out,
-                                          branches, self._work)
+        n, merged, vanished, sigma = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
             out, n, merged, vanished, sigma, branches = self._solve(_nearest_rigid(T), wrist_ref)
         if vanished:
@@ -516,7 +516,7 @@ class CalibratedArm:
             ``(out, counts)``: out (N, 16, 9) rows as :func:`robokit.kernels.calibrated_ik.calibrated_batch`
             writes them, counts (N,) the number of solutions of each pose.
         """
-        return _kci.calibrated_batch(self._Kn, self._kind, self._C, Ts, self.nominal._kernel_ref(wrist_ref))
+        return _kci.calibrated_batch(self._KC, self._kind, Ts, self.nominal._kernel_ref(wrist_ref))
 
     def _warn_vanished(self, branches: np.ndarray, level: int = 4) -> None:
         if self._warned:

@@ -15,12 +15,15 @@ constants ``Kn``). Per pose:
    workspace boundary is not quite the arm's) — except where :func:`_relax_needed` shows they
    cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
    position quartic's real roots, are all sure and present already);
-2. each start is polished by :func:`polish`: Newton's method on the first-order spatial pose error
-   (:func:`_error`) with the space Jacobian, both from :func:`fk_jacobian` (one pass through the
-   packed chain of :func:`pack_arm`), Levenberg–Marquardt steps where a Newton step fails (the
-   normal equations of :mod:`robokit.kernels.ik`), until the orientation error (rad) and
-   the position error (m) are below ``tol_stop``; a start whose polish ends above ``tol_accept``
-   has no solution near it;
+2. each start is polished by :func:`polish`: Newton's method with a second-order correction
+   (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
+   form's starts, about 5e-3 off, reach 1e-15 in two steps rather than three) on the spatial pose
+   error (:func:`_error`, the logarithm of the error transform to second order near the target)
+   with the space Jacobian, both from :func:`fk_jacobian` (one pass through the packed chain of
+   :func:`pack_arm`), the Jacobian factored by 3 × 3 blocks (:func:`_block_factor`, else 6 × 6
+   with pivoting), Levenberg–Marquardt steps where a step fails (the normal equations of
+   :mod:`robokit.kernels.ik`), until the orientation error (rad) and the position error (m) are
+   below ``tol_stop``; a start whose polish ends above ``tol_accept`` has no solution near it;
 3. a start that reached a solution already found (two branches converging to one root), or none,
    is tried once more from its start mirrored through the point the polish reached
    (``2 q₀ − q``): near a fold, where two roots of the arm approach each other, the second root
@@ -44,8 +47,7 @@ Example (``AnalyticIK`` builds the arguments; ``ik_analytic`` calls these kernel
     >>> import numpy as np, robokit
     >>> from robokit.ik.closed_form import AnalyticIK
     >>> arm = AnalyticIK(calibrated_robot).calibrated   # doctest: +SKIP
-    >>> n = calibrated_solve_into(arm._Kn, arm._kind, arm.M, arm.Slist, arm._post_q, T, 0.0,
-    ...                           arm.shoulder, arm.reach, 1e-12, 1e-10, 30, out, branches)  # doctest: +SKIP
+    >>> n = calibrated_solve_into(arm._KC, arm._kind, T, 0.0, out, work)  # doctest: +SKIP
 """
 from __future__ import annotations
 
@@ -60,7 +62,7 @@ from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import normal_equations
 
 __all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
-           "BRANCH_COLS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
+           "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -92,40 +94,180 @@ BRANCH_COLS = 5
 
 @njit(inline=True)
 def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
-    """F ← (ω, v), the spatial twist that moves T to Td, to first order: ``ω = vee(A − Aᵀ)/2`` with
-    ``A = R_d Rᵀ`` (sin θ times the axis), ``v = Δp − ω × p`` with ``Δp = p_d − p`` (p moves with
-    ``v + ω × p``). F is zero exactly when T = Td (for an orientation error below π/2) and its
-    derivative there is the space Jacobian's, so Newton's method with J_s converges quadratically.
-    Returns (½(‖ω‖² + ‖Δp‖²), ‖ω‖ (rad, or 2 − ‖ω‖ beyond π/2), ‖Δp‖ (m))."""
+    """F ← the spatial twist that moves T to Td: near Td (an orientation error below ``LOG_NEAR``
+    rad) the logarithm of ``X = Td T⁻¹`` to second order (ω = θ u, v = V(ω)⁻¹ u_X, below), else to
+    first order (ω = sin θ u, v = Δp − ω × p); both are zero exactly when T = Td and have the space
+    Jacobian's derivative there, so Newton's method with J_s converges quadratically, and the
+    second-order one is what :func:`_newton_step`'s second-order step needs.
+
+    ``X = [A, p_X]`` with ``A = R_d Rᵀ`` and ``p_X = p_d − A p``; ``vee(A − Aᵀ)/2 = sin θ u``;
+    ``θ/sin θ = 1 + s²/6 + 3s⁴/40 + …`` (s = sin θ); the exponential's ``V(ω) = I + (1 − cos θ)/θ² [ω]
+    + (θ − sin θ)/θ³ [ω]²`` has the inverse ``I − [ω]/2 + k [ω]²`` with ``k = (1 − θ sin θ / (2(1 − cos
+    θ)))/θ² = 1/12 + θ²/720 + …``. Below LOG_NEAR the series' first omitted terms are below 1e-11 of
+    the error itself (they change the convergence constant, not the root).
+
+    Returns (½(rot² + pos²), rot, pos) with rot = ‖sin θ u‖ (rad, or 2 − it beyond π/2) and pos = ‖Δp‖ (m)."""
+    a00 = Td[0, 0] * T[0, 0] + Td[0, 1] * T[0, 1] + Td[0, 2] * T[0, 2]
     a01 = Td[0, 0] * T[1, 0] + Td[0, 1] * T[1, 1] + Td[0, 2] * T[1, 2]
-    a10 = Td[1, 0] * T[0, 0] + Td[1, 1] * T[0, 1] + Td[1, 2] * T[0, 2]
     a02 = Td[0, 0] * T[2, 0] + Td[0, 1] * T[2, 1] + Td[0, 2] * T[2, 2]
-    a20 = Td[2, 0] * T[0, 0] + Td[2, 1] * T[0, 1] + Td[2, 2] * T[0, 2]
+    a10 = Td[1, 0] * T[0, 0] + Td[1, 1] * T[0, 1] + Td[1, 2] * T[0, 2]
+    a11 = Td[1, 0] * T[1, 0] + Td[1, 1] * T[1, 1] + Td[1, 2] * T[1, 2]
     a12 = Td[1, 0] * T[2, 0] + Td[1, 1] * T[2, 1] + Td[1, 2] * T[2, 2]
+    a20 = Td[2, 0] * T[0, 0] + Td[2, 1] * T[0, 1] + Td[2, 2] * T[0, 2]
     a21 = Td[2, 0] * T[1, 0] + Td[2, 1] * T[1, 1] + Td[2, 2] * T[1, 2]
-    wx, wy, wz = 0.5 * (a21 - a12), 0.5 * (a02 - a20), 0.5 * (a10 - a01)
+    a22 = Td[2, 0] * T[2, 0] + Td[2, 1] * T[2, 1] + Td[2, 2] * T[2, 2]
+    sx, sy, sz = 0.5 * (a21 - a12), 0.5 * (a02 - a20), 0.5 * (a10 - a01)
     px, py, pz = T[0, 3], T[1, 3], T[2, 3]
     dx, dy, dz = Td[0, 3] - px, Td[1, 3] - py, Td[2, 3] - pz
-    F[0], F[1], F[2] = wx, wy, wz
-    F[3] = dx - (wy * pz - wz * py)
-    F[4] = dy - (wz * px - wx * pz)
-    F[5] = dz - (wx * py - wy * px)
-    tr = 0.0  # trace of A = Σ R_d ∘ R: below 1 beyond π/2, where ‖ω‖ = sin θ falls again
-    for r in range(3):
-        for c in range(3):
-            tr += Td[r, c] * T[r, c]
-    rot = math.sqrt(wx * wx + wy * wy + wz * wz)
+    s2 = sx * sx + sy * sy + sz * sz
+    tr = a00 + a11 + a22  # 1 + 2 cos θ: below 1 beyond π/2, where ‖sin θ u‖ falls again
+    if s2 < LOG_NEAR * LOG_NEAR and tr > 1.0:
+        f = 1.0 + s2 * (_I6 + s2 * 0.075)  # θ / sin θ
+        wx, wy, wz = f * sx, f * sy, f * sz
+        k = _I12 + (wx * wx + wy * wy + wz * wz) * _I720
+        ux = Td[0, 3] - (a00 * px + a01 * py + a02 * pz)  # p_X = p_d − A p
+        uy = Td[1, 3] - (a10 * px + a11 * py + a12 * pz)
+        uz = Td[2, 3] - (a20 * px + a21 * py + a22 * pz)
+        cx, cy, cz = wy * uz - wz * uy, wz * ux - wx * uz, wx * uy - wy * ux  # ω × p_X
+        F[0], F[1], F[2] = wx, wy, wz
+        F[3] = ux - 0.5 * cx + k * (wy * cz - wz * cy)
+        F[4] = uy - 0.5 * cy + k * (wz * cx - wx * cz)
+        F[5] = uz - 0.5 * cz + k * (wx * cy - wy * cx)
+    else:
+        F[0], F[1], F[2] = sx, sy, sz
+        F[3] = dx - (sy * pz - sz * py)
+        F[4] = dy - (sz * px - sx * pz)
+        F[5] = dz - (sx * py - sy * px)
+    rot = math.sqrt(s2)
     if tr < 1.0:
         rot = 2.0 - rot
     pos = math.sqrt(dx * dx + dy * dy + dz * dz)
     return 0.5 * (rot * rot + pos * pos), rot, pos
 
 
+#: :func:`_error` gives the logarithm (second order) below this orientation error (rad), the
+#: first-order twist above it.
+LOG_NEAR = 0.02
+
+
 @njit(inline=True)
-def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> bool:
-    """x ← J⁻¹ F (6 × 6) by Gaussian elimination with partial pivoting on the copy A; False when a
-    pivot is below 1e-12 of the largest entry (J singular for this purpose). One division per
-    column (the pivot's reciprocal)."""
+def _second_order(J: np.ndarray, d: np.ndarray, out: np.ndarray) -> None:
+    """out ← ½ Σ_{i<j} dᵢ dⱼ [Jᵢ, Jⱼ], the second-order term of the pose error's change along d.
+
+    With the space Jacobian's columns Jᵢ at q, ``T(q + d) = e^{[J₁]d₁} ⋯ e^{[J₆]d₆} T(q)`` exactly
+    (each factor moved to the left through the earlier joints' motions is conjugated into Jᵢ), and the
+    Baker–Campbell–Hausdorff formula gives ``log(e^{X₁} ⋯ e^{X₆}) = Σ Xᵢ + ½ Σ_{i<j} [Xᵢ, Xⱼ] + O(d³)``;
+    the twists' bracket is ``[(ω, v), (ω′, v′)] = (ω × ω′, ω × v′ − ω′ × v)``. Summed as
+    ``Σⱼ [Pⱼ₋₁, dⱼ Jⱼ]`` with the running sum ``Pⱼ = Σ_{i≤j} dᵢ Jᵢ``: five brackets."""
+    pw0 = pw1 = pw2 = pv0 = pv1 = pv2 = 0.0
+    o0 = o1 = o2 = o3 = o4 = o5 = 0.0
+    for j in range(6):
+        dj = d[j]
+        bw0, bw1, bw2 = dj * J[0, j], dj * J[1, j], dj * J[2, j]
+        bv0, bv1, bv2 = dj * J[3, j], dj * J[4, j], dj * J[5, j]
+        o0 += pw1 * bw2 - pw2 * bw1
+        o1 += pw2 * bw0 - pw0 * bw2
+        o2 += pw0 * bw1 - pw1 * bw0
+        o3 += (pw1 * bv2 - pw2 * bv1) - (bw1 * pv2 - bw2 * pv1)
+        o4 += (pw2 * bv0 - pw0 * bv2) - (bw2 * pv0 - bw0 * pv2)
+        o5 += (pw0 * bv1 - pw1 * bv0) - (bw0 * pv1 - bw1 * pv0)
+        pw0, pw1, pw2 = pw0 + bw0, pw1 + bw1, pw2 + bw2
+        pv0, pv1, pv2 = pv0 + bv0, pv1 + bv1, pv2 + bv2
+    out[0], out[1], out[2] = 0.5 * o0, 0.5 * o1, 0.5 * o2
+    out[3], out[4], out[5] = 0.5 * o3, 0.5 * o4, 0.5 * o5
+
+
+@njit(inline=True)
+def _det3(a00: float, a01: float, a02: float, a10: float, a11: float, a12: float, a20: float, a21: float,
+          a22: float) -> float:
+    return a00 * (a11 * a22 - a12 * a21) - a01 * (a10 * a22 - a12 * a20) + a02 * (a10 * a21 - a11 * a20)
+
+
+@njit(inline=True)
+def _inverse3(M: np.ndarray, r0: int, c0: int, out: np.ndarray, o0: int) -> float:
+    """out[o0:o0+3, 0:3] ← the inverse of M[r0:r0+3, c0:c0+3] by its adjugate; returns the
+    determinant (0: nothing written)."""
+    a00, a01, a02 = M[r0, c0], M[r0, c0 + 1], M[r0, c0 + 2]
+    a10, a11, a12 = M[r0 + 1, c0], M[r0 + 1, c0 + 1], M[r0 + 1, c0 + 2]
+    a20, a21, a22 = M[r0 + 2, c0], M[r0 + 2, c0 + 1], M[r0 + 2, c0 + 2]
+    b00, b01, b02 = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
+    b10, b11, b12 = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
+    b20, b21, b22 = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
+    det = a00 * b00 + a01 * b10 + a02 * b20
+    if det == 0.0:
+        return 0.0
+    inv = 1.0 / det
+    out[o0, 0], out[o0, 1], out[o0, 2] = b00 * inv, b01 * inv, b02 * inv
+    out[o0 + 1, 0], out[o0 + 1, 1], out[o0 + 1, 2] = b10 * inv, b11 * inv, b12 * inv
+    out[o0 + 2, 0], out[o0 + 2, 1], out[o0 + 2, 2] = b20 * inv, b21 * inv, b22 * inv
+    return det
+
+
+#: :func:`_block_factor` eliminates by 3 × 3 blocks only when the pivot block's determinant (three
+#: unit axes: the volume they span) is at least this, and the Schur complement's at least
+#: ``BLOCK_SCHUR`` times its Frobenius norm cubed; else the 6 × 6 elimination with pivoting.
+BLOCK_AXES, BLOCK_SCHUR = 1e-3, 1e-6
+
+
+@njit(inline=True)
+def _block_factor(J: np.ndarray, B: np.ndarray) -> bool:
+    """Factor the space Jacobian J (ω rows 0–2, v rows 3–5) by 3 × 3 blocks into B (6, 6): pivot
+    block ``D`` = the ω rows of joints p…p+2, the three joints whose axes span the larger volume
+    (p = 3, the wrist, or p = 0), the other three o…o+2; ``B[0:3, 0:3] = D⁻¹``, ``B[0:3, 3:6] = K =
+    D⁻¹ Jω,o``, ``B[3:6, 0:3] = S⁻¹`` with the Schur complement ``S = Jv,o − Jv,p K``, ``B[3, 3] = p``.
+    Exact for any J with D and S invertible (Gaussian elimination by blocks); straight-line
+    arithmetic with two divisions, where the 6 × 6 elimination searches a pivot per column. False
+    (nothing to rely on in B) when either block is near singular (``BLOCK_AXES``, ``BLOCK_SCHUR``)."""
+    dw = _det3(J[0, 3], J[0, 4], J[0, 5], J[1, 3], J[1, 4], J[1, 5], J[2, 3], J[2, 4], J[2, 5])
+    da = _det3(J[0, 0], J[0, 1], J[0, 2], J[1, 0], J[1, 1], J[1, 2], J[2, 0], J[2, 1], J[2, 2])
+    p = 3 if abs(dw) >= abs(da) else 0
+    if not max(abs(dw), abs(da)) >= BLOCK_AXES:
+        return False
+    o = 3 - p
+    _inverse3(J, 0, p, B, 0)
+    for r in range(3):
+        for c in range(3):
+            B[r, 3 + c] = B[r, 0] * J[0, o + c] + B[r, 1] * J[1, o + c] + B[r, 2] * J[2, o + c]
+    s = 0.0
+    for r in range(3):  # S, in B[3:6, 3:6] for a moment
+        for c in range(3):
+            v = J[3 + r, o + c] - (J[3 + r, p] * B[0, 3 + c] + J[3 + r, p + 1] * B[1, 3 + c] + J[3 + r, p + 2] * B[2, 3 + c])
+            B[3 + r, 3 + c] = v
+            s += v * v
+    det = _inverse3(B, 3, 3, B, 3)
+    if not abs(det) >= BLOCK_SCHUR * s * math.sqrt(s):
+        return False
+    B[3, 3] = p
+    return True
+
+
+@njit(inline=True)
+def _block_solve(J: np.ndarray, B: np.ndarray, e: np.ndarray, x: np.ndarray) -> None:
+    """x ← J⁻¹ e from :func:`_block_factor`'s B: ``y = D⁻¹ eω``, ``x_o = S⁻¹ (e_v − Jv,p y)``,
+    ``x_p = y − K x_o``."""
+    p = int(B[3, 3])
+    o = 3 - p
+    y0 = B[0, 0] * e[0] + B[0, 1] * e[1] + B[0, 2] * e[2]
+    y1 = B[1, 0] * e[0] + B[1, 1] * e[1] + B[1, 2] * e[2]
+    y2 = B[2, 0] * e[0] + B[2, 1] * e[1] + B[2, 2] * e[2]
+    r0 = e[3] - (J[3, p] * y0 + J[3, p + 1] * y1 + J[3, p + 2] * y2)
+    r1 = e[4] - (J[4, p] * y0 + J[4, p + 1] * y1 + J[4, p + 2] * y2)
+    r2 = e[5] - (J[5, p] * y0 + J[5, p + 1] * y1 + J[5, p + 2] * y2)
+    x0 = B[3, 0] * r0 + B[3, 1] * r1 + B[3, 2] * r2
+    x1 = B[4, 0] * r0 + B[4, 1] * r1 + B[4, 2] * r2
+    x2 = B[5, 0] * r0 + B[5, 1] * r1 + B[5, 2] * r2
+    x[o], x[o + 1], x[o + 2] = x0, x1, x2
+    x[p] = y0 - (B[0, 3] * x0 + B[0, 4] * x1 + B[0, 5] * x2)
+    x[p + 1] = y1 - (B[1, 3] * x0 + B[1, 4] * x1 + B[1, 5] * x2)
+    x[p + 2] = y2 - (B[2, 3] * x0 + B[2, 4] * x1 + B[2, 5] * x2)
+
+
+@njit(inline=True)
+def _lu_factor(J: np.ndarray, A: np.ndarray, piv: np.ndarray) -> bool:
+    """A ← the LU factors of J (6 × 6) with partial pivoting, the diagonal stored as its reciprocals,
+    piv ← the row swapped into each column (rows of earlier columns not swapped: :func:`_lu_solve`
+    replays the swaps in order); False when a pivot is below 1e-12 of the largest entry (J singular
+    for this purpose)."""
     big = 0.0
     for r in range(6):
         for c in range(6):
@@ -133,7 +275,6 @@ def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> 
             A[r, c] = a
             if abs(a) > big:
                 big = abs(a)
-        x[r] = F[r]
     if not big > 0.0:
         return False
     small = 1e-12 * big
@@ -145,23 +286,86 @@ def _newton_step(J: np.ndarray, F: np.ndarray, A: np.ndarray, x: np.ndarray) -> 
                 p, best = r, abs(A[r, c])
         if best <= small:
             return False
+        piv[c] = p
         if p != c:
             for k in range(c, 6):
                 A[c, k], A[p, k] = A[p, k], A[c, k]
-            x[c], x[p] = x[p], x[c]
         inv = 1.0 / A[c, c]
         A[c, c] = inv
         for r in range(c + 1, 6):
             f = A[r, c] * inv
+            A[r, c] = f
             for k in range(c + 1, 6):
                 A[r, k] -= f * A[c, k]
-            x[r] -= f * x[c]
+    return True
+
+
+@njit(inline=True)
+def _lu_solve(A: np.ndarray, piv: np.ndarray, e: np.ndarray, x: np.ndarray) -> None:
+    """x ← J⁻¹ e from :func:`_lu_factor`."""
+    for r in range(6):
+        x[r] = e[r]
+    for c in range(6):
+        p = int(piv[c])
+        if p != c:
+            x[c], x[p] = x[p], x[c]
+        for r in range(c + 1, 6):
+            x[r] -= A[r, c] * x[c]
     for r in range(5, -1, -1):
         acc = x[r]
         for k in range(r + 1, 6):
             acc -= A[r, k] * x[k]
         x[r] = acc * A[r, r]
+
+
+@njit(inline=True)
+def _factored_solve(J: np.ndarray, B: np.ndarray, A: np.ndarray, piv: np.ndarray, blocked: bool, e: np.ndarray,
+                    x: np.ndarray) -> None:
+    """x ← J⁻¹ e from :func:`_block_factor`'s B when ``blocked``, else from :func:`_lu_factor`'s A
+    and piv; x may be e."""
+    if blocked:
+        _block_solve(J, B, e, x)
+    else:
+        _lu_solve(A, piv, e, x)
+
+
+@njit(inline=True)
+def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) -> bool:
+    """x ← the step that zeroes the pose error F (:func:`_error`) to second order: ``d = J⁻¹ F``,
+    then, for ``SECOND_ORDER[0] < max|d| ≤ SECOND_ORDER[1]``, ``x = J⁻¹ (F − ½ B(d, d))`` with
+    :func:`_second_order`'s B (the pose error after the step is then O(d³), where Newton's is O(d²):
+    from the closed form's starts, about 5e-3 off, two steps reach 1e-15 where Newton's method needs
+    three); the correction is dropped when it is not small against d (far from a root). J is
+    factored once for both solves, by blocks (:func:`_block_factor`) or else with pivoting
+    (:func:`_lu_factor`). False when J is singular for this purpose. Scratch: ``work`` rows 20–32 and
+    47 (:func:`polish`'s A, H and L)."""
+    B, A = work[26:32], work[20:26]
+    piv, d = work[47], work[32]
+    blocked = _block_factor(J, B)
+    if not blocked and not _lu_factor(J, A, piv):
+        return False
+    _factored_solve(J, B, A, piv, blocked, F, d)
+    big = 0.0
+    for i in range(6):
+        big = max(big, abs(d[i]))
+    if SECOND_ORDER[0] < big <= SECOND_ORDER[1]:
+        _second_order(J, d, x)
+        for i in range(6):
+            x[i] = F[i] - x[i]
+        _factored_solve(J, B, A, piv, blocked, x, x)  # in place: both solves read e before writing x
+        change = 0.0
+        for i in range(6):
+            change = max(change, abs(x[i] - d[i]))
+        if change <= 0.5 * big:
+            return True
+    for i in range(6):
+        x[i] = d[i]
     return True
+
+
+#: :func:`_newton_step` adds the second-order correction to steps between these lengths (rad, m): below
+#: it is under the rounding of what it corrects, above the quadratic model is not trusted.
+SECOND_ORDER = (1e-6, 0.05)
 
 
 #: Layout of the packed constants ``C`` (:func:`pack_arm`): the base's and the tip's 3 × 4 transforms
@@ -173,8 +377,10 @@ _L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_S
 #: Where ``C`` keeps the chain: ``L₀`` and ``L₆`` (3 × 4 each, row-major) and the per-joint
 #: numbers; the joint kinds; the pitches.
 FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
-#: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6).
-_WORK_ROWS = 96
+#: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6); the last MAX_ROWS (16) are the
+#: branches' outcomes (:func:`calibrated_solve_into`).
+_WORK_ROWS = 112
+BRANCH_ROWS = slice(96, 112)
 
 
 def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
@@ -347,7 +553,8 @@ def _advance(C: np.ndarray, sc: np.ndarray, step: np.ndarray, out: np.ndarray) -
         out[1, i] = c * cd - s * sd
 
 
-_I6, _I24, _I120, _I720, _I5040, _I40320 = 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, 1.0 / 5040.0, 1.0 / 40320.0
+_I6, _I12, _I24, _I120, _I720, _I5040, _I40320 = (1.0 / 6.0, 1.0 / 12.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, 1.0 / 5040.0,
+                                                  1.0 / 40320.0)
 
 
 @njit(inline=True)
@@ -415,10 +622,11 @@ def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.nd
     T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
 
 
-@njit
+@njit(refcount=False)
 def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: np.ndarray) -> tuple[float, float, int]:
-    """Newton's method on the pose error :func:`_error` of the packed arm ``C`` with its space
-    Jacobian (:func:`fk_jacobian`), q (6,) updated in place; a step that does not lower the error,
+    """Newton's method with a second-order correction (:func:`_newton_step`) on the pose error
+    :func:`_error` of the packed arm ``C`` with its space Jacobian (:func:`fk_jacobian`), q (6,)
+    updated in place; a step that does not lower the error,
     or a singular Jacobian, switches to Levenberg–Marquardt (damping λ times the largest diagonal
     entry of JᵀJ, λ from 1e-9, ×10 on failure, ÷10 on success, back to Newton below 1e-9); no step
     moves a joint more than ``MAX_STEP``. The sines and cosines are computed once at the start and
@@ -431,7 +639,7 @@ def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: n
     n = 6
     tol_stop = C[_TOL_STOP]
     T0, T1 = work[0:4, 0:4], work[4:8, 0:4]
-    J0, J1, A, H, L = work[8:14], work[14:20], work[20:26], work[26:32], work[32:38]
+    J0, J1, H, L = work[8:14], work[14:20], work[26:32], work[32:38]
     F0, F1, g, step, trial = work[38], work[39], work[40], work[41], work[42]
     sc0, sc1 = work[43:45], work[45:47]
     _trig(C, q, sc0)
@@ -442,7 +650,7 @@ def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: n
     for _ in range(max_steps):
         if rot < tol_stop and pos < tol_stop:
             break
-        solved = lam == 0.0 and _newton_step(J0, F0, A, step)
+        solved = lam == 0.0 and _newton_step(J0, F0, work, step)
         if not solved:
             if lam == 0.0:
                 lam = 1e-9
@@ -492,22 +700,24 @@ def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: n
 
 
 #: :func:`polish` evaluates a trial point's pose without the Jacobian when the iterate it steps from
-#: has orientation (rad) and position (m) errors below this: Newton's step then ends below 1e-12
-#: unless the error's curvature constant exceeds 100 (measured: 2–4 on calibrated arms).
-FINAL = 1e-7
+#: has orientation (rad) and position (m) errors below this: the second-order step then ends below
+#: 1e-12 unless the error's third-order constant exceeds 1000 (the error after a step from e is
+#: about c e³; measured on calibrated arms from the closed form's starts: c ≈ 2–50).
+FINAL = 1e-5
 
 
 def scratch() -> np.ndarray:
-    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((96, 6) float64).
+    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((112, 6) float64; rows
+    ``BRANCH_ROWS`` the branches' outcomes).
 
     Returns
     -------
-    (96, 6) ndarray
+    (112, 6) ndarray
 
     Examples
     --------
     >>> scratch().shape
-    (96, 6)
+    (112, 6)
     """
     return np.empty((_WORK_ROWS, 6))
 
@@ -818,18 +1028,36 @@ def _relax_needed(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarr
     return False
 
 @njit
-def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndarray, wrist_ref: float,
-                          out: np.ndarray, branches: np.ndarray, work: np.ndarray) -> tuple[int, int, int, float]:
-    """Every solution of the packed arm ``C`` (:func:`pack_arm`) for the tip pose T (module docstring).
+def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray,
+                          work: np.ndarray) -> tuple[int, int, int, float]:
+    """Every solution of the packed arm for the tip pose T (module docstring).
 
-    Kn: the projected arm's packed closed-form constants; method: ``closed_form.PIEPER`` or
-    ``PARALLEL_AXES``; wrist_ref: the free joint's value at a singularity, in the sign of the
-    projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS, OUT_COLS) as the
-    closed-form kernels do and each branch's outcome into ``branches`` (MAX_ROWS, BRANCH_COLS; code
-    −1 past the last branch); work: :func:`scratch`. Returns (number of solutions, merged branches,
-    vanished branches, σ): σ the smallest singular value of the scaled Jacobian (:func:`_null_direction`)
-    at the points the near-singular search started from, ``inf`` when it did not run (no point needed
-    it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
+    KC: the packed arm ``C`` (:func:`pack_arm`) followed by the projected arm's packed closed-form
+    constants ``Kn`` (:func:`robokit.kernels.closed_form.pack_constants`; one array: one argument to
+    convert per call); method:
+    ``closed_form.PIEPER`` or ``PARALLEL_AXES``; wrist_ref: the free joint's value at a singularity,
+    in the sign of the projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS,
+    OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
+    ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
+    The rows of ``out`` past the number of solutions are scratch. Returns (number of solutions,
+    merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
+    (:func:`_null_direction`) at the points the near-singular search started from, ``inf`` when it
+    did not run (no point needed it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
+    R = _cf.MAX_ROWS
+    # the small integer arrays the core needs (it creates no array: no reference counting there)
+    return _solve_core(KC, method, T, wrist_ref, out, work, np.empty((R, 3), dtype=np.int64), np.zeros(R, dtype=np.bool_),
+                       np.empty(R, dtype=np.int64), np.zeros(6, dtype=np.int64), np.empty((4, 4)))
+
+
+@njit(refcount=False)
+def _solve_core(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray, work: np.ndarray,
+                rcodes: np.ndarray, rdegen: np.ndarray, seed_code: np.ndarray, ci: np.ndarray,
+                Tr: np.ndarray) -> tuple[int, int, int, float]:
+    """:func:`calibrated_solve_into` without reference counting (its views of ``work`` and ``KC`` cost
+    nothing): rcodes (MAX_ROWS, 3), rdegen (MAX_ROWS,) False, seed_code (MAX_ROWS,) int64 scratch,
+    ci (6,) zeros (the starts are in the robot's own joints: not reversed), Tr (4, 4) scratch."""
+    C, Kn = KC[:_LEN], KC[_LEN:]
+    branches = work[BRANCH_ROWS]
     R = _cf.MAX_ROWS
     # work rows: 0–47 polish's scratch, 48–63 the starts (then the search points), 64–79 the
     # solutions, 80–82 q, q2, v, 83–88 the starts' branch codes and degenerate flags (16 each)
@@ -837,7 +1065,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     rows = work[64:80]
     q, q2, v = work[80], work[81], work[82]
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
-    first = np.empty((R, _cf.OUT_COLS))
+    first = out  # the projected arm's rows, copied out below: out is written only at the end
     m = _nominal_rows(Kn, method, T, wrist_ref, first)
     for r in range(R):
         branches[r, 0] = -1.0
@@ -852,7 +1080,6 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
     if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens, work[89:96]):
-        Tr = np.empty((4, 4))
         for f in RELAX:
             for r in range(4):
                 for c in range(4):
@@ -879,9 +1106,6 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
     rev = post_q[1]
     tol_accept = C[_TOL_ACCEPT]
     max_steps = int(C[_MAX_STEPS])
-    rcodes = np.empty((R, 3), dtype=np.int64)
-    rdegen = np.zeros(R, dtype=np.bool_)
-    seed_code = np.empty(R, dtype=np.int64)
     ns = 0
     # the points to explore around (near a singular pose): a solution the polish moved far from its
     # start, a branch that vanished (the point its polish reached), a singular choice of the nominal;
@@ -943,6 +1167,9 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
             branches[r, 2] = -1
             vanished += 1
     sigma = math.inf
+    # an int64 like max_steps: the global constant itself would be typed Literal[int](25) and compile
+    # a second polish for it
+    explore_steps = EXPLORE_MAX_STEPS + 0 * max_steps
     for k in range(nseed):  # every root along the arm's near-singular direction there
         for j in range(6):
             q2[j] = nom[k, j]
@@ -958,7 +1185,7 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
                 break
             for j in range(6):
                 q[j] = nom[k, j] + step * (0.25 * math.pi / big) * v[j]
-            rot, pos, _ = polish(C, T, q, EXPLORE_MAX_STEPS, work)
+            rot, pos, _ = polish(C, T, q, explore_steps, work)
             if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
                 for j in range(6):
                     rows[ns, j] = q[j]
@@ -968,14 +1195,13 @@ def calibrated_solve_into(Kn: np.ndarray, method: int, C: np.ndarray, T: np.ndar
                 rcodes[ns, 2] = code % 10
                 rdegen[ns] = True
                 ns += 1
-    ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
     return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
 
 
 def solve_into_entry() -> Any:
     """The machine code of :func:`calibrated_solve_into` for the one set of argument types
-    :class:`robokit.ik.calibrated.CalibratedArm` passes — Kn (n,), C (n,), T (4, 4), out, branches and
-    work 2-D, all float64 in C order, ``method`` a Python int, ``wrist_ref`` a Python float — as a
+    :class:`robokit.ik.calibrated.CalibratedArm` passes — KC (n,), T (4, 4), out and work 2-D, all
+    float64 in C order, ``method`` a Python int, ``wrist_ref`` a Python float — as a
     callable without numba's type dispatch, or None while there is none (not compiled yet, or plain
     Python: then call the kernel itself). As :func:`robokit.kernels.closed_form.solve_into_entry`.
 
@@ -989,19 +1215,21 @@ def solve_into_entry() -> Any:
     >>> entry is None or callable(entry)
     True
     """
-    return machine_code(calibrated_solve_into, "vivmfmmm")
+    return machine_code(calibrated_solve_into, "vimfmm")
 
 
 @njit(parallel=True)
-def calibrated_batch(Kn: np.ndarray, method: int, C: np.ndarray, Ts: np.ndarray,
-                     wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
+def calibrated_batch(KC: np.ndarray, method: int, Ts: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`calibrated_solve_into` over (N, 4, 4) poses, in parallel over the poses: (out (N,
     MAX_ROWS, OUT_COLS) with NaN rows past each count, counts (N,))."""
     N = Ts.shape[0]
     out = np.full((N, _cf.MAX_ROWS, _cf.OUT_COLS), np.nan)
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
-        branches = np.empty((_cf.MAX_ROWS, BRANCH_COLS))
         work = np.empty((_WORK_ROWS, 6))
-        counts[i] = calibrated_solve_into(Kn, method, C, Ts[i], wrist_ref, out[i], branches, work)[0]
+        n = calibrated_solve_into(KC, method, Ts[i], wrist_ref, out[i], work)[0]
+        counts[i] = n
+        for r in range(max(n, 0), _cf.MAX_ROWS):  # out[i] was the kernel's scratch before its rows
+            for c in range(_cf.OUT_COLS):
+                out[i, r, c] = np.nan
     return out, counts
