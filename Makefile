@@ -43,13 +43,15 @@ test-env: $(VENV)/.extra-all $(VENV)/.extra-test $(VENV)/.extra-docs $(VENV)/.ex
 demo: $(VENV)/.installed
 	$(BIN)/robokit validate
 
-# First every course kernel is compiled into numba's on-disk cache (or, when it is there already,
-# loaded: seconds), one process per core, each compiling different kernels; otherwise, on a cold
-# cache, both pytest workers compile the same kernels at the same time, twice the CPU for nothing.
+# First every kernel the tests run is compiled into numba's on-disk cache (or, when it is there
+# already, loaded: seconds), one process per core, each compiling different kernels: the course
+# kernels (what `python -m robokit.kernels` compiles) and the analytic-IK kernels, compiled by
+# solving poses (.ci/warm_kernels.py); otherwise, on a cold cache, both pytest workers compile the
+# same kernels at the same time, twice the CPU for nothing.
 # Not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
 # pytest its closing count ("N passed, M skipped in T s").
 test: test-env
-	$(BIN)/python -m robokit.kernels
+	$(BIN)/python .ci/warm_kernels.py
 	$(BIN)/python -m pytest -n 2 $(PYTEST_ARGS)
 
 bench: $(VENV)/.extra-all $(VENV)/.extra-bench

@@ -1,8 +1,15 @@
 """The description corpus (tests/descriptions/corpus.py): every vendored description, every
 example-robot-data robot robokit loads and the arms of pybullet_data, through load → FK, J, RNEA,
 M, against the format's own engine, to 1e-9 relative. The table is printed at the end of the run.
+
+Each robot is one test (``test_robot_agrees_with_its_engine``), so that the two xdist workers share
+the corpus (a few minutes in one test before); each robot's rows are computed once per run and
+kept in a folder the workers share (:class:`SharedRows`), where the tests over the whole corpus
+read them — the rows ``corpus.run()`` gives, robot by robot, in the same order.
 """
 import os
+import pickle
+import time
 
 import pytest
 
@@ -10,10 +17,59 @@ from tests.descriptions import corpus
 
 pytest.importorskip("pybullet")
 
+CASES = corpus.all_cases()
+
+
+class SharedRows:
+    """``corpus.run_case`` of each case, computed once per test run by whichever process needs it
+    first and read from ``folder`` by the others: a process claims a case (a file created
+    exclusively) before computing it, another one needing that case waits for the rows file (and
+    computes it itself if none comes within ``patience`` seconds: a claimer that died)."""
+
+    def __init__(self, folder, patience=600.0):
+        self.folder, self.patience = folder, patience
+
+    def get(self, i):
+        done = self.folder / f"{i}.pickle"
+        try:
+            os.close(os.open(self.folder / f"{i}.claim", os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+        except FileExistsError:
+            deadline = time.monotonic() + self.patience
+            while time.monotonic() < deadline:
+                if done.exists():
+                    return pickle.loads(done.read_bytes())
+                time.sleep(0.05)
+        rows = corpus.run_case(CASES[i])
+        tmp = done.with_suffix(f".{os.getpid()}")
+        tmp.write_bytes(pickle.dumps(rows))
+        os.replace(tmp, done)
+        return rows
+
+
+@pytest.fixture(scope="session")
+def shared_rows(tmp_path_factory):
+    """This run's :class:`SharedRows`: under xdist in the folder above the workers' own temporary
+    folders (one per run, made by the controller), otherwise in the run's temporary folder."""
+    base = tmp_path_factory.getbasetemp()
+    folder = (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "corpus-rows"
+    folder.mkdir(exist_ok=True)
+    return SharedRows(folder)
+
+
+def _bad(rows):
+    return [f"{r.source} vs {r.engine}: {r.problem or r.errors}" for r in rows
+            if not r.ok and not r.known and not r.problem.startswith("skipped")]
+
+
+@pytest.mark.parametrize("i", range(len(CASES)), ids=[f"{c.fmt}-{c.label}" for c in CASES])
+def test_robot_agrees_with_its_engine(shared_rows, i):
+    bad = _bad(shared_rows.get(i))
+    assert not bad, "\n".join(bad)
+
 
 @pytest.fixture(scope="module")
-def rows():
-    rows = corpus.run()
+def rows(shared_rows):
+    rows = [r for i in range(len(CASES)) for r in shared_rows.get(i)]  # = corpus.run()
     text = corpus.header() + "\n" + corpus.table(rows)
     tmp = corpus.TABLE_FILE.with_suffix(f".{os.getpid()}")
     tmp.write_text(text + "\n")
@@ -22,8 +78,7 @@ def rows():
 
 
 def test_every_robot_agrees_with_its_engine(rows):
-    bad = [f"{r.source} vs {r.engine}: {r.problem or r.errors}" for r in rows
-           if not r.ok and not r.known and not r.problem.startswith("skipped")]
+    bad = _bad(rows)
     assert not bad, "\n".join(bad)
     assert sum(r.ok for r in rows) >= 60  # the corpus is not empty by accident
 
