@@ -164,7 +164,10 @@ def njit(signature: Any = None, *, parallel: bool = False, interpret_while_compi
         costs nothing, where numba otherwise counts each one up and down with atomic instructions
         (tens of nanoseconds each: measured, about a fifth of the calibrated IK's Newton polish).
         Only for a kernel that creates no array (``np.empty`` and friends do not compile there)
-        and keeps no view beyond the call (its caller's arrays outlive it).
+        and keeps no view beyond the call (its caller's arrays outlive it) — and whose callees
+        create none either: numba compiles the kernels it calls, when they have no machine code for
+        those types yet, without reference counting too (a callee that allocates then fails to
+        compile on a cold cache only).
 
     Returns
     -------

@@ -1043,19 +1043,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
     (:func:`_null_direction`) at the points the near-singular search started from, ``inf`` when it
     did not run (no point needed it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
-    R = _cf.MAX_ROWS
-    # the small integer arrays the core needs (it creates no array: no reference counting there)
-    return _solve_core(KC, method, T, wrist_ref, out, work, np.empty((R, 3), dtype=np.int64), np.zeros(R, dtype=np.bool_),
-                       np.empty(R, dtype=np.int64), np.zeros(6, dtype=np.int64), np.empty((4, 4)))
-
-
-@njit(refcount=False)
-def _solve_core(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray, work: np.ndarray,
-                rcodes: np.ndarray, rdegen: np.ndarray, seed_code: np.ndarray, ci: np.ndarray,
-                Tr: np.ndarray) -> tuple[int, int, int, float]:
-    """:func:`calibrated_solve_into` without reference counting (its views of ``work`` and ``KC`` cost
-    nothing): rcodes (MAX_ROWS, 3), rdegen (MAX_ROWS,) False, seed_code (MAX_ROWS,) int64 scratch,
-    ci (6,) zeros (the starts are in the robot's own joints: not reversed), Tr (4, 4) scratch."""
     C, Kn = KC[:_LEN], KC[_LEN:]
     branches = work[BRANCH_ROWS]
     R = _cf.MAX_ROWS
@@ -1066,6 +1053,10 @@ def _solve_core(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, ou
     q, q2, v = work[80], work[81], work[82]
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
     first = out  # the projected arm's rows, copied out below: out is written only at the end
+    rcodes = np.empty((R, 3), dtype=np.int64)
+    rdegen = np.zeros(R, dtype=np.bool_)
+    seed_code = np.empty(R, dtype=np.int64)
+    ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
     m = _nominal_rows(Kn, method, T, wrist_ref, first)
     for r in range(R):
         branches[r, 0] = -1.0
@@ -1080,6 +1071,7 @@ def _solve_core(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, ou
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
     if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens, work[89:96]):
+        Tr = np.empty((4, 4))
         for f in RELAX:
             for r in range(4):
                 for c in range(4):
