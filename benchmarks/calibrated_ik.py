@@ -11,7 +11,8 @@ random poses (reachable by construction), time per pose of
 * ``ik_analytic(..., nominal=False)`` of the calibrated arm (the general 6R method) on fewer poses;
 * the generated C (``-O2``) of the nominal and of the calibrated arm (``NAME_ik``), through ctypes.
 
-Per pose: the least CPU time of a few batches; the table gives the median over the poses (the common
+Per pose: the least CPU time of a few batches (the nominal's and the calibrated arm's batches
+alternate, pose by pose: the machine's drifting speed weighs on both alike); the table gives the median over the poses (the common
 pose: one start per branch, each finished in 2–3 second-order Newton steps) and the mean (near-singular poses, where
 the polish searches for the roots that merge or appear, weigh in). The ratio columns are time / nominal
 closed form (Python rows against the Python reference, C rows against the nominal's C). The load average is printed: numbers taken on a shared machine are only
@@ -71,6 +72,31 @@ def _per_pose(fn, poses, rounds, calls=5):
     return float(np.median(each)), float(np.mean(each))
 
 
+def _paired(fn_a, fn_b, poses_a, poses_b, rounds, calls=5):
+    """:func:`_per_pose` of two callables on paired poses, their batches alternating (a, b, a, b, …
+    per pose), so that the machine's speed, which drifts on a shared machine, weighs on both alike:
+    ((median, mean) of a, (median, mean) of b)."""
+    for Ta, Tb in zip(poses_a[:3], poses_b[:3]):
+        fn_a(Ta)
+        fn_b(Tb)
+    each_a, each_b = [], []
+    for Ta, Tb in zip(poses_a, poses_b):
+        best_a = best_b = np.inf
+        for _ in range(rounds):
+            for fn, T, which in ((fn_a, Ta, 0), (fn_b, Tb, 1)):
+                t0 = time.process_time()
+                for _ in range(calls):
+                    fn(T)
+                t = (time.process_time() - t0) / calls
+                if which == 0:
+                    best_a = min(best_a, t)
+                else:
+                    best_b = min(best_b, t)
+        each_a.append(best_a)
+        each_b.append(best_b)
+    return ((float(np.median(each_a)), float(np.mean(each_a))), (float(np.median(each_b)), float(np.mean(each_b))))
+
+
 def _c_loop(lib, poses, rounds, float32=False):
     """:func:`_per_pose` of NAME_ik through ctypes."""
     import ctypes
@@ -109,8 +135,8 @@ def main(argv=None):
         Q = [cal.random_configuration(rng) for _ in range(n_poses)]
         Tn = [nominal.frame_pose(q) for q in Q]
         Tc = [cal.frame_pose(q) for q in Q]
-        t_nom = _per_pose(lambda T: rk.ik_analytic(nominal, T), Tn, rounds, calls)
-        t_cal = _per_pose(lambda T: rk.ik_analytic(cal, T), Tc, rounds, calls)
+        t_nom, t_cal = _paired(lambda T: rk.ik_analytic(nominal, T), lambda T: rk.ik_analytic(cal, T), Tn, Tc,
+                               rounds, calls)
         t_g6r = _per_pose(lambda T: rk.ik_analytic(cal, T, nominal=False), Tc[:n_g6r], 1)
         counts = np.mean([len(rk.ik_analytic(cal, T)) for T in Tc])
         kind = rk.ik_analytic_kind(cal).method
