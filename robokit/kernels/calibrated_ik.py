@@ -12,9 +12,11 @@ constants ``Kn``). Per pose:
    or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag; when
    it gives fewer than ``GENERIC_ROWS``, also those of the pose moved toward and away from the
    shoulder by the ``RELAX`` fractions of the reach, for the branches it lacks (the projected arm's
-   workspace boundary is not quite the arm's) — except where :func:`_relax_needed` shows they
-   cannot add one (Pieper's general case: the labels of the positions at the relaxed poses, from the
-   position quartic's real roots, are all sure and present already);
+   workspace boundary is not quite the arm's) — except the relaxed poses :func:`_relax_mask` shows
+   cannot add one (Pieper's general case: the labels of the positions at a relaxed pose, from the
+   position quartic's real roots, are all sure and present already, or their wrist cannot reach the
+   orientation); a relaxed pose's rows are finished (wrapped, de-duplicated) only when they hold a
+   branch the starts lack;
 2. each start is polished by :func:`polish`: Newton's method with a second-order correction
    (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
    form's starts, about 5e-3 off, reach 1e-15 in two steps rather than three) on the spatial pose
@@ -790,7 +792,7 @@ def _nominal_rows(Kn: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, 
 
 
 
-#: The relaxed poses are solved only where they can add a branch (:func:`_relax_needed`). Where a
+#: The relaxed poses are solved only where they can add a branch (:func:`_relax_mask`). Where a
 #: decision is within these margins (relative) it is unsure and the relaxed poses are solved: a
 #: critical value of the position quartic near zero (a double root: the closed form takes a complex
 #: pair as real when its imaginary part is below 1e-6, where that value is about 1e-12 of the
@@ -889,14 +891,18 @@ def _quartic_roots(c: np.ndarray, roots: np.ndarray, guesses: int, pts: np.ndarr
 
 
 @njit
-def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, codes: np.ndarray, sc: np.ndarray,
-                    guesses: int) -> int:
+def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, mz: np.ndarray, codes: np.ndarray,
+                    sc: np.ndarray, guesses: int) -> int:
     """The (shoulder, elbow) codes ``10 s + e`` of the positions of the projected arm's Pieper
     solution (its general case: joints 1, 2 revolute, a quartic in joint 3) for the wrist centre W
     in the canonical chain's frame, as ``closed_form._pieper_position`` labels them, into ``codes``;
     their count, or −1 when unsure (:func:`_quartic_roots`; a label's quantity within
-    ``LABEL_UNSURE`` of zero; a degenerate position). Scratch: sc rows 0–3 (≥ 5 columns; row 1 the
-    roots, its first ``guesses`` those of a nearby pose on entry)."""
+    ``LABEL_UNSURE`` of zero; a degenerate position). A position whose wrist cannot reach the
+    orientation gets the code −1: the closed form gives it no row (``closed_form._wrist_angles``:
+    with twists α₄, α₅ not right angles, cos θ₅ = (cos α₄ cos α₅ − m_z)/(sin α₄ sin α₅), m the
+    target's z axis ``mz`` (3,) in the canonical chain's frame turned back through joints 1–3,
+    must be within ±1; beyond by less than ``LABEL_UNSURE`` it is unsure: −1 returned). Scratch: sc
+    rows 0–3 (≥ 5 columns; row 1 the roots, its first ``guesses`` those of a nearby pose on entry)."""
     cf = Kn[_cf._K_CF:_cf._K_C]
     Cm = Kn[_cf._K_C:_cf._K_PRE]
     nrows = int(Kn[_cf._K_CI + 4])
@@ -920,6 +926,11 @@ def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, codes: np.n
         return -1
     rxy = math.hypot(Wx, Wy)
     vsize = abs(cf[_cf._V]) + abs(cf[_cf._V + 1])
+    ca4, sa4, ca5, sa5 = cf[_cf._CA + 3], cf[_cf._SA + 3], cf[_cf._CA + 4], cf[_cf._SA + 4]
+    right_angles = ca4 == 0.0 and ca5 == 0.0  # then cos θ₅ = −m_z/(sin α₄ sin α₅): always within ±1
+    k45 = sa4 * sa5
+    if not right_angles and abs(k45) <= LABEL_UNSURE:
+        return -1
     for i in range(nr):
         # the closed form's angles by their sines and cosines (no transcendental function): joint 3 from
         # t = tan(x₃/2); θ₂ = atan2(y, x) gives (cos, sin) = (x, y)/‖(x, y)‖; θ₁ = atan2(W_y, W_x) − atan2(g₂, g₁)
@@ -963,36 +974,57 @@ def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, codes: np.n
             elbow = 2 if d >= 0.0 else 3
         sh = g1
         codes[i] = 10 * (0 if sh >= 0.0 else 1) + elbow
+        if not right_angles:  # can the wrist reach the orientation from this position?
+            # θ₁ = atan2(W_y, W_x) − atan2(g₂, g₁), θ₂ = atan2(y₂, x₂), θ₃: their cosines and sines
+            c1, s1 = (Wx * g1 + Wy * g2) / (rxy * g), (Wy * g1 - Wx * g2) / (rxy * g)
+            if not rev3:
+                c3, s3 = math.cos(cf[_cf._TH0 + 2]), math.sin(cf[_cf._TH0 + 2])
+            mx, my, m3 = mz[0], mz[1], mz[2]
+            for j in range(3):  # m turned back through joint j's rotation θⱼ, then its twist αⱼ
+                c = c1 if j == 0 else c2 if j == 1 else c3
+                s = s1 if j == 0 else s2 if j == 1 else s3
+                mx, my = c * mx + s * my, c * my - s * mx
+                ca, sa = cf[_cf._CA + j], cf[_cf._SA + j]
+                my, m3 = ca * my + sa * m3, ca * m3 - sa * my
+            c5 = abs((ca4 * ca5 - m3) / k45)
+            if c5 > 1.0 + LABEL_UNSURE:
+                codes[i] = -1.0  # no wrist solution: no row
+            elif c5 > 1.0 - LABEL_UNSURE:
+                return -1
     return nr
 
 
 @njit
-def _relax_needed(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
-                  codes: np.ndarray, degens: np.ndarray, sc: np.ndarray) -> bool:
-    """Whether the closed form at the relaxed poses (``RELAX``) can give a branch the pose's own m
-    rows (branch ``codes``, degenerate flags ``degens``) lack. Always, except for Pieper's general
-    case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate and every position
-    at every relaxed pose (:func:`_position_codes`, each label sure) has a shoulder and elbow label
-    that the rows have already: then the relaxed solves would add nothing (their wrist rows are the
-    two regular flips). A random Pieper arm has two of its four positions at about half of its
-    poses, far from any boundary: there the six relaxed solves were most of the time. Scratch: sc
-    (7, 6)."""
+def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
+                codes: np.ndarray, degens: np.ndarray, sc: np.ndarray) -> int:
+    """Which relaxed poses (``RELAX``; bit i for the i-th) can give a branch the pose's own m rows
+    (branch ``codes``, degenerate flags ``degens``) lack: all of them, except in Pieper's general
+    case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate; there, a relaxed
+    pose is left out when every position of it (:func:`_position_codes`, each label sure) has a
+    shoulder and elbow label that the rows have already, or a wrist that cannot reach the
+    orientation (then the closed form gives it no row: a random Pieper arm's wrist, its twists not
+    right angles, leaves one or three of the four positions at about a quarter of its poses). The
+    relaxed solves would add nothing there (their wrist rows are the two regular flips). A random
+    Pieper arm has two of its four positions at about half of its poses, far from any boundary:
+    there the six relaxed solves were most of the time. Scratch: sc (7, 6)."""
+    every = (1 << len(RELAX)) - 1
     if method != _cf.PIEPER or int(Kn[_cf._K_CI + 1]) != 0 or int(Kn[_cf._K_CI + 3]) != 4:
-        return True
+        return every
     for r in range(m):
         if degens[r] != 0.0:
-            return True
+            return every
     dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
     if dist == 0.0:
-        return True
+        return every
     # the wrist centre in the canonical chain's frame: W = pre · T · post · w6 (T⁻¹ when the chain is
     # reversed, as closed_form._target); a relaxed pose moves T's position by f·reach·u, so W by
-    # f·reach·du with du = pre R u (reversed: −pre Rᵀ u)
+    # f·reach·du with du = pre R u (reversed: −pre Rᵀ u); the target's z axis there (the wrist's
+    # reach) is pre R post_z (reversed: pre Rᵀ post_z) at every relaxed pose
     pre = Kn[_cf._K_PRE:_cf._K_POST]
     post = Kn[_cf._K_POST:_cf._K_PQ]
     cf = Kn[_cf._K_CF:_cf._K_C]
     rev = int(Kn[_cf._K_CI + 5]) == 1
-    x, v = sc[4, 0:3], sc[5, 0:3]
+    x, v, z = sc[4, 0:3], sc[5, 0:3], sc[4, 3:6]
     v0 = post[0] * cf[_cf._W6] + post[1] * cf[_cf._W6 + 1] + post[2] * cf[_cf._W6 + 2] + post[3]
     v1 = post[4] * cf[_cf._W6] + post[5] * cf[_cf._W6 + 1] + post[6] * cf[_cf._W6 + 2] + post[7]
     v2 = post[8] * cf[_cf._W6] + post[9] * cf[_cf._W6 + 1] + post[10] * cf[_cf._W6 + 2] + post[11]
@@ -1001,31 +1033,42 @@ def _relax_needed(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarr
         if rev:  # T⁻¹ v = Rᵀ (v − p); the move: −Rᵀ u
             x[r] = T[0, r] * (v0 - T[0, 3]) + T[1, r] * (v1 - T[1, 3]) + T[2, r] * (v2 - T[2, 3])
             v[r] = -(T[0, r] * ux + T[1, r] * uy + T[2, r] * uz)
+            z[r] = T[0, r] * post[2] + T[1, r] * post[6] + T[2, r] * post[10]
         else:
             x[r] = T[r, 0] * v0 + T[r, 1] * v1 + T[r, 2] * v2 + T[r, 3]
             v[r] = ux if r == 0 else uy if r == 1 else uz
+            z[r] = T[r, 0] * post[2] + T[r, 1] * post[6] + T[r, 2] * post[10]
     W0x = pre[0] * x[0] + pre[1] * x[1] + pre[2] * x[2] + pre[3]
     W0y = pre[4] * x[0] + pre[5] * x[1] + pre[6] * x[2] + pre[7]
     W0z = pre[8] * x[0] + pre[9] * x[1] + pre[10] * x[2] + pre[11]
     dx = pre[0] * v[0] + pre[1] * v[1] + pre[2] * v[2]
     dy = pre[4] * v[0] + pre[5] * v[1] + pre[6] * v[2]
     dz = pre[8] * v[0] + pre[9] * v[1] + pre[10] * v[2]
+    mz = sc[5, 3:6]
+    for r in range(3):
+        mz[r] = pre[4 * r] * z[0] + pre[4 * r + 1] * z[1] + pre[4 * r + 2] * z[2]
     pc = sc[6]
     n = 0
-    for f in RELAX:
-        s = f * reach
-        n = _position_codes(Kn, W0x + s * dx, W0y + s * dy, W0z + s * dz, pc, sc, n)  # from the last roots
+    mask = 0
+    for i in range(len(RELAX)):
+        s = RELAX[i] * reach
+        n = _position_codes(Kn, W0x + s * dx, W0y + s * dy, W0z + s * dz, mz, pc, sc, max(n, 0))  # from the last roots
         if n < 0:
-            return True
-        for i in range(n):
+            mask |= 1 << i
+            continue
+        for j in range(n):
+            if pc[j] < 0.0:
+                continue  # no row: its wrist cannot reach the orientation
             have = False
             for r in range(m):
-                if int(codes[r]) // 10 == int(pc[i]):
+                if int(codes[r]) // 10 == int(pc[j]):
                     have = True
                     break
             if not have:
-                return True
-    return False
+                mask |= 1 << i
+                break
+    return mask
+
 
 @njit
 def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray,
@@ -1070,18 +1113,43 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     shoulder = C[_SHOULDER:_REACH]
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
-    if m < GENERIC_ROWS and _relax_needed(Kn, method, T, C[_SHOULDER:_REACH], C[_REACH], m, codes, degens, work[89:96]):
+    mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degens, work[89:96]) if m < GENERIC_ROWS else 0
+    if mask != 0:
         Tr = np.empty((4, 4))
-        for f in RELAX:
+        # the closed form's own steps, its scratch allocated once: each relaxed pose's raw rows, finished
+        # (as a solve of that pose finishes them) only when they hold a branch the starts lack
+        ci_r, cf_r, C_r, post_r, _, raw, rcodes_r, rdegen_r, qq_r, s_r = _cf._unpack(Kn, T)
+        pre_r, postT_r = Kn[_cf._K_PRE:_cf._K_POST].reshape((4, 4)), Kn[_cf._K_POST:_cf._K_PQ].reshape((4, 4))
+        dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
+        for i in range(len(RELAX)):
+            if dist == 0.0:
+                break
+            if (mask >> i) & 1 == 0:
+                continue  # its rows are branches the starts have (_relax_mask)
+            f = RELAX[i]
             for r in range(4):
                 for c in range(4):
                     Tr[r, c] = T[r, c]
-            dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
-            if dist == 0.0:
-                continue
             for r in range(3):
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
-            me = _nominal_rows(Kn, method, Tr, wrist_ref, first)
+            T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
+            if method == _cf.PIEPER:
+                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
+            else:
+                mr = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
+            new = False
+            for k in range(mr):
+                code = rcodes_r[k, 0] * 100 + rcodes_r[k, 1] * 10 + rcodes_r[k, 2]
+                new = True
+                for r in range(m):
+                    if codes[r] == code:
+                        new = False
+                        break
+                if new:
+                    break
+            if not new:
+                continue
+            me = _cf._finish(ci_r, post_r, raw, rcodes_r, rdegen_r, mr, first, qq_r)
             for k in range(me):
                 have = False
                 for r in range(m):

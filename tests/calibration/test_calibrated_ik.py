@@ -294,6 +294,76 @@ def test_batch_equals_single(arms):
         assert np.isnan(Q[i, counts[i]:]).all() and not within[i, counts[i]:].any()
 
 
+def relaxed_starts(arm, T):
+    """The branch codes of the starts, as the kernel's plan states it without shortcuts: the
+    projected arm's closed form at T, then in full at every relaxed pose (``RELAX``), each code
+    the starts lack appended in that order."""
+    from robokit.kernels import calibrated_ik as kci
+
+    C, Kn = arm._KC[:kci._LEN], arm._KC[kci._LEN:]
+    out = np.empty((16, 9))
+    m = kci._nominal_rows(Kn, arm._kind, T, 0.0, out)
+    codes = [float(c) for c in out[:m, 7]]
+    if m >= kci.GENERIC_ROWS:
+        return codes, m
+    shoulder, reach = C[kci._SHOULDER:kci._REACH], C[kci._REACH]
+    dist = math.sqrt(float(((T[:3, 3] - shoulder) ** 2).sum()))
+    for f in kci.RELAX:
+        Tr = T.copy()
+        for r in range(3):
+            Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
+        me = kci._nominal_rows(Kn, arm._kind, Tr, 0.0, out)
+        for c in out[:me, 7]:
+            if float(c) not in codes and len(codes) < 16:
+                codes.append(float(c))
+    return codes, m
+
+
+@pytest.mark.parametrize("name", ["ur5", "pieper", "pieper7", "pieper9"])
+def test_relaxed_poses_left_out_add_no_branch(arms, name):
+    """Where the projected arm gives fewer than 8 branches, the kernel solves a relaxed pose only
+    when it may add a branch (``_relax_mask``: Pieper's position labels and wrist reach; a relaxed
+    pose's rows finished only when they hold a new code): its starts are exactly those of solving
+    every relaxed pose in full, in the same order. Not vacuous: poses with relaxed branches added,
+    and (Pieper) relaxed poses left out, both occur."""
+    from robokit.kernels import calibrated_ik as kci
+
+    if name in arms:
+        robot = arms[name][1]
+    else:
+        nominal = robokit.load(random_pieper_table(int(name[6:])))
+        rng = np.random.default_rng(int(name[6:]) + 1)
+        robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(true_errors(6, rng)))
+    arm = analytic_ik(robot).calibrated
+    rng = np.random.default_rng(3)
+    out, work = np.empty((16, 9)), kci.scratch()
+    short = added = skipped = 0
+    for _ in range(150):
+        T = np.ascontiguousarray(robot.frame_pose(robot.random_configuration(rng)))
+        expected, m = relaxed_starts(arm, T)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RobokitWarning)
+            kci.calibrated_solve_into(arm._KC, arm._kind, T, 0.0, out, work)
+        branches = work[kci.BRANCH_ROWS]
+        got = [float(c) for c in branches[branches[:, 0] >= 0.0, 0]]
+        assert got == expected
+        if m < kci.GENERIC_ROWS:
+            short += 1
+            added += len(expected) > m
+            codes, degens = np.zeros(18), np.zeros(18)
+            codes[:m] = expected[:m]
+            first = np.empty((16, 9))
+            kci._nominal_rows(arm._KC[kci._LEN:], arm._kind, T, 0.0, first)
+            degens[:m] = first[:m, 8]
+            C = arm._KC[:kci._LEN]
+            mask = kci._relax_mask(arm._KC[kci._LEN:], arm._kind, T, C[kci._SHOULDER:kci._REACH], C[kci._REACH], m,
+                                   codes, degens, np.zeros((7, 6)))
+            skipped += mask != (1 << len(kci.RELAX)) - 1
+    assert short >= 10 and added >= 1
+    if name.startswith("pieper"):
+        assert skipped >= 10
+
+
 def test_spec_rebuilds_the_robot_in_another_process(arms):
     nominal, robot = arms["puma560"]
     assert robot.spec.kind == "calibrated" and robot.spec.nominal == nominal.spec
