@@ -15,7 +15,9 @@ constants ``Kn``). Per pose:
    workspace boundary is not quite the arm's) — except the relaxed poses :func:`_relax_mask` shows
    cannot add one (Pieper's general case: the labels of the positions at a relaxed pose, from the
    position quartic's real roots, are all sure and present already, or their wrist cannot reach the
-   orientation); a relaxed pose's rows are finished (wrapped, de-duplicated) only when they hold a
+   orientation; three parallel axes: the labels of a relaxed pose's branches, from
+   :func:`_parallel_codes`, are all sure and present already); a relaxed pose's rows are computed
+   only where that is not shown, and finished (wrapped, de-duplicated) only when they hold a
    branch the starts lack;
 2. each start is polished by :func:`polish`: Newton's method with a second-order correction
    (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
@@ -995,6 +997,108 @@ def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, mz: np.ndar
 
 
 @njit
+def _trig_pair(a: float, b: float, c: float, sc: np.ndarray) -> int:
+    """The cosines and sines of the roots of a cos θ + b sin θ = c (as ``closed_form._trig_roots``
+    finds them, tolerance 1e-10) into sc[0:2] (cos) and sc[2:4] (sin), without an angle: their
+    count, or −1 when unsure (the discriminant within ``LABEL_UNSURE`` of zero, relative: the count
+    is 1 or 0 or 2 there)."""
+    r2 = a * a + b * b
+    if r2 < 1e-200:
+        return -1
+    disc = r2 - c * c
+    if abs(disc) <= LABEL_UNSURE * r2:
+        return -1
+    if disc < 0.0:
+        return 0
+    sq = math.sqrt(disc)
+    for k in range(2):  # θ = atan2(b, a) ± acos(c/√r2)
+        w = sq if k == 0 else -sq
+        sc[k], sc[2 + k] = (a * c - b * w) / r2, (b * c + a * w) / r2
+    return 2
+
+
+@njit
+def _parallel_codes(cf: np.ndarray, T: np.ndarray, codes: np.ndarray, sc: np.ndarray) -> int:
+    """The branch codes (shoulder·100 + elbow·10 + wrist) of the projected arm's three-parallel-axes
+    solution (``closed_form._parallel_shoulders`` and ``_parallel_complete``) for the canonical
+    chain's target T (4, 4), into ``codes``: their count, or −1 when unsure (a root count, a label's
+    sign or the elbow's reach within ``LABEL_UNSURE`` of its boundary, relative; a singular wrist).
+    The same conditions as the closed form, on the cosines and sines of its angles (no angle, no
+    row): what a relaxed pose's solve would label, at a fraction of its cost. Scratch: sc (≥ 8)."""
+    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
+    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
+    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
+    w6x, w6y, w6z = cf[_cf._PA_W6], cf[_cf._PA_W6 + 1], cf[_cf._PA_W6 + 2]
+    Wx = r00 * w6x + r01 * w6y + r02 * w6z + px
+    Wy = r10 * w6x + r11 * w6y + r12 * w6z + py
+    Wz = r20 * w6x + r21 * w6y + r22 * w6z + pz
+    ca1, sa1 = cf[_cf._CA], cf[_cf._SA]
+    ca4, sa4, ca5, sa5 = cf[_cf._CA + 3], cf[_cf._SA + 3], cf[_cf._CA + 4], cf[_cf._SA + 4]
+    a1, a2, a3, a4, a5 = cf[_cf._PA_A1], cf[_cf._PA_A2], cf[_cf._PA_A3], cf[_cf._PA_A4], cf[_cf._PA_A5]
+    d1, d5, d6, sig = cf[_cf._PA_D1], cf[_cf._PA_D5], cf[_cf._PA_D6], cf[_cf._PA_SIG]
+    right_angles = ca4 == 0.0 and ca5 == 0.0
+    k45 = sa4 * sa5
+    if a2 * a3 == 0.0 or k45 == 0.0:
+        return -1
+    n1 = _trig_pair(-sa1 * Wy, sa1 * Wx, cf[_cf._PA_KW] - ca1 * (Wz - d1), sc[0:4])
+    if n1 < 0:
+        return -1
+    n = 0
+    for i1 in range(n1):
+        c1, s1 = sc[i1], sc[2 + i1]
+        side = (c1 * Wx + s1 * Wy) * sa1
+        if abs(side) <= LABEL_UNSURE * (abs(Wx) + abs(Wy)) * abs(sa1):
+            return -1
+        shoulder = 0 if side >= 0.0 else 1
+        ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
+        utx = sig * (r00 * ux + r10 * uy + r20 * uz)
+        uty = sig * (r01 * ux + r11 * uy + r21 * uz)
+        utz = sig * (r02 * ux + r12 * uy + r22 * uz)
+        rho = math.hypot(utx, uty)
+        if rho <= LABEL_UNSURE:
+            return -1  # a wrist singularity: θ₆ is the documented choice there, degenerate
+        if right_angles:  # θ₅ = atan2(±ρ, −m_z/k): cos θ₅ ∝ −m_z/k, sin θ₅ ∝ ±ρ (‖·‖ > 0)
+            c5r = -utz / k45
+            h5 = math.sqrt(rho * rho + c5r * c5r)
+            n5 = 2
+            sc[4], sc[5], sc[6], sc[7] = c5r / h5, c5r / h5, rho / h5, -rho / h5
+        else:
+            n5 = _trig_pair(-k45, 0.0, utz - ca4 * ca5, sc[4:8])
+            if n5 < 0:
+                return -1
+        for i5 in range(n5):
+            c5, s5 = sc[4 + i5], sc[6 + i5]
+            if abs(s5) <= LABEL_UNSURE:
+                return -1
+            wrist = 0 if s5 * k45 > 0.0 else 1
+            vx, vy = s5 * sa4, ca5 * c5 * sa4 + sa5 * ca4
+            nv = math.hypot(vx, vy)
+            if nv <= LABEL_UNSURE:
+                return -1
+            # θ₆ = atan2(v_y, v_x) − atan2(ut_y, ut_x)
+            c6, s6 = (vx * utx + vy * uty) / (nv * rho), (vy * utx - vx * uty) / (nv * rho)
+            ox, oy, oz = -a4 * c5, a4 * s5, -d5
+            ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
+            ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
+            O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
+            O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
+            O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
+            x = c1 * O0 + s1 * O1
+            y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
+            c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+            if abs(abs(c3) - 1.0) <= LABEL_UNSURE:
+                return -1
+            if abs(c3) > 1.0:
+                continue  # out of the planar arm's reach: no row
+            for elbow in range(2):  # s₃ = ±√(1 − c₃²): a₂a₃s₃ > 0 is elbow 0, the other elbow 1
+                if n == codes.shape[0]:
+                    return -1
+                codes[n] = shoulder * 100 + elbow * 10 + wrist
+                n += 1
+    return n
+
+
+@njit
 def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
                 codes: np.ndarray, degens: np.ndarray, sc: np.ndarray) -> int:
     """Which relaxed poses (``RELAX``; bit i for the i-th) can give a branch the pose's own m rows
@@ -1120,6 +1224,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
         # (as a solve of that pose finishes them) only when they hold a branch the starts lack
         ci_r, cf_r, C_r, post_r, _, raw, rcodes_r, rdegen_r, qq_r, s_r = _cf._unpack(Kn, T)
         pre_r, postT_r = Kn[_cf._K_PRE:_cf._K_POST].reshape((4, 4)), Kn[_cf._K_POST:_cf._K_PQ].reshape((4, 4))
+        pc, pcs = work[89:91].reshape(12), work[91:93].reshape(12)
         dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
         for i in range(len(RELAX)):
             if dist == 0.0:
@@ -1133,6 +1238,19 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
             for r in range(3):
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
+            if method != _cf.PIEPER:  # its labels first, without the rows (_parallel_codes)
+                nc = _parallel_codes(cf_r, T06, pc, pcs)
+                new = nc < 0
+                for k in range(max(nc, 0)):
+                    if new:
+                        break
+                    new = True
+                    for r in range(m):
+                        if codes[r] == pc[k]:
+                            new = False
+                            break
+                if not new:
+                    continue  # every branch it would give, the starts have
             if method == _cf.PIEPER:
                 mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
             else:

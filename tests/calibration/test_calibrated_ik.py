@@ -364,6 +364,38 @@ def test_relaxed_poses_left_out_add_no_branch(arms, name):
         assert skipped >= 10
 
 
+@pytest.mark.parametrize("name", ["ur5", "ur10"])
+def test_parallel_axes_labels_without_the_rows_are_the_closed_forms(arms, name):
+    """``_parallel_codes`` (the labels a relaxed pose's solve would give, from the cosines and
+    sines alone) gives exactly the branch codes of the closed form's own rows, at poses in and out
+    of reach of some branches; where it is unsure it says so (−1), rarely."""
+    from robokit.kernels import calibrated_ik as kci
+    from robokit.kernels import closed_form as cf
+
+    robot = arms["ur5"][1] if name == "ur5" else calibrated("ur10", 4)[1]
+    arm = analytic_ik(robot).calibrated
+    Kn = np.ascontiguousarray(arm._KC[kci._LEN:])
+    ci, cfv, _, _, _, rows, rcodes, rdegen, _, s = cf._unpack(Kn, np.eye(4))
+    pre, post = Kn[cf._K_PRE:cf._K_POST].reshape(4, 4), Kn[cf._K_POST:cf._K_PQ].reshape(4, 4)
+    rng = np.random.default_rng(8)
+    codes, sc = np.empty(16), np.empty(8)
+    sure = short = 0
+    trials = 400
+    for _ in range(trials):
+        T = robot.frame_pose(robot.random_configuration(rng))
+        T[:3, 3] *= rng.uniform(0.6, 1.3)  # some poses beyond some branches' reach
+        T06 = cf._target(ci, pre, post, np.ascontiguousarray(T), np.empty((4, 4)), np.empty((4, 4))).copy()
+        m = cf._parallel_axes(cfv, T06, 0.0, rows, rcodes, rdegen, s)
+        want = sorted(int(r[0]) * 100 + int(r[1]) * 10 + int(r[2]) for r in rcodes[:m])
+        n = kci._parallel_codes(cfv, T06, codes, sc)
+        if n < 0:
+            continue
+        sure += 1
+        short += n < 8
+        assert sorted(int(c) for c in codes[:n]) == want
+    assert sure >= 0.95 * trials and short >= 20
+
+
 def test_spec_rebuilds_the_robot_in_another_process(arms):
     nominal, robot = arms["puma560"]
     assert robot.spec.kind == "calibrated" and robot.spec.nominal == nominal.spec
