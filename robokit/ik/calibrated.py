@@ -444,8 +444,7 @@ class CalibratedArm:
     def _solve_checked(self, T: np.ndarray, wrist_ref: float, level: int = 4) -> list[IKSolution]:
         """:meth:`solve` of a T known to be a C-contiguous float64 (4, 4) array (the kernel's machine
         code is called without numba's type dispatch); its warnings name the caller ``level`` frames up."""
-        out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
-        branches = self._branches
+        out = np.empty(_OUT_SHAPE)
         into = self._into
         if into is None:
             into = _kci.solve_into_entry()
@@ -455,10 +454,10 @@ class CalibratedArm:
                 self._into = into
         n, merged, vanished, sigma = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
-            out, n, merged, vanished, sigma, branches = self._solve(_nearest_rigid(T), wrist_ref)
+            out, n, merged, vanished, sigma, _ = self._solve(_nearest_rigid(T), wrist_ref)
         if vanished:
-            self._warn_vanished(branches, level)
-        if sigma <= _kci.SIGMA_EXPLORE:
+            self._warn_vanished(self._branches, level)
+        if sigma <= _SIGMA_EXPLORE:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
                           f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
@@ -470,6 +469,7 @@ class CalibratedArm:
         sols = _from_rows([out, n, self._labels, None])
         if not merged:
             return sols
+        branches = self._branches
         m = int(np.count_nonzero(branches[:, 0] >= 0.0))
         merged_rows = [(int(branches[r, 2]), self._labels[float(branches[r, 0])]) for r in range(m)
                        if branches[r, 1] == _kci.MERGED]
@@ -532,6 +532,8 @@ class CalibratedArm:
 
 
 _F64 = np.dtype(np.float64)
+_OUT_SHAPE = (_kcf.MAX_ROWS, _kcf.OUT_COLS)  # the kernel's output rows
+_SIGMA_EXPLORE = _kci.SIGMA_EXPLORE  # read once per call: a module constant, not an attribute
 
 
 def _nearest_rigid(T: np.ndarray) -> np.ndarray:
