@@ -14,7 +14,8 @@ random poses (reachable by construction), time per pose of
 Per pose: the least CPU time of a few batches (the nominal's and the calibrated arm's batches
 alternate, pose by pose: the machine's drifting speed weighs on both alike); the table gives the median over the poses (the common
 pose: one start per branch, each finished in 2–3 second-order Newton steps) and the mean (near-singular poses, where
-the polish searches for the roots that merge or appear, weigh in). The ratio columns are time / nominal
+the polish searches for the roots that merge or appear, weigh in), then the median over the poses of each
+pose's calibrated / nominal ratio (the two measured back to back). The ratio columns are time / nominal
 closed form (Python rows against the Python reference, C rows against the nominal's C). The load average is printed: numbers taken on a shared machine are only
 comparable within one run. Prints Markdown; asserts nothing.
 
@@ -75,7 +76,8 @@ def _per_pose(fn, poses, rounds, calls=5):
 def _paired(fn_a, fn_b, poses_a, poses_b, rounds, calls=5):
     """:func:`_per_pose` of two callables on paired poses, their batches alternating (a, b, a, b, …
     per pose), so that the machine's speed, which drifts on a shared machine, weighs on both alike:
-    ((median, mean) of a, (median, mean) of b)."""
+    ((median, mean) of a, (median, mean) of b, median over the poses of b / a: each pose's two times were
+    taken minutes apart at most, so a drift of the machine's speed during the run cancels in it)."""
     for Ta, Tb in zip(poses_a[:3], poses_b[:3]):
         fn_a(Ta)
         fn_b(Tb)
@@ -94,7 +96,8 @@ def _paired(fn_a, fn_b, poses_a, poses_b, rounds, calls=5):
                     best_b = min(best_b, t)
         each_a.append(best_a)
         each_b.append(best_b)
-    return ((float(np.median(each_a)), float(np.mean(each_a))), (float(np.median(each_b)), float(np.mean(each_b))))
+    return ((float(np.median(each_a)), float(np.mean(each_a))), (float(np.median(each_b)), float(np.mean(each_b))),
+            float(np.median(np.array(each_b) / np.array(each_a))))
 
 
 def _c_loop(lib, poses, rounds, float32=False):
@@ -129,13 +132,14 @@ def main(argv=None):
           f"{os.getloadavg()[0]:.2f} (2 cores shared: compare ratios within this run)\n")
     cc = find_compiler()
     rows = []
+    paired: list[list[str]] = []
     warnings.simplefilter("ignore", rk.RobokitWarning)
     for label, nominal, cal in _arms():
         rng = np.random.default_rng(1)
         Q = [cal.random_configuration(rng) for _ in range(n_poses)]
         Tn = [nominal.frame_pose(q) for q in Q]
         Tc = [cal.frame_pose(q) for q in Q]
-        t_nom, t_cal = _paired(lambda T: rk.ik_analytic(nominal, T), lambda T: rk.ik_analytic(cal, T), Tn, Tc,
+        t_nom, t_cal, per_pose = _paired(lambda T: rk.ik_analytic(nominal, T), lambda T: rk.ik_analytic(cal, T), Tn, Tc,
                                rounds, calls)
         t_g6r = _per_pose(lambda T: rk.ik_analytic(cal, T, nominal=False), Tc[:n_g6r], 1)
         counts = np.mean([len(rk.ik_analytic(cal, T)) for T in Tc])
@@ -148,6 +152,7 @@ def main(argv=None):
         row("Python: nominal closed form", "spherical wrist" if "spherical" in kind else "three parallel axes",
             t_nom, t_nom)
         row(f"Python: {kind}", f"{counts:.2f} solutions/pose", t_cal, t_nom)
+        paired.append([label, f"{per_pose:.2f}×"])
         row("Python: general 6R (nominal=False)", f"{n_g6r} poses", t_g6r, t_nom)
         if cc is not None:
             with tempfile.TemporaryDirectory() as tmp:
@@ -159,6 +164,9 @@ def main(argv=None):
             row("C -O2: nominal NAME_ik", "", c_nom, c_nom)
             row("C -O2: calibrated NAME_ik", "", c_cal, c_nom)
     print(table(["arm", "method", "", "median per pose", "ratio", "mean per pose", "ratio"], rows))
+    print("\nPer pose, calibrated / nominal `ik_analytic` on the same configuration, measured back to back "
+          "(median over the poses; a drift of the machine's speed during the run cancels in each pose's ratio):\n")
+    print(table(["arm", "median of the per-pose ratios"], paired))
 
 
 if __name__ == "__main__":
