@@ -1107,7 +1107,7 @@ def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray
     pose is left out when every position of it (:func:`_position_codes`, each label sure) has a
     shoulder and elbow label that the rows have already, or a wrist that cannot reach the
     orientation (then the closed form gives it no row: a random Pieper arm's wrist, its twists not
-    right angles, leaves one or three of the four positions at about a quarter of its poses). The
+    right angles, leaves one or three of the four positions at about a third of its poses). The
     relaxed solves would add nothing there (their wrist rows are the two regular flips). A random
     Pieper arm has two of its four positions at about half of its poses, far from any boundary:
     there the six relaxed solves were most of the time. Scratch: sc (7, 6)."""
