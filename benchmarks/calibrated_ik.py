@@ -76,8 +76,8 @@ def _per_pose(fn, poses, rounds, calls=5):
 def _paired(fn_a, fn_b, poses_a, poses_b, rounds, calls=5):
     """:func:`_per_pose` of two callables on paired poses, their batches alternating (a, b, a, b, …
     per pose), so that the machine's speed, which drifts on a shared machine, weighs on both alike:
-    ((median, mean) of a, (median, mean) of b, median over the poses of b / a: each pose's two times were
-    taken minutes apart at most, so a drift of the machine's speed during the run cancels in it)."""
+    ((median, mean) of a, (median, mean) of b, median over the poses of b / a: each pose's two times are
+    taken back to back, milliseconds apart, so a drift of the machine's speed during the run cancels in it)."""
     for Ta, Tb in zip(poses_a[:3], poses_b[:3]):
         fn_a(Ta)
         fn_b(Tb)

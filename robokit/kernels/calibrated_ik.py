@@ -743,6 +743,15 @@ def _same(a: np.ndarray, b: np.ndarray, rev: np.ndarray) -> bool:
 
 
 @njit(inline=True)
+def _has_code(codes: np.ndarray, m: int, code: float) -> bool:
+    """Whether the branch code is among the first m of ``codes``."""
+    for r in range(m):
+        if codes[r] == code:
+            return True
+    return False
+
+
+@njit(inline=True)
 def _find(q: np.ndarray, Q: np.ndarray, n: int, rev: np.ndarray) -> int:
     for k in range(n):
         if _same(q, Q[k], rev):
@@ -1238,43 +1247,25 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
             for r in range(3):
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
-            if method != _cf.PIEPER:  # its labels first, without the rows (_parallel_codes)
+            if method == _cf.PIEPER:
+                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
+            else:  # its labels first, without the rows (_parallel_codes); the rows only if one is new
                 nc = _parallel_codes(cf_r, T06, pc, pcs)
                 new = nc < 0
                 for k in range(max(nc, 0)):
-                    if new:
-                        break
-                    new = True
-                    for r in range(m):
-                        if codes[r] == pc[k]:
-                            new = False
-                            break
+                    new = new or not _has_code(codes, m, pc[k])
                 if not new:
-                    continue  # every branch it would give, the starts have
-            if method == _cf.PIEPER:
-                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
-            else:
+                    continue
                 mr = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
             new = False
             for k in range(mr):
-                code = rcodes_r[k, 0] * 100 + rcodes_r[k, 1] * 10 + rcodes_r[k, 2]
-                new = True
-                for r in range(m):
-                    if codes[r] == code:
-                        new = False
-                        break
-                if new:
-                    break
+                code = float(rcodes_r[k, 0] * 100 + rcodes_r[k, 1] * 10 + rcodes_r[k, 2])
+                new = new or not _has_code(codes, m, code)
             if not new:
-                continue
+                continue  # every branch it gives, the starts have: its rows are not finished
             me = _cf._finish(ci_r, post_r, raw, rcodes_r, rdegen_r, mr, first, qq_r)
             for k in range(me):
-                have = False
-                for r in range(m):
-                    if codes[r] == first[k, 7]:
-                        have = True
-                        break
-                if not have and m < R:
+                if m < R and not _has_code(codes, m, first[k, 7]):
                     for j in range(6):
                         nom[m, j] = first[k, j]
                     codes[m] = first[k, 7]
