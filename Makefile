@@ -1,7 +1,11 @@
 # The two quick-start commands: `make demo` (set up, run `robokit validate`) and
 # `make test` (set up, run the whole test suite). One environment, .venv: robokit is installed
 # into it once (editable) and again only when pyproject.toml changes; each extra a target needs is
-# added next to it, once (.venv/.extra-NAME), without reinstalling robokit. pip's progress shows.
+# added next to it, once (.venv/.extra-NAME), without reinstalling robokit. The installer's progress
+# shows: uv's when uv is on PATH (or named: `make test UV=/path/to/uv`), pip's otherwise (or with
+# `make test UV=`). uv installs the same packages as pip (.ci/uv_pip.py hands it pip's configuration
+# and pip's choice among indexes, and has it write the .pyc files pip writes), several times faster:
+# `make test-env` on an empty cache took 54 s with uv against 141 s with pip (2 cores, load 4.7).
 # Sizes (measured: pip download of the same requirements, Python 3.11, x86-64 Linux): the core
 # install downloads about 325 MB and makes a 1.3 GB environment (most of it Pinocchio and the
 # example-robot-data meshes); `make test` adds every extra: about 700 MB of downloads in all and a
@@ -9,8 +13,13 @@
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
+UV     ?= $(shell command -v uv 2>/dev/null)
+ifeq ($(strip $(UV)),)
 PIP    := $(BIN)/python -m pip install --progress-bar on --disable-pip-version-check
-# two make commands at once (`make docs` while `make test` runs) take turns at pip
+else
+PIP    := $(BIN)/python .ci/uv_pip.py $(UV)
+endif
+# two make commands at once (`make docs` while `make test` runs) take turns at installing
 LOCK   := $(shell command -v flock >/dev/null 2>&1 && echo flock $(VENV)/.pip-lock)
 # `make test PYTEST_ARGS=tests/ik` runs part of the suite
 PYTEST_ARGS ?=
@@ -20,7 +29,7 @@ PYTEST_ARGS ?=
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(PIP) --quiet --upgrade pip
 
 # robokit itself (the core install), editable
 $(VENV)/.installed: pyproject.toml | $(BIN)/python
@@ -28,7 +37,7 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 	$(LOCK) $(PIP) -e .
 	touch $@
 
-# one extra's packages (with the core requirements, so pip keeps robokit's pins), robokit untouched
+# one extra's packages (with the core requirements, so the installer keeps robokit's pins), robokit untouched
 $(VENV)/.extra-%: $(VENV)/.installed .ci/extra_requirements.py
 	@echo "adding robokit's '$*' extra to $(VENV) ..."
 	$(BIN)/python .ci/extra_requirements.py $* > $@.txt
