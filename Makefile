@@ -4,8 +4,9 @@
 # added next to it, once (.venv/.extra-NAME), without reinstalling robokit. The installer's progress
 # shows: uv's when uv is on PATH (or named: `make test UV=/path/to/uv`), pip's otherwise (or with
 # `make test UV=`). uv installs the same packages as pip (.ci/uv_pip.py hands it pip's configuration
-# and pip's choice among indexes, and has it write the .pyc files pip writes), several times faster:
-# `make test-env` on an empty cache took 54 s with uv against 141 s with pip (2 cores, load 4.7).
+# and pip's choice among indexes, and has it write the .pyc files pip writes), faster: `make test-env`
+# in a fresh clone, caches empty, took 56 s with uv (54 s of CPU) against 93 s with pip (75 s of CPU)
+# on 2 cores busy with other work (load average 3.3-4.3).
 # Sizes (measured: pip download of the same requirements, Python 3.11, x86-64 Linux): the core
 # install downloads about 325 MB and makes a 1.3 GB environment (most of it Pinocchio and the
 # example-robot-data meshes); `make test` adds every extra: about 700 MB of downloads in all and a

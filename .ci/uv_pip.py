@@ -2,7 +2,7 @@
 
 ``python .ci/uv_pip.py UV ARGS...`` runs ``UV pip install --python <this interpreter> ARGS...``
 (``ARGS`` as ``pip install`` takes them: ``-e .``, ``-r FILE``, ``--upgrade pip``). The Makefile
-uses it when uv is available: uv installs the same packages several times faster than pip.
+uses it when uv is available: uv installs the same packages faster than pip (measured in the Makefile).
 
 uv reads none of pip's configuration (pip.conf files, ``PIP_*`` variables), and machines configure
 pip: CI's, for one, gives it a local mirror as extra indexes, find-links and a constraints file.
