@@ -366,6 +366,7 @@ class CalibratedArm:
         self._KC = np.concatenate([self._C, self._Kn])  # both, as the kernel takes them
         self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
         self._branches = self._work[_kci.BRANCH_ROWS]  # where the kernel writes each branch's outcome
+        self._status = self._work[_kci.STATUS]  # (merged, vanished, σ) of a flagged solve
         self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
@@ -410,16 +411,17 @@ class CalibratedArm:
         """
         return None
 
-    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, int, int, float, np.ndarray]:
+    def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
+        """(out, the kernel's result, branches) for T, the full rigid-transform check (which raises or
+        gives the nearest rigid transform) where the kernel's quick one fails."""
         out = np.empty((_kcf.MAX_ROWS, _kcf.OUT_COLS))
-        branches = self._branches
         ref = wrist_ref * self._ref_sign
         for attempt in range(2):
-            n, merged, vanished, sigma = _kci.calibrated_solve_into(self._KC, self._kind, T, ref, out, self._work)
+            n = _kci.calibrated_solve_into(self._KC, self._kind, T, ref, out, self._work)
             if n != -1 or attempt:
                 break
             T = _nearest_rigid(T)
-        return out, n, merged, vanished, sigma, branches
+        return out, n, self._branches
 
     def solve(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[IKSolution]:
         """Every solution for the tip pose T (a checked, C-contiguous float64 (4, 4) rigid transform).
@@ -452,9 +454,16 @@ class CalibratedArm:
                 into = _kci.calibrated_solve_into
             else:
                 self._into = into
-        n, merged, vanished, sigma = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
+        n = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
+        if 0 < n < _FLAGGED:  # the common case: solutions, no branch merged or vanished, no search
+            return _from_rows([out, n, self._labels, None])
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
-            out, n, merged, vanished, sigma, _ = self._solve(_nearest_rigid(T), wrist_ref)
+            out, n, _ = self._solve(_nearest_rigid(T), wrist_ref)
+        merged = vanished = 0
+        sigma = math.inf
+        if n >= _FLAGGED:
+            n -= _FLAGGED
+            merged, vanished, sigma = int(self._status[0]), int(self._status[1]), float(self._status[2])
         if vanished:
             self._warn_vanished(self._branches, level)
         if sigma <= _SIGMA_EXPLORE:
@@ -495,7 +504,7 @@ class CalibratedArm:
         list of Branch
             One per branch of the projected arm's closed form, in its order.
         """
-        branches = self._solve(T, wrist_ref)[5].copy()
+        branches = self._solve(T, wrist_ref)[2].copy()
         return [Branch(self._labels[float(branches[r, 0])], ("solution", "merged", "vanished")[int(branches[r, 1])],
                        None if branches[r, 2] < 0 else int(branches[r, 2]), float(branches[r, 3]),
                        float(branches[r, 4])) for r in range(int(np.count_nonzero(branches[:, 0] >= 0.0)))]
@@ -534,6 +543,7 @@ class CalibratedArm:
 _F64 = np.dtype(np.float64)
 _OUT_SHAPE = (_kcf.MAX_ROWS, _kcf.OUT_COLS)  # the kernel's output rows
 _SIGMA_EXPLORE = _kci.SIGMA_EXPLORE  # read once per call: a module constant, not an attribute
+_FLAGGED = _kci.FLAGGED
 
 
 def _nearest_rigid(T: np.ndarray) -> np.ndarray:

@@ -19,7 +19,8 @@ constants ``Kn``). Per pose:
    :func:`_parallel_codes`, are all sure and present already); a relaxed pose's rows are computed
    only where that is not shown, and finished (wrapped, de-duplicated) only when they hold a
    branch the starts lack;
-2. each start is polished by :func:`polish`: Newton's method with a second-order correction
+2. each start is polished by :func:`polish` (the sines and cosines of the starts' joint values, which
+   branches share, computed once: :func:`_start_trig`): Newton's method with a second-order correction
    (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
    form's starts, about 5e-3 off, reach 1e-15 in two steps rather than three) on the spatial pose
    error (:func:`_error`, the logarithm of the error transform to second order near the target)
@@ -40,7 +41,7 @@ constants ``Kn``). Per pose:
    earlier solution (that solution is flagged degenerate), or vanished (no exact solution of the
    arm near that branch: the two roots of a fold became complex);
 6. the solutions are wrapped, shifted into wide limits, flagged and written as the closed-form
-   kernels write theirs (:func:`robokit.kernels.closed_form._finish_into`).
+   kernels write theirs (:func:`robokit.kernels.closed_form._finish`).
 
 Solutions are distinct to ``SAME`` (rad or m, angles modulo 2π): two polished roots closer than
 that are one root (near a fold Newton's method converges to a double root only to about the
@@ -66,7 +67,7 @@ from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import normal_equations
 
 __all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
-           "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
+           "FLAGGED", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -383,8 +384,13 @@ _L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_S
 FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
 #: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6); the last MAX_ROWS (16) are the
 #: branches' outcomes (:func:`calibrated_solve_into`).
-_WORK_ROWS = 112
+_WORK_ROWS = 145
 BRANCH_ROWS = slice(96, 112)
+#: The row of ``work`` where :func:`calibrated_solve_into` leaves (merged branches, vanished branches, σ).
+STATUS = 144
+#: :func:`calibrated_solve_into` adds this to the number of solutions when a branch merged or
+#: vanished or the near-singular search ran (the status row then says which).
+FLAGGED = 1000
 
 
 def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
@@ -538,6 +544,30 @@ def _trig(C: np.ndarray, q: np.ndarray, sc: np.ndarray) -> None:
 
 
 @njit(inline=True)
+def _start_trig(C: np.ndarray, nom: np.ndarray, m: int, sct: np.ndarray) -> None:
+    """sct[2r], sct[2r + 1] ← the sines and cosines of start r's DH angles (:func:`_trig` of row r
+    of ``nom``, r < m), a joint value that an earlier start has too (the same float) taken from it:
+    a closed form's branches share joint values (a UR's θ₁ has two values over its eight
+    branches, θ₅ and θ₆ four; a PUMA's θ₁ and θ₃ two, θ₂ four), so about a third of the sines
+    and cosines are copies — the same numbers :func:`_trig` would compute."""
+    for r in range(m):
+        for i in range(6):
+            if C[_KIND + i] != 0.0:
+                continue
+            v = nom[r, i]
+            k = 0
+            while k < r and nom[k, i] != v:
+                k += 1
+            if k < r:
+                sct[2 * r, i] = sct[2 * k, i]
+                sct[2 * r + 1, i] = sct[2 * k + 1, i]
+            else:
+                angle = C[_DH + 7 * i] + v
+                sct[2 * r, i] = math.sin(angle)
+                sct[2 * r + 1, i] = math.cos(angle)
+
+
+@njit(inline=True)
 def _advance(C: np.ndarray, sc: np.ndarray, step: np.ndarray, out: np.ndarray) -> None:
     """out ← sin, cos of (q + step) from sc = sin, cos of q by the angle-addition formulas; sin and
     cos of a step below 0.02 rad by their Taylor series (sin to δ⁷, cos to δ⁸: the next terms are
@@ -628,6 +658,13 @@ def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.nd
 
 @njit(refcount=False)
 def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: np.ndarray) -> tuple[float, float, int]:
+    """:func:`_polish` from q's own sines and cosines."""
+    return _polish(C, Td, q, max_steps, work, True)
+
+
+@njit(refcount=False)
+def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: np.ndarray,
+            trig: bool) -> tuple[float, float, int]:
     """Newton's method with a second-order correction (:func:`_newton_step`) on the pose error
     :func:`_error` of the packed arm ``C`` with its space Jacobian (:func:`fk_jacobian`), q (6,)
     updated in place; a step that does not lower the error,
@@ -639,14 +676,17 @@ def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: n
     iterate whose errors are below ``FINAL`` is expected to stop there: its trial point's pose is
     evaluated without the Jacobian (the same arithmetic, the same pose; the Jacobian is computed
     after all if the iteration goes on), so the check that ends a typical polish costs a pose only.
-    Returns (orientation error, position error, FK evaluations). Scratch: work (:func:`scratch`)."""
+    Returns (orientation error, position error, FK evaluations). Scratch: work (:func:`scratch`);
+    ``trig`` False: the caller has written the sines and cosines of q (:func:`_trig`) into its rows
+    43–44 (the starts share theirs: :func:`_start_trig`)."""
     n = 6
     tol_stop = C[_TOL_STOP]
     T0, T1 = work[0:4, 0:4], work[4:8, 0:4]
     J0, J1, H, L = work[8:14], work[14:20], work[26:32], work[32:38]
     F0, F1, g, step, trial = work[38], work[39], work[40], work[41], work[42]
     sc0, sc1 = work[43:45], work[45:47]
-    _trig(C, q, sc0)
+    if trig:
+        _trig(C, q, sc0)
     fk_jacobian(C, q, sc0, T0, J0)
     err, rot, pos = _error(T0, Td, F0)  # (J0, F0, sc0): the current iterate; (T1, J1, F1, sc1): a trial
     lam = 0.0  # 0: Newton; else the damping, relative to the largest diagonal entry of Jᵀ J
@@ -711,17 +751,17 @@ FINAL = 1e-5
 
 
 def scratch() -> np.ndarray:
-    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((112, 6) float64; rows
-    ``BRANCH_ROWS`` the branches' outcomes).
+    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((145, 6) float64; rows
+    ``BRANCH_ROWS`` the branches' outcomes, row ``STATUS`` the status).
 
     Returns
     -------
-    (112, 6) ndarray
+    (145, 6) ndarray
 
     Examples
     --------
     >>> scratch().shape
-    (112, 6)
+    (145, 6)
     """
     return np.empty((_WORK_ROWS, 6))
 
@@ -1185,7 +1225,7 @@ def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray
 
 @njit
 def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref: float, out: np.ndarray,
-                          work: np.ndarray) -> tuple[int, int, int, float]:
+                          work: np.ndarray) -> int:
     """Every solution of the packed arm for the tip pose T (module docstring).
 
     KC: the packed arm ``C`` (:func:`pack_arm`) followed by the projected arm's packed closed-form
@@ -1195,29 +1235,38 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     in the sign of the projected arm's solver. Writes the solutions into ``out`` (MAX_ROWS,
     OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
     ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
-    The rows of ``out`` past the number of solutions are scratch. Returns (number of solutions,
-    merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
+    The rows of ``out`` past the number of solutions are scratch. Returns the number of solutions,
+    plus ``FLAGGED`` when a branch merged or vanished or the near-singular search ran (σ ≤
+    ``SIGMA_EXPLORE``); −1 when T fails the quick rigid-transform test. ``work[STATUS]`` then holds
+    (merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
     (:func:`_null_direction`) at the points the near-singular search started from, ``inf`` when it
-    did not run (no point needed it); (−1, 0, 0, inf) when T fails the quick rigid-transform test."""
+    did not run (no point needed it). One int, not a tuple: its boxing is most of a call's cost
+    beyond the closed form's (:meth:`robokit.ik.calibrated.CalibratedArm.solve` reads the status
+    only when flagged)."""
     C, Kn = KC[:_LEN], KC[_LEN:]
     branches = work[BRANCH_ROWS]
     R = _cf.MAX_ROWS
     # work rows: 0–47 polish's scratch, 48–63 the starts (then the search points), 64–79 the
-    # solutions, 80–82 q, q2, v, 83–88 the starts' branch codes and degenerate flags (16 each)
+    # solutions, 80–82 q, q2, v, 83–88 the starts' branch codes (then the search points') and
+    # degenerate flags (16 each), 89–95 the relaxed poses' scratch, 96–111 the branches, 112–143
+    # the starts' sines and cosines, 144 the status
     nom = work[48:64]
     rows = work[64:80]
     q, q2, v = work[80], work[81], work[82]
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
     first = out  # the projected arm's rows, copied out below: out is written only at the end
-    rcodes = np.empty((R, 3), dtype=np.int64)
-    rdegen = np.zeros(R, dtype=np.bool_)
-    seed_code = np.empty(R, dtype=np.int64)
-    ci = np.zeros(6, dtype=np.int64)  # not reversed: the starts are in the robot's own joints already
-    m = _nominal_rows(Kn, method, T, wrist_ref, first)
     for r in range(R):
         branches[r, 0] = -1.0
-    if m < 0:
-        return m, 0, 0, math.inf
+    if not _cf._rigid(T):
+        return -1
+    # the projected arm's closed form (_nominal_rows's steps), its scratch kept: the relaxed poses'
+    # solves and the solutions' branch codes and flags reuse it (one set of allocations a call)
+    ci_r, cf_r, C_r, post_r, T06, raw, rcodes, rdegen, qq, s_r = _cf._unpack(Kn, T)
+    if method == _cf.PIEPER:
+        m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
+    else:
+        m = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
+    m = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, m, first, qq)
     for r in range(m):
         for j in range(6):
             nom[r, j] = first[r, j]
@@ -1229,9 +1278,8 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degens, work[89:96]) if m < GENERIC_ROWS else 0
     if mask != 0:
         Tr = np.empty((4, 4))
-        # the closed form's own steps, its scratch allocated once: each relaxed pose's raw rows, finished
-        # (as a solve of that pose finishes them) only when they hold a branch the starts lack
-        ci_r, cf_r, C_r, post_r, _, raw, rcodes_r, rdegen_r, qq_r, s_r = _cf._unpack(Kn, T)
+        # the closed form's own steps on its scratch: each relaxed pose's raw rows, finished (as a
+        # solve of that pose finishes them) only when they hold a branch the starts lack
         pre_r, postT_r = Kn[_cf._K_PRE:_cf._K_POST].reshape((4, 4)), Kn[_cf._K_POST:_cf._K_PQ].reshape((4, 4))
         pc, pcs = work[89:91].reshape(12), work[91:93].reshape(12)
         dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
@@ -1248,7 +1296,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
             if method == _cf.PIEPER:
-                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
+                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
             else:  # its labels first, without the rows (_parallel_codes); the rows only if one is new
                 nc = _parallel_codes(cf_r, T06, pc, pcs)
                 new = nc < 0
@@ -1256,14 +1304,14 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                     new = new or not _has_code(codes, m, pc[k])
                 if not new:
                     continue
-                mr = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes_r, rdegen_r, s_r)
+                mr = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
             new = False
             for k in range(mr):
-                code = float(rcodes_r[k, 0] * 100 + rcodes_r[k, 1] * 10 + rcodes_r[k, 2])
+                code = float(rcodes[k, 0] * 100 + rcodes[k, 1] * 10 + rcodes[k, 2])
                 new = new or not _has_code(codes, m, code)
             if not new:
                 continue  # every branch it gives, the starts have: its rows are not finished
-            me = _cf._finish(ci_r, post_r, raw, rcodes_r, rdegen_r, mr, first, qq_r)
+            me = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, mr, first, qq)
             for k in range(me):
                 if m < R and not _has_code(codes, m, first[k, 7]):
                     for j in range(6):
@@ -1276,9 +1324,12 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     tol_accept = C[_TOL_ACCEPT]
     max_steps = int(C[_MAX_STEPS])
     ns = 0
+    sct, sc0 = work[112:144], work[43:45]
+    _start_trig(C, nom, m, sct)
     # the points to explore around (near a singular pose): a solution the polish moved far from its
     # start, a branch that vanished (the point its polish reached), a singular choice of the nominal;
-    # stored over the starts already polished (seed k ≤ start r)
+    # stored over the starts already polished (seed k ≤ start r), their branch codes over the codes
+    # already read
     nseed = 0
     merged = 0
     vanished = 0
@@ -1286,8 +1337,10 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
         relaxed = degens[r] == 2.0
         for j in range(6):
             q[j] = nom[r, j]
+            sc0[0, j] = sct[2 * r, j]
+            sc0[1, j] = sct[2 * r + 1, j]
         steps = EXPLORE_MAX_STEPS if relaxed else max_steps
-        rot, pos, _ = polish(C, T, q, steps, work)
+        rot, pos, _ = _polish(C, T, q, steps, work, False)
         moved = 0.0
         for j in range(6):
             moved = max(moved, abs(q[j] - nom[r, j]))
@@ -1311,7 +1364,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
         if moved > EXPLORE or k >= 0 or (degen and not relaxed) or (not ok and not relaxed):
             for j in range(6):
                 nom[nseed, j] = q[j]
-            seed_code[nseed] = code
+            codes[nseed] = code
             nseed += 1
         branches[r, 0] = code
         branches[r, 3] = rot
@@ -1358,13 +1411,17 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
             if rot < tol_accept and pos < tol_accept and _find(q, rows, ns, rev) < 0:
                 for j in range(6):
                     rows[ns, j] = q[j]
-                code = seed_code[k]
+                code = int(codes[k])
                 rcodes[ns, 0] = code // 100
                 rcodes[ns, 1] = (code // 10) % 10
                 rcodes[ns, 2] = code % 10
                 rdegen[ns] = True
                 ns += 1
-    return _cf._finish_into(ci, post_q, rows, rcodes, rdegen, ns, out), merged, vanished, sigma
+    ci_r[5] = 0  # not reversed: the solutions are in the robot's own joints already
+    n = _cf._finish(ci_r, post_q, rows, rcodes, rdegen, ns, out, qq)
+    status = work[STATUS]
+    status[0], status[1], status[2] = merged, vanished, sigma
+    return n + FLAGGED if merged or vanished or sigma <= SIGMA_EXPLORE else n
 
 
 def solve_into_entry() -> Any:
@@ -1396,7 +1453,9 @@ def calibrated_batch(KC: np.ndarray, method: int, Ts: np.ndarray, wrist_ref: flo
     counts = np.zeros(N, dtype=np.int64)
     for i in prange(N):
         work = np.empty((_WORK_ROWS, 6))
-        n = calibrated_solve_into(KC, method, Ts[i], wrist_ref, out[i], work)[0]
+        n = calibrated_solve_into(KC, method, Ts[i], wrist_ref, out[i], work)
+        if n >= FLAGGED:
+            n -= FLAGGED
         counts[i] = n
         for r in range(max(n, 0), _cf.MAX_ROWS):  # out[i] was the kernel's scratch before its rows
             for c in range(_cf.OUT_COLS):

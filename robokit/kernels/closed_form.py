@@ -903,14 +903,6 @@ def _rigid(T: np.ndarray) -> bool:
 
 
 @njit
-def _finish_into(ci: np.ndarray, post_q: np.ndarray, rows: np.ndarray, rcodes: np.ndarray, rdegen: np.ndarray,
-                 m: int, out: np.ndarray) -> int:
-    """The common end of both packed solvers: wrap, limit-check and de-duplicate the m raw rows
-    into ``out`` (:func:`_finish`), return how many."""
-    return _finish(ci, post_q, rows, rcodes, rdegen, m, out, np.empty(6))
-
-
-@njit
 def _unpack(K: np.ndarray, T: np.ndarray) -> tuple:
     """The start of one packed solve (:func:`pieper_solve_into`, :func:`parallel_axes_solve_into`,
     after the rigid-transform test): the constants read from ``K`` as views and the scratch of
