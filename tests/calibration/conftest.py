@@ -10,6 +10,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import calibration_support as cs  # noqa: E402
 
 import robokit  # noqa: E402
+from shared_robots import robot as shared_robot  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -18,7 +19,7 @@ def robots():
 
     def get(name):
         if name not in cache:
-            cache[name] = cs.prismatic_arm() if name == "rpr" else robokit.load(name)
+            cache[name] = cs.prismatic_arm() if name == "rpr" else shared_robot(name)
         return cache[name]
 
     return get

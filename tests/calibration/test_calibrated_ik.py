@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.calibration import chain_from_robot, robot_from_chain
 from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError, RobokitWarning
@@ -50,7 +51,7 @@ def true_errors(n, rng, size=2e-3):
 
 def calibrated(name, seed):
     """``robokit.calibrate`` of the nominal ``name`` on 40 noise-free poses of a true arm with errors."""
-    nominal = robokit.load(name)
+    nominal = shared_robot(name)
     rng = np.random.default_rng(seed)
     true = chain_from_robot(nominal).perturbed(true_errors(nominal.n, rng))
     Q = np.array([nominal.random_configuration(rng) for _ in range(40)])

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.codegen import generate_c, write_c
 from robokit.description.dh import DHLink, DHTable
 
@@ -38,8 +39,8 @@ ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic
 def _load(name):
     if name == "calibrated_puma560":  # the polished closed form of robokit.ik.calibrated
         return calibrated_arm("puma560", 1)
-    return robokit.load({"jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}.get(
-        name, lambda: name)())
+    table = {"jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}.get(name)
+    return robokit.load(table()) if table else shared_robot(name)
 
 
 @pytest.mark.parametrize("float32", [False, True], ids=["double", "float"])

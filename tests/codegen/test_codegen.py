@@ -14,6 +14,7 @@ from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.cli import main
 from robokit.codegen import c_name, generate_c, write_c
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
@@ -28,7 +29,7 @@ MATH |= {f + "f" for f in MATH}
 
 @pytest.fixture(scope="module")
 def models():
-    return {name: robokit.load(name) for name in ("twolink", "rrr", "puma560", "ur5", "panda", "kinova")}
+    return {name: shared_robot(name) for name in ("twolink", "rrr", "puma560", "ur5", "panda", "kinova")}
 
 
 def check_dynamics_and_kinematics(robot, lib, samples=6, seed=0):

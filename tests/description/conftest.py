@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 
 ARM_NAMES = ["ur5", "panda", "z1", "xarm7", "kinova"]
 SHIPPED = ["twolink", "rrr", "puma560"]
@@ -10,15 +11,8 @@ SHIPPED = ["twolink", "rrr", "puma560"]
 
 @pytest.fixture(scope="session")
 def robots():
-    """Every shipped model and example-robot-data arm, loaded once."""
-    cache = {}
-
-    def get(name):
-        if name not in cache:
-            cache[name] = robokit.load(name)
-        return cache[name]
-
-    return get
+    """Every shipped model and example-robot-data arm, loaded once per process (shared_robots)."""
+    return shared_robot
 
 
 @pytest.fixture(scope="session")

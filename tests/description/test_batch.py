@@ -4,11 +4,12 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 
 
 @pytest.mark.parametrize("name", ["ur5", "panda", "puma560", "kinova", "twolink"])
 def test_batched_methods_equal_the_per_call_ones(name):
-    r = rk.load(name)
+    r = shared_robot(name)
     rng = np.random.default_rng(1)
     N = 300  # above the kernels' serial threshold, so the parallel path runs too
     Q = np.array([r.random_configuration(rng) for _ in range(N)])

@@ -11,19 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot
 from robokit.errors import DegreesWarning, RobokitWarning
 
 DEG = np.array([0.0, 45.0, -90.0, 0.0, 30.0, 0.0])  # the PUMA's "ready" pose, typed in degrees
 RAD = np.deg2rad(DEG)
 TURN = 2 * math.pi
 
-_robots = {}
-
-
-def robot(name):
-    if name not in _robots:
-        _robots[name] = rk.load(name)
-    return _robots[name]
 
 
 def degree_warnings(fn, *args, **kwargs):

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.calibration.chain import chain_from_robot
 from robokit.description import models_dir
 from robokit.errors import InputError, RobokitWarning
@@ -66,7 +67,7 @@ def test_poe_arrays_are_read_only_and_the_kernels_answer_as_pinocchio(name):
     from robokit._arrays import kernel_array
     from robokit.workspace.grid import tool_positions
 
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     p = robot.poe
     for field in POE_ARRAYS:
         arr = getattr(p, field)
@@ -265,7 +266,7 @@ def test_crba_is_the_full_symmetric_matrix(name):
     the upper triangle CRBA computes, mirrored here, and against the composite-rigid-body kernel."""
     import pinocchio as pin
 
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     rng = np.random.default_rng(2)
     for _ in range(5):
         q = robot.random_configuration(rng)
@@ -285,7 +286,7 @@ def test_fast_paths_answer_as_pinocchio_in_new_arrays(name):
     take the checked path (its error)."""
     import pinocchio as pin
 
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     rng = np.random.default_rng(9)
     r1, lo1, hi1 = robot._r1, robot._lo1, robot._hi1
     inside = rng.uniform(-1, 1, robot.n)

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHTable
 from robokit.description.urdf_to_dh import _normal, format_dh_table, dh_from_urdf
 
@@ -12,7 +13,7 @@ MODELS = ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova"]
 
 @pytest.fixture(scope="module")
 def robots():
-    return {n: rk.load(n) for n in MODELS}
+    return {n: shared_robot(n) for n in MODELS}
 
 
 @pytest.mark.parametrize("name", MODELS)

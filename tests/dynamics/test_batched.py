@@ -3,11 +3,12 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 
 
 @pytest.mark.parametrize("name", ["ur5", "panda", "puma560"])
 def test_batched_dynamics_equal_per_call(name):
-    r = rk.load(name)
+    r = shared_robot(name)
     p = r.poe
     rng = np.random.default_rng(0)
     N = 200

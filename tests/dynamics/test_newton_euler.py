@@ -3,13 +3,14 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 
 MODELS = ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova"]
 
 
 @pytest.fixture(scope="module")
 def loaded():
-    return {name: rk.load(name) for name in MODELS}
+    return {name: shared_robot(name) for name in MODELS}
 
 
 def rel(a, b):

@@ -8,6 +8,7 @@ import pinocchio as pin
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.dynamics import (
     add_payload, base_wrench, cartesian_dynamics, coriolis_matrix, dh_inverse_dynamics, friction_torques, integrate,
     total_energy,
@@ -25,7 +26,7 @@ def _factory():
 def robots():
     rng = np.random.default_rng(9)
     make = _factory()
-    out = {n: rk.load(n) for n in ["twolink", "rrr", "puma560", "ur5", "panda", "kinova"]}
+    out = {n: shared_robot(n) for n in ["twolink", "rrr", "puma560", "ur5", "panda", "kinova"]}
     out["random_standard"] = rk.load(make(rng, 5, "standard", prismatic=(1, 3)))
     out["random_modified"] = rk.load(make(rng, 5, "modified", prismatic=(0, 2)))
     return out

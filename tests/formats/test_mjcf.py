@@ -5,6 +5,7 @@ import pinocchio as pin
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.cli import main as cli_main
 from robokit.description.mjcf import first_body_placement
 from robokit.description.mjcf_write import joint_armature_damping, mjcf_from_robot
@@ -186,7 +187,7 @@ def test_dh_to_mjcf_round_trip_equals_dh_to_urdf(name, tmp_path, capsys):
     if name == "puma560":
         assert "link_3" in err and "Coulomb" in err  # what MuJoCo alone sees differently is said
     mujoco.MjModel.from_xml_path(str(out))  # MuJoCo accepts the file
-    via_urdf = robokit.load(name)
+    via_urdf = shared_robot(name)
     via_mjcf = robokit.load(out)
     assert via_mjcf.tip == "tool" and via_mjcf.n == via_urdf.n
     arm, _ = joint_armature_damping(via_urdf)

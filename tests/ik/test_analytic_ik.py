@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.errors import InputError
 from robokit.ik import AnalyticIK, ClosedFormSolver, PositionBranch, ik_analytic, ik_analytic_kind
@@ -119,7 +120,7 @@ def test_analytic_ik_object_matches_ik_analytic_and_gives_a_reason():
     assert [s.label for s in a] == [s.label for s in b]
     assert all(np.array_equal(x.q, y.q) for x, y in zip(a, b))
     assert ik.kind == ik_analytic_kind(robot) and bool(ik)
-    panda = AnalyticIK(rk.load("panda"))
+    panda = AnalyticIK(shared_robot("panda"))
     assert not panda and panda.method is None and "7 joints" in panda.reason
     with pytest.raises(InputError, match="robot: no closed-form inverse kinematics: the arm has 7 joints"):
         panda.solve(np.eye(4))
@@ -264,4 +265,4 @@ def test_a_fallback_solver_takes_arms_without_a_registered_structure(monkeypatch
     with pytest.raises(InputError, match="no closed-form inverse kinematics"):
         ik.solve(T)
     monkeypatch.setattr(closed_form, "FALLBACK", [_ToyGantryFallback])
-    assert AnalyticIK(rk.load("panda")).method is None  # 7 joints: fallbacks are for 6-joint arms only
+    assert AnalyticIK(shared_robot("panda")).method is None  # 7 joints: fallbacks are for 6-joint arms only

@@ -7,6 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError
 from robokit.ik.backends import BACKENDS, IKProblem, backend, reach_backend
@@ -15,7 +16,7 @@ from robokit.workspace import ik_backend
 
 @pytest.fixture(scope="module")
 def robots():
-    return {name: rk.load(name) for name in ("puma560", "ur5", "panda", "rrr", "twolink")}
+    return {name: shared_robot(name) for name in ("puma560", "ur5", "panda", "rrr", "twolink")}
 
 
 def _pinocchio_ok(robot, res, T):

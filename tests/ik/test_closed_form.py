@@ -15,6 +15,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import AnalyticIK, ik_analytic, ik_analytic_kind, ik_puma560
 
@@ -52,16 +53,16 @@ def puma():
 
 @pytest.fixture(scope="module", params=["ur3", "ur5", "ur10"])
 def ur(request):
-    return robokit.load(request.param)
+    return shared_robot(request.param)
 
 
 def test_kinds_are_detected_from_the_axes(puma):
     assert ik_analytic_kind(puma).method == "spherical wrist"
-    assert ik_analytic_kind(robokit.load("ur5")).method == "three parallel axes"
-    kind = ik_analytic_kind(robokit.load("panda"))
+    assert ik_analytic_kind(shared_robot("ur5")).method == "three parallel axes"
+    kind = ik_analytic_kind(shared_robot("panda"))
     assert not kind and "7 joints" in kind.reason
     with pytest.raises(ValueError, match="7 joints"):
-        ik_analytic(robokit.load("panda"), np.eye(4))
+        ik_analytic(shared_robot("panda"), np.eye(4))
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -103,7 +104,7 @@ def test_ur_family(ur, seed):
 
 
 def test_ur5_general_position_has_eight_and_numerical_ik_finds_no_other():
-    robot = robokit.load("ur5")
+    robot = shared_robot("ur5")
     q = np.array([0.4, -1.3, 1.2, -0.6, 1.1, 0.3])
     T = robot.frame_pose(q)
     sols = ik_analytic(robot, T)
@@ -146,7 +147,7 @@ def test_wrist_singularity_documented_choice(puma):
     check_solutions(puma, q, T, sols)
     sing = [s for s in sols if "wrist singular" in s.label]
     assert sing and all(s.degenerate and abs(s.q[3] - 0.7) < 1e-12 for s in sing)
-    robot = robokit.load("ur5")
+    robot = shared_robot("ur5")
     q = np.array([0.5, -1.0, 1.3, -0.4, 0.0, 0.9])  # UR: axis 6 parallel to axes 2–4
     T = robot.frame_pose(q)
     sols = ik_analytic(robot, T, wrist_ref=0.9)
@@ -169,7 +170,7 @@ def test_urdf_of_a_dh_model_goes_through_urdf_to_dh(tmp_path):
 
 @pytest.mark.parametrize("name, method", [("kinova", "spherical wrist"), ("z1", "three parallel axes")])
 def test_other_example_robot_data_arms(name, method):
-    robot = robokit.load(name)  # URDFs; the kinova arm has continuous (unlimited) joints
+    robot = shared_robot(name)  # URDFs; the kinova arm has continuous (unlimited) joints
     assert ik_analytic_kind(robot).method == method
     rng = np.random.default_rng(2)
     for _ in range(10):

@@ -22,6 +22,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.errors import InputError
 from robokit.ik import AnalyticIK, ik_analytic, ik_analytic_batch
@@ -111,7 +112,7 @@ def parallel_arm(seed, convention):
 # ---------------------------------------------------------------- shipped and example arms
 @pytest.mark.parametrize("name", ["puma560", "ur3", "ur5", "ur10"])
 def test_shipped_arms_compiled_equals_python(name):
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     ik = AnalyticIK(robot)
     rng = np.random.default_rng(7)
     counts = []
@@ -132,7 +133,7 @@ def test_shipped_arms_compiled_equals_python(name):
                                      ("ur5", [0.3, -1.0, 1.2, -0.5, 0.0, 0.2])])
 @pytest.mark.parametrize("wrist_ref", [0.0, 0.8])
 def test_wrist_singularity_same_choice(name, q, wrist_ref):
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     ik = AnalyticIK(robot)
     sols = compare(robot, ik, robot.frame_pose(np.array(q)), wrist_ref)
     singular = [s for s in sols if "wrist singular" in s.label]
@@ -237,7 +238,7 @@ def test_chain_read_from_the_tool_compiled():
 # ---------------------------------------------------------------- batched
 @pytest.mark.parametrize("name", ["puma560", "ur5"])
 def test_batch_equals_per_pose(name):
-    robot = robokit.load(name)
+    robot = shared_robot(name)
     rng = np.random.default_rng(11)
     Ts = np.stack([robot.frame_pose(robot.random_configuration(rng)) for _ in range(40)])
     Ts[3, :3, 3] += 10.0  # out of reach

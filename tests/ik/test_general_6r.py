@@ -16,6 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import ik_analytic, ik_analytic_kind
 
@@ -116,7 +117,7 @@ def test_jaco_from_its_urdf(tmp_path):
 
 def test_example_robot_data_kinova_keeps_the_spherical_wrist_method():
     """example-robot-data's "kinova" is the j2s6s200: a spherical wrist (Pieper, faster)."""
-    robot = robokit.load("kinova")
+    robot = shared_robot("kinova")
     assert ik_analytic_kind(robot).method == "spherical wrist"
 
 
@@ -198,7 +199,7 @@ def ur5_with_tilt(angle):
     """The UR5 (three parallel axes) with axis 3 tilted by ``angle`` rad (α₂ += angle)."""
     from robokit.description.urdf_to_dh import dh_from_urdf
 
-    table = dh_from_urdf(robokit.load("ur5"), "standard").table
+    table = dh_from_urdf(shared_robot("ur5"), "standard").table
     rows = [DHLink("R", r.a, r.alpha + (angle if i == 1 else 0.0), r.d, r.theta, qlim=WIDE)
             for i, r in enumerate(table.links)]
     return DHTable("ur5_tilt", "standard", tuple(rows), base=table.base, tool=table.tool)

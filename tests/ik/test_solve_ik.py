@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.ik import solve_ik
 
 
@@ -57,7 +58,7 @@ def test_bad_input():
 def test_solve_ik_methods_all_reach_the_pose_inside_the_limits(name):
     """auto (closed form where the arm has one, else compiled LM), compiled and the Pinocchio LM
     reference all reproduce Pinocchio's pose to 1e-9, inside the limits."""
-    robot = rk.load(name)
+    robot = shared_robot(name)
     rng = np.random.default_rng(7)
     for _ in range(15):
         T = robot.frame_pose(robot.random_configuration(rng))

@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.description.poe import poe_from_model
 from robokit.errors import InputError
 from robokit.kernels import dynamics as kd
@@ -62,7 +63,7 @@ def test_aba_and_crba_match_pinocchio_on_random_arms(seed, n):
 
 @pytest.mark.parametrize("name", ["ur5", "panda", "puma560", "rrr", "twolink", "kinova"])
 def test_forward_dynamics_methods_match_pinocchio_with_tip_wrench(name):
-    r = rk.load(name)
+    r = shared_robot(name)
     p = r.poe
     rng = np.random.default_rng(3)
     for _ in range(10):

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.kernels import dh as kdh
 
 
@@ -55,7 +56,7 @@ def test_dh_kernels_vs_pinocchio(cases):
 @pytest.mark.parametrize("arm", ["ur5", "panda"])
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 def test_dh_kernels_on_tables_from_urdf(arm, convention):
-    r = rk.load(arm)
+    r = shared_robot(arm)
     res = rk.dh_from_urdf(r, convention=convention)
     assert res.exact
     P, mod, base, tool = kdh.pack_dh(res.table)[:4]

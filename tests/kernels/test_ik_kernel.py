@@ -5,12 +5,13 @@ import numpy as np
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.kernels.ik import solve_poe_ik
 
 
 @pytest.mark.parametrize("name", ["ur5", "panda", "puma560"])
 def test_ik_reachable_targets(name, capsys):
-    r = rk.load(name)
+    r = shared_robot(name)
     p = r.poe
     rng = np.random.default_rng(11)
     N = 200

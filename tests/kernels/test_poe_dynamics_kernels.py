@@ -5,6 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.kernels import dynamics as kd
 from robokit.kernels import poe as kp
 
@@ -13,7 +14,7 @@ MODELS = ["ur5", "panda", "puma560", "twolink"]
 
 @pytest.fixture(scope="module")
 def robots():
-    return {name: rk.load(name) for name in MODELS}
+    return {name: shared_robot(name) for name in MODELS}
 
 
 def _c(*arrays):

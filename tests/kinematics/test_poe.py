@@ -5,13 +5,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 
 MODELS = ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7", "kinova"]
 
 
 @pytest.fixture(scope="module")
 def loaded():
-    return {name: rk.load(name) for name in MODELS}
+    return {name: shared_robot(name) for name in MODELS}
 
 
 @pytest.mark.parametrize("name", MODELS)

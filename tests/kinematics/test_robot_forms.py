@@ -7,16 +7,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit as rk
+from shared_robots import robot
 from robokit.kinematics import (analytical_jacobian, force_ellipsoid, jacobian_in_frame, manipulability,
                                 resolved_rate, singularity, velocity_ellipsoid)
 
-_robots = {}
-
-
-def robot(name):
-    if name not in _robots:
-        _robots[name] = rk.load(name)
-    return _robots[name]
 
 
 def pin_jacobian(r, q, frame=None):

@@ -6,6 +6,7 @@ from robokit.control import track_line
 import pytest
 
 import robokit as rk
+from shared_robots import robot as shared_robot
 from robokit.kinematics import (
     analytical_jacobian, dh_jacobian, dh_static_torques, euler_rate_matrix, jacobian_in_frame,
     manipulability, manipulability_at, numerical_jacobian, resolved_rate, singularity, twist_transform,
@@ -15,7 +16,7 @@ from robokit.kinematics import (
 
 @pytest.fixture(scope="module")
 def robots():
-    return {n: rk.load(n) for n in ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7"]}
+    return {n: shared_robot(n) for n in ["twolink", "rrr", "puma560", "ur5", "panda", "z1", "xarm7"]}
 
 
 @pytest.mark.parametrize("name", ["twolink", "rrr", "puma560"])

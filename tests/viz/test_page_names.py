@@ -138,20 +138,34 @@ def run_page(path: Path, fragment: str) -> _Page:
     return p
 
 
+@pytest.fixture(scope="module")
+def hostile_teach_page(tmp_path_factory):
+    """``robokit teach`` (a subprocess) of the pendulum with a robot and a joint named to end the
+    script and open a comment: written once, opened by each fragment test below (the page does not
+    depend on the fragment; the command compiles the robot's WebAssembly, seconds)."""
+    folder = tmp_path_factory.mktemp("hostile_teach")
+
+    def write(name, text):
+        (folder / name).write_text(text, encoding="utf-8")
+        return folder / name
+
+    src = _hostile_urdf(write, NAME, "j<!--</script>")
+    page = folder / "teach.html"
+    run = hs.run_cli("teach", src, "-o", page)
+    assert run.rc == 0, run.err
+    return page
+
+
 @needs_chromium
 @pytest.mark.parametrize("fragment, says", [
     ("#q=%E0%A4%A", "not valid percent-encoding; ignored"),
     ("#q=0.1,NaN", "expected 1 finite numbers"),  # NaN and the wrong count (more cases run under Node)
 ])
-def test_teach_page_survives_hostile_name_and_fragment(fragment, says, tmp_path, write):
+def test_teach_page_survives_hostile_name_and_fragment(fragment, says, hostile_teach_page):
     """A robot and joint named to end the script and open a comment, and a bad #q= fragment:
     the page's script runs (readouts present), shows the names as text and keeps saying what
     it ignored."""
-    src = _hostile_urdf(write, NAME, "j<!--</script>")
-    page = tmp_path / "teach.html"
-    run = hs.run_cli("teach", src, "-o", page)
-    assert run.rc == 0, run.err
-    p = run_page(page, fragment)
+    p = run_page(hostile_teach_page, fragment)
     assert "data-t" in p.attrs.get("rk-pose", {}), "the page's script did not run"
     T = np.array([float(x) for x in p.attrs["rk-pose"]["data-t"].split(",")]).reshape(4, 4)
     assert np.allclose(T[:3, 3], [hs.PEND_L, 0, 0], atol=1e-12)  # q = 0: the closed form

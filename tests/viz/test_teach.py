@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot
 from robokit.cli import main as cli_main
 from robokit.viz._meshes import cluster_decimate, mesh_parts
 from robokit.viz.teach import NAMED_POSES, teach_data, teach_html, teach_readouts
@@ -21,14 +22,7 @@ ROBOTS = ["puma560", "ur5", "panda", "twolink"]
 CHROMIUM = shutil.which("chromium") or ("/usr/bin/chromium" if os.path.exists("/usr/bin/chromium") else None)
 needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
 
-_robots = {}
 _pages = {}
-
-
-def robot(name):
-    if name not in _robots:
-        _robots[name] = robokit.load(name)
-    return _robots[name]
 
 
 def teach_page(model, **kw):

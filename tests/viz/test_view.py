@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shared_robots import robot as shared_robot
 
 from robokit.cli import main as cli_main
 from robokit.viz import LiveViewer, Scene, view_html
@@ -174,9 +175,7 @@ def test_ground_grid_lies_under_the_robot_sized_to_its_reach(model):
     """The view's grid: a square in the base's z = 0 plane, centred on the base, as wide as the
     robot's horizontal reach (checked on 300 other random configurations) plus a margin; meshcat's
     20 m grid is hidden."""
-    import robokit
-
-    robot = robokit.load(model)
+    robot = shared_robot(model)
     scene, rec = _recorded_scene(robot)
     scene.show().frame_camera()
     floor = [c for c in rec.commands if c["type"] == "set_object" and c["path"] == "/meshcat/floor"][-1]

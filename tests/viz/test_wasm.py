@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import robokit
+from shared_robots import robot as shared_robot
 from robokit._optional import available
 
 NODE = shutil.which("node")
@@ -40,7 +41,7 @@ def _load(name):
         a, alpha, d = [0, 0, 0.4318, 0.0203, 0, 0], [0, -h, 0, -h, h, -h], [0, 0, 0.15005, 0.4318, 0, 0]
         return robokit.load(DHTable("puma_craig", "modified", tuple(
             DHLink("R", a=a[i], alpha=alpha[i], d=d[i]) for i in range(6))))
-    return robokit.load(name)
+    return shared_robot(name)
 
 
 def module(name):

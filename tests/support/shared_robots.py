@@ -1,0 +1,20 @@
+"""Robots loaded once per test process, for the tests that only read them.
+
+A Robot never changes after ``robokit.load`` returns it (docs/caches.md), so a test that computes
+with a robot (FK, Jacobians, dynamics, IK, pages) may use the one another test module loaded: loading
+an example-robot-data arm reads and checks its meshes, seconds each (on the 2-core CI machine, under
+load: ur5 about 3 s, panda 5 s, kinova 6.5 s, z1 8.5 s), and the suite loaded ur5 114 times and panda
+52 times in-process. Tests of loading itself (its warnings, errors, notes, a fresh robot's derived
+values) call ``robokit.load``. Imported as ``shared_robots`` (tests/conftest.py puts tests/support on
+sys.path)."""
+from __future__ import annotations
+
+import functools
+
+import robokit
+
+
+@functools.cache
+def robot(name: str) -> robokit.Robot:
+    """``robokit.load(name)``, once per process and name."""
+    return robokit.load(name)
