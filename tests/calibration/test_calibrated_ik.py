@@ -295,6 +295,14 @@ def test_batch_equals_single(arms):
         assert np.isnan(Q[i, counts[i]:]).all() and not within[i, counts[i]:].any()
 
 
+def _projected_rows(Kn, method, T, wrist_ref, out):
+    """The projected arm's closed-form solve (its packed kernel), the kernel's starts before polishing."""
+    from robokit.kernels import closed_form as cf
+
+    solve = cf.pieper_solve_into if method == cf.PIEPER else cf.parallel_axes_solve_into
+    return solve(Kn, T, wrist_ref, out)
+
+
 def relaxed_starts(arm, T):
     """The branch codes of the starts, as the kernel's plan states it without shortcuts: the
     projected arm's closed form at T, then in full at every relaxed pose (``RELAX``), each code
@@ -303,7 +311,7 @@ def relaxed_starts(arm, T):
 
     C, Kn = arm._KC[:kci._LEN], arm._KC[kci._LEN:]
     out = np.empty((16, 9))
-    m = kci._nominal_rows(Kn, arm._kind, T, 0.0, out)
+    m = _projected_rows(Kn, arm._kind, T, 0.0, out)
     codes = [float(c) for c in out[:m, 7]]
     if m >= kci.GENERIC_ROWS:
         return codes, m
@@ -313,7 +321,7 @@ def relaxed_starts(arm, T):
         Tr = T.copy()
         for r in range(3):
             Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
-        me = kci._nominal_rows(Kn, arm._kind, Tr, 0.0, out)
+        me = _projected_rows(Kn, arm._kind, Tr, 0.0, out)
         for c in out[:me, 7]:
             if float(c) not in codes and len(codes) < 16:
                 codes.append(float(c))
@@ -354,7 +362,7 @@ def test_relaxed_poses_left_out_add_no_branch(arms, name):
             codes, degens = np.zeros(18), np.zeros(18)
             codes[:m] = expected[:m]
             first = np.empty((16, 9))
-            kci._nominal_rows(arm._KC[kci._LEN:], arm._kind, T, 0.0, first)
+            _projected_rows(arm._KC[kci._LEN:], arm._kind, T, 0.0, first)
             degens[:m] = first[:m, 8]
             C = arm._KC[:kci._LEN]
             mask = kci._relax_mask(arm._KC[kci._LEN:], arm._kind, T, C[kci._SHOULDER:kci._REACH], C[kci._REACH], m,
