@@ -663,7 +663,7 @@ def polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: n
     return _polish(C, Td, q, max_steps, work, True)
 
 
-@njit(refcount=False)
+@njit(refcount=False, inline=True)
 def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: np.ndarray,
             trig: bool) -> tuple[float, float, int]:
     """Newton's method with a second-order correction (:func:`_newton_step`) on the pose error
@@ -1243,8 +1243,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     # degenerate flags (16 each), 89–95 the relaxed poses' scratch, 96–111 the branches, 112–143
     # the starts' sines and cosines, 144 the status
     nom = work[48:64]
-    rows = work[64:80]
-    q, q2, v = work[80], work[81], work[82]
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
     first = out  # the projected arm's rows, copied out below: out is written only at the end
     for r in range(R):
@@ -1312,6 +1310,30 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                     codes[m] = first[k, 7]
                     degens[m] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
                     m += 1
+    return _polish_starts(C, T, m, out, work, ci_r, rcodes, rdegen, qq)
+
+
+@njit(refcount=False)
+def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: np.ndarray, ci_r: np.ndarray,
+                   rcodes: np.ndarray, rdegen: np.ndarray, qq: np.ndarray) -> int:
+    """Steps 2–6 of :func:`calibrated_solve_into` (module docstring) from its m starts (``work``'s
+    rows 48–63; their branch codes and degenerate flags in rows 83–88): each polished, searched
+    around where needed, the solutions written to ``out`` and each branch's outcome to ``work``'s
+    branch rows; returns what that kernel returns. ``ci_r``, ``rcodes``, ``rdegen``, ``qq``: the
+    projected arm's closed-form scratch (:func:`robokit.kernels.closed_form._unpack`), reused for
+    the solutions' codes.
+
+    A kernel of its own, without reference counting (``refcount=False``), :func:`_polish` copied
+    into it (``inline``): the closed form before it allocates its scratch, so it needs numba's
+    reference counting, which then counts every view and every array handed to a call up and down;
+    here none is counted and the polish is no call. Measured on the UR5 (idle, 40 poses, median):
+    10.1 → 9.75 µs a solve, the same solutions to the bit."""
+    branches = work[BRANCH_ROWS]
+    nom = work[48:64]
+    rows = work[64:80]
+    q, q2, v = work[80], work[81], work[82]
+    codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
+    R = _cf.MAX_ROWS
     post_q = C[_POST:_SHOULDER].reshape((5, 6))
     rev = post_q[1]
     tol_accept = C[_TOL_ACCEPT]
