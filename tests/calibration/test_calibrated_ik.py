@@ -265,11 +265,10 @@ def test_a_wrist_at_its_fold_on_a_random_pieper_arm_is_solved(arms, q):
     """The suite's calibrated random Pieper arm (twists 0.4–2.7 rad) at two of 290 random configurations
     (``default_rng(100)``), θ₅ 0.069 rad from π and 0.019 rad from 0: the generating configuration and
     its fold partner are solutions of the arm (the sweep finds both) that ``ik_analytic`` does not
-    return, silently (the projected arm's |cos θ₅| is over 1 by 0.0067 and 0.0127 there). Found by a
-    500-seed sweep over 1,000 random poses of the benchmark's Pieper arm (30 roots missed at 2 % of its
-    poses, about half of them at such wrist folds; a calibrated PUMA 560: 2 roots at 1 of 500 poses,
-    next to its wrist singularity; a UR5: none of 500; docs/course/calibration.md). Strict: it fails
-    once fixed, and then this marker goes."""
+    return, silently (the projected arm's |cos θ₅| is over 1 by 0.0067 and 0.0127 there). About half of
+    the roots a 500-seed sweep finds and the calibrated path misses on the benchmark's Pieper arm are at
+    such wrist folds; ``python -m benchmarks.calibrated_completeness`` measures the rates of all three
+    benchmark arms (docs/course/calibration.md). Strict: it fails once fixed, and then this marker goes."""
     nominal, robot = arms["pieper"]
     q = np.array(q)
     T = robot.frame_pose(q)
