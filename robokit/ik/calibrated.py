@@ -370,6 +370,7 @@ class CalibratedArm:
         self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
+        self._fold_warned = False  # the wrist-fold warning, said once per arm
         ang, dist = deviation
         off = []
         if STRUCTURES[structure][0]:
@@ -460,12 +461,21 @@ class CalibratedArm:
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
             out, n, _ = self._solve(_nearest_rigid(T), wrist_ref)
         merged = vanished = 0
-        sigma = math.inf
+        sigma = short = math.inf
         if n >= _FLAGGED:
             n -= _FLAGGED
             merged, vanished, sigma = int(self._status[0]), int(self._status[1]), float(self._status[2])
+            short = float(self._status[3])
         if vanished:
             self._warn_vanished(self._branches, level)
+        if short <= _kci.FOLD_WARN and not self._fold_warned:
+            self._fold_warned = True
+            warnings.warn(f"ik_analytic: a position of the nominal structure's wrist misses this orientation by "
+                          f"|cos θ5| − 1 = {short:.2g}, near the wrist's fold (θ5 = 0 or π), where this arm's own "
+                          f"wrist may reach it: two solutions there may be missing (each returned one is exact; "
+                          f"nominal=False gives the general 6R method, which finds them; said once per arm, at "
+                          f"about one pose in six of a random arm with such a wrist)", RobokitWarning,
+                          stacklevel=level)
         if sigma <= _SIGMA_EXPLORE:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "

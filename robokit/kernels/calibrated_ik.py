@@ -67,7 +67,7 @@ from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import normal_equations
 
 __all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
-           "FLAGGED", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
+           "FLAGGED", "FOLD_WARN", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -389,11 +389,17 @@ FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _
 #: branches' outcomes (:func:`calibrated_solve_into`).
 _WORK_ROWS = 145
 BRANCH_ROWS = slice(96, 112)
-#: The row of ``work`` where :func:`calibrated_solve_into` leaves (merged branches, vanished branches, σ).
+#: The row of ``work`` where :func:`calibrated_solve_into` leaves (merged branches, vanished branches, σ,
+#: the wrists' least shortfall |cos θ₅| − 1).
 STATUS = 144
 #: :func:`calibrated_solve_into` adds this to the number of solutions when a branch merged or
-#: vanished or the near-singular search ran (the status row then says which).
+#: vanished, the near-singular search ran, or a wrist is near its fold (the status row then says which).
 FLAGGED = 1000
+#: A position of Pieper's method whose wrist (twists not right angles) misses the orientation by
+#: |cos θ₅| − 1 below this (the status row's entry 3) is near the wrist's fold (θ₅ = 0 or π), where
+#: the arm itself may reach it with two roots that no start leads to (measured: misses by 0.007–0.074):
+#: the kernel flags the pose and :mod:`robokit.ik.calibrated` warns.
+FOLD_WARN = 0.1
 
 
 def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
@@ -1232,11 +1238,13 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
     ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
     The rows of ``out`` past the number of solutions are scratch. Returns the number of solutions,
-    plus ``FLAGGED`` when a branch merged or vanished or the near-singular search ran (σ ≤
-    ``SIGMA_EXPLORE``); −1 when T fails the quick rigid-transform test. ``work[STATUS]`` then holds
-    (merged branches, vanished branches, σ): σ the smallest singular value of the scaled Jacobian
-    (:func:`_null_direction`) at the points the near-singular search started from, ``inf`` when it
-    did not run (no point needed it). One int, not a tuple: no tuple to box on every call (about
+    plus ``FLAGGED`` when a branch merged or vanished, the near-singular search ran (σ ≤
+    ``SIGMA_EXPLORE``) or a wrist is near its fold (``FOLD_WARN``); −1 when T fails the quick
+    rigid-transform test. ``work[STATUS]`` then holds (merged branches, vanished branches, σ, the
+    least |cos θ₅| − 1 of the positions whose wrist cannot reach the orientation): σ the smallest
+    singular value of the scaled Jacobian (:func:`_null_direction`) at the points the near-singular
+    search started from, ``inf`` when it did not run (no point needed it); the fourth ``inf`` where
+    no wrist fell short (and for three parallel axes). One int, not a tuple: no tuple to box on every call (about
     40 ns; :meth:`robokit.ik.calibrated.CalibratedArm.solve` reads the status only when flagged)."""
     C, Kn = KC[:_LEN], KC[_LEN:]
     branches = work[BRANCH_ROWS]
@@ -1256,8 +1264,13 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     # steps after its rigid-transform test), its scratch kept: the relaxed poses'
     # solves and the solutions' branch codes and flags reuse it (one set of allocations a call)
     ci_r, cf_r, C_r, post_r, T06, raw, rcodes, rdegen, qq, s_r = _cf._unpack(Kn, T)
+    # the least |cos θ₅| − 1 of the positions whose wrist cannot reach the orientation (Pieper's
+    # method, twists not right angles: closed_form._wrist_angles); the relaxed poses' in another slot
+    status = work[STATUS]
+    status[3], status[4] = math.inf, math.inf
+    short, short_relaxed = work[STATUS, 3:4], work[STATUS, 4:5]
     if method == _cf.PIEPER:
-        m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
+        m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, short)
     else:
         m = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
     m = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, m, first, qq)
@@ -1290,7 +1303,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
             if method == _cf.PIEPER:
-                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
+                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, short_relaxed)
             else:  # its labels first, without the rows (_parallel_codes); the rows only if one is new
                 nc = _parallel_codes(cf_r, T06, pc, pcs)
                 new = nc < 0
@@ -1442,7 +1455,8 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     n = _cf._finish(ci_r, post_q, rows, rcodes, rdegen, ns, out, qq)
     status = work[STATUS]
     status[0], status[1], status[2] = merged, vanished, sigma
-    return n + FLAGGED if merged or vanished or sigma <= SIGMA_EXPLORE else n
+    flagged = merged or vanished or sigma <= SIGMA_EXPLORE or status[3] <= FOLD_WARN
+    return n + FLAGGED if flagged else n
 
 
 def solve_into_entry() -> Any:

@@ -282,10 +282,12 @@ def _polish(cf: np.ndarray, q: np.ndarray, W: np.ndarray) -> float:
 
 @njit
 def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, out: np.ndarray,
-                  flips: np.ndarray) -> int:
+                  flips: np.ndarray, reach_short: Any) -> int:
     """(θ₄, θ₅, θ₆) rows into ``out`` (2, 3) and wrist codes into ``flips``; their count
     (as ``PieperSolver.wrist_angles``). ``cs``: cos θ₁, sin θ₁, cos θ₂, sin θ₂, cos θ₃, sin θ₃
-    (:func:`_cos_sin`, computed once per position)."""
+    (:func:`_cos_sin`, computed once per position). ``reach_short``: None, or (1,) float64 that
+    keeps the least |cos θ₅| − 1 of the wrists that cannot reach the orientation (twists not right
+    angles: |cos θ₅| > 1; the calibrated IK says when that is near its fold)."""
     mx, my, mz = T[0, 2], T[1, 2], T[2, 2]
     ex, ey, ez = T[0, 0], T[1, 0], T[2, 0]
     for i in range(3):
@@ -311,6 +313,8 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
     else:
         c5 = (ca4 * ca5 - mz) / k
         if abs(c5) > 1.0 + 1e-10:
+            if reach_short is not None:
+                reach_short[0] = min(reach_short[0], abs(c5) - 1.0)
             return 0
         c5 = max(-1.0, min(1.0, c5))
         s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
@@ -561,17 +565,17 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
 
 @njit
 def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray, s: tuple) -> int:
+            codes: np.ndarray, degen: np.ndarray, s: tuple, reach_short: Any) -> int:
     """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
     of each position): raw rows into Q, codes, degen; their count. ``s``: the scratch of
-    :func:`_scratch`."""
+    :func:`_scratch`; ``reach_short``: None, or :func:`_wrist_angles`'s (None compiles none of it)."""
     F6, F4, F3, I3, iw, bw, fw = s
     Q3, TH, wa = F3[0:MAX_ROWS], F3[MAX_ROWS:2 * MAX_ROWS], F3[2 * MAX_ROWS:2 * MAX_ROWS + 2]
     CS, pcodes, flips, pdegen = F6[MAX_ROWS:], I3[MAX_ROWS:], iw[6:8], bw[MAX_ROWS:]
     npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw, F4[8:10])
     n = 0
     for b in range(npos):
-        nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips)
+        nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips, reach_short)
         for k in range(nw):
             if n >= Q.shape[0]:
                 break
@@ -606,7 +610,7 @@ def pieper_wrist(cf: np.ndarray, th: np.ndarray, T06: np.ndarray, q4_ref: float)
     flips = np.empty(2, dtype=np.int64)
     cs = np.empty(6)
     _cos_sin(th, cs)
-    n = _wrist_angles(cf, cs, T06, q4_ref, out, flips)
+    n = _wrist_angles(cf, cs, T06, q4_ref, out, flips, None)
     return out[:n].copy(), flips[:n].copy()
 
 
@@ -616,7 +620,7 @@ def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
     """Every raw row of Pieper's method for the canonical chain's target T06 (before wrapping,
     limits and de-duplication): ``(q (m, 6), codes (m, 3), degenerate (m,))``."""
     Q, codes, degen = _raw_rows()
-    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen, _scratch())
+    n = _pieper(ci, cf, C, T06, q4_ref, Q, codes, degen, _scratch(), None)
     return _first(n, Q, codes, degen)
 
 
@@ -922,7 +926,7 @@ def _unpack(K: np.ndarray, T: np.ndarray) -> tuple:
 @njit
 def _pieper_packed(K: np.ndarray, T: np.ndarray, wrist_ref: float, out: np.ndarray) -> int:
     ci, cf, C, post_q, T06, rows, rcodes, rdegen, qq, s = _unpack(K, T)
-    m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen, s)
+    m = _pieper(ci, cf, C, T06, wrist_ref, rows, rcodes, rdegen, s, None)
     return _finish(ci, post_q, rows, rcodes, rdegen, m, out, qq)
 
 

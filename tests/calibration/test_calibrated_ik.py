@@ -257,17 +257,17 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
 
 @pytest.mark.xfail(strict=True, reason="known gap (#43): a wrist whose twists are not right angles, within about "
                    "0.07 rad of its fold (θ₅ near 0 or π), where the projected arm's wrist just cannot reach the "
-                   "orientation but the calibrated arm can: the closed form gives that position no row, so no start, "
-                   "no search and no warning")
+                   "orientation but the calibrated arm can: the closed form gives that position no row, so no start "
+                   "and no search (a warning says so: the next test)")
 @pytest.mark.parametrize("q", [[-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749],
                                [-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549]])
 def test_a_wrist_at_its_fold_on_a_random_pieper_arm_is_solved(arms, q):
     """The suite's calibrated random Pieper arm (twists 0.4–2.7 rad) at two of 290 random configurations
     (``default_rng(100)``), θ₅ 0.069 rad from π and 0.019 rad from 0: the generating configuration and
     its fold partner are solutions of the arm (the sweep finds both) that ``ik_analytic`` does not
-    return, silently (the projected arm's |cos θ₅| is over 1 by 0.0067 and 0.0127 there). About half of
-    the roots a 500-seed sweep finds and the calibrated path misses on the benchmark's Pieper arm are at
-    such wrist folds; ``python -m benchmarks.calibrated_completeness`` measures the rates of all three
+    return; a warning says so (the next test; the projected arm's |cos θ₅| is over 1 by 0.0067 and
+    0.0127 there). About half of the roots a 500-seed sweep finds and the calibrated path misses on the
+    benchmark's Pieper arm are at such wrist folds; ``python -m benchmarks.calibrated_completeness`` measures the rates of all three
     benchmark arms (docs/course/calibration.md). Strict: it fails once fixed, and then this marker goes."""
     nominal, robot = arms["pieper"]
     q = np.array(q)
@@ -275,6 +275,28 @@ def test_a_wrist_at_its_fold_on_a_random_pieper_arm_is_solved(arms, q):
     sols = ik_analytic(robot, T)
     check(robot, q, T, sols)
     assert_none_missed(robot, T, sols)
+
+
+@pytest.mark.parametrize("q, short", [([-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749], 0.0067),
+                                      ([-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549], 0.013)])
+def test_a_wrist_near_its_fold_says_a_solution_may_be_missing(arms, q, short):
+    """The two poses above: what is missing is said (RobokitWarning, naming by how much the nominal
+    structure's wrist misses: |cos θ₅| − 1, below FOLD_WARN), every returned solution is exact, and
+    the general 6R method the warning names returns the generating configuration."""
+    from robokit.kernels.calibrated_ik import FOLD_WARN
+
+    nominal, robot = arms["pieper"]
+    q = np.array(q)
+    T = robot.frame_pose(q)
+    with pytest.warns(RobokitWarning, match="near the wrist's fold") as said:
+        sols = AnalyticIK(robot).solve(T)  # a fresh object: it has not warned yet (said once per arm)
+    text = next(str(w.message) for w in said if "near the wrist's fold" in str(w.message))
+    said_short = float(text.split("− 1 = ")[1].split(",")[0])
+    assert said_short == pytest.approx(short, abs=1e-3) and said_short <= FOLD_WARN
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
+    general = ik_analytic(robot, T, nominal=False)
+    assert min(angle_dist(s.q, q) for s in general) < 1e-7
 
 
 def test_branches_that_merge_keep_both_labels_and_are_degenerate(arms):
