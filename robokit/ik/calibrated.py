@@ -371,6 +371,7 @@ class CalibratedArm:
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
         self._fold_warned = False  # the wrist-fold warning, said once per arm
+        self._general_warned = False  # AnalyticIK._general's warning, said once per arm
         ang, dist = deviation
         off = []
         if STRUCTURES[structure][0]:
@@ -411,6 +412,24 @@ class CalibratedArm:
         None
         """
         return None
+
+    def may_reach(self, T: np.ndarray) -> bool:
+        """Whether the tip position of T is within 1.5 × the reach of the shoulder point (the point the
+        relaxed poses are moved about): a pose beyond it is out of reach for certain; one inside that
+        gets no solution from the nominal structure's closed form is solved by the general 6R method
+        (:meth:`robokit.ik.closed_form.AnalyticIK._solve`).
+
+        Parameters
+        ----------
+        T : (4, 4) ndarray
+            Target pose of the tip in the base frame, m.
+
+        Returns
+        -------
+        bool
+        """
+        d = T[:3, 3] - self.shoulder
+        return bool(float(d @ d) <= (1.5 * self.reach) ** 2)
 
     def _solve(self, T: np.ndarray, wrist_ref: float) -> tuple[np.ndarray, int, np.ndarray]:
         """(out, the kernel's result, branches) for T, the full rigid-transform check (which raises or

@@ -50,6 +50,7 @@ one side) get " #2".
 from __future__ import annotations
 
 import math
+import warnings
 import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence, cast
@@ -59,7 +60,7 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
 from robokit._units import TURN, check_radians
-from robokit.errors import InputError, InputTypeError
+from robokit.errors import InputError, InputTypeError, RobokitWarning
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, PieperSolver
@@ -493,7 +494,10 @@ class AnalyticIK:
             # calibrated solver's warnings count their stacklevel from here
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            return self.calibrated._solve_checked(T, wrist_ref)
+            sols = self.calibrated._solve_checked(T, wrist_ref)
+            if sols or not self.calibrated.may_reach(T):
+                return sols
+            return self._general(T, wrist_ref)
         return self._solve(T, wrist_ref)
 
     def _solve(self, T: ArrayLike, wrist_ref: float) -> list[IKSolution]:
@@ -501,7 +505,10 @@ class AnalyticIK:
         if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            return self.calibrated._solve_checked(T, wrist_ref)
+            sols = self.calibrated._solve_checked(T, wrist_ref)
+            if sols or not self.calibrated.may_reach(T):
+                return sols
+            return self._general(T, wrist_ref)
         kernel = self._kernel
         if kernel is not None and self.use_kernel:
             # the kernel's one signature (float64, C order, 4×4); its rigid-transform test is compiled
@@ -566,8 +573,20 @@ class AnalyticIK:
         N = Ts.shape[0]
         if self.calibrated is not None:
             out, counts = self.calibrated.solve_batch(Ts, wrist_ref)
+            extra: dict[int, list[IKSolution]] = {}
+            for idx in np.flatnonzero(counts == 0):  # as solve: the general method where no start was found
+                pose = int(idx)
+                if self.calibrated.may_reach(Ts[pose]):
+                    found = self._general(np.ascontiguousarray(Ts[pose]), wrist_ref)
+                    if found:
+                        extra[pose] = found
+                        counts[pose] = len(found)
             m = int(counts.max()) if N else 0
-            return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
+            Q, within = out[:, :m, :6].copy(), out[:, :m, 6] == 1.0
+            for pose, found in extra.items():
+                for k, sol in enumerate(found):
+                    Q[pose, k], within[pose, k] = sol.q, sol.within_limits
+            return Q, within, counts
         kernel = self._kernel
         if kernel is None or not self.use_kernel:  # the Python solver, pose by pose
             sols = [self._solve_python(T, wrist_ref) for T in Ts]
@@ -582,6 +601,29 @@ class AnalyticIK:
         out, counts = kernel[3](kernel[0], Ts, self._kernel_ref(wrist_ref))
         m = int(counts.max()) if N else 0
         return out[:, :m, :6].copy(), out[:, :m, 6] == 1.0, counts
+
+    def _general(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
+        """A calibrated arm's pose where the nominal structure's closed form gave no start although the
+        arm may reach it (:meth:`robokit.ik.calibrated.CalibratedArm.may_reach`): the general 6R
+        method's solutions (``nominal=False``; labels ``"solution k of m"``), said once per arm when
+        there are any — the nominal structure's closed form called the pose out of reach wrongly
+        there (measured: at 1–2 of 600 random poses of calibrated PUMA 560, UR5 and Pieper arms,
+        ``benchmarks/calibrated_completeness.py``). [] when the general method does not apply."""
+        cal = self.calibrated
+        assert cal is not None  # called for a calibrated arm only
+        try:
+            general = _CACHE.get(self._robot, False)
+            general._refresh()
+            sols = general._solve(T, wrist_ref)
+        except InputError:
+            return []
+        if sols and not cal._general_warned:
+            cal._general_warned = True
+            warnings.warn("ik_analytic: the nominal structure's closed form gives no start at this pose, which "
+                          "the arm reaches: the general 6R method's solutions are returned (labelled 'solution k "
+                          "of m'; said once per arm; the generated C returns none there)", RobokitWarning,
+                          stacklevel=4)
+        return sols
 
     def _solve_python(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
         """The Python solver (the reference of the compiled path)."""
@@ -878,7 +920,9 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
         (:mod:`robokit.ik.calibrated`). Not needed for a robot from :func:`robokit.calibrate`
         (it records its nominal) nor for axes within 0.01 rad and 0.01 × the reach of the
         structure (detected). ``False``: none — an arm that is not exactly special is solved by the
-        general 6R method.
+        general 6R method. A pose for which the nominal structure gives no start but that the arm
+        may reach (within 1.5 × its reach of the shoulder) is solved by the general 6R method too
+        (labels ``"solution k of m"``; a ``RobokitWarning`` once per arm).
 
     Returns
     -------

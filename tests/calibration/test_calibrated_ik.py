@@ -299,6 +299,34 @@ def test_a_wrist_near_its_fold_says_a_solution_may_be_missing(arms, q, short):
     assert min(angle_dist(s.q, q) for s in general) < 1e-7
 
 
+@pytest.mark.parametrize("name, q", [
+    ("ur5", [0.58437227, -4.67069691, -0.27626551, 0.67479076, 5.13727881, -2.52661259]),
+    ("puma560", [-2.10628854, -1.63570749, -1.33242816, -3.65624486, -0.53154896, 0.76392924])])
+def test_a_reachable_pose_the_nominal_closed_form_misses_is_solved_by_the_general_method(arms, name, q):
+    """Random configurations of the suite's calibrated UR5 and PUMA 560 (``default_rng(300)``, draws 368
+    and 899) where the nominal structure's closed form gives no start and no moved pose supplies one:
+    the calibrated path alone returns nothing, as if the pose were out of reach. ``ik_analytic`` then
+    returns the general 6R method's solutions (said once per arm): the generating configuration among
+    them, every one exact, none missed by the sweep; the batch the same."""
+    nominal, robot = arms[name]
+    q = np.array(q)
+    T = robot.frame_pose(q)
+    cal = AnalyticIK(robot)  # a fresh object: it has not warned yet
+    assert cal.calibrated._solve_checked(np.ascontiguousarray(T), 0.0) == []
+    with pytest.warns(RobokitWarning, match="general 6R method's solutions are returned"):
+        sols = cal.solve(T)
+    check(robot, q, T, sols)
+    assert all(s.label.startswith("solution ") for s in sols)
+    assert_none_missed(robot, T, sols)
+    Q, within, counts = cal.solve_batch(np.stack([T, robot.frame_pose(np.zeros(6))]))
+    assert counts[0] == len(sols)
+    for k, s in enumerate(sols):
+        assert np.array_equal(Q[0, k], s.q) and within[0, k] == s.within_limits
+    far = np.eye(4)
+    far[:3, 3] = [10.0, 0.0, 0.0]
+    assert not cal.calibrated.may_reach(far) and cal.solve(far) == []
+
+
 def test_branches_that_merge_keep_both_labels_and_are_degenerate(arms):
     """Near-singular poses (θ₅ or the elbow within 3 mrad of singular): where two branches of the
     nominal structure reach one solution of the arm, that solution names both and is degenerate."""
