@@ -619,10 +619,10 @@ class AnalyticIK:
             return []
         if sols and not cal._general_warned:
             cal._general_warned = True
-            warnings.warn("ik_analytic: the nominal structure's closed form gives no start at this pose, which "
-                          "the arm reaches: the general 6R method's solutions are returned (labelled 'solution k "
-                          "of m'; said once per arm; the generated C returns none there)", RobokitWarning,
-                          stacklevel=4)
+            said = (f"ik_analytic: the nominal structure's closed form gives no start at this pose, which the arm "
+                    f"reaches: the general 6R method's {len(sols)} solutions are returned (labelled 'solution k of "
+                    f"m'; said once per arm; the generated C returns none there)")
+            warnings.warn(said, RobokitWarning, stacklevel=4)
         return sols
 
     def _solve_python(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution]:
