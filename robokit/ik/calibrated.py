@@ -415,9 +415,10 @@ class CalibratedArm:
 
     def may_reach(self, T: np.ndarray) -> bool:
         """Whether the tip position of T is within 1.5 × the reach of the shoulder point (the point the
-        relaxed poses are moved about): a pose beyond it is out of reach for certain; one inside that
-        gets no solution from the nominal structure's closed form is solved by the general 6R method
-        (:meth:`robokit.ik.closed_form.AnalyticIK._solve`).
+        relaxed poses are moved about): a pose beyond it is taken as out of reach (the reach is the
+        largest distance from joint 1's origin to another joint's or the tool, and the shoulder point
+        lies on joint 1's axis); one inside that gets no solution from the nominal structure's closed
+        form is solved by the general 6R method (:meth:`robokit.ik.closed_form.AnalyticIK._solve`).
 
         Parameters
         ----------
