@@ -171,6 +171,10 @@ def _method_line(k: IKConstants, has_ik: bool) -> str:
 
 
 class _Emitter:
+    #: The calibrated arm's projected closed form: also its fold starts (robokit.kernels.closed_form.FOLD_STARTS;
+    #: NAME_ik_starts(..., fold)), set by robokit.codegen.ik_calibrated.
+    fold = False
+
     def __init__(self, k: IKConstants, prefix: str, tol: _Tol) -> None:
         self.k, self.P, self.tol = k, prefix, tol
         if k.method == "spherical wrist":
@@ -232,6 +236,23 @@ static int {P}_trig_roots(double a, double b, double c, double tol, double t[2])
     def poly_helpers(self) -> str:
         """Real roots of a polynomial of degree ≤ 4 (coefficients low → high)."""
         P, t = self.P, self.tol
+        near_arg, near_init, near_else = "", "", ""
+        if self.fold:  # the real parts of complex pairs near the real line too (robokit.kernels.closed_form._roots)
+            assert self.k.pieper is not None and self.k.calibrated is not None
+            fi = float(self.k.calibrated["fold_imag"])
+            near = (f"2.0 * im[i] <= {lit(math.tanh(fi))} * (1.0 + x * x + im[i] * im[i])" if self.k.pieper.kinds[2] == "R"
+                    else f"im[i] <= {lit(fi)} * (1.0 + fabs(x))")
+            near_arg = ", double near[2], int *nn"
+            near_init = "\n    *nn = 0;"
+            near_else = f""" else if (im[i] > 0.0 && {near}) {{
+            int j = *nn;  /* a pair near the real line: its real part (increasing), a fold start */
+            while (j > 0 && near[j - 1] > x) {{
+                near[j] = near[j - 1];
+                --j;
+            }}
+            near[j] = x;
+            ++*nn;
+        }}"""
         return f"""
 /* value of the polynomial c[0] + c[1] x + ... + c[deg] x^deg (Horner) */
 static double {P}_poly(const double c[5], int deg, double x)
@@ -316,7 +337,7 @@ static double {P}_newton_poly(const double c[5], int deg, double t)
    Python (companion eigenvalues), a complex pair with |imag| <= 1e-6 (1 + |real|) counts as two
    real roots at its real part. Returns -1 when the closed form is not trustworthy (q ~ 0, or the
    four roots do not multiply back to the quartic): the caller then isolates the roots numerically. */
-static int {P}_quartic_roots(const double c[5], double out[4])
+static int {P}_quartic_roots(const double c[5], double out[4]{near_arg})
 {{
     const double a = c[3] / c[4], b = c[2] / c[4], cc = c[1] / c[4], d = c[0] / c[4];
     const double p = b - 0.375 * a * a;
@@ -327,7 +348,7 @@ static int {P}_quartic_roots(const double c[5], double out[4])
     const double disc = 0.25 * Q3 * Q3 + P3 * P3 * P3 / 27.0;
     const double size = 1.0 + fabs(a) + sqrt(fabs(b)) + sqrt(sqrt(fabs(d))) + cbrt(fabs(cc));
     double m, s, re[4], im[4];
-    int i, k, n = 0;
+    int i, k, n = 0;{near_init}
     /* the largest real root of the resolvent cubic (z = m + A/3: z^3 + P3 z + Q3 = 0) */
     if (disc > 0.0) {{
         const double sq = sqrt(disc);
@@ -400,7 +421,7 @@ static int {P}_quartic_roots(const double c[5], double out[4])
             }}
             out[j] = t0;
             ++n;
-        }}
+        }}{near_else}
     }}
     return n;
 }}
@@ -633,10 +654,28 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
                 src.append(self.poly_helpers())
             src.append(_pieper_helpers(self, quartic))
         src.append(self.finish())
-        src.append(f"""
+        if self.fold:  # the calibrated arm's starts: NAME_ik_ex's rows, with fold starts (info's flag 3) when fold
+            head = f"""
+/* the starts of the calibrated arm's IK: NAME_ik_ex's solutions, and with fold set its fold starts
+   (robokit.kernels.closed_form.FOLD_STARTS; info[4k + 3] = 3, not solutions of this arm) */
+static int {P}_ik_starts(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N],
+                         int info[4 * {P}_MAX_SOLUTIONS], int fold)
+{{"""
+            void_fold = "    (void)fold;\n"
+            tail = f"""
 /* every closed-form solution (Lecture 5), see {P}.h */
 int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
 {{
+    return {P}_ik_starts(T, wrist_ref, q, info, 0);
+}}
+"""
+        else:
+            head = f"""
+/* every closed-form solution (Lecture 5), see {P}.h */
+int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
+{{"""
+            void_fold, tail = "", ""
+        src.append(f"""{head}
     double (*rows)[6] = (double (*)[6])q;  /* in place: {P}_finish reads row r before it writes row <= r */
     int lab[{_RAW}], deg[{_RAW}];
     int nr = 0, ir, jr;
@@ -646,9 +685,9 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
 {post}    (void)ir;
     (void)jr;
     (void)ref;
-    return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
+{void_fold}    return {P}_finish((const double (*)[6])rows, lab, deg, nr, q, info);
 }}
-
+{tail}
 int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
 {{
     return {P}_ik_ex(T, 0.0, q, 0);
@@ -687,6 +726,19 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     if right:
         c5s5 = f"""    c5 = -mz / {lit(kk)};  /* right-angled wrist (ZYZ type): |s5| = rho */
     s5 = rho;"""
+    elif e.fold:
+        assert k.calibrated is not None  # (the fold starts are the calibrated arm's)
+        c5s5 = f"""    c5 = ({lit(ca4 * ca5)} - mz) / {lit(kk)};
+    if (fabs(c5) > 1.0 + {t(1e-10)}) {{  /* out of reach of an oblique wrist */
+        const double gap = fabs(c5) - 1.0;
+        if (!fold || gap > {lit(float(k.calibrated["fold_starts"]))}) {{
+            return 0;
+        }}
+        fc = {k.calibrated["fold_code"]};  /* near its fold: two starts, th5 = +-sqrt(2 gap) from it */
+        c5 = copysign(cos(sqrt(2.0 * gap)), c5);
+    }}
+    c5 = c5 > 1.0 ? 1.0 : (c5 < -1.0 ? -1.0 : c5);
+    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);"""
     else:
         c5s5 = f"""    c5 = ({lit(ca4 * ca5)} - mz) / {lit(kk)};
     if (fabs(c5) > 1.0 + {t(1e-10)}) {{
@@ -712,6 +764,9 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         rots_n.append(f"    c = ct[{i}];\n    s = st[{i}];\n"
                       f"    x = c * nx - s * ny; ny = s * nx + c * ny; nx = x;")
     gamma_ca4 = lit(ca4)
+    fold_arg = ", int fold" if e.fold else ""
+    fold_decl = "int i, fc = 0;" + ("\n    (void)fold;" if right else "") if e.fold else "int i;"
+    fold_add = f" + fc" if e.fold else ""
     text = f"""
 /* joint values q1..q3 -> rotation angles th and offsets dd of joints 1-3 */
 static void {P}_angles(const double q[3], double th[3], double dd[3])
@@ -808,13 +863,13 @@ static double {P}_polish(double q[3], const double W[3])
 /* Lecture 5, the wrist: every (th4, th5, th6) with Rz(th4)Rx(al4)Rz(th5)Rx(al5)Rz(th6) = R3^T R06,
    R3 = Rz(th1)Rx(al1)Rz(th2)Rx(al2)Rz(th3)Rx(al3). out[k] = rotation angles, flip[k] = 0 no flip /
    1 flip / 2 wrist singular (axes 4 and 6 aligned: th4 = q4_ref + offset, flagged degenerate). */
-static int {P}_wrist(const double th[3], const double R[9], double q4_ref, double out[2][3], int flip[2])
+static int {P}_wrist(const double th[3], const double R[9], double q4_ref, double out[2][3], int flip[2]{fold_arg})
 {{
     double mx = R[2], my = R[5], mz = R[8], ex = R[0], ey = R[3], ez = R[6];
     double nx = 0.0, ny = 0.0, nz = 1.0, c, s, x, row0, row1, rho, c5, s5, am, ar, sg;
     const double yp_c = {lit(-ca4 * sa5)}, yp_0 = {lit(-sa4 * ca5)}, b_c = {lit(sa4 * ca5)}, b_0 = {lit(ca4 * sa5)};
     double yp, b;
-    int i;
+    {fold_decl}
     /* m = R3^T z6 and e = R3^T x6 */
 {chr(10).join(rots_m)}
     /* n4 = R3 e3: axis 4 in frame 0' */
@@ -843,7 +898,7 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
         out[i][0] = am - atan2(yp, {lit(sa5)} * sg);
         out[i][1] = atan2(sg, c5);
         out[i][2] = atan2(b, {lit(sa4)} * sg) - ar;
-        flip[i] = sg * {lit(kk)} > 0.0 ? 0 : 1;
+        flip[i] = (sg * {lit(kk)} > 0.0 ? 0 : 1){fold_add};
         if (s5 == 0.0) {{
             return 1;
         }}
@@ -904,12 +959,21 @@ def _pieper_joint3_roots(e: _Emitter, sv: PieperConstants) -> str:
     extra = (f"""        if (dg < {deg}) {{
             x3s[nx3++] = {lit(math.pi)};  /* the root u = infinity (th3 = pi) of the degree-deficient polynomial */
         }}""" if kind3 == "R" else "")
+    fold = e.fold and deg == 4
+    near = ", tsn, &nn" if fold else ""
     roots_deg = (f""" else if (dg >= 3) {{
-            nt = dg == 4 ? {P}_quartic_roots(pc, ts) : -1;  /* the quartic in closed form (Ferrari) */
+            nt = dg == 4 ? {P}_quartic_roots(pc, ts{near}) : -1;  /* the quartic in closed form (Ferrari) */
             if (nt < 0) {{
-                nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* or numerically: real roots, increasing */
+                nt = {P}_real_roots(pc, dg, ts, {t(1e-15)});  /* or numerically: real roots, increasing */{
+                    chr(10) + "                nn = 0;  /* (no fold starts then)" + " */" if fold else ""}
             }}
         }}""" if deg == 4 else "")
+    ang_n = "2.0 * atan(tsn[i])" if kind3 == "R" else "tsn[i]"
+    fold_x3 = (f"""
+        nreal = nx3;  /* the fold starts' joint-3 values after the real roots (robokit.kernels.closed_form._roots) */
+        for (i = 0; i < (fold ? nn : 0); ++i) {{
+            x3s[nx3++] = {ang_n};
+        }}""" if fold else "")
     free3 = lit(sv.th0[2]) if kind3 == "R" else "0.0"
     return f"""    /* its real roots (robokit's _roots: trailing coefficients below 1e-11 of the largest dropped) */
     for (i = 0; i <= {deg}; ++i) {{
@@ -944,7 +1008,7 @@ def _pieper_joint3_roots(e: _Emitter, sv: PieperConstants) -> str:
         for (i = 0; i < nt; ++i) {{
             x3s[nx3++] = {ang};
         }}
-{extra}
+{extra}{fold_x3}
     }}"""
 
 
@@ -1104,10 +1168,28 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     cands = _pieper_joint2_revolute(e, sv, cs3) if sv.kinds[1] == "R" else _pieper_joint2_prismatic(e, sv, cs3)
     shoulder, elbow = _pieper_labels(sv)
     q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
+    accept = _pieper_accept(e, sv)
+    if e.fold:  # fold starts (robokit.kernels.closed_form.FOLD_STARTS): flagged 3, their wrist code less 3
+        decl = "\n    double tsn[2];\n    int nn = 0, nreal = 0;\n    (void)tsn;" if sv.deg == 4 else "\n    const int nreal = 1 << 30;  /* (no fold positions: no quartic) */"
+        fold_pos = "            const int fpos = i3 >= nreal;  /* a fold position: unchecked */\n"
+        assert e.k.calibrated is not None  # (the fold starts are the calibrated arm's)
+        fc = int(e.k.calibrated["fold_code"])
+        if sv.deg == 4:
+            accept = "            if (!fpos) {\n" + "\n".join("    " + ln for ln in accept.splitlines()) + "\n            }"
+        wrist = f"nw = {P}_wrist(th, R06, ref, wr, fl, fold);"
+        rowflags = f"""                const int fs = fpos || fl[iw] >= {fc};
+                const int wc = fl[iw] >= {fc} ? fl[iw] - {fc} : fl[iw];
+                lab[nr] = {e.label_index("si", "ei", "wc")};
+                deg[nr] = fs ? 3 : (wc == 2 || degenerate || singular1);"""
+    else:
+        decl, fold_pos = "", ""
+        wrist = f"nw = {P}_wrist(th, R06, ref, wr, fl);"
+        rowflags = f"""                lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
+                deg[nr] = fl[iw] == 2 || degenerate || singular1;"""
     return f"""    {{
     double pc[5], ts[5], x3s[6], W[3], R06[9];
     double scale = 0.0;
-    int dg = {sv.deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;
+    int dg = {sv.deg}, nt = 0, nx3 = 0, degenerate = 0, i, i3;{decl}
 {body}
     (void)W;
 {_pieper_joint3_roots(e, sv)}
@@ -1130,15 +1212,15 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         for (ic = 0; ic < nc; ++ic) {{
             double q123[3], err = 0.0, th[3], dd[3], wr[2][3];
             int singular1 = 0, fl[2], nw, iw, si, ei;
-{_pieper_joint1(e, sv, W)}
+{fold_pos}{_pieper_joint1(e, sv, W)}
             q123[1] = cq2[ic];
             q123[2] = {q3};
             (void)err;
-{_pieper_accept(e, sv)}
+{accept}
             {P}_angles(q123, th, dd);
 {shoulder}
 {elbow}
-            nw = {P}_wrist(th, R06, ref, wr, fl);
+            {wrist}
             for (iw = 0; iw < nw && nr < {_RAW}; ++iw) {{
                 rows[nr][0] = q123[0];
                 rows[nr][1] = q123[1];
@@ -1146,8 +1228,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
                 rows[nr][3] = {_f([(1.0, "wr[iw][0]")], -th0[3])};
                 rows[nr][4] = {_f([(1.0, "wr[iw][1]")], -th0[4])};
                 rows[nr][5] = {_f([(1.0, "wr[iw][2]")], -th0[5])};
-                lab[nr] = {e.label_index("si", "ei", "fl[iw]")};
-                deg[nr] = fl[iw] == 2 || degenerate || singular1;
+{rowflags}
                 ++nr;
             }}
             (void)singular1;

@@ -61,7 +61,10 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     c = k.calibrated
     P = prefix
     nom = emitter(k, f"{P}_nominal", tol)
+    nom.fold = k.method == "spherical wrist"  # its fold starts too (NAME_nominal_ik_starts)
     nom_code = nom.code()
+    first_call = (f"{P}_nominal_ik_starts(T, wrist_ref, q, ninfo, 1)" if nom.fold
+                  else f"{P}_nominal_ik_ex(T, wrist_ref, q, ninfo)")
     fin = emitter(k, P, tol)
     labels = nom.labels
     max_rows = int(c["max_rows"])
@@ -629,13 +632,14 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     int *const lab = labdeg, *const deg = labdeg + {max_rows}, *const ninfo = labdeg;
     signed char nlab[{max_rows}], ndeg[{max_rows}], seed_lab[{max_rows}];
     signed char sol[{max_rows}], seed[{max_rows}], state[{max_rows}];  /* state: 0 free, 1 a solution, 2 a search point */
-    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0;
-    m = {P}_nominal_ik_ex(T, wrist_ref, q, ninfo);
+    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0, mb = 0, pass;
+    m = {first_call};
     for (r = 0; r < m; ++r) {{
         nlab[r] = (signed char)ninfo[4 * r];
-        ndeg[r] = (signed char)ninfo[4 * r + 3];
+        ndeg[r] = (signed char)ninfo[4 * r + 3];  /* 3: a fold start */
+        mb += ndeg[r] != 3;
     }}
-    if (m < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
+    if (mb < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
         for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
             double *const Tr = tmp;
             const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
@@ -659,7 +663,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             for (kk = 0; kk < me; ++kk) {{
                 int have = 0;
                 for (r = 0; r < m; ++r) {{
-                    have = have || nlab[r] == ninfo[4 * kk];
+                    have = have || (nlab[r] == ninfo[4 * kk] && ndeg[r] != 3);  /* (not a fold start's) */
                 }}
                 if (!have && m < {max_rows}) {{
                     for (j = 0; j < 6; ++j) {{
@@ -675,10 +679,14 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (r = 0; r < {max_rows}; ++r) {{
         state[r] = 0;
     }}
+    for (pass = 0; pass < 2; ++pass)  /* the fold starts last */
     for (r = 0; r < m; ++r) {{
         double rot, pos, moved = 0.0;
         int ok, hit = -1, dg = ndeg[r] != 0, point;
-        const int relaxed = ndeg[r] == 2;
+        const int relaxed = ndeg[r] >= 2, fold = ndeg[r] == 3;
+        if (fold != pass) {{
+            continue;
+        }}
         for (j = 0; j < 6; ++j) {{
             s0[j] = rows[r][j];
             qq[j] = s0[j];
@@ -711,7 +719,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             }}
         }}
         /* a search point: the point reached, in this row (its start is used up) */
-        point = moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed);
+        point = moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed) || (fold && ok);
         if (point || (ok && hit < 0)) {{
             for (j = 0; j < 6; ++j) {{
                 rows[r][j] = qq[j];
@@ -729,7 +737,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             deg[ns] = dg;
             ++ns;
             state[r] = 1;
-        }} else if (ok) {{  /* two branches reach one root: they merge here */
+        }} else if (ok && !fold) {{  /* two branches reach one root: they merge here */
             deg[hit] = 1;
         }}
     }}

@@ -370,7 +370,6 @@ class CalibratedArm:
         self._ref_sign = nominal._kernel_ref(1.0)  # wrist_ref in the sign of the projected arm's solver
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
-        self._fold_warned = False  # the wrist-fold warning, said once per arm
         self._general_warned = False  # AnalyticIK._general's warning, said once per arm
         ang, dist = deviation
         off = []
@@ -399,6 +398,7 @@ class CalibratedArm:
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
+                "fold_starts": _kcf.FOLD_STARTS, "fold_imag": _kcf.FOLD_IMAG, "fold_code": _kcf.FOLD_CODE,
                 "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
                 "block_schur": _kci.BLOCK_SCHUR, "frames": _kci.local_transforms(self._C),
                 "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
@@ -481,21 +481,12 @@ class CalibratedArm:
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest
             out, n, _ = self._solve(_nearest_rigid(T), wrist_ref)
         merged = vanished = 0
-        sigma = short = math.inf
+        sigma = math.inf
         if n >= _FLAGGED:
             n -= _FLAGGED
             merged, vanished, sigma = int(self._status[0]), int(self._status[1]), float(self._status[2])
-            short = float(self._status[3])
         if vanished:
             self._warn_vanished(self._branches, level)
-        if short <= _kci.FOLD_WARN and not self._fold_warned:
-            self._fold_warned = True
-            warnings.warn(f"ik_analytic: a position of the nominal structure's wrist misses this orientation by "
-                          f"|cos θ5| − 1 = {short:.2g}, near the wrist's fold (θ5 = 0 or π), where this arm's own "
-                          f"wrist may reach it: two solutions there may be missing (each returned one is exact; "
-                          f"nominal=False gives the general 6R method, which finds them; said once per arm, at "
-                          f"about one pose in six of a random arm with such a wrist)", RobokitWarning,
-                          stacklevel=level)
         if sigma <= _SIGMA_EXPLORE:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "

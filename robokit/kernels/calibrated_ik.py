@@ -18,7 +18,16 @@ constants ``Kn``). Per pose:
    orientation; three parallel axes: the labels of a relaxed pose's branches, from
    :func:`_parallel_codes`, are all sure and present already); a relaxed pose's rows are computed
    only where that is not shown, and finished (wrapped, de-duplicated) only when they hold a
-   branch the starts lack;
+   branch the starts lack; and, Pieper's method only, the **fold starts** of the pose itself
+   (``closed_form.FOLD_STARTS``, ``FOLD_IMAG``): where the projected arm just has no root — a
+   position whose oblique wrist misses the orientation by |cos θ₅| − 1 ≤ 0.1, two starts at θ₅ =
+   ±√(2 (|cos θ₅| − 1)) from the wrist's fold; a complex pair of the joint-3 quartic within 0.2 rad
+   of the real line, a position at its real part — the arm itself may have two roots there
+   (measured on 3,600 random poses of the benchmark's random Pieper arm: a 500-start sweep found 49
+   roots this path missed without these starts, none with them). They
+   are polished after every other start (as the relaxed poses' starts: more steps, a solution
+   flagged degenerate and searched around), their labels do not stand for a branch the relaxed
+   poses need not supply, and one that finds no new root is no branch (not merged, not vanished);
 2. each start is polished by :func:`polish` (the sines and cosines of the starts' joint values, which
    branches share, computed once: :func:`_start_trig`): Newton's method with a second-order correction
    (:func:`_newton_step`: the pose error after a step is O(d³) rather than O(d²), so the closed
@@ -67,7 +76,7 @@ from robokit.kernels.dynamics import cholesky_solve
 from robokit.kernels.ik import normal_equations
 
 __all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
-           "FLAGGED", "FOLD_WARN", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
+           "FLAGGED", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
 SAME = 1e-7
@@ -390,16 +399,11 @@ FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _
 _WORK_ROWS = 145
 BRANCH_ROWS = slice(96, 112)
 #: The row of ``work`` where :func:`calibrated_solve_into` leaves (merged branches, vanished branches, σ,
-#: the wrists' least shortfall |cos θ₅| − 1).
+#: the wrists' least shortfall |cos θ₅| − 1; then the fold starts' switch and a scratch entry).
 STATUS = 144
 #: :func:`calibrated_solve_into` adds this to the number of solutions when a branch merged or
-#: vanished, the near-singular search ran, or a wrist is near its fold (the status row then says which).
+#: vanished or the near-singular search ran (the status row then says which).
 FLAGGED = 1000
-#: A position of Pieper's method whose wrist (twists not right angles) misses the orientation by
-#: |cos θ₅| − 1 below this (the status row's entry 3) is near the wrist's fold (θ₅ = 0 or π), where
-#: the arm itself may reach it with two roots that no start leads to (measured: misses by 0.007–0.074):
-#: the kernel flags the pose and :mod:`robokit.ik.calibrated` warns.
-FOLD_WARN = 0.1
 
 
 def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
@@ -954,7 +958,8 @@ def _position_codes(Kn: np.ndarray, Wx: float, Wy: float, Wz: float, mz: np.ndar
     orientation gets the code −1: the closed form gives it no row (``closed_form._wrist_angles``:
     with twists α₄, α₅ not right angles, cos θ₅ = (cos α₄ cos α₅ − m_z)/(sin α₄ sin α₅), m the
     target's z axis ``mz`` (3,) in the canonical chain's frame turned back through joints 1–3,
-    must be within ±1; beyond by less than ``LABEL_UNSURE`` it is unsure: −1 returned). Scratch: sc
+    must be within ±1 (the relaxed poses' solves give no fold starts); beyond by less than
+    ``LABEL_UNSURE`` it is unsure: −1 returned). Scratch: sc
     rows 0–3 (≥ 5 columns; row 1 the roots, its first ``guesses`` those of a nearby pose on entry)."""
     cf = Kn[_cf._K_CF:_cf._K_C]
     Cm = Kn[_cf._K_C:_cf._K_PRE]
@@ -1149,11 +1154,20 @@ def _parallel_codes(cf: np.ndarray, T: np.ndarray, codes: np.ndarray, sc: np.nda
     return n
 
 
+@njit(inline=True)
+def _fold_code(code: float) -> tuple[float, bool]:
+    """A row's branch code without the fold starts' ``closed_form.FOLD_CODE`` in its wrist digit,
+    and whether it had it."""
+    if int(code) % 10 >= _cf.FOLD_CODE:
+        return code - _cf.FOLD_CODE, True
+    return code, False
+
+
 @njit
 def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
-                codes: np.ndarray, degens: np.ndarray, sc: np.ndarray) -> int:
+                codes: np.ndarray, degenerate: bool, sc: np.ndarray) -> int:
     """Which relaxed poses (``RELAX``; bit i for the i-th) can give a branch the pose's own m rows
-    (branch ``codes``, degenerate flags ``degens``) lack: all of them, except in Pieper's general
+    (branch ``codes``; ``degenerate``: one of them is) lack: all of them, except in Pieper's general
     case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate; there, a relaxed
     pose is left out when every position of it (:func:`_position_codes`, each label sure) has a
     shoulder and elbow label that the rows have already, or a wrist that cannot reach the
@@ -1165,9 +1179,8 @@ def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray
     every = (1 << len(RELAX)) - 1
     if method != _cf.PIEPER or int(Kn[_cf._K_CI + 1]) != 0 or int(Kn[_cf._K_CI + 3]) != 4:
         return every
-    for r in range(m):
-        if degens[r] != 0.0:
-            return every
+    if degenerate:
+        return every
     dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
     if dist == 0.0:
         return every
@@ -1238,10 +1251,10 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     OUT_COLS) as the closed-form kernels do and each branch's outcome into ``work``'s rows
     ``BRANCH_ROWS`` (columns ``0:BRANCH_COLS``; code −1 past the last branch); work: :func:`scratch`.
     The rows of ``out`` past the number of solutions are scratch. Returns the number of solutions,
-    plus ``FLAGGED`` when a branch merged or vanished, the near-singular search ran (σ ≤
-    ``SIGMA_EXPLORE``) or a wrist is near its fold (``FOLD_WARN``); −1 when T fails the quick
-    rigid-transform test. ``work[STATUS]`` then holds (merged branches, vanished branches, σ, the
-    least |cos θ₅| − 1 of the positions whose wrist cannot reach the orientation): σ the smallest
+    plus ``FLAGGED`` when a branch merged or vanished or the near-singular search ran (σ ≤
+    ``SIGMA_EXPLORE``); −1 when T fails the quick rigid-transform test. ``work[STATUS]`` then holds
+    (merged branches, vanished branches, σ, the least |cos θ₅| − 1 of the positions whose wrist cannot
+    reach the orientation): σ the smallest
     singular value of the scaled Jacobian (:func:`_null_direction`) at the points the near-singular
     search started from, ``inf`` when it did not run (no point needed it); the fourth ``inf`` where
     no wrist fell short (and for three parallel axes). One int, not a tuple: no tuple to box on every call (about
@@ -1264,37 +1277,57 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     # steps after its rigid-transform test), its scratch kept: the relaxed poses'
     # solves and the solutions' branch codes and flags reuse it (one set of allocations a call)
     ci_r, cf_r, C_r, post_r, T06, raw, rcodes, rdegen, qq, s_r = _cf._unpack(Kn, T)
-    # the least |cos θ₅| − 1 of the positions whose wrist cannot reach the orientation (Pieper's
-    # method, twists not right angles: closed_form._wrist_angles); the relaxed poses' in another slot
+    # Pieper's method: the least |cos θ₅| − 1 of the positions whose wrist cannot reach the
+    # orientation (twists not right angles: closed_form._wrist_angles) into status[3], and the
+    # fold starts (closed_form.FOLD_STARTS: status[4] = 1); at the relaxed poses, none (row 95)
     status = work[STATUS]
-    status[3], status[4] = math.inf, math.inf
-    short, short_relaxed = work[STATUS, 3:4], work[STATUS, 4:5]
+    status[3], status[4] = math.inf, 1.0
+    fold = work[STATUS, 3:6]
     if method == _cf.PIEPER:
-        m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, short)
+        m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold)
     else:
         m = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
     m = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, m, first, qq)
+    degenerate = False
+    # the branches' starts in order from row 0; the fold starts (closed_form.FOLD_STARTS) from row
+    # R − 1 down, kept for the end: they are polished after every other start
+    mb = 0
+    nfold = 0
     for r in range(m):
+        code, folded = _fold_code(first[r, 7])
+        k = R - 1 - nfold if folded else mb
         for j in range(6):
-            nom[r, j] = first[r, j]
-        codes[r] = first[r, 7]
-        degens[r] = first[r, 8]
+            nom[k, j] = first[r, j]
+        codes[k] = code
+        if folded:
+            degens[k] = 3.0
+            nfold += 1
+        else:
+            degenerate = degenerate or first[r, 8] != 0.0
+            degens[k] = first[r, 8]
+            mb += 1
+    m = mb
     shoulder = C[_SHOULDER:_REACH]
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
-    mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degens, work[89:96]) if m < GENERIC_ROWS else 0
+    mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degenerate, work[89:96]) if m < GENERIC_ROWS else 0
     if mask != 0:
         Tr = np.empty((4, 4))
         # the closed form's own steps on its scratch: each relaxed pose's raw rows, finished (as a
         # solve of that pose finishes them) only when they hold a branch the starts lack
         pre_r, postT_r = Kn[_cf._K_PRE:_cf._K_POST].reshape((4, 4)), Kn[_cf._K_POST:_cf._K_PQ].reshape((4, 4))
         pc, pcs = work[89:91].reshape(12), work[91:93].reshape(12)
+        fold_relaxed = work[95, 0:3]  # (the mask's scratch before)
+        fold_relaxed[0], fold_relaxed[1] = math.inf, 0.0
         dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
         for i in range(len(RELAX)):
             if dist == 0.0:
                 break
             if (mask >> i) & 1 == 0:
                 continue  # its rows are branches the starts have (_relax_mask)
+            if m + nfold > R - 8:
+                break  # as the generated C, whose rows (the fold starts' too) leave 8 free for a relaxed solve's
+
             f = RELAX[i]
             for r in range(4):
                 for c in range(4):
@@ -1303,7 +1336,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
             if method == _cf.PIEPER:
-                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, short_relaxed)
+                mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold_relaxed)
             else:  # its labels first, without the rows (_parallel_codes); the rows only if one is new
                 nc = _parallel_codes(cf_r, T06, pc, pcs)
                 new = nc < 0
@@ -1314,18 +1347,25 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 mr = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
             new = False
             for k in range(mr):
-                code = float(rcodes[k, 0] * 100 + rcodes[k, 1] * 10 + rcodes[k, 2])
+                code, _ = _fold_code(float(rcodes[k, 0] * 100 + rcodes[k, 1] * 10 + rcodes[k, 2]))
                 new = new or not _has_code(codes, m, code)
             if not new:
                 continue  # every branch it gives, the starts have: its rows are not finished
             me = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, mr, first, qq)
             for k in range(me):
-                if m < R and not _has_code(codes, m, first[k, 7]):
+                code, _ = _fold_code(first[k, 7])
+                if m < R - nfold and not _has_code(codes, m, code):
                     for j in range(6):
                         nom[m, j] = first[k, j]
-                    codes[m] = first[k, 7]
+                    codes[m] = code
                     degens[m] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
                     m += 1
+    for f in range(nfold):  # the fold starts last, in their order
+        k = R - 1 - f
+        for j in range(6):
+            nom[m, j] = nom[k, j]
+        codes[m], degens[m] = codes[k], 3.0
+        m += 1
     return _polish_starts(C, T, m, out, work, ci_r, rcodes, rdegen, qq)
 
 
@@ -1367,8 +1407,10 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     nseed = 0
     merged = 0
     vanished = 0
+    nb = 0  # branch rows written
     for r in range(m):
-        relaxed = degens[r] == 2.0
+        relaxed = degens[r] >= 2.0  # a relaxed pose's start, or a fold start (3)
+        fold = degens[r] == 3.0
         for j in range(6):
             q[j] = nom[r, j]
             sc0[0, j] = sct[2 * r, j]
@@ -1395,14 +1437,16 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
         code = int(codes[r])
         # searched around: a solution the polish moved far, merging branches, a singular choice of the
         # nominal, a branch that vanished (not one from a relaxed pose: that pose may be out of reach)
-        if moved > EXPLORE or k >= 0 or (degen and not relaxed) or (not ok and not relaxed):
+        if moved > EXPLORE or k >= 0 or (degen and not relaxed) or (not ok and not relaxed) or (fold and ok):
             for j in range(6):
                 nom[nseed, j] = q[j]
             codes[nseed] = code
             nseed += 1
-        branches[r, 0] = code
-        branches[r, 3] = rot
-        branches[r, 4] = pos
+        if fold and not (ok and k < 0):
+            continue  # a fold start that found no new root: not a branch of the nominal structure
+        branches[nb, 0] = code
+        branches[nb, 3] = rot
+        branches[nb, 4] = pos
         if ok and k < 0:
             for j in range(6):
                 rows[ns, j] = q[j]
@@ -1410,18 +1454,19 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
             rcodes[ns, 1] = (code // 10) % 10
             rcodes[ns, 2] = code % 10
             rdegen[ns] = degen
-            branches[r, 1] = SOLUTION
-            branches[r, 2] = ns
+            branches[nb, 1] = SOLUTION
+            branches[nb, 2] = ns
             ns += 1
         elif ok:  # two branches reach one root: the branches merge here
             rdegen[k] = True
-            branches[r, 1] = MERGED
-            branches[r, 2] = k
+            branches[nb, 1] = MERGED
+            branches[nb, 2] = k
             merged += 1
         else:
-            branches[r, 1] = VANISHED
-            branches[r, 2] = -1
+            branches[nb, 1] = VANISHED
+            branches[nb, 2] = -1
             vanished += 1
+        nb += 1
     sigma = math.inf
     # an int64 like max_steps: the global constant itself would be typed Literal[int](25) and compile
     # a second polish for it
@@ -1455,7 +1500,7 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     n = _cf._finish(ci_r, post_q, rows, rcodes, rdegen, ns, out, qq)
     status = work[STATUS]
     status[0], status[1], status[2] = merged, vanished, sigma
-    flagged = merged or vanished or sigma <= SIGMA_EXPLORE or status[3] <= FOLD_WARN
+    flagged = merged or vanished or sigma <= SIGMA_EXPLORE
     return n + FLAGGED if flagged else n
 
 

@@ -67,6 +67,19 @@ PARALLEL_AXES = 1
 
 _PI = math.pi
 _TWO_PI = 2.0 * math.pi
+#: The calibrated IK's fold starts (:func:`_pieper` with ``fold``, its entry 1 set): the arm itself,
+#: not quite the projected one, may have two roots where the projected arm just has none; these
+#: rows are where its polish starts looking for them. At a wrist's fold: a position whose wrist
+#: (twists not right angles) misses the orientation by |cos θ₅| − 1 up to ``FOLD_STARTS`` still
+#: gives two rows, at θ₅ = ±√(2 (|cos θ₅| − 1)) from the fold (θ₅ = 0 or π). At a position's fold:
+#: a complex pair of roots t = a ± ib of the joint-3 polynomial gives a position at t = a when the
+#: pair's joint-3 values are within ``FOLD_IMAG`` of the real line: for a revolute joint 3 (t =
+#: tan(θ₃/2)) |Im 2 atan(a + ib)| = atanh(2b/(1 + a² + b²)) ≤ FOLD_IMAG rad; for a prismatic one
+#: b ≤ FOLD_IMAG (1 + |a|) (m). Such rows have ``FOLD_CODE`` added to their wrist code.
+FOLD_STARTS = 0.1
+FOLD_IMAG = 0.2
+FOLD_CODE = 3
+_FOLD_TANH = math.tanh(FOLD_IMAG)
 #: Scratch sizes (floats, ints) of the position step and of Pieper's method (:func:`_pieper_position`, :func:`_pieper`).
 _POS_WORK = 35
 
@@ -150,8 +163,11 @@ def _newton_poly(c: np.ndarray, deg: int, t: float) -> float:
 
 
 @njit
-def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
-    """Real roots of Σ c_k t^k (k ≤ ndeg) as joint-3 values into ``out``; count, −1 if c ≡ 0."""
+def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray, fold: Any) -> int:
+    """Real roots of Σ c_k t^k (k ≤ ndeg) as joint-3 values into ``out``; count, −1 if c ≡ 0.
+    ``fold``: None, or :func:`_pieper`'s; with its entry 1 set, a quartic's complex pairs a ± ib
+    within ``FOLD_IMAG`` of the real line add a at the end, ascending (``out`` (6,)), and entry 2
+    is set to the number of real roots before them."""
     scale = 0.0
     for j in range(ndeg + 1):
         scale = max(scale, abs(c[j]))
@@ -162,6 +178,7 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
         deg -= 1
     extra = rev and deg < ndeg
     n = 0
+    nf = 0
     ts = out  # the roots t are sorted in place, then turned into joint values entry by entry
     if deg == 1:
         ts[0] = -c[0] / c[1]
@@ -194,11 +211,28 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray) -> int:
                     k -= 1
                 ts[k] = t
                 n += 1
+        if fold is not None:
+            if fold[1] != 0.0 and deg == 4:
+                for z in ev:  # a complex pair near the real line: its real part (ascending), after the real roots
+                    a, b = z.real, z.imag
+                    near = (2.0 * b <= _FOLD_TANH * (1.0 + a * a + b * b)) if rev else b <= FOLD_IMAG * (1.0 + abs(a))
+                    if b > 1e-6 * (1.0 + abs(a)) and near:
+                        k = nf
+                        while k > 0 and ts[4 + k - 1] > a:
+                            ts[4 + k] = ts[4 + k - 1]
+                            k -= 1
+                        ts[4 + k] = a
+                        nf += 1
     for j in range(n):
         out[j] = 2.0 * math.atan(ts[j]) if rev else ts[j]
     if extra:
         out[n] = _PI
         n += 1
+    if fold is not None:
+        fold[2] = n
+        for j in range(nf):  # n + j ≤ 4 + j: no entry is overwritten before it is read
+            out[n] = 2.0 * math.atan(ts[4 + j]) if rev else ts[4 + j]
+            n += 1
     return n
 
 
@@ -282,12 +316,14 @@ def _polish(cf: np.ndarray, q: np.ndarray, W: np.ndarray) -> float:
 
 @njit
 def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, out: np.ndarray,
-                  flips: np.ndarray, reach_short: Any) -> int:
+                  flips: np.ndarray, fold: Any) -> int:
     """(θ₄, θ₅, θ₆) rows into ``out`` (2, 3) and wrist codes into ``flips``; their count
     (as ``PieperSolver.wrist_angles``). ``cs``: cos θ₁, sin θ₁, cos θ₂, sin θ₂, cos θ₃, sin θ₃
-    (:func:`_cos_sin`, computed once per position). ``reach_short``: None, or (1,) float64 that
-    keeps the least |cos θ₅| − 1 of the wrists that cannot reach the orientation (twists not right
-    angles: |cos θ₅| > 1; the calibrated IK says when that is near its fold)."""
+    (:func:`_cos_sin`, computed once per position). ``fold``: None, or :func:`_pieper`'s: its entry
+    0 keeps the least |cos θ₅| − 1 of the wrists that cannot reach the orientation (twists not
+    right angles: |cos θ₅| > 1; the calibrated IK says when that is near its fold); with its entry
+    1 set, such a wrist short by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes +
+    ``FOLD_CODE``)."""
     mx, my, mz = T[0, 2], T[1, 2], T[2, 2]
     ex, ey, ez = T[0, 0], T[1, 0], T[2, 0]
     for i in range(3):
@@ -308,14 +344,20 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
     ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
     k = sa4 * sa5
     rho = math.hypot(mx, my)
+    fcode = 0
     if ca4 == 0.0 and ca5 == 0.0:
         c5, s5 = -mz / k, rho
     else:
         c5 = (ca4 * ca5 - mz) / k
         if abs(c5) > 1.0 + 1e-10:
-            if reach_short is not None:
-                reach_short[0] = min(reach_short[0], abs(c5) - 1.0)
-            return 0
+            if fold is None:
+                return 0
+            short = abs(c5) - 1.0
+            fold[0] = min(fold[0], short)
+            if fold[1] == 0.0 or short > FOLD_STARTS:
+                return 0
+            fcode = FOLD_CODE  # near the fold: two starts, θ₅ = ±√(2 short) from it
+            c5 = math.copysign(math.cos(math.sqrt(2.0 * short)), c5)
         c5 = max(-1.0, min(1.0, c5))
         s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
     if rho <= 1e-10:
@@ -338,7 +380,7 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
         out[n, 0] = am - math.atan2(yp, sa5 * s)
         out[n, 1] = t5 if j == 0 else -t5  # atan2(−s, c) = −atan2(s, c) exactly (IEEE atan2 is odd in y)
         out[n, 2] = math.atan2(b_, sa4 * s) - ar
-        flips[n] = 0 if s * k > 0.0 else 1
+        flips[n] = (0 if s * k > 0.0 else 1) + fcode
         n += 1
         if s5 == 0.0:
             break
@@ -398,14 +440,16 @@ def _quad_roots(A: float, B: float, C: float, out: np.ndarray) -> int:
 @njit
 def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, Q3: np.ndarray,
                      codes: np.ndarray, degen: np.ndarray, TH: np.ndarray, CS: np.ndarray, fw: np.ndarray,
-                     cand: np.ndarray) -> int:
+                     cand: np.ndarray, fold: Any) -> int:
     """Pieper's position sub-problem: every (q₁, q₂, q₃) placing the wrist centre ⁰W = T·⁶W.
 
     Writes per branch the joint values into ``Q3`` (rows of 3), the shoulder and elbow codes into
     ``codes`` (rows of 2), the degenerate flag into ``degen``, the rotation angles θ₁–θ₃ into
     ``TH`` and their cosines and sines (:func:`_cos_sin`, what the wrist step needs) into ``CS``
     (rows of 6); ``fw`` (at least ``_POS_WORK`` floats) and ``cand`` (2, 4) are scratch; returns
-    the number of branches. Cases (``ci[1]``): 0 RR-quartic,
+    the number of branches. ``fold``: None, or :func:`_pieper`'s (with its entry 1 set, the
+    positions of :func:`_roots`' near-real complex pairs follow the exact ones, unchecked; entry 2
+    is set to the number of exact ones). Cases (``ci[1]``): 0 RR-quartic,
     1 RR-a1, 2 RR-s1, 3 PR-quartic, 4 PR-c1, 5 RP-quartic, 6 RP-c1, 7 PP (the kinds of joints 1, 2;
     ``PieperConstants.case``)."""
     case, rev3, deg, nrows = ci[1], ci[2] == 1, ci[3], ci[4]
@@ -450,16 +494,23 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
         for k in range(nrows):
             acc += m[k] * C[k, j]
         coeffs[j] = acc
-    nr = _roots(coeffs, deg, rev3, roots3)
+    nr = _roots(coeffs, deg, rev3, roots3, fold)
     check = deg == 4  # roots from the companion matrix: verify (and polish) each triple
     degenerate = False
+    nreal = nr
     if nr < 0:  # the equation holds for every joint-3 value: the documented choice q₃ = 0
         roots3[0] = cf[_TH0 + 2] if rev3 else 0.0
         nr = 1
+        nreal = 1
         degenerate = True
+    elif fold is not None:
+        nreal = int(fold[2])  # then the fold positions' joint-3 values
     # cand: (q₂, g₁, g₂, g₃) per candidate
     n = 0
+    nexact = -1
     for ir in range(nr):
+        if ir == nreal:
+            nexact = n
         x3 = roots3[ir]
         c3, s3 = (math.cos(x3), math.sin(x3)) if rev3 else (0.0, 0.0)
         f1 = _val(cf, _F, x3, rev3, c3, s3)
@@ -528,7 +579,7 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
             else:
                 q[0] = Wz - cf[_D0] - g3
             q[1], q[2] = cand[ic, 0], q3
-            if check:
+            if check and ir < nreal:
                 _angles(cf, q, th, dd)
                 _wrist_point(cf, th, dd, p)
                 err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
@@ -560,22 +611,33 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
                 TH[n, j] = th[j]
             degen[n] = degenerate or singular1
             n += 1
+    if fold is not None:
+        fold[2] = n if nexact < 0 else nexact
     return n
 
 
 @njit
 def _pieper(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarray, q4_ref: float, Q: np.ndarray,
-            codes: np.ndarray, degen: np.ndarray, s: tuple, reach_short: Any) -> int:
+            codes: np.ndarray, degen: np.ndarray, s: tuple, fold: Any) -> int:
     """Pieper's method (every case of :func:`_pieper_position`, then the wrist's two branches
     of each position): raw rows into Q, codes, degen; their count. ``s``: the scratch of
-    :func:`_scratch`; ``reach_short``: None, or :func:`_wrist_angles`'s (None compiles none of it)."""
+    :func:`_scratch`; ``fold``: None (compiles none of it), or the calibrated IK's (3,) float64:
+    entry 0 the least shortfall of a wrist (:func:`_wrist_angles`; the caller sets it to inf),
+    entry 1 set (1.0) by the caller for fold starts (``FOLD_STARTS``), entry 2 scratch."""
     F6, F4, F3, I3, iw, bw, fw = s
     Q3, TH, wa = F3[0:MAX_ROWS], F3[MAX_ROWS:2 * MAX_ROWS], F3[2 * MAX_ROWS:2 * MAX_ROWS + 2]
     CS, pcodes, flips, pdegen = F6[MAX_ROWS:], I3[MAX_ROWS:], iw[6:8], bw[MAX_ROWS:]
-    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw, F4[8:10])
+    npos = _pieper_position(ci, cf, C, T, Q3, pcodes, pdegen, TH, CS, fw, F4[8:10], fold)
+    nexact = npos
+    if fold is not None:
+        nexact = int(fold[2])  # the positions from here on are fold starts
     n = 0
     for b in range(npos):
-        nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips, reach_short)
+        nw = _wrist_angles(cf, CS[b], T, q4_ref, wa, flips, fold)
+        if b >= nexact:
+            for k in range(nw):
+                if flips[k] < FOLD_CODE:
+                    flips[k] += FOLD_CODE
         for k in range(nw):
             if n >= Q.shape[0]:
                 break
@@ -599,7 +661,7 @@ def pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray,
     degen = np.empty(MAX_ROWS, dtype=np.bool_)
     TH = np.empty((MAX_ROWS, 3))
     n = _pieper_position(ci, cf, C, T06, Q3, codes, degen, TH, np.empty((MAX_ROWS, 6)), np.empty(_POS_WORK),
-                         np.empty((2, 4)))
+                         np.empty((2, 4)), None)
     return Q3[:n].copy(), codes[:n].copy(), degen[:n].copy(), TH[:n].copy()
 
 

@@ -255,48 +255,59 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
         assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
 
 
-@pytest.mark.xfail(strict=True, reason="known gap (#43): a wrist whose twists are not right angles, within about "
-                   "0.07 rad of its fold (θ₅ near 0 or π), where the projected arm's wrist just cannot reach the "
-                   "orientation but the calibrated arm can: the closed form gives that position no row, so no start "
-                   "and no search (a warning says so: the next test)")
-@pytest.mark.parametrize("q", [[-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749],
-                               [-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549]])
-def test_a_wrist_at_its_fold_on_a_random_pieper_arm_is_solved(arms, q):
-    """The suite's calibrated random Pieper arm (twists 0.4–2.7 rad) at two of 290 random configurations
-    (``default_rng(100)``), θ₅ 0.069 rad from π and 0.019 rad from 0: the generating configuration and
-    its fold partner are solutions of the arm (the sweep finds both) that ``ik_analytic`` does not
-    return; a warning says so (the next test; the projected arm's |cos θ₅| is over 1 by 0.0067 and
-    0.0127 there). About half of the roots a 500-seed sweep finds and the calibrated path misses on the
-    benchmark's Pieper arm are at such wrist folds; ``python -m benchmarks.calibrated_completeness`` measures the rates of all three
-    benchmark arms (docs/course/calibration.md). Strict: it fails once fixed, and then this marker goes."""
+def fold_starts(robot, T):
+    """(fold starts, positions at a fold of the joint-3 quartic, the least |cos θ₅| − 1 of a wrist
+    that cannot reach the orientation) of the projected arm's closed form for the calibrated IK at T
+    (robokit.kernels.closed_form.FOLD_STARTS, FOLD_IMAG)."""
+    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
+
+    arm = AnalyticIK(robot).calibrated
+    if arm._kind != kcf.PIEPER:
+        return 0, 0, math.inf
+    Kn = arm._KC[kci._LEN:]
+    ci, cf, C, post, T06, raw, codes, degen, qq, s = kcf._unpack(Kn, np.ascontiguousarray(T))
+    fold = np.array([np.inf, 1.0, 0.0])
+    n = kcf._pieper(ci, cf, C, T06, 0.0, raw, codes, degen, s, fold)
+    npos = kcf._pieper_position(ci, cf, C, T06, np.empty((16, 3)), np.empty((16, 2), np.int64),
+                                np.empty(16, np.bool_), np.empty((16, 3)), np.empty((16, 6)), np.empty(50),
+                                np.empty((2, 4)), fold)
+    short = float(fold[0])
+    return int(np.count_nonzero(codes[:n, 2] >= kcf.FOLD_CODE)), npos - int(fold[2]), short
+
+
+@pytest.mark.parametrize("q, kind", [
+    ([-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749], "wrist"),
+    ([-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549], "wrist"),
+    ([2.77168411, -2.64416587, -0.9922712, -1.6423832, 1.06845144, 0.08160235], "position"),
+    ([0.97330175, -2.90717693, 2.66603332, -2.18466807, -0.87936399, 1.97750766], "position")])
+def test_a_pose_at_a_fold_of_the_nominal_structure_is_solved(arms, q, kind):
+    """The suite's calibrated random Pieper arm (twists 0.4–2.7 rad) at four random configurations where
+    the projected arm (the nominal structure) just has no root but the arm itself has two: at a wrist's
+    fold (``default_rng(100)``: θ₅ 0.069 rad from π and 0.019 rad from 0; the projected arm's oblique
+    wrist misses the orientation by |cos θ₅| − 1 = 0.0067 and 0.0127) and at a fold of the position's
+    joint-3 quartic (``default_rng(400)``, draws 803 and 1234: two of its roots a complex pair near the
+    real line). Before the fold starts the calibrated path did not return the generating configuration
+    there. Now: the projected arm gives fold starts of that kind; the generating configuration is
+    returned, flagged degenerate (a root next to its fold partner); every solution is exact; the
+    500-start sweep finds nothing else; and the set is the general 6R method's (``nominal=False``, an
+    independent algorithm: the eigenvalues of Raghavan and Roth's matrix)."""
     nominal, robot = arms["pieper"]
     q = np.array(q)
     T = robot.frame_pose(q)
-    sols = ik_analytic(robot, T)
+    from robokit.kernels.closed_form import FOLD_STARTS
+
+    rows, fold_positions, short = fold_starts(robot, T)
+    assert rows > 0 and (short <= FOLD_STARTS if kind == "wrist" else fold_positions > 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)  # (near a singular configuration: a fold)
+        sols = ik_analytic(robot, T)
+        general = ik_analytic(robot, T, nominal=False)
     check(robot, q, T, sols)
+    assert [s.degenerate for s in sols if angle_dist(s.q, q) < 1e-7] == [True]
     assert_none_missed(robot, T, sols)
-
-
-@pytest.mark.parametrize("q, short", [([-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749], 0.0067),
-                                      ([-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549], 0.013)])
-def test_a_wrist_near_its_fold_says_a_solution_may_be_missing(arms, q, short):
-    """The two poses above: what is missing is said (RobokitWarning, naming by how much the nominal
-    structure's wrist misses: |cos θ₅| − 1, below FOLD_WARN), every returned solution is exact, and
-    the general 6R method the warning names returns the generating configuration."""
-    from robokit.kernels.calibrated_ik import FOLD_WARN
-
-    nominal, robot = arms["pieper"]
-    q = np.array(q)
-    T = robot.frame_pose(q)
-    with pytest.warns(RobokitWarning, match="near the wrist's fold") as said:
-        sols = AnalyticIK(robot).solve(T)  # a fresh object: it has not warned yet (said once per arm)
-    text = next(str(w.message) for w in said if "near the wrist's fold" in str(w.message))
-    said_short = float(text.split("− 1 = ")[1].split(",")[0])
-    assert said_short == pytest.approx(short, abs=1e-3) and said_short <= FOLD_WARN
-    for s in sols:
-        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
-    general = ik_analytic(robot, T, nominal=False)
-    assert min(angle_dist(s.q, q) for s in general) < 1e-7
+    assert len(general) == len(sols)
+    for g in general:
+        assert min(angle_dist(g.q, s.q) for s in sols) < 1e-7
 
 
 @pytest.mark.parametrize("name, q", [
@@ -375,29 +386,33 @@ def _projected_rows(Kn, method, T, wrist_ref, out):
     return solve(Kn, T, wrist_ref, out)
 
 
-def relaxed_starts(arm, T):
+def relaxed_starts(arm, robot, T):
     """The branch codes of the starts, as the kernel's plan states it without shortcuts: the
     projected arm's closed form at T, then in full at every relaxed pose (``RELAX``), each code
-    the starts lack appended in that order."""
+    the starts lack appended in that order, while 8 of the 16 rows stay free (the fold starts,
+    polished last, take rows too); and the number of fold starts."""
     from robokit.kernels import calibrated_ik as kci
 
     C, Kn = arm._KC[:kci._LEN], arm._KC[kci._LEN:]
     out = np.empty((16, 9))
     m = _projected_rows(Kn, arm._kind, T, 0.0, out)
+    nfold = fold_starts(robot, T)[0]
     codes = [float(c) for c in out[:m, 7]]
     if m >= kci.GENERIC_ROWS:
-        return codes, m
+        return codes, m, nfold
     shoulder, reach = C[kci._SHOULDER:kci._REACH], C[kci._REACH]
     dist = math.sqrt(float(((T[:3, 3] - shoulder) ** 2).sum()))
     for f in kci.RELAX:
+        if len(codes) + nfold > 16 - 8:
+            break
         Tr = T.copy()
         for r in range(3):
             Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
         me = _projected_rows(Kn, arm._kind, Tr, 0.0, out)
         for c in out[:me, 7]:
-            if float(c) not in codes and len(codes) < 16:
+            if float(c) not in codes and len(codes) < 16 - nfold:
                 codes.append(float(c))
-    return codes, m
+    return codes, m, nfold
 
 
 @pytest.mark.parametrize("name", ["ur5", "pieper", "pieper7", "pieper9"])
@@ -405,8 +420,9 @@ def test_relaxed_poses_left_out_add_no_branch(arms, name):
     """Where the projected arm gives fewer than 8 branches, the kernel solves a relaxed pose only
     when it may add a branch (``_relax_mask``: Pieper's position labels and wrist reach; a relaxed
     pose's rows finished only when they hold a new code): its starts are exactly those of solving
-    every relaxed pose in full, in the same order. Not vacuous: poses with relaxed branches added,
-    and (Pieper) relaxed poses left out, both occur."""
+    every relaxed pose in full, in the same order; after them come only the fold starts' new
+    solutions. Not vacuous: poses with relaxed branches added, and (Pieper) relaxed poses left out,
+    both occur."""
     from robokit.kernels import calibrated_ik as kci
 
     if name in arms:
@@ -421,24 +437,25 @@ def test_relaxed_poses_left_out_add_no_branch(arms, name):
     short = added = skipped = 0
     for _ in range(150):
         T = np.ascontiguousarray(robot.frame_pose(robot.random_configuration(rng)))
-        expected, m = relaxed_starts(arm, T)
+        expected, m, nfold = relaxed_starts(arm, robot, T)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RobokitWarning)
             kci.calibrated_solve_into(arm._KC, arm._kind, T, 0.0, out, work)
         branches = work[kci.BRANCH_ROWS]
         got = [float(c) for c in branches[branches[:, 0] >= 0.0, 0]]
-        assert got == expected
+        assert got[:len(expected)] == expected
+        extra = branches[len(expected):len(got)]
+        assert len(extra) <= nfold and np.all(extra[:, 1] == kci.SOLUTION)
         if m < kci.GENERIC_ROWS:
             short += 1
             added += len(expected) > m
-            codes, degens = np.zeros(18), np.zeros(18)
+            codes = np.zeros(18)
             codes[:m] = expected[:m]
             first = np.empty((16, 9))
             _projected_rows(arm._KC[kci._LEN:], arm._kind, T, 0.0, first)
-            degens[:m] = first[:m, 8]
             C = arm._KC[:kci._LEN]
             mask = kci._relax_mask(arm._KC[kci._LEN:], arm._kind, T, C[kci._SHOULDER:kci._REACH], C[kci._REACH], m,
-                                   codes, degens, np.zeros((7, 6)))
+                                   codes, bool(np.any(first[:m, 8] != 0.0)), np.zeros((7, 6)))
             skipped += mask != (1 << len(kci.RELAX)) - 1
     assert short >= 10 and added >= 1
     if name.startswith("pieper"):

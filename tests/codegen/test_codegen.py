@@ -611,6 +611,56 @@ def test_quartic_root_finder_against_numpy(cc, tmp_path):
             assert np.min(np.abs(got - x)) <= 1e-6 * (1 + abs(x)), (c, real, got)
 
 
+def test_quartic_fold_starts_against_numpy(cc, tmp_path):
+    """The calibrated arm's quartic solver also gives the real parts of the complex pairs near the real
+    line (its fold starts: |Im 2 atan(t)| within closed_form.FOLD_IMAG), increasing: against numpy's
+    companion-matrix roots and robokit's own kernel (``closed_form._roots``) on random quartics with a
+    pair placed near the real line."""
+    import ctypes
+    import types
+
+    from robokit.codegen.ik import _Emitter, _Tol
+    from robokit.kernels import closed_form as kcf
+
+    e = _Emitter.__new__(_Emitter)
+    e.P, e.tol, e.fold = "t", _Tol(False), True
+    e.k = types.SimpleNamespace(pieper=types.SimpleNamespace(kinds="RRRRRR"),
+                                calibrated={"fold_imag": kcf.FOLD_IMAG})
+    code = ("#include <math.h>\n#include <string.h>\n" + e.poly_helpers()
+            + "\nint near4(const double c[5], double out[4], double near[2])\n{\n    int nn;\n"
+              "    return t_quartic_roots(c, out, near, &nn) < 0 ? -1 : nn;\n}\n")
+    (tmp_path / "q.c").write_text(code)
+    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(tmp_path / "q.c"),
+                    "-o", str(tmp_path / "q.so"), "-lm"], check=True)
+    lib = ctypes.CDLL(str(tmp_path / "q.so"))
+    P = ctypes.POINTER(ctypes.c_double)
+    rng = np.random.default_rng(6)
+    checked = near_found = 0
+    for _ in range(400):
+        a, b = rng.normal(), 10.0 ** rng.uniform(-3, 0)  # a pair a ± ib, and two more roots (real or a pair)
+        rest = rng.normal(size=2) if rng.uniform() < 0.5 else rng.normal() + np.array([1j, -1j]) * rng.uniform(0.01, 2)
+        c = np.ascontiguousarray(np.real(np.poly([a + 1j * b, a - 1j * b, *rest]))[::-1] * rng.uniform(0.5, 5))
+        out, near = np.zeros(4), np.zeros(2)
+        nn = lib.near4(c.ctypes.data_as(P), out.ctypes.data_as(P), near.ctypes.data_as(P))
+        if nn < 0:
+            continue  # (Ferrari not trusted: the numerical fallback, which gives no fold starts)
+        ref = np.roots(c[::-1])
+        im = np.abs(np.arctanh(np.minimum(2 * ref.imag / (1 + ref.real ** 2 + ref.imag ** 2), 1 - 1e-16)))
+        sure = (ref.imag > 1e-6 * (1 + np.abs(ref.real))) & (np.abs(im - kcf.FOLD_IMAG) > 1e-9)
+        want = np.sort(ref.real[sure & (im < kcf.FOLD_IMAG)])
+        if np.any((ref.imag > 0) & (np.abs(im - kcf.FOLD_IMAG) <= 1e-9)):
+            continue  # on the margin itself: either answer is right
+        checked += 1
+        near_found += len(want) > 0
+        assert nn == len(want), (c, ref, near[:nn])
+        assert np.allclose(near[:nn], want, rtol=1e-6, atol=1e-9)
+        fold, roots = np.array([np.inf, 1.0, 0.0]), np.zeros(6)  # the kernel's (its x3 = 2 atan t)
+        n = kcf._roots(c, 4, True, roots, fold)
+        assert n - int(fold[2]) == nn
+        assert np.allclose(roots[int(fold[2]):n], 2 * np.arctan(want), atol=1e-9)
+    assert checked >= 300 and near_found >= 100
+
+
 @pytest.mark.parametrize("arm", ["puma_offset", "ur5_tilt"])
 def test_general_6r_almost_special_arms(build, arm, tmp_path, cc):
     """Special arms made general by a tiny change — the PUMA's axes 4 and 5 1 µm apart, the UR5's
@@ -684,7 +734,8 @@ def calibrated_arms():
 @pytest.mark.parametrize("name", ["puma560", "ur5", "pieper"])
 def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
     """NAME_ik of a calibrated arm: the projected arm's closed form and Newton's method on NAME_fk give
-    ik_analytic's solutions, in its order, to 1e-9 — near-singular poses (θ₅ within 2 mrad) included."""
+    ik_analytic's solutions, in its order, to 1e-9 — near-singular poses (θ₅ within 2 mrad) included, and (the
+    Pieper arm) four poses where fold starts give solutions."""
     robot = calibrated_arms[name]
     assert ik_analytic_kind(robot).method.startswith("calibrated")
     lib = build(robot)
@@ -695,9 +746,27 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         q = robot.random_configuration(rng)
         q[4] = rng.uniform(-2e-3, 2e-3)
         poses.append(robot.frame_pose(q))
+    if name == "pieper":  # and poses whose solutions include a fold start's (default_rng(500), these draws)
+        rng = np.random.default_rng(500)
+        draws = [robot.random_configuration(rng) for _ in range(2715)]
+        folds = [robot.frame_pose(draws[i]) for i in (525, 1379, 1588, 2714)]
+        assert all(fold_rows(robot, T) > 0 for T in folds)
+        poses += folds
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", robokit.RobokitWarning)
         check_ik(robot, lib, poses)
+
+
+def fold_rows(robot, T):
+    """How many fold starts (robokit.kernels.closed_form.FOLD_STARTS, FOLD_IMAG) the projected arm's closed
+    form gives the calibrated IK at T."""
+    from robokit.ik.closed_form import AnalyticIK
+    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
+
+    Kn = AnalyticIK(robot).calibrated._KC[kci._LEN:]
+    ci, cf, C, post, T06, raw, codes, degen, qq, s = kcf._unpack(Kn, np.ascontiguousarray(T))
+    n = kcf._pieper(ci, cf, C, T06, 0.0, raw, codes, degen, s, np.array([np.inf, 1.0, 0.0]))
+    return int(np.count_nonzero(codes[:n, 2] >= kcf.FOLD_CODE))
 
 
 @pytest.mark.parametrize("name", ["puma560", "ur5"])
