@@ -574,6 +574,17 @@ def test_general_6r_float32_has_no_ik_and_says_why(jaco, build, nm):
         assert undefined <= MATH, undefined - MATH
 
 
+def _poly_library(cc, folder, e, entry):
+    """The emitter ``e``'s polynomial helpers (prefix ``t``) with the C function ``entry``, compiled and loaded."""
+    import ctypes
+
+    code = "#include <math.h>\n#include <string.h>\n" + e.poly_helpers() + "\n" + entry
+    (folder / "q.c").write_text(code)
+    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(folder / "q.c"),
+                    "-o", str(folder / "q.so"), "-lm"], check=True)
+    return ctypes.CDLL(str(folder / "q.so"))
+
+
 def test_quartic_root_finder_against_numpy(cc, tmp_path):
     """The generated quartic solver (Ferrari's closed form, its numerical fallback for nearly
     biquadratic quartics) against numpy's companion-matrix roots: random quartics, biquadratics
@@ -584,13 +595,8 @@ def test_quartic_root_finder_against_numpy(cc, tmp_path):
 
     e = _Emitter.__new__(_Emitter)
     e.P, e.tol = "t", _Tol(False)
-    code = ("#include <math.h>\n#include <string.h>\n" + e.poly_helpers()
-            + "\nint roots4(const double c[5], double out[5])\n{\n    int n = t_quartic_roots(c, out);\n"
-              "    return n >= 0 ? n : t_real_roots(c, 4, out, 1e-15);\n}\n")
-    (tmp_path / "q.c").write_text(code)
-    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(tmp_path / "q.c"),
-                    "-o", str(tmp_path / "q.so"), "-lm"], check=True)
-    lib = ctypes.CDLL(str(tmp_path / "q.so"))
+    lib = _poly_library(cc, tmp_path, e, "int roots4(const double c[5], double out[5])\n{\n"
+                        "    int n = t_quartic_roots(c, out);\n    return n >= 0 ? n : t_real_roots(c, 4, out, 1e-15);\n}\n")
     P = ctypes.POINTER(ctypes.c_double)
     rng = np.random.default_rng(5)
     cases = [rng.normal(size=5) * 10.0 ** rng.uniform(-2, 2) for _ in range(300)]
@@ -626,13 +632,8 @@ def test_quartic_fold_starts_against_numpy(cc, tmp_path):
     e.P, e.tol, e.fold = "t", _Tol(False), True
     e.k = types.SimpleNamespace(pieper=types.SimpleNamespace(kinds="RRRRRR"),
                                 calibrated={"fold_imag": kcf.FOLD_IMAG})
-    code = ("#include <math.h>\n#include <string.h>\n" + e.poly_helpers()
-            + "\nint near4(const double c[5], double out[4], double near[2])\n{\n    int nn;\n"
-              "    return t_quartic_roots(c, out, near, &nn) < 0 ? -1 : nn;\n}\n")
-    (tmp_path / "q.c").write_text(code)
-    subprocess.run([cc, "-std=c99", "-O1", "-fPIC", "-shared", "-Wno-unused-function", str(tmp_path / "q.c"),
-                    "-o", str(tmp_path / "q.so"), "-lm"], check=True)
-    lib = ctypes.CDLL(str(tmp_path / "q.so"))
+    lib = _poly_library(cc, tmp_path, e, "int near4(const double c[5], double out[4], double near[2])\n{\n"
+                        "    int nn;\n    return t_quartic_roots(c, out, near, &nn) < 0 ? -1 : nn;\n}\n")
     P = ctypes.POINTER(ctypes.c_double)
     rng = np.random.default_rng(6)
     checked = near_found = 0
