@@ -1170,15 +1170,15 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
     q3 = _f([(1.0, "x3")], -th0[2]) if kind3 == "R" else "x3"
     accept = _pieper_accept(e, sv)
     if e.fold:  # fold starts (robokit.kernels.closed_form.FOLD_STARTS): flagged 3, their wrist code less 3
+        # nreal: the joint-3 values before the fold positions' (all of them until the quartic's roots set it)
         if sv.deg == 4:
-            decl = "\n    double tsn[2];\n    int nn = 0, nreal = 0;\n    (void)tsn;"
+            decl = "\n    double tsn[2];\n    int nn = 0, nreal = 1 << 30;\n    (void)tsn;"
+            accept = "            if (!fpos) {\n" + "\n".join("    " + ln for ln in accept.splitlines()) + "\n            }"
         else:
             decl = "\n    const int nreal = 1 << 30;  /* (no fold positions: no quartic) */"
         fold_pos = "            const int fpos = i3 >= nreal;  /* a fold position: unchecked */\n"
         assert e.k.calibrated is not None  # (the fold starts are the calibrated arm's)
         fc = int(e.k.calibrated["fold_code"])
-        if sv.deg == 4:
-            accept = "            if (!fpos) {\n" + "\n".join("    " + ln for ln in accept.splitlines()) + "\n            }"
         wrist = f"nw = {P}_wrist(th, R06, ref, wr, fl, fold);"
         rowflags = f"""                const int fs = fpos || fl[iw] >= {fc};
                 const int wc = fl[iw] >= {fc} ? fl[iw] - {fc} : fl[iw];

@@ -1327,7 +1327,6 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                 continue  # its rows are branches the starts have (_relax_mask)
             if m + nfold > R - 8:
                 break  # as the generated C, whose rows (the fold starts' too) leave 8 free for a relaxed solve's
-
             f = RELAX[i]
             for r in range(4):
                 for c in range(4):
@@ -1500,8 +1499,7 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     n = _cf._finish(ci_r, post_q, rows, rcodes, rdegen, ns, out, qq)
     status = work[STATUS]
     status[0], status[1], status[2] = merged, vanished, sigma
-    flagged = merged or vanished or sigma <= SIGMA_EXPLORE
-    return n + FLAGGED if flagged else n
+    return n + FLAGGED if merged or vanished or sigma <= SIGMA_EXPLORE else n
 
 
 def solve_into_entry() -> Any:
