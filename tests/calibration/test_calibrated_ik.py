@@ -29,6 +29,7 @@ import pytest
 
 import robokit
 from shared_robots import robot as shared_robot
+from calibrated_folds import fold_starts
 from robokit.calibration import chain_from_robot, robot_from_chain
 from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError, RobokitWarning
@@ -253,26 +254,6 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
     assert min(scaled_sigma(s.q) for s in sols) <= SIGMA_EXPLORE
     for s in sols:
         assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
-
-
-def fold_starts(robot, T):
-    """(fold starts, positions at a fold of the joint-3 quartic, the least |cos θ₅| − 1 of a wrist
-    that cannot reach the orientation) of the projected arm's closed form for the calibrated IK at T
-    (robokit.kernels.closed_form.FOLD_STARTS, FOLD_IMAG)."""
-    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
-
-    arm = AnalyticIK(robot).calibrated
-    if arm._kind != kcf.PIEPER:
-        return 0, 0, math.inf
-    Kn = arm._KC[kci._LEN:]
-    ci, cf, C, post, T06, raw, codes, degen, qq, s = kcf._unpack(Kn, np.ascontiguousarray(T))
-    fold = np.array([np.inf, 1.0, 0.0])
-    n = kcf._pieper(ci, cf, C, T06, 0.0, raw, codes, degen, s, fold)
-    npos = kcf._pieper_position(ci, cf, C, T06, np.empty((16, 3)), np.empty((16, 2), np.int64),
-                                np.empty(16, np.bool_), np.empty((16, 3)), np.empty((16, 6)), np.empty(50),
-                                np.empty((2, 4)), fold)
-    short = float(fold[0])
-    return int(np.count_nonzero(codes[:n, 2] >= kcf.FOLD_CODE)), npos - int(fold[2]), short
 
 
 @pytest.mark.parametrize("q, kind", [

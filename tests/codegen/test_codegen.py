@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 import robokit
 from shared_robots import robot as shared_robot
+from calibrated_folds import fold_starts
 from robokit.cli import main
 from robokit.codegen import c_name, generate_c, write_c
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
@@ -751,23 +752,11 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         rng = np.random.default_rng(500)
         draws = [robot.random_configuration(rng) for _ in range(2715)]
         folds = [robot.frame_pose(draws[i]) for i in (525, 1379, 1588, 2714)]
-        assert all(fold_rows(robot, T) > 0 for T in folds)
+        assert all(fold_starts(robot, T)[0] > 0 for T in folds)
         poses += folds
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", robokit.RobokitWarning)
         check_ik(robot, lib, poses)
-
-
-def fold_rows(robot, T):
-    """How many fold starts (robokit.kernels.closed_form.FOLD_STARTS, FOLD_IMAG) the projected arm's closed
-    form gives the calibrated IK at T."""
-    from robokit.ik.closed_form import AnalyticIK
-    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
-
-    Kn = AnalyticIK(robot).calibrated._KC[kci._LEN:]
-    ci, cf, C, post, T06, raw, codes, degen, qq, s = kcf._unpack(Kn, np.ascontiguousarray(T))
-    n = kcf._pieper(ci, cf, C, T06, 0.0, raw, codes, degen, s, np.array([np.inf, 1.0, 0.0]))
-    return int(np.count_nonzero(codes[:n, 2] >= kcf.FOLD_CODE))
 
 
 @pytest.mark.parametrize("name", ["puma560", "ur5"])
