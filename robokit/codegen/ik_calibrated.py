@@ -15,8 +15,14 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
    Levenberg–Marquardt steps where a step fails, steps no longer than ``MAX_STEP``;
 3. a start that reaches a solution found already, or none, tried again from the mirrored start;
    merged branches flag their solution degenerate;
-4. around solutions the polish moved far, vanished branches and singular choices: the roots along
-   the near-singular direction (inverse iteration on ``J̃ᵀJ̃``) from the kernel's ``EXPLORE_STEPS``;
+4. the near-singular search from the same points as the kernel's (solutions the polish moved far,
+   vanished branches, singular choices; every branch's solution where the pose is near singular):
+   the roots along the near-singular direction (inverse iteration on ``J̃ᵀJ̃``) from the kernel's
+   ``EXPLORE_STEPS``, then along the curve of near-solutions (``NAME_cal_trace_step``: predictor
+   along that direction, Gauss–Newton across it; its point, directions and last error norms in
+   ``TRACE_ROWS`` free rows of ``q``). In float32 neither the curve nor the branches' solutions are
+   searched (the error along that curve is below float's tolerance: its points would pass for roots),
+   so near singular poses float32 can return fewer solutions than double;
 5. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
 
 For a small stack (an RTOS task's 2 KB on a Cortex-M4) the starts, the search points and the
@@ -97,12 +103,31 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     t = tol
     R = lit(float(c["reach"]))
     fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
+    # the curve of near-solutions is followed, and the branches' solutions are search points, in double
+    # only: in float the pose error along that curve is below float's tolerance, so its points would
+    # pass for roots (float's condition asks for more free rows than there are; its search points are
+    # those of the starts)
+    trace_free = max_rows if tol.float32 else int(c["trace_rows"])
+    solutions_searched = "0 * nsol" if tol.float32 else "nsol"
+    # the 3 x 3 block factorization, emitted twice: for the polish and for the bound at the first solution
+    # (each copy is inlined into its one caller, so the polish's frame does not grow by a call)
+    block_factor = _block_factor_code(P, c, "", "")
+    block_factor2 = _block_factor_code(P, c, "2", "/* the same for {P}_cal_sigma_bound */\n".replace("{P}", P))
     src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
+/* the near-singular search follows the curve of near-solutions (as robokit's ik_analytic): a pose near a
+   singular configuration can then take 5-100x a common pose's time. Compile with
+   -D{P}_IK_CURVE_SEARCH=0 for a shorter worst case (the solutions only the curve search finds are then
+   missing; the others are unchanged) */
+#ifndef {P}_IK_CURVE_SEARCH
+#define {P}_IK_CURVE_SEARCH 1
+#endif
 /* not inlined (gcc, clang): the frames of the search's helpers do not add up along {P}_ik_ex's call path */
 #if defined(__GNUC__)
 #define {P}_CAL_NOINLINE __attribute__((noinline))
+#define {P}_CAL_INLINE __attribute__((always_inline)) inline
 #else
 #define {P}_CAL_NOINLINE
+#define {P}_CAL_INLINE
 #endif
 /* the spatial twist that moves T to Td (robokit.kernels.calibrated_ik._error): with A = Rd R^T,
    s = vee(A - A^T)/2 = sin(theta) u and dp = pd - p: near Td (|s| < LOG_NEAR, trace(A) > 1) the log of
@@ -217,45 +242,7 @@ static double {P}_cal_inverse3(const double *M, int r0, int c0, double *out, int
     return det;
 }}
 
-/* J (omega rows 0-2, v rows 3-5) factored by 3 x 3 blocks into B (6 x 6): pivot block D = the omega rows
-   of joints p..p+2 spanning the larger volume (p = 3 or 0), the other joints o = 3 - p; B[0:3, 0:3] = D^-1,
-   B[0:3, 3:6] = K = D^-1 J_w,o, B[3:6, 0:3] = S^-1 with S = J_v,o - J_v,p K; *p returned; 0 when D or S
-   is near singular */
-static int {P}_cal_block_factor(const double J[36], double B[36], int *pp)
-{{
-    const double dw = J[3] * (J[10] * J[17] - J[11] * J[16]) - J[4] * (J[9] * J[17] - J[11] * J[15])
-        + J[5] * (J[9] * J[16] - J[10] * J[15]);
-    const double da = J[0] * (J[7] * J[14] - J[8] * J[13]) - J[1] * (J[6] * J[14] - J[8] * J[12])
-        + J[2] * (J[6] * J[13] - J[7] * J[12]);
-    const int p = fabs(dw) >= fabs(da) ? 3 : 0, o = 3 - p;
-    double s = 0.0, det;
-    int r, cc;
-    if (!((fabs(dw) > fabs(da) ? fabs(dw) : fabs(da)) >= {lit(float(c["block_axes"]))})) {{
-        return 0;
-    }}
-    (void){P}_cal_inverse3(J, 0, p, B, 0);
-    for (r = 0; r < 3; ++r) {{
-        for (cc = 0; cc < 3; ++cc) {{
-            B[6 * r + 3 + cc] = B[6 * r] * J[o + cc] + B[6 * r + 1] * J[6 + o + cc] + B[6 * r + 2] * J[12 + o + cc];
-        }}
-    }}
-    for (r = 0; r < 3; ++r) {{
-        for (cc = 0; cc < 3; ++cc) {{
-            const double v = J[6 * (3 + r) + o + cc] - (J[6 * (3 + r) + p] * B[3 + cc] + J[6 * (3 + r) + p + 1] * B[9 + cc]
-                                                        + J[6 * (3 + r) + p + 2] * B[15 + cc]);
-            B[6 * (3 + r) + 3 + cc] = v;
-            s += v * v;
-        }}
-    }}
-    det = {P}_cal_inverse3(B, 3, 3, B, 18);
-    if (!(fabs(det) >= {lit(float(c["block_schur"]))} * s * sqrt(s))) {{
-        return 0;
-    }}
-    *pp = p;
-    return 1;
-}}
-
-/* x = J^-1 e from {P}_cal_block_factor's B and p (x may be e: e is read before x is written) */
+{block_factor}{block_factor2}/* x = J^-1 e from {P}_cal_block_factor's B and p (x may be e: e is read before x is written) */
 static void {P}_cal_block_solve(const double J[36], const double B[36], int p, const double *e, double *x)
 {{
     const int o = 3 - p;
@@ -393,45 +380,71 @@ static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6
     return 1;
 }}
 
-/* x = H^-1 b by Cholesky (H symmetric 6 x 6), in place: H's lower triangle becomes L (its upper
-   triangle is not read); x may be b; 0 when H is not positive definite */
-static int {P}_cal_cholesky(double H[36], const double b[6], double x[6])
+/* H = L L^T in place (H symmetric 6 x 6; its lower triangle becomes L, the diagonal stored as
+   reciprocals); 0 when H is not positive definite */
+static int {P}_cal_chol_factor(double H[36])
 {{
-    double *const L = H;
     int i, j, kk;
     for (j = 0; j < 6; ++j) {{
-        double s = H[6 * j + j], d;
+        double s = H[6 * j + j], inv;
         for (kk = 0; kk < j; ++kk) {{
-            s -= L[6 * j + kk] * L[6 * j + kk];
+            s -= H[6 * j + kk] * H[6 * j + kk];
         }}
         if (!(s > 0.0)) {{
             return 0;
         }}
-        d = sqrt(s);
-        L[6 * j + j] = d;
+        inv = 1.0 / sqrt(s);
+        H[6 * j + j] = inv;
         for (i = j + 1; i < 6; ++i) {{
             s = H[6 * i + j];
             for (kk = 0; kk < j; ++kk) {{
-                s -= L[6 * i + kk] * L[6 * j + kk];
+                s -= H[6 * i + kk] * H[6 * j + kk];
             }}
-            L[6 * i + j] = s / d;
+            H[6 * i + j] = s * inv;
         }}
     }}
+    return 1;
+}}
+
+/* x = (L L^T)^-1 b from {P}_cal_chol_factor's L (x may be b) */
+static void {P}_cal_chol_solve(const double L[36], const double b[6], double x[6])
+{{
+    int i, kk;
     for (i = 0; i < 6; ++i) {{
         double s = b[i];
         for (kk = 0; kk < i; ++kk) {{
             s -= L[6 * i + kk] * x[kk];
         }}
-        x[i] = s / L[6 * i + i];
+        x[i] = s * L[6 * i + i];
     }}
     for (i = 5; i >= 0; --i) {{
         double s = x[i];
         for (kk = i + 1; kk < 6; ++kk) {{
             s -= L[6 * kk + i] * x[kk];
         }}
-        x[i] = s / L[6 * i + i];
+        x[i] = s * L[6 * i + i];
     }}
-    return 1;
+}}
+
+/* H = J^T J and g = J^T F (J 6 x 6): the normal equations of J x = F */
+static void {P}_cal_normal(const double J[36], const double F[6], double H[36], double g[6])
+{{
+    int i, j, r;
+    for (i = 0; i < 6; ++i) {{
+        double acc = 0.0;
+        for (r = 0; r < 6; ++r) {{
+            acc += J[6 * r + i] * F[r];
+        }}
+        g[i] = acc;
+        for (j = i; j < 6; ++j) {{
+            acc = 0.0;
+            for (r = 0; r < 6; ++r) {{
+                acc += J[6 * r + i] * J[6 * r + j];
+            }}
+            H[6 * i + j] = acc;
+            H[6 * j + i] = acc;
+        }}
+    }}
 }}
 
 /* Newton's method with the second-order correction (Levenberg-Marquardt where a step fails) on the pose
@@ -446,7 +459,7 @@ static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], in
     double J[36], F[6], sc[12], step[6], buf[40];
     double *const T = buf, *const sct = buf + 16, *const Ft = buf + 28, *const trial = buf + 34, *const H = buf;
     double err, lam = 0.0, rt, pt;
-    int it, i, j, r;
+    int it, i;
     for (i = 0; i < 6; ++i) {{
         sc[i] = sin(q[i]);
         sc[6 + i] = cos(q[i]);
@@ -467,32 +480,21 @@ static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], in
             if (lam == 0.0) {{
                 lam = 1e-9;
             }}
+            {P}_cal_normal(J, F, H, g);
             for (i = 0; i < 6; ++i) {{
-                double acc = 0.0;
-                for (r = 0; r < 6; ++r) {{
-                    acc += J[6 * r + i] * F[r];
-                }}
-                g[i] = acc;
-                for (j = i; j < 6; ++j) {{
-                    acc = 0.0;
-                    for (r = 0; r < 6; ++r) {{
-                        acc += J[6 * r + i] * J[6 * r + j];
-                    }}
-                    H[6 * i + j] = acc;
-                    H[6 * j + i] = acc;
-                }}
                 big = H[6 * i + i] > big ? H[6 * i + i] : big;
             }}
             for (i = 0; i < 6; ++i) {{
                 H[6 * i + i] += lam * big;
             }}
-            if (!{P}_cal_cholesky(H, g, step)) {{
+            if (!{P}_cal_chol_factor(H)) {{
                 lam *= 10.0;
                 if (lam > 1e3) {{
                     break;
                 }}
                 continue;
             }}
+            {P}_cal_chol_solve(H, g, step);
         }}
         for (i = 0; i < 6; ++i) {{
             longest = fabs(step[i]) > longest ? fabs(step[i]) : longest;
@@ -533,21 +535,10 @@ static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], in
     }}
 }}
 
-/* the joint direction along which the Jacobian at q is closest to singular: inverse iteration on
-   Jt^T Jt + 1e-12 I, Jt the space Jacobian with its velocity rows divided by the reach */
-static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double v[6])
+/* H = J^T J + 1e-12 I (J 6 x 6) */
+static void {P}_cal_gram(const double J[36], double H[36])
 {{
-    double J[36], H[36], x[6];
-    double *const T = H, *const sc = H + 16;  /* scratch in H until it is built */
-    int i, j, r, it;
-    for (i = 0; i < 6; ++i) {{
-        sc[i] = sin(q[i]);
-        sc[6 + i] = cos(q[i]);
-    }}
-    {P}_cal_fkj(q, sc, T, J);
-    for (r = 18; r < 36; ++r) {{
-        J[r] /= {R};
-    }}
+    int i, j, r;
     for (i = 0; i < 6; ++i) {{
         for (j = i; j < 6; ++j) {{
             double acc = 0.0;
@@ -558,22 +549,68 @@ static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double 
             H[6 * j + i] = acc;
         }}
         H[6 * i + i] += 1e-12;
+    }}
+}}
+
+/* the joint direction along which the Jacobian at q is closest to singular: inverse iteration on
+   H = Jt^T Jt + 1e-12 I (Jt the space Jacobian with its velocity rows divided by the reach), 4 steps
+   from (1, ..., 1) with H^-1 = L^-T L^-1 from one factorization; returns the estimate of Jt's smallest
+   singular value (0 when H is not positive definite) */
+static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double v[6])
+{{
+    double J[36], H[36], L[36], x[6], tmp[6];
+    double *const T = H, *const sc = H + 16;  /* scratch in H until it is built */
+    int i, j, r, it, cc, kk;
+    for (i = 0; i < 6; ++i) {{
+        sc[i] = sin(q[i]);
+        sc[6 + i] = cos(q[i]);
+    }}
+    {P}_cal_fkj(q, sc, T, J);
+    for (r = 18; r < 36; ++r) {{
+        J[r] /= {R};
+    }}
+    {P}_cal_gram(J, H);
+    for (i = 0; i < 36; ++i) {{
+        L[i] = H[i];
+    }}
+    for (i = 0; i < 6; ++i) {{
         v[i] = 1.0;
+    }}
+    if (!{P}_cal_chol_factor(L)) {{
+        return 0.0;
+    }}
+    for (cc = 0; cc < 5; ++cc) {{  /* L^-1 over L, column by column */
+        for (i = cc + 1; i < 6; ++i) {{
+            double acc = 0.0;
+            for (kk = cc; kk < i; ++kk) {{
+                acc += L[6 * i + kk] * (kk > cc ? tmp[kk] : L[6 * cc + cc]);
+            }}
+            tmp[i] = -acc * L[6 * i + i];
+        }}
+        for (i = cc + 1; i < 6; ++i) {{
+            L[6 * i + cc] = tmp[i];
+        }}
     }}
     for (it = 0; it < 4; ++it) {{
         double norm = 0.0;
-        for (i = 0; i < 36; ++i) {{
-            J[i] = H[i];  /* J is free now: the factor of H, in place */
-        }}
-        if (!{P}_cal_cholesky(J, v, x)) {{
-            return 0.0;
+        for (i = 0; i < 6; ++i) {{
+            double acc = 0.0;
+            for (kk = 0; kk <= i; ++kk) {{
+                acc += L[6 * i + kk] * v[kk];
+            }}
+            tmp[i] = acc;
         }}
         for (i = 0; i < 6; ++i) {{
-            norm += x[i] * x[i];
+            double acc = 0.0;
+            for (kk = i; kk < 6; ++kk) {{
+                acc += L[6 * kk + i] * tmp[kk];
+            }}
+            x[i] = acc;
+            norm += acc * acc;
         }}
-        norm = sqrt(norm);
+        norm = 1.0 / sqrt(norm);
         for (i = 0; i < 6; ++i) {{
-            v[i] = x[i] / norm;
+            v[i] = x[i] * norm;
         }}
     }}
     {{
@@ -585,6 +622,145 @@ static {P}_CAL_NOINLINE double {P}_cal_null_direction(const double q[6], double 
         }}
         return sqrt(rq > 0.0 ? rq : 0.0);
     }}
+}}
+
+/* a lower bound of the smallest singular value of Jt at q (robokit.kernels.calibrated_ik._sigma_bound):
+   1 / |Jt^-1|_F, Jt^-1 written out from the block factors, J^-1 = [[D^-1 + K M, -K S^-1], [-M, S^-1]]
+   with M = S^-1 J_v,p D^-1 (its velocity columns times the reach); 0 where J does not factor by blocks */
+static {P}_CAL_NOINLINE double {P}_cal_sigma_bound(const double q[6])
+{{
+    double J[36], B[36], G[18], sc[12];
+    double *const T = G;  /* (16 of G's 18, until J is factored) */
+    double omega = 0.0, vel = 0.0;
+    int i, p, r, cc;
+    for (i = 0; i < 6; ++i) {{
+        sc[i] = sin(q[i]);
+        sc[6 + i] = cos(q[i]);
+    }}
+    {P}_cal_fkj(q, sc, T, J);
+    if (!{P}_cal_block_factor2(J, B, &p)) {{
+        return 0.0;
+    }}
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            G[3 * r + cc] = J[6 * (3 + r) + p] * B[cc] + J[6 * (3 + r) + p + 1] * B[6 + cc]
+                + J[6 * (3 + r) + p + 2] * B[12 + cc];
+        }}
+    }}
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            G[9 + 3 * r + cc] = B[6 * (3 + r)] * G[cc] + B[6 * (3 + r) + 1] * G[3 + cc] + B[6 * (3 + r) + 2] * G[6 + cc];
+        }}
+    }}
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            const double a = B[6 * r + cc] + B[6 * r + 3] * G[9 + cc] + B[6 * r + 4] * G[12 + cc] + B[6 * r + 5] * G[15 + cc];
+            const double b = B[6 * r + 3] * B[18 + cc] + B[6 * r + 4] * B[24 + cc] + B[6 * r + 5] * B[30 + cc];
+            omega += a * a + G[9 + 3 * r + cc] * G[9 + 3 * r + cc];
+            vel += b * b + B[6 * (3 + r) + cc] * B[6 * (3 + r) + cc];
+        }}
+    }}
+    return 1.0 / sqrt(omega + vel * {R} * {R});
+}}
+
+/* one step along the curve of near-solutions (robokit.kernels.calibrated_ik._trace): qp = q, vp = v,
+   q += TRACE_STEP v, then TRACE_PULL Gauss-Newton corrections across v (v updated before the last one
+   to the near-null direction of its Jacobian: two steps of inverse iteration from v, its sign kept);
+   *r = the scaled pose error's norm before the last correction; 0 when a factorization fails */
+static {P}_CAL_NOINLINE int {P}_cal_trace_step(const double Td[16], double q[6], double qp[6], double v[6],
+                                               double vp[6], double *r)
+{{
+    double J[36], H[36], F[6], g[6], y[6], sc[12], rot, pos;
+    double *const T = H;  /* (until H is built) */
+    int i, j, it, k2;
+    for (j = 0; j < 6; ++j) {{
+        qp[j] = q[j];
+        q[j] += {lit(float(c["trace_step"]))} * v[j];
+        vp[j] = v[j];
+    }}
+    for (it = 0; it < {int(c["trace_pull"])}; ++it) {{
+        double acc;
+        for (i = 0; i < 6; ++i) {{
+            sc[i] = sin(q[i]);
+            sc[6 + i] = cos(q[i]);
+        }}
+        {P}_cal_fkj(q, sc, T, J);
+        (void){P}_cal_error(T, Td, F, &rot, &pos);
+        for (i = 3; i < 6; ++i) {{
+            F[i] /= {R};
+            for (j = 0; j < 6; ++j) {{
+                J[6 * i + j] /= {R};
+            }}
+        }}
+        if (it == {int(c["trace_pull"]) - 1}) {{  /* the curve's direction here */
+            {P}_cal_gram(J, H);
+            if (!{P}_cal_chol_factor(H)) {{
+                return 0;
+            }}
+            for (k2 = 0; k2 < 2; ++k2) {{
+                double norm = 0.0;
+                {P}_cal_chol_solve(H, v, y);
+                for (i = 0; i < 6; ++i) {{
+                    norm += y[i] * y[i];
+                }}
+                norm = 1.0 / sqrt(norm);
+                for (i = 0; i < 6; ++i) {{
+                    v[i] = y[i] * norm;
+                }}
+            }}
+            acc = 0.0;
+            for (j = 0; j < 6; ++j) {{
+                acc += v[j] * vp[j];
+            }}
+            if (acc < 0.0) {{
+                for (j = 0; j < 6; ++j) {{
+                    v[j] = -v[j];
+                }}
+            }}
+        }}
+        for (i = 0; i < 6; ++i) {{  /* J P, P = I - v v^T */
+            acc = 0.0;
+            for (j = 0; j < 6; ++j) {{
+                acc += J[6 * i + j] * v[j];
+            }}
+            for (j = 0; j < 6; ++j) {{
+                J[6 * i + j] -= acc * v[j];
+            }}
+        }}
+        {P}_cal_normal(J, F, H, g);  /* H = (J P)^T (J P) + v v^T + 1e-12 I, g = (J P)^T F */
+        for (i = 0; i < 6; ++i) {{
+            for (j = 0; j < 6; ++j) {{
+                H[6 * i + j] += v[i] * v[j];
+            }}
+            H[6 * i + i] += 1e-12;
+        }}
+        if (!{P}_cal_chol_factor(H)) {{
+            return 0;
+        }}
+        {P}_cal_chol_solve(H, g, y);
+        *r = 0.0;
+        for (i = 0; i < 6; ++i) {{
+            *r += F[i] * F[i];
+            q[i] += y[i];
+        }}
+    }}
+    *r = sqrt(*r);
+    return 1;
+}}
+
+/* the squared distance of two joint vectors (revolute differences modulo 2 pi) */
+static double {P}_cal_dist2(const double a[6], const double b[6])
+{{
+    double s = 0.0;
+    int j;
+    for (j = 0; j < 6; ++j) {{
+        double d = a[j] - b[j];
+        if ({P}_joint_type[j] == 0) {{
+            d = remainder(d, {lit(2 * math.pi)});
+        }}
+        s += d * d;
+    }}
+    return s;
 }}
 
 /* two joint vectors within {c["same"]:g} (rad or m; revolute angles modulo 2 pi): one solution; the
@@ -606,6 +782,25 @@ static int {P}_cal_find(const double q[6], const double rows[][6], const signed 
         }}
     }}
     return -1;
+}}
+
+/* a root the near-singular search found: into the first free row, solution ns, with its search point's
+   label (labdeg[ns]), degenerate (labdeg[MAX_ROWS + ns]); inlined (gcc, clang: a call's arguments
+   would cost NAME_ik_ex's frame 8 bytes of its 2 KB call path) */
+static {P}_CAL_INLINE void {P}_cal_keep(const double qq[6], int code, double rows[][6], signed char state[], signed char sol[],
+                         int labdeg[], int ns)
+{{
+    int j, fr = 0;
+    while (state[fr] != 0) {{
+        ++fr;
+    }}
+    for (j = 0; j < 6; ++j) {{
+        rows[fr][j] = qq[j];
+    }}
+    state[fr] = 1;
+    sol[ns] = (signed char)fr;
+    labdeg[ns] = code;
+    labdeg[{max_rows} + ns] = 1;
 }}
 
 /* NAME_finish in a frame of its own (not live together with the polish's) */
@@ -630,9 +825,13 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     double *const v = q2;  /* the near-singular direction, once q2 is no longer needed */
     int labdeg[2 * {max_rows}];  /* first the closed form's info (4 per row), then lab and deg */
     int *const lab = labdeg, *const deg = labdeg + {max_rows}, *const ninfo = labdeg;
-    signed char nlab[{max_rows}], ndeg[{max_rows}], seed_lab[{max_rows}];
-    signed char sol[{max_rows}], seed[{max_rows}], state[{max_rows}];  /* state: 0 free, 1 a solution, 2 a search point */
-    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0, mb = 0, pass;
+    signed char nlab[{max_rows}], ndeg[{max_rows}];
+    /* state bits: 1 a solution, 2 a search point still to come, 4 a trace's scratch, 8 a solution searched
+       around already (as a search point), 16 on a curve traced already; 0 free */
+    signed char sol[{max_rows}], seed[{max_rows}], state[{max_rows}];
+    signed char *const tr = ndeg;  /* a trace's rows, once the starts' flags are read */
+    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0, mb = 0, pass, nsol, gate = 0;  /* gate: 1 checked, 2 near singular */
+    double rp[2];  /* a polish's orientation and position errors */
     m = {first_call};
     for (r = 0; r < m; ++r) {{
         nlab[r] = (signed char)ninfo[4 * r];
@@ -681,7 +880,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     }}
     for (pass = 0; pass < 2; ++pass)  /* the fold starts last */
     for (r = 0; r < m; ++r) {{
-        double rot, pos, moved = 0.0;
+        double moved = 0.0;
         int ok, hit = -1, dg = ndeg[r] != 0, point;
         const int relaxed = ndeg[r] >= 2, fold = ndeg[r] == 3;
         if (fold != pass) {{
@@ -691,21 +890,20 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             s0[j] = rows[r][j];
             qq[j] = s0[j];
         }}
-        {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot, &pos);
+        {P}_cal_polish(T, qq, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rp[0], &rp[1]);
         for (j = 0; j < 6; ++j) {{
             moved = fabs(qq[j] - s0[j]) > moved ? fabs(qq[j] - s0[j]) : moved;
         }}
-        ok = rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])};
+        ok = rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])};
         if (ok) {{
             hit = {P}_cal_find(qq, (const double (*)[6])rows, sol, ns);
         }}
         if (!ok || hit >= 0) {{  /* a root found already, or none: once more from the mirrored start */
-            double rot2, pos2;
             for (j = 0; j < 6; ++j) {{
                 q2[j] = 2.0 * s0[j] - qq[j];
             }}
-            {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rot2, &pos2);
-            if (rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}
+            {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rp[0], &rp[1]);
+            if (rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])}
                 && {P}_cal_find(q2, (const double (*)[6])rows, sol, ns) < 0) {{
                 for (j = 0; j < 6; ++j) {{
                     qq[j] = q2[j];
@@ -713,7 +911,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 ok = 1;
                 hit = -1;
                 dg = 1;
-            }} else if (!ok && rot2 < {t(c["tol_accept"])} && pos2 < {t(c["tol_accept"])}) {{
+            }} else if (!ok && rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])}) {{
                 hit = {P}_cal_find(q2, (const double (*)[6])rows, sol, ns);
                 ok = 1;
             }}
@@ -727,42 +925,74 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         }}
         if (point) {{
             seed[nseed] = (signed char)r;
-            seed_lab[nseed] = nlab[r];
             ++nseed;
             state[r] = 2;
+            if (hit >= 0) {{
+                state[sol[hit]] |= 8;  /* that solution is this search point */
+            }}
         }}
         if (ok && hit < 0) {{
             sol[ns] = (signed char)r;
             lab[ns] = nlab[r];
             deg[ns] = dg;
             ++ns;
-            state[r] = 1;
+            state[r] = point ? 1 | 2 | 8 : 1;
         }} else if (ok && !fold) {{  /* two branches reach one root: they merge here */
             deg[hit] = 1;
         }}
     }}
-    for (kk = 0; kk < nseed; ++kk) {{  /* every root along the near-singular direction there */
-        double big = 0.0;
-        int st;
-        for (j = 0; j < 6; ++j) {{
-            s0[j] = rows[seed[kk]][j];
+    /* every root along the near-singular direction and curve there: from the search points, then from
+       the branches' solutions where the pose is near singular (the first one not searched already
+       checked, the others where it or a search point was) */
+    nsol = ns;
+    for (kk = 0; kk < nseed + {solutions_searched}; ++kk) {{
+        double big = 0.0, sk;
+        int st, pending, code, traced;
+        if (kk < nseed) {{
+            pending = nseed - kk - 1;
+            for (j = 0; j < 6; ++j) {{
+                s0[j] = rows[seed[kk]][j];
+            }}
+            code = nlab[seed[kk]];
+            traced = (state[seed[kk]] & 16) != 0;
+            if (!(state[seed[kk]] & 1)) {{
+                state[seed[kk]] = 0;  /* its row is free now */
+            }}
+        }} else {{
+            const int i = kk - nseed;
+            if (state[sol[i]] & 8) {{
+                continue;  /* a search point above already */
+            }}
+            if (gate == 1) {{
+                break;  /* the pose is not near a singular configuration */
+            }}
+            pending = 0;
+            for (j = 0; j < 6; ++j) {{
+                s0[j] = rows[sol[i]][j];
+            }}
+            if (gate == 0) {{
+                gate = 1;
+                if ({P}_cal_sigma_bound(s0) > {lit(float(c["sigma_explore"]))}) {{
+                    break;  /* surely not near a singular configuration */
+                }}
+            }}
+            code = lab[i];
+            traced = (state[sol[i]] & 16) != 0;
         }}
-        if (state[seed[kk]] == 2) {{
-            state[seed[kk]] = 0;  /* its row is free now */
-        }}
-        if ({P}_cal_null_direction(s0, v) > {lit(float(c["sigma_explore"]))}) {{
+        sk = {P}_cal_null_direction(s0, v);
+        if (sk > {lit(float(c["sigma_explore"]))}) {{
             continue;  /* not near a singular configuration */
         }}
+        gate = 3;
         for (j = 0; j < 6; ++j) {{
             big = fabs(v[j]) > big ? fabs(v[j]) : big;
         }}
         for (st = 0; st < (int)(sizeof steps / sizeof steps[0]) && ns < {max_rows}; ++st) {{
-            double rot, pos;
             for (j = 0; j < 6; ++j) {{
                 qq[j] = s0[j] + steps[st] * ({lit(0.25 * math.pi)} / big) * v[j];
             }}
-            {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rot, &pos);
-            if (rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])}
+            {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rp[0], &rp[1]);
+            if (rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])}
                 && {P}_cal_find(qq, (const double (*)[6])rows, sol, ns) < 0) {{
                 int fr = 0;
                 while (fr < {max_rows} && state[fr] != 0) {{
@@ -771,14 +1001,66 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 if (fr == {max_rows}) {{  /* every row holds a solution or a search point still to come */
                     break;
                 }}
-                for (j = 0; j < 6; ++j) {{
-                    rows[fr][j] = qq[j];
+                {P}_cal_keep(qq, code, rows, state, sol, labdeg, ns++);
+            }}
+        }}
+        if ({P}_IK_CURVE_SEARCH && !traced && {max_rows} - ns - pending > {trace_free}) {{  /* the curve, both ways */
+            int nt = 0, sgn;
+            for (f = 0; f < {max_rows} && nt < {int(c["trace_rows"])}; ++f) {{
+                if (state[f] == 0) {{
+                    tr[nt++] = (signed char)f;
+                    state[f] = 4;
                 }}
-                state[fr] = 1;
-                sol[ns] = (signed char)fr;
-                lab[ns] = seed_lab[kk];
-                deg[ns] = 1;
-                ++ns;
+            }}
+            for (sgn = 0; sgn < 2; ++sgn) {{
+                /* the curve's point, previous point, direction, previous direction, and (the error's
+                   norm at the point, at the previous point, at the one before) in the rows tr[0..4] */
+                double *const tq = rows[tr[0]], *const tqp = rows[tr[1]], *const tr3 = rows[tr[4]];
+                int closed = 0;
+                tr3[1] = HUGE_VAL;
+                tr3[2] = HUGE_VAL;
+                for (j = 0; j < 6; ++j) {{
+                    tq[j] = s0[j];
+                    rows[tr[2]][j] = sgn ? -v[j] : v[j];
+                }}
+                for (st = 0; st < {int(c["trace_steps"])}; ++st) {{
+                    if (!{P}_cal_trace_step(T, tq, tqp, rows[tr[2]], rows[tr[3]], &tr3[0])) {{
+                        break;
+                    }}
+                    if (tr3[1] < tr3[2] && tr3[1] <= tr3[0]) {{  /* the error's local minimum along the curve */
+                        for (j = 0; j < 6; ++j) {{
+                            qq[j] = tqp[j];
+                        }}
+                        {P}_cal_polish(T, qq, {int(c["explore_max_steps"])}, &rp[0], &rp[1]);
+                        if (rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])}
+                            && ns < {max_rows} - pending - {int(c["trace_rows"])}
+                            && {P}_cal_find(qq, (const double (*)[6])rows, sol, ns) < 0) {{
+                            {P}_cal_keep(qq, code, rows, state, sol, labdeg, ns++);
+                        }}
+                    }}
+                    tr3[2] = tr3[1];
+                    tr3[1] = tr3[0];
+                    for (r = 0; r < nsol; ++r) {{  /* a branch's solution on this curve: not traced again */
+                        if (!(state[sol[r]] & (8 | 16)) && {P}_cal_dist2(tq, rows[sol[r]]) < {lit(float(c["trace_step"]) ** 2)}) {{
+                            state[sol[r]] |= 16;
+                        }}
+                    }}
+                    for (r = kk + 1; r < nseed; ++r) {{  /* nor a search point still to come */
+                        if (!(state[seed[r]] & 16) && {P}_cal_dist2(tq, rows[seed[r]]) < {lit(float(c["trace_step"]) ** 2)}) {{
+                            state[seed[r]] |= 16;
+                        }}
+                    }}
+                    if (st >= 2 && {P}_cal_dist2(tq, s0) < {lit(float(c["trace_step"]) ** 2)}) {{
+                        closed = 1;  /* back at the start: the other way is the same curve */
+                        break;
+                    }}
+                }}
+                if (closed) {{
+                    break;
+                }}
+            }}
+            for (f = 0; f < nt; ++f) {{
+                state[tr[f]] = 0;
             }}
         }}
     }}
@@ -903,4 +1185,47 @@ static void {P}_cal_advance(const double sc[12], const double step[6], double ou
 {{
 {nl.join(adv)}
 }}
+"""
+
+
+def _block_factor_code(P: str, c: Any, suffix: str, note: str) -> str:
+    """C of the 3 × 3 block factorization of the polish's Jacobian, named NAME_cal_block_factor + suffix."""
+    return note + f"""/* J (omega rows 0-2, v rows 3-5) factored by 3 x 3 blocks into B (6 x 6): pivot block D = the omega rows
+   of joints p..p+2 spanning the larger volume (p = 3 or 0), the other joints o = 3 - p; B[0:3, 0:3] = D^-1,
+   B[0:3, 3:6] = K = D^-1 J_w,o, B[3:6, 0:3] = S^-1 with S = J_v,o - J_v,p K; *p returned; 0 when D or S
+   is near singular */
+static int {P}_cal_block_factor{suffix}(const double J[36], double B[36], int *pp)
+{{
+    const double dw = J[3] * (J[10] * J[17] - J[11] * J[16]) - J[4] * (J[9] * J[17] - J[11] * J[15])
+        + J[5] * (J[9] * J[16] - J[10] * J[15]);
+    const double da = J[0] * (J[7] * J[14] - J[8] * J[13]) - J[1] * (J[6] * J[14] - J[8] * J[12])
+        + J[2] * (J[6] * J[13] - J[7] * J[12]);
+    const int p = fabs(dw) >= fabs(da) ? 3 : 0, o = 3 - p;
+    double s = 0.0, det;
+    int r, cc;
+    if (!((fabs(dw) > fabs(da) ? fabs(dw) : fabs(da)) >= {lit(float(c["block_axes"]))})) {{
+        return 0;
+    }}
+    (void){P}_cal_inverse3(J, 0, p, B, 0);
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            B[6 * r + 3 + cc] = B[6 * r] * J[o + cc] + B[6 * r + 1] * J[6 + o + cc] + B[6 * r + 2] * J[12 + o + cc];
+        }}
+    }}
+    for (r = 0; r < 3; ++r) {{
+        for (cc = 0; cc < 3; ++cc) {{
+            const double v = J[6 * (3 + r) + o + cc] - (J[6 * (3 + r) + p] * B[3 + cc] + J[6 * (3 + r) + p + 1] * B[9 + cc]
+                                                        + J[6 * (3 + r) + p + 2] * B[15 + cc]);
+            B[6 * (3 + r) + 3 + cc] = v;
+            s += v * v;
+        }}
+    }}
+    det = {P}_cal_inverse3(B, 3, 3, B, 18);
+    if (!(fabs(det) >= {lit(float(c["block_schur"]))} * s * sqrt(s))) {{
+        return 0;
+    }}
+    *pp = p;
+    return 1;
+}}
+
 """

@@ -397,6 +397,8 @@ class CalibratedArm:
                 "tol_stop": TOL_STOP, "tol_accept": TOL_ACCEPT, "max_steps": MAX_STEPS, "same": _kci.SAME,
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
+                "trace_step": _kci.TRACE_STEP, "trace_steps": _kci.TRACE_STEPS, "trace_pull": _kci.TRACE_PULL,
+                "trace_rows": _kci.TRACE_ROWS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
                 "fold_starts": _kcf.FOLD_STARTS, "fold_imag": _kcf.FOLD_IMAG, "fold_code": _kcf.FOLD_CODE,
                 "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
@@ -491,7 +493,8 @@ class CalibratedArm:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
                           f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
-                          f"branches, and the search for them along the near-singular direction is not exhaustive: "
+                          f"branches, and the search for them (along the near-singular direction and the curve of near-"
+                          f"solutions) is not exhaustive: "
                           f"a solution may be missing (each returned one is exact; nominal=False gives the general "
                           f"6R method)", RobokitWarning, stacklevel=level)
         if n <= 0:

@@ -256,6 +256,39 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
         assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
 
 
+@pytest.mark.parametrize("q", [
+    [0.3587434740072251, -3.6391722332065934, 1.6136949688695033, -2.063132292035656, 0.010862402481855061,
+     1.8460531463552783],
+    [-0.1745264778795888, 2.693780413081057, 2.236503694696615, 0.8281856202382324, -3.733881126767151,
+     -2.7628273760039477]])
+def test_near_a_singular_position_every_branch_is_searched(q):
+    """The benchmark's calibrated PUMA 560 (errors up to 2 mrad / 2 mm) at two poses (draws 121 and 2019 of
+    ``benchmarks.calibrated_completeness --poses 3000``) whose wrist centre is near a singular position:
+    every branch's solution is near singular, none moved far from its start, so no search point arose,
+    and two roots 0.8–1.2 rad from the returned ones (θ₅ within 0.02 rad of the wrist's singularity) were
+    missing without a warning. The search now also starts from the branches' solutions where the pose is
+    near singular, and follows the curve of near-solutions through them: the pose is flagged, every root
+    the 500-start sweep finds is returned, each exact, the new ones flagged degenerate."""
+    from robokit.kernels.calibrated_ik import SIGMA_EXPLORE
+
+    nominal = robokit.load("puma560")
+    rng = np.random.default_rng(0)  # the benchmark's PUMA 560 (benchmarks/calibrated_ik.py: _arms)
+    robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-2e-3, 2e-3, (7, 6))))
+    T = robot.frame_pose(np.array(q))
+    with pytest.warns(RobokitWarning, match="near a singular configuration"):
+        sols = ik_analytic(robot, T)
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
+    branch = [s for s in sols if " #" not in s.label]  # one per branch of the nominal structure
+    assert len(branch) == 8
+    assert sum(sigma_min(robot, s.q) <= SIGMA_EXPLORE for s in branch) >= 7  # the premise: near singular
+    found = assert_none_missed(robot, T, sols)
+    assert len(found) == 10 and len(sols) >= 10
+    extra = [s for s in sols if " #" in s.label]  # a second root of a branch's label: found by the search
+    assert len(extra) >= 2 and all(s.degenerate for s in extra)
+    assert all(min(angle_dist(s.q, b.q) for b in branch) > 0.5 for s in extra)
+
+
 @pytest.mark.parametrize("q, kind", [
     ([-1.03472566, 1.79589111, -2.49569027, 0.92873168, 3.07268593, -2.00287749], "wrist"),
     ([-2.47285413, 0.20668741, -1.1840868, 2.46420433, -0.01856364, -2.25770549], "wrist"),

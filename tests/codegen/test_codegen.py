@@ -759,6 +759,41 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         check_ik(robot, lib, poses)
 
 
+def test_calibrated_ik_without_the_curve_search(cc, tmp_path):
+    """-DNAME_IK_CURVE_SEARCH=0 (a shorter worst case on a controller): every solution is one of
+    ik_analytic's (to 1e-9, each reaching the pose); a solution is missing only at a pose where the
+    search ran, i.e. where ik_analytic flags solutions degenerate — on the benchmark's calibrated PUMA
+    560 at 60 random poses and at two poses near a singular position with ten roots
+    (tests/calibration/test_calibrated_ik.py), at one of which only the curve search finds two of them."""
+    from robokit.calibration import chain_from_robot, robot_from_chain
+    from robokit.codegen.build import compile_library
+
+    nominal = robokit.load("puma560")
+    robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(
+        np.random.default_rng(0).uniform(-2e-3, 2e-3, (7, 6))))
+    src = generate_c(robot)
+    lib = compile_library(src, tmp_path, robot.n, flags=("-O1", f"-D{src.name}_IK_CURVE_SEARCH=0"), compiler=cc)
+    rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
+    rng = np.random.default_rng(21)
+    fewer = 0
+    special = [[0.3587434740072251, -3.6391722332065934, 1.6136949688695033, -2.063132292035656,
+                0.010862402481855061, 1.8460531463552783],
+               [-0.1745264778795888, 2.693780413081057, 2.236503694696615, 0.8281856202382324, -3.733881126767151,
+                -2.7628273760039477]]
+    for k, q0 in enumerate(special + [robot.random_configuration(rng) for _ in range(60)]):
+        T = robot.frame_pose(np.asarray(q0))
+        py, c = ik_analytic(robot, T), lib.ik(T)
+        for q, label, _, _ in c:  # (a root the search finds can come with another search point's label)
+            assert min(_dist(q, s.q, rev) for s in py) < 1e-9, label
+            assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
+        if len(c) < len(py):
+            assert any(s.degenerate for s in py)
+        if k < 2:
+            assert len(py) == 10
+            fewer += len(c) < 10
+    assert fewer >= 1  # (at the other pose the straight-line search from the branches' solutions finds both)
+
+
 @pytest.mark.parametrize("name", ["puma560", "ur5"])
 def test_calibrated_arm_float32_ik(calibrated_arms, build, name):
     """--float32: every C solution is within 1e-3 rad of ik_analytic's solution of the same branch and
