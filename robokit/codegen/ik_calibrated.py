@@ -108,18 +108,19 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     # pass for roots (float's condition asks for more free rows than there are; its search points are
     # those of the starts)
     trace_free = max_rows if tol.float32 else int(c["trace_rows"])
-    solutions_searched = "0 * nsol" if tol.float32 else "nsol"
+    solutions_searched = "0 * nsol" if tol.float32 else f"({P}_IK_FULL_SEARCH ? nsol : 0)"
     # the 3 x 3 block factorization, emitted twice: for the polish and for the bound at the first solution
     # (each copy is inlined into its one caller, so the polish's frame does not grow by a call)
     block_factor = _block_factor_code(P, c, "", "")
     block_factor2 = _block_factor_code(P, c, "2", "/* the same for {P}_cal_sigma_bound */\n".replace("{P}", P))
     src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
-/* the near-singular search follows the curve of near-solutions (as robokit's ik_analytic): a pose near a
-   singular configuration can then take 5-100x a common pose's time. Compile with
-   -D{P}_IK_CURVE_SEARCH=0 for a shorter worst case (the solutions only the curve search finds are then
-   missing; the others are unchanged) */
-#ifndef {P}_IK_CURVE_SEARCH
-#define {P}_IK_CURVE_SEARCH 1
+/* the near-singular search starts from the branches' solutions too where the pose is near singular, and
+   follows the curve of near-solutions (as robokit's ik_analytic): a pose near a singular configuration can
+   then take 5-100x a common pose's time. Compile with -D{P}_IK_FULL_SEARCH=0 for a shorter worst case:
+   the search then starts only from the points the polish of the starts gives, along straight lines (the
+   solutions only the full search finds are missing; the others are unchanged) */
+#ifndef {P}_IK_FULL_SEARCH
+#define {P}_IK_FULL_SEARCH 1
 #endif
 /* not inlined (gcc, clang): the frames of the search's helpers do not add up along {P}_ik_ex's call path */
 #if defined(__GNUC__)
@@ -1004,7 +1005,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 {P}_cal_keep(qq, code, rows, state, sol, labdeg, ns++);
             }}
         }}
-        if ({P}_IK_CURVE_SEARCH && !traced && {max_rows} - ns - pending > {trace_free}) {{  /* the curve, both ways */
+        if ({P}_IK_FULL_SEARCH && !traced && {max_rows} - ns - pending > {trace_free}) {{  /* the curve, both ways */
             int nt = 0, sgn;
             for (f = 0; f < {max_rows} && nt < {int(c["trace_rows"])}; ++f) {{
                 if (state[f] == 0) {{

@@ -759,12 +759,12 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         check_ik(robot, lib, poses)
 
 
-def test_calibrated_ik_without_the_curve_search(cc, tmp_path):
-    """-DNAME_IK_CURVE_SEARCH=0 (a shorter worst case on a controller): every solution is one of
-    ik_analytic's (to 1e-9, each reaching the pose); a solution is missing only at a pose where the
-    search ran, i.e. where ik_analytic flags solutions degenerate — on the benchmark's calibrated PUMA
-    560 at 60 random poses and at two poses near a singular position with ten roots
-    (tests/calibration/test_calibrated_ik.py), at one of which only the curve search finds two of them."""
+def test_calibrated_ik_without_the_full_search(cc, tmp_path):
+    """-DNAME_IK_FULL_SEARCH=0 (a shorter worst case on a controller: no search from the branches'
+    solutions, no curve): every solution is one of ik_analytic's (to 1e-9, each reaching the pose); a
+    solution is missing only at a pose where the search ran, i.e. where ik_analytic flags solutions
+    degenerate — on the benchmark's calibrated PUMA 560 at 60 random poses and at the two poses near a
+    singular position with ten roots (tests/calibration/test_calibrated_ik.py), where it lacks some."""
     from robokit.calibration import chain_from_robot, robot_from_chain
     from robokit.codegen.build import compile_library
 
@@ -772,7 +772,7 @@ def test_calibrated_ik_without_the_curve_search(cc, tmp_path):
     robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(
         np.random.default_rng(0).uniform(-2e-3, 2e-3, (7, 6))))
     src = generate_c(robot)
-    lib = compile_library(src, tmp_path, robot.n, flags=("-O1", f"-D{src.name}_IK_CURVE_SEARCH=0"), compiler=cc)
+    lib = compile_library(src, tmp_path, robot.n, flags=("-O1", f"-D{src.name}_IK_FULL_SEARCH=0"), compiler=cc)
     rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
     rng = np.random.default_rng(21)
     fewer = 0
@@ -791,7 +791,7 @@ def test_calibrated_ik_without_the_curve_search(cc, tmp_path):
         if k < 2:
             assert len(py) == 10
             fewer += len(c) < 10
-    assert fewer >= 1  # (at the other pose the straight-line search from the branches' solutions finds both)
+    assert fewer == 2
 
 
 @pytest.mark.parametrize("name", ["puma560", "ur5"])
