@@ -1284,6 +1284,24 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             }}"""
     r = [[_c(x) for x in row] for row in R]
     pp = [_c(x) for x in p]
+    if e.fold:  # the calibrated arm's elbow fold starts (robokit.kernels.closed_form._parallel_complete)
+        elbow = f"""            if (fabs(c3) > 1.0 + {t(1e-10)}) {{
+                if (!fold || fabs(c3) - 1.0 > {lit(float(k.calibrated["fold_starts"]))}) {{
+                    continue;
+                }}
+                fs = 1;  /* the elbow just short of reaching: two starts, th3 = +-sqrt(2 short) from its fold */
+                s3a = sqrt(2.0 * (fabs(c3) - 1.0));
+                c3 = c3 > 0.0 ? 1.0 : -1.0;
+            }} else {{
+                c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
+                s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);
+            }}"""
+    else:
+        elbow = f"""            if (fabs(c3) > 1.0 + {t(1e-10)}) {{
+                continue;
+            }}
+            c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
+            s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);"""
     return f"""    {{
 {body}
     double t1s[2];
@@ -1310,7 +1328,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             const double c5 = cos(t5), s5 = sin(t5);
             const double vx = s5 * {lit(sa4)}, vy = {lit(ca5 * sa4)} * c5 + {lit(sa5 * ca4)};
             double t6, gx0, gy0, gz0, gx, gy, gz, ox, oy, oz, tmp, X0, X1, X2, O0, O1, O2, phi, x, y, c3, s3a, base;
-            int degenerate, wi, k3, n3;
+            int degenerate, wi, k3, n3{", fs = 0" if e.fold else ""};
             if (rho <= {t(1e-10)}) {{
                 t6 = {_f([(1.0, "ref")], th0[5])};
                 degenerate = 1;
@@ -1346,11 +1364,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             x = c1 * O0 + s1 * O1;
             y = -s1 * {lit(ca1)} * O0 + c1 * {lit(ca1)} * O1 + {lit(sa1)} * O2;
             c3 = (x * x + y * y - {lit(a2 * a2 + a3 * a3)}) / {lit(2.0 * a2 * a3)};
-            if (fabs(c3) > 1.0 + {t(1e-10)}) {{
-                continue;
-            }}
-            c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
-            s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);
+{elbow}
             wi = degenerate ? 2 : (s5 * {lit(sa4 * sa5)} > 0.0 ? 0 : 1);
             base = atan2(y, x);
             n3 = s3a > 0.0 ? 2 : 1;
@@ -1367,7 +1381,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
                 rows[nr][4] = {_f([(1.0, "t5")], -th0[4])};
                 rows[nr][5] = {_f([(1.0, "t6")], -th0[5])};
                 lab[nr] = {e.label_index("si", "ei", "wi")};
-                deg[nr] = degenerate;
+                deg[nr] = {"fs ? 3 : degenerate" if e.fold else "degenerate"};
                 ++nr;
             }}
         }}

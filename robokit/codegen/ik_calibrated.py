@@ -67,7 +67,7 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     c = k.calibrated
     P = prefix
     nom = emitter(k, f"{P}_nominal", tol)
-    nom.fold = k.method == "spherical wrist"  # its fold starts too (NAME_nominal_ik_starts)
+    nom.fold = True  # its fold starts too (NAME_nominal_ik_starts)
     nom_code = nom.code()
     first_call = (f"{P}_nominal_ik_starts(T, wrist_ref, q, ninfo, 1)" if nom.fold
                   else f"{P}_nominal_ik_ex(T, wrist_ref, q, ninfo)")

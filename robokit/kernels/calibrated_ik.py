@@ -1393,7 +1393,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     if method == _cf.PIEPER:
         m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold)
     else:
-        m = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r)
+        m = _cf._parallel_axes(cf_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold)
     m = _cf._finish(ci_r, post_r, raw, rcodes, rdegen, m, first, qq)
     degenerate = False
     # the branches' starts in order from row 0; the fold starts (closed_form.FOLD_STARTS) from row

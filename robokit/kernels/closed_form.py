@@ -75,7 +75,10 @@ _TWO_PI = 2.0 * math.pi
 #: a complex pair of roots t = a ± ib of the joint-3 polynomial gives a position at t = a when the
 #: pair's joint-3 values are within ``FOLD_IMAG`` of the real line: for a revolute joint 3 (t =
 #: tan(θ₃/2)) |Im 2 atan(a + ib)| = atanh(2b/(1 + a² + b²)) ≤ FOLD_IMAG rad; for a prismatic one
-#: b ≤ FOLD_IMAG (1 + |a|) (m). Such rows have ``FOLD_CODE`` added to their wrist code.
+#: b ≤ FOLD_IMAG (1 + |a|) (m). At the three-parallel-axes method's elbow fold (:func:`_parallel_axes`
+#: with ``fold``): a θ₁ and θ₅ whose planar 2-link elbow misses by |cos θ₃| − 1 up to ``FOLD_STARTS``
+#: gives two rows, at θ₃ = ±√(2 (|cos θ₃| − 1)) from the fold (θ₃ = 0 or π). Such rows have
+#: ``FOLD_CODE`` added to their wrist code.
 FOLD_STARTS = 0.1
 FOLD_IMAG = 0.2
 FOLD_CODE = 3
@@ -707,9 +710,11 @@ def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulder
 
 @njit
 def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
-                       codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray) -> int:
+                       codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray, fold: Any = None) -> int:
     """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
-    from row n; the new row count. ``t5s``: scratch for the θ₅ roots (2,)."""
+    from row n; the new row count. ``t5s``: scratch for the θ₅ roots (2,). ``fold``: None (compiles
+    none of it), or the calibrated IK's (:func:`_pieper`'s): with its entry 1 set, an elbow short of
+    reaching by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes + ``FOLD_CODE``)."""
     r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
     r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
     r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
@@ -759,11 +764,20 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
         x = c1 * O0 + s1 * O1
         y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
         c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+        fc = 0
         if abs(c3) > 1.0 + 1e-10:
-            continue
-        c3 = max(-1.0, min(1.0, c3))
-        s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
-        wrist = 2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)
+            if fold is None:
+                continue
+            if fold[1] == 0.0 or abs(c3) - 1.0 > FOLD_STARTS:
+                continue
+            fc = FOLD_CODE  # the elbow just short of reaching: two starts, th3 = +-sqrt(2 short) from its fold
+            s3f = math.sqrt(2.0 * (abs(c3) - 1.0))
+            c3 = 1.0 if c3 > 0.0 else -1.0
+            s3a = s3f
+        else:
+            c3 = max(-1.0, min(1.0, c3))
+            s3a = math.sqrt(max(0.0, 1.0 - c3 * c3))
+        wrist = (2 if degenerate else (0 if s5 * sa4 * sa5 > 0.0 else 1)) + fc
         base = math.atan2(y, x)
         for k3 in range(2 if s3a > 0.0 else 1):
             s3 = (s3a if k3 == 0 else -s3a) if s3a > 0.0 else 0.0
@@ -788,15 +802,15 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
 
 @njit
 def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, codes: np.ndarray,
-                   degen: np.ndarray, s: tuple) -> int:
+                   degen: np.ndarray, s: tuple, fold: Any = None) -> int:
     """The three-parallel-axes method (step 1, then steps 2–4 of each θ₁): raw rows; their count.
-    ``s``: the scratch of :func:`_scratch`."""
+    ``s``: the scratch of :func:`_scratch`; ``fold``: :func:`_parallel_complete`'s."""
     fw, iw = s[6], s[4]
     t1s, t5s, shoulders = fw[_POS_WORK + 6:_POS_WORK + 8], fw[_POS_WORK + 8:_POS_WORK + 10], iw[6:8]
     n1 = _parallel_shoulders(cf, T, t1s, shoulders)
     n = 0
     for i1 in range(n1):
-        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n, t5s)
+        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n, t5s, fold)
     return n
 
 

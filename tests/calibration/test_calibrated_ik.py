@@ -256,6 +256,34 @@ def test_a_pose_where_the_near_singular_search_can_miss_a_root_says_so():
         assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
 
 
+def test_at_an_elbow_fold_of_three_parallel_axes_the_pair_is_found():
+    """The benchmark's calibrated UR5 (errors up to 2 mrad / 2 mm) at draw 1350 of
+    ``benchmarks.calibrated_completeness --poses 3000``: for one θ₁ the projected arm's elbow just cannot
+    reach (cos θ₃ just above 1) and the wrist is near its singularity, so that θ₁ gave no start and no
+    search point, while the arm itself has two roots there (θ₃ = ±0.1): they were missing without a
+    warning. The three-parallel-axes method now gives fold starts there too (two, at θ₃ = ±√(2 (|cos θ₃|
+    − 1))): both roots returned, flagged degenerate, and the 500-start sweep finds nothing else."""
+    nominal = robokit.load("ur5")
+    rng = np.random.default_rng(0)
+    rng.uniform(-2e-3, 2e-3, (7, 6))  # (the benchmark's PUMA 560 draws first: the same arm as there)
+    robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-2e-3, 2e-3, (7, 6))))
+    pair = [np.array([1.7811871998893327, 5.032381170162088, 0.11591773791084926, -0.35761018396758093,
+                      -0.03745402942569615, 2.127717163168421]),
+            np.array([1.7811676758336896, -1.1479358747683992, -0.09829823322534159, -0.24335015387252765,
+                      -0.037365298698511344, 2.1248025850358094])]
+    T = robot.frame_pose(pair[0])
+    assert np.abs(robot.frame_pose(pair[1]) - T).max() < 1e-9
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)
+        sols = ik_analytic(robot, T)
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
+    for x in pair:
+        near = [s for s in sols if angle_dist(s.q, x) < 1e-6]
+        assert len(near) == 1 and near[0].degenerate
+    assert_none_missed(robot, T, sols)
+
+
 @pytest.mark.parametrize("q", [
     [0.3587434740072251, -3.6391722332065934, 1.6136949688695033, -2.063132292035656, 0.010862402481855061,
      1.8460531463552783],
