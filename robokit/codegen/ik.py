@@ -1285,6 +1285,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
     r = [[_c(x) for x in row] for row in R]
     pp = [_c(x) for x in p]
     if e.fold:  # the calibrated arm's elbow fold starts (robokit.kernels.closed_form._parallel_complete)
+        assert k.calibrated is not None  # (the fold starts are the calibrated arm's)
         elbow = f"""            if (fabs(c3) > 1.0 + {t(1e-10)}) {{
                 if (!fold || fabs(c3) - 1.0 > {lit(float(k.calibrated["fold_starts"]))}) {{
                     continue;
