@@ -466,18 +466,22 @@ class CalibratedArm:
             T = np.ascontiguousarray(check_pose(T), dtype=float)
         return self._solve_checked(T, wrist_ref, 5)
 
-    def _solve_checked(self, T: np.ndarray, wrist_ref: float, level: int = 4) -> list[IKSolution]:
+    def _solve_checked(self, T: np.ndarray, wrist_ref: float, level: int = 4, out: np.ndarray | None = None,
+                       n: int = 0) -> list[IKSolution]:
         """:meth:`solve` of a T known to be a C-contiguous float64 (4, 4) array (the kernel's machine
-        code is called without numba's type dispatch); its warnings name the caller ``level`` frames up."""
-        out = np.empty(_OUT_SHAPE)
-        into = self._into
-        if into is None:
-            into = _kci.solve_into_entry()
-            if into is None:  # not compiled for these types yet (or plain Python): numba's dispatch
-                into = _kci.calibrated_solve_into
-            else:
-                self._into = into
-        n = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
+        code is called without numba's type dispatch); its warnings name the caller ``level`` frames up.
+        ``out``, ``n``: the kernel's output and result for this T and wrist_ref where the caller ran it
+        already (:meth:`robokit.ik.closed_form.AnalyticIK._solve` runs the common case itself)."""
+        if out is None:
+            out = np.empty(_OUT_SHAPE)
+            into = self._into
+            if into is None:
+                into = _kci.solve_into_entry()
+                if into is None:  # not compiled for these types yet (or plain Python): numba's dispatch
+                    into = _kci.calibrated_solve_into
+                else:
+                    self._into = into
+            n = into(self._KC, self._kind, T, wrist_ref * self._ref_sign, out, self._work)
         if 0 < n < _FLAGGED:  # the common case: solutions, no branch merged or vanished, no search
             return _from_rows([out, n, self._labels, None])
         if n == -1:  # T failed the kernel's quick rigid-transform test: the full check (raises), or its nearest

@@ -154,6 +154,7 @@ def _table_key(table: DHTable, link_limits: bool) -> tuple:
 _F64 = np.dtype(np.float64)
 _SHAPE44 = (4, 4)
 _OUT_SHAPE = (16, 9)  # (MAX_ROWS, OUT_COLS) of robokit.kernels.closed_form (checked when the kernel is first packed)
+_CAL_FLAGGED = 1000  # robokit.kernels.calibrated_ik.FLAGGED, without importing it here (a test checks they agree)
 
 
 def _fast_key(table: DHTable, link_limits: bool = True) -> tuple:
@@ -502,11 +503,20 @@ class AnalyticIK:
 
     def _solve(self, T: ArrayLike, wrist_ref: float) -> list[IKSolution]:
         """:meth:`solve` once the constants are current and ``wrist_ref`` is a checked float."""
-        if self.calibrated is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
+        cal = self.calibrated
+        if cal is not None:  # robokit.ik.calibrated (it checks T the quick way, then fully)
             if type(T) is not np.ndarray or T.dtype is not _F64 or T.shape != (4, 4) or not T.flags.c_contiguous:
                 T = np.ascontiguousarray(_check_pose(T), dtype=float)
-            sols = self.calibrated._solve_checked(T, wrist_ref)
-            if sols or not self.calibrated.may_reach(T):
+            into = cal._into
+            if into is not None:  # the common case of CalibratedArm._solve_checked, here: one Python call less
+                out = np.empty(_OUT_SHAPE)
+                n = into(cal._KC, cal._kind, T, wrist_ref * cal._ref_sign, out, cal._work)
+                if 0 < n < _CAL_FLAGGED:
+                    return _solutions_from_kernel(out, n, cal._labels)
+                sols = cal._solve_checked(T, wrist_ref, 4, out, n)
+            else:
+                sols = cal._solve_checked(T, wrist_ref)
+            if sols or not cal.may_reach(T):
                 return sols
             return self._general(T, wrist_ref)
         kernel = self._kernel

@@ -136,17 +136,26 @@ def _error(T: np.ndarray, Td: np.ndarray, F: np.ndarray) -> tuple[float, float, 
     the error itself (they change the convergence constant, not the root).
 
     Returns (½(rot² + pos²), rot, pos) with rot = ‖sin θ u‖ (rad, or 2 − it beyond π/2) and pos = ‖Δp‖ (m)."""
-    a00 = Td[0, 0] * T[0, 0] + Td[0, 1] * T[0, 1] + Td[0, 2] * T[0, 2]
-    a01 = Td[0, 0] * T[1, 0] + Td[0, 1] * T[1, 1] + Td[0, 2] * T[1, 2]
-    a02 = Td[0, 0] * T[2, 0] + Td[0, 1] * T[2, 1] + Td[0, 2] * T[2, 2]
-    a10 = Td[1, 0] * T[0, 0] + Td[1, 1] * T[0, 1] + Td[1, 2] * T[0, 2]
-    a11 = Td[1, 0] * T[1, 0] + Td[1, 1] * T[1, 1] + Td[1, 2] * T[1, 2]
-    a12 = Td[1, 0] * T[2, 0] + Td[1, 1] * T[2, 1] + Td[1, 2] * T[2, 2]
-    a20 = Td[2, 0] * T[0, 0] + Td[2, 1] * T[0, 1] + Td[2, 2] * T[0, 2]
-    a21 = Td[2, 0] * T[1, 0] + Td[2, 1] * T[1, 1] + Td[2, 2] * T[1, 2]
-    a22 = Td[2, 0] * T[2, 0] + Td[2, 1] * T[2, 1] + Td[2, 2] * T[2, 2]
+    return _error_of((T[0, 0], T[0, 1], T[0, 2], T[0, 3], T[1, 0], T[1, 1], T[1, 2], T[1, 3], T[2, 0], T[2, 1],
+                      T[2, 2], T[2, 3]), Td, F)
+
+
+@njit(inline=True)
+def _error_of(t: tuple[float, ...], Td: np.ndarray, F: np.ndarray) -> tuple[float, float, float]:
+    """:func:`_error` of the pose whose first three rows are t (12 floats, row by row, as
+    :func:`_chain_pose` returns them: the polish keeps its poses in registers, never stored)."""
+    t00, t01, t02, t03, t10, t11, t12, t13, t20, t21, t22, t23 = t
+    a00 = Td[0, 0] * t00 + Td[0, 1] * t01 + Td[0, 2] * t02
+    a01 = Td[0, 0] * t10 + Td[0, 1] * t11 + Td[0, 2] * t12
+    a02 = Td[0, 0] * t20 + Td[0, 1] * t21 + Td[0, 2] * t22
+    a10 = Td[1, 0] * t00 + Td[1, 1] * t01 + Td[1, 2] * t02
+    a11 = Td[1, 0] * t10 + Td[1, 1] * t11 + Td[1, 2] * t12
+    a12 = Td[1, 0] * t20 + Td[1, 1] * t21 + Td[1, 2] * t22
+    a20 = Td[2, 0] * t00 + Td[2, 1] * t01 + Td[2, 2] * t02
+    a21 = Td[2, 0] * t10 + Td[2, 1] * t11 + Td[2, 2] * t12
+    a22 = Td[2, 0] * t20 + Td[2, 1] * t21 + Td[2, 2] * t22
     sx, sy, sz = 0.5 * (a21 - a12), 0.5 * (a02 - a20), 0.5 * (a10 - a01)
-    px, py, pz = T[0, 3], T[1, 3], T[2, 3]
+    px, py, pz = t03, t13, t23
     dx, dy, dz = Td[0, 3] - px, Td[1, 3] - py, Td[2, 3] - pz
     s2 = sx * sx + sy * sy + sz * sz
     tr = a00 + a11 + a22  # 1 + 2 cos θ: below 1 beyond π/2, where ‖sin θ u‖ falls again
@@ -274,27 +283,6 @@ def _block_factor(J: np.ndarray, B: np.ndarray) -> bool:
 
 
 @njit(inline=True)
-def _block_solve(J: np.ndarray, B: np.ndarray, e: np.ndarray, x: np.ndarray) -> None:
-    """x ← J⁻¹ e from :func:`_block_factor`'s B: ``y = D⁻¹ eω``, ``x_o = S⁻¹ (e_v − Jv,p y)``,
-    ``x_p = y − K x_o``."""
-    p = int(B[3, 3])
-    o = 3 - p
-    y0 = B[0, 0] * e[0] + B[0, 1] * e[1] + B[0, 2] * e[2]
-    y1 = B[1, 0] * e[0] + B[1, 1] * e[1] + B[1, 2] * e[2]
-    y2 = B[2, 0] * e[0] + B[2, 1] * e[1] + B[2, 2] * e[2]
-    r0 = e[3] - (J[3, p] * y0 + J[3, p + 1] * y1 + J[3, p + 2] * y2)
-    r1 = e[4] - (J[4, p] * y0 + J[4, p + 1] * y1 + J[4, p + 2] * y2)
-    r2 = e[5] - (J[5, p] * y0 + J[5, p + 1] * y1 + J[5, p + 2] * y2)
-    x0 = B[3, 0] * r0 + B[3, 1] * r1 + B[3, 2] * r2
-    x1 = B[4, 0] * r0 + B[4, 1] * r1 + B[4, 2] * r2
-    x2 = B[5, 0] * r0 + B[5, 1] * r1 + B[5, 2] * r2
-    x[o], x[o + 1], x[o + 2] = x0, x1, x2
-    x[p] = y0 - (B[0, 3] * x0 + B[0, 4] * x1 + B[0, 5] * x2)
-    x[p + 1] = y1 - (B[1, 3] * x0 + B[1, 4] * x1 + B[1, 5] * x2)
-    x[p + 2] = y2 - (B[2, 3] * x0 + B[2, 4] * x1 + B[2, 5] * x2)
-
-
-@njit(inline=True)
 def _lu_factor(J: np.ndarray, A: np.ndarray, piv: np.ndarray) -> bool:
     """A ← the LU factors of J (6 × 6) with partial pivoting, the diagonal stored as its reciprocals,
     piv ← the row swapped into each column (rows of earlier columns not swapped: :func:`_lu_solve`
@@ -351,32 +339,113 @@ def _lu_solve(A: np.ndarray, piv: np.ndarray, e: np.ndarray, x: np.ndarray) -> N
 
 
 @njit(inline=True)
-def _factored_solve(J: np.ndarray, B: np.ndarray, A: np.ndarray, piv: np.ndarray, blocked: bool, e: np.ndarray,
-                    x: np.ndarray) -> None:
-    """x ← J⁻¹ e from :func:`_block_factor`'s B when ``blocked``, else from :func:`_lu_factor`'s A
-    and piv; x may be e."""
-    if blocked:
-        _block_solve(J, B, e, x)
-    else:
-        _lu_solve(A, piv, e, x)
-
-
-@njit(inline=True)
 def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) -> bool:
     """x ← the step that zeroes the pose error F (:func:`_error`) to second order: ``d = J⁻¹ F``,
     then, for ``SECOND_ORDER[0] < max|d| ≤ SECOND_ORDER[1]``, ``x = J⁻¹ (F − ½ B(d, d))`` with
     :func:`_second_order`'s B (the pose error after the step is then O(d³), where Newton's is O(d²):
     from the closed form's starts, about 5e-3 off, two steps reach 1e-15 where Newton's method needs
     three); the correction is dropped when it is not small against d (far from a root). J is
-    factored once for both solves, by blocks (:func:`_block_factor`) or else with pivoting
-    (:func:`_lu_factor`). False when J is singular for this purpose. Scratch: ``work`` rows 20–32 and
-    47 (:func:`polish`'s A, H and L)."""
-    B, A = work[26:32], work[20:26]
-    piv, d = work[47], work[32]
-    blocked = _block_factor(J, B)
-    if not blocked and not _lu_factor(J, A, piv):
+    factored once for both solves, by 3 × 3 blocks as :func:`_block_factor` factors it — here with
+    every factor in local variables, J read once and nothing stored but x (measured on the UR5 and the
+    PUMA 560, compiled as the polish is: 93 → 77 ns a step from the factors kept in ``work``) — or,
+    where the blocks are near singular, with pivoting (:func:`_lu_newton_step`). False when J is
+    singular for this purpose. Scratch: ``work`` rows 20–26, 32 and 47."""
+    dw = _det3(J[0, 3], J[0, 4], J[0, 5], J[1, 3], J[1, 4], J[1, 5], J[2, 3], J[2, 4], J[2, 5])
+    da = _det3(J[0, 0], J[0, 1], J[0, 2], J[1, 0], J[1, 1], J[1, 2], J[2, 0], J[2, 1], J[2, 2])
+    p = 3 if abs(dw) >= abs(da) else 0
+    ok = max(abs(dw), abs(da)) >= BLOCK_AXES
+    det2 = 0.0
+    if ok:
+        o = 3 - p
+        # D⁻¹ (the pivot block: the ω rows of joints p…p+2) by its adjugate
+        a00, a01, a02 = J[0, p], J[0, p + 1], J[0, p + 2]
+        a10, a11, a12 = J[1, p], J[1, p + 1], J[1, p + 2]
+        a20, a21, a22 = J[2, p], J[2, p + 1], J[2, p + 2]
+        b00, b01, b02 = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
+        b10, b11, b12 = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
+        b20, b21, b22 = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
+        inv = 1.0 / (a00 * b00 + a01 * b10 + a02 * b20)
+        d00, d01, d02 = b00 * inv, b01 * inv, b02 * inv
+        d10, d11, d12 = b10 * inv, b11 * inv, b12 * inv
+        d20, d21, d22 = b20 * inv, b21 * inv, b22 * inv
+        o00, o01, o02 = J[0, o], J[0, o + 1], J[0, o + 2]  # K = D⁻¹ Jω,o
+        o10, o11, o12 = J[1, o], J[1, o + 1], J[1, o + 2]
+        o20, o21, o22 = J[2, o], J[2, o + 1], J[2, o + 2]
+        k00 = d00 * o00 + d01 * o10 + d02 * o20
+        k01 = d00 * o01 + d01 * o11 + d02 * o21
+        k02 = d00 * o02 + d01 * o12 + d02 * o22
+        k10 = d10 * o00 + d11 * o10 + d12 * o20
+        k11 = d10 * o01 + d11 * o11 + d12 * o21
+        k12 = d10 * o02 + d11 * o12 + d12 * o22
+        k20 = d20 * o00 + d21 * o10 + d22 * o20
+        k21 = d20 * o01 + d21 * o11 + d22 * o21
+        k22 = d20 * o02 + d21 * o12 + d22 * o22
+        v00, v01, v02 = J[3, p], J[3, p + 1], J[3, p + 2]  # the Schur complement S = Jv,o − Jv,p K
+        v10, v11, v12 = J[4, p], J[4, p + 1], J[4, p + 2]
+        v20, v21, v22 = J[5, p], J[5, p + 1], J[5, p + 2]
+        s00 = J[3, o] - (v00 * k00 + v01 * k10 + v02 * k20)
+        s01 = J[3, o + 1] - (v00 * k01 + v01 * k11 + v02 * k21)
+        s02 = J[3, o + 2] - (v00 * k02 + v01 * k12 + v02 * k22)
+        s10 = J[4, o] - (v10 * k00 + v11 * k10 + v12 * k20)
+        s11 = J[4, o + 1] - (v10 * k01 + v11 * k11 + v12 * k21)
+        s12 = J[4, o + 2] - (v10 * k02 + v11 * k12 + v12 * k22)
+        s20 = J[5, o] - (v20 * k00 + v21 * k10 + v22 * k20)
+        s21 = J[5, o + 1] - (v20 * k01 + v21 * k11 + v22 * k21)
+        s22 = J[5, o + 2] - (v20 * k02 + v21 * k12 + v22 * k22)
+        s = s00 * s00 + s01 * s01 + s02 * s02 + s10 * s10 + s11 * s11 + s12 * s12 + s20 * s20 + s21 * s21 + s22 * s22
+        c00, c01, c02 = s11 * s22 - s12 * s21, s02 * s21 - s01 * s22, s01 * s12 - s02 * s11
+        c10, c11, c12 = s12 * s20 - s10 * s22, s00 * s22 - s02 * s20, s02 * s10 - s00 * s12
+        c20, c21, c22 = s10 * s21 - s11 * s20, s01 * s20 - s00 * s21, s00 * s11 - s01 * s10
+        det2 = s00 * c00 + s01 * c10 + s02 * c20
+        ok = det2 != 0.0 and abs(det2) >= BLOCK_SCHUR * s * math.sqrt(s)
+    if not ok:
+        return _lu_newton_step(J, F, work, x)  # the 6 × 6 elimination with pivoting
+    inv2 = 1.0 / det2
+    e00, e01, e02 = c00 * inv2, c01 * inv2, c02 * inv2
+    e10, e11, e12 = c10 * inv2, c11 * inv2, c12 * inv2
+    e20, e21, e22 = c20 * inv2, c21 * inv2, c22 * inv2
+    f0, f1, f2, f3, f4, f5 = F[0], F[1], F[2], F[3], F[4], F[5]
+    for it in range(2):  # d = J⁻¹ F; then, with the correction, J⁻¹ (F − ½ B(d, d))
+        # y = D⁻¹ fω, x_o = S⁻¹ (f_v − Jv,p y), x_p = y − K x_o
+        y0 = d00 * f0 + d01 * f1 + d02 * f2
+        y1 = d10 * f0 + d11 * f1 + d12 * f2
+        y2 = d20 * f0 + d21 * f1 + d22 * f2
+        r0 = f3 - (v00 * y0 + v01 * y1 + v02 * y2)
+        r1 = f4 - (v10 * y0 + v11 * y1 + v12 * y2)
+        r2 = f5 - (v20 * y0 + v21 * y1 + v22 * y2)
+        xo0 = e00 * r0 + e01 * r1 + e02 * r2
+        xo1 = e10 * r0 + e11 * r1 + e12 * r2
+        xo2 = e20 * r0 + e21 * r1 + e22 * r2
+        xp0 = y0 - (k00 * xo0 + k01 * xo1 + k02 * xo2)
+        xp1 = y1 - (k10 * xo0 + k11 * xo1 + k12 * xo2)
+        xp2 = y2 - (k20 * xo0 + k21 * xo1 + k22 * xo2)
+        if it == 1:
+            break
+        # d, kept in x
+        x[o], x[o + 1], x[o + 2] = xo0, xo1, xo2
+        x[p], x[p + 1], x[p + 2] = xp0, xp1, xp2
+        big = max(abs(xo0), abs(xo1), abs(xo2), abs(xp0), abs(xp1), abs(xp2))
+        if not SECOND_ORDER[0] < big <= SECOND_ORDER[1]:
+            return True
+        d = work[32]
+        _second_order(J, x, d)
+        f0, f1, f2, f3, f4, f5 = F[0] - d[0], F[1] - d[1], F[2] - d[2], F[3] - d[3], F[4] - d[4], F[5] - d[5]
+    change = max(abs(xo0 - x[o]), abs(xo1 - x[o + 1]), abs(xo2 - x[o + 2]), abs(xp0 - x[p]), abs(xp1 - x[p + 1]),
+                 abs(xp2 - x[p + 2]))
+    if change <= 0.5 * big:
+        x[o], x[o + 1], x[o + 2] = xo0, xo1, xo2
+        x[p], x[p + 1], x[p + 2] = xp0, xp1, xp2
+    return True
+
+
+@njit(inline=True)
+def _lu_newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) -> bool:
+    """:func:`_newton_step` with J factored by the 6 × 6 elimination with pivoting (:func:`_lu_factor`):
+    where its 3 × 3 blocks are near singular."""
+    A, piv, d = work[20:26], work[47], work[32]
+    if not _lu_factor(J, A, piv):
         return False
-    _factored_solve(J, B, A, piv, blocked, F, d)
+    _lu_solve(A, piv, F, d)
     big = 0.0
     for i in range(6):
         big = max(big, abs(d[i]))
@@ -384,7 +453,7 @@ def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) 
         _second_order(J, d, x)
         for i in range(6):
             x[i] = F[i] - x[i]
-        _factored_solve(J, B, A, piv, blocked, x, x)  # in place: both solves read e before writing x
+        _lu_solve(A, piv, x, x)  # in place: the solve copies e into x first
         change = 0.0
         for i in range(6):
             change = max(change, abs(x[i] - d[i]))
@@ -631,9 +700,9 @@ def fk_jacobian(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: 
 
 
 @njit(inline=True)
-def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray, jac: bool) -> None:
-    """:func:`fk_jacobian`; J is written only when ``jac`` (the pose alone: the same arithmetic, so
-    the same T to the last bit). The running product starts at ``L₀``; at joint i its z column is
+def _chain_pose(C: np.ndarray, q: np.ndarray, sc: np.ndarray, J: np.ndarray, jac: bool) -> tuple[float, ...]:
+    """The tip pose's first three rows (12 floats, row by row) and J ← the space Jacobian (:func:`fk_jacobian`),
+    J written only when ``jac`` (the pose alone: the same arithmetic, so the same pose to the last bit). The running product starts at ``L₀``; at joint i its z column is
     the joint's axis and its origin a point of it (the Jacobian's column), then ``Zᵢ′`` and ``Xᵢ``
     (:func:`pack_arm`) mix two columns each and move the origin along them; ``L₆`` ends it."""
     r00, r01, r02, px = C[0], C[1], C[2], C[3]
@@ -673,15 +742,21 @@ def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.nd
     a00, a01, a02, a03 = C[o], C[o + 1], C[o + 2], C[o + 3]
     a10, a11, a12, a13 = C[o + 4], C[o + 5], C[o + 6], C[o + 7]
     a20, a21, a22, a23 = C[o + 8], C[o + 9], C[o + 10], C[o + 11]
-    T[0, 3] = r00 * a03 + r01 * a13 + r02 * a23 + px
-    T[1, 3] = r10 * a03 + r11 * a13 + r12 * a23 + py
-    T[2, 3] = r20 * a03 + r21 * a13 + r22 * a23 + pz
-    T[0, 0], T[0, 1], T[0, 2] = (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21,
-                                 r00 * a02 + r01 * a12 + r02 * a22)
-    T[1, 0], T[1, 1], T[1, 2] = (r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21,
-                                 r10 * a02 + r11 * a12 + r12 * a22)
-    T[2, 0], T[2, 1], T[2, 2] = (r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21,
-                                 r20 * a02 + r21 * a12 + r22 * a22)
+    return (r00 * a00 + r01 * a10 + r02 * a20, r00 * a01 + r01 * a11 + r02 * a21, r00 * a02 + r01 * a12 + r02 * a22,
+            r00 * a03 + r01 * a13 + r02 * a23 + px,
+            r10 * a00 + r11 * a10 + r12 * a20, r10 * a01 + r11 * a11 + r12 * a21, r10 * a02 + r11 * a12 + r12 * a22,
+            r10 * a03 + r11 * a13 + r12 * a23 + py,
+            r20 * a00 + r21 * a10 + r22 * a20, r20 * a01 + r21 * a11 + r22 * a21, r20 * a02 + r21 * a12 + r22 * a22,
+            r20 * a03 + r21 * a13 + r22 * a23 + pz)
+
+
+@njit(inline=True)
+def _chain(C: np.ndarray, q: np.ndarray, sc: np.ndarray, T: np.ndarray, J: np.ndarray, jac: bool) -> None:
+    """:func:`_chain_pose` with the pose written into T (4, 4)."""
+    t = _chain_pose(C, q, sc, J, jac)
+    T[0, 0], T[0, 1], T[0, 2], T[0, 3] = t[0], t[1], t[2], t[3]
+    T[1, 0], T[1, 1], T[1, 2], T[1, 3] = t[4], t[5], t[6], t[7]
+    T[2, 0], T[2, 1], T[2, 2], T[2, 3] = t[8], t[9], t[10], t[11]
     T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
 
 
@@ -710,14 +785,13 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
     43–44 (the starts share theirs: :func:`_start_trig`)."""
     n = 6
     tol_stop = C[_TOL_STOP]
-    T0, T1 = work[0:4, 0:4], work[4:8, 0:4]
     J0, J1, H, L = work[8:14], work[14:20], work[26:32], work[32:38]
     F0, F1, g, step, trial = work[38], work[39], work[40], work[41], work[42]
     sc0, sc1 = work[43:45], work[45:47]
     if trig:
         _trig(C, q, sc0)
-    fk_jacobian(C, q, sc0, T0, J0)
-    err, rot, pos = _error(T0, Td, F0)  # (J0, F0, sc0): the current iterate; (T1, J1, F1, sc1): a trial
+    # (J0, F0, sc0): the current iterate; (J1, F1, sc1): a trial; their poses only in registers (_chain_pose)
+    err, rot, pos = _error_of(_chain_pose(C, q, sc0, J0, True), Td, F0)
     lam = 0.0  # 0: Newton; else the damping, relative to the largest diagonal entry of Jᵀ J
     evals = 1
     for _ in range(max_steps):
@@ -750,9 +824,8 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
             trial[i] = q[i] + step[i]
         _advance(C, sc0, step, sc1)
         jac = not (rot < FINAL and pos < FINAL)  # else the trial is expected to end the polish
-        _chain(C, trial, sc1, T1, J1, jac)
+        e2, r2, p2 = _error_of(_chain_pose(C, trial, sc1, J1, jac), Td, F1)
         evals += 1
-        e2, r2, p2 = _error(T1, Td, F1)
         if e2 < err:
             for i in range(n):
                 q[i] = trial[i]
@@ -761,7 +834,7 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
             if jac:
                 J0, J1 = J1, J0
             elif not (r2 < tol_stop and p2 < tol_stop):
-                _chain(C, q, sc0, T1, J0, True)  # not the end after all: its Jacobian (its pose again)
+                _chain_pose(C, q, sc0, J0, True)  # not the end after all: its Jacobian (its pose again)
                 evals += 1
             err, rot, pos = e2, r2, p2
             if lam > 0.0:

@@ -420,6 +420,38 @@ def test_batch_equals_single(arms):
         assert np.isnan(Q[i, counts[i]:]).all() and not within[i, counts[i]:].any()
 
 
+
+def test_the_common_case_run_inline_equals_the_calibrated_solver():
+    """ik_analytic runs the calibrated kernel's common case itself (one Python call less) and hands
+    any other result to CalibratedArm._solve_checked: the same solutions as CalibratedArm.solve, flagged
+    poses included."""
+    from robokit.ik import closed_form as icf
+    from robokit.kernels import calibrated_ik as kci
+
+    assert icf._CAL_FLAGGED == kci.FLAGGED
+    nominal = robokit.load("puma560")
+    rng = np.random.default_rng(0)  # the benchmark's PUMA 560 (benchmarks/calibrated_ik.py: _arms)
+    robot = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-2e-3, 2e-3, (7, 6))))
+    arm = analytic_ik(robot).calibrated
+    assert arm is not None
+    qs = [robot.random_configuration(rng) for _ in range(30)]
+    # draw 121 of the benchmark's stream (test_near_a_singular_position_every_branch_is_searched): flagged
+    qs.append(np.array([0.3587434740072251, -3.6391722332065934, 1.6136949688695033, -2.063132292035656,
+                        0.010862402481855061, 1.8460531463552783]))
+    flagged = 0
+    for q in qs:
+        T = robot.frame_pose(q)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RobokitWarning)
+            a = ik_analytic(robot, T)
+            b = arm.solve(T)
+        flagged += arm._status[2] <= kci.SIGMA_EXPLORE
+        assert [s.label for s in a] == [s.label for s in b]
+        assert [s.degenerate for s in a] == [s.degenerate for s in b]
+        for sa, sb in zip(a, b):
+            np.testing.assert_array_equal(sa.q, sb.q)
+    assert flagged >= 1
+
 def _projected_rows(Kn, method, T, wrist_ref, out):
     """The projected arm's closed-form solve (its packed kernel), the kernel's starts before polishing."""
     from robokit.kernels import closed_form as cf
