@@ -828,10 +828,10 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     int *const lab = labdeg, *const deg = labdeg + {max_rows}, *const ninfo = labdeg;
     signed char nlab[{max_rows}], ndeg[{max_rows}];
     /* state bits: 1 a solution, 2 a search point still to come, 4 a trace's scratch, 8 a solution searched
-       around already (as a search point), 16 on a curve traced already; 0 free */
+       around already (as a search point); 0 free */
     signed char sol[{max_rows}], seed[{max_rows}], state[{max_rows}];
     signed char *const tr = ndeg;  /* a trace's rows, once the starts' flags are read */
-    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0, mb = 0, pass, nsol, gate = 0;  /* gate: 1 checked, 2 near singular */
+    int m, m0, me, r, j, kk, f, ns = 0, nseed = 0, nstall = 0, mb = 0, pass, nsol, gate = 0;  /* gate: 1 checked, 2 near singular */
     double rp[2];  /* a polish's orientation and position errors */
     m = {first_call};
     for (r = 0; r < m; ++r) {{
@@ -882,7 +882,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     for (pass = 0; pass < 2; ++pass)  /* the fold starts last */
     for (r = 0; r < m; ++r) {{
         double moved = 0.0;
-        int ok, hit = -1, dg = ndeg[r] != 0, point;
+        int ok, hit = -1, dg = ndeg[r] != 0, point, stalled = 0;
         const int relaxed = ndeg[r] >= 2, fold = ndeg[r] == 3;
         if (fold != pass) {{
             continue;
@@ -906,7 +906,12 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             {P}_cal_polish(T, q2, relaxed ? {int(c["explore_max_steps"])} : {int(c["max_steps"])}, &rp[0], &rp[1]);
             if (rp[0] < {t(c["tol_accept"])} && rp[1] < {t(c["tol_accept"])}
                 && {P}_cal_find(q2, (const double (*)[6])rows, sol, ns) < 0) {{
+                /* the first polish failed: where it stalled is the search point, in a row past the starts */
+                stalled = !ok && nstall < {max_rows} - m;
                 for (j = 0; j < 6; ++j) {{
+                    if (stalled) {{
+                        rows[m + nstall][j] = qq[j];
+                    }}
                     qq[j] = q2[j];
                 }}
                 ok = 1;
@@ -918,16 +923,20 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             }}
         }}
         /* a search point: the point reached, in this row (its start is used up) */
-        point = moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed) || (fold && ok);
+        point = moved > {lit(float(c["explore"]))} || hit >= 0 || (dg && !relaxed) || (!ok && !relaxed) || (fold && ok)
+            || stalled;
         if (point || (ok && hit < 0)) {{
             for (j = 0; j < 6; ++j) {{
                 rows[r][j] = qq[j];
             }}
         }}
         if (point) {{
-            seed[nseed] = (signed char)r;
+            const int at = stalled ? m + nstall : r;
+            nlab[at] = nlab[r];  /* (the stalled point's row: its branch's label) */
+            seed[nseed] = (signed char)at;
             ++nseed;
-            state[r] = 2;
+            state[at] = 2;
+            nstall += stalled;
             if (hit >= 0) {{
                 state[sol[hit]] |= 8;  /* that solution is this search point */
             }}
@@ -937,7 +946,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             lab[ns] = nlab[r];
             deg[ns] = dg;
             ++ns;
-            state[r] = point ? 1 | 2 | 8 : 1;
+            state[r] = point && !stalled ? 1 | 2 | 8 : 1;
         }} else if (ok && !fold) {{  /* two branches reach one root: they merge here */
             deg[hit] = 1;
         }}
@@ -948,14 +957,13 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
     nsol = ns;
     for (kk = 0; kk < nseed + {solutions_searched}; ++kk) {{
         double big = 0.0, sk;
-        int st, pending, code, traced;
+        int st, pending, code;
         if (kk < nseed) {{
             pending = nseed - kk - 1;
             for (j = 0; j < 6; ++j) {{
                 s0[j] = rows[seed[kk]][j];
             }}
             code = nlab[seed[kk]];
-            traced = (state[seed[kk]] & 16) != 0;
             if (!(state[seed[kk]] & 1)) {{
                 state[seed[kk]] = 0;  /* its row is free now */
             }}
@@ -978,7 +986,6 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 }}
             }}
             code = lab[i];
-            traced = (state[sol[i]] & 16) != 0;
         }}
         sk = {P}_cal_null_direction(s0, v);
         if (sk > {lit(float(c["sigma_explore"]))}) {{
@@ -1005,7 +1012,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                 {P}_cal_keep(qq, code, rows, state, sol, labdeg, ns++);
             }}
         }}
-        if ({P}_IK_FULL_SEARCH && !traced && {max_rows} - ns - pending > {trace_free}) {{  /* the curve, both ways */
+        if ({P}_IK_FULL_SEARCH && {max_rows} - ns - pending > {trace_free}) {{  /* the curve, both ways */
             int nt = 0, sgn;
             for (f = 0; f < {max_rows} && nt < {int(c["trace_rows"])}; ++f) {{
                 if (state[f] == 0) {{
@@ -1041,16 +1048,6 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
                     }}
                     tr3[2] = tr3[1];
                     tr3[1] = tr3[0];
-                    for (r = 0; r < nsol; ++r) {{  /* a branch's solution on this curve: not traced again */
-                        if (!(state[sol[r]] & (8 | 16)) && {P}_cal_dist2(tq, rows[sol[r]]) < {lit(float(c["trace_step"]) ** 2)}) {{
-                            state[sol[r]] |= 16;
-                        }}
-                    }}
-                    for (r = kk + 1; r < nseed; ++r) {{  /* nor a search point still to come */
-                        if (!(state[seed[r]] & 16) && {P}_cal_dist2(tq, rows[seed[r]]) < {lit(float(c["trace_step"]) ** 2)}) {{
-                            state[seed[r]] |= 16;
-                        }}
-                    }}
                     if (st >= 2 && {P}_cal_dist2(tq, s0) < {lit(float(c["trace_step"]) ** 2)}) {{
                         closed = 1;  /* back at the start: the other way is the same curve */
                         break;
