@@ -33,6 +33,7 @@ def _angle_dist(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def _sweep(robot, T: np.ndarray, seeds: int, rng: np.random.Generator) -> list[np.ndarray]:
+    from robokit.errors import DegreesWarning
     from robokit.kernels.ik import solve_poe_ik
 
     wide = np.tile([-4 * np.pi, 4 * np.pi], (robot.n, 1))
@@ -40,7 +41,10 @@ def _sweep(robot, T: np.ndarray, seeds: int, rng: np.random.Generator) -> list[n
     for k in range(seeds):
         q, ok, _, _ = solve_poe_ik(robot.poe.M, robot.poe.Slist, T, rng.uniform(-np.pi, np.pi, robot.n), wide,
                                    tol=1e-11, max_iterations=60, max_restarts=0, seed=k)
-        if ok and np.abs(robot.frame_pose(q) - T).max() < 1e-9 and not any(_angle_dist(q, f) < 1e-6 for f in found):
+        with warnings.catch_warnings():  # the sweep's joints roam ±4π on purpose (DegreesWarning beyond a turn)
+            warnings.simplefilter("ignore", DegreesWarning)
+            reached = ok and np.abs(robot.frame_pose(q) - T).max() < 1e-9
+        if reached and not any(_angle_dist(q, f) < 1e-6 for f in found):
             found.append(q)
     return found
 
