@@ -53,10 +53,11 @@ constants ``Kn``). Per pose:
    was near singular: near a singular position of a wrist-partitioned arm every branch is). At
    each point where the arm's Jacobian has a singular value below ``SIGMA_EXPLORE``
    (:func:`_null_direction`): polishes from the ``EXPLORE_STEPS`` along the near-null direction,
-   then the curve along which the arm almost reaches the pose is followed both ways
-   (:func:`_trace`) and polished where the error is least along it (measured on 3,000 random poses
-   of the benchmark's calibrated PUMA 560: the roots a 500-start sweep found and this path missed
-   went from 20 to 1; on the UR5 from 7 to 3);
+   then the curve along which the arm almost reaches the pose is followed both ways from every
+   such point (:func:`_trace`) and polished where the error is least along it (measured on 3,000
+   random poses of the benchmark's calibrated PUMA 560: the roots a 500-start sweep found and this
+   path missed went from 20 to 0 with the curves, the stall points of step 3 and every point's own
+   curve; on the UR5 from 7 to 0, with the elbow fold starts);
 5. the outcome of every branch is written to ``branches``: a distinct solution, merged into an
    earlier solution (that solution is flagged degenerate), or vanished (no exact solution of the
    arm near that branch: the two roots of a fold became complex);
