@@ -228,26 +228,6 @@ def _det3(a00: float, a01: float, a02: float, a10: float, a11: float, a12: float
     return a00 * (a11 * a22 - a12 * a21) - a01 * (a10 * a22 - a12 * a20) + a02 * (a10 * a21 - a11 * a20)
 
 
-@njit(inline=True)
-def _inverse3(M: np.ndarray, r0: int, c0: int, out: np.ndarray, o0: int) -> float:
-    """out[o0:o0+3, 0:3] ← the inverse of M[r0:r0+3, c0:c0+3] by its adjugate; returns the
-    determinant (0: nothing written)."""
-    a00, a01, a02 = M[r0, c0], M[r0, c0 + 1], M[r0, c0 + 2]
-    a10, a11, a12 = M[r0 + 1, c0], M[r0 + 1, c0 + 1], M[r0 + 1, c0 + 2]
-    a20, a21, a22 = M[r0 + 2, c0], M[r0 + 2, c0 + 1], M[r0 + 2, c0 + 2]
-    b00, b01, b02 = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
-    b10, b11, b12 = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
-    b20, b21, b22 = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
-    det = a00 * b00 + a01 * b10 + a02 * b20
-    if det == 0.0:
-        return 0.0
-    inv = 1.0 / det
-    out[o0, 0], out[o0, 1], out[o0, 2] = b00 * inv, b01 * inv, b02 * inv
-    out[o0 + 1, 0], out[o0 + 1, 1], out[o0 + 1, 2] = b10 * inv, b11 * inv, b12 * inv
-    out[o0 + 2, 0], out[o0 + 2, 1], out[o0 + 2, 2] = b20 * inv, b21 * inv, b22 * inv
-    return det
-
-
 #: :func:`_block_factor` eliminates by 3 × 3 blocks only when the pivot block's determinant (three
 #: unit axes: the volume they span) is at least this, and the Schur complement's at least
 #: ``BLOCK_SCHUR`` times its Frobenius norm cubed; else the 6 × 6 elimination with pivoting.
@@ -255,34 +235,86 @@ BLOCK_AXES, BLOCK_SCHUR = 1e-3, 1e-6
 
 
 @njit(inline=True)
-def _block_factor(J: np.ndarray, B: np.ndarray) -> bool:
-    """Factor the space Jacobian J (ω rows 0–2, v rows 3–5) by 3 × 3 blocks into B (6, 6): pivot
-    block ``D`` = the ω rows of joints p…p+2, the three joints whose axes span the larger volume
-    (p = 3, the wrist, or p = 0), the other three o…o+2; ``B[0:3, 0:3] = D⁻¹``, ``B[0:3, 3:6] = K =
-    D⁻¹ Jω,o``, ``B[3:6, 0:3] = S⁻¹`` with the Schur complement ``S = Jv,o − Jv,p K``, ``B[3, 3] = p``.
-    Exact for any J with D and S invertible (Gaussian elimination by blocks); straight-line
-    arithmetic with two divisions, where the 6 × 6 elimination searches a pivot per column. False
-    (nothing to rely on in B) when either block is near singular (``BLOCK_AXES``, ``BLOCK_SCHUR``)."""
+def _block_elimination(J: np.ndarray) -> tuple:
+    """The space Jacobian J (ω rows 0–2, v rows 3–5) eliminated by 3 × 3 blocks, as values (in
+    registers where inlined): pivot block ``D`` = the ω rows of joints p…p+2, the three joints whose
+    axes span the larger volume (p = 3, the wrist, or p = 0), the other three o…o+2; returns (ok, p,
+    ``D⁻¹``, ``K = D⁻¹ Jω,o``, ``S⁻¹``) with the Schur complement ``S = Jv,o − Jv,p K``, each 3 × 3 as 9
+    floats row by row. Exact for any J with D and S invertible (Gaussian elimination by blocks);
+    straight-line arithmetic with two divisions, where the 6 × 6 elimination searches a pivot per
+    column. ok False (the factors meaningless) when either block is near singular (``BLOCK_AXES``,
+    ``BLOCK_SCHUR``)."""
     dw = _det3(J[0, 3], J[0, 4], J[0, 5], J[1, 3], J[1, 4], J[1, 5], J[2, 3], J[2, 4], J[2, 5])
     da = _det3(J[0, 0], J[0, 1], J[0, 2], J[1, 0], J[1, 1], J[1, 2], J[2, 0], J[2, 1], J[2, 2])
     p = 3 if abs(dw) >= abs(da) else 0
-    if not max(abs(dw), abs(da)) >= BLOCK_AXES:
+    ok = max(abs(dw), abs(da)) >= BLOCK_AXES
+    det2 = 0.0
+    if ok:
+        o = 3 - p
+        # D⁻¹ (the pivot block: the ω rows of joints p…p+2) by its adjugate
+        a00, a01, a02 = J[0, p], J[0, p + 1], J[0, p + 2]
+        a10, a11, a12 = J[1, p], J[1, p + 1], J[1, p + 2]
+        a20, a21, a22 = J[2, p], J[2, p + 1], J[2, p + 2]
+        b00, b01, b02 = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
+        b10, b11, b12 = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
+        b20, b21, b22 = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
+        inv = 1.0 / (a00 * b00 + a01 * b10 + a02 * b20)
+        d00, d01, d02 = b00 * inv, b01 * inv, b02 * inv
+        d10, d11, d12 = b10 * inv, b11 * inv, b12 * inv
+        d20, d21, d22 = b20 * inv, b21 * inv, b22 * inv
+        o00, o01, o02 = J[0, o], J[0, o + 1], J[0, o + 2]  # K = D⁻¹ Jω,o
+        o10, o11, o12 = J[1, o], J[1, o + 1], J[1, o + 2]
+        o20, o21, o22 = J[2, o], J[2, o + 1], J[2, o + 2]
+        k00 = d00 * o00 + d01 * o10 + d02 * o20
+        k01 = d00 * o01 + d01 * o11 + d02 * o21
+        k02 = d00 * o02 + d01 * o12 + d02 * o22
+        k10 = d10 * o00 + d11 * o10 + d12 * o20
+        k11 = d10 * o01 + d11 * o11 + d12 * o21
+        k12 = d10 * o02 + d11 * o12 + d12 * o22
+        k20 = d20 * o00 + d21 * o10 + d22 * o20
+        k21 = d20 * o01 + d21 * o11 + d22 * o21
+        k22 = d20 * o02 + d21 * o12 + d22 * o22
+        v00, v01, v02 = J[3, p], J[3, p + 1], J[3, p + 2]  # the Schur complement S = Jv,o − Jv,p K
+        v10, v11, v12 = J[4, p], J[4, p + 1], J[4, p + 2]
+        v20, v21, v22 = J[5, p], J[5, p + 1], J[5, p + 2]
+        s00 = J[3, o] - (v00 * k00 + v01 * k10 + v02 * k20)
+        s01 = J[3, o + 1] - (v00 * k01 + v01 * k11 + v02 * k21)
+        s02 = J[3, o + 2] - (v00 * k02 + v01 * k12 + v02 * k22)
+        s10 = J[4, o] - (v10 * k00 + v11 * k10 + v12 * k20)
+        s11 = J[4, o + 1] - (v10 * k01 + v11 * k11 + v12 * k21)
+        s12 = J[4, o + 2] - (v10 * k02 + v11 * k12 + v12 * k22)
+        s20 = J[5, o] - (v20 * k00 + v21 * k10 + v22 * k20)
+        s21 = J[5, o + 1] - (v20 * k01 + v21 * k11 + v22 * k21)
+        s22 = J[5, o + 2] - (v20 * k02 + v21 * k12 + v22 * k22)
+        s = s00 * s00 + s01 * s01 + s02 * s02 + s10 * s10 + s11 * s11 + s12 * s12 + s20 * s20 + s21 * s21 + s22 * s22
+        c00, c01, c02 = s11 * s22 - s12 * s21, s02 * s21 - s01 * s22, s01 * s12 - s02 * s11
+        c10, c11, c12 = s12 * s20 - s10 * s22, s00 * s22 - s02 * s20, s02 * s10 - s00 * s12
+        c20, c21, c22 = s10 * s21 - s11 * s20, s01 * s20 - s00 * s21, s00 * s11 - s01 * s10
+        det2 = s00 * c00 + s01 * c10 + s02 * c20
+        ok = det2 != 0.0 and abs(det2) >= BLOCK_SCHUR * s * math.sqrt(s)
+    if not ok:
+        z = 0.0
+        return (False, p, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z, z)
+    inv2 = 1.0 / det2
+    return (True, p, d00, d01, d02, d10, d11, d12, d20, d21, d22, k00, k01, k02, k10, k11, k12, k20, k21, k22,
+            c00 * inv2, c01 * inv2, c02 * inv2, c10 * inv2, c11 * inv2, c12 * inv2, c20 * inv2, c21 * inv2,
+            c22 * inv2)
+
+
+@njit(inline=True)
+def _block_factor(J: np.ndarray, B: np.ndarray) -> bool:
+    """:func:`_block_elimination` of J stored into B (6, 6): ``B[0:3, 0:3] = D⁻¹``, ``B[0:3, 3:6] =
+    K``, ``B[3:6, 0:3] = S⁻¹``, ``B[3, 3] = p``; False (nothing to rely on in B) where it is not ok."""
+    (ok, p, d00, d01, d02, d10, d11, d12, d20, d21, d22, k00, k01, k02, k10, k11, k12, k20, k21, k22, e00, e01, e02,
+     e10, e11, e12, e20, e21, e22) = _block_elimination(J)
+    if not ok:
         return False
-    o = 3 - p
-    _inverse3(J, 0, p, B, 0)
-    for r in range(3):
-        for c in range(3):
-            B[r, 3 + c] = B[r, 0] * J[0, o + c] + B[r, 1] * J[1, o + c] + B[r, 2] * J[2, o + c]
-    s = 0.0
-    for r in range(3):  # S, in B[3:6, 3:6] for a moment
-        for c in range(3):
-            v = J[3 + r, o + c] - (J[3 + r, p] * B[0, 3 + c] + J[3 + r, p + 1] * B[1, 3 + c] + J[3 + r, p + 2] * B[2, 3 + c])
-            B[3 + r, 3 + c] = v
-            s += v * v
-    det = _inverse3(B, 3, 3, B, 3)
-    if not abs(det) >= BLOCK_SCHUR * s * math.sqrt(s):
-        return False
-    B[3, 3] = p
+    B[0, 0], B[0, 1], B[0, 2], B[0, 3], B[0, 4], B[0, 5] = d00, d01, d02, k00, k01, k02
+    B[1, 0], B[1, 1], B[1, 2], B[1, 3], B[1, 4], B[1, 5] = d10, d11, d12, k10, k11, k12
+    B[2, 0], B[2, 1], B[2, 2], B[2, 3], B[2, 4], B[2, 5] = d20, d21, d22, k20, k21, k22
+    B[3, 0], B[3, 1], B[3, 2], B[3, 3] = e00, e01, e02, p
+    B[4, 0], B[4, 1], B[4, 2] = e10, e11, e12
+    B[5, 0], B[5, 1], B[5, 2] = e20, e21, e22
     return True
 
 
@@ -349,65 +381,19 @@ def _newton_step(J: np.ndarray, F: np.ndarray, work: np.ndarray, x: np.ndarray) 
     :func:`_second_order`'s B (the pose error after the step is then O(d³), where Newton's is O(d²):
     from the closed form's starts, about 5e-3 off, two steps reach 1e-15 where Newton's method needs
     three); the correction is dropped when it is not small against d (far from a root). J is
-    factored once for both solves, by 3 × 3 blocks as :func:`_block_factor` factors it — here with
-    every factor in local variables, J read once and nothing stored but x (measured on the UR5 and the
-    PUMA 560, compiled as the polish is: 93 → 77 ns a step from the factors kept in ``work``) — or,
+    factored once for both solves, by 3 × 3 blocks (:func:`_block_elimination`: every factor a local
+    variable, nothing stored but x; measured on the UR5 and the PUMA 560, compiled as the polish is:
+    93 → 77 ns a step from factors kept in ``work``) — or,
     where the blocks are near singular, with pivoting (:func:`_lu_newton_step`). False when J is
     singular for this purpose. Scratch: ``work`` rows 20–26, 32 and 47."""
-    dw = _det3(J[0, 3], J[0, 4], J[0, 5], J[1, 3], J[1, 4], J[1, 5], J[2, 3], J[2, 4], J[2, 5])
-    da = _det3(J[0, 0], J[0, 1], J[0, 2], J[1, 0], J[1, 1], J[1, 2], J[2, 0], J[2, 1], J[2, 2])
-    p = 3 if abs(dw) >= abs(da) else 0
-    ok = max(abs(dw), abs(da)) >= BLOCK_AXES
-    det2 = 0.0
-    if ok:
-        o = 3 - p
-        # D⁻¹ (the pivot block: the ω rows of joints p…p+2) by its adjugate
-        a00, a01, a02 = J[0, p], J[0, p + 1], J[0, p + 2]
-        a10, a11, a12 = J[1, p], J[1, p + 1], J[1, p + 2]
-        a20, a21, a22 = J[2, p], J[2, p + 1], J[2, p + 2]
-        b00, b01, b02 = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
-        b10, b11, b12 = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
-        b20, b21, b22 = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
-        inv = 1.0 / (a00 * b00 + a01 * b10 + a02 * b20)
-        d00, d01, d02 = b00 * inv, b01 * inv, b02 * inv
-        d10, d11, d12 = b10 * inv, b11 * inv, b12 * inv
-        d20, d21, d22 = b20 * inv, b21 * inv, b22 * inv
-        o00, o01, o02 = J[0, o], J[0, o + 1], J[0, o + 2]  # K = D⁻¹ Jω,o
-        o10, o11, o12 = J[1, o], J[1, o + 1], J[1, o + 2]
-        o20, o21, o22 = J[2, o], J[2, o + 1], J[2, o + 2]
-        k00 = d00 * o00 + d01 * o10 + d02 * o20
-        k01 = d00 * o01 + d01 * o11 + d02 * o21
-        k02 = d00 * o02 + d01 * o12 + d02 * o22
-        k10 = d10 * o00 + d11 * o10 + d12 * o20
-        k11 = d10 * o01 + d11 * o11 + d12 * o21
-        k12 = d10 * o02 + d11 * o12 + d12 * o22
-        k20 = d20 * o00 + d21 * o10 + d22 * o20
-        k21 = d20 * o01 + d21 * o11 + d22 * o21
-        k22 = d20 * o02 + d21 * o12 + d22 * o22
-        v00, v01, v02 = J[3, p], J[3, p + 1], J[3, p + 2]  # the Schur complement S = Jv,o − Jv,p K
-        v10, v11, v12 = J[4, p], J[4, p + 1], J[4, p + 2]
-        v20, v21, v22 = J[5, p], J[5, p + 1], J[5, p + 2]
-        s00 = J[3, o] - (v00 * k00 + v01 * k10 + v02 * k20)
-        s01 = J[3, o + 1] - (v00 * k01 + v01 * k11 + v02 * k21)
-        s02 = J[3, o + 2] - (v00 * k02 + v01 * k12 + v02 * k22)
-        s10 = J[4, o] - (v10 * k00 + v11 * k10 + v12 * k20)
-        s11 = J[4, o + 1] - (v10 * k01 + v11 * k11 + v12 * k21)
-        s12 = J[4, o + 2] - (v10 * k02 + v11 * k12 + v12 * k22)
-        s20 = J[5, o] - (v20 * k00 + v21 * k10 + v22 * k20)
-        s21 = J[5, o + 1] - (v20 * k01 + v21 * k11 + v22 * k21)
-        s22 = J[5, o + 2] - (v20 * k02 + v21 * k12 + v22 * k22)
-        s = s00 * s00 + s01 * s01 + s02 * s02 + s10 * s10 + s11 * s11 + s12 * s12 + s20 * s20 + s21 * s21 + s22 * s22
-        c00, c01, c02 = s11 * s22 - s12 * s21, s02 * s21 - s01 * s22, s01 * s12 - s02 * s11
-        c10, c11, c12 = s12 * s20 - s10 * s22, s00 * s22 - s02 * s20, s02 * s10 - s00 * s12
-        c20, c21, c22 = s10 * s21 - s11 * s20, s01 * s20 - s00 * s21, s00 * s11 - s01 * s10
-        det2 = s00 * c00 + s01 * c10 + s02 * c20
-        ok = det2 != 0.0 and abs(det2) >= BLOCK_SCHUR * s * math.sqrt(s)
+    (ok, p, d00, d01, d02, d10, d11, d12, d20, d21, d22, k00, k01, k02, k10, k11, k12, k20, k21, k22, e00, e01, e02,
+     e10, e11, e12, e20, e21, e22) = _block_elimination(J)
     if not ok:
         return _lu_newton_step(J, F, work, x)  # the 6 × 6 elimination with pivoting
-    inv2 = 1.0 / det2
-    e00, e01, e02 = c00 * inv2, c01 * inv2, c02 * inv2
-    e10, e11, e12 = c10 * inv2, c11 * inv2, c12 * inv2
-    e20, e21, e22 = c20 * inv2, c21 * inv2, c22 * inv2
+    o = 3 - p
+    v00, v01, v02 = J[3, p], J[3, p + 1], J[3, p + 2]  # Jv,p
+    v10, v11, v12 = J[4, p], J[4, p + 1], J[4, p + 2]
+    v20, v21, v22 = J[5, p], J[5, p + 1], J[5, p + 2]
     f0, f1, f2, f3, f4, f5 = F[0], F[1], F[2], F[3], F[4], F[5]
     for it in range(2):  # d = J⁻¹ F; then, with the correction, J⁻¹ (F − ½ B(d, d))
         # y = D⁻¹ fω, x_o = S⁻¹ (f_v − Jv,p y), x_p = y − K x_o
