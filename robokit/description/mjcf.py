@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from robokit.description.builder import build_robot, default_tip
+from robokit.description.frames import frame_index
 from robokit.description.mjcf_compile import CompiledMjcf, compile_mjcf
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
@@ -255,13 +256,16 @@ def _contact_rules(c: CompiledMjcf, root: ET.Element, masks: dict[str, tuple[int
 
 
 def _default_tip(model: Any) -> str:
-    """The last site on the chain's last joint; else the first (in the file) of the deepest
-    bodies fixed to that joint."""
+    """The last site on the chain's last joint (not one named like a body); else the first (in the
+    file) of the deepest bodies fixed to that joint."""
     import pinocchio as pin
 
     body = default_tip(model)
-    j = model.frames[model.getFrameId(body)].parentJoint
-    sites = [f.name for f in model.frames if f.type == pin.FrameType.OP_FRAME and f.parentJoint == j]
+    j = model.frames[frame_index(model, body)].parentJoint  # a joint may share the body's name
+    bodies = {f.name for f in model.frames if f.type == pin.FrameType.BODY}
+    # a site that shares a body's name cannot be the tip: the name means the body (frame_index)
+    sites = [f.name for f in model.frames
+             if f.type == pin.FrameType.OP_FRAME and f.parentJoint == j and f.name not in bodies]
     if sites:
         return str(sites[-1])
 

@@ -461,3 +461,74 @@ def test_an_unknown_childclass_is_refused_on_a_body_and_on_a_frame(tree, tmp_pat
         mujoco.MjModel.from_xml_path(str(path))
     with pytest.raises(InputError, match="childclass='nope': no such default class"):
         compile_mjcf(path)
+
+
+# dm_control's finger.xml (suite/finger.xml) names a body, its joint and a geom alike: MuJoCo keeps
+# one namespace per kind, Pinocchio's model then has a BODY and a JOINT frame called 'distal'.
+SHARED_NAMES = """<mujoco model="finger">
+  <default>
+    <joint type="hinge" axis="0 -1 0"/>
+    <default class="finger"><joint damping="2.5" limited="true"/></default>
+  </default>
+  <worldbody>
+    <body name="proximal" pos="-.2 0 .4" childclass="finger">
+      <joint name="proximal" range="-110 110" ref="-90"/>
+      <geom name="proximal" type="capsule" size=".03" fromto="0 0 0 0 0 -.17"/>
+      <body name="distal" pos="0 0 -.18" childclass="finger">
+        <joint name="distal" range="-110 110"/>
+        <geom name="distal" type="capsule" size=".028" fromto="0 0 0 0 0 -.16"/>
+        {site}
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.mark.parametrize("site", ['<site name="touch" pos=".01 0 -.17"/>', ""])
+def test_a_body_and_its_joint_of_one_name(site, tmp_path):
+    """The default tip is found (was: Pinocchio's 'Several frames match the filter' from the
+    loader), and the tip, M and inverse dynamics are MuJoCo's."""
+    path = _write(tmp_path, "finger.xml", SHARED_NAMES.format(site=site))
+    robot = robokit.load(path)
+    assert robot.joint_names == ("proximal", "distal")
+    assert robot.tip == ("touch" if site else "distal")
+    assert dynamics_differences(path) < TOL
+    m = _mj_model(path)
+    d = mujoco.MjData(m)
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "distal")
+        T = robot.frame_pose(q, "distal")  # the body, not the joint
+        assert np.abs(T[:3, 3] - d.xpos[body]).max() < 1e-12
+        assert np.abs(T[:3, :3] - d.xmat[body].reshape(3, 3)).max() < 1e-12
+        if site:
+            T = robot.frame_pose(q)
+            assert np.abs(T[:3, 3] - d.site_xpos[0]).max() < 1e-12
+
+
+@pytest.mark.parametrize("site_name, tip", [("j2", "j2"), ("hand", "hand"), ("grip", "grip")])
+def test_a_site_named_like_a_joint_or_a_body(site_name, tip, tmp_path):
+    """A name means the body, else the site, never the joint frame (was: a site called like its
+    body's joint was the joint frame, 0.1 m from MuJoCo's site; a site called like its body was
+    the default tip but posed as the body)."""
+    xml = f"""<mujoco model="s"><worldbody><body name="a" pos="0 0 0.1"><joint name="j1" axis="0 0 1"/>
+      <geom type="capsule" size=".03" fromto="0 0 0 0.3 0 0"/>
+      <body name="hand" pos="0.3 0 0"><joint name="j2" axis="0 1 0"/><geom type="box" size=".05 .05 .05"/>
+        <site name="{site_name}" pos="0.1 0 0.02"/></body></body></worldbody></mujoco>"""
+    path = _write(tmp_path, "s.xml", xml)
+    robot = robokit.load(path)
+    assert robot.tip == tip
+    m = _mj_model(path)
+    d = mujoco.MjData(m)
+    kind, i = ((mujoco.mjtObj.mjOBJ_BODY, 2) if tip == "hand" else (mujoco.mjtObj.mjOBJ_SITE, 0))
+    assert mujoco.mj_id2name(m, kind, i) == tip
+    for q in ([0.0, 0.0], [0.3, -1.2], [2.0, 0.7]):
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        p, R = (d.xpos[i], d.xmat[i]) if kind == mujoco.mjtObj.mjOBJ_BODY else (d.site_xpos[i], d.site_xmat[i])
+        for T in (robot.frame_pose(q), robokit.load(path, tip=tip).frame_pose(q), robot.frame_pose(q, tip)):
+            assert np.abs(T[:3, 3] - p).max() < 1e-12 and np.abs(T[:3, :3] - R.reshape(3, 3)).max() < 1e-12
