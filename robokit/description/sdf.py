@@ -20,8 +20,8 @@ What is read
       (a link, ``world``, or — SDFormat 1.8 — a frame, meaning the link it is attached to),
       ``<pose>``, ``<axis><xyz expressed_in=…>`` (SDFormat 1.4: in the model frame; 1.5–1.6:
       in the joint frame unless ``<use_parent_model_frame>``), ``<limit>`` (``lower``/``upper``
-      of ±1e16, SDFormat's "no limit", read as ±inf; a negative ``effort``/``velocity`` as
-      unlimited), ``<dynamics><damping>``/``<friction>`` (stored in the model, as for URDF);
+      of ±1e16 or beyond — SDFormat's "no limit"; Gazebo's files write ±1.79769e+308 or ``inf`` —
+      read as ±inf; a negative ``effort``/``velocity`` as unlimited), ``<dynamics><damping>``/``<friction>`` (stored in the model, as for URDF);
       Drake's ``<drake:rotor_inertia>`` and ``<drake:gear_ratio>`` become the joint's reflected
       inertia ``rotor_inertia · gear_ratio²``, which Drake adds to the mass matrix's diagonal and to
       inverse dynamics, as ``model.armature`` does (only on a joint Drake actuates: ``<effort>``
@@ -252,6 +252,22 @@ def _floats(text: str | None, where: str, counts: tuple[int, ...]) -> list[float
     if not all(math.isfinite(v) and abs(v) <= 1e17 for v in vals):
         raise InputError(f"{where}: numbers must be finite and at most 1e17 in size")
     return vals
+
+
+def _limit(el: ET.Element | None, tag: str, default: float, where: str) -> float:
+    """A joint limit: any magnitude, ``inf`` included — Gazebo's files write "no limit" as
+    ±1.79769e+308 (its wheel joints) or ``inf`` (libsdformat reads both); NaN is refused."""
+    c = _child(el, tag) if el is not None else None
+    if c is None or not (c.text or "").strip():
+        return default
+    text = (c.text or "").strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{where} <{tag}>: expected a number, got {text[:60]!r}") from None
+    if math.isnan(value):
+        raise InputError(f"{where} <{tag}>: expected a number, got {text[:60]!r}")
+    return value
 
 
 def _number(el: ET.Element | None, tag: str, default: float, where: str) -> float:
@@ -524,14 +540,14 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
         mimic = mim.get("joint") if mim is not None else None
     elif kind != "fixed":
         raise InputError(f"{where}: a {kind} joint needs an <axis>")
-    lower = _number(lim, "lower", -_NO_LIMIT, where)
-    upper = _number(lim, "upper", _NO_LIMIT, where)
+    lower = _limit(lim, "lower", -_NO_LIMIT, where)
+    upper = _limit(lim, "upper", _NO_LIMIT, where)
     lower = -math.inf if lower <= -_NO_LIMIT else lower
     upper = math.inf if upper >= _NO_LIMIT else upper
     if kind in ("revolute", "prismatic") and lower > upper:
         raise InputError(f"{where}: lower limit {lower:g} is above the upper limit {upper:g}")
-    effort = _number(lim, "effort", -1.0, where)
-    velocity = _number(lim, "velocity", -1.0, where)
+    effort = _limit(lim, "effort", -1.0, where)
+    velocity = _limit(lim, "velocity", -1.0, where)
     stiffness = _number(dyn, "spring_stiffness", 0.0, where)
     if stiffness != 0.0:
         key = "<spring_stiffness> (joint springs)"

@@ -100,6 +100,71 @@ def test_kuka_iiwa_model_sdf_equals_pybullet_loadsdf():
         p.disconnect(cid)
 
 
+# Gazebo writes "no limit" as ±1.79769e+308 (its wheel joints: gz-sim's vehicles, sdformat's
+# test/integration/model/robot/model.sdf) or inf (sdformat's test/sdf/joint_axis_infinite_limits.sdf);
+# libsdformat, Drake and PyBullet read both. The base has no mass: PyBullet then fixes it.
+UNLIMITED_SDF = """<sdf version="1.6"><model name="wheels">
+  <link name="base"><inertial><mass>0</mass><inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz></inertia></inertial></link>
+  <link name="a"><pose>0.1 0 0.2 0 0 0</pose><inertial><pose>0.02 0 0 0 0 0</pose><mass>1</mass>
+    <inertia><ixx>0.01</ixx><iyy>0.02</iyy><izz>0.03</izz></inertia></inertial></link>
+  <link name="b"><pose>0.1 0.3 0.2 0 0 0</pose><inertial><pose>0 0.1 0 0 0 0</pose><mass>0.5</mass>
+    <inertia><ixx>0.004</ixx><iyy>0.005</iyy><izz>0.006</izz></inertia></inertial></link>
+  <joint name="j1" type="revolute"><parent>base</parent><child>a</child>
+    <axis><xyz>0 0 1</xyz><limit><lower>-1.79769e+308</lower><upper>1.79769e+308</upper></limit></axis></joint>
+  <joint name="j2" type="revolute"><parent>a</parent><child>b</child>
+    <axis><xyz>0 1 0</xyz><limit><lower>-inf</lower><upper>inf</upper><effort>inf</effort><velocity>inf</velocity></limit>
+    </axis></joint>
+</model></sdf>"""
+
+
+def test_unlimited_joints_as_gazebo_writes_them_equal_pybullet(tmp_path):
+    """±1.79769e+308 and ±inf limits load as no limit (were refused: "numbers must be finite and at
+    most 1e17 in size"); poses, M and inverse dynamics are PyBullet loadSDF's."""
+    p = pytest.importorskip("pybullet")
+    path = tmp_path / "wheels.sdf"
+    path.write_text(UNLIMITED_SDF)
+    robot, _ = load_quiet(path)
+    assert robot.joint_names == ("j1", "j2")
+    assert np.all(np.isinf(robot.qlim)) and robot.qlim[0, 0] < 0 < robot.qlim[0, 1]
+    assert np.isinf(robot.model.velocityLimit[1]) and np.isinf(robot.model.effortLimit[1])
+    with pytest.raises(InputError, match="expected a number"):
+        (tmp_path / "nan.sdf").write_text(UNLIMITED_SDF.replace("<upper>inf</upper>", "<upper>nan</upper>"))
+        robokit.load(tmp_path / "nan.sdf")
+    cid = p.connect(p.DIRECT)
+    try:
+        body = p.loadSDF(str(path), physicsClientId=cid)[0]
+        p.setGravity(*robot.gravity, physicsClientId=cid)
+        for i in range(2):
+            lo, hi = p.getJointInfo(body, i, physicsClientId=cid)[8:10]
+            assert lo <= -1e16 and hi >= 1e16
+        tree = ET.parse(path)
+        com, diag = {}, {}
+        for name in ("a", "b"):
+            inertial = tree.find(f".//link[@name='{name}']/inertial")
+            com[name] = np.array([float(v) for v in inertial.findtext("pose").split()[:3]])
+            diag[name] = [float(inertial.findtext(f"inertia/{k}")) for k in ("ixx", "iyy", "izz")]
+        for i, name in enumerate(("a", "b")):  # loadSDF keeps no inertia tensor: set the file's back
+            p.changeDynamics(body, i, localInertiaDiagonal=diag[name], physicsClientId=cid)
+        rng = np.random.default_rng(3)
+        for _ in range(5):
+            q = rng.uniform(-7, 7, size=2)  # beyond ±2π: nothing bounds them
+            dq, ddq = rng.normal(size=2), rng.normal(size=2)
+            for i in range(2):
+                p.resetJointState(body, i, q[i], dq[i], physicsClientId=cid)
+            for i, name in enumerate(("a", "b")):
+                state = p.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=cid)
+                T = robot.frame_pose(q, name)
+                np.testing.assert_allclose(T[:3, :3] @ com[name] + T[:3, 3], state[0], atol=1e-12)
+                np.testing.assert_allclose(T[:3, :3], np.reshape(p.getMatrixFromQuaternion(state[1]), (3, 3)),
+                                           atol=1e-12)
+            M = np.array(p.calculateMassMatrix(body, list(q), physicsClientId=cid))
+            tau = np.array(p.calculateInverseDynamics(body, list(q), list(dq), list(ddq), physicsClientId=cid))
+            np.testing.assert_allclose(robot.crba(q), M, atol=1e-9 * np.abs(M).max())
+            np.testing.assert_allclose(robot.rnea(q, dq, ddq), tau, atol=1e-9 * np.abs(tau).max())
+    finally:
+        p.disconnect(cid)
+
+
 # --------------------------------------------------------------------------- the test arm
 ARM_LINKS = ("base", "link1", "forearm::link2", "forearm::link3", "wrist::link4", "wrist::tool")
 
