@@ -12,6 +12,12 @@ naming the file and the line:
 * more than :data:`MAX_XML_ELEMENTS` elements;
 * text that is not well-formed XML (``FILE:LINE:COLUMN: not well-formed XML (…)``).
 
+One departure from XML 1.0, in :func:`parse_xml` (URDF, MJCF, SDFormat): a comment holding
+``--`` (``<!-- gz service … --reqtype … -->``, ``<!-- ---- links ---- -->``) is read, as the
+engines of those formats read it — urdfdom, MuJoCo, libsdformat (Gazebo, Drake) and PyBullet all
+parse with TinyXML, which accepts it; 20 of gz-sim's example worlds have one. :func:`check_xml`
+alone stays strict: xacro's own parser (expat) refuses such a file, and so does robokit's xacro.
+
 The limits: a serial manipulator has at most :data:`robokit.description.limits.MAX_JOINTS`
 joints, which an MJCF file nests one body per joint; 512 levels leave room for that and for
 the few levels of ``<mujoco><worldbody>`` and ``<visual><geometry><mesh>`` around it. The
@@ -21,13 +27,14 @@ descriptions while keeping a parse well under a second.
 from __future__ import annotations
 
 import os
+import re
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 from typing import Any
 
 from robokit.errors import InputError
 
-__all__ = ["MAX_XML_DEPTH", "MAX_XML_ELEMENTS", "check_xml", "parse_xml"]
+__all__ = ["MAX_XML_DEPTH", "MAX_XML_ELEMENTS", "check_xml", "parse_xml", "tolerant_comments"]
 
 #: Deepest element nesting accepted in a robot file.
 MAX_XML_DEPTH = 512
@@ -105,8 +112,36 @@ def check_xml(raw: bytes | str, source: str | os.PathLike[str], *, max_depth: in
     return state["count"]
 
 
+_COMMENT_OR_CDATA = re.compile(rb"<!\[CDATA\[.*?\]\]>|<!--(.*?)-->", re.S)
+
+
+def _dashes(match: re.Match[bytes]) -> bytes:
+    body = match.group(1)
+    if body is None or (b"--" not in body and not body.endswith(b"-")):
+        return match.group(0)  # CDATA, or a comment XML already accepts
+    body = body.replace(b"--", b"- ")
+    if body.endswith(b"-"):
+        body = body[:-1] + b" "
+    return b"<!--" + body + b"-->"  # the same length: lines and columns stay where they were
+
+
+def tolerant_comments(raw: bytes | str) -> bytes | str:
+    """``raw`` with ``--`` inside comments (and a comment ending in ``--->``) blanked, the way
+    TinyXML-based parsers read it; nothing else changes, not even a line or column number.
+
+    Examples
+    --------
+    >>> tolerant_comments("<r><!-- run: gz sim --playback --></r>")
+    '<r><!-- run: gz sim - playback --></r>'
+    """
+    if isinstance(raw, str):
+        return _COMMENT_OR_CDATA.sub(_dashes, raw.encode("utf-8")).decode("utf-8")
+    return _COMMENT_OR_CDATA.sub(_dashes, raw)
+
+
 def parse_xml(raw: bytes | str, source: str | os.PathLike[str]) -> ET.Element:
-    """:func:`check_xml`, then the root element as :mod:`xml.etree.ElementTree` parses it.
+    """:func:`check_xml`, then the root element as :mod:`xml.etree.ElementTree` parses it;
+    comments holding ``--`` are read, as TinyXML reads them (:func:`tolerant_comments`).
 
     Parameters
     ----------
@@ -130,6 +165,7 @@ def parse_xml(raw: bytes | str, source: str | os.PathLike[str]) -> ET.Element:
     >>> parse_xml(b"<mujoco model='m'/>", "m.xml").get("model")
     'm'
     """
+    raw = tolerant_comments(raw)
     check_xml(raw, source)
     try:
         return ET.fromstring(raw)
