@@ -108,6 +108,27 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     # pass for roots (float's condition asks for more free rows than there are; its search points are
     # those of the starts)
     trace_free = max_rows if tol.float32 else int(c["trace_rows"])
+    # which solutions' singular values are checked: the first one's stands for the pose's, or (an arm farther
+    # from its structure: robokit.ik.calibrated.search_constants) each one's until one is near singular
+    sigma = lit(float(c["sigma_explore"]))
+    if c.get("every"):
+        first_gate = ""
+        solution_gate = f"""            if (gate != 3 && {P}_cal_sigma_bound(s0) > {sigma}) {{
+                continue;  /* this solution surely is not near a singular configuration */
+            }}
+"""
+    else:
+        first_gate = """            if (gate == 1) {
+                break;  /* the pose is not near a singular configuration */
+            }
+"""
+        solution_gate = f"""            if (gate == 0) {{
+                gate = 1;
+                if ({P}_cal_sigma_bound(s0) > {sigma}) {{
+                    break;  /* surely not near a singular configuration */
+                }}
+            }}
+"""
     solutions_searched = "0 * nsol" if tol.float32 else f"({P}_IK_FULL_SEARCH ? nsol : 0)"
     # the 3 x 3 block factorization, emitted twice: for the polish and for the bound at the first solution
     # (each copy is inlined into its one caller, so the polish's frame does not grow by a call)
@@ -974,20 +995,11 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             if (state[sol[i]] & 8) {{
                 continue;  /* a search point above already */
             }}
-            if (gate == 1) {{
-                break;  /* the pose is not near a singular configuration */
-            }}
-            pending = 0;
+{first_gate}            pending = 0;
             for (j = 0; j < 6; ++j) {{
                 s0[j] = rows[sol[i]][j];
             }}
-            if (gate == 0) {{
-                gate = 1;
-                if ({P}_cal_sigma_bound(s0) > {lit(float(c["sigma_explore"]))}) {{
-                    break;  /* surely not near a singular configuration */
-                }}
-            }}
-            code = lab[i];
+{solution_gate}            code = lab[i];
         }}
         sk = {P}_cal_null_direction(s0, v);
         if (sk > {lit(float(c["sigma_explore"]))}) {{

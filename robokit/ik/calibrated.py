@@ -71,7 +71,8 @@ if TYPE_CHECKING:
     from robokit.description.dh import DHTable
     from robokit.ik._dh_chain import DHChain
 
-__all__ = ["CalibratedArm", "Branch", "NEAR_ANGLE", "NEAR_DISTANCE", "STRUCTURES", "calibrated_arm"]
+__all__ = ["CalibratedArm", "Branch", "NEAR_ANGLE", "NEAR_DISTANCE", "STRUCTURES", "calibrated_arm", "ERROR_MEASURED",
+           "search_constants", "start_error"]
 
 #: Detected (not named) structures: the largest angle (rad) between axes that must be parallel.
 NEAR_ANGLE = 1e-2
@@ -81,6 +82,90 @@ NEAR_DISTANCE = 1e-2
 #: A nominal recorded on the robot (not named by the caller) is used when the arm is within this many
 #: times the detection tolerances of its structure (a calibration's errors are far smaller).
 RECORDED = 10.0
+#: The near-singular search's constants (:mod:`robokit.kernels.calibrated_ik`) were measured complete on
+#: arms whose tip pose differs from their projected arm's by up to about 0.008 (:func:`start_error`: the
+#: calibrated PUMA 560, UR5 and random Pieper arm of ``benchmarks/calibrated_ik``, every joint placement off
+#: by up to 2 mrad / 2 mm). An arm farther from its structure gets the constants of :func:`search_constants`.
+ERROR_MEASURED = 1e-2
+
+
+def start_error(M: np.ndarray, Slist: np.ndarray, projected: DHTable, revolute: Sequence[bool], reach: float,
+                limits: Sequence[tuple[float, float]] | None = None, samples: int = 64) -> float:
+    """How far the projected arm's tip pose is from the arm's: the largest orientation difference (rad)
+    and position difference divided by the reach, over ``samples`` joint vectors drawn with a fixed seed
+    (revolute joints in [−π, π], prismatic ones within their limits or ±reach/2) — the size of the
+    errors of the closed form's starts, which decides how far from a singular configuration the arm can
+    have roots beyond the nominal structure's (:func:`search_constants`).
+
+    Parameters
+    ----------
+    M, Slist : numpy.ndarray
+        The arm's product of exponentials (tip pose at q = 0, space screw axes as columns).
+    projected : DHTable
+        The projected arm (the robot's joint zeros and tool pose).
+    revolute : sequence of bool
+        Per joint.
+    reach : float
+        The arm's reach (m).
+    limits : sequence of (lo, hi), optional
+        Joint limits (prismatic joints are drawn within them).
+    samples : int
+        Joint vectors.
+
+    Returns
+    -------
+    float
+    """
+    from robokit.kinematics.poe import fkin_space
+
+    rng = np.random.default_rng(0)
+    lo = np.array([-math.pi if r else -0.5 * reach for r in revolute])
+    hi = -lo
+    if limits is not None:
+        for j, (a, b) in enumerate(limits):
+            if not revolute[j] and math.isfinite(a) and math.isfinite(b):
+                lo[j], hi[j] = a, b
+    error = 0.0
+    for _ in range(samples):
+        q = rng.uniform(lo, hi)
+        A, B = fkin_space(M, Slist, q), projected.fk(q)
+        c = min(1.0, max(-1.0, 0.5 * (float(np.trace(A[:3, :3].T @ B[:3, :3])) - 1.0)))
+        error = max(error, math.acos(c), float(np.linalg.norm(A[:3, 3] - B[:3, 3])) / reach)
+    return error
+
+
+def search_constants(error: float) -> tuple[float, bool, float]:
+    """The near-singular search's threshold and rule for an arm whose starts are off by ``error``
+    (:func:`start_error`).
+
+    Up to :data:`ERROR_MEASURED`: :data:`robokit.kernels.calibrated_ik.SIGMA_EXPLORE` (0.02), and the
+    first solution's singular values stand for the pose's, and the fold starts' windows are
+    :data:`robokit.kernels.closed_form.FOLD_STARTS` and ``FOLD_IMAG``. Beyond it the roots that the
+    nominal structure lacks appear farther from singular configurations: at a fold two roots meet where
+    ``f(s) = a s² + e`` changes sign, the Jacobian there about ``2 √(a e)``, so the threshold grows as
+    ``√error``, and each solution is checked (a wrist singularity is one branch pair's, not the pose's);
+    the projected arm misses a reach by up to about the error (``FOLD_STARTS`` grows as ``error``), and
+    a complex pair of its quartic is off the real line by about its square root (``FOLD_IMAG`` grows
+    as ``√error``).
+    Measured on random arms with every joint placement off by up to 10 mrad / 10 mm (error ≈ 0.04):
+    1, 2 and 4 roots missed without a warning in 600 poses of a PUMA 560, a UR5 and a random Pieper
+    arm with the fixed constants (docs/course/calibration.md has the table after this change).
+
+    Parameters
+    ----------
+    error : float
+        rad, and m per m of reach.
+
+    Returns
+    -------
+    (float, bool, float)
+        ``(sigma_explore, every, fold_scale)`` for :func:`robokit.kernels.calibrated_ik.pack_arm`.
+    """
+    if not error > ERROR_MEASURED:
+        return _kci.SIGMA_EXPLORE, False, 1.0
+    return _kci.SIGMA_EXPLORE * math.sqrt(error / ERROR_MEASURED), True, error / ERROR_MEASURED
+
+
 #: Newton stops below this orientation (rad) and position (m) error; a start whose polish ends
 #: above ``TOL_ACCEPT`` has no solution near it.
 TOL_STOP, TOL_ACCEPT, MAX_STEPS = 1e-12, 1e-10, 30
@@ -315,6 +400,12 @@ class CalibratedArm:
         The nominal structure and whether it is counted from the tool (a key of :data:`STRUCTURES`).
     deviation : tuple of float
         (rad, m): how far the arm's axes are from the structure.
+    start_error : float
+        How far the projected arm's tip pose is from the arm's (:func:`start_error`: rad, and m per m
+        of reach): the size of the errors of the closed form's starts.
+    sigma_explore : float
+        The near-singular search runs where the scaled Jacobian has a singular value below this
+        (:func:`search_constants`: 0.02, more for an arm farther from its structure).
     nominal : AnalyticIK
         The closed form of the projected arm (the starts).
     projected : DHTable
@@ -360,9 +451,12 @@ class CalibratedArm:
         else:
             post_q[2], post_q[3] = -np.inf, np.inf
         self._post_q = post_q
+        #: How far the closed form's starts are off (:func:`start_error`), and the search's constants for that.
+        self.start_error = start_error(self.M, self.Slist, projected, revolute, self.reach, limits)
+        self.sigma_explore, self._every, self._fold_scale = search_constants(self.start_error)
         # everything the kernel reads of this arm, in one array (one argument to dispatch)
         self._C = _kci.pack_arm(self.M, self.Slist, post_q, self.shoulder, self.reach, TOL_STOP, TOL_ACCEPT,
-                                MAX_STEPS)
+                                MAX_STEPS, self.sigma_explore, self._every, self._fold_scale)
         self._KC = np.concatenate([self._C, self._Kn])  # both, as the kernel takes them
         self._work = _kci.scratch()  # reused: the kernel holds the GIL, so one call runs at a time
         self._branches = self._work[_kci.BRANCH_ROWS]  # where the kernel writes each branch's outcome
@@ -396,11 +490,12 @@ class CalibratedArm:
         return {"method": self.method, "reason": self.reason, "shoulder": self.shoulder.copy(), "reach": self.reach,
                 "tol_stop": TOL_STOP, "tol_accept": TOL_ACCEPT, "max_steps": MAX_STEPS, "same": _kci.SAME,
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
-                "sigma_explore": _kci.SIGMA_EXPLORE, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
+                "sigma_explore": self.sigma_explore, "every": self._every, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "trace_step": _kci.TRACE_STEP, "trace_steps": _kci.TRACE_STEPS, "trace_pull": _kci.TRACE_PULL,
                 "trace_rows": _kci.TRACE_ROWS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX), "max_rows": _kcf.MAX_ROWS,
-                "fold_starts": _kcf.FOLD_STARTS, "fold_imag": _kcf.FOLD_IMAG, "fold_code": _kcf.FOLD_CODE,
+                "fold_starts": _kcf.FOLD_STARTS * self._fold_scale,
+                "fold_imag": _kcf.FOLD_IMAG * math.sqrt(self._fold_scale), "fold_code": _kcf.FOLD_CODE,
                 "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
                 "block_schur": _kci.BLOCK_SCHUR, "frames": _kci.local_transforms(self._C),
                 "kinds": self._C[_kci.KINDS].astype(int).tolist(), "pitches": self._C[_kci.PITCHES].tolist(),
@@ -493,10 +588,10 @@ class CalibratedArm:
             merged, vanished, sigma = int(self._status[0]), int(self._status[1]), float(self._status[2])
         if vanished:
             self._warn_vanished(self._branches, level)
-        if sigma <= _SIGMA_EXPLORE:
+        if sigma <= self.sigma_explore:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
-                          f"{_kci.SIGMA_EXPLORE:g}); there the arm can have roots beyond the nominal structure's "
+                          f"{self.sigma_explore:.2g}); there the arm can have roots beyond the nominal structure's "
                           f"branches, and the search for them (along the near-singular direction and the curve of near-"
                           f"solutions) is not exhaustive: "
                           f"a solution may be missing (each returned one is exact; nominal=False gives the general "
@@ -570,7 +665,6 @@ class CalibratedArm:
 
 _F64 = np.dtype(np.float64)
 _OUT_SHAPE = (_kcf.MAX_ROWS, _kcf.OUT_COLS)  # the kernel's output rows
-_SIGMA_EXPLORE = _kci.SIGMA_EXPLORE  # read once per call: a module constant, not an attribute
 _FLAGGED = _kci.FLAGGED
 
 

@@ -462,9 +462,11 @@ SECOND_ORDER = (1e-6, 0.05)
 #: Layout of the packed constants ``C`` (:func:`pack_arm`): the base's and the tip's 3 × 4 transforms
 #: (``L₀``, ``L₆``), per joint the seven numbers of its factors (θ, b, cos α, sin α, a, cos θ, sin θ), the
 #: joint kinds (0 revolute, 1 prismatic), the screw pitches, ``post_q`` (5, 6), the shoulder point (3,),
-#: the reach (m), tol_stop, tol_accept and max_steps.
-_L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _LEN = (
-    0, 24, 66, 72, 78, 108, 111, 112, 113, 114, 115)
+#: the reach (m), tol_stop, tol_accept, max_steps, the arm's near-singular threshold (``SIGMA_EXPLORE``
+#: or more: :func:`robokit.ik.calibrated.search_constants`) and 1 where every solution's singular values
+#: are checked (``every``), else 0, and the fold starts' windows' factor (``fold_scale``, at least 1).
+_L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_STEPS, _SIGMA, _EVERY, _FOLDS, _LEN = (
+    0, 24, 66, 72, 78, 108, 111, 112, 113, 114, 115, 116, 117, 118)
 #: Where ``C`` keeps the chain: ``L₀`` and ``L₆`` (3 × 4 each, row-major) and the per-joint
 #: numbers; the joint kinds; the pitches.
 FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
@@ -481,7 +483,8 @@ FLAGGED = 1000
 
 
 def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.ndarray, reach: float,
-             tol_stop: float, tol_accept: float, max_steps: int) -> np.ndarray:
+             tol_stop: float, tol_accept: float, max_steps: int, sigma_explore: float = SIGMA_EXPLORE,
+             every: bool = False, fold_scale: float = 1.0) -> np.ndarray:
     """The arm's constants in one float64 array ``C`` (the kernels' layout above).
 
     The product of exponentials ``T(q) = e^{[S₁]q₁} ⋯ e^{[S₆]q₆} M`` is rewritten with one frame
@@ -514,17 +517,26 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
         m; rad or m.
     max_steps : int
         Newton steps at most per start.
+    sigma_explore : float, optional
+        The near-singular search runs around a point whose scaled Jacobian has a singular value below
+        this (default ``SIGMA_EXPLORE``).
+    every : bool, optional
+        Check each solution's smallest singular value (else the first one's only, unless a search
+        point was near singular): for arms farther from their structure (:func:`robokit.ik.calibrated.search_constants`).
+    fold_scale : float, optional
+        The fold starts' windows (``closed_form.FOLD_STARTS`` times this, ``FOLD_IMAG`` times its square
+        root; default 1).
 
     Returns
     -------
-    (115,) ndarray
+    (118,) ndarray
 
     Examples
     --------
     >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
     ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
     >>> C.shape
-    (115,)
+    (118,)
     """
     n = Slist.shape[1]
     kind = np.zeros(6)
@@ -578,6 +590,7 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     C[_POST:_SHOULDER] = np.asarray(post_q, dtype=float).ravel()
     C[_SHOULDER:_REACH] = shoulder
     C[_REACH], C[_TOL_STOP], C[_TOL_ACCEPT], C[_MAX_STEPS] = reach, tol_stop, tol_accept, max_steps
+    C[_SIGMA], C[_EVERY], C[_FOLDS] = sigma_explore, 1.0 if every else 0.0, fold_scale
     # the factors read back (local_transforms) must be the frames' relations, to rounding
     factors = local_transforms(C)[1:n]
     for i, L in enumerate(between):
@@ -595,7 +608,7 @@ def local_transforms(C: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    C : (115,) ndarray
+    C : (118,) ndarray
         From :func:`pack_arm`.
 
     Returns
@@ -1449,9 +1462,10 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     ci_r, cf_r, C_r, post_r, T06, raw, rcodes, rdegen, qq, s_r = _cf._unpack(Kn, T)
     # Pieper's method: the least |cos θ₅| − 1 of the positions whose wrist cannot reach the
     # orientation (twists not right angles: closed_form._wrist_angles) into status[3], and the
-    # fold starts (closed_form.FOLD_STARTS: status[4] = 1); at the relaxed poses, none (row 95)
+    # fold starts (closed_form.FOLD_STARTS: status[4], their windows' factor, at least 1); at the relaxed
+    # poses, none (row 95)
     status = work[STATUS]
-    status[3], status[4] = math.inf, 1.0
+    status[3], status[4] = math.inf, C[_FOLDS]
     fold = work[STATUS, 3:6]
     if method == _cf.PIEPER:
         m = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold)
@@ -1777,6 +1791,8 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     # (near a singular position of a wrist-partitioned arm every branch is)
     nsol = ns
     checked = False
+    sigma_explore = C[_SIGMA]
+    every = C[_EVERY] != 0.0  # each solution checked (an arm farther from its structure), not the first only
     for k in range(nseed + nsol):  # every root along the arm's near-singular direction and curve there
         if k < nseed:
             pending = nseed - k - 1  # the search points still to come (the C keeps them in its rows)
@@ -1787,18 +1803,20 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
             i = k - nseed
             if seeded[i] == 1.0:
                 continue  # a search point above already
-            if checked and sigma > SIGMA_EXPLORE:
-                break  # the pose is not near a singular configuration: its other solutions are not either
             pending = 0
             for j in range(6):
                 q2[j] = rows[i, j]
-            if not checked:
+            if sigma > sigma_explore:  # no point searched so far was near singular
+                if checked and not every:
+                    break  # the pose is not near a singular configuration: its other solutions are not either
                 checked = True
-                if sigma > SIGMA_EXPLORE and _sigma_bound(C, q2, work) > SIGMA_EXPLORE:
+                if _sigma_bound(C, q2, work) > sigma_explore:
+                    if every:
+                        continue  # this solution surely is not near a singular configuration
                     break  # surely not near a singular configuration (the common pose: a cheap bound says so)
             code = int(rcodes[i, 0] * 100 + rcodes[i, 1] * 10 + rcodes[i, 2])
         sk = _null_direction(C, q2, work, v)
-        if sk > SIGMA_EXPLORE:
+        if sk > sigma_explore:
             continue  # not near a singular configuration: no other root nearby to look for
         sigma = min(sigma, sk)
         big = 0.0
@@ -1823,7 +1841,7 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     n = _cf._finish(ci_r, post_q, rows, rcodes, rdegen, ns, out, qq)
     status = work[STATUS]
     status[0], status[1], status[2] = merged, vanished, sigma
-    return n + FLAGGED if merged or vanished or sigma <= SIGMA_EXPLORE else n
+    return n + FLAGGED if merged or vanished or sigma <= sigma_explore else n
 
 
 def solve_into_entry() -> Any:

@@ -79,10 +79,12 @@ _TWO_PI = 2.0 * math.pi
 #: with ``fold``): a θ₁ and θ₅ whose planar 2-link elbow misses by |cos θ₃| − 1 up to ``FOLD_STARTS``
 #: gives two rows, at θ₃ = ±√(2 (|cos θ₃| − 1)) from the fold (θ₃ = 0 or π). Such rows have
 #: ``FOLD_CODE`` added to their wrist code.
+#: Both windows are for the arms whose starts are off by up to ``robokit.ik.calibrated.ERROR_MEASURED``;
+#: the calibrated kernel's fold switch (``fold[1]``) is the factor ``FOLD_STARTS`` is multiplied by, and
+#: ``FOLD_IMAG`` by its square root, for an arm farther from its structure (:func:`robokit.ik.calibrated.search_constants`).
 FOLD_STARTS = 0.1
 FOLD_IMAG = 0.2
 FOLD_CODE = 3
-_FOLD_TANH = math.tanh(FOLD_IMAG)
 #: Scratch sizes (floats, ints) of the position step and of Pieper's method (:func:`_pieper_position`, :func:`_pieper`).
 _POS_WORK = 35
 
@@ -218,7 +220,9 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray, fold: Any) -> i
             if fold[1] != 0.0 and deg == 4:
                 for z in ev:  # a complex pair near the real line: its real part (ascending), after the real roots
                     a, b = z.real, z.imag
-                    near = (2.0 * b <= _FOLD_TANH * (1.0 + a * a + b * b)) if rev else b <= FOLD_IMAG * (1.0 + abs(a))
+                    # the window grows as √fold[1] (an arm farther from its structure: robokit.ik.calibrated)
+                    near = ((2.0 * b <= math.tanh(FOLD_IMAG * math.sqrt(fold[1])) * (1.0 + a * a + b * b)) if rev
+                            else b <= FOLD_IMAG * math.sqrt(fold[1]) * (1.0 + abs(a)))
                     if b > 1e-6 * (1.0 + abs(a)) and near:
                         k = nf
                         while k > 0 and ts[4 + k - 1] > a:
@@ -357,7 +361,7 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
                 return 0
             short = abs(c5) - 1.0
             fold[0] = min(fold[0], short)
-            if fold[1] == 0.0 or short > FOLD_STARTS:
+            if fold[1] == 0.0 or short > FOLD_STARTS * fold[1]:
                 return 0
             fcode = FOLD_CODE  # near the fold: two starts, θ₅ = ±√(2 short) from it
             c5 = math.copysign(math.cos(math.sqrt(2.0 * short)), c5)
@@ -768,7 +772,7 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
         if abs(c3) > 1.0 + 1e-10:
             if fold is None:
                 continue
-            if fold[1] == 0.0 or abs(c3) - 1.0 > FOLD_STARTS:
+            if fold[1] == 0.0 or abs(c3) - 1.0 > FOLD_STARTS * fold[1]:
                 continue
             fc = FOLD_CODE  # the elbow just short of reaching: two starts, th3 = +-sqrt(2 short) from its fold
             s3f = math.sqrt(2.0 * (abs(c3) - 1.0))

@@ -665,3 +665,96 @@ def test_naming_the_nominal_structure_beyond_the_detection_tolerance():
             assert min(angle_dist(s.q, g.q) for g in general) < 1e-7
     with pytest.raises(InputError, match="nominal"):
         ik_analytic(robot, T, nominal="four parallel axes")
+
+
+def _benchmark_arms_off_by(size):
+    """The arms of ``benchmarks/calibrated_ik`` (a PUMA 560, a UR5 and its random Pieper arm, built as
+    there from ``default_rng(0)`` in that order), every joint placement, the base and the tool off by up to
+    ``size`` (rad, m) instead of 2e-3."""
+    rng = np.random.default_rng(0)
+    pieper = DHTable("pieper", "standard", (
+        DHLink("R", a=0.2, alpha=1.1, d=0.4), DHLink("R", a=0.5, alpha=-0.6, d=0.1),
+        DHLink("R", a=0.1, alpha=1.9, d=-0.05), DHLink("R", a=0.0, alpha=-1.3, d=0.35),
+        DHLink("R", a=0.0, alpha=0.9, d=0.0), DHLink("R", a=0.02, alpha=0.0, d=0.12)))
+    out = {}
+    for name, model in (("puma560", "puma560"), ("ur5", "ur5"), ("pieper", pieper)):
+        nominal = robokit.load(model)
+        out[name] = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-size, size, (7, 6))))
+    return out
+
+
+@pytest.fixture(scope="module")
+def far_arms():
+    return _benchmark_arms_off_by(1e-2)
+
+
+@pytest.mark.parametrize("name, roots, why", [
+    ("puma560", [[0.46956775196189093, 0.0520205462877713, 0.39260489176333213, -0.7123213943187627,
+                  -0.042650459508658665, 2.5990672867788556],
+                 [0.4666249663633448, 0.052944375293097326, -5.934440089025377, 4.149797352211588,
+                  -0.04703896329538214, -2.2600063786773688]],
+     "one branch pair near its wrist singularity (σ 0.002), the first solution's σ 0.08"),
+    ("ur5", [[1.5049946814220028, -1.4556220830884328, 0.19458546125340379, -0.33942419799974943,
+              -0.15098039695741383, 0.28887887725045674],
+             [1.5047952589351439, -1.2896267571345261, -0.14911082176800852, -0.15550524643874272,
+              -0.15030485291388207, 0.28258051698880554]],
+     "the elbow's fold: the projected arm's elbow short by more than FOLD_STARTS"),
+    ("pieper", [[-3.4935290029297024, 2.4705505336940963, -0.28808082179840244, 0.6081589549774084,
+                 -2.4781053259540817, 2.158353505487686],
+                [2.817843248366421, -3.7936757327076136, -0.3236155566994263, 1.7309798322384489,
+                 2.471033944477322, -2.641486507009411]],
+     "roots with σ 0.03-0.04, beyond the fixed threshold"),
+])
+def test_an_arm_farther_from_its_structure_searches_wider(far_arms, name, roots, why, monkeypatch):
+    """The benchmark's arms with errors up to 10 mrad / 10 mm (their closed form's starts about 0.03-0.04
+    off, 4-5x the benchmark's): at these poses (from ``--poses 600`` random draws with such arms, scratch
+    study of 2026-12-05) the search's constants measured at 2 mrad / 2 mm missed two roots each without
+    a warning (asserted: the premise), ``why``. With the arm's own constants
+    (``robokit.ik.calibrated.search_constants``: the threshold × √(error / 0.01), every solution checked,
+    the fold windows widened) both are returned and the 500-start sweep finds no other."""
+    from robokit.ik import calibrated as ikc
+    from robokit.kernels.calibrated_ik import SIGMA_EXPLORE
+
+    robot = far_arms[name]
+    arm = analytic_ik(robot).calibrated
+    assert arm.start_error > ikc.ERROR_MEASURED and arm.sigma_explore > SIGMA_EXPLORE
+    roots = [np.array(r) for r in roots]
+    T = robot.frame_pose(roots[0])
+    assert np.abs(robot.frame_pose(roots[1]) - T).max() < 1e-9
+    with monkeypatch.context() as m:  # the constants measured on the benchmark's arms, for every arm
+        m.setattr(ikc, "search_constants", lambda error: (SIGMA_EXPLORE, False, 1.0))
+        fixed = AnalyticIK(robot)
+        assert fixed.calibrated.sigma_explore == SIGMA_EXPLORE
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", RobokitWarning)  # silent: no warning either
+            before = fixed.solve(T)
+    assert all(min(angle_dist(r, s.q) for s in before) > 1e-6 for r in roots), why
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)
+        sols = ik_analytic(robot, T)
+    for s in sols:
+        assert np.abs(robot.frame_pose(s.q) - T).max() < TOL
+    for r in roots:
+        assert min(angle_dist(r, s.q) for s in sols) < 1e-6, why
+    assert_none_missed(robot, T, sols)
+
+
+def test_the_search_constants_grow_with_the_starts_error():
+    """Up to ERROR_MEASURED the measured constants (the benchmark's arms are below it: their starts are
+    0.006-0.008 off); beyond, the threshold grows as √error and the fold windows as error."""
+    from robokit.ik import calibrated as ikc
+    from robokit.kernels.calibrated_ik import SIGMA_EXPLORE
+
+    assert ikc.search_constants(0.0) == (SIGMA_EXPLORE, False, 1.0)
+    assert ikc.search_constants(ikc.ERROR_MEASURED) == (SIGMA_EXPLORE, False, 1.0)
+    sigma, every, fold = ikc.search_constants(4 * ikc.ERROR_MEASURED)
+    assert every and sigma == pytest.approx(2 * SIGMA_EXPLORE) and fold == pytest.approx(4.0)
+    for robot in _benchmark_arms_off_by(2e-3).values():
+        arm = analytic_ik(robot).calibrated
+        assert 0.0 < arm.start_error <= ikc.ERROR_MEASURED
+        # the starts' error is the projected arm's pose error, measured here independently (Pinocchio)
+        rng = np.random.default_rng(3)
+        for _ in range(20):
+            q = rng.uniform(-np.pi, np.pi, 6)
+            A, B = robot.frame_pose(q), arm.projected.fk(q)
+            assert np.linalg.norm(A[:3, 3] - B[:3, 3]) / arm.reach <= 1.5 * arm.start_error
