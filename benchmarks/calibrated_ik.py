@@ -38,12 +38,14 @@ import numpy as np
 from benchmarks._harness import fmt_time, machine, table
 
 
-def _arms():
+def _arms(size: float = 2e-3, seed: int = 0):
+    """(label, nominal, calibrated) of the PUMA 560, the UR5 and a random Pieper arm, every joint placement,
+    the base and the tool off by up to ``size`` (rad, m), drawn from ``default_rng(seed)`` in that order."""
     import robokit as rk
     from robokit.calibration import chain_from_robot, robot_from_chain
     from robokit.description.dh import DHLink, DHTable
 
-    rng = np.random.default_rng(0)
+    rng = np.random.default_rng(seed)
     rows = [DHLink("R", a=0.2, alpha=1.1, d=0.4), DHLink("R", a=0.5, alpha=-0.6, d=0.1),
             DHLink("R", a=0.1, alpha=1.9, d=-0.05), DHLink("R", a=0.0, alpha=-1.3, d=0.35),
             DHLink("R", a=0.0, alpha=0.9, d=0.0), DHLink("R", a=0.02, alpha=0.0, d=0.12)]
@@ -51,7 +53,7 @@ def _arms():
     for label, model in (("PUMA 560", "puma560"), ("UR5", "ur5"), ("random Pieper arm", DHTable("pieper", "standard",
                                                                                                tuple(rows)))):
         nominal = rk.load(model)
-        delta = rng.uniform(-2e-3, 2e-3, (nominal.n + 1, 6))
+        delta = rng.uniform(-size, size, (nominal.n + 1, 6))
         out.append((label, nominal, robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))))
     return out
 
