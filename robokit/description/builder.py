@@ -443,6 +443,10 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         shown = "; ".join(f"link {link!r}: {problem}" for link, problem in bad)
         raise InputError(f"{source}: physically impossible inertia (strict=True refuses it): {shown}")
     physical = [f"{source}: link {link!r}: {problem}" for link, problem in bad]
+    if all(chain.inertias[i].mass == 0.0 for i in range(1, chain.njoints)):
+        # (most ROS-Industrial arm macros: no <inertial> anywhere) — every dynamics result would be zero
+        notes.append(f"{source}: no body on the chain to {tip!r} has mass (the file gives none): its mass matrix, "
+                     f"gravity torques and inverse dynamics are all zero")
     it = iter(new_geoms)
     geoms = [next(it) if g is not None else None for g in geoms]
     robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],

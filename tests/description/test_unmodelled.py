@@ -118,3 +118,28 @@ def test_example_robot_data_rotor_inertia_is_modelled_and_noted():
     M_rigid = pin.crba(rigid, rigid.createData(), q)
     M_rigid = np.triu(M_rigid) + np.triu(M_rigid, 1).T
     assert np.allclose(robot.crba(q) - M_rigid, np.diag([expected[jn] for jn in robot.joint_names]), atol=1e-12)
+
+
+def test_a_chain_without_mass_says_so(tmp_path):
+    """Most ROS-Industrial arm macros have no <inertial> at all: Pinocchio (on the raw file) then gives
+    a zero mass matrix and zero torques, and so does robokit — one note says so. With a mass on the
+    chain there is no such note (the base's mass alone does not move anything: still the note)."""
+    import numpy as np
+    import pinocchio as pin
+
+    for bodies, massless in (({"base": "", "l1": "", "l2": "", "l3": ""}, True),
+                             ({"l1": "", "l2": "", "l3": ""}, True),
+                             ({"l1": "", "l2": ""}, False)):
+        path = tmp_path / f"arm{len(bodies)}.urdf"
+        path.write_text(arm(bodies))
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            robot = robokit.load(str(path))
+        said = [str(w.message) for w in seen if issubclass(w.category, RobokitWarning) and "has mass" in str(w.message)]
+        assert len(said) == (1 if massless else 0), said
+        assert any("has mass" in n for n in robot.notes) == massless
+        raw = pin.buildModelFromUrdf(str(path))  # the file's own reading: zero exactly when the note says so
+        q = np.array([0.3, -0.7, 1.1])
+        M = pin.crba(raw, raw.createData(), q)
+        assert (np.abs(M).max() == 0.0) == massless
+        assert np.allclose(robot.crba(q), M, atol=1e-12)

@@ -169,7 +169,7 @@ def test_missing_meshes_do_not_stop_the_load(tmp_path, capsys):
                    '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
     out = tmp_path / "o.json"
     assert cli_main(["convert", str(src), "-o", str(out)]) == 0
-    notes = [line for line in capsys.readouterr().err.splitlines() if "mesh" in line and "note:" in line]
+    notes = [line for line in capsys.readouterr().err.splitlines() if "mesh file" in line and "note:" in line]
     assert len(notes) == 1 and "6 mesh files not found" in notes[0] and "gone/visual0.stl" in notes[0], notes
     assert np.allclose(np.array(json.loads(out.read_text())["M"])[:3, 3], [0.0, 0.0, 0.5], atol=1e-15)
 
