@@ -106,9 +106,18 @@ def _write_all(fd: int, data: bytes) -> None:
 def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
     """Write ``data`` to ``path`` atomically; ``path`` is untouched unless the write completes.
 
-    Raises :class:`robokit.InputError` naming the folder if it does not exist.
+    Raises :class:`robokit.InputError` naming the folder if it does not exist, and naming
+    ``path`` (never the temporary file beside it) when the folder cannot be written (no
+    permission, a read-only file system, a full disk).
     """
     path = check_output_file(path)
+    try:
+        return _atomic_write(path, data)
+    except OSError as exc:
+        raise InputError(f"output: cannot write {str(path)!r} ({exc.strerror or exc})") from None
+
+
+def _atomic_write(path: Path, data: str | bytes) -> Path:
     folder = _folder_of(path)
     raw = data if isinstance(data, bytes) else data.encode("utf-8")
     mode = 0o666 & ~_umask()

@@ -48,7 +48,7 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
     """``robokit convert IN -o OUT``: convert a robot description; notes on stderr.
 
     DH YAML → URDF, URDF (or an example-robot-data name) → PoE JSON, DH YAML, MJCF; without ``output``
-    (URDF input) the extracted DH table is printed.
+    the DH table is printed (a DH model's own, or the one extracted from a URDF).
 
     Parameters
     ----------
@@ -56,7 +56,7 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
         A DH ``.yaml``, ``.urdf``, xacro or MJCF file, or a model name ``robokit.load`` accepts.
     output : str, path-like or None
         The file to write (its suffix chooses the format), written atomically; None prints the DH table
-        of a URDF on stdout (required for a ``.yaml`` input).
+        on stdout (a DH model's own table; a URDF's extracted one, with its residual).
     tip : str, optional
         Tip frame of the chain (default: the last link).
     convention : {"standard", "modified"}
@@ -71,8 +71,6 @@ def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str
     """
     from robokit.description.convert import convert
 
-    if output is None and Path(str(input)).suffix.lower() in (".yaml", ".yml"):
-        raise InputError("-o/--output: required (e.g. -o robot.urdf)")
     text, notes = convert(input, output, tip=tip, convention=convention, **load_options)
     for note in notes:
         print(f"robokit: note: {note}", file=sys.stderr)
@@ -466,16 +464,23 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
     from robokit.description.loading import load
     from robokit.errors import InputError
     from robokit.motion import plan
+    from robokit.motion.plan import MAX_SEED
 
     out = _output_file(output, (".csv",))
     for flag, v, unit in (("--dt", dt, "s"), ("--vmax", vmax, "rad/s"), ("--amax", amax, "rad/s²")):
         if not (np.isfinite(v) and 0 < v <= MAX_MAGNITUDE):
             raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
+    if not 0 <= seed <= MAX_SEED:
+        raise InputError(f"--seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
     robot = load(model, tip=tip)
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
         raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")
+    if not np.all(np.isfinite(q0)):
+        raise InputError("--start: contains NaN or infinite values")
     g = np.asarray(goal, dtype=float)
+    if not np.all(np.isfinite(g)):
+        raise InputError("--goal: contains NaN or infinite values")
     if g.shape == (robot.n,):
         target: np.ndarray = g
     elif g.shape == (6,):

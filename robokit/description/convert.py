@@ -39,7 +39,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         example-robot-data name.
     output : str or os.PathLike or None, optional
         The file to write; its suffix picks the format (``.urdf``, ``.json``, ``.yaml``/``.yml``,
-        ``.xml``). None: nothing is written (the text is only returned).
+        ``.xml``). None: nothing is written, and the text is the DH table as the lecture prints it
+        (what ``robokit convert IN`` prints without ``-o``).
     tip : str or None, optional
         Tip frame of the chain for URDF-like input (default: the end of the longest chain).
     convention : {"standard", "modified"}, optional
@@ -86,7 +87,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         assert out is not None
         raise InputError(f"output: robokit writes .urdf (a DH model's URDF), .json (PoE parameters), .yaml (a DH "
                          f"table) or .xml (MJCF), got {out.name!r}")
-    elif in_suffix in (".yaml", ".yml") and out_suffix in (".urdf", None):
+    elif in_suffix in (".yaml", ".yml") and out_suffix == ".urdf":
         if tip is not None:
             raise InputError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
         text = urdf_from_dh(DHTable.from_yaml(src))

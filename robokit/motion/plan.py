@@ -37,6 +37,8 @@ from robokit.trajectory.core import Trajectory
 __all__ = ["plan", "goal_configurations", "DEFAULT_RESOLUTION"]
 
 DEFAULT_RESOLUTION = 0.01  # rad
+#: The largest ``seed`` :func:`plan` takes: OMPL is seeded with ``seed + 1``, an unsigned 64-bit integer.
+MAX_SEED = 2**64 - 2
 
 
 class _Checker:
@@ -217,7 +219,7 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
         Waypoint spacing for the spline, rad (default 0.1).
     seed : int, optional
         The shortcutting's and IK seeds' random seed, and OMPL's (OMPL accepts one seed per
-        process: the first plan's; later calls continue its stream).
+        process: the first plan's; later calls continue its stream): 0 to :data:`MAX_SEED`.
     grid : int, optional
         TOPP-RA stages (at least 4 per waypoint interval of the densified path; default 200).
 
@@ -231,8 +233,9 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     Raises
     ------
     InputError
-        Start or goal in collision / outside the limits, no collision-free IK solution, or no
-        path found within ``timeout``.
+        Start or goal in collision / outside the limits, no collision-free IK solution, no
+        path found within ``timeout``, or a ``seed`` that is not an integer from 0 to
+        :data:`MAX_SEED`.
 
     Examples
     --------
@@ -246,6 +249,8 @@ def plan(robot: Any, q_start: Any, goal: Any, world: Any = None, *, vmax: Any = 
     >>> np.allclose(tr.q[-1], goal), bool(world.in_collision(tr.q).any())
     (True, False)
     """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed <= MAX_SEED:
+        raise InputError(f"seed: expected an integer from 0 to {MAX_SEED}, got {seed!r}")
     n = robot.n
     q0 = as_array(q_start, "q_start", (n,))
     warned = check_robot_radians(robot, q0, "q_start")

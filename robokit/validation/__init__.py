@@ -191,12 +191,16 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
     Raises
     ------
     InputError
-        An unknown area name.
+        An unknown area name, or a negative ``seed``.
     """
     import sys
 
     from robokit.kernels._jit import held_notices
 
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        from robokit.errors import InputError
+
+        raise InputError(f"--seed: expected a non-negative integer, got {seed!r}")
     chosen: tuple[tuple[str, str], ...] = AREAS
     if areas:
         known = list(dict.fromkeys(a for a, _ in AREAS))

@@ -1,0 +1,151 @@
+"""What a first user of the installed wheel ran into (an audit of the README, getting started and
+docs/cli.md, run from outside the checkout): each test checks the command line's contract of
+docs/cli.md (one ``robokit:`` line naming the argument, exit status 2, nothing written) or what the
+documentation promises, never a value copied from the code under test."""
+import os
+import shutil
+
+import numpy as np
+import pytest
+import yaml
+from hardening_support import assert_one_line_error, tmp_leftovers
+
+import robokit
+from robokit.description.models import model_path
+
+
+# ----------------------------------------------------------------------------- convert without -o
+def test_convert_dh_file_without_output_prints_its_table(tmp_path, main_cli):
+    """docs/cli.md: without ``-o`` "the DH table printed on stdout", for a DH model as for any robot.
+    A DH *file* was refused ("-o/--output: required") while the same table by its shipped name printed."""
+    src = tmp_path / "my_arm.yaml"
+    shutil.copy(model_path("puma560"), src)
+    run = main_cli("convert", src)
+    assert run.rc == 0, run.err
+    table = yaml.safe_load(src.read_text(encoding="utf-8"))
+    rows = [ln.split() for ln in run.out.splitlines() if ln[:1].isdigit()]
+    assert len(rows) == len(table["links"])
+    for i, (row, link) in enumerate(zip(rows, table["links"]), 1):  # i  joint  a  alpha(deg)  d  theta ...
+        assert int(row[0]) == i and row[1] == link["joint"]
+        assert float(row[2]) == pytest.approx(link["a"], abs=1e-5)
+        assert float(row[3]) == pytest.approx(link["alpha"], abs=1e-3)  # this file's angles are in degrees
+        assert float(row[4]) == pytest.approx(link["d"], abs=1e-5)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["my_arm.yaml"]  # nothing written
+    # the same text as the shipped model's, and a missing file is named as missing (not "-o required")
+    assert main_cli("convert", "puma560").out.replace("my_arm", "puma560") == run.out.replace("my_arm", "puma560")
+    assert_one_line_error(main_cli("convert", tmp_path / "nofile.yaml"), "nofile.yaml", "not found")
+
+
+def test_convert_dh_file_without_output_still_refuses_a_tip(tmp_path, main_cli):
+    src = tmp_path / "my_arm.yaml"
+    shutil.copy(model_path("puma560"), src)
+    assert_one_line_error(main_cli("convert", src, "--tip", "flange"), "tip")
+
+
+# ----------------------------------------------------------------------------- plan: NaN and seeds
+@pytest.mark.parametrize("flag, values", [
+    ("--start", ["nan", "0.3", "-0.3", "0", "0", "0"]),
+    ("--start", ["0", "inf", "-0.3", "0", "0", "0"]),
+    ("--goal", ["1.4", "0.3", "-0.3", "0", "0", "nan"]),
+    ("--goal", ["1.4", "0.3", "-0.3", "0", "0", "1e999"]),  # float("1e999") is inf
+])
+def test_plan_names_a_non_finite_start_or_goal(flag, values, tmp_path, main_cli):
+    """A NaN in --start/--goal was reported as "--dt/--vmax/--amax: the trajectory would last at
+    least nan s": the wrong options named."""
+    args = {"--start": ["0", "0.3", "-0.3", "0", "0", "0"], "--goal": ["1.4", "0.3", "-0.3", "0", "0", "0"]}
+    args[flag] = values
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", *args["--start"], "--goal", *args["--goal"], "-o", out)
+    line = assert_one_line_error(run, flag, "NaN or infinite")
+    assert "--dt" not in line
+    assert not out.exists() and tmp_leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("seed", ["-1", str(2**64 - 1), str(2**70)])
+def test_plan_refuses_a_seed_out_of_range(seed, tmp_path, main_cli):
+    """``--seed -1`` ended in numpy's ValueError, reported as an internal error (exit 3). OMPL is
+    seeded with seed + 1, an unsigned 64-bit integer: 0 … 2⁶⁴ − 2."""
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal", 1.4, 0.3, -0.3, 0, 0, 0,
+                   "--seed", seed, "-o", out)
+    assert_one_line_error(run, "--seed", seed)
+    assert not out.exists() and tmp_leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("seed", [-1, 2**64 - 1, 1.5, True, "0"])
+def test_library_plan_refuses_a_bad_seed_naming_it(seed):
+    puma = robokit.load("puma560")
+    with pytest.raises(robokit.InputError, match=r"^seed: "):
+        robokit.plan(puma, [0, 0.3, -0.3, 0, 0, 0], [1.4, 0.3, -0.3, 0, 0, 0], seed=seed)
+
+
+# ----------------------------------------------------------------------------- validate --seed
+def test_validate_refuses_a_negative_seed(main_cli):
+    """``robokit validate --seed -1`` printed a FAIL row (numpy's ValueError) and exited 1, "a check
+    failed": bad input is status 2."""
+    run = main_cli("validate", "--seed", "-1", "--area", "spatial")
+    assert_one_line_error(run, "--seed", "-1")
+    assert "FAIL" not in run.out
+    with pytest.raises(robokit.InputError, match="--seed"):
+        from robokit.validation import main
+        main(seed=-1, areas=["spatial"])
+
+
+# ----------------------------------------------------------------------------- unwritable output folder
+def _refuse_writes_in(monkeypatch, folder):
+    """``os.open`` as in a folder the user may not write in: creating any file there (named or
+    O_TMPFILE) fails with EACCES, as it does for a user without write permission."""
+    real = os.open
+    creating = os.O_CREAT | getattr(os, "O_TMPFILE", 0)
+
+    def guarded(path, flags, *args, **kwargs):
+        p = os.path.abspath(os.fspath(path))
+        if flags & creating and (p == str(folder) or os.path.dirname(p) == str(folder)):
+            raise PermissionError(13, "Permission denied", os.fspath(path))
+        return real(path, flags, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", guarded)
+
+
+@pytest.mark.parametrize("args, name", [
+    (["convert", "puma560", "-o", "{d}/puma560.json"], "puma560.json"),
+    (["convert", "puma560", "-o", "{d}/puma560.urdf"], "puma560.urdf"),
+    (["plan", "puma560", "--start", "0", "0.3", "-0.3", "0", "0", "0", "--goal", "0.2", "0.3", "-0.3", "0", "0", "0",
+      "-o", "{d}/traj.csv"], "traj.csv"),
+])
+def test_unwritable_output_folder_names_the_output_not_a_temporary(args, name, tmp_path, monkeypatch, main_cli):
+    """A folder that cannot be written gave ``[Errno 13] Permission denied: 'ro/.puma560.json.1a2b3c4d.tmp'``:
+    a temporary file the user never named. The message names the output file and the reason."""
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    _refuse_writes_in(monkeypatch, folder)
+    run = main_cli(*[a.format(d=folder) for a in args])
+    line = assert_one_line_error(run, name, "Permission denied")
+    assert ".tmp" not in line
+    assert list(folder.iterdir()) == []
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0, reason="root writes in any folder")
+def test_read_only_folder_really_refused(tmp_path, main_cli):
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o555)
+    try:
+        run = main_cli("convert", "puma560", "-o", folder / "puma560.json")
+        line = assert_one_line_error(run, "puma560.json")
+        assert ".tmp" not in line
+        assert list(folder.iterdir()) == []
+    finally:
+        folder.chmod(0o755)
+
+
+def test_library_writer_raises_input_error_naming_the_file(tmp_path, monkeypatch):
+    from robokit._io import atomic_write
+
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    _refuse_writes_in(monkeypatch, folder)
+    with pytest.raises(robokit.InputError, match=r"output: cannot write .*a\.txt.*Permission denied") as info:
+        atomic_write(folder / "a.txt", "x")
+    assert ".tmp" not in str(info.value)
+    assert np.all([not p.name.endswith(".tmp") for p in folder.iterdir()])
