@@ -43,6 +43,27 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
     return check_output_file(out, "-o")
 
 
+def _degrees_note(robot: Any, q: ArrayLike, flag: str, state: bool = False) -> None:
+    """A ``robokit: note:`` (a :class:`~robokit.errors.DegreesWarning`) when joint values typed on the
+    command line look like degrees (docs/conventions.md: beyond a full turn and past the limits).
+
+    The library's own check stays silent here — the values pass through robokit's commands, which
+    it takes for values robokit computed — although they are the user's, typed after ``flag``."""
+    import warnings
+
+    from robokit.errors import DegreesWarning
+
+    values = np.asarray(q, dtype=float)
+    if values.shape != (robot.n,) or not np.all(np.isfinite(values)):
+        return  # the shape and finiteness errors are reported where the values are used
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegreesWarning)
+        looks = robot.check_radians(values, flag, state=state)
+    if looks:
+        warnings.warn(f"{flag}: values beyond a full turn and past the joint limits of {robot.name}: this looks like "
+                      f"degrees; robokit takes radians (45 degrees is 0.785)", DegreesWarning, stacklevel=2)
+
+
 def convert_command(input: str | os.PathLike[str], output: str | os.PathLike[str] | None, tip: str | None = None,
                     convention: str = "standard", **load_options: Any) -> int:
     """``robokit convert IN -o OUT``: convert a robot description; notes on stderr.
@@ -125,6 +146,8 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
     if q is not None and not np.all(np.isfinite(q)):
         raise InputError("-q: contains NaN or infinite values")
     robot = load(model, tip=tip)
+    if q is not None:
+        _degrees_note(robot, q, "-q")
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
     obs = None
     if obstacles:
@@ -487,10 +510,19 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
         raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
+    _degrees_note(robot, q0, "--start", state=True)
     if target.shape == (robot.n,):  # a joint goal: no motion is shorter than max |Δq| / vmax
+        _degrees_note(robot, target, "--goal", state=True)
         _check_rows(float(np.max(np.abs(target - q0))) / vmax, dt, "at least ")
     world = _world(robot, obstacles, convex, describe_world, allow_outside_meshes)
-    tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    try:
+        tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
+    except InputError as exc:  # plan() names its arguments q_start and goal: name the options typed
+        msg = str(exc)
+        for name, flag in (("q_start: ", "--start: "), ("goal: ", "--goal: ")):
+            if msg.startswith(name):
+                raise InputError(flag + msg[len(name):]) from None
+        raise
     _check_rows(float(tr.t[-1]), dt)
     t = np.arange(0.0, tr.t[-1], dt)
     t = np.r_[t, tr.t[-1]] if t[-1] < tr.t[-1] else t

@@ -149,3 +149,30 @@ def test_library_writer_raises_input_error_naming_the_file(tmp_path, monkeypatch
         atomic_write(folder / "a.txt", "x")
     assert ".tmp" not in str(info.value)
     assert np.all([not p.name.endswith(".tmp") for p in folder.iterdir()])
+
+
+# ----------------------------------------------------------------------------- degrees on the command line
+def test_view_notes_degrees_typed_after_q(tmp_path, main_cli):
+    """docs/conventions.md: degrees typed by mistake are named. ``robokit view puma560 -q 0 45 -90 0 30 0``
+    drew a contorted arm without a word: the library's check took the values for robokit's own."""
+    out = tmp_path / "p.html"
+    run = main_cli("view", "puma560", "-q", 0, 45, -90, 0, 30, 0, "-o", out)
+    assert run.rc == 0, run.err
+    notes = [ln for ln in run.err_lines if ln.startswith("robokit: note:")]
+    assert len(notes) == 1 and "-q" in notes[0] and "degrees" in notes[0], run.err
+    run = main_cli("view", "puma560", "-q", *np.radians([0, 45, -90, 0, 30, 0]), "-o", out)
+    assert run.rc == 0 and not [ln for ln in run.err_lines if ln.startswith("robokit: note:")], run.err
+
+
+def test_plan_in_degrees_names_the_options(tmp_path, main_cli):
+    """The same start and goal in degrees: a note per option, and the error names --start (the
+    library's q_start is not what the user typed)."""
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 17, -17, 0, 0, 0, "--goal", 80, 17, -17, 0, 0, 0, "-o", out)
+    line = assert_one_line_error(run, "--start", "limits")
+    assert "q_start" not in line
+    notes = [ln for ln in run.err_lines if ln.startswith("robokit: note:")]
+    assert [n.split()[2] for n in notes] == ["--start:", "--goal:"] and all("degrees" in n for n in notes), run.err
+    assert not out.exists()
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal", 5, 5, 5, 0, 0, 0, "-o", out)
+    assert "q_start" not in assert_one_line_error(run, "--goal", "limits")
