@@ -31,8 +31,10 @@ EXIT_SIGINT, EXIT_SIGTERM = 130, 143
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:  # argparse's own usage errors: one line, exit 2
-        raise _UsageError(f"{self.prog}: {message}")
+    def error(self, message: str) -> NoReturn:
+        """argparse's own usage errors: one ``robokit: error:`` line (naming the subcommand), exit 2."""
+        sub = self.prog[len("robokit"):].strip() if self.prog.startswith("robokit") else self.prog
+        raise _UsageError(f"robokit: error: {sub + ': ' if sub else ''}{message}")
 
 
 class _UsageError(Exception):
@@ -79,7 +81,7 @@ def _format_options(args: argparse.Namespace) -> dict:
     for item in getattr(args, "xacro_arg", None) or []:
         name, sep, value = item.partition(":=")
         if not sep or not name.strip():
-            raise _UsageError(f"robokit: --xacro-arg: expected NAME:=VALUE, got {item!r}")
+            raise _UsageError(f"robokit: error: --xacro-arg: expected NAME:=VALUE, got {item!r}")
         xargs[name.strip()] = value
     paths = getattr(args, "package_path", None) or []
     out = {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
@@ -171,8 +173,12 @@ def _build_parser() -> argparse.ArgumentParser:
     pl = sub.add_parser("plan", help="a collision-free, time-optimal joint trajectory (RRT-Connect + TOPP-RA) to CSV")
     pl.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
     pl.add_argument("--start", nargs="+", type=float, required=True, help="start joint values (rad / m)")
-    pl.add_argument("--goal", nargs="+", type=float, required=True,
-                    help="goal joint values, or x y z roll pitch yaw of the tip (m, rad)")
+    goal = pl.add_mutually_exclusive_group(required=True)
+    goal.add_argument("--goal", nargs="+", type=float,
+                      help="goal joint values (rad / m); for a robot of other than 6 joints also x y z roll pitch "
+                           "yaw of the tip (m, rad)")
+    goal.add_argument("--goal-pose", nargs=6, type=float, metavar=("X", "Y", "Z", "ROLL", "PITCH", "YAW"),
+                      help="goal pose of the tip in the base frame (m, rad), for any robot")
     pl.add_argument("--obstacles", help="scene YAML file of obstacles")
     _add_outside_meshes(pl)
     pl.add_argument("--convex", action="store_true",
@@ -251,11 +257,12 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "plan":
         from robokit.commands import plan_command
 
-        return plan_command(args.model, args.start, args.goal, args.output, obstacles=args.obstacles,
+        return plan_command(args.model, args.start, args.goal, args.output, goal_pose=args.goal_pose,
+                            obstacles=args.obstacles,
                             vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip,
                             convex=args.convex, describe_world=args.describe_world,
                             allow_outside_meshes=args.allow_outside_meshes)
-    raise _UsageError(f"robokit: unknown command {args.command!r}")
+    raise _UsageError(f"robokit: error: unknown command {args.command!r}")
 
 
 def _one_line(exc: BaseException) -> str:

@@ -441,11 +441,12 @@ def _check_rows(duration: float, dt: float, bound: str = "") -> None:
                          "reads): raise --dt, --vmax or --amax")
 
 
-def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike, output: str | os.PathLike[str],
-                 obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
+def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLike | None,
+                 output: str | os.PathLike[str], obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
                  dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
-                 describe_world: bool = False, allow_outside_meshes: bool = False) -> int:
-    """``robokit plan MODEL --start … --goal … [--obstacles scene.yaml] [--convex] -o traj.csv``: plan a
+                 describe_world: bool = False, allow_outside_meshes: bool = False,
+                 goal_pose: ArrayLike | None = None) -> int:
+    """``robokit plan MODEL --start … --goal …|--goal-pose … [--obstacles scene.yaml] [--convex] -o traj.csv``: plan a
     collision-free motion, retime it and write it as a CSV.
 
     The CSV has a header ``q1,…,qn`` and one row per ``dt`` seconds of the retimed trajectory
@@ -461,8 +462,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         Anything ``robokit.load`` accepts.
     start : (n,) array_like
         Start configuration (rad, m).
-    goal : (n,) or (6,) array_like
-        Goal configuration, or x y z roll pitch yaw (m, rad) of the tip pose in the base frame.
+    goal : (n,) or (6,) array_like, or None
+        Goal configuration, or (a robot of other than 6 joints) x y z roll pitch yaw (m, rad) of the
+        tip pose in the base frame; None with ``goal_pose``.
     output : str or path-like
         The ``.csv`` file to write.
     obstacles : str or path-like, optional
@@ -477,6 +479,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         Tip frame.
     convex, describe_world, allow_outside_meshes : bool
         As in the module docstring.
+    goal_pose : (6,) array_like, optional
+        x y z roll pitch yaw (m, rad; URDF's fixed-axis roll, pitch, yaw) of the tip pose in the base
+        frame, for any robot (``--goal-pose``); instead of ``goal``.
 
     Returns
     -------
@@ -501,15 +506,23 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")
     if not np.all(np.isfinite(q0)):
         raise InputError("--start: contains NaN or infinite values")
-    g = np.asarray(goal, dtype=float)
+    if (goal is None) == (goal_pose is None):
+        raise InputError("--goal/--goal-pose: give one of them (joint values, or x y z roll pitch yaw of the tip)")
+    flag = "--goal" if goal_pose is None else "--goal-pose"
+    g = np.asarray(goal if goal_pose is None else goal_pose, dtype=float)
     if not np.all(np.isfinite(g)):
-        raise InputError("--goal: contains NaN or infinite values")
-    if g.shape == (robot.n,):
-        target: np.ndarray = g
+        raise InputError(f"{flag}: contains NaN or infinite values")
+    if goal_pose is not None:
+        if g.shape != (6,):
+            raise InputError(f"--goal-pose: expected x y z roll pitch yaw, got {g.size} numbers")
+        target: np.ndarray = pose_from_xyz_rpy(g[:3], g[3:])
+    elif g.shape == (robot.n,):
+        target = g
     elif g.shape == (6,):
         target = pose_from_xyz_rpy(g[:3], g[3:])
     else:
-        raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw, got {g.size} numbers")
+        raise InputError(f"--goal: expected {robot.n} joint values or x y z roll pitch yaw (--goal-pose), "
+                         f"got {g.size} numbers")
     _degrees_note(robot, q0, "--start", state=True)
     if target.shape == (robot.n,):  # a joint goal: no motion is shorter than max |Δq| / vmax
         _degrees_note(robot, target, "--goal", state=True)
@@ -519,9 +532,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         tr = plan(robot, q0, target, world, vmax=vmax, amax=amax, seed=seed)
     except InputError as exc:  # plan() names its arguments q_start and goal: name the options typed
         msg = str(exc)
-        for name, flag in (("q_start: ", "--start: "), ("goal: ", "--goal: ")):
+        for name, option in (("q_start: ", "--start: "), ("goal: ", f"{flag}: ")):
             if msg.startswith(name):
-                raise InputError(flag + msg[len(name):]) from None
+                raise InputError(option + msg[len(name):]) from None
         raise
     _check_rows(float(tr.t[-1]), dt)
     t = np.arange(0.0, tr.t[-1], dt)

@@ -176,3 +176,56 @@ def test_plan_in_degrees_names_the_options(tmp_path, main_cli):
     assert not out.exists()
     run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal", 5, 5, 5, 0, 0, 0, "-o", out)
     assert "q_start" not in assert_one_line_error(run, "--goal", "limits")
+
+
+# ----------------------------------------------------------------------------- plan: a pose goal for a 6-joint arm
+def test_plan_goal_pose_reaches_the_pose_on_a_six_joint_arm(tmp_path, main_cli):
+    """docs/cli.md offered '6 numbers x y z roll pitch yaw' after --goal, but for a 6-joint arm (the
+    PUMA, every UR) six numbers are joint values: the pose goal could not be given at all. With
+    --goal-pose, the last row of the CSV puts the tool at the pose, by Pinocchio's own FK of the
+    shipped URDF (its roll-pitch-yaw by pinocchio.rpy)."""
+    pin = pytest.importorskip("pinocchio")
+    from robokit.description.models import models_dir
+
+    model = pin.buildModelFromUrdf(str(models_dir() / "puma560.urdf"))
+    data = model.createData()
+    tool = model.getFrameId("tool")
+    pin.framesForwardKinematics(model, data, np.array([1.0, 0.3, -0.3, 0.2, 0.4, 0.1]))
+    goal = data.oMf[tool].copy()
+    pose = [repr(float(v)) for v in (*goal.translation, *pin.rpy.matrixToRpy(goal.rotation))]
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal-pose", *pose, "-o", out)
+    assert run.rc == 0, run.err
+    last = np.array(out.read_text().strip().splitlines()[-1].split(","), dtype=float)
+    pin.framesForwardKinematics(model, data, last)
+    assert np.abs(data.oMf[tool].homogeneous - goal.homogeneous).max() < 1e-6
+    # --goal with the same six numbers stays joint values (documented), and both goals at once are refused
+    bad = tmp_path / "bad.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal", *pose, "--goal-pose", *pose, "-o", bad)
+    assert_one_line_error(run, "--goal")
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal-pose", 0.5, 0, "nan", 0, 0, 0, "-o", bad)
+    assert_one_line_error(run, "--goal-pose", "NaN")
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal-pose", 9, 9, 9, 0, 0, 0, "-o", bad)
+    assert_one_line_error(run, "--goal-pose", "IK")
+    assert not bad.exists() and tmp_leftovers(tmp_path) == []
+
+
+# ----------------------------------------------------------------------------- argparse's own errors
+@pytest.mark.parametrize("args, names", [
+    (["validate", "--seed", "abc"], ["--seed", "abc"]),
+    (["validate", "--area"], ["--area"]),
+    (["convert", "puma560", "--convention", "weird"], ["--convention", "weird"]),
+    (["convert", "puma560", "--bogus"], ["--bogus"]),
+    (["view", "puma560"], ["-o/--output"]),
+    (["teach", "ur5", "--xacro-arg", "foo"], ["--xacro-arg", "foo"]),
+    (["frobnicate"], ["frobnicate"]),
+    (["plan", "puma560", "--start", "0", "0", "0", "0", "0", "0", "--goal-pose", "1", "2", "3", "-o", "t.csv"],
+     ["--goal-pose"]),
+])
+def test_usage_errors_are_one_robokit_line(args, names, tmp_path, monkeypatch, main_cli):
+    """docs/cli.md: bad input gives "one line starting with `robokit:`". argparse's errors started
+    with the subcommand's name instead ("robokit validate: argument --seed: invalid int value")."""
+    monkeypatch.chdir(tmp_path)
+    line = assert_one_line_error(main_cli(*args), *names)
+    assert line.startswith("robokit: error: ")
+    assert list(tmp_path.iterdir()) == []
