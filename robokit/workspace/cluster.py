@@ -25,7 +25,7 @@ import time
 from typing import Any
 
 from robokit._optional import require
-from robokit.errors import InputError, MissingExtraError
+from robokit.errors import InputError, MissingExtraError, RobokitError
 
 __all__ = ["SCHEDULER_TIMEOUT", "MAX_HANDSHAKE_BYTES", "local_cluster", "probe_scheduler", "connect_scheduler"]
 
@@ -82,15 +82,38 @@ def local_cluster(n_workers: int, dashboard: bool = False) -> tuple[Any, Any, An
     security = Security.temporary()
     # the scheduler always runs an HTTP server (health checks; the dashboard's pages only when
     # asked): on 127.0.0.1 and a free port, never 8787 on every interface
-    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, protocol="tls://",
-                           host="127.0.0.1", security=security, silence_logs=logging.ERROR,
-                           scheduler_kwargs={"dashboard": bool(dashboard), "dashboard_address": "127.0.0.1:0"})
+    try:
+        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, protocol="tls://",
+                               host="127.0.0.1", security=security, silence_logs=logging.ERROR,
+                               scheduler_kwargs={"dashboard": bool(dashboard), "dashboard_address": "127.0.0.1:0"})
+    except Exception as exc:
+        script = _unguarded_script_hint(exc)
+        if script is None:
+            raise
+        raise RobokitError(script) from exc
     try:
         client = Client(cluster, security=security)
     except BaseException:
         cluster.close()
         raise
     return cluster, client, security
+
+
+def _unguarded_script_hint(exc: BaseException) -> str | None:
+    """The message for worker processes that did not start while ``__main__`` is a script, else None.
+
+    Dask starts a local cluster's workers with ``spawn``, which imports the main script again in each
+    worker; a script that makes a map at its top level, without ``if __name__ == "__main__":``, makes
+    every worker start a cluster of its own, which multiprocessing refuses (in the worker), and the
+    parent sees only "Nanny failed to start"."""
+    import sys
+
+    path = getattr(sys.modules.get("__main__"), "__file__", None)
+    if not path or "failed to start" not in str(exc):
+        return None
+    return (f"capability map: the local cluster's worker processes did not start. Dask starts each worker by "
+            f"running your script ({path}) again: put the code that makes the map under "
+            f"'if __name__ == \"__main__\":', or pass client='serial' to compute in this process")
 
 
 def probe_scheduler(address: str, timeout: float | None = None) -> None:

@@ -229,3 +229,31 @@ def test_usage_errors_are_one_robokit_line(args, names, tmp_path, monkeypatch, m
     line = assert_one_line_error(main_cli(*args), *names)
     assert line.startswith("robokit: error: ")
     assert list(tmp_path.iterdir()) == []
+
+
+# ----------------------------------------------------------------------------- a capability map in a script
+def test_capability_map_in_an_unguarded_script_says_what_to_do(tmp_path):
+    """The samples of course/capability-maps.md and course/motion.md, copied into a script and run
+    with ``python script.py``, ended in ~500 lines of Dask tracebacks and "RuntimeError: Nanny failed
+    to start": Dask's spawned workers import the script again. The last line now says to guard the
+    call (or compute serially); the guarded script makes the map."""
+    pytest.importorskip("distributed")
+    pytest.importorskip("cryptography")
+    import subprocess
+    import sys
+
+    from hardening_support import subprocess_env
+
+    body = 'cmap = robokit.capability_map("rrr", 0.3, orientations=2)\nprint("voxels", len(cmap.index))\n'
+    script = tmp_path / "unguarded.py"
+    script.write_text("import robokit\n" + body)
+    p = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                       env=subprocess_env())
+    last = p.stderr.strip().splitlines()[-1]
+    assert p.returncode != 0 and last.startswith("robokit.errors.RobokitError:"), p.stderr[-2000:]
+    assert 'if __name__ == "__main__":' in last and str(script) in last and "client='serial'" in last
+    guarded = tmp_path / "guarded.py"
+    guarded.write_text("import robokit\nif __name__ == '__main__':\n" + "".join("    " + ln + "\n" for ln in body.splitlines()))
+    p = subprocess.run([sys.executable, str(guarded)], cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                       env=subprocess_env())
+    assert p.returncode == 0 and "voxels" in p.stdout, p.stderr[-2000:]
