@@ -155,3 +155,16 @@ def test_course_ik_batch_sample_runs_without_deprecation(tmp_path):
     p = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True,
                        timeout=600)
     assert p.returncode == 0 and "ok" in p.stdout, p.stderr[-3000:]
+
+
+def test_loading_page_shows_the_real_unknown_robot_message():
+    """docs/loading.md quotes ``rk.load("iiwa")``'s error; its list of file suffixes had fallen
+    behind the loader's (.sdf and .world were missing). The quoted text, its line breaks joined,
+    is the message robokit raises."""
+    import robokit
+
+    page = (ROOT / "docs" / "loading.md").read_text(encoding="utf-8")
+    quoted = re.search(r'>>> rk\.load\("iiwa"\)\nInputError: (.*?)\n```', page, flags=re.S).group(1)
+    with pytest.raises(robokit.InputError) as info:
+        robokit.load("iiwa")
+    assert " ".join(quoted.split()) == " ".join(str(info.value).split())
