@@ -219,8 +219,12 @@ def _load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, ti
     if s in example_robot_names():
         _options_for("example-robot-data models", (), options)
         return load_example_robot(s, tip)
-    hint = unknown_model_hint(s, shipped_models() + example_robot_names())
     suffixes = ", ".join(dict.fromkeys(FILE_LOADERS))
+    if s and path.is_dir():
+        raise InputError(f"model: {s!r} is a folder; give a robot file in it ({suffixes}) or a model name")
+    if s and path.is_file():
+        raise InputError(f"model: {s!r} is not a robot file robokit reads: their names end in {suffixes}")
+    hint = unknown_model_hint(s, shipped_models() + example_robot_names())
     raise InputError(f"model: unknown robot {s!r}" + (f"; {hint}" if hint else "")
                      + f"; rk.models() lists the names robokit.load knows, or give a file ({suffixes})")
 

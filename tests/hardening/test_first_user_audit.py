@@ -257,3 +257,22 @@ def test_capability_map_in_an_unguarded_script_says_what_to_do(tmp_path):
     p = subprocess.run([sys.executable, str(guarded)], cwd=tmp_path, capture_output=True, text=True, timeout=300,
                        env=subprocess_env())
     assert p.returncode == 0 and "voxels" in p.stdout, p.stderr[-2000:]
+
+
+# ----------------------------------------------------------------------------- a folder or an unknown file as MODEL
+@pytest.mark.parametrize("command", [["convert"], ["view", "-o", "p.html"], ["codegen", "-o", "gen"]])
+def test_model_that_is_a_folder_or_an_unread_file_is_named_as_such(command, tmp_path, monkeypatch, main_cli):
+    """``robokit convert my_robot_folder`` said "unknown robot 'my_robot_folder'; rk.models() lists the
+    names ..." although the folder exists: the message now says it is a folder (or a file whose
+    suffix robokit does not read)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "arm_description").mkdir()
+    (tmp_path / "arm.txt").write_text("<robot name='x'/>")
+    sub, *rest = command
+    line = assert_one_line_error(main_cli(sub, "arm_description", *rest), "'arm_description'", "is a folder")
+    assert "unknown robot" not in line
+    line = assert_one_line_error(main_cli(sub, "arm.txt", *rest), "'arm.txt'", ".urdf")
+    assert "unknown robot" not in line
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.txt", "arm_description"]
+    with pytest.raises(robokit.InputError, match="is a folder"):
+        robokit.load(tmp_path / "arm_description")
