@@ -216,7 +216,7 @@ class IdentificationResult:
 
         >>> robot = rk.load("rrr")
         >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
-        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea_batch(q, dq, ddq) + 0.1 * dq)
         >>> bool(np.allclose(res.predict(q[0], dq[0], ddq[0]), robot.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0]))
         True
         """
@@ -258,7 +258,7 @@ class IdentificationResult:
         --------
         >>> robot = rk.load("rrr")
         >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
-        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea_batch(q, dq, ddq) + 0.1 * dq)
         >>> twin = res.to_robot()
         >>> twin.name, bool(np.allclose(twin.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0], robot.rnea(q[0], dq[0], ddq[0]) + 0.1 * dq[0]))
         ('rrr_identified', True)
@@ -288,7 +288,7 @@ class IdentificationResult:
         --------
         >>> robot = rk.load("rrr")
         >>> q, dq, ddq = np.random.default_rng(0).uniform(-1, 1, (3, 200, 3))
-        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea(q, dq, ddq) + 0.1 * dq)
+        >>> res = rk.identify_dynamics(robot, q, dq, ddq, robot.rnea_batch(q, dq, ddq) + 0.1 * dq)
         >>> print(res.table().splitlines()[1])
                 0.85   ...  m1·c1x + 0.5·m2 + 0.5·m3
         """
@@ -467,7 +467,7 @@ def identify_dynamics(robot: Robot | str, q: ArrayLike, dq: ArrayLike, ddq: Arra
     >>> robot = robokit.load("rrr")
     >>> rng = np.random.default_rng(0)
     >>> q, dq, ddq = rng.uniform(-1, 1, (3, 200, 3))
-    >>> tau = robot.rnea(q, dq, ddq) + 0.1 * dq
+    >>> tau = robot.rnea_batch(q, dq, ddq) + 0.1 * dq
     >>> res = robokit.identify_dynamics(robot, q, dq, ddq, tau)
     >>> bool(np.allclose(res.predict(q, dq, ddq), tau))
     True

@@ -292,7 +292,7 @@ class CalibrationResult:
 
     >>> robot = rk.load("rrr")
     >>> Q = np.random.default_rng(0).uniform(-1.5, 1.5, (20, 3))
-    >>> res = rk.calibrate(robot, Q, robot.frame_pose(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
+    >>> res = rk.calibrate(robot, Q, robot.frame_pose_batch(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
     >>> float(res.rms_before) > 9e-4, float(res.rms_after) < 1e-9
     (True, True)
     """
@@ -321,7 +321,7 @@ class CalibrationResult:
         --------
         >>> robot = rk.load("rrr")
         >>> Q = np.random.default_rng(0).uniform(-1.5, 1.5, (20, 3))
-        >>> res = rk.calibrate(robot, Q, robot.frame_pose(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
+        >>> res = rk.calibrate(robot, Q, robot.frame_pose_batch(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
         >>> res.summary().splitlines()[0]
         'calibrated rrr: 20 samples; RMS before 0.001 m, after ... m'
         """
@@ -351,7 +351,7 @@ class CalibrationResult:
         >>> matplotlib.use("Agg")
         >>> robot = rk.load("rrr")
         >>> Q = np.random.default_rng(0).uniform(-1.5, 1.5, (20, 3))
-        >>> res = rk.calibrate(robot, Q, robot.frame_pose(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
+        >>> res = rk.calibrate(robot, Q, robot.frame_pose_batch(Q)[:, :3, 3] + [0.001, 0.0, 0.0])
         >>> type(res.plot()).__name__
         'Figure'
         """
@@ -497,7 +497,7 @@ def calibrate(robot: Robot | str, q: ArrayLike, measured: ArrayLike, *, orientat
     >>> import numpy as np, robokit
     >>> robot = robokit.load("puma560")
     >>> Q = np.array([robot.random_configuration(i) for i in range(30)])
-    >>> res = robokit.calibrate(robot, Q, robot.frame_pose(Q))
+    >>> res = robokit.calibrate(robot, Q, robot.frame_pose_batch(Q))
     >>> res.rms_after < 1e-9
     True
     """
