@@ -20,7 +20,7 @@ from pathlib import Path
 from robokit.errors import InputError
 
 __all__ = ["atomic_write", "decode_utf8", "read_input_bytes", "read_input_text", "check_output_file",
-           "check_output_folder", "make_output_folder"]
+           "check_not_an_input", "check_output_folder", "make_output_folder"]
 
 
 def _folder_of(path: Path) -> Path:
@@ -63,6 +63,41 @@ def check_output_file(path: str | os.PathLike[str], what: str = "output") -> Pat
     if out.is_dir():
         raise InputError(f"{what}: {str(out)!r} is a folder")
     return out
+
+
+def check_not_an_input(output: str | os.PathLike[str], *inputs: object, what: str = "output") -> None:
+    """Refuse an output file that is one of the command's input files (the same file by any name:
+    ``arm.yaml``, ``./arm.yaml``, a link to it): writing it would replace what was read.
+
+    Parameters
+    ----------
+    output : str or path-like
+        The file to write.
+    *inputs
+        The inputs; those that are not paths of existing files (a model name, a Robot) are skipped.
+    what : str
+        The argument named in the message.
+
+    Raises
+    ------
+    InputError
+        ``WHAT: 'PATH' is the input file INPUT; write the result to another file``.
+
+    Examples
+    --------
+    >>> check_not_an_input("arm.urdf", "puma560")   # a model name is no file: nothing to refuse
+    """
+    out = Path(output)
+    for item in inputs:
+        if not isinstance(item, (str, os.PathLike)):
+            continue
+        try:
+            same = os.path.samefile(out, item)
+        except (OSError, ValueError):  # either does not exist (or is no path): no clash
+            continue
+        if same:
+            raise InputError(f"{what}: {str(out)!r} is the input file {os.fspath(item)!r}; write the result to "
+                             f"another file")
 
 
 def check_output_folder(folder: str | os.PathLike[str], what: str = "-o") -> Path:

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import MAX_MAGNITUDE
-from robokit._io import atomic_write, check_output_file, check_output_folder
+from robokit._io import atomic_write, check_not_an_input, check_output_file, check_output_folder
 from robokit.errors import InputError
 
 if TYPE_CHECKING:
@@ -373,6 +373,7 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     from robokit.description.save import robot_text
 
     out = _output_file(output, (".urdf", ".yaml", ".yml"))
+    check_not_an_input(out, model, data, what="-o")
     robot = load(model, tip=tip, **load_options)
     q, measured = read_calibration_csv(data, robot.n, robot.qlim)
     res = calibrate(robot, q, measured)

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from robokit.errors import InputError
-from robokit._io import atomic_write, check_output_file
+from robokit._io import atomic_write, check_not_an_input, check_output_file
 
 __all__ = ["convert"]
 
@@ -73,6 +73,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     src = str(input)
     in_suffix = Path(src).suffix.lower()
     out = check_output_file(output) if output is not None else None
+    if out is not None:
+        check_not_an_input(out, src)
     out_suffix = out.suffix.lower() if out is not None else None
     notes: list[str] = []
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads

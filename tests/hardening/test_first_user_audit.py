@@ -276,3 +276,30 @@ def test_model_that_is_a_folder_or_an_unread_file_is_named_as_such(command, tmp_
     assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.txt", "arm_description"]
     with pytest.raises(robokit.InputError, match="is a folder"):
         robokit.load(tmp_path / "arm_description")
+
+
+# ----------------------------------------------------------------------------- output = input
+@pytest.mark.parametrize("out_name", ["arm.yaml", "./arm.yaml", "link.yaml"])
+def test_convert_refuses_to_write_over_its_input(out_name, tmp_path, monkeypatch, main_cli):
+    """``robokit convert arm.yaml -o arm.yaml`` replaced the user's DH file (its comments, its degrees)
+    with robokit's normalised table, without a word. Now one line naming the clash; the file is
+    unchanged, byte for byte."""
+    monkeypatch.chdir(tmp_path)
+    src = tmp_path / "arm.yaml"
+    shutil.copy(model_path("puma560"), src)
+    (tmp_path / "link.yaml").symlink_to(src)
+    before = src.read_bytes()
+    run = main_cli("convert", "link.yaml" if out_name == "arm.yaml" else "arm.yaml", "-o", out_name)
+    assert_one_line_error(run, "is the input file")
+    assert src.read_bytes() == before and tmp_leftovers(tmp_path) == []
+    assert main_cli("convert", "arm.yaml", "-o", "copy.yaml").rc == 0  # another name is fine
+
+
+def test_calibrate_refuses_to_write_over_its_model(tmp_path, monkeypatch, main_cli):
+    monkeypatch.chdir(tmp_path)
+    assert main_cli("convert", "puma560", "-o", "arm.urdf").rc == 0
+    before = (tmp_path / "arm.urdf").read_bytes()
+    (tmp_path / "data.csv").write_text("q1,q2,q3,q4,q5,q6,x,y,z\n")
+    assert_one_line_error(main_cli("calibrate", "arm.urdf", "data.csv", "-o", "arm.urdf"), "-o", "arm.urdf",
+                          "is the input file")
+    assert (tmp_path / "arm.urdf").read_bytes() == before
