@@ -17,6 +17,8 @@ from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar, as_vector
 from robokit.kinematics.velocity import joint_limit_gradient, resolved_rate
+from robokit.errors import InputError
+from robokit.trajectory.core import MAX_SAMPLES
 from robokit.trajectory.polynomial import quintic_trajectory
 
 if TYPE_CHECKING:
@@ -106,6 +108,9 @@ def track_line(robot: Robot, q0: ArrayLike, p_goal: ArrayLike, duration: float, 
     dt = as_scalar(dt, "dt", positive=True)
     T0 = robot.frame_pose(q, frame)
     p0, R_des = T0[:3, 3].copy(), T0[:3, :3].copy()
+    if duration / dt > MAX_SAMPLES:  # before any step is allocated (1e5 s at 1e-4 s asked 1e9 steps)
+        raise InputError(f"duration/dt: {duration:g} s in steps of {dt:g} s is more than {MAX_SAMPLES} steps; "
+                         f"robokit takes at most {MAX_SAMPLES}: raise dt or shorten the duration")
     K = int(np.ceil(duration / dt))
     times = np.minimum(np.arange(K + 1) * dt, duration)
     scaling = quintic_trajectory(0.0, 1.0, duration, t=times)  # s(t) and ṡ(t), rest to rest

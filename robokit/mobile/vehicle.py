@@ -31,6 +31,9 @@ from robokit._arrays import FloatVector, as_scalar, as_vector
 from robokit.errors import InputError
 from robokit.spatial.basics import wrap_angle
 
+#: Most control periods :func:`run_vehicle` runs (T / dt).
+MAX_STEPS = 1_000_000
+
 __all__ = ["BicycleModel", "MoveToPoint", "FollowLine", "PurePursuit", "VehicleRun", "run_vehicle", "angdiff"]
 
 
@@ -383,6 +386,9 @@ def run_vehicle(model: BicycleModel, controller: Callable[[float, np.ndarray, fl
     x = as_vector(x0, "x0", 3).copy()
     T = as_scalar(T, "T", positive=True)
     dt = as_scalar(dt, "dt", positive=True)
+    if T / dt > MAX_STEPS:  # a Python loop of that many steps would not end in any reasonable time
+        raise InputError(f"T/dt: {T:g} s in steps of {dt:g} s is more than {MAX_STEPS} steps; robokit takes at most "
+                         f"{MAX_STEPS}: raise dt or shorten T")
     n = int(math.ceil(T / dt))
     ts, xs, us = [0.0], [x.copy()], []
     for k in range(n):

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_array, as_scalar
-from robokit.trajectory.core import Trajectory, as_axes, viapoint_matrix
+from robokit.trajectory.core import MAX_SAMPLES, Trajectory, as_axes, viapoint_matrix
 from robokit.errors import InputError, InputTypeError
 
 __all__ = ["ms_trajectory", "ms_lspb_trajectory"]
@@ -236,6 +236,11 @@ def ms_trajectory(viapoint: ArrayLike | None = None, dt: float | None = None, ta
             slowest = -1
         if tseg <= 0:  # only with qdmax, tacc = 0 and a repeated point: nothing to do
             tseg = 0.0
+        if count + (taccx + tseg + tacc2) / dt > MAX_SAMPLES:  # before any of this segment's samples is made
+            given = "qdmax" if seg_given is None else "tsegment"
+            raise InputError(f"dt/{given}: the trajectory would have more than {MAX_SAMPLES} samples (segment {seg} "
+                             f"lasts {tseg:g} s, sampled every {dt:g} s); robokit makes at most {MAX_SAMPLES}: "
+                             f"raise dt or shorten the motion")
         seg_times.append(tseg)
         slowest_axes.append(slowest)
         arrive.append(clock + tseg + (tacc2 if seg > 0 else 0.0))
@@ -387,6 +392,10 @@ def ms_lspb_trajectory(viapoint: ArrayLike, dt: float, tacc: float, qdmax: Array
     end = float(tau[-1] + 0.5 * tacc)
     if not end > 0:
         raise InputError("viapoint: the motion has no duration (every segment has zero length and tacc = 0)")
+    if end / dt > MAX_SAMPLES:
+        given = "qdmax" if qdmax is not None else "tsegment"
+        raise InputError(f"dt/{given}: the trajectory would have more than {MAX_SAMPLES} samples ({end:g} s sampled "
+                         f"every {dt:g} s); robokit makes at most {MAX_SAMPLES}: raise dt or shorten the motion")
     K = int(math.floor(end / dt * (1 + 1e-12))) + 1
     t = dt * np.arange(K)
     if end - t[-1] > 1e-9 * end:

@@ -291,6 +291,9 @@ def cubic_via_trajectory(viapoints: ArrayLike, times: ArrayLike, t: ArrayLike | 
     m, n = P.shape
     T = increasing_times(times, "times", m)
     if isinstance(velocities, str):
+        if velocities not in ("heuristic", "continuous"):  # via_point_velocities would name its own 'method'
+            raise InputError(f"velocities: expected 'continuous', 'heuristic' or an array of shape ({m}, {n}), "
+                             f"got {velocities!r}")
         V = via_point_velocities(P, T, velocities, qd0, qdf)
     else:
         if qd0 is not None or qdf is not None:

@@ -252,7 +252,12 @@ def ms_cartesian_trajectory(poses: ArrayLike, dt: float, tacc: ArrayLike, speed:
         w = as_scalar(angular_speed, "angular_speed", positive=True)
         # a segment without rotation is never limited by its progress variable
         sdot = np.where(thetas > 0, w / np.where(thetas > 0, thetas, 1.0), 1e9)
-        tr = ms_trajectory(via, dt, tacc, qdmax=np.r_[np.full(3, v), sdot], verbose=verbose)
+        try:
+            tr = ms_trajectory(via, dt, tacc, qdmax=np.r_[np.full(3, v), sdot], verbose=verbose)
+        except InputError as exc:  # ms_trajectory's qdmax is built here from speed and angular_speed
+            if str(exc).startswith("dt/qdmax: "):
+                raise InputError("dt/speed/angular_speed: " + str(exc)[len("dt/qdmax: "):]) from None
+            raise
     assert tr.qd is not None and tr.qdd is not None  # ms_trajectory always gives its derivatives
     S = tr.q[:, 3:]
     Sd = tr.qd[:, 3:]

@@ -303,3 +303,61 @@ def test_calibrate_refuses_to_write_over_its_model(tmp_path, monkeypatch, main_c
     assert_one_line_error(main_cli("calibrate", "arm.urdf", "data.csv", "-o", "arm.urdf"), "-o", "arm.urdf",
                           "is the input file")
     assert (tmp_path / "arm.urdf").read_bytes() == before
+
+
+# ----------------------------------------------------------------------------- unbounded sample counts
+UNBOUNDED = {
+    # call, the arguments the message must name
+    "ms_trajectory": ("rk.ms_trajectory([[0.0], [1000.0]], dt=1e-4, tacc=0.5, qdmax=0.01)", ["dt/qdmax", "1000000"]),
+    "ms_trajectory_tsegment": ("rk.ms_trajectory([[0.0], [1.0]], dt=1e-4, tacc=0.5, tsegment=[1e6])",
+                               ["dt/tsegment", "1000000"]),
+    "ms_trajectory_overflow": ("rk.ms_trajectory([[0, 0], [1e12, 1]], dt=1e-6, tacc=0.5, qdmax=1e-6)", ["dt/qdmax"]),
+    "ms_lspb_trajectory": ("rk.trajectory.ms_lspb_trajectory([[0.0], [1000.0]], dt=1e-4, tacc=0.5, qdmax=0.01)",
+                           ["dt/qdmax", "1000000"]),
+    "ms_cartesian_trajectory": (
+        "rk.trajectory.through.ms_cartesian_trajectory(np.stack([np.eye(4), T1]), dt=1e-4, tacc=0.5, speed=0.01, "
+        "angular_speed=0.1)", ["dt/speed/angular_speed"]),
+    "track_line": ("rk.control.track_line(rk.load('twolink'), [0.3, 0.5], [1.0, 0.5, 0.0], duration=1e5, dt=1e-4)",
+                   ["duration/dt", "1000000"]),
+    "run_vehicle": ("rk.mobile.vehicle.run_vehicle(rk.mobile.vehicle.BicycleModel(), lambda t, x, dt: (0.1, 0.0), "
+                    "[0, 0, 0], T=1e6, dt=1e-4)", ["T/dt", "1000000"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(UNBOUNDED))
+def test_a_huge_sample_count_is_refused_before_any_allocation(case, tmp_path):
+    """A duration or distance far beyond the step (a slow qdmax, a tiny dt) asked for 10⁹ samples:
+    ms_lspb_trajectory was killed by the kernel's OOM killer, track_line raised MemoryError,
+    run_vehicle looped for hours and ms_trajectory raised numpy's 'Maximum allowed size exceeded'.
+    Each now raises InputError naming its arguments, as quintic_trajectory does for its t
+    (robokit.trajectory.core.MAX_SAMPLES). Run in a subprocess limited to 3 GB of address space
+    and 120 s, so that a regression fails the test instead of the machine."""
+    import resource
+    import subprocess
+    import sys
+
+    from hardening_support import subprocess_env
+
+    call, names = UNBOUNDED[case]
+    code = ("import numpy as np, robokit as rk, robokit.mobile.vehicle, robokit.trajectory.through\n"
+            "T1 = np.eye(4); T1[0, 3] = 1000.0\n"
+            f"try:\n    {call}\n    print('NO ERROR')\n"
+            "except Exception as e:\n    print(type(e).__name__ + ': ' + str(e))\n")
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+
+    p = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=120,
+                       env=subprocess_env(ROBOKIT_COMPILE="off"), preexec_fn=limit)
+    out = p.stdout.strip().splitlines()[-1] if p.stdout.strip() else p.stderr[-1000:]
+    assert out.startswith("InputError: "), out
+    for name in names:
+        assert name in out, out
+
+
+def test_cubic_via_names_its_velocities_argument():
+    """``cubic_via_trajectory(..., velocities="bogus")`` said "method: expected 'heuristic' or
+    'continuous'": there is no ``method`` argument (it is via_point_velocities')."""
+    with pytest.raises(robokit.InputError, match=r"^velocities: .*'continuous', 'heuristic' or an array") as info:
+        robokit.trajectory.cubic_via_trajectory([[0.0], [1.0], [2.0]], times=[0, 1, 2], velocities="bogus")
+    assert "method" not in str(info.value)

@@ -196,7 +196,7 @@ def test_via_cubics_continuous_acceleration_numerically():
         (lambda: cubic_via_trajectory([[0], [1], [2]], [0, 2, 1]), "times"),
         (lambda: cubic_via_trajectory([[0], [1], [2]], [0, 1]), "times"),
         (lambda: cubic_via_trajectory([[[0.0]], [[1.0]]], [0, 1]), "viapoints"),  # 3-D (a 1-D list is one axis)
-        (lambda: cubic_via_trajectory([[0], [1]], [0, 1], velocities="magic"), "method"),
+        (lambda: cubic_via_trajectory([[0], [1]], [0, 1], velocities="magic"), "^velocities: "),
         (lambda: cubic_via_trajectory([[0], [1]], [0, 1], velocities=[[0], [0]], qd0=1), "qd0"),
         (lambda: cubic_via_trajectory([[0], [1]], [0, 1], velocities=[[0, 1], [0, 1]]), "velocities"),
         (lambda: cubic_trajectory(0, np.nan, 1.0), "qf"),
