@@ -180,6 +180,11 @@ def _model_lookup(Mlist: Any, Glist: Any, Slist: Any) -> _Model:
             return hit  # already validated constants
     Slist = as_array(Slist, "Slist", (6, None))
     n = Slist.shape[1]
+    frames, inertias = np.shape(Mlist), np.shape(Glist)
+    if (len(frames) == 3 and frames[1:] == (4, 4) and len(inertias) == 3 and inertias[1:] == (6, 6)
+            and frames[0] == inertias[0] + 1 and inertias[0] != n):  # Mlist and Glist agree, Slist does not
+        raise InputError(f"Slist: expected {inertias[0]} columns (Mlist has {frames[0]} frames, Glist "
+                         f"{inertias[0]} inertias: {inertias[0]} joints), got shape {Slist.shape}")
     Mlist = as_array(Mlist, "Mlist", (n + 1, 4, 4))
     Glist = as_array(Glist, "Glist", (n, 6, 6))
     key = (Mlist.tobytes(), Glist.tobytes(), Slist.tobytes())

@@ -158,3 +158,16 @@ def test_ik_on_unreachable_target_fails_with_finite_wrapped_angles(solver, targe
     # what it returns is a real configuration: its reach is within the arm's 2 m
     p = robokit.fkin_space(M, S, theta)[:3, 3]
     assert np.linalg.norm(p) <= 2.0 + 1e-12
+
+
+@pytest.mark.parametrize("cut, named", [("Slist", "Slist: expected 6 columns"), ("Mlist", "Mlist: expected shape (7, 4, 4)"),
+                                        ("Glist", "Glist: expected shape (6, 6, 6)")])
+def test_a_model_list_one_joint_short_is_named_itself(cut, named, puma):
+    """Mlist, Glist and Slist must agree on n: the one that disagrees with the other two is named (a
+    Slist missing a column was reported as a wrong Mlist)."""
+    from robokit.dynamics.coriolis import coriolis_matrix
+
+    model = {"Mlist": puma.poe.Mlist, "Glist": puma.poe.Glist, "Slist": puma.poe.Slist}
+    model[cut] = model[cut][:, :5] if cut == "Slist" else model[cut][:-1]
+    with pytest.raises(robokit.InputError, match=named.replace("(", r"\(").replace(")", r"\)")):
+        coriolis_matrix(np.zeros(6), np.full(6, 0.5), model["Mlist"], model["Glist"], model["Slist"])
