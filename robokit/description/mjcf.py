@@ -262,10 +262,10 @@ def _default_tip(model: Any) -> str:
 
     body = default_tip(model)
     j = model.frames[frame_index(model, body)].parentJoint  # a joint may share the body's name
-    bodies = {f.name for f in model.frames if f.type == pin.FrameType.BODY}
+    body_names = {f.name for f in model.frames if f.type == pin.FrameType.BODY}
     # a site that shares a body's name cannot be the tip: the name means the body (frame_index)
     sites = [f.name for f in model.frames
-             if f.type == pin.FrameType.OP_FRAME and f.parentJoint == j and f.name not in bodies]
+             if f.type == pin.FrameType.OP_FRAME and f.parentJoint == j and f.name not in body_names]
     if sites:
         return str(sites[-1])
 
