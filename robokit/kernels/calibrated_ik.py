@@ -524,8 +524,7 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
         Check each solution's smallest singular value (else the first one's only, unless a search
         point was near singular): for arms farther from their structure (:func:`robokit.ik.calibrated.search_constants`).
     fold_scale : float, optional
-        The fold starts' windows (``closed_form.FOLD_STARTS`` times this, ``FOLD_IMAG`` times its square
-        root; default 1).
+        The fold starts' windows (``closed_form.FOLD_STARTS`` and ``FOLD_IMAG`` times this; default 1).
 
     Returns
     -------

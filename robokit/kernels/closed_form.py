@@ -80,8 +80,8 @@ _TWO_PI = 2.0 * math.pi
 #: gives two rows, at θ₃ = ±√(2 (|cos θ₃| − 1)) from the fold (θ₃ = 0 or π). Such rows have
 #: ``FOLD_CODE`` added to their wrist code.
 #: Both windows are for the arms whose starts are off by up to ``robokit.ik.calibrated.ERROR_MEASURED``;
-#: the calibrated kernel's fold switch (``fold[1]``) is the factor ``FOLD_STARTS`` is multiplied by, and
-#: ``FOLD_IMAG`` by its square root, for an arm farther from its structure (:func:`robokit.ik.calibrated.search_constants`).
+#: the calibrated kernel's fold switch (``fold[1]``) is the factor both are multiplied by for an arm
+#: farther from its structure (:func:`robokit.ik.calibrated.search_constants`).
 FOLD_STARTS = 0.1
 FOLD_IMAG = 0.2
 FOLD_CODE = 3
@@ -220,9 +220,9 @@ def _roots(c: np.ndarray, ndeg: int, rev: bool, out: np.ndarray, fold: Any) -> i
             if fold[1] != 0.0 and deg == 4:
                 for z in ev:  # a complex pair near the real line: its real part (ascending), after the real roots
                     a, b = z.real, z.imag
-                    # the window grows as √fold[1] (an arm farther from its structure: robokit.ik.calibrated)
-                    near = ((2.0 * b <= math.tanh(FOLD_IMAG * math.sqrt(fold[1])) * (1.0 + a * a + b * b)) if rev
-                            else b <= FOLD_IMAG * math.sqrt(fold[1]) * (1.0 + abs(a)))
+                    # the window grows with fold[1] (an arm farther from its structure: robokit.ik.calibrated)
+                    near = ((2.0 * b <= math.tanh(FOLD_IMAG * fold[1]) * (1.0 + a * a + b * b)) if rev
+                            else b <= FOLD_IMAG * fold[1] * (1.0 + abs(a)))
                     if b > 1e-6 * (1.0 + abs(a)) and near:
                         k = nf
                         while k > 0 and ts[4 + k - 1] > a:
