@@ -45,7 +45,7 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
 
 def _degrees_note(robot: Any, q: ArrayLike, flag: str, state: bool = False) -> None:
     """A ``robokit: note:`` (a :class:`~robokit.errors.DegreesWarning`) when joint values typed on the
-    command line look like degrees (docs/conventions.md: beyond a full turn and past the limits).
+    command line (``q`` (n,)), or the rows of a file it names (``q`` (N, n)), look like degrees (docs/conventions.md: beyond a full turn and past the limits).
 
     The library's own check stays silent here — the values pass through robokit's commands, which
     it takes for values robokit computed — although they are the user's, typed after ``flag``."""
@@ -54,7 +54,7 @@ def _degrees_note(robot: Any, q: ArrayLike, flag: str, state: bool = False) -> N
     from robokit.errors import DegreesWarning
 
     values = np.asarray(q, dtype=float)
-    if values.shape != (robot.n,) or not np.all(np.isfinite(values)):
+    if values.shape[-1:] != (robot.n,) or values.ndim > 2 or not np.all(np.isfinite(values)):
         return  # the shape and finiteness errors are reported where the values are used
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DegreesWarning)
@@ -149,6 +149,8 @@ def view_command(model: Robot | DHTable | str | os.PathLike[str], output: str | 
     if q is not None:
         _degrees_note(robot, q, "-q")
     Q = load_trajectory(trajectory, robot.n) if trajectory else None
+    if Q is not None:
+        _degrees_note(robot, Q, "--trajectory", state=True)  # its rows, as the file gives them
     obs = None
     if obstacles:
         from robokit.collision import load_scene

@@ -164,6 +164,21 @@ def test_view_notes_degrees_typed_after_q(tmp_path, main_cli):
     assert run.rc == 0 and not [ln for ln in run.err_lines if ln.startswith("robokit: note:")], run.err
 
 
+def test_view_notes_a_trajectory_file_in_degrees(tmp_path, main_cli):
+    """The rows of ``--trajectory FILE`` are the user's values too: a file written in degrees gets the
+    note (once), the same file in radians none."""
+    out = tmp_path / "p.html"
+    rows = np.array([[0, 10, -20, 0, 30, 0], [0, 45, -90, 0, 30, 0], [0, 60, -120, 0, 40, 0]], float)
+    for values, noted in ((rows, True), (np.radians(rows), False)):
+        csv = tmp_path / "traj.csv"
+        csv.write_text("q1,q2,q3,q4,q5,q6\n" + "\n".join(",".join(f"{x:.6f}" for x in r) for r in values) + "\n")
+        run = main_cli("view", "puma560", "--trajectory", csv, "-o", out)
+        assert run.rc == 0, run.err
+        notes = [ln for ln in run.err_lines if ln.startswith("robokit: note:")]
+        assert len(notes) == (1 if noted else 0), run.err
+        assert not noted or ("--trajectory" in notes[0] and "degrees" in notes[0]), run.err
+
+
 def test_plan_in_degrees_names_the_options(tmp_path, main_cli):
     """The same start and goal in degrees: a note per option, and the error names --start (the
     library's q_start is not what the user typed)."""
