@@ -27,7 +27,6 @@ descriptions while keeping a parse well under a second.
 from __future__ import annotations
 
 import os
-import re
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 from typing import Any
@@ -112,17 +111,36 @@ def check_xml(raw: bytes | str, source: str | os.PathLike[str], *, max_depth: in
     return state["count"]
 
 
-_COMMENT_OR_CDATA = re.compile(rb"<!\[CDATA\[.*?\]\]>|<!--(.*?)-->", re.S)
-
-
-def _dashes(match: re.Match[bytes]) -> bytes:
-    body = match.group(1)
-    if body is None or (b"--" not in body and not body.endswith(b"-")):
-        return match.group(0)  # CDATA, or a comment XML already accepts
+def _blank_dashes(body: bytes) -> bytes:
+    """A comment's text with ``--`` (and a final ``-``) blanked, the same length."""
     body = body.replace(b"--", b"- ")
-    if body.endswith(b"-"):
-        body = body[:-1] + b" "
-    return b"<!--" + body + b"-->"  # the same length: lines and columns stay where they were
+    return body[:-1] + b" " if body.endswith(b"-") else body
+
+
+def _tolerant(raw: bytes) -> bytes:
+    """One pass from left to right (linear in the size: an unterminated ``<!--`` or CDATA section ends
+    the pass, the parser reports it), CDATA sections skipped, each comment's text blanked."""
+    out, at = [], 0
+    while True:
+        c, d = raw.find(b"<!--", at), raw.find(b"<![CDATA[", at)
+        if c < 0 and d < 0:
+            break
+        if d >= 0 and (c < 0 or d < c):  # a CDATA section: kept as it is
+            end = raw.find(b"]]>", d + 9)
+            if end < 0:
+                break
+            out.append(raw[at:end + 3])
+            at = end + 3
+            continue
+        end = raw.find(b"-->", c + 4)
+        if end < 0:
+            break
+        out.append(raw[at:c + 4])
+        out.append(_blank_dashes(raw[c + 4:end]))
+        out.append(b"-->")
+        at = end + 3
+    out.append(raw[at:])
+    return b"".join(out)
 
 
 def tolerant_comments(raw: bytes | str) -> bytes | str:
@@ -135,8 +153,8 @@ def tolerant_comments(raw: bytes | str) -> bytes | str:
     '<r><!-- run: gz sim - playback --></r>'
     """
     if isinstance(raw, str):
-        return _COMMENT_OR_CDATA.sub(_dashes, raw.encode("utf-8")).decode("utf-8")
-    return _COMMENT_OR_CDATA.sub(_dashes, raw)
+        return _tolerant(raw.encode("utf-8")).decode("utf-8")
+    return _tolerant(raw)
 
 
 def parse_xml(raw: bytes | str, source: str | os.PathLike[str]) -> ET.Element:
