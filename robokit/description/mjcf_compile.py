@@ -1036,10 +1036,10 @@ def _referenced_bodies(root: ET.Element) -> set[str]:
     return out
 
 
-def _fused_into_world(ctx: _Ctx, bodies: list[_Body]) -> set[int]:
+def _fused_into_world(ctx: _Ctx, bodies: list[_Body]) -> tuple[set[int], set[int]]:
     """Apply ``fusestatic``: fuse every static body's inertial into its parent, as MuJoCo does;
     the indices of the bodies whose mass MuJoCo drops into the world (it does not count them
-    in ``settotalmass``)."""
+    in ``settotalmass``), and of every body fused."""
     keep = _referenced_bodies(ctx.root)
     parent_of = {i: b.parent for i, b in enumerate(bodies)}
     pose = {i: (b.pos, b.quat) for i, b in enumerate(bodies)}
@@ -1064,7 +1064,20 @@ def _fused_into_world(ctx: _Ctx, bodies: list[_Body]) -> set[int]:
             if p == i:
                 parent_of[j] = par
                 pose[j] = mm.compose(pose[i][0], pose[i][1], pose[j][0], pose[j][1])
-    return dropped
+    return dropped, gone
+
+
+def _check_free_joints(ctx: _Ctx, bodies: list[_Body], fused: set[int]) -> None:
+    """MuJoCo's rule: a free joint only on a top-level body, a child of the world (once ``fusestatic``
+    has fused the static bodies above it into the world)."""
+    for b in bodies[1:]:
+        if any(j.type == "free" for j in b.joints):
+            up = b.parent
+            while up in fused:
+                up = bodies[up].parent
+            if up != 0:
+                raise InputError(f"{ctx.where(b.elem, b.name)}: its free joint hangs below body {bodies[up].name!r}; "
+                                 "MuJoCo allows a free joint only on a top-level body (a child of <worldbody>)")
 
 
 def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *,
@@ -1140,8 +1153,10 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
         bodies[0].geoms = [g.out for g in world_geoms]
     # MuJoCo lists bodies depth first: _body appends parents before children, siblings in order
     dropped: set[int] = set()
+    fused: set[int] = set()
     if ctx.compiler["fusestatic"]:
-        dropped = _fused_into_world(ctx, bodies)
+        dropped, fused = _fused_into_world(ctx, bodies)
+    _check_free_joints(ctx, bodies, fused)
     stm = ctx.compiler["settotalmass"]
     if stm > 0:
         total = sum(b.mass for i, b in enumerate(bodies) if i > 0 and i not in dropped)
