@@ -8,12 +8,24 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 from robokit.errors import InputError
 from robokit._io import atomic_write, check_not_an_input, check_output_file
 
+if TYPE_CHECKING:
+    from robokit.description.robot import Robot
+
 __all__ = ["convert"]
+
+
+def _locked_note(robot: Robot) -> list[str]:
+    """The note on the joints locked off the chain, unless the loader's own notes say where it holds them
+    (the MJCF loader: at MuJoCo's qpos0, each with its value)."""
+    said = f"{robot.name}: joints off the chain to {robot.tip!r}"
+    if not robot.locked_joints or any(n.startswith(said) for n in robot.notes):
+        return []
+    return [f"{said} locked at their neutral value and their bodies merged: {', '.join(robot.locked_joints)}"]
 
 
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
@@ -82,9 +94,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
 
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
         text, notes = mjcf_from_robot(robot)
-        if robot.locked_joints:
-            notes.insert(0, f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
-                            f"their bodies merged: {', '.join(robot.locked_joints)}")
+        notes[:0] = _locked_note(robot)
     elif out_suffix not in (".urdf", ".json", ".yaml", ".yml", None):
         assert out is not None
         raise InputError(f"output: robokit writes .urdf (a DH model's URDF), .json (PoE parameters), .yaml (a DH "
@@ -95,9 +105,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         text = urdf_from_dh(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
-        if robot.locked_joints:
-            notes.append(f"{robot.name}: joints off the chain to {robot.tip!r} locked at their neutral value and "
-                         f"their bodies merged: {', '.join(robot.locked_joints)}")
+        notes += _locked_note(robot)
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"
         elif out_suffix == ".urdf":

@@ -31,6 +31,7 @@ Writing is :mod:`robokit.description.mjcf_write` (``mjcf_from_robot``, ``joint_a
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
@@ -41,7 +42,7 @@ import numpy as np
 
 from robokit.description.builder import build_robot, default_tip
 from robokit.description.frames import frame_index
-from robokit.description.mjcf_compile import CompiledMjcf, compile_mjcf
+from robokit.description.mjcf_compile import CompiledMjcf, MjcfJoint, compile_mjcf
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
 
@@ -255,6 +256,32 @@ def _contact_rules(c: CompiledMjcf, root: ET.Element, masks: dict[str, tuple[int
     return ContactRules(masks, weld, weld_parent, frozenset(frozenset(p) for p in c.excluded), filterparent)
 
 
+def _locked_joints(c: CompiledMjcf, first: int, model: Any, tip: str) -> list[MjcfJoint]:
+    """The joints of body ``first``'s tree off the chain to ``tip``, which build_robot locks (none when
+    the model has no frame ``tip``: build_robot refuses it)."""
+    from robokit.description.builder import _chain_joints
+
+    if not model.existFrame(tip):
+        return []
+    chain = {str(model.names[j]) for j in _chain_joints(model, tip)}
+    return [j for k in c.subtree(first) for j in c.bodies[k].joints if j.name not in chain]
+
+
+def _locked_note(name: str, tip: str, locked: list[MjcfJoint], degree: bool) -> str:
+    """The note naming the joints locked off the chain and the value each is held at, MuJoCo's qpos0
+    (a hinge's in the file's angle unit)."""
+    def held(j: MjcfJoint) -> str:
+        if j.type == "hinge":
+            return f"{j.name} {math.degrees(j.ref):g}°" if degree else f"{j.name} {j.ref:g} rad"
+        if j.type == "slide":
+            return f"{j.name} {j.ref:g} m"
+        return f"{j.name} ({j.type})"
+
+    return (f"{name}: joints off the chain to {tip!r} locked at MuJoCo's qpos0, where the file draws them (a hinge "
+            f"or slide at its ref, a ball or free joint with its body as written), and their bodies merged: "
+            f"{', '.join(held(j) for j in locked)}")
+
+
 def _default_tip(model: Any) -> str:
     """The last site on the chain's last joint (not one named like a body); else the first (in the
     file) of the deepest bodies fixed to that joint."""
@@ -351,6 +378,14 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     desc, masks, skipped = _mjcf_parts(c, first, armature=armature)
     model, visual, collision, _ = build_model(desc)  # no mesh files read: the compiler read them
     name = c.name
+    spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes,
+                     reflected_inertia=armature)
+    tip = tip or _default_tip(model)
+    locked = _locked_joints(c, first, model, tip)
+    if any(j.type == "free" or j.type in ("hinge", "slide") and j.ref != 0.0 for j in locked):
+        # built again with these joints' neutral value at MuJoCo's qpos0, where build_robot cuts the chain
+        desc, masks, skipped = _mjcf_parts(c, first, armature=armature, held={j.name for j in locked})
+        model, visual, collision, _ = build_model(desc)
     if skipped:
         notes.append(f"{path}: geoms without a shape robokit draws or collides ignored: {', '.join(skipped)}")
     chain_arm = [(j.name, j.armature) for k in c.subtree(first) for j in c.bodies[k].joints if j.armature]
@@ -358,9 +393,8 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
         shown = ", ".join(f"{n} {a:g}" for n, a in chain_arm[:8]) + (", ..." if len(chain_arm) > 8 else "")
         notes.append(f"{name}: joint armature (reflected rotor inertia) added to the mass matrix's diagonal and to "
                      f"inverse dynamics, as MuJoCo adds it ({shown}); load(..., reflected_inertia=False) or --no-reflected-inertia leaves it out")
-    spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes,
-                     reflected_inertia=armature)
-    tip = tip or _default_tip(model)
+    if locked:
+        notes.append(_locked_note(name, tip, locked, c.compiler["angle"] != "radian"))
     geoms = [visual if visual.ngeoms else None, collision if collision.ngeoms else None]
     robot = build_robot(name, model, tip, geoms, {}, spec, notes)
     robot._amend(contact_rules=_contact_rules(c, root, masks))

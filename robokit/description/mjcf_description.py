@@ -22,6 +22,10 @@ as MuJoCo lays the model out:
   (:attr:`~robokit.description.model_builder.Link.frame` False) at Mₖ(−refₖ) · T(pₖ₊₁ − pₖ); the
   body at Mₖ(−refₖ) · T(−pₖ) in the last joint. So robokit's joint value is MuJoCo's ``qpos`` and
   the body sits as written when every joint is at its ``ref``;
+* a joint the loader will lock off the chain (``held``) is measured from MuJoCo's ``qpos0``
+  instead, so that the chain, cut at the joints' neutral value, is cut where MuJoCo's model
+  holds them: a hinge or slide from its ``ref`` (no Mₖ(−refₖ) factor), a free joint from the
+  body's ``pos``/``quat``; a ball joint's neutral value, the identity, is already its ``qpos0``;
 * inertials are the compiler's (``body_mass``, ``body_ipos``, the full inertia tensor), sites are
   ``OP_FRAME`` frames right after their body's frame (MuJoCo numbers them body by body);
 * geoms are shapes named as the file names them: the collision model holds the geoms MuJoCo can
@@ -32,7 +36,7 @@ as MuJoCo lays the model out:
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import AbstractSet, Any
 
 import numpy as np
 
@@ -66,11 +70,12 @@ def _shift(p: Any) -> Any:
     return pin.SE3(np.eye(3), np.asarray(p, dtype=float))
 
 
-def _ref_offset(j: MjcfJoint) -> Any:
-    """The constant part of M(q − ref): a rotation by −ref about the axis or a shift by −ref along it."""
+def _ref_offset(j: MjcfJoint, held: AbstractSet[str] = frozenset()) -> Any:
+    """The constant part of M(q − ref): a rotation by −ref about the axis or a shift by −ref along it
+    (none for a joint in ``held``, whose value is measured from its ``ref``)."""
     import pinocchio as pin
 
-    if j.ref == 0.0 or j.type in ("ball", "free"):
+    if j.ref == 0.0 or j.type in ("ball", "free") or j.name in held:
         return pin.SE3.Identity()
     if j.type == "hinge":
         return pin.SE3(pin.AngleAxis(-j.ref, np.asarray(j.axis, dtype=float)).matrix(), np.zeros(3))
@@ -85,21 +90,24 @@ def _inertial(b: MjcfBody) -> Inertial:
                      float(Ic[2, 2])))
 
 
-def _joints(b: MjcfBody, parent: str | None, armature: bool) -> tuple[list[Link], list[Joint]]:
-    """The joints of one body with at least one joint, and the frame-less links between them."""
+def _joints(b: MjcfBody, parent: str | None, armature: bool,
+            held: AbstractSet[str] = frozenset()) -> tuple[list[Link], list[Joint]]:
+    """The joints of one body with at least one joint, and the frame-less links between them; a
+    joint in ``held`` has its neutral value at MuJoCo's ``qpos0`` (module docstring)."""
     import pinocchio as pin
 
     links: list[Link] = []
     joints: list[Joint] = []
     if b.joints[0].type == "free":  # MuJoCo sets a free body's pose to its qpos: pos, quat and anchor unused
-        return [], [Joint(b.joints[0].name, "floating", parent, b.name)]
+        at = _pose(_se3(b.pos, b.quat)) if b.joints[0].name in held else Pose()  # held: qpos0 is pos, quat
+        return [], [Joint(b.joints[0].name, "floating", parent, b.name, at)]
     place = _se3(b.pos, b.quat) * _shift(b.joints[0].pos)
     for k, j in enumerate(b.joints):
         last = k + 1 == len(b.joints)
         child = b.name if last else f"\x00{b.name}/{k}"  # a NUL never appears in an XML name
         if not last:
             links.append(Link(child, frame=False))
-        after = _ref_offset(j) * (_shift(-np.asarray(j.pos, dtype=float)) if last else pin.SE3.Identity())
+        after = _ref_offset(j, held) * (_shift(-np.asarray(j.pos, dtype=float)) if last else pin.SE3.Identity())
         axis = (float(j.axis[0]), float(j.axis[1]), float(j.axis[2]))
         moving = j.type in ("hinge", "slide")
         joints.append(Joint(j.name, _KINDS[j.type], parent, child, _pose(place), _pose(after), axis,
@@ -154,8 +162,11 @@ def _geometries(g: MjcfGeom, body: str) -> list[Geometry]:
     return out
 
 
-def _mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True) -> tuple[Description, GeomMasks, list[str]]:
-    """:func:`description_from_mjcf`, the collision masks and the geoms left out (``"name (type)"``)."""
+def _mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True, held: AbstractSet[str] = frozenset()
+                ) -> tuple[Description, GeomMasks, list[str]]:
+    """:func:`description_from_mjcf`, the collision masks and the geoms left out (``"name (type)"``);
+    the joints named in ``held`` (to be locked off the chain) with their neutral value at MuJoCo's
+    ``qpos0`` (module docstring)."""
     links: list[Link] = []
     joints: list[Joint] = []
     frames: list[FrameSpec] = []
@@ -168,7 +179,7 @@ def _mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True) -> tuple[Des
         b = c.bodies[i]
         parent = c.bodies[b.parent].name if i != first else None
         if b.joints:
-            more, js = _joints(b, parent, armature)
+            more, js = _joints(b, parent, armature, held)
             links += more
             joints += js
         elif parent is None:
