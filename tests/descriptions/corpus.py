@@ -17,7 +17,8 @@ What is in it
       ``--discover-erd`` re-derives the list);
     * the fixed-base serial arms of ``pybullet_data`` (:data:`PYBULLET_DATA`).
 
-The engines (each independent of robokit; locked joints at zero, the chain's joints by name)
+The engines (each independent of robokit; the chain's joints by name, the others locked at zero —
+in MuJoCo at ``qpos0``, where the file draws them)
     * **Pinocchio on the raw file** (URDF, the xacro program's expansion, example-robot-data's own
       model with the armature its SRDF gives): the whole tree, ``framesForwardKinematics``,
       ``computeFrameJacobian`` (LOCAL_WORLD_ALIGNED), ``rnea`` and ``crba``, the chain's rows and
@@ -331,10 +332,7 @@ class MujocoEngine:
 
     def __call__(self, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray) -> Quantities:
         mj, m, d = self.mj, self.m, self.d
-        d.qpos[:] = m.qpos0
-        for a in range(m.njnt):  # every other hinge/slide at zero, as robokit locks them
-            if m.jnt_type[a] in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE):
-                d.qpos[m.jnt_qposadr[a]] = 0.0
+        d.qpos[:] = m.qpos0  # every other joint at qpos0 (a hinge or slide at its ref), as robokit locks them
         d.qvel[:] = 0.0
         d.qpos[self.qadr], d.qvel[self.dadr] = q, dq
         mj.mj_forward(m, d)  # (it overwrites qacc with the forward dynamics' answer)
