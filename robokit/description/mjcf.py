@@ -388,7 +388,9 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
         model, visual, collision, _ = build_model(desc)
     if skipped:
         notes.append(f"{path}: geoms without a shape robokit draws or collides ignored: {', '.join(skipped)}")
-    chain_arm = [(j.name, j.armature) for k in c.subtree(first) for j in c.bodies[k].joints if j.armature]
+    off = {j.name for j in locked}  # (a locked joint's armature is on its own diagonal entry in MuJoCo, none here)
+    chain_arm = [(j.name, j.armature) for k in c.subtree(first) for j in c.bodies[k].joints
+                 if j.armature and j.name not in off]
     if chain_arm and armature:
         shown = ", ".join(f"{n} {a:g}" for n, a in chain_arm[:8]) + (", ..." if len(chain_arm) > 8 else "")
         notes.append(f"{name}: joint armature (reflected rotor inertia) added to the mass matrix's diagonal and to "

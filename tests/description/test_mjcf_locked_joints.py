@@ -5,8 +5,9 @@ compiler's angle unit for a hinge, from a ``<default>`` class too), a ball at th
 body as written). A gripper's fingers locked off the chain are held there, so that the chain's
 kinematics and dynamics are MuJoCo's with the locked joints at ``qpos0`` and the chain's joints
 at any value: every body and site pose, the mass matrix's chain block (``mj_fullM``), gravity
-torques (``qfrc_bias`` at zero velocity) and inverse dynamics (``mj_rne``) — and one note says
-which joints are held, at what.
+torques (``qfrc_bias`` at zero velocity) and inverse dynamics (``mj_rne`` plus armature) — and
+one note says which joints are held, at what. A free joint below the top level MuJoCo refuses,
+and so does robokit.
 """
 import math
 import warnings
@@ -114,8 +115,8 @@ class MuJoCoAt:
         d.qacc[:] = 0.0
         d.qacc[self.dadr] = ddq
         out = np.zeros(self.m.nv)
-        mujoco.mj_rne(self.m, d, 1, out)
-        return out[self.dadr]
+        mujoco.mj_rne(self.m, d, 1, out)  # rigid bodies only: mj_inverse adds armature · q̈ as below
+        return out[self.dadr] + self.m.dof_armature[self.dadr] * ddq
 
 
 def _largest_differences(robot, path, samples=8):
@@ -176,6 +177,19 @@ def test_one_note_names_the_locked_joints_and_where_they_are_held(tmp_path):
     path.write_text(text[:start] + "</body></body></body></body>" + text[end:])
     robot, found = _load(path)
     assert robot.locked_joints == () and not [n for n in found if "off the chain" in n]
+
+
+def test_the_armature_note_names_the_chains_joints_only(tmp_path):
+    """A finger's armature sits on the finger's own diagonal entry of MuJoCo's M, outside the chain's block."""
+    path = tmp_path / "gripper.xml"
+    path.write_text(gripper("radian").replace('<joint name="fa" class="finger"/>',
+                                              '<joint name="fa" class="finger" armature="0.01"/>')
+                    .replace('<joint name="j2" axis="0 1 0"/>', '<joint name="j2" axis="0 1 0" armature="0.2"/>'))
+    robot, found = _load(path)
+    note, = [n for n in found if "armature" in n]
+    assert "(j2 0.2)" in note
+    err = _largest_differences(robot, path)
+    assert max(err.values()) < 1e-12, err
 
 
 def test_convert_says_it_once(tmp_path, capsys):
