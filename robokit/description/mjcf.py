@@ -15,6 +15,11 @@ Reading (:func:`load_mjcf`, used by ``robokit.load("arm.xml")``)
     ``damping`` is kept in ``robot.model.damping`` (rigid-body dynamics does not add it; MuJoCo
     adds the passive force −b·q̇, which ``mj_inverse`` counts).
 
+    Joints off the chain to the tip (a gripper's fingers) are locked at MuJoCo's ``qpos0``, where
+    the file draws them — a hinge or slide at its ``ref``, a ball or free joint with its body as
+    written — so that M, gravity torques and inverse dynamics are MuJoCo's with them there; one
+    note names them, each with the value it is held at.
+
     Elements with no meaning for a serial-chain model (actuators, tendons, equality
     constraints, sensors, contact pairs, keyframes, top-level bodies other than the robot's,
     joint friction loss and springs, gravity compensation, fluid forces) are named in a note
