@@ -95,7 +95,7 @@ def is_inside(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[st
 
 
 def confine(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]], source: str | os.PathLike[str],
-            what: str, *, allow_outside: bool = False) -> Path:
+            what: str, *, allow_outside: bool = False, hint: str = "") -> Path:
     """``path`` resolved, or :class:`InputError` if it lies outside ``roots`` (see the module docstring).
 
     Parameters
@@ -110,6 +110,8 @@ def confine(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]
         What it is, e.g. ``"<mesh file='../x.stl'>"`` (in the message).
     allow_outside : bool
         Accept it anyway (the user's explicit choice, for meshes).
+    hint : str
+        Appended to the message (how to allow it, where that differs by format).
 
     Returns
     -------
@@ -132,7 +134,7 @@ def confine(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]
     roots = list(roots)
     if allow_outside or is_inside(p, roots):
         return p
-    raise InputError(f"{source}: {what} is outside the file's folder, its package and the package folders given")
+    raise InputError(f"{source}: {what} is outside the file's folder, its package and the package folders given{hint}")
 
 
 #: Largest ``package.xml`` read to learn a package's name.

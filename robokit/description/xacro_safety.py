@@ -25,7 +25,9 @@ Reading: the top file and every ``<xacro:include>`` are read with robokit's boun
 :func:`robokit._xml.check_xml` (no DTD, bounded depth and size) before xacro parses them; an
 include or a YAML file must lie inside the allowed roots of
 :mod:`robokit.description.meshes` (the file's folder, its package, the package folders given
-and the packages found), at most :data:`MAX_INCLUDES` files are read, nested at most
+and the packages found) or be a file the user named as the value of a xacro argument (a
+robot's factory calibration passed as ``kinematics_params:=/home/me/ur5e_calibration.yaml``:
+the user's choice, not the file's), at most :data:`MAX_INCLUDES` files are read, nested at most
 :data:`MAX_INCLUDE_DEPTH` deep.
 
 Work: at most :data:`MAX_MACRO_DEPTH` nested macro calls, :data:`MAX_ELEMENTS` elements
@@ -87,6 +89,11 @@ def _node_cost(node: Any) -> int:
     return total
 
 
+#: What a refused include or YAML file's message adds: how to allow it.
+_HINT = ("; name its folder in package_dirs (--package-path), or pass the file itself as a xacro argument "
+         "(xacro_args / --xacro-arg NAME:=PATH)")
+
+
 # --------------------------------------------------------------------------- hooks into xacro
 @contextlib.contextmanager
 def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[str, str], seen_args: set[str],
@@ -139,6 +146,10 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         if nsname in g:
             globals_ids.update(id(v) for v in g[nsname].values() if callable(v) or is_table(v))
     state = {"elements": 0, "files": 0, "output": 0, "start": time.monotonic()}
+    # the files the user named in an argument (``kinematics_params:=/home/me/arm_calibration.yaml``, as
+    # a ROS launch file passes a robot's factory calibration): the user's choice, not the file's, so
+    # read wherever they are; an argument that names no file names nothing
+    named = {Path(v).resolve() for v in user_args.values() if isinstance(v, str) and v and os.path.isfile(v)}
     clone_cost: dict[int, tuple[Any, int]] = {}  # id(macro body) -> (body, cost)
     duplicates_noted: set[str] = set()
 
@@ -174,8 +185,8 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         if state["files"] > MAX_INCLUDES:
             raise UnsafeXacro(f"{current()}: more than {MAX_INCLUDES} files included; stopped")
         p = Path(os.path.join(getattr(xacro, "root_dir", "."), filename))
-        if p.resolve() != top:  # the includer is below the included file on xacro's file stack
-            confine(p, roots(), current(2), f"{what} {filename!r}")
+        if p.resolve() != top and p.resolve() not in named:  # (the includer is below it on xacro's file stack)
+            confine(p, roots(), current(2), f"{what} {filename!r}", hint=_HINT)
         return decode_utf8(read_input_bytes(p, max_bytes, "a xacro file"), p)
 
     def parse(inp: Any, filename: str | None = None) -> Any:
@@ -266,7 +277,8 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         if state["files"] > MAX_INCLUDES:
             raise UnsafeXacro(f"{current()}: more than {MAX_INCLUDES} files included; stopped")
         p = Path(spec)
-        confine(p, roots(), current(), f"xacro.load_yaml({filename!r})")
+        if p.resolve() not in named:  # a file the user named in an argument is read wherever it is
+            confine(p, roots(), current(), f"xacro.load_yaml({filename!r})", hint=_HINT)
         data, duplicates = load_pyyaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
                                             scalar_tags=unit_tags(str(p)))
         if duplicates and str(p) not in duplicates_noted:  # one note per file, however often it is read

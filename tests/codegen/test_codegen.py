@@ -759,6 +759,32 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         check_ik(robot, lib, poses)
 
 
+def test_a_real_ur5e_factory_calibration_ik_matches_ik_analytic(build):
+    """A UR5e as its owner has it (Universal Robots' xacro package with that robot's factory calibration,
+    tests/data/ur_calibration): detected as nearly a three-parallel-axes arm; its NAME_ik returns
+    ik_analytic's solutions, in order, to 1e-9, on 30 random poses and 4 with the wrist near singular."""
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (its meshes are not copied)
+        robot = robokit.load(data / "ur_description" / "urdf" / "ur.urdf.xacro", package_dirs=[data],
+                             xacro_args={"ur_type": "ur5e", "name": "ur",
+                                         "kinematics_params": str(data / "ur_calibration" / "ur5e_factory_calibration.yaml")})
+    assert ik_analytic_kind(robot).method == "calibrated three parallel axes"
+    lib = build(robot)
+    assert lib.has_ik and lib.max_solutions == 16
+    rng = np.random.default_rng(8)
+    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(30)]
+    for _ in range(4):
+        q = robot.random_configuration(rng)
+        q[4] = rng.uniform(-2e-3, 2e-3)
+        poses.append(robot.frame_pose(q))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        check_ik(robot, lib, poses)
+
+
 def test_calibrated_ik_without_the_full_search(cc, tmp_path):
     """-DNAME_IK_FULL_SEARCH=0 (a shorter worst case on a controller: no search from the branches'
     solutions, no curve): every solution is one of ik_analytic's (to 1e-9, each reaching the pose); a
