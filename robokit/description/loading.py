@@ -208,7 +208,7 @@ def _load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, ti
     s = os.fspath(name_or_path)
     if not isinstance(s, str):
         raise InputError(f"model: expected a text path, got {s!r}")
-    path = Path(s)
+    path = Path(s).expanduser() if s.startswith("~") else Path(s)  # "~/ws/src/...", as package_dirs take it
     found = _file_loader(path)
     if found is not None:
         suffix, loader, accepted = found

@@ -195,3 +195,19 @@ def _quiet_load(path, args, dirs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", robokit.RobokitWarning)
         return robokit.load(path, xacro_args=args, package_dirs=dirs)
+
+
+def test_paths_under_the_home_folder_load_as_the_docs_write_them(tmp_path, monkeypatch):
+    """docs/formats/xacro.md loads "~/ws/src/ur_description/urdf/ur.urdf.xacro" with
+    package_dirs=["~/ws/src"]: "~" is the home folder in the file's path as in package_dirs."""
+    import shutil
+
+    src = tmp_path / "ws" / "src"
+    shutil.copytree(DATA / "ur_description", src / "ur_description")
+    monkeypatch.setenv("HOME", str(tmp_path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        ur = robokit.load("~/ws/src/ur_description/urdf/ur.urdf.xacro", xacro_args={"ur_type": "ur5e", "name": "ur"},
+                          package_dirs=["~/ws/src"])
+    q = np.linspace(-1.0, 1.0, 6)
+    assert np.abs(ur.frame_pose(q) - _load("ur5e").frame_pose(q)).max() < 1e-15
