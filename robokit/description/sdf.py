@@ -50,6 +50,13 @@ What is not modelled
     silently. A robokit robot is fixed-base: the root link is fixed to the world where the model
     places it (noted when no joint to ``world`` says so).
 
+Custom elements and attributes
+    Names are read as written, as libsdformat (TinyXML2) reads them: a prefix needs no ``xmlns``
+    and means what it spells (``drake:rotor_inertia`` is Drake's, declared or not). A custom
+    element — a name holding ``:`` — is named in the not-modelled note where it stands (no shape
+    inside ``<geometry>``); a custom attribute (``gz:expressed_in`` on a contact's ``<fdir1>``) is
+    ignored without a note, as libsdformat keeps it without one.
+
 Bounds and confinement (as for URDF, see docs/hardening.md)
     Each file is read by the bounded reader (at most :data:`MAX_SDF_BYTES`, regular files), its
     XML checked (no DTD or entities, depth and element caps); includes are followed at most
