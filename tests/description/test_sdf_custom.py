@@ -67,7 +67,7 @@ ARM = """{lead}<sdf version="1.9"><model name="arm">
 CUSTOM = {
     "lead": f"\n  {BOM}\n{DECL}\n",  # whitespace, a byte-order mark, whitespace, then the declaration
     "a1": ' gz:expressed_in="base"',
-    "e1": "<gz:system_priority>10</gz:system_priority>",
+    "e1": '<gz:system_priority>10</gz:system_priority><gz::physics_hint gz::order="1"/>',  # '::' is a name too
     "a2": ' gz:collide_bitmask="0x01"',
     "a3": ' gz:expressed_in="base"',  # gz-physics reads it by this literal name: contact friction
     "e2": "<gz:lod>2</gz:lod>",       # no shape: the box is
@@ -132,11 +132,12 @@ def test_custom_elements_are_named_once_and_attributes_pass_silently(arm):
     assert len(unmodelled) == 1
     for key in ("<drake:joint_damping> in <joint>", "<drake:controller_gains> in <joint>",
                 "<drake:acceleration> in <limit>", "<ignition:wind_sensitive> in <link>",
-                "<gz:system_priority> in <model>", "<drake:declare_convex> in <mesh>"):
+                "<gz:system_priority> in <model>", "<gz::physics_hint> in <model>",
+                "<drake:declare_convex> in <mesh>"):
         assert key in unmodelled[0], key
     assert "convex hull" in unmodelled[0] and "convex=True" in unmodelled[0]
     assert "<gz:lod>" not in unmodelled[0]  # inside <geometry>, beside the shape: user data, no shape
-    assert not any("expressed_in" in n or "collide_bitmask" in n for n in notes)
+    assert not any("expressed_in" in n or "collide_bitmask" in n or "gz::order" in n for n in notes)
     # everything else is said of the twin too, word for word
     others = {n.replace("arm_plain.sdf", "arm.sdf") for n in twin_notes if "read but not modelled" not in n}
     assert {n for n in notes if "read but not modelled" not in n} == others
