@@ -50,6 +50,13 @@ What is not modelled
     silently. A robokit robot is fixed-base: the root link is fixed to the world where the model
     places it (noted when no joint to ``world`` says so).
 
+Custom elements and attributes
+    Names are read as written, as libsdformat (TinyXML2) reads them: a prefix needs no ``xmlns``
+    and means what it spells (``drake:rotor_inertia`` is Drake's, declared or not). A custom
+    element — a name holding ``:`` — is named in the not-modelled note where it stands (no shape
+    inside ``<geometry>``); a custom attribute (``gz:expressed_in`` on a contact's ``<fdir1>``) is
+    ignored without a note, as libsdformat keeps it without one.
+
 Bounds and confinement (as for URDF, see docs/hardening.md)
     Each file is read by the bounded reader (at most :data:`MAX_SDF_BYTES`, regular files), its
     XML checked (no DTD or entities, depth and element caps); includes are followed at most
@@ -100,7 +107,6 @@ _PENDULUM_SDF = ('<sdf version="1.9"><model name="pendulum"><link name="base"/>'
 _NO_LIMIT = 1e16
 #: The world frame's node name (no SDFormat name holds a NUL: a link may be named "world" before 1.7).
 _WORLD = "\x00world"
-_DRAKE_NS = "http://drake.mit.edu"
 #: Cosmetic elements skipped without a note.
 _COSMETIC = {"material", "cast_shadows", "laser_retro", "transparency", "visibility_flags", "meta",
              "must_be_base_link", "allow_auto_disable", "enable_wind"}
@@ -116,16 +122,19 @@ _KNOWN = {
     "dynamics": {"damping", "friction", "spring_reference", "spring_stiffness"},
     "include": {"uri", "name", "pose", "static", "placement_frame"},
     "frame": {"pose"},
+    "mesh": {"uri", "scale", "submesh"},
 }
+#: Why an element robokit does not model matters, where the reason is not its name.
+_WHY = {"<drake:declare_convex> in <mesh>": "Drake collides with the mesh's convex hull; robokit's World does "
+                                            "with convex=True"}
 
 
 def _tag(el: ET.Element) -> str:
-    """The element's tag with a namespace shown as its usual prefix (``drake:rotor_inertia``)."""
-    tag = el.tag
-    if isinstance(tag, str) and tag.startswith("{"):
-        uri, local = tag[1:].split("}", 1)
-        return f"{'drake' if uri == _DRAKE_NS else uri}:{local}"
-    return str(tag)
+    """The element's tag as written, prefix and all (``drake:rotor_inertia``): the file is read with
+    names as TinyXML2 reads them (:func:`robokit._xml.parse_xml` with ``namespaces=False``), so a
+    prefix means what it spells, declared or not, as in libsdformat and Drake (which look
+    ``drake:rotor_inertia`` up by that name)."""
+    return str(el.tag)
 
 
 def _child(el: ET.Element, tag: str) -> ET.Element | None:
@@ -231,6 +240,7 @@ class _Reader:
             if t in known or t in _COSMETIC or not isinstance(c.tag, str):
                 continue
             key = f"<{t}> in <{context}>"
+            key += f" ({_WHY[key]})" if key in _WHY else ""
             self.unmodelled[key] = self.unmodelled.get(key, 0) + 1
 
     def read_root(self, path: Path, what: str) -> ET.Element:
@@ -238,7 +248,7 @@ class _Reader:
         self.total_bytes += len(raw)
         if self.total_bytes > 4 * MAX_SDF_BYTES:
             raise InputError(f"{self.top}: the files included add up to more than {4 * MAX_SDF_BYTES >> 20} MiB")
-        return parse_xml(decode_utf8(raw, path), path)
+        return parse_xml(decode_utf8(raw, path), path, namespaces=False)
 
 
 # --------------------------------------------------------------------------- numbers
@@ -681,7 +691,9 @@ def _geometries(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np
         for g_el in (c for c in el if _tag(c) == role):
             where = f"{scope.file}: link {link!r} <{role} name={g_el.get('name', '')!r}>"
             geo = _child(g_el, "geometry")
-            shape = next((c for c in geo if isinstance(c.tag, str)), None) if geo is not None else None
+            shapes = [c for c in geo if isinstance(c.tag, str)] if geo is not None else []
+            # a custom element (a prefixed name) is no shape of SDFormat's: libsdformat keeps it beside the shape
+            shape = next((c for c in shapes if ":" not in _tag(c)), shapes[0] if shapes else None)
             if shape is None:
                 continue
             kind = _tag(shape)
@@ -721,6 +733,7 @@ def _mesh(rd: _Reader, shape: ET.Element, scope: _Scope, where: str) -> tuple[st
     uri = (uri_el.text or "").strip() if uri_el is not None else ""
     scale_el = _child(shape, "scale")
     scale = _floats(scale_el.text, f"{where} <scale>", (3,)) if scale_el is not None else [1.0, 1.0, 1.0]
+    rd.note_unmodelled(shape, "mesh")
     if _child(shape, "submesh") is not None:
         key = "<submesh> (the whole mesh is drawn)"
         rd.unmodelled[key] = rd.unmodelled.get(key, 0) + 1

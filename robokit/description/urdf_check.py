@@ -257,7 +257,9 @@ def read_urdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
 
 def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]] | None,
            allow_outside_meshes: bool, unphysical_inertias: list[str] | None = None) -> UrdfDocument:
-    root = parse_xml(raw, path)  # bounded: no DTD/entities, depth and element count capped
+    # bounded (no DTD/entities, depth and element count capped); names as urdfdom (TinyXML2) reads them,
+    # a prefix declared or not
+    root = parse_xml(raw, path, namespaces=False)
     if root.tag != "robot":
         _fail(path, f"expected a <robot> root element, got <{root.tag}>")
     check_joint_count(len(root.findall("joint")), path, "<joint> elements")

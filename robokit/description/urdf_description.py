@@ -187,7 +187,7 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
     """
     from robokit._xml import parse_xml
 
-    root = parse_xml(text, source)
+    root = parse_xml(text, source, namespaces=False)  # names as written, as urdfdom reads them
     materials: dict[str, tuple[float, float, float, float]] = {}
     for mat in root.findall("material"):
         c = mat.find("color")

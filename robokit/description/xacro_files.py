@@ -373,7 +373,7 @@ def _robokit_error(exc: BaseException) -> InputError | None:
 
 def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLike[str]] | None,
                     roots: Sequence[Path], allow_outside: bool) -> str:
-    root = parse_xml(text, f"{top} (expanded)")
+    root = parse_xml(text, f"{top} (expanded)", namespaces=False)  # a URDF: names as urdfdom reads them
     check_joint_count(len(root.findall("joint")), top, "<joint> elements in the expansion")
     if root.tag != "robot":
         raise InputError(f"{top}: root element <{root.tag}> is not <robot>; a xacro robot description "

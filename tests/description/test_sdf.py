@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 import robokit
+from pybullet_sdf import assert_matches_pybullet_sdf  # tests/support
 from robokit.errors import InputError, RobokitWarning
 
 pin = pytest.importorskip("pinocchio")
@@ -50,14 +51,10 @@ def rot(axis, angle):
 
 # --------------------------------------------------------------------------- PyBullet
 def test_kuka_iiwa_model_sdf_equals_pybullet_loadsdf():
-    """Link poses, M and inverse dynamics of pybullet_data's kuka model.sdf equal PyBullet's, to 1e-9.
-
-    PyBullet's loadSDF recomputes each link's inertia from its collision mesh (it takes no
-    URDF_USE_INERTIA_FROM_FILE flag), so the file's inertia (diagonal, in axes aligned with the link
-    in this file) is set back with changeDynamics, read here from the file's text. Link poses are
-    compared at the centre-of-mass frames (getLinkState's worldLinkFrame goes through a single-precision
-    copy of the inertial offset in PyBullet)."""
-    p = pytest.importorskip("pybullet")
+    """Link poses, Jacobians, M, inverse dynamics and gravity torques of pybullet_data's kuka model.sdf
+    equal PyBullet's, to 1e-9 (tests/support/pybullet_sdf.py: PyBullet's loadSDF recomputes each link's
+    inertia, so the file's, diagonal in axes aligned with the link here, is set back from its text)."""
+    pytest.importorskip("pybullet")
     import pybullet_data
 
     path = Path(pybullet_data.getDataPath()) / "kuka_iiwa" / "model.sdf"
@@ -65,39 +62,9 @@ def test_kuka_iiwa_model_sdf_equals_pybullet_loadsdf():
     assert robot.n == 7 and robot.joint_names == tuple(f"lbr_iiwa_joint_{i}" for i in range(1, 8))
     assert any("world gravity is SDFormat's default" in n for n in notes)
     np.testing.assert_array_equal(robot.gravity, [0.0, 0.0, -9.8])
-    cid = p.connect(p.DIRECT)
-    try:
-        body = p.loadSDF(str(path), physicsClientId=cid)[0]
-        p.setGravity(*robot.gravity, physicsClientId=cid)
-        n = p.getNumJoints(body, physicsClientId=cid)
-        links = [p.getJointInfo(body, i, physicsClientId=cid)[12].decode() for i in range(n)]
-        tree = ET.parse(path)
-        com_local = {}
-        for i, name in enumerate(links):
-            inertial = tree.find(f".//link[@name='{name}']/inertial")
-            xyzrpy = [float(v) for v in inertial.findtext("pose").split()]
-            assert xyzrpy[3:] == [0.0, 0.0, 0.0]  # the inertial frame is aligned with the link here
-            com_local[name] = np.array(xyzrpy[:3])
-            diag = [float(inertial.findtext(f"inertia/{k}")) for k in ("ixx", "iyy", "izz")]
-            p.changeDynamics(body, i, localInertiaDiagonal=diag, physicsClientId=cid)
-        rng = np.random.default_rng(7)
-        for _ in range(5):
-            q = robot.random_configuration(rng)
-            dq, ddq = rng.normal(size=7), rng.normal(size=7)
-            for i in range(n):
-                p.resetJointState(body, i, q[i], dq[i], physicsClientId=cid)
-            for i, name in enumerate(links):
-                state = p.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=cid)
-                T = robot.frame_pose(q, name)
-                np.testing.assert_allclose(T[:3, :3] @ com_local[name] + T[:3, 3], state[0], atol=1e-9)
-                R = np.array(p.getMatrixFromQuaternion(state[1])).reshape(3, 3)
-                np.testing.assert_allclose(T[:3, :3], R, atol=1e-9)
-            M = np.array(p.calculateMassMatrix(body, list(q), physicsClientId=cid))
-            tau = np.array(p.calculateInverseDynamics(body, list(q), list(dq), list(ddq), physicsClientId=cid))
-            np.testing.assert_allclose(robot.crba(q), M, atol=1e-9 * np.abs(M).max())
-            np.testing.assert_allclose(robot.rnea(q, dq, ddq), tau, atol=1e-9 * np.abs(tau).max())
-    finally:
-        p.disconnect(cid)
+    rng = np.random.default_rng(7)
+    states = [(robot.random_configuration(rng), rng.normal(size=7), rng.normal(size=7)) for _ in range(5)]
+    assert assert_matches_pybullet_sdf(robot, path, states, atol=1e-9) == 5
 
 
 # Gazebo writes "no limit" as ±1.79769e+308 (its wheel joints: gz-sim's vehicles, sdformat's
@@ -119,7 +86,7 @@ UNLIMITED_SDF = """<sdf version="1.6"><model name="wheels">
 
 def test_unlimited_joints_as_gazebo_writes_them_equal_pybullet(tmp_path):
     """±1.79769e+308 and ±inf limits load as no limit (were refused: "numbers must be finite and at
-    most 1e17 in size"); poses, M and inverse dynamics are PyBullet loadSDF's."""
+    most 1e17 in size"); poses, Jacobians, M, inverse dynamics and gravity are PyBullet loadSDF's."""
     p = pytest.importorskip("pybullet")
     path = tmp_path / "wheels.sdf"
     path.write_text(UNLIMITED_SDF)
@@ -133,36 +100,15 @@ def test_unlimited_joints_as_gazebo_writes_them_equal_pybullet(tmp_path):
     cid = p.connect(p.DIRECT)
     try:
         body = p.loadSDF(str(path), physicsClientId=cid)[0]
-        p.setGravity(*robot.gravity, physicsClientId=cid)
         for i in range(2):
             lo, hi = p.getJointInfo(body, i, physicsClientId=cid)[8:10]
             assert lo <= -1e16 and hi >= 1e16
-        tree = ET.parse(path)
-        com, diag = {}, {}
-        for name in ("a", "b"):
-            inertial = tree.find(f".//link[@name='{name}']/inertial")
-            com[name] = np.array([float(v) for v in inertial.findtext("pose").split()[:3]])
-            diag[name] = [float(inertial.findtext(f"inertia/{k}")) for k in ("ixx", "iyy", "izz")]
-        for i, name in enumerate(("a", "b")):  # loadSDF keeps no inertia tensor: set the file's back
-            p.changeDynamics(body, i, localInertiaDiagonal=diag[name], physicsClientId=cid)
-        rng = np.random.default_rng(3)
-        for _ in range(5):
-            q = rng.uniform(-7, 7, size=2)  # beyond ±2π: nothing bounds them
-            dq, ddq = rng.normal(size=2), rng.normal(size=2)
-            for i in range(2):
-                p.resetJointState(body, i, q[i], dq[i], physicsClientId=cid)
-            for i, name in enumerate(("a", "b")):
-                state = p.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=cid)
-                T = robot.frame_pose(q, name)
-                np.testing.assert_allclose(T[:3, :3] @ com[name] + T[:3, 3], state[0], atol=1e-12)
-                np.testing.assert_allclose(T[:3, :3], np.reshape(p.getMatrixFromQuaternion(state[1]), (3, 3)),
-                                           atol=1e-12)
-            M = np.array(p.calculateMassMatrix(body, list(q), physicsClientId=cid))
-            tau = np.array(p.calculateInverseDynamics(body, list(q), list(dq), list(ddq), physicsClientId=cid))
-            np.testing.assert_allclose(robot.crba(q), M, atol=1e-9 * np.abs(M).max())
-            np.testing.assert_allclose(robot.rnea(q, dq, ddq), tau, atol=1e-9 * np.abs(tau).max())
     finally:
         p.disconnect(cid)
+    rng = np.random.default_rng(3)
+    states = [(rng.uniform(-7, 7, size=2), rng.normal(size=2), rng.normal(size=2))  # beyond ±2π: nothing bounds them
+              for _ in range(5)]
+    assert assert_matches_pybullet_sdf(robot, path, states) == 5
 
 
 # --------------------------------------------------------------------------- the test arm
