@@ -1303,11 +1303,31 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             }}
             c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
             s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);"""
+    ta, tb, tc = f"{lit(-sa1)} * {_c(W[1])}", f"{lit(sa1)} * {_c(W[0])}", f"{lit(KW)} - {lit(ca1)} * ({_c(W[2])} - {lit(d1)})"
+    if e.fold:  # the calibrated arm's shoulder fold starts (robokit.kernels.closed_form._shoulder_folds)
+        assert k.calibrated is not None  # (the fold starts are the calibrated arm's)
+        shoulder = f"""
+    int i1, f1 = 0;
+    if (nt1 <= 0 && fold) {{  /* no th1: the wrist centre just inside the shoulder offset's cylinder? */
+        const double fa = {ta}, fb = {tb}, fcc = {tc};
+        const double fr = sqrt(fa * fa + fb * fb);
+        if (fr >= {t(1e-150)} && fabs(fcc) / fr - 1.0 <= {lit(float(k.calibrated["fold_starts"]))}) {{
+            const double gap = fabs(fcc) / fr - 1.0;
+            const double th = fcc > 0.0 ? atan2(fb, fa) : atan2(-fb, -fa);
+            const double dd = sqrt(2.0 * (gap > 0.0 ? gap : 0.0));
+            t1s[0] = {P}_wrap(th + dd);  /* two starts, th1 = +-sqrt(2 gap) from its fold */
+            t1s[1] = {P}_wrap(th - dd);
+            nt1 = 2;
+            f1 = 1;
+        }}
+    }}"""
+    else:
+        shoulder = """
+    int i1;"""
     return f"""    {{
 {body}
     double t1s[2];
-    int nt1 = {P}_trig_roots({lit(-sa1)} * {_c(W[1])}, {lit(sa1)} * {_c(W[0])}, {lit(KW)} - {lit(ca1)} * ({_c(W[2])} - {lit(d1)}), {t(1e-10)}, t1s);
-    int i1;
+    int nt1 = {P}_trig_roots({ta}, {tb}, {tc}, {t(1e-10)}, t1s);{shoulder}
     /* Lecture 5, three parallel axes: th1 from W's coordinate along the parallel axes */
     for (i1 = 0; i1 < nt1; ++i1) {{
         const double t1 = t1s[i1];
@@ -1329,7 +1349,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             const double c5 = cos(t5), s5 = sin(t5);
             const double vx = s5 * {lit(sa4)}, vy = {lit(ca5 * sa4)} * c5 + {lit(sa5 * ca4)};
             double t6, gx0, gy0, gz0, gx, gy, gz, ox, oy, oz, tmp, X0, X1, X2, O0, O1, O2, phi, x, y, c3, s3a, base;
-            int degenerate, wi, k3, n3{", fs = 0" if e.fold else ""};
+            int degenerate, wi, k3, n3{", fs = f1" if e.fold else ""};
             if (rho <= {t(1e-10)}) {{
                 t6 = {_f([(1.0, "ref")], th0[5])};
                 degenerate = 1;

@@ -1542,8 +1542,16 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
                     codes[m] = code
                     degens[m] = 2.0  # a start from a relaxed pose: its solution is flagged degenerate
                     m += 1
-    for f in range(nfold):  # the fold starts last, in their order
-        k = R - 1 - f
+    # the fold starts last, in their order: their block (rows R − nfold … R − 1, the first at the end)
+    # reversed in place, then moved down row by row (m ≤ R − nfold, so each row is read before a
+    # later move writes over it: with more than (R − m) / 2 fold starts the two ranges overlap)
+    for f in range(nfold // 2):
+        a, b = R - nfold + f, R - 1 - f
+        for j in range(6):
+            nom[a, j], nom[b, j] = nom[b, j], nom[a, j]
+        codes[a], codes[b] = codes[b], codes[a]
+    for f in range(nfold):
+        k = R - nfold + f
         for j in range(6):
             nom[m, j] = nom[k, j]
         codes[m], degens[m] = codes[k], 3.0

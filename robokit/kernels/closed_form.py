@@ -77,8 +77,12 @@ _TWO_PI = 2.0 * math.pi
 #: tan(θ₃/2)) |Im 2 atan(a + ib)| = atanh(2b/(1 + a² + b²)) ≤ FOLD_IMAG rad; for a prismatic one
 #: b ≤ FOLD_IMAG (1 + |a|) (m). At the three-parallel-axes method's elbow fold (:func:`_parallel_axes`
 #: with ``fold``): a θ₁ and θ₅ whose planar 2-link elbow misses by |cos θ₃| − 1 up to ``FOLD_STARTS``
-#: gives two rows, at θ₃ = ±√(2 (|cos θ₃| − 1)) from the fold (θ₃ = 0 or π). Such rows have
-#: ``FOLD_CODE`` added to their wrist code.
+#: gives two rows, at θ₃ = ±√(2 (|cos θ₃| − 1)) from the fold (θ₃ = 0 or π); at its shoulder's fold,
+#: where no θ₁ solves a cos θ₁ + b sin θ₁ = c (the wrist centre just inside the cylinder of radius the
+#: shoulder offset about axis 1) but |c| / √(a² + b²) − 1 is at most ``FOLD_STARTS``, the two θ₁ at
+#: ±√(2 (|c| / √(a² + b²) − 1)) from the fold (measured on a real UR5e's factory calibration: 3 of
+#: 9,000 random reachable poses had no start without them). Such rows have ``FOLD_CODE`` added to
+#: their wrist code.
 #: Both windows are for the arms whose starts are off by up to ``robokit.ik.calibrated.ERROR_MEASURED``;
 #: the calibrated kernel's fold switch (``fold[1]``) is the factor both are multiplied by for an arm
 #: farther from its structure (:func:`robokit.ik.calibrated.search_constants`).
@@ -713,12 +717,40 @@ def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulder
 
 
 @njit
+def _shoulder_folds(cf: np.ndarray, T: np.ndarray, window: float, t1s: np.ndarray, shoulders: np.ndarray) -> int:
+    """The calibrated IK's fold starts of step 1 where it has no θ₁: a cos θ₁ + b sin θ₁ = c with
+    |c| / √(a² + b²) − 1 = short ≤ ``window``: the two θ₁ at ±√(2 short) from the fold (where
+    a cos θ₁ + b sin θ₁ comes nearest c), each with its shoulder code as :func:`_parallel_shoulders`
+    gives it; their count (0 outside the window)."""
+    Wx = T[0, 0] * cf[_PA_W6] + T[0, 1] * cf[_PA_W6 + 1] + T[0, 2] * cf[_PA_W6 + 2] + T[0, 3]
+    Wy = T[1, 0] * cf[_PA_W6] + T[1, 1] * cf[_PA_W6 + 1] + T[1, 2] * cf[_PA_W6 + 2] + T[1, 3]
+    Wz = T[2, 0] * cf[_PA_W6] + T[2, 1] * cf[_PA_W6 + 1] + T[2, 2] * cf[_PA_W6 + 2] + T[2, 3]
+    ca1, sa1 = cf[_CA], cf[_SA]
+    a, b, c = -sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1])
+    r = math.sqrt(a * a + b * b)
+    if r < 1e-150:
+        return 0
+    short = abs(c) / r - 1.0
+    if short > window:
+        return 0
+    fold = math.atan2(b, a) if c > 0.0 else math.atan2(-b, -a)
+    d = math.sqrt(2.0 * max(short, 0.0))
+    t1s[0], t1s[1] = _wrap(fold + d), _wrap(fold - d)
+    for i1 in range(2):
+        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
+        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+    return 2
+
+
+@njit
 def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
-                       codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray, fold: Any = None) -> int:
+                       codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray, fold: Any = None,
+                       folded: bool = False) -> int:
     """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
     from row n; the new row count. ``t5s``: scratch for the θ₅ roots (2,). ``fold``: None (compiles
     none of it), or the calibrated IK's (:func:`_pieper`'s): with its entry 1 set, an elbow short of
-    reaching by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes + ``FOLD_CODE``)."""
+    reaching by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes + ``FOLD_CODE``);
+    ``folded``: θ₁ is a shoulder's fold start (:func:`_shoulder_folds`), so every row is one."""
     r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
     r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
     r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
@@ -768,7 +800,7 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
         x = c1 * O0 + s1 * O1
         y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
         c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
-        fc = 0
+        fc = FOLD_CODE if folded else 0
         if abs(c3) > 1.0 + 1e-10:
             if fold is None:
                 continue
@@ -812,9 +844,14 @@ def _parallel_axes(cf: np.ndarray, T: np.ndarray, q6_ref: float, Q: np.ndarray, 
     fw, iw = s[6], s[4]
     t1s, t5s, shoulders = fw[_POS_WORK + 6:_POS_WORK + 8], fw[_POS_WORK + 8:_POS_WORK + 10], iw[6:8]
     n1 = _parallel_shoulders(cf, T, t1s, shoulders)
+    folded = False
+    if n1 == 0 and fold is not None:  # no θ₁: a shoulder's fold starts, near its fold
+        if fold[1] != 0.0:
+            n1 = _shoulder_folds(cf, T, FOLD_STARTS * fold[1], t1s, shoulders)
+            folded = n1 > 0
     n = 0
     for i1 in range(n1):
-        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n, t5s, fold)
+        n = _parallel_complete(cf, T, t1s[i1], shoulders[i1], q6_ref, Q, codes, degen, n, t5s, fold, folded)
     return n
 
 

@@ -352,15 +352,42 @@ def test_a_pose_at_a_fold_of_the_nominal_structure_is_solved(arms, q, kind):
         assert min(angle_dist(g.q, s.q) for s in sols) < 1e-7
 
 
+def test_at_a_shoulder_fold_its_fold_starts_give_the_roots(arms):
+    """A random configuration of the suite's calibrated UR5 (``default_rng(300)``, draw 368) whose wrist
+    centre lies just inside the cylinder of radius the shoulder offset about axis 1 of the projected arm:
+    no θ₁ solves the projected arm's first step (before the shoulder's fold starts, the calibrated path
+    returned nothing here and ``ik_analytic`` the general 6R method's solutions). The fold starts, at
+    ±√(2 gap) from the fold, give the arm's two roots: the nominal labels, exact, none missed."""
+    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
+
+    nominal, robot = arms["ur5"]
+    q = np.array([0.58437227, -4.67069691, -0.27626551, 0.67479076, 5.13727881, -2.52661259])
+    T = robot.frame_pose(q)
+    cal = AnalyticIK(robot)
+    parts = kcf._unpack(cal.calibrated._KC[kci._LEN:], np.ascontiguousarray(T))
+    cf_r, T06 = parts[1], parts[4]
+    t1s, shoulders = np.empty(2), np.empty(2, dtype=np.int64)
+    assert kcf._parallel_shoulders(cf_r, T06, t1s, shoulders) == 0  # the premise: no θ₁ for the projected arm
+    assert kcf._shoulder_folds(cf_r, T06, kcf.FOLD_STARTS, t1s, shoulders) == 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)  # (the relaxed poses' flip branches vanish here)
+        sols = cal.calibrated._solve_checked(np.ascontiguousarray(T), 0.0)  # the calibrated path alone
+    assert len(sols) == 2 and not any(s.label.startswith("solution ") for s in sols)
+    check(robot, q, T, sols)
+    assert_none_missed(robot, T, sols)
+
+
 @pytest.mark.parametrize("name, q", [
-    ("ur5", [0.58437227, -4.67069691, -0.27626551, 0.67479076, 5.13727881, -2.52661259]),
+    ("ur5", [-0.99344494, -0.62721137, 0.05418591, 5.25535698, -0.00135893, -3.62776731]),
     ("puma560", [-2.10628854, -1.63570749, -1.33242816, -3.65624486, -0.53154896, 0.76392924])])
 def test_a_reachable_pose_the_nominal_closed_form_misses_is_solved_by_the_general_method(arms, name, q):
-    """Random configurations of the suite's calibrated UR5 and PUMA 560 (``default_rng(300)``, draws 368
-    and 899) where the nominal structure's closed form gives no start and no moved pose supplies one:
-    the calibrated path alone returns nothing, as if the pose were out of reach. ``ik_analytic`` then
-    returns the general 6R method's solutions (said once per arm): the generating configuration among
-    them, every one exact, none missed by the sweep; the batch the same."""
+    """Configurations of the suite's calibrated UR5 and PUMA 560 (``default_rng(300)``: the UR5's draw
+    1076 with θ₅ drawn within 3 mrad of its singularity, the PUMA's draw 899) where the nominal
+    structure's closed form gives no start and no moved pose supplies one (the UR5's: near the wrist's
+    singularity the projected arm's θ₆, from a direction 1.4e-3 long, is far from the arm's, and every
+    elbow misses): the calibrated path alone returns nothing, as if the pose were out of reach.
+    ``ik_analytic`` then returns the general 6R method's solutions (said once per arm): the generating
+    configuration among them, every one exact, none missed by the sweep; the batch the same."""
     nominal, robot = arms[name]
     q = np.array(q)
     T = robot.frame_pose(q)

@@ -150,3 +150,35 @@ def test_every_root_a_sweep_finds_is_returned_exactly(ur5e):
         for f in found:
             assert min(angle_dist(f, s.q) for s in sols) < 1e-6, "a root of the sweep is not returned"
     assert flagged < 30  # most poses are regular: the check is not only of the near-singular search
+
+
+@pytest.mark.parametrize("q", [
+    [-1.830102417, -0.2687234546, -2.3058744141, -1.4019897329, -2.8103473066, -2.367468033],
+    [-2.749637714, -0.5890611943, -1.9812215698, -0.6257365543, 2.8589655377, 0.6780366921],
+    [1.4384359007, -0.6140311801, -1.7635328024, -1.2515467507, 3.0040061768, 0.0172771545]])
+def test_with_the_wrist_centre_near_the_shoulder_offset_cylinder_the_roots_are_found(ur5e, q):
+    """Three of 9,000 random reachable poses of this robot put its wrist centre just inside the
+    projected arm's shoulder-offset cylinder (no θ₁ for the projected arm: 0.8–1.8 % inside): the
+    shoulder's fold starts give every root the sweep finds, with the nominal labels (before them, the
+    calibrated path returned none and ``ik_analytic`` fell back to the general 6R method)."""
+    from robokit.ik.closed_form import analytic_ik
+    from robokit.kernels import calibrated_ik as kci, closed_form as kcf
+    from robokit.kernels.ik import solve_poe_ik
+
+    T = ur5e.frame_pose(np.array(q))
+    cal = analytic_ik(ur5e).calibrated
+    parts = kcf._unpack(cal._KC[kci._LEN:], np.ascontiguousarray(T))
+    assert kcf._parallel_shoulders(parts[1], parts[4], np.empty(2), np.empty(2, dtype=np.int64)) == 0
+    sols = cal._solve_checked(np.ascontiguousarray(T), 0.0)
+    assert sols and not any(s.label.startswith("solution ") for s in sols)
+    rng = np.random.default_rng(5)
+    wide = np.tile([-4 * np.pi, 4 * np.pi], (6, 1))
+    for k in range(500):
+        x, ok, _, _ = solve_poe_ik(ur5e.poe.M, ur5e.poe.Slist, T, rng.uniform(-np.pi, np.pi, 6), wide,
+                                   tol=1e-11, max_iterations=60, max_restarts=0, seed=k)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DegreesWarning)
+            reached = ok and np.abs(ur5e.frame_pose(x) - T).max() < 1e-9
+        if reached:
+            assert min(angle_dist(x, s.q) for s in sols) < 1e-6, "a root of the sweep is not returned"
+    assert min(angle_dist(q, s.q) for s in sols) < 1e-7

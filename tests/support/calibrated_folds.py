@@ -11,13 +11,14 @@ from robokit.kernels import calibrated_ik as kci, closed_form as kcf
 def fold_starts(robot, T):
     """(fold starts, positions at a fold of the joint-3 quartic, the least |cos θ₅| − 1 of a wrist
     that cannot reach the orientation) of the projected arm's closed form for the calibrated IK at T;
-    (0, 0, inf) for three parallel axes (no fold starts)."""
+    for three parallel axes (its elbow's and shoulder's fold starts) (fold starts, 0, inf)."""
     arm = AnalyticIK(robot).calibrated
-    if arm._kind != kcf.PIEPER:
-        return 0, 0, math.inf
     Kn = arm._KC[kci._LEN:]
     ci, cf, C, post, T06, raw, codes, degen, qq, s = kcf._unpack(Kn, np.ascontiguousarray(T))
     fold = np.array([np.inf, 1.0, 0.0])
+    if arm._kind != kcf.PIEPER:
+        n = kcf._parallel_axes(cf, T06, 0.0, raw, codes, degen, s, fold)
+        return int(np.count_nonzero(codes[:n, 2] >= kcf.FOLD_CODE)), 0, math.inf
     n = kcf._pieper(ci, cf, C, T06, 0.0, raw, codes, degen, s, fold)
     npos = kcf._pieper_position(ci, cf, C, T06, np.empty((16, 3)), np.empty((16, 2), np.int64),
                                 np.empty(16, np.bool_), np.empty((16, 3)), np.empty((16, 6)), np.empty(50),
