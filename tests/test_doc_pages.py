@@ -32,9 +32,21 @@ class Page:
 
 #: Every page with Python blocks, but docs/getting-started.md (tests/test_getting_started.py).
 PAGES = {
-    "course/calibration.md": Page(shows=7),
+    "course/calibration.md": Page(requires=("matplotlib",), shows=7),
+    "course/capability-maps.md": Page(requires=("matplotlib", "distributed"), shows=2),
+    "course/control.md": Page(requires=("matplotlib",), shows=1, writes=("tracking.png",)),
+    "course/dh-forward-kinematics.md": Page(shows=1),
+    "course/dynamics.md": Page(shows=2),
+    "course/inverse-kinematics-closed-form.md": Page(shows=6),
     "course/inverse-kinematics.md": Page(shows=4),
+    "course/jacobians.md": Page(shows=1),
+    "course/mobile.md": Page(shows=1),
+    "course/motion.md": Page(requires=("toppra", "ompl"), shows=11),
+    "course/spatial.md": Page(shows=1),
+    "course/symbolic.md": Page(requires=("sympy",), shows=3),
     "course/trajectories.md": Page(requires=("matplotlib",), shows=6, writes=("via.png", "line.png")),
+    "course/urdf-to-dh.md": Page(shows=2, writes=("ur5.yaml",)),
+    "course/visualisation.md": Page(requires=("meshcat",), writes=("puma_move.html",)),
 }
 
 
@@ -70,6 +82,7 @@ def test_the_matcher_tells_right_from_wrong():
     assert m("0.0027392824578060097", "Yoshikawa's sqrt(det(J Jᵀ)), here about 0.0027")
     assert not m("0.0031", "about 0.0027")
     assert m("6", "6 joints") and not m("7", "6 joints") and not m("6", "60 joints")
+    assert m("(1000, 8, 6) 2 8", "(1000, 8, 6) 2 8: up to 8") and not m("(1000, 8, 6) 2 8", "(1000, 8, 6) 2 80")
     assert m("left, elbow up", "'left, elbow up'")
     assert not m("left, elbow up", "'right, elbow down, no flip'")
     # several numbers: as many printed, each rounding to the shown one; 0 stands for round-off

@@ -21,7 +21,7 @@ A single shown line matches the printed one when
   and each rounded to X's significant digits is X (an X below 1e-9 stands for round-off: the value is at
   most 10·X; an X of 0 for a value below 1e-9 in size);
 * otherwise it is the printed text (or that text's repr: ``# 'analytic'``), or starts with it and a space
-  (``# 6 joints``).
+  or a colon and a space (``# 6 joints``, ``# (1000, 8, 6): ...``).
 
 Several shown lines match line by line, whitespace not significant. Every other print runs unchecked;
 every checked value is compared, never rounded into agreement: the numbers on the page are what the
@@ -212,7 +212,7 @@ def matches(printed: str, shown: str) -> bool:
         want = [float(x) for x in _NUMBER.findall(about.group(1))]
         got = [float(x) for x in _NUMBER.findall(printed)]
         return bool(want) and len(want) == len(got) and all(_about(x, v) for x, v in zip(want, got))
-    return any(shown == c or shown.startswith(c + " ") for c in (printed, repr(printed)))
+    return any(shown == c or shown.startswith((c + " ", c + ": ")) for c in (printed, repr(printed)))
 
 
 def warnings_match(caught: list[str], shown: str) -> bool:
