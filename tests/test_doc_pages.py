@@ -6,13 +6,20 @@ lines or the ```text block below it, a ``>>>`` example's output, a ``# SomeWarni
 compared with what the code printed (the rules: tests/support/doc_pages.py). docs/getting-started.md is
 run the same way by tests/test_getting_started.py, which checks the files it writes too.
 
-A page that loads files of the reader's own (``robokit.load("arm.xml")``) gets them in its folder before it
-runs: ``FILES`` says which, each made from a file the repository has or that the page itself shows.
+A page that works on files of the reader's own (``robokit.load("arm.xml")``, a package under ``~/ws/src``)
+gets stand-ins for them before it runs, in its folder (which is also its home folder ``~`` when the page
+names files there): ``STAND_INS``
+makes each from a file the repository has, a file a page shows, or a few lines written here. A page whose
+code reads what a command line on it writes (``robokit convert ur5 -o ur5.json``) has that command run first.
 """
 from __future__ import annotations
 
 import importlib.util
-from dataclasses import dataclass, field
+import re
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import doc_pages
@@ -20,6 +27,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
+DATA = ROOT / "tests" / "data"
 
 
 @dataclass(frozen=True)
@@ -27,11 +35,124 @@ class Page:
     requires: tuple[str, ...] = ()   # modules the page imports beyond robokit's core (else: skipped)
     shows: int = 0                   # at least this many values shown (a page that shows none: 0)
     writes: tuple[str, ...] = ()     # files the page writes in its folder
-    env: dict[str, str] = field(default_factory=dict)
+    stand_ins: tuple[str, ...] = ()  # the reader's files it uses (STAND_INS), made before it runs
+    commands: tuple[str, ...] = ()   # robokit command lines of the page, run before its Python
+    home: bool = False               # its folder is its home folder too (the page names ~/...)
+
+
+def _page_block(page: str, language: str, holding: str) -> str:
+    """The ```language block of ``page`` that holds the text ``holding``."""
+    text = (DOCS / page).read_text(encoding="utf-8")
+    return next(b for b in re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.S | re.M) if holding in b)
+
+
+# A reader's own xacro description with the arguments docs/formats/xacro.md passes (prefix, use_gripper).
+_ARM_XACRO = """<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="prefix" default=""/>
+  <xacro:arg name="use_gripper" default="true"/>
+  <xacro:property name="p" value="$(arg prefix)"/>
+  <xacro:macro name="arm_link" params="name">
+    <link name="${name}">
+      <inertial><origin xyz="0.2 0 0"/><mass value="1.0"/>
+        <inertia ixx="0.001" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    </link>
+  </xacro:macro>
+  <link name="${p}base_link"/>
+  <xacro:arm_link name="${p}link1"/>
+  <xacro:arm_link name="${p}link2"/>
+  <joint name="${p}joint1" type="revolute">
+    <parent link="${p}base_link"/><child link="${p}link1"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="10" velocity="2"/>
+  </joint>
+  <joint name="${p}joint2" type="revolute">
+    <parent link="${p}link1"/><child link="${p}link2"/><origin xyz="0.4 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <link name="${p}tool0"/>
+  <joint name="${p}tool0_joint" type="fixed"><parent link="${p}link2"/><child link="${p}tool0"/><origin xyz="0.4 0 0"/></joint>
+  <xacro:if value="$(arg use_gripper)">
+    <link name="${p}gripper"/>
+    <joint name="${p}gripper_joint" type="fixed"><parent link="${p}tool0"/><child link="${p}gripper"/></joint>
+  </xacro:if>
+</robot>
+"""
+
+# docs/formats/xacro.md's demo_description: its main file is the page's; the macro file, which the page
+# elides, makes one link with an inertia.
+_DEMO_MACROS = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm_link" params="name length mass">
+    <link name="${name}">
+      <inertial><origin xyz="${length / 2} 0 0"/><mass value="${mass}"/>
+        <inertia ixx="${mass * 0.001}" iyy="${mass * length * length / 12}" izz="${mass * length * length / 12}"
+                 ixy="0" ixz="0" iyz="0"/></inertial>
+    </link>
+  </xacro:macro>
+</robot>
+"""
+
+
+def _write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+
+
+def _arm_urdf(folder: Path) -> None:
+    from robokit.description.xacro_files import expand_xacro
+
+    _write(folder / "src.urdf.xacro", _ARM_XACRO)
+    _write(folder / "arm.urdf", expand_xacro(folder / "src.urdf.xacro", {}, None))
+    (folder / "src.urdf.xacro").unlink()
+
+
+def _demo_description(folder: Path) -> None:
+    pkg = folder / "ws" / "src" / "demo_description"
+    _write(pkg / "package.xml", "<package format=\"3\"><name>demo_description</name><version>0.1.0</version></package>\n")
+    _write(pkg / "urdf" / "macros.xacro", _DEMO_MACROS)
+    _write(pkg / "urdf" / "demo.urdf.xacro", _page_block("formats/xacro.md", "xml", '<robot name="demo"'))
+
+
+def _pusher(folder: Path) -> None:
+    import pybullet_data
+
+    shutil.copy(Path(pybullet_data.getDataPath()) / "mjcf" / "pusher.xml", folder / "pusher.xml")
+
+
+#: The reader's files a page uses, by name: how each stand-in is made in the page's folder.
+STAND_INS = {
+    "my_arm.yaml": lambda f: shutil.copy(ROOT / "models" / "rrr.yaml", f / "my_arm.yaml"),
+    "arm.urdf": _arm_urdf,  # a URDF with a tool0 frame
+    "arm.urdf.xacro": lambda f: (_write(f / "arm.urdf.xacro", _ARM_XACRO), (f / "ws" / "src").mkdir(parents=True,
+                                                                                                   exist_ok=True)),
+    "arm.xml": lambda f: _write(f / "arm.xml", _page_block("formats/mjcf.md", "xml", 'model="slider_arm"')),  # the page's slider arm
+    "slider_arm.xml": lambda f: _write(f / "slider_arm.xml", _page_block("formats/mjcf.md", "xml", 'model="slider_arm"')),
+    "pusher.xml": _pusher,  # pybullet_data's gym arm
+    # an SDFormat model including model://wrist, which ~/models holds
+    "model.sdf": lambda f: (shutil.copy(DATA / "sdf" / "arm" / "arm.sdf", f / "model.sdf"),
+                            shutil.copytree(DATA / "sdf" / "arm" / "models", f / "models", dirs_exist_ok=True)),
+    "iiwa14.sdf": lambda f: shutil.copy(DATA / "sdf" / "drake_iiwa14" / "iiwa14_no_collision.sdf", f / "iiwa14.sdf"),
+    # the makers' description packages (without their meshes) under ~/ws/src
+    "ur_description": lambda f: shutil.copytree(DATA / "ur_description", f / "ws" / "src" / "ur_description"),
+    "franka_description": lambda f: shutil.copytree(DATA / "franka_description",
+                                                    f / "ws" / "src" / "franka_description"),
+    "demo_description": _demo_description,
+}
 
 
 #: Every page with Python blocks, but docs/getting-started.md (tests/test_getting_started.py).
 PAGES = {
+    "codegen.md": Page(shows=2),
+    "conventions.md": Page(shows=1),
+    "formats/mjcf.md": Page(requires=("mujoco", "pybullet_data"), shows=4, stand_ins=("arm.xml", "pusher.xml",
+                                                                                     "slider_arm.xml")),
+    "formats/poe-json.md": Page(shows=1, commands=("convert ur5 -o ur5.json",)),
+    "formats/sdf.md": Page(shows=1, stand_ins=("model.sdf", "iiwa14.sdf"), home=True),
+    "formats/xacro.md": Page(shows=2, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
+                                                 "demo_description"), home=True),
+    "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),
+                       home=True),
+    "teach.md": Page(requires=("meshcat", "ipywidgets", "ziglang"), shows=1),
     "course/calibration.md": Page(requires=("matplotlib",), shows=7),
     "course/capability-maps.md": Page(requires=("matplotlib", "distributed"), shows=2),
     "course/control.md": Page(requires=("matplotlib",), shows=1, writes=("tracking.png",)),
@@ -66,7 +187,17 @@ def test_page_runs_and_shows_what_it_prints(name, tmp_path):
     for module in page.requires:
         if importlib.util.find_spec(module) is None:
             pytest.skip(f"{name} needs {module}")
-    run = doc_pages.run_page(DOCS / name, tmp_path, env=page.env)
+    for stand_in in page.stand_ins:
+        STAND_INS[stand_in](tmp_path)
+    text = (DOCS / name).read_text(encoding="utf-8")
+    env = {"HOME": str(tmp_path)} if page.home else {}
+    for command in page.commands:
+        assert f"robokit {command}" in text, f"{name} does not show the command line robokit {command}"
+        argv = [sys.executable, "-m", "robokit.cli", *command.split()]
+        done = subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, timeout=600,
+                              env=doc_pages.environment(env))
+        assert done.returncode == 0, done.stderr[-2000:]
+    run = doc_pages.run_page(DOCS / name, tmp_path, env=env)
     assert run.returncode == 0, f"{name} does not run as written:\n{run.stderr[-4000:]}"
     wrong = run.mismatches()
     assert not wrong, f"{name} shows what its code does not print:\n\n" + "\n\n".join(wrong)

@@ -79,7 +79,7 @@ def _doctest_block(block: str) -> str:
     out = []
     for ex in doctest.DocTestParser().get_examples(block):
         if ex.want:
-            out += ["_rk_display(", ex.source.rstrip("\n"), ")"]
+            out += ["_rk_display((", ex.source.rstrip("\n"), "))"]
             out += [("# " + w).rstrip() for w in ex.want.rstrip("\n").splitlines()]
         else:
             out += ex.source.rstrip("\n").splitlines()
@@ -247,13 +247,18 @@ class PageRun:
         return wrong
 
 
+def environment(env: dict[str, str] | None = None) -> dict[str, str]:
+    """This process's environment, with ``env``, a non-interactive matplotlib, and this checkout's robokit."""
+    run_env = dict(os.environ, MPLBACKEND="Agg", **(env or {}))
+    run_env["PYTHONPATH"] = os.pathsep.join([str(ROOT), run_env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
+    return run_env
+
+
 def run_page(page: Path, cwd: Path, env: dict[str, str] | None = None, timeout: float = 600) -> PageRun:
     """Run ``page``'s Python in ``cwd`` (a fresh interpreter importing robokit from this checkout)."""
     record = cwd / "_rk_shown.json"
     script, shown = instrumented(page_code(page.read_text(encoding="utf-8")), str(record))
-    run_env = dict(os.environ, MPLBACKEND="Agg", **(env or {}))
-    run_env["PYTHONPATH"] = os.pathsep.join([str(ROOT), run_env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
-    p = subprocess.run([sys.executable, "-c", script], cwd=cwd, env=run_env, capture_output=True, text=True,
-                       timeout=timeout)
+    p = subprocess.run([sys.executable, "-c", script], cwd=cwd, env=environment(env), capture_output=True,
+                       text=True, timeout=timeout)
     recorded = json.loads(record.read_text(encoding="utf-8")) if record.is_file() else []
     return PageRun(p.returncode, p.stdout, p.stderr, shown, recorded)
