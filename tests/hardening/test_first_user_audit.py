@@ -376,3 +376,30 @@ def test_cubic_via_names_its_velocities_argument():
     with pytest.raises(robokit.InputError, match=r"^velocities: .*'continuous', 'heuristic' or an array") as info:
         robokit.trajectory.cubic_via_trajectory([[0.0], [1.0], [2.0]], times=[0, 1, 2], velocities="bogus")
     assert "method" not in str(info.value)
+
+
+# ----------------------------------------------------------------------------- negative values after an option
+@pytest.mark.parametrize("value", ["-inf", "-nan", "-Infinity"])
+def test_a_negative_infinity_after_an_option_is_refused_by_the_option(value, tmp_path, main_cli):
+    """argparse reads only ``-2`` and ``-.5`` as negative numbers: ``--goal ... -inf`` ended in "unrecognized
+    arguments: -inf", as if -inf were an option. The value now reaches robokit's check, whose one line
+    names the option (docs/cli.md)."""
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, 0, "--goal", 1.4, 0.3, -0.3, 0, 0, value,
+                   "-o", out)
+    line = assert_one_line_error(run, "--goal", "NaN or infinite")
+    assert "unrecognized" not in line and not out.exists()
+    run = main_cli("view", "puma560", "-q", 0, 0, 0, 0, 0, value, "-o", tmp_path / "p.html")
+    assert "unrecognized" not in assert_one_line_error(run, "-q", "NaN or infinite")
+    run = main_cli("workspace", "rrr", "--resolution", value, "-o", tmp_path / "m.npz")
+    assert "unrecognized" not in assert_one_line_error(run, "--resolution")
+
+
+def test_a_negative_value_with_an_exponent_after_an_option_is_a_value(tmp_path, main_cli):
+    """``-1e-3`` is a number too (argparse took it for an option): the plan runs with it."""
+    out = tmp_path / "traj.csv"
+    run = main_cli("plan", "puma560", "--start", 0, 0.3, -0.3, 0, 0, "-1e-3", "--goal", 1.4, 0.3, -0.3, 0, 0,
+                   "-1E-3", "-o", out)
+    assert run.rc == 0, run.err
+    rows = [ln for ln in out.read_text().splitlines() if ln and not ln.startswith(("#", "q"))]
+    assert float(rows[0].split(",")[-1]) == pytest.approx(-1e-3) and float(rows[-1].split(",")[-1]) == pytest.approx(-1e-3)
