@@ -251,7 +251,9 @@ def test_capability_map_in_an_unguarded_script_says_what_to_do(tmp_path):
     """The samples of course/capability-maps.md and course/motion.md, copied into a script and run
     with ``python script.py``, ended in ~500 lines of Dask tracebacks and "RuntimeError: Nanny failed
     to start": Dask's spawned workers import the script again. The last line now says to guard the
-    call (or compute serially); the guarded script makes the map."""
+    call (or compute serially), and it is the only error: the workers, running the script again, leave
+    without a word (no Dask log, no traceback of theirs) and the parent's error has no Dask chain. The
+    guarded script makes the map."""
     pytest.importorskip("distributed")
     pytest.importorskip("cryptography")
     import subprocess
@@ -267,6 +269,8 @@ def test_capability_map_in_an_unguarded_script_says_what_to_do(tmp_path):
     last = p.stderr.strip().splitlines()[-1]
     assert p.returncode != 0 and last.startswith("robokit.errors.RobokitError:"), p.stderr[-2000:]
     assert 'if __name__ == "__main__":' in last and str(script) in last and "client='serial'" in last
+    assert p.stderr.count("Traceback") == 1 and "distributed" not in p.stderr, p.stderr[-3000:]
+    assert len(p.stderr.splitlines()) < 30, p.stderr
     guarded = tmp_path / "guarded.py"
     guarded.write_text("import robokit\nif __name__ == '__main__':\n" + "".join("    " + ln + "\n" for ln in body.splitlines()))
     p = subprocess.run([sys.executable, str(guarded)], cwd=tmp_path, capture_output=True, text=True, timeout=300,
