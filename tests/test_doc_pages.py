@@ -70,7 +70,9 @@ _ARM_XACRO = """<?xml version="1.0"?>
     <limit lower="-2" upper="2" effort="10" velocity="2"/>
   </joint>
   <link name="${p}tool0"/>
-  <joint name="${p}tool0_joint" type="fixed"><parent link="${p}link2"/><child link="${p}tool0"/><origin xyz="0.4 0 0"/></joint>
+  <joint name="${p}tool0_joint" type="fixed">
+    <parent link="${p}link2"/><child link="${p}tool0"/><origin xyz="0.4 0 0"/>
+  </joint>
   <xacro:if value="$(arg use_gripper)">
     <link name="${p}gripper"/>
     <joint name="${p}gripper_joint" type="fixed"><parent link="${p}tool0"/><child link="${p}gripper"/></joint>
@@ -106,9 +108,18 @@ def _arm_urdf(folder: Path) -> None:
     (folder / "src.urdf.xacro").unlink()
 
 
+def _arm_xacro(folder: Path) -> None:
+    _write(folder / "arm.urdf.xacro", _ARM_XACRO)
+    (folder / "ws" / "src").mkdir(parents=True, exist_ok=True)
+
+
+def _slider_arm() -> str:
+    return _page_block("formats/mjcf.md", "xml", 'model="slider_arm"')
+
+
 def _demo_description(folder: Path) -> None:
     pkg = folder / "ws" / "src" / "demo_description"
-    _write(pkg / "package.xml", "<package format=\"3\"><name>demo_description</name><version>0.1.0</version></package>\n")
+    _write(pkg / "package.xml", '<package format="3"><name>demo_description</name><version>0.1.0</version></package>')
     _write(pkg / "urdf" / "macros.xacro", _DEMO_MACROS)
     _write(pkg / "urdf" / "demo.urdf.xacro", _page_block("formats/xacro.md", "xml", '<robot name="demo"'))
 
@@ -123,10 +134,9 @@ def _pusher(folder: Path) -> None:
 STAND_INS = {
     "my_arm.yaml": lambda f: shutil.copy(ROOT / "models" / "rrr.yaml", f / "my_arm.yaml"),
     "arm.urdf": _arm_urdf,  # a URDF with a tool0 frame
-    "arm.urdf.xacro": lambda f: (_write(f / "arm.urdf.xacro", _ARM_XACRO), (f / "ws" / "src").mkdir(parents=True,
-                                                                                                   exist_ok=True)),
-    "arm.xml": lambda f: _write(f / "arm.xml", _page_block("formats/mjcf.md", "xml", 'model="slider_arm"')),  # the page's slider arm
-    "slider_arm.xml": lambda f: _write(f / "slider_arm.xml", _page_block("formats/mjcf.md", "xml", 'model="slider_arm"')),
+    "arm.urdf.xacro": _arm_xacro,  # with the ~/ws/src its loader names
+    "arm.xml": lambda f: _write(f / "arm.xml", _slider_arm()),  # docs/formats/mjcf.md's example
+    "slider_arm.xml": lambda f: _write(f / "slider_arm.xml", _slider_arm()),
     "pusher.xml": _pusher,  # pybullet_data's gym arm
     # an SDFormat model including model://wrist, which ~/models holds
     "model.sdf": lambda f: (shutil.copy(DATA / "sdf" / "arm" / "arm.sdf", f / "model.sdf"),
