@@ -35,6 +35,20 @@ def _describe(a: object) -> str:
     return f"shape {arr.shape}" if arr.ndim else f"value {arr!r}"
 
 
+def shape_text(shape: tuple[int | None, ...]) -> str:
+    """An expected shape as a message shows it: ``None`` sizes as letters, distinct ones when there are
+    several (``(n, 3)``, ``(m, n)``, ``(k, m, n)``), so that a free shape never reads as a square one.
+
+    Examples
+    --------
+    >>> shape_text((None, 3)), shape_text((None, None)), shape_text((3,))
+    ('(n, 3)', '(m, n)', '(3,)')
+    """
+    free = sum(s is None for s in shape)
+    letters = iter("kmn"[-free:] if 1 < free <= 3 else "n" * free)
+    return "(" + ", ".join(next(letters) if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
+
+
 def _real_array(x: object, name: str) -> np.ndarray:
     """``x`` as a float64 array, refusing what ``np.asarray(x, dtype=float)`` would cast silently:
     complex values (their imaginary part would be dropped), strings (``"0"`` would become 0.0),
@@ -117,8 +131,7 @@ def as_array(x: object, name: str, shape: tuple[int | None, ...] | None = None, 
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == d for s, d in zip(shape, arr.shape))
         if not ok:
-            want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-            raise InputError(f"{name}: expected shape {want}, got {_describe(arr)}")
+            raise InputError(f"{name}: expected shape {shape_text(shape)}, got {_describe(arr)}")
     if finite and not np.isfinite(arr).all():
         raise InputError(f"{name}: contains NaN or infinite values")
     if bounded and arr.size:

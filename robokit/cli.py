@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import signal
 import sys
 from types import FrameType
@@ -31,6 +32,15 @@ EXIT_SIGINT, EXIT_SIGTERM = 130, 143
 
 
 class _Parser(argparse.ArgumentParser):
+    #: The values argparse reads as negative numbers, not as options: besides its own ``-2`` and ``-.5``,
+    #: an exponent (``-1e-3``) and ``-inf``/``-nan`` (which ``float`` reads), so that ``--goal 1 2 -inf``
+    #: reaches robokit's own check of the values and its error names the option.
+    NEGATIVE_NUMBER = re.compile(r"^-(?:(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?|inf(?:inity)?|nan)$", re.IGNORECASE)
+
+    def __init__(self, *args: object, **kwargs: object) -> None:
+        super().__init__(*args, **kwargs)  # type: ignore[arg-type]
+        self._negative_number_matcher = self.NEGATIVE_NUMBER
+
     def error(self, message: str) -> NoReturn:
         """argparse's own usage errors: one ``robokit: error:`` line (naming the subcommand), exit 2."""
         sub = self.prog[len("robokit"):].strip() if self.prog.startswith("robokit") else self.prog

@@ -46,6 +46,7 @@ def _output_file(output: str | os.PathLike[str], suffixes: tuple[str, ...]) -> P
 def _degrees_note(robot: Any, q: ArrayLike, flag: str, state: bool = False) -> None:
     """A ``robokit: note:`` (a :class:`~robokit.errors.DegreesWarning`) when joint values typed on the
     command line (``q`` (n,)), or the rows of a file it names (``q`` (N, n)), look like degrees (docs/conventions.md: beyond a full turn and past the limits).
+    ``flag`` names where they came from: the option, or the data file.
 
     The library's own check stays silent here — the values pass through robokit's commands, which
     it takes for values robokit computed — although they are the user's, typed after ``flag``."""
@@ -378,6 +379,7 @@ def calibrate_command(model: str | os.PathLike[str], data: str | os.PathLike[str
     check_not_an_input(out, model, data, what="-o")
     robot = load(model, tip=tip, **load_options)
     q, measured = read_calibration_csv(data, robot.n, robot.qlim)
+    _degrees_note(robot, q, str(data), state=True)  # the file's joint columns, as it gives them
     res = calibrate(robot, q, measured)
     text = robot_text(res.robot, out.suffix, "-o")
     kind = "positions" if measured.ndim == 2 else "poses"

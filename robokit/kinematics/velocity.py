@@ -398,8 +398,20 @@ def jacobian_in_frame(J: ArrayLike, R: ArrayLike) -> np.ndarray:
     return np.vstack([R @ J[:3], R @ J[3:]])
 
 
+def _jacobian(J: ArrayLike, part: str = "full") -> np.ndarray:
+    """``J`` as a 2-D float array, or an error saying what a Jacobian is here and what came instead."""
+    arr = as_array(J, "J")
+    if arr.ndim != 2:
+        want = ("a 6-row Jacobian (ω; v), shape (6, n)" if part in ("translation", "rotation") else
+                "a Jacobian, a 2-D array of shape (m, n) (a row per task coordinate, a column per joint)")
+        got = f"shape {arr.shape}" if arr.ndim else f"the number {float(arr)!r}"
+        hint = f"; one joint's column is a ({arr.shape[0]}, 1) Jacobian" if arr.ndim == 1 else ""
+        raise InputError(f"J: expected {want}, got {got}{hint}")
+    return arr
+
+
 def _rows(J: ArrayLike, part: str) -> np.ndarray:
-    J = as_array(J, "J", (None, None))
+    J = _jacobian(J, part)
     if part == "full":
         return J
     if J.shape[0] != 6:
@@ -609,7 +621,7 @@ def singularity(J: ArrayLike, tol: float = 1e-9) -> SingularityReport:
     >>> singularity(puma, np.zeros(6)).description   # the same from the robot and q
     'rotation about x (1.00)'
     """
-    A = as_array(J, "J", (None, None))
+    A = _jacobian(J)
     U, s, _ = np.linalg.svd(A)
     m = A.shape[0]
     sig = np.zeros(m)
@@ -674,7 +686,7 @@ def resolved_rate(J: ArrayLike, V: ArrayLike, method: str = "pinv", damping: flo
     >>> resolved_rate(rk.load("twolink"), [0, np.pi / 2], [0, 0, 0, 0, 1, 0]).round(4)   # (robot, q, V)
     array([ 1., -1.])
     """
-    J = as_array(J, "J", (None, None))
+    J = _jacobian(J)
     m, n = J.shape
     V = as_vector(V, "V", m)
     if method == "pinv":

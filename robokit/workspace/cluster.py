@@ -68,6 +68,7 @@ def local_cluster(n_workers: int, dashboard: bool = False) -> tuple[Any, Any, An
     >>> client.scheduler.address.startswith("tls://127.0.0.1:")  # doctest: +SKIP
     True
     """
+    _leave_if_a_worker_starting()
     try:
         import cryptography  # noqa: F401  (Security.temporary needs it)
     except ImportError:
@@ -90,13 +91,28 @@ def local_cluster(n_workers: int, dashboard: bool = False) -> tuple[Any, Any, An
         script = _unguarded_script_hint(exc)
         if script is None:
             raise
-        raise RobokitError(script) from exc
+        raise RobokitError(script) from None  # Dask's chain says only "Nanny failed to start"
     try:
         client = Client(cluster, security=security)
     except BaseException:
         cluster.close()
         raise
     return cluster, client, security
+
+
+def _leave_if_a_worker_starting() -> None:
+    """Exit quietly when this process is one of a local cluster's workers still starting: ``spawn`` runs the
+    user's script again in each worker, and a script that makes a map at its top level calls this again.
+
+    Starting a cluster there fails (multiprocessing refuses to start processes while one is starting),
+    and each worker printed Dask's error log and its tracebacks (some 200 lines a worker) before the
+    parent's one clear error (:func:`_unguarded_script_hint`). The worker ends instead, with no output;
+    the parent sees its workers fail to start and says what to do. The test is multiprocessing's own
+    (``spawn._check_not_importing_main``): the process is still inheriting its parent's state."""
+    import multiprocessing
+
+    if getattr(multiprocessing.current_process(), "_inheriting", False):
+        raise SystemExit(1)
 
 
 def _unguarded_script_hint(exc: BaseException) -> str | None:

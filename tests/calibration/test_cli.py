@@ -177,3 +177,20 @@ def test_console_command_in_a_fresh_process(tmp_path):
     run = run_cli("calibrate", "rrr", data, "-o", tmp_path / "bad.urdf")
     assert_one_line_error(run, "line 2", "expected 6 columns, got 5")
     assert not (tmp_path / "bad.urdf").exists()
+
+
+def test_a_data_file_in_degrees_gets_the_degrees_note(puma, tmp_path, capfd):
+    """``robokit calibrate`` named joint values outside the limits column by column, but, unlike ``view -q``,
+    ``--start``, ``--goal`` and ``view --trajectory``, never said they look like degrees. The same
+    measurements with their joint columns in degrees: one degrees note naming the file; in radians, none."""
+    rng = np.random.default_rng(4)
+    q = configurations(puma, 40, rng)
+    T = chain_from_robot(puma).fk(q)
+    for values, noted in ((np.degrees(q), True), (q, False)):
+        data = tmp_path / "poses.csv"
+        write_calibration_csv(data, values, T)
+        run = run_main(["calibrate", "puma560", data, "-o", tmp_path / "cal.urdf"], capfd)
+        assert run.rc == 0, run.err
+        notes = [ln for ln in run.err.splitlines() if ln.startswith("robokit: note:") and "looks like degrees" in ln]
+        assert len(notes) == (1 if noted else 0), run.err
+        assert not noted or notes[0].startswith(f"robokit: note: {data}: "), notes

@@ -1,5 +1,7 @@
 """DH propagation Jacobians, static forces, numerical/analytical Jacobians, transforms,
 manipulability and resolved-rate control — against Pinocchio, finite differences and closed forms."""
+import re
+
 import numpy as np
 
 from robokit.control import track_line
@@ -122,6 +124,28 @@ def test_manipulability_two_link_closed_form(robots):
         assert manipulability(J) < 1e-15 and singularity(J).singular
     rep = singularity(r.jacobian([0.0, 0.0], reference="local_world_aligned")[3:5])
     assert rep.rank == 1 and abs(rep.lost_direction[0]) > 0.99  # stretched along x: x motion lost
+
+
+@pytest.mark.parametrize("call, want", [
+    (lambda J: manipulability(J), "a 2-D array of shape (m, n)"),
+    (lambda J: manipulability(J, part="translation"), "a 6-row Jacobian (ω; v), shape (6, n)"),
+    (lambda J: velocity_ellipsoid(J), "a 6-row Jacobian (ω; v), shape (6, n)"),
+    (lambda J: singularity(J), "a 2-D array of shape (m, n)"),
+    (lambda J: resolved_rate(J, np.zeros(6)), "a 2-D array of shape (m, n)"),
+])
+def test_a_jacobian_that_is_not_2d_is_named_with_the_shapes_accepted(call, want):
+    """``manipulability(np.ones(6))`` said "J: expected shape (n, n)": a square Jacobian, which it does not
+    need (any (m, n); 6 rows for the translation or rotation part). The error names J, the shapes the
+    function takes and the shape given, and for a flat vector says what a one-joint Jacobian is."""
+    with pytest.raises(rk.InputError) as info:
+        call(np.ones(6))
+    msg = str(info.value)
+    assert msg.startswith("J: expected ") and want in msg and "got shape (6,)" in msg and "(6, 1)" in msg, msg
+    assert "(n, n)" not in msg
+    for bad, got in ((np.ones((2, 3, 4)), "got shape (2, 3, 4)"), (5.0, "got the number 5.0")):
+        with pytest.raises(rk.InputError, match=r"^J: expected .*" + re.escape(got) + "$"):
+            call(bad)
+    assert manipulability(np.ones((2, 3)) + np.eye(2, 3)) > 0  # a non-square Jacobian is fine
 
 
 def test_puma_singularities(robots):
