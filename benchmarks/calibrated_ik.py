@@ -2,7 +2,9 @@
 the general 6R method, in Python and in the generated C, measured in the same run.
 
 Arms: the PUMA 560, the UR5 and a random Pieper arm, each with every joint placement, the base and the
-tool off by up to 2 mrad / 2 mm (built as ``robokit.calibrate`` builds its result). Per arm, on the same
+tool off by up to 2 mrad / 2 mm (built as ``robokit.calibrate`` builds its result), and — run from a
+checkout, whose tests/data holds them — a real UR5e's factory calibration read through Universal Robots'
+xacro package (off its nominal by up to 3.5 mrad / 0.68 mm; the nominal: the package's default UR5e). Per arm, on the same
 random poses (reachable by construction), time per pose of
 
 * ``ik_analytic`` of the nominal arm (its closed form) on the nominal's poses — the reference;
@@ -56,6 +58,25 @@ def _arms(size: float = 2e-3, seed: int = 0):
         delta = rng.uniform(-size, size, (nominal.n + 1, 6))
         out.append((label, nominal, robot_from_chain(nominal, chain_from_robot(nominal).perturbed(delta))))
     return out
+
+
+def _factory_ur5e():
+    """(label, nominal, calibrated): a real UR5e's factory calibration read through Universal Robots'
+    xacro package (the test data of tests/calibration/test_factory_calibration.py), and the same package's
+    default UR5e; None outside a checkout (no tests/data)."""
+    import robokit as rk
+
+    data = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "data")
+    xacro = os.path.join(data, "ur_description", "urdf", "ur.urdf.xacro")
+    calibration = os.path.join(data, "ur_calibration", "ur5e_factory_calibration.yaml")
+    if not (os.path.exists(xacro) and os.path.exists(calibration)):
+        return None
+    args = {"ur_type": "ur5e", "name": "ur"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rk.RobokitWarning)  # (its meshes are not in the test data)
+        nominal = rk.load(xacro, xacro_args=args, package_dirs=[data])
+        cal = rk.load(xacro, xacro_args={**args, "kinematics_params": calibration}, package_dirs=[data])
+    return "UR5e (its factory calibration)", nominal, cal
 
 
 def _per_pose(fn, poses, rounds, calls=5):
@@ -137,7 +158,8 @@ def main(argv=None):
     rows = []
     paired: list[list[str]] = []
     warnings.simplefilter("ignore", rk.RobokitWarning)
-    for label, nominal, cal in _arms():
+    factory = _factory_ur5e()
+    for label, nominal, cal in _arms() + ([factory] if factory else []):
         rng = np.random.default_rng(1)
         Q = [cal.random_configuration(rng) for _ in range(n_poses)]
         Tn = [nominal.frame_pose(q) for q in Q]

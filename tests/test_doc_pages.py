@@ -144,6 +144,9 @@ STAND_INS = {
     "iiwa14.sdf": lambda f: shutil.copy(DATA / "sdf" / "drake_iiwa14" / "iiwa14_no_collision.sdf", f / "iiwa14.sdf"),
     # the makers' description packages (without their meshes) under ~/ws/src
     "ur_description": lambda f: shutil.copytree(DATA / "ur_description", f / "ws" / "src" / "ur_description"),
+    # a UR5e's factory calibration where calibration_correction wrote it (tests/data/ur_calibration/SOURCE)
+    "my_robot_calibration.yaml": lambda f: shutil.copy(DATA / "ur_calibration" / "ur5e_factory_calibration.yaml",
+                                                       f / "my_robot_calibration.yaml"),
     "franka_description": lambda f: shutil.copytree(DATA / "franka_description",
                                                     f / "ws" / "src" / "franka_description"),
     "demo_description": _demo_description,
@@ -158,8 +161,8 @@ PAGES = {
                                                                                      "slider_arm.xml")),
     "formats/poe-json.md": Page(shows=1, commands=("convert ur5 -o ur5.json",)),
     "formats/sdf.md": Page(shows=1, stand_ins=("model.sdf", "iiwa14.sdf"), home=True),
-    "formats/xacro.md": Page(shows=2, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
-                                                 "demo_description"), home=True),
+    "formats/xacro.md": Page(shows=3, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
+                                                 "demo_description", "my_robot_calibration.yaml"), home=True),
     "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),
                        home=True),
     "teach.md": Page(requires=("meshcat", "ipywidgets", "ziglang"), shows=1),
