@@ -35,7 +35,7 @@ class _Parser(argparse.ArgumentParser):
     #: The values argparse reads as negative numbers, not as options: besides its own ``-2`` and ``-.5``,
     #: an exponent (``-1e-3``) and ``-inf``/``-nan`` (which ``float`` reads), so that ``--goal 1 2 -inf``
     #: reaches robokit's own check of the values and its error names the option.
-    NEGATIVE_NUMBER = re.compile(r"^-(?:(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?|inf(?:inity)?|nan)$", re.IGNORECASE)
+    NEGATIVE_NUMBER = re.compile(r"^-(?:(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?|inf(?:inity)?|nan)\Z", re.IGNORECASE)
 
     def __init__(self, *args: object, **kwargs: object) -> None:
         super().__init__(*args, **kwargs)  # type: ignore[arg-type]
