@@ -472,7 +472,7 @@ _L, _DH, _KIND, _PITCH, _POST, _SHOULDER, _REACH, _TOL_STOP, _TOL_ACCEPT, _MAX_S
 FRAMES, KINDS, PITCHES = slice(_L, _KIND), slice(_KIND, _PITCH), slice(_PITCH, _POST)
 #: Rows of the scratch array ``work`` (:func:`scratch`): (rows, 6); the last MAX_ROWS (16) are the
 #: branches' outcomes (:func:`calibrated_solve_into`).
-_WORK_ROWS = 153
+_WORK_ROWS = 185
 BRANCH_ROWS = slice(96, 112)
 #: The row of ``work`` where :func:`calibrated_solve_into` leaves (merged branches, vanished branches, σ,
 #: the wrists' least shortfall |cos θ₅| − 1; then the fold starts' switch and a scratch entry).
@@ -782,7 +782,8 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
     iterate whose errors are below ``FINAL`` is expected to stop there: its trial point's pose is
     evaluated without the Jacobian (the same arithmetic, the same pose; the Jacobian is computed
     after all if the iteration goes on), so the check that ends a typical polish costs a pose only.
-    Returns (orientation error, position error, FK evaluations). Scratch: work (:func:`scratch`);
+    Returns (orientation error, position error, FK evaluations); the sines and cosines of the final q
+    (carried by angle addition) are then in ``work``'s rows 43–44. Scratch: work (:func:`scratch`);
     ``trig`` False: the caller has written the sines and cosines of q (:func:`_trig`) into its rows
     43–44 (the starts share theirs: :func:`_start_trig`)."""
     n = 6
@@ -796,6 +797,7 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
     err, rot, pos = _error_of(_chain_pose(C, q, sc0, J0, True), Td, F0)
     lam = 0.0  # 0: Newton; else the damping, relative to the largest diagonal entry of Jᵀ J
     evals = 1
+    swapped = False  # sc0 is rows 45–46, not 43–44
     for _ in range(max_steps):
         if rot < tol_stop and pos < tol_stop:
             break
@@ -833,6 +835,7 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
                 q[i] = trial[i]
             F0, F1 = F1, F0  # the trial becomes the iterate: its buffers are swapped in, not copied
             sc0, sc1 = sc1, sc0
+            swapped = not swapped
             if jac:
                 J0, J1 = J1, J0
             elif not (r2 < tol_stop and p2 < tol_stop):
@@ -845,6 +848,9 @@ def _polish(C: np.ndarray, Td: np.ndarray, q: np.ndarray, max_steps: int, work: 
             lam = 1e-9 if lam == 0.0 else lam * 10.0
             if lam > 1e3:
                 break
+    if swapped:  # the final iterate's sines and cosines in rows 43–44, where the caller reads them
+        for i in range(n):
+            work[43, i], work[44, i] = sc0[0, i], sc0[1, i]
     return rot, pos, evals
 
 
@@ -856,17 +862,17 @@ FINAL = 1e-5
 
 
 def scratch() -> np.ndarray:
-    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((153, 6) float64; rows
+    """The scratch array of :func:`polish` and :func:`calibrated_solve_into` ((185, 6) float64; rows
     ``BRANCH_ROWS`` the branches' outcomes, row ``STATUS`` the status).
 
     Returns
     -------
-    (153, 6) ndarray
+    (185, 6) ndarray
 
     Examples
     --------
     >>> scratch().shape
-    (153, 6)
+    (185, 6)
     """
     return np.empty((_WORK_ROWS, 6))
 
@@ -998,18 +1004,20 @@ def _null_direction(C: np.ndarray, q: np.ndarray, work: np.ndarray, v: np.ndarra
 
 
 @njit(refcount=False, contract=True)
-def _sigma_bound(C: np.ndarray, q: np.ndarray, work: np.ndarray) -> float:
+def _sigma_bound(C: np.ndarray, q: np.ndarray, work: np.ndarray, trig: bool = True) -> float:
     """A lower bound of the smallest singular value of the scaled Jacobian J̃ at q (as
     :func:`_null_direction` estimates it), cheaper than that estimate: ``1 / ‖J̃⁻¹‖_F`` (at most √6
     below the value), J⁻¹ written out from :func:`_block_factor`'s blocks (straight-line products),
     its velocity columns times the reach; 0 where J does not factor by blocks. With ``D⁻¹``, ``K``,
     ``S⁻¹`` of that factorization and ``M = S⁻¹ Jv,p D⁻¹``: ``J⁻¹ = [[D⁻¹ + K M, −K S⁻¹], [−M, S⁻¹]]``
-    (rows: the pivot block's joints, then the others; columns: ω, then v). Scratch: ``work`` rows
-    0–3, 8–13, 20–22, 26–31, 43–44."""
+    (rows: the pivot block's joints, then the others; columns: ω, then v). ``trig`` False: q's sines
+    and cosines are in ``work``'s rows 43–44 already. Scratch: ``work`` rows 0–3, 8–13, 20–22, 26–31,
+    43–44."""
     T, J, B, sc = work[0:4, 0:4], work[8:14], work[26:32], work[43:45]
     G = work[20:23]  # G = Jv,p D⁻¹ in columns 0–2, M in 3–5
     reach = C[_REACH]
-    _trig(C, q, sc)
+    if trig:
+        _trig(C, q, sc)
     fk_jacobian(C, q, sc, T, J)
     if not _block_factor(J, B):
         return 0.0
@@ -1707,6 +1715,7 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
     stall = work[152]  # (the trace's scratch, free until the search)
     codes, degens = work[83:86].reshape(18), work[86:89].reshape(18)
     seeded = work[145:148].reshape(18)  # per solution: a search point below already
+    scs = work[153:185]  # per solution of a start: its sines and cosines (rows 2i, 2i + 1), for its σ bound
     R = _cf.MAX_ROWS
     post_q = C[_POST:_SHOULDER].reshape((5, 6))
     rev = post_q[1]
@@ -1774,6 +1783,8 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
         branches[nb, 4] = pos
         if ok and k < 0:
             seeded[ns] = 1.0 if point and not stalled else 0.0
+            for j in range(6):  # the last polish's (the one that reached q): rows 43–44
+                scs[2 * ns, j], scs[2 * ns + 1, j] = work[43, j], work[44, j]
             _append(q, code, rows, rcodes, rdegen, ns)
             rdegen[ns] = degen
             branches[nb, 1] = SOLUTION
@@ -1817,7 +1828,9 @@ def _polish_starts(C: np.ndarray, T: np.ndarray, m: int, out: np.ndarray, work: 
                 if checked and not every:
                     break  # the pose is not near a singular configuration: its other solutions are not either
                 checked = True
-                if _sigma_bound(C, q2, work) > sigma_explore:
+                for j in range(6):  # its sines and cosines from its polish: no _trig
+                    work[43, j], work[44, j] = scs[2 * i, j], scs[2 * i + 1, j]
+                if _sigma_bound(C, q2, work, False) > sigma_explore:
                     if every:
                         continue  # this solution surely is not near a singular configuration
                     break  # surely not near a singular configuration (the common pose: a cheap bound says so)
