@@ -28,7 +28,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1] / "robokit"
 
 LAYER = {
-    "_arrays": 0, "_units": 0, "_io": 0, "_progress": 0, "_xml": 0, "_yaml": 0, "_optional": 0, "_names": 0,
+    "_arrays": 0, "_units": 0, "_stack": 0, "_io": 0, "_progress": 0, "_xml": 0, "_yaml": 0, "_optional": 0, "_names": 0,
     "_deprecation": 0, "_table": 0, "errors": 0,
     "frames": 0,
     "spatial": 1,

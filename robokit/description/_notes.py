@@ -17,4 +17,6 @@ except ImportError:  # pragma: no cover - older robokit.errors without the warni
 
 def note(message: str) -> None:
     """Emit one note (whitespace collapsed to one line) as a ``RobokitWarning``."""
-    warnings.warn(" ".join(str(message).split()), RobokitWarning, stacklevel=3)
+    from robokit._stack import outside_level
+
+    warnings.warn(" ".join(str(message).split()), RobokitWarning, stacklevel=outside_level())

@@ -34,6 +34,7 @@ from typing import AbstractSet, Any, Iterable, Iterator, Mapping
 
 from numpy.typing import ArrayLike
 
+from robokit._stack import outside_level
 from robokit.description.frames import frame_index
 from robokit.description.inertia import link_inertias, physicality_problem
 from robokit.description.robot import Robot
@@ -455,7 +456,7 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
                                                       if (f.name in names if names is not None else k != 0)),
                  notes=(*robot.notes, *notes, *physical))
     for note in notes:
-        warnings.warn(note, RobokitWarning, stacklevel=3)
+        warnings.warn(note, RobokitWarning, stacklevel=outside_level())
     for note in physical:
-        warnings.warn(note, PhysicalityWarning, stacklevel=3)
+        warnings.warn(note, PhysicalityWarning, stacklevel=outside_level())
     return robot

@@ -187,10 +187,11 @@ class Robot:
         if limit_notes:
             import warnings
 
+            from robokit._stack import outside_level
             from robokit.errors import RobokitWarning
 
             for note in limit_notes:
-                warnings.warn(note, RobokitWarning, stacklevel=2)
+                warnings.warn(note, RobokitWarning, stacklevel=outside_level())
         self._same_coords = model.nq == model.nv
         self._cont = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 2]
         self._lin = [(jm.idx_q, jm.idx_v) for jm in list(model.joints)[1:] if jm.nq == 1]

@@ -38,6 +38,7 @@ from typing import Iterable, Literal, NoReturn, Sequence
 import numpy as np
 
 from robokit._io import read_input_text
+from robokit._stack import outside_level
 from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
 from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, allowed_roots, is_inside, mesh_file_problem,
@@ -402,7 +403,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
         notes.insert(0, f"{len(missing)} mesh files not found ({', '.join(missing[:2])}, ...); the robot is drawn "
                         "without them (kinematics and dynamics do not need them)")
     for note in notes:
-        warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=2)
+        warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=outside_level())
     xml = ET.tostring(root, encoding="unicode")
     return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes,
                         frozenset(links) | frozenset(joints), _unmodelled(root, path))

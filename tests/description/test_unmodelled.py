@@ -143,3 +143,24 @@ def test_a_chain_without_mass_says_so(tmp_path):
         M = pin.crba(raw, raw.createData(), q)
         assert (np.abs(M).max() == 0.0) == massless
         assert np.allclose(robot.crba(q), M, atol=1e-12)
+
+
+def test_a_load_note_points_at_the_line_that_loaded_the_robot(tmp_path):
+    """A note about the file (here: its meshes are not there) is attributed to the user's own call,
+    not to the robokit reader several frames below it."""
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text("""<robot name="arm">
+  <link name="base"/>
+  <link name="l1"><visual><geometry><mesh filename="missing.stl"/></geometry></visual>
+    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+""")
+    import warnings as _w
+
+    with _w.catch_warnings(record=True) as caught:
+        _w.simplefilter("always")
+        robokit.load(urdf)
+    notes = [w for w in caught if issubclass(w.category, robokit.RobokitWarning) and "mesh" in str(w.message)]
+    assert notes and all(w.filename == __file__ for w in notes), [(w.filename, w.lineno) for w in notes]
