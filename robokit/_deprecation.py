@@ -68,19 +68,6 @@ FRAME_SYNONYMS: dict[str, str] = {
 _WARNED: set[str] = set()
 
 
-def _outside_stacklevel() -> int:
-    """The ``stacklevel`` of the first caller outside the robokit package (as seen from ``warn_once``)."""
-    import os
-    import sys
-
-    here = os.path.dirname(os.path.abspath(__file__)) + os.sep
-    frame: Any = sys._getframe(2)
-    level = 2
-    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(here):
-        frame, level = frame.f_back, level + 1
-    return level
-
-
 def warn_once(key: str, replacement: str | None = None, *, category: type[Warning] = DeprecationWarning,
               stacklevel: int | None = None) -> None:
     """Warn about the deprecation ``key`` of :data:`DEPRECATIONS`, once per process.
@@ -150,7 +137,9 @@ def warn(key: str, replacement: str | None = None, *, category: type[Warning] = 
                    f"in robokit {removal}; pass {replacement or new}")
     else:
         message = f"{key} is deprecated and will be removed in robokit {removal}: use {replacement or new}"
-    warnings.warn(message, category, stacklevel=stacklevel or _outside_stacklevel())
+    from robokit._stack import outside_level
+
+    warnings.warn(message, category, stacklevel=stacklevel or outside_level())
 
 
 
