@@ -697,22 +697,32 @@ def pieper_rows(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T06: np.ndarray,
     return _first(n, Q, codes, degen)
 
 
+@njit(inline=True)
+def _shoulder_equation(cf: np.ndarray, T: np.ndarray) -> tuple[float, float, float, float, float]:
+    """Step 1's equation a cos θ₁ + b sin θ₁ = c (W's coordinate along the parallel axes): (a, b, c), and
+    W's x and y, which give each root its shoulder code (:func:`_shoulder_codes`)."""
+    Wx = T[0, 0] * cf[_PA_W6] + T[0, 1] * cf[_PA_W6 + 1] + T[0, 2] * cf[_PA_W6 + 2] + T[0, 3]
+    Wy = T[1, 0] * cf[_PA_W6] + T[1, 1] * cf[_PA_W6 + 1] + T[1, 2] * cf[_PA_W6 + 2] + T[1, 3]
+    Wz = T[2, 0] * cf[_PA_W6] + T[2, 1] * cf[_PA_W6 + 1] + T[2, 2] * cf[_PA_W6 + 2] + T[2, 3]
+    ca1, sa1 = cf[_CA], cf[_SA]
+    return -sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1]), Wx, Wy
+
+
+@njit(inline=True)
+def _shoulder_codes(cf: np.ndarray, Wx: float, Wy: float, t1s: np.ndarray, shoulders: np.ndarray, n1: int) -> None:
+    """Each θ₁'s shoulder code: 0 where W lies on the side of axis 1 its normal points to, else 1."""
+    for i1 in range(n1):
+        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
+        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * cf[_SA] >= 0.0 else 1
+
+
 @njit
 def _parallel_shoulders(cf: np.ndarray, T: np.ndarray, t1s: np.ndarray, shoulders: np.ndarray) -> int:
     """Step 1 of the three-parallel-axes method: every θ₁ (rotation angle) into ``t1s`` and its
     shoulder code into ``shoulders``; their count."""
-    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
-    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
-    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
-    w6x, w6y, w6z = cf[_PA_W6], cf[_PA_W6 + 1], cf[_PA_W6 + 2]
-    Wx = r00 * w6x + r01 * w6y + r02 * w6z + px
-    Wy = r10 * w6x + r11 * w6y + r12 * w6z + py
-    Wz = r20 * w6x + r21 * w6y + r22 * w6z + pz
-    ca1, sa1 = cf[_CA], cf[_SA]
-    n1 = max(_trig_roots(-sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1]), 1e-10, t1s), 0)
-    for i1 in range(n1):
-        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
-        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+    a, b, c, Wx, Wy = _shoulder_equation(cf, T)
+    n1 = max(_trig_roots(a, b, c, 1e-10, t1s), 0)
+    _shoulder_codes(cf, Wx, Wy, t1s, shoulders, n1)
     return n1
 
 
@@ -722,11 +732,7 @@ def _shoulder_folds(cf: np.ndarray, T: np.ndarray, window: float, t1s: np.ndarra
     |c| / √(a² + b²) − 1 = short ≤ ``window``: the two θ₁ at ±√(2 short) from the fold (where
     a cos θ₁ + b sin θ₁ comes nearest c), each with its shoulder code as :func:`_parallel_shoulders`
     gives it; their count (0 outside the window)."""
-    Wx = T[0, 0] * cf[_PA_W6] + T[0, 1] * cf[_PA_W6 + 1] + T[0, 2] * cf[_PA_W6 + 2] + T[0, 3]
-    Wy = T[1, 0] * cf[_PA_W6] + T[1, 1] * cf[_PA_W6 + 1] + T[1, 2] * cf[_PA_W6 + 2] + T[1, 3]
-    Wz = T[2, 0] * cf[_PA_W6] + T[2, 1] * cf[_PA_W6 + 1] + T[2, 2] * cf[_PA_W6 + 2] + T[2, 3]
-    ca1, sa1 = cf[_CA], cf[_SA]
-    a, b, c = -sa1 * Wy, sa1 * Wx, cf[_PA_KW] - ca1 * (Wz - cf[_PA_D1])
+    a, b, c, Wx, Wy = _shoulder_equation(cf, T)
     r = math.sqrt(a * a + b * b)
     if r < 1e-150:
         return 0
@@ -736,9 +742,7 @@ def _shoulder_folds(cf: np.ndarray, T: np.ndarray, window: float, t1s: np.ndarra
     fold = math.atan2(b, a) if c > 0.0 else math.atan2(-b, -a)
     d = math.sqrt(2.0 * max(short, 0.0))
     t1s[0], t1s[1] = _wrap(fold + d), _wrap(fold - d)
-    for i1 in range(2):
-        c1, s1 = math.cos(t1s[i1]), math.sin(t1s[i1])
-        shoulders[i1] = 0 if (c1 * Wx + s1 * Wy) * sa1 >= 0.0 else 1
+    _shoulder_codes(cf, Wx, Wy, t1s, shoulders, 2)
     return 2
 
 
