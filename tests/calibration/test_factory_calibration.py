@@ -19,6 +19,7 @@ import pytest
 import robokit
 from robokit.errors import DegreesWarning, InputError, RobokitWarning
 from robokit.ik import ik_analytic, ik_analytic_kind
+from shared_robots import factory_ur5e
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 XACRO = DATA / "ur_description" / "urdf" / "ur.urdf.xacro"
@@ -40,7 +41,7 @@ def load(calibration, package_dirs=(DATA,)):
 
 @pytest.fixture(scope="module")
 def ur5e():
-    return load(CALIBRATION)
+    return factory_ur5e()
 
 
 def xacro_program(calibration):

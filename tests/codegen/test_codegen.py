@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 
 import robokit
-from shared_robots import robot as shared_robot
+from shared_robots import factory_ur5e, robot as shared_robot
 from calibrated_folds import fold_starts
 from robokit.cli import main
 from robokit.codegen import c_name, generate_c, write_c
@@ -733,6 +733,18 @@ def calibrated_arms():
             "pieper": calibrated_arm(pieper, 3)}
 
 
+def random_and_wrist_singular_poses(robot, seed, n):
+    """n poses of random configurations, then 4 with joint 5 within 2 mrad of zero (the wrist of a
+    spherical-wrist or UR arm near singular), from default_rng(seed)."""
+    rng = np.random.default_rng(seed)
+    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(n)]
+    for _ in range(4):
+        q = robot.random_configuration(rng)
+        q[4] = rng.uniform(-2e-3, 2e-3)
+        poses.append(robot.frame_pose(q))
+    return poses
+
+
 @pytest.mark.parametrize("name", ["puma560", "ur5", "pieper"])
 def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
     """NAME_ik of a calibrated arm: the projected arm's closed form and Newton's method on NAME_fk give
@@ -742,12 +754,7 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
     assert ik_analytic_kind(robot).method.startswith("calibrated")
     lib = build(robot)
     assert lib.has_ik and lib.max_solutions == 16
-    rng = np.random.default_rng(4)
-    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(20)]
-    for _ in range(4):
-        q = robot.random_configuration(rng)
-        q[4] = rng.uniform(-2e-3, 2e-3)
-        poses.append(robot.frame_pose(q))
+    poses = random_and_wrist_singular_poses(robot, 4, 20)
     if name == "pieper":  # and poses whose solutions include a fold start's (default_rng(500), these draws)
         rng = np.random.default_rng(500)
         draws = [robot.random_configuration(rng) for _ in range(2715)]
@@ -763,23 +770,11 @@ def test_a_real_ur5e_factory_calibration_ik_matches_ik_analytic(build):
     """A UR5e as its owner has it (Universal Robots' xacro package with that robot's factory calibration,
     tests/data/ur_calibration): detected as nearly a three-parallel-axes arm; its NAME_ik returns
     ik_analytic's solutions, in order, to 1e-9, on 30 random poses and 4 with the wrist near singular."""
-    from pathlib import Path
-
-    data = Path(__file__).resolve().parents[1] / "data"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (its meshes are not copied)
-        robot = robokit.load(data / "ur_description" / "urdf" / "ur.urdf.xacro", package_dirs=[data],
-                             xacro_args={"ur_type": "ur5e", "name": "ur",
-                                         "kinematics_params": str(data / "ur_calibration" / "ur5e_factory_calibration.yaml")})
+    robot = factory_ur5e()
     assert ik_analytic_kind(robot).method == "calibrated three parallel axes"
     lib = build(robot)
     assert lib.has_ik and lib.max_solutions == 16
-    rng = np.random.default_rng(8)
-    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(30)]
-    for _ in range(4):
-        q = robot.random_configuration(rng)
-        q[4] = rng.uniform(-2e-3, 2e-3)
-        poses.append(robot.frame_pose(q))
+    poses = random_and_wrist_singular_poses(robot, 8, 30)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", robokit.RobokitWarning)
         check_ik(robot, lib, poses)

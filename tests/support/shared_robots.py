@@ -18,3 +18,19 @@ import robokit
 def robot(name: str) -> robokit.Robot:
     """``robokit.load(name)``, once per process and name."""
     return robokit.load(name)
+
+
+DATA = __import__("pathlib").Path(__file__).resolve().parents[1] / "data"
+
+
+@functools.cache
+def factory_ur5e() -> robokit.Robot:
+    """A real UR5e with its factory calibration (tests/data/ur_calibration), read through Universal Robots'
+    xacro package the way its launch files pass the file (``kinematics_params``), once per process."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (the package's meshes are not in the test data)
+        return robokit.load(DATA / "ur_description" / "urdf" / "ur.urdf.xacro", package_dirs=[DATA],
+                            xacro_args={"ur_type": "ur5e", "name": "ur",
+                                        "kinematics_params": str(DATA / "ur_calibration" / "ur5e_factory_calibration.yaml")})
