@@ -5,8 +5,10 @@ mode in subprocesses of its own.
 
 Shared helpers live in tests/support/ (``hardening_support``: the CLI run in-process or in a
 subprocess and the one-line error contract; ``limited_cli``: the CLI under resource limits;
-``shared_robots``: a robot loaded once per process for the tests that only compute with it;
-``doc_pages``: a documentation page's Python run as a reader runs it, its shown values compared), put
+``shared_robots``: a robot (and the factory-calibrated UR5e) loaded once per process for the tests
+that only compute with it;
+``doc_pages``: a documentation page's Python run as a reader runs it, its shown values compared;
+``pybullet_sdf`` and ``mujoco_site``: a loaded robot against PyBullet's ``loadSDF`` and MuJoCo), put
 on sys.path here since the suite runs with --import-mode=importlib; the fixtures ``write`` and
 ``main_cli`` below serve every folder."""
 import os

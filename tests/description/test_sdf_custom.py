@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 import robokit
+from mujoco_site import assert_matches_mujoco_site  # tests/support
 from pybullet_sdf import assert_matches_pybullet_sdf, file_inertials  # tests/support
 from robokit._xml import parse_xml
 from robokit.errors import InputError, RobokitWarning
@@ -213,26 +214,10 @@ def test_urdf_with_whitespace_before_the_declaration_equals_pinocchio(tmp_path, 
 
 @pytest.mark.parametrize("lead", LEADS, ids=list(LEADS))
 def test_mjcf_with_whitespace_before_the_declaration_equals_mujoco(tmp_path, lead):
-    mujoco = pytest.importorskip("mujoco")
     path = tmp_path / "m.xml"
     path.write_text(LEADS[lead] + MJCF, encoding="utf-8")
     robot, _ = load_notes(path)
-    m = mujoco.MjModel.from_xml_path(str(path))  # MuJoCo reads the raw file
-    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
-    d = mujoco.MjData(m)
-    for q, dq, ddq in states(robot):
-        d.qpos[:], d.qvel[:], d.qacc[:] = q, dq, ddq
-        mujoco.mj_inverse(m, d)
-        M = np.zeros((2, 2))
-        mujoco.mj_fullM(m, d, M)
-        jacp, jacr = np.zeros((3, 2)), np.zeros((3, 2))
-        mujoco.mj_jacSite(m, d, jacp, jacr, 0)
-        T = robot.frame_pose(q)
-        np.testing.assert_allclose(T[:3, 3], d.site_xpos[0], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(T[:3, :3], d.site_xmat[0].reshape(3, 3), rtol=0, atol=1e-12)
-        np.testing.assert_allclose(robot.jacobian(q), np.vstack([jacr, jacp]), rtol=0, atol=1e-12)
-        np.testing.assert_allclose(robot.crba(q), M, rtol=0, atol=1e-12)
-        np.testing.assert_allclose(robot.rnea(q, dq, ddq), d.qfrc_inverse, rtol=0, atol=1e-12)
+    assert assert_matches_mujoco_site(robot, path, states(robot)) > 0  # MuJoCo reads the raw file
 
 
 def test_sdf_with_whitespace_before_the_declaration_equals_pybullet(arm):

@@ -11,6 +11,7 @@ import pinocchio as pin
 import pytest
 
 import robokit
+from mujoco_site import assert_matches_mujoco_site  # tests/support
 from pybullet_sdf import assert_matches_pybullet_sdf  # tests/support
 from robokit._xml import check_xml, parse_xml, tolerant_comments
 from robokit.errors import InputError
@@ -88,24 +89,11 @@ def test_urdf_equals_pinocchio_on_the_raw_file(tmp_path):
 
 
 def test_mjcf_equals_mujoco(tmp_path):
-    mujoco = pytest.importorskip("mujoco")
     path = tmp_path / "c.xml"
     path.write_text(MJCF)
     robot = _load(path)
     assert robot.tip == "tip"
-    m = mujoco.MjModel.from_xml_path(str(path))  # MuJoCo reads the comments
-    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
-    d = mujoco.MjData(m)
-    for q, dq, ddq in _states(robot):
-        d.qpos[:], d.qvel[:], d.qacc[:] = q, dq, ddq
-        mujoco.mj_inverse(m, d)
-        M = np.zeros((2, 2))
-        mujoco.mj_fullM(m, d, M)
-        T = robot.frame_pose(q)
-        np.testing.assert_allclose(T[:3, 3], d.site_xpos[0], atol=1e-12)
-        np.testing.assert_allclose(T[:3, :3], d.site_xmat[0].reshape(3, 3), atol=1e-12)
-        np.testing.assert_allclose(robot.crba(q), M, atol=1e-12)
-        np.testing.assert_allclose(robot.rnea(q, dq, ddq), d.qfrc_inverse, atol=1e-12)
+    assert assert_matches_mujoco_site(robot, path, _states(robot)) > 0  # MuJoCo reads the comments
 
 
 def test_sdf_equals_pybullet_loadsdf(tmp_path):
