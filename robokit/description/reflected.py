@@ -131,8 +131,9 @@ def drake_transmission(joint: str, armature: float) -> str:
 
     Examples
     --------
-    >>> drake_transmission("joint_1", 2.56)[:60]
-    '<transmission name="joint_1_transmission"><type>transmissio'
+    >>> text = drake_transmission("joint_1", 2.56)
+    >>> '<drake:rotor_inertia value="2.56"/><drake:gear_ratio value="1"/>' in text
+    True
     """
     from xml.sax.saxutils import quoteattr
 

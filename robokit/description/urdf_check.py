@@ -441,7 +441,7 @@ def _first(el: ET.Element, tag: str) -> ET.Element | None:
     return next((c for c in el if c.tag == tag), None)
 
 
-def _drake_transmissions(root: ET.Element, path: Path, joints: dict[str, ET.Element]
+def _drake_transmissions(root: ET.Element, path: Path, joints: dict[str | None, ET.Element]
                          ) -> tuple[list[DrakeRotor], dict[int, str], list[tuple[str, str]]]:
     """Drake's rotor inertia and gear ratio of the joints, by the rules of Drake's URDF parser (module
     docstring). Returns the rotors; the elements read, by ``id`` (a transmission that gives them; its
@@ -497,7 +497,7 @@ def _drake_transmissions(root: ET.Element, path: Path, joints: dict[str, ET.Elem
                             "refuses it")
         rotor = gear = None
         if kind != "fixed" and effort != 0.0:  # Drake reads the values only for an actuator it creates
-            values = []
+            values: list[float | None] = []
             for el, tag in ((rotor_el, "drake:rotor_inertia"), (gear_el, "drake:gear_ratio")):
                 if el is None:
                     values.append(None)
