@@ -72,10 +72,11 @@ def _add_format_options(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--package-path", action="append", default=[], metavar="DIR",
                    help="folder searched for <pkg>/package.xml for $(find pkg) and package://, and for SDFormat "
                         "model:// folders (repeatable)")
-    parser.add_argument_group("MJCF and SDFormat files").add_argument(
+    parser.add_argument_group("MJCF, SDFormat, URDF and xacro files").add_argument(
         "--no-reflected-inertia", action="store_true",
-        help="leave out the joints' reflected rotor inertia (MJCF armature, Drake's drake:rotor_inertia x "
-             "drake:gear_ratio^2), modelled by default as MuJoCo and Drake do")
+        help="leave out the joints' reflected rotor inertia (MJCF armature; Drake's drake:rotor_inertia x "
+             "drake:gear_ratio^2 of an SDFormat joint or a URDF transmission), modelled by default as MuJoCo "
+             "and Drake do")
 
 
 def _add_outside_meshes(parser: argparse.ArgumentParser) -> None:

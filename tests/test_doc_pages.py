@@ -142,6 +142,8 @@ STAND_INS = {
     "model.sdf": lambda f: (shutil.copy(DATA / "sdf" / "arm" / "arm.sdf", f / "model.sdf"),
                             shutil.copytree(DATA / "sdf" / "arm" / "models", f / "models", dirs_exist_ok=True)),
     "iiwa14.sdf": lambda f: shutil.copy(DATA / "sdf" / "drake_iiwa14" / "iiwa14_no_collision.sdf", f / "iiwa14.sdf"),
+    "iiwa14_no_collision.urdf": lambda f: shutil.copy(DATA / "sdf" / "drake_iiwa14" / "iiwa14_no_collision.urdf",
+                                                      f / "iiwa14_no_collision.urdf"),  # Drake's URDF
     # the makers' description packages (without their meshes) under ~/ws/src
     "ur_description": lambda f: shutil.copytree(DATA / "ur_description", f / "ws" / "src" / "ur_description"),
     # a UR5e's factory calibration where calibration_correction wrote it (tests/data/ur_calibration/SOURCE)
@@ -161,6 +163,7 @@ PAGES = {
                                                                                      "slider_arm.xml")),
     "formats/poe-json.md": Page(shows=1, commands=("convert ur5 -o ur5.json",)),
     "formats/sdf.md": Page(shows=1, stand_ins=("model.sdf", "iiwa14.sdf"), home=True),
+    "formats/urdf.md": Page(shows=1, stand_ins=("iiwa14_no_collision.urdf",)),
     "formats/xacro.md": Page(shows=3, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
                                                  "demo_description", "my_robot_calibration.yaml"), home=True),
     "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),

@@ -29,6 +29,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from robokit.description.dh import rpy_from_matrix
+from robokit.description.reflected import DRAKE_XMLNS, drake_transmission
 from robokit.spatial import lie
 from robokit.errors import InputError
 
@@ -272,7 +273,10 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
         moved by joint i carrying the nominal mass, centre of mass and inertia, and simple visuals (a
         cylinder on the joint axis, a segment to the next joint or the tool); a massless ``tool``
         link fixed at ``X_{n+1}``; the nominal robot's ``dh_<k>`` frames as massless fixed links
-        (a frame that was joint k+1's frame, or the tool's, follows it).
+        (a frame that was joint k+1's frame, or the tool's, follows it); a joint with a reflected
+        rotor inertia (``robot.model.armature``) gets a Drake ``<transmission>`` holding it
+        (:func:`robokit.description.reflected.drake_transmission`), which robokit and Drake read back
+        as that armature.
 
     Examples
     --------
@@ -290,7 +294,9 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
     # simple visuals, sized from the arm: a cylinder on each joint axis, a segment to the next joint
     reach = max([float(np.linalg.norm(chain.placements[i][:3, 3])) for i in range(n + 1)] + [0.1])
     r_joint = max(0.01, 0.08 * reach)
-    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name or robot.name)}>",
+    armature = [float(model.armature[model.joints[i + 1].idx_v]) for i in range(n)]
+    xmlns = f" {DRAKE_XMLNS}" if any(armature) else ""
+    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(name or robot.name)}{xmlns}>",
              '  <material name="robokit_joint"><color rgba="0.95 0.55 0.1 1"/></material>',
              '  <material name="robokit_link"><color rgba="0.55 0.6 0.7 1"/></material>',
              '  <link name="base_link"/>']
@@ -331,12 +337,15 @@ def chain_urdf(robot: Robot, chain: JointChain, name: str | None = None) -> str:
     lines.append('  <link name="tool"/>')
     lines.append(f'  <joint name="link_{n}_to_tool" type="fixed"><parent link="link_{n}"/><child link="tool"/>'
                  f"{_origin(chain.placements[n])}</joint>")
+    # the reflected rotor inertia, as Drake's URDF dialect holds it (every joint above has effort 1000)
+    lines += [f"  {drake_transmission(f'joint_{i + 1}', a)}" for i, a in enumerate(armature) if a]
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
 
 
 def robot_from_chain(robot: Robot, chain: JointChain, name: str | None = None) -> Robot:
-    """A :class:`robokit.Robot` with ``chain``'s geometry and ``robot``'s inertias, limits and gravity.
+    """A :class:`robokit.Robot` with ``chain``'s geometry and ``robot``'s inertias, limits, gravity and
+    reflected rotor inertias (armature).
 
     Parameters
     ----------

@@ -30,7 +30,8 @@ def _locked_note(robot: Robot) -> list[str]:
 
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
             convention: str = "standard", *, xacro_args: Mapping[str, str] | None = None,
-            package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> tuple[str, list[str]]:
+            package_dirs: Sequence[str | os.PathLike[str]] | None = None,
+            reflected_inertia: bool = True) -> tuple[str, list[str]]:
     """Convert a robot description and write the result (what ``robokit convert`` runs).
 
     * ``IN.yaml|NAME -o OUT.urdf`` — a DH model (a DH file or a shipped model) to URDF (see the URDF
@@ -61,6 +62,9 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         Arguments of a xacro file, passed to ``robokit.load``.
     package_dirs : sequence of path-like, optional
         Folders where ``package://`` names are looked up, passed to ``robokit.load``.
+    reflected_inertia : bool, optional
+        Passed to ``robokit.load`` when False (``--no-reflected-inertia``: MJCF, SDFormat, URDF and
+        xacro input without the joints' reflected rotor inertia).
 
     Returns
     -------
@@ -92,7 +96,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     if out_suffix == ".xml":  # formats: MJCF out, for anything load() reads
         from robokit.description.mjcf_write import mjcf_from_robot
 
-        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
+        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
+                     reflected_inertia=reflected_inertia)
         text, notes = mjcf_from_robot(robot)
         notes[:0] = _locked_note(robot)
     elif out_suffix not in (".urdf", ".json", ".yaml", ".yml", None):
@@ -104,7 +109,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
             raise InputError("--tip: applies to URDF input only (a DH model's tip is its 'tool' frame)")
         text = urdf_from_dh(DHTable.from_yaml(src))
     else:
-        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs)
+        robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
+                     reflected_inertia=reflected_inertia)
         notes += _locked_note(robot)
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"

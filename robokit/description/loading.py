@@ -5,10 +5,14 @@ input                  loader                                                opt
 =====================  ====================================================  ==========================
 ``*.yaml``, ``*.yml``  :func:`~robokit.description.dh_robots.load_dh_file`    —
 ``*.urdf``             :func:`~robokit.description.urdf_files.load_urdf`      ``package_dirs``,
-                                                                             ``allow_outside_meshes``
+                                                                             ``allow_outside_meshes``,
+                                                                             ``reflected_inertia``
 ``*.xacro``            :func:`~robokit.description.xacro_files.load_xacro`    ``package_dirs``,
-                                                                             ``xacro_args``
-``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            —
+                                                                             ``xacro_args``,
+                                                                             ``allow_outside_meshes``,
+                                                                             ``reflected_inertia``
+``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            ``allow_outside_meshes``,
+                                                                             ``reflected_inertia``
 ``*.sdf``, ``*.world`` :func:`~robokit.description.sdf.load_sdf`              ``package_dirs``,
                                                                              ``allow_outside_meshes``,
                                                                              ``reflected_inertia``
@@ -56,8 +60,8 @@ __all__ = ["load", "FILE_LOADERS", "spec_of"]
 FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
     ".yaml": (load_dh_file, ()),
     ".yml": (load_dh_file, ()),
-    ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes")),
-    ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes")),
+    ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
+    ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes", "reflected_inertia")),
     ".xml": (load_mjcf, ("allow_outside_meshes", "reflected_inertia")),
     ".sdf": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
     ".world": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
@@ -69,9 +73,10 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
     "example-robot-data": lambda s: load_example_robot(s.name or "", s.tip),
     "dh": lambda s: load_dh_text(s.text or "", source=s.describe(), spec=s),
     "urdf": lambda s: load_urdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
-                                allow_outside_meshes=s.allow_outside_meshes),
+                                allow_outside_meshes=s.allow_outside_meshes, reflected_inertia=s.reflected_inertia),
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
-                                  xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes),
+                                  xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes,
+                                  reflected_inertia=s.reflected_inertia),
     "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes,
                                 reflected_inertia=s.reflected_inertia),
     "sdf": lambda s: load_sdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
@@ -148,8 +153,9 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
         (absolute paths, ``../`` out of the package); refused by default.
     reflected_inertia : bool
         Model each joint's reflected rotor inertia in M and inverse dynamics (default True):
-        MJCF's joint ``armature``, as MuJoCo adds it, and SDFormat's Drake
-        ``drake:rotor_inertia · drake:gear_ratio²``, as Drake adds it. False leaves it out.
+        MJCF's joint ``armature``, as MuJoCo adds it, and Drake's ``drake:rotor_inertia ·
+        drake:gear_ratio²`` — of an SDFormat joint, or of a URDF (or xacro) ``<transmission>``'s
+        actuator — as Drake adds it. False leaves it out.
     strict : bool
         Refuse a robot with a physically impossible link inertia (not positive definite, or
         principal moments breaking the triangle inequality) instead of loading it with a

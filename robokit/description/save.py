@@ -1,8 +1,12 @@
 r"""``Robot.save(path)``: a robot written back as a description file robokit (and other tools) can read.
 
 * ``.urdf`` — the robot's URDF: a calibrated robot's own (the URDF its spec carries: joint
-  placements and axes as calibrated, the nominal inertias), a URDF file's text, or for a DH robot
-  the URDF of its table (:func:`robokit.description.urdf_gen.urdf_from_dh`);
+  placements and axes as calibrated, the nominal inertias, the reflected rotor inertias as Drake
+  ``<transmission>``\ s, which load back as the same armature), a URDF file's text, or for a DH robot
+  the URDF of its table (:func:`robokit.description.urdf_gen.urdf_from_dh`). A URDF robot loaded with
+  ``reflected_inertia=False`` from a file whose transmissions give Drake's rotor inertia is written
+  as its file all the same, with a warning: that file loads back with the inertia unless loaded with
+  ``reflected_inertia=False`` again;
 * ``.yaml`` / ``.yml`` — a DH table, only when one reproduces the robot exactly: the robot's own
   table, or the one :func:`robokit.dh_from_urdf` extracts when its forward kinematics equals the
   robot's to 1e-9 (checked after writing it to text and reading it back) with offsets of the arm's
@@ -124,9 +128,29 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
         from robokit._io import read_input_text
         from robokit.description.urdf_check import MAX_URDF_BYTES
 
-        return read_input_text(Path(spec.path), MAX_URDF_BYTES, "a URDF file")
+        text = read_input_text(Path(spec.path), MAX_URDF_BYTES, "a URDF file")
+        if not spec.reflected_inertia and _has_drake_rotor(text, spec.path):
+            import warnings
+
+            from robokit._stack import outside_level
+            from robokit.errors import RobokitWarning
+
+            warnings.warn(f"{arg}: {robot.name} was loaded with reflected_inertia=False, but its URDF file, written as "
+                          "it is, gives joints Drake's rotor inertia (drake:rotor_inertia in a <transmission>): load "
+                          "the saved file with reflected_inertia=False (--no-reflected-inertia) for this robot's M",
+                          RobokitWarning, stacklevel=outside_level())
+        return text
     raise InputError(f"{arg}: robokit has no URDF text for {robot.name} (loaded from {robot.source or 'a model'}); "
                      "it writes URDF for calibrated robots, DH robots and URDF files")
+
+
+def _has_drake_rotor(text: str, source: str) -> bool:
+    """Whether a URDF's transmissions hold Drake's rotor inertia or gear ratio (names as written)."""
+    from robokit._xml import parse_xml
+
+    root = parse_xml(text, source, namespaces=False)
+    return any(el.tag in ("drake:rotor_inertia", "drake:gear_ratio")
+               for tr in root.findall("transmission") for el in tr.iter())
 
 
 def save_robot(robot: Robot, path: str | os.PathLike[str]) -> Path:

@@ -85,6 +85,7 @@ from robokit.description.meshes import allowed_roots, confine, package_name
 from robokit.description.model_builder import (Description, FrameSpec, Geometry, Inertial, Joint, Link, Pose,
                                                build_model)
 from robokit.description.robot import Robot
+from robokit.description.reflected import DrakeRotor, drake_reflected_inertia
 from robokit.description.spec import RobotSpec
 from robokit.errors import InputError
 
@@ -863,7 +864,9 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
         notes.append(f"{rd.top}: links without <inertial> get SDFormat's default, 1 kg and 1 kg·m² about each axis "
                      f"(as libsdformat): {', '.join(no_inertial[:10])}")
     joints, mimic = [], {}
-    reflected, ignored_rotor = [], []
+    armatures, reflected_notes = drake_reflected_inertia(
+        [DrakeRotor(j.name, j.kind, j.effort, j.rotor, j.gear) for j in rd.joints
+         if j.rotor is not None or j.gear is not None], reflected_inertia, rd.top)
     for j in rd.joints:
         where = f"{j.scope.file}: joint {j.name!r}"
         parent_name = j.scope.resolve(j.parent_raw, where)
@@ -887,28 +890,14 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
                 raise InputError(f"{where}: <xyz expressed_in={j.axis_in!r}>: no such frame")
             R_W_E = (_world_pose(rd, frame) if frame != _WORLD else np.eye(4))[:3, :3]
             axis = X_W_J[:3, :3].T @ R_W_E @ axis
-        armature = 0.0
-        if j.rotor is not None or j.gear is not None:
-            if j.kind == "fixed" or j.effort == 0.0:
-                ignored_rotor.append(j.name)
-            elif reflected_inertia:
-                armature = (j.rotor or 0.0) * (1.0 if j.gear is None else j.gear) ** 2
-                reflected.append(f"{j.name} {armature:.6g}")
         if j.mimic:
             mimic[j.name] = j.scope.resolve(j.mimic, where)
         joints.append(Joint(j.name, j.kind, parent, child, _pose_value(np.linalg.inv(X_W_P) @ X_W_J),
                             _pose_value(np.linalg.inv(X_W_J) @ X_W[child]),
                             (float(axis[0]), float(axis[1]), float(axis[2])),
-                            j.lower, j.upper, j.velocity, j.effort, j.damping, j.friction, armature))
-    if reflected:
-        notes.append(f"{rd.top}: reflected rotor inertia drake:rotor_inertia × drake:gear_ratio² added to M and "
-                     f"inverse dynamics as Drake adds it (kg·m²): {', '.join(reflected)}; load with "
-                     "reflected_inertia=False (--no-reflected-inertia) to leave it out")
-    elif not reflected_inertia and any(j.rotor is not None for j in rd.joints):
-        notes.append(f"{rd.top}: drake:rotor_inertia / drake:gear_ratio read but left out (reflected_inertia=False)")
-    if ignored_rotor:
-        notes.append(f"{rd.top}: drake:rotor_inertia ignored on joints Drake does not actuate (fixed or <effort>0): "
-                     f"{', '.join(ignored_rotor)}")
+                            j.lower, j.upper, j.velocity, j.effort, j.damping, j.friction,
+                            armatures.get(j.name, 0.0)))
+    notes.extend(reflected_notes)
     children = {j.child for j in joints}
     roots = [ln for ln in rd.links if ln not in children]
     free = [r for r in roots if r not in rd.world_fixed]

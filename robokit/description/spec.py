@@ -51,7 +51,8 @@ class RobotSpec:
         Whether meshes outside the file's package were allowed (``"urdf"``).
     reflected_inertia : bool
         Whether the joints' reflected rotor inertia is in M and inverse dynamics (``"mjcf"``:
-        MuJoCo's joint ``armature``; ``"sdf"``: Drake's ``rotor_inertia · gear_ratio²``); default True.
+        MuJoCo's joint ``armature``; ``"sdf"``, ``"urdf"``, ``"xacro"`` and ``"calibrated"``: Drake's
+        ``rotor_inertia · gear_ratio²``); default True.
     text : str or None
         The DH table as YAML text, angles in rad (``"dh"``): parsed by the strict YAML loader
         when the spec is loaded, so a rebuilt table is the same table even if the file changed;

@@ -19,11 +19,26 @@ joint, and returns the document with every mesh reference resolved:
 Mimic joints are reported (``mimic`` in the result) so that the loader can refuse one on
 the chain (robokit's joints are independent) and lock one off it.
 
+Drake's URDF dialect: a ``<transmission>`` whose first ``<actuator>`` holds
+``<drake:rotor_inertia value>`` and/or ``<drake:gear_ratio value>`` gives its joint Drake's reflected
+rotor inertia (:mod:`robokit.description.reflected`), read by the rules of Drake's URDF parser
+(``ParseTransmission``): only a ``<type>`` (or legacy ``type`` attribute) containing
+``SimpleTransmission`` counts (another type Drake ignores, with a warning); the rotor inertia
+defaults to 0 and the gear ratio to 1, and ``<mechanicalReduction>`` plays no part (Drake warns when
+it is not 1); a fixed joint or a joint whose ``<limit effort>`` is 0 gets no actuator and so no
+inertia (no ``<limit>`` or no ``effort``: Drake's effort limit is unlimited); a negative effort
+limit, a missing ``value``, a missing ``<type>``, actuator name or joint, or a joint that is not
+defined is an error in Drake and an :class:`~robokit.errors.InputError` here. They are in
+``rotors``; the loader turns them into ``model.armature``.
+
 Nothing is dropped silently: every element the file holds that robokit's model does not use
-(:data:`MODELLED` lists what it uses) — ``<transmission>``, ``<ros2_control>``, ``<gazebo>``
-(and its plugins), ``<sensor>``, a joint's ``<safety_controller>``, ``<calibration>`` and
-nonzero ``<dynamics damping/friction>``, a link's ``<contact>``, anything unknown — is listed
-in ``unmodelled``, one note per element kind, which the loader shows once.
+(:data:`MODELLED` lists what it uses) — ``<transmission>`` (but those giving Drake's rotor
+inertia), ``<ros2_control>``, ``<gazebo>`` (and its plugins), ``<sensor>``, a joint's
+``<safety_controller>``, ``<calibration>`` and nonzero ``<dynamics damping/friction>``, a link's
+``<contact>``, anything unknown — is listed in ``unmodelled``, one note per element kind, which the
+loader shows once; so are Drake's other extensions deeper in the file, its ``drake:`` attributes
+(``<limit drake:acceleration>``) and elements (``<drake:proximity_properties>`` in a
+``<collision>``, ``<drake:declare_convex>`` in a ``<mesh>``), in one note.
 """
 from __future__ import annotations
 
@@ -43,6 +58,7 @@ from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
 from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, allowed_roots, is_inside, mesh_file_problem,
                                          package_name)
+from robokit.description.reflected import DrakeRotor
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -65,7 +81,11 @@ MODELLED = {
 
 #: Why an element is not modelled, by tag (others: "not part of robokit's model").
 _WHY = {
-    "transmission": "actuator transmissions are not part of robokit's rigid-body model",
+    "transmission": ("actuator transmissions without Drake's drake:rotor_inertia/drake:gear_ratio add nothing to "
+                     "robokit's rigid-body model"),
+    "mechanicalReduction": ("Drake's URDF parser takes the reflected inertia's gear ratio from drake:gear_ratio alone "
+                            "(it warns about a mechanicalReduction other than 1), and so does robokit"),
+    "drake": "not part of robokit's model",
     "ros2_control": "controller hardware interfaces are not part of robokit's model",
     "gazebo": "simulator settings and plugins are not part of robokit's model",
     "sensor": "sensors are not part of robokit's model",
@@ -102,13 +122,16 @@ class UrdfDocument:
     unmodelled : list of (str, str)
         ``(tag, note)``: one note per kind of element read but not modelled (not issued here;
         the loader shows them).
+    rotors : list of DrakeRotor
+        Drake's rotor inertia and gear ratio of the joints a ``<transmission>`` gives them (module
+        docstring); the loader adds ``rotor_inertia · gear_ratio²`` to their armature.
 
     Examples
     --------
     >>> from robokit.description.models import model_path
     >>> doc = read_urdf(model_path("twolink", ".urdf"))
-    >>> doc.name, doc.mimic, doc.warnings, doc.unmodelled
-    ('twolink', {}, [], [])
+    >>> doc.name, doc.mimic, doc.warnings, doc.unmodelled, doc.rotors
+    ('twolink', {}, [], [], [])
     """
 
     path: Path
@@ -119,6 +142,7 @@ class UrdfDocument:
     warnings: list = field(default_factory=list)
     names: frozenset = frozenset()
     unmodelled: list = field(default_factory=list)
+    rotors: list = field(default_factory=list)
 
 
 def _fail(path: str | os.PathLike[str], msg: str) -> NoReturn:
@@ -404,9 +428,131 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                         "without them (kinematics and dynamics do not need them)")
     for note in notes:
         warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=outside_level())
+    rotors, read, unmodelled = _drake_transmissions(root, path, joints)
+    unmodelled = _unmodelled(root, path, read) + unmodelled + _drake_extensions(root, path, read)
     xml = ET.tostring(root, encoding="unicode")
     return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes,
-                        frozenset(links) | frozenset(joints), _unmodelled(root, path))
+                        frozenset(links) | frozenset(joints), unmodelled, rotors)
+
+
+def _first(el: ET.Element, tag: str) -> ET.Element | None:
+    """The first child named ``tag`` as written (``drake:rotor_inertia``: the file is read with names as
+    TinyXML2 reads them, so ElementTree's path syntax, which takes ``drake:`` for a namespace, is not used)."""
+    return next((c for c in el if c.tag == tag), None)
+
+
+def _drake_transmissions(root: ET.Element, path: Path, joints: dict[str | None, ET.Element]
+                         ) -> tuple[list[DrakeRotor], dict[int, str], list[tuple[str, str]]]:
+    """Drake's rotor inertia and gear ratio of the joints, by the rules of Drake's URDF parser (module
+    docstring). Returns the rotors; the elements read, by ``id`` (a transmission that gives them; its
+    rotor elements), with what a note says about them (``""``: nothing, the reflected-inertia note does);
+    and a note on ``<mechanicalReduction>`` values other than 1 in those transmissions."""
+    rotors: list[DrakeRotor] = []
+    read: dict[int, str] = {}
+    reductions: list[str] = []
+    driven: dict[str, str] = {}
+    for tr in root.findall("transmission"):
+        actuator = _first(tr, "actuator")
+        if actuator is None:
+            continue
+        rotor_el, gear_el = _first(actuator, "drake:rotor_inertia"), _first(actuator, "drake:gear_ratio")
+        if rotor_el is None and gear_el is None:
+            continue  # no rotor: Drake's actuator adds nothing to M or inverse dynamics
+        tname = tr.get("name") or "?"
+        where = f"transmission {tname!r}"
+        type_el = _first(tr, "type")
+        ttype = (type_el.text or "") if type_el is not None else tr.get("type")
+        if ttype is None:
+            _fail(path, f"{where}: no <type> (Drake's URDF parser requires one to read drake:rotor_inertia)")
+        for el in (rotor_el, gear_el):
+            if el is not None:
+                read[id(el)] = ""
+        if "SimpleTransmission" not in ttype:
+            read[id(tr)] = f"{tname}: {ttype.strip()!r} is no SimpleTransmission, so Drake ignores its drake:rotor_inertia"
+            continue
+        read[id(tr)] = ""
+        if not actuator.get("name"):
+            _fail(path, f"{where}: <actuator> without a name (Drake's URDF parser requires one)")
+        joint_el = _first(tr, "joint")
+        jname = joint_el.get("name") if joint_el is not None else None
+        if not jname:
+            _fail(path, f"{where}: no <joint name=...> (Drake's URDF parser requires one)")
+        if jname not in joints:
+            _fail(path, f"{where}: joint {jname!r} is not defined")
+        if jname in driven:
+            _fail(path, f"{where}: joint {jname!r} is driven by transmission {driven[jname]!r} too; robokit reads one "
+                        "drake:rotor_inertia per joint")
+        driven[jname] = tname
+        jel = joints[jname]
+        kind = jel.get("type") or ""
+        if kind in ("floating", "planar"):
+            _fail(path, f"{where}: joint {jname!r} is {kind}; robokit reads Drake's rotor inertia on revolute, "
+                        "continuous and prismatic joints")
+        effort = math.inf  # Drake's effort limit when the joint gives none
+        lim = _first(jel, "limit")
+        if kind != "fixed" and lim is not None and lim.get("effort") is not None:
+            effort = _float_attr(lim, "effort", path, f"joint {jname!r} <limit>")
+            if effort < 0:
+                _fail(path, f"{where}: joint {jname!r} has a negative effort limit ({effort:g}); Drake's URDF parser "
+                            "refuses it")
+        rotor = gear = None
+        if kind != "fixed" and effort != 0.0:  # Drake reads the values only for an actuator it creates
+            values: list[float | None] = []
+            for el, tag in ((rotor_el, "drake:rotor_inertia"), (gear_el, "drake:gear_ratio")):
+                if el is None:
+                    values.append(None)
+                    continue
+                v = _float_attr(el, "value", path, f"{where} <actuator> <{tag}>")
+                if not math.isfinite(v) or v < 0:
+                    _fail(path, f"{where} <actuator> <{tag}>: value must be a finite number >= 0, got {v:g}")
+                _check_magnitude([v], path, f"{where} <actuator> <{tag}>")
+                values.append(v)
+            rotor, gear = values
+            for el in (tr, actuator):
+                red = _first(el, "mechanicalReduction")
+                text = (red.text or "").strip() if red is not None else ""
+                if text and not _is_one(text):  # Drake: one number, 1
+                    reductions.append(f"{tname} {text}")
+        rotors.append(DrakeRotor(jname, "fixed" if kind == "fixed" else kind, effort, rotor, gear))
+    notes = []
+    if reductions:
+        notes.append(("mechanicalReduction", f"{path}: <mechanicalReduction> of transmissions {', '.join(reductions)} "
+                                             f"read but not modelled: {_WHY['mechanicalReduction']}"))
+    return rotors, read, notes
+
+
+def _is_one(text: str) -> bool:
+    try:
+        return float(text) == 1.0
+    except ValueError:
+        return False
+
+
+def _drake_extensions(root: ET.Element, path: Path, read: dict[int, str]) -> list[tuple[str, str]]:
+    """One note on Drake's extensions robokit does not model below the elements :func:`_unmodelled` lists:
+    ``drake:`` attributes anywhere (``<limit drake:acceleration>``) and ``drake:`` elements deeper than a
+    link's or joint's children (``<drake:declare_convex>`` in a ``<mesh>``), each kind counted."""
+    listed = {id(c) for c in root}
+    for kind in ("link", "joint"):
+        for el in root.findall(kind):
+            listed.update(id(c) for c in el)
+    counts: dict[str, int] = {}
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        for attr in el.attrib:
+            if attr.startswith("drake:"):
+                key = f"<{el.tag} {attr}>"
+                counts[key] = counts.get(key, 0) + 1
+        for child in el:
+            if isinstance(child.tag, str) and child.tag.startswith("drake:") and id(child) not in listed \
+                    and id(child) not in read:
+                key = f"<{child.tag}> in <{el.tag}>"
+                counts[key] = counts.get(key, 0) + 1
+    if not counts:
+        return []
+    shown = ", ".join(k + (f" ×{n}" if n > 1 else "") for k, n in sorted(counts.items()))
+    return [("drake", f"{path}: Drake's URDF extensions {shown} read but not modelled: {_WHY['drake']}")]
 
 
 def _shown(names: Sequence[str], limit: int = 6) -> str:
@@ -425,14 +571,18 @@ def _nonzero(el: ET.Element, keys: Sequence[str]) -> list[str]:
     return out
 
 
-def _unmodelled(root: ET.Element, path: Path) -> list[tuple[str, str]]:
+def _unmodelled(root: ET.Element, path: Path, read: dict[int, str] | None = None) -> list[tuple[str, str]]:
     """One ``(tag, note)`` per kind of element the file holds and robokit's model does not use
-    (a kind: a tag directly under ``<robot>``, or under its links, or under its joints)."""
+    (a kind: a tag directly under ``<robot>``, or under its links, or under its joints); ``read``:
+    the transmissions that give Drake's rotor inertia (left out) or hold it unused (the reason)."""
+    read = read or {}
     found: dict[tuple[str, str], list[str]] = {}  # (where: "robot"/"link"/"joint", tag) → owners
     detail: dict[str, set[str]] = {}
     for el in root:
-        if not isinstance(el.tag, str) or el.tag in MODELLED["robot"]:
+        if not isinstance(el.tag, str) or el.tag in MODELLED["robot"] or read.get(id(el)) == "":
             continue
+        if read.get(id(el)):
+            detail.setdefault(el.tag, set()).add(read[id(el)])
         found.setdefault(("robot", el.tag), []).append(el.get("name") or "")
         if el.tag in ("gazebo", "ros2_control"):
             for plugin in el.iter("plugin"):

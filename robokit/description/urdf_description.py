@@ -17,7 +17,9 @@ rules, which Pinocchio's URDF parser follows:
   robot's top level or in an earlier link, wins).
 
 ``<mimic>``, ``<transmission>``, ``<gazebo>`` and ``<safety_controller>`` are not read here (the
-URDF loader reports the first and refuses a mimic joint on the chain).
+URDF loader reports the first and refuses a mimic joint on the chain); the reflected rotor inertia
+Drake's transmissions give (:func:`robokit.description.urdf_check.read_urdf` reads them) comes in as
+``armature``.
 
 :func:`robokit.description.urdf_files.load_urdf` (and so xacro, whose expansion is URDF) builds
 every URDF robot this way; the tests hold the result equal to Pinocchio's own URDF parser
@@ -28,7 +30,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
-from typing import Sequence
+from typing import Mapping, Sequence
 
 from robokit.description.model_builder import JOINT_KINDS, Description, Geometry, Inertial, Joint, Link, Pose
 from robokit.errors import InputError
@@ -157,7 +159,8 @@ def _geometries(link: ET.Element, name: str, materials: dict[str, tuple[float, f
     return out
 
 
-def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Description:
+def description_from_urdf(text: str | bytes, source: str = "<URDF>",
+                          armature: Mapping[str, float] | None = None) -> Description:
     """The :class:`~robokit.description.model_builder.Description` of a URDF document.
 
     Parameters
@@ -167,6 +170,9 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
         meshes resolved).
     source : str
         Names the document in messages.
+    armature : mapping of str to float, optional
+        Joint name → reflected rotor inertia (kg·m², kg for a prismatic joint), the joint's
+        :attr:`~robokit.description.model_builder.Joint.armature` (default none).
 
     Returns
     -------
@@ -220,7 +226,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>") -> Descript
                       effort=math.inf if unlimited else _attr(lim, "effort", 0.0, f"{where} <limit>"),
                       velocity=math.inf if unlimited else _attr(lim, "velocity", 0.0, f"{where} <limit>"),
                       damping=_attr(dyn, "damping", 0.0, f"{where} <dynamics>"),
-                      friction=_attr(dyn, "friction", 0.0, f"{where} <dynamics>"))
+                      friction=_attr(dyn, "friction", 0.0, f"{where} <dynamics>"),
+                      armature=(armature or {}).get(name, 0.0))
         by_parent.setdefault(parent, []).append(joint)
     roots = [link.name for link in links if link.name not in child_of]
     if len(roots) != 1:

@@ -7,6 +7,12 @@ a :class:`~robokit.description.model_builder.Description`
 by the one model builder (:func:`~robokit.description.model_builder.build_model`), as every format
 is; the result equals Pinocchio's own URDF parser's model and geometry (the tests hold it so); a
 mesh that cannot be read is left out with a note. The robot is the chain root → tip (:func:`robokit.description.builder.build_robot`).
+
+A URDF in Drake's dialect gives a joint's ``<transmission>`` a rotor inertia and a gear ratio
+(``<drake:rotor_inertia value>``, ``<drake:gear_ratio value>``); the reflected inertia
+``rotor_inertia · gear_ratio²`` goes into ``model.armature`` as Drake adds it to M and inverse
+dynamics (:mod:`robokit.description.reflected`, the rules in :mod:`robokit.description.urdf_check`),
+with one note; ``reflected_inertia=False`` leaves it out.
 """
 from __future__ import annotations
 
@@ -45,7 +51,7 @@ def absolute_dirs(folders: Sequence[str | os.PathLike[str]] | None) -> tuple[str
 
 def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
               package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-              allow_outside_meshes: bool = False) -> Robot:
+              allow_outside_meshes: bool = False, reflected_inertia: bool = True) -> Robot:
     """Load a URDF file as a :class:`~robokit.description.robot.Robot`.
 
     Parameters
@@ -60,6 +66,9 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
     allow_outside_meshes : bool
         Read meshes the file names outside its folder, its package and ``package_dirs``
         (refused by default).
+    reflected_inertia : bool
+        Add Drake's reflected rotor inertia, ``drake:rotor_inertia · drake:gear_ratio²`` of a
+        ``<transmission>``'s actuator, to the joint's armature, as Drake does (default True).
 
     Returns
     -------
@@ -82,7 +91,8 @@ def load_urdf(path: str | os.PathLike[str], tip: str | None = None, *,
     path = Path(path)
     if not path.exists():  # anything else (a FIFO, a device) is refused by the bounded reader
         raise InputError(f"{path}: file not found")
-    return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes)
+    return _from_urdf_file(path, tip, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes,
+                           reflected_inertia=reflected_inertia)
 
 
 def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: object = None,
@@ -114,28 +124,32 @@ def load_urdf_text(text: str, spec: RobotSpec, tip: str | None = None, gravity: 
     >>> load_urdf_text(text, RobotSpec("calibrated", name="rrr", text=text), tip="tool").n
     3
     """
-    robot = _from_urdf_file(Path(f"<{spec.name or 'robot'}>.urdf"), tip, text=text, spec=spec, gravity=gravity)
+    robot = _from_urdf_file(Path(f"<{spec.name or 'robot'}>.urdf"), tip, text=text, spec=spec, gravity=gravity,
+                            reflected_inertia=spec.reflected_inertia)
     return robot._amend(nominal=spec.nominal if nominal is None else nominal)
 
 
 def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os.PathLike[str]] | None = None,
                     allow_outside_meshes: bool = False, text: str | None = None,
-                    spec: RobotSpec | None = None, gravity: object = None) -> Robot:
+                    spec: RobotSpec | None = None, gravity: object = None, reflected_inertia: bool = True) -> Robot:
     """A Robot from a URDF file (or the URDF ``text`` a xacro file expanded to, named by ``path``,
     with that file's ``spec``)."""
     from robokit.description.model_builder import build_model
+    from robokit.description.reflected import drake_reflected_inertia
     from robokit.description.urdf_check import read_urdf
     from robokit.description.urdf_description import description_from_urdf
 
     doc = read_urdf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, text=text)
-    model, visual, collision, notes = build_model(description_from_urdf(doc.xml, str(path)))
+    armature, reflected_notes = drake_reflected_inertia(doc.rotors, reflected_inertia, path)
+    model, visual, collision, notes = build_model(description_from_urdf(doc.xml, str(path), armature))
     if gravity is not None:
         model.gravity.linear = np.asarray(gravity, dtype=float)
     geoms = [visual, collision]
     if spec is None:
         spec = RobotSpec("urdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
-                         allow_outside_meshes=bool(allow_outside_meshes))
+                         allow_outside_meshes=bool(allow_outside_meshes), reflected_inertia=bool(reflected_inertia))
     noted = _noted_by_xacro() if text is not None else frozenset()
+    notes.extend(reflected_notes)
     notes.extend(note for tag, note in doc.unmodelled if tag not in noted)
     return build_robot(doc.name, model, tip, geoms, {}, spec, notes, mimic=doc.mimic, names=doc.names)
 

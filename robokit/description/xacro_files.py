@@ -52,7 +52,9 @@ __all__ = ["expand_xacro", "find_package", "load_xacro"]
 
 _UNSET: Any = object()
 _LOCK = threading.Lock()  # the xacro package keeps its state in module globals
-_IGNORED = ("gazebo", "transmission", "ros2_control")
+#: Elements the expander notes as ignored (the URDF reader then does not note them again); a
+#: <transmission> is the URDF reader's to judge: Drake's give a joint its reflected rotor inertia.
+_IGNORED = ("gazebo", "ros2_control")
 
 
 def _package_dirs(package_dirs: Any, package_path: Any, where: str) -> Any:
@@ -396,7 +398,7 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
 
 def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_args: Mapping[str, str] | None = None,
                package_dirs: Sequence[str | os.PathLike[str]] | None = None, package_path: Any = _UNSET,
-               allow_outside_meshes: bool = False) -> Robot:
+               allow_outside_meshes: bool = False, reflected_inertia: bool = True) -> Robot:
     """Load a xacro (or URDF) file as a :class:`robokit.Robot`.
 
     Parameters
@@ -413,6 +415,9 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
         Read meshes outside the file's folder, its package, the package folders given and the
         packages ``$(find …)`` found (refused by default; the rule of
         :mod:`robokit.description.meshes`, the same for every format).
+    reflected_inertia : bool
+        Add Drake's reflected rotor inertia of the expansion's transmissions to the joints'
+        armature, as for a URDF file (:func:`robokit.description.urdf_files.load_urdf`; default True).
 
     Returns
     -------
@@ -438,10 +443,11 @@ def load_xacro(path: str | os.PathLike[str], tip: str | None = None, *, xacro_ar
     text = expand_xacro(path, xacro_args, package_path, package_dirs_out=found,
                         allow_outside_meshes=allow_outside_meshes)
     spec = RobotSpec("xacro", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_path),
-                     xacro_args=xacro_args_tuple(xacro_args), allow_outside_meshes=allow_outside_meshes)
+                     xacro_args=xacro_args_tuple(xacro_args), allow_outside_meshes=allow_outside_meshes,
+                     reflected_inertia=bool(reflected_inertia))
     # One mesh rule for every format: the meshes must lie in the file's folder, its package, the
     # package folders given or the packages $(find) found, unless allow_outside_meshes.
     dirs = [*(package_path or []), *found]
     return _from_urdf_file(path, tip, package_dirs=dirs, allow_outside_meshes=allow_outside_meshes, text=text,
-                           spec=spec)
+                           spec=spec, reflected_inertia=reflected_inertia)
 

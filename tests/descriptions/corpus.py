@@ -20,7 +20,8 @@ What is in it
 The engines (each independent of robokit; the chain's joints by name, the others locked at zero —
 in MuJoCo at ``qpos0``, where the file draws them)
     * **Pinocchio on the raw file** (URDF, the xacro program's expansion, example-robot-data's own
-      model with the armature its SRDF gives): the whole tree, ``framesForwardKinematics``,
+      model with the armature its SRDF gives; a URDF in Drake's dialect with the reflected inertia of
+      its transmissions as armature, :func:`drake_urdf_reflected_inertia`): the whole tree, ``framesForwardKinematics``,
       ``computeFrameJacobian`` (LOCAL_WORLD_ALIGNED), ``rnea`` and ``crba``, the chain's rows and
       columns taken out — no reduction;
     * **PyBullet** (URDF and xacro with visuals and collisions stripped, ``useFixedBase``,
@@ -460,13 +461,23 @@ def _named(name: str, make: Callable[[Any, Path], Any]) -> Callable[[Any, Path],
 
 
 def _urdf_engines(text_of: Callable[[], str]) -> list[Callable[[Any, Path], Any]]:
+    """Pinocchio and PyBullet on the URDF text, each with Drake's reflected inertia of the file's
+    transmissions (:func:`drake_urdf_reflected_inertia`) as the joints' armature."""
     def pin_engine(robot: Any, tmp: Path) -> Any:
         import pinocchio as pin
 
-        return PinocchioEngine(pin.buildModelFromXML(text_of()), robot)
+        text = text_of()
+        model = pin.buildModelFromXML(text)
+        for jn, value in drake_urdf_reflected_inertia(text).items():
+            if model.existJointName(jn):
+                model.armature[model.joints[model.getJointId(jn)].idx_v] = value
+        return PinocchioEngine(model, robot)
 
     def pb_engine(robot: Any, tmp: Path) -> Any:
-        return _pybullet_on(text_of(), robot, tmp)
+        text = text_of()
+        extra = drake_urdf_reflected_inertia(text)
+        arm = np.array([extra.get(jn, 0.0) for jn in robot.joint_names])
+        return _pybullet_on(text, robot, tmp, armature=arm if arm.any() else None)
 
     return [_named("Pinocchio", pin_engine), _named("PyBullet", pb_engine)]
 
@@ -625,6 +636,33 @@ def drake_reflected_inertia(path: Path) -> dict[str, float]:
         if rotor is None or (effort is not None and float(effort) == 0.0):
             continue
         out[joint.get("name", "")] = float(rotor) * float(gear if gear is not None else 1.0) ** 2
+    return out
+
+
+def drake_urdf_reflected_inertia(text: str) -> dict[str, float]:
+    """Joint name → ``drake:rotor_inertia · drake:gear_ratio²`` of a URDF's transmissions, by the rules of
+    Drake's URDF parser (its ``ParseTransmission``): a transmission whose ``<type>`` (or ``type``
+    attribute) contains ``SimpleTransmission``; its first ``<actuator>``'s ``value`` attributes (0 and 1
+    when absent); none on a fixed joint or one whose ``<limit effort>`` is 0 (no limit or no effort:
+    unlimited, actuated). Read with ElementTree, the ``drake`` prefix declared as Drake's files do."""
+    ns = "{http://drake.mit.edu}"
+    root = ET.fromstring(text)
+    joints = {j.get("name"): j for j in root.findall("joint")}
+    out = {}
+    for tr in root.findall("transmission"):
+        kind = tr.findtext("type") if tr.find("type") is not None else tr.get("type", "")
+        actuator = tr.find("actuator")
+        joint = joints.get(tr.find("joint").get("name")) if tr.find("joint") is not None else None
+        if "SimpleTransmission" not in (kind or "") or actuator is None or joint is None:
+            continue
+        rotor, gear = actuator.find(f"{ns}rotor_inertia"), actuator.find(f"{ns}gear_ratio")
+        limit = joint.find("limit")
+        effort = float(limit.get("effort", "inf")) if limit is not None else float("inf")
+        if (rotor is None and gear is None) or joint.get("type") == "fixed" or effort == 0.0:
+            continue
+        r = float(rotor.get("value")) if rotor is not None else 0.0
+        g = float(gear.get("value")) if gear is not None else 1.0
+        out[joint.get("name")] = r * g * g
     return out
 
 
