@@ -6,7 +6,11 @@ r"""``Robot.save(path)``: a robot written back as a description file robokit (an
   the URDF of its table (:func:`robokit.description.urdf_gen.urdf_from_dh`). A URDF robot loaded with
   ``reflected_inertia=False`` from a file whose transmissions give Drake's rotor inertia is written
   as its file all the same, with a warning: that file loads back with the inertia unless loaded with
-  ``reflected_inertia=False`` again;
+  ``reflected_inertia=False`` again. The tools and limits :meth:`~robokit.Robot.with_tool` and
+  :meth:`~robokit.Robot.with_limits` gave a URDF or calibrated robot are written into its URDF (each tool
+  a massless link fixed to the tip before it, the last one the file's default tip; each chain joint's
+  ``<limit>``; an unlimited revolute joint ``continuous``), so the file loads back as the robot saved; a
+  limit a URDF joint cannot hold (one side infinite) raises :class:`robokit.errors.InputError`;
 * ``.yaml`` / ``.yml`` — a DH table, only when one reproduces the robot exactly: the robot's own
   table, or the one :func:`robokit.dh_from_urdf` extracts when its forward kinematics equals the
   robot's to 1e-9 (checked after writing it to text and reading it back) with offsets of the arm's
@@ -119,7 +123,7 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
         raise InputError(f"{arg}: robokit writes a robot as .urdf or .yaml (DH), got {suffix or 'no suffix'!r}")
     spec = robot.spec
     if spec is not None and spec.kind == "calibrated" and spec.text is not None:
-        return spec.text
+        return _with_tools_and_limits(spec.text, robot, arg)
     if robot.dh is not None:
         from robokit.description.urdf_gen import urdf_from_dh
 
@@ -139,9 +143,92 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
                           "it is, gives joints Drake's rotor inertia (drake:rotor_inertia in a <transmission>): load "
                           "the saved file with reflected_inertia=False (--no-reflected-inertia) for this robot's M",
                           RobokitWarning, stacklevel=outside_level())
-        return text
+        return _with_tools_and_limits(text, robot, arg)
     raise InputError(f"{arg}: robokit has no URDF text for {robot.name} (loaded from {robot.source or 'a model'}); "
                      "it writes URDF for calibrated robots, DH robots and URDF files")
+
+
+def _urdf_link_of(robot: Robot, frame_id: int) -> str:
+    """The URDF link whose frame is the Pinocchio frame ``frame_id``: the link itself, or the child
+    link of a joint (a URDF joint's frame is its child link's)."""
+    pin = robot._pin
+    frame = robot.model.frames[frame_id]
+    if frame.type == pin.FrameType.BODY:
+        return str(frame.name)
+    for f in robot.model.frames:  # a joint's frame: the body frame after it, at the same place
+        if f.type == pin.FrameType.BODY and f.parentFrame == frame_id and f.placement.isApprox(frame.placement):
+            return str(f.name)
+    raise InputError(f"path: the tip {frame.name!r} of {robot.name} is no link of its URDF; a tool added to it "
+                     "cannot be written there")
+
+
+def _with_tools_and_limits(text: str, robot: Robot, arg: str) -> str:
+    """A URDF robot's text with what :meth:`~robokit.Robot.with_tool` and
+    :meth:`~robokit.Robot.with_limits` gave it (``robot.spec.tools`` and ``.limits``), which the file
+    itself does not hold: each tool a massless link fixed to the tip before it, each chain joint's
+    ``<limit lower upper>`` set (its effort and velocity kept; a revolute joint limited to (−inf, inf)
+    becomes ``continuous``, URDF's unlimited revolute joint). Unchanged when there are none.
+
+    Examples
+    --------
+    >>> from robokit.description.models import model_path
+    >>> T = np.eye(4); T[2, 3] = 0.1
+    >>> robot = rk.load(str(model_path("rrr", ".urdf"))).with_tool(T)
+    >>> text = _with_tools_and_limits(robot_text(rk.load(str(model_path("rrr", ".urdf"))), ".urdf"), robot, "path")
+    >>> '<link name="tcp" />' in text, rk.load(str(model_path("rrr", ".urdf"))).tip
+    (True, 'tool')
+    """
+    import xml.etree.ElementTree as ET
+
+    from robokit._xml import parse_xml
+    from robokit.description.dh import rpy_from_matrix
+
+    spec = robot.spec
+    if spec is None or (not spec.tools and not spec.limits):
+        return text
+    root = parse_xml(text, robot.source or "the robot's URDF", namespaces=False)
+    joints = {j.get("name"): j for j in root.findall("joint")}
+    links = {link.get("name") for link in root.findall("link")}
+    if spec.tools:
+        parent = _urdf_link_of(robot, int(robot.model.frames[robot.model.getFrameId(spec.tools[0][0])].parentFrame))
+        for name, values in spec.tools:
+            T = np.array(values, dtype=float).reshape(4, 4)
+            joint = f"{parent}_to_{name}"
+            while joint in joints or joint in links:
+                joint += "_"
+            if name in links:
+                raise InputError(f"{arg}: the tool {name!r} has the name of a link of the URDF; give it another")
+            el = ET.SubElement(root, "joint", {"name": joint, "type": "fixed"})
+            ET.SubElement(el, "origin", {"xyz": " ".join(repr(float(v)) for v in T[:3, 3]),
+                                         "rpy": " ".join(repr(float(v)) for v in rpy_from_matrix(T[:3, :3]))})
+            ET.SubElement(el, "parent", {"link": parent})
+            ET.SubElement(el, "child", {"link": name})
+            ET.SubElement(root, "link", {"name": name})
+            joints[joint] = el
+            links.add(name)
+            parent = name
+    for name, (lo, hi) in zip(robot.joint_names, spec.limits):
+        el = joints.get(name)
+        if el is None:
+            raise InputError(f"{arg}: joint {name!r} of {robot.name} is not in its URDF; its limits cannot be written")
+        kind = el.get("type")
+        if kind == "continuous" or (kind == "revolute" and lo == -np.inf and hi == np.inf):
+            if np.isfinite(lo) or np.isfinite(hi):  # (with_limits refuses it; a hand-made spec might not)
+                raise InputError(f"{arg}: joint {name!r} is continuous; its limits can only be (-inf, inf)")
+            el.set("type", "continuous")
+            for limit in el.findall("limit"):
+                for key in ("lower", "upper"):
+                    limit.attrib.pop(key, None)
+            continue
+        if not (np.isfinite(lo) and np.isfinite(hi)):
+            raise InputError(f"{arg}: joint {name!r} ({kind}) has the limits ({lo:g}, {hi:g}), which a URDF "
+                             f"{kind} joint cannot hold; give finite limits (with_limits)")
+        limit = el.find("limit")
+        if limit is None:
+            limit = ET.SubElement(el, "limit", {"effort": "0", "velocity": "0"})
+        limit.set("lower", repr(float(lo)))
+        limit.set("upper", repr(float(hi)))
+    return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
 def _has_drake_rotor(text: str, source: str) -> bool:
