@@ -185,6 +185,7 @@ def _with_tools_and_limits(text: str, robot: Robot, arg: str) -> str:
 
     spec = robot.spec
     if spec is None or (not spec.tools and not spec.limits):
+        _check_tip(text, robot, arg)
         return text
     root = parse_xml(text, robot.source or "the robot's URDF", namespaces=False)
     joints = {j.get("name"): j for j in root.findall("joint")}
@@ -228,7 +229,31 @@ def _with_tools_and_limits(text: str, robot: Robot, arg: str) -> str:
             limit = ET.SubElement(el, "limit", {"effort": "0", "velocity": "0"})
         limit.set("lower", repr(float(lo)))
         limit.set("upper", repr(float(hi)))
-    return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    out = '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    _check_tip(out, robot, arg)
+    return out
+
+
+def _check_tip(text: str, robot: Robot, arg: str) -> None:
+    """Warn when loading ``text`` would give another tip than ``robot``'s (one chosen with ``tip=`` off
+    the file's longest chain, which a URDF cannot record): the warning names the ``tip=`` to load it with."""
+    import warnings
+
+    from robokit._stack import outside_level
+    from robokit._xml import parse_xml
+    from robokit.description.builder import choose_tip
+    from robokit.errors import RobokitWarning
+
+    root = parse_xml(text, robot.source or "the robot's URDF", namespaces=False)
+    names = {el.get("name") for tag in ("link", "joint") for el in root.findall(tag)} - {None}
+    try:
+        default = choose_tip(robot._pin.buildModelFromXML(text), names)[0]
+    except InputError:
+        default = None
+    if default != robot.tip:
+        warnings.warn(f"{arg}: the saved URDF's default tip is {default or 'none (a tree)'}, not {robot.tip!r}: load "
+                      f"it with tip={robot.tip!r} (--tip {robot.tip}) for this robot", RobokitWarning,
+                      stacklevel=outside_level())
 
 
 def _has_drake_rotor(text: str, source: str) -> bool:

@@ -101,3 +101,16 @@ def test_any_tool_pose_survives_the_file(tmp_path_factory, xyz, rpy):
     back = _load(changed.save(tmp_path_factory.mktemp("t") / "rrr_tool.urdf"))
     assert back.tip == "tcp"
     assert _same_robot(changed, back, samples=2) < 1e-12
+
+
+def test_a_tip_off_the_longest_chain_is_named_when_saved(tmp_path):
+    """A URDF cannot record a tip chosen with tip=: the save warns with the tip= that loads it back."""
+    robot = _load(IIWA, tip="iiwa_link_5")
+    with pytest.warns(RobokitWarning, match=r"default tip is iiwa_link_ee, not 'iiwa_link_5': load it with "
+                                            r"tip='iiwa_link_5'"):
+        path = robot.save(tmp_path / "iiwa5.urdf")
+    assert _load(path).tip == "iiwa_link_ee"
+    assert _same_robot(robot, _load(path, tip="iiwa_link_5")) < 1e-12
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RobokitWarning)  # the default tip: nothing to say
+        _load(IIWA).save(tmp_path / "iiwa.urdf")
