@@ -400,17 +400,59 @@ def _check_measured(measured: ArrayLike, K: int) -> np.ndarray:
                      f"{K} joint vectors, got {m.shape}")
 
 
-def _scaled_qr(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """Column norms, pivot order, R of the pivoted QR of the column-scaled J, numerical rank."""
-    import scipy.linalg
+#: Relative difference of two columns' remaining norms below which :func:`_pivoted_qr` counts them as
+#: tied and takes the earlier column: exactly dependent parameters (joint 1's rz and joint 2's ry of an arm
+#: whose axes meet) have equal norms up to round-off, which differs between BLAS builds and processors.
+PIVOT_TIE = 1e-9
 
+
+def _pivoted_qr(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """R and the column order of a QR factorization of ``A`` with column pivoting (Householder, the
+    column with the largest remaining norm first, as LAPACK's geqp3 chooses), the norms computed anew at
+    every step and ties (within :data:`PIVOT_TIE`) taken in column order — the same pivots on every
+    machine, where LAPACK's choice among equal norms follows the round-off of the BLAS it runs on.
+
+    Examples
+    --------
+    >>> A = np.array([[1.0, 2.0, 2.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]])   # columns 2 and 3 equal
+    >>> R, piv = _pivoted_qr(A)
+    >>> piv.tolist(), np.allclose(np.abs(R[0]), np.abs(A[0, piv]))
+    ([1, 0, 2], True)
+    """
+    W = np.array(A, dtype=float)
+    m, n = W.shape
+    piv = np.arange(n)
+    for k in range(min(m, n)):
+        norms = np.linalg.norm(W[k:, k:], axis=0)
+        top = norms.max()
+        if top == 0.0:
+            break
+        tied = np.flatnonzero(norms >= top * (1.0 - PIVOT_TIE))
+        j = k + int(tied[np.argmin(piv[k + tied])])
+        W[:, [k, j]] = W[:, [j, k]]
+        piv[[k, j]] = piv[[j, k]]
+        x = W[k:, k]
+        alpha = -math.copysign(float(np.linalg.norm(x)), float(x[0]))
+        v = x.copy()
+        v[0] -= alpha
+        vv = float(v @ v)
+        if vv > 0.0:
+            W[k:, k:] -= np.outer(v, (2.0 / vv) * (v @ W[k:, k:]))
+        W[k + 1:, k] = 0.0
+        W[k, k] = alpha
+    return np.triu(W[:min(m, n)]), piv
+
+
+def _scaled_qr(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Column norms, pivot order, R of the pivoted QR of the column-scaled J (:func:`_pivoted_qr`),
+    numerical rank."""
     norms = np.linalg.norm(J, axis=0)
     scale = np.where(norms > 1e-12 * max(norms.max(), 1e-300), norms, np.inf)
     # J is tall (K·m rows, 6(n+1) columns): its R without Q first (LAPACK geqrf, no Q formed),
     # then the pivoted QR of that small R — the same pivots and R, since orthogonal factors from
     # the left change no column norm — instead of a pivoted QR that forms the tall Q
     R0 = np.linalg.qr(J / scale, mode="r")
-    _, R, piv = scipy.linalg.qr(R0, pivoting=True)
+    R, piv = _pivoted_qr(R0)
     d = np.abs(np.diag(R))
     rank = int(np.sum(d > RANK_TOL * d[0])) if d.size and d[0] > 0 else 0
     return scale, piv, R, rank
