@@ -451,7 +451,7 @@ def _scaled_qr(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     # J is tall (K·m rows, 6(n+1) columns): its R without Q first (LAPACK geqrf, no Q formed),
     # then the pivoted QR of that small R — the same pivots and R, since orthogonal factors from
     # the left change no column norm — instead of a pivoted QR that forms the tall Q
-    R0 = np.linalg.qr(J / scale, mode="r")
+    R0 = np.asarray(np.linalg.qr(J / scale, mode="r"))
     R, piv = _pivoted_qr(R0)
     d = np.abs(np.diag(R))
     rank = int(np.sum(d > RANK_TOL * d[0])) if d.size and d[0] > 0 else 0

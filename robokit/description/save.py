@@ -209,9 +209,10 @@ def _with_tools_and_limits(text: str, robot: Robot, arg: str) -> str:
             links.add(name)
             parent = name
     for name, (lo, hi) in zip(robot.joint_names, spec.limits):
-        el = joints.get(name)
-        if el is None:
+        found = joints.get(name)
+        if found is None:
             raise InputError(f"{arg}: joint {name!r} of {robot.name} is not in its URDF; its limits cannot be written")
+        el = found
         kind = el.get("type")
         if kind == "continuous" or (kind == "revolute" and lo == -np.inf and hi == np.inf):
             if np.isfinite(lo) or np.isfinite(hi):  # (with_limits refuses it; a hand-made spec might not)
@@ -224,9 +225,8 @@ def _with_tools_and_limits(text: str, robot: Robot, arg: str) -> str:
         if not (np.isfinite(lo) and np.isfinite(hi)):
             raise InputError(f"{arg}: joint {name!r} ({kind}) has the limits ({lo:g}, {hi:g}), which a URDF "
                              f"{kind} joint cannot hold; give finite limits (with_limits)")
-        limit = el.find("limit")
-        if limit is None:
-            limit = ET.SubElement(el, "limit", {"effort": "0", "velocity": "0"})
+        existing = el.find("limit")
+        limit = ET.SubElement(el, "limit", {"effort": "0", "velocity": "0"}) if existing is None else existing
         limit.set("lower", repr(float(lo)))
         limit.set("upper", repr(float(hi)))
     out = '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
@@ -245,7 +245,7 @@ def _check_tip(text: str, robot: Robot, arg: str) -> None:
     from robokit.errors import RobokitWarning
 
     root = parse_xml(text, robot.source or "the robot's URDF", namespaces=False)
-    names = {el.get("name") for tag in ("link", "joint") for el in root.findall(tag)} - {None}
+    names = {str(el.get("name")) for tag in ("link", "joint") for el in root.findall(tag) if el.get("name") is not None}
     try:
         default = choose_tip(robot._pin.buildModelFromXML(text), names)[0]
     except InputError:
