@@ -1268,10 +1268,10 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
     check_schema(root, path)
-    names = check_names(root, path)
-    check_references(root, path, names)
+    known = check_names(root, path)
+    check_references(root, path, known)
     ctx = _Ctx(path, root)
-    ctx.names = names
+    ctx.names = known
     _read_compiler(ctx)
     ctx.compiler["allow_outside_meshes"] = allow_outside_meshes
     _read_defaults(ctx)
@@ -1328,9 +1328,9 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
                 raise InputError(f"{path}: <option {key}={opt.get(key)!r}>: expected {' or '.join(words)} (MuJoCo "
                                  "refuses the file: invalid keyword)")
         for flag in opt.findall("flag"):
-            for key, v in flag.attrib.items():
-                if v not in ("enable", "disable"):
-                    raise InputError(f"{path}: <flag {key}={v!r}>: expected enable or disable (MuJoCo refuses the "
+            for key, word in flag.attrib.items():
+                if word not in ("enable", "disable"):
+                    raise InputError(f"{path}: <flag {key}={word!r}>: expected enable or disable (MuJoCo refuses the "
                                      "file: invalid keyword)")
             if flag.get("gravity") == "disable":
                 gravity = np.zeros(3)
