@@ -32,6 +32,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import AbstractSet, Any, Iterable, Iterator, Mapping
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._stack import outside_level
@@ -360,7 +361,8 @@ def physicality_problems(model: Any, tip: str) -> list[tuple[str, str]]:
 
 def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
                 spec: RobotSpec, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None,
-                names: AbstractSet[str] | None = None) -> Robot:
+                names: AbstractSet[str] | None = None,
+                joint_values: Mapping[str, Mapping[str, float]] | None = None) -> Robot:
     """The :class:`Robot` of the chain root → ``tip`` of a Pinocchio ``model``.
 
     Parameters
@@ -387,6 +389,10 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         Every name the file gives (links, bodies, joints, frames, sites). The default tip is
         chosen among them and ``robot.frame_names`` holds only them (module docstring); None
         reports every frame of the model but Pinocchio's ``universe``.
+    joint_values : dict of str to dict of str to float, optional
+        Named configurations the file gives joint by joint (SDFormat's ``<initial_position>``):
+        each becomes ``configurations[name]`` over the chain's joints (0 for a joint it does not
+        name); a value on a joint off the chain, which is locked at 0, is named in a note.
 
     Returns
     -------
@@ -448,6 +454,15 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         # (most ROS-Industrial arm macros: no <inertial> anywhere) — every dynamics result would be zero
         notes.append(f"{source}: no body on the chain to {tip!r} has mass (the file gives none): its mass matrix, "
                      f"gravity torques and inverse dynamics are all zero")
+    configurations = dict(configurations)
+    for cname, values in (joint_values or {}).items():
+        on_chain = list(chain.names)[1:]
+        if any(values.get(j, 0.0) != 0.0 for j in on_chain):
+            configurations[cname] = np.array([float(values.get(j, 0.0)) for j in on_chain])
+        off = [f"{j} {v:g}" for j, v in values.items() if j not in on_chain and v != 0.0]
+        if off:
+            notes.append(f"{name}: the file's {cname!r} values of joints off the chain to {tip!r} ignored (they are "
+                         f"locked at 0): {', '.join(off)}")
     it = iter(new_geoms)
     geoms = [next(it) if g is not None else None for g in geoms]
     robot = Robot(name, chain, tip, visual_model=geoms[0], collision_model=geoms[1],

@@ -169,7 +169,7 @@ def first_body_placement(path: str | os.PathLike[str]) -> tuple[str | None, np.n
     --------
     >>> import pathlib, tempfile
     >>> xml = ('<mujoco><worldbody><body name="base" pos="0 0 0.5">'
-    ...        '<body name="l1"><joint name="j1"/></body></body></worldbody></mujoco>')
+    ...        '<body name="l1"><joint name="j1"/><geom size="0.1"/></body></body></worldbody></mujoco>')
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     path = pathlib.Path(tmp, "arm.xml")
     ...     _ = path.write_text(xml)

@@ -23,6 +23,12 @@ What decides a number, and is therefore computed here as MuJoCo computes it:
   their ``pos``), ``axis``, ``range``/``limited``, ``ref`` (the zero of the joint), ``armature``,
   ``damping``; ``<option gravity>`` and ``<flag gravity="disable">``.
 
+What MuJoCo's compiler refuses is refused (:class:`robokit.errors.InputError`, one line naming the file and
+the element): what its schema does not know (:mod:`robokit.description._mjcf_schema`), repeated names and
+references to undefined objects, more than 6 degrees of freedom or a rotation after a ball joint in one
+body, a moving body without mass or inertia, sizes that are not positive, planes on moving bodies, mocap
+bodies that are not jointless children of the world, keyframes of the wrong sizes, and bad keywords.
+
 The result, :class:`CompiledMjcf`, holds every body of the file (the world first), each with
 its placement in its parent, joints, inertial (as MuJoCo's ``body_mass``, ``body_ipos``,
 ``body_iquat``, ``body_inertia``), geoms and sites. Bodies without a name are named from their
@@ -41,6 +47,7 @@ from typing import Any, Iterator, Sequence
 import numpy as np
 
 from robokit.description import _mjcf_math as mm
+from robokit.description._mjcf_schema import check_names, check_references, check_schema
 from robokit.errors import InputError
 
 __all__ = ["MjcfJoint", "MjcfGeom", "MjcfSite", "MjcfBody", "CompiledMjcf", "compile_mjcf"]
@@ -280,6 +287,15 @@ class _Ctx:
         self.defaults: dict[str, dict[str, dict[str, str]]] = {}
         self.meshes: dict[str, dict[str, str]] = {}
         self.mesh_cache: dict[str, Any] = {}
+        self.names: dict[str, set[str]] = {}  # every object's name, by kind (check_names)
+
+    def check_refs(self, elem: ET.Element, name: str, attrs: dict[str, str], refs: dict[str, str]) -> None:
+        """Refuse an attribute (own or from a default class) naming an asset the file lacks, as MuJoCo does."""
+        for key, kind in refs.items():
+            value = attrs.get(key)
+            if value and value not in self.names.get(kind, set()):
+                raise InputError(f"{self.where(elem, name)} {key}={value!r}: no {kind} named {value!r} (MuJoCo refuses "
+                                 "the file)")
 
     @property
     def degree(self) -> bool:
@@ -339,8 +355,8 @@ def _read_compiler(ctx: _Ctx) -> None:
             c["angle"] = a["angle"]
         if "eulerseq" in a:
             seq = a["eulerseq"]
-            if len(seq) != 3 or any(ch not in "xyzXYZ" for ch in seq):
-                raise InputError(f"{ctx.path}: <compiler eulerseq={seq!r}>: three of x, y, z, X, Y, Z")
+            if len(seq) != 3:  # the letters are checked where an euler angle is read, as MuJoCo does
+                raise InputError(f"{ctx.path}: <compiler eulerseq={seq!r}>: must have exactly 3 characters")
             c["eulerseq"] = seq
         if "inertiafromgeom" in a:
             if a["inertiafromgeom"] not in ("true", "false", "auto"):
@@ -621,6 +637,7 @@ class _Geom:
 def _geom(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec, mm.Quat] | None,
           infer: bool) -> _Geom:
     a, dflt = _attrs(ctx, elem, cls)
+    ctx.check_refs(elem, name, a, {"material": "material", "hfield": "hfield"})
     gtype = a.get("type", "sphere")
     if gtype not in _GEOM_TYPES:
         raise InputError(f"{ctx.where(elem, name)} type={gtype!r}: expected one of {', '.join(_GEOM_TYPES)}")
@@ -711,6 +728,11 @@ def _geom(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec,
                     file_pose = _file_pose(scale, refpos, refquat, meshpos, info.quat)
     elif gtype in ("mesh", "sdf"):
         raise InputError(f"{ctx.where(elem, name)}: a {gtype} geom needs a mesh attribute")
+    _check_size(ctx, elem, name, gtype, size, mesh_name is not None)
+    condim = _int(ctx, a, "condim", 3, elem)
+    if condim not in (1, 3, 4, 6):
+        raise InputError(f"{ctx.where(elem, name)} condim={condim}: expected 1, 3, 4 or 6 (MuJoCo refuses the file: "
+                         "invalid condim)")
     if infer and gtype in ("hfield", "sdf"):
         raise InputError(f"{ctx.where(elem, name)}: the mass of a {gtype} geom is not computed by robokit; give the "
                          "body an <inertial>")
@@ -745,6 +767,21 @@ def _geom(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec,
                    group=group, mass=mass, rgba=np.array(rgba), mesh=mesh_name if gtype in ("mesh", "sdf") else None,
                    vertices=vertices, faces=faces, mesh_file=mesh_file, mesh_file_pose=file_pose, mesh_scale=mesh_scale)
     return _Geom(out, mass, inertia, pos, quat, group)
+
+
+#: the sizes MuJoCo requires positive, by geom or site type (``plane``: its grid spacing, the third)
+_POSITIVE_SIZES = {"sphere": (0,), "capsule": (0, 1), "cylinder": (0, 1), "ellipsoid": (0, 1, 2), "box": (0, 1, 2),
+                   "plane": (2,)}
+
+
+def _check_size(ctx: _Ctx, elem: ET.Element, name: str, gtype: str, size: Sequence[float], fitted: bool) -> None:
+    """MuJoCo's rule: a primitive's sizes positive (a primitive fitted to a mesh takes its sizes from it)."""
+    if fitted and gtype != "plane":
+        return
+    for k in _POSITIVE_SIZES.get(gtype, ()):
+        if not size[k] > 0:
+            raise InputError(f"{ctx.where(elem, name)}: a {gtype} needs size[{k}] > 0, got {size[k]:g} (MuJoCo "
+                             "refuses the file)")
 
 
 def _file_pose(scale: Sequence[float], refpos: Sequence[float], refquat: Sequence[float], meshpos: mm.Vec,
@@ -844,6 +881,26 @@ def _joint(ctx: _Ctx, elem: ET.Element, cls: str, name: str, named: bool,
                      stiffness=num("stiffness"), frictionloss=num("frictionloss"), named=named)
 
 
+_DOFS = {"free": 6, "ball": 3, "hinge": 1, "slide": 1}
+
+
+def _check_joint_order(ctx: _Ctx, elem: ET.Element, name: str, joints: Sequence[MjcfJoint]) -> None:
+    """MuJoCo's rules for the joints of one body: at most 6 degrees of freedom (a free joint has 6,
+    a ball 3), and no rotation (a hinge or ball) after a ball joint."""
+    dofs = sum(_DOFS[j.type] for j in joints)
+    if dofs > 6:
+        kinds = ", ".join(f"{j.name} ({j.type})" for j in joints)
+        raise InputError(f"{ctx.where(elem, name)}: more than 6 degrees of freedom in one body ({dofs}: {kinds}); "
+                         "MuJoCo refuses the file")
+    ball = None
+    for j in joints:
+        if ball is not None and j.type in ("hinge", "ball"):
+            raise InputError(f"{ctx.where(elem, name)}: {j.type} joint {j.name!r} follows ball joint {ball!r}; "
+                             "MuJoCo refuses a rotation after a ball joint in one body")
+        if j.type == "ball":
+            ball = j.name
+
+
 def _placed(ctx: _Ctx, elem: ET.Element, a: dict[str, str], name: str | None, cls: str
             ) -> tuple[str, mm.Vec, mm.Quat]:
     """A ``<frame>``'s or ``<body>``'s childclass (``cls`` when it names none; checked), position and
@@ -926,6 +983,7 @@ def _body(ctx: _Ctx, elem: ET.Element, parent: int, name: str, named: bool, fram
         elif child.tag in ("attach", "replicate", "composite", "flexcomp"):
             raise InputError(f"{ctx.where(child)} in body {name!r}: <{child.tag}> is not read by robokit; "
                              "expand it into plain bodies first")
+    _check_joint_order(ctx, elem, name, body.joints)
     body.geoms = [g.out for g in geoms]
     if ifg == "true" or (not explicit and ifg == "auto"):
         _inertia_from_geoms(ctx, body, geoms)
@@ -954,8 +1012,26 @@ def _body(ctx: _Ctx, elem: ET.Element, parent: int, name: str, named: bool, fram
 
 def _site(ctx: _Ctx, elem: ET.Element, cls: str, name: str, frame: tuple[mm.Vec, mm.Quat] | None) -> MjcfSite:
     a, dflt = _attrs(ctx, elem, cls)
+    ctx.check_refs(elem, name, a, {"material": "material"})
+    stype = a.get("type", "sphere")
+    if stype not in _GEOM_TYPES:
+        raise InputError(f"{ctx.where(elem, name)} type={stype!r}: expected one of sphere, capsule, ellipsoid, "
+                         "cylinder, box, mesh")
+    if stype in ("plane", "hfield"):
+        raise InputError(f"{ctx.where(elem, name)} type={stype!r}: MuJoCo allows no plane or height field as a site")
+    if stype == "mesh" and a.get("mesh") not in ctx.meshes:
+        raise InputError(f"{ctx.where(elem, name)}: a mesh site needs the name of a mesh asset "
+                         f"(mesh={a.get('mesh')!r})")
+    ssize = list(_numbers(ctx, a, "size", 3, elem, exact=False) or [])
+    _check_size(ctx, elem, name, stype, ssize + [0.005] * (3 - len(ssize)), False)  # MuJoCo's default site size
     fromto = _numbers(ctx, a, "fromto", 6, elem)
     if fromto is not None:
+        if stype not in ("capsule", "cylinder", "ellipsoid", "box"):
+            raise InputError(f"{ctx.where(elem, name)}: fromto requires capsule, cylinder, box or ellipsoid")
+        if any(_numbers(ctx, a, "pos", 3, elem) or ()):
+            raise InputError(f"{ctx.where(elem, name)}: both pos and fromto defined")
+        if mm.normalized((fromto[0] - fromto[3], fromto[1] - fromto[4], fromto[2] - fromto[5]))[1] / 2 < mm.EPS:
+            raise InputError(f"{ctx.where(elem, name)}: fromto points too close")
         vec, _ = mm.normalized((fromto[0] - fromto[3], fromto[1] - fromto[4], fromto[2] - fromto[5]))
         pos = ((fromto[0] + fromto[3]) / 2, (fromto[1] + fromto[4]) / 2, (fromto[2] + fromto[5]) / 2)
         quat = mm.z_to_quat(vec)
@@ -1080,6 +1156,69 @@ def _check_free_joints(ctx: _Ctx, bodies: list[_Body], fused: set[int]) -> None:
                                  "MuJoCo allows a free joint only on a top-level body (a child of <worldbody>)")
 
 
+#: the keywords of ``<option>``'s keyword attributes (MuJoCo's XML reference)
+_OPTION_WORDS = {"integrator": ("Euler", "RK4", "implicit", "implicitfast"), "cone": ("pyramidal", "elliptic"),
+                 "jacobian": ("dense", "sparse", "auto"), "solver": ("PGS", "CG", "Newton")}
+
+
+def _check_moving_masses(ctx: _Ctx, bodies: list[_Body]) -> None:
+    """MuJoCo's rule: a body with a joint has mass and principal moments of at least mjMINVAL
+    (1e-15), its own or those of a body welded to it below (a child without a joint, and so on)."""
+    def solid(b: _Body) -> bool:
+        return b.mass >= mm.MINVAL and min(b.inertia) >= mm.MINVAL
+
+    kids: dict[int, list[int]] = {}
+    for i, b in enumerate(bodies[1:], 1):
+        kids.setdefault(b.parent, []).append(i)
+    for i, b in enumerate(bodies[1:], 1):
+        if not b.joints or solid(b):
+            continue
+        stack, found = list(kids.get(i, [])), False
+        while stack and not found:
+            k = stack.pop()
+            if not bodies[k].joints:
+                found = solid(bodies[k])
+                stack.extend(kids.get(k, []))
+        if not found:
+            raise InputError(f"{ctx.where(b.elem, b.name)}: a body with a joint needs mass and inertia (mass "
+                             f"{b.mass:g} kg, principal moments {', '.join(f'{x:g}' for x in b.inertia)} kg·m², and "
+                             "no body welded below it has both); MuJoCo refuses the file")
+
+
+def _check_planes(ctx: _Ctx, bodies: list[_Body]) -> None:
+    """MuJoCo's rules: a plane geom only on a body that does not move (no joint on it or above it); a
+    mocap body a child of the world without joints."""
+    moving = [False] * len(bodies)
+    for i, b in enumerate(bodies[1:], 1):
+        moving[i] = bool(b.joints) or moving[b.parent]
+        if b.mocap and (b.joints or b.parent != 0):
+            raise InputError(f"{ctx.where(b.elem, b.name)}: a mocap body must be a child of <worldbody> without "
+                             "joints (MuJoCo refuses the file)")
+        for g in b.geoms:
+            if moving[i] and g.type == "plane":
+                raise InputError(f"{ctx.path}: <geom name={g.name!r}> in <body name={b.name!r}>: a plane only on a "
+                                 "body that does not move (MuJoCo refuses the file)")
+
+
+_NQ = {"free": 7, "ball": 4, "hinge": 1, "slide": 1}
+
+
+def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
+    """MuJoCo's rule: a ``<key>``'s ``qpos``, ``qvel``, ``ctrl``, ``mpos`` and ``mquat`` have the model's sizes."""
+    joints = [j for b in bodies for j in b.joints]
+    nmocap = sum(1 for b in bodies if b.mocap)
+    nu = sum(1 for sec in ctx.root.findall("actuator") for a in sec if isinstance(a.tag, str))
+    sizes = {"qpos": sum(_NQ[j.type] for j in joints), "qvel": sum(_DOFS[j.type] for j in joints), "ctrl": nu,
+             "mpos": 3 * nmocap, "mquat": 4 * nmocap}
+    for sec in ctx.root.findall("keyframe"):
+        for key in sec.findall("key"):
+            for attr, n in sizes.items():
+                vals = _numbers(ctx, dict(key.attrib), attr, None, key)
+                if vals is not None and len(vals) != n:
+                    raise InputError(f"{ctx.where(key, key.get('name'))} {attr}: {len(vals)} numbers, the model has "
+                                     f"{n} (MuJoCo refuses the file)")
+
+
 def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *,
                  allow_outside_meshes: bool = False) -> CompiledMjcf:
     """Compile an MJCF file by MuJoCo's rules, without MuJoCo (see the module docstring).
@@ -1128,7 +1267,11 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
         root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
+    check_schema(root, path)
+    known = check_names(root, path)
+    check_references(root, path, known)
     ctx = _Ctx(path, root)
+    ctx.names = known
     _read_compiler(ctx)
     ctx.compiler["allow_outside_meshes"] = allow_outside_meshes
     _read_defaults(ctx)
@@ -1147,6 +1290,9 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
             elif child.tag == "geom":
                 world_geoms.append(_geom(ctx, child, ccls, child.get("name") or f"world/geom{k_geom}", frame_c, False))
                 k_geom += 1
+            elif child.tag in ("attach", "replicate", "flexcomp"):
+                raise InputError(f"{ctx.where(child)} in <worldbody>: <{child.tag}> is not read by robokit; "
+                                 "expand it into plain bodies first")
             elif child.tag == "site":
                 bodies[0].sites.append(_site(ctx, child, ccls, child.get("name") or f"world/site{k_site}", frame_c))
                 k_site += 1
@@ -1157,6 +1303,7 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     if ctx.compiler["fusestatic"]:
         dropped, fused = _fused_into_world(ctx, bodies)
     _check_free_joints(ctx, bodies, fused)
+    _check_planes(ctx, bodies)
     stm = ctx.compiler["settotalmass"]
     if stm > 0:
         total = sum(b.mass for i, b in enumerate(bodies) if i > 0 and i not in dropped)
@@ -1165,6 +1312,8 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
             if i > 0:
                 b.mass *= scale
                 b.inertia = (b.inertia[0] * scale, b.inertia[1] * scale, b.inertia[2] * scale)
+    _check_moving_masses(ctx, bodies)
+    _check_keyframes(ctx, bodies)
     gravity = np.array([0.0, 0.0, -9.81])
     for opt in root.iter("option"):
         g = _numbers(ctx, dict(opt.attrib), "gravity", 3, opt)
@@ -1174,7 +1323,15 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
             v = _numbers(ctx, dict(opt.attrib), key, 1, opt)
             if v is not None and v[0] != 0:
                 ctx.notes.append(f"{path}: <option {key}={v[0]:g}> ignored: robokit models no fluid forces")
+        for key, words in _OPTION_WORDS.items():
+            if key in opt.attrib and opt.get(key) not in words:
+                raise InputError(f"{path}: <option {key}={opt.get(key)!r}>: expected {' or '.join(words)} (MuJoCo "
+                                 "refuses the file: invalid keyword)")
         for flag in opt.findall("flag"):
+            for key, word in flag.attrib.items():
+                if word not in ("enable", "disable"):
+                    raise InputError(f"{path}: <flag {key}={word!r}>: expected enable or disable (MuJoCo refuses the "
+                                     "file: invalid keyword)")
             if flag.get("gravity") == "disable":
                 gravity = np.zeros(3)
     for b in bodies[1:]:

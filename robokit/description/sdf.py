@@ -25,7 +25,9 @@ What is read
       Drake's ``<drake:rotor_inertia>`` and ``<drake:gear_ratio>`` become the joint's reflected
       inertia ``rotor_inertia · gear_ratio²``, which Drake adds to the mass matrix's diagonal and to
       inverse dynamics, as ``model.armature`` does (only on a joint Drake actuates: ``<effort>``
-      not 0) — one note says so, and ``reflected_inertia=False`` leaves it out;
+      not 0) — one note says so, and ``reflected_inertia=False`` leaves it out; ``<axis><initial_position>``
+      (the joint's initial position, which Gazebo does not apply) becomes the robot's named configuration
+      ``"initial"`` over the chain's joints (a value on a joint off the chain, locked at 0, is noted);
     * ``<frame name attached_to>`` — an operational frame of the model;
     * nested ``<model>``\ s (names scoped ``outer::inner::link``), ``<include>`` of
       ``model://NAME`` (a folder NAME with a ``model.config`` or a ``model.sdf``) and
@@ -44,7 +46,7 @@ Frames and poses (SDFormat 1.7–1.11, and the 1.4–1.6 rules before them)
 
 What is not modelled
     Everything else is read and listed once in a note (``<plugin>``, ``<sensor>``,
-    ``<self_collide>``, ``<surface>``, joint springs, ``<drake:…>`` elements other than the two
+    ``<self_collide>``, ``<surface>``, joint springs, ``<enable_wind>true</enable_wind>``, ``<drake:…>`` elements other than the two
     above such as collision filter groups and acceleration limits, ...); purely cosmetic
     elements (materials other than the diffuse colour, shadows, transparency) are skipped
     silently. A robokit robot is fixed-base: the root link is fixed to the world where the model
@@ -110,7 +112,9 @@ _NO_LIMIT = 1e16
 _WORLD = "\x00world"
 #: Cosmetic elements skipped without a note.
 _COSMETIC = {"material", "cast_shadows", "laser_retro", "transparency", "visibility_flags", "meta",
-             "must_be_base_link", "allow_auto_disable", "enable_wind"}
+             "must_be_base_link", "allow_auto_disable"}
+#: Flags that change no number when false (skipped then) and name a force robokit does not model when true.
+_FORCE_FLAGS = {"enable_wind": "wind forces"}
 _KNOWN = {
     "model": {"pose", "static", "link", "joint", "frame", "model", "include"},
     "link": {"pose", "inertial", "visual", "collision"},
@@ -118,7 +122,7 @@ _KNOWN = {
     "visual": {"pose", "geometry"},
     "collision": {"pose", "geometry"},
     "joint": {"parent", "child", "pose", "axis", "drake:rotor_inertia", "drake:gear_ratio"},
-    "axis": {"xyz", "use_parent_model_frame", "limit", "dynamics", "mimic"},
+    "axis": {"xyz", "use_parent_model_frame", "limit", "dynamics", "mimic", "initial_position"},
     "limit": {"lower", "upper", "effort", "velocity"},
     "dynamics": {"damping", "friction", "spring_reference", "spring_stiffness"},
     "include": {"uri", "name", "pose", "static", "placement_frame"},
@@ -212,6 +216,7 @@ class _JointRaw:
     rotor: float | None
     gear: float | None
     mimic: str | None
+    initial: float = 0.0  # <axis><initial_position>
 
 
 @dataclass
@@ -240,7 +245,12 @@ class _Reader:
             t = _tag(c)
             if t in known or t in _COSMETIC or not isinstance(c.tag, str):
                 continue
+            if t in _FORCE_FLAGS:
+                if (c.text or "").strip().lower() not in ("true", "1"):
+                    continue
+                t = f"{t}>true</{t}"  # shown as <enable_wind>true</enable_wind>
             key = f"<{t}> in <{context}>"
+            key += f" ({_FORCE_FLAGS[_tag(c)]})" if _tag(c) in _FORCE_FLAGS else ""
             key += f" ({_WHY[key]})" if key in _WHY else ""
             self.unmodelled[key] = self.unmodelled.get(key, 0) + 1
 
@@ -534,6 +544,7 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
     axis_in: str | None = None
     lim = dyn = None
     mimic = None
+    initial = 0.0
     if axis_el is not None:
         rd.note_unmodelled(axis_el, "axis")
         xyz_el = _child(axis_el, "xyz")
@@ -549,6 +560,9 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
                 rd.note_unmodelled(sub, ctx)
         mim = _child(axis_el, "mimic")
         mimic = mim.get("joint") if mim is not None else None
+        init_el = _child(axis_el, "initial_position")
+        if init_el is not None and (init_el.text or "").strip():
+            initial = _floats(init_el.text, f"{where} <axis><initial_position>", (1,))[0]
     elif kind != "fixed":
         raise InputError(f"{where}: a {kind} joint needs an <axis>")
     lower = _limit(lim, "lower", -_NO_LIMIT, where)
@@ -578,7 +592,7 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
     rd.joints.append(_JointRaw(name, kind, (parent_el.text or "").strip(), child_raw, scope,
                                (xyz[0], xyz[1], xyz[2]), axis_in, lower, upper,
                                math.inf if effort < 0 else effort, math.inf if velocity < 0 else velocity,
-                               damping, friction, rotor, gear, mimic))
+                               damping, friction, rotor, gear, mimic, 0.0 if scope.static else initial))
 
 
 # --------------------------------------------------------------------------- the pose graph
@@ -788,6 +802,14 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
     >>> desc.joints[0].placement.translation, desc.joints[0].child_placement.translation
     ((0.0, 0.0, 0.0), (0.0, 0.0, -1.0))
     """
+    desc, notes, mimic, _ = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
+    return desc, notes, mimic
+
+
+def _read_sdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None,
+              allow_outside_meshes: bool, reflected_inertia: bool
+              ) -> tuple[Description, list[str], dict[str, str], dict[str, float]]:
+    """:func:`description_from_sdf`'s result and the joints' nonzero ``<axis><initial_position>``."""
     top = Path(path)
     rd = _Reader(top, tuple(Path(d).expanduser().resolve() for d in (package_dirs or ())), allow_outside_meshes,
                  allowed_roots(top, package_dirs))
@@ -837,7 +859,8 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
         raise InputError(f"{top}: <static>true</static>: a static model does not move; robokit loads robots with "
                          "moving joints")
     _resolve_names(rd)
-    return _describe(rd, top_name, reflected_inertia, gravity_note)
+    desc, notes, mimic = _describe(rd, top_name, reflected_inertia, gravity_note)
+    return desc, notes, mimic, {j.name: j.initial for j in rd.joints if j.initial != 0.0}
 
 
 def _describe(rd: _Reader, name: str, reflected_inertia: bool,
@@ -968,10 +991,11 @@ def load_sdf(path: str | os.PathLike[str], tip: str | None = None, *,
     path = Path(path)
     if not path.exists():
         raise InputError(f"{path}: file not found")
-    desc, notes, mimic = description_from_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
+    desc, notes, mimic, initial = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
     model, visual, collision, geo_notes = build_model(desc)
     from robokit.description.urdf_files import absolute_dirs
 
     spec = RobotSpec("sdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
                      allow_outside_meshes=bool(allow_outside_meshes), reflected_inertia=bool(reflected_inertia))
-    return build_robot(desc.name, model, tip, [visual, collision], {}, spec, [*notes, *geo_notes], mimic=mimic)
+    return build_robot(desc.name, model, tip, [visual, collision], {}, spec, [*notes, *geo_notes], mimic=mimic,
+                       joint_values={"initial": initial} if initial else None)

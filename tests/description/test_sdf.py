@@ -481,3 +481,44 @@ def test_a_link_named_world_before_sdformat_1_7(tmp_path):
     np.testing.assert_allclose(robot.frame_pose([0.2], "a")[:3, 3], [0.2, 0, 0.3], atol=1e-12)
     (tmp_path / "new.sdf").write_text(f'<sdf version="1.9"><model name="m">{body}</model></sdf>')
     _refused(tmp_path / "new.sdf", "reserved")
+
+
+def test_initial_position_is_the_initial_configuration(tmp_path):
+    """SDFormat's <axis><initial_position> (the joint's initial position; Gazebo does not apply it) is kept
+    as robot.configurations["initial"] for the chain's joints; it changes no number, and a value on a
+    joint off the chain, which is locked at 0, is named in a note."""
+    path = tmp_path / "two.sdf"
+    path.write_text(_two_joint_sdf(axis2="<xyz>0 0 1</xyz><initial_position>0.25</initial_position>"))
+    robot, notes = load_quiet(path)
+    assert list(robot.joint_names) == ["j1", "j2"]
+    np.testing.assert_array_equal(robot.configurations["initial"], [0.0, 0.25])
+    assert not any("<initial_position>" in n for n in notes)
+    plain, _ = load_quiet(_write(tmp_path / "plain.sdf", _two_joint_sdf()))
+    assert "initial" not in plain.configurations
+    q = np.array([0.3, -0.4])
+    np.testing.assert_array_equal(robot.frame_pose(q), plain.frame_pose(q))
+    np.testing.assert_array_equal(robot.crba(q), plain.crba(q))
+    off, notes = load_quiet(path, tip="a")
+    assert "initial" not in off.configurations
+    assert any("'initial' values of joints off the chain to 'a' ignored (they are locked at 0): j2 0.25" in n
+               for n in notes)
+
+
+def test_a_bad_initial_position_is_refused(tmp_path):
+    path = _write(tmp_path / "two.sdf", _two_joint_sdf(axis2="<xyz>0 0 1</xyz><initial_position>up</initial_position>"))
+    with pytest.raises(InputError, match=r"joint 'j2' <axis><initial_position>"):
+        robokit.load(path)
+
+
+@pytest.mark.parametrize("wind", ["true", "false"])
+def test_enable_wind_is_noted_only_when_true(tmp_path, wind):
+    """<enable_wind>true</enable_wind> names a force robokit does not model (noted); false changes nothing."""
+    text = _two_joint_sdf().replace('<link name="base"/>', f'<link name="base"><enable_wind>{wind}</enable_wind></link>')
+    _, notes = load_quiet(_write(tmp_path / "two.sdf", text))
+    noted = any("<enable_wind>true</enable_wind> in <link> (wind forces)" in n for n in notes)
+    assert noted == (wind == "true")
+
+
+def _write(path, text):
+    path.write_text(text)
+    return path
