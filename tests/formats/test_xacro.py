@@ -188,3 +188,30 @@ def test_cli_view_with_xacro_arguments(xacro_ws, tmp_path, capsys):
     rc = cli_main(["view", str(src), "-o", str(page), "--xacro-arg", "l1:=0.6", "--package-path", str(xacro_ws.parent)])
     assert rc == 0, capsys.readouterr().err
     assert page.stat().st_size > 1000
+
+
+def test_load_yaml_of_a_missing_file_names_the_call_and_the_macro(tmp_path):
+    """ROS-Industrial's Motoman ES165 (motoman_es_support/urdf/es165.xacro) passes its
+    ``joint_velocities_file`` argument, empty by default, to ``xacro.load_yaml`` inside its macro; the
+    xacro program fails there too ('Is a directory'), and robokit said only '<folder>: is a folder, not
+    a YAML file', naming neither the call nor the macro."""
+    import xacro
+
+    (tmp_path / "arm_macro.xacro").write_text(
+        '<robot xmlns:xacro="http://ros.org/wiki/xacro"><xacro:macro name="arm" params="velocities_file">'
+        '<xacro:property name="v" value="${xacro.load_yaml(velocities_file)}"/>'
+        '<link name="base_${v[\'joint_1\']}"/></xacro:macro></robot>')
+    top = tmp_path / "arm.urdf.xacro"
+    top.write_text('<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro">'
+                   '<xacro:include filename="arm_macro.xacro"/><xacro:arg name="velocities" default=""/>'
+                   '<xacro:arm velocities_file="$(arg velocities)"/></robot>')
+    with pytest.raises(Exception):  # the xacro program refuses it as well
+        xacro.process_file(str(top))
+    with pytest.raises(robokit.InputError) as err:
+        robokit.load(top)
+    said = str(err.value)
+    assert "\n" not in said
+    assert "xacro.load_yaml('') (an empty file name: an argument not given?)" in said
+    assert "is a folder, not a YAML file" in said and "macro arm" in said
+    with pytest.raises(robokit.InputError, match=r"xacro\.load_yaml\('v\.yaml'\): .*v\.yaml: file not found .*macro arm"):
+        robokit.load(top, xacro_args={"velocities": "v.yaml"})
