@@ -1194,11 +1194,11 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
             ctx.notes.append(f"{path}: <body name={b.name!r}> gravcomp ignored: robokit's dynamics has no "
                              "gravity compensation force")
     for key, owners in ctx.joint_extras.items():  # one note per attribute, every joint that has it
-        names = [n for n, _ in owners]
-        shown = ", ".join(repr(n) for n in names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
+        joints = [n for n, _ in owners]
+        shown = ", ".join(repr(n) for n in joints[:6]) + (f" and {len(joints) - 6} more" if len(joints) > 6 else "")
         values = list(dict.fromkeys(v for _, v in owners))
         listed = ", ".join(values[:6]) + (", …" if len(values) > 6 else "")
-        ctx.notes.append(f"{path}: <joint> {key} of joint{'s' if len(names) > 1 else ''} {shown} [{listed}] "
+        ctx.notes.append(f"{path}: <joint> {key} of joint{'s' if len(joints) > 1 else ''} {shown} [{listed}] "
                          f"ignored: {_JOINT_EXTRAS_WHY[key]}")
     excluded = []
     for contact in root.findall("contact"):
