@@ -181,9 +181,12 @@ def check_mesh_arrays(vertices: Any, faces: Any, source: str | os.PathLike[str])
 
 
 # ----------------------------------------------------------------------------- magnitudes
-#: A number of a text mesh that may exceed 1e12: an exponent of 12 or more, or 13 digits in a row.
-_HUGE = re.compile(rb"(?<![\w.])[+-]?(?:[0-9]{13,}\.?[0-9]*|[0-9]*\.?[0-9]+[eE]\+?0*(?:[0-9]{3,}|1[2-9]|[2-9][0-9]))"
-                   rb"(?![\w.])")
+#: A number of a text mesh that may exceed 1e12: an exponent of 12 or more, or 13 digits in a row —
+#: a whole token: not part of a word, nor of a name joined by hyphens (a COLLADA exporter's UUID ids,
+#: ``mesh-a0ec2a07-c575-44a5-9e27-ecb9…``, hold ``9e27`` and ``303287e80685`` between hyphens; the
+#: number's own sign is matched at the hyphen, where the byte before it is a separator).
+_HUGE = re.compile(rb"(?<![\w.-])[+-]?(?:[0-9]{13,}\.?[0-9]*|[0-9]*\.?[0-9]+[eE]\+?0*(?:[0-9]{3,}|1[2-9]|[2-9][0-9]))"
+                   rb"(?![\w.+-])")
 #: What every match of ``_HUGE`` contains (13 digits in a row, or an exponent of 12 or more), found
 #: without the look-behind: about twice as fast over a mesh, and most meshes have none (then the
 #: scan with ``_HUGE`` is skipped; measured on example-robot-data's Baxter COLLADA meshes, 53 MB:

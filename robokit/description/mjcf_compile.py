@@ -273,6 +273,17 @@ class CompiledMjcf:
 
 
 # --------------------------------------------------------------------------- attribute reading
+#: Why a joint attribute robokit reads is not in its model (one note per attribute, :class:`_Ctx`).
+_JOINT_EXTRAS_WHY = {
+    "frictionloss": "robokit's rigid-body dynamics has no joint friction (MuJoCo applies it through its "
+                    "constraint solver)",
+    "stiffness": "robokit's rigid-body dynamics has no joint springs (a passive force in MuJoCo, not part of its "
+                 "bias force or mass matrix)",
+    "springdamper": "its spring and damper follow from the compiled inertia, and robokit's rigid-body dynamics "
+                    "has no passive forces",
+}
+
+
 class _Ctx:
     def __init__(self, path: Path, root: ET.Element) -> None:
         self.path = path
@@ -284,6 +295,8 @@ class _Ctx:
             "strippath": False, "discardvisual": False, "alignfree": False,
         }
         self.notes: list[str] = []
+        #: joint attributes read but not modelled: attribute → [(joint, value as written)], one note each
+        self.joint_extras: dict[str, list[tuple[str, str]]] = {}
         self.defaults: dict[str, dict[str, dict[str, str]]] = {}
         self.meshes: dict[str, dict[str, str]] = {}
         self.mesh_cache: dict[str, Any] = {}
@@ -870,11 +883,10 @@ def _joint(ctx: _Ctx, elem: ET.Element, cls: str, name: str, named: bool,
 
     sd = _numbers(ctx, a, "springdamper", 2, elem)
     if sd is not None and (sd[0] or sd[1]):
-        ctx.notes.append(f"{ctx.path}: <joint name={name!r}> springdamper ignored: its spring and damper follow "
-                         "from the compiled inertia, and robokit's rigid-body dynamics has no passive forces")
+        ctx.joint_extras.setdefault("springdamper", []).append((name, " ".join(a["springdamper"].split())))
     for key in ("frictionloss", "stiffness"):
         if num(key) != 0.0:
-            ctx.notes.append(f"{ctx.path}: <joint name={name!r}> {key}={a[key]} ignored")
+            ctx.joint_extras.setdefault(key, []).append((name, a[key].strip()))
     return MjcfJoint(name=name, type=jtype, pos=np.array(pos), axis=np.array(axis_n), limited=limited,
                      range=np.array(rng if limited else [-math.inf, math.inf], dtype=float), ref=ref,
                      springref=springref, armature=num("armature"), damping=num("damping"),
@@ -1338,6 +1350,13 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
         if b.elem is not None and float(b.elem.get("gravcomp", "0") or 0) != 0:
             ctx.notes.append(f"{path}: <body name={b.name!r}> gravcomp ignored: robokit's dynamics has no "
                              "gravity compensation force")
+    for key, owners in ctx.joint_extras.items():  # one note per attribute, every joint that has it
+        joints = [n for n, _ in owners]
+        shown = ", ".join(repr(n) for n in joints[:6]) + (f" and {len(joints) - 6} more" if len(joints) > 6 else "")
+        values = list(dict.fromkeys(v for _, v in owners))
+        listed = ", ".join(values[:6]) + (", …" if len(values) > 6 else "")
+        ctx.notes.append(f"{path}: <joint> {key} of joint{'s' if len(joints) > 1 else ''} {shown} [{listed}] "
+                         f"ignored: {_JOINT_EXTRAS_WHY[key]}")
     excluded = []
     for contact in root.findall("contact"):
         for ex in contact.findall("exclude"):

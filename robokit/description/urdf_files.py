@@ -148,15 +148,8 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os
     if spec is None:
         spec = RobotSpec("urdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
                          allow_outside_meshes=bool(allow_outside_meshes), reflected_inertia=bool(reflected_inertia))
-    noted = _noted_by_xacro() if text is not None else frozenset()
     notes.extend(reflected_notes)
-    notes.extend(note for tag, note in doc.unmodelled if tag not in noted)
+    notes.extend(note for _, note in doc.unmodelled)
     return build_robot(doc.name, model, tip, geoms, {}, spec, notes, mimic=doc.mimic, names=doc.names)
 
 
-def _noted_by_xacro() -> frozenset[str]:
-    """The elements the xacro expander already noted as ignored (not listed twice): its list,
-    read from the module that called us (no import: xacro_files imports this module)."""
-    import sys
-
-    return frozenset(getattr(sys.modules.get("robokit.description.xacro_files"), "_IGNORED", ()))

@@ -21,7 +21,8 @@ malformed XML) raise :class:`robokit.errors.InputError` with one line naming the
 where it can be found the line and element. A mesh file that is not there (a package shipped
 without its meshes) is dropped with one note for all of them: kinematics and dynamics do not
 need it. URDF elements with no meaning for the rigid-body model (``<gazebo>``,
-``<transmission>``, ``<ros2_control>``) are ignored and named in a note on stderr.
+``<transmission>``, ``<ros2_control>``, …) are ignored and named in a note on stderr, as the URDF
+reader names them in a ``.urdf`` file (one note per kind of element, the same words).
 """
 from __future__ import annotations
 
@@ -33,7 +34,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from robokit._optional import require
-from robokit.description._notes import note
 from robokit.description.spec import RobotSpec, xacro_args_tuple
 from robokit.description.urdf_files import _from_urdf_file, absolute_dirs
 from robokit._io import read_input_bytes
@@ -52,9 +52,6 @@ __all__ = ["expand_xacro", "find_package", "load_xacro"]
 
 _UNSET: Any = object()
 _LOCK = threading.Lock()  # the xacro package keeps its state in module globals
-#: Elements the expander notes as ignored (the URDF reader then does not note them again); a
-#: <transmission> is the URDF reader's to judge: Drake's give a joint its reflected rotor inertia.
-_IGNORED = ("gazebo", "ros2_control")
 
 
 def _package_dirs(package_dirs: Any, package_path: Any, where: str) -> Any:
@@ -380,10 +377,6 @@ def _resolve_meshes(text: str, top: Path, package_path: Sequence[str | os.PathLi
     if root.tag != "robot":
         raise InputError(f"{top}: root element <{root.tag}> is not <robot>; a xacro robot description "
                          "expands to a URDF <robot>")
-    for tag in _IGNORED:
-        found = root.findall(tag)
-        if found:
-            note(f"{top}: {len(found)} <{tag}> element(s) ignored (no meaning for the rigid-body model)")
     for mesh in root.iter("mesh"):
         uri = mesh.get("filename", "")
         try:

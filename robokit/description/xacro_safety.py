@@ -47,6 +47,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from robokit.description._notes import note
+from robokit.errors import InputError
 from robokit.description.xacro_expr import (MAX_EXPRESSION, MAX_INT_BITS, MAX_STRING, Refused, UnsafeXacro,
                                             _tokenize, evaluate, is_table, text_bound)
 
@@ -279,8 +280,12 @@ def guarded(top: Path, roots: Callable[[], Sequence[Path]], user_args: Mapping[s
         p = Path(spec)
         if p.resolve() not in named:  # a file the user named in an argument is read wherever it is
             confine(p, roots(), current(), f"xacro.load_yaml({filename!r})", hint=_HINT)
-        data, duplicates = load_pyyaml_text(decode_utf8(read_input_bytes(p, MAX_BYTES, "a YAML file"), p), str(p),
-                                            scalar_tags=unit_tags(str(p)))
+        try:
+            raw = read_input_bytes(p, MAX_BYTES, "a YAML file")
+        except InputError as exc:  # which call of which macro asked for it (a file name left empty, say)
+            empty = " (an empty file name: an argument not given?)" if not filename.strip() else ""
+            raise InputError(f"{current()}: xacro.load_yaml({filename!r}){empty}: {exc} (at {location()})") from None
+        data, duplicates = load_pyyaml_text(decode_utf8(raw, p), str(p), scalar_tags=unit_tags(str(p)))
         if duplicates and str(p) not in duplicates_noted:  # one note per file, however often it is read
             duplicates_noted.add(str(p))
             shown = ", ".join(f"{k!r} ({f'twice on line {line}' if line == first else f'lines {first} and {line}'})"

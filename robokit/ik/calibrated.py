@@ -280,8 +280,11 @@ def deviation(geo: _Geometry, structure: tuple[str, bool]) -> tuple[float, float
     if any(geo.lines[i][2] != "R" for i in par + meet):
         return math.inf, math.inf
     ang = max([_angle(geo.lines[par[0]][1], geo.lines[i][1]) for i in par[1:]] + [0.0])
-    projected = _project(geo.lines, structure) if par else geo.lines
-    _, dist = _meet([projected[i] for i in meet])
+    # the meeting group measured with the parallel group made parallel, before it is placed on its
+    # meeting point (as _project does next): after that the distance would be zero whatever the arm
+    parallel = [(p.copy(), d.copy(), k) for p, d, k in geo.lines]
+    _make_parallel(parallel, [par] if par else [])
+    _, dist = _meet([parallel[i] for i in meet])
     return ang, dist
 
 
@@ -319,6 +322,18 @@ def _set_twists(lines: list[Line], twists: Sequence[float | None]) -> list[Line]
     return out
 
 
+def _make_parallel(lines: list[Line], groups: Sequence[Sequence[int]]) -> None:
+    """Give each group of ``lines`` (indices) one direction, the average of theirs (signs kept); the
+    points stay. In place."""
+    for group in groups:
+        ref = lines[group[0]][1]
+        u = sum((lines[i][1] if lines[i][1] @ ref >= 0 else -lines[i][1]) for i in group)
+        u = u / np.linalg.norm(u)
+        for i in group:
+            p, d, k = lines[i]
+            lines[i] = (p, u if d @ u >= 0 else -u, k)
+
+
 def _project(lines: list[Line], structure: tuple[str, bool],
              extra: tuple[list[tuple[int, ...]], list[tuple[int, int]]] = ([], []),
              twists: Sequence[float | None] | None = None) -> list[Line]:
@@ -328,14 +343,7 @@ def _project(lines: list[Line], structure: tuple[str, bool],
     that meet (the line not placed yet moved, parallel to itself, onto the other)."""
     par, meet = STRUCTURES[structure]
     out = _set_twists(lines, twists) if twists is not None else [(p.copy(), d.copy(), k) for p, d, k in lines]
-    groups = [g for g in extra[0] if not set(g) & set(par)] + ([par] if par else [])
-    for group in groups:
-        ref = out[group[0]][1]
-        u = sum((out[i][1] if out[i][1] @ ref >= 0 else -out[i][1]) for i in group)
-        u = u / np.linalg.norm(u)
-        for i in group:
-            p, d, k = out[i]
-            out[i] = (p, u if d @ u >= 0 else -u, k)
+    _make_parallel(out, [g for g in extra[0] if not set(g) & set(par)] + ([par] if par else []))
     W, _ = _meet([out[i] for i in meet])
     for i in meet:
         p, d, k = out[i]
@@ -473,7 +481,7 @@ class CalibratedArm:
         off = []
         if STRUCTURES[structure][0]:
             off.append(f"the parallel axes differ by up to {ang:.2g} rad")
-        off.append(f"the axes that should meet miss by up to {dist:.2g} m")
+        off.append(f"the axes that should meet pass up to {dist:.2g} m from a common point")
         self.reason = (f"{source}: {_label_of(structure)} on the nominal arm, but {' and '.join(off)}; "
                        f"the nominal structure's closed form gives one start per branch and Newton's method on "
                        f"this arm's own kinematics finishes each")

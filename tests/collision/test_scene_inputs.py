@@ -257,6 +257,59 @@ def test_robot_mesh_coordinates_beyond_the_bound_are_not_read(tmp_path):
             mesh_parts(tmp_path / name, 0.002)
 
 
+#: A COLLADA triangle as Rhino and SketchUp export it: UUID ids, whose hyphen-separated parts
+#: ``9e27`` and ``303287e80685`` read as 9e+27 and 3.03e+80690 (inf) when taken for numbers.
+_UUID_DAE = """<?xml version="1.0" encoding="UTF-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1" name="meter"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="mesh-a0ec2a07-c575-44a5-9e27-303287e80685">
+      <mesh>
+        <source id="lib-position-a0ec2a07-c575-44a5-9e27-303287e80685">
+          <float_array id="lib-position-array-a0ec2a07-c575-44a5-9e27-303287e80685" count="9">0 0 0 0.25 0 0 0 0.5 0.125</float_array>
+          <technique_common><accessor source="#lib-position-array-a0ec2a07-c575-44a5-9e27-303287e80685" count="3" stride="3">
+            <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common>
+        </source>
+        <vertices id="lib-vertices-a0ec2a07-c575-44a5-9e27-303287e80685">
+          <input semantic="POSITION" source="#lib-position-a0ec2a07-c575-44a5-9e27-303287e80685"/></vertices>
+        <triangles count="1"><input semantic="VERTEX" source="#lib-vertices-a0ec2a07-c575-44a5-9e27-303287e80685" offset="0"/>
+          <p>0 1 2</p></triangles>
+      </mesh>
+    </geometry>
+  </library_geometries>
+  <library_visual_scenes>
+    <visual_scene id="scene-4e14-9f9a"><node id="node-4e14-9f9a"><instance_geometry url="#mesh-a0ec2a07-c575-44a5-9e27-303287e80685"/></node></visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#scene-4e14-9f9a"/></scene>
+</COLLADA>
+"""
+
+
+def test_collada_ids_are_not_read_as_coordinates(tmp_path):
+    """elephantrobotics' myCobot meshes (mycobot_ros2, mycobot_description) were dropped as 'a vertex
+    coordinate of inf is out of range': the magnitude scan read the hyphen-separated parts of the
+    exporter's UUID ids as numbers. The mesh is read, and its vertices are the file's own."""
+    import warnings
+
+    from robokit.viz._meshes import mesh_parts
+
+    (tmp_path / "part.dae").write_text(_UUID_DAE)
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(hs.pendulum_urdf(extra='<visual><geometry><mesh filename="part.dae"/></geometry></visual>'
+                                           '<collision><geometry><mesh filename="part.dae"/></geometry></collision>'))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot = robokit.load(urdf)
+    assert not [str(w.message) for w in caught if "part.dae" in str(w.message)]
+    assert len(robot.visual_model.geometryObjects) == 1 and len(robot.collision_model.geometryObjects) == 1
+    (V, F, _), = mesh_parts(tmp_path / "part.dae", 1e-6)
+    assert sorted(map(tuple, np.round(V, 12))) == [(0, 0, 0), (0, 0.5, 0.125), (0.25, 0, 0)]
+    # a real coordinate beyond the bound is still found, between the same ids
+    (tmp_path / "huge.dae").write_text(_UUID_DAE.replace("0.5 0.125", "-5e13 0.125"))
+    with pytest.raises(robokit.InputError, match=re.escape("huge.dae: a vertex coordinate of 5e+13")):
+        mesh_parts(tmp_path / "huge.dae", 0.002)
+
+
 _NUMBER_PARTS = st.lists(st.one_of(
     st.sampled_from(["v", "f", "<float_array>", " ", "\n", ".", "-", "+", "e", "E", "x1", "ab"]),
     st.builds("".join, st.tuples(

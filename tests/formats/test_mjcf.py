@@ -288,3 +288,55 @@ def test_slide_range_from_a_default_class(tmp_path):
     m = mujoco.MjModel.from_xml_path(str(path))
     assert np.allclose(robot.qlim, m.jnt_range, rtol=0, atol=1e-15)
     assert np.allclose(joint_armature_damping(robot)[1], m.dof_damping, rtol=0, atol=0)
+
+
+PASSIVE_ARM = """<mujoco model="passive_arm">
+  <compiler angle="radian"/>
+  <default><joint damping="0.1" stiffness="1" frictionloss="0.1" armature="0.1"/></default>
+  <worldbody>
+    <body name="l1" pos="0 0 0.1">
+      <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.03"/>
+      <joint name="j1" axis="0 0 1"/>
+      <body name="l2" pos="0.2 0 0" quat="0.7071068 0.7071068 0 0">
+        <inertial pos="0.1 0.02 0" mass="0.5" diaginertia="0.004 0.005 0.006"/>
+        <joint name="j2" axis="0 0 1"/>
+        <body name="l3" pos="0.2 0 0">
+          <inertial pos="0.05 0 0.01" mass="0.3" diaginertia="0.001 0.002 0.002"/>
+          <joint name="j3" axis="0 1 0" stiffness="10" springdamper="0 0"/>
+          <site name="tip" pos="0.1 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_joint_friction_and_springs_are_noted_once_per_attribute(tmp_path):
+    """AgileX's PiPER in MuJoCo Menagerie (agilex_piper/piper.xml) gives every joint frictionloss and
+    stiffness through its <default>: robokit printed one note per joint and attribute (18 for the
+    PiPER), without saying why. Now one note per attribute lists the joints and values, and the
+    robot is MuJoCo's rigid-body dynamics (passive forces and constraints off in MuJoCo)."""
+    path = tmp_path / "passive.xml"
+    path.write_text(PASSIVE_ARM)
+    with pytest.warns(UserWarning) as record:
+        robot = robokit.load(path)
+    said = [str(w.message) for w in record if "<joint>" in str(w.message)]
+    assert said == [
+        f"{path}: <joint> frictionloss of joints 'j1', 'j2', 'j3' [0.1] ignored: robokit's rigid-body dynamics "
+        "has no joint friction (MuJoCo applies it through its constraint solver)",
+        f"{path}: <joint> stiffness of joints 'j1', 'j2', 'j3' [1, 10] ignored: robokit's rigid-body dynamics has "
+        "no joint springs (a passive force in MuJoCo, not part of its bias force or mass matrix)"]
+    mujoco = pytest.importorskip("mujoco")
+    m = mujoco.MjModel.from_xml_path(str(path))
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
+    for flag in ("mjDSBL_PASSIVE", "mjDSBL_SPRING", "mjDSBL_DAMPER"):
+        m.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, flag, 0))
+    rng = np.random.default_rng(3)
+    d = mujoco.MjData(m)
+    for _ in range(5):
+        q, dq, ddq = rng.uniform(-2, 2, 3), rng.standard_normal(3), rng.standard_normal(3)
+        d.qpos[:], d.qvel[:], d.qacc[:] = q, dq, ddq
+        mujoco.mj_inverse(m, d)
+        np.testing.assert_allclose(robot.rnea(q, dq, ddq), d.qfrc_inverse, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(robot.rnea(q, dq, np.zeros(3)), d.qfrc_bias, rtol=0, atol=1e-12)

@@ -86,7 +86,7 @@ def test_unknown_argument_is_rejected(xacro_ws):
 
 
 def test_gazebo_elements_are_noted(xacro_ws):
-    with pytest.warns(UserWarning, match=r"1 <gazebo> element\(s\) ignored"):
+    with pytest.warns(UserWarning, match=r"<gazebo> read but not modelled: simulator settings"):
         robokit.load(xacro_ws / "urdf" / "demo.urdf.xacro")
 
 
@@ -188,3 +188,69 @@ def test_cli_view_with_xacro_arguments(xacro_ws, tmp_path, capsys):
     rc = cli_main(["view", str(src), "-o", str(page), "--xacro-arg", "l1:=0.6", "--package-path", str(xacro_ws.parent)])
     assert rc == 0, capsys.readouterr().err
     assert page.stat().st_size > 1000
+
+
+def test_load_yaml_of_a_missing_file_names_the_call_and_the_macro(tmp_path):
+    """ROS-Industrial's Motoman ES165 (motoman_es_support/urdf/es165.xacro) passes its
+    ``joint_velocities_file`` argument, empty by default, to ``xacro.load_yaml`` inside its macro; the
+    xacro program fails there too ('Is a directory'), and robokit said only '<folder>: is a folder, not
+    a YAML file', naming neither the call nor the macro."""
+    import xacro
+
+    (tmp_path / "arm_macro.xacro").write_text(
+        '<robot xmlns:xacro="http://ros.org/wiki/xacro"><xacro:macro name="arm" params="velocities_file">'
+        '<xacro:property name="v" value="${xacro.load_yaml(velocities_file)}"/>'
+        '<link name="base_${v[\'joint_1\']}"/></xacro:macro></robot>')
+    top = tmp_path / "arm.urdf.xacro"
+    top.write_text('<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro">'
+                   '<xacro:include filename="arm_macro.xacro"/><xacro:arg name="velocities" default=""/>'
+                   '<xacro:arm velocities_file="$(arg velocities)"/></robot>')
+    with pytest.raises(Exception):  # the xacro program refuses it as well
+        xacro.process_file(str(top))
+    with pytest.raises(robokit.InputError) as err:
+        robokit.load(top)
+    said = str(err.value)
+    assert "\n" not in said
+    assert "xacro.load_yaml('') (an empty file name: an argument not given?)" in said
+    assert "is a folder, not a YAML file" in said and "macro arm" in said
+    with pytest.raises(robokit.InputError, match=r"xacro\.load_yaml\('v\.yaml'\): .*v\.yaml: file not found .*macro arm"):
+        robokit.load(top, xacro_args={"velocities": "v.yaml"})
+
+
+def test_a_xacro_file_notes_what_is_not_modelled_as_its_expanded_urdf_does(tmp_path):
+    """UFACTORY's xarm_description (xArm-Developer/xarm_ros2) loaded as xacro said '8 <gazebo>
+    element(s) ignored (no meaning for the rigid-body model)', and the same robot's .urdf (Kinova's
+    gen3_lite.urdf next to its xacro) '<gazebo> (8) [plugin] read but not modelled: simulator
+    settings and plugins are not part of robokit's model': two wordings, and the xacro one without
+    the plugins or why. The notes of a xacro file are now those of the URDF the xacro program expands
+    it to, word for word (the file name aside)."""
+    import warnings
+
+    import xacro
+
+    top = tmp_path / "arm.urdf.xacro"
+    top.write_text("""<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro">
+  <xacro:macro name="trans" params="j"><transmission name="${j}_t"><joint name="${j}"/></transmission></xacro:macro>
+  <link name="base"/>
+  <link name="l1"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/><dynamics damping="0.5"/></joint>
+  <xacro:trans j="j1"/>
+  <gazebo><plugin filename="libgazebo_ros2_control.so" name="gz"/></gazebo><gazebo reference="l1"/>
+  <ros2_control name="arm" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware></ros2_control>
+</robot>""")
+    expanded = tmp_path / "arm.urdf"
+    expanded.write_text(xacro.process_file(str(top)).toxml())
+
+    def notes(path):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            robokit.load(path)
+        return sorted(str(w.message).replace(str(path), "FILE") for w in caught
+                      if issubclass(w.category, robokit.RobokitWarning))
+
+    said = notes(top)
+    assert said == notes(expanded)
+    assert ("FILE: <gazebo> (2) [libgazebo_ros2_control.so] read but not modelled: simulator settings and plugins "
+            "are not part of robokit's model") in said
+    assert not [n for n in said if "element(s) ignored" in n]
