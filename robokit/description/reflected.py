@@ -16,6 +16,8 @@ import os
 from dataclasses import dataclass
 from typing import Sequence
 
+from robokit.errors import InputError
+
 __all__ = ["DrakeRotor", "drake_reflected_inertia", "drake_transmission", "DRAKE_XMLNS"]
 
 #: The ``xmlns:drake`` a URDF written with :func:`drake_transmission` declares (Drake's own files do;
@@ -139,7 +141,7 @@ def drake_transmission(joint: str, armature: float) -> str:
 
     value = float(armature)
     if not (value >= 0.0 and value != float("inf")):
-        raise ValueError(f"armature of {joint!r}: expected a finite number >= 0, got {armature!r}")
+        raise InputError(f"armature of {joint!r}: expected a finite number >= 0, got {armature!r}")
     return (f"<transmission name={quoteattr(joint + '_transmission')}>"
             "<type>transmission_interface/SimpleTransmission</type>"
             f"<joint name={quoteattr(joint)}/><actuator name={quoteattr(joint + '_motor')}>"
