@@ -25,7 +25,24 @@ from typing import Iterable, Sequence
 from robokit.errors import InputError
 
 __all__ = ["MAX_MESH_BYTES", "MAX_TOTAL_MESH_BYTES", "allowed_roots", "confine", "is_inside", "mesh_file_problem",
-           "package_name"]
+           "package_name", "without_meshes"]
+
+
+def without_meshes(collision: bool, count: int) -> str:
+    """What a note on meshes not read says robokit does without them: a visual mesh is only drawn;
+    a collision mesh is a shape the collision checks (:class:`robokit.collision.World`) no longer
+    see on its link.
+
+    Examples
+    --------
+    >>> without_meshes(False, 1), without_meshes(True, 2)
+    ('drawn without it', 'collision checks go without them (their links are checked without those shapes)')
+    """
+    it = "it" if count == 1 else "them"
+    if not collision:
+        return f"drawn without {it}"
+    whose = "its link is" if count == 1 else "their links are"
+    return f"collision checks go without {it} ({whose} checked without {'that shape' if count == 1 else 'those shapes'})"
 
 
 def allowed_roots(top: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None = (),

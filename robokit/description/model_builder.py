@@ -718,19 +718,21 @@ def _shape(geom: Geometry, where: str) -> tuple[Any, str]:
         return coal.Ellipsoid(*geom.size), "ELLIPSOID"
     if geom.kind == "trimesh":
         return _bvh(geom, where), geom.mesh or ""
-    from robokit.description.meshes import mesh_file_problem
+    from robokit.description.meshes import mesh_file_problem, without_meshes
 
     if not geom.mesh:
         raise InputError(f"{where}: a mesh needs a file")
     problem = mesh_file_problem(geom.mesh)
     if problem is not None:
-        raise _MeshSkipped(f"{where}: mesh {geom.mesh!r} not read ({problem}); drawn without it")
+        raise _MeshSkipped(f"{where}: mesh {geom.mesh!r} not read ({problem}); "
+                           f"{without_meshes(geom.collision, 1)}")
     try:
         return coal.MeshLoader().load(geom.mesh, np.asarray(geom.scale, dtype=float)), geom.mesh
     except Exception as exc:  # coal raises RuntimeError/ValueError with the loader's message
         from robokit.description.builder import one_line
 
-        raise _MeshSkipped(f"{where}: mesh {geom.mesh!r} not read ({one_line(exc)}); drawn without it") from None
+        raise _MeshSkipped(f"{where}: mesh {geom.mesh!r} not read ({one_line(exc)}); "
+                           f"{without_meshes(geom.collision, 1)}") from None
 
 
 def _bvh(geom: Geometry, where: str) -> Any:

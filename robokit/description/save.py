@@ -89,7 +89,7 @@ def dh_yaml_text(robot: Robot, arg: str = "path") -> str:
     return f"# {robot.name}: this DH table reproduces the robot to {worst:.1e}\n" + text
 
 
-def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
+def robot_text(robot: Robot, suffix: str, arg: str = "path", dest: str | os.PathLike[str] | None = None) -> str:
     """The text :func:`save_robot` writes for a file ending in ``suffix`` (``.urdf``, ``.yaml``, ``.yml``).
 
     Parameters
@@ -99,6 +99,9 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
         The file suffix, with its dot.
     arg : str
         The argument named in an error message.
+    dest : str or path-like, optional
+        Where the text will be written: a URDF file's relative mesh paths are rewritten relative
+        to it (:func:`_relocated_meshes`). None keeps them as the file gives them.
 
     Returns
     -------
@@ -143,9 +146,89 @@ def robot_text(robot: Robot, suffix: str, arg: str = "path") -> str:
                           "it is, gives joints Drake's rotor inertia (drake:rotor_inertia in a <transmission>): load "
                           "the saved file with reflected_inertia=False (--no-reflected-inertia) for this robot's M",
                           RobokitWarning, stacklevel=outside_level())
+        if dest is not None:
+            text = _relocated_meshes(text, robot, Path(spec.path), Path(dest), arg)
         return _with_tools_and_limits(text, robot, arg)
     raise InputError(f"{arg}: robokit has no URDF text for {robot.name} (loaded from {robot.source or 'a model'}); "
                      "it writes URDF for calibrated robots, DH robots and URDF files")
+
+
+def _relocated_meshes(text: str, robot: Robot, source: Path, dest: Path, arg: str) -> str:
+    """A URDF file's text (read from ``source``) to be written at ``dest``: each relative mesh path
+    (or ``file://`` one) that the source finds is rewritten relative to ``dest``'s folder, so the saved
+    file draws and collides with the same meshes. Unchanged when both are in one folder or nothing is
+    relative. A warning, once, names what loading the saved file then needs: the meshes outside its
+    folder (``allow_outside_meshes=True``), a ``package://`` mesh found from the source's folder but
+    not from ``dest``'s (the ``package_dirs`` to give).
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     os.makedirs(os.path.join(tmp, "a", "meshes")); os.makedirs(os.path.join(tmp, "b"))
+    ...     open(os.path.join(tmp, "a", "meshes", "m.stl"), "w").close()
+    ...     urdf = '<robot name="r"><link name="l"><visual><geometry><mesh filename="meshes/m.stl"/></geometry></visual></link></robot>'
+    ...     out = _relocated_meshes(urdf, None, Path(tmp, "a", "r.urdf"), Path(tmp, "a", "meshes", "r.urdf"), "path")
+    >>> 'filename="m.stl"' in out
+    True
+    """
+    import warnings
+    import xml.etree.ElementTree as ET
+
+    from robokit._stack import outside_level
+    from robokit._xml import parse_xml
+    from robokit.description.meshes import allowed_roots, is_inside
+    from robokit.description.urdf_check import _package_roots, _resolve_mesh
+    from robokit.errors import RobokitWarning
+
+    src_dir, dest_dir = source.parent.resolve(), dest.parent.resolve()
+    if src_dir == dest_dir:
+        return text
+    root = parse_xml(text, str(source), namespaces=False)
+    spec = getattr(robot, "spec", None)
+    package_dirs = list(spec.package_dirs) if spec is not None else []
+    src_roots, dest_roots = _package_roots(source, package_dirs), _package_roots(dest, package_dirs)
+    allowed = allowed_roots(dest, package_dirs)
+    changed, outside, packages = 0, set(), {}
+    for mesh in root.iter("mesh"):
+        uri = mesh.get("filename") or ""
+        if uri.startswith("package://"):
+            found, _ = _resolve_mesh(uri, source, src_roots, [])
+            if found is not None and _resolve_mesh(uri, dest, dest_roots, [])[0] is None:
+                pkg = uri[len("package://"):].partition("/")[0]
+                rel = uri[len("package://") + len(pkg) + 1:]
+                top = Path(str(found)[:-len(rel)].rstrip("/\\")) if rel and str(found).endswith(rel) else found.parent
+                packages.setdefault(pkg, str(top.parent if top.name == pkg else top))
+            continue
+        if "://" in uri[:12] and not uri.startswith("file://"):
+            continue
+        found, _ = _resolve_mesh(uri, source, [], [])
+        if found is None or not found.exists():
+            continue
+        try:
+            new = os.path.relpath(found, dest_dir)
+        except ValueError:  # another drive (Windows): no relative path
+            new = str(found)
+        new = new.replace(os.sep, "/")
+        if new != uri:
+            mesh.set("filename", new)
+            changed += 1
+        if not is_inside(found, allowed):
+            outside.add(found)
+    said = []
+    if outside:
+        said.append(f"{len(outside)} mesh file(s) outside its folder (load it with allow_outside_meshes=True, "
+                    "or save it in a folder that holds them)")
+    if packages:
+        said.append("package(s) found from the source's folder only: load it with package_dirs=["
+                    + ", ".join(repr(v) for v in sorted(set(packages.values()))) + "] (--package-path) for "
+                    + ", ".join(sorted(packages)))
+    if said:
+        warnings.warn(f"{arg}: the saved URDF of {getattr(robot, 'name', 'the robot')} has " + "; and ".join(said),
+                      RobokitWarning, stacklevel=outside_level())
+    if not changed:
+        return text
+    return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
 def _urdf_link_of(robot: Robot, frame_id: int) -> str:
@@ -295,7 +378,7 @@ def save_robot(robot: Robot, path: str | os.PathLike[str]) -> Path:
     out = Path(path)
     if out.is_dir():
         raise InputError(f"path: {str(out)!r} is a folder")
-    return atomic_write(out, robot_text(robot, out.suffix))
+    return atomic_write(out, robot_text(robot, out.suffix, dest=out))
 
 
 _robot_module._WRITER[:] = [save_robot]  # Robot.save

@@ -238,6 +238,7 @@ class _Reader:
     memo: dict[str, np.ndarray] = field(default_factory=dict)
     model_name: str = ""
     missing_meshes: list[str] = field(default_factory=list)
+    missing_collision: list[str] = field(default_factory=list)  # the links of the collision meshes among them
 
     def note_unmodelled(self, el: ET.Element, context: str) -> None:
         known = _KNOWN.get(context, set())
@@ -757,6 +758,8 @@ def _mesh(rd: _Reader, shape: ET.Element, scope: _Scope, where: str) -> tuple[st
         path = confine(path, rd.roots, scope.file, f"mesh {uri!r}", allow_outside=rd.allow_outside_meshes)
     if path is None or not path.exists():
         rd.missing_meshes.append(uri)
+        if "<collision" in where:
+            rd.missing_collision.append(where.split(": ", 1)[-1].split(" <")[0].replace("link ", ""))
         return None
     return str(path), (scale[0], scale[1], scale[2])
 
@@ -939,8 +942,12 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
         notes.append(f"{rd.top}: read but not modelled: {shown}")
     if rd.missing_meshes:
         shown = ", ".join(rd.missing_meshes[:4]) + (", ..." if len(rd.missing_meshes) > 4 else "")
+        lost = ""
+        if rd.missing_collision:
+            lost = (f"; collision checks go without {len(rd.missing_collision)} of them (links "
+                    f"{', '.join(dict.fromkeys(rd.missing_collision))} are checked without those shapes)")
         notes.append(f"{rd.top}: {len(rd.missing_meshes)} mesh file(s) not found, drawn without them "
-                     f"(give their folder with package_dirs / --package-path): {shown}")
+                     f"(give their folder with package_dirs / --package-path){lost}: {shown}")
     desc = Description(name, tuple(links), tuple(joints), tuple(frames), tuple(geoms),
                        tuple((r, _pose_value(X_W[r])) for r in roots), rd.gravity)
     return desc, notes, mimic

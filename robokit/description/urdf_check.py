@@ -56,7 +56,7 @@ from robokit._io import read_input_text
 from robokit._stack import outside_level
 from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
-from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, allowed_roots, is_inside, mesh_file_problem,
+from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, without_meshes, allowed_roots, is_inside, mesh_file_problem,
                                          package_name)
 from robokit.description.reflected import DrakeRotor
 from robokit.errors import InputError, RobokitWarning
@@ -417,15 +417,20 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                     if mesh_bytes > MAX_TOTAL_MESH_BYTES:
                         problem = f"the robot's meshes exceed {MAX_TOTAL_MESH_BYTES >> 20} MiB in total"
                 if problem is not None:
-                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not read ({problem}); drawn without it")
+                    notes.append(f"link {lname!r}: {kind} mesh {uri!r} not read ({problem}); "
+                                 f"{without_meshes(kind == 'collision', 1)}")
                     el.remove(geo_el)
                     continue
                 mesh.set("filename", str(resolved))
     if len(missing) == 1:
-        notes.insert(0, f"mesh not found ({missing[0]}); drawn without it")
+        notes.insert(0, f"mesh not found ({missing[0]}); {without_meshes(missing[0].split()[2] == 'collision', 1)}")
     elif missing:  # a description whose meshes were not shipped: one note, not one per mesh
-        notes.insert(0, f"{len(missing)} mesh files not found ({', '.join(missing[:2])}, ...); the robot is drawn "
-                        "without them (kinematics and dynamics do not need them)")
+        shown = ", ".join(missing[:2]) + (", ..." if len(missing) > 2 else "")
+        lost = [m.split()[1] for m in missing if m.split()[2] == "collision"]
+        notes.insert(0, f"{len(missing)} mesh files not found ({shown}); the robot is drawn without them "
+                        "(kinematics and dynamics do not need them)" + (
+                            f"; collision checks go without {len(lost)} of them (links "
+                            f"{', '.join(dict.fromkeys(lost))} are checked without those shapes)" if lost else ""))
     for note in notes:
         warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=outside_level())
     rotors, read, unmodelled = _drake_transmissions(root, path, joints)
