@@ -59,10 +59,11 @@ demo: $(VENV)/.installed
 # solving poses (.ci/warm_kernels.py); otherwise, on a cold cache, both pytest workers compile the
 # same kernels at the same time, twice the CPU for nothing.
 # Not -q: pytest-xdist then prints the number of tests collected ("2 workers [N items]") and
-# pytest its closing count ("N passed, M skipped in T s").
+# pytest its closing count ("N passed, M skipped in T s"), after the 20 slowest tests (CI's budget is
+# 20 minutes on 2 cores: the list says where its time goes).
 test: test-env
 	$(BIN)/python .ci/warm_kernels.py
-	$(BIN)/python -m pytest -n 2 $(PYTEST_ARGS)
+	$(BIN)/python -m pytest -n 2 --durations=20 $(PYTEST_ARGS)
 
 bench: $(VENV)/.extra-all $(VENV)/.extra-bench
 	$(BIN)/python -m benchmarks

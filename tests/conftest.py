@@ -25,6 +25,16 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 
 import pytest  # noqa: E402
+from hypothesis import settings as _hypothesis_settings  # noqa: E402
+
+# Property tests (hypothesis) draw new random examples on every run of the suite: a developer's
+# `make test` explores. CI (.ci/run exports ROBOKIT_HYPOTHESIS=ci) draws each test's examples from a
+# seed of the test itself, the same on every machine and run, and keeps no example database: its
+# verdict is the commit's, reproducible with `ROBOKIT_HYPOTHESIS=ci make test`, never a new random
+# draw's. An example a developer's run finds is pinned in its test with @example.
+_hypothesis_settings.register_profile("ci", derandomize=True, database=None)
+if os.environ.get("ROBOKIT_HYPOTHESIS") == "ci":
+    _hypothesis_settings.load_profile("ci")
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "support"))
 

@@ -62,7 +62,7 @@ def test_robokit_is_installed_once_and_extras_are_added_next_to_it(tmp_path):
     assert "mkdocs-material>=9.5" in (proj / ".venv/.extra-docs.txt").read_text().split("\n")
     assert "pin>=4.1" in (proj / ".venv/.extra-docs.txt").read_text().split("\n")  # robokit's pins kept
     pytest_run = [c for c in first if " -m pytest" in c]
-    assert pytest_run == ["python -m pytest -n 2"]  # not -q: the item count and closing count show
+    assert pytest_run == ["python -m pytest -n 2 --durations=20"]  # not -q: the item count and closing count show
     # the other targets: nothing installed again, only what is missing
     assert not any("pip" in c for c in _make(proj, "docs")), "make docs reinstalled something"
     assert not any("pip" in c for c in _make(proj, "demo", "bench", "test"))

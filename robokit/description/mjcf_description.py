@@ -26,7 +26,11 @@ as MuJoCo lays the model out:
   instead, so that the chain, cut at the joints' neutral value, is cut where MuJoCo's model
   holds them: a hinge or slide from its ``ref`` (no Mₖ(−refₖ) factor), a free joint from the
   body's ``pos``/``quat``; a ball joint's neutral value, the identity, is already its ``qpos0``;
-* inertials are the compiler's (``body_mass``, ``body_ipos``, the full inertia tensor), sites are
+* inertials are the compiler's (``body_mass``, ``body_ipos``, the full inertia tensor) as MuJoCo's
+  dynamics uses them (:func:`_inertial`): a principal frame within ``FRAME_EPS`` of the body's
+  (each quaternion component, either sign) is the body's, and then a centre of mass within
+  ``FRAME_EPS`` of the body's origin (each coordinate) is at the origin (the compiler's
+  ``body_sameframe``: its kinematics then takes the body frame for the inertial one); sites are
   ``OP_FRAME`` frames right after their body's frame (MuJoCo numbers them body by body);
 * geoms are shapes named as the file names them: the collision model holds the geoms MuJoCo can
   collide (``contype`` or ``conaffinity`` non-zero), the visual model those of groups 0–2 (what
@@ -82,10 +86,31 @@ def _ref_offset(j: MjcfJoint, held: AbstractSet[str] = frozenset()) -> Any:
     return pin.SE3(np.eye(3), -j.ref * np.asarray(j.axis, dtype=float))
 
 
+#: MuJoCo's compiler takes a body's inertial frame for its body frame when they differ by less than this
+#: in every quaternion component (and, for the centre of mass too, every coordinate, m): ``body_sameframe``
+#: (mjSAMEFRAME_BODY or _BODYROT), after which its kinematics places the inertia in the body frame
+#: and ignores the difference — measured with MuJoCo 4.0.1: a centre of mass 9.99e-7 m off the origin
+#: is at the origin in ``mj_fullM``, 1e-6 m is not.
+FRAME_EPS = 1e-6
+
+
+def _same_frame(b: MjcfBody) -> tuple[bool, bool]:
+    """(principal frame is the body's, centre of mass too) by MuJoCo's compiler test (``FRAME_EPS``)."""
+    q = np.asarray(b.iquat, dtype=float)
+    one = np.array([1.0, 0.0, 0.0, 0.0])
+    rot = bool(np.all(np.abs(q - one) < FRAME_EPS) or np.all(np.abs(q + one) < FRAME_EPS))
+    return rot, rot and bool(np.all(np.abs(np.asarray(b.ipos, dtype=float)) < FRAME_EPS))
+
+
 def _inertial(b: MjcfBody) -> Inertial:
-    Ic = np.asarray(b.inertia_matrix, dtype=float)
+    """A body's inertial as MuJoCo's dynamics uses it: the compiler's mass, centre of mass and principal
+    inertia, the frame snapped to the body's where the compiler's ``body_sameframe`` test holds
+    (``FRAME_EPS``)."""
+    rot, pos = _same_frame(b)
+    Ic = np.diag(np.asarray(b.inertia, dtype=float)) if rot else np.asarray(b.inertia_matrix, dtype=float)
     Ic = 0.5 * (Ic + Ic.T)
-    return Inertial(float(b.mass), (float(b.ipos[0]), float(b.ipos[1]), float(b.ipos[2])),
+    c = (0.0, 0.0, 0.0) if pos else (float(b.ipos[0]), float(b.ipos[1]), float(b.ipos[2]))
+    return Inertial(float(b.mass), c,
                     (float(Ic[0, 0]), float(Ic[0, 1]), float(Ic[0, 2]), float(Ic[1, 1]), float(Ic[1, 2]),
                      float(Ic[2, 2])))
 

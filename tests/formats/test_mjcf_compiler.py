@@ -358,7 +358,7 @@ def test_armature_option_and_note(tmp_path):
 
 
 try:
-    from hypothesis import given, settings, strategies as st
+    from hypothesis import example, given, settings, strategies as st
 except ImportError:  # pragma: no cover
     given = None
 
@@ -371,6 +371,9 @@ if given is not None:
 
     @settings(max_examples=25, deadline=None)
     @given(st.lists(_geom, min_size=1, max_size=4))
+    # found by this test in a CI rehearsal: a centre of mass 2⁻²³ m off the body's origin, which MuJoCo's
+    # compiler takes for the origin (body_sameframe; robokit's M was 3e-8 off, 5e-7 relative)
+    @example([("sphere", (0.125, 0.125, 0.125), (0.0, 0.0, 1.192092896e-07), (0.0, 0.0, 0.0), False, 100.0)])
     def test_random_geom_bodies_match_mujoco(geoms):
         import tempfile
         from pathlib import Path
@@ -389,6 +392,25 @@ if given is not None:
                 return  # a body MuJoCo itself refuses (e.g. A + B < C from shells)
             assert body_differences(path) < TOL
             assert dynamics_differences(path, samples=3) < TOL
+
+
+@pytest.mark.parametrize("com, quat", [
+    ("0 0 9.99e-7", "1 0 0 0"),      # within MuJoCo's frame tolerance: the centre of mass is the origin
+    ("0 0 1e-6", "1 0 0 0"),         # at it: it is not
+    ("-4e-7 8e-7 0", "1 0 9e-7 0"),  # both within: the body frame is the inertial frame
+    ("0.05 0 0", "1 0 9e-7 0"),      # the orientation within, the centre of mass not (rotation only)
+    ("0.05 0 0", "1 0 1.1e-6 0"),    # neither
+    ("0 0 0", "-1 9e-7 0 0"),        # the other sign of the quaternion
+])
+def test_an_inertial_frame_within_the_compilers_tolerance_of_the_body_is_the_body_as_in_mujoco(tmp_path, com, quat):
+    xml = ('<mujoco><worldbody><body name="a"><joint axis="0 1 0"/><inertial pos="0.02 0 0.1" mass="2" '
+           'diaginertia="0.01 0.02 0.03"/><body name="b" pos="0.3 0 0"><joint axis="1 0 0"/>'
+           f'<inertial pos="{com}" quat="{quat}" mass="3" diaginertia="0.4 0.3 0.2"/>'
+           '<body name="c" pos="0 0.2 0"><joint axis="0 0 1"/><geom type="box" size="0.05 0.02 0.01" '
+           f'pos="{com}" density="500"/></body></body></body></worldbody></mujoco>')
+    path = _write(tmp_path, "sameframe.xml", xml)
+    assert body_differences(path) < TOL
+    assert dynamics_differences(path) < TOL
 
 
 def _contact_arm(tmp_path, ghost_class):
