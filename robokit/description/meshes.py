@@ -33,6 +33,18 @@ def without_meshes(collision: bool, count: int) -> str:
     a collision mesh is a shape the collision checks (:class:`robokit.collision.World`) no longer
     see on its link.
 
+    Parameters
+    ----------
+    collision : bool
+        Whether the meshes are collision geometry (else visual).
+    count : int
+        How many meshes the note is about (1: "it", more: "them").
+
+    Returns
+    -------
+    str
+        The end of the note, after what was not read.
+
     Examples
     --------
     >>> without_meshes(False, 1), without_meshes(True, 2)
