@@ -131,11 +131,12 @@ def _color(visual: ET.Element, materials: dict[str, tuple[float, float, float, f
     return (r, g, b, a)
 
 
-def _geometries(link: ET.Element, name: str, materials: dict[str, tuple[float, float, float, float]]) -> list[Geometry]:
+def _geometries(link: ET.Element, name: str, materials: dict[str, tuple[float, float, float, float]],
+                source: str) -> list[Geometry]:
     out = []
     for role in ("visual", "collision"):
         for el in link.findall(role):
-            where = f"link {name!r} <{role}>"
+            where = f"{source}: link {name!r} <{role}>"
             g = el.find("geometry")
             shape = next(iter(g), None) if g is not None else None
             if shape is None:
@@ -198,13 +199,13 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>",
     for mat in root.findall("material"):
         c = mat.find("color")
         if c is not None:
-            r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"material {mat.get('name')!r}")
+            r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"{source}: material {mat.get('name')!r}")
             materials[mat.get("name", "")] = (r, g, b, a)
     links, geoms = [], []
     for el in root.findall("link"):
         name = el.get("name", "")
         links.append(Link(name, _inertial(el, f"{source}: link {name!r}")))
-        geoms.extend(_geometries(el, name, materials))
+        geoms.extend(_geometries(el, name, materials, source))
     by_parent: dict[str, list[Joint]] = {}
     child_of: set[str] = set()
     for el in root.findall("joint"):
