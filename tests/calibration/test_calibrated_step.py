@@ -12,7 +12,7 @@ without a pitch, prismatic joints, nearly parallel and intersecting axes):
 """
 import numpy as np
 import modern_robotics as mr
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from robokit.kernels import calibrated_ik as kci
@@ -141,6 +141,7 @@ def _one_step_error(C, q_star, start):
 
 @settings(max_examples=40, deadline=None, derandomize=True)
 @given(seed=st.integers(0, 2**31 - 1))
+@example(seed=4878)
 def test_a_step_leaves_a_third_order_error(seed):
     S, M, q, C = _packed(seed)
     J = np.asarray(mr.JacobianSpace(S, q), dtype=float)
@@ -148,8 +149,11 @@ def test_a_step_leaves_a_third_order_error(seed):
         return
     rng = np.random.default_rng(seed)
     u = _unit(rng.normal(size=6))
-    e_big = _one_step_error(C, q, q + 4e-3 * u)
-    e_small = _one_step_error(C, q, q + 2e-3 * u)
+    # steps of 1 and 0.5 mrad: in the asymptotic range of every arm drawn (at 4 and 2 mrad the ratio of a
+    # strongly curved arm was still 31, its h⁴ terms not yet small: seed 4878, found at six times the
+    # examples), and the error still far above rounding (about 4e-8 and 5e-9)
+    e_big = _one_step_error(C, q, q + 1e-3 * u)
+    e_small = _one_step_error(C, q, q + 5e-4 * u)
     if e_small < 1e-13:  # at rounding already
         return
     assert 5.0 < e_big / e_small < 11.0  # 8× for O(h³); Newton's step alone gives 4×
