@@ -504,6 +504,33 @@ def _read_assets(ctx: _Ctx) -> None:
             ctx.meshes[name] = attrs
 
 
+#: The attributes of an asset that name a file MuJoCo opens, and the compiler folder it is in.
+_ASSET_FILES = {"mesh": (("file",), "meshdir"), "skin": (("file",), "meshdir"),
+                "hfield": (("file",), "texturedir"),
+                "texture": (("file", "fileright", "fileleft", "fileup", "filedown", "filefront", "fileback"),
+                            "texturedir")}
+
+
+def _check_asset_files(ctx: _Ctx) -> None:
+    """Refuse an asset whose file does not exist, used or not: MuJoCo's compiler opens every asset's file
+    (an unused ``<mesh>`` or ``<texture>`` whose file is missing fails its compile)."""
+    top = ctx.path.resolve().parent
+    for asset in ctx.root.findall("asset"):
+        for el in asset:
+            if el.tag not in _ASSET_FILES:
+                continue
+            keys, folder = _ASSET_FILES[el.tag]
+            for key in keys:
+                file = el.get(key)
+                if not file:
+                    continue
+                shown = os.path.basename(file) if ctx.compiler["strippath"] else file
+                base = top / ctx.compiler[folder] if ctx.compiler[folder] else top
+                if not (base / shown).exists():
+                    raise InputError(f"{ctx.where(el, el.get('name'))} {key}={file!r}: {base / shown}: file not found "
+                                     "(MuJoCo opens every asset's file, used or not)")
+
+
 def _mesh(ctx: _Ctx, name: str, elem: ET.Element, needed: bool) -> tuple[Any, dict[str, str]]:
     """(mesh inertia, file, scale, refpos, refquat, vertices, faces) of a mesh asset; the
     inertia is None when MuJoCo could not compute it and no number needs it (an ASCII STL
@@ -1288,6 +1315,7 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     ctx.compiler["allow_outside_meshes"] = allow_outside_meshes
     _read_defaults(ctx)
     _read_assets(ctx)
+    _check_asset_files(ctx)
     world = root.find("worldbody")
     bodies: list[_Body] = [_Body("world", -1, (0.0, 0.0, 0.0), mm.IDENTITY, [], 0.0, (0.0, 0.0, 0.0), mm.IDENTITY,
                                  (0.0, 0.0, 0.0), [], [], True, False, world)]

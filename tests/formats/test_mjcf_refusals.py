@@ -166,6 +166,15 @@ REFUSED = {
                                            '</default>'), "<geom name='b/geom0'> material='steel'"),
     "a material of a missing texture": (_body("", head='<asset><material name="m" texture="wood"/></asset>'),
                                         "<material name='m'> texture='wood'"),
+    # files of assets no geom uses (Menagerie's Sawyer without pedestal.obj: MuJoCo refused it, robokit loaded it)
+    "an unused mesh whose file is missing": (_body("", head='<asset><mesh name="pedestal" file="pedestal.obj"/></asset>'),
+                                             "<mesh name='pedestal'> file='pedestal.obj'"),
+    "an unused texture whose file is missing": (_body("", head='<asset><texture name="t" type="2d" file="wood.png"/>'
+                                                      '</asset>'), "<texture name='t'> file='wood.png'"),
+    "a cube texture's side whose file is missing": (_body("", head='<asset><texture name="c" type="cube" '
+                                                          'fileright="r.png"/></asset>'), "fileright='r.png'"),
+    "an unused height field whose file is missing": (_body("", head='<asset><hfield name="h" file="h.png" '
+                                                           'size="1 1 1 1"/></asset>'), "<hfield name='h'> file='h.png'"),
     "a light on a missing body": (_body('<light name="l" target="c"/>'), "<light name='l'> target='c'"),
     # keyframes
     "a key of two positions for one joint": (_body("", tail='<keyframe><key name="k" qpos="1 2"/></keyframe>'),
