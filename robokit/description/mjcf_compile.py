@@ -506,16 +506,18 @@ def _read_assets(ctx: _Ctx) -> None:
 
 #: The attributes of an asset that name a file MuJoCo opens, and the compiler folder it is in.
 _ASSET_FILES = {"mesh": (("file",), "meshdir"), "skin": (("file",), "meshdir"),
-                "hfield": (("file",), "texturedir"),
+                "hfield": (("file",), "meshdir"),
                 "texture": (("file", "fileright", "fileleft", "fileup", "filedown", "filefront", "fileback"),
                             "texturedir")}
 
 
 def _check_asset_files(ctx: _Ctx) -> None:
     """Refuse an asset whose file does not exist, used or not: MuJoCo's compiler opens every asset's file
-    (an unused ``<mesh>`` or ``<texture>`` whose file is missing fails its compile)."""
+    (an unused ``<mesh>`` or ``<texture>`` whose file is missing fails its compile). Folders as MuJoCo
+    4.0.1 takes them, measured: ``meshdir`` for meshes, skins and height fields, ``texturedir`` for
+    textures."""
     top = ctx.path.resolve().parent
-    for asset in ctx.root.findall("asset"):
+    for asset in ctx.root.findall("asset") + ctx.root.findall("deformable"):  # a <skin> is in <deformable>
         for el in asset:
             if el.tag not in _ASSET_FILES:
                 continue

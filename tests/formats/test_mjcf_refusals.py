@@ -175,6 +175,8 @@ REFUSED = {
                                                           'fileright="r.png"/></asset>'), "fileright='r.png'"),
     "an unused height field whose file is missing": (_body("", head='<asset><hfield name="h" file="h.png" '
                                                            'size="1 1 1 1"/></asset>'), "<hfield name='h'> file='h.png'"),
+    "a skin whose file is missing": (_body("", tail='<deformable><skin name="s" file="s.skn"/></deformable>'),
+                                     "<skin name='s'> file='s.skn'"),
     "a light on a missing body": (_body('<light name="l" target="c"/>'), "<light name='l'> target='c'"),
     # keyframes
     "a key of two positions for one joint": (_body("", tail='<keyframe><key name="k" qpos="1 2"/></keyframe>'),
@@ -294,3 +296,39 @@ def test_every_element_of_the_schema_is_read_by_mujoco():
                 mujoco.MjModel.from_xml_string(xml.format(a=a))
             except ValueError as e:
                 assert "unrecognized attribute" not in str(e), (a, str(e))
+
+
+def _png(path):
+    """A 4×4 grey PNG (the smallest file MuJoCo reads as a texture or a height field)."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\x00" + bytes([128] * 4) for _ in range(4))
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 0, 0, 0, 0))
+                     + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("asset,folder", [('<hfield name="a" file="a.png" size="1 1 1 1"/>', "mesh"),
+                                          ('<texture name="a" type="2d" file="a.png"/>', "tex")])
+@pytest.mark.parametrize("where", ["mesh", "tex"])
+def test_asset_files_are_looked_for_where_mujoco_looks(asset, folder, where, tmp_path):
+    """A height field's file is in meshdir, a texture's in texturedir (MuJoCo 4.0.1): robokit finds an
+    unused asset's file where MuJoCo does, and refuses it where MuJoCo does not find it."""
+    for sub in ("mesh", "tex"):
+        (tmp_path / sub).mkdir()
+    _png(tmp_path / where / "a.png")
+    path = tmp_path / "arm.xml"
+    path.write_text(_body("", head=f'<compiler meshdir="mesh" texturedir="tex"/><asset>{asset}</asset>'))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if where == folder:
+            mujoco.MjModel.from_xml_path(str(path))
+            assert robokit.load(path).n == 1
+        else:
+            with pytest.raises(ValueError):
+                mujoco.MjModel.from_xml_path(str(path))
+            with pytest.raises(InputError, match="file not found"):
+                robokit.load(path)
