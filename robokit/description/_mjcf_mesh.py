@@ -3,8 +3,12 @@ r"""MJCF mesh assets as MuJoCo's compiler sees them: vertices, faces, volume, in
 Reading (bounded: the file was confined and size-checked by
 :func:`robokit.description.mjcf_safety.check_mjcf`)
     * binary STL (MuJoCo reads no ASCII STL; at most 200,000 triangles, as MuJoCo);
-    * OBJ: ``v`` and ``f`` lines of the file's first object or group, triangles and quads (a
-      quad split as MuJoCo splits it), negative indices counted from the end;
+    * OBJ: ``v`` and ``f`` lines of the file's first object or group, negative indices counted
+      from the end; polygons split into triangles as MuJoCo 4.0.1 splits them (measured on its
+      ``mesh_face``): a quad along its shorter diagonal (0–2 if shorter than 1–3, else 1–3), a
+      polygon of five or more vertices by clipping ears (in its plane, :data:`MAX_POLYGON`
+      vertices at most) — for a planar polygon any such split gives MuJoCo's area, volume and
+      inertia;
     * MSH, MuJoCo's own binary format;
     * inline ``vertex``/``face`` attributes (vertices only: their convex hull).
     Coordinates are single precision in MuJoCo, so they are rounded to float32 here too.
@@ -34,6 +38,8 @@ from robokit.errors import InputError
 
 #: Most triangles MuJoCo reads from one STL file.
 MAX_STL_TRIANGLES = 200_000
+#: Most vertices of one OBJ polygon robokit splits into triangles (ear clipping is quadratic).
+MAX_POLYGON = 1000
 
 
 @dataclass(frozen=True)
@@ -73,9 +79,60 @@ def _read_stl(raw: bytes, where: str) -> tuple[np.ndarray, np.ndarray]:
     return verts, inverse.reshape(-1, 3)
 
 
+def _quad(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
+    """A quad's two triangles, split along the shorter diagonal (single precision, as MuJoCo's
+    OBJ reader compares them; a tie splits along 1–3)."""
+    a, b, c, d = (v[k].astype(np.float32) for k in idx)
+    if float(((a - c) ** 2).sum()) < float(((b - d) ** 2).sum()):
+        return [(idx[0], idx[1], idx[2]), (idx[0], idx[2], idx[3])]
+    return [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
+
+
+def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
+    """Triangles of a polygon of five or more vertices, clipped ear by ear in the plane of its
+    (Newell) normal, each with the polygon's winding; what cannot be clipped (a self-crossing or
+    degenerate polygon) is closed as a fan."""
+    p = v[list(idx)]
+    normal = np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)
+    if not np.linalg.norm(normal) > 0.0:
+        return [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
+    normal /= np.linalg.norm(normal)
+    u = np.cross(normal, [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    w = np.cross(normal, u)
+    xy = np.stack([p @ u, p @ w], axis=1)  # counter-clockwise about the normal
+
+    def cross(i: int, j: int, k: int) -> float:
+        return float((xy[j, 0] - xy[i, 0]) * (xy[k, 1] - xy[i, 1]) - (xy[j, 1] - xy[i, 1]) * (xy[k, 0] - xy[i, 0]))
+
+    ring = list(range(len(idx)))
+    out: list[tuple[int, int, int]] = []
+    while len(ring) > 3:
+        m = len(ring)
+        for t in range(m):
+            i, j, k = ring[t - 1], ring[t], ring[(t + 1) % m]
+            if cross(i, j, k) <= 0.0:
+                continue  # reflex or flat: not an ear
+            others = [r for r in ring if r not in (i, j, k)]
+            q = xy[others]
+            inside = ((xy[j, 0] - xy[i, 0]) * (q[:, 1] - xy[i, 1]) - (xy[j, 1] - xy[i, 1]) * (q[:, 0] - xy[i, 0]) >= 0) \
+                & ((xy[k, 0] - xy[j, 0]) * (q[:, 1] - xy[j, 1]) - (xy[k, 1] - xy[j, 1]) * (q[:, 0] - xy[j, 0]) >= 0) \
+                & ((xy[i, 0] - xy[k, 0]) * (q[:, 1] - xy[k, 1]) - (xy[i, 1] - xy[k, 1]) * (q[:, 0] - xy[k, 0]) >= 0)
+            if inside.any():
+                continue
+            out.append((idx[i], idx[j], idx[k]))
+            del ring[t]
+            break
+        else:  # no ear: not a simple polygon
+            out.extend((idx[ring[0]], idx[ring[r]], idx[ring[r + 1]]) for r in range(1, len(ring) - 1))
+            return out
+    out.append((idx[ring[0]], idx[ring[1]], idx[ring[2]]))
+    return out
+
+
 def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
     verts: list[list[float]] = []
-    faces: list[tuple[int, int, int]] = []
+    polygons: list[tuple[int, list[int]]] = []
     started = False
     for lineno, line in enumerate(text.splitlines(), 1):
         parts = line.split()
@@ -88,7 +145,7 @@ def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
                 raise InputError(f"{where}:{lineno}: bad vertex line") from None
             if len(verts[-1]) != 3:
                 raise InputError(f"{where}:{lineno}: a vertex needs three coordinates")
-        elif parts[0] in ("o", "g") and faces:
+        elif parts[0] in ("o", "g") and polygons:
             started = True  # MuJoCo reads the first shape only
         elif parts[0] == "f" and not started:
             idx = []
@@ -98,12 +155,22 @@ def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
                 except ValueError:
                     raise InputError(f"{where}:{lineno}: bad face index {p!r}") from None
                 idx.append(k - 1 if k > 0 else len(verts) + k)
-            if len(idx) not in (3, 4):
-                raise InputError(f"{where}:{lineno}: MuJoCo reads triangles and quads only")
+            if len(idx) < 3:
+                raise InputError(f"{where}:{lineno}: a face needs at least three vertices")
+            if len(idx) > MAX_POLYGON:
+                raise InputError(f"{where}:{lineno}: a face of {len(idx)} vertices (robokit splits polygons of at "
+                                 f"most {MAX_POLYGON} into triangles)")
+            polygons.append((lineno, idx))
+    v = _float32(verts).reshape(-1, 3)
+    faces: list[tuple[int, int, int]] = []
+    for lineno, idx in polygons:
+        if len(idx) == 3:
             faces.append((idx[0], idx[1], idx[2]))
-            if len(idx) == 4:
-                faces.append((idx[0], idx[2], idx[3]))
-    return _float32(verts).reshape(-1, 3), np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+            continue
+        if min(idx) < 0 or max(idx) >= len(v):
+            raise InputError(f"{where}:{lineno}: a face names a vertex that does not exist")
+        faces.extend(_quad(idx, v) if len(idx) == 4 else _polygon(idx, v))
+    return v, np.asarray(faces, dtype=np.int64).reshape(-1, 3)
 
 
 def _read_msh(raw: bytes, where: str) -> tuple[np.ndarray, np.ndarray]:
