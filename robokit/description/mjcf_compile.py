@@ -1245,7 +1245,8 @@ _NQ = {"free": 7, "ball": 4, "hinge": 1, "slide": 1}
 
 
 def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
-    """MuJoCo's rule: a ``<key>``'s ``qpos``, ``qvel``, ``ctrl``, ``mpos`` and ``mquat`` have the model's sizes."""
+    """MuJoCo's rule: a ``<key>``'s ``qpos``, ``qvel``, ``ctrl``, ``mpos`` and ``mquat`` have at most the model's
+    sizes (MuJoCo 4.0.1 fills a shorter one up; Menagerie's xArm 6 with its gripper keys 6 of its 12 positions)."""
     joints = [j for b in bodies for j in b.joints]
     nmocap = sum(1 for b in bodies if b.mocap)
     nu = sum(1 for sec in ctx.root.findall("actuator") for a in sec if isinstance(a.tag, str))
@@ -1255,7 +1256,7 @@ def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
         for key in sec.findall("key"):
             for attr, n in sizes.items():
                 vals = _numbers(ctx, dict(key.attrib), attr, None, key)
-                if vals is not None and len(vals) != n:
+                if vals is not None and len(vals) > n:
                     raise InputError(f"{ctx.where(key, key.get('name'))} {attr}: {len(vals)} numbers, the model has "
                                      f"{n} (MuJoCo refuses the file)")
 

@@ -206,6 +206,10 @@ def test_what_mujoco_refuses_robokit_refuses(case, tmp_path):
 #: id → file: each read by MuJoCo and compiled by robokit (several were refused by robokit, or
 #: nearly so, before: they mark where MuJoCo's rules stop)
 ACCEPTED = {
+    "a key of fewer positions, velocities and controls than the model (MuJoCo fills them up; Menagerie's xArm 6)":
+        _body('<body name="c" pos="0 0 0.3"><joint name="h2" axis="0 1 0"/><geom size="0.1"/></body>',
+              tail='<actuator><motor joint="h"/><motor joint="h2"/></actuator>'
+                   '<keyframe><key name="k" qpos="0.5" qvel="1" ctrl="1"/></keyframe>'),
     "six dofs in one body": _arm("".join(f'<joint name="j{i}" axis="0 0 1"/>' for i in range(6))),
     "a ball after a hinge": _arm('<joint name="h"/><joint name="s" type="ball"/>'),
     "slides after a ball": _arm('<joint name="s" type="ball"/>' + '<joint type="slide"/>' * 3),
