@@ -6,9 +6,8 @@ Reading (bounded: the file was confined and size-checked by
     * OBJ: ``v`` and ``f`` lines of the file's first object or group, negative indices counted
       from the end; polygons split into triangles as MuJoCo 4.0.1 splits them (measured on its
       ``mesh_face``): a quad along its shorter diagonal (0–2 if shorter than 1–3, else 1–3), a
-      polygon of five or more vertices by clipping ears (in its plane, :data:`MAX_POLYGON`
-      vertices at most) — for a planar polygon any such split gives MuJoCo's area, volume and
-      inertia;
+      polygon of five or more vertices (:data:`MAX_POLYGON` at most) by MuJoCo's ear clipping
+      (:func:`_polygon`);
     * MSH, MuJoCo's own binary format;
     * inline ``vertex``/``face`` attributes (vertices only: their convex hull).
     Coordinates are single precision in MuJoCo, so they are rounded to float32 here too.
@@ -88,45 +87,68 @@ def _quad(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
     return [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
 
 
+def _inside3(x: Sequence[np.float32], y: Sequence[np.float32], tx: np.float32, ty: np.float32) -> bool:
+    """Whether (tx, ty) is inside the triangle (x, y) by the crossing-number rule, in single precision."""
+    inside = False
+    j = 2
+    for i in range(3):
+        if (y[i] > ty) != (y[j] > ty) and tx < (x[j] - x[i]) * (ty - y[i]) / (y[j] - y[i]) + x[i]:
+            inside = not inside
+        j = i
+    return inside
+
+
 def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
-    """Triangles of a polygon of five or more vertices, clipped ear by ear in the plane of its
-    (Newell) normal, each with the polygon's winding; what cannot be clipped (a self-crossing or
-    degenerate polygon) is closed as a fan."""
-    p = v[list(idx)]
-    normal = np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)
-    if not np.linalg.norm(normal) > 0.0:
-        return [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
-    normal /= np.linalg.norm(normal)
-    u = np.cross(normal, [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0])
-    u /= np.linalg.norm(u)
-    w = np.cross(normal, u)
-    xy = np.stack([p @ u, p @ w], axis=1)  # counter-clockwise about the normal
-
-    def cross(i: int, j: int, k: int) -> float:
-        return float((xy[j, 0] - xy[i, 0]) * (xy[k, 1] - xy[i, 1]) - (xy[j, 1] - xy[i, 1]) * (xy[k, 0] - xy[i, 0]))
-
-    ring = list(range(len(idx)))
-    out: list[tuple[int, int, int]] = []
-    while len(ring) > 3:
-        m = len(ring)
-        for t in range(m):
-            i, j, k = ring[t - 1], ring[t], ring[(t + 1) % m]
-            if cross(i, j, k) <= 0.0:
-                continue  # reflex or flat: not an ear
-            others = [r for r in ring if r not in (i, j, k)]
-            q = xy[others]
-            inside = ((xy[j, 0] - xy[i, 0]) * (q[:, 1] - xy[i, 1]) - (xy[j, 1] - xy[i, 1]) * (q[:, 0] - xy[i, 0]) >= 0) \
-                & ((xy[k, 0] - xy[j, 0]) * (q[:, 1] - xy[j, 1]) - (xy[k, 1] - xy[j, 1]) * (q[:, 0] - xy[j, 0]) >= 0) \
-                & ((xy[i, 0] - xy[k, 0]) * (q[:, 1] - xy[k, 1]) - (xy[i, 1] - xy[k, 1]) * (q[:, 0] - xy[k, 0]) >= 0)
-            if inside.any():
-                continue
-            out.append((idx[i], idx[j], idx[k]))
-            del ring[t]
+    """Triangles of a polygon of five or more vertices as MuJoCo 4.0.1's OBJ reader clips them
+    (single precision; its output measured on ``mesh_face``, a non-planar 11-gon of MuJoCo
+    Menagerie's ARX L5 camera vertex for vertex). The polygon is projected onto the coordinate
+    plane its first corner faces most; then, from a guessed vertex, the triangle of it and its
+    next two is cut off unless its turn and that of its first edge about the origin have opposite
+    signs (MuJoCo's rule, not the polygon's orientation) or it holds one of the other vertices
+    (the middle vertex leaves the ring and the guess stays), else the guess moves on; a ring
+    that no cut shortens in a full turn is given up (its triangles are missing, as in MuJoCo)."""
+    f = v.astype(np.float32)
+    n = len(idx)
+    axes = (1, 2)
+    eps = np.finfo(np.float32).eps
+    for k in range(n):  # the first corner with a cross product: the plane it faces most
+        p0, p1, p2 = f[idx[k]], f[idx[(k + 1) % n]], f[idx[(k + 2) % n]]
+        e0, e1 = p1 - p0, p2 - p1
+        cx = abs(e0[1] * e1[2] - e0[2] * e1[1])
+        cy = abs(e0[2] * e1[0] - e0[0] * e1[2])
+        cz = abs(e0[0] * e1[1] - e0[1] * e1[0])
+        if cx > eps or cy > eps or cz > eps:
+            if not (cx > cy and cx > cz):
+                axes = (0, 1) if cz > cx and cz > cy else (0, 2)
             break
-        else:  # no ear: not a simple polygon
-            out.extend((idx[ring[0]], idx[ring[r]], idx[ring[r + 1]]) for r in range(1, len(ring) - 1))
-            return out
-    out.append((idx[ring[0]], idx[ring[1]], idx[ring[2]]))
+    X = [f[i][axes[0]] for i in idx]
+    Y = [f[i][axes[1]] for i in idx]
+    half = np.float32(0.5)
+    ring = list(range(n))
+    out: list[tuple[int, int, int]] = []
+    guess, tries, before = 0, n, n
+    while len(ring) > 3 and tries > 0:
+        m = len(ring)
+        if guess >= m:
+            guess -= m
+        if before != m:
+            before, tries = m, m
+        else:
+            tries -= 1
+        t = [ring[(guess + k) % m] for k in range(3)]
+        x, y = [X[k] for k in t], [Y[k] for k in t]
+        cross = (x[1] - x[0]) * (y[2] - y[1]) - (y[1] - y[0]) * (x[2] - x[1])
+        area = (x[0] * y[1] - y[0] * x[1]) * half  # MuJoCo's turn test: against the origin, not the polygon
+        if cross * area < 0:
+            guess += 1
+            continue
+        if any(_inside3(x, y, X[ring[(guess + k) % m]], Y[ring[(guess + k) % m]]) for k in range(3, m)):
+            guess += 1
+            continue
+        out.append((idx[t[0]], idx[t[1]], idx[t[2]]))
+        del ring[(guess + 1) % m]
+    if len(ring) == 3:
+        out.append((idx[ring[0]], idx[ring[1]], idx[ring[2]]))
     return out
 
 

@@ -295,13 +295,14 @@ def test_mesh_inertia(mode, tmp_path):
     assert dynamics_differences(path) < TOL
 
 
-def _prism_obj(section, twist=0.0, height=0.15):
+def _prism_obj(section, twist=0.0, height=0.15, bumps=None):
     """An OBJ prism of the polygon ``section`` (counter-clockwise, in metres): bottom and top written
     as one polygon each, the sides as quads; the top turned by ``twist`` radians (the side quads are
     then not planar, their diagonals of different lengths)."""
     c, s = np.cos(twist), np.sin(twist)
-    bottom = [(x, y, 0.0) for x, y in section]
-    top = [(c * x - s * y, s * x + c * y, height) for x, y in section]
+    dz = np.zeros(len(section)) if bumps is None else bumps  # caps not planar
+    bottom = [(x, y, -z) for (x, y), z in zip(section, dz)]
+    top = [(c * x - s * y, s * x + c * y, height + z) for (x, y), z in zip(section, dz)]
     lines = [f"v {x} {y} {z}" for x, y, z in bottom + top]
     n = len(section)
     lines.append("f " + " ".join(str(i + 1) for i in reversed(range(n))))
@@ -329,6 +330,31 @@ def test_obj_quads_are_split_along_the_shorter_diagonal_as_in_mujoco(twist, tmp_
     _, mine = read_mesh_file(path)
     assert m.mesh_vertnum[0] == 8
     assert sorted(map(tuple, mine.tolist())) == sorted(map(tuple, theirs.tolist()))
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_obj_polygons_are_split_into_mujocos_triangles(seed, tmp_path):
+    """MuJoCo's own split of OBJ polygons of 5 to 14 vertices, triangle for triangle (``mesh_face``):
+    prisms of random star-shaped sections, away from the origin (MuJoCo's ear test looks at it),
+    their caps not planar, their sides twisted."""
+    from robokit.description._mjcf_mesh import read_mesh_file
+
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(5, 15))
+    angles = np.sort(rng.uniform(0.0, 2 * np.pi, n))
+    radii = rng.uniform(0.03, 0.1, n)
+    centre = rng.uniform(-0.3, 0.3, 2)
+    section = [(centre[0] + r * np.cos(a), centre[1] + r * np.sin(a)) for a, r in zip(angles, radii)]
+    path = tmp_path / "star.obj"
+    path.write_text(_prism_obj(section, twist=0.2, bumps=rng.uniform(-0.01, 0.01, n)))
+    (tmp_path / "star.xml").write_text('<mujoco><asset><mesh name="m" file="star.obj" inertia="shell"/></asset>'
+                                       '<worldbody><body name="b"><joint name="h"/><geom type="mesh" mesh="m"/>'
+                                       '</body></worldbody></mujoco>')
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "star.xml"))
+    theirs = m.mesh_face[m.mesh_faceadr[0]:m.mesh_faceadr[0] + m.mesh_facenum[0]]
+    _, mine = read_mesh_file(path)
+    assert m.mesh_vertnum[0] == 2 * n
+    np.testing.assert_array_equal(mine, theirs)
 
 
 @pytest.mark.parametrize("mode", ["legacy", "exact", "shell"])
