@@ -188,10 +188,23 @@ def check_mesh_arrays(vertices: Any, faces: Any, source: str | os.PathLike[str])
 _HUGE = re.compile(rb"(?<![\w.-])[+-]?(?:[0-9]{13,}\.?[0-9]*|[0-9]*\.?[0-9]+[eE]\+?0*(?:[0-9]{3,}|1[2-9]|[2-9][0-9]))"
                    rb"(?![\w.+-])")
 #: What every match of ``_HUGE`` contains (13 digits in a row, or an exponent of 12 or more), found
-#: without the look-behind: about twice as fast over a mesh, and most meshes have none (then the
-#: scan with ``_HUGE`` is skipped; measured on example-robot-data's Baxter COLLADA meshes, 53 MB:
-#: 1.3 s against 3.0 s).
-_MAYBE_HUGE = re.compile(rb"[0-9]{13}|[eE]\+?0*(?:[0-9]{3}|1[2-9]|[2-9][0-9])")
+#: without the look-behind: most meshes have none, and then the scan with ``_HUGE`` is skipped
+#: (:func:`_maybe_huge`).
+_MAYBE_EXPONENT = re.compile(rb"[eE]\+?0*(?:[0-9]{3}|1[2-9]|[2-9][0-9])")
+
+
+def _maybe_huge(raw: bytes) -> bool:
+    """Whether ``raw`` holds 13 digits in a row or an exponent of 12 or more (``_MAYBE_EXPONENT``):
+    the digits counted with numpy (a window of 13 bytes all digits), the exponent with the regular
+    expression, which starts only at an ``e``. One regular expression for both scanned every digit:
+    measured on example-robot-data's Baxter COLLADA meshes (24 files, 26 MB), 1.04 s; this, 0.32 s."""
+    if _MAYBE_EXPONENT.search(raw) is not None:
+        return True
+    if len(raw) < 13:
+        return False
+    a = np.frombuffer(raw, dtype=np.uint8)
+    run = np.concatenate(([0], np.cumsum((a >= 0x30) & (a <= 0x39), dtype=np.int64)))
+    return bool(np.any(run[13:] - run[:-13] == 13))
 
 
 def _largest_number(raw: bytes, ext: str) -> float:
@@ -210,7 +223,7 @@ def _largest_number(raw: bytes, ext: str) -> float:
     if ext not in ("obj", "off", "dae", "ply", "stl"):
         return 0.0
     big = 0.0
-    if _MAYBE_HUGE.search(raw) is None:
+    if not _maybe_huge(raw):
         return big
     for m in _HUGE.finditer(raw):
         try:

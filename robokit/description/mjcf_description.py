@@ -31,7 +31,8 @@ as MuJoCo lays the model out:
   (each quaternion component, either sign) is the body's, and then a centre of mass within
   ``FRAME_EPS`` of the body's origin (each coordinate) is at the origin (the compiler's
   ``body_sameframe``: its kinematics then takes the body frame for the inertial one); sites are
-  ``OP_FRAME`` frames right after their body's frame (MuJoCo numbers them body by body);
+  ``OP_FRAME`` frames right after their body's frame (MuJoCo numbers them body by body), sites and
+  geoms placed by the same tolerance as MuJoCo places them (:func:`_placed`);
 * geoms are shapes named as the file names them: the collision model holds the geoms MuJoCo can
   collide (``contype`` or ``conaffinity`` non-zero), the visual model those of groups 0–2 (what
   MuJoCo's viewer shows); a mesh is its compiled triangles, drawn from its file when the
@@ -94,12 +95,49 @@ def _ref_offset(j: MjcfJoint, held: AbstractSet[str] = frozenset()) -> Any:
 FRAME_EPS = 1e-6
 
 
+_IDENTITY = (1.0, 0.0, 0.0, 0.0)
+
+
+def _same_quat(a: Any, b: Any) -> bool:
+    """MuJoCo's compiler test: every component within ``FRAME_EPS``, of b or of −b (one rotation)."""
+    qa, qb = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return bool(np.all(np.abs(qa - qb) < FRAME_EPS) or np.all(np.abs(qa + qb) < FRAME_EPS))
+
+
+def _same_vec(a: Any, b: Any) -> bool:
+    return bool(np.all(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float)) < FRAME_EPS))
+
+
 def _same_frame(b: MjcfBody) -> tuple[bool, bool]:
     """(principal frame is the body's, centre of mass too) by MuJoCo's compiler test (``FRAME_EPS``)."""
-    q = np.asarray(b.iquat, dtype=float)
-    one = np.array([1.0, 0.0, 0.0, 0.0])
-    rot = bool(np.all(np.abs(q - one) < FRAME_EPS) or np.all(np.abs(q + one) < FRAME_EPS))
-    return rot, rot and bool(np.all(np.abs(np.asarray(b.ipos, dtype=float)) < FRAME_EPS))
+    rot = _same_quat(b.iquat, _IDENTITY)
+    return rot, rot and _same_vec(b.ipos, (0.0, 0.0, 0.0))
+
+
+def _inertial_frame(b: MjcfBody) -> tuple[Any, Any]:
+    """(centre of mass, principal frame's quaternion) in the body frame as MuJoCo's kinematics places
+    them (``xipos``, ``ximat``): the body's own where the compiler's ``body_sameframe`` says so."""
+    rot, pos = _same_frame(b)
+    return ((0.0, 0.0, 0.0) if pos else b.ipos), (_IDENTITY if rot else b.iquat)
+
+
+def _placed(pos: Any, quat: Any, b: MjcfBody) -> Any:
+    """A site's or geom's placement in its body as MuJoCo's kinematics computes it (``site_sameframe``,
+    ``geom_sameframe``: the compiler's tests in this order, each within ``FRAME_EPS``): at the body's
+    frame; its orientation the body's; at the body's inertial frame (as placed by
+    :func:`_inertial_frame`); its orientation the inertial frame's; else as written."""
+    import pinocchio as pin
+
+    ipos, iquat = _inertial_frame(b)
+    if _same_vec(pos, (0.0, 0.0, 0.0)) and _same_quat(quat, _IDENTITY):
+        return pin.SE3.Identity()
+    if _same_quat(quat, _IDENTITY):
+        return _se3(pos, _IDENTITY)
+    if _same_vec(pos, b.ipos) and _same_quat(quat, b.iquat):
+        return _se3(ipos, iquat)
+    if _same_quat(quat, b.iquat):
+        return _se3(pos, iquat)
+    return _se3(pos, quat)
 
 
 def _inertial(b: MjcfBody) -> Inertial:
@@ -162,10 +200,11 @@ def _shape(g: MjcfGeom) -> tuple[str, tuple[float, ...]] | None:
     return None
 
 
-def _geometries(g: MjcfGeom, body: str) -> list[Geometry]:
+def _geometries(g: MjcfGeom, b: MjcfBody) -> list[Geometry]:
     """The collision and visual shapes of one geom (none, one or both)."""
     kind, size = _shape(g) or ("", ())
-    place = _se3(g.pos, g.quat)
+    body = b.name
+    place = _placed(g.pos, g.quat, b)
     rgba = (float(g.rgba[0]), float(g.rgba[1]), float(g.rgba[2]), float(g.rgba[3]))
     out = []
     if g.contype or g.conaffinity:
@@ -213,12 +252,12 @@ def _mjcf_parts(c: CompiledMjcf, first: int, armature: bool = True, held: Abstra
             joints.append(Joint(f"\x00weld/{b.name}", "fixed", parent, b.name, _pose(_se3(b.pos, b.quat)),
                                 frame=False))
         links.append(Link(b.name, _inertial(b)))
-        frames += [FrameSpec(s.name, b.name, _pose(_se3(s.pos, s.quat))) for s in b.sites]
+        frames += [FrameSpec(s.name, b.name, _pose(_placed(s.pos, s.quat, b))) for s in b.sites]
         for g in b.geoms:
             if _shape(g) is None:
                 skipped.append(f"{g.name} ({g.type})")
                 continue
-            geoms += _geometries(g, b.name)
+            geoms += _geometries(g, b)
             if g.contype or g.conaffinity:
                 masks[g.name] = (int(g.contype), int(g.conaffinity), b.name)
     desc = Description(c.name, tuple(links), tuple(joints), tuple(frames), tuple(geoms), tuple(roots),

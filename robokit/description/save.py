@@ -189,7 +189,9 @@ def _relocated_meshes(text: str, robot: Robot, source: Path, dest: Path, arg: st
     package_dirs = list(spec.package_dirs) if spec is not None else []
     src_roots, dest_roots = _package_roots(source, package_dirs), _package_roots(dest, package_dirs)
     allowed = allowed_roots(dest, package_dirs)
-    changed, outside, packages = 0, set(), {}
+    changed = 0
+    outside: set[Path] = set()
+    packages: dict[str, str] = {}
     for mesh in root.iter("mesh"):
         uri = mesh.get("filename") or ""
         if uri.startswith("package://"):

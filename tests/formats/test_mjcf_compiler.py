@@ -637,3 +637,61 @@ def test_a_site_named_like_a_joint_or_a_body(site_name, tip, tmp_path):
         p, R = (d.xpos[i], d.xmat[i]) if kind == mujoco.mjtObj.mjOBJ_BODY else (d.site_xpos[i], d.site_xmat[i])
         for T in (robot.frame_pose(q), robokit.load(path, tip=tip).frame_pose(q), robot.frame_pose(q, tip)):
             assert np.abs(T[:3, 3] - p).max() < 1e-12 and np.abs(T[:3, :3] - R.reshape(3, 3)).max() < 1e-12
+
+
+# Sites and geoms within MuJoCo's frame tolerance of their body's frame or of its inertial frame
+# (site_sameframe / geom_sameframe): MuJoCo's kinematics places them at that frame, or gives them its
+# orientation. Each (pos, quat) below is one such case, with the body's inertial frame at
+# (0.05, 0.02, 0.01) turned by IQUAT, and one just past the tolerance.
+IQUAT = "0.9238795325112867 0 0.3826834323650898 0"
+_NEAR = [
+    ("4e-7 -9e-7 0", "1 0 0 0"),                                     # the body's frame
+    ("0.1 0.2 0.3", "1 5e-7 0 0"),                                   # the body's orientation
+    ("0.0500005 0.02 0.0099996", "0.9238799 0 0.3826830 0"),         # the inertial frame
+    ("0.1 0.2 0.3", "-0.9238792 0 -0.3826839 0"),                    # its orientation (the other sign)
+    ("0.1 0.2 0.3", "0.9238795 1.1e-6 0.3826834 0"),                 # past it: as written
+    ("1.1e-6 0 0", "1 0 0 0"),                                       # its position past it: as written
+]
+
+
+def _near_frames_file(tmp_path):
+    sites = "".join(f'<site name="s{k}" pos="{p}" quat="{q}"/>' for k, (p, q) in enumerate(_NEAR))
+    geoms = "".join(f'<geom name="g{k}" type="box" size="0.01 0.02 0.03" pos="{p}" quat="{q}" mass="0"/>'
+                    for k, (p, q) in enumerate(_NEAR))
+    xml = ('<mujoco><worldbody><body name="a"><joint axis="0 1 0"/>'
+           f'<inertial pos="0.05 0.02 0.01" quat="{IQUAT}" mass="2" diaginertia="0.03 0.02 0.015"/>'
+           f'{sites}{geoms}<body name="b" pos="0.3 0 0"><joint axis="1 0 0"/>'
+           '<inertial pos="0 0 0" quat="1 0 0 5e-7" mass="1" diaginertia="0.01 0.01 0.01"/>'
+           '<site name="tip" pos="3e-7 0 0" quat="1 0 0 0"/></body></body></worldbody></mujoco>')
+    return _write(tmp_path, "near_frames.xml", xml)
+
+
+def test_sites_and_geoms_near_their_bodys_frames_are_placed_as_mujoco_places_them(tmp_path):
+    import pinocchio as pin
+
+    path = _near_frames_file(tmp_path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert list(m.site_sameframe[:len(_NEAR)]) == [1, 3, 2, 4, 0, 3]  # the cases are the ones meant
+    assert list(m.geom_sameframe) == [1, 3, 2, 4, 0, 3]
+    d = mujoco.MjData(m)
+    robot = robokit.load(path, tip="tip")
+    geo = pin.GeometryData(robot.collision_model)
+    data = robot.model.createData()
+    rng = np.random.default_rng(5)
+    worst = 0.0
+    for _ in range(5):
+        q = robot.random_configuration(rng)
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        for k in range(m.nsite):
+            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_SITE, k)
+            T = robot.frame_pose(q, name)
+            worst = max(worst, np.abs(T[:3, 3] - d.site_xpos[k]).max(), np.abs(T[:3, :3] - d.site_xmat[k].reshape(3, 3)).max())
+        pin.forwardKinematics(robot.model, data, q)
+        pin.updateGeometryPlacements(robot.model, data, robot.collision_model, geo)
+        for k in range(m.ngeom):
+            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, k)
+            X = geo.oMg[robot.collision_model.getGeometryId(name)]
+            worst = max(worst, np.abs(X.translation - d.geom_xpos[k]).max(),
+                        np.abs(X.rotation - d.geom_xmat[k].reshape(3, 3)).max())
+    assert worst < 1e-12

@@ -286,3 +286,57 @@ def test_fuzz_dh_urdf_dh_round_trip_is_exact_or_reports_an_honest_residual(links
         assert not res.exact and res.residual > 1e-9, (err, res.residual)
     if res.exact:
         assert err <= 1e-9, (err, res.residual)
+
+
+def _refused_naming(path: Path) -> None:
+    from robokit.errors import InputError
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            robokit.load(str(path))
+    except InputError as exc:
+        msg = str(exc)
+        assert msg.startswith(f"{path}: ") and "\n" not in msg, msg
+    else:
+        raise AssertionError(f"{path.name}: loaded")
+
+
+def test_a_bad_number_in_a_links_shape_or_material_is_refused_naming_the_file(tmp_path):
+    """Found by this file's URDF fuzzing at six times its examples: a box size of ``nan`` in a visual
+    was refused without the file's name (the shapes' and materials' messages lacked it)."""
+    cases = {
+        "box": '<visual><geometry><box size="nan 1 1"/></geometry></visual>',
+        "collision": '<collision><geometry><box size="1 1"/></geometry></collision>',
+        "scale": '<collision><geometry><mesh filename="m.stl" scale="1 inf 1"/></geometry></collision>',
+    }
+    import struct
+
+    (tmp_path / "m.stl").write_bytes(b"\0" * 80 + struct.pack("<I12fH", 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0))
+    for name, shape in cases.items():
+        path = tmp_path / f"{name}.urdf"
+        path.write_text(urdf_text([joint("j1", "base", "l1")], [link("base"), link("l1", mass=1.0, extra=shape)]))
+        _refused_naming(path)
+
+
+def test_a_colour_urdfdom_cannot_read_loads_with_a_note_naming_the_file(tmp_path):
+    """A visual's or a top-level material's ``rgba`` with a part that is not a number from 0 to 1:
+    urdfdom (and so Pinocchio and ROS) loads the robot, logging the colour; so does robokit, with a
+    note naming the file (tests/description/test_urdf_colors.py holds the colours to Pinocchio's)."""
+    import pinocchio as pin
+
+    from robokit.errors import RobokitWarning
+
+    visual = ('<visual><geometry><box size="1 1 1"/></geometry><material name="m"><color rgba="1 0 x 1"/>'
+              '</material></visual>')
+    for name, parts in {"colour": [link("base"), link("l1", mass=1.0, extra=visual)],
+                        "material": ['<material name="m"><color rgba="1 nan 0 1"/></material>', link("base"),
+                                     link("l1", mass=1.0)]}.items():
+        path = tmp_path / f"{name}.urdf"
+        path.write_text(urdf_text([joint("j1", "base", "l1")], parts))
+        pin.buildModelFromXML(path.read_text())  # the engine reads it
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            assert robokit.load(str(path)).n == 1
+        notes = [str(w.message) for w in caught if issubclass(w.category, RobokitWarning) and "rgba" in str(w.message)]
+        assert len(notes) == 1 and notes[0].startswith(f"{path}: "), notes
