@@ -37,8 +37,12 @@ from robokit.errors import InputError
 
 #: Most triangles MuJoCo reads from one STL file.
 MAX_STL_TRIANGLES = 200_000
-#: Most vertices of one OBJ polygon robokit splits into triangles (ear clipping is quadratic).
+#: Most vertices of one OBJ polygon robokit splits into triangles.
 MAX_POLYGON = 1000
+#: The work MuJoCo's ear clipping may take in one OBJ file: each triangle tried costs ``_TRY_COST``
+#: plus the polygon's remaining vertices; a file may spend ``MAX_EAR_WORK`` plus ``_WORK_PER_VERTEX`` per
+#: polygon vertex (a polygon of n vertices normally takes about n tries; a hostile one up to n²).
+MAX_EAR_WORK, _TRY_COST, _WORK_PER_VERTEX = 10_000_000, 30, 40
 
 
 @dataclass(frozen=True)
@@ -87,18 +91,19 @@ def _quad(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
     return [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
 
 
-def _inside3(x: Sequence[np.float32], y: Sequence[np.float32], tx: np.float32, ty: np.float32) -> bool:
-    """Whether (tx, ty) is inside the triangle (x, y) by the crossing-number rule, in single precision."""
-    inside = False
+def _inside3(x: Sequence[np.float32], y: Sequence[np.float32], tx: np.ndarray, ty: np.ndarray) -> np.ndarray:
+    """Which of the points (tx, ty) are inside the triangle (x, y) by the crossing-number rule, in single
+    precision (an edge whose ends are on one side of a point is not divided by: masked)."""
+    inside = np.zeros(len(tx), dtype=bool)
     j = 2
-    for i in range(3):
-        if (y[i] > ty) != (y[j] > ty) and tx < (x[j] - x[i]) * (ty - y[i]) / (y[j] - y[i]) + x[i]:
-            inside = not inside
+    for i in range(3):  # (the caller silences the division by zero that the mask drops)
+        straddles = (y[i] > ty) != (y[j] > ty)
+        inside ^= straddles & (tx < (x[j] - x[i]) * (ty - y[i]) / (y[j] - y[i]) + x[i])
         j = i
     return inside
 
 
-def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
+def _polygon(idx: Sequence[int], v: np.ndarray, budget: list[int], where: str) -> list[tuple[int, int, int]]:
     """Triangles of a polygon of five or more vertices as MuJoCo 4.0.1's OBJ reader clips them
     (single precision; its output measured on ``mesh_face``, a non-planar 11-gon of MuJoCo
     Menagerie's ARX L5 camera vertex for vertex). The polygon is projected onto the coordinate
@@ -106,7 +111,9 @@ def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
     next two is cut off unless its turn and that of its first edge about the origin have opposite
     signs (MuJoCo's rule, not the polygon's orientation) or it holds one of the other vertices
     (the middle vertex leaves the ring and the guess stays), else the guess moves on; a ring
-    that no cut shortens in a full turn is given up (its triangles are missing, as in MuJoCo)."""
+    that no cut shortens in a full turn is given up (its triangles are missing, as in MuJoCo).
+    ``budget[0]``: the work the file may still spend (:data:`MAX_EAR_WORK`), so that a hostile file
+    is refused in bounded time."""
     f = v.astype(np.float32)
     n = len(idx)
     axes = (1, 2)
@@ -121,11 +128,19 @@ def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
             if not (cx > cy and cx > cz):
                 axes = (0, 1) if cz > cx and cz > cy else (0, 2)
             break
-    X = [f[i][axes[0]] for i in idx]
-    Y = [f[i][axes[1]] for i in idx]
-    half = np.float32(0.5)
-    ring = list(range(n))
+    X = f[list(idx), axes[0]]
+    Y = f[list(idx), axes[1]]
     out: list[tuple[int, int, int]] = []
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        _clip(np.arange(n), X, Y, out, idx, budget, where)
+    return out
+
+
+def _clip(ring: np.ndarray, X: np.ndarray, Y: np.ndarray, out: list[tuple[int, int, int]], idx: Sequence[int],
+          budget: list[int], where: str) -> None:
+    """The ear clipping of :func:`_polygon`, its triangles appended to ``out``."""
+    half = np.float32(0.5)
+    n = len(ring)
     guess, tries, before = 0, n, n
     while len(ring) > 3 and tries > 0:
         m = len(ring)
@@ -135,21 +150,25 @@ def _polygon(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
             before, tries = m, m
         else:
             tries -= 1
-        t = [ring[(guess + k) % m] for k in range(3)]
-        x, y = [X[k] for k in t], [Y[k] for k in t]
+        budget[0] -= _TRY_COST + m
+        if budget[0] < 0:
+            raise InputError(f"{where}: its polygons take too long to split into triangles (robokit's bound: "
+                             f"{_TRY_COST} + n per triangle tried, {MAX_EAR_WORK} + {_WORK_PER_VERTEX} per polygon "
+                             "vertex in all)")
+        order = np.concatenate((ring[guess:], ring[:guess]))
+        x, y = X[order[:3]], Y[order[:3]]
         cross = (x[1] - x[0]) * (y[2] - y[1]) - (y[1] - y[0]) * (x[2] - x[1])
         area = (x[0] * y[1] - y[0] * x[1]) * half  # MuJoCo's turn test: against the origin, not the polygon
         if cross * area < 0:
             guess += 1
             continue
-        if any(_inside3(x, y, X[ring[(guess + k) % m]], Y[ring[(guess + k) % m]]) for k in range(3, m)):
+        if _inside3(x, y, X[order[3:]], Y[order[3:]]).any():
             guess += 1
             continue
-        out.append((idx[t[0]], idx[t[1]], idx[t[2]]))
-        del ring[(guess + 1) % m]
+        out.append((idx[order[0]], idx[order[1]], idx[order[2]]))
+        ring = np.delete(ring, (guess + 1) % m)
     if len(ring) == 3:
         out.append((idx[ring[0]], idx[ring[1]], idx[ring[2]]))
-    return out
 
 
 def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
@@ -185,13 +204,14 @@ def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
             polygons.append((lineno, idx))
     v = _float32(verts).reshape(-1, 3)
     faces: list[tuple[int, int, int]] = []
+    budget = [MAX_EAR_WORK + _WORK_PER_VERTEX * sum(len(idx) for _, idx in polygons if len(idx) > 4)]
     for lineno, idx in polygons:
         if len(idx) == 3:
             faces.append((idx[0], idx[1], idx[2]))
             continue
         if min(idx) < 0 or max(idx) >= len(v):
             raise InputError(f"{where}:{lineno}: a face names a vertex that does not exist")
-        faces.extend(_quad(idx, v) if len(idx) == 4 else _polygon(idx, v))
+        faces.extend(_quad(idx, v) if len(idx) == 4 else _polygon(idx, v, budget, f"{where}:{lineno}"))
     return v, np.asarray(faces, dtype=np.int64).reshape(-1, 3)
 
 

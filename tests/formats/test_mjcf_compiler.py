@@ -357,6 +357,22 @@ def test_obj_polygons_are_split_into_mujocos_triangles(seed, tmp_path):
     np.testing.assert_array_equal(mine, theirs)
 
 
+def test_obj_polygons_too_costly_to_split_are_refused_in_bounded_time(tmp_path):
+    """MuJoCo's ear clipping costs up to n² tries for a polygon of n vertices: a file of forty
+    1000-gons is refused, naming the file and the bound, before it takes long."""
+    import time
+
+    from robokit.description._mjcf_mesh import read_mesh_file
+
+    ring = [f"v {np.cos(a)} {np.sin(a)} 0" for a in np.linspace(0.0, 2 * np.pi, 1000, endpoint=False)]
+    path = tmp_path / "disks.obj"
+    path.write_text("\n".join(ring + ["f " + " ".join(str(i + 1) for i in range(1000))] * 40) + "\n")
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=r"disks\.obj:\d+: its polygons take too long to split"):
+        read_mesh_file(path)
+    assert time.perf_counter() - t0 < 10
+
+
 @pytest.mark.parametrize("mode", ["legacy", "exact", "shell"])
 def test_obj_polygons_of_any_size_give_mujocos_bodies(mode, tmp_path):
     """MuJoCo 4.0.1 reads OBJ polygons of five and more vertices (MuJoCo Menagerie's ARX L5 has an
