@@ -3,8 +3,11 @@ r"""MJCF mesh assets as MuJoCo's compiler sees them: vertices, faces, volume, in
 Reading (bounded: the file was confined and size-checked by
 :func:`robokit.description.mjcf_safety.check_mjcf`)
     * binary STL (MuJoCo reads no ASCII STL; at most 200,000 triangles, as MuJoCo);
-    * OBJ: ``v`` and ``f`` lines of the file's first object or group, triangles and quads (a
-      quad split as MuJoCo splits it), negative indices counted from the end;
+    * OBJ: ``v`` and ``f`` lines of the file's first object or group, negative indices counted
+      from the end; polygons split into triangles as MuJoCo 4.0.1 splits them (measured on its
+      ``mesh_face``): a quad along its shorter diagonal (0–2 if shorter than 1–3, else 1–3), a
+      polygon of five or more vertices (:data:`MAX_POLYGON` at most) by MuJoCo's ear clipping
+      (:func:`_polygon`);
     * MSH, MuJoCo's own binary format;
     * inline ``vertex``/``face`` attributes (vertices only: their convex hull).
     Coordinates are single precision in MuJoCo, so they are rounded to float32 here too.
@@ -34,6 +37,12 @@ from robokit.errors import InputError
 
 #: Most triangles MuJoCo reads from one STL file.
 MAX_STL_TRIANGLES = 200_000
+#: Most vertices of one OBJ polygon robokit splits into triangles.
+MAX_POLYGON = 1000
+#: The work MuJoCo's ear clipping may take in one OBJ file: each triangle tried costs ``_TRY_COST``
+#: plus the polygon's remaining vertices; a file may spend ``MAX_EAR_WORK`` plus ``_WORK_PER_VERTEX`` per
+#: polygon vertex (a polygon of n vertices normally takes about n tries; a hostile one up to n²).
+MAX_EAR_WORK, _TRY_COST, _WORK_PER_VERTEX = 10_000_000, 30, 40
 
 
 @dataclass(frozen=True)
@@ -73,9 +82,98 @@ def _read_stl(raw: bytes, where: str) -> tuple[np.ndarray, np.ndarray]:
     return verts, inverse.reshape(-1, 3)
 
 
+def _quad(idx: Sequence[int], v: np.ndarray) -> list[tuple[int, int, int]]:
+    """A quad's two triangles, split along the shorter diagonal (single precision, as MuJoCo's
+    OBJ reader compares them; a tie splits along 1–3)."""
+    a, b, c, d = (v[k].astype(np.float32) for k in idx)
+    if float(((a - c) ** 2).sum()) < float(((b - d) ** 2).sum()):
+        return [(idx[0], idx[1], idx[2]), (idx[0], idx[2], idx[3])]
+    return [(idx[0], idx[1], idx[3]), (idx[1], idx[2], idx[3])]
+
+
+def _inside3(x: Sequence[np.float32], y: Sequence[np.float32], tx: np.ndarray, ty: np.ndarray) -> np.ndarray:
+    """Which of the points (tx, ty) are inside the triangle (x, y) by the crossing-number rule, in single
+    precision (an edge whose ends are on one side of a point is not divided by: masked)."""
+    inside = np.zeros(len(tx), dtype=bool)
+    j = 2
+    for i in range(3):  # (the caller silences the division by zero that the mask drops)
+        straddles = (y[i] > ty) != (y[j] > ty)
+        inside ^= straddles & (tx < (x[j] - x[i]) * (ty - y[i]) / (y[j] - y[i]) + x[i])
+        j = i
+    return inside
+
+
+def _polygon(idx: Sequence[int], v: np.ndarray, budget: list[int], where: str) -> list[tuple[int, int, int]]:
+    """Triangles of a polygon of five or more vertices as MuJoCo 4.0.1's OBJ reader clips them
+    (single precision; its output measured on ``mesh_face``, a non-planar 11-gon of MuJoCo
+    Menagerie's ARX L5 camera vertex for vertex). The polygon is projected onto the coordinate
+    plane its first corner faces most; then, from a guessed vertex, the triangle of it and its
+    next two is cut off unless its turn and that of its first edge about the origin have opposite
+    signs (MuJoCo's rule, not the polygon's orientation) or it holds one of the other vertices
+    (the middle vertex leaves the ring and the guess stays), else the guess moves on; a ring
+    that no cut shortens in a full turn is given up (its triangles are missing, as in MuJoCo).
+    ``budget[0]``: the work the file may still spend (:data:`MAX_EAR_WORK`), so that a hostile file
+    is refused in bounded time."""
+    f = v.astype(np.float32)
+    n = len(idx)
+    axes = (1, 2)
+    eps = np.finfo(np.float32).eps
+    for k in range(n):  # the first corner with a cross product: the plane it faces most
+        p0, p1, p2 = f[idx[k]], f[idx[(k + 1) % n]], f[idx[(k + 2) % n]]
+        e0, e1 = p1 - p0, p2 - p1
+        cx = abs(e0[1] * e1[2] - e0[2] * e1[1])
+        cy = abs(e0[2] * e1[0] - e0[0] * e1[2])
+        cz = abs(e0[0] * e1[1] - e0[1] * e1[0])
+        if cx > eps or cy > eps or cz > eps:
+            if not (cx > cy and cx > cz):
+                axes = (0, 1) if cz > cx and cz > cy else (0, 2)
+            break
+    X = f[list(idx), axes[0]]
+    Y = f[list(idx), axes[1]]
+    out: list[tuple[int, int, int]] = []
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        _clip(np.arange(n), X, Y, out, idx, budget, where)
+    return out
+
+
+def _clip(ring: np.ndarray, X: np.ndarray, Y: np.ndarray, out: list[tuple[int, int, int]], idx: Sequence[int],
+          budget: list[int], where: str) -> None:
+    """The ear clipping of :func:`_polygon`, its triangles appended to ``out``."""
+    half = np.float32(0.5)
+    n = len(ring)
+    guess, tries, before = 0, n, n
+    while len(ring) > 3 and tries > 0:
+        m = len(ring)
+        if guess >= m:
+            guess -= m
+        if before != m:
+            before, tries = m, m
+        else:
+            tries -= 1
+        budget[0] -= _TRY_COST + m
+        if budget[0] < 0:
+            raise InputError(f"{where}: its polygons take too long to split into triangles (robokit's bound: "
+                             f"{_TRY_COST} + n per triangle tried, {MAX_EAR_WORK} + {_WORK_PER_VERTEX} per polygon "
+                             "vertex in all)")
+        order = np.concatenate((ring[guess:], ring[:guess]))
+        x, y = X[order[:3]], Y[order[:3]]
+        cross = (x[1] - x[0]) * (y[2] - y[1]) - (y[1] - y[0]) * (x[2] - x[1])
+        area = (x[0] * y[1] - y[0] * x[1]) * half  # MuJoCo's turn test: against the origin, not the polygon
+        if cross * area < 0:
+            guess += 1
+            continue
+        if _inside3(x, y, X[order[3:]], Y[order[3:]]).any():
+            guess += 1
+            continue
+        out.append((idx[order[0]], idx[order[1]], idx[order[2]]))
+        ring = np.delete(ring, (guess + 1) % m)
+    if len(ring) == 3:
+        out.append((idx[ring[0]], idx[ring[1]], idx[ring[2]]))
+
+
 def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
     verts: list[list[float]] = []
-    faces: list[tuple[int, int, int]] = []
+    polygons: list[tuple[int, list[int]]] = []
     started = False
     for lineno, line in enumerate(text.splitlines(), 1):
         parts = line.split()
@@ -88,7 +186,7 @@ def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
                 raise InputError(f"{where}:{lineno}: bad vertex line") from None
             if len(verts[-1]) != 3:
                 raise InputError(f"{where}:{lineno}: a vertex needs three coordinates")
-        elif parts[0] in ("o", "g") and faces:
+        elif parts[0] in ("o", "g") and polygons:
             started = True  # MuJoCo reads the first shape only
         elif parts[0] == "f" and not started:
             idx = []
@@ -98,12 +196,23 @@ def _read_obj(text: str, where: str) -> tuple[np.ndarray, np.ndarray]:
                 except ValueError:
                     raise InputError(f"{where}:{lineno}: bad face index {p!r}") from None
                 idx.append(k - 1 if k > 0 else len(verts) + k)
-            if len(idx) not in (3, 4):
-                raise InputError(f"{where}:{lineno}: MuJoCo reads triangles and quads only")
+            if len(idx) < 3:
+                raise InputError(f"{where}:{lineno}: a face needs at least three vertices")
+            if len(idx) > MAX_POLYGON:
+                raise InputError(f"{where}:{lineno}: a face of {len(idx)} vertices (robokit splits polygons of at "
+                                 f"most {MAX_POLYGON} into triangles)")
+            polygons.append((lineno, idx))
+    v = _float32(verts).reshape(-1, 3)
+    faces: list[tuple[int, int, int]] = []
+    budget = [MAX_EAR_WORK + _WORK_PER_VERTEX * sum(len(idx) for _, idx in polygons if len(idx) > 4)]
+    for lineno, idx in polygons:
+        if len(idx) == 3:
             faces.append((idx[0], idx[1], idx[2]))
-            if len(idx) == 4:
-                faces.append((idx[0], idx[2], idx[3]))
-    return _float32(verts).reshape(-1, 3), np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+            continue
+        if min(idx) < 0 or max(idx) >= len(v):
+            raise InputError(f"{where}:{lineno}: a face names a vertex that does not exist")
+        faces.extend(_quad(idx, v) if len(idx) == 4 else _polygon(idx, v, budget, f"{where}:{lineno}"))
+    return v, np.asarray(faces, dtype=np.int64).reshape(-1, 3)
 
 
 def _read_msh(raw: bytes, where: str) -> tuple[np.ndarray, np.ndarray]:

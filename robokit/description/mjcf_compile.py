@@ -504,6 +504,35 @@ def _read_assets(ctx: _Ctx) -> None:
             ctx.meshes[name] = attrs
 
 
+#: The attributes of an asset that name a file MuJoCo opens, and the compiler folder it is in.
+_ASSET_FILES = {"mesh": (("file",), "meshdir"), "skin": (("file",), "meshdir"),
+                "hfield": (("file",), "meshdir"),
+                "texture": (("file", "fileright", "fileleft", "fileup", "filedown", "filefront", "fileback"),
+                            "texturedir")}
+
+
+def _check_asset_files(ctx: _Ctx) -> None:
+    """Refuse an asset whose file does not exist, used or not: MuJoCo's compiler opens every asset's file
+    (an unused ``<mesh>`` or ``<texture>`` whose file is missing fails its compile). Folders as MuJoCo
+    4.0.1 takes them, measured: ``meshdir`` for meshes, skins and height fields, ``texturedir`` for
+    textures."""
+    top = ctx.path.resolve().parent
+    for asset in ctx.root.findall("asset") + ctx.root.findall("deformable"):  # a <skin> is in <deformable>
+        for el in asset:
+            if el.tag not in _ASSET_FILES:
+                continue
+            keys, folder = _ASSET_FILES[el.tag]
+            for key in keys:
+                file = el.get(key)
+                if not file:
+                    continue
+                shown = os.path.basename(file) if ctx.compiler["strippath"] else file
+                base = top / ctx.compiler[folder] if ctx.compiler[folder] else top
+                if not (base / shown).exists():
+                    raise InputError(f"{ctx.where(el, el.get('name'))} {key}={file!r}: {base / shown}: file not found "
+                                     "(MuJoCo opens every asset's file, used or not)")
+
+
 def _mesh(ctx: _Ctx, name: str, elem: ET.Element, needed: bool) -> tuple[Any, dict[str, str]]:
     """(mesh inertia, file, scale, refpos, refquat, vertices, faces) of a mesh asset; the
     inertia is None when MuJoCo could not compute it and no number needs it (an ASCII STL
@@ -1216,7 +1245,8 @@ _NQ = {"free": 7, "ball": 4, "hinge": 1, "slide": 1}
 
 
 def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
-    """MuJoCo's rule: a ``<key>``'s ``qpos``, ``qvel``, ``ctrl``, ``mpos`` and ``mquat`` have the model's sizes."""
+    """MuJoCo's rule: a ``<key>``'s ``qpos``, ``qvel``, ``ctrl``, ``mpos`` and ``mquat`` have at most the model's
+    sizes (MuJoCo 4.0.1 fills a shorter one up; Menagerie's xArm 6 with its gripper keys 6 of its 12 positions)."""
     joints = [j for b in bodies for j in b.joints]
     nmocap = sum(1 for b in bodies if b.mocap)
     nu = sum(1 for sec in ctx.root.findall("actuator") for a in sec if isinstance(a.tag, str))
@@ -1226,7 +1256,7 @@ def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
         for key in sec.findall("key"):
             for attr, n in sizes.items():
                 vals = _numbers(ctx, dict(key.attrib), attr, None, key)
-                if vals is not None and len(vals) != n:
+                if vals is not None and len(vals) > n:
                     raise InputError(f"{ctx.where(key, key.get('name'))} {attr}: {len(vals)} numbers, the model has "
                                      f"{n} (MuJoCo refuses the file)")
 
@@ -1288,6 +1318,7 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     ctx.compiler["allow_outside_meshes"] = allow_outside_meshes
     _read_defaults(ctx)
     _read_assets(ctx)
+    _check_asset_files(ctx)
     world = root.find("worldbody")
     bodies: list[_Body] = [_Body("world", -1, (0.0, 0.0, 0.0), mm.IDENTITY, [], 0.0, (0.0, 0.0, 0.0), mm.IDENTITY,
                                  (0.0, 0.0, 0.0), [], [], True, False, world)]

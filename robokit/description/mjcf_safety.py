@@ -4,7 +4,7 @@
 its XML (:func:`robokit._xml.check_xml`: no DTD, bounded depth and size), then follows every
 ``<include file=…>`` the same way (at most :data:`MAX_INCLUDE_DEPTH` levels and
 :data:`MAX_INCLUDES` files), and confines every file the model names — ``<include>``,
-``<mesh>``/``<skin>`` (relative to ``meshdir``/``assetdir``), ``<texture>``/``<hfield>``
+``<mesh>``/``<skin>``/``<hfield>`` (relative to ``meshdir``/``assetdir``), ``<texture>``
 (relative to ``texturedir``/``assetdir``) and ``<model>`` — with the rule of
 :mod:`robokit.description.meshes` (the file's folder, its package, the package folders given),
 meshes excepted when ``allow_outside_meshes``; an asset that is not a regular file or is larger
@@ -31,7 +31,7 @@ MAX_MJCF_BYTES = 20 << 20
 #: Deepest ``<include>`` nesting and most files followed.
 MAX_INCLUDE_DEPTH, MAX_INCLUDES = 20, 200
 
-_ASSET_DIR = {"mesh": "meshdir", "skin": "meshdir", "texture": "texturedir", "hfield": "texturedir"}
+_ASSET_DIR = {"mesh": "meshdir", "skin": "meshdir", "texture": "texturedir", "hfield": "meshdir"}
 
 
 def read_mjcf_root(path: str | os.PathLike[str]) -> ET.Element:

@@ -59,6 +59,7 @@ from robokit.description.limits import check_joint_count
 from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, without_meshes, allowed_roots, is_inside, mesh_file_problem,
                                          package_name)
 from robokit.description.reflected import DrakeRotor
+from robokit.description.urdf_description import color_problem
 from robokit.errors import InputError, RobokitWarning
 
 __all__ = ["MAX_URDF_BYTES", "UrdfDocument", "read_urdf"]
@@ -329,6 +330,22 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                 if origin.get(key) is not None:
                     _floats(origin.get(key), 3, path, f"{where} <origin {key}>")
 
+    colors = []  # the colours urdfdom cannot take: noted, as urdfdom logs them
+    top_materials: set[str] = set()
+    for mat in root.findall("material"):
+        mname = mat.get("name", "")
+        if mname in top_materials:
+            _fail(path, f"material {mname!r} is defined twice at the top level (urdfdom refuses the robot)")
+        top_materials.add(mname)
+        problem = color_problem(mat)
+        if problem:
+            colors.append(f"material {mname!r}: {problem}")
+    for lname, el in links.items():
+        for mat in el.findall("visual/material"):
+            problem = color_problem(mat)
+            if problem:
+                colors.append(f"link {lname!r} <visual> material {mat.get('name', '')!r}: {problem}")
+
     joints = {}
     mimic = {}
     children = set()
@@ -431,6 +448,10 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                         "(kinematics and dynamics do not need them)" + (
                             f"; collision checks go without {len(lost)} of them (links "
                             f"{', '.join(dict.fromkeys(lost))} are checked without those shapes)" if lost else ""))
+    if colors:
+        notes.append(f"{'; '.join(colors[:3])}{f' and {len(colors) - 3} more' if len(colors) > 3 else ''}: "
+                     "read as urdfdom reads it (four numbers from 0 to 1, else black, or no colour where a "
+                     "part is not such a number); only the drawing depends on it")
     for note in notes:
         warnings.warn(f"{path}: {note}", RobokitWarning, stacklevel=outside_level())
     rotors, read, unmodelled = _drake_transmissions(root, path, joints)

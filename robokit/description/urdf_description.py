@@ -14,7 +14,11 @@ rules, which Pinocchio's URDF parser follows:
   joint name — so that the model's joints come out in the order Pinocchio's parser gives them;
 * ``<visual>``/``<collision>``: ``<origin>``, box/cylinder/sphere/mesh (``scale``), and for a
   visual the ``<material>``'s colour (a named material is global: its first definition, at the
-  robot's top level or in an earlier link, wins).
+  robot's top level or in an earlier link, wins). A colour is read as urdfdom reads it
+  (:func:`material_color`): ``rgba`` split at spaces, each part a number from 0 to 1; a part that
+  is not leaves the material without a colour (a visual's material is then no material: the
+  default colour; a top-level one is black), and a count other than four leaves it black. The
+  URDF reader notes each such colour (:func:`color_problem`); nothing else depends on it.
 
 ``<mimic>``, ``<transmission>``, ``<gazebo>`` and ``<safety_controller>`` are not read here (the
 URDF loader reports the first and refuses a mimic joint on the chain); the reflected rotor inertia
@@ -29,13 +33,14 @@ and maker-published arms: the same frames, joints, inertias, limits and geometry
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
 from typing import Mapping, Sequence
 
 from robokit.description.model_builder import JOINT_KINDS, Description, Geometry, Inertial, Joint, Link, Pose
 from robokit.errors import InputError
 
-__all__ = ["description_from_urdf"]
+__all__ = ["color_problem", "description_from_urdf", "material_color"]
 
 
 def _floats(text: str | None, n: int, default: tuple[float, ...], where: str) -> tuple[float, ...]:
@@ -113,22 +118,94 @@ def _inertial(link: ET.Element, where: str) -> Inertial | None:
     return Inertial(mass, frame.translation, (J[0], J[3], J[6], J[4], J[7], J[8]))
 
 
+#: A number as urdfdom's ``strToDouble`` reads one (a C++ stream of the classic locale, read to the end):
+#: no NaN, infinity, hexadecimal or digit separators.
+_CXX_DOUBLE = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\Z")
+#: The colour urdfdom gives a material whose ``rgba`` it could not take (``Color::clear``).
+_CLEARED = (0.0, 0.0, 0.0, 1.0)
+
+
+def _rgba(text: str) -> tuple[float, ...] | None:
+    """urdfdom's reading of an ``rgba``: the parts between spaces (tabs do not separate), each a
+    number from 0 to 1; None if a part is not."""
+    values = []
+    for part in text.split(" "):
+        if not part:
+            continue
+        if not _CXX_DOUBLE.match(part):
+            return None
+        v = float(part)
+        if not 0.0 <= v <= 1.0:
+            return None
+        values.append(v)
+    return tuple(values)
+
+
+def color_problem(material: ET.Element) -> str | None:
+    """What urdfdom cannot take in a ``<material>``'s ``<color rgba>``, or None.
+
+    Parameters
+    ----------
+    material : xml.etree.ElementTree.Element
+        A ``<material>`` element.
+
+    Returns
+    -------
+    str or None
+        ``"<color rgba='…'> is not 4 numbers from 0 to 1"`` for an ``rgba`` urdfdom does not read
+        as a colour (:func:`material_color` says what it does instead), else None.
+    """
+    c = material.find("color")
+    text = c.get("rgba") if c is not None else None
+    if text is None:
+        return None
+    values = _rgba(text)
+    if values is not None and len(values) == 4:
+        return None
+    return f"<color rgba={text!r}> is not 4 numbers from 0 to 1"
+
+
+def material_color(material: ET.Element) -> tuple[float, float, float, float] | None:
+    """A ``<material>``'s colour as urdfdom's ``parseMaterial`` reads it.
+
+    Parameters
+    ----------
+    material : xml.etree.ElementTree.Element
+        A ``<material>`` element (at the robot's top level or in a ``<visual>``).
+
+    Returns
+    -------
+    tuple of 4 float or None
+        The ``rgba`` of four numbers from 0 to 1; black (0, 0, 0, 1) for an ``rgba`` of parts
+        from 0 to 1 but not four of them, or for a material with only a ``<texture filename>``
+        or a part that is not such a number beside a texture; None for a material urdfdom finds
+        undefined (no ``rgba``, or a part that is not a number from 0 to 1, and no texture).
+    """
+    c = material.find("color")
+    text = c.get("rgba") if c is not None else None
+    values = _rgba(text) if text is not None else None
+    texture = material.find("texture")
+    if values is None:
+        return _CLEARED if texture is not None and texture.get("filename") is not None else None
+    if len(values) != 4:
+        return _CLEARED
+    return (values[0], values[1], values[2], values[3])
+
+
 def _color(visual: ET.Element, materials: dict[str, tuple[float, float, float, float]],
            where: str) -> tuple[float, float, float, float] | None:
-    """A visual's colour by urdfdom's rule: a named material is global, its first definition wins."""
+    """A visual's colour by urdfdom's rule: a named material is global, its first definition wins;
+    a material defined in place that urdfdom finds undefined is no material (None)."""
     mat = visual.find("material")
     if mat is None:
         return None
     name = mat.get("name", "")
     if name and name in materials:
         return materials[name]
-    c = mat.find("color")
-    if c is None:
-        return (0.0, 0.0, 0.0, 0.0)
-    r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"{where} <color rgba>")
-    if name:
-        materials[name] = (r, g, b, a)
-    return (r, g, b, a)
+    color = material_color(mat)
+    if color is not None and name:
+        materials[name] = color
+    return color
 
 
 def _geometries(link: ET.Element, name: str, materials: dict[str, tuple[float, float, float, float]],
@@ -196,11 +273,8 @@ def description_from_urdf(text: str | bytes, source: str = "<URDF>",
 
     root = parse_xml(text, source, namespaces=False)  # names as written, as urdfdom reads them
     materials: dict[str, tuple[float, float, float, float]] = {}
-    for mat in root.findall("material"):
-        c = mat.find("color")
-        if c is not None:
-            r, g, b, a = _floats(c.get("rgba"), 4, (0.0, 0.0, 0.0, 0.0), f"{source}: material {mat.get('name')!r}")
-            materials[mat.get("name", "")] = (r, g, b, a)
+    for mat in root.findall("material"):  # urdfdom keeps a top-level material whatever its colour
+        materials.setdefault(mat.get("name", ""), material_color(mat) or _CLEARED)
     links, geoms = [], []
     for el in root.findall("link"):
         name = el.get("name", "")

@@ -166,6 +166,17 @@ REFUSED = {
                                            '</default>'), "<geom name='b/geom0'> material='steel'"),
     "a material of a missing texture": (_body("", head='<asset><material name="m" texture="wood"/></asset>'),
                                         "<material name='m'> texture='wood'"),
+    # files of assets no geom uses (Menagerie's Sawyer without pedestal.obj: MuJoCo refused it, robokit loaded it)
+    "an unused mesh whose file is missing": (_body("", head='<asset><mesh name="pedestal" file="pedestal.obj"/></asset>'),
+                                             "<mesh name='pedestal'> file='pedestal.obj'"),
+    "an unused texture whose file is missing": (_body("", head='<asset><texture name="t" type="2d" file="wood.png"/>'
+                                                      '</asset>'), "<texture name='t'> file='wood.png'"),
+    "a cube texture's side whose file is missing": (_body("", head='<asset><texture name="c" type="cube" '
+                                                          'fileright="r.png"/></asset>'), "fileright='r.png'"),
+    "an unused height field whose file is missing": (_body("", head='<asset><hfield name="h" file="h.png" '
+                                                           'size="1 1 1 1"/></asset>'), "<hfield name='h'> file='h.png'"),
+    "a skin whose file is missing": (_body("", tail='<deformable><skin name="s" file="s.skn"/></deformable>'),
+                                     "<skin name='s'> file='s.skn'"),
     "a light on a missing body": (_body('<light name="l" target="c"/>'), "<light name='l'> target='c'"),
     # keyframes
     "a key of two positions for one joint": (_body("", tail='<keyframe><key name="k" qpos="1 2"/></keyframe>'),
@@ -195,6 +206,10 @@ def test_what_mujoco_refuses_robokit_refuses(case, tmp_path):
 #: id → file: each read by MuJoCo and compiled by robokit (several were refused by robokit, or
 #: nearly so, before: they mark where MuJoCo's rules stop)
 ACCEPTED = {
+    "a key of fewer positions, velocities and controls than the model (MuJoCo fills them up; Menagerie's xArm 6)":
+        _body('<body name="c" pos="0 0 0.3"><joint name="h2" axis="0 1 0"/><geom size="0.1"/></body>',
+              tail='<actuator><motor joint="h"/><motor joint="h2"/></actuator>'
+                   '<keyframe><key name="k" qpos="0.5" qvel="1" ctrl="1"/></keyframe>'),
     "six dofs in one body": _arm("".join(f'<joint name="j{i}" axis="0 0 1"/>' for i in range(6))),
     "a ball after a hinge": _arm('<joint name="h"/><joint name="s" type="ball"/>'),
     "slides after a ball": _arm('<joint name="s" type="ball"/>' + '<joint type="slide"/>' * 3),
@@ -285,3 +300,39 @@ def test_every_element_of_the_schema_is_read_by_mujoco():
                 mujoco.MjModel.from_xml_string(xml.format(a=a))
             except ValueError as e:
                 assert "unrecognized attribute" not in str(e), (a, str(e))
+
+
+def _png(path):
+    """A 4×4 grey PNG (the smallest file MuJoCo reads as a texture or a height field)."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\x00" + bytes([128] * 4) for _ in range(4))
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 0, 0, 0, 0))
+                     + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("asset,folder", [('<hfield name="a" file="a.png" size="1 1 1 1"/>', "mesh"),
+                                          ('<texture name="a" type="2d" file="a.png"/>', "tex")])
+@pytest.mark.parametrize("where", ["mesh", "tex"])
+def test_asset_files_are_looked_for_where_mujoco_looks(asset, folder, where, tmp_path):
+    """A height field's file is in meshdir, a texture's in texturedir (MuJoCo 4.0.1): robokit finds an
+    unused asset's file where MuJoCo does, and refuses it where MuJoCo does not find it."""
+    for sub in ("mesh", "tex"):
+        (tmp_path / sub).mkdir()
+    _png(tmp_path / where / "a.png")
+    path = tmp_path / "arm.xml"
+    path.write_text(_body("", head=f'<compiler meshdir="mesh" texturedir="tex"/><asset>{asset}</asset>'))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if where == folder:
+            mujoco.MjModel.from_xml_path(str(path))
+            assert robokit.load(path).n == 1
+        else:
+            with pytest.raises(ValueError):
+                mujoco.MjModel.from_xml_path(str(path))
+            with pytest.raises(InputError, match="file not found"):
+                robokit.load(path)

@@ -309,8 +309,6 @@ def test_a_bad_number_in_a_links_shape_or_material_is_refused_naming_the_file(tm
         "box": '<visual><geometry><box size="nan 1 1"/></geometry></visual>',
         "collision": '<collision><geometry><box size="1 1"/></geometry></collision>',
         "scale": '<collision><geometry><mesh filename="m.stl" scale="1 inf 1"/></geometry></collision>',
-        "colour": '<visual><geometry><box size="1 1 1"/></geometry><material name="m"><color rgba="1 0 x 1"/>'
-                  '</material></visual>',
     }
     import struct
 
@@ -319,8 +317,26 @@ def test_a_bad_number_in_a_links_shape_or_material_is_refused_naming_the_file(tm
         path = tmp_path / f"{name}.urdf"
         path.write_text(urdf_text([joint("j1", "base", "l1")], [link("base"), link("l1", mass=1.0, extra=shape)]))
         _refused_naming(path)
-    top = tmp_path / "material.urdf"
-    top.write_text(urdf_text([joint("j1", "base", "l1")],
-                             ['<material name="m"><color rgba="1 nan 0 1"/></material>', link("base"),
-                              link("l1", mass=1.0)]))
-    _refused_naming(top)
+
+
+def test_a_colour_urdfdom_cannot_read_loads_with_a_note_naming_the_file(tmp_path):
+    """A visual's or a top-level material's ``rgba`` with a part that is not a number from 0 to 1:
+    urdfdom (and so Pinocchio and ROS) loads the robot, logging the colour; so does robokit, with a
+    note naming the file (tests/description/test_urdf_colors.py holds the colours to Pinocchio's)."""
+    import pinocchio as pin
+
+    from robokit.errors import RobokitWarning
+
+    visual = ('<visual><geometry><box size="1 1 1"/></geometry><material name="m"><color rgba="1 0 x 1"/>'
+              '</material></visual>')
+    for name, parts in {"colour": [link("base"), link("l1", mass=1.0, extra=visual)],
+                        "material": ['<material name="m"><color rgba="1 nan 0 1"/></material>', link("base"),
+                                     link("l1", mass=1.0)]}.items():
+        path = tmp_path / f"{name}.urdf"
+        path.write_text(urdf_text([joint("j1", "base", "l1")], parts))
+        pin.buildModelFromXML(path.read_text())  # the engine reads it
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            assert robokit.load(str(path)).n == 1
+        notes = [str(w.message) for w in caught if issubclass(w.category, RobokitWarning) and "rgba" in str(w.message)]
+        assert len(notes) == 1 and notes[0].startswith(f"{path}: "), notes
