@@ -106,7 +106,9 @@ def _inside3(x: Sequence[np.float32], y: Sequence[np.float32], tx: np.ndarray, t
 def _polygon(idx: Sequence[int], v: np.ndarray, budget: list[int], where: str) -> list[tuple[int, int, int]]:
     """Triangles of a polygon of five or more vertices as MuJoCo 4.0.1's OBJ reader clips them
     (single precision; its output measured on ``mesh_face``, a non-planar 11-gon of MuJoCo
-    Menagerie's ARX L5 camera vertex for vertex). The polygon is projected onto the coordinate
+    Menagerie's ARX L5 camera vertex for vertex). MuJoCo reads OBJ files with the tinyobjloader
+    library, whose triangulation this reproduces as measured (written here from that output and
+    this description, not from its code). The polygon is projected onto the coordinate
     plane its first corner faces most; then, from a guessed vertex, the triangle of it and its
     next two is cut off unless its turn and that of its first edge about the origin have opposite
     signs (MuJoCo's rule, not the polygon's orientation) or it holds one of the other vertices
