@@ -79,15 +79,24 @@ def _add_format_options(parser: argparse.ArgumentParser) -> None:
              "and Drake do")
 
 
-def _add_outside_meshes(parser: argparse.ArgumentParser) -> None:
-    """``--allow-outside-meshes`` of the commands that read a scene file (robokit.collision.load_scene)."""
+def _add_outside_meshes(parser: argparse.ArgumentParser, scene: bool = True, robot: bool = True) -> None:
+    """``--allow-outside-meshes``: the robot's file (:func:`_format_options`) and, for the commands that read
+    a scene file (robokit.collision.load_scene), the scene's may name mesh files anywhere (``workspace``:
+    the scene's only; its workers load the robot from its name)."""
+    whose = {(True, True): "the robot's and the scene's", (False, True): "the robot's",
+             (True, False): "the scene's"}[(scene, robot)]
     parser.add_argument("--allow-outside-meshes", action="store_true",
-                        help="read the scene's mesh files wherever it says (default: only inside the scene file's "
+                        help=f"read {whose} mesh files wherever the files say (default: only inside the file's "
                              "folder, its package and the --package-path folders)")
 
 
-def _format_options(args: argparse.Namespace) -> dict:
-    """``load`` keyword arguments from --xacro-arg/--package-path (empty when neither is given)."""
+#: Robot files whose meshes the loader confines (robokit.load's allow_outside_meshes applies to them only).
+_MESH_FILES = (".urdf", ".xacro", ".xml", ".sdf", ".world")
+
+
+def _format_options(args: argparse.Namespace, model: object = None) -> dict:
+    """``load`` keyword arguments from --xacro-arg/--package-path, and --allow-outside-meshes for a robot
+    file ``model`` whose meshes the loader confines (empty when none applies)."""
     xargs = {}
     for item in getattr(args, "xacro_arg", None) or []:
         name, sep, value = item.partition(":=")
@@ -98,6 +107,8 @@ def _format_options(args: argparse.Namespace) -> dict:
     out = {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
     if getattr(args, "no_reflected_inertia", False):
         out["reflected_inertia"] = False
+    if getattr(args, "allow_outside_meshes", False) and str(model).lower().endswith(_MESH_FILES):
+        out["allow_outside_meshes"] = True
     return out
 
 
@@ -126,6 +137,7 @@ def _build_parser() -> argparse.ArgumentParser:
     c.add_argument("--convention", choices=("standard", "modified"), default="standard",
                    help="DH convention when writing a DH table (default standard)")
     _add_format_options(c)
+    _add_outside_meshes(c, scene=False)
 
     w = sub.add_parser("view", help="write a self-contained meshcat HTML page of a model")
     w.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
@@ -158,7 +170,7 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
     cm.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1")
     cm.add_argument("--obstacles", help="scene YAML file of obstacles: count collision-free solutions only")
-    _add_outside_meshes(cm)
+    _add_outside_meshes(cm, robot=False)
     cm.add_argument("--convex", action="store_true", help="convex hulls of the robot's collision meshes "
                     "(faster, conservative); implies collision checking")
     cm.add_argument("--describe-world", action="store_true",
@@ -172,6 +184,7 @@ def _build_parser() -> argparse.ArgumentParser:
     cal.add_argument("-o", "--output", required=True, help="output .urdf (always) or .yaml (a DH arm only)")
     cal.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(cal)
+    _add_outside_meshes(cal, scene=False)
     g = sub.add_parser("codegen", help="C99 for a controller: FK, Jacobian, closed-form IK, gravity, RNEA")
     g.add_argument("model", help="shipped model name, .yaml, .urdf, .xacro, MJCF .xml or example-robot-data name")
     g.add_argument("-o", "--output", required=True, help="output folder, created if missing (NAME.h and NAME.c go there)")
@@ -179,6 +192,7 @@ def _build_parser() -> argparse.ArgumentParser:
     g.add_argument("--name", help="C prefix of the functions and macros (default: the robot's name)")
     g.add_argument("--tip", help="tip frame of the chain (URDF input)")
     _add_format_options(g)
+    _add_outside_meshes(g, scene=False)
 
     # collision-free planning (robokit.motion)
     pl = sub.add_parser("plan", help="a collision-free, time-optimal joint trajectory (RRT-Connect + TOPP-RA) to CSV")
@@ -214,15 +228,16 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import convert_command
 
         return convert_command(args.input, args.output, tip=args.tip, convention=args.convention,
-                               **_format_options(args))
+                               **_format_options(args, args.input))
     if args.command == "view":
         from robokit.commands import view_command
 
-        opts = _format_options(args)
+        opts = _format_options(args, args.model)
         if str(args.model).lower().endswith(".npz"):  # a capability map (robokit workspace)
             from robokit.commands import capability_view_command
 
             robot = args.robot
+            opts = _format_options(args, robot)
             if robot is not None and (opts or args.tip):
                 from robokit.description.loading import load
 
@@ -243,7 +258,7 @@ def _dispatch(args: argparse.Namespace) -> int:
         from robokit.commands import teach_command
 
         model = args.model
-        opts = _format_options(args)
+        opts = _format_options(args, args.model)
         if opts or args.tip:
             from robokit.description.loading import load
 
@@ -259,12 +274,12 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "calibrate":
         from robokit.commands import calibrate_command
 
-        return calibrate_command(args.model, args.data, args.output, tip=args.tip, **_format_options(args))
+        return calibrate_command(args.model, args.data, args.output, tip=args.tip, **_format_options(args, args.model))
     if args.command == "codegen":
         from robokit.commands import codegen_command
 
         return codegen_command(args.model, args.output, float32=args.float32, name=args.name, tip=args.tip,
-                               **_format_options(args))
+                               **_format_options(args, args.model))
     if args.command == "plan":
         from robokit.commands import plan_command
 

@@ -505,7 +505,10 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
             raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
     if not 0 <= seed <= MAX_SEED:
         raise InputError(f"--seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
-    robot = load(model, tip=tip)
+    if allow_outside_meshes and str(model).lower().endswith((".urdf", ".xacro", ".xml", ".sdf", ".world")):
+        robot = load(model, tip=tip, allow_outside_meshes=True)  # the robot file's meshes too (--allow-outside-meshes)
+    else:
+        robot = load(model, tip=tip)
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
         raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")

@@ -31,7 +31,7 @@ def _locked_note(robot: Robot) -> list[str]:
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
             convention: str = "standard", *, xacro_args: Mapping[str, str] | None = None,
             package_dirs: Sequence[str | os.PathLike[str]] | None = None,
-            reflected_inertia: bool = True) -> tuple[str, list[str]]:
+            reflected_inertia: bool = True, allow_outside_meshes: bool = False) -> tuple[str, list[str]]:
     """Convert a robot description and write the result (what ``robokit convert`` runs).
 
     * ``IN.yaml|NAME -o OUT.urdf`` — a DH model (a DH file or a shipped model) to URDF (see the URDF
@@ -65,6 +65,9 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
     reflected_inertia : bool, optional
         Passed to ``robokit.load`` when False (``--no-reflected-inertia``: MJCF, SDFormat, URDF and
         xacro input without the joints' reflected rotor inertia).
+    allow_outside_meshes : bool, optional
+        Passed to ``robokit.load`` when True (``--allow-outside-meshes``: the robot file's meshes read
+        wherever it names them).
 
     Returns
     -------
@@ -97,7 +100,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         from robokit.description.mjcf_write import mjcf_from_robot
 
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
-                     reflected_inertia=reflected_inertia)
+                     reflected_inertia=reflected_inertia,
+                     **({"allow_outside_meshes": True} if allow_outside_meshes else {}))
         text, notes = mjcf_from_robot(robot)
         notes[:0] = _locked_note(robot)
     elif out_suffix not in (".urdf", ".json", ".yaml", ".yml", None):
@@ -110,7 +114,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         text = urdf_from_dh(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
-                     reflected_inertia=reflected_inertia)
+                     reflected_inertia=reflected_inertia,
+                     **({"allow_outside_meshes": True} if allow_outside_meshes else {}))
         notes += _locked_note(robot)
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"

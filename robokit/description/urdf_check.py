@@ -423,7 +423,8 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                 resolved, reason = _resolve_mesh(uri, path, pkg_roots, allowed)
                 if reason == "outside" and not allow_outside_meshes:
                     _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
-                                "package folders given (allow_outside_meshes=True reads it)")
+                                "package folders given (allow_outside_meshes=True reads it; --allow-outside-meshes on the "
+                                "command line)")
                 if resolved is None or not os.path.exists(resolved):
                     missing.append(f"link {lname!r} {kind} {uri!r}")
                     el.remove(geo_el)
