@@ -157,8 +157,9 @@ RULES = {
 }
 
 
-def _rule_file(tmp_path, rule, defaults="", assets=""):
-    r = RULES[rule]
+def _rule_file(tmp_path, rule, defaults="", assets="", body=None):
+    """The three-link arm of ``RULES[rule]``, or of ``body`` (a rule's dict) written as ``rule``.xml."""
+    r = RULES[rule] if body is None else body
     return _write(tmp_path, f"{rule}.xml", ARM.format(name=rule, compiler=r["compiler"], defaults=defaults,
                                                       assets=assets, l1=r["l1"], l2=r["l2"], l3=r["l3"]))
 
@@ -286,11 +287,7 @@ def test_mesh_inertia(mode, tmp_path):
     rule = dict(compiler="", l1='<geom type="mesh" mesh="ell" euler="10 0 0"/>',
                 l2='<geom type="mesh" mesh="cube" pos="0.1 0 0"/><geom type="mesh" mesh="tet" mass="0.3"/>',
                 l3='<geom mesh="ell"/><geom type="box" mesh="cube" pos="0.1 0 0"/>')
-    RULES["_mesh"] = rule
-    try:
-        path = _rule_file(tmp_path, "_mesh", assets=assets)
-    finally:
-        del RULES["_mesh"]
+    path = _rule_file(tmp_path, "_mesh", assets=assets, body=rule)
     assert body_differences(path) < TOL
     assert dynamics_differences(path) < TOL
 
@@ -385,11 +382,7 @@ def test_obj_polygons_of_any_size_give_mujocos_bodies(mode, tmp_path):
     assets = "".join(f'<mesh name="p{k}" file="p{k}.obj" inertia="{mode}"/>' for k in range(4))
     rule = dict(compiler="", l1='<geom type="mesh" mesh="p0"/>', l2='<geom type="mesh" mesh="p1" euler="10 0 0"/>',
                 l3='<geom type="mesh" mesh="p2" pos="0.05 0 0"/><geom type="mesh" mesh="p3" pos="0 0.1 0"/>')
-    RULES["_polygons"] = rule
-    try:
-        path = _rule_file(tmp_path, "_polygons", assets=assets)
-    finally:
-        del RULES["_polygons"]
+    path = _rule_file(tmp_path, "_polygons", assets=assets, body=rule)
     assert body_differences(path) < TOL
     assert dynamics_differences(path) < TOL
 
