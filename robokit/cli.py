@@ -90,9 +90,6 @@ def _add_outside_meshes(parser: argparse.ArgumentParser, scene: bool = True, rob
                              "folder, its package and the --package-path folders)")
 
 
-#: Robot files whose meshes the loader confines (robokit.load's allow_outside_meshes applies to them only).
-_MESH_FILES = (".urdf", ".xacro", ".xml", ".sdf", ".world")
-
 
 def _format_options(args: argparse.Namespace, model: object = None) -> dict:
     """``load`` keyword arguments from --xacro-arg/--package-path, and --allow-outside-meshes for a robot
@@ -107,8 +104,11 @@ def _format_options(args: argparse.Namespace, model: object = None) -> dict:
     out = {k: v for k, v in (("xacro_args", xargs), ("package_dirs", paths)) if v}
     if getattr(args, "no_reflected_inertia", False):
         out["reflected_inertia"] = False
-    if getattr(args, "allow_outside_meshes", False) and str(model).lower().endswith(_MESH_FILES):
-        out["allow_outside_meshes"] = True
+    if getattr(args, "allow_outside_meshes", False):
+        from robokit.description.loading import file_takes
+
+        if file_takes(model, "allow_outside_meshes"):
+            out["allow_outside_meshes"] = True
     return out
 
 

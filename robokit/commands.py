@@ -494,7 +494,7 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
         The exit status, 0 once the CSV is written (errors raise).
     """
     from robokit.collision import pose_from_xyz_rpy
-    from robokit.description.loading import load
+    from robokit.description.loading import file_takes, load
     from robokit.errors import InputError
     from robokit.motion import plan
     from robokit.motion.plan import MAX_SEED
@@ -505,7 +505,7 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
             raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
     if not 0 <= seed <= MAX_SEED:
         raise InputError(f"--seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
-    if allow_outside_meshes and str(model).lower().endswith((".urdf", ".xacro", ".xml", ".sdf", ".world")):
+    if allow_outside_meshes and file_takes(model, "allow_outside_meshes"):
         robot = load(model, tip=tip, allow_outside_meshes=True)  # the robot file's meshes too (--allow-outside-meshes)
     else:
         robot = load(model, tip=tip)

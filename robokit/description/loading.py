@@ -106,6 +106,31 @@ def _file_loader(path: Path) -> tuple[str, Callable[..., Robot], tuple[str, ...]
     return (suffix, *FILE_LOADERS[suffix])
 
 
+def file_takes(name_or_path: object, option: str) -> bool:
+    """Whether :func:`load` takes ``option`` for ``name_or_path`` (by its suffix, :data:`FILE_LOADERS`): the
+    command line passes ``--allow-outside-meshes`` to the robot only where it applies.
+
+    Parameters
+    ----------
+    name_or_path : object
+        What would be loaded (a path, a model name, a Robot: anything; its ``str`` is looked at).
+    option : str
+        A keyword argument of :func:`load`.
+
+    Returns
+    -------
+    bool
+        False for a shipped model, an example-robot-data name or a file format that does not take it.
+
+    Examples
+    --------
+    >>> file_takes("arm.urdf.xacro", "xacro_args"), file_takes("puma560", "allow_outside_meshes")
+    (True, False)
+    """
+    found = _file_loader(Path(str(name_or_path)))
+    return found is not None and option in found[2]
+
+
 #: The value of each :func:`load` option that means "not given".
 _UNSET: dict[str, Any] = {"package_dirs": None, "xacro_args": None, "allow_outside_meshes": False, "reflected_inertia": True}
 
