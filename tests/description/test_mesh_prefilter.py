@@ -31,3 +31,15 @@ def test_a_huge_number_in_a_text_mesh_is_still_found():
     assert _largest_number(b"v 0 0 0\nv 1 0 0\nv 0 1 12345678901234\n", "obj") == 12345678901234.0
     assert _largest_number(b"v 0 0 0\nv 1e13 0 0\n", "obj") == 1e13
     assert _largest_number(b"v 0 0 0\nv 1.5e-13 0 0\n", "obj") == 0.0
+
+
+def test_runs_across_the_blocks_counted_apart_are_found():
+    from robokit.description import mesh_size
+
+    n = mesh_size._BLOCK
+    for at in (n - 13, n - 12, n - 7, n - 1, n, 2 * n - 6):
+        raw = bytearray(b" " * (2 * n + 40))
+        for k, digits in ((13, True), (12, False)):
+            raw[:] = b" " * len(raw)
+            raw[at:at + k] = b"7" * k
+            assert _maybe_huge(bytes(raw)) is digits, (at, k)
