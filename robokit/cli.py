@@ -79,12 +79,11 @@ def _add_format_options(parser: argparse.ArgumentParser) -> None:
              "and Drake do")
 
 
-def _add_outside_meshes(parser: argparse.ArgumentParser, scene: bool = True, robot: bool = True) -> None:
+def _add_outside_meshes(parser: argparse.ArgumentParser, scene: bool = True) -> None:
     """``--allow-outside-meshes``: the robot's file (:func:`_format_options`) and, for the commands that read
-    a scene file (robokit.collision.load_scene), the scene's may name mesh files anywhere (``workspace``:
-    the scene's only; its workers load the robot from its name)."""
-    whose = {(True, True): "the robot's and the scene's", (False, True): "the robot's",
-             (True, False): "the scene's"}[(scene, robot)]
+    a scene file (robokit.collision.load_scene), the scene's may name mesh files anywhere (``workspace``'s
+    workers rebuild the robot from its spec, which carries the flag)."""
+    whose = "the robot's and the scene's" if scene else "the robot's"
     parser.add_argument("--allow-outside-meshes", action="store_true",
                         help=f"read {whose} mesh files wherever the files say (default: only inside the file's "
                              "folder, its package and the --package-path folders)")
@@ -170,7 +169,9 @@ def _build_parser() -> argparse.ArgumentParser:
     cm.add_argument("--scheduler", help="Dask scheduler address (tcp://host:port); default: local worker processes")
     cm.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1")
     cm.add_argument("--obstacles", help="scene YAML file of obstacles: count collision-free solutions only")
-    _add_outside_meshes(cm, robot=False)
+    cm.add_argument("--tip", help="tip frame of the chain: the tool (URDF, xacro, MJCF, SDFormat input)")
+    _add_outside_meshes(cm)
+    _add_format_options(cm)
     cm.add_argument("--convex", action="store_true", help="convex hulls of the robot's collision meshes "
                     "(faster, conservative); implies collision checking")
     cm.add_argument("--describe-world", action="store_true",
@@ -268,7 +269,13 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "workspace":
         from robokit.commands import workspace_command
 
-        return workspace_command(args.robot, args.output, args.resolution, args.orientations, args.scheduler,
+        robot = args.robot
+        opts = _format_options(args, robot)
+        if opts or args.tip:  # loaded here: its spec carries the options to the workers
+            from robokit.description.loading import load
+
+            robot = load(robot, tip=args.tip, **opts)
+        return workspace_command(robot, args.output, args.resolution, args.orientations, args.scheduler,
                                  dashboard=args.dashboard, obstacles=args.obstacles, convex=args.convex,
                                  describe_world=args.describe_world, allow_outside_meshes=args.allow_outside_meshes)
     if args.command == "calibrate":

@@ -247,7 +247,7 @@ def _world(robot: Any, obstacles: str | os.PathLike[str] | None, convex: bool, d
     return world
 
 
-def workspace_command(robot: str, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
+def workspace_command(robot: str | Robot, output: str | os.PathLike[str], resolution: float, orientations: int = 100,
                       scheduler: str | None = None, dashboard: bool = False,
                       obstacles: str | os.PathLike[str] | None = None, convex: bool = False,
                       describe_world: bool = False, allow_outside_meshes: bool = False) -> int:
@@ -261,8 +261,10 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
 
     Parameters
     ----------
-    robot : str
-        A model name or file ``robokit.load`` accepts.
+    robot : str or Robot
+        A model name or file ``robokit.load`` accepts, or a robot it loaded (the command line loads a
+        file given with ``--tip``, xacro arguments, package folders or ``--allow-outside-meshes``
+        itself; the workers rebuild it from its spec, which carries them).
     output : str or path-like
         The ``.npz`` file to write.
     resolution : float
@@ -301,7 +303,7 @@ def workspace_command(robot: str, output: str | os.PathLike[str], resolution: fl
     if obstacles or convex or describe_world:
         rob = load(robot)
         world = _world(rob, obstacles, convex, describe_world, allow_outside_meshes)
-        robot = rob  # type: ignore[assignment]
+        robot = rob
         if not (obstacles or convex):  # --describe-world alone prints, it does not change the map
             print("(not used for the map: give --obstacles or --convex for collision-free counts)")
             world = None

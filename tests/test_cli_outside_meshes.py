@@ -66,3 +66,45 @@ def test_view_and_plan_read_the_robot_with_the_flag(outside, tmp_path, main_cli)
 def test_the_flag_with_a_shipped_model_changes_nothing(tmp_path, main_cli):
     r = main_cli("convert", "puma560", "-o", str(tmp_path / "p.json"), "--allow-outside-meshes")
     assert r.rc == 0, r.err
+
+
+def test_workspace_reads_the_robot_with_the_flag_and_its_tip(outside, tmp_path, main_cli):
+    """``workspace`` took neither the flag for the robot's file nor --tip/--xacro-arg/--package-path (docs/cli.md
+    says every command that loads a robot does): its workers rebuild the robot from its spec, which now
+    carries them. The reference: the map of the robot loaded in Python with the same options."""
+    args = ("--resolution", "0.25", "--orientations", "2", "--scheduler", "serial")
+    r = main_cli("workspace", str(outside), *args, "-o", str(tmp_path / "no.npz"))
+    assert r.rc == 2 and "--allow-outside-meshes" in r.err, r.err
+    assert not (tmp_path / "no.npz").exists()
+    r = main_cli("workspace", str(outside), *args, "--tip", "l5", "--allow-outside-meshes", "-o", str(tmp_path / "m.npz"))
+    assert r.rc == 0, r.err
+    robot = robokit.load(str(outside), tip="l5", allow_outside_meshes=True)
+    assert robot.n == 5
+    want = robokit.capability_map(robot, 0.25, orientations=2, client="serial")
+    got = np.load(tmp_path / "m.npz")
+    assert len(want.centres) > 0
+    np.testing.assert_array_equal(got["centres"], want.centres)
+    np.testing.assert_array_equal(got["index"], want.index)
+    assert float(got["resolution"]) == 0.25
+
+
+def test_workspace_takes_the_xacro_options(tmp_path, main_cli):
+    """A xacro arm whose link length is a xacro argument: the map with ``--xacro-arg`` is the map of the robot
+    xacro expands with that value, not with the default."""
+    joints = "".join(f'<joint name="j{i}" type="revolute"><parent link="l{i - 1}"/><child link="l{i}"/>'
+                     f'<origin xyz="${{L}} 0 0"/><axis xyz="0 0 1"/>'
+                     '<limit lower="-3" upper="3" effort="10" velocity="2"/></joint>' for i in (1, 2))
+    links = "".join(f'<link name="l{i}"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" '
+                    'ixy="0" ixz="0" iyz="0"/></inertial></link>' for i in range(3))
+    path = tmp_path / "planar.urdf.xacro"
+    path.write_text('<robot name="planar" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                    f'<xacro:arg name="L" default="0.3"/><xacro:property name="L" value="$(arg L)"/>{links}{joints}</robot>')
+    args = ("--resolution", "0.1", "--orientations", "4", "--scheduler", "serial")
+    r = main_cli("workspace", str(path), *args, "--xacro-arg", "L:=0.5", "-o", str(tmp_path / "m.npz"))
+    assert r.rc == 0, r.err
+    want = robokit.capability_map(robokit.load(str(path), xacro_args={"L": "0.5"}), 0.1, orientations=4, client="serial")
+    default = robokit.capability_map(robokit.load(str(path)), 0.1, orientations=4, client="serial")
+    got = np.load(tmp_path / "m.npz")
+    np.testing.assert_array_equal(got["centres"], want.centres)
+    np.testing.assert_array_equal(got["index"], want.index)
+    assert got["centres"].shape != default.centres.shape  # the argument changed the arm
