@@ -2,8 +2,9 @@ r"""The small geometry MuJoCo's compiler does, done the same way (private to the
 
 MuJoCo's compiler keeps orientations as unit quaternions ``(w, x, y, z)`` and reduces every
 inertia tensor it sums or is given in full to a principal frame and three principal moments
-(decreasing). MuJoCo 4 computes that decomposition to rounding error (robokit's tests measure
-``R diag(I) Rᵀ`` against the tensor at 1e-16); older MuJoCo releases stopped their Jacobi
+(decreasing). MuJoCo 4 computes that decomposition to rounding error for bodies (robokit's tests
+measure ``R diag(I) Rᵀ`` against the tensor at 1e-16), not for meshes (MuJoCo 4.0.1's mesh frame
+is up to about 1e-7 rad short of the principal axes); older MuJoCo releases stopped their Jacobi
 iteration about 1e-6 rad short, which moved the simulated tensor by up to ~1e-10 of its
 size. The compiler's quaternion conventions are written out here as MuJoCo writes them (the
 normalisation that leaves a vector alone within 1e-14 of unit length, the minimal rotation

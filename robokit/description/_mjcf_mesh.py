@@ -17,8 +17,10 @@ Processing (MuJoCo's order): ``refpos`` subtracted, ``refquat`` undone, ``scale`
 of the union-of-pyramids construction; volume (or area, ``inertia="shell"``), centre of mass
 and inertia are summed over the triangles (``legacy``: each pyramid counted positive;
 ``exact``: signed, a closed well-oriented mesh required; ``convex``: the convex hull's
-triangles; ``shell``: the surface); the inertia is reduced to principal axes by MuJoCo's
-Jacobi iteration (:func:`robokit.description._mjcf_math.principal_axes`). MuJoCo moves the
+triangles; ``shell``: the surface); the inertia is reduced to its exact principal axes
+(:func:`robokit.description._mjcf_math.principal_axes`; MuJoCo 4.0.1's mesh frame is up to about
+1e-7 rad off them, by an iteration whose stopping rule is not reproduced here: see the MJCF format
+page). MuJoCo moves the
 mesh so that its centre of mass is at the origin and its principal axes are the coordinate
 axes; the geom's frame absorbs that offset (``MeshInertia.pos``/``quat``).
 """

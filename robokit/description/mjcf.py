@@ -205,6 +205,8 @@ def _ignored_notes(root: ET.Element, c: CompiledMjcf, first: int, path: Path) ->
     for section in _IGNORED_SECTIONS:
         for elem in root.findall(section):
             kids = sorted({ch.tag for ch in elem})
+            if section == "contact":  # <exclude> pairs are read: robot.contact_rules skips them
+                kids = [k for k in kids if k != "exclude"]
             if kids:
                 notes.append(f"{path}: <{section}> ignored ({', '.join(kids)}): robokit models the rigid-body chain "
                              "only")

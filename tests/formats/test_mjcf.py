@@ -1,5 +1,7 @@
 """MJCF in and out, checked against MuJoCo itself (it defines the format), and the MuJoCo
 dynamics comparisons on the shipped models, example-robot-data arms and test robots."""
+import warnings
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -340,3 +342,25 @@ def test_joint_friction_and_springs_are_noted_once_per_attribute(tmp_path):
         mujoco.mj_inverse(m, d)
         np.testing.assert_allclose(robot.rnea(q, dq, ddq), d.qfrc_inverse, rtol=0, atol=1e-12)
         np.testing.assert_allclose(robot.rnea(q, dq, np.zeros(3)), d.qfrc_bias, rtol=0, atol=1e-12)
+
+
+def test_contact_excludes_are_read_so_not_noted_as_ignored(tmp_path):
+    """robosuite's Baxter has only <contact><exclude> pairs, which robokit reads into
+    ``robot.contact_rules``; the note said '<contact> ignored (exclude)'. A <pair>, which robokit does
+    not model, is still noted."""
+    xml = ('<mujoco><worldbody><body name="a"><joint name="j1"/><geom name="ga" size="0.1"/>'
+           '<body name="b" pos="0.3 0 0"><joint name="j2"/><geom size="0.1"/></body></body>'
+           '<body name="c" pos="1 0 0"><geom name="gc" size="0.1"/></body></worldbody>'
+           '<contact><exclude body1="a" body2="b"/>{pair}</contact></mujoco>')
+    path = tmp_path / "arm.xml"
+    path.write_text(xml.format(pair=""))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        robot = robokit.load(path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert m.nexclude == 1 and robot.contact_rules.excluded == {frozenset({"a", "b"})}
+    assert not [w for w in record if "<contact>" in str(w.message)]
+    path.write_text(xml.format(pair='<pair geom1="gc" geom2="ga"/>'))
+    assert mujoco.MjModel.from_xml_path(str(path)).npair == 1
+    with pytest.warns(UserWarning, match=r"<contact> ignored \(pair\)"):
+        robokit.load(path)
