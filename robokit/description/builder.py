@@ -120,6 +120,24 @@ def _tip_candidates(model: Any, children: Mapping[int, list[int]],
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
+def _check_trunk(model: Any, j: int) -> None:
+    """Refuse, as :func:`serial_chain` would for every tip beyond it, a joint from the root to joint ``j``
+    (the trunk all of a tree's ends share: an MJCF free joint, a floating base) that is not a
+    one-degree-of-freedom revolute/prismatic/continuous joint."""
+    trunk = []
+    while j != 0:
+        trunk.append(j)
+        j = model.parents[j]
+    for k in reversed(trunk):
+        sn = model.joints[k].shortname()
+        if sn not in _ONE_DOF:
+            kind = "floating base" if sn == "JointModelFreeFlyer" else sn
+            raise InputError(
+                f"model: joint {model.names[k]!r}, which every chain of the tree runs through, is a {kind}; robokit "
+                "handles fixed-base serial chains of revolute, prismatic and continuous joints"
+            )
+
+
 def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, str]:
     """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
 
@@ -168,6 +186,7 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         if depths[0][0] <= 1 and j != 0:
             break  # fingers
         if depths[0][0] == depths[1][0]:
+            _check_trunk(model, j)  # every end's chain runs through it: a floating base is said first
             cands = _tip_candidates(model, children, names)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
             raise InputError(

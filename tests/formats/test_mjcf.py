@@ -249,6 +249,12 @@ BAD_MJCF = {
                      ["bad_quat.xml", "<body name='b'>", "quat", "expected 4 numbers"]),
     "free.xml": ('<mujoco><worldbody><body name="b"><freejoint/><inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>'
                  "</body></worldbody></mujoco>", ["floating base"]),
+    # an ant: a free root and two equal legs was told to choose a tip, and every tip was then refused as floating
+    "free_tree.xml": ('<mujoco><worldbody><body name="torso"><freejoint name="root"/><geom size="0.2"/>'
+                      + "".join(f'<body name="leg{k}" pos="{k} 0 0"><joint name="hip{k}"/><geom size="0.1"/>'
+                                f'<body name="foot{k}" pos="0.3 0 0"><joint name="knee{k}"/><geom size="0.1"/></body></body>'
+                                for k in (1, 2))
+                      + "</body></worldbody></mujoco>", ["'root'", "floating base", "every chain"]),
 }
 
 
