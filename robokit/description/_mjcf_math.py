@@ -3,10 +3,11 @@ r"""The small geometry MuJoCo's compiler does, done the same way (private to the
 MuJoCo's compiler keeps orientations as unit quaternions ``(w, x, y, z)`` and reduces every
 inertia tensor it sums or is given in full to a principal frame and three principal moments
 (decreasing). MuJoCo 4 computes that decomposition to rounding error for bodies (robokit's tests
-measure ``R diag(I) Rᵀ`` against the tensor at 1e-16), not for meshes (MuJoCo 4.0.1's mesh frame
-is up to about 1e-7 rad short of the principal axes); older MuJoCo releases stopped their Jacobi
-iteration about 1e-6 rad short, which moved the simulated tensor by up to ~1e-10 of its
-size. The compiler's quaternion conventions are written out here as MuJoCo writes them (the
+measure ``R diag(I) Rᵀ`` against the tensor at 1e-16: :func:`principal_axes`); a mesh's inertia it
+reduces by Jacobi rotations stopped at a relative tolerance of 1e-7, which leaves its frame up to
+about 1e-7 rad short of the principal axes, and robokit stops them the same way
+(:func:`jacobi_principal_axes`); older MuJoCo releases stopped their Jacobi iteration about 1e-6
+rad short for bodies too, which moved the simulated tensor by up to ~1e-10 of its size. The compiler's quaternion conventions are written out here as MuJoCo writes them (the
 normalisation that leaves a vector alone within 1e-14 of unit length, the minimal rotation
 taking z to a vector, the frame to quaternion conversion), on Python floats and short tuples.
 """
@@ -174,6 +175,89 @@ def principal_axes(full: Sequence[float]) -> tuple[Vec, Quat]:
         V[:, 2] = -V[:, 2]
     q = frame_to_quat(tuple(V[:, 0]), tuple(V[:, 1]), tuple(V[:, 2]))
     return (float(w[0]), float(w[1]), float(w[2])), q
+
+
+#: MuJoCo 4's relative tolerance when it reduces a *mesh's* inertia to principal axes
+#: (:func:`jacobi_principal_axes`). Measured on MuJoCo 4.0.1: with it, 60 random convex STL meshes and
+#: robosuite's Fourier/Inspire hand meshes give MuJoCo's ``body_inertia``/``body_iquat`` to 2.5e-15 of the
+#: tensor, where the exact axes were up to 9.5e-8 off (1e-8 or 1e-6 leave 20 and 25 of the 60 off).
+MESH_EIG_RELTOL = 1e-7
+#: cos(π/4) as MuJoCo's compiler writes it (15 digits): the quarter turn that swaps two principal axes.
+_COS_QUARTER_TURN = 0.707106781186548
+
+
+def jacobi_principal_axes(full: Sequence[float], reltol: float) -> tuple[Vec, Quat]:
+    """Principal moments and frame of a symmetric 3×3 (row-major) by Jacobi rotations accumulated in a
+    quaternion, stopped as MuJoCo's compiler stops them — its reduction of a mesh's inertia, which ends
+    short of the exact axes (by up to about ``reltol`` rad of the tensor's scale over the gap between its
+    moments).
+
+    From the identity: with ``D = Rᵀ A R`` (R the frame so far), take the off-diagonal entry of largest
+    magnitude (ties: (0, 1), then (0, 2), then (1, 2)); stop when it is at most ``reltol`` (at least
+    4e-15) times the largest |entry| of A, or after 500 rotations; else turn the frame about the third
+    axis by the angle that zeroes it (``t = tan θ`` the smaller root of ``t² + 2τt − 1 = 0``,
+    ``τ = (D_cc − D_rr) / 2D_rc``, the quaternion from ``tan(θ/2)``). The diagonal of the last ``D`` gives
+    the moments, then put in decreasing order by three passes of a bubble sort (pairs (0, 1), (1, 2),
+    (0, 1); a pair is swapped when the second exceeds the first by more than the scale times
+    ``max(reltol, 1e-12)``), each swap turning the frame a quarter turn about the third axis, so that it
+    stays right-handed.
+
+    Parameters
+    ----------
+    full : sequence of 9 float
+        The symmetric matrix, row-major.
+    reltol : float
+        The relative stopping tolerance (:data:`MESH_EIG_RELTOL` for meshes).
+
+    Returns
+    -------
+    (tuple of 3 float, tuple of 4 float)
+        The moments (decreasing, up to the swap tolerance) and the frame as a unit quaternion (w, x, y, z).
+    """
+    a = tuple(float(x) for x in full)
+    scale = max(abs(x) for x in a)
+    tol = scale * max(reltol, 4e-15)
+    q: Quat = IDENTITY
+    ev = [a[0], a[4], a[8]]
+    for _ in range(500):
+        r = quat_to_matrix(q)
+        rt = (r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8])
+        d = _mat_mul(_mat_mul(rt, a), r)
+        ev = [d[0], d[4], d[8]]
+        if abs(d[1]) > abs(d[2]) and abs(d[1]) > abs(d[5]):
+            row, col, axis = 0, 1, 2
+        elif abs(d[2]) > abs(d[5]):
+            row, col, axis = 0, 2, 1
+        else:
+            row, col, axis = 1, 2, 0
+        off = d[3 * row + col]
+        if abs(off) <= tol:
+            break
+        tau = (d[4 * col] - d[4 * row]) / (2.0 * off)
+        root = math.sqrt(1.0 + tau * tau)
+        t = 1.0 / (tau + root) if tau >= 0 else -1.0 / (-tau + root)
+        half = t / (1.0 + math.sqrt(1.0 + t * t))  # tan(θ/2)
+        w = 1.0 / math.sqrt(1.0 + half * half)
+        turn = [w, 0.0, 0.0, 0.0]
+        turn[axis + 1] = (half if axis == 1 else -half) * w
+        q = unit_quat(quat_mul(q, turn))
+    eps = scale * max(reltol, 1e-12)
+    for j in (0, 1, 0):
+        if ev[j] + eps < ev[j + 1]:
+            ev[j], ev[j + 1] = ev[j + 1], ev[j]
+            turn = [_COS_QUARTER_TURN, 0.0, 0.0, 0.0]
+            turn[(j + 2) % 3 + 1] = _COS_QUARTER_TURN
+            q = unit_quat(quat_mul(q, turn))
+    return (ev[0], ev[1], ev[2]), q
+
+
+def _mat_mul(x: Sequence[float], y: Sequence[float]) -> Mat:
+    """x·y of two row-major 3×3 matrices, each entry summed left to right."""
+    return (x[0] * y[0] + x[1] * y[3] + x[2] * y[6], x[0] * y[1] + x[1] * y[4] + x[2] * y[7],
+            x[0] * y[2] + x[1] * y[5] + x[2] * y[8], x[3] * y[0] + x[4] * y[3] + x[5] * y[6],
+            x[3] * y[1] + x[4] * y[4] + x[5] * y[7], x[3] * y[2] + x[4] * y[5] + x[5] * y[8],
+            x[6] * y[0] + x[7] * y[3] + x[8] * y[6], x[6] * y[1] + x[7] * y[4] + x[8] * y[7],
+            x[6] * y[2] + x[7] * y[5] + x[8] * y[8])
 
 
 def six_to_matrix(s: Sequence[float]) -> Mat:

@@ -17,10 +17,9 @@ Processing (MuJoCo's order): ``refpos`` subtracted, ``refquat`` undone, ``scale`
 of the union-of-pyramids construction; volume (or area, ``inertia="shell"``), centre of mass
 and inertia are summed over the triangles (``legacy``: each pyramid counted positive;
 ``exact``: signed, a closed well-oriented mesh required; ``convex``: the convex hull's
-triangles; ``shell``: the surface); the inertia is reduced to its exact principal axes
-(:func:`robokit.description._mjcf_math.principal_axes`; MuJoCo 4.0.1's mesh frame is up to about
-1e-7 rad off them, by an iteration whose stopping rule is not reproduced here: see the MJCF format
-page). MuJoCo moves the
+triangles; ``shell``: the surface); the inertia is reduced to principal axes by Jacobi rotations
+stopped where MuJoCo stops them (:func:`robokit.description._mjcf_math.jacobi_principal_axes`, relative
+tolerance 1e-7: up to about 1e-7 rad short of the exact axes, as MuJoCo's frame is). MuJoCo moves the
 mesh so that its centre of mass is at the origin and its principal axes are the coordinate
 axes; the geom's frame absorbs that offset (``MeshInertia.pos``/``quat``).
 """
@@ -34,7 +33,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from robokit.description._mjcf_math import MINVAL, Quat, Vec, conj, principal_axes, quat_to_matrix, unit_quat
+from robokit.description._mjcf_math import (MESH_EIG_RELTOL, MINVAL, Quat, Vec, conj, jacobi_principal_axes,
+                                              quat_to_matrix, unit_quat)
 from robokit.errors import InputError
 
 #: Most triangles MuJoCo reads from one STL file.
@@ -370,7 +370,7 @@ def mesh_inertia(vertices: np.ndarray, faces: np.ndarray | None, *, scale: Seque
                 + D[:, b] * E[:, a] + D[:, a] * F[:, b] + D[:, b] * F[:, a] + E[:, a] * F[:, b] + E[:, b] * F[:, a])
         P[j] = float((wv / C * term).sum())
     full = (P[1] + P[2], -P[3], -P[4], -P[3], P[0] + P[2], -P[5], -P[4], -P[5], P[0] + P[1])
-    ev, quat = principal_axes(full)
+    ev, quat = jacobi_principal_axes(full, MESH_EIG_RELTOL)
     if ev[2] <= 0:
         raise InputError(f"{where}: eigenvalue of mesh inertia must be positive")
     tol = (1.0 - 1e-6)
