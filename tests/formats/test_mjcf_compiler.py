@@ -44,8 +44,8 @@ def body_differences(path):
     for i in range(1, m.nbody):
         name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, i)
         b = by_name[name] if name is not None else c.bodies[i]
-        scale_m = max(1.0, m.body_mass[i])
-        scale_i = max(1e-3, np.abs(m.body_inertia[i]).max())
+        scale_m = max(1e-300, m.body_mass[i])  # relative to the body's own size: a small body counts
+        scale_i = max(1e-300, np.abs(m.body_inertia[i]).max())
         worst = max(worst, abs(b.mass - m.body_mass[i]) / scale_m,
                     np.abs(b.ipos - m.body_ipos[i]).max(),
                     np.abs(_full(b.inertia, b.iquat) - _full(m.body_inertia[i], m.body_iquat[i])).max() / scale_i)
@@ -76,8 +76,8 @@ def dynamics_differences(path, samples=8, seed=0, armature=True, **load):
         M_rk, tau_rk = robot.crba(q), robot.rnea(q, qd, qdd)
         if not armature:  # robokit left the armature out; MuJoCo always has it
             M_rk, tau_rk = M_rk + np.diag(m.dof_armature[va]), tau_rk + m.dof_armature[va] * qdd
-        worst = max(worst, np.abs(M_rk - M_mj).max() / max(1.0, np.abs(M_mj).max()),
-                    np.abs(tau_rk - tau_mj).max() / max(1.0, np.abs(tau_mj).max()))
+        worst = max(worst, np.abs(M_rk - M_mj).max() / max(1e-300, np.abs(M_mj).max()),
+                    np.abs(tau_rk - tau_mj).max() / max(1e-300, np.abs(tau_mj).max()))
     return worst
 
 
