@@ -52,6 +52,9 @@ DEPRECATIONS: dict[str, tuple[str, str]] = {
     "ik_spherical_wrist(theta4_ref=)": ("wrist_ref=", REMOVAL),
     "ik_puma560(theta4_ref=)": ("wrist_ref=", REMOVAL),
     "package_path=": ("package_dirs= (the name robokit.load uses)", REMOVAL),
+    "solve_ik(target=)": ("T=", REMOVAL),
+    # a changed argument order (once per process)
+    "solve_ik(robot, T, frame, q0)": ("solve_ik(robot, T, q0, frame=...)", REMOVAL),
     # a batch of configurations given to a one-configuration Robot method (once per method per process)
     "Robot.frame_pose((N, n) q)": ("Robot.frame_pose_batch(Q)", REMOVAL),
     "Robot.jacobian((N, n) q)": ("Robot.jacobian_batch(Q)", REMOVAL),

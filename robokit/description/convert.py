@@ -28,6 +28,16 @@ def _locked_note(robot: Robot) -> list[str]:
     return [f"{said} locked at their neutral value and their bodies merged: {', '.join(robot.locked_joints)}"]
 
 
+def _armature_note(robot: Robot) -> list[str]:
+    """The note that Mlist/Glist leave the joints' reflected rotor inertia to the JSON's ``armature``."""
+    arm = robot.poe.armature
+    if not arm.any():
+        return []
+    return [f"{robot.name}: Mlist/Glist hold the rigid bodies only; the joints' reflected rotor inertia is the JSON's "
+            f"'armature' ({', '.join(f'{n} {a:g}' for n, a in zip(robot.joint_names, arm) if a)}): Pinocchio's "
+            f"rnea on this chain is their Newton-Euler torques plus armature * ddq"]
+
+
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
             convention: str = "standard", *, xacro_args: Mapping[str, str] | None = None,
             package_dirs: Sequence[str | os.PathLike[str]] | None = None,
@@ -119,6 +129,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         notes += _locked_note(robot)
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"
+            notes += _armature_note(robot)
         elif out_suffix == ".urdf":
             if robot.dh is None:
                 raise InputError(f"output: {robot.name} is not a DH model, and robokit writes URDF from DH tables; "

@@ -533,7 +533,32 @@ def _joint_model(joint: Joint) -> Any:
     for k in range(3):
         if np.allclose(axis, np.eye(3)[k], rtol=0.0, atol=1e-12):
             return getattr(pin, names[k])()
+    if joint.kind == "continuous":
+        return _unbounded_unaligned(axis)
     return getattr(pin, names[3])(axis)
+
+
+def _unbounded_unaligned(axis: np.ndarray) -> Any:
+    """Pinocchio's unbounded revolute joint about ``axis`` (unit, not along x, y or z).
+
+    Pinocchio's Python bindings construct ``JointModelRevoluteUnboundedUnaligned`` without an axis
+    only (the constructor taking one is not bound), so the joint model is taken from a one-joint
+    model made by Pinocchio's model graph (``pinocchio.graph``: no URDF text involved), whose
+    ``JointRevoluteUnbounded`` takes the axis; the result is the same joint the URDF parser makes.
+    """
+    import pinocchio as pin
+
+    try:
+        return pin.JointModelRevoluteUnboundedUnaligned(axis)
+    except TypeError:  # Boost.Python.ArgumentError (a TypeError): no constructor taking the axis
+        pass
+    graph = pin.graph
+    g = graph.ModelGraph()
+    g.addBody("parent", pin.Inertia.Zero())
+    g.addBody("child", pin.Inertia.Zero())
+    g.addJoint("joint", graph.JointRevoluteUnbounded(axis), "parent", pin.SE3.Identity(), "child",
+               pin.SE3.Identity())
+    return graph.buildModel(g, "parent", pin.SE3.Identity()).joints[1]
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,8 @@ continuous), at the zero configuration:
 The centre-of-mass frame of a link is parallel to its joint frame (so ``I_c`` need not be
 diagonal). A link's inertia is everything rigidly attached to its joint — Pinocchio merges
 fixed-joint children and (through ``buildReducedModel``) locked joints' bodies — so the
-Newton–Euler torques from ``Mlist``/``Glist`` equal ``pinocchio.rnea`` on the chain.
+Newton–Euler torques from ``Mlist``/``Glist`` equal ``pinocchio.rnea`` on the chain (plus
+``armature · q̈`` when the joints have a reflected rotor inertia, which no link inertia can hold).
 Twists, wrenches and spatial inertias are angular first.
 """
 from __future__ import annotations
@@ -61,6 +62,12 @@ class PoEParams:
         Joint limits (rad or m; ±inf for continuous joints).
     gravity : numpy.ndarray, shape (3,)
         Gravity acceleration in the root frame, m/s².
+    armature : numpy.ndarray, shape (n,)
+        Each joint's reflected rotor inertia (Pinocchio's ``model.armature``: an SRDF's rotor
+        parameters, Drake's transmissions, MJCF's armature; kg·m², kg for a prismatic joint),
+        0 for most robots. ``Mlist``/``Glist`` hold the rigid bodies only: Pinocchio's ``rnea``
+        on the chain is their Newton–Euler torques plus ``armature · q̈`` (and ``crba`` their
+        mass matrix plus ``diag(armature)``).
 
     Examples
     --------
@@ -78,6 +85,7 @@ class PoEParams:
     tip: str
     qlim: np.ndarray
     gravity: np.ndarray
+    armature: np.ndarray
 
     @property
     def n(self) -> int:
@@ -92,13 +100,14 @@ class PoEParams:
         -------
         dict
             ``M`` (4×4), ``Slist``, ``Blist`` (6×n), ``Mlist`` (n+1 4×4), ``Glist`` (n 6×6) as nested
-            lists, ``joint_names`` (n), ``tip``.
+            lists, ``joint_names`` (n), ``tip``, ``armature`` (n; Pinocchio's ``rnea`` is the
+            Newton–Euler torques of ``Mlist``/``Glist`` plus ``armature · q̈``).
 
         Examples
         --------
         >>> d = rk.load("twolink").poe.to_json_dict()
-        >>> sorted(d), len(d["Mlist"]), d["tip"]
-        (['Blist', 'Glist', 'M', 'Mlist', 'Slist', 'joint_names', 'tip'], 3, 'tool')
+        >>> sorted(d), len(d["Mlist"]), d["tip"], d["armature"]
+        (['Blist', 'Glist', 'M', 'Mlist', 'Slist', 'armature', 'joint_names', 'tip'], 3, 'tool', [0.0, 0.0])
         """
         return {
             "M": self.M.tolist(),
@@ -108,6 +117,7 @@ class PoEParams:
             "Glist": [g.tolist() for g in self.Glist],
             "joint_names": list(self.joint_names),
             "tip": self.tip,
+            "armature": self.armature.tolist(),
         }
 
 
@@ -131,7 +141,8 @@ def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> Po
     Returns
     -------
     PoEParams
-        ``M``, ``Slist``, ``Blist``, ``Mlist``, ``Glist``, joint names, limits and gravity.
+        ``M``, ``Slist``, ``Blist``, ``Mlist``, ``Glist``, joint names, limits, gravity and the joints'
+        armature.
 
     Examples
     --------
@@ -182,4 +193,5 @@ def poe_from_model(model: Any, tip: str, gravity: ArrayLike | None = None) -> Po
         else:  # continuous joint: an angle with no limit
             qlim[i] = -np.inf, np.inf
     g = np.array(model.gravity.linear) if gravity is None else np.asarray(gravity, dtype=float)
-    return PoEParams(M, Slist, Blist, Mlist, Glist, names, tip, qlim, g)
+    armature = np.array([float(model.armature[model.joints[j].idx_v]) for j in range(1, model.njoints)])
+    return PoEParams(M, Slist, Blist, Mlist, Glist, names, tip, qlim, g, armature)

@@ -16,7 +16,9 @@ transform Fᵢ (centre of mass ``Fᵢ · com``, inertia axes rotated by the rota
 the ``<inertial><origin rpy>``), so the URDF describes the same rigid body in both
 conventions. The root link is ``base_link`` with ``dh_0`` fixed at the table's ``base``; the
 ``tool`` link is fixed to ``dh_N`` at the table's ``tool``. Missing joint limits become
-±π (revolute) or ±1 m (prismatic); effort 1000 and velocity 10 are placeholders.
+±π (revolute) or ±1 m (prismatic) in the URDF text (which needs numbers; the robot robokit
+builds from the table itself leaves those joints unlimited, ±inf); effort 1000 and velocity
+10 are placeholders.
 
 Visual geometry: a cylinder on every joint axis and a thinner cylinder from each joint to the
 next one (and to the tool), sized from the arm's dimensions, so meshcat shows the arm.
@@ -225,7 +227,8 @@ def description_from_dh(table: DHTable) -> Description:
     Returns
     -------
     Description
-        Gravity from the table.
+        Gravity from the table; a joint without ``qlim`` unlimited (±inf: the robot's ``qlim``), where
+        the URDF text writes ±π or ±1 m.
 
     Examples
     --------
@@ -243,10 +246,18 @@ def description_from_dh(table: DHTable) -> Description:
         links.append(Link(name, ine))
         geoms += [Geometry(name, "cylinder", Pose.from_matrix(v.T), (v.radius, v.length), color=MATERIALS[v.material])
                   for v in visuals]
-    joints = [Joint(jn, kind, parent, child, Pose.from_matrix(origin), axis=(0.0, 0.0, sign), lower=lo, upper=hi,
-                    velocity=10.0, effort=1000.0) if kind != "fixed"
-              else Joint(jn, "fixed", parent, child, Pose.from_matrix(origin))
-              for jn, kind, parent, child, origin, sign, lo, hi in lay.joints]
+    # a joint the table gives no qlim is unlimited in the robot (±inf, as robokit reads a URDF joint without
+    # limits); only the URDF text needs numbers there (±π, ±1 m)
+    free = iter([l.qlim is None for l in table.links])
+    joints = []
+    for jn, kind, parent, child, origin, sign, lo, hi in lay.joints:
+        if kind == "fixed":
+            joints.append(Joint(jn, "fixed", parent, child, Pose.from_matrix(origin)))
+            continue
+        if next(free):
+            lo, hi = -np.inf, np.inf
+        joints.append(Joint(jn, kind, parent, child, Pose.from_matrix(origin), axis=(0.0, 0.0, sign), lower=lo,
+                            upper=hi, velocity=10.0, effort=1000.0))
     g = np.asarray(table.gravity, dtype=float)
     return Description(table.name, tuple(links), tuple(joints), geometries=tuple(geoms),
                        gravity=(float(g[0]), float(g[1]), float(g[2])))

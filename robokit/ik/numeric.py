@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_matrix, as_scalar, as_vector
+from robokit._deprecation import renamed_argument, warn_once
 from robokit._units import check_radians, radian_ranges, revolute_columns
 from robokit.ik.backends import DEFAULT_SEED, IKProblem, backend, solve_problem
 from robokit.ik.lm import IKResult
@@ -229,7 +230,7 @@ def _collision_free(robot: Robot | RobotLike, target: ArrayLike, frame: str | No
     res = None
     for k in range(int(max_restarts) + 1):
         seed = q0 if k == 0 else g.uniform(lo, hi)
-        res = solve_ik(robot, target, frame, seed, **kw)
+        res = solve_ik(robot, target, seed, frame, **kw)
         if res.success and not bool(world.in_collision(res.q)):
             return res
     assert res is not None
@@ -238,11 +239,12 @@ def _collision_free(robot: Robot | RobotLike, target: ArrayLike, frame: str | No
     return res
 
 
-def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = None, q0: ArrayLike | None = None, *,
-             position_only: bool = False, weights: ArrayLike | None = None, tol: float = 1e-10,
-             max_iterations: int | None = None, max_restarts: int = 100, time_budget: float | None = None,
-             damping: float = 1e-2, min_damping: float = 1e-9, rng: int | np.random.Generator | None = None,
-             method: str = "auto", world: CollisionChecker | None = None) -> IKResult:
+def solve_ik(robot: Robot | RobotLike, T: ArrayLike | None = None, q0: ArrayLike | None = None,
+             frame: str | None = None, *, position_only: bool = False, weights: ArrayLike | None = None,
+             tol: float = 1e-10, max_iterations: int | None = None, max_restarts: int = 100,
+             time_budget: float | None = None, damping: float = 1e-2, min_damping: float = 1e-9,
+             rng: int | np.random.Generator | None = None, method: str = "auto",
+             world: CollisionChecker | None = None, target: ArrayLike | None = None) -> IKResult:
     """Inverse kinematics for any Robot and frame, by the first IK back end that supports the problem.
 
     Parameters
@@ -250,13 +252,14 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     robot : :class:`robokit.Robot` or RobotLike
         The arm (any object with ``n``, ``qlim``, ``frame_pose`` and ``jacobian`` works with
         the ``"lm"`` back end).
-    target : (4, 4) or (3,) array_like
+    T : (4, 4) or (3,) array_like
         Pose of ``frame`` in the base frame (m), or with ``position_only`` its position (3,).
-    frame : str, optional
-        The frame to place (default the robot's tip).
     q0 : (n,) array_like, optional
         Initial guess (rad, m); default the zero configuration; clipped to the limits. The
         closed forms return the in-limit solution nearest it.
+    frame : str, optional
+        The frame to place (default the robot's tip). The former order
+        ``solve_ik(robot, T, frame, q0)`` still works, with a ``DeprecationWarning``.
     position_only : bool
         Match the position only.
     weights : (6,) or (3,) array_like, optional
@@ -286,6 +289,8 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
         rejected and the solve repeated from a new seed (``q0`` first, then up to
         ``max_restarts`` seeds uniform in the limits from ``rng``); ``.success`` is False if
         no collision-free solution was found (``.tried["world"]`` says so).
+    target : (4, 4) or (3,) array_like, optional
+        The former name of ``T`` (deprecated; give one of the two).
 
     Returns
     -------
@@ -316,6 +321,15 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     'lm'
     """
     t_start = time.perf_counter()
+    target = renamed_argument("solve_ik(target=)", T, target, None, "solve_ik")
+    if target is None:
+        raise InputError("T: expected the target pose (4, 4), or with position_only its position (3,), got None")
+    if isinstance(q0, str) and not isinstance(frame, str):  # the former order solve_ik(robot, T, frame, q0)
+        warn_once("solve_ik(robot, T, frame, q0)")
+        frame, q0 = q0, frame
+    if frame is not None and not isinstance(frame, str):
+        raise InputTypeError(f"frame: expected a frame name (str) or None, got {type(frame).__name__} "
+                             "(the initial guess is q0, the third argument: solve_ik(robot, T, q0))")
     if world is not None:
         if q0 is not None:  # checked here: the attempts' solve_ik calls are robokit's own (silent)
             from robokit.description.robot import check_robot_radians
@@ -340,10 +354,10 @@ def solve_ik(robot: Robot | RobotLike, target: ArrayLike, frame: str | None = No
     qlim = np.array(robot.qlim, dtype=float)
     p_target = T_target = None
     if position_only:
-        p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "target", 3)
+        p_target = as_vector(target if np.ndim(target) == 1 else np.asarray(target)[:3, 3], "T", 3)
         w = None if weights is None else as_vector(weights, "weights", 3)
     else:
-        T_target = check_pose(target, "target")  # a clean float (4, 4) rigid transform in ~1 µs
+        T_target = check_pose(target, "T")  # a clean float (4, 4) rigid transform in ~1 µs
         w = None if weights is None else as_vector(weights, "weights", 6)
     if w is not None and np.any(w < 0):
         raise InputError(f"weights: expected non-negative entries, got {w}")

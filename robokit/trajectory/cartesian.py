@@ -246,9 +246,9 @@ def joint_trajectory_from_cartesian(robot: Any, traj: Trajectory, ik: Callable[[
         from robokit.ik.numeric import solve_ik
 
         def ik(T: np.ndarray, q_guess: np.ndarray | None) -> Any:
-            res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only, max_restarts=0 if q_guess is not None else 30)
+            res = solve_ik(robot, T, q_guess, frame, position_only=position_only, max_restarts=0 if q_guess is not None else 30)
             if not res.success and q_guess is not None:
-                res = solve_ik(robot, T, frame, q0=q_guess, position_only=position_only)
+                res = solve_ik(robot, T, q_guess, frame, position_only=position_only)
             return res
 
     has_fk = hasattr(robot, "frame_pose")

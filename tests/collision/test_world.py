@@ -155,6 +155,13 @@ def test_ik_with_a_world(puma):
     ref = FclWorld(w)
     for s in sols:
         assert s.collision_free == (not any(h for h, _ in ref.pair_distances(s.q)))
+    # the documented positional form ik_analytic(robot, T, world) (the third parameter is wrist_ref, which
+    # refused a World): the same solutions and python-fcl's flags
+    positional = robokit.ik_analytic(puma, T, w)
+    assert [s.label for s in positional] == [s.label for s in sols]
+    for s, p in zip(sols, positional):
+        np.testing.assert_array_equal(p.q, s.q)
+        assert p.collision_free == (not any(h for h, _ in ref.pair_distances(p.q)))
     res = robokit.solve_ik(puma, T, world=w, q0=[0, 0.3, -0.3, 0, 0, 0])
     assert res.success and res.method == "analytic" and not w.in_collision(res.q)
     np.testing.assert_allclose(puma.frame_pose(res.q), T, atol=1e-9)

@@ -27,6 +27,14 @@ def test_dh_description_equals_its_urdf(table):
     xml = urdf_from_dh(table)
     ref = pin.buildModelFromXML(xml)
     ref.gravity.linear = np.asarray(table.gravity, dtype=float)
+    # a joint the table gives no qlim: the URDF text writes ±π (R) or ±1 m (P), the robot is unlimited
+    lower, upper = ref.lowerPositionLimit.copy(), ref.upperPositionLimit.copy()
+    for i, link in enumerate(table.links):
+        if link.qlim is None:
+            k = ref.joints[ref.getJointId(f"joint_{i + 1}")].idx_q
+            assert (lower[k], upper[k]) == ((-np.pi, np.pi) if link.joint == "R" else (-1.0, 1.0))
+            lower[k], upper[k] = -np.inf, np.inf
+    ref.lowerPositionLimit, ref.upperPositionLimit = lower, upper
     model, visual, collision, notes = build_model(description_from_dh(table))
     assert notes == [] and len(collision.geometryObjects) == 0
     assert_same_model(model, ref, atol=1e-12)  # exact matrices against the rpy text urdf_from_dh writes

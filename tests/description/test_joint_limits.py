@@ -103,3 +103,47 @@ def test_cli_commands_on_huge_limits_succeed_with_one_note(tmp_path):
     header = (out / "big.h").read_text()  # the float32 run wrote last: unlimited is HUGE_VALF
     assert "#define big_JOINT0_LOWER (-HUGE_VALF)" in header and "#define big_JOINT0_UPPER HUGE_VALF" in header
     assert 'limited="false"' in (tmp_path / "b.xml").read_text()
+
+
+def test_dh_joint_without_qlim_is_unlimited(tmp_path):
+    """A DH file's joint without ``qlim`` is unlimited: ``robot.qlim`` is ±inf there (it was ±π for R and
+    ±1 m for P, the numbers the generated URDF needs), so ``solve_ik`` reaches a pose that needs the
+    prismatic joint at 1.6 m (it was clipped to 1 m and failed). The pose comes from the DH product
+    written out here (modified convention, Craig) and the answer is checked with Pinocchio's FK of the
+    generated URDF, whose frames ignore limits."""
+    import pinocchio as pin
+
+    path = tmp_path / "slider.yaml"
+    path.write_text("name: slider\nconvention: modified\nangle_unit: rad\nlinks:\n"
+                    "  - {joint: R, a: 0, alpha: 0, d: 0.3, theta: 0}\n"
+                    "  - {joint: P, a: 0.2, alpha: 1.5707963267948966, d: 0.1, theta: 0}\n"
+                    "  - {joint: R, a: 0.3, alpha: -1.5707963267948966, d: 0, theta: 0, qlim: [-1, 1]}\n")
+    robot = robokit.load(str(path))
+    np.testing.assert_array_equal(robot.qlim[:2], [[-np.inf, np.inf], [-np.inf, np.inf]])
+    np.testing.assert_array_equal(robot.qlim[2], [-1.0, 1.0])
+
+    def rx(t):
+        c, s = np.cos(t), np.sin(t)
+        return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+    def rz(t):
+        c, s = np.cos(t), np.sin(t)
+        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+    def tr(x, z):
+        T = np.eye(4)
+        T[0, 3], T[2, 3] = x, z
+        return T
+
+    q = np.array([0.4, 1.6, -0.5])
+    T = (rx(0) @ tr(0, 0) @ rz(q[0]) @ tr(0, 0.3)) @ (rx(np.pi / 2) @ tr(0.2, 0) @ tr(0, 0.1 + q[1])) \
+        @ (rx(-np.pi / 2) @ tr(0.3, 0) @ rz(q[2]))
+    np.testing.assert_allclose(robot.frame_pose(q), T, atol=1e-12)
+    res = robokit.solve_ik(robot, T, q + 0.05)
+    assert res.success
+    urdf = tmp_path / "slider.urdf"
+    urdf.write_text(robokit.description.urdf_gen.urdf_from_dh(robot.dh))
+    model = pin.buildModelFromUrdf(str(urdf))
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, res.q)
+    np.testing.assert_allclose(data.oMf[model.getFrameId("tool")].homogeneous, T, atol=1e-9)

@@ -50,6 +50,35 @@ def test_poe_newton_euler_equals_rnea(name, robots):
         assert np.abs(tau - ref).max() <= 1e-9 * max(1.0, np.abs(tau).max())
 
 
+def test_poe_json_armature_with_newton_euler_equals_rnea(tmp_path, capsys):
+    """talos_arm's SRDF gives six joints a reflected rotor inertia of 0.1 (example-robot-data's loader puts it
+    in model.armature). The JSON's Mlist/Glist hold the rigid bodies: Newton-Euler from them (modern_robotics)
+    equals Pinocchio's rnea on example-robot-data's own model with the armature set to zero, and with the
+    JSON's 'armature' times q-ddot added equals rnea with it; convert says so in a note. The JSON had no
+    armature (Newton-Euler from it was off by 0.1 q-ddot per joint) while the loader's note said it was in
+    the RNEA."""
+    mr = pytest.importorskip("modern_robotics")
+    erd = pytest.importorskip("example_robot_data")
+    js = tmp_path / "talos_arm.json"
+    rc, _, err = _cli(["convert", "talos_arm", "-o", str(js)], capsys)
+    assert rc == 0 and "'armature'" in err
+    d = json.loads(js.read_text())
+    ref = erd.load("talos_arm").model
+    assert [ref.names[j] for j in range(1, ref.njoints)] == d["joint_names"]
+    np.testing.assert_array_equal(d["armature"], ref.armature)
+    assert np.count_nonzero(ref.armature) == 6
+    bare = ref.copy()
+    bare.armature[:] = 0.0
+    Mlist, Glist, Slist = [np.array(m) for m in d["Mlist"]], [np.array(g) for g in d["Glist"]], np.array(d["Slist"])
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q, dq, ddq = rng.uniform(-1, 1, 7), rng.normal(size=7), rng.normal(size=7)
+        ne = mr.InverseDynamics(q, dq, ddq, ref.gravity.linear, np.zeros(6), Mlist, Glist, Slist)
+        tau = pin.rnea(ref, ref.createData(), q, dq, ddq)
+        assert np.abs(ne - pin.rnea(bare, bare.createData(), q, dq, ddq)).max() <= 1e-9 * max(1.0, np.abs(tau).max())
+        assert np.abs(ne + np.array(d["armature"]) * ddq - tau).max() <= 1e-9 * max(1.0, np.abs(tau).max())
+
+
 def test_dh_round_trip_yaml_urdf_poe_fk(robots):
     for name in ("twolink", "rrr", "puma560"):
         r = robots(name)
@@ -122,7 +151,8 @@ def test_convert_documented_commands(tmp_path, capsys):
     rc, _, _ = _cli(["convert", "ur5", "-o", str(js)], capsys)
     assert rc == 0
     d = json.loads(js.read_text())
-    assert set(d) == {"M", "Slist", "Blist", "Mlist", "Glist", "joint_names", "tip"}
+    assert set(d) == {"M", "Slist", "Blist", "Mlist", "Glist", "joint_names", "tip", "armature"}
+    assert d["armature"] == [0.0] * 6
     assert np.array(d["Slist"]).shape == (6, 6) and len(d["Mlist"]) == 7 and d["tip"] == "tool0"
     rc, _, err = _cli(["convert", "panda", "-o", str(tmp_path / "panda.json")], capsys)
     assert rc == 0 and "panda_finger_joint1" in err

@@ -48,7 +48,7 @@ def test_unreachable_reports_failure(robot):
 
 def test_bad_input():
     r = rk.load("twolink")
-    with pytest.raises(ValueError, match="target"):
+    with pytest.raises(ValueError, match="T"):
         solve_ik(r, np.ones((4, 4)))
     with pytest.raises(ValueError, match="weights"):
         solve_ik(r, np.eye(4), weights=[1, 1])
@@ -125,3 +125,41 @@ def test_solve_ik_accepts_any_robotlike_and_refuses_other_objects():
     assert min(np.abs(np.asarray(s.q) - res.q).max() for s in sols) < 1e-7
     with pytest.raises(TypeError, match="robot"):
         solve_ik(object(), np.eye(4))
+
+
+def test_contract_argument_order_q0_third(monkeypatch):
+    """``solve_ik(robot, T, q0)`` (the documented order) starts from q0: on a UR5 (8 closed-form branches)
+    and a Panda (redundant, numeric) the answer is the configuration q0 sits next to, checked with
+    Pinocchio's own forward kinematics. The third argument was ``frame``, so this call crashed inside
+    (numpy's 'truth value of an array is ambiguous'). The keyword ``T=`` works; the former order
+    ``(robot, T, frame, q0)`` and ``target=`` still work with a DeprecationWarning; a non-string frame is
+    refused naming ``frame``."""
+    import pinocchio as pin
+
+    rng = np.random.default_rng(7)
+    for name in ("ur5", "panda"):
+        r = shared_robot(name)
+        q_true = r.random_configuration(rng)
+        data = r.model.createData()
+        pin.framesForwardKinematics(r.model, data, r.q_pin(q_true))
+        T = data.oMf[r.model.getFrameId(r.tip)].homogeneous.copy()
+        q0 = q_true + 1e-3
+        for res in (solve_ik(r, T, q0), solve_ik(r, T=T, q0=q0), rk.solve_ik(r, T, q0, max_restarts=0)):
+            assert res.success
+            pin.framesForwardKinematics(r.model, data, r.q_pin(res.q))
+            np.testing.assert_allclose(data.oMf[r.model.getFrameId(r.tip)].homogeneous, T, atol=1e-9)
+            if name == "ur5":  # the closed form: the branch nearest q0, q_true itself
+                np.testing.assert_allclose(np.angle(np.exp(1j * (res.q - q_true))), 0.0, atol=1e-9)
+            else:  # Panda (redundant): Levenberg-Marquardt from q0 stays next to it
+                assert np.abs(res.q - q_true).max() < 1e-2
+        monkeypatch.setattr("robokit._deprecation._WARNED", set())  # each robot's calls warn again
+        with pytest.warns(DeprecationWarning):
+            old = solve_ik(r, T, r.tip, q0)
+        with pytest.warns(DeprecationWarning):
+            kw = solve_ik(r, target=T, q0=q0)
+        np.testing.assert_allclose(old.q, solve_ik(r, T, q0, r.tip).q, atol=1e-12)
+        np.testing.assert_allclose(kw.q, solve_ik(r, T, q0).q, atol=1e-12)
+    with pytest.raises(ValueError, match="give T= only"):
+        solve_ik(r, T, target=T)
+    with pytest.raises(TypeError, match="frame"):
+        solve_ik(r, T, q0, np.zeros(3))
