@@ -128,14 +128,14 @@ def dh_forms(reps):
     except Exception:  # pragma: no cover
         puma = None
     dh_jacobian(r.dh, q)
-    dh_inverse_dynamics(r.dh, q, dq, ddq, g)
+    dh_inverse_dynamics(r.dh, q, dq, ddq, g, trace=False)
     cases = [
         ("dh_jacobian (base axes)", lambda: dh_jacobian(r.dh, q),
          lambda: pin.computeFrameJacobian(model, data, q, r.tip_id, pin.LOCAL_WORLD_ALIGNED),
          (lambda: puma.jacob0(q)) if puma else None),
         ("dh_static_torques", lambda: dh_static_torques(r.dh, q, F),
          lambda: pin.computeFrameJacobian(model, data, q, r.tip_id, pin.LOCAL).T @ F, None),
-        ("dh_inverse_dynamics", lambda: dh_inverse_dynamics(r.dh, q, dq, ddq, g),
+        ("dh_inverse_dynamics", lambda: dh_inverse_dynamics(r.dh, q, dq, ddq, g, trace=False),
          lambda: pin.rnea(model, data, q, dq, ddq), (lambda: puma.rne(q, dq, ddq)) if puma else None),
     ]
     rows = []

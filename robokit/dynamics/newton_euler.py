@@ -230,6 +230,9 @@ def _checked(m: _Model, batch: bool, thetalist: ArrayLike, dthetalist: ArrayLike
     F_tip (6,) or (N, 6)): the arguments of a Newton–Euler kernel, model included."""
     c = _c
     if batch:
+        if np.shape(thetalist)[1:] != (m.n,):  # a column (n, 1) is not a batch: say both forms
+            raise InputError(f"thetalist: expected shape ({m.n},) or (N, {m.n}) for {m.n} joints, got shape "
+                             f"{tuple(np.shape(thetalist))}")
         th = _radians(m, as_array(thetalist, "thetalist", (None, m.n)))
         N = th.shape[0]
         dth = as_array(dthetalist, "dthetalist", (N, m.n))

@@ -43,7 +43,7 @@ def test_craig_newton_euler_vs_rnea(name, robots):
     for _ in range(100):
         q, dq, ddq, F = r.random_configuration(rng), rng.normal(size=r.n), rng.normal(size=r.n), rng.normal(size=6)
         ref = r.rnea(q, dq, ddq) + r.jacobian(q, reference="local").T @ F
-        assert rel(dh_inverse_dynamics(r.dh, q, dq, ddq, F_tip=F), ref) < 1e-9
+        assert rel(dh_inverse_dynamics(r.dh, q, dq, ddq, F_tip=F, trace=False), ref) < 1e-9
 
 
 @pytest.mark.parametrize("name", ["twolink", "puma560", "ur5", "panda", "kinova"])
@@ -176,4 +176,20 @@ def test_twolink_closed_form_against_recursive(robots):
         assert np.allclose(cf["V"], rk.vel_quadratic_forces(q, dq, p.Mlist, p.Glist, p.Slist))
         assert np.allclose(cf["B"][:, 0] * dq[0] * dq[1] + cf["C"] @ dq**2, cf["V"])
         tau = cf["M"] @ ddq + cf["V"] + cf["G"]
-        assert np.allclose(tau, dh_inverse_dynamics(r.dh, q, dq, ddq)) and np.allclose(tau, r.rnea(q, dq, ddq))
+        assert np.allclose(tau, dh_inverse_dynamics(r.dh, q, dq, ddq, trace=False)) and np.allclose(tau, r.rnea(q, dq, ddq))
+
+
+def test_a_column_of_joint_values_is_named_as_not_a_batch():
+    """A (6, 1) column was refused with "thetalist: expected shape (n, 6)", which reads as if six joints were
+    too many; the message now gives both forms the function takes."""
+    import robokit as rk
+    from robokit.errors import InputError
+
+    p = rk.load("puma560").poe
+    with pytest.raises(InputError, match=r"thetalist: expected shape \(6,\) or \(N, 6\) for 6 joints, got shape \(6, 1\)"):
+        rk.inverse_dynamics(np.zeros((6, 1)), np.zeros(6), np.zeros(6), [0, 0, -9.81], np.zeros(6), p.Mlist, p.Glist,
+                            p.Slist)
+    batch = rk.inverse_dynamics(np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((2, 6)), [0, 0, -9.81], np.zeros(6),
+                                p.Mlist, p.Glist, p.Slist)
+    one = rk.inverse_dynamics(np.zeros(6), np.zeros(6), np.zeros(6), [0, 0, -9.81], np.zeros(6), p.Mlist, p.Glist, p.Slist)
+    assert np.array_equal(batch, np.stack([one, one]))

@@ -62,7 +62,7 @@ def test_dynamics_trace_matches_pinocchio_step_by_step(convention, prismatic):
     for _ in range(4):
         q, dq, ddq = robot.random_configuration(rng), rng.normal(size=n), rng.normal(size=n)
         tau, tr = dh_inverse_dynamics(table, q, dq, ddq, gravity=g, trace=True)
-        assert np.abs(tau - dh_inverse_dynamics(table, q, dq, ddq, gravity=g)).max() <= 1e-12 * max(1.0, np.abs(tau).max())
+        assert np.abs(tau - dh_inverse_dynamics(table, q, dq, ddq, gravity=g, trace=False)).max() <= 1e-12 * max(1.0, np.abs(tau).max())
         model, data = _pin_state(robot, q, dq, ddq, g)
         assert np.abs(tau - data.tau).max() <= 1e-9 * max(1.0, np.abs(tau).max())
         for i in range(n):
@@ -91,7 +91,7 @@ def test_dynamics_trace_with_tip_wrench_and_print():
     q, dq, ddq, F = rng.normal(size=(4, 6))[:, :6]
     F = rng.normal(size=6)
     tau, tr = dh_inverse_dynamics(table, q, dq, ddq, F_tip=F, trace=True)
-    assert np.abs(tau - dh_inverse_dynamics(table, q, dq, ddq, F_tip=F)).max() <= 1e-12 * max(1.0, np.abs(tau).max())
+    assert np.abs(tau - dh_inverse_dynamics(table, q, dq, ddq, F_tip=F, trace=False)).max() <= 1e-12 * max(1.0, np.abs(tau).max())
     text = str(tr)
     assert text.count("\n") == 1 + 1 + 6 * 8 + 0 and "τ6 =" in text
     for sym in ("ω_i", "ω̇_i", "v̇_i", "v̇_Ci", "F_i", "N_i", "f_i", "n_i"):
@@ -144,3 +144,24 @@ def test_elementary_rotation_axes(axis, index):
 def test_elementary_rotation_refuses_other_axes(bad):
     with pytest.raises(ValueError, match="axis"):
         elementary_rotation(bad, 0.1)
+
+
+def test_the_contract_form_returns_the_torques_and_the_steps():
+    """``tau, trace = dh_inverse_dynamics(table, q, dq, ddq)``: the default is ``trace=True`` (it was False, and
+    that call then failed to unpack, or on a two-joint arm unpacked the torques silently). The torques against
+    Pinocchio's ``rnea`` on the robot built from the table; ``trace=False`` gives the same torques alone."""
+    import inspect
+
+    assert inspect.signature(dh_inverse_dynamics).parameters["trace"].default is True
+    rng = np.random.default_rng(3)
+    for n in (2, 6):
+        table = make_random_dh_table(rng, n, "standard")
+        robot = rk.load(table)
+        q, dq, ddq = rng.normal(size=(3, n))
+        out = dh_inverse_dynamics(table, q, dq, ddq)
+        assert isinstance(out, tuple) and len(out) == 2
+        tau, steps = out
+        ref = robot.rnea(q, dq, ddq)
+        assert np.abs(tau - ref).max() <= 1e-9 * max(1.0, np.abs(ref).max())
+        assert steps.omega.shape == (n, 3)
+        assert np.abs(dh_inverse_dynamics(table, q, dq, ddq, trace=False) - tau).max() <= 1e-12 * max(1.0, np.abs(tau).max())
