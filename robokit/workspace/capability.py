@@ -260,6 +260,20 @@ def _describe(robot_arg: Any, robot: Robot) -> RobotSpec:
     return robot.spec
 
 
+def _check_bounded(robot: Robot) -> None:
+    """Refuse an arm with an unlimited prismatic joint: its reachable space has no bound, so no grid
+    covers it (an unlimited revolute joint is fine: a turn covers it)."""
+    from robokit.errors import InputError
+
+    S = np.asarray(robot.poe.Slist, dtype=float)
+    qlim = np.asarray(robot.qlim, dtype=float)
+    for i in range(S.shape[1]):
+        if np.linalg.norm(S[:3, i]) < 0.5 and not np.isfinite(qlim[i]).all():
+            raise InputError(f"robot: joint {robot.joint_names[i]!r} is prismatic with no limits "
+                             f"({qlim[i, 0]:g} to {qlim[i, 1]:g} m), so the arm reaches without bound and no map "
+                             "covers it; give the joint limits (DH qlim, URDF/MJCF joint range)")
+
+
 def _description_digest(desc: RobotSpec) -> str:
     """Fingerprint of a robot description: the spec's fields and the bytes of the file it names."""
     import dataclasses
@@ -478,6 +492,7 @@ def capability_map(robot: Robot | DHTable | RobotSpec | str | os.PathLike[str], 
         raise InputTypeError(f"client: expected None, 'serial', a scheduler address or a distributed.Client, "
                         f"got {type(client).__name__}")
     rob = load(robot)
+    _check_bounded(rob)
     desc = _describe(robot, rob)
     kind = ik_backend(rob)
     chain = planar_chain(rob)

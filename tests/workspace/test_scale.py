@@ -161,3 +161,18 @@ def test_plot_slice(tmp_path):
     with pytest.raises(ValueError, match="axis"):
         plot_capability_slice(cmap, "w")
     assert isinstance(CapabilityMap.load(cmap.save(tmp_path / "m.npz")), CapabilityMap)
+
+
+def test_an_unlimited_prismatic_joint_is_refused_naming_it():
+    """A DH joint without qlim is unlimited (±inf); for a prismatic one the arm reaches without bound, and the map
+    was silently cut where the grid's sampling put unlimited joints (±π m). With limits it maps as usual."""
+    import robokit as rk
+    from robokit.errors import InputError
+
+    links = (DHLink("R", a=0.3, alpha=0.0, d=0.0), DHLink("P", a=0.0, alpha=1.5707963267948966, d=0.2),
+             DHLink("R", a=0.2, alpha=0.0, d=0.0))
+    with pytest.raises(InputError, match="joint_2.*prismatic with no limits"):
+        rk.capability_map(rk.load(DHTable("slider", "standard", links)), 0.2, orientations=2, client="serial")
+    limited = links[:1] + (DHLink("P", a=0.0, alpha=1.5707963267948966, d=0.2, qlim=(0.0, 0.3)),) + links[2:]
+    cmap = rk.capability_map(rk.load(DHTable("slider", "standard", limited)), 0.2, orientations=2, client="serial")
+    assert len(cmap.centres) > 0
