@@ -759,3 +759,26 @@ def test_mesh_principal_frames_are_mujocos_own(tmp_path):
         frames = max(frames, np.abs(X.translation - d.geom_xpos[k]).max(),
                      np.abs(X.rotation - d.geom_xmat[k].reshape(3, 3)).max())
     assert frames < 1e-12, frames
+
+
+if given is not None:
+    @settings(max_examples=200, deadline=None)
+    @given(st.lists(st.floats(-1.0, 1.0), min_size=9, max_size=9), st.floats(-8.0, 2.0))
+    def test_the_compilers_jacobi_frame_diagonalises_to_its_tolerance(entries, log_scale):
+        """:func:`jacobi_principal_axes` (the mesh frame, MuJoCo's rule): moments decreasing (to the swap
+        tolerance); a right-handed unit quaternion; ``R diag(I) Rᵀ`` the matrix again to within the stopping
+        tolerance (the off-diagonal entries left are at most reltol × scale, so the rebuilt matrix is within a
+        few times that), and the moments LAPACK's within the same bound (Weyl: a symmetric perturbation of
+        norm ε moves each eigenvalue at most ε — near a double eigenvalue the iteration stops that far off)."""
+        from robokit.description._mjcf_math import MESH_EIG_RELTOL, jacobi_principal_axes, quat_to_matrix
+
+        B = np.array(entries).reshape(3, 3)
+        A = (B @ B.T + 1e-3 * np.eye(3)) * 10.0 ** log_scale  # symmetric positive definite, any size
+        scale = np.abs(A).max()
+        ev, q = jacobi_principal_axes(tuple(A.ravel()), MESH_EIG_RELTOL)
+        assert abs(np.linalg.norm(q) - 1.0) < 1e-14
+        R = np.array(quat_to_matrix(q)).reshape(3, 3)
+        assert np.linalg.det(R) > 0
+        assert ev[0] + 1e-12 * scale >= ev[1] and ev[1] + 1e-12 * scale >= ev[2]
+        assert np.abs(np.sort(ev) - np.linalg.eigvalsh(A)).max() <= 4 * MESH_EIG_RELTOL * scale
+        assert np.abs(R @ np.diag(ev) @ R.T - A).max() <= 4 * MESH_EIG_RELTOL * scale
