@@ -942,7 +942,7 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     wrist_ref : float
         At a wrist singularity, the value given to the free joint (q₄ for a spherical wrist,
         q₆ for the parallel-axes arms; rad). Default 0. A collision world given here, as in
-        ``ik_analytic(robot, T, world)``, is taken as ``world`` (wrist_ref then 0).
+        ``ik_analytic(robot, T, world)``, is taken as ``world`` (wrist_ref then 0); None is the default.
     world : :class:`robokit.collision.World`, optional
         When given, each solution's ``.collision_free`` says whether the arm is free of self-
         and obstacle collisions there (None without a world). All solutions are returned.
@@ -994,6 +994,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     if not (type(wrist_ref) is float and -TURN <= wrist_ref <= TURN):
         if world is None and hasattr(wrist_ref, "in_collision"):  # ik_analytic(robot, T, world): the documented form
             world, wrist_ref = wrist_ref, 0.0
+        elif wrist_ref is None:  # ik_analytic(robot, T, None): the documented form's "no world"
+            wrist_ref = 0.0
         else:
             wrist_ref = _wrist_ref(wrist_ref)  # checked here: the solver's own check is silent when robokit calls it
     ik = None

@@ -162,6 +162,11 @@ def test_ik_with_a_world(puma):
     for s, p in zip(sols, positional):
         np.testing.assert_array_equal(p.q, s.q)
         assert p.collision_free == (not any(h for h, _ in ref.pair_distances(p.q)))
+    # and its "no world", ik_analytic(robot, T, None): the solutions without collision flags
+    bare = robokit.ik_analytic(puma, T, None)
+    assert [s.label for s in bare] == [s.label for s in sols] and all(s.collision_free is None for s in bare)
+    for s, b in zip(sols, bare):
+        np.testing.assert_array_equal(b.q, s.q)
     res = robokit.solve_ik(puma, T, world=w, q0=[0, 0.3, -0.3, 0, 0, 0])
     assert res.success and res.method == "analytic" and not w.in_collision(res.q)
     np.testing.assert_allclose(puma.frame_pose(res.q), T, atol=1e-9)
