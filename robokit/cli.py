@@ -233,7 +233,6 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "view":
         from robokit.commands import view_command
 
-        opts = _format_options(args, args.model)
         if str(args.model).lower().endswith(".npz"):  # a capability map (robokit workspace)
             from robokit.commands import capability_view_command
 
@@ -248,6 +247,7 @@ def _dispatch(args: argparse.Namespace) -> int:
             from robokit.errors import InputError
 
             raise InputError("--robot: applies to capability maps (MAP.npz); give the robot as MODEL")
+        opts = _format_options(args, args.model)
         if opts:  # formats: a xacro robot with arguments/packages is loaded here
             from robokit.description.loading import load
 

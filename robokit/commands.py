@@ -507,10 +507,8 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
             raise InputError(f"{flag}: expected a positive number of at most {MAX_MAGNITUDE:g} {unit}, got {v:g}")
     if not 0 <= seed <= MAX_SEED:
         raise InputError(f"--seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
-    if allow_outside_meshes and file_takes(model, "allow_outside_meshes"):
-        robot = load(model, tip=tip, allow_outside_meshes=True)  # the robot file's meshes too (--allow-outside-meshes)
-    else:
-        robot = load(model, tip=tip)
+    # the flag reads the robot file's meshes too, where its format takes it (False means "not given")
+    robot = load(model, tip=tip, allow_outside_meshes=allow_outside_meshes and file_takes(model, "allow_outside_meshes"))
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
         raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")

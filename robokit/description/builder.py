@@ -120,21 +120,25 @@ def _tip_candidates(model: Any, children: Mapping[int, list[int]],
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
-def _check_trunk(model: Any, j: int) -> None:
-    """Refuse, as :func:`serial_chain` would for every tip beyond it, a joint from the root to joint ``j``
-    (the trunk all of a tree's ends share: an MJCF free joint, a floating base) that is not a
-    one-degree-of-freedom revolute/prismatic/continuous joint."""
-    trunk = []
+def _chain_to(model: Any, j: int) -> list[int]:
+    """The joints from the root to joint ``j`` (``j`` included), root first."""
+    chain = []
     while j != 0:
-        trunk.append(j)
+        chain.append(j)
         j = model.parents[j]
-    for k in reversed(trunk):
-        sn = model.joints[k].shortname()
+    return chain[::-1]
+
+
+def _check_one_dof(model: Any, chain: list[int], where: str) -> None:
+    """Refuse the first joint of ``chain`` that is not a one-degree-of-freedom revolute/prismatic/continuous
+    joint (a floating base, a ball), saying ``where`` it is."""
+    for j in chain:
+        sn = model.joints[j].shortname()
         if sn not in _ONE_DOF:
             kind = "floating base" if sn == "JointModelFreeFlyer" else sn
             raise InputError(
-                f"model: joint {model.names[k]!r}, which every chain of the tree runs through, is a {kind}; robokit "
-                "handles fixed-base serial chains of revolute, prismatic and continuous joints"
+                f"model: joint {model.names[j]!r} {where} is a {kind}; robokit handles fixed-base serial chains of "
+                "revolute, prismatic and continuous joints"
             )
 
 
@@ -186,7 +190,8 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         if depths[0][0] <= 1 and j != 0:
             break  # fingers
         if depths[0][0] == depths[1][0]:
-            _check_trunk(model, j)  # every end's chain runs through it: a floating base is said first
+            # every end's chain runs through the trunk: a floating base there is said first
+            _check_one_dof(model, _chain_to(model, j), "which every chain of the tree runs through,")
             cands = _tip_candidates(model, children, names)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
             raise InputError(
@@ -277,20 +282,8 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
         shown = ", ".join(bodies[-12:])
         raise InputError(f"tip: no frame {tip!r}; frames include: {shown}")
     fid = frame_index(model, tip)
-    chain = []
-    j = model.frames[fid].parentJoint
-    while j != 0:
-        chain.append(j)
-        j = model.parents[j]
-    chain.reverse()
-    for j in chain:
-        sn = model.joints[j].shortname()
-        if sn not in _ONE_DOF:
-            kind = "floating base" if sn == "JointModelFreeFlyer" else sn
-            raise InputError(
-                f"model: joint {model.names[j]!r} on the chain to {tip!r} is a {kind}; robokit handles fixed-base "
-                "serial chains of revolute, prismatic and continuous joints"
-            )
+    chain = _chain_to(model, model.frames[fid].parentJoint)
+    _check_one_dof(model, chain, f"on the chain to {tip!r}")
     lock = [j for j in range(1, model.njoints) if j not in chain]
     if not lock:
         return model, [], list(geometry_models)

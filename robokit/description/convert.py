@@ -110,8 +110,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         from robokit.description.mjcf_write import mjcf_from_robot
 
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
-                     reflected_inertia=reflected_inertia,
-                     **({"allow_outside_meshes": True} if allow_outside_meshes else {}))
+                     reflected_inertia=reflected_inertia, allow_outside_meshes=allow_outside_meshes)
         text, notes = mjcf_from_robot(robot)
         notes[:0] = _locked_note(robot)
     elif out_suffix not in (".urdf", ".json", ".yaml", ".yml", None):
@@ -124,8 +123,7 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
         text = urdf_from_dh(DHTable.from_yaml(src))
     else:
         robot = load(src, tip=tip, xacro_args=xacro_args, package_dirs=package_dirs,
-                     reflected_inertia=reflected_inertia,
-                     **({"allow_outside_meshes": True} if allow_outside_meshes else {}))
+                     reflected_inertia=reflected_inertia, allow_outside_meshes=allow_outside_meshes)
         notes += _locked_note(robot)
         if out_suffix == ".json":
             text = json.dumps(robot.poe.to_json_dict(), indent=1) + "\n"

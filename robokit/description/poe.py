@@ -65,7 +65,7 @@ class PoEParams:
     armature : numpy.ndarray, shape (n,)
         Each joint's reflected rotor inertia (Pinocchio's ``model.armature``: an SRDF's rotor
         parameters, Drake's transmissions, MJCF's armature; kg·m², kg for a prismatic joint),
-        0 for most robots. ``Mlist``/``Glist`` hold the rigid bodies only: Pinocchio's ``rnea``
+        0 for most robots (and when not given). ``Mlist``/``Glist`` hold the rigid bodies only: Pinocchio's ``rnea``
         on the chain is their Newton–Euler torques plus ``armature · q̈`` (and ``crba`` their
         mass matrix plus ``diag(armature)``).
 
@@ -85,7 +85,11 @@ class PoEParams:
     tip: str
     qlim: np.ndarray
     gravity: np.ndarray
-    armature: np.ndarray
+    armature: np.ndarray = None  # type: ignore[assignment]  # None: zeros (n,), set in __post_init__
+
+    def __post_init__(self) -> None:
+        if self.armature is None:  # built without one (PoEParams was constructed without armature before)
+            object.__setattr__(self, "armature", np.zeros(self.Slist.shape[1]))
 
     @property
     def n(self) -> int:

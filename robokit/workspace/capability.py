@@ -263,12 +263,12 @@ def _describe(robot_arg: Any, robot: Robot) -> RobotSpec:
 def _check_bounded(robot: Robot) -> None:
     """Refuse an arm with an unlimited prismatic joint: its reachable space has no bound, so no grid
     covers it (an unlimited revolute joint is fine: a turn covers it)."""
+    from robokit._units import revolute_columns
     from robokit.errors import InputError
 
-    S = np.asarray(robot.poe.Slist, dtype=float)
     qlim = np.asarray(robot.qlim, dtype=float)
-    for i in range(S.shape[1]):
-        if np.linalg.norm(S[:3, i]) < 0.5 and not np.isfinite(qlim[i]).all():
+    for i, revolute in enumerate(revolute_columns(robot.poe.Slist)):
+        if not revolute and not np.isfinite(qlim[i]).all():
             raise InputError(f"robot: joint {robot.joint_names[i]!r} is prismatic with no limits "
                              f"({qlim[i, 0]:g} to {qlim[i, 1]:g} m), so the arm reaches without bound and no map "
                              "covers it; give the joint limits (DH qlim, URDF/MJCF joint range)")

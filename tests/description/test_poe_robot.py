@@ -202,3 +202,14 @@ def test_console_script_subprocess(tmp_path):
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 2 and res.stderr.count("\n") == 1 and "Traceback" not in res.stderr
     assert not (tmp_path / "x.json").exists()
+
+
+def test_poe_params_built_without_armature_have_none():
+    """``PoEParams`` gained ``armature``; one built as before (nine fields) has zeros there, and equals the
+    loaded robot's own where that robot has no reflected rotor inertia."""
+    from robokit.description.poe import PoEParams
+
+    p = robokit.load("puma560").poe
+    q = PoEParams(p.M, p.Slist, p.Blist, p.Mlist, p.Glist, p.joint_names, p.tip, p.qlim, p.gravity)
+    assert q.armature.shape == (6,) and not q.armature.any()
+    assert q.to_json_dict() == p.to_json_dict()
