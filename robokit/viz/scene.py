@@ -314,21 +314,30 @@ class Scene:
         >>> s.move_frames([0.3, -0.6]) is s
         True
         """
+        tops = self._place_frames(self.vis, q)
+        if tops is not None:
+            self._label_points = tops
+        return self
+
+    def _place_frames(self, vis: Any, q: ArrayLike) -> list[np.ndarray] | None:
+        """Set the transforms of the triads and labels of :meth:`frames` at ``q`` on ``vis`` (the
+        scene's visualizer, or a frame of an animation); the labels' tops (for the camera), None
+        without labels."""
         names, height = self._frames
         if not names:
-            return self
+            return None
         poses = self.robot.frame_poses(np.asarray(q, dtype=float))
         for name in names:
-            self.vis["frames"][name].set_transform(poses[name])
-        if height > 0:
-            origins = np.array([poses[nm][:3, 3] for nm in names])
-            offsets = label_offsets(origins, height)
-            self._label_points = list(origins + offsets + [0.0, 0.0, 0.6 * height])  # the labels' tops, for the camera
-            for name, p, off in zip(names, origins, offsets):
-                T = np.eye(4)
-                T[:3, 3] = p + off
-                self.vis["labels"][name].set_transform(T)
-        return self
+            vis["frames"][name].set_transform(poses[name])
+        if not height > 0:
+            return None
+        origins = np.array([poses[nm][:3, 3] for nm in names])
+        offsets = label_offsets(origins, height)
+        for name, p, off in zip(names, origins, offsets):
+            T = np.eye(4)
+            T[:3, 3] = p + off
+            vis["labels"][name].set_transform(T)
+        return list(origins + offsets + [0.0, 0.0, 0.6 * height])
 
     def point(self, name: str, p: ArrayLike, radius: float = 0.015, color: int = 0xE04020) -> Scene:
         """A sphere at position ``p`` in the base frame.
@@ -583,6 +592,7 @@ class Scene:
                 with anim.at_frame(self.vis, int(k)) as frame:
                     self.viz.viewer = frame
                     self.viz.display(self.robot.q_pin(q))
+                    self._place_frames(frame, q)  # the triads and labels of frames() move with the robot
         finally:
             self.viz.viewer = viewer
         self.vis.set_animation(anim, play=True, repetitions=0)

@@ -135,9 +135,39 @@ var RKMath = (function () {
 
   // The target pose of a URL fragment "#T=t11,t12,...,t44" (16 numbers, row-major, the tool
   // pose in the base frame): {T: 16 finite numbers or null, given, problem}, as parseFragment.
+  // 16 numbers that are not a pose (a scaled, sheared or mirrored rotation, a last row other
+  // than 0 0 0 1: farther than POSE_TOL from SE(3)) are ignored too: no IK solution reaches them
+  // (robokit.ik_analytic refuses such a T). A pose rounded for a link (6 decimals) is well within.
+  var POSE_TOL = 1e-3;  // Modern Robotics' test_if_SE3
   function parseTarget(hash) {
     var f = parseList(hash, "T", 16, "16 finite numbers (a 4x4 pose, row-major, m)");
+    if (f.values) {
+      var d = distanceToSE3(f.values);
+      if (!(d <= POSE_TOL)) {
+        return { T: null, given: true,
+                 problem: "URL #T=: not a pose (distance to SE(3) " + (d >= 1e9 ? "\u221e: det R \u2264 0" : d.toPrecision(3)) +
+                          " > " + POSE_TOL + ": the top-left 3x3 must be a rotation, the last row 0 0 0 1); ignored" };
+      }
+    }
     return { T: f.values, given: f.given, problem: f.problem };
+  }
+
+  // Modern Robotics' distance of a row-major 4x4 matrix to SE(3): with R its top-left block,
+  // ||[[R^T R, 0], [last row]] - I||_F when det R > 0 (the position column does not count), else 1e9
+  function distanceToSE3(T) {
+    var det = T[0] * (T[5] * T[10] - T[6] * T[9]) - T[1] * (T[4] * T[10] - T[6] * T[8]) +
+              T[2] * (T[4] * T[9] - T[5] * T[8]);
+    if (!(det > 0)) { return 1e9; }
+    var s = 0, i, j, k;
+    for (i = 0; i < 3; i++) {
+      for (j = 0; j < 3; j++) {
+        var rtr = 0;
+        for (k = 0; k < 3; k++) { rtr += T[4 * k + i] * T[4 * k + j]; }
+        s += (rtr - (i === j ? 1 : 0)) * (rtr - (i === j ? 1 : 0));
+      }
+    }
+    for (j = 0; j < 4; j++) { s += (T[12 + j] - (j === 3 ? 1 : 0)) * (T[12 + j] - (j === 3 ? 1 : 0)); }
+    return Math.sqrt(s);
   }
 
   // "key=v1,v2,..." of a fragment: {values: count finite numbers or null, given, problem}

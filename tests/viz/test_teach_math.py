@@ -260,6 +260,66 @@ def test_js_fragment_parser_never_throws_and_says_what_it_ignored():
         assert r == {"q": None, "given": False, "problem": ""}, (f, r)
 
 
+TARGETS = r"""
+const M = require(process.argv[1]);
+const tests = JSON.parse(process.argv[2]);
+process.stdout.write(JSON.stringify(tests.map(function (t) {
+  try { return M.parseTarget(t); } catch (e) { return { threw: String(e) }; }
+})));
+"""
+
+
+def _distance_to_se3(T):
+    """Modern Robotics' distance of a 4x4 matrix to SE(3), in numpy: ‖[[RᵀR, 0], [last row]] − I‖_F
+    when det R > 0 (the position column does not count), else 1e9."""
+    T = np.asarray(T, float).reshape(4, 4)
+    R = T[:3, :3]
+    if np.linalg.det(R) <= 0:
+        return 1e9
+    A = np.zeros((4, 4))
+    A[:3, :3] = R.T @ R
+    A[3] = T[3]
+    return float(np.linalg.norm(A - np.eye(4)))
+
+
+@needs_node
+def test_js_target_parser_takes_poses_and_refuses_matrices_that_are_not():
+    """``#T=`` names a tool pose: 16 numbers that are not (close to) a homogeneous transform — a
+    scaled, sheared or mirrored rotation block, a last row other than 0 0 0 1 — are ignored with a
+    message, as a malformed fragment is, rather than handed to the IK (whose solutions cannot reach
+    them: robokit.ik_analytic refuses such a T). Poses, those rounded to 6 decimals included, are
+    taken as written. Reference: numpy's distance to SE(3) (accepted up to 1e-3, MR's test_if_SE3)."""
+    import pinocchio as pin
+
+    rng = np.random.default_rng(12)
+    poses = []
+    for _ in range(20):
+        T = pin.SE3.Random().homogeneous
+        T[:3, 3] *= rng.uniform(0.1, 3.0)
+        poses.append(T)
+    rounded = [np.round(T, 6) for T in poses[:10]]
+    S = np.diag([2.0, 2.0, 2.0, 1.0])
+    bad = [S @ poses[0], poses[1] @ S, poses[2].copy(), poses[3].copy(), poses[4].copy(), poses[5].copy(),
+           np.zeros((4, 4)), np.eye(4) * 1e-3]
+    bad[2][:3, 0] *= -1  # a mirror: det R = -1
+    bad[3][3] = [0.0, 0.0, 0.1, 1.0]  # a projective last row
+    bad[4][0, 1] += 0.01  # sheared
+    bad[5][3, 3] = 2.0
+    for B in bad:
+        assert _distance_to_se3(B) > 1e-3
+    for T in poses + rounded:
+        assert _distance_to_se3(T) <= 1e-3
+    frag = lambda T: "#T=" + ",".join(repr(float(x)) for x in np.ravel(T))  # noqa: E731
+    res = _node(TARGETS, MATH_JS, json.dumps([frag(T) for T in poses + rounded + bad]))
+    for T, r in zip(poses + rounded, res):
+        assert "threw" not in r and r["problem"] == "" and r["given"], r
+        np.testing.assert_array_equal(r["T"], np.ravel(T))
+    for B, r in zip(bad, res[len(poses) + len(rounded):]):
+        assert "threw" not in r, r
+        assert r["T"] is None and r["given"] and "ignored" in r["problem"] and "pose" in r["problem"], (B, r)
+        assert len(r["problem"]) < 200, r
+
+
 FIT = r"""
 const M = require(process.argv[1]);
 const cases = JSON.parse(process.argv[2]);

@@ -170,6 +170,39 @@ def test_frame_labels_face_the_camera_and_stay_readable():
     assert not any(o["object"]["type"] == "Mesh" for p, o in objs.items() if p.startswith("/meshcat/labels"))
 
 
+def test_frames_follow_the_trajectory_animation():
+    """``robokit view --frames --trajectory``: the triads and their labels move with the robot in
+    every frame of the animation, at the poses Pinocchio gives the frames at that row (they stayed
+    where the robot was first shown while the robot moved)."""
+    import pinocchio as pin
+
+    import robokit
+
+    puma = robokit.load("puma560")
+    scene, rec = _recorded_scene(puma)
+    Q = np.linspace([0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.8, -0.5, 0.7, 1.0, -0.6, 0.9], 7)
+    scene.show(Q[0]).frames().animate(Q, fps=10)
+    names = [f"dh_{i}" for i in range(7)] + ["tool"]
+    anims = [c for c in rec.commands if c["type"] == "set_animation"]
+    assert len(anims) == 1
+    clips = {a["path"]: {t["name"]: t["keys"] for t in a["clip"]["tracks"]} for a in anims[0]["animations"]}
+    model = puma.model
+    data = model.createData()
+    for k, q in enumerate(Q):
+        pin.framesForwardKinematics(model, data, pin.integrate(model, pin.neutral(model), q))
+        for name in names:
+            ref = data.oMf[model.getFrameId(name)]
+            track = clips[f"/meshcat/frames/{name}"]
+            (pos,) = [key["value"] for key in track[".position"] if key["time"] == k]
+            (quat,) = [key["value"] for key in track[".quaternion"] if key["time"] == k]  # x, y, z, w
+            np.testing.assert_allclose(pos, ref.translation, rtol=0, atol=1e-12)
+            R = pin.Quaternion(quat[3], quat[0], quat[1], quat[2]).toRotationMatrix()
+            np.testing.assert_allclose(R, ref.rotation, rtol=0, atol=1e-12)
+            (label,) = [key["value"] for key in clips[f"/meshcat/labels/{name}"][".position"] if key["time"] == k]
+            lift = np.asarray(label) - ref.translation
+            assert np.allclose(lift[:2], 0, atol=1e-12) and lift[2] > 0, (k, name, lift)
+
+
 @pytest.mark.parametrize("model", ["puma560", "ur5"])
 def test_ground_grid_lies_under_the_robot_sized_to_its_reach(model):
     """The view's grid: a square in the base's z = 0 plane, centred on the base, as wide as the
