@@ -19,6 +19,7 @@ import numpy as np
 from robokit.ik import ClosedFormConstants, GeneralSixRConstants, closed_form_constants
 from robokit.ik.parallel_axes import ParallelAxesConstants
 from robokit.ik.pieper import PieperConstants
+from robokit.ik.planar_solver import PlanarConstants
 
 
 @dataclass
@@ -40,6 +41,8 @@ class IKConstants:
     pieper: PieperConstants | None = None
     #: The three-parallel-axes constants (method "three parallel axes"), else None.
     parallel: ParallelAxesConstants | None = None
+    #: The planar method's constants (method "planar"), else None.
+    planar: PlanarConstants | None = None
     #: The general 6R method's constants (method "general 6R"), else None.
     general: GeneralSixRConstants | None = None
     flip: list[bool] | None = None  # joints solved as q' = -q (in the robot's order)
@@ -85,4 +88,5 @@ def _read(robot: Any, c: ClosedFormConstants) -> IKConstants:
         pieper=c.solver if isinstance(c.solver, PieperConstants) else None,
         parallel=c.solver if isinstance(c.solver, ParallelAxesConstants) else None,
         general=c.solver if isinstance(c.solver, GeneralSixRConstants) else None,
+        planar=c.solver if isinstance(c.solver, PlanarConstants) else None,
         flip=None if c.flip is None else list(c.flip), free_flipped=c.free_flipped, calibrated=c.calibrated)

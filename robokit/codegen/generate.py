@@ -76,7 +76,7 @@ class CSource:
     --------
     >>> src = generate_c(rk.load("twolink"))
     >>> src.name, src.has_ik, "void twolink_fk(" in src.header
-    ('twolink', False, True)
+    ('twolink', True, True)
     """
 
     name: str

@@ -22,6 +22,7 @@ de-duplication and labels. Only the branches the robot needs are emitted.
 * **Three parallel axes** (UR family): θ₁ from ``a cos θ + b sin θ = c``, θ₅ from the
   direction of the parallel axes seen from the tool, θ₆ from an atan2, θ₂–θ₄ from the
   planar 2-link arm.
+* **Planar** arms of 1–3 joints (and one prismatic joint): :mod:`robokit.codegen.ik_planar`.
 * Both read backwards when the structure is at the base: the C solves ``T⁻¹`` with the
   reversed chain and maps ``q = −q′`` in reverse order.
 
@@ -38,7 +39,7 @@ from typing import Any
 
 
 from robokit.codegen._c import CWriter, Val, c_string, lin, lit, safe_comment, snap
-from robokit.codegen import ik_calibrated, ik_general
+from robokit.codegen import ik_calibrated, ik_general, ik_planar
 from robokit.codegen._solver_constants import IKConstants, ik_constants
 from robokit.ik.pieper import PieperConstants
 from robokit.codegen.kinematics import Pose, compose
@@ -144,6 +145,8 @@ def emit_ik(robot: Any, prefix: str, float32: bool = False, nominal: Any = None)
     elif k.method == "general 6R":
         code = (IKCode(False, ik_general.FLOAT32_NOTE, 1) if float32
                 else _GeneralEmitter(k, prefix, _Tol(False)).code())
+    elif k.method == "planar":
+        code = ik_planar.planar_code(k, prefix, _Tol(float32), _Emitter, IKCode)
     elif k.method not in ("spherical wrist", "three parallel axes"):
         code = IKCode(False, f"robokit has a closed form ({safe_comment(k.method)}) but no C emitter for it yet; "
                              "use robokit.ik_analytic", 1)
@@ -161,6 +164,10 @@ def _method_line(k: IKConstants, has_ik: bool) -> str:
     if k.method == "general 6R":
         return ("general 6R (Raghavan-Roth elimination, Manocha-Canny 24 x 24 eigenproblem by Francis QR, Newton "
                 "polish), up to 16 solutions")
+    if k.method == "planar":
+        assert k.planar is not None  # the planar method's constants
+        m = ik_planar.planar_max_solutions(k.planar.n)
+        return f"planar arm of {k.planar.n} joint{'s' if k.planar.n > 1 else ''} (Lecture 5), up to {m} solution{'s' if m > 1 else ''}"
     if k.method == "spherical wrist":
         assert k.pieper is not None  # the spherical wrist's constants
         deg = k.pieper.deg
@@ -487,7 +494,7 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
     def finish(self, max_solutions: int = MAX_SOLUTIONS, repeats: bool = True) -> str:
         """Wrapping, limits, de-duplication and labels (``ClosedFormModel._finish``); ``repeats``
         False when no label can occur twice (the repeat number is then always 1, no counter table)."""
-        k, P, n = self.k, self.P, 6
+        k, P, n = self.k, self.P, len(self.k.rev)  # 6, or a planar arm's 1-3
         lines = []
         for j in range(n):
             if k.rev[j]:
@@ -521,16 +528,16 @@ static int {P}_real_roots(const double c[5], int deg, double out[5], double tol)
         same = []
         for j in range(n):
             if k.rev[j]:
-                same.append(f"{P}_same_angle(qq[{j}], q[6 * m + {j}], {self.tol(1e-9)})")
+                same.append(f"{P}_same_angle(qq[{j}], q[{n} * m + {j}], {self.tol(1e-9)})")
             else:
-                same.append(f"fabs(qq[{j}] - q[6 * m + {j}]) < {self.tol(1e-9)}")
+                same.append(f"fabs(qq[{j}] - q[{n} * m + {j}]) < {self.tol(1e-9)}")
         same_c = "\n                && ".join(same)
         body = "\n".join(lines)
         count_decl = f"    int count[{len(self.labels)}];\n" if repeats else ""
         count_init = "    memset(count, 0, sizeof count);\n" if repeats else ""
         count_add = "        count[lab[r]] += 1;\n" if repeats else ""
         count_of = "count[lab[r]]" if repeats else "1  /* every label is unique */"
-        return f"""
+        same_angle = f"""
 /* |remainder(a - b, 2 pi)| < tol, for a, b within (-3 pi, 3 pi) (wrapped or shifted by 2 pi) */
 static int {P}_same_angle(double a, double b, double tol)
 {{
@@ -538,15 +545,16 @@ static int {P}_same_angle(double a, double b, double tol)
     return d < tol || fabs(d - {lit(2 * math.pi)}) < tol || fabs(d - {lit(4 * math.pi)}) < tol
         || fabs(d - {lit(6 * math.pi)}) < tol;
 }}
-
+""" if any(k.rev[:n]) else ""  # (an arm of one prismatic joint has no angle)
+        return f"""{same_angle}
 /* ik_analytic's last step: revolute angles wrapped to (-pi, pi] (or shifted by 2 pi into wider
    limits), the within-limits flag, duplicates dropped (angles compared modulo 2 pi), and the
    repeat number of a label that occurs twice (" #2"). */
-static int {P}_finish(const double rows[][6], const int lab[], const int deg[], int nr, double q[], int info[])
+static int {P}_finish(const double rows[][{n}], const int lab[], const int deg[], int nr, double q[], int info[])
 {{
 {count_decl}    int r, m, nk = 0;
 {count_init}    for (r = 0; r < nr && nk < {max_solutions}; ++r) {{
-        double qq[6];
+        double qq[{n}];
         int inside = 1, dup = 0, j;
 {body}
         for (m = 0; m < nk && !dup; ++m) {{
@@ -555,8 +563,8 @@ static int {P}_finish(const double rows[][6], const int lab[], const int deg[], 
         if (dup) {{
             continue;
         }}
-        for (j = 0; j < 6; ++j) {{
-            q[6 * nk + j] = qq[j];
+        for (j = 0; j < {n}; ++j) {{
+            q[{n} * nk + j] = qq[j];
         }}
 {count_add}        if (info) {{
             info[4 * nk] = lab[r];

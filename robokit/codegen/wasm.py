@@ -285,7 +285,7 @@ def compile_wasm(src: CSource, n: int) -> WasmModule:
     >>> from robokit.codegen.generate import generate_c
     >>> m = compile_wasm(generate_c(rk.load("twolink")), 2)
     >>> m.wasm[:4], m.has_ik
-    (b'\\x00asm', False)
+    (b'\\x00asm', True)
     """
     from robokit.codegen.generate import write_c
 

@@ -361,8 +361,8 @@ class ClosedFormBackend(_ExactBackend):
     >>> res = ClosedFormBackend().solve(p)
     >>> res.method, res.success, np.allclose(robot.frame_pose(res.q), p.T_target)
     ('analytic', True, True)
-    >>> ClosedFormBackend().unsupported(IKProblem.tip_pose(rk.load("twolink"), np.eye(4)))
-    'no closed form: the arm has 2 joints; the closed forms here need exactly 6 (use solve_ik)'
+    >>> ClosedFormBackend().unsupported(IKProblem.tip_pose(rk.load("panda"), np.eye(4)))
+    'no closed form: the arm has 7 joints; the closed forms here need exactly 6, or a planar arm of 1–3 joints (use solve_ik)'
     """
 
     name = "analytic"
@@ -371,6 +371,8 @@ class ClosedFormBackend(_ExactBackend):
 
     def _why_not(self, robot: Robot) -> str | None:
         ik = analytic_ik(robot)
+        if ik.method == "planar":  # ik_analytic's planar closed form is PlanarBackend's, vectorised there
+            return "a planar arm: the planar back end solves it"
         return None if ik.method else f"no closed form: {ik.reason}"
 
     def _nearest_solution(self, robot: Robot, T: np.ndarray, q0: np.ndarray) -> np.ndarray | None:

@@ -11,7 +11,10 @@ which method applies, or why none does:
   :mod:`robokit.ik.parallel_axes`;
 * **general 6R** — any other arm of 6 revolute joints (an offset wrist such as the Kinova
   Jaco's, axes that miss by a millimetre): :mod:`robokit.ik.general_6r`, up to 16
-  solutions labelled ``"solution k of m"``. The special methods stay first (they are faster).
+  solutions labelled ``"solution k of m"``. The special methods stay first (they are faster);
+* **planar** — 1 to 3 revolute joints whose axes are parallel (consecutive axes apart), or one
+  prismatic joint: :mod:`robokit.ik.planar_solver` (Lecture 5's planar arms in any plane; a
+  pose off the arm's plane is out of reach).
 
 Both structures are also recognised counted from the tool (axes 1–3 meeting in one point;
 axes 3–5 parallel with axes 1 and 2 meeting): the chain is then read backwards (its FK is
@@ -19,8 +22,8 @@ the inverse pose, joint k ↔ joint 7 − k, q′ = −q), solved for T⁻¹, an
 "(chain reversed)"; at a singularity the free joint is then joint 3 (or 1) with the value
 ``wrist_ref``.
 
-Other arms — 7 joints (panda), fewer than 6, a prismatic joint without the special
-structures, axes dependent everywhere — have no closed form here and ``ik_analytic`` raises
+Other arms — 7 joints (panda), 4 or 5, non-planar arms of 2 or 3, a prismatic joint without
+the special structures, axes dependent everywhere — have no closed form here and ``ik_analytic`` raises
 ``ValueError`` with the reason in the arm's terms.
 
 The robot's DH table (``robot.dh``, or for a URDF the table :func:`robokit.dh_from_urdf`
@@ -65,6 +68,7 @@ from robokit.errors import InputError, InputTypeError, RobokitWarning
 from robokit.ik._dh_chain import DHChain
 from robokit.ik.parallel_axes import ParallelAxesSolver
 from robokit.ik.pieper import ELBOW_LABELS, SHOULDER_LABELS, WRIST_LABELS, PieperSolver
+from robokit.ik.planar_solver import PlanarSolver
 from robokit.ik.solution import (CollisionChecker, IKSolution, _solutions_from_kernel, check_pose,
                                  solutions_from_rows, with_collision_flags)
 from robokit.description.spec import RobotSpec
@@ -94,7 +98,7 @@ class ClosedFormKind:
     Attributes
     ----------
     method : str or None
-        ``"spherical wrist"``, ``"three parallel axes"``, ``"general 6R"`` or None (no closed form).
+        ``"spherical wrist"``, ``"three parallel axes"``, ``"planar"``, ``"general 6R"`` or None (no closed form).
     reason : str
         One sentence in the arm's terms: why the method applies, or why none does.
 
@@ -103,7 +107,7 @@ class ClosedFormKind:
     >>> kind = ik_analytic_kind(rk.load("puma560"))
     >>> kind.method, bool(kind)
     ('spherical wrist', True)
-    >>> bool(ik_analytic_kind(rk.load("twolink")))
+    >>> bool(ik_analytic_kind(rk.load("panda")))
     False
     """
 
@@ -119,7 +123,13 @@ class ClosedFormKind:
 SOLVERS: dict[str, Callable[[DHChain], ClosedFormSolver]] = {
     "spherical wrist": PieperSolver,
     "three parallel axes": ParallelAxesSolver,
+    "planar": PlanarSolver,
 }
+#: ik_analytic_kind's reason for a planar arm, by its number of joints (0: one prismatic joint).
+_PLANAR_REASONS = {0: "one prismatic joint: its value from the tool's position along the axis (planar method)",
+                   1: "one revolute joint: its angle from the tool's turn about the axis (planar method)",
+                   2: "axes 1 and 2 are parallel: a planar 2R arm (Lecture 5), one solution per tool pose",
+                   3: "axes 1–3 are parallel: a planar 3R arm (Lecture 5), elbow up and down"}
 
 
 #: Solvers tried, in order, for a 6-joint chain with none of the structures above (read either
@@ -227,7 +237,7 @@ class AnalyticIK:
     >>> len(ik.solve(T))
     8
     >>> AnalyticIK(robokit.load("panda")).reason
-    'the arm has 7 joints; the closed forms here need exactly 6 (use solve_ik)'
+    'the arm has 7 joints; the closed forms here need exactly 6, or a planar arm of 1–3 joints (use solve_ik)'
     """
 
     kind: ClosedFormKind
@@ -384,7 +394,7 @@ class AnalyticIK:
         if override is not None:
             self.kind, self.solver = override, None
         # the joint a singular pose leaves free (wrist_ref's joint), in the order of self.chain
-        free = {"spherical wrist": 3, "three parallel axes": 5}.get(self.kind.method or "")
+        free = {"spherical wrist": 3, "three parallel axes": 5, "planar": 0}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
                               and self._flip[5 - free if self.reversed else free])
         self._ref_sign = (-1.0 if self._free_flipped else 1.0) * (-1.0 if self.reversed else 1.0)
@@ -562,7 +572,7 @@ class AnalyticIK:
 
         Returns
         -------
-        Q : (N, m_max, 6) ndarray
+        Q : (N, m_max, n) ndarray
             ``Q[i, :counts[i]]`` are the solutions of ``Ts[i]`` — the same values, in the same
             order, as ``solve(Ts[i])`` gives — and the rows after them are NaN; ``m_max`` is
             the largest count in the batch (0 when no pose is reachable).
@@ -613,7 +623,7 @@ class AnalyticIK:
             sols = [self._solve_python(T, wrist_ref) for T in Ts]
             counts = np.array([len(s) for s in sols], dtype=np.int64)
             m = int(counts.max()) if N else 0
-            Q = np.full((N, m, 6), np.nan)
+            Q = np.full((N, m, self.chain.n), np.nan)
             within = np.zeros((N, m), dtype=bool)
             for i, row in enumerate(sols):
                 for k, sol in enumerate(row):
@@ -804,9 +814,16 @@ def _exactly_parallel_run(chain: DHChain) -> int | None:
 
 def _detect(chain: DHChain) -> ClosedFormKind:
     n = chain.n
-    if n != 6:
-        return ClosedFormKind(None, f"the arm has {n} joints; the closed forms here need exactly 6 "
+    if n in (1, 2, 3):
+        why = PlanarSolver(chain).refusal()
+        if why is None:
+            return ClosedFormKind("planar", _PLANAR_REASONS[n if chain.kinds[0] == "R" else 0])
+        return ClosedFormKind(None, f"the arm has {n} joint{'s' if n > 1 else ''} and is not a planar arm: {why}; "
+                                    f"the closed forms here need a planar arm of 1–3 joints or exactly 6 joints "
                                     f"(use solve_ik)")
+    if n != 6:
+        return ClosedFormKind(None, f"the arm has {n} joints; the closed forms here need exactly 6, or a planar "
+                                    f"arm of 1–3 joints (use solve_ik)")
     axes = chain.axes()
     tol = _DIST_TOL * max(1.0, chain.scale)
     kinds = chain.kinds
@@ -899,6 +916,7 @@ def ik_analytic_kind(robot: Robot | DHTable, nominal: Any = None) -> ClosedFormK
     -------
     ClosedFormKind
         ``.method`` is ``"spherical wrist"`` (Pieper), ``"three parallel axes"`` (UR family),
+        ``"planar"`` (1–3 parallel revolute joints, or one prismatic joint),
         ``"calibrated spherical wrist"`` / ``"calibrated three parallel axes"`` (a calibrated or
         nearly special arm: the nominal structure's closed form polished by Newton's method on the
         arm's own kinematics, :mod:`robokit.ik.calibrated`), ``"general 6R"`` (any other 6R arm)
@@ -934,14 +952,15 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     Parameters
     ----------
     robot : :class:`robokit.Robot` or :class:`robokit.DHTable`
-        A 6-joint arm with a spherical wrist (Pieper) or three consecutive parallel axes
-        whose last two axes meet (UR family); see :func:`ik_analytic_kind`.
+        A 6-joint arm (a spherical wrist, three consecutive parallel axes whose last two axes meet,
+        or any other 6R arm), or a planar arm of 1–3 joints (:mod:`robokit.ik.planar_solver`); see
+        :func:`ik_analytic_kind`.
     T : (4, 4) array
         Target pose of the tip (``robot.frame_pose``'s frame; for a DH table the tool) in
         the base frame (m).
     wrist_ref : float
         At a wrist singularity, the value given to the free joint (q₄ for a spherical wrist,
-        q₆ for the parallel-axes arms; rad). Default 0. A collision world given here, as in
+        q₆ for the parallel-axes arms, q₁ of a planar 3R arm folded onto its first axis; rad). Default 0. A collision world given here, as in
         ``ik_analytic(robot, T, world)``, is taken as ``world`` (wrist_ref then 0); None is the default.
     world : :class:`robokit.collision.World`, optional
         When given, each solution's ``.collision_free`` says whether the arm is free of self-
@@ -962,7 +981,8 @@ def ik_analytic(robot: Robot | DHTable, T: ArrayLike, wrist_ref: float = 0.0,
     list of :class:`IKSolution`
         Distinct solutions (8 for a PUMA 560 or a UR in general position, up to 8 — 4
         positions × 2 wrists — for any spherical-wrist arm, up to 16 for a general 6R arm,
-        labelled ``"solution k of m"``); each ``.q`` (6,) in rad/m,
+        labelled ``"solution k of m"``, 2 for a planar 3R arm, 1 for a planar arm of one or two
+        joints); each ``.q`` (n,) in rad/m,
         revolute joints wrapped to (−π, π] (or shifted by 2π into wider limits),
         ``.within_limits``, ``.label`` (branch, see the module docstring), ``.degenerate``
         (a singular choice was made). ``[]`` when T is out of reach.
@@ -1031,7 +1051,7 @@ def ik_analytic_batch(robot: Robot | DHTable, Ts: ArrayLike, wrist_ref: float = 
 
     Returns
     -------
-    Q : (N, m_max, 6) ndarray
+    Q : (N, m_max, n) ndarray
         ``Q[i, :counts[i]]`` are the joint values (rad, m) of the solutions of ``Ts[i]``, equal
         and in the same order to ``[s.q for s in ik_analytic(robot, Ts[i])]``; the remaining
         rows are NaN. ``m_max`` is the largest count in the batch.

@@ -11,6 +11,7 @@ numbers, one frozen dataclass per method:
 ================================  ===========================================================
 ``"spherical wrist"``             :class:`robokit.ik.pieper.PieperConstants`
 ``"three parallel axes"``         :class:`robokit.ik.parallel_axes.ParallelAxesConstants`
+``"planar"``                      :class:`robokit.ik.planar_solver.PlanarConstants`
 ``"general 6R"``                  :class:`GeneralSixRConstants` (its readings
                                   :class:`GeneralSixRReading`), built from
                                   :meth:`robokit.ik.general_6r.GeneralSixR.export_constants`
@@ -32,6 +33,7 @@ import numpy as np
 from robokit.ik.closed_form import AnalyticIK, analytic_ik
 from robokit.ik.parallel_axes import ParallelAxesConstants, ParallelAxesSolver
 from robokit.ik.pieper import PieperConstants, PieperSolver
+from robokit.ik.planar_solver import PlanarConstants, PlanarSolver
 
 if TYPE_CHECKING:
     from robokit.description.dh import DHTable
@@ -212,7 +214,7 @@ class ClosedFormConstants:
     Attributes
     ----------
     method : str or None
-        ``"spherical wrist"``, ``"three parallel axes"``, ``"general 6R"`` (for a calibrated arm:
+        ``"spherical wrist"``, ``"three parallel axes"``, ``"planar"``, ``"general 6R"`` (for a calibrated arm:
         its projected arm's method) or None when no closed form applies.
     reason : str
         Why the method applies, or why none does (:func:`robokit.ik_analytic_kind`'s sentence).
@@ -232,7 +234,7 @@ class ClosedFormConstants:
         q′ = −q. None when there are none.
     free_flipped : bool
         The joint a singular pose leaves free (``wrist_ref``'s) is flipped: the solver gets −wrist_ref.
-    solver : PieperConstants, ParallelAxesConstants, GeneralSixRConstants or None
+    solver : PieperConstants, ParallelAxesConstants, PlanarConstants, GeneralSixRConstants or None
         The method's own numbers (None without a closed form, or for a registered solver that
         exports none).
     general_6r : mapping or None
@@ -260,7 +262,7 @@ class ClosedFormConstants:
     scale: float = 1.0
     flip: tuple[bool, ...] | None = None
     free_flipped: bool = False
-    solver: PieperConstants | ParallelAxesConstants | GeneralSixRConstants | None = None
+    solver: PieperConstants | ParallelAxesConstants | PlanarConstants | GeneralSixRConstants | None = None
     general_6r: Mapping[str, Any] | None = None
     calibrated: Mapping[str, Any] | None = None
 
@@ -271,9 +273,9 @@ def _export(ik: AnalyticIK) -> ClosedFormConstants:
     if not ik.kind or sv is None:
         return ClosedFormConstants(ik.kind.method, ik.kind.reason)
     sc = sv.chain  # the chain the solver solves (the robot's read backwards when reversed)
-    solver: PieperConstants | ParallelAxesConstants | GeneralSixRConstants | None = None
+    solver: PieperConstants | ParallelAxesConstants | PlanarConstants | GeneralSixRConstants | None = None
     general: Mapping[str, Any] | None = None
-    if isinstance(sv, (PieperSolver, ParallelAxesSolver)):
+    if isinstance(sv, (PieperSolver, ParallelAxesSolver, PlanarSolver)):
         solver = sv.constants()
     else:
         export = getattr(sv, "export_constants", None)  # a registered solver's own export (general 6R)

@@ -286,7 +286,8 @@
   // about that axis, its origin kept). Each move makes a target pose T (16 numbers, row-major,
   // base frame) and calls drag(T), which is goToTarget, the entry point of #T= (also
   // window.rkDrag): the arm follows on the IK solution nearest its current joint values. Out of
-  // reach the gizmo turns red and the arm stays. #rk-gizmo holds its state and where its handles
+  // reach the gizmo turns red and the arm stays (an arm of fewer than six joints, which takes only some
+  // poses, moves toward the target by damped least squares instead). #rk-gizmo holds its state and where its handles
   // are on the page (px, for tests).
   var gizmo = null, lastT = null, GIZMO_COLOUR = 0xF39C12, AXIS_COLOURS = [0xE74C3C, 0x27AE60, 0x2E86DE];
   var AXES = ["x", "y", "z"];
@@ -755,30 +756,43 @@
   // ------------------------------------------------------------------ inverse kinematics (module)
   // An arm without a closed form (a redundant one): damped-least-squares steps in the module from
   // the current q (the course's resolved-rate rule; the steps leave the null space as it is).
+  // An arm of fewer than six joints (a planar one) reaches only some poses: where its closed form has no
+  // solution (a target dragged off its plane), it too follows by damped least squares, toward the nearest
+  // pose it can take; #rk-ik then keeps the closed form's answer (count 0, no solutions) and says so.
   var DLS = { lambda: 0.01, iters: 200, tol: 1e-12 };
-  function followByDls(T, why) {
+  function followByDls(T, why, exactNone) {
     var r = KIN.dls(T, q, DLS.lambda, DLS.iters, DLS.tol), ok = r.steps >= 0, box = el("rk-ik");
-    setData("rk-ik", { status: ok ? "dls" : "dls-not-converged", count: "1", solutions: JSON.stringify([r.q]),
-                       labels: JSON.stringify(["damped least squares"]), within: "[]", chosen: "0",
-                       steps: String(r.steps), target: T.map(String).join(",") });
+    if (exactNone) {
+      setData("rk-ik", { status: "dls-no-exact", count: "0", solutions: "[]", labels: "[]", within: "[]", chosen: "-1",
+                         steps: String(r.steps), target: T.map(String).join(",") });
+    } else {
+      setData("rk-ik", { status: ok ? "dls" : "dls-not-converged", count: "1", solutions: JSON.stringify([r.q]),
+                         labels: JSON.stringify(["damped least squares"]), within: "[]", chosen: "0",
+                         steps: String(r.steps), target: T.map(String).join(",") });
+    }
     box.className = ok ? "rk-small" : "rk-small rk-unreachable";
-    box.textContent = R.name + " has no closed-form IK: damped least squares (\u03bb = " + DLS.lambda + ") " +
-      (ok ? "reached the target in " + r.steps + " steps" : "did not reach the target in " + DLS.iters + " steps (out of reach or singular)") +
-      "; the null space is kept";
+    box.textContent = (exactNone ? "IK: no exact solution (a " + n + "-joint arm takes only some poses); damped least squares "
+                       + "(\u03bb = " + DLS.lambda + ") moves the tool toward the target: "
+                       : R.name + " has no closed-form IK: damped least squares (\u03bb = " + DLS.lambda + ") ") +
+      (ok ? "reached the target in " + r.steps + " steps" : (exactNone ? "as near as it gets in " + DLS.iters + " steps"
+       : "did not reach the target in " + DLS.iters + " steps (out of reach or singular)")) +
+      (exactNone ? "" : "; the null space is kept");
     showGhosts([], -1);
     setData("rk-ik", { branchChange: "false" });
     moveByIk(r.q, why + " (damped least squares)");
     gizmoPaint(ok);
-    return 0;
+    return exactNone ? -1 : 0;
   }
 
   // Every closed-form solution of the tool pose T (16 numbers, row-major, base frame), from the
   // module, in ik_analytic's order; the arm moves to the one nearest the current q (joint-space
-  // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so.
+  // distance) and #rk-ik records them all. Out of reach: the arm stays and the readout says so (fewer than
+  // six joints: see followByDls).
   function goToTarget(T, why) {
     var box = el("rk-ik");
     if (!KIN.hasIk) { return followByDls(T, why); }
     var sols = KIN.ik(T, 0), k = RKWasm.nearest(sols, q);
+    if (!sols.length && n < 6) { return followByDls(T, why, true); }
     setData("rk-ik", { status: sols.length ? "ok" : "unreachable", count: String(sols.length),
                        solutions: JSON.stringify(sols.map(function (s) { return s.q; })),
                        labels: JSON.stringify(sols.map(function (s) { return s.label; })),

@@ -306,6 +306,64 @@ def test_random_three_parallel_axes_arms_ik(build, seed, convention):
     check_ik(robot, build(robot), random_poses(robot, seed))
 
 
+def planar_table(seed, convention, n, prismatic=False):
+    """A random planar arm: twists 0 or π (parallel or antiparallel axes), flips, base and tool."""
+    rng = np.random.default_rng(seed)
+    rows = [DHLink(joint="P" if prismatic else "R", a=rng.uniform(0.2, 0.7) * rng.choice([-1, 1]),
+                   alpha=float(rng.choice([0.0, np.pi])), d=rng.uniform(-0.3, 0.3), theta=rng.uniform(-np.pi, np.pi),
+                   qlim=np.sort(rng.uniform(-3.5, 3.5, 2)) if not prismatic else np.array([-0.5, 0.5]),
+                   flip=bool(rng.integers(2)), mass=1.0) for _ in range(n)]
+    base, tool = np.eye(4), np.eye(4)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy(rng.uniform(-1, 1, 3)), rng.uniform(-0.2, 0.2, 3)
+    return DHTable(f"planar{n}", convention, tuple(rows), base=base, tool=tool)
+
+
+@pytest.mark.parametrize("name, m", [("twolink", 1), ("rrr", 2)])
+def test_planar_ik_matches_ik_analytic(models, build, name, m):
+    robot = models[name]
+    lib = build(robot)
+    assert lib.has_ik and lib.max_solutions == m
+    rng = np.random.default_rng(2)
+    poses = [robot.frame_pose(robot.random_configuration(rng)) for _ in range(30)]
+    check_ik(robot, lib, poses)
+    if name == "rrr":  # stretched (one solution) and a pose off the plane (none)
+        check_ik(robot, lib, [robot.frame_pose(np.array([0.4, 0.0, -0.3]))])
+    lifted = poses[0].copy()
+    lifted[2, 3] += 1e-6
+    assert lib.ik(lifted) == [] and ik_analytic(robot, lifted) == []
+
+
+@settings(**{**SETTINGS, "max_examples": 6})
+@given(st.integers(0, 2**31), st.sampled_from(["standard", "modified"]), st.sampled_from([1, 2, 3]), st.booleans())
+def test_random_planar_arms_ik(build, seed, convention, n, prismatic):
+    robot = robokit.load(planar_table(seed, convention, n, prismatic and n == 1))
+    assert ik_analytic_kind(robot).method == "planar"
+    lib = build(robot)
+    assert lib.has_ik and lib.max_solutions == (2 if n == 3 else 1)
+    poses = random_poses(robot, seed + 1)  # (the table's seed would draw q from the same stream: often stretched)
+    check_ik(robot, lib, poses)
+    assert all(len(lib.ik(T)) == (2 if n == 3 else 1) for T in poses)
+    lib32 = build(robot, float32=True)
+    for T in poses:  # float: every solution reaches the pose to float's precision
+        sols = lib32.ik(T.astype(np.float32).astype(float))
+        assert len(sols) == (2 if n == 3 else 1)
+        for q, *_ in sols:
+            assert np.abs(robot.frame_pose(q) - T).max() < 1e-4
+
+
+def test_planar_folded_arm_takes_wrist_ref(build):
+    links = tuple(DHLink(joint="R", a=a, mass=1.0) for a in (0.5, 0.5, 0.2))
+    robot = robokit.load(DHTable("folded", "standard", links))
+    lib = build(robot)
+    T = robot.frame_pose(np.array([0.7, np.pi, -0.4]))
+    for ref in (0.0, 1.2):
+        py = ik_analytic(robot, T, ref)
+        c = lib.ik(T, wrist_ref=ref)
+        assert len(py) == len(c) == 1 and py[0].degenerate and c[0][3]
+        assert _dist(c[0][0], py[0].q, np.ones(3, bool)) < 1e-12 and abs(c[0][0][0] - ref) < 1e-12
+
+
 def _reversed(table):
     """The chain of ``table`` read from the tool to the base, as a modified-DH table."""
     from robokit.ik._dh_chain import DHChain  # the test's own construction (as in tests/ik)

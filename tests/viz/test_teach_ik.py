@@ -20,8 +20,9 @@ def _fmt(x):
 
 
 #: the arms of #44's "Done when": PUMA, UR5, a general 6R arm (JACO2's DH table), a modified-DH arm
-#: (the PUMA in Craig's table) and a calibrated arm (the PUMA with every placement perturbed)
-ARMS = ["puma560", "ur5", "jaco2_6n", "puma_craig", "puma_calibrated"]
+#: (the PUMA in Craig's table) and a calibrated arm (the PUMA with every placement perturbed); and the
+#: course's planar arms (the planar closed form: one solution for two joints, two for three)
+ARMS = ["puma560", "ur5", "jaco2_6n", "puma_craig", "puma_calibrated", "twolink", "rrr"]
 
 
 @pytest.fixture(scope="module")
@@ -126,6 +127,29 @@ def test_out_of_reach_target_leaves_the_arm(pages):
     ik = d["rk-ik"]
     assert ik["data-status"] == "unreachable" and ik["data-count"] == "0" and ik["data-chosen"] == "-1"
     np.testing.assert_allclose(nums(d["rk-q"]["data-q"]), q0, rtol=0, atol=0)
+
+
+@needs_chromium
+@needs_zig
+def test_planar_arm_follows_a_target_off_its_plane_by_damped_least_squares(pages):
+    """A target the planar RRR arm cannot take (lifted 5 cm off its plane): ik_analytic has no
+    solution, and so does the page (count 0, no solutions); the arm still moves, by damped least
+    squares, to where its tool is nearer the target than at the start (the position in the plane)."""
+    robot, path = pages("rrr")
+    q0 = np.array([0.2, 0.5, -0.3])
+    T = robot.frame_pose(np.array([0.6, -0.4, 0.9]))
+    T[2, 3] += 0.05  # off the plane z = 0
+    assert robokit.ik_analytic(robot, T) == []
+    d = run_page(path, q0, "&T=" + _fmt(T))
+    ik = d["rk-ik"]
+    assert ik["data-status"] == "dls-no-exact" and ik["data-count"] == "0" and ik["data-solutions"] == "[]"
+    assert ik["data-chosen"] == "-1" and int(ik["data-steps"]) != 0
+    q_page = nums(d["rk-q"]["data-q"])
+    reached = robot.frame_pose(q_page)
+    # in the plane the arm reaches the target's position and angle: only the lift remains
+    np.testing.assert_allclose(reached[:2, 3], T[:2, 3], rtol=0, atol=1e-6)
+    np.testing.assert_allclose(reached[:3, :3], T[:3, :3], rtol=0, atol=1e-6)
+    np.testing.assert_allclose(nums(d["rk-pose"]["data-t"]).reshape(4, 4), reached, rtol=0, atol=TOL)
 
 
 def test_teach_without_the_compiler_fails_with_one_line_naming_the_extra(tmp_path, capsys, monkeypatch):
