@@ -5,7 +5,7 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
 1. ``NAME_nominal_ik_ex``: the closed form of the *projected* arm (the arm with its nominal structure
    restored, built by :mod:`robokit.ik.calibrated`), emitted by :mod:`robokit.codegen.ik` from that
    arm's constants — one start per branch, its label and degenerate flag; when it gives fewer than
-   8, also for the pose moved about the shoulder by the kernel's ``RELAX`` fractions (starts of the
+   8, also for the pose moved about the shoulder by the kernel's ``RELAX_MOVES`` (starts of the
    branches the projected arm just misses; the Python kernel skips those solves where it can show
    they add no branch, the C always solves them: the same starts either way);
 2. each start polished by Newton's method with the kernel's second-order correction on the arm's own
@@ -75,7 +75,8 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     labels = nom.labels
     max_rows = int(c["max_rows"])
     sh = c["shoulder"]
-    relax = ", ".join(lit(float(f)) for f in c["relax"])
+    relax = ", ".join(f"{{{lit(float(fr))}, {lit(float(fl))}}}" for fr, fl in c["relax"])
+    axis1 = [lit(float(v)) for v in c["axis1"]]
     steps = ", ".join(lit(float(f)) for f in c["explore_steps"])
     header = [f"#define {P}_nominal_N {P}_N  /* the projected arm's closed form: the starts of {P}_ik */",
               f"#define {P}_nominal_MAX_SOLUTIONS 8", ""] + nom_code.header_lines + [
@@ -832,6 +833,35 @@ static {P}_CAL_NOINLINE int {P}_cal_finish(const double rows[][6], const int lab
     return {P}_finish(rows, lab, deg, n, q, info);
 }}
 
+/* the f-th relaxed pose (robokit.kernels.calibrated_ik.RELAX_MOVES): Tr = T with its position moved by
+   reach (f_r u_r + f_l u_l), u_r from the shoulder point to the tool (v, of length dist), u_l its part across
+   joint 1's axis a (v - h a, of length rho), written (c_r + c_l) v - c_l h a; 0 where the move has no direction.
+   In a frame of its own (not live together with the polish's). */
+static {P}_CAL_NOINLINE int {P}_cal_relaxed(const double T[16], int f, double Tr[16])
+{{
+    static const double relax[][2] = {{{relax}}};  /* (toward the shoulder point, toward axis 1) */
+    const double vx = T[3] - {lit(float(sh[0]))}, vy = T[7] - {lit(float(sh[1]))}, vz = T[11] - {lit(float(sh[2]))};
+    const double h = vx * {axis1[0]} + vy * {axis1[1]} + vz * {axis1[2]}, dist2 = vx * vx + vy * vy + vz * vz;
+    const double cr = relax[f][0] * {R}, cl = relax[f][1] * {R};
+    const double dist = sqrt(dist2), rho = sqrt(dist2 - h * h > 0.0 ? dist2 - h * h : 0.0);
+    double c1, c2, k, m;
+    int j;
+    if (((cr < 0.0 || cr > 0.0) && !(dist > 0.0)) || ((cl < 0.0 || cl > 0.0) && !(rho > 0.0))) {{
+        return 0;
+    }}
+    c1 = (cr < 0.0 || cr > 0.0) ? cr / dist : 0.0;
+    c2 = (cl < 0.0 || cl > 0.0) ? cl / rho : 0.0;
+    k = c1 + c2;
+    m = c2 * h;
+    for (j = 0; j < 16; ++j) {{
+        Tr[j] = T[j];
+    }}
+    Tr[3] = T[3] + (k * vx - m * {axis1[0]});
+    Tr[7] = T[7] + (k * vy - m * {axis1[1]});
+    Tr[11] = T[11] + (k * vz - m * {axis1[2]});
+    return 1;
+}}
+
 /* every solution (see {P}.h). For a small stack (an RTOS task's) everything per row lives in the
    caller's q: the closed form's starts, each row then reused for what its start gave (a solution, a
    point the search starts from, or nothing: free), the search's solutions in free rows; at the end
@@ -839,7 +869,6 @@ static {P}_CAL_NOINLINE int {P}_cal_finish(const double rows[][6], const int lab
    label, flags and state, the row numbers of the solutions (sol) and of the search points (seed). */
 int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS])
 {{
-    static const double relax[] = {{{relax}}};
     static const double steps[] = {{{steps}}};
     double tmp[18];  /* the relaxed pose (16); then a point qq, the mirrored point q2, the start s0 */
     double *const qq = tmp, *const q2 = tmp + 6, *const s0 = tmp + 12;
@@ -861,20 +890,15 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
         mb += ndeg[r] != 3;
     }}
     if (mb < {int(c["generic_rows"])}) {{  /* a branch missing: the pose moved about the shoulder gives its start */
-        for (f = 0; f < (int)(sizeof relax / sizeof relax[0]); ++f) {{
+        for (f = 0; f < {len(c["relax"])}; ++f) {{
             double *const Tr = tmp;
-            const double ux = T[3] - {lit(float(sh[0]))}, uy = T[7] - {lit(float(sh[1]))},
-                         uz = T[11] - {lit(float(sh[2]))};
-            const double dist = sqrt(ux * ux + uy * uy + uz * uz);
-            if (!(dist > 0.0)) {{
-                continue;
+            int start = 0;
+            for (r = 0; r < m && f >= {len(c["radial"])}; ++r) {{
+                start = start || ndeg[r] != 3;  /* (a fold start is not one) */
             }}
-            for (j = 0; j < 16; ++j) {{
-                Tr[j] = T[j];
+            if (start || !{P}_cal_relaxed(T, f, Tr)) {{
+                continue;  /* the sideways and corner moves only for a pose without a start; or no direction */
             }}
-            Tr[3] = T[3] + relax[f] * {R} * ux / dist;
-            Tr[7] = T[7] + relax[f] * {R} * uy / dist;
-            Tr[11] = T[11] + relax[f] * {R} * uz / dist;
             /* the (at most 8) rows written from row m0 on fit in q; the new branches move up to row m */
             m0 = m;
             if (m0 > {max_rows} - 8) {{

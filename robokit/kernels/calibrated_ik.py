@@ -11,8 +11,8 @@ constants ``Kn``). Per pose:
 1. every closed-form solution of the projected arm (:func:`robokit.kernels.closed_form.pieper_solve_into`
    or ``parallel_axes_solve_into``): one start per branch, its branch code and degenerate flag; when
    it gives fewer than ``GENERIC_ROWS``, also those of the pose moved toward and away from the
-   shoulder by the ``RELAX`` fractions of the reach, for the branches it lacks (the projected arm's
-   workspace boundary is not quite the arm's) — except the relaxed poses :func:`_relax_mask` shows
+   shoulder point, from joint 1's axis, or both (``RELAX_MOVES``, fractions of the reach), for the
+   branches it lacks (the projected arm's workspace boundary is not quite the arm's) — except the relaxed poses :func:`_relax_mask` shows
    cannot add one (Pieper's general case: the labels of the positions at a relaxed pose, from the
    position quartic's real roots, are all sure and present already, or their wrist cannot reach the
    orientation; three parallel axes: the labels of a relaxed pose's branches, from
@@ -100,6 +100,20 @@ GENERIC_ROWS = 8
 #: branches that the projected arm just cannot reach but the arm itself can (near the workspace's
 #: outer or inner boundary).
 RELAX = (-2e-3, 2e-3, -6e-3, 6e-3, -2e-2, 2e-2)
+#: The relaxed poses, in the order they are solved: the tool moved by ``reach · (f_r u_r + f_l u_l)``
+#: with u_r the unit vector from the shoulder point to the tool (toward or away from the shoulder:
+#: ``RELAX``), u_l its part perpendicular to joint 1's axis, normalised (toward or away from that
+#: axis), and both at once at the corners (f_r, f_l of opposite or equal signs). The projected
+#: arm's workspace is bounded in two directions there: by the spheres about the shoulder and, with a
+#: shoulder offset (the PUMA 560's d₃), by the cylinder about axis 1 — measured on the benchmark's
+#: calibrated PUMA 560: 15 of 3,000 random poses had a wrist centre just inside that cylinder and no
+#: start from the moves toward or away from the shoulder; the sideways moves gave 14 of them their
+#: starts, a corner move the last (its wrist centre also at the outer sphere). The sideways and corner
+#: moves are tried only while the pose has no start at all (as at those poses): tried wherever a branch
+#: is missing they doubled the calibrated random Pieper arm's median time (most of its poses lack two of
+#: the four positions, far from any boundary) and found nothing more.
+RELAX_MOVES = tuple((f, 0.0) for f in RELAX) + tuple((0.0, f) for f in RELAX) + tuple(
+    (r * f, l * f) for f in (6e-3, 2e-2) for r, l in ((-1.0, 1.0), (1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)))
 #: No Newton step moves a joint more than this (rad, m): far from a root the linear model is not trusted.
 MAX_STEP = 0.5
 #: A polish that moved a joint farther than this (rad or m) from its start was near a singular pose:
@@ -1353,10 +1367,33 @@ def _fold_code(code: float) -> tuple[float, bool]:
     return code, False
 
 
+@njit(inline=True)
+def _relax_frame(T: np.ndarray, shoulder: np.ndarray, C: np.ndarray) -> tuple[float, float, float, float, float,
+                                                                                float]:
+    """What the relaxed moves (``RELAX_MOVES``) at the tool pose T are made of: (v, h, dist, ρ) with v the
+    vector from the shoulder point to the tool (dist its length), h its coordinate along joint 1's axis a
+    (the z axis of the packed arm's first frame) and ρ the length of its part across it, ``v − h a``."""
+    vx, vy, vz = T[0, 3] - shoulder[0], T[1, 3] - shoulder[1], T[2, 3] - shoulder[2]
+    h = vx * C[_L + 2] + vy * C[_L + 6] + vz * C[_L + 10]
+    dist2 = vx * vx + vy * vy + vz * vz
+    return vx, vy, vz, h, math.sqrt(dist2), math.sqrt(dist2 - h * h if dist2 - h * h > 0.0 else 0.0)
+
+
+@njit(inline=True)
+def _relax_move(i: int, reach: float, h: float, dist: float, rho: float) -> tuple[bool, float, float]:
+    """The i-th relaxed move ``reach (f_r u_r + f_l u_l)`` (u_r = v / dist, u_l = (v − h a) / ρ) written
+    ``(c₁ + c₂) v − c₂ h a``: (defined, c₁, c₂); not defined where a direction it needs has no length
+    (the generated C computes the same numbers in the same order)."""
+    cr, cl = RELAX_MOVES[i][0] * reach, RELAX_MOVES[i][1] * reach
+    if (cr != 0.0 and not dist > 0.0) or (cl != 0.0 and not rho > 0.0):
+        return False, 0.0, 0.0
+    return True, cr / dist if cr != 0.0 else 0.0, cl / rho if cl != 0.0 else 0.0
+
+
 @njit
 def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray, reach: float, m: int,
-                codes: np.ndarray, degenerate: bool, sc: np.ndarray) -> int:
-    """Which relaxed poses (``RELAX``; bit i for the i-th) can give a branch the pose's own m rows
+                codes: np.ndarray, degenerate: bool, sc: np.ndarray, C: np.ndarray) -> int:
+    """Which relaxed poses (``RELAX_MOVES``; bit i for the i-th) can give a branch the pose's own m rows
     (branch ``codes``; ``degenerate``: one of them is) lack: all of them, except in Pieper's general
     case (joints 1, 2 revolute, a quartic in joint 3) when no row is degenerate; there, a relaxed
     pose is left out when every position of it (:func:`_position_codes`, each label sure) has a
@@ -1365,36 +1402,41 @@ def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray
     right angles, leaves one or three of the four positions at about a third of its poses). The
     relaxed solves would add nothing there (their wrist rows are the two regular flips). A random
     Pieper arm has two of its four positions at about half of its poses, far from any boundary:
-    there the six relaxed solves were most of the time. Scratch: sc (7, 6)."""
-    every = (1 << len(RELAX)) - 1
+    there the relaxed solves were most of the time. Scratch: sc (7, 6); C: the packed arm (joint 1's
+    axis)."""
+    every = (1 << len(RELAX_MOVES)) - 1
     if method != _cf.PIEPER or int(Kn[_cf._K_CI + 1]) != 0 or int(Kn[_cf._K_CI + 3]) != 4:
         return every
     if degenerate:
         return every
-    dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
+    px, py, pz, h, dist, rho = _relax_frame(T, shoulder, C)
     if dist == 0.0:
         return every
+    ax, ay, az = C[_L + 2], C[_L + 6], C[_L + 10]
     # the wrist centre in the canonical chain's frame: W = pre · T · post · w6 (T⁻¹ when the chain is
-    # reversed, as closed_form._target); a relaxed pose moves T's position by f·reach·u, so W by
-    # f·reach·du with du = pre R u (reversed: −pre Rᵀ u); the target's z axis there (the wrist's
-    # reach) is pre R post_z (reversed: pre Rᵀ post_z) at every relaxed pose
+    # reversed, as closed_form._target); a relaxed pose moves T's position by c₁ v + c₂ (v − h a)
+    # (_relax_move), so W by c₁ dv + c₂ dl with dv = pre R v (reversed: −pre Rᵀ v), dl likewise; the
+    # target's z axis there (the wrist's reach) is pre R post_z (reversed: pre Rᵀ post_z) at every relaxed pose
     pre = Kn[_cf._K_PRE:_cf._K_POST]
     post = Kn[_cf._K_POST:_cf._K_PQ]
     cf = Kn[_cf._K_CF:_cf._K_C]
     rev = int(Kn[_cf._K_CI + 5]) == 1
     x, v, z = sc[4, 0:3], sc[5, 0:3], sc[4, 3:6]
+    vl = sc[3, 0:3]
     v0 = post[0] * cf[_cf._W6] + post[1] * cf[_cf._W6 + 1] + post[2] * cf[_cf._W6 + 2] + post[3]
     v1 = post[4] * cf[_cf._W6] + post[5] * cf[_cf._W6 + 1] + post[6] * cf[_cf._W6 + 2] + post[7]
     v2 = post[8] * cf[_cf._W6] + post[9] * cf[_cf._W6 + 1] + post[10] * cf[_cf._W6 + 2] + post[11]
-    ux, uy, uz = (T[0, 3] - shoulder[0]) / dist, (T[1, 3] - shoulder[1]) / dist, (T[2, 3] - shoulder[2]) / dist
+    lx, ly, lz = px - h * ax, py - h * ay, pz - h * az
     for r in range(3):
         if rev:  # T⁻¹ v = Rᵀ (v − p); the move: −Rᵀ u
             x[r] = T[0, r] * (v0 - T[0, 3]) + T[1, r] * (v1 - T[1, 3]) + T[2, r] * (v2 - T[2, 3])
-            v[r] = -(T[0, r] * ux + T[1, r] * uy + T[2, r] * uz)
+            v[r] = -(T[0, r] * px + T[1, r] * py + T[2, r] * pz)
+            vl[r] = -(T[0, r] * lx + T[1, r] * ly + T[2, r] * lz)
             z[r] = T[0, r] * post[2] + T[1, r] * post[6] + T[2, r] * post[10]
         else:
             x[r] = T[r, 0] * v0 + T[r, 1] * v1 + T[r, 2] * v2 + T[r, 3]
-            v[r] = ux if r == 0 else uy if r == 1 else uz
+            v[r] = px if r == 0 else py if r == 1 else pz
+            vl[r] = lx if r == 0 else ly if r == 1 else lz
             z[r] = T[r, 0] * post[2] + T[r, 1] * post[6] + T[r, 2] * post[10]
     W0x = pre[0] * x[0] + pre[1] * x[1] + pre[2] * x[2] + pre[3]
     W0y = pre[4] * x[0] + pre[5] * x[1] + pre[6] * x[2] + pre[7]
@@ -1402,15 +1444,21 @@ def _relax_mask(Kn: np.ndarray, method: int, T: np.ndarray, shoulder: np.ndarray
     dx = pre[0] * v[0] + pre[1] * v[1] + pre[2] * v[2]
     dy = pre[4] * v[0] + pre[5] * v[1] + pre[6] * v[2]
     dz = pre[8] * v[0] + pre[9] * v[1] + pre[10] * v[2]
+    ex = pre[0] * vl[0] + pre[1] * vl[1] + pre[2] * vl[2]
+    ey = pre[4] * vl[0] + pre[5] * vl[1] + pre[6] * vl[2]
+    ez = pre[8] * vl[0] + pre[9] * vl[1] + pre[10] * vl[2]
     mz = sc[5, 3:6]
     for r in range(3):
         mz[r] = pre[4 * r] * z[0] + pre[4 * r + 1] * z[1] + pre[4 * r + 2] * z[2]
     pc = sc[6]
     n = 0
     mask = 0
-    for i in range(len(RELAX)):
-        s = RELAX[i] * reach
-        n = _position_codes(Kn, W0x + s * dx, W0y + s * dy, W0z + s * dz, mz, pc, sc, max(n, 0))  # from the last roots
+    for i in range(len(RELAX_MOVES)):
+        defined, s, t = _relax_move(i, reach, h, dist, rho)
+        if not defined or (i >= len(RELAX) and m > 0):
+            continue  # (the sideways and corner moves: only for a pose without a start)
+        n = _position_codes(Kn, W0x + s * dx + t * ex, W0y + s * dy + t * ey, W0z + s * dz + t * ez, mz, pc, sc,
+                            max(n, 0))  # from the last roots
         if n < 0:
             mask |= 1 << i
             continue
@@ -1501,7 +1549,7 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
     shoulder = C[_SHOULDER:_REACH]
     reach = C[_REACH]
     # a branch missing: near the projected arm's workspace boundary, say; relaxed poses
-    mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degenerate, work[89:96]) if m < GENERIC_ROWS else 0
+    mask = _relax_mask(Kn, method, T, shoulder, reach, m, codes, degenerate, work[89:96], C) if m < GENERIC_ROWS else 0
     if mask != 0:
         Tr = np.empty((4, 4))
         # the closed form's own steps on its scratch: each relaxed pose's raw rows, finished (as a
@@ -1510,20 +1558,22 @@ def calibrated_solve_into(KC: np.ndarray, method: int, T: np.ndarray, wrist_ref:
         pc, pcs = work[89:91].reshape(12), work[91:93].reshape(12)
         fold_relaxed = work[95, 0:3]  # (the mask's scratch before)
         fold_relaxed[0], fold_relaxed[1] = math.inf, 0.0
-        dist = math.sqrt((T[0, 3] - shoulder[0]) ** 2 + (T[1, 3] - shoulder[1]) ** 2 + (T[2, 3] - shoulder[2]) ** 2)
-        for i in range(len(RELAX)):
-            if dist == 0.0:
-                break
+        vx, vy, vz, h, dist, rho = _relax_frame(T, shoulder, C)
+        ax, ay, az = C[_L + 2], C[_L + 6], C[_L + 10]
+        for i in range(len(RELAX_MOVES)):
+            defined, c1, c2 = _relax_move(i, reach, h, dist, rho)
+            if not defined or (i >= len(RELAX) and m > 0):
+                continue  # the sideways and corner moves only while the pose has no start (RELAX_MOVES)
             if (mask >> i) & 1 == 0:
                 continue  # its rows are branches the starts have (_relax_mask)
             if m + nfold > R - 8:
                 break  # as the generated C, whose rows (the fold starts' too) leave 8 free for a relaxed solve's
-            f = RELAX[i]
             for r in range(4):
                 for c in range(4):
                     Tr[r, c] = T[r, c]
-            for r in range(3):
-                Tr[r, 3] = T[r, 3] + f * reach * (T[r, 3] - shoulder[r]) / dist
+            Tr[0, 3] = T[0, 3] + ((c1 + c2) * vx - c2 * h * ax)
+            Tr[1, 3] = T[1, 3] + ((c1 + c2) * vy - c2 * h * ay)
+            Tr[2, 3] = T[2, 3] + ((c1 + c2) * vz - c2 * h * az)
             T06 = _cf._target(ci_r, pre_r, postT_r, Tr, s_r[1][0:4], s_r[1][4:8])
             if method == _cf.PIEPER:
                 mr = _cf._pieper(ci_r, cf_r, C_r, T06, wrist_ref, raw, rcodes, rdegen, s_r, fold_relaxed)

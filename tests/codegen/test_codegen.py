@@ -824,6 +824,57 @@ def test_calibrated_arm_ik_matches_ik_analytic(calibrated_arms, build, name):
         check_ik(robot, lib, poses)
 
 
+#: Configurations of the calibrated PUMA 560 (calibrated_arms) whose wrist centre lies just inside the
+#: projected arm's cylinder about axis 1 (the shoulder offset d₃): there its closed form had no start, at
+#: the pose nor moved toward or away from the shoulder point (15 of 3,000 random configurations,
+#: default_rng(11)); the last one's wrist centre is at the outer sphere too.
+PUMA_SIDEWAYS = [
+    [-2.2736673832417282, -1.8508929114442656, -0.9755820128771249, 2.1087669776932323, -0.02380995266963981, 3.2769156584550707],
+    [-0.3711870360892844, 1.4942012395642066, -1.3687404600895055, -4.20110488334455, 0.2182967221543055, -1.2665261099804153],
+    [0.3434470355985204, -1.7385419580514254, -1.2091317244155273, -4.53344064017413, -1.3284287196954172, 1.9182351278936078],
+    [-1.3126189330474625, -1.3465539982518495, -1.90839884457737, -1.1505072270381564, -0.41075998791346313, 0.9550873468707257],
+    [-1.8366931198109024, -1.573091540549726, -1.4758291392626957, -0.6941753237198549, 1.4630947206871052, -4.614970825427825],
+]
+
+
+def test_calibrated_puma_beside_its_shoulder_cylinder(calibrated_arms, build):
+    """At those poses the relaxed poses moved away from axis 1 (and at a corner also toward the shoulder)
+    give the starts: ik_analytic's own path returns solutions (not the general 6R method's), each reaching
+    the pose through Pinocchio, the generating configuration among them, nothing a numerical sweep finds
+    missing; and the generated C returns the same solutions in the same order (before: none)."""
+    from robokit.ik.closed_form import analytic_ik
+    from robokit.kernels.ik import solve_poe_ik
+
+    robot = calibrated_arms["puma560"]
+    cal = analytic_ik(robot).calibrated
+    lib = build(robot)
+    rev = np.ones(6, bool)
+    rng = np.random.default_rng(0)
+    poe = robot.poe
+    hits = 0
+    for q in PUMA_SIDEWAYS:
+        T = np.ascontiguousarray(robot.frame_pose(np.array(q)))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", robokit.RobokitWarning)
+            own = cal._solve_checked(T, 0.0)
+            sols = ik_analytic(robot, T)
+        assert own and [s.label for s in own] == [s.label for s in sols]
+        assert not any(s.label.startswith("solution ") for s in sols)
+        assert min(_dist(s.q, q, rev) for s in sols) < 1e-7
+        for s in sols:
+            assert np.abs(robot.frame_pose(s.q) - T).max() < 1e-9
+        unlimited = np.array([[-np.inf, np.inf]] * 6)
+        for k in range(100):  # a sweep: every root it finds is returned
+            qs, ok = solve_poe_ik(poe.M, poe.Slist, T, rng.uniform(-np.pi, np.pi, 6), unlimited, 1e-12, 100, 0, k)[:2]
+            if ok and np.abs(robot.frame_pose(np.angle(np.exp(1j * qs))) - T).max() < 1e-9:
+                assert min(_dist(s.q, qs, rev) for s in sols) < 1e-6
+                hits += 1
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", robokit.RobokitWarning)
+            check_ik(robot, lib, [T])
+    assert hits > 100  # the sweep converged from many of its starts
+
+
 def test_a_real_ur5e_factory_calibration_ik_matches_ik_analytic(build):
     """A UR5e as its owner has it (Universal Robots' xacro package with that robot's factory calibration,
     tests/data/ur_calibration): detected as nearly a three-parallel-axes arm; its NAME_ik returns
