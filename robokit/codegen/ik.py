@@ -260,6 +260,38 @@ static int {P}_trig_roots(double a, double b, double c, double tol, double t[2])
             near[j] = x;
             ++*nn;
         }}"""
+        # float: a quartic with a large root (the roots' product |c0/c4| above 1, as where tan(th3/2) is in the
+        # thousands, th3 near pi) loses its small roots to float's precision in the closed form; solved in
+        # v = 1/u (the coefficients reversed) the large root is the small one, and each is then polished on c
+        flip = self.tol.float32 and not self.fold
+        ferrari = "quartic_closed" if flip else "quartic_roots"
+        wrapper = f"""
+/* float: the real roots of c[0] + ... + c[4] u^4, increasing; where |c[0]| > |c[4]| (the roots' product
+   above 1: a large root, which float's closed form computes at the cost of the small ones) those of the
+   reversed quartic in v = 1/u, inverted and polished on c. -1 as {P}_quartic_closed. */
+static int {P}_quartic_roots(const double c[5], double out[4])
+{{
+    double rv[5], v[4];
+    int i, j, n;
+    if (!(fabs(c[0]) > fabs(c[4]))) {{
+        return {P}_quartic_closed(c, out);
+    }}
+    for (i = 0; i < 5; ++i) {{
+        rv[i] = c[4 - i];
+    }}
+    n = {P}_quartic_closed(rv, v);
+    for (i = 0; i < n; ++i) {{
+        const double u = {P}_newton_poly(c, 4, 1.0 / v[i]);  /* v = 0 is no root: rv[0] = c[4] != 0 */
+        j = i;
+        while (j > 0 && out[j - 1] > u) {{  /* insertion: increasing */
+            out[j] = out[j - 1];
+            --j;
+        }}
+        out[j] = u;
+    }}
+    return n;
+}}
+""" if flip else ""
         return f"""
 /* value of the polynomial c[0] + c[1] x + ... + c[deg] x^deg (Horner) */
 static double {P}_poly(const double c[5], int deg, double x)
@@ -344,7 +376,7 @@ static double {P}_newton_poly(const double c[5], int deg, double t)
    Python (companion eigenvalues), a complex pair with |imag| <= 1e-6 (1 + |real|) counts as two
    real roots at its real part. Returns -1 when the closed form is not trustworthy (q ~ 0, or the
    four roots do not multiply back to the quartic): the caller then isolates the roots numerically. */
-static int {P}_quartic_roots(const double c[5], double out[4]{near_arg})
+static int {P}_{ferrari}(const double c[5], double out[4]{near_arg})
 {{
     const double a = c[3] / c[4], b = c[2] / c[4], cc = c[1] / c[4], d = c[0] / c[4];
     const double p = b - 0.375 * a * a;
@@ -432,7 +464,7 @@ static int {P}_quartic_roots(const double c[5], double out[4]{near_arg})
     }}
     return n;
 }}
-
+{wrapper}
 /* every real root of c (degree deg <= 4, c[deg] != 0), increasing: the roots of the derivative
    split the line into pieces where c is monotonic; a piece whose ends differ in sign holds one
    root. A root of the derivative where c vanishes (to round-off) is a double root. Bottom up (no

@@ -164,6 +164,44 @@ def test_float32_ik_reaches_the_pose(models, build, name):
     assert full >= 18
 
 
+def test_float32_quartic_with_a_large_root_keeps_its_small_roots(build):
+    """A spherical-wrist arm whose joint-3 quartic has a root near tan(θ₃/2) = 3,000 (θ₃ near π) at
+    some poses: float's closed form lost the three other roots there (2 solutions of 8, the generating
+    configuration not among them, at 4 of 300 random poses); the quartic is now solved in 1/u where its
+    roots' product is above 1. Every pose of 300: ik_analytic's count, each solution within 1e-2 of
+    a double one, a different one each (away from the wrist's singularity), and reaching the pose
+    (Pinocchio) to float's precision."""
+    d = math.radians
+    rows = [(0.15, -90, 0.45, 10), (0.6, 0, 0.05, -90), (0.1, -90, 0.0, 0), (0.0, 90, 0.55, 0), (0.0, -90, 0.0, 0),
+            (0.0, 0, 0.09, 25)]
+    base, tool = np.eye(4), np.eye(4)
+    base[:3, :3], base[:3, 3] = matrix_from_rpy([d(5), d(-10), d(40)]), [0.2, 0.1, 0.5]
+    tool[:3, :3], tool[:3, 3] = matrix_from_rpy([d(30), 0.0, d(-20)]), [0.01, 0.02, 0.12]
+    links = tuple(DHLink("R", a=a, alpha=d(al), d=dd, theta=d(th), mass=1.0) for a, al, dd, th in rows)
+    robot = robokit.load(DHTable("sw6", "standard", links, base=base, tool=tool))
+    assert closed_form_solver(robot).case == "RR-quartic"
+    lib = build(robot, float32=True)
+    rng = np.random.default_rng(0)
+    qs = [np.array([-0.0335, 1.429, 0.827, -0.573, -0.690, 1.089])] + [robot.random_configuration(rng) for _ in range(300)]
+    for q in qs:
+        T = robot.frame_pose(q)
+        py, c = ik_analytic(robot, T), lib.ik(T.astype(np.float32).astype(float))
+        assert len(c) == len(py)
+        for qc, label, *_ in c:  # (the label may differ where its sign is within float's precision of 0)
+            ref = min(py, key=lambda s: _dist(qc, s.q, np.ones(6, bool)))
+            # near the wrist's singularity float splits θ₄ and θ₆ loosely (and the pose within 1e-3)
+            regular = abs(math.sin(ref.q[4])) > 1e-2
+            if regular:
+                assert _dist(qc, ref.q, np.ones(6, bool)) < 1e-2
+            assert np.abs(robot.frame_pose(qc) - T).max() < (1e-4 if regular else 1e-3)
+        apart = all(_dist(a.q[:3], b.q[:3], np.ones(3, bool)) > 0.05 for i, a in enumerate(py) for b in py[:i]
+                    if not np.allclose(a.q[:3], b.q[:3]))  # (branches about to merge: float tells them apart loosely)
+        if apart and all(abs(math.sin(s.q[4])) > 1e-2 for s in py):  # one C solution for each
+            assert len({min(range(len(py)), key=lambda k: _dist(qc, py[k].q, np.ones(6, bool))) for qc, *_ in c}) == len(py)
+    T = robot.frame_pose(qs[0])
+    assert min(_dist(qc, qs[0], np.ones(6, bool)) for qc, *_ in lib.ik(T.astype(np.float32).astype(float))) < 1e-3
+
+
 def test_arm_without_closed_form_has_no_ik(models, build):
     lib = build(models["panda"])
     assert not lib.has_ik
