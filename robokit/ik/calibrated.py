@@ -506,7 +506,7 @@ class CalibratedArm:
                 "trace_step": _kci.TRACE_STEP, "trace_steps": _kci.TRACE_STEPS, "trace_pull": _kci.TRACE_PULL,
                 "trace_rows": _kci.TRACE_ROWS,
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX_MOVES), "radial": tuple(_kci.RELAX),
-                "axis1": tuple(float(v) for v in self._C[_kci._L + 2:_kci._L + 12:4]), "max_rows": _kcf.MAX_ROWS,
+                "axis1": _kci.first_axis(self._C), "max_rows": _kcf.MAX_ROWS,
                 "fold_starts": _kcf.FOLD_STARTS * self._fold_scale,
                 "fold_imag": _kcf.FOLD_IMAG * self._fold_scale, "fold_code": _kcf.FOLD_CODE,
                 "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,

@@ -86,7 +86,7 @@ from robokit.kernels._jit import machine_code, njit, prange
 from robokit.kernels import closed_form as _cf
 from robokit.kernels.ik import normal_equations
 
-__all__ = ["pack_arm", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
+__all__ = ["pack_arm", "first_axis", "local_transforms", "fk_jacobian", "polish", "scratch", "calibrated_solve_into", "solve_into_entry", "calibrated_batch", "SAME",
            "FLAGGED", "STATUS", "BRANCH_COLS", "BRANCH_ROWS", "SOLUTION", "MERGED", "VANISHED", "FRAMES", "KINDS", "PITCHES"]
 
 #: Two polished solutions closer than this (rad or m, angles modulo 2π) are one solution.
@@ -546,8 +546,8 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
 
     Examples
     --------
-    >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
-    ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
+    >>> S = np.zeros((6, 6)); S[2] = 1.0; S[4] = -0.1 * np.arange(6)  # six parallel z axes, 0.1 m apart
+    >>> C = pack_arm(np.eye(4), S, np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
     >>> C.shape
     (118,)
     """
@@ -613,6 +613,29 @@ def pack_arm(M: np.ndarray, Slist: np.ndarray, post_q: np.ndarray, shoulder: np.
     return C
 
 
+def first_axis(C: np.ndarray) -> tuple[float, float, float]:
+    """Joint 1's axis direction (unit, base frame) of the packed arm ``C``: the z axis of its first
+    frame, the axis the relaxed moves (``RELAX_MOVES``) go across.
+
+    Parameters
+    ----------
+    C : (118,) ndarray
+        From :func:`pack_arm`.
+
+    Returns
+    -------
+    tuple of 3 float
+
+    Examples
+    --------
+    >>> S = np.zeros((6, 6)); S[2] = 1.0; S[4] = -0.1 * np.arange(6)  # six parallel z axes, 0.1 m apart
+    >>> C = pack_arm(np.eye(4), S, np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
+    >>> first_axis(C)
+    (0.0, 0.0, 1.0)
+    """
+    return float(C[_L + 2]), float(C[_L + 6]), float(C[_L + 10])
+
+
 def local_transforms(C: np.ndarray) -> np.ndarray:
     """The packed arm ``C`` as seven 3 × 4 local transforms ``T(q) = L₀ Z₁(q₁) L₁ ⋯ Z₆(q₆) L₆`` with
     ``Zᵢ`` the bare joint motion (a rotation about z with ``hᵢ qᵢ`` along it, or a translation along
@@ -630,8 +653,8 @@ def local_transforms(C: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> C = pack_arm(np.eye(4), np.vstack([np.zeros((3, 6)), np.eye(3), np.zeros((3, 3))]).T.copy(),
-    ...              np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
+    >>> S = np.zeros((6, 6)); S[2] = 1.0; S[4] = -0.1 * np.arange(6)  # six parallel z axes, 0.1 m apart
+    >>> C = pack_arm(np.eye(4), S, np.zeros((5, 6)), np.zeros(3), 1.0, 1e-12, 1e-10, 30)
     >>> local_transforms(C).shape
     (7, 3, 4)
     """

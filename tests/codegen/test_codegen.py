@@ -23,8 +23,8 @@ from robokit.ik import ik_analytic, ik_analytic_kind
 
 SETTINGS = dict(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-MATH = {"sin", "cos", "sincos", "atan", "atan2", "acos", "cbrt", "sqrt", "fabs", "fmod", "remainder", "floor",
-        "memset", "memcpy"}
+MATH = {"sin", "cos", "sincos", "atan", "atan2", "acos", "cbrt", "sqrt", "hypot", "fabs", "fmod", "remainder",
+        "floor", "memset", "memcpy"}
 MATH |= {f + "f" for f in MATH}
 
 
@@ -234,7 +234,8 @@ def test_header_macros_and_tables(models, build):
 
 
 def test_only_math_symbols_are_needed(models, build, nm):
-    for name, f32 in (("puma560", False), ("ur5", False), ("panda", False), ("puma560", True)):
+    for name, f32 in (("puma560", False), ("ur5", False), ("panda", False), ("puma560", True), ("twolink", False),
+                      ("rrr", False), ("rrr", True)):
         lib = build(models[name], float32=f32)
         out = subprocess.run([nm, "-u", str(lib.path.with_suffix(".o"))], capture_output=True, text=True,
                              check=True).stdout
