@@ -91,10 +91,9 @@ def planar_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) -> Any
     if dx == 0.0 and dy == 0.0:
         w_of = "const double wx = x, wy = y;  /* the last link ends on its axis */"
     else:
+        rx, ry = _combine(_term("c", dx), "-", _term("s", dy)), _combine(_term("s", dx), "+", _term("c", dy))
         w_of = ("const double c = cos(phi), s = sin(phi);\n        "
-                f"const double wx = x - ({_term('c', dx)} - {_term('s', dy)}), wy = y - ({_term('s', dx)} + "
-                f"{_term('c', dy)});  /* p - r1 - Rot(phi) d_n */").replace("(0.0 - ", "(-").replace(
-                    " - 0.0)", ")").replace("(0.0 + ", "(").replace(" + 0.0)", ")")
+                f"const double wx = x - ({rx}), wy = y - ({ry});  /* p - r1 - Rot(phi) d_n */")
     if c.prismatic:
         body.append(f"""    (void)wrist_ref;
     if (!(tilt <= {ang}) || fabs(phi) > {ang}
@@ -209,6 +208,15 @@ def _minus(expr: str, k: float) -> str:
     if k == 0.0:
         return expr
     return f"{expr} - {lit(k)}" if k > 0.0 else f"{expr} + {lit(-k)}"
+
+
+def _combine(a: str, op: str, b: str) -> str:
+    """C of ``a op b`` (op ``+`` or ``-``) with a zero term (``"0.0"``) dropped: ``a ± 0 = a``, ``0 − b = −b``."""
+    if b == "0.0":
+        return a
+    if a == "0.0":
+        return b if op == "+" else f"-{b}"
+    return f"{a} {op} {b}"
 
 
 def _term(name: str, k: float) -> str:

@@ -19,14 +19,9 @@ import robokit
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.errors import InputError
 from robokit.ik import ik_analytic, ik_analytic_batch, ik_analytic_kind
+from tests.ik.test_closed_form import angle_dist
 
 TOL = 1e-9
-
-
-def angle_dist(a, b, revolute):
-    d = np.asarray(a, float) - np.asarray(b, float)
-    d[revolute] = np.angle(np.exp(1j * d[revolute]))
-    return float(np.abs(d).max())
 
 
 def planar_table(seed, convention, n, flips=False, prismatic=False, limits=True):
