@@ -693,6 +693,8 @@ static int {P}_finish(const double rows[][{n}], const int lab[], const int deg[]
             if quartic:
                 src.append(self.poly_helpers())
             src.append(_pieper_helpers(self, quartic))
+        if self.fold and k.method != "spherical wrist":
+            src.append(_parallel_free_helpers(self))
         src.append(self.finish())
         if self.fold:  # the calibrated arm's starts: NAME_ik_ex's rows, with fold starts (info's flag 3) when fold
             head = f"""
@@ -1290,6 +1292,76 @@ def _c(v: Val) -> str:
     return lit(v) if isinstance(v, float) else v
 
 
+def _parallel_free_helpers(e: _Emitter) -> str:
+    """``NAME_free_t6`` of a calibrated three-parallel-axes arm (robokit.kernels.closed_form._free_t6 and
+    ``_parallel_plane``, in the same steps): the theta6 at which the elbow comes nearest reaching."""
+    k, P = e.k, e.P
+    sv = k.parallel
+    assert sv is not None and k.calibrated is not None
+    ca1, sa1, ca5, sa5 = sv.ca[0], sv.sa[0], sv.ca[4], sv.sa[4]
+    n, iters = int(k.calibrated["free_samples"]), int(k.calibrated["free_iterations"])
+    return f"""
+/* frame 4's origin in the plane of the parallel axes for th1, th5, th6 given by their cosines and sines */
+static void {P}_plane(const double R[9], const double p[3], double c1, double s1, double c5, double s5, double c6,
+                      double s6, double *x, double *y)
+{{
+    double ox = {lit(-sv.a4)}, oy = 0.0, oz = 0.0, tmp, O0, O1, O2;
+    tmp = c5 * ox + s5 * oy; oy = -s5 * ox + c5 * oy; ox = tmp; oz = oz - {lit(sv.d5)};
+    ox = ox - {lit(sv.a5)}; tmp = {lit(ca5)} * oy + {lit(sa5)} * oz; oz = {lit(-sa5)} * oy + {lit(ca5)} * oz; oy = tmp;
+    tmp = c6 * ox + s6 * oy; oy = -s6 * ox + c6 * oy; ox = tmp; oz = oz - {lit(sv.d6)};
+    O0 = p[0] + R[0] * ox + R[1] * oy + R[2] * oz - {lit(sv.a1)} * c1;
+    O1 = p[1] + R[3] * ox + R[4] * oy + R[5] * oz - {lit(sv.a1)} * s1;
+    O2 = p[2] + R[6] * ox + R[7] * oy + R[8] * oz - {lit(sv.d1)};
+    *x = c1 * O0 + s1 * O1;
+    *y = -s1 * {lit(ca1)} * O0 + c1 * {lit(ca1)} * O1 + {lit(sa1)} * O2;
+}}
+
+/* |x^2 + y^2 - a2^2 - a3^2| at th6 = t, x and y affine in (cos t, sin t) */
+static double {P}_free_gap(const double g[6], double t)
+{{
+    const double c = cos(t), s = sin(t);
+    const double x = g[0] + g[1] * c + g[2] * s, y = g[3] + g[4] * c + g[5] * s;
+    return fabs(x * x + y * y - {lit(sv.a2 * sv.a2 + sv.a3 * sv.a3)});
+}}
+
+/* the calibrated arm's theta6 where its wrist is near its singularity: where the elbow comes nearest
+   reaching (the least of {n} equally spaced values, then {iters} golden-section steps within one spacing) */
+static double {P}_free_t6(const double R[9], const double p[3], double c1, double s1, double c5, double s5)
+{{
+    double x0, y0, xp, yp, xh, yh, g[6], best = 0.0, tb = 0.0, lo, hi;
+    int k;
+    {P}_plane(R, p, c1, s1, c5, s5, 1.0, 0.0, &x0, &y0);
+    {P}_plane(R, p, c1, s1, c5, s5, -1.0, 0.0, &xp, &yp);
+    {P}_plane(R, p, c1, s1, c5, s5, 0.0, 1.0, &xh, &yh);
+    g[0] = 0.5 * (x0 + xp);
+    g[1] = 0.5 * (x0 - xp);
+    g[2] = xh - g[0];
+    g[3] = 0.5 * (y0 + yp);
+    g[4] = 0.5 * (y0 - yp);
+    g[5] = yh - g[3];
+    for (k = 0; k < {n}; ++k) {{
+        const double th = (double)k * {lit(2.0 * math.pi / n)} - {lit(math.pi)};
+        const double f = {P}_free_gap(g, th);
+        if (k == 0 || f < best) {{
+            best = f;
+            tb = th;
+        }}
+    }}
+    lo = tb - {lit(2.0 * math.pi / n)};
+    hi = tb + {lit(2.0 * math.pi / n)};
+    for (k = 0; k < {iters}; ++k) {{
+        const double a = hi - {lit(0.5 * (math.sqrt(5.0) - 1.0))} * (hi - lo), b = lo + {lit(0.5 * (math.sqrt(5.0) - 1.0))} * (hi - lo);
+        if ({P}_free_gap(g, a) <= {P}_free_gap(g, b)) {{
+            hi = b;
+        }} else {{
+            lo = a;
+        }}
+    }}
+    return 0.5 * (lo + hi);
+}}
+"""
+
+
 def _parallel(e: _Emitter, T06: Pose) -> str:
     """Body of the three-parallel-axes solve (UR family)."""
     k, P, t = e.k, e.P, e.tol
@@ -1343,6 +1415,53 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             }}
             c3 = c3 > 1.0 ? 1.0 : (c3 < -1.0 ? -1.0 : c3);
             s3a = sqrt(1.0 - c3 * c3 > 0.0 ? 1.0 - c3 * c3 : 0.0);"""
+    compute = f"""            {{
+                const double c6 = cos(t6), s6 = sin(t6);
+                /* x4 in frame 6: Rz(-th6) Rx(-al5) Rz(-th5) e1 */
+                gx0 = c5;
+                gy0 = {lit(-ca5)} * s5;
+                gz0 = {lit(sa5)} * s5;
+                gx = c6 * gx0 + s6 * gy0;
+                gy = -s6 * gx0 + c6 * gy0;
+                gz = gz0;
+                /* frame 4's origin in frame 6 */
+                ox = {lit(-a4)};
+                oy = 0.0;
+                oz = 0.0;
+                tmp = c5 * ox + s5 * oy; oy = -s5 * ox + c5 * oy; ox = tmp; oz = oz - {lit(d5)};
+                ox = ox - {lit(a5)}; tmp = {lit(ca5)} * oy + {lit(sa5)} * oz; oz = {lit(-sa5)} * oy + {lit(ca5)} * oz; oy = tmp;
+                tmp = c6 * ox + s6 * oy; oy = -s6 * ox + c6 * oy; ox = tmp; oz = oz - {lit(d6)};
+            }}
+            X0 = {r[0][0]} * gx + {r[0][1]} * gy + {r[0][2]} * gz;
+            X1 = {r[1][0]} * gx + {r[1][1]} * gy + {r[1][2]} * gz;
+            X2 = {r[2][0]} * gx + {r[2][1]} * gy + {r[2][2]} * gz;
+            O0 = {pp[0]} + {r[0][0]} * ox + {r[0][1]} * oy + {r[0][2]} * oz - {lit(a1)} * c1;
+            O1 = {pp[1]} + {r[1][0]} * ox + {r[1][1]} * oy + {r[1][2]} * oz - {lit(a1)} * s1;
+            O2 = {pp[2]} + {r[2][0]} * ox + {r[2][1]} * oy + {r[2][2]} * oz - {lit(d1)};
+            /* the planar 3R arm in the frame after X1: angle phi = th2 + th3 + th4, 2-link (a2, a3) */
+            phi = atan2(-s1 * {lit(ca1)} * X0 + c1 * {lit(ca1)} * X1 + {lit(sa1)} * X2, c1 * X0 + s1 * X1);
+            x = c1 * O0 + s1 * O1;
+            y = -s1 * {lit(ca1)} * O0 + c1 * {lit(ca1)} * O1 + {lit(sa1)} * O2;
+            c3 = (x * x + y * y - {lit(a2 * a2 + a3 * a3)}) / {lit(2.0 * a2 * a3)};
+"""
+    if e.fold:  # where the elbow misses and the wrist is near its singularity, theta6 again (_free_t6)
+        assert k.calibrated is not None
+        inner = "".join("    " + line + "\n" if line else "\n" for line in compute.splitlines())
+        rm = ", ".join(r[i][j] for i in range(3) for j in range(3))
+        compute = f"""            for (attempt = 0;; ++attempt) {{  /* (twice at most: the test below breaks at attempt 1) */
+{inner}                if (attempt == 1 || fabs(c3) <= 1.0 + {t(1e-10)} || !fold
+                    || fabs(c3) - 1.0 <= {lit(float(k.calibrated["fold_starts"]))} || rho >= {lit(float(k.calibrated["free_wrist"]))}) {{
+                    break;
+                }}
+                {{  /* the elbow misses by more than the fold starts' window, the wrist near its singularity:
+                    theta6 where the elbow comes nearest reaching, its rows fold starts */
+                    const double Rm[9] = {{{rm}}};
+                    const double pm[3] = {{{pp[0]}, {pp[1]}, {pp[2]}}};
+                    t6 = {P}_free_t6(Rm, pm, c1, s1, c5, s5);
+                    fs = 1;
+                }}
+            }}
+"""
     ta, tb, tc = f"{lit(-sa1)} * {_c(W[1])}", f"{lit(sa1)} * {_c(W[0])}", f"{lit(KW)} - {lit(ca1)} * ({_c(W[2])} - {lit(d1)})"
     if e.fold:  # the calibrated arm's shoulder fold starts (robokit.kernels.closed_form._shoulder_folds)
         assert k.calibrated is not None  # (the fold starts are the calibrated arm's)
@@ -1389,7 +1508,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
             const double c5 = cos(t5), s5 = sin(t5);
             const double vx = s5 * {lit(sa4)}, vy = {lit(ca5 * sa4)} * c5 + {lit(sa5 * ca4)};
             double t6, gx0, gy0, gz0, gx, gy, gz, ox, oy, oz, tmp, X0, X1, X2, O0, O1, O2, phi, x, y, c3, s3a, base;
-            int degenerate, wi, k3, n3{", fs = f1" if e.fold else ""};
+            int degenerate, wi, k3, n3{", fs = f1, attempt" if e.fold else ""};
             if (rho <= {t(1e-10)}) {{
                 t6 = {_f([(1.0, "ref")], th0[5])};
                 degenerate = 1;
@@ -1397,35 +1516,7 @@ def _parallel(e: _Emitter, T06: Pose) -> str:
                 t6 = atan2(vy, vx) - atan2(uty, utx);
                 degenerate = 0;
             }}
-            {{
-                const double c6 = cos(t6), s6 = sin(t6);
-                /* x4 in frame 6: Rz(-th6) Rx(-al5) Rz(-th5) e1 */
-                gx0 = c5;
-                gy0 = {lit(-ca5)} * s5;
-                gz0 = {lit(sa5)} * s5;
-                gx = c6 * gx0 + s6 * gy0;
-                gy = -s6 * gx0 + c6 * gy0;
-                gz = gz0;
-                /* frame 4's origin in frame 6 */
-                ox = {lit(-a4)};
-                oy = 0.0;
-                oz = 0.0;
-                tmp = c5 * ox + s5 * oy; oy = -s5 * ox + c5 * oy; ox = tmp; oz = oz - {lit(d5)};
-                ox = ox - {lit(a5)}; tmp = {lit(ca5)} * oy + {lit(sa5)} * oz; oz = {lit(-sa5)} * oy + {lit(ca5)} * oz; oy = tmp;
-                tmp = c6 * ox + s6 * oy; oy = -s6 * ox + c6 * oy; ox = tmp; oz = oz - {lit(d6)};
-            }}
-            X0 = {r[0][0]} * gx + {r[0][1]} * gy + {r[0][2]} * gz;
-            X1 = {r[1][0]} * gx + {r[1][1]} * gy + {r[1][2]} * gz;
-            X2 = {r[2][0]} * gx + {r[2][1]} * gy + {r[2][2]} * gz;
-            O0 = {pp[0]} + {r[0][0]} * ox + {r[0][1]} * oy + {r[0][2]} * oz - {lit(a1)} * c1;
-            O1 = {pp[1]} + {r[1][0]} * ox + {r[1][1]} * oy + {r[1][2]} * oz - {lit(a1)} * s1;
-            O2 = {pp[2]} + {r[2][0]} * ox + {r[2][1]} * oy + {r[2][2]} * oz - {lit(d1)};
-            /* the planar 3R arm in the frame after X1: angle phi = th2 + th3 + th4, 2-link (a2, a3) */
-            phi = atan2(-s1 * {lit(ca1)} * X0 + c1 * {lit(ca1)} * X1 + {lit(sa1)} * X2, c1 * X0 + s1 * X1);
-            x = c1 * O0 + s1 * O1;
-            y = -s1 * {lit(ca1)} * O0 + c1 * {lit(ca1)} * O1 + {lit(sa1)} * O2;
-            c3 = (x * x + y * y - {lit(a2 * a2 + a3 * a3)}) / {lit(2.0 * a2 * a3)};
-{elbow}
+{compute}{elbow}
             wi = degenerate ? 2 : (s5 * {lit(sa4 * sa5)} > 0.0 ? 0 : 1);
             base = atan2(y, x);
             n3 = s3a > 0.0 ? 2 : 1;

@@ -89,6 +89,16 @@ _TWO_PI = 2.0 * math.pi
 FOLD_STARTS = 0.1
 FOLD_IMAG = 0.2
 FOLD_CODE = 3
+#: Where the three-parallel-axes method's wrist is near its singularity (ρ, the length θ₆ is taken from,
+#: below ``FREE_WRIST`` times the fold switch ``fold[1]``), its θ₆ is as far off as the arm's errors
+#: divided by ρ; so where the elbow misses by more than ``FOLD_STARTS`` at that θ₆, the calibrated IK
+#: tries the θ₆ at which it comes nearest (:func:`_free_t6`: ``FREE_SAMPLES`` values, then
+#: ``FREE_ITERATIONS`` golden-section steps), its rows fold starts: on the calibrated UR5 of the tests,
+#: 33 of 3,000 random poses with θ₅ within 3 mrad of its singularity had no start (every elbow missed
+#: by 0.12–0.9 at the θ₆ of a direction a few 1e-3 long), each within 0.01 of reaching at that θ₆,
+#: the arm's roots 0.1–0.5 rad from it.
+FREE_WRIST = 0.02
+FREE_SAMPLES, FREE_ITERATIONS = 48, 40
 #: Scratch sizes (floats, ints) of the position step and of Pieper's method (:func:`_pieper_position`, :func:`_pieper`).
 _POS_WORK = 35
 
@@ -746,6 +756,60 @@ def _shoulder_folds(cf: np.ndarray, T: np.ndarray, window: float, t1s: np.ndarra
     return 2
 
 
+@njit(inline=True)
+def _parallel_plane(cf: np.ndarray, T: np.ndarray, c1: float, s1: float, c5: float, s5: float, c6: float,
+                    s6: float) -> tuple[float, float]:
+    """Frame 4's origin in the plane of the three parallel axes (x, y), for θ₁, θ₅, θ₆ given by their
+    cosines and sines (:func:`_parallel_complete`'s step 4)."""
+    ca1, sa1, ca5, sa5 = cf[_CA], cf[_SA], cf[_CA + 4], cf[_SA + 4]
+    a1, a4, a5, d1, d5, d6 = cf[_PA_A1], cf[_PA_A4], cf[_PA_A5], cf[_PA_D1], cf[_PA_D5], cf[_PA_D6]
+    ox, oy, oz = -a4, 0.0, 0.0
+    ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
+    ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
+    ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
+    O0 = T[0, 3] + T[0, 0] * ox + T[0, 1] * oy + T[0, 2] * oz - a1 * c1
+    O1 = T[1, 3] + T[1, 0] * ox + T[1, 1] * oy + T[1, 2] * oz - a1 * s1
+    O2 = T[2, 3] + T[2, 0] * ox + T[2, 1] * oy + T[2, 2] * oz - d1
+    return c1 * O0 + s1 * O1, -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
+
+
+@njit
+def _free_t6(cf: np.ndarray, T: np.ndarray, c1: float, s1: float, c5: float, s5: float) -> float:
+    """The θ₆ at which the planar elbow comes nearest to reaching frame 4's origin (least
+    |x² + y² − a₂² − a₃²|, i.e. least |cos θ₃|), θ₁ and θ₅ given: the calibrated IK's start where the
+    wrist is near its singularity (``FREE_WRIST``). x and y are affine in (cos θ₆, sin θ₆), so three
+    points give them; the least of ``FREE_SAMPLES`` equally spaced values, then golden-section search
+    (``FREE_ITERATIONS``) within one spacing of it."""
+    x0, y0 = _parallel_plane(cf, T, c1, s1, c5, s5, 1.0, 0.0)
+    xp, yp = _parallel_plane(cf, T, c1, s1, c5, s5, -1.0, 0.0)
+    xh, yh = _parallel_plane(cf, T, c1, s1, c5, s5, 0.0, 1.0)
+    xa, ya = 0.5 * (x0 + xp), 0.5 * (y0 + yp)
+    xu, yu = 0.5 * (x0 - xp), 0.5 * (y0 - yp)
+    xv, yv = xh - xa, yh - ya
+    k2 = cf[_PA_A2] * cf[_PA_A2] + cf[_PA_A3] * cf[_PA_A3]
+    h = _TWO_PI / FREE_SAMPLES
+    best, tb = math.inf, 0.0
+    for k in range(FREE_SAMPLES):
+        th = k * h - _PI
+        c, s = math.cos(th), math.sin(th)
+        x, y = xa + xu * c + xv * s, ya + yu * c + yv * s
+        f = abs(x * x + y * y - k2)
+        if f < best:
+            best, tb = f, th
+    lo, hi = tb - h, tb + h
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    for _ in range(FREE_ITERATIONS):
+        a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+        ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+        xa_, ya_ = xa + xu * ca + xv * sa, ya + yu * ca + yv * sa
+        xb_, yb_ = xa + xu * cb + xv * sb, ya + yu * cb + yv * sb
+        if abs(xa_ * xa_ + ya_ * ya_ - k2) <= abs(xb_ * xb_ + yb_ * yb_ - k2):
+            hi = b
+        else:
+            lo = a
+    return 0.5 * (lo + hi)
+
+
 @njit
 def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, q6_ref: float, Q: np.ndarray,
                        codes: np.ndarray, degen: np.ndarray, n: int, t5s: np.ndarray, fold: Any = None,
@@ -753,15 +817,15 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
     """Steps 2–4 for one θ₁ (θ₅, θ₆, the planar θ₂–θ₄): raw rows appended to Q, codes, degen
     from row n; the new row count. ``t5s``: scratch for the θ₅ roots (2,). ``fold``: None (compiles
     none of it), or the calibrated IK's (:func:`_pieper`'s): with its entry 1 set, an elbow short of
-    reaching by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes + ``FOLD_CODE``);
+    reaching by at most ``FOLD_STARTS`` gives the two fold starts (wrist codes + ``FOLD_CODE``), and
+    where it misses by more with the wrist near its singularity, θ₆ is tried again (``FREE_WRIST``);
     ``folded``: θ₁ is a shoulder's fold start (:func:`_shoulder_folds`), so every row is one."""
-    r00, r01, r02, px = T[0, 0], T[0, 1], T[0, 2], T[0, 3]
-    r10, r11, r12, py = T[1, 0], T[1, 1], T[1, 2], T[1, 3]
-    r20, r21, r22, pz = T[2, 0], T[2, 1], T[2, 2], T[2, 3]
+    r00, r01, r02 = T[0, 0], T[0, 1], T[0, 2]
+    r10, r11, r12 = T[1, 0], T[1, 1], T[1, 2]
+    r20, r21, r22 = T[2, 0], T[2, 1], T[2, 2]
     ca1, sa1 = cf[_CA], cf[_SA]
     ca4, sa4, ca5, sa5 = cf[_CA + 3], cf[_SA + 3], cf[_CA + 4], cf[_SA + 4]
-    a1, a2, a3, a4, a5 = cf[_PA_A1], cf[_PA_A2], cf[_PA_A3], cf[_PA_A4], cf[_PA_A5]
-    d1, d5, d6, sig, sgn2 = cf[_PA_D1], cf[_PA_D5], cf[_PA_D6], cf[_PA_SIG], cf[_PA_S2]
+    a2, a3, sig, sgn2 = cf[_PA_A2], cf[_PA_A3], cf[_PA_SIG], cf[_PA_S2]
     right_angles = ca4 == 0.0 and ca5 == 0.0
     c1, s1 = math.cos(t1), math.sin(t1)
     ux, uy, uz = sa1 * s1, -sa1 * c1, ca1
@@ -787,24 +851,27 @@ def _parallel_complete(cf: np.ndarray, T: np.ndarray, t1: float, shoulder: int, 
             t6, degenerate = cf[_TH0 + 5] + q6_ref, True
         else:
             t6, degenerate = math.atan2(vy, vx) - math.atan2(uty, utx), False
-        c6, s6 = math.cos(t6), math.sin(t6)
-        gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
-        gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
-        ox, oy, oz = -a4, 0.0, 0.0
-        ox, oy, oz = c5 * ox + s5 * oy, -s5 * ox + c5 * oy, oz - d5
-        ox, oy, oz = ox - a5, ca5 * oy + sa5 * oz, -sa5 * oy + ca5 * oz
-        ox, oy, oz = c6 * ox + s6 * oy, -s6 * ox + c6 * oy, oz - d6
-        X0 = r00 * gxa + r01 * gxb + r02 * gxc
-        X1 = r10 * gxa + r11 * gxb + r12 * gxc
-        X2 = r20 * gxa + r21 * gxb + r22 * gxc
-        O0 = px + r00 * ox + r01 * oy + r02 * oz - a1 * c1
-        O1 = py + r10 * ox + r11 * oy + r12 * oz - a1 * s1
-        O2 = pz + r20 * ox + r21 * oy + r22 * oz - d1
-        phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
-        x = c1 * O0 + s1 * O1
-        y = -s1 * ca1 * O0 + c1 * ca1 * O1 + sa1 * O2
-        c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
         fc = FOLD_CODE if folded else 0
+        for attempt in range(2):
+            c6, s6 = math.cos(t6), math.sin(t6)
+            gx0, gy0, gz0 = c5, -ca5 * s5, sa5 * s5
+            gxa, gxb, gxc = c6 * gx0 + s6 * gy0, -s6 * gx0 + c6 * gy0, gz0
+            X0 = r00 * gxa + r01 * gxb + r02 * gxc
+            X1 = r10 * gxa + r11 * gxb + r12 * gxc
+            X2 = r20 * gxa + r21 * gxb + r22 * gxc
+            x, y = _parallel_plane(cf, T, c1, s1, c5, s5, c6, s6)
+            phi = math.atan2(-s1 * ca1 * X0 + c1 * ca1 * X1 + sa1 * X2, c1 * X0 + s1 * X1)
+            c3 = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)
+            if attempt == 1 or abs(c3) <= 1.0 + 1e-10:
+                break
+            if fold is None:
+                break
+            if fold[1] == 0.0 or abs(c3) - 1.0 <= FOLD_STARTS * fold[1] or rho >= FREE_WRIST * fold[1]:
+                break
+            # the elbow misses by more than the fold starts' window, the wrist near its singularity: θ₆
+            # where the elbow comes nearest reaching (FREE_WRIST), its rows fold starts
+            t6 = _free_t6(cf, T, c1, s1, c5, s5)
+            fc = FOLD_CODE
         if abs(c3) > 1.0 + 1e-10:
             if fold is None:
                 continue

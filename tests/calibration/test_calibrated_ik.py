@@ -28,8 +28,8 @@ import numpy as np
 import pytest
 
 import robokit
-from shared_robots import robot as shared_robot
-from calibrated_folds import fold_starts
+from shared_robots import calibrated, robot as shared_robot, true_errors
+from calibrated_folds import UR5_FREE_WRIST, fold_starts
 from robokit.calibration import chain_from_robot, robot_from_chain
 from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError, RobokitWarning
@@ -45,22 +45,6 @@ def angle_dist(a, b):
     return float(np.abs(np.angle(np.exp(1j * d))).max())
 
 
-def true_errors(n, rng, size=2e-3):
-    """Per-placement SE(3) errors (rad, m), each component uniform in ±size."""
-    return rng.uniform(-size, size, (n + 1, 6))
-
-
-def calibrated(name, seed):
-    """``robokit.calibrate`` of the nominal ``name`` on 40 noise-free poses of a true arm with errors."""
-    nominal = shared_robot(name)
-    rng = np.random.default_rng(seed)
-    true = chain_from_robot(nominal).perturbed(true_errors(nominal.n, rng))
-    Q = np.array([nominal.random_configuration(rng) for _ in range(40)])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobokitWarning)
-        res = robokit.calibrate(nominal, Q, true.fk(Q))
-    assert res.rms_after < 1e-9  # the true arm is representable: calibration recovers it
-    return nominal, res.robot
 
 
 def random_pieper_table(seed):
@@ -398,16 +382,39 @@ def test_poses_the_moves_toward_the_shoulder_missed_get_starts_sideways(arms, na
     assert_none_missed(robot, T, sols)
 
 
+@pytest.mark.parametrize("q", UR5_FREE_WRIST)
+def test_near_the_wrist_singularity_theta6_is_taken_where_the_elbow_reaches(arms, q):
+    """At those poses the projected arm's closed form, its θ₆ free (``closed_form.FREE_WRIST``: where the
+    elbow comes nearest reaching), gives fold starts, and the calibrated path itself (not the general 6R
+    method) returns every root: exact, the generating configuration among them, flagged degenerate, none
+    missed by the 500-start sweep, the same set as the general 6R method. Before, it returned nothing."""
+    nominal, robot = arms["ur5"]
+    q = np.array(q)
+    T = robot.frame_pose(q)
+    assert fold_starts(robot, T)[0] > 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobokitWarning)  # (near the wrist's singularity: the search's warning)
+        sols = AnalyticIK(robot).calibrated._solve_checked(np.ascontiguousarray(T), 0.0)
+        general = ik_analytic(robot, T, nominal=False)
+    assert sols and not any(s.label.startswith("solution ") for s in sols)
+    assert all(s.degenerate for s in sols)
+    check(robot, q, T, sols)
+    assert_none_missed(robot, T, sols)
+    assert len(general) == len(sols)
+    for g in general:
+        assert min(angle_dist(g.q, s.q) for s in sols) < 1e-9
+
+
 @pytest.mark.parametrize("name, q", [
-    ("ur5", [-6.097088124678061, -2.4447867094205846, -0.07971101273569436, 4.8251377569183465,
-             -0.0027800233706754872, 2.12722578454448])])
+    ("ur5", [1.5022522853434621, -6.10608454742999, -0.001668365714191146, 4.424507417334697,
+             -0.00013460009608885467, 2.818090341464343])])
 def test_a_reachable_pose_the_nominal_closed_form_misses_is_solved_by_the_general_method(arms, name, q):
-    """A configuration of the suite's calibrated UR5 (``default_rng(300)``, draw 822 of random
-    configurations with θ₅ redrawn within 3 mrad of its singularity at every other draw: 14 of 2,000
-    such near-singular draws; none of the PUMA 560's) where the nominal structure's closed form gives no
-    start and no moved pose supplies one (near the wrist's singularity the projected arm's θ₆, from a
-    direction a few 1e-3 long, is far from the arm's, and every elbow misses): the calibrated path alone
-    returns nothing, as if the pose were out of reach.
+    """A configuration of the suite's calibrated UR5 (``default_rng(300)``, draw 7,115 of random
+    configurations with θ₅ redrawn within 3 mrad of its singularity at every other draw and θ₃ too at
+    every fourth: 2 of 8,000 draws; none of the PUMA 560's or the random Pieper arm's) where the
+    calibrated path finds nothing: the elbow and the wrist are both within 2 mrad of their singularities,
+    and the polish from the starts the projected arm gives (θ₆ free, above; 0.2–0.4 rad from the arm's
+    roots) converges to no root. The calibrated path alone returns nothing, as if the pose were out of reach.
     ``ik_analytic`` then returns the general 6R method's solutions (said once per arm): the generating
     configuration among them, every one exact, none missed by the sweep; the batch the same."""
     nominal, robot = arms[name]

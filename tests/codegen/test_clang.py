@@ -33,12 +33,13 @@ def prismatic_arm():
         for i in range(6)))
 
 
-ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford", "calibrated_puma560"]
+ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford", "calibrated_puma560",
+        "calibrated_ur5"]
 
 
 def _load(name):
-    if name == "calibrated_puma560":  # the polished closed form of robokit.ik.calibrated
-        return calibrated_arm("puma560", 1)
+    if name.startswith("calibrated_"):  # the polished closed form of robokit.ik.calibrated (both structures)
+        return calibrated_arm(name[len("calibrated_"):], {"puma560": 1, "ur5": 2}[name[len("calibrated_"):]])
     table = {"jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}.get(name)
     return robokit.load(table()) if table else shared_robot(name)
 

@@ -914,6 +914,28 @@ def test_calibrated_puma_beside_its_shoulder_cylinder(calibrated_arms, build):
     assert hits > 100  # the sweep converged from many of its starts
 
 
+def test_calibrated_ur5_near_its_wrist_singularity_theta6_where_the_elbow_reaches(build):
+    """The suite's calibrated UR5 (tests/calibration) at the poses where, near the wrist's singularity, the
+    projected arm's θ₆ makes every elbow miss (calibrated_folds.UR5_FREE_WRIST): Python's calibrated path
+    takes θ₆ where the elbow comes nearest reaching (closed_form.FREE_WRIST), and the generated C
+    (NAME_free_t6) returns the same solutions in the same order (before: Python the general 6R method's,
+    the C none)."""
+    from calibrated_folds import UR5_FREE_WRIST
+    from shared_robots import calibrated
+
+    robot = calibrated("ur5", 2)[1]
+    lib = build(robot)
+    assert "_free_t6(" in (lib.path.parent / f"{lib.name}.c").read_text()
+    poses = [robot.frame_pose(np.array(q)) for q in UR5_FREE_WRIST]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        for T in poses:
+            sols = ik_analytic(robot, T)
+            assert sols and not any(s.label.startswith("solution ") for s in sols)
+            assert len(lib.ik(T)) == len(sols)
+        check_ik(robot, lib, poses)
+
+
 def test_a_real_ur5e_factory_calibration_ik_matches_ik_analytic(build):
     """A UR5e as its owner has it (Universal Robots' xacro package with that robot's factory calibration,
     tests/data/ur_calibration): detected as nearly a three-parallel-axes arm; its NAME_ik returns
