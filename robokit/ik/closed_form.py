@@ -62,7 +62,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robokit._arrays import as_scalar
-from robokit._stack import outside_level
 from robokit._units import TURN, check_radians
 from robokit.errors import InputError, InputTypeError, RobokitWarning
 from robokit.ik._dh_chain import DHChain
@@ -374,16 +373,13 @@ class AnalyticIK:
                 why_not = solver.refusal()
                 if why_not is None:
                     said = f"{self.kind.reason}; the {solver.method} method solves it"
-                    run = _exactly_parallel_run(self.chain)
+                    run = getattr(solver, "parallel_run", None)
                     if run is not None:
-                        # its own docstring's limit: exactly special geometry makes the eigenproblem
-                        # degenerate (double and infinite roots) and loses solutions
-                        limit = (f"axes {run + 1}–{run + 3} are exactly parallel, which makes its eigenproblem "
-                                 f"degenerate: it may miss some of the arm's solutions (solve_ik from other starts "
-                                 f"finds the rest)")
-                        said += f", but {limit}"
-                        warnings.warn(f"ik_analytic: {getattr(robot, 'name', 'the arm')}: the {solver.method} method "
-                                      f"takes this arm, but {limit}", RobokitWarning, stacklevel=outside_level())
+                        # exactly special geometry makes the eigenproblem degenerate: the solver eliminates
+                        # on the arm with the run turned and polishes on the arm (general_6r.PARALLEL_TURN)
+                        said += (f"; axes {run + 1}–{run + 3} are exactly parallel, which makes its eigenproblem "
+                                 f"degenerate, so it eliminates on the arm with them turned by "
+                                 f"{_general_turn():g} rad and polishes every root on the arm itself")
                     self.kind = ClosedFormKind(solver.method, said)
                     self.solver = solver
                     break
@@ -802,15 +798,11 @@ def _fmt_len(x: float) -> str:
     return f"{x:.3g} m"
 
 
-def _exactly_parallel_run(chain: DHChain) -> int | None:
-    """The index of the first of three consecutive revolute joints whose axes are parallel (within
-    the structures' angle tolerance), or None."""
-    axes, kinds = chain.axes(), chain.kinds
-    for i in range(chain.n - 2):
-        if all(k == "R" for k in kinds[i:i + 3]) and max(_angle(axes[i][1], axes[i + 1][1]),
-                                                       _angle(axes[i + 1][1], axes[i + 2][1])) < _ANGLE_TOL:
-            return i
-    return None
+def _general_turn() -> float:
+    """robokit.ik.general_6r.PARALLEL_TURN (imported when a general 6R arm needs it: numba kernels)."""
+    from robokit.ik.general_6r import PARALLEL_TURN
+
+    return PARALLEL_TURN
 
 
 def _detect(chain: DHChain) -> ClosedFormKind:

@@ -620,6 +620,25 @@ def test_general_6r_random_arms_match_ik_analytic(build, seed, convention):
     check_ik(robot, build(robot), random_poses(robot, seed, k=8))
 
 
+def test_general_6r_with_three_exactly_parallel_axes_matches_ik_analytic(build):
+    """The SO-100 (axes 2–4 exactly parallel, axes 5 and 6 apart: the general 6R method, its tables built
+    for the arm with the run turned and every root polished on the arm, robokit.ik.general_6r.PARALLEL_TURN):
+    the C solves every pose as ik_analytic does — the turned tables, the arm's own chain — with the run
+    stretched out at every third pose (two pairs of roots close together)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (its floating base, fixed: a note)
+        robot = robokit.load("so100")
+    assert ik_analytic_kind(robot).method == "general 6R"
+    rng = np.random.default_rng(9)
+    qs = [robot.random_configuration(rng) for _ in range(9)]
+    for q in qs[::3]:
+        q[2] *= 1e-3
+    poses = [robot.frame_pose(q) for q in qs]
+    lib = build(robot)
+    check_ik(robot, lib, poses)
+    assert sum(len(lib.ik(T)) for T in poses) >= 4 * len(poses)
+
+
 @pytest.mark.parametrize("seed", [6, 7])
 def test_general_6r_deflated_eigenproblem_matches_ik_analytic(build, seed):
     """Arms whose best reading has the four root pairs x = ±i (pivot farthest from the eliminated

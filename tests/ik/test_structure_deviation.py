@@ -68,11 +68,10 @@ def test_an_arm_whose_meeting_axes_miss_by_more_than_the_tolerance_is_not_a_cali
         kind = robokit.ik_analytic_kind(robot)
     assert kind.method == "general 6R"
     assert f"axes 5 and 6 do not intersect (distance {true:.3g} m)" in kind.reason
-    # axes 2–4 stay exactly parallel: the general method's eigenproblem is degenerate there, and it says so once
-    assert "axes 2–4 are exactly parallel" in kind.reason and "may miss some of the arm's solutions" in kind.reason
-    said = [str(w.message) for w in caught if issubclass(w.category, robokit.RobokitWarning)]
-    assert len(said) == 1 and "axes 2–4 are exactly parallel" in said[0]
-    assert caught[0].filename == __file__
+    # axes 2–4 stay exactly parallel, which would make the general method's eigenproblem degenerate: it
+    # eliminates on the arm with them turned and polishes on the arm (tests/ik/test_general_6r.py), and says so
+    assert "axes 2–4 are exactly parallel" in kind.reason and "polishes every root on the arm itself" in kind.reason
+    assert not [w for w in caught if issubclass(w.category, robokit.RobokitWarning)]
 
 
 def test_an_arm_off_every_structure_says_nothing_about_degenerate_axes():
