@@ -773,7 +773,8 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         c5s5 = f"""    c5 = ({lit(ca4 * ca5)} - mz) / {lit(kk)};
     if (fabs(c5) > 1.0 + {t(1e-10)}) {{  /* out of reach of an oblique wrist */
         const double gap = fabs(c5) - 1.0;
-        if (!fold || gap > {lit(float(k.calibrated["fold_starts"]))}) {{
+        /* (fold 2: a fold position's wrist, whose window is wider: FOLD_POSITION_WRIST) */
+        if (!fold || gap > (fold == 2 ? {lit(float(k.calibrated["fold_position_wrist"]))} : {lit(float(k.calibrated["fold_starts"]))})) {{
             return 0;
         }}
         fc = {k.calibrated["fold_code"]};  /* near its fold: two starts, th5 = +-sqrt(2 gap) from it */
@@ -1221,7 +1222,7 @@ def _pieper(e: _Emitter, T06: Pose) -> str:
         fold_pos = "            const int fpos = i3 >= nreal;  /* a fold position: unchecked */\n"
         assert e.k.calibrated is not None  # (the fold starts are the calibrated arm's)
         fc = int(e.k.calibrated["fold_code"])
-        wrist = f"nw = {P}_wrist(th, R06, ref, wr, fl, fold);"
+        wrist = f"nw = {P}_wrist(th, R06, ref, wr, fl, fold ? 1 + fpos : 0);"
         rowflags = f"""                const int fs = fpos || fl[iw] >= {fc};
                 const int wc = fl[iw] >= {fc} ? fl[iw] - {fc} : fl[iw];
                 lab[nr] = {e.label_index("si", "ei", "wc")};

@@ -508,6 +508,7 @@ class CalibratedArm:
                 "generic_rows": _kci.GENERIC_ROWS, "relax": tuple(_kci.RELAX_MOVES), "radial": tuple(_kci.RELAX),
                 "axis1": _kci.first_axis(self._C), "max_rows": _kcf.MAX_ROWS,
                 "fold_starts": _kcf.FOLD_STARTS * self._fold_scale, "free_wrist": _kcf.FREE_WRIST * self._fold_scale,
+                "fold_position_wrist": _kcf.FOLD_POSITION_WRIST * self._fold_scale,
                 "free_samples": _kcf.FREE_SAMPLES, "free_iterations": _kcf.FREE_ITERATIONS,
                 "fold_imag": _kcf.FOLD_IMAG * self._fold_scale, "fold_code": _kcf.FOLD_CODE,
                 "log_near": _kci.LOG_NEAR, "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,

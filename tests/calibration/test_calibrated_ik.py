@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 
 import robokit
-from shared_robots import calibrated, robot as shared_robot, true_errors
+from shared_robots import benchmark_arms_off_by as _benchmark_arms_off_by, calibrated, robot as shared_robot, true_errors
 from calibrated_folds import UR5_FREE_WRIST, fold_starts
 from robokit.calibration import chain_from_robot, robot_from_chain
 from robokit.description.dh import DHLink, DHTable
@@ -729,22 +729,6 @@ def test_naming_the_nominal_structure_beyond_the_detection_tolerance():
         ik_analytic(robot, T, nominal="four parallel axes")
 
 
-def _benchmark_arms_off_by(size):
-    """The arms of ``benchmarks/calibrated_ik`` (a PUMA 560, a UR5 and its random Pieper arm, built as
-    there from ``default_rng(0)`` in that order), every joint placement, the base and the tool off by up to
-    ``size`` (rad, m) instead of 2e-3."""
-    rng = np.random.default_rng(0)
-    pieper = DHTable("pieper", "standard", (
-        DHLink("R", a=0.2, alpha=1.1, d=0.4), DHLink("R", a=0.5, alpha=-0.6, d=0.1),
-        DHLink("R", a=0.1, alpha=1.9, d=-0.05), DHLink("R", a=0.0, alpha=-1.3, d=0.35),
-        DHLink("R", a=0.0, alpha=0.9, d=0.0), DHLink("R", a=0.02, alpha=0.0, d=0.12)))
-    out = {}
-    for name, model in (("puma560", "puma560"), ("ur5", "ur5"), ("pieper", pieper)):
-        nominal = robokit.load(model)
-        out[name] = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-size, size, (7, 6))))
-    return out
-
-
 @pytest.fixture(scope="module")
 def far_arms():
     return _benchmark_arms_off_by(1e-2)
@@ -822,3 +806,34 @@ def test_the_search_constants_grow_with_the_starts_error():
             q = rng.uniform(-np.pi, np.pi, 6)
             A, B = robot.frame_pose(q), arm.projected.fk(q)
             assert np.linalg.norm(A[:3, 3] - B[:3, 3]) / arm.reach <= 1.5 * arm.start_error
+
+
+def test_a_fold_positions_wrist_gets_a_wider_window():
+    """The benchmark's calibrated random Pieper arm (``benchmarks/calibrated_ik``) at draw 625 of
+    ``default_rng(102)`` (found by a 500-start sweep over 3,000 random poses): one position of the
+    projected arm is at a fold of its joint-3 quartic (a complex pair's real part, itself off by about the
+    square root of the pair's imaginary part), and there its oblique wrist misses the orientation by
+    |cos θ₅| − 1 = 0.28, more than ``FOLD_STARTS``; the arm has two roots there (θ₅ 24 and 119 mrad from
+    π, the generating configuration one of them), which were missing without a warning. A fold
+    position's wrist now has the window ``FOLD_POSITION_WRIST``: both returned, exact, flagged
+    degenerate, with the near-singular warning; the same set as the general 6R method; none missed by
+    the sweep."""
+    from robokit.kernels.closed_form import FOLD_POSITION_WRIST, FOLD_STARTS
+
+    from shared_robots import PIEPER_FOLD_POSITION_WRIST
+
+    robot = _benchmark_arms_off_by(2e-3)["pieper"]
+    q = np.array(PIEPER_FOLD_POSITION_WRIST)
+    T = robot.frame_pose(q)
+    rows, fold_positions, short = fold_starts(robot, T)
+    assert fold_positions >= 1 and FOLD_STARTS < short <= FOLD_POSITION_WRIST and rows >= 2
+    with pytest.warns(RobokitWarning, match="near a singular configuration"):
+        sols = AnalyticIK(robot).solve(T)
+    check(robot, q, T, sols)
+    near = [s for s in sols if angle_dist(s.q, q) < 1e-7]
+    assert len(near) == 1 and near[0].degenerate
+    general = ik_analytic(robot, T, nominal=False)
+    assert len(general) == len(sols)
+    for g in general:
+        assert min(angle_dist(g.q, s.q) for s in sols) < 1e-9
+    assert_none_missed(robot, T, sols)

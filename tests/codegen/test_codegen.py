@@ -955,6 +955,23 @@ def test_calibrated_ur5_near_its_wrist_singularity_theta6_where_the_elbow_reache
         check_ik(robot, lib, poses)
 
 
+def test_calibrated_pieper_fold_positions_wrist_matches_ik_analytic(build):
+    """The benchmark's calibrated random Pieper arm where a fold position's oblique wrist misses by more
+    than FOLD_STARTS but within FOLD_POSITION_WRIST (shared_robots.PIEPER_FOLD_POSITION_WRIST): the C's
+    NAME_wrist takes the wider window there too, and returns ik_analytic's solutions in its order — the
+    generating configuration among them (before: both missing, in Python and in the C)."""
+    from shared_robots import PIEPER_FOLD_POSITION_WRIST, benchmark_arms_off_by
+
+    robot = benchmark_arms_off_by(2e-3)["pieper"]
+    q = np.array(PIEPER_FOLD_POSITION_WRIST)
+    T = robot.frame_pose(q)
+    lib = build(robot)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        check_ik(robot, lib, [T])
+    assert min(_dist(c[0], q, np.ones(6, bool)) for c in lib.ik(T)) < 1e-7
+
+
 def test_a_real_ur5e_factory_calibration_ik_matches_ik_analytic(build):
     """A UR5e as its owner has it (Universal Robots' xacro package with that robot's factory calibration,
     tests/data/ur_calibration): detected as nearly a three-parallel-axes arm; its NAME_ik returns

@@ -60,3 +60,31 @@ def calibrated(name: str, seed: int) -> tuple[robokit.Robot, robokit.Robot]:
         res = robokit.calibrate(nominal, Q, true.fk(Q))
     assert res.rms_after < 1e-9  # the true arm is representable: calibration recovers it
     return nominal, res.robot
+
+
+def benchmark_arms_off_by(size: float) -> dict[str, robokit.Robot]:
+    """The arms of ``benchmarks/calibrated_ik`` (a PUMA 560, a UR5 and its random Pieper arm, built as
+    there from ``default_rng(0)`` in that order), every joint placement, the base and the tool off by up to
+    ``size`` (rad, m); the benchmark's are ``size`` = 2e-3."""
+    import numpy as np
+
+    from robokit.calibration import chain_from_robot, robot_from_chain
+    from robokit.description.dh import DHLink, DHTable
+
+    rng = np.random.default_rng(0)
+    pieper = DHTable("pieper", "standard", (
+        DHLink("R", a=0.2, alpha=1.1, d=0.4), DHLink("R", a=0.5, alpha=-0.6, d=0.1),
+        DHLink("R", a=0.1, alpha=1.9, d=-0.05), DHLink("R", a=0.0, alpha=-1.3, d=0.35),
+        DHLink("R", a=0.0, alpha=0.9, d=0.0), DHLink("R", a=0.02, alpha=0.0, d=0.12)))
+    out = {}
+    for name, model in (("puma560", "puma560"), ("ur5", "ur5"), ("pieper", pieper)):
+        nominal = robokit.load(model)
+        out[name] = robot_from_chain(nominal, chain_from_robot(nominal).perturbed(rng.uniform(-size, size, (7, 6))))
+    return out
+
+
+#: A configuration of the benchmark's calibrated random Pieper arm (``benchmark_arms_off_by(2e-3)["pieper"]``,
+#: draw 625 of ``default_rng(102)``) where a fold position's oblique wrist misses by |cos θ₅| − 1 = 0.28
+#: (closed_form.FOLD_POSITION_WRIST): the arm's roots there were missing without a warning.
+PIEPER_FOLD_POSITION_WRIST = [-2.85949563904747, 1.4814951679468136, -3.1161356503366093, -0.7091959744379821,
+                              3.1178353574787296, -1.1140014288872808]
