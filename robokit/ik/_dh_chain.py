@@ -45,7 +45,9 @@ class DHChain:
     kinds : (n,) "R"/"P"; th0, d0 : (n,) the rows' θ and d (offsets; rad, m);
     alpha, a : (n−1,) twist and length between axes i and i+1 (rad, m);
     base, tool : 4×4 (base′ and tool′); base_inv, tool_inv : their inverses or None when
-    identity; qlim : (n, 2) or None; scale : a length of the arm (m) for tolerances.
+    identity; qlim : (n, 2) or None; scale : a length of the arm (m) for tolerances (see
+    :meth:`_arm_length`); dh_length : ``Σ|aᵢ| + Σ|dᵢ|`` (m), the size of the numbers the DH
+    products round.
     """
 
     def __init__(self, table: DHTable, qlim: ArrayLike | None = None) -> None:
@@ -81,7 +83,25 @@ class DHChain:
         if qlim is None and all(getattr(l, "qlim", None) is not None for l in links):
             qlim = np.array([l.qlim for l in links], dtype=float)
         self.qlim = None if qlim is None else np.asarray(qlim, dtype=float)
-        self.scale = max(1e-3, float(np.abs(self.a).sum() + np.abs(self.d0).sum()))
+        self.dh_length = float(np.abs(self.a).sum() + np.abs(self.d0).sum())
+        self.scale = max(1e-3, self._arm_length())
+
+    def _arm_length(self) -> float:
+        """The arm's size (m) at q = 0: the shorter of ``Σ|aᵢ| + Σ|dᵢ|`` and the path from frame
+        {0′}'s origin through the nearest point of each joint axis in turn to the tool's origin.
+
+        The DH sum alone is not a size when two consecutive axes are nearly parallel: their common
+        normal is then far away, and the table's d offsets are huge with opposite signs (an
+        xArm Lite 6 URDF, whose right angles are written 1.5708, gives d₂ = d₃ = 27 km). Tolerances
+        scaled by it would take axes that miss by micrometres for axes that meet.
+        """
+        here, path = np.zeros(3), 0.0
+        for point, u in self.axes():
+            foot = point + float(np.dot(here - point, u)) * u
+            path += float(np.linalg.norm(foot - here))
+            here = foot
+        path += float(np.linalg.norm((self.fk6(np.zeros(self.n)) @ self.tool)[:3, 3] - here))
+        return min(self.dh_length, path)
 
     # ------------------------------------------------------------------ kinematics
     def z(self, i: int, q_i: float) -> np.ndarray:
@@ -139,5 +159,5 @@ class DHChain:
         rc.base_inv = None if self.tool_inv is None else self.tool.copy()
         rc.tool_inv = None if self.base_inv is None else self.base.copy()
         rc.qlim = None if self.qlim is None else -self.qlim[::-1, ::-1]
-        rc.scale = self.scale
+        rc.scale, rc.dh_length = self.scale, self.dh_length
         return rc

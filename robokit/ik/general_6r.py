@@ -57,7 +57,7 @@ joint's total angle, offset included), T₀₆ the target with base and tool rem
    roots with a small imaginary part, kept on purpose so that near-double real roots are not
    lost) are dropped, and solutions closer than 1e-7 rad in every joint are merged.
 
-Numerics: lengths are divided by the arm's size. The reading above (θ₆ eliminated, θ₁θ₂ on
+Numerics: lengths are divided by the DH table's size (Σ|aᵢ| + Σ|dᵢ|). The reading above (θ₆ eliminated, θ₁θ₂ on
 one side, θ₃ the eigenvalue) is one of 36: the loop ``Z₁X₁ ⋯ Z₆ T₀₆⁻¹ = I`` can be read
 cyclically from any joint j (θ_j eliminated), with the three-joint group before or after it
 and any of its joints as the eigenvalue (:class:`_Arrangement`). Special neighbours make some
@@ -65,7 +65,9 @@ readings degenerate — on the Kinova Jaco every consecutive pair of axes meets 
 and with θ₃ as the eigenvalue ``det(A x² + B x + C)`` vanishes identically —, so all 36 are
 scored once per arm (the conditioning of Q and of the pencil at random poses) and the best
 solves; a pose badly conditioned for it (σ_min/σ_max of Q, of A or of the pencil at a fixed x
-below 1e-4) is also solved with the next three and the solutions merged. The ranking is done
+below 1e-4), or where its eigenvalue iteration does not converge (a multiple root the reading has
+at every pose, as the xArm 6's best one), is also solved with the next three and the solutions
+merged. The ranking is done
 once, in the solver's constructor, and the best readings' tables are kept on it, packed for the
 compiled solve: each pose is one call of :func:`robokit.kernels.general_6r.solve_pose` (matrix
 build, elimination, eigenvalues, back-substitution, polish, merging and ordering).
@@ -396,7 +398,11 @@ class GeneralSixR:
         does, the elimination's per-arm constants are built here, once: the 36 readings of the
         loop equation are scored and the best ones kept with the solver (:attr:`elim`)."""
         self.chain = chain
-        self.scale = float(chain.scale)
+        # lengths are divided by the DH table's own size, not the arm's (chain.scale): where two
+        # axes are nearly parallel the table's offsets are kilometres, and its products round at
+        # that size (the Kinova Gen3 lite: 38 km; near its elbow singularity the polish then
+        # reaches 1e-11 of the arm's size too rarely, and solutions were lost)
+        self.scale = max(1e-3, float(chain.dh_length))
         self._why = self.refusal_of(chain)
         self._elim = None if self._why is not None else _Elimination(chain, self.scale)
 
@@ -465,7 +471,7 @@ class GeneralSixR:
         if any(k != "R" for k in chain.kinds):
             j = 1 + list(chain.kinds).index("P")
             return f"the general 6R method needs revolute joints, joint {j} is prismatic"
-        scale = float(chain.scale)
+        scale = max(1e-3, float(chain.dh_length))
         al = np.ascontiguousarray(chain.alpha, dtype=float)
         a = np.ascontiguousarray(chain.a, dtype=float) / scale
         d = np.ascontiguousarray(chain.d0, dtype=float) / scale

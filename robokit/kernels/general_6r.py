@@ -1305,7 +1305,8 @@ def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri:
                        const: np.ndarray, vec: np.ndarray, out: np.ndarray, start: int) -> tuple[int, float]:
     """The polished rotation angles θ (6,) of the solutions for the scaled target T06s with one
     reading, into the rows start, start + 1, … of out: (how many, the conditioning figure — the
-    smallest σ_min/σ_max of Q, of A and of the pencil at x0)."""
+    smallest σ_min/σ_max of Q, of A and of the pencil at x0; 0 when the eigenvalue iteration did
+    not converge, so that the pose is also solved with the next readings)."""
     alpha, a, d = chain[0, :5], chain[1, :5], chain[2]
     gamma, t = tol[T_GAMMA], tol[T_TURN]
     work = np.empty((3, 12, 12))
@@ -1336,7 +1337,10 @@ def reading_candidates(chain: np.ndarray, tol: np.ndarray, T06s: np.ndarray, ri:
     wr = np.empty(n)
     wi = np.empty(n)
     if eigenvalues(H, wr, wi) != 0:
-        return 0, ratio
+        # the QR iteration did not converge (a cluster of equal roots that every pose of the arm
+        # has for this reading, e.g. the xArm 6's with θ₃ as the eigenvalue): no candidates, and
+        # the figure 0 so that the pose is solved with the next readings too
+        return 0, 0.0
     roles = ri[:6]
     v = np.empty(12)
     th = np.empty(6)

@@ -1544,6 +1544,7 @@ static void g6r_candidates(const g6r_arm *arm, const g6r_reading *rd, const doub
     /* the roots x = +-i of the half-angle substitution (pivot outermost: four pairs) removed first */
     n = rd->deflate > 0 ? g6r_deflate((const double (*)[6][9])w->abc, M, w->u) : 24;
     if (g6r_eigenvalues(n, M, wr, wi, w->u + 768) != 0) {
+        *poor = 1;  /* the QR iteration did not converge: the pose is solved with the next readings too */
         return;
     }
     /* 5-6: every eigenvalue real to the tolerance (as an angle): back-substitution, polish */
