@@ -86,6 +86,16 @@ _ANGLE_TOL = 1e-9  # rad: axes this close to parallel are parallel
 #: ``AnalyticIK(table, _EXACT_ONLY)``: the exact closed forms only (the projected arm of a calibrated one).
 _EXACT_ONLY: Any = object()
 _DIST_TOL = 1e-9  # m (scaled by the arm's size when larger than 1 m)
+#: An exactly special arm whose DH table's offsets sum to more than this many times the arm's size
+#: (two consecutive axes nearly but not exactly parallel: their common normal is far away, and the
+#: offsets are kilometres of opposite signs) is solved as a nearly special arm instead (the
+#: projected arm's closed form, those axes made parallel, then Newton on the arm: robokit.ik.calibrated):
+#: the special closed form's arithmetic cancels those offsets. MuJoCo Menagerie's UFACTORY Lite 6 (right
+#: angles written to 6 digits: axes 2 and 3 7.3e-6 rad apart, offsets 27 km, 6.6e4 × its size) lost
+#: roots at 4 of 15 poses within 1e-3 rad of its elbow singularity, the generating configuration at 6
+#: (its roots of degree 2 cancel d₂² ≈ 7e8 m²); solved so, none. At 100 × the cancellation costs about
+#: 1e-12 of the arm's size.
+ILL_DH = 100.0
 
 
 @dataclass(frozen=True)
@@ -351,6 +361,18 @@ class AnalyticIK:
         # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
         self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
         self.calibrated = None
+        exact: tuple[ClosedFormKind, Any] | None = None
+        if (self.kind.method in ("spherical wrist", "three parallel axes") and self.chain.n == 6
+                and self._try_calibrated and self.chain.dh_length > ILL_DH * self.chain.scale):
+            # an exactly special arm with a DH table too ill-conditioned for its closed form (ILL_DH):
+            # the calibrated path below, which solves the projected arm (nearly parallel axes made
+            # parallel) and polishes on the arm; the exact method stays if that path does not apply
+            exact = (self.kind, self.solver), self.reversed
+            self.kind = ClosedFormKind(None, (
+                f"{self.kind.reason}, but the DH table's offsets sum to {self.chain.dh_length:.3g} m, "
+                f"{self.chain.dh_length / self.chain.scale:.2g} × the arm's size (two axes nearly but not "
+                f"exactly parallel), too large for its closed form's arithmetic"))
+            self.solver, self.reversed = None, False
         if self.kind.method is None and self.chain.n == 6 and self._try_calibrated:
             # a calibrated or nearly special arm: the nominal structure's closed form, then Newton on
             # the arm's own kinematics (robokit.ik.calibrated); its PoE, not the DH table, is solved
@@ -361,9 +383,12 @@ class AnalyticIK:
                                       self._revolute, self._limits, self._nominal,
                                       lambda arm: AnalyticIK(arm, _EXACT_ONLY))
             if cal is not None:
-                self.kind, self.calibrated, override = ClosedFormKind(cal.method, cal.reason), cal, None
+                reason = cal.reason if exact is None else f"{self.kind.reason}: {cal.reason}"
+                self.kind, self.calibrated, override = ClosedFormKind(cal.method, reason), cal, None
             elif self._nominal is not None:
                 raise InputError(f"nominal: {why}")
+            elif exact is not None:
+                (self.kind, self.solver), self.reversed = exact
         if self.kind.method is None and self.chain.n == 6:
             # solvers for arms with no special structure (e.g. a general 6R elimination): each
             # says by refusal() whether it takes the chain; the first that does solves it
