@@ -692,7 +692,7 @@ static int {P}_finish(const double rows[][{n}], const int lab[], const int deg[]
         if k.method == "spherical wrist":
             if quartic:
                 src.append(self.poly_helpers())
-            src.append(_pieper_helpers(self))
+            src.append(_pieper_helpers(self, quartic))
         if self.fold and k.method != "spherical wrist":
             src.append(_parallel_free_helpers(self))
         src.append(self.finish())
@@ -747,7 +747,7 @@ def _val(coef: Any, kind: str, x: str, c: str, s: str) -> Val:
     return lin([(k1, x), (k2, f"{x} * {x}")], k0)
 
 
-def _pieper_helpers(e: _Emitter) -> str:
+def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     k, P, t = e.k, e.P, e.tol
     sv = k.pieper
     assert sv is not None  # the spherical wrist's constants
@@ -951,6 +951,8 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
 """
     a, rest = text.split("@@CHECK_START@@")
     mid, b = rest.split("@@CHECK_END@@")
+    if not quartic:  # the check and polish are for the quartic's numerical roots only
+        mid = ""
     return a + mid + b
 
 
@@ -1164,22 +1166,12 @@ def _pieper_joint1(e: _Emitter, sv: PieperConstants, W: list[Val]) -> str:
 
 
 def _pieper_accept(e: _Emitter, sv: PieperConstants) -> str:
-    """C that checks a root of the quartic (a spurious one dropped, a close one polished); a
-    closed-form root of degree ≤ 2 is polished when that brings it closer, never dropped (as the
-    kernel's ``_pieper_position``: its coefficients cancel where axes 2 and 3 are nearly parallel)."""
+    """C that checks a root of the quartic (a spurious one dropped, a close one polished); the
+    closed-form roots of degree ≤ 2 need no check (an arm whose DH table would make them lose precision
+    is solved by the calibrated path: robokit.ik.closed_form.ILL_DH)."""
     P, t = e.P, e.tol
     if sv.deg != 4:
-        return f"""            if (!degenerate) {{  /* closed-form roots (degree <= 2): polished if that brings them closer */
-                err = {P}_wrist_error(q123, W);
-                if (err > {t(1e-12)} * {lit(sv.scale)}) {{
-                    const double k0 = q123[0], k1 = q123[1], k2 = q123[2];
-                    if (!({P}_polish(q123, W) < err)) {{
-                        q123[0] = k0;
-                        q123[1] = k1;
-                        q123[2] = k2;
-                    }}
-                }}
-            }}"""
+        return "            /* closed-form roots (degree <= 2): the back-substitution is exact */"
     return f"""            err = {P}_wrist_error(q123, W);
             if (err > {t(1e-12)} * {lit(sv.scale)}) {{
                 if (err > {t(1e-5)} * {lit(sv.scale)}) {{

@@ -361,7 +361,7 @@ class AnalyticIK:
         # limits (of q, not q′) with the 1e-12 tolerance of the within_limits flag folded in
         self._limits = None if qlim is None else [(float(lo) - 1e-12, float(hi) + 1e-12) for lo, hi in qlim]
         self.calibrated = None
-        exact: tuple[ClosedFormKind, Any] | None = None
+        exact: tuple[tuple[ClosedFormKind, Any], bool] | None = None
         if (self.kind.method in ("spherical wrist", "three parallel axes") and self.chain.n == 6
                 and self._try_calibrated and self.chain.dh_length > ILL_DH * self.chain.scale):
             # an exactly special arm with a DH table too ill-conditioned for its closed form (ILL_DH):

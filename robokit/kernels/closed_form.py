@@ -523,12 +523,7 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
             acc += m[k] * C[k, j]
         coeffs[j] = acc
     nr = _roots(coeffs, deg, rev3, roots3, fold)
-    # every triple is verified on the wrist-centre equation: the quartic's roots (from the companion
-    # matrix) are polished or dropped; the closed-form roots of degree ≤ 2 are polished when that
-    # brings them closer, never dropped — their coefficients cancel where axes 2 and 3 are nearly
-    # parallel (the DH table's d₂, d₃ are then kilometres: an xArm Lite 6 loaded from MuJoCo
-    # Menagerie's MJCF gave solutions 1e-6 m off the pose)
-    quartic = deg == 4
+    check = deg == 4  # roots from the companion matrix: verify (and polish) each triple
     degenerate = False
     nreal = nr
     if nr < 0:  # the equation holds for every joint-3 value: the documented choice q₃ = 0
@@ -612,19 +607,16 @@ def _pieper_position(ci: np.ndarray, cf: np.ndarray, C: np.ndarray, T: np.ndarra
             else:
                 q[0] = Wz - cf[_D0] - g3
             q[1], q[2] = cand[ic, 0], q3
-            if ir < nreal and (quartic or not degenerate):  # (a free joint keeps its documented value)
+            if check and ir < nreal:
                 _angles(cf, q, th, dd)
                 _wrist_point(cf, th, dd, p)
                 err = max(abs(W[0] - p[0]), abs(W[1] - p[1]), abs(W[2] - p[2]))
                 if err > 1e-12 * scale:
-                    if quartic and err > 1e-5 * scale:
+                    if err > 1e-5 * scale:
                         continue  # a spurious root (a complex pair taken as real)
-                    q0, q1, q2 = q[0], q[1], q[2]
-                    polished = _polish(cf, q, W)
-                    if quartic and polished > 1e-11 * scale:
+                    err = _polish(cf, q, W)
+                    if err > 1e-11 * scale:
                         continue
-                    if not quartic and not polished < err:
-                        q[0], q[1], q[2] = q0, q1, q2  # no better: the closed form's own values
             if n >= Q3.shape[0]:
                 break
             _angles(cf, q, th, dd)
