@@ -30,6 +30,7 @@ import pytest
 import robokit
 from shared_robots import benchmark_arms_off_by as _benchmark_arms_off_by, calibrated, robot as shared_robot, true_errors
 from calibrated_folds import UR5_FREE_WRIST, fold_starts
+from ik_sweep import angle_dist, sweep
 from robokit.calibration import chain_from_robot, robot_from_chain
 from robokit.description.dh import DHLink, DHTable
 from robokit.errors import InputError, RobokitWarning
@@ -37,13 +38,6 @@ from robokit.ik import ik_analytic, ik_analytic_kind
 from robokit.ik.closed_form import AnalyticIK, analytic_ik
 
 TOL = 1e-9
-SEEDS = 500
-
-
-def angle_dist(a, b):
-    d = np.asarray(a, float) - np.asarray(b, float)
-    return float(np.abs(np.angle(np.exp(1j * d))).max())
-
 
 
 
@@ -71,22 +65,6 @@ def arms():
     rng = np.random.default_rng(6)
     out["pieper"] = (nominal, robot_from_chain(nominal, chain_from_robot(nominal).perturbed(true_errors(6, rng))))
     return out
-
-
-def sweep(robot, T, seeds=SEEDS, rng=0):
-    """Distinct solutions robokit's compiled Levenberg–Marquardt (on the robot's PoE, joint limits
-    ignored so that every solution can be reached) finds from ``seeds`` uniform starts in [−π, π]⁶."""
-    from robokit.kernels.ik import solve_poe_ik
-
-    rng = np.random.default_rng(rng)
-    wide = np.tile([-4 * np.pi, 4 * np.pi], (robot.n, 1))
-    found = []
-    for k in range(seeds):
-        q, ok, _, _ = solve_poe_ik(robot.poe.M, robot.poe.Slist, T, rng.uniform(-np.pi, np.pi, robot.n), wide,
-                                   tol=1e-11, max_iterations=60, max_restarts=0, seed=k)
-        if ok and np.abs(robot.frame_pose(q) - T).max() < 1e-9 and not any(angle_dist(q, f) < 1e-6 for f in found):
-            found.append(q)
-    return found
 
 
 def check(robot, q_true, T, sols):

@@ -16,6 +16,7 @@ import pytest
 
 import robokit
 from robokit.ik import ik_analytic, ik_analytic_kind
+from ik_sweep import angle_dist, sweep
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "ufactory"
 
@@ -24,26 +25,6 @@ def load(name):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # e.g. the URDFs' zero inertias
         return robokit.load(DATA / name)
-
-
-def angle_dist(a, b):
-    return float(np.abs(np.angle(np.exp(1j * (np.asarray(a, float) - np.asarray(b, float))))).max())
-
-
-def sweep(robot, T, seeds=200, rng=0):
-    """Distinct exact solutions of the numerical IK from ``seeds`` uniform starts in [−π, π]⁶."""
-    from robokit.kernels.ik import solve_poe_ik
-
-    rng = np.random.default_rng(rng)
-    wide = np.tile([-4 * np.pi, 4 * np.pi], (robot.n, 1))
-    found = []
-    for k in range(seeds):
-        q, ok, _, _ = solve_poe_ik(robot.poe.M, robot.poe.Slist, T, rng.uniform(-np.pi, np.pi, robot.n), wide,
-                                   tol=1e-11, max_iterations=60, max_restarts=0, seed=k)
-        q = np.angle(np.exp(1j * q))  # (all joints revolute) into (−π, π]
-        if ok and np.abs(robot.frame_pose(q) - T).max() < 1e-9 and not any(angle_dist(q, f) < 1e-6 for f in found):
-            found.append(q)
-    return found
 
 
 def check_pose(robot, q, seeds=200, rng=0):
