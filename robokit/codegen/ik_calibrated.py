@@ -23,7 +23,10 @@ r"""C for the exact IK of a calibrated or nearly special arm (:mod:`robokit.ik.c
    ``TRACE_ROWS`` free rows of ``q``). In float32 neither the curve nor the branches' solutions are
    searched (the error along that curve is below float's tolerance: its points would pass for roots),
    so near singular poses float32 can return fewer solutions than double;
-5. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
+5. an odd number of solutions of an arm of revolute joints: the closest two within the kernel's
+   ``DOUBLE`` are one double root, the later dropped (``NAME_cal_double``; where none are, Python adds
+   the general 6R method's missing roots, which the C does not have);
+6. wrapping, limits, de-duplication and label repeats as every generated IK (``NAME_finish``).
 
 For a small stack (an RTOS task's 2 KB on a Cortex-M4) the starts, the search points and the
 solutions all live in the caller's ``q`` (16 rows): each row holds in turn a start and what it gave;
@@ -78,6 +81,48 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
     relax = ", ".join(f"{{{lit(float(fr))}, {lit(float(fl))}}}" for fr, fl in c["relax"])
     axis1 = [lit(float(v)) for v in c["axis1"]]
     steps = ", ".join(lit(float(f)) for f in c["explore_steps"])
+    t = tol
+    # an arm of revolute joints: an odd number of solutions holds a double root twice (NAME_cal_double)
+    parity = (f"if (ns & 1) {{  /* an odd number: a double root reached twice? */\n        ns = {P}_cal_double(rows, lab, "
+              f"deg, ns);\n    }}\n    ") if c["parity"] else ""
+    double_fn = f"""/* an odd number n of solutions (rows 0 .. n - 1, labels lab, degenerate flags deg) of an arm of revolute
+   joints, which off its nominal structure has an even number (the real roots of a polynomial of degree 16):
+   the closest two, when within {c["double"]:g} in every joint (modulo 2 pi), are one double root reached
+   twice; the later is dropped, the earlier flagged degenerate (robokit.kernels.calibrated_ik.DOUBLE). The
+   new number of solutions. In a frame of its own. */
+static {P}_CAL_NOINLINE int {P}_cal_double(double rows[][6], int lab[], int deg[], int n)
+{{
+    double best = {t(c["double"])};
+    int a, b, j, keep = 0, drop = 0;
+    for (b = 1; b < n; ++b) {{
+        for (a = 0; a < b; ++a) {{
+            double d = 0.0;
+            for (j = 0; j < 6; ++j) {{
+                const double e = fabs(remainder(rows[a][j] - rows[b][j], {lit(2 * math.pi)}));
+                d = e > d ? e : d;
+            }}
+            if (d < best) {{
+                best = d;
+                keep = a;
+                drop = b;
+            }}
+        }}
+    }}
+    if (drop == 0) {{
+        return n;
+    }}
+    deg[keep] = 1;
+    for (a = drop; a < n - 1; ++a) {{
+        for (j = 0; j < 6; ++j) {{
+            rows[a][j] = rows[a + 1][j];
+        }}
+        lab[a] = lab[a + 1];
+        deg[a] = deg[a + 1];
+    }}
+    return n - 1;
+}}
+
+""" if c["parity"] else ""
     header = [f"#define {P}_nominal_N {P}_N  /* the projected arm's closed form: the starts of {P}_ik */",
               f"#define {P}_nominal_MAX_SOLUTIONS 8", ""] + nom_code.header_lines + [
         f"/* Inverse kinematics of this calibrated arm ({safe_comment(c['method'])}): every solution for the",
@@ -101,7 +146,6 @@ def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) ->
         f"extern const int {P}_ik_max_solutions;",
         "",
     ]
-    t = tol
     R = lit(float(c["reach"]))
     fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
     # the curve of near-solutions is followed, and the branches' solutions are search points, in double
@@ -826,7 +870,7 @@ static {P}_CAL_INLINE void {P}_cal_keep(const double qq[6], int code, double row
     labdeg[{max_rows} + ns] = 1;
 }}
 
-/* NAME_finish in a frame of its own (not live together with the polish's) */
+{double_fn}/* NAME_finish in a frame of its own (not live together with the polish's) */
 static {P}_CAL_NOINLINE int {P}_cal_finish(const double rows[][6], const int lab[], const int deg[], int n,
                                           double q[], int info[])
 {{
@@ -1115,7 +1159,7 @@ int {P}_ik_ex(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS *
             }}
         }}
     }}
-    return {P}_cal_finish((const double (*)[6])rows, lab, deg, ns, q, info);
+    {parity}return {P}_cal_finish((const double (*)[6])rows, lab, deg, ns, q, info);
 }}
 
 int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])

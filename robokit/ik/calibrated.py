@@ -477,6 +477,11 @@ class CalibratedArm:
         self._into: Any = None  # the kernel's machine code without numba's type dispatch (_kci.solve_into_entry)
         self._warned = False
         self._general_warned = False  # AnalyticIK._general's warning, said once per arm
+        self._odd_warned = False  # AnalyticIK._even's warning, said once per arm
+        #: Every joint revolute: off its nominal structure the arm is a general 6R arm, whose solutions
+        #: are the real roots of a polynomial of degree 16, an even number of them (complex roots come in
+        #: conjugate pairs); an odd count means one is missing (:data:`robokit.kernels.calibrated_ik.DOUBLE`).
+        self.parity = all(bool(r) for r in revolute)
         ang, dist = deviation
         off = []
         if STRUCTURES[structure][0]:
@@ -501,6 +506,7 @@ class CalibratedArm:
         """
         return {"method": self.method, "reason": self.reason, "shoulder": self.shoulder.copy(), "reach": self.reach,
                 "tol_stop": TOL_STOP, "tol_accept": TOL_ACCEPT, "max_steps": MAX_STEPS, "same": _kci.SAME,
+                "double": _kci.DOUBLE, "parity": self.parity,
                 "explore": _kci.EXPLORE, "explore_steps": tuple(_kci.EXPLORE_STEPS), "max_step": _kci.MAX_STEP,
                 "sigma_explore": self.sigma_explore, "every": self._every, "explore_max_steps": _kci.EXPLORE_MAX_STEPS,
                 "trace_step": _kci.TRACE_STEP, "trace_steps": _kci.TRACE_STEPS, "trace_pull": _kci.TRACE_PULL,
@@ -627,6 +633,41 @@ class CalibratedArm:
             s = plain[k]
             plain[k] = IKSolution(s.q, s.within_limits, f"{s.label} (merged with {names})", s.degenerate)
         return plain
+
+    def missing(self, sols: Sequence[IKSolution], others: Sequence[IKSolution], T: np.ndarray) -> list[IKSolution]:
+        """Those of ``others`` (another method's solutions) that reach T (1e-9 in every entry of the
+        pose) and are not within :data:`robokit.kernels.calibrated_ik.DOUBLE` (rad or m, angles modulo
+        2π) of one of ``sols`` or of one taken before.
+
+        Parameters
+        ----------
+        sols, others : sequence of IKSolution
+            The solutions found, and the candidates.
+        T : numpy.ndarray, shape (4, 4)
+            The tip pose.
+
+        Returns
+        -------
+        list of IKSolution
+            The new ones, in the order of ``others``.
+        """
+        from robokit.kinematics.poe import fkin_space
+
+        rev = self._post_q[1] != 0.0
+        have = [np.asarray(s.q, dtype=float) for s in sols]
+        new: list[IKSolution] = []
+        for s in others:
+            q = np.asarray(s.q, dtype=float)
+            if not np.abs(fkin_space(self.M, self.Slist, q) - T).max() <= 1e-9:
+                continue
+            if have:
+                d = np.abs(q - np.stack(have))
+                d[:, rev] = np.abs(np.remainder(d[:, rev] + math.pi, 2.0 * math.pi) - math.pi)
+                if d.max(axis=1).min() < _kci.DOUBLE:
+                    continue
+            have.append(q)
+            new.append(s)
+        return new
 
     def branches(self, T: np.ndarray, wrist_ref: float = 0.0) -> list[Branch]:
         """What became of each branch of the nominal structure at the pose T: a solution of its own,

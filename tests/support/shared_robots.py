@@ -88,3 +88,38 @@ def benchmark_arms_off_by(size: float) -> dict[str, robokit.Robot]:
 #: (closed_form.FOLD_POSITION_WRIST): the arm's roots there were missing without a warning.
 PIEPER_FOLD_POSITION_WRIST = [-2.85949563904747, 1.4814951679468136, -3.1161356503366093, -0.7091959744379821,
                               3.1178353574787296, -1.1140014288872808]
+
+
+#: Configurations of the benchmark's calibrated arms (``benchmark_arms_off_by(2e-3)``; "ur5e": :func:`factory_ur5e`)
+#: where ``ik_analytic`` found an odd number of solutions and the one missing was the configuration itself
+#: (draws 2280 and 11306 of ``default_rng(4242)`` on the PUMA 560, 1888 on the UR5 and the UR5e): an arm of
+#: revolute joints off its nominal structure has an even number (robokit.kernels.calibrated_ik.DOUBLE).
+ODD_MISSING = [
+    ("puma560", [-0.13424757411517074, -1.8446801467608538, 1.6639601401311195, 0.8817324211602928,
+                 -1.3981602811090856, -1.226973136222937]),
+    ("puma560", [1.4640401560619893, -1.6258816597101156, 1.6140121115473938, -2.3050655022269813,
+                 1.419053851729352, -3.09661564767282]),
+    ("ur5", [-4.019468316972308, -1.7436863189651755, 0.14534421724616475, 0.6074009567780445, 3.268878867650173,
+             -0.35988639521504684]),
+    ("ur5e", [-4.019468316972043, -1.7436863189650609, 0.14534421724615543, 0.6074009567780045, 3.268878867649958,
+              -0.35988639521502286]),
+]
+#: ... and where an odd number came from one double root reached twice (two returned solutions 1.0e-7 and
+#: 2.4e-7 apart; draw 2980 of ``default_rng(777)`` on the random Pieper arm, 11934 of ``(4242)`` on the UR5e).
+ODD_DOUBLE = [
+    ("pieper", [-0.6022658182936782, -3.100859162096359, 1.1817775647673274, -2.9276173902750284, 2.901509753600898,
+                -0.11092869925286442]),
+    ("ur5e", [4.406052027438484, 5.375558108289555, -3.020379183210178, 0.9561657060150957, 1.1580518573146792,
+              3.7794841794579312]),
+]
+
+
+@functools.cache
+def odd_arm(name: str) -> robokit.Robot:
+    """The arm of an ``ODD_MISSING`` / ``ODD_DOUBLE`` entry, once per process."""
+    return factory_ur5e() if name == "ur5e" else _benchmark_arms_2mm()[name]
+
+
+@functools.cache
+def _benchmark_arms_2mm() -> dict[str, robokit.Robot]:
+    return benchmark_arms_off_by(2e-3)
