@@ -130,12 +130,12 @@ def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None
         found = _package_in(d, pkg)
         if found is not None:
             return found.resolve()
-    stopped = []
+    stopped: list[str] = []
     for d in folders:  # then at any depth, as colcon finds a workspace's packages (src/<repository>/<package>)
-        found, cut = package_below(d, pkg)
+        found, stopped_here = package_below(d, pkg)
         if found is not None:
             return found
-        if cut:
+        if stopped_here:
             stopped.append(str(d))
     if start is not None:
         s = Path(start).resolve()
@@ -145,10 +145,10 @@ def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None
                 return found.resolve()
     where = [str(d) for d in folders] + ([f"{Path(start).resolve().parent} and the folders above it"]
                                          if start is not None else [])
-    cut = (f"; the search below {', '.join(stopped)} stopped after {MAX_PACKAGE_SEARCH} folders: give the "
-           "folder that holds the package" if stopped else "")
+    bound = (f"; the search below {', '.join(stopped)} stopped after {MAX_PACKAGE_SEARCH} folders: give the "
+             "folder that holds the package" if stopped else "")
     raise InputError(f"package {pkg!r} not found (no package.xml named {pkg!r} in {'; '.join(where) or 'no folder'}"
-                     f"{cut}); add its parent folder with --package-path / package_dirs=")
+                     f"{bound}); add its parent folder with --package-path / package_dirs=")
 
 
 class _ArgRecorder(dict):
