@@ -94,3 +94,37 @@ def test_every_solution_exact_and_none_missed(label, reference):
             assert min(angle_dist(f, s.q) for s in sols) < 1e-6, f"numerical solution {f} not returned"
         roots += len(found)
     assert roots >= 4 * POSES  # the sweep found roots: the check is not empty
+
+
+@pytest.mark.parametrize("label", ["KUKA KR 210 L150", "FANUC LR Mate 200iD"])
+def test_near_the_wrist_singularity_still_exact(label, reference):
+    """θ₅ within 1e-10..1e-6 rad of the wrist singularity (axes 4 and 6 nearly lined up). Before, θ₄ and
+    θ₆ were each taken from a vector of length ~θ₅ (each off by its rounding / θ₅) and |sin θ₅| from
+    1 − cos² θ₅: solutions up to 2e-6 off the pose (2e-16 / θ₅), not marked degenerate. Now θ₆ is what θ₄
+    and θ₅ leave of the whole rotation and |sin θ₅| comes from the wrist direction across axis 4."""
+    maker, rel, _ = ARMS[label]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = robokit.load(DATA / maker / rel)
+    model = pin.buildModelFromXML(reference[label])
+    data = model.createData()
+    iq = [model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]
+    fid = model.getFrameId(robot.tip)
+
+    def fk(q):
+        qf = pin.neutral(model)
+        qf[iq] = q
+        pin.framesForwardKinematics(model, data, qf)
+        return data.oMf[fid].homogeneous.copy()
+
+    rng = np.random.default_rng(9)
+    lo, hi = model.lowerPositionLimit[iq], model.upperPositionLimit[iq]
+    for q5 in (3e-10, 1e-9, 3e-9, 1e-8, 3e-8, 1e-7, 1e-6):
+        for _ in range(6):
+            q = rng.uniform(lo, hi)
+            q[4] = q5 * rng.choice([-1.0, 1.0])
+            T = fk(q)
+            sols = ik_analytic(robot, T)
+            assert sols
+            for s in sols:
+                assert np.abs(fk(s.q) - T).max() < 1e-9, (q5, s.label)
