@@ -168,8 +168,9 @@ def load(name_or_path: str | os.PathLike[str] | Robot | DHTable | RobotSpec, tip
         tree, see :func:`~robokit.description.builder.choose_tip`).
     package_dirs : sequence of str or Path, optional
         Folders searched for ROS packages: ``package://pkg/...`` meshes of a URDF, xacro or
-        SDFormat file, ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``; the
-        file's own folder and the folders above it are always searched), and the folders of
+        SDFormat file, ``$(find pkg)`` in a xacro file (a folder holding ``<pkg>/package.xml``, or
+        the package at any depth below it as colcon finds a workspace's packages; the file's own
+        folder and the folders above it are always searched), and the folders of
         SDFormat ``model://NAME`` includes.
     xacro_args : dict of str to str, optional
         xacro argument values (``{"name": "value"}``), xacro files only.

@@ -24,8 +24,14 @@ from typing import Iterable, Sequence
 
 from robokit.errors import InputError
 
-__all__ = ["MAX_MESH_BYTES", "MAX_TOTAL_MESH_BYTES", "allowed_roots", "confine", "is_inside", "mesh_file_problem",
-           "package_name", "without_meshes"]
+__all__ = ["MAX_MESH_BYTES", "MAX_PACKAGE_SEARCH", "MAX_TOTAL_MESH_BYTES", "allowed_roots", "confine", "is_inside",
+           "mesh_file_problem", "package_below", "package_name", "without_meshes"]
+
+#: Folders that :func:`package_below` looks at under one ``package_dirs`` folder, at most (a
+#: workspace's ``src/`` holds tens to hundreds; a home folder given by mistake is not crawled whole).
+MAX_PACKAGE_SEARCH = 10_000
+#: Marker files that hide a folder from colcon and catkin, and so from :func:`package_below`.
+_IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 
 
 def without_meshes(collision: bool, count: int) -> str:
@@ -168,6 +174,69 @@ def confine(path: str | os.PathLike[str], roots: Iterable[str | os.PathLike[str]
 
 #: Largest ``package.xml`` read to learn a package's name.
 MAX_PACKAGE_XML_BYTES = 1 << 20
+
+
+def package_below(folder: str | os.PathLike[str], pkg: str) -> tuple[Path | None, bool]:
+    """The package named ``pkg`` at any depth below ``folder``, found as colcon and catkin find a
+    workspace's packages: a folder holding a ``package.xml`` is a package and is not searched
+    further; hidden folders and folders holding ``COLCON_IGNORE``, ``CATKIN_IGNORE`` or
+    ``AMENT_IGNORE`` are skipped; shallower folders first, each level in name order, a folder reached
+    twice through symbolic links visited once; at most :data:`MAX_PACKAGE_SEARCH` folders.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        Where to search (a ``package_dirs`` folder: a workspace's ``src/``, which may hold the makers'
+        repositories, each holding its packages).
+    pkg : str
+        The package name (the ``<name>`` of its ``package.xml``).
+
+    Returns
+    -------
+    (Path or None, bool)
+        The package's folder (None when not found), and whether the search stopped at
+        :data:`MAX_PACKAGE_SEARCH` folders before it was done.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     pkg = pathlib.Path(tmp, "kuka_experimental", "kuka_kr6_support")
+    ...     pkg.mkdir(parents=True)
+    ...     _ = (pkg / "package.xml").write_text("<package><name>kuka_kr6_support</name></package>")
+    ...     found, stopped = package_below(tmp, "kuka_kr6_support")
+    ...     print(found == pkg.resolve(), stopped)
+    True False
+    """
+    level = [Path(folder)]
+    seen: set[Path] = set()
+    visited = 0
+    while level:
+        deeper: list[Path] = []
+        for d in level:
+            try:
+                real = d.resolve()
+                if real in seen or not real.is_dir():
+                    continue
+            except (OSError, RuntimeError):
+                continue
+            seen.add(real)
+            visited += 1
+            if visited > MAX_PACKAGE_SEARCH:
+                return None, True
+            if any((d / marker).exists() for marker in _IGNORE_MARKERS):
+                continue
+            manifest = d / "package.xml"
+            if manifest.is_file():
+                if package_name(manifest) == pkg:
+                    return real, False
+                continue  # a package: colcon does not look for packages inside one
+            try:
+                deeper.extend(sorted(c for c in d.iterdir() if not c.name.startswith(".")))
+            except OSError:
+                continue
+        level = deeper
+    return None, False
 
 
 def package_name(package_xml: str | os.PathLike[str]) -> str | None:

@@ -31,7 +31,7 @@ What is read
     * ``<frame name attached_to>`` — an operational frame of the model;
     * nested ``<model>``\ s (names scoped ``outer::inner::link``), ``<include>`` of
       ``model://NAME`` (a folder NAME with a ``model.config`` or a ``model.sdf``) and
-      ``package://PKG/…`` URIs, looked up in ``package_dirs`` and beside the including file,
+      ``package://PKG/…`` URIs, looked up in ``package_dirs`` (at any depth below them, as colcon finds packages) and beside the including file,
       with ``<name>``, ``<pose>``, ``<static>``, ``<placement_frame>`` and ``merge``.
 
 Frames and poses (SDFormat 1.7–1.11, and the 1.4–1.6 rules before them)
@@ -83,7 +83,7 @@ from robokit._io import decode_utf8, read_input_bytes
 from robokit._xml import parse_xml
 from robokit.description.builder import build_robot
 from robokit.description.limits import check_joint_count
-from robokit.description.meshes import allowed_roots, confine, package_name
+from robokit.description.meshes import allowed_roots, confine, package_below, package_name
 from robokit.description.model_builder import (Description, FrameSpec, Geometry, Inertial, Joint, Link, Pose,
                                                build_model)
 from robokit.description.robot import Robot
@@ -376,7 +376,12 @@ def _resolve_uri(rd: _Reader, uri: str, source: Path) -> Path | None:
                 if os.path.lexists(root / name):
                     return root / name / rel
             return None
-        return _find_package(name, rel, [*rd.package_dirs, source.parent, *source.parent.parents])
+        found = _find_package(name, rel, [*rd.package_dirs, source.parent, *source.parent.parents])
+        for d in [] if found is not None else rd.package_dirs:  # at any depth, as colcon finds packages
+            pkg, _ = package_below(d, name)
+            if pkg is not None and os.path.lexists(pkg / rel):
+                return pkg / rel
+        return found
     if "://" in uri and not uri.startswith("file://"):
         raise InputError(f"{source}: URI {uri!r}: only model://, package://, file:// and paths are read")
     p = Path(uri[len("file://"):] if uri.startswith("file://") else uri)

@@ -9,6 +9,8 @@ joint, and returns the document with every mesh reference resolved:
 * ``package://pkg/path`` is looked up in the package roots (the URDF's folder and its
   ancestors, plus any ``package_dirs`` given): ``<root>/pkg/path`` or, when a root is the
   package itself (``<root>/package.xml`` with that name, or a folder of that name), ``<root>/path``;
+  then at any depth below each ``package_dirs`` folder, as colcon finds a workspace's packages
+  (:func:`robokit.description.meshes.package_below`);
 * a relative path is taken from the URDF's folder;
 * a mesh that resolves outside the URDF's folder and the package roots (an absolute path,
   ``../``, ``file://``) is refused unless ``allow_outside_meshes=True``;
@@ -57,7 +59,7 @@ from robokit._stack import outside_level
 from robokit._xml import parse_xml
 from robokit.description.limits import check_joint_count
 from robokit.description.meshes import (MAX_TOTAL_MESH_BYTES, without_meshes, allowed_roots, is_inside, mesh_file_problem,
-                                         package_name)
+                                         package_below, package_name)
 from robokit.description.reflected import DrakeRotor
 from robokit.description.urdf_description import color_problem
 from robokit.errors import InputError, RobokitWarning
@@ -214,8 +216,11 @@ def _inside(p: Path, roots: Iterable[Path]) -> bool:
     return is_inside(p, roots)
 
 
-def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]) -> tuple[Path | None, str]:
-    """(resolved absolute path or None, reason) for a mesh filename attribute."""
+def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path],
+                  package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> tuple[Path | None, str]:
+    """(resolved absolute path or None, reason) for a mesh filename attribute; a ``package://`` name
+    not found in ``roots`` is looked for at any depth below ``package_dirs`` (as colcon finds a
+    workspace's packages)."""
     folder = path.parent.resolve()
     if uri.startswith("package://"):
         rest = uri[len("package://"):]
@@ -224,6 +229,10 @@ def _resolve_mesh(uri: str, path: Path, roots: list[Path], allowed: list[Path]) 
             for cand in (root / pkg / rel, root / rel if (root.name == pkg or _is_package(root, pkg)) else None):
                 if cand is not None and cand.is_file():
                     return cand.resolve(), ""
+        for d in package_dirs or ():
+            found, _ = package_below(Path(d).expanduser(), pkg)
+            if found is not None and (found / rel).is_file():
+                return (found / rel).resolve(), ""
         return None, "not found in the package roots"
     p = Path(uri[len("file://"):]) if uri.startswith("file://") else Path(uri)
     cand = p if p.is_absolute() else folder / p
@@ -420,7 +429,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
                 if mesh is None:
                     continue
                 uri = mesh.get("filename") or ""
-                resolved, reason = _resolve_mesh(uri, path, pkg_roots, allowed)
+                resolved, reason = _resolve_mesh(uri, path, pkg_roots, allowed, package_dirs)
                 if reason == "outside" and not allow_outside_meshes:
                     _fail(path, f"link {lname!r}: mesh {uri!r} is outside the URDF's folder, its package and the "
                                 "package folders given (allow_outside_meshes=True reads it; --allow-outside-meshes on the "

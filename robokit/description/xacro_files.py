@@ -5,9 +5,11 @@ URDF. ROS finds packages through its index (``$(find pkg)`` needs ``ament_index_
 robokit finds them itself, in this order:
 
 1. each folder ``D`` of ``package_dirs``: ``D/<pkg>/package.xml``, ``D`` itself when its
-   ``package.xml`` is named ``<pkg>``, or a sub-folder of ``D`` whose ``package.xml`` is;
-2. the xacro file's own folder and every folder above it, by the same three rules — so a
-   package found beside the file (a ROS workspace's ``src/``) needs no option.
+   ``package.xml`` is named ``<pkg>``, or a sub-folder of ``D`` whose ``package.xml`` is; then,
+   in each ``D``, the package at any depth below it, as colcon finds a workspace's packages
+   (``src/<repository>/<package>``: :func:`robokit.description.meshes.package_below`);
+2. the xacro file's own folder and every folder above it, by the three rules of step 1 (not at
+   any depth) — so a package found beside the file (a ROS workspace's ``src/``) needs no option.
 
 The package of a ``package.xml`` is its ``<name>`` element (the folder name if it has none).
 ``$(find pkg)`` (also inside ``$(eval ...)``) becomes the package folder, and mesh URIs
@@ -39,7 +41,7 @@ from robokit.description.urdf_files import _from_urdf_file, absolute_dirs
 from robokit._io import read_input_bytes
 from robokit._xml import check_xml, parse_xml
 from robokit.description.limits import check_joint_count
-from robokit.description.meshes import allowed_roots, confine, package_name
+from robokit.description.meshes import MAX_PACKAGE_SEARCH, allowed_roots, confine, package_below, package_name
 from robokit.description.urdf_check import MAX_URDF_BYTES
 from robokit.description.xacro_safety import guarded
 from robokit._deprecation import warn
@@ -128,6 +130,13 @@ def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None
         found = _package_in(d, pkg)
         if found is not None:
             return found.resolve()
+    stopped: list[str] = []
+    for d in folders:  # then at any depth, as colcon finds a workspace's packages (src/<repository>/<package>)
+        found, stopped_here = package_below(d, pkg)
+        if found is not None:
+            return found
+        if stopped_here:
+            stopped.append(str(d))
     if start is not None:
         s = Path(start).resolve()
         for d in ([s] if s.is_dir() else []) + list(s.parents):
@@ -136,8 +145,10 @@ def find_package(pkg: str, package_dirs: Sequence[str | os.PathLike[str]] | None
                 return found.resolve()
     where = [str(d) for d in folders] + ([f"{Path(start).resolve().parent} and the folders above it"]
                                          if start is not None else [])
-    raise InputError(f"package {pkg!r} not found (no package.xml named {pkg!r} in {'; '.join(where) or 'no folder'}); "
-                     "add its parent folder with --package-path / package_dirs=")
+    bound = (f"; the search below {', '.join(stopped)} stopped after {MAX_PACKAGE_SEARCH} folders: give the "
+             "folder that holds the package" if stopped else "")
+    raise InputError(f"package {pkg!r} not found (no package.xml named {pkg!r} in {'; '.join(where) or 'no folder'}"
+                     f"{bound}); add its parent folder with --package-path / package_dirs=")
 
 
 class _ArgRecorder(dict):

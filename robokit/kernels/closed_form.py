@@ -388,6 +388,11 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
             c5 = math.copysign(math.cos(math.sqrt(2.0 * short)), c5)
         c5 = max(-1.0, min(1.0, c5))
         s5 = math.sqrt(max(0.0, 1.0 - c5 * c5))
+        yp0 = -ca4 * sa5 * c5 - sa4 * ca5
+        if fcode == 0 and s5 < 0.5 and abs(sa5) > 0.5 and abs(yp0) <= 0.5 * rho:
+            # |sin θ₅| from the wrist direction's length across axis 4 (ρ² = (sin α₅ sin θ₅)² + yp²),
+            # not from 1 − cos² θ₅, which loses its digits near the singularity
+            s5 = math.sqrt(rho * rho - yp0 * yp0) / abs(sa5)
     if rho <= 1e-10:
         th4_ref = q4_ref + cf[_TH0 + 3]
         gamma = math.atan2(ca4 * s5, c5)
@@ -408,6 +413,17 @@ def _wrist_angles(cf: np.ndarray, cs: np.ndarray, T: np.ndarray, q4_ref: float, 
         out[n, 0] = am - math.atan2(yp, sa5 * s)
         out[n, 1] = t5 if j == 0 else -t5  # atan2(−s, c) = −atan2(s, c) exactly (IEEE atan2 is odd in y)
         out[n, 2] = math.atan2(b_, sa4 * s) - ar
+        if rho < 1e-4:
+            # near the singularity θ₄ and θ₆ are each taken from vectors of length ρ (their rounding
+            # / ρ off), their sum from the whole rotation: θ₆ from what θ₄ and θ₅ leave of it
+            x, y, z = ex, ey, ez
+            c, s_ = math.cos(out[n, 0]), math.sin(out[n, 0])
+            x, y = c * x + s_ * y, c * y - s_ * x
+            y, z = ca4 * y + sa4 * z, ca4 * z - sa4 * y
+            c, s_ = math.cos(out[n, 1]), math.sin(out[n, 1])
+            x, y = c * x + s_ * y, c * y - s_ * x
+            y = ca5 * y + sa5 * z
+            out[n, 2] = math.atan2(y, x)
         flips[n] = (0 if s * k > 0.0 else 1) + fcode
         n += 1
         if s5 == 0.0:
