@@ -765,6 +765,17 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
     ca4, sa4, ca5, sa5 = ca[3], sa[3], ca[4], sa[4]
     kk = sa4 * sa5
     right = ca4 == 0.0 and ca5 == 0.0
+
+    def s5_near(cond: str) -> str:
+        """|sin th5| from the wrist direction's length across axis 4 near the singularity (the kernel's
+        closed_form._wrist_angles): 1 - cos^2 th5 loses its digits there."""
+        if not abs(sa5) > 0.5:
+            return ""
+        return f"""
+    yp = {lit(-ca4 * sa5)} * c5 + {lit(-sa4 * ca5)};
+    if ({cond}s5 < 0.5 && fabs(yp) <= 0.5 * rho) {{  /* near the singularity: rho^2 = (sin al5 s5)^2 + yp^2 */
+        s5 = sqrt(rho * rho - yp * yp) / {lit(abs(sa5))};
+    }}"""
     if right:
         c5s5 = f"""    c5 = -mz / {lit(kk)};  /* right-angled wrist (ZYZ type): |s5| = rho */
     s5 = rho;"""
@@ -781,14 +792,14 @@ def _pieper_helpers(e: _Emitter, quartic: bool) -> str:
         c5 = copysign(cos(sqrt(2.0 * gap)), c5);
     }}
     c5 = c5 > 1.0 ? 1.0 : (c5 < -1.0 ? -1.0 : c5);
-    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);"""
+    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);""" + s5_near("fc == 0 && ")
     else:
         c5s5 = f"""    c5 = ({lit(ca4 * ca5)} - mz) / {lit(kk)};
     if (fabs(c5) > 1.0 + {t(1e-10)}) {{
         return 0;  /* out of reach of an oblique wrist */
     }}
     c5 = c5 > 1.0 ? 1.0 : (c5 < -1.0 ? -1.0 : c5);
-    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);"""
+    s5 = sqrt(1.0 - c5 * c5 > 0.0 ? 1.0 - c5 * c5 : 0.0);""" + s5_near("")
     rots_m = [f"    const double ct[3] = {{cos(th[0]), cos(th[1]), cos(th[2])}};\n"
               f"    const double st[3] = {{sin(th[0]), sin(th[1]), sin(th[2])}};"]
     for i in range(3):
@@ -929,7 +940,6 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
         out[0][1] = atan2(s5, c5);
         out[0][2] = sk * (atan2(ey, ex) - th4 - gamma);
         flip[0] = 2;
-        (void)ez;
         return 1;
     }}
     am = atan2(my, mx);
@@ -941,6 +951,24 @@ static int {P}_wrist(const double th[3], const double R[9], double q4_ref, doubl
         out[i][0] = am - atan2(yp, {lit(sa5)} * sg);
         out[i][1] = atan2(sg, c5);
         out[i][2] = atan2(b, {lit(sa4)} * sg) - ar;
+        if (rho < {lit(1e-4)}) {{
+            /* near the singularity th4 and th6 are each taken from vectors of length rho (their rounding / rho
+               off), their sum from the whole rotation: th6 from what th4 and th5 leave of it */
+            double x6 = ex, y6 = ey, z6 = ez, c6 = cos(out[i][0]), s6 = sin(out[i][0]);
+            x = c6 * x6 + s6 * y6;
+            y6 = c6 * y6 - s6 * x6;
+            x6 = x;
+            x = {lit(ca4)} * y6 + {lit(sa4)} * z6;
+            z6 = {lit(ca4)} * z6 - {lit(sa4)} * y6;
+            y6 = x;
+            c6 = cos(out[i][1]);
+            s6 = sin(out[i][1]);
+            x = c6 * x6 + s6 * y6;
+            y6 = c6 * y6 - s6 * x6;
+            x6 = x;
+            y6 = {lit(ca5)} * y6 + {lit(sa5)} * z6;
+            out[i][2] = atan2(y6, x6);
+        }}
         flip[i] = (sg * {lit(kk)} > 0.0 ? 0 : 1){fold_add};
         if (s5 == 0.0) {{
             return 1;
