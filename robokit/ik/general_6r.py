@@ -456,11 +456,11 @@ class ArmPolish:
                 kept.append([q, label, bool(degen)])
         m = len(kept)
         out: list[tuple[Sequence[float], str, bool]] = []
-        for k, (q, label, degen) in enumerate(kept):
+        for number, (q, label, degen) in enumerate(kept, 1):
             head, sep, tail = label.partition(" of ")
             if head.startswith("solution ") and sep:
                 digits = len(tail) - len(tail.lstrip("0123456789"))
-                label = f"solution {k + 1} of {m}{tail[digits:]}"
+                label = f"solution {number} of {m}{tail[digits:]}"
             out.append((q.tolist(), label, degen))
         return out
 
