@@ -633,11 +633,11 @@ def _check_gen3(robot, q, T, sols, seeds, rng):
 def test_gen3_lite_near_its_elbow_singularity():
     """The Gen3 lite's axes 2 and 3 are 7.3e-6 rad from parallel: its DH table's offsets are -38 km,
     and the table, rounded at that size, reproduces the arm (Pinocchio) only to ~1e-11 m. The general 6R
-    method polished its solutions on that table: within 2e-4 rad of the elbow singularity (σ_min of
-    the Jacobian 4e-6 to 3e-4) a solution 1e-7 to 3e-6 rad off the generating configuration at 6 of
-    15 poses, two unmerged copies of one root and a near miss (3.5e-10 m off the pose, no root of the
-    arm) at another (13 solutions). Each solution is now finished on the arm's own kinematics
-    (general_6r.ArmPolish)."""
+    method polished its solutions on that table: with θ₃ within 2e-4 rad of the elbow singularity the
+    generating configuration was missing (1e-7 to 3e-6 rad off) at 29 of 30 measured poses, 10 had an
+    odd number of solutions (unmerged copies of one root; near misses 3.5e-10 m off the pose, no root
+    of the arm) and 3 of a 300-start sweep's 193 roots were not returned. Each solution is now finished
+    on the arm's own kinematics (general_6r.ArmPolish): 1 of 30 missing (see the report of the commit)."""
     robot = _gen3_lite()
     kind = ik_analytic_kind(robot)
     assert kind.method == "general 6R" and "finished by Newton's method on the arm's own kinematics" in kind.reason
