@@ -414,6 +414,19 @@ class AnalyticIK:
                     self.kind = ClosedFormKind(None, f"{self.kind.reason}; {'; '.join(reasons)}")
         if override is not None:
             self.kind, self.solver = override, None
+        # a general 6R arm whose DH table's offsets are kilometres (ILL_DH): the table reproduces the arm
+        # only to ~1e-11 m, so each solution is finished on the robot's own kinematics (general_6r.ArmPolish)
+        self._arm_polish: Any = None
+        if (self.kind.method == "general 6R" and self.solver is not None and not _is_table(robot)
+                and self.chain.dh_length > ILL_DH * self.chain.scale):
+            from robokit.ik.general_6r import ArmPolish
+
+            poe = cast("Robot", robot).poe
+            self._arm_polish = ArmPolish(poe.M, poe.Slist, self._revolute)
+            self.kind = ClosedFormKind(self.kind.method, (
+                f"{self.kind.reason}; its DH table's offsets sum to {self.chain.dh_length:.3g} m, "
+                f"{self.chain.dh_length / self.chain.scale:.2g} × the arm's size, so every solution is finished "
+                f"by Newton's method on the arm's own kinematics"))
         # the joint a singular pose leaves free (wrist_ref's joint), in the order of self.chain
         free = {"spherical wrist": 3, "three parallel axes": 5, "planar": 0}.get(self.kind.method or "")
         self._free_flipped = (free is not None and self._flip is not None
@@ -742,6 +755,8 @@ class AnalyticIK:
         if self._flip is not None:  # q = −q′ for the flipped joints
             flip = self._flip
             rows = [(tuple(-v if f else v for v, f in zip(q, flip)), label, degen) for q, label, degen in rows]
+        if self._arm_polish is not None:  # the DH table too coarse for the arm (ILL_DH): finished on the arm
+            rows = self._arm_polish.finish(T, rows)
         return solutions_from_rows(rows, self._revolute, self._limits)
 
 
