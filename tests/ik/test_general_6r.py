@@ -637,7 +637,7 @@ def test_gen3_lite_near_its_elbow_singularity():
     generating configuration was missing (1e-7 to 3e-6 rad off) at 29 of 30 measured poses, 10 had an
     odd number of solutions (unmerged copies of one root; near misses 3.5e-10 m off the pose, no root
     of the arm) and 3 of a 300-start sweep's 193 roots were not returned. Each solution is now finished
-    on the arm's own kinematics (general_6r.ArmPolish): 1 of 30 missing (see the report of the commit)."""
+    on the arm's own kinematics (general_6r.ArmPolish): 1 of 30 missing (docs/course/inverse-kinematics-closed-form.md)."""
     robot = _gen3_lite()
     kind = ik_analytic_kind(robot)
     assert kind.method == "general 6R" and "finished by Newton's method on the arm's own kinematics" in kind.reason
