@@ -30,7 +30,12 @@ per-robot entry points. The steps:
 5. the next three readings of the loop when the pose is badly conditioned for the best one,
    duplicates merged, the solutions ordered by q₃ then q₁, q₂, q₄, q₅, q₆ (as Python, so the
    order does not depend on the order in which the eigenvalues are found), the "singular"
-   flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``).
+   flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``);
+6. for an arm whose DH table's offsets are kilometres (``robokit.ik.closed_form.ILL_DH``, the Kinova
+   Gen3 lite), as :meth:`robokit.ik.general_6r.ArmPolish.finish`: each solution polished on the arm's
+   own kinematics by the calibrated arms' ``NAME_cal_polish``
+   (:func:`robokit.codegen.ik_calibrated.polish_code`), rows that do not reach the acceptance dropped,
+   copies merged, the labels renumbered (``NAME_g6_arm_finish``, :func:`arm_polish_code`).
 
 The per-arm numbers come from :class:`robokit.ik.GeneralSixRConstants` (the frozen record of
 ``GeneralSixR.export_constants()``, the same numbers the Python solver uses): the scaled DH
