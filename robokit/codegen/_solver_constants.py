@@ -51,6 +51,10 @@ class IKConstants:
     #: closed form of its projected arm (the starts), and this mapping holds the polish's numbers
     #: (method, reason, shoulder, reach and the kernel's tolerances); None otherwise.
     calibrated: Mapping[str, Any] | None = None
+    #: A general 6R arm whose DH table's offsets are kilometres (robokit.ik.closed_form.ILL_DH): every
+    #: solution finished by Newton's method on the arm's own kinematics (robokit.ik.general_6r.ArmPolish);
+    #: that polish's numbers, else None.
+    arm_polish: Mapping[str, Any] | None = None
 
 
 def ik_constants(robot: Any, nominal: Any = None) -> IKConstants:
@@ -89,4 +93,5 @@ def _read(robot: Any, c: ClosedFormConstants) -> IKConstants:
         parallel=c.solver if isinstance(c.solver, ParallelAxesConstants) else None,
         general=c.solver if isinstance(c.solver, GeneralSixRConstants) else None,
         planar=c.solver if isinstance(c.solver, PlanarConstants) else None,
-        flip=None if c.flip is None else list(c.flip), free_flipped=c.free_flipped, calibrated=c.calibrated)
+        flip=None if c.flip is None else list(c.flip), free_flipped=c.free_flipped, calibrated=c.calibrated,
+        arm_polish=c.arm_polish)

@@ -1589,6 +1589,8 @@ class _GeneralEmitter(_Emitter):
         solve = ik_general.emit_general_6r(self, w.text(), T06)
         n_max = ik_general.MAX_SOLUTIONS_6R
         src = [self.tables(), ik_general.routines(), ik_general.tables(k, P), self.finish(n_max, repeats=False)]
+        if k.arm_polish is not None:
+            src.append(ik_general.arm_polish_code(k, P, self.tol))
         src.append(f"""
 /* every closed-form solution of the general 6R arm, see {P}.h */
 int {P}_ik_ws(const double T[16], double wrist_ref, double q[{P}_MAX_SOLUTIONS * {P}_N], int info[4 * {P}_MAX_SOLUTIONS],

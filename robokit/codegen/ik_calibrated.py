@@ -44,7 +44,7 @@ from typing import Any
 
 from robokit.codegen._c import lit, safe_comment
 
-__all__ = ["calibrated_code"]
+__all__ = ["calibrated_code", "polish_code"]
 
 
 def calibrated_code(k: Any, prefix: str, tol: Any, emitter: Any, ikcode: Any) -> Any:
@@ -150,7 +150,6 @@ static {P}_CAL_NOINLINE int {P}_cal_double(double rows[][6], int lab[], int deg[
         "",
     ]
     R = lit(float(c["reach"]))
-    fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
     # the curve of near-solutions is followed, and the branches' solutions are search points, in double
     # only: in float the pose error along that curve is below float's tolerance, so its points would
     # pass for roots (float's condition asks for more free rows than there are; its search points are
@@ -180,8 +179,8 @@ static {P}_CAL_NOINLINE int {P}_cal_double(double rows[][6], int lab[], int deg[
     solutions_searched = "0 * nsol" if tol.float32 else f"({P}_IK_FULL_SEARCH ? nsol : 0)"
     # the 3 x 3 block factorization, emitted twice: for the polish and for the bound at the first solution
     # (each copy is inlined into its one caller, so the polish's frame does not grow by a call)
-    block_factor = _block_factor_code(P, c, "", "")
     block_factor2 = _block_factor_code(P, c, "2", "/* the same for {P}_cal_sigma_bound */\n".replace("{P}", P))
+    polish = polish_code(P, c, t, block_factor2)
     src = [nom_code.source, fin.tables(), fin.finish(max_rows), f"""
 /* the near-singular search starts from the branches' solutions too where the pose is near singular, and
    follows the curve of near-solutions (as robokit's ik_analytic): a pose near a singular configuration can
@@ -199,413 +198,7 @@ static {P}_CAL_NOINLINE int {P}_cal_double(double rows[][6], int lab[], int deg[
 #define {P}_CAL_NOINLINE
 #define {P}_CAL_INLINE
 #endif
-/* the spatial twist that moves T to Td (robokit.kernels.calibrated_ik._error): with A = Rd R^T,
-   s = vee(A - A^T)/2 = sin(theta) u and dp = pd - p: near Td (|s| < LOG_NEAR, trace(A) > 1) the log of
-   X = Td T^-1 to second order, w = (theta/sin theta) s, v = u - w x u/2 + k w x (w x u) with
-   u = pd - A p, theta/sin theta = 1 + |s|^2/6 + 3|s|^4/40, k = 1/12 + |w|^2/720; else w = s,
-   v = dp - w x p. *rot = |s| (2 - |s| beyond pi/2), *pos = |dp|; returns (rot^2 + pos^2)/2 */
-static double {P}_cal_error(const double T[16], const double Td[16], double F[6], double *rot, double *pos)
-{{
-    const double a00 = Td[0] * T[0] + Td[1] * T[1] + Td[2] * T[2];
-    const double a01 = Td[0] * T[4] + Td[1] * T[5] + Td[2] * T[6];
-    const double a02 = Td[0] * T[8] + Td[1] * T[9] + Td[2] * T[10];
-    const double a10 = Td[4] * T[0] + Td[5] * T[1] + Td[6] * T[2];
-    const double a11 = Td[4] * T[4] + Td[5] * T[5] + Td[6] * T[6];
-    const double a12 = Td[4] * T[8] + Td[5] * T[9] + Td[6] * T[10];
-    const double a20 = Td[8] * T[0] + Td[9] * T[1] + Td[10] * T[2];
-    const double a21 = Td[8] * T[4] + Td[9] * T[5] + Td[10] * T[6];
-    const double a22 = Td[8] * T[8] + Td[9] * T[9] + Td[10] * T[10];
-    const double sx = 0.5 * (a21 - a12), sy = 0.5 * (a02 - a20), sz = 0.5 * (a10 - a01);
-    const double px = T[3], py = T[7], pz = T[11];
-    const double dx = Td[3] - px, dy = Td[7] - py, dz = Td[11] - pz;
-    const double s2 = sx * sx + sy * sy + sz * sz;
-    const double tr = a00 + a11 + a22;
-    if (s2 < {lit(float(c["log_near"]) ** 2)} && tr > 1.0) {{
-        const double f = 1.0 + s2 * ({lit(1.0 / 6.0)} + s2 * 0.075);
-        const double wx = f * sx, wy = f * sy, wz = f * sz;
-        const double k = {lit(1.0 / 12.0)} + (wx * wx + wy * wy + wz * wz) * {lit(1.0 / 720.0)};
-        const double ux = Td[3] - (a00 * px + a01 * py + a02 * pz);
-        const double uy = Td[7] - (a10 * px + a11 * py + a12 * pz);
-        const double uz = Td[11] - (a20 * px + a21 * py + a22 * pz);
-        const double cx = wy * uz - wz * uy, cy = wz * ux - wx * uz, cz = wx * uy - wy * ux;
-        F[0] = wx;
-        F[1] = wy;
-        F[2] = wz;
-        F[3] = ux - 0.5 * cx + k * (wy * cz - wz * cy);
-        F[4] = uy - 0.5 * cy + k * (wz * cx - wx * cz);
-        F[5] = uz - 0.5 * cz + k * (wx * cy - wy * cx);
-    }} else {{
-        F[0] = sx;
-        F[1] = sy;
-        F[2] = sz;
-        F[3] = dx - (sy * pz - sz * py);
-        F[4] = dy - (sz * px - sx * pz);
-        F[5] = dz - (sx * py - sy * px);
-    }}
-    *rot = sqrt(s2);
-    if (tr < 1.0) {{
-        *rot = 2.0 - *rot;
-    }}
-    *pos = sqrt(dx * dx + dy * dy + dz * dz);
-    return 0.5 * (*rot * *rot + *pos * *pos);
-}}
-
-{fkj}
-/* out = 1/2 sum_(i<j) d_i d_j [J_i, J_j] (twists' bracket [(w, v), (w', v')] = (w x w', w x v' - w' x v)):
-   the second-order term of the pose error's change along d (Baker-Campbell-Hausdorff), summed as
-   sum_j [P_(j-1), d_j J_j] with the running sum P_j = sum_(i<=j) d_i J_i */
-static void {P}_cal_second_order(const double J[36], const double d[6], double out[6])
-{{
-    double pw0 = 0.0, pw1 = 0.0, pw2 = 0.0, pv0 = 0.0, pv1 = 0.0, pv2 = 0.0;
-    double o0 = 0.0, o1 = 0.0, o2 = 0.0, o3 = 0.0, o4 = 0.0, o5 = 0.0;
-    int j;
-    for (j = 0; j < 6; ++j) {{
-        const double dj = d[j];
-        const double bw0 = dj * J[j], bw1 = dj * J[6 + j], bw2 = dj * J[12 + j];
-        const double bv0 = dj * J[18 + j], bv1 = dj * J[24 + j], bv2 = dj * J[30 + j];
-        o0 += pw1 * bw2 - pw2 * bw1;
-        o1 += pw2 * bw0 - pw0 * bw2;
-        o2 += pw0 * bw1 - pw1 * bw0;
-        o3 += (pw1 * bv2 - pw2 * bv1) - (bw1 * pv2 - bw2 * pv1);
-        o4 += (pw2 * bv0 - pw0 * bv2) - (bw2 * pv0 - bw0 * pv2);
-        o5 += (pw0 * bv1 - pw1 * bv0) - (bw0 * pv1 - bw1 * pv0);
-        pw0 += bw0;
-        pw1 += bw1;
-        pw2 += bw2;
-        pv0 += bv0;
-        pv1 += bv1;
-        pv2 += bv2;
-    }}
-    out[0] = 0.5 * o0;
-    out[1] = 0.5 * o1;
-    out[2] = 0.5 * o2;
-    out[3] = 0.5 * o3;
-    out[4] = 0.5 * o4;
-    out[5] = 0.5 * o5;
-}}
-
-/* out (3 x 3 at out[o0 + 6 r + c]) = the inverse of the 3 x 3 block of M (6 columns) at row r0, column c0,
-   by its adjugate; returns the determinant (0: nothing written) */
-static double {P}_cal_inverse3(const double *M, int r0, int c0, double *out, int o0)
-{{
-    const double a00 = M[6 * r0 + c0], a01 = M[6 * r0 + c0 + 1], a02 = M[6 * r0 + c0 + 2];
-    const double a10 = M[6 * r0 + 6 + c0], a11 = M[6 * r0 + 7 + c0], a12 = M[6 * r0 + 8 + c0];
-    const double a20 = M[6 * r0 + 12 + c0], a21 = M[6 * r0 + 13 + c0], a22 = M[6 * r0 + 14 + c0];
-    const double b00 = a11 * a22 - a12 * a21, b01 = a02 * a21 - a01 * a22, b02 = a01 * a12 - a02 * a11;
-    const double b10 = a12 * a20 - a10 * a22, b11 = a00 * a22 - a02 * a20, b12 = a02 * a10 - a00 * a12;
-    const double b20 = a10 * a21 - a11 * a20, b21 = a01 * a20 - a00 * a21, b22 = a00 * a11 - a01 * a10;
-    const double det = a00 * b00 + a01 * b10 + a02 * b20;
-    double inv;
-    if (!(det > 0.0 || det < 0.0)) {{
-        return 0.0;
-    }}
-    inv = 1.0 / det;
-    out[o0] = b00 * inv;
-    out[o0 + 1] = b01 * inv;
-    out[o0 + 2] = b02 * inv;
-    out[o0 + 6] = b10 * inv;
-    out[o0 + 7] = b11 * inv;
-    out[o0 + 8] = b12 * inv;
-    out[o0 + 12] = b20 * inv;
-    out[o0 + 13] = b21 * inv;
-    out[o0 + 14] = b22 * inv;
-    return det;
-}}
-
-{block_factor}{block_factor2}/* x = J^-1 e from {P}_cal_block_factor's B and p (x may be e: e is read before x is written) */
-static void {P}_cal_block_solve(const double J[36], const double B[36], int p, const double *e, double *x)
-{{
-    const int o = 3 - p;
-    const double y0 = B[0] * e[0] + B[1] * e[1] + B[2] * e[2];
-    const double y1 = B[6] * e[0] + B[7] * e[1] + B[8] * e[2];
-    const double y2 = B[12] * e[0] + B[13] * e[1] + B[14] * e[2];
-    const double r0 = e[3] - (J[18 + p] * y0 + J[19 + p] * y1 + J[20 + p] * y2);
-    const double r1 = e[4] - (J[24 + p] * y0 + J[25 + p] * y1 + J[26 + p] * y2);
-    const double r2 = e[5] - (J[30 + p] * y0 + J[31 + p] * y1 + J[32 + p] * y2);
-    const double x0 = B[18] * r0 + B[19] * r1 + B[20] * r2;
-    const double x1 = B[24] * r0 + B[25] * r1 + B[26] * r2;
-    const double x2 = B[30] * r0 + B[31] * r1 + B[32] * r2;
-    x[o] = x0;
-    x[o + 1] = x1;
-    x[o + 2] = x2;
-    x[p] = y0 - (B[3] * x0 + B[4] * x1 + B[5] * x2);
-    x[p + 1] = y1 - (B[9] * x0 + B[10] * x1 + B[11] * x2);
-    x[p + 2] = y2 - (B[15] * x0 + B[16] * x1 + B[17] * x2);
-}}
-
-/* A = the LU factors of J (6 x 6) with partial pivoting (the diagonal as reciprocals), piv = the row
-   swapped into each column; 0 when a pivot is below 1e-12 of the largest entry */
-static int {P}_cal_lu_factor(const double J[36], double A[36], int piv[6])
-{{
-    double big = 0.0, small;
-    int r, cc, kk, p;
-    for (r = 0; r < 36; ++r) {{
-        A[r] = J[r];
-        big = fabs(J[r]) > big ? fabs(J[r]) : big;
-    }}
-    if (!(big > 0.0)) {{
-        return 0;
-    }}
-    small = {t(1e-12)} * big;
-    for (cc = 0; cc < 6; ++cc) {{
-        double best = fabs(A[6 * cc + cc]), inv;
-        p = cc;
-        for (r = cc + 1; r < 6; ++r) {{
-            if (fabs(A[6 * r + cc]) > best) {{
-                p = r;
-                best = fabs(A[6 * r + cc]);
-            }}
-        }}
-        if (best <= small) {{
-            return 0;
-        }}
-        piv[cc] = p;
-        if (p != cc) {{
-            for (kk = cc; kk < 6; ++kk) {{
-                const double tmp = A[6 * cc + kk];
-                A[6 * cc + kk] = A[6 * p + kk];
-                A[6 * p + kk] = tmp;
-            }}
-        }}
-        inv = 1.0 / A[6 * cc + cc];
-        A[6 * cc + cc] = inv;
-        for (r = cc + 1; r < 6; ++r) {{
-            const double f = A[6 * r + cc] * inv;
-            A[6 * r + cc] = f;
-            for (kk = cc + 1; kk < 6; ++kk) {{
-                A[6 * r + kk] -= f * A[6 * cc + kk];
-            }}
-        }}
-    }}
-    return 1;
-}}
-
-/* x = J^-1 e from {P}_cal_lu_factor (x may be e) */
-static void {P}_cal_lu_solve(const double A[36], const int piv[6], const double *e, double *x)
-{{
-    int r, cc, kk;
-    for (r = 0; r < 6; ++r) {{
-        x[r] = e[r];
-    }}
-    for (cc = 0; cc < 6; ++cc) {{
-        if (piv[cc] != cc) {{
-            const double tmp = x[cc];
-            x[cc] = x[piv[cc]];
-            x[piv[cc]] = tmp;
-        }}
-        for (r = cc + 1; r < 6; ++r) {{
-            x[r] -= A[6 * r + cc] * x[cc];
-        }}
-    }}
-    for (r = 5; r >= 0; --r) {{
-        double acc = x[r];
-        for (kk = r + 1; kk < 6; ++kk) {{
-            acc -= A[6 * r + kk] * x[kk];
-        }}
-        x[r] = acc * A[6 * r + r];
-    }}
-}}
-
-/* x = the step that zeroes the pose error F to second order (robokit.kernels.calibrated_ik._newton_step):
-   d = J^-1 F, then for {lit(float(c["second_order"][0]))} < max|d| <= {lit(float(c["second_order"][1]))} x = J^-1 (F - B(d, d)/2) unless that
-   changes d by more than max|d|/2; J factored once, by blocks or else with pivoting, in A (the caller's
-   scratch); 0 when J is singular for this purpose */
-static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6], double A[36])
-{{
-    double d[6], big = 0.0;  /* x also holds F - B(d, d)/2: both solves may work in place */
-    int piv[6], p = 0, i;
-    const int blocked = {P}_cal_block_factor(J, A, &p);
-    if (!blocked && !{P}_cal_lu_factor(J, A, piv)) {{
-        return 0;
-    }}
-    if (blocked) {{
-        {P}_cal_block_solve(J, A, p, F, d);
-    }} else {{
-        {P}_cal_lu_solve(A, piv, F, d);
-    }}
-    for (i = 0; i < 6; ++i) {{
-        big = fabs(d[i]) > big ? fabs(d[i]) : big;
-    }}
-    if ({lit(float(c["second_order"][0]))} < big && big <= {lit(float(c["second_order"][1]))}) {{
-        double change = 0.0;
-        {P}_cal_second_order(J, d, x);
-        for (i = 0; i < 6; ++i) {{
-            x[i] = F[i] - x[i];
-        }}
-        if (blocked) {{
-            {P}_cal_block_solve(J, A, p, x, x);
-        }} else {{
-            {P}_cal_lu_solve(A, piv, x, x);
-        }}
-        for (i = 0; i < 6; ++i) {{
-            change = fabs(x[i] - d[i]) > change ? fabs(x[i] - d[i]) : change;
-        }}
-        if (change <= 0.5 * big) {{
-            return 1;
-        }}
-    }}
-    for (i = 0; i < 6; ++i) {{
-        x[i] = d[i];
-    }}
-    return 1;
-}}
-
-/* H = L L^T in place (H symmetric 6 x 6; its lower triangle becomes L, the diagonal stored as
-   reciprocals); 0 when H is not positive definite */
-static int {P}_cal_chol_factor(double H[36])
-{{
-    int i, j, kk;
-    for (j = 0; j < 6; ++j) {{
-        double s = H[6 * j + j], inv;
-        for (kk = 0; kk < j; ++kk) {{
-            s -= H[6 * j + kk] * H[6 * j + kk];
-        }}
-        if (!(s > 0.0)) {{
-            return 0;
-        }}
-        inv = 1.0 / sqrt(s);
-        H[6 * j + j] = inv;
-        for (i = j + 1; i < 6; ++i) {{
-            s = H[6 * i + j];
-            for (kk = 0; kk < j; ++kk) {{
-                s -= H[6 * i + kk] * H[6 * j + kk];
-            }}
-            H[6 * i + j] = s * inv;
-        }}
-    }}
-    return 1;
-}}
-
-/* x = (L L^T)^-1 b from {P}_cal_chol_factor's L (x may be b) */
-static void {P}_cal_chol_solve(const double L[36], const double b[6], double x[6])
-{{
-    int i, kk;
-    for (i = 0; i < 6; ++i) {{
-        double s = b[i];
-        for (kk = 0; kk < i; ++kk) {{
-            s -= L[6 * i + kk] * x[kk];
-        }}
-        x[i] = s * L[6 * i + i];
-    }}
-    for (i = 5; i >= 0; --i) {{
-        double s = x[i];
-        for (kk = i + 1; kk < 6; ++kk) {{
-            s -= L[6 * kk + i] * x[kk];
-        }}
-        x[i] = s * L[6 * i + i];
-    }}
-}}
-
-/* H = J^T J and g = J^T F (J 6 x 6): the normal equations of J x = F */
-static void {P}_cal_normal(const double J[36], const double F[6], double H[36], double g[6])
-{{
-    int i, j, r;
-    for (i = 0; i < 6; ++i) {{
-        double acc = 0.0;
-        for (r = 0; r < 6; ++r) {{
-            acc += J[6 * r + i] * F[r];
-        }}
-        g[i] = acc;
-        for (j = i; j < 6; ++j) {{
-            acc = 0.0;
-            for (r = 0; r < 6; ++r) {{
-                acc += J[6 * r + i] * J[6 * r + j];
-            }}
-            H[6 * i + j] = acc;
-            H[6 * j + i] = acc;
-        }}
-    }}
-}}
-
-/* Newton's method with the second-order correction (Levenberg-Marquardt where a step fails) on the pose
-   error, q updated in place;
-   the sines and cosines computed once, then carried through the steps ({P}_cal_advance) */
-static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
-{{
-    /* for a small stack, one scratch buffer: while a step is computed, the eliminated copy of J or the
-       normal matrix H; while it is tried, the trial pose T, its sines and cosines sct, its error Ft and
-       the trial point. The trial's Jacobian is written over J, which is recomputed from (q, sc), the
-       same numbers, when the step is refused. */
-    double J[36], F[6], sc[12], step[6], buf[40];
-    double *const T = buf, *const sct = buf + 16, *const Ft = buf + 28, *const trial = buf + 34, *const H = buf;
-    double err, lam = 0.0, rt, pt;
-    int it, i;
-    for (i = 0; i < 6; ++i) {{
-        sc[i] = sin(q[i]);
-        sc[6 + i] = cos(q[i]);
-    }}
-    {P}_cal_fkj(q, sc, T, J);
-    err = {P}_cal_error(T, Td, F, rot, pos);
-    for (it = 0; it < max_steps; ++it) {{
-        double longest = 0.0, e2;
-        int solved = 0;
-        if (*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])}) {{
-            break;
-        }}
-        if (lam == 0.0) {{
-            solved = {P}_cal_newton_step(J, F, step, buf);
-        }}
-        if (!solved) {{
-            double *const g = step, big = 0.0;  /* the Cholesky solve overwrites g with the step */
-            if (lam == 0.0) {{
-                lam = 1e-9;
-            }}
-            {P}_cal_normal(J, F, H, g);
-            for (i = 0; i < 6; ++i) {{
-                big = H[6 * i + i] > big ? H[6 * i + i] : big;
-            }}
-            for (i = 0; i < 6; ++i) {{
-                H[6 * i + i] += lam * big;
-            }}
-            if (!{P}_cal_chol_factor(H)) {{
-                lam *= 10.0;
-                if (lam > 1e3) {{
-                    break;
-                }}
-                continue;
-            }}
-            {P}_cal_chol_solve(H, g, step);
-        }}
-        for (i = 0; i < 6; ++i) {{
-            longest = fabs(step[i]) > longest ? fabs(step[i]) : longest;
-        }}
-        if (longest > {lit(float(c["max_step"]))}) {{
-            const double shrink = {lit(float(c["max_step"]))} / longest;
-            for (i = 0; i < 6; ++i) {{
-                step[i] *= shrink;
-            }}
-        }}
-        for (i = 0; i < 6; ++i) {{
-            trial[i] = q[i] + step[i];
-        }}
-        {P}_cal_advance(sc, step, sct);
-        {P}_cal_fkj(trial, sct, T, J);
-        e2 = {P}_cal_error(T, Td, Ft, &rt, &pt);
-        if (e2 < err) {{
-            for (i = 0; i < 6; ++i) {{
-                q[i] = trial[i];
-                F[i] = Ft[i];
-            }}
-            for (i = 0; i < 12; ++i) {{
-                sc[i] = sct[i];
-            }}
-            err = e2;
-            *rot = rt;
-            *pos = pt;
-            if (lam > 0.0) {{
-                lam = lam > 1e-9 ? lam * 0.1 : 0.0;
-            }}
-        }} else {{
-            lam = lam == 0.0 ? 1e-9 : lam * 10.0;
-            if (lam > 1e3) {{
-                break;
-            }}
-            {P}_cal_fkj(q, sc, T, J);  /* J at q again */
-        }}
-    }}
-}}
-
-/* H = J^T J + 1e-12 I (J 6 x 6) */
+{polish}/* H = J^T J + 1e-12 I (J 6 x 6) */
 static void {P}_cal_gram(const double J[36], double H[36])
 {{
     int i, j, r;
@@ -1172,6 +765,443 @@ int {P}_ik(const double T[16], double q[{P}_MAX_SOLUTIONS * {P}_N])
 """]
     note = f"closed form: {safe_comment(c['reason'])}"
     return ikcode(True, note, max_rows, header, "\n".join(src), labels)
+
+
+def polish_code(P: str, c: Any, tol: Any, block_factor2: str = "") -> str:
+    """C of ``NAME_cal_polish`` and its helpers: :func:`robokit.kernels.calibrated_ik.polish` written out
+    for one arm (the pose error, ``NAME_cal_fkj`` on the arm's local transforms, the Newton step by 3 × 3
+    blocks or LU, Levenberg–Marquardt by Cholesky). Used by the calibrated arm's IK and by the general 6R
+    IK of an arm whose DH table's offsets are kilometres (:mod:`robokit.codegen.ik_general`). The caller
+    defines ``NAME_CAL_NOINLINE`` before it.
+
+    Parameters
+    ----------
+    P : str
+        The C prefix NAME.
+    c : mapping
+        The polish's numbers: ``tol_stop``, ``log_near``, ``second_order``, ``block_axes``,
+        ``block_schur``, ``max_step``, ``frames``, ``kinds``, ``pitches``
+        (``CalibratedArm.export_constants()``, ``ArmPolish.export_constants()``).
+    tol : callable
+        Tolerance literals (robokit's in double, their square roots in float).
+    block_factor2 : str
+        C inserted after ``NAME_cal_block_factor`` (the calibrated arm's second copy of it).
+
+    Returns
+    -------
+    str
+        C function definitions, ending with ``NAME_cal_polish``.
+    """
+    t = tol
+    fkj = _fkj_code(P, c["frames"], c["kinds"], c["pitches"])
+    block_factor = _block_factor_code(P, c, "", "")
+    return f"""/* the spatial twist that moves T to Td (robokit.kernels.calibrated_ik._error): with A = Rd R^T,
+   s = vee(A - A^T)/2 = sin(theta) u and dp = pd - p: near Td (|s| < LOG_NEAR, trace(A) > 1) the log of
+   X = Td T^-1 to second order, w = (theta/sin theta) s, v = u - w x u/2 + k w x (w x u) with
+   u = pd - A p, theta/sin theta = 1 + |s|^2/6 + 3|s|^4/40, k = 1/12 + |w|^2/720; else w = s,
+   v = dp - w x p. *rot = |s| (2 - |s| beyond pi/2), *pos = |dp|; returns (rot^2 + pos^2)/2 */
+static double {P}_cal_error(const double T[16], const double Td[16], double F[6], double *rot, double *pos)
+{{
+    const double a00 = Td[0] * T[0] + Td[1] * T[1] + Td[2] * T[2];
+    const double a01 = Td[0] * T[4] + Td[1] * T[5] + Td[2] * T[6];
+    const double a02 = Td[0] * T[8] + Td[1] * T[9] + Td[2] * T[10];
+    const double a10 = Td[4] * T[0] + Td[5] * T[1] + Td[6] * T[2];
+    const double a11 = Td[4] * T[4] + Td[5] * T[5] + Td[6] * T[6];
+    const double a12 = Td[4] * T[8] + Td[5] * T[9] + Td[6] * T[10];
+    const double a20 = Td[8] * T[0] + Td[9] * T[1] + Td[10] * T[2];
+    const double a21 = Td[8] * T[4] + Td[9] * T[5] + Td[10] * T[6];
+    const double a22 = Td[8] * T[8] + Td[9] * T[9] + Td[10] * T[10];
+    const double sx = 0.5 * (a21 - a12), sy = 0.5 * (a02 - a20), sz = 0.5 * (a10 - a01);
+    const double px = T[3], py = T[7], pz = T[11];
+    const double dx = Td[3] - px, dy = Td[7] - py, dz = Td[11] - pz;
+    const double s2 = sx * sx + sy * sy + sz * sz;
+    const double tr = a00 + a11 + a22;
+    if (s2 < {lit(float(c["log_near"]) ** 2)} && tr > 1.0) {{
+        const double f = 1.0 + s2 * ({lit(1.0 / 6.0)} + s2 * 0.075);
+        const double wx = f * sx, wy = f * sy, wz = f * sz;
+        const double k = {lit(1.0 / 12.0)} + (wx * wx + wy * wy + wz * wz) * {lit(1.0 / 720.0)};
+        const double ux = Td[3] - (a00 * px + a01 * py + a02 * pz);
+        const double uy = Td[7] - (a10 * px + a11 * py + a12 * pz);
+        const double uz = Td[11] - (a20 * px + a21 * py + a22 * pz);
+        const double cx = wy * uz - wz * uy, cy = wz * ux - wx * uz, cz = wx * uy - wy * ux;
+        F[0] = wx;
+        F[1] = wy;
+        F[2] = wz;
+        F[3] = ux - 0.5 * cx + k * (wy * cz - wz * cy);
+        F[4] = uy - 0.5 * cy + k * (wz * cx - wx * cz);
+        F[5] = uz - 0.5 * cz + k * (wx * cy - wy * cx);
+    }} else {{
+        F[0] = sx;
+        F[1] = sy;
+        F[2] = sz;
+        F[3] = dx - (sy * pz - sz * py);
+        F[4] = dy - (sz * px - sx * pz);
+        F[5] = dz - (sx * py - sy * px);
+    }}
+    *rot = sqrt(s2);
+    if (tr < 1.0) {{
+        *rot = 2.0 - *rot;
+    }}
+    *pos = sqrt(dx * dx + dy * dy + dz * dz);
+    return 0.5 * (*rot * *rot + *pos * *pos);
+}}
+
+{fkj}
+/* out = 1/2 sum_(i<j) d_i d_j [J_i, J_j] (twists' bracket [(w, v), (w', v')] = (w x w', w x v' - w' x v)):
+   the second-order term of the pose error's change along d (Baker-Campbell-Hausdorff), summed as
+   sum_j [P_(j-1), d_j J_j] with the running sum P_j = sum_(i<=j) d_i J_i */
+static void {P}_cal_second_order(const double J[36], const double d[6], double out[6])
+{{
+    double pw0 = 0.0, pw1 = 0.0, pw2 = 0.0, pv0 = 0.0, pv1 = 0.0, pv2 = 0.0;
+    double o0 = 0.0, o1 = 0.0, o2 = 0.0, o3 = 0.0, o4 = 0.0, o5 = 0.0;
+    int j;
+    for (j = 0; j < 6; ++j) {{
+        const double dj = d[j];
+        const double bw0 = dj * J[j], bw1 = dj * J[6 + j], bw2 = dj * J[12 + j];
+        const double bv0 = dj * J[18 + j], bv1 = dj * J[24 + j], bv2 = dj * J[30 + j];
+        o0 += pw1 * bw2 - pw2 * bw1;
+        o1 += pw2 * bw0 - pw0 * bw2;
+        o2 += pw0 * bw1 - pw1 * bw0;
+        o3 += (pw1 * bv2 - pw2 * bv1) - (bw1 * pv2 - bw2 * pv1);
+        o4 += (pw2 * bv0 - pw0 * bv2) - (bw2 * pv0 - bw0 * pv2);
+        o5 += (pw0 * bv1 - pw1 * bv0) - (bw0 * pv1 - bw1 * pv0);
+        pw0 += bw0;
+        pw1 += bw1;
+        pw2 += bw2;
+        pv0 += bv0;
+        pv1 += bv1;
+        pv2 += bv2;
+    }}
+    out[0] = 0.5 * o0;
+    out[1] = 0.5 * o1;
+    out[2] = 0.5 * o2;
+    out[3] = 0.5 * o3;
+    out[4] = 0.5 * o4;
+    out[5] = 0.5 * o5;
+}}
+
+/* out (3 x 3 at out[o0 + 6 r + c]) = the inverse of the 3 x 3 block of M (6 columns) at row r0, column c0,
+   by its adjugate; returns the determinant (0: nothing written) */
+static double {P}_cal_inverse3(const double *M, int r0, int c0, double *out, int o0)
+{{
+    const double a00 = M[6 * r0 + c0], a01 = M[6 * r0 + c0 + 1], a02 = M[6 * r0 + c0 + 2];
+    const double a10 = M[6 * r0 + 6 + c0], a11 = M[6 * r0 + 7 + c0], a12 = M[6 * r0 + 8 + c0];
+    const double a20 = M[6 * r0 + 12 + c0], a21 = M[6 * r0 + 13 + c0], a22 = M[6 * r0 + 14 + c0];
+    const double b00 = a11 * a22 - a12 * a21, b01 = a02 * a21 - a01 * a22, b02 = a01 * a12 - a02 * a11;
+    const double b10 = a12 * a20 - a10 * a22, b11 = a00 * a22 - a02 * a20, b12 = a02 * a10 - a00 * a12;
+    const double b20 = a10 * a21 - a11 * a20, b21 = a01 * a20 - a00 * a21, b22 = a00 * a11 - a01 * a10;
+    const double det = a00 * b00 + a01 * b10 + a02 * b20;
+    double inv;
+    if (!(det > 0.0 || det < 0.0)) {{
+        return 0.0;
+    }}
+    inv = 1.0 / det;
+    out[o0] = b00 * inv;
+    out[o0 + 1] = b01 * inv;
+    out[o0 + 2] = b02 * inv;
+    out[o0 + 6] = b10 * inv;
+    out[o0 + 7] = b11 * inv;
+    out[o0 + 8] = b12 * inv;
+    out[o0 + 12] = b20 * inv;
+    out[o0 + 13] = b21 * inv;
+    out[o0 + 14] = b22 * inv;
+    return det;
+}}
+
+{block_factor}{block_factor2}/* x = J^-1 e from {P}_cal_block_factor's B and p (x may be e: e is read before x is written) */
+static void {P}_cal_block_solve(const double J[36], const double B[36], int p, const double *e, double *x)
+{{
+    const int o = 3 - p;
+    const double y0 = B[0] * e[0] + B[1] * e[1] + B[2] * e[2];
+    const double y1 = B[6] * e[0] + B[7] * e[1] + B[8] * e[2];
+    const double y2 = B[12] * e[0] + B[13] * e[1] + B[14] * e[2];
+    const double r0 = e[3] - (J[18 + p] * y0 + J[19 + p] * y1 + J[20 + p] * y2);
+    const double r1 = e[4] - (J[24 + p] * y0 + J[25 + p] * y1 + J[26 + p] * y2);
+    const double r2 = e[5] - (J[30 + p] * y0 + J[31 + p] * y1 + J[32 + p] * y2);
+    const double x0 = B[18] * r0 + B[19] * r1 + B[20] * r2;
+    const double x1 = B[24] * r0 + B[25] * r1 + B[26] * r2;
+    const double x2 = B[30] * r0 + B[31] * r1 + B[32] * r2;
+    x[o] = x0;
+    x[o + 1] = x1;
+    x[o + 2] = x2;
+    x[p] = y0 - (B[3] * x0 + B[4] * x1 + B[5] * x2);
+    x[p + 1] = y1 - (B[9] * x0 + B[10] * x1 + B[11] * x2);
+    x[p + 2] = y2 - (B[15] * x0 + B[16] * x1 + B[17] * x2);
+}}
+
+/* A = the LU factors of J (6 x 6) with partial pivoting (the diagonal as reciprocals), piv = the row
+   swapped into each column; 0 when a pivot is below 1e-12 of the largest entry */
+static int {P}_cal_lu_factor(const double J[36], double A[36], int piv[6])
+{{
+    double big = 0.0, small;
+    int r, cc, kk, p;
+    for (r = 0; r < 36; ++r) {{
+        A[r] = J[r];
+        big = fabs(J[r]) > big ? fabs(J[r]) : big;
+    }}
+    if (!(big > 0.0)) {{
+        return 0;
+    }}
+    small = {t(1e-12)} * big;
+    for (cc = 0; cc < 6; ++cc) {{
+        double best = fabs(A[6 * cc + cc]), inv;
+        p = cc;
+        for (r = cc + 1; r < 6; ++r) {{
+            if (fabs(A[6 * r + cc]) > best) {{
+                p = r;
+                best = fabs(A[6 * r + cc]);
+            }}
+        }}
+        if (best <= small) {{
+            return 0;
+        }}
+        piv[cc] = p;
+        if (p != cc) {{
+            for (kk = cc; kk < 6; ++kk) {{
+                const double tmp = A[6 * cc + kk];
+                A[6 * cc + kk] = A[6 * p + kk];
+                A[6 * p + kk] = tmp;
+            }}
+        }}
+        inv = 1.0 / A[6 * cc + cc];
+        A[6 * cc + cc] = inv;
+        for (r = cc + 1; r < 6; ++r) {{
+            const double f = A[6 * r + cc] * inv;
+            A[6 * r + cc] = f;
+            for (kk = cc + 1; kk < 6; ++kk) {{
+                A[6 * r + kk] -= f * A[6 * cc + kk];
+            }}
+        }}
+    }}
+    return 1;
+}}
+
+/* x = J^-1 e from {P}_cal_lu_factor (x may be e) */
+static void {P}_cal_lu_solve(const double A[36], const int piv[6], const double *e, double *x)
+{{
+    int r, cc, kk;
+    for (r = 0; r < 6; ++r) {{
+        x[r] = e[r];
+    }}
+    for (cc = 0; cc < 6; ++cc) {{
+        if (piv[cc] != cc) {{
+            const double tmp = x[cc];
+            x[cc] = x[piv[cc]];
+            x[piv[cc]] = tmp;
+        }}
+        for (r = cc + 1; r < 6; ++r) {{
+            x[r] -= A[6 * r + cc] * x[cc];
+        }}
+    }}
+    for (r = 5; r >= 0; --r) {{
+        double acc = x[r];
+        for (kk = r + 1; kk < 6; ++kk) {{
+            acc -= A[6 * r + kk] * x[kk];
+        }}
+        x[r] = acc * A[6 * r + r];
+    }}
+}}
+
+/* x = the step that zeroes the pose error F to second order (robokit.kernels.calibrated_ik._newton_step):
+   d = J^-1 F, then for {lit(float(c["second_order"][0]))} < max|d| <= {lit(float(c["second_order"][1]))} x = J^-1 (F - B(d, d)/2) unless that
+   changes d by more than max|d|/2; J factored once, by blocks or else with pivoting, in A (the caller's
+   scratch); 0 when J is singular for this purpose */
+static int {P}_cal_newton_step(const double J[36], const double F[6], double x[6], double A[36])
+{{
+    double d[6], big = 0.0;  /* x also holds F - B(d, d)/2: both solves may work in place */
+    int piv[6], p = 0, i;
+    const int blocked = {P}_cal_block_factor(J, A, &p);
+    if (!blocked && !{P}_cal_lu_factor(J, A, piv)) {{
+        return 0;
+    }}
+    if (blocked) {{
+        {P}_cal_block_solve(J, A, p, F, d);
+    }} else {{
+        {P}_cal_lu_solve(A, piv, F, d);
+    }}
+    for (i = 0; i < 6; ++i) {{
+        big = fabs(d[i]) > big ? fabs(d[i]) : big;
+    }}
+    if ({lit(float(c["second_order"][0]))} < big && big <= {lit(float(c["second_order"][1]))}) {{
+        double change = 0.0;
+        {P}_cal_second_order(J, d, x);
+        for (i = 0; i < 6; ++i) {{
+            x[i] = F[i] - x[i];
+        }}
+        if (blocked) {{
+            {P}_cal_block_solve(J, A, p, x, x);
+        }} else {{
+            {P}_cal_lu_solve(A, piv, x, x);
+        }}
+        for (i = 0; i < 6; ++i) {{
+            change = fabs(x[i] - d[i]) > change ? fabs(x[i] - d[i]) : change;
+        }}
+        if (change <= 0.5 * big) {{
+            return 1;
+        }}
+    }}
+    for (i = 0; i < 6; ++i) {{
+        x[i] = d[i];
+    }}
+    return 1;
+}}
+
+/* H = L L^T in place (H symmetric 6 x 6; its lower triangle becomes L, the diagonal stored as
+   reciprocals); 0 when H is not positive definite */
+static int {P}_cal_chol_factor(double H[36])
+{{
+    int i, j, kk;
+    for (j = 0; j < 6; ++j) {{
+        double s = H[6 * j + j], inv;
+        for (kk = 0; kk < j; ++kk) {{
+            s -= H[6 * j + kk] * H[6 * j + kk];
+        }}
+        if (!(s > 0.0)) {{
+            return 0;
+        }}
+        inv = 1.0 / sqrt(s);
+        H[6 * j + j] = inv;
+        for (i = j + 1; i < 6; ++i) {{
+            s = H[6 * i + j];
+            for (kk = 0; kk < j; ++kk) {{
+                s -= H[6 * i + kk] * H[6 * j + kk];
+            }}
+            H[6 * i + j] = s * inv;
+        }}
+    }}
+    return 1;
+}}
+
+/* x = (L L^T)^-1 b from {P}_cal_chol_factor's L (x may be b) */
+static void {P}_cal_chol_solve(const double L[36], const double b[6], double x[6])
+{{
+    int i, kk;
+    for (i = 0; i < 6; ++i) {{
+        double s = b[i];
+        for (kk = 0; kk < i; ++kk) {{
+            s -= L[6 * i + kk] * x[kk];
+        }}
+        x[i] = s * L[6 * i + i];
+    }}
+    for (i = 5; i >= 0; --i) {{
+        double s = x[i];
+        for (kk = i + 1; kk < 6; ++kk) {{
+            s -= L[6 * kk + i] * x[kk];
+        }}
+        x[i] = s * L[6 * i + i];
+    }}
+}}
+
+/* H = J^T J and g = J^T F (J 6 x 6): the normal equations of J x = F */
+static void {P}_cal_normal(const double J[36], const double F[6], double H[36], double g[6])
+{{
+    int i, j, r;
+    for (i = 0; i < 6; ++i) {{
+        double acc = 0.0;
+        for (r = 0; r < 6; ++r) {{
+            acc += J[6 * r + i] * F[r];
+        }}
+        g[i] = acc;
+        for (j = i; j < 6; ++j) {{
+            acc = 0.0;
+            for (r = 0; r < 6; ++r) {{
+                acc += J[6 * r + i] * J[6 * r + j];
+            }}
+            H[6 * i + j] = acc;
+            H[6 * j + i] = acc;
+        }}
+    }}
+}}
+
+/* Newton's method with the second-order correction (Levenberg-Marquardt where a step fails) on the pose
+   error, q updated in place;
+   the sines and cosines computed once, then carried through the steps ({P}_cal_advance) */
+static {P}_CAL_NOINLINE void {P}_cal_polish(const double Td[16], double q[6], int max_steps, double *rot, double *pos)
+{{
+    /* for a small stack, one scratch buffer: while a step is computed, the eliminated copy of J or the
+       normal matrix H; while it is tried, the trial pose T, its sines and cosines sct, its error Ft and
+       the trial point. The trial's Jacobian is written over J, which is recomputed from (q, sc), the
+       same numbers, when the step is refused. */
+    double J[36], F[6], sc[12], step[6], buf[40];
+    double *const T = buf, *const sct = buf + 16, *const Ft = buf + 28, *const trial = buf + 34, *const H = buf;
+    double err, lam = 0.0, rt, pt;
+    int it, i;
+    for (i = 0; i < 6; ++i) {{
+        sc[i] = sin(q[i]);
+        sc[6 + i] = cos(q[i]);
+    }}
+    {P}_cal_fkj(q, sc, T, J);
+    err = {P}_cal_error(T, Td, F, rot, pos);
+    for (it = 0; it < max_steps; ++it) {{
+        double longest = 0.0, e2;
+        int solved = 0;
+        if (*rot < {t(c["tol_stop"])} && *pos < {t(c["tol_stop"])}) {{
+            break;
+        }}
+        if (lam == 0.0) {{
+            solved = {P}_cal_newton_step(J, F, step, buf);
+        }}
+        if (!solved) {{
+            double *const g = step, big = 0.0;  /* the Cholesky solve overwrites g with the step */
+            if (lam == 0.0) {{
+                lam = 1e-9;
+            }}
+            {P}_cal_normal(J, F, H, g);
+            for (i = 0; i < 6; ++i) {{
+                big = H[6 * i + i] > big ? H[6 * i + i] : big;
+            }}
+            for (i = 0; i < 6; ++i) {{
+                H[6 * i + i] += lam * big;
+            }}
+            if (!{P}_cal_chol_factor(H)) {{
+                lam *= 10.0;
+                if (lam > 1e3) {{
+                    break;
+                }}
+                continue;
+            }}
+            {P}_cal_chol_solve(H, g, step);
+        }}
+        for (i = 0; i < 6; ++i) {{
+            longest = fabs(step[i]) > longest ? fabs(step[i]) : longest;
+        }}
+        if (longest > {lit(float(c["max_step"]))}) {{
+            const double shrink = {lit(float(c["max_step"]))} / longest;
+            for (i = 0; i < 6; ++i) {{
+                step[i] *= shrink;
+            }}
+        }}
+        for (i = 0; i < 6; ++i) {{
+            trial[i] = q[i] + step[i];
+        }}
+        {P}_cal_advance(sc, step, sct);
+        {P}_cal_fkj(trial, sct, T, J);
+        e2 = {P}_cal_error(T, Td, Ft, &rt, &pt);
+        if (e2 < err) {{
+            for (i = 0; i < 6; ++i) {{
+                q[i] = trial[i];
+                F[i] = Ft[i];
+            }}
+            for (i = 0; i < 12; ++i) {{
+                sc[i] = sct[i];
+            }}
+            err = e2;
+            *rot = rt;
+            *pos = pt;
+            if (lam > 0.0) {{
+                lam = lam > 1e-9 ? lam * 0.1 : 0.0;
+            }}
+        }} else {{
+            lam = lam == 0.0 ? 1e-9 : lam * 10.0;
+            if (lam > 1e3) {{
+                break;
+            }}
+            {P}_cal_fkj(q, sc, T, J);  /* J at q again */
+        }}
+    }}
+}}
+
+"""
 
 
 def _fkj_code(P: str, frames: Any, kinds: Any, pitches: Any) -> str:

@@ -30,7 +30,12 @@ per-robot entry points. The steps:
 5. the next three readings of the loop when the pose is badly conditioned for the best one,
    duplicates merged, the solutions ordered by q₃ then q₁, q₂, q₄, q₅, q₆ (as Python, so the
    order does not depend on the order in which the eigenvalues are found), the "singular"
-   flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``).
+   flag, then ``ik_analytic``'s wrapping, limit flags and labels (``"solution k of m"``);
+6. for an arm whose DH table's offsets are kilometres (``robokit.ik.closed_form.ILL_DH``, the Kinova
+   Gen3 lite), as :meth:`robokit.ik.general_6r.ArmPolish.finish`: each solution polished on the arm's
+   own kinematics by the calibrated arms' ``NAME_cal_polish``
+   (:func:`robokit.codegen.ik_calibrated.polish_code`), rows that do not reach the acceptance dropped,
+   copies merged, the labels renumbered (``NAME_g6_arm_finish``, :func:`arm_polish_code`).
 
 The per-arm numbers come from :class:`robokit.ik.GeneralSixRConstants` (the frozen record of
 ``GeneralSixR.export_constants()``, the same numbers the Python solver uses): the scaled DH
@@ -51,8 +56,9 @@ import numpy as np
 
 from robokit.codegen._c import CWriter, lit, safe_comment
 from robokit.codegen._solver_constants import IKConstants
+from robokit.codegen.ik_calibrated import polish_code
 
-__all__ = ["MAX_SOLUTIONS_6R", "FLOAT32_NOTE", "general_6r_labels", "emit_general_6r"]
+__all__ = ["MAX_SOLUTIONS_6R", "FLOAT32_NOTE", "arm_polish_code", "general_6r_labels", "emit_general_6r"]
 
 #: Most solutions of a general 6R arm (the degree of its characteristic polynomial).
 MAX_SOLUTIONS_6R = 16
@@ -196,6 +202,10 @@ def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
         flips = ("    /* flipped joints (theta = offset - q) were solved as q' = -q */\n"
                  "    for (ir = 0; ir < nr; ++ir) {\n"
                  + "".join(f"        rows[ir][{j}] = -rows[ir][{j}];\n" for j in neg) + "    }\n")
+    finish = ""
+    if k.arm_polish is not None:
+        finish = ("    /* the DH table's offsets are kilometres: every solution finished on the arm's own kinematics */\n"
+                  f"    nr = {P}_g6_arm_finish(T, rows, lab, deg, nr);\n")
     return f"""    {{
     double T06s[16];
 {T06_code}
@@ -203,7 +213,91 @@ def emit_general_6r(e: Any, T06_code: str, T06: Any) -> str:
 {w.text()}
     nr = g6r_solve(&{P}_g6_arm, T06s, rows, lab, deg, ws->d);
     }}
-{flips}"""
+{flips}{finish}"""
+
+
+def arm_polish_code(k: IKConstants, P: str, tol: Any) -> str:
+    """C of ``NAME_g6_arm_finish``: :meth:`robokit.ik.general_6r.ArmPolish.finish` written out, for a
+    general 6R arm whose DH table's offsets are kilometres (``k.arm_polish`` set; empty otherwise).
+
+    Each solution is polished by ``NAME_cal_polish`` (:func:`robokit.codegen.ik_calibrated.polish_code`,
+    the C of :func:`robokit.kernels.calibrated_ik.polish`) on the arm's product of exponentials, rows
+    whose polish does not reach the acceptance are dropped, rows that reach one root (every joint
+    within ``same``, revolute angles modulo 2π) are merged (the first kept, flagged degenerate when a
+    merged one was) and the labels renumbered ``"solution k of m"`` (", singular" kept).
+
+    Parameters
+    ----------
+    k : IKConstants
+        The general 6R arm's constants, ``k.arm_polish`` the polish's numbers
+        (:meth:`robokit.ik.general_6r.ArmPolish.export_constants`).
+    P : str
+        The C prefix NAME.
+    tol : callable
+        Tolerance literals (:mod:`robokit.codegen.ik`).
+
+    Returns
+    -------
+    str
+        C function definitions (none when the arm has no such polish).
+    """
+    c = k.arm_polish
+    if c is None:
+        return ""
+    t = tol
+    rev = [bool(r) for r in c["revolute"]]
+    same = []
+    for j in range(6):
+        d = f"rows[kk][{j}] - qq[{j}]"
+        d = f"remainder({d}, {lit(2 * math.pi)})" if rev[j] else d
+        same.append(f"fabs({d}) < {t(c['same'])}")
+    same_c = "\n                && ".join(same)
+    return f"""/* not inlined (gcc, clang): the polish's frame is not added to {P}_ik_ws's */
+#if defined(__GNUC__)
+#define {P}_CAL_NOINLINE __attribute__((noinline))
+#else
+#define {P}_CAL_NOINLINE
+#endif
+{polish_code(P, c, tol)}/* robokit.ik.general_6r.ArmPolish.finish: the general 6R method's n solutions (rows, labels lab,
+   singular flags deg) each polished on the arm's own kinematics ({P}_cal_polish, at most {int(c["max_steps"])} steps), a row
+   whose errors do not reach {c["tol_accept"]:g} dropped, rows within {c["same"]:g} of a kept one (modulo 2 pi) merged into it
+   (flagged degenerate when a merged one was), the labels renumbered "solution k of m" (", singular" kept).
+   The new number of solutions. In a frame of its own. */
+static {P}_CAL_NOINLINE int {P}_g6_arm_finish(const double T[16], double rows[][6], int lab[], int deg[], int n)
+{{
+    double qq[6], rot, pos;
+    int r, kk, j, m = 0;
+    for (r = 0; r < n; ++r) {{
+        for (j = 0; j < 6; ++j) {{
+            qq[j] = rows[r][j];
+        }}
+        {P}_cal_polish(T, qq, {int(c["max_steps"])}, &rot, &pos);
+        if (!(rot < {t(c["tol_accept"])} && pos < {t(c["tol_accept"])})) {{
+            continue;  /* no root of the arm here: a near miss of the DH table's chain */
+        }}
+        for (kk = 0; kk < m; ++kk) {{
+            if ({same_c}) {{
+                break;
+            }}
+        }}
+        if (kk < m) {{
+            deg[kk] = deg[kk] || deg[r];
+            continue;
+        }}
+        for (j = 0; j < 6; ++j) {{  /* (row m <= r: row r is read already) */
+            rows[m][j] = qq[j];
+        }}
+        lab[m] = lab[r];
+        deg[m] = deg[r];
+        ++m;
+    }}
+    for (kk = 0; kk < m; ++kk) {{  /* "solution kk+1 of m", its ", singular" kept (general_6r_labels) */
+        lab[kk] = ((m - 1) * m / 2 + kk) * 2 + (lab[kk] & 1);
+    }}
+    return m;
+}}
+
+"""
 
 
 def declare(P: str) -> list[str]:

@@ -242,6 +242,10 @@ class ClosedFormConstants:
     calibrated : mapping or None
         For a calibrated or nearly special arm: the polish's numbers
         (``CalibratedArm.export_constants()``: method, reason, shoulder, reach, tolerances), read-only.
+    arm_polish : mapping or None
+        For a general 6R arm whose DH table's offsets exceed ``ILL_DH`` × its size (every solution
+        finished on the arm's own kinematics: :class:`robokit.ik.general_6r.ArmPolish`): that polish's
+        numbers (``ArmPolish.export_constants()``), read-only; None otherwise.
 
     Examples
     --------
@@ -265,6 +269,7 @@ class ClosedFormConstants:
     solver: PieperConstants | ParallelAxesConstants | PlanarConstants | GeneralSixRConstants | None = None
     general_6r: Mapping[str, Any] | None = None
     calibrated: Mapping[str, Any] | None = None
+    arm_polish: Mapping[str, Any] | None = None
 
 
 def _export(ik: AnalyticIK) -> ClosedFormConstants:
@@ -288,7 +293,7 @@ def _export(ik: AnalyticIK) -> ClosedFormConstants:
         ik.kind.method, ik.kind.reason, bool(ik.reversed), tuple(str(k) for k in sc.kinds),
         tuple(float(x) for x in sc.th0), tuple(float(x) for x in sc.d0), _matrix(sc.base_inv), _matrix(sc.tool_inv),
         float(sc.scale), None if flip is None else tuple(bool(f) for f in flip), bool(ik._free_flipped), solver,
-        general)
+        general, None, None if ik._arm_polish is None else MappingProxyType(dict(ik._arm_polish.export_constants())))
 
 
 def closed_form_constants(robot: Robot | DHTable, nominal: Any = None) -> ClosedFormConstants:

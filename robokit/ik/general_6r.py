@@ -87,6 +87,7 @@ from robokit.kernels.general_6r import (DEFLATE_MAX, RI_SIZE, T_CONVERGED, T_GAM
                                         T_SAME, T_TURN, T_X0, fk_pose, fvec, jacobian, nullity_at_i, pencil,
                                         reading_matrices, score_reading, side_tensor, solve_pose)
 from robokit.errors import InputError
+from robokit.kernels import calibrated_ik as _kci
 from robokit.kernels.calibrated_ik import pack_arm, polish, scratch
 
 if TYPE_CHECKING:
@@ -415,6 +416,35 @@ class ArmPolish:
                            ARM_STOP, ARM_ACCEPT, ARM_STEPS)
         self._work = scratch()
         self._revolute = [bool(r) for r in revolute]
+
+    def export_constants(self) -> dict[str, Any]:
+        """The numbers the generated C's copy of this polish needs (:mod:`robokit.codegen.ik_general`):
+        the polish's tolerances and steps (``tol_stop``, ``tol_accept``, ``max_steps``), the merge's
+        ``same`` (rad), which joints are ``revolute``, the kernel's constants of
+        :func:`robokit.kernels.calibrated_ik.polish` (``log_near``, ``second_order``, ``block_axes``,
+        ``block_schur``, ``max_step``) and the arm's local transforms (``frames`` (7, 3, 4):
+        :func:`robokit.kernels.calibrated_ik.local_transforms`, ``kinds`` 0/1 revolute/prismatic,
+        ``pitches``), as :meth:`robokit.ik.calibrated.CalibratedArm.export_constants` names them.
+
+        Returns
+        -------
+        dict
+            The constants, keyed as above.
+
+        Examples
+        --------
+        >>> import robokit
+        >>> robot = robokit.load("puma560")
+        >>> c = ArmPolish(robot.poe.M, robot.poe.Slist, [True] * 6).export_constants()
+        >>> c["tol_accept"], c["max_steps"], c["frames"].shape
+        (1e-10, 30, (7, 3, 4))
+        """
+        C = self._C
+        return {"tol_stop": ARM_STOP, "tol_accept": ARM_ACCEPT, "max_steps": ARM_STEPS, "same": _SAME,
+                "revolute": list(self._revolute), "log_near": _kci.LOG_NEAR,
+                "second_order": tuple(_kci.SECOND_ORDER), "block_axes": _kci.BLOCK_AXES,
+                "block_schur": _kci.BLOCK_SCHUR, "max_step": _kci.MAX_STEP, "frames": _kci.local_transforms(C),
+                "kinds": C[_kci.KINDS].astype(int).tolist(), "pitches": C[_kci.PITCHES].tolist()}
 
     def _same(self, x: np.ndarray, y: np.ndarray) -> bool:
         d = x - y

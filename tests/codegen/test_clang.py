@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import robokit
-from shared_robots import robot as shared_robot
+from shared_robots import gen3_lite, robot as shared_robot
 from robokit.codegen import generate_c, write_c
 from robokit.description.dh import DHLink, DHTable
 
@@ -34,12 +34,14 @@ def prismatic_arm():
 
 
 ARMS = ["twolink", "rrr", "puma560", "ur5", "panda", "kinova", "jaco2", "quartic", "stanford", "calibrated_puma560",
-        "calibrated_ur5"]
+        "calibrated_ur5", "gen3_lite"]
 
 
 def _load(name):
     if name.startswith("calibrated_"):  # the polished closed form of robokit.ik.calibrated (both structures)
         return calibrated_arm(name[len("calibrated_"):], {"puma560": 1, "ur5": 2}[name[len("calibrated_"):]])
+    if name == "gen3_lite":  # the general 6R method finished on the arm (NAME_g6_arm_finish, NAME_cal_polish)
+        return gen3_lite()
     table = {"jaco2": jaco2_table, "quartic": quartic_arm, "stanford": prismatic_arm}.get(name)
     return robokit.load(table()) if table else shared_robot(name)
 

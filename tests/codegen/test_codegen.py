@@ -89,7 +89,8 @@ def check_ik(robot, lib, poses, tol=1e-9, nominal=None):
     quartic's roots included: both list them by increasing tan(θ₃/2)); a calibrated arm's merged
     solution is labelled in C by its first branch only. Where a calibrated arm's nominal structure
     gives no start, ik_analytic returns the general 6R method's solutions and the C none: there the
-    calibrated path itself (which the C mirrors) must return none too."""
+    calibrated path itself (which the C mirrors) must return none too. ``tol``: the joints' tolerance, or
+    a function of (T, Python's solution, the C's q) giving it per solution (see _conditioned)."""
     from robokit.ik.closed_form import analytic_ik
 
     rev = np.abs(robot.poe.Slist[:3]).sum(axis=0) > 0.5
@@ -111,7 +112,7 @@ def check_ik(robot, lib, poses, tol=1e-9, nominal=None):
         for s, (q, label, inside, degen) in zip(py, c):
             assert label == s.label or (s.label.startswith(label + " (merged with ") and degen)
             assert (inside, degen) == (s.within_limits, s.degenerate)
-            assert _dist(q, s.q, rev) < tol, label
+            assert _dist(q, s.q, rev) < (tol(T, s, q) if callable(tol) else tol), label
         for q, *_ in c:  # and every C solution reaches T (Pinocchio, and the generated NAME_fk)
             assert np.abs(robot.frame_pose(q) - T).max() < 1e-9
             if not lib.float32:
@@ -487,6 +488,23 @@ def test_cli_writes_two_files_that_compile(tmp_path, cc, capsys):
     assert "#define arm_HAS_IK 1" in (tmp_path / "arm.h").read_text()
 
 
+def test_cli_gen3_lite_file(tmp_path, cc, capsys):
+    """``robokit codegen`` on the Gen3 lite's URDF (a general 6R arm whose DH table is kilometres): the C
+    finishes its solutions on the arm (NAME_g6_arm_finish), compiles with the strict flags and is the
+    C generate_c writes for the robot the same file and tip load."""
+    from shared_robots import gen3_lite
+
+    path = DATA / "kinova" / "gen3_lite.urdf"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)
+        assert main(["codegen", str(path), "--tip", "end_effector_link", "-o", str(tmp_path)]) == 0
+    text = (tmp_path / "gen3_lite.c").read_text()
+    assert "nr = gen3_lite_g6_arm_finish(T, rows, lab, deg, nr);" in text
+    assert text == generate_c(gen3_lite()).source
+    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-Wshadow", "-c",
+                    str(tmp_path / "gen3_lite.c"), "-o", str(tmp_path / "gen3_lite.o")], check=True)
+
+
 @pytest.mark.parametrize("args, message", [
     (["nosuch_robot"], "unknown robot"),
     (["puma560", "--name", "int"], "C keyword"),
@@ -685,6 +703,67 @@ def test_general_6r_deflated_eigenproblem_matches_ik_analytic(build, seed):
     text = (lib.path.parent / f"{lib.name}.c").read_text()  # the C's first reading deflates four pairs
     assert re.search(r"_g6_readings\[\d\] = \{\n    \{\{[\d, ]+\}, \d, \d, \d, \d, 4, 0, ", text)
     check_ik(robot, lib, [robot.frame_pose(rng.uniform(-np.pi, np.pi, 6)) for _ in range(12)])
+
+
+def _pose_gap(robot, q, T):
+    """|(ω; v)| taking the tip's pose at q to T (root axes, v of the tip's origin: the geometric Jacobian's)."""
+    P = robot.frame_pose(q)
+    R = T[:3, :3] @ P[:3, :3].T
+    w = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    return float(np.hypot(np.linalg.norm(w), np.linalg.norm(T[:3, 3] - P[:3, 3])))
+
+
+def _conditioned(robot):
+    """The joints' tolerance between Python's solution s and the C's q of one root, near a singular
+    configuration: two solutions of one root whose poses are e₁ and e₂ off T differ, to first order, by
+    (e₁ + e₂)/σ in the joints (σ the Jacobian's smallest singular value there): the polish stops at
+    1e-12 of pose error (ARM_STOP), or where Newton stalls near a fold, up to 1e-10 (ARM_ACCEPT), and C and
+    Python start it from the general 6R method's rows, which differ in their last digits (C's LAPACK-free
+    eigenproblem). With σ down to 4e-8 at these poses, 1e-12/σ alone is 2.5e-5 rad. Twice that bound
+    (the second-order term near a fold), at least 1e-9."""
+    def tol(T, s, q):
+        sigma = np.linalg.svd(robot.jacobian(s.q), compute_uv=False)[-1]
+        return max(1e-9, 2.0 * (_pose_gap(robot, s.q, T) + _pose_gap(robot, q, T) + 2e-16) / sigma)
+    return tol
+
+
+def test_gen3_lite_c_near_its_elbow_singularity(build):
+    """The Kinova Gen3 lite (axes 2 and 3 7.3e-6 rad from parallel: its DH table's offsets -38 km, which
+    reproduce the arm only to ~1e-11 m): Python finishes every general 6R solution on the arm's own
+    kinematics (robokit.ik.general_6r.ArmPolish), the C the same way (NAME_g6_arm_finish with the
+    calibrated arm's NAME_cal_polish). With θ₃ within 2e-4 rad of its elbow singularity the C returns
+    ik_analytic's solutions — the same count, order, labels and flags —, each reaching the pose to 1e-9
+    (Pinocchio), the generating configuration among them; the joints agree to 1e-9 or, near singular
+    configurations, to what their conditioning allows (_conditioned). Before, the C polished on the DH
+    table only: its count differed from Python's at every one of these 15 poses, 4 of its solutions were
+    1e-9 off the pose, and none was the generating configuration (1e-7 to 3e-6 rad off)."""
+    from shared_robots import elbow_singular, gen3_lite
+
+    robot = gen3_lite()
+    lib = build(robot)
+    rng = np.random.default_rng(0)
+    poses, qs = [], []
+    for _ in range(15):
+        q = robot.random_configuration(rng)
+        q[2] = elbow_singular(robot, q) + rng.uniform(-2e-4, 2e-4)
+        poses.append(robot.frame_pose(q))
+        qs.append(q)
+    check_ik(robot, lib, poses, tol=_conditioned(robot))
+    rev = [True] * 6
+    for q, T in zip(qs, poses):
+        assert min(_dist(x[0], q, rev) for x in lib.ik(T)) < 1e-7, "the generating configuration is missing"
+    text = (lib.path.parent / f"{lib.name}.c").read_text()
+    assert f"{lib.name}_g6_arm_finish(T, rows, lab, deg, nr);" in text
+
+
+def test_gen3_lite_c_random_poses(build):
+    """The Gen3 lite at random configurations (away from its elbow singularity): the C returns
+    ik_analytic's solutions to 1e-9 in the joints, each reaching the pose to 1e-9."""
+    from shared_robots import gen3_lite
+
+    robot = gen3_lite()
+    rng = np.random.default_rng(1)
+    check_ik(robot, build(robot), [robot.frame_pose(robot.random_configuration(rng)) for _ in range(15)])
 
 
 def test_general_6r_root_at_the_half_angle_infinity(jaco, build):

@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokit
-from shared_robots import robot as shared_robot
+from shared_robots import elbow_singular as _elbow_singular, gen3_lite as _gen3_lite, robot as shared_robot
 from robokit.description.dh import DHLink, DHTable, matrix_from_rpy
 from robokit.ik import ik_analytic, ik_analytic_kind
 
@@ -586,33 +586,6 @@ def test_the_so100_gets_every_root():
         sols = ik_analytic(robot, T)
         check(robot, q, T, sols)
         assert_none_missed(robot, T, sols)
-
-
-def _gen3_lite():
-    """The Kinova Gen3 lite as Kinova publishes it (tests/data/kinova, see its SOURCE), to its wrist's last link."""
-    import warnings
-    from pathlib import Path
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (meshes not copied, ros2_control, gazebo)
-        return robokit.load(Path(__file__).resolve().parents[1] / "data" / "kinova" / "gen3_lite.urdf",
-                            tip="end_effector_link")
-
-
-def _elbow_singular(robot, q):
-    """θ₃ (the elbow joint, between the nearly parallel axes 2 and 3 and the wrist) where the Jacobian's
-    smallest singular value is least for q's other joints: its least on a 0.5° grid, refined to 1e-10
-    (bounded scalar minimisation within one grid step). With the wrist offset, that angle moves with
-    the wrist's joints, so it is found per configuration."""
-    from scipy.optimize import minimize_scalar
-
-    def sigma(x):
-        return np.linalg.svd(robot.jacobian(np.r_[q[:2], x, q[3:]]), compute_uv=False)[-1]
-
-    grid = np.linspace(-math.pi, math.pi, 721)
-    x0 = grid[int(np.argmin([sigma(x) for x in grid]))]
-    step = grid[1] - grid[0]
-    return minimize_scalar(sigma, bounds=(x0 - step, x0 + step), method="bounded", options={"xatol": 1e-10}).x
 
 
 def _check_gen3(robot, q, T, sols, seeds, rng):

@@ -123,3 +123,34 @@ def odd_arm(name: str) -> robokit.Robot:
 @functools.cache
 def _benchmark_arms_2mm() -> dict[str, robokit.Robot]:
     return benchmark_arms_off_by(2e-3)
+
+
+@functools.cache
+def gen3_lite() -> robokit.Robot:
+    """The Kinova Gen3 lite as Kinova publishes it (tests/data/kinova, see its SOURCE), to its wrist's last
+    link, once per process: axes 2 and 3 are 7.3e-6 rad from parallel, its DH table's offsets -38 km (the
+    general 6R method finishes each solution on the arm: robokit.ik.general_6r.ArmPolish)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", robokit.RobokitWarning)  # (meshes not copied, ros2_control, gazebo)
+        return robokit.load(DATA / "kinova" / "gen3_lite.urdf", tip="end_effector_link")
+
+
+def elbow_singular(robot, q):
+    """The Gen3 lite's θ₃ (the elbow joint, between the nearly parallel axes 2 and 3 and the wrist) where
+    the Jacobian's smallest singular value is least for q's other joints: its least on a 0.5° grid, refined
+    to 1e-10 (bounded scalar minimisation within one grid step). With the wrist offset, that angle moves
+    with the wrist's joints, so it is found per configuration."""
+    import math
+
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    def sigma(x):
+        return np.linalg.svd(robot.jacobian(np.r_[q[:2], x, q[3:]]), compute_uv=False)[-1]
+
+    grid = np.linspace(-math.pi, math.pi, 721)
+    x0 = grid[int(np.argmin([sigma(x) for x in grid]))]
+    step = grid[1] - grid[0]
+    return minimize_scalar(sigma, bounds=(x0 - step, x0 + step), method="bounded", options={"xatol": 1e-10}).x
