@@ -478,6 +478,7 @@ class CalibratedArm:
         self._warned = False
         self._general_warned = False  # AnalyticIK._general's warning, said once per arm
         self._odd_warned = False  # AnalyticIK._even's warning, said once per arm
+        self._merged_warned = False  # _warn_merged's, said once per arm
         #: Every joint revolute: off its nominal structure the arm is a general 6R arm, whose solutions
         #: are the real roots of a polynomial of degree 16, an even number of them (complex roots come in
         #: conjugate pairs); an odd count means one is missing (:data:`robokit.kernels.calibrated_ik.DOUBLE`).
@@ -609,6 +610,8 @@ class CalibratedArm:
             merged, vanished, sigma = int(self._status[0]), int(self._status[1]), float(self._status[2])
         if vanished:
             self._warn_vanished(self._branches, level)
+        elif merged and not sigma <= self.sigma_explore:
+            self._warn_merged(self._branches, level)
         if sigma <= self.sigma_explore:
             warnings.warn(f"ik_analytic: this pose is near a singular configuration of the arm (smallest singular "
                           f"value of its Jacobian, velocity rows divided by the reach: {sigma:.2g}, searched below "
@@ -717,6 +720,28 @@ class CalibratedArm:
                           f"structure have no exact solution on this arm (two roots met and left); "
                           f"AnalyticIK(robot).calibrated.branches(T) lists every branch (said once per arm)",
                           RobokitWarning, stacklevel=level)
+
+
+    def _warn_merged(self, branches: np.ndarray, level: int = 4) -> None:
+        """Said once per arm, at a pose where a branch merged and nothing else warned: two branches of
+        the nominal structure reached one root, so the arm's pair of roots for the one that merged
+        (near a fold) may lie elsewhere. Measured (20,000 random poses of each of the benchmark's
+        calibrated arms and a real UR5e, ``default_rng(4242)``): poses merged without another warning
+        only on the random Pieper arm, 609 of them, and at one of those (``shared_robots.MERGED_MISS``)
+        two roots — the generating configuration one of them — which the general 6R method returns."""
+        if self._merged_warned:
+            return
+        m = int(np.count_nonzero(branches[:, 0] >= 0.0))
+        into = [(self._labels[float(branches[r, 0])], int(branches[r, 2])) for r in range(m)
+                if branches[r, 1] == _kci.MERGED]
+        if into:
+            self._merged_warned = True
+            names = ", ".join(f"{name} (into solution {k + 1})" for name, k in into)
+            warnings.warn(f"ik_analytic: at this pose the branch(es) {names} of the nominal structure reached "
+                          f"another branch's solution (merged): near a fold of the arm the pair of solutions of "
+                          f"such a branch can lie elsewhere, so a solution may be missing (nominal=False gives the "
+                          f"general 6R method; AnalyticIK(robot).calibrated.branches(T) lists every branch; said "
+                          f"once per arm)", RobokitWarning, stacklevel=level)
 
 
 _F64 = np.dtype(np.float64)
