@@ -693,12 +693,7 @@ class AnalyticIK:
         when the general method does not apply."""
         cal = self.calibrated
         assert cal is not None  # called for a calibrated arm only
-        try:
-            general = _CACHE.get(self._robot, False)
-            general._refresh()
-            sols = general._solve(T, wrist_ref)
-        except InputError:
-            return []
+        sols = self._general_solutions(T, wrist_ref) or []
         if sols and not cal._general_warned:
             cal._general_warned = True
             said = (f"ik_analytic: the nominal structure's closed form gives no start at this pose, which the arm "
@@ -706,6 +701,16 @@ class AnalyticIK:
                     f"m'; said once per arm; the generated C returns none there)")
             warnings.warn(said, RobokitWarning, stacklevel=4)
         return sols
+
+    def _general_solutions(self, T: np.ndarray, wrist_ref: float) -> list[IKSolution] | None:
+        """The general 6R method's solutions of this robot at T (``nominal=False``), None when the
+        method does not apply to it."""
+        try:
+            general = _CACHE.get(self._robot, False)
+            general._refresh()
+            return general._solve(T, wrist_ref)
+        except InputError:
+            return None
 
     def _even(self, T: np.ndarray, wrist_ref: float, sols: list[IKSolution]) -> list[IKSolution]:
         """A calibrated arm's pose where the solve found an odd number of solutions although an arm of
@@ -719,11 +724,8 @@ class AnalyticIK:
         the second: :data:`robokit.kernels.calibrated_ik.DOUBLE`)."""
         cal = self.calibrated
         assert cal is not None  # called for a calibrated arm only
-        try:
-            general = _CACHE.get(self._robot, False)
-            general._refresh()
-            others = general._solve(T, wrist_ref)
-        except InputError:
+        others = self._general_solutions(T, wrist_ref)
+        if others is None:
             return sols
         added = sols + cal.missing(sols, others, T)
         if len(added) > len(sols) and not cal._odd_warned:

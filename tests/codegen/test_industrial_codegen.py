@@ -4,10 +4,8 @@ command line on the maker's xacro file, the C compiled with ``gcc -std=c99 -Wall
 Pinocchio built directly from the ``xacro`` program's expansion of the same file (not through robokit)
 at random configurations within the file's limits."""
 import ctypes
-import json
 import shutil
 import subprocess
-import sys
 import warnings
 from pathlib import Path
 
@@ -18,6 +16,7 @@ import pytest
 import robokit
 from robokit.cli import main as cli_main
 from robokit.ik import ik_analytic
+from xacro_reference import xacro_urdfs
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 ARMS = {  # label -> (maker, file, whether the file gives inertias)
@@ -25,19 +24,6 @@ ARMS = {  # label -> (maker, file, whether the file gives inertias)
     "FANUC M-430iA/2P": ("fanuc", "fanuc_m430ia_support/urdf/m430ia2p.xacro", False),  # general 6R in C
     "Staubli RX160": ("staubli", "staubli_rx160_support/urdf/rx160.xacro", True),
 }
-
-_REFERENCE = r"""
-import json, os, sys, types
-maker, rel = sys.argv[1], sys.argv[2]
-folders = {n: os.path.join(maker, n) for n in os.listdir(maker) if os.path.isfile(os.path.join(maker, n, "package.xml"))}
-packages = types.ModuleType("ament_index_python.packages")
-packages.get_package_share_directory = lambda name: folders[name]
-index = types.ModuleType("ament_index_python")
-index.packages = packages
-sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = index, packages
-import xacro
-sys.stdout.write(xacro.process_file(os.path.join(maker, rel)).toxml())
-"""
 
 
 @pytest.mark.parametrize("label", list(ARMS))
@@ -59,8 +45,7 @@ def test_codegen_of_the_makers_file_agrees_with_pinocchio(label, tmp_path, capsy
     lib = ctypes.CDLL(str(lib_path))
     D = ctypes.POINTER(ctypes.c_double)
 
-    text = subprocess.run([sys.executable, "-c", _REFERENCE, str(DATA / maker), rel], capture_output=True, text=True,
-                          timeout=60, check=True).stdout
+    text = xacro_urdfs({label: (DATA / maker, rel)})[label]
     model = pin.buildModelFromXML(text)
     data = model.createData()
     with warnings.catch_warnings():

@@ -13,9 +13,6 @@ meshes).
 """
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
 import warnings
 from pathlib import Path
 
@@ -24,6 +21,7 @@ import pinocchio as pin
 import pytest
 
 import robokit
+from xacro_reference import xacro_urdfs
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -38,32 +36,11 @@ ARMS = {
     "Staubli RX160": ("staubli", "staubli_rx160_support/urdf/rx160.xacro", "tool0", True),
 }
 
-_REFERENCE = r"""
-import json, os, sys, types
-cases = json.loads(sys.argv[1])
-folders = {}
-for maker in {m for m, _ in cases.values()}:
-    for name in os.listdir(maker):
-        if os.path.isfile(os.path.join(maker, name, "package.xml")):
-            folders[name] = os.path.join(maker, name)
-packages = types.ModuleType("ament_index_python.packages")
-packages.get_package_share_directory = lambda name: folders[name]
-index = types.ModuleType("ament_index_python")
-index.packages = packages
-sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = index, packages
-import xacro
-sys.stdout.write(json.dumps({k: xacro.process_file(os.path.join(m, f)).toxml() for k, (m, f) in cases.items()}))
-"""
-
 
 @pytest.fixture(scope="module")
 def reference() -> dict[str, str]:
     """The xacro program's URDF of every arm (one subprocess for all)."""
-    cases = {k: (str(DATA / m), f) for k, (m, f, _, _) in ARMS.items()}
-    run = subprocess.run([sys.executable, "-c", _REFERENCE, json.dumps(cases)], capture_output=True, text=True,
-                         timeout=120, check=False)
-    assert run.returncode == 0, run.stderr[-3000:]
-    return json.loads(run.stdout)
+    return xacro_urdfs({k: (DATA / m, f) for k, (m, f, _, _) in ARMS.items()})
 
 
 def load(label: str) -> tuple[robokit.Robot, list[str]]:

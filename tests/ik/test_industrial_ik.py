@@ -8,19 +8,16 @@ program's own expansion of the file (not through robokit); every solution must r
 the generating configuration must be among them, and every distinct solution that robokit's compiled
 Levenberg–Marquardt solver finds from 300 uniform starts (joint limits ignored) must be returned.
 """
-import json
-import subprocess
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
-import pinocchio as pin
 import pytest
 
 import robokit
 from robokit.ik import ik_analytic, ik_analytic_kind
 from ik_sweep import angle_dist, sweep
+from xacro_reference import pinocchio_fk, xacro_urdfs
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 ARMS = {
@@ -34,31 +31,10 @@ ARMS = {
 }
 POSES = 50
 
-_REFERENCE = r"""
-import json, os, sys, types
-cases = json.loads(sys.argv[1])
-folders = {}
-for maker in {m for m, _, _ in cases.values()}:
-    for name in os.listdir(maker):
-        if os.path.isfile(os.path.join(maker, name, "package.xml")):
-            folders[name] = os.path.join(maker, name)
-packages = types.ModuleType("ament_index_python.packages")
-packages.get_package_share_directory = lambda name: folders[name]
-index = types.ModuleType("ament_index_python")
-index.packages = packages
-sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = index, packages
-import xacro
-sys.stdout.write(json.dumps({k: xacro.process_file(os.path.join(m, f)).toxml() for k, (m, f, _) in cases.items()}))
-"""
-
 
 @pytest.fixture(scope="module")
 def reference():
-    cases = {k: (str(DATA / m), f, kind) for k, (m, f, kind) in ARMS.items()}
-    run = subprocess.run([sys.executable, "-c", _REFERENCE, json.dumps(cases)], capture_output=True, text=True,
-                         timeout=120, check=False)
-    assert run.returncode == 0, run.stderr[-3000:]
-    return json.loads(run.stdout)
+    return xacro_urdfs({k: (DATA / m, f) for k, (m, f, _) in ARMS.items()})
 
 
 @pytest.mark.parametrize("label", list(ARMS))
@@ -68,19 +44,8 @@ def test_every_solution_exact_and_none_missed(label, reference):
         warnings.simplefilter("ignore")  # no meshes here, no inertias in most of these files
         robot = robokit.load(DATA / maker / rel)
     assert ik_analytic_kind(robot).method == kind
-    model = pin.buildModelFromXML(reference[label])
-    data = model.createData()
-    iq = [model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]
-    fid = model.getFrameId(robot.tip)
-
-    def fk(q):
-        qf = pin.neutral(model)
-        qf[iq] = q
-        pin.framesForwardKinematics(model, data, qf)
-        return data.oMf[fid].homogeneous.copy()
-
+    fk, lo, hi = pinocchio_fk(reference[label], robot)
     rng = np.random.default_rng(2)
-    lo, hi = model.lowerPositionLimit[iq], model.upperPositionLimit[iq]
     roots = 0
     for i in range(POSES):
         q = rng.uniform(lo, hi)
@@ -106,19 +71,8 @@ def test_near_the_wrist_singularity_still_exact(label, reference):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         robot = robokit.load(DATA / maker / rel)
-    model = pin.buildModelFromXML(reference[label])
-    data = model.createData()
-    iq = [model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]
-    fid = model.getFrameId(robot.tip)
-
-    def fk(q):
-        qf = pin.neutral(model)
-        qf[iq] = q
-        pin.framesForwardKinematics(model, data, qf)
-        return data.oMf[fid].homogeneous.copy()
-
+    fk, lo, hi = pinocchio_fk(reference[label], robot)
     rng = np.random.default_rng(9)
-    lo, hi = model.lowerPositionLimit[iq], model.upperPositionLimit[iq]
     for q5 in (3e-10, 1e-9, 3e-9, 1e-8, 3e-8, 1e-7, 1e-6):
         for _ in range(6):
             q = rng.uniform(lo, hi)
