@@ -689,7 +689,16 @@ def _inertial(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np.n
     values = [_number(I_el, k, d, where) for k, d in (("ixx", 1.0), ("ixy", 0.0), ("ixz", 0.0), ("iyy", 1.0),
                                                      ("iyz", 0.0), ("izz", 1.0))]
     X, rel = _pose(ine_el, where, scope)
-    X_L_I = _in_link(rd, X, rel, scope, X_W_L, where)
+    if rel is not None and scope.resolve(rel, where) != link:
+        # SDFormat has no relative_to on an inertial's pose (libsdformat: "not defined in SDF"; Gazebo
+        # ignores it and reads the pose in the link frame, Drake refuses the file): the two readings differ
+        raise InputError(f"{where} <pose relative_to={rel!r}>: SDFormat reads an inertial's pose in its link's "
+                         "frame only (libsdformat does not define relative_to there: Gazebo ignores it, Drake "
+                         "refuses the file); write the pose in the link's frame")
+    if rel is not None:
+        key = "relative_to on <inertial><pose> (not SDFormat's; it names the inertial's own link: no change)"
+        rd.unmodelled[key] = rd.unmodelled.get(key, 0) + 1
+    X_L_I = X
     I = Inertial(mass, inertia=(values[0], values[1], values[2], values[3], values[4], values[5])).matrix()
     if np.linalg.eigvalsh(I).min() < -1e-9 * max(1.0, float(np.abs(I).max())):
         raise InputError(f"{where}: the inertia tensor is not positive semi-definite")

@@ -522,3 +522,34 @@ def test_enable_wind_is_noted_only_when_true(tmp_path, wind):
 def _write(path, text):
     path.write_text(text)
     return path
+
+
+@pytest.mark.parametrize("version", ["1.7", "1.9", "1.11"])
+def test_an_inertial_pose_relative_to_another_frame_is_refused(tmp_path, version):
+    """libsdformat defines no relative_to on an inertial's pose: Gazebo ignores it (the pose stays in the link
+    frame), Drake refuses the file (measured with Drake 1.58: "XML Attribute[relative_to] in element[pose] not
+    defined in SDF"). The two readings give different masses' places, so robokit refuses rather than pick one."""
+    body = ('<link name="a"><inertial><pose relative_to="f">0.1 0 0 0 0 0</pose><mass>1</mass></inertial></link>'
+            '<frame name="f" attached_to="a"><pose>0 0 0.5 0 0 0</pose></frame>')
+    (tmp_path / "bad.sdf").write_text(f'<sdf version="{version}"><model name="m">{body}</model></sdf>')
+    _refused(tmp_path / "bad.sdf", "link 'a' <inertial>", "relative_to='f'", "link's frame")
+
+
+def test_an_inertial_pose_relative_to_its_own_link_is_the_link_frame(tmp_path):
+    """relative_to naming the inertial's own link (as onshape-to-robot writes it) means the same under every
+    reading: loaded, said once, the centre of mass where the plain file puts it."""
+    def arm(rel):
+        return (f'<sdf version="1.9"><model name="m"><link name="b"/><link name="a"><pose>0 0 0.2 0 0 0</pose>'
+                f'<inertial><pose{rel}>0.1 0.02 0 0 0.3 0</pose><mass>2</mass><inertia><ixx>0.01</ixx><iyy>0.02</iyy>'
+                '<izz>0.02</izz></inertia></inertial></link><joint name="j" type="revolute"><parent>b</parent>'
+                '<child>a</child><axis><xyz>0 1 0</xyz></axis></joint></model></sdf>')
+    (tmp_path / "own.sdf").write_text(arm(' relative_to="a"'))
+    (tmp_path / "plain.sdf").write_text(arm(""))
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        own = robokit.load(tmp_path / "own.sdf", tip="a")
+    plain, _ = load_quiet(tmp_path / "plain.sdf", tip="a")
+    assert sum("relative_to on <inertial><pose>" in str(w.message) for w in said) == 1
+    q = np.array([0.7])
+    assert np.array_equal(own.crba(q), plain.crba(q))
+    assert np.array_equal(own.gravity_torques(q), plain.gravity_torques(q)) and abs(own.gravity_torques(q)[0]) > 0.1
