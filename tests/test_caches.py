@@ -39,6 +39,7 @@ INVENTORY: dict[str, tuple[str, str]] = {
     "kernels/_jit.py:_KERNELS": ("registry", "compiled kernels"),
     "kernels/_jit.py:_COMPILED": ("registry", "compiled kernels"),
     "description/robot.py:_WRITER": ("registry", "the writer behind Robot.save"),
+    "kernels/_cache.py:_DIGESTS": ("memo", "the digest of a kernel folder's sources, by its path (once per process)"),
     "__init__.py:_HOME": ("state", "the package's lazily imported names"),
     "_deprecation.py:_WARNED": ("state", "deprecations warned once per process"),
     "motion/plan.py:_SEEDED": ("state", "OMPL's one seed per process"),

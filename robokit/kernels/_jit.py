@@ -14,7 +14,9 @@ numba picks the cache directory in this order:
    ``~/.cache/numba/…`` on Linux (numba's ``user_cache_dir``).
 
 :func:`cache_dir` reports the folder one kernel actually uses. A cache entry is reused only
-for the same source file contents, numba version and CPU; otherwise numba compiles again.
+for the same numba version and CPU and the same text of *every* kernel file (numba itself looks at
+the kernel's own file only; :mod:`robokit.kernels._cache` adds the others, which kernels call
+across files); otherwise numba compiles again.
 
 The first call
 --------------
@@ -87,6 +89,9 @@ from numba.core.dispatcher import Dispatcher, OmittedArg
 from numba.core import types as _nbtypes
 
 from robokit.kernels import ENV, MODES, compile_mode
+from robokit.kernels import _cache
+
+_cache.install()  # before any kernel is decorated: numba picks a function's cache locator then
 
 __all__ = ["njit", "prange", "cache_dir", "jit_disabled", "compile_now", "compile_mode", "interpreted", "MODES",
            "ENV", "SMALL_BATCH", "FK_BATCH", "held_notices"]
