@@ -371,8 +371,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
-    world = root.find("worldbody")
-    if world is None or world.find(".//body") is None:
+    if all(world.find(".//body") is None for world in root.findall("worldbody")):  # MuJoCo merges them all
         raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
     c = compile_mjcf(path, root, allow_outside_meshes=allow_outside_meshes)
     if len(c.bodies) < 2:

@@ -1319,13 +1319,15 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     _read_defaults(ctx)
     _read_assets(ctx)
     _check_asset_files(ctx)
-    world = root.find("worldbody")
+    # MuJoCo merges every <worldbody> section into the world, in the file's order (a scene that includes
+    # the arm's file has two: the arm's and its own floor's, and either may come first)
+    worlds = root.findall("worldbody")
     bodies: list[_Body] = [_Body("world", -1, (0.0, 0.0, 0.0), mm.IDENTITY, [], 0.0, (0.0, 0.0, 0.0), mm.IDENTITY,
-                                 (0.0, 0.0, 0.0), [], [], True, False, world)]
-    if world is not None:
+                                 (0.0, 0.0, 0.0), [], [], True, False, worlds[0] if worlds else None)]
+    if worlds:
         k_body = k_geom = k_site = 0
         world_geoms: list[_Geom] = []
-        for child, frame_c, ccls in _children(world, None, "main", ctx):
+        for child, frame_c, ccls in (c for world in worlds for c in _children(world, None, "main", ctx)):
             if child.tag == "body":
                 name = child.get("name")
                 _body(ctx, child, 0, name or f"world/body{k_body}", name is not None, frame_c, ccls, bodies)
@@ -1377,10 +1379,16 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
                                      "file: invalid keyword)")
             if flag.get("gravity") == "disable":
                 gravity = np.zeros(3)
-    for b in bodies[1:]:
-        if b.elem is not None and float(b.elem.get("gravcomp", "0") or 0) != 0:
-            ctx.notes.append(f"{path}: <body name={b.name!r}> gravcomp ignored: robokit's dynamics has no "
-                             "gravity compensation force")
+    comp = [(b.name, " ".join(b.elem.get("gravcomp", "").split())) for b in bodies[1:]
+            if b.elem is not None and float(b.elem.get("gravcomp", "0") or 0) != 0]
+    if comp:  # one note for every body that has it, as for the joint attributes below
+        shown = ", ".join(repr(n) for n, _ in comp[:6]) + (f" and {len(comp) - 6} more" if len(comp) > 6 else "")
+        values = list(dict.fromkeys(v for _, v in comp))
+        listed = ", ".join(values[:6]) + (", …" if len(values) > 6 else "")
+        ctx.notes.append(f"{path}: <body> gravcomp of bod{'ies' if len(comp) > 1 else 'y'} {shown} [{listed}] ignored: "
+                         "robokit's dynamics has no gravity compensation force (its gravity torques and inverse "
+                         "dynamics carry these bodies' full weight; MuJoCo counts the compensation as a passive "
+                         "force, which mj_inverse leaves out unless the joint has actuatorgravcomp)")
     for key, owners in ctx.joint_extras.items():  # one note per attribute, every joint that has it
         joints = [n for n, _ in owners]
         shown = ", ".join(repr(n) for n in joints[:6]) + (f" and {len(joints) - 6} more" if len(joints) > 6 else "")

@@ -350,6 +350,112 @@ def test_joint_friction_and_springs_are_noted_once_per_attribute(tmp_path):
         np.testing.assert_allclose(robot.rnea(q, dq, np.zeros(3)), d.qfrc_bias, rtol=0, atol=1e-12)
 
 
+GRAVCOMP_ARM = """<mujoco model="compensated_arm">
+  <compiler angle="radian"/>
+  <option gravity="1 -4 -9.81"/>
+  <default><default class="arm"><joint axis="0 0 1" armature="0.01" damping="0.2"/></default></default>
+  <worldbody>
+    <body name="base" childclass="arm" gravcomp="1">
+      <inertial pos="0 0 0.05" mass="1" diaginertia="0.01 0.01 0.01"/>
+      <body name="l1" pos="0 0 0.1" gravcomp="1">
+        <inertial pos="0.1 0 0.02" mass="1" diaginertia="0.01 0.02 0.03"/>
+        <joint name="j1"/>
+        <body name="l2" pos="0.2 0 0" quat="0.7071068 0.7071068 0 0" gravcomp="0.5">
+          <inertial pos="0.1 0.02 0" mass="0.5" diaginertia="0.004 0.005 0.006"/>
+          <joint name="j2"/>
+          <body name="l3" pos="0.2 0 0" gravcomp="1">
+            <inertial pos="0.05 0 0.01" mass="0.3" diaginertia="0.001 0.002 0.002"/>
+            <joint name="j3" axis="0 1 0" actuatorgravcomp="true"/>
+            <site name="tip" pos="0.1 0 0"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_body_gravcomp_is_noted_once_for_every_body(tmp_path):
+    """AgileX's PiPER in MuJoCo Menagerie (agilex_piper/piper.xml) sets gravcomp="1" on each of its
+    9 bodies: robokit printed 9 notes, one per body, each saying only that gravcomp was ignored. Now
+    one note lists the bodies and values and says what robokit computes instead: the bodies' full
+    weight, which is MuJoCo's inverse dynamics with the compensation force (a passive force that
+    mj_inverse leaves out) added back."""
+    path = tmp_path / "gravcomp.xml"
+    path.write_text(GRAVCOMP_ARM)
+    with pytest.warns(UserWarning) as record:
+        robot = robokit.load(path)
+    said = [str(w.message) for w in record if "gravcomp" in str(w.message)]
+    assert said == [
+        f"{path}: <body> gravcomp of bodies 'base', 'l1', 'l2', 'l3' [1, 0.5] ignored: robokit's dynamics has no "
+        "gravity compensation force (its gravity torques and inverse dynamics carry these bodies' full weight; "
+        "MuJoCo counts the compensation as a passive force, which mj_inverse leaves out unless the joint has "
+        "actuatorgravcomp)"]
+    m = mujoco.MjModel.from_xml_path(str(path))
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
+    d = mujoco.MjData(m)
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q, dq, ddq = rng.uniform(-2, 2, 3), rng.standard_normal(3), rng.standard_normal(3)
+        d.qpos[:], d.qvel[:], d.qacc[:] = q, dq, ddq
+        mujoco.mj_inverse(m, d)
+        assert np.abs(d.qfrc_passive + m.dof_damping * dq).max() > 0.1  # MuJoCo does compensate
+        # qfrc_inverse is M q̈ + c + g minus the passive force: −b q̇, and the compensation except on j3,
+        # whose compensation goes to its actuator (actuatorgravcomp); armature in M
+        full = d.qfrc_inverse + d.qfrc_passive
+        np.testing.assert_allclose(full, d.qfrc_inverse + d.qfrc_gravcomp * [1, 1, 0] - m.dof_damping * dq,
+                                   rtol=0, atol=1e-12)
+        np.testing.assert_allclose(robot.rnea(q, dq, ddq), full, rtol=0, atol=1e-12)
+
+
+def test_every_worldbody_section_is_read(tmp_path):
+    """MuJoCo merges every <worldbody> of a file into the world, in order. A scene that includes an
+    arm's file after its own <worldbody> was refused by robokit, which read only the first section:
+    '<worldbody> has no <body>; nothing to load' when that section holds a floor, 'the chain to
+    'table' has no moving joint' when it also holds a table (MuJoCo Menagerie's scene.xml files put
+    the include first, so their floor section was the one skipped). Now the sections are read in
+    order: the bodies are MuJoCo's, in MuJoCo's order, and the arm in the second section is the
+    robot, with MuJoCo's tip pose, mass matrix and inverse dynamics."""
+    (tmp_path / "arm.xml").write_text(PASSIVE_ARM.replace(' stiffness="1" frictionloss="0.1"', "")
+                                      .replace(' stiffness="10" springdamper="0 0"', ""))
+    path = tmp_path / "scene.xml"
+    path.write_text("""<mujoco model="scene">
+  <worldbody>
+    <light pos="0 0 1.5" dir="0 0 -1" directional="true"/>
+    <geom name="floor" size="0 0 0.05" type="plane"/>
+    <body name="table" pos="0.5 0 0.3"><geom type="box" size="0.2 0.2 0.02"/></body>
+  </worldbody>
+  <include file="arm.xml"/>
+  <worldbody>
+    <body name="cup" pos="0.5 0 0.4"><geom size="0.03"/></body>
+  </worldbody>
+</mujoco>
+""")
+    from robokit.description.mjcf_compile import compile_mjcf
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = robokit.load(path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert [b.name for b in compile_mjcf(path).bodies] == [
+        mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, i) for i in range(m.nbody)]
+    assert robot.joint_names == ("j1", "j2", "j3") and robot.tip == "tip"
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
+    d = mujoco.MjData(m)
+    rng = np.random.default_rng(6)
+    for _ in range(5):
+        q, dq, ddq = rng.uniform(-2, 2, 3), rng.standard_normal(3), rng.standard_normal(3)
+        d.qpos[:], d.qvel[:], d.qacc[:] = q, dq, ddq
+        mujoco.mj_inverse(m, d)
+        M = np.zeros((3, 3))
+        mujoco.mj_fullM(m, d, M)
+        T = robot.frame_pose(q)
+        np.testing.assert_allclose(T[:3, 3], d.site_xpos[0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(T[:3, :3], d.site_xmat[0].reshape(3, 3), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(robot.crba(q), M, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(robot.rnea(q, dq, ddq), d.qfrc_inverse - m.dof_damping * dq, rtol=0, atol=1e-12)
+
+
 def test_contact_excludes_are_read_so_not_noted_as_ignored(tmp_path):
     """robosuite's Baxter has only <contact><exclude> pairs, which robokit reads into
     ``robot.contact_rules``; the note said '<contact> ignored (exclude)'. A <pair>, which robokit does
