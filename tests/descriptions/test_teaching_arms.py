@@ -1,0 +1,155 @@
+"""The arms university courses and student teams own, as their makers publish them (tests/data/<maker>/SOURCE):
+Trossen Robotics' Interbotix X-series (PincherX 100, WidowX 250 6DOF, ViperX 300 6DOF) from
+``interbotix_xsarm_descriptions``, the ROBOTIS OpenManipulator-X from ``open_manipulator_description`` and
+Elephant Robotics' myCobot 280 M5 from ``mycobot_description``.
+
+Each is loaded as a user does, :func:`robokit.load` on the maker's file with the maker's launch arguments
+(the packages found beside the file), and held against Pinocchio built directly from the ``xacro``
+program's expansion of the same file with the same arguments (tests/support/xacro_reference.py), or on the
+URDF file itself: the pose of every link frame, the tip's Jacobians in the three reference frames, M and
+the gravity torques at random joint values within the file's limits (continuous joints at any angle), and
+the position, velocity and effort limits. And what robokit says about what it does not model: the missing
+meshes, the joints' friction, the grippers' locked mimic fingers, the myCobot's missing inertias, once each.
+"""
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import robokit
+from xacro_reference import xacro_urdfs
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+XS = "interbotix_xsarm_descriptions/urdf/"
+OMX = "open_manipulator_description/urdf/open_manipulator_x/open_manipulator_x.urdf.xacro"
+COBOT = "mycobot_description/urdf/mycobot_280_m5/mycobot_280_m5.urdf"
+
+#: label -> (maker folder, file, xacro arguments, tip, joints)
+ARMS = {
+    "PincherX 100": ("interbotix", XS + "px100.urdf.xacro", {}, "px100/ee_gripper_link", 4),
+    "WidowX 250 6DOF, named left, AR tag": (
+        "interbotix", XS + "wx250s.urdf.xacro",
+        {"robot_name": "left", "show_ar_tag": "true", "hardware_type": "fake", "use_world_frame": "true"},
+        "left/ee_gripper_link", 6),
+    "ViperX 300 6DOF": ("interbotix", XS + "vx300s.urdf.xacro", {}, "vx300s/ee_gripper_link", 6),
+    "ViperX 300 6DOF without gripper": ("interbotix", XS + "vx300s.urdf.xacro", {"use_gripper": "false"},
+                                        "vx300s/wrist_link", 5),
+    # the gripper's bar left out: the chain's last joint is the gripper's continuous motor joint
+    "PincherX 100 without gripper bar": ("interbotix", XS + "px100.urdf.xacro", {"show_gripper_bar": "false"},
+                                         "px100/gripper_prop_link", 5),
+    "OpenManipulator-X": ("robotis", OMX, {}, "end_effector_link", 4),
+    "OpenManipulator-X, prefix, mock hardware": ("robotis", OMX, {"prefix": "l_", "use_mock_hardware": "true"},
+                                                 "l_end_effector_link", 4),
+    "myCobot 280 M5": ("elephant", COBOT, None, "joint6_flange", 6),
+}
+
+
+@pytest.fixture(scope="module")
+def reference() -> dict[str, str]:
+    """The URDF text each arm's engine reads: the xacro program's expansion (one subprocess for all), or the
+    URDF file itself."""
+    xacros = {k: (DATA / m, f, a) for k, (m, f, a, _, _) in ARMS.items() if a is not None}
+    urdfs = xacro_urdfs(xacros)
+    urdfs.update({k: (DATA / m / f).read_text() for k, (m, f, a, _, _) in ARMS.items() if a is None})
+    return urdfs
+
+
+def load(label: str) -> tuple[robokit.Robot, list[str]]:
+    """The arm as a user loads it, and what robokit said."""
+    maker, rel, args, _, _ = ARMS[label]
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        robot = robokit.load(DATA / maker / rel, xacro_args=args or None)
+    return robot, [str(w.message) for w in said]
+
+
+def configuration(model: pin.Model, joints: list, q: np.ndarray) -> np.ndarray:
+    """Pinocchio's configuration for robokit's joint angles ``q`` (a continuous joint as cos, sin), the
+    other joints at Pinocchio's neutral."""
+    qf = pin.neutral(model)
+    for j, x in zip(joints, q):
+        qf[j.idx_q:j.idx_q + j.nq] = (np.cos(x), np.sin(x)) if j.nq == 2 else x
+    return qf
+
+
+@pytest.mark.parametrize("label", list(ARMS))
+def test_arm_matches_pinocchio_on_the_makers_file(label, reference):
+    robot, said = load(label)
+    _, _, _, tip, n = ARMS[label]
+    assert robot.tip == tip and robot.n == n
+    model = pin.buildModelFromXML(reference[label])
+    data = model.createData()
+    joints = [model.joints[model.getJointId(j)] for j in robot.joint_names]
+    iv = [j.idx_v for j in joints]
+    continuous = np.array([j.nq == 2 for j in joints])
+    iq = [j.idx_q for j in joints]
+    lo = np.where(continuous, -np.inf, model.lowerPositionLimit[iq])
+    hi = np.where(continuous, np.inf, model.upperPositionLimit[iq])
+    assert np.array_equal(np.asarray(robot.qlim, float), np.c_[lo, hi])
+    rv = [robot.model.joints[robot.model.getJointId(j)].idx_v for j in robot.joint_names]
+    assert np.array_equal(robot.model.velocityLimit[rv], model.velocityLimit[iv])
+    assert np.array_equal(robot.model.effortLimit[rv], model.effortLimit[iv])
+
+    body = pin.FrameType.BODY
+    links = [f for f in robot.frame_names if model.existFrame(f, body)]
+    assert tip in links and len(links) >= n + 1  # the root and every moving link at least
+    fid = model.getFrameId(tip, body)
+    frames = {pin.WORLD: robokit.Frame.WORLD, pin.LOCAL: robokit.Frame.LOCAL,
+              pin.LOCAL_WORLD_ALIGNED: robokit.Frame.LOCAL_WORLD_ALIGNED}
+    has_mass = ARMS[label][0] != "elephant"
+    rng = np.random.default_rng(7)
+    worst = dict(pose=0.0, J=0.0, M=0.0, g=0.0)
+    for _ in range(12):
+        q = rng.uniform(np.maximum(lo, -4.0), np.minimum(hi, 4.0))  # a continuous joint beyond ±π too
+        qf = configuration(model, joints, q)
+        pin.framesForwardKinematics(model, data, qf)
+        for f in links:
+            worst["pose"] = max(worst["pose"], np.abs(robot.frame_pose(q, f)
+                                                      - data.oMf[model.getFrameId(f, body)].homogeneous).max())
+        for ref, rk_ref in frames.items():
+            J = pin.computeFrameJacobian(model, data, qf, fid, ref)[:, iv]
+            J = np.vstack([J[3:], J[:3]])  # robokit: angular rows first
+            worst["J"] = max(worst["J"], np.abs(robot.jacobian(q, reference=rk_ref) - J).max() / np.abs(J).max())
+        M = pin.crba(model, data, qf)
+        M = (np.triu(M) + np.triu(M, 1).T)[np.ix_(iv, iv)]
+        g = pin.computeGeneralizedGravity(model, data, qf)[iv]
+        if has_mass:
+            worst["M"] = max(worst["M"], np.abs(robot.crba(q) - M).max() / np.abs(M).max())
+            worst["g"] = max(worst["g"], np.abs(robot.gravity_torques(q) - g).max() / np.abs(g).max())
+        else:  # the file gives no inertia: both are exactly zero, and robokit says so
+            assert not M.any() and not g.any()
+            assert not robot.crba(q).any() and not robot.gravity_torques(q).any()
+    assert max(worst.values()) < 1e-12, worst
+
+    assert sum("mesh files not found" in s for s in said) == 1, said  # meshes not vendored: one note
+    assert sum("has mass (the file gives none)" in s for s in said) == (0 if has_mass else 1), said
+
+
+@pytest.mark.parametrize("label, mimic, friction", [
+    ("PincherX 100", "right_finger", "friction=0.1"),
+    ("OpenManipulator-X, prefix, mock hardware", "l_gripper_right_joint", "damping=0.7"),
+])
+def test_what_robokit_says_once(label, mimic, friction):
+    """The gripper's mimic finger is locked off the chain (Pinocchio's model has it at zero too), the
+    joints' <dynamics> are kept but not in the rigid-body dynamics, the <ros2_control> block is not part of
+    the model: one note each."""
+    robot, said = load(label)
+    assert mimic in robot.locked_joints
+    notes = [s for s in said if "mimic joints off the chain locked" in s]
+    assert len(notes) == 1 and mimic in notes[0], said
+    notes = [s for s in said if "<dynamics> of joints" in s]
+    assert len(notes) == 1 and friction in notes[0], said
+    assert sum("<ros2_control>" in s for s in said) == 1, said
+    assert len(said) == len(set(said))
+
+
+def test_the_mycobot_urdf_says_what_it_is():
+    """The myCobot's ``.urdf`` holds a ``<xacro:property>`` (ROS' URDF parser skips it) and velocity="0"
+    on every joint: robokit says the first once and keeps the file's zero (as Pinocchio does)."""
+    robot, said = load("myCobot 280 M5")
+    assert sum("<xacro:property> read but not modelled" in s for s in said) == 1, said
+    assert not robot.model.velocityLimit.any() and (robot.model.effortLimit == 1000.0).all()
