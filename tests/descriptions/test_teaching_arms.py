@@ -153,3 +153,37 @@ def test_the_mycobot_urdf_says_what_it_is():
     robot, said = load("myCobot 280 M5")
     assert sum("<xacro:property> read but not modelled" in s for s in said) == 1, said
     assert not robot.model.velocityLimit.any() and (robot.model.effortLimit == 1000.0).all()
+
+
+@pytest.mark.parametrize("label, friction", [("PincherX 100", 0.1), ("OpenManipulator-X, prefix, mock hardware", 0.0)])
+def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(label, friction, reference, tmp_path,
+                                                                            capsys):
+    """``robokit convert ARM -o arm.xml`` against MuJoCo reading the maker's URDF itself (the xacro program's
+    expansion, meshes left out): per joint of the chain the same range, damping, dry friction
+    (``frictionloss``, from ``<dynamics friction>``) and actuator force limit (``actuatorfrcrange``, from
+    ``<limit effort>``). Before, the MJCF had neither (Interbotix's 0.1 N·m friction on joints whose effort
+    limit is 1 to 2 N·m, and their effort limits, gone without a word); and it says that MJCF has no
+    velocity limits."""
+    import re
+
+    mujoco = pytest.importorskip("mujoco")
+    from robokit.cli import main
+
+    maker, rel, args, _, _ = ARMS[label]
+    out = tmp_path / "arm.xml"
+    argv = ["convert", str(DATA / maker / rel), "-o", str(out)]
+    assert main(argv + [a for k, v in args.items() for a in ("--xacro-arg", f"{k}:={v}")]) == 0
+    err = capsys.readouterr().err
+    assert err.count("joint velocity limits not written") == 1
+    urdf = re.sub(r"<visual>.*?</visual>|<collision>.*?</collision>|<ros2_control.*?</ros2_control>|"
+                  r"<gazebo.*?</gazebo>|<transmission.*?</transmission>", "", reference[label], flags=re.S)
+    ref, ours = mujoco.MjModel.from_xml_string(urdf), mujoco.MjModel.from_xml_path(str(out))
+    robot, _ = load(label)
+    for jn in robot.joint_names:
+        a, b = (m.joint(jn) for m in (ref, ours))
+        for m, j in ((ref, a), (ours, b)):
+            assert m.jnt_limited[j.id] and m.jnt_actfrclimited[j.id]
+        assert np.array_equal(a.range, b.range)
+        assert np.array_equal(ref.jnt_actfrcrange[a.id], ours.jnt_actfrcrange[b.id])
+        assert ref.dof_frictionloss[a.dofadr[0]] == ours.dof_frictionloss[b.dofadr[0]] == friction
+        assert ref.dof_damping[a.dofadr[0]] == ours.dof_damping[b.dofadr[0]] > 0
