@@ -187,3 +187,32 @@ def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(labe
         assert np.array_equal(ref.jnt_actfrcrange[a.id], ours.jnt_actfrcrange[b.id])
         assert ref.dof_frictionloss[a.dofadr[0]] == ours.dof_frictionloss[b.dofadr[0]] == friction
         assert ref.dof_damping[a.dofadr[0]] == ours.dof_damping[b.dofadr[0]] > 0
+
+
+def test_a_dh_table_out_says_what_it_cannot_hold(reference, tmp_path, capsys):
+    """``robokit convert px100.urdf.xacro -o px100.yaml``: the DH table reproduces the file's kinematics
+    (Pinocchio on the xacro program's URDF), but a DH file has no place for the joints' velocity and effort
+    limits, damping or friction, and robokit loads it with placeholder limits (10 rad/s, 1000 N·m, where the
+    PincherX 100's are π rad/s and 1 to 2 N·m). Before, nothing said so; now one note lists the file's values."""
+    from robokit.cli import main
+
+    maker, rel, _, _, _ = ARMS["PincherX 100"]
+    out = tmp_path / "px100.yaml"
+    assert main(["convert", str(DATA / maker / rel), "-o", str(out)]) == 0
+    notes = [line for line in capsys.readouterr().err.splitlines() if "a DH table has no place" in line]
+    model = pin.buildModelFromXML(reference["PincherX 100"])
+    robot, _ = load("PincherX 100")
+    iv = [model.joints[model.getJointId(j)].idx_v for j in robot.joint_names]
+    listed = "; ".join(f"{what} {', '.join(f'{x:g}' for x in values[iv])}" for what, values in (
+        ("velocity limits", model.velocityLimit), ("effort limits", model.effortLimit),
+        ("damping", model.damping), ("friction", model.friction)))
+    assert len(notes) == 1 and listed in notes[0], notes
+    assert "velocity limits 3.14159, 3.14159, 3.14159, 3.14159; effort limits 1, 2, 2, 1" in listed
+    table = robokit.load(out)
+    assert table.model.velocityLimit.tolist() == [10.0] * 4  # the placeholders the note names
+    data, fid = model.createData(), model.getFrameId(robot.tip)
+    q = np.random.default_rng(1).uniform(*np.asarray(robot.qlim).T)
+    qf = pin.neutral(model)
+    qf[[model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]] = q
+    pin.framesForwardKinematics(model, data, qf)
+    assert np.abs(table.frame_pose(q) - data.oMf[fid].homogeneous).max() < 1e-12
