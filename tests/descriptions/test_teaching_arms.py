@@ -216,3 +216,32 @@ def test_a_dh_table_out_says_what_it_cannot_hold(reference, tmp_path, capsys):
     qf[[model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]] = q
     pin.framesForwardKinematics(model, data, qf)
     assert np.abs(table.frame_pose(q) - data.oMf[fid].homogeneous).max() < 1e-12
+
+
+def test_a_dh_table_header_tells_the_written_tables_error(tmp_path):
+    """The myCobot 280's frames are turned by 1.5708, not π/2: its DH angles lie up to 8e-10° from whole
+    degrees, which the DH file writes as whole degrees (moving the flange by about 1e-11 m). The file's
+    header said the table matched the URDF to 1.0e-15; it now gives the written table's error, which
+    Pinocchio on the URDF file confirms."""
+    from robokit.cli import main
+
+    maker, rel, _, _, _ = ARMS["myCobot 280 M5"]
+    out = tmp_path / "mycobot.yaml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert main(["convert", str(DATA / maker / rel), "-o", str(out)]) == 0
+        robot = robokit.load(DATA / maker / rel)
+    claimed = float(out.read_text().splitlines()[0].split("FK matches the URDF to ")[1].split()[0])
+    table = robokit.load(out)
+    model = pin.buildModelFromXML((DATA / maker / rel).read_text())
+    data, fid = model.createData(), model.getFrameId(robot.tip)
+    iq = [model.joints[model.getJointId(j)].idx_q for j in robot.joint_names]
+    rng = np.random.default_rng(2)
+    worst = 0.0
+    for _ in range(200):
+        q = rng.uniform(*np.asarray(robot.qlim).T)
+        qf = pin.neutral(model)
+        qf[iq] = q
+        pin.framesForwardKinematics(model, data, qf)
+        worst = max(worst, np.abs(table.frame_pose(q) - data.oMf[fid].homogeneous).max())
+    assert 1e-12 < worst <= 1e-9 and worst <= 2 * claimed, (worst, claimed)
