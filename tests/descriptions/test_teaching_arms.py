@@ -245,3 +245,38 @@ def test_a_dh_table_header_tells_the_written_tables_error(tmp_path):
         pin.framesForwardKinematics(model, data, qf)
         worst = max(worst, np.abs(table.frame_pose(q) - data.oMf[fid].homogeneous).max())
     assert 1e-12 < worst <= 1e-9 and worst <= 2 * claimed, (worst, claimed)
+
+
+def test_a_users_own_part_through_external_urdf_loc(tmp_path):
+    """Interbotix's ``external_urdf_loc`` includes a file of the user's (a camera on the wrist) from
+    wherever it is: read because the user named it. The camera's frame and its mass in M and gravity agree
+    with Pinocchio on the xacro program's expansion with the same arguments."""
+    part = tmp_path / "camera.urdf.xacro"
+    part.write_text(
+        '<robot xmlns:xacro="http://ros.org/wiki/xacro">\n'
+        '  <joint name="camera_mount" type="fixed"><parent link="$(arg robot_name)/ee_arm_link"/>'
+        '<child link="$(arg robot_name)/camera_link"/><origin xyz="-0.02 0 0.06" rpy="0 0.4 0"/></joint>\n'
+        '  <link name="$(arg robot_name)/camera_link"><inertial><origin xyz="0 0 0.01"/><mass value="0.12"/>'
+        '<inertia ixx="2e-4" iyy="1e-4" izz="2e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>\n</robot>\n')
+    args = {"robot_name": "arm", "external_urdf_loc": str(part)}
+    rel = XS + "wx250s.urdf.xacro"
+    model = pin.buildModelFromXML(xacro_urdfs({"cam": (DATA / "interbotix", rel, args)})["cam"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = robokit.load(DATA / "interbotix" / rel, xacro_args=args)
+        bare = robokit.load(DATA / "interbotix" / rel, xacro_args={"robot_name": "arm"})
+    data = model.createData()
+    joints = [model.joints[model.getJointId(j)] for j in robot.joint_names]
+    iq, iv = [j.idx_q for j in joints], [j.idx_v for j in joints]
+    fid = model.getFrameId("arm/camera_link", pin.FrameType.BODY)
+    q = np.random.default_rng(3).uniform(*np.asarray(robot.qlim).T)
+    qf = pin.neutral(model)
+    qf[iq] = q
+    pin.framesForwardKinematics(model, data, qf)
+    assert np.abs(robot.frame_pose(q, "arm/camera_link") - data.oMf[fid].homogeneous).max() < 1e-15
+    M = pin.crba(model, data, qf)
+    M = (np.triu(M) + np.triu(M, 1).T)[np.ix_(iv, iv)]
+    g = pin.computeGeneralizedGravity(model, data, qf)[iv]
+    assert np.abs(robot.crba(q) - M).max() < 1e-12 * np.abs(M).max()
+    assert np.abs(robot.gravity_torques(q) - g).max() < 1e-12 * np.abs(g).max()
+    assert np.abs(bare.gravity_torques(q) - g).max() > 1e-3 * np.abs(g).max()  # the camera's 120 g is in
