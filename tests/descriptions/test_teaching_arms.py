@@ -162,8 +162,8 @@ def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(labe
     expansion, meshes left out): per joint of the chain the same range, damping, dry friction
     (``frictionloss``, from ``<dynamics friction>``) and actuator force limit (``actuatorfrcrange``, from
     ``<limit effort>``). Before, the MJCF had neither (Interbotix's 0.1 N·m friction on joints whose effort
-    limit is 1 to 2 N·m, and their effort limits, gone without a word); and it says that MJCF has no
-    velocity limits."""
+    limit is 1 to 2 N·m, and their effort limits, gone without a word); robokit reads the force range back
+    as the effort limit (Pinocchio's on the URDF); and it says that MJCF has no velocity limits."""
     import re
 
     mujoco = pytest.importorskip("mujoco")
@@ -187,6 +187,12 @@ def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(labe
         assert np.array_equal(ref.jnt_actfrcrange[a.id], ours.jnt_actfrcrange[b.id])
         assert ref.dof_frictionloss[a.dofadr[0]] == ours.dof_frictionloss[b.dofadr[0]] == friction
         assert ref.dof_damping[a.dofadr[0]] == ours.dof_damping[b.dofadr[0]] > 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        back = robokit.load(out)  # and robokit reads its MJCF's effort limits back: the file's
+    model = pin.buildModelFromXML(reference[label])
+    iv = [model.joints[model.getJointId(j)].idx_v for j in robot.joint_names]
+    assert np.array_equal(back.model.effortLimit, model.effortLimit[iv])
 
 
 def test_a_dh_table_out_says_what_it_cannot_hold(reference, tmp_path, capsys):
