@@ -197,7 +197,7 @@ def _build_parser() -> argparse.ArgumentParser:
 
     # collision-free planning (robokit.motion)
     pl = sub.add_parser("plan", help="a collision-free, time-optimal joint trajectory (RRT-Connect + TOPP-RA) to CSV")
-    pl.add_argument("model", help="shipped model name, .yaml, .urdf or example-robot-data name")
+    pl.add_argument("model", help="shipped model name, a .yaml/.urdf/.xacro/.xml/.sdf file or example-robot-data name")
     pl.add_argument("--start", nargs="+", type=float, required=True, help="start joint values (rad / m)")
     goal = pl.add_mutually_exclusive_group(required=True)
     goal.add_argument("--goal", nargs="+", type=float,
@@ -217,6 +217,7 @@ def _build_parser() -> argparse.ArgumentParser:
     pl.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     pl.add_argument("--tip", help="tip frame of the chain (URDF input)")
     pl.add_argument("-o", "--output", required=True, help="output .csv file")
+    _add_format_options(pl)
     return p
 
 
@@ -290,11 +291,13 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "plan":
         from robokit.commands import plan_command
 
+        opts = _format_options(args, args.model)
+        opts.pop("allow_outside_meshes", None)  # plan_command takes it for the scene's meshes too
         return plan_command(args.model, args.start, args.goal, args.output, goal_pose=args.goal_pose,
                             obstacles=args.obstacles,
                             vmax=args.vmax, amax=args.amax, dt=args.dt, seed=args.seed, tip=args.tip,
                             convex=args.convex, describe_world=args.describe_world,
-                            allow_outside_meshes=args.allow_outside_meshes)
+                            allow_outside_meshes=args.allow_outside_meshes, **opts)
     raise _UsageError(f"robokit: error: unknown command {args.command!r}")
 
 

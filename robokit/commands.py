@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -452,7 +452,8 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
                  output: str | os.PathLike[str], obstacles: str | os.PathLike[str] | None = None, vmax: float = 1.0, amax: float = 2.0,
                  dt: float = 1 / 30, seed: int = 0, tip: str | None = None, convex: bool = False,
                  describe_world: bool = False, allow_outside_meshes: bool = False,
-                 goal_pose: ArrayLike | None = None) -> int:
+                 goal_pose: ArrayLike | None = None, *, xacro_args: Mapping[str, str] | None = None,
+                 package_dirs: Sequence[str | os.PathLike[str]] | None = None, reflected_inertia: bool = True) -> int:
     """``robokit plan MODEL --start … --goal …|--goal-pose … [--obstacles scene.yaml] [--convex] -o traj.csv``: plan a
     collision-free motion, retime it and write it as a CSV.
 
@@ -489,6 +490,9 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
     goal_pose : (6,) array_like, optional
         x y z roll pitch yaw (m, rad; URDF's fixed-axis roll, pitch, yaw) of the tip pose in the base
         frame, for any robot (``--goal-pose``); instead of ``goal``.
+    xacro_args, package_dirs, reflected_inertia : optional
+        Passed to ``robokit.load`` when given (``--xacro-arg``, ``--package-path``,
+        ``--no-reflected-inertia``), as every command that loads a robot takes them.
 
     Returns
     -------
@@ -508,7 +512,8 @@ def plan_command(model: str | os.PathLike[str], start: ArrayLike, goal: ArrayLik
     if not 0 <= seed <= MAX_SEED:
         raise InputError(f"--seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
     # the flag reads the robot file's meshes too, where its format takes it (False means "not given")
-    robot = load(model, tip=tip, allow_outside_meshes=allow_outside_meshes and file_takes(model, "allow_outside_meshes"))
+    robot = load(model, tip=tip, allow_outside_meshes=allow_outside_meshes and file_takes(model, "allow_outside_meshes"),
+                 xacro_args=xacro_args, package_dirs=package_dirs, reflected_inertia=reflected_inertia)
     q0 = np.asarray(start, dtype=float)
     if q0.shape != (robot.n,):
         raise InputError(f"--start: expected {robot.n} joint values for {robot.name}, got {q0.size}")

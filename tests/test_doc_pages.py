@@ -152,6 +152,12 @@ STAND_INS = {
     "franka_description": lambda f: shutil.copytree(DATA / "franka_description",
                                                     f / "ws" / "src" / "franka_description"),
     "demo_description": _demo_description,
+    # the teaching arms' repositories under ~/ws/src, each package in its own folder as the makers lay them out
+    "interbotix_xsarm_descriptions": lambda f: shutil.copytree(
+        DATA / "interbotix" / "interbotix_xsarm_descriptions",
+        f / "ws" / "src" / "interbotix_ros_manipulators" / "interbotix_ros_xsarms" / "interbotix_xsarm_descriptions"),
+    "open_manipulator": lambda f: shutil.copytree(DATA / "robotis", f / "ws" / "src" / "open_manipulator",
+                                                  ignore=shutil.ignore_patterns("LICENSE", "SOURCE")),
 }
 
 
@@ -164,8 +170,9 @@ PAGES = {
     "formats/poe-json.md": Page(shows=1, commands=("convert ur5 -o ur5.json",)),
     "formats/sdf.md": Page(shows=1, stand_ins=("model.sdf", "iiwa14.sdf"), home=True),
     "formats/urdf.md": Page(shows=1, stand_ins=("iiwa14_no_collision.urdf",)),
-    "formats/xacro.md": Page(shows=3, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
-                                                 "demo_description", "my_robot_calibration.yaml"), home=True),
+    "formats/xacro.md": Page(shows=5, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
+                                                 "demo_description", "my_robot_calibration.yaml",
+                                                 "interbotix_xsarm_descriptions", "open_manipulator"), home=True),
     "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),
                        home=True),
     "teach.md": Page(requires=("meshcat", "ipywidgets", "ziglang"), shows=1),

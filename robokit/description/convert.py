@@ -6,6 +6,7 @@ Every output is written atomically: a failure leaves no file behind. Bad input r
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING, Mapping, Sequence
@@ -36,6 +37,24 @@ def _armature_note(robot: Robot) -> list[str]:
     return [f"{robot.name}: Mlist/Glist hold the rigid bodies only; the joints' reflected rotor inertia is the JSON's "
             f"'armature' ({', '.join(f'{n} {a:g}' for n, a in zip(robot.joint_names, arm) if a)}): Pinocchio's "
             f"rnea on this chain is their Newton-Euler torques plus armature * ddq"]
+
+
+def _dh_table_note(robot: Robot) -> list[str]:
+    """The note on what a DH table extracted from a file cannot hold: the joints' velocity and effort limits,
+    damping and friction (robokit gives a robot loaded from a DH file placeholder limits, velocity 10 and
+    effort 1000)."""
+    model = robot.model
+    iv = [model.joints[model.getJointId(j)].idx_v for j in robot.joint_names]
+    held = []
+    for what, values in (("velocity limits", model.velocityLimit), ("effort limits", model.effortLimit),
+                         ("damping", model.damping), ("friction", model.friction)):
+        v = [float(x) for x in values[iv]]
+        if any(math.isfinite(x) and x != 0 for x in v):
+            held.append(f"{what} {', '.join(f'{x:g}' for x in v)}")
+    if not held:
+        return []
+    return [f"{robot.name}: not written, a DH table has no place for them: {'; '.join(held)} (per joint); "
+            "robokit loads a DH file with placeholder limits (velocity 10, effort 1000 in SI units)"]
 
 
 def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None = None, tip: str | None = None,
@@ -139,6 +158,8 @@ def convert(input: str | os.PathLike[str], output: str | os.PathLike[str] | None
             from robokit.description.urdf_to_dh import urdf_to_dh_text
 
             text = urdf_to_dh_text(robot, convention=convention, as_yaml=out_suffix is not None)
+            if out_suffix is not None:
+                notes += _dh_table_note(robot)
     if out is not None:
         atomic_write(out, text)
     return text, notes

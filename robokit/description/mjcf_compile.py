@@ -84,6 +84,10 @@ class MjcfJoint:
         As written (kg·m² or kg, N·m·s/rad or N·s/m, ...).
     named : bool
         Whether the file names it.
+    effort : float
+        ``e`` of a limited, symmetric ``actuatorfrcrange="-e e"`` (N·m or N): what MuJoCo clamps the
+        total actuator force on the joint to, a URDF's effort limit as MuJoCo's URDF reader writes
+        it; inf when the force is not limited (an asymmetric range is noted, not read).
     """
 
     name: str
@@ -99,6 +103,7 @@ class MjcfJoint:
     stiffness: float = 0.0
     frictionloss: float = 0.0
     named: bool = True
+    effort: float = math.inf
 
 
 @dataclass(frozen=True)
@@ -281,6 +286,7 @@ _JOINT_EXTRAS_WHY = {
                  "bias force or mass matrix)",
     "springdamper": "its spring and damper follow from the compiled inertia, and robokit's rigid-body dynamics "
                     "has no passive forces",
+    "actuatorfrcrange": "an asymmetric range: robokit's effort limit is one bound ±e (a range -e e is read as it)",
 }
 
 
@@ -919,7 +925,34 @@ def _joint(ctx: _Ctx, elem: ET.Element, cls: str, name: str, named: bool,
     return MjcfJoint(name=name, type=jtype, pos=np.array(pos), axis=np.array(axis_n), limited=limited,
                      range=np.array(rng if limited else [-math.inf, math.inf], dtype=float), ref=ref,
                      springref=springref, armature=num("armature"), damping=num("damping"),
-                     stiffness=num("stiffness"), frictionloss=num("frictionloss"), named=named)
+                     stiffness=num("stiffness"), frictionloss=num("frictionloss"), named=named,
+                     effort=_actuator_force_limit(ctx, elem, a, name))
+
+
+def _actuator_force_limit(ctx: _Ctx, elem: ET.Element, a: dict[str, str], name: str) -> float:
+    """The joint's effort limit from ``actuatorfrclimited``/``actuatorfrcrange``, with MuJoCo's rules (``auto``:
+    limited when the compiler's autolimits is on and the range is not empty; a range given with ``auto`` and
+    autolimits off, or a limited empty range, refused as MuJoCo refuses them); inf when not limited."""
+    frc = _numbers(ctx, a, "actuatorfrcrange", 2, elem) or [0.0, 0.0]
+    flag = a.get("actuatorfrclimited", "auto")
+    if flag not in ("true", "false", "auto"):
+        raise InputError(f"{ctx.where(elem, name)} actuatorfrclimited={flag!r}: expected true, false or auto")
+    if flag == "auto":
+        if not ctx.compiler["autolimits"] and not (frc[0] == 0 and frc[1] == 0):
+            raise InputError(f"{ctx.where(elem, name)}: joint has actuatorfrcrange but not actuatorfrclimited; set "
+                             "<compiler autolimits='true'>, give actuatorfrclimited or remove the range (MuJoCo "
+                             "refuses it)")
+        limited = frc[0] < frc[1]
+    else:
+        limited = flag == "true"
+    if not limited:
+        return math.inf
+    if frc[0] >= frc[1]:
+        raise InputError(f"{ctx.where(elem, name)}: actuatorfrcrange[0] should be smaller than actuatorfrcrange[1]")
+    if frc[0] == -frc[1]:
+        return float(frc[1])
+    ctx.joint_extras.setdefault("actuatorfrcrange", []).append((name, " ".join(a["actuatorfrcrange"].split())))
+    return math.inf
 
 
 _DOFS = {"free": 6, "ball": 3, "hinge": 1, "slide": 1}

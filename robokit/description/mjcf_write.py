@@ -10,7 +10,10 @@ Writing (:func:`mjcf_from_robot`, used by ``robokit convert ROBOT -o OUT.xml``)
     visual geometry as MuJoCo geoms (primitives, or STL/OBJ meshes referenced by absolute
     path), or a capsule from the joint to the next joint where there is none; the tip frame
     as a ``<site>``; ``<option gravity>``. Lengths in m, angles in rad
-    (``<compiler angle="radian">``), masses in kg.
+    (``<compiler angle="radian">``), masses in kg. A joint's dry friction (a URDF's ``<dynamics
+    friction>``) becomes its ``frictionloss`` and a finite, positive effort limit its
+    ``actuatorfrcrange`` (± the limit), as MuJoCo's own URDF reader takes them; MJCF has no
+    velocity limit, and a note lists the ones not written.
 
     MuJoCo's compiler rejects inertials that the course models use on purpose: a moving body
     with no mass (PUMA 560's link 1), point masses with no rotational inertia (the two-link
@@ -220,6 +223,14 @@ def mjcf_from_robot(robot: Robot) -> tuple[str, list[str]]:
     if robot.dh is not None and any(np.any(np.asarray(l.Tc) != 0) for l in robot.dh.links):
         notes.append(f"{robot.name}: Coulomb friction Tc not written (MuJoCo's frictionloss is symmetric and "
                      "acts through the constraint solver)")
+    # the file's dry friction and effort limits (a DH table's robot has placeholders for the limits, not written)
+    iv = [model.joints[j].idx_v for j in range(1, n + 1)]
+    friction = np.asarray(model.friction, dtype=float)[iv]
+    effort = np.asarray(model.effortLimit, dtype=float)[iv] if robot.dh is None else np.full(n, np.inf)
+    velocity = np.asarray(model.velocityLimit, dtype=float)[iv]
+    if robot.dh is None and (np.isfinite(velocity) & (velocity > 0)).any():
+        notes.append(f"{robot.name}: joint velocity limits not written (MJCF has none; "
+                     f"{', '.join(f'{model.names[j]} {v:g}' for j, v in enumerate(velocity, 1) if np.isfinite(v))})")
 
     used: set = set()
 
@@ -306,6 +317,10 @@ def mjcf_from_robot(robot: Robot) -> tuple[str, list[str]]:
             attrs.append(f'armature="{_f(armature[j - 1])}"')
         if damping[j - 1] != 0:
             attrs.append(f'damping="{_f(damping[j - 1])}"')
+        if friction[j - 1] != 0:  # a URDF's <dynamics friction>, as MuJoCo's own URDF reader takes it
+            attrs.append(f'frictionloss="{_f(friction[j - 1])}"')
+        if 0 < effort[j - 1] < np.inf:  # a file's effort limit, as MuJoCo's URDF reader takes it (0: none)
+            attrs.append(f'actuatorfrclimited="true" actuatorfrcrange="{_f(-effort[j - 1])} {_f(effort[j - 1])}"')
         lines_by_joint[j] = (inertial, f"<joint {' '.join(attrs)}/>")
 
     tip_frame = model.frames[robot.tip_id]

@@ -407,9 +407,18 @@ def urdf_to_dh_text(robot: Robot, convention: str = "standard", as_yaml: bool = 
         raise InputError(f"{robot.name}: the DH table reproduces the URDF only to {res.residual:.2e} "
                          f"(> 1e-9); not written")
     if as_yaml:
+        # the residual of the table as written: the file writes an angle within 1e-9° of a whole degree as
+        # that degree, which moves a file's truncated π/2 (the myCobot 280's 1.5708) by up to 1e-11 m
+        import yaml
+
+        body = res.table.to_yaml_str("deg")
+        written = _check(robot, DHTable.from_dict(yaml.safe_load(body)), res.samples, 0)
+        if written > 1e-9:
+            raise InputError(f"{robot.name}: the DH table as written reproduces the URDF only to {written:.2e} "
+                             f"(> 1e-9); not written")
         header = (f"# DH table of {robot.name} (root → {robot.tip}), extracted by robokit; "
-                  f"FK matches the URDF to {res.residual:.1e} at {res.samples} random configurations\n")
-        return header + res.table.to_yaml_str("deg")
+                  f"FK matches the URDF to {max(written, res.residual):.1e} at {res.samples} random configurations\n")
+        return header + body
     verdict = "" if res.exact else " — NOT exact (> 1e-9): this table only approximates the URDF"
     return format_dh_table(res.table) + f"# FK residual vs the URDF: {res.residual:.1e}{verdict}\n"
 

@@ -222,6 +222,12 @@ def _xacro_error(exc: BaseException, files: Sequence[str | None], path: Path, mi
                  or re.search(r"[Uu]ndefined parameters? \[?'?([\w.:-]+)", text)
                  or re.search(r"['\"]([^'\"]{2,})['\"]", text))
             token = m.group(1) if m else ""
+            # the expression itself, where the file has it as written: a name (an undefined property)
+            # may appear earlier in the file, as the name of an argument (Interbotix's
+            # <xacro:arg name="robot_model"/> above <xacro:arg name="robot_name" default="${robot_model}"/>)
+            expr = re.search(r"when evaluating expression '(.+)'", text)
+            if expr and _locate(current, "${" + expr.group(1) + "}"):
+                token = "${" + expr.group(1) + "}"
     where = _locate(current, token) if token else ""
     if not where and token:  # the offending text may sit in the file that included this one
         for f in reversed(files[:-1]):

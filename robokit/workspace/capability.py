@@ -306,7 +306,11 @@ def _backend_for(desc: RobotSpec, restarts: int) -> Any:
         from robokit.description.loading import load
         from robokit.workspace.reach import _Backend
 
-        robot = load(desc)
+        # the caller loaded this robot and said its notes (missing meshes, locked joints, ...) once: a
+        # worker's rebuild from the spec says nothing again (before, each note came once more per worker)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RobokitWarning)
+            robot = load(desc)
         hit = _WORKER_CACHE[key] = _Backend(robot, restarts)
     return hit
 

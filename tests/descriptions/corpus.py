@@ -158,12 +158,15 @@ class _silent_fds:
 
 def _stripped_urdf(text: str, folder: Path) -> Path:
     """The URDF without visuals and collisions (PyBullet reads inertias from the file, so its
-    geometry only costs time and prints mesh warnings)."""
+    geometry only costs time and prints mesh warnings), one element a line: PyBullet 3.2.7's XML
+    reader refuses some long one-line files ("XML_ERROR_PARSING", line 1; the xacro program's
+    expansion of Interbotix's vx300s written by ``ET.tostring``, 15 kB)."""
     root = ET.fromstring(text)
     for el in root.iter("link"):
         for tag in ("visual", "collision"):
             for g in el.findall(tag):
                 el.remove(g)
+    ET.indent(root)
     path = folder / "robot.urdf"
     path.write_text(ET.tostring(root, encoding="unicode"))
     return path

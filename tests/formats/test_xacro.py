@@ -135,6 +135,14 @@ BAD_XACRO = {
     "undefined_property.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<link name="b">\n'
                                  '<inertial><mass value="${nothing * 2}"/></inertial></link></robot>',
                                  ["undefined_property.xacro", "line 3", "<mass>", "nothing"]),
+    # Interbotix's interbotix_arm.urdf.xacro (branch descriptions_arm_macros): the undefined property's name
+    # is an argument's name on the line above; the error named that line (line 2) before
+    "undefined_property_named_above.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                                             '  <xacro:arg name="robot_model" default="px100"/>\n'
+                                             '  <xacro:arg name="robot_name" default="${robot_model}"/>\n'
+                                             '<link name="b"/></robot>',
+                                             ["undefined_property_named_above.xacro", "line 3", "<xacro:arg>",
+                                              "robot_model"]),
     "missing_param.xacro": ('<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
                             '<xacro:macro name="seg" params="x"><link name="${x}"/></xacro:macro>\n<xacro:seg/></robot>',
                             ["missing_param.xacro", "line 3", "<xacro:seg>", "x"]),

@@ -56,3 +56,38 @@ def test_plan_command_writes_a_collision_free_csv(tmp_path, capsys):
     rc = main(["plan", "puma560", "--start", "0", "0", "0", "0", "0", "0", "--goal", "1", "2", "-o", str(bad)])
     err = capsys.readouterr().err
     assert rc == 2 and err.startswith("robokit: error: --goal") and not bad.exists()
+
+
+def test_plan_takes_the_xacro_options_of_every_command(tmp_path, capsys):
+    """A maker's xacro with its launch arguments (Interbotix's WidowX 250 6DOF named ``left``, its package
+    given with --package-path as a workspace holds it): ``robokit plan`` refused --xacro-arg and
+    --package-path ("unrecognized arguments", exit 2) though every other command that loads a robot takes
+    them. The goal pose is Pinocchio's on the xacro program's expansion with the same argument, and the
+    plan's last row reaches it there."""
+    import pinocchio as pin
+    from pathlib import Path
+
+    from robokit.viz.view import load_trajectory
+    from xacro_reference import xacro_urdfs
+
+    data = Path(__file__).resolve().parents[1] / "data" / "interbotix"
+    rel = "interbotix_xsarm_descriptions/urdf/wx250s.urdf.xacro"
+    model = pin.buildModelFromXML(xacro_urdfs({"left": (data, rel, {"robot_name": "left"})})["left"])
+    joints = ["waist", "shoulder", "elbow", "forearm_roll", "wrist_angle", "wrist_rotate"]
+    iq = [model.joints[model.getJointId(j)].idx_q for j in joints]
+    pin_data, fid = model.createData(), model.getFrameId("left/ee_gripper_link")
+
+    def fk(q):
+        qf = pin.neutral(model)
+        qf[iq] = q
+        pin.framesForwardKinematics(model, pin_data, qf)
+        return pin_data.oMf[fid].homogeneous.copy()
+
+    T = fk([0.6, -0.3, 0.4, 0.2, 0.5, -0.4])
+    rpy = pin.rpy.matrixToRpy(T[:3, :3])
+    out = tmp_path / "traj.csv"
+    rc = main(["plan", str(data / rel), "--xacro-arg", "robot_name:=left", "--package-path", str(data),
+               "--start", "0", "0", "0", "0", "0", "0", "--goal-pose", *map(str, [*T[:3, 3], *rpy]), "-o", str(out)])
+    assert rc == 0, capsys.readouterr().err
+    Q = load_trajectory(out, 6)
+    assert np.abs(Q[0]).max() == 0 and np.abs(fk(Q[-1]) - T).max() < 1e-6  # the CSV's 10 digits

@@ -12,7 +12,7 @@ _SCRIPT = r"""
 import json, os, sys, types
 cases = json.loads(sys.argv[1])
 folders = {}
-for maker in {m for m, _ in cases.values()}:
+for maker in {c[0] for c in cases.values()}:
     for name in os.listdir(maker):
         if os.path.isfile(os.path.join(maker, name, "package.xml")):
             folders[name] = os.path.join(maker, name)
@@ -22,13 +22,17 @@ index = types.ModuleType("ament_index_python")
 index.packages = packages
 sys.modules["ament_index_python"], sys.modules["ament_index_python.packages"] = index, packages
 import xacro
-sys.stdout.write(json.dumps({k: xacro.process_file(os.path.join(m, f)).toxml() for k, (m, f) in cases.items()}))
+sys.stdout.write(json.dumps({k: xacro.process_file(os.path.join(c[0], c[1]), mappings=c[2] if len(c) > 2 else None).toxml()
+                             for k, c in cases.items()}))
 """
 
 
 def xacro_urdfs(cases):
-    """{label: URDF text} of ``cases`` {label: (maker folder, xacro file inside it)}, one subprocess for all."""
-    run = subprocess.run([sys.executable, "-c", _SCRIPT, json.dumps({k: [str(m), f] for k, (m, f) in cases.items()})],
+    """{label: URDF text} of ``cases`` {label: (maker folder, xacro file inside it)} or {label: (maker
+    folder, xacro file, {argument: value})} (the arguments as ``xacro name:=value`` passes them), one
+    subprocess for all."""
+    run = subprocess.run([sys.executable, "-c", _SCRIPT,
+                          json.dumps({k: [str(c[0]), *c[1:]] for k, c in cases.items()})],
                          capture_output=True, text=True, timeout=120, check=False)
     assert run.returncode == 0, run.stderr[-3000:]
     return json.loads(run.stdout)
