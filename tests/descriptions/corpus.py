@@ -158,12 +158,16 @@ class _silent_fds:
 
 def _stripped_urdf(text: str, folder: Path) -> Path:
     """The URDF without visuals and collisions (PyBullet reads inertias from the file, so its
-    geometry only costs time and prints mesh warnings)."""
+    geometry only costs time and prints mesh warnings) nor ``<gazebo>`` elements (simulator settings
+    PyBullet does not use; its importer 3.2.7 refuses the whole file on Kinova's Robotiq 2F-85
+    ``<gazebo reference=...><material>Gazebo/Black</material></gazebo>``: XML_ERROR_PARSING_ATTRIBUTE)."""
     root = ET.fromstring(text)
     for el in root.iter("link"):
         for tag in ("visual", "collision"):
             for g in el.findall(tag):
                 el.remove(g)
+    for g in root.findall("gazebo"):
+        root.remove(g)
     path = folder / "robot.urdf"
     path.write_text(ET.tostring(root, encoding="unicode"))
     return path
