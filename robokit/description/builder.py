@@ -238,8 +238,9 @@ def _body_type() -> Any:
 
 
 def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
-                 names: AbstractSet[str] | None = None) -> tuple[Any, list[str], list[Any]]:
-    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
+                 names: AbstractSet[str] | None = None,
+                 positions: Mapping[str, float] | None = None) -> tuple[Any, list[str], list[Any]]:
+    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral (or at ``positions``).
 
     Parameters
     ----------
@@ -251,6 +252,9 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
         Reduced with the model (their objects re-attached to the chain's joints).
     names : set of str, optional
         The names the description gives: the frames an unknown tip's message lists.
+    positions : dict of str to float, optional
+        The value (rad or m) at which a joint off the chain is locked, by name (a URDF mimic joint's,
+        :func:`build_robot`); every other locked joint is locked at Pinocchio's neutral (0).
 
     Returns
     -------
@@ -305,6 +309,11 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
                 renamed[tmp] = f.name
                 model.frames[k].name = tmp
     q0 = pin.neutral(model)
+    for jn, value in (positions or {}).items():
+        jid = model.getJointId(jn) if model.existJointName(jn) else 0
+        if jid in lock:
+            jm = model.joints[jid]
+            q0[jm.idx_q:jm.idx_q + jm.nq] = [np.cos(value), np.sin(value)] if jm.nq == 2 else [value]
     if geometry_models:
         reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
     else:
@@ -371,10 +380,54 @@ def physicality_problems(model: Any, tip: str) -> list[tuple[str, str]]:
     return out
 
 
+def _mimic_positions(mimic: Mapping[str, str], terms: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """The value of each mimic joint when every joint that is not a mimic joint is at 0: multiplier × the
+    value of the joint it follows + offset, through chains of mimic joints (a cycle counts as 0); the
+    joints whose value is not 0."""
+    values: dict[str, float] = {}
+
+    def value(joint: str, seen: frozenset[str]) -> float:
+        if joint not in mimic or joint in seen:
+            return 0.0
+        if joint not in values:
+            multiplier, offset = terms.get(joint, (1.0, 0.0))
+            values[joint] = multiplier * value(mimic[joint], seen | {joint}) + offset
+        return values[joint]
+
+    for joint in mimic:
+        value(joint, frozenset())
+    return {j: v for j, v in values.items() if v != 0.0}
+
+
+def _mimic_locks(mimic: Mapping[str, str], positions: Mapping[str, float], joints: list[str],
+                 locked: list[str]) -> str:
+    """The locked mimic ``joints`` as the note names them: each with its value where not 0; those that
+    follow a joint on the chain (directly or through other mimic joints) said to stay where that joint's
+    0 puts them."""
+    def leader(joint: str) -> str:
+        seen = {joint}
+        while joint in mimic and mimic[joint] not in seen:
+            joint = mimic[joint]
+            seen.add(joint)
+        return joint
+
+    shown = ", ".join(f"{j} (at {positions[j]:.6g})" if j in positions else j for j in joints)
+    follow: dict[str, list[str]] = {}
+    for j in joints:
+        if leader(j) not in locked and leader(j) not in mimic:
+            follow.setdefault(leader(j), []).append(j)
+    for lead, js in follow.items():
+        them = "it" if len(js) == 1 else "them"
+        shown += (f"; the file has {', '.join(js)} follow {lead!r}, a joint of the chain: robokit holds {them} "
+                  f"where {lead} = 0 puts {them} (the links beyond do not move with {lead})")
+    return shown
+
+
 def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
                 spec: RobotSpec, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None,
                 names: AbstractSet[str] | None = None,
-                joint_values: Mapping[str, Mapping[str, float]] | None = None) -> Robot:
+                joint_values: Mapping[str, Mapping[str, float]] | None = None,
+                mimic_terms: Mapping[str, tuple[float, float]] | None = None) -> Robot:
     """The :class:`Robot` of the chain root → ``tip`` of a Pinocchio ``model``.
 
     Parameters
@@ -405,6 +458,10 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         Named configurations the file gives joint by joint (SDFormat's ``<initial_position>``):
         each becomes ``configurations[name]`` over the chain's joints (0 for a joint it does not
         name); a value on a joint off the chain, which is locked at 0, is named in a note.
+    mimic_terms : dict of str to (float, float), optional
+        ``{joint: (multiplier, offset)}`` of the ``<mimic>`` joints (URDF; 1 and 0 where not given): a
+        mimic joint off the chain is locked where the file puts it when every joint it follows is at 0,
+        multiplier × that value + offset (its offset, for a joint that mimics a locked one).
 
     Returns
     -------
@@ -437,7 +494,8 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         if note:
             notes.append(f"{name}: {note}")
     valid = [g for g in geoms if g is not None]
-    chain, locked, new_geoms = serial_chain(model, tip, valid, names)
+    positions = _mimic_positions(mimic or {}, mimic_terms or {})
+    chain, locked, new_geoms = serial_chain(model, tip, valid, names, positions)
     if chain.nv == 0:
         raise InputError(f"{source}: the chain to {tip!r} has no moving joint; robokit needs at least one")
     for jn, target in (mimic or {}).items():
@@ -447,7 +505,8 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
                 "independent — remove the <mimic> or choose another tip"
             )
     if mimic and any(j in locked for j in mimic):
-        notes.append(f"{name}: mimic joints off the chain locked: {', '.join(j for j in mimic if j in locked)}")
+        notes.append(f"{name}: mimic joints off the chain locked: "
+                     f"{_mimic_locks(mimic, positions, [j for j in mimic if j in locked], locked)}")
     if names is not None:
         invented = [j for j in list(chain.names)[1:] if j not in names] + [j for j in locked if j not in names]
         if invented:
