@@ -142,7 +142,8 @@ def _check_one_dof(model: Any, chain: list[int], where: str) -> None:
             )
 
 
-def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, str]:
+def choose_tip(model: Any, names: AbstractSet[str] | None = None,
+               mimic: AbstractSet[str] = frozenset()) -> tuple[str, str]:
     """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
 
     From the root, follow the joints while each has exactly one child joint. At a branch:
@@ -151,6 +152,9 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
     (the longest chain — an arm rather than a head, a caster or a sensor); if two or more
     branches tie for longest (two arms, four legs), there is no sensible default and
     :class:`~robokit.errors.InputError` lists the candidate tips with their chain lengths.
+    Lengths count the joints that move on their own: a ``mimic`` joint follows another and adds
+    none, so a gripper's linkage (Robotiq's 2F-85: one finger joint and five mimic joints, two deep)
+    counts as fingers.
 
     The tip is a body frame of that joint, the deepest one (a tool flange fixed to the last
     link), chosen among ``names`` when given — never a frame Pinocchio named.
@@ -161,6 +165,8 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         The kinematic tree.
     names : set of str, optional
         The names the description gives (links, bodies, joints, frames); None: every frame.
+    mimic : set of str, optional
+        The names of the file's mimic joints (URDF ``<mimic>``).
 
     Returns
     -------
@@ -179,7 +185,7 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         children[model.parents[j]].append(j)
 
     def depth(j: int) -> int:
-        return 1 + max((depth(c) for c in children[j]), default=0)
+        return (model.names[j] not in mimic) + max((depth(c) for c in children[j]), default=0)
 
     j, chose = 0, False
     while children[j]:
@@ -490,7 +496,7 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
     source = spec.describe()
     notes = list(notes)
     if tip is None:
-        tip, note = choose_tip(model, names)
+        tip, note = choose_tip(model, names, frozenset(mimic or ()))
         if note:
             notes.append(f"{name}: {note}")
     valid = [g for g in geoms if g is not None]

@@ -35,7 +35,7 @@ ARMS = {
     "Gen3 7-DoF": (KORTEX, GEN3, {"vision": "false"}, None, "tool_frame", 7, (0, 2, 4, 6)),
     "Gen3 7-DoF, vision module": (KORTEX, GEN3, {}, None, "tool_frame", 7, (0, 2, 4, 6)),
     "Gen3 6-DoF": (KORTEX, GEN3, {"dof": "6", "vision": "false"}, None, "tool_frame", 6, (0, 3, 5)),
-    "Gen3 7-DoF, Robotiq 2F-85": (KORTEX, GEN3, {"gripper": "robotiq_2f_85", "vision": "false"}, "tool_frame",
+    "Gen3 7-DoF, Robotiq 2F-85": (KORTEX, GEN3, {"gripper": "robotiq_2f_85", "vision": "false"}, None,
                                   "tool_frame", 7, (0, 2, 4, 6)),
     "Ned2": (NIRYO, f"{NED2}/niryo_ned2.urdf.xacro", {}, None, "tool_link", 6, ()),
     "Ned2, gripper and camera": (NIRYO, f"{NED2}/niryo_ned2_gripper1_n_camera.urdf.xacro", {}, None,
@@ -191,3 +191,22 @@ def test_a_mimic_joint_following_a_chain_joint_is_said_to_stay():
         robokit.load(DATA / "abb" / "abb_irb6640_support/urdf/irb6640_185_280.xacro")
     notes = [str(w.message) for w in said if "mimic joints off the chain locked" in str(w.message)]
     assert len(notes) == 1 and "follow 'joint_2', a joint of the chain" in notes[0], notes
+
+
+def test_a_gripper_linkage_of_mimic_joints_counts_as_fingers():
+    """Kinova's Gen3 with the Robotiq 2F-85 (gen3.xacro gripper:=robotiq_2f_85): below the arm's last joint
+    the gripper is a tree of one finger joint and five mimic joints, two deep. Before, robokit refused the
+    file without tip= ("a tree with 4 ends and no single longest chain": left_inner_finger_pad,
+    right_inner_finger_pad, left_inner_knuckle, right_inner_knuckle), and each of those tips puts a mimic
+    joint on the chain, which it refuses too. A mimic joint moves with another, so it adds no length: the
+    linkage counts as fingers and the tip is the arm's tool frame, the same robot as with tip="tool_frame"."""
+    robot, said = load("Gen3 7-DoF, Robotiq 2F-85")
+    assert robot.tip == "tool_frame" and robot.n == 7
+    assert not any("chose its longest chain" in s for s in said)  # fingers: no choice to report
+    folder, rel, args, *_ = ARMS["Gen3 7-DoF, Robotiq 2F-85"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        given = robokit.load(folder / rel, "tool_frame", xacro_args=args)
+    q = np.random.default_rng(3).uniform(-2.0, 2.0, 7)
+    assert np.array_equal(robot.frame_pose(q), given.frame_pose(q))
+    assert np.array_equal(robot.crba(q), given.crba(q))
