@@ -152,6 +152,9 @@ STAND_INS = {
     "franka_description": lambda f: shutil.copytree(DATA / "franka_description",
                                                     f / "ws" / "src" / "franka_description"),
     "demo_description": _demo_description,
+    # Kinova's and Niryo's repositories as cloned into ~/ws/src (tests/data/kinova/ros_kortex, tests/data/niryo)
+    "ros_kortex": lambda f: shutil.copytree(DATA / "kinova" / "ros_kortex", f / "ws" / "src" / "ros_kortex"),
+    "ned_ros": lambda f: shutil.copytree(DATA / "niryo", f / "ws" / "src" / "ned_ros"),
 }
 
 
@@ -164,8 +167,9 @@ PAGES = {
     "formats/poe-json.md": Page(shows=1, commands=("convert ur5 -o ur5.json",)),
     "formats/sdf.md": Page(shows=1, stand_ins=("model.sdf", "iiwa14.sdf"), home=True),
     "formats/urdf.md": Page(shows=1, stand_ins=("iiwa14_no_collision.urdf",)),
-    "formats/xacro.md": Page(shows=3, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
-                                                 "demo_description", "my_robot_calibration.yaml"), home=True),
+    "formats/xacro.md": Page(shows=5, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
+                                                 "demo_description", "my_robot_calibration.yaml", "ros_kortex",
+                                                 "ned_ros"), home=True),
     "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),
                        home=True),
     "teach.md": Page(requires=("meshcat", "ipywidgets", "ziglang"), shows=1),
