@@ -63,6 +63,11 @@ def test_codegen_of_the_makers_file_agrees_with_pinocchio(label, reference, tmp_
     header = (tmp_path / "arm.h").read_text()
     assert f"#define arm_HAS_IK {int(has_ik)}" in header and f"#define arm_N {n}" in header
     most = int(header.split("#define arm_MAX_SOLUTIONS ")[1].split()[0])
+    # the C's limits are the file's: a continuous joint (two coordinates in Pinocchio) unbounded
+    qlim = np.array((ctypes.c_double * 2 * n).in_dll(lib, "arm_qlim"))
+    file_lim = [[model.lowerPositionLimit[j.idx_q], model.upperPositionLimit[j.idx_q]] if j.nq == 1
+                else [-np.inf, np.inf] for j in joints]
+    assert qlim.tolist() == file_lim
     lo, hi = np.asarray(robot.qlim, float).T
     lo, hi = np.where(np.isfinite(lo), lo, -np.pi), np.where(np.isfinite(hi), hi, np.pi)
 
