@@ -317,8 +317,8 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
     q0 = pin.neutral(model)
     for jn, value in (positions or {}).items():
         jid = model.getJointId(jn) if model.existJointName(jn) else 0
-        if jid in lock:
-            jm = model.joints[jid]
+        jm = model.joints[jid]
+        if jid in lock and jm.nv == 1:  # one degree of freedom (a mimic on a planar joint means nothing)
             q0[jm.idx_q:jm.idx_q + jm.nq] = [np.cos(value), np.sin(value)] if jm.nq == 2 else [value]
     if geometry_models:
         reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
