@@ -105,18 +105,24 @@ def _deepest_body_frame(model: Any, joint: int, names: AbstractSet[str] | None =
     return best
 
 
-def _tip_candidates(model: Any, children: Mapping[int, list[int]],
-                    names: AbstractSet[str] | None = None) -> list[tuple[str, int]]:
-    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
+def _tip_candidates(model: Any, children: Mapping[int, list[int]], names: AbstractSet[str] | None = None,
+                    mimic: AbstractSet[str] = frozenset()) -> list[tuple[str, int]]:
+    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree. A leaf whose chain
+    holds a ``mimic`` joint (a tip robokit refuses) stands for the joint its gripper hangs on: the one
+    nearest the root on that chain below which every branch has at most one joint of its own."""
+    def own(j: int) -> int:  # joints that move on their own in the deepest branch from j down
+        return (model.names[j] not in mimic) + max((own(c) for c in children[j]), default=0)
+
     out = []
     for j in range(1, model.njoints):
         if not children[j]:
-            depth, k = 0, j
-            while k != 0:
-                depth, k = depth + 1, model.parents[k]
+            chain = _chain_to(model, j)
+            if any(model.names[k] in mimic for k in chain):
+                j = next((k for k in chain if all(own(c) <= 1 for c in children[k])), j)
+                chain = _chain_to(model, j)
             name = _deepest_body_frame(model, j, names)
-            if name is not None:
-                out.append((name, depth))
+            if name is not None and (name, len(chain)) not in out:
+                out.append((name, len(chain)))
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
@@ -198,7 +204,7 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None,
         if depths[0][0] == depths[1][0]:
             # every end's chain runs through the trunk: a floating base there is said first
             _check_one_dof(model, _chain_to(model, j), "which every chain of the tree runs through,")
-            cands = _tip_candidates(model, children, names)
+            cands = _tip_candidates(model, children, names, mimic)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
             raise InputError(
                 f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "

@@ -210,3 +210,28 @@ def test_a_gripper_linkage_of_mimic_joints_counts_as_fingers():
     q = np.random.default_rng(3).uniform(-2.0, 2.0, 7)
     assert np.array_equal(robot.frame_pose(q), given.frame_pose(q))
     assert np.array_equal(robot.crba(q), given.crba(q))
+
+
+DUAL = {side + "_" + k: v for side in ("left", "right") for k, v in
+        {"arm": "gen3", "gripper": "robotiq_2f_85", "dof": "7", "vision": "false", "sim": "false",
+         "prefix": side + "_"}.items()}
+
+
+def test_two_arms_with_grippers_name_the_arms_tool_frames():
+    """Kinova's kortex_dual_robots.xacro, two Gen3 with the Robotiq 2F-85: two equally long arms, so no
+    default tip. Before, the refusal listed the eight ends of the grippers' linkages
+    (left_left_inner_finger_pad (9 joints), ... right_right_inner_knuckle (8 joints)), each of which puts a
+    mimic joint on the chain and is refused in turn; now it names the two arms' tool frames, and either
+    loads (checked against Pinocchio on the xacro program's output)."""
+    path = KORTEX / "kortex_description/multiple_robots/kortex_dual_robots.xacro"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(robokit.InputError) as refused:
+            robokit.load(path, xacro_args=DUAL)
+        assert str(refused.value).endswith("choose one with tip= (--tip): left_tool_frame (7 joints), "
+                                           "right_tool_frame (7 joints)")
+        right = robokit.load(path, "right_tool_frame", xacro_args=DUAL)
+    text = xacro_urdfs({"dual": (KORTEX, "kortex_description/multiple_robots/kortex_dual_robots.xacro", DUAL)})["dual"]
+    assert right.n == 7 and right.joint_names[0] == "right_joint_1"
+    worst = worst_errors(right, text, samples=5)
+    assert max(worst.values()) < 1e-12, worst
