@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robokit.validation.core import MODELS, CheckRow, robot as load
+from robokit.validation.core import CheckRow, models, robot as load
 
 SAMPLES = 50
 
@@ -18,7 +18,7 @@ def checks(rng: np.random.Generator) -> list[CheckRow]:
 
     rows = []
     z6 = np.zeros(6)
-    for name in MODELS:
+    for name in models():
         r = load(name)
         p = r.poe
         args = (p.Mlist, p.Glist, p.Slist)
@@ -41,7 +41,7 @@ def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.dynamics.dh_newton_euler import dh_inverse_dynamics
     from robokit.dynamics.coriolis import coriolis_matrix
 
-    for name in MODELS:
+    for name in models():
         r = load(name)
         p = r.poe
         e_c = e_dh = 0.0
