@@ -35,3 +35,17 @@ def test_options_that_need_a_model_and_areas_that_compare_none(capsys):
     assert "apply to a MODEL" in capsys.readouterr().err
     assert cli_main(["validate", "rrr", "--area", "spatial"]) == 2
     assert "the areas that compare a robot (MODEL) are kinematics, dynamics, ik" in capsys.readouterr().err
+
+
+def test_an_arm_without_mass_compares_what_is_defined(capsys):
+    """KUKA's KR 6 R900 sixx file gives no <inertial> (tests/data/kuka/SOURCE): M is zero, so forward dynamics
+    is not defined. The dynamics rows compare what is (inverse dynamics, M, gravity: all zero on both sides)
+    and say why forward dynamics is left out; before MODEL came, such an arm could not be given, and with it
+    the whole dynamics area raised ('the mass matrix is not positive definite') and failed."""
+    kr6 = Path(__file__).resolve().parents[1] / "data" / "kuka" / "kuka_kr6_support" / "urdf" / "kr6r900sixx.xacro"
+    assert cli_main(["validate", str(kr6), "--area", "dynamics", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    quantities = [r["quantity"] for r in rows]
+    assert "forward_dynamics vs pinocchio.aba" not in quantities and len(rows) == 4, quantities
+    mass = next(r for r in rows if r["quantity"].startswith("mass_matrix"))
+    assert mass["note"].startswith("M singular at 50 of 50 samples") and mass["passed"]
