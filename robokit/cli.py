@@ -122,6 +122,12 @@ def _build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
     v = sub.add_parser("validate", help="course implementations against Pinocchio; exit 0 only if all agree")
+    v.add_argument("model", nargs="?", metavar="MODEL",
+                   help="only this robot (a .urdf/.xacro/.xml/.sdf/.yaml file, a shipped model or an "
+                        "example-robot-data name): its kinematics, dynamics and ik rows")
+    v.add_argument("--tip", help="tip frame of MODEL's chain (default: the arm's end effector, see the docs)")
+    _add_format_options(v)
+    _add_outside_meshes(v, scene=False)
     v.add_argument("--json", action="store_true", help="print the table as JSON")
     v.add_argument("--seed", type=int, default=0, help="random seed for the samples (default 0)")
     v.add_argument("--area", action="append", metavar="AREA",
@@ -225,7 +231,12 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "validate":
         from robokit.validation import main as validate_main
 
-        return validate_main(as_json=args.json, seed=args.seed, areas=args.area)
+        if args.model is None and (args.tip or _format_options(args)):
+            from robokit.errors import InputError
+
+            raise InputError("--tip, --xacro-arg, --package-path and --no-reflected-inertia apply to a MODEL")
+        return validate_main(as_json=args.json, seed=args.seed, areas=args.area, model=args.model, tip=args.tip,
+                             **_format_options(args, args.model))
     if args.command == "convert":
         from robokit.commands import convert_command
 

@@ -31,7 +31,7 @@ INVENTORY: dict[str, tuple[str, str]] = {
     # not robot data
     "description/xacro_expr.py:_parse": ("memo", "syntax trees of xacro expressions, by their text"),
     "codegen/ik_general.py:_template": ("memo", "the shipped C templates' text, by file name"),
-    "validation/core.py:robot": ("memo", "the shipped models by name, for one `robokit validate` run"),
+    "validation/core.py:_loaded": ("memo", "the shipped models by name, for one `robokit validate` run"),
     "kernels/_jit.py:_TWINS": ("registry", "compiled kernels"),
     "kernels/_jit.py:_TWIN_GLOBALS": ("registry", "compiled kernels"),
     "kernels/_jit.py:_TYPES": ("registry", "compiled kernels"),

@@ -158,6 +158,9 @@ STAND_INS = {
         f / "ws" / "src" / "interbotix_ros_manipulators" / "interbotix_ros_xsarms" / "interbotix_xsarm_descriptions"),
     "open_manipulator": lambda f: shutil.copytree(DATA / "robotis", f / "ws" / "src" / "open_manipulator",
                                                   ignore=shutil.ignore_patterns("LICENSE", "SOURCE")),
+    # Kinova's and Niryo's repositories as cloned into ~/ws/src (tests/data/kinova/ros_kortex, tests/data/niryo)
+    "ros_kortex": lambda f: shutil.copytree(DATA / "kinova" / "ros_kortex", f / "ws" / "src" / "ros_kortex"),
+    "ned_ros": lambda f: shutil.copytree(DATA / "niryo", f / "ws" / "src" / "ned_ros"),
 }
 
 
@@ -172,7 +175,8 @@ PAGES = {
     "formats/urdf.md": Page(shows=1, stand_ins=("iiwa14_no_collision.urdf",)),
     "formats/xacro.md": Page(shows=5, stand_ins=("arm.urdf.xacro", "ur_description", "franka_description",
                                                  "demo_description", "my_robot_calibration.yaml",
-                                                 "interbotix_xsarm_descriptions", "open_manipulator"), home=True),
+                                                 "interbotix_xsarm_descriptions", "open_manipulator", "ros_kortex",
+                                                 "ned_ros"), home=True),
     "loading.md": Page(shows=4, stand_ins=("my_arm.yaml", "arm.urdf", "arm.urdf.xacro", "arm.xml", "model.sdf"),
                        home=True),
     "teach.md": Page(requires=("meshcat", "ipywidgets", "ziglang"), shows=1),

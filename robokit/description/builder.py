@@ -105,18 +105,24 @@ def _deepest_body_frame(model: Any, joint: int, names: AbstractSet[str] | None =
     return best
 
 
-def _tip_candidates(model: Any, children: Mapping[int, list[int]],
-                    names: AbstractSet[str] | None = None) -> list[tuple[str, int]]:
-    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree."""
+def _tip_candidates(model: Any, children: Mapping[int, list[int]], names: AbstractSet[str] | None = None,
+                    mimic: AbstractSet[str] = frozenset()) -> list[tuple[str, int]]:
+    """(leaf frame, joints from the root) for every leaf joint of the kinematic tree. A leaf whose chain
+    holds a ``mimic`` joint (a tip robokit refuses) stands for the joint its gripper hangs on: the one
+    nearest the root on that chain below which every branch has at most one joint of its own."""
+    def own(j: int) -> int:  # joints that move on their own in the deepest branch from j down
+        return (model.names[j] not in mimic) + max((own(c) for c in children[j]), default=0)
+
     out = []
     for j in range(1, model.njoints):
         if not children[j]:
-            depth, k = 0, j
-            while k != 0:
-                depth, k = depth + 1, model.parents[k]
+            chain = _chain_to(model, j)
+            if any(model.names[k] in mimic for k in chain):
+                j = next((k for k in chain if all(own(c) <= 1 for c in children[k])), j)
+                chain = _chain_to(model, j)
             name = _deepest_body_frame(model, j, names)
-            if name is not None:
-                out.append((name, depth))
+            if name is not None and (name, len(chain)) not in out:
+                out.append((name, len(chain)))
     return sorted(out, key=lambda c: (-c[1], c[0]))
 
 
@@ -142,7 +148,8 @@ def _check_one_dof(model: Any, chain: list[int], where: str) -> None:
             )
 
 
-def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, str]:
+def choose_tip(model: Any, names: AbstractSet[str] | None = None,
+               mimic: AbstractSet[str] = frozenset()) -> tuple[str, str]:
     """The default tip frame of a model and a note saying how it was chosen ("" if obvious).
 
     From the root, follow the joints while each has exactly one child joint. At a branch:
@@ -151,6 +158,9 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
     (the longest chain — an arm rather than a head, a caster or a sensor); if two or more
     branches tie for longest (two arms, four legs), there is no sensible default and
     :class:`~robokit.errors.InputError` lists the candidate tips with their chain lengths.
+    Lengths count the joints that move on their own: a ``mimic`` joint follows another and adds
+    none, so a gripper's linkage (Robotiq's 2F-85: one finger joint and five mimic joints, two deep)
+    counts as fingers.
 
     The tip is a body frame of that joint, the deepest one (a tool flange fixed to the last
     link), chosen among ``names`` when given — never a frame Pinocchio named.
@@ -161,6 +171,8 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         The kinematic tree.
     names : set of str, optional
         The names the description gives (links, bodies, joints, frames); None: every frame.
+    mimic : set of str, optional
+        The names of the file's mimic joints (URDF ``<mimic>``).
 
     Returns
     -------
@@ -179,7 +191,7 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         children[model.parents[j]].append(j)
 
     def depth(j: int) -> int:
-        return 1 + max((depth(c) for c in children[j]), default=0)
+        return (model.names[j] not in mimic) + max((depth(c) for c in children[j]), default=0)
 
     j, chose = 0, False
     while children[j]:
@@ -192,7 +204,7 @@ def choose_tip(model: Any, names: AbstractSet[str] | None = None) -> tuple[str, 
         if depths[0][0] == depths[1][0]:
             # every end's chain runs through the trunk: a floating base there is said first
             _check_one_dof(model, _chain_to(model, j), "which every chain of the tree runs through,")
-            cands = _tip_candidates(model, children, names)
+            cands = _tip_candidates(model, children, names, mimic)
             shown = ", ".join(f"{name} ({d} joint{'s' if d != 1 else ''})" for name, d in cands[:10])
             raise InputError(
                 f"tip: the robot is a tree with {len(cands)} ends and no single longest chain; choose one "
@@ -238,8 +250,9 @@ def _body_type() -> Any:
 
 
 def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
-                 names: AbstractSet[str] | None = None) -> tuple[Any, list[str], list[Any]]:
-    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral.
+                 names: AbstractSet[str] | None = None,
+                 positions: Mapping[str, float] | None = None) -> tuple[Any, list[str], list[Any]]:
+    """The chain root → ``tip`` of a Pinocchio model, other joints locked at neutral (or at ``positions``).
 
     Parameters
     ----------
@@ -251,6 +264,9 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
         Reduced with the model (their objects re-attached to the chain's joints).
     names : set of str, optional
         The names the description gives: the frames an unknown tip's message lists.
+    positions : dict of str to float, optional
+        The value (rad or m) at which a joint off the chain is locked, by name (a URDF mimic joint's,
+        :func:`build_robot`); every other locked joint is locked at Pinocchio's neutral (0).
 
     Returns
     -------
@@ -305,6 +321,11 @@ def serial_chain(model: Any, tip: str, geometry_models: Iterable[Any] = (),
                 renamed[tmp] = f.name
                 model.frames[k].name = tmp
     q0 = pin.neutral(model)
+    for jn, value in (positions or {}).items():
+        jid = model.getJointId(jn) if model.existJointName(jn) else 0
+        jm = model.joints[jid]
+        if jid in lock and jm.nv == 1:  # one degree of freedom (a mimic on a planar joint means nothing)
+            q0[jm.idx_q:jm.idx_q + jm.nq] = [np.cos(value), np.sin(value)] if jm.nq == 2 else [value]
     if geometry_models:
         reduced, geoms = pin.buildReducedModel(model, list(geometry_models), lock, q0)
     else:
@@ -371,10 +392,54 @@ def physicality_problems(model: Any, tip: str) -> list[tuple[str, str]]:
     return out
 
 
+def _mimic_positions(mimic: Mapping[str, str], terms: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """The value of each mimic joint when every joint that is not a mimic joint is at 0: multiplier × the
+    value of the joint it follows + offset, through chains of mimic joints (a cycle counts as 0); the
+    joints whose value is not 0."""
+    values: dict[str, float] = {}
+
+    def value(joint: str, seen: frozenset[str]) -> float:
+        if joint not in mimic or joint in seen:
+            return 0.0
+        if joint not in values:
+            multiplier, offset = terms.get(joint, (1.0, 0.0))
+            values[joint] = multiplier * value(mimic[joint], seen | {joint}) + offset
+        return values[joint]
+
+    for joint in mimic:
+        value(joint, frozenset())
+    return {j: v for j, v in values.items() if v != 0.0}
+
+
+def _mimic_locks(mimic: Mapping[str, str], positions: Mapping[str, float], joints: list[str],
+                 locked: list[str]) -> str:
+    """The locked mimic ``joints`` as the note names them: each with its value where not 0; those that
+    follow a joint on the chain (directly or through other mimic joints) said to stay where that joint's
+    0 puts them."""
+    def leader(joint: str) -> str:
+        seen = {joint}
+        while joint in mimic and mimic[joint] not in seen:
+            joint = mimic[joint]
+            seen.add(joint)
+        return joint
+
+    shown = ", ".join(f"{j} (at {positions[j]:.6g})" if j in positions else j for j in joints)
+    follow: dict[str, list[str]] = {}
+    for j in joints:
+        if leader(j) not in locked and leader(j) not in mimic:
+            follow.setdefault(leader(j), []).append(j)
+    for lead, js in follow.items():
+        them = "it" if len(js) == 1 else "them"
+        shown += (f"; the file has {', '.join(js)} follow {lead!r}, a joint of the chain: robokit holds {them} "
+                  f"where {lead} = 0 puts {them} (the links beyond do not move with {lead})")
+    return shown
+
+
 def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], configurations: Mapping[str, ArrayLike],
                 spec: RobotSpec, notes: Iterable[str] = (), mimic: Mapping[str, str] | None = None,
                 names: AbstractSet[str] | None = None,
-                joint_values: Mapping[str, Mapping[str, float]] | None = None) -> Robot:
+                joint_values: Mapping[str, Mapping[str, float]] | None = None,
+                mimic_terms: Mapping[str, tuple[float, float]] | None = None) -> Robot:
     """The :class:`Robot` of the chain root → ``tip`` of a Pinocchio ``model``.
 
     Parameters
@@ -405,6 +470,10 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
         Named configurations the file gives joint by joint (SDFormat's ``<initial_position>``):
         each becomes ``configurations[name]`` over the chain's joints (0 for a joint it does not
         name); a value on a joint off the chain, which is locked at 0, is named in a note.
+    mimic_terms : dict of str to (float, float), optional
+        ``{joint: (multiplier, offset)}`` of the ``<mimic>`` joints (URDF; 1 and 0 where not given): a
+        mimic joint off the chain is locked where the file puts it when every joint it follows is at 0,
+        multiplier × that value + offset (its offset, for a joint that mimics a locked one).
 
     Returns
     -------
@@ -433,11 +502,12 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
     source = spec.describe()
     notes = list(notes)
     if tip is None:
-        tip, note = choose_tip(model, names)
+        tip, note = choose_tip(model, names, frozenset(mimic or ()))
         if note:
             notes.append(f"{name}: {note}")
     valid = [g for g in geoms if g is not None]
-    chain, locked, new_geoms = serial_chain(model, tip, valid, names)
+    positions = _mimic_positions(mimic or {}, mimic_terms or {})
+    chain, locked, new_geoms = serial_chain(model, tip, valid, names, positions)
     if chain.nv == 0:
         raise InputError(f"{source}: the chain to {tip!r} has no moving joint; robokit needs at least one")
     for jn, target in (mimic or {}).items():
@@ -447,7 +517,8 @@ def build_robot(name: str, model: Any, tip: str | None, geoms: list[Any], config
                 "independent — remove the <mimic> or choose another tip"
             )
     if mimic and any(j in locked for j in mimic):
-        notes.append(f"{name}: mimic joints off the chain locked: {', '.join(j for j in mimic if j in locked)}")
+        notes.append(f"{name}: mimic joints off the chain locked: "
+                     f"{_mimic_locks(mimic, positions, [j for j in mimic if j in locked], locked)}")
     if names is not None:
         invented = [j for j in list(chain.names)[1:] if j not in names] + [j for j in locked if j not in names]
         if invented:

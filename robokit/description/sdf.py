@@ -217,6 +217,7 @@ class _JointRaw:
     gear: float | None
     mimic: str | None
     initial: float = 0.0  # <axis><initial_position>
+    mimic_terms: tuple[float, float] = (1.0, 0.0)  # <mimic>: value = multiplier · leader + offset (reference folded in)
 
 
 @dataclass
@@ -550,6 +551,7 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
     axis_in: str | None = None
     lim = dyn = None
     mimic = None
+    mimic_terms = (1.0, 0.0)
     initial = 0.0
     if axis_el is not None:
         rd.note_unmodelled(axis_el, "axis")
@@ -566,6 +568,11 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
                 rd.note_unmodelled(sub, ctx)
         mim = _child(axis_el, "mimic")
         mimic = mim.get("joint") if mim is not None else None
+        if mim is not None:  # SDFormat 1.11: follower = multiplier · (leader − reference) + offset
+            multiplier = _number(mim, "multiplier", 1.0, f"{where} <mimic>")
+            offset = _number(mim, "offset", 0.0, f"{where} <mimic>")
+            reference = _number(mim, "reference", 0.0, f"{where} <mimic>")
+            mimic_terms = (multiplier, offset - multiplier * reference)
         init_el = _child(axis_el, "initial_position")
         if init_el is not None and (init_el.text or "").strip():
             initial = _floats(init_el.text, f"{where} <axis><initial_position>", (1,))[0]
@@ -598,7 +605,8 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
     rd.joints.append(_JointRaw(name, kind, (parent_el.text or "").strip(), child_raw, scope,
                                (xyz[0], xyz[1], xyz[2]), axis_in, lower, upper,
                                math.inf if effort < 0 else effort, math.inf if velocity < 0 else velocity,
-                               damping, friction, rotor, gear, mimic, 0.0 if scope.static else initial))
+                               damping, friction, rotor, gear, mimic, 0.0 if scope.static else initial,
+                               mimic_terms))
 
 
 # --------------------------------------------------------------------------- the pose graph
@@ -819,14 +827,15 @@ def description_from_sdf(path: str | os.PathLike[str], package_dirs: Sequence[st
     >>> desc.joints[0].placement.translation, desc.joints[0].child_placement.translation
     ((0.0, 0.0, 0.0), (0.0, 0.0, -1.0))
     """
-    desc, notes, mimic, _ = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
+    desc, notes, mimic, _, _ = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
     return desc, notes, mimic
 
 
 def _read_sdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.PathLike[str]] | None,
               allow_outside_meshes: bool, reflected_inertia: bool
-              ) -> tuple[Description, list[str], dict[str, str], dict[str, float]]:
-    """:func:`description_from_sdf`'s result and the joints' nonzero ``<axis><initial_position>``."""
+              ) -> tuple[Description, list[str], dict[str, str], dict[str, float], dict[str, tuple[float, float]]]:
+    """:func:`description_from_sdf`'s result, the joints' nonzero ``<axis><initial_position>`` and the mimic
+    joints' (multiplier, offset − multiplier · reference)."""
     top = Path(path)
     rd = _Reader(top, tuple(Path(d).expanduser().resolve() for d in (package_dirs or ())), allow_outside_meshes,
                  allowed_roots(top, package_dirs))
@@ -877,7 +886,8 @@ def _read_sdf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Path
                          "moving joints")
     _resolve_names(rd)
     desc, notes, mimic = _describe(rd, top_name, reflected_inertia, gravity_note)
-    return desc, notes, mimic, {j.name: j.initial for j in rd.joints if j.initial != 0.0}
+    return (desc, notes, mimic, {j.name: j.initial for j in rd.joints if j.initial != 0.0},
+            {j.name: j.mimic_terms for j in rd.joints if j.name in mimic})
 
 
 def _describe(rd: _Reader, name: str, reflected_inertia: bool,
@@ -1012,11 +1022,11 @@ def load_sdf(path: str | os.PathLike[str], tip: str | None = None, *,
     path = Path(path)
     if not path.exists():
         raise InputError(f"{path}: file not found")
-    desc, notes, mimic, initial = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
+    desc, notes, mimic, initial, mimic_terms = _read_sdf(path, package_dirs, allow_outside_meshes, reflected_inertia)
     model, visual, collision, geo_notes = build_model(desc)
     from robokit.description.urdf_files import absolute_dirs
 
     spec = RobotSpec("sdf", path=os.path.abspath(path), tip=tip, package_dirs=absolute_dirs(package_dirs),
                      allow_outside_meshes=bool(allow_outside_meshes), reflected_inertia=bool(reflected_inertia))
     return build_robot(desc.name, model, tip, [visual, collision], {}, spec, [*notes, *geo_notes], mimic=mimic,
-                       joint_values={"initial": initial} if initial else None)
+                       joint_values={"initial": initial} if initial else None, mimic_terms=mimic_terms)

@@ -115,6 +115,9 @@ class UrdfDocument:
         The ``<robot name>``.
     mimic : dict of str to str
         ``{joint: the joint it mimics}``.
+    mimic_terms : dict of str to (float, float)
+        ``{joint: (multiplier, offset)}`` of each ``<mimic>``: the joint's value is multiplier × the
+        value of the joint it mimics + offset (defaults 1 and 0, as urdfdom reads them).
     package_dirs : list of pathlib.Path
         Folders searched for ``package://`` names.
     warnings : list of str
@@ -146,6 +149,7 @@ class UrdfDocument:
     names: frozenset = frozenset()
     unmodelled: list = field(default_factory=list)
     rotors: list = field(default_factory=list)
+    mimic_terms: dict = field(default_factory=dict)
 
 
 def _fail(path: str | os.PathLike[str], msg: str) -> NoReturn:
@@ -357,6 +361,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
 
     joints = {}
     mimic = {}
+    mimic_terms = {}
     children = set()
     for el in root.findall("joint"):
         jname = el.get("name")
@@ -409,6 +414,11 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
             if not target:
                 _fail(path, f"{where}: <mimic> without a joint")
             mimic[jname] = target
+            terms = (_float_attr(m, "multiplier", path, f"{where} <mimic>", 1.0),
+                     _float_attr(m, "offset", path, f"{where} <mimic>", 0.0))
+            if not all(map(math.isfinite, terms)):
+                _fail(path, f"{where}: <mimic> multiplier and offset must be finite")
+            mimic_terms[jname] = terms
     for jname, target in mimic.items():
         if target not in joints:
             _fail(path, f"joint {jname!r}: mimics {target!r}, which is not defined")
@@ -468,7 +478,7 @@ def _check(path: Path, raw: bytes, package_dirs: Sequence[str | os.PathLike[str]
     unmodelled = _unmodelled(root, path, read) + unmodelled + _drake_extensions(root, path, read)
     xml = ET.tostring(root, encoding="unicode")
     return UrdfDocument(path, xml, name, mimic, [str(r) for r in pkg_roots], notes,
-                        frozenset(links) | frozenset(joints), unmodelled, rotors)
+                        frozenset(links) | frozenset(joints), unmodelled, rotors, mimic_terms)
 
 
 def _first(el: ET.Element, tag: str) -> ET.Element | None:

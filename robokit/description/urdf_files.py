@@ -150,6 +150,7 @@ def _from_urdf_file(path: Path, tip: str | None, package_dirs: Sequence[str | os
                          allow_outside_meshes=bool(allow_outside_meshes), reflected_inertia=bool(reflected_inertia))
     notes.extend(reflected_notes)
     notes.extend(note for _, note in doc.unmodelled)
-    return build_robot(doc.name, model, tip, geoms, {}, spec, notes, mimic=doc.mimic, names=doc.names)
+    return build_robot(doc.name, model, tip, geoms, {}, spec, notes, mimic=doc.mimic, names=doc.names,
+                       mimic_terms=doc.mimic_terms)
 
 

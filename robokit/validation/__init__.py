@@ -14,14 +14,17 @@ import json
 import math
 import time
 import traceback
-from typing import Iterator, Sequence
+from typing import Any, Iterator, Sequence
 
 import numpy as np
 
-from robokit.validation.core import ARMS, MODELS, SHIPPED, CheckRow, max_error, robot
+from robokit.validation.core import ARMS, MODELS, SHIPPED, CheckRow, max_error, only_robot, robot
 
-__all__ = ["AREAS", "CheckRow", "robot", "max_error", "MODELS", "ARMS", "SHIPPED", "iter_rows", "run_all",
+__all__ = ["AREAS", "ROBOT_AREAS", "CheckRow", "robot", "max_error", "MODELS", "ARMS", "SHIPPED", "iter_rows", "run_all",
            "format_table", "main"]
+
+#: The areas whose rows compare robots: what ``robokit validate MODEL`` runs on that robot.
+ROBOT_AREAS = ("kinematics", "dynamics", "ik")
 
 #: (area, module) in dependency order; the module is ``robokit.validation.<module>``.
 AREAS = (
@@ -164,8 +167,13 @@ def _line(cells: Sequence[str]) -> str:
     return "\n".join([*lead, row])
 
 
-def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = None) -> int:
+def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = None, model: Any = None,
+         tip: str | None = None, **load_options: Any) -> int:
     """What ``robokit validate`` runs: every check, printed as a table or as JSON.
+
+    With ``model`` (``robokit validate MODEL``: a robot file, a shipped model or an example-robot-data
+    name, loaded as :func:`robokit.load` loads it) only the robot rows run (:data:`ROBOT_AREAS`:
+    kinematics, dynamics, ik), on that robot alone.
 
     Without ``as_json`` the rows are streamed as each area finishes; on a terminal a progress
     line on stderr says which area is running (piped, the output is plain lines only). robokit's
@@ -181,7 +189,13 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
         Seed of the random samples (default 0).
     areas : sequence of str, optional
         Only these areas (names of :data:`AREAS`: ``spatial``, ``description``, ``kinematics``,
-        ``dynamics``, ``ik``, ``trajectory``); default all.
+        ``dynamics``, ``ik``, ``trajectory``); default all (with ``model``: :data:`ROBOT_AREAS`).
+    model : str, path or Robot, optional
+        The one robot to compare (default: the shipped models and example-robot-data arms).
+    tip : str, optional
+        Its tip frame (``robokit.load``'s ``tip``).
+    **load_options
+        ``robokit.load``'s options for its file (``xacro_args``, ``package_dirs``, ...).
 
     Returns
     -------
@@ -191,7 +205,8 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
     Raises
     ------
     InputError
-        An unknown area name, or a negative ``seed``.
+        An unknown area name (with ``model``, one that compares no robot), a negative ``seed``, or a
+        model that does not load.
     """
     import sys
 
@@ -202,14 +217,30 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
 
         raise InputError(f"--seed: expected a non-negative integer, got {seed!r}")
     chosen: tuple[tuple[str, str], ...] = AREAS
+    known = list(dict.fromkeys(a for a, _ in AREAS)) if model is None else list(ROBOT_AREAS)
     if areas:
-        known = list(dict.fromkeys(a for a, _ in AREAS))
         unknown = [a for a in areas if a not in known]
         if unknown:
             from robokit.errors import InputError
 
-            raise InputError(f"--area: unknown area {unknown[0]!r}; the areas are {', '.join(known)}")
-        chosen = tuple(x for x in AREAS if x[0] in areas)
+            which = "the areas are" if model is None else "the areas that compare a robot (MODEL) are"
+            raise InputError(f"--area: unknown area {unknown[0]!r}; {which} {', '.join(known)}")
+    chosen = tuple(x for x in AREAS if x[0] in (areas or known))
+    only = None
+    if model is not None:
+        from robokit.description.loading import load
+        from robokit.description.robot import Robot
+
+        loaded = model if isinstance(model, Robot) else load(model, tip=tip, **load_options)
+        if any(a == "ik" for a, _ in chosen):
+            from robokit.ik import ik_analytic_kind
+
+            kind = ik_analytic_kind(loaded)
+            if not kind.method:
+                print(f"robokit: note: {loaded.name}: no ik rows (no closed-form inverse kinematics: {kind.reason})",
+                      file=sys.stderr)
+        only = only_robot(loaded.name, loaded)
+        only.__enter__()
     t0 = time.perf_counter()
     rows: list[CheckRow] = []
     progress = None
@@ -256,4 +287,6 @@ def main(as_json: bool = False, seed: int = 0, areas: Sequence[str] | None = Non
         if progress is not None:
             progress.stop()
         held.__exit__(None, None, None)  # the compile notices, after the table
+        if only is not None:
+            only.__exit__(None, None, None)
     return 0 if ok else 1

@@ -3,8 +3,10 @@ from __future__ import annotations
 
 import functools
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING, Iterable, Iterator
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -12,7 +14,7 @@ from numpy.typing import ArrayLike
 if TYPE_CHECKING:
     from robokit.description.robot import Robot
 
-__all__ = ["CheckRow", "robot", "max_error", "SHIPPED", "ARMS", "MODELS"]
+__all__ = ["CheckRow", "robot", "max_error", "SHIPPED", "ARMS", "MODELS", "models", "only_robot"]
 
 #: The shipped DH models (models/*.yaml) compared in every robot row.
 SHIPPED = ("twolink", "rrr", "puma560")
@@ -87,9 +89,73 @@ class CheckRow:
         return d
 
 
-@functools.lru_cache(maxsize=None)
+#: (label, robot) of ``robokit validate MODEL``: the one robot the robot rows compare (None: MODELS).
+_ONLY: ContextVar[tuple[str, Robot] | None] = ContextVar("robokit_validation_only", default=None)
+
+
+def models() -> tuple[str, ...]:
+    """The robots the robot rows (kinematics, dynamics, ik) compare: :data:`MODELS`, or within
+    :func:`only_robot` that one robot's label.
+
+    Returns
+    -------
+    tuple of str
+        Names :func:`robot` loads.
+
+    Examples
+    --------
+    >>> models() == MODELS
+    True
+    """
+    only = _ONLY.get()
+    return MODELS if only is None else (only[0],)
+
+
+@contextmanager
+def only_robot(label: str, loaded: Robot) -> Iterator[None]:
+    """Within this block the robot rows compare ``loaded`` alone, under the name ``label``
+    (``robokit validate MODEL``).
+
+    Parameters
+    ----------
+    label : str
+        The model column of its rows.
+    loaded : Robot
+        The robot.
+
+    Yields
+    ------
+    None
+    """
+    token = _ONLY.set((label, loaded))
+    try:
+        yield
+    finally:
+        _ONLY.reset(token)
+
+
 def robot(name: str) -> Robot:
-    """``robokit.load(name)``, loaded once per validation run and shared by the check modules."""
+    """``robokit.load(name)``, loaded once per validation run and shared by the check modules (within
+    :func:`only_robot`, its robot for its label).
+
+    Parameters
+    ----------
+    name : str
+        A name of :func:`models`.
+
+    Returns
+    -------
+    Robot
+        The robot.
+    """
+    only = _ONLY.get()
+    if only is not None and name == only[0]:
+        return only[1]
+    return _loaded(name)
+
+
+@functools.lru_cache(maxsize=None)
+def _loaded(name: str) -> Robot:
     from robokit.description.loading import load
 
     return load(name)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robokit.validation.core import MODELS, CheckRow, robot as load
+from robokit.validation.core import MODELS, SHIPPED, CheckRow, models, robot as load
 
 SAMPLES = 100
 
@@ -12,7 +12,7 @@ def checks(rng: np.random.Generator) -> list[CheckRow]:
     from robokit.kinematics.poe import fkin_body, fkin_space, jacobian_body, jacobian_space
 
     rows = []
-    for name in MODELS:
+    for name in models():
         r = load(name)
         p = r.poe
         Q = np.array([r.random_configuration(rng) for _ in range(SAMPLES)])
@@ -33,9 +33,9 @@ def checks(rng: np.random.Generator) -> list[CheckRow]:
         ]
     from robokit.kinematics.dh import dh_jacobian, dh_static_torques
 
-    for name in ("twolink", "rrr", "puma560"):
+    for name in (SHIPPED if models() == MODELS else [m for m in models() if load(m).dh is not None]):
         r = load(name)
-        assert r.dh is not None  # a shipped DH model
+        assert r.dh is not None  # a shipped DH model (or the one robot validated, when it is one)
         e_b = e_t = e_f = 0.0
         for _ in range(SAMPLES):
             q = r.random_configuration(rng)

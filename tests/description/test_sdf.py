@@ -553,3 +553,70 @@ def test_an_inertial_pose_relative_to_its_own_link_is_the_link_frame(tmp_path):
     q = np.array([0.7])
     assert np.array_equal(own.crba(q), plain.crba(q))
     assert np.array_equal(own.gravity_torques(q), plain.gravity_torques(q)) and abs(own.gravity_torques(q)[0]) > 0.1
+
+
+MIMIC_SDF = """<sdf version='1.11'><model name='arm'>
+<link name='base'><inertial><mass>1</mass><inertia><ixx>1</ixx><iyy>1</iyy><izz>1</izz></inertia></inertial></link>
+<joint name='fix' type='fixed'><parent>world</parent><child>base</child></joint>
+<link name='l1'><pose relative_to='j1'/><inertial><pose>0.1 0 0 0 0 0</pose><mass>2</mass>
+<inertia><ixx>0.02</ixx><iyy>0.03</iyy><izz>0.025</izz></inertia></inertial></link>
+<joint name='j1' type='revolute'><pose relative_to='base'>0 0 0.3 0 0 0</pose><parent>base</parent><child>l1</child>
+<axis><xyz>0 1 0</xyz><limit><lower>-3</lower><upper>3</upper></limit></axis></joint>
+<link name='l2'><pose relative_to='j2'/><inertial><pose>0.15 0 0 0 0 0</pose><mass>1</mass>
+<inertia><ixx>0.004</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial></link>
+<joint name='j2' type='revolute'><pose relative_to='l1'>0.4 0 0 0 0 0</pose><parent>l1</parent><child>l2</child>
+<axis><xyz>0 1 0</xyz><limit><lower>-3</lower><upper>3</upper></limit></axis></joint>
+<link name='f1'><pose relative_to='jf1'/><inertial><pose>0.05 0 0 0 0 0</pose><mass>0.5</mass>
+<inertia><ixx>0.001</ixx><iyy>0.001</iyy><izz>0.001</izz></inertia></inertial></link>
+<joint name='jf1' type='revolute'><pose relative_to='l1'>0.2 0.1 0 0 0 0</pose><parent>l1</parent><child>f1</child>
+<axis><xyz>0 1 0</xyz><limit><lower>-3</lower><upper>3</upper></limit></axis></joint>
+<link name='f2'><pose relative_to='jf2'/><inertial><pose>0.05 0 0 0 0 0</pose><mass>0.5</mass>
+<inertia><ixx>0.001</ixx><iyy>0.001</iyy><izz>0.001</izz></inertia></inertial></link>
+<joint name='jf2' type='revolute'><pose relative_to='f1'>0.1 0 0 0 0 0</pose><parent>f1</parent><child>f2</child>
+<axis><xyz>0 1 0</xyz><limit><lower>-3</lower><upper>3</upper></limit>
+<mimic joint='jf1' axis='axis'><multiplier>2</multiplier><offset>0.5</offset><reference>0.1</reference></mimic></axis></joint>
+</model></sdf>"""
+
+
+def test_a_mimic_joint_off_the_chain_is_locked_where_sdformat_puts_it(tmp_path):
+    """SDFormat 1.11's <mimic>: follower = multiplier · (leader − reference) + offset. With its leader jf1
+    locked at 0, jf2 (multiplier 2, offset 0.5, reference 0.1) sits at 2 · (0 − 0.1) + 0.5 = 0.3 rad. Before,
+    robokit locked it at 0 (f2's frame 0.3 rad off; M and gravity off) and the three values were read by
+    nothing, said by nothing. Reference: Pinocchio on the same arm written as URDF without the mimic, jf2
+    set to 0.3 by hand."""
+    import pinocchio as pin
+
+    path = tmp_path / "arm.sdf"
+    path.write_text(MIMIC_SDF)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        robot = robokit.load(path, "l2")
+    notes = [str(w.message) for w in said if "mimic joints off the chain locked" in str(w.message)]
+    assert notes and "jf2 (at 0.3)" in notes[0], notes
+
+    def rev(name, parent, child, xyz):
+        return (f'<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+                f'<origin xyz="{xyz}"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>')
+
+    def lnk(name, x, m, i):
+        return (f'<link name="{name}"><inertial><origin xyz="{x} 0 0"/><mass value="{m}"/><inertia ixx="{i[0]}" '
+                f'ixy="0" ixz="0" iyy="{i[1]}" iyz="0" izz="{i[2]}"/></inertial></link>')
+
+    twin = ('<robot name="arm">' + lnk("base", 0, 1, (1, 1, 1)) + lnk("l1", 0.1, 2, (0.02, 0.03, 0.025))
+            + lnk("l2", 0.15, 1, (0.004, 0.01, 0.01)) + lnk("f1", 0.05, 0.5, (0.001,) * 3)
+            + lnk("f2", 0.05, 0.5, (0.001,) * 3) + rev("j1", "base", "l1", "0 0 0.3") + rev("j2", "l1", "l2", "0.4 0 0")
+            + rev("jf1", "l1", "f1", "0.2 0.1 0") + rev("jf2", "f1", "f2", "0.1 0 0") + "</robot>")
+    model = pin.buildModelFromXML(twin)
+    data = model.createData()
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q = rng.uniform(-2, 2, 2)
+        qf = pin.neutral(model)
+        qf[[model.joints[model.getJointId(j)].idx_q for j in ("j1", "j2", "jf2")]] = [*q, 2 * (0 - 0.1) + 0.5]
+        pin.framesForwardKinematics(model, data, qf)
+        assert np.abs(robot.frame_pose(q, "f2") - data.oMf[model.getFrameId("f2")].homogeneous).max() < 1e-14
+        iv = [model.joints[model.getJointId(j)].idx_v for j in ("j1", "j2")]
+        M = pin.crba(model, data, qf)
+        M = (np.triu(M) + np.triu(M, 1).T)[np.ix_(iv, iv)]
+        assert np.abs(robot.crba(q) - M).max() < 1e-14
+        assert np.abs(robot.gravity_torques(q) - pin.computeGeneralizedGravity(model, data, qf)[iv]).max() < 1e-13

@@ -109,11 +109,14 @@ class PinocchioEngine:
 
     name = "Pinocchio"
 
-    def __init__(self, model: Any, robot: Any) -> None:
+    def __init__(self, model: Any, robot: Any, fixed: dict[str, float] | None = None) -> None:
         import pinocchio as pin
 
         self.pin, self.model, self.data = pin, model, model.createData()
         self.joints = [model.joints[model.getJointId(jn)] for jn in robot.joint_names]
+        #: joints off the chain not at 0: (joint model, value) — a URDF's mimic joints (:func:`mimic_positions`)
+        self.fixed = [(model.joints[model.getJointId(jn)], v) for jn, v in (fixed or {}).items()
+                      if model.existJointName(jn) and jn not in robot.joint_names]
         self.iv = [jm.idx_v for jm in self.joints]
         body = pin.FrameType.BODY
         self.fid = (model.getFrameId(robot.tip, body) if model.existFrame(robot.tip, body)
@@ -123,6 +126,8 @@ class PinocchioEngine:
     def __call__(self, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray) -> Quantities:
         pin, model, data = self.pin, self.model, self.data
         qf, v, a = pin.neutral(model), np.zeros(model.nv), np.zeros(model.nv)
+        for jm, qi in self.fixed:
+            qf[jm.idx_q:jm.idx_q + jm.nq] = [np.cos(qi), np.sin(qi)] if jm.nq == 2 else [qi]
         for jm, qi, dqi, ddqi in zip(self.joints, q, dq, ddq):
             if jm.nq == 2:  # continuous: (cos, sin)
                 qf[jm.idx_q], qf[jm.idx_q + 1] = np.cos(qi), np.sin(qi)
@@ -158,14 +163,19 @@ class _silent_fds:
 
 def _stripped_urdf(text: str, folder: Path) -> Path:
     """The URDF without visuals and collisions (PyBullet reads inertias from the file, so its
-    geometry only costs time and prints mesh warnings), one element a line: PyBullet 3.2.7's XML
-    reader refuses some long one-line files ("XML_ERROR_PARSING", line 1; the xacro program's
-    expansion of Interbotix's vx300s written by ``ET.tostring``, 15 kB)."""
+    geometry only costs time and prints mesh warnings) nor ``<gazebo>`` elements (simulator settings
+    PyBullet does not use; its importer 3.2.7 refuses the whole file on Kinova's Robotiq 2F-85
+    ``<gazebo reference=...><material>Gazebo/Black</material></gazebo>``: XML_ERROR_PARSING_ATTRIBUTE),
+    one element a line: PyBullet 3.2.7's XML reader refuses some long one-line files
+    ("XML_ERROR_PARSING", line 1; the xacro program's expansion of Interbotix's vx300s written by
+    ``ET.tostring``, 15 kB)."""
     root = ET.fromstring(text)
     for el in root.iter("link"):
         for tag in ("visual", "collision"):
             for g in el.findall(tag):
                 el.remove(g)
+    for g in root.findall("gazebo"):
+        root.remove(g)
     ET.indent(root)
     path = folder / "robot.urdf"
     path.write_text(ET.tostring(root, encoding="unicode"))
@@ -212,7 +222,8 @@ class PyBulletEngine:
     name = "PyBullet"
 
     def __init__(self, path: Path, robot: Any, sdf: bool = False, armature: np.ndarray | None = None,
-                 reading: tuple[Path, list[str]] | None = None, in_base: bool = False) -> None:
+                 reading: tuple[Path, list[str]] | None = None, in_base: bool = False,
+                 fixed: dict[str, float] | None = None) -> None:
         import pybullet as p
 
         #: Results in PyBullet's world frame (the default), where robokit reports too: both place the
@@ -241,6 +252,8 @@ class PyBulletEngine:
                 movable.append(i)
         self.movable = movable
         self.dofs = [names[jn] for jn in robot.joint_names]
+        #: joints off the chain not at 0 (a URDF's mimic joints, :func:`mimic_positions`): (dof, value)
+        self.fixed = [(names[jn], v) for jn, v in (fixed or {}).items() if jn in names and jn not in robot.joint_names]
         base_name = p.getBodyInfo(self.body, physicsClientId=self.cid)[0].decode()
         self.tip = -1 if robot.tip == base_name else links[robot.tip]
         self.floating = sdf and p.getDynamicsInfo(self.body, -1, physicsClientId=self.cid)[0] != 0.0
@@ -280,6 +293,8 @@ class PyBulletEngine:
     def __call__(self, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray) -> Quantities:
         p, cid = self.p, self.cid
         pos, vel, acc = (np.zeros(len(self.movable)) for _ in range(3))
+        for k, v in self.fixed:
+            pos[k] = v
         pos[self.dofs], vel[self.dofs], acc[self.dofs] = q, dq, ddq
         for k, i in enumerate(self.movable):
             p.resetJointState(self.body, i, float(pos[k]), physicsClientId=cid)
@@ -474,23 +489,46 @@ def _urdf_engines(text_of: Callable[[], str]) -> list[Callable[[Any, Path], Any]
         for jn, value in drake_urdf_reflected_inertia(text).items():
             if model.existJointName(jn):
                 model.armature[model.joints[model.getJointId(jn)].idx_v] = value
-        return PinocchioEngine(model, robot)
+        return PinocchioEngine(model, robot, fixed=mimic_positions(text))
 
     def pb_engine(robot: Any, tmp: Path) -> Any:
         text = text_of()
         extra = drake_urdf_reflected_inertia(text)
         arm = np.array([extra.get(jn, 0.0) for jn in robot.joint_names])
-        return _pybullet_on(text, robot, tmp, armature=arm if arm.any() else None)
+        return _pybullet_on(text, robot, tmp, armature=arm if arm.any() else None, fixed=mimic_positions(text))
 
     return [_named("Pinocchio", pin_engine), _named("PyBullet", pb_engine)]
 
 
-def _pybullet_on(text: str, robot: Any, tmp: Path, armature: np.ndarray | None = None) -> PyBulletEngine:
+def _pybullet_on(text: str, robot: Any, tmp: Path, armature: np.ndarray | None = None,
+                 fixed: dict[str, float] | None = None) -> PyBulletEngine:
     """PyBullet on the URDF ``text``; the file as its importer reads it kept for the comparison."""
     read, notes = pybullet_reading(text)
     (tmp / "read").mkdir()
     reading = (_stripped_urdf(read, tmp / "read"), notes)
-    return PyBulletEngine(_stripped_urdf(text, tmp), robot, armature=armature, reading=reading)
+    return PyBulletEngine(_stripped_urdf(text, tmp), robot, armature=armature, reading=reading, fixed=fixed)
+
+
+def mimic_positions(text: str) -> dict[str, float]:
+    """Where a URDF puts its ``<mimic>`` joints when every other joint is at 0: ``multiplier × (the value
+    of the joint it follows) + offset`` (urdfdom's defaults 1 and 0), read from the text with ElementTree.
+    Neither engine reads ``<mimic>`` (Pinocchio's parser treats such a joint as independent unless asked,
+    and then refuses a mimic joint declared before the joint it follows, as Kinova's files do); the
+    engines put these joints here, off the chain. A mimic joint that follows a joint of the chain stays
+    where that joint's 0 puts it (robokit holds it there and says so)."""
+    terms = {}
+    for el in ET.fromstring(text).iter("joint"):
+        m = el.find("mimic")
+        if m is not None:
+            terms[el.get("name")] = (m.get("joint"), float(m.get("multiplier", 1.0)), float(m.get("offset", 0.0)))
+
+    def value(joint: str, depth: int = 0) -> float:
+        if joint not in terms or depth > len(terms):
+            return 0.0
+        leader, multiplier, offset = terms[joint]
+        return multiplier * value(leader, depth + 1) + offset
+
+    return {j: value(j) for j in terms}
 
 
 def _mjcf_engines(path: Path) -> list[Callable[[Any, Path], Any]]:
