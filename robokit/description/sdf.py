@@ -72,6 +72,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -231,6 +232,7 @@ class _Reader:
     joints: list[_JointRaw] = field(default_factory=list)
     frames: list[str] = field(default_factory=list)
     unmodelled: dict[str, int] = field(default_factory=dict)
+    leading: list[str] = field(default_factory=list)  # numbers read from a text with more after them
     files: int = 1
     total_bytes: int = 0
     joint_count: int = 0
@@ -277,27 +279,50 @@ def _floats(text: str | None, where: str, counts: tuple[int, ...]) -> list[float
     return vals
 
 
-def _limit(el: ET.Element | None, tag: str, default: float, where: str) -> float:
+#: A number at the start of a text, as a C++ stream reads one (libsdformat's scalar values).
+_LEADING_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+def _scalar(text: str, where: str, rd: _Reader | None) -> float:
+    """A scalar value as libsdformat reads it: the whole text when it is a number, else the number it
+    starts with, the rest ignored (measured with Drake 1.58's libsdformat: ``2.5"`` is 2.5, ``1 2`` is 1,
+    ``1e-1x`` 0.1; Drake's own iiwa14_polytope_collision.sdf writes ``<velocity>2.356194490192345"``),
+    noted once per file; a text that does not start with a number is refused, as libsdformat refuses it."""
+    text = text.strip()
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    m = _LEADING_NUMBER.match(text)
+    if m is None:
+        raise InputError(f"{where}: expected a number, got {text[:60]!r}")
+    value = float(m.group())
+    if rd is not None:
+        rd.leading.append(f"{where.rsplit(': ', 1)[-1]} {text[:30]!r} as {value:g}")
+    return value
+
+
+def _limit(el: ET.Element | None, tag: str, default: float, where: str, rd: _Reader | None = None) -> float:
     """A joint limit: any magnitude, ``inf`` included — Gazebo's files write "no limit" as
     ±1.79769e+308 (its wheel joints) or ``inf`` (libsdformat reads both); NaN is refused."""
     c = _child(el, tag) if el is not None else None
     if c is None or not (c.text or "").strip():
         return default
     text = (c.text or "").strip()
-    try:
-        value = float(text)
-    except ValueError:
-        raise InputError(f"{where} <{tag}>: expected a number, got {text[:60]!r}") from None
+    value = _scalar(text, f"{where} <{tag}>", rd)
     if math.isnan(value):
         raise InputError(f"{where} <{tag}>: expected a number, got {text[:60]!r}")
     return value
 
 
-def _number(el: ET.Element | None, tag: str, default: float, where: str) -> float:
+def _number(el: ET.Element | None, tag: str, default: float, where: str, rd: _Reader | None = None) -> float:
     c = _child(el, tag) if el is not None else None
     if c is None or not (c.text or "").strip():
         return default
-    return _floats(c.text, f"{where} <{tag}>", (1,))[0]
+    value = _scalar(c.text or "", f"{where} <{tag}>", rd)
+    if not (math.isfinite(value) and abs(value) <= 1e17):
+        raise InputError(f"{where} <{tag}>: numbers must be finite and at most 1e17 in size")
+    return value
 
 
 def _flag(el: ET.Element | None, tag: str) -> bool | None:
@@ -569,24 +594,24 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
         mim = _child(axis_el, "mimic")
         mimic = mim.get("joint") if mim is not None else None
         if mim is not None:  # SDFormat 1.11: follower = multiplier · (leader − reference) + offset
-            multiplier = _number(mim, "multiplier", 1.0, f"{where} <mimic>")
-            offset = _number(mim, "offset", 0.0, f"{where} <mimic>")
-            reference = _number(mim, "reference", 0.0, f"{where} <mimic>")
+            multiplier = _number(mim, "multiplier", 1.0, f"{where} <mimic>", rd)
+            offset = _number(mim, "offset", 0.0, f"{where} <mimic>", rd)
+            reference = _number(mim, "reference", 0.0, f"{where} <mimic>", rd)
             mimic_terms = (multiplier, offset - multiplier * reference)
         init_el = _child(axis_el, "initial_position")
         if init_el is not None and (init_el.text or "").strip():
             initial = _floats(init_el.text, f"{where} <axis><initial_position>", (1,))[0]
     elif kind != "fixed":
         raise InputError(f"{where}: a {kind} joint needs an <axis>")
-    lower = _limit(lim, "lower", -_NO_LIMIT, where)
-    upper = _limit(lim, "upper", _NO_LIMIT, where)
+    lower = _limit(lim, "lower", -_NO_LIMIT, where, rd)
+    upper = _limit(lim, "upper", _NO_LIMIT, where, rd)
     lower = -math.inf if lower <= -_NO_LIMIT else lower
     upper = math.inf if upper >= _NO_LIMIT else upper
     if kind in ("revolute", "prismatic") and lower > upper:
         raise InputError(f"{where}: lower limit {lower:g} is above the upper limit {upper:g}")
-    effort = _limit(lim, "effort", -1.0, where)
-    velocity = _limit(lim, "velocity", -1.0, where)
-    stiffness = _number(dyn, "spring_stiffness", 0.0, where)
+    effort = _limit(lim, "effort", -1.0, where, rd)
+    velocity = _limit(lim, "velocity", -1.0, where, rd)
+    stiffness = _number(dyn, "spring_stiffness", 0.0, where, rd)
     if stiffness != 0.0:
         key = "<spring_stiffness> (joint springs)"
         rd.unmodelled[key] = rd.unmodelled.get(key, 0) + 1
@@ -598,7 +623,7 @@ def _read_joint(rd: _Reader, el: ET.Element, scope: _Scope) -> None:
             gear = _floats(c.text, f"{where} <drake:gear_ratio>", (1,))[0]
     if (rotor is not None and rotor < 0) or (gear is not None and gear < 0):
         raise InputError(f"{where}: drake:rotor_inertia and drake:gear_ratio must be >= 0")
-    damping, friction = _number(dyn, "damping", 0.0, where), _number(dyn, "friction", 0.0, where)
+    damping, friction = _number(dyn, "damping", 0.0, where, rd), _number(dyn, "friction", 0.0, where, rd)
     if damping < 0 or friction < 0:
         raise InputError(f"{where}: damping and friction must be >= 0")
     kind = "fixed" if scope.static else kind
@@ -690,11 +715,11 @@ def _inertial(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np.n
     if (ine_el.get("auto") or "").lower() in ("1", "true"):
         key = "<inertial auto='true'> (inertia computed from collisions; the written values are used)"
         rd.unmodelled[key] = rd.unmodelled.get(key, 0) + 1
-    mass = _number(ine_el, "mass", 1.0, where)
+    mass = _number(ine_el, "mass", 1.0, where, rd)
     if mass < 0:
         raise InputError(f"{where}: the mass must be >= 0, got {mass:g}")
     I_el = _child(ine_el, "inertia")
-    values = [_number(I_el, k, d, where) for k, d in (("ixx", 1.0), ("ixy", 0.0), ("ixz", 0.0), ("iyy", 1.0),
+    values = [_number(I_el, k, d, where, rd) for k, d in (("ixx", 1.0), ("ixy", 0.0), ("ixz", 0.0), ("iyy", 1.0),
                                                      ("iyz", 0.0), ("izz", 1.0))]
     X, rel = _pose(ine_el, where, scope)
     if rel is not None and scope.resolve(rel, where) != link:
@@ -748,10 +773,10 @@ def _geometries(rd: _Reader, link: str, el: ET.Element, scope: _Scope, X_W_L: np
                 size_el = _child(shape, "size")
                 size = tuple(_floats(size_el.text if size_el is not None else "1 1 1", f"{where} <box><size>", (3,)))
             elif kind in ("cylinder", "capsule"):
-                size = (_number(shape, "radius", 1.0 if kind == "cylinder" else 0.5, where),
-                        _number(shape, "length", 1.0, where))
+                size = (_number(shape, "radius", 1.0 if kind == "cylinder" else 0.5, where, rd),
+                        _number(shape, "length", 1.0, where, rd))
             elif kind == "sphere":
-                size = (_number(shape, "radius", 1.0, where),)
+                size = (_number(shape, "radius", 1.0, where, rd),)
             elif kind == "mesh":
                 size, mesh = (), _mesh(rd, shape, scope, where)
                 if mesh is None:
@@ -964,6 +989,10 @@ def _describe(rd: _Reader, name: str, reflected_inertia: bool,
     if rd.unmodelled:
         shown = ", ".join(f"{k}" + (f" ×{n}" if n > 1 else "") for k, n in sorted(rd.unmodelled.items()))
         notes.append(f"{rd.top}: read but not modelled: {shown}")
+    if rd.leading:
+        shown = ", ".join(rd.leading[:6]) + (f" and {len(rd.leading) - 6} more" if len(rd.leading) > 6 else "")
+        notes.append(f"{rd.top}: numbers read as libsdformat reads them, the number a text starts with and "
+                     f"nothing after it: {shown}")
     if rd.missing_meshes:
         shown = ", ".join(rd.missing_meshes[:4]) + (", ..." if len(rd.missing_meshes) > 4 else "")
         lost = ""

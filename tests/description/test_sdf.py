@@ -620,3 +620,29 @@ def test_a_mimic_joint_off_the_chain_is_locked_where_sdformat_puts_it(tmp_path):
         M = (np.triu(M) + np.triu(M, 1).T)[np.ix_(iv, iv)]
         assert np.abs(robot.crba(q) - M).max() < 1e-14
         assert np.abs(robot.gravity_torques(q) - pin.computeGeneralizedGravity(model, data, qf)[iv]).max() < 1e-13
+
+
+def test_a_number_followed_by_more_text_is_read_as_libsdformat_reads_it(tmp_path):
+    """libsdformat reads a scalar as a C++ stream does: the number the text starts with, the rest ignored,
+    silently. Measured with Drake 1.58's libsdformat: ``<velocity>2.5"`` is 2.5, ``1 2`` is 1, ``1e-1x`` is
+    0.1, ``abc`` an error — and Drake's own iiwa14_polytope_collision.sdf (RobotLocomotion/models) writes
+    ``<velocity>2.356194490192345"</velocity>``, which robokit refused. Now read the same, said once; the
+    arm's limits and dynamics are those of the file written cleanly."""
+    def arm(vel, mass, damping):
+        return (f'<sdf version="1.9"><model name="m"><link name="a"/><link name="b"><pose>0 0 0.1 0 0 0</pose>'
+                f'<inertial><pose>0.2 0 0 0 0 0</pose><mass>{mass}</mass><inertia><ixx>0.01</ixx><iyy>0.02</iyy>'
+                '<izz>0.02</izz></inertia></inertial></link><joint name="j" type="revolute"><parent>a</parent>'
+                '<child>b</child><axis><xyz>0 1 0</xyz><limit><lower>-1</lower><upper>1</upper>'
+                f'<velocity>{vel}</velocity><effort>3</effort></limit><dynamics><damping>{damping}</damping>'
+                '</dynamics></axis></joint></model></sdf>')
+    (tmp_path / "clean.sdf").write_text(arm("2.5", "1.5", "0.1"))
+    (tmp_path / "loose.sdf").write_text(arm('2.5"', "1.5 2", "1e-1x"))
+    clean, _ = load_quiet(tmp_path / "clean.sdf", tip="b")
+    loose, notes = load_quiet(tmp_path / "loose.sdf", tip="b")
+    said = [n for n in notes if "numbers read as libsdformat reads them" in n]
+    assert len(said) == 1 and "<velocity> '2.5\"' as 2.5" in said[0] and "'1.5 2' as 1.5" in said[0], said
+    assert loose.model.velocityLimit[0] == 2.5 and loose.model.damping[0] == 0.1
+    q = np.array([0.4])
+    assert np.array_equal(loose.crba(q), clean.crba(q)) and loose.crba(q)[0, 0] > 0.05
+    (tmp_path / "bad.sdf").write_text(arm("fast", "1.5", "0.1"))
+    _refused(tmp_path / "bad.sdf", "<velocity>", "expected a number", "'fast'")
