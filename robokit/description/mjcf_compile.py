@@ -281,7 +281,7 @@ class CompiledMjcf:
 #: Why a joint attribute robokit reads is not in its model (one note per attribute, :class:`_Ctx`).
 _JOINT_EXTRAS_WHY = {
     "frictionloss": "robokit's rigid-body dynamics has no joint friction (MuJoCo applies it through its "
-                    "constraint solver)",
+                    "constraint solver); the values stay in robot.model.friction, as a URDF's <dynamics friction>",
     "stiffness": "robokit's rigid-body dynamics has no joint springs (a passive force in MuJoCo, not part of its "
                  "bias force or mass matrix)",
     "springdamper": "its spring and damper follow from the compiled inertia, and robokit's rigid-body dynamics "

@@ -177,6 +177,7 @@ def _joints(b: MjcfBody, parent: str | None, armature: bool,
                             lower=float(j.range[0]) if moving else -np.inf,
                             upper=float(j.range[1]) if moving else np.inf,
                             damping=float(j.damping) if moving else 0.0,
+                            friction=float(j.frictionloss) if moving else 0.0,
                             armature=float(j.armature) if moving and armature else 0.0,
                             effort=float(j.effort) if moving else np.inf))
         if not last:

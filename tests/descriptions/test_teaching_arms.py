@@ -163,7 +163,8 @@ def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(labe
     (``frictionloss``, from ``<dynamics friction>``) and actuator force limit (``actuatorfrcrange``, from
     ``<limit effort>``). Before, the MJCF had neither (Interbotix's 0.1 N·m friction on joints whose effort
     limit is 1 to 2 N·m, and their effort limits, gone without a word); robokit reads the force range back
-    as the effort limit (Pinocchio's on the URDF); and it says that MJCF has no velocity limits."""
+    as the effort limit and frictionloss as the dry friction (Pinocchio's on the URDF); and it says that MJCF
+    has no velocity limits."""
     import re
 
     mujoco = pytest.importorskip("mujoco")
@@ -193,6 +194,9 @@ def test_mjcf_out_keeps_friction_and_effort_limits_as_mujoco_reads_the_urdf(labe
     model = pin.buildModelFromXML(reference[label])
     iv = [model.joints[model.getJointId(j)].idx_v for j in robot.joint_names]
     assert np.array_equal(back.model.effortLimit, model.effortLimit[iv])
+    # and its dry friction (frictionloss) back into model.friction, as the URDF's is (was dropped on reading)
+    ib = [back.model.joints[back.model.getJointId(j)].idx_v for j in robot.joint_names]
+    assert np.array_equal(back.model.friction[ib], model.friction[iv]) and (model.friction[iv] == friction).all()
 
 
 def test_a_dh_table_out_says_what_it_cannot_hold(reference, tmp_path, capsys):

@@ -332,7 +332,8 @@ def test_joint_friction_and_springs_are_noted_once_per_attribute(tmp_path):
     said = [str(w.message) for w in record if "<joint>" in str(w.message)]
     assert said == [
         f"{path}: <joint> frictionloss of joints 'j1', 'j2', 'j3' [0.1] ignored: robokit's rigid-body dynamics "
-        "has no joint friction (MuJoCo applies it through its constraint solver)",
+        "has no joint friction (MuJoCo applies it through its constraint solver); the values stay in "
+        "robot.model.friction, as a URDF's <dynamics friction>",
         f"{path}: <joint> stiffness of joints 'j1', 'j2', 'j3' [1, 10] ignored: robokit's rigid-body dynamics has "
         "no joint springs (a passive force in MuJoCo, not part of its bias force or mass matrix)"]
     mujoco = pytest.importorskip("mujoco")
