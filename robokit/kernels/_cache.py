@@ -28,7 +28,7 @@ FOLDERS: list[str] = [os.path.dirname(os.path.abspath(__file__))]
 
 _DIGESTS: dict[str, bytes] = {}
 
-#: numba's cache implementation class holding the locator list (``CacheImpl`` since numba 0.61,
+#: numba's cache implementation class holding the locator list (``CacheImpl`` in recent versions,
 #: ``_CacheImpl`` before).
 _IMPL: Any = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl")
 
