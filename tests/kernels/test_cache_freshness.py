@@ -35,16 +35,19 @@ def _run(root, mode, env):
 
 
 def _write(root, step):
-    (root / "kern").mkdir(exist_ok=True)
-    (root / "kern" / "__init__.py").write_text("")
-    (root / "kern" / "a.py").write_text(textwrap.dedent("""
-        from numba import njit
-        from kern.b import g
+    """b.py with ``step``; kern/ and a.py only the first time (a.py untouched after: numba stamps a file by
+    its modification time and size, or in recent versions by its contents)."""
+    if not (root / "kern").exists():
+        (root / "kern").mkdir()
+        (root / "kern" / "__init__.py").write_text("")
+        (root / "kern" / "a.py").write_text(textwrap.dedent("""
+            from numba import njit
+            from kern.b import g
 
-        @njit(cache=True)
-        def f(x):
-            return g(x) * 10.0
-        """))
+            @njit(cache=True)
+            def f(x):
+                return g(x) * 10.0
+            """))
     (root / "kern" / "b.py").write_text(textwrap.dedent(f"""
         from numba import njit
 
