@@ -11,7 +11,8 @@ input                  loader                                                opt
                                                                              ``xacro_args``,
                                                                              ``allow_outside_meshes``,
                                                                              ``reflected_inertia``
-``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            ``allow_outside_meshes``,
+``*.xml``              :func:`~robokit.description.mjcf.load_mjcf`            ``package_dirs``,
+                                                                             ``allow_outside_meshes``,
                                                                              ``reflected_inertia``
 ``*.sdf``, ``*.world`` :func:`~robokit.description.sdf.load_sdf`              ``package_dirs``,
                                                                              ``allow_outside_meshes``,
@@ -62,7 +63,7 @@ FILE_LOADERS: dict[str, tuple[Callable[..., Robot], tuple[str, ...]]] = {
     ".yml": (load_dh_file, ()),
     ".urdf": (load_urdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
     ".xacro": (load_xacro, ("package_dirs", "xacro_args", "allow_outside_meshes", "reflected_inertia")),
-    ".xml": (load_mjcf, ("allow_outside_meshes", "reflected_inertia")),
+    ".xml": (load_mjcf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
     ".sdf": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
     ".world": (load_sdf, ("package_dirs", "allow_outside_meshes", "reflected_inertia")),
 }
@@ -77,7 +78,8 @@ _SPEC_LOADERS: dict[str, Callable[[RobotSpec], Robot]] = {
     "xacro": lambda s: load_xacro(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                                   xacro_args=s.xacro_mapping or None, allow_outside_meshes=s.allow_outside_meshes,
                                   reflected_inertia=s.reflected_inertia),
-    "mjcf": lambda s: load_mjcf(s.path or "", s.tip, allow_outside_meshes=s.allow_outside_meshes,
+    "mjcf": lambda s: load_mjcf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
+                                allow_outside_meshes=s.allow_outside_meshes,
                                 reflected_inertia=s.reflected_inertia),
     "sdf": lambda s: load_sdf(s.path or "", s.tip, package_dirs=s.package_dirs or None,
                               allow_outside_meshes=s.allow_outside_meshes, reflected_inertia=s.reflected_inertia),

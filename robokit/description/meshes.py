@@ -280,13 +280,16 @@ MAX_MESH_BYTES = 32 << 20
 MAX_TOTAL_MESH_BYTES = 256 << 20
 
 
-def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
+def mesh_file_problem(path: str | os.PathLike[str], count_triangles: bool = True) -> str | None:
     """Why the mesh file ``path`` is not read, or None if it may be.
 
     Parameters
     ----------
     path : str or os.PathLike
         The mesh file.
+    count_triangles : bool
+        Also count its triangles (False for a file that is not a mesh, such as an MJCF
+        ``<texture>``, which robokit never reads: only its kind and size are checked).
 
     Returns
     -------
@@ -315,6 +318,8 @@ def mesh_file_problem(path: str | os.PathLike[str]) -> str | None:
         return "not a regular file"
     if st.st_size > MAX_MESH_BYTES:
         return f"{st.st_size / 1e6:.1f} MB; robokit reads mesh files of at most {MAX_MESH_BYTES / 1e6:.1f} MB"
+    if not count_triangles:
+        return None
     try:  # triangles and vertices counted from the bytes, before Pinocchio's loader parses anything
         check_mesh_bytes(read_input_bytes(path, MAX_MESH_BYTES, "a mesh file"), Path(path).suffix, "")
     except InputError as exc:

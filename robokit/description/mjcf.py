@@ -41,7 +41,7 @@ import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
@@ -314,7 +314,8 @@ def _default_tip(model: Any) -> str:
     return str(max(bodies)[2]) if bodies else body
 
 
-def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_outside_meshes: bool = False,
+def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *,
+              package_dirs: Sequence[str | os.PathLike[str]] | None = None, allow_outside_meshes: bool = False,
               reflected_inertia: bool = True) -> Robot:
     """Load an MJCF file as a :class:`robokit.Robot` (see the module docstring).
 
@@ -325,9 +326,12 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     tip : str, optional
         The chain's tip frame (a body or site name). Default: the last site of the chain's
         last body, else that body's first deepest fixed child body, else that body.
+    package_dirs : sequence of str or Path, optional
+        More folders the file's includes and assets may be read from, beside the file's folder and
+        its package (a project whose task files include ``../scene/...`` passes the folder above).
     allow_outside_meshes : bool
-        Read mesh files outside the file's folder and its package (refused by default; see
-        :mod:`robokit.description.meshes`). Includes are always confined.
+        Read mesh files outside the file's folder, its package and ``package_dirs`` (refused by
+        default; see :mod:`robokit.description.meshes`). Includes are always confined.
     reflected_inertia : bool
         Add each joint's ``armature`` (reflected rotor inertia) to M and inverse dynamics, as MuJoCo does (default);
         False leaves it out (``robot.model.armature`` is then zero).
@@ -361,6 +365,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     from robokit.description.mjcf_description import _mjcf_parts
     from robokit.description.mjcf_safety import check_mjcf
     from robokit.description.model_builder import build_model
+    from robokit.description.urdf_files import absolute_dirs
 
     path = Path(path)
     if not path.exists():  # a FIFO or device is refused by the bounded reader
@@ -368,12 +373,12 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     if not isinstance(reflected_inertia, (bool, np.bool_)):
         raise InputError(f"reflected_inertia: expected True or False, got {reflected_inertia!r}")
     armature = bool(reflected_inertia)
-    root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
+    root = check_mjcf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
     if all(world.find(".//body") is None for world in root.findall("worldbody")):  # MuJoCo merges them all
         raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
-    c = compile_mjcf(path, root, allow_outside_meshes=allow_outside_meshes)
+    c = compile_mjcf(path, root, allow_outside_meshes=allow_outside_meshes, package_dirs=package_dirs)
     if len(c.bodies) < 2:
         raise InputError(f"{path}: <worldbody> has no <body>; nothing to load")
     first = _robot_root(c)
@@ -385,6 +390,7 @@ def load_mjcf(path: str | os.PathLike[str], tip: str | None = None, *, allow_out
     model, visual, collision, _ = build_model(desc)  # no mesh files read: the compiler read them
     name = c.name
     spec = RobotSpec("mjcf", path=os.path.abspath(path), tip=tip, allow_outside_meshes=allow_outside_meshes,
+                     package_dirs=absolute_dirs(package_dirs),
                      reflected_inertia=armature)
     tip = tip or _default_tip(model)
     locked = _locked_joints(c, first, model, tip)

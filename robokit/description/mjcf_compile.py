@@ -490,7 +490,7 @@ def _mesh_file(ctx: _Ctx, file: str) -> Path:
         file = os.path.basename(file)
     top = ctx.path.resolve().parent
     base = top / ctx.compiler["meshdir"] if ctx.compiler["meshdir"] else top
-    return confine(base / file, allowed_roots(ctx.path), ctx.path, f"<mesh file={file!r}>",
+    return confine(base / file, allowed_roots(ctx.path, ctx.compiler.get("package_dirs")), ctx.path, f"<mesh file={file!r}>",
                    allow_outside=ctx.compiler.get("allow_outside_meshes", False))
 
 
@@ -1295,7 +1295,8 @@ def _check_keyframes(ctx: _Ctx, bodies: list[_Body]) -> None:
 
 
 def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *,
-                 allow_outside_meshes: bool = False) -> CompiledMjcf:
+                 allow_outside_meshes: bool = False,
+                 package_dirs: Sequence[str | os.PathLike[str]] | None = None) -> CompiledMjcf:
     """Compile an MJCF file by MuJoCo's rules, without MuJoCo (see the module docstring).
 
     Parameters
@@ -1306,7 +1307,9 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
         Its root element with every ``<include>`` expanded (default: read and checked from
         ``path`` by :func:`robokit.description.mjcf_safety.check_mjcf`).
     allow_outside_meshes : bool
-        Read mesh files outside the file's folder and package.
+        Read mesh files outside the file's folder, its package and ``package_dirs``.
+    package_dirs : sequence of str or Path, optional
+        More folders the file's includes and meshes may be read from.
 
     Returns
     -------
@@ -1339,7 +1342,7 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     if root is None:
         from robokit.description.mjcf_safety import check_mjcf
 
-        root = check_mjcf(path, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
+        root = check_mjcf(path, package_dirs=package_dirs, allow_outside_meshes=allow_outside_meshes, expand_includes=True)
     if root.tag != "mujoco":
         raise InputError(f"{path}: root element <{root.tag}> is not <mujoco>; an MJCF file starts with <mujoco>")
     check_schema(root, path)
@@ -1349,6 +1352,7 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
     ctx.names = known
     _read_compiler(ctx)
     ctx.compiler["allow_outside_meshes"] = allow_outside_meshes
+    ctx.compiler["package_dirs"] = tuple(package_dirs or ())
     _read_defaults(ctx)
     _read_assets(ctx)
     _check_asset_files(ctx)
@@ -1445,6 +1449,6 @@ def compile_mjcf(path: str | os.PathLike[str], root: ET.Element | None = None, *
                             joints=tuple(b.joints), mass=float(b.mass), ipos=np.array(b.ipos), iquat=np.array(b.iquat),
                             inertia=np.array(b.inertia), geoms=tuple(b.geoms), sites=tuple(b.sites), named=b.named,
                             mocap=b.mocap) for b in bodies)
-    compiler = {k: v for k, v in ctx.compiler.items() if k != "allow_outside_meshes"}
+    compiler = {k: v for k, v in ctx.compiler.items() if k not in ("allow_outside_meshes", "package_dirs")}
     return CompiledMjcf(name=root.get("model") or path.stem, path=str(path), bodies=frozen, gravity=gravity,
                         compiler=compiler, excluded=tuple(excluded), notes=tuple(dict.fromkeys(ctx.notes)))

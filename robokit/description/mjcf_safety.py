@@ -26,6 +26,9 @@ from robokit.errors import InputError
 
 __all__ = ["MAX_INCLUDES", "MAX_INCLUDE_DEPTH", "MAX_MJCF_BYTES", "check_mjcf", "read_mjcf_root"]
 
+#: How to read a file the model names in a sibling folder of the file's (``../scene/...``).
+_HINT = "; pass a folder that holds it in package_dirs= (--package-path)"
+
 #: Largest MJCF file (and include) read.
 MAX_MJCF_BYTES = 20 << 20
 #: Deepest ``<include>`` nesting and most files followed.
@@ -128,7 +131,7 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                 continue
             what = f"<{el.tag} file={f!r}>"
             if el.tag == "include":
-                inc = confine(top_dir / f, roots, source, what)
+                inc = confine(top_dir / f, roots, source, what, hint=_HINT)
                 if depth >= MAX_INCLUDE_DEPTH:
                     raise InputError(f"{source}: {what}: includes nested deeper than {MAX_INCLUDE_DEPTH} levels")
                 count["files"] += 1
@@ -144,8 +147,11 @@ def check_mjcf(path: str | os.PathLike[str], package_dirs: Sequence[str | os.Pat
                 continue
             sub = compiler.get(_ASSET_DIR.get(el.tag, ""), compiler.get("assetdir", ""))
             base = top_dir / sub if sub else top_dir
-            asset = confine(base / f, roots, source, what, allow_outside=allow_outside_meshes and el.tag in _ASSET_DIR)
-            problem = mesh_file_problem(asset) if os.path.lexists(asset) else None
+            asset = confine(base / f, roots, source, what, allow_outside=allow_outside_meshes and el.tag in _ASSET_DIR,
+                            hint=_HINT + (" or allow_outside_meshes=True (--allow-outside-meshes)"
+                                          if el.tag in _ASSET_DIR else ""))
+            # only a <mesh> is a mesh: a texture, skin or height field is never read by robokit
+            problem = mesh_file_problem(asset, el.tag == "mesh") if os.path.lexists(asset) else None
             if problem is not None:
                 raise InputError(f"{source}: {what}: {problem}")
             if copy_to is not None:

@@ -809,3 +809,61 @@ if given is not None:
         assert ev[0] + swap >= ev[1] and ev[1] + swap >= ev[2]
         assert np.abs(np.sort(ev) - np.linalg.eigvalsh(A)).max() <= 4 * MESH_EIG_RELTOL * scale
         assert np.abs(R @ np.diag(ev) @ R.T - A).max() <= 4 * MESH_EIG_RELTOL * scale
+
+
+def test_a_file_that_includes_files_of_sibling_folders_loads_with_package_dirs(tmp_path):
+    """MetaWorld's layout: ``assets/sawyer_xyz/<task>.xml`` includes ``../scene/...`` and
+    ``../objects/assets/...`` and finds its meshes in ``../objects/meshes``. MuJoCo reads it; robokit
+    refused it whatever the options (its MJCF loader had no ``package_dirs``)."""
+    assets = tmp_path / "assets"
+    for sub in ("task", "robot", "meshes"):
+        (assets / sub).mkdir(parents=True)
+    _binary_stl(assets / "meshes" / "ell.stl", *_l_prism())
+    (assets / "robot" / "arm.xml").write_text(
+        '<mujocoinclude><body name="a"><joint name="j1" axis="0 0 1" armature="0.1"/><geom type="mesh" mesh="ell"/>'
+        '<body name="b" pos="0.3 0 0"><joint name="j2" axis="0 1 0"/><geom type="capsule" size="0.03 0.1"/>'
+        '<site name="tip" pos="0 0 0.2"/></body></body></mujocoinclude>')
+    (assets / "task" / "reach.xml").write_text(
+        '<mujoco><compiler meshdir="../meshes"/><asset><mesh name="ell" file="ell.stl"/></asset>'
+        '<worldbody><include file="../robot/arm.xml"/></worldbody></mujoco>')
+    path = assets / "task" / "reach.xml"
+    with pytest.raises(InputError, match=r"<mesh file='ell.stl'> is outside .*package_dirs="):
+        robokit.load(path)
+    with pytest.raises(InputError, match=r"<include file='../robot/arm.xml'> is outside .*package_dirs="):
+        robokit.load(path, allow_outside_meshes=True)
+    robot = robokit.load(path, tip="tip", package_dirs=[assets])
+    assert robot.spec.package_dirs == (str(assets.resolve()),)
+    assert robokit.load(robot.spec).joint_names == ("j1", "j2")
+    m = _mj_model(path)
+    d = mujoco.MjData(m)
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        q, qd, qdd = rng.uniform(-2, 2, 2), rng.normal(size=2), rng.normal(size=2)
+        d.qpos[:], d.qvel[:], d.qacc[:] = q, qd, qdd
+        mujoco.mj_inverse(m, d)
+        M = np.zeros((2, 2))
+        mujoco.mj_fullM(m, d, M)
+        assert np.abs(robot.crba(q) - M).max() < TOL * np.abs(M).max()
+        assert np.abs(robot.rnea(q, qd, qdd) - d.qfrc_inverse).max() < TOL * np.abs(d.qfrc_inverse).max()
+        T = robot.frame_pose(q, "tip")
+        assert np.abs(T[:3, 3] - d.site_xpos[0]).max() < 1e-12
+
+
+def test_a_large_texture_is_not_counted_as_a_mesh(tmp_path):
+    """MetaWorld's ``textures/wood1.png`` (4.7 MB) was refused as "a mesh of a format robokit does not
+    count" (the triangle budget, one triangle per byte, applied to every file the model names);
+    robokit never reads a texture, and MuJoCo loads the file."""
+    import zlib
+
+    w = h = 1024  # noise does not compress: about 3 MB, over the budget of 2 000 000 "triangles"
+    raw = b"".join(b"\0" + np.random.default_rng(k).integers(0, 256, 3 * w, dtype=np.uint8).tobytes() for k in range(h))
+
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+
+    (tmp_path / "wood.png").write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                                        + chunk(b"IDAT", zlib.compress(raw, 1)) + chunk(b"IEND", b""))
+    assert (tmp_path / "wood.png").stat().st_size > 2_000_000
+    path = _rule_file(tmp_path, "from_geoms_auto",
+                      assets='<texture name="wood" type="2d" file="wood.png"/><material name="m" texture="wood"/>')
+    assert dynamics_differences(path, samples=3) < TOL
