@@ -24,7 +24,7 @@ DENSO = "denso_robot_descriptions/urdf/denso_robot.urdf.xacro"
 ARMS = {  # label -> (maker, file, xacro arguments)
     "Techman TM5-900": ("techman", "tm_description/xacro/tm5-900.urdf.xacro", {}),  # three parallel axes in C
     "DENSO VS-060": ("denso", DENSO, {"model": "vs060"}),  # spherical wrist
-    "DENSO COBOTTA": ("denso", DENSO, {"model": "cobotta"}),  # general 6R
+    "Dobot ME6": ("dobot", "cra_description/urdf/me6_robot.xacro", {}),  # calibrated three parallel axes
 }
 
 

@@ -1,4 +1,4 @@
-"""Industrial arms as their makers publish them for ROS 2 (Techman TM5-900, DENSO VS-060 and COBOTTA;
+"""Industrial arms as their makers publish them for ROS 2 (Techman TM5-900, DENSO VS-060, Dobot ME6;
 tests/data/<maker>/SOURCE), loaded with :func:`robokit.load` from the makers' own xacro files (with the
 xacro arguments a user passes) and held against Pinocchio built directly from the ``xacro`` program's
 expansion of the same files (tests/support/xacro_reference.py, not through robokit).
@@ -31,7 +31,7 @@ ARMS = {
     "Techman TM5-900 prefix": ("techman", "tm_description/xacro/tm5-900.urdf.xacro", {"prefix": "left_"},
                                "left_flange", ("<gazebo>", "<transmission>")),
     "DENSO VS-060": ("denso", DENSO, {"model": "vs060"}, "J6", ("<gazebo>", "<transmission>", "<ros2_control>")),
-    "DENSO COBOTTA": ("denso", DENSO, {"model": "cobotta"}, "J6", ("<gazebo>", "<transmission>", "<ros2_control>")),
+    "Dobot ME6": ("dobot", "cra_description/urdf/me6_robot.xacro", {}, "Link6", ("<gazebo>", "<ros2_control>")),
 }
 
 

@@ -1,6 +1,7 @@
 """ik_analytic on industrial arms as their makers publish them for ROS 2 (tests/data/<maker>/SOURCE): the
 Techman TM5-900 (UR-type: three parallel axes), the DENSO VS-060 (spherical wrist, Pieper's method) and
-the DENSO COBOTTA (wrist axes that do not meet: the general 6R method), loaded from the makers' xacro
+the Dobot ME6 (UR-type, but its right angles written 1.5708: the calibrated three parallel axes
+method), loaded from the makers' xacro
 files with the arguments a user passes.
 
 At random configurations within the file's limits, the pose is computed by Pinocchio on the ``xacro``
@@ -24,7 +25,7 @@ DENSO = "denso_robot_descriptions/urdf/denso_robot.urdf.xacro"
 ARMS = {
     "Techman TM5-900": ("techman", "tm_description/xacro/tm5-900.urdf.xacro", {}, "three parallel axes"),
     "DENSO VS-060": ("denso", DENSO, {"model": "vs060"}, "spherical wrist"),
-    "DENSO COBOTTA": ("denso", DENSO, {"model": "cobotta"}, "general 6R"),
+    "Dobot ME6": ("dobot", "cra_description/urdf/me6_robot.xacro", {}, "calibrated three parallel axes"),
 }
 POSES = 15
 
