@@ -690,11 +690,19 @@ class AnalyticIK:
         there are any — the nominal structure's closed form called the pose out of reach wrongly
         there (measured: 15 of 3,000 random poses of the benchmark's calibrated PUMA 560 before the relaxed
         poses moved the tool away from joint 1's axis too, none since, nor of its UR5 and Pieper arm). []
-        when the general method does not apply."""
+        when the general method does not apply, or has no root: then a RobokitWarning says so at every such
+        pose (the Dobot ME6's file, whose axes 5 and 6 miss by 8.6e-8 m, reaches poses at θ₅ = 0 that both
+        methods miss; the pose may also be out of reach)."""
         cal = self.calibrated
         assert cal is not None  # called for a calibrated arm only
         sols = self._general_solutions(T, wrist_ref) or []
-        if sols and not cal._general_warned:
+        if not sols:  # within reach, and neither method has a root: out of reach, or a singular pose both miss
+            warnings.warn("ik_analytic: no solution at this pose, which lies within the arm's reach: neither the "
+                          "nominal structure's closed form nor the general 6R method gives one. At a singular "
+                          "configuration of the nominal structure (a wrist singularity: its solutions form a "
+                          "continuum) both can miss a pose this arm reaches; robokit.solve_ik from several starts "
+                          "can find it", RobokitWarning, stacklevel=4)
+        elif not cal._general_warned:
             cal._general_warned = True
             said = (f"ik_analytic: the nominal structure's closed form gives no start at this pose, which the arm "
                     f"reaches: the general 6R method's {len(sols)} solutions are returned (labelled 'solution k of "
