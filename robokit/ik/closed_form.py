@@ -211,6 +211,14 @@ def _wrist_ref(wrist_ref: object) -> float:
     return ref
 
 
+#: What ``ik_analytic`` says when a calibrated arm's pose within reach has no solution from either method.
+_EMPTY_WITHIN_REACH = ("ik_analytic: no solution at this pose, which lies within the arm's reach: neither the "
+                       "nominal structure's closed form nor the general 6R method gives one. At a singular "
+                       "configuration of the nominal structure (a wrist singularity: its solutions form a "
+                       "continuum) both can miss a pose this arm reaches; robokit.solve_ik from several starts "
+                       "can find it")
+
+
 class AnalyticIK:
     r"""The closed-form inverse kinematics of one robot, as an object to hold and reuse.
 
@@ -697,11 +705,7 @@ class AnalyticIK:
         assert cal is not None  # called for a calibrated arm only
         sols = self._general_solutions(T, wrist_ref) or []
         if not sols:  # within reach, and neither method has a root: out of reach, or a singular pose both miss
-            warnings.warn("ik_analytic: no solution at this pose, which lies within the arm's reach: neither the "
-                          "nominal structure's closed form nor the general 6R method gives one. At a singular "
-                          "configuration of the nominal structure (a wrist singularity: its solutions form a "
-                          "continuum) both can miss a pose this arm reaches; robokit.solve_ik from several starts "
-                          "can find it", RobokitWarning, stacklevel=4)
+            warnings.warn(_EMPTY_WITHIN_REACH, RobokitWarning, stacklevel=4)
         elif not cal._general_warned:
             cal._general_warned = True
             said = (f"ik_analytic: the nominal structure's closed form gives no start at this pose, which the arm "
